@@ -1,0 +1,66 @@
+// EVM -> boundary representation (Aguilera & Ayala's conversion with the 2D plane sweep of
+// Ayala & Vergara): orthogonal faces with holes, oriented outwards.
+//
+// For each axis A the EVM is sorted in the cyclic order (A, B, C) and swept plane of vertices
+// by plane of vertices. Each section follows from the previous one by XOR (formula 1); at cut
+// i the forward difference FD = S(i-1) - S(i) holds the faces whose outward normal is +A and
+// the backward difference BD = S(i) - S(i-1) those facing -A (formula 4). Both are 2D EVMs,
+// turned into faces, holes and loops by sweep2D.
+#ifndef vbr_BRep_h
+#define vbr_BRep_h
+
+#include "EVM.h"
+#include "Execution.h"
+#include "PlaneSweep2D.h"
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace vbr
+{
+
+using Point3 = std::array<Coord, 3>;
+
+struct BRepLoop
+{
+  std::vector<Point3> points; ///< counter-clockwise seen from outside for outer loops
+  int face = -1;
+  bool hole = false;
+};
+
+struct BRepFace
+{
+  int axis = 2;       ///< world axis of the normal
+  int normalSign = 1; ///< +1: the normal points to +axis
+  Coord position = 0; ///< coordinate of the face's plane along axis
+  int firstLoop = 0;  ///< loops [firstLoop, firstLoop + loopCount); the first is the outer one
+  int loopCount = 0;
+  int parent = -1; ///< 2D only: face in one of whose holes this face lies
+  int depth = 0;   ///< 2D only: depth in the inclusion tree (faces even, holes odd)
+};
+
+struct BRep
+{
+  std::vector<BRepFace> faces;
+  std::vector<BRepLoop> loops;
+  std::size_t nonManifoldVertices = 0;
+  std::size_t holeCount() const;
+};
+
+/// Faces of a 3D EVM (any sorting), grouped by normal axis, then plane, then +A before -A.
+/// Returns false (and a partial BRep) when exec.progress asked to abort.
+bool extractBoundary3D(
+  const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out);
+
+/// Faces of a 2D EVM with their inclusion tree; loops run counter-clockwise seen from the
+/// positive side of the plane's normal axis (holes clockwise).
+BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity);
+
+/// Inserts into every loop the vertices of other loops lying inside its edges, so that edges
+/// of adjacent faces match exactly (no T-junctions).
+void insertTJunctionVertices(BRep& brep, const Execution& exec = Execution());
+
+} // namespace vbr
+
+#endif

@@ -1,0 +1,352 @@
+#include "EVM.h"
+
+#include <algorithm>
+#include <cassert>
+#include <stdexcept>
+
+namespace vbr
+{
+
+namespace
+{
+
+const char* const AxisNames = "XYZ";
+
+int countTrailingZeros(Word w)
+{
+  return __builtin_ctzll(w);
+}
+
+/// Appends the set bits of a row of vertex words as vertices (a, b, x).
+void appendRowVertices(const Word* bits, std::size_t words, Coord a, Coord b, std::vector<Vertex>& out)
+{
+  for (std::size_t w = 0; w < words; ++w)
+  {
+    Word e = bits[w];
+    while (e)
+    {
+      const Coord x = static_cast<Coord>(w * 64 + countTrailingZeros(e));
+      out.push_back({ a, b, x });
+      e &= e - 1;
+    }
+  }
+}
+
+/// Turns the XOR of the voxel rows around a row of vertices into the vertex bits: vertex x is
+/// extreme when voxels x-1 and x of that XOR differ.
+void rowParityToVertexBits(const Word* parity, std::size_t rowWords, Word* vertexBits)
+{
+  Word carry = 0;
+  for (std::size_t w = 0; w < rowWords; ++w)
+  {
+    vertexBits[w] = parity[w] ^ ((parity[w] << 1) | carry);
+    carry = parity[w] >> 63;
+  }
+  vertexBits[rowWords] = carry;
+}
+
+/// Concatenates per-plane vertex lists in plane order.
+std::vector<Vertex> concatenate(std::vector<std::vector<Vertex>>& parts)
+{
+  std::size_t total = 0;
+  for (const auto& p : parts)
+  {
+    total += p.size();
+  }
+  std::vector<Vertex> out;
+  out.reserve(total);
+  for (auto& p : parts)
+  {
+    out.insert(out.end(), p.begin(), p.end());
+    std::vector<Vertex>().swap(p);
+  }
+  return out;
+}
+
+} // namespace
+
+AxisOrder axisOrderFromName(const std::string& name)
+{
+  if (name.size() != 3)
+  {
+    throw std::invalid_argument("axis order must have three letters: " + name);
+  }
+  AxisOrder order{};
+  int seen = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(name[k])));
+    if (c < 'X' || c > 'Z' || (seen & (1 << (c - 'X'))))
+    {
+      throw std::invalid_argument("not an ABC sorting: " + name);
+    }
+    order[k] = c - 'X';
+    seen |= 1 << order[k];
+  }
+  return order;
+}
+
+std::string axisOrderName(const AxisOrder& order)
+{
+  return { AxisNames[order[0]], AxisNames[order[1]], AxisNames[order[2]] };
+}
+
+int axisOrderParity(const AxisOrder& order)
+{
+  return ((order[1] - order[0] + 3) % 3 == 1) ? 1 : -1;
+}
+
+EVM::EVM(int dimension, const AxisOrder& order, std::vector<Vertex> sortedVertices)
+  : Dimension(dimension)
+  , Order(order)
+  , Vertices(std::move(sortedVertices))
+{
+  assert(std::is_sorted(this->Vertices.begin(), this->Vertices.end()));
+}
+
+std::array<Coord, 3> EVM::worldVertex(std::size_t i) const
+{
+  std::array<Coord, 3> w{ 0, 0, 0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    w[this->Order[k]] = this->Vertices[i][k];
+  }
+  return w;
+}
+
+EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
+{
+  if (this->Dimension == 2 && order[0] != this->Order[0])
+  {
+    throw std::invalid_argument("a 2D EVM keeps its plane normal as first axis");
+  }
+  std::vector<Vertex> v(this->Vertices.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    const auto w = this->worldVertex(i);
+    v[i] = { w[order[0]], w[order[1]], w[order[2]] };
+  }
+  if (v.empty())
+  {
+    return EVM(this->Dimension, order, std::move(v));
+  }
+  // Counting sort on the sweep coordinate, then each bucket sorted on its own (in parallel).
+  const int key = this->Dimension == 3 ? 0 : 1;
+  Coord lo = v[0][key], hi = v[0][key];
+  for (const auto& p : v)
+  {
+    lo = std::min(lo, p[key]);
+    hi = std::max(hi, p[key]);
+  }
+  std::vector<std::size_t> start(static_cast<std::size_t>(hi - lo) + 2, 0);
+  for (const auto& p : v)
+  {
+    ++start[p[key] - lo + 1];
+  }
+  for (std::size_t i = 1; i < start.size(); ++i)
+  {
+    start[i] += start[i - 1];
+  }
+  std::vector<Vertex> sorted(v.size());
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (const auto& p : v)
+    {
+      sorted[fill[p[key] - lo]++] = p;
+    }
+  }
+  exec.forRange(static_cast<std::int64_t>(start.size() - 1), [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      std::sort(sorted.begin() + start[k], sorted.begin() + start[k + 1]);
+    }
+  });
+  return EVM(this->Dimension, order, std::move(sorted));
+}
+
+std::vector<std::size_t> EVM::planeStarts() const
+{
+  const int key = this->Dimension == 3 ? 0 : 1;
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < this->Vertices.size(); ++i)
+  {
+    if (i == 0 || this->Vertices[i][key] != this->Vertices[i - 1][key])
+    {
+      starts.push_back(i);
+    }
+  }
+  starts.push_back(this->Vertices.size());
+  return starts;
+}
+
+std::size_t EVM::planeCount() const
+{
+  return this->planeStarts().size() - 1;
+}
+
+BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
+{
+  BitVolume out(dims[0], dims[1], dims[2]);
+  if (this->Vertices.empty())
+  {
+    return out;
+  }
+  // Parity grid of the vertices; the prefix XOR over all vertices <= v (in every in-plane axis)
+  // is the voxel whose lowest corner is v.
+  const std::size_t gx = dims[0] + 1, gy = dims[1] + 1, gz = dims[2] + 1;
+  std::vector<std::uint8_t> g(gx * gy * gz, 0);
+  auto at = [&](std::size_t x, std::size_t y, std::size_t z) -> std::uint8_t& {
+    return g[(z * gy + y) * gx + x];
+  };
+  for (std::size_t i = 0; i < this->Vertices.size(); ++i)
+  {
+    const auto w = this->worldVertex(i);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (w[k] < 0 || w[k] > dims[k])
+      {
+        throw std::out_of_range("EVM vertex outside the grid");
+      }
+    }
+    at(w[0], w[1], w[2]) ^= 1;
+  }
+  const int flat = this->Dimension == 2 ? this->Order[0] : -1;
+  for (std::size_t z = 0; z < gz; ++z)
+    for (std::size_t y = 0; y < gy; ++y)
+      for (std::size_t x = 0; x < gx; ++x)
+      {
+        std::uint8_t& c = at(x, y, z);
+        if (x > 0 && flat != 0)
+          c ^= at(x - 1, y, z);
+        if (y > 0 && flat != 1)
+          c ^= at(x, y - 1, z);
+        if (z > 0 && flat != 2)
+          c ^= at(x, y, z - 1);
+      }
+  for (std::int32_t z = 0; z < dims[2]; ++z)
+    for (std::int32_t y = 0; y < dims[1]; ++y)
+      for (std::int32_t x = 0; x < dims[0]; ++x)
+      {
+        if (at(x, y, z))
+        {
+          out.set(x, y, z);
+        }
+      }
+  return out;
+}
+
+EVM extractEVM(const BitVolume& voxels, const Execution& exec)
+{
+  const std::int32_t ny = voxels.size(1), nz = voxels.size(2);
+  const std::size_t rowWords = voxels.wordsPerRow();
+  std::vector<std::vector<Vertex>> planes(static_cast<std::size_t>(nz) + 1);
+  if (voxels.size(0) > 0 && ny > 0 && nz > 0)
+  {
+    exec.forRange(nz + 1, [&](std::int64_t zb, std::int64_t ze) {
+      std::vector<Word> parity(rowWords), bits(rowWords + 1);
+      for (std::int64_t kz = zb; kz < ze; ++kz)
+      {
+        for (std::int32_t ky = 0; ky <= ny; ++ky)
+        {
+          std::fill(parity.begin(), parity.end(), 0);
+          bool any = false;
+          for (std::int32_t z = static_cast<std::int32_t>(kz) - 1; z <= kz; ++z)
+          {
+            for (std::int32_t y = ky - 1; y <= ky; ++y)
+            {
+              if (z < 0 || z >= nz || y < 0 || y >= ny)
+              {
+                continue;
+              }
+              const Word* r = voxels.row(y, z);
+              for (std::size_t w = 0; w < rowWords; ++w)
+              {
+                parity[w] ^= r[w];
+              }
+              any = true;
+            }
+          }
+          if (!any)
+          {
+            continue;
+          }
+          rowParityToVertexBits(parity.data(), rowWords, bits.data());
+          appendRowVertices(bits.data(), rowWords + 1, static_cast<Coord>(kz), ky, planes[kz]);
+        }
+      }
+    });
+  }
+  return EVM(3, AxisOrder{ 2, 1, 0 }, concatenate(planes));
+}
+
+EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
+{
+  if (pixels.size(2) != 1)
+  {
+    throw std::invalid_argument("extractEVM2D needs a single slice (nz == 1)");
+  }
+  const std::int32_t ny = pixels.size(1);
+  const std::size_t rowWords = pixels.wordsPerRow();
+  std::vector<std::vector<Vertex>> lines(static_cast<std::size_t>(ny) + 1);
+  if (pixels.size(0) > 0 && ny > 0)
+  {
+    exec.forRange(ny + 1, [&](std::int64_t yb, std::int64_t ye) {
+      std::vector<Word> parity(rowWords), bits(rowWords + 1);
+      for (std::int64_t ky = yb; ky < ye; ++ky)
+      {
+        std::fill(parity.begin(), parity.end(), 0);
+        for (std::int64_t y = ky - 1; y <= ky; ++y)
+        {
+          if (y < 0 || y >= ny)
+          {
+            continue;
+          }
+          const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
+          for (std::size_t w = 0; w < rowWords; ++w)
+          {
+            parity[w] ^= r[w];
+          }
+        }
+        rowParityToVertexBits(parity.data(), rowWords, bits.data());
+        appendRowVertices(bits.data(), rowWords + 1, 0, static_cast<Coord>(ky), lines[ky]);
+      }
+    });
+  }
+  return EVM(2, AxisOrder{ 2, 1, 0 }, concatenate(lines));
+}
+
+std::array<std::size_t, 3> planesPerAxis(const EVM& evm)
+{
+  std::array<std::size_t, 3> counts{ 0, 0, 0 };
+  if (evm.empty())
+  {
+    return counts;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    if (evm.dimension() == 2 && k == 0)
+    {
+      continue; // the plane normal of a 2D EVM has no planes of vertices
+    }
+    std::vector<Coord> c(evm.size());
+    for (std::size_t i = 0; i < evm.size(); ++i)
+    {
+      c[i] = evm.vertices()[i][k];
+    }
+    std::sort(c.begin(), c.end());
+    counts[evm.order()[k]] = static_cast<std::size_t>(std::unique(c.begin(), c.end()) - c.begin());
+  }
+  return counts;
+}
+
+std::vector<Vertex> project(const Vertex* begin, const Vertex* end, int level)
+{
+  std::vector<Vertex> out(begin, end);
+  for (auto& v : out)
+  {
+    v[level] = 0;
+  }
+  return out;
+}
+
+} // namespace vbr

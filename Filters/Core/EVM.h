@@ -1,0 +1,95 @@
+// The Extreme Vertices Model of an orthogonal pseudo-polyhedron (3D) or polygon (2D).
+//
+// The extreme vertices of a voxel set are the grid vertices incident to an odd number of
+// set voxels (pixels in 2D). They are kept ABC-sorted: each vertex stores its coordinates in
+// the order (A, B, C) of the sorting, so that planes of vertices (equal A) and lines of
+// vertices (equal A and B) are contiguous runs.
+//
+// A 2D EVM uses the same storage with A = 0: its vertices are (0, B, C), its lines of vertices
+// are runs of equal B, and AxisOrder[0] names the axis normal to its plane. The sections and
+// the projections of planes of a 3D EVM are such 2D EVMs, which is what makes the algorithms
+// recursive in the dimension.
+#ifndef vbr_EVM_h
+#define vbr_EVM_h
+
+#include "BitVolume.h"
+#include "Execution.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vbr
+{
+
+using Coord = std::int32_t;
+/// Coordinates in sorting order (A, B, C), compared lexicographically.
+using Vertex = std::array<Coord, 3>;
+/// AxisOrder[k] is the world axis (0 = x, 1 = y, 2 = z) of the k-th sorting coordinate.
+using AxisOrder = std::array<int, 3>;
+
+/// The six ABC sortings, by name ("XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX").
+AxisOrder axisOrderFromName(const std::string& name);
+std::string axisOrderName(const AxisOrder& order);
+/// +1 when (A, B, C) is a cyclic permutation of (x, y, z), else -1: B x C = sign * A.
+int axisOrderParity(const AxisOrder& order);
+
+class EVM
+{
+public:
+  EVM() = default;
+  /// Takes vertices already sorted in `order` (checked in debug builds).
+  EVM(int dimension, const AxisOrder& order, std::vector<Vertex> sortedVertices);
+
+  int dimension() const { return this->Dimension; }
+  const AxisOrder& order() const { return this->Order; }
+  const std::vector<Vertex>& vertices() const { return this->Vertices; }
+  std::size_t size() const { return this->Vertices.size(); }
+  bool empty() const { return this->Vertices.empty(); }
+
+  /// Vertex i in world axes (x, y, z).
+  std::array<Coord, 3> worldVertex(std::size_t i) const;
+
+  /// The same vertex set sorted in another order (same dimension; for 2D only B and C swap).
+  EVM sortedAs(const AxisOrder& order, const Execution& exec = Execution()) const;
+
+  /// Start index of every plane of vertices (3D) or line of vertices (2D), plus size().
+  std::vector<std::size_t> planeStarts() const;
+  std::size_t planeCount() const;
+
+  /// Rebuilds the voxel set of the given grid size (exact inverse of extraction).
+  BitVolume toVoxels(const std::array<std::int32_t, 3>& dims) const;
+
+  bool operator==(const EVM& other) const
+  {
+    return this->Dimension == other.Dimension && this->Order == other.Order &&
+      this->Vertices == other.Vertices;
+  }
+
+private:
+  int Dimension = 3;
+  AxisOrder Order{ 2, 1, 0 };
+  std::vector<Vertex> Vertices;
+};
+
+/// Extreme vertices of a 3D voxel set, ZYX-sorted. One pass over the bit rows, XOR of the four
+/// rows around each row of vertices, parallel over planes of vertices.
+EVM extractEVM(const BitVolume& voxels, const Execution& exec = Execution());
+
+/// Extreme vertices of a 2D pixel set stored in a BitVolume with nz == 1: vertices (0, y, x),
+/// order {z, y, x}.
+EVM extractEVM2D(const BitVolume& pixels, const Execution& exec = Execution());
+
+/// Number of distinct coordinates of the vertices along each world axis (planes of vertices
+/// perpendicular to x, y, z).
+std::array<std::size_t, 3> planesPerAxis(const EVM& evm);
+
+/// Projection of a plane (or line) of vertices: drops the leading sorting coordinate `level`
+/// (sets it to 0), keeping the order.
+std::vector<Vertex> project(const Vertex* begin, const Vertex* end, int level);
+
+} // namespace vbr
+
+#endif

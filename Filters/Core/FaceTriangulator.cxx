@@ -1,0 +1,113 @@
+#include "FaceTriangulator.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <list>
+
+namespace vbr
+{
+
+namespace
+{
+
+struct FaceInfo
+{
+  int nesting = -1;
+  bool inside() const { return this->nesting % 2 == 1; }
+};
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
+using FaceBaseInfo = CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>;
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceBaseInfo>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+
+/// Flood fill from the infinite face: crossing a constrained edge increases the nesting level,
+/// and the triangles at odd levels are inside the face.
+void markNesting(Cdt& cdt)
+{
+  std::list<Cdt::Edge> border;
+  auto fill = [&](Cdt::Face_handle start, int level) {
+    if (start->info().nesting != -1)
+      return;
+    std::list<Cdt::Face_handle> queue{ start };
+    while (!queue.empty())
+    {
+      Cdt::Face_handle fh = queue.front();
+      queue.pop_front();
+      if (fh->info().nesting != -1)
+        continue;
+      fh->info().nesting = level;
+      for (int i = 0; i < 3; ++i)
+      {
+        Cdt::Face_handle n = fh->neighbor(i);
+        if (n->info().nesting == -1)
+        {
+          if (cdt.is_constrained(Cdt::Edge(fh, i)))
+            border.push_back(Cdt::Edge(fh, i));
+          else
+            queue.push_back(n);
+        }
+      }
+    }
+  };
+  fill(cdt.infinite_face(), 0);
+  while (!border.empty())
+  {
+    Cdt::Edge e = border.front();
+    border.pop_front();
+    Cdt::Face_handle n = e.first->neighbor(e.second);
+    if (n->info().nesting == -1)
+      fill(n, e.first->info().nesting + 1);
+  }
+}
+
+} // namespace
+
+std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
+{
+  const BRepFace& face = brep.faces[f];
+  const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3; // (u, v, axis) is right-handed
+  Cdt cdt;
+  int index = 0;
+  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+  {
+    const auto& pts = brep.loops[l].points;
+    std::vector<Cdt::Vertex_handle> handles;
+    handles.reserve(pts.size());
+    for (const Point3& p : pts)
+    {
+      const auto before = cdt.number_of_vertices();
+      Cdt::Vertex_handle h = cdt.insert(Kernel::Point_2(p[u], p[v]));
+      if (cdt.number_of_vertices() != before)
+      {
+        h->info() = index; // first corner at this location
+      }
+      handles.push_back(h);
+      ++index;
+    }
+    for (std::size_t i = 0; i < handles.size(); ++i)
+    {
+      cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
+    }
+  }
+  markNesting(cdt);
+  std::vector<std::array<int, 3>> triangles;
+  const bool flip = face.normalSign < 0; // CGAL faces are counter-clockwise in (u, v)
+  for (auto fh = cdt.finite_faces_begin(); fh != cdt.finite_faces_end(); ++fh)
+  {
+    if (!fh->info().inside())
+      continue;
+    std::array<int, 3> t{ fh->vertex(0)->info(), fh->vertex(1)->info(), fh->vertex(2)->info() };
+    if (flip)
+      std::swap(t[1], t[2]);
+    triangles.push_back(t);
+  }
+  return triangles;
+}
+
+} // namespace vbr

@@ -1,0 +1,73 @@
+// 2D EVM -> B-Rep by the plane sweep of Ayala & Vergara, "An improved boundary extraction
+// algorithm using a plane-sweep technique" (section 3).
+//
+// The 2D EVM is swept line of vertices by line of vertices (coordinate u). Each line (a cut,
+// a 1D EVM of brinks) is merged with the active 1D section by XOR (formula 1), and during that
+// merge every brink and every horizontal edge closed by it is attached to its contour: the
+// first sweep builds the oriented edges and the contours. Section intervals that overlap from
+// one section to the next are united (union-find), which merges contours of the same face on
+// the fly. A non-manifold vertex (a brink that contains a vertex of the active section, paper
+// section 3.3) splits the brink and the horizontal edge there; how its four edges pair up is
+// decided once the faces are known. The information of the stored sections that the second
+// sweep needs (for each interval that starts a face: the edge below it in its section) then
+// classifies outer loops and holes and gives the inclusion tree with 1D tests only, without
+// any point-in-polygon test. Finally the domino step orders each contour's edges into loops.
+//
+// Conventions: input vertices are (0, u, v) sorted; every loop keeps its face on the left, so
+// an outer loop runs counter-clockwise in the (u, v) plane and a hole clockwise.
+#ifndef vbr_PlaneSweep2D_h
+#define vbr_PlaneSweep2D_h
+
+#include "EVM.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace vbr
+{
+
+struct Point2
+{
+  Coord u, v;
+  bool operator==(const Point2& o) const { return this->u == o.u && this->v == o.v; }
+  bool operator!=(const Point2& o) const { return !(*this == o); }
+};
+
+/// How faces meet at a non-manifold vertex (two pixels of the face touching at a corner only).
+enum class FaceConnectivity
+{
+  /// Faces are edge-connected: the vertex splits them into manifold faces (default).
+  Edge,
+  /// Faces are vertex-connected: the paper's non-manifold faces are kept whole.
+  Vertex
+};
+
+struct Loop2D
+{
+  std::vector<Point2> points; ///< corners in order, face on the left
+  int face = -1;
+  bool hole = false;
+};
+
+struct Face2D
+{
+  int outerLoop = -1;
+  std::vector<int> holeLoops;
+  int parent = -1; ///< the face in one of whose holes this face lies, or -1
+  int depth = 0;   ///< 0 for top-level faces, parent depth + 2 otherwise
+};
+
+struct Boundary2D
+{
+  std::vector<Face2D> faces; ///< in order of first appearance in the sweep
+  std::vector<Loop2D> loops;
+  std::size_t nonManifoldVertices = 0;
+};
+
+/// Faces, loops and inclusion tree of a 2D EVM given as vertices (0, u, v) in sorted order.
+Boundary2D sweep2D(
+  const Vertex* begin, const Vertex* end, FaceConnectivity connectivity = FaceConnectivity::Edge);
+
+} // namespace vbr
+
+#endif

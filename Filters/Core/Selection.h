@@ -1,0 +1,109 @@
+// Selection of voxels from a scalar array into a BitVolume (templated, VTK-free).
+#ifndef vbr_Selection_h
+#define vbr_Selection_h
+
+#include "BitVolume.h"
+#include "Execution.h"
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace vbr
+{
+
+/// Where the scalars of a box of voxels are: element (i, j, k) is
+/// data[i * stride[0] + j * stride[1] + k * stride[2]] (strides in elements).
+template <typename T>
+struct ScalarGrid
+{
+  const T* data = nullptr;
+  std::array<std::int64_t, 3> stride{ 0, 0, 0 };
+  std::array<std::int32_t, 3> dims{ 0, 0, 0 };
+
+  const T& at(std::int32_t i, std::int32_t j, std::int32_t k) const
+  {
+    return data[i * stride[0] + j * stride[1] + k * stride[2]];
+  }
+};
+
+/// Box [lo, hi) of voxel indices.
+struct Box3
+{
+  std::array<std::int32_t, 3> lo{ 0, 0, 0 };
+  std::array<std::int32_t, 3> hi{ 0, 0, 0 };
+};
+
+/// Voxels of `box` whose value satisfies `selected`, packed 64 per word, parallel over rows.
+template <typename T, typename Predicate>
+BitVolume selectVoxels(
+  const ScalarGrid<T>& grid, const Box3& box, Predicate selected, const Execution& exec)
+{
+  BitVolume out(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]);
+  const std::int32_t nx = out.size(0), ny = out.size(1);
+  exec.forRange(static_cast<std::int64_t>(ny) * out.size(2), [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t r = b; r < e; ++r)
+    {
+      const std::int32_t y = static_cast<std::int32_t>(r % ny);
+      const std::int32_t z = static_cast<std::int32_t>(r / ny);
+      const T* src = &grid.at(box.lo[0], box.lo[1] + y, box.lo[2] + z);
+      const std::int64_t sx = grid.stride[0];
+      Word* dst = out.row(y, z);
+      for (std::int32_t x0 = 0; x0 < nx; x0 += 64)
+      {
+        const std::int32_t n = std::min<std::int32_t>(64, nx - x0);
+        Word w = 0;
+        for (std::int32_t i = 0; i < n; ++i)
+        {
+          w |= static_cast<Word>(selected(src[(x0 + i) * sx])) << i;
+        }
+        dst[x0 >> 6] = w;
+      }
+    }
+  });
+  return out;
+}
+
+/// Every distinct value other than `background`, with the bounding box of its voxels.
+template <typename T>
+std::map<T, Box3> labelBoxes(const ScalarGrid<T>& grid, T background)
+{
+  std::map<T, Box3> boxes;
+  for (std::int32_t k = 0; k < grid.dims[2]; ++k)
+    for (std::int32_t j = 0; j < grid.dims[1]; ++j)
+    {
+      Box3* current = nullptr;
+      T currentValue = background;
+      for (std::int32_t i = 0; i < grid.dims[0]; ++i)
+      {
+        const T value = grid.at(i, j, k);
+        if (value == background)
+          continue;
+        if (!current || !(value == currentValue))
+        {
+          auto it = boxes.find(value);
+          if (it == boxes.end())
+          {
+            Box3 b;
+            b.lo = { i, j, k };
+            b.hi = { i + 1, j + 1, k + 1 };
+            it = boxes.emplace(value, b).first;
+          }
+          current = &it->second;
+          currentValue = value;
+        }
+        const std::array<std::int32_t, 3> p{ i, j, k };
+        for (int d = 0; d < 3; ++d)
+        {
+          current->lo[d] = std::min(current->lo[d], p[d]);
+          current->hi[d] = std::max(current->hi[d], p[d] + 1);
+        }
+      }
+    }
+  return boxes;
+}
+
+} // namespace vbr
+
+#endif

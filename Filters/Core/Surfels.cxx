@@ -1,0 +1,89 @@
+#include "Surfels.h"
+
+#include <bitset>
+
+namespace vbr
+{
+
+namespace
+{
+
+std::size_t popcount(Word w)
+{
+  return std::bitset<64>(w).count();
+}
+
+} // namespace
+
+std::size_t countSurfels(const BitVolume& voxels)
+{
+  const std::int32_t ny = voxels.size(1), nz = voxels.size(2);
+  const std::size_t words = voxels.wordsPerRow();
+  std::size_t n = 0;
+  for (std::int32_t z = 0; z < nz; ++z)
+  {
+    for (std::int32_t y = 0; y < ny; ++y)
+    {
+      const Word* r = voxels.row(y, z);
+      Word carry = 0;
+      for (std::size_t w = 0; w < words; ++w)
+      {
+        // x faces: transitions between neighbouring bits, including both row ends.
+        const Word shifted = (r[w] << 1) | carry;
+        carry = r[w] >> 63;
+        n += popcount(r[w] ^ shifted);
+      }
+      n += popcount(carry);
+      // y and z faces: transitions between this row and the previous row (or nothing).
+      const Word* py = y > 0 ? voxels.row(y - 1, z) : nullptr;
+      const Word* pz = z > 0 ? voxels.row(y, z - 1) : nullptr;
+      for (std::size_t w = 0; w < words; ++w)
+      {
+        n += popcount(r[w] ^ (py ? py[w] : 0));
+        n += popcount(r[w] ^ (pz ? pz[w] : 0));
+      }
+      if (y == ny - 1)
+        for (std::size_t w = 0; w < words; ++w)
+          n += popcount(r[w]);
+      if (z == nz - 1)
+        for (std::size_t w = 0; w < words; ++w)
+          n += popcount(r[w]);
+    }
+  }
+  return n;
+}
+
+std::vector<Surfel> extractSurfels(const BitVolume& voxels, bool planar)
+{
+  std::vector<Surfel> out;
+  const auto& d = voxels.dims();
+  auto inside = [&](std::int32_t x, std::int32_t y, std::int32_t z) {
+    return x >= 0 && y >= 0 && z >= 0 && x < d[0] && y < d[1] && z < d[2] && voxels.get(x, y, z);
+  };
+  for (int axis = 0; axis < (planar ? 2 : 3); ++axis)
+  {
+    for (std::int32_t z = 0; z < d[2]; ++z)
+      for (std::int32_t y = 0; y < d[1]; ++y)
+        for (std::int32_t x = 0; x < d[0]; ++x)
+        {
+          if (!voxels.get(x, y, z))
+            continue;
+          Vertex c{ x, y, z };
+          Vertex n = c;
+          --n[axis];
+          if (!inside(n[0], n[1], n[2]))
+            out.push_back({ axis, -1, c });
+          ++n[axis];
+          ++n[axis];
+          if (!inside(n[0], n[1], n[2]))
+          {
+            Vertex top = c;
+            ++top[axis];
+            out.push_back({ axis, +1, top });
+          }
+        }
+  }
+  return out;
+}
+
+} // namespace vbr

@@ -1,0 +1,129 @@
+#include "vtkVoxelBRepAdapters.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkSMPTools.h"
+
+#include <sstream>
+
+namespace vbr
+{
+namespace vtk
+{
+
+Execution makeExecution(vtkAlgorithm* algorithm, double progressFrom, double progressTo)
+{
+  Execution exec;
+  exec.parallelFor = [](std::int64_t n,
+                       const std::function<void(std::int64_t, std::int64_t)>& body) {
+    vtkSMPTools::For(vtkIdType(0), static_cast<vtkIdType>(n),
+      [&body](vtkIdType b, vtkIdType e) { body(b, e); });
+  };
+  exec.progress = [algorithm, progressFrom, progressTo](double f) {
+    algorithm->UpdateProgress(progressFrom + f * (progressTo - progressFrom));
+    return !algorithm->GetAbortExecute();
+  };
+  return exec;
+}
+
+void VoxelGrid::vertexToWorld(const std::array<std::int32_t, 3>& v, double world[3]) const
+{
+  double local[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    const double index = this->extentMin[d] + this->vertexShift[d] + v[d];
+    local[d] = index * this->spacing[d];
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    world[r] = this->origin[r] + this->direction[3 * r] * local[0] +
+      this->direction[3 * r + 1] * local[1] + this->direction[3 * r + 2] * local[2];
+  }
+}
+
+std::string describeVoxels(
+  vtkImageData* image, vtkDataArray* scalars, bool cellData, bool flatImagesAs2D, VoxelGrid& grid)
+{
+  int extent[6];
+  image->GetExtent(extent);
+  grid = VoxelGrid();
+  grid.cellData = cellData;
+  int flatCount = 0, flat = -1;
+  for (int d = 0; d < 3; ++d)
+  {
+    const int points = extent[2 * d + 1] - extent[2 * d] + 1;
+    if (points <= 0)
+    {
+      grid.dims = { 0, 0, 0 };
+      return std::string();
+    }
+    grid.extentMin[d] = extent[2 * d];
+    if (cellData)
+    {
+      // A single layer of points carries no thickness: the cells are pixels of that plane.
+      grid.dims[d] = points > 1 ? points - 1 : 1;
+      grid.vertexShift[d] = 0.0;
+      if (points == 1)
+      {
+        ++flatCount;
+        flat = d;
+      }
+    }
+    else
+    {
+      grid.dims[d] = points;
+      grid.vertexShift[d] = -0.5;
+    }
+  }
+  const vtkIdType expected =
+    static_cast<vtkIdType>(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  if (scalars->GetNumberOfTuples() != expected)
+  {
+    std::ostringstream msg;
+    msg << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "")
+        << "' has " << scalars->GetNumberOfTuples() << " tuples, the image has " << expected
+        << (cellData ? " cells" : " points");
+    return msg.str();
+  }
+  if (cellData && flatCount > 1)
+  {
+    return "cell scalars of an image that is flat along two axes describe no voxels";
+  }
+  if (flatCount == 1)
+  {
+    grid.flatAxis = flat; // cell data on a single layer of points: always 2D
+  }
+  else if (flatImagesAs2D)
+  {
+    int singles = 0, single = -1;
+    for (int d = 0; d < 3; ++d)
+    {
+      if (grid.dims[d] == 1)
+      {
+        ++singles;
+        single = d;
+      }
+    }
+    if (singles == 1)
+    {
+      grid.flatAxis = single;
+    }
+  }
+  if (grid.flatAxis >= 0)
+  {
+    grid.vertexShift[grid.flatAxis] = 0.0; // the contours lie in the image's plane
+  }
+  image->GetOrigin(grid.origin.data());
+  image->GetSpacing(grid.spacing.data());
+  if (vtkMatrix3x3* m = image->GetDirectionMatrix())
+  {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        grid.direction[3 * r + c] = m->GetElement(r, c);
+  }
+  return std::string();
+}
+
+} // namespace vtk
+} // namespace vbr
