@@ -54,9 +54,13 @@ struct Statistics
 
 /// Reads the selection: permutes axes so that a 2D image lies in the first two, and returns
 /// one Selected per label (or a single one).
-template <typename T>
-std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid, int mode, double lower,
-  double upper, double background, const vbr::Execution& exec)
+template<typename T>
+std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
+  int mode,
+  double lower,
+  double upper,
+  double background,
+  const vbr::Execution& exec)
 {
   std::vector<Selected> out;
   vbr::Box3 whole;
@@ -78,13 +82,16 @@ std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid, int mode, do
   Selected s;
   if (mode == vtkEVMBoundaryFilter::POSITIVE)
   {
-    s.voxels = vbr::selectVoxels(grid, whole, [](T v) { return v > T(0); }, exec);
+    s.voxels = vbr::selectVoxels(
+      grid, whole, [](T v) { return v > T(0); }, exec);
   }
   else
   {
     s.voxels = vbr::selectVoxels(
-      grid, whole,
-      [lower, upper](T v) {
+      grid,
+      whole,
+      [lower, upper](T v)
+      {
         const double d = static_cast<double>(v);
         return d >= lower && d <= upper;
       },
@@ -133,8 +140,13 @@ public:
     return id;
   }
 
-  void addCell(vtkCellArray* cells, const std::vector<vtkIdType>& ids, vtkIdType faceId,
-    int loopType, double label, vtkIdType parent, int depth)
+  void addCell(vtkCellArray* cells,
+    const std::vector<vtkIdType>& ids,
+    vtkIdType faceId,
+    int loopType,
+    double label,
+    vtkIdType parent,
+    int depth)
   {
     cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     this->FaceId->InsertNextValue(faceId);
@@ -241,8 +253,9 @@ const char* vtkEVMBoundaryFilter::GetOutputModeAsString()
 }
 
 //------------------------------------------------------------------------------
-int vtkEVMBoundaryFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
@@ -321,16 +334,23 @@ int vtkEVMBoundaryFilter::RequestData(
 
   std::vector<Selected> objects;
   const vbr::Execution selectExec = vbr::vtk::makeExecution(this, 0.0, 0.1);
-  const bool known = vbr::vtk::dispatchScalars(
-    scalars, this->ArrayComponent, grid, [&](auto scalarGrid) {
+  const bool known = vbr::vtk::dispatchScalars(scalars,
+    this->ArrayComponent,
+    grid,
+    [&](auto scalarGrid)
+    {
       auto permuted = scalarGrid;
       for (int k = 0; k < 3; ++k)
       {
         permuted.dims[k] = scalarGrid.dims[axes[k]];
         permuted.stride[k] = scalarGrid.stride[axes[k]];
       }
-      objects = selectObjects(permuted, this->SelectionMode, this->LowerThreshold,
-        this->UpperThreshold, this->BackgroundValue, selectExec);
+      objects = selectObjects(permuted,
+        this->SelectionMode,
+        this->LowerThreshold,
+        this->UpperThreshold,
+        this->BackgroundValue,
+        selectExec);
     });
   if (!known)
   {
@@ -339,9 +359,8 @@ int vtkEVMBoundaryFilter::RequestData(
   }
   this->UpdateProgress(0.1);
 
-  const vbr::FaceConnectivity connectivity = this->MergeNonManifoldFaces
-    ? vbr::FaceConnectivity::Vertex
-    : vbr::FaceConnectivity::Edge;
+  const vbr::FaceConnectivity connectivity =
+    this->MergeNonManifoldFaces ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
   OutputBuilder builder(grid, axes, scalars->GetDataType());
   Statistics stats;
   vtkIdType faceBase = 0;
@@ -400,8 +419,9 @@ int vtkEVMBoundaryFilter::RequestData(
           ++p2[a];
           ++p2[b];
           ++p3[b];
-          ids = { builder.pointId(c), builder.pointId(p1), builder.pointId(p2),
-            builder.pointId(p3) };
+          ids = {
+            builder.pointId(c), builder.pointId(p1), builder.pointId(p2), builder.pointId(p3)
+          };
           if (s.normalSign < 0)
             std::swap(ids[1], ids[3]);
         }
@@ -429,7 +449,8 @@ int vtkEVMBoundaryFilter::RequestData(
     {
       triangles.resize(brep.faces.size());
       exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
-        [&](std::int64_t b, std::int64_t e) {
+        [&](std::int64_t b, std::int64_t e)
+        {
           for (std::int64_t f = b; f < e; ++f)
             triangles[f] = vbr::triangulateFace(brep, static_cast<int>(f));
         });
@@ -457,8 +478,13 @@ int vtkEVMBoundaryFilter::RequestData(
         {
           ids.push_back(ids.front());
         }
-        builder.addCell(cells, ids, faceId, loop.hole ? 1 : 0, object.label,
-          loop.hole ? faceId : parent, loop.hole ? face.depth + 1 : face.depth);
+        builder.addCell(cells,
+          ids,
+          faceId,
+          loop.hole ? 1 : 0,
+          object.label,
+          loop.hole ? faceId : parent,
+          loop.hole ? face.depth + 1 : face.depth);
       }
       if (this->OutputMode == TRIANGLES)
       {

@@ -153,7 +153,8 @@ protected:
   ~vtkEVMBoundaryFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
   int SelectionMode = POSITIVE;

@@ -15,12 +15,13 @@ namespace vtk
 Execution makeExecution(vtkAlgorithm* algorithm, double progressFrom, double progressTo)
 {
   Execution exec;
-  exec.parallelFor = [](std::int64_t n,
-                       const std::function<void(std::int64_t, std::int64_t)>& body) {
-    vtkSMPTools::For(vtkIdType(0), static_cast<vtkIdType>(n),
-      [&body](vtkIdType b, vtkIdType e) { body(b, e); });
+  exec.parallelFor = [](std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
+  {
+    vtkSMPTools::For(
+      vtkIdType(0), static_cast<vtkIdType>(n), [&body](vtkIdType b, vtkIdType e) { body(b, e); });
   };
-  exec.progress = [algorithm, progressFrom, progressTo](double f) {
+  exec.progress = [algorithm, progressFrom, progressTo](double f)
+  {
     algorithm->UpdateProgress(progressFrom + f * (progressTo - progressFrom));
     return !algorithm->GetAbortExecute();
   };
@@ -42,8 +43,11 @@ void VoxelGrid::vertexToWorld(const std::array<std::int32_t, 3>& v, double world
   }
 }
 
-std::string describeVoxels(
-  vtkImageData* image, vtkDataArray* scalars, bool cellData, bool flatImagesAs2D, VoxelGrid& grid)
+std::string describeVoxels(vtkImageData* image,
+  vtkDataArray* scalars,
+  bool cellData,
+  bool flatImagesAs2D,
+  VoxelGrid& grid)
 {
   int extent[6];
   image->GetExtent(extent);
@@ -76,13 +80,12 @@ std::string describeVoxels(
       grid.vertexShift[d] = -0.5;
     }
   }
-  const vtkIdType expected =
-    static_cast<vtkIdType>(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  const vtkIdType expected = static_cast<vtkIdType>(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   if (scalars->GetNumberOfTuples() != expected)
   {
     std::ostringstream msg;
-    msg << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "")
-        << "' has " << scalars->GetNumberOfTuples() << " tuples, the image has " << expected
+    msg << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+        << scalars->GetNumberOfTuples() << " tuples, the image has " << expected
         << (cellData ? " cells" : " points");
     return msg.str();
   }

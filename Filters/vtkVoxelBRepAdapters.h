@@ -29,7 +29,7 @@ struct VoxelGrid
 {
   bool cellData = false;
   std::array<std::int32_t, 3> dims{ 0, 0, 0 };  ///< voxels along each axis
-  std::array<int, 3> extentMin{ 0, 0, 0 };     ///< index of the first point
+  std::array<int, 3> extentMin{ 0, 0, 0 };      ///< index of the first point
   std::array<double, 3> vertexShift{ 0, 0, 0 }; ///< index of grid vertex 0 minus extentMin
   std::array<double, 3> origin{ 0, 0, 0 };
   std::array<double, 3> spacing{ 1, 1, 1 };
@@ -42,22 +42,27 @@ struct VoxelGrid
 
 /// Describes the voxels of `image` carried by `scalars` (point or cell data). Returns an
 /// empty string on success, else a message for vtkErrorMacro.
-std::string describeVoxels(vtkImageData* image, vtkDataArray* scalars, bool cellData,
-  bool flatImagesAs2D, VoxelGrid& grid);
+std::string describeVoxels(vtkImageData* image,
+  vtkDataArray* scalars,
+  bool cellData,
+  bool flatImagesAs2D,
+  VoxelGrid& grid);
 
-template <typename T, typename F>
+template<typename T, typename F>
 void callWithGrid(void* raw, int nc, int component, const VoxelGrid& grid, F& f)
 {
   ScalarGrid<T> sg;
   sg.data = static_cast<const T*>(raw) + component;
   sg.dims = grid.dims;
-  sg.stride = { nc, std::int64_t(nc) * grid.dims[0], std::int64_t(nc) * grid.dims[0] * grid.dims[1] };
+  sg.stride = {
+    nc, std::int64_t(nc) * grid.dims[0], std::int64_t(nc) * grid.dims[0] * grid.dims[1]
+  };
   f(sg);
 }
 
 /// Calls f(ScalarGrid<T>) with the typed component `component` of `scalars`; false if the
 /// array type is not a plain numeric array.
-template <typename F>
+template<typename F>
 bool dispatchScalars(vtkDataArray* scalars, int component, const VoxelGrid& grid, F&& f)
 {
   const int nc = scalars->GetNumberOfComponents();

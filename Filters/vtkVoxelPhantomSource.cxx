@@ -22,12 +22,17 @@ vtkVoxelPhantomSource::vtkVoxelPhantomSource()
 }
 
 //------------------------------------------------------------------------------
-int vtkVoxelPhantomSource::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkVoxelPhantomSource::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  int extent[6] = { 0, std::max(this->Dimensions[0], 1) - 1, 0,
-    std::max(this->Dimensions[1], 1) - 1, 0, std::max(this->Dimensions[2], 1) - 1 };
+  int extent[6] = { 0,
+    std::max(this->Dimensions[0], 1) - 1,
+    0,
+    std::max(this->Dimensions[1], 1) - 1,
+    0,
+    std::max(this->Dimensions[2], 1) - 1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
@@ -37,7 +42,8 @@ int vtkVoxelPhantomSource::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
-void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output, vtkInformation* outInfo)
+void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output,
+  vtkInformation* outInfo)
 {
   vtkImageData* image = this->AllocateOutputData(output, outInfo);
   vtkUnsignedCharArray* scalars =
@@ -51,7 +57,8 @@ void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output, vt
   int extent[6];
   image->GetExtent(extent);
   const std::array<std::int32_t, 3> dims{ std::max(this->Dimensions[0], 1),
-    std::max(this->Dimensions[1], 1), std::max(this->Dimensions[2], 1) };
+    std::max(this->Dimensions[1], 1),
+    std::max(this->Dimensions[2], 1) };
   const std::vector<std::uint8_t> labels = vbr::makePhantom(dims);
   // Copy the requested extent (the whole extent unless a consumer streams pieces).
   unsigned char* out = scalars->GetPointer(0);

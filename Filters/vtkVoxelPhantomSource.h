@@ -35,7 +35,8 @@ protected:
   vtkVoxelPhantomSource();
   ~vtkVoxelPhantomSource() override = default;
 
-  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+  int RequestInformation(vtkInformation* request,
+    vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ExecuteDataWithInformation(vtkDataObject* output, vtkInformation* outInfo) override;
 

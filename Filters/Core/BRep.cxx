@@ -12,7 +12,10 @@ namespace
 {
 
 /// Appends the faces of one 2D solution lying in plane `position` of axis order `order`.
-void appendFaces(const Boundary2D& b2, const AxisOrder& order, Coord position, int normalSign,
+void appendFaces(const Boundary2D& b2,
+  const AxisOrder& order,
+  Coord position,
+  int normalSign,
   BRep& out)
 {
   // sweep2D loops are counter-clockwise in (B, C), whose right-hand normal is parity * A.
@@ -29,7 +32,8 @@ void appendFaces(const Boundary2D& b2, const AxisOrder& order, Coord position, i
     face.parent = f2.parent < 0 ? -1 : faceBase + f2.parent;
     face.depth = f2.depth;
     const int faceId = static_cast<int>(out.faces.size());
-    auto addLoop = [&](int l, bool hole) {
+    auto addLoop = [&](int l, bool hole)
+    {
       BRepLoop loop;
       loop.face = faceId;
       loop.hole = hole;
@@ -58,7 +62,9 @@ void appendFaces(const Boundary2D& b2, const AxisOrder& order, Coord position, i
 }
 
 /// Sweeps one axis: sections, forward and backward differences, 2D solutions.
-bool sweepAxis(const EVM& sorted, FaceConnectivity connectivity, const std::atomic<bool>& abort,
+bool sweepAxis(const EVM& sorted,
+  FaceConnectivity connectivity,
+  const std::atomic<bool>& abort,
   BRep& out)
 {
   const auto starts = sorted.planeStarts();
@@ -74,14 +80,14 @@ bool sweepAxis(const EVM& sorted, FaceConnectivity connectivity, const std::atom
     std::vector<Vertex> next = xorVertices(section, project(v + starts[p], v + starts[p + 1], 0));
     const auto* s = section.data();
     const auto* n = next.data();
-    const auto fd = booleanVertices(
-      s, s + section.size(), n, n + next.size(), 1, BooleanOp::Difference);
-    const auto bd = booleanVertices(
-      n, n + next.size(), s, s + section.size(), 1, BooleanOp::Difference);
-    appendFaces(sweep2D(fd.data(), fd.data() + fd.size(), connectivity), sorted.order(), position,
-      +1, out);
-    appendFaces(sweep2D(bd.data(), bd.data() + bd.size(), connectivity), sorted.order(), position,
-      -1, out);
+    const auto fd =
+      booleanVertices(s, s + section.size(), n, n + next.size(), 1, BooleanOp::Difference);
+    const auto bd =
+      booleanVertices(n, n + next.size(), s, s + section.size(), 1, BooleanOp::Difference);
+    appendFaces(
+      sweep2D(fd.data(), fd.data() + fd.size(), connectivity), sorted.order(), position, +1, out);
+    appendFaces(
+      sweep2D(bd.data(), bd.data() + bd.size(), connectivity), sorted.order(), position, -1, out);
     section.swap(next);
   }
   return true;
@@ -109,28 +115,32 @@ void appendBRep(BRep& to, BRep&& from)
 
 std::size_t BRep::holeCount() const
 {
-  return static_cast<std::size_t>(
-    std::count_if(this->loops.begin(), this->loops.end(), [](const BRepLoop& l) { return l.hole; }));
+  return static_cast<std::size_t>(std::count_if(
+    this->loops.begin(), this->loops.end(), [](const BRepLoop& l) { return l.hole; }));
 }
 
-bool extractBoundary3D(
-  const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out)
+bool extractBoundary3D(const EVM& evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  BRep& out)
 {
   out = BRep();
   BRep perAxis[3];
   std::atomic<bool> abort{ false };
   // The three sweeps are independent: one task per axis.
-  exec.forRange(3, [&](std::int64_t b, std::int64_t e) {
-    for (std::int64_t a = b; a < e; ++a)
+  exec.forRange(3,
+    [&](std::int64_t b, std::int64_t e)
     {
-      const int axis = static_cast<int>(a);
-      const AxisOrder order{ axis, (axis + 1) % 3, (axis + 2) % 3 };
-      if (!sweepAxis(evm.sortedAs(order), connectivity, abort, perAxis[axis]))
+      for (std::int64_t a = b; a < e; ++a)
       {
-        abort = true;
+        const int axis = static_cast<int>(a);
+        const AxisOrder order{ axis, (axis + 1) % 3, (axis + 2) % 3 };
+        if (!sweepAxis(evm.sortedAs(order), connectivity, abort, perAxis[axis]))
+        {
+          abort = true;
+        }
       }
-    }
-  });
+    });
   if (abort || !exec.report(1.0))
   {
     return false;
@@ -168,48 +178,50 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
     std::sort(keyed[d].begin(), keyed[d].end());
     keyed[d].erase(std::unique(keyed[d].begin(), keyed[d].end()), keyed[d].end());
   }
-  exec.forRange(static_cast<std::int64_t>(brep.loops.size()), [&](std::int64_t b, std::int64_t e) {
-    std::vector<Point3> refined;
-    for (std::int64_t l = b; l < e; ++l)
+  exec.forRange(static_cast<std::int64_t>(brep.loops.size()),
+    [&](std::int64_t b, std::int64_t e)
     {
-      auto& points = brep.loops[l].points;
-      refined.clear();
-      for (std::size_t i = 0; i < points.size(); ++i)
+      std::vector<Point3> refined;
+      for (std::int64_t l = b; l < e; ++l)
       {
-        const Point3& p = points[i];
-        const Point3& q = points[(i + 1) % points.size()];
-        refined.push_back(p);
-        int d = 0;
-        while (d < 3 && p[d] == q[d])
+        auto& points = brep.loops[l].points;
+        refined.clear();
+        for (std::size_t i = 0; i < points.size(); ++i)
         {
-          ++d;
+          const Point3& p = points[i];
+          const Point3& q = points[(i + 1) % points.size()];
+          refined.push_back(p);
+          int d = 0;
+          while (d < 3 && p[d] == q[d])
+          {
+            ++d;
+          }
+          if (d == 3)
+          {
+            continue;
+          }
+          const Coord lo = std::min(p[d], q[d]), hi = std::max(p[d], q[d]);
+          const Coord c1 = p[(d + 1) % 3], c2 = p[(d + 2) % 3];
+          auto first = std::upper_bound(keyed[d].begin(), keyed[d].end(), Point3{ c1, c2, lo });
+          auto last = std::lower_bound(keyed[d].begin(), keyed[d].end(), Point3{ c1, c2, hi });
+          const std::size_t at = refined.size();
+          for (auto it = first; it < last; ++it)
+          {
+            Point3 r = p;
+            r[d] = (*it)[2];
+            refined.push_back(r);
+          }
+          if (p[d] > q[d])
+          {
+            std::reverse(refined.begin() + at, refined.end());
+          }
         }
-        if (d == 3)
+        if (refined.size() != points.size())
         {
-          continue;
-        }
-        const Coord lo = std::min(p[d], q[d]), hi = std::max(p[d], q[d]);
-        const Coord c1 = p[(d + 1) % 3], c2 = p[(d + 2) % 3];
-        auto first = std::upper_bound(keyed[d].begin(), keyed[d].end(), Point3{ c1, c2, lo });
-        auto last = std::lower_bound(keyed[d].begin(), keyed[d].end(), Point3{ c1, c2, hi });
-        const std::size_t at = refined.size();
-        for (auto it = first; it < last; ++it)
-        {
-          Point3 r = p;
-          r[d] = (*it)[2];
-          refined.push_back(r);
-        }
-        if (p[d] > q[d])
-        {
-          std::reverse(refined.begin() + at, refined.end());
+          points = refined;
         }
       }
-      if (refined.size() != points.size())
-      {
-        points = refined;
-      }
-    }
-  });
+    });
 }
 
 } // namespace vbr

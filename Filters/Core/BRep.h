@@ -50,8 +50,10 @@ struct BRep
 
 /// Faces of a 3D EVM (any sorting), grouped by normal axis, then plane, then +A before -A.
 /// Returns false (and a partial BRep) when exec.progress asked to abort.
-bool extractBoundary3D(
-  const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out);
+bool extractBoundary3D(const EVM& evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  BRep& out);
 
 /// Faces of a 2D EVM with their inclusion tree; loops run counter-clockwise seen from the
 /// positive side of the plane's normal axis (holes clockwise).

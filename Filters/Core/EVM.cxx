@@ -18,7 +18,11 @@ int countTrailingZeros(Word w)
 }
 
 /// Appends the set bits of a row of vertex words as vertices (a, b, x).
-void appendRowVertices(const Word* bits, std::size_t words, Coord a, Coord b, std::vector<Vertex>& out)
+void appendRowVertices(const Word* bits,
+  std::size_t words,
+  Coord a,
+  Coord b,
+  std::vector<Vertex>& out)
 {
   for (std::size_t w = 0; w < words; ++w)
   {
@@ -155,12 +159,14 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
       sorted[fill[p[key] - lo]++] = p;
     }
   }
-  exec.forRange(static_cast<std::int64_t>(start.size() - 1), [&](std::int64_t b, std::int64_t e) {
-    for (std::int64_t k = b; k < e; ++k)
+  exec.forRange(static_cast<std::int64_t>(start.size() - 1),
+    [&](std::int64_t b, std::int64_t e)
     {
-      std::sort(sorted.begin() + start[k], sorted.begin() + start[k + 1]);
-    }
-  });
+      for (std::int64_t k = b; k < e; ++k)
+      {
+        std::sort(sorted.begin() + start[k], sorted.begin() + start[k + 1]);
+      }
+    });
   return EVM(this->Dimension, order, std::move(sorted));
 }
 
@@ -195,9 +201,8 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
   // is the voxel whose lowest corner is v.
   const std::size_t gx = dims[0] + 1, gy = dims[1] + 1, gz = dims[2] + 1;
   std::vector<std::uint8_t> g(gx * gy * gz, 0);
-  auto at = [&](std::size_t x, std::size_t y, std::size_t z) -> std::uint8_t& {
-    return g[(z * gy + y) * gx + x];
-  };
+  auto at = [&](std::size_t x, std::size_t y, std::size_t z) -> std::uint8_t&
+  { return g[(z * gy + y) * gx + x]; };
   for (std::size_t i = 0; i < this->Vertices.size(); ++i)
   {
     const auto w = this->worldVertex(i);
@@ -210,19 +215,19 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
     }
     at(w[0], w[1], w[2]) ^= 1;
   }
+  // One prefix pass per in-plane axis (the normal of a 2D EVM has a single coordinate).
   const int flat = this->Dimension == 2 ? this->Order[0] : -1;
-  for (std::size_t z = 0; z < gz; ++z)
-    for (std::size_t y = 0; y < gy; ++y)
-      for (std::size_t x = 0; x < gx; ++x)
-      {
-        std::uint8_t& c = at(x, y, z);
-        if (x > 0 && flat != 0)
-          c ^= at(x - 1, y, z);
-        if (y > 0 && flat != 1)
-          c ^= at(x, y - 1, z);
-        if (z > 0 && flat != 2)
-          c ^= at(x, y, z - 1);
-      }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (axis == flat)
+      continue;
+    std::size_t step[3] = { 0, 0, 0 };
+    step[axis] = 1;
+    for (std::size_t z = step[2]; z < gz; ++z)
+      for (std::size_t y = step[1]; y < gy; ++y)
+        for (std::size_t x = step[0]; x < gx; ++x)
+          at(x, y, z) ^= at(x - step[0], y - step[1], z - step[2]);
+  }
   for (std::int32_t z = 0; z < dims[2]; ++z)
     for (std::int32_t y = 0; y < dims[1]; ++y)
       for (std::int32_t x = 0; x < dims[0]; ++x)
@@ -242,39 +247,41 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
   std::vector<std::vector<Vertex>> planes(static_cast<std::size_t>(nz) + 1);
   if (voxels.size(0) > 0 && ny > 0 && nz > 0)
   {
-    exec.forRange(nz + 1, [&](std::int64_t zb, std::int64_t ze) {
-      std::vector<Word> parity(rowWords), bits(rowWords + 1);
-      for (std::int64_t kz = zb; kz < ze; ++kz)
+    exec.forRange(nz + 1,
+      [&](std::int64_t zb, std::int64_t ze)
       {
-        for (std::int32_t ky = 0; ky <= ny; ++ky)
+        std::vector<Word> parity(rowWords), bits(rowWords + 1);
+        for (std::int64_t kz = zb; kz < ze; ++kz)
         {
-          std::fill(parity.begin(), parity.end(), 0);
-          bool any = false;
-          for (std::int32_t z = static_cast<std::int32_t>(kz) - 1; z <= kz; ++z)
+          for (std::int32_t ky = 0; ky <= ny; ++ky)
           {
-            for (std::int32_t y = ky - 1; y <= ky; ++y)
+            std::fill(parity.begin(), parity.end(), 0);
+            bool any = false;
+            for (std::int32_t z = static_cast<std::int32_t>(kz) - 1; z <= kz; ++z)
             {
-              if (z < 0 || z >= nz || y < 0 || y >= ny)
+              for (std::int32_t y = ky - 1; y <= ky; ++y)
               {
-                continue;
+                if (z < 0 || z >= nz || y < 0 || y >= ny)
+                {
+                  continue;
+                }
+                const Word* r = voxels.row(y, z);
+                for (std::size_t w = 0; w < rowWords; ++w)
+                {
+                  parity[w] ^= r[w];
+                }
+                any = true;
               }
-              const Word* r = voxels.row(y, z);
-              for (std::size_t w = 0; w < rowWords; ++w)
-              {
-                parity[w] ^= r[w];
-              }
-              any = true;
             }
+            if (!any)
+            {
+              continue;
+            }
+            rowParityToVertexBits(parity.data(), rowWords, bits.data());
+            appendRowVertices(bits.data(), rowWords + 1, static_cast<Coord>(kz), ky, planes[kz]);
           }
-          if (!any)
-          {
-            continue;
-          }
-          rowParityToVertexBits(parity.data(), rowWords, bits.data());
-          appendRowVertices(bits.data(), rowWords + 1, static_cast<Coord>(kz), ky, planes[kz]);
         }
-      }
-    });
+      });
   }
   return EVM(3, AxisOrder{ 2, 1, 0 }, concatenate(planes));
 }
@@ -290,27 +297,29 @@ EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
   std::vector<std::vector<Vertex>> lines(static_cast<std::size_t>(ny) + 1);
   if (pixels.size(0) > 0 && ny > 0)
   {
-    exec.forRange(ny + 1, [&](std::int64_t yb, std::int64_t ye) {
-      std::vector<Word> parity(rowWords), bits(rowWords + 1);
-      for (std::int64_t ky = yb; ky < ye; ++ky)
+    exec.forRange(ny + 1,
+      [&](std::int64_t yb, std::int64_t ye)
       {
-        std::fill(parity.begin(), parity.end(), 0);
-        for (std::int64_t y = ky - 1; y <= ky; ++y)
+        std::vector<Word> parity(rowWords), bits(rowWords + 1);
+        for (std::int64_t ky = yb; ky < ye; ++ky)
         {
-          if (y < 0 || y >= ny)
+          std::fill(parity.begin(), parity.end(), 0);
+          for (std::int64_t y = ky - 1; y <= ky; ++y)
           {
-            continue;
+            if (y < 0 || y >= ny)
+            {
+              continue;
+            }
+            const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
+            for (std::size_t w = 0; w < rowWords; ++w)
+            {
+              parity[w] ^= r[w];
+            }
           }
-          const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
-          for (std::size_t w = 0; w < rowWords; ++w)
-          {
-            parity[w] ^= r[w];
-          }
+          rowParityToVertexBits(parity.data(), rowWords, bits.data());
+          appendRowVertices(bits.data(), rowWords + 1, 0, static_cast<Coord>(ky), lines[ky]);
         }
-        rowParityToVertexBits(parity.data(), rowWords, bits.data());
-        appendRowVertices(bits.data(), rowWords + 1, 0, static_cast<Coord>(ky), lines[ky]);
-      }
-    });
+      });
   }
   return EVM(2, AxisOrder{ 2, 1, 0 }, concatenate(lines));
 }

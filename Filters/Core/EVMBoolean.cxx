@@ -25,8 +25,11 @@ bool apply(BooleanOp op, bool inP, bool inQ)
 }
 
 /// 1D: the operands are sorted interval end points (equal in the first two coordinates).
-std::vector<Vertex> booleanIntervals(
-  const Vertex* p, const Vertex* pEnd, const Vertex* q, const Vertex* qEnd, BooleanOp op)
+std::vector<Vertex> booleanIntervals(const Vertex* p,
+  const Vertex* pEnd,
+  const Vertex* q,
+  const Vertex* qEnd,
+  BooleanOp op)
 {
   std::vector<Vertex> out;
   bool inP = false, inQ = false, inR = false;
@@ -92,8 +95,12 @@ std::vector<Vertex> xorVertices(const std::vector<Vertex>& a, const std::vector<
   return out;
 }
 
-std::vector<Vertex> booleanVertices(const Vertex* p, const Vertex* pEnd, const Vertex* q,
-  const Vertex* qEnd, int level, BooleanOp op)
+std::vector<Vertex> booleanVertices(const Vertex* p,
+  const Vertex* pEnd,
+  const Vertex* q,
+  const Vertex* qEnd,
+  int level,
+  BooleanOp op)
 {
   if (level >= 2)
   {
@@ -116,8 +123,12 @@ std::vector<Vertex> booleanVertices(const Vertex* p, const Vertex* pEnd, const V
       sectionQ = xorVertices(sectionQ, project(q, e, level));
       q = e;
     }
-    std::vector<Vertex> next = booleanVertices(sectionP.data(), sectionP.data() + sectionP.size(),
-      sectionQ.data(), sectionQ.data() + sectionQ.size(), level + 1, op);
+    std::vector<Vertex> next = booleanVertices(sectionP.data(),
+      sectionP.data() + sectionP.size(),
+      sectionQ.data(),
+      sectionQ.data() + sectionQ.size(),
+      level + 1,
+      op);
     for (Vertex v : xorVertices(sectionR, next))
     {
       v[level] = c;
@@ -137,7 +148,8 @@ EVM booleanOp(const EVM& p, const EVM& q, BooleanOp op)
   const auto& a = p.vertices();
   const auto& b = q.vertices();
   const int level = p.dimension() == 3 ? 0 : 1;
-  return EVM(p.dimension(), p.order(),
+  return EVM(p.dimension(),
+    p.order(),
     booleanVertices(a.data(), a.data() + a.size(), b.data(), b.data() + b.size(), level, op));
 }
 

@@ -25,8 +25,12 @@ std::vector<Vertex> xorVertices(const std::vector<Vertex>& a, const std::vector<
 
 /// Boolean of two sorted vertex sets whose coordinates before `level` are all equal:
 /// level 0 sweeps 3D planes, 1 sweeps 2D lines, 2 merges 1D intervals.
-std::vector<Vertex> booleanVertices(const Vertex* p, const Vertex* pEnd, const Vertex* q,
-  const Vertex* qEnd, int level, BooleanOp op);
+std::vector<Vertex> booleanVertices(const Vertex* p,
+  const Vertex* pEnd,
+  const Vertex* q,
+  const Vertex* qEnd,
+  int level,
+  BooleanOp op);
 
 /// Boolean of two EVMs of the same dimension and sorting.
 EVM booleanOp(const EVM& p, const EVM& q, BooleanOp op);

@@ -31,7 +31,8 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_
 void markNesting(Cdt& cdt)
 {
   std::list<Cdt::Edge> border;
-  auto fill = [&](Cdt::Face_handle start, int level) {
+  auto fill = [&](Cdt::Face_handle start, int level)
+  {
     if (start->info().nesting != -1)
       return;
     std::list<Cdt::Face_handle> queue{ start };

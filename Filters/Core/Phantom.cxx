@@ -10,9 +10,8 @@ std::vector<std::uint8_t> makePhantom(const std::array<std::int32_t, 3>& dims)
   const std::int32_t nx = dims[0], ny = dims[1], nz = dims[2];
   std::vector<std::uint8_t> v(static_cast<std::size_t>(nx) * ny * nz, 0);
   // Work in [0, 1]^3 coordinates of voxel centres so that the parts scale with the grid.
-  auto at = [&](std::int32_t i, std::int32_t j, std::int32_t k) -> std::uint8_t& {
-    return v[(static_cast<std::size_t>(k) * ny + j) * nx + i];
-  };
+  auto at = [&](std::int32_t i, std::int32_t j, std::int32_t k) -> std::uint8_t&
+  { return v[(static_cast<std::size_t>(k) * ny + j) * nx + i]; };
   for (std::int32_t k = 0; k < nz; ++k)
     for (std::int32_t j = 0; j < ny; ++j)
       for (std::int32_t i = 0; i < nx; ++i)
@@ -20,8 +19,8 @@ std::vector<std::uint8_t> makePhantom(const std::array<std::int32_t, 3>& dims)
         const double x = (i + 0.5) / nx, y = (j + 0.5) / ny, z = (k + 0.5) / nz;
         std::uint8_t label = 0;
         // 1: nested shells around (0.3, 0.3, 0.5): a shell with a cavity and a ball inside.
-        const double r1 = std::sqrt(
-          (x - 0.3) * (x - 0.3) + (y - 0.3) * (y - 0.3) + (z - 0.5) * (z - 0.5));
+        const double r1 =
+          std::sqrt((x - 0.3) * (x - 0.3) + (y - 0.3) * (y - 0.3) + (z - 0.5) * (z - 0.5));
         if ((r1 < 0.22 && r1 > 0.15) || r1 < 0.08)
           label = 1;
         // 2: a torus (a handle) around (0.72, 0.3, 0.5), axis z.
@@ -42,9 +41,8 @@ std::vector<std::uint8_t> makePhantom(const std::array<std::int32_t, 3>& dims)
           label = 4;
         // 5: three boxes, the second touching the first along an edge, the third touching
         // the second at a corner only; they sit on the frame's lower bar.
-        auto box = [&](double x0, double y0, double z0, double s) {
-          return x >= x0 && x < x0 + s && y >= y0 && y < y0 + s && z >= z0 && z < z0 + s;
-        };
+        auto box = [&](double x0, double y0, double z0, double s)
+        { return x >= x0 && x < x0 + s && y >= y0 && y < y0 + s && z >= z0 && z < z0 + s; };
         const double s = 0.08;
         if (box(0.6, 0.1, 0.1, s) || box(0.6 + s, 0.1 + s, 0.1, s) ||
           box(0.6 + 2 * s, 0.1 + 2 * s, 0.1 + s, s))

@@ -173,9 +173,8 @@ private:
         newBelowEdge = next.empty() ? -1 : next.back().edge;
       }
       // A vertical piece keeps the face on its left: upwards when the face lies before u.
-      auto startPiece = [&]() {
-        return this->startEdge(here, !inNew2, inNew2 ? newIntervalId : prevInterval);
-      };
+      auto startPiece = [&]()
+      { return this->startEdge(here, !inNew2, inNew2 ? newIntervalId : prevInterval); };
 
       if (atPrev && atCut)
       {

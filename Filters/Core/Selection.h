@@ -15,7 +15,7 @@ namespace vbr
 
 /// Where the scalars of a box of voxels are: element (i, j, k) is
 /// data[i * stride[0] + j * stride[1] + k * stride[2]] (strides in elements).
-template <typename T>
+template<typename T>
 struct ScalarGrid
 {
   const T* data = nullptr;
@@ -36,37 +36,41 @@ struct Box3
 };
 
 /// Voxels of `box` whose value satisfies `selected`, packed 64 per word, parallel over rows.
-template <typename T, typename Predicate>
-BitVolume selectVoxels(
-  const ScalarGrid<T>& grid, const Box3& box, Predicate selected, const Execution& exec)
+template<typename T, typename Predicate>
+BitVolume selectVoxels(const ScalarGrid<T>& grid,
+  const Box3& box,
+  Predicate selected,
+  const Execution& exec)
 {
   BitVolume out(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]);
   const std::int32_t nx = out.size(0), ny = out.size(1);
-  exec.forRange(static_cast<std::int64_t>(ny) * out.size(2), [&](std::int64_t b, std::int64_t e) {
-    for (std::int64_t r = b; r < e; ++r)
+  exec.forRange(static_cast<std::int64_t>(ny) * out.size(2),
+    [&](std::int64_t b, std::int64_t e)
     {
-      const std::int32_t y = static_cast<std::int32_t>(r % ny);
-      const std::int32_t z = static_cast<std::int32_t>(r / ny);
-      const T* src = &grid.at(box.lo[0], box.lo[1] + y, box.lo[2] + z);
-      const std::int64_t sx = grid.stride[0];
-      Word* dst = out.row(y, z);
-      for (std::int32_t x0 = 0; x0 < nx; x0 += 64)
+      for (std::int64_t r = b; r < e; ++r)
       {
-        const std::int32_t n = std::min<std::int32_t>(64, nx - x0);
-        Word w = 0;
-        for (std::int32_t i = 0; i < n; ++i)
+        const std::int32_t y = static_cast<std::int32_t>(r % ny);
+        const std::int32_t z = static_cast<std::int32_t>(r / ny);
+        const T* src = &grid.at(box.lo[0], box.lo[1] + y, box.lo[2] + z);
+        const std::int64_t sx = grid.stride[0];
+        Word* dst = out.row(y, z);
+        for (std::int32_t x0 = 0; x0 < nx; x0 += 64)
         {
-          w |= static_cast<Word>(selected(src[(x0 + i) * sx])) << i;
+          const std::int32_t n = std::min<std::int32_t>(64, nx - x0);
+          Word w = 0;
+          for (std::int32_t i = 0; i < n; ++i)
+          {
+            w |= static_cast<Word>(selected(src[(x0 + i) * sx])) << i;
+          }
+          dst[x0 >> 6] = w;
         }
-        dst[x0 >> 6] = w;
       }
-    }
-  });
+    });
   return out;
 }
 
 /// Every distinct value other than `background`, with the bounding box of its voxels.
-template <typename T>
+template<typename T>
 std::map<T, Box3> labelBoxes(const ScalarGrid<T>& grid, T background)
 {
   std::map<T, Box3> boxes;

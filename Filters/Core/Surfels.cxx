@@ -57,9 +57,8 @@ std::vector<Surfel> extractSurfels(const BitVolume& voxels, bool planar)
 {
   std::vector<Surfel> out;
   const auto& d = voxels.dims();
-  auto inside = [&](std::int32_t x, std::int32_t y, std::int32_t z) {
-    return x >= 0 && y >= 0 && z >= 0 && x < d[0] && y < d[1] && z < d[2] && voxels.get(x, y, z);
-  };
+  auto inside = [&](std::int32_t x, std::int32_t y, std::int32_t z)
+  { return x >= 0 && y >= 0 && z >= 0 && x < d[0] && y < d[1] && z < d[2] && voxels.get(x, y, z); };
   for (int axis = 0; axis < (planar ? 2 : 3); ++axis)
   {
     for (std::int32_t z = 0; z < d[2]; ++z)

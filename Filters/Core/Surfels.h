@@ -13,9 +13,9 @@ namespace vbr
 
 struct Surfel
 {
-  int axis;         ///< world axis of the normal
-  int normalSign;   ///< +1 when the normal points to +axis
-  Vertex corner;    ///< lowest grid vertex of the unit square (world axes)
+  int axis;       ///< world axis of the normal
+  int normalSign; ///< +1 when the normal points to +axis
+  Vertex corner;  ///< lowest grid vertex of the unit square (world axes)
 };
 
 /// Number of surfels, by word-wide XOR of neighbouring rows.

@@ -1,0 +1,220 @@
+// 3D EVM -> B-Rep: faces, holes, orientation, closedness, triangulation and round trip,
+// each checked against brute force on random volumes (sparse to dense, many non-manifold
+// contacts) and degenerate ones.
+#include "BRep.h"
+#include "BruteForce.h"
+#include "EVM.h"
+#include "FaceTriangulator.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+namespace
+{
+
+using Segment = std::pair<bf::Int3, bf::Int3>;
+
+/// Every loop edge cut into unit segments, directed. A closed, consistently oriented surface
+/// uses each unit segment as often in one direction as in the other.
+std::map<Segment, int> unitSegments(const vbr::BRep& brep)
+{
+  std::map<Segment, int> count;
+  for (const auto& loop : brep.loops)
+    for (std::size_t i = 0; i < loop.points.size(); ++i)
+    {
+      bf::Int3 p = loop.points[i];
+      const bf::Int3 q = loop.points[(i + 1) % loop.points.size()];
+      int d = 0;
+      while (d < 3 && p[d] == q[d])
+        ++d;
+      EXPECT_LT(d, 3) << "repeated corner";
+      for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(k == d || p[k] == q[k]) << "edge not axis-parallel";
+      if (d == 3)
+        continue;
+      const int step = q[d] > p[d] ? 1 : -1;
+      while (p != q)
+      {
+        bf::Int3 n = p;
+        n[d] += step;
+        ++count[{ p, n }];
+        p = n;
+      }
+    }
+  return count;
+}
+
+/// Checks everything about the boundary of `v`.
+void checkVolume(const vbr::BitVolume& v, bool merged)
+{
+  const vbr::EVM evm = vbr::extractEVM(v);
+  vbr::BRep brep;
+  ASSERT_TRUE(vbr::extractBoundary3D(evm,
+    merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
+    vbr::Execution(),
+    brep));
+
+  // Faces: exactly the connected regions of equally oriented surfels of each plane.
+  const auto expected = bf::expectedFaces(v, merged);
+  std::map<bf::PlaneKey, std::vector<bf::PixelSet>> produced;
+  long long area = 0;
+  std::array<long long, 3> volume{ 0, 0, 0 };
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  {
+    const vbr::BRepFace& face = brep.faces[f];
+    const bf::PixelSet pixels = bf::rasterize(brep, static_cast<int>(f));
+    produced[{ face.axis, face.normalSign, face.position }].push_back(pixels);
+    EXPECT_EQ(face.loopCount - 1, bf::holeCount(pixels)) << "face " << f;
+    for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+    {
+      // Outer loops counter-clockwise seen from outside, holes the other way.
+      const long long a = bf::doubledSignedArea(brep, l) * face.normalSign;
+      EXPECT_EQ(a > 0, !brep.loops[l].hole) << "face " << f << " loop " << l;
+      EXPECT_EQ(brep.loops[l].face, static_cast<int>(f));
+    }
+    area += static_cast<long long>(pixels.size());
+    // Divergence theorem per axis: sum of normal * position * area is the volume.
+    volume[face.axis] += static_cast<long long>(face.normalSign) * face.position * pixels.size();
+  }
+  for (auto& entry : produced)
+    std::sort(entry.second.begin(), entry.second.end());
+  auto sortedExpected = expected;
+  for (auto& entry : sortedExpected)
+    std::sort(entry.second.begin(), entry.second.end());
+  EXPECT_EQ(produced, sortedExpected);
+  long long surfels = 0;
+  for (const auto& entry : expected)
+    for (const auto& c : entry.second)
+      surfels += static_cast<long long>(c.size());
+  EXPECT_EQ(area, surfels);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_EQ(volume[a], static_cast<long long>(v.count()));
+
+  // Round trip: a voxel is inside when an odd number of x-faces lie before it on its row.
+  vbr::BitVolume back(v.size(0), v.size(1), v.size(2));
+  std::map<std::pair<int, int>, std::vector<int>> crossings; // (y, z) -> x positions
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+    if (brep.faces[f].axis == 0)
+      for (const auto& p : bf::rasterize(brep, static_cast<int>(f)))
+        crossings[{ p.first, p.second }].push_back(brep.faces[f].position);
+  for (auto& entry : crossings)
+  {
+    auto& xs = entry.second;
+    std::sort(xs.begin(), xs.end());
+    ASSERT_EQ(xs.size() % 2, 0u);
+    for (std::size_t k = 0; k < xs.size(); k += 2)
+      for (int x = xs[k]; x < xs[k + 1]; ++x)
+        back.set(x, entry.first.first, entry.first.second);
+  }
+  EXPECT_EQ(back, v);
+
+  // Closed and consistently oriented: before and after inserting T-junction vertices.
+  const auto before = unitSegments(brep);
+  for (const auto& entry : before)
+  {
+    auto it = before.find({ entry.first.second, entry.first.first });
+    ASSERT_NE(it, before.end());
+    EXPECT_EQ(it->second, entry.second);
+  }
+  vbr::insertTJunctionVertices(brep);
+  const auto segments = unitSegments(brep);
+  for (const auto& entry : segments)
+  {
+    auto it = segments.find({ entry.first.second, entry.first.first });
+    ASSERT_NE(it, segments.end());
+    EXPECT_EQ(it->second, entry.second);
+  }
+
+  // Triangles: no T-junctions left, so every triangle edge is matched by reversed edges;
+  // the triangles of a face cover exactly its area.
+  std::map<Segment, int> edges;
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  {
+    const vbr::BRepFace& face = brep.faces[f];
+    std::vector<bf::Int3> corner;
+    for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+      corner.insert(corner.end(), brep.loops[l].points.begin(), brep.loops[l].points.end());
+    long long doubled = 0;
+    const int u = (face.axis + 1) % 3, w = (face.axis + 2) % 3;
+    for (const auto& t : vbr::triangulateFace(brep, static_cast<int>(f)))
+    {
+      const bf::Int3 &a = corner[t[0]], &b = corner[t[1]], &c = corner[t[2]];
+      const long long cross = static_cast<long long>(b[u] - a[u]) * (c[w] - a[w]) -
+        static_cast<long long>(b[w] - a[w]) * (c[u] - a[u]);
+      EXPECT_GT(cross * face.normalSign, 0) << "triangle oriented inwards or degenerate";
+      doubled += cross * face.normalSign;
+      ++edges[{ a, b }];
+      ++edges[{ b, c }];
+      ++edges[{ c, a }];
+    }
+    EXPECT_EQ(doubled, 2 * static_cast<long long>(bf::rasterize(brep, static_cast<int>(f)).size()));
+  }
+  for (const auto& entry : edges)
+  {
+    auto it = edges.find({ entry.first.second, entry.first.first });
+    ASSERT_NE(it, edges.end()) << "boundary edge in the triangle mesh";
+    EXPECT_EQ(it->second, entry.second);
+  }
+}
+
+} // namespace
+
+TEST(BRep, RandomVolumesMatchBruteForce)
+{
+  unsigned seed = 3000;
+  for (int trial = 0; trial < 24; ++trial)
+  {
+    const bf::Int3 d{ 2 + (trial * 5) % 13, 2 + (trial * 3) % 11, 2 + (trial * 7) % 9 };
+    const double density = 0.1 + 0.8 * (trial % 8) / 7.0;
+    const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << " density " << density);
+    checkVolume(v, false);
+    checkVolume(v, true);
+  }
+}
+
+TEST(BRep, LargerRandomVolume)
+{
+  const vbr::BitVolume v = bf::randomVolume({ 24, 20, 16 }, 0.35, 77);
+  checkVolume(v, false);
+}
+
+TEST(BRep, DegenerateVolumes)
+{
+  vbr::BitVolume one(3, 3, 3);
+  one.set(1, 1, 1);
+  checkVolume(one, false);
+  vbr::BRep b;
+  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(one), vbr::FaceConnectivity::Edge, {}, b));
+  EXPECT_EQ(b.faces.size(), 6u);
+
+  checkVolume(bf::randomVolume({ 6, 5, 4 }, 1.0, 1), false); // every voxel selected
+  vbr::BitVolume plate(7, 6, 1);                             // one-voxel-thick plate
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 7; ++x)
+      if (!(x == 3 && y == 2))
+        plate.set(x, y, 0);
+  checkVolume(plate, false);
+
+  // Two voxels touching along an edge, two at a corner: non-manifold edges and vertices.
+  vbr::BitVolume contacts(4, 4, 4);
+  contacts.set(0, 0, 0);
+  contacts.set(1, 1, 0);
+  contacts.set(2, 2, 1);
+  checkVolume(contacts, false);
+  checkVolume(contacts, true);
+
+  vbr::BitVolume empty(4, 4, 4);
+  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(empty), vbr::FaceConnectivity::Edge, {}, b));
+  EXPECT_TRUE(b.faces.empty());
+}
+
+TEST(BRep, AbortStopsTheSweep)
+{
+  const vbr::BitVolume v = bf::randomVolume({ 8, 8, 8 }, 0.5, 5);
+  vbr::Execution exec;
+  exec.progress = [](double) { return false; };
+  vbr::BRep b;
+  EXPECT_FALSE(vbr::extractBoundary3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, exec, b));
+}

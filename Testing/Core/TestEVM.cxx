@@ -1,0 +1,207 @@
+// Image -> EVM extraction, sortings, sections and reconstruction against brute force.
+#include "BruteForce.h"
+#include "EVM.h"
+#include "EVMBoolean.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+namespace
+{
+
+std::set<bf::Int3> worldSet(const vbr::EVM& evm)
+{
+  std::set<bf::Int3> s;
+  for (std::size_t i = 0; i < evm.size(); ++i)
+    s.insert(evm.worldVertex(i));
+  return s;
+}
+
+const char* const Orders[] = { "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX" };
+
+} // namespace
+
+TEST(EVM, ExtractionMatchesOddIncidence)
+{
+  // Row lengths around the 64-bit word boundaries, densities from sparse to dense.
+  const bf::Int3 sizes[] = { { 1, 1, 1 },
+    { 63, 3, 2 },
+    { 64, 2, 3 },
+    { 65, 4, 4 },
+    { 129, 3, 2 },
+    { 7, 9, 11 },
+    { 16, 16, 16 } };
+  unsigned seed = 1;
+  for (const auto& d : sizes)
+    for (double density : { 0.05, 0.3, 0.5, 0.8, 1.0 })
+    {
+      const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+      const vbr::EVM evm = vbr::extractEVM(v);
+      EXPECT_EQ(worldSet(evm), bf::extremeVertices(v)) << d[0] << "x" << d[1] << "x" << d[2];
+      EXPECT_EQ(evm.toVoxels(v.dims()), v);
+    }
+}
+
+TEST(EVM, EmptyFullAndSingleVoxel)
+{
+  vbr::BitVolume empty(5, 6, 7);
+  EXPECT_TRUE(vbr::extractEVM(empty).empty());
+  vbr::BitVolume one(5, 6, 7);
+  one.set(2, 3, 4);
+  EXPECT_EQ(vbr::extractEVM(one).size(), 8u);
+  vbr::BitVolume full = bf::randomVolume({ 70, 5, 3 }, 1.0, 3);
+  const vbr::EVM evm = vbr::extractEVM(full);
+  EXPECT_EQ(evm.size(), 8u); // a box has exactly its 8 corners
+  EXPECT_EQ(evm.toVoxels(full.dims()), full);
+}
+
+TEST(EVM, TwoDimensionalExtraction)
+{
+  unsigned seed = 100;
+  for (const bf::Int3 d :
+    { bf::Int3{ 1, 1, 1 }, bf::Int3{ 64, 5, 1 }, bf::Int3{ 65, 40, 1 }, bf::Int3{ 130, 7, 1 } })
+    for (double density : { 0.1, 0.5, 0.9 })
+    {
+      const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+      const vbr::EVM evm = vbr::extractEVM2D(v);
+      EXPECT_EQ(evm.dimension(), 2);
+      EXPECT_EQ(worldSet(evm), bf::extremeVertices2D(v));
+      EXPECT_EQ(evm.toVoxels(v.dims()), v);
+    }
+}
+
+TEST(EVM, ParallelExtractionEqualsSequential)
+{
+  const vbr::BitVolume v = bf::randomVolume({ 40, 30, 20 }, 0.4, 7);
+  vbr::Execution exec;
+  exec.parallelFor = [](std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& f)
+  {
+    // Uneven chunks, executed out of order.
+    for (std::int64_t b = n; b > 0; b -= 3)
+      f(std::max<std::int64_t>(0, b - 3), b);
+  };
+  EXPECT_EQ(vbr::extractEVM(v, exec), vbr::extractEVM(v));
+}
+
+TEST(EVM, AllSixSortings)
+{
+  const vbr::BitVolume v = bf::randomVolume({ 9, 8, 7 }, 0.4, 11);
+  const vbr::EVM evm = vbr::extractEVM(v);
+  const auto expected = worldSet(evm);
+  std::array<std::size_t, 3> distinct{};
+  for (int a = 0; a < 3; ++a)
+  {
+    std::set<int> c;
+    for (const auto& p : expected)
+      c.insert(p[a]);
+    distinct[a] = c.size();
+  }
+  EXPECT_EQ(vbr::planesPerAxis(evm), distinct);
+  for (const char* name : Orders)
+  {
+    const vbr::AxisOrder order = vbr::axisOrderFromName(name);
+    EXPECT_EQ(vbr::axisOrderName(order), name);
+    const vbr::EVM sorted = evm.sortedAs(order);
+    EXPECT_TRUE(std::is_sorted(sorted.vertices().begin(), sorted.vertices().end())) << name;
+    EXPECT_EQ(worldSet(sorted), expected) << name;
+    EXPECT_EQ(sorted.planeCount(), distinct[order[0]]) << name;
+    EXPECT_EQ(sorted.toVoxels(v.dims()), v) << name;
+  }
+  EXPECT_THROW(vbr::axisOrderFromName("XXY"), std::invalid_argument);
+}
+
+TEST(EVM, SectionsAreXorOfPlaneProjections)
+{
+  // Formula (1): S_i = S_(i-1) xor plv_i; every section is the voxel slice between the planes.
+  const vbr::BitVolume v = bf::randomVolume({ 10, 9, 8 }, 0.45, 21);
+  for (const char* name : Orders)
+  {
+    const vbr::EVM evm = vbr::extractEVM(v).sortedAs(vbr::axisOrderFromName(name));
+    const auto starts = evm.planeStarts();
+    const auto& order = evm.order();
+    std::vector<vbr::Vertex> section, previous;
+    for (std::size_t p = 0; p + 1 < starts.size(); ++p)
+    {
+      const vbr::Vertex* b = evm.vertices().data() + starts[p];
+      const vbr::Vertex* e = evm.vertices().data() + starts[p + 1];
+      previous = section;
+      section = vbr::xorVertices(section, vbr::project(b, e, 0));
+      // Formula (2): the plane is the XOR of the two sections around it.
+      EXPECT_EQ(vbr::xorVertices(previous, section), vbr::project(b, e, 0));
+      // The section, as a 2D EVM, is the slice of voxels starting at this plane.
+      const int a = (*b)[0];
+      const int end = p + 2 < starts.size() ? evm.vertices()[starts[p + 1]][0] : a;
+      const vbr::EVM s2(2, order, section);
+      std::array<std::int32_t, 3> sliceDims = v.dims();
+      sliceDims[order[0]] = 1;
+      const vbr::BitVolume slice = s2.toVoxels(sliceDims);
+      for (int c = a; c < end; ++c)
+        for (int i = 0; i < v.size(order[1]); ++i)
+          for (int j = 0; j < v.size(order[2]); ++j)
+          {
+            bf::Int3 w{ 0, 0, 0 }, s{ 0, 0, 0 };
+            w[order[0]] = c;
+            w[order[1]] = s[order[1]] = i;
+            w[order[2]] = s[order[2]] = j;
+            ASSERT_EQ(v.get(w[0], w[1], w[2]), slice.get(s[0], s[1], s[2]));
+          }
+    }
+    EXPECT_TRUE(section.empty());
+  }
+}
+
+namespace
+{
+
+/// Reads a raw uint8 volume and selects value >= threshold; false if the file is absent.
+bool readRaw(const std::string& path, const bf::Int3& d, int threshold, vbr::BitVolume& out)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return false;
+  std::vector<unsigned char> data(static_cast<std::size_t>(d[0]) * d[1] * d[2]);
+  in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size()));
+  if (!in)
+    return false;
+  out = vbr::BitVolume(d[0], d[1], d[2]);
+  std::size_t i = 0;
+  for (int z = 0; z < d[2]; ++z)
+    for (int y = 0; y < d[1]; ++y)
+      for (int x = 0; x < d[0]; ++x)
+        if (data[i++] >= threshold)
+          out.set(x, y, z);
+  return true;
+}
+
+} // namespace
+
+TEST(EVM, PaperCountsOnRealVolumes)
+{
+  // Ayala & Vergara, Table 1: 70,260 and 85,866 extreme vertices at value >= 55.
+  struct Case
+  {
+    const char* file;
+    bf::Int3 dims;
+    std::size_t evs;
+    std::array<std::size_t, 3> planes;
+  } cases[] = {
+    { "/aneurism/aneurism_256x256x256_uint8.raw", { 256, 256, 256 }, 70260, { 215, 216, 237 } },
+    { "/engine/engine_256x256x128_uint8.raw", { 256, 256, 128 }, 85866, { 142, 199, 109 } },
+  };
+  int found = 0;
+  for (const Case& c : cases)
+  {
+    vbr::BitVolume v;
+    if (!readRaw(std::string(VOXELBREP_DATA_DIR) + c.file, c.dims, 55, v))
+      continue;
+    ++found;
+    const vbr::EVM evm = vbr::extractEVM(v);
+    EXPECT_EQ(evm.size(), c.evs) << c.file;
+    EXPECT_EQ(vbr::planesPerAxis(evm), c.planes) << c.file;
+    EXPECT_EQ(evm.toVoxels(v.dims()), v) << c.file;
+  }
+  if (found == 0)
+    GTEST_SKIP() << "real volumes not found under " << VOXELBREP_DATA_DIR;
+}

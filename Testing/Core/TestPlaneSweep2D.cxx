@@ -1,0 +1,267 @@
+// The 2D plane sweep: the paper's worked example and random images against brute force.
+#include "BRep.h"
+#include "BruteForce.h"
+#include "EVM.h"
+#include "PlaneSweep2D.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+namespace
+{
+
+using Corners = std::vector<vbr::Point2>;
+
+/// The 2D EVM of Fig. 5 of Ayala & Vergara, written from its cuts x = 2 ... 18 (brinks in y).
+std::vector<vbr::Vertex> paperFigure5()
+{
+  const std::vector<std::pair<int, std::vector<int>>> cuts = { { 2, { 2, 18 } },
+    { 4, { 4, 16 } },
+    { 6, { 6, 15, 16, 18 } },
+    { 8, { 7, 11, 12, 14 } },
+    { 10, { 8, 10 } },
+    { 12, { 8, 10, 12, 14 } },
+    { 14, { 7, 11 } },
+    { 16, { 7, 18 } },
+    { 18, { 2, 4, 6, 7, 15, 18 } } };
+  std::vector<vbr::Vertex> v;
+  for (const auto& c : cuts)
+    for (int y : c.second)
+      v.push_back({ 0, c.first, y });
+  return v;
+}
+
+/// A loop as a cyclic sequence starting at its smallest corner, for comparison.
+Corners canonical(Corners c)
+{
+  auto smallest = std::min_element(c.begin(),
+    c.end(),
+    [](const vbr::Point2& a, const vbr::Point2& b)
+    { return std::tie(a.u, a.v) < std::tie(b.u, b.v); });
+  std::rotate(c.begin(), smallest, c.end());
+  return c;
+}
+
+Corners corners(std::initializer_list<std::pair<int, int>> l)
+{
+  Corners c;
+  for (const auto& p : l)
+    c.push_back({ p.first, p.second });
+  return c;
+}
+
+int findLoop(const vbr::Boundary2D& b, const Corners& expected)
+{
+  for (std::size_t l = 0; l < b.loops.size(); ++l)
+    if (canonical(b.loops[l].points) == canonical(expected))
+      return static_cast<int>(l);
+  return -1;
+}
+
+} // namespace
+
+TEST(PlaneSweep2D, PaperFigure5SplitsTheNonManifoldFace)
+{
+  const auto v = paperFigure5();
+  const vbr::Boundary2D b = vbr::sweep2D(v.data(), v.data() + v.size());
+  EXPECT_EQ(b.nonManifoldVertices, 1u); // (16, 15)
+  ASSERT_EQ(b.faces.size(), 4u);        // r1, r3, r2 (split at the vertex) and r6
+  ASSERT_EQ(b.loops.size(), 6u);
+  // Outer loops counter-clockwise, holes clockwise (face on the left).
+  const int r1 = findLoop(b,
+    corners(
+      { { 2, 2 }, { 18, 2 }, { 18, 4 }, { 4, 4 }, { 4, 16 }, { 6, 16 }, { 6, 18 }, { 2, 18 } }));
+  const int r3 =
+    findLoop(b, corners({ { 6, 6 }, { 18, 6 }, { 18, 7 }, { 16, 7 }, { 16, 15 }, { 6, 15 } }));
+  const int r2 = findLoop(b, corners({ { 16, 15 }, { 18, 15 }, { 18, 18 }, { 16, 18 } }));
+  const int r4 = findLoop(b, corners({ { 8, 7 }, { 8, 11 }, { 14, 11 }, { 14, 7 } }));
+  const int r5 = findLoop(b, corners({ { 8, 12 }, { 8, 14 }, { 12, 14 }, { 12, 12 } }));
+  const int r6 = findLoop(b, corners({ { 10, 8 }, { 12, 8 }, { 12, 10 }, { 10, 10 } }));
+  for (int l : { r1, r2, r3, r4, r5, r6 })
+    ASSERT_GE(l, 0);
+  EXPECT_TRUE(b.loops[r4].hole);
+  EXPECT_TRUE(b.loops[r5].hole);
+  for (int l : { r1, r2, r3, r6 })
+    EXPECT_FALSE(b.loops[l].hole);
+  const vbr::Face2D& f3 = b.faces[b.loops[r3].face];
+  EXPECT_EQ(b.loops[r4].face, b.loops[r3].face);
+  EXPECT_EQ(b.loops[r5].face, b.loops[r3].face);
+  EXPECT_EQ(f3.holeLoops.size(), 2u);
+  EXPECT_EQ(f3.parent, -1);
+  const vbr::Face2D& f6 = b.faces[b.loops[r6].face];
+  EXPECT_EQ(f6.parent, b.loops[r3].face); // r6 lies in hole r4 of r3
+  EXPECT_EQ(f6.depth, 2);
+  EXPECT_EQ(b.faces[b.loops[r1].face].depth, 0);
+  EXPECT_EQ(b.faces[b.loops[r2].face].depth, 0);
+  // Faces are numbered in order of first appearance in the sweep: r1, r3, r6, r2.
+  EXPECT_EQ(b.loops[r1].face, 0);
+  EXPECT_EQ(b.loops[r3].face, 1);
+  EXPECT_EQ(b.loops[r6].face, 2);
+  EXPECT_EQ(b.loops[r2].face, 3);
+}
+
+TEST(PlaneSweep2D, PaperFigure5KeepsTheNonManifoldFaceWhenMerging)
+{
+  const auto v = paperFigure5();
+  const vbr::Boundary2D b =
+    vbr::sweep2D(v.data(), v.data() + v.size(), vbr::FaceConnectivity::Vertex);
+  ASSERT_EQ(b.faces.size(), 3u);
+  // r3 and r2 form one face whose outer loop passes twice through the vertex (16, 15).
+  const int merged = findLoop(b,
+    corners({ { 6, 6 },
+      { 18, 6 },
+      { 18, 7 },
+      { 16, 7 },
+      { 16, 15 },
+      { 18, 15 },
+      { 18, 18 },
+      { 16, 18 },
+      { 16, 15 },
+      { 6, 15 } }));
+  ASSERT_GE(merged, 0);
+  EXPECT_EQ(b.faces[b.loops[merged].face].holeLoops.size(), 2u);
+}
+
+TEST(PlaneSweep2D, RejectsInvalidEVM)
+{
+  const std::vector<vbr::Vertex> odd = { { 0, 0, 0 }, { 0, 0, 1 }, { 0, 0, 2 } };
+  EXPECT_THROW(vbr::sweep2D(odd.data(), odd.data() + odd.size()), std::invalid_argument);
+  const std::vector<vbr::Vertex> open = { { 0, 0, 0 }, { 0, 0, 1 } };
+  EXPECT_THROW(vbr::sweep2D(open.data(), open.data() + open.size()), std::invalid_argument);
+  EXPECT_TRUE(vbr::sweep2D(nullptr, nullptr).faces.empty());
+}
+
+namespace
+{
+
+/// Checks faces, holes, orientation and the inclusion tree of a 2D image against brute force.
+void checkImage(const vbr::BitVolume& image, bool merged)
+{
+  const vbr::BRep brep = vbr::extractBoundary2D(
+    vbr::extractEVM2D(image), merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge);
+  bf::PixelSet pixels;
+  for (int y = 0; y < image.size(1); ++y)
+    for (int x = 0; x < image.size(0); ++x)
+      if (image.get(x, y, 0))
+        pixels.insert({ x, y });
+  const auto expected = bf::components(pixels, merged);
+  ASSERT_EQ(brep.faces.size(), expected.size());
+
+  // Match every output face to an expected component by its exact pixels.
+  std::map<bf::PixelSet, int> index;
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    index[expected[i]] = static_cast<int>(i);
+  std::vector<int> faceOf(brep.faces.size());
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  {
+    auto it = index.find(bf::rasterize(brep, static_cast<int>(f)));
+    ASSERT_NE(it, index.end()) << "face " << f << " does not cover one component exactly";
+    faceOf[f] = it->second;
+    const vbr::BRepFace& face = brep.faces[f];
+    EXPECT_EQ(face.loopCount - 1, bf::holeCount(it->first)) << "face " << f;
+    for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+    {
+      const long long area = bf::doubledSignedArea(brep, l);
+      EXPECT_EQ(brep.loops[l].hole, l != face.firstLoop);
+      EXPECT_EQ(area > 0, !brep.loops[l].hole) << "loop " << l << " area " << area;
+    }
+  }
+
+  // Inclusion tree: A is an ancestor of B when B lies in a bounded component of the
+  // complement of A; the parent is the innermost ancestor and the depth twice their count.
+  const std::size_t n = expected.size();
+  std::vector<std::vector<int>> ancestors(n);
+  for (std::size_t a = 0; a < n; ++a)
+  {
+    bf::PixelSet outside;
+    int u0 = 1 << 30, u1 = -u0, v0 = u0, v1 = -u0;
+    for (const auto& p : expected[a])
+    {
+      u0 = std::min(u0, p.first);
+      u1 = std::max(u1, p.first);
+      v0 = std::min(v0, p.second);
+      v1 = std::max(v1, p.second);
+    }
+    for (int u = u0 - 1; u <= u1 + 1; ++u)
+      for (int v = v0 - 1; v <= v1 + 1; ++v)
+        if (!expected[a].count({ u, v }))
+          outside.insert({ u, v });
+    for (const auto& c : bf::components(outside, false))
+    {
+      const bool bounded = std::none_of(c.begin(),
+        c.end(),
+        [&](const std::pair<int, int>& p) {
+          return p.first == u0 - 1 || p.first == u1 + 1 || p.second == v0 - 1 || p.second == v1 + 1;
+        });
+      if (!bounded)
+        continue;
+      for (std::size_t b = 0; b < n; ++b)
+        if (b != a && c.count(*expected[b].begin()))
+          ancestors[b].push_back(static_cast<int>(a));
+    }
+  }
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  {
+    const int e = faceOf[f];
+    const vbr::BRepFace& face = brep.faces[f];
+    EXPECT_EQ(face.depth, 2 * static_cast<int>(ancestors[e].size())) << "face " << f;
+    if (ancestors[e].empty())
+    {
+      EXPECT_EQ(face.parent, -1);
+      continue;
+    }
+    ASSERT_GE(face.parent, 0);
+    const int innermost = *std::max_element(ancestors[e].begin(),
+      ancestors[e].end(),
+      [&](int x, int y) { return ancestors[x].size() < ancestors[y].size(); });
+    EXPECT_EQ(faceOf[face.parent], innermost) << "face " << f;
+  }
+}
+
+} // namespace
+
+TEST(PlaneSweep2D, RandomImagesMatchBruteForce)
+{
+  unsigned seed = 1000;
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    const bf::Int3 d{ 4 + (trial * 7) % 37, 3 + (trial * 5) % 29, 1 };
+    const double density = 0.15 + 0.7 * (trial % 10) / 9.0;
+    const vbr::BitVolume image = bf::randomVolume(d, density, seed++);
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    checkImage(image, false);
+    checkImage(image, true);
+  }
+}
+
+TEST(PlaneSweep2D, NestedRingsAndDegenerateImages)
+{
+  // Concentric square rings: faces and holes alternate down to depth 8.
+  vbr::BitVolume rings(19, 19, 1);
+  for (int y = 0; y < 19; ++y)
+    for (int x = 0; x < 19; ++x)
+      if (std::max(std::abs(x - 9), std::abs(y - 9)) % 2 == 0)
+        rings.set(x, y, 0);
+  checkImage(rings, false);
+  const vbr::BRep b = vbr::extractBoundary2D(vbr::extractEVM2D(rings), vbr::FaceConnectivity::Edge);
+  int deepest = 0;
+  for (const auto& f : b.faces)
+    deepest = std::max(deepest, f.depth);
+  EXPECT_EQ(deepest, 8);
+
+  vbr::BitVolume checker(9, 7, 1);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x)
+      if ((x + y) % 2 == 0)
+        checker.set(x, y, 0);
+  checkImage(checker, false); // every pixel its own face
+  checkImage(checker, true);  // one face with holes touching at corners
+
+  vbr::BitVolume full = bf::randomVolume({ 5, 4, 1 }, 1.0, 1);
+  checkImage(full, false);
+  vbr::BitVolume empty(5, 4, 1);
+  EXPECT_TRUE(
+    vbr::extractBoundary2D(vbr::extractEVM2D(empty), vbr::FaceConnectivity::Edge).faces.empty());
+}
