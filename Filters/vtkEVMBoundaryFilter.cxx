@@ -465,7 +465,7 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
       {
         const vbr::BRepLoop& loop = brep.loops[l];
         ids.clear();
-        for (const Point3& p : loop.points)
+        for (const Point3& p : brep.loopPoints(l))
         {
           ids.push_back(builder.pointId(shifted(p, object.offset)));
         }

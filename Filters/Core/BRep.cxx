@@ -1,9 +1,12 @@
 #include "BRep.h"
 
 #include "EVMBoolean.h"
+#include "RadixSort.h"
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
+#include <stdexcept>
 
 namespace vbr
 {
@@ -32,24 +35,26 @@ void appendFaces(const Boundary2D& b2,
     face.parent = f2.parent < 0 ? -1 : faceBase + f2.parent;
     face.depth = f2.depth;
     const int faceId = static_cast<int>(out.faces.size());
-    auto addLoop = [&](int l, bool hole)
-    {
+    auto addLoop = [&](int l, bool hole) {
       BRepLoop loop;
       loop.face = faceId;
       loop.hole = hole;
-      for (const Point2& p : b2.loops[l].points)
+      loop.begin = out.points.size();
+      const Loop2D& l2 = b2.loops[l];
+      for (std::size_t i = l2.begin; i < l2.end; ++i)
       {
         Point3 q;
         q[order[0]] = position;
-        q[order[1]] = p.u;
-        q[order[2]] = p.v;
-        loop.points.push_back(q);
+        q[order[1]] = b2.points[i].u;
+        q[order[2]] = b2.points[i].v;
+        out.points.push_back(q);
       }
+      loop.end = out.points.size();
       if (reverse)
       {
-        std::reverse(loop.points.begin(), loop.points.end());
+        std::reverse(out.points.begin() + loop.begin, out.points.end());
       }
-      out.loops.push_back(std::move(loop));
+      out.loops.push_back(loop);
     };
     addLoop(f2.outerLoop, false);
     for (int h : f2.holeLoops)
@@ -69,7 +74,7 @@ bool sweepAxis(const EVM& sorted,
 {
   const auto starts = sorted.planeStarts();
   const Vertex* v = sorted.vertices().data();
-  std::vector<Vertex> section;
+  std::vector<Vertex> section, next;
   for (std::size_t p = 0; p + 1 < starts.size(); ++p)
   {
     if (abort)
@@ -77,17 +82,17 @@ bool sweepAxis(const EVM& sorted,
       return false;
     }
     const Coord position = v[starts[p]][0];
-    std::vector<Vertex> next = xorVertices(section, project(v + starts[p], v + starts[p + 1], 0));
-    const auto* s = section.data();
-    const auto* n = next.data();
-    const auto fd =
-      booleanVertices(s, s + section.size(), n, n + next.size(), 1, BooleanOp::Difference);
-    const auto bd =
-      booleanVertices(n, n + next.size(), s, s + section.size(), 1, BooleanOp::Difference);
-    appendFaces(
-      sweep2D(fd.data(), fd.data() + fd.size(), connectivity), sorted.order(), position, +1, out);
-    appendFaces(
-      sweep2D(bd.data(), bd.data() + bd.size(), connectivity), sorted.order(), position, -1, out);
+    const std::vector<Vertex> plane = project(v + starts[p], v + starts[p + 1], 0);
+    next = xorVertices(section, plane);
+    // The cut is FD + BD (formula 3): FD = S(i-1) - S(i) is the part of the cut covered by
+    // S(i-1), and BD the rest of the cut, so one Boolean and one XOR give both.
+    const std::vector<Vertex> fd = booleanVertices(plane.data(), plane.data() + plane.size(),
+      section.data(), section.data() + section.size(), 1, BooleanOp::Intersection);
+    const std::vector<Vertex> bd = xorVertices(plane, fd);
+    appendFaces(sweep2D(fd.data(), fd.data() + fd.size(), connectivity), sorted.order(), position,
+      +1, out);
+    appendFaces(sweep2D(bd.data(), bd.data() + bd.size(), connectivity), sorted.order(), position,
+      -1, out);
     section.swap(next);
   }
   return true;
@@ -97,17 +102,23 @@ void appendBRep(BRep& to, BRep&& from)
 {
   const int faceBase = static_cast<int>(to.faces.size());
   const int loopBase = static_cast<int>(to.loops.size());
+  to.faces.reserve(to.faces.size() + from.faces.size());
+  to.loops.reserve(to.loops.size() + from.loops.size());
   for (BRepFace f : from.faces)
   {
     f.firstLoop += loopBase;
     f.parent = f.parent < 0 ? -1 : f.parent + faceBase;
     to.faces.push_back(f);
   }
-  for (BRepLoop& l : from.loops)
+  const std::size_t pointBase = to.points.size();
+  for (BRepLoop l : from.loops)
   {
     l.face += faceBase;
-    to.loops.push_back(std::move(l));
+    l.begin += pointBase;
+    l.end += pointBase;
+    to.loops.push_back(l);
   }
+  to.points.insert(to.points.end(), from.points.begin(), from.points.end());
   to.nonManifoldVertices += from.nonManifoldVertices;
 }
 
@@ -127,20 +138,22 @@ bool extractBoundary3D(const EVM& evm,
   out = BRep();
   BRep perAxis[3];
   std::atomic<bool> abort{ false };
+  // The three cyclic sortings, each from the previous one by one stable bucket pass when
+  // the EVM comes ZYX-sorted from extraction: ZYX -> YZX -> XYZ -> ZXY.
+  EVM sorted[3];
+  sorted[1] = evm.sortedAs({ 1, 2, 0 }, exec);
+  sorted[0] = sorted[1].sortedAs({ 0, 1, 2 }, exec);
+  sorted[2] = sorted[0].sortedAs({ 2, 0, 1 }, exec);
   // The three sweeps are independent: one task per axis.
-  exec.forRange(3,
-    [&](std::int64_t b, std::int64_t e)
+  exec.forRange(3, [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t a = b; a < e; ++a)
     {
-      for (std::int64_t a = b; a < e; ++a)
+      if (!sweepAxis(sorted[a], connectivity, abort, perAxis[a]))
       {
-        const int axis = static_cast<int>(a);
-        const AxisOrder order{ axis, (axis + 1) % 3, (axis + 2) % 3 };
-        if (!sweepAxis(evm.sortedAs(order), connectivity, abort, perAxis[axis]))
-        {
-          abort = true;
-        }
+        abort = true;
       }
-    });
+    }
+  });
   if (abort || !exec.report(1.0))
   {
     return false;
@@ -163,65 +176,99 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
 
 void insertTJunctionVertices(BRep& brep, const Execution& exec)
 {
-  // For each axis d, every loop vertex keyed by (other two coordinates, then d): the vertices
-  // inside an edge along d are one contiguous range.
-  std::vector<Point3> keyed[3];
-  for (int d = 0; d < 3; ++d)
+  if (brep.points.empty())
   {
-    for (const BRepLoop& l : brep.loops)
+    return;
+  }
+  Coord lo = brep.points[0][0], hi = lo;
+  for (const Point3& p : brep.points)
+    for (Coord c : p)
     {
-      for (const Point3& p : l.points)
+      lo = std::min(lo, c);
+      hi = std::max(hi, c);
+    }
+  if (lo < 0 || hi >= PackedCoordinateLimit)
+  {
+    throw std::out_of_range("insertTJunctionVertices: coordinates outside [0, 2^21)");
+  }
+  // For each axis d, every corner keyed by (the two other coordinates, then d): the corners
+  // inside an edge along d form one contiguous run of keys.
+  const KeyPacker packer = KeyPacker::forMaximum(hi);
+  std::vector<std::uint64_t> keyed[3];
+  exec.forRange(3, [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t d = b; d < e; ++d)
+    {
+      auto& keys = keyed[d];
+      keys.resize(brep.points.size());
+      for (std::size_t i = 0; i < keys.size(); ++i)
       {
-        keyed[d].push_back({ p[(d + 1) % 3], p[(d + 2) % 3], p[d] });
+        const Point3& p = brep.points[i];
+        keys[i] = packer.pack(p[(d + 1) % 3], p[(d + 2) % 3], p[d]);
+      }
+      radixSort(keys);
+      keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    }
+  });
+  // The refined corners of each loop that gains some, computed in parallel, then all loops
+  // are laid out again.
+  std::vector<std::vector<Point3>> refinedLoops(brep.loops.size());
+  exec.forRange(static_cast<std::int64_t>(brep.loops.size()), [&](std::int64_t b, std::int64_t e) {
+    std::vector<Point3> refined;
+    for (std::int64_t l = b; l < e; ++l)
+    {
+      const PointRange points = brep.loopPoints(static_cast<int>(l));
+      refined.clear();
+      for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        const Point3& p = points[i];
+        const Point3& q = points[(i + 1) % points.size()];
+        refined.push_back(p);
+        int d = 0;
+        while (d < 3 && p[d] == q[d])
+        {
+          ++d;
+        }
+        if (d == 3 || std::abs(p[d] - q[d]) < 2)
+        {
+          continue; // a unit edge has no inner vertex
+        }
+        const auto& keys = keyed[d];
+        const Coord c1 = p[(d + 1) % 3], c2 = p[(d + 2) % 3];
+        const Coord from = std::min(p[d], q[d]), to = std::max(p[d], q[d]);
+        const std::uint64_t last = packer.pack(c1, c2, to);
+        const std::size_t at = refined.size();
+        for (auto it = std::upper_bound(keys.begin(), keys.end(), packer.pack(c1, c2, from));
+             it != keys.end() && *it < last; ++it)
+        {
+          Point3 r = p;
+          r[d] = packer.last(*it);
+          refined.push_back(r);
+        }
+        if (p[d] > q[d])
+        {
+          std::reverse(refined.begin() + at, refined.end());
+        }
+      }
+      if (refined.size() != points.size())
+      {
+        refinedLoops[l] = refined;
       }
     }
-    std::sort(keyed[d].begin(), keyed[d].end());
-    keyed[d].erase(std::unique(keyed[d].begin(), keyed[d].end()), keyed[d].end());
+  });
+  std::vector<Point3> points;
+  points.reserve(brep.points.size());
+  for (std::size_t l = 0; l < brep.loops.size(); ++l)
+  {
+    BRepLoop& loop = brep.loops[l];
+    const std::size_t begin = points.size();
+    if (refinedLoops[l].empty())
+      points.insert(points.end(), brep.points.begin() + loop.begin, brep.points.begin() + loop.end);
+    else
+      points.insert(points.end(), refinedLoops[l].begin(), refinedLoops[l].end());
+    loop.begin = begin;
+    loop.end = points.size();
   }
-  exec.forRange(static_cast<std::int64_t>(brep.loops.size()),
-    [&](std::int64_t b, std::int64_t e)
-    {
-      std::vector<Point3> refined;
-      for (std::int64_t l = b; l < e; ++l)
-      {
-        auto& points = brep.loops[l].points;
-        refined.clear();
-        for (std::size_t i = 0; i < points.size(); ++i)
-        {
-          const Point3& p = points[i];
-          const Point3& q = points[(i + 1) % points.size()];
-          refined.push_back(p);
-          int d = 0;
-          while (d < 3 && p[d] == q[d])
-          {
-            ++d;
-          }
-          if (d == 3)
-          {
-            continue;
-          }
-          const Coord lo = std::min(p[d], q[d]), hi = std::max(p[d], q[d]);
-          const Coord c1 = p[(d + 1) % 3], c2 = p[(d + 2) % 3];
-          auto first = std::upper_bound(keyed[d].begin(), keyed[d].end(), Point3{ c1, c2, lo });
-          auto last = std::lower_bound(keyed[d].begin(), keyed[d].end(), Point3{ c1, c2, hi });
-          const std::size_t at = refined.size();
-          for (auto it = first; it < last; ++it)
-          {
-            Point3 r = p;
-            r[d] = (*it)[2];
-            refined.push_back(r);
-          }
-          if (p[d] > q[d])
-          {
-            std::reverse(refined.begin() + at, refined.end());
-          }
-        }
-        if (refined.size() != points.size())
-        {
-          points = refined;
-        }
-      }
-    });
+  brep.points.swap(points);
 }
 
 } // namespace vbr

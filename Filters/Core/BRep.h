@@ -24,9 +24,20 @@ using Point3 = std::array<Coord, 3>;
 
 struct BRepLoop
 {
-  std::vector<Point3> points; ///< counter-clockwise seen from outside for outer loops
+  std::size_t begin = 0, end = 0; ///< its corners in BRep::points
   int face = -1;
   bool hole = false;
+};
+
+/// The corners of one loop, in order.
+struct PointRange
+{
+  const Point3* first;
+  const Point3* last;
+  const Point3* begin() const { return this->first; }
+  const Point3* end() const { return this->last; }
+  std::size_t size() const { return static_cast<std::size_t>(this->last - this->first); }
+  const Point3& operator[](std::size_t i) const { return this->first[i]; }
 };
 
 struct BRepFace
@@ -44,8 +55,16 @@ struct BRep
 {
   std::vector<BRepFace> faces;
   std::vector<BRepLoop> loops;
+  /// Corners of all loops, loop after loop; outer loops run counter-clockwise seen from
+  /// outside, holes the other way.
+  std::vector<Point3> points;
   std::size_t nonManifoldVertices = 0;
   std::size_t holeCount() const;
+  PointRange loopPoints(int loop) const
+  {
+    const BRepLoop& l = this->loops[loop];
+    return { this->points.data() + l.begin, this->points.data() + l.end };
+  }
 };
 
 /// Faces of a 3D EVM (any sorting), grouped by normal axis, then plane, then +A before -A.

@@ -1,5 +1,7 @@
 #include "EVM.h"
 
+#include "RadixSort.h"
+
 #include <algorithm>
 #include <cassert>
 #include <stdexcept>
@@ -124,50 +126,63 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
   {
     throw std::invalid_argument("a 2D EVM keeps its plane normal as first axis");
   }
+  if (this->Dimension == 3 && !this->Vertices.empty())
+  {
+    // A stable bucket pass on one coordinate keeps the order of the two others: from
+    // (A, B, C) it gives (C, A, B) when bucketing on C and (B, A, C) when bucketing on B.
+    if (order == AxisOrder{ this->Order[2], this->Order[0], this->Order[1] })
+      return this->bucketedOn(2, order);
+    if (order == AxisOrder{ this->Order[1], this->Order[0], this->Order[2] })
+      return this->bucketedOn(1, order);
+  }
   std::vector<Vertex> v(this->Vertices.size());
+  bool packable = true;
+  Coord maximum = 0;
   for (std::size_t i = 0; i < v.size(); ++i)
   {
     const auto w = this->worldVertex(i);
     v[i] = { w[order[0]], w[order[1]], w[order[2]] };
+    for (Coord c : v[i])
+    {
+      packable = packable && c >= 0 && c < PackedCoordinateLimit;
+      maximum = std::max(maximum, c);
+    }
   }
-  if (v.empty())
+  if (!packable)
   {
+    std::sort(v.begin(), v.end());
     return EVM(this->Dimension, order, std::move(v));
   }
-  // Counting sort on the sweep coordinate, then each bucket sorted on its own (in parallel).
-  const int key = this->Dimension == 3 ? 0 : 1;
-  Coord lo = v[0][key], hi = v[0][key];
-  for (const auto& p : v)
+  const KeyPacker packer = KeyPacker::forMaximum(maximum);
+  std::vector<std::uint64_t> keys(v.size());
+  exec.forRange(static_cast<std::int64_t>(v.size()), [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t i = b; i < e; ++i)
+      keys[i] = packer.pack(v[i][0], v[i][1], v[i][2]);
+  });
+  radixSort(keys);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = packer.unpack(keys[i]);
+  return EVM(this->Dimension, order, std::move(v));
+}
+
+EVM EVM::bucketedOn(int key, const AxisOrder& order) const
+{
+  Coord lo = this->Vertices[0][key], hi = lo;
+  for (const Vertex& p : this->Vertices)
   {
     lo = std::min(lo, p[key]);
     hi = std::max(hi, p[key]);
   }
   std::vector<std::size_t> start(static_cast<std::size_t>(hi - lo) + 2, 0);
-  for (const auto& p : v)
-  {
+  for (const Vertex& p : this->Vertices)
     ++start[p[key] - lo + 1];
-  }
   for (std::size_t i = 1; i < start.size(); ++i)
-  {
     start[i] += start[i - 1];
-  }
-  std::vector<Vertex> sorted(v.size());
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (const auto& p : v)
-    {
-      sorted[fill[p[key] - lo]++] = p;
-    }
-  }
-  exec.forRange(static_cast<std::int64_t>(start.size() - 1),
-    [&](std::int64_t b, std::int64_t e)
-    {
-      for (std::int64_t k = b; k < e; ++k)
-      {
-        std::sort(sorted.begin() + start[k], sorted.begin() + start[k + 1]);
-      }
-    });
-  return EVM(this->Dimension, order, std::move(sorted));
+  const int first = 0, second = key == 2 ? 1 : 2; // the two coordinates that stay in order
+  std::vector<Vertex> out(this->Vertices.size());
+  for (const Vertex& p : this->Vertices)
+    out[start[p[key] - lo]++] = { p[key], p[first], p[second] };
+  return EVM(this->Dimension, order, std::move(out));
 }
 
 std::vector<std::size_t> EVM::planeStarts() const
@@ -331,19 +346,18 @@ std::array<std::size_t, 3> planesPerAxis(const EVM& evm)
   {
     return counts;
   }
-  for (int k = 0; k < 3; ++k)
+  for (int k = evm.dimension() == 2 ? 1 : 0; k < 3; ++k)
   {
-    if (evm.dimension() == 2 && k == 0)
+    Coord lo = evm.vertices()[0][k], hi = lo;
+    for (const Vertex& v : evm.vertices())
     {
-      continue; // the plane normal of a 2D EVM has no planes of vertices
+      lo = std::min(lo, v[k]);
+      hi = std::max(hi, v[k]);
     }
-    std::vector<Coord> c(evm.size());
-    for (std::size_t i = 0; i < evm.size(); ++i)
-    {
-      c[i] = evm.vertices()[i][k];
-    }
-    std::sort(c.begin(), c.end());
-    counts[evm.order()[k]] = static_cast<std::size_t>(std::unique(c.begin(), c.end()) - c.begin());
+    std::vector<bool> seen(static_cast<std::size_t>(hi - lo) + 1, false);
+    for (const Vertex& v : evm.vertices())
+      seen[v[k] - lo] = true;
+    counts[evm.order()[k]] = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), true));
   }
   return counts;
 }

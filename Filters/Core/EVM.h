@@ -69,6 +69,9 @@ public:
   }
 
 private:
+  /// Stable counting sort on coordinate `key` (1 or 2): the result is sorted in `order`.
+  EVM bucketedOn(int key, const AxisOrder& order) const;
+
   int Dimension = 3;
   AxisOrder Order{ 2, 1, 0 };
   std::vector<Vertex> Vertices;

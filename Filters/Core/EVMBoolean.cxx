@@ -56,6 +56,92 @@ std::vector<Vertex> booleanIntervals(const Vertex* p,
   return out;
 }
 
+/// XOR of two sorted lists of coordinates (symmetric difference), into `out`.
+void xorCoordinates(const std::vector<Coord>& a, const std::vector<Coord>& b, std::vector<Coord>& out)
+{
+  out.clear();
+  auto i = a.begin(), j = b.begin();
+  while (i != a.end() && j != b.end())
+  {
+    if (*i < *j)
+      out.push_back(*i++);
+    else if (*j < *i)
+      out.push_back(*j++);
+    else
+    {
+      ++i;
+      ++j;
+    }
+  }
+  out.insert(out.end(), i, a.end());
+  out.insert(out.end(), j, b.end());
+}
+
+/// 1D Boolean of two sorted interval end point lists, into `out`.
+void booleanCoordinates(
+  const std::vector<Coord>& a, const std::vector<Coord>& b, BooleanOp op, std::vector<Coord>& out)
+{
+  out.clear();
+  bool inA = false, inB = false, inR = false;
+  auto i = a.begin(), j = b.begin();
+  while (i != a.end() || j != b.end())
+  {
+    const Coord c = (j == b.end() || (i != a.end() && *i < *j)) ? *i : *j;
+    if (i != a.end() && *i == c)
+    {
+      inA = !inA;
+      ++i;
+    }
+    if (j != b.end() && *j == c)
+    {
+      inB = !inB;
+      ++j;
+    }
+    const bool r = apply(op, inA, inB);
+    if (r != inR)
+    {
+      out.push_back(c);
+      inR = r;
+    }
+  }
+}
+
+/// 2D Boolean by a line sweep over 1D sections kept as plain coordinate lists (the hot path
+/// of the 3D boundary extraction: the forward and backward differences of every cut).
+std::vector<Vertex> booleanLines(
+  const Vertex* p, const Vertex* pEnd, const Vertex* q, const Vertex* qEnd, BooleanOp op)
+{
+  std::vector<Vertex> out;
+  std::vector<Coord> sectionP, sectionQ, sectionR, next, line, scratch;
+  auto advance = [&](const Vertex*& it, const Vertex* end, Coord u, std::vector<Coord>& section) {
+    line.clear();
+    while (it != end && (*it)[1] == u)
+      line.push_back((*it++)[2]);
+    xorCoordinates(section, line, scratch);
+    section.swap(scratch);
+  };
+  const bool needsP = op != BooleanOp::Union && op != BooleanOp::Xor;
+  while (p != pEnd || q != qEnd)
+  {
+    const Coord u = (q == qEnd || (p != pEnd && (*p)[1] < (*q)[1])) ? (*p)[1] : (*q)[1];
+    if (p != pEnd && (*p)[1] == u)
+      advance(p, pEnd, u, sectionP);
+    if (q != qEnd && (*q)[1] == u)
+      advance(q, qEnd, u, sectionQ);
+    booleanCoordinates(sectionP, sectionQ, op, next);
+    xorCoordinates(sectionR, next, line);
+    for (Coord v : line)
+      out.push_back({ 0, u, v });
+    sectionR.swap(next);
+    // Nothing more can come out once the operand that bounds the result is exhausted.
+    const bool pDone = p == pEnd && sectionP.empty();
+    const bool qDone = q == qEnd && sectionQ.empty();
+    if (sectionR.empty() && ((needsP && pDone) || (op == BooleanOp::Intersection && qDone)))
+      break;
+  }
+  return out;
+}
+
 /// End of the run of vertices sharing coordinate `level` with *begin.
 const Vertex* planeEnd(const Vertex* begin, const Vertex* end, int level)
 {
@@ -105,6 +191,10 @@ std::vector<Vertex> booleanVertices(const Vertex* p,
   if (level >= 2)
   {
     return booleanIntervals(p, pEnd, q, qEnd, op);
+  }
+  if (level == 1)
+  {
+    return booleanLines(p, pEnd, q, qEnd, op);
   }
   std::vector<Vertex> out, sectionP, sectionQ, sectionR;
   while (p != pEnd || q != qEnd)

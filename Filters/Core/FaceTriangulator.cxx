@@ -67,17 +67,81 @@ void markNesting(Cdt& cdt)
   }
 }
 
+/// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
+/// corner whose triangle holds no other corner (not even on its border). Returns false when
+/// no ear is found (left to the general triangulation).
+bool clipEars(const PointRange& pts, int u, int v, int sign,
+  std::vector<std::array<int, 3>>& triangles)
+{
+  std::vector<int> ring(pts.size());
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    ring[i] = static_cast<int>(i);
+  auto cross = [&](int a, int b, int c) {
+    return sign *
+      (static_cast<long long>(pts[b][u] - pts[a][u]) * (pts[c][v] - pts[a][v]) -
+        static_cast<long long>(pts[b][v] - pts[a][v]) * (pts[c][u] - pts[a][u]));
+  };
+  while (ring.size() > 3)
+  {
+    bool clipped = false;
+    const std::size_t n = ring.size();
+    for (std::size_t i = 0; i < n && !clipped; ++i)
+    {
+      const int a = ring[(i + n - 1) % n], b = ring[i], c = ring[(i + 1) % n];
+      if (cross(a, b, c) <= 0)
+        continue;
+      bool empty = true;
+      for (int k : ring)
+      {
+        if (k == a || k == b || k == c)
+          continue;
+        if (pts[k] == pts[a] || pts[k] == pts[b] || pts[k] == pts[c])
+        {
+          empty = false; // a corner visited twice: leave it to the general method
+          break;
+        }
+        if (cross(a, b, k) >= 0 && cross(b, c, k) >= 0 && cross(c, a, k) >= 0)
+        {
+          empty = false;
+          break;
+        }
+      }
+      if (!empty)
+        continue;
+      triangles.push_back({ a, b, c });
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+      clipped = true;
+    }
+    if (!clipped)
+      return false;
+  }
+  if (cross(ring[0], ring[1], ring[2]) <= 0)
+    return false;
+  triangles.push_back({ ring[0], ring[1], ring[2] });
+  return true;
+}
+
+/// Faces up to this many corners without holes are ear-clipped (quadratic, but tiny).
+constexpr std::size_t EarClippingLimit = 24;
+
 } // namespace
 
 std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
 {
   const BRepFace& face = brep.faces[f];
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3; // (u, v, axis) is right-handed
+  const PointRange outer = brep.loopPoints(face.firstLoop);
+  if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
+  {
+    std::vector<std::array<int, 3>> triangles;
+    if (clipEars(outer, u, v, face.normalSign, triangles))
+      return triangles;
+  }
   Cdt cdt;
   int index = 0;
   for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
   {
-    const auto& pts = brep.loops[l].points;
+    const PointRange pts = brep.loopPoints(l);
     std::vector<Cdt::Vertex_handle> handles;
     handles.reserve(pts.size());
     for (const Point3& p : pts)

@@ -133,9 +133,10 @@ private:
   /// emitting edges, uniting overlapping intervals and recording first intervals.
   void processLine(Coord u, const Vertex* cut, const Vertex* cutEnd)
   {
-    std::vector<SectionEnd> next;
-    std::vector<int> nextIntervals;
-    next.reserve(this->Section.size() + (cutEnd - cut));
+    std::vector<SectionEnd>& next = this->NextSection;
+    std::vector<int>& nextIntervals = this->NextIntervals;
+    next.clear();
+    nextIntervals.clear();
     std::size_t i = 0;
     bool inPrev = false, inCut = false;
     int prevInterval = -1, newIntervalId = -1, piece = -1;
@@ -323,12 +324,14 @@ private:
     out.faces.resize(firstOfFace.size());
 
     std::vector<int> loopOfEdge(this->Edges.size(), -1);
+    out.points.reserve(this->Edges.size());
     for (std::size_t e0 = 0; e0 < this->Edges.size(); ++e0)
     {
       if (loopOfEdge[e0] >= 0)
         continue;
       Loop2D loop;
       loop.face = faceOfRoot[this->find(this->Edges[e0].interval)];
+      loop.begin = out.points.size();
       const int id = static_cast<int>(out.loops.size());
       for (int e = static_cast<int>(e0); loopOfEdge[e] < 0; e = this->Edges[e].next)
       {
@@ -337,9 +340,10 @@ private:
           throw std::logic_error("sweep2D: open contour");
         }
         loopOfEdge[e] = id;
-        loop.points.push_back(this->Edges[e].from);
+        out.points.push_back(this->Edges[e].from);
       }
-      out.loops.push_back(std::move(loop));
+      loop.end = out.points.size();
+      out.loops.push_back(loop);
     }
 
     // Second sweep: faces in order of first appearance. A face's first interval is bounded
@@ -373,6 +377,8 @@ private:
 
   const bool MergeAtVertices;
   std::vector<SectionEnd> Section;   ///< active section, sorted by v
+  std::vector<SectionEnd> NextSection; ///< the section being built (reused buffers)
+  std::vector<int> NextIntervals;
   std::vector<int> SectionIntervals; ///< interval id of each pair of section ends
   std::vector<int> Parent;           ///< union-find over intervals
   std::vector<Edge> Edges;

@@ -44,7 +44,7 @@ enum class FaceConnectivity
 
 struct Loop2D
 {
-  std::vector<Point2> points; ///< corners in order, face on the left
+  std::size_t begin = 0, end = 0; ///< its corners in Boundary2D::points, face on the left
   int face = -1;
   bool hole = false;
 };
@@ -61,7 +61,14 @@ struct Boundary2D
 {
   std::vector<Face2D> faces; ///< in order of first appearance in the sweep
   std::vector<Loop2D> loops;
+  std::vector<Point2> points; ///< the corners of all loops, loop after loop
   std::size_t nonManifoldVertices = 0;
+
+  std::vector<Point2> loopPoints(int loop) const
+  {
+    return { this->points.begin() + this->loops[loop].begin,
+      this->points.begin() + this->loops[loop].end };
+  }
 };
 
 /// Faces, loops and inclusion tree of a 2D EVM given as vertices (0, u, v) in sorted order.

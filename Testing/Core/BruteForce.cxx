@@ -155,7 +155,7 @@ PixelSet rasterize(const vbr::BRep& brep, int f)
   std::map<int, std::vector<int>> crossings; // scanline j -> u of crossing edges
   for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
   {
-    const auto& pts = brep.loops[l].points;
+    const auto pts = brep.loopPoints(l);
     for (std::size_t i = 0; i < pts.size(); ++i)
     {
       const auto& p = pts[i];
@@ -182,7 +182,7 @@ long long doubledSignedArea(const vbr::BRep& brep, int l)
 {
   const vbr::BRepFace& face = brep.faces[brep.loops[l].face];
   const int ua = (face.axis + 1) % 3, va = (face.axis + 2) % 3;
-  const auto& pts = brep.loops[l].points;
+  const auto pts = brep.loopPoints(l);
   long long s = 0;
   for (std::size_t i = 0; i < pts.size(); ++i)
   {

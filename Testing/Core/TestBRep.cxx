@@ -20,11 +20,13 @@ using Segment = std::pair<bf::Int3, bf::Int3>;
 std::map<Segment, int> unitSegments(const vbr::BRep& brep)
 {
   std::map<Segment, int> count;
-  for (const auto& loop : brep.loops)
-    for (std::size_t i = 0; i < loop.points.size(); ++i)
+  for (std::size_t l = 0; l < brep.loops.size(); ++l)
+  {
+    const auto points = brep.loopPoints(static_cast<int>(l));
+    for (std::size_t i = 0; i < points.size(); ++i)
     {
-      bf::Int3 p = loop.points[i];
-      const bf::Int3 q = loop.points[(i + 1) % loop.points.size()];
+      bf::Int3 p = points[i];
+      const bf::Int3 q = points[(i + 1) % points.size()];
       int d = 0;
       while (d < 3 && p[d] == q[d])
         ++d;
@@ -42,6 +44,7 @@ std::map<Segment, int> unitSegments(const vbr::BRep& brep)
         p = n;
       }
     }
+  }
   return count;
 }
 
@@ -134,7 +137,10 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
     const vbr::BRepFace& face = brep.faces[f];
     std::vector<bf::Int3> corner;
     for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
-      corner.insert(corner.end(), brep.loops[l].points.begin(), brep.loops[l].points.end());
+    {
+      const auto points = brep.loopPoints(l);
+      corner.insert(corner.end(), points.begin(), points.end());
+    }
     long long doubled = 0;
     const int u = (face.axis + 1) % 3, w = (face.axis + 2) % 3;
     for (const auto& t : vbr::triangulateFace(brep, static_cast<int>(f)))

@@ -55,7 +55,7 @@ Corners corners(std::initializer_list<std::pair<int, int>> l)
 int findLoop(const vbr::Boundary2D& b, const Corners& expected)
 {
   for (std::size_t l = 0; l < b.loops.size(); ++l)
-    if (canonical(b.loops[l].points) == canonical(expected))
+    if (canonical(b.loopPoints(static_cast<int>(l))) == canonical(expected))
       return static_cast<int>(l);
   return -1;
 }
