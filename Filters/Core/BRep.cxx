@@ -35,7 +35,8 @@ void appendFaces(const Boundary2D& b2,
     face.parent = f2.parent < 0 ? -1 : faceBase + f2.parent;
     face.depth = f2.depth;
     const int faceId = static_cast<int>(out.faces.size());
-    auto addLoop = [&](int l, bool hole) {
+    auto addLoop = [&](int l, bool hole)
+    {
       BRepLoop loop;
       loop.face = faceId;
       loop.hole = hole;
@@ -66,16 +67,54 @@ void appendFaces(const Boundary2D& b2,
   out.nonManifoldVertices += b2.nonManifoldVertices;
 }
 
-/// Sweeps one axis: sections, forward and backward differences, 2D solutions.
-bool sweepAxis(const EVM& sorted,
+/// A run of consecutive planes of vertices of one sorting, with the section before it.
+struct PlaneChunk
+{
+  const EVM* sorted = nullptr;
+  std::size_t firstPlane = 0, endPlane = 0;
+  std::vector<Vertex> section; ///< S(firstPlane - 1)
+};
+
+/// Splits every sorting's planes into about `perAxis` chunks; the sections at chunk starts come
+/// from one sequential pass of XORs (formula 1), the cheap part of the sweep.
+std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3], std::size_t perAxis)
+{
+  std::vector<PlaneChunk> chunks;
+  for (const EVM& evm : sorted)
+  {
+    const auto starts = evm.planeStarts();
+    const std::size_t planes = starts.size() - 1;
+    const std::size_t step = std::max<std::size_t>(1, (planes + perAxis - 1) / perAxis);
+    const Vertex* v = evm.vertices().data();
+    std::vector<Vertex> section;
+    for (std::size_t p = 0; p < planes; ++p)
+    {
+      if (p % step == 0)
+      {
+        PlaneChunk c;
+        c.sorted = &evm;
+        c.firstPlane = p;
+        c.endPlane = std::min(planes, p + step);
+        c.section = section;
+        chunks.push_back(std::move(c));
+      }
+      section = xorVertices(section, project(v + starts[p], v + starts[p + 1], 0));
+    }
+  }
+  return chunks;
+}
+
+/// Sweeps a chunk of planes: sections, forward and backward differences, 2D solutions.
+bool sweepChunk(const PlaneChunk& chunk,
   FaceConnectivity connectivity,
   const std::atomic<bool>& abort,
   BRep& out)
 {
+  const EVM& sorted = *chunk.sorted;
   const auto starts = sorted.planeStarts();
   const Vertex* v = sorted.vertices().data();
-  std::vector<Vertex> section, next;
-  for (std::size_t p = 0; p + 1 < starts.size(); ++p)
+  std::vector<Vertex> section = chunk.section, next;
+  for (std::size_t p = chunk.firstPlane; p < chunk.endPlane; ++p)
   {
     if (abort)
     {
@@ -86,13 +125,17 @@ bool sweepAxis(const EVM& sorted,
     next = xorVertices(section, plane);
     // The cut is FD + BD (formula 3): FD = S(i-1) - S(i) is the part of the cut covered by
     // S(i-1), and BD the rest of the cut, so one Boolean and one XOR give both.
-    const std::vector<Vertex> fd = booleanVertices(plane.data(), plane.data() + plane.size(),
-      section.data(), section.data() + section.size(), 1, BooleanOp::Intersection);
+    const std::vector<Vertex> fd = booleanVertices(plane.data(),
+      plane.data() + plane.size(),
+      section.data(),
+      section.data() + section.size(),
+      1,
+      BooleanOp::Intersection);
     const std::vector<Vertex> bd = xorVertices(plane, fd);
-    appendFaces(sweep2D(fd.data(), fd.data() + fd.size(), connectivity), sorted.order(), position,
-      +1, out);
-    appendFaces(sweep2D(bd.data(), bd.data() + bd.size(), connectivity), sorted.order(), position,
-      -1, out);
+    appendFaces(
+      sweep2D(fd.data(), fd.data() + fd.size(), connectivity), sorted.order(), position, +1, out);
+    appendFaces(
+      sweep2D(bd.data(), bd.data() + bd.size(), connectivity), sorted.order(), position, -1, out);
     section.swap(next);
   }
   return true;
@@ -136,7 +179,6 @@ bool extractBoundary3D(const EVM& evm,
   BRep& out)
 {
   out = BRep();
-  BRep perAxis[3];
   std::atomic<bool> abort{ false };
   // The three cyclic sortings, each from the previous one by one stable bucket pass when
   // the EVM comes ZYX-sorted from extraction: ZYX -> YZX -> XYZ -> ZXY.
@@ -144,21 +186,35 @@ bool extractBoundary3D(const EVM& evm,
   sorted[1] = evm.sortedAs({ 1, 2, 0 }, exec);
   sorted[0] = sorted[1].sortedAs({ 0, 1, 2 }, exec);
   sorted[2] = sorted[0].sortedAs({ 2, 0, 1 }, exec);
-  // The three sweeps are independent: one task per axis.
-  exec.forRange(3, [&](std::int64_t b, std::int64_t e) {
-    for (std::int64_t a = b; a < e; ++a)
+  // Chunks of planes of all three sweeps are independent tasks.
+  const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, 8);
+  std::vector<BRep> perChunk(chunks.size());
+  exec.forRange(static_cast<std::int64_t>(chunks.size()),
+    [&](std::int64_t b, std::int64_t e)
     {
-      if (!sweepAxis(sorted[a], connectivity, abort, perAxis[a]))
+      for (std::int64_t c = b; c < e; ++c)
       {
-        abort = true;
+        if (!sweepChunk(chunks[c], connectivity, abort, perChunk[c]))
+        {
+          abort = true;
+        }
       }
-    }
-  });
+    });
   if (abort || !exec.report(1.0))
   {
     return false;
   }
-  for (BRep& b : perAxis)
+  std::size_t faces = 0, loops = 0, points = 0;
+  for (const BRep& b : perChunk)
+  {
+    faces += b.faces.size();
+    loops += b.loops.size();
+    points += b.points.size();
+  }
+  out.faces.reserve(faces);
+  out.loops.reserve(loops);
+  out.points.reserve(points);
+  for (BRep& b : perChunk)
   {
     appendBRep(out, std::move(b));
   }
@@ -195,66 +251,71 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
   // inside an edge along d form one contiguous run of keys.
   const KeyPacker packer = KeyPacker::forMaximum(hi);
   std::vector<std::uint64_t> keyed[3];
-  exec.forRange(3, [&](std::int64_t b, std::int64_t e) {
-    for (std::int64_t d = b; d < e; ++d)
+  exec.forRange(3,
+    [&](std::int64_t b, std::int64_t e)
     {
-      auto& keys = keyed[d];
-      keys.resize(brep.points.size());
-      for (std::size_t i = 0; i < keys.size(); ++i)
+      for (std::int64_t d = b; d < e; ++d)
       {
-        const Point3& p = brep.points[i];
-        keys[i] = packer.pack(p[(d + 1) % 3], p[(d + 2) % 3], p[d]);
+        auto& keys = keyed[d];
+        keys.resize(brep.points.size());
+        for (std::size_t i = 0; i < keys.size(); ++i)
+        {
+          const Point3& p = brep.points[i];
+          keys[i] = packer.pack(p[(d + 1) % 3], p[(d + 2) % 3], p[d]);
+        }
+        radixSort(keys);
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
       }
-      radixSort(keys);
-      keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    }
-  });
+    });
   // The refined corners of each loop that gains some, computed in parallel, then all loops
   // are laid out again.
   std::vector<std::vector<Point3>> refinedLoops(brep.loops.size());
-  exec.forRange(static_cast<std::int64_t>(brep.loops.size()), [&](std::int64_t b, std::int64_t e) {
-    std::vector<Point3> refined;
-    for (std::int64_t l = b; l < e; ++l)
+  exec.forRange(static_cast<std::int64_t>(brep.loops.size()),
+    [&](std::int64_t b, std::int64_t e)
     {
-      const PointRange points = brep.loopPoints(static_cast<int>(l));
-      refined.clear();
-      for (std::size_t i = 0; i < points.size(); ++i)
+      std::vector<Point3> refined;
+      for (std::int64_t l = b; l < e; ++l)
       {
-        const Point3& p = points[i];
-        const Point3& q = points[(i + 1) % points.size()];
-        refined.push_back(p);
-        int d = 0;
-        while (d < 3 && p[d] == q[d])
+        const PointRange points = brep.loopPoints(static_cast<int>(l));
+        refined.clear();
+        for (std::size_t i = 0; i < points.size(); ++i)
         {
-          ++d;
+          const Point3& p = points[i];
+          const Point3& q = points[(i + 1) % points.size()];
+          refined.push_back(p);
+          int d = 0;
+          while (d < 3 && p[d] == q[d])
+          {
+            ++d;
+          }
+          if (d == 3 || std::abs(p[d] - q[d]) < 2)
+          {
+            continue; // a unit edge has no inner vertex
+          }
+          const auto& keys = keyed[d];
+          const Coord c1 = p[(d + 1) % 3], c2 = p[(d + 2) % 3];
+          const Coord from = std::min(p[d], q[d]), to = std::max(p[d], q[d]);
+          const std::uint64_t last = packer.pack(c1, c2, to);
+          const std::size_t at = refined.size();
+          for (auto it = std::upper_bound(keys.begin(), keys.end(), packer.pack(c1, c2, from));
+               it != keys.end() && *it < last;
+               ++it)
+          {
+            Point3 r = p;
+            r[d] = packer.last(*it);
+            refined.push_back(r);
+          }
+          if (p[d] > q[d])
+          {
+            std::reverse(refined.begin() + at, refined.end());
+          }
         }
-        if (d == 3 || std::abs(p[d] - q[d]) < 2)
+        if (refined.size() != points.size())
         {
-          continue; // a unit edge has no inner vertex
-        }
-        const auto& keys = keyed[d];
-        const Coord c1 = p[(d + 1) % 3], c2 = p[(d + 2) % 3];
-        const Coord from = std::min(p[d], q[d]), to = std::max(p[d], q[d]);
-        const std::uint64_t last = packer.pack(c1, c2, to);
-        const std::size_t at = refined.size();
-        for (auto it = std::upper_bound(keys.begin(), keys.end(), packer.pack(c1, c2, from));
-             it != keys.end() && *it < last; ++it)
-        {
-          Point3 r = p;
-          r[d] = packer.last(*it);
-          refined.push_back(r);
-        }
-        if (p[d] > q[d])
-        {
-          std::reverse(refined.begin() + at, refined.end());
+          refinedLoops[l] = refined;
         }
       }
-      if (refined.size() != points.size())
-      {
-        refinedLoops[l] = refined;
-      }
-    }
-  });
+    });
   std::vector<Point3> points;
   points.reserve(brep.points.size());
   for (std::size_t l = 0; l < brep.loops.size(); ++l)

@@ -155,10 +155,12 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
   }
   const KeyPacker packer = KeyPacker::forMaximum(maximum);
   std::vector<std::uint64_t> keys(v.size());
-  exec.forRange(static_cast<std::int64_t>(v.size()), [&](std::int64_t b, std::int64_t e) {
-    for (std::int64_t i = b; i < e; ++i)
-      keys[i] = packer.pack(v[i][0], v[i][1], v[i][2]);
-  });
+  exec.forRange(static_cast<std::int64_t>(v.size()),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t i = b; i < e; ++i)
+        keys[i] = packer.pack(v[i][0], v[i][1], v[i][2]);
+    });
   radixSort(keys);
   for (std::size_t i = 0; i < v.size(); ++i)
     v[i] = packer.unpack(keys[i]);

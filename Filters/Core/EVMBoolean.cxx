@@ -57,7 +57,9 @@ std::vector<Vertex> booleanIntervals(const Vertex* p,
 }
 
 /// XOR of two sorted lists of coordinates (symmetric difference), into `out`.
-void xorCoordinates(const std::vector<Coord>& a, const std::vector<Coord>& b, std::vector<Coord>& out)
+void xorCoordinates(const std::vector<Coord>& a,
+  const std::vector<Coord>& b,
+  std::vector<Coord>& out)
 {
   out.clear();
   auto i = a.begin(), j = b.begin();
@@ -78,8 +80,10 @@ void xorCoordinates(const std::vector<Coord>& a, const std::vector<Coord>& b, st
 }
 
 /// 1D Boolean of two sorted interval end point lists, into `out`.
-void booleanCoordinates(
-  const std::vector<Coord>& a, const std::vector<Coord>& b, BooleanOp op, std::vector<Coord>& out)
+void booleanCoordinates(const std::vector<Coord>& a,
+  const std::vector<Coord>& b,
+  BooleanOp op,
+  std::vector<Coord>& out)
 {
   out.clear();
   bool inA = false, inB = false, inR = false;
@@ -108,12 +112,16 @@ void booleanCoordinates(
 
 /// 2D Boolean by a line sweep over 1D sections kept as plain coordinate lists (the hot path
 /// of the 3D boundary extraction: the forward and backward differences of every cut).
-std::vector<Vertex> booleanLines(
-  const Vertex* p, const Vertex* pEnd, const Vertex* q, const Vertex* qEnd, BooleanOp op)
+std::vector<Vertex> booleanLines(const Vertex* p,
+  const Vertex* pEnd,
+  const Vertex* q,
+  const Vertex* qEnd,
+  BooleanOp op)
 {
   std::vector<Vertex> out;
   std::vector<Coord> sectionP, sectionQ, sectionR, next, line, scratch;
-  auto advance = [&](const Vertex*& it, const Vertex* end, Coord u, std::vector<Coord>& section) {
+  auto advance = [&](const Vertex*& it, const Vertex* end, Coord u, std::vector<Coord>& section)
+  {
     line.clear();
     while (it != end && (*it)[1] == u)
       line.push_back((*it++)[2]);

@@ -70,13 +70,17 @@ void markNesting(Cdt& cdt)
 /// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
 /// corner whose triangle holds no other corner (not even on its border). Returns false when
 /// no ear is found (left to the general triangulation).
-bool clipEars(const PointRange& pts, int u, int v, int sign,
+bool clipEars(const PointRange& pts,
+  int u,
+  int v,
+  int sign,
   std::vector<std::array<int, 3>>& triangles)
 {
   std::vector<int> ring(pts.size());
   for (std::size_t i = 0; i < ring.size(); ++i)
     ring[i] = static_cast<int>(i);
-  auto cross = [&](int a, int b, int c) {
+  auto cross = [&](int a, int b, int c)
+  {
     return sign *
       (static_cast<long long>(pts[b][u] - pts[a][u]) * (pts[c][v] - pts[a][v]) -
         static_cast<long long>(pts[b][v] - pts[a][v]) * (pts[c][u] - pts[a][u]));

@@ -376,7 +376,7 @@ private:
   }
 
   const bool MergeAtVertices;
-  std::vector<SectionEnd> Section;   ///< active section, sorted by v
+  std::vector<SectionEnd> Section;     ///< active section, sorted by v
   std::vector<SectionEnd> NextSection; ///< the section being built (reused buffers)
   std::vector<int> NextIntervals;
   std::vector<int> SectionIntervals; ///< interval id of each pair of section ends

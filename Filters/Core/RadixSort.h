@@ -3,8 +3,8 @@
 #ifndef vbr_RadixSort_h
 #define vbr_RadixSort_h
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -38,7 +38,8 @@ struct KeyPacker
   {
     const std::uint64_t mask = (std::uint64_t(1) << this->bits) - 1;
     return { static_cast<std::int32_t>(k >> (2 * this->bits)),
-      static_cast<std::int32_t>((k >> this->bits) & mask), static_cast<std::int32_t>(k & mask) };
+      static_cast<std::int32_t>((k >> this->bits) & mask),
+      static_cast<std::int32_t>(k & mask) };
   }
   /// Third coordinate of a key.
   std::int32_t last(std::uint64_t k) const
