@@ -172,7 +172,6 @@ public:
       cd->AddArray(this->ParentFace);
       cd->AddArray(this->Depth);
     }
-    cd->SetActiveScalars("Label");
   }
 
   vtkNew<vtkCellArray> Polys;

@@ -1,0 +1,654 @@
+// vtkEVMBoundaryFilter on random and degenerate images, checked against brute force computed
+// from the input voxels and from the output polydata alone: faces per plane, holes, area,
+// volume, closedness, orientation and the exact round trip, for point and cell scalars,
+// several scalar types, non-unit anisotropic spacing and extents not starting at 0.
+#include "vtkEVMBoundaryFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkShortArray.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <array>
+#include <cmath>
+#include <deque>
+#include <iostream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <tuple>
+#include <vector>
+
+namespace
+{
+
+int Failures = 0;
+
+#define CHECK(cond, msg)                                                                           \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::cerr << __LINE__ << ": " << msg << std::endl;                                           \
+      ++Failures;                                                                                  \
+    }                                                                                              \
+  } while (false)
+
+using Int3 = std::array<int, 3>;
+using Pixel = std::pair<int, int>;
+using PixelSet = std::set<Pixel>;
+
+/// A voxel volume with values, as the test builds it.
+struct Volume
+{
+  Int3 dims{ 0, 0, 0 };
+  std::vector<int> values;
+  int at(int x, int y, int z) const
+  {
+    if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2])
+      return 0;
+    return values[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x];
+  }
+};
+
+Volume randomVolume(const Int3& dims, double density, int labels, unsigned seed)
+{
+  Volume v;
+  v.dims = dims;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  v.values.resize(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  for (int& x : v.values)
+    x = u(rng) < density ? 1 + static_cast<int>(u(rng) * labels) % labels : 0;
+  return v;
+}
+
+/// How the image carries the voxels.
+struct Layout
+{
+  bool cellData = false;
+  Int3 extentMin{ 0, 0, 0 };
+  std::array<double, 3> origin{ 0, 0, 0 };
+  std::array<double, 3> spacing{ 1, 1, 1 };
+  int scalarType = VTK_UNSIGNED_CHAR;
+};
+
+vtkSmartPointer<vtkImageData> makeImage(const Volume& v, const Layout& l)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  const int add = l.cellData ? 1 : 0;
+  image->SetExtent(l.extentMin[0],
+    l.extentMin[0] + v.dims[0] - 1 + add,
+    l.extentMin[1],
+    l.extentMin[1] + v.dims[1] - 1 + add,
+    l.extentMin[2],
+    l.extentMin[2] + v.dims[2] - 1 + add);
+  image->SetOrigin(l.origin.data());
+  image->SetSpacing(l.spacing.data());
+  vtkSmartPointer<vtkDataArray> a;
+  a.TakeReference(vtkDataArray::CreateDataArray(l.scalarType));
+  a->SetName("values");
+  a->SetNumberOfTuples(static_cast<vtkIdType>(v.values.size()));
+  for (std::size_t i = 0; i < v.values.size(); ++i)
+    a->SetTuple1(static_cast<vtkIdType>(i), v.values[i]);
+  if (l.cellData)
+    image->GetCellData()->SetScalars(a);
+  else
+    image->GetPointData()->SetScalars(a);
+  return image;
+}
+
+vtkIdType fieldValue(vtkPolyData* out, const char* name, int component = 0)
+{
+  vtkDataArray* a = out->GetFieldData()->GetArray(name);
+  return a ? static_cast<vtkIdType>(a->GetComponent(0, component)) : -1;
+}
+
+/// Output point i back in grid-vertex indices (exact integers or the test fails).
+Int3 toGrid(vtkPolyData* out, vtkIdType i, const Layout& l, bool& exact)
+{
+  double p[3];
+  out->GetPoint(i, p);
+  Int3 g{};
+  for (int d = 0; d < 3; ++d)
+  {
+    const double shift = l.cellData ? 0.0 : -0.5;
+    const double index = (p[d] - l.origin[d]) / l.spacing[d] - l.extentMin[d] - shift;
+    g[d] = static_cast<int>(std::lround(index));
+    exact = exact && std::abs(index - g[d]) < 1e-9;
+  }
+  return g;
+}
+
+struct PlaneKey
+{
+  int axis, sign, position;
+  bool operator<(const PlaneKey& o) const
+  {
+    return std::tie(axis, sign, position) < std::tie(o.axis, o.sign, o.position);
+  }
+  bool operator==(const PlaneKey& o) const
+  {
+    return axis == o.axis && sign == o.sign && position == o.position;
+  }
+};
+
+std::vector<PixelSet> components(PixelSet left, bool eight)
+{
+  std::vector<PixelSet> out;
+  while (!left.empty())
+  {
+    PixelSet comp;
+    std::deque<Pixel> queue{ *left.begin() };
+    left.erase(left.begin());
+    while (!queue.empty())
+    {
+      const Pixel p = queue.front();
+      queue.pop_front();
+      comp.insert(p);
+      for (int du = -1; du <= 1; ++du)
+        for (int dv = -1; dv <= 1; ++dv)
+        {
+          if ((!du && !dv) || (!eight && du && dv))
+            continue;
+          auto it = left.find({ p.first + du, p.second + dv });
+          if (it != left.end())
+          {
+            queue.push_back(*it);
+            left.erase(it);
+          }
+        }
+    }
+    out.push_back(comp);
+  }
+  return out;
+}
+
+int holes(const PixelSet& face)
+{
+  int u0 = 1 << 30, u1 = -u0, v0 = u0, v1 = -u0;
+  for (const auto& p : face)
+  {
+    u0 = std::min(u0, p.first);
+    u1 = std::max(u1, p.first);
+    v0 = std::min(v0, p.second);
+    v1 = std::max(v1, p.second);
+  }
+  PixelSet rest;
+  for (int u = u0 - 1; u <= u1 + 1; ++u)
+    for (int v = v0 - 1; v <= v1 + 1; ++v)
+      if (!face.count({ u, v }))
+        rest.insert({ u, v });
+  int n = 0;
+  for (const auto& c : components(rest, false))
+  {
+    bool border = false;
+    for (const auto& p : c)
+      border = border || p.first == u0 - 1 || p.first == u1 + 1 || p.second == v0 - 1 ||
+        p.second == v1 + 1;
+    n += border ? 0 : 1;
+  }
+  return n;
+}
+
+/// Everything one expects for the voxels of one label (label < 0: every non-zero value).
+struct Expected
+{
+  std::map<PlaneKey, std::vector<PixelSet>> faces;
+  long long surfels = 0, voxels = 0, extremeVertices = 0, holes = 0;
+};
+
+Expected expect(const Volume& v, int label, bool merged)
+{
+  auto in = [&](int x, int y, int z)
+  {
+    const int value = v.at(x, y, z);
+    return label < 0 ? value != 0 : value == label;
+  };
+  Expected e;
+  std::map<PlaneKey, PixelSet> surfels;
+  for (int z = 0; z < v.dims[2]; ++z)
+    for (int y = 0; y < v.dims[1]; ++y)
+      for (int x = 0; x < v.dims[0]; ++x)
+      {
+        if (!in(x, y, z))
+          continue;
+        ++e.voxels;
+        const Int3 p{ x, y, z };
+        for (int axis = 0; axis < 3; ++axis)
+          for (int sign = -1; sign <= 1; sign += 2)
+          {
+            Int3 n = p;
+            n[axis] += sign;
+            if (in(n[0], n[1], n[2]))
+              continue;
+            ++e.surfels;
+            surfels[{ axis, sign, p[axis] + (sign > 0) }].insert(
+              { p[(axis + 1) % 3], p[(axis + 2) % 3] });
+          }
+      }
+  for (int z = 0; z <= v.dims[2]; ++z)
+    for (int y = 0; y <= v.dims[1]; ++y)
+      for (int x = 0; x <= v.dims[0]; ++x)
+      {
+        int n = 0;
+        for (int k = 0; k < 8; ++k)
+          n += in(x - (k & 1), y - ((k >> 1) & 1), z - ((k >> 2) & 1));
+        e.extremeVertices += n % 2;
+      }
+  for (const auto& s : surfels)
+  {
+    e.faces[s.first] = components(s.second, merged);
+    for (const auto& f : e.faces[s.first])
+      e.holes += holes(f);
+  }
+  return e;
+}
+
+/// Faces of a Polygons output, rasterized per FaceId in grid coordinates (even-odd rule).
+struct Produced
+{
+  std::map<PlaneKey, std::vector<PixelSet>> faces;
+  std::map<vtkIdType, int> labelOfFace;
+  long long holeLoops = 0;
+  bool exact = true, oriented = true;
+};
+
+Produced readFaces(vtkPolyData* out, const Layout& l, double labelFilter)
+{
+  Produced r;
+  vtkDataArray* faceIds = out->GetCellData()->GetArray("FaceId");
+  vtkDataArray* loopType = out->GetCellData()->GetArray("LoopType");
+  vtkDataArray* labels = out->GetCellData()->GetArray("Label");
+  if (!faceIds || !loopType || !labels)
+  {
+    r.exact = false;
+    return r;
+  }
+  struct Loop
+  {
+    std::vector<Int3> p;
+    bool hole;
+  };
+  std::map<vtkIdType, std::vector<Loop>> loops;
+  vtkCellArray* polys = out->GetPolys();
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    if (labelFilter >= 0 && labels->GetTuple1(c) != labelFilter)
+      continue;
+    out->GetCellPoints(c, ids);
+    Loop loop;
+    for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      loop.p.push_back(toGrid(out, ids->GetId(i), l, r.exact));
+    loop.hole = loopType->GetTuple1(c) != 0;
+    r.holeLoops += loop.hole;
+    loops[static_cast<vtkIdType>(faceIds->GetTuple1(c))].push_back(loop);
+  }
+  (void)polys;
+  for (const auto& entry : loops)
+  {
+    const Int3& p0 = entry.second.front().p.front();
+    int axis = -1;
+    for (int d = 0; d < 3; ++d)
+    {
+      bool constant = true;
+      for (const Loop& loop : entry.second)
+        for (const Int3& p : loop.p)
+          constant = constant && p[d] == p0[d];
+      if (constant)
+        axis = d;
+    }
+    if (axis < 0)
+    {
+      r.exact = false;
+      continue;
+    }
+    const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+    std::map<int, std::vector<int>> crossings;
+    int sign = 0;
+    for (const Loop& loop : entry.second)
+    {
+      long long area = 0;
+      for (std::size_t i = 0; i < loop.p.size(); ++i)
+      {
+        const Int3& a = loop.p[i];
+        const Int3& b = loop.p[(i + 1) % loop.p.size()];
+        area += static_cast<long long>(a[ua]) * b[va] - static_cast<long long>(b[ua]) * a[va];
+        if (a[ua] == b[ua])
+          for (int j = std::min(a[va], b[va]); j < std::max(a[va], b[va]); ++j)
+            crossings[j].push_back(a[ua]);
+      }
+      const int s = area > 0 ? 1 : -1;
+      const int loopSign = loop.hole ? -s : s;
+      if (sign == 0)
+        sign = loopSign;
+      r.oriented = r.oriented && sign == loopSign;
+    }
+    PixelSet pixels;
+    for (auto& c : crossings)
+    {
+      std::sort(c.second.begin(), c.second.end());
+      for (std::size_t k = 0; k + 1 < c.second.size(); k += 2)
+        for (int u = c.second[k]; u < c.second[k + 1]; ++u)
+          pixels.insert({ u, c.first });
+    }
+    r.faces[{ axis, sign, p0[axis] }].push_back(pixels);
+  }
+  for (auto& e : r.faces)
+    std::sort(e.second.begin(), e.second.end());
+  return r;
+}
+
+/// Runs the filter in Polygons mode and compares everything with brute force.
+void checkPolygons(const Volume& v, const Layout& l, int mode, bool merged, const std::string& what)
+{
+  vtkNew<vtkEVMBoundaryFilter> f;
+  f->SetInputData(makeImage(v, l));
+  f->SetSelectionMode(mode);
+  f->SetOutputModeToPolygons();
+  f->SetMergeNonManifoldFaces(merged);
+  f->Update();
+  vtkPolyData* out = f->GetOutput();
+  std::vector<int> labels;
+  if (mode == vtkEVMBoundaryFilter::LABELS)
+  {
+    std::set<int> s(v.values.begin(), v.values.end());
+    s.erase(0);
+    labels.assign(s.begin(), s.end());
+  }
+  else
+    labels.push_back(-1);
+  long long evs = 0, voxels = 0, surfels = 0, holes = 0, faces = 0;
+  for (int label : labels)
+  {
+    Expected e = expect(v, label, merged);
+    for (auto& entry : e.faces)
+      std::sort(entry.second.begin(), entry.second.end());
+    const Produced p = readFaces(out, l, label < 0 ? -1.0 : label);
+    CHECK(p.exact, what << ": output points are not on the voxel grid");
+    CHECK(p.oriented, what << ": loops of a face are not oriented consistently");
+    // Outer loops counter-clockwise seen from outside: the face's sign is its normal.
+    CHECK(p.faces == e.faces, what << " label " << label << ": faces differ from brute force");
+    CHECK(p.holeLoops == e.holes, what << ": " << p.holeLoops << " holes, expected " << e.holes);
+    evs += e.extremeVertices;
+    voxels += e.voxels;
+    surfels += e.surfels;
+    holes += e.holes;
+    for (const auto& entry : e.faces)
+      faces += static_cast<long long>(entry.second.size());
+  }
+  CHECK(fieldValue(out, "NumberOfExtremeVertices") == evs, what << ": extreme vertices");
+  CHECK(fieldValue(out, "NumberOfVoxels") == voxels, what << ": voxels");
+  CHECK(fieldValue(out, "NumberOfSurfels") == surfels, what << ": surfels");
+  CHECK(fieldValue(out, "NumberOfFaces") == faces, what << ": faces");
+  CHECK(fieldValue(out, "NumberOfHoles") == holes, what << ": holes");
+}
+
+/// Triangles: closed, oriented outwards (divergence theorem gives +volume), exact area.
+void checkTriangles(const Volume& v, const Layout& l, const std::string& what, bool flatAs2D = true)
+{
+  vtkNew<vtkEVMBoundaryFilter> f;
+  f->SetInputData(makeImage(v, l));
+  f->SetFlatImagesAs2D(flatAs2D);
+  f->SetOutputModeToTriangles();
+  f->Update();
+  vtkPolyData* out = f->GetOutput();
+  std::map<std::pair<vtkIdType, vtkIdType>, int> edges;
+  double area = 0, volume = 0;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    out->GetCellPoints(c, ids);
+    CHECK(ids->GetNumberOfIds() == 3, what << ": not a triangle");
+    if (ids->GetNumberOfIds() != 3)
+      return;
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      out->GetPoint(ids->GetId(k), p[k]);
+      ++edges[{ ids->GetId(k), ids->GetId((k + 1) % 3) }];
+    }
+    double u[3], w[3], n[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      u[d] = p[1][d] - p[0][d];
+      w[d] = p[2][d] - p[0][d];
+    }
+    n[0] = u[1] * w[2] - u[2] * w[1];
+    n[1] = u[2] * w[0] - u[0] * w[2];
+    n[2] = u[0] * w[1] - u[1] * w[0];
+    area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    volume += (p[0][0] * n[0] + p[0][1] * n[1] + p[0][2] * n[2]) / 6.0;
+  }
+  bool closed = true;
+  for (const auto& e : edges)
+  {
+    auto it = edges.find({ e.first.second, e.first.first });
+    closed = closed && it != edges.end() && it->second == e.second;
+  }
+  CHECK(closed, what << ": the triangle mesh has boundary or inconsistently oriented edges");
+  const Expected e = expect(v, -1, false);
+  const double sx = l.spacing[0], sy = l.spacing[1], sz = l.spacing[2];
+  double expectedArea = 0;
+  for (const auto& entry : e.faces)
+    for (const auto& c : entry.second)
+      expectedArea += c.size() *
+        (entry.first.axis == 0      ? sy * sz
+            : entry.first.axis == 1 ? sx * sz
+                                    : sx * sy);
+  const double expectedVolume = e.voxels * sx * sy * sz;
+  CHECK(std::abs(area - expectedArea) < 1e-6 * (1 + expectedArea),
+    what << ": area " << area << " expected " << expectedArea);
+  CHECK(std::abs(volume - expectedVolume) < 1e-6 * (1 + expectedVolume),
+    what << ": volume " << volume << " expected " << expectedVolume);
+}
+
+/// Counts error events of an algorithm.
+class ErrorCounter : public vtkCommand
+{
+public:
+  static ErrorCounter* New() { return new ErrorCounter; }
+  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+  int Count = 0;
+};
+
+void checkErrorsAndDegenerateInputs()
+{
+
+  // No scalars at all: an error, not a crash.
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(3, 3, 3);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(image);
+    f->Update();
+    CHECK(errors->Count > 0, "missing scalars must raise an error");
+    CHECK(f->GetOutput()->GetNumberOfCells() == 0, "missing scalars must give no cells");
+  }
+  // Component out of range.
+  {
+    Volume v = randomVolume({ 3, 3, 3 }, 0.5, 1, 1);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(makeImage(v, Layout()));
+    f->SetArrayComponent(2);
+    f->Update();
+    CHECK(errors->Count > 0, "ArrayComponent out of range must raise an error");
+  }
+
+  // Empty selection: empty output, no error.
+  {
+    Volume v = randomVolume({ 4, 5, 6 }, 0.0, 1, 1);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(makeImage(v, Layout()));
+    f->Update();
+    CHECK(errors->Count == 0 && f->GetOutput()->GetNumberOfCells() == 0,
+      "an empty selection gives an empty output without error");
+    CHECK(fieldValue(f->GetOutput(), "NumberOfFaces") == 0, "empty: no faces");
+  }
+  // Full selection and a single voxel: 6 faces each.
+  for (int n : { 1, 5 })
+  {
+    Volume v = randomVolume({ n, n + 1, n + 2 }, 1.0, 1, 2);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    f->SetInputData(makeImage(v, Layout()));
+    f->SetFlatImagesAs2D(false);
+    f->SetOutputModeToPolygons();
+    f->Update();
+    CHECK(fieldValue(f->GetOutput(), "NumberOfFaces") == 6, "a box has 6 faces, n=" << n);
+    CHECK(fieldValue(f->GetOutput(), "NumberOfExtremeVertices") == 8, "a box has 8 EVs");
+  }
+  // Range selection on float data, and the multi-component component choice.
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(4, 4, 4);
+    vtkNew<vtkFloatArray> a;
+    a->SetNumberOfComponents(2);
+    a->SetNumberOfTuples(64);
+    for (vtkIdType i = 0; i < 64; ++i)
+    {
+      a->SetComponent(i, 0, 0.0f);
+      a->SetComponent(i, 1, i == 21 || i == 22 ? 0.25f : 0.0f);
+    }
+    image->GetPointData()->SetScalars(a);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    f->SetInputData(image);
+    f->SetArrayComponent(1);
+    f->SetSelectionModeToRange();
+    f->SetLowerThreshold(0.2);
+    f->SetUpperThreshold(0.3);
+    f->SetOutputModeToPolygons();
+    f->Update();
+    CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 2, "range on component 1");
+    CHECK(fieldValue(f->GetOutput(), "NumberOfFaces") == 6, "two voxels: 6 faces");
+    // Positive mode selects 0.25 (> 0) too.
+    f->SetSelectionModeToPositive();
+    f->Update();
+    CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 2, "positive selects > 0 floats");
+  }
+}
+
+/// A 2D image: closed loops in its plane with the inclusion tree; off: a closed slab.
+void checkTwoDimensional()
+{
+  // Rings with a dot in the middle: a ring face with one hole holding a face.
+  Volume v;
+  v.dims = { 7, 7, 1 };
+  v.values.assign(49, 0);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 7; ++x)
+    {
+      const int r = std::max(std::abs(x - 3), std::abs(y - 3));
+      v.values[y * 7 + x] = (r == 3 || r == 0) ? 1 : 0;
+    }
+  for (int flat = 0; flat < 3; ++flat)
+  {
+    // The same picture in the XY, XZ or YZ plane.
+    Volume w;
+    w.dims = { 7, 7, 7 };
+    w.dims[flat] = 1;
+    w.values.assign(49, 0);
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 7; ++i)
+        w.values[j * 7 + i] = v.values[j * 7 + i];
+    vtkNew<vtkEVMBoundaryFilter> f;
+    f->SetInputData(makeImage(w, Layout()));
+    f->SetOutputModeToPolylines();
+    f->Update();
+    vtkPolyData* out = f->GetOutput();
+    CHECK(out->GetNumberOfLines() == 3, "2D: 3 loops, plane " << flat);
+    CHECK(fieldValue(out, "NumberOfFaces") == 2 && fieldValue(out, "NumberOfHoles") == 1,
+      "2D: 2 faces, 1 hole");
+    vtkDataArray* depth = out->GetCellData()->GetArray("Depth");
+    vtkDataArray* parent = out->GetCellData()->GetArray("ParentFace");
+    vtkDataArray* face = out->GetCellData()->GetArray("FaceId");
+    CHECK(depth && parent && face, "2D: Depth, ParentFace and FaceId arrays");
+    if (depth && parent && face)
+    {
+      std::multiset<int> depths;
+      for (vtkIdType c = 0; c < 3; ++c)
+        depths.insert(static_cast<int>(depth->GetTuple1(c)));
+      CHECK((depths == std::multiset<int>{ 0, 1, 2 }), "2D: depths 0, 1, 2");
+      for (vtkIdType c = 0; c < 3; ++c)
+        if (depth->GetTuple1(c) == 2)
+          CHECK(parent->GetTuple1(c) == 0, "2D: the dot's parent is the ring");
+    }
+    double bounds[6];
+    out->GetBounds(bounds);
+    CHECK(bounds[2 * flat] == 0 && bounds[2 * flat + 1] == 0, "2D: loops lie in the image plane");
+    // As a slab: a closed boundary with 2 x (the ring's and the dot's) faces plus the sides.
+    f->SetFlatImagesAs2D(false);
+    f->SetOutputModeToPolygons();
+    f->Update();
+    CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 25, "slab voxels");
+    Layout l;
+    checkTriangles(w, l, "slab plane " + std::to_string(flat), false);
+  }
+}
+
+} // namespace
+
+int TestEVMBoundaryFilter(int, char*[])
+{
+  unsigned seed = 7;
+  const int types[] = {
+    VTK_UNSIGNED_CHAR, VTK_SHORT, VTK_INT, VTK_FLOAT, VTK_DOUBLE, VTK_LONG_LONG, VTK_UNSIGNED_SHORT
+  };
+  for (int trial = 0; trial < 24; ++trial)
+  {
+    const Int3 dims{ 2 + (trial * 5) % 11, 2 + (trial * 3) % 9, 2 + (trial * 7) % 8 };
+    const double density = 0.1 + 0.8 * (trial % 6) / 5.0;
+    Layout l;
+    l.cellData = trial % 2 == 1;
+    l.extentMin = { -3 + trial % 5, 2 * (trial % 3), -(trial % 4) };
+    l.origin = { 0.5 * trial, -1.25, 3.0 };
+    l.spacing = { 1.0 + 0.5 * (trial % 3), 0.75, 2.0 };
+    l.scalarType = types[trial % 7];
+    const Volume v = randomVolume(dims, density, 1 + trial % 3, seed++);
+    std::ostringstream what;
+    what << "trial " << trial;
+    checkPolygons(v, l, vtkEVMBoundaryFilter::POSITIVE, trial % 4 == 3, what.str());
+    checkPolygons(v, l, vtkEVMBoundaryFilter::LABELS, false, what.str() + " labels");
+    checkTriangles(v, l, what.str());
+  }
+  // A larger volume: counts and the closed triangle mesh.
+  const Volume big = randomVolume({ 40, 36, 32 }, 0.3, 1, 99);
+  checkPolygons(big, Layout(), vtkEVMBoundaryFilter::POSITIVE, false, "40x36x32");
+  checkTriangles(big, Layout(), "40x36x32");
+  checkErrorsAndDegenerateInputs();
+  checkTwoDimensional();
+  vtkNew<vtkEVMBoundaryFilter> f;
+  std::ostringstream print;
+  f->Print(print);
+  CHECK(print.str().find("OutputMode: Triangles") != std::string::npos, "PrintSelf");
+  if (Failures)
+  {
+    std::cerr << Failures << " check(s) failed" << std::endl;
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}
