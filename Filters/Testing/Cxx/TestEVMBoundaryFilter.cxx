@@ -635,10 +635,17 @@ int TestEVMBoundaryFilter(int, char*[])
     checkPolygons(v, l, vtkEVMBoundaryFilter::LABELS, false, what.str() + " labels");
     checkTriangles(v, l, what.str());
   }
-  // A larger volume: counts and the closed triangle mesh.
-  const Volume big = randomVolume({ 40, 36, 32 }, 0.3, 1, 99);
-  checkPolygons(big, Layout(), vtkEVMBoundaryFilter::POSITIVE, false, "40x36x32");
-  checkTriangles(big, Layout(), "40x36x32");
+  // 64^3, sparse and dense (many non-manifold contacts), cell scalars, offset extent.
+  for (double density : { 0.25, 0.6 })
+  {
+    const Volume big = randomVolume({ 64, 64, 64 }, density, 1, 99);
+    Layout l;
+    l.cellData = density > 0.5;
+    l.extentMin = { 10, -20, 5 };
+    l.spacing = { 0.5, 1.0, 1.5 };
+    checkPolygons(big, l, vtkEVMBoundaryFilter::POSITIVE, false, "64^3");
+    checkTriangles(big, l, "64^3");
+  }
   checkErrorsAndDegenerateInputs();
   checkTwoDimensional();
   vtkNew<vtkEVMBoundaryFilter> f;
