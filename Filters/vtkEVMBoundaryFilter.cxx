@@ -3,6 +3,7 @@
 #include "BRep.h"
 #include "EVM.h"
 #include "FaceTriangulator.h"
+#include "RadixSort.h"
 #include "Surfels.h"
 #include "vtkVoxelBRepAdapters.h"
 
@@ -24,8 +25,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <array>
-#include <chrono>
 #include <unordered_map>
 #include <vector>
 
@@ -101,6 +102,11 @@ std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
   return out;
 }
 
+Point3 shifted(const Point3& p, const std::array<std::int32_t, 3>& offset)
+{
+  return { p[0] + offset[0], p[1] + offset[1], p[2] + offset[2] };
+}
+
 /// Builds the output polydata: shared points, cells and cell arrays.
 class OutputBuilder
 {
@@ -138,6 +144,45 @@ public:
     const vtkIdType id = this->Points->InsertNextPoint(world);
     this->Ids.emplace(key, id);
     return id;
+  }
+
+  /// Point ids of many grid vertices at once (the corners of every loop of an object): the
+  /// distinct vertices are found by sorting, so the map is consulted once per vertex only.
+  std::vector<vtkIdType> pointIds(const std::vector<Point3>& corners,
+    const std::array<std::int32_t, 3>& offset,
+    const vbr::Execution& exec)
+  {
+    const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(
+      std::max({ this->Grid.dims[0], this->Grid.dims[1], this->Grid.dims[2] }));
+    std::vector<std::uint64_t> keys(corners.size());
+    exec.forRange(static_cast<std::int64_t>(corners.size()),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        for (std::int64_t i = b; i < e; ++i)
+        {
+          const Point3 p = shifted(corners[i], offset);
+          keys[i] = packer.pack(p[0], p[1], p[2]);
+        }
+      });
+    std::vector<std::uint64_t> distinct = keys;
+    vbr::radixSort(distinct);
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    std::vector<vtkIdType> idOfDistinct(distinct.size());
+    for (std::size_t i = 0; i < distinct.size(); ++i)
+    {
+      idOfDistinct[i] = this->pointId(packer.unpack(distinct[i]));
+    }
+    std::vector<vtkIdType> ids(corners.size());
+    exec.forRange(static_cast<std::int64_t>(corners.size()),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        for (std::int64_t i = b; i < e; ++i)
+        {
+          ids[i] = idOfDistinct[std::lower_bound(distinct.begin(), distinct.end(), keys[i]) -
+            distinct.begin()];
+        }
+      });
+    return ids;
   }
 
   void addCell(vtkCellArray* cells,
@@ -188,11 +233,6 @@ private:
   vtkNew<vtkIdTypeArray> ParentFace;
   vtkNew<vtkIntArray> Depth;
 };
-
-Point3 shifted(const Point3& p, const std::array<std::int32_t, 3>& offset)
-{
-  return { p[0] + offset[0], p[1] + offset[1], p[2] + offset[2] };
-}
 
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
 {
@@ -454,25 +494,28 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
             triangles[f] = vbr::triangulateFace(brep, static_cast<int>(f));
         });
     }
+    const std::vector<vtkIdType> cornerIds = builder.pointIds(brep.points, object.offset, exec);
     for (std::size_t f = 0; f < brep.faces.size(); ++f)
     {
       const vbr::BRepFace& face = brep.faces[f];
       const vtkIdType faceId = faceBase + static_cast<vtkIdType>(f);
       const vtkIdType parent = face.parent < 0 ? -1 : faceBase + face.parent;
-      std::vector<vtkIdType> corner; // point ids of the face's loops, concatenated
+      const vbr::BRepLoop& first = brep.loops[face.firstLoop];
+      if (this->OutputMode == TRIANGLES)
+      {
+        // Triangle corners index the face's loops' corners, which are contiguous.
+        const vtkIdType* corner = cornerIds.data() + first.begin;
+        for (const auto& t : triangles[f])
+        {
+          ids = { corner[t[0]], corner[t[1]], corner[t[2]] };
+          builder.addCell(cells, ids, faceId, 0, object.label, parent, face.depth);
+        }
+        continue;
+      }
       for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
       {
         const vbr::BRepLoop& loop = brep.loops[l];
-        ids.clear();
-        for (const Point3& p : brep.loopPoints(l))
-        {
-          ids.push_back(builder.pointId(shifted(p, object.offset)));
-        }
-        if (this->OutputMode == TRIANGLES)
-        {
-          corner.insert(corner.end(), ids.begin(), ids.end());
-          continue;
-        }
+        ids.assign(cornerIds.begin() + loop.begin, cornerIds.begin() + loop.end);
         if (this->OutputMode == POLYLINES)
         {
           ids.push_back(ids.front());
@@ -484,14 +527,6 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
           object.label,
           loop.hole ? faceId : parent,
           loop.hole ? face.depth + 1 : face.depth);
-      }
-      if (this->OutputMode == TRIANGLES)
-      {
-        for (const auto& t : triangles[f])
-        {
-          ids = { corner[t[0]], corner[t[1]], corner[t[2]] };
-          builder.addCell(cells, ids, faceId, 0, object.label, parent, face.depth);
-        }
       }
     }
     faceBase += static_cast<vtkIdType>(brep.faces.size());

@@ -5,8 +5,10 @@
 #include "BitVolume.h"
 #include "Execution.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <vector>
 
@@ -35,6 +37,13 @@ struct Box3
   std::array<std::int32_t, 3> hi{ 0, 0, 0 };
 };
 
+/// Bit k of the result is byte k of `flags`, whose bytes are 0 or 1: the product places byte k
+/// at bit 49 + k, and no two partial products share a bit, so nothing carries.
+inline Word packEightFlags(std::uint64_t flags)
+{
+  return ((flags * 0x0002040810204081ULL) >> 49) & 0xFF;
+}
+
 /// Voxels of `box` whose value satisfies `selected`, packed 64 per word, parallel over rows.
 template<typename T, typename Predicate>
 BitVolume selectVoxels(const ScalarGrid<T>& grid,
@@ -54,13 +63,21 @@ BitVolume selectVoxels(const ScalarGrid<T>& grid,
         const T* src = &grid.at(box.lo[0], box.lo[1] + y, box.lo[2] + z);
         const std::int64_t sx = grid.stride[0];
         Word* dst = out.row(y, z);
+        std::uint8_t flags[64];
         for (std::int32_t x0 = 0; x0 < nx; x0 += 64)
         {
           const std::int32_t n = std::min<std::int32_t>(64, nx - x0);
-          Word w = 0;
+          // Flags first (a loop the compiler vectorizes), then eight flags per multiply.
           for (std::int32_t i = 0; i < n; ++i)
+            flags[i] = selected(src[(x0 + i) * sx]) ? 1 : 0;
+          for (std::int32_t i = n; i < 64; ++i)
+            flags[i] = 0;
+          Word w = 0;
+          for (int byte = 0; byte < 8; ++byte)
           {
-            w |= static_cast<Word>(selected(src[(x0 + i) * sx])) << i;
+            std::uint64_t eight;
+            std::memcpy(&eight, flags + 8 * byte, 8);
+            w |= packEightFlags(eight) << (8 * byte);
           }
           dst[x0 >> 6] = w;
         }

@@ -2,6 +2,7 @@
 #include "BruteForce.h"
 #include "EVM.h"
 #include "EVMBoolean.h"
+#include "Selection.h"
 
 #include <gtest/gtest.h>
 
@@ -204,4 +205,34 @@ TEST(EVM, PaperCountsOnRealVolumes)
   }
   if (found == 0)
     GTEST_SKIP() << "real volumes not found under " << VOXELBREP_DATA_DIR;
+}
+
+TEST(Selection, PacksFlagsAndSelectsExactly)
+{
+  for (unsigned f = 0; f < 256; ++f)
+  {
+    std::uint64_t bytes = 0;
+    for (int k = 0; k < 8; ++k)
+      bytes |= static_cast<std::uint64_t>((f >> k) & 1) << (8 * k);
+    ASSERT_EQ(vbr::packEightFlags(bytes), f);
+  }
+  // A strided, offset box of a 70 x 3 x 2 grid of two-component values.
+  const int nx = 70, ny = 3, nz = 2, nc = 2;
+  std::vector<int> data(nx * ny * nz * nc);
+  for (std::size_t i = 0; i < data.size(); ++i)
+    data[i] = static_cast<int>((i * 7919) % 13);
+  vbr::ScalarGrid<int> grid;
+  grid.data = data.data() + 1;
+  grid.dims = { nx, ny, nz };
+  grid.stride = { nc, nc * nx, nc * nx * ny };
+  vbr::Box3 box;
+  box.lo = { 3, 1, 0 };
+  box.hi = { 69, 3, 2 };
+  const vbr::BitVolume v = vbr::selectVoxels(grid, box, [](int x) { return x > 6; }, {});
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 66; ++x)
+        ASSERT_EQ(v.get(x, y, z), grid.at(x + 3, y + 1, z) > 6);
+  const auto boxes = vbr::labelBoxes(grid, 0);
+  EXPECT_EQ(boxes.size(), 12u);
 }
