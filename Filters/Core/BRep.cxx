@@ -67,22 +67,72 @@ void appendFaces(const Boundary2D& b2,
   out.nonManifoldVertices += b2.nonManifoldVertices;
 }
 
+/// A set of packed grid points: open addressing with linear probing, at most half full.
+class GridPointSet
+{
+public:
+  explicit GridPointSet(std::size_t capacity)
+  {
+    std::size_t size = 16;
+    while (size < 2 * capacity)
+      size *= 2;
+    this->Slots.assign(size, Empty);
+    this->Mask = size - 1;
+  }
+  void insert(std::uint64_t key)
+  {
+    for (std::size_t i = this->slot(key);; i = (i + 1) & this->Mask)
+    {
+      if (this->Slots[i] == key)
+        return;
+      if (this->Slots[i] == Empty)
+      {
+        this->Slots[i] = key;
+        return;
+      }
+    }
+  }
+  bool contains(std::uint64_t key) const
+  {
+    for (std::size_t i = this->slot(key);; i = (i + 1) & this->Mask)
+    {
+      if (this->Slots[i] == key)
+        return true;
+      if (this->Slots[i] == Empty)
+        return false;
+    }
+  }
+
+private:
+  static constexpr std::uint64_t Empty = ~std::uint64_t(0);
+  std::size_t slot(std::uint64_t key) const
+  {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 17) & this->Mask;
+  }
+  std::vector<std::uint64_t> Slots;
+  std::size_t Mask = 0;
+};
+
 /// A run of consecutive planes of vertices of one sorting, with the section before it.
 struct PlaneChunk
 {
   const EVM* sorted = nullptr;
+  const std::vector<std::size_t>* starts = nullptr; ///< plane starts of *sorted
   std::size_t firstPlane = 0, endPlane = 0;
   std::vector<Vertex> section; ///< S(firstPlane - 1)
 };
 
 /// Splits every sorting's planes into about `perAxis` chunks; the sections at chunk starts come
 /// from one sequential pass of XORs (formula 1), the cheap part of the sweep.
-std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3], std::size_t perAxis)
+std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3],
+  const std::vector<std::size_t> (&planeStarts)[3],
+  std::size_t perAxis)
 {
   std::vector<PlaneChunk> chunks;
-  for (const EVM& evm : sorted)
+  for (int axis = 0; axis < 3; ++axis)
   {
-    const auto starts = evm.planeStarts();
+    const EVM& evm = sorted[axis];
+    const auto& starts = planeStarts[axis];
     const std::size_t planes = starts.size() - 1;
     const std::size_t step = std::max<std::size_t>(1, (planes + perAxis - 1) / perAxis);
     const Vertex* v = evm.vertices().data();
@@ -93,6 +143,7 @@ std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3], std::size_t perAxis)
       {
         PlaneChunk c;
         c.sorted = &evm;
+        c.starts = &starts;
         c.firstPlane = p;
         c.endPlane = std::min(planes, p + step);
         c.section = section;
@@ -111,7 +162,7 @@ bool sweepChunk(const PlaneChunk& chunk,
   BRep& out)
 {
   const EVM& sorted = *chunk.sorted;
-  const auto starts = sorted.planeStarts();
+  const auto& starts = *chunk.starts;
   const Vertex* v = sorted.vertices().data();
   std::vector<Vertex> section = chunk.section, next;
   for (std::size_t p = chunk.firstPlane; p < chunk.endPlane; ++p)
@@ -187,7 +238,10 @@ bool extractBoundary3D(const EVM& evm,
   sorted[0] = sorted[1].sortedAs({ 0, 1, 2 }, exec);
   sorted[2] = sorted[0].sortedAs({ 2, 0, 1 }, exec);
   // Chunks of planes of all three sweeps are independent tasks.
-  const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, 8);
+  const std::vector<std::size_t> starts[3] = {
+    sorted[0].planeStarts(), sorted[1].planeStarts(), sorted[2].planeStarts()
+  };
+  const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, starts, 8);
   std::vector<BRep> perChunk(chunks.size());
   exec.forRange(static_cast<std::int64_t>(chunks.size()),
     [&](std::int64_t b, std::int64_t e)
@@ -247,26 +301,14 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
   {
     throw std::out_of_range("insertTJunctionVertices: coordinates outside [0, 2^21)");
   }
-  // For each axis d, every corner keyed by (the two other coordinates, then d): the corners
-  // inside an edge along d form one contiguous run of keys.
+  // Every corner in a hash set; the grid positions strictly inside an edge are probed one by
+  // one, so the work is bounded by the number of unit edges of the boundary.
   const KeyPacker packer = KeyPacker::forMaximum(hi);
-  std::vector<std::uint64_t> keyed[3];
-  exec.forRange(3,
-    [&](std::int64_t b, std::int64_t e)
-    {
-      for (std::int64_t d = b; d < e; ++d)
-      {
-        auto& keys = keyed[d];
-        keys.resize(brep.points.size());
-        for (std::size_t i = 0; i < keys.size(); ++i)
-        {
-          const Point3& p = brep.points[i];
-          keys[i] = packer.pack(p[(d + 1) % 3], p[(d + 2) % 3], p[d]);
-        }
-        radixSort(keys);
-        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-      }
-    });
+  GridPointSet corners(brep.points.size());
+  for (const Point3& p : brep.points)
+  {
+    corners.insert(packer.pack(p[0], p[1], p[2]));
+  }
   // The refined corners of each loop that gains some, computed in parallel, then all loops
   // are laid out again.
   std::vector<std::vector<Point3>> refinedLoops(brep.loops.size());
@@ -278,6 +320,7 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
       {
         const PointRange points = brep.loopPoints(static_cast<int>(l));
         refined.clear();
+        bool grew = false;
         for (std::size_t i = 0; i < points.size(); ++i)
         {
           const Point3& p = points[i];
@@ -288,29 +331,22 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
           {
             ++d;
           }
-          if (d == 3 || std::abs(p[d] - q[d]) < 2)
+          if (d == 3)
           {
-            continue; // a unit edge has no inner vertex
+            continue;
           }
-          const auto& keys = keyed[d];
-          const Coord c1 = p[(d + 1) % 3], c2 = p[(d + 2) % 3];
-          const Coord from = std::min(p[d], q[d]), to = std::max(p[d], q[d]);
-          const std::uint64_t last = packer.pack(c1, c2, to);
-          const std::size_t at = refined.size();
-          for (auto it = std::upper_bound(keys.begin(), keys.end(), packer.pack(c1, c2, from));
-               it != keys.end() && *it < last;
-               ++it)
+          const Coord step = q[d] > p[d] ? 1 : -1;
+          Point3 r = p;
+          for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
           {
-            Point3 r = p;
-            r[d] = packer.last(*it);
-            refined.push_back(r);
-          }
-          if (p[d] > q[d])
-          {
-            std::reverse(refined.begin() + at, refined.end());
+            if (corners.contains(packer.pack(r[0], r[1], r[2])))
+            {
+              refined.push_back(r);
+              grew = true;
+            }
           }
         }
-        if (refined.size() != points.size())
+        if (grew)
         {
           refinedLoops[l] = refined;
         }
