@@ -3,6 +3,7 @@
 #include "BRep.h"
 #include "EVM.h"
 #include "FaceTriangulator.h"
+#include "GridPointIndex.h"
 #include "RadixSort.h"
 #include "Surfels.h"
 #include "vtkVoxelBRepAdapters.h"
@@ -12,12 +13,14 @@
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -27,7 +30,9 @@
 
 #include <algorithm>
 #include <array>
-#include <unordered_map>
+#include <cmath>
+#include <limits>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkEVMBoundaryFilter);
@@ -86,6 +91,22 @@ std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
     s.voxels = vbr::selectVoxels(
       grid, whole, [](T v) { return v > T(0); }, exec);
   }
+  else if (std::is_integral<T>::value)
+  {
+    // Integer values: the range in the type itself (a comparison the compiler vectorizes).
+    const double lo = std::max(std::ceil(lower), double(std::numeric_limits<T>::lowest()));
+    const double hi = std::min(std::floor(upper), double(std::numeric_limits<T>::max()));
+    if (lo <= hi)
+    {
+      const T first = static_cast<T>(lo), last = static_cast<T>(hi);
+      s.voxels = vbr::selectVoxels(
+        grid, whole, [first, last](T v) { return v >= first && v <= last; }, exec);
+    }
+    else
+    {
+      s.voxels = vbr::BitVolume(grid.dims[0], grid.dims[1], grid.dims[2]);
+    }
+  }
   else
   {
     s.voxels = vbr::selectVoxels(
@@ -107,132 +128,215 @@ Point3 shifted(const Point3& p, const std::array<std::int32_t, 3>& offset)
   return { p[0] + offset[0], p[1] + offset[1], p[2] + offset[2] };
 }
 
-/// Builds the output polydata: shared points, cells and cell arrays.
+/// Builds the output polydata: shared points, then cells and their attributes gathered in
+/// plain arrays and handed to VTK at the end.
 class OutputBuilder
 {
 public:
-  OutputBuilder(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes, int labelType)
+  OutputBuilder(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes)
     : Grid(grid)
     , Axes(axes)
+    , Packer(vbr::KeyPacker::forMaximum(std::max({ grid.dims[0], grid.dims[1], grid.dims[2] })))
   {
-    this->Points->SetDataTypeToDouble();
-    this->FaceId->SetName("FaceId");
-    this->LoopType->SetName("LoopType");
-    this->Label.TakeReference(vtkDataArray::CreateDataArray(labelType));
-    this->Label->SetName("Label");
-    this->ParentFace->SetName("ParentFace");
-    this->Depth->SetName("Depth");
   }
 
-  /// Point id of a grid vertex given in permuted axes, relative to the whole grid.
-  vtkIdType pointId(const Point3& p)
-  {
-    const std::uint64_t key = static_cast<std::uint64_t>(p[0]) |
-      (static_cast<std::uint64_t>(p[1]) << 21) | (static_cast<std::uint64_t>(p[2]) << 42);
-    auto it = this->Ids.find(key);
-    if (it != this->Ids.end())
-    {
-      return it->second;
-    }
-    std::array<std::int32_t, 3> v{ 0, 0, 0 };
-    for (int k = 0; k < 3; ++k)
-    {
-      v[this->Axes[k]] = p[k];
-    }
-    double world[3];
-    this->Grid.vertexToWorld(v, world);
-    const vtkIdType id = this->Points->InsertNextPoint(world);
-    this->Ids.emplace(key, id);
-    return id;
-  }
-
-  /// Point ids of many grid vertices at once (the corners of every loop of an object): the
-  /// distinct vertices are found by sorting, so the map is consulted once per vertex only.
+  /// Point ids of grid vertices given in an object's coordinates (permuted axes) plus its
+  /// offset; vertices shared by several objects (labels) get one point.
   std::vector<vtkIdType> pointIds(const std::vector<Point3>& corners,
-    const std::array<std::int32_t, 3>& offset,
-    const vbr::Execution& exec)
+    const std::array<std::int32_t, 3>& offset)
   {
-    const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(
-      std::max({ this->Grid.dims[0], this->Grid.dims[1], this->Grid.dims[2] }));
-    std::vector<std::uint64_t> keys(corners.size());
-    exec.forRange(static_cast<std::int64_t>(corners.size()),
-      [&](std::int64_t b, std::int64_t e)
-      {
-        for (std::int64_t i = b; i < e; ++i)
-        {
-          const Point3 p = shifted(corners[i], offset);
-          keys[i] = packer.pack(p[0], p[1], p[2]);
-        }
-      });
-    std::vector<std::uint64_t> distinct = keys;
-    vbr::radixSort(distinct);
-    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    std::vector<vtkIdType> idOfDistinct(distinct.size());
-    for (std::size_t i = 0; i < distinct.size(); ++i)
-    {
-      idOfDistinct[i] = this->pointId(packer.unpack(distinct[i]));
-    }
     std::vector<vtkIdType> ids(corners.size());
-    exec.forRange(static_cast<std::int64_t>(corners.size()),
-      [&](std::int64_t b, std::int64_t e)
+    for (std::size_t i = 0; i < corners.size(); ++i)
+    {
+      const Point3 p = shifted(corners[i], offset);
+      const std::uint64_t key = this->Packer.pack(p[0], p[1], p[2]);
+      const auto number = this->Index.insert(key);
+      if (number.second)
       {
-        for (std::int64_t i = b; i < e; ++i)
-        {
-          ids[i] = idOfDistinct[std::lower_bound(distinct.begin(), distinct.end(), keys[i]) -
-            distinct.begin()];
-        }
-      });
+        this->addPoint(p);
+      }
+      ids[i] = static_cast<vtkIdType>(number.first);
+    }
     return ids;
   }
 
-  void addCell(vtkCellArray* cells,
-    const std::vector<vtkIdType>& ids,
+  void addCell(const vtkIdType* ids,
+    std::size_t n,
     vtkIdType faceId,
     int loopType,
     double label,
     vtkIdType parent,
     int depth)
   {
-    cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-    this->FaceId->InsertNextValue(faceId);
-    this->LoopType->InsertNextValue(loopType);
-    this->Label->InsertNextTuple1(label);
-    this->ParentFace->InsertNextValue(parent);
-    this->Depth->InsertNextValue(depth);
+    this->Connectivity.insert(this->Connectivity.end(), ids, ids + n);
+    this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
+    this->FaceId.push_back(faceId);
+    this->LoopType.push_back(loopType);
+    this->Label.push_back(label);
+    this->ParentFace.push_back(parent);
+    this->Depth.push_back(depth);
   }
 
-  void finish(vtkPolyData* output, bool planar, bool lines)
+  void finish(vtkPolyData* output, bool planar, bool lines, int labelType)
   {
-    output->SetPoints(this->Points);
+    vtkNew<vtkDoubleArray> coordinates;
+    coordinates->SetNumberOfComponents(3);
+    coordinates->SetNumberOfTuples(this->pointCount());
+    std::copy(this->Coordinates.begin(), this->Coordinates.end(), coordinates->GetPointer(0));
+    vtkNew<vtkPoints> points;
+    points->SetData(coordinates);
+    output->SetPoints(points);
+
+    vtkNew<vtkCellArray> cells;
+    cells->SetData(idArray(this->Offsets, nullptr), idArray(this->Connectivity, nullptr));
     if (lines)
-      output->SetLines(this->Lines);
+      output->SetLines(cells);
     else
-      output->SetPolys(this->Polys);
+      output->SetPolys(cells);
+
     vtkCellData* cd = output->GetCellData();
-    cd->AddArray(this->FaceId);
-    cd->AddArray(this->LoopType);
-    cd->AddArray(this->Label);
+    cd->AddArray(idArray(this->FaceId, "FaceId"));
+    cd->AddArray(intArray(this->LoopType, "LoopType"));
+    vtkSmartPointer<vtkDataArray> label;
+    label.TakeReference(vtkDataArray::CreateDataArray(labelType));
+    label->SetName("Label");
+    label->SetNumberOfTuples(static_cast<vtkIdType>(this->Label.size()));
+    for (std::size_t c = 0; c < this->Label.size(); ++c)
+      label->SetTuple1(static_cast<vtkIdType>(c), this->Label[c]);
+    cd->AddArray(label);
     if (planar)
     {
-      cd->AddArray(this->ParentFace);
-      cd->AddArray(this->Depth);
+      cd->AddArray(idArray(this->ParentFace, "ParentFace"));
+      cd->AddArray(intArray(this->Depth, "Depth"));
     }
   }
 
-  vtkNew<vtkCellArray> Polys;
-  vtkNew<vtkCellArray> Lines;
-
 private:
+  vtkIdType pointCount() const { return static_cast<vtkIdType>(this->Coordinates.size() / 3); }
+
+  /// Appends the world position of a grid vertex given in permuted axes.
+  void addPoint(const Point3& p)
+  {
+    std::array<std::int32_t, 3> v{ 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+      v[this->Axes[k]] = p[k];
+    double xyz[3];
+    this->Grid.vertexToWorld(v, xyz);
+    this->Coordinates.insert(this->Coordinates.end(), xyz, xyz + 3);
+  }
+
+  static vtkSmartPointer<vtkIdTypeArray> idArray(const std::vector<vtkIdType>& v, const char* name)
+  {
+    auto a = vtkSmartPointer<vtkIdTypeArray>::New();
+    a->SetName(name);
+    a->SetNumberOfValues(static_cast<vtkIdType>(v.size()));
+    std::copy(v.begin(), v.end(), a->GetPointer(0));
+    return a;
+  }
+  static vtkSmartPointer<vtkIntArray> intArray(const std::vector<int>& v, const char* name)
+  {
+    auto a = vtkSmartPointer<vtkIntArray>::New();
+    a->SetName(name);
+    a->SetNumberOfValues(static_cast<vtkIdType>(v.size()));
+    std::copy(v.begin(), v.end(), a->GetPointer(0));
+    return a;
+  }
+
   const vbr::vtk::VoxelGrid& Grid;
-  std::array<int, 3> Axes;
-  vtkNew<vtkPoints> Points;
-  std::unordered_map<std::uint64_t, vtkIdType> Ids;
-  vtkNew<vtkIdTypeArray> FaceId;
-  vtkNew<vtkIntArray> LoopType;
-  vtkSmartPointer<vtkDataArray> Label;
-  vtkNew<vtkIdTypeArray> ParentFace;
-  vtkNew<vtkIntArray> Depth;
+  const std::array<int, 3> Axes;
+  const vbr::KeyPacker Packer;
+  vbr::GridPointIndex Index;
+  std::vector<double> Coordinates;
+  std::vector<vtkIdType> Offsets{ 0 };
+  std::vector<vtkIdType> Connectivity;
+  std::vector<vtkIdType> FaceId, ParentFace;
+  std::vector<int> LoopType, Depth;
+  std::vector<double> Label;
 };
+
+/// One cell per surfel (a unit square, or a unit segment of a 2D image), pixel on the left.
+void appendSurfelCells(const Selected& object, bool planar, OutputBuilder& builder)
+{
+  const std::vector<vbr::Surfel> surfels = vbr::extractSurfels(object.voxels, planar);
+  const std::size_t n = planar ? 2 : 4;
+  std::vector<Point3> corners;
+  corners.reserve(n * surfels.size());
+  for (const vbr::Surfel& s : surfels)
+  {
+    const Point3& c = s.corner;
+    if (planar)
+    {
+      Point3 e = c;
+      ++e[1 - s.axis]; // the in-plane axis the pixel edge runs along
+      const bool flip = s.normalSign * (s.axis == 0 ? 1 : -1) < 0;
+      corners.push_back(flip ? e : c);
+      corners.push_back(flip ? c : e);
+      continue;
+    }
+    // The unit square spanned by the two other axes from its corner, normal outwards.
+    const int a = (s.axis + 1) % 3, b = (s.axis + 2) % 3;
+    Point3 p1 = c, p2 = c, p3 = c;
+    ++p1[a];
+    ++p2[a];
+    ++p2[b];
+    ++p3[b];
+    corners.push_back(c);
+    corners.push_back(s.normalSign < 0 ? p3 : p1);
+    corners.push_back(p2);
+    corners.push_back(s.normalSign < 0 ? p1 : p3);
+  }
+  const std::vector<vtkIdType> ids = builder.pointIds(corners, object.offset);
+  for (std::size_t i = 0; i < surfels.size(); ++i)
+  {
+    builder.addCell(ids.data() + n * i, n, -1, 0, object.label, -1, 0);
+  }
+}
+
+/// The cells of an object's faces: its triangles, or one cell per loop.
+void appendFaceCells(const vbr::BRep& brep,
+  const std::vector<std::vector<std::array<int, 3>>>& triangles,
+  const Selected& object,
+  int mode,
+  vtkIdType faceBase,
+  OutputBuilder& builder)
+{
+  const std::vector<vtkIdType> cornerIds = builder.pointIds(brep.points, object.offset);
+  std::vector<vtkIdType> ids;
+  ids.reserve(3);
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  {
+    const vbr::BRepFace& face = brep.faces[f];
+    const vtkIdType faceId = faceBase + static_cast<vtkIdType>(f);
+    const vtkIdType parent = face.parent < 0 ? -1 : faceBase + face.parent;
+    if (mode == vtkEVMBoundaryFilter::TRIANGLES)
+    {
+      // Triangle corners index the face's loops' corners, which are contiguous.
+      const vtkIdType* corner = cornerIds.data() + brep.loops[face.firstLoop].begin;
+      for (const auto& t : triangles[f])
+      {
+        const vtkIdType triangle[3] = { corner[t[0]], corner[t[1]], corner[t[2]] };
+        builder.addCell(triangle, 3, faceId, 0, object.label, parent, face.depth);
+      }
+      continue;
+    }
+    for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+    {
+      const vbr::BRepLoop& loop = brep.loops[l];
+      ids.assign(cornerIds.begin() + loop.begin, cornerIds.begin() + loop.end);
+      if (mode == vtkEVMBoundaryFilter::POLYLINES)
+      {
+        ids.push_back(ids.front());
+      }
+      builder.addCell(ids.data(),
+        ids.size(),
+        faceId,
+        loop.hole ? 1 : 0,
+        object.label,
+        loop.hole ? faceId : parent,
+        loop.hole ? face.depth + 1 : face.depth);
+    }
+  }
+}
 
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
 {
@@ -372,6 +476,7 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
   }
 
   std::vector<Selected> objects;
+  vtkLogStartScope(TRACE, "select voxels");
   const vbr::Execution selectExec = vbr::vtk::makeExecution(this, 0.0, 0.1);
   const bool known = vbr::vtk::dispatchScalars(scalars,
     this->ArrayComponent,
@@ -396,16 +501,15 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
     vtkErrorMacro(<< "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
     return 0;
   }
+  vtkLogEndScope("select voxels");
   this->UpdateProgress(0.1);
 
   const vbr::FaceConnectivity connectivity =
     this->MergeNonManifoldFaces ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
-  OutputBuilder builder(grid, axes, scalars->GetDataType());
+  OutputBuilder builder(grid, axes);
   Statistics stats;
   vtkIdType faceBase = 0;
   const bool lines = this->OutputMode == POLYLINES || (planar && this->OutputMode == SURFELS);
-  vtkCellArray* cells = lines ? builder.Lines.Get() : builder.Polys.Get();
-  std::vector<vtkIdType> ids;
 
   for (std::size_t o = 0; o < objects.size(); ++o)
   {
@@ -425,8 +529,11 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
     stats.voxels += static_cast<vtkIdType>(count);
     const std::size_t faces3 = vbr::countSurfels(object.voxels);
     stats.surfels += static_cast<vtkIdType>(planar ? faces3 - 2 * count : faces3);
-    const vbr::EVM evm =
-      planar ? vbr::extractEVM2D(object.voxels, exec) : vbr::extractEVM(object.voxels, exec);
+    vbr::EVM evm;
+    {
+      vtkLogScopeF(TRACE, "extreme vertices");
+      evm = planar ? vbr::extractEVM2D(object.voxels, exec) : vbr::extractEVM(object.voxels, exec);
+    }
     stats.extremeVertices += static_cast<vtkIdType>(evm.size());
     const auto planes = vbr::planesPerAxis(evm);
     for (int k = 0; k < 3; ++k)
@@ -436,49 +543,27 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
 
     if (this->OutputMode == SURFELS)
     {
-      for (const vbr::Surfel& s : vbr::extractSurfels(object.voxels, planar))
-      {
-        // The unit square (segment in 2D) spanned by the two other axes from its corner.
-        const int a = (s.axis + 1) % 3, b = (s.axis + 2) % 3;
-        Point3 c = shifted(s.corner, object.offset);
-        ids.clear();
-        if (planar)
-        {
-          const int along = 1 - s.axis; // the in-plane axis the pixel edge runs along
-          Point3 e = c;
-          ++e[along];
-          ids = { builder.pointId(c), builder.pointId(e) };
-          if (s.normalSign * (s.axis == 0 ? 1 : -1) < 0)
-            std::swap(ids[0], ids[1]); // keep the pixel on the left
-        }
-        else
-        {
-          Point3 p1 = c, p2 = c, p3 = c;
-          ++p1[a];
-          ++p2[a];
-          ++p2[b];
-          ++p3[b];
-          ids = {
-            builder.pointId(c), builder.pointId(p1), builder.pointId(p2), builder.pointId(p3)
-          };
-          if (s.normalSign < 0)
-            std::swap(ids[1], ids[3]);
-        }
-        builder.addCell(cells, ids, -1, 0, object.label, -1, 0);
-      }
+      vtkLogScopeF(TRACE, "surfel cells");
+      appendSurfelCells(object, planar, builder);
       continue;
     }
 
     vbr::BRep brep;
-    if (planar)
     {
-      brep = vbr::extractBoundary2D(evm, connectivity);
+      vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
+      if (planar)
+      {
+        brep = vbr::extractBoundary2D(evm, connectivity);
+      }
+      else if (!vbr::extractBoundary3D(evm, connectivity, exec, brep))
+      {
+        break; // aborted
+      }
     }
-    else if (!vbr::extractBoundary3D(evm, connectivity, exec, brep))
     {
-      break; // aborted
+      vtkLogScopeF(TRACE, "T-junction vertices");
+      vbr::insertTJunctionVertices(brep, exec);
     }
-    vbr::insertTJunctionVertices(brep, exec);
     stats.faces += static_cast<vtkIdType>(brep.faces.size());
     stats.holes += static_cast<vtkIdType>(brep.holeCount());
     stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
@@ -486,6 +571,7 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
     std::vector<std::vector<std::array<int, 3>>> triangles;
     if (this->OutputMode == TRIANGLES)
     {
+      vtkLogScopeF(TRACE, "triangulation");
       triangles.resize(brep.faces.size());
       exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
         [&](std::int64_t b, std::int64_t e)
@@ -494,46 +580,15 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
             triangles[f] = vbr::triangulateFace(brep, static_cast<int>(f));
         });
     }
-    const std::vector<vtkIdType> cornerIds = builder.pointIds(brep.points, object.offset, exec);
-    for (std::size_t f = 0; f < brep.faces.size(); ++f)
     {
-      const vbr::BRepFace& face = brep.faces[f];
-      const vtkIdType faceId = faceBase + static_cast<vtkIdType>(f);
-      const vtkIdType parent = face.parent < 0 ? -1 : faceBase + face.parent;
-      const vbr::BRepLoop& first = brep.loops[face.firstLoop];
-      if (this->OutputMode == TRIANGLES)
-      {
-        // Triangle corners index the face's loops' corners, which are contiguous.
-        const vtkIdType* corner = cornerIds.data() + first.begin;
-        for (const auto& t : triangles[f])
-        {
-          ids = { corner[t[0]], corner[t[1]], corner[t[2]] };
-          builder.addCell(cells, ids, faceId, 0, object.label, parent, face.depth);
-        }
-        continue;
-      }
-      for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
-      {
-        const vbr::BRepLoop& loop = brep.loops[l];
-        ids.assign(cornerIds.begin() + loop.begin, cornerIds.begin() + loop.end);
-        if (this->OutputMode == POLYLINES)
-        {
-          ids.push_back(ids.front());
-        }
-        builder.addCell(cells,
-          ids,
-          faceId,
-          loop.hole ? 1 : 0,
-          object.label,
-          loop.hole ? faceId : parent,
-          loop.hole ? face.depth + 1 : face.depth);
-      }
+      vtkLogScopeF(TRACE, "output cells");
+      appendFaceCells(brep, triangles, object, this->OutputMode, faceBase, builder);
     }
     faceBase += static_cast<vtkIdType>(brep.faces.size());
     this->UpdateProgress(to);
   }
 
-  builder.finish(output, planar, lines);
+  builder.finish(output, planar, lines, scalars->GetDataType());
   vtkFieldData* fd = output->GetFieldData();
   addFieldValue(fd, "NumberOfVoxels", stats.voxels);
   addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);

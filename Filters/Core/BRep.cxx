@@ -1,6 +1,7 @@
 #include "BRep.h"
 
 #include "EVMBoolean.h"
+#include "GridPointIndex.h"
 #include "RadixSort.h"
 
 #include <algorithm>
@@ -66,52 +67,6 @@ void appendFaces(const Boundary2D& b2,
   }
   out.nonManifoldVertices += b2.nonManifoldVertices;
 }
-
-/// A set of packed grid points: open addressing with linear probing, at most half full.
-class GridPointSet
-{
-public:
-  explicit GridPointSet(std::size_t capacity)
-  {
-    std::size_t size = 16;
-    while (size < 2 * capacity)
-      size *= 2;
-    this->Slots.assign(size, Empty);
-    this->Mask = size - 1;
-  }
-  void insert(std::uint64_t key)
-  {
-    for (std::size_t i = this->slot(key);; i = (i + 1) & this->Mask)
-    {
-      if (this->Slots[i] == key)
-        return;
-      if (this->Slots[i] == Empty)
-      {
-        this->Slots[i] = key;
-        return;
-      }
-    }
-  }
-  bool contains(std::uint64_t key) const
-  {
-    for (std::size_t i = this->slot(key);; i = (i + 1) & this->Mask)
-    {
-      if (this->Slots[i] == key)
-        return true;
-      if (this->Slots[i] == Empty)
-        return false;
-    }
-  }
-
-private:
-  static constexpr std::uint64_t Empty = ~std::uint64_t(0);
-  std::size_t slot(std::uint64_t key) const
-  {
-    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 17) & this->Mask;
-  }
-  std::vector<std::uint64_t> Slots;
-  std::size_t Mask = 0;
-};
 
 /// A run of consecutive planes of vertices of one sorting, with the section before it.
 struct PlaneChunk
@@ -304,7 +259,7 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
   // Every corner in a hash set; the grid positions strictly inside an edge are probed one by
   // one, so the work is bounded by the number of unit edges of the boundary.
   const KeyPacker packer = KeyPacker::forMaximum(hi);
-  GridPointSet corners(brep.points.size());
+  GridPointIndex corners(brep.points.size() / 2); // corners repeat about three times
   for (const Point3& p : brep.points)
   {
     corners.insert(packer.pack(p[0], p[1], p[2]));
@@ -339,7 +294,7 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
           Point3 r = p;
           for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
           {
-            if (corners.contains(packer.pack(r[0], r[1], r[2])))
+            if (corners.find(packer.pack(r[0], r[1], r[2])) >= 0)
             {
               refined.push_back(r);
               grew = true;
