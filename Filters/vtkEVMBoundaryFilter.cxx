@@ -188,15 +188,16 @@ public:
     output->SetPoints(points);
 
     vtkNew<vtkCellArray> cells;
-    cells->SetData(idArray(this->Offsets, nullptr), idArray(this->Connectivity, nullptr));
+    cells->SetData(toArray<vtkIdTypeArray>(this->Offsets, nullptr),
+      toArray<vtkIdTypeArray>(this->Connectivity, nullptr));
     if (lines)
       output->SetLines(cells);
     else
       output->SetPolys(cells);
 
     vtkCellData* cd = output->GetCellData();
-    cd->AddArray(idArray(this->FaceId, "FaceId"));
-    cd->AddArray(intArray(this->LoopType, "LoopType"));
+    cd->AddArray(toArray<vtkIdTypeArray>(this->FaceId, "FaceId"));
+    cd->AddArray(toArray<vtkIntArray>(this->LoopType, "LoopType"));
     vtkSmartPointer<vtkDataArray> label;
     label.TakeReference(vtkDataArray::CreateDataArray(labelType));
     label->SetName("Label");
@@ -206,8 +207,8 @@ public:
     cd->AddArray(label);
     if (planar)
     {
-      cd->AddArray(idArray(this->ParentFace, "ParentFace"));
-      cd->AddArray(intArray(this->Depth, "Depth"));
+      cd->AddArray(toArray<vtkIdTypeArray>(this->ParentFace, "ParentFace"));
+      cd->AddArray(toArray<vtkIntArray>(this->Depth, "Depth"));
     }
   }
 
@@ -225,17 +226,10 @@ private:
     this->Coordinates.insert(this->Coordinates.end(), xyz, xyz + 3);
   }
 
-  static vtkSmartPointer<vtkIdTypeArray> idArray(const std::vector<vtkIdType>& v, const char* name)
+  template<typename ArrayType, typename Value>
+  static vtkSmartPointer<ArrayType> toArray(const std::vector<Value>& v, const char* name)
   {
-    auto a = vtkSmartPointer<vtkIdTypeArray>::New();
-    a->SetName(name);
-    a->SetNumberOfValues(static_cast<vtkIdType>(v.size()));
-    std::copy(v.begin(), v.end(), a->GetPointer(0));
-    return a;
-  }
-  static vtkSmartPointer<vtkIntArray> intArray(const std::vector<int>& v, const char* name)
-  {
-    auto a = vtkSmartPointer<vtkIntArray>::New();
+    auto a = vtkSmartPointer<ArrayType>::New();
     a->SetName(name);
     a->SetNumberOfValues(static_cast<vtkIdType>(v.size()));
     std::copy(v.begin(), v.end(), a->GetPointer(0));

@@ -24,38 +24,6 @@ bool apply(BooleanOp op, bool inP, bool inQ)
   return false;
 }
 
-/// 1D: the operands are sorted interval end points (equal in the first two coordinates).
-std::vector<Vertex> booleanIntervals(const Vertex* p,
-  const Vertex* pEnd,
-  const Vertex* q,
-  const Vertex* qEnd,
-  BooleanOp op)
-{
-  std::vector<Vertex> out;
-  bool inP = false, inQ = false, inR = false;
-  while (p != pEnd || q != qEnd)
-  {
-    const Coord c = (q == qEnd || (p != pEnd && (*p)[2] < (*q)[2])) ? (*p)[2] : (*q)[2];
-    if (p != pEnd && (*p)[2] == c)
-    {
-      inP = !inP;
-      ++p;
-    }
-    if (q != qEnd && (*q)[2] == c)
-    {
-      inQ = !inQ;
-      ++q;
-    }
-    const bool r = apply(op, inP, inQ);
-    if (r != inR)
-    {
-      out.push_back({ 0, 0, c });
-      inR = r;
-    }
-  }
-  return out;
-}
-
 /// XOR of two sorted lists of coordinates (symmetric difference), into `out`.
 void xorCoordinates(const std::vector<Coord>& a,
   const std::vector<Coord>& b,
@@ -198,7 +166,17 @@ std::vector<Vertex> booleanVertices(const Vertex* p,
 {
   if (level >= 2)
   {
-    return booleanIntervals(p, pEnd, q, qEnd, op);
+    // 1D: interval end points, equal in the first two coordinates.
+    std::vector<Coord> a, b, r;
+    for (; p != pEnd; ++p)
+      a.push_back((*p)[2]);
+    for (; q != qEnd; ++q)
+      b.push_back((*q)[2]);
+    booleanCoordinates(a, b, op, r);
+    std::vector<Vertex> out;
+    for (Coord c : r)
+      out.push_back({ 0, 0, c });
+    return out;
   }
   if (level == 1)
   {

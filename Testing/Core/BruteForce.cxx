@@ -58,68 +58,6 @@ std::set<Int3> extremeVertices2D(const vbr::BitVolume& v)
   return out;
 }
 
-std::vector<PixelSet> components(const PixelSet& pixels, bool eightConnected)
-{
-  std::vector<PixelSet> out;
-  PixelSet left = pixels;
-  while (!left.empty())
-  {
-    PixelSet comp;
-    std::deque<std::pair<int, int>> queue{ *left.begin() };
-    left.erase(left.begin());
-    while (!queue.empty())
-    {
-      const auto p = queue.front();
-      queue.pop_front();
-      comp.insert(p);
-      for (int du = -1; du <= 1; ++du)
-        for (int dv = -1; dv <= 1; ++dv)
-        {
-          if ((du == 0 && dv == 0) || (!eightConnected && du != 0 && dv != 0))
-            continue;
-          auto it = left.find({ p.first + du, p.second + dv });
-          if (it != left.end())
-          {
-            queue.push_back(*it);
-            left.erase(it);
-          }
-        }
-    }
-    out.push_back(std::move(comp));
-  }
-  return out;
-}
-
-int holeCount(const PixelSet& face)
-{
-  int u0 = 1 << 30, u1 = -(1 << 30), v0 = u0, v1 = u1;
-  for (const auto& p : face)
-  {
-    u0 = std::min(u0, p.first);
-    u1 = std::max(u1, p.first);
-    v0 = std::min(v0, p.second);
-    v1 = std::max(v1, p.second);
-  }
-  // Complement inside a box one pixel larger: the component touching the box border is the
-  // unbounded one, every other is a hole.
-  PixelSet complement;
-  for (int u = u0 - 1; u <= u1 + 1; ++u)
-    for (int v = v0 - 1; v <= v1 + 1; ++v)
-      if (!face.count({ u, v }))
-        complement.insert({ u, v });
-  int holes = 0;
-  for (const auto& c : components(complement, false))
-  {
-    const bool border = std::any_of(c.begin(),
-      c.end(),
-      [&](const std::pair<int, int>& p) {
-        return p.first == u0 - 1 || p.first == u1 + 1 || p.second == v0 - 1 || p.second == v1 + 1;
-      });
-    holes += border ? 0 : 1;
-  }
-  return holes;
-}
-
 std::map<PlaneKey, std::vector<PixelSet>> expectedFaces(const vbr::BitVolume& v, bool merged)
 {
   std::map<PlaneKey, PixelSet> surfels;

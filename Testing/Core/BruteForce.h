@@ -6,6 +6,7 @@
 
 #include "BRep.h"
 #include "BitVolume.h"
+#include "PixelTopology.h"
 
 #include <array>
 #include <cstdint>
@@ -31,29 +32,8 @@ std::set<Int3> extremeVertices(const vbr::BitVolume& v);
 /// Same for a 2D image (nz == 1): the 4 pixels around each vertex; vertices (x, y, 0).
 std::set<Int3> extremeVertices2D(const vbr::BitVolume& v);
 
-/// A 2D pixel set in a plane: pixels (u, v) as a sorted set.
-using PixelSet = std::set<std::pair<std::int32_t, std::int32_t>>;
-
-/// Connected components of a pixel set, 4- or 8-connected.
-std::vector<PixelSet> components(const PixelSet& pixels, bool eightConnected);
-
-/// Number of bounded 4-connected components of the complement of `face` (its holes).
-int holeCount(const PixelSet& face);
-
 /// Faces one would expect: for each axis, plane and normal sign, the connected components
 /// of the surfels of that plane (4-connected, or 8 when `merged`).
-struct PlaneKey
-{
-  int axis, sign, position;
-  bool operator<(const PlaneKey& o) const
-  {
-    return std::tie(axis, sign, position) < std::tie(o.axis, o.sign, o.position);
-  }
-  bool operator==(const PlaneKey& o) const
-  {
-    return axis == o.axis && sign == o.sign && position == o.position;
-  }
-};
 std::map<PlaneKey, std::vector<PixelSet>> expectedFaces(const vbr::BitVolume& v, bool merged);
 
 /// Pixels enclosed by a face's loops (even-odd rule over all its loops), in its plane's

@@ -175,28 +175,11 @@ void checkImage(const vbr::BitVolume& image, bool merged)
   std::vector<std::vector<int>> ancestors(n);
   for (std::size_t a = 0; a < n; ++a)
   {
-    bf::PixelSet outside;
-    int u0 = 1 << 30, u1 = -u0, v0 = u0, v1 = -u0;
-    for (const auto& p : expected[a])
+    for (const auto& entry : bf::complementComponents(expected[a]))
     {
-      u0 = std::min(u0, p.first);
-      u1 = std::max(u1, p.first);
-      v0 = std::min(v0, p.second);
-      v1 = std::max(v1, p.second);
-    }
-    for (int u = u0 - 1; u <= u1 + 1; ++u)
-      for (int v = v0 - 1; v <= v1 + 1; ++v)
-        if (!expected[a].count({ u, v }))
-          outside.insert({ u, v });
-    for (const auto& c : bf::components(outside, false))
-    {
-      const bool bounded = std::none_of(c.begin(),
-        c.end(),
-        [&](const std::pair<int, int>& p) {
-          return p.first == u0 - 1 || p.first == u1 + 1 || p.second == v0 - 1 || p.second == v1 + 1;
-        });
-      if (!bounded)
+      if (!entry.second)
         continue;
+      const bf::PixelSet& c = entry.first;
       for (std::size_t b = 0; b < n; ++b)
         if (b != a && c.count(*expected[b].begin()))
           ancestors[b].push_back(static_cast<int>(a));

@@ -4,6 +4,8 @@
 // several scalar types, non-unit anisotropic spacing and extents not starting at 0.
 #include "vtkEVMBoundaryFilter.h"
 
+#include "PixelTopology.h"
+
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
@@ -51,8 +53,7 @@ int Failures = 0;
   } while (false)
 
 using Int3 = std::array<int, 3>;
-using Pixel = std::pair<int, int>;
-using PixelSet = std::set<Pixel>;
+using PixelSet = bf::PixelSet;
 
 /// A voxel volume with values, as the test builds it.
 struct Volume
@@ -136,76 +137,8 @@ Int3 toGrid(vtkPolyData* out, vtkIdType i, const Layout& l, bool& exact)
   return g;
 }
 
-struct PlaneKey
-{
-  int axis, sign, position;
-  bool operator<(const PlaneKey& o) const
-  {
-    return std::tie(axis, sign, position) < std::tie(o.axis, o.sign, o.position);
-  }
-  bool operator==(const PlaneKey& o) const
-  {
-    return axis == o.axis && sign == o.sign && position == o.position;
-  }
-};
-
-std::vector<PixelSet> components(PixelSet left, bool eight)
-{
-  std::vector<PixelSet> out;
-  while (!left.empty())
-  {
-    PixelSet comp;
-    std::deque<Pixel> queue{ *left.begin() };
-    left.erase(left.begin());
-    while (!queue.empty())
-    {
-      const Pixel p = queue.front();
-      queue.pop_front();
-      comp.insert(p);
-      for (int du = -1; du <= 1; ++du)
-        for (int dv = -1; dv <= 1; ++dv)
-        {
-          if ((!du && !dv) || (!eight && du && dv))
-            continue;
-          auto it = left.find({ p.first + du, p.second + dv });
-          if (it != left.end())
-          {
-            queue.push_back(*it);
-            left.erase(it);
-          }
-        }
-    }
-    out.push_back(comp);
-  }
-  return out;
-}
-
-int holes(const PixelSet& face)
-{
-  int u0 = 1 << 30, u1 = -u0, v0 = u0, v1 = -u0;
-  for (const auto& p : face)
-  {
-    u0 = std::min(u0, p.first);
-    u1 = std::max(u1, p.first);
-    v0 = std::min(v0, p.second);
-    v1 = std::max(v1, p.second);
-  }
-  PixelSet rest;
-  for (int u = u0 - 1; u <= u1 + 1; ++u)
-    for (int v = v0 - 1; v <= v1 + 1; ++v)
-      if (!face.count({ u, v }))
-        rest.insert({ u, v });
-  int n = 0;
-  for (const auto& c : components(rest, false))
-  {
-    bool border = false;
-    for (const auto& p : c)
-      border = border || p.first == u0 - 1 || p.first == u1 + 1 || p.second == v0 - 1 ||
-        p.second == v1 + 1;
-    n += border ? 0 : 1;
-  }
-  return n;
-}
+using bf::components;
+using bf::PlaneKey;
 
 /// Everything one expects for the voxels of one label (label < 0: every non-zero value).
 struct Expected
@@ -256,7 +189,7 @@ Expected expect(const Volume& v, int label, bool merged)
   {
     e.faces[s.first] = components(s.second, merged);
     for (const auto& f : e.faces[s.first])
-      e.holes += holes(f);
+      e.holes += bf::holeCount(f);
   }
   return e;
 }
