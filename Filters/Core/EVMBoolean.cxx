@@ -24,12 +24,12 @@ bool apply(BooleanOp op, bool inP, bool inQ)
   return false;
 }
 
-/// XOR of two sorted lists of coordinates (symmetric difference), into `out`.
-void xorCoordinates(const std::vector<Coord>& a,
-  const std::vector<Coord>& b,
-  std::vector<Coord>& out)
+/// Symmetric difference of two sorted lists (the XOR of the sets they represent), into `out`.
+template<typename T>
+void symmetricDifference(const std::vector<T>& a, const std::vector<T>& b, std::vector<T>& out)
 {
   out.clear();
+  out.reserve(a.size() + b.size());
   auto i = a.begin(), j = b.begin();
   while (i != a.end() && j != b.end())
   {
@@ -93,7 +93,7 @@ std::vector<Vertex> booleanLines(const Vertex* p,
     line.clear();
     while (it != end && (*it)[1] == u)
       line.push_back((*it++)[2]);
-    xorCoordinates(section, line, scratch);
+    symmetricDifference(section, line, scratch);
     section.swap(scratch);
   };
   const bool needsP = op != BooleanOp::Union && op != BooleanOp::Xor;
@@ -105,7 +105,7 @@ std::vector<Vertex> booleanLines(const Vertex* p,
     if (q != qEnd && (*q)[1] == u)
       advance(q, qEnd, u, sectionQ);
     booleanCoordinates(sectionP, sectionQ, op, next);
-    xorCoordinates(sectionR, next, line);
+    symmetricDifference(sectionR, next, line);
     for (Coord v : line)
       out.push_back({ 0, u, v });
     sectionR.swap(next);
@@ -134,26 +134,7 @@ const Vertex* planeEnd(const Vertex* begin, const Vertex* end, int level)
 std::vector<Vertex> xorVertices(const std::vector<Vertex>& a, const std::vector<Vertex>& b)
 {
   std::vector<Vertex> out;
-  out.reserve(a.size() + b.size());
-  auto i = a.begin(), j = b.begin();
-  while (i != a.end() && j != b.end())
-  {
-    if (*i < *j)
-    {
-      out.push_back(*i++);
-    }
-    else if (*j < *i)
-    {
-      out.push_back(*j++);
-    }
-    else
-    {
-      ++i;
-      ++j;
-    }
-  }
-  out.insert(out.end(), i, a.end());
-  out.insert(out.end(), j, b.end());
+  symmetricDifference(a, b, out);
   return out;
 }
 
