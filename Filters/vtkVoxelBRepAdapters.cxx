@@ -25,6 +25,7 @@ Execution makeExecution(vtkAlgorithm* algorithm, double progressFrom, double pro
     algorithm->UpdateProgress(progressFrom + f * (progressTo - progressFrom));
     return !algorithm->GetAbortExecute();
   };
+  exec.aborted = [algorithm]() { return algorithm->GetAbortExecute() != 0; };
   return exec;
 }
 

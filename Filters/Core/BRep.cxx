@@ -113,7 +113,8 @@ std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3],
 /// Sweeps a chunk of planes: sections, forward and backward differences, 2D solutions.
 bool sweepChunk(const PlaneChunk& chunk,
   FaceConnectivity connectivity,
-  const std::atomic<bool>& abort,
+  const Execution& exec,
+  std::atomic<bool>& abort,
   BRep& out)
 {
   const EVM& sorted = *chunk.sorted;
@@ -122,8 +123,9 @@ bool sweepChunk(const PlaneChunk& chunk,
   std::vector<Vertex> section = chunk.section, next;
   for (std::size_t p = chunk.firstPlane; p < chunk.endPlane; ++p)
   {
-    if (abort)
+    if (abort || exec.stopRequested())
     {
+      abort = true;
       return false;
     }
     const Coord position = v[starts[p]][0];
@@ -203,7 +205,7 @@ bool extractBoundary3D(const EVM& evm,
     {
       for (std::int64_t c = b; c < e; ++c)
       {
-        if (!sweepChunk(chunks[c], connectivity, abort, perChunk[c]))
+        if (!sweepChunk(chunks[c], connectivity, exec, abort, perChunk[c]))
         {
           abort = true;
         }

@@ -17,8 +17,11 @@ struct Execution
 {
   /// Parallel loop; empty means sequential.
   ParallelFor parallelFor;
-  /// Receives the fraction done in [0, 1] between phases; returns false to abort.
+  /// Receives the fraction done in [0, 1] between phases (on the calling thread only);
+  /// returns false to abort.
   std::function<bool(double)> progress;
+  /// Whether the caller asked to stop; polled from any thread inside long loops.
+  std::function<bool()> aborted;
 
   void forRange(std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body) const
   {
@@ -38,6 +41,8 @@ struct Execution
 
   /// Reports progress; returns false when the caller asked to abort.
   bool report(double fraction) const { return !this->progress || this->progress(fraction); }
+
+  bool stopRequested() const { return this->aborted && this->aborted(); }
 };
 
 } // namespace vbr

@@ -223,4 +223,10 @@ TEST(BRep, AbortStopsTheSweep)
   exec.progress = [](double) { return false; };
   vbr::BRep b;
   EXPECT_FALSE(vbr::extractBoundary3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, exec, b));
+  // A stop requested while the planes are swept (polled from the workers) also aborts.
+  vbr::Execution polled;
+  int polls = 0;
+  polled.aborted = [&polls]() { return ++polls > 3; };
+  EXPECT_FALSE(vbr::extractBoundary3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, polled, b));
+  EXPECT_GT(polls, 3);
 }

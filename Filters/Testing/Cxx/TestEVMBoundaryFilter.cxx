@@ -6,6 +6,7 @@
 
 #include "PixelTopology.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
@@ -402,6 +403,35 @@ public:
   int Count = 0;
 };
 
+/// Asks the filter to stop at its first progress report.
+class AbortAtProgress : public vtkCommand
+{
+public:
+  static AbortAtProgress* New() { return new AbortAtProgress; }
+  void Execute(vtkObject* caller, unsigned long, void*) override
+  {
+    static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    ++this->Calls;
+  }
+  int Calls = 0;
+};
+
+void checkAbort()
+{
+  const Volume v = randomVolume({ 30, 30, 30 }, 0.4, 1, 5);
+  vtkNew<vtkEVMBoundaryFilter> f;
+  f->SetInputData(makeImage(v, Layout()));
+  f->SetOutputModeToPolygons();
+  f->Update();
+  const vtkIdType full = f->GetOutput()->GetNumberOfCells();
+  vtkNew<AbortAtProgress> abort;
+  f->AddObserver(vtkCommand::ProgressEvent, abort);
+  f->Modified();
+  f->Update();
+  CHECK(abort->Calls > 0, "progress is reported");
+  CHECK(f->GetOutput()->GetNumberOfCells() < full, "an aborted run stops early");
+}
+
 void checkErrorsAndDegenerateInputs()
 {
 
@@ -580,6 +610,7 @@ int TestEVMBoundaryFilter(int, char*[])
     checkTriangles(big, l, "64^3");
   }
   checkErrorsAndDegenerateInputs();
+  checkAbort();
   checkTwoDimensional();
   vtkNew<vtkEVMBoundaryFilter> f;
   std::ostringstream print;
