@@ -160,6 +160,18 @@ public:
     return ids;
   }
 
+  /// Room for `cells` more cells of `corners` corners in all.
+  void reserve(std::size_t cells, std::size_t corners)
+  {
+    this->Connectivity.reserve(this->Connectivity.size() + corners);
+    this->Offsets.reserve(this->Offsets.size() + cells);
+    this->FaceId.reserve(this->FaceId.size() + cells);
+    this->ParentFace.reserve(this->ParentFace.size() + cells);
+    this->LoopType.reserve(this->LoopType.size() + cells);
+    this->Depth.reserve(this->Depth.size() + cells);
+    this->Label.reserve(this->Label.size() + cells);
+  }
+
   void addCell(const vtkIdType* ids,
     std::size_t n,
     vtkIdType faceId,
@@ -168,7 +180,8 @@ public:
     vtkIdType parent,
     int depth)
   {
-    this->Connectivity.insert(this->Connectivity.end(), ids, ids + n);
+    for (std::size_t i = 0; i < n; ++i) // cells are small: no call to memmove
+      this->Connectivity.push_back(ids[i]);
     this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
     this->FaceId.push_back(faceId);
     this->LoopType.push_back(loopType);
@@ -295,6 +308,17 @@ void appendFaceCells(const vbr::BRep& brep,
   OutputBuilder& builder)
 {
   const std::vector<vtkIdType> cornerIds = builder.pointIds(brep.points, object.offset);
+  if (mode == vtkEVMBoundaryFilter::TRIANGLES)
+  {
+    std::size_t count = 0;
+    for (const auto& t : triangles)
+      count += t.size();
+    builder.reserve(count, 3 * count);
+  }
+  else
+  {
+    builder.reserve(brep.loops.size(), brep.points.size() + brep.loops.size());
+  }
   std::vector<vtkIdType> ids;
   ids.reserve(3);
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
@@ -582,7 +606,10 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
     this->UpdateProgress(to);
   }
 
-  builder.finish(output, planar, lines, scalars->GetDataType());
+  {
+    vtkLogScopeF(TRACE, "hand the output to VTK");
+    builder.finish(output, planar, lines, scalars->GetDataType());
+  }
   vtkFieldData* fd = output->GetFieldData();
   addFieldValue(fd, "NumberOfVoxels", stats.voxels);
   addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);

@@ -266,61 +266,65 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
   {
     corners.insert(packer.pack(p[0], p[1], p[2]));
   }
-  // The refined corners of each loop that gains some, computed in parallel, then all loops
-  // are laid out again.
-  std::vector<std::vector<Point3>> refinedLoops(brep.loops.size());
-  exec.forRange(static_cast<std::int64_t>(brep.loops.size()),
-    [&](std::int64_t b, std::int64_t e)
+  // Two parallel passes over the loops: count each loop's corners with the vertices inside
+  // its edges, then (after a prefix sum) write them, so that no thread allocates.
+  auto visit = [&](const PointRange& points, auto&& emit)
+  {
+    for (std::size_t i = 0; i < points.size(); ++i)
     {
-      std::vector<Point3> refined;
-      for (std::int64_t l = b; l < e; ++l)
+      const Point3& p = points[i];
+      const Point3& q = points[(i + 1) % points.size()];
+      emit(p);
+      int d = 0;
+      while (d < 3 && p[d] == q[d])
       {
-        const PointRange points = brep.loopPoints(static_cast<int>(l));
-        refined.clear();
-        bool grew = false;
-        for (std::size_t i = 0; i < points.size(); ++i)
+        ++d;
+      }
+      if (d == 3)
+      {
+        continue;
+      }
+      const Coord step = q[d] > p[d] ? 1 : -1;
+      Point3 r = p;
+      for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
+      {
+        if (corners.find(packer.pack(r[0], r[1], r[2])) >= 0)
         {
-          const Point3& p = points[i];
-          const Point3& q = points[(i + 1) % points.size()];
-          refined.push_back(p);
-          int d = 0;
-          while (d < 3 && p[d] == q[d])
-          {
-            ++d;
-          }
-          if (d == 3)
-          {
-            continue;
-          }
-          const Coord step = q[d] > p[d] ? 1 : -1;
-          Point3 r = p;
-          for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
-          {
-            if (corners.find(packer.pack(r[0], r[1], r[2])) >= 0)
-            {
-              refined.push_back(r);
-              grew = true;
-            }
-          }
-        }
-        if (grew)
-        {
-          refinedLoops[l] = refined;
+          emit(r);
         }
       }
+    }
+  };
+  const std::int64_t loops = static_cast<std::int64_t>(brep.loops.size());
+  std::vector<std::size_t> start(brep.loops.size() + 1, 0);
+  exec.forRange(loops,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t l = b; l < e; ++l)
+      {
+        std::size_t n = 0;
+        visit(brep.loopPoints(static_cast<int>(l)), [&n](const Point3&) { ++n; });
+        start[l + 1] = n;
+      }
     });
-  std::vector<Point3> points;
-  points.reserve(brep.points.size());
   for (std::size_t l = 0; l < brep.loops.size(); ++l)
   {
-    BRepLoop& loop = brep.loops[l];
-    const std::size_t begin = points.size();
-    if (refinedLoops[l].empty())
-      points.insert(points.end(), brep.points.begin() + loop.begin, brep.points.begin() + loop.end);
-    else
-      points.insert(points.end(), refinedLoops[l].begin(), refinedLoops[l].end());
-    loop.begin = begin;
-    loop.end = points.size();
+    start[l + 1] += start[l];
+  }
+  std::vector<Point3> points(start.back());
+  exec.forRange(loops,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t l = b; l < e; ++l)
+      {
+        Point3* out = points.data() + start[l];
+        visit(brep.loopPoints(static_cast<int>(l)), [&out](const Point3& p) { *out++ = p; });
+      }
+    });
+  for (std::size_t l = 0; l < brep.loops.size(); ++l)
+  {
+    brep.loops[l].begin = start[l];
+    brep.loops[l].end = start[l + 1];
   }
   brep.points.swap(points);
 }
