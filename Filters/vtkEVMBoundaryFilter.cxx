@@ -50,6 +50,9 @@ struct Selected
   vbr::BitVolume voxels;
 };
 
+/// Triangles of every face, as indices into the face's loop corners.
+using Triangulation = std::vector<std::vector<std::array<int, 3>>>;
+
 /// Statistics written to the output's field data.
 struct Statistics
 {
@@ -301,7 +304,7 @@ void appendSurfelCells(const Selected& object, bool planar, OutputBuilder& build
 
 /// The cells of an object's faces: its triangles, or one cell per loop.
 void appendFaceCells(const vbr::BRep& brep,
-  const std::vector<std::vector<std::array<int, 3>>>& triangles,
+  const Triangulation& triangles,
   const Selected& object,
   int mode,
   vtkIdType faceBase,
@@ -356,12 +359,76 @@ void appendFaceCells(const vbr::BRep& brep,
   }
 }
 
+/// The axes in processing order: a 2D image is processed in its own plane, flat axis last.
+std::array<int, 3> processingAxes(const vbr::vtk::VoxelGrid& grid)
+{
+  std::array<int, 3> axes{ 0, 1, 2 };
+  if (grid.flatAxis >= 0)
+  {
+    int k = 0;
+    for (int d = 0; d < 3; ++d)
+      if (d != grid.flatAxis)
+        axes[k++] = d;
+    axes[2] = grid.flatAxis;
+  }
+  return axes;
+}
+
+/// Faces of an EVM by the plane sweeps, with the T-junction vertices of neighbouring faces
+/// inserted into their loops. False when aborted.
+bool boundaryOf(const vbr::EVM& evm,
+  bool planar,
+  vbr::FaceConnectivity connectivity,
+  const vbr::Execution& exec,
+  vbr::BRep& brep)
+{
+  {
+    vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
+    if (planar)
+      brep = vbr::extractBoundary2D(evm, connectivity);
+    else if (!vbr::extractBoundary3D(evm, connectivity, exec, brep))
+      return false;
+  }
+  vtkLogScopeF(TRACE, "T-junction vertices");
+  vbr::insertTJunctionVertices(brep, exec);
+  return true;
+}
+
+/// The triangles of every face, in parallel.
+Triangulation triangulate(const vbr::BRep& brep, const vbr::Execution& exec)
+{
+  vtkLogScopeF(TRACE, "triangulation");
+  Triangulation triangles(brep.faces.size());
+  exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t f = b; f < e; ++f)
+        triangles[f] = vbr::triangulateFace(brep, static_cast<int>(f));
+    });
+  return triangles;
+}
+
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
 {
   vtkNew<vtkIdTypeArray> a;
   a->SetName(name);
   a->InsertNextValue(value);
   fd->AddArray(a);
+}
+
+void writeStatistics(const Statistics& stats, vtkFieldData* fd)
+{
+  addFieldValue(fd, "NumberOfVoxels", stats.voxels);
+  addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);
+  addFieldValue(fd, "NumberOfSurfels", stats.surfels);
+  addFieldValue(fd, "NumberOfFaces", stats.faces);
+  addFieldValue(fd, "NumberOfHoles", stats.holes);
+  addFieldValue(fd, "NumberOfNonManifoldVertices", stats.nonManifoldVertices);
+  vtkNew<vtkIdTypeArray> planes;
+  planes->SetName("NumberOfPlanesOfVertices");
+  planes->SetNumberOfComponents(3);
+  planes->InsertNextTypedTuple(stats.planes.data());
+  fd->AddArray(planes);
 }
 
 } // namespace
@@ -476,22 +543,8 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
     }
   }
 
-  // A 2D image is processed in its own plane: permute its flat axis last.
   const bool planar = grid.flatAxis >= 0;
-  std::array<int, 3> axes{ 0, 1, 2 };
-  if (planar)
-  {
-    int k = 0;
-    for (int d = 0; d < 3; ++d)
-      if (d != grid.flatAxis)
-        axes[k++] = d;
-    axes[2] = grid.flatAxis;
-  }
-  vbr::vtk::VoxelGrid permutedGrid = grid;
-  for (int k = 0; k < 3; ++k)
-  {
-    permutedGrid.dims[k] = grid.dims[axes[k]];
-  }
+  const std::array<int, 3> axes = processingAxes(grid);
 
   std::vector<Selected> objects;
   vtkLogStartScope(TRACE, "select voxels");
@@ -514,12 +567,12 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
         this->BackgroundValue,
         selectExec);
     });
+  vtkLogEndScope("select voxels");
   if (!known)
   {
     vtkErrorMacro(<< "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
     return 0;
   }
-  vtkLogEndScope("select voxels");
   this->UpdateProgress(0.1);
 
   const vbr::FaceConnectivity connectivity =
@@ -567,37 +620,15 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
     }
 
     vbr::BRep brep;
+    if (!boundaryOf(evm, planar, connectivity, exec, brep))
     {
-      vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
-      if (planar)
-      {
-        brep = vbr::extractBoundary2D(evm, connectivity);
-      }
-      else if (!vbr::extractBoundary3D(evm, connectivity, exec, brep))
-      {
-        break; // aborted
-      }
-    }
-    {
-      vtkLogScopeF(TRACE, "T-junction vertices");
-      vbr::insertTJunctionVertices(brep, exec);
+      break; // aborted
     }
     stats.faces += static_cast<vtkIdType>(brep.faces.size());
     stats.holes += static_cast<vtkIdType>(brep.holeCount());
     stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
-
-    std::vector<std::vector<std::array<int, 3>>> triangles;
-    if (this->OutputMode == TRIANGLES)
-    {
-      vtkLogScopeF(TRACE, "triangulation");
-      triangles.resize(brep.faces.size());
-      exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
-        [&](std::int64_t b, std::int64_t e)
-        {
-          for (std::int64_t f = b; f < e; ++f)
-            triangles[f] = vbr::triangulateFace(brep, static_cast<int>(f));
-        });
-    }
+    const auto triangles =
+      this->OutputMode == TRIANGLES ? triangulate(brep, exec) : Triangulation();
     {
       vtkLogScopeF(TRACE, "output cells");
       appendFaceCells(brep, triangles, object, this->OutputMode, faceBase, builder);
@@ -610,18 +641,7 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
     vtkLogScopeF(TRACE, "hand the output to VTK");
     builder.finish(output, planar, lines, scalars->GetDataType());
   }
-  vtkFieldData* fd = output->GetFieldData();
-  addFieldValue(fd, "NumberOfVoxels", stats.voxels);
-  addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);
-  addFieldValue(fd, "NumberOfSurfels", stats.surfels);
-  addFieldValue(fd, "NumberOfFaces", stats.faces);
-  addFieldValue(fd, "NumberOfHoles", stats.holes);
-  addFieldValue(fd, "NumberOfNonManifoldVertices", stats.nonManifoldVertices);
-  vtkNew<vtkIdTypeArray> planes;
-  planes->SetName("NumberOfPlanesOfVertices");
-  planes->SetNumberOfComponents(3);
-  planes->InsertNextTypedTuple(stats.planes.data());
-  fd->AddArray(planes);
+  writeStatistics(stats, output->GetFieldData());
   return 1;
 }
 
