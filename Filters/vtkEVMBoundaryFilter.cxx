@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -61,7 +62,7 @@ struct Statistics
   std::array<vtkIdType, 3> planes{ 0, 0, 0 };
 };
 
-/// Reads the selection: permutes axes so that a 2D image lies in the first two, and returns
+/// Reads the selection from scalars already permuted into processing axes, and returns
 /// one Selected per label (or a single one).
 template<typename T>
 std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
@@ -76,7 +77,12 @@ std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
   whole.hi = grid.dims;
   if (mode == vtkEVMBoundaryFilter::LABELS)
   {
-    for (const auto& entry : vbr::labelBoxes(grid, static_cast<T>(background)))
+    // A background the type cannot hold exactly means every value is a label.
+    const T typedBackground = static_cast<T>(std::max(double(std::numeric_limits<T>::lowest()),
+      std::min(background, double(std::numeric_limits<T>::max()))));
+    const bool hasBackground = static_cast<double>(typedBackground) == background;
+    for (const auto& entry :
+      vbr::labelBoxes(grid, hasBackground ? &typedBackground : static_cast<const T*>(nullptr)))
     {
       const T label = entry.first;
       Selected s;
@@ -97,11 +103,14 @@ std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
   else if (std::is_integral<T>::value)
   {
     // Integer values: the range in the type itself (a comparison the compiler vectorizes).
-    const double lo = std::max(std::ceil(lower), double(std::numeric_limits<T>::lowest()));
-    const double hi = std::min(std::floor(upper), double(std::numeric_limits<T>::max()));
-    if (lo <= hi)
+    const double lo = std::ceil(lower), hi = std::floor(upper);
+    const double typeMin = double(std::numeric_limits<T>::lowest());
+    const double typeMax = double(std::numeric_limits<T>::max()); // may round up (64 bits)
+    if (lo <= hi && hi >= typeMin && lo <= typeMax)
     {
-      const T first = static_cast<T>(lo), last = static_cast<T>(hi);
+      // Clamp in double, convert only values the type holds (no out-of-range cast).
+      const T first = lo <= typeMin ? std::numeric_limits<T>::lowest() : static_cast<T>(lo);
+      const T last = hi >= typeMax ? std::numeric_limits<T>::max() : static_cast<T>(hi);
       s.voxels = vbr::selectVoxels(
         grid, whole, [first, last](T v) { return v >= first && v <= last; }, exec);
     }
@@ -131,6 +140,19 @@ Point3 shifted(const Point3& p, const std::array<std::int32_t, 3>& offset)
   return { p[0] + offset[0], p[1] + offset[1], p[2] + offset[2] };
 }
 
+/// Whether the map from processing axes to world coordinates mirrors space: an odd
+/// permutation of the axes (a 2D image flat along y), a direction matrix with negative
+/// determinant, or a negative spacing. Cells are then reversed to keep their orientation.
+bool reversesOrientation(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes)
+{
+  const bool odd = (axes[1] - axes[0] + 3) % 3 != 1;
+  const auto& m = grid.direction;
+  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+    m[2] * (m[3] * m[7] - m[4] * m[6]);
+  const double scale = det * grid.spacing[0] * grid.spacing[1] * grid.spacing[2];
+  return odd != (scale < 0);
+}
+
 /// Builds the output polydata: shared points, then cells and their attributes gathered in
 /// plain arrays and handed to VTK at the end.
 class OutputBuilder
@@ -139,6 +161,7 @@ public:
   OutputBuilder(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes)
     : Grid(grid)
     , Axes(axes)
+    , Reverse(reversesOrientation(grid, axes))
     , Packer(vbr::KeyPacker::forMaximum(std::max({ grid.dims[0], grid.dims[1], grid.dims[2] })))
   {
   }
@@ -184,7 +207,7 @@ public:
     int depth)
   {
     for (std::size_t i = 0; i < n; ++i) // cells are small: no call to memmove
-      this->Connectivity.push_back(ids[i]);
+      this->Connectivity.push_back(ids[this->Reverse ? n - 1 - i : i]);
     this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
     this->FaceId.push_back(faceId);
     this->LoopType.push_back(loopType);
@@ -254,6 +277,7 @@ private:
 
   const vbr::vtk::VoxelGrid& Grid;
   const std::array<int, 3> Axes;
+  const bool Reverse; ///< world coordinates mirror the processing axes: reverse every cell
   const vbr::KeyPacker Packer;
   vbr::GridPointIndex Index;
   std::vector<double> Coordinates;
@@ -485,6 +509,26 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  try
+  {
+    return this->Execute(inputVector, outputVector);
+  }
+  catch (const std::exception& e)
+  {
+    // Out of memory, or an inconsistency the core detected: an error, never a crash.
+    vtkErrorMacro(<< "Boundary extraction failed: " << e.what());
+    if (vtkPolyData* output = vtkPolyData::GetData(outputVector))
+    {
+      output->Initialize();
+    }
+    return 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (!input || !output)
@@ -519,6 +563,14 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
   if (this->SelectionMode == RANGE && this->LowerThreshold > this->UpperThreshold)
   {
     vtkWarningMacro(<< "LowerThreshold > UpperThreshold: nothing is selected.");
+  }
+  vtkSmartPointer<vtkDataArray> contiguous = scalars;
+  if (!scalars->HasStandardMemoryLayout())
+  {
+    // The kernels read raw values: other layouts (SOA, implicit arrays) are copied once.
+    contiguous.TakeReference(vtkDataArray::CreateDataArray(scalars->GetDataType()));
+    contiguous->DeepCopy(scalars);
+    scalars = contiguous;
   }
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   vbr::vtk::VoxelGrid grid;

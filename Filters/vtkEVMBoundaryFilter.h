@@ -42,8 +42,18 @@
  *
  * 2D images: an image with one voxel along exactly one axis is 2D when FlatImagesAs2D is on
  * (the default): its output is the faces of that plane with their inclusion tree (the
- * contour hierarchy of OpenCV's RETR_TREE, exact on pixel edges). With FlatImagesAs2D off it
- * is a one-voxel-thick slab with a closed 3D boundary.
+ * contour hierarchy of OpenCV's RETR_TREE, exact on pixel edges), outer loops
+ * counter-clockwise seen from the positive side of the flat axis. With FlatImagesAs2D off it
+ * is a one-voxel-thick slab with a closed 3D boundary. Cell scalars on a single layer of
+ * points are pixels without thickness and always give the 2D output. In Labels mode the
+ * inclusion tree is computed label by label.
+ *
+ * Orientation is kept in world coordinates: a direction matrix with negative determinant (a
+ * mirrored image) reverses the cells so that normals still point out of the object.
+ *
+ * Arrays that are not stored as contiguous tuples (SOA, implicit arrays) are copied once.
+ * Labels mode builds the voxel set of every label (within its bounding box) before
+ * extracting the boundaries; NaN values are never labels.
  *
  * @warning The EVM extraction and the three sweeps run with vtkSMPTools (set
  * VTK_SMP_BACKEND_IN_USE=STDThread with ParaView's VTK, whose default is sequential).
@@ -156,6 +166,8 @@ protected:
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  /// The work of RequestData, which turns exceptions (out of memory) into errors.
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   int SelectionMode = POSITIVE;
   double LowerThreshold = 1.0;

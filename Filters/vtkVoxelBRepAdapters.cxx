@@ -5,6 +5,8 @@
 #include "vtkMatrix3x3.h"
 #include "vtkSMPTools.h"
 
+#include <exception>
+#include <mutex>
 #include <sstream>
 
 namespace vbr
@@ -15,10 +17,29 @@ namespace vtk
 Execution makeExecution(vtkAlgorithm* algorithm, double progressFrom, double progressTo)
 {
   Execution exec;
+  // An exception must not leave a vtkSMPTools worker (std::terminate): the first one is
+  // kept and thrown again on the calling thread.
   exec.parallelFor = [](std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
   {
-    vtkSMPTools::For(
-      vtkIdType(0), static_cast<vtkIdType>(n), [&body](vtkIdType b, vtkIdType e) { body(b, e); });
+    std::exception_ptr failure;
+    std::mutex guard;
+    vtkSMPTools::For(vtkIdType(0),
+      static_cast<vtkIdType>(n),
+      [&](vtkIdType b, vtkIdType e)
+      {
+        try
+        {
+          body(b, e);
+        }
+        catch (...)
+        {
+          std::lock_guard<std::mutex> lock(guard);
+          if (!failure)
+            failure = std::current_exception();
+        }
+      });
+    if (failure)
+      std::rethrow_exception(failure);
   };
   exec.progress = [algorithm, progressFrom, progressTo](double f)
   {

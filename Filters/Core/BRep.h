@@ -68,7 +68,7 @@ struct BRep
 };
 
 /// Faces of a 3D EVM (any sorting), grouped by normal axis, then plane, then +A before -A.
-/// Returns false (and a partial BRep) when exec.progress asked to abort.
+/// Returns false (and an empty BRep) when the caller asked to abort.
 bool extractBoundary3D(const EVM& evm,
   FaceConnectivity connectivity,
   const Execution& exec,

@@ -86,20 +86,21 @@ BitVolume selectVoxels(const ScalarGrid<T>& grid,
   return out;
 }
 
-/// Every distinct value other than `background`, with the bounding box of its voxels.
+/// Every distinct value other than `*background` (none when null) and NaN, with the
+/// bounding box of its voxels.
 template<typename T>
-std::map<T, Box3> labelBoxes(const ScalarGrid<T>& grid, T background)
+std::map<T, Box3> labelBoxes(const ScalarGrid<T>& grid, const T* background)
 {
   std::map<T, Box3> boxes;
   for (std::int32_t k = 0; k < grid.dims[2]; ++k)
     for (std::int32_t j = 0; j < grid.dims[1]; ++j)
     {
       Box3* current = nullptr;
-      T currentValue = background;
+      T currentValue{};
       for (std::int32_t i = 0; i < grid.dims[0]; ++i)
       {
         const T value = grid.at(i, j, k);
-        if (value == background)
+        if ((background && value == *background) || value != value) // background or NaN
           continue;
         if (!current || !(value == currentValue))
         {

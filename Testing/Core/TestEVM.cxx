@@ -233,6 +233,7 @@ TEST(Selection, PacksFlagsAndSelectsExactly)
     for (int y = 0; y < 2; ++y)
       for (int x = 0; x < 66; ++x)
         ASSERT_EQ(v.get(x, y, z), grid.at(x + 3, y + 1, z) > 6);
-  const auto boxes = vbr::labelBoxes(grid, 0);
+  const int background = 0;
+  const auto boxes = vbr::labelBoxes(grid, &background);
   EXPECT_EQ(boxes.size(), 12u);
 }

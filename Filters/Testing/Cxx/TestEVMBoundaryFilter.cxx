@@ -19,10 +19,12 @@
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
+#include "vtkLongLongArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSOADataArrayTemplate.h"
 #include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
@@ -432,6 +434,111 @@ void checkAbort()
   CHECK(f->GetOutput()->GetNumberOfCells() < full, "an aborted run stops early");
 }
 
+/// Signed volume enclosed by a closed triangle output (divergence theorem).
+double enclosedVolume(vtkPolyData* out)
+{
+  double volume = 0;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    out->GetCellPoints(c, ids);
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+      out->GetPoint(ids->GetId(k), p[k]);
+    volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
+                p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+                p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
+      6.0;
+  }
+  return volume;
+}
+
+/// Value types, layouts and geometry that need care: 64-bit ranges, NaN labels, a
+/// background the type cannot hold, SOA arrays and a mirrored direction matrix.
+void checkTypesAndLayouts()
+{
+  // 64-bit integers near the limits, default UpperThreshold (VTK_DOUBLE_MAX).
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(3, 3, 3);
+    vtkNew<vtkLongLongArray> a;
+    a->SetNumberOfTuples(27);
+    for (vtkIdType i = 0; i < 27; ++i)
+      a->SetValue(i, i % 3 == 0 ? VTK_LONG_LONG_MAX : 0);
+    image->GetPointData()->SetScalars(a);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    f->SetInputData(image);
+    f->SetSelectionModeToRange();
+    f->SetLowerThreshold(1e18);
+    f->Update();
+    CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 9, "64-bit range selects the maxima");
+  }
+  // NaN is never a label; a background of -1 on unsigned data means every value is a label.
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(4, 1, 1);
+    vtkNew<vtkFloatArray> a;
+    a->SetNumberOfTuples(4);
+    a->SetValue(0, std::nanf(""));
+    a->SetValue(1, 2.0f);
+    a->SetValue(2, 2.0f);
+    a->SetValue(3, 0.0f);
+    image->GetPointData()->SetScalars(a);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    f->SetInputData(image);
+    f->SetSelectionModeToLabels();
+    f->SetFlatImagesAs2D(false);
+    f->Update();
+    CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 2, "NaN is not a label");
+    vtkNew<vtkUnsignedCharArray> u;
+    u->SetNumberOfTuples(4);
+    for (vtkIdType i = 0; i < 4; ++i)
+      u->SetValue(i, static_cast<unsigned char>(i == 3 ? 255 : 0));
+    image->GetPointData()->SetScalars(u);
+    f->SetBackgroundValue(-1);
+    f->Update();
+    CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 4,
+      "a background the type cannot hold leaves every value a label (255 kept)");
+  }
+  // SOA arrays give the same boundary as AOS ones.
+  {
+    const Volume v = randomVolume({ 6, 5, 4 }, 0.5, 1, 31);
+    vtkSmartPointer<vtkImageData> image = makeImage(v, Layout());
+    vtkNew<vtkSOADataArrayTemplate<float>> soa;
+    soa->SetNumberOfComponents(1);
+    soa->SetNumberOfTuples(static_cast<vtkIdType>(v.values.size()));
+    for (std::size_t i = 0; i < v.values.size(); ++i)
+      soa->SetTypedComponent(static_cast<vtkIdType>(i), 0, static_cast<float>(v.values[i]));
+    vtkNew<vtkEVMBoundaryFilter> aos, split;
+    aos->SetInputData(image);
+    aos->Update();
+    vtkNew<vtkImageData> soaImage;
+    soaImage->CopyStructure(image);
+    soaImage->GetPointData()->SetScalars(soa);
+    split->SetInputData(soaImage);
+    split->Update();
+    CHECK(split->GetOutput()->GetNumberOfCells() == aos->GetOutput()->GetNumberOfCells() &&
+        fieldValue(split->GetOutput(), "NumberOfExtremeVertices") ==
+          fieldValue(aos->GetOutput(), "NumberOfExtremeVertices"),
+      "SOA input gives the AOS result");
+  }
+  // A mirrored image (direction with determinant -1): still closed and oriented outwards.
+  {
+    const Volume v = randomVolume({ 7, 6, 5 }, 0.5, 1, 41);
+    vtkSmartPointer<vtkImageData> image = makeImage(v, Layout());
+    image->SetDirectionMatrix(-1, 0, 0, 0, 1, 0, 0, 0, 1);
+    vtkNew<vtkEVMBoundaryFilter> f;
+    f->SetInputData(image);
+    f->Update();
+    const double volume = enclosedVolume(f->GetOutput());
+    long long voxels = 0;
+    for (int x : v.values)
+      voxels += x != 0;
+    CHECK(std::abs(volume - static_cast<double>(voxels)) < 1e-6,
+      "mirrored image: enclosed volume " << volume << ", expected " << voxels);
+  }
+}
+
 void checkErrorsAndDegenerateInputs()
 {
 
@@ -560,6 +667,24 @@ void checkTwoDimensional()
         if (depth->GetTuple1(c) == 2)
           CHECK(parent->GetTuple1(c) == 0, "2D: the dot's parent is the ring");
     }
+    // Outer loops run counter-clockwise seen from the positive side of the flat axis.
+    vtkDataArray* loopType = out->GetCellData()->GetArray("LoopType");
+    for (vtkIdType c = 0; c < out->GetNumberOfCells() && loopType; ++c)
+    {
+      vtkNew<vtkIdList> ids;
+      out->GetCellPoints(c, ids);
+      double normal = 0;
+      for (vtkIdType i = 0; i + 1 < ids->GetNumberOfIds(); ++i)
+      {
+        double p[3], q[3];
+        out->GetPoint(ids->GetId(i), p);
+        out->GetPoint(ids->GetId(i + 1), q);
+        const int a = (flat + 1) % 3, b = (flat + 2) % 3;
+        normal += p[a] * q[b] - q[a] * p[b];
+      }
+      CHECK((normal > 0) == (loopType->GetTuple1(c) == 0),
+        "2D plane " << flat << ": loop " << c << " winds the wrong way");
+    }
     double bounds[6];
     out->GetBounds(bounds);
     CHECK(bounds[2 * flat] == 0 && bounds[2 * flat + 1] == 0, "2D: loops lie in the image plane");
@@ -610,6 +735,7 @@ int TestEVMBoundaryFilter(int, char*[])
     checkTriangles(big, l, "64^3");
   }
   checkErrorsAndDegenerateInputs();
+  checkTypesAndLayouts();
   checkAbort();
   checkTwoDimensional();
   vtkNew<vtkEVMBoundaryFilter> f;
