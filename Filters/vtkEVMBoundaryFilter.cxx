@@ -32,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -48,7 +49,9 @@ struct Selected
 {
   double label = 1.0;
   std::array<std::int32_t, 3> offset{ 0, 0, 0 }; ///< box origin, in permuted axes
-  vbr::BitVolume voxels;
+  /// Builds the object's voxels in its box when it is processed, so that only one object's
+  /// voxels are in memory at a time.
+  std::function<vbr::BitVolume(const vbr::Execution&)> select;
 };
 
 /// Triangles of every face, as indices into the face's loop corners.
@@ -62,17 +65,25 @@ struct Statistics
   std::array<vtkIdType, 3> planes{ 0, 0, 0 };
 };
 
-/// Reads the selection from scalars already permuted into processing axes, and returns
-/// one Selected per label (or a single one).
+/// The objects to extract, from scalars already permuted into processing axes: one per
+/// label, or a single one. The scalars must outlive the objects' `select`.
 template<typename T>
 std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
   int mode,
   double lower,
   double upper,
-  double background,
-  const vbr::Execution& exec)
+  double background)
 {
   std::vector<Selected> out;
+  auto add = [&out, &grid](double label, const vbr::Box3& box, auto selected)
+  {
+    Selected s;
+    s.label = label;
+    s.offset = box.lo;
+    s.select = [grid, box, selected](const vbr::Execution& exec)
+    { return vbr::selectVoxels(grid, box, selected, exec); };
+    out.push_back(std::move(s));
+  };
   vbr::Box3 whole;
   whole.hi = grid.dims;
   if (mode == vtkEVMBoundaryFilter::LABELS)
@@ -85,20 +96,12 @@ std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
       vbr::labelBoxes(grid, hasBackground ? &typedBackground : static_cast<const T*>(nullptr)))
     {
       const T label = entry.first;
-      Selected s;
-      s.label = static_cast<double>(label);
-      s.offset = entry.second.lo;
-      s.voxels = vbr::selectVoxels(
-        grid, entry.second, [label](T v) { return v == label; }, exec);
-      out.push_back(std::move(s));
+      add(static_cast<double>(label), entry.second, [label](T v) { return v == label; });
     }
-    return out;
   }
-  Selected s;
-  if (mode == vtkEVMBoundaryFilter::POSITIVE)
+  else if (mode == vtkEVMBoundaryFilter::POSITIVE)
   {
-    s.voxels = vbr::selectVoxels(
-      grid, whole, [](T v) { return v > T(0); }, exec);
+    add(1.0, whole, [](T v) { return v > T(0); });
   }
   else if (std::is_integral<T>::value)
   {
@@ -111,27 +114,23 @@ std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
       // Clamp in double, convert only values the type holds (no out-of-range cast).
       const T first = lo <= typeMin ? std::numeric_limits<T>::lowest() : static_cast<T>(lo);
       const T last = hi >= typeMax ? std::numeric_limits<T>::max() : static_cast<T>(hi);
-      s.voxels = vbr::selectVoxels(
-        grid, whole, [first, last](T v) { return v >= first && v <= last; }, exec);
+      add(1.0, whole, [first, last](T v) { return v >= first && v <= last; });
     }
     else
     {
-      s.voxels = vbr::BitVolume(grid.dims[0], grid.dims[1], grid.dims[2]);
+      add(1.0, whole, [](T) { return false; });
     }
   }
   else
   {
-    s.voxels = vbr::selectVoxels(
-      grid,
+    add(1.0,
       whole,
       [lower, upper](T v)
       {
         const double d = static_cast<double>(v);
         return d >= lower && d <= upper;
-      },
-      exec);
+      });
   }
-  out.push_back(std::move(s));
   return out;
 }
 
@@ -289,9 +288,12 @@ private:
 };
 
 /// One cell per surfel (a unit square, or a unit segment of a 2D image), pixel on the left.
-void appendSurfelCells(const Selected& object, bool planar, OutputBuilder& builder)
+void appendSurfelCells(const Selected& object,
+  const vbr::BitVolume& voxels,
+  bool planar,
+  OutputBuilder& builder)
 {
-  const std::vector<vbr::Surfel> surfels = vbr::extractSurfels(object.voxels, planar);
+  const std::vector<vbr::Surfel> surfels = vbr::extractSurfels(voxels, planar);
   const std::size_t n = planar ? 2 : 4;
   std::vector<Point3> corners;
   corners.reserve(n * surfels.size());
@@ -599,8 +601,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   const std::array<int, 3> axes = processingAxes(grid);
 
   std::vector<Selected> objects;
-  vtkLogStartScope(TRACE, "select voxels");
-  const vbr::Execution selectExec = vbr::vtk::makeExecution(this, 0.0, 0.1);
+  vtkLogStartScope(TRACE, "find the objects");
   const bool known = vbr::vtk::dispatchScalars(scalars,
     this->ArrayComponent,
     grid,
@@ -616,10 +617,9 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
         this->SelectionMode,
         this->LowerThreshold,
         this->UpperThreshold,
-        this->BackgroundValue,
-        selectExec);
+        this->BackgroundValue);
     });
-  vtkLogEndScope("select voxels");
+  vtkLogEndScope("find the objects");
   if (!known)
   {
     vtkErrorMacro(<< "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
@@ -644,18 +644,23 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     const double from = 0.1 + 0.9 * o / objects.size();
     const double to = 0.1 + 0.9 * (o + 1) / objects.size();
     const vbr::Execution exec = vbr::vtk::makeExecution(this, from, to);
-    const std::size_t count = object.voxels.count();
+    vbr::BitVolume voxels;
+    {
+      vtkLogScopeF(TRACE, "select voxels");
+      voxels = object.select(exec);
+    }
+    const std::size_t count = voxels.count();
     if (count == 0)
     {
       continue;
     }
     stats.voxels += static_cast<vtkIdType>(count);
-    const std::size_t faces3 = vbr::countSurfels(object.voxels);
+    const std::size_t faces3 = vbr::countSurfels(voxels);
     stats.surfels += static_cast<vtkIdType>(planar ? faces3 - 2 * count : faces3);
     vbr::EVM evm;
     {
       vtkLogScopeF(TRACE, "extreme vertices");
-      evm = planar ? vbr::extractEVM2D(object.voxels, exec) : vbr::extractEVM(object.voxels, exec);
+      evm = planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
     }
     stats.extremeVertices += static_cast<vtkIdType>(evm.size());
     const auto planes = vbr::planesPerAxis(evm);
@@ -667,7 +672,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     if (this->OutputMode == SURFELS)
     {
       vtkLogScopeF(TRACE, "surfel cells");
-      appendSurfelCells(object, planar, builder);
+      appendSurfelCells(object, voxels, planar, builder);
       continue;
     }
 

@@ -52,8 +52,8 @@
  * mirrored image) reverses the cells so that normals still point out of the object.
  *
  * Arrays that are not stored as contiguous tuples (SOA, implicit arrays) are copied once.
- * Labels mode builds the voxel set of every label (within its bounding box) before
- * extracting the boundaries; NaN values are never labels.
+ * Labels mode extracts one label at a time (its voxels within its bounding box); NaN values
+ * are never labels.
  *
  * @warning The EVM extraction and the three sweeps run with vtkSMPTools (set
  * VTK_SMP_BACKEND_IN_USE=STDThread with ParaView's VTK, whose default is sequential).
