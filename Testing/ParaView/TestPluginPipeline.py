@@ -9,10 +9,15 @@ padded mask) and NumberOfExtremeVertices (vertices with an odd number of the 8 i
 voxels selected: XOR of the 8 shifted padded masks).
 """
 
-import itertools
+import os
 import sys
 
 import numpy as np
+
+# The numpy references shared by the Python tests (Filters/Testing/Python).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "Filters", "Testing", "Python"))
+from voxelbrep_testing import extreme_vertices, surfel_count  # noqa: E402
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util import numpy_support as ns
@@ -25,19 +30,6 @@ def expect(what, got, expected):
     print("%-60s %-6s got %r, expected %r" % (what, status, got, expected))
     if got != expected:
         failures.append(what)
-
-
-def extreme_vertices(mask):
-    p = np.pad(mask.astype(bool), 1)
-    acc = np.zeros(tuple(s - 1 for s in p.shape), dtype=bool)
-    for corner in itertools.product((0, 1), repeat=p.ndim):
-        acc ^= p[tuple(slice(c, c + s - 1) for c, s in zip(corner, p.shape))]
-    return int(np.count_nonzero(acc))
-
-
-def surfels(mask):
-    p = np.pad(mask.astype(np.int8), 1)
-    return sum(int(np.count_nonzero(np.diff(p, axis=a))) for a in range(mask.ndim))
 
 
 def field(data, name):
@@ -67,7 +59,7 @@ def check_output(tag, boundary, masks, planar=False):
            sum(extreme_vertices(m) for m in masks.values()))
     if not planar:
         expect(tag + ": NumberOfSurfels", field(out, "NumberOfSurfels"),
-               sum(surfels(m) for m in masks.values()))
+               sum(surfel_count(m) for m in masks.values()))
     face_ids = cell_values(out, "FaceId")
     expect(tag + ": distinct FaceId = NumberOfFaces", len(set(face_ids.tolist())),
            field(out, "NumberOfFaces"))

@@ -13,13 +13,17 @@ SCRIPT runs with --no-png (no display needed); the rendering path is tested by t
 that runs it with its defaults.
 """
 
-import itertools
 import os
 import re
 import subprocess
 import sys
 
 import numpy as np
+
+# The numpy references shared by the Python tests (Filters/Testing/Python).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "Filters", "Testing", "Python"))
+from voxelbrep_testing import extreme_vertices, surfel_count  # noqa: E402
 
 SUMMARY = re.compile(r"(\d+) voxels, (\d+) surfels, (\d+) extreme vertices, (\d+) faces, "
                      r"(\d+) holes, (\d+) (\w+) cells")
@@ -31,19 +35,6 @@ def expect(what, got, expected):
     print("%-70s %-6s got %r, expected %r" % (what, "ok" if ok else "FAILED", got, expected))
     if not ok:
         failures.append(what)
-
-
-def extreme_vertices(mask):
-    p = np.pad(mask.astype(bool), 1)
-    acc = np.zeros(tuple(s - 1 for s in p.shape), dtype=bool)
-    for corner in itertools.product((0, 1), repeat=p.ndim):
-        acc ^= p[tuple(slice(c, c + s - 1) for c, s in zip(corner, p.shape))]
-    return int(np.count_nonzero(acc))
-
-
-def surfels(mask):
-    p = np.pad(mask.astype(np.int8), 1)
-    return sum(int(np.count_nonzero(np.diff(p, axis=a))) for a in range(mask.ndim))
 
 
 def run(script, work, name, args):
@@ -73,7 +64,7 @@ def check_run(script, work, name, args, masks, planar=False):
     expect(name + ": voxels", values["voxels"], sum(int(m.sum()) for m in masks))
     expect(name + ": extreme vertices", values["ev"], sum(extreme_vertices(m) for m in masks))
     if not planar:
-        expect(name + ": surfels", values["surfels"], sum(surfels(m) for m in masks))
+        expect(name + ": surfels", values["surfels"], sum(surfel_count(m) for m in masks))
     expect(name + ": has cells", values["cells"] > 0, True)
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 

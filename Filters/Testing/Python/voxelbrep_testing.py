@@ -136,6 +136,13 @@ def extreme_vertices(mask):
     return int(np.count_nonzero(acc))
 
 
+def surfel_count(mask):
+    """Number of boundary voxel (pixel) faces of a mask of any dimension: the 0/1
+    transitions of the zero-padded mask along every axis."""
+    p = np.pad(mask.astype(np.int8), 1)
+    return sum(int(np.count_nonzero(np.diff(p, axis=a))) for a in range(mask.ndim))
+
+
 def boundary_faces(mask):
     """Number of boundary voxel faces perpendicular to x, y and z ([z, y, x] mask): the
     0/1 transitions of the zero-padded mask along each axis."""
