@@ -1,7 +1,6 @@
 #include "PlaneSweep2D.h"
 
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
 namespace vbr

@@ -29,6 +29,7 @@
 
 #include "vtkEVMBoundaryFilter.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -74,6 +75,15 @@ using Clock = std::chrono::steady_clock;
 double secondsBetween(Clock::time_point a, Clock::time_point b)
 {
   return std::chrono::duration<double>(b - a).count();
+}
+
+/// Re-executes one algorithm and returns the seconds its update took.
+double timedUpdate(vtkAlgorithm* algorithm)
+{
+  algorithm->Modified();
+  const auto t0 = Clock::now();
+  algorithm->Update();
+  return secondsBetween(t0, Clock::now());
 }
 
 //------------------------------------------------------------------------------
@@ -437,15 +447,12 @@ std::vector<Row> measureEVMFilter(vtkImageData* image,
     smp,
     [&]()
     {
-      filter->Modified();
-      const auto t0 = Clock::now();
-      filter->Update();
-      const auto t1 = Clock::now();
+      const double seconds = timedUpdate(filter);
       vtkPolyData* out = filter->GetOutput();
       Sizes s = sizesOf(out);
       s.faces = fieldValue(out, "NumberOfFaces");
       s.extremeVertices = fieldValue(out, "NumberOfExtremeVertices");
-      return Outcome{ { secondsBetween(t0, t1) }, { s } };
+      return Outcome{ { seconds }, { s } };
     });
 }
 
@@ -462,11 +469,8 @@ std::vector<Row> measureDFE(vtkImageData* binary, const std::string& smp, int re
     smp,
     [&]()
     {
-      dfe->Modified();
-      const auto t0 = Clock::now();
-      dfe->Update();
-      const auto t1 = Clock::now();
-      return Outcome{ { secondsBetween(t0, t1) }, { sizesOf(dfe->GetOutput()) } };
+      const double seconds = timedUpdate(dfe);
+      return Outcome{ { seconds }, { sizesOf(dfe->GetOutput()) } };
     });
 }
 
