@@ -31,6 +31,9 @@ ROOT=$PWD
 JOBS=${VOXELBREP_JOBS:-2}
 LOGDIR=$(mktemp -d "${TMPDIR:-/tmp}/voxelbrep-tests.XXXXXX")
 VTK91_DIR=/usr/lib/x86_64-linux-gnu/cmake/vtk-9.1
+# -noreset: by default Xvfb resets when its last client disconnects, and a test that
+# connects during the reset fails with "bad X server connection" (seen in CI).
+XVFB=(xvfb-run -a -s "-noreset -screen 0 1280x1024x24")
 SAN_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 
 export DEBIAN_FRONTEND=noninteractive
@@ -87,7 +90,7 @@ stage_paraview() {
     echo "error: the ParaView plugin was not built (is paraview-dev installed?)" >&2
     return 1
   fi
-  run_ctest build paraview xvfb-run -a
+  run_ctest build paraview "${XVFB[@]}"
 }
 
 stage_asan() {
@@ -182,7 +185,7 @@ stage_vtk91() {
   # Swap back before testing: the tests only need the VTK 9.1 runtime libraries.
   restore_paraview
   [ "$ok" = 1 ] || return 1
-  run_ctest build-vtk91 vtk91 xvfb-run -a
+  run_ctest build-vtk91 vtk91 "${XVFB[@]}"
 }
 
 # ---- driver -----------------------------------------------------------------------------
