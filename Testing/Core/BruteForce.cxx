@@ -1,6 +1,7 @@
 #include "BruteForce.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <deque>
 #include <random>
 
@@ -24,6 +25,48 @@ bool voxel(const vbr::BitVolume& v, std::int32_t x, std::int32_t y, std::int32_t
 {
   return x >= 0 && y >= 0 && z >= 0 && x < v.size(0) && y < v.size(1) && z < v.size(2) &&
     v.get(x, y, z);
+}
+
+std::vector<int> floodFillLabels(const vbr::BitVolume& v, bool vertexConnected, int& count)
+{
+  const int nx = v.size(0), ny = v.size(1), nz = v.size(2);
+  std::vector<int> label(static_cast<std::size_t>(nx) * ny * nz, 0);
+  std::vector<Int3> offsets;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+      {
+        const int n = std::abs(dx) + std::abs(dy) + std::abs(dz);
+        if (n > 0 && (vertexConnected || n == 1))
+          offsets.push_back({ dx, dy, dz });
+      }
+  count = 0;
+  std::vector<Int3> stack;
+  auto index = [&](int x, int y, int z) { return (std::size_t(z) * ny + y) * nx + x; };
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x)
+      {
+        if (!v.get(x, y, z) || label[index(x, y, z)] != 0)
+          continue;
+        label[index(x, y, z)] = ++count;
+        stack.push_back({ x, y, z });
+        while (!stack.empty())
+        {
+          const Int3 p = stack.back();
+          stack.pop_back();
+          for (const Int3& o : offsets)
+          {
+            const int qx = p[0] + o[0], qy = p[1] + o[1], qz = p[2] + o[2];
+            if (voxel(v, qx, qy, qz) && label[index(qx, qy, qz)] == 0)
+            {
+              label[index(qx, qy, qz)] = count;
+              stack.push_back({ qx, qy, qz });
+            }
+          }
+        }
+      }
+  return label;
 }
 
 std::set<Int3> extremeVertices(const vbr::BitVolume& v)

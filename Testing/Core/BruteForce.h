@@ -26,6 +26,11 @@ vbr::BitVolume randomVolume(const Int3& dims, double density, unsigned seed);
 /// Voxel value with everything outside the grid empty.
 bool voxel(const vbr::BitVolume& v, std::int32_t x, std::int32_t y, std::int32_t z);
 
+/// Connected components by flood fill: label per voxel (x fastest; 0 = not set), numbered
+/// 1..n in scan order. Neighbours share a face (6; 4 in 2D) or, when `vertexConnected`,
+/// also an edge or a vertex (26; 8 in 2D). A volume with nz == 1 is a 2D image.
+std::vector<int> floodFillLabels(const vbr::BitVolume& v, bool vertexConnected, int& count);
+
 /// Grid vertices incident to an odd number of set voxels (x, y, z), counting the 8 voxels.
 std::set<Int3> extremeVertices(const vbr::BitVolume& v);
 

@@ -1,0 +1,603 @@
+#include "CUDB.h"
+
+#include <algorithm>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+namespace vbr
+{
+
+namespace
+{
+
+/// A vertex of a 2D section: (B, C) of the 3D sorting.
+struct Point2
+{
+  Coord b, c;
+  bool operator<(const Point2& o) const { return b < o.b || (b == o.b && c < o.c); }
+  bool operator==(const Point2& o) const { return b == o.b && c == o.c; }
+};
+
+/// A rectangle of a section's 2D CUDB: [b0, b1) x [c0, c1).
+struct Rect
+{
+  Coord b0, b1, c0, c1;
+  bool sameAs(const Rect& o) const { return b0 == o.b0 && b1 == o.b1 && c0 == o.c0 && c1 == o.c1; }
+};
+
+/// An interval [c0, c1) of a 1D section, and the rectangle it belongs to.
+struct Interval
+{
+  Coord c0, c1;
+  std::uint32_t rect;
+};
+
+/// The B-range [b0, b1) between two lines of vertices, over which the 1D section is
+/// constant: intervals [first, end) of the section's interval list.
+struct Segment
+{
+  Coord b0, b1;
+  std::uint32_t first, end;
+};
+
+struct RectContact
+{
+  std::uint32_t backward, forward;
+  bool face;
+};
+
+/// Closed intervals [a0, a1] and [b0, b1] meet (possibly in a single point).
+bool meet(Coord a0, Coord a1, Coord b0, Coord b1)
+{
+  return a0 <= b1 && b0 <= a1;
+}
+
+/// Open intervals (a0, a1) and (b0, b1) overlap.
+bool overlap(Coord a0, Coord a1, Coord b0, Coord b1)
+{
+  return a0 < b1 && b0 < a1;
+}
+
+constexpr Coord Open = std::numeric_limits<Coord>::max(); ///< end not reached yet
+
+/// The 2D CUDB of one section (the base case of Algorithm 1 with Algorithm 2 at Dim2):
+/// line by line, the 1D section is the XOR of the previous one with the line of vertices;
+/// an interval equal to one of the previous line extends its rectangle, any other interval
+/// starts a new one. Rectangles of consecutive lines that meet are contacts along B.
+class SectionDecomposition
+{
+public:
+  std::vector<Rect> rects;       ///< by (b0, c0): creation order
+  std::vector<Segment> segments; ///< the non-empty ones
+  std::vector<Interval> intervals;
+  std::vector<RectContact> contacts;
+
+  void build(const std::vector<Point2>& section)
+  {
+    this->rects.clear();
+    this->segments.clear();
+    this->intervals.clear();
+    this->contacts.clear();
+    this->Breaks.clear();
+    std::size_t i = 0;
+    const std::size_t n = section.size();
+    while (i < n)
+    {
+      const Coord b = section[i].b;
+      this->Line.clear();
+      for (; i < n && section[i].b == b; ++i)
+        this->Line.push_back(section[i].c);
+      this->Next.clear();
+      std::set_symmetric_difference(this->Breaks.begin(),
+        this->Breaks.end(),
+        this->Line.begin(),
+        this->Line.end(),
+        std::back_inserter(this->Next));
+      this->Breaks.swap(this->Next);
+      this->nextLine(b);
+    }
+    if (!this->Breaks.empty())
+      throw std::invalid_argument("section is not closed: not a valid EVM");
+  }
+
+private:
+  /// Line b: the segment before it ends, the one after it has the 1D section `Breaks`.
+  void nextLine(Coord b)
+  {
+    if (this->Breaks.size() % 2 != 0)
+      throw std::invalid_argument("odd 1D section: not a valid EVM");
+    std::uint32_t prevFirst = 0, prevEnd = 0;
+    if (!this->segments.empty() && this->segments.back().b1 == Open)
+    {
+      Segment& previous = this->segments.back();
+      previous.b1 = b;
+      prevFirst = previous.first;
+      prevEnd = previous.end;
+    }
+    // Every rectangle of the previous line ends here unless an equal interval extends it.
+    for (std::uint32_t p = prevFirst; p < prevEnd; ++p)
+      this->rects[this->intervals[p].rect].b1 = b;
+    if (this->Breaks.empty())
+      return;
+
+    const std::uint32_t first = static_cast<std::uint32_t>(this->intervals.size());
+    std::uint32_t p = prevFirst;
+    for (std::size_t k = 0; k < this->Breaks.size(); k += 2)
+    {
+      const Coord c0 = this->Breaks[k], c1 = this->Breaks[k + 1];
+      // Previous intervals entirely before this one meet no later interval either.
+      while (p < prevEnd && this->intervals[p].c1 < c0)
+        ++p;
+      std::uint32_t q = p;
+      if (q < prevEnd && this->intervals[q].c0 == c0 && this->intervals[q].c1 == c1)
+      {
+        // 2D compaction: the same interval continues its rectangle. No other previous
+        // interval can meet it (intervals of a line are separated by a gap).
+        const std::uint32_t rect = this->intervals[q].rect;
+        this->rects[rect].b1 = Open;
+        this->intervals.push_back({ c0, c1, rect });
+        continue;
+      }
+      const std::uint32_t rect = static_cast<std::uint32_t>(this->rects.size());
+      this->rects.push_back({ b, Open, c0, c1 });
+      this->intervals.push_back({ c0, c1, rect });
+      for (; q < prevEnd && this->intervals[q].c0 <= c1; ++q)
+      {
+        const Interval& prev = this->intervals[q];
+        if (meet(prev.c0, prev.c1, c0, c1))
+          this->contacts.push_back({ prev.rect, rect, overlap(prev.c0, prev.c1, c0, c1) });
+      }
+    }
+    this->segments.push_back(
+      { b, Open, first, static_cast<std::uint32_t>(this->intervals.size()) });
+  }
+
+  std::vector<Coord> Breaks, Next, Line;
+};
+
+/// The section after plane of vertices [begin, end): previous section XOR its projection.
+void advanceSection(const Vertex* begin,
+  const Vertex* end,
+  std::vector<Point2>& section,
+  std::vector<Point2>& scratch)
+{
+  scratch.clear();
+  std::size_t i = 0;
+  const Vertex* v = begin;
+  while (i < section.size() || v != end)
+  {
+    if (v == end || (i < section.size() && section[i] < Point2{ (*v)[1], (*v)[2] }))
+      scratch.push_back(section[i++]);
+    else if (i == section.size() || Point2{ (*v)[1], (*v)[2] } < section[i])
+      scratch.push_back({ (*v)[1], (*v)[2] }), ++v;
+    else
+      ++i, ++v; // a vertex in both cancels
+  }
+  section.swap(scratch);
+}
+
+/// Box of a rectangle spanning [a0, a1) along A, in world axes.
+Box boxOf(const Rect& r, Coord a0, Coord a1, const AxisOrder& order)
+{
+  Box box;
+  box.lo[order[0]] = a0;
+  box.hi[order[0]] = a1;
+  box.lo[order[1]] = r.b0;
+  box.hi[order[1]] = r.b1;
+  box.lo[order[2]] = r.c0;
+  box.hi[order[2]] = r.c1;
+  return box;
+}
+
+/// The 3D part of Algorithm 1: slice after slice, the rectangles of the section are matched
+/// with those of the previous section; an equal rectangle extends its box along A (3D
+/// compaction), any other starts a box. Contacts along A join the boxes that end at the
+/// plane between two slices to the boxes that start there.
+class SliceSweep
+{
+public:
+  SliceSweep(const AxisOrder& order, CUDB& out)
+    : Order(order)
+    , Out(out)
+  {
+  }
+
+  /// The section of the slice starting at plane a (empty past the last plane).
+  void nextSlice(Coord a, const std::vector<Point2>& section)
+  {
+    this->Current.build(section);
+    this->Out.oudbBoxCount += this->Current.intervals.size();
+    const std::size_t n = this->Current.rects.size();
+    this->CurrentBox.assign(n, 0);
+    this->CurrentIsNew.assign(n, 1);
+    this->PreviousContinues.assign(this->Previous.rects.size(), 0);
+    this->matchRectangles(a);
+    this->addContactsAlongB();
+    this->addContactsAlongA();
+    std::swap(this->Previous, this->Current);
+    std::swap(this->PreviousBox, this->CurrentBox);
+  }
+
+private:
+  void matchRectangles(Coord a)
+  {
+    const auto& prev = this->Previous.rects;
+    const auto& cur = this->Current.rects;
+    std::size_t p = 0;
+    for (std::size_t r = 0; r < cur.size(); ++r)
+    {
+      // Both lists are sorted by (b0, c0) and hold disjoint rectangles.
+      while (p < prev.size() &&
+        (prev[p].b0 < cur[r].b0 || (prev[p].b0 == cur[r].b0 && prev[p].c0 < cur[r].c0)))
+        ++p;
+      if (p < prev.size() && prev[p].sameAs(cur[r]))
+      {
+        this->CurrentBox[r] = this->PreviousBox[p];
+        this->CurrentIsNew[r] = 0;
+        this->PreviousContinues[p] = 1;
+        continue;
+      }
+      this->CurrentBox[r] = static_cast<std::uint32_t>(this->Out.boxes.size());
+      this->Out.boxes.push_back(boxOf(cur[r], a, Open, this->Order));
+    }
+    for (std::size_t q = 0; q < prev.size(); ++q)
+      if (!this->PreviousContinues[q])
+        this->Out.boxes[this->PreviousBox[q]].hi[this->Order[0]] = a;
+  }
+
+  /// Contacts across lines within the slice; those between two continued boxes were
+  /// recorded in an earlier slice.
+  void addContactsAlongB()
+  {
+    for (const RectContact& c : this->Current.contacts)
+      if (this->CurrentIsNew[c.backward] || this->CurrentIsNew[c.forward])
+        this->Out.contacts.push_back({ this->CurrentBox[c.backward],
+          this->CurrentBox[c.forward],
+          static_cast<std::uint8_t>(this->Order[1]),
+          c.face });
+  }
+
+  /// Contacts across the plane between the previous slice and this one, between a box that
+  /// ends there and a box that starts there. Segments of the two sections that meet along B
+  /// are compared interval by interval; a pair found in several segments is kept once.
+  void addContactsAlongA()
+  {
+    const auto& ps = this->Previous.segments;
+    const auto& cs = this->Current.segments;
+    this->Found.clear();
+    std::size_t first = 0;
+    for (const Segment& s : ps)
+    {
+      // Segments of either list are sorted and disjoint but may touch: every segment of
+      // the other list from the first that does not end before s to the last that starts
+      // no later than s ends.
+      while (first < cs.size() && cs[first].b1 < s.b0)
+        ++first;
+      for (std::size_t j = first; j < cs.size() && cs[j].b0 <= s.b1; ++j)
+        this->compareSegments(s, cs[j], overlap(s.b0, s.b1, cs[j].b0, cs[j].b1));
+    }
+    if (this->Found.empty())
+      return;
+    std::sort(this->Found.begin(),
+      this->Found.end(),
+      [](const RectContact& x, const RectContact& y)
+      { return x.backward < y.backward || (x.backward == y.backward && x.forward < y.forward); });
+    std::size_t k = 0;
+    while (k < this->Found.size())
+    {
+      RectContact c = this->Found[k];
+      for (++k; k < this->Found.size() && this->Found[k].backward == c.backward &&
+           this->Found[k].forward == c.forward;
+           ++k)
+        c.face = c.face || this->Found[k].face;
+      this->Out.contacts.push_back({ this->PreviousBox[c.backward],
+        this->CurrentBox[c.forward],
+        static_cast<std::uint8_t>(this->Order[0]),
+        c.face });
+    }
+  }
+
+  void compareSegments(const Segment& s, const Segment& t, bool openAlongB)
+  {
+    const auto& pi = this->Previous.intervals;
+    const auto& ci = this->Current.intervals;
+    std::uint32_t i = s.first, j = t.first;
+    while (i < s.end && j < t.end)
+    {
+      const Interval& x = pi[i];
+      const Interval& y = ci[j];
+      if (meet(x.c0, x.c1, y.c0, y.c1) && !this->PreviousContinues[x.rect] &&
+        this->CurrentIsNew[y.rect])
+        this->Found.push_back({ x.rect, y.rect, openAlongB && overlap(x.c0, x.c1, y.c0, y.c1) });
+      if (x.c1 < y.c1)
+        ++i;
+      else
+        ++j;
+    }
+  }
+
+  const AxisOrder Order;
+  CUDB& Out;
+  SectionDecomposition Previous, Current;
+  std::vector<std::uint32_t> PreviousBox, CurrentBox; ///< box of each rectangle
+  std::vector<char> CurrentIsNew, PreviousContinues;
+  std::vector<RectContact> Found;
+};
+
+} // namespace
+
+std::int64_t CUDB::volume() const
+{
+  std::int64_t v = 0;
+  for (const Box& b : this->boxes)
+    v += b.volume();
+  return v;
+}
+
+bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out)
+{
+  out = CUDB();
+  out.dimension = evm.dimension();
+  out.order = evm.order();
+  const std::vector<Vertex>& v = evm.vertices();
+  const std::vector<std::size_t> starts = evm.planeStarts();
+  std::vector<Point2> section, scratch;
+  if (evm.dimension() == 2)
+  {
+    // A 2D EVM is a single section: its rectangles are the boxes, one voxel thick.
+    advanceSection(v.data(), v.data() + v.size(), section, scratch);
+    SectionDecomposition d;
+    d.build(section);
+    out.oudbBoxCount = d.intervals.size();
+    for (const Rect& r : d.rects)
+      out.boxes.push_back(boxOf(r, 0, 1, out.order));
+    for (const RectContact& c : d.contacts)
+      out.contacts.push_back(
+        { c.backward, c.forward, static_cast<std::uint8_t>(out.order[1]), c.face });
+    return true;
+  }
+  SliceSweep sweep(out.order, out);
+  const std::size_t planes = starts.size() - 1;
+  for (std::size_t k = 0; k < planes; ++k)
+  {
+    if ((k & 15) == 0 && exec.stopRequested())
+      return false;
+    advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+    sweep.nextSlice(v[starts[k]][0], section);
+  }
+  if (!section.empty())
+    throw std::invalid_argument("the last section is not empty: not a valid EVM");
+  return true;
+}
+
+CUDB buildCUDB(const EVM& evm)
+{
+  CUDB out;
+  buildCUDB(evm, Execution(), out);
+  return out;
+}
+
+std::vector<Box> buildOUDB(const EVM& evm)
+{
+  std::vector<Box> boxes;
+  const AxisOrder& order = evm.order();
+  const std::vector<Vertex>& v = evm.vertices();
+  const std::vector<std::size_t> starts = evm.planeStarts();
+  std::vector<Point2> section, scratch;
+  SectionDecomposition d;
+  // Every interval of every segment is a box: no compaction along B nor along A.
+  auto addBoxes = [&](Coord a0, Coord a1)
+  {
+    d.build(section);
+    for (const Segment& s : d.segments)
+      for (std::uint32_t i = s.first; i < s.end; ++i)
+      {
+        const Interval& in = d.intervals[i];
+        boxes.push_back(boxOf({ s.b0, s.b1, in.c0, in.c1 }, a0, a1, order));
+      }
+  };
+  if (evm.dimension() == 2)
+  {
+    advanceSection(v.data(), v.data() + v.size(), section, scratch);
+    addBoxes(0, 1);
+    return boxes;
+  }
+  for (std::size_t k = 0; k + 1 < starts.size(); ++k)
+  {
+    advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+    if (!section.empty())
+      addBoxes(v[starts[k]][0], v[starts[k + 1]][0]);
+  }
+  return boxes;
+}
+
+EVM toEVM(const CUDB& cudb)
+{
+  // Corners in sorting coordinates; a vertex shared by an even number of boxes cancels.
+  const AxisOrder& order = cudb.order;
+  std::vector<Vertex> corners;
+  const int n = cudb.dimension == 2 ? 4 : 8;
+  corners.reserve(n * cudb.boxes.size());
+  for (const Box& box : cudb.boxes)
+    for (int k = 0; k < n; ++k)
+    {
+      Vertex c;
+      for (int d = 0; d < 3; ++d)
+      {
+        const int axis = order[d];
+        const bool high = cudb.dimension == 2 ? (d > 0 && (k >> (d - 1) & 1)) : (k >> d & 1);
+        c[d] = cudb.dimension == 2 && d == 0 ? 0 : (high ? box.hi[axis] : box.lo[axis]);
+      }
+      corners.push_back(c);
+    }
+  std::sort(corners.begin(), corners.end());
+  std::vector<Vertex> odd;
+  for (std::size_t i = 0; i < corners.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < corners.size() && corners[j] == corners[i])
+      ++j;
+    if ((j - i) % 2 == 1)
+      odd.push_back(corners[i]);
+    i = j;
+  }
+  return EVM(cudb.dimension, order, std::move(odd));
+}
+
+CUDB::NeighbourLists CUDB::neighbours(int axisRole, bool forward, Connectivity connectivity) const
+{
+  const int axis = this->order[this->dimension == 2 ? 1 : axisRole];
+  NeighbourLists lists;
+  lists.start.assign(this->boxes.size() + 1, 0);
+  auto wanted = [&](const BoxContact& c)
+  { return c.axis == axis && (connectivity == Connectivity::Vertex || c.face); };
+  auto owner = [&](const BoxContact& c) { return forward ? c.backward : c.forward; };
+  auto other = [&](const BoxContact& c) { return forward ? c.forward : c.backward; };
+  for (const BoxContact& c : this->contacts)
+    if (wanted(c))
+      ++lists.start[owner(c) + 1];
+  for (std::size_t i = 0; i < this->boxes.size(); ++i)
+    lists.start[i + 1] += lists.start[i];
+  lists.boxes.resize(lists.start.back());
+  std::vector<std::uint32_t> fill(lists.start.begin(), lists.start.end() - 1);
+  for (const BoxContact& c : this->contacts)
+    if (wanted(c))
+      lists.boxes[fill[owner(c)]++] = other(c);
+  return lists;
+}
+
+namespace
+{
+
+/// Provisional labels and their equivalences (Algorithm 4): each label points to a smaller
+/// equivalent one, or to itself. Only labels that met another change.
+class Equivalences
+{
+public:
+  std::uint32_t newLabel()
+  {
+    this->Parent.push_back(static_cast<std::uint32_t>(this->Parent.size()));
+    return this->Parent.back();
+  }
+
+  std::uint32_t resolve(std::uint32_t label)
+  {
+    std::uint32_t root = label;
+    while (this->Parent[root] != root)
+      root = this->Parent[root];
+    while (this->Parent[label] != root) // path compression
+    {
+      const std::uint32_t next = this->Parent[label];
+      this->Parent[label] = root;
+      label = next;
+    }
+    return root;
+  }
+
+  /// Records that a and b are the same component; returns the smaller representative.
+  std::uint32_t make(std::uint32_t a, std::uint32_t b)
+  {
+    a = this->resolve(a);
+    b = this->resolve(b);
+    if (a == b)
+      return a;
+    if (b < a)
+      std::swap(a, b);
+    this->Parent[b] = a;
+    return a;
+  }
+
+  std::size_t size() const { return this->Parent.size(); }
+
+private:
+  std::vector<std::uint32_t> Parent;
+};
+
+} // namespace
+
+Components labelComponents(const CUDB& cudb, Connectivity connectivity)
+{
+  const std::size_t n = cudb.boxes.size();
+  // Each contact is listed at its later box, so that boxes are labelled in creation order
+  // after all the neighbours they are compared with.
+  std::vector<std::uint32_t> start(n + 1, 0);
+  auto usable = [&](const BoxContact& c) { return connectivity == Connectivity::Vertex || c.face; };
+  for (const BoxContact& c : cudb.contacts)
+    if (usable(c))
+      ++start[std::max(c.backward, c.forward) + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    start[i + 1] += start[i];
+  std::vector<std::uint32_t> earlier(start.back());
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (const BoxContact& c : cudb.contacts)
+      if (usable(c))
+        earlier[fill[std::max(c.backward, c.forward)]++] = std::min(c.backward, c.forward);
+  }
+
+  // Algorithm 3: first pass, provisional labels and equivalences.
+  Components result;
+  result.boxLabel.assign(n, 0);
+  Equivalences eq;
+  for (std::size_t b = 0; b < n; ++b)
+  {
+    if (start[b] == start[b + 1])
+    {
+      result.boxLabel[b] = eq.newLabel();
+      continue;
+    }
+    std::uint32_t label = eq.resolve(result.boxLabel[earlier[start[b]]]);
+    for (std::uint32_t k = start[b] + 1; k < start[b + 1]; ++k)
+      label = eq.make(label, result.boxLabel[earlier[k]]);
+    result.boxLabel[b] = label;
+  }
+  // Algorithm 5: resolve the equivalences, consecutive labels by first appearance.
+  std::vector<std::uint32_t> consecutive(eq.size(), 0);
+  for (std::size_t b = 0; b < n; ++b)
+  {
+    const std::uint32_t root = eq.resolve(result.boxLabel[b]);
+    if (consecutive[root] == 0)
+      consecutive[root] = ++result.count;
+    result.boxLabel[b] = consecutive[root];
+  }
+  return result;
+}
+
+void paintBoxes(const std::vector<Box>& boxes,
+  const std::vector<std::int32_t>& value,
+  const std::array<Coord, 3>& offset,
+  const std::array<Coord, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec)
+{
+  const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
+  // Workers own disjoint ranges of slices (of rows when the grid is a single slice) and
+  // paint the part of every box inside them.
+  const int split = dims[2] > 1 ? 2 : 1;
+  exec.forRange(dims[split],
+    [&](std::int64_t from, std::int64_t to)
+    {
+      for (std::size_t b = 0; b < boxes.size(); ++b)
+      {
+        std::array<std::int64_t, 3> lo, hi;
+        for (int d = 0; d < 3; ++d)
+        {
+          lo[d] = std::int64_t(boxes[b].lo[d]) + offset[d];
+          hi[d] = std::int64_t(boxes[b].hi[d]) + offset[d];
+        }
+        lo[split] = std::max(lo[split], from);
+        hi[split] = std::min(hi[split], to);
+        const std::int32_t v = value[b];
+        for (std::int64_t z = lo[2]; z < hi[2]; ++z)
+          for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+          {
+            std::int32_t* row = labels + z * nxy + y * nx;
+            std::fill(row + lo[0], row + hi[0], v);
+          }
+      }
+    });
+}
+
+} // namespace vbr

@@ -1,0 +1,120 @@
+// The Compact Union of Disjoint Boxes (CUDB) of an orthogonal pseudo-polyhedron, and its
+// connected components (I. Cruz-Matias and D. Ayala, "CUDB: An Improved Decomposition Model
+// for Orthogonal Pseudo-Polyhedra").
+//
+// The Ordered Union of Disjoint Boxes (OUDB) cuts the object at every plane of vertices
+// perpendicular to A, then cuts each slice at every line of vertices of its section: boxes
+// are split wherever any part of the object has a vertex. The CUDB merges, on the fly,
+// consecutive boxes that the OUDB split needlessly: rectangles of consecutive lines with
+// the same C interval (2D compaction), then boxes of consecutive slices with the same (B, C)
+// rectangle (3D compaction). Each box keeps its contacts with the boxes before and after it
+// along A and B, which is all that connected-component labelling needs.
+//
+// Boxes are in the voxel coordinates (x, y, z) of the EVM they come from, half-open
+// [lo, hi); a 2D CUDB (from a 2D EVM) has boxes one voxel thick along the EVM's normal axis.
+#ifndef vbr_CUDB_h
+#define vbr_CUDB_h
+
+#include "EVM.h"
+#include "Execution.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vbr
+{
+
+/// Voxels [lo, hi) along x, y and z.
+struct Box
+{
+  std::array<Coord, 3> lo{ 0, 0, 0 };
+  std::array<Coord, 3> hi{ 0, 0, 0 };
+
+  std::int64_t volume() const
+  {
+    return std::int64_t(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+  }
+};
+
+/// Two boxes that touch across a plane perpendicular to `axis` (a world axis): `backward`
+/// ends where `forward` starts. `face` is set when they share a piece of face of positive
+/// area; otherwise they share only an edge or a vertex (a non-manifold contact).
+struct BoxContact
+{
+  std::uint32_t backward = 0;
+  std::uint32_t forward = 0;
+  std::uint8_t axis = 0;
+  bool face = false;
+};
+
+/// Which contacts connect: shared faces (4 in 2D, 6 in 3D) or also edges and vertices
+/// (8 in 2D, 26 in 3D).
+enum class Connectivity
+{
+  Face,
+  Vertex
+};
+
+class CUDB
+{
+public:
+  int dimension = 3;
+  AxisOrder order{ 2, 1, 0 };
+  /// In creation (sweep) order: by the A coordinate where they start, then B, then C.
+  std::vector<Box> boxes;
+  /// Every pair of boxes that touch, each pair once, as backward/forward neighbours along
+  /// the A axis (consecutive slices) or the B axis (consecutive lines within a slice).
+  std::vector<BoxContact> contacts;
+  /// Number of boxes the OUDB of the same EVM and sorting has.
+  std::size_t oudbBoxCount = 0;
+
+  std::int64_t volume() const;
+
+  /// The paper's BackwardNeighbors / ForwardNeighbors arrays of one sense along one axis,
+  /// for every box: neighbours of box i are entries [start[i], start[i + 1]) of `boxes`.
+  struct NeighbourLists
+  {
+    std::vector<std::uint32_t> start;
+    std::vector<std::uint32_t> boxes;
+  };
+  /// axisRole 0 = A, 1 = B (in 2D only B: the rectangles' neighbours across lines).
+  NeighbourLists neighbours(int axisRole, bool forward, Connectivity connectivity) const;
+};
+
+/// EVM -> CUDB by the paper's Algorithms 1 and 2: sections of the A-slices by XOR of the
+/// planes of vertices, 1D sections of the B-lines by XOR of the lines of vertices, boxes
+/// compacted on the fly. Works with any sorting of the EVM. Returns false when aborted.
+bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out);
+CUDB buildCUDB(const EVM& evm);
+
+/// EVM -> OUDB: the boxes without compaction, in their order.
+std::vector<Box> buildOUDB(const EVM& evm);
+
+/// CUDB -> EVM: the XOR of the boxes' corners (the boxes are disjoint), in the CUDB's order.
+EVM toEVM(const CUDB& cudb);
+
+/// Connected components of the boxes by the paper's Algorithms 3 to 5: boxes in creation
+/// order take the smallest label of their already labelled neighbours (a new label when
+/// there is none), equivalences are recorded only where two labels meet, and a final pass
+/// renumbers the labels 1..count in order of first appearance.
+struct Components
+{
+  std::vector<std::uint32_t> boxLabel; ///< 1..count per box
+  std::uint32_t count = 0;
+};
+Components labelComponents(const CUDB& cudb, Connectivity connectivity);
+
+/// Writes value[b] into every voxel of box b of `labels`, a grid of `dims` voxels stored x
+/// fastest, with the boxes shifted by `offset`. Voxels outside the boxes are left as they
+/// are. Parallel over slices along z.
+void paintBoxes(const std::vector<Box>& boxes,
+  const std::vector<std::int32_t>& value,
+  const std::array<Coord, 3>& offset,
+  const std::array<Coord, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec = Execution());
+
+} // namespace vbr
+
+#endif

@@ -1,0 +1,361 @@
+// EVM -> CUDB / OUDB conversion, CUDB -> EVM and connected-component labelling, against
+// voxelwise painting, all-pairs box contacts and flood fills.
+#include "BruteForce.h"
+#include "CUDB.h"
+#include "EVM.h"
+#include "Phantom.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+
+const char* const Orders[] = { "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX" };
+
+std::size_t indexOf(const vbr::BitVolume& v, int x, int y, int z)
+{
+  return (std::size_t(z) * v.size(1) + y) * v.size(0) + x;
+}
+
+/// Every set voxel lies in exactly one box and no other voxel in any.
+void expectExactCover(const vbr::BitVolume& v, const std::vector<vbr::Box>& boxes)
+{
+  std::vector<int> hits(v.voxelCount(), 0);
+  for (const vbr::Box& b : boxes)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      ASSERT_LT(b.lo[d], b.hi[d]);
+      ASSERT_GE(b.lo[d], 0);
+      ASSERT_LE(b.hi[d], v.size(d));
+    }
+    for (int z = b.lo[2]; z < b.hi[2]; ++z)
+      for (int y = b.lo[1]; y < b.hi[1]; ++y)
+        for (int x = b.lo[0]; x < b.hi[0]; ++x)
+          ++hits[indexOf(v, x, y, z)];
+  }
+  std::size_t wrong = 0;
+  for (int z = 0; z < v.size(2); ++z)
+    for (int y = 0; y < v.size(1); ++y)
+      for (int x = 0; x < v.size(0); ++x)
+        wrong += hits[indexOf(v, x, y, z)] != (v.get(x, y, z) ? 1 : 0);
+  EXPECT_EQ(wrong, 0u) << "voxels covered zero or several times, or not set";
+}
+
+/// All pairs of boxes that touch, by comparing every pair: (smaller, larger) -> shares a face.
+std::map<std::pair<std::uint32_t, std::uint32_t>, bool> touchingPairs(
+  const std::vector<vbr::Box>& boxes)
+{
+  std::map<std::pair<std::uint32_t, std::uint32_t>, bool> out;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    for (std::uint32_t j = i + 1; j < boxes.size(); ++j)
+    {
+      int open = 0;
+      bool meet = true;
+      for (int d = 0; d < 3 && meet; ++d)
+      {
+        meet = boxes[i].lo[d] <= boxes[j].hi[d] && boxes[j].lo[d] <= boxes[i].hi[d];
+        open += boxes[i].lo[d] < boxes[j].hi[d] && boxes[j].lo[d] < boxes[i].hi[d];
+      }
+      if (meet)
+        out[{ i, j }] = open == 2; // open == 3 would be an overlap, caught by the cover
+    }
+  return out;
+}
+
+void expectContactsComplete(const vbr::CUDB& cudb)
+{
+  std::map<std::pair<std::uint32_t, std::uint32_t>, bool> recorded;
+  for (const vbr::BoxContact& c : cudb.contacts)
+  {
+    const vbr::Box& back = cudb.boxes[c.backward];
+    const vbr::Box& front = cudb.boxes[c.forward];
+    EXPECT_EQ(back.hi[c.axis], front.lo[c.axis])
+      << "backward box does not end where forward starts";
+    EXPECT_TRUE(c.axis == cudb.order[1] || (cudb.dimension == 3 && c.axis == cudb.order[0]));
+    const auto key = std::minmax(c.backward, c.forward);
+    EXPECT_TRUE(recorded.emplace(key, c.face).second) << "contact listed twice";
+  }
+  if (cudb.boxes.size() <= 1500)
+  {
+    EXPECT_EQ(recorded, touchingPairs(cudb.boxes));
+  }
+}
+
+/// Voxel labels from the box labels.
+std::vector<int> paintedLabels(const vbr::BitVolume& v,
+  const vbr::CUDB& cudb,
+  const vbr::Components& components)
+{
+  std::vector<std::int32_t> value(components.boxLabel.begin(), components.boxLabel.end());
+  std::vector<std::int32_t> labels(v.voxelCount(), 0);
+  vbr::paintBoxes(cudb.boxes, value, { 0, 0, 0 }, v.dims(), labels.data());
+  return std::vector<int>(labels.begin(), labels.end());
+}
+
+/// Same partition: a bijection between the labels of both, and 0 at the same voxels.
+void expectSamePartition(const std::vector<int>& got, const std::vector<int>& expected)
+{
+  ASSERT_EQ(got.size(), expected.size());
+  std::map<int, int> forward, backward;
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+  {
+    if ((got[i] == 0) != (expected[i] == 0))
+    {
+      ++mismatches;
+      continue;
+    }
+    if (got[i] == 0)
+      continue;
+    const auto f = forward.emplace(got[i], expected[i]).first;
+    const auto b = backward.emplace(expected[i], got[i]).first;
+    mismatches += f->second != expected[i] || b->second != got[i];
+  }
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_EQ(forward.size(), backward.size());
+}
+
+/// Everything the conversion and the labelling promise, for one voxel set and sorting.
+void checkAll(const vbr::BitVolume& v, const vbr::EVM& evm, bool checkPairs = true)
+{
+  const vbr::CUDB cudb = vbr::buildCUDB(evm);
+  SCOPED_TRACE("sorting " + vbr::axisOrderName(evm.order()));
+  expectExactCover(v, cudb.boxes);
+  EXPECT_EQ(cudb.volume(), static_cast<std::int64_t>(v.count()));
+  EXPECT_EQ(vbr::toEVM(cudb), evm) << "CUDB -> EVM round trip";
+  const std::vector<vbr::Box> oudb = vbr::buildOUDB(evm);
+  EXPECT_EQ(oudb.size(), cudb.oudbBoxCount);
+  EXPECT_LE(cudb.boxes.size(), oudb.size());
+  expectExactCover(v, oudb);
+  if (checkPairs)
+    expectContactsComplete(cudb);
+  for (bool vertex : { false, true })
+  {
+    int count = 0;
+    const std::vector<int> expected = bf::floodFillLabels(v, vertex, count);
+    const vbr::Components c =
+      vbr::labelComponents(cudb, vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face);
+    EXPECT_EQ(c.count, static_cast<std::uint32_t>(count)) << (vertex ? "vertex" : "face");
+    expectSamePartition(paintedLabels(v, cudb, c), expected);
+  }
+}
+
+vbr::BitVolume fromPoints(const bf::Int3& dims, const std::vector<bf::Int3>& points)
+{
+  vbr::BitVolume v(dims[0], dims[1], dims[2]);
+  for (const auto& p : points)
+    v.set(p[0], p[1], p[2]);
+  return v;
+}
+
+std::uint32_t componentCount(const vbr::BitVolume& v, vbr::Connectivity c)
+{
+  const vbr::EVM evm = v.size(2) == 1 ? vbr::extractEVM2D(v) : vbr::extractEVM(v);
+  return vbr::labelComponents(vbr::buildCUDB(evm), c).count;
+}
+
+} // namespace
+
+TEST(CUDB, RandomVolumesAllSortings)
+{
+  const bf::Int3 sizes[] = {
+    { 1, 1, 1 }, { 5, 4, 3 }, { 12, 9, 7 }, { 16, 16, 16 }, { 9, 17, 23 }
+  };
+  unsigned seed = 100;
+  for (const auto& d : sizes)
+    for (double density : { 0.05, 0.3, 0.5, 0.7, 0.95 })
+    {
+      const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+      const vbr::EVM zyx = vbr::extractEVM(v);
+      for (const char* name : Orders)
+        checkAll(v, zyx.sortedAs(vbr::axisOrderFromName(name)));
+    }
+}
+
+TEST(CUDB, LargerRandomVolumes)
+{
+  unsigned seed = 200;
+  for (double density : { 0.1, 0.3, 0.6, 0.9 })
+  {
+    const vbr::BitVolume v = bf::randomVolume({ 64, 48, 40 }, density, seed++);
+    const vbr::EVM zyx = vbr::extractEVM(v);
+    for (const char* name : { "ZYX", "XZY", "YXZ" })
+      checkAll(v, zyx.sortedAs(vbr::axisOrderFromName(name)), false);
+  }
+}
+
+TEST(CUDB, TwoDimensionalImages)
+{
+  const bf::Int3 sizes[] = {
+    { 1, 1, 1 }, { 7, 5, 1 }, { 64, 64, 1 }, { 100, 37, 1 }, { 3, 90, 1 }
+  };
+  unsigned seed = 300;
+  for (const auto& d : sizes)
+    for (double density : { 0.1, 0.4, 0.6, 0.9 })
+    {
+      const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+      const vbr::EVM yx = vbr::extractEVM2D(v);
+      checkAll(v, yx);
+      checkAll(v, yx.sortedAs({ 2, 0, 1 })); // lines along x instead of y
+    }
+}
+
+TEST(CUDB, DegenerateInputs)
+{
+  const vbr::BitVolume empty(6, 5, 4);
+  const vbr::CUDB none = vbr::buildCUDB(vbr::extractEVM(empty));
+  EXPECT_TRUE(none.boxes.empty());
+  EXPECT_EQ(vbr::labelComponents(none, vbr::Connectivity::Face).count, 0u);
+
+  const vbr::BitVolume full = bf::randomVolume({ 70, 5, 3 }, 1.0, 1);
+  for (const char* name : Orders)
+  {
+    const vbr::CUDB one =
+      vbr::buildCUDB(vbr::extractEVM(full).sortedAs(vbr::axisOrderFromName(name)));
+    ASSERT_EQ(one.boxes.size(), 1u);
+    EXPECT_EQ(one.oudbBoxCount, 1u);
+    EXPECT_EQ(one.boxes[0].hi, (std::array<vbr::Coord, 3>{ 70, 5, 3 }));
+  }
+  checkAll(fromPoints({ 3, 3, 3 }, { { 1, 1, 1 } }),
+    vbr::extractEVM(fromPoints({ 3, 3, 3 }, { { 1, 1, 1 } })));
+
+  // A thin plate is one box in every sorting.
+  vbr::BitVolume plate(20, 20, 3);
+  for (int y = 2; y < 18; ++y)
+    for (int x = 1; x < 19; ++x)
+      plate.set(x, y, 1);
+  for (const char* name : Orders)
+    EXPECT_EQ(
+      vbr::buildCUDB(vbr::extractEVM(plate).sortedAs(vbr::axisOrderFromName(name))).boxes.size(),
+      1u);
+}
+
+TEST(CUDB, NonManifoldContacts)
+{
+  using vbr::Connectivity;
+  // Edge contact, corner contact, and both along every pair of axes.
+  const std::vector<std::vector<bf::Int3>> touching = { { { 0, 0, 0 }, { 1, 1, 0 } },
+    { { 0, 0, 0 }, { 0, 1, 1 } },
+    { { 0, 0, 0 }, { 1, 0, 1 } },
+    { { 1, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 0, 0 }, { 1, 1, 1 } },
+    { { 1, 1, 0 }, { 0, 0, 1 } },
+    { { 0, 1, 1 }, { 1, 0, 0 } } };
+  for (const auto& points : touching)
+  {
+    const vbr::BitVolume v = fromPoints({ 2, 2, 2 }, points);
+    EXPECT_EQ(componentCount(v, Connectivity::Face), 2u);
+    EXPECT_EQ(componentCount(v, Connectivity::Vertex), 1u);
+    const vbr::EVM zyx = vbr::extractEVM(v);
+    for (const char* name : Orders)
+      checkAll(v, zyx.sortedAs(vbr::axisOrderFromName(name)));
+  }
+  // 2D: a checkerboard is all separate pixels with 4-connectivity, one piece with 8.
+  vbr::BitVolume board(9, 7, 1);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x)
+      if ((x + y) % 2 == 0)
+        board.set(x, y, 0);
+  EXPECT_EQ(componentCount(board, Connectivity::Face), 32u);
+  EXPECT_EQ(componentCount(board, Connectivity::Vertex), 1u);
+}
+
+TEST(CUDB, CompactionMergesWhatOUDBSplits)
+{
+  // 2D: a tall rectangle x [0, 2) y [0, 4) beside a short one x [3, 5) y [1, 2). The OUDB
+  // (lines along y) splits the tall one at y = 1 and y = 2; the CUDB keeps it whole.
+  vbr::BitVolume image(5, 4, 1);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 2; ++x)
+      image.set(x, y, 0);
+  for (int x = 3; x < 5; ++x)
+    image.set(x, 1, 0);
+  const vbr::CUDB flat = vbr::buildCUDB(vbr::extractEVM2D(image));
+  EXPECT_EQ(flat.oudbBoxCount, 4u);
+  EXPECT_EQ(flat.boxes.size(), 2u);
+
+  // 3D: the tall rectangle extruded along z over [0, 3) and a unit cube at (6, 2, 1). ZYX:
+  // the cube makes three slices along z, and in the middle one its lines y = 2 and y = 3
+  // split the prism: the OUDB has 1 + 4 + 1 boxes, the CUDB the prism and the cube.
+  vbr::BitVolume volume(8, 4, 3);
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 2; ++x)
+        volume.set(x, y, z);
+  volume.set(6, 2, 1);
+  const vbr::CUDB solid = vbr::buildCUDB(vbr::extractEVM(volume)); // ZYX
+  EXPECT_EQ(solid.boxes.size(), 2u);
+  // OUDB: slices z [0,1), [1,2), [2,3); the middle one's lines y = 2, 3 split the prism.
+  EXPECT_EQ(solid.oudbBoxCount, 1u + 4u + 1u);
+
+  // The phantom: compaction never loses, and wins in every sorting.
+  const std::vector<std::uint8_t> labels = vbr::makePhantom({ 48, 48, 48 });
+  vbr::BitVolume phantom(48, 48, 48);
+  for (int z = 0; z < 48; ++z)
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 48; ++x)
+        if (labels[indexOf(phantom, x, y, z)] != 0)
+          phantom.set(x, y, z);
+  const vbr::EVM zyx = vbr::extractEVM(phantom);
+  for (const char* name : Orders)
+  {
+    const vbr::CUDB c = vbr::buildCUDB(zyx.sortedAs(vbr::axisOrderFromName(name)));
+    EXPECT_LT(c.boxes.size(), c.oudbBoxCount) << name;
+  }
+}
+
+TEST(CUDB, NeighbourListsAreTheContacts)
+{
+  const vbr::BitVolume v = bf::randomVolume({ 12, 11, 10 }, 0.5, 7);
+  const vbr::CUDB cudb = vbr::buildCUDB(vbr::extractEVM(v).sortedAs(vbr::axisOrderFromName("YZX")));
+  for (auto connectivity : { vbr::Connectivity::Face, vbr::Connectivity::Vertex })
+  {
+    // Per role (A, B): pairs (backward, forward) from the backward lists, from the
+    // forward lists, and from the contacts.
+    std::set<std::pair<std::uint32_t, std::uint32_t>> fromBack[2], fromFront[2], fromContacts[2];
+    for (int role = 0; role < 2; ++role)
+    {
+      const auto back = cudb.neighbours(role, false, connectivity);
+      const auto front = cudb.neighbours(role, true, connectivity);
+      for (std::uint32_t b = 0; b < cudb.boxes.size(); ++b)
+      {
+        for (std::uint32_t k = back.start[b]; k < back.start[b + 1]; ++k)
+          fromBack[role].insert({ back.boxes[k], b });
+        for (std::uint32_t k = front.start[b]; k < front.start[b + 1]; ++k)
+          fromFront[role].insert({ b, front.boxes[k] });
+      }
+    }
+    for (const vbr::BoxContact& c : cudb.contacts)
+      if (connectivity == vbr::Connectivity::Vertex || c.face)
+        fromContacts[c.axis == cudb.order[0] ? 0 : 1].insert({ c.backward, c.forward });
+    EXPECT_FALSE(fromContacts[0].empty());
+    EXPECT_EQ(fromBack[0], fromFront[0]);
+    EXPECT_EQ(fromBack[1], fromFront[1]);
+    EXPECT_EQ(fromBack[0], fromContacts[0]);
+    EXPECT_EQ(fromBack[1], fromContacts[1]);
+  }
+}
+
+TEST(CUDB, Abort)
+{
+  const vbr::BitVolume v = bf::randomVolume({ 40, 40, 40 }, 0.5, 9);
+  vbr::Execution exec;
+  exec.aborted = [] { return true; };
+  vbr::CUDB out;
+  EXPECT_FALSE(vbr::buildCUDB(vbr::extractEVM(v), exec, out));
+}
+
+TEST(CUDB, InvalidEVMIsRejected)
+{
+  // A lone vertex is no EVM: its section never closes.
+  const vbr::EVM bad(3, { 2, 1, 0 }, { vbr::Vertex{ 0, 0, 0 } });
+  EXPECT_THROW(vbr::buildCUDB(bad), std::invalid_argument);
+}
