@@ -44,16 +44,6 @@ namespace
 
 using vbr::Point3;
 
-/// One selected object: a label (or the whole selection) and its voxels in a box.
-struct Selected
-{
-  double label = 1.0;
-  std::array<std::int32_t, 3> offset{ 0, 0, 0 }; ///< box origin, in permuted axes
-  /// Builds the object's voxels in its box when it is processed, so that only one object's
-  /// voxels are in memory at a time.
-  std::function<vbr::BitVolume(const vbr::Execution&)> select;
-};
-
 /// Triangles of every face, as indices into the face's loop corners.
 using Triangulation = std::vector<std::vector<std::array<int, 3>>>;
 
@@ -64,75 +54,6 @@ struct Statistics
             nonManifoldVertices = 0;
   std::array<vtkIdType, 3> planes{ 0, 0, 0 };
 };
-
-/// The objects to extract, from scalars already permuted into processing axes: one per
-/// label, or a single one. The scalars must outlive the objects' `select`.
-template<typename T>
-std::vector<Selected> selectObjects(const vbr::ScalarGrid<T>& grid,
-  int mode,
-  double lower,
-  double upper,
-  double background)
-{
-  std::vector<Selected> out;
-  auto add = [&out, &grid](double label, const vbr::Box3& box, auto selected)
-  {
-    Selected s;
-    s.label = label;
-    s.offset = box.lo;
-    s.select = [grid, box, selected](const vbr::Execution& exec)
-    { return vbr::selectVoxels(grid, box, selected, exec); };
-    out.push_back(std::move(s));
-  };
-  vbr::Box3 whole;
-  whole.hi = grid.dims;
-  if (mode == vtkEVMBoundaryFilter::LABELS)
-  {
-    // A background the type cannot hold exactly means every value is a label.
-    const T typedBackground = static_cast<T>(std::max(double(std::numeric_limits<T>::lowest()),
-      std::min(background, double(std::numeric_limits<T>::max()))));
-    const bool hasBackground = static_cast<double>(typedBackground) == background;
-    for (const auto& entry :
-      vbr::labelBoxes(grid, hasBackground ? &typedBackground : static_cast<const T*>(nullptr)))
-    {
-      const T label = entry.first;
-      add(static_cast<double>(label), entry.second, [label](T v) { return v == label; });
-    }
-  }
-  else if (mode == vtkEVMBoundaryFilter::POSITIVE)
-  {
-    add(1.0, whole, [](T v) { return v > T(0); });
-  }
-  else if (std::is_integral<T>::value)
-  {
-    // Integer values: the range in the type itself (a comparison the compiler vectorizes).
-    const double lo = std::ceil(lower), hi = std::floor(upper);
-    const double typeMin = double(std::numeric_limits<T>::lowest());
-    const double typeMax = double(std::numeric_limits<T>::max()); // may round up (64 bits)
-    if (lo <= hi && hi >= typeMin && lo <= typeMax)
-    {
-      // Clamp in double, convert only values the type holds (no out-of-range cast).
-      const T first = lo <= typeMin ? std::numeric_limits<T>::lowest() : static_cast<T>(lo);
-      const T last = hi >= typeMax ? std::numeric_limits<T>::max() : static_cast<T>(hi);
-      add(1.0, whole, [first, last](T v) { return v >= first && v <= last; });
-    }
-    else
-    {
-      add(1.0, whole, [](T) { return false; });
-    }
-  }
-  else
-  {
-    add(1.0,
-      whole,
-      [lower, upper](T v)
-      {
-        const double d = static_cast<double>(v);
-        return d >= lower && d <= upper;
-      });
-  }
-  return out;
-}
 
 Point3 shifted(const Point3& p, const std::array<std::int32_t, 3>& offset)
 {
@@ -288,7 +209,7 @@ private:
 };
 
 /// One cell per surfel (a unit square, or a unit segment of a 2D image), pixel on the left.
-void appendSurfelCells(const Selected& object,
+void appendSurfelCells(const vbr::vtk::Selected& object,
   const vbr::BitVolume& voxels,
   bool planar,
   OutputBuilder& builder)
@@ -331,7 +252,7 @@ void appendSurfelCells(const Selected& object,
 /// The cells of an object's faces: its triangles, or one cell per loop.
 void appendFaceCells(const vbr::BRep& brep,
   const Triangulation& triangles,
-  const Selected& object,
+  const vbr::vtk::Selected& object,
   int mode,
   vtkIdType faceBase,
   OutputBuilder& builder)
@@ -383,21 +304,6 @@ void appendFaceCells(const vbr::BRep& brep,
         loop.hole ? face.depth + 1 : face.depth);
     }
   }
-}
-
-/// The axes in processing order: a 2D image is processed in its own plane, flat axis last.
-std::array<int, 3> processingAxes(const vbr::vtk::VoxelGrid& grid)
-{
-  std::array<int, 3> axes{ 0, 1, 2 };
-  if (grid.flatAxis >= 0)
-  {
-    int k = 0;
-    for (int d = 0; d < 3; ++d)
-      if (d != grid.flatAxis)
-        axes[k++] = d;
-    axes[2] = grid.flatAxis;
-  }
-  return axes;
 }
 
 /// Faces of an EVM by the plane sweeps, with the T-junction vertices of neighbouring faces
@@ -549,38 +455,17 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     vtkErrorMacro(<< "No input scalars to select voxels from (set the input array to process).");
     return 0;
   }
-  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
-    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
-  {
-    vtkErrorMacro(<< "The input array must be point or cell data.");
-    return 0;
-  }
-  if (this->ArrayComponent >= scalars->GetNumberOfComponents())
-  {
-    vtkErrorMacro(<< "ArrayComponent " << this->ArrayComponent << " is out of range: the array '"
-                  << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-                  << scalars->GetNumberOfComponents() << " component(s).");
-    return 0;
-  }
   if (this->SelectionMode == RANGE && this->LowerThreshold > this->UpperThreshold)
   {
     vtkWarningMacro(<< "LowerThreshold > UpperThreshold: nothing is selected.");
   }
-  vtkSmartPointer<vtkDataArray> contiguous = scalars;
-  if (!scalars->HasStandardMemoryLayout())
-  {
-    // The kernels read raw values: other layouts (SOA, implicit arrays) are copied once.
-    contiguous.TakeReference(vtkDataArray::CreateDataArray(scalars->GetDataType()));
-    contiguous->DeepCopy(scalars);
-    scalars = contiguous;
-  }
-  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  vtkSmartPointer<vtkDataArray> contiguous;
   vbr::vtk::VoxelGrid grid;
-  const std::string problem =
-    vbr::vtk::describeVoxels(input, scalars, cellData, this->FlatImagesAs2D, grid);
+  const std::string problem = vbr::vtk::readVoxels(
+    input, scalars, association, this->ArrayComponent, this->FlatImagesAs2D, contiguous, grid);
   if (!problem.empty())
   {
-    vtkErrorMacro(<< "Cannot read the voxels: " << problem << ".");
+    vtkErrorMacro(<< problem);
     return 0;
   }
   if (grid.dims[0] * static_cast<std::int64_t>(grid.dims[1]) * grid.dims[2] == 0)
@@ -598,22 +483,17 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   }
 
   const bool planar = grid.flatAxis >= 0;
-  const std::array<int, 3> axes = processingAxes(grid);
+  const std::array<int, 3> axes = vbr::vtk::processingAxes(grid);
 
-  std::vector<Selected> objects;
+  std::vector<vbr::vtk::Selected> objects;
   vtkLogStartScope(TRACE, "find the objects");
   const bool known = vbr::vtk::dispatchScalars(scalars,
     this->ArrayComponent,
     grid,
     [&](auto scalarGrid)
     {
-      auto permuted = scalarGrid;
-      for (int k = 0; k < 3; ++k)
-      {
-        permuted.dims[k] = scalarGrid.dims[axes[k]];
-        permuted.stride[k] = scalarGrid.stride[axes[k]];
-      }
-      objects = selectObjects(permuted,
+      const auto permuted = vbr::vtk::permuted(scalarGrid, axes);
+      objects = vbr::vtk::selectObjects(permuted,
         this->SelectionMode,
         this->LowerThreshold,
         this->UpperThreshold,
@@ -640,7 +520,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     {
       break;
     }
-    const Selected& object = objects[o];
+    const vbr::vtk::Selected& object = objects[o];
     const double from = 0.1 + 0.9 * o / objects.size();
     const double to = 0.1 + 0.9 * (o + 1) / objects.size();
     const vbr::Execution exec = vbr::vtk::makeExecution(this, from, to);

@@ -1,10 +1,13 @@
 #include "vtkVoxelBRepAdapters.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkDataObject.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
+#include "vtkNew.h"
 #include "vtkSMPTools.h"
 
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <sstream>
@@ -63,6 +66,43 @@ void VoxelGrid::vertexToWorld(const std::array<std::int32_t, 3>& v, double world
     world[r] = this->origin[r] + this->direction[3 * r] * local[0] +
       this->direction[3 * r + 1] * local[1] + this->direction[3 * r + 2] * local[2];
   }
+}
+
+void VoxelGrid::positionToWorld(const double v[3], double world[3]) const
+{
+  double local[3];
+  for (int d = 0; d < 3; ++d)
+    local[d] = (this->extentMin[d] + this->vertexShift[d] + v[d]) * this->spacing[d];
+  for (int r = 0; r < 3; ++r)
+  {
+    world[r] = this->origin[r] + this->direction[3 * r] * local[0] +
+      this->direction[3 * r + 1] * local[1] + this->direction[3 * r + 2] * local[2];
+  }
+}
+
+bool VoxelGrid::worldToVoxel(const double world[3], std::array<std::int32_t, 3>& voxel) const
+{
+  vtkNew<vtkMatrix3x3> inverse;
+  inverse->DeepCopy(this->direction.data());
+  inverse->Invert();
+  const double p[3] = {
+    world[0] - this->origin[0], world[1] - this->origin[1], world[2] - this->origin[2]
+  };
+  double local[3];
+  inverse->MultiplyPoint(p, local);
+  for (int d = 0; d < 3; ++d)
+  {
+    if (this->spacing[d] == 0.0)
+      return false;
+    double index = local[d] / this->spacing[d] - this->extentMin[d] - this->vertexShift[d];
+    if (d == this->flatAxis)
+      index = 0.0; // a 2D image: a position anywhere above or below the plane
+    const double cell = std::floor(index);
+    if (!(cell >= 0.0 && cell < this->dims[d])) // also false for NaN
+      return false;
+    voxel[d] = static_cast<std::int32_t>(cell);
+  }
+  return true;
 }
 
 std::string describeVoxels(vtkImageData* image,
@@ -148,6 +188,47 @@ std::string describeVoxels(vtkImageData* image,
         grid.direction[3 * r + c] = m->GetElement(r, c);
   }
   return std::string();
+}
+
+} // namespace vtk
+} // namespace vbr
+
+namespace vbr
+{
+namespace vtk
+{
+
+std::string readVoxels(vtkImageData* image,
+  vtkDataArray*& scalars,
+  int association,
+  int component,
+  bool flatImagesAs2D,
+  vtkSmartPointer<vtkDataArray>& contiguous,
+  VoxelGrid& grid)
+{
+  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    return "The input array must be point or cell data.";
+  }
+  if (component >= scalars->GetNumberOfComponents())
+  {
+    std::ostringstream msg;
+    msg << "ArrayComponent " << component << " is out of range: the array '"
+        << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+        << scalars->GetNumberOfComponents() << " component(s).";
+    return msg.str();
+  }
+  if (!scalars->HasStandardMemoryLayout())
+  {
+    // The kernels read raw values: other layouts (SOA, implicit arrays) are copied once.
+    contiguous.TakeReference(vtkDataArray::CreateDataArray(scalars->GetDataType()));
+    contiguous->DeepCopy(scalars);
+    scalars = contiguous;
+  }
+  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const std::string problem = describeVoxels(image, scalars, cellData, flatImagesAs2D, grid);
+  return problem.empty() ? problem : "Cannot read the voxels: " + problem + ".";
 }
 
 } // namespace vtk

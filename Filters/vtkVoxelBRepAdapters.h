@@ -8,10 +8,17 @@
 #include "Selection.h"
 
 #include "vtkDataArray.h"
+#include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 class vtkAlgorithm;
 class vtkImageData;
@@ -38,6 +45,10 @@ struct VoxelGrid
 
   /// World position of grid vertex (i, j, k) (voxel i spans vertices i and i + 1).
   void vertexToWorld(const std::array<std::int32_t, 3>& v, double world[3]) const;
+  /// The same for a position in continuous vertex coordinates (voxel centres at i + 0.5).
+  void positionToWorld(const double v[3], double world[3]) const;
+  /// The voxel whose cell of the grid contains a world position; false when outside.
+  bool worldToVoxel(const double world[3], std::array<std::int32_t, 3>& voxel) const;
 };
 
 /// Describes the voxels of `image` carried by `scalars` (point or cell data). Returns an
@@ -47,6 +58,132 @@ std::string describeVoxels(vtkImageData* image,
   bool cellData,
   bool flatImagesAs2D,
   VoxelGrid& grid);
+
+/// Checks the input array of a filter and describes its voxels: point or cell data, the
+/// component in range, tuples matching the image. Arrays not stored as contiguous tuples
+/// (SOA, implicit arrays) are copied once into `contiguous`, and `scalars` then points to
+/// the copy. Returns an error message, or an empty string.
+std::string readVoxels(vtkImageData* image,
+  vtkDataArray*& scalars,
+  int association,
+  int component,
+  bool flatImagesAs2D,
+  vtkSmartPointer<vtkDataArray>& contiguous,
+  VoxelGrid& grid);
+
+/// How voxels are selected (the SelectionMode of the filters).
+enum SelectionMode
+{
+  SelectPositive = 0, ///< value > 0
+  SelectRange = 1,    ///< lower <= value <= upper
+  SelectLabels = 2    ///< every distinct value other than the background, each on its own
+};
+
+/// One selected object: a label (or the whole selection) and its voxels in a box.
+struct Selected
+{
+  double label = 1.0;
+  std::array<std::int32_t, 3> offset{ 0, 0, 0 }; ///< box origin, in permuted axes
+  /// Builds the object's voxels in its box when it is processed, so that only one object's
+  /// voxels are in memory at a time.
+  std::function<BitVolume(const Execution&)> select;
+};
+
+/// The objects to extract, from scalars already permuted into processing axes: one per
+/// label, or a single one. The scalars must outlive the objects' `select`.
+template<typename T>
+std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
+  int mode,
+  double lower,
+  double upper,
+  double background)
+{
+  std::vector<Selected> out;
+  auto add = [&out, &grid](double label, const Box3& box, auto selected)
+  {
+    Selected s;
+    s.label = label;
+    s.offset = box.lo;
+    s.select = [grid, box, selected](const Execution& exec)
+    { return selectVoxels(grid, box, selected, exec); };
+    out.push_back(std::move(s));
+  };
+  Box3 whole;
+  whole.hi = grid.dims;
+  if (mode == SelectLabels)
+  {
+    // A background the type cannot hold exactly means every value is a label.
+    const T typedBackground = static_cast<T>(std::max(double(std::numeric_limits<T>::lowest()),
+      std::min(background, double(std::numeric_limits<T>::max()))));
+    const bool hasBackground = static_cast<double>(typedBackground) == background;
+    for (const auto& entry :
+      labelBoxes(grid, hasBackground ? &typedBackground : static_cast<const T*>(nullptr)))
+    {
+      const T label = entry.first;
+      add(static_cast<double>(label), entry.second, [label](T v) { return v == label; });
+    }
+  }
+  else if (mode == SelectPositive)
+  {
+    add(1.0, whole, [](T v) { return v > T(0); });
+  }
+  else if (std::is_integral<T>::value)
+  {
+    // Integer values: the range in the type itself (a comparison the compiler vectorizes).
+    const double lo = std::ceil(lower), hi = std::floor(upper);
+    const double typeMin = double(std::numeric_limits<T>::lowest());
+    const double typeMax = double(std::numeric_limits<T>::max()); // may round up (64 bits)
+    if (lo <= hi && hi >= typeMin && lo <= typeMax)
+    {
+      // Clamp in double, convert only values the type holds (no out-of-range cast).
+      const T first = lo <= typeMin ? std::numeric_limits<T>::lowest() : static_cast<T>(lo);
+      const T last = hi >= typeMax ? std::numeric_limits<T>::max() : static_cast<T>(hi);
+      add(1.0, whole, [first, last](T v) { return v >= first && v <= last; });
+    }
+    else
+    {
+      add(1.0, whole, [](T) { return false; });
+    }
+  }
+  else
+  {
+    add(1.0,
+      whole,
+      [lower, upper](T v)
+      {
+        const double d = static_cast<double>(v);
+        return d >= lower && d <= upper;
+      });
+  }
+  return out;
+}
+
+/// The axes in processing order: a 2D image is processed in its own plane, flat axis last.
+inline std::array<int, 3> processingAxes(const VoxelGrid& grid)
+{
+  std::array<int, 3> axes{ 0, 1, 2 };
+  if (grid.flatAxis >= 0)
+  {
+    int k = 0;
+    for (int d = 0; d < 3; ++d)
+      if (d != grid.flatAxis)
+        axes[k++] = d;
+    axes[2] = grid.flatAxis;
+  }
+  return axes;
+}
+/// A scalar grid seen in processing axes: axis k of the result is axis axes[k] of `grid`.
+template<typename T>
+ScalarGrid<T> permuted(const ScalarGrid<T>& grid, const std::array<int, 3>& axes)
+{
+  ScalarGrid<T> out = grid;
+  for (int k = 0; k < 3; ++k)
+  {
+    out.dims[k] = grid.dims[axes[k]];
+    out.stride[k] = grid.stride[axes[k]];
+  }
+  return out;
+}
 
 template<typename T, typename F>
 void callWithGrid(void* raw, int nc, int component, const VoxelGrid& grid, F& f)
