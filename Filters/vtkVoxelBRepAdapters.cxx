@@ -8,9 +8,14 @@
 #include "vtkSMPTools.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <sstream>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 namespace vbr
 {
@@ -197,6 +202,27 @@ namespace vbr
 {
 namespace vtk
 {
+
+vtkSmartPointer<vtkIntArray> newLargeIntArray(vtkIdType n)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+#ifdef __linux__
+  const std::size_t bytes = static_cast<std::size_t>(n) * sizeof(int);
+  const std::size_t hugePage = std::size_t(2) << 20;
+  if (bytes >= 4 * hugePage)
+  {
+    const std::size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
+    if (void* memory = std::aligned_alloc(hugePage, rounded))
+    {
+      madvise(memory, rounded, MADV_HUGEPAGE); // a hint: failure only costs time
+      array->SetArray(static_cast<int*>(memory), n, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+      return array;
+    }
+  }
+#endif
+  array->SetNumberOfValues(n);
+  return array;
+}
 
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,

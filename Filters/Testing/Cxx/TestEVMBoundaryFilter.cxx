@@ -5,6 +5,7 @@
 #include "vtkEVMBoundaryFilter.h"
 
 #include "PixelTopology.h"
+#include "TestImages.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
@@ -57,66 +58,12 @@ int Failures = 0;
 
 using Int3 = std::array<int, 3>;
 using PixelSet = bf::PixelSet;
-
-/// A voxel volume with values, as the test builds it.
-struct Volume
-{
-  Int3 dims{ 0, 0, 0 };
-  std::vector<int> values;
-  int at(int x, int y, int z) const
-  {
-    if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2])
-      return 0;
-    return values[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x];
-  }
-};
-
-Volume randomVolume(const Int3& dims, double density, int labels, unsigned seed)
-{
-  Volume v;
-  v.dims = dims;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  v.values.resize(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
-  for (int& x : v.values)
-    x = u(rng) < density ? 1 + static_cast<int>(u(rng) * labels) % labels : 0;
-  return v;
-}
-
-/// How the image carries the voxels.
-struct Layout
-{
-  bool cellData = false;
-  Int3 extentMin{ 0, 0, 0 };
-  std::array<double, 3> origin{ 0, 0, 0 };
-  std::array<double, 3> spacing{ 1, 1, 1 };
-  int scalarType = VTK_UNSIGNED_CHAR;
-};
-
-vtkSmartPointer<vtkImageData> makeImage(const Volume& v, const Layout& l)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  const int add = l.cellData ? 1 : 0;
-  image->SetExtent(l.extentMin[0],
-    l.extentMin[0] + v.dims[0] - 1 + add,
-    l.extentMin[1],
-    l.extentMin[1] + v.dims[1] - 1 + add,
-    l.extentMin[2],
-    l.extentMin[2] + v.dims[2] - 1 + add);
-  image->SetOrigin(l.origin.data());
-  image->SetSpacing(l.spacing.data());
-  vtkSmartPointer<vtkDataArray> a;
-  a.TakeReference(vtkDataArray::CreateDataArray(l.scalarType));
-  a->SetName("values");
-  a->SetNumberOfTuples(static_cast<vtkIdType>(v.values.size()));
-  for (std::size_t i = 0; i < v.values.size(); ++i)
-    a->SetTuple1(static_cast<vtkIdType>(i), v.values[i]);
-  if (l.cellData)
-    image->GetCellData()->SetScalars(a);
-  else
-    image->GetPointData()->SetScalars(a);
-  return image;
-}
+using vbrtest::AbortAtProgress;
+using vbrtest::ErrorCounter;
+using vbrtest::Layout;
+using vbrtest::makeImage;
+using vbrtest::randomVolume;
+using vbrtest::Volume;
 
 vtkIdType fieldValue(vtkPolyData* out, const char* name, int component = 0)
 {
@@ -397,27 +344,7 @@ void checkTriangles(const Volume& v, const Layout& l, const std::string& what, b
 }
 
 /// Counts error events of an algorithm.
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
-  int Count = 0;
-};
-
 /// Asks the filter to stop at its first progress report.
-class AbortAtProgress : public vtkCommand
-{
-public:
-  static AbortAtProgress* New() { return new AbortAtProgress; }
-  void Execute(vtkObject* caller, unsigned long, void*) override
-  {
-    static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-    ++this->Calls;
-  }
-  int Calls = 0;
-};
-
 void checkAbort()
 {
   const Volume v = randomVolume({ 30, 30, 30 }, 0.4, 1, 5);

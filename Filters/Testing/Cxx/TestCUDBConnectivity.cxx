@@ -1,0 +1,597 @@
+// vtkCUDBConnectivity on random and degenerate images against a flood fill written here:
+// identical labels (in sweep or size order), region sizes, the region table, the boxes of
+// port 1 (disjoint, covering, carrying the region of their voxels), region filters and
+// seeds, for point and cell scalars, several scalar types, extents not at 0, anisotropic
+// spacing, 2D images in the three planes, all sortings and both connectivities.
+#include "vtkCUDBConnectivity.h"
+
+#include "TestImages.h"
+
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTable.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+namespace
+{
+
+int Failures = 0;
+
+#define CHECK(cond, msg)                                                                           \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::cerr << __LINE__ << ": " << msg << std::endl;                                           \
+      ++Failures;                                                                                  \
+    }                                                                                              \
+  } while (false)
+
+using vbrtest::AbortAtProgress;
+using vbrtest::ErrorCounter;
+using vbrtest::Int3;
+using vbrtest::Layout;
+using vbrtest::makeImage;
+using vbrtest::randomVolume;
+using vbrtest::Volume;
+
+/// Which voxels are selected and which may be connected.
+struct Rule
+{
+  int mode = vtkCUDBConnectivity::POSITIVE;
+  double lower = 1, upper = 1e300;
+  bool selected(int v) const
+  {
+    return mode == vtkCUDBConnectivity::RANGE ? v >= lower && v <= upper : v > 0;
+  }
+  bool joins(int a, int b) const { return mode != vtkCUDBConnectivity::LABELS || a == b; }
+};
+
+/// Flood fill: components numbered by (label in Labels mode, first voxel in x-fastest scan
+/// order), which is the filter's sweep order for the ZYX sorting.
+std::vector<int> floodFill(const Volume& v, const Rule& rule, bool vertex, int& count)
+{
+  const std::size_t n = v.values.size();
+  std::vector<int> label(n, 0);
+  std::vector<std::pair<int, std::size_t>> firsts; // (value, first voxel) per component
+  std::vector<Int3> stack;
+  auto index = [&v](int x, int y, int z)
+  { return (std::size_t(z) * v.dims[1] + y) * v.dims[0] + x; };
+  int provisional = 0;
+  for (int z = 0; z < v.dims[2]; ++z)
+    for (int y = 0; y < v.dims[1]; ++y)
+      for (int x = 0; x < v.dims[0]; ++x)
+      {
+        const int value = v.at(x, y, z);
+        if (!rule.selected(value) || label[index(x, y, z)])
+          continue;
+        label[index(x, y, z)] = ++provisional;
+        firsts.push_back({ value, index(x, y, z) });
+        stack.push_back({ x, y, z });
+        while (!stack.empty())
+        {
+          const Int3 p = stack.back();
+          stack.pop_back();
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx)
+              {
+                const int steps = std::abs(dx) + std::abs(dy) + std::abs(dz);
+                if (steps == 0 || (!vertex && steps > 1))
+                  continue;
+                const int qx = p[0] + dx, qy = p[1] + dy, qz = p[2] + dz;
+                if (qx < 0 || qy < 0 || qz < 0 || qx >= v.dims[0] || qy >= v.dims[1] ||
+                  qz >= v.dims[2])
+                  continue;
+                const int q = v.at(qx, qy, qz);
+                if (rule.selected(q) && rule.joins(value, q) && !label[index(qx, qy, qz)])
+                {
+                  label[index(qx, qy, qz)] = provisional;
+                  stack.push_back({ qx, qy, qz });
+                }
+              }
+        }
+      }
+  // Sweep order: by label (Labels mode only), then first voxel.
+  std::vector<int> order(firsts.size());
+  std::iota(order.begin(), order.end(), 0);
+  if (rule.mode == vtkCUDBConnectivity::LABELS)
+    std::stable_sort(
+      order.begin(), order.end(), [&](int a, int b) { return firsts[a].first < firsts[b].first; });
+  std::vector<int> renumber(firsts.size() + 1, 0);
+  for (std::size_t k = 0; k < order.size(); ++k)
+    renumber[order[k] + 1] = static_cast<int>(k + 1);
+  for (int& l : label)
+    l = renumber[l];
+  count = static_cast<int>(firsts.size());
+  return label;
+}
+
+std::vector<long long> sizesOf(const std::vector<int>& labels, int count)
+{
+  std::vector<long long> sizes(count + 1, 0);
+  for (int l : labels)
+    if (l > 0 && l <= count)
+      ++sizes[l];
+  return sizes;
+}
+
+/// Renumbers sweep-ordered labels by size, largest first, ties in sweep order; regions
+/// failing `keep` become 0.
+template<typename Keep>
+std::vector<int> sizeRanked(const std::vector<int>& labels, int count, Keep keep, int largest = 0)
+{
+  const std::vector<long long> sizes = sizesOf(labels, count);
+  std::vector<int> kept;
+  for (int r = 1; r <= count; ++r)
+    if (keep(r, sizes[r]))
+      kept.push_back(r);
+  std::stable_sort(kept.begin(), kept.end(), [&](int a, int b) { return sizes[a] > sizes[b]; });
+  if (largest > 0 && static_cast<int>(kept.size()) > largest)
+    kept.resize(largest);
+  std::vector<int> renumber(count + 1, 0);
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    renumber[kept[k]] = static_cast<int>(k + 1);
+  std::vector<int> out(labels.size());
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    out[i] = renumber[labels[i]];
+  return out;
+}
+
+std::vector<int> regionIds(vtkCUDBConnectivity* f, const Layout& l)
+{
+  vtkImageData* out = f->GetOutput();
+  vtkDataArray* a = l.cellData ? out->GetCellData()->GetArray("RegionId")
+                               : out->GetPointData()->GetArray("RegionId");
+  std::vector<int> ids;
+  if (!a)
+    return ids;
+  ids.resize(static_cast<std::size_t>(a->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    ids[i] = static_cast<int>(a->GetTuple1(i));
+  return ids;
+}
+
+vtkIdType fieldValue(vtkDataObject* out, const char* name)
+{
+  vtkDataArray* a = out->GetFieldData()->GetArray(name);
+  return a ? static_cast<vtkIdType>(a->GetTuple1(0)) : -1;
+}
+
+/// Same partition up to a renumbering, and 0 at the same voxels.
+bool samePartition(const std::vector<int>& a, const std::vector<int>& b)
+{
+  if (a.size() != b.size())
+    return false;
+  std::map<int, int> ab, ba;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    if ((a[i] == 0) != (b[i] == 0))
+      return false;
+    if (a[i] == 0)
+      continue;
+    if (ab.emplace(a[i], b[i]).first->second != b[i] ||
+      ba.emplace(b[i], a[i]).first->second != a[i])
+      return false;
+  }
+  return true;
+}
+
+/// Voxel index range [lo, hi) of a box cell, from its world bounds.
+void boxIndexRange(vtkUnstructuredGrid* boxes, vtkIdType cell, const Layout& l, Int3& lo, Int3& hi)
+{
+  double b[6];
+  boxes->GetCellBounds(cell, b);
+  for (int d = 0; d < 3; ++d)
+  {
+    // Voxel i of point data spans vertex coordinates [i - 0.5, i + 0.5] around its point.
+    const double shift = l.cellData ? 0.0 : 0.5;
+    lo[d] = static_cast<int>(std::lround((b[2 * d] - l.origin[d]) / l.spacing[d] + shift)) -
+      l.extentMin[d];
+    hi[d] = static_cast<int>(std::lround((b[2 * d + 1] - l.origin[d]) / l.spacing[d] + shift)) -
+      l.extentMin[d];
+  }
+}
+
+/// Port 1 and port 2 against the labels of port 0.
+void checkBoxesAndTable(vtkCUDBConnectivity* f,
+  const Volume& v,
+  const Layout& l,
+  const std::vector<int>& ids,
+  const std::string& what,
+  bool planar)
+{
+  vtkUnstructuredGrid* boxes = f->GetBoxesOutput();
+  vtkDataArray* boxRegion = boxes->GetCellData()->GetArray("RegionId");
+  CHECK(boxRegion && boxes->GetCellData()->GetArray("BoxId"), what << ": box arrays");
+  if (!boxRegion)
+    return;
+  std::vector<int> covered(ids.size(), 0);
+  long long selected = 0;
+  for (int id : ids)
+    selected += id != 0;
+  bool consistent = true;
+  for (vtkIdType c = 0; c < boxes->GetNumberOfCells(); ++c)
+  {
+    CHECK(boxes->GetCellType(c) == (planar ? VTK_PIXEL : VTK_VOXEL), what << ": cell type");
+    Int3 lo, hi;
+    boxIndexRange(boxes, c, l, lo, hi);
+    if (planar) // the flat axis has no thickness in the output
+      for (int d = 0; d < 3; ++d)
+        if (v.dims[d] == 1)
+        {
+          lo[d] = 0;
+          hi[d] = 1;
+        }
+    const int region = static_cast<int>(boxRegion->GetTuple1(c));
+    for (int z = lo[2]; z < hi[2]; ++z)
+      for (int y = lo[1]; y < hi[1]; ++y)
+        for (int x = lo[0]; x < hi[0]; ++x)
+        {
+          if (x < 0 || y < 0 || z < 0 || x >= v.dims[0] || y >= v.dims[1] || z >= v.dims[2])
+          {
+            consistent = false;
+            continue;
+          }
+          const std::size_t i = (std::size_t(z) * v.dims[1] + y) * v.dims[0] + x;
+          consistent = consistent && ids[i] == region && covered[i] == 0;
+          covered[i] = 1;
+        }
+  }
+  long long coveredCount = 0;
+  for (int c : covered)
+    coveredCount += c;
+  CHECK(consistent && coveredCount == selected,
+    what << ": boxes are disjoint, carry their voxels' region and cover the " << selected
+         << " labelled voxels (" << coveredCount << ")");
+
+  vtkTable* table = f->GetRegionsOutput();
+  int count = 0;
+  for (int id : ids)
+    count = std::max(count, id);
+  CHECK(table->GetNumberOfRows() == count, what << ": one table row per region");
+  const std::vector<long long> sizes = sizesOf(ids, count);
+  vtkDataArray* voxels = vtkDataArray::SafeDownCast(table->GetColumnByName("VoxelCount"));
+  vtkDataArray* centroid = vtkDataArray::SafeDownCast(table->GetColumnByName("Centroid"));
+  vtkDataArray* indexBounds = vtkDataArray::SafeDownCast(table->GetColumnByName("IndexBounds"));
+  if (!voxels || !centroid || !indexBounds || table->GetNumberOfRows() != count)
+  {
+    CHECK(false, what << ": table columns");
+    return;
+  }
+  // Brute-force centroid and index bounds per region (voxel centres in world coordinates).
+  std::vector<std::array<double, 3>> sum(count + 1, { 0, 0, 0 });
+  std::vector<std::array<int, 6>> bounds(
+    count + 1, { 1 << 30, -(1 << 30), 1 << 30, -(1 << 30), 1 << 30, -(1 << 30) });
+  for (int z = 0; z < v.dims[2]; ++z)
+    for (int y = 0; y < v.dims[1]; ++y)
+      for (int x = 0; x < v.dims[0]; ++x)
+      {
+        const int id = ids[(std::size_t(z) * v.dims[1] + y) * v.dims[0] + x];
+        if (id == 0)
+          continue;
+        const int p[3] = { x, y, z };
+        for (int d = 0; d < 3; ++d)
+        {
+          const double index = l.extentMin[d] + p[d] + (l.cellData && v.dims[d] > 1 ? 0.5 : 0.0);
+          sum[id][d] += l.origin[d] + index * l.spacing[d];
+          bounds[id][2 * d] = std::min(bounds[id][2 * d], l.extentMin[d] + p[d]);
+          bounds[id][2 * d + 1] = std::max(bounds[id][2 * d + 1], l.extentMin[d] + p[d]);
+        }
+      }
+  for (int r = 0; r < count; ++r)
+  {
+    const int id = r + 1;
+    CHECK(static_cast<long long>(voxels->GetTuple1(r)) == sizes[id],
+      what << ": VoxelCount of region " << id);
+    for (int d = 0; d < 3; ++d)
+    {
+      const double expected = sum[id][d] / static_cast<double>(sizes[id]);
+      // 2D cell data: the plane of the pixels is the single layer of points.
+      CHECK(std::abs(centroid->GetComponent(r, d) - expected) < 1e-9 * (1 + std::abs(expected)),
+        what << ": centroid of region " << id << " axis " << d << " is "
+             << centroid->GetComponent(r, d) << ", expected " << expected);
+      CHECK(indexBounds->GetComponent(r, 2 * d) == bounds[id][2 * d] &&
+          indexBounds->GetComponent(r, 2 * d + 1) == bounds[id][2 * d + 1],
+        what << ": index bounds of region " << id);
+    }
+  }
+}
+
+/// One run of the filter on a volume, checked against the flood fill.
+void checkRun(const Volume& v,
+  const Layout& l,
+  const Rule& rule,
+  bool vertex,
+  int sorting,
+  int ordering,
+  const std::string& what,
+  bool detailed)
+{
+  vtkNew<vtkCUDBConnectivity> f;
+  f->SetInputData(makeImage(v, l));
+  f->SetSelectionMode(rule.mode);
+  f->SetLowerThreshold(rule.lower);
+  f->SetUpperThreshold(rule.upper);
+  f->SetConnectivity(vertex ? vtkCUDBConnectivity::VERTEX : vtkCUDBConnectivity::FACE);
+  f->SetSortingOrder(sorting);
+  f->SetRegionOrdering(ordering);
+  f->Update();
+  int count = 0;
+  const std::vector<int> sweep = floodFill(v, rule, vertex, count);
+  const std::vector<int> got = regionIds(f, l);
+  const std::string label = what + (vertex ? " vertex " : " face ") + f->GetSortingOrderAsString() +
+    " " + f->GetRegionOrderingAsString();
+  CHECK(fieldValue(f->GetOutput(), "NumberOfRegions") == count,
+    label << ": " << fieldValue(f->GetOutput(), "NumberOfRegions") << " regions, expected "
+          << count);
+  const bool exactOrder = sorting == vtkCUDBConnectivity::ZYX;
+  if (ordering == vtkCUDBConnectivity::SWEEP_ORDER)
+  {
+    CHECK(exactOrder ? got == sweep : samePartition(got, sweep), label << ": labels differ");
+  }
+  else
+  {
+    const std::vector<int> ranked = sizeRanked(sweep, count, [](int, long long) { return true; });
+    CHECK(exactOrder ? got == ranked : samePartition(got, ranked), label << ": labels differ");
+    const std::vector<long long> sizes = sizesOf(got, count);
+    CHECK(std::is_sorted(sizes.begin() + 1, sizes.end(), std::greater<long long>()),
+      label << ": regions are numbered largest first");
+  }
+  if (detailed)
+  {
+    const bool planar = (v.dims[0] == 1) + (v.dims[1] == 1) + (v.dims[2] == 1) == 1;
+    checkBoxesAndTable(f, v, l, got, label, planar);
+  }
+}
+
+void checkRandomVolumes()
+{
+  struct Case
+  {
+    Int3 dims;
+    double density;
+    int labels;
+  };
+  const Case cases[] = { { { 1, 1, 1 }, 1.0, 1 },
+    { { 5, 4, 3 }, 0.5, 1 },
+    { { 12, 10, 8 }, 0.3, 1 },
+    { { 12, 10, 8 }, 0.6, 3 },
+    { { 20, 17, 13 }, 0.45, 1 },
+    { { 20, 17, 13 }, 0.8, 4 },
+    { { 33, 31, 29 }, 0.25, 1 },
+    { { 33, 31, 29 }, 0.55, 2 },
+    { { 9, 40, 3 }, 0.7, 1 } };
+  const int types[] = {
+    VTK_UNSIGNED_CHAR, VTK_SHORT, VTK_FLOAT, VTK_INT, VTK_DOUBLE, VTK_UNSIGNED_SHORT
+  };
+  unsigned seed = 1;
+  int c = 0;
+  for (const Case& k : cases)
+  {
+    const Volume v = randomVolume(k.dims, k.density, k.labels, seed++);
+    Layout l;
+    l.cellData = c % 2 == 1;
+    l.scalarType = types[c % 6];
+    l.extentMin = { c - 3, 2 * c, -c };
+    l.origin = { 0.5 * c, -1.0, 2.0 };
+    l.spacing = { 1.0, 0.5 + 0.25 * c, 2.0 };
+    ++c;
+    std::ostringstream what;
+    what << k.dims[0] << "x" << k.dims[1] << "x" << k.dims[2] << " density " << k.density
+         << (l.cellData ? " cells" : " points");
+    std::vector<Rule> rules(1);
+    if (k.labels > 1)
+    {
+      rules.push_back(Rule{ vtkCUDBConnectivity::LABELS });
+      rules.push_back(Rule{ vtkCUDBConnectivity::RANGE, 2, 3 });
+    }
+    for (const Rule& rule : rules)
+      for (bool vertex : { false, true })
+        for (int sorting = vtkCUDBConnectivity::XYZ; sorting <= vtkCUDBConnectivity::AUTO;
+             ++sorting)
+          for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
+            checkRun(v,
+              l,
+              rule,
+              vertex,
+              sorting,
+              ordering,
+              what.str() + " mode " + std::to_string(rule.mode),
+              ordering == vtkCUDBConnectivity::SIZE_RANK);
+  }
+  // Two larger ones, fewer combinations.
+  for (double density : { 0.3, 0.6 })
+  {
+    const Volume v = randomVolume({ 64, 64, 64 }, density, 1, seed++);
+    for (bool vertex : { false, true })
+      checkRun(v,
+        Layout(),
+        Rule(),
+        vertex,
+        vtkCUDBConnectivity::ZYX,
+        vtkCUDBConnectivity::SWEEP_ORDER,
+        "64^3",
+        true);
+  }
+}
+
+void checkTwoDimensional()
+{
+  const Int3 shapes[] = { { 40, 30, 1 }, { 25, 1, 35 }, { 1, 33, 27 } };
+  unsigned seed = 50;
+  for (const Int3& dims : shapes)
+    for (bool cells : { false, true })
+    {
+      const Volume v = randomVolume(dims, 0.55, 1, seed++);
+      Layout l;
+      l.cellData = cells;
+      l.extentMin = { 2, -3, 4 };
+      l.spacing = { 0.5, 2.0, 1.5 };
+      l.origin = { 1, 2, 3 };
+      for (bool vertex : { false, true })
+        for (int sorting :
+          { vtkCUDBConnectivity::ZYX, vtkCUDBConnectivity::XYZ, vtkCUDBConnectivity::AUTO })
+          checkRun(v,
+            l,
+            Rule(),
+            vertex,
+            sorting,
+            vtkCUDBConnectivity::SIZE_RANK,
+            "2D " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+              std::to_string(dims[2]) + (cells ? " cells" : " points"),
+            true);
+    }
+}
+
+void checkRegionFilters()
+{
+  const Volume v = randomVolume({ 20, 18, 16 }, 0.35, 1, 77);
+  int count = 0;
+  const std::vector<int> sweep = floodFill(v, Rule(), false, count);
+  const std::vector<long long> sizes = sizesOf(sweep, count);
+  vtkNew<vtkCUDBConnectivity> f;
+  f->SetInputData(makeImage(v, Layout()));
+  f->SetMinimumRegionSize(4);
+  f->Update();
+  CHECK(regionIds(f, Layout()) == sizeRanked(sweep, count, [](int, long long s) { return s >= 4; }),
+    "MinimumRegionSize 4 removes the smaller regions");
+  CHECK(fieldValue(f->GetOutput(), "NumberOfComponents") == count, "all components are counted");
+  f->SetMinimumRegionSize(1);
+  f->SetLargestRegions(3);
+  f->Update();
+  CHECK(regionIds(f, Layout()) ==
+      sizeRanked(
+        sweep, count, [](int, long long) { return true; }, 3),
+    "LargestRegions 3 keeps the three largest");
+  CHECK(f->GetRegionsOutput()->GetNumberOfRows() == 3, "three table rows");
+
+  // Seeds: the centres of the first voxel of regions 2 and 5 (sweep order), one outside.
+  f->SetLargestRegions(0);
+  vtkNew<vtkPolyData> seeds;
+  vtkNew<vtkPoints> points;
+  for (int wanted : { 2, 5 })
+  {
+    const std::size_t i = std::find(sweep.begin(), sweep.end(), wanted) - sweep.begin();
+    const int x = static_cast<int>(i % v.dims[0]), y = static_cast<int>(i / v.dims[0] % v.dims[1]),
+              z = static_cast<int>(i / (v.dims[0] * v.dims[1]));
+    points->InsertNextPoint(x + 0.2, y - 0.3, z + 0.4); // within the voxel around the point
+  }
+  points->InsertNextPoint(-100, -100, -100);
+  seeds->SetPoints(points);
+  f->SetSeedData(seeds);
+  f->Update();
+  CHECK(regionIds(f, Layout()) ==
+      sizeRanked(sweep, count, [](int r, long long) { return r == 2 || r == 5; }),
+    "seeds keep the regions containing them");
+  (void)sizes;
+}
+
+void checkErrorsAndDegenerateInputs()
+{
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(3, 3, 3);
+    vtkNew<vtkCUDBConnectivity> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(image);
+    f->Update();
+    CHECK(errors->Count > 0, "missing scalars must raise an error");
+  }
+  {
+    const Volume v = randomVolume({ 3, 3, 3 }, 0.5, 1, 1);
+    vtkNew<vtkCUDBConnectivity> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(makeImage(v, Layout()));
+    f->SetArrayComponent(1);
+    f->Update();
+    CHECK(errors->Count > 0, "ArrayComponent out of range must raise an error");
+  }
+  {
+    vtkNew<vtkImageData> image; // no points at all
+    vtkNew<vtkCUDBConnectivity> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(image);
+    f->Update();
+    CHECK(errors->Count == 0, "an empty image is no error");
+  }
+  for (double density : { 0.0, 1.0 })
+  {
+    const Volume v = randomVolume({ 7, 6, 5 }, density, 1, 3);
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(makeImage(v, Layout()));
+    f->Update();
+    const int expected = density > 0 ? 1 : 0;
+    CHECK(fieldValue(f->GetOutput(), "NumberOfRegions") == expected &&
+        fieldValue(f->GetOutput(), "NumberOfBoxes") == expected &&
+        f->GetBoxesOutput()->GetNumberOfCells() == expected,
+      "empty and full selections: " << expected << " region and box");
+  }
+  // A direction matrix: boxes become hexahedra, labels are unchanged.
+  {
+    const Volume v = randomVolume({ 8, 7, 6 }, 0.5, 1, 9);
+    vtkSmartPointer<vtkImageData> image = makeImage(v, Layout());
+    image->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(image);
+    f->SetRegionOrderingToSweepOrder();
+    f->Update();
+    int count = 0;
+    CHECK(regionIds(f, Layout()) == floodFill(v, Rule(), false, count), "rotated image labels");
+    CHECK(f->GetBoxesOutput()->GetNumberOfCells() > 0 &&
+        f->GetBoxesOutput()->GetCellType(0) == VTK_HEXAHEDRON,
+      "rotated boxes are hexahedra");
+  }
+  // Abort at the first progress event: no labels.
+  {
+    const Volume v = randomVolume({ 30, 30, 30 }, 0.4, 1, 5);
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(makeImage(v, Layout()));
+    vtkNew<AbortAtProgress> abort;
+    f->AddObserver(vtkCommand::ProgressEvent, abort);
+    f->Update();
+    CHECK(abort->Calls > 0, "progress is reported");
+    CHECK(regionIds(f, Layout()).empty(), "an aborted run writes no labels");
+  }
+}
+
+} // namespace
+
+int TestCUDBConnectivity(int, char*[])
+{
+  checkRandomVolumes();
+  checkTwoDimensional();
+  checkRegionFilters();
+  checkErrorsAndDegenerateInputs();
+  vtkNew<vtkCUDBConnectivity> f;
+  std::ostringstream print;
+  f->Print(print);
+  CHECK(print.str().find("Connectivity: Face") != std::string::npos, "PrintSelf");
+  if (Failures)
+    std::cerr << Failures << " failure(s)" << std::endl;
+  return Failures == 0 ? 0 : 1;
+}

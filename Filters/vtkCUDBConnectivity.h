@@ -1,0 +1,248 @@
+/**
+ * @class   vtkCUDBConnectivity
+ * @brief   connected components of the voxels of an image, through the Compact Union of
+ *          Disjoint Boxes
+ *
+ * vtkCUDBConnectivity selects voxels of a vtkImageData (a threshold range, every value above
+ * zero, or every label of a label map), encodes them as an Extreme Vertices Model (EVM) and
+ * converts it into a Compact Union of Disjoint Boxes (CUDB) by the sweep of I. Cruz-Matias
+ * and D. Ayala, "CUDB: An Improved Decomposition Model for Orthogonal Pseudo-Polyhedra": the
+ * slices of the EVM are cut into boxes that are merged on the fly wherever the Ordered Union
+ * of Disjoint Boxes would split them needlessly, and every box records the boxes it touches.
+ * The connected components are then labelled on the boxes (a few thousand where the image
+ * has millions of voxels) and written back to the voxels.
+ *
+ * Connectivity: Face (6-connected in 3D, 4 in 2D, the default) or Vertex (26 in 3D, 8 in
+ * 2D: voxels touching along an edge or at a corner are connected too). In Labels mode the
+ * components are computed within each label: touching regions of different labels are
+ * different components.
+ *
+ * Outputs:
+ * - Port 0: the input image (its arrays passed through) with an integer array `RegionId`
+ *   (0 = not selected or removed, 1..N) of the same association (point or cell) as the
+ *   input scalars, set as active scalars. RegionOrdering numbers the regions by size, the
+ *   largest first (the default, like vtkImageConnectivityFilter's SizeRank), or in sweep
+ *   order (the order in which the sweep first meets them).
+ * - Port 1: the boxes of the kept regions, a vtkUnstructuredGrid of VTK_VOXEL cells
+ *   (VTK_PIXEL for 2D images; VTK_HEXAHEDRON / VTK_QUAD when a direction matrix or a negative
+ *   spacing makes boxes not axis-aligned) with cell arrays `RegionId`, `BoxId` (the box's
+ *   index in the CUDB) and `Label`.
+ * - Port 2: a vtkTable with one row per kept region: `RegionId`, `Label`, `VoxelCount`,
+ *   `Volume` (world units; the area for a 2D image), `IndexBounds` (first and last voxel
+ *   index along i, j, k), `Bounds` (world bounds of the voxels, xmin, xmax, ..), `Centroid`
+ *   (world) and `NumberOfBoxes`.
+ *
+ * Every output carries the field data `NumberOfRegions` (kept), `NumberOfComponents` (found),
+ * `NumberOfBoxes` (CUDB), `NumberOfOUDBBoxes` (what the OUDB of the same sorting would have),
+ * `NumberOfExtremeVertices` and `SortingOrder` (the sorting used; with Auto, per label).
+ *
+ * Region filters, applied in this order: regions smaller than MinimumRegionSize voxels are
+ * removed (dust removal); with seed points on the optional second input (SetSeedData), only
+ * regions containing a seed are kept; with LargestRegions = N > 0 only the N largest of the
+ * rest are kept.
+ *
+ * SortingOrder chooses the ABC sorting of the EVM the boxes are built from (A is the axis
+ * the slices are perpendicular to, C the axis the boxes' rows run along); Auto builds all of
+ * them (two for a 2D image) and keeps the one with the fewest boxes. The components do not
+ * depend on it, only the boxes of port 1.
+ *
+ * Point scalars are voxels centred at the points; cell scalars are the voxels themselves. An
+ * image with one voxel along exactly one axis is 2D. Arrays not stored as contiguous tuples
+ * are copied once. NaN values are never selected nor labels.
+ *
+ * @warning The selection, the EVM extraction and the write-back of the labels run with
+ * vtkSMPTools (set VTK_SMP_BACKEND_IN_USE=STDThread with ParaView's VTK, whose default is
+ * sequential).
+ *
+ * @sa vtkImageConnectivityFilter vtkConnectivityFilter vtkEVMBoundaryFilter
+ */
+#ifndef vtkCUDBConnectivity_h
+#define vtkCUDBConnectivity_h
+
+#include "VoxelBRepFiltersModule.h" // for export macro
+#include "vtkAlgorithm.h"
+
+class vtkDataSet;
+class vtkImageData;
+class vtkTable;
+class vtkUnstructuredGrid;
+
+class VOXELBREPFILTERS_EXPORT vtkCUDBConnectivity : public vtkAlgorithm
+{
+public:
+  static vtkCUDBConnectivity* New();
+  vtkTypeMacro(vtkCUDBConnectivity, vtkAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum SelectionModes
+  {
+    POSITIVE = 0, ///< every voxel whose value is > 0
+    RANGE = 1,    ///< LowerThreshold <= value <= UpperThreshold
+    LABELS = 2    ///< every distinct value other than BackgroundValue, each on its own
+  };
+  enum ConnectivityModes
+  {
+    FACE = 0,  ///< 6-connected (4 in 2D)
+    VERTEX = 1 ///< 26-connected (8 in 2D)
+  };
+  enum SortingOrders
+  {
+    XYZ = 0,
+    XZY = 1,
+    YXZ = 2,
+    YZX = 3,
+    ZXY = 4,
+    ZYX = 5,
+    AUTO = 6 ///< the sorting with the fewest boxes
+  };
+  enum RegionOrderings
+  {
+    SIZE_RANK = 0,  ///< largest region first
+    SWEEP_ORDER = 1 ///< in the order the sweep meets the regions (labels in increasing order)
+  };
+
+  ///@{
+  /**
+   * How voxels are selected. The default is POSITIVE (value > 0).
+   */
+  vtkSetClampMacro(SelectionMode, int, POSITIVE, LABELS);
+  vtkGetMacro(SelectionMode, int);
+  void SetSelectionModeToPositive() { this->SetSelectionMode(POSITIVE); }
+  void SetSelectionModeToRange() { this->SetSelectionMode(RANGE); }
+  void SetSelectionModeToLabels() { this->SetSelectionMode(LABELS); }
+  const char* GetSelectionModeAsString();
+  ///@}
+
+  ///@{
+  /**
+   * Inclusive range of selected values in RANGE mode. The default is [1, VTK_DOUBLE_MAX].
+   */
+  vtkSetMacro(LowerThreshold, double);
+  vtkGetMacro(LowerThreshold, double);
+  vtkSetMacro(UpperThreshold, double);
+  vtkGetMacro(UpperThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * Value that is not a label in LABELS mode. The default is 0.
+   */
+  vtkSetMacro(BackgroundValue, double);
+  vtkGetMacro(BackgroundValue, double);
+  ///@}
+
+  ///@{
+  /**
+   * Component of the input array to use. The default is 0.
+   */
+  vtkSetClampMacro(ArrayComponent, int, 0, VTK_INT_MAX);
+  vtkGetMacro(ArrayComponent, int);
+  ///@}
+
+  ///@{
+  /**
+   * Which voxels are connected: sharing a face (FACE, the default) or also an edge or a
+   * vertex (VERTEX).
+   */
+  vtkSetClampMacro(Connectivity, int, FACE, VERTEX);
+  vtkGetMacro(Connectivity, int);
+  void SetConnectivityToFace() { this->SetConnectivity(FACE); }
+  void SetConnectivityToVertex() { this->SetConnectivity(VERTEX); }
+  const char* GetConnectivityAsString();
+  ///@}
+
+  ///@{
+  /**
+   * ABC sorting of the EVM the boxes are built from. The default is ZYX (slices along z,
+   * rows along x: the image's own memory order, which needs no sorting).
+   */
+  vtkSetClampMacro(SortingOrder, int, XYZ, AUTO);
+  vtkGetMacro(SortingOrder, int);
+  void SetSortingOrderToAuto() { this->SetSortingOrder(AUTO); }
+  const char* GetSortingOrderAsString();
+  ///@}
+
+  ///@{
+  /**
+   * How regions are numbered. The default is SIZE_RANK (largest first; ties in sweep order).
+   */
+  vtkSetClampMacro(RegionOrdering, int, SIZE_RANK, SWEEP_ORDER);
+  vtkGetMacro(RegionOrdering, int);
+  void SetRegionOrderingToSizeRank() { this->SetRegionOrdering(SIZE_RANK); }
+  void SetRegionOrderingToSweepOrder() { this->SetRegionOrdering(SWEEP_ORDER); }
+  const char* GetRegionOrderingAsString();
+  ///@}
+
+  ///@{
+  /**
+   * Regions with fewer voxels are removed. The default is 1 (keep all).
+   */
+  vtkSetClampMacro(MinimumRegionSize, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MinimumRegionSize, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Keep only this many of the largest regions; 0 (the default) keeps all.
+   */
+  vtkSetClampMacro(LargestRegions, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(LargestRegions, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Optional seed points (any vtkDataSet, world coordinates): when given, only the regions
+   * containing a seed are kept. Seeds outside the selected voxels select nothing.
+   */
+  void SetSeedConnection(vtkAlgorithmOutput* port);
+  vtkAlgorithmOutput* GetSeedConnection();
+  void SetSeedData(vtkDataSet* seeds);
+  ///@}
+
+  /**
+   * The image to label (port 0), for pipelines without a producer.
+   */
+  void SetInputData(vtkDataObject* image) { this->SetInputDataObject(0, image); }
+
+  ///@{
+  /**
+   * The three outputs.
+   */
+  vtkImageData* GetOutput();
+  vtkUnstructuredGrid* GetBoxesOutput();
+  vtkTable* GetRegionsOutput();
+  ///@}
+
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+protected:
+  vtkCUDBConnectivity();
+  ~vtkCUDBConnectivity() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  int RequestUpdateExtent(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  int RequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  /// The work of RequestData, which turns exceptions (out of memory) into errors.
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+
+  int SelectionMode = POSITIVE;
+  double LowerThreshold = 1.0;
+  double UpperThreshold = VTK_DOUBLE_MAX;
+  double BackgroundValue = 0.0;
+  int ArrayComponent = 0;
+  int Connectivity = FACE;
+  int SortingOrder = ZYX;
+  int RegionOrdering = SIZE_RANK;
+  vtkIdType MinimumRegionSize = 1;
+  vtkIdType LargestRegions = 0;
+
+private:
+  vtkCUDBConnectivity(const vtkCUDBConnectivity&) = delete;
+  void operator=(const vtkCUDBConnectivity&) = delete;
+};
+
+#endif
