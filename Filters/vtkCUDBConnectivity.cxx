@@ -257,30 +257,13 @@ vtkSmartPointer<vtkIntArray> paintRegionIds(const std::vector<ObjectBoxes>& obje
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
   exec.forRange(n, [out](std::int64_t b, std::int64_t e) { std::fill(out + b, out + e, 0); });
-  std::vector<vbr::Box> boxes;
   std::vector<std::int32_t> values;
   for (const ObjectBoxes& o : objects)
   {
-    boxes.clear();
-    values.clear();
+    values.resize(o.cudb.boxes.size());
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-    {
-      const std::int32_t id = regions[o.firstRegion + o.components.boxLabel[b] - 1].id;
-      if (id == 0)
-        continue; // removed: stays 0
-      vbr::Box box;
-      Int3 lo = o.cudb.boxes[b].lo, hi = o.cudb.boxes[b].hi;
-      for (int d = 0; d < 3; ++d)
-      {
-        lo[d] += o.offset[d];
-        hi[d] += o.offset[d];
-      }
-      box.lo = toImageAxes(lo, axes);
-      box.hi = toImageAxes(hi, axes);
-      boxes.push_back(box);
-      values.push_back(id);
-    }
-    vbr::paintBoxes(boxes, values, { 0, 0, 0 }, grid.dims, out, exec);
+      values[b] = regions[o.firstRegion + o.components.boxLabel[b] - 1].id; // 0: removed
+    vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
   }
   return ids;
 }
@@ -331,16 +314,27 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   if (planar)
     role = { std::min(axes[0], axes[1]), std::max(axes[0], axes[1]), grid.flatAxis };
 
+  vtkIdType count = 0;
+  for (const ObjectBoxes& o : objects)
+    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
+      count += regions[o.firstRegion + o.components.boxLabel[b] - 1].id != 0;
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(count * corners);
   vtkNew<vtkIdTypeArray> offsets, connectivity, boxIds;
   vtkNew<vtkIntArray> regionIds;
   vtkNew<vtkDoubleArray> labels;
+  offsets->SetNumberOfValues(count + 1);
+  connectivity->SetNumberOfValues(count * corners);
+  boxIds->SetNumberOfValues(count);
+  regionIds->SetNumberOfValues(count);
+  labels->SetNumberOfValues(count);
   boxIds->SetName("BoxId");
   regionIds->SetName("RegionId");
   labels->SetName("Label");
-  offsets->InsertNextValue(0);
-  vtkIdType boxBase = 0;
+  double* xyz = coordinates->GetPointer(0);
+  vtkIdType cell = 0, boxBase = 0;
+  offsets->SetValue(0, 0);
   for (const ObjectBoxes& o : objects)
   {
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
@@ -362,14 +356,15 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
         for (int r = 0; r < 3; ++r)
           if (bits[k][r])
             v[role[r]] = imageHi[role[r]];
-        double xyz[3];
         grid.vertexToWorld(v, xyz); // a 2D image's corners lie in its plane (flat at 0)
-        connectivity->InsertNextValue(coordinates->InsertNextTuple(xyz));
+        xyz += 3;
+        connectivity->SetValue(cell * corners + k, cell * corners + k);
       }
-      offsets->InsertNextValue(connectivity->GetNumberOfValues());
-      boxIds->InsertNextValue(boxBase + static_cast<vtkIdType>(b));
-      regionIds->InsertNextValue(region.id);
-      labels->InsertNextValue(o.label);
+      offsets->SetValue(cell + 1, (cell + 1) * corners);
+      boxIds->SetValue(cell, boxBase + static_cast<vtkIdType>(b));
+      regionIds->SetValue(cell, region.id);
+      labels->SetValue(cell, o.label);
+      ++cell;
     }
     boxBase += static_cast<vtkIdType>(o.cudb.boxes.size());
   }
@@ -816,8 +811,14 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     attributes->SetActiveScalars("RegionId");
   }
   this->UpdateProgress(0.9);
-  writeBoxes(objects, regions, grid, axes, boxesOutput);
-  writeRegionTable(regions, kept, grid, axes, table);
+  {
+    vtkLogScopeF(TRACE, "boxes and region table");
+    if (this->GenerateBoxes)
+    {
+      writeBoxes(objects, regions, grid, axes, boxesOutput);
+    }
+    writeRegionTable(regions, kept, grid, axes, table);
+  }
   summary.write(output->GetFieldData());
   summary.write(boxesOutput->GetFieldData());
   summary.write(table->GetFieldData());
@@ -838,4 +839,5 @@ void vtkCUDBConnectivity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RegionOrdering: " << this->GetRegionOrderingAsString() << "\n";
   os << indent << "MinimumRegionSize: " << this->MinimumRegionSize << "\n";
   os << indent << "LargestRegions: " << this->LargestRegions << "\n";
+  os << indent << "GenerateBoxes: " << (this->GenerateBoxes ? "On\n" : "Off\n");
 }

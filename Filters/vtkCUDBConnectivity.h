@@ -23,10 +23,10 @@
  *   input scalars, set as active scalars. RegionOrdering numbers the regions by size, the
  *   largest first (the default, like vtkImageConnectivityFilter's SizeRank), or in sweep
  *   order (the order in which the sweep first meets them).
- * - Port 1: the boxes of the kept regions, a vtkUnstructuredGrid of VTK_VOXEL cells
- *   (VTK_PIXEL for 2D images; VTK_HEXAHEDRON / VTK_QUAD when a direction matrix or a negative
- *   spacing makes boxes not axis-aligned) with cell arrays `RegionId`, `BoxId` (the box's
- *   index in the CUDB) and `Label`.
+ * - Port 1 (when GenerateBoxes is on, the default): the boxes of the kept regions, a
+ * vtkUnstructuredGrid of VTK_VOXEL cells (VTK_PIXEL for 2D images; VTK_HEXAHEDRON / VTK_QUAD when a
+ * direction matrix or a negative spacing makes boxes not axis-aligned) with cell arrays `RegionId`,
+ * `BoxId` (the box's index in the CUDB) and `Label`.
  * - Port 2: a vtkTable with one row per kept region: `RegionId`, `Label`, `VoxelCount`,
  *   `Volume` (world units; the area for a 2D image), `IndexBounds` (first and last voxel
  *   index along i, j, k), `Bounds` (world bounds of the voxels, xmin, xmax, ..), `Centroid`
@@ -191,6 +191,16 @@ public:
 
   ///@{
   /**
+   * Whether port 1 receives the boxes (a cell per box, 8 points each: for images of millions
+   * of boxes this costs more than the labelling). The default is on.
+   */
+  vtkSetMacro(GenerateBoxes, bool);
+  vtkGetMacro(GenerateBoxes, bool);
+  vtkBooleanMacro(GenerateBoxes, bool);
+  ///@}
+
+  ///@{
+  /**
    * Optional seed points (any vtkDataSet, world coordinates): when given, only the regions
    * containing a seed are kept. Seeds outside the selected voxels select nothing.
    */
@@ -239,6 +249,7 @@ protected:
   int RegionOrdering = SIZE_RANK;
   vtkIdType MinimumRegionSize = 1;
   vtkIdType LargestRegions = 0;
+  bool GenerateBoxes = true;
 
 private:
   vtkCUDBConnectivity(const vtkCUDBConnectivity&) = delete;

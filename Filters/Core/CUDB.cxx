@@ -73,9 +73,16 @@ public:
   std::vector<Segment> segments; ///< the non-empty ones
   std::vector<Interval> intervals;
   std::vector<RectContact> contacts;
+  /// Intervals of all lines, i.e. the OUDB rectangles of the section.
+  std::size_t intervalCount = 0;
+
+  /// Keep only the last line's intervals and segment (enough for a 2D EVM, whose boxes
+  /// have no neighbours along A): memory in the width of the image, not its area.
+  void keepLastLineOnly(bool last) { this->LastLineOnly = last; }
 
   void build(const std::vector<Point2>& section)
   {
+    this->intervalCount = 0;
     this->rects.clear();
     this->segments.clear();
     this->intervals.clear();
@@ -115,6 +122,13 @@ private:
       previous.b1 = b;
       prevFirst = previous.first;
       prevEnd = previous.end;
+      if (this->LastLineOnly && prevFirst > 0)
+      {
+        this->intervals.erase(this->intervals.begin(), this->intervals.begin() + prevFirst);
+        prevEnd -= prevFirst;
+        prevFirst = 0;
+        this->segments.assign(1, { previous.b0, b, prevFirst, prevEnd });
+      }
     }
     // Every rectangle of the previous line ends here unless an equal interval extends it.
     for (std::uint32_t p = prevFirst; p < prevEnd; ++p)
@@ -152,9 +166,11 @@ private:
     }
     this->segments.push_back(
       { b, Open, first, static_cast<std::uint32_t>(this->intervals.size()) });
+    this->intervalCount += this->intervals.size() - first;
   }
 
   std::vector<Coord> Breaks, Next, Line;
+  bool LastLineOnly = false;
 };
 
 /// The section after plane of vertices [begin, end): previous section XOR its projection.
@@ -208,7 +224,7 @@ public:
   void nextSlice(Coord a, const std::vector<Point2>& section)
   {
     this->Current.build(section);
-    this->Out.oudbBoxCount += this->Current.intervals.size();
+    this->Out.oudbBoxCount += this->Current.intervalCount;
     const std::size_t n = this->Current.rects.size();
     this->CurrentBox.assign(n, 0);
     this->CurrentIsNew.assign(n, 1);
@@ -349,8 +365,9 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out)
     // A 2D EVM is a single section: its rectangles are the boxes, one voxel thick.
     advanceSection(v.data(), v.data() + v.size(), section, scratch);
     SectionDecomposition d;
+    d.keepLastLineOnly(true);
     d.build(section);
-    out.oudbBoxCount = d.intervals.size();
+    out.oudbBoxCount = d.intervalCount;
     for (const Rect& r : d.rects)
       out.boxes.push_back(boxOf(r, 0, 1, out.order));
     for (const RectContact& c : d.contacts)
@@ -568,6 +585,7 @@ Components labelComponents(const CUDB& cudb, Connectivity connectivity)
 void paintBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
+  const std::array<int, 3>& axes,
   const std::array<Coord, 3>& dims,
   std::int32_t* labels,
   const Execution& exec)
@@ -581,15 +599,17 @@ void paintBoxes(const std::vector<Box>& boxes,
     {
       for (std::size_t b = 0; b < boxes.size(); ++b)
       {
+        const std::int32_t v = value[b];
+        if (v == 0)
+          continue;
         std::array<std::int64_t, 3> lo, hi;
-        for (int d = 0; d < 3; ++d)
+        for (int k = 0; k < 3; ++k)
         {
-          lo[d] = std::int64_t(boxes[b].lo[d]) + offset[d];
-          hi[d] = std::int64_t(boxes[b].hi[d]) + offset[d];
+          lo[axes[k]] = std::int64_t(boxes[b].lo[k]) + offset[k];
+          hi[axes[k]] = std::int64_t(boxes[b].hi[k]) + offset[k];
         }
         lo[split] = std::max(lo[split], from);
         hi[split] = std::min(hi[split], to);
-        const std::int32_t v = value[b];
         for (std::int64_t z = lo[2]; z < hi[2]; ++z)
           for (std::int64_t y = lo[1]; y < hi[1]; ++y)
           {

@@ -105,12 +105,14 @@ struct Components
 };
 Components labelComponents(const CUDB& cudb, Connectivity connectivity);
 
-/// Writes value[b] into every voxel of box b of `labels`, a grid of `dims` voxels stored x
-/// fastest, with the boxes shifted by `offset`. Voxels outside the boxes are left as they
-/// are. Parallel over slices along z.
+/// Writes value[b] into every voxel of box b (boxes with value 0 are skipped) of `labels`, a
+/// grid of `dims` voxels stored x fastest. Box coordinates are shifted by `offset` and then
+/// permuted: coordinate k of a box is along axis axes[k] of the grid. Voxels outside the
+/// boxes are left as they are. Parallel over slices along z (rows for a single slice).
 void paintBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
+  const std::array<int, 3>& axes,
   const std::array<Coord, 3>& dims,
   std::int32_t* labels,
   const Execution& exec = Execution());

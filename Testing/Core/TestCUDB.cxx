@@ -96,7 +96,7 @@ std::vector<int> paintedLabels(const vbr::BitVolume& v,
 {
   std::vector<std::int32_t> value(components.boxLabel.begin(), components.boxLabel.end());
   std::vector<std::int32_t> labels(v.voxelCount(), 0);
-  vbr::paintBoxes(cudb.boxes, value, { 0, 0, 0 }, v.dims(), labels.data());
+  vbr::paintBoxes(cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, v.dims(), labels.data());
   return std::vector<int>(labels.begin(), labels.end());
 }
 
