@@ -458,14 +458,6 @@ void writeRegionTable(const std::vector<Region>& regions,
   table->AddColumn(boxes);
 }
 
-void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
-{
-  vtkNew<vtkIdTypeArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
-
 /// Summary written to the field data of every output.
 struct Summary
 {
@@ -474,11 +466,11 @@ struct Summary
 
   void write(vtkFieldData* fd) const
   {
-    addFieldValue(fd, "NumberOfRegions", this->regions);
-    addFieldValue(fd, "NumberOfComponents", this->components);
-    addFieldValue(fd, "NumberOfBoxes", this->boxes);
-    addFieldValue(fd, "NumberOfOUDBBoxes", this->oudbBoxes);
-    addFieldValue(fd, "NumberOfExtremeVertices", this->extremeVertices);
+    vbr::vtk::addFieldValue(fd, "NumberOfRegions", this->regions);
+    vbr::vtk::addFieldValue(fd, "NumberOfComponents", this->components);
+    vbr::vtk::addFieldValue(fd, "NumberOfBoxes", this->boxes);
+    vbr::vtk::addFieldValue(fd, "NumberOfOUDBBoxes", this->oudbBoxes);
+    vbr::vtk::addFieldValue(fd, "NumberOfExtremeVertices", this->extremeVertices);
     vtkNew<vtkStringArray> s;
     s->SetName("SortingOrder");
     for (const std::string& name : this->sortings)
@@ -615,15 +607,7 @@ int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformationVector** inputVector,
 //------------------------------------------------------------------------------
 const char* vtkCUDBConnectivity::GetSelectionModeAsString()
 {
-  switch (this->SelectionMode)
-  {
-    case POSITIVE:
-      return "Positive";
-    case RANGE:
-      return "Range";
-    default:
-      return "Labels";
-  }
+  return vbr::vtk::selectionModeName(this->SelectionMode);
 }
 
 const char* vtkCUDBConnectivity::GetConnectivityAsString()

@@ -340,22 +340,14 @@ Triangulation triangulate(const vbr::BRep& brep, const vbr::Execution& exec)
   return triangles;
 }
 
-void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
-{
-  vtkNew<vtkIdTypeArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
-
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
 {
-  addFieldValue(fd, "NumberOfVoxels", stats.voxels);
-  addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);
-  addFieldValue(fd, "NumberOfSurfels", stats.surfels);
-  addFieldValue(fd, "NumberOfFaces", stats.faces);
-  addFieldValue(fd, "NumberOfHoles", stats.holes);
-  addFieldValue(fd, "NumberOfNonManifoldVertices", stats.nonManifoldVertices);
+  vbr::vtk::addFieldValue(fd, "NumberOfVoxels", stats.voxels);
+  vbr::vtk::addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);
+  vbr::vtk::addFieldValue(fd, "NumberOfSurfels", stats.surfels);
+  vbr::vtk::addFieldValue(fd, "NumberOfFaces", stats.faces);
+  vbr::vtk::addFieldValue(fd, "NumberOfHoles", stats.holes);
+  vbr::vtk::addFieldValue(fd, "NumberOfNonManifoldVertices", stats.nonManifoldVertices);
   vtkNew<vtkIdTypeArray> planes;
   planes->SetName("NumberOfPlanesOfVertices");
   planes->SetNumberOfComponents(3);
@@ -385,15 +377,7 @@ int vtkEVMBoundaryFilter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 const char* vtkEVMBoundaryFilter::GetSelectionModeAsString()
 {
-  switch (this->SelectionMode)
-  {
-    case POSITIVE:
-      return "Positive";
-    case RANGE:
-      return "Range";
-    default:
-      return "Labels";
-  }
+  return vbr::vtk::selectionModeName(this->SelectionMode);
 }
 
 //------------------------------------------------------------------------------

@@ -2,6 +2,8 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
@@ -222,6 +224,27 @@ vtkSmartPointer<vtkIntArray> newLargeIntArray(vtkIdType n)
 #endif
   array->SetNumberOfValues(n);
   return array;
+}
+
+void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
+{
+  vtkNew<vtkIdTypeArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+const char* selectionModeName(int mode)
+{
+  switch (mode)
+  {
+    case SelectPositive:
+      return "Positive";
+    case SelectRange:
+      return "Range";
+    default:
+      return "Labels";
+  }
 }
 
 std::string readVoxels(vtkImageData* image,

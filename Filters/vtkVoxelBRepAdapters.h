@@ -22,6 +22,7 @@
 #include <vector>
 
 class vtkAlgorithm;
+class vtkFieldData;
 class vtkImageData;
 
 namespace vbr
@@ -77,6 +78,12 @@ std::string readVoxels(vtkImageData* image,
 /// first-touch page faults (one per 1024 values; about 170 ms for 256^3 labels here, 5 to
 /// 100 ms with huge pages).
 vtkSmartPointer<vtkIntArray> newLargeIntArray(vtkIdType n);
+
+/// Appends a one-value field array.
+void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value);
+
+/// Name of a SelectionMode value ("Positive", "Range", "Labels").
+const char* selectionModeName(int mode);
 
 /// How voxels are selected (the SelectionMode of the filters).
 enum SelectionMode
