@@ -253,10 +253,9 @@ vtkSmartPointer<vtkIntArray> paintRegionIds(const std::vector<ObjectBoxes>& obje
   const vbr::Execution& exec)
 {
   const std::int64_t n = std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
-  vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newLargeIntArray(static_cast<vtkIdType>(n));
+  vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(static_cast<vtkIdType>(n));
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
-  exec.forRange(n, [out](std::int64_t b, std::int64_t e) { std::fill(out + b, out + e, 0); });
   std::vector<std::int32_t> values;
   for (const ObjectBoxes& o : objects)
   {

@@ -9,8 +9,11 @@
 #include "vtkNew.h"
 #include "vtkSMPTools.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <mutex>
 #include <sstream>
@@ -57,6 +60,7 @@ Execution makeExecution(vtkAlgorithm* algorithm, double progressFrom, double pro
     return !algorithm->GetAbortExecute();
   };
   exec.aborted = [algorithm]() { return algorithm->GetAbortExecute() != 0; };
+  exec.concurrency = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
   return exec;
 }
 
@@ -205,24 +209,61 @@ namespace vbr
 namespace vtk
 {
 
-vtkSmartPointer<vtkIntArray> newLargeIntArray(vtkIdType n)
+namespace
+{
+#ifdef __linux__
+constexpr std::size_t HugePage = std::size_t(2) << 20;
+
+/// What a zeroed mapping needs to be unmapped, kept just below its data.
+struct MappingHeader
+{
+  void* base;
+  std::size_t length;
+};
+
+void unmapZeroed(void* data)
+{
+  MappingHeader header;
+  std::memcpy(&header, static_cast<char*>(data) - sizeof header, sizeof header);
+  munmap(header.base, header.length);
+}
+
+/// n zero bytes, 2 MiB-aligned, or nullptr.
+void* mapZeroed(std::size_t bytes)
+{
+  const std::size_t rounded = (bytes + HugePage - 1) / HugePage * HugePage;
+  const std::size_t length = rounded + 2 * HugePage; // room to align and for the header
+  void* base = mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (base == MAP_FAILED)
+    return nullptr;
+  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(base) + sizeof(MappingHeader);
+  char* data = reinterpret_cast<char*>((first + HugePage - 1) / HugePage * HugePage);
+  const MappingHeader header{ base, length };
+  std::memcpy(data - sizeof header, &header, sizeof header);
+  madvise(data, rounded, MADV_HUGEPAGE); // a hint: failure only costs time
+  return data;
+}
+#endif
+} // namespace
+
+vtkSmartPointer<vtkIntArray> newZeroedIntArray(vtkIdType n)
 {
   auto array = vtkSmartPointer<vtkIntArray>::New();
 #ifdef __linux__
   const std::size_t bytes = static_cast<std::size_t>(n) * sizeof(int);
-  const std::size_t hugePage = std::size_t(2) << 20;
-  if (bytes >= 4 * hugePage)
+  if (bytes >= 4 * HugePage)
   {
-    const std::size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
-    if (void* memory = std::aligned_alloc(hugePage, rounded))
+    if (void* memory = mapZeroed(bytes))
     {
-      madvise(memory, rounded, MADV_HUGEPAGE); // a hint: failure only costs time
-      array->SetArray(static_cast<int*>(memory), n, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+      array->SetArray(
+        static_cast<int*>(memory), n, 0, vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+      array->SetArrayFreeFunction(unmapZeroed);
       return array;
     }
   }
 #endif
   array->SetNumberOfValues(n);
+  std::fill_n(array->GetPointer(0), n, 0);
   return array;
 }
 

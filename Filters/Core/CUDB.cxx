@@ -220,6 +220,20 @@ public:
   {
   }
 
+  /// Starts a piece of the sweep after an earlier piece: the section before the first slice
+  /// stands for the slice the earlier piece ended with. Its rectangles get ghost boxes,
+  /// which the stitching maps to the earlier piece's open boxes (the two decompositions of
+  /// one section are the same).
+  void enterAfter(const std::vector<Point2>& section)
+  {
+    this->Previous.build(section);
+    const std::size_t n = this->Previous.rects.size();
+    this->PreviousBox.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      this->PreviousBox[i] = GhostBit | static_cast<std::uint32_t>(i);
+    this->GhostEnd.assign(n, Open);
+  }
+
   /// The section of the slice starting at plane a (empty past the last plane).
   void nextSlice(Coord a, const std::vector<Point2>& section)
   {
@@ -260,7 +274,15 @@ private:
     }
     for (std::size_t q = 0; q < prev.size(); ++q)
       if (!this->PreviousContinues[q])
-        this->Out.boxes[this->PreviousBox[q]].hi[this->Order[0]] = a;
+        this->endBox(this->PreviousBox[q], a);
+  }
+
+  void endBox(std::uint32_t box, Coord a)
+  {
+    if (box & GhostBit)
+      this->GhostEnd[box & ~GhostBit] = a;
+    else
+      this->Out.boxes[box].hi[this->Order[0]] = a;
   }
 
   /// Contacts across lines within the slice; those between two continued boxes were
@@ -334,13 +356,97 @@ private:
     }
   }
 
+public:
+  /// Box ids with this bit are ghosts (see enterAfter).
+  static constexpr std::uint32_t GhostBit = std::uint32_t(1) << 31;
+  /// Boxes still open after the last slice, by rectangle of that slice.
+  const std::vector<std::uint32_t>& openBoxes() const { return this->PreviousBox; }
+  /// Where each ghost box ended along A (Open: it goes on past this piece).
+  const std::vector<Coord>& ghostEnds() const { return this->GhostEnd; }
+
+private:
   const AxisOrder Order;
   CUDB& Out;
+  std::vector<Coord> GhostEnd;
   SectionDecomposition Previous, Current;
   std::vector<std::uint32_t> PreviousBox, CurrentBox; ///< box of each rectangle
   std::vector<char> CurrentIsNew, PreviousContinues;
   std::vector<RectContact> Found;
 };
+
+/// Pieces of a 3D sweep: one per thread when the EVM is large enough to repay the
+/// stitching and each piece keeps many planes.
+int automaticPieces(std::size_t vertices, std::size_t planes, int concurrency)
+{
+  constexpr std::size_t MinimumVertices = 50000, MinimumPlanesPerPiece = 16;
+  if (concurrency < 2 || vertices < MinimumVertices)
+    return 1;
+  return static_cast<int>(std::min<std::size_t>(concurrency, planes / MinimumPlanesPerPiece));
+}
+
+/// The sweep over planes [first, last) of an EVM, with its own boxes and contacts.
+struct SweptPiece
+{
+  CUDB part;
+  std::vector<std::uint32_t> openBoxes;
+  std::vector<Coord> ghostEnds;
+  bool aborted = false;
+  bool lastSectionEmpty = false;
+
+  void sweep(const EVM& evm,
+    const std::vector<std::size_t>& starts,
+    std::vector<Point2> section,
+    std::size_t first,
+    std::size_t last,
+    bool afterAnotherPiece,
+    const Execution& exec)
+  {
+    const std::vector<Vertex>& v = evm.vertices();
+    std::vector<Point2> scratch;
+    SliceSweep sweep(evm.order(), this->part);
+    if (afterAnotherPiece)
+      sweep.enterAfter(section);
+    for (std::size_t k = first; k < last; ++k)
+    {
+      if (((k - first) & 15) == 0 && exec.stopRequested())
+      {
+        this->aborted = true;
+        return;
+      }
+      advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+      sweep.nextSlice(v[starts[k]][0], section);
+    }
+    this->openBoxes = sweep.openBoxes();
+    this->ghostEnds = sweep.ghostEnds();
+    this->lastSectionEmpty = section.empty();
+  }
+};
+
+/// Joins the pieces in sweep order: a piece's ghost boxes are the open boxes of the piece
+/// before, so its boxes come after theirs and the result is the one sequential sweep's.
+void stitch(std::vector<SweptPiece>& pieces, CUDB& out)
+{
+  const int axisA = out.order[0];
+  std::vector<std::uint32_t> open; // global ids of the boxes open before the current piece
+  for (SweptPiece& piece : pieces)
+  {
+    const std::uint32_t offset = static_cast<std::uint32_t>(out.boxes.size());
+    auto global = [&](std::uint32_t id)
+    { return (id & SliceSweep::GhostBit) ? open[id & ~SliceSweep::GhostBit] : offset + id; };
+    for (std::size_t g = 0; g < piece.ghostEnds.size(); ++g)
+      if (piece.ghostEnds[g] != Open)
+        out.boxes[open[g]].hi[axisA] = piece.ghostEnds[g];
+    out.boxes.insert(out.boxes.end(), piece.part.boxes.begin(), piece.part.boxes.end());
+    out.contacts.reserve(out.contacts.size() + piece.part.contacts.size());
+    for (const BoxContact& c : piece.part.contacts)
+      out.contacts.push_back({ global(c.backward), global(c.forward), c.axis, c.face });
+    out.oudbBoxCount += piece.part.oudbBoxCount;
+    for (std::uint32_t& id : piece.openBoxes)
+      id = global(id);
+    open.swap(piece.openBoxes);
+    piece.part = CUDB(); // memory: one copy of the boxes at a time
+  }
+}
 
 } // namespace
 
@@ -352,7 +458,7 @@ std::int64_t CUDB::volume() const
   return v;
 }
 
-bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out)
+bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces)
 {
   out = CUDB();
   out.dimension = evm.dimension();
@@ -375,17 +481,36 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out)
         { c.backward, c.forward, static_cast<std::uint8_t>(out.order[1]), c.face });
     return true;
   }
-  SliceSweep sweep(out.order, out);
   const std::size_t planes = starts.size() - 1;
-  for (std::size_t k = 0; k < planes; ++k)
+  if (pieces <= 0)
+    pieces = automaticPieces(evm.size(), planes, exec.concurrency);
+  pieces =
+    static_cast<int>(std::min<std::size_t>(std::max(pieces, 1), std::max<std::size_t>(planes, 1)));
+  std::vector<std::size_t> firstPlane(pieces + 1);
+  for (int p = 0; p <= pieces; ++p)
+    firstPlane[p] = planes * p / pieces;
+  // The section entering each piece: the XOR of all planes before it (a sequential pass,
+  // cheap next to the decompositions).
+  std::vector<std::vector<Point2>> entering(pieces);
+  for (int p = 1; p < pieces; ++p)
   {
-    if ((k & 15) == 0 && exec.stopRequested())
-      return false;
-    advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
-    sweep.nextSlice(v[starts[k]][0], section);
+    for (std::size_t k = firstPlane[p - 1]; k < firstPlane[p]; ++k)
+      advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+    entering[p] = section;
   }
-  if (!section.empty())
+  std::vector<SweptPiece> swept(pieces);
+  exec.forRange(pieces,
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (std::int64_t p = begin; p < end; ++p)
+        swept[p].sweep(evm, starts, entering[p], firstPlane[p], firstPlane[p + 1], p > 0, exec);
+    });
+  for (const SweptPiece& piece : swept)
+    if (piece.aborted)
+      return false;
+  if (!swept.back().lastSectionEmpty)
     throw std::invalid_argument("the last section is not empty: not a valid EVM");
+  stitch(swept, out);
   return true;
 }
 

@@ -35,6 +35,7 @@ struct Box
   {
     return std::int64_t(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
   }
+  bool operator==(const Box& o) const { return this->lo == o.lo && this->hi == o.hi; }
 };
 
 /// Two boxes that touch across a plane perpendicular to `axis` (a world axis): `backward`
@@ -85,7 +86,9 @@ public:
 /// EVM -> CUDB by the paper's Algorithms 1 and 2: sections of the A-slices by XOR of the
 /// planes of vertices, 1D sections of the B-lines by XOR of the lines of vertices, boxes
 /// compacted on the fly. Works with any sorting of the EVM. Returns false when aborted.
-bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out);
+/// A 3D sweep is cut into `pieces` runs of planes swept concurrently and stitched (0: one
+/// per thread of `exec` on large inputs); the result is the same whatever the pieces.
+bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces = 0);
 CUDB buildCUDB(const EVM& evm);
 
 /// EVM -> OUDB: the boxes without compaction, in their order.

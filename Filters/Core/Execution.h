@@ -22,6 +22,8 @@ struct Execution
   std::function<bool(double)> progress;
   /// Whether the caller asked to stop; polled from any thread inside long loops.
   std::function<bool()> aborted;
+  /// How many threads parallelFor may use: splits work that parallelizes only by pieces.
+  int concurrency = 1;
 
   void forRange(std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body) const
   {

@@ -7,13 +7,15 @@
 // volumes of the shared data): the EVM, OUDB and CUDB sizes (the paper's Table 1), the
 // median time of each phase run on the core alone (image -> EVM, EVM -> CUDB, CCL on the
 // boxes, label write-back: the paper's Table 2), the whole filter (face and vertex), and the
-// peer with the ratio. Run with VTK_SMP_BACKEND_IN_USE=STDThread to use every core.
+// peer with the ratio (the three runs take turns). Run with VTK_SMP_BACKEND_IN_USE=STDThread to use
+// every core.
 #include "vtkCUDBConnectivity.h"
 
 #include "CUDB.h"
 #include "EVM.h"
 #include "Phantom.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -53,6 +55,34 @@ double medianSeconds(int repeat, const std::function<void()>& run)
   }
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
+}
+
+/// Median time of each run, the runs taking turns so that the machine's drift (these VMs
+/// are noisy) falls on all of them alike.
+std::vector<double> interleavedMedians(int repeat, const std::vector<std::function<void()>>& runs)
+{
+  std::vector<std::vector<double>> t(runs.size());
+  for (int r = -1; r < repeat; ++r) // r = -1: warm-up
+    for (std::size_t k = 0; k < runs.size(); ++k)
+    {
+      const auto t0 = Clock::now();
+      runs[k]();
+      if (r >= 0)
+        t[k].push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+  std::vector<double> medians;
+  for (std::vector<double>& times : t)
+  {
+    std::sort(times.begin(), times.end());
+    medians.push_back(times[times.size() / 2]);
+  }
+  return medians;
+}
+
+void update(vtkAlgorithm* algorithm)
+{
+  algorithm->Modified();
+  algorithm->Update();
 }
 
 struct Input
@@ -154,22 +184,24 @@ void run(const Input& in, int repeat)
     });
 
   vtkNew<vtkImageData> image = imageOf(in);
-  vtkNew<vtkCUDBConnectivity> filter;
-  filter->SetInputData(image);
-  filter->GenerateBoxesOff();
-  const double tFace = medianSeconds(repeat,
-    [&]
-    {
-      filter->Modified();
-      filter->Update();
-    });
-  filter->SetConnectivityToVertex();
-  const double tVertex = medianSeconds(repeat,
-    [&]
-    {
-      filter->Modified();
-      filter->Update();
-    });
+  vtkNew<vtkCUDBConnectivity> face;
+  face->SetInputData(image);
+  face->GenerateBoxesOff();
+  vtkNew<vtkCUDBConnectivity> vertex;
+  vertex->SetInputData(image);
+  vertex->GenerateBoxesOff();
+  vertex->SetConnectivityToVertex();
+  std::vector<std::function<void()>> runs{ [&] { update(face); }, [&] { update(vertex); } };
+#ifdef VOXELBREP_HAVE_PEER
+  vtkNew<vtkImageConnectivityFilter> peer;
+  peer->SetInputData(image);
+  peer->SetScalarRange(1, 1);
+  peer->SetExtractionModeToAllRegions();
+  peer->SetLabelModeToSizeRank();
+  peer->SetLabelScalarTypeToInt(); // the default (unsigned char) caps the count at 255
+  runs.push_back([&] { update(peer); });
+#endif
+  const std::vector<double> t = interleavedMedians(repeat, runs);
   std::printf("%-18s %9zu EV %9zu OUDB %9zu CUDB %7u cc6 | EVM %7.2f  CUDB %7.2f  CCL %6.2f  "
               "write %7.2f | filter face %7.2f vertex %7.2f ms",
     in.name.c_str(),
@@ -181,24 +213,13 @@ void run(const Input& in, int repeat)
     1e3 * tCUDB,
     1e3 * tCCL,
     1e3 * tPaint,
-    1e3 * tFace,
-    1e3 * tVertex);
+    1e3 * t[0],
+    1e3 * t[1]);
 #ifdef VOXELBREP_HAVE_PEER
-  vtkNew<vtkImageConnectivityFilter> peer;
-  peer->SetInputData(image);
-  peer->SetScalarRange(1, 1);
-  peer->SetExtractionModeToAllRegions();
-  peer->SetLabelModeToSizeRank();
-  const double tPeer = medianSeconds(repeat,
-    [&]
-    {
-      peer->Modified();
-      peer->Update();
-    });
   std::printf(" | vtkImageConnectivityFilter %8.2f ms (%lld regions) ratio %.1fx",
-    1e3 * tPeer,
+    1e3 * t[2],
     static_cast<long long>(peer->GetNumberOfExtractedRegions()),
-    tPeer / tFace);
+    t[2] / t[0]);
 #endif
   std::printf("\n");
 }

@@ -8,9 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
+#include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -190,6 +193,82 @@ TEST(CUDB, LargerRandomVolumes)
     for (const char* name : { "ZYX", "XZY", "YXZ" })
       checkAll(v, zyx.sortedAs(vbr::axisOrderFromName(name)), false);
   }
+}
+
+namespace
+{
+
+/// A parallel loop on real threads, one per sub-range, as vtkSMPTools would run it.
+vbr::Execution threadedExecution(int threads)
+{
+  vbr::Execution exec;
+  exec.concurrency = threads;
+  exec.parallelFor = [threads](
+                       std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
+  {
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t)
+      workers.emplace_back(body, n * t / threads, n * (t + 1) / threads);
+    for (std::thread& w : workers)
+      w.join();
+  };
+  return exec;
+}
+
+std::vector<std::tuple<std::uint32_t, std::uint32_t, int, bool>> sortedContacts(const vbr::CUDB& c)
+{
+  std::vector<std::tuple<std::uint32_t, std::uint32_t, int, bool>> out;
+  for (const vbr::BoxContact& k : c.contacts)
+    out.emplace_back(k.backward, k.forward, k.axis, k.face);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+} // namespace
+
+TEST(CUDB, PiecesGiveTheSequentialSweep)
+{
+  // The sequential sweep is checked against brute force above; a sweep cut into pieces and
+  // stitched must give its boxes in the same order and the same contacts.
+  const bf::Int3 sizes[] = { { 6, 5, 4 }, { 12, 9, 20 }, { 17, 23, 31 }, { 40, 30, 64 } };
+  unsigned seed = 500;
+  std::size_t stitchedVolumes = 0;
+  for (const auto& d : sizes)
+    for (double density : { 0.1, 0.5, 0.9 })
+    {
+      const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+      const vbr::EVM zyx = vbr::extractEVM(v);
+      for (const char* name : Orders)
+      {
+        const vbr::EVM evm = zyx.sortedAs(vbr::axisOrderFromName(name));
+        const vbr::CUDB sequential = vbr::buildCUDB(evm);
+        for (int pieces : { 2, 3, 7, 100 })
+        {
+          SCOPED_TRACE(std::string(name) + " in " + std::to_string(pieces) + " pieces");
+          vbr::CUDB stitched;
+          ASSERT_TRUE(vbr::buildCUDB(evm, threadedExecution(3), stitched, pieces));
+          EXPECT_EQ(stitched.boxes, sequential.boxes);
+          EXPECT_EQ(sortedContacts(stitched), sortedContacts(sequential));
+          EXPECT_EQ(stitched.oudbBoxCount, sequential.oudbBoxCount);
+          ++stitchedVolumes;
+        }
+      }
+    }
+  EXPECT_EQ(stitchedVolumes, 4u * 3 * 6 * 4);
+  // And the automatic choice on a volume large enough to be cut.
+  const vbr::BitVolume big = bf::randomVolume({ 96, 80, 64 }, 0.4, 7);
+  const vbr::EVM evm = vbr::extractEVM(big);
+  ASSERT_GE(evm.size(), 50000u);
+  vbr::CUDB stitched;
+  ASSERT_TRUE(vbr::buildCUDB(evm, threadedExecution(2), stitched));
+  const vbr::CUDB sequential = vbr::buildCUDB(evm);
+  EXPECT_EQ(stitched.boxes, sequential.boxes);
+  EXPECT_EQ(sortedContacts(stitched), sortedContacts(sequential));
+  const vbr::Components c = vbr::labelComponents(stitched, vbr::Connectivity::Vertex);
+  int count = 0;
+  const std::vector<int> expected = bf::floodFillLabels(big, true, count);
+  EXPECT_EQ(c.count, static_cast<std::uint32_t>(count));
+  expectSamePartition(paintedLabels(big, stitched, c), expected);
 }
 
 TEST(CUDB, TwoDimensionalImages)
