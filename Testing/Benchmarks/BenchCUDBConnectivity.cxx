@@ -57,14 +57,17 @@ double medianSeconds(int repeat, const std::function<void()>& run)
   return t[t.size() / 2];
 }
 
-/// Median time of each run, the runs taking turns so that the machine's drift (these VMs
-/// are noisy) falls on all of them alike.
+/// Median time of each run, the runs taking turns in rotating order so that the machine's drift
+/// (these VMs are noisy) falls on all of them alike.
 std::vector<double> interleavedMedians(int repeat, const std::vector<std::function<void()>>& runs)
 {
   std::vector<std::vector<double>> t(runs.size());
   for (int r = -1; r < repeat; ++r) // r = -1: warm-up
-    for (std::size_t k = 0; k < runs.size(); ++k)
+    for (std::size_t i = 0; i < runs.size(); ++i)
     {
+      // Each round starts with another run: a run pays for what the one before it left
+      // (freed memory, caches), and that must not always fall on the same one.
+      const std::size_t k = (i + static_cast<std::size_t>(r + 1)) % runs.size();
       const auto t0 = Clock::now();
       runs[k]();
       if (r >= 0)
