@@ -1,0 +1,614 @@
+#include "Polyhedrization.h"
+
+#include "GridPointIndex.h"
+
+#include <algorithm>
+#include <deque>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace vbr
+{
+
+namespace
+{
+
+constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
+
+std::array<int, 3> signsOf(const SurfelGraph::Surfel& s)
+{
+  std::array<int, 3> signs{ 0, 0, 0 };
+  signs[s.axis()] = s.sign();
+  return signs;
+}
+
+/// The growth of the faces: per-face state kept in arrays stamped with the face number, so
+/// that starting a face costs nothing.
+class FaceGrower
+{
+public:
+  FaceGrower(const SurfelGraph& graph, const PolyhedrizationOptions& options, Polyhedron& out)
+    : Graph(graph)
+    , Options(options)
+    , Poly(&out)
+    , Queued(graph.size(), None)
+    , Refused(graph.size(), None)
+    , VertexFace(graph.vertexPointel.size(), None)
+    , VertexCount(graph.vertexPointel.size(), 0)
+    , DepthLimit(options.maximumDepth)
+  {
+    out.faceOfSurfel.assign(graph.size(), None);
+  }
+
+  /// Grows faces from the free surfels of `seeds`, in order.
+  bool run(const std::vector<std::uint32_t>& seeds, const Execution& exec, double progressTo)
+  {
+    const std::size_t n = seeds.size();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::uint32_t s = seeds[i];
+      if (this->Poly->faceOfSurfel[s] != None)
+        continue;
+      if ((this->Poly->faces.size() & 63) == 0)
+      {
+        if (exec.stopRequested() || !exec.report(progressTo * double(i) / double(n)))
+          return false;
+      }
+      this->growFrom(s);
+    }
+    return true;
+  }
+
+private:
+  void growFrom(std::uint32_t seed)
+  {
+    const std::uint32_t f = static_cast<std::uint32_t>(this->Poly->faces.size());
+    this->Poly->faces.emplace_back();
+    this->Recognizer.reset();
+    this->Wave.clear();
+    if (!this->seedUmbrella(seed, f))
+    {
+      this->Recognizer.tryAdd(this->pointelsOf(seed), signsOf(this->Graph.surfels[seed]));
+      this->take(seed, f, 0);
+    }
+    this->drainWave(f);
+    this->Poly->faces[f].plane = this->Recognizer.plane();
+  }
+
+  /// Breadth first over the queued surfels: each joins face f if f stays a disk of one
+  /// standard plane.
+  void drainWave(std::uint32_t f)
+  {
+    while (!this->Wave.empty())
+    {
+      const auto [s, depth] = this->Wave.front();
+      this->Wave.pop_front();
+      this->Queued[s] = None;
+      if (this->Poly->faceOfSurfel[s] != None || this->Refused[s] == f)
+        continue;
+      if (this->Options.maximumFaceSize &&
+        this->Poly->faces[f].surfels.size() >= this->Options.maximumFaceSize)
+        break;
+      if (!this->keepsDisk(s, f))
+        continue; // may fit later, when it is queued again by a new neighbour
+      if (!this->Recognizer.tryAdd(this->pointelsOf(s), signsOf(this->Graph.surfels[s])))
+      {
+        this->Refused[s] = f; // points only accumulate: it never fits this face again
+        continue;
+      }
+      this->take(s, f, depth);
+    }
+    for (const auto& queued : this->Wave)
+      this->Queued[queued.first] = None;
+    this->Wave.clear();
+  }
+
+public:
+  /// Hands every surfel of face f to the faces around it, each keeping the disk and plane
+  /// conditions as in the growth; f then disappears. Changes nothing unless all its
+  /// surfels find a face.
+  bool absorb(std::uint32_t f)
+  {
+    std::vector<std::uint32_t>& freed = this->Poly->faces[f].surfels;
+    for (std::uint32_t s : freed)
+      this->Poly->faceOfSurfel[s] = None;
+    struct Saved
+    {
+      std::uint32_t face;
+      std::size_t size;
+      StandardPlane plane;
+    };
+    std::vector<Saved> saved;
+    std::size_t left = freed.size();
+    for (int round = 0; round < 4 && left > 0; ++round)
+    {
+      const std::vector<std::uint32_t> around = this->facesAround(freed);
+      if (around.empty())
+        break;
+      for (std::uint32_t g : around)
+      {
+        saved.push_back({ g, this->Poly->faces[g].surfels.size(), this->Poly->faces[g].plane });
+        left -= this->extend(g, freed);
+        if (left == 0)
+          break;
+      }
+    }
+    if (left == 0)
+    {
+      freed.clear();
+      return true;
+    }
+    // Undo, latest first, so that each face gets its first saved state back.
+    for (auto it = saved.rbegin(); it != saved.rend(); ++it)
+    {
+      StandardFace& g = this->Poly->faces[it->face];
+      g.surfels.resize(it->size);
+      g.plane = it->plane;
+    }
+    for (std::uint32_t s : freed)
+      this->Poly->faceOfSurfel[s] = f;
+    return false;
+  }
+
+private:
+  /// Faces sharing an edge with the free surfels among `surfels`, most shared edges first.
+  std::vector<std::uint32_t> facesAround(const std::vector<std::uint32_t>& surfels) const
+  {
+    std::unordered_map<std::uint32_t, int> shared;
+    for (std::uint32_t s : surfels)
+      if (this->Poly->faceOfSurfel[s] == None)
+        for (int k = 0; k < 4; ++k)
+        {
+          const std::uint32_t g = this->Poly->faceOfSurfel[this->Graph.neighbourOf(s, k)];
+          if (g != None)
+            ++shared[g];
+        }
+    std::vector<std::pair<int, std::uint32_t>> byCount;
+    for (const auto& [g, count] : shared)
+      byCount.emplace_back(-count, g);
+    std::sort(byCount.begin(), byCount.end());
+    std::vector<std::uint32_t> faces;
+    for (const auto& c : byCount)
+      faces.push_back(c.second);
+    return faces;
+  }
+
+  /// Grows face g again over the free surfels next to it; returns how many it took.
+  std::size_t extend(std::uint32_t g, const std::vector<std::uint32_t>& freed)
+  {
+    StandardFace& face = this->Poly->faces[g];
+    // The disk test's vertex counts and the recognizer, rebuilt for g.
+    for (std::uint32_t s : face.surfels)
+      for (int k = 0; k < 4; ++k)
+        this->VertexFace[this->Graph.vertexOf(s, k)] = None;
+    std::vector<Point3> points;
+    std::array<int, 3> signs{ 0, 0, 0 };
+    for (std::uint32_t s : face.surfels)
+    {
+      const auto& sf = this->Graph.surfels[s];
+      signs[sf.axis()] = sf.sign();
+      for (int k = 0; k < 4; ++k)
+      {
+        points.push_back(sf.corner(k));
+        const std::uint32_t v = this->Graph.vertexOf(s, k);
+        if (this->VertexFace[v] != g)
+          this->VertexFace[v] = g, this->VertexCount[v] = 0;
+        ++this->VertexCount[v];
+      }
+    }
+    this->Recognizer.reset();
+    if (!this->Recognizer.tryAdd(points, signs))
+      return 0; // beyond the search's reach from scratch: leave g as it is
+    const std::size_t before = face.surfels.size();
+    this->Wave.clear();
+    for (std::uint32_t s : freed)
+      if (this->Poly->faceOfSurfel[s] == None)
+        for (int k = 0; k < 4; ++k)
+          if (this->Poly->faceOfSurfel[this->Graph.neighbourOf(s, k)] == g && this->Queued[s] != g)
+          {
+            this->Queued[s] = g;
+            this->Wave.emplace_back(s, 0);
+          }
+    // The depth limit shapes the growth from a seed; absorbed surfels have no depth.
+    this->DepthLimit = 0;
+    this->drainWave(g);
+    this->DepthLimit = this->Options.maximumDepth;
+    face.plane = this->Recognizer.plane();
+    return face.surfels.size() - before;
+  }
+
+  /// The umbrella of a corner of the seed as the first face, when all its surfels are free
+  /// and lie in one standard plane.
+  bool seedUmbrella(std::uint32_t seed, std::uint32_t f)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      std::vector<std::uint32_t> umbrella;
+      std::uint32_t s = seed;
+      int corner = k;
+      bool free = true;
+      do
+      {
+        umbrella.push_back(s);
+        free = free && this->Poly->faceOfSurfel[s] == None;
+        const int j = this->Graph.sharedEdge(s, corner); // edge `corner` starts at the vertex
+        s = this->Graph.neighbourOf(s, corner);
+        corner = (j + 1) % 4;
+      } while (s != seed && umbrella.size() <= 8);
+      if (!free || s != seed ||
+        (this->Options.maximumFaceSize && umbrella.size() > this->Options.maximumFaceSize))
+        continue;
+      std::vector<Point3> points;
+      std::array<int, 3> signs{ 0, 0, 0 };
+      bool opposite = false;
+      for (std::uint32_t u : umbrella)
+      {
+        const auto& sf = this->Graph.surfels[u];
+        opposite = opposite || signs[sf.axis()] == -sf.sign();
+        signs[sf.axis()] = sf.sign();
+        for (int c = 0; c < 4; ++c)
+          points.push_back(sf.corner(c));
+      }
+      if (opposite || !this->Recognizer.tryAdd(points, signs))
+        continue;
+      for (std::uint32_t u : umbrella)
+        this->take(u, f, 0);
+      return true;
+    }
+    return false;
+  }
+
+  std::vector<Point3> pointelsOf(std::uint32_t s) const
+  {
+    const auto& sf = this->Graph.surfels[s];
+    return { sf.corner(0), sf.corner(1), sf.corner(2), sf.corner(3) };
+  }
+
+  void take(std::uint32_t s, std::uint32_t f, std::uint32_t depth)
+  {
+    this->Poly->faceOfSurfel[s] = f;
+    this->Poly->faces[f].surfels.push_back(s);
+    for (int k = 0; k < 4; ++k)
+    {
+      const std::uint32_t v = this->Graph.vertexOf(s, k);
+      if (this->VertexFace[v] != f)
+        this->VertexFace[v] = f, this->VertexCount[v] = 0;
+      ++this->VertexCount[v];
+    }
+    if (this->DepthLimit && depth + 1 > this->DepthLimit)
+      return;
+    for (int k = 0; k < 4; ++k)
+    {
+      const std::uint32_t t = this->Graph.neighbourOf(s, k);
+      if (this->Poly->faceOfSurfel[t] == None && this->Queued[t] != f && this->Refused[t] != f)
+      {
+        this->Queued[t] = f;
+        this->Wave.emplace_back(t, depth + 1);
+      }
+    }
+  }
+
+  /// Adding s keeps the face a disk iff s meets it along one arc of its boundary: the edges
+  /// it shares are consecutive (1 to 3 of them) and it touches no other vertex of the face.
+  bool keepsDisk(std::uint32_t s, std::uint32_t f) const
+  {
+    bool shared[4];
+    int count = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+      shared[k] = this->Poly->faceOfSurfel[this->Graph.neighbourOf(s, k)] == f;
+      count += shared[k];
+    }
+    if (count == 0 || count == 4)
+      return false;
+    int arcs = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+      arcs += shared[k] && !shared[(k + 3) % 4];
+      const std::uint32_t v = this->Graph.vertexOf(s, k);
+      const bool touched = this->VertexFace[v] == f && this->VertexCount[v] > 0;
+      if (touched != (shared[k] || shared[(k + 3) % 4]))
+        return false;
+    }
+    return arcs == 1;
+  }
+
+  const SurfelGraph& Graph;
+  const PolyhedrizationOptions& Options;
+  Polyhedron* Poly; ///< where the faces go
+  StandardPlaneRecognizer Recognizer;
+  std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
+  std::vector<std::uint32_t> Queued, Refused;             ///< stamped with the face
+  std::vector<std::uint32_t> VertexFace, VertexCount;     ///< surfels of the face per vertex
+  std::uint32_t DepthLimit;
+};
+
+/// The boundary loop of a disk face, counter-clockwise seen from outside.
+std::vector<std::uint32_t> loopOf(const SurfelGraph& graph,
+  const Polyhedron& poly,
+  std::uint32_t f,
+  std::unordered_map<std::uint32_t, std::pair<std::uint32_t, int>>& edgeFrom)
+{
+  edgeFrom.clear();
+  for (std::uint32_t s : poly.faces[f].surfels)
+    for (int k = 0; k < 4; ++k)
+      if (poly.faceOfSurfel[graph.neighbourOf(s, k)] != f)
+        edgeFrom[graph.vertexOf(s, k)] = { s, k };
+  std::vector<std::uint32_t> loop;
+  if (edgeFrom.empty())
+    return loop;
+  const std::uint32_t start = edgeFrom.begin()->first;
+  std::uint32_t v = start;
+  do
+  {
+    loop.push_back(v);
+    const auto it = edgeFrom.find(v);
+    if (it == edgeFrom.end() || loop.size() > edgeFrom.size())
+      throw std::logic_error("face boundary is not one loop");
+    v = graph.vertexOf(it->second.first, (it->second.second + 1) % 4);
+  } while (v != start);
+  if (loop.size() != edgeFrom.size())
+    throw std::logic_error("face boundary is not one loop");
+  return loop;
+}
+
+/// Renumbers the faces left (those with surfels), in order.
+void dropEmptyFaces(Polyhedron& poly)
+{
+  std::vector<std::uint32_t> number(poly.faces.size(), None);
+  std::vector<StandardFace> faces;
+  for (std::uint32_t f = 0; f < poly.faces.size(); ++f)
+    if (!poly.faces[f].surfels.empty())
+    {
+      number[f] = static_cast<std::uint32_t>(faces.size());
+      faces.push_back(std::move(poly.faces[f]));
+    }
+  for (std::uint32_t& f : poly.faceOfSurfel)
+    f = number[f];
+  poly.faces.swap(faces);
+}
+
+/// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
+/// each meets the umbrella in one run).
+std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph, const Polyhedron& poly)
+{
+  std::vector<std::uint8_t> count(graph.vertexPointel.size(), 0);
+  std::vector<char> done(graph.vertexPointel.size(), 0);
+  for (std::uint32_t s0 = 0; s0 < graph.size(); ++s0)
+    for (int k0 = 0; k0 < 4; ++k0)
+    {
+      const std::uint32_t v = graph.vertexOf(s0, k0);
+      if (done[v])
+        continue;
+      done[v] = 1;
+      int changes = 0;
+      std::uint32_t s = s0;
+      int corner = k0;
+      do
+      {
+        const int j = graph.sharedEdge(s, corner);
+        const std::uint32_t t = graph.neighbourOf(s, corner);
+        changes += poly.faceOfSurfel[s] != poly.faceOfSurfel[t];
+        s = t;
+        corner = (j + 1) % 4;
+      } while (s != s0);
+      count[v] = static_cast<std::uint8_t>(std::min(changes == 0 ? 1 : changes, 255));
+    }
+  return count;
+}
+
+} // namespace
+
+bool polyhedrize(const SurfelGraph& graph,
+  const PolyhedrizationOptions& options,
+  const Execution& exec,
+  Polyhedron& out)
+{
+  out = Polyhedron();
+  std::vector<std::uint32_t> seeds(graph.size());
+  for (std::uint32_t s = 0; s < seeds.size(); ++s)
+    seeds[s] = s;
+  FaceGrower grower(graph, options, out);
+  if (!grower.run(seeds, exec, 0.7))
+    return false;
+  if (options.mergeFaces)
+  {
+    // Smallest faces first: each is handed to its neighbours when they can take it whole.
+    std::vector<std::uint32_t> order(out.faces.size());
+    for (std::uint32_t f = 0; f < order.size(); ++f)
+      order[f] = f;
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b)
+      { return out.faces[a].surfels.size() < out.faces[b].surfels.size(); });
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      if (out.faces[order[i]].surfels.size() > options.mergeFacesUpTo)
+        break;
+      if ((i & 63) == 0 &&
+        (exec.stopRequested() || !exec.report(0.7 + 0.25 * double(i) / double(order.size()))))
+        return false;
+      out.mergedFaces += grower.absorb(order[i]);
+    }
+    dropEmptyFaces(out);
+  }
+  std::unordered_map<std::uint32_t, std::pair<std::uint32_t, int>> edgeFrom;
+  for (std::uint32_t f = 0; f < out.faces.size(); ++f)
+    out.faces[f].loop = loopOf(graph, out, f, edgeFrom);
+  out.facesAtVertex = countFacesAtVertices(graph, out);
+  return exec.report(1.0);
+}
+
+// ---- reversion ------------------------------------------------------------------------
+
+namespace
+{
+
+using Int3 = std::array<std::int32_t, 3>;
+
+Int3 sub(const Int3& a, const Int3& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+
+Int3 add(const Int3& a, const Int3& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+
+Int3 cross(const Int3& a, const Int3& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+
+int axisOf(const Int3& u)
+{
+  return u[0] != 0 ? 0 : (u[1] != 0 ? 1 : 2);
+}
+
+std::uint64_t edgeKey(const Point3& p, const Point3& q)
+{
+  auto pack = [](const Point3& a)
+  {
+    constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
+    return ((std::uint64_t(a[0] + Bias) << 42) | (std::uint64_t(a[1] + Bias) << 21) |
+      std::uint64_t(a[2] + Bias));
+  };
+  const Int3 t = sub(q, p);
+  const int direction = 2 * axisOf(t) + (t[axisOf(t)] > 0 ? 1 : 0);
+  return pack(p) * 8 + static_cast<std::uint64_t>(direction);
+}
+
+/// The digital half-space below a standard plane: voxels whose centre c has
+/// n.c < mu + omega / 2, i.e. 2 n.v + (a + b + c) < 2 mu + omega for the lower corner v.
+bool below(const StandardPlane& plane, const Int3& voxel)
+{
+  const auto& n = plane.normal;
+  return 2 * plane.value(voxel) + n[0] + n[1] + n[2] < 2 * plane.mu + plane.omega();
+}
+
+/// The surfel of the plane whose counter-clockwise boundary runs p -> q, if any.
+bool surfelLeftOf(const StandardPlane& plane,
+  const Point3& p,
+  const Point3& q,
+  SurfelGraph::Surfel& out)
+{
+  const Int3 t = sub(q, p);
+  const int along = axisOf(t);
+  int found = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    if (d == along || plane.normal[d] == 0)
+      continue;
+    Int3 normal{ 0, 0, 0 };
+    normal[d] = plane.normal[d] > 0 ? 1 : -1;
+    const Int3 left = cross(normal, t);
+    // Lower corner of the square p, q, q + left, p + left; its inner voxel.
+    Int3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
+    low = { std::min(low[0], low[0] + left[0]), std::min(low[1], low[1] + left[1]),
+      std::min(low[2], low[2] + left[2]) };
+    Int3 inner = low;
+    if (normal[d] > 0)
+      --inner[d];
+    if (below(plane, inner) && !below(plane, add(inner, normal)))
+    {
+      out = { inner, static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)) };
+      ++found;
+    }
+  }
+  return found == 1;
+}
+
+} // namespace
+
+std::string revert(const std::vector<FaceOutline>& faces,
+  const std::array<std::int32_t, 3>& dims,
+  std::vector<SurfelGraph::Surfel>& surfels,
+  BitVolume& voxels)
+{
+  surfels.clear();
+  auto surfelKey = [](const SurfelGraph::Surfel& s)
+  {
+    constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
+    return ((std::uint64_t(s.voxel[0] + Bias) << 42) | (std::uint64_t(s.voxel[1] + Bias) << 21) |
+             std::uint64_t(s.voxel[2] + Bias)) *
+      8 +
+      s.direction;
+  };
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    const FaceOutline& face = faces[f];
+    const std::size_t n = face.loop.size();
+    std::unordered_set<std::uint64_t> loopEdges;
+    for (std::size_t i = 0; i < n; ++i)
+      loopEdges.insert(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
+    std::unordered_set<std::uint64_t> seen;
+    std::vector<SurfelGraph::Surfel> stack;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      SurfelGraph::Surfel s;
+      const Point3& p = face.loop[i];
+      const Point3& q = face.loop[(i + 1) % n];
+      const Int3 t = sub(q, p);
+      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !surfelLeftOf(face.plane, p, q, s))
+      {
+        std::ostringstream msg;
+        msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
+        return msg.str();
+      }
+      if (seen.insert(surfelKey(s)).second)
+        stack.push_back(s);
+    }
+    const std::size_t limit = 8 * n * n + 64;
+    while (!stack.empty())
+    {
+      const SurfelGraph::Surfel s = stack.back();
+      stack.pop_back();
+      surfels.push_back(s);
+      if (seen.size() > limit)
+      {
+        std::ostringstream msg;
+        msg << "face " << f << ": its loop does not enclose a disk of its plane";
+        return msg.str();
+      }
+      for (int k = 0; k < 4; ++k)
+      {
+        const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
+        if (loopEdges.count(edgeKey(a, b)))
+          continue;
+        SurfelGraph::Surfel t;
+        if (!surfelLeftOf(face.plane, b, a, t))
+        {
+          std::ostringstream msg;
+          msg << "face " << f << ": its plane is not a surface around a linel";
+          return msg.str();
+        }
+        if (seen.insert(surfelKey(t)).second)
+          stack.push_back(t);
+      }
+    }
+  }
+
+  // Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
+  voxels = BitVolume(dims[0], dims[1], dims[2]);
+  std::vector<std::array<std::int32_t, 3>> xSurfels; // (z, y, plane x)
+  for (const SurfelGraph::Surfel& s : surfels)
+    if (s.axis() == 0)
+      xSurfels.push_back({ s.voxel[2], s.voxel[1], s.voxel[0] + (s.sign() > 0 ? 1 : 0) });
+  std::sort(xSurfels.begin(), xSurfels.end());
+  for (std::size_t i = 0; i + 1 < xSurfels.size(); i += 2)
+  {
+    const auto& a = xSurfels[i];
+    const auto& b = xSurfels[i + 1];
+    if (a[0] != b[0] || a[1] != b[1] || a[0] < 0 || a[0] >= dims[2] || a[1] < 0 ||
+      a[1] >= dims[1] || a[2] < 0 || b[2] > dims[0])
+      return "the faces do not bound a set of voxels of the grid";
+    for (std::int32_t x = a[2]; x < b[2]; ++x)
+      voxels.set(x, a[1], a[0]);
+  }
+  if (xSurfels.size() % 2 != 0)
+    return "the faces do not bound a set of voxels of the grid";
+  return std::string();
+}
+
+} // namespace vbr

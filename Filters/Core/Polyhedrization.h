@@ -1,0 +1,79 @@
+// Polyhedrization of a surfel boundary into standard faces (Francon and Papier, DGCI'99):
+// faces are grown surfel by surfel, breadth first from a seed, and a surfel joins the face
+// only if the face stays a topological disk and all its pointels stay in one standard plane
+// (with the face's surfels all on the outer side of that plane, see StandardPlane.h).
+//
+// Beyond the paper: a merging pass hands each face, smallest first, to the faces around it
+// when they can take all its surfels under the same two conditions, which removes many of
+// the small faces the growth leaves (the paper's open problem); and the reversion: from the planes and boundary loops
+// alone, the surfels and the voxels are recomputed exactly.
+#ifndef vbr_Polyhedrization_h
+#define vbr_Polyhedrization_h
+
+#include "BitVolume.h"
+#include "Execution.h"
+#include "StandardPlane.h"
+#include "SurfelGraph.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vbr
+{
+
+struct PolyhedrizationOptions
+{
+  /// Largest number of surfels in a face (0: no limit).
+  std::size_t maximumFaceSize = 0;
+  /// Largest breadth-first depth from the seed (0: no limit).
+  std::uint32_t maximumDepth = 0;
+  /// After the growth, hand each face, smallest first, to the faces around it when they can
+  /// take all its surfels (each staying a disk of one standard plane, within the size
+  /// limit); the face then disappears.
+  bool mergeFaces = false;
+  /// Faces of more surfels are not offered to their neighbours (their surfels have nearly
+  /// always been refused by them already, and each offer costs a recognition).
+  std::size_t mergeFacesUpTo = 8;
+};
+
+struct StandardFace
+{
+  StandardPlane plane;
+  std::vector<std::uint32_t> surfels;
+  std::vector<std::uint32_t> loop; ///< graph vertices, counter-clockwise seen from outside
+};
+
+struct Polyhedron
+{
+  std::vector<StandardFace> faces;
+  std::vector<std::uint32_t> faceOfSurfel;
+  /// Number of faces around each graph vertex; standard vertices have 3 or more.
+  std::vector<std::uint8_t> facesAtVertex;
+  std::size_t mergedFaces = 0; ///< faces absorbed by the merging pass
+};
+
+/// Grows the faces; returns false when aborted.
+bool polyhedrize(const SurfelGraph& graph,
+  const PolyhedrizationOptions& options,
+  const Execution& exec,
+  Polyhedron& out);
+
+/// A face as the reversion reads it: its plane and its boundary loop of pointels.
+struct FaceOutline
+{
+  StandardPlane plane;
+  std::vector<Point3> loop;
+};
+
+/// Surfels of each face recomputed from its outline: the squares of the plane enclosed by
+/// the loop. Then the voxels, by parity along x, in a grid of `dims`. Returns an error
+/// message for outlines that do not bound a disk of their plane, or an empty string.
+std::string revert(const std::vector<FaceOutline>& faces,
+  const std::array<std::int32_t, 3>& dims,
+  std::vector<SurfelGraph::Surfel>& surfels,
+  BitVolume& voxels);
+
+} // namespace vbr
+
+#endif

@@ -1,0 +1,433 @@
+#include "StandardPlane.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <numeric>
+
+namespace vbr
+{
+
+namespace
+{
+
+using Vec = std::array<std::int64_t, 3>;
+using Wide = __int128;
+
+/// Points may differ by less than this along every axis: it bounds every product below
+/// (constraint normals < 2^17, polygon rays < 2^35, their dot products with points < 2^54,
+/// determinants of three rays < 2^108).
+constexpr std::int64_t CoordinateLimit = std::int64_t(1) << 16;
+/// Largest omega searched for an integer normal.
+constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
+/// Lattice candidates examined by one search before giving up (the face then stops growing
+/// in that direction: a refusal is always safe).
+constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
+
+std::int64_t dot(const Vec& a, const Point3& p)
+{
+  return a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
+}
+
+std::int64_t dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+Vec cross(const Vec& a, const Vec& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+
+Vec primitive(Vec v)
+{
+  const std::int64_t g = std::gcd(std::gcd(std::llabs(v[0]), std::llabs(v[1])), std::llabs(v[2]));
+  if (g > 1)
+    for (std::int64_t& c : v)
+      c /= g;
+  return v;
+}
+
+Wide det(const Vec& a, const Vec& b, const Vec& c)
+{
+  return Wide(a[0]) * (Wide(b[1]) * c[2] - Wide(b[2]) * c[1]) -
+    Wide(a[1]) * (Wide(b[0]) * c[2] - Wide(b[2]) * c[0]) +
+    Wide(a[2]) * (Wide(b[0]) * c[1] - Wide(b[1]) * c[0]);
+}
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b) // b > 0
+{
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+std::int64_t ceilDiv(std::int64_t a, std::int64_t b) // b > 0
+{
+  return -floorDiv(-a, b);
+}
+
+std::uint64_t keyOf(const Point3& p)
+{
+  constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
+  return ((std::uint64_t(p[0] + Bias) << 42) | (std::uint64_t(p[1] + Bias) << 21) |
+    std::uint64_t(p[2] + Bias));
+}
+
+Vec sigmaOf(const std::array<int, 3>& s)
+{
+  return { s[0], s[1], s[2] };
+}
+
+} // namespace
+
+std::int64_t StandardPlane::omega() const
+{
+  return std::llabs(this->normal[0]) + std::llabs(this->normal[1]) + std::llabs(this->normal[2]);
+}
+
+void StandardPlaneRecognizer::reset()
+{
+  this->Points.clear();
+  this->Keys.clear();
+  this->Present = { 0, 0, 0 };
+  this->Current = StandardPlane();
+  this->Octants.clear();
+  for (int s = 0; s < 8; ++s)
+  {
+    Octant o;
+    o.sigma = { (s & 1) ? -1 : 1, (s & 2) ? -1 : 1, (s & 4) ? -1 : 1 };
+    // The triangle sigma.n = 1, sigma_d n_d >= 0; edge i lies on n_(i+2) = 0.
+    for (int d = 0; d < 3; ++d)
+    {
+      Vertex v;
+      v.ray = { 0, 0, 0 };
+      v.ray[d] = o.sigma[d];
+      v.lo = v.hi = 0;
+      v.argLo = v.argHi = 0;
+      o.vertices.push_back(v);
+      Vec e{ 0, 0, 0 };
+      e[(d + 2) % 3] = o.sigma[(d + 2) % 3];
+      o.edges.push_back(e);
+      o.octantEdge.push_back(1);
+    }
+    this->Octants.push_back(std::move(o));
+  }
+}
+
+void StandardPlaneRecognizer::measure(Vertex& v, std::size_t count) const
+{
+  v.lo = v.hi = 0;
+  v.argLo = v.argHi = 0;
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    const std::int64_t x = dot(v.ray, this->Points[j]);
+    if (j == 0 || x < v.lo)
+      v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
+    if (j == 0 || x > v.hi)
+      v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
+  }
+}
+
+bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) const
+{
+  ++this->Clips;
+  const std::size_t n = o.vertices.size();
+  std::vector<std::int64_t> f(n);
+  bool anyNegative = false, anyNonNegative = false;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    f[i] = dot(h, o.vertices[i].ray);
+    anyNegative = anyNegative || f[i] < 0;
+    anyNonNegative = anyNonNegative || f[i] >= 0;
+  }
+  if (!anyNegative)
+    return true;
+  if (!anyNonNegative)
+  {
+    o.vertices.clear();
+    o.edges.clear();
+    o.octantEdge.clear();
+    return false;
+  }
+  const Vec sigma = sigmaOf(o.sigma);
+  std::vector<Vertex> vertices;
+  std::vector<Vec> edges;
+  std::vector<char> octantEdge;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::size_t j = (i + 1) % n;
+    if (f[i] >= 0)
+    {
+      vertices.push_back(o.vertices[i]);
+      const bool leaving = f[i] == 0 && f[j] < 0;
+      edges.push_back(leaving ? h : o.edges[i]);
+      octantEdge.push_back(leaving ? 0 : o.octantEdge[i]);
+    }
+    if ((f[i] > 0 && f[j] < 0) || (f[i] < 0 && f[j] > 0))
+    {
+      Vertex v;
+      v.ray = primitive(cross(o.edges[i], h));
+      if (dot(sigma, v.ray) < 0)
+        for (std::int64_t& c : v.ray)
+          c = -c;
+      this->measure(v, count);
+      vertices.push_back(v);
+      const bool leaving = f[i] > 0;
+      edges.push_back(leaving ? h : o.edges[i]);
+      octantEdge.push_back(leaving ? 0 : o.octantEdge[i]);
+    }
+  }
+  o.vertices.swap(vertices);
+  o.edges.swap(edges);
+  o.octantEdge.swap(octantEdge);
+  return true;
+}
+
+bool StandardPlaneRecognizer::applyPoints(Octant& o) const
+{
+  const Vec sigma = sigmaOf(o.sigma);
+  for (std::size_t j = o.applied; j < this->Points.size(); ++j)
+  {
+    const Point3& p = this->Points[j];
+    for (Vertex& v : o.vertices)
+    {
+      const std::int64_t x = dot(v.ray, p);
+      if (j == 0 || x < v.lo)
+        v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
+      if (j == 0 || x > v.hi)
+        v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
+    }
+    // Cut every vertex whose width exceeds 1 by the pair of points realizing it.
+    for (;;)
+    {
+      const Vertex* violating = nullptr;
+      for (const Vertex& v : o.vertices)
+        if (v.hi - v.lo > dot(sigma, v.ray))
+        {
+          violating = &v;
+          break;
+        }
+      if (!violating)
+        break;
+      const Point3& q = this->Points[violating->argHi];
+      const Point3& r = this->Points[violating->argLo];
+      const Vec h{ sigma[0] - (q[0] - r[0]), sigma[1] - (q[1] - r[1]), sigma[2] - (q[2] - r[2]) };
+      if (!this->clip(o, h, j + 1))
+        return false;
+    }
+  }
+  o.applied = this->Points.size();
+  return true;
+}
+
+bool StandardPlaneRecognizer::fits(const Vec& n, const std::array<int, 3>& present) const
+{
+  for (int d = 0; d < 3; ++d)
+    if (present[d] != 0 && present[d] * n[d] <= 0)
+      return false;
+  std::int64_t lo = 0, hi = 0;
+  for (std::size_t j = 0; j < this->Points.size(); ++j)
+  {
+    const std::int64_t x = dot(n, this->Points[j]);
+    lo = j == 0 ? x : std::min(lo, x);
+    hi = j == 0 ? x : std::max(hi, x);
+  }
+  return hi - lo < std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
+}
+
+bool StandardPlaneRecognizer::hasInterior(const Octant& o)
+{
+  const std::size_t n = o.vertices.size();
+  if (n < 3)
+    return false;
+  for (std::size_t i = 0; i < n; ++i)
+    if (det(o.vertices[i].ray, o.vertices[(i + 1) % n].ray, o.vertices[(i + 2) % n].ray) != 0)
+      return true;
+  return false;
+}
+
+bool StandardPlaneRecognizer::solve(const Octant& o,
+  const std::array<int, 3>& present,
+  std::int64_t omegaLimit,
+  Vec& normal) const
+{
+  ++this->Searches;
+  const Vec sigma = sigmaOf(o.sigma);
+  // Range of n_x / omega over the polygon, as fractions.
+  std::int64_t minNum = 0, minDen = 1, maxNum = 0, maxDen = 1;
+  for (std::size_t i = 0; i < o.vertices.size(); ++i)
+  {
+    const std::int64_t num = o.vertices[i].ray[0], den = dot(sigma, o.vertices[i].ray);
+    if (i == 0 || Wide(num) * minDen < Wide(minNum) * den)
+      minNum = num, minDen = den;
+    if (i == 0 || Wide(num) * maxDen > Wide(maxNum) * den)
+      maxNum = num, maxDen = den;
+  }
+  std::int64_t budget = SearchBudget;
+  for (std::int64_t omega = 1; omega <= omegaLimit && budget > 0; ++omega, --budget)
+  {
+    const std::int64_t xLo = ceilDiv(omega * minNum, minDen);
+    const std::int64_t xHi = floorDiv(omega * maxNum, maxDen);
+    for (std::int64_t nx = xLo; nx <= xHi && budget > 0; ++nx, --budget)
+    {
+      // n = (nx, ny, sigma_z (omega - sigma_x nx - sigma_y ny)): every edge bounds ny.
+      std::int64_t yLo = -MaximumOmega - 1, yHi = MaximumOmega + 1;
+      for (std::size_t e = 0; e < o.edges.size() && yLo <= yHi; ++e)
+      {
+        const Vec& E = o.edges[e];
+        const std::int64_t a = E[1] - E[2] * sigma[2] * sigma[1];
+        const std::int64_t b = E[0] * nx + E[2] * sigma[2] * (omega - sigma[0] * nx);
+        const bool strict = !o.octantEdge[e]; // width < 1 inside; n_d = 0 allowed on octant edges
+        if (a == 0)
+        {
+          if (b < 0 || (strict && b == 0))
+            yLo = yHi + 1;
+        }
+        else if (a > 0) // a ny + b >= 0 (> 0)
+          yLo = std::max(yLo, strict ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
+        else // ny <= b / -a (<)
+          yHi = std::min(yHi, strict ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
+      }
+      for (std::int64_t ny = yLo; ny <= yHi && budget > 0; ++ny, --budget)
+      {
+        const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
+        if (sigma[0] * n[0] < 0 || sigma[1] * n[1] < 0 || sigma[2] * n[2] < 0)
+          continue;
+        if (this->fits(n, present))
+        {
+          normal = n;
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
+  const std::array<int, 3>& signs)
+{
+  std::array<int, 3> present = this->Present;
+  for (int d = 0; d < 3; ++d)
+  {
+    if (signs[d] == 0)
+      continue;
+    if (present[d] == -signs[d])
+      return false; // opposite surfel normals: no plane has both
+    present[d] = signs[d];
+  }
+  if (this->Points.empty() && !points.empty())
+    this->Origin = points.front();
+  // New points relative to the origin, without repeats.
+  std::vector<Point3> fresh;
+  std::unordered_set<std::uint64_t> freshKeys;
+  for (const Point3& p : points)
+  {
+    const Point3 q{ p[0] - this->Origin[0], p[1] - this->Origin[1], p[2] - this->Origin[2] };
+    for (int d = 0; d < 3; ++d)
+      if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
+        return false;
+    const std::uint64_t key = keyOf(q);
+    if (this->Keys.count(key) || !freshKeys.insert(key).second)
+      continue;
+    fresh.push_back(q);
+  }
+
+  // Fast path: the current plane takes the new points and orientations.
+  if (!this->Points.empty())
+  {
+    const Vec& n = this->Current.normal;
+    bool ok = true;
+    for (int d = 0; d < 3 && ok; ++d)
+      ok = present[d] == 0 || present[d] * n[d] > 0;
+    std::int64_t lo = this->CurrentLo, hi = this->CurrentHi;
+    for (const Point3& q : fresh)
+    {
+      const std::int64_t x = dot(n, q);
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    if (ok && hi - lo < this->Current.omega())
+    {
+      this->commit(fresh, present);
+      this->CurrentLo = lo;
+      this->CurrentHi = hi;
+      this->Current.mu = lo + dot(n, this->Origin);
+      return true;
+    }
+  }
+
+  // Slow path: clip the octants with the points already accepted (for good), then with the
+  // new ones (on copies), and search each surviving octant for a normal.
+  std::vector<Octant> kept;
+  for (Octant& o : this->Octants)
+    if (this->applyPoints(o))
+      kept.push_back(std::move(o));
+  this->Octants.swap(kept);
+
+  const std::size_t before = this->Points.size();
+  this->Points.insert(this->Points.end(), fresh.begin(), fresh.end());
+  std::vector<Octant> updated;
+  Vec best{ 0, 0, 0 };
+  std::int64_t bestOmega = MaximumOmega + 1;
+  for (const Octant& original : this->Octants)
+  {
+    bool consistent = true;
+    for (int d = 0; d < 3; ++d)
+      consistent = consistent && (present[d] == 0 || present[d] == original.sigma[d]);
+    if (!consistent)
+      continue;
+    // Two points differing by sigma have width exactly 1 in every normal of the octant.
+    bool dead = false;
+    for (const Point3& q : fresh)
+      for (int s : { -1, 1 })
+      {
+        const Point3 r{ q[0] + s * original.sigma[0], q[1] + s * original.sigma[1],
+          q[2] + s * original.sigma[2] };
+        dead = dead || this->Keys.count(keyOf(r)) || freshKeys.count(keyOf(r));
+      }
+    if (dead)
+      continue;
+    Octant o = original;
+    if (!this->applyPoints(o) || !hasInterior(o))
+      continue;
+    Vec n;
+    if (this->solve(o, present, bestOmega - 1, n))
+    {
+      best = n;
+      bestOmega = std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
+    }
+    updated.push_back(std::move(o));
+  }
+  if (bestOmega > MaximumOmega)
+  {
+    this->Points.resize(before);
+    return false;
+  }
+  this->Points.resize(before);
+  this->commit(fresh, present);
+  for (Octant& o : updated)
+    o.applied = this->Points.size();
+  this->Octants.swap(updated);
+  this->Current.normal = best;
+  this->CurrentLo = this->CurrentHi = dot(best, this->Points.front());
+  for (const Point3& q : this->Points)
+  {
+    const std::int64_t x = dot(best, q);
+    this->CurrentLo = std::min(this->CurrentLo, x);
+    this->CurrentHi = std::max(this->CurrentHi, x);
+  }
+  this->Current.mu = this->CurrentLo + dot(best, this->Origin);
+  return true;
+}
+
+void StandardPlaneRecognizer::commit(const std::vector<Point3>& fresh,
+  const std::array<int, 3>& present)
+{
+  for (const Point3& q : fresh)
+  {
+    this->Points.push_back(q);
+    this->Keys.insert(keyOf(q));
+  }
+  this->Present = present;
+}
+
+} // namespace vbr

@@ -1,0 +1,111 @@
+// Exact, incremental recognition of pieces of standard arithmetic planes.
+//
+// A standard plane (a, b, c, mu) is the set of integer points p with
+//   mu <= a*x + b*y + c*z < mu + |a| + |b| + |c|.
+// Its unit squares form a 2-manifold: the boundary of the digital half-space of the voxels
+// whose centres satisfy n.centre < mu + omega / 2. A surfel of that boundary has its outward
+// normal s*e_d with s*n_d > 0, so the recognizer also takes the orientation of the surfels:
+// a face is a piece of the boundary of one digital half-space, not merely a set of pointels
+// in a slab, and its plane normal points out of the object.
+//
+// Method: for a fixed octant sigma of the normal, |n|_1 = sigma.n and the pointels fit iff
+// max n.q - min n.q < sigma.n; on the slice sigma.n = 1 the normals with width <= 1 form a
+// convex polygon, the intersection of half-planes n.(sigma - (q - r)) >= 0. The polygon is
+// kept exactly (vertices are integer rays, intersections of two constraint planes through
+// the origin) and clipped lazily: a vertex whose width exceeds 1 is cut by the pair (q, r)
+// realizing its extremes, until every vertex fits; since the width is convex, the whole
+// polygon then fits. Strict inequalities are decided at a relative interior point. The
+// integer normal returned is the one of smallest omega found by scanning the lattice
+// points of the polygon level by level. No floating point decides anything.
+#ifndef vbr_StandardPlane_h
+#define vbr_StandardPlane_h
+
+#include <array>
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+namespace vbr
+{
+
+using Point3 = std::array<std::int32_t, 3>;
+
+struct StandardPlane
+{
+  std::array<std::int64_t, 3> normal{ 0, 0, 0 }; ///< (a, b, c)
+  std::int64_t mu = 0;
+
+  std::int64_t omega() const;
+  std::int64_t value(const Point3& p) const
+  {
+    return this->normal[0] * p[0] + this->normal[1] * p[1] + this->normal[2] * p[2];
+  }
+  bool contains(const Point3& p) const
+  {
+    const std::int64_t v = this->value(p);
+    return this->mu <= v && v < this->mu + this->omega();
+  }
+};
+
+class StandardPlaneRecognizer
+{
+public:
+  StandardPlaneRecognizer() { this->reset(); }
+
+  /// Forgets every point: any plane fits.
+  void reset();
+
+  /// Adds the points (and surfel orientations: sign[d] in {-1, 0, +1} asks s*n_d > 0) if
+  /// the union still lies in one standard plane; otherwise changes nothing. Coordinates
+  /// must stay within +-2^20 of each other.
+  bool tryAdd(const std::vector<Point3>& points, const std::array<int, 3>& signs);
+
+  /// A plane of smallest omega found for the points added so far (undefined when empty).
+  const StandardPlane& plane() const { return this->Current; }
+  /// Number of distinct points added.
+  std::size_t pointCount() const { return this->Points.size(); }
+
+  /// Recognition work done: polygon clips and solution searches (for benchmarks).
+  std::size_t clipCount() const { return this->Clips; }
+  std::size_t searchCount() const { return this->Searches; }
+
+private:
+  using Vec = std::array<std::int64_t, 3>;
+  struct Vertex
+  {
+    Vec ray;             ///< a normal on the polygon's boundary, up to a positive factor
+    std::int64_t lo, hi; ///< min and max of ray.q over the points applied
+    std::uint32_t argLo, argHi;
+  };
+  /// The normals of one octant with width <= 1, as a convex polygon on the slice.
+  struct Octant
+  {
+    std::array<int, 3> sigma;
+    std::vector<Vertex> vertices; ///< cyclic
+    std::vector<Vec> edges;       ///< edge i joins vertex i and i + 1: edges[i].n >= 0 inside
+    std::vector<char> octantEdge; ///< whether edge i bounds the octant (n_d = 0 allowed there)
+    std::size_t applied = 0;      ///< points clipped into the polygon so far
+  };
+
+  bool applyPoints(Octant& o) const;
+  bool clip(Octant& o, const Vec& h, std::size_t count) const;
+  void measure(Vertex& v, std::size_t count) const;
+  static bool hasInterior(const Octant& o);
+  bool solve(const Octant& o, const std::array<int, 3>& present, std::int64_t omegaLimit,
+    Vec& normal) const;
+  bool fits(const Vec& n, const std::array<int, 3>& present) const;
+  void commit(const std::vector<Point3>& fresh, const std::array<int, 3>& present);
+
+  Point3 Origin{ 0, 0, 0 };    ///< points are kept relative to the first one
+  std::vector<Point3> Points;  ///< without repeats
+  std::unordered_set<std::uint64_t> Keys;
+  std::vector<Octant> Octants;
+  std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis
+  StandardPlane Current;
+  std::int64_t CurrentLo = 0, CurrentHi = 0; ///< range of the current normal over the points
+  mutable std::size_t Clips = 0, Searches = 0;
+};
+
+} // namespace vbr
+
+#endif

@@ -1,0 +1,202 @@
+#include "SurfelGraph.h"
+
+#include "GridPointIndex.h"
+
+#include <numeric>
+#include <stdexcept>
+
+namespace vbr
+{
+
+namespace
+{
+
+using Int3 = std::array<std::int32_t, 3>;
+
+Int3 unit(int direction)
+{
+  Int3 u{ 0, 0, 0 };
+  u[direction >> 1] = (direction & 1) ? 1 : -1;
+  return u;
+}
+
+int directionOf(const Int3& u)
+{
+  for (int axis = 0; axis < 3; ++axis)
+    if (u[axis] != 0)
+      return 2 * axis + (u[axis] > 0 ? 1 : 0);
+  throw std::logic_error("not a unit vector");
+}
+
+Int3 add(const Int3& a, const Int3& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+
+Int3 cross(const Int3& a, const Int3& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+
+class UnionFind
+{
+public:
+  explicit UnionFind(std::size_t n)
+    : Parent(n)
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), 0u);
+  }
+  std::uint32_t find(std::uint32_t x)
+  {
+    while (this->Parent[x] != x)
+      x = this->Parent[x] = this->Parent[this->Parent[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b)
+  {
+    a = this->find(a);
+    b = this->find(b);
+    if (a != b)
+      this->Parent[std::max(a, b)] = std::min(a, b);
+  }
+
+private:
+  std::vector<std::uint32_t> Parent;
+};
+
+/// Consecutive numbers for the classes of a union-find, in order of first element.
+std::vector<std::uint32_t> numberClasses(UnionFind& uf, std::size_t n, std::uint32_t& count)
+{
+  std::vector<std::uint32_t> number(n);
+  count = 0;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t root = uf.find(i);
+    number[i] = root == i ? count++ : number[root];
+  }
+  return number;
+}
+
+} // namespace
+
+Point3 SurfelGraph::Surfel::corner(int k) const
+{
+  const int a = this->axis(), u = (a + 1) % 3, v = (a + 2) % 3;
+  Point3 p = this->voxel;
+  if (this->sign() > 0)
+    ++p[a];
+  // Counter-clockwise about +e_a is base, +e_u, +e_u+e_v, +e_v (e_u x e_v = e_a); about
+  // -e_a the reverse.
+  static const int du[4] = { 0, 1, 1, 0 };
+  static const int dv[4] = { 0, 0, 1, 1 };
+  const int j = this->sign() > 0 ? k : (4 - k) % 4;
+  p[u] += du[j];
+  p[v] += dv[j];
+  return p;
+}
+
+int SurfelGraph::sharedEdge(std::uint32_t s, int edge) const
+{
+  const std::uint32_t t = this->neighbourOf(s, edge);
+  const Point3 from = this->surfels[s].corner((edge + 1) % 4);
+  for (int j = 0; j < 4; ++j)
+    if (this->surfels[t].corner(j) == from)
+      return j;
+  throw std::logic_error("neighbouring surfels do not share their linel");
+}
+
+bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out)
+{
+  out = SurfelGraph();
+  out.dims = voxels.dims();
+  const Int3 dims = voxels.dims();
+  auto in = [&](const Int3& v)
+  {
+    return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < dims[0] && v[1] < dims[1] &&
+      v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
+  };
+  auto keyOf = [&](const Int3& v, int direction)
+  {
+    return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction;
+  };
+
+  GridPointIndex index;
+  for (std::int32_t z = 0; z < dims[2]; ++z)
+  {
+    if (exec.stopRequested())
+      return false;
+    for (std::int32_t y = 0; y < dims[1]; ++y)
+      for (std::int32_t x = 0; x < dims[0]; ++x)
+      {
+        if (!voxels.get(x, y, z))
+          continue;
+        const Int3 v{ x, y, z };
+        for (int d = 0; d < 6; ++d)
+          if (!in(add(v, unit(d))))
+          {
+            out.surfels.push_back({ v, static_cast<std::uint8_t>(d) });
+            index.insert(keyOf(v, d));
+          }
+      }
+  }
+
+  // Neighbour across each edge: the surface turns into the voxel beyond (concave), goes on
+  // flat, or turns round its own voxel (convex). The voxel beyond is reached only through
+  // a face-neighbour in the set, which keeps edge-touching voxels apart.
+  const std::size_t n = out.surfels.size();
+  out.neighbour.resize(4 * n);
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    const SurfelGraph::Surfel& sf = out.surfels[s];
+    const Int3 normal = unit(sf.direction);
+    for (int k = 0; k < 4; ++k)
+    {
+      const Point3 a = sf.corner(k), b = sf.corner((k + 1) % 4);
+      const Int3 t{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+      const Int3 g = cross(t, normal); // from the surfel towards the edge
+      const Int3 side = add(sf.voxel, g);
+      Int3 voxel = sf.voxel;
+      int direction = directionOf(g);
+      if (in(side))
+      {
+        const Int3 beyond = add(side, normal);
+        if (in(beyond))
+        {
+          voxel = beyond;
+          direction = directionOf({ -g[0], -g[1], -g[2] });
+        }
+        else
+        {
+          voxel = side;
+          direction = sf.direction;
+        }
+      }
+      const std::int64_t id = index.find(keyOf(voxel, direction));
+      if (id < 0)
+        throw std::logic_error("surfel neighbour missing");
+      out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
+    }
+  }
+
+  // Vertices: corners glued across shared edges; a pointel gets one per umbrella.
+  UnionFind corners(4 * n);
+  UnionFind faces(n);
+  for (std::uint32_t s = 0; s < n; ++s)
+    for (int k = 0; k < 4; ++k)
+    {
+      const std::uint32_t t = out.neighbourOf(s, k);
+      const int j = out.sharedEdge(s, k);
+      corners.unite(4 * s + k, 4 * t + (j + 1) % 4);
+      corners.unite(4 * s + (k + 1) % 4, 4 * t + j);
+      faces.unite(s, t);
+    }
+  std::uint32_t vertexCount = 0;
+  out.vertex = numberClasses(corners, 4 * n, vertexCount);
+  out.vertexPointel.resize(vertexCount);
+  for (std::uint32_t c = 0; c < 4 * n; ++c)
+    out.vertexPointel[out.vertex[c]] = out.surfels[c / 4].corner(c % 4);
+  out.component = numberClasses(faces, n, out.componentCount);
+  return true;
+}
+
+} // namespace vbr

@@ -1,0 +1,61 @@
+// The surfel boundary of a voxel set as a closed, oriented 2-manifold: surfels, their
+// neighbours across each linel and the vertices (pointels split per umbrella).
+//
+// Voxel (i, j, k) is the unit cube [i, i+1] x [j, j+1] x [k, k+1] (centre at half-integers),
+// so pointels are the integer points. A surfel is a face of a selected voxel whose other
+// side is not selected; its corners are listed counter-clockwise seen from outside.
+//
+// Adjacency rule (one rule everywhere, so every input gives a manifold): voxels of the set
+// that share only an edge or only a corner are kept apart, i.e. the set is taken
+// 6-connected and its complement 18/26-connected. At a linel with four surfels (two
+// selected voxels diagonal across it) each surfel is paired with the other surfel of its
+// own voxel; a pointel where voxels touch only at the corner gets one vertex per umbrella.
+#ifndef vbr_SurfelGraph_h
+#define vbr_SurfelGraph_h
+
+#include "BitVolume.h"
+#include "Execution.h"
+#include "StandardPlane.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vbr
+{
+
+struct SurfelGraph
+{
+  /// Outward direction of a surfel: 2 * axis + (1 if it points to +axis).
+  struct Surfel
+  {
+    std::array<std::int32_t, 3> voxel; ///< the selected voxel it bounds
+    std::uint8_t direction;
+
+    int axis() const { return this->direction >> 1; }
+    int sign() const { return (this->direction & 1) ? 1 : -1; }
+    /// Corner k (0..3) counter-clockwise seen from outside.
+    Point3 corner(int k) const;
+  };
+
+  std::array<std::int32_t, 3> dims{ 0, 0, 0 };
+  std::vector<Surfel> surfels;              ///< by voxel (z, y, x) then direction
+  std::vector<std::uint32_t> neighbour;     ///< 4 per surfel: across edge k (corner k to k+1)
+  std::vector<std::uint32_t> vertex;        ///< 4 per surfel: vertex at corner k
+  std::vector<Point3> vertexPointel;        ///< per vertex
+  std::vector<std::uint32_t> component;     ///< per surfel: connected boundary component
+  std::uint32_t componentCount = 0;
+
+  std::size_t size() const { return this->surfels.size(); }
+  std::uint32_t neighbourOf(std::uint32_t s, int edge) const { return this->neighbour[4 * s + edge]; }
+  std::uint32_t vertexOf(std::uint32_t s, int k) const { return this->vertex[4 * s + k]; }
+  /// The edge of surfel t that is edge `edge` of surfel s, seen from t.
+  int sharedEdge(std::uint32_t s, int edge) const;
+};
+
+/// Builds the graph; returns false when aborted.
+bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out);
+
+} // namespace vbr
+
+#endif

@@ -1,0 +1,509 @@
+#include "vtkStandardPlanePolyhedrizer.h"
+
+#include "Polyhedrization.h"
+#include "SurfelGraph.h"
+#include "vtkVoxelBRepAdapters.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkLogger.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <exception>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+vtkStandardNewMacro(vtkStandardPlanePolyhedrizer);
+
+namespace
+{
+
+using Int3 = std::array<std::int32_t, 3>;
+
+/// Faces of one selected object, with what the output needs.
+struct ObjectFaces
+{
+  double label = 1.0;
+  Int3 offset{ 0, 0, 0 }; ///< the object's box in the grid
+  vbr::SurfelGraph graph;
+  vbr::Polyhedron poly;
+};
+
+struct Statistics
+{
+  vtkIdType surfels = 0, faces = 0, standardVertices = 0, components = 0;
+  vtkIdType minimumFaceSize = 0, maximumFaceSize = 0;
+
+  void add(const ObjectFaces& o)
+  {
+    this->surfels += static_cast<vtkIdType>(o.graph.size());
+    this->components += static_cast<vtkIdType>(o.graph.componentCount);
+    for (const vbr::StandardFace& f : o.poly.faces)
+    {
+      const vtkIdType size = static_cast<vtkIdType>(f.surfels.size());
+      this->minimumFaceSize = this->faces == 0 ? size : std::min(this->minimumFaceSize, size);
+      this->maximumFaceSize = std::max(this->maximumFaceSize, size);
+      ++this->faces;
+    }
+    for (std::uint8_t count : o.poly.facesAtVertex)
+      this->standardVertices += count >= 3;
+  }
+
+  void write(vtkFieldData* fd) const
+  {
+    vbr::vtk::addFieldValue(fd, "NumberOfSurfels", this->surfels);
+    vbr::vtk::addFieldValue(fd, "NumberOfFaces", this->faces);
+    vbr::vtk::addFieldValue(fd, "MinimumFaceSize", this->minimumFaceSize);
+    vbr::vtk::addFieldValue(fd, "MaximumFaceSize", this->maximumFaceSize);
+    vbr::vtk::addFieldValue(fd, "NumberOfStandardVertices", this->standardVertices);
+    vbr::vtk::addFieldValue(fd, "NumberOfBoundaryComponents", this->components);
+    vtkNew<vtkDoubleArray> mean;
+    mean->SetName("MeanFaceSize");
+    mean->InsertNextValue(this->faces ? double(this->surfels) / double(this->faces) : 0.0);
+    fd->AddArray(mean);
+  }
+};
+
+/// A pointel of an object in the grid's corner index space.
+Int3 inGrid(const ObjectFaces& o, const vbr::Point3& p)
+{
+  return { p[0] + o.offset[0], p[1] + o.offset[1], p[2] + o.offset[2] };
+}
+
+/// Whether the grid's index-to-world map reverses orientation (then polygons are reversed
+/// so that normals still point out of the object).
+bool mirrored(const vbr::vtk::VoxelGrid& grid)
+{
+  const auto& m = grid.direction;
+  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+    m[2] * (m[3] * m[7] - m[4] * m[6]);
+  return det * grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
+}
+
+/// The cells of output port 0 and their arrays.
+class OutputBuilder
+{
+public:
+  OutputBuilder(const vbr::vtk::VoxelGrid& grid)
+    : Grid(grid)
+    , Reverse(mirrored(grid))
+  {
+    this->FaceIds->SetName("FaceId");
+    this->Normals->SetName("PlaneNormal");
+    this->Normals->SetNumberOfComponents(3);
+    this->Offsets->SetName("PlaneOffset");
+    this->Sizes->SetName("SurfelCount");
+    this->Labels->SetName("Label");
+  }
+
+  void addObject(const ObjectFaces& o, int mode)
+  {
+    this->PointOf.clear();
+    if (mode == vtkStandardPlanePolyhedrizer::SURFELS)
+    {
+      for (std::uint32_t s = 0; s < o.graph.size(); ++s)
+      {
+        const auto& surfel = o.graph.surfels[s];
+        std::vector<vtkIdType> ids;
+        for (int k = 0; k < 4; ++k)
+          ids.push_back(this->point(inGrid(o, surfel.corner(k))));
+        this->addCell(ids, o, o.poly.faceOfSurfel[s]);
+      }
+    }
+    else
+    {
+      for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
+      {
+        const std::vector<std::uint32_t> loop = mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE
+          ? semiDiscreteLoop(o, o.poly.faces[f].loop)
+          : o.poly.faces[f].loop;
+        std::vector<vtkIdType> ids;
+        for (std::uint32_t v : loop)
+          ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[v])));
+        this->addCell(ids, o, f);
+      }
+    }
+    this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
+  }
+
+  void finish(vtkPolyData* output)
+  {
+    output->SetPoints(this->Points);
+    output->SetPolys(this->Polys);
+    vtkCellData* cd = output->GetCellData();
+    cd->AddArray(this->FaceIds);
+    cd->AddArray(this->Normals);
+    cd->AddArray(this->Offsets);
+    cd->AddArray(this->Sizes);
+    cd->AddArray(this->Labels);
+    cd->SetActiveScalars("FaceId");
+  }
+
+private:
+  /// The loop's standard vertices; at least three pointels spread along it.
+  static std::vector<std::uint32_t> semiDiscreteLoop(const ObjectFaces& o,
+    const std::vector<std::uint32_t>& loop)
+  {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t v : loop)
+      if (o.poly.facesAtVertex[v] >= 3)
+        out.push_back(v);
+    if (out.size() >= 3)
+      return out;
+    out.clear();
+    for (std::size_t i = 0; i < 3 && i < loop.size(); ++i)
+      out.push_back(loop[i * loop.size() / 3]);
+    return out;
+  }
+
+  vtkIdType point(const Int3& p)
+  {
+    const std::uint64_t key = (std::uint64_t(std::uint32_t(p[2])) << 42) ^
+      (std::uint64_t(std::uint32_t(p[1])) << 21) ^ std::uint64_t(std::uint32_t(p[0]));
+    const auto it = this->PointOf.find(key);
+    if (it != this->PointOf.end())
+      return it->second;
+    double world[3];
+    this->Grid.vertexToWorld(p, world);
+    const vtkIdType id = this->Points->InsertNextPoint(world);
+    this->PointOf.emplace(key, id);
+    return id;
+  }
+
+  void addCell(std::vector<vtkIdType>& ids, const ObjectFaces& o, std::uint32_t f)
+  {
+    if (this->Reverse)
+      std::reverse(ids.begin(), ids.end());
+    this->Polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    const vbr::StandardFace& face = o.poly.faces[f];
+    this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
+    // The plane in the grid's index space: n.(p + offset) = n.p + n.offset.
+    const auto& n = face.plane.normal;
+    this->Normals->InsertNextTuple3(double(n[0]), double(n[1]), double(n[2]));
+    this->Offsets->InsertNextValue(static_cast<vtkIdType>(
+      face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
+    this->Sizes->InsertNextValue(static_cast<int>(face.surfels.size()));
+    this->Labels->InsertNextValue(o.label);
+  }
+
+  const vbr::vtk::VoxelGrid& Grid;
+  const bool Reverse;
+  vtkIdType FaceBase = 0;
+  std::unordered_map<std::uint64_t, vtkIdType> PointOf; ///< per object
+  vtkNew<vtkPoints> Points;
+  vtkNew<vtkCellArray> Polys;
+  vtkNew<vtkIntArray> FaceIds;
+  vtkNew<vtkIntArray> Normals;
+  vtkNew<vtkIdTypeArray> Offsets;
+  vtkNew<vtkIntArray> Sizes;
+  vtkNew<vtkDoubleArray> Labels;
+};
+
+/// Output port 1: the voxels recomputed from the faces alone (planes and loops).
+bool writeReversion(const std::vector<ObjectFaces>& objects,
+  const vbr::vtk::VoxelGrid& grid,
+  const std::vector<vbr::BitVolume>& selections,
+  vtkImageData* input,
+  vtkImageData* output,
+  std::string& problem)
+{
+  output->CopyStructure(input);
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkNew<vtkUnsignedCharArray> selection;
+  selection->SetName("Selection");
+  selection->SetNumberOfValues(n);
+  std::fill_n(selection->GetPointer(0), n, 0);
+  bool same = true;
+  for (std::size_t i = 0; i < objects.size(); ++i)
+  {
+    const ObjectFaces& o = objects[i];
+    std::vector<vbr::FaceOutline> outlines;
+    for (const vbr::StandardFace& f : o.poly.faces)
+    {
+      vbr::FaceOutline outline;
+      outline.plane = f.plane;
+      for (std::uint32_t v : f.loop)
+        outline.loop.push_back(o.graph.vertexPointel[v]);
+      outlines.push_back(std::move(outline));
+    }
+    std::vector<vbr::SurfelGraph::Surfel> surfels;
+    vbr::BitVolume voxels;
+    problem = vbr::revert(outlines, o.graph.dims, surfels, voxels);
+    if (!problem.empty())
+      return false;
+    same = same && voxels == selections[i];
+    const Int3& box = o.graph.dims;
+    for (std::int32_t z = 0; z < box[2]; ++z)
+      for (std::int32_t y = 0; y < box[1]; ++y)
+        for (std::int32_t x = 0; x < box[0]; ++x)
+          if (voxels.get(x, y, z))
+            selection->SetValue((vtkIdType(z + o.offset[2]) * grid.dims[1] + y + o.offset[1]) *
+                grid.dims[0] +
+                x + o.offset[0],
+              1);
+  }
+  vtkDataSetAttributes* attributes = grid.cellData
+    ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
+    : static_cast<vtkDataSetAttributes*>(output->GetPointData());
+  attributes->SetScalars(selection);
+  vtkNew<vtkIntArray> matches;
+  matches->SetName("ReversionMatches");
+  matches->InsertNextValue(same ? 1 : 0);
+  output->GetFieldData()->AddArray(matches);
+  if (!same)
+    problem = "the reversion differs from the selection";
+  return same;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkStandardPlanePolyhedrizer::vtkStandardPlanePolyhedrizer()
+{
+  this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
+}
+
+vtkStandardPlanePolyhedrizer::~vtkStandardPlanePolyhedrizer() = default;
+
+//------------------------------------------------------------------------------
+int vtkStandardPlanePolyhedrizer::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkStandardPlanePolyhedrizer::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkImageData");
+  return 1;
+}
+
+int vtkStandardPlanePolyhedrizer::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // Port 1 keeps the image's extent, origin and spacing (copied by the executive).
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  info->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  info->Remove(vtkDataObject::ORIGIN());
+  info->Remove(vtkDataObject::SPACING());
+  return 1;
+}
+
+int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // Faces are global: the whole image is needed whatever piece is asked for.
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
+      6);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkStandardPlanePolyhedrizer::GetSelectionModeAsString()
+{
+  return vbr::vtk::selectionModeName(this->SelectionMode);
+}
+
+const char* vtkStandardPlanePolyhedrizer::GetOutputModeAsString()
+{
+  switch (this->OutputMode)
+  {
+    case SURFELS:
+      return "Surfels";
+    case SEMI_DISCRETE:
+      return "SemiDiscrete";
+    default:
+      return "StandardFaces";
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkStandardPlanePolyhedrizer::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  try
+  {
+    return this->Execute(inputVector, outputVector);
+  }
+  catch (const std::exception& e)
+  {
+    // Out of memory, or an inconsistency the core detected: an error, never a crash.
+    vtkErrorMacro(<< "Polyhedrization failed: " << e.what());
+    for (int port = 0; port < 2; ++port)
+      if (vtkDataObject* output =
+            outputVector->GetInformationObject(port)->Get(vtkDataObject::DATA_OBJECT()))
+        output->Initialize();
+    return 0;
+  }
+}
+
+int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkImageData* reversion = vtkImageData::GetData(outputVector, 1);
+  if (!input || !output || !reversion)
+  {
+    vtkErrorMacro(<< "Input must be a vtkImageData.");
+    return 0;
+  }
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  if (!scalars)
+  {
+    if (input->GetNumberOfPoints() == 0)
+      return 1; // an empty image has no boundary
+    vtkErrorMacro(<< "No input scalars to select voxels from (set the input array to process).");
+    return 0;
+  }
+  if (this->SelectionMode == RANGE && this->LowerThreshold > this->UpperThreshold)
+    vtkWarningMacro(<< "LowerThreshold > UpperThreshold: nothing is selected.");
+  vtkSmartPointer<vtkDataArray> contiguous;
+  vbr::vtk::VoxelGrid grid;
+  const std::string problem =
+    vbr::vtk::readVoxels(input, scalars, association, this->ArrayComponent, false, contiguous, grid);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+  for (int d = 0; d < 3; ++d)
+    if (grid.dims[d] >= (1 << 20))
+    {
+      vtkErrorMacro(<< "The image has " << grid.dims[d] << " voxels along axis " << d
+                    << "; at most 1048575 are supported.");
+      return 0;
+    }
+
+  std::vector<vbr::vtk::Selected> selected;
+  const bool known = vbr::vtk::dispatchScalars(scalars,
+    this->ArrayComponent,
+    grid,
+    [&](auto scalarGrid)
+    {
+      selected = vbr::vtk::selectObjects(scalarGrid,
+        this->SelectionMode,
+        this->LowerThreshold,
+        this->UpperThreshold,
+        this->BackgroundValue);
+    });
+  if (!known)
+  {
+    vtkErrorMacro(<< "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
+    return 0;
+  }
+  this->UpdateProgress(0.05);
+
+  vbr::PolyhedrizationOptions options;
+  options.maximumFaceSize = static_cast<std::size_t>(this->MaximumFaceSize);
+  options.maximumDepth = static_cast<std::uint32_t>(this->MaximumDepth);
+  options.mergeFaces = this->MergeFaces;
+  options.mergeFacesUpTo = static_cast<std::size_t>(this->MergeFacesUpTo);
+
+  std::vector<ObjectFaces> objects;
+  std::vector<vbr::BitVolume> selections;
+  for (std::size_t i = 0; i < selected.size(); ++i)
+  {
+    const double from = 0.05 + 0.85 * i / selected.size();
+    const double to = 0.05 + 0.85 * (i + 1) / selected.size();
+    const vbr::Execution exec = vbr::vtk::makeExecution(this, from, to);
+    if (this->GetAbortExecute())
+      break;
+    ObjectFaces o;
+    o.label = selected[i].label;
+    o.offset = selected[i].offset;
+    vbr::BitVolume voxels = selected[i].select(exec);
+    if (voxels.empty())
+      continue;
+    {
+      vtkLogScopeF(TRACE, "surfel graph");
+      if (!vbr::buildSurfelGraph(voxels, exec, o.graph))
+        break;
+    }
+    {
+      vtkLogScopeF(TRACE, "standard faces");
+      if (!vbr::polyhedrize(o.graph, options, exec, o.poly))
+        break;
+    }
+    objects.push_back(std::move(o));
+    if (this->GenerateReversion)
+      selections.push_back(std::move(voxels));
+  }
+  if (this->GetAbortExecute())
+  {
+    output->Initialize();
+    return 1;
+  }
+
+  Statistics stats;
+  OutputBuilder builder(grid);
+  for (const ObjectFaces& o : objects)
+  {
+    stats.add(o);
+    builder.addObject(o, this->OutputMode);
+  }
+  builder.finish(output);
+  stats.write(output->GetFieldData());
+  this->UpdateProgress(0.95);
+
+  if (this->GenerateReversion)
+  {
+    vtkLogScopeF(TRACE, "reversion");
+    std::string why;
+    if (!writeReversion(objects, grid, selections, input, reversion, why))
+    {
+      vtkErrorMacro(<< "Reversion failed: " << why << ".");
+      return 0;
+    }
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkStandardPlanePolyhedrizer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SelectionMode: " << this->GetSelectionModeAsString() << "\n";
+  os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
+  os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
+  os << indent << "BackgroundValue: " << this->BackgroundValue << "\n";
+  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
+  os << indent << "MaximumFaceSize: " << this->MaximumFaceSize << "\n";
+  os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
+  os << indent << "MergeFaces: " << (this->MergeFaces ? "On\n" : "Off\n");
+  os << indent << "MergeFacesUpTo: " << this->MergeFacesUpTo << "\n";
+  os << indent << "GenerateReversion: " << (this->GenerateReversion ? "On\n" : "Off\n");
+}
