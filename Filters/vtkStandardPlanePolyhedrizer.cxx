@@ -258,9 +258,9 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
       for (std::int32_t y = 0; y < box[1]; ++y)
         for (std::int32_t x = 0; x < box[0]; ++x)
           if (voxels.get(x, y, z))
-            selection->SetValue((vtkIdType(z + o.offset[2]) * grid.dims[1] + y + o.offset[1]) *
-                grid.dims[0] +
-                x + o.offset[0],
+            selection->SetValue(
+              (vtkIdType(z + o.offset[2]) * grid.dims[1] + y + o.offset[1]) * grid.dims[0] + x +
+                o.offset[0],
               1);
   }
   vtkDataSetAttributes* attributes = grid.cellData
@@ -392,8 +392,8 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
     vtkWarningMacro(<< "LowerThreshold > UpperThreshold: nothing is selected.");
   vtkSmartPointer<vtkDataArray> contiguous;
   vbr::vtk::VoxelGrid grid;
-  const std::string problem =
-    vbr::vtk::readVoxels(input, scalars, association, this->ArrayComponent, false, contiguous, grid);
+  const std::string problem = vbr::vtk::readVoxels(
+    input, scalars, association, this->ArrayComponent, false, contiguous, grid);
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);

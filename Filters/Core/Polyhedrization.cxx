@@ -320,8 +320,8 @@ private:
   Polyhedron* Poly; ///< where the faces go
   StandardPlaneRecognizer Recognizer;
   std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
-  std::vector<std::uint32_t> Queued, Refused;             ///< stamped with the face
-  std::vector<std::uint32_t> VertexFace, VertexCount;     ///< surfels of the face per vertex
+  std::vector<std::uint32_t> Queued, Refused;               ///< stamped with the face
+  std::vector<std::uint32_t> VertexFace, VertexCount;       ///< surfels of the face per vertex
   std::uint32_t DepthLimit;
 };
 
@@ -352,6 +352,130 @@ std::vector<std::uint32_t> loopOf(const SurfelGraph& graph,
   if (loop.size() != edgeFrom.size())
     throw std::logic_error("face boundary is not one loop");
   return loop;
+}
+
+/// Whether surfel s meets the surfels of face f (other than s) along one arc of its
+/// boundary: 1 to 3 consecutive shared edges, and no other vertex of s touched by f. Adding
+/// s to the disk f then leaves a disk; taking s out of the disk f + s does too when, in
+/// addition, f fills the umbrellas of the vertices inside the arc. Vertices are checked by
+/// walking their umbrellas, so no per-face state is needed.
+bool meetsAlongOneArc(const SurfelGraph& graph,
+  const std::vector<std::uint32_t>& faceOf,
+  std::uint32_t s,
+  std::uint32_t f,
+  bool removing)
+{
+  bool shared[4];
+  int count = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
+    count += shared[k];
+  }
+  if (count == 0 || count == 4)
+    return false;
+  int arcs = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    arcs += shared[k] && !shared[(k + 3) % 4];
+    bool touched = false;
+    std::uint32_t u = s;
+    int corner = k;
+    do
+    {
+      const int j = graph.sharedEdge(u, corner);
+      u = graph.neighbourOf(u, corner);
+      corner = (j + 1) % 4;
+      touched = touched || (u != s && faceOf[u] == f);
+    } while (u != s);
+    if (touched != (shared[k] || shared[(k + 3) % 4]))
+      return false;
+    // Taken out, s must not pinch f at a vertex inside the arc: f must fill the rest of
+    // that vertex's umbrella (f + s is a disk, so then f alone is one).
+    if (removing && shared[k] && shared[(k + 3) % 4])
+    {
+      u = s;
+      corner = k;
+      do
+      {
+        const int j = graph.sharedEdge(u, corner);
+        u = graph.neighbourOf(u, corner);
+        corner = (j + 1) % 4;
+        if (u != s && faceOf[u] != f)
+          return false;
+      } while (u != s);
+    }
+  }
+  return arcs == 1;
+}
+
+/// Moves surfels from smaller faces to a larger neighbouring face, largest faces first,
+/// when the larger face's plane takes them as it is and both faces stay disks (or the
+/// smaller one empties).
+/// The growth leaves the rim of a large face to whichever face reached it first; this gives
+/// it back, and faces emptied this way disappear. Returns the number of surfels moved.
+std::size_t moveToLargerFaces(const SurfelGraph& graph,
+  Polyhedron& poly,
+  std::size_t maximumSize,
+  const Execution& exec)
+{
+  std::vector<std::size_t> size(poly.faces.size());
+  for (std::size_t f = 0; f < size.size(); ++f)
+    size[f] = poly.faces[f].surfels.size();
+  std::vector<std::uint32_t> order(poly.faces.size());
+  for (std::uint32_t f = 0; f < order.size(); ++f)
+    order[f] = f;
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](std::uint32_t a, std::uint32_t b) { return size[a] > size[b]; });
+  std::vector<std::uint32_t>& faceOf = poly.faceOfSurfel;
+  std::vector<std::uint32_t> queue;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    const std::uint32_t f = order[i];
+    if ((i & 63) == 0 && exec.stopRequested())
+      return moved;
+    if (size[f] == 0)
+      continue;
+    StandardFace& face = poly.faces[f];
+    queue.clear();
+    for (std::uint32_t s : face.surfels)
+      if (faceOf[s] == f)
+        for (int k = 0; k < 4; ++k)
+          queue.push_back(graph.neighbourOf(s, k));
+    for (std::size_t q = 0; q < queue.size(); ++q)
+    {
+      const std::uint32_t t = queue[q];
+      const std::uint32_t g = faceOf[t];
+      if (g == f || size[g] >= size[f] || (maximumSize && size[f] >= maximumSize))
+        continue;
+      // The larger face's plane must take the surfel as it is: its coefficients stay.
+      const auto& tf = graph.surfels[t];
+      bool fits = tf.sign() * face.plane.normal[tf.axis()] > 0;
+      for (int k = 0; k < 4 && fits; ++k)
+        fits = face.plane.contains(tf.corner(k));
+      if (!fits || !meetsAlongOneArc(graph, faceOf, t, f, false) ||
+        (size[g] > 1 && !meetsAlongOneArc(graph, faceOf, t, g, true)))
+        continue;
+      faceOf[t] = f;
+      face.surfels.push_back(t);
+      --size[g];
+      ++size[f];
+      ++moved;
+      for (int k = 0; k < 4; ++k)
+        queue.push_back(graph.neighbourOf(t, k));
+    }
+  }
+  // Each face keeps the surfels still its own, in their order.
+  for (std::uint32_t f = 0; f < poly.faces.size(); ++f)
+  {
+    auto& list = poly.faces[f].surfels;
+    list.erase(
+      std::remove_if(list.begin(), list.end(), [&](std::uint32_t s) { return faceOf[s] != f; }),
+      list.end());
+  }
+  return moved;
 }
 
 /// Renumbers the faces left (those with surfels), in order.
@@ -411,15 +535,24 @@ bool polyhedrize(const SurfelGraph& graph,
   for (std::uint32_t s = 0; s < seeds.size(); ++s)
     seeds[s] = s;
   FaceGrower grower(graph, options, out);
-  if (!grower.run(seeds, exec, 0.7))
+  if (!grower.run(seeds, exec, 0.6))
     return false;
+  if (options.moveToLargerFaces)
+  {
+    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, exec);
+    if (exec.stopRequested())
+      return false;
+    dropEmptyFaces(out);
+  }
   if (options.mergeFaces)
   {
     // Smallest faces first: each is handed to its neighbours when they can take it whole.
     std::vector<std::uint32_t> order(out.faces.size());
     for (std::uint32_t f = 0; f < order.size(); ++f)
       order[f] = f;
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b)
+    std::stable_sort(order.begin(),
+      order.end(),
+      [&](std::uint32_t a, std::uint32_t b)
       { return out.faces[a].surfels.size() < out.faces[b].surfels.size(); });
     for (std::size_t i = 0; i < order.size(); ++i)
     {
@@ -505,7 +638,8 @@ bool surfelLeftOf(const StandardPlane& plane,
     const Int3 left = cross(normal, t);
     // Lower corner of the square p, q, q + left, p + left; its inner voxel.
     Int3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
-    low = { std::min(low[0], low[0] + left[0]), std::min(low[1], low[1] + left[1]),
+    low = { std::min(low[0], low[0] + left[0]),
+      std::min(low[1], low[1] + left[1]),
       std::min(low[2], low[2] + left[2]) };
     Int3 inner = low;
     if (normal[d] > 0)
@@ -550,7 +684,8 @@ std::string revert(const std::vector<FaceOutline>& faces,
       const Point3& p = face.loop[i];
       const Point3& q = face.loop[(i + 1) % n];
       const Int3 t = sub(q, p);
-      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !surfelLeftOf(face.plane, p, q, s))
+      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 ||
+        !surfelLeftOf(face.plane, p, q, s))
       {
         std::ostringstream msg;
         msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";

@@ -3,9 +3,11 @@
 // only if the face stays a topological disk and all its pointels stay in one standard plane
 // (with the face's surfels all on the outer side of that plane, see StandardPlane.h).
 //
-// Beyond the paper: a merging pass hands each face, smallest first, to the faces around it
-// when they can take all its surfels under the same two conditions, which removes many of
-// the small faces the growth leaves (the paper's open problem); and the reversion: from the planes and boundary loops
+// Beyond the paper, against its open problem of small faces: a pass that moves surfels from
+// smaller faces to a larger neighbour whose plane takes them unchanged (the rim of a large
+// planar patch goes back to it; faces emptied disappear), and an optional merging pass that
+// hands each small face to the faces around it when they can take all its surfels; both
+// keep the two conditions. And the reversion: from the planes and boundary loops
 // alone, the surfels and the voxels are recomputed exactly.
 #ifndef vbr_Polyhedrization_h
 #define vbr_Polyhedrization_h
@@ -28,6 +30,10 @@ struct PolyhedrizationOptions
   std::size_t maximumFaceSize = 0;
   /// Largest breadth-first depth from the seed (0: no limit).
   std::uint32_t maximumDepth = 0;
+  /// Then move surfels from smaller faces to larger neighbouring faces (largest first) when
+  /// the larger face's plane takes them unchanged and both faces stay disks; faces emptied
+  /// disappear.
+  bool moveToLargerFaces = true;
   /// After the growth, hand each face, smallest first, to the faces around it when they can
   /// take all its surfels (each staying a disk of one standard plane, within the size
   /// limit); the face then disappears.
@@ -50,7 +56,8 @@ struct Polyhedron
   std::vector<std::uint32_t> faceOfSurfel;
   /// Number of faces around each graph vertex; standard vertices have 3 or more.
   std::vector<std::uint8_t> facesAtVertex;
-  std::size_t mergedFaces = 0; ///< faces absorbed by the merging pass
+  std::size_t mergedFaces = 0;  ///< faces absorbed by the merging pass
+  std::size_t movedSurfels = 0; ///< surfels moved to larger faces
 };
 
 /// Grows the faces; returns false when aborted.

@@ -380,8 +380,9 @@ bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
     for (const Point3& q : fresh)
       for (int s : { -1, 1 })
       {
-        const Point3 r{ q[0] + s * original.sigma[0], q[1] + s * original.sigma[1],
-          q[2] + s * original.sigma[2] };
+        const Point3 r{
+          q[0] + s * original.sigma[0], q[1] + s * original.sigma[1], q[2] + s * original.sigma[2]
+        };
         dead = dead || this->Keys.count(keyOf(r)) || freshKeys.count(keyOf(r));
       }
     if (dead)

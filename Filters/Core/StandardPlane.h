@@ -91,13 +91,15 @@ private:
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
   void measure(Vertex& v, std::size_t count) const;
   static bool hasInterior(const Octant& o);
-  bool solve(const Octant& o, const std::array<int, 3>& present, std::int64_t omegaLimit,
+  bool solve(const Octant& o,
+    const std::array<int, 3>& present,
+    std::int64_t omegaLimit,
     Vec& normal) const;
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
   void commit(const std::vector<Point3>& fresh, const std::array<int, 3>& present);
 
-  Point3 Origin{ 0, 0, 0 };    ///< points are kept relative to the first one
-  std::vector<Point3> Points;  ///< without repeats
+  Point3 Origin{ 0, 0, 0 };   ///< points are kept relative to the first one
+  std::vector<Point3> Points; ///< without repeats
   std::unordered_set<std::uint64_t> Keys;
   std::vector<Octant> Octants;
   std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis

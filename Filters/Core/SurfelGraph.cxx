@@ -116,9 +116,7 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
       v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
   };
   auto keyOf = [&](const Int3& v, int direction)
-  {
-    return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction;
-  };
+  { return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction; };
 
   GridPointIndex index;
   for (std::int32_t z = 0; z < dims[2]; ++z)

@@ -1,0 +1,433 @@
+// Standard-plane recognition against a brute-force search of normals, and the
+// polyhedrization against independent checks: plane inequalities evaluated here, faces that
+// are disks (Euler characteristic and one boundary loop), a partition of the surfels counted
+// voxel by voxel, and the reversion back to the same voxels.
+#include "BruteForce.h"
+#include "Polyhedrization.h"
+#include "StandardPlane.h"
+#include "SurfelGraph.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+
+using vbr::Point3;
+
+/// Whether some normal with |n|_1 <= bound fits the points with the orientations asked.
+bool bruteForcePlane(const std::vector<Point3>& points, const std::array<int, 3>& signs, int bound)
+{
+  for (int a = -bound; a <= bound; ++a)
+    for (int b = -bound; b <= bound; ++b)
+      for (int c = -bound; c <= bound; ++c)
+      {
+        const int omega = std::abs(a) + std::abs(b) + std::abs(c);
+        if (omega == 0 || omega > bound)
+          continue;
+        const int n[3] = { a, b, c };
+        bool oriented = true;
+        for (int d = 0; d < 3; ++d)
+          oriented = oriented && (signs[d] == 0 || signs[d] * n[d] > 0);
+        if (!oriented)
+          continue;
+        long lo = 0, hi = 0;
+        for (std::size_t i = 0; i < points.size(); ++i)
+        {
+          const long v = long(a) * points[i][0] + long(b) * points[i][1] + long(c) * points[i][2];
+          lo = i == 0 ? v : std::min(lo, v);
+          hi = i == 0 ? v : std::max(hi, v);
+        }
+        if (hi - lo < omega)
+          return true;
+      }
+  return false;
+}
+
+/// mu <= a x + b y + c z < mu + |a| + |b| + |c|, evaluated here.
+bool inPlane(const vbr::StandardPlane& p, const Point3& q)
+{
+  const long v = long(p.normal[0]) * q[0] + long(p.normal[1]) * q[1] + long(p.normal[2]) * q[2];
+  const long omega =
+    std::labs(long(p.normal[0])) + std::labs(long(p.normal[1])) + std::labs(long(p.normal[2]));
+  return p.mu <= v && v < p.mu + omega;
+}
+
+/// Surfels counted voxel by voxel: selected voxel faces whose neighbour is not selected.
+std::size_t countBoundaryFaces(const vbr::BitVolume& v)
+{
+  auto in = [&](int x, int y, int z)
+  {
+    return x >= 0 && y >= 0 && z >= 0 && x < v.size(0) && y < v.size(1) && z < v.size(2) &&
+      v.get(x, y, z);
+  };
+  std::size_t count = 0;
+  for (int z = 0; z < v.size(2); ++z)
+    for (int y = 0; y < v.size(1); ++y)
+      for (int x = 0; x < v.size(0); ++x)
+        if (in(x, y, z))
+          count += !in(x - 1, y, z) + !in(x + 1, y, z) + !in(x, y - 1, z) + !in(x, y + 1, z) +
+            !in(x, y, z - 1) + !in(x, y, z + 1);
+  return count;
+}
+
+/// Every property of a polyhedrization of v, checked without the code under test.
+void checkPolyhedron(const vbr::BitVolume& v,
+  const vbr::SurfelGraph& g,
+  const vbr::Polyhedron& p,
+  const vbr::PolyhedrizationOptions& options = {})
+{
+  ASSERT_EQ(g.size(), countBoundaryFaces(v));
+  // A partition of the surfels.
+  std::vector<int> owners(g.size(), 0);
+  for (std::size_t f = 0; f < p.faces.size(); ++f)
+    for (std::uint32_t s : p.faces[f].surfels)
+    {
+      ++owners[s];
+      EXPECT_EQ(p.faceOfSurfel[s], f);
+    }
+  EXPECT_EQ(std::count(owners.begin(), owners.end(), 1), static_cast<long>(g.size()))
+    << "a surfel is in no face or in several";
+  std::vector<vbr::FaceOutline> outlines;
+  for (std::size_t f = 0; f < p.faces.size(); ++f)
+  {
+    const vbr::StandardFace& face = p.faces[f];
+    SCOPED_TRACE("face " + std::to_string(f));
+    if (options.maximumFaceSize)
+      EXPECT_LE(face.surfels.size(), options.maximumFaceSize);
+    // Pointels in the plane, normal towards the outside of every surfel.
+    std::set<std::uint32_t> vertices;
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+    std::size_t outside = 0, misoriented = 0;
+    for (std::uint32_t s : face.surfels)
+    {
+      const auto& sf = g.surfels[s];
+      misoriented += sf.sign() * face.plane.normal[sf.axis()] <= 0;
+      for (int k = 0; k < 4; ++k)
+      {
+        outside += !inPlane(face.plane, sf.corner(k));
+        const std::uint32_t a = g.vertexOf(s, k), b = g.vertexOf(s, (k + 1) % 4);
+        vertices.insert(a);
+        edges.insert(std::minmax(a, b));
+      }
+    }
+    EXPECT_EQ(outside, 0u) << "pointels outside the face's standard plane";
+    EXPECT_EQ(misoriented, 0u) << "surfels facing away from the plane's normal";
+    // A disk: Euler characteristic 1 and one boundary loop through every boundary edge.
+    const long euler = long(vertices.size()) - long(edges.size()) + long(face.surfels.size());
+    EXPECT_EQ(euler, 1) << "not a disk";
+    std::size_t boundaryEdges = 0;
+    for (std::uint32_t s : face.surfels)
+      for (int k = 0; k < 4; ++k)
+        boundaryEdges += p.faceOfSurfel[g.neighbourOf(s, k)] != f;
+    EXPECT_EQ(face.loop.size(), boundaryEdges) << "boundary is not one loop";
+    EXPECT_EQ(std::set<std::uint32_t>(face.loop.begin(), face.loop.end()).size(), face.loop.size())
+      << "loop visits a vertex twice";
+    vbr::FaceOutline outline;
+    outline.plane = face.plane;
+    for (std::uint32_t vtx : face.loop)
+      outline.loop.push_back(g.vertexPointel[vtx]);
+    outlines.push_back(outline);
+  }
+  // Reversion from the planes and loops alone.
+  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  vbr::BitVolume back;
+  EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back), "");
+  EXPECT_EQ(surfels.size(), g.size());
+  EXPECT_TRUE(back == v) << "the reversion gives other voxels";
+}
+
+void polyhedrizeAndCheck(const vbr::BitVolume& v, const vbr::PolyhedrizationOptions& options = {})
+{
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+  vbr::Polyhedron p;
+  ASSERT_TRUE(vbr::polyhedrize(g, options, vbr::Execution(), p));
+  checkPolyhedron(v, g, p, options);
+}
+
+vbr::BitVolume ball(int radiusSquared)
+{
+  int r = 0;
+  while (r * r <= radiusSquared)
+    ++r;
+  const int n = 2 * r + 3, c = n / 2;
+  vbr::BitVolume v(n, n, n);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        if ((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c) <= radiusSquared)
+          v.set(x, y, z);
+  return v;
+}
+
+} // namespace
+
+TEST(StandardPlane, AgreesWithBruteForce)
+{
+  std::mt19937 rng(11);
+  int feasible = 0, checked = 0;
+  for (int t = 0; t < 3000; ++t)
+  {
+    std::vector<Point3> points;
+    const int m = 1 + int(rng() % 9);
+    for (int i = 0; i < m; ++i)
+      points.push_back({ int(rng() % 5) - 2, int(rng() % 5) - 2, int(rng() % 4) });
+    std::array<int, 3> signs{ 0, 0, 0 };
+    for (int d = 0; d < 3; ++d)
+      signs[d] = int(rng() % 5) == 0 ? 1 : (int(rng() % 5) == 0 ? -1 : 0);
+    vbr::StandardPlaneRecognizer r;
+    bool all = true;
+    for (std::size_t i = 0; i < points.size() && all; ++i)
+      all = r.tryAdd({ points[i] }, i == 0 ? signs : std::array<int, 3>{ 0, 0, 0 });
+    const bool expected = bruteForcePlane(points, signs, 14);
+    if (all)
+    {
+      ++feasible;
+      for (const Point3& q : points)
+        ASSERT_TRUE(inPlane(r.plane(), q)) << "point outside the plane returned";
+      for (int d = 0; d < 3; ++d)
+        ASSERT_TRUE(signs[d] == 0 || signs[d] * r.plane().normal[d] > 0);
+      if (expected) // the smallest omega: no bigger than the brute force's
+        EXPECT_TRUE(bruteForcePlane(points, signs, int(r.plane().omega())));
+    }
+    else
+    {
+      EXPECT_FALSE(expected) << "a plane exists but was not found (trial " << t << ")";
+    }
+    ++checked;
+  }
+  EXPECT_GT(feasible, 300);
+  EXPECT_LT(feasible, checked - 300);
+}
+
+TEST(StandardPlane, PaperUmbrellaAndCube)
+{
+  // The umbrella of one voxel at the origin (outward -x, -y, -z): the paper's plane
+  // 0 <= x + y + z < 3, oriented out of the voxel.
+  vbr::StandardPlaneRecognizer r;
+  ASSERT_TRUE(r.tryAdd(
+    { { 0, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0, 1, 1 }, { 1, 0, 0 }, { 1, 0, 1 }, { 1, 1, 0 } },
+    { -1, -1, -1 }));
+  EXPECT_EQ(r.plane().normal, (std::array<std::int64_t, 3>{ -1, -1, -1 }));
+  EXPECT_EQ(r.plane().mu, -2);
+  // The opposite corner joins no plane of that orientation, and nothing changes.
+  EXPECT_FALSE(r.tryAdd({ { 1, 1, 1 } }, { 0, 0, 0 }));
+  EXPECT_FALSE(r.tryAdd({ { 0, 0, 2 } }, { 1, 0, 0 }));
+  EXPECT_EQ(r.pointCount(), 7u);
+  EXPECT_EQ(r.plane().omega(), 3);
+}
+
+TEST(StandardPlane, DigitalPlanesAreRecognized)
+{
+  // Pointels of standard planes of random normals over a patch: always one plane, of the
+  // same or a smaller omega.
+  std::mt19937 rng(5);
+  for (int t = 0; t < 200; ++t)
+  {
+    const std::array<int, 3> n{ int(rng() % 9) - 4, int(rng() % 9) - 4, 1 + int(rng() % 6) };
+    const int omega = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
+    const int mu = int(rng() % 7) - 3;
+    std::vector<Point3> points;
+    for (int x = -6; x <= 6; ++x)
+      for (int y = -6; y <= 6; ++y)
+        for (int z = -40; z <= 40; ++z)
+        {
+          const int v = n[0] * x + n[1] * y + n[2] * z;
+          if (mu <= v && v < mu + omega)
+            points.push_back({ x, y, z });
+        }
+    vbr::StandardPlaneRecognizer r;
+    std::shuffle(points.begin(), points.end(), rng);
+    bool all = true;
+    for (std::size_t i = 0; i < points.size() && all; i += 7)
+    {
+      std::vector<Point3> chunk(
+        points.begin() + i, points.begin() + std::min(points.size(), i + 7));
+      all = r.tryAdd(chunk, { 0, 0, 1 });
+    }
+    ASSERT_TRUE(all) << "plane " << n[0] << " " << n[1] << " " << n[2];
+    EXPECT_LE(r.plane().omega(), omega);
+    for (const Point3& q : points)
+      ASSERT_TRUE(inPlane(r.plane(), q));
+  }
+}
+
+TEST(Polyhedrization, RandomVolumes)
+{
+  unsigned seed = 700;
+  const bf::Int3 sizes[] = { { 1, 1, 1 }, { 3, 2, 4 }, { 6, 6, 6 }, { 9, 5, 7 }, { 12, 12, 12 } };
+  for (const auto& d : sizes)
+    for (double density : { 0.1, 0.3, 0.5, 0.7, 0.9 })
+    {
+      SCOPED_TRACE("seed " + std::to_string(seed));
+      const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+      polyhedrizeAndCheck(v);
+      vbr::PolyhedrizationOptions merged;
+      merged.mergeFaces = true;
+      merged.mergeFacesUpTo = 1000;
+      polyhedrizeAndCheck(v, merged);
+    }
+}
+
+TEST(Polyhedrization, DegenerateAndNonManifold)
+{
+  polyhedrizeAndCheck(vbr::BitVolume(4, 4, 4)); // empty
+  vbr::BitVolume full(5, 4, 3);
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 5; ++x)
+        full.set(x, y, z);
+  polyhedrizeAndCheck(full);
+
+  // One voxel: six surfels in two umbrellas of x + y + z, as the paper says.
+  vbr::BitVolume one(1, 1, 1);
+  one.set(0, 0, 0);
+  vbr::SurfelGraph g;
+  vbr::buildSurfelGraph(one, vbr::Execution(), g);
+  vbr::Polyhedron p;
+  vbr::polyhedrize(g, {}, vbr::Execution(), p);
+  ASSERT_EQ(p.faces.size(), 2u);
+  for (const auto& face : p.faces)
+  {
+    EXPECT_EQ(face.surfels.size(), 3u);
+    EXPECT_EQ(std::abs(face.plane.normal[0]) + std::abs(face.plane.normal[1]) +
+        std::abs(face.plane.normal[2]),
+      3);
+  }
+  checkPolyhedron(one, g, p);
+
+  // Voxels touching along an edge and at a corner only: two boundary components each.
+  for (const auto& other : { bf::Int3{ 1, 1, 0 }, bf::Int3{ 1, 1, 1 } })
+  {
+    vbr::BitVolume v(2, 2, 2);
+    v.set(0, 0, 0);
+    v.set(other[0], other[1], other[2]);
+    vbr::SurfelGraph pair;
+    vbr::buildSurfelGraph(v, vbr::Execution(), pair);
+    EXPECT_EQ(pair.componentCount, 2u);
+    EXPECT_EQ(pair.size(), 12u);
+    polyhedrizeAndCheck(v);
+  }
+  // Thin plates and a checkerboard, full of non-manifold edges.
+  vbr::BitVolume plate(9, 7, 1), checker(6, 6, 6);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x)
+      plate.set(x, y, 0);
+  for (int z = 0; z < 6; ++z)
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 6; ++x)
+        if ((x + y + z) % 2 == 0)
+          checker.set(x, y, z);
+  polyhedrizeAndCheck(plate);
+  polyhedrizeAndCheck(checker);
+}
+
+TEST(Polyhedrization, PaperSphere)
+{
+  // Voxels with integer centres x^2 + y^2 + z^2 <= 240: the paper's 4,494 surfels, and
+  // fewer faces than its 135.
+  const vbr::BitVolume v = ball(240);
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+  EXPECT_EQ(g.size(), 4494u);
+  EXPECT_EQ(g.componentCount, 1u);
+  vbr::Polyhedron p;
+  ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
+  EXPECT_LE(p.faces.size(), 120u);
+  std::size_t largest = 0;
+  for (const auto& f : p.faces)
+    largest = std::max(largest, f.surfels.size());
+  RecordProperty("faces", static_cast<int>(p.faces.size()));
+  RecordProperty("largest", static_cast<int>(largest));
+  checkPolyhedron(v, g, p);
+}
+
+TEST(Polyhedrization, DigitalPlaneIsOneFace)
+{
+  // The voxels of a box below the plane 2x + 3y + 7z = 60 (by their centres): the surfels
+  // between a voxel below and one above (not the box's walls) form one face of that plane.
+  const std::array<int, 3> n{ 2, 3, 7 };
+  vbr::BitVolume v(16, 16, 16);
+  for (int z = 0; z < 16; ++z)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x)
+        if (n[0] * (2 * x + 1) + n[1] * (2 * y + 1) + n[2] * (2 * z + 1) < 2 * 60)
+          v.set(x, y, z);
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+  vbr::Polyhedron p;
+  ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
+  checkPolyhedron(v, g, p);
+  std::set<std::uint32_t> facesOfPlanarPart;
+  for (std::uint32_t s = 0; s < g.size(); ++s)
+  {
+    const auto& sf = g.surfels[s];
+    if (sf.sign() < 0)
+      continue;
+    std::array<int, 3> beyond = sf.voxel;
+    ++beyond[sf.axis()];
+    if (beyond[sf.axis()] < 16) // not on the box's wall
+      facesOfPlanarPart.insert(p.faceOfSurfel[s]);
+  }
+  ASSERT_EQ(facesOfPlanarPart.size(), 1u);
+  EXPECT_EQ(p.faces[*facesOfPlanarPart.begin()].plane.normal,
+    (std::array<std::int64_t, 3>{ n[0], n[1], n[2] }));
+}
+
+TEST(Polyhedrization, Limits)
+{
+  const vbr::BitVolume v = ball(60);
+  vbr::PolyhedrizationOptions small;
+  small.maximumFaceSize = 5;
+  polyhedrizeAndCheck(v, small);
+  vbr::PolyhedrizationOptions shallow;
+  shallow.maximumDepth = 2;
+  shallow.mergeFaces = true;
+  shallow.mergeFacesUpTo = 50;
+  polyhedrizeAndCheck(v, shallow);
+  // Merging never adds faces.
+  vbr::SurfelGraph g;
+  vbr::buildSurfelGraph(v, vbr::Execution(), g);
+  vbr::Polyhedron plain, merged;
+  vbr::PolyhedrizationOptions depth;
+  depth.maximumDepth = 2;
+  vbr::polyhedrize(g, depth, vbr::Execution(), plain);
+  depth.mergeFaces = true;
+  depth.mergeFacesUpTo = 50;
+  vbr::polyhedrize(g, depth, vbr::Execution(), merged);
+  EXPECT_LT(merged.faces.size(), plain.faces.size());
+  EXPECT_EQ(merged.faces.size() + merged.mergedFaces, plain.faces.size());
+}
+
+TEST(Polyhedrization, AbortAndBadOutlines)
+{
+  const vbr::BitVolume v = ball(100);
+  vbr::SurfelGraph g;
+  vbr::buildSurfelGraph(v, vbr::Execution(), g);
+  vbr::Execution stop;
+  stop.aborted = [] { return true; };
+  vbr::Polyhedron p;
+  EXPECT_FALSE(vbr::polyhedrize(g, {}, stop, p));
+  vbr::SurfelGraph none;
+  EXPECT_FALSE(vbr::buildSurfelGraph(v, stop, none));
+
+  // An outline whose loop is not made of linels of its plane is refused, not followed.
+  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  vbr::BitVolume back;
+  vbr::FaceOutline bad;
+  bad.plane.normal = { 0, 0, 1 };
+  bad.plane.mu = 0;
+  bad.loop = { { 0, 0, 0 }, { 2, 0, 0 }, { 2, 1, 0 } };
+  EXPECT_NE(vbr::revert({ bad }, { 4, 4, 4 }, surfels, back), "");
+  bad.loop = { { 0, 0, 5 }, { 1, 0, 5 }, { 1, 1, 5 }, { 0, 1, 5 } }; // off the plane
+  EXPECT_NE(vbr::revert({ bad }, { 4, 4, 4 }, surfels, back), "");
+}
