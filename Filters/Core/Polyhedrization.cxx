@@ -467,13 +467,20 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         queue.push_back(graph.neighbourOf(t, k));
     }
   }
-  // Each face keeps the surfels still its own, in their order.
+  // Each face keeps the surfels still its own, once each, in their order (a surfel can
+  // leave a face and come back when the sizes change).
+  std::vector<char> listed(graph.size(), 0);
   for (std::uint32_t f = 0; f < poly.faces.size(); ++f)
   {
     auto& list = poly.faces[f].surfels;
-    list.erase(
-      std::remove_if(list.begin(), list.end(), [&](std::uint32_t s) { return faceOf[s] != f; }),
-      list.end());
+    auto stale = [&](std::uint32_t s)
+    {
+      if (faceOf[s] != f || listed[s])
+        return true;
+      listed[s] = 1;
+      return false;
+    };
+    list.erase(std::remove_if(list.begin(), list.end(), stale), list.end());
   }
   return moved;
 }

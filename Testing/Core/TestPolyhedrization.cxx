@@ -276,6 +276,25 @@ TEST(Polyhedrization, RandomVolumes)
       merged.mergeFacesUpTo = 1000;
       polyhedrizeAndCheck(v, merged);
     }
+  // A volume where a surfel moves to a larger face and back: listed once in the end.
+  const char* const backAndForth =
+    "010111111101111111111011111111111101110110111111101011111111110111111011110101110111"
+    "111011011011101111000111101111101111101111110101111111111111111111011111111001011111"
+    "111011011110111100111011111101110111011111100111111111110110111111110101111101100111"
+    "111110111111110111111111110111111111101111110111111101101111111001111101111110111011";
+  vbr::BitVolume v(7, 6, 8);
+  for (int i = 0; i < 7 * 6 * 8; ++i)
+    if (backAndForth[i] == '1')
+      v.set(i % 7, (i / 7) % 6, i / 42);
+  polyhedrizeAndCheck(v);
+  // Many small volumes: surfels moving between faces and back.
+  std::mt19937 rng(17);
+  for (int t = 0; t < 500; ++t)
+  {
+    const bf::Int3 d{ 3 + int(rng() % 7), 3 + int(rng() % 7), 3 + int(rng() % 7) };
+    SCOPED_TRACE("small volume " + std::to_string(t));
+    polyhedrizeAndCheck(bf::randomVolume(d, 0.2 + 0.1 * (t % 7), 900 + t));
+  }
 }
 
 TEST(Polyhedrization, DegenerateAndNonManifold)

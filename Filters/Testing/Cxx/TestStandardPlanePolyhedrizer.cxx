@@ -1,0 +1,307 @@
+// vtkStandardPlanePolyhedrizer against checks written here: surfels counted voxel by voxel,
+// every surfel corner inside its face's standard plane (recomputed from the world points),
+// surfel normals along the plane normal, per-face surfel counts, the reversion equal to the
+// selection; point/cell scalars, scalar types, extents, origins and spacings; label maps;
+// the paper's sphere; errors, abort and PrintSelf; and the real "Al" object when the shared
+// data is present.
+#include "vtkStandardPlanePolyhedrizer.h"
+
+#include "TestImages.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+int Failures = 0;
+
+#define CHECK(cond, msg)                                                                           \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::cerr << __LINE__ << ": " << msg << std::endl;                                           \
+      ++Failures;                                                                                  \
+    }                                                                                              \
+  } while (false)
+
+using vbrtest::AbortAtProgress;
+using vbrtest::ErrorCounter;
+using vbrtest::Layout;
+using vbrtest::makeImage;
+using vbrtest::randomVolume;
+using vbrtest::Volume;
+
+long fieldValue(vtkDataObject* d, const char* name)
+{
+  vtkDataArray* a = vtkDataArray::SafeDownCast(d->GetFieldData()->GetAbstractArray(name));
+  return a ? static_cast<long>(a->GetTuple1(0)) : -1;
+}
+
+/// Selected voxel faces whose other side is not selected (of the same label in Labels mode).
+long surfelCount(const Volume& v, bool labels)
+{
+  long count = 0;
+  for (int z = 0; z < v.dims[2]; ++z)
+    for (int y = 0; y < v.dims[1]; ++y)
+      for (int x = 0; x < v.dims[0]; ++x)
+      {
+        const int value = v.at(x, y, z);
+        if (value == 0)
+          continue;
+        const int n[6] = { v.at(x - 1, y, z),
+          v.at(x + 1, y, z),
+          v.at(x, y - 1, z),
+          v.at(x, y + 1, z),
+          v.at(x, y, z - 1),
+          v.at(x, y, z + 1) };
+        for (int k : n)
+          count += labels ? k != value : k == 0;
+      }
+  return count;
+}
+
+/// Integer voxel-corner coordinates of a world point (voxel i spans corners i and i + 1).
+bool cornerOf(const double world[3], const Layout& l, long corner[3])
+{
+  bool onCorner = true;
+  for (int d = 0; d < 3; ++d)
+  {
+    const double shift = l.cellData ? 0.0 : -0.5;
+    const double index = (world[d] - l.origin[d]) / l.spacing[d] - l.extentMin[d] - shift;
+    corner[d] = std::lround(index);
+    onCorner = onCorner && std::abs(index - corner[d]) < 1e-6;
+  }
+  return onCorner;
+}
+
+/// Everything the output promises, for one image.
+void checkImage(const Volume& v, const Layout& l, bool labels, const std::string& what)
+{
+  vtkSmartPointer<vtkImageData> image = makeImage(v, l);
+  vtkNew<vtkStandardPlanePolyhedrizer> f;
+  f->SetInputData(image);
+  if (labels)
+    f->SetSelectionModeToLabels();
+  f->SetOutputModeToSurfels();
+  f->Update();
+  vtkPolyData* out = f->GetOutput();
+  const long surfels = surfelCount(v, labels);
+  CHECK(out->GetNumberOfCells() == surfels,
+    what << ": " << out->GetNumberOfCells() << " quads, " << surfels << " surfels");
+  CHECK(fieldValue(out, "NumberOfSurfels") == surfels, what << ": NumberOfSurfels");
+  vtkDataArray* normals = out->GetCellData()->GetArray("PlaneNormal");
+  vtkDataArray* offsets = out->GetCellData()->GetArray("PlaneOffset");
+  vtkDataArray* ids = out->GetCellData()->GetArray("FaceId");
+  vtkDataArray* sizes = out->GetCellData()->GetArray("SurfelCount");
+  CHECK(surfels == 0 || (normals && offsets && ids && sizes), what << ": cell arrays");
+  if (surfels > 0 && normals && offsets && ids && sizes)
+  {
+    long outside = 0, misoriented = 0, offCorner = 0;
+    std::map<long, long> quadsPerFace;
+    const bool mirror = l.spacing[0] * l.spacing[1] * l.spacing[2] < 0;
+    vtkIdType npts;
+    const vtkIdType* pts;
+    vtkCellArray* polys = out->GetPolys();
+    polys->InitTraversal();
+    for (vtkIdType c = 0; polys->GetNextCell(npts, pts); ++c)
+    {
+      long p[4][3];
+      for (int k = 0; k < 4; ++k)
+        offCorner += !cornerOf(out->GetPoint(pts[k]), l, p[k]);
+      const long n[3] = { static_cast<long>(normals->GetComponent(c, 0)),
+        static_cast<long>(normals->GetComponent(c, 1)),
+        static_cast<long>(normals->GetComponent(c, 2)) };
+      const long mu = static_cast<long>(offsets->GetTuple1(c));
+      const long omega = std::labs(n[0]) + std::labs(n[1]) + std::labs(n[2]);
+      for (auto& q : p)
+      {
+        const long value = n[0] * q[0] + n[1] * q[1] + n[2] * q[2];
+        outside += value < mu || value >= mu + omega;
+      }
+      long e1[3], e2[3];
+      for (int d = 0; d < 3; ++d)
+        e1[d] = p[1][d] - p[0][d], e2[d] = p[2][d] - p[1][d];
+      const long quadNormal[3] = {
+        e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]
+      };
+      const long along = quadNormal[0] * n[0] + quadNormal[1] * n[1] + quadNormal[2] * n[2];
+      misoriented += mirror ? along >= 0 : along <= 0;
+      ++quadsPerFace[static_cast<long>(ids->GetTuple1(c))];
+    }
+    CHECK(offCorner == 0, what << ": points off the voxel corners");
+    CHECK(outside == 0, what << ": " << outside << " surfel corners outside their plane");
+    CHECK(misoriented == 0, what << ": " << misoriented << " surfels facing away from the normal");
+    CHECK(static_cast<long>(quadsPerFace.size()) == fieldValue(out, "NumberOfFaces"),
+      what << ": NumberOfFaces");
+    long badSizes = 0;
+    for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+      badSizes += quadsPerFace[static_cast<long>(ids->GetTuple1(c))] != sizes->GetTuple1(c);
+    CHECK(badSizes == 0, what << ": SurfelCount differs from the face's quads");
+  }
+  // Standard faces: one polygon per face.
+  f->SetOutputModeToStandardFaces();
+  f->Update();
+  CHECK(f->GetOutput()->GetNumberOfCells() == fieldValue(f->GetOutput(), "NumberOfFaces"),
+    what << ": one polygon per face");
+  // The reversion, from the faces alone.
+  vtkImageData* back = vtkImageData::SafeDownCast(f->GetOutputDataObject(1));
+  vtkDataArray* selection = nullptr;
+  if (back)
+    selection = l.cellData ? back->GetCellData()->GetArray("Selection")
+                           : back->GetPointData()->GetArray("Selection");
+  CHECK(selection && selection->GetNumberOfTuples() == static_cast<vtkIdType>(v.values.size()),
+    what << ": reversion array");
+  if (selection && selection->GetNumberOfTuples() == static_cast<vtkIdType>(v.values.size()))
+  {
+    long wrong = 0;
+    for (std::size_t i = 0; i < v.values.size(); ++i)
+      wrong += (selection->GetTuple1(static_cast<vtkIdType>(i)) != 0) != (v.values[i] != 0);
+    CHECK(wrong == 0, what << ": reversion differs at " << wrong << " voxels");
+    CHECK(fieldValue(back, "ReversionMatches") == 1, what << ": ReversionMatches");
+  }
+}
+
+void checkRandomImages()
+{
+  const Layout layouts[] = {
+    Layout(),
+    { true, { 3, -2, 5 }, { -1.5, 2.0, 0.25 }, { 0.5, 1.25, 2.0 }, VTK_SHORT },
+    { false, { -4, 0, 1 }, { 10, 0, -3 }, { 1, 1, 1 }, VTK_FLOAT },
+    { true, { 0, 0, 0 }, { 0, 0, 0 }, { 2, 2, 2 }, VTK_DOUBLE },
+    { false, { 1, 1, 1 }, { 0, 0, 0 }, { 1, 1, 1 }, VTK_UNSIGNED_INT },
+    { false, { 0, 0, 0 }, { 4, 0, 0 }, { -1, 1, 1 }, VTK_CHAR },
+  };
+  unsigned seed = 40;
+  int k = 0;
+  for (const Layout& l : layouts)
+    for (double density : { 0.2, 0.5, 0.8 })
+    {
+      const Volume v = randomVolume({ 5 + k % 4, 9 - k % 3, 7 }, density, 1, seed++);
+      checkImage(v, l, false, "random " + std::to_string(seed));
+      ++k;
+    }
+  const Volume labels = randomVolume({ 8, 7, 6 }, 0.7, 3, 77);
+  checkImage(labels, Layout(), true, "labels");
+}
+
+void checkSphereAndDegenerate()
+{
+  Volume ball;
+  ball.dims = { 35, 35, 35 };
+  for (int z = 0; z < 35; ++z)
+    for (int y = 0; y < 35; ++y)
+      for (int x = 0; x < 35; ++x)
+        ball.values.push_back(
+          (x - 17) * (x - 17) + (y - 17) * (y - 17) + (z - 17) * (z - 17) <= 240);
+  checkImage(ball, Layout(), false, "sphere");
+  vtkNew<vtkStandardPlanePolyhedrizer> f;
+  f->SetInputData(makeImage(ball, Layout()));
+  f->Update();
+  CHECK(fieldValue(f->GetOutput(), "NumberOfSurfels") == 4494, "sphere: the paper's 4494");
+  CHECK(fieldValue(f->GetOutput(), "NumberOfFaces") <= 120, "sphere: at most 120 faces");
+  f->SetMaximumFaceSize(10);
+  f->Update();
+  CHECK(fieldValue(f->GetOutput(), "MaximumFaceSize") <= 10, "MaximumFaceSize");
+  f->SetMaximumFaceSize(0);
+  f->SetMaximumDepth(2);
+  f->SetMergeFaces(true);
+  f->Update();
+  CHECK(fieldValue(f->GetOutputDataObject(1), "ReversionMatches") == 1, "depth and merge");
+
+  for (double density : { 0.0, 1.0 })
+    checkImage(
+      randomVolume({ 6, 5, 4 }, density, 1, 3), Layout(), false, density > 0 ? "full" : "empty");
+  Volume plate = randomVolume({ 9, 7, 1 }, 1.0, 1, 4);
+  checkImage(plate, Layout(), false, "one-voxel-thick plate");
+}
+
+void checkErrorsAbortPrint()
+{
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(3, 3, 3);
+    vtkNew<vtkStandardPlanePolyhedrizer> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(image);
+    f->Update();
+    CHECK(errors->Count > 0, "missing scalars must raise an error");
+  }
+  {
+    vtkNew<vtkImageData> image; // no points at all
+    vtkNew<vtkStandardPlanePolyhedrizer> f;
+    vtkNew<ErrorCounter> errors;
+    f->AddObserver(vtkCommand::ErrorEvent, errors);
+    f->SetInputData(image);
+    f->Update();
+    CHECK(errors->Count == 0 && f->GetOutput()->GetNumberOfCells() == 0, "empty image");
+  }
+  {
+    const Volume v = randomVolume({ 12, 12, 12 }, 0.5, 1, 5);
+    vtkNew<vtkStandardPlanePolyhedrizer> f;
+    vtkNew<AbortAtProgress> abort;
+    f->AddObserver(vtkCommand::ProgressEvent, abort);
+    f->SetInputData(makeImage(v, Layout()));
+    f->Update();
+    CHECK(abort->Calls > 0 && f->GetOutput()->GetNumberOfCells() == 0, "abort: empty output");
+  }
+  vtkNew<vtkStandardPlanePolyhedrizer> f;
+  std::ostringstream print;
+  f->Print(print);
+  CHECK(print.str().find("OutputMode: StandardFaces") != std::string::npos, "PrintSelf");
+}
+
+/// The "Al" object of the shared data, when present.
+void checkRealObject()
+{
+  std::ifstream in(
+    std::string(VOXELBREP_DATA_DIR) + "/dgtal_al/dgtal_al_100x100x100_uint8.raw", std::ios::binary);
+  if (!in)
+  {
+    std::cout << "shared data absent: the Al object is skipped" << std::endl;
+    return;
+  }
+  Volume v;
+  v.dims = { 100, 100, 100 };
+  std::vector<char> raw(1000000);
+  in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
+  for (char c : raw)
+    v.values.push_back(c == 1);
+  checkImage(v, Layout(), false, "Al");
+}
+
+} // namespace
+
+int TestStandardPlanePolyhedrizer(int, char*[])
+{
+  checkRandomImages();
+  checkSphereAndDegenerate();
+  checkErrorsAbortPrint();
+  checkRealObject();
+  if (Failures)
+    std::cerr << Failures << " failure(s)" << std::endl;
+  return Failures == 0 ? 0 : 1;
+}
