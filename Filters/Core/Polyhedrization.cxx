@@ -70,7 +70,7 @@ private:
     this->Wave.clear();
     if (!this->seedUmbrella(seed, f))
     {
-      this->Recognizer.tryAdd(this->pointelsOf(seed), signsOf(this->Graph.surfels[seed]));
+      this->Recognizer.tryAdd(this->pointelsOf(seed), 4, signsOf(this->Graph.surfels[seed]));
       this->take(seed, f, 0);
     }
     this->drainWave(f);
@@ -93,7 +93,7 @@ private:
         break;
       if (!this->keepsDisk(s, f))
         continue; // may fit later, when it is queued again by a new neighbour
-      if (!this->Recognizer.tryAdd(this->pointelsOf(s), signsOf(this->Graph.surfels[s])))
+      if (!this->Recognizer.tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
       {
         this->Refused[s] = f; // points only accumulate: it never fits this face again
         continue;
@@ -191,7 +191,7 @@ private:
       signs[sf.axis()] = sf.sign();
       for (int k = 0; k < 4; ++k)
       {
-        points.push_back(sf.corner(k));
+        points.push_back(this->Graph.cornerOf(s, k));
         const std::uint32_t v = this->Graph.vertexOf(s, k);
         if (this->VertexFace[v] != g)
           this->VertexFace[v] = g, this->VertexCount[v] = 0;
@@ -249,7 +249,7 @@ private:
         opposite = opposite || signs[sf.axis()] == -sf.sign();
         signs[sf.axis()] = sf.sign();
         for (int c = 0; c < 4; ++c)
-          points.push_back(sf.corner(c));
+          points.push_back(this->Graph.cornerOf(u, c));
       }
       if (opposite || !this->Recognizer.tryAdd(points, signs))
         continue;
@@ -260,11 +260,7 @@ private:
     return false;
   }
 
-  std::vector<Point3> pointelsOf(std::uint32_t s) const
-  {
-    const auto& sf = this->Graph.surfels[s];
-    return { sf.corner(0), sf.corner(1), sf.corner(2), sf.corner(3) };
-  }
+  const Point3* pointelsOf(std::uint32_t s) const { return &this->Graph.cornerOf(s, 0); }
 
   void take(std::uint32_t s, std::uint32_t f, std::uint32_t depth)
   {
@@ -454,7 +450,7 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
       const auto& tf = graph.surfels[t];
       bool fits = tf.sign() * face.plane.normal[tf.axis()] > 0;
       for (int k = 0; k < 4 && fits; ++k)
-        fits = face.plane.contains(tf.corner(k));
+        fits = face.plane.contains(graph.cornerOf(t, k));
       if (!fits || !meetsAlongOneArc(graph, faceOf, t, f, false) ||
         (size[g] > 1 && !meetsAlongOneArc(graph, faceOf, t, g, true)))
         continue;

@@ -86,7 +86,7 @@ std::int64_t StandardPlane::omega() const
 void StandardPlaneRecognizer::reset()
 {
   this->Points.clear();
-  this->Keys.clear();
+  this->Keys = GridPointIndex();
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
   this->Octants.clear();
@@ -302,7 +302,14 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   return false;
 }
 
-bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
+bool StandardPlaneRecognizer::known(std::uint64_t key) const
+{
+  return this->Keys.find(key) >= 0 ||
+    std::binary_search(this->FreshKeys.begin(), this->FreshKeys.end(), key);
+}
+
+bool StandardPlaneRecognizer::tryAdd(const Point3* points,
+  std::size_t count,
   const std::array<int, 3>& signs)
 {
   std::array<int, 3> present = this->Present;
@@ -314,22 +321,29 @@ bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
       return false; // opposite surfel normals: no plane has both
     present[d] = signs[d];
   }
-  if (this->Points.empty() && !points.empty())
-    this->Origin = points.front();
+  if (this->Points.empty() && count > 0)
+    this->Origin = points[0];
   // New points relative to the origin, without repeats.
-  std::vector<Point3> fresh;
-  std::unordered_set<std::uint64_t> freshKeys;
-  for (const Point3& p : points)
+  std::vector<Point3>& fresh = this->Fresh;
+  fresh.clear();
+  this->FreshKeys.clear();
+  for (std::size_t i = 0; i < count; ++i)
   {
+    const Point3& p = points[i];
     const Point3 q{ p[0] - this->Origin[0], p[1] - this->Origin[1], p[2] - this->Origin[2] };
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
         return false;
-    const std::uint64_t key = keyOf(q);
-    if (this->Keys.count(key) || !freshKeys.insert(key).second)
-      continue;
-    fresh.push_back(q);
+    if (this->Keys.find(keyOf(q)) < 0)
+      fresh.push_back(q);
   }
+  // Repeats within the call: sorted, kept once (their order does not matter).
+  std::sort(fresh.begin(),
+    fresh.end(),
+    [](const Point3& a, const Point3& b) { return keyOf(a) < keyOf(b); });
+  fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+  for (const Point3& q : fresh)
+    this->FreshKeys.push_back(keyOf(q));
 
   // Fast path: the current plane takes the new points and orientations.
   if (!this->Points.empty())
@@ -347,7 +361,7 @@ bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
     }
     if (ok && hi - lo < this->Current.omega())
     {
-      this->commit(fresh, present);
+      this->commit(present);
       this->CurrentLo = lo;
       this->CurrentHi = hi;
       this->Current.mu = lo + dot(n, this->Origin);
@@ -383,7 +397,7 @@ bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
         const Point3 r{
           q[0] + s * original.sigma[0], q[1] + s * original.sigma[1], q[2] + s * original.sigma[2]
         };
-        dead = dead || this->Keys.count(keyOf(r)) || freshKeys.count(keyOf(r));
+        dead = dead || this->known(keyOf(r));
       }
     if (dead)
       continue;
@@ -404,7 +418,7 @@ bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
     return false;
   }
   this->Points.resize(before);
-  this->commit(fresh, present);
+  this->commit(present);
   for (Octant& o : updated)
     o.applied = this->Points.size();
   this->Octants.swap(updated);
@@ -420,10 +434,9 @@ bool StandardPlaneRecognizer::tryAdd(const std::vector<Point3>& points,
   return true;
 }
 
-void StandardPlaneRecognizer::commit(const std::vector<Point3>& fresh,
-  const std::array<int, 3>& present)
+void StandardPlaneRecognizer::commit(const std::array<int, 3>& present)
 {
-  for (const Point3& q : fresh)
+  for (const Point3& q : this->Fresh)
   {
     this->Points.push_back(q);
     this->Keys.insert(keyOf(q));

@@ -20,9 +20,10 @@
 #ifndef vbr_StandardPlane_h
 #define vbr_StandardPlane_h
 
+#include "GridPointIndex.h"
+
 #include <array>
 #include <cstdint>
-#include <unordered_set>
 #include <vector>
 
 namespace vbr
@@ -58,7 +59,11 @@ public:
   /// Adds the points (and surfel orientations: sign[d] in {-1, 0, +1} asks s*n_d > 0) if
   /// the union still lies in one standard plane; otherwise changes nothing. Coordinates
   /// must stay within +-2^20 of each other.
-  bool tryAdd(const std::vector<Point3>& points, const std::array<int, 3>& signs);
+  bool tryAdd(const Point3* points, std::size_t count, const std::array<int, 3>& signs);
+  bool tryAdd(const std::vector<Point3>& points, const std::array<int, 3>& signs)
+  {
+    return this->tryAdd(points.data(), points.size(), signs);
+  }
 
   /// A plane of smallest omega found for the points added so far (undefined when empty).
   const StandardPlane& plane() const { return this->Current; }
@@ -96,11 +101,14 @@ private:
     std::int64_t omegaLimit,
     Vec& normal) const;
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
-  void commit(const std::vector<Point3>& fresh, const std::array<int, 3>& present);
+  void commit(const std::array<int, 3>& present);
+  bool known(std::uint64_t key) const;
 
-  Point3 Origin{ 0, 0, 0 };   ///< points are kept relative to the first one
-  std::vector<Point3> Points; ///< without repeats
-  std::unordered_set<std::uint64_t> Keys;
+  Point3 Origin{ 0, 0, 0 };             ///< points are kept relative to the first one
+  std::vector<Point3> Points;           ///< without repeats
+  GridPointIndex Keys;                  ///< of Points
+  std::vector<Point3> Fresh;            ///< the new points of a call
+  std::vector<std::uint64_t> FreshKeys; ///< theirs, sorted
   std::vector<Octant> Octants;
   std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis
   StandardPlane Current;

@@ -95,16 +95,6 @@ Point3 SurfelGraph::Surfel::corner(int k) const
   return p;
 }
 
-int SurfelGraph::sharedEdge(std::uint32_t s, int edge) const
-{
-  const std::uint32_t t = this->neighbourOf(s, edge);
-  const Point3 from = this->surfels[s].corner((edge + 1) % 4);
-  for (int j = 0; j < 4; ++j)
-    if (this->surfels[t].corner(j) == from)
-      return j;
-  throw std::logic_error("neighbouring surfels do not share their linel");
-}
-
 bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out)
 {
   out = SurfelGraph();
@@ -142,6 +132,10 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   // flat, or turns round its own voxel (convex). The voxel beyond is reached only through
   // a face-neighbour in the set, which keeps edge-touching voxels apart.
   const std::size_t n = out.surfels.size();
+  out.corners.resize(4 * n);
+  for (std::size_t s = 0; s < n; ++s)
+    for (int k = 0; k < 4; ++k)
+      out.corners[4 * s + k] = out.surfels[s].corner(k);
   out.neighbour.resize(4 * n);
   for (std::size_t s = 0; s < n; ++s)
   {
@@ -149,7 +143,8 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
     const Int3 normal = unit(sf.direction);
     for (int k = 0; k < 4; ++k)
     {
-      const Point3 a = sf.corner(k), b = sf.corner((k + 1) % 4);
+      const Point3& a = out.cornerOf(static_cast<std::uint32_t>(s), k);
+      const Point3& b = out.cornerOf(static_cast<std::uint32_t>(s), (k + 1) % 4);
       const Int3 t{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
       const Int3 g = cross(t, normal); // from the surfel towards the edge
       const Int3 side = add(sf.voxel, g);
@@ -176,6 +171,21 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
     }
   }
 
+  // The same linel seen from the neighbour: its edge runs the other way.
+  out.neighbourEdge.resize(4 * n);
+  for (std::uint32_t s = 0; s < n; ++s)
+    for (int k = 0; k < 4; ++k)
+    {
+      const std::uint32_t t = out.neighbourOf(s, k);
+      const Point3& from = out.cornerOf(s, (k + 1) % 4);
+      int j = 0;
+      while (j < 4 && out.cornerOf(t, j) != from)
+        ++j;
+      if (j == 4 || out.cornerOf(t, (j + 1) % 4) != out.cornerOf(s, k))
+        throw std::logic_error("neighbouring surfels do not share their linel");
+      out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
+    }
+
   // Vertices: corners glued across shared edges; a pointel gets one per umbrella.
   UnionFind corners(4 * n);
   UnionFind faces(n);
@@ -192,7 +202,7 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   out.vertex = numberClasses(corners, 4 * n, vertexCount);
   out.vertexPointel.resize(vertexCount);
   for (std::uint32_t c = 0; c < 4 * n; ++c)
-    out.vertexPointel[out.vertex[c]] = out.surfels[c / 4].corner(c % 4);
+    out.vertexPointel[out.vertex[c]] = out.corners[c];
   out.component = numberClasses(faces, n, out.componentCount);
   return true;
 }
