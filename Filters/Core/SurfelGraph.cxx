@@ -1,6 +1,7 @@
 #include "SurfelGraph.h"
 
 #include "GridPointIndex.h"
+#include "Surfels.h"
 
 #include <numeric>
 #include <stdexcept>
@@ -108,24 +109,45 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   auto keyOf = [&](const Int3& v, int direction)
   { return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction; };
 
-  GridPointIndex index;
+  // Only voxels with an unselected face-neighbour bear surfels: found a word at a time.
+  const std::size_t expected = countSurfels(voxels);
+  GridPointIndex index(expected);
+  out.surfels.reserve(expected);
+  const std::size_t words = voxels.wordsPerRow();
+  const std::vector<Word> none(words, 0);
   for (std::int32_t z = 0; z < dims[2]; ++z)
   {
     if (exec.stopRequested())
       return false;
     for (std::int32_t y = 0; y < dims[1]; ++y)
-      for (std::int32_t x = 0; x < dims[0]; ++x)
+    {
+      const Word* row = voxels.row(y, z);
+      const Word* down = y > 0 ? voxels.row(y - 1, z) : none.data();
+      const Word* up = y + 1 < dims[1] ? voxels.row(y + 1, z) : none.data();
+      const Word* back = z > 0 ? voxels.row(y, z - 1) : none.data();
+      const Word* front = z + 1 < dims[2] ? voxels.row(y, z + 1) : none.data();
+      for (std::size_t i = 0; i < words; ++i)
       {
-        if (!voxels.get(x, y, z))
+        const Word w = row[i];
+        if (!w)
           continue;
-        const Int3 v{ x, y, z };
-        for (int d = 0; d < 6; ++d)
-          if (!in(add(v, unit(d))))
-          {
-            out.surfels.push_back({ v, static_cast<std::uint8_t>(d) });
-            index.insert(keyOf(v, d));
-          }
+        const Word left = (w << 1) | (i > 0 ? row[i - 1] >> 63 : 0);
+        const Word right = (w >> 1) | (i + 1 < words ? row[i + 1] << 63 : 0);
+        Word boundary = w & ~(left & right & down[i] & up[i] & back[i] & front[i]);
+        while (boundary)
+        {
+          const int bit = __builtin_ctzll(boundary);
+          boundary &= boundary - 1;
+          const Int3 v{ static_cast<std::int32_t>(i * 64 + bit), y, z };
+          for (int d = 0; d < 6; ++d)
+            if (!in(add(v, unit(d))))
+            {
+              out.surfels.push_back({ v, static_cast<std::uint8_t>(d) });
+              index.insert(keyOf(v, d));
+            }
+        }
       }
+    }
   }
 
   // Neighbour across each edge: the surface turns into the voxel beyond (concave), goes on

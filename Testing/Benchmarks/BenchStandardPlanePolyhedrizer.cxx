@@ -73,21 +73,25 @@ Input ball(const std::string& name, long radiusSquared)
   return in;
 }
 
-/// A cube turned about two axes: |n_i . centre| <= h |n_i| for the orthogonal integer normals
-/// (2, 2, 1), (-2, 1, 2), (1, -2, 2).
-Input hexahedron(double halfSize)
+/// A hexahedron, the intersection of six half-spaces: |n_i . centre| <= h_i for the
+/// orthogonal integer normals (2, 2, 1), (-2, 1, 2), (1, -2, 2) (a box turned about two
+/// axes) and h = (17, 17, 29), which gives the 1,962 surfels of the paper's hexahedron
+/// (whose exact half-spaces the paper does not give).
+Input hexahedron()
 {
-  const int n = 2 * static_cast<int>(halfSize * 1.8) + 3, c = n / 2;
+  const int n = 33, c = 16;
   const int normals[3][3] = { { 2, 2, 1 }, { -2, 1, 2 }, { 1, -2, 2 } };
-  Input in{ "hexahedron h=" + std::to_string(halfSize).substr(0, 4), vbr::BitVolume(n, n, n) };
+  const int half[3] = { 17, 17, 29 };
+  Input in{ "hexahedron", vbr::BitVolume(n, n, n) };
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x)
       {
         bool inside = true;
-        for (const auto& m : normals)
-          inside =
-            inside && std::abs(m[0] * (x - c) + m[1] * (y - c) + m[2] * (z - c)) <= 3 * halfSize;
+        for (int i = 0; i < 3; ++i)
+          inside = inside &&
+            std::abs(normals[i][0] * (x - c) + normals[i][1] * (y - c) + normals[i][2] * (z - c)) <=
+              half[i];
         if (inside)
           in.voxels.set(x, y, z);
       }
@@ -248,7 +252,7 @@ int main(int argc, char* argv[])
     }
   }
   run(ball("paper sphere r2<=240", 240), repeat);
-  run(hexahedron(6.0), repeat);
+  run(hexahedron(), repeat);
   for (int r : radii)
     run(ball("ball r=" + std::to_string(r), long(r) * r), repeat);
   if (!data)

@@ -370,6 +370,36 @@ TEST(Polyhedrization, PaperSphere)
   checkPolyhedron(v, g, p);
 }
 
+TEST(Polyhedrization, PaperHexahedron)
+{
+  // A box turned about two axes, |n_i . centre| <= h_i: the paper's 1,962 surfels; it got 11
+  // faces, the growth alone gives 31 here, the move to larger faces 13, merging 9.
+  const int normals[3][3] = { { 2, 2, 1 }, { -2, 1, 2 }, { 1, -2, 2 } };
+  const int half[3] = { 17, 17, 29 };
+  vbr::BitVolume v(33, 33, 33);
+  for (int z = 0; z < 33; ++z)
+    for (int y = 0; y < 33; ++y)
+      for (int x = 0; x < 33; ++x)
+      {
+        bool inside = true;
+        for (int i = 0; i < 3; ++i)
+          inside = inside &&
+            std::abs(normals[i][0] * (x - 16) + normals[i][1] * (y - 16) +
+              normals[i][2] * (z - 16)) <= half[i];
+        if (inside)
+          v.set(x, y, z);
+      }
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+  EXPECT_EQ(g.size(), 1962u);
+  vbr::PolyhedrizationOptions merged;
+  merged.mergeFaces = true;
+  vbr::Polyhedron p;
+  ASSERT_TRUE(vbr::polyhedrize(g, merged, vbr::Execution(), p));
+  EXPECT_LE(p.faces.size(), 11u);
+  checkPolyhedron(v, g, p, merged);
+}
+
 TEST(Polyhedrization, DigitalPlaneIsOneFace)
 {
   // The voxels of a box below the plane 2x + 3y + 7z = 60 (by their centres): the surfels
