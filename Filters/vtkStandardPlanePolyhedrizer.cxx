@@ -220,6 +220,28 @@ private:
   vtkNew<vtkDoubleArray> Labels;
 };
 
+/// The voxel grid for vtkStandardPlaneReversion: world position of corner (0, 0, 0) (axis
+/// aligned grids), spacing and voxels per axis.
+void writeGrid(const vbr::vtk::VoxelGrid& grid, vtkFieldData* fd)
+{
+  double corner[3];
+  grid.vertexToWorld({ 0, 0, 0 }, corner);
+  vtkNew<vtkDoubleArray> origin, spacing;
+  vtkNew<vtkIntArray> dims;
+  origin->SetName("VoxelGridOrigin");
+  spacing->SetName("VoxelGridSpacing");
+  dims->SetName("VoxelGridDimensions");
+  origin->SetNumberOfComponents(3);
+  spacing->SetNumberOfComponents(3);
+  dims->SetNumberOfComponents(3);
+  origin->InsertNextTuple(corner);
+  spacing->InsertNextTuple(grid.spacing.data());
+  dims->InsertNextTuple3(grid.dims[0], grid.dims[1], grid.dims[2]);
+  fd->AddArray(origin);
+  fd->AddArray(spacing);
+  fd->AddArray(dims);
+}
+
 /// Output port 1: the voxels recomputed from the faces alone (planes and loops).
 bool writeReversion(const std::vector<ObjectFaces>& objects,
   const vbr::vtk::VoxelGrid& grid,
@@ -476,6 +498,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   }
   builder.finish(output);
   stats.write(output->GetFieldData());
+  writeGrid(grid, output->GetFieldData());
   this->UpdateProgress(0.95);
 
   if (this->GenerateReversion)

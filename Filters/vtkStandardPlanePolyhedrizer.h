@@ -29,14 +29,15 @@
  * `Label`. The plane coefficients are in the image's corner index space: voxel (i, j, k),
  * counted from the first voxel of the extent, spans the corners i..i+1, j..j+1, k..k+1.
  * Field data: `NumberOfSurfels`, `NumberOfFaces`, `MinimumFaceSize`, `MeanFaceSize`,
- * `MaximumFaceSize`, `NumberOfStandardVertices`, `NumberOfBoundaryComponents`.
+ * `MaximumFaceSize`, `NumberOfStandardVertices`, `NumberOfBoundaryComponents`, and the grid
+ * for vtkStandardPlaneReversion (`VoxelGridOrigin`, `VoxelGridSpacing`, `VoxelGridDimensions`).
  *
  * Output port 1: the reversion, an image with the input's structure and an unsigned char
  * array `Selection` (1 on the selected voxels, with the association of the input scalars),
  * recomputed from the faces alone: the surfels enclosed by each face's loop in its plane,
  * then the voxels by parity. It equals the selection; `ReversionMatches` in its field data
  * says whether it did (the filter reports an error otherwise). vtkStandardPlaneReversion does
- * the same from a StandardFaces output alone.
+ * the same from a StandardFaces output alone (a file, say).
  *
  * A flat image (one voxel along an axis) is polyhedrized as a one-voxel-thick slab.
  *

@@ -62,6 +62,12 @@ def check_values(phantom, dims):
     poly.OutputMode = "Standard Faces"
     poly.UpdatePipeline()
     expect("one polygon per face", servermanager.Fetch(poly, idx=0).GetNumberOfCells(), faces)
+    reversion = StandardPlaneReversion(Input=OutputPort(poly, 0))
+    reversion.UpdatePipeline()
+    voxels = servermanager.Fetch(reversion)
+    back = ns.vtk_to_numpy(voxels.GetCellData().GetArray("Selection")).reshape(dims[::-1])
+    expect("Standard Plane Reversion equals the selection", bool((back == mask).all()), True)
+    Delete(reversion)
     Delete(poly)
 
 
