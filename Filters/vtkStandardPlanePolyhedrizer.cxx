@@ -120,7 +120,11 @@ public:
   void addObject(const ObjectFaces& o, int mode)
   {
     this->PointOf.clear();
-    if (mode == vtkStandardPlanePolyhedrizer::SURFELS)
+    if (mode == vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
+    {
+      this->addEdges(o);
+    }
+    else if (mode == vtkStandardPlanePolyhedrizer::SURFELS)
     {
       for (std::uint32_t s = 0; s < o.graph.size(); ++s)
       {
@@ -150,8 +154,17 @@ public:
   void finish(vtkPolyData* output)
   {
     output->SetPoints(this->Points);
-    output->SetPolys(this->Polys);
     vtkCellData* cd = output->GetCellData();
+    if (this->Lines->GetNumberOfCells() > 0 || this->OtherFaceIds->GetNumberOfTuples() > 0)
+    {
+      output->SetLines(this->Lines);
+      cd->AddArray(this->FaceIds);
+      cd->AddArray(this->OtherFaceIds);
+      cd->AddArray(this->Labels);
+      cd->SetActiveScalars("FaceId");
+      return;
+    }
+    output->SetPolys(this->Polys);
     cd->AddArray(this->FaceIds);
     cd->AddArray(this->Normals);
     cd->AddArray(this->Offsets);
@@ -161,6 +174,60 @@ public:
   }
 
 private:
+  /// The standard edges of the object: each face's loop cut at its standard vertices; a
+  /// piece is kept by the face of smaller number on its two sides, so each appears once.
+  void addEdges(const ObjectFaces& o)
+  {
+    this->OtherFaceIds->SetName("OtherFaceId");
+    for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
+    {
+      const vbr::StandardFace& face = o.poly.faces[f];
+      const std::size_t m = face.loop.size();
+      std::size_t start = 0;
+      while (start < m && o.poly.facesAtVertex[face.loop[start]] < 3)
+        ++start;
+      if (start == m)
+      {
+        // Two faces along a whole loop: one closed edge.
+        if (f < face.across[0])
+        {
+          std::vector<vtkIdType> ids;
+          for (std::uint32_t v : face.loop)
+            ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[v])));
+          ids.push_back(ids.front());
+          this->addLine(ids, o, f, face.across[0]);
+        }
+        continue;
+      }
+      std::vector<vtkIdType> ids;
+      for (std::size_t step = 0; step < m; ++step)
+      {
+        const std::size_t i = (start + step) % m;
+        if (ids.empty())
+          ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[face.loop[i]])));
+        const std::uint32_t next = face.loop[(i + 1) % m];
+        ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[next])));
+        if (o.poly.facesAtVertex[next] >= 3)
+        {
+          if (f < face.across[i])
+            this->addLine(ids, o, f, face.across[i]);
+          ids.clear();
+        }
+      }
+    }
+  }
+
+  void addLine(const std::vector<vtkIdType>& ids,
+    const ObjectFaces& o,
+    std::uint32_t f,
+    std::uint32_t other)
+  {
+    this->Lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
+    this->OtherFaceIds->InsertNextValue(static_cast<int>(this->FaceBase + other));
+    this->Labels->InsertNextValue(o.label);
+  }
+
   /// The loop's standard vertices; at least three pointels spread along it.
   static std::vector<std::uint32_t> semiDiscreteLoop(const ObjectFaces& o,
     const std::vector<std::uint32_t>& loop)
@@ -213,6 +280,8 @@ private:
   std::unordered_map<std::uint64_t, vtkIdType> PointOf; ///< per object
   vtkNew<vtkPoints> Points;
   vtkNew<vtkCellArray> Polys;
+  vtkNew<vtkCellArray> Lines;
+  vtkNew<vtkIntArray> OtherFaceIds;
   vtkNew<vtkIntArray> FaceIds;
   vtkNew<vtkIntArray> Normals;
   vtkNew<vtkIdTypeArray> Offsets;
@@ -364,6 +433,8 @@ const char* vtkStandardPlanePolyhedrizer::GetOutputModeAsString()
       return "Surfels";
     case SEMI_DISCRETE:
       return "SemiDiscrete";
+    case STANDARD_EDGES:
+      return "StandardEdges";
     default:
       return "StandardFaces";
   }
@@ -451,6 +522,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   vbr::PolyhedrizationOptions options;
   options.maximumFaceSize = static_cast<std::size_t>(this->MaximumFaceSize);
   options.maximumDepth = static_cast<std::uint32_t>(this->MaximumDepth);
+  options.moveToLargerFaces = this->MoveToLargerFaces;
   options.mergeFaces = this->MergeFaces;
   options.mergeFacesUpTo = static_cast<std::size_t>(this->MergeFacesUpTo);
 
@@ -526,6 +598,7 @@ void vtkStandardPlanePolyhedrizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
   os << indent << "MaximumFaceSize: " << this->MaximumFaceSize << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
+  os << indent << "MoveToLargerFaces: " << (this->MoveToLargerFaces ? "On\n" : "Off\n");
   os << indent << "MergeFaces: " << (this->MergeFaces ? "On\n" : "Off\n");
   os << indent << "MergeFacesUpTo: " << this->MergeFacesUpTo << "\n";
   os << indent << "GenerateReversion: " << (this->GenerateReversion ? "On\n" : "Off\n");

@@ -25,6 +25,9 @@
  * - SemiDiscrete: one polygon per face through its standard vertices only (the pointels
  *   where three or more faces meet), the paper's section 5; a face with fewer than three
  *   standard vertices keeps three pointels of its loop spread along it.
+ * - StandardEdges: the standard edges, each once, as polylines of pointels between two
+ *   standard vertices (a closed polyline where two faces meet along a whole loop), with the
+ *   cell arrays `FaceId` and `OtherFaceId` (the faces on either side) and `Label`.
  * Cell arrays: `FaceId`, `PlaneNormal` (a, b, c), `PlaneOffset` (mu), `SurfelCount` and
  * `Label`. The plane coefficients are in the image's corner index space: voxel (i, j, k),
  * counted from the first voxel of the extent, spans the corners i..i+1, j..j+1, k..k+1.
@@ -67,7 +70,8 @@ public:
   {
     SURFELS = 0,
     STANDARD_FACES = 1,
-    SEMI_DISCRETE = 2
+    SEMI_DISCRETE = 2,
+    STANDARD_EDGES = 3
   };
 
   ///@{
@@ -112,11 +116,12 @@ public:
   /**
    * What the cells of output port 0 are. The default is STANDARD_FACES.
    */
-  vtkSetClampMacro(OutputMode, int, SURFELS, SEMI_DISCRETE);
+  vtkSetClampMacro(OutputMode, int, SURFELS, STANDARD_EDGES);
   vtkGetMacro(OutputMode, int);
   void SetOutputModeToSurfels() { this->SetOutputMode(SURFELS); }
   void SetOutputModeToStandardFaces() { this->SetOutputMode(STANDARD_FACES); }
   void SetOutputModeToSemiDiscrete() { this->SetOutputMode(SEMI_DISCRETE); }
+  void SetOutputModeToStandardEdges() { this->SetOutputMode(STANDARD_EDGES); }
   const char* GetOutputModeAsString();
   ///@}
 
@@ -135,6 +140,17 @@ public:
    */
   vtkSetClampMacro(MaximumDepth, int, 0, VTK_INT_MAX);
   vtkGetMacro(MaximumDepth, int);
+  ///@}
+
+  ///@{
+  /**
+   * After the growth, move surfels from smaller faces to a larger neighbouring face whose
+   * plane takes them unchanged, when both faces stay disks (faces emptied disappear). The
+   * default is on; off gives the paper's growth alone.
+   */
+  vtkSetMacro(MoveToLargerFaces, bool);
+  vtkGetMacro(MoveToLargerFaces, bool);
+  vtkBooleanMacro(MoveToLargerFaces, bool);
   ///@}
 
   ///@{
@@ -177,6 +193,7 @@ protected:
   int OutputMode = STANDARD_FACES;
   int MaximumFaceSize = 0;
   int MaximumDepth = 0;
+  bool MoveToLargerFaces = true;
   bool MergeFaces = false;
   int MergeFacesUpTo = 8;
   bool GenerateReversion = true;

@@ -570,7 +570,16 @@ bool polyhedrize(const SurfelGraph& graph,
   }
   std::unordered_map<std::uint32_t, std::pair<std::uint32_t, int>> edgeFrom;
   for (std::uint32_t f = 0; f < out.faces.size(); ++f)
-    out.faces[f].loop = loopOf(graph, out, f, edgeFrom);
+  {
+    StandardFace& face = out.faces[f];
+    face.loop = loopOf(graph, out, f, edgeFrom);
+    face.across.clear();
+    for (std::uint32_t v : face.loop)
+    {
+      const auto [s, k] = edgeFrom.at(v);
+      face.across.push_back(out.faceOfSurfel[graph.neighbourOf(s, k)]);
+    }
+  }
   out.facesAtVertex = countFacesAtVertices(graph, out);
   return exec.report(1.0);
 }

@@ -47,7 +47,8 @@ struct StandardFace
 {
   StandardPlane plane;
   std::vector<std::uint32_t> surfels;
-  std::vector<std::uint32_t> loop; ///< graph vertices, counter-clockwise seen from outside
+  std::vector<std::uint32_t> loop;   ///< graph vertices, counter-clockwise seen from outside
+  std::vector<std::uint32_t> across; ///< the face beyond loop edge i (loop[i] to loop[i + 1])
 };
 
 struct Polyhedron

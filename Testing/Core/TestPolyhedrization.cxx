@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <random>
@@ -348,6 +349,36 @@ TEST(Polyhedrization, DegenerateAndNonManifold)
           checker.set(x, y, z);
   polyhedrizeAndCheck(plate);
   polyhedrizeAndCheck(checker);
+}
+
+TEST(Polyhedrization, TorusAndPorousBlobs)
+{
+  // A torus (a handle: genus 1) and a porous union of balls (cavities, tunnels, many
+  // boundary components).
+  vbr::BitVolume torus(40, 40, 16), blobs(32, 32, 32);
+  for (int z = 0; z < 16; ++z)
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 40; ++x)
+      {
+        const double r = std::hypot(x - 19.5, y - 19.5) - 12.0;
+        if (r * r + (z - 7.5) * (z - 7.5) <= 25.0)
+          torus.set(x, y, z);
+      }
+  std::mt19937 rng(8);
+  for (int b = 0; b < 60; ++b)
+  {
+    const int cx = int(rng() % 32), cy = int(rng() % 32), cz = int(rng() % 32);
+    for (int z = 0; z < 32; ++z)
+      for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+          if ((x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) <= 12)
+            blobs.set(x, y, z);
+  }
+  polyhedrizeAndCheck(torus);
+  polyhedrizeAndCheck(blobs);
+  vbr::PolyhedrizationOptions merged;
+  merged.mergeFaces = true;
+  polyhedrizeAndCheck(blobs, merged);
 }
 
 TEST(Polyhedrization, PaperSphere)

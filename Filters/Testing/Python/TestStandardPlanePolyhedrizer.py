@@ -95,6 +95,14 @@ def check_case(tag, mask, selected=None, spacing=(1, 1, 1), origin=(0, 0, 0),
     if labels:
         got_labels = ns.vtk_to_numpy(voxels.GetCellData().GetArray("Label")).reshape(values.shape)
         check.true(tag + ": labels back", bool((got_labels == values).all()))
+    loop_linels = sum(len(c) for c in cells(standard))
+    edges = run(f, f.STANDARD_EDGES)
+    lines = cells(edges)
+    check.equal(tag + ": standard edges cover every loop linel once",
+                sum(len(c) - 1 for c in lines), loop_linels // 2)
+    if lines:
+        check.true(tag + ": an edge separates two faces",
+                   bool((cell_array(edges, "FaceId") != cell_array(edges, "OtherFaceId")).all()))
     semi = run(f, f.SEMI_DISCRETE)
     check.equal(tag + ": semi-discrete polygons", semi.GetNumberOfCells(), faces)
     check.true(tag + ": semi-discrete polygons have 3+ vertices",
