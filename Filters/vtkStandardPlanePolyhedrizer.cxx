@@ -309,6 +309,11 @@ void writeGrid(const vbr::vtk::VoxelGrid& grid, vtkFieldData* fd)
   fd->AddArray(origin);
   fd->AddArray(spacing);
   fd->AddArray(dims);
+  vtkNew<vtkDoubleArray> direction;
+  direction->SetName("VoxelGridDirection");
+  direction->SetNumberOfComponents(9);
+  direction->InsertNextTuple(grid.direction.data());
+  fd->AddArray(direction);
 }
 
 /// Output port 1: the voxels recomputed from the faces alone (planes and loops).

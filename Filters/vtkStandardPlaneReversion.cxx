@@ -54,6 +54,18 @@ bool readGrid(vtkFieldData* fd, Grid& grid)
   return true;
 }
 
+/// Whether the faces were made in a grid with a direction matrix (not supported).
+bool rotated(vtkFieldData* fd)
+{
+  vtkDataArray* direction = fd ? fd->GetArray("VoxelGridDirection") : nullptr;
+  if (!direction || direction->GetNumberOfComponents() != 9)
+    return false;
+  for (int i = 0; i < 9; ++i)
+    if (direction->GetComponent(0, i) != (i % 4 == 0 ? 1.0 : 0.0))
+      return true;
+  return false;
+}
+
 } // namespace
 
 vtkStandardPlaneReversion::vtkStandardPlaneReversion() = default;
@@ -95,6 +107,12 @@ int vtkStandardPlaneReversion::RequestData(vtkInformation*,
     vtkErrorMacro(<< "The input must be the StandardFaces output of "
                      "vtkStandardPlanePolyhedrizer (field data VoxelGridOrigin, "
                      "VoxelGridSpacing, VoxelGridDimensions).");
+    return 0;
+  }
+  if (rotated(input->GetFieldData()))
+  {
+    vtkErrorMacro(<< "The faces come from an image with a direction matrix, which the "
+                     "reversion does not support; use the polyhedrizer's output port 1.");
     return 0;
   }
   vtkDataArray* normals = input->GetCellData()->GetArray("PlaneNormal");

@@ -12,7 +12,8 @@
  * position of voxel corner (0, 0, 0)), `VoxelGridSpacing` and `VoxelGridDimensions` (voxels
  * along each axis). The output is an image whose cells are those voxels, with an unsigned char
  * cell array `Selection` (1 on the voxels) and, for label maps, a double array `Label`.
- * Images with a direction matrix are not supported (the filter reports an error).
+ * Faces made from an image with a direction matrix (field `VoxelGridDirection` not the
+ * identity) are not supported: the filter reports an error.
  *
  * @sa vtkStandardPlanePolyhedrizer
  */

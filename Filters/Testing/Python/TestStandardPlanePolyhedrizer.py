@@ -133,6 +133,23 @@ def main():
     ball = ((x * x + y * y + z * z) <= 240).astype(np.uint8)
     faces = check_case("sphere", ball)
     check.true("sphere: fewer faces than the paper's 135 (got %d)" % faces, faces <= 120)
+    # A direction matrix: the faces and the reversion of port 1 work; the companion filter,
+    # which has only the faces, refuses (an error, no output) rather than answer wrongly.
+    rotated = make_image(mask, direction=[[0, -1, 0], [1, 0, 0], [0, 0, 1]])
+    f = voxelbrep.vtkStandardPlanePolyhedrizer()
+    f.SetInputData(rotated)
+    f.Update()
+    back = ns.vtk_to_numpy(f.GetOutputDataObject(1).GetPointData().GetArray("Selection"))
+    check.true("rotated: reversion equals the selection",
+               bool((back.reshape(mask.shape) == (mask != 0)).all()))
+    from vtkmodules.vtkCommonCore import vtkObject
+    vtkObject.GlobalWarningDisplayOff()
+    companion = voxelbrep.vtkStandardPlaneReversion()
+    companion.SetInputConnection(f.GetOutputPort(0))
+    companion.Update()
+    vtkObject.GlobalWarningDisplayOn()
+    check.true("rotated: the companion refuses",
+               companion.GetOutput().GetCellData().GetArray("Selection") is None)
     # Empty selection: empty outputs, no error.
     check_case("empty", np.zeros((4, 5, 6), np.uint8))
     check.finish()
