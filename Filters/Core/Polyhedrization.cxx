@@ -559,8 +559,9 @@ bool polyhedrize(const SurfelGraph& graph,
       { return out.faces[a].surfels.size() < out.faces[b].surfels.size(); });
     for (std::size_t i = 0; i < order.size(); ++i)
     {
-      if (out.faces[order[i]].surfels.size() > options.mergeFacesUpTo)
-        break;
+      const std::size_t size = out.faces[order[i]].surfels.size();
+      if (size == 0 || size > options.mergeFacesUpTo)
+        continue; // faces grow as they take others: the order is only a start
       if ((i & 63) == 0 &&
         (exec.stopRequested() || !exec.report(0.7 + 0.25 * double(i) / double(order.size()))))
         return false;
