@@ -3,6 +3,7 @@
 #ifndef vbr_GridPointIndex_h
 #define vbr_GridPointIndex_h
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -17,6 +18,18 @@ public:
   explicit GridPointIndex(std::size_t expected = 0) { this->rehash(2 * expected); }
 
   std::size_t size() const { return this->Count; }
+
+  /// Forgets every point; keeps the memory of a small table.
+  void clear()
+  {
+    if (this->Keys.size() > 4096)
+    {
+      *this = GridPointIndex();
+      return;
+    }
+    std::fill(this->Keys.begin(), this->Keys.end(), Empty);
+    this->Count = 0;
+  }
 
   /// The number of `key`, and whether it was new (then it is size() - 1).
   std::pair<std::int64_t, bool> insert(std::uint64_t key)

@@ -321,34 +321,59 @@ private:
   std::uint32_t DepthLimit;
 };
 
-/// The boundary loop of a disk face, counter-clockwise seen from outside.
-std::vector<std::uint32_t> loopOf(const SurfelGraph& graph,
-  const Polyhedron& poly,
-  std::uint32_t f,
-  std::unordered_map<std::uint32_t, std::pair<std::uint32_t, int>>& edgeFrom)
+/// The boundary loops of disk faces, counter-clockwise seen from outside, with the face
+/// beyond each loop edge. Each boundary vertex of a disk starts exactly one boundary edge,
+/// kept per vertex in arrays stamped with the face.
+class LoopTracer
 {
-  edgeFrom.clear();
-  for (std::uint32_t s : poly.faces[f].surfels)
-    for (int k = 0; k < 4; ++k)
-      if (poly.faceOfSurfel[graph.neighbourOf(s, k)] != f)
-        edgeFrom[graph.vertexOf(s, k)] = { s, k };
-  std::vector<std::uint32_t> loop;
-  if (edgeFrom.empty())
-    return loop;
-  const std::uint32_t start = edgeFrom.begin()->first;
-  std::uint32_t v = start;
-  do
+public:
+  explicit LoopTracer(const SurfelGraph& graph)
+    : Graph(graph)
+    , Edge(graph.vertexPointel.size())
+    , Stamp(graph.vertexPointel.size(), None)
   {
-    loop.push_back(v);
-    const auto it = edgeFrom.find(v);
-    if (it == edgeFrom.end() || loop.size() > edgeFrom.size())
+  }
+
+  void trace(const Polyhedron& poly, std::uint32_t f, StandardFace& face)
+  {
+    std::size_t edges = 0;
+    std::uint32_t start = None;
+    for (std::uint32_t s : face.surfels)
+      for (int k = 0; k < 4; ++k)
+        if (poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != f)
+        {
+          const std::uint32_t v = this->Graph.vertexOf(s, k);
+          if (this->Stamp[v] == f)
+            throw std::logic_error("face boundary is not one loop");
+          this->Stamp[v] = f;
+          this->Edge[v] = 4 * s + static_cast<std::uint32_t>(k);
+          start = v;
+          ++edges;
+        }
+    face.loop.clear();
+    face.across.clear();
+    if (start == None)
+      return;
+    std::uint32_t v = start;
+    do
+    {
+      if (this->Stamp[v] != f || face.loop.size() >= edges)
+        throw std::logic_error("face boundary is not one loop");
+      const std::uint32_t s = this->Edge[v] / 4;
+      const int k = static_cast<int>(this->Edge[v] % 4);
+      face.loop.push_back(v);
+      face.across.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
+      v = this->Graph.vertexOf(s, (k + 1) % 4);
+    } while (v != start);
+    if (face.loop.size() != edges)
       throw std::logic_error("face boundary is not one loop");
-    v = graph.vertexOf(it->second.first, (it->second.second + 1) % 4);
-  } while (v != start);
-  if (loop.size() != edgeFrom.size())
-    throw std::logic_error("face boundary is not one loop");
-  return loop;
-}
+  }
+
+private:
+  const SurfelGraph& Graph;
+  std::vector<std::uint32_t> Edge;  ///< 4 * surfel + edge leaving each boundary vertex
+  std::vector<std::uint32_t> Stamp; ///< the face Edge is for
+};
 
 /// Whether surfel s meets the surfels of face f (other than s) along one arc of its
 /// boundary: 1 to 3 consecutive shared edges, and no other vertex of s touched by f. Adding
@@ -569,18 +594,9 @@ bool polyhedrize(const SurfelGraph& graph,
     }
     dropEmptyFaces(out);
   }
-  std::unordered_map<std::uint32_t, std::pair<std::uint32_t, int>> edgeFrom;
+  LoopTracer tracer(graph);
   for (std::uint32_t f = 0; f < out.faces.size(); ++f)
-  {
-    StandardFace& face = out.faces[f];
-    face.loop = loopOf(graph, out, f, edgeFrom);
-    face.across.clear();
-    for (std::uint32_t v : face.loop)
-    {
-      const auto [s, k] = edgeFrom.at(v);
-      face.across.push_back(out.faceOfSurfel[graph.neighbourOf(s, k)]);
-    }
-  }
+    tracer.trace(out, f, out.faces[f]);
   out.facesAtVertex = countFacesAtVertices(graph, out);
   return exec.report(1.0);
 }

@@ -85,15 +85,19 @@ std::int64_t StandardPlane::omega() const
 
 void StandardPlaneRecognizer::reset()
 {
+  // Storage is kept from face to face: a recognizer is reset once per face.
   this->Points.clear();
-  this->Keys = GridPointIndex();
+  this->Keys.clear();
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
-  this->Octants.clear();
   for (int s = 0; s < 8; ++s)
   {
-    Octant o;
+    Octant& o = this->Octants[s];
     o.sigma = { (s & 1) ? -1 : 1, (s & 2) ? -1 : 1, (s & 4) ? -1 : 1 };
+    o.vertices.clear();
+    o.edges.clear();
+    o.octantEdge.clear();
+    o.applied = 0;
     // The triangle sigma.n = 1, sigma_d n_d >= 0; edge i lies on n_(i+2) = 0.
     for (int d = 0; d < 3; ++d)
     {
@@ -108,7 +112,7 @@ void StandardPlaneRecognizer::reset()
       o.edges.push_back(e);
       o.octantEdge.push_back(1);
     }
-    this->Octants.push_back(std::move(o));
+    this->Alive[s] = true;
   }
 }
 
@@ -371,19 +375,20 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
 
   // Slow path: clip the octants with the points already accepted (for good), then with the
   // new ones (on copies), and search each surviving octant for a normal.
-  std::vector<Octant> kept;
-  for (Octant& o : this->Octants)
-    if (this->applyPoints(o))
-      kept.push_back(std::move(o));
-  this->Octants.swap(kept);
+  for (int i = 0; i < 8; ++i)
+    this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
 
   const std::size_t before = this->Points.size();
   this->Points.insert(this->Points.end(), fresh.begin(), fresh.end());
-  std::vector<Octant> updated;
+  std::array<bool, 8> survives{};
   Vec best{ 0, 0, 0 };
   std::int64_t bestOmega = MaximumOmega + 1;
-  for (const Octant& original : this->Octants)
+  for (int i = 0; i < 8; ++i)
   {
+    const Octant& original = this->Octants[i];
+    survives[i] = false;
+    if (!this->Alive[i])
+      continue;
     bool consistent = true;
     for (int d = 0; d < 3; ++d)
       consistent = consistent && (present[d] == 0 || present[d] == original.sigma[d]);
@@ -401,16 +406,17 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
       }
     if (dead)
       continue;
-    Octant o = original;
+    Octant& o = this->Trials[i];
+    o = original; // reuses the trial's storage
     if (!this->applyPoints(o) || !hasInterior(o))
       continue;
+    survives[i] = true;
     Vec n;
     if (this->solve(o, present, bestOmega - 1, n))
     {
       best = n;
       bestOmega = std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
     }
-    updated.push_back(std::move(o));
   }
   if (bestOmega > MaximumOmega)
   {
@@ -419,9 +425,16 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   }
   this->Points.resize(before);
   this->commit(present);
-  for (Octant& o : updated)
-    o.applied = this->Points.size();
-  this->Octants.swap(updated);
+  for (int i = 0; i < 8; ++i)
+  {
+    // Octants the new points emptied, or whose signs they contradict, stay dead.
+    this->Alive[i] = survives[i];
+    if (survives[i])
+    {
+      std::swap(this->Octants[i], this->Trials[i]);
+      this->Octants[i].applied = this->Points.size();
+    }
+  }
   this->Current.normal = best;
   this->CurrentLo = this->CurrentHi = dot(best, this->Points.front());
   for (const Point3& q : this->Points)

@@ -109,7 +109,9 @@ private:
   GridPointIndex Keys;                  ///< of Points
   std::vector<Point3> Fresh;            ///< the new points of a call
   std::vector<std::uint64_t> FreshKeys; ///< theirs, sorted
-  std::vector<Octant> Octants;
+  std::array<Octant, 8> Octants;        ///< one per sign pattern of the normal
+  std::array<Octant, 8> Trials; ///< the octants with the points of a call, until it succeeds
+  std::array<bool, 8> Alive;    ///< octants that may still hold a solution
   std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis
   StandardPlane Current;
   std::int64_t CurrentLo = 0, CurrentHi = 0; ///< range of the current normal over the points
