@@ -24,6 +24,53 @@ std::array<int, 3> signsOf(const SurfelGraph::Surfel& s)
   return signs;
 }
 
+/// Whether surfel s meets the surfels of face f (other than s) along one arc of its
+/// boundary: 1 to 3 consecutive shared edges, and no other vertex of s touched by f. Adding
+/// s to the disk f then leaves a disk; taking s out of the disk f + s does too when, in
+/// addition, f fills the umbrellas of the vertices inside the arc. Vertices are checked by
+/// walking their umbrellas, so no per-face state is needed.
+bool meetsAlongOneArc(const SurfelGraph& graph,
+  const std::vector<std::uint32_t>& faceOf,
+  std::uint32_t s,
+  std::uint32_t f,
+  bool removing)
+{
+  bool shared[4];
+  int count = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
+    count += shared[k];
+  }
+  if (count == 0 || count == 4)
+    return false;
+  int arcs = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    const bool onArc = shared[k] || shared[(k + 3) % 4];
+    const bool insideArc = shared[k] && shared[(k + 3) % 4];
+    arcs += shared[k] && !shared[(k + 3) % 4];
+    // Touched: another surfel of f round the vertex. Taken out, s must not pinch f at a
+    // vertex inside the arc: f must fill the rest of that umbrella (f + s is a disk, so
+    // then f alone is one).
+    bool touched = false, filled = true;
+    graph.aroundVertex(s,
+      k,
+      [&](std::uint32_t u)
+      {
+        if (u != s)
+        {
+          touched = touched || faceOf[u] == f;
+          filled = filled && faceOf[u] == f;
+        }
+        return true;
+      });
+    if (touched != onArc || (removing && insideArc && !filled))
+      return false;
+  }
+  return arcs == 1;
+}
+
 /// The growth of the faces: per-face state kept in arrays stamped with the face number, so
 /// that starting a face costs nothing.
 class FaceGrower
@@ -35,8 +82,6 @@ public:
     , Poly(&out)
     , Queued(graph.size(), None)
     , Refused(graph.size(), None)
-    , VertexFace(graph.vertexPointel.size(), None)
-    , VertexCount(graph.vertexPointel.size(), 0)
     , DepthLimit(options.maximumDepth)
   {
     out.faceOfSurfel.assign(graph.size(), None);
@@ -91,7 +136,7 @@ private:
       if (this->Options.maximumFaceSize &&
         this->Poly->faces[f].surfels.size() >= this->Options.maximumFaceSize)
         break;
-      if (!this->keepsDisk(s, f))
+      if (!meetsAlongOneArc(this->Graph, this->Poly->faceOfSurfel, s, f, false))
         continue; // may fit later, when it is queued again by a new neighbour
       if (!this->Recognizer.tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
       {
@@ -179,10 +224,7 @@ private:
   std::size_t extend(std::uint32_t g, const std::vector<std::uint32_t>& freed)
   {
     StandardFace& face = this->Poly->faces[g];
-    // The disk test's vertex counts and the recognizer, rebuilt for g.
-    for (std::uint32_t s : face.surfels)
-      for (int k = 0; k < 4; ++k)
-        this->VertexFace[this->Graph.vertexOf(s, k)] = None;
+    // The recognizer, rebuilt for g.
     std::vector<Point3> points;
     std::array<int, 3> signs{ 0, 0, 0 };
     for (std::uint32_t s : face.surfels)
@@ -190,13 +232,7 @@ private:
       const auto& sf = this->Graph.surfels[s];
       signs[sf.axis()] = sf.sign();
       for (int k = 0; k < 4; ++k)
-      {
         points.push_back(this->Graph.cornerOf(s, k));
-        const std::uint32_t v = this->Graph.vertexOf(s, k);
-        if (this->VertexFace[v] != g)
-          this->VertexFace[v] = g, this->VertexCount[v] = 0;
-        ++this->VertexCount[v];
-      }
     }
     this->Recognizer.reset();
     if (!this->Recognizer.tryAdd(points, signs))
@@ -226,18 +262,16 @@ private:
     for (int k = 0; k < 4; ++k)
     {
       std::vector<std::uint32_t> umbrella;
-      std::uint32_t s = seed;
-      int corner = k;
       bool free = true;
-      do
-      {
-        umbrella.push_back(s);
-        free = free && this->Poly->faceOfSurfel[s] == None;
-        const int j = this->Graph.sharedEdge(s, corner); // edge `corner` starts at the vertex
-        s = this->Graph.neighbourOf(s, corner);
-        corner = (j + 1) % 4;
-      } while (s != seed && umbrella.size() <= 8);
-      if (!free || s != seed ||
+      this->Graph.aroundVertex(seed,
+        k,
+        [&](std::uint32_t u)
+        {
+          umbrella.push_back(u);
+          free = free && this->Poly->faceOfSurfel[u] == None;
+          return free;
+        });
+      if (!free ||
         (this->Options.maximumFaceSize && umbrella.size() > this->Options.maximumFaceSize))
         continue;
       std::vector<Point3> points;
@@ -266,13 +300,6 @@ private:
   {
     this->Poly->faceOfSurfel[s] = f;
     this->Poly->faces[f].surfels.push_back(s);
-    for (int k = 0; k < 4; ++k)
-    {
-      const std::uint32_t v = this->Graph.vertexOf(s, k);
-      if (this->VertexFace[v] != f)
-        this->VertexFace[v] = f, this->VertexCount[v] = 0;
-      ++this->VertexCount[v];
-    }
     if (this->DepthLimit && depth + 1 > this->DepthLimit)
       return;
     for (int k = 0; k < 4; ++k)
@@ -286,38 +313,12 @@ private:
     }
   }
 
-  /// Adding s keeps the face a disk iff s meets it along one arc of its boundary: the edges
-  /// it shares are consecutive (1 to 3 of them) and it touches no other vertex of the face.
-  bool keepsDisk(std::uint32_t s, std::uint32_t f) const
-  {
-    bool shared[4];
-    int count = 0;
-    for (int k = 0; k < 4; ++k)
-    {
-      shared[k] = this->Poly->faceOfSurfel[this->Graph.neighbourOf(s, k)] == f;
-      count += shared[k];
-    }
-    if (count == 0 || count == 4)
-      return false;
-    int arcs = 0;
-    for (int k = 0; k < 4; ++k)
-    {
-      arcs += shared[k] && !shared[(k + 3) % 4];
-      const std::uint32_t v = this->Graph.vertexOf(s, k);
-      const bool touched = this->VertexFace[v] == f && this->VertexCount[v] > 0;
-      if (touched != (shared[k] || shared[(k + 3) % 4]))
-        return false;
-    }
-    return arcs == 1;
-  }
-
   const SurfelGraph& Graph;
   const PolyhedrizationOptions& Options;
   Polyhedron* Poly; ///< where the faces go
   StandardPlaneRecognizer Recognizer;
   std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
   std::vector<std::uint32_t> Queued, Refused;               ///< stamped with the face
-  std::vector<std::uint32_t> VertexFace, VertexCount;       ///< surfels of the face per vertex
   std::uint32_t DepthLimit;
 };
 
@@ -374,61 +375,6 @@ private:
   std::vector<std::uint32_t> Edge;  ///< 4 * surfel + edge leaving each boundary vertex
   std::vector<std::uint32_t> Stamp; ///< the face Edge is for
 };
-
-/// Whether surfel s meets the surfels of face f (other than s) along one arc of its
-/// boundary: 1 to 3 consecutive shared edges, and no other vertex of s touched by f. Adding
-/// s to the disk f then leaves a disk; taking s out of the disk f + s does too when, in
-/// addition, f fills the umbrellas of the vertices inside the arc. Vertices are checked by
-/// walking their umbrellas, so no per-face state is needed.
-bool meetsAlongOneArc(const SurfelGraph& graph,
-  const std::vector<std::uint32_t>& faceOf,
-  std::uint32_t s,
-  std::uint32_t f,
-  bool removing)
-{
-  bool shared[4];
-  int count = 0;
-  for (int k = 0; k < 4; ++k)
-  {
-    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
-    count += shared[k];
-  }
-  if (count == 0 || count == 4)
-    return false;
-  int arcs = 0;
-  for (int k = 0; k < 4; ++k)
-  {
-    arcs += shared[k] && !shared[(k + 3) % 4];
-    bool touched = false;
-    std::uint32_t u = s;
-    int corner = k;
-    do
-    {
-      const int j = graph.sharedEdge(u, corner);
-      u = graph.neighbourOf(u, corner);
-      corner = (j + 1) % 4;
-      touched = touched || (u != s && faceOf[u] == f);
-    } while (u != s);
-    if (touched != (shared[k] || shared[(k + 3) % 4]))
-      return false;
-    // Taken out, s must not pinch f at a vertex inside the arc: f must fill the rest of
-    // that vertex's umbrella (f + s is a disk, so then f alone is one).
-    if (removing && shared[k] && shared[(k + 3) % 4])
-    {
-      u = s;
-      corner = k;
-      do
-      {
-        const int j = graph.sharedEdge(u, corner);
-        u = graph.neighbourOf(u, corner);
-        corner = (j + 1) % 4;
-        if (u != s && faceOf[u] != f)
-          return false;
-      } while (u != s);
-    }
-  }
-  return arcs == 1;
-}
 
 /// Moves surfels from smaller faces to a larger neighbouring face, largest faces first,
 /// when the larger face's plane takes them as it is and both faces stay disks (or the
@@ -536,16 +482,16 @@ std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph, const P
         continue;
       done[v] = 1;
       int changes = 0;
-      std::uint32_t s = s0;
-      int corner = k0;
-      do
-      {
-        const int j = graph.sharedEdge(s, corner);
-        const std::uint32_t t = graph.neighbourOf(s, corner);
-        changes += poly.faceOfSurfel[s] != poly.faceOfSurfel[t];
-        s = t;
-        corner = (j + 1) % 4;
-      } while (s != s0);
+      std::uint32_t previous = s0;
+      graph.aroundVertex(s0,
+        k0,
+        [&](std::uint32_t u)
+        {
+          changes += poly.faceOfSurfel[u] != poly.faceOfSurfel[previous];
+          previous = u;
+          return true;
+        });
+      changes += poly.faceOfSurfel[previous] != poly.faceOfSurfel[s0]; // closing the round
       count[v] = static_cast<std::uint8_t>(std::min(changes == 0 ? 1 : changes, 255));
     }
   return count;

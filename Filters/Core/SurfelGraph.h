@@ -57,6 +57,23 @@ struct SurfelGraph
   const Point3& cornerOf(std::uint32_t s, int k) const { return this->corners[4 * s + k]; }
   /// The edge of the neighbour across edge `edge` of surfel s that is the same linel.
   int sharedEdge(std::uint32_t s, int edge) const { return this->neighbourEdge[4 * s + edge]; }
+
+  /// Calls visit(u) for each surfel of the umbrella of the vertex at corner k of surfel s,
+  /// in order round it, s first; stops early when visit returns false.
+  template<typename Visit>
+  void aroundVertex(std::uint32_t s, int k, Visit visit) const
+  {
+    std::uint32_t u = s;
+    int corner = k; // the edge of u that starts at the vertex
+    do
+    {
+      if (!visit(u))
+        return;
+      const int j = this->sharedEdge(u, corner);
+      u = this->neighbourOf(u, corner);
+      corner = (j + 1) % 4;
+    } while (u != s);
+  }
 };
 
 /// Builds the graph; returns false when aborted.
