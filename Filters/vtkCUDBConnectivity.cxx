@@ -668,48 +668,20 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
 
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
-  if (!scalars)
+  vbr::vtk::InputObjects in;
+  if (!vbr::vtk::readInputObjects(
+        this, input, scalars, association, vbr::vtk::selectionSettingsOf(this), in))
   {
-    if (input->GetNumberOfPoints() == 0)
-    {
-      return 1; // an empty image has no components
-    }
-    vtkErrorMacro(<< "No input scalars to select voxels from (set the input array to process).");
     return 0;
   }
-  if (this->SelectionMode == RANGE && this->LowerThreshold > this->UpperThreshold)
+  if (in.objects.empty() && !scalars)
   {
-    vtkWarningMacro(<< "LowerThreshold > UpperThreshold: nothing is selected.");
+    return 1; // an empty image has no components
   }
-  vtkSmartPointer<vtkDataArray> contiguous;
-  vbr::vtk::VoxelGrid grid;
-  const std::string problem =
-    vbr::vtk::readVoxels(input, scalars, association, this->ArrayComponent, true, contiguous, grid);
-  if (!problem.empty())
-  {
-    vtkErrorMacro(<< problem);
-    return 0;
-  }
+  const vbr::vtk::VoxelGrid& grid = in.grid;
+  const std::array<int, 3>& axes = in.axes;
+  const std::vector<vbr::vtk::Selected>& selected = in.objects;
   const bool planar = grid.flatAxis >= 0;
-  const std::array<int, 3> axes = vbr::vtk::processingAxes(grid);
-
-  std::vector<vbr::vtk::Selected> selected;
-  const bool known = vbr::vtk::dispatchScalars(scalars,
-    this->ArrayComponent,
-    grid,
-    [&](auto scalarGrid)
-    {
-      selected = vbr::vtk::selectObjects(vbr::vtk::permuted(scalarGrid, axes),
-        this->SelectionMode,
-        this->LowerThreshold,
-        this->UpperThreshold,
-        this->BackgroundValue);
-    });
-  if (!known)
-  {
-    vtkErrorMacro(<< "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
-    return 0;
-  }
   this->UpdateProgress(0.05);
 
   // Boxes and components of every object; its voxels live only while its EVM is built.
@@ -812,11 +784,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
 void vtkCUDBConnectivity::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SelectionMode: " << this->GetSelectionModeAsString() << "\n";
-  os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
-  os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
-  os << indent << "BackgroundValue: " << this->BackgroundValue << "\n";
-  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
   os << indent << "Connectivity: " << this->GetConnectivityAsString() << "\n";
   os << indent << "SortingOrder: " << this->GetSortingOrderAsString() << "\n";
   os << indent << "RegionOrdering: " << this->GetRegionOrderingAsString() << "\n";

@@ -430,65 +430,22 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
-  if (!scalars)
+  vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
+  settings.flatImagesAs2D = this->FlatImagesAs2D;
+  settings.maximumVoxelsPerAxis = (1 << 21) - 2;
+  vbr::vtk::InputObjects in;
+  if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
   {
-    if (input->GetNumberOfPoints() == 0)
-    {
-      return 1; // an empty image has an empty boundary
-    }
-    vtkErrorMacro(<< "No input scalars to select voxels from (set the input array to process).");
     return 0;
   }
-  if (this->SelectionMode == RANGE && this->LowerThreshold > this->UpperThreshold)
+  const vbr::vtk::VoxelGrid& grid = in.grid;
+  const std::array<int, 3>& axes = in.axes;
+  const std::vector<vbr::vtk::Selected>& objects = in.objects;
+  if (std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2] == 0)
   {
-    vtkWarningMacro(<< "LowerThreshold > UpperThreshold: nothing is selected.");
+    return 1; // no voxels: an empty boundary
   }
-  vtkSmartPointer<vtkDataArray> contiguous;
-  vbr::vtk::VoxelGrid grid;
-  const std::string problem = vbr::vtk::readVoxels(
-    input, scalars, association, this->ArrayComponent, this->FlatImagesAs2D, contiguous, grid);
-  if (!problem.empty())
-  {
-    vtkErrorMacro(<< problem);
-    return 0;
-  }
-  if (grid.dims[0] * static_cast<std::int64_t>(grid.dims[1]) * grid.dims[2] == 0)
-  {
-    return 1;
-  }
-  for (int d = 0; d < 3; ++d)
-  {
-    if (grid.dims[d] >= (1 << 21) - 1)
-    {
-      vtkErrorMacro(<< "The image has " << grid.dims[d] << " voxels along axis " << d
-                    << "; at most 2097150 are supported.");
-      return 0;
-    }
-  }
-
   const bool planar = grid.flatAxis >= 0;
-  const std::array<int, 3> axes = vbr::vtk::processingAxes(grid);
-
-  std::vector<vbr::vtk::Selected> objects;
-  vtkLogStartScope(TRACE, "find the objects");
-  const bool known = vbr::vtk::dispatchScalars(scalars,
-    this->ArrayComponent,
-    grid,
-    [&](auto scalarGrid)
-    {
-      const auto permuted = vbr::vtk::permuted(scalarGrid, axes);
-      objects = vbr::vtk::selectObjects(permuted,
-        this->SelectionMode,
-        this->LowerThreshold,
-        this->UpperThreshold,
-        this->BackgroundValue);
-    });
-  vtkLogEndScope("find the objects");
-  if (!known)
-  {
-    vtkErrorMacro(<< "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
-    return 0;
-  }
   this->UpdateProgress(0.1);
 
   const vbr::FaceConnectivity connectivity =
@@ -570,11 +527,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
 void vtkEVMBoundaryFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SelectionMode: " << this->GetSelectionModeAsString() << "\n";
-  os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
-  os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
-  os << indent << "BackgroundValue: " << this->BackgroundValue << "\n";
-  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
   os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
   os << indent << "MergeNonManifoldFaces: " << (this->MergeNonManifoldFaces ? "On\n" : "Off\n");
   os << indent << "FlatImagesAs2D: " << (this->FlatImagesAs2D ? "On\n" : "Off\n");

@@ -479,49 +479,16 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
-  if (!scalars)
+  vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
+  settings.flatImagesAs2D = false; // a flat image is a one-voxel-thick slab
+  settings.maximumVoxelsPerAxis = (1 << 20) - 1;
+  vbr::vtk::InputObjects in;
+  if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
   {
-    if (input->GetNumberOfPoints() == 0)
-      return 1; // an empty image has no boundary
-    vtkErrorMacro(<< "No input scalars to select voxels from (set the input array to process).");
     return 0;
   }
-  if (this->SelectionMode == RANGE && this->LowerThreshold > this->UpperThreshold)
-    vtkWarningMacro(<< "LowerThreshold > UpperThreshold: nothing is selected.");
-  vtkSmartPointer<vtkDataArray> contiguous;
-  vbr::vtk::VoxelGrid grid;
-  const std::string problem = vbr::vtk::readVoxels(
-    input, scalars, association, this->ArrayComponent, false, contiguous, grid);
-  if (!problem.empty())
-  {
-    vtkErrorMacro(<< problem);
-    return 0;
-  }
-  for (int d = 0; d < 3; ++d)
-    if (grid.dims[d] >= (1 << 20))
-    {
-      vtkErrorMacro(<< "The image has " << grid.dims[d] << " voxels along axis " << d
-                    << "; at most 1048575 are supported.");
-      return 0;
-    }
-
-  std::vector<vbr::vtk::Selected> selected;
-  const bool known = vbr::vtk::dispatchScalars(scalars,
-    this->ArrayComponent,
-    grid,
-    [&](auto scalarGrid)
-    {
-      selected = vbr::vtk::selectObjects(scalarGrid,
-        this->SelectionMode,
-        this->LowerThreshold,
-        this->UpperThreshold,
-        this->BackgroundValue);
-    });
-  if (!known)
-  {
-    vtkErrorMacro(<< "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
-    return 0;
-  }
+  const vbr::vtk::VoxelGrid& grid = in.grid;
+  const std::vector<vbr::vtk::Selected>& selected = in.objects;
   this->UpdateProgress(0.05);
 
   vbr::PolyhedrizationOptions options;
@@ -595,11 +562,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
 void vtkStandardPlanePolyhedrizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SelectionMode: " << this->GetSelectionModeAsString() << "\n";
-  os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
-  os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
-  os << indent << "BackgroundValue: " << this->BackgroundValue << "\n";
-  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
   os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
   os << indent << "MaximumFaceSize: " << this->MaximumFaceSize << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";

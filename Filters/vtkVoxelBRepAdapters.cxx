@@ -7,7 +7,9 @@
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
+#include "vtkObject.h"
 #include "vtkSMPTools.h"
+#include "vtkSetGet.h"
 
 #include <algorithm>
 #include <cmath>
@@ -319,6 +321,77 @@ std::string readVoxels(vtkImageData* image,
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   const std::string problem = describeVoxels(image, scalars, cellData, flatImagesAs2D, grid);
   return problem.empty() ? problem : "Cannot read the voxels: " + problem + ".";
+}
+
+bool readInputObjects(vtkAlgorithm* algorithm,
+  vtkImageData* image,
+  vtkDataArray* scalars,
+  int association,
+  const SelectionSettings& settings,
+  InputObjects& out)
+{
+  out = InputObjects();
+  if (!scalars)
+  {
+    if (image->GetNumberOfPoints() == 0)
+      return true; // an empty image has nothing to select
+    vtkErrorWithObjectMacro(
+      algorithm, << "No input scalars to select voxels from (set the input array to process).");
+    return false;
+  }
+  if (settings.mode == SelectRange && settings.lower > settings.upper)
+    vtkWarningWithObjectMacro(
+      algorithm, << "LowerThreshold > UpperThreshold: nothing is selected.");
+  const std::string problem = readVoxels(image,
+    scalars,
+    association,
+    settings.component,
+    settings.flatImagesAs2D,
+    out.contiguous,
+    out.grid);
+  if (!problem.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << problem);
+    return false;
+  }
+  if (std::int64_t(out.grid.dims[0]) * out.grid.dims[1] * out.grid.dims[2] == 0)
+    return true;
+  for (int d = 0; d < 3; ++d)
+    if (settings.maximumVoxelsPerAxis > 0 && out.grid.dims[d] > settings.maximumVoxelsPerAxis)
+    {
+      vtkErrorWithObjectMacro(algorithm,
+        << "The image has " << out.grid.dims[d] << " voxels along axis " << d << "; at most "
+        << settings.maximumVoxelsPerAxis << " are supported.");
+      return false;
+    }
+  out.axes = processingAxes(out.grid);
+  const bool known = dispatchScalars(scalars,
+    settings.component,
+    out.grid,
+    [&](auto scalarGrid)
+    {
+      out.objects = selectObjects(permuted(scalarGrid, out.axes),
+        settings.mode,
+        settings.lower,
+        settings.upper,
+        settings.background);
+    });
+  if (!known)
+  {
+    vtkErrorWithObjectMacro(
+      algorithm, << "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
+    return false;
+  }
+  return true;
+}
+
+void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings)
+{
+  os << indent << "SelectionMode: " << selectionModeName(settings.mode) << "\n";
+  os << indent << "LowerThreshold: " << settings.lower << "\n";
+  os << indent << "UpperThreshold: " << settings.upper << "\n";
+  os << indent << "BackgroundValue: " << settings.background << "\n";
+  os << indent << "ArrayComponent: " << settings.component << "\n";
 }
 
 } // namespace vtk

@@ -8,6 +8,7 @@
 #include "Selection.h"
 
 #include "vtkDataArray.h"
+#include "vtkIndent.h"
 #include "vtkIntArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -226,6 +227,53 @@ bool dispatchScalars(vtkDataArray* scalars, int component, const VoxelGrid& grid
   }
   return true;
 }
+
+/// The selection properties the filters share.
+struct SelectionSettings
+{
+  int mode = SelectPositive;
+  double lower = 1.0;
+  double upper = VTK_DOUBLE_MAX;
+  double background = 0.0;
+  int component = 0;
+  bool flatImagesAs2D = true;
+  std::int32_t maximumVoxelsPerAxis = 0; ///< 0: no limit
+};
+
+/// The selection properties of a filter (through its public getters).
+template<typename Filter>
+SelectionSettings selectionSettingsOf(Filter* filter)
+{
+  SelectionSettings s;
+  s.mode = filter->GetSelectionMode();
+  s.lower = filter->GetLowerThreshold();
+  s.upper = filter->GetUpperThreshold();
+  s.background = filter->GetBackgroundValue();
+  s.component = filter->GetArrayComponent();
+  return s;
+}
+
+/// The objects of a filter's input image, ready to process.
+struct InputObjects
+{
+  VoxelGrid grid;
+  std::array<int, 3> axes{ 0, 1, 2 }; ///< processing axes (see processingAxes)
+  std::vector<Selected> objects;
+  vtkSmartPointer<vtkDataArray> contiguous; ///< keeps a copied input array alive for objects
+};
+
+/// Reads the objects of `image` carried by `scalars` (the filter's input array, possibly
+/// null), reporting errors and warnings on `algorithm`. Returns false after an error; an
+/// image without points or voxels gives no objects and true.
+bool readInputObjects(vtkAlgorithm* algorithm,
+  vtkImageData* image,
+  vtkDataArray* scalars,
+  int association,
+  const SelectionSettings& settings,
+  InputObjects& out);
+
+/// PrintSelf lines of the selection properties.
+void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings);
 
 } // namespace vtk
 } // namespace vbr
