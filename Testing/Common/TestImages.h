@@ -14,11 +14,38 @@
 
 #include <array>
 #include <cstddef>
+#include <iostream>
 #include <random>
 #include <vector>
 
 namespace vbrtest
 {
+
+/// Checks that failed in this test (each test runs in a process of its own).
+inline int& failedChecks()
+{
+  static int count = 0;
+  return count;
+}
+
+/// The test's exit code, after printing how many checks failed.
+inline int testResult()
+{
+  if (failedChecks())
+    std::cerr << failedChecks() << " check(s) failed" << std::endl;
+  return failedChecks() == 0 ? 0 : 1;
+}
+
+/// A check that reports its line and message and lets the test go on.
+#define CHECK(cond, msg)                                                                           \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::cerr << __LINE__ << ": " << msg << std::endl;                                           \
+      ++vbrtest::failedChecks();                                                                   \
+    }                                                                                              \
+  } while (false)
 
 using Int3 = std::array<int, 3>;
 

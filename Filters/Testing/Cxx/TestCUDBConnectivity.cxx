@@ -34,18 +34,6 @@
 namespace
 {
 
-int Failures = 0;
-
-#define CHECK(cond, msg)                                                                           \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __LINE__ << ": " << msg << std::endl;                                           \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 using vbrtest::AbortAtProgress;
 using vbrtest::ErrorCounter;
 using vbrtest::Int3;
@@ -589,7 +577,5 @@ int TestCUDBConnectivity(int, char*[])
   std::ostringstream print;
   f->Print(print);
   CHECK(print.str().find("Connectivity: Face") != std::string::npos, "PrintSelf");
-  if (Failures)
-    std::cerr << Failures << " failure(s)" << std::endl;
-  return Failures == 0 ? 0 : 1;
+  return vbrtest::testResult();
 }

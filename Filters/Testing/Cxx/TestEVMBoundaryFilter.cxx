@@ -44,18 +44,6 @@
 namespace
 {
 
-int Failures = 0;
-
-#define CHECK(cond, msg)                                                                           \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __LINE__ << ": " << msg << std::endl;                                           \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 using Int3 = std::array<int, 3>;
 using PixelSet = bf::PixelSet;
 using vbrtest::AbortAtProgress;
@@ -669,10 +657,5 @@ int TestEVMBoundaryFilter(int, char*[])
   std::ostringstream print;
   f->Print(print);
   CHECK(print.str().find("OutputMode: Triangles") != std::string::npos, "PrintSelf");
-  if (Failures)
-  {
-    std::cerr << Failures << " check(s) failed" << std::endl;
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+  return vbrtest::testResult();
 }

@@ -34,18 +34,6 @@
 namespace
 {
 
-int Failures = 0;
-
-#define CHECK(cond, msg)                                                                           \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __LINE__ << ": " << msg << std::endl;                                           \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 using vbrtest::AbortAtProgress;
 using vbrtest::ErrorCounter;
 using vbrtest::Layout;
@@ -301,7 +289,5 @@ int TestStandardPlanePolyhedrizer(int, char*[])
   checkSphereAndDegenerate();
   checkErrorsAbortPrint();
   checkRealObject();
-  if (Failures)
-    std::cerr << Failures << " failure(s)" << std::endl;
-  return Failures == 0 ? 0 : 1;
+  return vbrtest::testResult();
 }
