@@ -13,21 +13,9 @@ import sys
 import numpy as np
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
+from pvtest import compare_with_baseline, expect, field, finish, render_view
 from scipy import ndimage
 from vtkmodules.util import numpy_support as ns
-
-failures = []
-
-
-def expect(what, got, expected):
-    status = "ok" if got == expected else "FAILED"
-    print("%-60s %-6s got %r, expected %r" % (what, status, got, expected))
-    if got != expected:
-        failures.append(what)
-
-
-def field(data, name):
-    return int(data.GetFieldData().GetArray(name).GetValue(0))
 
 
 def reference(mask, vertex):
@@ -74,19 +62,10 @@ def check_values(phantom, dims):
 
 
 def check_image(phantom, baseline, temp_dir):
-    from vtkmodules.test import Testing
-    Testing.VTK_TEMP_DIR = temp_dir
     cudb = CUDBConnectivity(Input=phantom)
     cudb.Scalars = ["POINTS", "Labels"]
     cudb.SortingOrder = "Auto (fewest boxes)"
-    view = CreateView("RenderView")
-    view.ViewSize = [400, 400]
-    view.OrientationAxesVisibility = 0
-    try:  # ParaView >= 5.10: the palette would override the background
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.Background = [0.92, 0.93, 0.95]
+    view = render_view()
     display = Show(OutputPort(cudb, 1), view)
     display.SetRepresentationType("Surface With Edges")
     ColorBy(display, ("CELLS", "RegionId"))
@@ -94,14 +73,7 @@ def check_image(phantom, baseline, temp_dir):
     lut.ApplyPreset("Rainbow Uniform", True)
     display.RescaleTransferFunctionToDataRange(True, False)
     display.SetScalarBarVisibility(view, False)
-    view.CameraFocalPoint = [24, 24, 24]
-    view.CameraPosition = [24 + 60, 24 - 95, 24 + 80]
-    view.CameraViewUp = [0, 0, 1]
-    view.ResetCamera()
-    Render(view)
-    # Raises (and so fails the test) when the images differ or the baseline is missing.
-    Testing.compareImage(view.GetRenderWindow(), baseline, threshold=10)
-    print("image matches", baseline)
+    compare_with_baseline(view, (24, 24, 24), (60, -95, 80), baseline, temp_dir)
 
 
 def main():
@@ -111,9 +83,7 @@ def main():
     check_values(phantom, dims)
     if len(sys.argv) > 3:
         check_image(phantom, sys.argv[2], sys.argv[3])
-    if failures:
-        print("FAILED:", failures)
-        sys.exit(1)
+    finish()
 
 
 main()

@@ -9,32 +9,14 @@ padded mask) and NumberOfExtremeVertices (vertices with an odd number of the 8 i
 voxels selected: XOR of the 8 shifted padded masks).
 """
 
-import os
 import sys
 
 import numpy as np
-
-# The numpy references shared by the Python tests (Filters/Testing/Python).
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
-                                "Filters", "Testing", "Python"))
-from voxelbrep_testing import extreme_vertices, surfel_count  # noqa: E402
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
+from pvtest import expect, field, finish
+from voxelbrep_testing import extreme_vertices, surfel_count
 from vtkmodules.util import numpy_support as ns
-
-failures = []
-
-
-def expect(what, got, expected):
-    status = "ok" if got == expected else "FAILED"
-    print("%-60s %-6s got %r, expected %r" % (what, status, got, expected))
-    if got != expected:
-        failures.append(what)
-
-
-def field(data, name):
-    array = data.GetFieldData().GetArray(name)
-    return None if array is None else int(array.GetValue(0))
 
 
 def cell_values(data, name):
@@ -110,9 +92,7 @@ def main():
     contours.FlatImagesAs2D = 1
     check_output("2D Positive/Polylines", contours, {1: flat_labels > 0}, planar=True)
 
-    if failures:
-        print("%d check(s) failed" % len(failures))
-        sys.exit(1)
+    finish()
     print("all checks passed")
 
 

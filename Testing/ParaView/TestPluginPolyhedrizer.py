@@ -14,25 +14,9 @@ import sys
 import numpy as np
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
+from pvtest import compare_with_baseline, expect, field, finish, render_view
+from voxelbrep_testing import surfel_count
 from vtkmodules.util import numpy_support as ns
-
-failures = []
-
-
-def expect(what, got, expected):
-    status = "ok" if got == expected else "FAILED"
-    print("%-60s %-6s got %r, expected %r" % (what, status, got, expected))
-    if got != expected:
-        failures.append(what)
-
-
-def field(data, name):
-    return int(data.GetFieldData().GetArray(name).GetValue(0))
-
-
-def surfel_count(mask):
-    p = np.pad(mask.astype(np.int8), 1)
-    return sum(int(np.count_nonzero(np.diff(p, axis=a))) for a in range(3))
 
 
 def check_values(phantom, dims):
@@ -72,33 +56,17 @@ def check_values(phantom, dims):
 
 
 def check_image(phantom, baseline, temp_dir):
-    from vtkmodules.test import Testing
-    Testing.VTK_TEMP_DIR = temp_dir
     poly = StandardPlanePolyhedrizer(Input=phantom)
     poly.Scalars = ["POINTS", "Labels"]
     poly.OutputMode = "Surfels"
-    view = CreateView("RenderView")
-    view.ViewSize = [400, 400]
-    view.OrientationAxesVisibility = 0
-    try:  # ParaView >= 5.10: the palette would override the background
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.Background = [0.92, 0.93, 0.95]
+    view = render_view()
     display = Show(OutputPort(poly, 0), view)
     ColorBy(display, ("CELLS", "FaceId"))
     lut = GetColorTransferFunction("FaceId")
     lut.ApplyPreset("Rainbow Uniform", True)
     display.RescaleTransferFunctionToDataRange(True, False)
     display.SetScalarBarVisibility(view, False)
-    view.CameraFocalPoint = [24, 24, 24]
-    view.CameraPosition = [24 + 60, 24 - 95, 24 + 80]
-    view.CameraViewUp = [0, 0, 1]
-    view.ResetCamera()
-    Render(view)
-    # Raises (and so fails the test) when the images differ or the baseline is missing.
-    Testing.compareImage(view.GetRenderWindow(), baseline, threshold=10)
-    print("image matches", baseline)
+    compare_with_baseline(view, (24, 24, 24), (60, -95, 80), baseline, temp_dir)
 
 
 def main():
@@ -108,9 +76,7 @@ def main():
     check_values(phantom, dims)
     if len(sys.argv) > 3:
         check_image(phantom, sys.argv[2], sys.argv[3])
-    if failures:
-        print("FAILED:", failures)
-        sys.exit(1)
+    finish()
 
 
 main()

@@ -10,11 +10,10 @@ TEMP_DIR and the test fails (copy it to Testing/Data/Baseline/ after checking it
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.test import Testing
+from pvtest import compare_with_baseline, render_view
 
 plugin, baseline, temp_dir = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
-Testing.VTK_TEMP_DIR = temp_dir
 
 phantom = VoxelPhantom(Dimensions=[64, 64, 64])
 boundary = EVMBoundary(Input=phantom)
@@ -23,14 +22,7 @@ boundary.SelectionMode = "Labels"
 boundary.OutputMode = "Triangles"
 boundary.UpdatePipeline()
 
-view = CreateView("RenderView")
-view.ViewSize = [400, 400]
-view.OrientationAxesVisibility = 0
-try:  # ParaView >= 5.10: the palette would override the background
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
-view.Background = [0.92, 0.93, 0.95]
+view = render_view()
 
 display = Show(boundary, view)
 ColorBy(display, ("CELLS", "Label"))
@@ -45,12 +37,4 @@ lut.IndexedColors = [0.85, 0.37, 0.01,
                      0.90, 0.67, 0.01]
 display.SetScalarBarVisibility(view, False)
 
-view.CameraFocalPoint = [32, 32, 32]
-view.CameraPosition = [32 + 80, 32 - 125, 32 + 105]
-view.CameraViewUp = [0, 0, 1]
-view.ResetCamera()
-Render(view)
-
-# Raises (and so fails the test) when the images differ or the baseline is missing.
-Testing.compareImage(view.GetRenderWindow(), baseline, threshold=10)
-print("image matches", baseline)
+compare_with_baseline(view, (32, 32, 32), (80, -125, 105), baseline, temp_dir)
