@@ -15,11 +15,11 @@
 #include "EVM.h"
 #include "Phantom.h"
 
+#include "BenchCommon.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkUnsignedCharArray.h"
 
 #if __has_include(<vtkImageConnectivityFilter.h>)
 #include <vtkImageConnectivityFilter.h>
@@ -27,35 +27,19 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace
 {
 
-using Clock = std::chrono::steady_clock;
-
-double medianSeconds(int repeat, const std::function<void()>& run)
-{
-  run(); // warm-up
-  std::vector<double> t;
-  for (int r = 0; r < repeat; ++r)
-  {
-    const auto t0 = Clock::now();
-    run();
-    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
+using namespace vbrbench;
 
 /// Median time of each run, the runs taking turns in rotating order so that the machine's drift
 /// (these VMs are noisy) falls on all of them alike.
@@ -82,24 +66,10 @@ std::vector<double> interleavedMedians(int repeat, const std::vector<std::functi
   return medians;
 }
 
-void update(vtkAlgorithm* algorithm)
-{
-  algorithm->Modified();
-  algorithm->Update();
-}
-
-struct Input
-{
-  std::string name;
-  std::array<int, 3> dims;
-  std::vector<unsigned char> mask; ///< 0/1, x fastest
-};
-
 Input phantom(const std::string& kind, int n)
 {
-  Input in{ kind + " " + std::to_string(n) + "^3", { n, n, n }, {} };
-  const std::size_t count = std::size_t(n) * n * n;
-  in.mask.assign(count, 0);
+  Input in = emptyInput(kind + " " + std::to_string(n) + "^3", { n, n, n });
+  const std::size_t count = in.mask.size();
   if (kind == "shells")
   {
     const std::vector<std::uint8_t> labels = vbr::makePhantom({ n, n, n });
@@ -131,45 +101,9 @@ Input phantom(const std::string& kind, int n)
   return in;
 }
 
-bool realVolume(const std::string& dir,
-  const char* file,
-  std::array<int, 3> dims,
-  int lo,
-  int hi,
-  const char* name,
-  Input& in)
-{
-  std::ifstream f(dir + file, std::ios::binary);
-  if (!f)
-    return false;
-  std::vector<unsigned char> raw(std::size_t(dims[0]) * dims[1] * dims[2]);
-  f.read(reinterpret_cast<char*>(raw.data()), raw.size());
-  in = Input{ name, dims, std::vector<unsigned char>(raw.size()) };
-  for (std::size_t i = 0; i < raw.size(); ++i)
-    in.mask[i] = raw[i] >= lo && raw[i] <= hi;
-  return static_cast<bool>(f);
-}
-
-vtkNew<vtkImageData> imageOf(const Input& in)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(in.dims.data());
-  vtkNew<vtkUnsignedCharArray> a;
-  a->SetName("mask");
-  a->SetNumberOfTuples(static_cast<vtkIdType>(in.mask.size()));
-  std::copy(in.mask.begin(), in.mask.end(), a->GetPointer(0));
-  image->GetPointData()->SetScalars(a);
-  return image;
-}
-
 void run(const Input& in, int repeat)
 {
-  vbr::BitVolume bits(in.dims[0], in.dims[1], in.dims[2]);
-  for (int z = 0; z < in.dims[2]; ++z)
-    for (int y = 0; y < in.dims[1]; ++y)
-      for (int x = 0; x < in.dims[0]; ++x)
-        if (in.mask[(std::size_t(z) * in.dims[1] + y) * in.dims[0] + x])
-          bits.set(x, y, z);
+  const vbr::BitVolume bits = bitsOf(in);
   vbr::EVM evm;
   vbr::CUDB cudb;
   vbr::Components comps;
@@ -231,59 +165,38 @@ void run(const Input& in, int repeat)
 
 int main(int argc, char* argv[])
 {
-  std::vector<int> sizes{ 128, 256 };
-  int repeat = 5;
-  std::string dir = VOXELBREP_DEFAULT_DATA_DIR;
-  bool data = true;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    if (a == "--sizes" && i + 1 < argc)
-    {
-      sizes.clear();
-      std::stringstream s(argv[++i]);
-      for (std::string v; std::getline(s, v, ',');)
-        sizes.push_back(std::atoi(v.c_str()));
-    }
-    else if (a == "--repeat" && i + 1 < argc)
-      repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--data" && i + 1 < argc)
-      dir = argv[++i];
-    else if (a == "--no-data")
-      data = false;
-    else
-    {
-      std::fprintf(
-        stderr, "usage: %s [--sizes 128,256] [--repeat N] [--data DIR] [--no-data]\n", argv[0]);
-      return 2;
-    }
-  }
+  Arguments args;
+  args.list = { 128, 256 };
+  args.dataDir = VOXELBREP_DEFAULT_DATA_DIR;
+  if (!parseArguments(argc, argv, "sizes", args))
+    return 2;
 #ifndef VOXELBREP_HAVE_PEER
   std::printf(
     "(vtkImageConnectivityFilter is not in this VTK: build against stock VTK to compare)\n");
 #endif
-  for (int n : sizes)
+  for (int n : args.list)
     for (const char* kind : { "shells", "boxes", "blobs" })
-      run(phantom(kind, n), repeat);
-  if (!data)
+      run(phantom(kind, n), args.repeat);
+  if (!args.data)
     return 0;
-  Input in;
-  if (realVolume(dir,
-        "/aneurism/aneurism_256x256x256_uint8.raw",
-        { 256, 256, 256 },
-        55,
-        255,
-        "aneurism>=55",
-        in))
-    run(in, repeat);
-  if (realVolume(
-        dir, "/engine/engine_256x256x128_uint8.raw", { 256, 256, 128 }, 55, 255, "engine>=55", in))
-    run(in, repeat);
-  if (realVolume(
-        dir, "/lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 40, 255, "lobster>=40", in))
-    run(in, repeat);
-  if (realVolume(
-        dir, "/berea/berea_200x200x200_uint8.raw", { 200, 200, 200 }, 0, 0, "berea pore", in))
-    run(in, repeat);
+  struct Real
+  {
+    const char* file;
+    std::array<int, 3> dims;
+    int lo, hi;
+    const char* name;
+  };
+  const Real volumes[] = {
+    { "/aneurism/aneurism_256x256x256_uint8.raw", { 256, 256, 256 }, 55, 255, "aneurism>=55" },
+    { "/engine/engine_256x256x128_uint8.raw", { 256, 256, 128 }, 55, 255, "engine>=55" },
+    { "/lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 40, 255, "lobster>=40" },
+    { "/berea/berea_200x200x200_uint8.raw", { 200, 200, 200 }, 0, 0, "berea pore" },
+  };
+  for (const Real& r : volumes)
+  {
+    Input in;
+    if (readThresholded(args.dataDir + r.file, r.dims, r.lo, r.hi, r.name, in))
+      run(in, args.repeat);
+  }
   return 0;
 }

@@ -15,48 +15,25 @@
 #include "Polyhedrization.h"
 #include "SurfelGraph.h"
 
+#include "BenchCommon.h"
+
 #include "vtkDiscreteFlyingEdges3D.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <functional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace
 {
 
-using Clock = std::chrono::steady_clock;
-
-double medianSeconds(int repeat, const std::function<void()>& run)
-{
-  std::vector<double> t;
-  for (int r = 0; r < repeat; ++r)
-  {
-    const auto t0 = Clock::now();
-    run();
-    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
-
-struct Input
-{
-  std::string name;
-  vbr::BitVolume voxels;
-};
+using namespace vbrbench;
 
 Input ball(const std::string& name, long radiusSquared)
 {
@@ -64,12 +41,12 @@ Input ball(const std::string& name, long radiusSquared)
   while (long(r) * r <= radiusSquared)
     ++r;
   const int n = 2 * r + 1, c = r;
-  Input in{ name, vbr::BitVolume(n, n, n) };
+  Input in = emptyInput(name, { n, n, n });
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x)
         if (long(x - c) * (x - c) + long(y - c) * (y - c) + long(z - c) * (z - c) <= radiusSquared)
-          in.voxels.set(x, y, z);
+          in.at(x, y, z) = 1;
   return in;
 }
 
@@ -82,7 +59,7 @@ Input hexahedron()
   const int n = 33, c = 16;
   const int normals[3][3] = { { 2, 2, 1 }, { -2, 1, 2 }, { 1, -2, 2 } };
   const int half[3] = { 17, 17, 29 };
-  Input in{ "hexahedron", vbr::BitVolume(n, n, n) };
+  Input in = emptyInput("hexahedron", { n, n, n });
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x)
@@ -92,49 +69,9 @@ Input hexahedron()
           inside = inside &&
             std::abs(normals[i][0] * (x - c) + normals[i][1] * (y - c) + normals[i][2] * (z - c)) <=
               half[i];
-        if (inside)
-          in.voxels.set(x, y, z);
+        in.at(x, y, z) = inside;
       }
   return in;
-}
-
-bool realObject(const std::string& dir,
-  const char* file,
-  std::array<int, 3> dims,
-  int lo,
-  int hi,
-  const char* name,
-  Input& in)
-{
-  std::ifstream f(dir + file, std::ios::binary);
-  if (!f)
-    return false;
-  std::vector<unsigned char> raw(std::size_t(dims[0]) * dims[1] * dims[2]);
-  f.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size()));
-  in = Input{ name, vbr::BitVolume(dims[0], dims[1], dims[2]) };
-  std::size_t i = 0;
-  for (int z = 0; z < dims[2]; ++z)
-    for (int y = 0; y < dims[1]; ++y)
-      for (int x = 0; x < dims[0]; ++x, ++i)
-        if (raw[i] >= lo && raw[i] <= hi)
-          in.voxels.set(x, y, z);
-  return static_cast<bool>(f);
-}
-
-vtkNew<vtkImageData> imageOf(const vbr::BitVolume& v)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(v.size(0), v.size(1), v.size(2));
-  vtkNew<vtkUnsignedCharArray> a;
-  a->SetName("mask");
-  a->SetNumberOfTuples(static_cast<vtkIdType>(v.voxelCount()));
-  vtkIdType i = 0;
-  for (int z = 0; z < v.size(2); ++z)
-    for (int y = 0; y < v.size(1); ++y)
-      for (int x = 0; x < v.size(0); ++x)
-        a->SetValue(i++, v.get(x, y, z) ? 1 : 0);
-  image->GetPointData()->SetScalars(a);
-  return image;
 }
 
 std::size_t faceCount(const vbr::SurfelGraph& g, vbr::PolyhedrizationOptions o)
@@ -146,11 +83,12 @@ std::size_t faceCount(const vbr::SurfelGraph& g, vbr::PolyhedrizationOptions o)
 
 void run(const Input& in, int repeat)
 {
+  const vbr::BitVolume voxels = bitsOf(in);
   vbr::SurfelGraph graph;
   vbr::Polyhedron poly;
   const vbr::PolyhedrizationOptions defaults;
   const double tGraph =
-    medianSeconds(repeat, [&] { vbr::buildSurfelGraph(in.voxels, vbr::Execution(), graph); });
+    medianSeconds(repeat, [&] { vbr::buildSurfelGraph(voxels, vbr::Execution(), graph); });
   const double tFaces =
     medianSeconds(repeat, [&] { vbr::polyhedrize(graph, defaults, vbr::Execution(), poly); });
   vbr::PolyhedrizationOptions paper;
@@ -175,29 +113,19 @@ void run(const Input& in, int repeat)
   }
   std::vector<vbr::SurfelGraph::Surfel> surfels;
   vbr::BitVolume back;
-  const std::string error = vbr::revert(outlines, in.voxels.dims(), surfels, back);
-  const bool exact = error.empty() && back == in.voxels;
+  const std::string error = vbr::revert(outlines, voxels.dims(), surfels, back);
+  const bool exact = error.empty() && back == voxels;
 
-  vtkNew<vtkImageData> image = imageOf(in.voxels);
+  vtkNew<vtkImageData> image = imageOf(in);
   vtkNew<vtkStandardPlanePolyhedrizer> filter;
   filter->SetInputData(image);
-  const double tFilter = medianSeconds(repeat,
-    [&]
-    {
-      filter->Modified();
-      filter->Update();
-    });
+  const double tFilter = medianSeconds(repeat, [&] { update(filter); });
   vtkNew<vtkDiscreteFlyingEdges3D> peer;
   peer->SetInputData(image);
   peer->SetValue(0, 1);
   peer->ComputeNormalsOff();
   peer->ComputeGradientsOff();
-  const double tPeer = medianSeconds(repeat,
-    [&]
-    {
-      peer->Modified();
-      peer->Update();
-    });
+  const double tPeer = medianSeconds(repeat, [&] { update(peer); });
   const double mean = poly.faces.empty() ? 0.0 : double(graph.size()) / poly.faces.size();
   std::printf("%-22s %8zu surfels | faces paper %6zu default %6zu merged %6zu | size min %zu "
               "mean %.1f max %zu, <=5: %zu | graph %7.2f faces %7.2f ms %5.2f M surfels/s | "
@@ -224,53 +152,35 @@ void run(const Input& in, int repeat)
 
 int main(int argc, char* argv[])
 {
-  std::vector<int> radii{ 8, 16, 32, 64 };
-  int repeat = 3;
-  std::string dir = VOXELBREP_DEFAULT_DATA_DIR;
-  bool data = true;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    if (a == "--radii" && i + 1 < argc)
-    {
-      radii.clear();
-      std::stringstream s(argv[++i]);
-      for (std::string v; std::getline(s, v, ',');)
-        radii.push_back(std::atoi(v.c_str()));
-    }
-    else if (a == "--repeat" && i + 1 < argc)
-      repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--data" && i + 1 < argc)
-      dir = argv[++i];
-    else if (a == "--no-data")
-      data = false;
-    else
-    {
-      std::fprintf(
-        stderr, "usage: %s [--radii 8,16] [--repeat N] [--data DIR] [--no-data]\n", argv[0]);
-      return 2;
-    }
-  }
-  run(ball("paper sphere r2<=240", 240), repeat);
-  run(hexahedron(), repeat);
-  for (int r : radii)
-    run(ball("ball r=" + std::to_string(r), long(r) * r), repeat);
-  if (!data)
+  Arguments args;
+  args.list = { 8, 16, 32, 64 };
+  args.repeat = 3;
+  args.dataDir = VOXELBREP_DEFAULT_DATA_DIR;
+  if (!parseArguments(argc, argv, "radii", args))
+    return 2;
+  run(ball("paper sphere r2<=240", 240), args.repeat);
+  run(hexahedron(), args.repeat);
+  for (int r : args.list)
+    run(ball("ball r=" + std::to_string(r), long(r) * r), args.repeat);
+  if (!args.data)
     return 0;
-  Input in;
-  if (realObject(
-        dir, "/dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, "Al (v=1)", in))
-    run(in, repeat);
-  if (realObject(
-        dir, "/lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 40, 255, "lobster>=40", in))
-    run(in, repeat);
-  if (realObject(dir,
-        "/engine/engine_256x256x128_uint8.raw",
-        { 256, 256, 128 },
-        130,
-        255,
-        "engine>=130",
-        in))
-    run(in, repeat);
+  struct Real
+  {
+    const char* file;
+    std::array<int, 3> dims;
+    int lo, hi;
+    const char* name;
+  };
+  const Real objects[] = {
+    { "/dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, "Al (v=1)" },
+    { "/lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 40, 255, "lobster>=40" },
+    { "/engine/engine_256x256x128_uint8.raw", { 256, 256, 128 }, 130, 255, "engine>=130" },
+  };
+  for (const Real& r : objects)
+  {
+    Input in;
+    if (readThresholded(args.dataDir + r.file, r.dims, r.lo, r.hi, r.name, in))
+      run(in, args.repeat);
+  }
   return 0;
 }
