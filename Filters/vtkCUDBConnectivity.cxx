@@ -628,24 +628,10 @@ const char* vtkCUDBConnectivity::GetRegionOrderingAsString()
 int vtkCUDBConnectivity::RequestData(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  try
-  {
-    return this->Execute(inputVector, outputVector);
-  }
-  catch (const std::exception& e)
-  {
-    // Out of memory, or an inconsistency the core detected: an error, never a crash.
-    vtkErrorMacro(<< "Connected components failed: " << e.what());
-    for (int port = 0; port < 3; ++port)
-    {
-      if (vtkDataObject* output =
-            outputVector->GetInformationObject(port)->Get(vtkDataObject::DATA_OBJECT()))
-      {
-        output->Initialize();
-      }
-    }
-    return 0;
-  }
+  return vbr::vtk::executeGuarded(this,
+    outputVector,
+    "Connected components",
+    [&] { return this->Execute(inputVector, outputVector); });
 }
 
 //------------------------------------------------------------------------------

@@ -401,20 +401,10 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  try
-  {
-    return this->Execute(inputVector, outputVector);
-  }
-  catch (const std::exception& e)
-  {
-    // Out of memory, or an inconsistency the core detected: an error, never a crash.
-    vtkErrorMacro(<< "Boundary extraction failed: " << e.what());
-    if (vtkPolyData* output = vtkPolyData::GetData(outputVector))
-    {
-      output->Initialize();
-    }
-    return 0;
-  }
+  return vbr::vtk::executeGuarded(this,
+    outputVector,
+    "Boundary extraction",
+    [&] { return this->Execute(inputVector, outputVector); });
 }
 
 //------------------------------------------------------------------------------

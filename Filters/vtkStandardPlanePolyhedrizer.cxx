@@ -450,20 +450,10 @@ int vtkStandardPlanePolyhedrizer::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  try
-  {
-    return this->Execute(inputVector, outputVector);
-  }
-  catch (const std::exception& e)
-  {
-    // Out of memory, or an inconsistency the core detected: an error, never a crash.
-    vtkErrorMacro(<< "Polyhedrization failed: " << e.what());
-    for (int port = 0; port < 2; ++port)
-      if (vtkDataObject* output =
-            outputVector->GetInformationObject(port)->Get(vtkDataObject::DATA_OBJECT()))
-        output->Initialize();
-    return 0;
-  }
+  return vbr::vtk::executeGuarded(this,
+    outputVector,
+    "Polyhedrization",
+    [&] { return this->Execute(inputVector, outputVector); });
 }
 
 int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,

@@ -5,6 +5,8 @@
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
@@ -383,6 +385,26 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     return false;
   }
   return true;
+}
+
+int executeGuarded(vtkAlgorithm* algorithm,
+  vtkInformationVector* outputVector,
+  const char* what,
+  const std::function<int()>& execute)
+{
+  try
+  {
+    return execute();
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(algorithm, << what << " failed: " << e.what());
+    for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)
+      if (vtkDataObject* output =
+            outputVector->GetInformationObject(port)->Get(vtkDataObject::DATA_OBJECT()))
+        output->Initialize();
+    return 0;
+  }
 }
 
 void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings)

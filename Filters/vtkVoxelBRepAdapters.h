@@ -25,6 +25,7 @@
 class vtkAlgorithm;
 class vtkFieldData;
 class vtkImageData;
+class vtkInformationVector;
 
 namespace vbr
 {
@@ -271,6 +272,13 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   int association,
   const SelectionSettings& settings,
   InputObjects& out);
+
+/// Runs a filter's execution. An exception (out of memory, an inconsistency the core
+/// detected) becomes an error "<what> failed: ..." and empties every output: never a crash.
+int executeGuarded(vtkAlgorithm* algorithm,
+  vtkInformationVector* outputVector,
+  const char* what,
+  const std::function<int()>& execute);
 
 /// PrintSelf lines of the selection properties.
 void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings);

@@ -7,7 +7,9 @@
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkExecutive.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -130,6 +132,18 @@ public:
   void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
   int Count = 0;
 };
+
+/// Updates the algorithm and returns the number of errors it and its executive raised.
+inline int updateCountingErrors(vtkAlgorithm* algorithm)
+{
+  vtkNew<ErrorCounter> errors;
+  const unsigned long a = algorithm->AddObserver(vtkCommand::ErrorEvent, errors);
+  const unsigned long e = algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  algorithm->Update();
+  algorithm->RemoveObserver(a);
+  algorithm->GetExecutive()->RemoveObserver(e);
+  return errors->Count;
+}
 
 } // namespace vbrtest
 
