@@ -426,7 +426,6 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         (size[g] > 1 && !meetsAlongOneArc(graph, faceOf, t, g, true)))
         continue;
       faceOf[t] = f;
-      face.surfels.push_back(t);
       --size[g];
       ++size[f];
       ++moved;
@@ -434,21 +433,11 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         queue.push_back(graph.neighbourOf(t, k));
     }
   }
-  // Each face keeps the surfels still its own, once each, in their order (a surfel can
-  // leave a face and come back when the sizes change).
-  std::vector<char> listed(graph.size(), 0);
-  for (std::uint32_t f = 0; f < poly.faces.size(); ++f)
-  {
-    auto& list = poly.faces[f].surfels;
-    auto stale = [&](std::uint32_t s)
-    {
-      if (faceOf[s] != f || listed[s])
-        return true;
-      listed[s] = 1;
-      return false;
-    };
-    list.erase(std::remove_if(list.begin(), list.end(), stale), list.end());
-  }
+  // The lists follow the moves (a surfel may have moved more than once).
+  for (StandardFace& face : poly.faces)
+    face.surfels.clear();
+  for (std::uint32_t s = 0; s < graph.size(); ++s)
+    poly.faces[faceOf[s]].surfels.push_back(s);
   return moved;
 }
 
