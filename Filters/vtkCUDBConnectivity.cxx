@@ -23,6 +23,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -192,34 +193,33 @@ std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std:
   return regions;
 }
 
-/// Marks the regions containing a seed point.
-void markSeeds(vtkDataSet* seeds,
+/// Marks the regions containing a seed point, read from `regionOf`: the image of region
+/// numbers (index + 1, 0 where nothing is selected) painted from the boxes. One image lookup
+/// per seed: the cost is linear in the seeds, whatever the number of boxes.
+/// Returns how many seeds fell on a selected voxel.
+vtkIdType markSeeds(vtkDataSet* seeds,
   const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  const std::vector<ObjectBoxes>& objects,
+  const std::int32_t* regionOf,
   std::vector<Region>& regions)
 {
+  vtkIdType hits = 0;
   for (vtkIdType i = 0; i < seeds->GetNumberOfPoints(); ++i)
   {
     double p[3];
     seeds->GetPoint(i, p);
-    Int3 voxel;
+    Int3 voxel; // image axes, from the first voxel of the extent
     if (!grid.worldToVoxel(p, voxel))
       continue;
-    Int3 v; // processing axes
-    for (int k = 0; k < 3; ++k)
-      v[k] = voxel[axes[k]];
-    for (const ObjectBoxes& o : objects)
-      for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-      {
-        const vbr::Box& box = o.cudb.boxes[b];
-        bool inside = true;
-        for (int d = 0; d < 3 && inside; ++d)
-          inside = v[d] >= box.lo[d] + o.offset[d] && v[d] < box.hi[d] + o.offset[d];
-        if (inside)
-          regions[o.firstRegion + o.components.boxLabel[b] - 1].seeded = true;
-      }
+    const std::int64_t index =
+      voxel[0] + std::int64_t(grid.dims[0]) * (voxel[1] + std::int64_t(grid.dims[1]) * voxel[2]);
+    const std::int32_t region = regionOf[index];
+    if (region > 0)
+    {
+      regions[region - 1].seeded = true;
+      ++hits;
+    }
   }
+  return hits;
 }
 
 /// Applies the region filters and numbers the kept regions; returns how many are kept.
@@ -245,9 +245,10 @@ std::int32_t numberRegions(std::vector<Region>& regions,
   return static_cast<std::int32_t>(kept.size());
 }
 
-/// RegionId of every voxel: zero, then each box painted with its region's id.
-vtkSmartPointer<vtkIntArray> paintRegionIds(const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions,
+/// Every voxel painted from its box: with `regions`, the region's RegionId (0 where removed);
+/// without, the region's number (index + 1). Voxels of no box stay 0.
+vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
+  const std::vector<Region>* regions,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   const vbr::Execution& exec)
@@ -261,10 +262,27 @@ vtkSmartPointer<vtkIntArray> paintRegionIds(const std::vector<ObjectBoxes>& obje
   {
     values.resize(o.cudb.boxes.size());
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-      values[b] = regions[o.firstRegion + o.components.boxLabel[b] - 1].id; // 0: removed
+    {
+      const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
+      values[b] = regions ? (*regions)[r].id : static_cast<std::int32_t>(r + 1);
+    }
     vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
   }
   return ids;
+}
+
+/// Region numbers (index + 1) replaced in place by the regions' RegionIds (0: removed).
+void renumberRegions(vtkIntArray* ids, const std::vector<Region>& regions)
+{
+  std::int32_t* values = ids->GetPointer(0);
+  vtkSMPTools::For(0,
+    ids->GetNumberOfValues(),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+        if (values[i] > 0)
+          values[i] = regions[values[i] - 1].id;
+    });
 }
 
 /// World position of a grid vertex given in processing axes (a 2D image's plane at 0).
@@ -732,9 +750,17 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
 
   std::vector<Region> regions = measureRegions(objects, regionCount);
   const bool useSeeds = seeds != nullptr;
+  vtkSmartPointer<vtkIntArray> ids;
   if (useSeeds)
   {
-    markSeeds(seeds, grid, axes, objects, regions);
+    // The seeds read their regions from the painted image, which is then renumbered.
+    vtkLogScopeF(TRACE, "regions of the seeds");
+    ids = paintRegions(objects, nullptr, grid, axes, vbr::vtk::makeExecution(this, 0.7, 0.8));
+    if (markSeeds(seeds, grid, ids->GetPointer(0), regions) == 0 && !regions.empty())
+    {
+      vtkWarningMacro(<< "None of the " << seeds->GetNumberOfPoints()
+                      << " seed points lies on a selected voxel: every region is removed.");
+    }
   }
   const std::int32_t kept = numberRegions(
     regions, this->MinimumRegionSize, useSeeds, this->LargestRegions, this->RegionOrdering);
@@ -743,8 +769,14 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
 
   {
     vtkLogScopeF(TRACE, "write the region ids");
-    const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.7, 0.9);
-    vtkSmartPointer<vtkIntArray> ids = paintRegionIds(objects, regions, grid, axes, exec);
+    if (useSeeds)
+    {
+      renumberRegions(ids, regions);
+    }
+    else
+    {
+      ids = paintRegions(objects, &regions, grid, axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
+    }
     vtkDataSetAttributes* attributes = grid.cellData
       ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
       : static_cast<vtkDataSetAttributes*>(output->GetPointData());

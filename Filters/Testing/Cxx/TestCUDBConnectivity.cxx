@@ -491,6 +491,54 @@ void checkRegionFilters()
     "seeds keep the regions containing them");
 }
 
+/// Many seeds (every k-th voxel, background ones included) in Labels mode: a region is kept
+/// exactly when one of the seeds lies in it; no seed on an object warns.
+void checkManySeeds()
+{
+  for (int step : { 1, 7, 50 })
+  {
+    const Volume v = randomVolume({ 23, 19, 17 }, 0.45, 3, 300 + step);
+    Rule rule;
+    rule.mode = vtkCUDBConnectivity::LABELS;
+    int count = 0;
+    const std::vector<int> sweep = floodFill(v, rule, true, count);
+    std::vector<bool> seeded(count + 1, false);
+    vtkNew<vtkPoints> points;
+    for (std::size_t i = 0; i < v.values.size(); i += step)
+    {
+      const int x = static_cast<int>(i % v.dims[0]),
+                y = static_cast<int>(i / v.dims[0] % v.dims[1]),
+                z = static_cast<int>(i / (v.dims[0] * v.dims[1]));
+      points->InsertNextPoint(x, y, z);
+      seeded[sweep[i]] = true;
+    }
+    vtkNew<vtkPolyData> seeds;
+    seeds->SetPoints(points);
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(makeImage(v, Layout()));
+    f->SetSelectionModeToLabels();
+    f->SetConnectivityToVertex();
+    f->SetSeedData(seeds);
+    f->Update();
+    CHECK(regionIds(f, Layout()) ==
+        sizeRanked(sweep, count, [&](int r, long long) { return bool(seeded[r]); }),
+      "every " << step << "th voxel as a seed keeps the regions containing one");
+  }
+  const Volume v = randomVolume({ 9, 9, 9 }, 0.3, 1, 5);
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(-50, 0, 0);
+  vtkNew<vtkPolyData> seeds;
+  seeds->SetPoints(points);
+  vtkNew<vtkCUDBConnectivity> f;
+  f->SetInputData(makeImage(v, Layout()));
+  f->SetSeedData(seeds);
+  vtkNew<vbrtest::ErrorCounter> warnings;
+  f->AddObserver(vtkCommand::WarningEvent, warnings);
+  f->Update();
+  CHECK(warnings->Count > 0, "seeds that all miss the objects warn");
+  CHECK(fieldValue(f->GetOutput(), "NumberOfRegions") == 0, "seeds that miss keep no region");
+}
+
 void checkErrorsAndDegenerateInputs()
 {
   {
@@ -563,6 +611,7 @@ int TestCUDBConnectivity(int, char*[])
   checkRandomVolumes();
   checkTwoDimensional();
   checkRegionFilters();
+  checkManySeeds();
   checkErrorsAndDegenerateInputs();
   vtkNew<vtkCUDBConnectivity> f;
   std::ostringstream print;
