@@ -1,6 +1,7 @@
 #include "vtkVoxelPhantomSource.h"
 
 #include "Phantom.h"
+#include "vtkVoxelBRepMemory.h"
 
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
@@ -12,6 +13,9 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <exception>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkVoxelPhantomSource);
 
@@ -44,6 +48,29 @@ int vtkVoxelPhantomSource::RequestInformation(vtkInformation*,
 //------------------------------------------------------------------------------
 void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output,
   vtkInformation* outInfo)
+{
+  // The image and the phantom's own labels: two bytes per voxel, refused before allocating.
+  const double voxels = double(std::max(this->Dimensions[0], 1)) *
+    std::max(this->Dimensions[1], 1) * std::max(this->Dimensions[2], 1);
+  const std::string refused = vbr::vtk::checkAllocation(2.0 * voxels, "The phantom");
+  if (!refused.empty())
+  {
+    vtkErrorMacro(<< refused);
+    return;
+  }
+  try
+  {
+    this->GeneratePhantom(output, outInfo);
+  }
+  catch (const std::exception& e) // std::bad_alloc when the estimate was too optimistic
+  {
+    vtkErrorMacro(<< "The phantom could not be generated: " << e.what());
+    vtkImageData::SafeDownCast(output)->Initialize();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkVoxelPhantomSource::GeneratePhantom(vtkDataObject* output, vtkInformation* outInfo)
 {
   vtkImageData* image = this->AllocateOutputData(output, outInfo);
   vtkUnsignedCharArray* scalars =

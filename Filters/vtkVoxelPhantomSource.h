@@ -9,6 +9,9 @@
  * square frame; 5, three boxes touching along an edge and at a corner only (non-manifold
  * contacts). All parts scale with the dimensions, so the same shapes exist at every size. It
  * is the default input of the VoxelBRep examples and benchmarks.
+ *
+ * Dimensions whose image (and the phantom's own copy: two bytes per voxel) cannot fit in the
+ * memory this process can allocate are refused with an error and an empty output.
  */
 #ifndef vtkVoxelPhantomSource_h
 #define vtkVoxelPhantomSource_h
@@ -39,6 +42,7 @@ protected:
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ExecuteDataWithInformation(vtkDataObject* output, vtkInformation* outInfo) override;
+  void GeneratePhantom(vtkDataObject* output, vtkInformation* outInfo);
 
   int Dimensions[3] = { 128, 128, 128 };
 

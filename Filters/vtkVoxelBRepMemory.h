@@ -1,0 +1,32 @@
+// What a filter may allocate: the memory the system has available to this process, so that a
+// filter refuses an input that cannot fit with a clear error instead of dying on a failed
+// allocation.
+#ifndef vtkVoxelBRepMemory_h
+#define vtkVoxelBRepMemory_h
+
+#include <cstdint>
+#include <string>
+
+namespace vbr
+{
+namespace vtk
+{
+
+/// Bytes this process can still allocate: the smaller of the system's available memory
+/// (MemAvailable of /proc/meminfo, else the physical memory) and what the address-space
+/// limit (ulimit -v) leaves above the process's current size. The maximum of uint64 when
+/// nothing is known.
+std::uint64_t availableMemoryBytes();
+
+/// An empty string when `bytes` fit in availableMemoryBytes(); otherwise an error message
+/// naming `what`, the bytes needed and the limit. A negative or non-finite estimate (an
+/// overflowing product) never fits.
+std::string checkAllocation(double bytes, const std::string& what);
+
+/// `bytes` for a message: "1.5 GiB", "640 MiB", "12 kiB", "100 bytes".
+std::string formatBytes(double bytes);
+
+} // namespace vtk
+} // namespace vbr
+
+#endif
