@@ -106,16 +106,26 @@ public:
     return ids;
   }
 
-  /// Room for `cells` more cells of `corners` corners in all.
+  /// Room for `cells` more cells of `corners` corners in all. Capacity grows geometrically:
+  /// reserving exactly the sum for each object (label) would copy the whole output every
+  /// time, quadratic in the number of labels.
   void reserve(std::size_t cells, std::size_t corners)
   {
-    this->Connectivity.reserve(this->Connectivity.size() + corners);
-    this->Offsets.reserve(this->Offsets.size() + cells);
-    this->FaceId.reserve(this->FaceId.size() + cells);
-    this->ParentFace.reserve(this->ParentFace.size() + cells);
-    this->LoopType.reserve(this->LoopType.size() + cells);
-    this->Depth.reserve(this->Depth.size() + cells);
-    this->Label.reserve(this->Label.size() + cells);
+    reserveMore(this->Connectivity, corners);
+    reserveMore(this->Offsets, cells);
+    reserveMore(this->FaceId, cells);
+    reserveMore(this->ParentFace, cells);
+    reserveMore(this->LoopType, cells);
+    reserveMore(this->Depth, cells);
+    reserveMore(this->Label, cells);
+  }
+
+  template<typename V>
+  static void reserveMore(V& values, std::size_t more)
+  {
+    const std::size_t needed = values.size() + more;
+    if (needed > values.capacity())
+      values.reserve(std::max(needed, values.capacity() + values.capacity() / 2));
   }
 
   void addCell(const vtkIdType* ids,
