@@ -4,8 +4,9 @@
 #   deps  scripts/install-deps.sh (skips what is installed; no network needed then)
 #   A     primary build against ParaView 5.11's VTK 9.2 in `build` (module, Python package,
 #         ParaView plugin, tests): xvfb-run -a ctest
-#   B     sanitizer build of the VTK-free core in `build-asan` (VOXELBREP_CORE_ONLY=ON, Debug,
-#         AddressSanitizer + UndefinedBehaviorSanitizer): ctest of the core unit tests
+#   B     sanitizer builds (AddressSanitizer + UndefinedBehaviorSanitizer): the VTK-free core
+#         in `build-asan` (VOXELBREP_CORE_ONLY=ON, Debug) with its unit tests, and the VTK
+#         module in `build-asan-filters` (against ParaView's VTK) with its C++ filter tests
 #   C     build against Debian's stock VTK 9.1 in `build-vtk91` (plugin and Python wrapping
 #         off): xvfb-run -a ctest
 #
@@ -31,6 +32,7 @@ ROOT=$PWD
 JOBS=${VOXELBREP_JOBS:-2}
 LOGDIR=$(mktemp -d "${TMPDIR:-/tmp}/voxelbrep-tests.XXXXXX")
 VTK91_DIR=/usr/lib/x86_64-linux-gnu/cmake/vtk-9.1
+PV_VTK_DIR=/usr/lib/x86_64-linux-gnu/cmake/paraview-5.11/vtk
 # -noreset: by default Xvfb resets when its last client disconnects, and a test that
 # connects during the reset fails with "bad X server connection" (seen in CI).
 XVFB=(xvfb-run -a -s "-noreset -screen 0 1280x1024x24")
@@ -55,13 +57,21 @@ fmt_time() { printf '%dm%02ds' $(($1 / 60)) $(($1 % 60)); }
 # ---- ctest with counting ----------------------------------------------------------------
 TESTS_PASSED=0
 TESTS_FAILED=0
-# run_ctest DIR LABEL [WRAPPER...]: runs ctest in DIR, adds its counts to the totals.
+# run_ctest DIR LABEL [WRAPPER...] [-- CTEST_ARGS...]: runs ctest in DIR, adds its counts to
+# the totals.
 run_ctest() {
   local dir=$1 label=$2
   shift 2
+  local wrapper=() args=()
+  while [ $# -gt 0 ] && [ "$1" != -- ]; do
+    wrapper+=("$1")
+    shift
+  done
+  [ $# -gt 0 ] && shift
+  args=("$@")
   local log="$LOGDIR/ctest-$label.log" rc line failed total
-  echo "+ (cd $dir && $* ctest --output-on-failure -j$JOBS)"
-  (cd "$dir" && "$@" ctest --output-on-failure -j"$JOBS") 2>&1 | tee "$log"
+  echo "+ (cd $dir && ${wrapper[*]} ctest --output-on-failure -j$JOBS ${args[*]})"
+  (cd "$dir" && "${wrapper[@]}" ctest --output-on-failure -j"$JOBS" "${args[@]}") 2>&1 | tee "$log"
   rc=${PIPESTATUS[0]}
   line=$(grep -E '^[0-9]+% tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -n 1)
   if [ -n "$line" ]; then
@@ -94,12 +104,26 @@ stage_paraview() {
 }
 
 stage_asan() {
+  local ok=0
   run cmake -S . -B build-asan -DVOXELBREP_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Debug \
     -DBUILD_TESTING=ON "-DCMAKE_CXX_FLAGS=$SAN_FLAGS" || return 1
   run cmake --build build-asan -j"$JOBS" || return 1
   ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1} \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    run_ctest build-asan asan
+    run_ctest build-asan asan || ok=1
+  # The VTK module (adapters and filters) with its C++ tests, against ParaView's VTK, -O1 to
+  # keep the data tests fast. Leak detection is off (VTK's and Mesa's singletons live until
+  # exit) and the image tests are left out (Mesa's llvmpipe raises SIGFPE under the
+  # sanitizers' floating-point settings, in its own code).
+  run cmake -S . -B build-asan-filters -DVTK_DIR="$PV_VTK_DIR" \
+    -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=ON \
+    -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF -DVOXELBREP_WRAP_PYTHON=OFF \
+    -DVOXELBREP_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=-O1 $SAN_FLAGS" || return 1
+  run cmake --build build-asan-filters -j"$JOBS" || return 1
+  ASAN_OPTIONS=detect_leaks=0:strict_string_checks=1 \
+    UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+    run_ctest build-asan-filters asan-filters "${XVFB[@]}" -- -E "^Core[.]|Render" || ok=1
+  return $ok
 }
 
 PV_DEB_DIR="$LOGDIR/debs"
@@ -223,7 +247,7 @@ run_stage() {
 TOTAL_START=$SECONDS
 run_stage deps "install Debian packages" stage_deps
 run_stage A "ParaView 5.11 / VTK 9.2 build + tests (build)" stage_paraview
-run_stage B "core with ASan+UBSan, Debug (build-asan)" stage_asan
+run_stage B "core and module with ASan+UBSan (build-asan*)" stage_asan
 run_stage C "stock Debian VTK 9.1 build + tests (build-vtk91)" stage_vtk91
 restore_paraview
 [ "$RESTORE_STATUS" = FAIL ] && FAILED=1
