@@ -528,8 +528,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
     const auto triangles =
       this->OutputMode == TRIANGLES ? triangulate(brep, exec) : Triangulation();
-    const auto polygons =
-      this->OutputMode == POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
+    const auto polygons = this->OutputMode == POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
     {
       vtkLogScopeF(TRACE, "output cells");
       appendFaceCells(brep, triangles, polygons, object, this->OutputMode, faceBase, builder);

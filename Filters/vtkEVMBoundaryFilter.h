@@ -42,10 +42,10 @@
  *   comparison.
  *
  * Cell arrays: `FaceId` (shared by a face's loops, polygons or triangles), `LoopType` (0
- * outer, 1 hole; triangles and Polygons pieces 0), `Label` (the selected label, or 1 outside Labels mode). For 2D images also
- * `ParentFace` (for a hole: its face; for a face inside a hole: the face owning that hole;
- * -1 at top level) and `Depth` (outer faces 0, their holes 1, faces inside them 2, ...); the
- * hole loops themselves are in the Loops and Polylines outputs.
+ * outer, 1 hole; triangles and Polygons pieces 0), `Label` (the selected label, or 1 outside Labels
+ * mode). For 2D images also `ParentFace` (for a hole: its face; for a face inside a hole: the face
+ * owning that hole; -1 at top level) and `Depth` (outer faces 0, their holes 1, faces inside them
+ * 2, ...); the hole loops themselves are in the Loops and Polylines outputs.
  *
  * Field data: `NumberOfVoxels`, `NumberOfExtremeVertices`, `NumberOfSurfels`,
  * `NumberOfFaces`, `NumberOfHoles`, `NumberOfNonManifoldVertices` and

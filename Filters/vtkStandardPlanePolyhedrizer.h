@@ -43,11 +43,12 @@
  *   standard vertices (a closed polyline where two faces meet along a whole loop), with the
  *   cell arrays `FaceId` and `OtherFaceId` (the faces on either side) and `Label`.
  * Cell arrays (per triangle, polygon or quad, those of its face): `FaceId`, `PlaneNormal`
- * (a, b, c), `PlaneOffset` (mu), `SurfelCount` and `Label`. The plane coefficients are in the image's corner index space: voxel (i, j, k),
- * counted from the first voxel of the extent, spans the corners i..i+1, j..j+1, k..k+1.
- * Field data: `NumberOfSurfels`, `NumberOfFaces`, `MinimumFaceSize`, `MeanFaceSize`,
- * `MaximumFaceSize`, `NumberOfStandardVertices`, `NumberOfBoundaryComponents`, and the grid
- * for vtkStandardPlaneReversion (`VoxelGridOrigin`, `VoxelGridSpacing`, `VoxelGridDimensions`).
+ * (a, b, c), `PlaneOffset` (mu), `SurfelCount` and `Label`. The plane coefficients are in the
+ * image's corner index space: voxel (i, j, k), counted from the first voxel of the extent, spans
+ * the corners i..i+1, j..j+1, k..k+1. Field data: `NumberOfSurfels`, `NumberOfFaces`,
+ * `MinimumFaceSize`, `MeanFaceSize`, `MaximumFaceSize`, `NumberOfStandardVertices`,
+ * `NumberOfBoundaryComponents`, and the grid for vtkStandardPlaneReversion (`VoxelGridOrigin`,
+ * `VoxelGridSpacing`, `VoxelGridDimensions`).
  *
  * Output port 1: the reversion, an image with the input's structure and an unsigned char
  * array `Selection` (1 on the selected voxels, with the association of the input scalars),

@@ -177,8 +177,8 @@ std::vector<std::vector<int>> groupIntoFans(const std::vector<std::array<int, 3>
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
     {
-      auto it = byEdge.emplace(key(triangles[t][k], triangles[t][(k + 1) % 3]),
-        std::array<int, 2>{ -1, -1 });
+      auto it = byEdge.emplace(
+        key(triangles[t][k], triangles[t][(k + 1) % 3]), std::array<int, 2>{ -1, -1 });
       it.first->second[it.first->second[0] < 0 ? 0 : 1] = static_cast<int>(t);
     }
   std::vector<int> taken(triangles.size(), 0), stamp(triangles.size(), -1);

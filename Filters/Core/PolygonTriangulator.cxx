@@ -179,7 +179,8 @@ bool isSimplePolygon(const std::vector<Point2L>& corners)
     const Point2L& b = corners[(i + 1) % n];
     const Point2L& c = corners[(i + 2) % n];
     // Consecutive edges meet only at b: they must not fold back onto each other.
-    if (cross(a, b, c) == 0 && Wide(b[0] - a[0]) * (c[0] - b[0]) + Wide(b[1] - a[1]) * (c[1] - b[1]) < 0)
+    if (cross(a, b, c) == 0 &&
+      Wide(b[0] - a[0]) * (c[0] - b[0]) + Wide(b[1] - a[1]) * (c[1] - b[1]) < 0)
       return false;
     for (std::size_t j = i + 2; j < n; ++j)
     {
