@@ -46,6 +46,8 @@ using vbr::Point3;
 
 /// Triangles of every face, as indices into the face's loop corners.
 using Triangulation = std::vector<std::vector<std::array<int, 3>>>;
+/// Polygons of every face (Polygons mode), as indices into the face's loop corners.
+using FacePolygons = std::vector<std::vector<std::vector<int>>>;
 
 /// Statistics written to the output's field data.
 struct Statistics
@@ -259,9 +261,10 @@ void appendSurfelCells(const vbr::vtk::Selected& object,
   }
 }
 
-/// The cells of an object's faces: its triangles, or one cell per loop.
+/// The cells of an object's faces: its triangles, its polygons, or one cell per loop.
 void appendFaceCells(const vbr::BRep& brep,
   const Triangulation& triangles,
+  const FacePolygons& polygons,
   const vbr::vtk::Selected& object,
   int mode,
   vtkIdType faceBase,
@@ -275,7 +278,7 @@ void appendFaceCells(const vbr::BRep& brep,
       count += t.size();
     builder.reserve(count, 3 * count);
   }
-  else
+  else if (mode != vtkEVMBoundaryFilter::POLYGONS)
   {
     builder.reserve(brep.loops.size(), brep.points.size() + brep.loops.size());
   }
@@ -286,6 +289,18 @@ void appendFaceCells(const vbr::BRep& brep,
     const vbr::BRepFace& face = brep.faces[f];
     const vtkIdType faceId = faceBase + static_cast<vtkIdType>(f);
     const vtkIdType parent = face.parent < 0 ? -1 : faceBase + face.parent;
+    if (mode == vtkEVMBoundaryFilter::POLYGONS)
+    {
+      const vtkIdType* corner = cornerIds.data() + brep.loops[face.firstLoop].begin;
+      for (const std::vector<int>& polygon : polygons[f])
+      {
+        ids.clear();
+        for (int c : polygon)
+          ids.push_back(corner[c]);
+        builder.addCell(ids.data(), ids.size(), faceId, 0, object.label, parent, face.depth);
+      }
+      continue;
+    }
     if (mode == vtkEVMBoundaryFilter::TRIANGLES)
     {
       // Triangle corners index the face's loops' corners, which are contiguous.
@@ -350,6 +365,20 @@ Triangulation triangulate(const vbr::BRep& brep, const vbr::Execution& exec)
   return triangles;
 }
 
+/// The polygons of every face that VTK draws right (fanPolygons), in parallel.
+FacePolygons fanPolygons(const vbr::BRep& brep, const vbr::Execution& exec)
+{
+  vtkLogScopeF(TRACE, "polygons drawn as fans");
+  FacePolygons polygons(brep.faces.size());
+  exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t f = b; f < e; ++f)
+        polygons[f] = vbr::fanPolygons(brep, static_cast<int>(f));
+    });
+  return polygons;
+}
+
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
 {
   vbr::vtk::addFieldValue(fd, "NumberOfVoxels", stats.voxels);
@@ -401,6 +430,8 @@ const char* vtkEVMBoundaryFilter::GetOutputModeAsString()
       return "Triangles";
     case POLYLINES:
       return "Polylines";
+    case LOOPS:
+      return "Loops";
     default:
       return "Surfels";
   }
@@ -507,9 +538,10 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
     const auto triangles =
       this->OutputMode == TRIANGLES ? triangulate(brep, exec) : Triangulation();
+    const auto polygons = this->OutputMode == POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
     {
       vtkLogScopeF(TRACE, "output cells");
-      appendFaceCells(brep, triangles, object, this->OutputMode, faceBase, builder);
+      appendFaceCells(brep, triangles, polygons, object, this->OutputMode, faceBase, builder);
     }
     faceBase += static_cast<vtkIdType>(brep.faces.size());
     this->UpdateProgress(to);

@@ -24,17 +24,28 @@
  * Output modes:
  * - Triangles (default): each face triangulated together with its holes. Closed and
  *   consistently oriented (normals point out of the object); renders correctly.
- * - Polygons: one polygon per loop. An outer loop runs counter-clockwise seen from outside
- *   (its right-hand normal points out of the object), a hole loop the other way. Loops carry
- *   every vertex of neighbouring faces that lies on their edges (no T-junctions).
+ * - Polygons: each face as few polygons as VTK draws right. VTK's OpenGL mapper draws a
+ *   polygon as the fan of triangles from its first point, so a polygon is drawn right only
+ *   when that fan covers it: a face without holes from one of whose corners the fan covers
+ *   it (a rectangle, an L) is one polygon starting at that corner; any other face (with
+ *   holes, or concave) is cut into fans of its triangles, polygons made of a corner and the
+ *   far sides of the triangles round it. All pieces of a face carry its FaceId and its
+ *   orientation (counter-clockwise seen from outside), keep every vertex of the loops (no
+ *   T-junctions) and add none. Closed; renders correctly.
+ * - Loops (for export): one polygon per loop, the faces as they are. An outer loop runs
+ *   counter-clockwise seen from outside (its right-hand normal points out of the object), a
+ *   hole loop the other way. Loops carry every vertex of neighbouring faces that lies on
+ *   their edges (no T-junctions). Does not render correctly: a hole is drawn as a filled
+ *   polygon over its face and concave loops as wrong fans.
  * - Polylines: the same loops as closed polylines (the contours of a 2D image).
  * - Surfels: one quad per boundary voxel face (what Threshold + Extract Surface gives), for
  *   comparison.
  *
- * Cell arrays: `FaceId` (shared by a face's loops or triangles), `LoopType` (0 outer, 1 hole;
- * triangles 0), `Label` (the selected label, or 1 outside Labels mode). For 2D images also
- * `ParentFace` (for a hole: its face; for a face inside a hole: the face owning that hole;
- * -1 at top level) and `Depth` (outer faces 0, their holes 1, faces inside them 2, ...).
+ * Cell arrays: `FaceId` (shared by a face's loops, polygons or triangles), `LoopType` (0
+ * outer, 1 hole; triangles and Polygons pieces 0), `Label` (the selected label, or 1 outside Labels
+ * mode). For 2D images also `ParentFace` (for a hole: its face; for a face inside a hole: the face
+ * owning that hole; -1 at top level) and `Depth` (outer faces 0, their holes 1, faces inside them
+ * 2, ...); the hole loops themselves are in the Loops and Polylines outputs.
  *
  * Field data: `NumberOfVoxels`, `NumberOfExtremeVertices`, `NumberOfSurfels`,
  * `NumberOfFaces`, `NumberOfHoles`, `NumberOfNonManifoldVertices` and
@@ -84,7 +95,8 @@ public:
     POLYGONS = 0,
     TRIANGLES = 1,
     POLYLINES = 2,
-    SURFELS = 3
+    SURFELS = 3,
+    LOOPS = 4
   };
 
   ///@{
@@ -127,14 +139,16 @@ public:
 
   ///@{
   /**
-   * What the output cells are. The default is TRIANGLES.
+   * What the output cells are (see the class comment). The default is TRIANGLES; LOOPS is
+   * for export (it does not render correctly).
    */
-  vtkSetClampMacro(OutputMode, int, POLYGONS, SURFELS);
+  vtkSetClampMacro(OutputMode, int, POLYGONS, LOOPS);
   vtkGetMacro(OutputMode, int);
   void SetOutputModeToPolygons() { this->SetOutputMode(POLYGONS); }
   void SetOutputModeToTriangles() { this->SetOutputMode(TRIANGLES); }
   void SetOutputModeToPolylines() { this->SetOutputMode(POLYLINES); }
   void SetOutputModeToSurfels() { this->SetOutputMode(SURFELS); }
+  void SetOutputModeToLoops() { this->SetOutputMode(LOOPS); }
   const char* GetOutputModeAsString();
   ///@}
 

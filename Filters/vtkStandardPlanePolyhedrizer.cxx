@@ -1,5 +1,6 @@
 #include "vtkStandardPlanePolyhedrizer.h"
 
+#include "PolygonTriangulator.h"
 #include "Polyhedrization.h"
 #include "SurfelGraph.h"
 #include "vtkVoxelBRepAdapters.h"
@@ -32,6 +33,7 @@
 #include <exception>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 vtkStandardNewMacro(vtkStandardPlanePolyhedrizer);
@@ -135,18 +137,22 @@ public:
         this->addCell(ids, o, o.poly.faceOfSurfel[s]);
       }
     }
-    else
+    else if (mode == vtkStandardPlanePolyhedrizer::STANDARD_FACES)
     {
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
       {
-        const std::vector<std::uint32_t> loop = mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE
-          ? semiDiscreteLoop(o, o.poly.faces[f].loop)
-          : o.poly.faces[f].loop;
         std::vector<vtkIdType> ids;
-        for (std::uint32_t v : loop)
+        for (std::uint32_t v : o.poly.faces[f].loop)
           ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[v])));
         this->addCell(ids, o, f);
       }
+    }
+    else
+    {
+      const std::vector<std::vector<std::uint32_t>> polygons =
+        mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE ? semiDiscretePolygons(o) : loopsOf(o);
+      for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
+        this->addTriangulatedFace(o, f, polygons[f]);
     }
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
@@ -228,20 +234,103 @@ private:
     this->Labels->InsertNextValue(o.label);
   }
 
-  /// The loop's standard vertices; at least three pointels spread along it.
-  static std::vector<std::uint32_t> semiDiscreteLoop(const ObjectFaces& o,
-    const std::vector<std::uint32_t>& loop)
+  static std::vector<std::vector<std::uint32_t>> loopsOf(const ObjectFaces& o)
   {
-    std::vector<std::uint32_t> out;
-    for (std::uint32_t v : loop)
-      if (o.poly.facesAtVertex[v] >= 3)
-        out.push_back(v);
-    if (out.size() >= 3)
-      return out;
-    out.clear();
-    for (std::size_t i = 0; i < 3 && i < loop.size(); ++i)
-      out.push_back(loop[i * loop.size() / 3]);
-    return out;
+    std::vector<std::vector<std::uint32_t>> loops;
+    for (const vbr::StandardFace& face : o.poly.faces)
+      loops.push_back(face.loop);
+    return loops;
+  }
+
+  /// The triangles of a face's polygon (graph vertices along its loop, simple in the
+  /// projection along the face's normal), corners at the polygon's own pointels. A polygon
+  /// that cannot be triangulated (never seen: loops project to simple polygons) is drawn
+  /// by its surfels, two triangles each, rather than wrongly.
+  void addTriangulatedFace(const ObjectFaces& o,
+    std::uint32_t f,
+    const std::vector<std::uint32_t>& polygon)
+  {
+    const vbr::StandardFace& face = o.poly.faces[f];
+    const vbr::ProjectionAlong project(face.plane.normal);
+    std::vector<vbr::Point2L> corners;
+    corners.reserve(polygon.size());
+    for (std::uint32_t v : polygon)
+      corners.push_back(project(o.graph.vertexPointel[v]));
+    const std::vector<vbr::Triangle> triangles = vbr::triangulateSimplePolygon(corners);
+    std::vector<vtkIdType> ids(3);
+    for (const vbr::Triangle& t : triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+        ids[k] = this->point(inGrid(o, o.graph.vertexPointel[polygon[t[k]]]));
+      this->addCell(ids, o, f);
+    }
+    if (!triangles.empty())
+      return;
+    for (std::uint32_t s : face.surfels)
+    {
+      for (int half = 0; half < 2; ++half)
+      {
+        const int corner[3] = { 0, 1 + half, 2 + half };
+        for (int k = 0; k < 3; ++k)
+          ids[k] = this->point(inGrid(o, o.graph.cornerOf(s, corner[k])));
+        this->addCell(ids, o, f);
+      }
+    }
+  }
+
+  /// The polygons of the semi-discrete faces. Each standard edge (the piece of loop
+  /// between two standard vertices, shared by the two faces beside it) is drawn as the
+  /// chord between its ends, or refined: along its pointels. Refined are the edges of faces
+  /// with fewer than three standard vertices, then, until none is left, those of every face
+  /// whose polygon is not simple and counter-clockwise in the projection along its normal
+  /// (a face refined all round is its loop, which is). Both faces beside an edge see it the
+  /// same way, so the triangles of neighbouring faces meet edge to edge.
+  static std::vector<std::vector<std::uint32_t>> semiDiscretePolygons(const ObjectFaces& o)
+  {
+    std::unordered_set<std::uint64_t> refined; // loop edges, as unordered vertex pairs
+    auto edge = [](std::uint32_t a, std::uint32_t b)
+    { return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a; };
+    auto refineFace = [&](const vbr::StandardFace& face)
+    {
+      for (std::size_t i = 0; i < face.loop.size(); ++i)
+        refined.insert(edge(face.loop[i], face.loop[(i + 1) % face.loop.size()]));
+    };
+    const auto& faces = o.poly.faces;
+    for (const vbr::StandardFace& face : faces)
+      if (std::count_if(face.loop.begin(),
+            face.loop.end(),
+            [&](std::uint32_t v) { return o.poly.facesAtVertex[v] >= 3; }) < 3)
+        refineFace(face);
+    std::vector<std::vector<std::uint32_t>> polygons(faces.size());
+    for (bool changed = true; changed;)
+    {
+      changed = false;
+      for (std::size_t f = 0; f < faces.size(); ++f)
+      {
+        const std::vector<std::uint32_t>& loop = faces[f].loop;
+        const std::size_t m = loop.size();
+        std::vector<std::uint32_t>& polygon = polygons[f];
+        polygon.clear();
+        for (std::size_t i = 0; i < m; ++i)
+          if (o.poly.facesAtVertex[loop[i]] >= 3 ||
+            refined.count(edge(loop[(i + m - 1) % m], loop[i])) ||
+            refined.count(edge(loop[i], loop[(i + 1) % m])))
+            polygon.push_back(loop[i]);
+        if (polygon.size() == m)
+          continue; // the whole loop
+        const vbr::ProjectionAlong project(faces[f].plane.normal);
+        std::vector<vbr::Point2L> corners;
+        for (std::uint32_t v : polygon)
+          corners.push_back(project(o.graph.vertexPointel[v]));
+        if (!vbr::isSimplePolygon(corners) || vbr::doubledArea(corners) <= 0)
+        {
+          refineFace(faces[f]);
+          polygon = loop;
+          changed = true;
+        }
+      }
+    }
+    return polygons;
   }
 
   vtkIdType point(const Int3& p)
@@ -440,6 +529,8 @@ const char* vtkStandardPlanePolyhedrizer::GetOutputModeAsString()
       return "SemiDiscrete";
     case STANDARD_EDGES:
       return "StandardEdges";
+    case TRIANGULATED_FACES:
+      return "TriangulatedFaces";
     default:
       return "StandardFaces";
   }

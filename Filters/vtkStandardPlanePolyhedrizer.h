@@ -19,21 +19,36 @@
  * 6-connected), which makes the boundary a closed 2-manifold.
  *
  * Output port 0, by OutputMode:
+ * - TriangulatedFaces (default): each face as triangles whose corners are the pointels of
+ *   its boundary loop (no other points), n - 2 for a loop of n pointels. A face lies on the
+ *   boundary of a digital half-space, which every line parallel to its normal crosses once,
+ *   so its loop projected along the normal is a simple polygon; it is triangulated there
+ *   exactly (integer ear clipping, see PolygonTriangulator.h). Neighbouring faces share
+ *   their loop edges, so the triangles form a closed surface, oriented outwards: renders
+ *   correctly.
  * - Surfels: every surfel as a quad, with the FaceId of its face (the paper's figures).
- * - StandardFaces (default): one polygon per face along its whole boundary loop of pointels,
- *   counter-clockwise seen from outside.
- * - SemiDiscrete: one polygon per face through its standard vertices only (the pointels
- *   where three or more faces meet), the paper's section 5; a face with fewer than three
- *   standard vertices keeps three pointels of its loop spread along it.
+ * - StandardFaces (for export): one polygon per face along its whole boundary loop of
+ *   pointels, counter-clockwise seen from outside; what vtkStandardPlaneReversion reads. The
+ *   loop is not planar and the face may be concave, and VTK draws a polygon as a fan of
+ *   triangles from its first point, so this output does not render correctly: use
+ *   TriangulatedFaces to look at the faces.
+ * - SemiDiscrete: the paper's section 5, triangulated like TriangulatedFaces: each face's
+ *   polygon runs through its standard vertices (the pointels where three or more faces meet),
+ *   a standard edge being the chord between its two ends. Where that would not give a
+ *   correct surface an edge keeps its pointels: the edges of faces with fewer than three
+ *   standard vertices, and then, until there is none, the edges of each face whose polygon
+ *   is not simple and counter-clockwise in the projection along its normal. An edge is drawn
+ *   the same way on both its sides, so the triangles still form a closed surface.
  * - StandardEdges: the standard edges, each once, as polylines of pointels between two
  *   standard vertices (a closed polyline where two faces meet along a whole loop), with the
  *   cell arrays `FaceId` and `OtherFaceId` (the faces on either side) and `Label`.
- * Cell arrays: `FaceId`, `PlaneNormal` (a, b, c), `PlaneOffset` (mu), `SurfelCount` and
- * `Label`. The plane coefficients are in the image's corner index space: voxel (i, j, k),
- * counted from the first voxel of the extent, spans the corners i..i+1, j..j+1, k..k+1.
- * Field data: `NumberOfSurfels`, `NumberOfFaces`, `MinimumFaceSize`, `MeanFaceSize`,
- * `MaximumFaceSize`, `NumberOfStandardVertices`, `NumberOfBoundaryComponents`, and the grid
- * for vtkStandardPlaneReversion (`VoxelGridOrigin`, `VoxelGridSpacing`, `VoxelGridDimensions`).
+ * Cell arrays (per triangle, polygon or quad, those of its face): `FaceId`, `PlaneNormal`
+ * (a, b, c), `PlaneOffset` (mu), `SurfelCount` and `Label`. The plane coefficients are in the
+ * image's corner index space: voxel (i, j, k), counted from the first voxel of the extent, spans
+ * the corners i..i+1, j..j+1, k..k+1. Field data: `NumberOfSurfels`, `NumberOfFaces`,
+ * `MinimumFaceSize`, `MeanFaceSize`, `MaximumFaceSize`, `NumberOfStandardVertices`,
+ * `NumberOfBoundaryComponents`, and the grid for vtkStandardPlaneReversion (`VoxelGridOrigin`,
+ * `VoxelGridSpacing`, `VoxelGridDimensions`).
  *
  * Output port 1: the reversion, an image with the input's structure and an unsigned char
  * array `Selection` (1 on the selected voxels, with the association of the input scalars),
@@ -71,7 +86,8 @@ public:
     SURFELS = 0,
     STANDARD_FACES = 1,
     SEMI_DISCRETE = 2,
-    STANDARD_EDGES = 3
+    STANDARD_EDGES = 3,
+    TRIANGULATED_FACES = 4
   };
 
   ///@{
@@ -114,14 +130,16 @@ public:
 
   ///@{
   /**
-   * What the cells of output port 0 are. The default is STANDARD_FACES.
+   * What the cells of output port 0 are (see the class comment). The default is
+   * TRIANGULATED_FACES; STANDARD_FACES is for export (it does not render correctly).
    */
-  vtkSetClampMacro(OutputMode, int, SURFELS, STANDARD_EDGES);
+  vtkSetClampMacro(OutputMode, int, SURFELS, TRIANGULATED_FACES);
   vtkGetMacro(OutputMode, int);
   void SetOutputModeToSurfels() { this->SetOutputMode(SURFELS); }
   void SetOutputModeToStandardFaces() { this->SetOutputMode(STANDARD_FACES); }
   void SetOutputModeToSemiDiscrete() { this->SetOutputMode(SEMI_DISCRETE); }
   void SetOutputModeToStandardEdges() { this->SetOutputMode(STANDARD_EDGES); }
+  void SetOutputModeToTriangulatedFaces() { this->SetOutputMode(TRIANGULATED_FACES); }
   const char* GetOutputModeAsString();
   ///@}
 
@@ -190,7 +208,7 @@ protected:
   double UpperThreshold = VTK_DOUBLE_MAX;
   double BackgroundValue = 0.0;
   int ArrayComponent = 0;
-  int OutputMode = STANDARD_FACES;
+  int OutputMode = TRIANGULATED_FACES;
   int MaximumFaceSize = 0;
   int MaximumDepth = 0;
   bool MoveToLargerFaces = true;

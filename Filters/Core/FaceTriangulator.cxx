@@ -5,7 +5,9 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <cstdint>
 #include <list>
+#include <unordered_map>
 
 namespace vbr
 {
@@ -128,6 +130,112 @@ bool clipEars(const PointRange& pts,
 /// Faces up to this many corners without holes are ear-clipped (quadratic, but tiny).
 constexpr std::size_t EarClippingLimit = 24;
 
+/// The outer loop of a face in (u, v) coordinates, counter-clockwise seen from outside.
+std::vector<Point2L> outerLoop2D(const BRep& brep, const BRepFace& face)
+{
+  const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
+  std::vector<Point2L> corners;
+  for (const Point3& p : brep.loopPoints(face.firstLoop))
+    corners.push_back(face.normalSign > 0 ? Point2L{ p[u], p[v] } : Point2L{ p[v], p[u] });
+  return corners;
+}
+
+/// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
+/// that turn right (the kernel of an orthogonal polygon starts at them), then the first one
+/// that turns left (enough for a rectangle with corners on its sides).
+int fanApex(const std::vector<Point2L>& corners)
+{
+  const std::size_t n = corners.size();
+  std::vector<std::size_t> candidates;
+  std::size_t convex = n;
+  for (std::size_t i = 0; i < n && candidates.size() < 4; ++i)
+  {
+    const int turn = orientation(corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]);
+    if (turn < 0)
+      candidates.push_back(i);
+    else if (turn > 0 && convex == n)
+      convex = i;
+  }
+  if (convex < n)
+    candidates.push_back(convex);
+  for (std::size_t i : candidates)
+    if (fanCoversPolygon(corners, i))
+      return static_cast<int>(i);
+  return -1;
+}
+
+/// Triangles grouped into fans: from each triangle not yet taken, the longest fan of
+/// untaken triangles round one of its corners (neighbours across the edges at that corner).
+std::vector<std::vector<int>> groupIntoFans(const std::vector<std::array<int, 3>>& triangles)
+{
+  std::unordered_map<std::uint64_t, std::array<int, 2>> byEdge; // the triangles at an edge
+  auto key = [](int a, int b)
+  {
+    return a < b ? (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)
+                 : (std::uint64_t(std::uint32_t(b)) << 32) | std::uint32_t(a);
+  };
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      auto it = byEdge.emplace(
+        key(triangles[t][k], triangles[t][(k + 1) % 3]), std::array<int, 2>{ -1, -1 });
+      it.first->second[it.first->second[0] < 0 ? 0 : 1] = static_cast<int>(t);
+    }
+  std::vector<int> taken(triangles.size(), 0), stamp(triangles.size(), -1);
+  int round = 0;
+  // The triangle across edge (apex, w) from triangle t, if untaken and not yet in this fan.
+  auto across = [&](int t, int apex, int w)
+  {
+    const auto& pair = byEdge[key(apex, w)];
+    const int other = pair[0] == t ? pair[1] : pair[0];
+    return other >= 0 && !taken[other] && stamp[other] != round ? other : -1;
+  };
+  // Corner that follows `apex` in triangle t (counter-clockwise).
+  auto after = [&](int t, int apex)
+  {
+    const auto& tri = triangles[t];
+    return tri[0] == apex ? tri[1] : tri[1] == apex ? tri[2] : tri[0];
+  };
+  auto before = [&](int t, int apex) { return after(t, after(t, apex)); };
+  std::vector<std::vector<int>> fans;
+  for (std::size_t start = 0; start < triangles.size(); ++start)
+  {
+    if (taken[start])
+      continue;
+    std::vector<int> best, bestTriangles;
+    for (int k = 0; k < 3; ++k)
+    {
+      ++round;
+      const int apex = triangles[start][k], t0 = static_cast<int>(start);
+      stamp[t0] = round;
+      std::vector<int> members{ t0 };
+      std::vector<int> rim{ after(t0, apex), before(t0, apex) };
+      for (int t = across(t0, apex, rim.back()); t >= 0; t = across(t, apex, rim.back()))
+      {
+        stamp[t] = round;
+        members.push_back(t);
+        rim.push_back(before(t, apex));
+      }
+      for (int t = across(t0, apex, rim.front()); t >= 0; t = across(t, apex, rim.front()))
+      {
+        stamp[t] = round;
+        members.push_back(t);
+        rim.insert(rim.begin(), after(t, apex));
+      }
+      if (members.size() > bestTriangles.size())
+      {
+        bestTriangles = members;
+        best.assign(1, apex);
+        best.insert(best.end(), rim.begin(), rim.end());
+      }
+    }
+    for (int t : bestTriangles)
+      taken[t] = 1;
+    fans.push_back(std::move(best));
+  }
+  return fans;
+}
+
 } // namespace
 
 std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
@@ -177,6 +285,24 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
     triangles.push_back(t);
   }
   return triangles;
+}
+
+std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f)
+{
+  const BRepFace& face = brep.faces[f];
+  if (face.loopCount == 1)
+  {
+    const std::vector<Point2L> corners = outerLoop2D(brep, face);
+    const int apex = fanApex(corners);
+    if (apex >= 0)
+    {
+      std::vector<int> polygon(corners.size());
+      for (std::size_t i = 0; i < corners.size(); ++i)
+        polygon[i] = static_cast<int>((apex + i) % corners.size());
+      return { polygon };
+    }
+  }
+  return groupIntoFans(triangulateFace(brep, f));
 }
 
 } // namespace vbr

@@ -65,9 +65,9 @@ def main():
     boundary = EVMBoundary(Input=phantom)
     boundary.Scalars = ["POINTS", "Labels"]
     boundary.SelectionMode = "Labels"
-    boundary.OutputMode = "Polygons"
-    out = check_output("Labels/Polygons", boundary, {k: labels == k for k in present})
-    expect("Labels/Polygons: hole loops = NumberOfHoles",
+    boundary.OutputMode = "Loops"
+    out = check_output("Labels/Loops", boundary, {k: labels == k for k in present})
+    expect("Labels/Loops: hole loops = NumberOfHoles",
            int(np.count_nonzero(cell_values(out, "LoopType") == 1)), field(out, "NumberOfHoles"))
 
     boundary.OutputMode = "Triangles"

@@ -43,7 +43,7 @@ def check_values(phantom, dims):
     reversion = servermanager.Fetch(poly, idx=1)
     back = ns.vtk_to_numpy(reversion.GetPointData().GetArray("Selection")).reshape(dims[::-1])
     expect("reversion equals the selection", bool((back == mask).all()), True)
-    poly.OutputMode = "Standard Faces"
+    poly.OutputMode = "StandardFaces"
     poly.UpdatePipeline()
     expect("one polygon per face", servermanager.Fetch(poly, idx=0).GetNumberOfCells(), faces)
     reversion = StandardPlaneReversion(Input=OutputPort(poly, 0))

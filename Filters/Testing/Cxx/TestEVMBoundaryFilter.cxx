@@ -131,7 +131,7 @@ Expected expect(const Volume& v, int label, bool merged)
   return e;
 }
 
-/// Faces of a Polygons output, rasterized per FaceId in grid coordinates (even-odd rule).
+/// Faces of a Loops output, rasterized per FaceId in grid coordinates (even-odd rule).
 struct Produced
 {
   std::map<PlaneKey, std::vector<PixelSet>> faces;
@@ -226,13 +226,13 @@ Produced readFaces(vtkPolyData* out, const Layout& l, double labelFilter)
   return r;
 }
 
-/// Runs the filter in Polygons mode and compares everything with brute force.
+/// Runs the filter in Loops mode and compares everything with brute force.
 void checkPolygons(const Volume& v, const Layout& l, int mode, bool merged, const std::string& what)
 {
   vtkNew<vtkEVMBoundaryFilter> f;
   f->SetInputData(makeImage(v, l));
   f->SetSelectionMode(mode);
-  f->SetOutputModeToPolygons();
+  f->SetOutputModeToLoops();
   f->SetMergeNonManifoldFaces(merged);
   f->Update();
   vtkPolyData* out = f->GetOutput();
@@ -337,7 +337,7 @@ void checkAbort()
   const Volume v = randomVolume({ 30, 30, 30 }, 0.4, 1, 5);
   vtkNew<vtkEVMBoundaryFilter> f;
   f->SetInputData(makeImage(v, Layout()));
-  f->SetOutputModeToPolygons();
+  f->SetOutputModeToLoops();
   f->Update();
   const vtkIdType full = f->GetOutput()->GetNumberOfCells();
   vtkNew<AbortAtProgress> abort;
@@ -493,7 +493,7 @@ void checkErrorsAndDegenerateInputs()
     vtkNew<vtkEVMBoundaryFilter> f;
     f->SetInputData(makeImage(v, Layout()));
     f->SetFlatImagesAs2D(false);
-    f->SetOutputModeToPolygons();
+    f->SetOutputModeToLoops();
     f->Update();
     CHECK(fieldValue(f->GetOutput(), "NumberOfFaces") == 6, "a box has 6 faces, n=" << n);
     CHECK(fieldValue(f->GetOutput(), "NumberOfExtremeVertices") == 8, "a box has 8 EVs");
@@ -517,7 +517,7 @@ void checkErrorsAndDegenerateInputs()
     f->SetSelectionModeToRange();
     f->SetLowerThreshold(0.2);
     f->SetUpperThreshold(0.3);
-    f->SetOutputModeToPolygons();
+    f->SetOutputModeToLoops();
     f->Update();
     CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 2, "range on component 1");
     CHECK(fieldValue(f->GetOutput(), "NumberOfFaces") == 6, "two voxels: 6 faces");
@@ -596,7 +596,7 @@ void checkTwoDimensional()
     CHECK(bounds[2 * flat] == 0 && bounds[2 * flat + 1] == 0, "2D: loops lie in the image plane");
     // As a slab: a closed boundary with 2 x (the ring's and the dot's) faces plus the sides.
     f->SetFlatImagesAs2D(false);
-    f->SetOutputModeToPolygons();
+    f->SetOutputModeToLoops();
     f->Update();
     CHECK(fieldValue(f->GetOutput(), "NumberOfVoxels") == 25, "slab voxels");
     Layout l;

@@ -61,7 +61,7 @@ int TestEVMBoundaryFilterRealData(int, char*[])
     f->SetInputData(image);
     f->SetSelectionModeToRange();
     f->SetLowerThreshold(55);
-    f->SetOutputModeToPolygons();
+    f->SetOutputModeToLoops();
     f->Update();
     vtkPolyData* out = f->GetOutput();
     const vtkIdType evs = value(out, "NumberOfExtremeVertices");

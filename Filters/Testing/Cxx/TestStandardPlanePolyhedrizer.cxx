@@ -253,7 +253,7 @@ void checkErrorsAbortPrint()
   vtkNew<vtkStandardPlanePolyhedrizer> f;
   std::ostringstream print;
   f->Print(print);
-  CHECK(print.str().find("OutputMode: StandardFaces") != std::string::npos, "PrintSelf");
+  CHECK(print.str().find("OutputMode: TriangulatedFaces") != std::string::npos, "PrintSelf");
 }
 
 /// The "Al" object of the shared data, when present.

@@ -36,12 +36,12 @@ except ImportError:  # python3-opencv is a test dependency (scripts/install-deps
 check = vt.Checker("TestEVMBoundary2D")
 
 
-def run_filter(image, merge, mode="Polygons"):
+def run_filter(image, merge, mode="Loops"):
     f = voxelbrep.vtkEVMBoundaryFilter()
     f.SetInputData(image)
     f.SetMergeNonManifoldFaces(merge)
-    if mode == "Polygons":
-        f.SetOutputModeToPolygons()
+    if mode == "Loops":
+        f.SetOutputModeToLoops()
     else:
         f.SetOutputModeToPolylines()
     f.Update()

@@ -33,6 +33,7 @@ MODES = {
     "Triangles": voxelbrep.vtkEVMBoundaryFilter.TRIANGLES,
     "Polylines": voxelbrep.vtkEVMBoundaryFilter.POLYLINES,
     "Surfels": voxelbrep.vtkEVMBoundaryFilter.SURFELS,
+    "Loops": voxelbrep.vtkEVMBoundaryFilter.LOOPS,
 }
 
 
@@ -156,7 +157,7 @@ def check_case(name, values, mask_of, spacing, origin, index_min, cell_data, sel
                         expected_holes)
             face_ids = vt.cell_array(out, "FaceId")
             check.equal(tag + " distinct FaceId", len(set(face_ids.tolist())), expected_faces)
-            if mode in ("Polygons", "Polylines"):
+            if mode in ("Loops", "Polylines"):
                 loop_type = vt.cell_array(out, "LoopType")
                 check.equal(tag + " hole loops", int(np.count_nonzero(loop_type == 1)),
                             expected_holes)
@@ -175,6 +176,9 @@ def check_case(name, values, mask_of, spacing, origin, index_min, cell_data, sel
                                 expected["area"], rtol=1e-6)
                     check.close(tag + " vtkMassProperties volume", mp.GetVolume(),
                                 expected["volume"], rtol=1e-6)
+            if mode == "Polygons":
+                check.true(tag + " Polygons closed and consistently oriented",
+                           directed_edges_balanced(out))
             if mode == "Polylines":
                 check.equal(tag + " lines only", out.GetNumberOfLines(), out.GetNumberOfCells())
 

@@ -1,0 +1,244 @@
+#include "PolygonTriangulator.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace vbr
+{
+
+namespace
+{
+
+using Wide = __int128;
+
+/// Twice the signed area of triangle abc, exactly.
+Wide cross(const Point2L& a, const Point2L& b, const Point2L& c)
+{
+  return Wide(b[0] - a[0]) * (c[1] - a[1]) - Wide(b[1] - a[1]) * (c[0] - a[0]);
+}
+
+int sign(Wide w)
+{
+  return (w > 0) - (w < 0);
+}
+
+/// Whether p lies in the closed counter-clockwise triangle abc.
+bool inClosedTriangle(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& p)
+{
+  return cross(a, b, p) >= 0 && cross(b, c, p) >= 0 && cross(c, a, p) >= 0;
+}
+
+/// Whether p, known to be collinear with segment ab, lies on it.
+bool onSegment(const Point2L& a, const Point2L& b, const Point2L& p)
+{
+  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
+    std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
+}
+
+/// Whether the closed segments ab and cd have a point in common.
+bool segmentsMeet(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& d)
+{
+  const int o1 = sign(cross(a, b, c)), o2 = sign(cross(a, b, d));
+  const int o3 = sign(cross(c, d, a)), o4 = sign(cross(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0)
+    return true;
+  return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) ||
+    (o3 == 0 && onSegment(c, d, a)) || (o4 == 0 && onSegment(c, d, b));
+}
+
+/// The ear clipping of the file comment on a doubly linked ring of corners.
+class EarClipper
+{
+public:
+  explicit EarClipper(const std::vector<Point2L>& corners)
+    : P(corners)
+    , Next(corners.size())
+    , Prev(corners.size())
+    , Convex(corners.size())
+    , Alive(corners.size(), 1)
+  {
+    const int n = static_cast<int>(corners.size());
+    for (int i = 0; i < n; ++i)
+    {
+      this->Next[i] = (i + 1) % n;
+      this->Prev[i] = (i + n - 1) % n;
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      this->updateConvexity(i);
+      if (!this->Convex[i])
+        this->Blockers.push_back(i);
+    }
+  }
+
+  bool run(std::vector<Triangle>& triangles)
+  {
+    int remaining = static_cast<int>(this->P.size());
+    int b = 0;
+    int misses = 0; // corners tested since the last ear
+    while (remaining > 3)
+    {
+      if (!this->isEar(b))
+      {
+        b = this->Next[b];
+        if (++misses > remaining)
+          return false; // no ear: not a simple counter-clockwise polygon
+        continue;
+      }
+      const int a = this->Prev[b], c = this->Next[b];
+      triangles.push_back({ a, b, c });
+      this->Next[a] = c;
+      this->Prev[c] = a;
+      this->Alive[b] = 0;
+      this->updateConvexity(a);
+      this->updateConvexity(c);
+      --remaining;
+      misses = 0;
+      b = c;
+    }
+    const int a = this->Prev[b], c = this->Next[b];
+    if (cross(this->P[a], this->P[b], this->P[c]) <= 0)
+      return false;
+    triangles.push_back({ a, b, c });
+    return true;
+  }
+
+private:
+  void updateConvexity(int i)
+  {
+    this->Convex[i] = cross(this->P[this->Prev[i]], this->P[i], this->P[this->Next[i]]) > 0;
+  }
+
+  bool isEar(int b)
+  {
+    if (!this->Convex[b])
+      return false;
+    const int a = this->Prev[b], c = this->Next[b];
+    std::size_t stale = 0;
+    for (int k : this->Blockers)
+    {
+      if (!this->Alive[k] || this->Convex[k])
+      {
+        ++stale;
+        continue;
+      }
+      // A corner at the same place as one of the ear's (where the boundary touches itself)
+      // leaves that place on the other side: it does not block the ear.
+      const Point2L& q = this->P[k];
+      if (q != this->P[a] && q != this->P[b] && q != this->P[c] &&
+        inClosedTriangle(this->P[a], this->P[b], this->P[c], q))
+        return false;
+    }
+    if (2 * stale > this->Blockers.size()) // corners only ever become convex or go
+    {
+      this->Blockers.erase(std::remove_if(this->Blockers.begin(),
+                             this->Blockers.end(),
+                             [&](int k) { return !this->Alive[k] || this->Convex[k]; }),
+        this->Blockers.end());
+    }
+    return true;
+  }
+
+  const std::vector<Point2L>& P;
+  std::vector<int> Next, Prev;
+  std::vector<char> Convex, Alive;
+  std::vector<int> Blockers; ///< corners that did not turn left when last looked at
+};
+
+} // namespace
+
+int orientation(const Point2L& a, const Point2L& b, const Point2L& c)
+{
+  return sign(cross(a, b, c));
+}
+
+__int128 doubledArea(const std::vector<Point2L>& corners)
+{
+  Wide sum = 0;
+  for (std::size_t i = 0; i < corners.size(); ++i)
+  {
+    const Point2L& p = corners[i];
+    const Point2L& q = corners[(i + 1) % corners.size()];
+    sum += Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
+  }
+  return sum;
+}
+
+bool isSimplePolygon(const std::vector<Point2L>& corners)
+{
+  const std::size_t n = corners.size();
+  if (n < 3)
+    return false;
+  std::vector<Point2L> sorted(corners);
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    return false;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point2L& a = corners[i];
+    const Point2L& b = corners[(i + 1) % n];
+    const Point2L& c = corners[(i + 2) % n];
+    // Consecutive edges meet only at b: they must not fold back onto each other.
+    if (cross(a, b, c) == 0 &&
+      Wide(b[0] - a[0]) * (c[0] - b[0]) + Wide(b[1] - a[1]) * (c[1] - b[1]) < 0)
+      return false;
+    for (std::size_t j = i + 2; j < n; ++j)
+    {
+      if ((j + 1) % n == i)
+        continue; // edge j ends where edge i starts
+      if (segmentsMeet(a, b, corners[j], corners[(j + 1) % n]))
+        return false;
+    }
+  }
+  return true;
+}
+
+std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corners)
+{
+  std::vector<Triangle> triangles;
+  if (corners.size() < 3 || doubledArea(corners) <= 0)
+    return triangles;
+  triangles.reserve(corners.size() - 2);
+  EarClipper clipper(corners);
+  if (!clipper.run(triangles))
+    triangles.clear();
+  return triangles;
+}
+
+bool fanCoversPolygon(const std::vector<Point2L>& corners, std::size_t apex)
+{
+  const std::size_t n = corners.size();
+  if (n < 3 || apex >= n || doubledArea(corners) <= 0)
+    return false;
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    if (cross(corners[apex], corners[(apex + i) % n], corners[(apex + i + 1) % n]) < 0)
+      return false;
+  }
+  return true;
+}
+
+ProjectionAlong::ProjectionAlong(const std::array<std::int64_t, 3>& n)
+{
+  int k = 0;
+  for (int d = 1; d < 3; ++d)
+    if (std::llabs(n[d]) > std::llabs(n[k]))
+      k = d;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  // n x e_d for a unit vector e_d.
+  auto crossAxis = [&](int d)
+  {
+    std::array<std::int64_t, 3> e{ 0, 0, 0 }, r;
+    e[d] = 1;
+    r[0] = n[1] * e[2] - n[2] * e[1];
+    r[1] = n[2] * e[0] - n[0] * e[2];
+    r[2] = n[0] * e[1] - n[1] * e[0];
+    return r;
+  };
+  this->U = crossAxis(i);
+  this->V = crossAxis(j);
+  if (n[k] < 0)
+    std::swap(this->U, this->V);
+}
+
+} // namespace vbr

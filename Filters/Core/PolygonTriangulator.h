@@ -1,0 +1,76 @@
+// Exact triangulation of simple polygons with integer corners, and the projection that turns
+// a non-planar loop of pointels into one.
+//
+// Ear clipping: a corner b (between a and c) is an ear when it turns strictly left and no
+// other corner lies in the closed triangle abc; cutting it off leaves a simple polygon, and a
+// simple polygon of n corners always has an ear (its triangulations have n - 2 triangles,
+// whose dual tree has two leaves or more), so n - 2 cuts triangulate it. Corners where the
+// boundary goes straight on (collinear with their neighbours) are kept: they are never ears
+// themselves, but they are corners of the triangles, so an edge a neighbouring face shares
+// with the polygon is an edge of its triangles too (no T-junctions, no new points). Only
+// corners that do not turn left can lie in an ear's triangle: of the corners in it, the one
+// farthest from ac has both neighbours no farther (no edge crosses ab or bc) and the inside
+// of the polygon above it, so it turns right or goes straight. Only those are tested.
+// Orientation tests are exact (128-bit products of 64-bit coordinates).
+//
+// The projection: a loop of pointels that lies on a surface crossed once by every line
+// parallel to a normal n (the boundary of a digital half-space with outward normal n, which
+// holds a standard face) projects along n to a simple polygon. Coordinates (u.p, v.p) with
+// u = n x e_i and v = n x e_j, for (i, j, k) a cyclic order of the axes with n_k != 0, are an
+// affine image of that projection (u x v = n_k n): integers, with the orientation seen from
+// the side n points to when n_k > 0 (u and v are swapped when n_k < 0).
+#ifndef vbr_PolygonTriangulator_h
+#define vbr_PolygonTriangulator_h
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vbr
+{
+
+using Point2L = std::array<std::int64_t, 2>;
+using Triangle = std::array<int, 3>;
+
+/// Sign of twice the signed area of triangle abc: +1 counter-clockwise, -1 clockwise, 0 flat.
+int orientation(const Point2L& a, const Point2L& b, const Point2L& c);
+
+/// Twice the signed area of a polygon (positive when counter-clockwise).
+__int128 doubledArea(const std::vector<Point2L>& corners);
+
+/// Whether the closed polygon is simple: no corner repeated, no two edges meeting except
+/// consecutive edges at their common corner (exact, quadratic).
+bool isSimplePolygon(const std::vector<Point2L>& corners);
+
+/// Triangles (indices into `corners`, counter-clockwise) covering a simple counter-clockwise
+/// polygon exactly: n - 2 of them, none flat. The polygon may also touch itself at corners
+/// without crossing (a corner repeated, as the loop of a face through a pointel where the
+/// object touches itself): each repetition is a corner of its own. Empty when the polygon
+/// has fewer than three corners or no ear is found (it was not simple or not
+/// counter-clockwise).
+std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corners);
+
+/// Whether the fan of triangles (apex, i, i + 1) over the polygon's corners covers a simple
+/// counter-clockwise polygon exactly (every triangle counter-clockwise or flat): then a
+/// renderer that draws the polygon as that fan (VTK does, from its first point) draws it right.
+bool fanCoversPolygon(const std::vector<Point2L>& corners, std::size_t apex);
+
+/// Exact 2D coordinates of 3D points projected along a normal (see the file comment).
+class ProjectionAlong
+{
+public:
+  explicit ProjectionAlong(const std::array<std::int64_t, 3>& normal);
+  template<typename Point3>
+  Point2L operator()(const Point3& p) const
+  {
+    return { this->U[0] * p[0] + this->U[1] * p[1] + this->U[2] * p[2],
+      this->V[0] * p[0] + this->V[1] * p[1] + this->V[2] * p[2] };
+  }
+
+private:
+  std::array<std::int64_t, 3> U{ 0, 0, 0 }, V{ 0, 0, 0 };
+};
+
+} // namespace vbr
+
+#endif
