@@ -19,6 +19,7 @@ vtkStandardNewMacro(vtkVoxelPhantomSource);
 vtkVoxelPhantomSource::vtkVoxelPhantomSource()
 {
   this->SetNumberOfInputPorts(0);
+  this->SetProgressText("Voxel Phantom");
 }
 
 //------------------------------------------------------------------------------
