@@ -105,8 +105,10 @@ public:
     SWEEP_ORDER = 1 ///< in the order the sweep meets the regions (labels in increasing order)
   };
 
-  /// ArrayComponent value that selects on the Euclidean norm of each tuple.
-  static constexpr int MAGNITUDE = -1;
+  enum ArrayComponents
+  {
+    MAGNITUDE = -1 ///< ArrayComponent value: the Euclidean norm of each tuple
+  };
 
   ///@{
   /**

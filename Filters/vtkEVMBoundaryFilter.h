@@ -90,8 +90,10 @@ public:
     SURFELS = 3
   };
 
-  /// ArrayComponent value that selects on the Euclidean norm of each tuple.
-  static constexpr int MAGNITUDE = -1;
+  enum ArrayComponents
+  {
+    MAGNITUDE = -1 ///< ArrayComponent value: the Euclidean norm of each tuple
+  };
 
   ///@{
   /**
