@@ -169,6 +169,20 @@ def check_label_count_warning():
                            "1001 distinct labels" in warnings[0] and "Range" in warnings[0])
 
 
+def check_api_defaults():
+    """The VTK classes keep their defaults (the plugin's Range and thresholds from the data
+    are XML defaults only)."""
+    for cls in FILTERS:
+        f = cls()
+        check.equal(cls.__name__ + ": default SelectionMode", f.GetSelectionModeAsString(),
+                    "Positive")
+        check.equal(cls.__name__ + ": default thresholds",
+                    (f.GetLowerThreshold(), f.GetUpperThreshold()),
+                    (1.0, 1e299))  # VTK_DOUBLE_MAX is 1.0e+299
+        check.equal(cls.__name__ + ": default ArrayComponent", f.GetArrayComponent(), 0)
+
+
+check_api_defaults()
 check_magnitude()
 for dtype, labels in ((np.int64, (2 ** 53, 2 ** 53 + 1)), (np.uint8, (7, 200)),
                       (np.float32, (0.5, 2.25)), (np.int64, (-(2 ** 62) - 1, 2 ** 62 + 3))):
