@@ -51,7 +51,7 @@ const char* const OrderNames[] = { "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX" };
 /// The CUDB of one selected object (a label, or the whole selection) and its components.
 struct ObjectBoxes
 {
-  double label = 1.0;
+  vbr::vtk::LabelValue label;
   Int3 offset{ 0, 0, 0 }; ///< box origin of the object, in processing axes
   vbr::CUDB cudb;
   vbr::Components components;
@@ -62,7 +62,7 @@ struct ObjectBoxes
 /// What is known of one connected component.
 struct Region
 {
-  double label = 1.0;
+  vbr::vtk::LabelValue label;
   std::int64_t voxels = 0;
   std::int64_t boxes = 0;
   std::array<double, 3> weightedCentre{ 0, 0, 0 }; ///< sum of voxel centres, processing axes
@@ -301,6 +301,7 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   const std::vector<Region>& regions,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
+  int labelType,
   vtkUnstructuredGrid* output)
 {
   const bool planar = grid.flatAxis >= 0;
@@ -340,15 +341,13 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   coordinates->SetNumberOfTuples(count * corners);
   vtkNew<vtkIdTypeArray> offsets, connectivity, boxIds;
   vtkNew<vtkIntArray> regionIds;
-  vtkNew<vtkDoubleArray> labels;
+  vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType, count);
   offsets->SetNumberOfValues(count + 1);
   connectivity->SetNumberOfValues(count * corners);
   boxIds->SetNumberOfValues(count);
   regionIds->SetNumberOfValues(count);
-  labels->SetNumberOfValues(count);
   boxIds->SetName("BoxId");
   regionIds->SetName("RegionId");
-  labels->SetName("Label");
   double* xyz = coordinates->GetPointer(0);
   vtkIdType cell = 0, boxBase = 0;
   offsets->SetValue(0, 0);
@@ -380,7 +379,7 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
       offsets->SetValue(cell + 1, (cell + 1) * corners);
       boxIds->SetValue(cell, boxBase + static_cast<vtkIdType>(b));
       regionIds->SetValue(cell, region.id);
-      labels->SetValue(cell, o.label);
+      vbr::vtk::setLabel(labels, cell, o.label);
       ++cell;
     }
     boxBase += static_cast<vtkIdType>(o.cudb.boxes.size());
@@ -397,11 +396,26 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   output->GetCellData()->SetActiveScalars("RegionId");
 }
 
+/// One table column per component of `array`, named `names`, of the array's type.
+void addColumnsOfComponents(vtkTable* table, vtkDataArray* array, const char* const* names)
+{
+  for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+  {
+    vtkSmartPointer<vtkDataArray> column;
+    column.TakeReference(vtkDataArray::CreateDataArray(array->GetDataType()));
+    column->SetName(names[c]);
+    column->SetNumberOfTuples(array->GetNumberOfTuples());
+    column->CopyComponent(0, array, c);
+    table->AddColumn(column);
+  }
+}
+
 /// Port 2: one row per kept region, in RegionId order.
 void writeRegionTable(const std::vector<Region>& regions,
   std::int32_t kept,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
+  int labelType,
   vtkTable* table)
 {
   std::vector<const Region*> byId(static_cast<std::size_t>(kept), nullptr);
@@ -409,10 +423,10 @@ void writeRegionTable(const std::vector<Region>& regions,
     if (r.id > 0)
       byId[r.id - 1] = &r;
   vtkNew<vtkIntArray> ids, indexBounds;
-  vtkNew<vtkDoubleArray> labels, volumes, bounds, centroids;
+  vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType);
+  vtkNew<vtkDoubleArray> volumes, bounds, centroids;
   vtkNew<vtkIdTypeArray> voxels, boxes;
   ids->SetName("RegionId");
-  labels->SetName("Label");
   voxels->SetName("VoxelCount");
   volumes->SetName("Volume");
   indexBounds->SetName("IndexBounds");
@@ -426,7 +440,7 @@ void writeRegionTable(const std::vector<Region>& regions,
   for (const Region* r : byId)
   {
     ids->InsertNextValue(r->id);
-    labels->InsertNextValue(r->label);
+    vbr::vtk::appendLabel(labels, r->label);
     voxels->InsertNextValue(static_cast<vtkIdType>(r->voxels));
     volumes->InsertNextValue(static_cast<double>(r->voxels) * measure);
     boxes->InsertNextValue(static_cast<vtkIdType>(r->boxes));
@@ -469,8 +483,14 @@ void writeRegionTable(const std::vector<Region>& regions,
   table->AddColumn(labels);
   table->AddColumn(voxels);
   table->AddColumn(volumes);
-  table->AddColumn(indexBounds);
-  table->AddColumn(bounds);
+  // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
+  static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
+  static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
+  addColumnsOfComponents(table, indexBounds, indexNames);
+  addColumnsOfComponents(table, bounds, worldNames);
+  centroids->SetComponentName(0, "X");
+  centroids->SetComponentName(1, "Y");
+  centroids->SetComponentName(2, "Z");
   table->AddColumn(centroids);
   table->AddColumn(boxes);
 }
@@ -513,6 +533,7 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
   this->SetNumberOfOutputPorts(3);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
+  this->SetProgressText("CUDB Connectivity");
 }
 
 //------------------------------------------------------------------------------
@@ -788,9 +809,9 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     vtkLogScopeF(TRACE, "boxes and region table");
     if (this->GenerateBoxes)
     {
-      writeBoxes(objects, regions, grid, axes, boxesOutput);
+      writeBoxes(objects, regions, grid, axes, in.labelType, boxesOutput);
     }
-    writeRegionTable(regions, kept, grid, axes, table);
+    writeRegionTable(regions, kept, grid, axes, in.labelType, table);
   }
   summary.write(output->GetFieldData());
   summary.write(boxesOutput->GetFieldData());

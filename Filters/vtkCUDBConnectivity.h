@@ -28,9 +28,13 @@
  * direction matrix or a negative spacing makes boxes not axis-aligned) with cell arrays `RegionId`,
  * `BoxId` (the box's index in the CUDB) and `Label`.
  * - Port 2: a vtkTable with one row per kept region: `RegionId`, `Label`, `VoxelCount`,
- *   `Volume` (world units; the area for a 2D image), `IndexBounds` (first and last voxel
- *   index along i, j, k), `Bounds` (world bounds of the voxels, xmin, xmax, ..), `Centroid`
- *   (world) and `NumberOfBoxes`.
+ *   `Volume` (world units; the area for a 2D image), `IMin`, `IMax`, `JMin`, `JMax`, `KMin`,
+ *   `KMax` (first and last voxel index along i, j, k), `XMin`, `XMax`, `YMin`, `YMax`, `ZMin`,
+ *   `ZMax` (world bounds of the voxels), `Centroid` (world; components X, Y, Z) and
+ *   `NumberOfBoxes`.
+ *
+ * `Label` (boxes and table) is the selected label (1 outside Labels mode) in the data type of
+ * the selected values: the input array's type (double for MAGNITUDE), so every label is exact.
  *
  * Every output carries the field data `NumberOfRegions` (kept), `NumberOfComponents` (found),
  * `NumberOfBoxes` (CUDB), `NumberOfOUDBBoxes` (what the OUDB of the same sorting would have),
@@ -101,9 +105,15 @@ public:
     SWEEP_ORDER = 1 ///< in the order the sweep meets the regions (labels in increasing order)
   };
 
+  enum ArrayComponents
+  {
+    MAGNITUDE = -1 ///< ArrayComponent value: the Euclidean norm of each tuple
+  };
+
   ///@{
   /**
-   * How voxels are selected. The default is POSITIVE (value > 0).
+   * How voxels are selected. The default is POSITIVE (value > 0). (The ParaView plugin's
+   * default is Range, with thresholds from the selected array's range: see the XML.)
    */
   vtkSetClampMacro(SelectionMode, int, POSITIVE, LABELS);
   vtkGetMacro(SelectionMode, int);
@@ -116,6 +126,8 @@ public:
   ///@{
   /**
    * Inclusive range of selected values in RANGE mode. The default is [1, VTK_DOUBLE_MAX].
+   * (The ParaView plugin's defaults follow the selected array's range [min, max]: the lower
+   * threshold at its middle, (min + max) / 2 as for ParaView's Contour, the upper at max.)
    */
   vtkSetMacro(LowerThreshold, double);
   vtkGetMacro(LowerThreshold, double);
@@ -133,10 +145,14 @@ public:
 
   ///@{
   /**
-   * Component of the input array to use. The default is 0.
+   * Component of the input array to use: 0 to N - 1 for an array of N components, or
+   * MAGNITUDE (-1; N means the same, as in ParaView's component selectors and vtkThreshold)
+   * for the Euclidean norm of each tuple, sqrt(v0^2 + ... + v(N-1)^2) computed in double;
+   * Labels mode then labels by the norms and Label is a double. The default is 0.
    */
-  vtkSetClampMacro(ArrayComponent, int, 0, VTK_INT_MAX);
+  vtkSetClampMacro(ArrayComponent, int, MAGNITUDE, VTK_INT_MAX);
   vtkGetMacro(ArrayComponent, int);
+  void SetArrayComponentToMagnitude() { this->SetArrayComponent(MAGNITUDE); }
   ///@}
 
   ///@{
@@ -158,6 +174,12 @@ public:
    */
   vtkSetClampMacro(SortingOrder, int, XYZ, AUTO);
   vtkGetMacro(SortingOrder, int);
+  void SetSortingOrderToXYZ() { this->SetSortingOrder(XYZ); }
+  void SetSortingOrderToXZY() { this->SetSortingOrder(XZY); }
+  void SetSortingOrderToYXZ() { this->SetSortingOrder(YXZ); }
+  void SetSortingOrderToYZX() { this->SetSortingOrder(YZX); }
+  void SetSortingOrderToZXY() { this->SetSortingOrder(ZXY); }
+  void SetSortingOrderToZYX() { this->SetSortingOrder(ZYX); }
   void SetSortingOrderToAuto() { this->SetSortingOrder(AUTO); }
   const char* GetSortingOrderAsString();
   ///@}

@@ -134,7 +134,7 @@ public:
     std::size_t n,
     vtkIdType faceId,
     int loopType,
-    double label,
+    const vbr::vtk::LabelValue& label,
     vtkIdType parent,
     int depth)
   {
@@ -169,12 +169,10 @@ public:
     vtkCellData* cd = output->GetCellData();
     cd->AddArray(toArray<vtkIdTypeArray>(this->FaceId, "FaceId"));
     cd->AddArray(toArray<vtkIntArray>(this->LoopType, "LoopType"));
-    vtkSmartPointer<vtkDataArray> label;
-    label.TakeReference(vtkDataArray::CreateDataArray(labelType));
-    label->SetName("Label");
-    label->SetNumberOfTuples(static_cast<vtkIdType>(this->Label.size()));
+    vtkSmartPointer<vtkDataArray> label =
+      vbr::vtk::newLabelArray(labelType, static_cast<vtkIdType>(this->Label.size()));
     for (std::size_t c = 0; c < this->Label.size(); ++c)
-      label->SetTuple1(static_cast<vtkIdType>(c), this->Label[c]);
+      vbr::vtk::setLabel(label, static_cast<vtkIdType>(c), this->Label[c]);
     cd->AddArray(label);
     if (planar)
     {
@@ -217,7 +215,7 @@ private:
   std::vector<vtkIdType> Connectivity;
   std::vector<vtkIdType> FaceId, ParentFace;
   std::vector<int> LoopType, Depth;
-  std::vector<double> Label;
+  std::vector<vbr::vtk::LabelValue> Label;
 };
 
 /// One cell per surfel (a unit square, or a unit segment of a 2D image), pixel on the left.
@@ -401,6 +399,7 @@ vtkEVMBoundaryFilter::vtkEVMBoundaryFilter()
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
+  this->SetProgressText("EVM Boundary");
 }
 
 //------------------------------------------------------------------------------
@@ -549,8 +548,9 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
 
   {
     vtkLogScopeF(TRACE, "hand the output to VTK");
-    builder.finish(output, planar, lines, scalars->GetDataType());
+    builder.finish(output, planar, lines, in.labelType);
   }
+  vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
   writeStatistics(stats, output->GetFieldData());
   return 1;
 }

@@ -42,10 +42,13 @@
  *   comparison.
  *
  * Cell arrays: `FaceId` (shared by a face's loops, polygons or triangles), `LoopType` (0
- * outer, 1 hole; triangles and Polygons pieces 0), `Label` (the selected label, or 1 outside Labels
- * mode). For 2D images also `ParentFace` (for a hole: its face; for a face inside a hole: the face
- * owning that hole; -1 at top level) and `Depth` (outer faces 0, their holes 1, faces inside them
- * 2, ...); the hole loops themselves are in the Loops and Polylines outputs.
+ * outer, 1 hole; triangles and Polygons pieces 0), `Label` (the selected label, or 1 outside
+ * Labels mode, in the data type of the selected values: the input array's, double for
+ * MAGNITUDE; so every label is exact), `FaceColor` (a hash of FaceId in [0, 1), for colouring:
+ * neighbouring faces get unrelated values). The active cell scalars are Label in Labels mode,
+ * else FaceColor. For 2D images also `ParentFace` (for a hole: its face; for a face inside a
+ * hole: the face owning that hole; -1 at top level) and `Depth` (outer faces 0, their holes 1,
+ * faces inside them 2, ...); the hole loops themselves are in the Loops and Polylines outputs.
  *
  * Field data: `NumberOfVoxels`, `NumberOfExtremeVertices`, `NumberOfSurfels`,
  * `NumberOfFaces`, `NumberOfHoles`, `NumberOfNonManifoldVertices` and
@@ -99,9 +102,15 @@ public:
     LOOPS = 4
   };
 
+  enum ArrayComponents
+  {
+    MAGNITUDE = -1 ///< ArrayComponent value: the Euclidean norm of each tuple
+  };
+
   ///@{
   /**
-   * How voxels are selected. The default is POSITIVE (value > 0).
+   * How voxels are selected. The default is POSITIVE (value > 0). (The ParaView plugin's
+   * default is Range, with thresholds from the selected array's range: see the XML.)
    */
   vtkSetClampMacro(SelectionMode, int, POSITIVE, LABELS);
   vtkGetMacro(SelectionMode, int);
@@ -114,6 +123,8 @@ public:
   ///@{
   /**
    * Inclusive range of selected values in RANGE mode. The default is [1, VTK_DOUBLE_MAX].
+   * (The ParaView plugin's defaults follow the selected array's range [min, max]: the lower
+   * threshold at its middle, (min + max) / 2 as for ParaView's Contour, the upper at max.)
    */
   vtkSetMacro(LowerThreshold, double);
   vtkGetMacro(LowerThreshold, double);
@@ -131,10 +142,14 @@ public:
 
   ///@{
   /**
-   * Component of the input array to use. The default is 0.
+   * Component of the input array to use: 0 to N - 1 for an array of N components, or
+   * MAGNITUDE (-1; N means the same, as in ParaView's component selectors and vtkThreshold)
+   * for the Euclidean norm of each tuple, sqrt(v0^2 + ... + v(N-1)^2) computed in double;
+   * Labels mode then labels by the norms and Label is a double. The default is 0.
    */
-  vtkSetClampMacro(ArrayComponent, int, 0, VTK_INT_MAX);
+  vtkSetClampMacro(ArrayComponent, int, MAGNITUDE, VTK_INT_MAX);
   vtkGetMacro(ArrayComponent, int);
+  void SetArrayComponentToMagnitude() { this->SetArrayComponent(MAGNITUDE); }
   ///@}
 
   ///@{

@@ -46,7 +46,7 @@ using Int3 = std::array<std::int32_t, 3>;
 /// Faces of one selected object, with what the output needs.
 struct ObjectFaces
 {
-  double label = 1.0;
+  vbr::vtk::LabelValue label;
   Int3 offset{ 0, 0, 0 }; ///< the object's box in the grid
   vbr::SurfelGraph graph;
   vbr::Polyhedron poly;
@@ -107,16 +107,16 @@ bool mirrored(const vbr::vtk::VoxelGrid& grid)
 class OutputBuilder
 {
 public:
-  OutputBuilder(const vbr::vtk::VoxelGrid& grid)
+  OutputBuilder(const vbr::vtk::VoxelGrid& grid, int labelType)
     : Grid(grid)
     , Reverse(mirrored(grid))
+    , Labels(vbr::vtk::newLabelArray(labelType))
   {
     this->FaceIds->SetName("FaceId");
     this->Normals->SetName("PlaneNormal");
     this->Normals->SetNumberOfComponents(3);
     this->Offsets->SetName("PlaneOffset");
     this->Sizes->SetName("SurfelCount");
-    this->Labels->SetName("Label");
   }
 
   void addObject(const ObjectFaces& o, int mode)
@@ -231,7 +231,7 @@ private:
     this->Lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
     this->OtherFaceIds->InsertNextValue(static_cast<int>(this->FaceBase + other));
-    this->Labels->InsertNextValue(o.label);
+    vbr::vtk::appendLabel(this->Labels, o.label);
   }
 
   static std::vector<std::vector<std::uint32_t>> loopsOf(const ObjectFaces& o)
@@ -360,7 +360,7 @@ private:
     this->Offsets->InsertNextValue(static_cast<vtkIdType>(
       face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
     this->Sizes->InsertNextValue(static_cast<int>(face.surfels.size()));
-    this->Labels->InsertNextValue(o.label);
+    vbr::vtk::appendLabel(this->Labels, o.label);
   }
 
   const vbr::vtk::VoxelGrid& Grid;
@@ -375,7 +375,7 @@ private:
   vtkNew<vtkIntArray> Normals;
   vtkNew<vtkIdTypeArray> Offsets;
   vtkNew<vtkIntArray> Sizes;
-  vtkNew<vtkDoubleArray> Labels;
+  vtkSmartPointer<vtkDataArray> Labels; ///< of the selected values' type
 };
 
 /// The voxel grid for vtkStandardPlaneReversion: world position of corner (0, 0, 0) (axis
@@ -469,6 +469,7 @@ vtkStandardPlanePolyhedrizer::vtkStandardPlanePolyhedrizer()
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
+  this->SetProgressText("Standard Plane Polyhedrizer");
 }
 
 vtkStandardPlanePolyhedrizer::~vtkStandardPlanePolyhedrizer() = default;
@@ -615,13 +616,14 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   }
 
   Statistics stats;
-  OutputBuilder builder(grid);
+  OutputBuilder builder(grid, in.labelType);
   for (const ObjectFaces& o : objects)
   {
     stats.add(o);
     builder.addObject(o, this->OutputMode);
   }
   builder.finish(output);
+  vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
   stats.write(output->GetFieldData());
   writeGrid(grid, output->GetFieldData());
   this->UpdateProgress(0.95);

@@ -43,12 +43,15 @@
  *   standard vertices (a closed polyline where two faces meet along a whole loop), with the
  *   cell arrays `FaceId` and `OtherFaceId` (the faces on either side) and `Label`.
  * Cell arrays (per triangle, polygon or quad, those of its face): `FaceId`, `PlaneNormal`
- * (a, b, c), `PlaneOffset` (mu), `SurfelCount` and `Label`. The plane coefficients are in the
- * image's corner index space: voxel (i, j, k), counted from the first voxel of the extent, spans
- * the corners i..i+1, j..j+1, k..k+1. Field data: `NumberOfSurfels`, `NumberOfFaces`,
- * `MinimumFaceSize`, `MeanFaceSize`, `MaximumFaceSize`, `NumberOfStandardVertices`,
- * `NumberOfBoundaryComponents`, and the grid for vtkStandardPlaneReversion (`VoxelGridOrigin`,
- * `VoxelGridSpacing`, `VoxelGridDimensions`).
+ * (a, b, c), `PlaneOffset` (mu), `SurfelCount`, `Label` (the selected label, 1 outside Labels
+ * mode, in the selected values' data type: the input array's, double for MAGNITUDE) and
+ * `FaceColor` (a hash of FaceId in [0, 1) for colouring; the active cell scalars are Label in
+ * Labels mode, else FaceColor). The plane coefficients are in the image's corner index space:
+ * voxel (i, j, k), counted from the first voxel of the extent, spans the corners i..i+1,
+ * j..j+1, k..k+1. Field data: `NumberOfSurfels`, `NumberOfFaces`, `MinimumFaceSize`,
+ * `MeanFaceSize`, `MaximumFaceSize`, `NumberOfStandardVertices`, `NumberOfBoundaryComponents`,
+ * and the grid for vtkStandardPlaneReversion (`VoxelGridOrigin`, `VoxelGridSpacing`,
+ * `VoxelGridDimensions`).
  *
  * Output port 1: the reversion, an image with the input's structure and an unsigned char
  * array `Selection` (1 on the selected voxels, with the association of the input scalars),
@@ -90,9 +93,15 @@ public:
     TRIANGULATED_FACES = 4
   };
 
+  enum ArrayComponents
+  {
+    MAGNITUDE = -1 ///< ArrayComponent value: the Euclidean norm of each tuple
+  };
+
   ///@{
   /**
-   * How voxels are selected. The default is POSITIVE (value > 0).
+   * How voxels are selected. The default is POSITIVE (value > 0). (The ParaView plugin's
+   * default is Range, with thresholds from the selected array's range: see the XML.)
    */
   vtkSetClampMacro(SelectionMode, int, POSITIVE, LABELS);
   vtkGetMacro(SelectionMode, int);
@@ -105,6 +114,8 @@ public:
   ///@{
   /**
    * Inclusive range of selected values in RANGE mode. The default is [1, VTK_DOUBLE_MAX].
+   * (The ParaView plugin's defaults follow the selected array's range [min, max]: the lower
+   * threshold at its middle, (min + max) / 2 as for ParaView's Contour, the upper at max.)
    */
   vtkSetMacro(LowerThreshold, double);
   vtkGetMacro(LowerThreshold, double);
@@ -122,10 +133,14 @@ public:
 
   ///@{
   /**
-   * Component of the input array to use. The default is 0.
+   * Component of the input array to use: 0 to N - 1 for an array of N components, or
+   * MAGNITUDE (-1; N means the same, as in ParaView's component selectors and vtkThreshold)
+   * for the Euclidean norm of each tuple, sqrt(v0^2 + ... + v(N-1)^2) computed in double;
+   * Labels mode then labels by the norms and Label is a double. The default is 0.
    */
-  vtkSetClampMacro(ArrayComponent, int, 0, VTK_INT_MAX);
+  vtkSetClampMacro(ArrayComponent, int, MAGNITUDE, VTK_INT_MAX);
   vtkGetMacro(ArrayComponent, int);
+  void SetArrayComponentToMagnitude() { this->SetArrayComponent(MAGNITUDE); }
   ///@}
 
   ///@{

@@ -1,6 +1,7 @@
 #include "vtkStandardPlaneReversion.h"
 
 #include "Polyhedrization.h"
+#include "vtkVoxelBRepAdapters.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -68,7 +69,10 @@ bool rotated(vtkFieldData* fd)
 
 } // namespace
 
-vtkStandardPlaneReversion::vtkStandardPlaneReversion() = default;
+vtkStandardPlaneReversion::vtkStandardPlaneReversion()
+{
+  this->SetProgressText("Standard Plane Reversion");
+}
 vtkStandardPlaneReversion::~vtkStandardPlaneReversion() = default;
 
 int vtkStandardPlaneReversion::FillInputPortInformation(int, vtkInformation* info)
@@ -130,7 +134,7 @@ int vtkStandardPlaneReversion::RequestData(vtkInformation*,
   const bool mirrored = grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
 
   // Outlines by label: corners from world points, loops in the faces' orientation.
-  std::map<double, std::vector<vbr::FaceOutline>> byLabel;
+  std::map<vbr::vtk::LabelValue, std::vector<vbr::FaceOutline>> byLabel; // exact labels
   vtkCellArray* polys = input->GetPolys();
   polys->InitTraversal();
   vtkIdType npts;
@@ -151,7 +155,8 @@ int vtkStandardPlaneReversion::RequestData(vtkInformation*,
           static_cast<std::int32_t>(std::lround((p[d] - grid.origin[d]) / grid.spacing[d]));
       outline.loop.push_back(corner);
     }
-    byLabel[labels ? labels->GetTuple1(c) : 1.0].push_back(std::move(outline));
+    byLabel[labels ? vbr::vtk::labelAt(labels, c) : vbr::vtk::LabelValue()].push_back(
+      std::move(outline));
     if (c % 1024 == 0)
       this->UpdateProgress(0.5 * c / std::max<vtkIdType>(cells, 1));
   }
@@ -164,13 +169,9 @@ int vtkStandardPlaneReversion::RequestData(vtkInformation*,
   selection->SetName("Selection");
   selection->SetNumberOfValues(n);
   selection->FillValue(0);
-  vtkNew<vtkDoubleArray> labelValues;
-  labelValues->SetName("Label");
-  if (labels)
-  {
-    labelValues->SetNumberOfValues(n);
-    labelValues->FillValue(0);
-  }
+  // Label of the faces' type, so that every label is exact.
+  vtkSmartPointer<vtkDataArray> labelValues =
+    vbr::vtk::newLabelArray(labels ? labels->GetDataType() : VTK_DOUBLE, labels ? n : 0);
   for (const auto& [label, outlines] : byLabel)
   {
     std::vector<vbr::SurfelGraph::Surfel> surfels;
@@ -190,7 +191,7 @@ int vtkStandardPlaneReversion::RequestData(vtkInformation*,
           {
             selection->SetValue(i, 1);
             if (labels)
-              labelValues->SetValue(i, label);
+              vbr::vtk::setLabel(labelValues, i, label);
           }
   }
   output->GetCellData()->SetScalars(selection);

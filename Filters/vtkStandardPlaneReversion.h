@@ -11,9 +11,9 @@
  * The voxel grid comes from the field data the polyhedrizer writes: `VoxelGridOrigin` (world
  * position of voxel corner (0, 0, 0)), `VoxelGridSpacing` and `VoxelGridDimensions` (voxels
  * along each axis). The output is an image whose cells are those voxels, with an unsigned char
- * cell array `Selection` (1 on the voxels) and, for label maps, a double array `Label`.
- * Faces made from an image with a direction matrix (field `VoxelGridDirection` not the
- * identity) are not supported: the filter reports an error.
+ * cell array `Selection` (1 on the voxels) and, for label maps, an array `Label` of the faces'
+ * Label type (labels stay exact). Faces made from an image with a direction matrix (field
+ * `VoxelGridDirection` not the identity) are not supported: the filter reports an error.
  *
  * @sa vtkStandardPlanePolyhedrizer
  */

@@ -1,8 +1,11 @@
 #include "vtkVoxelBRepAdapters.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCellData.h"
 #include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -10,6 +13,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
+#include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSetGet.h"
 
@@ -295,7 +299,7 @@ const char* selectionModeName(int mode)
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,
   int association,
-  int component,
+  int& component,
   bool flatImagesAs2D,
   vtkSmartPointer<vtkDataArray>& contiguous,
   VoxelGrid& grid)
@@ -305,15 +309,23 @@ std::string readVoxels(vtkImageData* image,
   {
     return "The input array must be point or cell data.";
   }
-  if (component >= scalars->GetNumberOfComponents())
+  const int components = scalars->GetNumberOfComponents();
+  if (component < MagnitudeComponent || component > components)
   {
     std::ostringstream msg;
     msg << "ArrayComponent " << component << " is out of range: the array '"
-        << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-        << scalars->GetNumberOfComponents() << " component(s).";
+        << (scalars->GetName() ? scalars->GetName() : "") << "' has " << components
+        << " component(s) (0 to " << components - 1 << ", or " << MagnitudeComponent << " or "
+        << components << " for the magnitude).";
     return msg.str();
   }
-  if (!scalars->HasStandardMemoryLayout())
+  if (component == MagnitudeComponent || component == components)
+  {
+    contiguous = tupleNorms(scalars);
+    scalars = contiguous;
+    component = 0;
+  }
+  else if (!scalars->HasStandardMemoryLayout())
   {
     // The kernels read raw values: other layouts (SOA, implicit arrays) are copied once.
     contiguous.TakeReference(vtkDataArray::CreateDataArray(scalars->GetDataType()));
@@ -344,13 +356,9 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   if (settings.mode == SelectRange && settings.lower > settings.upper)
     vtkWarningWithObjectMacro(
       algorithm, << "LowerThreshold > UpperThreshold: nothing is selected.");
-  const std::string problem = readVoxels(image,
-    scalars,
-    association,
-    settings.component,
-    settings.flatImagesAs2D,
-    out.contiguous,
-    out.grid);
+  int component = settings.component;
+  const std::string problem = readVoxels(
+    image, scalars, association, component, settings.flatImagesAs2D, out.contiguous, out.grid);
   if (!problem.empty())
   {
     vtkErrorWithObjectMacro(algorithm, << problem);
@@ -367,8 +375,9 @@ bool readInputObjects(vtkAlgorithm* algorithm,
       return false;
     }
   out.axes = processingAxes(out.grid);
+  out.labelType = scalars->GetDataType();
   const bool known = dispatchScalars(scalars,
-    settings.component,
+    component,
     out.grid,
     [&](auto scalarGrid)
     {
@@ -383,6 +392,13 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     vtkErrorWithObjectMacro(
       algorithm, << "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
     return false;
+  }
+  if (settings.mode == SelectLabels && out.objects.size() > ManyLabels)
+  {
+    vtkWarningWithObjectMacro(algorithm,
+      << "Labels mode: the selected array has " << out.objects.size()
+      << " distinct labels, each extracted on its own; this can take very long. For a grey-value "
+         "image use Selection Mode Range (a threshold) instead.");
   }
   return true;
 }
@@ -413,7 +429,127 @@ void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& sett
   os << indent << "LowerThreshold: " << settings.lower << "\n";
   os << indent << "UpperThreshold: " << settings.upper << "\n";
   os << indent << "BackgroundValue: " << settings.background << "\n";
-  os << indent << "ArrayComponent: " << settings.component << "\n";
+  os << indent << "ArrayComponent: " << settings.component
+     << (settings.component == MagnitudeComponent ? " (Magnitude)\n" : "\n");
+}
+
+namespace
+{
+template<typename T>
+void normsOf(const T* values, int nc, vtkIdType n, double* norms)
+{
+  vtkSMPTools::For(vtkIdType(0),
+    n,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType t = b; t < e; ++t)
+      {
+        double sum = 0.0;
+        for (int c = 0; c < nc; ++c)
+        {
+          const double v = static_cast<double>(values[t * nc + c]);
+          sum += v * v;
+        }
+        norms[t] = std::sqrt(sum);
+      }
+    });
+}
+
+/// splitmix64's finaliser: consecutive ids give unrelated values.
+std::uint64_t mixBits(std::uint64_t x)
+{
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+} // namespace
+
+vtkSmartPointer<vtkDataArray> tupleNorms(vtkDataArray* scalars)
+{
+  vtkSmartPointer<vtkDataArray> source = scalars;
+  if (!scalars->HasStandardMemoryLayout())
+  {
+    source.TakeReference(vtkDataArray::CreateDataArray(scalars->GetDataType()));
+    source->DeepCopy(scalars);
+  }
+  auto norms = vtkSmartPointer<vtkDoubleArray>::New();
+  norms->SetName(scalars->GetName());
+  const vtkIdType n = source->GetNumberOfTuples();
+  norms->SetNumberOfValues(n);
+  const int nc = source->GetNumberOfComponents();
+  void* raw = source->GetVoidPointer(0);
+  switch (source->GetDataType())
+  {
+    vtkTemplateMacro(normsOf(static_cast<const VTK_TT*>(raw), nc, n, norms->GetPointer(0)));
+    default:
+      for (vtkIdType t = 0; t < n; ++t)
+      {
+        double sum = 0.0;
+        for (int c = 0; c < nc; ++c)
+          sum += source->GetComponent(t, c) * source->GetComponent(t, c);
+        norms->SetValue(t, std::sqrt(sum));
+      }
+  }
+  return norms;
+}
+
+vtkSmartPointer<vtkDataArray> newLabelArray(int dataType, vtkIdType n)
+{
+  vtkSmartPointer<vtkDataArray> labels;
+  labels.TakeReference(vtkDataArray::CreateDataArray(dataType));
+  labels->SetName("Label");
+  labels->SetNumberOfTuples(n);
+  if (n > 0)
+    std::memset(
+      labels->GetVoidPointer(0), 0, static_cast<std::size_t>(n) * labels->GetDataTypeSize());
+  return labels;
+}
+
+void setLabel(vtkDataArray* labels, vtkIdType i, const LabelValue& label)
+{
+  switch (labels->GetDataType())
+  {
+    vtkTemplateMacro(static_cast<VTK_TT*>(labels->GetVoidPointer(0))[i] = label.as<VTK_TT>());
+  }
+}
+
+void appendLabel(vtkDataArray* labels, const LabelValue& label)
+{
+  const vtkIdType i = labels->GetNumberOfTuples();
+  labels->InsertNextTuple1(0.0);
+  setLabel(labels, i, label);
+}
+
+LabelValue labelAt(vtkDataArray* labels, vtkIdType i)
+{
+  switch (labels->GetDataType())
+  {
+    vtkTemplateMacro(return LabelValue::of(
+      static_cast<const VTK_TT*>(labels->GetVoidPointer(0))[i * labels->GetNumberOfComponents()]));
+  }
+  return LabelValue::of(labels->GetComponent(i, 0));
+}
+
+void setBoundaryColoring(vtkPolyData* output, bool labelsMode)
+{
+  vtkCellData* cd = output->GetCellData();
+  vtkDataArray* faceIds = cd->GetArray("FaceId");
+  if (!faceIds)
+    return;
+  const vtkIdType n = faceIds->GetNumberOfTuples();
+  vtkNew<vtkFloatArray> colors;
+  colors->SetName("FaceColor");
+  colors->SetNumberOfValues(n);
+  float* out = colors->GetPointer(0);
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    // 24 bits of the hash: exact in a float, in [0, 1).
+    const auto id = static_cast<std::int64_t>(faceIds->GetComponent(c, 0));
+    out[c] = static_cast<float>(mixBits(static_cast<std::uint64_t>(id)) >> 40) / 16777216.0f;
+  }
+  cd->AddArray(colors);
+  cd->SetActiveScalars(labelsMode && cd->GetArray("Label") ? "Label" : "FaceColor");
 }
 
 } // namespace vtk

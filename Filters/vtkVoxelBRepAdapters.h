@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
@@ -26,6 +28,7 @@ class vtkAlgorithm;
 class vtkFieldData;
 class vtkImageData;
 class vtkInformationVector;
+class vtkPolyData;
 
 namespace vbr
 {
@@ -66,11 +69,13 @@ std::string describeVoxels(vtkImageData* image,
 /// Checks the input array of a filter and describes its voxels: point or cell data, the
 /// component in range, tuples matching the image. Arrays not stored as contiguous tuples
 /// (SOA, implicit arrays) are copied once into `contiguous`, and `scalars` then points to
-/// the copy. Returns an error message, or an empty string.
+/// the copy; for the magnitude (MagnitudeComponent, or the number of components) the copy is
+/// the norms of the tuples and `component` becomes 0. Returns an error message, or an empty
+/// string.
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,
   int association,
-  int component,
+  int& component,
   bool flatImagesAs2D,
   vtkSmartPointer<vtkDataArray>& contiguous,
   VoxelGrid& grid);
@@ -95,10 +100,46 @@ enum SelectionMode
   SelectLabels = 2    ///< every distinct value other than the background, each on its own
 };
 
+/// A label exactly as the selected values' type holds it (int64 labels above 2^53 stay
+/// exact, unlike through a double): the value's bytes, read back in that type. The type is
+/// the data type of the Label arrays (see newLabelArray).
+struct LabelValue
+{
+  std::uint64_t bits = 0;
+
+  template<typename T>
+  static LabelValue of(T value)
+  {
+    static_assert(sizeof(T) <= sizeof(std::uint64_t), "labels are at most 64 bits");
+    LabelValue label;
+    std::memcpy(&label.bits, &value, sizeof value);
+    return label;
+  }
+  template<typename T>
+  T as() const
+  {
+    T value;
+    std::memcpy(&value, &this->bits, sizeof value);
+    return value;
+  }
+  bool operator<(const LabelValue& other) const { return this->bits < other.bits; }
+  bool operator==(const LabelValue& other) const { return this->bits == other.bits; }
+};
+
+/// A `Label` array of n values of `dataType` (the selected values' type, so that every
+/// label is exact), zeros.
+vtkSmartPointer<vtkDataArray> newLabelArray(int dataType, vtkIdType n = 0);
+/// Writes value i of a Label array (of the type the label was made in).
+void setLabel(vtkDataArray* labels, vtkIdType i, const LabelValue& label);
+/// Appends a value to a Label array.
+void appendLabel(vtkDataArray* labels, const LabelValue& label);
+/// Value i of an array as a label of its type (what reading a Label array back gives).
+LabelValue labelAt(vtkDataArray* labels, vtkIdType i);
+
 /// One selected object: a label (or the whole selection) and its voxels in a box.
 struct Selected
 {
-  double label = 1.0;
+  LabelValue label;
   std::array<std::int32_t, 3> offset{ 0, 0, 0 }; ///< box origin, in permuted axes
   /// Builds the object's voxels in its box when it is processed, so that only one object's
   /// voxels are in memory at a time.
@@ -115,10 +156,10 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
   double background)
 {
   std::vector<Selected> out;
-  auto add = [&out, &grid](double label, const Box3& box, auto selected)
+  auto add = [&out, &grid](T label, const Box3& box, auto selected)
   {
     Selected s;
-    s.label = label;
+    s.label = LabelValue::of(label);
     s.offset = box.lo;
     s.select = [grid, box, selected](const Execution& exec)
     { return selectVoxels(grid, box, selected, exec); };
@@ -136,12 +177,12 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
       labelBoxes(grid, hasBackground ? &typedBackground : static_cast<const T*>(nullptr)))
     {
       const T label = entry.first;
-      add(static_cast<double>(label), entry.second, [label](T v) { return v == label; });
+      add(label, entry.second, [label](T v) { return v == label; });
     }
   }
   else if (mode == SelectPositive)
   {
-    add(1.0, whole, [](T v) { return v > T(0); });
+    add(T(1), whole, [](T v) { return v > T(0); });
   }
   else if (std::is_integral<T>::value)
   {
@@ -154,16 +195,16 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
       // Clamp in double, convert only values the type holds (no out-of-range cast).
       const T first = lo <= typeMin ? std::numeric_limits<T>::lowest() : static_cast<T>(lo);
       const T last = hi >= typeMax ? std::numeric_limits<T>::max() : static_cast<T>(hi);
-      add(1.0, whole, [first, last](T v) { return v >= first && v <= last; });
+      add(T(1), whole, [first, last](T v) { return v >= first && v <= last; });
     }
     else
     {
-      add(1.0, whole, [](T) { return false; });
+      add(T(1), whole, [](T) { return false; });
     }
   }
   else
   {
-    add(1.0,
+    add(T(1),
       whole,
       [lower, upper](T v)
       {
@@ -229,6 +270,14 @@ bool dispatchScalars(vtkDataArray* scalars, int component, const VoxelGrid& grid
   return true;
 }
 
+/// ArrayComponent value that selects on the Euclidean norm of each tuple (the number of
+/// components, what ParaView's component selectors and vtkThreshold use, means the same).
+constexpr int MagnitudeComponent = -1;
+
+/// Labels mode warns before the work when the selection has more distinct labels than this
+/// (each label is extracted on its own: a grey-value volume in Labels mode runs for minutes).
+constexpr std::size_t ManyLabels = 1000;
+
 /// The selection properties the filters share.
 struct SelectionSettings
 {
@@ -260,6 +309,9 @@ struct InputObjects
   VoxelGrid grid;
   std::array<int, 3> axes{ 0, 1, 2 }; ///< processing axes (see processingAxes)
   std::vector<Selected> objects;
+  /// Data type of the selected values and of the Label arrays: the input array's, or double
+  /// for the magnitude.
+  int labelType = VTK_DOUBLE;
   vtkSmartPointer<vtkDataArray> contiguous; ///< keeps a copied input array alive for objects
 };
 
@@ -279,6 +331,16 @@ int executeGuarded(vtkAlgorithm* algorithm,
   vtkInformationVector* outputVector,
   const char* what,
   const std::function<int()>& execute);
+
+/// The Euclidean norm of every tuple, sqrt(v0^2 + v1^2 + ...) in double, as a one-component
+/// double array: the values Magnitude selects on.
+vtkSmartPointer<vtkDataArray> tupleNorms(vtkDataArray* scalars);
+
+/// How ParaView colours a boundary: the cell array `FaceColor`, a hash of `FaceId` spread
+/// over [0, 1) (neighbouring faces get unrelated values whatever the colour map, and every
+/// output has the same range, so a shared map needs no rescale), and the active cell scalars:
+/// `Label` in Labels mode, else `FaceColor`. No-op without a FaceId array.
+void setBoundaryColoring(vtkPolyData* output, bool labelsMode);
 
 /// PrintSelf lines of the selection properties.
 void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings);

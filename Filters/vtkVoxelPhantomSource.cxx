@@ -23,6 +23,7 @@ vtkStandardNewMacro(vtkVoxelPhantomSource);
 vtkVoxelPhantomSource::vtkVoxelPhantomSource()
 {
   this->SetNumberOfInputPorts(0);
+  this->SetProgressText("Voxel Phantom");
 }
 
 //------------------------------------------------------------------------------

@@ -33,6 +33,7 @@ def check_values(phantom, dims):
     labels = ns.vtk_to_numpy(image.GetPointData().GetArray("Labels")).reshape(dims[::-1])
     cudb = CUDBConnectivity(Input=phantom)
     cudb.Scalars = ["POINTS", "Labels"]
+    cudb.SelectionMode = "Positive"  # the plugin's default is Range
     for vertex in (False, True):
         cudb.Connectivity = 1 if vertex else 0
         cudb.UpdatePipeline()
@@ -64,7 +65,8 @@ def check_values(phantom, dims):
 def check_image(phantom, baseline, temp_dir):
     cudb = CUDBConnectivity(Input=phantom)
     cudb.Scalars = ["POINTS", "Labels"]
-    cudb.SortingOrder = "Auto (fewest boxes)"
+    cudb.SelectionMode = "Positive"  # the plugin's default is Range
+    cudb.SortingOrder = "Auto"
     view = render_view()
     display = Show(OutputPort(cudb, 1), view)
     display.SetRepresentationType("Surface With Edges")

@@ -25,6 +25,7 @@ def check_values(phantom, dims):
     mask = labels > 0
     poly = StandardPlanePolyhedrizer(Input=phantom)
     poly.Scalars = ["POINTS", "Labels"]
+    poly.SelectionMode = "Positive"  # the plugin's default is Range
     poly.OutputMode = "Surfels"
     poly.UpdatePipeline()
     out = servermanager.Fetch(poly, idx=0)
@@ -58,6 +59,7 @@ def check_values(phantom, dims):
 def check_image(phantom, baseline, temp_dir):
     poly = StandardPlanePolyhedrizer(Input=phantom)
     poly.Scalars = ["POINTS", "Labels"]
+    poly.SelectionMode = "Positive"  # the plugin's default is Range
     poly.OutputMode = "Surfels"
     view = render_view()
     display = Show(OutputPort(poly, 0), view)

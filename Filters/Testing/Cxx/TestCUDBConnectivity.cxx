@@ -259,8 +259,15 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
   const std::vector<long long> sizes = sizesOf(ids, count);
   vtkDataArray* voxels = vtkDataArray::SafeDownCast(table->GetColumnByName("VoxelCount"));
   vtkDataArray* centroid = vtkDataArray::SafeDownCast(table->GetColumnByName("Centroid"));
-  vtkDataArray* indexBounds = vtkDataArray::SafeDownCast(table->GetColumnByName("IndexBounds"));
-  if (!voxels || !centroid || !indexBounds || table->GetNumberOfRows() != count)
+  const char* const boundNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
+  vtkDataArray* indexBounds[6];
+  bool haveBounds = true;
+  for (int k = 0; k < 6; ++k)
+  {
+    indexBounds[k] = vtkDataArray::SafeDownCast(table->GetColumnByName(boundNames[k]));
+    haveBounds = haveBounds && indexBounds[k] && indexBounds[k]->GetNumberOfComponents() == 1;
+  }
+  if (!voxels || !centroid || !haveBounds || table->GetNumberOfRows() != count)
   {
     CHECK(false, what << ": table columns");
     return;
@@ -297,8 +304,8 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
       CHECK(std::abs(centroid->GetComponent(r, d) - expected) < 1e-9 * (1 + std::abs(expected)),
         what << ": centroid of region " << id << " axis " << d << " is "
              << centroid->GetComponent(r, d) << ", expected " << expected);
-      CHECK(indexBounds->GetComponent(r, 2 * d) == bounds[id][2 * d] &&
-          indexBounds->GetComponent(r, 2 * d + 1) == bounds[id][2 * d + 1],
+      CHECK(indexBounds[2 * d]->GetTuple1(r) == bounds[id][2 * d] &&
+          indexBounds[2 * d + 1]->GetTuple1(r) == bounds[id][2 * d + 1],
         what << ": index bounds of region " << id);
     }
   }
@@ -553,7 +560,7 @@ void checkErrorsAndDegenerateInputs()
     const Volume v = randomVolume({ 3, 3, 3 }, 0.5, 1, 1);
     vtkNew<vtkCUDBConnectivity> f;
     f->SetInputData(makeImage(v, Layout()));
-    f->SetArrayComponent(1);
+    f->SetArrayComponent(2); // 0, and 1 (the magnitude), are valid
     const int errorCount = vbrtest::updateCountingErrors(f);
     CHECK(errorCount > 0, "ArrayComponent out of range must raise an error");
   }
