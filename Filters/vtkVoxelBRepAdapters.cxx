@@ -16,6 +16,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSetGet.h"
+#include "vtkUniformGrid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -137,11 +138,25 @@ std::string describeVoxels(vtkImageData* image,
   int flatCount = 0, flat = -1;
   for (int d = 0; d < 3; ++d)
   {
-    const int points = extent[2 * d + 1] - extent[2 * d] + 1;
+    const std::int64_t points = std::int64_t(extent[2 * d + 1]) - extent[2 * d] + 1;
     if (points <= 0)
     {
       grid.dims = { 0, 0, 0 };
+      if (scalars->GetNumberOfTuples() != 0)
+      {
+        std::ostringstream msg;
+        msg << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+            << scalars->GetNumberOfTuples() << " tuples, the image has no points";
+        return msg.str();
+      }
       return std::string();
+    }
+    if (points > std::numeric_limits<std::int32_t>::max())
+    {
+      std::ostringstream msg;
+      msg << "the extent spans " << points << " points along axis " << d << ", more than the "
+          << std::numeric_limits<std::int32_t>::max() << " the voxel coordinates hold";
+      return msg.str();
     }
     grid.extentMin[d] = extent[2 * d];
     if (cellData)
@@ -205,6 +220,34 @@ std::string describeVoxels(vtkImageData* image,
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
         grid.direction[3 * r + c] = m->GetElement(r, c);
+  }
+  return geometryProblem(grid);
+}
+
+std::string geometryProblem(const VoxelGrid& grid)
+{
+  const auto finite = [](const std::array<double, 3>& v)
+  { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
+  std::ostringstream msg;
+  if (!finite(grid.spacing))
+  {
+    msg << "the spacing (" << grid.spacing[0] << ", " << grid.spacing[1] << ", " << grid.spacing[2]
+        << ") is not finite";
+    return msg.str();
+  }
+  if (!finite(grid.origin))
+  {
+    msg << "the origin (" << grid.origin[0] << ", " << grid.origin[1] << ", " << grid.origin[2]
+        << ") is not finite";
+    return msg.str();
+  }
+  const std::array<double, 9>& m = grid.direction;
+  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+    m[2] * (m[3] * m[7] - m[4] * m[6]);
+  if (!(std::abs(det) > 1e-12)) // also NaN
+  {
+    return "the direction matrix is singular or not finite (its determinant is " +
+      std::to_string(det) + ")";
   }
   return std::string();
 }
@@ -337,6 +380,60 @@ std::string readVoxels(vtkImageData* image,
   return problem.empty() ? problem : "Cannot read the voxels: " + problem + ".";
 }
 
+namespace
+{
+
+/// What the filter asked for as its input array, and that the input lacks it.
+std::string requestedArray(vtkAlgorithm* algorithm)
+{
+  vtkInformation* info = algorithm->GetInputArrayInformation(0);
+  const int association = info && info->Has(vtkDataObject::FIELD_ASSOCIATION())
+    ? info->Get(vtkDataObject::FIELD_ASSOCIATION())
+    : vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS;
+  const char* where = association == vtkDataObject::FIELD_ASSOCIATION_POINTS ? "point"
+    : association == vtkDataObject::FIELD_ASSOCIATION_CELLS                  ? "cell"
+                                                                             : "point or cell";
+  std::ostringstream msg;
+  if (info && info->Has(vtkDataObject::FIELD_NAME()))
+    msg << "the input has no " << where << " array named '"
+        << info->Get(vtkDataObject::FIELD_NAME()) << "'";
+  else
+    msg << "the input has no active " << where << " scalars";
+  msg << " (set the input array to process)";
+  return msg.str();
+}
+
+/// Warnings about selection settings that select nothing.
+void warnAboutSettings(vtkAlgorithm* algorithm, const SelectionSettings& settings)
+{
+  if (settings.mode != SelectRange)
+    return;
+  if (std::isnan(settings.lower) || std::isnan(settings.upper))
+    vtkWarningWithObjectMacro(algorithm,
+      << "LowerThreshold (" << settings.lower << ") or UpperThreshold (" << settings.upper
+      << ") is NaN: nothing is selected.");
+  else if (settings.lower > settings.upper)
+    vtkWarningWithObjectMacro(
+      algorithm, << "LowerThreshold > UpperThreshold: nothing is selected.");
+}
+
+/// Warnings about a grid that works but is likely not what the user meant.
+void warnAboutGrid(vtkAlgorithm* algorithm, vtkImageData* image, const VoxelGrid& grid)
+{
+  for (int d = 0; d < 3; ++d)
+    if (grid.spacing[d] == 0.0 && d != grid.flatAxis)
+      vtkWarningWithObjectMacro(algorithm,
+        << "The spacing along axis " << d
+        << " is 0: the output's geometry is flat along it (its topology is unchanged).");
+  vtkUniformGrid* uniform = vtkUniformGrid::SafeDownCast(image);
+  if (uniform && (uniform->HasAnyBlankPoints() || uniform->HasAnyBlankCells()))
+    vtkWarningWithObjectMacro(algorithm,
+      << "The input has blanked points or cells: blanking is ignored, blanked voxels are "
+         "selected by their values like the others.");
+}
+
+} // namespace
+
 bool readInputObjects(vtkAlgorithm* algorithm,
   vtkImageData* image,
   vtkDataArray* scalars,
@@ -350,12 +447,10 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     if (image->GetNumberOfPoints() == 0)
       return true; // an empty image has nothing to select
     vtkErrorWithObjectMacro(
-      algorithm, << "No input scalars to select voxels from (set the input array to process).");
+      algorithm, << "No input scalars to select voxels from: " << requestedArray(algorithm) << ".");
     return false;
   }
-  if (settings.mode == SelectRange && settings.lower > settings.upper)
-    vtkWarningWithObjectMacro(
-      algorithm, << "LowerThreshold > UpperThreshold: nothing is selected.");
+  warnAboutSettings(algorithm, settings);
   int component = settings.component;
   const std::string problem = readVoxels(
     image, scalars, association, component, settings.flatImagesAs2D, out.contiguous, out.grid);
@@ -374,6 +469,7 @@ bool readInputObjects(vtkAlgorithm* algorithm,
         << settings.maximumVoxelsPerAxis << " are supported.");
       return false;
     }
+  warnAboutGrid(algorithm, image, out.grid);
   out.axes = processingAxes(out.grid);
   out.labelType = scalars->GetDataType();
   const bool known = dispatchScalars(scalars,

@@ -66,6 +66,10 @@ std::string describeVoxels(vtkImageData* image,
   bool flatImagesAs2D,
   VoxelGrid& grid);
 
+/// An error message when the grid's spacing or origin is not finite or its direction matrix
+/// is singular (the output would hold NaN geometry); else an empty string.
+std::string geometryProblem(const VoxelGrid& grid);
+
 /// Checks the input array of a filter and describes its voxels: point or cell data, the
 /// component in range, tuples matching the image. Arrays not stored as contiguous tuples
 /// (SOA, implicit arrays) are copied once into `contiguous`, and `scalars` then points to
@@ -146,6 +150,48 @@ struct Selected
   std::function<BitVolume(const Execution&)> select;
 };
 
+/// Whether `v` is a value of T, exactly (no rounding, no out-of-range conversion); the value
+/// in `out` then. NaN is no value of any type.
+template<typename T>
+bool exactlyRepresentable(double v, T& out)
+{
+  if constexpr (std::is_integral<T>::value)
+  {
+    // max + 1 is a power of two, exact in double even for 64 bits (max itself is not).
+    const double aboveMax = 2.0 * static_cast<double>(std::numeric_limits<T>::max() / 2 + 1);
+    if (!(v >= static_cast<double>(std::numeric_limits<T>::lowest()) && v < aboveMax) ||
+      v != std::floor(v))
+      return false;
+    out = static_cast<T>(v);
+    return true;
+  }
+  else
+  {
+    if (std::isnan(v))
+      return false;
+    if (!std::isinf(v) && std::abs(v) > static_cast<double>(std::numeric_limits<T>::max()))
+      return false;          // beyond the largest float: the conversion would be undefined
+    out = static_cast<T>(v); // infinities are values of the floating-point types
+    return static_cast<double>(out) == v;
+  }
+}
+
+/// The integer values of T in [lower, upper], compared exactly with the doubles (2^63 is
+/// above every int64, 2^64 above every uint64); false when there is none.
+template<typename T>
+bool integerRange(double lower, double upper, T& first, T& last)
+{
+  const double lo = std::ceil(lower), hi = std::floor(upper);                   // NaN stays NaN
+  const double typeMin = static_cast<double>(std::numeric_limits<T>::lowest()); // exact
+  const double aboveMax = 2.0 * static_cast<double>(std::numeric_limits<T>::max() / 2 + 1);
+  if (!(lo <= hi) || !(hi >= typeMin) || !(lo < aboveMax))
+    return false;
+  // lo < max + 1 and hi >= min, both integers: the conversions below are exact.
+  first = lo <= typeMin ? std::numeric_limits<T>::lowest() : static_cast<T>(lo);
+  last = hi >= aboveMax ? std::numeric_limits<T>::max() : static_cast<T>(hi);
+  return true;
+}
+
 /// The objects to extract, from scalars already permuted into processing axes: one per
 /// label, or a single one. The scalars must outlive the objects' `select`.
 template<typename T>
@@ -170,9 +216,8 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
   if (mode == SelectLabels)
   {
     // A background the type cannot hold exactly means every value is a label.
-    const T typedBackground = static_cast<T>(std::max(double(std::numeric_limits<T>::lowest()),
-      std::min(background, double(std::numeric_limits<T>::max()))));
-    const bool hasBackground = static_cast<double>(typedBackground) == background;
+    T typedBackground{};
+    const bool hasBackground = exactlyRepresentable(background, typedBackground);
     for (const auto& entry :
       labelBoxes(grid, hasBackground ? &typedBackground : static_cast<const T*>(nullptr)))
     {
@@ -184,23 +229,14 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
   {
     add(T(1), whole, [](T v) { return v > T(0); });
   }
-  else if (std::is_integral<T>::value)
+  else if constexpr (std::is_integral<T>::value)
   {
     // Integer values: the range in the type itself (a comparison the compiler vectorizes).
-    const double lo = std::ceil(lower), hi = std::floor(upper);
-    const double typeMin = double(std::numeric_limits<T>::lowest());
-    const double typeMax = double(std::numeric_limits<T>::max()); // may round up (64 bits)
-    if (lo <= hi && hi >= typeMin && lo <= typeMax)
-    {
-      // Clamp in double, convert only values the type holds (no out-of-range cast).
-      const T first = lo <= typeMin ? std::numeric_limits<T>::lowest() : static_cast<T>(lo);
-      const T last = hi >= typeMax ? std::numeric_limits<T>::max() : static_cast<T>(hi);
+    T first{}, last{};
+    if (integerRange(lower, upper, first, last))
       add(T(1), whole, [first, last](T v) { return v >= first && v <= last; });
-    }
     else
-    {
       add(T(1), whole, [](T) { return false; });
-    }
   }
   else
   {

@@ -225,8 +225,10 @@ for _kind in FILTERS:
         img.GetPointData().SetScalars(array)
         f, m = run(kind, img, lambda f: f.SetArrayComponent(2))
         expect_selection(kind, f, m, values > 0, "component 2 of 3")
-        f, m = run(kind, img, lambda f: f.SetArrayComponent(3))
-        expect(m.error_with("component"), "component 3 of 3 must be an error: %r" % m.errors)
+        f, m = run(kind, img, lambda f: f.SetArrayComponent(3))  # 3 of 3: the magnitude
+        expect_selection(kind, f, m, values != 0, "the magnitude of 3 components")
+        f, m = run(kind, img, lambda f: f.SetArrayComponent(4))
+        expect(m.error_with("component"), "component 4 of 3 must be an error: %r" % m.errors)
     case("%s-array-components" % _kind)(_components)
 
     def _negative_spacing(kind=_kind):
@@ -263,6 +265,20 @@ for _kind in FILTERS:
         else:
             expect_selection(kind, f, m, values > 0, "extent ending at INT_MAX")
     case("%s-extent-near-int-max" % _kind)(_extent_near_int_max)
+
+    def _extent_over_int_max(kind=_kind):
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+        img = vtkImageData()
+        img.SetExtent(-2**30, 2**30, 0, 0, 0, 0)  # 2^31 + 1 points along x
+        array = vtkUnsignedCharArray()
+        array.SetName("s")
+        array.SetNumberOfTuples(1)
+        img.GetPointData().SetScalars(array)
+        f, m = run(kind, img)
+        expect(m.error_with("extent"), "an extent of 2^31 + 1 points must be an error: %r"
+               % m.errors)
+    case("%s-extent-over-int-max" % _kind)(_extent_over_int_max)
 
     def _empty_image(kind=_kind):
         from vtkmodules.vtkCommonDataModel import vtkImageData
