@@ -338,14 +338,14 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
       count += regions[o.firstRegion + o.components.boxLabel[b] - 1].id != 0;
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(count * corners);
+  vbr::vtk::resizeOrThrow(coordinates, count * corners);
   vtkNew<vtkIdTypeArray> offsets, connectivity, boxIds;
   vtkNew<vtkIntArray> regionIds;
   vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType, count);
-  offsets->SetNumberOfValues(count + 1);
-  connectivity->SetNumberOfValues(count * corners);
-  boxIds->SetNumberOfValues(count);
-  regionIds->SetNumberOfValues(count);
+  vbr::vtk::resizeOrThrow(offsets, count + 1);
+  vbr::vtk::resizeOrThrow(connectivity, count * corners);
+  vbr::vtk::resizeOrThrow(boxIds, count);
+  vbr::vtk::resizeOrThrow(regionIds, count);
   boxIds->SetName("BoxId");
   regionIds->SetName("RegionId");
   double* xyz = coordinates->GetPointer(0);
@@ -404,7 +404,7 @@ void addColumnsOfComponents(vtkTable* table, vtkDataArray* array, const char* co
     vtkSmartPointer<vtkDataArray> column;
     column.TakeReference(vtkDataArray::CreateDataArray(array->GetDataType()));
     column->SetName(names[c]);
-    column->SetNumberOfTuples(array->GetNumberOfTuples());
+    vbr::vtk::resizeOrThrow(column, array->GetNumberOfTuples());
     column->CopyComponent(0, array, c);
     table->AddColumn(column);
   }
@@ -694,8 +694,9 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
   vbr::vtk::InputObjects in;
-  if (!vbr::vtk::readInputObjects(
-        this, input, scalars, association, vbr::vtk::selectionSettingsOf(this), in))
+  vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
+  settings.bytesPerVoxel = sizeof(std::int32_t) + 1.0 / 8.0; // RegionId image, selection bits
+  if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
   {
     return 0;
   }

@@ -152,7 +152,7 @@ public:
   {
     vtkNew<vtkDoubleArray> coordinates;
     coordinates->SetNumberOfComponents(3);
-    coordinates->SetNumberOfTuples(this->pointCount());
+    vbr::vtk::resizeOrThrow(coordinates, this->pointCount());
     std::copy(this->Coordinates.begin(), this->Coordinates.end(), coordinates->GetPointer(0));
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
@@ -200,7 +200,7 @@ private:
   {
     auto a = vtkSmartPointer<ArrayType>::New();
     a->SetName(name);
-    a->SetNumberOfValues(static_cast<vtkIdType>(v.size()));
+    vbr::vtk::resizeOrThrow(a, static_cast<vtkIdType>(v.size()));
     std::copy(v.begin(), v.end(), a->GetPointer(0));
     return a;
   }

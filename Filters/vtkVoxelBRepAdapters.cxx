@@ -1,5 +1,7 @@
 #include "vtkVoxelBRepAdapters.h"
+#include "vtkVoxelBRepMemory.h"
 
+#include "vtkAbstractArray.h"
 #include "vtkAlgorithm.h"
 #include "vtkCellData.h"
 #include "vtkDataObject.h"
@@ -25,7 +27,9 @@
 #include <cstring>
 #include <exception>
 #include <mutex>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 
 #ifdef __linux__
 #include <sys/mman.h>
@@ -313,9 +317,24 @@ vtkSmartPointer<vtkIntArray> newZeroedIntArray(vtkIdType n)
     }
   }
 #endif
-  array->SetNumberOfValues(n);
+  resizeOrThrow(array, n);
   std::fill_n(array->GetPointer(0), n, 0);
   return array;
+}
+
+void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples)
+{
+  // VTK aborts the process when an array cannot be allocated: refuse before asking it.
+  const double bytes = double(tuples) * array->GetNumberOfComponents() * array->GetDataTypeSize();
+  const std::string name = array->GetName() ? array->GetName() : "";
+  const std::string refused = checkAllocation(bytes,
+    (name.empty() ? std::string("An output array") : "The array '" + name + "'") + " of " +
+      std::to_string(tuples) + " tuples");
+  if (!refused.empty())
+    throw std::runtime_error(refused);
+  array->SetNumberOfTuples(tuples);
+  if (array->GetNumberOfTuples() != tuples)
+    throw std::bad_alloc();
 }
 
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
@@ -459,8 +478,16 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     vtkErrorWithObjectMacro(algorithm, << problem);
     return false;
   }
-  if (std::int64_t(out.grid.dims[0]) * out.grid.dims[1] * out.grid.dims[2] == 0)
+  const double voxels = double(out.grid.dims[0]) * out.grid.dims[1] * out.grid.dims[2];
+  if (voxels == 0)
     return true;
+  const std::string refused = checkAllocation(voxels * settings.bytesPerVoxel,
+    "Processing " + std::to_string(static_cast<long long>(voxels)) + " voxels");
+  if (!refused.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << refused);
+    return false;
+  }
   for (int d = 0; d < 3; ++d)
     if (settings.maximumVoxelsPerAxis > 0 && out.grid.dims[d] > settings.maximumVoxelsPerAxis)
     {
@@ -510,7 +537,13 @@ int executeGuarded(vtkAlgorithm* algorithm,
   }
   catch (const std::exception& e)
   {
-    vtkErrorWithObjectMacro(algorithm, << what << " failed: " << e.what());
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+      vtkErrorWithObjectMacro(algorithm,
+        << what << " failed: out of memory (std::bad_alloc; "
+        << formatBytes(double(availableMemoryBytes()))
+        << " can still be allocated: available memory and ulimit -v).");
+    else
+      vtkErrorWithObjectMacro(algorithm, << what << " failed: " << e.what());
     for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)
       if (vtkDataObject* output =
             outputVector->GetInformationObject(port)->Get(vtkDataObject::DATA_OBJECT()))
@@ -572,7 +605,7 @@ vtkSmartPointer<vtkDataArray> tupleNorms(vtkDataArray* scalars)
   auto norms = vtkSmartPointer<vtkDoubleArray>::New();
   norms->SetName(scalars->GetName());
   const vtkIdType n = source->GetNumberOfTuples();
-  norms->SetNumberOfValues(n);
+  resizeOrThrow(norms, n);
   const int nc = source->GetNumberOfComponents();
   void* raw = source->GetVoidPointer(0);
   switch (source->GetDataType())
@@ -595,7 +628,7 @@ vtkSmartPointer<vtkDataArray> newLabelArray(int dataType, vtkIdType n)
   vtkSmartPointer<vtkDataArray> labels;
   labels.TakeReference(vtkDataArray::CreateDataArray(dataType));
   labels->SetName("Label");
-  labels->SetNumberOfTuples(n);
+  resizeOrThrow(labels, n);
   if (n > 0)
     std::memset(
       labels->GetVoidPointer(0), 0, static_cast<std::size_t>(n) * labels->GetDataTypeSize());
@@ -636,7 +669,7 @@ void setBoundaryColoring(vtkPolyData* output, bool labelsMode)
   const vtkIdType n = faceIds->GetNumberOfTuples();
   vtkNew<vtkFloatArray> colors;
   colors->SetName("FaceColor");
-  colors->SetNumberOfValues(n);
+  resizeOrThrow(colors, n);
   float* out = colors->GetPointer(0);
   for (vtkIdType c = 0; c < n; ++c)
   {

@@ -90,6 +90,11 @@ std::string readVoxels(vtkImageData* image,
 /// per 1024 values; about 170 ms for 256^3 labels here, 5 to 100 ms with huge pages).
 vtkSmartPointer<vtkIntArray> newZeroedIntArray(vtkIdType n);
 
+/// Sets the number of tuples of `array`, throwing std::bad_alloc when VTK cannot allocate
+/// them (VTK then only reports an error and leaves the array short: writing on would
+/// crash). executeGuarded turns the exception into an error and empty outputs.
+void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples);
+
 /// Appends a one-value field array.
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value);
 
@@ -324,6 +329,10 @@ struct SelectionSettings
   int component = 0;
   bool flatImagesAs2D = true;
   std::int32_t maximumVoxelsPerAxis = 0; ///< 0: no limit
+  /// What the filter allocates per voxel of the image whatever its output (the selection's
+  /// bit volume, a label image, ...): checked against the memory the process can allocate
+  /// before any work (readInputObjects refuses an image that cannot fit).
+  double bytesPerVoxel = 1.0 / 8.0;
 };
 
 /// The selection properties of a filter (through its public getters).
