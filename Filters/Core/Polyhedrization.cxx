@@ -715,9 +715,14 @@ bool surfelLeftOf(const StandardPlane& plane,
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
   std::vector<SurfelGraph::Surfel>& surfels,
-  BitVolume& voxels)
+  BitVolume& voxels,
+  const Execution& exec)
 {
   surfels.clear();
+  ProgressPoll poll(exec, 0.0, 1.0);
+  // The face of every surfel found so far: faces are disjoint, and a surfel in two faces
+  // (a face given twice, say) would cancel out in the parity below.
+  std::unordered_map<std::uint64_t, std::uint32_t> faceOf;
   auto surfelKey = [](const SurfelGraph::Surfel& s)
   {
     constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
@@ -728,6 +733,9 @@ std::string revert(const std::vector<FaceOutline>& faces,
   };
   for (std::size_t f = 0; f < faces.size(); ++f)
   {
+    poll.at(0.9 * double(f) / double(faces.size()));
+    if (!poll.tick())
+      return "aborted";
     const FaceOutline& face = faces[f];
     const std::size_t n = face.loop.size();
     std::unordered_set<std::uint64_t> loopEdges;
@@ -757,6 +765,14 @@ std::string revert(const std::vector<FaceOutline>& faces,
       const SurfelGraph::Surfel s = stack.back();
       stack.pop_back();
       surfels.push_back(s);
+      const auto other = faceOf.emplace(surfelKey(s), static_cast<std::uint32_t>(f));
+      if (!other.second)
+      {
+        std::ostringstream msg;
+        msg << "faces " << other.first->second << " and " << f
+            << " share surfels (is a face given twice?)";
+        return msg.str();
+      }
       if (seen.size() > limit)
       {
         std::ostringstream msg;
