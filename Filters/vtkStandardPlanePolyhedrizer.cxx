@@ -557,7 +557,11 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   {
     const double from = 0.05 + 0.85 * i / selected.size();
     const double to = 0.05 + 0.85 * (i + 1) / selected.size();
-    const vbr::Execution exec = vbr::vtk::makeExecution(this, from, to);
+    // Of each object's share: 5 % selection, 10 % surfel graph, the rest the faces.
+    const double a = from + 0.05 * (to - from), b = from + 0.15 * (to - from);
+    const vbr::Execution exec = vbr::vtk::makeExecution(this, from, a);
+    const vbr::Execution graphExec = vbr::vtk::makeExecution(this, a, b);
+    const vbr::Execution facesExec = vbr::vtk::makeExecution(this, b, to);
     if (this->GetAbortExecute())
       break;
     ObjectFaces o;
@@ -568,7 +572,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
       continue;
     {
       vtkLogScopeF(TRACE, "surfel graph");
-      if (!vbr::buildSurfelGraph(voxels, exec, o.graph))
+      if (!vbr::buildSurfelGraph(voxels, graphExec, o.graph))
         break;
     }
     surfels += static_cast<vtkIdType>(o.graph.size());
@@ -584,7 +588,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
     }
     {
       vtkLogScopeF(TRACE, "standard faces");
-      if (!vbr::polyhedrize(o.graph, options, exec, o.poly))
+      if (!vbr::polyhedrize(o.graph, options, facesExec, o.poly))
         break;
     }
     objects.push_back(std::move(o));
