@@ -379,25 +379,41 @@ private:
 };
 
 /// The voxel grid for vtkStandardPlaneReversion: world position of corner (0, 0, 0) (axis
-/// aligned grids), spacing and voxels per axis.
-void writeGrid(const vbr::vtk::VoxelGrid& grid, vtkFieldData* fd)
+/// aligned grids), spacing and voxels per axis; and the input's layout (extent, origin,
+/// association of the scalars), so that the reversion has the layout of the input.
+void writeGrid(const vbr::vtk::VoxelGrid& grid, vtkImageData* input, vtkFieldData* fd)
 {
   double corner[3];
   grid.vertexToWorld({ 0, 0, 0 }, corner);
-  vtkNew<vtkDoubleArray> origin, spacing;
-  vtkNew<vtkIntArray> dims;
+  vtkNew<vtkDoubleArray> origin, spacing, imageOrigin;
+  vtkNew<vtkIntArray> dims, extent, association;
   origin->SetName("VoxelGridOrigin");
   spacing->SetName("VoxelGridSpacing");
   dims->SetName("VoxelGridDimensions");
+  extent->SetName("VoxelGridExtent");
+  imageOrigin->SetName("VoxelGridImageOrigin");
+  association->SetName("VoxelGridAssociation");
   origin->SetNumberOfComponents(3);
   spacing->SetNumberOfComponents(3);
   dims->SetNumberOfComponents(3);
+  extent->SetNumberOfComponents(6);
+  imageOrigin->SetNumberOfComponents(3);
   origin->InsertNextTuple(corner);
   spacing->InsertNextTuple(grid.spacing.data());
   dims->InsertNextTuple3(grid.dims[0], grid.dims[1], grid.dims[2]);
-  fd->AddArray(origin);
-  fd->AddArray(spacing);
-  fd->AddArray(dims);
+  int e[6];
+  input->GetExtent(e);
+  extent->InsertNextTypedTuple(e);
+  imageOrigin->InsertNextTuple(input->GetOrigin());
+  association->InsertNextValue(grid.cellData ? vtkDataObject::FIELD_ASSOCIATION_CELLS
+                                             : vtkDataObject::FIELD_ASSOCIATION_POINTS);
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(origin),
+         static_cast<vtkDataArray*>(spacing),
+         static_cast<vtkDataArray*>(dims),
+         static_cast<vtkDataArray*>(extent),
+         static_cast<vtkDataArray*>(imageOrigin),
+         static_cast<vtkDataArray*>(association) })
+    fd->AddArray(a);
   vtkNew<vtkDoubleArray> direction;
   direction->SetName("VoxelGridDirection");
   direction->SetNumberOfComponents(9);
@@ -405,21 +421,67 @@ void writeGrid(const vbr::vtk::VoxelGrid& grid, vtkFieldData* fd)
   fd->AddArray(direction);
 }
 
-/// Output port 1: the voxels recomputed from the faces alone (planes and loops).
+/// The voxels of an object in the image's own axes: the selection hands the voxels of a
+/// flat image over in its processing axes (flat axis last), the faces are in the image's.
+vbr::BitVolume inImageAxes(const vbr::BitVolume& voxels,
+  const std::array<int, 3>& axes,
+  Int3& offset)
+{
+  if (axes == std::array<int, 3>{ 0, 1, 2 })
+    return voxels;
+  Int3 dims, moved;
+  for (int k = 0; k < 3; ++k)
+  {
+    dims[axes[k]] = voxels.size(k);
+    moved[axes[k]] = offset[k];
+  }
+  offset = moved;
+  vbr::BitVolume out(dims[0], dims[1], dims[2]);
+  std::array<std::int32_t, 3> p, q;
+  for (p[2] = 0; p[2] < voxels.size(2); ++p[2])
+    for (p[1] = 0; p[1] < voxels.size(1); ++p[1])
+      for (p[0] = 0; p[0] < voxels.size(0); ++p[0])
+        if (voxels.get(p[0], p[1], p[2]))
+        {
+          for (int k = 0; k < 3; ++k)
+            q[axes[k]] = p[k];
+          out.set(q[0], q[1], q[2]);
+        }
+  return out;
+}
+
+/// Sets to 1 the values of `array` (one per voxel of the grid, x fastest: the order of the
+/// image's point or cell tuples) at the voxels of an object.
+void markVoxels(const vbr::BitVolume& voxels,
+  const Int3& offset,
+  const Int3& dims,
+  unsigned char* array)
+{
+  for (std::int32_t z = 0; z < voxels.size(2); ++z)
+    for (std::int32_t y = 0; y < voxels.size(1); ++y)
+      for (std::int32_t x = 0; x < voxels.size(0); ++x)
+        if (voxels.get(x, y, z))
+          array[(vtkIdType(z + offset[2]) * dims[1] + y + offset[1]) * dims[0] + x + offset[0]] = 1;
+}
+
+/// Output port 1: the voxels recomputed from the faces alone (planes and loops), with the
+/// input's layout. The self-check compares the array written with the input's selection
+/// written the same way, tuple by tuple, and the tuple count with the input's.
 bool writeReversion(const std::vector<ObjectFaces>& objects,
   const vbr::vtk::VoxelGrid& grid,
   const std::vector<vbr::BitVolume>& selections,
   vtkImageData* input,
   vtkImageData* output,
+  const vbr::Execution& exec,
   std::string& problem)
 {
   output->CopyStructure(input);
   const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   vtkNew<vtkUnsignedCharArray> selection;
   selection->SetName("Selection");
-  selection->SetNumberOfValues(n);
+  vbr::vtk::resizeOrThrow(selection, n);
   std::fill_n(selection->GetPointer(0), n, 0);
-  bool same = true;
+  std::vector<unsigned char> expected(static_cast<std::size_t>(n), 0);
   for (std::size_t i = 0; i < objects.size(); ++i)
   {
     const ObjectFaces& o = objects[i];
@@ -434,20 +496,15 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
     }
     std::vector<vbr::SurfelGraph::Surfel> surfels;
     vbr::BitVolume voxels;
-    problem = vbr::revert(outlines, o.graph.dims, surfels, voxels);
+    problem = vbr::revert(outlines, o.graph.dims, surfels, voxels, exec);
     if (!problem.empty())
       return false;
-    same = same && voxels == selections[i];
-    const Int3& box = o.graph.dims;
-    for (std::int32_t z = 0; z < box[2]; ++z)
-      for (std::int32_t y = 0; y < box[1]; ++y)
-        for (std::int32_t x = 0; x < box[0]; ++x)
-          if (voxels.get(x, y, z))
-            selection->SetValue(
-              (vtkIdType(z + o.offset[2]) * grid.dims[1] + y + o.offset[1]) * grid.dims[0] + x +
-                o.offset[0],
-              1);
+    markVoxels(voxels, o.offset, grid.dims, selection->GetPointer(0));
+    markVoxels(selections[i], o.offset, grid.dims, expected.data());
   }
+  const vtkIdType tuples = grid.cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  const bool same =
+    tuples == n && std::equal(expected.begin(), expected.end(), selection->GetPointer(0));
   vtkDataSetAttributes* attributes = grid.cellData
     ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
     : static_cast<vtkDataSetAttributes*>(output->GetPointData());
@@ -460,6 +517,10 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
     problem = "the reversion differs from the selection";
   return same;
 }
+
+/// Surfels from which the polyhedrization takes more than a few seconds (measured: about
+/// 0.3 to 1 M surfels per second, several times slower with MergeFaces).
+constexpr vtkIdType LargeSurfelCount = vtkIdType(1) << 21;
 
 } // namespace
 
@@ -564,6 +625,8 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
   settings.flatImagesAs2D = false; // a flat image is a one-voxel-thick slab
   settings.maximumVoxelsPerAxis = (1 << 20) - 1;
+  // Selection bits, and for the reversion its Selection array and the self-check's copy.
+  settings.bytesPerVoxel = 1.0 / 8.0 + (this->GenerateReversion ? 2.0 : 0.0);
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
   {
@@ -582,27 +645,44 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
 
   std::vector<ObjectFaces> objects;
   std::vector<vbr::BitVolume> selections;
+  vtkIdType surfels = 0;
+  bool warned = false;
   for (std::size_t i = 0; i < selected.size(); ++i)
   {
     const double from = 0.05 + 0.85 * i / selected.size();
     const double to = 0.05 + 0.85 * (i + 1) / selected.size();
-    const vbr::Execution exec = vbr::vtk::makeExecution(this, from, to);
+    // Of each object's share: 5 % selection, 10 % surfel graph, the rest the faces.
+    const double a = from + 0.05 * (to - from), b = from + 0.15 * (to - from);
+    const vbr::Execution exec = vbr::vtk::makeExecution(this, from, a);
+    const vbr::Execution graphExec = vbr::vtk::makeExecution(this, a, b);
+    const vbr::Execution facesExec = vbr::vtk::makeExecution(this, b, to);
     if (this->GetAbortExecute())
       break;
     ObjectFaces o;
     o.label = selected[i].label;
     o.offset = selected[i].offset;
-    vbr::BitVolume voxels = selected[i].select(exec);
+    vbr::BitVolume voxels = inImageAxes(selected[i].select(exec), in.axes, o.offset);
     if (voxels.empty())
       continue;
     {
       vtkLogScopeF(TRACE, "surfel graph");
-      if (!vbr::buildSurfelGraph(voxels, exec, o.graph))
+      if (!vbr::buildSurfelGraph(voxels, graphExec, o.graph))
         break;
+    }
+    surfels += static_cast<vtkIdType>(o.graph.size());
+    if (!warned && surfels > LargeSurfelCount)
+    {
+      warned = true;
+      vtkWarningMacro(<< "The selection has " << surfels
+                      << " boundary surfels or more: the polyhedrization will take "
+                      << (this->MergeFaces ? "minutes" : "tens of seconds")
+                      << " and much memory. To shorten it, select the object rather than "
+                         "the background noise (SelectionMode Range with a LowerThreshold "
+                         "above the noise), crop the image, or abort.");
     }
     {
       vtkLogScopeF(TRACE, "standard faces");
-      if (!vbr::polyhedrize(o.graph, options, exec, o.poly))
+      if (!vbr::polyhedrize(o.graph, options, facesExec, o.poly))
         break;
     }
     objects.push_back(std::move(o));
@@ -612,6 +692,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   if (this->GetAbortExecute())
   {
     output->Initialize();
+    reversion->Initialize();
     return 1;
   }
 
@@ -625,15 +706,23 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   builder.finish(output);
   vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
   stats.write(output->GetFieldData());
-  writeGrid(grid, output->GetFieldData());
+  writeGrid(grid, input, output->GetFieldData());
   this->UpdateProgress(0.95);
 
+  reversion->Initialize(); // no stale reversion when it is off
   if (this->GenerateReversion)
   {
     vtkLogScopeF(TRACE, "reversion");
     std::string why;
-    if (!writeReversion(objects, grid, selections, input, reversion, why))
+    const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.95, 1.0);
+    if (!writeReversion(objects, grid, selections, input, reversion, exec, why))
     {
+      if (this->GetAbortExecute())
+      {
+        output->Initialize();
+        reversion->Initialize();
+        return 1;
+      }
       vtkErrorMacro(<< "Reversion failed: " << why << ".");
       return 0;
     }

@@ -51,14 +51,21 @@
  * j..j+1, k..k+1. Field data: `NumberOfSurfels`, `NumberOfFaces`, `MinimumFaceSize`,
  * `MeanFaceSize`, `MaximumFaceSize`, `NumberOfStandardVertices`, `NumberOfBoundaryComponents`,
  * and the grid for vtkStandardPlaneReversion (`VoxelGridOrigin`, `VoxelGridSpacing`,
- * `VoxelGridDimensions`).
+ * `VoxelGridDimensions`, `VoxelGridDirection`) with the input's layout (`VoxelGridExtent`,
+ * `VoxelGridImageOrigin`, `VoxelGridAssociation`).
  *
  * Output port 1: the reversion, an image with the input's structure and an unsigned char
  * array `Selection` (1 on the selected voxels, with the association of the input scalars),
  * recomputed from the faces alone: the surfels enclosed by each face's loop in its plane,
  * then the voxels by parity. It equals the selection; `ReversionMatches` in its field data
  * says whether it did (the filter reports an error otherwise). vtkStandardPlaneReversion does
- * the same from a StandardFaces output alone (a file, say).
+ * the same from a StandardFaces output alone (a file, say), with the same layout: both
+ * reversions have the extent, origin, spacing and association of the input. With
+ * GenerateReversion off, port 1 is empty.
+ *
+ * Long runs: progress is reported and the abort flag polled inside every phase (growth,
+ * moves, merging, loops, reversion); a selection of more than 2^21 surfels (background noise
+ * selected with value > 0, typically) raises a warning first.
  *
  * A flat image (one voxel along an axis) is polyhedrized as a one-voxel-thick slab.
  *

@@ -3,23 +3,30 @@
 #include "Polyhedrization.h"
 #include "vtkVoxelBRepAdapters.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -28,43 +35,296 @@ vtkStandardNewMacro(vtkStandardPlaneReversion);
 namespace
 {
 
-/// The grid the faces were made in, from the polyhedrizer's field data.
+/// Voxels per axis the reversion takes (as the polyhedrizer: corners fit in 21 bits).
+constexpr double MaximumVoxelsPerAxis = (1 << 20) - 1;
+/// Voxels in all (one byte each in the output).
+constexpr double MaximumVoxels = double(std::int64_t(1) << 33);
+
+/// Whether v is an integer of magnitude at most `limit` (false for NaN and infinities), and
+/// then that integer: no out-of-range float-to-int conversion.
+bool integerValue(double v, double limit, std::int64_t& out)
+{
+  if (!(std::fabs(v) <= limit) || v != std::floor(v))
+    return false;
+  out = static_cast<std::int64_t>(v);
+  return true;
+}
+
+/// The grid the faces were made in, and the layout of the image they came from, from the
+/// polyhedrizer's field data.
 struct Grid
 {
-  double origin[3];
+  double origin[3]; ///< world position of voxel corner (0, 0, 0)
   double spacing[3];
   std::array<std::int32_t, 3> dims;
+  // The output's layout: the input image's (or, for faces without it, cell data on the
+  // grid of voxel corners).
+  int extent[6];
+  double imageOrigin[3];
+  bool cellData = true;
 };
 
-bool readGrid(vtkFieldData* fd, Grid& grid)
+/// A field array with one tuple of `components` values, or null.
+vtkDataArray* fieldArray(vtkFieldData* fd, const char* name, int components)
 {
-  vtkDataArray* origin = fd ? fd->GetArray("VoxelGridOrigin") : nullptr;
-  vtkDataArray* spacing = fd ? fd->GetArray("VoxelGridSpacing") : nullptr;
-  vtkDataArray* dims = fd ? fd->GetArray("VoxelGridDimensions") : nullptr;
-  if (!origin || !spacing || !dims || origin->GetNumberOfComponents() != 3 ||
-    spacing->GetNumberOfComponents() != 3 || dims->GetNumberOfComponents() != 3)
-    return false;
+  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
+  return a && a->GetNumberOfComponents() == components && a->GetNumberOfTuples() >= 1 ? a : nullptr;
+}
+
+/// The grid of the voxels; an error message, or an empty string.
+std::string readVoxelGrid(vtkFieldData* fd, Grid& grid)
+{
+  vtkDataArray* origin = fieldArray(fd, "VoxelGridOrigin", 3);
+  vtkDataArray* spacing = fieldArray(fd, "VoxelGridSpacing", 3);
+  vtkDataArray* dims = fieldArray(fd, "VoxelGridDimensions", 3);
+  if (!origin || !spacing || !dims)
+    return "The input must be the StandardFaces output of vtkStandardPlanePolyhedrizer "
+           "(field data VoxelGridOrigin, VoxelGridSpacing, VoxelGridDimensions of 3 "
+           "components).";
+  double voxels = 1;
   for (int d = 0; d < 3; ++d)
   {
     grid.origin[d] = origin->GetComponent(0, d);
     grid.spacing[d] = spacing->GetComponent(0, d);
-    grid.dims[d] = static_cast<std::int32_t>(dims->GetComponent(0, d));
-    if (grid.spacing[d] == 0 || grid.dims[d] < 0)
-      return false;
+    std::int64_t n = 0;
+    if (!std::isfinite(grid.origin[d]) || !std::isfinite(grid.spacing[d]) || grid.spacing[d] == 0)
+      return "VoxelGridOrigin and VoxelGridSpacing must be finite, the spacing non-zero.";
+    if (!integerValue(dims->GetComponent(0, d), MaximumVoxelsPerAxis, n) || n < 0)
+    {
+      std::ostringstream msg;
+      msg << "VoxelGridDimensions must be whole numbers from 0 to " << MaximumVoxelsPerAxis
+          << "; axis " << d << " has " << dims->GetComponent(0, d) << ".";
+      return msg.str();
+    }
+    grid.dims[d] = static_cast<std::int32_t>(n);
+    voxels *= double(n);
   }
-  return true;
+  if (voxels > MaximumVoxels)
+  {
+    std::ostringstream msg;
+    msg << "VoxelGridDimensions ask for " << voxels << " voxels; at most " << MaximumVoxels
+        << " are supported.";
+    return msg.str();
+  }
+  return std::string();
+}
+
+/// The layout of the image the faces came from (extent, origin, association): the output
+/// takes it. Faces written before it was recorded give cell data on the grid of corners.
+std::string readLayout(vtkFieldData* fd, Grid& grid)
+{
+  vtkDataArray* extent = fieldArray(fd, "VoxelGridExtent", 6);
+  vtkDataArray* origin = fieldArray(fd, "VoxelGridImageOrigin", 3);
+  vtkDataArray* association = fieldArray(fd, "VoxelGridAssociation", 1);
+  if (!extent && !origin && !association)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      grid.extent[2 * d] = 0;
+      grid.extent[2 * d + 1] = grid.dims[d];
+      grid.imageOrigin[d] = grid.origin[d];
+    }
+    grid.cellData = true;
+    return std::string();
+  }
+  std::int64_t kind = -1;
+  if (!extent || !origin || !association || !integerValue(association->GetComponent(0, 0), 1, kind))
+    return "VoxelGridExtent (6 components), VoxelGridImageOrigin (3) and VoxelGridAssociation "
+           "(0 points, 1 cells) must be given together.";
+  grid.cellData = kind == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  for (int d = 0; d < 3; ++d)
+  {
+    std::int64_t lo = 0, hi = 0;
+    grid.imageOrigin[d] = origin->GetComponent(0, d);
+    if (!integerValue(extent->GetComponent(0, 2 * d), VTK_INT_MAX / 2, lo) ||
+      !integerValue(extent->GetComponent(0, 2 * d + 1), VTK_INT_MAX / 2, hi) ||
+      !std::isfinite(grid.imageOrigin[d]))
+      return "VoxelGridExtent must hold whole numbers, VoxelGridImageOrigin finite ones.";
+    const std::int64_t points = hi - lo + 1;
+    const std::int64_t voxels = grid.cellData ? (points > 1 ? points - 1 : 1) : points;
+    if (points < 1 || voxels != grid.dims[d])
+      return "VoxelGridExtent does not match VoxelGridDimensions.";
+    grid.extent[2 * d] = static_cast<int>(lo);
+    grid.extent[2 * d + 1] = static_cast<int>(hi);
+  }
+  return std::string();
 }
 
 /// Whether the faces were made in a grid with a direction matrix (not supported).
 bool rotated(vtkFieldData* fd)
 {
-  vtkDataArray* direction = fd ? fd->GetArray("VoxelGridDirection") : nullptr;
-  if (!direction || direction->GetNumberOfComponents() != 9)
+  vtkDataArray* direction = fieldArray(fd, "VoxelGridDirection", 9);
+  if (!direction)
     return false;
   for (int i = 0; i < 9; ++i)
     if (direction->GetComponent(0, i) != (i % 4 == 0 ? 1.0 : 0.0))
       return true;
   return false;
+}
+
+/// The face arrays, one tuple per cell; an error message, or an empty string.
+std::string checkFaceArrays(vtkPolyData* input,
+  vtkDataArray* normals,
+  vtkDataArray* offsets,
+  vtkDataArray* labels)
+{
+  const vtkIdType cells = input->GetNumberOfCells();
+  if (cells == 0)
+    return std::string();
+  if (!normals || !offsets || normals->GetNumberOfComponents() != 3 ||
+    offsets->GetNumberOfComponents() != 1 || input->GetPolys()->GetNumberOfCells() != cells)
+    return "The input must be polygons with the cell arrays PlaneNormal (3 components) and "
+           "PlaneOffset (the StandardFaces output mode).";
+  std::ostringstream msg;
+  for (vtkDataArray* a : { normals, offsets, labels })
+    if (a && a->GetNumberOfTuples() != cells)
+      msg << "The cell array " << a->GetName() << " has " << a->GetNumberOfTuples()
+          << " tuples for " << cells << " faces.";
+  if (labels && labels->GetNumberOfComponents() != 1)
+    msg << "The cell array Label must have one component.";
+  return msg.str();
+}
+
+/// The plane of face c: whole numbers within the core's range (no overflowing casts).
+bool readPlane(vtkDataArray* normals, vtkDataArray* offsets, vtkIdType c, vbr::StandardPlane& plane)
+{
+  constexpr double NormalLimit = double(std::int64_t(1) << 31);
+  constexpr double OffsetLimit = double(std::int64_t(1) << 52);
+  for (int d = 0; d < 3; ++d)
+    if (!integerValue(normals->GetComponent(c, d), NormalLimit, plane.normal[d]))
+      return false;
+  return integerValue(offsets->GetComponent(c, 0), OffsetLimit, plane.mu);
+}
+
+/// The voxel corner of a world point; false when it is not one within the core's range.
+bool cornerOf(const Grid& grid, const double p[3], vbr::Point3& corner)
+{
+  constexpr double CornerLimit = double(1 << 20);
+  for (int d = 0; d < 3; ++d)
+  {
+    const double index = std::nearbyint((p[d] - grid.origin[d]) / grid.spacing[d]);
+    std::int64_t i = 0;
+    if (!integerValue(index, CornerLimit, i))
+      return false;
+    corner[d] = static_cast<std::int32_t>(i);
+  }
+  return true;
+}
+
+using Outlines = std::map<vbr::vtk::LabelValue, std::vector<vbr::FaceOutline>>; // exact labels
+
+/// The outlines of the faces by label: corners from world points, loops in the faces'
+/// orientation. An error message, or an empty string.
+std::string readOutlines(vtkAlgorithm* self,
+  vtkPolyData* input,
+  const Grid& grid,
+  vtkDataArray* normals,
+  vtkDataArray* offsets,
+  vtkDataArray* labels,
+  Outlines& byLabel)
+{
+  const bool mirrored = grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
+  const vtkIdType cells = input->GetNumberOfCells();
+  vtkCellArray* polys = input->GetPolys();
+  polys->InitTraversal();
+  vtkIdType npts;
+  const vtkIdType* pts;
+  for (vtkIdType c = 0; polys->GetNextCell(npts, pts); ++c)
+  {
+    std::ostringstream msg;
+    vbr::FaceOutline outline;
+    const vbr::vtk::LabelValue label =
+      labels ? vbr::vtk::labelAt(labels, c) : vbr::vtk::LabelValue();
+    if (!readPlane(normals, offsets, c, outline.plane))
+      msg << "Face " << c << ": PlaneNormal and PlaneOffset must be whole numbers (normal "
+          << "components within 2^31, offset within 2^52).";
+    else if (labels && std::isnan(labels->GetComponent(c, 0)))
+      msg << "Face " << c << ": its Label is NaN.";
+    for (vtkIdType i = 0; i < npts && msg.tellp() == 0; ++i)
+    {
+      double p[3];
+      input->GetPoint(pts[mirrored ? npts - 1 - i : i], p);
+      vbr::Point3 corner;
+      if (!cornerOf(grid, p, corner))
+        msg << "Face " << c << ": point " << i << " is not a voxel corner of the grid.";
+      outline.loop.push_back(corner);
+    }
+    if (msg.tellp() != 0)
+      return msg.str();
+    byLabel[label].push_back(std::move(outline));
+    if (c % 1024 == 0)
+    {
+      self->UpdateProgress(0.5 * c / std::max<vtkIdType>(cells, 1));
+      if (self->GetAbortExecute())
+        return std::string();
+    }
+  }
+  return std::string();
+}
+
+/// The voxels of each label's faces, in the layout of the grid.
+int writeVoxels(vtkAlgorithm* self,
+  const Grid& grid,
+  const Outlines& byLabel,
+  vtkDataArray* faceLabels,
+  vtkImageData* output)
+{
+  output->SetOrigin(grid.imageOrigin);
+  output->SetSpacing(grid.spacing);
+  output->SetExtent(const_cast<int*>(grid.extent));
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkNew<vtkUnsignedCharArray> selection;
+  selection->SetName("Selection");
+  vbr::vtk::resizeOrThrow(selection, n);
+  selection->FillValue(0);
+  // Label of the faces' type, so that every label is exact.
+  const bool withLabels = faceLabels != nullptr;
+  vtkSmartPointer<vtkDataArray> labelValues = vbr::vtk::newLabelArray(
+    withLabels ? faceLabels->GetDataType() : VTK_DOUBLE, withLabels ? n : 0);
+  std::size_t done = 0;
+  for (const auto& [label, outlines] : byLabel)
+  {
+    if (self->GetAbortExecute())
+      break;
+    const double from = 0.5 + 0.5 * double(done++) / double(byLabel.size());
+    std::vector<vbr::SurfelGraph::Surfel> surfels;
+    vbr::BitVolume voxels;
+    const std::string problem = vbr::revert(outlines,
+      grid.dims,
+      surfels,
+      voxels,
+      vbr::vtk::makeExecution(self, from, from + 0.5 / double(byLabel.size())));
+    if (self->GetAbortExecute())
+      break;
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(self, << "Reversion failed: " << problem << ".");
+      output->Initialize();
+      return 0;
+    }
+    vtkIdType i = 0;
+    for (std::int32_t z = 0; z < grid.dims[2]; ++z)
+      for (std::int32_t y = 0; y < grid.dims[1]; ++y)
+        for (std::int32_t x = 0; x < grid.dims[0]; ++x, ++i)
+          if (voxels.get(x, y, z))
+          {
+            selection->SetValue(i, 1);
+            if (withLabels)
+              vbr::vtk::setLabel(labelValues, i, label);
+          }
+  }
+  if (self->GetAbortExecute())
+  {
+    output->Initialize();
+    return 1;
+  }
+  vtkDataSetAttributes* attributes = grid.cellData
+    ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
+    : static_cast<vtkDataSetAttributes*>(output->GetPointData());
+  attributes->SetScalars(selection);
+  if (withLabels)
+    attributes->AddArray(labelValues);
+  return 1;
 }
 
 } // namespace
@@ -89,11 +349,11 @@ int vtkStandardPlaneReversion::RequestInformation(vtkInformation*,
   vtkInformation* out = outputVector->GetInformationObject(0);
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   Grid grid;
-  if (input && readGrid(input->GetFieldData(), grid))
+  if (input && readVoxelGrid(input->GetFieldData(), grid).empty() &&
+    readLayout(input->GetFieldData(), grid).empty())
   {
-    const int extent[6] = { 0, grid.dims[0], 0, grid.dims[1], 0, grid.dims[2] };
-    out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    out->Set(vtkDataObject::ORIGIN(), grid.origin, 3);
+    out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), grid.extent, 6);
+    out->Set(vtkDataObject::ORIGIN(), grid.imageOrigin, 3);
     out->Set(vtkDataObject::SPACING(), grid.spacing, 3);
   }
   return 1;
@@ -103,101 +363,43 @@ int vtkStandardPlaneReversion::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  return vbr::vtk::executeGuarded(
+    this, outputVector, "Reversion", [&] { return this->Execute(inputVector, outputVector); });
+}
+
+int vtkStandardPlaneReversion::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  Grid grid;
-  if (!input || !output || !readGrid(input->GetFieldData(), grid))
+  if (!input || !output)
   {
     vtkErrorMacro(<< "The input must be the StandardFaces output of "
-                     "vtkStandardPlanePolyhedrizer (field data VoxelGridOrigin, "
-                     "VoxelGridSpacing, VoxelGridDimensions).");
+                     "vtkStandardPlanePolyhedrizer.");
     return 0;
   }
-  if (rotated(input->GetFieldData()))
-  {
-    vtkErrorMacro(<< "The faces come from an image with a direction matrix, which the "
-                     "reversion does not support; use the polyhedrizer's output port 1.");
-    return 0;
-  }
+  Grid grid;
+  std::string problem = readVoxelGrid(input->GetFieldData(), grid);
+  if (problem.empty())
+    problem = readLayout(input->GetFieldData(), grid);
+  if (problem.empty() && rotated(input->GetFieldData()))
+    problem = "The faces come from an image with a direction matrix, which the reversion does "
+              "not support; use the polyhedrizer's output port 1.";
   vtkDataArray* normals = input->GetCellData()->GetArray("PlaneNormal");
   vtkDataArray* offsets = input->GetCellData()->GetArray("PlaneOffset");
   vtkDataArray* labels = input->GetCellData()->GetArray("Label");
-  const vtkIdType cells = input->GetNumberOfCells();
-  if (cells > 0 &&
-    (!normals || !offsets || normals->GetNumberOfComponents() != 3 ||
-      input->GetPolys()->GetNumberOfCells() != cells))
+  if (problem.empty())
+    problem = checkFaceArrays(input, normals, offsets, labels);
+  Outlines byLabel;
+  if (problem.empty())
+    problem = readOutlines(this, input, grid, normals, offsets, labels, byLabel);
+  if (!problem.empty())
   {
-    vtkErrorMacro(<< "The input must be polygons with the cell arrays PlaneNormal and "
-                     "PlaneOffset (the StandardFaces output mode).");
+    vtkErrorMacro(<< problem);
+    output->Initialize();
     return 0;
   }
-  const bool mirrored = grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
-
-  // Outlines by label: corners from world points, loops in the faces' orientation.
-  std::map<vbr::vtk::LabelValue, std::vector<vbr::FaceOutline>> byLabel; // exact labels
-  vtkCellArray* polys = input->GetPolys();
-  polys->InitTraversal();
-  vtkIdType npts;
-  const vtkIdType* pts;
-  for (vtkIdType c = 0; polys->GetNextCell(npts, pts); ++c)
-  {
-    vbr::FaceOutline outline;
-    for (int d = 0; d < 3; ++d)
-      outline.plane.normal[d] = std::llround(normals->GetComponent(c, d));
-    outline.plane.mu = std::llround(offsets->GetTuple1(c));
-    for (vtkIdType i = 0; i < npts; ++i)
-    {
-      double p[3];
-      input->GetPoint(pts[mirrored ? npts - 1 - i : i], p);
-      vbr::Point3 corner;
-      for (int d = 0; d < 3; ++d)
-        corner[d] =
-          static_cast<std::int32_t>(std::lround((p[d] - grid.origin[d]) / grid.spacing[d]));
-      outline.loop.push_back(corner);
-    }
-    byLabel[labels ? vbr::vtk::labelAt(labels, c) : vbr::vtk::LabelValue()].push_back(
-      std::move(outline));
-    if (c % 1024 == 0)
-      this->UpdateProgress(0.5 * c / std::max<vtkIdType>(cells, 1));
-  }
-
-  output->SetOrigin(grid.origin);
-  output->SetSpacing(grid.spacing);
-  output->SetExtent(0, grid.dims[0], 0, grid.dims[1], 0, grid.dims[2]);
-  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
-  vtkNew<vtkUnsignedCharArray> selection;
-  selection->SetName("Selection");
-  selection->SetNumberOfValues(n);
-  selection->FillValue(0);
-  // Label of the faces' type, so that every label is exact.
-  vtkSmartPointer<vtkDataArray> labelValues =
-    vbr::vtk::newLabelArray(labels ? labels->GetDataType() : VTK_DOUBLE, labels ? n : 0);
-  for (const auto& [label, outlines] : byLabel)
-  {
-    std::vector<vbr::SurfelGraph::Surfel> surfels;
-    vbr::BitVolume voxels;
-    const std::string problem = vbr::revert(outlines, grid.dims, surfels, voxels);
-    if (!problem.empty())
-    {
-      vtkErrorMacro(<< "Reversion failed: " << problem << ".");
-      output->Initialize();
-      return 0;
-    }
-    vtkIdType i = 0;
-    for (std::int32_t z = 0; z < grid.dims[2]; ++z)
-      for (std::int32_t y = 0; y < grid.dims[1]; ++y)
-        for (std::int32_t x = 0; x < grid.dims[0]; ++x, ++i)
-          if (voxels.get(x, y, z))
-          {
-            selection->SetValue(i, 1);
-            if (labels)
-              vbr::vtk::setLabel(labelValues, i, label);
-          }
-  }
-  output->GetCellData()->SetScalars(selection);
-  if (labels)
-    output->GetCellData()->AddArray(labelValues);
-  return 1;
+  return writeVoxels(this, grid, byLabel, labels, output);
 }
 
 void vtkStandardPlaneReversion::PrintSelf(ostream& os, vtkIndent indent)

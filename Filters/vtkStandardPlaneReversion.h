@@ -10,10 +10,23 @@
  *
  * The voxel grid comes from the field data the polyhedrizer writes: `VoxelGridOrigin` (world
  * position of voxel corner (0, 0, 0)), `VoxelGridSpacing` and `VoxelGridDimensions` (voxels
- * along each axis). The output is an image whose cells are those voxels, with an unsigned char
- * cell array `Selection` (1 on the voxels) and, for label maps, an array `Label` of the faces'
- * Label type (labels stay exact). Faces made from an image with a direction matrix (field
- * `VoxelGridDirection` not the identity) are not supported: the filter reports an error.
+ * along each axis), and the layout of the image the faces came from: `VoxelGridExtent`,
+ * `VoxelGridImageOrigin` and `VoxelGridAssociation` (vtkDataObject::FIELD_ASSOCIATION_POINTS
+ * or FIELD_ASSOCIATION_CELLS, the association of the scalars the voxels were selected from).
+ *
+ * One convention, shared with the polyhedrizer's output port 1: the reversion has the layout
+ * of the input the faces came from (the same extent, origin, spacing and association), with
+ * an unsigned char array `Selection` (1 on the voxels) as its scalars and, when the faces
+ * carry `Label`, an array `Label` of the same association and of the faces' Label type
+ * (labels stay exact). Faces written without the
+ * layout fields (older files) give cell data on the grid of voxel corners: extent 0 to
+ * `VoxelGridDimensions`, origin `VoxelGridOrigin`.
+ *
+ * The input is checked before use: every array has one tuple per face, planes and corners
+ * are whole numbers within range (no NaN, no overflow), the grid is finite and at most
+ * 2^20 - 1 voxels per axis and 2^33 in all; faces given twice (or sharing surfels) are an
+ * error. Faces made from an image with a direction matrix (field `VoxelGridDirection` not
+ * the identity) are not supported: the filter reports an error.
  *
  * @sa vtkStandardPlanePolyhedrizer
  */
@@ -41,6 +54,8 @@ protected:
 private:
   vtkStandardPlaneReversion(const vtkStandardPlaneReversion&) = delete;
   void operator=(const vtkStandardPlaneReversion&) = delete;
+
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 };
 
 #endif

@@ -3,6 +3,7 @@
 #ifndef vbr_Execution_h
 #define vbr_Execution_h
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 
@@ -45,6 +46,64 @@ struct Execution
   bool report(double fraction) const { return !this->progress || this->progress(fraction); }
 
   bool stopRequested() const { return this->aborted && this->aborted(); }
+};
+
+/// Progress and abort inside one long sequential loop, on the calling thread: tick() once
+/// per step of work (however uneven); every `stride` steps it asks whether to stop, and
+/// every 16 of those or every 100 ms, whichever comes first, it reports the phase's
+/// progress, `fraction` of the way from `from` to `to`. Once stopped, it stays stopped.
+class ProgressPoll
+{
+public:
+  ProgressPoll(const Execution& exec, double from, double to, std::uint32_t stride = 64)
+    : Exec(exec)
+    , From(from)
+    , To(to)
+    , Stride(stride)
+    , Last(std::chrono::steady_clock::now())
+  {
+  }
+
+  /// Where the phase is, in [0, 1] (reported at the next poll).
+  void at(double fraction) { this->Fraction = fraction; }
+
+  /// Counts a step; returns false when the caller asked to stop.
+  bool tick()
+  {
+    if (++this->Count < this->Stride)
+      return !this->Stopped;
+    return this->poll();
+  }
+
+  /// Asks now; returns false when the caller asked to stop.
+  bool poll()
+  {
+    this->Count = 0;
+    if (this->Stopped)
+      return false;
+    this->Stopped = this->Exec.stopRequested();
+    const auto now = std::chrono::steady_clock::now();
+    if (!this->Stopped &&
+      (++this->Polls >= 16 || now - this->Last >= std::chrono::milliseconds(100)))
+    {
+      this->Last = now;
+      this->Polls = 0;
+      this->Stopped = !this->Exec.report(this->From + (this->To - this->From) * this->Fraction);
+    }
+    return !this->Stopped;
+  }
+
+  bool stopped() const { return this->Stopped; }
+
+private:
+  const Execution& Exec;
+  double From, To;
+  double Fraction = 0.0;
+  std::uint32_t Stride;
+  std::uint32_t Count = 0;
+  std::uint32_t Polls = 0;
+  bool Stopped = false;
+  std::chrono::steady_clock::time_point Last;
 };
 
 } // namespace vbr

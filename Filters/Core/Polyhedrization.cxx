@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -72,7 +73,8 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
 }
 
 /// The growth of the faces: per-face state kept in arrays stamped with the face number, so
-/// that starting a face costs nothing.
+/// that starting a face costs nothing. Every surfel examined ticks the progress poll being
+/// watched; once it says stop, the growth ends early and the faces are left unfinished.
 class FaceGrower
 {
 public:
@@ -87,24 +89,29 @@ public:
     out.faceOfSurfel.assign(graph.size(), None);
   }
 
-  /// Grows faces from the free surfels of `seeds`, in order.
-  bool run(const std::vector<std::uint32_t>& seeds, const Execution& exec, double progressTo)
+  /// The poll the growth ticks from now on (it must outlive the calls).
+  void watch(ProgressPoll& poll) { this->Poll = &poll; }
+
+  /// Grows faces from the free surfels of `seeds`, in order; false when stopped.
+  bool run(const std::vector<std::uint32_t>& seeds)
   {
-    const std::size_t n = seeds.size();
-    for (std::size_t i = 0; i < n; ++i)
+    this->Growing = true;
+    for (std::uint32_t s : seeds)
     {
-      const std::uint32_t s = seeds[i];
       if (this->Poly->faceOfSurfel[s] != None)
         continue;
-      if ((this->Poly->faces.size() & 63) == 0)
-      {
-        if (exec.stopRequested() || !exec.report(progressTo * double(i) / double(n)))
-          return false;
-      }
+      if (!this->Poll->tick())
+        return false;
       this->growFrom(s);
+      if (this->Poll->stopped())
+        return false;
     }
+    this->Growing = false;
     return true;
   }
+
+  /// Frees the recognizers kept for large faces by the merging.
+  void releaseCache() { this->Cache.clear(); }
 
 private:
   void growFrom(std::uint32_t seed)
@@ -128,6 +135,8 @@ private:
   {
     while (!this->Wave.empty())
     {
+      if (!this->Poll->tick())
+        break;
       const auto [s, depth] = this->Wave.front();
       this->Wave.pop_front();
       this->Queued[s] = None;
@@ -138,7 +147,7 @@ private:
         break;
       if (!meetsAlongOneArc(this->Graph, this->Poly->faceOfSurfel, s, f, false))
         continue; // may fit later, when it is queued again by a new neighbour
-      if (!this->Recognizer.tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
+      if (!this->Active->tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
       {
         this->Refused[s] = f; // points only accumulate: it never fits this face again
         continue;
@@ -176,9 +185,11 @@ public:
       {
         saved.push_back({ g, this->Poly->faces[g].surfels.size(), this->Poly->faces[g].plane });
         left -= this->extend(g, freed);
-        if (left == 0)
+        if (left == 0 || this->Poll->stopped())
           break;
       }
+      if (this->Poll->stopped())
+        return false; // the faces are discarded: no need to undo
     }
     if (left == 0)
     {
@@ -189,6 +200,8 @@ public:
     for (auto it = saved.rbegin(); it != saved.rend(); ++it)
     {
       StandardFace& g = this->Poly->faces[it->face];
+      if (g.surfels.size() != it->size)
+        this->Cache.erase(it->face); // its recognizer holds the surfels given back
       g.surfels.resize(it->size);
       g.plane = it->plane;
     }
@@ -220,23 +233,50 @@ private:
     return faces;
   }
 
-  /// Grows face g again over the free surfels next to it; returns how many it took.
-  std::size_t extend(std::uint32_t g, const std::vector<std::uint32_t>& freed)
+  /// A recognizer holding the points of face g: rebuilt from its surfels, or for a large
+  /// face the one kept from the previous extension of g. (A small face is offered to each of
+  /// its neighbours, and rebuilding a neighbour of 10^4 surfels for each small face next to
+  /// it made the merging quadratic: hours on the engine > 0.) Null when the surfels are
+  /// beyond the search's reach from scratch.
+  StandardPlaneRecognizer* recognizerOf(std::uint32_t g)
   {
-    StandardFace& face = this->Poly->faces[g];
-    // The recognizer, rebuilt for g.
+    const std::vector<std::uint32_t>& surfels = this->Poly->faces[g].surfels;
+    StandardPlaneRecognizer* r = &this->Recognizer;
+    if (surfels.size() >= CachedFrom)
+    {
+      Kept& kept = this->Cache[g];
+      if (kept.recognizer && kept.surfels == surfels.size())
+        return kept.recognizer.get();
+      if (!kept.recognizer)
+        kept.recognizer = std::make_unique<StandardPlaneRecognizer>();
+      kept.surfels = surfels.size();
+      r = kept.recognizer.get();
+    }
     std::vector<Point3> points;
     std::array<int, 3> signs{ 0, 0, 0 };
-    for (std::uint32_t s : face.surfels)
+    for (std::uint32_t s : surfels)
     {
       const auto& sf = this->Graph.surfels[s];
       signs[sf.axis()] = sf.sign();
       for (int k = 0; k < 4; ++k)
         points.push_back(this->Graph.cornerOf(s, k));
     }
-    this->Recognizer.reset();
-    if (!this->Recognizer.tryAdd(points, signs))
-      return 0; // beyond the search's reach from scratch: leave g as it is
+    r->reset();
+    if (!r->tryAdd(points, signs))
+    {
+      this->Cache.erase(g);
+      return nullptr;
+    }
+    return r;
+  }
+
+  /// Grows face g again over the free surfels next to it; returns how many it took.
+  std::size_t extend(std::uint32_t g, const std::vector<std::uint32_t>& freed)
+  {
+    StandardFace& face = this->Poly->faces[g];
+    StandardPlaneRecognizer* recognizer = this->recognizerOf(g);
+    if (!recognizer)
+      return 0; // leave g as it is
     const std::size_t before = face.surfels.size();
     this->Wave.clear();
     for (std::uint32_t s : freed)
@@ -249,9 +289,14 @@ private:
           }
     // The depth limit shapes the growth from a seed; absorbed surfels have no depth.
     this->DepthLimit = 0;
+    this->Active = recognizer;
     this->drainWave(g);
+    this->Active = &this->Recognizer;
     this->DepthLimit = this->Options.maximumDepth;
-    face.plane = this->Recognizer.plane();
+    face.plane = recognizer->plane();
+    const auto kept = this->Cache.find(g);
+    if (kept != this->Cache.end())
+      kept->second.surfels = face.surfels.size(); // it holds exactly the points taken
     return face.surfels.size() - before;
   }
 
@@ -300,6 +345,8 @@ private:
   {
     this->Poly->faceOfSurfel[s] = f;
     this->Poly->faces[f].surfels.push_back(s);
+    if (this->Growing)
+      this->Poll->at(double(++this->Taken) / double(this->Graph.size()));
     if (this->DepthLimit && depth + 1 > this->DepthLimit)
       return;
     for (int k = 0; k < 4; ++k)
@@ -317,6 +364,18 @@ private:
   const PolyhedrizationOptions& Options;
   Polyhedron* Poly; ///< where the faces go
   StandardPlaneRecognizer Recognizer;
+  StandardPlaneRecognizer* Active = &this->Recognizer; ///< the one drainWave grows with
+  /// Faces of at least this many surfels keep their recognizer through the merging.
+  static constexpr std::size_t CachedFrom = 64;
+  struct Kept
+  {
+    std::size_t surfels = 0; ///< the face's surfel count the recognizer was made for
+    std::unique_ptr<StandardPlaneRecognizer> recognizer;
+  };
+  std::unordered_map<std::uint32_t, Kept> Cache;
+  ProgressPoll* Poll = nullptr;
+  bool Growing = false;
+  std::size_t Taken = 0; ///< surfels taken by the growth, for its progress
   std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
   std::vector<std::uint32_t> Queued, Refused;               ///< stamped with the face
   std::uint32_t DepthLimit;
@@ -384,7 +443,7 @@ private:
 std::size_t moveToLargerFaces(const SurfelGraph& graph,
   Polyhedron& poly,
   std::size_t maximumSize,
-  const Execution& exec)
+  ProgressPoll& poll)
 {
   std::vector<std::size_t> size(poly.faces.size());
   for (std::size_t f = 0; f < size.size(); ++f)
@@ -401,7 +460,8 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
   for (std::size_t i = 0; i < order.size(); ++i)
   {
     const std::uint32_t f = order[i];
-    if ((i & 63) == 0 && exec.stopRequested())
+    poll.at(double(i) / double(order.size()));
+    if (!poll.tick())
       return moved;
     if (size[f] == 0)
       continue;
@@ -413,6 +473,8 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
           queue.push_back(graph.neighbourOf(s, k));
     for (std::size_t q = 0; q < queue.size(); ++q)
     {
+      if (!poll.tick())
+        return moved;
       const std::uint32_t t = queue[q];
       const std::uint32_t g = faceOf[t];
       if (g == f || size[g] >= size[f] || (maximumSize && size[f] >= maximumSize))
@@ -459,11 +521,13 @@ void dropEmptyFaces(Polyhedron& poly)
 
 /// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
 /// each meets the umbrella in one run).
-std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph, const Polyhedron& poly)
+std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph,
+  const Polyhedron& poly,
+  ProgressPoll& poll)
 {
   std::vector<std::uint8_t> count(graph.vertexPointel.size(), 0);
   std::vector<char> done(graph.vertexPointel.size(), 0);
-  for (std::uint32_t s0 = 0; s0 < graph.size(); ++s0)
+  for (std::uint32_t s0 = 0; s0 < graph.size() && poll.tick(); ++s0)
     for (int k0 = 0; k0 < 4; ++k0)
     {
       const std::uint32_t v = graph.vertexOf(s0, k0);
@@ -488,52 +552,81 @@ std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph, const P
 
 } // namespace
 
+namespace
+{
+
+/// The merging pass, smallest faces first: each is handed to its neighbours when they can
+/// take it whole. Returns false when stopped.
+bool mergeSmallFaces(FaceGrower& grower,
+  const PolyhedrizationOptions& options,
+  Polyhedron& out,
+  ProgressPoll& poll)
+{
+  std::vector<std::uint32_t> order(out.faces.size());
+  for (std::uint32_t f = 0; f < order.size(); ++f)
+    order[f] = f;
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](std::uint32_t a, std::uint32_t b)
+    { return out.faces[a].surfels.size() < out.faces[b].surfels.size(); });
+  grower.watch(poll);
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    poll.at(double(i) / double(order.size()));
+    if (!poll.tick())
+      return false;
+    const std::size_t size = out.faces[order[i]].surfels.size();
+    if (size == 0 || size > options.mergeFacesUpTo)
+      continue; // faces grow as they take others: the order is only a start
+    out.mergedFaces += grower.absorb(order[i]);
+    if (poll.stopped())
+      return false;
+  }
+  grower.releaseCache();
+  dropEmptyFaces(out);
+  return true;
+}
+
+} // namespace
+
 bool polyhedrize(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,
   const Execution& exec,
   Polyhedron& out)
 {
+  // Progress: growth 0 - 0.6, moves 0.6 - 0.7, merging 0.7 - 0.95, loops 0.95 - 1.
   out = Polyhedron();
   std::vector<std::uint32_t> seeds(graph.size());
   for (std::uint32_t s = 0; s < seeds.size(); ++s)
     seeds[s] = s;
   FaceGrower grower(graph, options, out);
-  if (!grower.run(seeds, exec, 0.6))
+  ProgressPoll growth(exec, 0.0, 0.6);
+  grower.watch(growth);
+  if (!grower.run(seeds))
     return false;
   if (options.moveToLargerFaces)
   {
-    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, exec);
-    if (exec.stopRequested())
+    ProgressPoll moves(exec, 0.6, 0.7);
+    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, moves);
+    if (moves.stopped())
       return false;
     dropEmptyFaces(out);
   }
-  if (options.mergeFaces)
-  {
-    // Smallest faces first: each is handed to its neighbours when they can take it whole.
-    std::vector<std::uint32_t> order(out.faces.size());
-    for (std::uint32_t f = 0; f < order.size(); ++f)
-      order[f] = f;
-    std::stable_sort(order.begin(),
-      order.end(),
-      [&](std::uint32_t a, std::uint32_t b)
-      { return out.faces[a].surfels.size() < out.faces[b].surfels.size(); });
-    for (std::size_t i = 0; i < order.size(); ++i)
-    {
-      const std::size_t size = out.faces[order[i]].surfels.size();
-      if (size == 0 || size > options.mergeFacesUpTo)
-        continue; // faces grow as they take others: the order is only a start
-      if ((i & 63) == 0 &&
-        (exec.stopRequested() || !exec.report(0.7 + 0.25 * double(i) / double(order.size()))))
-        return false;
-      out.mergedFaces += grower.absorb(order[i]);
-    }
-    dropEmptyFaces(out);
-  }
+  ProgressPoll merging(exec, 0.7, 0.95);
+  if (options.mergeFaces && !mergeSmallFaces(grower, options, out, merging))
+    return false;
+  ProgressPoll loops(exec, 0.95, 1.0);
   LoopTracer tracer(graph);
   for (std::uint32_t f = 0; f < out.faces.size(); ++f)
+  {
+    loops.at(0.5 * f / double(out.faces.size()));
+    if (!loops.tick())
+      return false;
     tracer.trace(out, f, out.faces[f]);
-  out.facesAtVertex = countFacesAtVertices(graph, out);
-  return exec.report(1.0);
+  }
+  loops.at(0.5);
+  out.facesAtVertex = countFacesAtVertices(graph, out, loops);
+  return !loops.stopped() && exec.report(1.0);
 }
 
 // ---- reversion ------------------------------------------------------------------------
@@ -622,9 +715,14 @@ bool surfelLeftOf(const StandardPlane& plane,
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
   std::vector<SurfelGraph::Surfel>& surfels,
-  BitVolume& voxels)
+  BitVolume& voxels,
+  const Execution& exec)
 {
   surfels.clear();
+  ProgressPoll poll(exec, 0.0, 1.0);
+  // The face of every surfel found so far: faces are disjoint, and a surfel in two faces
+  // (a face given twice, say) would cancel out in the parity below.
+  std::unordered_map<std::uint64_t, std::uint32_t> faceOf;
   auto surfelKey = [](const SurfelGraph::Surfel& s)
   {
     constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
@@ -635,6 +733,9 @@ std::string revert(const std::vector<FaceOutline>& faces,
   };
   for (std::size_t f = 0; f < faces.size(); ++f)
   {
+    poll.at(0.9 * double(f) / double(faces.size()));
+    if (!poll.tick())
+      return "aborted";
     const FaceOutline& face = faces[f];
     const std::size_t n = face.loop.size();
     std::unordered_set<std::uint64_t> loopEdges;
@@ -664,6 +765,14 @@ std::string revert(const std::vector<FaceOutline>& faces,
       const SurfelGraph::Surfel s = stack.back();
       stack.pop_back();
       surfels.push_back(s);
+      const auto other = faceOf.emplace(surfelKey(s), static_cast<std::uint32_t>(f));
+      if (!other.second)
+      {
+        std::ostringstream msg;
+        msg << "faces " << other.first->second << " and " << f
+            << " share surfels (is a face given twice?)";
+        return msg.str();
+      }
       if (seen.size() > limit)
       {
         std::ostringstream msg;

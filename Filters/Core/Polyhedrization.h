@@ -76,11 +76,14 @@ struct FaceOutline
 
 /// Surfels of each face recomputed from its outline: the squares of the plane enclosed by
 /// the loop. Then the voxels, by parity along x, in a grid of `dims`. Returns an error
-/// message for outlines that do not bound a disk of their plane, or an empty string.
+/// message for outlines that do not bound a disk of their plane, for faces that share
+/// surfels (a face given twice), or "aborted" when `exec` asked to stop; else an empty
+/// string.
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
   std::vector<SurfelGraph::Surfel>& surfels,
-  BitVolume& voxels);
+  BitVolume& voxels,
+  const Execution& exec = Execution());
 
 } // namespace vbr
 

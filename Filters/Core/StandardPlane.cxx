@@ -248,6 +248,24 @@ bool StandardPlaneRecognizer::hasInterior(const Octant& o)
   return false;
 }
 
+bool StandardPlaneRecognizer::saturated(const Octant& o, std::size_t e) const
+{
+  const Vertex& u = o.vertices[e];
+  const Vertex& v = o.vertices[(e + 1) % o.vertices.size()];
+  const Vec sigma = sigmaOf(o.sigma);
+  if (u.hi - u.lo < dot(sigma, u.ray) || v.hi - v.lo < dot(sigma, v.ray))
+    return false;
+  const Vec m{ u.ray[0] + v.ray[0], u.ray[1] + v.ray[1], u.ray[2] + v.ray[2] };
+  std::int64_t lo = 0, hi = 0;
+  for (std::size_t j = 0; j < this->Points.size(); ++j)
+  {
+    const std::int64_t x = dot(m, this->Points[j]);
+    lo = j == 0 ? x : std::min(lo, x);
+    hi = j == 0 ? x : std::max(hi, x);
+  }
+  return hi - lo >= dot(sigma, m);
+}
+
 bool StandardPlaneRecognizer::solve(const Octant& o,
   const std::array<int, 3>& present,
   std::int64_t omegaLimit,
@@ -255,6 +273,16 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
 {
   ++this->Searches;
   const Vec sigma = sigmaOf(o.sigma);
+  // Every normal strictly inside the polygon fits (the width is convex, at most 1 on the
+  // polygon, and 1 inside only if constant). On an octant edge, where n_d = 0 is allowed,
+  // the width is convex along the edge too: it is exactly 1 inside the edge only when it is
+  // 1 all along, and then no normal of that edge fits. Such edges are made strict, or the
+  // search would measure every point for each of their lattice normals (up to the budget:
+  // minutes on a large face).
+  std::vector<char>& strict = this->StrictEdges;
+  strict.assign(o.edges.size(), 0);
+  for (std::size_t e = 0; e < o.edges.size(); ++e)
+    strict[e] = !o.octantEdge[e] || this->saturated(o, e);
   // Range of n_x / omega over the polygon, as fractions.
   std::int64_t minNum = 0, minDen = 1, maxNum = 0, maxDen = 1;
   for (std::size_t i = 0; i < o.vertices.size(); ++i)
@@ -279,21 +307,23 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
         const Vec& E = o.edges[e];
         const std::int64_t a = E[1] - E[2] * sigma[2] * sigma[1];
         const std::int64_t b = E[0] * nx + E[2] * sigma[2] * (omega - sigma[0] * nx);
-        const bool strict = !o.octantEdge[e]; // width < 1 inside; n_d = 0 allowed on octant edges
         if (a == 0)
         {
-          if (b < 0 || (strict && b == 0))
+          if (b < 0 || (strict[e] && b == 0))
             yLo = yHi + 1;
         }
         else if (a > 0) // a ny + b >= 0 (> 0)
-          yLo = std::max(yLo, strict ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
+          yLo = std::max(yLo, strict[e] ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
         else // ny <= b / -a (<)
-          yHi = std::min(yHi, strict ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
+          yHi = std::min(yHi, strict[e] ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
       }
       for (std::int64_t ny = yLo; ny <= yHi && budget > 0; ++ny, --budget)
       {
         const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
         if (sigma[0] * n[0] < 0 || sigma[1] * n[1] < 0 || sigma[2] * n[2] < 0)
+          continue;
+        // A multiple k n of a normal n fits exactly when n does, and n came first.
+        if (std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) > 1)
           continue;
         if (this->fits(n, present))
         {

@@ -101,6 +101,8 @@ private:
     std::int64_t omegaLimit,
     Vec& normal) const;
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
+  /// Whether the width is exactly 1 all along polygon edge e (between vertices e, e + 1).
+  bool saturated(const Octant& o, std::size_t e) const;
   void commit(const std::array<int, 3>& present);
   bool known(std::uint64_t key) const;
 
@@ -116,6 +118,7 @@ private:
   StandardPlane Current;
   std::int64_t CurrentLo = 0, CurrentHi = 0; ///< range of the current normal over the points
   mutable std::size_t Clips = 0, Searches = 0;
+  mutable std::vector<char> StrictEdges; ///< per polygon edge, in solve
 };
 
 } // namespace vbr

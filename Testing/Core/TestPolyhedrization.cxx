@@ -511,3 +511,67 @@ TEST(Polyhedrization, AbortAndBadOutlines)
   bad.loop = { { 0, 0, 5 }, { 1, 0, 5 }, { 1, 1, 5 }, { 0, 1, 5 } }; // off the plane
   EXPECT_NE(vbr::revert({ bad }, { 4, 4, 4 }, surfels, back), "");
 }
+
+// Abort inside each phase: a progress callback asks to stop at its first report inside the
+// phase (growth 0 - 0.6, moves 0.6 - 0.7, merging 0.7 - 0.95, loops 0.95 - 1). Each phase
+// must report from inside (so it polls while it runs) and stop there: nothing reported past
+// its end, and no further poll answered once stopped.
+TEST(Polyhedrization, AbortInsideEachPhase)
+{
+  std::mt19937 rng(8);
+  vbr::BitVolume v(32, 32, 32);
+  for (int z = 0; z < 32; ++z)
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x)
+        v.set(x, y, z, rng() & 1);
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+  vbr::PolyhedrizationOptions options;
+  options.mergeFaces = true;
+  const std::pair<double, double> phases[] = {
+    { 0.0, 0.6 }, { 0.6, 0.7 }, { 0.7, 0.95 }, { 0.95, 1.0 }
+  };
+  for (const auto& [from, to] : phases)
+  {
+    bool stop = false;
+    double highest = 0.0;
+    int pollsAfterStop = 0;
+    vbr::Execution exec;
+    exec.progress = [&](double f)
+    {
+      highest = std::max(highest, f);
+      stop = stop || (f > from && f < to);
+      return !stop;
+    };
+    exec.aborted = [&]
+    {
+      pollsAfterStop += stop;
+      return stop;
+    };
+    vbr::Polyhedron p;
+    EXPECT_FALSE(vbr::polyhedrize(g, options, exec, p)) << "phase from " << from;
+    EXPECT_TRUE(stop) << "no report inside the phase from " << from;
+    EXPECT_LT(highest, to) << "went on past the phase from " << from;
+    EXPECT_LE(pollsAfterStop, 1) << "phase from " << from;
+  }
+  // The reversion stops too.
+  vbr::Polyhedron p;
+  ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
+  std::vector<vbr::FaceOutline> outlines;
+  for (const vbr::StandardFace& f : p.faces)
+  {
+    vbr::FaceOutline o;
+    o.plane = f.plane;
+    for (std::uint32_t u : f.loop)
+      o.loop.push_back(g.vertexPointel[u]);
+    outlines.push_back(o);
+  }
+  vbr::Execution stopNow;
+  stopNow.aborted = [] { return true; };
+  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  vbr::BitVolume back;
+  EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back, stopNow), "aborted");
+  // A face given twice is an error (the parity would cancel it silently).
+  outlines.push_back(outlines.front());
+  EXPECT_NE(vbr::revert(outlines, v.dims(), surfels, back).find("twice"), std::string::npos);
+}

@@ -50,7 +50,8 @@ def check_values(phantom, dims):
     reversion = StandardPlaneReversion(Input=OutputPort(poly, 0))
     reversion.UpdatePipeline()
     voxels = servermanager.Fetch(reversion)
-    back = ns.vtk_to_numpy(voxels.GetCellData().GetArray("Selection")).reshape(dims[::-1])
+    # Both reversions have the layout of the input (here point data on the phantom's grid).
+    back = ns.vtk_to_numpy(voxels.GetPointData().GetArray("Selection")).reshape(dims[::-1])
     expect("Standard Plane Reversion equals the selection", bool((back == mask).all()), True)
     Delete(reversion)
     Delete(poly)

@@ -87,13 +87,17 @@ def check_case(tag, mask, selected=None, spacing=(1, 1, 1), origin=(0, 0, 0),
     companion.SetInputData(faces_only)
     companion.Update()
     voxels = companion.GetOutput()
-    check.equal(tag + ": companion grid", voxels.GetDimensions(),
-                tuple(int(n) + 1 for n in values.shape[::-1]))
-    got = ns.vtk_to_numpy(voxels.GetCellData().GetArray("Selection")).reshape(values.shape)
+    # One convention for both reversions: the layout of the input (extent, origin, spacing,
+    # association of the scalars).
+    check.equal(tag + ": companion extent", voxels.GetExtent(), image.GetExtent())
+    check.close(tag + ": companion origin", voxels.GetOrigin(), image.GetOrigin())
+    check.close(tag + ": companion spacing", voxels.GetSpacing(), image.GetSpacing())
+    companion_data = voxels.GetCellData() if cell_data else voxels.GetPointData()
+    got = ns.vtk_to_numpy(companion_data.GetArray("Selection")).reshape(values.shape)
     check.true(tag + ": vtkStandardPlaneReversion equals the selection",
                bool((got == binary).all()))
     if labels:
-        got_labels = ns.vtk_to_numpy(voxels.GetCellData().GetArray("Label")).reshape(values.shape)
+        got_labels = ns.vtk_to_numpy(companion_data.GetArray("Label")).reshape(values.shape)
         check.true(tag + ": labels back", bool((got_labels == values).all()))
     loop_linels = sum(len(c) for c in cells(standard))
     edges = run(f, f.STANDARD_EDGES)
