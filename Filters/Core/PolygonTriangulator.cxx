@@ -145,6 +145,61 @@ private:
   std::vector<int> Blockers; ///< corners that did not turn left when last looked at
 };
 
+/// Triangles of one piece of the polygon (indices into `corners`, in order). Where the
+/// piece touches itself at a corner so that the two loops it parts into there both run
+/// counter-clockwise (two pieces joined at that corner), each loop is triangulated alone:
+/// ear clipping would cut across the gap between them. The loops parted where one runs
+/// inside the other (a hole reaching the boundary) or along a slit stay together.
+bool triangulatePiece(const std::vector<Point2L>& corners,
+  const std::vector<int>& piece,
+  std::vector<Triangle>& triangles)
+{
+  const std::size_t n = piece.size();
+  std::vector<Wide> prefix(n + 1, 0); // doubled area swept by the first edges
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point2L& p = corners[piece[i]];
+    const Point2L& q = corners[piece[(i + 1) % n]];
+    prefix[i + 1] = prefix[i] + Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = i;
+  std::sort(order.begin(),
+    order.end(),
+    [&](std::size_t a, std::size_t b)
+    { return std::make_pair(corners[piece[a]], a) < std::make_pair(corners[piece[b]], b); });
+  for (std::size_t s = 0, e = 0; s < n; s = e)
+  {
+    for (e = s + 1; e < n && corners[piece[order[e]]] == corners[piece[order[s]]]; ++e)
+      ;
+    for (std::size_t a = s; a < e; ++a)
+      for (std::size_t b = a + 1; b < e; ++b)
+      {
+        const std::size_t i = order[a], j = order[b]; // i < j: the loop i .. j - 1 and the rest
+        const Wide inner = prefix[j] - prefix[i];
+        if (inner <= 0 || prefix[n] - inner <= 0)
+          continue;
+        const std::vector<int> first(piece.begin() + i, piece.begin() + j);
+        std::vector<int> second(piece.begin() + j, piece.end());
+        second.insert(second.end(), piece.begin(), piece.begin() + i);
+        return triangulatePiece(corners, first, triangles) &&
+          triangulatePiece(corners, second, triangles);
+      }
+  }
+  std::vector<Point2L> points(n);
+  for (std::size_t i = 0; i < n; ++i)
+    points[i] = corners[piece[i]];
+  std::vector<Triangle> local;
+  local.reserve(n - 2);
+  EarClipper clipper(points);
+  if (!clipper.run(local))
+    return false;
+  for (const Triangle& t : local)
+    triangles.push_back({ piece[t[0]], piece[t[1]], piece[t[2]] });
+  return true;
+}
+
 } // namespace
 
 int orientation(const Point2L& a, const Point2L& b, const Point2L& c)
@@ -199,8 +254,10 @@ std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corne
   if (corners.size() < 3 || doubledArea(corners) <= 0)
     return triangles;
   triangles.reserve(corners.size() - 2);
-  EarClipper clipper(corners);
-  if (!clipper.run(triangles))
+  std::vector<int> all(corners.size());
+  for (std::size_t i = 0; i < all.size(); ++i)
+    all[i] = static_cast<int>(i);
+  if (!triangulatePiece(corners, all, triangles))
     triangles.clear();
   return triangles;
 }

@@ -45,7 +45,9 @@ bool isSimplePolygon(const std::vector<Point2L>& corners);
 /// Triangles (indices into `corners`, counter-clockwise) covering a simple counter-clockwise
 /// polygon exactly: n - 2 of them, none flat. The polygon may also touch itself at corners
 /// without crossing (a corner repeated, as the loop of a face through a pointel where the
-/// object touches itself): each repetition is a corner of its own. Empty when the polygon
+/// object touches itself): each repetition is a corner of its own, and there are
+/// n - 2r - 2chi triangles (r repetitions, chi the Euler characteristic of the region: n - 2
+/// for a disk's loop, two fewer for each corner that joins two pieces). Empty when the polygon
 /// has fewer than three corners or no ear is found (it was not simple or not
 /// counter-clockwise).
 std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corners);

@@ -1,0 +1,161 @@
+// fanPolygons (FaceTriangulator.h) against brute force on the orthogonal faces, holes
+// included, of the B-Reps of random volumes: every polygon drawn as the fan from its first
+// corner (as VTK draws it) must tile the face. Checked with signed areas, orientations and
+// generic sample points per pixel, counted against the face's own rasterization.
+#include "BRep.h"
+#include "BruteForce.h"
+#include "EVM.h"
+#include "FaceTriangulator.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+using Wide = __int128;
+using P2 = std::array<std::int64_t, 2>;
+
+Wide cross(const P2& a, const P2& b, const P2& c)
+{
+  return Wide(b[0] - a[0]) * (c[1] - a[1]) - Wide(b[1] - a[1]) * (c[0] - a[0]);
+}
+
+struct FaceStats
+{
+  std::size_t faces = 0, withHoles = 0, single = 0, grouped = 0, flat = 0;
+};
+
+/// The fans of the polygons of face f cover it exactly: counter-clockwise or flat triangles
+/// (seen from outside) whose doubled areas add up to twice the face's pixels, every pixel
+/// centre (moved to a generic point) in exactly one triangle when the face holds the pixel
+/// and in none otherwise, every loop corner a polygon corner.
+void checkFace(const vbr::BRep& brep, int f, FaceStats& stats)
+{
+  const vbr::BRepFace& face = brep.faces[f];
+  SCOPED_TRACE("face " + std::to_string(f));
+  const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
+  // Corners seen from outside: (u, v) when the normal is +axis, mirrored otherwise.
+  std::vector<P2> corner;
+  std::set<P2> loopCorners;
+  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+    for (const vbr::Point3& p : brep.loopPoints(l))
+    {
+      corner.push_back(face.normalSign > 0 ? P2{ p[u], p[v] } : P2{ -p[u], p[v] });
+      loopCorners.insert(corner.back());
+    }
+  const bf::PixelSet pixels = bf::rasterize(brep, f);
+  const std::vector<std::vector<int>> polygons = vbr::fanPolygons(brep, f);
+  ASSERT_FALSE(polygons.empty());
+  ++stats.faces;
+  stats.withHoles += face.loopCount > 1;
+  (polygons.size() == 1 ? stats.single : stats.grouped) += 1;
+
+  std::vector<std::array<P2, 3>> fan;
+  std::set<P2> used;
+  Wide total = 0;
+  for (const auto& polygon : polygons)
+  {
+    ASSERT_GE(polygon.size(), 3u);
+    for (int i : polygon)
+    {
+      ASSERT_TRUE(i >= 0 && i < static_cast<int>(corner.size())) << "not a loop corner";
+      used.insert(corner[i]);
+    }
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
+    {
+      const std::array<P2, 3> t{ corner[polygon[0]], corner[polygon[i]], corner[polygon[i + 1]] };
+      const Wide c = cross(t[0], t[1], t[2]);
+      EXPECT_GE(c, 0) << "fan triangle turned inwards";
+      stats.flat += c == 0;
+      total += c;
+      if (c != 0)
+        fan.push_back(t);
+    }
+  }
+  EXPECT_TRUE(total == Wide(2 * pixels.size())) << "fans do not add up to the face's area";
+  EXPECT_EQ(used, loopCorners) << "a loop corner is no polygon corner";
+
+  // Sample (x + 1/M, y + 1/M^2) per pixel, in coordinates scaled by M^2: on no line through
+  // two corners when M > span + 1.
+  std::int64_t x0 = corner[0][0], x1 = x0, y0 = corner[0][1], y1 = y0;
+  for (const P2& q : corner)
+  {
+    x0 = std::min(x0, q[0]);
+    x1 = std::max(x1, q[0]);
+    y0 = std::min(y0, q[1]);
+    y1 = std::max(y1, q[1]);
+  }
+  const std::int64_t M = 2 * std::max(x1 - x0, y1 - y0) + 3, M2 = M * M;
+  for (auto& t : fan)
+    for (auto& q : t)
+      q = { q[0] * M2, q[1] * M2 };
+  for (std::int64_t x = x0; x < x1; ++x)
+    for (std::int64_t y = y0; y < y1; ++y)
+    {
+      const P2 s{ x * M2 + M, y * M2 + 1 };
+      int covered = 0;
+      for (const auto& t : fan)
+        covered += cross(t[0], t[1], s) > 0 && cross(t[1], t[2], s) > 0 && cross(t[2], t[0], s) > 0;
+      // The pixel in the face's own (u, v) coordinates.
+      const std::pair<std::int32_t, std::int32_t> pixel = face.normalSign > 0
+        ? std::make_pair(std::int32_t(x), std::int32_t(y))
+        : std::make_pair(std::int32_t(-x - 1), std::int32_t(y));
+      ASSERT_EQ(covered, pixels.count(pixel) ? 1 : 0)
+        << "pixel " << pixel.first << " " << pixel.second;
+    }
+}
+
+void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, FaceStats& stats)
+{
+  vbr::BRep brep;
+  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(volume),
+    merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
+    vbr::Execution(),
+    brep));
+  if (tJunctions)
+    vbr::insertTJunctionVertices(brep);
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+    checkFace(brep, static_cast<int>(f), stats);
+}
+
+} // namespace
+
+TEST(FanPolygons, TileTheFacesOfRandomVolumes)
+{
+  FaceStats stats;
+  unsigned seed = 5100;
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    const bf::Int3 d{ 2 + (trial * 5) % 11, 2 + (trial * 3) % 9, 2 + (trial * 7) % 8 };
+    const double density = 0.1 + 0.8 * (trial % 8) / 7.0;
+    const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << " density " << density);
+    checkVolume(v, trial % 2 == 0, trial % 3 != 0, stats);
+  }
+  // Plates with holes: large faces with many holes, some touching the outer loop or each
+  // other at corners.
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    vbr::BitVolume v = bf::randomVolume({ 14, 12, 1 }, 0.15 + 0.05 * (trial % 4), seed++);
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 14; ++x)
+        v.set(x, y, 0, !v.get(x, y, 0) || x == 0 || y == 0 || x == 13 || y == 11);
+    SCOPED_TRACE(testing::Message() << "plate " << trial);
+    checkVolume(v, trial % 2 == 0, trial % 3 != 0, stats);
+  }
+  RecordProperty("faces", static_cast<int>(stats.faces));
+  RecordProperty("withHoles", static_cast<int>(stats.withHoles));
+  RecordProperty("grouped", static_cast<int>(stats.grouped));
+  RecordProperty("flat", static_cast<int>(stats.flat));
+  EXPECT_GT(stats.withHoles, 50u);
+  EXPECT_GT(stats.grouped, 100u);
+  EXPECT_GT(stats.single, 1000u);
+  EXPECT_GT(stats.flat, 100u);
+}
