@@ -452,7 +452,7 @@ void writeRegionTable(const std::vector<Region>& regions,
     for (int d = 0; d < 3; ++d)
     {
       index[2 * d] = grid.extentMin[d] + lo[d];
-      index[2 * d + 1] = grid.extentMin[d] + hi[d] - 1;
+      index[2 * d + 1] = grid.extentMin[d] + (hi[d] - 1); // no overflow at INT_MAX
     }
     for (int k = 0; k < 8; ++k)
     {

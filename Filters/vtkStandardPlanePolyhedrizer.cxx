@@ -31,6 +31,7 @@
 #include <array>
 #include <cstdint>
 #include <exception>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -113,6 +114,7 @@ public:
     , Labels(vbr::vtk::newLabelArray(labelType))
   {
     this->FaceIds->SetName("FaceId");
+    this->LoopEdges->SetName("LoopEdges");
     this->Normals->SetName("PlaneNormal");
     this->Normals->SetNumberOfComponents(3);
     this->Offsets->SetName("PlaneOffset");
@@ -151,8 +153,9 @@ public:
     {
       const std::vector<std::vector<std::uint32_t>> polygons =
         mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE ? semiDiscretePolygons(o) : loopsOf(o);
+      const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        this->addTriangulatedFace(o, f, polygons[f]);
+        this->addTriangulatedFace(o, f, polygons[f], markLoops);
     }
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
@@ -176,6 +179,8 @@ public:
     cd->AddArray(this->Offsets);
     cd->AddArray(this->Sizes);
     cd->AddArray(this->Labels);
+    if (this->LoopEdges->GetNumberOfTuples() > 0)
+      cd->AddArray(this->LoopEdges);
     cd->SetActiveScalars("FaceId");
   }
 
@@ -246,9 +251,13 @@ private:
   /// projection along the face's normal), corners at the polygon's own pointels. A polygon
   /// that cannot be triangulated (never seen: loops project to simple polygons) is drawn
   /// by its surfels, two triangles each, rather than wrongly.
+  /// With `markLoops`, each triangle's `LoopEdges` bits tell which of its edges (corner k to
+  /// k + 1) run along the face's loop, in the loop's direction: what vtkStandardPlaneReversion
+  /// needs to rebuild the loops from the triangles (a loop may run along an edge and back).
   void addTriangulatedFace(const ObjectFaces& o,
     std::uint32_t f,
-    const std::vector<std::uint32_t>& polygon)
+    const std::vector<std::uint32_t>& polygon,
+    bool markLoops)
   {
     const vbr::StandardFace& face = o.poly.faces[f];
     const vbr::ProjectionAlong project(face.plane.normal);
@@ -257,12 +266,29 @@ private:
     for (std::uint32_t v : polygon)
       corners.push_back(project(o.graph.vertexPointel[v]));
     const std::vector<vbr::Triangle> triangles = vbr::triangulateSimplePolygon(corners);
+    std::set<std::pair<vtkIdType, vtkIdType>> loopEdges;
+    if (markLoops)
+      for (std::size_t i = 0; i < face.loop.size(); ++i)
+        loopEdges.emplace(this->point(inGrid(o, o.graph.vertexPointel[face.loop[i]])),
+          this->point(inGrid(o, o.graph.vertexPointel[face.loop[(i + 1) % face.loop.size()]])));
     std::vector<vtkIdType> ids(3);
+    auto add = [&]()
+    {
+      this->addCell(ids, o, f); // reverses ids on a mirrored grid, as the loop is written
+      if (!markLoops)
+        return;
+      unsigned char bits = 0;
+      for (int k = 0; k < 3; ++k)
+        if (loopEdges.count(this->Reverse ? std::make_pair(ids[(k + 1) % 3], ids[k])
+                                          : std::make_pair(ids[k], ids[(k + 1) % 3])))
+          bits |= static_cast<unsigned char>(1 << k);
+      this->LoopEdges->InsertNextValue(bits);
+    };
     for (const vbr::Triangle& t : triangles)
     {
       for (int k = 0; k < 3; ++k)
         ids[k] = this->point(inGrid(o, o.graph.vertexPointel[polygon[t[k]]]));
-      this->addCell(ids, o, f);
+      add();
     }
     if (!triangles.empty())
       return;
@@ -273,7 +299,7 @@ private:
         const int corner[3] = { 0, 1 + half, 2 + half };
         for (int k = 0; k < 3; ++k)
           ids[k] = this->point(inGrid(o, o.graph.cornerOf(s, corner[k])));
-        this->addCell(ids, o, f);
+        add();
       }
     }
   }
@@ -375,7 +401,8 @@ private:
   vtkNew<vtkIntArray> Normals;
   vtkNew<vtkIdTypeArray> Offsets;
   vtkNew<vtkIntArray> Sizes;
-  vtkSmartPointer<vtkDataArray> Labels; ///< of the selected values' type
+  vtkNew<vtkUnsignedCharArray> LoopEdges; ///< TriangulatedFaces: loop edges of each triangle
+  vtkSmartPointer<vtkDataArray> Labels;   ///< of the selected values' type
 };
 
 /// The voxel grid for vtkStandardPlaneReversion: world position of corner (0, 0, 0) (axis

@@ -25,10 +25,11 @@
  *   so its loop projected along the normal is a simple polygon; it is triangulated there
  *   exactly (integer ear clipping, see PolygonTriangulator.h). Neighbouring faces share
  *   their loop edges, so the triangles form a closed surface, oriented outwards: renders
- *   correctly.
+ *   correctly. The cell array `LoopEdges` (bit k: the triangle's edge from corner k to k + 1
+ *   runs along its face's loop) lets vtkStandardPlaneReversion rebuild the loops.
  * - Surfels: every surfel as a quad, with the FaceId of its face (the paper's figures).
  * - StandardFaces (for export): one polygon per face along its whole boundary loop of
- *   pointels, counter-clockwise seen from outside; what vtkStandardPlaneReversion reads. The
+ *   pointels, counter-clockwise seen from outside (vtkStandardPlaneReversion reads it). The
  *   loop is not planar and the face may be concave, and VTK draws a polygon as a fan of
  *   triangles from its first point, so this output does not render correctly: use
  *   TriangulatedFaces to look at the faces.

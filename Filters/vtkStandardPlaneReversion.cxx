@@ -28,6 +28,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 vtkStandardNewMacro(vtkStandardPlaneReversion);
@@ -213,6 +214,126 @@ bool cornerOf(const Grid& grid, const double p[3], vbr::Point3& corner)
 
 using Outlines = std::map<vbr::vtk::LabelValue, std::vector<vbr::FaceOutline>>; // exact labels
 
+/// One face of the input: a cell carrying its arrays, and its loop of point ids.
+struct FaceLoop
+{
+  vtkIdType cell = 0;
+  std::vector<vtkIdType> ids;
+  std::vector<vtkIdType> cells; ///< every cell of the face (its triangles), `cell` first
+};
+
+/// Whether the faces are TriangulatedFaces (or SemiDiscrete) output: several cells per
+/// FaceId. StandardFaces output has one polygon per face.
+bool facesAreSplit(vtkDataArray* faceIds)
+{
+  if (!faceIds)
+    return false;
+  std::unordered_set<vtkIdType> seen;
+  for (vtkIdType c = 0; c < faceIds->GetNumberOfTuples(); ++c)
+    if (!seen.insert(static_cast<vtkIdType>(faceIds->GetComponent(c, 0))).second)
+      return true;
+  return false;
+}
+
+/// The boundary of a face given by its triangles: its loop edges (`allOnLoop`: `edges` are
+/// them, from LoopEdges), else the directed edges whose reverse is not in the face, chained
+/// into one closed walk (Hierholzer's, so that a loop passing twice through a pointel is
+/// followed whole). An error message, or an empty string.
+std::string boundaryLoop(const std::vector<std::pair<vtkIdType, vtkIdType>>& edges,
+  bool allOnLoop,
+  std::vector<vtkIdType>& loop)
+{
+  std::map<std::pair<vtkIdType, vtkIdType>, int> count;
+  for (const auto& e : edges)
+    if (++count[e] > 1)
+      return "an edge of its triangles is given twice (faces given twice?)";
+  std::map<vtkIdType, std::vector<vtkIdType>> next; // boundary edges by their first point
+  std::size_t boundary = 0;
+  for (const auto& e : edges)
+    if (allOnLoop || !count.count({ e.second, e.first }))
+    {
+      next[e.first].push_back(e.second);
+      ++boundary;
+    }
+  if (boundary < 3)
+    return "its triangles have no boundary loop";
+  std::vector<vtkIdType> stack{ next.begin()->first }, walk;
+  while (!stack.empty())
+  {
+    std::vector<vtkIdType>& out = next[stack.back()];
+    if (out.empty())
+    {
+      walk.push_back(stack.back());
+      stack.pop_back();
+      continue;
+    }
+    stack.push_back(out.back());
+    out.pop_back();
+  }
+  if (walk.size() != boundary + 1)
+    return "its triangles do not make a disk (several boundary loops)";
+  loop.assign(walk.rbegin(), walk.rend() - 1); // the walk is built backwards, closed
+  return std::string();
+}
+
+/// The faces' loops: one per polygon (StandardFaces), or rebuilt from the triangles of each
+/// FaceId (TriangulatedFaces). An error message, or an empty string.
+std::string gatherLoops(vtkPolyData* input, std::vector<FaceLoop>& faces)
+{
+  vtkDataArray* faceIds = input->GetCellData()->GetArray("FaceId");
+  vtkCellArray* polys = input->GetPolys();
+  vtkIdType npts;
+  const vtkIdType* pts;
+  polys->InitTraversal();
+  if (!facesAreSplit(faceIds))
+  {
+    for (vtkIdType c = 0; polys->GetNextCell(npts, pts); ++c)
+      faces.push_back({ c, std::vector<vtkIdType>(pts, pts + npts), { c } });
+    return std::string();
+  }
+  // With LoopEdges (bit k: the edge from corner k to k + 1 runs along the loop) the loop
+  // edges are known; without, they are the edges whose reverse is not in the face.
+  vtkDataArray* loopEdges = input->GetCellData()->GetArray("LoopEdges");
+  if (loopEdges && loopEdges->GetNumberOfTuples() != input->GetNumberOfCells())
+    return "LoopEdges must have one value per cell.";
+  std::map<vtkIdType, std::pair<FaceLoop, std::vector<std::pair<vtkIdType, vtkIdType>>>> byFace;
+  for (vtkIdType c = 0; polys->GetNextCell(npts, pts); ++c)
+  {
+    auto& face = byFace[static_cast<vtkIdType>(faceIds->GetComponent(c, 0))];
+    if (face.first.cells.empty())
+      face.first.cell = c;
+    face.first.cells.push_back(c);
+    const int bits = loopEdges ? static_cast<int>(loopEdges->GetComponent(c, 0)) : -1;
+    for (vtkIdType i = 0; i < npts; ++i)
+      if (bits < 0 || (i < 8 && ((bits >> i) & 1)))
+        face.second.emplace_back(pts[i], pts[(i + 1) % npts]);
+  }
+  for (auto& [id, face] : byFace)
+  {
+    const std::string problem = boundaryLoop(face.second, loopEdges != nullptr, face.first.ids);
+    if (!problem.empty())
+      return "Face " + std::to_string(id) + ": " + problem + ".";
+    faces.push_back(std::move(face.first));
+  }
+  return std::string();
+}
+
+/// What is wrong with the plane and label of cell c (its plane in `plane`), or nothing.
+std::string cellProblem(vtkDataArray* normals,
+  vtkDataArray* offsets,
+  vtkDataArray* labels,
+  vtkIdType c,
+  vbr::StandardPlane& plane)
+{
+  std::ostringstream msg;
+  if (!readPlane(normals, offsets, c, plane))
+    msg << "Face " << c << ": PlaneNormal and PlaneOffset must be whole numbers (normal "
+        << "components within 2^31, offset within 2^52).";
+  else if (labels && std::isnan(labels->GetComponent(c, 0)))
+    msg << "Face " << c << ": its Label is NaN.";
+  return msg.str();
+}
+
 /// The outlines of the faces by label: corners from world points, loops in the faces'
 /// orientation. An error message, or an empty string.
 std::string readOutlines(vtkAlgorithm* self,
@@ -224,26 +345,35 @@ std::string readOutlines(vtkAlgorithm* self,
   Outlines& byLabel)
 {
   const bool mirrored = grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
-  const vtkIdType cells = input->GetNumberOfCells();
-  vtkCellArray* polys = input->GetPolys();
-  polys->InitTraversal();
-  vtkIdType npts;
-  const vtkIdType* pts;
-  for (vtkIdType c = 0; polys->GetNextCell(npts, pts); ++c)
+  std::vector<FaceLoop> faces;
+  const std::string problem = gatherLoops(input, faces);
+  if (!problem.empty())
+    return problem;
+  for (std::size_t f = 0; f < faces.size(); ++f)
   {
+    const vtkIdType c = faces[f].cell;
+    const std::vector<vtkIdType>& ids = faces[f].ids;
+    const std::size_t npts = ids.size();
     std::ostringstream msg;
     vbr::FaceOutline outline;
     const vbr::vtk::LabelValue label =
       labels ? vbr::vtk::labelAt(labels, c) : vbr::vtk::LabelValue();
-    if (!readPlane(normals, offsets, c, outline.plane))
-      msg << "Face " << c << ": PlaneNormal and PlaneOffset must be whole numbers (normal "
-          << "components within 2^31, offset within 2^52).";
-    else if (labels && std::isnan(labels->GetComponent(c, 0)))
-      msg << "Face " << c << ": its Label is NaN.";
-    for (vtkIdType i = 0; i < npts && msg.tellp() == 0; ++i)
+    msg << cellProblem(normals, offsets, labels, c, outline.plane);
+    for (std::size_t k = 1; k < faces[f].cells.size() && msg.tellp() == 0; ++k)
+    {
+      // Every triangle of a face carries the face's plane and label.
+      vbr::StandardPlane plane;
+      const vtkIdType t = faces[f].cells[k];
+      msg << cellProblem(normals, offsets, labels, t, plane);
+      if (msg.tellp() == 0 &&
+        (plane.normal != outline.plane.normal || plane.mu != outline.plane.mu ||
+          (labels && !(vbr::vtk::labelAt(labels, t) == label))))
+        msg << "Face " << t << ": its plane or label differs from the other cells of its face.";
+    }
+    for (std::size_t i = 0; i < npts && msg.tellp() == 0; ++i)
     {
       double p[3];
-      input->GetPoint(pts[mirrored ? npts - 1 - i : i], p);
+      input->GetPoint(ids[mirrored ? npts - 1 - i : i], p);
       vbr::Point3 corner;
       if (!cornerOf(grid, p, corner))
         msg << "Face " << c << ": point " << i << " is not a voxel corner of the grid.";
@@ -252,9 +382,9 @@ std::string readOutlines(vtkAlgorithm* self,
     if (msg.tellp() != 0)
       return msg.str();
     byLabel[label].push_back(std::move(outline));
-    if (c % 1024 == 0)
+    if (f % 1024 == 0)
     {
-      self->UpdateProgress(0.5 * c / std::max<vtkIdType>(cells, 1));
+      self->UpdateProgress(0.5 * double(f) / double(std::max<std::size_t>(faces.size(), 1)));
       if (self->GetAbortExecute())
         return std::string();
     }

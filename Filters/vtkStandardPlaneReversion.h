@@ -4,7 +4,10 @@
  *
  * vtkStandardPlaneReversion reads the StandardFaces output of vtkStandardPlanePolyhedrizer (one
  * polygon per face along its boundary loop, counter-clockwise seen from outside, with the
- * cell arrays `PlaneNormal` and `PlaneOffset`) and recomputes the voxels: for each face, the
+ * cell arrays `PlaneNormal` and `PlaneOffset`), or its TriangulatedFaces output (the default:
+ * each face's loop is rebuilt from the triangles of its `FaceId`, along the edges `LoopEdges`
+ * marks, or without that array along the edges no other triangle of the face shares), and
+ * recomputes the voxels: for each face, the
  * surfels of its standard plane enclosed by its loop; then the voxels by parity. Faces of
  * different `Label` values are reverted separately (a label map's objects share boundaries).
  *

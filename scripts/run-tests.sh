@@ -6,7 +6,8 @@
 #         ParaView plugin, tests): xvfb-run -a ctest
 #   B     sanitizer builds (AddressSanitizer + UndefinedBehaviorSanitizer): the VTK-free core
 #         in `build-asan` (VOXELBREP_CORE_ONLY=ON, Debug) with its unit tests, and the VTK
-#         module in `build-asan-filters` (against ParaView's VTK) with its C++ filter tests
+#         module and its Python package in `build-asan-filters` (against ParaView's VTK) with
+#         its C++ filter tests and the hostile-input corpus (Testing/Python)
 #   C     build against Debian's stock VTK 9.1 in `build-vtk91` (plugin and Python wrapping
 #         off): xvfb-run -a ctest
 #
@@ -117,13 +118,34 @@ stage_asan() {
   # sanitizers' floating-point settings, in its own code).
   run cmake -S . -B build-asan-filters -DVTK_DIR="$PV_VTK_DIR" \
     -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=ON \
-    -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF -DVOXELBREP_WRAP_PYTHON=OFF \
+    -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF -DVOXELBREP_WRAP_PYTHON=ON \
     -DVOXELBREP_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=-O1 $SAN_FLAGS" || return 1
   run cmake --build build-asan-filters -j"$JOBS" || return 1
   ASAN_OPTIONS=detect_leaks=0:strict_string_checks=1 \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    run_ctest build-asan-filters asan-filters "${XVFB[@]}" -- -E "^Core[.]|Render" || ok=1
+    run_ctest build-asan-filters asan-filters "${XVFB[@]}" -- -E "^Core[.]|Render|^Python[.]|^Example" ||
+    ok=1
+  # The hostile-input corpus through the sanitized Python package: the sanitizer runtimes
+  # preloaded into /usr/bin/python3 (the memory-limit cases cannot run there: the sanitizers
+  # reserve far more address space than any ulimit -v leaves).
+  run_sanitized_corpus || ok=1
   return $ok
+}
+
+run_sanitized_corpus() {
+  local log="$LOGDIR/asan-corpus.log" rc
+  echo "+ (sanitized) Testing/Python/TestHostileInputs.py"
+  LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
+    ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    PYTHONPATH="$ROOT/build-asan-filters/lib/python3/dist-packages" \
+    /usr/bin/python3 Testing/Python/TestHostileInputs.py 2>&1 | tee "$log"
+  rc=${PIPESTATUS[0]}
+  if [ "$rc" = 0 ]; then
+    TESTS_PASSED=$((TESTS_PASSED + 1))
+  else
+    TESTS_FAILED=$((TESTS_FAILED + 1))
+  fi
+  return "$rc"
 }
 
 PV_DEB_DIR="$LOGDIR/debs"
