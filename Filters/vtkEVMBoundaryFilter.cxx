@@ -266,8 +266,10 @@ void appendFaceCells(const vbr::BRep& brep,
   const vbr::vtk::Selected& object,
   int mode,
   vtkIdType faceBase,
-  OutputBuilder& builder)
+  OutputBuilder& builder,
+  const vbr::Execution& exec)
 {
+  vbr::ProgressPoll poll(exec, 0.9, 1.0, 1024); // the last tenth of the object's progress
   const std::vector<vtkIdType> cornerIds = builder.pointIds(brep.points, object.offset);
   if (mode == vtkEVMBoundaryFilter::TRIANGLES)
   {
@@ -284,6 +286,9 @@ void appendFaceCells(const vbr::BRep& brep,
   ids.reserve(3);
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
   {
+    poll.at(double(f) / double(brep.faces.size()));
+    if (!poll.tick())
+      return; // aborted: the caller empties the output
     const vbr::BRepFace& face = brep.faces[f];
     const vtkIdType faceId = faceBase + static_cast<vtkIdType>(f);
     const vtkIdType parent = face.parent < 0 ? -1 : faceBase + face.parent;
@@ -540,12 +545,16 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     const auto polygons = this->OutputMode == POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
     {
       vtkLogScopeF(TRACE, "output cells");
-      appendFaceCells(brep, triangles, polygons, object, this->OutputMode, faceBase, builder);
+      appendFaceCells(brep, triangles, polygons, object, this->OutputMode, faceBase, builder, exec);
     }
     faceBase += static_cast<vtkIdType>(brep.faces.size());
     this->UpdateProgress(to);
   }
 
+  if (this->GetAbortExecute())
+  {
+    return 1; // aborted: an empty output rather than a part of the boundary
+  }
   {
     vtkLogScopeF(TRACE, "hand the output to VTK");
     builder.finish(output, planar, lines, in.labelType);

@@ -348,6 +348,44 @@ void checkAbort()
   CHECK(f->GetOutput()->GetNumberOfCells() < full, "an aborted run stops early");
 }
 
+/// Aborts the algorithm at the first progress event past `Threshold`.
+class AbortPast : public vtkCommand
+{
+public:
+  static AbortPast* New() { return new AbortPast; }
+  void Execute(vtkObject* caller, unsigned long, void* data) override
+  {
+    const double progress = *static_cast<double*>(data);
+    if (progress > this->Threshold && progress < 1.0 && !this->Fired)
+    {
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+      this->Fired = true;
+    }
+  }
+  double Threshold = 0.0;
+  bool Fired = false;
+};
+
+/// An abort inside the output-cell phase (the last tenth of an object) stops it there and
+/// leaves an empty output, not a part of the boundary.
+void checkAbortWhileWritingCells()
+{
+  const Volume v = randomVolume({ 64, 64, 64 }, 0.5, 1, 8);
+  for (int mode : { vtkEVMBoundaryFilter::TRIANGLES, vtkEVMBoundaryFilter::POLYGONS })
+  {
+    vtkNew<vtkEVMBoundaryFilter> f;
+    f->SetInputData(makeImage(v, Layout()));
+    f->SetOutputMode(mode);
+    vtkNew<AbortPast> abort;
+    abort->Threshold = 0.1 + 0.9 * 0.9; // one object: its cells are written past 0.91
+    f->AddObserver(vtkCommand::ProgressEvent, abort);
+    f->Update();
+    CHECK(abort->Fired, f->GetOutputModeAsString() << ": progress is reported while writing cells");
+    CHECK(f->GetOutput()->GetNumberOfCells() == 0,
+      f->GetOutputModeAsString() << ": an abort while writing cells leaves an empty output");
+  }
+}
+
 /// Signed volume enclosed by a closed triangle output (divergence theorem).
 double enclosedVolume(vtkPolyData* out)
 {
@@ -643,6 +681,7 @@ int TestEVMBoundaryFilter(int, char*[])
   checkErrorsAndDegenerateInputs();
   checkTypesAndLayouts();
   checkAbort();
+  checkAbortWhileWritingCells();
   checkTwoDimensional();
   vtkNew<vtkEVMBoundaryFilter> f;
   std::ostringstream print;
