@@ -43,6 +43,15 @@ def directed_edge_balance(polys):
     return sum(1 for (a, b), k in count.items() if count.get((b, a), 0) != k)
 
 
+def updated_copy(f):
+    """The filter's output after an update, copied (it outlives the filter)."""
+    f.Update()
+    result = f.GetOutput()
+    copy = type(result)()
+    copy.DeepCopy(result)
+    return copy
+
+
 def polyhedrizer(image, mode, labels=False):
     f = voxelbrep.vtkStandardPlanePolyhedrizer()
     f.SetInputData(image)
@@ -50,11 +59,7 @@ def polyhedrizer(image, mode, labels=False):
     if labels:
         f.SetSelectionModeToLabels()
     f.SetOutputMode(mode)
-    f.Update()
-    result = f.GetOutput()
-    copy = type(result)()
-    copy.DeepCopy(result)
-    return copy
+    return updated_copy(f)
 
 
 def triangle_normals(corner, tris):
@@ -112,11 +117,7 @@ def evm(image, mode, labels=False, merge=False):
         f.SetSelectionModeToLabels()
     f.SetMergeNonManifoldFaces(merge)
     f.SetOutputMode(mode)
-    f.Update()
-    result = f.GetOutput()
-    copy = type(result)()
-    copy.DeepCopy(result)
-    return copy
+    return updated_copy(f)
 
 
 def check_evm(tag, values, labels=False, merge=False, planar=False):
