@@ -3,7 +3,7 @@
 image, written as .vtp and rendered to .png, with a one-line summary.
 
   /usr/bin/python3 Examples/voxelbrep_run.py [input] [--output out.vtp] [--png out.png]
-      [--threshold LO[,HI]] [--labels] [--mode triangles|polygons|polylines|surfels]
+      [--threshold LO[,HI]] [--labels] [--mode triangles|polygons|polylines|surfels|loops]
       [--raw-dims NX,NY,NZ --raw-type uint8|int16|...]
 
 Without an input it uses a 128^3 vtkVoxelPhantomSource (voxels with label > 0). Inputs:
@@ -31,7 +31,7 @@ from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkLookupTable, vtkSMPTools
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataWriter
 
-MODES = ("triangles", "polygons", "polylines", "surfels")
+MODES = ("triangles", "polygons", "polylines", "surfels", "loops")
 RAW_TYPES = {
     "uint8": "SetDataScalarTypeToUnsignedChar",
     "int8": "SetDataScalarTypeToSignedChar",
