@@ -76,13 +76,17 @@ bool reversesOrientation(const vbr::vtk::VoxelGrid& grid, const std::array<int, 
 }
 
 /// Builds the output polydata: shared points, then cells and their attributes gathered in
-/// plain arrays and handed to VTK at the end.
+/// plain arrays and handed to VTK at the end. Per cell only what varies is kept (corners,
+/// offset, FaceId, a one-byte LoopType; ParentFace and Depth for 2D images only); the Label
+/// is kept once per run of cells of one object. Each array is released as soon as VTK's copy
+/// is made, so the peak stays near one copy of the output.
 class OutputBuilder
 {
 public:
-  OutputBuilder(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes)
+  OutputBuilder(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes, bool planar)
     : Grid(grid)
     , Axes(axes)
+    , Planar(planar)
     , Reverse(reversesOrientation(grid, axes))
     , Packer(vbr::KeyPacker::forMaximum(std::max({ grid.dims[0], grid.dims[1], grid.dims[2] })))
   {
@@ -116,10 +120,12 @@ public:
     reserveMore(this->Connectivity, corners);
     reserveMore(this->Offsets, cells);
     reserveMore(this->FaceId, cells);
-    reserveMore(this->ParentFace, cells);
     reserveMore(this->LoopType, cells);
-    reserveMore(this->Depth, cells);
-    reserveMore(this->Label, cells);
+    if (this->Planar)
+    {
+      reserveMore(this->ParentFace, cells);
+      reserveMore(this->Depth, cells);
+    }
   }
 
   template<typename V>
@@ -138,46 +144,48 @@ public:
     vtkIdType parent,
     int depth)
   {
+    if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
+      this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->FaceId.size()), label);
     for (std::size_t i = 0; i < n; ++i) // cells are small: no call to memmove
       this->Connectivity.push_back(ids[this->Reverse ? n - 1 - i : i]);
     this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
     this->FaceId.push_back(faceId);
-    this->LoopType.push_back(loopType);
-    this->Label.push_back(label);
-    this->ParentFace.push_back(parent);
-    this->Depth.push_back(depth);
+    this->LoopType.push_back(static_cast<std::uint8_t>(loopType));
+    if (this->Planar)
+    {
+      this->ParentFace.push_back(parent);
+      this->Depth.push_back(depth);
+    }
   }
 
-  void finish(vtkPolyData* output, bool planar, bool lines, int labelType)
+  void finish(vtkPolyData* output, bool lines, int labelType)
   {
     vtkNew<vtkDoubleArray> coordinates;
     coordinates->SetNumberOfComponents(3);
     vbr::vtk::resizeOrThrow(coordinates, this->pointCount());
     std::copy(this->Coordinates.begin(), this->Coordinates.end(), coordinates->GetPointer(0));
+    release(this->Coordinates);
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
     output->SetPoints(points);
 
+    const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
     vtkNew<vtkCellArray> cells;
-    cells->SetData(toArray<vtkIdTypeArray>(this->Offsets, nullptr),
-      toArray<vtkIdTypeArray>(this->Connectivity, nullptr));
+    vtkSmartPointer<vtkIdTypeArray> connectivity = toArray<vtkIdTypeArray>(this->Connectivity);
+    cells->SetData(toArray<vtkIdTypeArray>(this->Offsets), connectivity);
     if (lines)
       output->SetLines(cells);
     else
       output->SetPolys(cells);
 
     vtkCellData* cd = output->GetCellData();
-    cd->AddArray(toArray<vtkIdTypeArray>(this->FaceId, "FaceId"));
-    cd->AddArray(toArray<vtkIntArray>(this->LoopType, "LoopType"));
-    vtkSmartPointer<vtkDataArray> label =
-      vbr::vtk::newLabelArray(labelType, static_cast<vtkIdType>(this->Label.size()));
-    for (std::size_t c = 0; c < this->Label.size(); ++c)
-      vbr::vtk::setLabel(label, static_cast<vtkIdType>(c), this->Label[c]);
-    cd->AddArray(label);
-    if (planar)
+    cd->AddArray(named(toArray<vtkIdTypeArray>(this->FaceId), "FaceId"));
+    cd->AddArray(named(toArray<vtkIntArray>(this->LoopType), "LoopType"));
+    cd->AddArray(this->labelArray(labelType, cellCount));
+    if (this->Planar)
     {
-      cd->AddArray(toArray<vtkIdTypeArray>(this->ParentFace, "ParentFace"));
-      cd->AddArray(toArray<vtkIntArray>(this->Depth, "Depth"));
+      cd->AddArray(named(toArray<vtkIdTypeArray>(this->ParentFace), "ParentFace"));
+      cd->AddArray(named(toArray<vtkIntArray>(this->Depth), "Depth"));
     }
   }
 
@@ -195,18 +203,48 @@ private:
     this->Coordinates.insert(this->Coordinates.end(), xyz, xyz + 3);
   }
 
+  /// The Label of every cell from the runs.
+  vtkSmartPointer<vtkDataArray> labelArray(int labelType, vtkIdType cellCount)
+  {
+    vtkSmartPointer<vtkDataArray> label = vbr::vtk::newLabelArray(labelType, cellCount);
+    for (std::size_t r = 0; r < this->LabelRuns.size(); ++r)
+    {
+      const vtkIdType end =
+        r + 1 < this->LabelRuns.size() ? this->LabelRuns[r + 1].first : cellCount;
+      for (vtkIdType c = this->LabelRuns[r].first; c < end; ++c)
+        vbr::vtk::setLabel(label, c, this->LabelRuns[r].second);
+    }
+    release(this->LabelRuns);
+    return label;
+  }
+
+  template<typename V>
+  static void release(V& values)
+  {
+    V().swap(values);
+  }
+
+  template<typename ArrayType>
+  static vtkSmartPointer<ArrayType> named(vtkSmartPointer<ArrayType> a, const char* name)
+  {
+    a->SetName(name);
+    return a;
+  }
+
+  /// VTK's copy of `v`; `v` is released.
   template<typename ArrayType, typename Value>
-  static vtkSmartPointer<ArrayType> toArray(const std::vector<Value>& v, const char* name)
+  static vtkSmartPointer<ArrayType> toArray(std::vector<Value>& v)
   {
     auto a = vtkSmartPointer<ArrayType>::New();
-    a->SetName(name);
     vbr::vtk::resizeOrThrow(a, static_cast<vtkIdType>(v.size()));
     std::copy(v.begin(), v.end(), a->GetPointer(0));
+    release(v);
     return a;
   }
 
   const vbr::vtk::VoxelGrid& Grid;
   const std::array<int, 3> Axes;
+  const bool Planar;  ///< a 2D image: the cells carry ParentFace and Depth
   const bool Reverse; ///< world coordinates mirror the processing axes: reverse every cell
   const vbr::KeyPacker Packer;
   vbr::GridPointIndex Index;
@@ -214,8 +252,9 @@ private:
   std::vector<vtkIdType> Offsets{ 0 };
   std::vector<vtkIdType> Connectivity;
   std::vector<vtkIdType> FaceId, ParentFace;
-  std::vector<int> LoopType, Depth;
-  std::vector<vbr::vtk::LabelValue> Label;
+  std::vector<std::uint8_t> LoopType;
+  std::vector<int> Depth;
+  std::vector<std::pair<vtkIdType, vbr::vtk::LabelValue>> LabelRuns; ///< (first cell, label)
 };
 
 /// One cell per surfel (a unit square, or a unit segment of a 2D image), pixel on the left.
@@ -485,7 +524,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
 
   const vbr::FaceConnectivity connectivity =
     this->MergeNonManifoldFaces ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
-  OutputBuilder builder(grid, axes);
+  OutputBuilder builder(grid, axes, planar);
   Statistics stats;
   vtkIdType faceBase = 0;
   const bool lines = this->OutputMode == POLYLINES || (planar && this->OutputMode == SURFELS);
@@ -557,7 +596,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   }
   {
     vtkLogScopeF(TRACE, "hand the output to VTK");
-    builder.finish(output, planar, lines, in.labelType);
+    builder.finish(output, lines, in.labelType);
   }
   vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
   writeStatistics(stats, output->GetFieldData());
