@@ -19,6 +19,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <sstream>
 #include <string>
 #include <vector>
@@ -41,6 +44,36 @@ inline double medianSeconds(int repeat, const std::function<void()>& run)
   }
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
+}
+
+/// A field of /proc/self/status in kiB (VmRSS, VmHWM), or -1.
+inline long long procStatusKiB(const std::string& field)
+{
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.compare(0, field.size() + 1, field + ":") == 0)
+      return std::atoll(line.c_str() + field.size() + 1);
+  return -1;
+}
+
+/// Peak memory a run adds to the process, in bytes: the resident-set high-water mark is reset
+/// (/proc/self/clear_refs, Linux), the run made, and the new mark compared with the resident
+/// size before it (freed memory given back to the system first). -1 where Linux does not tell. Measure a first run (a run that replaces an
+/// earlier output counts both while the new one is built).
+inline long long peakBytesOf(const std::function<void()>& run)
+{
+#ifdef __GLIBC__
+  malloc_trim(0); // give freed memory back, so that the run's pages show in the mark
+#endif
+  {
+    std::ofstream clear("/proc/self/clear_refs");
+    clear << "5";
+  }
+  const long long before = procStatusKiB("VmRSS");
+  run();
+  const long long peak = procStatusKiB("VmHWM");
+  return before < 0 || peak < 0 ? -1 : 1024 * std::max(0LL, peak - before);
 }
 
 /// Runs the algorithm again from scratch.

@@ -27,6 +27,8 @@
 #include "Phantom.h"
 #include "Selection.h"
 
+#include "BenchCommon.h"
+
 #include "vtkEVMBoundaryFilter.h"
 
 #include "vtkAlgorithm.h"
@@ -328,6 +330,7 @@ struct Row
   std::string smp;
   double median = 0, min = 0;
   Sizes sizes;
+  long long peakBytes = -1; ///< memory the first run added at its peak
 };
 
 double median(std::vector<double> values)
@@ -343,7 +346,8 @@ std::vector<Row> measure(int repeat,
   const std::string& smp,
   const std::function<Outcome()>& run)
 {
-  run(); // warm-up: page faults, thread pool start, caches
+  // Warm-up (page faults, thread pool start, caches), and the peak memory of a first run.
+  const long long peak = vbrbench::peakBytesOf([&] { run(); });
   std::vector<std::vector<double>> times(phases.size());
   Outcome last;
   for (int r = 0; r < repeat; ++r)
@@ -361,6 +365,7 @@ std::vector<Row> measure(int repeat,
     row.median = median(times[p]);
     row.min = *std::min_element(times[p].begin(), times[p].end());
     row.sizes = last.sizes[p];
+    row.peakBytes = peak;
     rows.push_back(row);
   }
   return rows;
@@ -756,6 +761,48 @@ Summary benchmarkInput(const Input& input, const Options& options)
   return summary;
 }
 
+/// Peak memory of a first run per output cell and per voxel of the image, for the filter and
+/// its peers (one backend: the memory does not depend on it).
+void printMemory(const std::vector<Summary>& summaries, const std::string& backend)
+{
+  std::cout << "## Peak memory of a first run (backend " << backend
+            << "): bytes per output cell / per voxel\n\n";
+  const char* methods[] = {
+    "EVM filter, Polygons", "EVM filter, Triangles", "DiscreteFlyingEdges3D", "Threshold + Geometry"
+  };
+  Table table({ "input", "EVM Polygons", "EVM Triangles", "DFE", "Threshold+Geometry" });
+  for (const Summary& s : summaries)
+  {
+    std::vector<std::string> line{ s.name };
+    long long voxels = 1;
+    for (const std::string& d : { s.dims })
+    {
+      std::istringstream in(d);
+      std::string part;
+      while (std::getline(in, part, 'x'))
+        voxels *= std::max(1LL, std::atoll(part.c_str()));
+    }
+    for (const char* m : methods)
+    {
+      const Row* r = findRow(s.rows, m, backend);
+      if (!r || r->peakBytes < 0 || r->sizes.cells <= 0)
+      {
+        line.push_back("-");
+        continue;
+      }
+      char text[64];
+      std::snprintf(text,
+        sizeof(text),
+        "%.0f / %.1f",
+        double(r->peakBytes) / double(r->sizes.cells),
+        double(r->peakBytes) / double(voxels));
+      line.push_back(text);
+    }
+    table.add(line);
+  }
+  table.print(std::cout);
+}
+
 void printSummary(const std::vector<Summary>& summaries, const std::vector<std::string>& backends)
 {
   if (summaries.empty())
@@ -805,6 +852,7 @@ void printSummary(const std::vector<Summary>& summaries, const std::vector<std::
     }
     table.print(std::cout);
   }
+  printMemory(summaries, backends.front());
 }
 
 } // namespace
