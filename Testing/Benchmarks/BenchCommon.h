@@ -59,8 +59,9 @@ inline long long procStatusKiB(const std::string& field)
 
 /// Peak memory a run adds to the process, in bytes: the resident-set high-water mark is reset
 /// (/proc/self/clear_refs, Linux), the run made, and the new mark compared with the resident
-/// size before it (freed memory given back to the system first). -1 where Linux does not tell. Measure a first run (a run that replaces an
-/// earlier output counts both while the new one is built).
+/// size before it (freed memory given back to the system first). -1 where Linux does not tell.
+/// Measure a first run (a run that replaces an earlier output counts both while the new one is
+/// built).
 inline long long peakBytesOf(const std::function<void()>& run)
 {
 #ifdef __GLIBC__
