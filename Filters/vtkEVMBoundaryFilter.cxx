@@ -317,7 +317,18 @@ void appendFaceCells(const vbr::BRep& brep,
       count += t.size();
     builder.reserve(count, 3 * count);
   }
-  else if (mode != vtkEVMBoundaryFilter::POLYGONS)
+  else if (mode == vtkEVMBoundaryFilter::POLYGONS)
+  {
+    std::size_t count = 0, corners = 0;
+    for (const auto& face : polygons)
+    {
+      count += face.size();
+      for (const auto& polygon : face)
+        corners += polygon.size();
+    }
+    builder.reserve(count, corners);
+  }
+  else
   {
     builder.reserve(brep.loops.size(), brep.points.size() + brep.loops.size());
   }

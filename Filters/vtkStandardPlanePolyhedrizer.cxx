@@ -509,6 +509,7 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
   vbr::vtk::resizeOrThrow(selection, n);
   std::fill_n(selection->GetPointer(0), n, 0);
   std::vector<unsigned char> expected(static_cast<std::size_t>(n), 0);
+  bool objectsMatch = true;
   for (std::size_t i = 0; i < objects.size(); ++i)
   {
     const ObjectFaces& o = objects[i];
@@ -526,12 +527,15 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
     problem = vbr::revert(outlines, o.graph.dims, surfels, voxels, exec);
     if (!problem.empty())
       return false;
+    // Each object's own voxels back (in Labels mode a voxel reverted into another label's
+    // object would pass the combined comparison below), then the array as the user reads it.
+    objectsMatch = objectsMatch && voxels == selections[i];
     markVoxels(voxels, o.offset, grid.dims, selection->GetPointer(0));
     markVoxels(selections[i], o.offset, grid.dims, expected.data());
   }
   const vtkIdType tuples = grid.cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
-  const bool same =
-    tuples == n && std::equal(expected.begin(), expected.end(), selection->GetPointer(0));
+  const bool same = objectsMatch && tuples == n &&
+    std::equal(expected.begin(), expected.end(), selection->GetPointer(0));
   vtkDataSetAttributes* attributes = grid.cellData
     ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
     : static_cast<vtkDataSetAttributes*>(output->GetPointData());

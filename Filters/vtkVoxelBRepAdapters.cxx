@@ -422,6 +422,21 @@ std::string requestedArray(vtkAlgorithm* algorithm)
   return msg.str();
 }
 
+/// An error message when what the filter needs per voxel, plus the copy readVoxels makes of
+/// the array (the norms for the magnitude, a contiguous copy of other layouts), cannot be
+/// allocated; checked before that copy is made.
+std::string refuseIfTooLarge(vtkDataArray* scalars, const SelectionSettings& settings)
+{
+  const double tuples = double(scalars->GetNumberOfTuples());
+  const int nc = scalars->GetNumberOfComponents();
+  const bool magnitude = settings.component == MagnitudeComponent || settings.component == nc;
+  const double copy = magnitude          ? double(sizeof(double))
+    : scalars->HasStandardMemoryLayout() ? 0.0
+                                         : double(nc) * scalars->GetDataTypeSize();
+  return checkAllocation(tuples * (settings.bytesPerVoxel + copy),
+    "Processing " + std::to_string(static_cast<long long>(tuples)) + " voxels");
+}
+
 /// Warnings about selection settings that select nothing.
 void warnAboutSettings(vtkAlgorithm* algorithm, const SelectionSettings& settings)
 {
@@ -470,6 +485,12 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     return false;
   }
   warnAboutSettings(algorithm, settings);
+  const std::string refused = refuseIfTooLarge(scalars, settings);
+  if (!refused.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << refused);
+    return false;
+  }
   int component = settings.component;
   const std::string problem = readVoxels(
     image, scalars, association, component, settings.flatImagesAs2D, out.contiguous, out.grid);
@@ -478,16 +499,8 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     vtkErrorWithObjectMacro(algorithm, << problem);
     return false;
   }
-  const double voxels = double(out.grid.dims[0]) * out.grid.dims[1] * out.grid.dims[2];
-  if (voxels == 0)
+  if (double(out.grid.dims[0]) * out.grid.dims[1] * out.grid.dims[2] == 0)
     return true;
-  const std::string refused = checkAllocation(voxels * settings.bytesPerVoxel,
-    "Processing " + std::to_string(static_cast<long long>(voxels)) + " voxels");
-  if (!refused.empty())
-  {
-    vtkErrorWithObjectMacro(algorithm, << refused);
-    return false;
-  }
   for (int d = 0; d < 3; ++d)
     if (settings.maximumVoxelsPerAxis > 0 && out.grid.dims[d] > settings.maximumVoxelsPerAxis)
     {

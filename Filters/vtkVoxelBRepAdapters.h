@@ -90,9 +90,10 @@ std::string readVoxels(vtkImageData* image,
 /// per 1024 values; about 170 ms for 256^3 labels here, 5 to 100 ms with huge pages).
 vtkSmartPointer<vtkIntArray> newZeroedIntArray(vtkIdType n);
 
-/// Sets the number of tuples of `array`, throwing std::bad_alloc when VTK cannot allocate
-/// them (VTK then only reports an error and leaves the array short: writing on would
-/// crash). executeGuarded turns the exception into an error and empty outputs.
+/// Sets the number of tuples of `array`, throwing when they cannot be allocated: first
+/// against availableMemoryBytes() (ParaView's VTK aborts the process when an allocation
+/// fails), then std::bad_alloc if VTK still came back short. executeGuarded turns the
+/// exception into an error and empty outputs.
 void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples);
 
 /// Appends a one-value field array.
@@ -131,6 +132,7 @@ struct LabelValue
     std::memcpy(&value, &this->bits, sizeof value);
     return value;
   }
+  /// An order by the bits, not by value (maps of labels need one; -0.0 and 0.0 differ).
   bool operator<(const LabelValue& other) const { return this->bits < other.bits; }
   bool operator==(const LabelValue& other) const { return this->bits == other.bits; }
 };

@@ -1,6 +1,7 @@
 #include "vtkVoxelPhantomSource.h"
 
 #include "Phantom.h"
+#include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepMemory.h"
 
 #include "vtkDataObject.h"
@@ -13,7 +14,6 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
-#include <exception>
 #include <string>
 #include <vector>
 
@@ -47,6 +47,18 @@ int vtkVoxelPhantomSource::RequestInformation(vtkInformation*,
 }
 
 //------------------------------------------------------------------------------
+int vtkVoxelPhantomSource::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // std::bad_alloc (when the estimate below was too optimistic) becomes an error.
+  return vbr::vtk::executeGuarded(this,
+    outputVector,
+    "The phantom",
+    [&] { return this->Superclass::RequestData(request, inputVector, outputVector); });
+}
+
+//------------------------------------------------------------------------------
 void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output,
   vtkInformation* outInfo)
 {
@@ -59,20 +71,6 @@ void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output,
     vtkErrorMacro(<< refused);
     return;
   }
-  try
-  {
-    this->GeneratePhantom(output, outInfo);
-  }
-  catch (const std::exception& e) // std::bad_alloc when the estimate was too optimistic
-  {
-    vtkErrorMacro(<< "The phantom could not be generated: " << e.what());
-    vtkImageData::SafeDownCast(output)->Initialize();
-  }
-}
-
-//------------------------------------------------------------------------------
-void vtkVoxelPhantomSource::GeneratePhantom(vtkDataObject* output, vtkInformation* outInfo)
-{
   vtkImageData* image = this->AllocateOutputData(output, outInfo);
   vtkUnsignedCharArray* scalars =
     vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());

@@ -41,8 +41,10 @@ protected:
   int RequestInformation(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   void ExecuteDataWithInformation(vtkDataObject* output, vtkInformation* outInfo) override;
-  void GeneratePhantom(vtkDataObject* output, vtkInformation* outInfo);
 
   int Dimensions[3] = { 128, 128, 128 };
 
