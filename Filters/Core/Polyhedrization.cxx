@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -720,9 +721,9 @@ std::string revert(const std::vector<FaceOutline>& faces,
 {
   surfels.clear();
   ProgressPoll poll(exec, 0.0, 1.0);
-  // The face of every surfel found so far: faces are disjoint, and a surfel in two faces
-  // (a face given twice, say) would cancel out in the parity below.
-  std::unordered_map<std::uint64_t, std::uint32_t> faceOf;
+  // (surfel, face) of every surfel found: faces are disjoint, and a surfel in two faces (a
+  // face given twice, say) would cancel out in the parity below; sorted and checked at the end.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> faceOf;
   auto surfelKey = [](const SurfelGraph::Surfel& s)
   {
     constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
@@ -765,14 +766,7 @@ std::string revert(const std::vector<FaceOutline>& faces,
       const SurfelGraph::Surfel s = stack.back();
       stack.pop_back();
       surfels.push_back(s);
-      const auto other = faceOf.emplace(surfelKey(s), static_cast<std::uint32_t>(f));
-      if (!other.second)
-      {
-        std::ostringstream msg;
-        msg << "faces " << other.first->second << " and " << f
-            << " share surfels (is a face given twice?)";
-        return msg.str();
-      }
+      faceOf.emplace_back(surfelKey(s), static_cast<std::uint32_t>(f));
       if (seen.size() > limit)
       {
         std::ostringstream msg;
@@ -795,6 +789,17 @@ std::string revert(const std::vector<FaceOutline>& faces,
           stack.push_back(t);
       }
     }
+  }
+
+  std::sort(faceOf.begin(), faceOf.end());
+  const auto shared = std::adjacent_find(
+    faceOf.begin(), faceOf.end(), [](const auto& a, const auto& b) { return a.first == b.first; });
+  if (shared != faceOf.end())
+  {
+    std::ostringstream msg;
+    msg << "faces " << shared->second << " and " << std::next(shared)->second
+        << " share surfels (is a face given twice?)";
+    return msg.str();
   }
 
   // Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
