@@ -393,6 +393,44 @@ std::string readOutlines(vtkAlgorithm* self,
 }
 
 /// The voxels of each label's faces, in the layout of the grid.
+/// The outlines moved into the box of their corners (its first corner `lo`, `dims` voxels),
+/// planes shifted with them (n.(p - lo) = n.p - n.lo). An error message when a corner lies
+/// outside the grid.
+std::string outlinesInBox(const std::vector<vbr::FaceOutline>& outlines,
+  const std::array<std::int32_t, 3>& gridDims,
+  std::vector<vbr::FaceOutline>& boxed,
+  vbr::Point3& lo,
+  std::array<std::int32_t, 3>& dims)
+{
+  vbr::Point3 hi{ 0, 0, 0 };
+  lo = gridDims;
+  for (const vbr::FaceOutline& f : outlines)
+    for (const vbr::Point3& p : f.loop)
+      for (int d = 0; d < 3; ++d)
+      {
+        if (p[d] < 0 || p[d] > gridDims[d])
+          return "the faces do not bound a set of voxels of the grid";
+        lo[d] = std::min(lo[d], p[d]);
+        hi[d] = std::max(hi[d], p[d]);
+      }
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = std::min(lo[d], hi[d]);
+    dims[d] = std::max(hi[d] - lo[d], 1);
+    lo[d] = std::min(lo[d], gridDims[d] - dims[d]); // a flat box keeps one voxel inside
+  }
+  boxed = outlines;
+  for (vbr::FaceOutline& f : boxed)
+  {
+    for (vbr::Point3& p : f.loop)
+      for (int d = 0; d < 3; ++d)
+        p[d] -= lo[d];
+    for (int d = 0; d < 3; ++d)
+      f.plane.mu -= f.plane.normal[d] * lo[d];
+  }
+  return std::string();
+}
+
 int writeVoxels(vtkAlgorithm* self,
   const Grid& grid,
   const Outlines& byLabel,
@@ -417,13 +455,20 @@ int writeVoxels(vtkAlgorithm* self,
     if (self->GetAbortExecute())
       break;
     const double from = 0.5 + 0.5 * double(done++) / double(byLabel.size());
+    // Each label within the box of its faces' corners: the cost per label is its own box,
+    // not the whole grid.
+    vbr::Point3 lo{ 0, 0, 0 };
+    std::vector<vbr::FaceOutline> boxed;
+    std::array<std::int32_t, 3> boxDims{ 0, 0, 0 };
+    std::string problem = outlinesInBox(outlines, grid.dims, boxed, lo, boxDims);
     std::vector<vbr::SurfelGraph::Surfel> surfels;
     vbr::BitVolume voxels;
-    const std::string problem = vbr::revert(outlines,
-      grid.dims,
-      surfels,
-      voxels,
-      vbr::vtk::makeExecution(self, from, from + 0.5 / double(byLabel.size())));
+    if (problem.empty())
+      problem = vbr::revert(boxed,
+        boxDims,
+        surfels,
+        voxels,
+        vbr::vtk::makeExecution(self, from, from + 0.5 / double(byLabel.size())));
     if (self->GetAbortExecute())
       break;
     if (!problem.empty())
@@ -432,12 +477,13 @@ int writeVoxels(vtkAlgorithm* self,
       output->Initialize();
       return 0;
     }
-    vtkIdType i = 0;
-    for (std::int32_t z = 0; z < grid.dims[2]; ++z)
-      for (std::int32_t y = 0; y < grid.dims[1]; ++y)
-        for (std::int32_t x = 0; x < grid.dims[0]; ++x, ++i)
+    for (std::int32_t z = 0; z < boxDims[2]; ++z)
+      for (std::int32_t y = 0; y < boxDims[1]; ++y)
+        for (std::int32_t x = 0; x < boxDims[0]; ++x)
           if (voxels.get(x, y, z))
           {
+            const vtkIdType i =
+              (vtkIdType(z + lo[2]) * grid.dims[1] + (y + lo[1])) * grid.dims[0] + (x + lo[0]);
             selection->SetValue(i, 1);
             if (withLabels)
               vbr::vtk::setLabel(labelValues, i, label);
