@@ -40,6 +40,7 @@
 #include "vtkFieldData.h"
 #include "vtkGeometryFilter.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -100,6 +101,7 @@ struct Options
   bool quick = false;
   bool data = true;
   std::vector<std::string> backends{ "STDThread", "Sequential" };
+  std::vector<int> labelEdges{ 8, 16, 24 }; ///< compact labels: edge^3 labels of 2^3 voxels
 };
 
 std::vector<std::string> splitList(const std::string& text)
@@ -122,13 +124,14 @@ void printUsage(const char* program)
   std::cout
     << "Usage: " << program
     << " [--sizes 128,256,512] [--repeat 5] [--data-dir DIR] [--quick]\n"
-       "       [--backends STDThread,Sequential] [--no-data] [--help]\n"
+       "       [--backends STDThread,Sequential] [--labels 8,16,24] [--no-data] [--help]\n"
        "  --sizes     edge lengths of the cubic phantoms (0: no phantom)\n"
        "  --repeat    timed runs per measurement, after one warm-up run (median and min)\n"
        "  --data-dir  directory holding aneurism/ and engine/ (default " VOXELBREP_DEFAULT_DATA_DIR
        ")\n"
        "  --quick     phantom sizes 128,256 only (unless --sizes is given)\n"
        "  --backends  vtkSMPTools backends to run (b), (c), (d) and the SMP part of (a) with\n"
+       "  --labels    Labels mode on N^3 compact labels of 2^3 voxels, for each N (0: none)\n"
        "  --no-data   skip the real volumes\n";
 }
 
@@ -179,6 +182,15 @@ bool parseArguments(int argc, char* argv[], Options& options, bool& help)
         if (n > 0)
           options.sizes.push_back(n);
       }
+    }
+    else if (arg == "--labels")
+    {
+      if (!value(text))
+        return false;
+      options.labelEdges.clear();
+      for (const std::string& item : splitList(text))
+        if (std::atoi(item.c_str()) > 0)
+          options.labelEdges.push_back(std::min(std::atoi(item.c_str()), 64));
     }
     else if (arg == "--repeat")
     {
@@ -803,6 +815,60 @@ void printMemory(const std::vector<Summary>& summaries, const std::string& backe
   table.print(std::cout);
 }
 
+/// Labels mode on compact labels (cubes of 2^3 voxels, one label each): the cost per label
+/// must not grow with the labels before it (it was quadratic), against
+/// vtkDiscreteFlyingEdges3D with one contour value per label (a pass over the image per
+/// value: quadratic there).
+void benchmarkLabels(int repeat, const std::vector<int>& edges)
+{
+  std::cout << "## Labels mode, compact labels (2^3 voxels each; current backend; median ms)\n\n";
+  Table table({ "labels",
+    "dims",
+    "EVM Triangles",
+    "us per label",
+    "DFE",
+    "DFE/EVM",
+    "EVM cells",
+    "DFE cells" });
+  for (int n : edges)
+  {
+    const int side = 2 * n;
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(side, side, side);
+    vtkNew<vtkIntArray> labels;
+    labels->SetName("Labels");
+    labels->SetNumberOfValues(vtkIdType(side) * side * side);
+    vtkIdType i = 0;
+    for (int z = 0; z < side; ++z)
+      for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+          labels->SetValue(i++, 1 + (x / 2) + n * ((y / 2) + n * (z / 2)));
+    image->GetPointData()->SetScalars(labels);
+    const int count = n * n * n;
+    vtkNew<vtkEVMBoundaryFilter> evm;
+    evm->SetInputData(image);
+    evm->SetSelectionModeToLabels();
+    evm->SetOutputModeToTriangles();
+    evm->SetGlobalWarningDisplay(0); // more than 1,000 labels warns; expected here
+    vtkNew<vtkDiscreteFlyingEdges3D> dfe;
+    dfe->SetInputData(image);
+    dfe->GenerateValues(count, 1, count);
+    dfe->ComputeNormalsOff();
+    dfe->ComputeGradientsOff();
+    const double tEVM = vbrbench::medianSeconds(repeat, [&] { vbrbench::update(evm); });
+    const double tDFE = vbrbench::medianSeconds(repeat, [&] { vbrbench::update(dfe); });
+    table.add({ formatCount(count),
+      std::to_string(side) + "^3",
+      formatMs(tEVM),
+      formatFixed(1e6 * tEVM / count, 2),
+      formatMs(tDFE),
+      formatRatio(tDFE / tEVM),
+      formatCount(evm->GetOutput()->GetNumberOfCells()),
+      formatCount(dfe->GetOutput()->GetNumberOfCells()) });
+  }
+  table.print(std::cout);
+}
+
 void printSummary(const std::vector<Summary>& summaries, const std::vector<std::string>& backends)
 {
   if (summaries.empty())
@@ -953,5 +1019,7 @@ int main(int argc, char* argv[])
   }
 
   printSummary(summaries, options.backends);
+  if (!options.labelEdges.empty())
+    benchmarkLabels(options.repeat, options.labelEdges);
   return 0;
 }
