@@ -8,6 +8,7 @@
 #include "BitVolume.h"
 #include "PixelTopology.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -47,6 +48,20 @@ PixelSet rasterize(const vbr::BRep& brep, int face);
 
 /// Twice the signed area of a loop projected on its face's (u, v) plane.
 long long doubledSignedArea(const vbr::BRep& brep, int loop);
+
+/// Bounding box {xmin, xmax, ymin, ymax} of 2D integer points (at least one).
+inline std::array<std::int64_t, 4> bounds2D(const std::vector<std::array<std::int64_t, 2>>& p)
+{
+  std::array<std::int64_t, 4> b{ p[0][0], p[0][0], p[0][1], p[0][1] };
+  for (const auto& q : p)
+  {
+    b[0] = std::min(b[0], q[0]);
+    b[1] = std::max(b[1], q[0]);
+    b[2] = std::min(b[2], q[1]);
+    b[3] = std::max(b[3], q[1]);
+  }
+  return b;
+}
 
 } // namespace bf
 

@@ -84,14 +84,7 @@ void checkFace(const vbr::BRep& brep, int f, FaceStats& stats)
 
   // Sample (x + 1/M, y + 1/M^2) per pixel, in coordinates scaled by M^2: on no line through
   // two corners when M > span + 1.
-  std::int64_t x0 = corner[0][0], x1 = x0, y0 = corner[0][1], y1 = y0;
-  for (const P2& q : corner)
-  {
-    x0 = std::min(x0, q[0]);
-    x1 = std::max(x1, q[0]);
-    y0 = std::min(y0, q[1]);
-    y1 = std::max(y1, q[1]);
-  }
+  const auto [x0, x1, y0, y1] = bf::bounds2D(corner);
   const std::int64_t M = 2 * std::max(x1 - x0, y1 - y0) + 3, M2 = M * M;
   for (auto& t : fan)
     for (auto& q : t)

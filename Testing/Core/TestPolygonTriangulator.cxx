@@ -484,14 +484,7 @@ bool bruteForceFanCovers(const Polygon& p, std::size_t apex)
 /// triangles holding the point strictly, against the even-odd rule on the polygon.
 void checkFanBySampling(const Polygon& p, std::size_t apex)
 {
-  std::int64_t x0 = p[0][0], x1 = x0, y0 = p[0][1], y1 = y0;
-  for (const Point2L& q : p)
-  {
-    x0 = std::min(x0, q[0]);
-    x1 = std::max(x1, q[0]);
-    y0 = std::min(y0, q[1]);
-    y1 = std::max(y1, q[1]);
-  }
+  const auto [x0, x1, y0, y1] = bf::bounds2D(p);
   if (std::max(x1 - x0, y1 - y0) > 16)
     return; // kept fast
   const std::int64_t M = 2 * std::max(x1 - x0, y1 - y0) + 3, M2 = M * M;
