@@ -163,6 +163,7 @@ void run(const Input& in, int repeat)
   peer->SetLabelScalarTypeToInt(); // the default (unsigned char) caps the count at 255
   runs.push_back([&] { update(peer); });
 #endif
+  const long long peak = peakBytesOf([&] { update(face); }); // a first run, face connectivity
   const std::vector<double> t = interleavedMedians(repeat, runs);
   std::printf("%-18s %9zu EV %9zu OUDB %9zu CUDB %7u cc6 | EVM %7.2f  CUDB %7.2f  CCL %6.2f  "
               "write %7.2f | filter face %7.2f vertex %7.2f seeded (%lld) %7.2f ms",
@@ -179,6 +180,9 @@ void run(const Input& in, int repeat)
     1e3 * t[1],
     static_cast<long long>(seeds->GetNumberOfPoints()),
     1e3 * t[2]);
+  std::printf(" | peak %.1f bytes per voxel, %.0f per box",
+    double(peak) / double(std::max<std::size_t>(in.mask.size(), 1)),
+    double(peak) / double(std::max<std::size_t>(cudb.boxes.size(), 1)));
 #ifdef VOXELBREP_HAVE_PEER
   std::printf(" | vtkImageConnectivityFilter %8.2f ms (%lld regions) ratio %.1fx",
     1e3 * t[3],

@@ -119,17 +119,22 @@ void run(const Input& in, int repeat)
   vtkNew<vtkImageData> image = imageOf(in);
   vtkNew<vtkStandardPlanePolyhedrizer> filter;
   filter->SetInputData(image);
+  const long long filterPeak = peakBytesOf([&] { update(filter); }); // a first run
   const double tFilter = medianSeconds(repeat, [&] { update(filter); });
   vtkNew<vtkDiscreteFlyingEdges3D> peer;
   peer->SetInputData(image);
   peer->SetValue(0, 1);
   peer->ComputeNormalsOff();
   peer->ComputeGradientsOff();
+  const long long peerPeak = peakBytesOf([&] { update(peer); });
   const double tPeer = medianSeconds(repeat, [&] { update(peer); });
+  const long long cells = filter->GetOutput()->GetNumberOfCells();
+  const long long triangles = peer->GetOutput()->GetNumberOfCells();
   const double mean = poly.faces.empty() ? 0.0 : double(graph.size()) / poly.faces.size();
   std::printf("%-22s %8zu surfels | faces paper %6zu default %6zu merged %6zu | size min %zu "
               "mean %.1f max %zu, <=5: %zu | graph %7.2f faces %7.2f ms %5.2f M surfels/s | "
-              "reversion %s | filter %7.2f ms | DiscreteFlyingEdges3D %8lld triangles %7.2f ms\n",
+              "reversion %s | filter %7.2f ms | DiscreteFlyingEdges3D %8lld triangles %7.2f ms | "
+              "peak bytes per surfel: filter %.0f (%.0f per output cell), DFE %.0f per triangle\n",
     in.name.c_str(),
     graph.size(),
     faceCount(graph, paper),
@@ -144,8 +149,11 @@ void run(const Input& in, int repeat)
     graph.size() / (tGraph + tFaces) / 1e6,
     exact ? "exact" : ("WRONG " + error).c_str(),
     1e3 * tFilter,
-    static_cast<long long>(peer->GetOutput()->GetNumberOfCells()),
-    1e3 * tPeer);
+    triangles,
+    1e3 * tPeer,
+    double(filterPeak) / double(std::max<std::size_t>(graph.size(), 1)),
+    double(filterPeak) / double(std::max(cells, 1LL)),
+    double(peerPeak) / double(std::max(triangles, 1LL)));
 }
 
 } // namespace
