@@ -45,7 +45,7 @@ int main(int argc, char* argv[])
   boundary->SetInputConnection(phantom->GetOutputPort());
   boundary->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Labels");
   boundary->SetSelectionModeToLabels(); // each label its own closed boundary
-  boundary->SetOutputModeToTriangles(); // renders correctly; Polygons is more compact
+  boundary->SetOutputModeToTriangles(); // or Polygons: fewer cells, also drawn right
 
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputConnection(boundary->GetOutputPort());
