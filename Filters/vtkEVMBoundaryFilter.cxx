@@ -404,32 +404,32 @@ bool boundaryOf(const vbr::EVM& evm,
   return true;
 }
 
-/// The triangles of every face, in parallel.
-Triangulation triangulate(const vbr::BRep& brep, const vbr::Execution& exec)
+/// `make(brep, f)` for every face f, in parallel.
+template<typename Make>
+auto perFace(const vbr::BRep& brep, const vbr::Execution& exec, Make make)
 {
-  vtkLogScopeF(TRACE, "triangulation");
-  Triangulation triangles(brep.faces.size());
+  std::vector<decltype(make(brep, 0))> out(brep.faces.size());
   exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t f = b; f < e; ++f)
-        triangles[f] = vbr::triangulateFace(brep, static_cast<int>(f));
+        out[f] = make(brep, static_cast<int>(f));
     });
-  return triangles;
+  return out;
+}
+
+/// The triangles of every face, in parallel.
+Triangulation triangulate(const vbr::BRep& brep, const vbr::Execution& exec)
+{
+  vtkLogScopeF(TRACE, "triangulation");
+  return perFace(brep, exec, vbr::triangulateFace);
 }
 
 /// The polygons of every face that VTK draws right (fanPolygons), in parallel.
 FacePolygons fanPolygons(const vbr::BRep& brep, const vbr::Execution& exec)
 {
   vtkLogScopeF(TRACE, "polygons drawn as fans");
-  FacePolygons polygons(brep.faces.size());
-  exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
-    [&](std::int64_t b, std::int64_t e)
-    {
-      for (std::int64_t f = b; f < e; ++f)
-        polygons[f] = vbr::fanPolygons(brep, static_cast<int>(f));
-    });
-  return polygons;
+  return perFace(brep, exec, vbr::fanPolygons);
 }
 
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
