@@ -642,12 +642,6 @@ int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformationVector** inputVector,
   return 1;
 }
 
-//------------------------------------------------------------------------------
-const char* vtkCUDBConnectivity::GetSelectionModeAsString()
-{
-  return vbr::vtk::selectionModeName(this->SelectionMode);
-}
-
 const char* vtkCUDBConnectivity::GetConnectivityAsString()
 {
   return this->Connectivity == FACE ? "Face" : "Vertex";
@@ -824,7 +818,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
 void vtkCUDBConnectivity::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
+  os << indent << "Selection:\n";
+  this->Selection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Connectivity: " << this->GetConnectivityAsString() << "\n";
   os << indent << "SortingOrder: " << this->GetSortingOrderAsString() << "\n";
   os << indent << "RegionOrdering: " << this->GetRegionOrderingAsString() << "\n";

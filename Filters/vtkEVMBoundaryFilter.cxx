@@ -468,12 +468,6 @@ int vtkEVMBoundaryFilter::FillInputPortInformation(int, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
-const char* vtkEVMBoundaryFilter::GetSelectionModeAsString()
-{
-  return vbr::vtk::selectionModeName(this->SelectionMode);
-}
-
-//------------------------------------------------------------------------------
 const char* vtkEVMBoundaryFilter::GetOutputModeAsString()
 {
   switch (this->OutputMode)
@@ -609,7 +603,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     vtkLogScopeF(TRACE, "hand the output to VTK");
     builder.finish(output, lines, in.labelType);
   }
-  vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
+  vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS);
   writeStatistics(stats, output->GetFieldData());
   return 1;
 }
@@ -618,7 +612,8 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
 void vtkEVMBoundaryFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
+  os << indent << "Selection:\n";
+  this->Selection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
   os << indent << "MergeNonManifoldFaces: " << (this->MergeNonManifoldFaces ? "On\n" : "Off\n");
   os << indent << "FlatImagesAs2D: " << (this->FlatImagesAs2D ? "On\n" : "Off\n");

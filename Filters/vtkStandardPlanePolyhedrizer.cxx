@@ -606,12 +606,6 @@ int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-//------------------------------------------------------------------------------
-const char* vtkStandardPlanePolyhedrizer::GetSelectionModeAsString()
-{
-  return vbr::vtk::selectionModeName(this->SelectionMode);
-}
-
 const char* vtkStandardPlanePolyhedrizer::GetOutputModeAsString()
 {
   switch (this->OutputMode)
@@ -735,7 +729,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
     builder.addObject(o, this->OutputMode);
   }
   builder.finish(output);
-  vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
+  vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS);
   stats.write(output->GetFieldData());
   writeGrid(grid, input, output->GetFieldData());
   this->UpdateProgress(0.95);
@@ -765,7 +759,8 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
 void vtkStandardPlanePolyhedrizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
+  os << indent << "Selection:\n";
+  this->Selection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
   os << indent << "MaximumFaceSize: " << this->MaximumFaceSize << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";

@@ -345,19 +345,6 @@ void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
   fd->AddArray(a);
 }
 
-const char* selectionModeName(int mode)
-{
-  switch (mode)
-  {
-    case SelectPositive:
-      return "Positive";
-    case SelectRange:
-      return "Range";
-    default:
-      return "Labels";
-  }
-}
-
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,
   int association,
@@ -372,16 +359,16 @@ std::string readVoxels(vtkImageData* image,
     return "The input array must be point or cell data.";
   }
   const int components = scalars->GetNumberOfComponents();
-  if (component < MagnitudeComponent || component > components)
+  if (component < vtkVoxelSelection::MAGNITUDE || component > components)
   {
     std::ostringstream msg;
     msg << "ArrayComponent " << component << " is out of range: the array '"
         << (scalars->GetName() ? scalars->GetName() : "") << "' has " << components
-        << " component(s) (0 to " << components - 1 << ", or " << MagnitudeComponent << " or "
-        << components << " for the magnitude).";
+        << " component(s) (0 to " << components - 1 << ", or " << vtkVoxelSelection::MAGNITUDE
+        << " or " << components << " for the magnitude).";
     return msg.str();
   }
-  if (component == MagnitudeComponent || component == components)
+  if (component == vtkVoxelSelection::MAGNITUDE || component == components)
   {
     contiguous = tupleNorms(scalars);
     scalars = contiguous;
@@ -429,7 +416,8 @@ std::string refuseIfTooLarge(vtkDataArray* scalars, const SelectionSettings& set
 {
   const double tuples = double(scalars->GetNumberOfTuples());
   const int nc = scalars->GetNumberOfComponents();
-  const bool magnitude = settings.component == MagnitudeComponent || settings.component == nc;
+  const bool magnitude =
+    settings.component == vtkVoxelSelection::MAGNITUDE || settings.component == nc;
   const double copy = magnitude          ? double(sizeof(double))
     : scalars->HasStandardMemoryLayout() ? 0.0
                                          : double(nc) * scalars->GetDataTypeSize();
@@ -440,7 +428,7 @@ std::string refuseIfTooLarge(vtkDataArray* scalars, const SelectionSettings& set
 /// Warnings about selection settings that select nothing.
 void warnAboutSettings(vtkAlgorithm* algorithm, const SelectionSettings& settings)
 {
-  if (settings.mode != SelectRange)
+  if (settings.mode != vtkVoxelSelection::RANGE)
     return;
   if (std::isnan(settings.lower) || std::isnan(settings.upper))
     vtkWarningWithObjectMacro(algorithm,
@@ -529,7 +517,7 @@ bool readInputObjects(vtkAlgorithm* algorithm,
       algorithm, << "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
     return false;
   }
-  if (settings.mode == SelectLabels && out.objects.size() > ManyLabels)
+  if (settings.mode == vtkVoxelSelection::LABELS && out.objects.size() > ManyLabels)
   {
     vtkWarningWithObjectMacro(algorithm,
       << "Labels mode: the selected array has " << out.objects.size()
@@ -565,14 +553,15 @@ int executeGuarded(vtkAlgorithm* algorithm,
   }
 }
 
-void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings)
+SelectionSettings selectionSettingsOf(vtkVoxelSelection* selection)
 {
-  os << indent << "SelectionMode: " << selectionModeName(settings.mode) << "\n";
-  os << indent << "LowerThreshold: " << settings.lower << "\n";
-  os << indent << "UpperThreshold: " << settings.upper << "\n";
-  os << indent << "BackgroundValue: " << settings.background << "\n";
-  os << indent << "ArrayComponent: " << settings.component
-     << (settings.component == MagnitudeComponent ? " (Magnitude)\n" : "\n");
+  SelectionSettings s;
+  s.mode = selection->GetMode();
+  s.lower = selection->GetLowerThreshold();
+  s.upper = selection->GetUpperThreshold();
+  s.background = selection->GetBackgroundValue();
+  s.component = selection->GetArrayComponent();
+  return s;
 }
 
 namespace
