@@ -64,7 +64,7 @@
 #define vtkCUDBConnectivity_h
 
 #include "VoxelBRepFiltersModule.h" // for export macro
-#include "vtkAlgorithm.h"
+#include "vtkImageAlgorithm.h"
 #include "vtkVoxelSelection.h" // for vtkVoxelSelectionMacro
 
 class vtkDataSet;
@@ -72,11 +72,11 @@ class vtkImageData;
 class vtkTable;
 class vtkUnstructuredGrid;
 
-class VOXELBREPFILTERS_EXPORT vtkCUDBConnectivity : public vtkAlgorithm
+class VOXELBREPFILTERS_EXPORT vtkCUDBConnectivity : public vtkImageAlgorithm
 {
 public:
   static vtkCUDBConnectivity* New();
-  vtkTypeMacro(vtkCUDBConnectivity, vtkAlgorithm);
+  vtkTypeMacro(vtkCUDBConnectivity, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ConnectivityModes
@@ -184,23 +184,13 @@ public:
   void SetSeedData(vtkDataSet* seeds);
   ///@}
 
-  /**
-   * The image to label (port 0), for pipelines without a producer.
-   */
-  void SetInputData(vtkDataObject* image) { this->SetInputDataObject(0, image); }
-
   ///@{
   /**
-   * The three outputs.
+   * Outputs 1 and 2 (output 0, the labelled image, is GetOutput()).
    */
-  vtkImageData* GetOutput();
   vtkUnstructuredGrid* GetBoxesOutput();
   vtkTable* GetRegionsOutput();
   ///@}
-
-  vtkTypeBool ProcessRequest(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
 
 protected:
   vtkCUDBConnectivity();
@@ -208,9 +198,9 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  int RequestUpdateExtent(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  int RequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The work of RequestData, which turns exceptions (out of memory) into errors.
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 

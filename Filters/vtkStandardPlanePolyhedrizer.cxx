@@ -583,11 +583,9 @@ int vtkStandardPlanePolyhedrizer::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
-  // Port 1 keeps the image's extent, origin and spacing (copied by the executive).
-  vtkInformation* info = outputVector->GetInformationObject(0);
-  info->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-  info->Remove(vtkDataObject::ORIGIN());
-  info->Remove(vtkDataObject::SPACING());
+  // Port 1 keeps the image's extent, origin and spacing (copied by the executive); the
+  // faces on port 0 are not structured.
+  vbr::vtk::removeImageInformation(outputVector, 0);
   return 1;
 }
 
@@ -596,13 +594,7 @@ int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector*)
 {
   // Faces are global: the whole image is needed whatever piece is asked for.
-  vtkInformation* in = inputVector[0]->GetInformationObject(0);
-  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
-      6);
-  }
+  vbr::vtk::requestWholeExtent(inputVector[0]);
   return 1;
 }
 

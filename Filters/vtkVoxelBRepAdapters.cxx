@@ -18,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSetGet.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUniformGrid.h"
 
 #include <algorithm>
@@ -551,6 +552,25 @@ int executeGuarded(vtkAlgorithm* algorithm,
         output->Initialize();
     return 0;
   }
+}
+
+void requestWholeExtent(vtkInformationVector* input)
+{
+  vtkInformation* in = input->GetInformationObject(0);
+  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
+      6);
+  }
+}
+
+void removeImageInformation(vtkInformationVector* outputVector, int port)
+{
+  vtkInformation* info = outputVector->GetInformationObject(port);
+  info->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  info->Remove(vtkDataObject::ORIGIN());
+  info->Remove(vtkDataObject::SPACING());
 }
 
 SelectionSettings selectionSettingsOf(vtkVoxelSelection* selection)

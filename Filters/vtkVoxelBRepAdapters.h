@@ -355,6 +355,13 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   const SelectionSettings& settings,
   InputObjects& out);
 
+/// Asks the input of `input` (a port's information vector) for its whole extent, whatever
+/// piece the output is asked for: the filters' results (faces, components) are global.
+void requestWholeExtent(vtkInformationVector* input);
+/// Removes the extent, origin and spacing the executive copies from an image input to output
+/// `port`, whose data is not an image.
+void removeImageInformation(vtkInformationVector* outputVector, int port);
+
 /// Runs a filter's execution. An exception (out of memory, an inconsistency the core
 /// detected) becomes an error "<what> failed: ..." and empties every output: never a crash.
 int executeGuarded(vtkAlgorithm* algorithm,
