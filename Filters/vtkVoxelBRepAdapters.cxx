@@ -80,17 +80,8 @@ Execution makeExecution(vtkAlgorithm* algorithm, double progressFrom, double pro
 
 void VoxelGrid::vertexToWorld(const std::array<std::int32_t, 3>& v, double world[3]) const
 {
-  double local[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    const double index = this->extentMin[d] + this->vertexShift[d] + v[d];
-    local[d] = index * this->spacing[d];
-  }
-  for (int r = 0; r < 3; ++r)
-  {
-    world[r] = this->origin[r] + this->direction[3 * r] * local[0] +
-      this->direction[3 * r + 1] * local[1] + this->direction[3 * r + 2] * local[2];
-  }
+  const double position[3] = { double(v[0]), double(v[1]), double(v[2]) }; // exact
+  this->positionToWorld(position, world);
 }
 
 void VoxelGrid::positionToWorld(const double v[3], double world[3]) const
