@@ -626,6 +626,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
   settings.flatImagesAs2D = this->FlatImagesAs2D;
   settings.maximumVoxelsPerAxis = (1 << 21) - 2;
+  settings.distributed = true; // the faces of the whole image on rank 0 (N ranks = 1 rank)
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
     return 0;

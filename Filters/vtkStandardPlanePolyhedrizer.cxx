@@ -408,7 +408,10 @@ private:
 /// The voxel grid for vtkStandardPlaneReversion: world position of corner (0, 0, 0) (axis
 /// aligned grids), spacing and voxels per axis; and the input's layout (extent, origin,
 /// association of the scalars), so that the reversion has the layout of the input.
-void writeGrid(const vbr::vtk::VoxelGrid& grid, vtkImageData* input, vtkFieldData* fd)
+void writeGrid(const vbr::vtk::VoxelGrid& grid,
+  const int e[6],
+  vtkImageData* input,
+  vtkFieldData* fd)
 {
   double corner[3];
   grid.vertexToWorld({ 0, 0, 0 }, corner);
@@ -428,8 +431,6 @@ void writeGrid(const vbr::vtk::VoxelGrid& grid, vtkImageData* input, vtkFieldDat
   origin->InsertNextTuple(corner);
   spacing->InsertNextTuple(grid.spacing.data());
   dims->InsertNextTuple3(grid.dims[0], grid.dims[1], grid.dims[2]);
-  int e[6];
-  input->GetExtent(e);
   extent->InsertNextTypedTuple(e);
   imageOrigin->InsertNextTuple(input->GetOrigin());
   association->InsertNextValue(grid.cellData ? vtkDataObject::FIELD_ASSOCIATION_CELLS
@@ -496,6 +497,7 @@ void markVoxels(const vbr::BitVolume& voxels,
 /// written the same way, tuple by tuple, and the tuple count with the input's.
 bool writeReversion(const std::vector<ObjectFaces>& objects,
   const vbr::vtk::VoxelGrid& grid,
+  const int extent[6],
   const std::vector<vbr::BitVolume>& selections,
   vtkImageData* input,
   vtkImageData* output,
@@ -503,6 +505,7 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
   std::string& problem)
 {
   output->CopyStructure(input);
+  output->SetExtent(const_cast<int*>(extent)); // the whole image's under MPI
   const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   vtkNew<vtkUnsignedCharArray> selection;
   selection->SetName("Selection");
@@ -533,7 +536,7 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
     markVoxels(voxels, o.offset, grid.dims, selection->GetPointer(0));
     markVoxels(selections[i], o.offset, grid.dims, expected.data());
   }
-  const vtkIdType tuples = grid.cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  const vtkIdType tuples = grid.cellData ? output->GetNumberOfCells() : output->GetNumberOfPoints();
   const bool same = objectsMatch && tuples == n &&
     std::equal(expected.begin(), expected.end(), selection->GetPointer(0));
   vtkDataSetAttributes* attributes = grid.cellData
@@ -773,17 +776,23 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
 
   // PASS 2: the faces as cells.
   writeFaces(objects, in, this->OutputMode, this->GetSelectionMode() == LABELS, output);
-  writeGrid(grid, input, output->GetFieldData());
+  int extent[6];
+  vbr::vtk::objectsExtent(in, input, extent);
+  if (vbr::vtk::writesWholeOutputs(in.piece))
+    writeGrid(grid, extent, input, output->GetFieldData());
+  vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   this->UpdateProgress(0.95);
 
   // PASS 3: the voxels rebuilt from the faces alone, checked against the input.
   reversion->Initialize(); // no stale reversion when it is off
-  if (this->GenerateReversion)
+  if (!vbr::vtk::writesWholeOutputs(in.piece))
+    reversion->CopyStructure(input); // rank 0 writes the whole image's; this rank's piece stays
+  if (this->GenerateReversion && vbr::vtk::writesWholeOutputs(in.piece))
   {
     vtkLogScopeF(TRACE, "reversion");
     std::string why;
     const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.95, 1.0);
-    if (!writeReversion(objects, grid, selections, input, reversion, exec, why))
+    if (!writeReversion(objects, grid, extent, selections, input, reversion, exec, why))
     {
       if (this->GetAbortExecute())
       {

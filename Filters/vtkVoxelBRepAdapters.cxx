@@ -354,6 +354,14 @@ void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples)
     throw std::bad_alloc();
 }
 
+void objectsExtent(const InputObjects& in, vtkImageData* image, int extent[6])
+{
+  if (in.piece.distributed())
+    std::copy(in.piece.wholeExtent, in.piece.wholeExtent + 6, extent);
+  else
+    image->GetExtent(extent);
+}
+
 void addDistributionFields(vtkFieldData* fd, const Piece& piece)
 {
   if (!piece.distributed() || piece.rank != 0)
@@ -604,12 +612,13 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   InputObjects& out)
 {
   out = InputObjects();
-  const std::string problem = describePiece(distributedController(),
-    algorithm->GetInputInformation(0, 0),
-    image,
-    association == vtkDataObject::FIELD_ASSOCIATION_CELLS,
-    settings.flatImagesAs2D,
-    out.piece);
+  const std::string problem =
+    describePiece(settings.distributed ? distributedController(algorithm) : nullptr,
+      algorithm->GetInputInformation(0, 0),
+      image,
+      association == vtkDataObject::FIELD_ASSOCIATION_CELLS,
+      settings.flatImagesAs2D,
+      out.piece);
   if (!problem.empty())
   {
     vtkErrorWithObjectMacro(algorithm, << "Cannot read the voxels: " << problem << ".");
@@ -657,7 +666,9 @@ int executeGuarded(vtkAlgorithm* algorithm,
 void requestWholeExtent(vtkInformationVector* input)
 {
   vtkInformation* in = input->GetInformationObject(0);
-  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  if (!in)
+    return;
+  if (in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
       in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),

@@ -334,6 +334,9 @@ struct SelectionSettings
   /// bit volume, a label image, ...): checked against the memory the process can allocate
   /// before any work (readInputObjects refuses an image that cannot fit).
   double bytesPerVoxel = 1.0 / 8.0;
+  /// Under MPI, gather the objects of all ranks' pieces on rank 0 (see
+  /// vtkVoxelBRepDistributed.h); off, each rank reads its own input alone.
+  bool distributed = false;
 };
 
 /// The values of a selection.
@@ -351,15 +354,23 @@ struct Piece
   vtkMultiProcessController* controller = nullptr; ///< null when not distributed
   int rank = 0;
   int ranks = 1;
-  VoxelGrid whole;                       ///< the whole image's voxel grid
-  std::array<std::int32_t, 3> offset{};  ///< whole-grid voxel of the piece's voxel 0
-  std::array<std::int32_t, 3> ownedLo{}; ///< owned voxels [ownedLo, ownedHi), piece voxels
+  VoxelGrid whole;                              ///< the whole image's voxel grid
+  int wholeExtent[6] = { 0, -1, 0, -1, 0, -1 }; ///< the whole image's extent
+  std::array<std::int32_t, 3> offset{};         ///< whole-grid voxel of the piece's voxel 0
+  std::array<std::int32_t, 3> ownedLo{};        ///< owned voxels [ownedLo, ownedHi), piece voxels
   std::array<std::int32_t, 3> ownedHi{};
+  bool partitioned = true;        ///< whether the owned voxels of all ranks partition the image
   std::int64_t bytesSent = 0;     ///< by this rank, in the exchanges so far
   std::int64_t bytesReceived = 0; ///< by this rank, in the exchanges so far
 
   bool distributed() const { return this->controller != nullptr; }
 };
+
+/// Whether this rank writes the filter's whole-image outputs: always without MPI, rank 0 with.
+inline bool writesWholeOutputs(const Piece& piece)
+{
+  return !piece.distributed() || piece.rank == 0;
+}
 
 /// Under MPI, on rank 0: field data NumberOfRanks and BytesExchanged (what the ranks sent
 /// each other for this result). No-op otherwise.
@@ -379,6 +390,10 @@ struct InputObjects
   /// `objects` are the whole image's, and the other ranks have no objects.
   Piece piece;
 };
+
+/// The extent of the image the objects of `in` lie in: the whole image's under MPI, else the
+/// input's own.
+void objectsExtent(const InputObjects& in, vtkImageData* image, int extent[6]);
 
 /// Reads the objects of `image` carried by `scalars` (the filter's input array, possibly
 /// null), reporting errors and warnings on `algorithm`. Returns false after an error; an

@@ -2,6 +2,7 @@
 
 #include "EVM.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -57,7 +58,11 @@ void nonGhostBox(vtkDataArray* ghosts,
 }
 
 /// The owned voxels of a piece (see the ownership rule in the header).
-void ownVoxels(vtkImageData* image, const int extent[6], const int whole[6], Piece& piece)
+void ownVoxels(vtkImageData* image,
+  const int extent[6],
+  const int whole[6],
+  bool trustGhostMarks,
+  Piece& piece)
 {
   const bool cellData = piece.whole.cellData;
   std::array<std::int32_t, 3> n;
@@ -77,8 +82,10 @@ void ownVoxels(vtkImageData* image, const int extent[6], const int whole[6], Pie
   {
     piece.ownedLo[d] = lo[d];
     piece.ownedHi[d] = hi[d] + 1;
-    // Point scalars: the upper plane of points is the neighbour's, unless it ends the image.
-    if (!cellData && hi[d] >= lo[d] && extent[2 * d] + hi[d] < whole[2 * d + 1])
+    // Point scalars: the upper plane of points is the neighbour's, unless it ends the image;
+    // ghost marks that already name one owner of each shared point are trusted instead.
+    if (!cellData && !(ghosts && trustGhostMarks) && hi[d] >= lo[d] &&
+      extent[2 * d] + hi[d] < whole[2 * d + 1])
       piece.ownedHi[d] = hi[d];
     piece.ownedHi[d] = std::max(piece.ownedHi[d], piece.ownedLo[d]);
   }
@@ -234,10 +241,16 @@ std::vector<Selected> mergeMessages(const std::vector<std::vector<long long>>& a
 
 } // namespace
 
-vtkMultiProcessController* distributedController()
+vtkMultiProcessController* distributedController(vtkAlgorithm* algorithm)
 {
   vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
-  return c && c->GetNumberOfProcesses() > 1 ? c : nullptr;
+  if (!c || c->GetNumberOfProcesses() < 2 || algorithm->GetNumberOfOutputPorts() == 0)
+    return nullptr;
+  vtkInformation* out = algorithm->GetOutputInformation(0);
+  const int pieces = out->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? out->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  return pieces == c->GetNumberOfProcesses() ? c : nullptr;
 }
 
 std::string describePiece(vtkMultiProcessController* controller,
@@ -254,6 +267,7 @@ std::string describePiece(vtkMultiProcessController* controller,
     return std::string();
   inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   image->GetExtent(extent);
+  std::copy(whole, whole + 6, piece.wholeExtent);
   piece.controller = controller;
   piece.rank = controller->GetLocalProcessId();
   piece.ranks = controller->GetNumberOfProcesses();
@@ -263,8 +277,19 @@ std::string describePiece(vtkMultiProcessController* controller,
   readGeometry(image, piece.whole);
   for (int d = 0; d < 3; ++d)
     piece.offset[d] = extent[2 * d] - whole[2 * d];
-  if (image->GetNumberOfPoints() > 0)
-    ownVoxels(image, extent, whole, piece);
+  // Collective: the rule that makes the owned voxels of all ranks a partition of the image.
+  const std::int64_t wholeCount =
+    std::int64_t(piece.whole.dims[0]) * piece.whole.dims[1] * piece.whole.dims[2];
+  for (bool trustGhostMarks : { true, false })
+  {
+    if (image->GetNumberOfPoints() > 0)
+      ownVoxels(image, extent, whole, trustGhostMarks, piece);
+    long long owned = ownedVoxelCount(piece), total = 0;
+    controller->AllReduce(&owned, &total, 1, vtkCommunicator::SUM_OP);
+    piece.partitioned = total == wholeCount;
+    if (piece.partitioned)
+      break;
+  }
   return std::string();
 }
 
@@ -283,11 +308,7 @@ bool mergeObjectsOnFirstRank(bool ok, Piece& piece, InputObjects& in)
 {
   // Pieces that do not partition the whole image (each rank given all of it) are processed
   // by rank 0 alone.
-  long long owned = ok && !in.objects.empty() ? ownedVoxelCount(piece) : 0, total = 0;
-  piece.controller->AllReduce(&owned, &total, 1, vtkCommunicator::SUM_OP);
-  const std::int64_t wholeCount =
-    std::int64_t(piece.whole.dims[0]) * piece.whole.dims[1] * piece.whole.dims[2];
-  if (total > wholeCount && piece.rank != 0)
+  if (!piece.partitioned && piece.rank != 0)
     in.objects.clear();
   std::vector<long long> message = localMessage(ok, piece, in);
   std::vector<std::vector<long long>> all;

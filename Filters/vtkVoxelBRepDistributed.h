@@ -45,8 +45,10 @@ namespace vbr
 namespace vtk
 {
 
-/// The global controller when it has more than one process, else null.
-vtkMultiProcessController* distributedController();
+/// The global controller when it has more than one process and the algorithm is asked for
+/// one of as many pieces (a pipeline run by ParaView on every rank), else null: a filter run
+/// on one rank alone (a script's own pipeline in pvbatch) is not distributed.
+vtkMultiProcessController* distributedController(vtkAlgorithm* algorithm);
 
 /// The piece `image` is of the whole extent in the algorithm's input information, with
 /// `cellData` scalars: the whole image's grid and the voxels this rank owns. Returns a

@@ -14,7 +14,7 @@ PACKAGES=(
   # ParaView 5.11 and the VTK 9.2 SDK it ships (the packages its CMake config looks for)
   paraview paraview-dev python3-paraview python3-dev
   qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools
-  libopenmpi-dev python3-mpi4py
+  libopenmpi-dev python3-mpi4py openmpi-bin
   libdouble-conversion-dev libexpat1-dev libeigen3-dev libfreetype-dev libgdal-dev
   libgl2ps-dev libglew-dev libhdf5-dev libhdf5-openmpi-dev libjpeg-dev liblz4-dev
   liblzma-dev libxml2-dev libnetcdf-dev libgl-dev libpng-dev libtheora-dev libtiff-dev
