@@ -3,6 +3,7 @@
 #include "CUDB.h"
 #include "EVM.h"
 #include "vtkVoxelBRepAdapters.h"
+#include "vtkVoxelBRepDistributed.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -755,6 +756,115 @@ void addRegionIds(vtkImageData* output, vtkIntArray* ids, bool cellData)
   attributes->SetActiveScalars("RegionId");
 }
 
+/// Rank 0: the kept boxes of all objects as [lo, hi (image axes, whole-grid voxels), RegionId]
+/// per box; [-1] when aborted.
+std::vector<long long> keptBoxValues(const std::vector<ObjectBoxes>& objects,
+  const std::vector<Region>& regions,
+  const std::array<int, 3>& axes,
+  bool aborted)
+{
+  if (aborted)
+    return { -1 };
+  std::vector<long long> values;
+  for (const ObjectBoxes& o : objects)
+    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
+    {
+      const Region& region = regionOfBox(o, b, regions);
+      if (region.id == 0)
+        continue;
+      Int3 lo = o.cudb.boxes[b].lo, hi = o.cudb.boxes[b].hi;
+      for (int d = 0; d < 3; ++d)
+        lo[d] += o.offset[d], hi[d] += o.offset[d];
+      for (const Int3& corner : { toImageAxes(lo, axes), toImageAxes(hi, axes) })
+        values.insert(values.end(), corner.begin(), corner.end());
+      values.push_back(region.id);
+    }
+  return values;
+}
+
+/// Under MPI, every rank: the RegionIds of its own piece (ghost voxels included) from the
+/// kept boxes rank 0 broadcasts. Null when rank 0 aborted or the exchange failed.
+vtkSmartPointer<vtkIntArray> paintPieceFromBoxes(vbr::vtk::Piece& piece,
+  const vbr::vtk::VoxelGrid& pieceGrid,
+  std::vector<long long> values)
+{
+  if (!vbr::vtk::broadcastValues(piece, values) || (values.size() == 1 && values[0] < 0))
+    return nullptr;
+  const std::array<std::int32_t, 3>& n = pieceGrid.dims;
+  vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(vtkIdType(n[0]) * n[1] * n[2]);
+  ids->SetName("RegionId");
+  std::int32_t* out = ids->GetPointer(0);
+  for (std::size_t at = 0; at + 6 < values.size(); at += 7)
+  {
+    std::array<long long, 3> lo, hi; // clipped to the piece, piece voxels
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = std::max<long long>(values[at + d] - piece.offset[d], 0);
+      hi[d] = std::min<long long>(values[at + 3 + d] - piece.offset[d], n[d]);
+    }
+    for (long long z = lo[2]; z < hi[2]; ++z)
+      for (long long y = lo[1]; y < hi[1]; ++y)
+        if (lo[0] < hi[0])
+          std::fill(out + (z * n[1] + y) * n[0] + lo[0],
+            out + (z * n[1] + y) * n[0] + hi[0],
+            static_cast<std::int32_t>(values[at + 6]));
+  }
+  return ids;
+}
+
+/// Under MPI (passes 2 and 3): rank 0 numbers the regions of the whole image (the seeds of
+/// every rank gathered) and writes the boxes and the region table; every rank writes the
+/// RegionIds of its own piece from the kept boxes. False when the exchange failed.
+bool writeDistributed(vtkCUDBConnectivity* self,
+  vbr::vtk::InputObjects& in,
+  const std::vector<ObjectBoxes>& objects,
+  std::uint32_t regionCount,
+  Summary& summary,
+  const Ports& ports)
+{
+  vbr::vtk::Piece& piece = in.piece;
+  vtkSmartPointer<vtkDataSet> seeds =
+    ports.seeds ? vbr::vtk::gatherPoints(piece, ports.seeds) : nullptr;
+  const bool first = piece.rank == 0, aborted = first && self->GetAbortExecute();
+  std::vector<Region> regions;
+  std::int32_t kept = 0;
+  if (first && !aborted)
+  {
+    regions = measureRegions(objects, regionCount);
+    if (seeds)
+      markRegionsOfSeeds(self, seeds, in, objects, regions);
+    kept = numberRegions(regions,
+      self->GetMinimumRegionSize(),
+      ports.seeds != nullptr,
+      self->GetLargestRegions(),
+      self->GetRegionOrdering());
+    summary.components = static_cast<vtkIdType>(regionCount);
+    summary.regions = kept;
+  }
+  vtkSmartPointer<vtkIntArray> ids = paintPieceFromBoxes(piece,
+    piece.local,
+    first ? keptBoxValues(objects, regions, in.axes, aborted) : std::vector<long long>());
+  if (!ids)
+  {
+    ports.output->GetPointData()->Initialize(); // aborted: no labels
+    ports.output->GetCellData()->Initialize();
+    return aborted;
+  }
+  addRegionIds(ports.output, ids, piece.local.cellData);
+  if (!first)
+    return true;
+  if (self->GetGenerateBoxes())
+    writeBoxes(objects, regions, in.grid, in.axes, in.labelType, ports.boxes);
+  writeRegionTable(regions, kept, in.grid, in.axes, in.labelType, ports.table);
+  for (vtkDataObject* port :
+    std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
+  {
+    summary.write(port->GetFieldData());
+    vbr::vtk::addDistributionFields(port->GetFieldData(), piece);
+  }
+  return true;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -885,16 +995,20 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   vbr::vtk::InputObjects in;
   vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
   settings.bytesPerVoxel = sizeof(std::int32_t) + 1.0 / 8.0; // RegionId image, selection bits
+  settings.distributed = true; // one RegionId per component across the ranks
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
     return 0;
   if (in.objects.empty() && !scalars)
     return 1; // an empty image has no components
   this->UpdateProgress(0.05);
 
-  // PASS 1: the boxes (CUDB) and their components, object by object (paper 002).
+  // PASS 1: the boxes (CUDB) and their components, object by object (paper 002). Under MPI
+  // rank 0 has every object, from the EVMs of all ranks (see vtkVoxelBRepDistributed.h).
   Summary summary;
   std::vector<ObjectBoxes> objects;
   const std::uint32_t regionCount = buildObjectBoxes(this, in, objects, summary);
+  if (in.piece.distributed())
+    return writeDistributed(this, in, objects, regionCount, summary, ports) ? 1 : 0;
   if (this->GetAbortExecute())
   {
     output->GetPointData()->Initialize(); // aborted: no labels

@@ -356,8 +356,9 @@ struct Piece
   int ranks = 1;
   VoxelGrid whole;                              ///< the whole image's voxel grid
   int wholeExtent[6] = { 0, -1, 0, -1, 0, -1 }; ///< the whole image's extent
-  std::array<std::int32_t, 3> offset{};         ///< whole-grid voxel of the piece's voxel 0
-  std::array<std::int32_t, 3> ownedLo{};        ///< owned voxels [ownedLo, ownedHi), piece voxels
+  VoxelGrid local;                       ///< the voxels of this rank's piece (ghosts included)
+  std::array<std::int32_t, 3> offset{};  ///< whole-grid voxel of the piece's voxel 0
+  std::array<std::int32_t, 3> ownedLo{}; ///< owned voxels [ownedLo, ownedHi), piece voxels
   std::array<std::int32_t, 3> ownedHi{};
   bool partitioned = true;        ///< whether the owned voxels of all ranks partition the image
   std::int64_t bytesSent = 0;     ///< by this rank, in the exchanges so far

@@ -10,7 +10,11 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -324,6 +328,7 @@ bool mergeObjectsOnFirstRank(bool ok, Piece& piece, InputObjects& in)
   piece.controller->Broadcast(&status, 1, 0);
   in.objects.clear();
   in.contiguous = nullptr;
+  piece.local = in.grid;
   if (!status)
     return false;
   if (piece.rank != 0)
@@ -351,6 +356,39 @@ bool broadcastValues(Piece& piece, std::vector<long long>& values)
     piece.bytesSent +=
       static_cast<std::int64_t>(sizeof(long long) * (values.size() + 1)) * (piece.ranks - 1);
   return length == 0 || piece.controller->Broadcast(values.data(), length, 0);
+}
+
+vtkSmartPointer<vtkDataSet> gatherPoints(Piece& piece, vtkDataSet* points)
+{
+  std::vector<long long> values;
+  const vtkIdType n = points ? points->GetNumberOfPoints() : 0;
+  values.reserve(static_cast<std::size_t>(3 * n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    for (double c : p)
+    {
+      long long bits;
+      std::memcpy(&bits, &c, sizeof bits);
+      values.push_back(bits);
+    }
+  }
+  std::vector<std::vector<long long>> all;
+  if (!gatherOnFirstRank(piece, values, all) || piece.rank != 0)
+    return nullptr;
+  vtkNew<vtkPoints> gathered;
+  gathered->SetDataTypeToDouble();
+  for (const std::vector<long long>& m : all)
+    for (std::size_t i = 0; i + 2 < m.size(); i += 3)
+    {
+      double p[3];
+      std::memcpy(p, &m[i], sizeof p);
+      gathered->InsertNextPoint(p);
+    }
+  vtkSmartPointer<vtkPolyData> out = vtkSmartPointer<vtkPolyData>::New();
+  out->SetPoints(gathered);
+  return out;
 }
 
 } // namespace vtk

@@ -36,6 +36,7 @@
 #include <vector>
 
 class vtkAlgorithm;
+class vtkDataSet;
 class vtkImageData;
 class vtkInformation;
 class vtkMultiProcessController;
@@ -71,6 +72,9 @@ bool mergeObjectsOnFirstRank(bool ok, Piece& piece, InputObjects& in);
 
 /// Collective, from rank 0: `values` (resized on the other ranks). False on failure.
 bool broadcastValues(Piece& piece, std::vector<long long>& values);
+
+/// Collective: the points of every rank's `points` (null: none) on rank 0, null elsewhere.
+vtkSmartPointer<vtkDataSet> gatherPoints(Piece& piece, vtkDataSet* points);
 
 } // namespace vtk
 } // namespace vbr

@@ -1,4 +1,5 @@
-"""EVM Boundary on N ranks (mpiexec -n N pvbatch) against numpy on the whole image.
+"""EVM Boundary and CUDB Connectivity on N ranks (mpiexec -n N pvbatch) against numpy and
+scipy on the whole image.
 
 Usage: mpiexec -n N pvbatch TestDistributed.py /path/to/VoxelBRep.so
 
@@ -8,12 +9,16 @@ layers (ParaView's Ghost Cells Generator, as Contour and other filters ask for t
 boundary fetched from all ranks must be the one of
 the whole image: the same voxels, extreme vertices, surfels, faces and holes as numpy counts
 on the whole image (voxelbrep_testing, independent of the filter), its triangles covering
-exactly the surfels' area once (no face twice, none cut at the pieces).
+exactly the surfels' area once (no face twice, none cut at the pieces). The RegionIds of
+CUDB Connectivity, gathered from every rank's piece, must give scipy.ndimage.label's partition
+of the whole image with one id per component on all ranks, numbered largest first.
 """
 
+import builtins
 import sys
 
 import numpy as np
+import scipy.ndimage
 from paraview import servermanager as sm
 from paraview.simple import *  # noqa: F401,F403
 from pvtest import expect, field, finish
@@ -83,7 +88,77 @@ def check(association, ghosts):
     expect(tag + "ranks that took part", field(data, "NumberOfRanks"), ranks if ranks > 1 else None)
 
 
+def pieces_source(association, ghosts):
+    source = Wavelet(WholeExtent=EXTENT)
+    if association == "CELLS":
+        source = PointDatatoCellData(Input=source)
+    if ghosts:
+        source = GhostCellsGenerator(Input=source, BuildIfRequired=0, MinimumNumberOfGhosts=2)
+    return source
+
+
+# Run on every rank's piece: its RegionIds and voxel indices, saved for rank 0 to read (pvbatch
+# runs this script on rank 0 only, and Fetch returns rank 0's piece of an image).
+SAVE_PIECE = """
+import numpy as np
+from vtkmodules.util import numpy_support as ns
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+image = self.GetInputDataObject(0, 0)
+self.GetOutputDataObject(0).ShallowCopy(image)
+cells = %(cells)r
+attributes = image.GetCellData() if cells else image.GetPointData()
+e = image.GetExtent()
+dims = [e[1] - e[0] + (0 if cells else 1), e[3] - e[2] + (0 if cells else 1),
+        e[5] - e[4] + (0 if cells else 1)]
+k, j, i = np.meshgrid(*[np.arange(n) for n in dims[::-1]], indexing="ij")
+index = np.stack([i.ravel() + e[0], j.ravel() + e[2], k.ravel() + e[4]], axis=1)
+ghosts = attributes.GetArray("vtkGhostType")
+keep = np.ones(len(index), bool) if ghosts is None else ns.vtk_to_numpy(ghosts) == 0
+ids = ns.vtk_to_numpy(attributes.GetArray("RegionId"))
+rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
+np.savez(%(folder)r + "/piece%%d.npz" %% rank, ids=ids[keep], index=index[keep])
+"""
+
+
+def gathered_region_ids(cudb, cells):
+    """RegionIds and voxel indices of the non-ghost voxels of every rank's piece."""
+    import glob
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="voxelbrep-mpi-")
+    saver = ProgrammableFilter(Input=cudb, CopyArrays=1,
+                               Script=SAVE_PIECE % {"cells": cells, "folder": folder})
+    saver.UpdatePipeline()
+    pieces = [np.load(f) for f in sorted(glob.glob(folder + "/piece*.npz"))]
+    expect("pieces saved by every rank", len(pieces), ranks)
+    return (np.concatenate([p["ids"] for p in pieces]),
+            np.concatenate([p["index"] for p in pieces]))
+
+
+def check_cudb(association, ghosts):
+    tag = "CUDB, %d ranks, %s scalars, %s: " % (ranks, association.lower(),
+                                                 "with ghost layers" if ghosts else "no ghosts")
+    cudb = CUDBConnectivity(Input=pieces_source(association, ghosts),
+                            Scalars=[association, "RTData"], SelectionMode="Range",
+                            LowerThreshold=LOWER, UpperThreshold=1000.0)
+    ids, index = gathered_region_ids(cudb, association == "CELLS")
+    cells = association == "CELLS"
+    labels, count = scipy.ndimage.label(whole_values(cells) >= LOWER)
+    expected = labels[index[:, 2], index[:, 1], index[:, 0]]
+    pairs = set(zip(expected.tolist(), ids.tolist()))
+    expect(tag + "unselected voxels have RegionId 0",
+           builtins.all((e == 0) == (r == 0) for e, r in pairs), True)
+    expect(tag + "one RegionId per component, on every rank",
+           len({e for e, r in pairs if e}) == len({r for e, r in pairs if r}) == len(
+               [1 for e, r in pairs if e]), True)
+    sizes = np.bincount(labels.ravel())[1:]
+    by_id = {r: sizes[e - 1] for e, r in pairs if e}
+    expect(tag + "every component seen", len(by_id), count)
+    expect(tag + "numbered largest first",
+           [by_id[r] for r in sorted(by_id)] == sorted(sizes.tolist(), reverse=True), True)
+
+
 for association in ("POINTS", "CELLS"):
     for ghosts in (False, True):
         check(association, ghosts)
+        check_cudb(association, ghosts)
 finish()
