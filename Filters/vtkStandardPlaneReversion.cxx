@@ -461,7 +461,7 @@ int writeVoxels(vtkAlgorithm* self,
     std::vector<vbr::FaceOutline> boxed;
     std::array<std::int32_t, 3> boxDims{ 0, 0, 0 };
     std::string problem = outlinesInBox(outlines, grid.dims, boxed, lo, boxDims);
-    std::vector<vbr::SurfelGraph::Surfel> surfels;
+    std::vector<vbr::Surfel> surfels;
     vbr::BitVolume voxels;
     if (problem.empty())
       problem = vbr::revert(boxed,

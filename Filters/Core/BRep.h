@@ -20,8 +20,6 @@
 namespace vbr
 {
 
-using Point3 = std::array<Coord, 3>;
-
 struct BRepLoop
 {
   std::size_t begin = 0, end = 0; ///< its corners in BRep::points

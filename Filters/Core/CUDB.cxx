@@ -1,5 +1,7 @@
 #include "CUDB.h"
 
+#include "UnionFind.h"
+
 #include <algorithm>
 #include <iterator>
 #include <limits>
@@ -11,14 +13,6 @@ namespace vbr
 
 namespace
 {
-
-/// A vertex of a 2D section: (B, C) of the 3D sorting.
-struct Point2
-{
-  Coord b, c;
-  bool operator<(const Point2& o) const { return b < o.b || (b == o.b && c < o.c); }
-  bool operator==(const Point2& o) const { return b == o.b && c == o.c; }
-};
 
 /// A rectangle of a section's 2D CUDB: [b0, b1) x [c0, c1).
 struct Rect
@@ -92,10 +86,10 @@ public:
     const std::size_t n = section.size();
     while (i < n)
     {
-      const Coord b = section[i].b;
+      const Coord b = section[i].u;
       this->Line.clear();
-      for (; i < n && section[i].b == b; ++i)
-        this->Line.push_back(section[i].c);
+      for (; i < n && section[i].u == b; ++i)
+        this->Line.push_back(section[i].v);
       this->Next.clear();
       std::set_symmetric_difference(this->Breaks.begin(),
         this->Breaks.end(),
@@ -610,55 +604,6 @@ CUDB::NeighbourLists CUDB::neighbours(int axisRole, bool forward, Connectivity c
   return lists;
 }
 
-namespace
-{
-
-/// Provisional labels and their equivalences (Algorithm 4): each label points to a smaller
-/// equivalent one, or to itself. Only labels that met another change.
-class Equivalences
-{
-public:
-  std::uint32_t newLabel()
-  {
-    this->Parent.push_back(static_cast<std::uint32_t>(this->Parent.size()));
-    return this->Parent.back();
-  }
-
-  std::uint32_t resolve(std::uint32_t label)
-  {
-    std::uint32_t root = label;
-    while (this->Parent[root] != root)
-      root = this->Parent[root];
-    while (this->Parent[label] != root) // path compression
-    {
-      const std::uint32_t next = this->Parent[label];
-      this->Parent[label] = root;
-      label = next;
-    }
-    return root;
-  }
-
-  /// Records that a and b are the same component; returns the smaller representative.
-  std::uint32_t make(std::uint32_t a, std::uint32_t b)
-  {
-    a = this->resolve(a);
-    b = this->resolve(b);
-    if (a == b)
-      return a;
-    if (b < a)
-      std::swap(a, b);
-    this->Parent[b] = a;
-    return a;
-  }
-
-  std::size_t size() const { return this->Parent.size(); }
-
-private:
-  std::vector<std::uint32_t> Parent;
-};
-
-} // namespace
-
 Components labelComponents(const CUDB& cudb, Connectivity connectivity)
 {
   const std::size_t n = cudb.boxes.size();
@@ -682,24 +627,24 @@ Components labelComponents(const CUDB& cudb, Connectivity connectivity)
   // Algorithm 3: first pass, provisional labels and equivalences.
   Components result;
   result.boxLabel.assign(n, 0);
-  Equivalences eq;
+  UnionFind eq;
   for (std::size_t b = 0; b < n; ++b)
   {
     if (start[b] == start[b + 1])
     {
-      result.boxLabel[b] = eq.newLabel();
+      result.boxLabel[b] = eq.add();
       continue;
     }
-    std::uint32_t label = eq.resolve(result.boxLabel[earlier[start[b]]]);
+    std::uint32_t label = eq.find(result.boxLabel[earlier[start[b]]]);
     for (std::uint32_t k = start[b] + 1; k < start[b + 1]; ++k)
-      label = eq.make(label, result.boxLabel[earlier[k]]);
+      label = eq.unite(label, result.boxLabel[earlier[k]]);
     result.boxLabel[b] = label;
   }
   // Algorithm 5: resolve the equivalences, consecutive labels by first appearance.
   std::vector<std::uint32_t> consecutive(eq.size(), 0);
   for (std::size_t b = 0; b < n; ++b)
   {
-    const std::uint32_t root = eq.resolve(result.boxLabel[b]);
+    const std::uint32_t root = eq.find(result.boxLabel[b]);
     if (consecutive[root] == 0)
       consecutive[root] = ++result.count;
     result.boxLabel[b] = consecutive[root];

@@ -17,6 +17,7 @@
 
 #include "EVM.h"
 #include "Execution.h"
+#include "Geometry.h"
 
 #include <array>
 #include <cstdint>
@@ -24,19 +25,6 @@
 
 namespace vbr
 {
-
-/// Voxels [lo, hi) along x, y and z.
-struct Box
-{
-  std::array<Coord, 3> lo{ 0, 0, 0 };
-  std::array<Coord, 3> hi{ 0, 0, 0 };
-
-  std::int64_t volume() const
-  {
-    return std::int64_t(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-  }
-  bool operator==(const Box& o) const { return this->lo == o.lo && this->hi == o.hi; }
-};
 
 /// Two boxes that touch across a plane perpendicular to `axis` (a world axis): `backward`
 /// ends where `forward` starts. `face` is set when they share a piece of face of positive

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cctype>
 #include <stdexcept>
 
 namespace vbr
@@ -13,11 +14,6 @@ namespace
 {
 
 const char* const AxisNames = "XYZ";
-
-int countTrailingZeros(Word w)
-{
-  return __builtin_ctzll(w);
-}
 
 /// Appends the set bits of a row of vertex words as vertices (a, b, x).
 void appendRowVertices(const Word* bits,

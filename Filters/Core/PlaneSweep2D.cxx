@@ -1,5 +1,8 @@
 #include "PlaneSweep2D.h"
 
+#include "UnionFind.h"
+
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -74,33 +77,12 @@ public:
   }
 
 private:
-  // ---- union-find over section intervals ---------------------------------------------------
-  int newInterval()
-  {
-    const int id = static_cast<int>(this->Parent.size());
-    this->Parent.push_back(id);
-    return id;
-  }
-  int find(int i)
-  {
-    while (this->Parent[i] != i)
-    {
-      i = this->Parent[i] = this->Parent[this->Parent[i]];
-    }
-    return i;
-  }
+  // ---- union-find over section intervals (roots follow sweep order) -----------------------
+  int newInterval() { return static_cast<int>(this->Intervals.add()); }
+  int find(int i) { return static_cast<int>(this->Intervals.find(static_cast<std::uint32_t>(i))); }
   void unite(int a, int b)
   {
-    a = this->find(a);
-    b = this->find(b);
-    if (a != b)
-    {
-      // Keep the older interval as root: roots then follow sweep order.
-      if (a < b)
-        this->Parent[b] = a;
-      else
-        this->Parent[a] = b;
-    }
+    this->Intervals.unite(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
   }
 
   // ---- edges ---------------------------------------------------------------------------------
@@ -309,7 +291,7 @@ private:
   {
     Boundary2D out;
     out.nonManifoldVertices = this->NonManifold.size();
-    std::vector<int> faceOfRoot(this->Parent.size(), -1);
+    std::vector<int> faceOfRoot(this->Intervals.size(), -1);
     std::vector<const FirstInterval*> firstOfFace;
     for (const auto& f : this->First)
     {
@@ -379,7 +361,7 @@ private:
   std::vector<SectionEnd> NextSection; ///< the section being built (reused buffers)
   std::vector<int> NextIntervals;
   std::vector<int> SectionIntervals; ///< interval id of each pair of section ends
-  std::vector<int> Parent;           ///< union-find over intervals
+  UnionFind Intervals;               ///< the section intervals, united into faces
   std::vector<Edge> Edges;
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;

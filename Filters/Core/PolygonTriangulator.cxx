@@ -9,8 +9,6 @@ namespace vbr
 namespace
 {
 
-using Wide = __int128;
-
 /// Twice the signed area of triangle abc, exactly.
 Wide cross(const Point2L& a, const Point2L& b, const Point2L& c)
 {
@@ -207,7 +205,7 @@ int orientation(const Point2L& a, const Point2L& b, const Point2L& c)
   return sign(cross(a, b, c));
 }
 
-__int128 doubledArea(const std::vector<Point2L>& corners)
+Wide doubledArea(const std::vector<Point2L>& corners)
 {
   Wide sum = 0;
   for (std::size_t i = 0; i < corners.size(); ++i)

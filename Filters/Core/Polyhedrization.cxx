@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -19,7 +20,7 @@ namespace
 
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 
-std::array<int, 3> signsOf(const SurfelGraph::Surfel& s)
+std::array<int, 3> signsOf(const Surfel& s)
 {
   std::array<int, 3> signs{ 0, 0, 0 };
   signs[s.axis()] = s.sign();
@@ -635,71 +636,46 @@ bool polyhedrize(const SurfelGraph& graph,
 namespace
 {
 
-using Int3 = std::array<std::int32_t, 3>;
-
-Int3 sub(const Int3& a, const Int3& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-
-Int3 add(const Int3& a, const Int3& b)
-{
-  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
-}
-
-Int3 cross(const Int3& a, const Int3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-
-int axisOf(const Int3& u)
-{
-  return u[0] != 0 ? 0 : (u[1] != 0 ? 1 : 2);
-}
-
+/// Key of the linel p -> q (a unit step): its start and direction.
 std::uint64_t edgeKey(const Point3& p, const Point3& q)
 {
-  auto pack = [](const Point3& a)
-  {
-    constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
-    return ((std::uint64_t(a[0] + Bias) << 42) | (std::uint64_t(a[1] + Bias) << 21) |
-      std::uint64_t(a[2] + Bias));
-  };
-  const Int3 t = sub(q, p);
-  const int direction = 2 * axisOf(t) + (t[axisOf(t)] > 0 ? 1 : 0);
-  return pack(p) * 8 + static_cast<std::uint64_t>(direction);
+  const int direction = directionOf(sub(q, p)); // -1: a repeated corner, refused below
+  return packBiased(p) * 8 + static_cast<std::uint64_t>(direction < 0 ? 7 : direction);
+}
+
+/// Key of a surfel: its voxel and direction.
+std::uint64_t surfelKey(const Surfel& s)
+{
+  return packBiased(s.voxel) * 8 + s.direction;
 }
 
 /// The digital half-space below a standard plane: voxels whose centre c has
 /// n.c < mu + omega / 2, i.e. 2 n.v + (a + b + c) < 2 mu + omega for the lower corner v.
-bool below(const StandardPlane& plane, const Int3& voxel)
+bool below(const StandardPlane& plane, const Point3& voxel)
 {
   const auto& n = plane.normal;
   return 2 * plane.value(voxel) + n[0] + n[1] + n[2] < 2 * plane.mu + plane.omega();
 }
 
 /// The surfel of the plane whose counter-clockwise boundary runs p -> q, if any.
-bool surfelLeftOf(const StandardPlane& plane,
-  const Point3& p,
-  const Point3& q,
-  SurfelGraph::Surfel& out)
+bool surfelLeftOf(const StandardPlane& plane, const Point3& p, const Point3& q, Surfel& out)
 {
-  const Int3 t = sub(q, p);
-  const int along = axisOf(t);
+  const Point3 t = sub(q, p);
+  const int along = directionOf(t) >> 1;
   int found = 0;
   for (int d = 0; d < 3; ++d)
   {
     if (d == along || plane.normal[d] == 0)
       continue;
-    Int3 normal{ 0, 0, 0 };
+    Point3 normal{ 0, 0, 0 };
     normal[d] = plane.normal[d] > 0 ? 1 : -1;
-    const Int3 left = cross(normal, t);
+    const Point3 left = cross(normal, t);
     // Lower corner of the square p, q, q + left, p + left; its inner voxel.
-    Int3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
+    Point3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
     low = { std::min(low[0], low[0] + left[0]),
       std::min(low[1], low[1] + left[1]),
       std::min(low[2], low[2] + left[2]) };
-    Int3 inner = low;
+    Point3 inner = low;
     if (normal[d] > 0)
       --inner[d];
     if (below(plane, inner) && !below(plane, add(inner, normal)))
@@ -715,7 +691,7 @@ bool surfelLeftOf(const StandardPlane& plane,
 
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
-  std::vector<SurfelGraph::Surfel>& surfels,
+  std::vector<Surfel>& surfels,
   BitVolume& voxels,
   const Execution& exec)
 {
@@ -724,14 +700,6 @@ std::string revert(const std::vector<FaceOutline>& faces,
   // (surfel, face) of every surfel found: faces are disjoint, and a surfel in two faces (a
   // face given twice, say) would cancel out in the parity below; sorted and checked at the end.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> faceOf;
-  auto surfelKey = [](const SurfelGraph::Surfel& s)
-  {
-    constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
-    return ((std::uint64_t(s.voxel[0] + Bias) << 42) | (std::uint64_t(s.voxel[1] + Bias) << 21) |
-             std::uint64_t(s.voxel[2] + Bias)) *
-      8 +
-      s.direction;
-  };
   for (std::size_t f = 0; f < faces.size(); ++f)
   {
     poll.at(0.9 * double(f) / double(faces.size()));
@@ -743,13 +711,13 @@ std::string revert(const std::vector<FaceOutline>& faces,
     for (std::size_t i = 0; i < n; ++i)
       loopEdges.insert(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
     std::unordered_set<std::uint64_t> seen;
-    std::vector<SurfelGraph::Surfel> stack;
+    std::vector<Surfel> stack;
     for (std::size_t i = 0; i < n; ++i)
     {
-      SurfelGraph::Surfel s;
+      Surfel s;
       const Point3& p = face.loop[i];
       const Point3& q = face.loop[(i + 1) % n];
-      const Int3 t = sub(q, p);
+      const Point3 t = sub(q, p);
       if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 ||
         !surfelLeftOf(face.plane, p, q, s))
       {
@@ -763,7 +731,7 @@ std::string revert(const std::vector<FaceOutline>& faces,
     const std::size_t limit = 8 * n * n + 64;
     while (!stack.empty())
     {
-      const SurfelGraph::Surfel s = stack.back();
+      const Surfel s = stack.back();
       stack.pop_back();
       surfels.push_back(s);
       faceOf.emplace_back(surfelKey(s), static_cast<std::uint32_t>(f));
@@ -778,7 +746,7 @@ std::string revert(const std::vector<FaceOutline>& faces,
         const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
         if (loopEdges.count(edgeKey(a, b)))
           continue;
-        SurfelGraph::Surfel t;
+        Surfel t;
         if (!surfelLeftOf(face.plane, b, a, t))
         {
           std::ostringstream msg;
@@ -805,7 +773,7 @@ std::string revert(const std::vector<FaceOutline>& faces,
   // Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
   voxels = BitVolume(dims[0], dims[1], dims[2]);
   std::vector<std::array<std::int32_t, 3>> xSurfels; // (z, y, plane x)
-  for (const SurfelGraph::Surfel& s : surfels)
+  for (const Surfel& s : surfels)
     if (s.axis() == 0)
       xSurfels.push_back({ s.voxel[2], s.voxel[1], s.voxel[0] + (s.sign() > 0 ? 1 : 0) });
   std::sort(xSurfels.begin(), xSurfels.end());

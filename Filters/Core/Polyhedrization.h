@@ -81,7 +81,7 @@ struct FaceOutline
 /// string.
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
-  std::vector<SurfelGraph::Surfel>& surfels,
+  std::vector<Surfel>& surfels,
   BitVolume& voxels,
   const Execution& exec = Execution());
 

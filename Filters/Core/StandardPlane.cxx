@@ -11,7 +11,6 @@ namespace
 {
 
 using Vec = std::array<std::int64_t, 3>;
-using Wide = __int128;
 
 /// Points may differ by less than this along every axis: it bounds every product below
 /// (constraint normals < 2^17, polygon rays < 2^35, their dot products with points < 2^54,
@@ -22,21 +21,6 @@ constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
 /// Lattice candidates examined by one search before giving up (the face then stops growing
 /// in that direction: a refusal is always safe).
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
-
-std::int64_t dot(const Vec& a, const Point3& p)
-{
-  return a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
-}
-
-std::int64_t dot(const Vec& a, const Vec& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-Vec cross(const Vec& a, const Vec& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
 
 Vec primitive(Vec v)
 {
@@ -62,13 +46,6 @@ std::int64_t floorDiv(std::int64_t a, std::int64_t b) // b > 0
 std::int64_t ceilDiv(std::int64_t a, std::int64_t b) // b > 0
 {
   return -floorDiv(-a, b);
-}
-
-std::uint64_t keyOf(const Point3& p)
-{
-  constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
-  return ((std::uint64_t(p[0] + Bias) << 42) | (std::uint64_t(p[1] + Bias) << 21) |
-    std::uint64_t(p[2] + Bias));
 }
 
 Vec sigmaOf(const std::array<int, 3>& s)
@@ -368,16 +345,16 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
         return false;
-    if (this->Keys.find(keyOf(q)) < 0)
+    if (this->Keys.find(packBiased(q)) < 0)
       fresh.push_back(q);
   }
   // Repeats within the call: sorted, kept once (their order does not matter).
   std::sort(fresh.begin(),
     fresh.end(),
-    [](const Point3& a, const Point3& b) { return keyOf(a) < keyOf(b); });
+    [](const Point3& a, const Point3& b) { return packBiased(a) < packBiased(b); });
   fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
   for (const Point3& q : fresh)
-    this->FreshKeys.push_back(keyOf(q));
+    this->FreshKeys.push_back(packBiased(q));
 
   // Fast path: the current plane takes the new points and orientations.
   if (!this->Points.empty())
@@ -432,7 +409,7 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
         const Point3 r{
           q[0] + s * original.sigma[0], q[1] + s * original.sigma[1], q[2] + s * original.sigma[2]
         };
-        dead = dead || this->known(keyOf(r));
+        dead = dead || this->known(packBiased(r));
       }
     if (dead)
       continue;
@@ -482,7 +459,7 @@ void StandardPlaneRecognizer::commit(const std::array<int, 3>& present)
   for (const Point3& q : this->Fresh)
   {
     this->Points.push_back(q);
-    this->Keys.insert(keyOf(q));
+    this->Keys.insert(packBiased(q));
   }
   this->Present = present;
 }

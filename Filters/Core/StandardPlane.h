@@ -20,6 +20,7 @@
 #ifndef vbr_StandardPlane_h
 #define vbr_StandardPlane_h
 
+#include "Geometry.h"
 #include "GridPointIndex.h"
 
 #include <array>
@@ -28,8 +29,6 @@
 
 namespace vbr
 {
-
-using Point3 = std::array<std::int32_t, 3>;
 
 struct StandardPlane
 {
@@ -57,8 +56,9 @@ public:
   void reset();
 
   /// Adds the points (and surfel orientations: sign[d] in {-1, 0, +1} asks s*n_d > 0) if
-  /// the union still lies in one standard plane; otherwise changes nothing. Coordinates
-  /// must stay within +-2^20 of each other.
+  /// the union still lies in one standard plane; otherwise changes nothing. Points must lie
+  /// less than 2^15 from the first point added along every axis: the call refuses (returns
+  /// false) any farther point, so that every product of the recognition fits its integers.
   bool tryAdd(const Point3* points, std::size_t count, const std::array<int, 3>& signs);
   bool tryAdd(const std::vector<Point3>& points, const std::array<int, 3>& signs)
   {

@@ -2,111 +2,24 @@
 
 #include "GridPointIndex.h"
 #include "Surfels.h"
+#include "UnionFind.h"
 
-#include <numeric>
 #include <stdexcept>
 
 namespace vbr
 {
 
-namespace
-{
-
-using Int3 = std::array<std::int32_t, 3>;
-
-Int3 unit(int direction)
-{
-  Int3 u{ 0, 0, 0 };
-  u[direction >> 1] = (direction & 1) ? 1 : -1;
-  return u;
-}
-
-int directionOf(const Int3& u)
-{
-  for (int axis = 0; axis < 3; ++axis)
-    if (u[axis] != 0)
-      return 2 * axis + (u[axis] > 0 ? 1 : 0);
-  throw std::logic_error("not a unit vector");
-}
-
-Int3 add(const Int3& a, const Int3& b)
-{
-  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
-}
-
-Int3 cross(const Int3& a, const Int3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-
-class UnionFind
-{
-public:
-  explicit UnionFind(std::size_t n)
-    : Parent(n)
-  {
-    std::iota(this->Parent.begin(), this->Parent.end(), 0u);
-  }
-  std::uint32_t find(std::uint32_t x)
-  {
-    while (this->Parent[x] != x)
-      x = this->Parent[x] = this->Parent[this->Parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b)
-  {
-    a = this->find(a);
-    b = this->find(b);
-    if (a != b)
-      this->Parent[std::max(a, b)] = std::min(a, b);
-  }
-
-private:
-  std::vector<std::uint32_t> Parent;
-};
-
-/// Consecutive numbers for the classes of a union-find, in order of first element.
-std::vector<std::uint32_t> numberClasses(UnionFind& uf, std::size_t n, std::uint32_t& count)
-{
-  std::vector<std::uint32_t> number(n);
-  count = 0;
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    const std::uint32_t root = uf.find(i);
-    number[i] = root == i ? count++ : number[root];
-  }
-  return number;
-}
-
-} // namespace
-
-Point3 SurfelGraph::Surfel::corner(int k) const
-{
-  const int a = this->axis(), u = (a + 1) % 3, v = (a + 2) % 3;
-  Point3 p = this->voxel;
-  if (this->sign() > 0)
-    ++p[a];
-  // Counter-clockwise about +e_a is base, +e_u, +e_u+e_v, +e_v (e_u x e_v = e_a); about
-  // -e_a the reverse.
-  static const int du[4] = { 0, 1, 1, 0 };
-  static const int dv[4] = { 0, 0, 1, 1 };
-  const int j = this->sign() > 0 ? k : (4 - k) % 4;
-  p[u] += du[j];
-  p[v] += dv[j];
-  return p;
-}
-
 bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out)
 {
   out = SurfelGraph();
   out.dims = voxels.dims();
-  const Int3 dims = voxels.dims();
-  auto in = [&](const Int3& v)
+  const Point3 dims = voxels.dims();
+  auto in = [&](const Point3& v)
   {
     return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < dims[0] && v[1] < dims[1] &&
       v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
   };
-  auto keyOf = [&](const Int3& v, int direction)
+  auto keyOf = [&](const Point3& v, int direction)
   { return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction; };
 
   // Only voxels with an unselected face-neighbour bear surfels: found a word at a time.
@@ -136,11 +49,11 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
         Word boundary = w & ~(left & right & down[i] & up[i] & back[i] & front[i]);
         while (boundary)
         {
-          const int bit = __builtin_ctzll(boundary);
+          const int bit = countTrailingZeros(boundary);
           boundary &= boundary - 1;
-          const Int3 v{ static_cast<std::int32_t>(i * 64 + bit), y, z };
+          const Point3 v{ static_cast<std::int32_t>(i * 64 + bit), y, z };
           for (int d = 0; d < 6; ++d)
-            if (!in(add(v, unit(d))))
+            if (!in(add(v, unitVector(d))))
             {
               out.surfels.push_back({ v, static_cast<std::uint8_t>(d) });
               index.insert(keyOf(v, d));
@@ -161,20 +74,20 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   out.neighbour.resize(4 * n);
   for (std::size_t s = 0; s < n; ++s)
   {
-    const SurfelGraph::Surfel& sf = out.surfels[s];
-    const Int3 normal = unit(sf.direction);
+    const Surfel& sf = out.surfels[s];
+    const Point3 normal = unitVector(sf.direction);
     for (int k = 0; k < 4; ++k)
     {
       const Point3& a = out.cornerOf(static_cast<std::uint32_t>(s), k);
       const Point3& b = out.cornerOf(static_cast<std::uint32_t>(s), (k + 1) % 4);
-      const Int3 t{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-      const Int3 g = cross(t, normal); // from the surfel towards the edge
-      const Int3 side = add(sf.voxel, g);
-      Int3 voxel = sf.voxel;
-      int direction = directionOf(g);
+      const Point3 t{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+      const Point3 g = cross(t, normal); // from the surfel towards the edge
+      const Point3 side = add(sf.voxel, g);
+      Point3 voxel = sf.voxel;
+      int direction = directionOf(g); // g is a unit vector
       if (in(side))
       {
-        const Int3 beyond = add(side, normal);
+        const Point3 beyond = add(side, normal);
         if (in(beyond))
         {
           voxel = beyond;
@@ -221,11 +134,11 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
       faces.unite(s, t);
     }
   std::uint32_t vertexCount = 0;
-  out.vertex = numberClasses(corners, 4 * n, vertexCount);
+  out.vertex = corners.numberClasses(vertexCount);
   out.vertexPointel.resize(vertexCount);
   for (std::uint32_t c = 0; c < 4 * n; ++c)
     out.vertexPointel[out.vertex[c]] = out.corners[c];
-  out.component = numberClasses(faces, n, out.componentCount);
+  out.component = faces.numberClasses(out.componentCount);
   return true;
 }
 

@@ -225,7 +225,7 @@ TEST(Selection, PacksFlagsAndSelectsExactly)
   grid.data = data.data() + 1;
   grid.dims = { nx, ny, nz };
   grid.stride = { nc, nc * nx, nc * nx * ny };
-  vbr::Box3 box;
+  vbr::Box box;
   box.lo = { 3, 1, 0 };
   box.hi = { 69, 3, 2 };
   const vbr::BitVolume v = vbr::selectVoxels(grid, box, [](int x) { return x > 6; }, {});

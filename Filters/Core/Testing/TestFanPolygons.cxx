@@ -6,6 +6,7 @@
 #include "BruteForce.h"
 #include "EVM.h"
 #include "FaceTriangulator.h"
+#include "Geometry.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +20,7 @@
 namespace
 {
 
-using Wide = __int128;
+using vbr::Wide;
 using P2 = std::array<std::int64_t, 2>;
 
 Wide cross(const P2& a, const P2& b, const P2& c)

@@ -6,6 +6,7 @@
 // evaluated with cross products on the loops of real standard faces.
 #include "BitVolume.h"
 #include "BruteForce.h"
+#include "Geometry.h"
 #include "PolygonTriangulator.h"
 #include "Polyhedrization.h"
 #include "SurfelGraph.h"
@@ -28,7 +29,7 @@ namespace
 
 using vbr::Point2L;
 using Polygon = std::vector<Point2L>;
-using Wide = __int128;
+using vbr::Wide;
 using Pixel = std::pair<int, int>;
 using Pixels = std::set<Pixel>;
 

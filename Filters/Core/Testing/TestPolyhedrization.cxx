@@ -139,7 +139,7 @@ void checkPolyhedron(const vbr::BitVolume& v,
     outlines.push_back(outline);
   }
   // Reversion from the planes and loops alone.
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back), "");
   EXPECT_EQ(surfels.size(), g.size());
@@ -501,7 +501,7 @@ TEST(Polyhedrization, AbortAndBadOutlines)
   EXPECT_FALSE(vbr::buildSurfelGraph(v, stop, none));
 
   // An outline whose loop is not made of linels of its plane is refused, not followed.
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   vbr::FaceOutline bad;
   bad.plane.normal = { 0, 0, 1 };
@@ -568,7 +568,7 @@ TEST(Polyhedrization, AbortInsideEachPhase)
   }
   vbr::Execution stopNow;
   stopNow.aborted = [] { return true; };
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back, stopNow), "aborted");
   // A face given twice is an error (the parity would cancel it silently).
