@@ -68,6 +68,8 @@ public:
     std::vector<std::uint32_t> boxes;
   };
   /// axisRole 0 = A, 1 = B (in 2D only B: the rectangles' neighbours across lines).
+  /// Test oracle only: no filter calls it (labelComponents reads `contacts` directly); the
+  /// tests check that the paper's arrays built from the contacts agree in both senses.
   NeighbourLists neighbours(int axisRole, bool forward, Connectivity connectivity) const;
 };
 
@@ -79,10 +81,13 @@ public:
 bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces = 0);
 CUDB buildCUDB(const EVM& evm);
 
-/// EVM -> OUDB: the boxes without compaction, in their order.
+/// EVM -> OUDB (paper 002, section 2.2): the boxes without compaction, in their order.
+/// Test oracle only: the tests check that the CUDB covers the same voxels with fewer boxes
+/// and that oudbBoxCount counts these boxes.
 std::vector<Box> buildOUDB(const EVM& evm);
 
-/// CUDB -> EVM: the XOR of the boxes' corners (the boxes are disjoint), in the CUDB's order.
+/// CUDB -> EVM (paper 002, section 3.3): the XOR of the boxes' corners (the boxes are
+/// disjoint), in the CUDB's order. Test oracle only: the round trip EVM -> CUDB -> EVM.
 EVM toEVM(const CUDB& cudb);
 
 /// Connected components of the boxes by the paper's Algorithms 3 to 5: boxes in creation
