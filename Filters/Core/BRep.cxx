@@ -52,16 +52,12 @@ void appendFaces(const Boundary2D& b2,
       }
       loop.end = out.points.size();
       if (reverse)
-      {
         std::reverse(out.points.begin() + loop.begin, out.points.end());
-      }
       out.loops.push_back(loop);
     };
     addLoop(f2.outerLoop, false);
     for (int h : f2.holeLoops)
-    {
       addLoop(h, true);
-    }
     out.faces.push_back(face);
   }
   out.nonManifoldVertices += b2.nonManifoldVertices;
@@ -203,17 +199,11 @@ bool extractBoundary3D(const EVM& evm,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t c = b; c < e; ++c)
-      {
         if (!sweepChunk(chunks[c], connectivity, exec, abort, perChunk[c]))
-        {
           abort = true;
-        }
-      }
     });
   if (abort || !exec.report(1.0))
-  {
     return false;
-  }
   std::size_t faces = 0, loops = 0, points = 0;
   for (const BRep& b : perChunk)
   {
@@ -225,9 +215,7 @@ bool extractBoundary3D(const EVM& evm,
   out.loops.reserve(loops);
   out.points.reserve(points);
   for (BRep& b : perChunk)
-  {
     appendBRep(out, std::move(b));
-  }
   return true;
 }
 
@@ -243,9 +231,7 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
 void insertTJunctionVertices(BRep& brep, const Execution& exec)
 {
   if (brep.points.empty())
-  {
     return;
-  }
   Coord lo = brep.points[0][0], hi = lo;
   for (const Point3& p : brep.points)
     for (Coord c : p)
@@ -254,17 +240,13 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
       hi = std::max(hi, c);
     }
   if (lo < 0 || hi >= PackedCoordinateLimit)
-  {
     throw std::out_of_range("insertTJunctionVertices: coordinates outside [0, 2^21)");
-  }
   // Every corner in a hash set; the grid positions strictly inside an edge are probed one by
   // one, so the work is bounded by the number of unit edges of the boundary.
   const KeyPacker packer = KeyPacker::forMaximum(hi);
   GridPointIndex corners(brep.points.size() / 2); // corners repeat about three times
   for (const Point3& p : brep.points)
-  {
     corners.insert(packer.pack(p[0], p[1], p[2]));
-  }
   // Two parallel passes over the loops: count each loop's corners with the vertices inside
   // its edges, then (after a prefix sum) write them, so that no thread allocates.
   auto visit = [&](const PointRange& points, auto&& emit)
@@ -307,9 +289,7 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
       }
     });
   for (std::size_t l = 0; l < brep.loops.size(); ++l)
-  {
     start[l + 1] += start[l];
-  }
   std::vector<Point3> points(start.back());
   exec.forRange(loops,
     [&](std::int64_t b, std::int64_t e)

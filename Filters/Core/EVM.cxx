@@ -52,9 +52,7 @@ std::vector<Vertex> concatenate(std::vector<std::vector<Vertex>>& parts)
 {
   std::size_t total = 0;
   for (const auto& p : parts)
-  {
     total += p.size();
-  }
   std::vector<Vertex> out;
   out.reserve(total);
   for (auto& p : parts)
@@ -70,18 +68,14 @@ std::vector<Vertex> concatenate(std::vector<std::vector<Vertex>>& parts)
 AxisOrder axisOrderFromName(const std::string& name)
 {
   if (name.size() != 3)
-  {
     throw std::invalid_argument("axis order must have three letters: " + name);
-  }
   AxisOrder order{};
   int seen = 0;
   for (int k = 0; k < 3; ++k)
   {
     const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(name[k])));
     if (c < 'X' || c > 'Z' || (seen & (1 << (c - 'X'))))
-    {
       throw std::invalid_argument("not an ABC sorting: " + name);
-    }
     order[k] = c - 'X';
     seen |= 1 << order[k];
   }
@@ -110,18 +104,14 @@ std::array<Coord, 3> EVM::worldVertex(std::size_t i) const
 {
   std::array<Coord, 3> w{ 0, 0, 0 };
   for (int k = 0; k < 3; ++k)
-  {
     w[this->Order[k]] = this->Vertices[i][k];
-  }
   return w;
 }
 
 EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
 {
   if (this->Dimension == 2 && order[0] != this->Order[0])
-  {
     throw std::invalid_argument("a 2D EVM keeps its plane normal as first axis");
-  }
   if (this->Dimension == 3 && !this->Vertices.empty())
   {
     // A stable bucket pass on one coordinate keeps the order of the two others: from
@@ -188,12 +178,8 @@ std::vector<std::size_t> EVM::planeStarts() const
   const int key = this->Dimension == 3 ? 0 : 1;
   std::vector<std::size_t> starts;
   for (std::size_t i = 0; i < this->Vertices.size(); ++i)
-  {
     if (i == 0 || this->Vertices[i][key] != this->Vertices[i - 1][key])
-    {
       starts.push_back(i);
-    }
-  }
   starts.push_back(this->Vertices.size());
   return starts;
 }
@@ -207,9 +193,7 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
 {
   BitVolume out(dims[0], dims[1], dims[2]);
   if (this->Vertices.empty())
-  {
     return out;
-  }
   // Parity grid of the vertices; the prefix XOR over all vertices <= v (in every in-plane axis)
   // is the voxel whose lowest corner is v.
   const std::size_t gx = dims[0] + 1, gy = dims[1] + 1, gz = dims[2] + 1;
@@ -220,12 +204,8 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
   {
     const auto w = this->worldVertex(i);
     for (int k = 0; k < 3; ++k)
-    {
       if (w[k] < 0 || w[k] > dims[k])
-      {
         throw std::out_of_range("EVM vertex outside the grid");
-      }
-    }
     at(w[0], w[1], w[2]) ^= 1;
   }
   // One prefix pass per in-plane axis (the normal of a 2D EVM has a single coordinate).
@@ -244,12 +224,8 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
   for (std::int32_t z = 0; z < dims[2]; ++z)
     for (std::int32_t y = 0; y < dims[1]; ++y)
       for (std::int32_t x = 0; x < dims[0]; ++x)
-      {
         if (at(x, y, z))
-        {
           out.set(x, y, z);
-        }
-      }
   return out;
 }
 
@@ -275,21 +251,15 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
               for (std::int32_t y = ky - 1; y <= ky; ++y)
               {
                 if (z < 0 || z >= nz || y < 0 || y >= ny)
-                {
                   continue;
-                }
                 const Word* r = voxels.row(y, z);
                 for (std::size_t w = 0; w < rowWords; ++w)
-                {
                   parity[w] ^= r[w];
-                }
                 any = true;
               }
             }
             if (!any)
-            {
               continue;
-            }
             rowParityToVertexBits(parity.data(), rowWords, bits.data());
             appendRowVertices(bits.data(), rowWords + 1, static_cast<Coord>(kz), ky, planes[kz]);
           }
@@ -302,9 +272,7 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
 EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
 {
   if (pixels.size(2) != 1)
-  {
     throw std::invalid_argument("extractEVM2D needs a single slice (nz == 1)");
-  }
   const std::int32_t ny = pixels.size(1);
   const std::size_t rowWords = pixels.wordsPerRow();
   std::vector<std::vector<Vertex>> lines(static_cast<std::size_t>(ny) + 1);
@@ -320,14 +288,10 @@ EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
           for (std::int64_t y = ky - 1; y <= ky; ++y)
           {
             if (y < 0 || y >= ny)
-            {
               continue;
-            }
             const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
             for (std::size_t w = 0; w < rowWords; ++w)
-            {
               parity[w] ^= r[w];
-            }
           }
           rowParityToVertexBits(parity.data(), rowWords, bits.data());
           appendRowVertices(bits.data(), rowWords + 1, 0, static_cast<Coord>(ky), lines[ky]);
@@ -341,9 +305,7 @@ std::array<std::size_t, 3> planesPerAxis(const EVM& evm)
 {
   std::array<std::size_t, 3> counts{ 0, 0, 0 };
   if (evm.empty())
-  {
     return counts;
-  }
   for (int k = evm.dimension() == 2 ? 1 : 0; k < 3; ++k)
   {
     Coord lo = evm.vertices()[0][k], hi = lo;
@@ -364,9 +326,7 @@ std::vector<Vertex> project(const Vertex* begin, const Vertex* end, int level)
 {
   std::vector<Vertex> out(begin, end);
   for (auto& v : out)
-  {
     v[level] = 0;
-  }
   return out;
 }
 

@@ -123,9 +123,7 @@ const Vertex* planeEnd(const Vertex* begin, const Vertex* end, int level)
 {
   const Coord c = (*begin)[level];
   while (begin != end && (*begin)[level] == c)
-  {
     ++begin;
-  }
   return begin;
 }
 
@@ -160,9 +158,7 @@ std::vector<Vertex> booleanVertices(const Vertex* p,
     return out;
   }
   if (level == 1)
-  {
     return booleanLines(p, pEnd, q, qEnd, op);
-  }
   std::vector<Vertex> out, sectionP, sectionQ, sectionR;
   while (p != pEnd || q != qEnd)
   {
@@ -199,9 +195,7 @@ std::vector<Vertex> booleanVertices(const Vertex* p,
 EVM booleanOp(const EVM& p, const EVM& q, BooleanOp op)
 {
   if (p.dimension() != q.dimension() || p.order() != q.order())
-  {
     throw std::invalid_argument("Boolean operands need the same dimension and sorting");
-  }
   const auto& a = p.vertices();
   const auto& b = q.vertices();
   const int level = p.dimension() == 3 ? 0 : 1;

@@ -261,16 +261,12 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
       const auto before = cdt.number_of_vertices();
       Cdt::Vertex_handle h = cdt.insert(Kernel::Point_2(p[u], p[v]));
       if (cdt.number_of_vertices() != before)
-      {
         h->info() = index; // first corner at this location
-      }
       handles.push_back(h);
       ++index;
     }
     for (std::size_t i = 0; i < handles.size(); ++i)
-    {
       cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
-    }
   }
   markNesting(cdt);
   std::vector<std::array<int, 3>> triangles;

@@ -58,20 +58,14 @@ public:
     {
       const Vertex* lineEnd = begin;
       while (lineEnd != end && (*lineEnd)[1] == (*begin)[1])
-      {
         ++lineEnd;
-      }
       if ((lineEnd - begin) % 2)
-      {
         throw std::invalid_argument("sweep2D: a line of vertices has an odd count (not an EVM)");
-      }
       this->processLine((*begin)[1], begin, lineEnd);
       begin = lineEnd;
     }
     if (!this->Section.empty())
-    {
       throw std::invalid_argument("sweep2D: the last section is not empty (not an EVM)");
-    }
     this->pairNonManifoldVertices();
     return this->collect();
   }
@@ -144,9 +138,7 @@ private:
       const Point2 here{ u, v };
 
       if (atPrev && inPrev2)
-      {
         prevInterval = this->SectionIntervals[i / 2];
-      }
       if (inNew2 && !inNew)
       {
         newIntervalId = this->newInterval();
@@ -180,9 +172,7 @@ private:
         // New extreme vertex of the section: a horizontal edge starts here.
         const int h = this->startEdge(here, inNew2, newIntervalId);
         if (inNew2)
-        {
           newBottomEdge = h;
-        }
         next.push_back({ v, h });
         if (inCut)
         {
@@ -206,9 +196,7 @@ private:
         piece = startPiece();
         const int hNew = this->startEdge(here, inNew2, newIntervalId);
         if (inNew2)
-        {
           newBottomEdge = hNew;
-        }
         next.push_back({ v, hNew });
         this->NonManifold.push_back({ here, { hOld, hNew, below, piece } });
         if (this->MergeAtVertices)
@@ -223,9 +211,7 @@ private:
       }
 
       if (inNew && !inNew2 && !newTouched)
-      {
         this->First.push_back({ newIntervalId, newBottomEdge, newBelowEdge });
-      }
       if (atPrev)
         ++i;
       if (atCut)
@@ -246,16 +232,12 @@ private:
     {
       int in[2], out[2], ni = 0, no = 0;
       for (int e : nmv.edges)
-      {
         if (this->Edges[e].to == nmv.at)
           in[ni++] = e;
         else
           out[no++] = e;
-      }
       if (ni != 2 || no != 2)
-      {
         throw std::logic_error("sweep2D: inconsistent non-manifold vertex");
-      }
       const bool sameFace =
         this->find(this->Edges[in[0]].interval) == this->find(this->Edges[in[1]].interval);
       for (int k = 0; k < 2; ++k)
@@ -278,9 +260,7 @@ private:
           }
         }
         if (chosen < 0)
-        {
           throw std::logic_error("sweep2D: no continuation at a non-manifold vertex");
-        }
         this->Edges[in[k]].next = chosen;
       }
     }
@@ -317,9 +297,7 @@ private:
       for (int e = static_cast<int>(e0); loopOfEdge[e] < 0; e = this->Edges[e].next)
       {
         if (e < 0 || this->Edges[e].next < 0)
-        {
           throw std::logic_error("sweep2D: open contour");
-        }
         loopOfEdge[e] = id;
         out.points.push_back(this->Edges[e].from);
       }

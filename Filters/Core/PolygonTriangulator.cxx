@@ -266,10 +266,8 @@ bool fanCoversPolygon(const std::vector<Point2L>& corners, std::size_t apex)
   if (n < 3 || apex >= n || doubledArea(corners) <= 0)
     return false;
   for (std::size_t i = 1; i + 1 < n; ++i)
-  {
     if (cross(corners[apex], corners[(apex + i) % n], corners[(apex + i + 1) % n]) < 0)
       return false;
-  }
   return true;
 }
 
