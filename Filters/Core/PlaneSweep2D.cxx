@@ -52,6 +52,8 @@ public:
   {
   }
 
+  /// The whole method: the first sweep line by line, the pairing at non-manifold vertices,
+  /// the domino step and the second sweep.
   Boundary2D run(const Vertex* begin, const Vertex* end)
   {
     while (begin != end)
@@ -67,7 +69,12 @@ public:
     if (!this->Section.empty())
       throw std::invalid_argument("sweep2D: the last section is not empty (not an EVM)");
     this->pairNonManifoldVertices();
-    return this->collect();
+    Boundary2D out;
+    out.nonManifoldVertices = this->NonManifold.size();
+    this->numberFaces(out);
+    this->orderEdgesIntoLoops(out);
+    this->classifyContours(out);
+    return out;
   }
 
 private:
@@ -104,123 +111,154 @@ private:
       this->Edges[b].next = a;
   }
 
-  /// Merges the cut [cut, cutEnd) at u into the active section (formula 1 of the paper),
-  /// emitting edges, uniting overlapping intervals and recording first intervals.
+  /// Where the merge of a cut with the active section stands: the point v of the line being
+  /// visited, whether the previous section, the cut and the next section are open just
+  /// below v (in*) and just above it (in*2), and the open intervals and vertical edge.
+  struct LineCursor
+  {
+    Point2 here{ 0, 0 };
+    std::size_t i = 0; ///< next end of the active section
+    bool atPrev = false, atCut = false;
+    bool inPrev = false, inCut = false, inNew = false;
+    bool inPrev2 = false, inCut2 = false, inNew2 = false;
+    int prevInterval = -1;   ///< the open interval of the previous section
+    int newInterval = -1;    ///< the open interval of the next section
+    int piece = -1;          ///< the vertical edge (a piece of a brink) open on the line
+    bool newTouched = false; ///< the open new interval overlaps one of the previous section
+    int newBottomEdge = -1, newBelowEdge = -1; ///< for FirstInterval
+  };
+
+  /// First sweep, one line (paper 000, section 3.1): merges the cut [cut, cutEnd) at u into
+  /// the active section (formula 1), emitting edges, uniting overlapping intervals (the
+  /// contour merging) and recording the first intervals of faces for the second sweep.
   void processLine(Coord u, const Vertex* cut, const Vertex* cutEnd)
   {
-    std::vector<SectionEnd>& next = this->NextSection;
-    std::vector<int>& nextIntervals = this->NextIntervals;
-    next.clear();
-    nextIntervals.clear();
-    std::size_t i = 0;
-    bool inPrev = false, inCut = false;
-    int prevInterval = -1, newIntervalId = -1, piece = -1;
-    bool newTouched = false;
-    int newBottomEdge = -1, newBelowEdge = -1;
-
-    while (i < this->Section.size() || cut != cutEnd)
+    this->NextSection.clear();
+    this->NextIntervals.clear();
+    LineCursor c;
+    while (c.i < this->Section.size() || cut != cutEnd)
     {
       const bool takePrev =
-        i < this->Section.size() && (cut == cutEnd || this->Section[i].v <= (*cut)[2]);
-      const Coord v = takePrev ? this->Section[i].v : (*cut)[2];
-      const bool atPrev = i < this->Section.size() && this->Section[i].v == v;
-      const bool atCut = cut != cutEnd && (*cut)[2] == v;
-      const bool inNew = inPrev != inCut;
-      if (inPrev && inNew)
-      {
-        // The open intervals of both sections overlap on the segment just below v.
-        this->unite(prevInterval, newIntervalId);
-        newTouched = true;
-      }
-      const bool inPrev2 = inPrev != atPrev;
-      const bool inCut2 = inCut != atCut;
-      const bool inNew2 = inPrev2 != inCut2;
-      const Point2 here{ u, v };
-
-      if (atPrev && inPrev2)
-        prevInterval = this->SectionIntervals[i / 2];
-      if (inNew2 && !inNew)
-      {
-        newIntervalId = this->newInterval();
-        nextIntervals.push_back(newIntervalId);
-        newTouched = false;
-        newBelowEdge = next.empty() ? -1 : next.back().edge;
-      }
-      // A vertical piece keeps the face on its left: upwards when the face lies before u.
-      auto startPiece = [&]()
-      { return this->startEdge(here, !inNew2, inNew2 ? newIntervalId : prevInterval); };
-
-      if (atPrev && atCut)
-      {
-        // Extreme vertex matching the section: its horizontal edge ends here.
-        const int h = this->Section[i].edge;
-        this->finishEdge(h, here);
-        if (inCut)
-        {
-          this->finishEdge(piece, here);
-          this->link(piece, h, here);
-          piece = -1;
-        }
-        else
-        {
-          piece = startPiece();
-          this->link(piece, h, here);
-        }
-      }
-      else if (atCut)
-      {
-        // New extreme vertex of the section: a horizontal edge starts here.
-        const int h = this->startEdge(here, inNew2, newIntervalId);
-        if (inNew2)
-          newBottomEdge = h;
-        next.push_back({ v, h });
-        if (inCut)
-        {
-          this->finishEdge(piece, here);
-          this->link(piece, h, here);
-          piece = -1;
-        }
-        else
-        {
-          piece = startPiece();
-          this->link(piece, h, here);
-        }
-      }
-      else if (atPrev && inCut)
-      {
-        // Non-manifold vertex: a brink of the cut contains a vertex of the section.
-        const int hOld = this->Section[i].edge;
-        this->finishEdge(hOld, here);
-        this->finishEdge(piece, here);
-        const int below = piece;
-        piece = startPiece();
-        const int hNew = this->startEdge(here, inNew2, newIntervalId);
-        if (inNew2)
-          newBottomEdge = hNew;
-        next.push_back({ v, hNew });
-        this->NonManifold.push_back({ here, { hOld, hNew, below, piece } });
-        if (this->MergeAtVertices)
-        {
-          this->unite(prevInterval, newIntervalId);
-          newTouched = true;
-        }
-      }
+        c.i < this->Section.size() && (cut == cutEnd || this->Section[c.i].v <= (*cut)[2]);
+      const Coord v = takePrev ? this->Section[c.i].v : (*cut)[2];
+      c.here = { u, v };
+      c.atPrev = c.i < this->Section.size() && this->Section[c.i].v == v;
+      c.atCut = cut != cutEnd && (*cut)[2] == v;
+      this->enterPoint(c);
+      if (c.atPrev && c.atCut)
+        this->closeHorizontalEdge(c); // an extreme vertex matching the section
+      else if (c.atCut)
+        this->openHorizontalEdge(c); // a new extreme vertex of the section
+      else if (c.atPrev && c.inCut)
+        this->splitAtNonManifoldVertex(c);
       else
-      {
-        next.push_back(this->Section[i]); // the horizontal edge goes on
-      }
-
-      if (inNew && !inNew2 && !newTouched)
-        this->First.push_back({ newIntervalId, newBottomEdge, newBelowEdge });
-      if (atPrev)
-        ++i;
-      if (atCut)
+        this->NextSection.push_back(this->Section[c.i]); // the horizontal edge goes on
+      this->leavePoint(c);
+      if (c.atCut)
         ++cut;
-      inPrev = inPrev2;
-      inCut = inCut2;
     }
-    this->Section.swap(next);
-    this->SectionIntervals.swap(nextIntervals);
+    this->Section.swap(this->NextSection);
+    this->SectionIntervals.swap(this->NextIntervals);
+  }
+
+  /// Updates the open intervals at point v of the line: the intervals of both sections that
+  /// overlap just below v are the same face; an interval of the next section starts at v.
+  void enterPoint(LineCursor& c)
+  {
+    c.inNew = c.inPrev != c.inCut;
+    if (c.inPrev && c.inNew)
+    {
+      this->unite(c.prevInterval, c.newInterval);
+      c.newTouched = true;
+    }
+    c.inPrev2 = c.inPrev != c.atPrev;
+    c.inCut2 = c.inCut != c.atCut;
+    c.inNew2 = c.inPrev2 != c.inCut2;
+    if (c.atPrev && c.inPrev2)
+      c.prevInterval = this->SectionIntervals[c.i / 2];
+    if (c.inNew2 && !c.inNew)
+    {
+      c.newInterval = this->newInterval();
+      this->NextIntervals.push_back(c.newInterval);
+      c.newTouched = false;
+      c.newBelowEdge = this->NextSection.empty() ? -1 : this->NextSection.back().edge;
+    }
+  }
+
+  /// Records an interval of the next section that ends at v without having met the previous
+  /// section (a candidate first interval of a face), and moves past v.
+  void leavePoint(LineCursor& c)
+  {
+    if (c.inNew && !c.inNew2 && !c.newTouched)
+      this->First.push_back({ c.newInterval, c.newBottomEdge, c.newBelowEdge });
+    if (c.atPrev)
+      ++c.i;
+    c.inPrev = c.inPrev2;
+    c.inCut = c.inCut2;
+  }
+
+  /// A vertical piece starting at v keeps the face on its left: upwards when the face lies
+  /// before u.
+  int startPiece(const LineCursor& c)
+  {
+    return this->startEdge(c.here, !c.inNew2, c.inNew2 ? c.newInterval : c.prevInterval);
+  }
+
+  /// A horizontal edge of the next section starting at v, its end kept in the next section.
+  int startHorizontalEdge(LineCursor& c)
+  {
+    const int h = this->startEdge(c.here, c.inNew2, c.newInterval);
+    if (c.inNew2)
+      c.newBottomEdge = h;
+    this->NextSection.push_back({ c.here.v, h });
+    return h;
+  }
+
+  /// The brink being crossed ends at v (its vertical piece ends there, at horizontal edge h)
+  /// or starts there (a piece starts); either way the corner links the two edges.
+  void turnAtCorner(LineCursor& c, int h)
+  {
+    if (c.inCut)
+    {
+      this->finishEdge(c.piece, c.here);
+      this->link(c.piece, h, c.here);
+      c.piece = -1;
+    }
+    else
+    {
+      c.piece = this->startPiece(c);
+      this->link(c.piece, h, c.here);
+    }
+  }
+
+  /// An extreme vertex of the cut matching one of the section: its horizontal edge ends here.
+  void closeHorizontalEdge(LineCursor& c)
+  {
+    const int h = this->Section[c.i].edge;
+    this->finishEdge(h, c.here);
+    this->turnAtCorner(c, h);
+  }
+
+  /// A new extreme vertex of the section: a horizontal edge starts here.
+  void openHorizontalEdge(LineCursor& c) { this->turnAtCorner(c, this->startHorizontalEdge(c)); }
+
+  /// A non-manifold vertex (paper 000, section 3.3): a brink of the cut contains a vertex of
+  /// the section. The vertex is split: the brink's piece and the section's horizontal edge
+  /// end there and new ones start; the four edges are paired once the faces are known.
+  void splitAtNonManifoldVertex(LineCursor& c)
+  {
+    const int hOld = this->Section[c.i].edge;
+    this->finishEdge(hOld, c.here);
+    this->finishEdge(c.piece, c.here);
+    const int below = c.piece;
+    c.piece = this->startPiece(c);
+    const int hNew = this->startHorizontalEdge(c);
+    this->NonManifold.push_back({ c.here, { hOld, hNew, below, c.piece } });
+    if (this->MergeAtVertices)
+    {
+      this->unite(c.prevInterval, c.newInterval);
+      c.newTouched = true;
+    }
   }
 
   /// Pairs the two entering and two leaving edges of each non-manifold vertex (paper Fig. 7):
@@ -266,61 +304,71 @@ private:
     }
   }
 
-  /// Domino step, face numbering and the second sweep (classification and inclusion).
-  Boundary2D collect()
+  /// Numbers the faces in order of first appearance: the classes of united intervals that
+  /// hold a first interval, each with the first of them.
+  void numberFaces(Boundary2D& out)
   {
-    Boundary2D out;
-    out.nonManifoldVertices = this->NonManifold.size();
-    std::vector<int> faceOfRoot(this->Intervals.size(), -1);
-    std::vector<const FirstInterval*> firstOfFace;
+    this->FaceOfRoot.assign(this->Intervals.size(), -1);
+    this->FirstOfFace.clear();
     for (const auto& f : this->First)
     {
-      int& face = faceOfRoot[this->find(f.interval)];
+      int& face = this->FaceOfRoot[this->find(f.interval)];
       if (face < 0)
       {
-        face = static_cast<int>(firstOfFace.size());
-        firstOfFace.push_back(&f);
+        face = static_cast<int>(this->FirstOfFace.size());
+        this->FirstOfFace.push_back(&f);
       }
     }
-    out.faces.resize(firstOfFace.size());
+    out.faces.resize(this->FirstOfFace.size());
+  }
 
-    std::vector<int> loopOfEdge(this->Edges.size(), -1);
+  /// The domino step (paper 000, end of section 3.1): each contour's edges, already linked
+  /// corner to corner, are followed into loops, each keeping its face on the left.
+  void orderEdgesIntoLoops(Boundary2D& out)
+  {
+    this->LoopOfEdge.assign(this->Edges.size(), -1);
     out.points.reserve(this->Edges.size());
     for (std::size_t e0 = 0; e0 < this->Edges.size(); ++e0)
     {
-      if (loopOfEdge[e0] >= 0)
+      if (this->LoopOfEdge[e0] >= 0)
         continue;
       Loop2D loop;
-      loop.face = faceOfRoot[this->find(this->Edges[e0].interval)];
+      loop.face = this->FaceOfRoot[this->find(this->Edges[e0].interval)];
       loop.begin = out.points.size();
       const int id = static_cast<int>(out.loops.size());
-      for (int e = static_cast<int>(e0); loopOfEdge[e] < 0; e = this->Edges[e].next)
+      for (int e = static_cast<int>(e0); this->LoopOfEdge[e] < 0; e = this->Edges[e].next)
       {
         if (e < 0 || this->Edges[e].next < 0)
           throw std::logic_error("sweep2D: open contour");
-        loopOfEdge[e] = id;
+        this->LoopOfEdge[e] = id;
         out.points.push_back(this->Edges[e].from);
       }
       loop.end = out.points.size();
       out.loops.push_back(loop);
     }
+  }
 
-    // Second sweep: faces in order of first appearance. A face's first interval is bounded
-    // below by its outer loop; the section end just below it tells where the face lies: in a
-    // hole of the face owning that end, or beside it (then it shares that face's parent).
+  /// The second sweep (paper 000, section 3.1): faces in order of first appearance, with 1D
+  /// inclusion tests only. A face's first interval is bounded below by its outer loop; the
+  /// section end just below it tells where the face lies: in a hole of the face owning that
+  /// end, or beside it (then it shares that face's parent).
+  void classifyContours(Boundary2D& out) const
+  {
     for (std::size_t f = 0; f < out.faces.size(); ++f)
     {
       Face2D& face = out.faces[f];
-      const FirstInterval& first = *firstOfFace[f];
-      face.outerLoop = loopOfEdge[first.bottomEdge];
+      const FirstInterval& first = *this->FirstOfFace[f];
+      face.outerLoop = this->LoopOfEdge[first.bottomEdge];
       if (first.belowEdge >= 0)
       {
-        const Loop2D& below = out.loops[loopOfEdge[first.belowEdge]];
-        const bool inHole = out.faces[below.face].outerLoop != loopOfEdge[first.belowEdge];
+        const int belowLoop = this->LoopOfEdge[first.belowEdge];
+        const Loop2D& below = out.loops[belowLoop];
+        const bool inHole = out.faces[below.face].outerLoop != belowLoop;
         face.parent = inHole ? below.face : out.faces[below.face].parent;
       }
       face.depth = face.parent < 0 ? 0 : out.faces[face.parent].depth + 2;
     }
+    // Every other loop of a face is one of its holes.
     for (std::size_t l = 0; l < out.loops.size(); ++l)
     {
       Loop2D& loop = out.loops[l];
@@ -331,7 +379,6 @@ private:
         face.holeLoops.push_back(static_cast<int>(l));
       }
     }
-    return out;
   }
 
   const bool MergeAtVertices;
@@ -343,6 +390,9 @@ private:
   std::vector<Edge> Edges;
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;
+  std::vector<int> FaceOfRoot;                   ///< face of each root interval, or -1
+  std::vector<const FirstInterval*> FirstOfFace; ///< by face
+  std::vector<int> LoopOfEdge;                   ///< by edge
 };
 
 } // namespace
