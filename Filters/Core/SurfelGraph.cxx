@@ -9,23 +9,36 @@
 namespace vbr
 {
 
-bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out)
+namespace
 {
-  out = SurfelGraph();
-  out.dims = voxels.dims();
-  const Point3 dims = voxels.dims();
-  auto in = [&](const Point3& v)
+
+/// The voxel set as the graph reads it: membership of any voxel (outside the grid: not in
+/// the set) and the key of a surfel in the index.
+struct VoxelSet
+{
+  const BitVolume& voxels;
+  Point3 dims;
+
+  bool contains(const Point3& v) const
   {
     return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < dims[0] && v[1] < dims[1] &&
       v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
-  };
-  auto keyOf = [&](const Point3& v, int direction)
-  { return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction; };
+  }
+  std::uint64_t key(const Point3& v, int direction) const
+  {
+    return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction;
+  }
+};
 
-  // Only voxels with an unselected face-neighbour bear surfels: found a word at a time.
-  const std::size_t expected = countSurfels(voxels);
-  GridPointIndex index(expected);
-  out.surfels.reserve(expected);
+/// Stage 1, the surfels: only voxels with an unselected face-neighbour bear surfels, found a
+/// word at a time. Returns false when aborted.
+bool findSurfels(const VoxelSet& set,
+  const Execution& exec,
+  SurfelGraph& out,
+  GridPointIndex& index)
+{
+  const BitVolume& voxels = set.voxels;
+  const Point3& dims = set.dims;
   const std::size_t words = voxels.wordsPerRow();
   const std::vector<Word> none(words, 0);
   for (std::int32_t z = 0; z < dims[2]; ++z)
@@ -53,60 +66,58 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
           boundary &= boundary - 1;
           const Point3 v{ static_cast<std::int32_t>(i * 64 + bit), y, z };
           for (int d = 0; d < 6; ++d)
-            if (!in(add(v, unitVector(d))))
+            if (!set.contains(add(v, unitVector(d))))
             {
               out.surfels.push_back({ v, static_cast<std::uint8_t>(d) });
-              index.insert(keyOf(v, d));
+              index.insert(set.key(v, d));
             }
         }
       }
     }
   }
+  return true;
+}
 
-  // Neighbour across each edge: the surface turns into the voxel beyond (concave), goes on
-  // flat, or turns round its own voxel (convex). The voxel beyond is reached only through
-  // a face-neighbour in the set, which keeps edge-touching voxels apart.
+/// The surfel beyond edge (a, b) of surfel sf: the surface turns into the voxel beyond
+/// (concave), goes on flat, or turns round its own voxel (convex). The voxel beyond is
+/// reached only through a face-neighbour in the set, which keeps edge-touching voxels apart.
+std::uint64_t neighbourKey(const VoxelSet& set, const Surfel& sf, const Point3& a, const Point3& b)
+{
+  const Point3 normal = unitVector(sf.direction);
+  const Point3 g = cross(sub(b, a), normal); // from the surfel towards the edge
+  const Point3 side = add(sf.voxel, g);
+  if (!set.contains(side))
+    return set.key(sf.voxel, directionOf(g)); // g is a unit vector
+  const Point3 beyond = add(side, normal);
+  if (set.contains(beyond))
+    return set.key(beyond, directionOf({ -g[0], -g[1], -g[2] }));
+  return set.key(side, sf.direction);
+}
+
+/// Stage 2, the neighbour across each edge.
+void linkNeighbours(const VoxelSet& set, const GridPointIndex& index, SurfelGraph& out)
+{
   const std::size_t n = out.surfels.size();
   out.corners.resize(4 * n);
   for (std::size_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
       out.corners[4 * s + k] = out.surfels[s].corner(k);
   out.neighbour.resize(4 * n);
-  for (std::size_t s = 0; s < n; ++s)
-  {
-    const Surfel& sf = out.surfels[s];
-    const Point3 normal = unitVector(sf.direction);
+  for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
     {
-      const Point3& a = out.cornerOf(static_cast<std::uint32_t>(s), k);
-      const Point3& b = out.cornerOf(static_cast<std::uint32_t>(s), (k + 1) % 4);
-      const Point3 t{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-      const Point3 g = cross(t, normal); // from the surfel towards the edge
-      const Point3 side = add(sf.voxel, g);
-      Point3 voxel = sf.voxel;
-      int direction = directionOf(g); // g is a unit vector
-      if (in(side))
-      {
-        const Point3 beyond = add(side, normal);
-        if (in(beyond))
-        {
-          voxel = beyond;
-          direction = directionOf({ -g[0], -g[1], -g[2] });
-        }
-        else
-        {
-          voxel = side;
-          direction = sf.direction;
-        }
-      }
-      const std::int64_t id = index.find(keyOf(voxel, direction));
+      const std::int64_t id = index.find(
+        neighbourKey(set, out.surfels[s], out.cornerOf(s, k), out.cornerOf(s, (k + 1) % 4)));
       if (id < 0)
         throw std::logic_error("surfel neighbour missing");
       out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
     }
-  }
+}
 
-  // The same linel seen from the neighbour: its edge runs the other way.
+/// Stage 3, the same linel seen from the neighbour: its edge runs the other way.
+void matchSharedEdges(SurfelGraph& out)
+{
+  const std::size_t n = out.surfels.size();
   out.neighbourEdge.resize(4 * n);
   for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
@@ -120,8 +131,13 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
         throw std::logic_error("neighbouring surfels do not share their linel");
       out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
     }
+}
 
-  // Vertices: corners glued across shared edges; a pointel gets one per umbrella.
+/// Stage 4, the vertices: corners glued across shared edges, so that a pointel gets one
+/// vertex per umbrella; and the connected components of the surface.
+void glueVertices(SurfelGraph& out)
+{
+  const std::size_t n = out.surfels.size();
   UnionFind corners(4 * n);
   UnionFind faces(n);
   for (std::uint32_t s = 0; s < n; ++s)
@@ -139,6 +155,23 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   for (std::uint32_t c = 0; c < 4 * n; ++c)
     out.vertexPointel[out.vertex[c]] = out.corners[c];
   out.component = faces.numberClasses(out.componentCount);
+}
+
+} // namespace
+
+bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out)
+{
+  out = SurfelGraph();
+  out.dims = voxels.dims();
+  const VoxelSet set{ voxels, voxels.dims() };
+  const std::size_t expected = countSurfels(voxels);
+  GridPointIndex index(expected);
+  out.surfels.reserve(expected);
+  if (!findSurfels(set, exec, out, index))
+    return false;
+  linkNeighbours(set, index, out);
+  matchSharedEdges(out);
+  glueVertices(out);
   return true;
 }
 
