@@ -48,6 +48,36 @@ std::int64_t ceilDiv(std::int64_t a, std::int64_t b) // b > 0
   return -floorDiv(-a, b);
 }
 
+/// The normals n = (nx, ny, sigma_z (omega - sigma_x nx - sigma_y ny)) of the slice
+/// sigma.n = omega inside the polygon of `edges` (strictly on the strict ones): every edge
+/// bounds ny, to [yLo, yHi] (empty when yLo > yHi).
+void rangeOfNy(const std::vector<Vec>& edges,
+  const std::vector<char>& strict,
+  const Vec& sigma,
+  std::int64_t omega,
+  std::int64_t nx,
+  std::int64_t& yLo,
+  std::int64_t& yHi)
+{
+  yLo = -MaximumOmega - 1;
+  yHi = MaximumOmega + 1;
+  for (std::size_t e = 0; e < edges.size() && yLo <= yHi; ++e)
+  {
+    const Vec& E = edges[e];
+    const std::int64_t a = E[1] - E[2] * sigma[2] * sigma[1];
+    const std::int64_t b = E[0] * nx + E[2] * sigma[2] * (omega - sigma[0] * nx);
+    if (a == 0)
+    {
+      if (b < 0 || (strict[e] && b == 0))
+        yLo = yHi + 1;
+    }
+    else if (a > 0) // a ny + b >= 0 (> 0)
+      yLo = std::max(yLo, strict[e] ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
+    else // ny <= b / -a (<)
+      yHi = std::min(yHi, strict[e] ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
+  }
+}
+
 Vec sigmaOf(const std::array<int, 3>& s)
 {
   return { s[0], s[1], s[2] };
@@ -277,23 +307,8 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
     const std::int64_t xHi = floorDiv(omega * maxNum, maxDen);
     for (std::int64_t nx = xLo; nx <= xHi && budget > 0; ++nx, --budget)
     {
-      // n = (nx, ny, sigma_z (omega - sigma_x nx - sigma_y ny)): every edge bounds ny.
-      std::int64_t yLo = -MaximumOmega - 1, yHi = MaximumOmega + 1;
-      for (std::size_t e = 0; e < o.edges.size() && yLo <= yHi; ++e)
-      {
-        const Vec& E = o.edges[e];
-        const std::int64_t a = E[1] - E[2] * sigma[2] * sigma[1];
-        const std::int64_t b = E[0] * nx + E[2] * sigma[2] * (omega - sigma[0] * nx);
-        if (a == 0)
-        {
-          if (b < 0 || (strict[e] && b == 0))
-            yLo = yHi + 1;
-        }
-        else if (a > 0) // a ny + b >= 0 (> 0)
-          yLo = std::max(yLo, strict[e] ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
-        else // ny <= b / -a (<)
-          yHi = std::min(yHi, strict[e] ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
-      }
+      std::int64_t yLo, yHi;
+      rangeOfNy(o.edges, strict, sigma, omega, nx, yLo, yHi);
       for (std::int64_t ny = yLo; ny <= yHi && budget > 0; ++ny, --budget)
       {
         const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
@@ -324,6 +339,30 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   const std::array<int, 3>& signs)
 {
   std::array<int, 3> present = this->Present;
+  if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count))
+    return false;
+  if (this->takenByCurrentPlane(present))
+    return true;
+  // Slow path: clip the octants with the points already accepted (for good), then with the
+  // new ones (on copies), and search each surviving octant for a normal.
+  for (int i = 0; i < 8; ++i)
+    this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
+  const std::size_t before = this->Points.size();
+  this->Points.insert(this->Points.end(), this->Fresh.begin(), this->Fresh.end());
+  std::array<bool, 8> survives{};
+  Vec best{ 0, 0, 0 };
+  const bool found = this->searchOctants(present, survives, best);
+  this->Points.resize(before);
+  if (!found)
+    return false;
+  this->commit(present);
+  this->adoptNormal(best, survives);
+  return true;
+}
+
+bool StandardPlaneRecognizer::addOrientations(const std::array<int, 3>& signs,
+  std::array<int, 3>& present)
+{
   for (int d = 0; d < 3; ++d)
   {
     if (signs[d] == 0)
@@ -332,6 +371,11 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
       return false; // opposite surfel normals: no plane has both
     present[d] = signs[d];
   }
+  return true;
+}
+
+bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size_t count)
+{
   if (this->Points.empty() && count > 0)
     this->Origin = points[0];
   // New points relative to the origin, without repeats.
@@ -340,8 +384,7 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   this->FreshKeys.clear();
   for (std::size_t i = 0; i < count; ++i)
   {
-    const Point3& p = points[i];
-    const Point3 q{ p[0] - this->Origin[0], p[1] - this->Origin[1], p[2] - this->Origin[2] };
+    const Point3 q = sub(points[i], this->Origin);
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
         return false;
@@ -355,63 +398,60 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
   for (const Point3& q : fresh)
     this->FreshKeys.push_back(packBiased(q));
+  return true;
+}
 
-  // Fast path: the current plane takes the new points and orientations.
-  if (!this->Points.empty())
+bool StandardPlaneRecognizer::takenByCurrentPlane(const std::array<int, 3>& present)
+{
+  if (this->Points.empty())
+    return false;
+  const Vec& n = this->Current.normal;
+  for (int d = 0; d < 3; ++d)
+    if (present[d] != 0 && present[d] * n[d] <= 0)
+      return false;
+  std::int64_t lo = this->CurrentLo, hi = this->CurrentHi;
+  for (const Point3& q : this->Fresh)
   {
-    const Vec& n = this->Current.normal;
-    bool ok = true;
-    for (int d = 0; d < 3 && ok; ++d)
-      ok = present[d] == 0 || present[d] * n[d] > 0;
-    std::int64_t lo = this->CurrentLo, hi = this->CurrentHi;
-    for (const Point3& q : fresh)
-    {
-      const std::int64_t x = dot(n, q);
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
-    }
-    if (ok && hi - lo < this->Current.omega())
-    {
-      this->commit(present);
-      this->CurrentLo = lo;
-      this->CurrentHi = hi;
-      this->Current.mu = lo + dot(n, this->Origin);
-      return true;
-    }
+    const std::int64_t x = dot(n, q);
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
   }
+  if (hi - lo >= this->Current.omega())
+    return false;
+  this->commit(present);
+  this->CurrentLo = lo;
+  this->CurrentHi = hi;
+  this->Current.mu = lo + dot(n, this->Origin);
+  return true;
+}
 
-  // Slow path: clip the octants with the points already accepted (for good), then with the
-  // new ones (on copies), and search each surviving octant for a normal.
-  for (int i = 0; i < 8; ++i)
-    this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
+bool StandardPlaneRecognizer::octantExcluded(const Octant& o,
+  const std::array<int, 3>& present) const
+{
+  for (int d = 0; d < 3; ++d)
+    if (present[d] != 0 && present[d] != o.sigma[d])
+      return true;
+  // Two points differing by sigma have width exactly 1 in every normal of the octant.
+  for (const Point3& q : this->Fresh)
+    for (int s : { -1, 1 })
+    {
+      const Point3 r{ q[0] + s * o.sigma[0], q[1] + s * o.sigma[1], q[2] + s * o.sigma[2] };
+      if (this->known(packBiased(r)))
+        return true;
+    }
+  return false;
+}
 
-  const std::size_t before = this->Points.size();
-  this->Points.insert(this->Points.end(), fresh.begin(), fresh.end());
-  std::array<bool, 8> survives{};
-  Vec best{ 0, 0, 0 };
+bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
+  std::array<bool, 8>& survives,
+  Vec& best)
+{
   std::int64_t bestOmega = MaximumOmega + 1;
   for (int i = 0; i < 8; ++i)
   {
     const Octant& original = this->Octants[i];
     survives[i] = false;
-    if (!this->Alive[i])
-      continue;
-    bool consistent = true;
-    for (int d = 0; d < 3; ++d)
-      consistent = consistent && (present[d] == 0 || present[d] == original.sigma[d]);
-    if (!consistent)
-      continue;
-    // Two points differing by sigma have width exactly 1 in every normal of the octant.
-    bool dead = false;
-    for (const Point3& q : fresh)
-      for (int s : { -1, 1 })
-      {
-        const Point3 r{
-          q[0] + s * original.sigma[0], q[1] + s * original.sigma[1], q[2] + s * original.sigma[2]
-        };
-        dead = dead || this->known(packBiased(r));
-      }
-    if (dead)
+    if (!this->Alive[i] || this->octantExcluded(original, present))
       continue;
     Octant& o = this->Trials[i];
     o = original; // reuses the trial's storage
@@ -425,13 +465,11 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
       bestOmega = std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
     }
   }
-  if (bestOmega > MaximumOmega)
-  {
-    this->Points.resize(before);
-    return false;
-  }
-  this->Points.resize(before);
-  this->commit(present);
+  return bestOmega <= MaximumOmega;
+}
+
+void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool, 8>& survives)
+{
   for (int i = 0; i < 8; ++i)
   {
     // Octants the new points emptied, or whose signs they contradict, stay dead.
@@ -451,7 +489,6 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
     this->CurrentHi = std::max(this->CurrentHi, x);
   }
   this->Current.mu = this->CurrentLo + dot(best, this->Origin);
-  return true;
 }
 
 void StandardPlaneRecognizer::commit(const std::array<int, 3>& present)

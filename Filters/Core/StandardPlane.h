@@ -103,6 +103,21 @@ private:
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
   /// Whether the width is exactly 1 all along polygon edge e (between vertices e, e + 1).
   bool saturated(const Octant& o, std::size_t e) const;
+  // The phases of tryAdd.
+  /// The surfel orientations asked so far and now; false when two are opposite.
+  static bool addOrientations(const std::array<int, 3>& signs, std::array<int, 3>& present);
+  /// The new points relative to Origin, without repeats, into Fresh (and FreshKeys); false
+  /// when one is too far from Origin.
+  bool collectFreshPoints(const Point3* points, std::size_t count);
+  /// Fast path: the current plane takes the new points and orientations (then committed).
+  bool takenByCurrentPlane(const std::array<int, 3>& present);
+  /// Whether an octant cannot hold a normal for the orientations and the new points.
+  bool octantExcluded(const Octant& o, const std::array<int, 3>& present) const;
+  /// Slow path: clips a copy of every live octant with the new points and searches it for
+  /// the normal of smallest omega; false when none is found.
+  bool searchOctants(const std::array<int, 3>& present, std::array<bool, 8>& survives, Vec& best);
+  /// Keeps the clipped octants that survived and the plane of normal `best`.
+  void adoptNormal(const Vec& best, const std::array<bool, 8>& survives);
   void commit(const std::array<int, 3>& present);
   bool known(std::uint64_t key) const;
 
