@@ -689,88 +689,104 @@ bool surfelLeftOf(const StandardPlane& plane, const Point3& p, const Point3& q, 
 
 } // namespace
 
-std::string revert(const std::vector<FaceOutline>& faces,
-  const std::array<std::int32_t, 3>& dims,
-  std::vector<Surfel>& surfels,
-  BitVolume& voxels,
-  const Execution& exec)
+namespace
 {
-  surfels.clear();
-  ProgressPoll poll(exec, 0.0, 1.0);
-  // (surfel, face) of every surfel found: faces are disjoint, and a surfel in two faces (a
-  // face given twice, say) would cancel out in the parity below; sorted and checked at the end.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> faceOf;
-  for (std::size_t f = 0; f < faces.size(); ++f)
+
+/// (surfel key, face) of every surfel the reversion finds.
+using SurfelFaces = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
+
+std::string faceError(std::size_t f, const char* what)
+{
+  std::ostringstream msg;
+  msg << "face " << f << ": " << what;
+  return msg.str();
+}
+
+/// The surfels of the plane on the left of the loop's edges: where the filling starts.
+std::string seedFromLoop(const FaceOutline& face,
+  std::size_t f,
+  std::unordered_set<std::uint64_t>& seen,
+  std::vector<Surfel>& stack)
+{
+  const std::size_t n = face.loop.size();
+  for (std::size_t i = 0; i < n; ++i)
   {
-    poll.at(0.9 * double(f) / double(faces.size()));
-    if (!poll.tick())
-      return "aborted";
-    const FaceOutline& face = faces[f];
-    const std::size_t n = face.loop.size();
-    std::unordered_set<std::uint64_t> loopEdges;
-    for (std::size_t i = 0; i < n; ++i)
-      loopEdges.insert(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
-    std::unordered_set<std::uint64_t> seen;
-    std::vector<Surfel> stack;
-    for (std::size_t i = 0; i < n; ++i)
+    Surfel s;
+    const Point3& p = face.loop[i];
+    const Point3& q = face.loop[(i + 1) % n];
+    const Point3 t = sub(q, p);
+    if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !surfelLeftOf(face.plane, p, q, s))
     {
-      Surfel s;
-      const Point3& p = face.loop[i];
-      const Point3& q = face.loop[(i + 1) % n];
-      const Point3 t = sub(q, p);
-      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 ||
-        !surfelLeftOf(face.plane, p, q, s))
-      {
-        std::ostringstream msg;
-        msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
-        return msg.str();
-      }
-      if (seen.insert(surfelKey(s)).second)
-        stack.push_back(s);
+      std::ostringstream msg;
+      msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
+      return msg.str();
     }
-    const std::size_t limit = 8 * n * n + 64;
-    while (!stack.empty())
+    if (seen.insert(surfelKey(s)).second)
+      stack.push_back(s);
+  }
+  return std::string();
+}
+
+/// The surfels of face f: the squares of its plane enclosed by its loop, filled from the
+/// loop's edges across every linel that is not a loop edge.
+std::string fillFace(const FaceOutline& face,
+  std::size_t f,
+  std::vector<Surfel>& surfels,
+  SurfelFaces& faceOf)
+{
+  const std::size_t n = face.loop.size();
+  std::unordered_set<std::uint64_t> loopEdges;
+  for (std::size_t i = 0; i < n; ++i)
+    loopEdges.insert(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
+  std::unordered_set<std::uint64_t> seen;
+  std::vector<Surfel> stack;
+  const std::string error = seedFromLoop(face, f, seen, stack);
+  if (!error.empty())
+    return error;
+  const std::size_t limit = 8 * n * n + 64;
+  while (!stack.empty())
+  {
+    const Surfel s = stack.back();
+    stack.pop_back();
+    surfels.push_back(s);
+    faceOf.emplace_back(surfelKey(s), static_cast<std::uint32_t>(f));
+    if (seen.size() > limit)
+      return faceError(f, "its loop does not enclose a disk of its plane");
+    for (int k = 0; k < 4; ++k)
     {
-      const Surfel s = stack.back();
-      stack.pop_back();
-      surfels.push_back(s);
-      faceOf.emplace_back(surfelKey(s), static_cast<std::uint32_t>(f));
-      if (seen.size() > limit)
-      {
-        std::ostringstream msg;
-        msg << "face " << f << ": its loop does not enclose a disk of its plane";
-        return msg.str();
-      }
-      for (int k = 0; k < 4; ++k)
-      {
-        const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
-        if (loopEdges.count(edgeKey(a, b)))
-          continue;
-        Surfel t;
-        if (!surfelLeftOf(face.plane, b, a, t))
-        {
-          std::ostringstream msg;
-          msg << "face " << f << ": its plane is not a surface around a linel";
-          return msg.str();
-        }
-        if (seen.insert(surfelKey(t)).second)
-          stack.push_back(t);
-      }
+      const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
+      if (loopEdges.count(edgeKey(a, b)))
+        continue;
+      Surfel t;
+      if (!surfelLeftOf(face.plane, b, a, t))
+        return faceError(f, "its plane is not a surface around a linel");
+      if (seen.insert(surfelKey(t)).second)
+        stack.push_back(t);
     }
   }
+  return std::string();
+}
 
+/// Faces are disjoint: a surfel in two faces (a face given twice, say) would cancel out in
+/// the parity of fillByParity.
+std::string checkDisjoint(SurfelFaces& faceOf)
+{
   std::sort(faceOf.begin(), faceOf.end());
   const auto shared = std::adjacent_find(
     faceOf.begin(), faceOf.end(), [](const auto& a, const auto& b) { return a.first == b.first; });
-  if (shared != faceOf.end())
-  {
-    std::ostringstream msg;
-    msg << "faces " << shared->second << " and " << std::next(shared)->second
-        << " share surfels (is a face given twice?)";
-    return msg.str();
-  }
+  if (shared == faceOf.end())
+    return std::string();
+  std::ostringstream msg;
+  msg << "faces " << shared->second << " and " << std::next(shared)->second
+      << " share surfels (is a face given twice?)";
+  return msg.str();
+}
 
-  // Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
+/// Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
+std::string fillByParity(const std::vector<Surfel>& surfels,
+  const std::array<std::int32_t, 3>& dims,
+  BitVolume& voxels)
+{
   voxels = BitVolume(dims[0], dims[1], dims[2]);
   std::vector<std::array<std::int32_t, 3>> xSurfels; // (z, y, plane x)
   for (const Surfel& s : surfels)
@@ -790,6 +806,32 @@ std::string revert(const std::vector<FaceOutline>& faces,
   if (xSurfels.size() % 2 != 0)
     return "the faces do not bound a set of voxels of the grid";
   return std::string();
+}
+
+} // namespace
+
+std::string revert(const std::vector<FaceOutline>& faces,
+  const std::array<std::int32_t, 3>& dims,
+  std::vector<Surfel>& surfels,
+  BitVolume& voxels,
+  const Execution& exec)
+{
+  surfels.clear();
+  ProgressPoll poll(exec, 0.0, 1.0);
+  SurfelFaces faceOf;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    poll.at(0.9 * double(f) / double(faces.size()));
+    if (!poll.tick())
+      return "aborted";
+    const std::string error = fillFace(faces[f], f, surfels, faceOf);
+    if (!error.empty())
+      return error;
+  }
+  const std::string error = checkDisjoint(faceOf);
+  if (!error.empty())
+    return error;
+  return fillByParity(surfels, dims, voxels);
 }
 
 } // namespace vbr
