@@ -228,12 +228,42 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
   return out;
 }
 
-void insertTJunctionVertices(BRep& brep, const Execution& exec)
+namespace
 {
-  if (brep.points.empty())
-    return;
-  Coord lo = brep.points[0][0], hi = lo;
-  for (const Point3& p : brep.points)
+
+/// Calls emit(p) for each corner of a loop and, after it, for each corner of other loops
+/// lying strictly inside the edge that starts there, in order along the edge. The grid
+/// positions inside an edge are probed one by one, so the work is bounded by the number of
+/// unit edges of the boundary.
+template<typename Emit>
+void walkWithEdgeVertices(const PointRange& points,
+  const GridPointIndex& corners,
+  const KeyPacker& packer,
+  Emit&& emit)
+{
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const Point3& p = points[i];
+    const Point3& q = points[(i + 1) % points.size()];
+    emit(p);
+    int d = 0;
+    while (d < 3 && p[d] == q[d])
+      ++d;
+    if (d == 3)
+      continue;
+    const Coord step = q[d] > p[d] ? 1 : -1;
+    Point3 r = p;
+    for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
+      if (corners.find(packer.pack(r[0], r[1], r[2])) >= 0)
+        emit(r);
+  }
+}
+
+/// The largest coordinate of the corners; throws when one lies outside [0, 2^21).
+Coord checkedMaximum(const std::vector<Point3>& points)
+{
+  Coord lo = points[0][0], hi = lo;
+  for (const Point3& p : points)
     for (Coord c : p)
     {
       lo = std::min(lo, c);
@@ -241,41 +271,22 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
     }
   if (lo < 0 || hi >= PackedCoordinateLimit)
     throw std::out_of_range("insertTJunctionVertices: coordinates outside [0, 2^21)");
-  // Every corner in a hash set; the grid positions strictly inside an edge are probed one by
-  // one, so the work is bounded by the number of unit edges of the boundary.
-  const KeyPacker packer = KeyPacker::forMaximum(hi);
+  return hi;
+}
+
+} // namespace
+
+void insertTJunctionVertices(BRep& brep, const Execution& exec)
+{
+  if (brep.points.empty())
+    return;
+  // Every corner in a hash set.
+  const KeyPacker packer = KeyPacker::forMaximum(checkedMaximum(brep.points));
   GridPointIndex corners(brep.points.size() / 2); // corners repeat about three times
   for (const Point3& p : brep.points)
     corners.insert(packer.pack(p[0], p[1], p[2]));
   // Two parallel passes over the loops: count each loop's corners with the vertices inside
   // its edges, then (after a prefix sum) write them, so that no thread allocates.
-  auto visit = [&](const PointRange& points, auto&& emit)
-  {
-    for (std::size_t i = 0; i < points.size(); ++i)
-    {
-      const Point3& p = points[i];
-      const Point3& q = points[(i + 1) % points.size()];
-      emit(p);
-      int d = 0;
-      while (d < 3 && p[d] == q[d])
-      {
-        ++d;
-      }
-      if (d == 3)
-      {
-        continue;
-      }
-      const Coord step = q[d] > p[d] ? 1 : -1;
-      Point3 r = p;
-      for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
-      {
-        if (corners.find(packer.pack(r[0], r[1], r[2])) >= 0)
-        {
-          emit(r);
-        }
-      }
-    }
-  };
   const std::int64_t loops = static_cast<std::int64_t>(brep.loops.size());
   std::vector<std::size_t> start(brep.loops.size() + 1, 0);
   exec.forRange(loops,
@@ -284,7 +295,8 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
       for (std::int64_t l = b; l < e; ++l)
       {
         std::size_t n = 0;
-        visit(brep.loopPoints(static_cast<int>(l)), [&n](const Point3&) { ++n; });
+        walkWithEdgeVertices(
+          brep.loopPoints(static_cast<int>(l)), corners, packer, [&n](const Point3&) { ++n; });
         start[l + 1] = n;
       }
     });
@@ -297,7 +309,10 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
       for (std::int64_t l = b; l < e; ++l)
       {
         Point3* out = points.data() + start[l];
-        visit(brep.loopPoints(static_cast<int>(l)), [&out](const Point3& p) { *out++ = p; });
+        walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
+          corners,
+          packer,
+          [&out](const Point3& p) { *out++ = p; });
       }
     });
   for (std::size_t l = 0; l < brep.loops.size(); ++l)
