@@ -4,6 +4,7 @@
 #include "EVM.h"
 #include "FaceTriangulator.h"
 #include "GridPointIndex.h"
+#include "PlaneSweep3D.h"
 #include "RadixSort.h"
 #include "Surfels.h"
 #include "vtkVoxelBRepAdapters.h"
@@ -396,7 +397,7 @@ bool boundaryOf(const vbr::EVM& evm,
     vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
     if (planar)
       brep = vbr::extractBoundary2D(evm, connectivity);
-    else if (!vbr::extractBoundary3D(evm, connectivity, exec, brep))
+    else if (!vbr::planeSweep3D(evm, connectivity, exec, brep))
       return false;
   }
   vtkLogScopeF(TRACE, "T-junction vertices");

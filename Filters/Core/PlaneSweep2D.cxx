@@ -62,12 +62,13 @@ public:
       while (lineEnd != end && (*lineEnd)[1] == (*begin)[1])
         ++lineEnd;
       if ((lineEnd - begin) % 2)
-        throw std::invalid_argument("sweep2D: a line of vertices has an odd count (not an EVM)");
+        throw std::invalid_argument(
+          "planeSweep2D: a line of vertices has an odd count (not an EVM)");
       this->processLine((*begin)[1], begin, lineEnd);
       begin = lineEnd;
     }
     if (!this->Section.empty())
-      throw std::invalid_argument("sweep2D: the last section is not empty (not an EVM)");
+      throw std::invalid_argument("planeSweep2D: the last section is not empty (not an EVM)");
     this->pairNonManifoldVertices();
     Boundary2D out;
     out.nonManifoldVertices = this->NonManifold.size();
@@ -275,7 +276,7 @@ private:
         else
           out[no++] = e;
       if (ni != 2 || no != 2)
-        throw std::logic_error("sweep2D: inconsistent non-manifold vertex");
+        throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
       const bool sameFace =
         this->find(this->Edges[in[0]].interval) == this->find(this->Edges[in[1]].interval);
       for (int k = 0; k < 2; ++k)
@@ -298,7 +299,7 @@ private:
           }
         }
         if (chosen < 0)
-          throw std::logic_error("sweep2D: no continuation at a non-manifold vertex");
+          throw std::logic_error("planeSweep2D: no continuation at a non-manifold vertex");
         this->Edges[in[k]].next = chosen;
       }
     }
@@ -339,7 +340,7 @@ private:
       for (int e = static_cast<int>(e0); this->LoopOfEdge[e] < 0; e = this->Edges[e].next)
       {
         if (e < 0 || this->Edges[e].next < 0)
-          throw std::logic_error("sweep2D: open contour");
+          throw std::logic_error("planeSweep2D: open contour");
         this->LoopOfEdge[e] = id;
         out.points.push_back(this->Edges[e].from);
       }
@@ -397,7 +398,7 @@ private:
 
 } // namespace
 
-Boundary2D sweep2D(const Vertex* begin, const Vertex* end, FaceConnectivity connectivity)
+Boundary2D planeSweep2D(const Vertex* begin, const Vertex* end, FaceConnectivity connectivity)
 {
   return Sweep(connectivity).run(begin, end);
 }

@@ -66,7 +66,7 @@ struct Boundary2D
 };
 
 /// Faces, loops and inclusion tree of a 2D EVM given as vertices (0, u, v) in sorted order.
-Boundary2D sweep2D(const Vertex* begin,
+Boundary2D planeSweep2D(const Vertex* begin,
   const Vertex* end,
   FaceConnectivity connectivity = FaceConnectivity::Edge);
 

@@ -5,6 +5,7 @@
 #include "BruteForce.h"
 #include "EVM.h"
 #include "FaceTriangulator.h"
+#include "PlaneSweep3D.h"
 
 #include <gtest/gtest.h>
 
@@ -53,7 +54,7 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
 {
   const vbr::EVM evm = vbr::extractEVM(v);
   vbr::BRep brep;
-  ASSERT_TRUE(vbr::extractBoundary3D(evm,
+  ASSERT_TRUE(vbr::planeSweep3D(evm,
     merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
     vbr::Execution(),
     brep));
@@ -192,7 +193,7 @@ TEST(BRep, DegenerateVolumes)
   one.set(1, 1, 1);
   checkVolume(one, false);
   vbr::BRep b;
-  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(one), vbr::FaceConnectivity::Edge, {}, b));
+  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(one), vbr::FaceConnectivity::Edge, {}, b));
   EXPECT_EQ(b.faces.size(), 6u);
 
   checkVolume(bf::randomVolume({ 6, 5, 4 }, 1.0, 1), false); // every voxel selected
@@ -212,7 +213,7 @@ TEST(BRep, DegenerateVolumes)
   checkVolume(contacts, true);
 
   vbr::BitVolume empty(4, 4, 4);
-  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(empty), vbr::FaceConnectivity::Edge, {}, b));
+  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(empty), vbr::FaceConnectivity::Edge, {}, b));
   EXPECT_TRUE(b.faces.empty());
 }
 
@@ -222,11 +223,11 @@ TEST(BRep, AbortStopsTheSweep)
   vbr::Execution exec;
   exec.progress = [](double) { return false; };
   vbr::BRep b;
-  EXPECT_FALSE(vbr::extractBoundary3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, exec, b));
+  EXPECT_FALSE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, exec, b));
   // A stop requested while the planes are swept (polled from the workers) also aborts.
   vbr::Execution polled;
   int polls = 0;
   polled.aborted = [&polls]() { return ++polls > 3; };
-  EXPECT_FALSE(vbr::extractBoundary3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, polled, b));
+  EXPECT_FALSE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, polled, b));
   EXPECT_GT(polls, 3);
 }

@@ -7,6 +7,7 @@
 #include "EVM.h"
 #include "FaceTriangulator.h"
 #include "Geometry.h"
+#include "PlaneSweep3D.h"
 
 #include <gtest/gtest.h>
 
@@ -109,7 +110,7 @@ void checkFace(const vbr::BRep& brep, int f, FaceStats& stats)
 void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, FaceStats& stats)
 {
   vbr::BRep brep;
-  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(volume),
+  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(volume),
     merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
     vbr::Execution(),
     brep));

@@ -65,7 +65,7 @@ int findLoop(const vbr::Boundary2D& b, const Corners& expected)
 TEST(PlaneSweep2D, PaperFigure5SplitsTheNonManifoldFace)
 {
   const auto v = paperFigure5();
-  const vbr::Boundary2D b = vbr::sweep2D(v.data(), v.data() + v.size());
+  const vbr::Boundary2D b = vbr::planeSweep2D(v.data(), v.data() + v.size());
   EXPECT_EQ(b.nonManifoldVertices, 1u); // (16, 15)
   ASSERT_EQ(b.faces.size(), 4u);        // r1, r3, r2 (split at the vertex) and r6
   ASSERT_EQ(b.loops.size(), 6u);
@@ -106,7 +106,7 @@ TEST(PlaneSweep2D, PaperFigure5KeepsTheNonManifoldFaceWhenMerging)
 {
   const auto v = paperFigure5();
   const vbr::Boundary2D b =
-    vbr::sweep2D(v.data(), v.data() + v.size(), vbr::FaceConnectivity::Vertex);
+    vbr::planeSweep2D(v.data(), v.data() + v.size(), vbr::FaceConnectivity::Vertex);
   ASSERT_EQ(b.faces.size(), 3u);
   // r3 and r2 form one face whose outer loop passes twice through the vertex (16, 15).
   const int merged = findLoop(b,
@@ -127,10 +127,10 @@ TEST(PlaneSweep2D, PaperFigure5KeepsTheNonManifoldFaceWhenMerging)
 TEST(PlaneSweep2D, RejectsInvalidEVM)
 {
   const std::vector<vbr::Vertex> odd = { { 0, 0, 0 }, { 0, 0, 1 }, { 0, 0, 2 } };
-  EXPECT_THROW(vbr::sweep2D(odd.data(), odd.data() + odd.size()), std::invalid_argument);
+  EXPECT_THROW(vbr::planeSweep2D(odd.data(), odd.data() + odd.size()), std::invalid_argument);
   const std::vector<vbr::Vertex> open = { { 0, 0, 0 }, { 0, 0, 1 } };
-  EXPECT_THROW(vbr::sweep2D(open.data(), open.data() + open.size()), std::invalid_argument);
-  EXPECT_TRUE(vbr::sweep2D(nullptr, nullptr).faces.empty());
+  EXPECT_THROW(vbr::planeSweep2D(open.data(), open.data() + open.size()), std::invalid_argument);
+  EXPECT_TRUE(vbr::planeSweep2D(nullptr, nullptr).faces.empty());
 }
 
 namespace
