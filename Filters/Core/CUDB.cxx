@@ -56,7 +56,7 @@ bool overlap(Coord a0, Coord a1, Coord b0, Coord b1)
 
 constexpr Coord Open = std::numeric_limits<Coord>::max(); ///< end not reached yet
 
-/// The 2D CUDB of one section (the base case of Algorithm 1 with Algorithm 2 at Dim2):
+/// The 2D CUDB of one section (Algorithm 1 at Dim2, with Algorithm 2, AppendBox, for its lines):
 /// line by line, the 1D section is the XOR of the previous one with the line of vertices;
 /// an interval equal to one of the previous line extends its rectangle, any other interval
 /// starts a new one. Rectangles of consecutive lines that meet are contacts along B.
@@ -97,15 +97,16 @@ public:
         this->Line.end(),
         std::back_inserter(this->Next));
       this->Breaks.swap(this->Next);
-      this->nextLine(b);
+      this->appendLineBoxes(b);
     }
     if (!this->Breaks.empty())
       throw std::invalid_argument("section is not closed: not a valid EVM");
   }
 
 private:
-  /// Line b: the segment before it ends, the one after it has the 1D section `Breaks`.
-  void nextLine(Coord b)
+  /// Algorithm 2 (AppendBox) for the brinks of line b, with the 2D compaction: the segment
+  /// before b ends, the one after it has the 1D section `Breaks`.
+  void appendLineBoxes(Coord b)
   {
     if (this->Breaks.size() % 2 != 0)
       throw std::invalid_argument("odd 1D section: not a valid EVM");
@@ -167,8 +168,9 @@ private:
   bool LastLineOnly = false;
 };
 
-/// The section after plane of vertices [begin, end): previous section XOR its projection.
-void advanceSection(const Vertex* begin,
+/// Formula (1) of paper 002: the section after plane of vertices [begin, end) is the previous
+/// section XOR the plane's projection.
+void nextSection(const Vertex* begin,
   const Vertex* end,
   std::vector<Point2>& section,
   std::vector<Point2>& scratch)
@@ -201,8 +203,8 @@ Box boxOf(const Rect& r, Coord a0, Coord a1, const AxisOrder& order)
   return box;
 }
 
-/// The 3D part of Algorithm 1: slice after slice, the rectangles of the section are matched
-/// with those of the previous section; an equal rectangle extends its box along A (3D
+/// The 3D part of Algorithm 1 (at Dim3): slice after slice, the rectangles of the section are
+/// matched with those of the previous section; an equal rectangle extends its box along A (3D
 /// compaction), any other starts a box. Contacts along A join the boxes that end at the
 /// plane between two slices to the boxes that start there.
 class SliceSweep
@@ -237,7 +239,7 @@ public:
     this->CurrentBox.assign(n, 0);
     this->CurrentIsNew.assign(n, 1);
     this->PreviousContinues.assign(this->Previous.rects.size(), 0);
-    this->matchRectangles(a);
+    this->compactRectangles(a);
     this->addContactsAlongB();
     this->addContactsAlongA();
     std::swap(this->Previous, this->Current);
@@ -245,7 +247,10 @@ public:
   }
 
 private:
-  void matchRectangles(Coord a)
+  /// The 3D compaction (Algorithm 1's loop over SliceBoxesTmp): a rectangle equal to one of
+  /// the previous section continues its box, any other starts a box at a; boxes of the
+  /// previous section not continued end at a.
+  void compactRectangles(Coord a)
   {
     const auto& prev = this->Previous.rects;
     const auto& cur = this->Current.rects;
@@ -407,7 +412,7 @@ struct SweptPiece
         this->aborted = true;
         return;
       }
-      advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+      nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
       sweep.nextSlice(v[starts[k]][0], section);
     }
     this->openBoxes = sweep.openBoxes();
@@ -463,7 +468,7 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces)
   if (evm.dimension() == 2)
   {
     // A 2D EVM is a single section: its rectangles are the boxes, one voxel thick.
-    advanceSection(v.data(), v.data() + v.size(), section, scratch);
+    nextSection(v.data(), v.data() + v.size(), section, scratch);
     SectionDecomposition d;
     d.keepLastLineOnly(true);
     d.build(section);
@@ -489,7 +494,7 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces)
   for (int p = 1; p < pieces; ++p)
   {
     for (std::size_t k = firstPlane[p - 1]; k < firstPlane[p]; ++k)
-      advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+      nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
     entering[p] = section;
   }
   std::vector<SweptPiece> swept(pieces);
@@ -536,13 +541,13 @@ std::vector<Box> buildOUDB(const EVM& evm)
   };
   if (evm.dimension() == 2)
   {
-    advanceSection(v.data(), v.data() + v.size(), section, scratch);
+    nextSection(v.data(), v.data() + v.size(), section, scratch);
     addBoxes(0, 1);
     return boxes;
   }
   for (std::size_t k = 0; k + 1 < starts.size(); ++k)
   {
-    advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+    nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
     if (!section.empty())
       addBoxes(v[starts[k]][0], v[starts[k + 1]][0]);
   }
@@ -604,51 +609,80 @@ CUDB::NeighbourLists CUDB::neighbours(int axisRole, bool forward, Connectivity c
   return lists;
 }
 
-Components labelComponents(const CUDB& cudb, Connectivity connectivity)
+namespace
+{
+
+/// The neighbours each box is compared with when it is labelled (the paper's
+/// ABackwardNeighbors and BBackwardNeighbors together): every usable contact listed at the
+/// later of its two boxes in creation order, pointing to the earlier one, so that each box
+/// is labelled after all the boxes it is compared with.
+CUDB::NeighbourLists earlierNeighbours(const CUDB& cudb, Connectivity connectivity)
 {
   const std::size_t n = cudb.boxes.size();
-  // Each contact is listed at its later box, so that boxes are labelled in creation order
-  // after all the neighbours they are compared with.
-  std::vector<std::uint32_t> start(n + 1, 0);
+  CUDB::NeighbourLists lists;
+  lists.start.assign(n + 1, 0);
   auto usable = [&](const BoxContact& c) { return connectivity == Connectivity::Vertex || c.face; };
   for (const BoxContact& c : cudb.contacts)
     if (usable(c))
-      ++start[std::max(c.backward, c.forward) + 1];
+      ++lists.start[std::max(c.backward, c.forward) + 1];
   for (std::size_t i = 0; i < n; ++i)
-    start[i + 1] += start[i];
-  std::vector<std::uint32_t> earlier(start.back());
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (const BoxContact& c : cudb.contacts)
-      if (usable(c))
-        earlier[fill[std::max(c.backward, c.forward)]++] = std::min(c.backward, c.forward);
-  }
+    lists.start[i + 1] += lists.start[i];
+  lists.boxes.resize(lists.start.back());
+  std::vector<std::uint32_t> fill(lists.start.begin(), lists.start.end() - 1);
+  for (const BoxContact& c : cudb.contacts)
+    if (usable(c))
+      lists.boxes[fill[std::max(c.backward, c.forward)]++] = std::min(c.backward, c.forward);
+  return lists;
+}
 
-  // Algorithm 3: first pass, provisional labels and equivalences.
-  Components result;
-  result.boxLabel.assign(n, 0);
-  UnionFind eq;
+/// Algorithm 3 (CCL), the labelling pass: boxes in creation order take the smallest label of
+/// their backward neighbours, or a new label when they have none; where two labels meet, the
+/// equivalence is recorded (Algorithm 4, makeEquivalence: the union-find's unite, which keeps
+/// the smaller label as representative). Provisional labels are 0-based here.
+std::vector<std::uint32_t> labelProvisionally(const CUDB::NeighbourLists& earlier,
+  UnionFind& equivalences)
+{
+  const std::size_t n = earlier.start.size() - 1;
+  std::vector<std::uint32_t> label(n, 0);
   for (std::size_t b = 0; b < n; ++b)
   {
-    if (start[b] == start[b + 1])
+    if (earlier.start[b] == earlier.start[b + 1])
     {
-      result.boxLabel[b] = eq.add();
+      label[b] = equivalences.add();
       continue;
     }
-    std::uint32_t label = eq.find(result.boxLabel[earlier[start[b]]]);
-    for (std::uint32_t k = start[b] + 1; k < start[b + 1]; ++k)
-      label = eq.unite(label, result.boxLabel[earlier[k]]);
-    result.boxLabel[b] = label;
+    std::uint32_t l = equivalences.find(label[earlier.boxes[earlier.start[b]]]);
+    for (std::uint32_t k = earlier.start[b] + 1; k < earlier.start[b + 1]; ++k)
+      l = equivalences.unite(l, label[earlier.boxes[k]]);
+    label[b] = l;
   }
-  // Algorithm 5: resolve the equivalences, consecutive labels by first appearance.
-  std::vector<std::uint32_t> consecutive(eq.size(), 0);
-  for (std::size_t b = 0; b < n; ++b)
+  return label;
+}
+
+/// Algorithm 5 (relabeling): every label replaced by the representative of its class, then
+/// the classes numbered 1..count in order of first appearance along the boxes. Returns count.
+std::uint32_t relabel(UnionFind& equivalences, std::vector<std::uint32_t>& label)
+{
+  std::uint32_t count = 0;
+  std::vector<std::uint32_t> consecutive(equivalences.size(), 0);
+  for (std::uint32_t& l : label)
   {
-    const std::uint32_t root = eq.find(result.boxLabel[b]);
+    const std::uint32_t root = equivalences.find(l);
     if (consecutive[root] == 0)
-      consecutive[root] = ++result.count;
-    result.boxLabel[b] = consecutive[root];
+      consecutive[root] = ++count;
+    l = consecutive[root];
   }
+  return count;
+}
+
+} // namespace
+
+Components labelComponents(const CUDB& cudb, Connectivity connectivity)
+{
+  UnionFind equivalences;
+  Components result;
+  result.boxLabel = labelProvisionally(earlierNeighbours(cudb, connectivity), equivalences);
+  result.count = relabel(equivalences, result.boxLabel);
   return result;
 }
 
