@@ -1,3 +1,17 @@
+// The B-Rep's own operations, after the plane sweeps have found its faces.
+//
+// appendFaces places the faces of a 2D solution (planeSweep2D works in the (B, C) coordinates
+// of a sorting) in their plane A = position of 3D space, reversing the loops of a face whose
+// (B, C) orientation is not counter-clockwise seen from outside: B x C = parity * A, so the
+// loops turn when the parity of the sorting and the side the face looks to differ.
+// extractBoundary2D is that for a 2D EVM, the whole image being one plane.
+//
+// insertTJunctionVertices makes the edges of adjacent faces match exactly: every corner goes
+// into a hash set of packed keys (GridPointIndex, KeyPacker); each loop's edges are walked
+// unit step by unit step and the corners of other loops found inside them are inserted in
+// order (walkWithEdgeVertices). Two parallel passes over the loops, one counting and one
+// writing after a prefix sum, so that no thread allocates.
+
 #include "BRep.h"
 
 #include "GridPointIndex.h"

@@ -1,3 +1,7 @@
+// The storage of a voxel set: one bit per voxel, rows of 64-bit words along x, rows ordered
+// by (y, z), the last word of a row padded with zeros so that word-wide operations (the XORs
+// of EVM extraction, the surfel scans) need no masks. Counting is a popcount per word.
+
 #include "BitVolume.h"
 
 #include <bitset>

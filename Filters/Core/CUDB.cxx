@@ -1,3 +1,27 @@
+// EVM -> CUDB and the connected components of its boxes (Cruz-Matias & Ayala, sections 3.2 to 3.5).
+//
+// The conversion is Algorithm 1 at its three levels. Along A, the section S(i) of each slice
+// follows from the previous one by XOR with the plane of vertices (nextSection, formula 1).
+// Each section is decomposed line by line along B (SectionDecomposition::build, Algorithm 1 at
+// Dim2): the 1D section of each segment between two lines of vertices is the XOR of the
+// previous one with the line, and its intervals are the boxes of Algorithm 2, AppendBox
+// (appendLineBoxes): an interval equal to one of the previous segment continues that
+// rectangle (the 2D compaction), any other starts one; rectangles of consecutive segments
+// that meet are contacts along B. Slice after slice (SliceSweep::nextSlice), the rectangles
+// equal to one of the previous section continue its box along A (compactRectangles, the 3D
+// compaction) and the others start boxes; addContactsAlongB and addContactsAlongA record the
+// paper's backward and forward neighbours once per pair, as contacts (face contacts, or
+// edge/vertex contacts that are non-manifold). A large 3D sweep is cut into pieces of planes
+// (SweptPiece) swept concurrently from the sections entering them and joined by stitch: a
+// piece's first rectangles are ghost boxes standing for the open boxes of the piece before.
+// The OUDB (buildOUDB) is the same sweep without compaction; toEVM (section 3.3) XORs the
+// boxes' corners; volume (section 3.4) adds up the boxes.
+//
+// The labelling (section 3.5) reads the contacts: earlierNeighbours lists at each box the
+// boxes it is compared with (all created before it), labelProvisionally is Algorithm 3 with
+// the union-find's unite as Algorithm 4 (makeEquivalence), relabel is Algorithm 5. paintBoxes
+// writes a value per box into a label grid, parallel over slices.
+
 #include "CUDB.h"
 
 #include "UnionFind.h"
@@ -168,8 +192,8 @@ private:
   bool LastLineOnly = false;
 };
 
-/// Formula (1) of paper 002: the section after plane of vertices [begin, end) is the previous
-/// section XOR the plane's projection.
+/// Formula (1) of Cruz-Matias & Ayala: the section after plane of vertices [begin, end) is the
+/// previous section XOR the plane's projection.
 void nextSection(const Vertex* begin,
   const Vertex* end,
   std::vector<Point2>& section,

@@ -81,12 +81,12 @@ public:
 bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces = 0);
 CUDB buildCUDB(const EVM& evm);
 
-/// EVM -> OUDB (paper 002, section 2.2): the boxes without compaction, in their order.
+/// EVM -> OUDB (Cruz-Matias & Ayala, section 2.2): the boxes without compaction, in their order.
 /// Test oracle only: the tests check that the CUDB covers the same voxels with fewer boxes
 /// and that oudbBoxCount counts these boxes.
 std::vector<Box> buildOUDB(const EVM& evm);
 
-/// CUDB -> EVM (paper 002, section 3.3): the XOR of the boxes' corners (the boxes are
+/// CUDB -> EVM (Cruz-Matias & Ayala, section 3.3): the XOR of the boxes' corners (the boxes are
 /// disjoint), in the CUDB's order. Test oracle only: the round trip EVM -> CUDB -> EVM.
 EVM toEVM(const CUDB& cudb);
 

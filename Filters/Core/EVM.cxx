@@ -1,3 +1,18 @@
+// Extreme vertices: extraction, sorting and the way back to voxels.
+//
+// Extraction (extractEVM) is one pass over the bit rows: for each row of vertices (y, z) the
+// XOR of the four voxel rows around it holds, per x, the parity of the voxels on that side;
+// vertex x is extreme where that parity changes (rowParityToVertexBits), i.e. where an odd
+// number of the eight voxels around it is set. The set bits are appended as vertices in
+// order (appendRowVertices), planes of vertices in parallel, then concatenated: the result is
+// ZYX-sorted without sorting. extractEVM2D does the same with the two pixel rows around a
+// line of vertices.
+//
+// Sorting (sortedAs): when the new order is a rotation or a swap of the old one, a single
+// stable bucket pass on one coordinate keeps the order of the two others (bucketedOn);
+// otherwise the coordinates are packed into keys and radix-sorted. toVoxels is the inverse
+// of extraction: a parity grid of the vertices, XOR-prefixed along each in-plane axis.
+
 #include "EVM.h"
 
 #include "RadixSort.h"

@@ -1,3 +1,14 @@
+// Boolean operations on vertex sets, recursive in the dimension.
+//
+// booleanVertices at level 0 sweeps the planes of vertices of both operands together,
+// keeping the sections of both up to date (XOR of the projections, formula 1); the section
+// of the result is the Boolean of the operands' sections one dimension lower, and the
+// result's plane of vertices there is the XOR of two consecutive result sections (formula 2).
+// Level 1 is the same over lines (booleanLines, with the 1D sections kept as plain coordinate
+// lists: the hot path of the 3D plane sweep's forward and backward differences), and level 2
+// merges the end points of 1D intervals (booleanCoordinates). xorVertices is the symmetric
+// difference of two sorted lists (symmetricDifference).
+
 #include "EVMBoolean.h"
 
 #include <stdexcept>

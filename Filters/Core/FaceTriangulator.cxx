@@ -1,3 +1,13 @@
+// Triangles and fan polygons of the orthogonal faces of a B-Rep, in the face's (u, v) plane
+// with (u, v, axis) right-handed.
+//
+// A face without holes and of at most EarClippingLimit corners is ear-clipped exactly
+// (clipEars); every other face goes through CGAL's constrained Delaunay triangulation of all
+// its loops, whose triangles inside the face are those at odd nesting depth from the outside
+// (markNesting). fanPolygons gives what a renderer drawing a polygon as the fan from its
+// first corner draws right: the outer loop itself, started at a corner whose fan covers it
+// (fanApex), or else the triangles grouped into fans round shared corners (FanGrouper).
+
 #include "FaceTriangulator.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>

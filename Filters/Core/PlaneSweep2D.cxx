@@ -1,3 +1,23 @@
+// The 2D plane sweep of Ayala & Vergara (section 3) as one Sweep object over a 2D EVM.
+//
+// run is the whole method. The first sweep goes line of vertices by line of vertices
+// (processLine): the cut is merged with the active section by XOR (formula 1), point by point
+// along v. At each point enterPoint updates the open intervals (those of the previous and
+// next sections that overlap are united in the union-find: the paper's contour merging),
+// then one of three events: an extreme vertex of the cut matching one of the section ends a
+// horizontal edge (closeHorizontalEdge), a new one starts one (openHorizontalEdge), a brink of
+// the cut running through a vertex of the section is a non-manifold vertex
+// (splitAtNonManifoldVertex, section 3.3); at each corner the vertical piece of the brink and
+// the horizontal edge are linked (turnAtCorner). leavePoint records the first intervals of
+// faces for the second sweep. After the sweep, pairNonManifoldVertices applies the rules of
+// Fig. 7 at the split vertices, numberFaces numbers the faces in order of first appearance,
+// orderEdgesIntoLoops is the domino step, and classifyContours is the second sweep (outer
+// loops, holes and the inclusion tree from 1D tests on the stored section ends).
+//
+// Terms: a cut is a line of vertices; a brink a maximal segment of it; a section end an
+// extreme vertex of the active section with the horizontal edge it draws; an interval a
+// pair of section ends (a piece of face between two consecutive cuts).
+
 #include "PlaneSweep2D.h"
 
 #include "UnionFind.h"
@@ -129,7 +149,7 @@ private:
     int newBottomEdge = -1, newBelowEdge = -1; ///< for FirstInterval
   };
 
-  /// First sweep, one line (paper 000, section 3.1): merges the cut [cut, cutEnd) at u into
+  /// First sweep, one line (Ayala & Vergara, section 3.1): merges the cut [cut, cutEnd) at u into
   /// the active section (formula 1), emitting edges, uniting overlapping intervals (the
   /// contour merging) and recording the first intervals of faces for the second sweep.
   void processLine(Coord u, const Vertex* cut, const Vertex* cutEnd)
@@ -243,7 +263,7 @@ private:
   /// A new extreme vertex of the section: a horizontal edge starts here.
   void openHorizontalEdge(LineCursor& c) { this->turnAtCorner(c, this->startHorizontalEdge(c)); }
 
-  /// A non-manifold vertex (paper 000, section 3.3): a brink of the cut contains a vertex of
+  /// A non-manifold vertex (Ayala & Vergara, section 3.3): a brink of the cut contains a vertex of
   /// the section. The vertex is split: the brink's piece and the section's horizontal edge
   /// end there and new ones start; the four edges are paired once the faces are known.
   void splitAtNonManifoldVertex(LineCursor& c)
@@ -323,7 +343,7 @@ private:
     out.faces.resize(this->FirstOfFace.size());
   }
 
-  /// The domino step (paper 000, end of section 3.1): each contour's edges, already linked
+  /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
   /// corner to corner, are followed into loops, each keeping its face on the left.
   void orderEdgesIntoLoops(Boundary2D& out)
   {
@@ -349,7 +369,7 @@ private:
     }
   }
 
-  /// The second sweep (paper 000, section 3.1): faces in order of first appearance, with 1D
+  /// The second sweep (Ayala & Vergara, section 3.1): faces in order of first appearance, with 1D
   /// inclusion tests only. A face's first interval is bounded below by its outer loop; the
   /// section end just below it tells where the face lies: in a hole of the face owning that
   /// end, or beside it (then it shares that face's parent).

@@ -1,3 +1,14 @@
+// The 3D plane sweep of Ayala & Vergara (section 2) in chunks of planes run concurrently.
+//
+// sortForTheThreeSweeps gives the three cyclic sortings, one sweep per normal axis. The
+// planes of each are cut into chunks (chunkPlanes), the section entering each chunk found by
+// one sequential pass of XORs (formula 1), the cheap part. Each chunk (sweepChunk) then runs
+// its cuts: the next section S(i) = S(i-1) XOR C(i), the forward and backward differences
+// (forwardAndBackwardDifferences, formulas 3 and 4), and for each the faces of that 2D EVM by
+// planeSweep2D, placed in their plane by appendFaces, FD facing +A and BD facing -A. The
+// chunks' B-Reps are joined in order (appendBRep), so the result does not depend on the
+// chunking.
+
 #include "PlaneSweep3D.h"
 
 #include "EVMBoolean.h"

@@ -1,6 +1,6 @@
 // 3D EVM -> boundary representation by the plane sweep of Aguilera & Ayala, as reviewed in
 // section 2 of Ayala & Vergara, "An improved boundary extraction algorithm using a
-// plane-sweep technique" (paper 000): orthogonal faces with holes, oriented outwards.
+// plane-sweep technique": orthogonal faces with holes, oriented outwards.
 //
 // For each axis A the EVM is sorted in the cyclic order (A, B, C) and swept plane of vertices
 // by plane of vertices: three sweeps, one per family of faces. The projection of the plane

@@ -1,3 +1,12 @@
+// Exact ear clipping of simple polygons (see the header for why it is correct), and the
+// tests of simplicity and fan cover, on integer corners with 128-bit products (Wide).
+//
+// triangulateSimplePolygon first parts the polygon at corners where it touches itself into
+// two counter-clockwise loops (triangulatePiece: the doubled areas of the two loops, from a
+// prefix sum, tell whether the corner joins two pieces), then ear-clips each piece on a
+// doubly linked ring (EarClipper), testing only the corners that do not turn left (the
+// blockers). isSimplePolygon compares every pair of non-adjacent edges (segmentsMeet).
+
 #include "PolygonTriangulator.h"
 
 #include <algorithm>

@@ -1,3 +1,23 @@
+// The polyhedrization of Francon & Papier (section 3) and the reversion.
+//
+// The growth (FaceGrower): faces are grown one by one from seeds in surfel order. A face
+// starts from an umbrella of the seed when one fits one standard plane (seedUmbrella, the
+// paper's heuristic), else from the seed alone (growFrom); drainWave then takes the surfels
+// of the queue q(f) breadth first, each only if the face stays a topological disk (condition
+// 1: meetsAlongOneArc) and all its pointels stay in one standard plane with the surfels on
+// its outer side (condition 2: StandardPlaneRecognizer::tryAdd). A surfel refused by the
+// plane is never offered to that face again. Beyond the paper: moveToLargerFaces gives the rim
+// of large faces back to them, mergeSmallFaces hands small faces to their neighbours
+// (absorb, extend, with recognizers kept for large faces: recognizerOf), dropEmptyFaces
+// renumbers. The output: each face's boundary loop (LoopTracer) with the face beyond each
+// loop edge, and the number of faces around each vertex (countFacesAtVertices: the standard
+// vertices have three or more).
+//
+// The reversion (revert): each face's surfels are refilled from its outline (fillFace: the
+// squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
+// linel that is not a loop edge), faces are checked disjoint (checkDisjoint), and the voxels
+// follow by parity along x (fillByParity).
+
 #include "Polyhedrization.h"
 
 #include "GridPointIndex.h"

@@ -1,3 +1,15 @@
+// The standard plane recognizer of the header, one octant of normals at a time.
+//
+// Each octant keeps its polygon of normals (reset starts from the triangle of the octant;
+// applyPoints clips it lazily by the pair of points realizing a violating vertex's width:
+// clip, measure). tryAdd runs in phases: the surfel orientations (addOrientations), the new
+// points without repeats (collectFreshPoints), the fast path where the current plane takes
+// them (takenByCurrentPlane), and the slow path (searchOctants) that clips a copy of every
+// octant still alive, drops those without interior (hasInterior), and searches each for the
+// integer normal of smallest omega (solve: omega level by level, n_x over the polygon's range,
+// n_y bounded by every edge: rangeOfNy, each candidate checked by fits); adoptNormal keeps the
+// result. All arithmetic is on integers; determinants use Wide.
+
 #include "StandardPlane.h"
 
 #include <algorithm>

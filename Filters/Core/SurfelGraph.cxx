@@ -1,3 +1,13 @@
+// The surfel graph built in four stages (buildSurfelGraph).
+//
+// findSurfels scans the bit rows a word at a time for the voxels with an unselected
+// face-neighbour and lists their boundary faces, each keyed in a hash index. linkNeighbours
+// finds the surfel across each edge (neighbourKey: concave, flat or convex, the voxel beyond
+// reached only through a face-neighbour, which keeps edge-touching voxels apart).
+// matchSharedEdges records which edge of the neighbour is the same linel. glueVertices unites
+// the corners glued across shared edges (one vertex per umbrella, so a pointel where voxels
+// touch only at a corner gets several) and the surfels into connected components.
+
 #include "SurfelGraph.h"
 
 #include "GridPointIndex.h"

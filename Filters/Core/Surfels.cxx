@@ -1,3 +1,8 @@
+// Surfels of a voxel set. countSurfels counts the transitions between neighbouring voxels a
+// word at a time (popcount of the XOR of a row with its shifted self, and with the rows
+// before it along y and z, plus the rows at the grid's ends). extractSurfels lists them voxel
+// by voxel. Surfel::corner walks the unit square counter-clockwise seen from outside.
+
 #include "Surfels.h"
 
 #include <bitset>

@@ -1,6 +1,6 @@
 // Union-find (disjoint sets) over consecutive numbers, the one every part of the core uses:
 // the umbrellas and components of the surfel graph, the label equivalences of CUDB's
-// connected-component labelling (Algorithm 4 of paper 002) and the section intervals that
+// connected-component labelling (Algorithm 4 of Cruz-Matias & Ayala) and the section intervals that
 // the 2D plane sweep merges into faces.
 //
 // The root of a class is always its smallest element (the larger root is linked below the
