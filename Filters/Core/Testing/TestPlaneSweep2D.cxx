@@ -136,6 +136,44 @@ TEST(PlaneSweep2D, RejectsInvalidEVM)
 namespace
 {
 
+/// Inclusion tree: A is an ancestor of B when B lies in a bounded component of the
+/// complement of A; the parent is the innermost ancestor and the depth twice their count.
+void checkInclusionTree(const vbr::BRep& brep,
+  const std::vector<bf::PixelSet>& expected,
+  const std::vector<int>& faceOf)
+{
+  const std::size_t n = expected.size();
+  std::vector<std::vector<int>> ancestors(n);
+  for (std::size_t a = 0; a < n; ++a)
+  {
+    for (const auto& entry : bf::complementComponents(expected[a]))
+    {
+      if (!entry.second)
+        continue;
+      const bf::PixelSet& c = entry.first;
+      for (std::size_t b = 0; b < n; ++b)
+        if (b != a && c.count(*expected[b].begin()))
+          ancestors[b].push_back(static_cast<int>(a));
+    }
+  }
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  {
+    const int e = faceOf[f];
+    const vbr::BRepFace& face = brep.faces[f];
+    EXPECT_EQ(face.depth, 2 * static_cast<int>(ancestors[e].size())) << "face " << f;
+    if (ancestors[e].empty())
+    {
+      EXPECT_EQ(face.parent, -1);
+      continue;
+    }
+    ASSERT_GE(face.parent, 0);
+    const int innermost = *std::max_element(ancestors[e].begin(),
+      ancestors[e].end(),
+      [&](int x, int y) { return ancestors[x].size() < ancestors[y].size(); });
+    EXPECT_EQ(faceOf[face.parent], innermost) << "face " << f;
+  }
+}
+
 /// Checks faces, holes, orientation and the inclusion tree of a 2D image against brute force.
 void checkImage(const vbr::BitVolume& image, bool merged)
 {
@@ -169,38 +207,7 @@ void checkImage(const vbr::BitVolume& image, bool merged)
     }
   }
 
-  // Inclusion tree: A is an ancestor of B when B lies in a bounded component of the
-  // complement of A; the parent is the innermost ancestor and the depth twice their count.
-  const std::size_t n = expected.size();
-  std::vector<std::vector<int>> ancestors(n);
-  for (std::size_t a = 0; a < n; ++a)
-  {
-    for (const auto& entry : bf::complementComponents(expected[a]))
-    {
-      if (!entry.second)
-        continue;
-      const bf::PixelSet& c = entry.first;
-      for (std::size_t b = 0; b < n; ++b)
-        if (b != a && c.count(*expected[b].begin()))
-          ancestors[b].push_back(static_cast<int>(a));
-    }
-  }
-  for (std::size_t f = 0; f < brep.faces.size(); ++f)
-  {
-    const int e = faceOf[f];
-    const vbr::BRepFace& face = brep.faces[f];
-    EXPECT_EQ(face.depth, 2 * static_cast<int>(ancestors[e].size())) << "face " << f;
-    if (ancestors[e].empty())
-    {
-      EXPECT_EQ(face.parent, -1);
-      continue;
-    }
-    ASSERT_GE(face.parent, 0);
-    const int innermost = *std::max_element(ancestors[e].begin(),
-      ancestors[e].end(),
-      [&](int x, int y) { return ancestors[x].size() < ancestors[y].size(); });
-    EXPECT_EQ(faceOf[face.parent], innermost) << "face " << f;
-  }
+  checkInclusionTree(brep, expected, faceOf);
 }
 
 } // namespace
@@ -210,7 +217,7 @@ TEST(PlaneSweep2D, RandomImagesMatchBruteForce)
   unsigned seed = 1000;
   for (int trial = 0; trial < 40; ++trial)
   {
-    const bf::Int3 d{ 4 + (trial * 7) % 37, 3 + (trial * 5) % 29, 1 };
+    const vbr::Point3 d{ 4 + (trial * 7) % 37, 3 + (trial * 5) % 29, 1 };
     const double density = 0.15 + 0.7 * (trial % 10) / 9.0;
     const vbr::BitVolume image = bf::randomVolume(d, density, seed++);
     SCOPED_TRACE(testing::Message() << "trial " << trial);

@@ -857,7 +857,7 @@ TEST(ProjectionAlong, StandardFacesOfRandomVolumes)
   unsigned seed = 4100;
   for (int t = 0; t < 60; ++t)
   {
-    const bf::Int3 d{ 2 + t % 7, 2 + (t * 3) % 6, 2 + (t * 5) % 7 };
+    const vbr::Point3 d{ 2 + t % 7, 2 + (t * 3) % 6, 2 + (t * 5) % 7 };
     SCOPED_TRACE("seed " + std::to_string(seed));
     checkProjectedFaces(bf::randomVolume(d, 0.2 + 0.1 * (t % 7), seed++), faces, pinched);
   }
