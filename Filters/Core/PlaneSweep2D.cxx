@@ -132,16 +132,11 @@ private:
       this->Edges[b].next = a;
   }
 
-  /// Where the merge of a cut with the active section stands: the point v of the line being
-  /// visited, whether the previous section, the cut and the next section are open just
-  /// below v (in*) and just above it (in*2), and the open intervals and vertical edge.
-  struct LineCursor
+  /// The open intervals and edges while a cut is merged with the active section: what the
+  /// events at the points of the line change. (The flags that say which sections are open
+  /// at a point stay local to processLine: kept in registers, they are half its work.)
+  struct OpenIntervals
   {
-    Point2 here{ 0, 0 };
-    std::size_t i = 0; ///< next end of the active section
-    bool atPrev = false, atCut = false;
-    bool inPrev = false, inCut = false, inNew = false;
-    bool inPrev2 = false, inCut2 = false, inNew2 = false;
     int prevInterval = -1;   ///< the open interval of the previous section
     int newInterval = -1;    ///< the open interval of the next section
     int piece = -1;          ///< the vertical edge (a piece of a brink) open on the line
@@ -149,136 +144,148 @@ private:
     int newBottomEdge = -1, newBelowEdge = -1; ///< for FirstInterval
   };
 
-  /// First sweep, one line (Ayala & Vergara, section 3.1): merges the cut [cut, cutEnd) at u into
-  /// the active section (formula 1), emitting edges, uniting overlapping intervals (the
-  /// contour merging) and recording the first intervals of faces for the second sweep.
+  /// Where the merge stands at point v of the line: `i` the section end there (if atPrev),
+  /// whether the cut is open just below v and the next section just above it.
+  struct Point
+  {
+    Point2 here;
+    std::size_t i;
+    bool inCut, inNew2;
+  };
+
+  /// First sweep, one line (Ayala & Vergara, section 3.1): merges the cut [cut, cutEnd) at u
+  /// into the active section (formula 1) point by point along v, emitting edges, uniting
+  /// overlapping intervals (the contour merging) and recording the first intervals of faces
+  /// for the second sweep. in* say whether the previous section, the cut and the next section
+  /// are open just below v, in*2 just above it.
   void processLine(Coord u, const Vertex* cut, const Vertex* cutEnd)
   {
     this->NextSection.clear();
     this->NextIntervals.clear();
-    LineCursor c;
-    while (c.i < this->Section.size() || cut != cutEnd)
+    OpenIntervals o;
+    std::size_t i = 0;
+    bool inPrev = false, inCut = false;
+    while (i < this->Section.size() || cut != cutEnd)
     {
       const bool takePrev =
-        c.i < this->Section.size() && (cut == cutEnd || this->Section[c.i].v <= (*cut)[2]);
-      const Coord v = takePrev ? this->Section[c.i].v : (*cut)[2];
-      c.here = { u, v };
-      c.atPrev = c.i < this->Section.size() && this->Section[c.i].v == v;
-      c.atCut = cut != cutEnd && (*cut)[2] == v;
-      this->enterPoint(c);
-      if (c.atPrev && c.atCut)
-        this->closeHorizontalEdge(c); // an extreme vertex matching the section
-      else if (c.atCut)
-        this->openHorizontalEdge(c); // a new extreme vertex of the section
-      else if (c.atPrev && c.inCut)
-        this->splitAtNonManifoldVertex(c);
+        i < this->Section.size() && (cut == cutEnd || this->Section[i].v <= (*cut)[2]);
+      const Coord v = takePrev ? this->Section[i].v : (*cut)[2];
+      const bool atPrev = i < this->Section.size() && this->Section[i].v == v;
+      const bool atCut = cut != cutEnd && (*cut)[2] == v;
+      const bool inNew = inPrev != inCut;
+      const bool inPrev2 = inPrev != atPrev, inCut2 = inCut != atCut;
+      const bool inNew2 = inPrev2 != inCut2;
+      this->enterPoint(o, inPrev && inNew, atPrev && inPrev2, inNew2 && !inNew, i);
+      const Point at{ { u, v }, i, inCut, inNew2 };
+      if (atPrev && atCut)
+        this->closeHorizontalEdge(o, at); // an extreme vertex matching the section
+      else if (atCut)
+        this->openHorizontalEdge(o, at); // a new extreme vertex of the section
+      else if (atPrev && inCut)
+        this->splitAtNonManifoldVertex(o, at);
       else
-        this->NextSection.push_back(this->Section[c.i]); // the horizontal edge goes on
-      this->leavePoint(c);
-      if (c.atCut)
+        this->NextSection.push_back(this->Section[i]); // the horizontal edge goes on
+      if (inNew && !inNew2 && !o.newTouched)           // a candidate first interval of a face ends
+        this->First.push_back({ o.newInterval, o.newBottomEdge, o.newBelowEdge });
+      if (atPrev)
+        ++i;
+      if (atCut)
         ++cut;
+      inPrev = inPrev2;
+      inCut = inCut2;
     }
     this->Section.swap(this->NextSection);
     this->SectionIntervals.swap(this->NextIntervals);
   }
 
-  /// Updates the open intervals at point v of the line: the intervals of both sections that
-  /// overlap just below v are the same face; an interval of the next section starts at v.
-  void enterPoint(LineCursor& c)
+  /// Updates the open intervals at a point of the line: the intervals of both sections that
+  /// overlap just below it are the same face (bothBelow); the previous section's interval
+  /// starting at section end i is entered (prevStarts); an interval of the next section
+  /// starts there (newStarts).
+  void enterPoint(OpenIntervals& o, bool bothBelow, bool prevStarts, bool newStarts, std::size_t i)
   {
-    c.inNew = c.inPrev != c.inCut;
-    if (c.inPrev && c.inNew)
+    if (bothBelow)
     {
-      this->unite(c.prevInterval, c.newInterval);
-      c.newTouched = true;
+      this->unite(o.prevInterval, o.newInterval);
+      o.newTouched = true;
     }
-    c.inPrev2 = c.inPrev != c.atPrev;
-    c.inCut2 = c.inCut != c.atCut;
-    c.inNew2 = c.inPrev2 != c.inCut2;
-    if (c.atPrev && c.inPrev2)
-      c.prevInterval = this->SectionIntervals[c.i / 2];
-    if (c.inNew2 && !c.inNew)
+    if (prevStarts)
+      o.prevInterval = this->SectionIntervals[i / 2];
+    if (newStarts)
     {
-      c.newInterval = this->newInterval();
-      this->NextIntervals.push_back(c.newInterval);
-      c.newTouched = false;
-      c.newBelowEdge = this->NextSection.empty() ? -1 : this->NextSection.back().edge;
+      o.newInterval = this->newInterval();
+      this->NextIntervals.push_back(o.newInterval);
+      o.newTouched = false;
+      o.newBelowEdge = this->NextSection.empty() ? -1 : this->NextSection.back().edge;
     }
-  }
-
-  /// Records an interval of the next section that ends at v without having met the previous
-  /// section (a candidate first interval of a face), and moves past v.
-  void leavePoint(LineCursor& c)
-  {
-    if (c.inNew && !c.inNew2 && !c.newTouched)
-      this->First.push_back({ c.newInterval, c.newBottomEdge, c.newBelowEdge });
-    if (c.atPrev)
-      ++c.i;
-    c.inPrev = c.inPrev2;
-    c.inCut = c.inCut2;
   }
 
   /// A vertical piece starting at v keeps the face on its left: upwards when the face lies
   /// before u.
-  int startPiece(const LineCursor& c)
+  int startPiece(const OpenIntervals& o, const Point& at)
   {
-    return this->startEdge(c.here, !c.inNew2, c.inNew2 ? c.newInterval : c.prevInterval);
+    return this->startEdge(at.here, !at.inNew2, at.inNew2 ? o.newInterval : o.prevInterval);
   }
 
   /// A horizontal edge of the next section starting at v, its end kept in the next section.
-  int startHorizontalEdge(LineCursor& c)
+  int startHorizontalEdge(OpenIntervals& o, const Point& at)
   {
-    const int h = this->startEdge(c.here, c.inNew2, c.newInterval);
-    if (c.inNew2)
-      c.newBottomEdge = h;
-    this->NextSection.push_back({ c.here.v, h });
+    const int h = this->startEdge(at.here, at.inNew2, o.newInterval);
+    if (at.inNew2)
+      o.newBottomEdge = h;
+    this->NextSection.push_back({ at.here.v, h });
     return h;
   }
 
   /// The brink being crossed ends at v (its vertical piece ends there, at horizontal edge h)
   /// or starts there (a piece starts); either way the corner links the two edges.
-  void turnAtCorner(LineCursor& c, int h)
+  void turnAtCorner(OpenIntervals& o, const Point& at, int h)
   {
-    if (c.inCut)
+    if (at.inCut)
     {
-      this->finishEdge(c.piece, c.here);
-      this->link(c.piece, h, c.here);
-      c.piece = -1;
+      this->finishEdge(o.piece, at.here);
+      this->link(o.piece, h, at.here);
+      o.piece = -1;
     }
     else
     {
-      c.piece = this->startPiece(c);
-      this->link(c.piece, h, c.here);
+      o.piece = this->startPiece(o, at);
+      this->link(o.piece, h, at.here);
     }
   }
 
   /// An extreme vertex of the cut matching one of the section: its horizontal edge ends here.
-  void closeHorizontalEdge(LineCursor& c)
+  void closeHorizontalEdge(OpenIntervals& o, const Point& at)
   {
-    const int h = this->Section[c.i].edge;
-    this->finishEdge(h, c.here);
-    this->turnAtCorner(c, h);
+    const int h = this->Section[at.i].edge;
+    this->finishEdge(h, at.here);
+    this->turnAtCorner(o, at, h);
   }
 
   /// A new extreme vertex of the section: a horizontal edge starts here.
-  void openHorizontalEdge(LineCursor& c) { this->turnAtCorner(c, this->startHorizontalEdge(c)); }
-
-  /// A non-manifold vertex (Ayala & Vergara, section 3.3): a brink of the cut contains a vertex of
-  /// the section. The vertex is split: the brink's piece and the section's horizontal edge
-  /// end there and new ones start; the four edges are paired once the faces are known.
-  void splitAtNonManifoldVertex(LineCursor& c)
+  void openHorizontalEdge(OpenIntervals& o, const Point& at)
   {
-    const int hOld = this->Section[c.i].edge;
-    this->finishEdge(hOld, c.here);
-    this->finishEdge(c.piece, c.here);
-    const int below = c.piece;
-    c.piece = this->startPiece(c);
-    const int hNew = this->startHorizontalEdge(c);
-    this->NonManifold.push_back({ c.here, { hOld, hNew, below, c.piece } });
+    const int h = this->startHorizontalEdge(o, at);
+    this->turnAtCorner(o, at, h);
+  }
+
+  /// A non-manifold vertex (Ayala & Vergara, section 3.3): a brink of the cut contains a
+  /// vertex of the section. The vertex is split: the brink's piece and the section's
+  /// horizontal edge end there and new ones start; the four edges are paired once the faces
+  /// are known.
+  void splitAtNonManifoldVertex(OpenIntervals& o, const Point& at)
+  {
+    const int hOld = this->Section[at.i].edge;
+    this->finishEdge(hOld, at.here);
+    this->finishEdge(o.piece, at.here);
+    const int below = o.piece;
+    o.piece = this->startPiece(o, at);
+    const int hNew = this->startHorizontalEdge(o, at);
+    this->NonManifold.push_back({ at.here, { hOld, hNew, below, o.piece } });
     if (this->MergeAtVertices)
     {
-      this->unite(c.prevInterval, c.newInterval);
-      c.newTouched = true;
+      this->unite(o.prevInterval, o.newInterval);
+      o.newTouched = true;
     }
   }
 
