@@ -18,6 +18,7 @@
 #include "RadixSort.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 namespace vbr

@@ -27,6 +27,7 @@
 #include "UnionFind.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <iterator>
 #include <limits>
 #include <stdexcept>

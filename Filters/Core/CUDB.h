@@ -20,6 +20,7 @@
 #include "Geometry.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

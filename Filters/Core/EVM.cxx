@@ -21,6 +21,7 @@
 #include <cassert>
 #include <cctype>
 #include <stdexcept>
+#include <utility>
 
 namespace vbr
 {

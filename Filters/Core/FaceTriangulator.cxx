@@ -15,9 +15,11 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <list>
 #include <unordered_map>
+#include <utility>
 
 namespace vbr
 {

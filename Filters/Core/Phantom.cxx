@@ -5,6 +5,7 @@
 #include "Phantom.h"
 
 #include <cmath>
+#include <cstddef>
 
 namespace vbr
 {

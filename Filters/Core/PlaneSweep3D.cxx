@@ -15,6 +15,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace vbr
 {

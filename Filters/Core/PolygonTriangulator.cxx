@@ -10,7 +10,9 @@
 #include "PolygonTriangulator.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
+#include <utility>
 
 namespace vbr
 {

@@ -25,6 +25,7 @@
 #include "Geometry.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

@@ -23,6 +23,9 @@
 #include "GridPointIndex.h"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdlib>
 #include <deque>
 #include <iterator>
 #include <limits>
@@ -31,6 +34,7 @@
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 namespace vbr
 {
@@ -47,11 +51,12 @@ std::array<int, 3> signsOf(const Surfel& s)
   return signs;
 }
 
-/// Whether surfel s meets the surfels of face f (other than s) along one arc of its
-/// boundary: 1 to 3 consecutive shared edges, and no other vertex of s touched by f. Adding
-/// s to the disk f then leaves a disk; taking s out of the disk f + s does too when, in
-/// addition, f fills the umbrellas of the vertices inside the arc. Vertices are checked by
-/// walking their umbrellas, so no per-face state is needed.
+/// Condition 1 of Francon & Papier (section 3), "we keep a topological disk": whether
+/// surfel s meets the surfels of face f (other than s) along one arc of its boundary: 1 to 3
+/// consecutive shared edges, and no other vertex of s touched by f. Adding s to the disk f then
+/// leaves a disk; taking s out of the disk f + s does too when, in addition, f fills the umbrellas
+/// of the vertices inside the arc. Vertices are checked by walking their umbrellas, so no per-face
+/// state is needed.
 bool meetsAlongOneArc(const SurfelGraph& graph,
   const std::vector<std::uint32_t>& faceOf,
   std::uint32_t s,
@@ -151,8 +156,9 @@ private:
     this->Poly->faces[f].plane = this->Recognizer.plane();
   }
 
-  /// Breadth first over the queued surfels: each joins face f if f stays a disk of one
-  /// standard plane.
+  /// The growth of face f over its queue q(f) (Francon & Papier, section 3), breadth first
+  /// ("the propagation of a circular wave"): each queued surfel joins f if f stays a disk
+  /// (condition 1) of one standard plane (condition 2).
   void drainWave(std::uint32_t f)
   {
     while (!this->Wave.empty())
@@ -323,7 +329,7 @@ private:
   }
 
   /// The umbrella of a corner of the seed as the first face, when all its surfels are free
-  /// and lie in one standard plane.
+  /// and lie in one standard plane (the seed of one umbrella that Francon & Papier prefer).
   bool seedUmbrella(std::uint32_t seed, std::uint32_t f)
   {
     for (int k = 0; k < 4; ++k)
@@ -403,9 +409,10 @@ private:
   std::uint32_t DepthLimit;
 };
 
-/// The boundary loops of disk faces, counter-clockwise seen from outside, with the face
-/// beyond each loop edge. Each boundary vertex of a disk starts exactly one boundary edge,
-/// kept per vertex in arrays stamped with the face.
+/// The output of Francon & Papier (section 3), each face's boundary: the loops of disk
+/// faces, counter-clockwise seen from outside, with the face beyond each loop edge. Each
+/// boundary vertex of a disk starts exactly one boundary edge, kept per vertex in arrays
+/// stamped with the face.
 class LoopTracer
 {
 public:
@@ -542,7 +549,8 @@ void dropEmptyFaces(Polyhedron& poly)
 }
 
 /// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
-/// each meets the umbrella in one run).
+/// each meets the umbrella in one run). Francon & Papier's standard vertices are those of
+/// three faces or more.
 std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph,
   const Polyhedron& poly,
   ProgressPoll& poll)

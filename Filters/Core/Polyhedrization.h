@@ -18,6 +18,8 @@
 #include "StandardPlane.h"
 #include "SurfelGraph.h"
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -13,8 +13,10 @@
 #include "StandardPlane.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <numeric>
+#include <utility>
 
 namespace vbr
 {

@@ -1,7 +1,8 @@
 // Exact, incremental recognition of pieces of standard arithmetic planes.
 //
 // A standard plane (a, b, c, mu) is the set of integer points p with
-//   mu <= a*x + b*y + c*z < mu + |a| + |b| + |c|.
+//   mu <= a*x + b*y + c*z < mu + |a| + |b| + |c|
+// (the arithmetic plane of width omega = |a| + |b| + |c|, Francon & Papier, section 2).
 // Its unit squares form a 2-manifold: the boundary of the digital half-space of the voxels
 // whose centres satisfy n.centre < mu + omega / 2. A surfel of that boundary has its outward
 // normal s*e_d with s*n_d > 0, so the recognizer also takes the orientation of the surfels:
@@ -24,6 +25,7 @@
 #include "GridPointIndex.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

@@ -14,6 +14,7 @@
 #include "Surfels.h"
 #include "UnionFind.h"
 
+#include <cstddef>
 #include <stdexcept>
 
 namespace vbr

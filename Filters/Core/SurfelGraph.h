@@ -19,6 +19,7 @@
 #include "Surfels.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

@@ -1,6 +1,7 @@
 #include "BruteForce.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <deque>
 #include <random>

@@ -9,7 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <map>
+#include <utility>
+#include <vector>
 
 namespace
 {

@@ -6,8 +6,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <fstream>
+#include <functional>
+#include <set>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace
 {

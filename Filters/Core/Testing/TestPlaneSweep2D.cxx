@@ -7,7 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdlib>
 #include <map>
+#include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace
 {
