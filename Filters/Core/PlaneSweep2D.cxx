@@ -8,8 +8,9 @@
 // horizontal edge (closeHorizontalEdge), a new one starts one (openHorizontalEdge), a brink of
 // the cut running through a vertex of the section is a non-manifold vertex
 // (splitAtNonManifoldVertex, section 3.3); at each corner the vertical piece of the brink and
-// the horizontal edge are linked (turnAtCorner). leavePoint records the first intervals of
-// faces for the second sweep. After the sweep, pairNonManifoldVertices applies the rules of
+// the horizontal edge are linked (turnAtCorner). An interval of the next section that ends
+// without having met the previous section is recorded as a candidate first interval of a face
+// for the second sweep. After the sweep, pairNonManifoldVertices applies the rules of
 // Fig. 7 at the split vertices, numberFaces numbers the faces in order of first appearance,
 // orderEdgesIntoLoops is the domino step, and classifyContours is the second sweep (outer
 // loops, holes and the inclusion tree from 1D tests on the stored section ends).
