@@ -7,6 +7,8 @@
 #include "Execution.h"
 #include "Selection.h"
 
+#include "vtkVoxelSelection.h"
+
 #include "vtkDataArray.h"
 #include "vtkIndent.h"
 #include "vtkIntArray.h"
@@ -28,6 +30,7 @@ class vtkAlgorithm;
 class vtkFieldData;
 class vtkImageData;
 class vtkInformationVector;
+class vtkMultiProcessController;
 class vtkPolyData;
 
 namespace vbr
@@ -66,6 +69,17 @@ std::string describeVoxels(vtkImageData* image,
   bool flatImagesAs2D,
   VoxelGrid& grid);
 
+/// Origin, spacing and direction matrix of the image into `grid`.
+void readGeometry(vtkImageData* image, VoxelGrid& grid);
+
+/// The voxels along each axis, the first point, the vertex shifts and the flat axis of an
+/// extent (the rest of `grid` is kept). Returns a problem, or an empty string; an extent
+/// without points gives dims 0.
+std::string describeExtent(const int extent[6],
+  bool cellData,
+  bool flatImagesAs2D,
+  VoxelGrid& grid);
+
 /// An error message when the grid's spacing or origin is not finite or its direction matrix
 /// is singular (the output would hold NaN geometry); else an empty string.
 std::string geometryProblem(const VoxelGrid& grid);
@@ -73,8 +87,8 @@ std::string geometryProblem(const VoxelGrid& grid);
 /// Checks the input array of a filter and describes its voxels: point or cell data, the
 /// component in range, tuples matching the image. Arrays not stored as contiguous tuples
 /// (SOA, implicit arrays) are copied once into `contiguous`, and `scalars` then points to
-/// the copy; for the magnitude (MagnitudeComponent, or the number of components) the copy is
-/// the norms of the tuples and `component` becomes 0. Returns an error message, or an empty
+/// the copy; for the magnitude (vtkVoxelSelection::MAGNITUDE, or the number of components) the copy
+/// is the norms of the tuples and `component` becomes 0. Returns an error message, or an empty
 /// string.
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,
@@ -98,17 +112,6 @@ void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples);
 
 /// Appends a one-value field array.
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value);
-
-/// Name of a SelectionMode value ("Positive", "Range", "Labels").
-const char* selectionModeName(int mode);
-
-/// How voxels are selected (the SelectionMode of the filters).
-enum SelectionMode
-{
-  SelectPositive = 0, ///< value > 0
-  SelectRange = 1,    ///< lower <= value <= upper
-  SelectLabels = 2    ///< every distinct value other than the background, each on its own
-};
 
 /// A label exactly as the selected values' type holds it (int64 labels above 2^53 stay
 /// exact, unlike through a double): the value's bytes, read back in that type. The type is
@@ -220,7 +223,7 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
   };
   Box whole;
   whole.hi = grid.dims;
-  if (mode == SelectLabels)
+  if (mode == vtkVoxelSelection::LABELS)
   {
     // A background the type cannot hold exactly means every value is a label.
     T typedBackground{};
@@ -232,7 +235,7 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
       add(label, entry.second, [label](T v) { return v == label; });
     }
   }
-  else if (mode == SelectPositive)
+  else if (mode == vtkVoxelSelection::POSITIVE)
   {
     add(T(1), whole, [](T v) { return v > T(0); });
   }
@@ -313,10 +316,6 @@ bool dispatchScalars(vtkDataArray* scalars, int component, const VoxelGrid& grid
   return true;
 }
 
-/// ArrayComponent value that selects on the Euclidean norm of each tuple (the number of
-/// components, what ParaView's component selectors and vtkThreshold use, means the same).
-constexpr int MagnitudeComponent = -1;
-
 /// Labels mode warns before the work when the selection has more distinct labels than this
 /// (each label is extracted on its own: a grey-value volume in Labels mode runs for minutes).
 constexpr std::size_t ManyLabels = 1000;
@@ -324,7 +323,7 @@ constexpr std::size_t ManyLabels = 1000;
 /// The selection properties the filters share.
 struct SelectionSettings
 {
-  int mode = SelectPositive;
+  int mode = vtkVoxelSelection::POSITIVE;
   double lower = 1.0;
   double upper = VTK_DOUBLE_MAX;
   double background = 0.0;
@@ -337,18 +336,34 @@ struct SelectionSettings
   double bytesPerVoxel = 1.0 / 8.0;
 };
 
-/// The selection properties of a filter (through its public getters).
+/// The values of a selection.
+SelectionSettings selectionSettingsOf(vtkVoxelSelection* selection);
+/// The values of a filter's selection (see vtkVoxelSelectionMacro).
 template<typename Filter>
 SelectionSettings selectionSettingsOf(Filter* filter)
 {
-  SelectionSettings s;
-  s.mode = filter->GetSelectionMode();
-  s.lower = filter->GetLowerThreshold();
-  s.upper = filter->GetUpperThreshold();
-  s.background = filter->GetBackgroundValue();
-  s.component = filter->GetArrayComponent();
-  return s;
+  return selectionSettingsOf(filter->GetSelection());
 }
+
+/// A rank's piece of a distributed image.
+struct Piece
+{
+  vtkMultiProcessController* controller = nullptr; ///< null when not distributed
+  int rank = 0;
+  int ranks = 1;
+  VoxelGrid whole;                       ///< the whole image's voxel grid
+  std::array<std::int32_t, 3> offset{};  ///< whole-grid voxel of the piece's voxel 0
+  std::array<std::int32_t, 3> ownedLo{}; ///< owned voxels [ownedLo, ownedHi), piece voxels
+  std::array<std::int32_t, 3> ownedHi{};
+  std::int64_t bytesSent = 0;     ///< by this rank, in the exchanges so far
+  std::int64_t bytesReceived = 0; ///< by this rank, in the exchanges so far
+
+  bool distributed() const { return this->controller != nullptr; }
+};
+
+/// Under MPI, on rank 0: field data NumberOfRanks and BytesExchanged (what the ranks sent
+/// each other for this result). No-op otherwise.
+void addDistributionFields(vtkFieldData* fd, const Piece& piece);
 
 /// The objects of a filter's input image, ready to process.
 struct InputObjects
@@ -360,6 +375,9 @@ struct InputObjects
   /// for the magnitude.
   int labelType = VTK_DOUBLE;
   vtkSmartPointer<vtkDataArray> contiguous; ///< keeps a copied input array alive for objects
+  /// The rank's piece under MPI (see vtkVoxelBRepDistributed.h): then on rank 0 `grid` and
+  /// `objects` are the whole image's, and the other ranks have no objects.
+  Piece piece;
 };
 
 /// Reads the objects of `image` carried by `scalars` (the filter's input array, possibly
@@ -371,6 +389,13 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   int association,
   const SelectionSettings& settings,
   InputObjects& out);
+
+/// Asks the input of `input` (a port's information vector) for its whole extent, whatever
+/// piece the output is asked for: the filters' results (faces, components) are global.
+void requestWholeExtent(vtkInformationVector* input);
+/// Removes the extent, origin and spacing the executive copies from an image input to output
+/// `port`, whose data is not an image.
+void removeImageInformation(vtkInformationVector* outputVector, int port);
 
 /// Runs a filter's execution. An exception (out of memory, an inconsistency the core
 /// detected) becomes an error "<what> failed: ..." and empties every output: never a crash.
@@ -388,9 +413,6 @@ vtkSmartPointer<vtkDataArray> tupleNorms(vtkDataArray* scalars);
 /// output has the same range, so a shared map needs no rescale), and the active cell scalars:
 /// `Label` in Labels mode, else `FaceColor`. No-op without a FaceId array.
 void setBoundaryColoring(vtkPolyData* output, bool labelsMode);
-
-/// PrintSelf lines of the selection properties.
-void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings);
 
 } // namespace vtk
 } // namespace vbr
