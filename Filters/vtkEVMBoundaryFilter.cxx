@@ -4,6 +4,7 @@
 #include "EVM.h"
 #include "FaceTriangulator.h"
 #include "GridPointIndex.h"
+#include "PlaneSweep3D.h"
 #include "RadixSort.h"
 #include "Surfels.h"
 #include "vtkVoxelBRepAdapters.h"
@@ -269,27 +270,27 @@ void appendSurfelCells(const vbr::vtk::Selected& object,
   corners.reserve(n * surfels.size());
   for (const vbr::Surfel& s : surfels)
   {
-    const Point3& c = s.corner;
+    const Point3 c = s.corner(0);
     if (planar)
     {
       Point3 e = c;
-      ++e[1 - s.axis]; // the in-plane axis the pixel edge runs along
-      const bool flip = s.normalSign * (s.axis == 0 ? 1 : -1) < 0;
+      ++e[1 - s.axis()]; // the in-plane axis the pixel edge runs along
+      const bool flip = s.sign() * (s.axis() == 0 ? 1 : -1) < 0;
       corners.push_back(flip ? e : c);
       corners.push_back(flip ? c : e);
       continue;
     }
     // The unit square spanned by the two other axes from its corner, normal outwards.
-    const int a = (s.axis + 1) % 3, b = (s.axis + 2) % 3;
+    const int a = (s.axis() + 1) % 3, b = (s.axis() + 2) % 3;
     Point3 p1 = c, p2 = c, p3 = c;
     ++p1[a];
     ++p2[a];
     ++p2[b];
     ++p3[b];
     corners.push_back(c);
-    corners.push_back(s.normalSign < 0 ? p3 : p1);
+    corners.push_back(s.sign() < 0 ? p3 : p1);
     corners.push_back(p2);
-    corners.push_back(s.normalSign < 0 ? p1 : p3);
+    corners.push_back(s.sign() < 0 ? p1 : p3);
   }
   const std::vector<vtkIdType> ids = builder.pointIds(corners, object.offset);
   for (std::size_t i = 0; i < surfels.size(); ++i)
@@ -437,7 +438,7 @@ bool boundaryOf(const vbr::EVM& evm,
     vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
     if (planar)
       brep = vbr::extractBoundary2D(evm, connectivity);
-    else if (!vbr::extractBoundary3D(evm, connectivity, exec, brep))
+    else if (!vbr::planeSweep3D(evm, connectivity, exec, brep))
       return false;
   }
   vtkLogScopeF(TRACE, "T-junction vertices");

@@ -525,7 +525,7 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
         outline.loop.push_back(o.graph.vertexPointel[v]);
       outlines.push_back(std::move(outline));
     }
-    std::vector<vbr::SurfelGraph::Surfel> surfels;
+    std::vector<vbr::Surfel> surfels;
     vbr::BitVolume voxels;
     problem = vbr::revert(outlines, o.graph.dims, surfels, voxels, exec);
     if (!problem.empty())

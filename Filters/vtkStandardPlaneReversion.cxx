@@ -443,7 +443,7 @@ std::string revertInBox(const std::vector<vbr::FaceOutline>& outlines,
 {
   std::vector<vbr::FaceOutline> boxed;
   std::string problem = outlinesInBox(outlines, grid.dims, boxed, lo, boxDims);
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   if (problem.empty())
     problem = vbr::revert(boxed, boxDims, surfels, voxels, exec);
   return problem;

@@ -524,7 +524,7 @@ ScalarGrid<T> owned(ScalarGrid<T> grid, const InputObjects& in)
 {
   if (!in.piece.distributed())
     return grid;
-  const Box3 box = ownedBox(in.piece, in.axes);
+  const Box box = ownedBox(in.piece, in.axes);
   for (int k = 0; k < 3; ++k)
   {
     grid.data += box.lo[k] * grid.stride[k];

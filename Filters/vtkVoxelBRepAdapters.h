@@ -212,7 +212,7 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
   double background)
 {
   std::vector<Selected> out;
-  auto add = [&out, &grid](T label, const Box3& box, auto selected)
+  auto add = [&out, &grid](T label, const Box& box, auto selected)
   {
     Selected s;
     s.label = LabelValue::of(label);
@@ -221,7 +221,7 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
     { return selectVoxels(grid, box, selected, exec); };
     out.push_back(std::move(s));
   };
-  Box3 whole;
+  Box whole;
   whole.hi = grid.dims;
   if (mode == vtkVoxelSelection::LABELS)
   {

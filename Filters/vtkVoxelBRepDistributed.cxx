@@ -144,7 +144,7 @@ std::vector<long long> localMessage(bool ok, const Piece& piece, const InputObje
   if (!ok)
     return m;
   const bool planar = piece.whole.flatAxis >= 0;
-  const Box3 owned = ownedBox(piece, in.axes);
+  const Box owned = ownedBox(piece, in.axes);
   for (const Selected& object : in.objects)
   {
     const BitVolume voxels = object.select(Execution());
@@ -297,9 +297,9 @@ std::string describePiece(vtkMultiProcessController* controller,
   return std::string();
 }
 
-Box3 ownedBox(const Piece& piece, const std::array<int, 3>& axes)
+Box ownedBox(const Piece& piece, const std::array<int, 3>& axes)
 {
-  Box3 box;
+  Box box;
   for (int k = 0; k < 3; ++k)
   {
     box.lo[k] = piece.ownedLo[axes[k]];

@@ -62,7 +62,7 @@ std::string describePiece(vtkMultiProcessController* controller,
   Piece& piece);
 
 /// The owned voxels of the piece in processing axes.
-Box3 ownedBox(const Piece& piece, const std::array<int, 3>& axes);
+Box ownedBox(const Piece& piece, const std::array<int, 3>& axes);
 
 /// Collective: gathers the objects of every rank on rank 0 as EVMs and merges them there (see
 /// the file comment). On rank 0 `in` then holds the whole image's grid and objects; on the

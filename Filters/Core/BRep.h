@@ -1,11 +1,8 @@
-// EVM -> boundary representation (Aguilera & Ayala's conversion with the 2D plane sweep of
-// Ayala & Vergara): orthogonal faces with holes, oriented outwards.
-//
-// For each axis A the EVM is sorted in the cyclic order (A, B, C) and swept plane of vertices
-// by plane of vertices. Each section follows from the previous one by XOR (formula 1); at cut
-// i the forward difference FD = S(i-1) - S(i) holds the faces whose outward normal is +A and
-// the backward difference BD = S(i) - S(i-1) those facing -A (formula 4). Both are 2D EVMs,
-// turned into faces, holes and loops by sweep2D.
+// The boundary representation of an orthogonal pseudo-polyhedron (or polygon): orthogonal
+// faces with holes, each face a plane perpendicular to an axis with its loops of corners,
+// oriented outwards. The plane sweeps build it (planeSweep3D in PlaneSweep3D.h for a 3D EVM,
+// extractBoundary2D here for a 2D one, both from the 2D solutions of planeSweep2D); the
+// filters triangulate its faces (FaceTriangulator.h) after insertTJunctionVertices.
 #ifndef vbr_BRep_h
 #define vbr_BRep_h
 
@@ -19,8 +16,6 @@
 
 namespace vbr
 {
-
-using Point3 = std::array<Coord, 3>;
 
 struct BRepLoop
 {
@@ -67,11 +62,13 @@ struct BRep
   }
 };
 
-/// Faces of a 3D EVM (any sorting), grouped by normal axis, then plane, then +A before -A.
-/// Returns false (and an empty BRep) when the caller asked to abort.
-bool extractBoundary3D(const EVM& evm,
-  FaceConnectivity connectivity,
-  const Execution& exec,
+/// Appends the faces of a 2D solution (loops in (B, C) of `order`) lying in the plane
+/// A = `position`, facing +A (normalSign +1) or -A: loops are reversed where needed so that
+/// outer loops run counter-clockwise seen from outside.
+void appendFaces(const Boundary2D& b2,
+  const AxisOrder& order,
+  Coord position,
+  int normalSign,
   BRep& out);
 
 /// Faces of a 2D EVM with their inclusion tree; loops run counter-clockwise seen from the

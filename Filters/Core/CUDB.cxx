@@ -1,6 +1,33 @@
+// EVM -> CUDB and the connected components of its boxes (Cruz-Matias & Ayala, sections 3.2 to 3.5).
+//
+// The conversion is Algorithm 1 at its three levels. Along A, the section S(i) of each slice
+// follows from the previous one by XOR with the plane of vertices (nextSection, formula 1).
+// Each section is decomposed line by line along B (SectionDecomposition::build, Algorithm 1 at
+// Dim2): the 1D section of each segment between two lines of vertices is the XOR of the
+// previous one with the line, and its intervals are the boxes of Algorithm 2, AppendBox
+// (appendLineBoxes): an interval equal to one of the previous segment continues that
+// rectangle (the 2D compaction), any other starts one; rectangles of consecutive segments
+// that meet are contacts along B. Slice after slice (SliceSweep::nextSlice), the rectangles
+// equal to one of the previous section continue its box along A (compactRectangles, the 3D
+// compaction) and the others start boxes; addContactsAlongB and addContactsAlongA record the
+// paper's backward and forward neighbours once per pair, as contacts (face contacts, or
+// edge/vertex contacts that are non-manifold). A large 3D sweep is cut into pieces of planes
+// (SweptPiece) swept concurrently from the sections entering them and joined by stitch: a
+// piece's first rectangles are ghost boxes standing for the open boxes of the piece before.
+// The OUDB (buildOUDB) is the same sweep without compaction; toEVM (section 3.3) XORs the
+// boxes' corners; volume (section 3.4) adds up the boxes.
+//
+// The labelling (section 3.5) reads the contacts: earlierNeighbours lists at each box the
+// boxes it is compared with (all created before it), labelProvisionally is Algorithm 3 with
+// the union-find's unite as Algorithm 4 (makeEquivalence), relabel is Algorithm 5. paintBoxes
+// writes a value per box into a label grid, parallel over slices.
+
 #include "CUDB.h"
 
+#include "UnionFind.h"
+
 #include <algorithm>
+#include <cstddef>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
@@ -11,14 +38,6 @@ namespace vbr
 
 namespace
 {
-
-/// A vertex of a 2D section: (B, C) of the 3D sorting.
-struct Point2
-{
-  Coord b, c;
-  bool operator<(const Point2& o) const { return b < o.b || (b == o.b && c < o.c); }
-  bool operator==(const Point2& o) const { return b == o.b && c == o.c; }
-};
 
 /// A rectangle of a section's 2D CUDB: [b0, b1) x [c0, c1).
 struct Rect
@@ -62,7 +81,7 @@ bool overlap(Coord a0, Coord a1, Coord b0, Coord b1)
 
 constexpr Coord Open = std::numeric_limits<Coord>::max(); ///< end not reached yet
 
-/// The 2D CUDB of one section (the base case of Algorithm 1 with Algorithm 2 at Dim2):
+/// The 2D CUDB of one section (Algorithm 1 at Dim2, with Algorithm 2, AppendBox, for its lines):
 /// line by line, the 1D section is the XOR of the previous one with the line of vertices;
 /// an interval equal to one of the previous line extends its rectangle, any other interval
 /// starts a new one. Rectangles of consecutive lines that meet are contacts along B.
@@ -92,10 +111,10 @@ public:
     const std::size_t n = section.size();
     while (i < n)
     {
-      const Coord b = section[i].b;
+      const Coord b = section[i].u;
       this->Line.clear();
-      for (; i < n && section[i].b == b; ++i)
-        this->Line.push_back(section[i].c);
+      for (; i < n && section[i].u == b; ++i)
+        this->Line.push_back(section[i].v);
       this->Next.clear();
       std::set_symmetric_difference(this->Breaks.begin(),
         this->Breaks.end(),
@@ -103,15 +122,16 @@ public:
         this->Line.end(),
         std::back_inserter(this->Next));
       this->Breaks.swap(this->Next);
-      this->nextLine(b);
+      this->appendLineBoxes(b);
     }
     if (!this->Breaks.empty())
       throw std::invalid_argument("section is not closed: not a valid EVM");
   }
 
 private:
-  /// Line b: the segment before it ends, the one after it has the 1D section `Breaks`.
-  void nextLine(Coord b)
+  /// Algorithm 2 (AppendBox) for the brinks of line b, with the 2D compaction: the segment
+  /// before b ends, the one after it has the 1D section `Breaks`.
+  void appendLineBoxes(Coord b)
   {
     if (this->Breaks.size() % 2 != 0)
       throw std::invalid_argument("odd 1D section: not a valid EVM");
@@ -173,8 +193,9 @@ private:
   bool LastLineOnly = false;
 };
 
-/// The section after plane of vertices [begin, end): previous section XOR its projection.
-void advanceSection(const Vertex* begin,
+/// Formula (1) of Cruz-Matias & Ayala: the section after plane of vertices [begin, end) is the
+/// previous section XOR the plane's projection.
+void nextSection(const Vertex* begin,
   const Vertex* end,
   std::vector<Point2>& section,
   std::vector<Point2>& scratch)
@@ -207,8 +228,8 @@ Box boxOf(const Rect& r, Coord a0, Coord a1, const AxisOrder& order)
   return box;
 }
 
-/// The 3D part of Algorithm 1: slice after slice, the rectangles of the section are matched
-/// with those of the previous section; an equal rectangle extends its box along A (3D
+/// The 3D part of Algorithm 1 (at Dim3): slice after slice, the rectangles of the section are
+/// matched with those of the previous section; an equal rectangle extends its box along A (3D
 /// compaction), any other starts a box. Contacts along A join the boxes that end at the
 /// plane between two slices to the boxes that start there.
 class SliceSweep
@@ -243,7 +264,7 @@ public:
     this->CurrentBox.assign(n, 0);
     this->CurrentIsNew.assign(n, 1);
     this->PreviousContinues.assign(this->Previous.rects.size(), 0);
-    this->matchRectangles(a);
+    this->compactRectangles(a);
     this->addContactsAlongB();
     this->addContactsAlongA();
     std::swap(this->Previous, this->Current);
@@ -251,7 +272,10 @@ public:
   }
 
 private:
-  void matchRectangles(Coord a)
+  /// The 3D compaction (Algorithm 1's loop over SliceBoxesTmp): a rectangle equal to one of
+  /// the previous section continues its box, any other starts a box at a; boxes of the
+  /// previous section not continued end at a.
+  void compactRectangles(Coord a)
   {
     const auto& prev = this->Previous.rects;
     const auto& cur = this->Current.rects;
@@ -413,7 +437,7 @@ struct SweptPiece
         this->aborted = true;
         return;
       }
-      advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+      nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
       sweep.nextSlice(v[starts[k]][0], section);
     }
     this->openBoxes = sweep.openBoxes();
@@ -469,7 +493,7 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces)
   if (evm.dimension() == 2)
   {
     // A 2D EVM is a single section: its rectangles are the boxes, one voxel thick.
-    advanceSection(v.data(), v.data() + v.size(), section, scratch);
+    nextSection(v.data(), v.data() + v.size(), section, scratch);
     SectionDecomposition d;
     d.keepLastLineOnly(true);
     d.build(section);
@@ -495,7 +519,7 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces)
   for (int p = 1; p < pieces; ++p)
   {
     for (std::size_t k = firstPlane[p - 1]; k < firstPlane[p]; ++k)
-      advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+      nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
     entering[p] = section;
   }
   std::vector<SweptPiece> swept(pieces);
@@ -542,13 +566,13 @@ std::vector<Box> buildOUDB(const EVM& evm)
   };
   if (evm.dimension() == 2)
   {
-    advanceSection(v.data(), v.data() + v.size(), section, scratch);
+    nextSection(v.data(), v.data() + v.size(), section, scratch);
     addBoxes(0, 1);
     return boxes;
   }
   for (std::size_t k = 0; k + 1 < starts.size(); ++k)
   {
-    advanceSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+    nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
     if (!section.empty())
       addBoxes(v[starts[k]][0], v[starts[k + 1]][0]);
   }
@@ -613,97 +637,77 @@ CUDB::NeighbourLists CUDB::neighbours(int axisRole, bool forward, Connectivity c
 namespace
 {
 
-/// Provisional labels and their equivalences (Algorithm 4): each label points to a smaller
-/// equivalent one, or to itself. Only labels that met another change.
-class Equivalences
+/// The neighbours each box is compared with when it is labelled (the paper's
+/// ABackwardNeighbors and BBackwardNeighbors together): every usable contact listed at the
+/// later of its two boxes in creation order, pointing to the earlier one, so that each box
+/// is labelled after all the boxes it is compared with.
+CUDB::NeighbourLists earlierNeighbours(const CUDB& cudb, Connectivity connectivity)
 {
-public:
-  std::uint32_t newLabel()
-  {
-    this->Parent.push_back(static_cast<std::uint32_t>(this->Parent.size()));
-    return this->Parent.back();
-  }
+  const std::size_t n = cudb.boxes.size();
+  CUDB::NeighbourLists lists;
+  lists.start.assign(n + 1, 0);
+  auto usable = [&](const BoxContact& c) { return connectivity == Connectivity::Vertex || c.face; };
+  for (const BoxContact& c : cudb.contacts)
+    if (usable(c))
+      ++lists.start[std::max(c.backward, c.forward) + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    lists.start[i + 1] += lists.start[i];
+  lists.boxes.resize(lists.start.back());
+  std::vector<std::uint32_t> fill(lists.start.begin(), lists.start.end() - 1);
+  for (const BoxContact& c : cudb.contacts)
+    if (usable(c))
+      lists.boxes[fill[std::max(c.backward, c.forward)]++] = std::min(c.backward, c.forward);
+  return lists;
+}
 
-  std::uint32_t resolve(std::uint32_t label)
+/// Algorithm 3 (CCL), the labelling pass: boxes in creation order take the smallest label of
+/// their backward neighbours, or a new label when they have none; where two labels meet, the
+/// equivalence is recorded (Algorithm 4, makeEquivalence: the union-find's unite, which keeps
+/// the smaller label as representative). Provisional labels are 0-based here.
+std::vector<std::uint32_t> labelProvisionally(const CUDB::NeighbourLists& earlier,
+  UnionFind& equivalences)
+{
+  const std::size_t n = earlier.start.size() - 1;
+  std::vector<std::uint32_t> label(n, 0);
+  for (std::size_t b = 0; b < n; ++b)
   {
-    std::uint32_t root = label;
-    while (this->Parent[root] != root)
-      root = this->Parent[root];
-    while (this->Parent[label] != root) // path compression
+    if (earlier.start[b] == earlier.start[b + 1])
     {
-      const std::uint32_t next = this->Parent[label];
-      this->Parent[label] = root;
-      label = next;
+      label[b] = equivalences.add();
+      continue;
     }
-    return root;
+    std::uint32_t l = equivalences.find(label[earlier.boxes[earlier.start[b]]]);
+    for (std::uint32_t k = earlier.start[b] + 1; k < earlier.start[b + 1]; ++k)
+      l = equivalences.unite(l, label[earlier.boxes[k]]);
+    label[b] = l;
   }
+  return label;
+}
 
-  /// Records that a and b are the same component; returns the smaller representative.
-  std::uint32_t make(std::uint32_t a, std::uint32_t b)
+/// Algorithm 5 (relabeling): every label replaced by the representative of its class, then
+/// the classes numbered 1..count in order of first appearance along the boxes. Returns count.
+std::uint32_t relabel(UnionFind& equivalences, std::vector<std::uint32_t>& label)
+{
+  std::uint32_t count = 0;
+  std::vector<std::uint32_t> consecutive(equivalences.size(), 0);
+  for (std::uint32_t& l : label)
   {
-    a = this->resolve(a);
-    b = this->resolve(b);
-    if (a == b)
-      return a;
-    if (b < a)
-      std::swap(a, b);
-    this->Parent[b] = a;
-    return a;
+    const std::uint32_t root = equivalences.find(l);
+    if (consecutive[root] == 0)
+      consecutive[root] = ++count;
+    l = consecutive[root];
   }
-
-  std::size_t size() const { return this->Parent.size(); }
-
-private:
-  std::vector<std::uint32_t> Parent;
-};
+  return count;
+}
 
 } // namespace
 
 Components labelComponents(const CUDB& cudb, Connectivity connectivity)
 {
-  const std::size_t n = cudb.boxes.size();
-  // Each contact is listed at its later box, so that boxes are labelled in creation order
-  // after all the neighbours they are compared with.
-  std::vector<std::uint32_t> start(n + 1, 0);
-  auto usable = [&](const BoxContact& c) { return connectivity == Connectivity::Vertex || c.face; };
-  for (const BoxContact& c : cudb.contacts)
-    if (usable(c))
-      ++start[std::max(c.backward, c.forward) + 1];
-  for (std::size_t i = 0; i < n; ++i)
-    start[i + 1] += start[i];
-  std::vector<std::uint32_t> earlier(start.back());
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (const BoxContact& c : cudb.contacts)
-      if (usable(c))
-        earlier[fill[std::max(c.backward, c.forward)]++] = std::min(c.backward, c.forward);
-  }
-
-  // Algorithm 3: first pass, provisional labels and equivalences.
+  UnionFind equivalences;
   Components result;
-  result.boxLabel.assign(n, 0);
-  Equivalences eq;
-  for (std::size_t b = 0; b < n; ++b)
-  {
-    if (start[b] == start[b + 1])
-    {
-      result.boxLabel[b] = eq.newLabel();
-      continue;
-    }
-    std::uint32_t label = eq.resolve(result.boxLabel[earlier[start[b]]]);
-    for (std::uint32_t k = start[b] + 1; k < start[b + 1]; ++k)
-      label = eq.make(label, result.boxLabel[earlier[k]]);
-    result.boxLabel[b] = label;
-  }
-  // Algorithm 5: resolve the equivalences, consecutive labels by first appearance.
-  std::vector<std::uint32_t> consecutive(eq.size(), 0);
-  for (std::size_t b = 0; b < n; ++b)
-  {
-    const std::uint32_t root = eq.resolve(result.boxLabel[b]);
-    if (consecutive[root] == 0)
-      consecutive[root] = ++result.count;
-    result.boxLabel[b] = consecutive[root];
-  }
+  result.boxLabel = labelProvisionally(earlierNeighbours(cudb, connectivity), equivalences);
+  result.count = relabel(equivalences, result.boxLabel);
   return result;
 }
 

@@ -17,26 +17,15 @@
 
 #include "EVM.h"
 #include "Execution.h"
+#include "Geometry.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace vbr
 {
-
-/// Voxels [lo, hi) along x, y and z.
-struct Box
-{
-  std::array<Coord, 3> lo{ 0, 0, 0 };
-  std::array<Coord, 3> hi{ 0, 0, 0 };
-
-  std::int64_t volume() const
-  {
-    return std::int64_t(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-  }
-  bool operator==(const Box& o) const { return this->lo == o.lo && this->hi == o.hi; }
-};
 
 /// Two boxes that touch across a plane perpendicular to `axis` (a world axis): `backward`
 /// ends where `forward` starts. `face` is set when they share a piece of face of positive
@@ -80,6 +69,8 @@ public:
     std::vector<std::uint32_t> boxes;
   };
   /// axisRole 0 = A, 1 = B (in 2D only B: the rectangles' neighbours across lines).
+  /// Test oracle only: no filter calls it (labelComponents reads `contacts` directly); the
+  /// tests check that the paper's arrays built from the contacts agree in both senses.
   NeighbourLists neighbours(int axisRole, bool forward, Connectivity connectivity) const;
 };
 
@@ -91,10 +82,13 @@ public:
 bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces = 0);
 CUDB buildCUDB(const EVM& evm);
 
-/// EVM -> OUDB: the boxes without compaction, in their order.
+/// EVM -> OUDB (Cruz-Matias & Ayala, section 2.2): the boxes without compaction, in their order.
+/// Test oracle only: the tests check that the CUDB covers the same voxels with fewer boxes
+/// and that oudbBoxCount counts these boxes.
 std::vector<Box> buildOUDB(const EVM& evm);
 
-/// CUDB -> EVM: the XOR of the boxes' corners (the boxes are disjoint), in the CUDB's order.
+/// CUDB -> EVM (Cruz-Matias & Ayala, section 3.3): the XOR of the boxes' corners (the boxes are
+/// disjoint), in the CUDB's order. Test oracle only: the round trip EVM -> CUDB -> EVM.
 EVM toEVM(const CUDB& cudb);
 
 /// Connected components of the boxes by the paper's Algorithms 3 to 5: boxes in creation

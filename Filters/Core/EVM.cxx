@@ -1,10 +1,27 @@
+// Extreme vertices: extraction, sorting and the way back to voxels.
+//
+// Extraction (extractEVM) is one pass over the bit rows: for each row of vertices (y, z) the
+// XOR of the four voxel rows around it holds, per x, the parity of the voxels on that side;
+// vertex x is extreme where that parity changes (rowParityToVertexBits), i.e. where an odd
+// number of the eight voxels around it is set. The set bits are appended as vertices in
+// order (appendRowVertices), planes of vertices in parallel, then concatenated: the result is
+// ZYX-sorted without sorting. extractEVM2D does the same with the two pixel rows around a
+// line of vertices.
+//
+// Sorting (sortedAs): when the new order is a rotation or a swap of the old one, a single
+// stable bucket pass on one coordinate keeps the order of the two others (bucketedOn);
+// otherwise the coordinates are packed into keys and radix-sorted. toVoxels is the inverse
+// of extraction: a parity grid of the vertices, XOR-prefixed along each in-plane axis.
+
 #include "EVM.h"
 
 #include "RadixSort.h"
 
 #include <algorithm>
 #include <cassert>
+#include <cctype>
 #include <stdexcept>
+#include <utility>
 
 namespace vbr
 {
@@ -13,11 +30,6 @@ namespace
 {
 
 const char* const AxisNames = "XYZ";
-
-int countTrailingZeros(Word w)
-{
-  return __builtin_ctzll(w);
-}
 
 /// Appends the set bits of a row of vertex words as vertices (a, b, x).
 void appendRowVertices(const Word* bits,
@@ -56,9 +68,7 @@ std::vector<Vertex> concatenate(std::vector<std::vector<Vertex>>& parts)
 {
   std::size_t total = 0;
   for (const auto& p : parts)
-  {
     total += p.size();
-  }
   std::vector<Vertex> out;
   out.reserve(total);
   for (auto& p : parts)
@@ -74,18 +84,14 @@ std::vector<Vertex> concatenate(std::vector<std::vector<Vertex>>& parts)
 AxisOrder axisOrderFromName(const std::string& name)
 {
   if (name.size() != 3)
-  {
     throw std::invalid_argument("axis order must have three letters: " + name);
-  }
   AxisOrder order{};
   int seen = 0;
   for (int k = 0; k < 3; ++k)
   {
     const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(name[k])));
     if (c < 'X' || c > 'Z' || (seen & (1 << (c - 'X'))))
-    {
       throw std::invalid_argument("not an ABC sorting: " + name);
-    }
     order[k] = c - 'X';
     seen |= 1 << order[k];
   }
@@ -114,18 +120,14 @@ std::array<Coord, 3> EVM::worldVertex(std::size_t i) const
 {
   std::array<Coord, 3> w{ 0, 0, 0 };
   for (int k = 0; k < 3; ++k)
-  {
     w[this->Order[k]] = this->Vertices[i][k];
-  }
   return w;
 }
 
 EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
 {
   if (this->Dimension == 2 && order[0] != this->Order[0])
-  {
     throw std::invalid_argument("a 2D EVM keeps its plane normal as first axis");
-  }
   if (this->Dimension == 3 && !this->Vertices.empty())
   {
     // A stable bucket pass on one coordinate keeps the order of the two others: from
@@ -192,12 +194,8 @@ std::vector<std::size_t> EVM::planeStarts() const
   const int key = this->Dimension == 3 ? 0 : 1;
   std::vector<std::size_t> starts;
   for (std::size_t i = 0; i < this->Vertices.size(); ++i)
-  {
     if (i == 0 || this->Vertices[i][key] != this->Vertices[i - 1][key])
-    {
       starts.push_back(i);
-    }
-  }
   starts.push_back(this->Vertices.size());
   return starts;
 }
@@ -211,9 +209,7 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
 {
   BitVolume out(dims[0], dims[1], dims[2]);
   if (this->Vertices.empty())
-  {
     return out;
-  }
   // Parity grid of the vertices; the prefix XOR over all vertices <= v (in every in-plane axis)
   // is the voxel whose lowest corner is v.
   const std::size_t gx = dims[0] + 1, gy = dims[1] + 1, gz = dims[2] + 1;
@@ -224,12 +220,8 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
   {
     const auto w = this->worldVertex(i);
     for (int k = 0; k < 3; ++k)
-    {
       if (w[k] < 0 || w[k] > dims[k])
-      {
         throw std::out_of_range("EVM vertex outside the grid");
-      }
-    }
     at(w[0], w[1], w[2]) ^= 1;
   }
   // One prefix pass per in-plane axis (the normal of a 2D EVM has a single coordinate).
@@ -248,12 +240,8 @@ BitVolume EVM::toVoxels(const std::array<std::int32_t, 3>& dims) const
   for (std::int32_t z = 0; z < dims[2]; ++z)
     for (std::int32_t y = 0; y < dims[1]; ++y)
       for (std::int32_t x = 0; x < dims[0]; ++x)
-      {
         if (at(x, y, z))
-        {
           out.set(x, y, z);
-        }
-      }
   return out;
 }
 
@@ -279,21 +267,15 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
               for (std::int32_t y = ky - 1; y <= ky; ++y)
               {
                 if (z < 0 || z >= nz || y < 0 || y >= ny)
-                {
                   continue;
-                }
                 const Word* r = voxels.row(y, z);
                 for (std::size_t w = 0; w < rowWords; ++w)
-                {
                   parity[w] ^= r[w];
-                }
                 any = true;
               }
             }
             if (!any)
-            {
               continue;
-            }
             rowParityToVertexBits(parity.data(), rowWords, bits.data());
             appendRowVertices(bits.data(), rowWords + 1, static_cast<Coord>(kz), ky, planes[kz]);
           }
@@ -306,9 +288,7 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
 EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
 {
   if (pixels.size(2) != 1)
-  {
     throw std::invalid_argument("extractEVM2D needs a single slice (nz == 1)");
-  }
   const std::int32_t ny = pixels.size(1);
   const std::size_t rowWords = pixels.wordsPerRow();
   std::vector<std::vector<Vertex>> lines(static_cast<std::size_t>(ny) + 1);
@@ -324,14 +304,10 @@ EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
           for (std::int64_t y = ky - 1; y <= ky; ++y)
           {
             if (y < 0 || y >= ny)
-            {
               continue;
-            }
             const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
             for (std::size_t w = 0; w < rowWords; ++w)
-            {
               parity[w] ^= r[w];
-            }
           }
           rowParityToVertexBits(parity.data(), rowWords, bits.data());
           appendRowVertices(bits.data(), rowWords + 1, 0, static_cast<Coord>(ky), lines[ky]);
@@ -345,9 +321,7 @@ std::array<std::size_t, 3> planesPerAxis(const EVM& evm)
 {
   std::array<std::size_t, 3> counts{ 0, 0, 0 };
   if (evm.empty())
-  {
     return counts;
-  }
   for (int k = evm.dimension() == 2 ? 1 : 0; k < 3; ++k)
   {
     Coord lo = evm.vertices()[0][k], hi = lo;
@@ -368,9 +342,7 @@ std::vector<Vertex> project(const Vertex* begin, const Vertex* end, int level)
 {
   std::vector<Vertex> out(begin, end);
   for (auto& v : out)
-  {
     v[level] = 0;
-  }
   return out;
 }
 

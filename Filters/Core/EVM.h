@@ -14,6 +14,7 @@
 
 #include "BitVolume.h"
 #include "Execution.h"
+#include "Geometry.h"
 
 #include <array>
 #include <cstddef>
@@ -24,9 +25,8 @@
 namespace vbr
 {
 
-using Coord = std::int32_t;
-/// Coordinates in sorting order (A, B, C), compared lexicographically.
-using Vertex = std::array<Coord, 3>;
+/// A point in sorting order (A, B, C), compared lexicographically.
+using Vertex = Point3;
 /// AxisOrder[k] is the world axis (0 = x, 1 = y, 2 = z) of the k-th sorting coordinate.
 using AxisOrder = std::array<int, 3>;
 

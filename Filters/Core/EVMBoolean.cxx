@@ -1,3 +1,14 @@
+// Boolean operations on vertex sets, recursive in the dimension.
+//
+// booleanVertices at level 0 sweeps the planes of vertices of both operands together,
+// keeping the sections of both up to date (XOR of the projections, formula 1); the section
+// of the result is the Boolean of the operands' sections one dimension lower, and the
+// result's plane of vertices there is the XOR of two consecutive result sections (formula 2).
+// Level 1 is the same over lines (booleanLines, with the 1D sections kept as plain coordinate
+// lists: the hot path of the 3D plane sweep's forward and backward differences), and level 2
+// merges the end points of 1D intervals (booleanCoordinates). xorVertices is the symmetric
+// difference of two sorted lists (symmetricDifference).
+
 #include "EVMBoolean.h"
 
 #include <stdexcept>
@@ -123,9 +134,7 @@ const Vertex* planeEnd(const Vertex* begin, const Vertex* end, int level)
 {
   const Coord c = (*begin)[level];
   while (begin != end && (*begin)[level] == c)
-  {
     ++begin;
-  }
   return begin;
 }
 
@@ -160,9 +169,7 @@ std::vector<Vertex> booleanVertices(const Vertex* p,
     return out;
   }
   if (level == 1)
-  {
     return booleanLines(p, pEnd, q, qEnd, op);
-  }
   std::vector<Vertex> out, sectionP, sectionQ, sectionR;
   while (p != pEnd || q != qEnd)
   {
@@ -199,9 +206,7 @@ std::vector<Vertex> booleanVertices(const Vertex* p,
 EVM booleanOp(const EVM& p, const EVM& q, BooleanOp op)
 {
   if (p.dimension() != q.dimension() || p.order() != q.order())
-  {
     throw std::invalid_argument("Boolean operands need the same dimension and sorting");
-  }
   const auto& a = p.vertices();
   const auto& b = q.vertices();
   const int level = p.dimension() == 3 ? 0 : 1;

@@ -32,7 +32,9 @@ std::vector<Vertex> booleanVertices(const Vertex* p,
   int level,
   BooleanOp op);
 
-/// Boolean of two EVMs of the same dimension and sorting.
+/// Boolean of two EVMs of the same dimension and sorting. Test oracle only: the filters use
+/// booleanVertices and xorVertices (the forward and backward differences of the plane
+/// sweep); the tests check this whole-EVM entry point against voxel-wise Booleans.
 EVM booleanOp(const EVM& p, const EVM& q, BooleanOp op);
 
 } // namespace vbr

@@ -29,17 +29,11 @@ struct Execution
   void forRange(std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body) const
   {
     if (n <= 0)
-    {
       return;
-    }
     if (this->parallelFor)
-    {
       this->parallelFor(n, body);
-    }
     else
-    {
       body(0, n);
-    }
   }
 
   /// Reports progress; returns false when the caller asked to abort.

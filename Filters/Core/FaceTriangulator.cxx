@@ -1,3 +1,13 @@
+// Triangles and fan polygons of the orthogonal faces of a B-Rep, in the face's (u, v) plane
+// with (u, v, axis) right-handed.
+//
+// A face without holes and of at most EarClippingLimit corners is ear-clipped exactly
+// (clipEars); every other face goes through CGAL's constrained Delaunay triangulation of all
+// its loops, whose triangles inside the face are those at odd nesting depth from the outside
+// (markNesting). fanPolygons gives what a renderer drawing a polygon as the fan from its
+// first corner draws right: the outer loop itself, started at a corner whose fan covers it
+// (fanApex), or else the triangles grouped into fans round shared corners (FanGrouper).
+
 #include "FaceTriangulator.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -5,9 +15,11 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <list>
 #include <unordered_map>
+#include <utility>
 
 namespace vbr
 {
@@ -166,75 +178,101 @@ int fanApex(const std::vector<Point2L>& corners)
 
 /// Triangles grouped into fans: from each triangle not yet taken, the longest fan of
 /// untaken triangles round one of its corners (neighbours across the edges at that corner).
-std::vector<std::vector<int>> groupIntoFans(const std::vector<std::array<int, 3>>& triangles)
+class FanGrouper
 {
-  std::unordered_map<std::uint64_t, std::array<int, 2>> byEdge; // the triangles at an edge
-  auto key = [](int a, int b)
+public:
+  explicit FanGrouper(const std::vector<std::array<int, 3>>& triangles)
+    : Triangles(triangles)
+    , Taken(triangles.size(), 0)
+    , Stamp(triangles.size(), -1)
+  {
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+      {
+        auto it = this->ByEdge.emplace(
+          key(triangles[t][k], triangles[t][(k + 1) % 3]), std::array<int, 2>{ -1, -1 });
+        it.first->second[it.first->second[0] < 0 ? 0 : 1] = static_cast<int>(t);
+      }
+  }
+
+  std::vector<std::vector<int>> run()
+  {
+    std::vector<std::vector<int>> fans;
+    for (std::size_t start = 0; start < this->Triangles.size(); ++start)
+    {
+      if (this->Taken[start])
+        continue;
+      std::vector<int> best, bestTriangles;
+      for (int k = 0; k < 3; ++k)
+      {
+        std::vector<int> members, rim;
+        const int apex = this->Triangles[start][k];
+        this->growFan(static_cast<int>(start), apex, members, rim);
+        if (members.size() > bestTriangles.size())
+        {
+          bestTriangles = members;
+          best.assign(1, apex);
+          best.insert(best.end(), rim.begin(), rim.end());
+        }
+      }
+      for (int t : bestTriangles)
+        this->Taken[t] = 1;
+      fans.push_back(std::move(best));
+    }
+    return fans;
+  }
+
+private:
+  static std::uint64_t key(int a, int b)
   {
     return a < b ? (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)
                  : (std::uint64_t(std::uint32_t(b)) << 32) | std::uint32_t(a);
-  };
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-    {
-      auto it = byEdge.emplace(
-        key(triangles[t][k], triangles[t][(k + 1) % 3]), std::array<int, 2>{ -1, -1 });
-      it.first->second[it.first->second[0] < 0 ? 0 : 1] = static_cast<int>(t);
-    }
-  std::vector<int> taken(triangles.size(), 0), stamp(triangles.size(), -1);
-  int round = 0;
-  // The triangle across edge (apex, w) from triangle t, if untaken and not yet in this fan.
-  auto across = [&](int t, int apex, int w)
-  {
-    const auto& pair = byEdge[key(apex, w)];
-    const int other = pair[0] == t ? pair[1] : pair[0];
-    return other >= 0 && !taken[other] && stamp[other] != round ? other : -1;
-  };
-  // Corner that follows `apex` in triangle t (counter-clockwise).
-  auto after = [&](int t, int apex)
-  {
-    const auto& tri = triangles[t];
-    return tri[0] == apex ? tri[1] : tri[1] == apex ? tri[2] : tri[0];
-  };
-  auto before = [&](int t, int apex) { return after(t, after(t, apex)); };
-  std::vector<std::vector<int>> fans;
-  for (std::size_t start = 0; start < triangles.size(); ++start)
-  {
-    if (taken[start])
-      continue;
-    std::vector<int> best, bestTriangles;
-    for (int k = 0; k < 3; ++k)
-    {
-      ++round;
-      const int apex = triangles[start][k], t0 = static_cast<int>(start);
-      stamp[t0] = round;
-      std::vector<int> members{ t0 };
-      std::vector<int> rim{ after(t0, apex), before(t0, apex) };
-      for (int t = across(t0, apex, rim.back()); t >= 0; t = across(t, apex, rim.back()))
-      {
-        stamp[t] = round;
-        members.push_back(t);
-        rim.push_back(before(t, apex));
-      }
-      for (int t = across(t0, apex, rim.front()); t >= 0; t = across(t, apex, rim.front()))
-      {
-        stamp[t] = round;
-        members.push_back(t);
-        rim.insert(rim.begin(), after(t, apex));
-      }
-      if (members.size() > bestTriangles.size())
-      {
-        bestTriangles = members;
-        best.assign(1, apex);
-        best.insert(best.end(), rim.begin(), rim.end());
-      }
-    }
-    for (int t : bestTriangles)
-      taken[t] = 1;
-    fans.push_back(std::move(best));
   }
-  return fans;
-}
+
+  /// The triangle across edge (apex, w) from triangle t, if untaken and not yet in this fan.
+  int across(int t, int apex, int w)
+  {
+    const auto& pair = this->ByEdge[key(apex, w)];
+    const int other = pair[0] == t ? pair[1] : pair[0];
+    return other >= 0 && !this->Taken[other] && this->Stamp[other] != this->Round ? other : -1;
+  }
+
+  /// Corner that follows `apex` in triangle t (counter-clockwise), and the one before it.
+  int after(int t, int apex) const
+  {
+    const auto& tri = this->Triangles[t];
+    return tri[0] == apex ? tri[1] : tri[1] == apex ? tri[2] : tri[0];
+  }
+  int before(int t, int apex) const { return this->after(t, this->after(t, apex)); }
+
+  /// The fan of untaken triangles round `apex` from triangle t0, both ways: its triangles and
+  /// its rim (the corners after the apex, counter-clockwise).
+  void growFan(int t0, int apex, std::vector<int>& members, std::vector<int>& rim)
+  {
+    ++this->Round;
+    this->Stamp[t0] = this->Round;
+    members.assign(1, t0);
+    rim = { this->after(t0, apex), this->before(t0, apex) };
+    for (int t = this->across(t0, apex, rim.back()); t >= 0; t = this->across(t, apex, rim.back()))
+    {
+      this->Stamp[t] = this->Round;
+      members.push_back(t);
+      rim.push_back(this->before(t, apex));
+    }
+    for (int t = this->across(t0, apex, rim.front()); t >= 0;
+         t = this->across(t, apex, rim.front()))
+    {
+      this->Stamp[t] = this->Round;
+      members.push_back(t);
+      rim.insert(rim.begin(), this->after(t, apex));
+    }
+  }
+
+  const std::vector<std::array<int, 3>>& Triangles;
+  std::unordered_map<std::uint64_t, std::array<int, 2>> ByEdge; ///< the triangles at an edge
+  std::vector<int> Taken, Stamp;
+  int Round = 0;
+};
 
 } // namespace
 
@@ -261,16 +299,12 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
       const auto before = cdt.number_of_vertices();
       Cdt::Vertex_handle h = cdt.insert(Kernel::Point_2(p[u], p[v]));
       if (cdt.number_of_vertices() != before)
-      {
         h->info() = index; // first corner at this location
-      }
       handles.push_back(h);
       ++index;
     }
     for (std::size_t i = 0; i < handles.size(); ++i)
-    {
       cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
-    }
   }
   markNesting(cdt);
   std::vector<std::array<int, 3>> triangles;
@@ -302,7 +336,7 @@ std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f)
       return { polygon };
     }
   }
-  return groupIntoFans(triangulateFace(brep, f));
+  return FanGrouper(triangulateFace(brep, f)).run();
 }
 
 } // namespace vbr

@@ -35,15 +35,11 @@ public:
   std::pair<std::int64_t, bool> insert(std::uint64_t key)
   {
     if (2 * (this->Count + 1) > this->Keys.size())
-    {
       this->rehash(2 * this->Keys.size());
-    }
     std::size_t i = this->slot(key);
     for (; this->Keys[i] != Empty; i = (i + 1) & this->Mask)
-    {
       if (this->Keys[i] == key)
         return { this->Numbers[i], false };
-    }
     this->Keys[i] = key;
     this->Numbers[i] = static_cast<std::int64_t>(this->Count++);
     return { this->Numbers[i], true };
@@ -53,10 +49,8 @@ public:
   std::int64_t find(std::uint64_t key) const
   {
     for (std::size_t i = this->slot(key); this->Keys[i] != Empty; i = (i + 1) & this->Mask)
-    {
       if (this->Keys[i] == key)
         return this->Numbers[i];
-    }
     return -1;
   }
 

@@ -1,6 +1,11 @@
+// The procedural phantom: each voxel centre, in [0, 1]^3 coordinates so that the parts scale
+// with the grid, is tested against the implicit shapes of the five parts (later parts win
+// where they overlap).
+
 #include "Phantom.h"
 
 #include <cmath>
+#include <cstddef>
 
 namespace vbr
 {

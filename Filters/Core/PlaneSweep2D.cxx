@@ -1,5 +1,29 @@
+// The 2D plane sweep of Ayala & Vergara (section 3) as one Sweep object over a 2D EVM.
+//
+// run is the whole method. The first sweep goes line of vertices by line of vertices
+// (processLine): the cut is merged with the active section by XOR (formula 1), point by point
+// along v. At each point enterPoint updates the open intervals (those of the previous and
+// next sections that overlap are united in the union-find: the paper's contour merging),
+// then one of three events: an extreme vertex of the cut matching one of the section ends a
+// horizontal edge (closeHorizontalEdge), a new one starts one (openHorizontalEdge), a brink of
+// the cut running through a vertex of the section is a non-manifold vertex
+// (splitAtNonManifoldVertex, section 3.3); at each corner the vertical piece of the brink and
+// the horizontal edge are linked (turnAtCorner). An interval of the next section that ends
+// without having met the previous section is recorded as a candidate first interval of a face
+// for the second sweep. After the sweep, pairNonManifoldVertices applies the rules of
+// Fig. 7 at the split vertices, numberFaces numbers the faces in order of first appearance,
+// orderEdgesIntoLoops is the domino step, and classifyContours is the second sweep (outer
+// loops, holes and the inclusion tree from 1D tests on the stored section ends).
+//
+// Terms: a cut is a line of vertices; a brink a maximal segment of it; a section end an
+// extreme vertex of the active section with the horizontal edge it draws; an interval a
+// pair of section ends (a piece of face between two consecutive cuts).
+
 #include "PlaneSweep2D.h"
 
+#include "UnionFind.h"
+
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -49,58 +73,39 @@ public:
   {
   }
 
+  /// The whole method: the first sweep line by line, the pairing at non-manifold vertices,
+  /// the domino step and the second sweep.
   Boundary2D run(const Vertex* begin, const Vertex* end)
   {
     while (begin != end)
     {
       const Vertex* lineEnd = begin;
       while (lineEnd != end && (*lineEnd)[1] == (*begin)[1])
-      {
         ++lineEnd;
-      }
       if ((lineEnd - begin) % 2)
-      {
-        throw std::invalid_argument("sweep2D: a line of vertices has an odd count (not an EVM)");
-      }
+        throw std::invalid_argument(
+          "planeSweep2D: a line of vertices has an odd count (not an EVM)");
       this->processLine((*begin)[1], begin, lineEnd);
       begin = lineEnd;
     }
     if (!this->Section.empty())
-    {
-      throw std::invalid_argument("sweep2D: the last section is not empty (not an EVM)");
-    }
+      throw std::invalid_argument("planeSweep2D: the last section is not empty (not an EVM)");
     this->pairNonManifoldVertices();
-    return this->collect();
+    Boundary2D out;
+    out.nonManifoldVertices = this->NonManifold.size();
+    this->numberFaces(out);
+    this->orderEdgesIntoLoops(out);
+    this->classifyContours(out);
+    return out;
   }
 
 private:
-  // ---- union-find over section intervals ---------------------------------------------------
-  int newInterval()
-  {
-    const int id = static_cast<int>(this->Parent.size());
-    this->Parent.push_back(id);
-    return id;
-  }
-  int find(int i)
-  {
-    while (this->Parent[i] != i)
-    {
-      i = this->Parent[i] = this->Parent[this->Parent[i]];
-    }
-    return i;
-  }
+  // ---- union-find over section intervals (roots follow sweep order) -----------------------
+  int newInterval() { return static_cast<int>(this->Intervals.add()); }
+  int find(int i) { return static_cast<int>(this->Intervals.find(static_cast<std::uint32_t>(i))); }
   void unite(int a, int b)
   {
-    a = this->find(a);
-    b = this->find(b);
-    if (a != b)
-    {
-      // Keep the older interval as root: roots then follow sweep order.
-      if (a < b)
-        this->Parent[b] = a;
-      else
-        this->Parent[a] = b;
-    }
+    this->Intervals.unite(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
   }
 
   // ---- edges ---------------------------------------------------------------------------------
@@ -128,20 +133,39 @@ private:
       this->Edges[b].next = a;
   }
 
-  /// Merges the cut [cut, cutEnd) at u into the active section (formula 1 of the paper),
-  /// emitting edges, uniting overlapping intervals and recording first intervals.
+  /// The open intervals and edges while a cut is merged with the active section: what the
+  /// events at the points of the line change. (The flags that say which sections are open
+  /// at a point stay local to processLine: kept in registers, they are half its work.)
+  struct OpenIntervals
+  {
+    int prevInterval = -1;   ///< the open interval of the previous section
+    int newInterval = -1;    ///< the open interval of the next section
+    int piece = -1;          ///< the vertical edge (a piece of a brink) open on the line
+    bool newTouched = false; ///< the open new interval overlaps one of the previous section
+    int newBottomEdge = -1, newBelowEdge = -1; ///< for FirstInterval
+  };
+
+  /// Where the merge stands at point v of the line: `i` the section end there (if atPrev),
+  /// whether the cut is open just below v and the next section just above it.
+  struct Point
+  {
+    Point2 here;
+    std::size_t i;
+    bool inCut, inNew2;
+  };
+
+  /// First sweep, one line (Ayala & Vergara, section 3.1): merges the cut [cut, cutEnd) at u
+  /// into the active section (formula 1) point by point along v, emitting edges, uniting
+  /// overlapping intervals (the contour merging) and recording the first intervals of faces
+  /// for the second sweep. in* say whether the previous section, the cut and the next section
+  /// are open just below v, in*2 just above it.
   void processLine(Coord u, const Vertex* cut, const Vertex* cutEnd)
   {
-    std::vector<SectionEnd>& next = this->NextSection;
-    std::vector<int>& nextIntervals = this->NextIntervals;
-    next.clear();
-    nextIntervals.clear();
+    this->NextSection.clear();
+    this->NextIntervals.clear();
+    OpenIntervals o;
     std::size_t i = 0;
     bool inPrev = false, inCut = false;
-    int prevInterval = -1, newIntervalId = -1, piece = -1;
-    bool newTouched = false;
-    int newBottomEdge = -1, newBelowEdge = -1;
-
     while (i < this->Section.size() || cut != cutEnd)
     {
       const bool takePrev =
@@ -150,100 +174,20 @@ private:
       const bool atPrev = i < this->Section.size() && this->Section[i].v == v;
       const bool atCut = cut != cutEnd && (*cut)[2] == v;
       const bool inNew = inPrev != inCut;
-      if (inPrev && inNew)
-      {
-        // The open intervals of both sections overlap on the segment just below v.
-        this->unite(prevInterval, newIntervalId);
-        newTouched = true;
-      }
-      const bool inPrev2 = inPrev != atPrev;
-      const bool inCut2 = inCut != atCut;
+      const bool inPrev2 = inPrev != atPrev, inCut2 = inCut != atCut;
       const bool inNew2 = inPrev2 != inCut2;
-      const Point2 here{ u, v };
-
-      if (atPrev && inPrev2)
-      {
-        prevInterval = this->SectionIntervals[i / 2];
-      }
-      if (inNew2 && !inNew)
-      {
-        newIntervalId = this->newInterval();
-        nextIntervals.push_back(newIntervalId);
-        newTouched = false;
-        newBelowEdge = next.empty() ? -1 : next.back().edge;
-      }
-      // A vertical piece keeps the face on its left: upwards when the face lies before u.
-      auto startPiece = [&]()
-      { return this->startEdge(here, !inNew2, inNew2 ? newIntervalId : prevInterval); };
-
+      this->enterPoint(o, inPrev && inNew, atPrev && inPrev2, inNew2 && !inNew, i);
+      const Point at{ { u, v }, i, inCut, inNew2 };
       if (atPrev && atCut)
-      {
-        // Extreme vertex matching the section: its horizontal edge ends here.
-        const int h = this->Section[i].edge;
-        this->finishEdge(h, here);
-        if (inCut)
-        {
-          this->finishEdge(piece, here);
-          this->link(piece, h, here);
-          piece = -1;
-        }
-        else
-        {
-          piece = startPiece();
-          this->link(piece, h, here);
-        }
-      }
+        this->closeHorizontalEdge(o, at); // an extreme vertex matching the section
       else if (atCut)
-      {
-        // New extreme vertex of the section: a horizontal edge starts here.
-        const int h = this->startEdge(here, inNew2, newIntervalId);
-        if (inNew2)
-        {
-          newBottomEdge = h;
-        }
-        next.push_back({ v, h });
-        if (inCut)
-        {
-          this->finishEdge(piece, here);
-          this->link(piece, h, here);
-          piece = -1;
-        }
-        else
-        {
-          piece = startPiece();
-          this->link(piece, h, here);
-        }
-      }
+        this->openHorizontalEdge(o, at); // a new extreme vertex of the section
       else if (atPrev && inCut)
-      {
-        // Non-manifold vertex: a brink of the cut contains a vertex of the section.
-        const int hOld = this->Section[i].edge;
-        this->finishEdge(hOld, here);
-        this->finishEdge(piece, here);
-        const int below = piece;
-        piece = startPiece();
-        const int hNew = this->startEdge(here, inNew2, newIntervalId);
-        if (inNew2)
-        {
-          newBottomEdge = hNew;
-        }
-        next.push_back({ v, hNew });
-        this->NonManifold.push_back({ here, { hOld, hNew, below, piece } });
-        if (this->MergeAtVertices)
-        {
-          this->unite(prevInterval, newIntervalId);
-          newTouched = true;
-        }
-      }
+        this->splitAtNonManifoldVertex(o, at);
       else
-      {
-        next.push_back(this->Section[i]); // the horizontal edge goes on
-      }
-
-      if (inNew && !inNew2 && !newTouched)
-      {
-        this->First.push_back({ newIntervalId, newBottomEdge, newBelowEdge });
-      }
+        this->NextSection.push_back(this->Section[i]); // the horizontal edge goes on
+      if (inNew && !inNew2 && !o.newTouched)           // a candidate first interval of a face ends
+        this->First.push_back({ o.newInterval, o.newBottomEdge, o.newBelowEdge });
       if (atPrev)
         ++i;
       if (atCut)
@@ -251,8 +195,99 @@ private:
       inPrev = inPrev2;
       inCut = inCut2;
     }
-    this->Section.swap(next);
-    this->SectionIntervals.swap(nextIntervals);
+    this->Section.swap(this->NextSection);
+    this->SectionIntervals.swap(this->NextIntervals);
+  }
+
+  /// Updates the open intervals at a point of the line: the intervals of both sections that
+  /// overlap just below it are the same face (bothBelow); the previous section's interval
+  /// starting at section end i is entered (prevStarts); an interval of the next section
+  /// starts there (newStarts).
+  void enterPoint(OpenIntervals& o, bool bothBelow, bool prevStarts, bool newStarts, std::size_t i)
+  {
+    if (bothBelow)
+    {
+      this->unite(o.prevInterval, o.newInterval);
+      o.newTouched = true;
+    }
+    if (prevStarts)
+      o.prevInterval = this->SectionIntervals[i / 2];
+    if (newStarts)
+    {
+      o.newInterval = this->newInterval();
+      this->NextIntervals.push_back(o.newInterval);
+      o.newTouched = false;
+      o.newBelowEdge = this->NextSection.empty() ? -1 : this->NextSection.back().edge;
+    }
+  }
+
+  /// A vertical piece starting at v keeps the face on its left: upwards when the face lies
+  /// before u.
+  int startPiece(const OpenIntervals& o, const Point& at)
+  {
+    return this->startEdge(at.here, !at.inNew2, at.inNew2 ? o.newInterval : o.prevInterval);
+  }
+
+  /// A horizontal edge of the next section starting at v, its end kept in the next section.
+  int startHorizontalEdge(OpenIntervals& o, const Point& at)
+  {
+    const int h = this->startEdge(at.here, at.inNew2, o.newInterval);
+    if (at.inNew2)
+      o.newBottomEdge = h;
+    this->NextSection.push_back({ at.here.v, h });
+    return h;
+  }
+
+  /// The brink being crossed ends at v (its vertical piece ends there, at horizontal edge h)
+  /// or starts there (a piece starts); either way the corner links the two edges.
+  void turnAtCorner(OpenIntervals& o, const Point& at, int h)
+  {
+    if (at.inCut)
+    {
+      this->finishEdge(o.piece, at.here);
+      this->link(o.piece, h, at.here);
+      o.piece = -1;
+    }
+    else
+    {
+      o.piece = this->startPiece(o, at);
+      this->link(o.piece, h, at.here);
+    }
+  }
+
+  /// An extreme vertex of the cut matching one of the section: its horizontal edge ends here.
+  void closeHorizontalEdge(OpenIntervals& o, const Point& at)
+  {
+    const int h = this->Section[at.i].edge;
+    this->finishEdge(h, at.here);
+    this->turnAtCorner(o, at, h);
+  }
+
+  /// A new extreme vertex of the section: a horizontal edge starts here.
+  void openHorizontalEdge(OpenIntervals& o, const Point& at)
+  {
+    const int h = this->startHorizontalEdge(o, at);
+    this->turnAtCorner(o, at, h);
+  }
+
+  /// A non-manifold vertex (Ayala & Vergara, section 3.3): a brink of the cut contains a
+  /// vertex of the section. The vertex is split: the brink's piece and the section's
+  /// horizontal edge end there and new ones start; the four edges are paired once the faces
+  /// are known.
+  void splitAtNonManifoldVertex(OpenIntervals& o, const Point& at)
+  {
+    const int hOld = this->Section[at.i].edge;
+    this->finishEdge(hOld, at.here);
+    this->finishEdge(o.piece, at.here);
+    const int below = o.piece;
+    o.piece = this->startPiece(o, at);
+    const int hNew = this->startHorizontalEdge(o, at);
+    this->NonManifold.push_back({ at.here, { hOld, hNew, below, o.piece } });
+    if (this->MergeAtVertices)
+    {
+      this->unite(o.prevInterval, o.newInterval);
+      o.newTouched = true;
+    }
   }
 
   /// Pairs the two entering and two leaving edges of each non-manifold vertex (paper Fig. 7):
@@ -264,16 +299,12 @@ private:
     {
       int in[2], out[2], ni = 0, no = 0;
       for (int e : nmv.edges)
-      {
         if (this->Edges[e].to == nmv.at)
           in[ni++] = e;
         else
           out[no++] = e;
-      }
       if (ni != 2 || no != 2)
-      {
-        throw std::logic_error("sweep2D: inconsistent non-manifold vertex");
-      }
+        throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
       const bool sameFace =
         this->find(this->Edges[in[0]].interval) == this->find(this->Edges[in[1]].interval);
       for (int k = 0; k < 2; ++k)
@@ -296,71 +327,77 @@ private:
           }
         }
         if (chosen < 0)
-        {
-          throw std::logic_error("sweep2D: no continuation at a non-manifold vertex");
-        }
+          throw std::logic_error("planeSweep2D: no continuation at a non-manifold vertex");
         this->Edges[in[k]].next = chosen;
       }
     }
   }
 
-  /// Domino step, face numbering and the second sweep (classification and inclusion).
-  Boundary2D collect()
+  /// Numbers the faces in order of first appearance: the classes of united intervals that
+  /// hold a first interval, each with the first of them.
+  void numberFaces(Boundary2D& out)
   {
-    Boundary2D out;
-    out.nonManifoldVertices = this->NonManifold.size();
-    std::vector<int> faceOfRoot(this->Parent.size(), -1);
-    std::vector<const FirstInterval*> firstOfFace;
+    this->FaceOfRoot.assign(this->Intervals.size(), -1);
+    this->FirstOfFace.clear();
     for (const auto& f : this->First)
     {
-      int& face = faceOfRoot[this->find(f.interval)];
+      int& face = this->FaceOfRoot[this->find(f.interval)];
       if (face < 0)
       {
-        face = static_cast<int>(firstOfFace.size());
-        firstOfFace.push_back(&f);
+        face = static_cast<int>(this->FirstOfFace.size());
+        this->FirstOfFace.push_back(&f);
       }
     }
-    out.faces.resize(firstOfFace.size());
+    out.faces.resize(this->FirstOfFace.size());
+  }
 
-    std::vector<int> loopOfEdge(this->Edges.size(), -1);
+  /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
+  /// corner to corner, are followed into loops, each keeping its face on the left.
+  void orderEdgesIntoLoops(Boundary2D& out)
+  {
+    this->LoopOfEdge.assign(this->Edges.size(), -1);
     out.points.reserve(this->Edges.size());
     for (std::size_t e0 = 0; e0 < this->Edges.size(); ++e0)
     {
-      if (loopOfEdge[e0] >= 0)
+      if (this->LoopOfEdge[e0] >= 0)
         continue;
       Loop2D loop;
-      loop.face = faceOfRoot[this->find(this->Edges[e0].interval)];
+      loop.face = this->FaceOfRoot[this->find(this->Edges[e0].interval)];
       loop.begin = out.points.size();
       const int id = static_cast<int>(out.loops.size());
-      for (int e = static_cast<int>(e0); loopOfEdge[e] < 0; e = this->Edges[e].next)
+      for (int e = static_cast<int>(e0); this->LoopOfEdge[e] < 0; e = this->Edges[e].next)
       {
         if (e < 0 || this->Edges[e].next < 0)
-        {
-          throw std::logic_error("sweep2D: open contour");
-        }
-        loopOfEdge[e] = id;
+          throw std::logic_error("planeSweep2D: open contour");
+        this->LoopOfEdge[e] = id;
         out.points.push_back(this->Edges[e].from);
       }
       loop.end = out.points.size();
       out.loops.push_back(loop);
     }
+  }
 
-    // Second sweep: faces in order of first appearance. A face's first interval is bounded
-    // below by its outer loop; the section end just below it tells where the face lies: in a
-    // hole of the face owning that end, or beside it (then it shares that face's parent).
+  /// The second sweep (Ayala & Vergara, section 3.1): faces in order of first appearance, with 1D
+  /// inclusion tests only. A face's first interval is bounded below by its outer loop; the
+  /// section end just below it tells where the face lies: in a hole of the face owning that
+  /// end, or beside it (then it shares that face's parent).
+  void classifyContours(Boundary2D& out) const
+  {
     for (std::size_t f = 0; f < out.faces.size(); ++f)
     {
       Face2D& face = out.faces[f];
-      const FirstInterval& first = *firstOfFace[f];
-      face.outerLoop = loopOfEdge[first.bottomEdge];
+      const FirstInterval& first = *this->FirstOfFace[f];
+      face.outerLoop = this->LoopOfEdge[first.bottomEdge];
       if (first.belowEdge >= 0)
       {
-        const Loop2D& below = out.loops[loopOfEdge[first.belowEdge]];
-        const bool inHole = out.faces[below.face].outerLoop != loopOfEdge[first.belowEdge];
+        const int belowLoop = this->LoopOfEdge[first.belowEdge];
+        const Loop2D& below = out.loops[belowLoop];
+        const bool inHole = out.faces[below.face].outerLoop != belowLoop;
         face.parent = inHole ? below.face : out.faces[below.face].parent;
       }
       face.depth = face.parent < 0 ? 0 : out.faces[face.parent].depth + 2;
     }
+    // Every other loop of a face is one of its holes.
     for (std::size_t l = 0; l < out.loops.size(); ++l)
     {
       Loop2D& loop = out.loops[l];
@@ -371,7 +408,6 @@ private:
         face.holeLoops.push_back(static_cast<int>(l));
       }
     }
-    return out;
   }
 
   const bool MergeAtVertices;
@@ -379,15 +415,18 @@ private:
   std::vector<SectionEnd> NextSection; ///< the section being built (reused buffers)
   std::vector<int> NextIntervals;
   std::vector<int> SectionIntervals; ///< interval id of each pair of section ends
-  std::vector<int> Parent;           ///< union-find over intervals
+  UnionFind Intervals;               ///< the section intervals, united into faces
   std::vector<Edge> Edges;
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;
+  std::vector<int> FaceOfRoot;                   ///< face of each root interval, or -1
+  std::vector<const FirstInterval*> FirstOfFace; ///< by face
+  std::vector<int> LoopOfEdge;                   ///< by edge
 };
 
 } // namespace
 
-Boundary2D sweep2D(const Vertex* begin, const Vertex* end, FaceConnectivity connectivity)
+Boundary2D planeSweep2D(const Vertex* begin, const Vertex* end, FaceConnectivity connectivity)
 {
   return Sweep(connectivity).run(begin, end);
 }

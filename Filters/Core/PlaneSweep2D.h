@@ -19,19 +19,13 @@
 #define vbr_PlaneSweep2D_h
 
 #include "EVM.h"
+#include "Geometry.h"
 
 #include <cstddef>
 #include <vector>
 
 namespace vbr
 {
-
-struct Point2
-{
-  Coord u, v;
-  bool operator==(const Point2& o) const { return this->u == o.u && this->v == o.v; }
-  bool operator!=(const Point2& o) const { return !(*this == o); }
-};
 
 /// How faces meet at a non-manifold vertex (two pixels of the face touching at a corner only).
 enum class FaceConnectivity
@@ -72,7 +66,7 @@ struct Boundary2D
 };
 
 /// Faces, loops and inclusion tree of a 2D EVM given as vertices (0, u, v) in sorted order.
-Boundary2D sweep2D(const Vertex* begin,
+Boundary2D planeSweep2D(const Vertex* begin,
   const Vertex* end,
   FaceConnectivity connectivity = FaceConnectivity::Edge);
 

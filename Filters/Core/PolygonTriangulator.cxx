@@ -1,15 +1,24 @@
+// Exact ear clipping of simple polygons (see the header for why it is correct), and the
+// tests of simplicity and fan cover, on integer corners with 128-bit products (Wide).
+//
+// triangulateSimplePolygon first parts the polygon at corners where it touches itself into
+// two counter-clockwise loops (triangulatePiece: the doubled areas of the two loops, from a
+// prefix sum, tell whether the corner joins two pieces), then ear-clips each piece on a
+// doubly linked ring (EarClipper), testing only the corners that do not turn left (the
+// blockers). isSimplePolygon compares every pair of non-adjacent edges (segmentsMeet).
+
 #include "PolygonTriangulator.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
+#include <utility>
 
 namespace vbr
 {
 
 namespace
 {
-
-using Wide = __int128;
 
 /// Twice the signed area of triangle abc, exactly.
 Wide cross(const Point2L& a, const Point2L& b, const Point2L& c)
@@ -207,7 +216,7 @@ int orientation(const Point2L& a, const Point2L& b, const Point2L& c)
   return sign(cross(a, b, c));
 }
 
-__int128 doubledArea(const std::vector<Point2L>& corners)
+Wide doubledArea(const std::vector<Point2L>& corners)
 {
   Wide sum = 0;
   for (std::size_t i = 0; i < corners.size(); ++i)
@@ -268,10 +277,8 @@ bool fanCoversPolygon(const std::vector<Point2L>& corners, std::size_t apex)
   if (n < 3 || apex >= n || doubledArea(corners) <= 0)
     return false;
   for (std::size_t i = 1; i + 1 < n; ++i)
-  {
     if (cross(corners[apex], corners[(apex + i) % n], corners[(apex + i + 1) % n]) < 0)
       return false;
-  }
   return true;
 }
 

@@ -22,7 +22,10 @@
 #ifndef vbr_PolygonTriangulator_h
 #define vbr_PolygonTriangulator_h
 
+#include "Geometry.h"
+
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -36,7 +39,7 @@ using Triangle = std::array<int, 3>;
 int orientation(const Point2L& a, const Point2L& b, const Point2L& c);
 
 /// Twice the signed area of a polygon (positive when counter-clockwise).
-__int128 doubledArea(const std::vector<Point2L>& corners);
+Wide doubledArea(const std::vector<Point2L>& corners);
 
 /// Whether the closed polygon is simple: no corner repeated, no two edges meeting except
 /// consecutive edges at their common corner (exact, quadratic).

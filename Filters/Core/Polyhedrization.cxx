@@ -1,15 +1,40 @@
+// The polyhedrization of Francon & Papier (section 3) and the reversion.
+//
+// The growth (FaceGrower): faces are grown one by one from seeds in surfel order. A face
+// starts from an umbrella of the seed when one fits one standard plane (seedUmbrella, the
+// paper's heuristic), else from the seed alone (growFrom); drainWave then takes the surfels
+// of the queue q(f) breadth first, each only if the face stays a topological disk (condition
+// 1: meetsAlongOneArc) and all its pointels stay in one standard plane with the surfels on
+// its outer side (condition 2: StandardPlaneRecognizer::tryAdd). A surfel refused by the
+// plane is never offered to that face again. Beyond the paper: moveToLargerFaces gives the rim
+// of large faces back to them, mergeSmallFaces hands small faces to their neighbours
+// (absorb, extend, with recognizers kept for large faces: recognizerOf), dropEmptyFaces
+// renumbers. The output: each face's boundary loop (LoopTracer) with the face beyond each
+// loop edge, and the number of faces around each vertex (countFacesAtVertices: the standard
+// vertices have three or more).
+//
+// The reversion (revert): each face's surfels are refilled from its outline (fillFace: the
+// squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
+// linel that is not a loop edge), faces are checked disjoint (checkDisjoint), and the voxels
+// follow by parity along x (fillByParity).
+
 #include "Polyhedrization.h"
 
 #include "GridPointIndex.h"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdlib>
 #include <deque>
 #include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 namespace vbr
 {
@@ -19,18 +44,19 @@ namespace
 
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 
-std::array<int, 3> signsOf(const SurfelGraph::Surfel& s)
+std::array<int, 3> signsOf(const Surfel& s)
 {
   std::array<int, 3> signs{ 0, 0, 0 };
   signs[s.axis()] = s.sign();
   return signs;
 }
 
-/// Whether surfel s meets the surfels of face f (other than s) along one arc of its
-/// boundary: 1 to 3 consecutive shared edges, and no other vertex of s touched by f. Adding
-/// s to the disk f then leaves a disk; taking s out of the disk f + s does too when, in
-/// addition, f fills the umbrellas of the vertices inside the arc. Vertices are checked by
-/// walking their umbrellas, so no per-face state is needed.
+/// Condition 1 of Francon & Papier (section 3), "we keep a topological disk": whether
+/// surfel s meets the surfels of face f (other than s) along one arc of its boundary: 1 to 3
+/// consecutive shared edges, and no other vertex of s touched by f. Adding s to the disk f then
+/// leaves a disk; taking s out of the disk f + s does too when, in addition, f fills the umbrellas
+/// of the vertices inside the arc. Vertices are checked by walking their umbrellas, so no per-face
+/// state is needed.
 bool meetsAlongOneArc(const SurfelGraph& graph,
   const std::vector<std::uint32_t>& faceOf,
   std::uint32_t s,
@@ -130,8 +156,9 @@ private:
     this->Poly->faces[f].plane = this->Recognizer.plane();
   }
 
-  /// Breadth first over the queued surfels: each joins face f if f stays a disk of one
-  /// standard plane.
+  /// The growth of face f over its queue q(f) (Francon & Papier, section 3), breadth first
+  /// ("the propagation of a circular wave"): each queued surfel joins f if f stays a disk
+  /// (condition 1) of one standard plane (condition 2).
   void drainWave(std::uint32_t f)
   {
     while (!this->Wave.empty())
@@ -302,7 +329,7 @@ private:
   }
 
   /// The umbrella of a corner of the seed as the first face, when all its surfels are free
-  /// and lie in one standard plane.
+  /// and lie in one standard plane (the seed of one umbrella that Francon & Papier prefer).
   bool seedUmbrella(std::uint32_t seed, std::uint32_t f)
   {
     for (int k = 0; k < 4; ++k)
@@ -382,9 +409,10 @@ private:
   std::uint32_t DepthLimit;
 };
 
-/// The boundary loops of disk faces, counter-clockwise seen from outside, with the face
-/// beyond each loop edge. Each boundary vertex of a disk starts exactly one boundary edge,
-/// kept per vertex in arrays stamped with the face.
+/// The output of Francon & Papier (section 3), each face's boundary: the loops of disk
+/// faces, counter-clockwise seen from outside, with the face beyond each loop edge. Each
+/// boundary vertex of a disk starts exactly one boundary edge, kept per vertex in arrays
+/// stamped with the face.
 class LoopTracer
 {
 public:
@@ -521,7 +549,8 @@ void dropEmptyFaces(Polyhedron& poly)
 }
 
 /// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
-/// each meets the umbrella in one run).
+/// each meets the umbrella in one run). Francon & Papier's standard vertices are those of
+/// three faces or more.
 std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph,
   const Polyhedron& poly,
   ProgressPoll& poll)
@@ -635,71 +664,46 @@ bool polyhedrize(const SurfelGraph& graph,
 namespace
 {
 
-using Int3 = std::array<std::int32_t, 3>;
-
-Int3 sub(const Int3& a, const Int3& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-
-Int3 add(const Int3& a, const Int3& b)
-{
-  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
-}
-
-Int3 cross(const Int3& a, const Int3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-
-int axisOf(const Int3& u)
-{
-  return u[0] != 0 ? 0 : (u[1] != 0 ? 1 : 2);
-}
-
+/// Key of the linel p -> q (a unit step): its start and direction.
 std::uint64_t edgeKey(const Point3& p, const Point3& q)
 {
-  auto pack = [](const Point3& a)
-  {
-    constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
-    return ((std::uint64_t(a[0] + Bias) << 42) | (std::uint64_t(a[1] + Bias) << 21) |
-      std::uint64_t(a[2] + Bias));
-  };
-  const Int3 t = sub(q, p);
-  const int direction = 2 * axisOf(t) + (t[axisOf(t)] > 0 ? 1 : 0);
-  return pack(p) * 8 + static_cast<std::uint64_t>(direction);
+  const int direction = directionOf(sub(q, p)); // -1: a repeated corner, refused below
+  return packBiased(p) * 8 + static_cast<std::uint64_t>(direction < 0 ? 7 : direction);
+}
+
+/// Key of a surfel: its voxel and direction.
+std::uint64_t surfelKey(const Surfel& s)
+{
+  return packBiased(s.voxel) * 8 + s.direction;
 }
 
 /// The digital half-space below a standard plane: voxels whose centre c has
 /// n.c < mu + omega / 2, i.e. 2 n.v + (a + b + c) < 2 mu + omega for the lower corner v.
-bool below(const StandardPlane& plane, const Int3& voxel)
+bool below(const StandardPlane& plane, const Point3& voxel)
 {
   const auto& n = plane.normal;
   return 2 * plane.value(voxel) + n[0] + n[1] + n[2] < 2 * plane.mu + plane.omega();
 }
 
 /// The surfel of the plane whose counter-clockwise boundary runs p -> q, if any.
-bool surfelLeftOf(const StandardPlane& plane,
-  const Point3& p,
-  const Point3& q,
-  SurfelGraph::Surfel& out)
+bool surfelLeftOf(const StandardPlane& plane, const Point3& p, const Point3& q, Surfel& out)
 {
-  const Int3 t = sub(q, p);
-  const int along = axisOf(t);
+  const Point3 t = sub(q, p);
+  const int along = directionOf(t) >> 1;
   int found = 0;
   for (int d = 0; d < 3; ++d)
   {
     if (d == along || plane.normal[d] == 0)
       continue;
-    Int3 normal{ 0, 0, 0 };
+    Point3 normal{ 0, 0, 0 };
     normal[d] = plane.normal[d] > 0 ? 1 : -1;
-    const Int3 left = cross(normal, t);
+    const Point3 left = cross(normal, t);
     // Lower corner of the square p, q, q + left, p + left; its inner voxel.
-    Int3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
+    Point3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
     low = { std::min(low[0], low[0] + left[0]),
       std::min(low[1], low[1] + left[1]),
       std::min(low[2], low[2] + left[2]) };
-    Int3 inner = low;
+    Point3 inner = low;
     if (normal[d] > 0)
       --inner[d];
     if (below(plane, inner) && !below(plane, add(inner, normal)))
@@ -713,99 +717,107 @@ bool surfelLeftOf(const StandardPlane& plane,
 
 } // namespace
 
-std::string revert(const std::vector<FaceOutline>& faces,
-  const std::array<std::int32_t, 3>& dims,
-  std::vector<SurfelGraph::Surfel>& surfels,
-  BitVolume& voxels,
-  const Execution& exec)
+namespace
 {
-  surfels.clear();
-  ProgressPoll poll(exec, 0.0, 1.0);
-  // (surfel, face) of every surfel found: faces are disjoint, and a surfel in two faces (a
-  // face given twice, say) would cancel out in the parity below; sorted and checked at the end.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> faceOf;
-  auto surfelKey = [](const SurfelGraph::Surfel& s)
+
+/// (surfel key, face) of every surfel the reversion finds.
+using SurfelFaces = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
+
+std::string faceError(std::size_t f, const char* what)
+{
+  std::ostringstream msg;
+  msg << "face " << f << ": " << what;
+  return msg.str();
+}
+
+/// The surfels of the plane on the left of the loop's edges: where the filling starts.
+std::string seedFromLoop(const FaceOutline& face,
+  std::size_t f,
+  std::unordered_set<std::uint64_t>& seen,
+  std::vector<Surfel>& stack)
+{
+  const std::size_t n = face.loop.size();
+  for (std::size_t i = 0; i < n; ++i)
   {
-    constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
-    return ((std::uint64_t(s.voxel[0] + Bias) << 42) | (std::uint64_t(s.voxel[1] + Bias) << 21) |
-             std::uint64_t(s.voxel[2] + Bias)) *
-      8 +
-      s.direction;
-  };
-  for (std::size_t f = 0; f < faces.size(); ++f)
-  {
-    poll.at(0.9 * double(f) / double(faces.size()));
-    if (!poll.tick())
-      return "aborted";
-    const FaceOutline& face = faces[f];
-    const std::size_t n = face.loop.size();
-    std::unordered_set<std::uint64_t> loopEdges;
-    for (std::size_t i = 0; i < n; ++i)
-      loopEdges.insert(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
-    std::unordered_set<std::uint64_t> seen;
-    std::vector<SurfelGraph::Surfel> stack;
-    for (std::size_t i = 0; i < n; ++i)
+    Surfel s;
+    const Point3& p = face.loop[i];
+    const Point3& q = face.loop[(i + 1) % n];
+    const Point3 t = sub(q, p);
+    if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !surfelLeftOf(face.plane, p, q, s))
     {
-      SurfelGraph::Surfel s;
-      const Point3& p = face.loop[i];
-      const Point3& q = face.loop[(i + 1) % n];
-      const Int3 t = sub(q, p);
-      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 ||
-        !surfelLeftOf(face.plane, p, q, s))
-      {
-        std::ostringstream msg;
-        msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
-        return msg.str();
-      }
-      if (seen.insert(surfelKey(s)).second)
-        stack.push_back(s);
+      std::ostringstream msg;
+      msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
+      return msg.str();
     }
-    const std::size_t limit = 8 * n * n + 64;
-    while (!stack.empty())
+    if (seen.insert(surfelKey(s)).second)
+      stack.push_back(s);
+  }
+  return std::string();
+}
+
+/// The surfels of face f: the squares of its plane enclosed by its loop, filled from the
+/// loop's edges across every linel that is not a loop edge.
+std::string fillFace(const FaceOutline& face,
+  std::size_t f,
+  std::vector<Surfel>& surfels,
+  SurfelFaces& faceOf)
+{
+  const std::size_t n = face.loop.size();
+  std::unordered_set<std::uint64_t> loopEdges;
+  for (std::size_t i = 0; i < n; ++i)
+    loopEdges.insert(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
+  std::unordered_set<std::uint64_t> seen;
+  std::vector<Surfel> stack;
+  const std::string error = seedFromLoop(face, f, seen, stack);
+  if (!error.empty())
+    return error;
+  const std::size_t limit = 8 * n * n + 64;
+  while (!stack.empty())
+  {
+    const Surfel s = stack.back();
+    stack.pop_back();
+    surfels.push_back(s);
+    faceOf.emplace_back(surfelKey(s), static_cast<std::uint32_t>(f));
+    if (seen.size() > limit)
+      return faceError(f, "its loop does not enclose a disk of its plane");
+    for (int k = 0; k < 4; ++k)
     {
-      const SurfelGraph::Surfel s = stack.back();
-      stack.pop_back();
-      surfels.push_back(s);
-      faceOf.emplace_back(surfelKey(s), static_cast<std::uint32_t>(f));
-      if (seen.size() > limit)
-      {
-        std::ostringstream msg;
-        msg << "face " << f << ": its loop does not enclose a disk of its plane";
-        return msg.str();
-      }
-      for (int k = 0; k < 4; ++k)
-      {
-        const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
-        if (loopEdges.count(edgeKey(a, b)))
-          continue;
-        SurfelGraph::Surfel t;
-        if (!surfelLeftOf(face.plane, b, a, t))
-        {
-          std::ostringstream msg;
-          msg << "face " << f << ": its plane is not a surface around a linel";
-          return msg.str();
-        }
-        if (seen.insert(surfelKey(t)).second)
-          stack.push_back(t);
-      }
+      const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
+      if (loopEdges.count(edgeKey(a, b)))
+        continue;
+      Surfel t;
+      if (!surfelLeftOf(face.plane, b, a, t))
+        return faceError(f, "its plane is not a surface around a linel");
+      if (seen.insert(surfelKey(t)).second)
+        stack.push_back(t);
     }
   }
+  return std::string();
+}
 
+/// Faces are disjoint: a surfel in two faces (a face given twice, say) would cancel out in
+/// the parity of fillByParity.
+std::string checkDisjoint(SurfelFaces& faceOf)
+{
   std::sort(faceOf.begin(), faceOf.end());
   const auto shared = std::adjacent_find(
     faceOf.begin(), faceOf.end(), [](const auto& a, const auto& b) { return a.first == b.first; });
-  if (shared != faceOf.end())
-  {
-    std::ostringstream msg;
-    msg << "faces " << shared->second << " and " << std::next(shared)->second
-        << " share surfels (is a face given twice?)";
-    return msg.str();
-  }
+  if (shared == faceOf.end())
+    return std::string();
+  std::ostringstream msg;
+  msg << "faces " << shared->second << " and " << std::next(shared)->second
+      << " share surfels (is a face given twice?)";
+  return msg.str();
+}
 
-  // Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
+/// Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
+std::string fillByParity(const std::vector<Surfel>& surfels,
+  const std::array<std::int32_t, 3>& dims,
+  BitVolume& voxels)
+{
   voxels = BitVolume(dims[0], dims[1], dims[2]);
   std::vector<std::array<std::int32_t, 3>> xSurfels; // (z, y, plane x)
-  for (const SurfelGraph::Surfel& s : surfels)
+  for (const Surfel& s : surfels)
     if (s.axis() == 0)
       xSurfels.push_back({ s.voxel[2], s.voxel[1], s.voxel[0] + (s.sign() > 0 ? 1 : 0) });
   std::sort(xSurfels.begin(), xSurfels.end());
@@ -822,6 +834,32 @@ std::string revert(const std::vector<FaceOutline>& faces,
   if (xSurfels.size() % 2 != 0)
     return "the faces do not bound a set of voxels of the grid";
   return std::string();
+}
+
+} // namespace
+
+std::string revert(const std::vector<FaceOutline>& faces,
+  const std::array<std::int32_t, 3>& dims,
+  std::vector<Surfel>& surfels,
+  BitVolume& voxels,
+  const Execution& exec)
+{
+  surfels.clear();
+  ProgressPoll poll(exec, 0.0, 1.0);
+  SurfelFaces faceOf;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    poll.at(0.9 * double(f) / double(faces.size()));
+    if (!poll.tick())
+      return "aborted";
+    const std::string error = fillFace(faces[f], f, surfels, faceOf);
+    if (!error.empty())
+      return error;
+  }
+  const std::string error = checkDisjoint(faceOf);
+  if (!error.empty())
+    return error;
+  return fillByParity(surfels, dims, voxels);
 }
 
 } // namespace vbr

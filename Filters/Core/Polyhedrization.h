@@ -1,7 +1,8 @@
-// Polyhedrization of a surfel boundary into standard faces (Francon and Papier, DGCI'99):
-// faces are grown surfel by surfel, breadth first from a seed, and a surfel joins the face
-// only if the face stays a topological disk and all its pointels stay in one standard plane
-// (with the face's surfels all on the outer side of that plane, see StandardPlane.h).
+// Polyhedrization of a surfel boundary into standard faces (J. Francon and L. Papier,
+// "Polyhedrization of the Boundary of a Voxel Object", DGCI'99; its section 3): faces are grown
+// surfel by surfel, breadth first from a seed, and a surfel joins the face only if the face stays a
+// topological disk and all its pointels stay in one standard plane (with the face's surfels all on
+// the outer side of that plane, see StandardPlane.h).
 //
 // Beyond the paper, against its open problem of small faces: a pass that moves surfels from
 // smaller faces to a larger neighbour whose plane takes them unchanged (the rim of a large
@@ -17,6 +18,8 @@
 #include "StandardPlane.h"
 #include "SurfelGraph.h"
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -81,7 +84,7 @@ struct FaceOutline
 /// string.
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
-  std::vector<SurfelGraph::Surfel>& surfels,
+  std::vector<Surfel>& surfels,
   BitVolume& voxels,
   const Execution& exec = Execution());
 

@@ -1,52 +1,21 @@
-// Sorting of vertices as packed 64-bit keys: grid coordinates are non-negative and below
-// 2^21, so three of them fit in one key whose integer order is the lexicographic order.
+// Sorting of vertices as packed 64-bit keys (KeyPacker, Geometry.h): grid coordinates are
+// non-negative and below 2^21, so three of them fit in one key whose integer order is the
+// lexicographic order.
 #ifndef vbr_RadixSort_h
 #define vbr_RadixSort_h
 
+#include "Geometry.h"
+
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace vbr
 {
-
-constexpr std::int32_t PackedCoordinateLimit = 1 << 21;
-
-/// Packs three non-negative coordinates below 2^bits into one key, the first one highest.
-/// The fewer the bits, the fewer radix passes.
-struct KeyPacker
-{
-  int bits = 21;
-
-  /// The narrowest packer for coordinates in [0, maxCoordinate].
-  static KeyPacker forMaximum(std::int32_t maxCoordinate)
-  {
-    KeyPacker p;
-    p.bits = 1;
-    while (p.bits < 21 && (std::int64_t(1) << p.bits) <= maxCoordinate)
-      ++p.bits;
-    return p;
-  }
-  std::uint64_t pack(std::int32_t a, std::int32_t b, std::int32_t c) const
-  {
-    return (static_cast<std::uint64_t>(a) << (2 * this->bits)) |
-      (static_cast<std::uint64_t>(b) << this->bits) | static_cast<std::uint64_t>(c);
-  }
-  std::array<std::int32_t, 3> unpack(std::uint64_t k) const
-  {
-    const std::uint64_t mask = (std::uint64_t(1) << this->bits) - 1;
-    return { static_cast<std::int32_t>(k >> (2 * this->bits)),
-      static_cast<std::int32_t>((k >> this->bits) & mask),
-      static_cast<std::int32_t>(k & mask) };
-  }
-  /// Third coordinate of a key.
-  std::int32_t last(std::uint64_t k) const
-  {
-    return static_cast<std::int32_t>(k & ((std::uint64_t(1) << this->bits) - 1));
-  }
-};
 
 /// LSD radix sort on 11-bit digits (a small count table that stays in cache); passes whose
 /// digit is the same for all keys are skipped.

@@ -4,6 +4,7 @@
 
 #include "BitVolume.h"
 #include "Execution.h"
+#include "Geometry.h"
 
 #include <algorithm>
 #include <array>
@@ -30,13 +31,6 @@ struct ScalarGrid
   }
 };
 
-/// Box [lo, hi) of voxel indices.
-struct Box3
-{
-  std::array<std::int32_t, 3> lo{ 0, 0, 0 };
-  std::array<std::int32_t, 3> hi{ 0, 0, 0 };
-};
-
 /// Bit k of the result is byte k of `flags`, whose bytes are 0 or 1: the product places byte k
 /// at bit 49 + k, and no two partial products share a bit, so nothing carries.
 inline Word packEightFlags(std::uint64_t flags)
@@ -47,7 +41,7 @@ inline Word packEightFlags(std::uint64_t flags)
 /// Voxels of `box` whose value satisfies `selected`, packed 64 per word, parallel over rows.
 template<typename T, typename Predicate>
 BitVolume selectVoxels(const ScalarGrid<T>& grid,
-  const Box3& box,
+  const Box& box,
   Predicate selected,
   const Execution& exec)
 {
@@ -89,13 +83,13 @@ BitVolume selectVoxels(const ScalarGrid<T>& grid,
 /// Every distinct value other than `*background` (none when null) and NaN, with the
 /// bounding box of its voxels.
 template<typename T>
-std::map<T, Box3> labelBoxes(const ScalarGrid<T>& grid, const T* background)
+std::map<T, Box> labelBoxes(const ScalarGrid<T>& grid, const T* background)
 {
-  std::map<T, Box3> boxes;
+  std::map<T, Box> boxes;
   for (std::int32_t k = 0; k < grid.dims[2]; ++k)
     for (std::int32_t j = 0; j < grid.dims[1]; ++j)
     {
-      Box3* current = nullptr;
+      Box* current = nullptr;
       T currentValue{};
       for (std::int32_t i = 0; i < grid.dims[0]; ++i)
       {
@@ -107,7 +101,7 @@ std::map<T, Box3> labelBoxes(const ScalarGrid<T>& grid, const T* background)
           auto it = boxes.find(value);
           if (it == boxes.end())
           {
-            Box3 b;
+            Box b;
             b.lo = { i, j, k };
             b.hi = { i + 1, j + 1, k + 1 };
             it = boxes.emplace(value, b).first;

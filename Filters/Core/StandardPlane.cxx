@@ -1,8 +1,22 @@
+// The standard plane recognizer of the header, one octant of normals at a time.
+//
+// Each octant keeps its polygon of normals (reset starts from the triangle of the octant;
+// applyPoints clips it lazily by the pair of points realizing a violating vertex's width:
+// clip, measure). tryAdd runs in phases: the surfel orientations (addOrientations), the new
+// points without repeats (collectFreshPoints), the fast path where the current plane takes
+// them (takenByCurrentPlane), and the slow path (searchOctants) that clips a copy of every
+// octant still alive, drops those without interior (hasInterior), and searches each for the
+// integer normal of smallest omega (solve: omega level by level, n_x over the polygon's range,
+// n_y bounded by every edge: rangeOfNy, each candidate checked by fits); adoptNormal keeps the
+// result. All arithmetic is on integers; determinants use Wide.
+
 #include "StandardPlane.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <numeric>
+#include <utility>
 
 namespace vbr
 {
@@ -11,7 +25,6 @@ namespace
 {
 
 using Vec = std::array<std::int64_t, 3>;
-using Wide = __int128;
 
 /// Points may differ by less than this along every axis: it bounds every product below
 /// (constraint normals < 2^17, polygon rays < 2^35, their dot products with points < 2^54,
@@ -22,21 +35,6 @@ constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
 /// Lattice candidates examined by one search before giving up (the face then stops growing
 /// in that direction: a refusal is always safe).
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
-
-std::int64_t dot(const Vec& a, const Point3& p)
-{
-  return a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
-}
-
-std::int64_t dot(const Vec& a, const Vec& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-Vec cross(const Vec& a, const Vec& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
 
 Vec primitive(Vec v)
 {
@@ -64,11 +62,34 @@ std::int64_t ceilDiv(std::int64_t a, std::int64_t b) // b > 0
   return -floorDiv(-a, b);
 }
 
-std::uint64_t keyOf(const Point3& p)
+/// The normals n = (nx, ny, sigma_z (omega - sigma_x nx - sigma_y ny)) of the slice
+/// sigma.n = omega inside the polygon of `edges` (strictly on the strict ones): every edge
+/// bounds ny, to [yLo, yHi] (empty when yLo > yHi).
+void rangeOfNy(const std::vector<Vec>& edges,
+  const std::vector<char>& strict,
+  const Vec& sigma,
+  std::int64_t omega,
+  std::int64_t nx,
+  std::int64_t& yLo,
+  std::int64_t& yHi)
 {
-  constexpr std::uint64_t Bias = std::uint64_t(1) << 20;
-  return ((std::uint64_t(p[0] + Bias) << 42) | (std::uint64_t(p[1] + Bias) << 21) |
-    std::uint64_t(p[2] + Bias));
+  yLo = -MaximumOmega - 1;
+  yHi = MaximumOmega + 1;
+  for (std::size_t e = 0; e < edges.size() && yLo <= yHi; ++e)
+  {
+    const Vec& E = edges[e];
+    const std::int64_t a = E[1] - E[2] * sigma[2] * sigma[1];
+    const std::int64_t b = E[0] * nx + E[2] * sigma[2] * (omega - sigma[0] * nx);
+    if (a == 0)
+    {
+      if (b < 0 || (strict[e] && b == 0))
+        yLo = yHi + 1;
+    }
+    else if (a > 0) // a ny + b >= 0 (> 0)
+      yLo = std::max(yLo, strict[e] ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
+    else // ny <= b / -a (<)
+      yHi = std::min(yHi, strict[e] ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
+  }
 }
 
 Vec sigmaOf(const std::array<int, 3>& s)
@@ -300,23 +321,8 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
     const std::int64_t xHi = floorDiv(omega * maxNum, maxDen);
     for (std::int64_t nx = xLo; nx <= xHi && budget > 0; ++nx, --budget)
     {
-      // n = (nx, ny, sigma_z (omega - sigma_x nx - sigma_y ny)): every edge bounds ny.
-      std::int64_t yLo = -MaximumOmega - 1, yHi = MaximumOmega + 1;
-      for (std::size_t e = 0; e < o.edges.size() && yLo <= yHi; ++e)
-      {
-        const Vec& E = o.edges[e];
-        const std::int64_t a = E[1] - E[2] * sigma[2] * sigma[1];
-        const std::int64_t b = E[0] * nx + E[2] * sigma[2] * (omega - sigma[0] * nx);
-        if (a == 0)
-        {
-          if (b < 0 || (strict[e] && b == 0))
-            yLo = yHi + 1;
-        }
-        else if (a > 0) // a ny + b >= 0 (> 0)
-          yLo = std::max(yLo, strict[e] ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
-        else // ny <= b / -a (<)
-          yHi = std::min(yHi, strict[e] ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
-      }
+      std::int64_t yLo, yHi;
+      rangeOfNy(o.edges, strict, sigma, omega, nx, yLo, yHi);
       for (std::int64_t ny = yLo; ny <= yHi && budget > 0; ++ny, --budget)
       {
         const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
@@ -347,6 +353,30 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   const std::array<int, 3>& signs)
 {
   std::array<int, 3> present = this->Present;
+  if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count))
+    return false;
+  if (this->takenByCurrentPlane(present))
+    return true;
+  // Slow path: clip the octants with the points already accepted (for good), then with the
+  // new ones (on copies), and search each surviving octant for a normal.
+  for (int i = 0; i < 8; ++i)
+    this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
+  const std::size_t before = this->Points.size();
+  this->Points.insert(this->Points.end(), this->Fresh.begin(), this->Fresh.end());
+  std::array<bool, 8> survives{};
+  Vec best{ 0, 0, 0 };
+  const bool found = this->searchOctants(present, survives, best);
+  this->Points.resize(before);
+  if (!found)
+    return false;
+  this->commit(present);
+  this->adoptNormal(best, survives);
+  return true;
+}
+
+bool StandardPlaneRecognizer::addOrientations(const std::array<int, 3>& signs,
+  std::array<int, 3>& present)
+{
   for (int d = 0; d < 3; ++d)
   {
     if (signs[d] == 0)
@@ -355,6 +385,11 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
       return false; // opposite surfel normals: no plane has both
     present[d] = signs[d];
   }
+  return true;
+}
+
+bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size_t count)
+{
   if (this->Points.empty() && count > 0)
     this->Origin = points[0];
   // New points relative to the origin, without repeats.
@@ -363,78 +398,74 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   this->FreshKeys.clear();
   for (std::size_t i = 0; i < count; ++i)
   {
-    const Point3& p = points[i];
-    const Point3 q{ p[0] - this->Origin[0], p[1] - this->Origin[1], p[2] - this->Origin[2] };
+    const Point3 q = sub(points[i], this->Origin);
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
         return false;
-    if (this->Keys.find(keyOf(q)) < 0)
+    if (this->Keys.find(packBiased(q)) < 0)
       fresh.push_back(q);
   }
   // Repeats within the call: sorted, kept once (their order does not matter).
   std::sort(fresh.begin(),
     fresh.end(),
-    [](const Point3& a, const Point3& b) { return keyOf(a) < keyOf(b); });
+    [](const Point3& a, const Point3& b) { return packBiased(a) < packBiased(b); });
   fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
   for (const Point3& q : fresh)
-    this->FreshKeys.push_back(keyOf(q));
+    this->FreshKeys.push_back(packBiased(q));
+  return true;
+}
 
-  // Fast path: the current plane takes the new points and orientations.
-  if (!this->Points.empty())
+bool StandardPlaneRecognizer::takenByCurrentPlane(const std::array<int, 3>& present)
+{
+  if (this->Points.empty())
+    return false;
+  const Vec& n = this->Current.normal;
+  for (int d = 0; d < 3; ++d)
+    if (present[d] != 0 && present[d] * n[d] <= 0)
+      return false;
+  std::int64_t lo = this->CurrentLo, hi = this->CurrentHi;
+  for (const Point3& q : this->Fresh)
   {
-    const Vec& n = this->Current.normal;
-    bool ok = true;
-    for (int d = 0; d < 3 && ok; ++d)
-      ok = present[d] == 0 || present[d] * n[d] > 0;
-    std::int64_t lo = this->CurrentLo, hi = this->CurrentHi;
-    for (const Point3& q : fresh)
-    {
-      const std::int64_t x = dot(n, q);
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
-    }
-    if (ok && hi - lo < this->Current.omega())
-    {
-      this->commit(present);
-      this->CurrentLo = lo;
-      this->CurrentHi = hi;
-      this->Current.mu = lo + dot(n, this->Origin);
-      return true;
-    }
+    const std::int64_t x = dot(n, q);
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
   }
+  if (hi - lo >= this->Current.omega())
+    return false;
+  this->commit(present);
+  this->CurrentLo = lo;
+  this->CurrentHi = hi;
+  this->Current.mu = lo + dot(n, this->Origin);
+  return true;
+}
 
-  // Slow path: clip the octants with the points already accepted (for good), then with the
-  // new ones (on copies), and search each surviving octant for a normal.
-  for (int i = 0; i < 8; ++i)
-    this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
+bool StandardPlaneRecognizer::octantExcluded(const Octant& o,
+  const std::array<int, 3>& present) const
+{
+  for (int d = 0; d < 3; ++d)
+    if (present[d] != 0 && present[d] != o.sigma[d])
+      return true;
+  // Two points differing by sigma have width exactly 1 in every normal of the octant.
+  for (const Point3& q : this->Fresh)
+    for (int s : { -1, 1 })
+    {
+      const Point3 r{ q[0] + s * o.sigma[0], q[1] + s * o.sigma[1], q[2] + s * o.sigma[2] };
+      if (this->known(packBiased(r)))
+        return true;
+    }
+  return false;
+}
 
-  const std::size_t before = this->Points.size();
-  this->Points.insert(this->Points.end(), fresh.begin(), fresh.end());
-  std::array<bool, 8> survives{};
-  Vec best{ 0, 0, 0 };
+bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
+  std::array<bool, 8>& survives,
+  Vec& best)
+{
   std::int64_t bestOmega = MaximumOmega + 1;
   for (int i = 0; i < 8; ++i)
   {
     const Octant& original = this->Octants[i];
     survives[i] = false;
-    if (!this->Alive[i])
-      continue;
-    bool consistent = true;
-    for (int d = 0; d < 3; ++d)
-      consistent = consistent && (present[d] == 0 || present[d] == original.sigma[d]);
-    if (!consistent)
-      continue;
-    // Two points differing by sigma have width exactly 1 in every normal of the octant.
-    bool dead = false;
-    for (const Point3& q : fresh)
-      for (int s : { -1, 1 })
-      {
-        const Point3 r{
-          q[0] + s * original.sigma[0], q[1] + s * original.sigma[1], q[2] + s * original.sigma[2]
-        };
-        dead = dead || this->known(keyOf(r));
-      }
-    if (dead)
+    if (!this->Alive[i] || this->octantExcluded(original, present))
       continue;
     Octant& o = this->Trials[i];
     o = original; // reuses the trial's storage
@@ -448,13 +479,11 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
       bestOmega = std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
     }
   }
-  if (bestOmega > MaximumOmega)
-  {
-    this->Points.resize(before);
-    return false;
-  }
-  this->Points.resize(before);
-  this->commit(present);
+  return bestOmega <= MaximumOmega;
+}
+
+void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool, 8>& survives)
+{
   for (int i = 0; i < 8; ++i)
   {
     // Octants the new points emptied, or whose signs they contradict, stay dead.
@@ -474,7 +503,6 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
     this->CurrentHi = std::max(this->CurrentHi, x);
   }
   this->Current.mu = this->CurrentLo + dot(best, this->Origin);
-  return true;
 }
 
 void StandardPlaneRecognizer::commit(const std::array<int, 3>& present)
@@ -482,7 +510,7 @@ void StandardPlaneRecognizer::commit(const std::array<int, 3>& present)
   for (const Point3& q : this->Fresh)
   {
     this->Points.push_back(q);
-    this->Keys.insert(keyOf(q));
+    this->Keys.insert(packBiased(q));
   }
   this->Present = present;
 }

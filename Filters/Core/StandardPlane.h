@@ -1,7 +1,8 @@
 // Exact, incremental recognition of pieces of standard arithmetic planes.
 //
 // A standard plane (a, b, c, mu) is the set of integer points p with
-//   mu <= a*x + b*y + c*z < mu + |a| + |b| + |c|.
+//   mu <= a*x + b*y + c*z < mu + |a| + |b| + |c|
+// (the arithmetic plane of width omega = |a| + |b| + |c|, Francon & Papier, section 2).
 // Its unit squares form a 2-manifold: the boundary of the digital half-space of the voxels
 // whose centres satisfy n.centre < mu + omega / 2. A surfel of that boundary has its outward
 // normal s*e_d with s*n_d > 0, so the recognizer also takes the orientation of the surfels:
@@ -20,16 +21,16 @@
 #ifndef vbr_StandardPlane_h
 #define vbr_StandardPlane_h
 
+#include "Geometry.h"
 #include "GridPointIndex.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace vbr
 {
-
-using Point3 = std::array<std::int32_t, 3>;
 
 struct StandardPlane
 {
@@ -57,8 +58,9 @@ public:
   void reset();
 
   /// Adds the points (and surfel orientations: sign[d] in {-1, 0, +1} asks s*n_d > 0) if
-  /// the union still lies in one standard plane; otherwise changes nothing. Coordinates
-  /// must stay within +-2^20 of each other.
+  /// the union still lies in one standard plane; otherwise changes nothing. Points must lie
+  /// less than 2^15 from the first point added along every axis: the call refuses (returns
+  /// false) any farther point, so that every product of the recognition fits its integers.
   bool tryAdd(const Point3* points, std::size_t count, const std::array<int, 3>& signs);
   bool tryAdd(const std::vector<Point3>& points, const std::array<int, 3>& signs)
   {
@@ -103,6 +105,21 @@ private:
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
   /// Whether the width is exactly 1 all along polygon edge e (between vertices e, e + 1).
   bool saturated(const Octant& o, std::size_t e) const;
+  // The phases of tryAdd.
+  /// The surfel orientations asked so far and now; false when two are opposite.
+  static bool addOrientations(const std::array<int, 3>& signs, std::array<int, 3>& present);
+  /// The new points relative to Origin, without repeats, into Fresh (and FreshKeys); false
+  /// when one is too far from Origin.
+  bool collectFreshPoints(const Point3* points, std::size_t count);
+  /// Fast path: the current plane takes the new points and orientations (then committed).
+  bool takenByCurrentPlane(const std::array<int, 3>& present);
+  /// Whether an octant cannot hold a normal for the orientations and the new points.
+  bool octantExcluded(const Octant& o, const std::array<int, 3>& present) const;
+  /// Slow path: clips a copy of every live octant with the new points and searches it for
+  /// the normal of smallest omega; false when none is found.
+  bool searchOctants(const std::array<int, 3>& present, std::array<bool, 8>& survives, Vec& best);
+  /// Keeps the clipped octants that survived and the plane of normal `best`.
+  void adoptNormal(const Vec& best, const std::array<bool, 8>& survives);
   void commit(const std::array<int, 3>& present);
   bool known(std::uint64_t key) const;
 

@@ -1,9 +1,20 @@
+// The surfel graph built in four stages (buildSurfelGraph).
+//
+// findSurfels scans the bit rows a word at a time for the voxels with an unselected
+// face-neighbour and lists their boundary faces, each keyed in a hash index. linkNeighbours
+// finds the surfel across each edge (neighbourKey: concave, flat or convex, the voxel beyond
+// reached only through a face-neighbour, which keeps edge-touching voxels apart).
+// matchSharedEdges records which edge of the neighbour is the same linel. glueVertices unites
+// the corners glued across shared edges (one vertex per umbrella, so a pointel where voxels
+// touch only at a corner gets several) and the surfels into connected components.
+
 #include "SurfelGraph.h"
 
 #include "GridPointIndex.h"
 #include "Surfels.h"
+#include "UnionFind.h"
 
-#include <numeric>
+#include <cstddef>
 #include <stdexcept>
 
 namespace vbr
@@ -12,107 +23,33 @@ namespace vbr
 namespace
 {
 
-using Int3 = std::array<std::int32_t, 3>;
-
-Int3 unit(int direction)
+/// The voxel set as the graph reads it: membership of any voxel (outside the grid: not in
+/// the set) and the key of a surfel in the index.
+struct VoxelSet
 {
-  Int3 u{ 0, 0, 0 };
-  u[direction >> 1] = (direction & 1) ? 1 : -1;
-  return u;
-}
+  const BitVolume& voxels;
+  Point3 dims;
 
-int directionOf(const Int3& u)
-{
-  for (int axis = 0; axis < 3; ++axis)
-    if (u[axis] != 0)
-      return 2 * axis + (u[axis] > 0 ? 1 : 0);
-  throw std::logic_error("not a unit vector");
-}
-
-Int3 add(const Int3& a, const Int3& b)
-{
-  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
-}
-
-Int3 cross(const Int3& a, const Int3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-
-class UnionFind
-{
-public:
-  explicit UnionFind(std::size_t n)
-    : Parent(n)
-  {
-    std::iota(this->Parent.begin(), this->Parent.end(), 0u);
-  }
-  std::uint32_t find(std::uint32_t x)
-  {
-    while (this->Parent[x] != x)
-      x = this->Parent[x] = this->Parent[this->Parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b)
-  {
-    a = this->find(a);
-    b = this->find(b);
-    if (a != b)
-      this->Parent[std::max(a, b)] = std::min(a, b);
-  }
-
-private:
-  std::vector<std::uint32_t> Parent;
-};
-
-/// Consecutive numbers for the classes of a union-find, in order of first element.
-std::vector<std::uint32_t> numberClasses(UnionFind& uf, std::size_t n, std::uint32_t& count)
-{
-  std::vector<std::uint32_t> number(n);
-  count = 0;
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    const std::uint32_t root = uf.find(i);
-    number[i] = root == i ? count++ : number[root];
-  }
-  return number;
-}
-
-} // namespace
-
-Point3 SurfelGraph::Surfel::corner(int k) const
-{
-  const int a = this->axis(), u = (a + 1) % 3, v = (a + 2) % 3;
-  Point3 p = this->voxel;
-  if (this->sign() > 0)
-    ++p[a];
-  // Counter-clockwise about +e_a is base, +e_u, +e_u+e_v, +e_v (e_u x e_v = e_a); about
-  // -e_a the reverse.
-  static const int du[4] = { 0, 1, 1, 0 };
-  static const int dv[4] = { 0, 0, 1, 1 };
-  const int j = this->sign() > 0 ? k : (4 - k) % 4;
-  p[u] += du[j];
-  p[v] += dv[j];
-  return p;
-}
-
-bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out)
-{
-  out = SurfelGraph();
-  out.dims = voxels.dims();
-  const Int3 dims = voxels.dims();
-  auto in = [&](const Int3& v)
+  bool contains(const Point3& v) const
   {
     return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < dims[0] && v[1] < dims[1] &&
       v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
-  };
-  auto keyOf = [&](const Int3& v, int direction)
-  { return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction; };
+  }
+  std::uint64_t key(const Point3& v, int direction) const
+  {
+    return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction;
+  }
+};
 
-  // Only voxels with an unselected face-neighbour bear surfels: found a word at a time.
-  const std::size_t expected = countSurfels(voxels);
-  GridPointIndex index(expected);
-  out.surfels.reserve(expected);
+/// Stage 1, the surfels: only voxels with an unselected face-neighbour bear surfels, found a
+/// word at a time. Returns false when aborted.
+bool findSurfels(const VoxelSet& set,
+  const Execution& exec,
+  SurfelGraph& out,
+  GridPointIndex& index)
+{
+  const BitVolume& voxels = set.voxels;
+  const Point3& dims = set.dims;
   const std::size_t words = voxels.wordsPerRow();
   const std::vector<Word> none(words, 0);
   for (std::int32_t z = 0; z < dims[2]; ++z)
@@ -136,64 +73,62 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
         Word boundary = w & ~(left & right & down[i] & up[i] & back[i] & front[i]);
         while (boundary)
         {
-          const int bit = __builtin_ctzll(boundary);
+          const int bit = countTrailingZeros(boundary);
           boundary &= boundary - 1;
-          const Int3 v{ static_cast<std::int32_t>(i * 64 + bit), y, z };
+          const Point3 v{ static_cast<std::int32_t>(i * 64 + bit), y, z };
           for (int d = 0; d < 6; ++d)
-            if (!in(add(v, unit(d))))
+            if (!set.contains(add(v, unitVector(d))))
             {
               out.surfels.push_back({ v, static_cast<std::uint8_t>(d) });
-              index.insert(keyOf(v, d));
+              index.insert(set.key(v, d));
             }
         }
       }
     }
   }
+  return true;
+}
 
-  // Neighbour across each edge: the surface turns into the voxel beyond (concave), goes on
-  // flat, or turns round its own voxel (convex). The voxel beyond is reached only through
-  // a face-neighbour in the set, which keeps edge-touching voxels apart.
+/// The surfel beyond edge (a, b) of surfel sf: the surface turns into the voxel beyond
+/// (concave), goes on flat, or turns round its own voxel (convex). The voxel beyond is
+/// reached only through a face-neighbour in the set, which keeps edge-touching voxels apart.
+std::uint64_t neighbourKey(const VoxelSet& set, const Surfel& sf, const Point3& a, const Point3& b)
+{
+  const Point3 normal = unitVector(sf.direction);
+  const Point3 g = cross(sub(b, a), normal); // from the surfel towards the edge
+  const Point3 side = add(sf.voxel, g);
+  if (!set.contains(side))
+    return set.key(sf.voxel, directionOf(g)); // g is a unit vector
+  const Point3 beyond = add(side, normal);
+  if (set.contains(beyond))
+    return set.key(beyond, directionOf({ -g[0], -g[1], -g[2] }));
+  return set.key(side, sf.direction);
+}
+
+/// Stage 2, the neighbour across each edge.
+void linkNeighbours(const VoxelSet& set, const GridPointIndex& index, SurfelGraph& out)
+{
   const std::size_t n = out.surfels.size();
   out.corners.resize(4 * n);
   for (std::size_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
       out.corners[4 * s + k] = out.surfels[s].corner(k);
   out.neighbour.resize(4 * n);
-  for (std::size_t s = 0; s < n; ++s)
-  {
-    const SurfelGraph::Surfel& sf = out.surfels[s];
-    const Int3 normal = unit(sf.direction);
+  for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
     {
-      const Point3& a = out.cornerOf(static_cast<std::uint32_t>(s), k);
-      const Point3& b = out.cornerOf(static_cast<std::uint32_t>(s), (k + 1) % 4);
-      const Int3 t{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-      const Int3 g = cross(t, normal); // from the surfel towards the edge
-      const Int3 side = add(sf.voxel, g);
-      Int3 voxel = sf.voxel;
-      int direction = directionOf(g);
-      if (in(side))
-      {
-        const Int3 beyond = add(side, normal);
-        if (in(beyond))
-        {
-          voxel = beyond;
-          direction = directionOf({ -g[0], -g[1], -g[2] });
-        }
-        else
-        {
-          voxel = side;
-          direction = sf.direction;
-        }
-      }
-      const std::int64_t id = index.find(keyOf(voxel, direction));
+      const std::int64_t id = index.find(
+        neighbourKey(set, out.surfels[s], out.cornerOf(s, k), out.cornerOf(s, (k + 1) % 4)));
       if (id < 0)
         throw std::logic_error("surfel neighbour missing");
       out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
     }
-  }
+}
 
-  // The same linel seen from the neighbour: its edge runs the other way.
+/// Stage 3, the same linel seen from the neighbour: its edge runs the other way.
+void matchSharedEdges(SurfelGraph& out)
+{
+  const std::size_t n = out.surfels.size();
   out.neighbourEdge.resize(4 * n);
   for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
@@ -207,8 +142,13 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
         throw std::logic_error("neighbouring surfels do not share their linel");
       out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
     }
+}
 
-  // Vertices: corners glued across shared edges; a pointel gets one per umbrella.
+/// Stage 4, the vertices: corners glued across shared edges, so that a pointel gets one
+/// vertex per umbrella; and the connected components of the surface.
+void glueVertices(SurfelGraph& out)
+{
+  const std::size_t n = out.surfels.size();
   UnionFind corners(4 * n);
   UnionFind faces(n);
   for (std::uint32_t s = 0; s < n; ++s)
@@ -221,11 +161,28 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
       faces.unite(s, t);
     }
   std::uint32_t vertexCount = 0;
-  out.vertex = numberClasses(corners, 4 * n, vertexCount);
+  out.vertex = corners.numberClasses(vertexCount);
   out.vertexPointel.resize(vertexCount);
   for (std::uint32_t c = 0; c < 4 * n; ++c)
     out.vertexPointel[out.vertex[c]] = out.corners[c];
-  out.component = numberClasses(faces, n, out.componentCount);
+  out.component = faces.numberClasses(out.componentCount);
+}
+
+} // namespace
+
+bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out)
+{
+  out = SurfelGraph();
+  out.dims = voxels.dims();
+  const VoxelSet set{ voxels, voxels.dims() };
+  const std::size_t expected = countSurfels(voxels);
+  GridPointIndex index(expected);
+  out.surfels.reserve(expected);
+  if (!findSurfels(set, exec, out, index))
+    return false;
+  linkNeighbours(set, index, out);
+  matchSharedEdges(out);
+  glueVertices(out);
   return true;
 }
 

@@ -15,9 +15,11 @@
 
 #include "BitVolume.h"
 #include "Execution.h"
-#include "StandardPlane.h"
+#include "Geometry.h"
+#include "Surfels.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -26,18 +28,6 @@ namespace vbr
 
 struct SurfelGraph
 {
-  /// Outward direction of a surfel: 2 * axis + (1 if it points to +axis).
-  struct Surfel
-  {
-    std::array<std::int32_t, 3> voxel; ///< the selected voxel it bounds
-    std::uint8_t direction;
-
-    int axis() const { return this->direction >> 1; }
-    int sign() const { return (this->direction & 1) ? 1 : -1; }
-    /// Corner k (0..3) counter-clockwise seen from outside.
-    Point3 corner(int k) const;
-  };
-
   std::array<std::int32_t, 3> dims{ 0, 0, 0 };
   std::vector<Surfel> surfels;             ///< by voxel (z, y, x) then direction
   std::vector<Point3> corners;             ///< 4 per surfel, counter-clockwise from outside

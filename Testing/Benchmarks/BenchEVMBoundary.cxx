@@ -420,7 +420,7 @@ std::vector<Row> measureConversion(const Input& input,
   grid.data = input.values.data();
   grid.dims = { input.dims[0], input.dims[1], input.dims[2] };
   grid.stride = { 1, input.dims[0], std::int64_t(input.dims[0]) * input.dims[1] };
-  vbr::Box3 box;
+  vbr::Box box;
   box.hi = grid.dims;
   const std::uint8_t threshold = static_cast<std::uint8_t>(input.threshold);
   return measure(repeat,

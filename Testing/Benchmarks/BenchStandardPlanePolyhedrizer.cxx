@@ -111,7 +111,7 @@ void run(const Input& in, int repeat)
       o.loop.push_back(graph.vertexPointel[v]);
     outlines.push_back(std::move(o));
   }
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   const std::string error = vbr::revert(outlines, voxels.dims(), surfels, back);
   const bool exact = error.empty() && back == voxels;

@@ -1,6 +1,7 @@
 #include "BruteForce.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <deque>
 #include <random>
@@ -8,7 +9,7 @@
 namespace bf
 {
 
-vbr::BitVolume randomVolume(const Int3& dims, double density, unsigned seed)
+vbr::BitVolume randomVolume(const vbr::Point3& dims, double density, unsigned seed)
 {
   vbr::BitVolume v(dims[0], dims[1], dims[2]);
   std::mt19937 rng(seed);
@@ -31,7 +32,7 @@ std::vector<int> floodFillLabels(const vbr::BitVolume& v, bool vertexConnected, 
 {
   const int nx = v.size(0), ny = v.size(1), nz = v.size(2);
   std::vector<int> label(static_cast<std::size_t>(nx) * ny * nz, 0);
-  std::vector<Int3> offsets;
+  std::vector<vbr::Point3> offsets;
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx)
@@ -41,7 +42,7 @@ std::vector<int> floodFillLabels(const vbr::BitVolume& v, bool vertexConnected, 
           offsets.push_back({ dx, dy, dz });
       }
   count = 0;
-  std::vector<Int3> stack;
+  std::vector<vbr::Point3> stack;
   auto index = [&](int x, int y, int z) { return (std::size_t(z) * ny + y) * nx + x; };
   for (int z = 0; z < nz; ++z)
     for (int y = 0; y < ny; ++y)
@@ -53,9 +54,9 @@ std::vector<int> floodFillLabels(const vbr::BitVolume& v, bool vertexConnected, 
         stack.push_back({ x, y, z });
         while (!stack.empty())
         {
-          const Int3 p = stack.back();
+          const vbr::Point3 p = stack.back();
           stack.pop_back();
-          for (const Int3& o : offsets)
+          for (const vbr::Point3& o : offsets)
           {
             const int qx = p[0] + o[0], qy = p[1] + o[1], qz = p[2] + o[2];
             if (voxel(v, qx, qy, qz) && label[index(qx, qy, qz)] == 0)
@@ -69,9 +70,9 @@ std::vector<int> floodFillLabels(const vbr::BitVolume& v, bool vertexConnected, 
   return label;
 }
 
-std::set<Int3> extremeVertices(const vbr::BitVolume& v)
+std::set<vbr::Point3> extremeVertices(const vbr::BitVolume& v)
 {
-  std::set<Int3> out;
+  std::set<vbr::Point3> out;
   for (int z = 0; z <= v.size(2); ++z)
     for (int y = 0; y <= v.size(1); ++y)
       for (int x = 0; x <= v.size(0); ++x)
@@ -87,9 +88,9 @@ std::set<Int3> extremeVertices(const vbr::BitVolume& v)
   return out;
 }
 
-std::set<Int3> extremeVertices2D(const vbr::BitVolume& v)
+std::set<vbr::Point3> extremeVertices2D(const vbr::BitVolume& v)
 {
-  std::set<Int3> out;
+  std::set<vbr::Point3> out;
   for (int y = 0; y <= v.size(1); ++y)
     for (int x = 0; x <= v.size(0); ++x)
     {
@@ -110,11 +111,11 @@ std::map<PlaneKey, std::vector<PixelSet>> expectedFaces(const vbr::BitVolume& v,
       {
         if (!v.get(x, y, z))
           continue;
-        const Int3 p{ x, y, z };
+        const vbr::Point3 p{ x, y, z };
         for (int axis = 0; axis < 3; ++axis)
           for (int sign = -1; sign <= 1; sign += 2)
           {
-            Int3 n = p;
+            vbr::Point3 n = p;
             n[axis] += sign;
             if (voxel(v, n[0], n[1], n[2]))
               continue;

@@ -6,6 +6,7 @@
 
 #include "BRep.h"
 #include "BitVolume.h"
+#include "Geometry.h"
 #include "PixelTopology.h"
 
 #include <algorithm>
@@ -19,10 +20,8 @@
 namespace bf
 {
 
-using Int3 = std::array<std::int32_t, 3>;
-
 /// Random voxel set with the given density; seeds give reproducible volumes.
-vbr::BitVolume randomVolume(const Int3& dims, double density, unsigned seed);
+vbr::BitVolume randomVolume(const vbr::Point3& dims, double density, unsigned seed);
 
 /// Voxel value with everything outside the grid empty.
 bool voxel(const vbr::BitVolume& v, std::int32_t x, std::int32_t y, std::int32_t z);
@@ -33,10 +32,10 @@ bool voxel(const vbr::BitVolume& v, std::int32_t x, std::int32_t y, std::int32_t
 std::vector<int> floodFillLabels(const vbr::BitVolume& v, bool vertexConnected, int& count);
 
 /// Grid vertices incident to an odd number of set voxels (x, y, z), counting the 8 voxels.
-std::set<Int3> extremeVertices(const vbr::BitVolume& v);
+std::set<vbr::Point3> extremeVertices(const vbr::BitVolume& v);
 
 /// Same for a 2D image (nz == 1): the 4 pixels around each vertex; vertices (x, y, 0).
-std::set<Int3> extremeVertices2D(const vbr::BitVolume& v);
+std::set<vbr::Point3> extremeVertices2D(const vbr::BitVolume& v);
 
 /// Faces one would expect: for each axis, plane and normal sign, the connected components
 /// of the surfels of that plane (4-connected, or 8 when `merged`).

@@ -5,15 +5,21 @@
 #include "BruteForce.h"
 #include "EVM.h"
 #include "FaceTriangulator.h"
+#include "PlaneSweep3D.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <map>
+#include <utility>
+#include <vector>
 
 namespace
 {
 
-using Segment = std::pair<bf::Int3, bf::Int3>;
+using Segment = std::pair<vbr::Point3, vbr::Point3>;
 
 /// Every loop edge cut into unit segments, directed. A closed, consistently oriented surface
 /// uses each unit segment as often in one direction as in the other.
@@ -25,8 +31,8 @@ std::map<Segment, int> unitSegments(const vbr::BRep& brep)
     const auto points = brep.loopPoints(static_cast<int>(l));
     for (std::size_t i = 0; i < points.size(); ++i)
     {
-      bf::Int3 p = points[i];
-      const bf::Int3 q = points[(i + 1) % points.size()];
+      vbr::Point3 p = points[i];
+      const vbr::Point3 q = points[(i + 1) % points.size()];
       int d = 0;
       while (d < 3 && p[d] == q[d])
         ++d;
@@ -38,7 +44,7 @@ std::map<Segment, int> unitSegments(const vbr::BRep& brep)
       const int step = q[d] > p[d] ? 1 : -1;
       while (p != q)
       {
-        bf::Int3 n = p;
+        vbr::Point3 n = p;
         n[d] += step;
         ++count[{ p, n }];
         p = n;
@@ -48,17 +54,9 @@ std::map<Segment, int> unitSegments(const vbr::BRep& brep)
   return count;
 }
 
-/// Checks everything about the boundary of `v`.
-void checkVolume(const vbr::BitVolume& v, bool merged)
+/// Faces: exactly the connected regions of equally oriented surfels of each plane.
+void checkFaces(const vbr::BitVolume& v, const vbr::BRep& brep, bool merged)
 {
-  const vbr::EVM evm = vbr::extractEVM(v);
-  vbr::BRep brep;
-  ASSERT_TRUE(vbr::extractBoundary3D(evm,
-    merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
-    vbr::Execution(),
-    brep));
-
-  // Faces: exactly the connected regions of equally oriented surfels of each plane.
   const auto expected = bf::expectedFaces(v, merged);
   std::map<bf::PlaneKey, std::vector<bf::PixelSet>> produced;
   long long area = 0;
@@ -93,8 +91,11 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
   EXPECT_EQ(area, surfels);
   for (int a = 0; a < 3; ++a)
     EXPECT_EQ(volume[a], static_cast<long long>(v.count()));
+}
 
-  // Round trip: a voxel is inside when an odd number of x-faces lie before it on its row.
+/// Round trip: a voxel is inside when an odd number of x-faces lie before it on its row.
+void checkRoundTrip(const vbr::BitVolume& v, const vbr::BRep& brep)
+{
   vbr::BitVolume back(v.size(0), v.size(1), v.size(2));
   std::map<std::pair<int, int>, std::vector<int>> crossings; // (y, z) -> x positions
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
@@ -111,16 +112,11 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
         back.set(x, entry.first.first, entry.first.second);
   }
   EXPECT_EQ(back, v);
+}
 
-  // Closed and consistently oriented: before and after inserting T-junction vertices.
-  const auto before = unitSegments(brep);
-  for (const auto& entry : before)
-  {
-    auto it = before.find({ entry.first.second, entry.first.first });
-    ASSERT_NE(it, before.end());
-    EXPECT_EQ(it->second, entry.second);
-  }
-  vbr::insertTJunctionVertices(brep);
+/// Closed and consistently oriented: every unit segment matched by as many reversed ones.
+void checkClosed(const vbr::BRep& brep)
+{
   const auto segments = unitSegments(brep);
   for (const auto& entry : segments)
   {
@@ -128,14 +124,17 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
     ASSERT_NE(it, segments.end());
     EXPECT_EQ(it->second, entry.second);
   }
+}
 
-  // Triangles: no T-junctions left, so every triangle edge is matched by reversed edges;
-  // the triangles of a face cover exactly its area.
+/// Triangles: no T-junctions left, so every triangle edge is matched by reversed edges;
+/// the triangles of a face cover exactly its area.
+void checkTriangles(const vbr::BRep& brep)
+{
   std::map<Segment, int> edges;
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
   {
     const vbr::BRepFace& face = brep.faces[f];
-    std::vector<bf::Int3> corner;
+    std::vector<vbr::Point3> corner;
     for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
     {
       const auto points = brep.loopPoints(l);
@@ -145,7 +144,7 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
     const int u = (face.axis + 1) % 3, w = (face.axis + 2) % 3;
     for (const auto& t : vbr::triangulateFace(brep, static_cast<int>(f)))
     {
-      const bf::Int3 &a = corner[t[0]], &b = corner[t[1]], &c = corner[t[2]];
+      const vbr::Point3 &a = corner[t[0]], &b = corner[t[1]], &c = corner[t[2]];
       const long long cross = static_cast<long long>(b[u] - a[u]) * (c[w] - a[w]) -
         static_cast<long long>(b[w] - a[w]) * (c[u] - a[u]);
       EXPECT_GT(cross * face.normalSign, 0) << "triangle oriented inwards or degenerate";
@@ -164,6 +163,31 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
   }
 }
 
+/// Checks everything about the boundary of `v` (each step stops the checks on a fatal
+/// failure, as one function would).
+void checkVolume(const vbr::BitVolume& v, bool merged)
+{
+  const vbr::EVM evm = vbr::extractEVM(v);
+  vbr::BRep brep;
+  ASSERT_TRUE(vbr::planeSweep3D(evm,
+    merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
+    vbr::Execution(),
+    brep));
+  checkFaces(v, brep, merged);
+  checkRoundTrip(v, brep);
+  if (::testing::Test::HasFatalFailure())
+    return;
+  // Before and after inserting T-junction vertices.
+  checkClosed(brep);
+  if (::testing::Test::HasFatalFailure())
+    return;
+  vbr::insertTJunctionVertices(brep);
+  checkClosed(brep);
+  if (::testing::Test::HasFatalFailure())
+    return;
+  checkTriangles(brep);
+}
+
 } // namespace
 
 TEST(BRep, RandomVolumesMatchBruteForce)
@@ -171,7 +195,7 @@ TEST(BRep, RandomVolumesMatchBruteForce)
   unsigned seed = 3000;
   for (int trial = 0; trial < 24; ++trial)
   {
-    const bf::Int3 d{ 2 + (trial * 5) % 13, 2 + (trial * 3) % 11, 2 + (trial * 7) % 9 };
+    const vbr::Point3 d{ 2 + (trial * 5) % 13, 2 + (trial * 3) % 11, 2 + (trial * 7) % 9 };
     const double density = 0.1 + 0.8 * (trial % 8) / 7.0;
     const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
     SCOPED_TRACE(testing::Message() << "trial " << trial << " density " << density);
@@ -192,7 +216,7 @@ TEST(BRep, DegenerateVolumes)
   one.set(1, 1, 1);
   checkVolume(one, false);
   vbr::BRep b;
-  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(one), vbr::FaceConnectivity::Edge, {}, b));
+  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(one), vbr::FaceConnectivity::Edge, {}, b));
   EXPECT_EQ(b.faces.size(), 6u);
 
   checkVolume(bf::randomVolume({ 6, 5, 4 }, 1.0, 1), false); // every voxel selected
@@ -212,7 +236,7 @@ TEST(BRep, DegenerateVolumes)
   checkVolume(contacts, true);
 
   vbr::BitVolume empty(4, 4, 4);
-  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(empty), vbr::FaceConnectivity::Edge, {}, b));
+  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(empty), vbr::FaceConnectivity::Edge, {}, b));
   EXPECT_TRUE(b.faces.empty());
 }
 
@@ -222,11 +246,11 @@ TEST(BRep, AbortStopsTheSweep)
   vbr::Execution exec;
   exec.progress = [](double) { return false; };
   vbr::BRep b;
-  EXPECT_FALSE(vbr::extractBoundary3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, exec, b));
+  EXPECT_FALSE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, exec, b));
   // A stop requested while the planes are swept (polled from the workers) also aborts.
   vbr::Execution polled;
   int polls = 0;
   polled.aborted = [&polls]() { return ++polls > 3; };
-  EXPECT_FALSE(vbr::extractBoundary3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, polled, b));
+  EXPECT_FALSE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, polled, b));
   EXPECT_GT(polls, 3);
 }

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 namespace
 {
 
@@ -44,7 +46,8 @@ const vbr::BooleanOp Ops[] = { vbr::BooleanOp::Union,
 TEST(Booleans, ThreeDimensionalAgainstVoxelwise)
 {
   unsigned seed = 500;
-  for (const bf::Int3 d : { bf::Int3{ 6, 5, 4 }, bf::Int3{ 12, 11, 10 }, bf::Int3{ 1, 9, 3 } })
+  for (const vbr::Point3 d :
+    { vbr::Point3{ 6, 5, 4 }, vbr::Point3{ 12, 11, 10 }, vbr::Point3{ 1, 9, 3 } })
     for (double da : { 0.2, 0.5, 0.9 })
     {
       const vbr::BitVolume a = bf::randomVolume(d, da, seed++);
@@ -71,7 +74,7 @@ TEST(Booleans, TwoDimensionalAgainstPixelwise)
   unsigned seed = 900;
   for (int trial = 0; trial < 12; ++trial)
   {
-    const bf::Int3 d{ 3 + trial * 5, 2 + trial * 3, 1 };
+    const vbr::Point3 d{ 3 + trial * 5, 2 + trial * 3, 1 };
     const vbr::BitVolume a = bf::randomVolume(d, 0.5, seed++);
     const vbr::BitVolume b = bf::randomVolume(d, 0.3 + 0.05 * trial, seed++);
     for (vbr::BooleanOp op : Ops)

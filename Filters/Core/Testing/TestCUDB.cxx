@@ -8,9 +8,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -151,7 +155,7 @@ void checkAll(const vbr::BitVolume& v, const vbr::EVM& evm, bool checkPairs = tr
   }
 }
 
-vbr::BitVolume fromPoints(const bf::Int3& dims, const std::vector<bf::Int3>& points)
+vbr::BitVolume fromPoints(const vbr::Point3& dims, const std::vector<vbr::Point3>& points)
 {
   vbr::BitVolume v(dims[0], dims[1], dims[2]);
   for (const auto& p : points)
@@ -169,7 +173,7 @@ std::uint32_t componentCount(const vbr::BitVolume& v, vbr::Connectivity c)
 
 TEST(CUDB, RandomVolumesAllSortings)
 {
-  const bf::Int3 sizes[] = {
+  const vbr::Point3 sizes[] = {
     { 1, 1, 1 }, { 5, 4, 3 }, { 12, 9, 7 }, { 16, 16, 16 }, { 9, 17, 23 }
   };
   unsigned seed = 100;
@@ -230,7 +234,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
 {
   // The sequential sweep is checked against brute force above; a sweep cut into pieces and
   // stitched must give its boxes in the same order and the same contacts.
-  const bf::Int3 sizes[] = { { 6, 5, 4 }, { 12, 9, 20 }, { 17, 23, 31 }, { 40, 30, 64 } };
+  const vbr::Point3 sizes[] = { { 6, 5, 4 }, { 12, 9, 20 }, { 17, 23, 31 }, { 40, 30, 64 } };
   unsigned seed = 500;
   std::size_t stitchedVolumes = 0;
   for (const auto& d : sizes)
@@ -273,7 +277,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
 
 TEST(CUDB, TwoDimensionalImages)
 {
-  const bf::Int3 sizes[] = {
+  const vbr::Point3 sizes[] = {
     { 1, 1, 1 }, { 7, 5, 1 }, { 64, 64, 1 }, { 100, 37, 1 }, { 3, 90, 1 }
   };
   unsigned seed = 300;
@@ -321,7 +325,7 @@ TEST(CUDB, NonManifoldContacts)
 {
   using vbr::Connectivity;
   // Edge contact, corner contact, and both along every pair of axes.
-  const std::vector<std::vector<bf::Int3>> touching = { { { 0, 0, 0 }, { 1, 1, 0 } },
+  const std::vector<std::vector<vbr::Point3>> touching = { { { 0, 0, 0 }, { 1, 1, 0 } },
     { { 0, 0, 0 }, { 0, 1, 1 } },
     { { 0, 0, 0 }, { 1, 0, 1 } },
     { { 1, 0, 0 }, { 0, 1, 0 } },

@@ -6,15 +6,23 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <fstream>
+#include <functional>
+#include <set>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace
 {
 
-std::set<bf::Int3> worldSet(const vbr::EVM& evm)
+std::set<vbr::Point3> worldSet(const vbr::EVM& evm)
 {
-  std::set<bf::Int3> s;
+  std::set<vbr::Point3> s;
   for (std::size_t i = 0; i < evm.size(); ++i)
     s.insert(evm.worldVertex(i));
   return s;
@@ -27,7 +35,7 @@ const char* const Orders[] = { "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX" };
 TEST(EVM, ExtractionMatchesOddIncidence)
 {
   // Row lengths around the 64-bit word boundaries, densities from sparse to dense.
-  const bf::Int3 sizes[] = { { 1, 1, 1 },
+  const vbr::Point3 sizes[] = { { 1, 1, 1 },
     { 63, 3, 2 },
     { 64, 2, 3 },
     { 65, 4, 4 },
@@ -61,8 +69,10 @@ TEST(EVM, EmptyFullAndSingleVoxel)
 TEST(EVM, TwoDimensionalExtraction)
 {
   unsigned seed = 100;
-  for (const bf::Int3 d :
-    { bf::Int3{ 1, 1, 1 }, bf::Int3{ 64, 5, 1 }, bf::Int3{ 65, 40, 1 }, bf::Int3{ 130, 7, 1 } })
+  for (const vbr::Point3 d : { vbr::Point3{ 1, 1, 1 },
+         vbr::Point3{ 64, 5, 1 },
+         vbr::Point3{ 65, 40, 1 },
+         vbr::Point3{ 130, 7, 1 } })
     for (double density : { 0.1, 0.5, 0.9 })
     {
       const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
@@ -142,7 +152,7 @@ TEST(EVM, SectionsAreXorOfPlaneProjections)
         for (int i = 0; i < v.size(order[1]); ++i)
           for (int j = 0; j < v.size(order[2]); ++j)
           {
-            bf::Int3 w{ 0, 0, 0 }, s{ 0, 0, 0 };
+            vbr::Point3 w{ 0, 0, 0 }, s{ 0, 0, 0 };
             w[order[0]] = c;
             w[order[1]] = s[order[1]] = i;
             w[order[2]] = s[order[2]] = j;
@@ -157,7 +167,7 @@ namespace
 {
 
 /// Reads a raw uint8 volume and selects value >= threshold; false if the file is absent.
-bool readRaw(const std::string& path, const bf::Int3& d, int threshold, vbr::BitVolume& out)
+bool readRaw(const std::string& path, const vbr::Point3& d, int threshold, vbr::BitVolume& out)
 {
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -184,7 +194,7 @@ TEST(EVM, PaperCountsOnRealVolumes)
   struct Case
   {
     const char* file;
-    bf::Int3 dims;
+    vbr::Point3 dims;
     std::size_t evs;
     std::array<std::size_t, 3> planes;
   } cases[] = {
@@ -225,7 +235,7 @@ TEST(Selection, PacksFlagsAndSelectsExactly)
   grid.data = data.data() + 1;
   grid.dims = { nx, ny, nz };
   grid.stride = { nc, nc * nx, nc * nx * ny };
-  vbr::Box3 box;
+  vbr::Box box;
   box.lo = { 3, 1, 0 };
   box.hi = { 69, 3, 2 };
   const vbr::BitVolume v = vbr::selectVoxels(grid, box, [](int x) { return x > 6; }, {});

@@ -6,20 +6,25 @@
 #include "BruteForce.h"
 #include "EVM.h"
 #include "FaceTriangulator.h"
+#include "Geometry.h"
+#include "PlaneSweep3D.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
 {
 
-using Wide = __int128;
+using vbr::Wide;
 using P2 = std::array<std::int64_t, 2>;
 
 Wide cross(const P2& a, const P2& b, const P2& c)
@@ -31,6 +36,36 @@ struct FaceStats
 {
   std::size_t faces = 0, withHoles = 0, single = 0, grouped = 0, flat = 0;
 };
+
+/// Every pixel centre (moved to a generic point) in exactly one triangle of the fans when
+/// the face holds the pixel and in none otherwise.
+void checkPixelCoverage(const vbr::BRepFace& face,
+  const bf::PixelSet& pixels,
+  const std::vector<P2>& corner,
+  std::vector<std::array<P2, 3>> fan)
+{
+  // Sample (x + 1/M, y + 1/M^2) per pixel, in coordinates scaled by M^2: on no line through
+  // two corners when M > span + 1.
+  const auto [x0, x1, y0, y1] = bf::bounds2D(corner);
+  const std::int64_t M = 2 * std::max(x1 - x0, y1 - y0) + 3, M2 = M * M;
+  for (auto& t : fan)
+    for (auto& q : t)
+      q = { q[0] * M2, q[1] * M2 };
+  for (std::int64_t x = x0; x < x1; ++x)
+    for (std::int64_t y = y0; y < y1; ++y)
+    {
+      const P2 s{ x * M2 + M, y * M2 + 1 };
+      int covered = 0;
+      for (const auto& t : fan)
+        covered += cross(t[0], t[1], s) > 0 && cross(t[1], t[2], s) > 0 && cross(t[2], t[0], s) > 0;
+      // The pixel in the face's own (u, v) coordinates.
+      const std::pair<std::int32_t, std::int32_t> pixel = face.normalSign > 0
+        ? std::make_pair(std::int32_t(x), std::int32_t(y))
+        : std::make_pair(std::int32_t(-x - 1), std::int32_t(y));
+      ASSERT_EQ(covered, pixels.count(pixel) ? 1 : 0)
+        << "pixel " << pixel.first << " " << pixel.second;
+    }
+}
 
 /// The fans of the polygons of face f cover it exactly: counter-clockwise or flat triangles
 /// (seen from outside) whose doubled areas add up to twice the face's pixels, every pixel
@@ -82,33 +117,13 @@ void checkFace(const vbr::BRep& brep, int f, FaceStats& stats)
   EXPECT_TRUE(total == Wide(2 * pixels.size())) << "fans do not add up to the face's area";
   EXPECT_EQ(used, loopCorners) << "a loop corner is no polygon corner";
 
-  // Sample (x + 1/M, y + 1/M^2) per pixel, in coordinates scaled by M^2: on no line through
-  // two corners when M > span + 1.
-  const auto [x0, x1, y0, y1] = bf::bounds2D(corner);
-  const std::int64_t M = 2 * std::max(x1 - x0, y1 - y0) + 3, M2 = M * M;
-  for (auto& t : fan)
-    for (auto& q : t)
-      q = { q[0] * M2, q[1] * M2 };
-  for (std::int64_t x = x0; x < x1; ++x)
-    for (std::int64_t y = y0; y < y1; ++y)
-    {
-      const P2 s{ x * M2 + M, y * M2 + 1 };
-      int covered = 0;
-      for (const auto& t : fan)
-        covered += cross(t[0], t[1], s) > 0 && cross(t[1], t[2], s) > 0 && cross(t[2], t[0], s) > 0;
-      // The pixel in the face's own (u, v) coordinates.
-      const std::pair<std::int32_t, std::int32_t> pixel = face.normalSign > 0
-        ? std::make_pair(std::int32_t(x), std::int32_t(y))
-        : std::make_pair(std::int32_t(-x - 1), std::int32_t(y));
-      ASSERT_EQ(covered, pixels.count(pixel) ? 1 : 0)
-        << "pixel " << pixel.first << " " << pixel.second;
-    }
+  checkPixelCoverage(face, pixels, corner, fan);
 }
 
 void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, FaceStats& stats)
 {
   vbr::BRep brep;
-  ASSERT_TRUE(vbr::extractBoundary3D(vbr::extractEVM(volume),
+  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(volume),
     merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
     vbr::Execution(),
     brep));
@@ -126,7 +141,7 @@ TEST(FanPolygons, TileTheFacesOfRandomVolumes)
   unsigned seed = 5100;
   for (int trial = 0; trial < 40; ++trial)
   {
-    const bf::Int3 d{ 2 + (trial * 5) % 11, 2 + (trial * 3) % 9, 2 + (trial * 7) % 8 };
+    const vbr::Point3 d{ 2 + (trial * 5) % 11, 2 + (trial * 3) % 9, 2 + (trial * 7) % 8 };
     const double density = 0.1 + 0.8 * (trial % 8) / 7.0;
     const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
     SCOPED_TRACE(testing::Message() << "trial " << trial << " density " << density);

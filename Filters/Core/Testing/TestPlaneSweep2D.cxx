@@ -7,7 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdlib>
 #include <map>
+#include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -65,7 +70,7 @@ int findLoop(const vbr::Boundary2D& b, const Corners& expected)
 TEST(PlaneSweep2D, PaperFigure5SplitsTheNonManifoldFace)
 {
   const auto v = paperFigure5();
-  const vbr::Boundary2D b = vbr::sweep2D(v.data(), v.data() + v.size());
+  const vbr::Boundary2D b = vbr::planeSweep2D(v.data(), v.data() + v.size());
   EXPECT_EQ(b.nonManifoldVertices, 1u); // (16, 15)
   ASSERT_EQ(b.faces.size(), 4u);        // r1, r3, r2 (split at the vertex) and r6
   ASSERT_EQ(b.loops.size(), 6u);
@@ -106,7 +111,7 @@ TEST(PlaneSweep2D, PaperFigure5KeepsTheNonManifoldFaceWhenMerging)
 {
   const auto v = paperFigure5();
   const vbr::Boundary2D b =
-    vbr::sweep2D(v.data(), v.data() + v.size(), vbr::FaceConnectivity::Vertex);
+    vbr::planeSweep2D(v.data(), v.data() + v.size(), vbr::FaceConnectivity::Vertex);
   ASSERT_EQ(b.faces.size(), 3u);
   // r3 and r2 form one face whose outer loop passes twice through the vertex (16, 15).
   const int merged = findLoop(b,
@@ -127,14 +132,52 @@ TEST(PlaneSweep2D, PaperFigure5KeepsTheNonManifoldFaceWhenMerging)
 TEST(PlaneSweep2D, RejectsInvalidEVM)
 {
   const std::vector<vbr::Vertex> odd = { { 0, 0, 0 }, { 0, 0, 1 }, { 0, 0, 2 } };
-  EXPECT_THROW(vbr::sweep2D(odd.data(), odd.data() + odd.size()), std::invalid_argument);
+  EXPECT_THROW(vbr::planeSweep2D(odd.data(), odd.data() + odd.size()), std::invalid_argument);
   const std::vector<vbr::Vertex> open = { { 0, 0, 0 }, { 0, 0, 1 } };
-  EXPECT_THROW(vbr::sweep2D(open.data(), open.data() + open.size()), std::invalid_argument);
-  EXPECT_TRUE(vbr::sweep2D(nullptr, nullptr).faces.empty());
+  EXPECT_THROW(vbr::planeSweep2D(open.data(), open.data() + open.size()), std::invalid_argument);
+  EXPECT_TRUE(vbr::planeSweep2D(nullptr, nullptr).faces.empty());
 }
 
 namespace
 {
+
+/// Inclusion tree: A is an ancestor of B when B lies in a bounded component of the
+/// complement of A; the parent is the innermost ancestor and the depth twice their count.
+void checkInclusionTree(const vbr::BRep& brep,
+  const std::vector<bf::PixelSet>& expected,
+  const std::vector<int>& faceOf)
+{
+  const std::size_t n = expected.size();
+  std::vector<std::vector<int>> ancestors(n);
+  for (std::size_t a = 0; a < n; ++a)
+  {
+    for (const auto& entry : bf::complementComponents(expected[a]))
+    {
+      if (!entry.second)
+        continue;
+      const bf::PixelSet& c = entry.first;
+      for (std::size_t b = 0; b < n; ++b)
+        if (b != a && c.count(*expected[b].begin()))
+          ancestors[b].push_back(static_cast<int>(a));
+    }
+  }
+  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  {
+    const int e = faceOf[f];
+    const vbr::BRepFace& face = brep.faces[f];
+    EXPECT_EQ(face.depth, 2 * static_cast<int>(ancestors[e].size())) << "face " << f;
+    if (ancestors[e].empty())
+    {
+      EXPECT_EQ(face.parent, -1);
+      continue;
+    }
+    ASSERT_GE(face.parent, 0);
+    const int innermost = *std::max_element(ancestors[e].begin(),
+      ancestors[e].end(),
+      [&](int x, int y) { return ancestors[x].size() < ancestors[y].size(); });
+    EXPECT_EQ(faceOf[face.parent], innermost) << "face " << f;
+  }
+}
 
 /// Checks faces, holes, orientation and the inclusion tree of a 2D image against brute force.
 void checkImage(const vbr::BitVolume& image, bool merged)
@@ -169,38 +212,7 @@ void checkImage(const vbr::BitVolume& image, bool merged)
     }
   }
 
-  // Inclusion tree: A is an ancestor of B when B lies in a bounded component of the
-  // complement of A; the parent is the innermost ancestor and the depth twice their count.
-  const std::size_t n = expected.size();
-  std::vector<std::vector<int>> ancestors(n);
-  for (std::size_t a = 0; a < n; ++a)
-  {
-    for (const auto& entry : bf::complementComponents(expected[a]))
-    {
-      if (!entry.second)
-        continue;
-      const bf::PixelSet& c = entry.first;
-      for (std::size_t b = 0; b < n; ++b)
-        if (b != a && c.count(*expected[b].begin()))
-          ancestors[b].push_back(static_cast<int>(a));
-    }
-  }
-  for (std::size_t f = 0; f < brep.faces.size(); ++f)
-  {
-    const int e = faceOf[f];
-    const vbr::BRepFace& face = brep.faces[f];
-    EXPECT_EQ(face.depth, 2 * static_cast<int>(ancestors[e].size())) << "face " << f;
-    if (ancestors[e].empty())
-    {
-      EXPECT_EQ(face.parent, -1);
-      continue;
-    }
-    ASSERT_GE(face.parent, 0);
-    const int innermost = *std::max_element(ancestors[e].begin(),
-      ancestors[e].end(),
-      [&](int x, int y) { return ancestors[x].size() < ancestors[y].size(); });
-    EXPECT_EQ(faceOf[face.parent], innermost) << "face " << f;
-  }
+  checkInclusionTree(brep, expected, faceOf);
 }
 
 } // namespace
@@ -210,7 +222,7 @@ TEST(PlaneSweep2D, RandomImagesMatchBruteForce)
   unsigned seed = 1000;
   for (int trial = 0; trial < 40; ++trial)
   {
-    const bf::Int3 d{ 4 + (trial * 7) % 37, 3 + (trial * 5) % 29, 1 };
+    const vbr::Point3 d{ 4 + (trial * 7) % 37, 3 + (trial * 5) % 29, 1 };
     const double density = 0.15 + 0.7 * (trial % 10) / 9.0;
     const vbr::BitVolume image = bf::randomVolume(d, density, seed++);
     SCOPED_TRACE(testing::Message() << "trial " << trial);

@@ -6,6 +6,7 @@
 // evaluated with cross products on the loops of real standard faces.
 #include "BitVolume.h"
 #include "BruteForce.h"
+#include "Geometry.h"
 #include "PolygonTriangulator.h"
 #include "Polyhedrization.h"
 #include "SurfelGraph.h"
@@ -13,8 +14,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <random>
@@ -28,7 +32,7 @@ namespace
 
 using vbr::Point2L;
 using Polygon = std::vector<Point2L>;
-using Wide = __int128;
+using vbr::Wide;
 using Pixel = std::pair<int, int>;
 using Pixels = std::set<Pixel>;
 
@@ -856,7 +860,7 @@ TEST(ProjectionAlong, StandardFacesOfRandomVolumes)
   unsigned seed = 4100;
   for (int t = 0; t < 60; ++t)
   {
-    const bf::Int3 d{ 2 + t % 7, 2 + (t * 3) % 6, 2 + (t * 5) % 7 };
+    const vbr::Point3 d{ 2 + t % 7, 2 + (t * 3) % 6, 2 + (t * 5) % 7 };
     SCOPED_TRACE("seed " + std::to_string(seed));
     checkProjectedFaces(bf::randomVolume(d, 0.2 + 0.1 * (t % 7), seed++), faces, pinched);
   }

@@ -10,7 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <random>
@@ -139,7 +142,7 @@ void checkPolyhedron(const vbr::BitVolume& v,
     outlines.push_back(outline);
   }
   // Reversion from the planes and loops alone.
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back), "");
   EXPECT_EQ(surfels.size(), g.size());
@@ -265,7 +268,9 @@ TEST(StandardPlane, DigitalPlanesAreRecognized)
 TEST(Polyhedrization, RandomVolumes)
 {
   unsigned seed = 700;
-  const bf::Int3 sizes[] = { { 1, 1, 1 }, { 3, 2, 4 }, { 6, 6, 6 }, { 9, 5, 7 }, { 12, 12, 12 } };
+  const vbr::Point3 sizes[] = {
+    { 1, 1, 1 }, { 3, 2, 4 }, { 6, 6, 6 }, { 9, 5, 7 }, { 12, 12, 12 }
+  };
   for (const auto& d : sizes)
     for (double density : { 0.1, 0.3, 0.5, 0.7, 0.9 })
     {
@@ -292,7 +297,7 @@ TEST(Polyhedrization, RandomVolumes)
   std::mt19937 rng(17);
   for (int t = 0; t < 500; ++t)
   {
-    const bf::Int3 d{ 3 + int(rng() % 7), 3 + int(rng() % 7), 3 + int(rng() % 7) };
+    const vbr::Point3 d{ 3 + int(rng() % 7), 3 + int(rng() % 7), 3 + int(rng() % 7) };
     SCOPED_TRACE("small volume " + std::to_string(t));
     polyhedrizeAndCheck(bf::randomVolume(d, 0.2 + 0.1 * (t % 7), 900 + t));
   }
@@ -326,7 +331,7 @@ TEST(Polyhedrization, DegenerateAndNonManifold)
   checkPolyhedron(one, g, p);
 
   // Voxels touching along an edge and at a corner only: two boundary components each.
-  for (const auto& other : { bf::Int3{ 1, 1, 0 }, bf::Int3{ 1, 1, 1 } })
+  for (const auto& other : { vbr::Point3{ 1, 1, 0 }, vbr::Point3{ 1, 1, 1 } })
   {
     vbr::BitVolume v(2, 2, 2);
     v.set(0, 0, 0);
@@ -501,7 +506,7 @@ TEST(Polyhedrization, AbortAndBadOutlines)
   EXPECT_FALSE(vbr::buildSurfelGraph(v, stop, none));
 
   // An outline whose loop is not made of linels of its plane is refused, not followed.
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   vbr::FaceOutline bad;
   bad.plane.normal = { 0, 0, 1 };
@@ -568,7 +573,7 @@ TEST(Polyhedrization, AbortInsideEachPhase)
   }
   vbr::Execution stopNow;
   stopNow.aborted = [] { return true; };
-  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back, stopNow), "aborted");
   // A face given twice is an error (the parity would cancel it silently).

@@ -1,0 +1,201 @@
+// The 3D plane sweep of Ayala & Vergara (section 2) in chunks of planes run concurrently.
+//
+// sortForTheThreeSweeps gives the three cyclic sortings, one sweep per normal axis. The
+// planes of each are cut into chunks (chunkPlanes), the section entering each chunk found by
+// one sequential pass of XORs (formula 1), the cheap part. Each chunk (sweepChunk) then runs
+// its cuts: the next section S(i) = S(i-1) XOR C(i), the forward and backward differences
+// (forwardAndBackwardDifferences, formulas 3 and 4), and for each the faces of that 2D EVM by
+// planeSweep2D, placed in their plane by appendFaces, FD facing +A and BD facing -A. The
+// chunks' B-Reps are joined in order (appendBRep), so the result does not depend on the
+// chunking.
+
+#include "PlaneSweep3D.h"
+
+#include "EVMBoolean.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace vbr
+{
+
+namespace
+{
+
+/// A run of consecutive planes of vertices of one sorting, with the section before it.
+struct PlaneChunk
+{
+  const EVM* sorted = nullptr;
+  const std::vector<std::size_t>* starts = nullptr; ///< plane starts of *sorted
+  std::size_t firstPlane = 0, endPlane = 0;
+  std::vector<Vertex> section; ///< S(firstPlane - 1)
+};
+
+/// Splits every sorting's planes into about `perAxis` chunks; the sections at chunk starts come
+/// from one sequential pass of XORs (formula 1), the cheap part of the sweep.
+std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3],
+  const std::vector<std::size_t> (&planeStarts)[3],
+  std::size_t perAxis)
+{
+  std::vector<PlaneChunk> chunks;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const EVM& evm = sorted[axis];
+    const auto& starts = planeStarts[axis];
+    const std::size_t planes = starts.size() - 1;
+    const std::size_t step = std::max<std::size_t>(1, (planes + perAxis - 1) / perAxis);
+    const Vertex* v = evm.vertices().data();
+    std::vector<Vertex> section;
+    for (std::size_t p = 0; p < planes; ++p)
+    {
+      if (p % step == 0)
+      {
+        PlaneChunk c;
+        c.sorted = &evm;
+        c.starts = &starts;
+        c.firstPlane = p;
+        c.endPlane = std::min(planes, p + step);
+        c.section = section;
+        chunks.push_back(std::move(c));
+      }
+      section = xorVertices(section, project(v + starts[p], v + starts[p + 1], 0));
+    }
+  }
+  return chunks;
+}
+
+/// The forward and backward differences of cut C(i) (formula 4): the cut is FD + BD
+/// (formula 3), FD = S(i-1) - S(i) is the part of the cut covered by S(i-1), and BD the rest
+/// of the cut, so one Boolean and one XOR give both.
+void forwardAndBackwardDifferences(const std::vector<Vertex>& cut,
+  const std::vector<Vertex>& previousSection,
+  std::vector<Vertex>& fd,
+  std::vector<Vertex>& bd)
+{
+  fd = booleanVertices(cut.data(),
+    cut.data() + cut.size(),
+    previousSection.data(),
+    previousSection.data() + previousSection.size(),
+    1,
+    BooleanOp::Intersection);
+  bd = xorVertices(cut, fd);
+}
+
+/// Sweeps a chunk of planes: for each cut, the next section (formula 1), the forward and
+/// backward differences (formula 4) and their faces by the 2D plane sweep, FD facing +A and
+/// BD facing -A.
+bool sweepChunk(const PlaneChunk& chunk,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  std::atomic<bool>& abort,
+  BRep& out)
+{
+  const EVM& sorted = *chunk.sorted;
+  const auto& starts = *chunk.starts;
+  const Vertex* v = sorted.vertices().data();
+  std::vector<Vertex> section = chunk.section, next, fd, bd;
+  for (std::size_t p = chunk.firstPlane; p < chunk.endPlane; ++p)
+  {
+    if (abort || exec.stopRequested())
+    {
+      abort = true;
+      return false;
+    }
+    const Coord position = v[starts[p]][0];
+    const std::vector<Vertex> cut = project(v + starts[p], v + starts[p + 1], 0);
+    next = xorVertices(section, cut);
+    forwardAndBackwardDifferences(cut, section, fd, bd);
+    appendFaces(planeSweep2D(fd.data(), fd.data() + fd.size(), connectivity),
+      sorted.order(),
+      position,
+      +1,
+      out);
+    appendFaces(planeSweep2D(bd.data(), bd.data() + bd.size(), connectivity),
+      sorted.order(),
+      position,
+      -1,
+      out);
+    section.swap(next);
+  }
+  return true;
+}
+
+/// The three cyclic sortings (A, B, C) = (x, y, z), (y, z, x), (z, x, y), one per sweep,
+/// each from the previous one by one stable bucket pass when the EVM comes ZYX-sorted from
+/// extraction: ZYX -> YZX -> XYZ -> ZXY.
+void sortForTheThreeSweeps(const EVM& evm, const Execution& exec, EVM (&sorted)[3])
+{
+  sorted[1] = evm.sortedAs({ 1, 2, 0 }, exec);
+  sorted[0] = sorted[1].sortedAs({ 0, 1, 2 }, exec);
+  sorted[2] = sorted[0].sortedAs({ 2, 0, 1 }, exec);
+}
+
+/// Appends one B-Rep to another, renumbering its faces, loops and points.
+void appendBRep(BRep& to, BRep&& from)
+{
+  const int faceBase = static_cast<int>(to.faces.size());
+  const int loopBase = static_cast<int>(to.loops.size());
+  to.faces.reserve(to.faces.size() + from.faces.size());
+  to.loops.reserve(to.loops.size() + from.loops.size());
+  for (BRepFace f : from.faces)
+  {
+    f.firstLoop += loopBase;
+    f.parent = f.parent < 0 ? -1 : f.parent + faceBase;
+    to.faces.push_back(f);
+  }
+  const std::size_t pointBase = to.points.size();
+  for (BRepLoop l : from.loops)
+  {
+    l.face += faceBase;
+    l.begin += pointBase;
+    l.end += pointBase;
+    to.loops.push_back(l);
+  }
+  to.points.insert(to.points.end(), from.points.begin(), from.points.end());
+  to.nonManifoldVertices += from.nonManifoldVertices;
+}
+
+} // namespace
+
+bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out)
+{
+  out = BRep();
+  std::atomic<bool> abort{ false };
+  EVM sorted[3];
+  sortForTheThreeSweeps(evm, exec, sorted);
+  // Chunks of planes of all three sweeps are independent tasks.
+  const std::vector<std::size_t> starts[3] = {
+    sorted[0].planeStarts(), sorted[1].planeStarts(), sorted[2].planeStarts()
+  };
+  const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, starts, 8);
+  std::vector<BRep> perChunk(chunks.size());
+  exec.forRange(static_cast<std::int64_t>(chunks.size()),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t c = b; c < e; ++c)
+        if (!sweepChunk(chunks[c], connectivity, exec, abort, perChunk[c]))
+          abort = true;
+    });
+  if (abort || !exec.report(1.0))
+    return false;
+  // The chunks' faces in order: by axis, then plane.
+  std::size_t faces = 0, loops = 0, points = 0;
+  for (const BRep& b : perChunk)
+  {
+    faces += b.faces.size();
+    loops += b.loops.size();
+    points += b.points.size();
+  }
+  out.faces.reserve(faces);
+  out.loops.reserve(loops);
+  out.points.reserve(points);
+  for (BRep& b : perChunk)
+    appendBRep(out, std::move(b));
+  return true;
+}
+
+} // namespace vbr

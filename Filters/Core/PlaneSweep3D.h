@@ -1,0 +1,30 @@
+// 3D EVM -> boundary representation by the plane sweep of Aguilera & Ayala, as reviewed in
+// section 2 of Ayala & Vergara, "An improved boundary extraction algorithm using a
+// plane-sweep technique": orthogonal faces with holes, oriented outwards.
+//
+// For each axis A the EVM is sorted in the cyclic order (A, B, C) and swept plane of vertices
+// by plane of vertices: three sweeps, one per family of faces. The projection of the plane
+// of vertices at position i is the cut C(i); each section follows from the previous one by
+// XOR (formula 1: S(i) = S(i-1) XOR C(i)); the cut splits into the forward difference
+// FD = S(i-1) - S(i), the faces whose outward normal is +A, and the backward difference
+// BD = S(i) - S(i-1), those facing -A (formulas 3 and 4). Both are 2D EVMs, turned into faces,
+// holes and loops by the 2D plane sweep (PlaneSweep2D.h), the paper's section 3.
+#ifndef vbr_PlaneSweep3D_h
+#define vbr_PlaneSweep3D_h
+
+#include "BRep.h"
+#include "EVM.h"
+#include "Execution.h"
+#include "PlaneSweep2D.h"
+
+namespace vbr
+{
+
+/// Faces of a 3D EVM (any sorting), grouped by normal axis, then plane, then +A before -A.
+/// Returns false (and an empty BRep) when the caller asked to abort. The three sweeps are
+/// cut into chunks of planes swept concurrently; the result does not depend on the chunks.
+bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out);
+
+} // namespace vbr
+
+#endif

@@ -1,0 +1,80 @@
+// Union-find (disjoint sets) over consecutive numbers, the one every part of the core uses:
+// the umbrellas and components of the surfel graph, the label equivalences of CUDB's
+// connected-component labelling (Algorithm 4 of Cruz-Matias & Ayala) and the section intervals that
+// the 2D plane sweep merges into faces.
+//
+// The root of a class is always its smallest element (the larger root is linked below the
+// smaller one), so that roots follow creation order: the first label, box or interval of a
+// class stands for it. Finding compresses the path by halving.
+#ifndef vbr_UnionFind_h
+#define vbr_UnionFind_h
+
+#include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace vbr
+{
+
+class UnionFind
+{
+public:
+  /// Elements 0 .. n - 1, each alone in its class.
+  explicit UnionFind(std::size_t n = 0)
+    : Parent(n)
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), 0u);
+  }
+
+  /// A new element, alone in its class; its number is size() - 1.
+  std::uint32_t add()
+  {
+    const auto x = static_cast<std::uint32_t>(this->Parent.size());
+    this->Parent.push_back(x);
+    return x;
+  }
+
+  std::size_t size() const { return this->Parent.size(); }
+
+  /// The smallest element of the class of x.
+  std::uint32_t find(std::uint32_t x)
+  {
+    while (this->Parent[x] != x)
+      x = this->Parent[x] = this->Parent[this->Parent[x]];
+    return x;
+  }
+
+  /// Joins the classes of a and b; returns the root of the union (the smaller root).
+  std::uint32_t unite(std::uint32_t a, std::uint32_t b)
+  {
+    a = this->find(a);
+    b = this->find(b);
+    if (b < a)
+      std::swap(a, b);
+    this->Parent[b] = a;
+    return a;
+  }
+
+  /// Consecutive numbers 0 .. count - 1 for the classes, in order of their smallest element.
+  std::vector<std::uint32_t> numberClasses(std::uint32_t& count)
+  {
+    const std::size_t n = this->Parent.size();
+    std::vector<std::uint32_t> number(n);
+    count = 0;
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+      const std::uint32_t root = this->find(i);
+      number[i] = root == i ? count++ : number[root];
+    }
+    return number;
+  }
+
+private:
+  std::vector<std::uint32_t> Parent;
+};
+
+} // namespace vbr
+
+#endif
