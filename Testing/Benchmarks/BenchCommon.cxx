@@ -421,21 +421,6 @@ void Report::add(const Input& in, const std::string& backend, const std::vector<
   std::fflush(stdout);
 }
 
-namespace
-{
-/// The tool and peer names of the entries of one backend, in first-seen order.
-std::vector<std::string> comparedNames(const std::vector<const std::vector<Measured>*>& rowSets)
-{
-  std::vector<std::string> names;
-  for (const auto* rows : rowSets)
-    for (const Measured& m : *rows)
-      if (m.role != Role::Phase && std::find(names.begin(), names.end(), m.name) == names.end())
-        names.push_back(m.name);
-  return names;
-}
-
-} // namespace
-
 const Measured* findMeasured(const std::vector<Measured>& rows, const std::string& name)
 {
   for (const Measured& m : rows)
@@ -446,46 +431,37 @@ const Measured* findMeasured(const std::vector<Measured>& rows, const std::strin
 
 void Report::printSummary() const
 {
-  std::vector<std::string> backends;
+  std::printf("## Summary: each tool against each of its peers (median ms; peak memory of a "
+              "first run per output cell and per voxel)\n\n");
+  Table table({ "input",
+    "dims",
+    "backend",
+    "tool",
+    "ms",
+    "peer",
+    "ms",
+    "peer / tool",
+    "tool B/cell",
+    "peer B/cell",
+    "tool B/voxel",
+    "peer B/voxel" });
   for (const Entry& e : this->Entries)
-    if (std::find(backends.begin(), backends.end(), e.backend) == backends.end())
-      backends.push_back(e.backend);
-  for (const std::string& backend : backends)
-  {
-    std::vector<const Entry*> entries;
-    std::vector<const std::vector<Measured>*> rowSets;
-    for (const Entry& e : this->Entries)
-      if (e.backend == backend)
-        entries.push_back(&e), rowSets.push_back(&e.rows);
-    const std::vector<std::string> names = comparedNames(rowSets);
-    std::vector<std::string> header{ "input", "dims" };
-    for (const std::string& n : names)
-      header.push_back(n + " ms");
-    header.push_back("peer / tool");
-    header.push_back("peak B/voxel");
-    Table table(header);
-    for (const Entry* e : entries)
-    {
-      std::vector<std::string> line{ e->input, e->dims };
-      std::string ratios, memory;
-      for (const std::string& n : names)
-      {
-        const Measured* m = findMeasured(e->rows, n);
-        line.push_back(m ? formatMs(m->median) : "-");
-        if (m && m->role == Role::Tool && ratiosOf(*m, e->rows) != "-")
-          ratios += (ratios.empty() ? "" : "; ") + n + ": " + ratiosOf(*m, e->rows);
-        if (m)
-          memory += (memory.empty() ? "" : ", ") + perUnit(m->peakBytes, e->voxels);
-      }
-      line.push_back(ratios.empty() ? "-" : ratios);
-      line.push_back(memory);
-      table.add(line);
-    }
-    std::printf("## Summary, backend %s (median ms; peak bytes per voxel in the order of the "
-                "columns)\n\n",
-      backend.c_str());
-    table.print();
-  }
+    for (const Measured& tool : e.rows)
+      for (const Measured& peer : e.rows)
+        if (compared(tool, peer))
+          table.add({ e.input,
+            e.dims,
+            e.backend,
+            tool.name,
+            formatMs(tool.median),
+            peer.name,
+            formatMs(peer.median),
+            tool.median > 0 ? formatRatio(peer.median / tool.median) : "-",
+            perUnit(tool.peakBytes, double(tool.cells)),
+            perUnit(peer.peakBytes, double(peer.cells)),
+            perUnit(tool.peakBytes, e.voxels),
+            perUnit(peer.peakBytes, e.voxels) });
+  table.print();
 }
 
 //------------------------------------------------------------------------------
@@ -525,16 +501,21 @@ vtkNew<vtkImageData> cellImageOf(const Input& in)
   return imageWith(in.dims, maskArray(in), true);
 }
 
-vtkNew<vtkImageData> valueImageOf(const Input& in)
+vtkNew<vtkImageData> labelImageOf(const Input& in)
 {
   if (!in.wideLabels.empty())
   {
     vtkNew<vtkIntArray> a;
-    a->SetName("values");
+    a->SetName("labels");
     a->SetNumberOfTuples(static_cast<vtkIdType>(in.voxelCount()));
     std::copy(in.wideLabels.begin(), in.wideLabels.end(), a->GetPointer(0));
     return imageWith(in.dims, a, false);
   }
+  return valueImageOf(in);
+}
+
+vtkNew<vtkImageData> valueImageOf(const Input& in)
+{
   vtkNew<vtkUnsignedCharArray> a;
   a->SetName("values");
   a->SetNumberOfTuples(static_cast<vtkIdType>(in.voxelCount()));

@@ -11,7 +11,7 @@
 // - Median: the middle of the sorted times; of an even count, the mean of the middle two.
 // - Report: per input a table (median and minimum ms, output cells, peak bytes per output cell
 //   and per voxel, and peer time / tool time for each peer: above 1 the project is faster);
-//   at the end one summary line per input and backend.
+//   at the end a summary, one line per input, backend, tool and peer.
 #ifndef vbr_BenchCommon_h
 #define vbr_BenchCommon_h
 
@@ -145,8 +145,10 @@ int runBenchmark(int argc,
 
 /// The selection (0/1) as the point scalars ("mask", uint8) of an image with unit spacing.
 vtkNew<vtkImageData> maskImageOf(const Input& in);
-/// The values (or labels; int when above 255) as the point scalars ("values").
+/// The values as the point scalars ("values", uint8).
 vtkNew<vtkImageData> valueImageOf(const Input& in);
+/// The labels of a label map as the point scalars ("labels"; int when above 255).
+vtkNew<vtkImageData> labelImageOf(const Input& in);
 /// The selection as 0/1 cell scalars of an image of (voxels + 1) points along each axis.
 vtkNew<vtkImageData> cellImageOf(const Input& in);
 vbr::BitVolume bitsOf(const Input& in);

@@ -83,7 +83,7 @@ std::size_t extremeVertices(const vbr::BitVolume& v, const vbr::Execution& exec)
 struct Fixture
 {
   const Input& in;
-  vtkNew<vtkImageData> values, mask;
+  vtkNew<vtkImageData> values, labels, mask;
   vtkSmartPointer<vtkImageData> cells;
   vbr::BitVolume bits;
   std::size_t coreExtremeVertices = 0;
@@ -92,6 +92,7 @@ struct Fixture
   explicit Fixture(const Input& input)
     : in(input)
     , values(valueImageOf(input))
+    , labels(input.labels ? labelImageOf(input) : vtkNew<vtkImageData>())
     , mask(maskImageOf(input))
   {
     if (!input.is2D())
@@ -161,7 +162,7 @@ void addCorePhases(Fixture& fx, std::vector<Contender>& out)
 
 vtkEVMBoundaryFilter* evmFilter(Fixture& fx, int outputMode, bool labels)
 {
-  vtkEVMBoundaryFilter* f = fx.make<vtkEVMBoundaryFilter>(fx.values);
+  vtkEVMBoundaryFilter* f = fx.make<vtkEVMBoundaryFilter>(labels ? fx.labels : fx.values);
   if (labels)
   {
     f->SetSelectionModeToLabels();
@@ -235,7 +236,7 @@ void addLabelContenders(Fixture& fx, std::vector<Contender>& out)
       algorithm(std::string("EVM Labels ") + f->GetOutputModeAsString(), Role::Tool, "labels", f));
   }
   const int labels = maxLabel(fx.in);
-  vtkDiscreteFlyingEdges3D* dfe = fx.make<vtkDiscreteFlyingEdges3D>(fx.values);
+  vtkDiscreteFlyingEdges3D* dfe = fx.make<vtkDiscreteFlyingEdges3D>(fx.labels);
   dfe->GenerateValues(labels, 1, labels);
   dfe->ComputeNormalsOff();
   dfe->ComputeGradientsOff();
