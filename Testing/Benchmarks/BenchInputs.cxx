@@ -256,7 +256,7 @@ const DataFile dataFiles[] = {
   { "labelmaps", "Brodmann (41)", "mricron/brodmann.nii.gz", { 0, 0, 0 }, 1, 255, "L", 1352119, 110404 },
   { "labelmaps", "JHU white matter (48)", "mricron/JHU-WhiteMatter-labels-1mm.nii.gz", { 0, 0, 0 }, 1, 255, "L", -1, -1 },
   { "labelmaps", "Harvard-Oxford (48)", "mricron/HarvardOxford-cort-maxprob-thr0-1mm.nii.gz", { 0, 0, 0 }, 1, 255, "L", -1, -1 },
-  { "labelmaps", "ITK k-means (6)", "itk_kmeans/KmeansTest_T1KmeansPrelimSegmentation.nii.gz", { 0, 0, 0 }, 1, 255, "Ls", -1, -1 },
+  { "labelmaps", "ITK k-means (6)", "itk_kmeans/KmeansTest_T1KmeansPrelimSegmentation.nii.gz", { 0, 0, 0 }, 1, 255, "L", -1, -1 },
   { "images2d", "ccitt1", "2d/jbigkit/ccitt1.png", {}, 0, 0, "", 155591, 51476 },
   { "images2d", "ccitt4", "2d/jbigkit/ccitt4.png", {}, 0, 0, "", 509635, 204154 },
   { "images2d", "ccitt7", "2d/jbigkit/ccitt7.png", {}, 0, 0, "", 356850, 186544 },
