@@ -1,23 +1,23 @@
 // Benchmark of vtkCUDBConnectivity against vtkImageConnectivityFilter (face connectivity; that
-// filter exists only in stock VTK, so the comparison is printed in the stock-VTK build).
+// filter exists only in stock VTK, so the comparison is made in the stock-VTK build), on the
+// harness of BenchCommon.h (options, inputs, turns, medians, ratios, peak memory).
 //
-//   BenchCUDBConnectivity [--sizes 128,256] [--repeat 5] [--data DIR] [--no-data]
+// For each input: the EVM, OUDB and CUDB sizes (the paper's Table 1); the phases run on the
+// core alone, one thread (image -> EVM, EVM -> CUDB, CCL on the boxes, label write-back: the
+// paper's Table 2); the whole filter with face and vertex connectivity and with seeds (every
+// 16th selected voxel), and the peer, all in turns. The peer's region count must be the
+// filter's. Run with VTK_SMP_BACKEND_IN_USE=STDThread (or --backends) to use every core.
 //
-// For each input (phantoms of nested shells, a row of boxes and porous blobs; the real
-// volumes of the shared data): the EVM, OUDB and CUDB sizes (the paper's Table 1), the
-// median time of each phase run on the core alone (image -> EVM, EVM -> CUDB, CCL on the
-// boxes, label write-back: the paper's Table 2), the whole filter (face and vertex), and the
-// peer with the ratio (the three runs take turns). Run with VTK_SMP_BACKEND_IN_USE=STDThread to use
-// every core.
+//   BenchCUDBConnectivity --help     the options, with this program's defaults
 #include "vtkCUDBConnectivity.h"
 
 #include "CUDB.h"
 #include "EVM.h"
-#include "Phantom.h"
 
 #include "BenchCommon.h"
 
-#include "vtkAlgorithm.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -29,12 +29,8 @@
 #endif
 
 #include <algorithm>
-#include <array>
-#include <chrono>
-#include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <functional>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -48,8 +44,8 @@ vtkNew<vtkPolyData> seedsOf(const Input& in, std::size_t step)
 {
   vtkNew<vtkPoints> points;
   std::size_t selected = 0;
-  for (std::size_t i = 0; i < in.mask.size(); ++i)
-    if (in.mask[i] && selected++ % step == 0)
+  for (std::size_t i = 0; i < in.voxelCount(); ++i)
+    if (in.selected(i) && selected++ % step == 0)
       points->InsertNextPoint(static_cast<double>(i % in.dims[0]),
         static_cast<double>(i / in.dims[0] % in.dims[1]),
         static_cast<double>(i / (std::size_t(in.dims[0]) * in.dims[1])));
@@ -58,176 +54,154 @@ vtkNew<vtkPolyData> seedsOf(const Input& in, std::size_t step)
   return seeds;
 }
 
-/// Median time of each run, the runs taking turns in rotating order so that the machine's drift
-/// (these VMs are noisy) falls on all of them alike.
-std::vector<double> interleavedMedians(int repeat, const std::vector<std::function<void()>>& runs)
+/// The core's stages, each from the stored result of the one before.
+struct Core
 {
-  std::vector<std::vector<double>> t(runs.size());
-  for (int r = -1; r < repeat; ++r) // r = -1: warm-up
-    for (std::size_t i = 0; i < runs.size(); ++i)
-    {
-      // Each round starts with another run: a run pays for what the one before it left
-      // (freed memory, caches), and that must not always fall on the same one.
-      const std::size_t k = (i + static_cast<std::size_t>(r + 1)) % runs.size();
-      const auto t0 = Clock::now();
-      runs[k]();
-      if (r >= 0)
-        t[k].push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-    }
-  std::vector<double> medians;
-  for (std::vector<double>& times : t)
-  {
-    std::sort(times.begin(), times.end());
-    medians.push_back(times[times.size() / 2]);
-  }
-  return medians;
-}
-
-Input phantom(const std::string& kind, int n)
-{
-  Input in = emptyInput(kind + " " + std::to_string(n) + "^3", { n, n, n });
-  const std::size_t count = in.mask.size();
-  if (kind == "shells")
-  {
-    const std::vector<std::uint8_t> labels = vbr::makePhantom({ n, n, n });
-    for (std::size_t i = 0; i < count; ++i)
-      in.mask[i] = labels[i] != 0;
-  }
-  else if (kind == "boxes") // a row of separate boxes
-  {
-    for (int z = n / 4; z < 3 * n / 4; ++z)
-      for (int y = n / 4; y < 3 * n / 4; ++y)
-        for (int x = 0; x < n; ++x)
-          in.mask[(std::size_t(z) * n + y) * n + x] = (x / 4) % 2 == 0;
-  }
-  else // porous blobs: thresholded sum of random spheres
-  {
-    std::mt19937 rng(5);
-    std::uniform_int_distribution<int> c(0, n - 1);
-    const int r = std::max(2, n / 20);
-    for (int s = 0; s < n * n / 16; ++s)
-    {
-      const int cx = c(rng), cy = c(rng), cz = c(rng);
-      for (int z = std::max(0, cz - r); z < std::min(n, cz + r); ++z)
-        for (int y = std::max(0, cy - r); y < std::min(n, cy + r); ++y)
-          for (int x = std::max(0, cx - r); x < std::min(n, cx + r); ++x)
-            if ((x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) < r * r)
-              in.mask[(std::size_t(z) * n + y) * n + x] = 1;
-    }
-  }
-  return in;
-}
-
-void run(const Input& in, int repeat)
-{
-  const vbr::BitVolume bits = bitsOf(in);
+  vbr::BitVolume bits;
   vbr::EVM evm;
   vbr::CUDB cudb;
   vbr::Components comps;
-  std::vector<std::int32_t> labels(in.mask.size());
-  const double tEVM = medianSeconds(repeat, [&] { evm = vbr::extractEVM(bits); });
-  const double tCUDB = medianSeconds(repeat, [&] { cudb = vbr::buildCUDB(evm); });
-  const double tCCL =
-    medianSeconds(repeat, [&] { comps = vbr::labelComponents(cudb, vbr::Connectivity::Face); });
-  std::vector<std::int32_t> values(comps.boxLabel.begin(), comps.boxLabel.end());
-  const double tPaint = medianSeconds(repeat,
-    [&]
-    {
-      std::fill(labels.begin(), labels.end(), 0);
-      vbr::paintBoxes(cudb.boxes, values, { 0, 0, 0 }, { 0, 1, 2 }, in.dims, labels.data());
-    });
+  std::vector<std::int32_t> labels;
+};
 
-  vtkNew<vtkImageData> image = imageOf(in);
-  vtkNew<vtkCUDBConnectivity> face;
-  face->SetInputData(image);
-  face->GenerateBoxesOff();
-  vtkNew<vtkCUDBConnectivity> vertex;
-  vertex->SetInputData(image);
-  vertex->GenerateBoxesOff();
-  vertex->SetConnectivityToVertex();
-  // Seeds: every 16th selected voxel (cost linear in the seeds, not seeds x boxes).
-  vtkNew<vtkPolyData> seeds = seedsOf(in, 16);
-  vtkNew<vtkCUDBConnectivity> seeded;
-  seeded->SetInputData(image);
-  seeded->GenerateBoxesOff();
-  seeded->SetSeedData(seeds);
-  std::vector<std::function<void()>> runs{
-    [&] { update(face); }, [&] { update(vertex); }, [&] { update(seeded); }
-  };
+void addCorePhases(const Input& in, Core& core, std::vector<Contender>& out)
+{
+  core.bits = bitsOf(in);
+  core.labels.resize(in.voxelCount());
+  Core* c = &core;
+  const std::array<int, 3> dims = in.dims;
+  out.push_back({ "EVM",
+    Role::Phase,
+    "",
+    [c] { c->evm = c->bits.size(2) == 1 ? vbr::extractEVM2D(c->bits) : vbr::extractEVM(c->bits); },
+    nullptr });
+  out.push_back(
+    { "EVM -> CUDB", Role::Phase, "", [c] { c->cudb = vbr::buildCUDB(c->evm); }, nullptr });
+  out.push_back({ "CCL",
+    Role::Phase,
+    "",
+    [c] { c->comps = vbr::labelComponents(c->cudb, vbr::Connectivity::Face); },
+    nullptr });
+  out.push_back({ "write-back",
+    Role::Phase,
+    "",
+    [c, dims]
+    {
+      std::fill(c->labels.begin(), c->labels.end(), 0);
+      const std::vector<std::int32_t> values(c->comps.boxLabel.begin(), c->comps.boxLabel.end());
+      vbr::paintBoxes(c->cudb.boxes, values, { 0, 0, 0 }, { 0, 1, 2 }, dims, c->labels.data());
+    },
+    nullptr });
+}
+
+long long regionsOf(vtkCUDBConnectivity* f)
+{
+  vtkDataArray* a =
+    vtkDataArray::SafeDownCast(f->GetOutput()->GetFieldData()->GetAbstractArray("NumberOfRegions"));
+  return a ? static_cast<long long>(a->GetTuple1(0)) : -1;
+}
+
+/// The three runs of the filter and the peer.
+struct Filters
+{
+  vtkNew<vtkCUDBConnectivity> face, vertex, seeded;
+  vtkNew<vtkPolyData> seeds;
 #ifdef VOXELBREP_HAVE_PEER
   vtkNew<vtkImageConnectivityFilter> peer;
-  peer->SetInputData(image);
-  peer->SetScalarRange(1, 1);
-  peer->SetExtractionModeToAllRegions();
-  peer->SetLabelModeToSizeRank();
-  peer->SetLabelScalarTypeToInt(); // the default (unsigned char) caps the count at 255
-  runs.push_back([&] { update(peer); });
 #endif
-  const long long peak = peakBytesOf([&] { update(face); }); // a first run, face connectivity
-  const std::vector<double> t = interleavedMedians(repeat, runs);
-  std::printf("%-18s %9zu EV %9zu OUDB %9zu CUDB %7u cc6 | EVM %7.2f  CUDB %7.2f  CCL %6.2f  "
-              "write %7.2f | filter face %7.2f vertex %7.2f seeded (%lld) %7.2f ms",
-    in.name.c_str(),
-    evm.size(),
-    cudb.oudbBoxCount,
-    cudb.boxes.size(),
-    comps.count,
-    1e3 * tEVM,
-    1e3 * tCUDB,
-    1e3 * tCCL,
-    1e3 * tPaint,
-    1e3 * t[0],
-    1e3 * t[1],
-    static_cast<long long>(seeds->GetNumberOfPoints()),
-    1e3 * t[2]);
-  std::printf(" | peak %.1f bytes per voxel, %.0f per box",
-    double(peak) / double(std::max<std::size_t>(in.mask.size(), 1)),
-    double(peak) / double(std::max<std::size_t>(cudb.boxes.size(), 1)));
+};
+
+void addFilters(vtkImageData* image, const Input& in, Filters& f, std::vector<Contender>& out)
+{
+  for (vtkCUDBConnectivity* c : { f.face.Get(), f.vertex.Get(), f.seeded.Get() })
+  {
+    c->SetInputData(image);
+    c->GenerateBoxesOff();
+  }
+  f.vertex->SetConnectivityToVertex();
+  f.seeds->DeepCopy(seedsOf(in, 16)); // cost linear in the seeds, not seeds x boxes
+  f.seeded->SetSeedData(f.seeds);
+  auto add = [&out](const char* name, const char* group, vtkAlgorithm* a, Role role) {
+    out.push_back({ name, role, group, [a] { update(a); }, nullptr });
+  };
+  add("filter face", "face", f.face, Role::Tool);
+  add("filter vertex", "vertex", f.vertex, Role::Tool);
+  add("filter seeded", "seeded", f.seeded, Role::Tool);
 #ifdef VOXELBREP_HAVE_PEER
-  std::printf(" | vtkImageConnectivityFilter %8.2f ms (%lld regions) ratio %.1fx",
-    1e3 * t[3],
-    static_cast<long long>(peer->GetNumberOfExtractedRegions()),
-    t[3] / t[0]);
+  f.peer->SetInputData(image);
+  f.peer->SetScalarRange(1, 1);
+  f.peer->SetExtractionModeToAllRegions();
+  f.peer->SetLabelModeToSizeRank();
+  f.peer->SetLabelScalarTypeToInt(); // the default (unsigned char) caps the count at 255
+  add("vtkImageConnectivityFilter", "face", f.peer, Role::Peer);
 #endif
-  std::printf("\n");
+}
+
+void printSizes(const Input& in,
+  const Core& core,
+  const Filters& f,
+  const std::vector<Measured>& rows)
+{
+  const Measured* face = findMeasured(rows, "filter face");
+  const long long peak = face ? face->peakBytes : -1;
+  std::printf("EV %s, OUDB boxes %s, CUDB boxes %s, components (face) %u, seeds %lld; "
+              "filter face: %.1f peak bytes per voxel, %.0f per box\n\n",
+    formatCount(static_cast<long long>(core.evm.size())).c_str(),
+    formatCount(static_cast<long long>(core.cudb.oudbBoxCount)).c_str(),
+    formatCount(static_cast<long long>(core.cudb.boxes.size())).c_str(),
+    core.comps.count,
+    static_cast<long long>(f.seeds->GetNumberOfPoints()),
+    double(peak) / double(std::max<std::size_t>(in.voxelCount(), 1)),
+    double(peak) / double(std::max<std::size_t>(core.cudb.boxes.size(), 1)));
+  const long long regions = regionsOf(f.face);
+  if (regions != static_cast<long long>(core.comps.count))
+    std::printf("WARNING: %s: the filter finds %lld regions, the core %u\n\n",
+      in.name.c_str(),
+      regions,
+      core.comps.count);
+#ifdef VOXELBREP_HAVE_PEER
+  if (f.peer->GetNumberOfExtractedRegions() != regions)
+    std::printf("WARNING: %s: vtkImageConnectivityFilter finds %lld regions, the filter %lld\n\n",
+      in.name.c_str(),
+      static_cast<long long>(f.peer->GetNumberOfExtractedRegions()),
+      regions);
+#endif
+}
+
+void benchmarkInput(const Input& in, const Options& options, Report& report)
+{
+  Report::printInput(in);
+  vtkNew<vtkImageData> image = maskImageOf(in);
+  forEachBackend(options,
+    [&](const std::string& backend)
+    {
+      Core core;
+      Filters filters;
+      std::vector<Contender> contenders;
+      addCorePhases(in, core, contenders);
+      addFilters(image, in, filters, contenders);
+      const std::vector<Measured> rows = timeInTurns(options.repeat, contenders);
+      report.add(in, backend, rows);
+      printSizes(in, core, filters, rows);
+    });
 }
 
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  Arguments args;
-  args.list = { 128, 256 };
-  args.dataDir = VOXELBREP_DEFAULT_DATA_DIR;
-  if (!parseArguments(argc, argv, "sizes", args))
-    return 2;
+  Options options;
+  options.inputs.classes = splitList(
+    "phantom,boxes,blobs,porous,checkerboard,noise,berea,volumes,labelmaps,porous2d,images2d");
+  options.inputs.sizes = { 128, 256 };
 #ifndef VOXELBREP_HAVE_PEER
-  std::printf(
-    "(vtkImageConnectivityFilter is not in this VTK: build against stock VTK to compare)\n");
+  options.note =
+    "(vtkImageConnectivityFilter is not in this VTK: build against stock VTK to compare)";
 #endif
-  for (int n : args.list)
-    for (const char* kind : { "shells", "boxes", "blobs" })
-      run(phantom(kind, n), args.repeat);
-  if (!args.data)
-    return 0;
-  struct Real
-  {
-    const char* file;
-    std::array<int, 3> dims;
-    int lo, hi;
-    const char* name;
-  };
-  const Real volumes[] = {
-    { "/aneurism/aneurism_256x256x256_uint8.raw", { 256, 256, 256 }, 55, 255, "aneurism>=55" },
-    { "/engine/engine_256x256x128_uint8.raw", { 256, 256, 128 }, 55, 255, "engine>=55" },
-    { "/lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 40, 255, "lobster>=40" },
-    { "/berea/berea_200x200x200_uint8.raw", { 200, 200, 200 }, 0, 0, "berea pore" },
-  };
-  for (const Real& r : volumes)
-  {
-    Input in;
-    if (readThresholded(args.dataDir + r.file, r.dims, r.lo, r.hi, r.name, in))
-      run(in, args.repeat);
-  }
-  return 0;
+  return runBenchmark(argc,
+    argv,
+    "BenchCUDBConnectivity",
+    "vtkCUDBConnectivity against vtkImageConnectivityFilter (stock VTK)",
+    options,
+    benchmarkInput);
 }

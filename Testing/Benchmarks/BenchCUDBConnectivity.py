@@ -1,80 +1,135 @@
-"""Benchmark of vtkCUDBConnectivity against scipy.ndimage.label, in one process on the same
-inputs (the Python companion of BenchCUDBConnectivity.cxx).
+"""BenchCUDBConnectivity.py: vtkCUDBConnectivity against scipy.ndimage.label and OpenCV's
+connectedComponents (2D images), in one process on the same inputs: the Python companion of
+BenchCUDBConnectivity.cxx, on the same harness (BenchCommon.h).
 
-    PYTHONPATH=build/lib/python3/dist-packages VTK_SMP_BACKEND_IN_USE=STDThread \
-        /usr/bin/python3 Testing/Benchmarks/BenchCUDBConnectivity.py \
-        [--sizes 128,256] [--repeat 5] [--data DIR] [--no-data]
+    PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 \\
+        Testing/Benchmarks/BenchCUDBConnectivity.py [options]      (--help lists them)
 
-For each input (phantoms of nested shells, a row of boxes and porous blobs; the real volumes
-of the shared data) it prints the median time of the filter (face and vertex connectivity,
-no boxes output, uint8 0/1 input) and of scipy.ndimage.label with the 6- and 26-neighbour
-structures (the same connectivities), their ratios, and checks that the component counts
-agree: a benchmark that compares different answers measures nothing.
+The inputs are the benchmarks' input classes, made by the BenchInputs program (one definition
+of the inputs for every benchmark; --inputs-program gives its path, else build/bin is
+searched). The options are those of the C++ benchmarks and mean the same. Every contender
+makes a first run (its peak memory, and the warm-up), then --repeat rounds in turns; the median
+is the middle of the sorted times (of an even count, the mean of the middle two); the ratio is
+the peer's time over the filter's with the same connectivity (above 1: the filter is faster).
+The component counts of the filter and of every peer must agree (MISMATCH, exit code 1):
+a benchmark that compares different answers measures nothing.
 """
 
 import argparse
 import os
+import shutil
+import statistics
+import subprocess
 import sys
 import time
 
 import numpy as np
 from scipy import ndimage
 from vtkmodules.util import numpy_support as ns
+from vtkmodules.vtkCommonCore import vtkSMPTools
 from vtkmodules.vtkCommonDataModel import vtkImageData
 
 import voxelbrep
 
+try:
+    import cv2
+except ImportError:  # OpenCV is optional: its rows are left out
+    cv2 = None
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_DATA = os.path.normpath(os.path.join(HERE, "..", "..", "..", "shared", "data"))
+CLASSES = ("phantom,boxes,blobs,porous,checkerboard,noise,berea,volumes,labelmaps,porous2d,"
+           "images2d")
+INPUT_OPTIONS = ("inputs", "sizes", "sizes2d", "seeds", "solid", "radii", "labels", "data")
 
 
-def median_seconds(repeat, run):
-    run()  # warm-up
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - t0)
-    return sorted(times)[len(times) // 2]
+def parse_arguments():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--inputs", default=CLASSES, help="input classes ('all': every class)")
+    p.add_argument("--sizes", help="edges of the procedural 3D volumes (default 128,256)")
+    p.add_argument("--sizes2d", help="edges of the procedural 2D images (porous2d)")
+    p.add_argument("--seeds", help="seeds of the porous inputs")
+    p.add_argument("--solid", help="solid percentages of the porous inputs")
+    p.add_argument("--radii", help="radii of the balls")
+    p.add_argument("--labels", help="compact label maps of N^3 labels")
+    p.add_argument("--repeat", type=int, default=5, help="timed rounds after the first run")
+    p.add_argument("--data", default=DEFAULT_DATA, help="the shared data")
+    p.add_argument("--no-data", action="store_true", help="procedural inputs only")
+    p.add_argument("--quick", action="store_true",
+                   help="tiny sizes, --repeat 1, small files only (the ctest smoke run)")
+    p.add_argument("--large", action="store_true", help="sizes 128,256,512, the mazes")
+    p.add_argument("--backends", help="vtkSMPTools backends (default: the one at start)")
+    p.add_argument("--list", action="store_true", help="print the selected inputs and stop")
+    p.add_argument("--inputs-program", help="the BenchInputs program")
+    args = p.parse_args()
+    if args.quick and "--repeat" not in sys.argv:
+        args.repeat = 1
+    if args.sizes is None and not (args.quick or args.large):
+        args.sizes = "128,256"  # the default of BenchCUDBConnectivity.cxx
+    return args
 
 
-def shells(n):
-    source = voxelbrep.vtkVoxelPhantomSource()
-    source.SetDimensions(n, n, n)
-    source.Update()
-    labels = ns.vtk_to_numpy(source.GetOutput().GetPointData().GetScalars())
-    return (labels.reshape(n, n, n) != 0).astype(np.uint8)
+def inputs_command(args):
+    """The BenchInputs command line of the input options."""
+    program = args.inputs_program or shutil.which("BenchInputs") or os.path.join(
+        HERE, "..", "..", "build", "bin", "BenchInputs")
+    command = [program]
+    for name in INPUT_OPTIONS:
+        value = getattr(args, name)
+        if value is not None:
+            command += ["--" + name, value]
+    command += [flag for flag, on in (("--no-data", args.no_data), ("--quick", args.quick),
+                                      ("--large", args.large)) if on]
+    return command
 
 
-def boxes(n):
-    mask = np.zeros((n, n, n), np.uint8)
-    columns = (np.arange(n) // 4) % 2 == 0
-    mask[n // 4 : 3 * n // 4, n // 4 : 3 * n // 4, :] = columns
-    return mask
+def load_inputs(args):
+    """(name, input class, 0/1 mask as a z, y, x array) of every selected input."""
+    command = inputs_command(args)
+    listing = subprocess.run(command + ["--list"], check=True, capture_output=True, text=True)
+    for line in listing.stdout.splitlines():
+        name, input_class = line.split("\t")
+        out = subprocess.run(command + ["--emit", name], capture_output=True)
+        if out.returncode != 0:
+            print("(%s: not available, skipped)" % name)
+            continue
+        header, _, data = out.stdout.partition(b"\n")
+        nx, ny, nz = (int(v) for v in header.split())
+        yield name, input_class, np.frombuffer(data, np.uint8).reshape(nz, ny, nx)
 
 
-def blobs(n):
-    """Thresholded union of random balls, as the C++ benchmark (not the same random draw)."""
-    rng = np.random.default_rng(5)
-    r = max(2, n // 20)
-    mask = np.zeros((n, n, n), np.uint8)
-    offsets = np.arange(-r, r)
-    ball = (offsets[:, None, None] ** 2 + offsets[None, :, None] ** 2
-            + offsets[None, None, :] ** 2) < r * r
-    for cz, cy, cx in rng.integers(0, n, size=(n * n // 16, 3)):
-        z0, y0, x0 = max(0, cz - r), max(0, cy - r), max(0, cx - r)
-        z1, y1, x1 = min(n, cz + r), min(n, cy + r), min(n, cx + r)
-        mask[z0:z1, y0:y1, x0:x1] |= ball[z0 - cz + r : z1 - cz + r, y0 - cy + r : y1 - cy + r,
-                                          x0 - cx + r : x1 - cx + r]
-    return mask
+def peak_bytes_of(run):
+    """The peak memory a first run adds (the harness's peakBytesOf), or -1."""
+    def status(field):
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith(field + ":"):
+                    return int(line.split()[1])
+        return -1
+
+    try:
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")
+    except OSError:
+        return -1
+    before = status("VmRSS")
+    run()
+    return 1024 * max(0, status("VmHWM") - before)
 
 
-def real_volume(directory, file, dims, lo, hi):
-    path = os.path.join(directory, file)
-    if not os.path.exists(path):
-        return None
-    raw = np.fromfile(path, np.uint8).reshape(dims[2], dims[1], dims[0])
-    return ((raw >= lo) & (raw <= hi)).astype(np.uint8)
+def time_in_turns(repeat, contenders):
+    """(name, role, group, median s, min s, peak bytes) of each contender."""
+    peaks = [peak_bytes_of(c[3]) for c in contenders]
+    times = [[] for _ in contenders]
+    for r in range(repeat):
+        for i in range(len(contenders)):
+            k = (i + r) % len(contenders)
+            t0 = time.perf_counter()
+            contenders[k][3]()
+            times[k].append(time.perf_counter() - t0)
+    return [(c[0], c[1], c[2], statistics.median(t), min(t), p)
+            for c, t, p in zip(contenders, times, peaks)]
 
 
 def image_of(mask):
@@ -86,61 +141,118 @@ def image_of(mask):
     return image
 
 
-def run(name, mask, repeat):
-    image = image_of(mask)
-    line = "%-16s" % name
+def filter_contender(image, connectivity, counts):
+    f = voxelbrep.vtkCUDBConnectivity()
+    f.SetInputData(image)
+    f.GenerateBoxesOff()
+    if connectivity == "vertex":
+        f.SetConnectivityToVertex()
+
+    def run():
+        f.Modified()
+        f.Update()
+        regions = f.GetOutput().GetFieldData().GetArray("NumberOfRegions").GetValue(0)
+        counts["filter " + connectivity] = int(regions)
+
+    return ("filter " + connectivity, "tool", connectivity, run)
+
+
+def peer_contenders(mask, counts):
+    """scipy (6/26 in 3D, 4/8 in 2D) and, in 2D, OpenCV, with the filter's connectivities."""
+    flat = mask.shape[0] == 1
+    data = mask[0] if flat else mask
+    peers = []
+    for connectivity, rank in (("face", 1), ("vertex", data.ndim)):
+        structure = ndimage.generate_binary_structure(data.ndim, rank)
+        name = "scipy %d" % int(structure.sum() - 1)
+
+        def scipy_run(name=name, structure=structure):
+            counts[name] = ndimage.label(data, structure)[1]
+
+        peers.append((name, "peer", connectivity, scipy_run))
+        if flat and cv2 is not None:
+            n = 4 if rank == 1 else 8
+
+            def cv_run(name="OpenCV %d" % n, n=n):
+                counts[name] = cv2.connectedComponents(data, connectivity=n)[0] - 1
+
+            peers.append(("OpenCV %d" % n, "peer", connectivity, cv_run))
+    return peers
+
+
+def print_rows(name, backend, rows, voxels):
+    print("backend %s\n" % backend)
+    print("| contender | role | median ms | min ms | peak MB | B/voxel | peer / this |")
+    print("| :-- | --: | --: | --: | --: | --: | --: |")
+    for n, role, group, med, low, peak in rows:
+        ratios = ", ".join("%s %.2f" % (p[0], p[3] / med) for p in rows
+                           if role == "tool" and p[1] == "peer" and p[2] == group)
+        print("| %s | %s | %.2f | %.2f | %.1f | %.1f | %s |" % (
+            n, role, 1e3 * med, 1e3 * low, peak / 2**20, peak / voxels, ratios or "-"))
+    print(flush=True)
+
+
+def check_counts(name, counts):
+    """The connectivity's counts must agree: the filter's with every peer's."""
     failures = []
-    for connectivity, structure_rank in (("face", 1), ("vertex", 3)):
-        f = voxelbrep.vtkCUDBConnectivity()
-        f.SetInputData(image)
-        f.GenerateBoxesOff()
-        if connectivity == "vertex":
-            f.SetConnectivityToVertex()
-
-        def update():
-            f.Modified()
-            f.Update()
-
-        t_filter = median_seconds(repeat, update)
-        regions = int(f.GetOutput().GetFieldData().GetArray("NumberOfRegions").GetValue(0))
-        structure = ndimage.generate_binary_structure(3, structure_rank)
-        result = {}
-
-        def label():
-            result["count"] = ndimage.label(mask, structure)[1]
-
-        t_scipy = median_seconds(repeat, label)
-        if result["count"] != regions:
-            failures.append("%s %s: %d regions, scipy %d" % (name, connectivity, regions,
-                                                            result["count"]))
-        line += " | %-6s %8.2f ms  scipy %8.2f ms  (%6d cc) ratio %5.1fx" % (
-            connectivity, 1e3 * t_filter, 1e3 * t_scipy, regions, t_scipy / t_filter)
-    print(line, flush=True)
+    for key, value in counts.items():
+        if key.startswith("filter"):
+            continue
+        face = key in ("scipy 6", "scipy 4", "OpenCV 4")
+        mine = counts["filter face" if face else "filter vertex"]
+        if value != mine:
+            failures.append("%s: %s finds %d regions, the filter %d" % (name, key, value, mine))
     return failures
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--sizes", default="128,256")
-    parser.add_argument("--repeat", type=int, default=5)
-    parser.add_argument("--data", default=DEFAULT_DATA)
-    parser.add_argument("--no-data", action="store_true")
-    args = parser.parse_args()
-    print("VTK_SMP_BACKEND_IN_USE=%s" % os.environ.get("VTK_SMP_BACKEND_IN_USE", "(default)"))
+def benchmark(name, mask, args, summary):
+    print("## %s (%dx%dx%d)\n\nselected voxels: %d\n" % (
+        name, mask.shape[2], mask.shape[1], mask.shape[0], int(mask.sum())))
+    image = image_of(mask)
     failures = []
-    for n in (int(s) for s in args.sizes.split(",") if s):
-        for kind, make in (("shells", shells), ("boxes", boxes), ("blobs", blobs)):
-            failures += run("%s %d^3" % (kind, n), make(n), max(1, args.repeat))
-    if not args.no_data:
-        for name, file, dims, lo, hi in (
-            ("aneurism>=55", "aneurism/aneurism_256x256x256_uint8.raw", (256, 256, 256), 55, 255),
-            ("engine>=55", "engine/engine_256x256x128_uint8.raw", (256, 256, 128), 55, 255),
-            ("lobster>=40", "lobster/lobster_301x324x56_uint8.raw", (301, 324, 56), 40, 255),
-            ("berea pore", "berea/berea_200x200x200_uint8.raw", (200, 200, 200), 0, 0),
-        ):
-            mask = real_volume(args.data, file, dims, lo, hi)
-            if mask is not None:
-                failures += run(name, mask, max(1, args.repeat))
+    backends = args.backends.split(",") if args.backends else [vtkSMPTools.GetBackend()]
+    for backend in backends:
+        if not vtkSMPTools.SetBackend(backend):
+            print("WARNING: vtkSMPTools backend %s is not in this VTK; skipped" % backend)
+            continue
+        counts = {}
+        contenders = [filter_contender(image, c, counts) for c in ("face", "vertex")]
+        contenders += peer_contenders(mask, counts)
+        rows = time_in_turns(max(1, args.repeat), contenders)
+        print_rows(name, backend, rows, mask.size)
+        summary.append((backend, name, rows))
+        failures += check_counts(name, counts)
+    return failures
+
+
+def print_summary(summary):
+    for backend in sorted(set(s[0] for s in summary)):
+        print("## Summary, backend %s (median ms; ratio = peer / filter, same connectivity)\n"
+              % backend)
+        print("| input | filter face | filter vertex | peers (ms, ratio) |")
+        print("| :-- | --: | --: | :-- |")
+        for b, name, rows in summary:
+            if b != backend:
+                continue
+            tool = {r[2]: r[3] for r in rows if r[1] == "tool"}
+            peers = ", ".join("%s %.2f (%.2fx)" % (r[0], 1e3 * r[3], r[3] / tool[r[2]])
+                              for r in rows if r[1] == "peer")
+            print("| %s | %.2f | %.2f | %s |" % (name, 1e3 * tool["face"], 1e3 * tool["vertex"],
+                                                 peers))
+        print()
+
+
+def main():
+    args = parse_arguments()
+    if args.list:
+        return subprocess.run(inputs_command(args) + ["--list"]).returncode
+    print("# BenchCUDBConnectivity.py\n\n- VTK_SMP_BACKEND_IN_USE=%s, OpenCV %s\n" % (
+        os.environ.get("VTK_SMP_BACKEND_IN_USE", "(unset)"),
+        cv2.__version__ if cv2 is not None else "absent"), flush=True)
+    failures, summary = [], []
+    for name, _, mask in load_inputs(args):
+        failures += benchmark(name, mask, args, summary)
+    print_summary(summary)
     for f in failures:
         print("MISMATCH " + f, file=sys.stderr)
     return 1 if failures else 0

@@ -1,192 +1,180 @@
-// What the benchmark programs share: the inputs as 0/1 masks (phantoms built in the program,
-// real volumes read and thresholded from the shared data), their VTK image and voxel set,
-// median timing and the command line.
+// The harness every benchmark uses: one command line, one way to time the tool and its peers
+// (in turns, in one process, on the same input), one median, one report.
+//
+// - Options (`--help` of any benchmark lists them with that benchmark's defaults): the input
+//   classes and their sizes (see BenchInputs.h), --repeat, --data, --no-data, --quick,
+//   --large, --backends, --list.
+// - Timing: every contender (the tool's outputs, its peers, phases of the core) makes a first
+//   run whose peak memory is measured (peakBytesOf; it is also the warm-up), then `repeat`
+//   rounds in which each runs once, each round starting with the next contender, so that the
+//   drift of a shared machine and what one run leaves to the next fall on all alike.
+// - Median: the middle of the sorted times; of an even count, the mean of the middle two.
+// - Report: per input a table (median and minimum ms, output cells, peak bytes per output cell
+//   and per voxel, and peer time / tool time for each peer: above 1 the project is faster);
+//   at the end a summary, one line per input, backend, tool and peer.
 #ifndef vbr_BenchCommon_h
 #define vbr_BenchCommon_h
 
+#include "BenchInputs.h"
+
 #include "BitVolume.h"
 
-#include "vtkAlgorithm.h"
-#include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkUnsignedCharArray.h"
 
-#include <algorithm>
-#include <array>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <functional>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-#include <sstream>
 #include <string>
 #include <vector>
+
+class vtkAlgorithm;
+class vtkImageData;
+
+#ifndef VOXELBREP_DEFAULT_DATA_DIR
+#define VOXELBREP_DEFAULT_DATA_DIR "../shared/data"
+#endif
 
 namespace vbrbench
 {
 
-using Clock = std::chrono::steady_clock;
-
-/// Median time of `repeat` runs after one warm-up run.
-inline double medianSeconds(int repeat, const std::function<void()>& run)
+/// The command line of every benchmark.
+struct Options
 {
-  run();
-  std::vector<double> t;
-  for (int r = 0; r < repeat; ++r)
-  {
-    const auto t0 = Clock::now();
-    run();
-    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
+  InputOptions inputs;
+  int repeat = 5;
+  std::vector<std::string> backends; ///< vtkSMPTools backends; empty: the one at start
+  bool list = false;
+  std::string note; ///< printed under the heading (what this build cannot compare)
+};
 
-/// A field of /proc/self/status in kiB (VmRSS, VmHWM), or -1.
-inline long long procStatusKiB(const std::string& field)
-{
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.compare(0, field.size() + 1, field + ":") == 0)
-      return std::atoll(line.c_str() + field.size() + 1);
-  return -1;
-}
+/// Parses the command line over the benchmark's defaults. Returns -1 to go on, else the exit
+/// code to stop with (0 after --help or --list, 2 after a bad argument, with the usage).
+int parseOptions(int argc, char* argv[], const char* purpose, Options& options);
+
+/// The median as defined above.
+double median(std::vector<double> values);
 
 /// Peak memory a run adds to the process, in bytes: the resident-set high-water mark is reset
 /// (/proc/self/clear_refs, Linux), the run made, and the new mark compared with the resident
 /// size before it (freed memory given back to the system first). -1 where Linux does not tell.
 /// Measure a first run (a run that replaces an earlier output counts both while the new one is
 /// built).
-inline long long peakBytesOf(const std::function<void()>& run)
-{
-#ifdef __GLIBC__
-  malloc_trim(0); // give freed memory back, so that the run's pages show in the mark
-#endif
-  {
-    std::ofstream clear("/proc/self/clear_refs");
-    clear << "5";
-  }
-  const long long before = procStatusKiB("VmRSS");
-  run();
-  const long long peak = procStatusKiB("VmHWM");
-  return before < 0 || peak < 0 ? -1 : 1024 * std::max(0LL, peak - before);
-}
+long long peakBytesOf(const std::function<void()>& run);
 
 /// Runs the algorithm again from scratch.
-inline void update(vtkAlgorithm* algorithm)
-{
-  algorithm->Modified();
-  algorithm->Update();
-}
+void update(vtkAlgorithm* algorithm);
 
-/// A named 0/1 voxel mask, x fastest.
-struct Input
+/// What a contender is: the project's filter, a peer it is compared with, or a step of the
+/// core (timed, not compared).
+enum class Role
+{
+  Tool,
+  Peer,
+  Phase
+};
+
+/// One timed run. Peers are compared with the tools of the same group (an empty group: with
+/// every tool); `cells` gives the output cells after a run (-1: none).
+struct Contender
 {
   std::string name;
-  std::array<int, 3> dims{ 0, 0, 0 };
-  std::vector<unsigned char> mask;
-
-  unsigned char& at(int x, int y, int z)
-  {
-    return this->mask[(std::size_t(z) * this->dims[1] + y) * this->dims[0] + x];
-  }
+  Role role = Role::Tool;
+  std::string group;
+  std::function<void()> run;
+  std::function<long long()> cells;
 };
 
-/// An empty mask of the given dimensions.
-inline Input emptyInput(const std::string& name, const std::array<int, 3>& dims)
+struct Measured
 {
-  return Input{ name, dims, std::vector<unsigned char>(std::size_t(dims[0]) * dims[1] * dims[2]) };
-}
-
-/// A real volume of the shared data (uint8 raw) thresholded to lo <= v <= hi; false when
-/// the file is absent or short.
-inline bool readThresholded(const std::string& path,
-  const std::array<int, 3>& dims,
-  int lo,
-  int hi,
-  const std::string& name,
-  Input& in)
-{
-  std::ifstream f(path, std::ios::binary);
-  if (!f)
-    return false;
-  in = emptyInput(name, dims);
-  f.read(reinterpret_cast<char*>(in.mask.data()), static_cast<std::streamsize>(in.mask.size()));
-  for (unsigned char& v : in.mask)
-    v = v >= lo && v <= hi;
-  return static_cast<bool>(f);
-}
-
-inline vbr::BitVolume bitsOf(const Input& in)
-{
-  vbr::BitVolume bits(in.dims[0], in.dims[1], in.dims[2]);
-  std::size_t i = 0;
-  for (int z = 0; z < in.dims[2]; ++z)
-    for (int y = 0; y < in.dims[1]; ++y)
-      for (int x = 0; x < in.dims[0]; ++x, ++i)
-        if (in.mask[i])
-          bits.set(x, y, z);
-  return bits;
-}
-
-/// The mask as the point scalars ("mask", uint8) of an image with unit spacing.
-inline vtkNew<vtkImageData> imageOf(const Input& in)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(in.dims.data());
-  vtkNew<vtkUnsignedCharArray> a;
-  a->SetName("mask");
-  a->SetNumberOfTuples(static_cast<vtkIdType>(in.mask.size()));
-  std::copy(in.mask.begin(), in.mask.end(), a->GetPointer(0));
-  image->GetPointData()->SetScalars(a);
-  return image;
-}
-
-/// The command line of the benchmarks: `--<listName> a,b,c` (sizes or radii),
-/// `--repeat N`, `--data DIR`, `--no-data`.
-struct Arguments
-{
-  std::vector<int> list;
-  int repeat = 5;
-  std::string dataDir;
-  bool data = true;
+  std::string name;
+  Role role = Role::Tool;
+  std::string group;
+  double median = 0, min = 0;
+  long long cells = -1, peakBytes = -1;
 };
 
-/// False (after printing the usage) on an unknown argument.
-inline bool parseArguments(int argc, char* argv[], const std::string& listName, Arguments& args)
+/// The row of that name, or nullptr.
+const Measured* findMeasured(const std::vector<Measured>& rows, const std::string& name);
+
+/// The first run (peak memory), then `repeat` rounds in turns.
+std::vector<Measured> timeInTurns(int repeat, const std::vector<Contender>& contenders);
+
+/// Every requested backend in turn (vtkSMPTools::SetBackend); the backends missing from this
+/// VTK are reported and skipped.
+void forEachBackend(const Options& options, const std::function<void(const std::string&)>& body);
+
+/// The report of a benchmark: prints each input's table as it is measured, the summary at
+/// the end.
+class Report
 {
-  for (int i = 1; i < argc; ++i)
+public:
+  /// The heading of an input: name, dims, selected voxels, the manifest's checks.
+  static void printInput(const Input& in);
+  /// The table of one input under one backend, kept for the summary.
+  void add(const Input& in, const std::string& backend, const std::vector<Measured>& rows);
+  void printSummary() const;
+
+private:
+  struct Entry
   {
-    const std::string a = argv[i];
-    if (a == "--" + listName && i + 1 < argc)
-    {
-      args.list.clear();
-      std::stringstream s(argv[++i]);
-      for (std::string v; std::getline(s, v, ',');)
-        args.list.push_back(std::atoi(v.c_str()));
-    }
-    else if (a == "--repeat" && i + 1 < argc)
-      args.repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--data" && i + 1 < argc)
-      args.dataDir = argv[++i];
-    else if (a == "--no-data")
-      args.data = false;
-    else
-    {
-      std::fprintf(stderr,
-        "usage: %s [--%s a,b,...] [--repeat N] [--data DIR] [--no-data]\n",
-        argv[0],
-        listName.c_str());
-      return false;
-    }
-  }
-  return true;
-}
+    std::string input, dims, backend;
+    double voxels;
+    std::vector<Measured> rows;
+  };
+  std::vector<Entry> Entries;
+};
+
+/// The benchmark's heading: VTK, backend, threads, load, build type, the options.
+void printPreamble(const char* title, const Options& options);
+
+/// Loads every selected input in turn and hands it to `run`.
+void forEachInput(const Options& options, const std::function<void(const Input&)>& run);
+
+/// What a benchmark measures on one input (Report::printInput, then Report::add per backend).
+using Benchmark = std::function<void(const Input&, const Options&, Report&)>;
+
+/// The whole program: parses the command line over `options` (the benchmark's defaults), prints
+/// the heading, runs `benchmark` on every selected input, prints the summary; the exit code.
+int runBenchmark(int argc,
+  char* argv[],
+  const char* title,
+  const char* purpose,
+  Options& options,
+  const Benchmark& benchmark);
+
+//------------------------------------------------------------------------------
+// Inputs as the filters take them
+
+/// The selection (0/1) as the point scalars ("mask", uint8) of an image with unit spacing.
+vtkNew<vtkImageData> maskImageOf(const Input& in);
+/// The values as the point scalars ("values", uint8).
+vtkNew<vtkImageData> valueImageOf(const Input& in);
+/// The labels of a label map as the point scalars ("labels"; int when above 255).
+vtkNew<vtkImageData> labelImageOf(const Input& in);
+/// The selection as 0/1 cell scalars of an image of (voxels + 1) points along each axis.
+vtkNew<vtkImageData> cellImageOf(const Input& in);
+vbr::BitVolume bitsOf(const Input& in);
+/// The largest label of a label map.
+int maxLabel(const Input& in);
+
+//------------------------------------------------------------------------------
+// Formatting
+
+std::string formatMs(double seconds);
+std::string formatCount(long long n);
+std::string formatRatio(double r);
+std::string formatFixed(double value, int digits);
+
+/// A Markdown table with padded columns; the first column is left-aligned.
+class Table
+{
+public:
+  explicit Table(std::vector<std::string> header);
+  void add(std::vector<std::string> row);
+  void print() const;
+
+private:
+  std::vector<std::string> Header;
+  std::vector<std::vector<std::string>> Rows;
+};
 
 } // namespace vbrbench
 
