@@ -43,7 +43,8 @@ std::int64_t gcd64(std::int64_t a, std::int64_t b)
   return a;
 }
 
-/// The plane through a, b, c with the normal (b - a) x (c - a) reduced; normal 0 when flat.
+} // namespace
+
 FacePlane planeThrough(const LatticePoint& a, const LatticePoint& b, const LatticePoint& c)
 {
   FacePlane plane;
@@ -60,6 +61,9 @@ FacePlane planeThrough(const LatticePoint& a, const LatticePoint& b, const Latti
   plane.offset = static_cast<std::int64_t>(dot(plane.normal, a));
   return plane;
 }
+
+namespace
+{
 
 int sign(__int128 v)
 {

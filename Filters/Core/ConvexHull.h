@@ -104,6 +104,10 @@ struct CellList
   void buildIncidences();
 };
 
+/// The plane through a, b and c, normal (b - a) x (c - a) reduced by the gcd of its
+/// components (0 when the three points are collinear).
+FacePlane planeThrough(const LatticePoint& a, const LatticePoint& b, const LatticePoint& c);
+
 /// Object voxels incident to a convex 0-cell (section 3.1), as (x, y, z) voxel indices,
 /// sorted lexicographically.
 std::vector<LatticePoint> vertexCandidates(const BitVolume& voxels);
