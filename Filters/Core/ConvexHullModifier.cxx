@@ -330,7 +330,8 @@ bool onSurface(const CellList& c, const LatticePoint& p)
     [&](const FacePlane& plane) { return plane.evaluate(p) == 0; });
 }
 
-/// The groups of points of the other class to press in: the components (26-connected) in the
+/// The groups of points of the other class to press in: the components (face-connected: two
+/// groups meeting only along an edge or at a corner stay two, and their hulls apart) in the
 /// closed hull that reach its open interior, merged while their hulls meet, each with its hull.
 void pressingInGroups(Context& ctx,
   const CellList& c,
@@ -340,7 +341,8 @@ void pressingInGroups(Context& ctx,
   std::vector<CellList>& hulls,
   std::vector<bool>& solid)
 {
-  for (auto& g : componentsOf(pointsOfClass(c, ctx.objects, !cls, false), ctx.objects.dims(), true))
+  for (auto& g :
+    componentsOf(pointsOfClass(c, ctx.objects, !cls, false), ctx.objects.dims(), false))
     if (std::any_of(g.begin(),
           g.end(),
           [&](const LatticePoint& p)
