@@ -368,3 +368,19 @@ TEST(ConvexHullModifier, RotatedCubeIsItsHull)
   const auto r = expectSeparating(v, { false });
   EXPECT_EQ(r.faces.size(), r.hull.faces.size());
 }
+
+TEST(ConvexHullModifier, FlatObjectsRevertFromTheirPolygon)
+{
+  // A one-voxel-thick L (a 2D image): H is its convex polygon, two-sided, every centre on it;
+  // the background centres on it are listed, and the reversion is exact.
+  vbr::BitVolume v(9, 8, 1);
+  for (int y = 1; y < 7; ++y)
+    for (int x = 1; x < 8; ++x)
+      if (x < 3 || y < 3)
+        v.set(x, y, 0);
+  const auto r = vbr::modifyConvexHull(v);
+  EXPECT_TRUE(r.complete);
+  EXPECT_EQ(r.hull.dimension, 2);
+  EXPECT_FALSE(r.backgroundOnSurface.empty());
+  EXPECT_EQ(vbr::revertModifiedHull(r.surface, r.backgroundOnSurface, v.dims()), v);
+}
