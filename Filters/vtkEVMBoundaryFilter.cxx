@@ -666,6 +666,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   }
   vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS);
   writeStatistics(stats, output->GetFieldData());
+  vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   return 1;
 }
 

@@ -1,4 +1,5 @@
 #include "vtkVoxelBRepAdapters.h"
+#include "vtkVoxelBRepDistributed.h"
 #include "vtkVoxelBRepMemory.h"
 
 #include "vtkAbstractArray.h"
@@ -189,7 +190,8 @@ int flatAxisOf(const VoxelGrid& grid, int flatCount, int flat, bool flatImagesAs
   return singles == 1 ? single : -1;
 }
 
-/// Origin, spacing and direction matrix of the image.
+} // namespace
+
 void readGeometry(vtkImageData* image, VoxelGrid& grid)
 {
   image->GetOrigin(grid.origin.data());
@@ -202,7 +204,23 @@ void readGeometry(vtkImageData* image, VoxelGrid& grid)
   }
 }
 
-} // namespace
+std::string describeExtent(const int extent[6], bool cellData, bool flatImagesAs2D, VoxelGrid& grid)
+{
+  grid.cellData = cellData;
+  grid.flatAxis = -1;
+  int flatCount = 0, flat = -1;
+  const std::string problem = voxelsOfExtent(extent, cellData, grid, flatCount, flat);
+  if (!problem.empty())
+    return problem;
+  if (std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2] == 0)
+    return std::string();
+  if (cellData && flatCount > 1)
+    return "cell scalars of an image that is flat along two axes describe no voxels";
+  grid.flatAxis = flatAxisOf(grid, flatCount, flat, flatImagesAs2D);
+  if (grid.flatAxis >= 0)
+    grid.vertexShift[grid.flatAxis] = 0.0; // the contours lie in the image's plane
+  return std::string();
+}
 
 std::string describeVoxels(vtkImageData* image,
   vtkDataArray* scalars,
@@ -213,21 +231,16 @@ std::string describeVoxels(vtkImageData* image,
   int extent[6];
   image->GetExtent(extent);
   grid = VoxelGrid();
-  grid.cellData = cellData;
-  int flatCount = 0, flat = -1;
-  const std::string problem = voxelsOfExtent(extent, cellData, grid, flatCount, flat);
-  if (!problem.empty())
-    return problem;
+  const std::string problem = describeExtent(extent, cellData, flatImagesAs2D, grid);
   const vtkIdType expected = static_cast<vtkIdType>(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  if (!problem.empty() && expected == 0)
+    return problem; // the extent itself is unusable
   if (expected == 0)
     return scalars->GetNumberOfTuples() == 0 ? std::string() : tupleMismatch(scalars, "no points");
   if (scalars->GetNumberOfTuples() != expected)
     return tupleMismatch(scalars, std::to_string(expected) + (cellData ? " cells" : " points"));
-  if (cellData && flatCount > 1)
-    return "cell scalars of an image that is flat along two axes describe no voxels";
-  grid.flatAxis = flatAxisOf(grid, flatCount, flat, flatImagesAs2D);
-  if (grid.flatAxis >= 0)
-    grid.vertexShift[grid.flatAxis] = 0.0; // the contours lie in the image's plane
+  if (!problem.empty())
+    return problem;
   readGeometry(image, grid);
   return geometryProblem(grid);
 }
@@ -339,6 +352,15 @@ void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples)
   array->SetNumberOfTuples(tuples);
   if (array->GetNumberOfTuples() != tuples)
     throw std::bad_alloc();
+}
+
+void addDistributionFields(vtkFieldData* fd, const Piece& piece)
+{
+  if (!piece.distributed() || piece.rank != 0)
+    return;
+  addFieldValue(fd, "NumberOfRanks", piece.ranks);
+  addFieldValue(
+    fd, "BytesExchanged", static_cast<vtkIdType>(piece.bytesReceived + piece.bytesSent));
 }
 
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
@@ -488,16 +510,29 @@ void warnAboutManyLabels(vtkAlgorithm* algorithm, std::size_t labels)
        "image use Selection Mode Range (a threshold) instead.");
 }
 
-} // namespace
+/// The voxels of a scalar grid (in processing axes) the rank owns: all without MPI.
+template<typename T>
+ScalarGrid<T> owned(ScalarGrid<T> grid, const InputObjects& in)
+{
+  if (!in.piece.distributed())
+    return grid;
+  const Box3 box = ownedBox(in.piece, in.axes);
+  for (int k = 0; k < 3; ++k)
+  {
+    grid.data += box.lo[k] * grid.stride[k];
+    grid.dims[k] = box.hi[k] - box.lo[k];
+  }
+  return grid;
+}
 
-bool readInputObjects(vtkAlgorithm* algorithm,
+/// readInputObjects on this rank's piece alone (the whole image without MPI).
+bool readLocalObjects(vtkAlgorithm* algorithm,
   vtkImageData* image,
   vtkDataArray* scalars,
   int association,
   const SelectionSettings& settings,
   InputObjects& out)
 {
-  out = InputObjects();
   if (!scalars)
   {
     if (image->GetNumberOfPoints() == 0)
@@ -530,6 +565,11 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     return false;
   }
   warnAboutGrid(algorithm, image, out.grid);
+  if (out.piece.distributed())
+  {
+    out.grid.flatAxis = out.piece.whole.flatAxis; // a piece one voxel thick is no 2D image
+    out.grid.vertexShift = out.piece.whole.vertexShift;
+  }
   out.axes = processingAxes(out.grid);
   out.labelType = scalars->GetDataType();
   const bool known = dispatchScalars(scalars,
@@ -537,7 +577,7 @@ bool readInputObjects(vtkAlgorithm* algorithm,
     out.grid,
     [&](auto scalarGrid)
     {
-      out.objects = selectObjects(permuted(scalarGrid, out.axes),
+      out.objects = selectObjects(owned(permuted(scalarGrid, out.axes), out),
         settings.mode,
         settings.lower,
         settings.upper,
@@ -551,6 +591,40 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   }
   if (settings.mode == vtkVoxelSelection::LABELS)
     warnAboutManyLabels(algorithm, out.objects.size());
+  return true;
+}
+
+} // namespace
+
+bool readInputObjects(vtkAlgorithm* algorithm,
+  vtkImageData* image,
+  vtkDataArray* scalars,
+  int association,
+  const SelectionSettings& settings,
+  InputObjects& out)
+{
+  out = InputObjects();
+  const std::string problem = describePiece(distributedController(),
+    algorithm->GetInputInformation(0, 0),
+    image,
+    association == vtkDataObject::FIELD_ASSOCIATION_CELLS,
+    settings.flatImagesAs2D,
+    out.piece);
+  if (!problem.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << "Cannot read the voxels: " << problem << ".");
+    return false;
+  }
+  const bool ok = readLocalObjects(algorithm, image, scalars, association, settings, out);
+  if (!out.piece.distributed())
+    return ok;
+  // Collective: every rank takes part, whatever its own status.
+  if (!mergeObjectsOnFirstRank(ok, out.piece, out))
+  {
+    if (ok)
+      vtkErrorWithObjectMacro(algorithm, << "Another rank could not read its piece.");
+    return false;
+  }
   return true;
 }
 

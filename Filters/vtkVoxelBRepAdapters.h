@@ -30,6 +30,7 @@ class vtkAlgorithm;
 class vtkFieldData;
 class vtkImageData;
 class vtkInformationVector;
+class vtkMultiProcessController;
 class vtkPolyData;
 
 namespace vbr
@@ -64,6 +65,17 @@ struct VoxelGrid
 /// empty string on success, else a message for vtkErrorMacro.
 std::string describeVoxels(vtkImageData* image,
   vtkDataArray* scalars,
+  bool cellData,
+  bool flatImagesAs2D,
+  VoxelGrid& grid);
+
+/// Origin, spacing and direction matrix of the image into `grid`.
+void readGeometry(vtkImageData* image, VoxelGrid& grid);
+
+/// The voxels along each axis, the first point, the vertex shifts and the flat axis of an
+/// extent (the rest of `grid` is kept). Returns a problem, or an empty string; an extent
+/// without points gives dims 0.
+std::string describeExtent(const int extent[6],
   bool cellData,
   bool flatImagesAs2D,
   VoxelGrid& grid);
@@ -333,6 +345,26 @@ SelectionSettings selectionSettingsOf(Filter* filter)
   return selectionSettingsOf(filter->GetSelection());
 }
 
+/// A rank's piece of a distributed image.
+struct Piece
+{
+  vtkMultiProcessController* controller = nullptr; ///< null when not distributed
+  int rank = 0;
+  int ranks = 1;
+  VoxelGrid whole;                       ///< the whole image's voxel grid
+  std::array<std::int32_t, 3> offset{};  ///< whole-grid voxel of the piece's voxel 0
+  std::array<std::int32_t, 3> ownedLo{}; ///< owned voxels [ownedLo, ownedHi), piece voxels
+  std::array<std::int32_t, 3> ownedHi{};
+  std::int64_t bytesSent = 0;     ///< by this rank, in the exchanges so far
+  std::int64_t bytesReceived = 0; ///< by this rank, in the exchanges so far
+
+  bool distributed() const { return this->controller != nullptr; }
+};
+
+/// Under MPI, on rank 0: field data NumberOfRanks and BytesExchanged (what the ranks sent
+/// each other for this result). No-op otherwise.
+void addDistributionFields(vtkFieldData* fd, const Piece& piece);
+
 /// The objects of a filter's input image, ready to process.
 struct InputObjects
 {
@@ -343,6 +375,9 @@ struct InputObjects
   /// for the magnitude.
   int labelType = VTK_DOUBLE;
   vtkSmartPointer<vtkDataArray> contiguous; ///< keeps a copied input array alive for objects
+  /// The rank's piece under MPI (see vtkVoxelBRepDistributed.h): then on rank 0 `grid` and
+  /// `objects` are the whole image's, and the other ranks have no objects.
+  Piece piece;
 };
 
 /// Reads the objects of `image` carried by `scalars` (the filter's input array, possibly
