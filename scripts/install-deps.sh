@@ -21,7 +21,7 @@ PACKAGES=(
   libx11-dev libxt-dev zlib1g-dev libutfcpp-dev libavcodec-dev libavformat-dev
   libswscale-dev libavutil-dev libjsoncpp-dev libpugixml-dev libfmt-dev
   # the algorithm core
-  libcgal-dev libgmp-dev
+  libcgal-dev libgmp-dev libqhull-dev
   # toolchain, tests, benchmarks, examples
   cmake g++ clang-format libgtest-dev libbenchmark-dev
   xvfb xauth python3-numpy python3-scipy python3-opencv

@@ -1,0 +1,772 @@
+#include "ConvexHull.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace vbr
+{
+namespace
+{
+
+using Index = std::uint32_t;
+constexpr std::int32_t NoFace = -1;
+constexpr std::int32_t Processed = -2;
+
+LatticePoint sub(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+
+LatticePoint cross(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+
+__int128 dot(const LatticePoint& a, const LatticePoint& b)
+{
+  return __int128(a[0]) * b[0] + __int128(a[1]) * b[1] + __int128(a[2]) * b[2];
+}
+
+std::int64_t gcd64(std::int64_t a, std::int64_t b)
+{
+  a = a < 0 ? -a : a;
+  b = b < 0 ? -b : b;
+  while (b != 0)
+  {
+    const std::int64_t t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
+
+} // namespace
+
+FacePlane planeThrough(const LatticePoint& a, const LatticePoint& b, const LatticePoint& c)
+{
+  FacePlane plane;
+  plane.normal = cross(sub(b, a), sub(c, a));
+  const std::int64_t g = gcd64(gcd64(plane.normal[0], plane.normal[1]), plane.normal[2]);
+  if (g == 0)
+  {
+    return plane;
+  }
+  for (auto& n : plane.normal)
+  {
+    n /= g;
+  }
+  plane.offset = static_cast<std::int64_t>(dot(plane.normal, a));
+  return plane;
+}
+
+namespace
+{
+
+int sign(__int128 v)
+{
+  return (v > 0) - (v < 0);
+}
+
+/// Exact strict 2D convex hull (Andrew's monotone chain) of the points `ids` of `points`, all
+/// on `plane`; counter-clockwise seen from the side the normal points to. Corners where the
+/// boundary goes straight on are dropped.
+std::vector<Index> convexPolygon(std::vector<Index> ids,
+  const std::vector<LatticePoint>& points,
+  const FacePlane& plane)
+{
+  int k = 0;
+  for (int a = 1; a < 3; ++a)
+  {
+    if (std::abs(plane.normal[a]) > std::abs(plane.normal[k]))
+    {
+      k = a;
+    }
+  }
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto uv = [&](Index id) { return std::array<std::int64_t, 2>{ points[id][i], points[id][j] }; };
+  std::sort(ids.begin(), ids.end(), [&](Index a, Index b) { return uv(a) < uv(b); });
+  ids.erase(
+    std::unique(ids.begin(), ids.end(), [&](Index a, Index b) { return points[a] == points[b]; }),
+    ids.end());
+  if (ids.size() < 3)
+  {
+    return ids;
+  }
+  auto turn = [&](Index o, Index a, Index b)
+  {
+    const auto po = uv(o), pa = uv(a), pb = uv(b);
+    return __int128(pa[0] - po[0]) * (pb[1] - po[1]) - __int128(pa[1] - po[1]) * (pb[0] - po[0]);
+  };
+  std::vector<Index> chain(2 * ids.size());
+  std::size_t n = 0;
+  for (std::size_t s = 0; s < ids.size(); ++s)
+  {
+    while (n >= 2 && turn(chain[n - 2], chain[n - 1], ids[s]) <= 0)
+    {
+      --n;
+    }
+    chain[n++] = ids[s];
+  }
+  for (std::size_t s = ids.size() - 1, lower = n + 1; s-- > 0;)
+  {
+    while (n >= lower && turn(chain[n - 2], chain[n - 1], ids[s]) <= 0)
+    {
+      --n;
+    }
+    chain[n++] = ids[s];
+  }
+  chain.resize(n - 1);
+  if (plane.normal[k] < 0)
+  {
+    std::reverse(chain.begin(), chain.end());
+  }
+  return chain;
+}
+
+std::uint64_t edgeKey(Index a, Index b)
+{
+  return (std::uint64_t(a) << 32) | b;
+}
+
+/// The incremental construction of section 3.1 with the conflict lists described on top.
+class HullBuilder
+{
+public:
+  HullBuilder(const std::vector<LatticePoint>& points, CoplanarFaces coplanar)
+    : Points(points)
+    , Coplanar(coplanar)
+  {
+  }
+
+  CellList run();
+
+private:
+  struct Face
+  {
+    std::vector<Index> v;
+    FacePlane plane;
+    bool alive = true;
+    std::vector<Index> conflicts;
+  };
+  /// Per face and per insertion: not reached, visible, coplanar, invisible, in the region.
+  enum State : std::uint8_t
+  {
+    Unseen,
+    Visible,
+    Coplanar_,
+    Hidden,
+    Queued
+  };
+
+  const std::vector<LatticePoint>& Points;
+  CoplanarFaces Coplanar;
+  std::vector<Face> Faces;
+  std::unordered_map<std::uint64_t, Index> Owner;
+  std::vector<std::int32_t> PointFace;
+  std::vector<std::uint32_t> Tag;
+  std::vector<State> States;
+  std::uint32_t Epoch = 0;
+
+  Index neighbour(Index a, Index b) const { return this->Owner.at(edgeKey(b, a)); }
+  State classify(Index f, const LatticePoint& p);
+  Index addFace(std::vector<Index> v, const FacePlane& plane);
+  void removeFace(Index f, std::vector<Index>& orphans);
+  bool initialSimplex(std::array<Index, 4>& simplex, CellList& flat);
+  void insert(Index ip);
+  void collectRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
+  void closeVisibleRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
+  void reassign(const std::vector<Index>& orphans, Index first, Index ip);
+  CellList flatHull(const std::array<Index, 3>& corners) const;
+};
+
+HullBuilder::State HullBuilder::classify(Index f, const LatticePoint& p)
+{
+  if (this->Tag[f] != this->Epoch)
+  {
+    this->Tag[f] = this->Epoch;
+    const int s = sign(this->Faces[f].plane.evaluate(p));
+    this->States[f] = s > 0 ? Visible : (s == 0 ? Coplanar_ : Hidden);
+  }
+  return this->States[f];
+}
+
+Index HullBuilder::addFace(std::vector<Index> v, const FacePlane& plane)
+{
+  const Index f = static_cast<Index>(this->Faces.size());
+  for (std::size_t k = 0; k < v.size(); ++k)
+  {
+    this->Owner[edgeKey(v[k], v[(k + 1) % v.size()])] = f;
+  }
+  this->Faces.push_back(Face{ std::move(v), plane, true, {} });
+  this->Tag.push_back(0);
+  this->States.push_back(Unseen);
+  return f;
+}
+
+void HullBuilder::removeFace(Index f, std::vector<Index>& orphans)
+{
+  Face& face = this->Faces[f];
+  for (std::size_t k = 0; k < face.v.size(); ++k)
+  {
+    auto it = this->Owner.find(edgeKey(face.v[k], face.v[(k + 1) % face.v.size()]));
+    if (it != this->Owner.end() && it->second == f)
+    {
+      this->Owner.erase(it);
+    }
+  }
+  for (Index q : face.conflicts)
+  {
+    if (this->PointFace[q] == static_cast<std::int32_t>(f))
+    {
+      orphans.push_back(q);
+    }
+  }
+  face.alive = false;
+  std::vector<Index>().swap(face.conflicts);
+  std::vector<Index>().swap(face.v);
+}
+
+/// The faces the point sees (a connected set holding its conflict face) and the coplanar
+/// faces next to them, found by walking across edges from the conflict face.
+void HullBuilder::collectRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar)
+{
+  const LatticePoint& p = this->Points[ip];
+  ++this->Epoch;
+  const Index f0 = static_cast<Index>(this->PointFace[ip]);
+  this->classify(f0, p);
+  region.push_back(f0);
+  for (std::size_t r = 0; r < region.size(); ++r)
+  {
+    const std::vector<Index>& v = this->Faces[region[r]].v;
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      const Index g = this->neighbour(v[k], v[(k + 1) % v.size()]);
+      if (this->Tag[g] == this->Epoch)
+      {
+        continue;
+      }
+      const State s = this->classify(g, p);
+      if (s == Visible)
+      {
+        region.push_back(g);
+      }
+      else if (s == Coplanar_)
+      {
+        coplanar.push_back(g);
+      }
+    }
+  }
+}
+
+/// The Visible variant: coplanar faces next to the visible ones join them, and so does every
+/// coplanar face across an edge of a joined face that the point does not see from inside
+/// (else the new triangle on that edge would fold over or be flat).
+void HullBuilder::closeVisibleRegion(Index ip,
+  std::vector<Index>& region,
+  std::vector<Index>& coplanar)
+{
+  const LatticePoint& p = this->Points[ip];
+  for (Index t : coplanar)
+  {
+    this->States[t] = Queued;
+  }
+  for (std::size_t c = 0; c < coplanar.size(); ++c)
+  {
+    const Index t = coplanar[c];
+    this->States[t] = Visible;
+    region.push_back(t);
+    const std::vector<Index>& v = this->Faces[t].v;
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      const LatticePoint& a = this->Points[v[k]];
+      const LatticePoint& b = this->Points[v[(k + 1) % v.size()]];
+      if (dot(this->Faces[t].plane.normal, cross(sub(b, a), sub(p, a))) > 0)
+      {
+        continue;
+      }
+      const Index g = this->neighbour(v[k], v[(k + 1) % v.size()]);
+      if (this->classify(g, p) == Coplanar_)
+      {
+        this->States[g] = Queued;
+        coplanar.push_back(g);
+      }
+    }
+  }
+  coplanar.clear();
+}
+
+void HullBuilder::reassign(const std::vector<Index>& orphans, Index first, Index ip)
+{
+  for (Index q : orphans)
+  {
+    if (q == ip || this->PointFace[q] == Processed)
+    {
+      continue;
+    }
+    this->PointFace[q] = NoFace;
+    for (Index f = first; f < this->Faces.size(); ++f)
+    {
+      if (this->Faces[f].plane.evaluate(this->Points[q]) > 0)
+      {
+        this->PointFace[q] = static_cast<std::int32_t>(f);
+        this->Faces[f].conflicts.push_back(q);
+        break;
+      }
+    }
+  }
+}
+
+/// One step of section 3.1: the visible faces (and, by the variant, coplanar ones) are
+/// replaced by faces joining their boundary to the point.
+void HullBuilder::insert(Index ip)
+{
+  std::vector<Index> region, coplanar;
+  this->collectRegion(ip, region, coplanar);
+  if (this->Coplanar == CoplanarFaces::Visible)
+  {
+    this->closeVisibleRegion(ip, region, coplanar);
+  }
+  const bool extend = this->Coplanar == CoplanarFaces::Extension;
+  const LatticePoint& p = this->Points[ip];
+  std::vector<std::pair<FacePlane, std::vector<Index>>> created;
+  for (Index f : region)
+  {
+    const std::vector<Index> v = this->Faces[f].v;
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      const Index a = v[k], b = v[(k + 1) % v.size()];
+      const Index g = this->neighbour(a, b);
+      const State s = this->classify(g, p);
+      if (s == Visible)
+      {
+        continue;
+      }
+      if (extend && s == Coplanar_)
+      {
+        continue;
+      }
+      const FacePlane plane = planeThrough(this->Points[a], this->Points[b], p);
+      if (plane.normal == LatticePoint{ 0, 0, 0 })
+      {
+        throw std::logic_error("convexHull: flat triangle on the horizon");
+      }
+      auto same = std::find_if(created.begin(),
+        created.end(),
+        [&](const std::pair<FacePlane, std::vector<Index>>& c) { return c.first == plane; });
+      if (extend && same != created.end())
+      {
+        same->second.insert(same->second.end(), { a, b });
+      }
+      else
+      {
+        created.push_back({ plane, { a, b, ip } });
+      }
+    }
+  }
+  if (extend)
+  {
+    for (Index t : coplanar)
+    {
+      std::vector<Index> ids = this->Faces[t].v;
+      ids.push_back(ip);
+      created.push_back({ this->Faces[t].plane, std::move(ids) });
+    }
+  }
+  this->PointFace[ip] = Processed;
+  std::vector<Index> orphans;
+  for (Index f : region)
+  {
+    this->removeFace(f, orphans);
+  }
+  if (extend)
+  {
+    for (Index t : coplanar)
+    {
+      this->removeFace(t, orphans);
+    }
+  }
+  const Index first = static_cast<Index>(this->Faces.size());
+  for (auto& c : created)
+  {
+    this->addFace(extend ? convexPolygon(c.second, this->Points, c.first) : c.second, c.first);
+  }
+  this->reassign(orphans, first, ip);
+}
+
+CellList HullBuilder::flatHull(const std::array<Index, 3>& corners) const
+{
+  CellList hull;
+  std::vector<Index> all(this->Points.size());
+  std::iota(all.begin(), all.end(), Index(0));
+  const FacePlane plane =
+    planeThrough(this->Points[corners[0]], this->Points[corners[1]], this->Points[corners[2]]);
+  std::vector<Index> polygon = convexPolygon(all, this->Points, plane);
+  std::vector<Index> local(polygon.size());
+  for (std::size_t k = 0; k < polygon.size(); ++k)
+  {
+    hull.vertices.push_back(this->Points[polygon[k]]);
+    local[k] = static_cast<Index>(k);
+  }
+  hull.dimension = 2;
+  hull.faces = { local, std::vector<Index>(local.rbegin(), local.rend()) };
+  FacePlane back = plane;
+  for (auto& n : back.normal)
+  {
+    n = -n;
+  }
+  back.offset = -plane.offset;
+  hull.planes = { plane, back };
+  hull.buildIncidences();
+  return hull;
+}
+
+/// Four points not on one plane, the first ones of L_s that qualify (the extremes of section
+/// 3.2 come first); otherwise `flat` gets the hull of the lower-dimensional set.
+bool HullBuilder::initialSimplex(std::array<Index, 4>& simplex, CellList& flat)
+{
+  const std::vector<LatticePoint>& P = this->Points;
+  const std::size_t n = P.size();
+  simplex = { 0, 0, 0, 0 };
+  std::size_t i = 1;
+  for (; i < n && P[i] == P[0]; ++i)
+  {
+  }
+  simplex[1] = static_cast<Index>(i);
+  for (++i; i < n && cross(sub(P[simplex[1]], P[0]), sub(P[i], P[0])) == LatticePoint{ 0, 0, 0 };
+       ++i)
+  {
+  }
+  simplex[2] = static_cast<Index>(i);
+  const LatticePoint normal = cross(sub(P[simplex[1]], P[0]), sub(P[std::min(i, n - 1)], P[0]));
+  for (++i; i < n && dot(normal, sub(P[i], P[0])) == 0; ++i)
+  {
+  }
+  simplex[3] = static_cast<Index>(i);
+  if (simplex[1] >= n || simplex[2] >= n)
+  {
+    // One point, or collinear points: the sorted order runs along the line.
+    const std::vector<LatticePoint> ends = simplex[1] >= n
+      ? std::vector<LatticePoint>{ P[0] }
+      : std::vector<LatticePoint>{ *std::min_element(P.begin(), P.end()),
+          *std::max_element(P.begin(), P.end()) };
+    flat.dimension = static_cast<int>(ends.size()) - 1;
+    flat.vertices = ends;
+    flat.buildIncidences();
+    if (flat.dimension == 1)
+    {
+      flat.edges = { { 0, 1 } };
+      flat.edgeFaces = { { 0, 0 } };
+      flat.vertexEdges = { { 0 }, { 0 } };
+      flat.vertexFaces = { {}, {} };
+    }
+    return false;
+  }
+  if (simplex[3] >= n)
+  {
+    flat = this->flatHull({ simplex[0], simplex[1], simplex[2] });
+    return false;
+  }
+  return true;
+}
+
+CellList HullBuilder::run()
+{
+  const std::size_t n = this->Points.size();
+  CellList hull;
+  if (n == 0)
+  {
+    return hull;
+  }
+  this->PointFace.assign(n, NoFace);
+  std::array<Index, 4> s;
+  if (!this->initialSimplex(s, hull))
+  {
+    return hull;
+  }
+  for (int omit = 0; omit < 4; ++omit)
+  {
+    std::vector<Index> v;
+    for (int k = 0; k < 4; ++k)
+    {
+      if (k != omit)
+      {
+        v.push_back(s[k]);
+      }
+    }
+    if (planeThrough(this->Points[v[0]], this->Points[v[1]], this->Points[v[2]])
+          .evaluate(this->Points[s[omit]]) > 0)
+    {
+      std::swap(v[1], v[2]);
+    }
+    this->addFace(v, planeThrough(this->Points[v[0]], this->Points[v[1]], this->Points[v[2]]));
+  }
+  for (Index k : s)
+  {
+    this->PointFace[k] = Processed;
+  }
+  std::vector<Index> all(n);
+  std::iota(all.begin(), all.end(), Index(0));
+  this->reassign(all, 0, s[0]);
+  for (Index ip = 0; ip < n; ++ip)
+  {
+    if (this->PointFace[ip] >= 0)
+    {
+      this->insert(ip);
+    }
+  }
+  std::vector<std::int64_t> local(n, -1);
+  hull.dimension = 3;
+  for (const Face& f : this->Faces)
+  {
+    if (!f.alive)
+    {
+      continue;
+    }
+    std::vector<Index> v;
+    for (Index id : f.v)
+    {
+      if (local[id] < 0)
+      {
+        local[id] = static_cast<std::int64_t>(hull.vertices.size());
+        hull.vertices.push_back(this->Points[id]);
+      }
+      v.push_back(static_cast<Index>(local[id]));
+    }
+    hull.faces.push_back(std::move(v));
+    hull.planes.push_back(f.plane);
+  }
+  hull.buildIncidences();
+  return hull;
+}
+
+} // namespace
+
+__int128 FacePlane::evaluate(const LatticePoint& p) const
+{
+  return dot(this->normal, p) - this->offset;
+}
+
+void CellList::buildIncidences()
+{
+  this->edges.clear();
+  this->edgeFaces.clear();
+  this->faceEdges.assign(this->faces.size(), {});
+  this->vertexEdges.assign(this->vertices.size(), {});
+  this->vertexFaces.assign(this->vertices.size(), {});
+  std::unordered_map<std::uint64_t, Index> edgeId;
+  for (std::size_t f = 0; f < this->faces.size(); ++f)
+  {
+    const std::vector<Index>& v = this->faces[f];
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      const Index a = v[k], b = v[(k + 1) % v.size()];
+      const auto key = edgeKey(std::min(a, b), std::max(a, b));
+      auto it = edgeId.find(key);
+      if (it == edgeId.end())
+      {
+        it = edgeId.emplace(key, static_cast<Index>(this->edges.size())).first;
+        this->edges.push_back({ std::min(a, b), std::max(a, b) });
+        this->edgeFaces.push_back({ Index(-1), Index(-1) });
+        this->vertexEdges[a].push_back(it->second);
+        this->vertexEdges[b].push_back(it->second);
+      }
+      this->edgeFaces[it->second][a < b ? 0 : 1] = static_cast<Index>(f);
+      this->faceEdges[f].push_back(it->second);
+      this->vertexFaces[a].push_back(static_cast<Index>(f));
+    }
+  }
+}
+
+std::vector<LatticePoint> vertexCandidates(const BitVolume& voxels)
+{
+  const auto& d = voxels.dims();
+  auto object = [&](std::int64_t x, std::int64_t y, std::int64_t z)
+  {
+    return x >= 0 && y >= 0 && z >= 0 && x < d[0] && y < d[1] && z < d[2] &&
+      voxels.get(
+        static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), static_cast<std::int32_t>(z));
+  };
+  std::vector<LatticePoint> candidates;
+  for (std::int32_t x = 0; x < d[0]; ++x)
+  {
+    for (std::int32_t y = 0; y < d[1]; ++y)
+    {
+      for (std::int32_t z = 0; z < d[2]; ++z)
+      {
+        if (!voxels.get(x, y, z))
+        {
+          continue;
+        }
+        bool convex = false;
+        for (int corner = 0; corner < 8 && !convex; ++corner)
+        {
+          const int sx = corner & 1 ? 1 : -1, sy = corner & 2 ? 1 : -1, sz = corner & 4 ? 1 : -1;
+          convex = true;
+          for (int other = 1; other < 8 && convex; ++other)
+          {
+            convex =
+              !object(x + (other & 1 ? sx : 0), y + (other & 2 ? sy : 0), z + (other & 4 ? sz : 0));
+          }
+        }
+        if (convex)
+        {
+          candidates.push_back({ x, y, z });
+        }
+      }
+    }
+  }
+  return candidates;
+}
+
+std::vector<LatticePoint> extremesFirst(const std::vector<LatticePoint>& points)
+{
+  // Signs of (x, y, z) minimised lexicographically: v1 .. v8 of section 3.2.
+  static const int signs[8][3] = { { 1, 1, 1 },
+    { -1, 1, 1 },
+    { 1, -1, 1 },
+    { 1, 1, -1 },
+    { -1, -1, -1 },
+    { 1, -1, -1 },
+    { -1, 1, -1 },
+    { -1, -1, 1 } };
+  std::vector<std::size_t> chosen;
+  for (const auto& s : signs)
+  {
+    auto key = [&](const LatticePoint& p) {
+      return std::array<std::int64_t, 3>{ s[0] * p[0], s[1] * p[1], s[2] * p[2] };
+    };
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < points.size(); ++i)
+    {
+      if (key(points[i]) < key(points[best]))
+      {
+        best = i;
+      }
+    }
+    if (!points.empty() && std::find(chosen.begin(), chosen.end(), best) == chosen.end())
+    {
+      chosen.push_back(best);
+    }
+  }
+  std::vector<LatticePoint> ordered;
+  ordered.reserve(points.size());
+  for (std::size_t i : chosen)
+  {
+    ordered.push_back(points[i]);
+  }
+  std::vector<bool> taken(points.size(), false);
+  for (std::size_t i : chosen)
+  {
+    taken[i] = true;
+  }
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    if (!taken[i])
+    {
+      ordered.push_back(points[i]);
+    }
+  }
+  return ordered;
+}
+
+CellList convexHull(const std::vector<LatticePoint>& input, CoplanarFaces coplanar, bool merge)
+{
+  std::vector<LatticePoint> points = input;
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  for (const auto& p : points)
+  {
+    for (std::int64_t c : p)
+    {
+      if (c <= -(std::int64_t(1) << 20) || c >= (std::int64_t(1) << 20))
+      {
+        throw std::invalid_argument("convexHull: coordinates must be below 2^20 in magnitude");
+      }
+    }
+  }
+  points = extremesFirst(points);
+  CellList hull = HullBuilder(points, coplanar).run();
+  if (merge)
+  {
+    mergeCoplanarFaces(hull);
+  }
+  return hull;
+}
+
+void mergeCoplanarFaces(CellList& hull)
+{
+  if (hull.dimension < 3)
+  {
+    return;
+  }
+  std::map<FacePlane, std::vector<Index>> corners;
+  for (std::size_t f = 0; f < hull.faces.size(); ++f)
+  {
+    auto& c = corners[hull.planes[f]];
+    c.insert(c.end(), hull.faces[f].begin(), hull.faces[f].end());
+  }
+  std::vector<std::vector<Index>> faces;
+  std::vector<FacePlane> planes;
+  std::vector<std::int64_t> local(hull.vertices.size(), -1);
+  std::vector<LatticePoint> vertices;
+  for (auto& entry : corners)
+  {
+    std::vector<Index> polygon = convexPolygon(entry.second, hull.vertices, entry.first);
+    for (Index& id : polygon)
+    {
+      if (local[id] < 0)
+      {
+        local[id] = static_cast<std::int64_t>(vertices.size());
+        vertices.push_back(hull.vertices[id]);
+      }
+      id = static_cast<Index>(local[id]);
+    }
+    faces.push_back(std::move(polygon));
+    planes.push_back(entry.first);
+  }
+  hull.vertices = std::move(vertices);
+  hull.faces = std::move(faces);
+  hull.planes = std::move(planes);
+  hull.buildIncidences();
+}
+
+bool hullContains(const CellList& hull, const LatticePoint& p)
+{
+  if (hull.dimension == 3)
+  {
+    return std::all_of(hull.planes.begin(),
+      hull.planes.end(),
+      [&](const FacePlane& plane) { return plane.evaluate(p) <= 0; });
+  }
+  if (hull.dimension == 2)
+  {
+    const std::vector<Index>& v = hull.faces[0];
+    if (hull.planes[0].evaluate(p) != 0)
+    {
+      return false;
+    }
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      const LatticePoint& a = hull.vertices[v[k]];
+      const LatticePoint& b = hull.vertices[v[(k + 1) % v.size()]];
+      if (dot(hull.planes[0].normal, cross(sub(b, a), sub(p, a))) < 0)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  if (hull.dimension == 1)
+  {
+    const LatticePoint ab = sub(hull.vertices[1], hull.vertices[0]);
+    const LatticePoint ap = sub(p, hull.vertices[0]);
+    return cross(ab, ap) == LatticePoint{ 0, 0, 0 } && dot(ab, ap) >= 0 &&
+      dot(ab, ap) <= dot(ab, ab);
+  }
+  return hull.dimension == 0 && p == hull.vertices[0];
+}
+
+} // namespace vbr

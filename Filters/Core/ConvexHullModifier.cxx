@@ -1,0 +1,845 @@
+#include "ConvexHullModifier.h"
+
+#include "CUDB.h"
+#include "EVM.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace vbr
+{
+namespace
+{
+
+using Index = std::uint32_t;
+using Dims = std::array<std::int32_t, 3>;
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b)
+{
+  std::int64_t q = a / b;
+  if ((a % b != 0) && ((a < 0) != (b < 0)))
+  {
+    --q;
+  }
+  return q;
+}
+
+std::int64_t ceilDiv(std::int64_t a, std::int64_t b)
+{
+  return -floorDiv(-a, b);
+}
+
+LatticePoint sub(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+
+__int128 dot(const LatticePoint& a, const LatticePoint& b)
+{
+  return __int128(a[0]) * b[0] + __int128(a[1]) * b[1] + __int128(a[2]) * b[2];
+}
+
+LatticePoint cross(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+
+bool inGrid(const Dims& d, const LatticePoint& p)
+{
+  return p[0] >= 0 && p[1] >= 0 && p[2] >= 0 && p[0] < d[0] && p[1] < d[1] && p[2] < d[2];
+}
+
+/// 1 for an object centre, 0 for a background one (everything outside the grid).
+bool voxelClass(const BitVolume& v, const LatticePoint& p)
+{
+  return inGrid(v.dims(), p) &&
+    v.get(static_cast<std::int32_t>(p[0]),
+      static_cast<std::int32_t>(p[1]),
+      static_cast<std::int32_t>(p[2]));
+}
+
+/// The x range [lo, hi] of the row (y, z) inside the hull (its open interior when `strict`).
+bool rowRange(const CellList& c,
+  std::int64_t y,
+  std::int64_t z,
+  bool strict,
+  std::int64_t& lo,
+  std::int64_t& hi)
+{
+  lo = std::numeric_limits<std::int64_t>::min() / 4;
+  hi = std::numeric_limits<std::int64_t>::max() / 4;
+  for (const FacePlane& p : c.planes)
+  {
+    const std::int64_t r = p.offset - p.normal[1] * y - p.normal[2] * z;
+    const std::int64_t nx = p.normal[0];
+    if (nx == 0)
+    {
+      if (strict ? r <= 0 : r < 0)
+      {
+        return false;
+      }
+    }
+    else if (nx > 0)
+    {
+      hi = std::min(hi, strict ? ceilDiv(r, nx) - 1 : floorDiv(r, nx));
+    }
+    else
+    {
+      lo = std::max(lo, strict ? floorDiv(r, nx) + 1 : ceilDiv(r, nx));
+    }
+  }
+  return lo <= hi;
+}
+
+std::array<std::int64_t, 6> boundsOf(const CellList& c)
+{
+  std::array<std::int64_t, 6> b{ c.vertices[0][0],
+    c.vertices[0][0],
+    c.vertices[0][1],
+    c.vertices[0][1],
+    c.vertices[0][2],
+    c.vertices[0][2] };
+  for (const auto& p : c.vertices)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      b[2 * k] = std::min(b[2 * k], p[k]);
+      b[2 * k + 1] = std::max(b[2 * k + 1], p[k]);
+    }
+  }
+  return b;
+}
+
+/// Calls f(p) for every lattice point of the solid hull (of its open interior when `strict`).
+template<typename F>
+void forEachPointIn(const CellList& c, bool strict, F&& f)
+{
+  const auto b = boundsOf(c);
+  for (std::int64_t z = b[4]; z <= b[5]; ++z)
+  {
+    for (std::int64_t y = b[2]; y <= b[3]; ++y)
+    {
+      std::int64_t lo, hi;
+      if (rowRange(c, y, z, strict, lo, hi))
+      {
+        for (std::int64_t x = std::max(lo, b[0]); x <= std::min(hi, b[1]); ++x)
+        {
+          f(LatticePoint{ x, y, z });
+        }
+      }
+    }
+  }
+}
+
+bool strictlyInside(const CellList& c, const LatticePoint& p)
+{
+  return std::all_of(c.planes.begin(),
+    c.planes.end(),
+    [&](const FacePlane& plane) { return plane.evaluate(p) < 0; });
+}
+
+/// A lattice vector v with n.v = 1 for a primitive normal n (extended Euclid, twice).
+LatticePoint unitStep(const LatticePoint& n)
+{
+  auto egcd = [](std::int64_t a, std::int64_t b, std::int64_t& x, std::int64_t& y)
+  {
+    std::int64_t x0 = 1, y0 = 0, x1 = 0, y1 = 1;
+    while (b != 0)
+    {
+      const std::int64_t q = a / b;
+      std::tie(a, b) = std::make_pair(b, a - q * b);
+      std::tie(x0, x1) = std::make_pair(x1, x0 - q * x1);
+      std::tie(y0, y1) = std::make_pair(y1, y0 - q * y1);
+    }
+    x = x0;
+    y = y0;
+    return a;
+  };
+  std::int64_t a, b, c, e;
+  std::int64_t g = egcd(n[0], n[1], a, b);
+  const std::int64_t h = egcd(g, n[2], c, e);
+  LatticePoint v{ c * a, c * b, e };
+  if (h < 0)
+  {
+    v = { -v[0], -v[1], -v[2] };
+  }
+  return v;
+}
+
+/// A configuration the pressing-in cannot resolve (see the header).
+struct Unresolved : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+struct Context
+{
+  const BitVolume& objects;
+  CoplanarFaces coplanar;
+  const Execution& exec;
+  std::map<FacePlane, int> planeLevel;
+  int keptApart = 0;
+};
+
+/// The hull of the points; a flat one is thickened by the points one lattice step off its
+/// plane or line that lie in the parent hull (in its open interior when `strict`).
+bool solidHull(const std::vector<LatticePoint>& points,
+  const CellList& parent,
+  bool strict,
+  CoplanarFaces coplanar,
+  CellList& out)
+{
+  out = convexHull(points, coplanar);
+  if (out.dimension == 3)
+  {
+    return true;
+  }
+  std::vector<LatticePoint> steps{ { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  if (out.dimension == 2)
+  {
+    steps.push_back(unitStep(out.planes[0].normal));
+  }
+  std::vector<LatticePoint> thick = points;
+  for (const auto& p : points)
+  {
+    for (const auto& s : steps)
+    {
+      for (int sign : { -1, 1 })
+      {
+        const LatticePoint q{ p[0] + sign * s[0], p[1] + sign * s[1], p[2] + sign * s[2] };
+        if (strict ? strictlyInside(parent, q) : hullContains(parent, q))
+        {
+          thick.push_back(q);
+        }
+      }
+    }
+  }
+  out = convexHull(thick, coplanar);
+  return out.dimension == 3;
+}
+
+std::size_t latticeCount(const CellList& c)
+{
+  std::size_t n = 0;
+  forEachPointIn(c, false, [&](const LatticePoint&) { ++n; });
+  return n;
+}
+
+std::vector<LatticePoint> pointsOfClass(const CellList& c,
+  const BitVolume& objects,
+  bool cls,
+  bool strict)
+{
+  std::vector<LatticePoint> points;
+  forEachPointIn(c,
+    strict,
+    [&](const LatticePoint& p)
+    {
+      if (voxelClass(objects, p) == cls)
+      {
+        points.push_back(p);
+      }
+    });
+  return points;
+}
+
+void recordPlanes(Context& ctx, const CellList& c, int level)
+{
+  for (FacePlane p : c.planes)
+  {
+    if (level % 2 == 1)
+    {
+      for (auto& n : p.normal)
+      {
+        n = -n;
+      }
+      p.offset = -p.offset;
+    }
+    ctx.planeLevel.emplace(p, level);
+  }
+}
+
+/// Components of a set of lattice points of the grid (CUDB, connected through faces, edges or
+/// corners when `vertex`), as point lists.
+std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoint>& points,
+  const Dims& d,
+  bool vertex)
+{
+  BitVolume set(d[0], d[1], d[2]);
+  for (const auto& p : points)
+    set.set(static_cast<std::int32_t>(p[0]),
+      static_cast<std::int32_t>(p[1]),
+      static_cast<std::int32_t>(p[2]));
+  const CUDB cudb = buildCUDB(d[2] == 1 ? extractEVM2D(set) : extractEVM(set));
+  const Components comps =
+    labelComponents(cudb, vertex ? Connectivity::Vertex : Connectivity::Face);
+  std::vector<std::int32_t> value(comps.boxLabel.begin(), comps.boxLabel.end());
+  std::vector<std::int32_t> labels(set.voxelCount(), 0);
+  paintBoxes(cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, d, labels.data());
+  std::vector<std::vector<LatticePoint>> groups(comps.count);
+  for (const auto& p : points)
+    groups[labels[(p[2] * d[1] + p[1]) * d[0] + p[0]] - 1].push_back(p);
+  return groups;
+}
+
+/// Whether two solid convex hulls share a point (separating axis test, exact): the axes are
+/// the face normals of both and the cross products of their edge directions.
+bool hullsIntersect(const CellList& a, const CellList& b)
+{
+  auto separates = [&](const LatticePoint& n)
+  {
+    if (n == LatticePoint{ 0, 0, 0 })
+      return false;
+    __int128 aLo = dot(n, a.vertices[0]), aHi = aLo, bLo = dot(n, b.vertices[0]), bHi = bLo;
+    for (const auto& p : a.vertices)
+    {
+      aLo = std::min(aLo, dot(n, p));
+      aHi = std::max(aHi, dot(n, p));
+    }
+    for (const auto& p : b.vertices)
+    {
+      bLo = std::min(bLo, dot(n, p));
+      bHi = std::max(bHi, dot(n, p));
+    }
+    return aHi < bLo || bHi < aLo;
+  };
+  for (const auto& p : a.planes)
+    if (separates(p.normal))
+      return false;
+  for (const auto& p : b.planes)
+    if (separates(p.normal))
+      return false;
+  for (const auto& ea : a.edges)
+    for (const auto& eb : b.edges)
+      if (separates(cross(
+            sub(a.vertices[ea[1]], a.vertices[ea[0]]), sub(b.vertices[eb[1]], b.vertices[eb[0]]))))
+        return false;
+  return true;
+}
+
+/// Whether p lies on a face plane of the (solid) hull.
+bool onSurface(const CellList& c, const LatticePoint& p)
+{
+  return std::any_of(c.planes.begin(),
+    c.planes.end(),
+    [&](const FacePlane& plane) { return plane.evaluate(p) == 0; });
+}
+
+/// The groups of points of the other class to press in: the components (face-connected: two
+/// groups meeting only along an edge or at a corner stay two, and their hulls apart) in the
+/// closed hull that reach its open interior, merged while their hulls meet, each with its hull.
+void pressingInGroups(Context& ctx,
+  const CellList& c,
+  const CellList* parent,
+  bool cls,
+  std::vector<std::vector<LatticePoint>>& groups,
+  std::vector<CellList>& hulls,
+  std::vector<bool>& solid)
+{
+  for (auto& g :
+    componentsOf(pointsOfClass(c, ctx.objects, !cls, false), ctx.objects.dims(), false))
+    if (std::any_of(g.begin(),
+          g.end(),
+          [&](const LatticePoint& p)
+          { return strictlyInside(c, p) || (parent && onSurface(*parent, p)); }))
+      groups.push_back(std::move(g));
+  hulls.assign(groups.size(), CellList());
+  solid.assign(groups.size(), false);
+  for (std::size_t i = 0; i < groups.size(); ++i)
+    solid[i] = solidHull(groups[i], c, false, ctx.coplanar, hulls[i]);
+  for (bool merged = true; merged;)
+  {
+    merged = false;
+    for (std::size_t i = 0; i < groups.size() && !merged; ++i)
+      for (std::size_t j = i + 1; j < groups.size() && !merged; ++j)
+        if (hulls[i].dimension >= 0 && hulls[j].dimension >= 0 &&
+          (hulls[i].dimension < 3 || hulls[j].dimension < 3 || hullsIntersect(hulls[i], hulls[j])))
+        {
+          groups[i].insert(groups[i].end(), groups[j].begin(), groups[j].end());
+          groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(j));
+          hulls.erase(hulls.begin() + static_cast<std::ptrdiff_t>(j));
+          solid.erase(solid.begin() + static_cast<std::ptrdiff_t>(j));
+          solid[i] = solidHull(groups[i], c, false, ctx.coplanar, hulls[i]);
+          merged = true;
+        }
+  }
+}
+
+LatticeMesh solveLevel(Context& ctx,
+  const CellList& c,
+  const CellList* parent,
+  bool cls,
+  int level,
+  int& depth);
+
+/// Pressing-in from each face of C in turn, nearest first, until the difference succeeds.
+bool pressFromFace(Context& ctx,
+  const CellList& c,
+  bool cls,
+  int level,
+  const std::vector<LatticePoint>& inner,
+  LatticeMesh& out,
+  int& below)
+{
+  std::vector<std::pair<__int128, std::size_t>> order;
+  for (std::size_t f = 0; f < c.faces.size(); ++f)
+  {
+    __int128 sum = 0;
+    for (const auto& p : inner)
+      sum += c.planes[f].evaluate(p);
+    order.push_back({ -sum, f });
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& entry : order)
+  {
+    std::vector<LatticePoint> points = inner;
+    for (auto v : c.faces[entry.second])
+      points.push_back(c.vertices[v]);
+    const CellList child = convexHull(points, ctx.coplanar);
+    if (child.dimension < 3 || latticeCount(child) >= latticeCount(c))
+      continue;
+    const LatticeMesh g = solveLevel(ctx, child, &c, !cls, level + 1, below);
+    LatticeMesh pressed;
+    if (latticeDifference(out, g, pressed))
+    {
+      out = std::move(pressed);
+      return true;
+    }
+  }
+  return false;
+}
+
+/// One level of Algorithm 1: C minus the solved hulls of the groups of points of the other
+/// class in it (see the header): those that reach its open interior, and those on the part of
+/// its surface it shares with its parent (which the parent's difference removes).
+/// `depth` receives the number of levels below this one.
+LatticeMesh solveLevel(Context& ctx,
+  const CellList& c,
+  const CellList* parent,
+  bool cls,
+  int level,
+  int& depth)
+{
+  if (ctx.exec.stopRequested())
+    throw std::runtime_error("aborted");
+  recordPlanes(ctx, c, level);
+  depth = 0;
+  LatticeMesh out = triangulateHull(c);
+  std::vector<std::vector<LatticePoint>> groups;
+  std::vector<CellList> hulls;
+  std::vector<bool> solid;
+  pressingInGroups(ctx, c, parent, cls, groups, hulls, solid);
+  const std::size_t count = groups.empty() ? 0 : latticeCount(c);
+  for (std::size_t i = 0; i < groups.size(); ++i)
+  {
+    int below = 0;
+    if (solid[i] && latticeCount(hulls[i]) < count)
+    {
+      const LatticeMesh g = solveLevel(ctx, hulls[i], &c, !cls, level + 1, below);
+      LatticeMesh pressed;
+      if (latticeDifference(out, g, pressed))
+      {
+        out = std::move(pressed);
+        depth = std::max(depth, below + 1);
+        continue;
+      }
+    }
+    // The touching rule: keep apart, with the group's points in the open interior of C (when
+    // none of them lies on the part of C's surface shared with the parent).
+    ++ctx.keptApart;
+    std::vector<LatticePoint> inner;
+    bool contact = false;
+    for (const auto& p : groups[i])
+    {
+      const bool shared = parent && !strictlyInside(c, p) && onSurface(*parent, p);
+      contact = contact || shared;
+      if (strictlyInside(c, p) || shared)
+        inner.push_back(p);
+    }
+    CellList child;
+    if (!contact && solidHull(inner, c, true, ctx.coplanar, child))
+    {
+      out.append(solveLevel(ctx, child, &c, !cls, level + 1, below), true);
+      depth = std::max(depth, below + 1);
+      continue;
+    }
+    // No solid lattice polytope fits in the open interior: press in towards the points from
+    // the nearest face F of C (definition PR); conv(points + F) meets the surface of C in F.
+    if (!pressFromFace(ctx, c, cls, level, inner, out, below))
+      throw Unresolved("a flat set of centres touching the surface cannot be pressed in");
+    depth = std::max(depth, below + 1);
+  }
+  return out;
+}
+
+/// Whether a neighbour (26) of p lies outside the closed hull: only then can a corner of the
+/// voxel of p lie outside or on the hull.
+bool nearHullBoundary(const CellList& c, const LatticePoint& p)
+{
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (!hullContains(c, { p[0] + dx, p[1] + dy, p[2] + dz }))
+          return true;
+  return false;
+}
+
+/// Number of edge-connected sets among the marked faces of the hull.
+int connectedFaceSets(const CellList& hull, const std::vector<bool>& marked)
+{
+  std::vector<int> parent(hull.faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int f)
+  {
+    while (parent[f] != f)
+      f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  for (const auto& ef : hull.edgeFaces)
+  {
+    if (ef[0] != Index(-1) && ef[1] != Index(-1) && marked[ef[0]] && marked[ef[1]])
+    {
+      parent[find(static_cast<int>(ef[0]))] = find(static_cast<int>(ef[1]));
+    }
+  }
+  int sets = 0;
+  for (std::size_t f = 0; f < marked.size(); ++f)
+  {
+    sets += marked[f] && find(static_cast<int>(f)) == static_cast<int>(f);
+  }
+  return sets;
+}
+
+/// Section 4.1: the background components in the closed hull (CUDB, face-connected), each a
+/// cavity, concavity or tunnel by the faces seen from (or coplanar with) its voxels' corners.
+void classifyBackgroundComponents(const BitVolume& objects, const CellList& hull, ModifiedHull& r)
+{
+  const std::vector<LatticePoint> background = pointsOfClass(hull, objects, false, false);
+  if (background.empty())
+  {
+    return;
+  }
+  const Dims d = objects.dims();
+  BitVolume inside(d[0], d[1], d[2]);
+  for (const auto& p : background)
+  {
+    inside.set(static_cast<std::int32_t>(p[0]),
+      static_cast<std::int32_t>(p[1]),
+      static_cast<std::int32_t>(p[2]));
+  }
+  const CUDB cudb = buildCUDB(d[2] == 1 ? extractEVM2D(inside) : extractEVM(inside));
+  const Components comps = labelComponents(cudb, Connectivity::Face);
+  std::vector<std::int32_t> value(comps.boxLabel.begin(), comps.boxLabel.end());
+  std::vector<std::int32_t> labels(inside.voxelCount(), 0);
+  paintBoxes(cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, d, labels.data());
+  std::vector<std::vector<bool>> seen(comps.count + 1, std::vector<bool>(hull.faces.size()));
+  for (const auto& p : background)
+  {
+    if (!nearHullBoundary(hull, p))
+      continue;
+    const auto label = labels[(p[2] * d[1] + p[1]) * d[0] + p[0]];
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const LatticePoint c2{ 2 * p[0] + (corner & 1 ? 1 : -1),
+        2 * p[1] + (corner & 2 ? 1 : -1),
+        2 * p[2] + (corner & 4 ? 1 : -1) };
+      for (std::size_t f = 0; f < hull.faces.size(); ++f)
+      {
+        if (dot(hull.planes[f].normal, c2) - 2 * __int128(hull.planes[f].offset) >= 0)
+          seen[label][f] = true;
+      }
+    }
+  }
+  for (std::uint32_t l = 1; l <= comps.count; ++l)
+  {
+    const int sets = connectedFaceSets(hull, seen[l]);
+    (sets == 0 ? r.cavities : sets == 1 ? r.concavities : r.tunnels)++;
+  }
+}
+
+/// Coplanar edge-connected triangles of H as its faces, with their boundary loops and levels.
+void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel, ModifiedHull& r)
+{
+  const LatticeMesh& m = r.surface;
+  const std::size_t nt = m.triangles.size();
+  std::vector<FacePlane> planes(nt);
+  std::unordered_map<std::uint64_t, Index> owner;
+  auto key = [](Index a, Index b) { return (std::uint64_t(a) << 32) | b; };
+  for (std::size_t t = 0; t < nt; ++t)
+  {
+    const auto& tri = m.triangles[t];
+    planes[t] = planeThrough(m.points[tri[0]], m.points[tri[1]], m.points[tri[2]]);
+    for (int k = 0; k < 3; ++k)
+      owner[key(tri[k], tri[(k + 1) % 3])] = static_cast<Index>(t);
+  }
+  std::vector<Index> parent(nt);
+  std::iota(parent.begin(), parent.end(), Index(0));
+  auto find = [&](Index t)
+  {
+    while (parent[t] != t)
+      t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto& tri = m.triangles[t];
+      auto it = owner.find(key(tri[(k + 1) % 3], tri[k]));
+      if (it != owner.end() && planes[it->second] == planes[t])
+        parent[find(static_cast<Index>(t))] = find(it->second);
+    }
+  std::unordered_map<Index, Index> faceOf;
+  for (std::size_t t = 0; t < nt; ++t)
+  {
+    const Index root = find(static_cast<Index>(t));
+    auto it = faceOf.find(root);
+    if (it == faceOf.end())
+    {
+      it = faceOf.emplace(root, static_cast<Index>(r.faces.size())).first;
+      ModifiedFace face;
+      face.plane = planes[t];
+      auto level = planeLevel.find(planes[t]);
+      face.level = level == planeLevel.end() ? -1 : level->second;
+      r.faces.push_back(face);
+    }
+    r.faces[it->second].triangles.push_back(static_cast<Index>(t));
+  }
+  std::vector<std::pair<Index, Index>> edges;
+  for (ModifiedFace& face : r.faces)
+  {
+    std::multimap<Index, Index> next;
+    for (Index t : face.triangles)
+      for (int k = 0; k < 3; ++k)
+      {
+        const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+        auto it = owner.find(key(b, a));
+        if (it == owner.end() || find(it->second) != find(t))
+        {
+          next.emplace(a, b);
+          edges.push_back({ std::min(a, b), std::max(a, b) });
+        }
+      }
+    while (!next.empty())
+    {
+      std::vector<Index> loop{ next.begin()->first };
+      Index at = next.begin()->second;
+      next.erase(next.begin());
+      while (at != loop.front())
+      {
+        loop.push_back(at);
+        auto it = next.find(at);
+        if (it == next.end())
+          break;
+        at = it->second;
+        next.erase(it);
+      }
+      face.loops.push_back(loop);
+    }
+    // The outer loop first: the one of largest area along the normal.
+    auto area = [&](const std::vector<Index>& loop)
+    {
+      LatticePoint sum{ 0, 0, 0 };
+      for (std::size_t k = 0; k < loop.size(); ++k)
+      {
+        const LatticePoint c = cross(m.points[loop[k]], m.points[loop[(k + 1) % loop.size()]]);
+        sum = { sum[0] + c[0], sum[1] + c[1], sum[2] + c[2] };
+      }
+      return dot(sum, face.plane.normal);
+    };
+    std::sort(face.loops.begin(),
+      face.loops.end(),
+      [&](const std::vector<Index>& a, const std::vector<Index>& b) { return area(a) > area(b); });
+  }
+  std::sort(edges.begin(), edges.end());
+  r.edgeCount = static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
+}
+
+/// Whether p lies on the closed triangle abc (exactly).
+bool onTriangle(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  const FacePlane& plane,
+  const LatticePoint& p)
+{
+  if (plane.evaluate(p) != 0)
+    return false;
+  return dot(plane.normal, cross(sub(b, a), sub(p, a))) >= 0 &&
+    dot(plane.normal, cross(sub(c, b), sub(p, b))) >= 0 &&
+    dot(plane.normal, cross(sub(a, c), sub(p, c))) >= 0;
+}
+
+/// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive.
+int perturbedOrientation(const LatticePoint& u,
+  const LatticePoint& v,
+  std::int64_t y,
+  std::int64_t z)
+{
+  const __int128 o = __int128(v[1] - u[1]) * (z - u[2]) - __int128(v[2] - u[2]) * (y - u[1]);
+  if (o != 0)
+    return o > 0 ? 1 : -1;
+  if (v[2] != u[2])
+    return v[2] > u[2] ? -1 : 1;
+  return v[1] > u[1] ? 1 : -1;
+}
+
+} // namespace
+
+std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface, const Dims& dims)
+{
+  std::vector<LatticePoint> found;
+  for (const auto& tri : surface.triangles)
+  {
+    const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
+                       &c = surface.points[tri[2]];
+    const FacePlane plane = planeThrough(a, b, c);
+    int k = 0;
+    for (int q = 1; q < 3; ++q)
+      if (std::abs(plane.normal[q]) > std::abs(plane.normal[k]))
+        k = q;
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const std::int64_t loI = std::max<std::int64_t>(0, std::min({ a[i], b[i], c[i] }));
+    const std::int64_t hiI = std::min<std::int64_t>(dims[i] - 1, std::max({ a[i], b[i], c[i] }));
+    const std::int64_t loJ = std::max<std::int64_t>(0, std::min({ a[j], b[j], c[j] }));
+    const std::int64_t hiJ = std::min<std::int64_t>(dims[j] - 1, std::max({ a[j], b[j], c[j] }));
+    for (std::int64_t u = loI; u <= hiI; ++u)
+      for (std::int64_t v = loJ; v <= hiJ; ++v)
+      {
+        const std::int64_t r = plane.offset - plane.normal[i] * u - plane.normal[j] * v;
+        if (r % plane.normal[k] != 0)
+          continue;
+        LatticePoint p;
+        p[i] = u;
+        p[j] = v;
+        p[k] = r / plane.normal[k];
+        if (inGrid(dims, p) && onTriangle(a, b, c, plane, p))
+          found.push_back(p);
+      }
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  return found;
+}
+
+BitVolume revertModifiedHull(const LatticeMesh& surface,
+  const std::vector<LatticePoint>& backgroundOnSurface,
+  const Dims& dims)
+{
+  BitVolume out(dims[0], dims[1], dims[2]);
+  // Crossings of the rays (x -> +infinity, y + delta, z + delta^2) with the triangles, per row:
+  // count[x] = crossings with ceil(xc) - 1 == x, so a suffix sum gives the crossings beyond x.
+  std::vector<std::vector<std::int64_t>> rows(static_cast<std::size_t>(dims[1]) * dims[2]);
+  for (const auto& tri : surface.triangles)
+  {
+    const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
+                       &c = surface.points[tri[2]];
+    const FacePlane plane = planeThrough(a, b, c);
+    const std::int64_t nx = plane.normal[0];
+    if (nx == 0)
+      continue;
+    const int s = nx > 0 ? 1 : -1;
+    for (std::int64_t z = std::max<std::int64_t>(0, std::min({ a[2], b[2], c[2] }));
+         z <= std::min<std::int64_t>(dims[2] - 1, std::max({ a[2], b[2], c[2] }));
+         ++z)
+      for (std::int64_t y = std::max<std::int64_t>(0, std::min({ a[1], b[1], c[1] }));
+           y <= std::min<std::int64_t>(dims[1] - 1, std::max({ a[1], b[1], c[1] }));
+           ++y)
+      {
+        if (perturbedOrientation(a, b, y, z) != s || perturbedOrientation(b, c, y, z) != s ||
+          perturbedOrientation(c, a, y, z) != s)
+          continue;
+        const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
+        rows[z * dims[1] + y].push_back(ceilDiv(r, nx) - 1);
+      }
+  }
+  std::vector<int> count(dims[0] + 1);
+  for (std::int32_t z = 0; z < dims[2]; ++z)
+    for (std::int32_t y = 0; y < dims[1]; ++y)
+    {
+      std::fill(count.begin(), count.end(), 0);
+      for (std::int64_t x : rows[z * dims[1] + y])
+        if (x >= 0)
+          ++count[std::min<std::int64_t>(x, dims[0] - 1)];
+      int parity = 0;
+      for (std::int32_t x = dims[0] - 1; x >= 0; --x)
+      {
+        parity ^= count[x] & 1;
+        if (parity)
+          out.set(x, y, z);
+      }
+    }
+  const std::vector<LatticePoint> on = latticePointsOnSurface(surface, dims);
+  for (const auto& p : on)
+    out.set(static_cast<std::int32_t>(p[0]),
+      static_cast<std::int32_t>(p[1]),
+      static_cast<std::int32_t>(p[2]),
+      !std::binary_search(backgroundOnSurface.begin(), backgroundOnSurface.end(), p));
+  return out;
+}
+
+ModifiedHull modifyConvexHull(const BitVolume& objects,
+  CoplanarFaces coplanar,
+  const Execution& exec)
+{
+  ModifiedHull r;
+  const std::vector<LatticePoint> candidates = vertexCandidates(objects);
+  if (candidates.empty())
+    return r;
+  r.hull = convexHull(candidates, coplanar);
+  if (!exec.report(0.2))
+    throw std::runtime_error("aborted");
+  if (r.hull.dimension < 3)
+  {
+    // A flat object: every centre in its polygon, segment or point lies on H.
+    r.complete = r.hull.dimension == 2;
+    if (r.hull.dimension == 2)
+      r.surface = LatticeMesh{ r.hull.vertices, {} };
+    for (std::size_t f = 0; f < r.hull.faces.size(); ++f)
+      for (std::size_t k = 1; k + 1 < r.hull.faces[f].size(); ++k)
+        r.surface.triangles.push_back(
+          { r.hull.faces[f][0], r.hull.faces[f][k], r.hull.faces[f][k + 1] });
+    if (!r.complete)
+      r.failure = "the object is a segment or a point: no polyhedron spans it";
+  }
+  else
+  {
+    classifyBackgroundComponents(objects, r.hull, r);
+    Context ctx{ objects, coplanar, exec, {}, 0 };
+    try
+    {
+      r.surface = solveLevel(ctx, r.hull, nullptr, true, 0, r.degreeOfNonConvexity);
+    }
+    catch (const Unresolved& e)
+    {
+      r.complete = false;
+      r.failure = e.what();
+      r.surface = triangulateHull(r.hull);
+    }
+    r.keptApart = ctx.keptApart;
+    if (r.complete && !isClosedEmbeddedManifold(r.surface))
+    {
+      r.complete = false;
+      r.failure = "surfaces kept apart cross each other";
+    }
+    if (!exec.report(0.8))
+      throw std::runtime_error("aborted");
+    mergeIntoFaces(ctx.planeLevel, r);
+  }
+  if (r.hull.dimension == 2)
+  {
+    std::map<FacePlane, int> levels{ { r.hull.planes[0], 0 }, { r.hull.planes[1], 0 } };
+    mergeIntoFaces(levels, r);
+  }
+  for (const auto& p : r.surface.points)
+    r.vertexMark.push_back(voxelClass(objects, p) ? 1 : 0);
+  for (const auto& p : latticePointsOnSurface(r.surface, objects.dims()))
+    if (!voxelClass(objects, p))
+      r.backgroundOnSurface.push_back(p);
+  return r;
+}
+
+} // namespace vbr

@@ -1,0 +1,110 @@
+// A polyhedron H that separates object voxels from background voxels, made from the convex hull
+// by recursive pressing-in (H. Schulz, "Polyhedral Surface Approximation of Non-Convex Voxel
+// Sets and Improvements to the Convex Hull Computing Method", FZD-514, 2009, section 4).
+//
+// Voxels are their centres, integer lattice points. H is a closed triangle mesh with lattice
+// corners whose coplanar, edge-connected triangles form its faces; no object centre lies outside
+// H, no background centre inside, and the centres on H are marked, so that the voxel set can be
+// rebuilt from H and its marks alone (revertModifiedHull).
+//
+// Background components (section 4.1): the background voxels whose centres lie in the closed
+// convex hull CH(S) are labelled by the CUDB connected components (face-connected); a component
+// is a cavity (definition CA) when no corner (0-cell) of its voxels lies outside or on CH(S), a
+// concavity (CO) when the hull faces seen from such corners form one edge-connected set, a tunnel
+// (TU) when they form more than one.
+//
+// Modification (section 4.2, Algorithm 1), with one change that removes the paper's genus-0
+// restriction. At each level the current polyhedron is a convex hull C of points of one class
+// (object at even levels, background at odd ones). When no point of the other class lies in the
+// open interior of C, C is the answer for that level (points of the other class on C are kept on
+// the surface and marked). Otherwise all those points in the closed C together span one convex
+// polyhedron C' = CH(them) inside C (the role swap of the paper), solved recursively into a set G,
+// and the level's answer is the exact regularised Boolean difference C - G (LatticeMesh.h, CGAL
+// corefinement with an exact kernel). Because C' lies inside C, their surfaces only touch (at
+// corners, along edges or in coplanar pieces of faces) and never cross, so every corner of the
+// result is a corner of one of the nested hulls: a lattice point. The difference opens a pit or
+// a tunnel wherever C' touches C in pieces of faces, so tori, pierced cubes and porous blobs come
+// out with their genus; nothing in it depends on the genus. Where C' touches C only along an edge
+// or at a corner the difference would not be a 2-manifold (the touching-voxels case); the rule
+// is then to keep the two apart: that level uses only the points in the open interior of C,
+// whose hull lies strictly inside C, and G is added as an inward-oriented inner surface (a
+// cavity, section 4.2, last paragraphs). Flat sets of points are thickened by their lattice
+// neighbours inside C (one lattice step off their plane or line), so every hull is solid.
+// Separation follows by induction on the levels (each answer is a regular closed set holding all
+// points of its class of its hull and no point of the other class in its interior); the lattice
+// count of the hulls strictly decreases, so the recursion ends.
+//
+// The degree of non-convexity (definition NK) is the number of levels below the hull.
+//
+// Where it departs from the paper: the paper spans one hull per concavity from the labelled
+// faces; here one hull holds all points of the other class at each level (no two hulls of one
+// level can then overlap and cross), and a pit opens exactly where that hull touches C. A dent
+// whose background centres all lie strictly inside CH(S) (the hull face passing over them between
+// lattice points) becomes a cavity with a thin skin rather than a pit.
+#ifndef vbr_ConvexHullModifier_h
+#define vbr_ConvexHullModifier_h
+
+#include "BitVolume.h"
+#include "ConvexHull.h"
+#include "Execution.h"
+#include "LatticeMesh.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vbr
+{
+
+/// One planar face of H: its triangles (indices into LatticeMesh::triangles), its boundary loops
+/// (the first one outer, counter-clockwise seen from outside; holes clockwise) and its level.
+struct ModifiedFace
+{
+  FacePlane plane;
+  std::vector<std::uint32_t> triangles;
+  std::vector<std::vector<std::uint32_t>> loops;
+  /// 0 for pieces of faces of CH(S), 1 for faces pressed in from a background hull, 2 for faces
+  /// pushed back out, ...
+  int level = 0;
+};
+
+struct ModifiedHull
+{
+  CellList hull;
+  LatticeMesh surface;
+  std::vector<ModifiedFace> faces;
+  /// Per surface point: 1 object, 0 background.
+  std::vector<std::uint8_t> vertexMark;
+  /// Every background centre on H (vertices and points inside faces or on edges).
+  std::vector<LatticePoint> backgroundOnSurface;
+  std::size_t edgeCount = 0;
+  int concavities = 0;
+  int cavities = 0;
+  int tunnels = 0;
+  int degreeOfNonConvexity = 0;
+  /// Levels where the touching rule kept the surfaces apart.
+  int keptApart = 0;
+  bool complete = true;
+  std::string failure;
+};
+
+/// H of the object voxels (empty input: an empty result). Throws std::runtime_error when a flat
+/// set cannot be thickened inside its hull (the result is then incomplete).
+ModifiedHull modifyConvexHull(const BitVolume& objects,
+  CoplanarFaces coplanar = CoplanarFaces::Extension,
+  const Execution& exec = Execution());
+
+/// The voxel set rebuilt from H and its marks: centres strictly inside H, and centres on H that
+/// are not listed as background. Exact (integer ray crossing with a symbolic perturbation).
+BitVolume revertModifiedHull(const LatticeMesh& surface,
+  const std::vector<LatticePoint>& backgroundOnSurface,
+  const std::array<std::int32_t, 3>& dims);
+
+/// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).
+std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,
+  const std::array<std::int32_t, 3>& dims);
+
+} // namespace vbr
+
+#endif

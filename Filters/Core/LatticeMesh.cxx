@@ -1,0 +1,223 @@
+#include "LatticeMesh.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Fraction_traits.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+
+namespace vbr
+{
+namespace
+{
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+Mesh toSurfaceMesh(const LatticeMesh& m)
+{
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> vertices;
+  vertices.reserve(m.points.size());
+  for (const auto& p : m.points)
+  {
+    vertices.push_back(mesh.add_vertex(Kernel::Point_3(
+      static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]))));
+  }
+  for (const auto& t : m.triangles)
+  {
+    mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]);
+  }
+  return mesh;
+}
+
+/// The integer value of an exact number, or false when it has a fractional part.
+bool integerValue(const Kernel::FT& value, std::int64_t& out)
+{
+  using Exact = std::decay_t<decltype(CGAL::exact(value))>;
+  using Traits = CGAL::Fraction_traits<Exact>;
+  const Exact exact = CGAL::exact(value);
+  typename Traits::Numerator_type num, den;
+  typename Traits::Decompose()(exact, num, den);
+  if (den != 1)
+  {
+    return false;
+  }
+  out = static_cast<std::int64_t>(CGAL::to_double(num));
+  return true;
+}
+
+bool isLattice(const Kernel::Point_3& p)
+{
+  std::int64_t q;
+  return integerValue(p.x(), q) && integerValue(p.y(), q) && integerValue(p.z(), q);
+}
+
+/// Whether moving the source v of h onto its target u keeps every other triangle around v in
+/// its plane, with its orientation and a positive area (the surface keeps its exact shape).
+bool collapseKeepsShape(const Mesh& m, Mesh::Halfedge_index h)
+{
+  const Mesh::Vertex_index v = m.source(h), u = m.target(h);
+  const Kernel::Point_3 &pv = m.point(v), &pu = m.point(u);
+  for (auto f : CGAL::faces_around_target(m.opposite(h), m))
+  {
+    if (f == Mesh::null_face())
+      return false;
+    std::vector<Mesh::Vertex_index> corners;
+    for (auto w : CGAL::vertices_around_face(m.halfedge(f), m))
+      corners.push_back(w);
+    if (std::find(corners.begin(), corners.end(), u) != corners.end())
+      continue;
+    while (corners[0] != v)
+      std::rotate(corners.begin(), corners.begin() + 1, corners.end());
+    const auto &a = m.point(corners[1]), &b = m.point(corners[2]);
+    const Kernel::Vector_3 before = CGAL::cross_product(a - pv, b - pv);
+    const Kernel::Vector_3 after = CGAL::cross_product(a - pu, b - pu);
+    if (after == CGAL::NULL_VECTOR || CGAL::cross_product(before, after) != CGAL::NULL_VECTOR ||
+      before * after <= 0)
+      return false;
+  }
+  return true;
+}
+
+/// Removes the corners that are not lattice points: the triangulations of coplanar pieces meet
+/// at such points (diagonals crossing), which lie inside faces or on straight edges of the
+/// true result; each is collapsed onto a neighbour when that keeps the shape exactly.
+bool removeSteinerPoints(Mesh& m)
+{
+  for (bool progress = true; progress;)
+  {
+    progress = false;
+    for (auto v : m.vertices())
+    {
+      if (isLattice(m.point(v)))
+        continue;
+      for (auto h : CGAL::halfedges_around_source(v, m))
+      {
+        if (!CGAL::Euler::does_satisfy_link_condition(m.edge(h), m) || !collapseKeepsShape(m, h))
+          continue;
+        const Kernel::Point_3 target = m.point(m.target(h));
+        const auto kept = CGAL::Euler::collapse_edge(m.edge(h), m);
+        m.point(kept) = target;
+        progress = true;
+        break;
+      }
+      if (progress)
+        break;
+    }
+  }
+  m.collect_garbage();
+  for (auto v : m.vertices())
+    if (!isLattice(m.point(v)))
+      return false;
+  return true;
+}
+
+} // namespace
+
+void LatticeMesh::append(const LatticeMesh& other, bool reverse)
+{
+  const auto base = static_cast<std::uint32_t>(this->points.size());
+  this->points.insert(this->points.end(), other.points.begin(), other.points.end());
+  for (auto t : other.triangles)
+  {
+    if (reverse)
+    {
+      std::swap(t[1], t[2]);
+    }
+    this->triangles.push_back({ t[0] + base, t[1] + base, t[2] + base });
+  }
+}
+
+LatticeMesh triangulateHull(const CellList& hull)
+{
+  LatticeMesh mesh;
+  mesh.points = hull.vertices;
+  for (const auto& face : hull.faces)
+  {
+    for (std::size_t k = 1; k + 1 < face.size(); ++k)
+    {
+      mesh.triangles.push_back({ face[0], face[k], face[k + 1] });
+    }
+  }
+  return mesh;
+}
+
+bool isClosedEmbeddedManifold(const LatticeMesh& m)
+{
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> vertices;
+  for (const auto& p : m.points)
+    vertices.push_back(mesh.add_vertex(Kernel::Point_3(
+      static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]))));
+  for (const auto& t : m.triangles)
+    if (mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Mesh::null_face())
+      return false;
+  return CGAL::is_closed(mesh) && PMP::duplicate_non_manifold_vertices(mesh) == 0 &&
+    !PMP::does_self_intersect(mesh);
+}
+
+bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result)
+{
+  Mesh first = toSurfaceMesh(a), second = toSurfaceMesh(b), out;
+  bool ok = false;
+  if (!CGAL::is_closed(first) || !CGAL::is_closed(second) || PMP::does_self_intersect(first) ||
+    PMP::does_self_intersect(second))
+  {
+    return false; // not valid operands (corefinement needs two closed, embedded surfaces)
+  }
+  try
+  {
+    ok = PMP::corefine_and_compute_difference(first, second, out);
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+  if (!ok || !CGAL::is_closed(out) || PMP::duplicate_non_manifold_vertices(out) != 0)
+  {
+    return false;
+  }
+  if (!removeSteinerPoints(out))
+  {
+    return false;
+  }
+  result = LatticeMesh();
+  std::map<Mesh::Vertex_index, std::uint32_t> index;
+  for (auto v : out.vertices())
+  {
+    const auto& p = out.point(v);
+    LatticePoint q;
+    if (!integerValue(p.x(), q[0]) || !integerValue(p.y(), q[1]) || !integerValue(p.z(), q[2]))
+    {
+      return false;
+    }
+    index[v] = static_cast<std::uint32_t>(result.points.size());
+    result.points.push_back(q);
+  }
+  for (auto f : out.faces())
+  {
+    std::vector<std::uint32_t> corners;
+    for (auto v : CGAL::vertices_around_face(out.halfedge(f), out))
+    {
+      corners.push_back(index[v]);
+    }
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+    {
+      result.triangles.push_back({ corners[0], corners[k], corners[k + 1] });
+    }
+  }
+  return true;
+}
+
+} // namespace vbr

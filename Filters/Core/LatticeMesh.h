@@ -1,0 +1,45 @@
+// Closed triangle meshes with lattice-point corners, and the exact Boolean difference of two of
+// them (the "merge H and CH(S')" of section 4.2 of Schulz 2009), the only place of the core that
+// uses CGAL (kept to one translation unit: LatticeMesh.cxx).
+//
+// The difference is CGAL's Polygon Mesh Processing corefinement
+// (corefine_and_compute_difference) on Surface_mesh with the
+// Exact_predicates_exact_constructions_kernel: every intersection and every coplanar contact is
+// decided exactly, and the result is the regularised difference (closure of the interior). It
+// fails, and latticeDifference() returns false, when the result would not be a closed 2-manifold
+// (two pieces touching only along an edge or at a corner) or when one of its corners is not a
+// lattice point; the caller then keeps the two surfaces apart.
+#ifndef vbr_LatticeMesh_h
+#define vbr_LatticeMesh_h
+
+#include "ConvexHull.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vbr
+{
+
+struct LatticeMesh
+{
+  std::vector<LatticePoint> points;
+  /// Counter-clockwise seen from outside.
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+
+  /// Appends another mesh, its triangles reversed when `reverse` (a cavity's surface).
+  void append(const LatticeMesh& other, bool reverse);
+};
+
+/// The faces of a solid convex hull, each fanned from its first corner.
+LatticeMesh triangulateHull(const CellList& hull);
+
+/// Whether the mesh is a closed oriented 2-manifold without self-intersections (exact).
+bool isClosedEmbeddedManifold(const LatticeMesh& mesh);
+
+/// a minus b, exactly; false when the result is not a closed 2-manifold with lattice corners.
+bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result);
+
+} // namespace vbr
+
+#endif
