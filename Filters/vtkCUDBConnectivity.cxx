@@ -34,6 +34,7 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <initializer_list>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -296,18 +297,19 @@ void worldOf(const vbr::vtk::VoxelGrid& grid,
   grid.vertexToWorld(toImageAxes(p, axes), world);
 }
 
-/// Port 1: the boxes of the kept regions.
-void writeBoxes(const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions,
-  const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  int labelType,
-  vtkUnstructuredGrid* output)
+/// How a box becomes a cell: its corners, in the cell type's order, as (low/high) bits per
+/// role, and the image axis of each role (in 2D the two in-plane image axes take the roles of
+/// the first two bits).
+struct BoxCellLayout
 {
-  const bool planar = grid.flatAxis >= 0;
-  const bool aligned = axisAligned(grid);
-  const int corners = planar ? 4 : 8;
-  // Corner k of a box as (low/high) bits per image axis, in the cell type's order.
+  int corners = 8;
+  const int (*bits)[3] = nullptr;
+  int cellType = VTK_VOXEL;
+  std::array<int, 3> role{ 0, 1, 2 };
+};
+
+BoxCellLayout boxCellLayout(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes)
+{
   static const int voxelOrder[8][3] = { { 0, 0, 0 },
     { 1, 0, 0 },
     { 0, 1, 0 },
@@ -324,38 +326,114 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
     { 1, 0, 1 },
     { 1, 1, 1 },
     { 0, 1, 1 } };
-  const int(*bits)[3] = aligned ? voxelOrder : hexOrder;
-  const int cellType =
+  const bool planar = grid.flatAxis >= 0;
+  const bool aligned = axisAligned(grid);
+  BoxCellLayout layout;
+  layout.corners = planar ? 4 : 8;
+  layout.bits = aligned ? voxelOrder : hexOrder;
+  layout.cellType =
     planar ? (aligned ? VTK_PIXEL : VTK_QUAD) : (aligned ? VTK_VOXEL : VTK_HEXAHEDRON);
-  // In 2D the two in-plane image axes play the roles of the first two bits.
-  std::array<int, 3> role{ 0, 1, 2 };
   if (planar)
-    role = { std::min(axes[0], axes[1]), std::max(axes[0], axes[1]), grid.flatAxis };
+    layout.role = { std::min(axes[0], axes[1]), std::max(axes[0], axes[1]), grid.flatAxis };
+  return layout;
+}
 
+/// The region of box b of an object.
+const Region& regionOfBox(const ObjectBoxes& o, std::size_t b, const std::vector<Region>& regions)
+{
+  return regions[o.firstRegion + o.components.boxLabel[b] - 1];
+}
+
+vtkIdType countKeptBoxes(const std::vector<ObjectBoxes>& objects,
+  const std::vector<Region>& regions)
+{
   vtkIdType count = 0;
   for (const ObjectBoxes& o : objects)
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-      count += regions[o.firstRegion + o.components.boxLabel[b] - 1].id != 0;
+      count += regionOfBox(o, b, regions).id != 0;
+  return count;
+}
+
+/// The arrays of port 1 for `count` boxes, filled box by box.
+struct BoxCells
+{
+  BoxCellLayout layout;
   vtkNew<vtkDoubleArray> coordinates;
-  coordinates->SetNumberOfComponents(3);
-  vbr::vtk::resizeOrThrow(coordinates, count * corners);
   vtkNew<vtkIdTypeArray> offsets, connectivity, boxIds;
   vtkNew<vtkIntArray> regionIds;
-  vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType, count);
-  vbr::vtk::resizeOrThrow(offsets, count + 1);
-  vbr::vtk::resizeOrThrow(connectivity, count * corners);
-  vbr::vtk::resizeOrThrow(boxIds, count);
-  vbr::vtk::resizeOrThrow(regionIds, count);
-  boxIds->SetName("BoxId");
-  regionIds->SetName("RegionId");
-  double* xyz = coordinates->GetPointer(0);
+  vtkSmartPointer<vtkDataArray> labels;
+
+  BoxCells(const BoxCellLayout& cellLayout, vtkIdType count, int labelType)
+    : layout(cellLayout)
+  {
+    const int corners = this->layout.corners;
+    this->coordinates->SetNumberOfComponents(3);
+    vbr::vtk::resizeOrThrow(this->coordinates, count * corners);
+    this->labels = vbr::vtk::newLabelArray(labelType, count);
+    vbr::vtk::resizeOrThrow(this->offsets, count + 1);
+    vbr::vtk::resizeOrThrow(this->connectivity, count * corners);
+    vbr::vtk::resizeOrThrow(this->boxIds, count);
+    vbr::vtk::resizeOrThrow(this->regionIds, count);
+    this->boxIds->SetName("BoxId");
+    this->regionIds->SetName("RegionId");
+    this->offsets->SetValue(0, 0);
+  }
+
+  /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label.
+  void set(vtkIdType cell,
+    const vbr::vtk::VoxelGrid& grid,
+    const Int3& lo,
+    const Int3& hi,
+    vtkIdType boxId,
+    const Region& region)
+  {
+    const int corners = this->layout.corners;
+    double* xyz = this->coordinates->GetPointer(3 * cell * corners);
+    for (int k = 0; k < corners; ++k)
+    {
+      Int3 v = lo;
+      for (int r = 0; r < 3; ++r)
+        if (this->layout.bits[k][r])
+          v[this->layout.role[r]] = hi[this->layout.role[r]];
+      grid.vertexToWorld(v, xyz + 3 * k); // a 2D image's corners lie in its plane (flat at 0)
+      this->connectivity->SetValue(cell * corners + k, cell * corners + k);
+    }
+    this->offsets->SetValue(cell + 1, (cell + 1) * corners);
+    this->boxIds->SetValue(cell, boxId);
+    this->regionIds->SetValue(cell, region.id);
+    vbr::vtk::setLabel(this->labels, cell, region.label);
+  }
+
+  void moveTo(vtkUnstructuredGrid* output)
+  {
+    vtkNew<vtkPoints> points;
+    points->SetData(this->coordinates);
+    output->SetPoints(points);
+    vtkNew<vtkCellArray> cells;
+    cells->SetData(this->offsets, this->connectivity);
+    output->SetCells(this->layout.cellType, cells);
+    output->GetCellData()->AddArray(this->regionIds);
+    output->GetCellData()->AddArray(this->boxIds);
+    output->GetCellData()->AddArray(this->labels);
+    output->GetCellData()->SetActiveScalars("RegionId");
+  }
+};
+
+/// Port 1: the boxes of the kept regions, one voxel (or hexahedron, pixel, quad) cell each.
+void writeBoxes(const std::vector<ObjectBoxes>& objects,
+  const std::vector<Region>& regions,
+  const vbr::vtk::VoxelGrid& grid,
+  const std::array<int, 3>& axes,
+  int labelType,
+  vtkUnstructuredGrid* output)
+{
+  BoxCells cells(boxCellLayout(grid, axes), countKeptBoxes(objects, regions), labelType);
   vtkIdType cell = 0, boxBase = 0;
-  offsets->SetValue(0, 0);
   for (const ObjectBoxes& o : objects)
   {
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
     {
-      const Region& region = regions[o.firstRegion + o.components.boxLabel[b] - 1];
+      const Region& region = regionOfBox(o, b, regions);
       if (region.id == 0)
         continue;
       const vbr::Box& box = o.cudb.boxes[b];
@@ -365,35 +443,16 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
         lo[d] += o.offset[d];
         hi[d] += o.offset[d];
       }
-      const Int3 imageLo = toImageAxes(lo, axes), imageHi = toImageAxes(hi, axes);
-      for (int k = 0; k < corners; ++k)
-      {
-        Int3 v = imageLo;
-        for (int r = 0; r < 3; ++r)
-          if (bits[k][r])
-            v[role[r]] = imageHi[role[r]];
-        grid.vertexToWorld(v, xyz); // a 2D image's corners lie in its plane (flat at 0)
-        xyz += 3;
-        connectivity->SetValue(cell * corners + k, cell * corners + k);
-      }
-      offsets->SetValue(cell + 1, (cell + 1) * corners);
-      boxIds->SetValue(cell, boxBase + static_cast<vtkIdType>(b));
-      regionIds->SetValue(cell, region.id);
-      vbr::vtk::setLabel(labels, cell, o.label);
-      ++cell;
+      cells.set(cell++,
+        grid,
+        toImageAxes(lo, axes),
+        toImageAxes(hi, axes),
+        boxBase + static_cast<vtkIdType>(b),
+        region);
     }
     boxBase += static_cast<vtkIdType>(o.cudb.boxes.size());
   }
-  vtkNew<vtkPoints> points;
-  points->SetData(coordinates);
-  output->SetPoints(points);
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  output->SetCells(cellType, cells);
-  output->GetCellData()->AddArray(regionIds);
-  output->GetCellData()->AddArray(boxIds);
-  output->GetCellData()->AddArray(labels);
-  output->GetCellData()->SetActiveScalars("RegionId");
+  cells.moveTo(output);
 }
 
 /// One table column per component of `array`, named `names`, of the array's type.
@@ -410,6 +469,122 @@ void addColumnsOfComponents(vtkTable* table, vtkDataArray* array, const char* co
   }
 }
 
+/// A region's voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
+void indexBoundsOf(const Region& r,
+  const vbr::vtk::VoxelGrid& grid,
+  const std::array<int, 3>& axes,
+  int index[6])
+{
+  const Int3 lo = toImageAxes(r.lo, axes), hi = toImageAxes(r.hi, axes);
+  for (int d = 0; d < 3; ++d)
+  {
+    index[2 * d] = grid.extentMin[d] + lo[d];
+    index[2 * d + 1] = grid.extentMin[d] + (hi[d] - 1); // no overflow at INT_MAX
+  }
+}
+
+/// A region's world bounds: those of the corners of its index box.
+void worldBoundsOf(const Region& r,
+  const vbr::vtk::VoxelGrid& grid,
+  const std::array<int, 3>& axes,
+  double world[6])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    world[2 * d] = VTK_DOUBLE_MAX;
+    world[2 * d + 1] = VTK_DOUBLE_MIN;
+  }
+  for (int k = 0; k < 8; ++k)
+  {
+    double p[3];
+    worldOf(grid,
+      axes,
+      { k & 1 ? r.hi[0] : r.lo[0], k & 2 ? r.hi[1] : r.lo[1], k & 4 ? r.hi[2] : r.lo[2] },
+      p);
+    for (int d = 0; d < 3; ++d)
+    {
+      world[2 * d] = std::min(world[2 * d], p[d]);
+      world[2 * d + 1] = std::max(world[2 * d + 1], p[d]);
+    }
+  }
+}
+
+/// A region's centroid in world coordinates (the mean of its voxel centres).
+void centroidOf(const Region& r,
+  const vbr::vtk::VoxelGrid& grid,
+  const std::array<int, 3>& axes,
+  double world[3])
+{
+  std::array<double, 3> centre; // processing axes, continuous vertex coordinates
+  for (int d = 0; d < 3; ++d)
+    centre[d] = r.weightedCentre[d] / static_cast<double>(r.voxels);
+  if (grid.flatAxis >= 0)
+    centre[2] = 0.0;
+  const std::array<double, 3> image = toImageAxes(centre, axes);
+  grid.positionToWorld(image.data(), world);
+}
+
+/// The columns of port 2, filled region by region.
+struct RegionColumns
+{
+  vtkNew<vtkIntArray> ids, indexBounds;
+  vtkSmartPointer<vtkDataArray> labels;
+  vtkNew<vtkDoubleArray> volumes, bounds, centroids;
+  vtkNew<vtkIdTypeArray> voxels, boxes;
+
+  explicit RegionColumns(int labelType)
+    : labels(vbr::vtk::newLabelArray(labelType))
+  {
+    this->ids->SetName("RegionId");
+    this->voxels->SetName("VoxelCount");
+    this->volumes->SetName("Volume");
+    this->indexBounds->SetNumberOfComponents(6);
+    this->bounds->SetNumberOfComponents(6);
+    this->centroids->SetName("Centroid");
+    this->centroids->SetNumberOfComponents(3);
+    this->centroids->SetComponentName(0, "X");
+    this->centroids->SetComponentName(1, "Y");
+    this->centroids->SetComponentName(2, "Z");
+    this->boxes->SetName("NumberOfBoxes");
+  }
+
+  void append(const Region& r,
+    const vbr::vtk::VoxelGrid& grid,
+    const std::array<int, 3>& axes,
+    double voxelMeasure)
+  {
+    this->ids->InsertNextValue(r.id);
+    vbr::vtk::appendLabel(this->labels, r.label);
+    this->voxels->InsertNextValue(static_cast<vtkIdType>(r.voxels));
+    this->volumes->InsertNextValue(static_cast<double>(r.voxels) * voxelMeasure);
+    this->boxes->InsertNextValue(static_cast<vtkIdType>(r.boxes));
+    int index[6];
+    indexBoundsOf(r, grid, axes, index);
+    this->indexBounds->InsertNextTypedTuple(index);
+    double world[6];
+    worldBoundsOf(r, grid, axes, world);
+    this->bounds->InsertNextTuple(world);
+    double centroid[3];
+    centroidOf(r, grid, axes, centroid);
+    this->centroids->InsertNextTuple(centroid);
+  }
+
+  void addTo(vtkTable* table)
+  {
+    table->AddColumn(this->ids);
+    table->AddColumn(this->labels);
+    table->AddColumn(this->voxels);
+    table->AddColumn(this->volumes);
+    // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
+    static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
+    static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
+    addColumnsOfComponents(table, this->indexBounds, indexNames);
+    addColumnsOfComponents(table, this->bounds, worldNames);
+    table->AddColumn(this->centroids);
+    table->AddColumn(this->boxes);
+  }
+};
+
 /// Port 2: one row per kept region, in RegionId order.
 void writeRegionTable(const std::vector<Region>& regions,
   std::int32_t kept,
@@ -422,84 +597,47 @@ void writeRegionTable(const std::vector<Region>& regions,
   for (const Region& r : regions)
     if (r.id > 0)
       byId[r.id - 1] = &r;
-  vtkNew<vtkIntArray> ids, indexBounds;
-  vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType);
-  vtkNew<vtkDoubleArray> volumes, bounds, centroids;
-  vtkNew<vtkIdTypeArray> voxels, boxes;
-  ids->SetName("RegionId");
-  voxels->SetName("VoxelCount");
-  volumes->SetName("Volume");
-  indexBounds->SetName("IndexBounds");
-  indexBounds->SetNumberOfComponents(6);
-  bounds->SetName("Bounds");
-  bounds->SetNumberOfComponents(6);
-  centroids->SetName("Centroid");
-  centroids->SetNumberOfComponents(3);
-  boxes->SetName("NumberOfBoxes");
+  RegionColumns columns(labelType);
   const double measure = voxelMeasure(grid);
   for (const Region* r : byId)
-  {
-    ids->InsertNextValue(r->id);
-    vbr::vtk::appendLabel(labels, r->label);
-    voxels->InsertNextValue(static_cast<vtkIdType>(r->voxels));
-    volumes->InsertNextValue(static_cast<double>(r->voxels) * measure);
-    boxes->InsertNextValue(static_cast<vtkIdType>(r->boxes));
-    const Int3 lo = toImageAxes(r->lo, axes), hi = toImageAxes(r->hi, axes);
-    int index[6];
-    double world[6] = {
-      VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN
-    };
-    for (int d = 0; d < 3; ++d)
-    {
-      index[2 * d] = grid.extentMin[d] + lo[d];
-      index[2 * d + 1] = grid.extentMin[d] + (hi[d] - 1); // no overflow at INT_MAX
-    }
-    for (int k = 0; k < 8; ++k)
-    {
-      double p[3];
-      worldOf(grid,
-        axes,
-        { k & 1 ? r->hi[0] : r->lo[0], k & 2 ? r->hi[1] : r->lo[1], k & 4 ? r->hi[2] : r->lo[2] },
-        p);
-      for (int d = 0; d < 3; ++d)
-      {
-        world[2 * d] = std::min(world[2 * d], p[d]);
-        world[2 * d + 1] = std::max(world[2 * d + 1], p[d]);
-      }
-    }
-    indexBounds->InsertNextTypedTuple(index);
-    bounds->InsertNextTuple(world);
-    std::array<double, 3> centre; // processing axes, continuous vertex coordinates
-    for (int d = 0; d < 3; ++d)
-      centre[d] = r->weightedCentre[d] / static_cast<double>(r->voxels);
-    if (grid.flatAxis >= 0)
-      centre[2] = 0.0;
-    const std::array<double, 3> image = toImageAxes(centre, axes);
-    double c[3];
-    grid.positionToWorld(image.data(), c);
-    centroids->InsertNextTuple(c);
-  }
-  table->AddColumn(ids);
-  table->AddColumn(labels);
-  table->AddColumn(voxels);
-  table->AddColumn(volumes);
-  // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
-  static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
-  static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
-  addColumnsOfComponents(table, indexBounds, indexNames);
-  addColumnsOfComponents(table, bounds, worldNames);
-  centroids->SetComponentName(0, "X");
-  centroids->SetComponentName(1, "Y");
-  centroids->SetComponentName(2, "Z");
-  table->AddColumn(centroids);
-  table->AddColumn(boxes);
+    columns.append(*r, grid, axes, measure);
+  columns.addTo(table);
 }
+
+/// The data objects of the filter's ports.
+struct Ports
+{
+  vtkImageData* input;
+  vtkDataSet* seeds; ///< null without seeds
+  vtkImageData* output;
+  vtkUnstructuredGrid* boxes;
+  vtkTable* table;
+
+  Ports(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+    : input(vtkImageData::GetData(inputVector[0]))
+    , seeds(vtkDataSet::GetData(inputVector[1]))
+    , output(vtkImageData::GetData(outputVector, 0))
+    , boxes(vtkUnstructuredGrid::GetData(outputVector, 1))
+    , table(vtkTable::GetData(outputVector, 2))
+  {
+  }
+};
 
 /// Summary written to the field data of every output.
 struct Summary
 {
   vtkIdType regions = 0, components = 0, boxes = 0, oudbBoxes = 0, extremeVertices = 0;
   std::vector<std::string> sortings;
+
+  /// Counts an object's boxes and extreme vertices, and the sorting its boxes were built in.
+  void add(const ObjectBoxes& o, const std::string& sorting)
+  {
+    this->boxes += static_cast<vtkIdType>(o.cudb.boxes.size());
+    this->oudbBoxes += static_cast<vtkIdType>(o.cudb.oudbBoxCount);
+    this->extremeVertices += static_cast<vtkIdType>(o.extremeVertices);
+    if (std::find(this->sortings.begin(), this->sortings.end(), sorting) == this->sortings.end())
+      this->sortings.push_back(sorting);
+  }
 
   void write(vtkFieldData* fd) const
   {
@@ -522,6 +660,99 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
   vbr::AxisOrder image{ axes[order[0]], axes[order[1]], axes[order[2]] };
   const std::string name = vbr::axisOrderName(image);
   return planar ? name.substr(1) : name; // 2D: lines along B, rows along C
+}
+
+/// The CUDB of one object and the components of its boxes; false when the object is empty or
+/// the work was aborted. Its voxels live only while its EVM is built.
+bool boxesOfObject(const vbr::vtk::Selected& selected,
+  const std::vector<vbr::AxisOrder>& sortings,
+  vbr::Connectivity connectivity,
+  bool planar,
+  const vbr::Execution& exec,
+  ObjectBoxes& o)
+{
+  o.label = selected.label;
+  o.offset = selected.offset;
+  vbr::EVM evm;
+  {
+    vtkLogScopeF(TRACE, "select voxels and extract the EVM");
+    const vbr::BitVolume voxels = selected.select(exec);
+    evm = planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
+  }
+  if (evm.empty())
+    return false;
+  {
+    vtkLogScopeF(TRACE, "EVM to CUDB");
+    if (!buildBestCUDB(evm, sortings, exec, o.cudb))
+      return false;
+  }
+  {
+    vtkLogScopeF(TRACE, "connected components of the boxes");
+    o.components = vbr::labelComponents(o.cudb, connectivity);
+  }
+  o.extremeVertices = evm.size();
+  return true;
+}
+
+/// PASS 1 of the filter: the boxes and components of every selected object, in order; returns
+/// the number of components (regions) of all objects.
+std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
+  const vbr::vtk::InputObjects& in,
+  std::vector<ObjectBoxes>& objects,
+  Summary& summary)
+{
+  const bool planar = in.grid.flatAxis >= 0;
+  const std::vector<vbr::AxisOrder> sortings =
+    candidateSortings(self->GetSortingOrder(), planar, in.axes);
+  const vbr::Connectivity connectivity = self->GetConnectivity() == vtkCUDBConnectivity::VERTEX
+    ? vbr::Connectivity::Vertex
+    : vbr::Connectivity::Face;
+  const std::size_t n = in.objects.size();
+  std::uint32_t regionCount = 0;
+  for (std::size_t i = 0; i < n && !self->GetAbortExecute(); ++i)
+  {
+    const vbr::Execution exec =
+      vbr::vtk::makeExecution(self, 0.05 + 0.65 * i / n, 0.05 + 0.65 * (i + 1) / n);
+    ObjectBoxes o;
+    if (!boxesOfObject(in.objects[i], sortings, connectivity, planar, exec, o))
+      continue; // empty, or aborted
+    o.firstRegion = regionCount;
+    regionCount += o.components.count;
+    summary.add(o, sortingName(o.cudb.order, in.axes, planar));
+    objects.push_back(std::move(o));
+    self->UpdateProgress(0.05 + 0.65 * (i + 1) / n);
+  }
+  return regionCount;
+}
+
+/// Marks the regions that hold a seed, from the image of region numbers painted for them
+/// (returned, to be renumbered), with a warning when no seed lies on a selected voxel.
+vtkSmartPointer<vtkIntArray> markRegionsOfSeeds(vtkCUDBConnectivity* self,
+  vtkDataSet* seeds,
+  const vbr::vtk::InputObjects& in,
+  const std::vector<ObjectBoxes>& objects,
+  std::vector<Region>& regions)
+{
+  vtkLogScopeF(TRACE, "regions of the seeds");
+  vtkSmartPointer<vtkIntArray> ids =
+    paintRegions(objects, nullptr, in.grid, in.axes, vbr::vtk::makeExecution(self, 0.7, 0.8));
+  if (markSeeds(seeds, in.grid, ids->GetPointer(0), regions) == 0 && !regions.empty())
+  {
+    vtkWarningWithObjectMacro(self,
+      << "None of the " << seeds->GetNumberOfPoints()
+      << " seed points lies on a selected voxel: every region is removed.");
+  }
+  return ids;
+}
+
+/// The RegionId array on the output image, with the association of the selected scalars.
+void addRegionIds(vtkImageData* output, vtkIntArray* ids, bool cellData)
+{
+  vtkDataSetAttributes* attributes = cellData
+    ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
+    : static_cast<vtkDataSetAttributes*>(output->GetPointData());
+  attributes->AddArray(ids);
+  attributes->SetActiveScalars("RegionId");
 }
 
 } // namespace
@@ -576,11 +807,6 @@ void vtkCUDBConnectivity::SetSeedData(vtkDataSet* seeds)
   this->SetInputDataObject(1, seeds);
 }
 
-vtkImageData* vtkCUDBConnectivity::GetOutput()
-{
-  return vtkImageData::SafeDownCast(this->GetOutputDataObject(0));
-}
-
 vtkUnstructuredGrid* vtkCUDBConnectivity::GetBoxesOutput()
 {
   return vtkUnstructuredGrid::SafeDownCast(this->GetOutputDataObject(1));
@@ -592,60 +818,25 @@ vtkTable* vtkCUDBConnectivity::GetRegionsOutput()
 }
 
 //------------------------------------------------------------------------------
-vtkTypeBool vtkCUDBConnectivity::ProcessRequest(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
-  {
-    return this->RequestData(inputVector, outputVector);
-  }
-  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
-  {
-    return this->RequestUpdateExtent(inputVector, outputVector);
-  }
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
-  {
-    return this->RequestInformation(inputVector, outputVector);
-  }
-  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
-}
-
-//------------------------------------------------------------------------------
-int vtkCUDBConnectivity::RequestInformation(vtkInformationVector**,
+int vtkCUDBConnectivity::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
   // Port 0 inherits the image's extent, origin and spacing (copied by the executive); the
   // boxes and the table are not structured.
-  for (int port = 1; port < 3; ++port)
-  {
-    vtkInformation* info = outputVector->GetInformationObject(port);
-    info->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-    info->Remove(vtkDataObject::ORIGIN());
-    info->Remove(vtkDataObject::SPACING());
-  }
+  vbr::vtk::removeImageInformation(outputVector, 1);
+  vbr::vtk::removeImageInformation(outputVector, 2);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformationVector** inputVector,
+int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
   // Components are global: the whole image is needed whatever piece is asked for.
-  vtkInformation* in = inputVector[0]->GetInformationObject(0);
-  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
-      6);
-  }
+  vbr::vtk::requestWholeExtent(inputVector[0]);
   return 1;
-}
-
-//------------------------------------------------------------------------------
-const char* vtkCUDBConnectivity::GetSelectionModeAsString()
-{
-  return vbr::vtk::selectionModeName(this->SelectionMode);
 }
 
 const char* vtkCUDBConnectivity::GetConnectivityAsString()
@@ -664,7 +855,8 @@ const char* vtkCUDBConnectivity::GetRegionOrderingAsString()
 }
 
 //------------------------------------------------------------------------------
-int vtkCUDBConnectivity::RequestData(vtkInformationVector** inputVector,
+int vtkCUDBConnectivity::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   return vbr::vtk::executeGuarded(this,
@@ -677,12 +869,10 @@ int vtkCUDBConnectivity::RequestData(vtkInformationVector** inputVector,
 int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
-  vtkDataSet* seeds = vtkDataSet::GetData(inputVector[1]);
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  vtkUnstructuredGrid* boxesOutput = vtkUnstructuredGrid::GetData(outputVector, 1);
-  vtkTable* table = vtkTable::GetData(outputVector, 2);
-  if (!input || !output || !boxesOutput || !table)
+  const Ports ports(inputVector, outputVector);
+  vtkImageData *input = ports.input, *output = ports.output;
+  vtkDataSet* seeds = ports.seeds;
+  if (!input || !output || !ports.boxes || !ports.table)
   {
     vtkErrorMacro(<< "Input must be a vtkImageData.");
     return 0;
@@ -690,133 +880,56 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   output->CopyStructure(input);
   output->GetPointData()->PassData(input->GetPointData());
   output->GetCellData()->PassData(input->GetCellData());
-
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
   vbr::vtk::InputObjects in;
   vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
   settings.bytesPerVoxel = sizeof(std::int32_t) + 1.0 / 8.0; // RegionId image, selection bits
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
-  {
     return 0;
-  }
   if (in.objects.empty() && !scalars)
-  {
     return 1; // an empty image has no components
-  }
-  const vbr::vtk::VoxelGrid& grid = in.grid;
-  const std::array<int, 3>& axes = in.axes;
-  const std::vector<vbr::vtk::Selected>& selected = in.objects;
-  const bool planar = grid.flatAxis >= 0;
   this->UpdateProgress(0.05);
 
-  // Boxes and components of every object; its voxels live only while its EVM is built.
-  const std::vector<vbr::AxisOrder> sortings = candidateSortings(this->SortingOrder, planar, axes);
-  const vbr::Connectivity connectivity =
-    this->Connectivity == VERTEX ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
-  std::vector<ObjectBoxes> objects;
+  // PASS 1: the boxes (CUDB) and their components, object by object (paper 002).
   Summary summary;
-  std::uint32_t regionCount = 0;
-  for (std::size_t i = 0; i < selected.size(); ++i)
-  {
-    const vbr::Execution exec = vbr::vtk::makeExecution(
-      this, 0.05 + 0.65 * i / selected.size(), 0.05 + 0.65 * (i + 1) / selected.size());
-    if (this->GetAbortExecute())
-    {
-      break;
-    }
-    ObjectBoxes o;
-    o.label = selected[i].label;
-    o.offset = selected[i].offset;
-    vbr::EVM evm;
-    {
-      vtkLogScopeF(TRACE, "select voxels and extract the EVM");
-      const vbr::BitVolume voxels = selected[i].select(exec);
-      evm = planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
-    }
-    if (evm.empty())
-    {
-      continue;
-    }
-    {
-      vtkLogScopeF(TRACE, "EVM to CUDB");
-      if (!buildBestCUDB(evm, sortings, exec, o.cudb))
-      {
-        break; // aborted
-      }
-    }
-    {
-      vtkLogScopeF(TRACE, "connected components of the boxes");
-      o.components = vbr::labelComponents(o.cudb, connectivity);
-    }
-    o.extremeVertices = evm.size();
-    o.firstRegion = regionCount;
-    regionCount += o.components.count;
-    summary.boxes += static_cast<vtkIdType>(o.cudb.boxes.size());
-    summary.oudbBoxes += static_cast<vtkIdType>(o.cudb.oudbBoxCount);
-    summary.extremeVertices += static_cast<vtkIdType>(o.extremeVertices);
-    const std::string name = sortingName(o.cudb.order, axes, planar);
-    if (std::find(summary.sortings.begin(), summary.sortings.end(), name) == summary.sortings.end())
-    {
-      summary.sortings.push_back(name);
-    }
-    objects.push_back(std::move(o));
-    this->UpdateProgress(0.05 + 0.65 * (i + 1) / selected.size());
-  }
+  std::vector<ObjectBoxes> objects;
+  const std::uint32_t regionCount = buildObjectBoxes(this, in, objects, summary);
   if (this->GetAbortExecute())
   {
-    output->GetPointData()->Initialize();
+    output->GetPointData()->Initialize(); // aborted: no labels
     output->GetCellData()->Initialize();
     return 1;
   }
 
+  // PASS 2: the regions, filtered (size, seeds, largest) and numbered.
   std::vector<Region> regions = measureRegions(objects, regionCount);
-  const bool useSeeds = seeds != nullptr;
-  vtkSmartPointer<vtkIntArray> ids;
-  if (useSeeds)
-  {
-    // The seeds read their regions from the painted image, which is then renumbered.
-    vtkLogScopeF(TRACE, "regions of the seeds");
-    ids = paintRegions(objects, nullptr, grid, axes, vbr::vtk::makeExecution(this, 0.7, 0.8));
-    if (markSeeds(seeds, grid, ids->GetPointer(0), regions) == 0 && !regions.empty())
-    {
-      vtkWarningMacro(<< "None of the " << seeds->GetNumberOfPoints()
-                      << " seed points lies on a selected voxel: every region is removed.");
-    }
-  }
+  vtkSmartPointer<vtkIntArray> ids; // with seeds, painted now to find their regions
+  if (seeds)
+    ids = markRegionsOfSeeds(this, seeds, in, objects, regions);
   const std::int32_t kept = numberRegions(
-    regions, this->MinimumRegionSize, useSeeds, this->LargestRegions, this->RegionOrdering);
+    regions, this->MinimumRegionSize, seeds != nullptr, this->LargestRegions, this->RegionOrdering);
   summary.components = static_cast<vtkIdType>(regionCount);
   summary.regions = kept;
 
+  // PASS 3: the outputs: RegionId image, boxes, region table.
   {
     vtkLogScopeF(TRACE, "write the region ids");
-    if (useSeeds)
-    {
+    if (seeds)
       renumberRegions(ids, regions);
-    }
     else
-    {
-      ids = paintRegions(objects, &regions, grid, axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
-    }
-    vtkDataSetAttributes* attributes = grid.cellData
-      ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
-      : static_cast<vtkDataSetAttributes*>(output->GetPointData());
-    attributes->AddArray(ids);
-    attributes->SetActiveScalars("RegionId");
+      ids =
+        paintRegions(objects, &regions, in.grid, in.axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
+    addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);
-  {
-    vtkLogScopeF(TRACE, "boxes and region table");
-    if (this->GenerateBoxes)
-    {
-      writeBoxes(objects, regions, grid, axes, in.labelType, boxesOutput);
-    }
-    writeRegionTable(regions, kept, grid, axes, in.labelType, table);
-  }
-  summary.write(output->GetFieldData());
-  summary.write(boxesOutput->GetFieldData());
-  summary.write(table->GetFieldData());
+  vtkLogScopeF(TRACE, "boxes and region table");
+  if (this->GenerateBoxes)
+    writeBoxes(objects, regions, in.grid, in.axes, in.labelType, ports.boxes);
+  writeRegionTable(regions, kept, in.grid, in.axes, in.labelType, ports.table);
+  for (vtkDataObject* port :
+    std::initializer_list<vtkDataObject*>{ output, ports.boxes, ports.table })
+    summary.write(port->GetFieldData());
   return 1;
 }
 
@@ -824,7 +937,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
 void vtkCUDBConnectivity::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
+  os << indent << "Selection:\n";
+  this->Selection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Connectivity: " << this->GetConnectivityAsString() << "\n";
   os << indent << "SortingOrder: " << this->GetSortingOrderAsString() << "\n";
   os << indent << "RegionOrdering: " << this->GetRegionOrderingAsString() << "\n";

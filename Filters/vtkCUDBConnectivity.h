@@ -64,26 +64,21 @@
 #define vtkCUDBConnectivity_h
 
 #include "VoxelBRepFiltersModule.h" // for export macro
-#include "vtkAlgorithm.h"
+#include "vtkImageAlgorithm.h"
+#include "vtkVoxelSelection.h" // for vtkVoxelSelectionMacro
 
 class vtkDataSet;
 class vtkImageData;
 class vtkTable;
 class vtkUnstructuredGrid;
 
-class VOXELBREPFILTERS_EXPORT vtkCUDBConnectivity : public vtkAlgorithm
+class VOXELBREPFILTERS_EXPORT vtkCUDBConnectivity : public vtkImageAlgorithm
 {
 public:
   static vtkCUDBConnectivity* New();
-  vtkTypeMacro(vtkCUDBConnectivity, vtkAlgorithm);
+  vtkTypeMacro(vtkCUDBConnectivity, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum SelectionModes
-  {
-    POSITIVE = 0, ///< every voxel whose value is > 0
-    RANGE = 1,    ///< LowerThreshold <= value <= UpperThreshold
-    LABELS = 2    ///< every distinct value other than BackgroundValue, each on its own
-  };
   enum ConnectivityModes
   {
     FACE = 0,  ///< 6-connected (4 in 2D)
@@ -105,55 +100,13 @@ public:
     SWEEP_ORDER = 1 ///< in the order the sweep meets the regions (labels in increasing order)
   };
 
-  enum ArrayComponents
-  {
-    MAGNITUDE = -1 ///< ArrayComponent value: the Euclidean norm of each tuple
-  };
-
-  ///@{
   /**
-   * How voxels are selected. The default is POSITIVE (value > 0). (The ParaView plugin's
-   * default is Range, with thresholds from the selected array's range: see the XML.)
+   * The selection (SelectionMode Positive, Range or Labels, LowerThreshold, UpperThreshold,
+   * BackgroundValue, ArrayComponent): see vtkVoxelSelection. The default is POSITIVE (value >
+   * 0). (The ParaView plugin's default is Range, with thresholds from the selected array's
+   * range: see the XML.)
    */
-  vtkSetClampMacro(SelectionMode, int, POSITIVE, LABELS);
-  vtkGetMacro(SelectionMode, int);
-  void SetSelectionModeToPositive() { this->SetSelectionMode(POSITIVE); }
-  void SetSelectionModeToRange() { this->SetSelectionMode(RANGE); }
-  void SetSelectionModeToLabels() { this->SetSelectionMode(LABELS); }
-  const char* GetSelectionModeAsString();
-  ///@}
-
-  ///@{
-  /**
-   * Inclusive range of selected values in RANGE mode. The default is [1, VTK_DOUBLE_MAX].
-   * (The ParaView plugin's defaults follow the selected array's range [min, max]: the lower
-   * threshold at its middle, (min + max) / 2 as for ParaView's Contour, the upper at max.)
-   */
-  vtkSetMacro(LowerThreshold, double);
-  vtkGetMacro(LowerThreshold, double);
-  vtkSetMacro(UpperThreshold, double);
-  vtkGetMacro(UpperThreshold, double);
-  ///@}
-
-  ///@{
-  /**
-   * Value that is not a label in LABELS mode. The default is 0.
-   */
-  vtkSetMacro(BackgroundValue, double);
-  vtkGetMacro(BackgroundValue, double);
-  ///@}
-
-  ///@{
-  /**
-   * Component of the input array to use: 0 to N - 1 for an array of N components, or
-   * MAGNITUDE (-1; N means the same, as in ParaView's component selectors and vtkThreshold)
-   * for the Euclidean norm of each tuple, sqrt(v0^2 + ... + v(N-1)^2) computed in double;
-   * Labels mode then labels by the norms and Label is a double. The default is 0.
-   */
-  vtkSetClampMacro(ArrayComponent, int, MAGNITUDE, VTK_INT_MAX);
-  vtkGetMacro(ArrayComponent, int);
-  void SetArrayComponentToMagnitude() { this->SetArrayComponent(MAGNITUDE); }
-  ///@}
+  vtkVoxelSelectionMacro();
 
   ///@{
   /**
@@ -231,23 +184,13 @@ public:
   void SetSeedData(vtkDataSet* seeds);
   ///@}
 
-  /**
-   * The image to label (port 0), for pipelines without a producer.
-   */
-  void SetInputData(vtkDataObject* image) { this->SetInputDataObject(0, image); }
-
   ///@{
   /**
-   * The three outputs.
+   * Outputs 1 and 2 (output 0, the labelled image, is GetOutput()).
    */
-  vtkImageData* GetOutput();
   vtkUnstructuredGrid* GetBoxesOutput();
   vtkTable* GetRegionsOutput();
   ///@}
-
-  vtkTypeBool ProcessRequest(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
 
 protected:
   vtkCUDBConnectivity();
@@ -255,17 +198,12 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  int RequestUpdateExtent(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  int RequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The work of RequestData, which turns exceptions (out of memory) into errors.
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
-  int SelectionMode = POSITIVE;
-  double LowerThreshold = 1.0;
-  double UpperThreshold = VTK_DOUBLE_MAX;
-  double BackgroundValue = 0.0;
-  int ArrayComponent = 0;
   int Connectivity = FACE;
   int SortingOrder = ZYX;
   int RegionOrdering = SIZE_RANK;

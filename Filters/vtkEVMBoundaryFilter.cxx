@@ -298,6 +298,98 @@ void appendSurfelCells(const vbr::vtk::Selected& object,
   }
 }
 
+/// Room in the builder for an object's cells in `mode`.
+void reserveFaceCells(const vbr::BRep& brep,
+  const Triangulation& triangles,
+  const FacePolygons& polygons,
+  int mode,
+  OutputBuilder& builder)
+{
+  std::size_t count = 0, corners = 0;
+  if (mode == vtkEVMBoundaryFilter::TRIANGLES)
+  {
+    for (const auto& t : triangles)
+      count += t.size();
+    corners = 3 * count;
+  }
+  else if (mode == vtkEVMBoundaryFilter::POLYGONS)
+  {
+    for (const auto& face : polygons)
+    {
+      count += face.size();
+      for (const auto& polygon : face)
+        corners += polygon.size();
+    }
+  }
+  else
+  {
+    count = brep.loops.size();
+    corners = brep.points.size() + brep.loops.size();
+  }
+  builder.reserve(count, corners);
+}
+
+/// Where a face's cells go: its id, its parent face and depth (2D), its label, and the point
+/// ids of its loops' corners (contiguous, in loop order).
+struct FaceCellContext
+{
+  vtkIdType faceId;
+  vtkIdType parent;
+  int depth;
+  vbr::vtk::LabelValue label;
+  const vtkIdType* corner; ///< point ids of the face's loops' corners
+};
+
+void appendFanPolygons(const std::vector<std::vector<int>>& polygons,
+  const FaceCellContext& c,
+  std::vector<vtkIdType>& ids,
+  OutputBuilder& builder)
+{
+  for (const std::vector<int>& polygon : polygons)
+  {
+    ids.clear();
+    for (int k : polygon)
+      ids.push_back(c.corner[k]);
+    builder.addCell(ids.data(), ids.size(), c.faceId, 0, c.label, c.parent, c.depth);
+  }
+}
+
+void appendTriangles(const std::vector<std::array<int, 3>>& triangles,
+  const FaceCellContext& c,
+  OutputBuilder& builder)
+{
+  for (const auto& t : triangles)
+  {
+    const vtkIdType triangle[3] = { c.corner[t[0]], c.corner[t[1]], c.corner[t[2]] };
+    builder.addCell(triangle, 3, c.faceId, 0, c.label, c.parent, c.depth);
+  }
+}
+
+/// One polygon (or closed polyline) per loop of the face.
+void appendLoops(const vbr::BRep& brep,
+  const vbr::BRepFace& face,
+  const FaceCellContext& c,
+  bool closePolylines,
+  std::vector<vtkIdType>& ids,
+  OutputBuilder& builder)
+{
+  const vtkIdType* first = c.corner - brep.loops[face.firstLoop].begin; // ids of all corners
+  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+  {
+    const vbr::BRepLoop& loop = brep.loops[l];
+    ids.assign(first + loop.begin, first + loop.end);
+    if (closePolylines)
+      ids.push_back(ids.front());
+    builder.addCell(ids.data(),
+      ids.size(),
+      c.faceId,
+      loop.hole ? 1 : 0,
+      c.label,
+      loop.hole ? c.faceId : c.parent,
+      loop.hole ? c.depth + 1 : c.depth);
+  }
+}
+
 /// The cells of an object's faces: its triangles, its polygons, or one cell per loop.
 void appendFaceCells(const vbr::BRep& brep,
   const Triangulation& triangles,
@@ -310,28 +402,7 @@ void appendFaceCells(const vbr::BRep& brep,
 {
   vbr::ProgressPoll poll(exec, 0.9, 1.0, 1024); // the last tenth of the object's progress
   const std::vector<vtkIdType> cornerIds = builder.pointIds(brep.points, object.offset);
-  if (mode == vtkEVMBoundaryFilter::TRIANGLES)
-  {
-    std::size_t count = 0;
-    for (const auto& t : triangles)
-      count += t.size();
-    builder.reserve(count, 3 * count);
-  }
-  else if (mode == vtkEVMBoundaryFilter::POLYGONS)
-  {
-    std::size_t count = 0, corners = 0;
-    for (const auto& face : polygons)
-    {
-      count += face.size();
-      for (const auto& polygon : face)
-        corners += polygon.size();
-    }
-    builder.reserve(count, corners);
-  }
-  else
-  {
-    builder.reserve(brep.loops.size(), brep.points.size() + brep.loops.size());
-  }
+  reserveFaceCells(brep, triangles, polygons, mode, builder);
   std::vector<vtkIdType> ids;
   ids.reserve(3);
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
@@ -340,47 +411,17 @@ void appendFaceCells(const vbr::BRep& brep,
     if (!poll.tick())
       return; // aborted: the caller empties the output
     const vbr::BRepFace& face = brep.faces[f];
-    const vtkIdType faceId = faceBase + static_cast<vtkIdType>(f);
-    const vtkIdType parent = face.parent < 0 ? -1 : faceBase + face.parent;
+    const FaceCellContext c{ faceBase + static_cast<vtkIdType>(f),
+      face.parent < 0 ? -1 : faceBase + face.parent,
+      face.depth,
+      object.label,
+      cornerIds.data() + brep.loops[face.firstLoop].begin };
     if (mode == vtkEVMBoundaryFilter::POLYGONS)
-    {
-      const vtkIdType* corner = cornerIds.data() + brep.loops[face.firstLoop].begin;
-      for (const std::vector<int>& polygon : polygons[f])
-      {
-        ids.clear();
-        for (int c : polygon)
-          ids.push_back(corner[c]);
-        builder.addCell(ids.data(), ids.size(), faceId, 0, object.label, parent, face.depth);
-      }
-      continue;
-    }
-    if (mode == vtkEVMBoundaryFilter::TRIANGLES)
-    {
-      // Triangle corners index the face's loops' corners, which are contiguous.
-      const vtkIdType* corner = cornerIds.data() + brep.loops[face.firstLoop].begin;
-      for (const auto& t : triangles[f])
-      {
-        const vtkIdType triangle[3] = { corner[t[0]], corner[t[1]], corner[t[2]] };
-        builder.addCell(triangle, 3, faceId, 0, object.label, parent, face.depth);
-      }
-      continue;
-    }
-    for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
-    {
-      const vbr::BRepLoop& loop = brep.loops[l];
-      ids.assign(cornerIds.begin() + loop.begin, cornerIds.begin() + loop.end);
-      if (mode == vtkEVMBoundaryFilter::POLYLINES)
-      {
-        ids.push_back(ids.front());
-      }
-      builder.addCell(ids.data(),
-        ids.size(),
-        faceId,
-        loop.hole ? 1 : 0,
-        object.label,
-        loop.hole ? faceId : parent,
-        loop.hole ? face.depth + 1 : face.depth);
-    }
+      appendFanPolygons(polygons[f], c, ids, builder);
+    else if (mode == vtkEVMBoundaryFilter::TRIANGLES)
+      appendTriangles(triangles[f], c, builder);
+    else
+      appendLoops(brep, face, c, mode == vtkEVMBoundaryFilter::POLYLINES, ids, builder);
   }
 }
 
@@ -432,6 +473,79 @@ FacePolygons fanPolygons(const vbr::BRep& brep, const vbr::Execution& exec)
   return perFace(brep, exec, vbr::fanPolygons);
 }
 
+/// How every object is processed.
+struct ObjectSettings
+{
+  bool planar;
+  vbr::FaceConnectivity connectivity;
+  int outputMode;
+  std::array<int, 3> axes;
+};
+
+/// Counts an object's voxels, surfels, extreme vertices and planes of vertices.
+void countObject(const vbr::BitVolume& voxels,
+  std::size_t count,
+  const vbr::EVM& evm,
+  const ObjectSettings& settings,
+  Statistics& stats)
+{
+  stats.voxels += static_cast<vtkIdType>(count);
+  const std::size_t faces3 = vbr::countSurfels(voxels);
+  stats.surfels += static_cast<vtkIdType>(settings.planar ? faces3 - 2 * count : faces3);
+  stats.extremeVertices += static_cast<vtkIdType>(evm.size());
+  const auto planes = vbr::planesPerAxis(evm);
+  for (int k = 0; k < 3; ++k)
+    stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
+}
+
+/// The cells of one object: voxels -> EVM -> faces (plane sweeps) -> output cells (paper 000).
+/// False when aborted.
+bool appendObject(const vbr::vtk::Selected& object,
+  const ObjectSettings& settings,
+  const vbr::Execution& exec,
+  Statistics& stats,
+  vtkIdType& faceBase,
+  OutputBuilder& builder)
+{
+  vbr::BitVolume voxels;
+  {
+    vtkLogScopeF(TRACE, "select voxels");
+    voxels = object.select(exec);
+  }
+  const std::size_t count = voxels.count();
+  if (count == 0)
+    return true;
+  vbr::EVM evm;
+  {
+    vtkLogScopeF(TRACE, "extreme vertices");
+    evm = settings.planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
+  }
+  countObject(voxels, count, evm, settings, stats);
+  const int mode = settings.outputMode;
+  if (mode == vtkEVMBoundaryFilter::SURFELS)
+  {
+    vtkLogScopeF(TRACE, "surfel cells");
+    appendSurfelCells(object, voxels, settings.planar, builder);
+    return true;
+  }
+  vbr::BRep brep;
+  if (!boundaryOf(evm, settings.planar, settings.connectivity, exec, brep))
+    return false;
+  stats.faces += static_cast<vtkIdType>(brep.faces.size());
+  stats.holes += static_cast<vtkIdType>(brep.holeCount());
+  stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
+  const auto triangles =
+    mode == vtkEVMBoundaryFilter::TRIANGLES ? triangulate(brep, exec) : Triangulation();
+  const auto polygons =
+    mode == vtkEVMBoundaryFilter::POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
+  {
+    vtkLogScopeF(TRACE, "output cells");
+    appendFaceCells(brep, triangles, polygons, object, mode, faceBase, builder, exec);
+  }
+  faceBase += static_cast<vtkIdType>(brep.faces.size());
+  return true;
+}
+
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
 {
   vbr::vtk::addFieldValue(fd, "NumberOfVoxels", stats.voxels);
@@ -465,12 +579,6 @@ int vtkEVMBoundaryFilter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   return 1;
-}
-
-//------------------------------------------------------------------------------
-const char* vtkEVMBoundaryFilter::GetSelectionModeAsString()
-{
-  return vbr::vtk::selectionModeName(this->SelectionMode);
 }
 
 //------------------------------------------------------------------------------
@@ -520,84 +628,30 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   settings.maximumVoxelsPerAxis = (1 << 21) - 2;
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
-  {
     return 0;
-  }
   const vbr::vtk::VoxelGrid& grid = in.grid;
   const std::array<int, 3>& axes = in.axes;
   const std::vector<vbr::vtk::Selected>& objects = in.objects;
   if (std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2] == 0)
-  {
     return 1; // no voxels: an empty boundary
-  }
   const bool planar = grid.flatAxis >= 0;
   this->UpdateProgress(0.1);
 
-  const vbr::FaceConnectivity connectivity =
-    this->MergeNonManifoldFaces ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
+  // One object (a label, or the whole selection) at a time: its voxels, EVM and faces are
+  // released before the next.
+  const ObjectSettings each{ planar,
+    this->MergeNonManifoldFaces ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
+    this->OutputMode,
+    axes };
   OutputBuilder builder(grid, axes, planar);
   Statistics stats;
   vtkIdType faceBase = 0;
-  const bool lines = this->OutputMode == POLYLINES || (planar && this->OutputMode == SURFELS);
-
-  for (std::size_t o = 0; o < objects.size(); ++o)
+  for (std::size_t o = 0; o < objects.size() && !this->GetAbortExecute(); ++o)
   {
-    if (this->GetAbortExecute())
-    {
-      break;
-    }
-    const vbr::vtk::Selected& object = objects[o];
-    const double from = 0.1 + 0.9 * o / objects.size();
     const double to = 0.1 + 0.9 * (o + 1) / objects.size();
-    const vbr::Execution exec = vbr::vtk::makeExecution(this, from, to);
-    vbr::BitVolume voxels;
-    {
-      vtkLogScopeF(TRACE, "select voxels");
-      voxels = object.select(exec);
-    }
-    const std::size_t count = voxels.count();
-    if (count == 0)
-    {
-      continue;
-    }
-    stats.voxels += static_cast<vtkIdType>(count);
-    const std::size_t faces3 = vbr::countSurfels(voxels);
-    stats.surfels += static_cast<vtkIdType>(planar ? faces3 - 2 * count : faces3);
-    vbr::EVM evm;
-    {
-      vtkLogScopeF(TRACE, "extreme vertices");
-      evm = planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
-    }
-    stats.extremeVertices += static_cast<vtkIdType>(evm.size());
-    const auto planes = vbr::planesPerAxis(evm);
-    for (int k = 0; k < 3; ++k)
-    {
-      stats.planes[axes[k]] += static_cast<vtkIdType>(planes[k]);
-    }
-
-    if (this->OutputMode == SURFELS)
-    {
-      vtkLogScopeF(TRACE, "surfel cells");
-      appendSurfelCells(object, voxels, planar, builder);
-      continue;
-    }
-
-    vbr::BRep brep;
-    if (!boundaryOf(evm, planar, connectivity, exec, brep))
-    {
+    const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.1 + 0.9 * o / objects.size(), to);
+    if (!appendObject(objects[o], each, exec, stats, faceBase, builder))
       break; // aborted
-    }
-    stats.faces += static_cast<vtkIdType>(brep.faces.size());
-    stats.holes += static_cast<vtkIdType>(brep.holeCount());
-    stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
-    const auto triangles =
-      this->OutputMode == TRIANGLES ? triangulate(brep, exec) : Triangulation();
-    const auto polygons = this->OutputMode == POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
-    {
-      vtkLogScopeF(TRACE, "output cells");
-      appendFaceCells(brep, triangles, polygons, object, this->OutputMode, faceBase, builder, exec);
-    }
-    faceBase += static_cast<vtkIdType>(brep.faces.size());
     this->UpdateProgress(to);
   }
 
@@ -607,9 +661,10 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   }
   {
     vtkLogScopeF(TRACE, "hand the output to VTK");
+    const bool lines = this->OutputMode == POLYLINES || (planar && this->OutputMode == SURFELS);
     builder.finish(output, lines, in.labelType);
   }
-  vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
+  vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS);
   writeStatistics(stats, output->GetFieldData());
   return 1;
 }
@@ -618,7 +673,8 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
 void vtkEVMBoundaryFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
+  os << indent << "Selection:\n";
+  this->Selection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
   os << indent << "MergeNonManifoldFaces: " << (this->MergeNonManifoldFaces ? "On\n" : "Off\n");
   os << indent << "FlatImagesAs2D: " << (this->FlatImagesAs2D ? "On\n" : "Off\n");

@@ -553,6 +553,117 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
 /// 0.3 to 1 M surfels per second, several times slower with MergeFaces).
 constexpr vtkIdType LargeSurfelCount = vtkIdType(1) << 21;
 
+/// Port 0: the cells of every object's faces in `mode`, their colouring and statistics.
+void writeFaces(const std::vector<ObjectFaces>& objects,
+  const vbr::vtk::InputObjects& in,
+  int mode,
+  bool labelsMode,
+  vtkPolyData* output)
+{
+  Statistics stats;
+  OutputBuilder builder(in.grid, in.labelType);
+  for (const ObjectFaces& o : objects)
+  {
+    stats.add(o);
+    builder.addObject(o, mode);
+  }
+  builder.finish(output);
+  vbr::vtk::setBoundaryColoring(output, labelsMode);
+  stats.write(output->GetFieldData());
+}
+
+/// The options of the polyhedrization from the filter's properties.
+vbr::PolyhedrizationOptions optionsOf(vtkStandardPlanePolyhedrizer* self)
+{
+  vbr::PolyhedrizationOptions options;
+  options.maximumFaceSize = static_cast<std::size_t>(self->GetMaximumFaceSize());
+  options.maximumDepth = static_cast<std::uint32_t>(self->GetMaximumDepth());
+  options.moveToLargerFaces = self->GetMoveToLargerFaces();
+  options.mergeFaces = self->GetMergeFaces();
+  options.mergeFacesUpTo = static_cast<std::size_t>(self->GetMergeFacesUpTo());
+  return options;
+}
+
+/// Counts the surfels of the objects and warns once, before the long work, when they are
+/// so many that the polyhedrization takes long.
+struct SurfelCounter
+{
+  vtkIdType surfels = 0;
+  bool warned = false;
+
+  void add(vtkStandardPlanePolyhedrizer* self, std::size_t count)
+  {
+    this->surfels += static_cast<vtkIdType>(count);
+    if (this->warned || this->surfels <= LargeSurfelCount)
+      return;
+    this->warned = true;
+    vtkWarningWithObjectMacro(self,
+      << "The selection has " << this->surfels
+      << " boundary surfels or more: the polyhedrization will take "
+      << (self->GetMergeFaces() ? "minutes" : "tens of seconds")
+      << " and much memory. To shorten it, select the object rather than "
+         "the background noise (SelectionMode Range with a LowerThreshold "
+         "above the noise), crop the image, or abort.");
+  }
+};
+
+/// The surfel graph and standard faces of one object, over the progress range [from, to]
+/// (5 % selection, 10 % surfel graph, the rest the faces). False when aborted; an empty
+/// object gives empty `voxels`.
+bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
+  const vbr::vtk::Selected& selected,
+  const std::array<int, 3>& axes,
+  const vbr::PolyhedrizationOptions& options,
+  double from,
+  double to,
+  SurfelCounter& counter,
+  ObjectFaces& o,
+  vbr::BitVolume& voxels)
+{
+  const double a = from + 0.05 * (to - from), b = from + 0.15 * (to - from);
+  o.label = selected.label;
+  o.offset = selected.offset;
+  voxels = inImageAxes(selected.select(vbr::vtk::makeExecution(self, from, a)), axes, o.offset);
+  if (voxels.empty())
+    return true;
+  {
+    vtkLogScopeF(TRACE, "surfel graph");
+    if (!vbr::buildSurfelGraph(voxels, vbr::vtk::makeExecution(self, a, b), o.graph))
+      return false;
+  }
+  counter.add(self, o.graph.size());
+  vtkLogScopeF(TRACE, "standard faces");
+  return vbr::polyhedrize(o.graph, options, vbr::vtk::makeExecution(self, b, to), o.poly);
+}
+
+/// PASS 1 of the filter: the faces of every selected object, and with the reversion on their
+/// voxels. False when aborted.
+bool buildObjectFaces(vtkStandardPlanePolyhedrizer* self,
+  const vbr::vtk::InputObjects& in,
+  const vbr::PolyhedrizationOptions& options,
+  std::vector<ObjectFaces>& objects,
+  std::vector<vbr::BitVolume>& selections)
+{
+  SurfelCounter counter;
+  const std::size_t n = in.objects.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (self->GetAbortExecute())
+      return false;
+    ObjectFaces o;
+    vbr::BitVolume voxels;
+    const double from = 0.05 + 0.85 * i / n, to = 0.05 + 0.85 * (i + 1) / n;
+    if (!facesOfObject(self, in.objects[i], in.axes, options, from, to, counter, o, voxels))
+      return false;
+    if (voxels.empty())
+      continue;
+    objects.push_back(std::move(o));
+    if (self->GetGenerateReversion())
+      selections.push_back(std::move(voxels));
+  }
+  return !self->GetAbortExecute();
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -583,11 +694,9 @@ int vtkStandardPlanePolyhedrizer::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
-  // Port 1 keeps the image's extent, origin and spacing (copied by the executive).
-  vtkInformation* info = outputVector->GetInformationObject(0);
-  info->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-  info->Remove(vtkDataObject::ORIGIN());
-  info->Remove(vtkDataObject::SPACING());
+  // Port 1 keeps the image's extent, origin and spacing (copied by the executive); the
+  // faces on port 0 are not structured.
+  vbr::vtk::removeImageInformation(outputVector, 0);
   return 1;
 }
 
@@ -596,20 +705,8 @@ int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector*)
 {
   // Faces are global: the whole image is needed whatever piece is asked for.
-  vtkInformation* in = inputVector[0]->GetInformationObject(0);
-  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
-      6);
-  }
+  vbr::vtk::requestWholeExtent(inputVector[0]);
   return 1;
-}
-
-//------------------------------------------------------------------------------
-const char* vtkStandardPlanePolyhedrizer::GetSelectionModeAsString()
-{
-  return vbr::vtk::selectionModeName(this->SelectionMode);
 }
 
 const char* vtkStandardPlanePolyhedrizer::GetOutputModeAsString()
@@ -660,86 +757,26 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   settings.bytesPerVoxel = 1.0 / 8.0 + (this->GenerateReversion ? 2.0 : 0.0);
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
-  {
     return 0;
-  }
   const vbr::vtk::VoxelGrid& grid = in.grid;
-  const std::vector<vbr::vtk::Selected>& selected = in.objects;
   this->UpdateProgress(0.05);
 
-  vbr::PolyhedrizationOptions options;
-  options.maximumFaceSize = static_cast<std::size_t>(this->MaximumFaceSize);
-  options.maximumDepth = static_cast<std::uint32_t>(this->MaximumDepth);
-  options.moveToLargerFaces = this->MoveToLargerFaces;
-  options.mergeFaces = this->MergeFaces;
-  options.mergeFacesUpTo = static_cast<std::size_t>(this->MergeFacesUpTo);
-
+  // PASS 1: the standard faces of every object (paper 003), one object at a time.
   std::vector<ObjectFaces> objects;
-  std::vector<vbr::BitVolume> selections;
-  vtkIdType surfels = 0;
-  bool warned = false;
-  for (std::size_t i = 0; i < selected.size(); ++i)
+  std::vector<vbr::BitVolume> selections; // the objects' voxels, kept for the self-check
+  if (!buildObjectFaces(this, in, optionsOf(this), objects, selections))
   {
-    const double from = 0.05 + 0.85 * i / selected.size();
-    const double to = 0.05 + 0.85 * (i + 1) / selected.size();
-    // Of each object's share: 5 % selection, 10 % surfel graph, the rest the faces.
-    const double a = from + 0.05 * (to - from), b = from + 0.15 * (to - from);
-    const vbr::Execution exec = vbr::vtk::makeExecution(this, from, a);
-    const vbr::Execution graphExec = vbr::vtk::makeExecution(this, a, b);
-    const vbr::Execution facesExec = vbr::vtk::makeExecution(this, b, to);
-    if (this->GetAbortExecute())
-      break;
-    ObjectFaces o;
-    o.label = selected[i].label;
-    o.offset = selected[i].offset;
-    vbr::BitVolume voxels = inImageAxes(selected[i].select(exec), in.axes, o.offset);
-    if (voxels.empty())
-      continue;
-    {
-      vtkLogScopeF(TRACE, "surfel graph");
-      if (!vbr::buildSurfelGraph(voxels, graphExec, o.graph))
-        break;
-    }
-    surfels += static_cast<vtkIdType>(o.graph.size());
-    if (!warned && surfels > LargeSurfelCount)
-    {
-      warned = true;
-      vtkWarningMacro(<< "The selection has " << surfels
-                      << " boundary surfels or more: the polyhedrization will take "
-                      << (this->MergeFaces ? "minutes" : "tens of seconds")
-                      << " and much memory. To shorten it, select the object rather than "
-                         "the background noise (SelectionMode Range with a LowerThreshold "
-                         "above the noise), crop the image, or abort.");
-    }
-    {
-      vtkLogScopeF(TRACE, "standard faces");
-      if (!vbr::polyhedrize(o.graph, options, facesExec, o.poly))
-        break;
-    }
-    objects.push_back(std::move(o));
-    if (this->GenerateReversion)
-      selections.push_back(std::move(voxels));
-  }
-  if (this->GetAbortExecute())
-  {
-    output->Initialize();
+    output->Initialize(); // aborted
     reversion->Initialize();
     return 1;
   }
 
-  Statistics stats;
-  OutputBuilder builder(grid, in.labelType);
-  for (const ObjectFaces& o : objects)
-  {
-    stats.add(o);
-    builder.addObject(o, this->OutputMode);
-  }
-  builder.finish(output);
-  vbr::vtk::setBoundaryColoring(output, this->SelectionMode == LABELS);
-  stats.write(output->GetFieldData());
+  // PASS 2: the faces as cells.
+  writeFaces(objects, in, this->OutputMode, this->GetSelectionMode() == LABELS, output);
   writeGrid(grid, input, output->GetFieldData());
   this->UpdateProgress(0.95);
 
+  // PASS 3: the voxels rebuilt from the faces alone, checked against the input.
   reversion->Initialize(); // no stale reversion when it is off
   if (this->GenerateReversion)
   {
@@ -765,7 +802,8 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
 void vtkStandardPlanePolyhedrizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  vbr::vtk::printSelection(os, indent, vbr::vtk::selectionSettingsOf(this));
+  os << indent << "Selection:\n";
+  this->Selection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "OutputMode: " << this->GetOutputModeAsString() << "\n";
   os << indent << "MaximumFaceSize: " << this->MaximumFaceSize << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";

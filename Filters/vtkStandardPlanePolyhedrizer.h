@@ -77,6 +77,7 @@
 
 #include "VoxelBRepFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkVoxelSelection.h" // for vtkVoxelSelectionMacro
 
 class VOXELBREPFILTERS_EXPORT vtkStandardPlanePolyhedrizer : public vtkPolyDataAlgorithm
 {
@@ -84,13 +85,6 @@ public:
   static vtkStandardPlanePolyhedrizer* New();
   vtkTypeMacro(vtkStandardPlanePolyhedrizer, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  enum SelectionModes
-  {
-    POSITIVE = 0, ///< every voxel whose value is > 0
-    RANGE = 1,    ///< LowerThreshold <= value <= UpperThreshold
-    LABELS = 2    ///< every distinct value other than BackgroundValue, each on its own
-  };
 
   enum OutputModes
   {
@@ -101,55 +95,13 @@ public:
     TRIANGULATED_FACES = 4
   };
 
-  enum ArrayComponents
-  {
-    MAGNITUDE = -1 ///< ArrayComponent value: the Euclidean norm of each tuple
-  };
-
-  ///@{
   /**
-   * How voxels are selected. The default is POSITIVE (value > 0). (The ParaView plugin's
-   * default is Range, with thresholds from the selected array's range: see the XML.)
+   * The selection (SelectionMode Positive, Range or Labels, LowerThreshold, UpperThreshold,
+   * BackgroundValue, ArrayComponent): see vtkVoxelSelection. The default is POSITIVE (value >
+   * 0). (The ParaView plugin's default is Range, with thresholds from the selected array's
+   * range: see the XML.)
    */
-  vtkSetClampMacro(SelectionMode, int, POSITIVE, LABELS);
-  vtkGetMacro(SelectionMode, int);
-  void SetSelectionModeToPositive() { this->SetSelectionMode(POSITIVE); }
-  void SetSelectionModeToRange() { this->SetSelectionMode(RANGE); }
-  void SetSelectionModeToLabels() { this->SetSelectionMode(LABELS); }
-  const char* GetSelectionModeAsString();
-  ///@}
-
-  ///@{
-  /**
-   * Inclusive range of selected values in RANGE mode. The default is [1, VTK_DOUBLE_MAX].
-   * (The ParaView plugin's defaults follow the selected array's range [min, max]: the lower
-   * threshold at its middle, (min + max) / 2 as for ParaView's Contour, the upper at max.)
-   */
-  vtkSetMacro(LowerThreshold, double);
-  vtkGetMacro(LowerThreshold, double);
-  vtkSetMacro(UpperThreshold, double);
-  vtkGetMacro(UpperThreshold, double);
-  ///@}
-
-  ///@{
-  /**
-   * Value that is not a label in LABELS mode. The default is 0.
-   */
-  vtkSetMacro(BackgroundValue, double);
-  vtkGetMacro(BackgroundValue, double);
-  ///@}
-
-  ///@{
-  /**
-   * Component of the input array to use: 0 to N - 1 for an array of N components, or
-   * MAGNITUDE (-1; N means the same, as in ParaView's component selectors and vtkThreshold)
-   * for the Euclidean norm of each tuple, sqrt(v0^2 + ... + v(N-1)^2) computed in double;
-   * Labels mode then labels by the norms and Label is a double. The default is 0.
-   */
-  vtkSetClampMacro(ArrayComponent, int, MAGNITUDE, VTK_INT_MAX);
-  vtkGetMacro(ArrayComponent, int);
-  void SetArrayComponentToMagnitude() { this->SetArrayComponent(MAGNITUDE); }
-  ///@}
+  vtkVoxelSelectionMacro();
 
   ///@{
   /**
@@ -226,11 +178,6 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int SelectionMode = POSITIVE;
-  double LowerThreshold = 1.0;
-  double UpperThreshold = VTK_DOUBLE_MAX;
-  double BackgroundValue = 0.0;
-  int ArrayComponent = 0;
   int OutputMode = TRIANGULATED_FACES;
   int MaximumFaceSize = 0;
   int MaximumDepth = 0;

@@ -431,6 +431,47 @@ std::string outlinesInBox(const std::vector<vbr::FaceOutline>& outlines,
   return std::string();
 }
 
+/// The voxels of one label's faces, reverted within the box of their corners (the cost per
+/// label is its own box, not the whole grid): the box's origin `lo` and size `boxDims` in the
+/// grid. Returns a problem, or an empty string.
+std::string revertInBox(const std::vector<vbr::FaceOutline>& outlines,
+  const Grid& grid,
+  const vbr::Execution& exec,
+  vbr::BitVolume& voxels,
+  vbr::Point3& lo,
+  std::array<std::int32_t, 3>& boxDims)
+{
+  std::vector<vbr::FaceOutline> boxed;
+  std::string problem = outlinesInBox(outlines, grid.dims, boxed, lo, boxDims);
+  std::vector<vbr::SurfelGraph::Surfel> surfels;
+  if (problem.empty())
+    problem = vbr::revert(boxed, boxDims, surfels, voxels, exec);
+  return problem;
+}
+
+/// Sets the Selection (and the Label, when `labelValues` is given) of a label's voxels, given
+/// in the box at `lo` of size `boxDims`.
+void paintLabel(const vbr::BitVolume& voxels,
+  const std::array<std::int32_t, 3>& boxDims,
+  const vbr::Point3& lo,
+  const Grid& grid,
+  const vbr::vtk::LabelValue& label,
+  vtkUnsignedCharArray* selection,
+  vtkDataArray* labelValues)
+{
+  for (std::int32_t z = 0; z < boxDims[2]; ++z)
+    for (std::int32_t y = 0; y < boxDims[1]; ++y)
+      for (std::int32_t x = 0; x < boxDims[0]; ++x)
+        if (voxels.get(x, y, z))
+        {
+          const vtkIdType i =
+            (vtkIdType(z + lo[2]) * grid.dims[1] + (y + lo[1])) * grid.dims[0] + (x + lo[0]);
+          selection->SetValue(i, 1);
+          if (labelValues)
+            vbr::vtk::setLabel(labelValues, i, label);
+        }
+}
+
 int writeVoxels(vtkAlgorithm* self,
   const Grid& grid,
   const Outlines& byLabel,
@@ -455,20 +496,15 @@ int writeVoxels(vtkAlgorithm* self,
     if (self->GetAbortExecute())
       break;
     const double from = 0.5 + 0.5 * double(done++) / double(byLabel.size());
-    // Each label within the box of its faces' corners: the cost per label is its own box,
-    // not the whole grid.
     vbr::Point3 lo{ 0, 0, 0 };
-    std::vector<vbr::FaceOutline> boxed;
     std::array<std::int32_t, 3> boxDims{ 0, 0, 0 };
-    std::string problem = outlinesInBox(outlines, grid.dims, boxed, lo, boxDims);
-    std::vector<vbr::SurfelGraph::Surfel> surfels;
     vbr::BitVolume voxels;
-    if (problem.empty())
-      problem = vbr::revert(boxed,
-        boxDims,
-        surfels,
-        voxels,
-        vbr::vtk::makeExecution(self, from, from + 0.5 / double(byLabel.size())));
+    const std::string problem = revertInBox(outlines,
+      grid,
+      vbr::vtk::makeExecution(self, from, from + 0.5 / double(byLabel.size())),
+      voxels,
+      lo,
+      boxDims);
     if (self->GetAbortExecute())
       break;
     if (!problem.empty())
@@ -477,17 +513,7 @@ int writeVoxels(vtkAlgorithm* self,
       output->Initialize();
       return 0;
     }
-    for (std::int32_t z = 0; z < boxDims[2]; ++z)
-      for (std::int32_t y = 0; y < boxDims[1]; ++y)
-        for (std::int32_t x = 0; x < boxDims[0]; ++x)
-          if (voxels.get(x, y, z))
-          {
-            const vtkIdType i =
-              (vtkIdType(z + lo[2]) * grid.dims[1] + (y + lo[1])) * grid.dims[0] + (x + lo[0]);
-            selection->SetValue(i, 1);
-            if (withLabels)
-              vbr::vtk::setLabel(labelValues, i, label);
-          }
+    paintLabel(voxels, boxDims, lo, grid, label, selection, withLabels ? labelValues : nullptr);
   }
   if (self->GetAbortExecute())
   {

@@ -18,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSetGet.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUniformGrid.h"
 
 #include <algorithm>
@@ -79,17 +80,8 @@ Execution makeExecution(vtkAlgorithm* algorithm, double progressFrom, double pro
 
 void VoxelGrid::vertexToWorld(const std::array<std::int32_t, 3>& v, double world[3]) const
 {
-  double local[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    const double index = this->extentMin[d] + this->vertexShift[d] + v[d];
-    local[d] = index * this->spacing[d];
-  }
-  for (int r = 0; r < 3; ++r)
-  {
-    world[r] = this->origin[r] + this->direction[3 * r] * local[0] +
-      this->direction[3 * r + 1] * local[1] + this->direction[3 * r + 2] * local[2];
-  }
+  const double position[3] = { double(v[0]), double(v[1]), double(v[2]) }; // exact
+  this->positionToWorld(position, world);
 }
 
 void VoxelGrid::positionToWorld(const double v[3], double world[3]) const
@@ -129,6 +121,89 @@ bool VoxelGrid::worldToVoxel(const double world[3], std::array<std::int32_t, 3>&
   return true;
 }
 
+namespace
+{
+
+/// "the scalar array 'name' has N tuples, the image has <what>".
+std::string tupleMismatch(vtkDataArray* scalars, const std::string& what)
+{
+  std::ostringstream msg;
+  msg << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+      << scalars->GetNumberOfTuples() << " tuples, the image has " << what;
+  return msg.str();
+}
+
+/// The voxels along each axis from the image's extent (`flatCount`, `flat`: the axes of cell
+/// data with a single layer of points). Returns a problem, or an empty string; an image
+/// without points has dims 0.
+std::string voxelsOfExtent(const int extent[6],
+  bool cellData,
+  VoxelGrid& grid,
+  int& flatCount,
+  int& flat)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    const std::int64_t points = std::int64_t(extent[2 * d + 1]) - extent[2 * d] + 1;
+    if (points <= 0)
+    {
+      grid.dims = { 0, 0, 0 };
+      return std::string();
+    }
+    if (points > std::numeric_limits<std::int32_t>::max())
+    {
+      std::ostringstream msg;
+      msg << "the extent spans " << points << " points along axis " << d << ", more than the "
+          << std::numeric_limits<std::int32_t>::max() << " the voxel coordinates hold";
+      return msg.str();
+    }
+    grid.extentMin[d] = extent[2 * d];
+    // Point scalars: voxels centred at the points. Cell scalars: the cells; a single layer of
+    // points carries no thickness, and its cells are pixels of that plane.
+    grid.dims[d] = cellData ? (points > 1 ? points - 1 : 1) : points;
+    grid.vertexShift[d] = cellData ? 0.0 : -0.5;
+    if (cellData && points == 1)
+    {
+      ++flatCount;
+      flat = d;
+    }
+  }
+  return std::string();
+}
+
+/// The axis a 2D image is flat along, or -1: cell data on a single layer of points is always
+/// 2D, otherwise an image with one voxel along exactly one axis when flatImagesAs2D is on.
+int flatAxisOf(const VoxelGrid& grid, int flatCount, int flat, bool flatImagesAs2D)
+{
+  if (flatCount == 1)
+    return flat;
+  if (!flatImagesAs2D)
+    return -1;
+  int singles = 0, single = -1;
+  for (int d = 0; d < 3; ++d)
+    if (grid.dims[d] == 1)
+    {
+      ++singles;
+      single = d;
+    }
+  return singles == 1 ? single : -1;
+}
+
+/// Origin, spacing and direction matrix of the image.
+void readGeometry(vtkImageData* image, VoxelGrid& grid)
+{
+  image->GetOrigin(grid.origin.data());
+  image->GetSpacing(grid.spacing.data());
+  if (vtkMatrix3x3* m = image->GetDirectionMatrix())
+  {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        grid.direction[3 * r + c] = m->GetElement(r, c);
+  }
+}
+
+} // namespace
+
 std::string describeVoxels(vtkImageData* image,
   vtkDataArray* scalars,
   bool cellData,
@@ -140,91 +215,20 @@ std::string describeVoxels(vtkImageData* image,
   grid = VoxelGrid();
   grid.cellData = cellData;
   int flatCount = 0, flat = -1;
-  for (int d = 0; d < 3; ++d)
-  {
-    const std::int64_t points = std::int64_t(extent[2 * d + 1]) - extent[2 * d] + 1;
-    if (points <= 0)
-    {
-      grid.dims = { 0, 0, 0 };
-      if (scalars->GetNumberOfTuples() != 0)
-      {
-        std::ostringstream msg;
-        msg << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-            << scalars->GetNumberOfTuples() << " tuples, the image has no points";
-        return msg.str();
-      }
-      return std::string();
-    }
-    if (points > std::numeric_limits<std::int32_t>::max())
-    {
-      std::ostringstream msg;
-      msg << "the extent spans " << points << " points along axis " << d << ", more than the "
-          << std::numeric_limits<std::int32_t>::max() << " the voxel coordinates hold";
-      return msg.str();
-    }
-    grid.extentMin[d] = extent[2 * d];
-    if (cellData)
-    {
-      // A single layer of points carries no thickness: the cells are pixels of that plane.
-      grid.dims[d] = points > 1 ? points - 1 : 1;
-      grid.vertexShift[d] = 0.0;
-      if (points == 1)
-      {
-        ++flatCount;
-        flat = d;
-      }
-    }
-    else
-    {
-      grid.dims[d] = points;
-      grid.vertexShift[d] = -0.5;
-    }
-  }
+  const std::string problem = voxelsOfExtent(extent, cellData, grid, flatCount, flat);
+  if (!problem.empty())
+    return problem;
   const vtkIdType expected = static_cast<vtkIdType>(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  if (expected == 0)
+    return scalars->GetNumberOfTuples() == 0 ? std::string() : tupleMismatch(scalars, "no points");
   if (scalars->GetNumberOfTuples() != expected)
-  {
-    std::ostringstream msg;
-    msg << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-        << scalars->GetNumberOfTuples() << " tuples, the image has " << expected
-        << (cellData ? " cells" : " points");
-    return msg.str();
-  }
+    return tupleMismatch(scalars, std::to_string(expected) + (cellData ? " cells" : " points"));
   if (cellData && flatCount > 1)
-  {
     return "cell scalars of an image that is flat along two axes describe no voxels";
-  }
-  if (flatCount == 1)
-  {
-    grid.flatAxis = flat; // cell data on a single layer of points: always 2D
-  }
-  else if (flatImagesAs2D)
-  {
-    int singles = 0, single = -1;
-    for (int d = 0; d < 3; ++d)
-    {
-      if (grid.dims[d] == 1)
-      {
-        ++singles;
-        single = d;
-      }
-    }
-    if (singles == 1)
-    {
-      grid.flatAxis = single;
-    }
-  }
+  grid.flatAxis = flatAxisOf(grid, flatCount, flat, flatImagesAs2D);
   if (grid.flatAxis >= 0)
-  {
     grid.vertexShift[grid.flatAxis] = 0.0; // the contours lie in the image's plane
-  }
-  image->GetOrigin(grid.origin.data());
-  image->GetSpacing(grid.spacing.data());
-  if (vtkMatrix3x3* m = image->GetDirectionMatrix())
-  {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        grid.direction[3 * r + c] = m->GetElement(r, c);
-  }
+  readGeometry(image, grid);
   return geometryProblem(grid);
 }
 
@@ -345,19 +349,6 @@ void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
   fd->AddArray(a);
 }
 
-const char* selectionModeName(int mode)
-{
-  switch (mode)
-  {
-    case SelectPositive:
-      return "Positive";
-    case SelectRange:
-      return "Range";
-    default:
-      return "Labels";
-  }
-}
-
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,
   int association,
@@ -372,16 +363,16 @@ std::string readVoxels(vtkImageData* image,
     return "The input array must be point or cell data.";
   }
   const int components = scalars->GetNumberOfComponents();
-  if (component < MagnitudeComponent || component > components)
+  if (component < vtkVoxelSelection::MAGNITUDE || component > components)
   {
     std::ostringstream msg;
     msg << "ArrayComponent " << component << " is out of range: the array '"
         << (scalars->GetName() ? scalars->GetName() : "") << "' has " << components
-        << " component(s) (0 to " << components - 1 << ", or " << MagnitudeComponent << " or "
-        << components << " for the magnitude).";
+        << " component(s) (0 to " << components - 1 << ", or " << vtkVoxelSelection::MAGNITUDE
+        << " or " << components << " for the magnitude).";
     return msg.str();
   }
-  if (component == MagnitudeComponent || component == components)
+  if (component == vtkVoxelSelection::MAGNITUDE || component == components)
   {
     contiguous = tupleNorms(scalars);
     scalars = contiguous;
@@ -429,7 +420,8 @@ std::string refuseIfTooLarge(vtkDataArray* scalars, const SelectionSettings& set
 {
   const double tuples = double(scalars->GetNumberOfTuples());
   const int nc = scalars->GetNumberOfComponents();
-  const bool magnitude = settings.component == MagnitudeComponent || settings.component == nc;
+  const bool magnitude =
+    settings.component == vtkVoxelSelection::MAGNITUDE || settings.component == nc;
   const double copy = magnitude          ? double(sizeof(double))
     : scalars->HasStandardMemoryLayout() ? 0.0
                                          : double(nc) * scalars->GetDataTypeSize();
@@ -440,7 +432,7 @@ std::string refuseIfTooLarge(vtkDataArray* scalars, const SelectionSettings& set
 /// Warnings about selection settings that select nothing.
 void warnAboutSettings(vtkAlgorithm* algorithm, const SelectionSettings& settings)
 {
-  if (settings.mode != SelectRange)
+  if (settings.mode != vtkVoxelSelection::RANGE)
     return;
   if (std::isnan(settings.lower) || std::isnan(settings.upper))
     vtkWarningWithObjectMacro(algorithm,
@@ -464,6 +456,36 @@ void warnAboutGrid(vtkAlgorithm* algorithm, vtkImageData* image, const VoxelGrid
     vtkWarningWithObjectMacro(algorithm,
       << "The input has blanked points or cells: blanking is ignored, blanked voxels are "
          "selected by their values like the others.");
+}
+
+} // namespace
+
+namespace
+{
+
+/// A message when the grid has more voxels along an axis than `maximum` (0: no limit).
+std::string axisTooLong(const VoxelGrid& grid, std::int32_t maximum)
+{
+  for (int d = 0; d < 3; ++d)
+    if (maximum > 0 && grid.dims[d] > maximum)
+    {
+      std::ostringstream msg;
+      msg << "The image has " << grid.dims[d] << " voxels along axis " << d << "; at most "
+          << maximum << " are supported.";
+      return msg.str();
+    }
+  return std::string();
+}
+
+/// Labels mode on a grey-value image extracts thousands of labels one by one: say so first.
+void warnAboutManyLabels(vtkAlgorithm* algorithm, std::size_t labels)
+{
+  if (labels <= ManyLabels)
+    return;
+  vtkWarningWithObjectMacro(algorithm,
+    << "Labels mode: the selected array has " << labels
+    << " distinct labels, each extracted on its own; this can take very long. For a grey-value "
+       "image use Selection Mode Range (a threshold) instead.");
 }
 
 } // namespace
@@ -501,14 +523,12 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   }
   if (double(out.grid.dims[0]) * out.grid.dims[1] * out.grid.dims[2] == 0)
     return true;
-  for (int d = 0; d < 3; ++d)
-    if (settings.maximumVoxelsPerAxis > 0 && out.grid.dims[d] > settings.maximumVoxelsPerAxis)
-    {
-      vtkErrorWithObjectMacro(algorithm,
-        << "The image has " << out.grid.dims[d] << " voxels along axis " << d << "; at most "
-        << settings.maximumVoxelsPerAxis << " are supported.");
-      return false;
-    }
+  const std::string tooLong = axisTooLong(out.grid, settings.maximumVoxelsPerAxis);
+  if (!tooLong.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << tooLong);
+    return false;
+  }
   warnAboutGrid(algorithm, image, out.grid);
   out.axes = processingAxes(out.grid);
   out.labelType = scalars->GetDataType();
@@ -529,13 +549,8 @@ bool readInputObjects(vtkAlgorithm* algorithm,
       algorithm, << "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
     return false;
   }
-  if (settings.mode == SelectLabels && out.objects.size() > ManyLabels)
-  {
-    vtkWarningWithObjectMacro(algorithm,
-      << "Labels mode: the selected array has " << out.objects.size()
-      << " distinct labels, each extracted on its own; this can take very long. For a grey-value "
-         "image use Selection Mode Range (a threshold) instead.");
-  }
+  if (settings.mode == vtkVoxelSelection::LABELS)
+    warnAboutManyLabels(algorithm, out.objects.size());
   return true;
 }
 
@@ -565,14 +580,34 @@ int executeGuarded(vtkAlgorithm* algorithm,
   }
 }
 
-void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings)
+void requestWholeExtent(vtkInformationVector* input)
 {
-  os << indent << "SelectionMode: " << selectionModeName(settings.mode) << "\n";
-  os << indent << "LowerThreshold: " << settings.lower << "\n";
-  os << indent << "UpperThreshold: " << settings.upper << "\n";
-  os << indent << "BackgroundValue: " << settings.background << "\n";
-  os << indent << "ArrayComponent: " << settings.component
-     << (settings.component == MagnitudeComponent ? " (Magnitude)\n" : "\n");
+  vtkInformation* in = input->GetInformationObject(0);
+  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
+      6);
+  }
+}
+
+void removeImageInformation(vtkInformationVector* outputVector, int port)
+{
+  vtkInformation* info = outputVector->GetInformationObject(port);
+  info->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  info->Remove(vtkDataObject::ORIGIN());
+  info->Remove(vtkDataObject::SPACING());
+}
+
+SelectionSettings selectionSettingsOf(vtkVoxelSelection* selection)
+{
+  SelectionSettings s;
+  s.mode = selection->GetMode();
+  s.lower = selection->GetLowerThreshold();
+  s.upper = selection->GetUpperThreshold();
+  s.background = selection->GetBackgroundValue();
+  s.component = selection->GetArrayComponent();
+  return s;
 }
 
 namespace

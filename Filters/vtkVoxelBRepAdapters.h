@@ -7,6 +7,8 @@
 #include "Execution.h"
 #include "Selection.h"
 
+#include "vtkVoxelSelection.h"
+
 #include "vtkDataArray.h"
 #include "vtkIndent.h"
 #include "vtkIntArray.h"
@@ -73,8 +75,8 @@ std::string geometryProblem(const VoxelGrid& grid);
 /// Checks the input array of a filter and describes its voxels: point or cell data, the
 /// component in range, tuples matching the image. Arrays not stored as contiguous tuples
 /// (SOA, implicit arrays) are copied once into `contiguous`, and `scalars` then points to
-/// the copy; for the magnitude (MagnitudeComponent, or the number of components) the copy is
-/// the norms of the tuples and `component` becomes 0. Returns an error message, or an empty
+/// the copy; for the magnitude (vtkVoxelSelection::MAGNITUDE, or the number of components) the copy
+/// is the norms of the tuples and `component` becomes 0. Returns an error message, or an empty
 /// string.
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,
@@ -98,17 +100,6 @@ void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples);
 
 /// Appends a one-value field array.
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value);
-
-/// Name of a SelectionMode value ("Positive", "Range", "Labels").
-const char* selectionModeName(int mode);
-
-/// How voxels are selected (the SelectionMode of the filters).
-enum SelectionMode
-{
-  SelectPositive = 0, ///< value > 0
-  SelectRange = 1,    ///< lower <= value <= upper
-  SelectLabels = 2    ///< every distinct value other than the background, each on its own
-};
 
 /// A label exactly as the selected values' type holds it (int64 labels above 2^53 stay
 /// exact, unlike through a double): the value's bytes, read back in that type. The type is
@@ -220,7 +211,7 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
   };
   Box3 whole;
   whole.hi = grid.dims;
-  if (mode == SelectLabels)
+  if (mode == vtkVoxelSelection::LABELS)
   {
     // A background the type cannot hold exactly means every value is a label.
     T typedBackground{};
@@ -232,7 +223,7 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
       add(label, entry.second, [label](T v) { return v == label; });
     }
   }
-  else if (mode == SelectPositive)
+  else if (mode == vtkVoxelSelection::POSITIVE)
   {
     add(T(1), whole, [](T v) { return v > T(0); });
   }
@@ -313,10 +304,6 @@ bool dispatchScalars(vtkDataArray* scalars, int component, const VoxelGrid& grid
   return true;
 }
 
-/// ArrayComponent value that selects on the Euclidean norm of each tuple (the number of
-/// components, what ParaView's component selectors and vtkThreshold use, means the same).
-constexpr int MagnitudeComponent = -1;
-
 /// Labels mode warns before the work when the selection has more distinct labels than this
 /// (each label is extracted on its own: a grey-value volume in Labels mode runs for minutes).
 constexpr std::size_t ManyLabels = 1000;
@@ -324,7 +311,7 @@ constexpr std::size_t ManyLabels = 1000;
 /// The selection properties the filters share.
 struct SelectionSettings
 {
-  int mode = SelectPositive;
+  int mode = vtkVoxelSelection::POSITIVE;
   double lower = 1.0;
   double upper = VTK_DOUBLE_MAX;
   double background = 0.0;
@@ -337,17 +324,13 @@ struct SelectionSettings
   double bytesPerVoxel = 1.0 / 8.0;
 };
 
-/// The selection properties of a filter (through its public getters).
+/// The values of a selection.
+SelectionSettings selectionSettingsOf(vtkVoxelSelection* selection);
+/// The values of a filter's selection (see vtkVoxelSelectionMacro).
 template<typename Filter>
 SelectionSettings selectionSettingsOf(Filter* filter)
 {
-  SelectionSettings s;
-  s.mode = filter->GetSelectionMode();
-  s.lower = filter->GetLowerThreshold();
-  s.upper = filter->GetUpperThreshold();
-  s.background = filter->GetBackgroundValue();
-  s.component = filter->GetArrayComponent();
-  return s;
+  return selectionSettingsOf(filter->GetSelection());
 }
 
 /// The objects of a filter's input image, ready to process.
@@ -372,6 +355,13 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   const SelectionSettings& settings,
   InputObjects& out);
 
+/// Asks the input of `input` (a port's information vector) for its whole extent, whatever
+/// piece the output is asked for: the filters' results (faces, components) are global.
+void requestWholeExtent(vtkInformationVector* input);
+/// Removes the extent, origin and spacing the executive copies from an image input to output
+/// `port`, whose data is not an image.
+void removeImageInformation(vtkInformationVector* outputVector, int port);
+
 /// Runs a filter's execution. An exception (out of memory, an inconsistency the core
 /// detected) becomes an error "<what> failed: ..." and empties every output: never a crash.
 int executeGuarded(vtkAlgorithm* algorithm,
@@ -388,9 +378,6 @@ vtkSmartPointer<vtkDataArray> tupleNorms(vtkDataArray* scalars);
 /// output has the same range, so a shared map needs no rescale), and the active cell scalars:
 /// `Label` in Labels mode, else `FaceColor`. No-op without a FaceId array.
 void setBoundaryColoring(vtkPolyData* output, bool labelsMode);
-
-/// PrintSelf lines of the selection properties.
-void printSelection(ostream& os, vtkIndent indent, const SelectionSettings& settings);
 
 } // namespace vtk
 } // namespace vbr

@@ -18,10 +18,10 @@ Filters/Testing/Python/TestPluginNames.py (the VTK classes are wrapped there).
 
 import re
 import sys
-import xml.etree.ElementTree as ET
 
 from paraview.simple import *  # noqa: F401,F403
 from pvtest import expect, finish
+from voxelbrep_testing import plugin_proxies
 
 plugin, xml_path = sys.argv[1], sys.argv[2]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -90,13 +90,12 @@ def check_groups(proxy_name, proxy_xml, properties):
                name in declared, True)
 
 
-root = ET.parse(xml_path).getroot()
 phantom = VoxelPhantom(Dimensions=[16, 16, 16])
 phantom.UpdatePipeline()  # array domains need the data information
 SetActiveSource(phantom)
 polyhedrizer = StandardPlanePolyhedrizer(Input=phantom)
 polyhedrizer.UpdatePipeline()
-proxies = list(root.iter("SourceProxy"))
+proxies = plugin_proxies(xml_path)  # as ParaView reads them: bases merged in
 expect("the XML declares the five proxies", len(proxies), 5)
 for proxy_xml in proxies:
     proxy_name = proxy_xml.get("name")

@@ -6,15 +6,12 @@ Usage: python TestPluginNames.py /path/to/Plugin/VoxelBRep.xml
 """
 
 import sys
-import xml.etree.ElementTree as ET
-
 import voxelbrep
-from voxelbrep_testing import Checker
+from voxelbrep_testing import Checker, plugin_proxies
 
 check = Checker("TestPluginNames")
 
-root = ET.parse(sys.argv[1]).getroot()
-for proxy in root.iter("SourceProxy"):
+for proxy in plugin_proxies(sys.argv[1]):
     cls = proxy.get("class")
     obj = getattr(voxelbrep, cls)()
     check.equal(cls + ": progress text", obj.GetProgressText(), proxy.get("label"))

@@ -182,7 +182,30 @@ def check_api_defaults():
         check.equal(cls.__name__ + ": default ArrayComponent", f.GetArrayComponent(), 0)
 
 
+def check_selection_object():
+    """One vtkVoxelSelection per filter: setting it directly (GetSelection()) re-executes the
+    filter with the new values (its MTime is folded into the filter's), and the filter's own
+    setters and the object agree."""
+    values = np.arange(4 * 5 * 6, dtype=np.int32).reshape(4, 5, 6)  # [z, y, x]
+    image = vector_image(values[..., np.newaxis], "values")
+    for cls in FILTERS:
+        f = run(cls(), image, cls.RANGE, 0, 10, 200)
+        name = cls.__name__
+        check.equal(name + ": Range [10, 200]", selected_count(f), int(((values >= 10) & (values <= 200)).sum()))
+        before = f.GetMTime()
+        f.GetSelection().SetLowerThreshold(50)
+        check.true(name + ": the selection's MTime is the filter's", f.GetMTime() > before)
+        check.equal(name + ": GetLowerThreshold follows the selection", f.GetLowerThreshold(), 50.0)
+        f.Update()
+        check.equal(name + ": re-executed with the selection's [50, 200]", selected_count(f),
+                    int(((values >= 50) & (values <= 200)).sum()))
+        f.SetSelectionModeToLabels()
+        check.equal(name + ": the filter's setter reaches the selection",
+                    f.GetSelection().GetModeAsString(), "Labels")
+
+
 check_api_defaults()
+check_selection_object()
 check_magnitude()
 for dtype, labels in ((np.int64, (2 ** 53, 2 ** 53 + 1)), (np.uint8, (7, 200)),
                       (np.float32, (0.5, 2.25)), (np.int64, (-(2 ** 62) - 1, 2 ** 62 + 3))):

@@ -197,3 +197,34 @@ def faces_and_holes_3d(mask, merge_non_manifold):
                 faces += f
                 holes += h
     return faces, holes
+
+
+def plugin_proxies(xml_path):
+    """The proxies of the plugin XML that ParaView makes (not the bases in voxelbrep_bases),
+    each as ParaView reads it: the elements of its base proxy (base_proxygroup,
+    base_proxyname) first, then its own, an own property replacing the base's of that name."""
+    import copy
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(xml_path).getroot()
+    groups = {g.get("name"): {p.get("name"): p for p in g} for g in root.iter("ProxyGroup")}
+    proxies = []
+    for group_name, members in groups.items():
+        if group_name == "voxelbrep_bases":
+            continue
+        for proxy in members.values():
+            base_group = proxy.get("base_proxygroup")
+            if base_group is None:
+                proxies.append(proxy)
+                continue
+            base = groups[base_group][proxy.get("base_proxyname")]
+            merged = copy.deepcopy(base)
+            merged.attrib = dict(proxy.attrib)
+            own = {p.get("name") for p in proxy if p.get("name")}
+            for element in list(merged):
+                if element.get("name") in own:
+                    merged.remove(element)
+            for element in proxy:
+                merged.append(copy.deepcopy(element))
+            proxies.append(merged)
+    return proxies
