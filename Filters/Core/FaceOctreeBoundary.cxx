@@ -37,7 +37,7 @@ std::vector<int> joined(const std::vector<int>& first, const std::vector<int>& s
   return out;
 }
 
-int fanApex(const std::vector<Point2L>& flat);
+int fanApex(const std::vector<Point2L>& flat, bool* strictFan = nullptr);
 
 struct Assembler
 {
@@ -100,15 +100,22 @@ void Assembler::addNodePolygon(std::int32_t id, BoundaryCells cells)
     std::vector<Point2L> sub;
     for (int i : piece)
       sub.push_back(flat[i]);
-    const int apex = std::max(0, fanApex(sub));
+    bool strict = false;
+    const int apex = std::max(0, fanApex(sub, &strict));
     std::vector<std::int32_t> ids;
     for (std::size_t k = 0; k < piece.size(); ++k)
       ids.push_back(loop[piece[(apex + k) % piece.size()]]);
     if (cells == BoundaryCells::Polygons)
       this->addCell(ids, id, node.level, this->octree.projected);
-    else
+    else if (strict)
       for (std::size_t k = 1; k + 1 < ids.size(); ++k)
         this->addCell({ ids[0], ids[k], ids[k + 1] }, id, node.level, this->octree.projected);
+    else // straight runs on every side: ear clipping never makes a flat triangle
+      for (const Triangle& t : triangulateSimplePolygon(sub))
+        this->addCell({ loop[piece[t[0]]], loop[piece[t[1]]], loop[piece[t[2]]] },
+          id,
+          node.level,
+          this->octree.projected);
   }
 }
 
@@ -141,8 +148,9 @@ void Assembler::addSewingTriangles(const Quad& q)
   }
 }
 
-/// A corner whose fan covers the polygon, preferring one with no flat triangle; -1 if none.
-int fanApex(const std::vector<Point2L>& flat)
+/// A corner whose fan covers the polygon, preferring one with no flat triangle (then
+/// *strictFan is set); -1 if none.
+int fanApex(const std::vector<Point2L>& flat, bool* strictFan)
 {
   const std::size_t n = flat.size();
   int covering = -1;
@@ -154,7 +162,11 @@ int fanApex(const std::vector<Point2L>& flat)
     for (std::size_t i = 1; i + 1 < n && strict; ++i)
       strict = turn(flat[apex], flat[(apex + i) % n], flat[(apex + i + 1) % n]) > 0;
     if (strict)
+    {
+      if (strictFan)
+        *strictFan = true;
       return int(apex);
+    }
     if (covering < 0)
       covering = int(apex);
   }
