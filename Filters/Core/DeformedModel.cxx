@@ -197,7 +197,11 @@ inline int cornerConfig(const BitVolume& interior, std::int32_t i, std::int32_t 
 /// inside the neighbour through that face (a rule both see alike): then one of the two holds
 /// the face's two crossings pairs on two different chains, so that two points are never
 /// linked twice.
-inline int chainKey(const BitVolume& interior, std::int32_t i, std::int32_t j, std::int32_t k)
+inline int chainKey(const BitVolume& interior,
+  std::int32_t i,
+  std::int32_t j,
+  std::int32_t k,
+  const std::vector<std::uint64_t>& flipped)
 {
   const int cfg = cornerConfig(interior, i, j, k);
   int key = cfg;
@@ -208,7 +212,11 @@ inline int chainKey(const BitVolume& interior, std::int32_t i, std::int32_t j, s
     std::array<std::int32_t, 3> w{ i, j, k };
     w[face / 2] += (face % 2) ? 1 : -1;
     const int other = cornerConfig(interior, w[0], w[1], w[2]);
-    if (joinedInside(cfg, face) || joinedInside(other, face ^ 1))
+    const auto& n = interior.dims(); // one more vertex than voxels along each axis
+    const std::uint64_t id =
+      (std::uint64_t(i) + std::uint64_t(n[0] - 1) * (j + std::uint64_t(n[1] - 1) * k)) * 8 + face;
+    const bool flip = std::binary_search(flipped.begin(), flipped.end(), id);
+    if ((joinedInside(cfg, face) || joinedInside(other, face ^ 1)) != flip)
       key |= 1 << (8 + face);
   }
   return key;
@@ -240,6 +248,7 @@ struct PointBuilder
   std::vector<std::uint16_t> config;  ///< chaining key of each point's voxel
   std::vector<std::uint8_t> cycle;    ///< the point's chain in its voxel
   double margin = 0.0;
+  std::vector<std::uint64_t> flipped; ///< ambiguous faces chained the other way (sorted)
 
   std::int64_t keyOf(std::int32_t i, std::int32_t j, std::int32_t k) const
   {
@@ -256,7 +265,7 @@ struct PointBuilder
       {
         const std::int32_t i = std::int32_t(w * 64 + __builtin_ctzll(m));
         if (i < this->object.size(0))
-          visit(i, chainKey(this->interior, i, j, k));
+          visit(i, chainKey(this->interior, i, j, k, this->flipped));
       }
   }
 
@@ -469,6 +478,42 @@ void buildLinks(DeformedModel& m)
   }
 }
 
+/// The ambiguous faces (voxel linear index * 8 + face, for both voxels of the face) across
+/// which two points are linked twice.
+std::vector<std::uint64_t> doublyLinkedFaces(const DeformedModel& m)
+{
+  std::vector<std::uint64_t> out;
+  const auto& n = m.dims;
+  auto id = [&](const std::array<std::int32_t, 3>& v, int face)
+  {
+    return (std::uint64_t(v[0]) + std::uint64_t(n[0]) * (v[1] + std::uint64_t(n[1]) * v[2])) * 8 +
+      face;
+  };
+  for (std::size_t p = 0; p < m.pointCount(); ++p)
+  {
+    std::vector<std::int32_t> next(
+      m.links.begin() + m.linkOffsets[p], m.links.begin() + m.linkOffsets[p + 1]);
+    std::sort(next.begin(), next.end());
+    for (std::size_t i = 1; i < next.size(); ++i)
+    {
+      if (next[i] != next[i - 1])
+        continue;
+      const auto& a = m.voxel[p];
+      const auto& b = m.voxel[next[i]];
+      for (int axis = 0; axis < 3; ++axis)
+        if (a[axis] != b[axis])
+        {
+          const bool up = b[axis] > a[axis];
+          out.push_back(id(a, 2 * axis + (up ? 1 : 0)));
+          out.push_back(id(b, 2 * axis + (up ? 0 : 1)));
+        }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 // ---- Relaxation and GDM normals ----
 
 double relaxColour(DeformedModel& m,
@@ -594,10 +639,23 @@ DeformedModel buildDeformedModel(const BitVolume& object,
   if (object.voxelCount() == 0)
     return m;
   const BitVolume interior = interiorVertices(object, exec);
-  PointBuilder points{ object, interior, m, {}, {}, {}, options.margin };
-  points.build(exec);
-  buildQuads(points, interior, m, exec);
-  buildLinks(m);
+  std::vector<std::uint64_t> flipped;
+  for (int attempt = 0;; ++attempt)
+  {
+    m = DeformedModel();
+    m.dims = object.dims();
+    PointBuilder points{ object, interior, m, {}, {}, {}, options.margin, flipped };
+    points.build(exec);
+    buildQuads(points, interior, m, exec);
+    buildLinks(m);
+    // Where the rule still links two points twice (chains joined through other faces), the
+    // face between them is chained the other way, and the net built again.
+    const std::vector<std::uint64_t> twice = doublyLinkedFaces(m);
+    if (twice.empty() || attempt == 8)
+      break;
+    flipped.insert(flipped.end(), twice.begin(), twice.end());
+    std::sort(flipped.begin(), flipped.end());
+  }
   countBoundaryVoxels(object, interior, m);
   relax(m, options, exec);
   computeNormals(m, exec);

@@ -38,7 +38,7 @@ def nifti(path):
         b = f.read()
     dims = np.frombuffer(b, "<i2", 8, 40)
     offset = int(np.frombuffer(b, "<f4", 1, 108)[0])
-    nx, ny, nz = dims[1:4]
+    nx, ny, nz = (int(d) for d in dims[1:4])
     return np.frombuffer(b, np.uint8, nx * ny * nz, offset).reshape(nz, ny, nx)
 
 
