@@ -433,6 +433,107 @@ Vec3 projectIntoBox(const Vec3& p, const Vec3& n, double t, const Vec3& lo, cons
   return at(breaks.back());
 }
 
+namespace
+{
+
+/// The first face octree: every voxel with a single point is a face node, with its GDM plane.
+void voxelFaceNodes(const DeformedModel& model, FaceOctree& out, std::vector<int>& faceLevel)
+{
+  for (std::size_t p = 0; p < model.pointCount(); ++p)
+  {
+    if (model.shared[p])
+      continue;
+    FaceNode node;
+    node.lo = model.voxel[p];
+    node.hi = { node.lo[0] + 1, node.lo[1] + 1, node.lo[2] + 1 };
+    const double len = norm(model.normal[p]);
+    node.normal = len > 0
+      ? Vec3{ model.normal[p][0] / len, model.normal[p][1] / len, model.normal[p][2] / len }
+      : Vec3{ 0, 0, 1 };
+    node.offset = dot(node.normal, model.position[p]);
+    out.nodeOf[p] = std::int32_t(out.nodes.size());
+    out.nodes.push_back(std::move(node));
+    faceLevel[p] = 0;
+  }
+}
+
+/// The nodes of a level whose children holding points are all face nodes.
+std::vector<Candidate> candidatesOfLevel(const Compactor& cp,
+  int level,
+  const std::vector<int>& faceLevel)
+{
+  std::vector<Candidate> candidates;
+  const std::size_t np = cp.order.size();
+  for (std::size_t i = 0; i < np;)
+  {
+    const std::uint64_t key = cp.codes[cp.order[i]] >> (3 * level);
+    std::size_t j = i;
+    bool children = true;
+    for (; j < np && (cp.codes[cp.order[j]] >> (3 * level)) == key; ++j)
+      children = children && faceLevel[cp.order[j]] == level - 1;
+    if (children)
+      candidates.push_back({ level, key, i, j });
+    i = j;
+  }
+  return candidates;
+}
+
+/// Compacts one level: every candidate fitted in parallel, then committed in order (the
+/// sewing checked again against the projections committed before). False when none fits.
+bool compactLevel(const Compactor& cp,
+  int level,
+  const Execution& exec,
+  FaceOctree& out,
+  std::vector<int>& faceLevel)
+{
+  const std::vector<Candidate> candidates = candidatesOfLevel(cp, level, faceLevel);
+  std::vector<NodeFit> fits(candidates.size());
+  exec.forRange(std::int64_t(candidates.size()),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t c = b; c < e; ++c)
+        fits[c] = cp.fit(candidates[c]);
+    });
+  bool any = false;
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+  {
+    if (!fits[c].ok || !cp.sewingUnfolded(candidates[c], fits[c].projected))
+      continue;
+    const std::int32_t id = std::int32_t(out.nodes.size());
+    for (std::size_t i = candidates[c].begin; i < candidates[c].end; ++i)
+    {
+      const std::int32_t p = cp.order[i];
+      faceLevel[p] = level;
+      out.nodeOf[p] = id;
+      out.projected[p] = fits[c].projected[i - candidates[c].begin];
+    }
+    out.nodes.push_back(std::move(fits[c].node));
+    any = true;
+  }
+  return any;
+}
+
+/// Keeps the terminal face nodes only, renumbered in the order of their first point.
+void keepTerminalNodes(FaceOctree& out)
+{
+  std::vector<std::int32_t> renumber(out.nodes.size(), -1);
+  std::vector<FaceNode> kept;
+  for (std::int32_t& id : out.nodeOf)
+  {
+    if (id < 0)
+      continue;
+    if (renumber[id] < 0)
+    {
+      renumber[id] = std::int32_t(kept.size());
+      kept.push_back(std::move(out.nodes[id]));
+    }
+    id = renumber[id];
+  }
+  out.nodes = std::move(kept);
+}
+
+} // namespace
+
 FaceOctree buildFaceOctree(const BitVolume& object,
   const DeformedModel& model,
   const FaceOctreeOptions& options,
@@ -457,81 +558,11 @@ FaceOctree buildFaceOctree(const BitVolume& object,
   cp.current = &out.projected;
   out.nodeOf.assign(np, -1);
   std::vector<int> faceLevel(np, -1);
-  // Level 0: every voxel with a single point, with its GDM plane.
-  for (std::size_t p = 0; p < np; ++p)
-  {
-    if (model.shared[p])
-      continue;
-    FaceNode node;
-    node.lo = model.voxel[p];
-    node.hi = { node.lo[0] + 1, node.lo[1] + 1, node.lo[2] + 1 };
-    const double len = norm(model.normal[p]);
-    node.normal = len > 0
-      ? Vec3{ model.normal[p][0] / len, model.normal[p][1] / len, model.normal[p][2] / len }
-      : Vec3{ 0, 0, 1 };
-    node.offset = dot(node.normal, model.position[p]);
-    out.nodeOf[p] = std::int32_t(out.nodes.size());
-    out.nodes.push_back(std::move(node));
-    faceLevel[p] = 0;
-  }
+  voxelFaceNodes(model, out, faceLevel);
   for (int level = 1; level <= options.maximumLevel && level < 21; ++level)
-  {
-    if (exec.stopRequested())
+    if (exec.stopRequested() || !compactLevel(cp, level, exec, out, faceLevel))
       break;
-    std::vector<Candidate> candidates;
-    for (std::size_t i = 0; i < np;)
-    {
-      const std::uint64_t key = cp.codes[cp.order[i]] >> (3 * level);
-      std::size_t j = i;
-      bool children = true;
-      for (; j < np && (cp.codes[cp.order[j]] >> (3 * level)) == key; ++j)
-        children = children && faceLevel[cp.order[j]] == level - 1;
-      if (children)
-        candidates.push_back({ level, key, i, j });
-      i = j;
-    }
-    if (candidates.empty())
-      break;
-    std::vector<NodeFit> fits(candidates.size());
-    exec.forRange(std::int64_t(candidates.size()),
-      [&](std::int64_t b, std::int64_t e)
-      {
-        for (std::int64_t c = b; c < e; ++c)
-          fits[c] = cp.fit(candidates[c]);
-      });
-    for (std::size_t c = 0; c < candidates.size(); ++c)
-    {
-      // Nodes of one level were fitted at once: check the sewing again against the
-      // projections of the nodes committed before this one.
-      if (!fits[c].ok || !cp.sewingUnfolded(candidates[c], fits[c].projected))
-        continue;
-      const std::int32_t id = std::int32_t(out.nodes.size());
-      for (std::size_t i = candidates[c].begin; i < candidates[c].end; ++i)
-      {
-        const std::int32_t p = cp.order[i];
-        faceLevel[p] = level;
-        out.nodeOf[p] = id;
-        out.projected[p] = fits[c].projected[i - candidates[c].begin];
-      }
-      out.nodes.push_back(std::move(fits[c].node));
-    }
-  }
-  // Keep the terminal nodes only, renumbered.
-  std::vector<std::int32_t> renumber(out.nodes.size(), -1);
-  std::vector<FaceNode> kept;
-  for (std::size_t p = 0; p < np; ++p)
-  {
-    const std::int32_t id = out.nodeOf[p];
-    if (id < 0)
-      continue;
-    if (renumber[id] < 0)
-    {
-      renumber[id] = std::int32_t(kept.size());
-      kept.push_back(std::move(out.nodes[id]));
-    }
-    out.nodeOf[p] = renumber[id];
-  }
-  out.nodes = std::move(kept);
+  keepTerminalNodes(out);
   return out;
 }
 

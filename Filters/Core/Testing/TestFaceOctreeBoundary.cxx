@@ -848,10 +848,20 @@ TEST(FaceOctreeBoundary, SolidsAt32)
     checkBoundary(s.name + "32", shapeVolume(s, 32), true, true);
 }
 
-TEST(FaceOctreeBoundary, SolidsAt64)
+TEST(FaceOctreeBoundary, RoundSolidsAt64)
 {
   for (const Shape& s : solids())
-    checkBoundary(s.name + "64", shapeVolume(s, 64), true, s.name == "torus", false);
+    if (s.name == "ball" || s.name == "torus")
+      checkBoundary(s.name + "64", shapeVolume(s, 64), true, s.name == "torus", false);
+}
+
+TEST(FaceOctreeBoundary, CubesAndCSGAt64)
+{
+  // No CGAL check here: the 64^3 CSG solid still has self-intersections between some
+  // polygons and sewing triangles (see the README).
+  for (const Shape& s : solids())
+    if (s.name != "ball" && s.name != "torus")
+      checkBoundary(s.name + "64", shapeVolume(s, 64), true, false, false);
 }
 
 TEST(FaceOctreeBoundary, PorousBlobs)
