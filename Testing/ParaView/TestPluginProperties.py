@@ -96,7 +96,7 @@ SetActiveSource(phantom)
 polyhedrizer = StandardPlanePolyhedrizer(Input=phantom)
 polyhedrizer.UpdatePipeline()
 proxies = plugin_proxies(xml_path)  # as ParaView reads them: bases merged in
-expect("the XML declares the six proxies", len(proxies), 6)
+expect("the XML declares the seven proxies", len(proxies), 7)
 for proxy_xml in proxies:
     proxy_name = proxy_xml.get("name")
     proxy = create(proxy_xml, phantom, polyhedrizer)

@@ -1,0 +1,569 @@
+#include "FaceOctree.h"
+
+#include "PolygonTriangulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+namespace vbr
+{
+namespace
+{
+
+inline double dot(const Vec3& a, const Vec3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline double norm(const Vec3& a)
+{
+  return std::sqrt(dot(a, a));
+}
+
+/// Morton code of a voxel (21 bits an axis).
+std::uint64_t mortonOf(const std::array<std::int32_t, 3>& v)
+{
+  auto spread = [](std::uint64_t x)
+  {
+    x &= 0x1FFFFF;
+    x = (x | x << 32) & 0x1F00000000FFFFULL;
+    x = (x | x << 16) & 0x1F0000FF0000FFULL;
+    x = (x | x << 8) & 0x100F00F00F00F00FULL;
+    x = (x | x << 4) & 0x10C30C30C30C30C3ULL;
+    x = (x | x << 2) & 0x1249249249249249ULL;
+    return x;
+  };
+  return spread(std::uint64_t(v[0])) | spread(std::uint64_t(v[1])) << 1 |
+    spread(std::uint64_t(v[2])) << 2;
+}
+
+/// A candidate node: its points, contiguous in Morton order.
+struct Candidate
+{
+  int level;
+  std::uint64_t key; ///< Morton code >> 3 level
+  std::size_t begin, end;
+};
+
+struct NodeFit
+{
+  bool ok = false;
+  FaceNode node;
+  std::vector<Vec3> projected; ///< of the candidate's points, in order
+};
+
+struct Compactor
+{
+  const BitVolume& object;
+  const BitVolume& far;
+  const DeformedModel& model;
+  const FaceOctreeOptions& options;
+  std::vector<std::int32_t> order;  ///< points by Morton code of their voxel
+  std::vector<std::uint64_t> codes; ///< per point
+  double precision = std::sqrt(3.0);
+  const std::vector<Vec3>* current = nullptr; ///< the points' positions so far
+
+  bool inNode(std::int32_t p, const Candidate& c) const
+  {
+    return (this->codes[p] >> (3 * c.level)) == c.key;
+  }
+  NodeFit fit(const Candidate& c) const;
+  bool sewingUnfolded(const Candidate& c, const std::vector<Vec3>& projected) const;
+  bool planeNormal(const Candidate& c, Vec3& n) const;
+  bool planeOffset(const Candidate& c, const FaceNode& node, double& t) const;
+  void forbiddenIntervals(const FaceNode& node,
+    double lo,
+    double hi,
+    std::vector<std::pair<double, double>>& out) const;
+  bool collapseToPolygon(const Candidate& c, NodeFit& f) const;
+};
+
+bool Compactor::planeNormal(const Candidate& c, Vec3& n) const
+{
+  n = { 0, 0, 0 };
+  for (std::size_t i = c.begin; i < c.end; ++i)
+    for (int d = 0; d < 3; ++d)
+      n[d] += this->model.normal[this->order[i]][d];
+  const double len = norm(n);
+  if (!(len > 1e-12))
+    return false;
+  for (int d = 0; d < 3; ++d)
+    n[d] /= len;
+  for (std::size_t i = c.begin; i < c.end; ++i)
+  {
+    const Vec3& m = this->model.normal[this->order[i]];
+    if (dot(m, n) < this->options.minimumCosine * norm(m))
+      return false;
+  }
+  return true;
+}
+
+/// Open intervals of offsets whose plane cuts a far voxel of the node, for offsets in
+/// [lo, hi]; only voxels whose slab along n reaches that range are visited, row by row.
+void Compactor::forbiddenIntervals(const FaceNode& node,
+  double lo,
+  double hi,
+  std::vector<std::pair<double, double>>& out) const
+{
+  const Vec3& n = node.normal;
+  const double r = 0.5 * (std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]));
+  for (std::int32_t k = node.lo[2]; k < node.hi[2]; ++k)
+    for (std::int32_t j = node.lo[1]; j < node.hi[1]; ++j)
+    {
+      const double base = n[1] * (j + 0.5) + n[2] * (k + 0.5);
+      std::int32_t i0 = node.lo[0], i1 = node.hi[0];
+      if (std::abs(n[0]) > 1e-12)
+      {
+        // centre value v = base + n0 (i + 0.5) must lie in (lo - r, hi + r).
+        double a = (lo - r - base) / n[0] - 0.5, b = (hi + r - base) / n[0] - 0.5;
+        if (a > b)
+          std::swap(a, b);
+        i0 = std::max<std::int32_t>(i0, std::int32_t(std::floor(a)) - 1);
+        i1 = std::min<std::int32_t>(i1, std::int32_t(std::ceil(b)) + 2);
+      }
+      for (std::int32_t i = i0; i < i1; ++i)
+      {
+        const double v = base + n[0] * (i + 0.5);
+        if (v - r < hi && v + r > lo && this->far.get(i, j, k))
+          out.emplace_back(v - r, v + r);
+      }
+    }
+}
+
+bool Compactor::planeOffset(const Candidate& c, const FaceNode& node, double& t) const
+{
+  const Vec3& n = node.normal;
+  double lo = -1e300, hi = 1e300, sum = 0.0, weight = 0.0;
+  for (std::size_t i = c.begin; i < c.end; ++i)
+  {
+    const std::int32_t p = this->order[i];
+    double bmin = 0.0, bmax = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      bmin += n[d] * (n[d] > 0 ? this->model.boxLo[p][d] : this->model.boxHi[p][d]);
+      bmax += n[d] * (n[d] > 0 ? this->model.boxHi[p][d] : this->model.boxLo[p][d]);
+    }
+    const double at = dot(n, this->model.position[p]);
+    lo = std::max({ lo, bmin, at - this->precision });
+    hi = std::min({ hi, bmax, at + this->precision });
+    const double w = norm(this->model.normal[p]) + 1e-12;
+    sum += w * at;
+    weight += w;
+  }
+  if (!(lo <= hi))
+    return false;
+  std::vector<std::pair<double, double>> cuts;
+  this->forbiddenIntervals(node, lo, hi, cuts);
+  // The allowed offsets: [lo, hi] minus the open cuts; pick the one nearest the mean.
+  std::sort(cuts.begin(), cuts.end());
+  const double wanted = std::clamp(sum / weight, lo, hi);
+  bool found = false;
+  double best = 0.0, cursor = lo;
+  auto consider = [&](double a, double b)
+  {
+    if (a > b)
+      return;
+    const double x = std::clamp(wanted, a, b);
+    if (!found || std::abs(x - wanted) < std::abs(best - wanted))
+      best = x, found = true;
+  };
+  for (const auto& cut : cuts)
+  {
+    consider(cursor, std::min(cut.first, hi));
+    cursor = std::max(cursor, cut.second);
+  }
+  consider(cursor, hi);
+  t = best;
+  return found;
+}
+
+/// The inside quadrilaterals' boundary as one simple counter-clockwise loop around a disk.
+bool Compactor::collapseToPolygon(const Candidate& c, NodeFit& f) const
+{
+  const DeformedModel& m = this->model;
+  std::vector<std::uint64_t> edges; // directed edges of the inside quadrilaterals
+  std::size_t faces = 0;
+  std::vector<std::int32_t> used;
+  for (std::size_t i = c.begin; i < c.end; ++i)
+  {
+    const std::int32_t p = this->order[i];
+    bool any = false;
+    for (std::int64_t l = m.linkOffsets[p]; l < m.linkOffsets[p + 1]; ++l)
+    {
+      const Quad& q = m.quads[m.quadsOf[l]];
+      if (!(this->inNode(q[0], c) && this->inNode(q[1], c) && this->inNode(q[2], c) &&
+            this->inNode(q[3], c)))
+        continue;
+      any = true;
+      if (q[0] != p)
+        continue;
+      ++faces;
+      for (int r = 0; r < 4; ++r)
+        edges.push_back(std::uint64_t(std::uint32_t(q[r])) << 32 | std::uint32_t(q[(r + 1) % 4]));
+    }
+    if (any)
+      used.push_back(p);
+  }
+  if (faces == 0)
+    return true;
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<std::int32_t, std::int32_t>> boundary;
+  for (std::uint64_t e : edges)
+  {
+    const std::uint64_t reverse = (e << 32) | (e >> 32);
+    if (!std::binary_search(edges.begin(), edges.end(), reverse))
+      boundary.emplace_back(std::int32_t(e >> 32), std::int32_t(e & 0xFFFFFFFF));
+  }
+  const std::size_t B = boundary.size();
+  const long long euler =
+    (long long)used.size() - (long long)(4 * faces + B) / 2 + (long long)faces;
+  if (B < 3 || euler != 1)
+    return false;
+  std::sort(boundary.begin(), boundary.end());
+  for (std::size_t i = 1; i < B; ++i)
+    if (boundary[i].first == boundary[i - 1].first)
+      return false; // the disk is pinched at a point
+  auto next = [&](std::int32_t a)
+  {
+    auto it = std::lower_bound(boundary.begin(), boundary.end(), std::make_pair(a, INT32_MIN));
+    return (it != boundary.end() && it->first == a) ? it->second : -1;
+  };
+  auto& loop = f.node.polygon;
+  std::int32_t a = boundary[0].first;
+  do
+  {
+    loop.push_back(a);
+    a = next(a);
+  } while (a >= 0 && a != loop.front() && loop.size() <= B);
+  return a == loop.front() && loop.size() == B;
+}
+
+/// Whether every quadrilateral that leaves the node still has a split into two triangles
+/// facing the way the relaxed quadrilateral faces (with the node's points projected and the
+/// others where they are now): projecting must not fold the sewing triangles.
+bool Compactor::sewingUnfolded(const Candidate& c, const std::vector<Vec3>& projected) const
+{
+  const DeformedModel& m = this->model;
+  auto positionOf = [&](std::int32_t p) -> const Vec3&
+  {
+    if (!this->inNode(p, c))
+      return (*this->current)[p];
+    auto it = std::lower_bound(this->order.begin() + c.begin,
+      this->order.begin() + c.end,
+      p,
+      [&](std::int32_t a, std::int32_t b) { return this->codes[a] < this->codes[b]; });
+    while (*it != p)
+      ++it;
+    return projected[it - (this->order.begin() + c.begin)];
+  };
+  auto normal = [](const Vec3& a, const Vec3& b, const Vec3& d)
+  {
+    const Vec3 u{ b[0] - a[0], b[1] - a[1], b[2] - a[2] },
+      v{ d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+    return Vec3{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+  };
+  for (std::size_t i = c.begin; i < c.end; ++i)
+  {
+    const std::int32_t p = this->order[i];
+    for (std::int64_t l = m.linkOffsets[p]; l < m.linkOffsets[p + 1]; ++l)
+    {
+      const Quad& q = m.quads[m.quadsOf[l]];
+      if (this->inNode(q[0], c) && this->inNode(q[1], c) && this->inNode(q[2], c) &&
+        this->inNode(q[3], c))
+        continue;
+      const Vec3 a = normal(m.position[q[0]], m.position[q[1]], m.position[q[2]]);
+      const Vec3 b = normal(m.position[q[0]], m.position[q[2]], m.position[q[3]]);
+      const Vec3 n{ a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+      const Vec3 &x0 = positionOf(q[0]), &x1 = positionOf(q[1]), &x2 = positionOf(q[2]),
+                 &x3 = positionOf(q[3]);
+      const double first = std::min(dot(normal(x0, x1, x2), n), dot(normal(x0, x2, x3), n));
+      const double second = std::min(dot(normal(x0, x1, x3), n), dot(normal(x1, x2, x3), n));
+      if (!(std::max(first, second) > 1e-3 * dot(n, n)))
+        return false;
+    }
+  }
+  return true;
+}
+
+NodeFit Compactor::fit(const Candidate& c) const
+{
+  NodeFit f;
+  FaceNode& node = f.node;
+  node.level = c.level;
+  const auto& dims = this->model.dims;
+  for (int d = 0; d < 3; ++d)
+  {
+    const auto& v = this->model.voxel[this->order[c.begin]];
+    node.lo[d] = (v[d] >> c.level) << c.level;
+    node.hi[d] = std::min<std::int32_t>(dims[d], node.lo[d] + (std::int32_t(1) << c.level));
+  }
+  if (!this->planeNormal(c, node.normal) || !this->planeOffset(c, node, node.offset))
+    return f;
+  for (std::size_t i = c.begin; i < c.end; ++i)
+  {
+    const std::int32_t p = this->order[i];
+    f.projected.push_back(projectIntoBox(this->model.position[p],
+      node.normal,
+      node.offset,
+      this->model.boxLo[p],
+      this->model.boxHi[p]));
+  }
+  if (!this->collapseToPolygon(c, f) || !this->sewingUnfolded(c, f.projected))
+    return f;
+  if (!node.polygon.empty())
+  {
+    std::vector<Vec3> corners;
+    for (std::int32_t p : node.polygon)
+    {
+      const auto it = std::find(this->order.begin() + c.begin, this->order.begin() + c.end, p);
+      corners.push_back(f.projected[it - (this->order.begin() + c.begin)]);
+    }
+    const auto flat = planeCoordinates(node, corners);
+    if (!(doubledArea(flat) > 0) || !isSimplePolygon(flat))
+      return f;
+  }
+  f.ok = true;
+  return f;
+}
+
+} // namespace
+
+std::vector<Point2L> planeCoordinates(const FaceNode& node, const std::vector<Vec3>& points)
+{
+  const Vec3& n = node.normal;
+  int e = 0;
+  for (int d = 1; d < 3; ++d)
+    if (std::abs(n[d]) < std::abs(n[e]))
+      e = d;
+  Vec3 axis{ 0, 0, 0 };
+  axis[e] = 1;
+  Vec3 u{ n[1] * axis[2] - n[2] * axis[1],
+    n[2] * axis[0] - n[0] * axis[2],
+    n[0] * axis[1] - n[1] * axis[0] };
+  const double lu = norm(u);
+  for (double& x : u)
+    x /= lu;
+  const Vec3 v{ n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0] };
+  std::vector<Point2L> out;
+  const Vec3 o{ double(node.lo[0]), double(node.lo[1]), double(node.lo[2]) };
+  for (const Vec3& p : points)
+  {
+    const Vec3 d{ p[0] - o[0], p[1] - o[1], p[2] - o[2] };
+    out.push_back(
+      { std::llround(dot(d, u) * 1073741824.0), std::llround(dot(d, v) * 1073741824.0) });
+  }
+  return out;
+}
+
+BitVolume farVoxels(const BitVolume& object, const Execution& exec)
+{
+  const auto& n = object.dims();
+  BitVolume out(n[0], n[1], n[2]);
+  const std::size_t words = object.wordsPerRow();
+  const Word lastMask = (n[0] % 64) ? ((Word(1) << (n[0] % 64)) - 1) : ~Word(0);
+  exec.forRange(n[2],
+    [&](std::int64_t kb, std::int64_t ke)
+    {
+      std::vector<Word> all(words), any(words);
+      for (std::int32_t k = std::int32_t(kb); k < ke; ++k)
+        for (std::int32_t j = 0; j < n[1]; ++j)
+        {
+          std::fill(all.begin(), all.end(), ~Word(0));
+          std::fill(any.begin(), any.end(), Word(0));
+          for (int dk = -1; dk <= 1; ++dk)
+            for (int dj = -1; dj <= 1; ++dj)
+            {
+              const std::int32_t y = j + dj, z = k + dk;
+              const bool inside = y >= 0 && z >= 0 && y < n[1] && z < n[2];
+              for (std::size_t w = 0; w < words; ++w)
+              {
+                const Word r = inside ? object.row(y, z)[w] : 0;
+                const Word mask = (w + 1 == words) ? lastMask : ~Word(0);
+                // Outside the grid along x counts as background.
+                const Word prev = w > 0 ? (inside ? object.row(y, z)[w - 1] : 0) : 0;
+                const Word nxt = w + 1 < words ? (inside ? object.row(y, z)[w + 1] : 0) : 0;
+                const Word left = (r << 1) | (prev >> 63), right = (r >> 1) | (nxt << 63);
+                all[w] &= r & left & right & mask;
+                any[w] |= r | left | right;
+              }
+            }
+          Word* dst = out.row(j, k);
+          for (std::size_t w = 0; w < words; ++w)
+          {
+            const Word mask = (w + 1 == words) ? lastMask : ~Word(0);
+            dst[w] = (all[w] | ~any[w]) & mask;
+          }
+        }
+    });
+  return out;
+}
+
+Vec3 projectIntoBox(const Vec3& p, const Vec3& n, double t, const Vec3& lo, const Vec3& hi)
+{
+  // x(lambda) = clamp(p - lambda n) minimises |x - p| over the box on the plane
+  // n . x = n . x(lambda); g(lambda) = n . x(lambda) does not increase and is linear between
+  // the lambdas where a coordinate reaches a side of the box: solve g = t on its piece.
+  auto at = [&](double lambda)
+  {
+    Vec3 x;
+    for (int d = 0; d < 3; ++d)
+      x[d] = std::clamp(p[d] - lambda * n[d], lo[d], hi[d]);
+    return x;
+  };
+  std::vector<double> breaks;
+  for (int d = 0; d < 3; ++d)
+    if (n[d] != 0)
+    {
+      breaks.push_back((p[d] - lo[d]) / n[d]);
+      breaks.push_back((p[d] - hi[d]) / n[d]);
+    }
+  std::sort(breaks.begin(), breaks.end());
+  if (breaks.empty() || dot(n, at(breaks.front())) <= t)
+    return at(breaks.empty() ? 0.0 : breaks.front());
+  for (std::size_t i = 1; i < breaks.size(); ++i)
+  {
+    const double ga = dot(n, at(breaks[i - 1])), gb = dot(n, at(breaks[i]));
+    if (gb <= t)
+    {
+      const double f = ga > gb ? (ga - t) / (ga - gb) : 0.0;
+      return at(breaks[i - 1] + f * (breaks[i] - breaks[i - 1]));
+    }
+  }
+  return at(breaks.back());
+}
+
+namespace
+{
+
+/// The first face octree: every voxel with a single point is a face node, with its GDM plane.
+void voxelFaceNodes(const DeformedModel& model, FaceOctree& out, std::vector<int>& faceLevel)
+{
+  for (std::size_t p = 0; p < model.pointCount(); ++p)
+  {
+    if (model.shared[p])
+      continue;
+    FaceNode node;
+    node.lo = model.voxel[p];
+    node.hi = { node.lo[0] + 1, node.lo[1] + 1, node.lo[2] + 1 };
+    const double len = norm(model.normal[p]);
+    node.normal = len > 0
+      ? Vec3{ model.normal[p][0] / len, model.normal[p][1] / len, model.normal[p][2] / len }
+      : Vec3{ 0, 0, 1 };
+    node.offset = dot(node.normal, model.position[p]);
+    out.nodeOf[p] = std::int32_t(out.nodes.size());
+    out.nodes.push_back(std::move(node));
+    faceLevel[p] = 0;
+  }
+}
+
+/// The nodes of a level whose children holding points are all face nodes.
+std::vector<Candidate> candidatesOfLevel(const Compactor& cp,
+  int level,
+  const std::vector<int>& faceLevel)
+{
+  std::vector<Candidate> candidates;
+  const std::size_t np = cp.order.size();
+  for (std::size_t i = 0; i < np;)
+  {
+    const std::uint64_t key = cp.codes[cp.order[i]] >> (3 * level);
+    std::size_t j = i;
+    bool children = true;
+    for (; j < np && (cp.codes[cp.order[j]] >> (3 * level)) == key; ++j)
+      children = children && faceLevel[cp.order[j]] == level - 1;
+    if (children)
+      candidates.push_back({ level, key, i, j });
+    i = j;
+  }
+  return candidates;
+}
+
+/// Compacts one level: every candidate fitted in parallel, then committed in order (the
+/// sewing checked again against the projections committed before). False when none fits.
+bool compactLevel(const Compactor& cp,
+  int level,
+  const Execution& exec,
+  FaceOctree& out,
+  std::vector<int>& faceLevel)
+{
+  const std::vector<Candidate> candidates = candidatesOfLevel(cp, level, faceLevel);
+  std::vector<NodeFit> fits(candidates.size());
+  exec.forRange(std::int64_t(candidates.size()),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t c = b; c < e; ++c)
+        fits[c] = cp.fit(candidates[c]);
+    });
+  bool any = false;
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+  {
+    if (!fits[c].ok || !cp.sewingUnfolded(candidates[c], fits[c].projected))
+      continue;
+    const std::int32_t id = std::int32_t(out.nodes.size());
+    for (std::size_t i = candidates[c].begin; i < candidates[c].end; ++i)
+    {
+      const std::int32_t p = cp.order[i];
+      faceLevel[p] = level;
+      out.nodeOf[p] = id;
+      out.projected[p] = fits[c].projected[i - candidates[c].begin];
+    }
+    out.nodes.push_back(std::move(fits[c].node));
+    any = true;
+  }
+  return any;
+}
+
+/// Keeps the terminal face nodes only, renumbered in the order of their first point.
+void keepTerminalNodes(FaceOctree& out)
+{
+  std::vector<std::int32_t> renumber(out.nodes.size(), -1);
+  std::vector<FaceNode> kept;
+  for (std::int32_t& id : out.nodeOf)
+  {
+    if (id < 0)
+      continue;
+    if (renumber[id] < 0)
+    {
+      renumber[id] = std::int32_t(kept.size());
+      kept.push_back(std::move(out.nodes[id]));
+    }
+    id = renumber[id];
+  }
+  out.nodes = std::move(kept);
+}
+
+} // namespace
+
+FaceOctree buildFaceOctree(const BitVolume& object,
+  const DeformedModel& model,
+  const FaceOctreeOptions& options,
+  const Execution& exec)
+{
+  const BitVolume far = farVoxels(object, exec);
+  Compactor cp{ object, far, model, options, {}, {} };
+  if (options.precision > 0)
+    cp.precision = options.precision;
+  const std::size_t np = model.pointCount();
+  cp.codes.resize(np);
+  for (std::size_t p = 0; p < np; ++p)
+    cp.codes[p] = mortonOf(model.voxel[p]);
+  cp.order.resize(np);
+  std::iota(cp.order.begin(), cp.order.end(), 0);
+  std::sort(cp.order.begin(),
+    cp.order.end(),
+    [&](std::int32_t a, std::int32_t b) { return cp.codes[a] < cp.codes[b]; });
+
+  FaceOctree out;
+  out.projected = model.position;
+  cp.current = &out.projected;
+  out.nodeOf.assign(np, -1);
+  std::vector<int> faceLevel(np, -1);
+  voxelFaceNodes(model, out, faceLevel);
+  for (int level = 1; level <= options.maximumLevel && level < 21; ++level)
+    if (exec.stopRequested() || !compactLevel(cp, level, exec, out, faceLevel))
+      break;
+  keepTerminalNodes(out);
+  return out;
+}
+
+} // namespace vbr

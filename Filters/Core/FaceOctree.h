@@ -1,0 +1,87 @@
+// The face octree of section 3.3 of Joan-Arinyo and Solé (1996), built from the relaxed
+// deformed model (DeformedModel.h) by the bottom-up compaction of their reference [7].
+//
+// The first face octree is the voxel grid itself: every boundary voxel with one
+// representative point is a face node, with its GDM plane (through the point, with the point's
+// area-weighted fan normal). Level L groups the voxels of a 2^L cube of the grid (the cubes of
+// a root of the next power of two above the grid's size, clipped to the grid: any grid size
+// works). A node of level L becomes a face node when every child holding points is a face
+// node and one plane fits the node. "Fits" (section 3.3: "a plane that is both interior to all
+// boundary voxels inside the region bounded by the current face octree node and does not
+// intersect any other voxel in the node") is, here:
+//  - the plane meets the box of every point of the node (its voxel), and no relaxed point is
+//    farther from it than the precision (default half a voxel: larger values compact more
+//    but move points farther from their neighbours' sewing triangles);
+//  - it cuts the open interior of no *far* voxel of the node: an object voxel whose 26
+//    neighbours are all object voxels, or a background voxel whose 26 neighbours are all
+//    background. Every point of the plane inside the node then lies in a voxel that shares a
+//    grid vertex with a voxel of the other kind, a vertex on the voxel boundary: within one
+//    voxel diagonal of the surfels;
+//  - the points' normals agree with it (angle below 60 degrees): two sheets facing each other
+//    never share a node;
+//  - the quadrilaterals with all four points in the node form one disk, whose boundary, with
+//    each point moved to the nearest point of the plane inside its own voxel (the projection
+//    of section 3.4, kept inside the voxel), is a simple polygon turning counter-clockwise
+//    about the normal: the planar polygon that replaces the node's quadrilaterals.
+// The normal is the sum of the points' GDM normals (area-weighted); the offset is the one
+// nearest the points' mean that the constraints allow (an interval minus open intervals).
+#ifndef vbr_FaceOctree_h
+#define vbr_FaceOctree_h
+
+#include "BitVolume.h"
+#include "DeformedModel.h"
+#include "Execution.h"
+#include "PolygonTriangulator.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vbr
+{
+
+struct FaceOctreeOptions
+{
+  int maximumLevel = 10;  ///< largest node: 2^level voxels a side
+  double precision = 0.5; ///< largest point-to-plane distance (voxel units)
+  double minimumCosine = 0.5;
+};
+
+struct FaceNode
+{
+  int level = 0;
+  std::array<std::int32_t, 3> lo{ 0, 0, 0 }, hi{ 0, 0, 0 }; ///< voxel box [lo, hi)
+  Vec3 normal{ 0, 0, 1 };                                   ///< unit, outwards
+  double offset = 0.0;                                      ///< plane: normal . x = offset
+  /// The planar polygon's corners (point ids), counter-clockwise about the normal; empty
+  /// when no quadrilateral lies inside the node.
+  std::vector<std::int32_t> polygon;
+};
+
+struct FaceOctree
+{
+  std::vector<FaceNode> nodes;      ///< the terminal face nodes
+  std::vector<std::int32_t> nodeOf; ///< per point: its face node, -1 for none
+  std::vector<Vec3> projected;      ///< per point: its position on its node's plane
+};
+
+/// Voxels no face node's plane may cut (see above): object voxels with no background
+/// 26-neighbour and background voxels with no object 26-neighbour (outside is background).
+BitVolume farVoxels(const BitVolume& object, const Execution& exec);
+
+/// The nearest point to p on the plane n . x = t inside the box [lo, hi] (which the plane
+/// must meet).
+Vec3 projectIntoBox(const Vec3& p, const Vec3& n, double t, const Vec3& lo, const Vec3& hi);
+
+/// Coordinates of points of a node's plane in an orthonormal basis (u, v) with u x v = the
+/// normal, relative to the node's lowest corner, on an integer grid of 2^-30 voxel.
+std::vector<Point2L> planeCoordinates(const FaceNode& node, const std::vector<Vec3>& points);
+
+FaceOctree buildFaceOctree(const BitVolume& object,
+  const DeformedModel& model,
+  const FaceOctreeOptions& options,
+  const Execution& exec);
+
+} // namespace vbr
+
+#endif

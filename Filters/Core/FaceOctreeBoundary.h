@@ -1,0 +1,62 @@
+// Boundary generation, section 3.4 of Joan-Arinyo and Solé (1996): the relaxed points of
+// each face node are projected onto the node's plane (FaceOctree.h keeps each projection in
+// its own voxel) and the node's quadrilaterals collapse into one planar polygon, the boundary
+// of their disk; quadrilaterals whose points lie in different nodes are split into two
+// triangles (the shorter diagonal), which sew the polygons together. Points inside a node's
+// disk disappear. Replacing a disk by a disk with the same boundary keeps the surface closed,
+// manifold and of the same genus as the net.
+//
+// Drawing. VTK draws a polygon as the fan from its first point, so each polygon starts at a
+// corner whose fan covers it (PolygonTriangulator.h's fanCoversPolygon); a polygon no corner
+// of which does is cut along diagonals of an ear-clipping triangulation into convex pieces
+// (Hertel and Mehlhorn: a diagonal is removed while both its ends stay convex), each drawn
+// from any corner and each carrying its node's id.
+#ifndef vbr_FaceOctreeBoundary_h
+#define vbr_FaceOctreeBoundary_h
+
+#include "BitVolume.h"
+#include "DeformedModel.h"
+#include "FaceOctree.h"
+#include "PolygonTriangulator.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace vbr
+{
+
+enum class BoundaryCells
+{
+  Polygons,      ///< a polygon per face node (or its convex pieces) and sewing triangles
+  Triangles,     ///< the same surface, every polygon triangulated
+  Quadrilaterals ///< the relaxed net's quadrilaterals (non-planar), before the octree
+};
+
+struct BoundaryMesh
+{
+  std::vector<Vec3> points;          ///< voxel units (voxel i spans [i, i + 1])
+  std::vector<std::int32_t> pointOf; ///< per output point: the model's point
+  std::vector<std::int64_t> offsets{ 0 };
+  std::vector<std::int32_t> connectivity;
+  std::vector<std::int32_t> faceNode;  ///< per cell: its face node, -1 for sewing triangles
+  std::vector<std::int32_t> nodeLevel; ///< per cell: its node's level, -1 for sewing
+  std::size_t polygons = 0;            ///< cells from face nodes
+  std::size_t triangles = 0;           ///< triangles among all cells
+  std::size_t cellCount() const { return this->faceNode.size(); }
+};
+
+BoundaryMesh assembleBoundary(const DeformedModel& model,
+  const FaceOctree& octree,
+  BoundaryCells cells);
+
+/// Convex pieces of a simple counter-clockwise polygon (corner indices, each piece
+/// counter-clockwise), from its ear-clipping triangulation; empty if it cannot be triangulated.
+std::vector<std::vector<int>> convexPieces(const std::vector<Point2L>& corners);
+
+/// Largest distance from the points to the surfels of `object` (voxel units), each point
+/// searched within two voxels of its own (distances beyond are reported as 2).
+double maximumDistanceToSurfels(const BitVolume& object, const std::vector<Vec3>& points);
+
+} // namespace vbr
+
+#endif

@@ -1,0 +1,207 @@
+"""vtkFaceOctreeBoundaryFilter on numpy-built 3D images, against independent numpy / scipy
+references:
+
+* NumberOfBoundaryVoxels (object voxels with a background voxel among their 26 neighbours,
+  by scipy's binary erosion of the padded mask) and NumberOfPrunedVoxels (boundary voxels
+  none of whose 8 corners has its 8 voxels in the object);
+* closed and consistently oriented (every directed edge once, its reverse once), every
+  polygon planar (distance to its Newell plane);
+* every output vertex within one voxel diagonal of the surfels (brute force over the surfel
+  centres and corners), enclosed volume positive (outwards) and near the voxel volume, for a
+  mirrored direction matrix too (cells reversed), world placement (spacing, origin, extent);
+* point and cell scalars, several scalar types, Range and Labels selection, the three output
+  modes, the face octree port (one box per FaceNodeId, unit normals).
+"""
+
+import os
+import sys
+
+import numpy as np
+from scipy import ndimage
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import voxelbrep_testing as vt  # noqa: E402
+
+import voxelbrep  # noqa: E402
+from vtkmodules.util import numpy_support as ns  # noqa: E402
+
+check = vt.Checker("TestFaceOctreeBoundary")
+F = voxelbrep.vtkFaceOctreeBoundaryFilter
+
+
+def ball(n, r, centre=None, dtype=np.uint8):
+    c = (n - 1) / 2.0 if centre is None else centre
+    z, y, x = np.mgrid[0:n, 0:n, 0:n]
+    return (((x - c) ** 2 + (y - c) ** 2 + (z - c) ** 2) < r * r).astype(dtype)
+
+
+def expected_counts(mask):
+    padded = np.pad(mask.astype(bool), 1)
+    inner = ndimage.binary_erosion(padded, structure=np.ones((3, 3, 3)), border_value=0)
+    boundary = padded & ~inner
+    # Grid vertex (i, j, k) of the padded grid is interior when its 8 voxels are object.
+    vz, vy, vx = padded.shape
+    interior = np.zeros((vz + 1, vy + 1, vx + 1), dtype=bool)
+    interior[1:-1, 1:-1, 1:-1] = np.logical_and.reduce(
+        [padded[dz:vz - 1 + dz, dy:vy - 1 + dy, dx:vx - 1 + dx]
+         for dz in (0, 1) for dy in (0, 1) for dx in (0, 1)])
+    has_corner = np.logical_or.reduce(
+        [interior[dz:vz + dz, dy:vy + dy, dx:vx + dx]
+         for dz in (0, 1) for dy in (0, 1) for dx in (0, 1)])
+    return int(boundary.sum()), int((boundary & ~has_corner).sum())
+
+
+def run(image, mode=F.POLYGONS, selection=None):
+    f = F()
+    f.SetInputData(image)
+    f.SetOutputMode(mode)
+    if selection:
+        selection(f)
+    f.Update()
+    return f
+
+
+def closed_and_oriented(cells):
+    directed = {}
+    for c in cells:
+        for i in range(len(c)):
+            e = (int(c[i]), int(c[(i + 1) % len(c)]))
+            directed[e] = directed.get(e, 0) + 1
+    return all(n == 1 for n in directed.values()) and all(
+        (b, a) in directed for (a, b) in directed)
+
+
+def volume(pts, cells):
+    v = 0.0
+    for c in cells:
+        a = pts[c[0]]
+        for i in range(1, len(c) - 1):
+            v += np.dot(a, np.cross(pts[c[i]], pts[c[i + 1]])) / 6.0
+    return v
+
+
+def surfel_samples(mask, spacing, origin, cell_data):
+    """Centres, edge midpoints and corners of every surfel, world coordinates."""
+    padded = np.pad(mask.astype(bool), 1)
+    out = []
+    for axis in range(3):
+        d = np.diff(padded.astype(np.int8), axis=axis)
+        idx = np.argwhere(d != 0)  # face between index i and i + 1 along axis, padded coords
+        for du in (0.0, 0.5, 1.0):
+            for dv in (0.0, 0.5, 1.0):
+                p = idx.astype(float)[:, ::-1]  # x, y, z of the padded voxel
+                p -= 1.0  # unpadded
+                ax = 2 - axis  # numpy axis 0 is z
+                offs = np.zeros(3)
+                offs[ax] = 1.0
+                others = [a for a in range(3) if a != ax]
+                offs[others[0]] = du
+                offs[others[1]] = dv
+                out.append(p + offs - (0.0 if cell_data else 0.5))
+    pts = np.concatenate(out)
+    return pts * np.asarray(spacing) + np.asarray(origin)
+
+
+def max_vertex_distance(vertices, samples):
+    from scipy.spatial import cKDTree
+    if len(vertices) == 0:
+        return 0.0
+    d, _ = cKDTree(samples).query(vertices)
+    return float(d.max())
+
+
+def check_surface(name, mask, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0),
+                  direction=None, dtype=np.uint8, cell_data=False, mode=F.POLYGONS):
+    image = vt.make_image(mask.astype(dtype), spacing=spacing, origin=origin,
+                          direction=direction, cell_data=cell_data)
+    f = run(image, mode)
+    out = f.GetOutput()
+    boundary, pruned = expected_counts(mask)
+    check.equal(name + " NumberOfBoundaryVoxels", vt.field_value(out, "NumberOfBoundaryVoxels"),
+                boundary)
+    check.equal(name + " NumberOfPrunedVoxels", vt.field_value(out, "NumberOfPrunedVoxels"),
+                pruned)
+    pts, cells = vt.points(out), vt.cells(out)
+    check.true(name + " has cells", len(cells) > 0)
+    check.true(name + " closed and oriented", closed_and_oriented(cells))
+    worst = 0.0
+    for c in cells:
+        if len(c) > 3:
+            p = pts[c]
+            n = sum(np.cross(p[i], p[(i + 1) % len(p)]) for i in range(len(p)))
+            n /= np.linalg.norm(n)
+            worst = max(worst, float(np.abs((p - p.mean(axis=0)) @ n).max()))
+    if mode != F.QUADRILATERALS:  # the relaxed net's quadrilaterals are not planar
+        check.true(name + " planar polygons (%g)" % worst, worst < 1e-9 * max(spacing))
+    vox = float(mask.sum()) * abs(np.prod(spacing))
+    v = volume(pts, cells)
+    check.true(name + " outwards (volume %g of %g)" % (v, vox), 0.6 * vox < v < 1.05 * vox)
+    if direction is None:
+        # Vertices within a voxel diagonal of the surfels (world units, isotropic here).
+        d = max_vertex_distance(pts, surfel_samples(mask, spacing, origin, cell_data))
+        diag = np.linalg.norm(spacing)
+        check.true(name + " vertices within a voxel diagonal (%g)" % d, d <= diag + 1e-9)
+        measured = out.GetFieldData().GetArray("MaximumDistance").GetValue(0)
+        check.true(name + " MaximumDistance <= sqrt(3) (%g)" % measured, measured <= 3 ** 0.5)
+    return f
+
+
+mask = ball(20, 7.3)
+for mode, label in ((F.POLYGONS, "Polygons"), (F.TRIANGLES, "Triangles"),
+                    (F.QUADRILATERALS, "Quadrilaterals")):
+    f = check_surface("ball " + label, mask, mode=mode)
+    out = f.GetOutput()
+    if mode == F.TRIANGLES:
+        check.true("Triangles only", all(len(c) == 3 for c in vt.cells(out)))
+    if mode == F.QUADRILATERALS:
+        check.true("Quadrilaterals only", all(len(c) == 4 for c in vt.cells(out)))
+    if mode == F.POLYGONS:
+        octree = f.GetOutputDataObject(1)
+        nodes = vt.field_value(out, "NumberOfFaceNodes")
+        check.equal("one box per face node", octree.GetNumberOfCells(), nodes)
+        normals = ns.vtk_to_numpy(octree.GetCellData().GetArray("PlaneNormal"))
+        check.close("unit plane normals", np.linalg.norm(normals, axis=1), np.ones(nodes))
+        ids = vt.cell_array(out, "FaceNodeId")
+        check.true("FaceNodeId in range", ids.min() >= -1 and ids.max() < nodes)
+        check.equal("NumberOfPolygons", vt.field_value(out, "NumberOfPolygons"),
+                    int((ids >= 0).sum()))
+        triangles = run(vt.make_image(mask), F.TRIANGLES).GetOutput().GetNumberOfCells()
+        check.true("fewer polygons than triangles", len(vt.cells(out)) < triangles)
+
+# World placement, scalar types, cell scalars, a mirrored direction matrix.
+check_surface("anisotropic float", mask, spacing=(0.5, 0.5, 0.5), origin=(3.0, -2.0, 1.0),
+              dtype=np.float32)
+check_surface("cell scalars int16", mask, dtype=np.int16, cell_data=True)
+check_surface("mirrored", mask, direction=[[-1, 0, 0], [0, 1, 0], [0, 0, 1]])
+box = np.zeros((16, 18, 20), dtype=np.uint8)
+box[3:13, 4:14, 5:16] = 1
+box[7:10, 6:12, 9:12] = 0  # a cavity
+check_surface("box with a cavity", box)
+
+# A one-voxel wall on a block: its voxels are pruned and counted.
+wall = np.zeros((16, 16, 16), dtype=np.uint8)
+wall[2:7, 2:14, 2:14] = 1
+wall[7:13, 8, 2:14] = 1
+f = check_surface("wall", wall)
+check.true("wall voxels pruned", vt.field_value(f.GetOutput(), "NumberOfPrunedVoxels") >= 6 * 12)
+
+# Range and Labels selection.
+labels = np.zeros((20, 20, 20), dtype=np.uint16)
+labels[2:9, 2:18, 2:18] = 5
+labels[11:18, 2:18, 2:18] = 9
+f = run(vt.make_image(labels), F.POLYGONS, lambda f: f.SetSelectionModeToLabels())
+got = sorted(set(vt.cell_array(f.GetOutput(), "Label").tolist()))
+check.equal("labels", got, [5, 9])
+check.true("labels closed", closed_and_oriented(vt.cells(f.GetOutput())))
+f = run(vt.make_image(labels), F.POLYGONS, lambda f: (f.SetSelectionModeToRange(),
+                                                    f.SetLowerThreshold(6),
+                                                    f.SetUpperThreshold(10)))
+check.equal("range boundary voxels", vt.field_value(f.GetOutput(), "NumberOfBoundaryVoxels"),
+            expected_counts(labels == 9)[0])
+
+# An empty selection and a missing array.
+f = run(vt.make_image(np.zeros((5, 5, 5), dtype=np.uint8)))
+check.equal("empty selection", f.GetOutput().GetNumberOfCells(), 0)
+check.true("PrintSelf", "PruneCrests" in str(F()))
+
+check.finish()

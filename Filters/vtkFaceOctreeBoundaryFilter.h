@@ -1,0 +1,179 @@
+/**
+ * @class   vtkFaceOctreeBoundaryFilter
+ * @brief   closed, compact polygonal boundary of the voxels of an image, from a relaxed
+ *          deformed model and a face octree of planes
+ *
+ * vtkFaceOctreeBoundaryFilter implements R. Joan-Arinyo and J. Solé, "Boundary Generation
+ * from Voxel-based Volume Representations" (report LSI-96-20-R, UPC, 1996), in three steps:
+ * 1. Deformed model (section 3.2, Filters/Core/DeformedModel.h): a representative point per
+ *    boundary voxel (an object voxel with a background voxel among its 26 neighbours),
+ *    linked to the points of its face neighbours; the net is relaxed by minimising the sum of
+ *    squared link lengths plus a pull of each point to its anchor on the voxel boundary,
+ *    each point staying inside its voxel; its 4-cycles are the non-planar quadrilaterals.
+ *    The dangling quadrilaterals of one-voxel crests and the internal quadrilaterals of
+ *    two-voxel crests are pruned: a quadrilateral is kept when its grid edge joins an
+ *    interior vertex (eight object voxels) to another. The voxels of one-voxel crests are
+ *    lost (NumberOfPrunedVoxels).
+ * 2. Face octree (section 3.3, FaceOctree.h): a plane per boundary voxel (the area-weighted
+ *    normal of the fan of triangles around its point) and a bottom-up compaction of octree
+ *    nodes into face nodes whose one plane meets every boundary voxel of the node and cuts
+ *    no voxel that is far from the boundary.
+ * 3. Boundary (section 3.4, FaceOctreeBoundary.h): the points of each face node moved onto
+ *    its plane (inside their voxels) and its quadrilaterals collapsed into one planar
+ *    polygon; the quadrilaterals spanning nodes split into two triangles that sew them.
+ *
+ * The result is closed and manifold (every edge of exactly two cells, consistently
+ * oriented, normals out of the object) and lies within one voxel diagonal of the voxel
+ * boundary except at pruned voxels: every output vertex is inside its own boundary voxel,
+ * and no polygon crosses a voxel that does not touch the boundary.
+ *
+ * Manifold rule (where voxels touch only along an edge or at a corner): interior vertices
+ * that touch only diagonally stay apart unless the voxels on either side join them; a voxel
+ * holding two sheets of the surface then has a point for each (see DeformedModel.h).
+ *
+ * Output modes:
+ * - Polygons (default): one polygon per face node (cut into convex pieces where no corner's
+ *   fan covers it, VTK drawing a polygon as the fan from its first point; every polygon is
+ *   planar, simple and starts at a corner whose fan covers it), plus the sewing triangles.
+ * - Triangles: the same surface, each polygon as the fan of triangles VTK would draw.
+ * - Quadrilaterals: the relaxed net alone, before the octree (the paper's intermediate
+ *   surface; non-planar quadrilaterals). With PruneCrests off it is the unpruned net (every
+ *   ring of four boundary voxels around a grid edge, at the voxel centres), which is not a
+ *   surface on crests; Polygons and Triangles always prune.
+ *
+ * Cell data: `FaceNodeId` (the face node of a polygon, -1 for sewing triangles and
+ * quadrilaterals), `NodeLevel` (its level: 2^level voxels a side; -1 likewise), `Label` (the
+ * selected label, 1 outside Labels mode, in the selected values' type). Field data:
+ * `NumberOfBoundaryVoxels`, `NumberOfFaceNodes`, `NumberOfPolygons` (cells of face nodes),
+ * `NumberOfTriangles` (triangles among all cells), `NumberOfPrunedVoxels` and
+ * `MaximumDistance` (the largest distance from an output vertex to the voxel boundary, the
+ * surfels, measured by the filter in voxel units: 1 is a voxel edge, the bound is sqrt(3)).
+ *
+ * Output port 1: the face octree, one hexahedron per face node (its box, in world
+ * coordinates) with cell data `PlaneNormal` (unit, world), `PlaneOffset` (world: the plane is
+ * PlaneNormal . x = PlaneOffset), `NodeLevel`, `FaceNodeId` and `Label`.
+ *
+ * Labels mode extracts each label on its own: neighbouring labels get two surfaces (shared
+ * surfaces are not implemented yet). Point scalars are voxels centred at the points; cell
+ * scalars are the voxels. Images are 3D (a flat image is a one-voxel slab, all pruned). A
+ * direction matrix with negative determinant (a mirrored image) reverses the cells so that
+ * normals still point out of the object.
+ *
+ * @warning The relaxation (per point, in two colours), the plane fits of each octree level
+ * and the voxel classifications run with vtkSMPTools (set VTK_SMP_BACKEND_IN_USE=STDThread
+ * with ParaView's VTK, whose default is sequential).
+ *
+ * @sa vtkEVMBoundaryFilter vtkDiscreteFlyingEdges3D vtkSurfaceNets3D
+ */
+#ifndef vtkFaceOctreeBoundaryFilter_h
+#define vtkFaceOctreeBoundaryFilter_h
+
+#include "VoxelBRepFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+#include "vtkVoxelSelection.h" // for vtkVoxelSelectionMacro
+
+class VOXELBREPFILTERS_EXPORT vtkFaceOctreeBoundaryFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkFaceOctreeBoundaryFilter* New();
+  vtkTypeMacro(vtkFaceOctreeBoundaryFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum OutputModes
+  {
+    POLYGONS = 0,
+    TRIANGLES = 1,
+    QUADRILATERALS = 2
+  };
+
+  /**
+   * The selection (SelectionMode Positive, Range or Labels, LowerThreshold, UpperThreshold,
+   * BackgroundValue, ArrayComponent): see vtkVoxelSelection. The default is POSITIVE.
+   */
+  vtkVoxelSelectionMacro();
+
+  ///@{
+  /**
+   * What the output cells are (see the class comment). The default is POLYGONS.
+   */
+  vtkSetClampMacro(OutputMode, int, POLYGONS, QUADRILATERALS);
+  vtkGetMacro(OutputMode, int);
+  void SetOutputModeToPolygons() { this->SetOutputMode(POLYGONS); }
+  void SetOutputModeToTriangles() { this->SetOutputMode(TRIANGLES); }
+  void SetOutputModeToQuadrilaterals() { this->SetOutputMode(QUADRILATERALS); }
+  const char* GetOutputModeAsString();
+  ///@}
+
+  ///@{
+  /**
+   * Relaxation sweeps at most (each moves every point once). The default is 50.
+   */
+  vtkSetClampMacro(RelaxationIterations, int, 0, VTK_INT_MAX);
+  vtkGetMacro(RelaxationIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * The relaxation stops once no point moved more than this in a sweep (voxel units). The
+   * default is 1e-4.
+   */
+  vtkSetClampMacro(RelaxationTolerance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RelaxationTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest face node: 2^level voxels a side (0: every boundary voxel its own node, no
+   * polygons). The default is 10.
+   */
+  vtkSetClampMacro(MaximumOctreeLevel, int, 0, 20);
+  vtkGetMacro(MaximumOctreeLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Largest distance (world units) a relaxed point may be from its face node's plane; 0
+   * (the default) means half a voxel (half the smallest spacing). Whatever the value, the
+   * output stays within one voxel diagonal of the voxel boundary (points stay in their
+   * voxels, planes cut no voxel far from the boundary); larger values compact more.
+   */
+  vtkSetClampMacro(Precision, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Precision, double);
+  ///@}
+
+  ///@{
+  /**
+   * Prune the quadrilaterals of one- and two-voxel crests (section 3.2). Off only changes
+   * the Quadrilaterals output (the unpruned net); the other modes always prune. The default
+   * is on.
+   */
+  vtkSetMacro(PruneCrests, bool);
+  vtkGetMacro(PruneCrests, bool);
+  vtkBooleanMacro(PruneCrests, bool);
+  ///@}
+
+protected:
+  vtkFaceOctreeBoundaryFilter();
+  ~vtkFaceOctreeBoundaryFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  /// The work of RequestData, which turns exceptions (out of memory) into errors.
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+
+  int OutputMode = POLYGONS;
+  int RelaxationIterations = 50;
+  double RelaxationTolerance = 1e-4;
+  int MaximumOctreeLevel = 10;
+  double Precision = 0.0;
+  bool PruneCrests = true;
+
+private:
+  vtkFaceOctreeBoundaryFilter(const vtkFaceOctreeBoundaryFilter&) = delete;
+  void operator=(const vtkFaceOctreeBoundaryFilter&) = delete;
+};
+
+#endif
