@@ -246,7 +246,7 @@ TEST(ConvexHull, CandidatesOfRandomVolumesSpanTheHullOfAllCentres)
   unsigned seed = 1;
   for (int trial = 0; trial < 200; ++trial)
   {
-    const bf::Int3 d{ 3 + trial % 13, 2 + (trial * 7) % 11, 2 + (trial * 5) % 9 };
+    const vbr::Point3 d{ 3 + trial % 13, 2 + (trial * 7) % 11, 2 + (trial * 5) % 9 };
     const double density = 0.05 + 0.1 * (trial % 9);
     const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
     const auto centres = objectCentres(v);

@@ -272,7 +272,7 @@ TEST(ConvexHullModifier, RandomVolumesSeparate)
   int incomplete = 0, tried = 0;
   for (int trial = 0; trial < 300; ++trial)
   {
-    const bf::Int3 d{ 3 + trial % 5, 3 + (trial / 5) % 4, 3 + (trial / 20) % 4 };
+    const vbr::Point3 d{ 3 + trial % 5, 3 + (trial / 5) % 4, 3 + (trial / 20) % 4 };
     const vbr::BitVolume v = bf::randomVolume(d, 0.3 + 0.1 * (trial % 5), seed++);
     if (v.count() < 4)
       continue;
