@@ -812,6 +812,56 @@ vtkSmartPointer<vtkIntArray> paintPieceFromBoxes(vbr::vtk::Piece& piece,
   return ids;
 }
 
+/// PASS 2 of the filter: the regions measured, those with a seed marked (`painted`, when
+/// given, keeps the image of region numbers the seeds were read from), filtered and
+/// numbered; returns how many are kept.
+std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
+  vtkDataSet* seeds,
+  const vbr::vtk::InputObjects& in,
+  const std::vector<ObjectBoxes>& objects,
+  std::uint32_t regionCount,
+  std::vector<Region>& regions,
+  Summary& summary,
+  vtkSmartPointer<vtkIntArray>* painted)
+{
+  regions = measureRegions(objects, regionCount);
+  if (seeds)
+  {
+    vtkSmartPointer<vtkIntArray> ids = markRegionsOfSeeds(self, seeds, in, objects, regions);
+    if (painted)
+      *painted = ids;
+  }
+  const std::int32_t kept = numberRegions(regions,
+    self->GetMinimumRegionSize(),
+    seeds != nullptr,
+    self->GetLargestRegions(),
+    self->GetRegionOrdering());
+  summary.components = static_cast<vtkIdType>(regionCount);
+  summary.regions = kept;
+  return kept;
+}
+
+/// Ports 1 and 2 (the boxes, the region table) and the summary on every port.
+void writeBoxesAndTable(vtkCUDBConnectivity* self,
+  const vbr::vtk::InputObjects& in,
+  const std::vector<ObjectBoxes>& objects,
+  const std::vector<Region>& regions,
+  std::int32_t kept,
+  const Summary& summary,
+  const Ports& ports)
+{
+  vtkLogScopeF(TRACE, "boxes and region table");
+  if (self->GetGenerateBoxes())
+    writeBoxes(objects, regions, in.grid, in.axes, in.labelType, ports.boxes);
+  writeRegionTable(regions, kept, in.grid, in.axes, in.labelType, ports.table);
+  for (vtkDataObject* port :
+    std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
+  {
+    summary.write(port->GetFieldData());
+    vbr::vtk::addDistributionFields(port->GetFieldData(), in.piece);
+  }
+}
+
 /// Under MPI (passes 2 and 3): rank 0 numbers the regions of the whole image (the seeds of
 /// every rank gathered) and writes the boxes and the region table; every rank writes the
 /// RegionIds of its own piece from the kept boxes. False when the exchange failed.
@@ -827,20 +877,9 @@ bool writeDistributed(vtkCUDBConnectivity* self,
     ports.seeds ? vbr::vtk::gatherPoints(piece, ports.seeds) : nullptr;
   const bool first = piece.rank == 0, aborted = first && self->GetAbortExecute();
   std::vector<Region> regions;
-  std::int32_t kept = 0;
-  if (first && !aborted)
-  {
-    regions = measureRegions(objects, regionCount);
-    if (seeds)
-      markRegionsOfSeeds(self, seeds, in, objects, regions);
-    kept = numberRegions(regions,
-      self->GetMinimumRegionSize(),
-      ports.seeds != nullptr,
-      self->GetLargestRegions(),
-      self->GetRegionOrdering());
-    summary.components = static_cast<vtkIdType>(regionCount);
-    summary.regions = kept;
-  }
+  const std::int32_t kept = first && !aborted
+    ? numberAllRegions(self, seeds, in, objects, regionCount, regions, summary, nullptr)
+    : 0;
   vtkSmartPointer<vtkIntArray> ids = paintPieceFromBoxes(piece,
     piece.local,
     first ? keptBoxValues(objects, regions, in.axes, aborted) : std::vector<long long>());
@@ -853,15 +892,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   addRegionIds(ports.output, ids, piece.local.cellData);
   if (!first)
     return true;
-  if (self->GetGenerateBoxes())
-    writeBoxes(objects, regions, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(regions, kept, in.grid, in.axes, in.labelType, ports.table);
-  for (vtkDataObject* port :
-    std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
-  {
-    summary.write(port->GetFieldData());
-    vbr::vtk::addDistributionFields(port->GetFieldData(), piece);
-  }
+  writeBoxesAndTable(self, in, objects, regions, kept, summary, ports);
   return true;
 }
 
@@ -1017,14 +1048,10 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   }
 
   // PASS 2: the regions, filtered (size, seeds, largest) and numbered.
-  std::vector<Region> regions = measureRegions(objects, regionCount);
+  std::vector<Region> regions;
   vtkSmartPointer<vtkIntArray> ids; // with seeds, painted now to find their regions
-  if (seeds)
-    ids = markRegionsOfSeeds(this, seeds, in, objects, regions);
-  const std::int32_t kept = numberRegions(
-    regions, this->MinimumRegionSize, seeds != nullptr, this->LargestRegions, this->RegionOrdering);
-  summary.components = static_cast<vtkIdType>(regionCount);
-  summary.regions = kept;
+  const std::int32_t kept =
+    numberAllRegions(this, seeds, in, objects, regionCount, regions, summary, &ids);
 
   // PASS 3: the outputs: RegionId image, boxes, region table.
   {
@@ -1037,13 +1064,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);
-  vtkLogScopeF(TRACE, "boxes and region table");
-  if (this->GenerateBoxes)
-    writeBoxes(objects, regions, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(regions, kept, in.grid, in.axes, in.labelType, ports.table);
-  for (vtkDataObject* port :
-    std::initializer_list<vtkDataObject*>{ output, ports.boxes, ports.table })
-    summary.write(port->GetFieldData());
+  writeBoxesAndTable(this, in, objects, regions, kept, summary, ports);
   return 1;
 }
 

@@ -777,31 +777,27 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   // PASS 2: the faces as cells.
   writeFaces(objects, in, this->OutputMode, this->GetSelectionMode() == LABELS, output);
   int extent[6];
-  vbr::vtk::objectsExtent(in, input, extent);
-  if (vbr::vtk::writesWholeOutputs(in.piece))
-    writeGrid(grid, extent, input, output->GetFieldData());
-  vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
+  input->GetExtent(extent); // not distributed: each rank's piece is its own image
+  writeGrid(grid, extent, input, output->GetFieldData());
   this->UpdateProgress(0.95);
 
   // PASS 3: the voxels rebuilt from the faces alone, checked against the input.
   reversion->Initialize(); // no stale reversion when it is off
-  if (!vbr::vtk::writesWholeOutputs(in.piece))
-    reversion->CopyStructure(input); // rank 0 writes the whole image's; this rank's piece stays
-  if (this->GenerateReversion && vbr::vtk::writesWholeOutputs(in.piece))
+  if (this->GenerateReversion)
   {
     vtkLogScopeF(TRACE, "reversion");
     std::string why;
     const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.95, 1.0);
     if (!writeReversion(objects, grid, extent, selections, input, reversion, exec, why))
     {
-      if (this->GetAbortExecute())
+      if (!this->GetAbortExecute())
       {
-        output->Initialize();
-        reversion->Initialize();
-        return 1;
+        vtkErrorMacro(<< "Reversion failed: " << why << ".");
+        return 0;
       }
-      vtkErrorMacro(<< "Reversion failed: " << why << ".");
-      return 0;
+      output->Initialize(); // aborted
+      reversion->Initialize();
+      return 1;
     }
   }
   return 1;

@@ -354,14 +354,6 @@ void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples)
     throw std::bad_alloc();
 }
 
-void objectsExtent(const InputObjects& in, vtkImageData* image, int extent[6])
-{
-  if (in.piece.distributed())
-    std::copy(in.piece.wholeExtent, in.piece.wholeExtent + 6, extent);
-  else
-    image->GetExtent(extent);
-}
-
 void addDistributionFields(vtkFieldData* fd, const Piece& piece)
 {
   if (!piece.distributed() || piece.rank != 0)
@@ -534,6 +526,14 @@ ScalarGrid<T> owned(ScalarGrid<T> grid, const InputObjects& in)
 }
 
 /// readInputObjects on this rank's piece alone (the whole image without MPI).
+/// Reports `problem` as an error of the algorithm; true when there is none.
+bool noProblem(vtkAlgorithm* algorithm, const std::string& problem)
+{
+  if (!problem.empty())
+    vtkErrorWithObjectMacro(algorithm, << problem);
+  return problem.empty();
+}
+
 bool readLocalObjects(vtkAlgorithm* algorithm,
   vtkImageData* image,
   vtkDataArray* scalars,
@@ -545,33 +545,20 @@ bool readLocalObjects(vtkAlgorithm* algorithm,
   {
     if (image->GetNumberOfPoints() == 0)
       return true; // an empty image has nothing to select
-    vtkErrorWithObjectMacro(
-      algorithm, << "No input scalars to select voxels from: " << requestedArray(algorithm) << ".");
-    return false;
+    return noProblem(
+      algorithm, "No input scalars to select voxels from: " + requestedArray(algorithm) + ".");
   }
   warnAboutSettings(algorithm, settings);
-  const std::string refused = refuseIfTooLarge(scalars, settings);
-  if (!refused.empty())
-  {
-    vtkErrorWithObjectMacro(algorithm, << refused);
-    return false;
-  }
   int component = settings.component;
-  const std::string problem = readVoxels(
-    image, scalars, association, component, settings.flatImagesAs2D, out.contiguous, out.grid);
-  if (!problem.empty())
-  {
-    vtkErrorWithObjectMacro(algorithm, << problem);
+  if (!noProblem(algorithm, refuseIfTooLarge(scalars, settings)) ||
+    !noProblem(algorithm,
+      readVoxels(
+        image, scalars, association, component, settings.flatImagesAs2D, out.contiguous, out.grid)))
     return false;
-  }
   if (double(out.grid.dims[0]) * out.grid.dims[1] * out.grid.dims[2] == 0)
     return true;
-  const std::string tooLong = axisTooLong(out.grid, settings.maximumVoxelsPerAxis);
-  if (!tooLong.empty())
-  {
-    vtkErrorWithObjectMacro(algorithm, << tooLong);
+  if (!noProblem(algorithm, axisTooLong(out.grid, settings.maximumVoxelsPerAxis)))
     return false;
-  }
   warnAboutGrid(algorithm, image, out.grid);
   if (out.piece.distributed())
   {
@@ -592,11 +579,8 @@ bool readLocalObjects(vtkAlgorithm* algorithm,
         settings.background);
     });
   if (!known)
-  {
-    vtkErrorWithObjectMacro(
-      algorithm, << "Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
-    return false;
-  }
+    return noProblem(
+      algorithm, std::string("Unsupported scalar type ") + scalars->GetDataTypeAsString() + ".");
   if (settings.mode == vtkVoxelSelection::LABELS)
     warnAboutManyLabels(algorithm, out.objects.size());
   return true;

@@ -367,12 +367,6 @@ struct Piece
   bool distributed() const { return this->controller != nullptr; }
 };
 
-/// Whether this rank writes the filter's whole-image outputs: always without MPI, rank 0 with.
-inline bool writesWholeOutputs(const Piece& piece)
-{
-  return !piece.distributed() || piece.rank == 0;
-}
-
 /// Under MPI, on rank 0: field data NumberOfRanks and BytesExchanged (what the ranks sent
 /// each other for this result). No-op otherwise.
 void addDistributionFields(vtkFieldData* fd, const Piece& piece);
@@ -391,10 +385,6 @@ struct InputObjects
   /// `objects` are the whole image's, and the other ranks have no objects.
   Piece piece;
 };
-
-/// The extent of the image the objects of `in` lie in: the whole image's under MPI, else the
-/// input's own.
-void objectsExtent(const InputObjects& in, vtkImageData* image, int extent[6]);
 
 /// Reads the objects of `image` carried by `scalars` (the filter's input array, possibly
 /// null), reporting errors and warnings on `algorithm`. Returns false after an error; an

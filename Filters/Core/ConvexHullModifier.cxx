@@ -2,6 +2,7 @@
 
 #include "CUDB.h"
 #include "EVM.h"
+#include "UnionFind.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -492,27 +493,14 @@ bool nearHullBoundary(const CellList& c, const LatticePoint& p)
 /// Number of edge-connected sets among the marked faces of the hull.
 int connectedFaceSets(const CellList& hull, const std::vector<bool>& marked)
 {
-  std::vector<int> parent(hull.faces.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int f)
-  {
-    while (parent[f] != f)
-      f = parent[f] = parent[parent[f]];
-    return f;
-  };
+  UnionFind sets(hull.faces.size());
   for (const auto& ef : hull.edgeFaces)
-  {
     if (ef[0] != Index(-1) && ef[1] != Index(-1) && marked[ef[0]] && marked[ef[1]])
-    {
-      parent[find(static_cast<int>(ef[0]))] = find(static_cast<int>(ef[1]));
-    }
-  }
-  int sets = 0;
+      sets.unite(ef[0], ef[1]);
+  int count = 0;
   for (std::size_t f = 0; f < marked.size(); ++f)
-  {
-    sets += marked[f] && find(static_cast<int>(f)) == static_cast<int>(f);
-  }
-  return sets;
+    count += marked[f] && sets.find(static_cast<std::uint32_t>(f)) == f;
+  return count;
 }
 
 /// Section 4.1: the background components in the closed hull (CUDB, face-connected), each a
@@ -563,44 +551,121 @@ void classifyBackgroundComponents(const BitVolume& objects, const CellList& hull
 }
 
 /// Coplanar edge-connected triangles of H as its faces, with their boundary loops and levels.
+/// The triangle on each directed edge (a, b) of a closed mesh, by key(a, b).
+std::uint64_t edgeKey(Index a, Index b)
+{
+  return (std::uint64_t(a) << 32) | b;
+}
+
+/// The classes of edge-adjacent triangles on the same plane: the faces of the mesh.
+UnionFind coplanarTriangles(const LatticeMesh& m,
+  const std::vector<FacePlane>& planes,
+  const std::unordered_map<std::uint64_t, Index>& owner)
+{
+  UnionFind faces(m.triangles.size());
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto& tri = m.triangles[t];
+      auto it = owner.find(edgeKey(tri[(k + 1) % 3], tri[k]));
+      if (it != owner.end() && planes[it->second] == planes[t])
+        faces.unite(static_cast<std::uint32_t>(t), it->second);
+    }
+  return faces;
+}
+
+/// The boundary loops of a face from its boundary edges (next: a -> b), each once.
+void traceLoops(std::multimap<Index, Index>& next, ModifiedFace& face)
+{
+  while (!next.empty())
+  {
+    std::vector<Index> loop{ next.begin()->first };
+    Index at = next.begin()->second;
+    next.erase(next.begin());
+    while (at != loop.front())
+    {
+      loop.push_back(at);
+      auto it = next.find(at);
+      if (it == next.end())
+        break;
+      at = it->second;
+      next.erase(it);
+    }
+    face.loops.push_back(loop);
+  }
+}
+
+/// The outer loop first: the one of largest area along the normal.
+void putOuterLoopFirst(const LatticeMesh& m, ModifiedFace& face)
+{
+  auto area = [&](const std::vector<Index>& loop)
+  {
+    LatticePoint sum{ 0, 0, 0 };
+    for (std::size_t k = 0; k < loop.size(); ++k)
+    {
+      const LatticePoint c = cross(m.points[loop[k]], m.points[loop[(k + 1) % loop.size()]]);
+      sum = { sum[0] + c[0], sum[1] + c[1], sum[2] + c[2] };
+    }
+    return dot(sum, face.plane.normal);
+  };
+  std::sort(face.loops.begin(),
+    face.loops.end(),
+    [&](const std::vector<Index>& a, const std::vector<Index>& b) { return area(a) > area(b); });
+}
+
+/// The loops of every face from the edges between its triangles and other faces'; the number
+/// of distinct edges of the polyhedron.
+std::size_t loopsOfFaces(const LatticeMesh& m,
+  const std::unordered_map<std::uint64_t, Index>& owner,
+  UnionFind& faceOf,
+  std::vector<ModifiedFace>& faces)
+{
+  std::vector<std::pair<Index, Index>> edges;
+  for (ModifiedFace& face : faces)
+  {
+    std::multimap<Index, Index> next;
+    for (Index t : face.triangles)
+      for (int k = 0; k < 3; ++k)
+      {
+        const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+        auto it = owner.find(edgeKey(b, a));
+        if (it == owner.end() || faceOf.find(it->second) != faceOf.find(t))
+        {
+          next.emplace(a, b);
+          edges.push_back({ std::min(a, b), std::max(a, b) });
+        }
+      }
+    traceLoops(next, face);
+    putOuterLoopFirst(m, face);
+  }
+  std::sort(edges.begin(), edges.end());
+  return static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
+}
+
+/// The faces of the surface: coplanar edge-adjacent triangles merged, with their loops and
+/// the level of their plane.
 void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel, ModifiedHull& r)
 {
   const LatticeMesh& m = r.surface;
   const std::size_t nt = m.triangles.size();
   std::vector<FacePlane> planes(nt);
   std::unordered_map<std::uint64_t, Index> owner;
-  auto key = [](Index a, Index b) { return (std::uint64_t(a) << 32) | b; };
   for (std::size_t t = 0; t < nt; ++t)
   {
     const auto& tri = m.triangles[t];
     planes[t] = planeThrough(m.points[tri[0]], m.points[tri[1]], m.points[tri[2]]);
     for (int k = 0; k < 3; ++k)
-      owner[key(tri[k], tri[(k + 1) % 3])] = static_cast<Index>(t);
+      owner[edgeKey(tri[k], tri[(k + 1) % 3])] = static_cast<Index>(t);
   }
-  std::vector<Index> parent(nt);
-  std::iota(parent.begin(), parent.end(), Index(0));
-  auto find = [&](Index t)
-  {
-    while (parent[t] != t)
-      t = parent[t] = parent[parent[t]];
-    return t;
-  };
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k)
-    {
-      const auto& tri = m.triangles[t];
-      auto it = owner.find(key(tri[(k + 1) % 3], tri[k]));
-      if (it != owner.end() && planes[it->second] == planes[t])
-        parent[find(static_cast<Index>(t))] = find(it->second);
-    }
-  std::unordered_map<Index, Index> faceOf;
+  UnionFind faceOf = coplanarTriangles(m, planes, owner);
+  std::unordered_map<Index, Index> faceOfRoot;
   for (std::size_t t = 0; t < nt; ++t)
   {
-    const Index root = find(static_cast<Index>(t));
-    auto it = faceOf.find(root);
-    if (it == faceOf.end())
+    const Index root = faceOf.find(static_cast<std::uint32_t>(t));
+    auto it = faceOfRoot.find(root);
+    if (it == faceOfRoot.end())
     {
-      it = faceOf.emplace(root, static_cast<Index>(r.faces.size())).first;
+      it = faceOfRoot.emplace(root, static_cast<Index>(r.faces.size())).first;
       ModifiedFace face;
       face.plane = planes[t];
       auto level = planeLevel.find(planes[t]);
@@ -609,54 +674,7 @@ void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel, ModifiedHull& r)
     }
     r.faces[it->second].triangles.push_back(static_cast<Index>(t));
   }
-  std::vector<std::pair<Index, Index>> edges;
-  for (ModifiedFace& face : r.faces)
-  {
-    std::multimap<Index, Index> next;
-    for (Index t : face.triangles)
-      for (int k = 0; k < 3; ++k)
-      {
-        const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-        auto it = owner.find(key(b, a));
-        if (it == owner.end() || find(it->second) != find(t))
-        {
-          next.emplace(a, b);
-          edges.push_back({ std::min(a, b), std::max(a, b) });
-        }
-      }
-    while (!next.empty())
-    {
-      std::vector<Index> loop{ next.begin()->first };
-      Index at = next.begin()->second;
-      next.erase(next.begin());
-      while (at != loop.front())
-      {
-        loop.push_back(at);
-        auto it = next.find(at);
-        if (it == next.end())
-          break;
-        at = it->second;
-        next.erase(it);
-      }
-      face.loops.push_back(loop);
-    }
-    // The outer loop first: the one of largest area along the normal.
-    auto area = [&](const std::vector<Index>& loop)
-    {
-      LatticePoint sum{ 0, 0, 0 };
-      for (std::size_t k = 0; k < loop.size(); ++k)
-      {
-        const LatticePoint c = cross(m.points[loop[k]], m.points[loop[(k + 1) % loop.size()]]);
-        sum = { sum[0] + c[0], sum[1] + c[1], sum[2] + c[2] };
-      }
-      return dot(sum, face.plane.normal);
-    };
-    std::sort(face.loops.begin(),
-      face.loops.end(),
-      [&](const std::vector<Index>& a, const std::vector<Index>& b) { return area(a) > area(b); });
-  }
-  std::sort(edges.begin(), edges.end());
-  r.edgeCount = static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
+  r.edgeCount = loopsOfFaces(m, owner, faceOf, r.faces);
 }
 
 /// Whether p lies on the closed triangle abc (exactly).

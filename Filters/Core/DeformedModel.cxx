@@ -1,5 +1,7 @@
 #include "DeformedModel.h"
 
+#include "UnionFind.h"
+
 #include <algorithm>
 #include <cmath>
 #include <mutex>
@@ -93,14 +95,7 @@ struct CycleTable
   {
     const int cfg = key & 255;
     auto in = [cfg](int c) { return (cfg >> c) & 1; };
-    std::array<int, 12> parent;
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&parent](int x)
-    {
-      while (parent[x] != x)
-        x = parent[x] = parent[parent[x]];
-      return x;
-    };
+    UnionFind edges(12); // the crossed edges of one cycle of the surface in the cube
     auto crossing = [&](int e) { return in(edgeCorner(e, 0)) != in(edgeCorner(e, 1)); };
     for (int face = 0; face < 6; ++face)
     {
@@ -113,7 +108,7 @@ struct CycleTable
         if (crossing(edge[i]))
           crossed.push_back(i);
       }
-      auto unite = [&](int x, int y) { parent[find(x)] = find(y); };
+      auto unite = [&](int x, int y) { edges.unite(x, y); };
       const int cut = ((key >> (8 + face)) & 1) ? 0 : 1; // chain around exterior / interior
       if (crossed.size() == 2)
         unite(edge[crossed[0]], edge[crossed[1]]);
@@ -129,7 +124,7 @@ struct CycleTable
       this->edgeCycle[key][e] = -1;
       if (!crossing(e))
         continue;
-      const int r = find(e);
+      const int r = static_cast<int>(edges.find(e));
       if (id[r] < 0)
         id[r] = this->count[key]++;
       this->edgeCycle[key][e] = static_cast<std::int8_t>(id[r]);
