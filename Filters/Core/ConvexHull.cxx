@@ -176,6 +176,15 @@ private:
   void removeFace(Index f, std::vector<Index>& orphans);
   bool initialSimplex(std::array<Index, 4>& simplex, CellList& flat);
   void insert(Index ip);
+  using NewFaces = std::vector<std::pair<FacePlane, std::vector<Index>>>;
+  NewFaces facesOverHorizon(Index ip, const std::vector<Index>& region, bool extend);
+  void replaceRegion(Index ip,
+    const std::vector<Index>& region,
+    const std::vector<Index>& coplanar,
+    bool extend,
+    NewFaces& created);
+  void addInitialTetrahedron(const std::array<Index, 4>& s);
+  CellList cellList() const;
   void collectRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
   void closeVisibleRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
   void reassign(const std::vector<Index>& orphans, Index first, Index ip);
@@ -321,78 +330,76 @@ void HullBuilder::reassign(const std::vector<Index>& orphans, Index first, Index
 
 /// One step of section 3.1: the visible faces (and, by the variant, coplanar ones) are
 /// replaced by faces joining their boundary to the point.
+/// Section 3.1: point ip joins the hull. The faces it sees (its region, with the coplanar
+/// ones in the Extension variant) are replaced by the faces over the region's horizon.
 void HullBuilder::insert(Index ip)
 {
   std::vector<Index> region, coplanar;
   this->collectRegion(ip, region, coplanar);
   if (this->Coplanar == CoplanarFaces::Visible)
-  {
     this->closeVisibleRegion(ip, region, coplanar);
-  }
   const bool extend = this->Coplanar == CoplanarFaces::Extension;
+  NewFaces created = this->facesOverHorizon(ip, region, extend);
+  this->replaceRegion(ip, region, coplanar, extend, created);
+}
+
+/// One new face per horizon edge of the region and point ip; in the Extension variant the
+/// edges of one plane make one polygon.
+HullBuilder::NewFaces HullBuilder::facesOverHorizon(Index ip,
+  const std::vector<Index>& region,
+  bool extend)
+{
   const LatticePoint& p = this->Points[ip];
-  std::vector<std::pair<FacePlane, std::vector<Index>>> created;
+  NewFaces created;
   for (Index f : region)
   {
     const std::vector<Index> v = this->Faces[f].v;
     for (std::size_t k = 0; k < v.size(); ++k)
     {
       const Index a = v[k], b = v[(k + 1) % v.size()];
-      const Index g = this->neighbour(a, b);
-      const State s = this->classify(g, p);
-      if (s == Visible)
-      {
+      const State s = this->classify(this->neighbour(a, b), p);
+      if (s == Visible || (extend && s == Coplanar_))
         continue;
-      }
-      if (extend && s == Coplanar_)
-      {
-        continue;
-      }
       const FacePlane plane = planeThrough(this->Points[a], this->Points[b], p);
       if (plane.normal == LatticePoint{ 0, 0, 0 })
-      {
         throw std::logic_error("convexHull: flat triangle on the horizon");
-      }
       auto same = std::find_if(created.begin(),
         created.end(),
         [&](const std::pair<FacePlane, std::vector<Index>>& c) { return c.first == plane; });
       if (extend && same != created.end())
-      {
         same->second.insert(same->second.end(), { a, b });
-      }
       else
-      {
         created.push_back({ plane, { a, b, ip } });
-      }
     }
   }
+  return created;
+}
+
+/// The region's faces (and the coplanar ones, extended by ip) removed, the new faces added,
+/// and the points the removed faces saw handed to the new ones.
+void HullBuilder::replaceRegion(Index ip,
+  const std::vector<Index>& region,
+  const std::vector<Index>& coplanar,
+  bool extend,
+  NewFaces& created)
+{
   if (extend)
-  {
     for (Index t : coplanar)
     {
       std::vector<Index> ids = this->Faces[t].v;
       ids.push_back(ip);
       created.push_back({ this->Faces[t].plane, std::move(ids) });
     }
-  }
   this->PointFace[ip] = Processed;
   std::vector<Index> orphans;
   for (Index f : region)
-  {
     this->removeFace(f, orphans);
-  }
   if (extend)
-  {
     for (Index t : coplanar)
-    {
       this->removeFace(t, orphans);
-    }
-  }
   const Index first = static_cast<Index>(this->Faces.size());
   for (auto& c : created)
-  {
     this->addFace(extend ? convexPolygon(c.second, this->Points, c.first) : c.second, c.first);
-  }
   this->reassign(orphans, first, ip);
 }
 
@@ -477,54 +484,49 @@ CellList HullBuilder::run()
   const std::size_t n = this->Points.size();
   CellList hull;
   if (n == 0)
-  {
     return hull;
-  }
   this->PointFace.assign(n, NoFace);
   std::array<Index, 4> s;
   if (!this->initialSimplex(s, hull))
-  {
-    return hull;
-  }
-  for (int omit = 0; omit < 4; ++omit)
-  {
-    std::vector<Index> v;
-    for (int k = 0; k < 4; ++k)
-    {
-      if (k != omit)
-      {
-        v.push_back(s[k]);
-      }
-    }
-    if (planeThrough(this->Points[v[0]], this->Points[v[1]], this->Points[v[2]])
-          .evaluate(this->Points[s[omit]]) > 0)
-    {
-      std::swap(v[1], v[2]);
-    }
-    this->addFace(v, planeThrough(this->Points[v[0]], this->Points[v[1]], this->Points[v[2]]));
-  }
-  for (Index k : s)
-  {
-    this->PointFace[k] = Processed;
-  }
+    return hull; // flat: the degenerate hull
+  this->addInitialTetrahedron(s);
   std::vector<Index> all(n);
   std::iota(all.begin(), all.end(), Index(0));
   this->reassign(all, 0, s[0]);
   for (Index ip = 0; ip < n; ++ip)
-  {
     if (this->PointFace[ip] >= 0)
-    {
       this->insert(ip);
-    }
+  return this->cellList();
+}
+
+/// The four outward faces of the initial tetrahedron.
+void HullBuilder::addInitialTetrahedron(const std::array<Index, 4>& s)
+{
+  for (int omit = 0; omit < 4; ++omit)
+  {
+    std::vector<Index> v;
+    for (int k = 0; k < 4; ++k)
+      if (k != omit)
+        v.push_back(s[k]);
+    if (planeThrough(this->Points[v[0]], this->Points[v[1]], this->Points[v[2]])
+          .evaluate(this->Points[s[omit]]) > 0)
+      std::swap(v[1], v[2]);
+    this->addFace(v, planeThrough(this->Points[v[0]], this->Points[v[1]], this->Points[v[2]]));
   }
-  std::vector<std::int64_t> local(n, -1);
+  for (Index k : s)
+    this->PointFace[k] = Processed;
+}
+
+/// The live faces as a cell list, their vertices numbered in order of appearance.
+CellList HullBuilder::cellList() const
+{
+  CellList hull;
+  std::vector<std::int64_t> local(this->Points.size(), -1);
   hull.dimension = 3;
   for (const Face& f : this->Faces)
   {
     if (!f.alive)
-    {
       continue;
-    }
     std::vector<Index> v;
     for (Index id : f.v)
     {
