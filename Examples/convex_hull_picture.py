@@ -12,20 +12,10 @@ import numpy as np
 import voxelbrep
 from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow, vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from picture_common import add_panel, image_of, panel_window, write_png
 
-
-def image_of(mask):
-    image = vtkImageData()
-    image.SetDimensions(mask.shape[2], mask.shape[1], mask.shape[0])
-    a = ns.numpy_to_vtk(mask.astype(np.uint8).ravel(), deep=1)
-    a.SetName("mask")
-    image.GetPointData().SetScalars(a)
-    return image
 
 
 def grid(n):
@@ -84,29 +74,11 @@ def main():
               (pac_man(), voxelbrep.vtkConvexHullModifier.TRIANGLES),
               (torus(), voxelbrep.vtkConvexHullModifier.CONVEX_HULL),
               (torus(), voxelbrep.vtkConvexHullModifier.TRIANGLES)]
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(300 * len(panels), 300)
+    window = panel_window(len(panels), 300)
     for i, (mask, mode) in enumerate(panels):
-        renderer = vtkRenderer()
-        renderer.SetViewport(i / len(panels), 0, (i + 1) / len(panels), 1)
-        renderer.SetBackground(0.92, 0.93, 0.95)
-        renderer.AddActor(actor(mask, mode))
-        camera = renderer.GetActiveCamera()
-        camera.Azimuth(40 if i < 2 else 20)
-        camera.Elevation(25 if i < 2 else 55)
-        renderer.ResetCamera()
-        camera.Zoom(1.3)
-        window.AddRenderer(renderer)
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(out)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
-    print("wrote", out)
+        add_panel(window, i, len(panels), [actor(mask, mode)], 40 if i < 2 else 20,
+                  25 if i < 2 else 55, 1.3)
+    write_png(window, out)
 
 
 main()

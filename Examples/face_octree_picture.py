@@ -12,13 +12,10 @@ import numpy as np
 import voxelbrep
 from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkDataSetMapper, vtkPolyDataMapper,
-                                         vtkRenderer, vtkRenderWindow,
-                                         vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkDataSetMapper, vtkPolyDataMapper
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from picture_common import add_panel, image_of, panel_window, write_png
 
 
 def solid(n):
@@ -29,14 +26,6 @@ def solid(n):
     bite = (x + 0.15) ** 2 + y ** 2 + (z - 0.3) ** 2 < 0.2 ** 2
     return (box | cylinder) & ~bite
 
-
-def image_of(mask):
-    image = vtkImageData()
-    image.SetDimensions(mask.shape[2], mask.shape[1], mask.shape[0])
-    a = ns.numpy_to_vtk(mask.astype(np.uint8).ravel(), deep=1)
-    a.SetName("mask")
-    image.GetPointData().SetScalars(a)
-    return image
 
 
 def shuffled_lut(count, dark_first):
@@ -99,28 +88,10 @@ def main():
         voxels.GetOutput().GetNumberOfCells(), nodes, boundary.GetNumberOfCells(),
         int(boundary.GetFieldData().GetArray("NumberOfPolygons").GetValue(0)),
         int(boundary.GetFieldData().GetArray("NumberOfTriangles").GetValue(0))))
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(1200, 400)
-    for i, actor in enumerate(actors):
-        renderer = vtkRenderer()
-        renderer.SetViewport(i / 3.0, 0, (i + 1) / 3.0, 1)
-        renderer.SetBackground(0.95, 0.95, 0.97)
-        renderer.AddActor(actor)
-        camera = renderer.GetActiveCamera()
-        camera.Azimuth(30)
-        camera.Elevation(25)
-        renderer.ResetCamera()
-        camera.Zoom(1.3)
-        window.AddRenderer(renderer)
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    writer = vtkPNGWriter()
-    writer.SetFileName(out)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
-    print("wrote", out)
+    window = panel_window(len(actors), 400)
+    for i, a in enumerate(actors):
+        add_panel(window, i, len(actors), [a], 30, 25, 1.3)
+    write_png(window, out)
 
 
 main()

@@ -12,22 +12,12 @@ import numpy as np
 import voxelbrep
 from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow, vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from picture_common import add_panel, image_of, panel_window, write_png
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-
-def image_of(mask):
-    image = vtkImageData()
-    image.SetDimensions(mask.shape[2], mask.shape[1], mask.shape[0])
-    a = ns.numpy_to_vtk(mask.astype(np.uint8).ravel(), deep=1)
-    a.SetName("mask")
-    image.GetPointData().SetScalars(a)
-    return image
 
 
 def sphere():
@@ -82,29 +72,11 @@ def main():
     raw = os.path.join(data, "dgtal_al", "dgtal_al_100x100x100_uint8.raw")
     if os.path.exists(raw):
         objects.append((np.fromfile(raw, np.uint8).reshape(100, 100, 100) == 1, False))
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(400 * len(objects), 400)
+    window = panel_window(len(objects), 400)
     for i, (mask, merge) in enumerate(objects):
-        renderer = vtkRenderer()
-        renderer.SetViewport(i / len(objects), 0, (i + 1) / len(objects), 1)
-        renderer.SetBackground(0.92, 0.93, 0.95)
-        renderer.AddActor(faces_actor(mask, merge))
-        camera = renderer.GetActiveCamera()
-        camera.Azimuth(35)
-        camera.Elevation(25 if i < 2 else -60)
-        renderer.ResetCamera()
-        camera.Zoom(1.25 if i < 2 else 1.7)
-        window.AddRenderer(renderer)
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    writer = vtkPNGWriter()
-    writer.SetFileName(out)
-    writer.SetInputConnection(grab.GetOutputPort())
-    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
-    writer.Write()
-    print("wrote", out)
+        add_panel(window, i, len(objects), [faces_actor(mask, merge)], 35,
+                  25 if i < 2 else -60, 1.25 if i < 2 else 1.7)
+    write_png(window, out)
 
 
 main()
