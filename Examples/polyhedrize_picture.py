@@ -10,7 +10,6 @@ import sys
 
 import numpy as np
 import voxelbrep
-from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkLookupTable
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
