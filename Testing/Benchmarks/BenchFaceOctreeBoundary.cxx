@@ -135,6 +135,8 @@ void printOutputs(const Input& in,
   table.add(outputRow("FaceOctreeBoundary", ours, mine, voxels));
   table.add(outputRow("DFE+WindowedSinc+QDec", theirs, peer, voxels));
   table.print();
+  if (peer > mine)
+    std::printf("\n(the pipeline is farther than the filter even undecimated)\n");
   std::printf("\ntriangles: pipeline / filter %s | filter %s M voxels/s (of %s voxels)\n\n",
     formatRatio(double(fanTriangles(theirs)) / double(std::max(1LL, fanTriangles(ours)))).c_str(),
     formatFixed(double(in.voxelCount()) / std::max(1e-9, filterSeconds) / 1e6, 1).c_str(),
