@@ -1,24 +1,34 @@
 // Benchmark of vtkConvexHullModifier: the exact hull against Qhull and CGAL's convex_hull_3 on
 // the same vertex candidates, and the whole filter on balls, the pac-man (the paper's example)
 // and real objects, next to vtkDiscreteFlyingEdges3D's triangles, the EVM boundary's polygons
-// and the standard-plane polyhedrizer's faces on the same input, in one process.
+// and the standard-plane polyhedrizer's faces on the same input, in turns in one process (the
+// harness of BenchCommon.h).
 //
-//   BenchConvexHullModifier [--radii 12,24,32,48,64] [--repeat 3] [--data DIR] [--no-data]
+// Per input, two groups of contenders:
+//  - hull: our exact hull of the candidates (vbr::convexHull, Extension variant; Visible and
+//    Invisible as phases), against Qhull (libqhull_r, default options: merged coplanar
+//    facets, floating point; "Qt" would triangulate) and CGAL (Epick, a triangulated hull);
+//  - filter: the whole vtkConvexHullModifier (Polyhedron mode, its reversion and check), against
+//    vtkDiscreteFlyingEdges3D, vtkEVMBoundaryFilter (Polygons) and
+//    vtkStandardPlanePolyhedrizer (standard faces, no reversion).
+// Then: voxels, candidates, the hull's faces and vertices (and Qhull's facets), the filter's
+// faces, edges, vertices, degree of non-convexity and Separates, and the ratio of DFE
+// triangles to our faces; a WARNING (a failed smoke run) where the filter does not separate a
+// synthetic input. Of the real volumes only the Al and the lobster run (the pressing-in
+// of the others takes many minutes).
 //
-// Per input: voxels, candidates, the hull's faces and vertices, the hull time (median; our
-// Extension variant, then Visible and Invisible), Qhull's ("qhull Qt" would triangulate; the
-// default merges coplanar facets) and CGAL's (Epick, a triangulated hull) on the same
-// candidates; the filter's faces, edges, vertices, degree of non-convexity, Separates, time;
-// the peers' cells and the ratio DFE triangles / our faces.
+//   BenchConvexHullModifier --help     the options, with this program's defaults
+//   BenchConvexHullModifier --quick --no-data     the smoke run of ctest
 #include "vtkConvexHullModifier.h"
 #include "vtkEVMBoundaryFilter.h"
 #include "vtkStandardPlanePolyhedrizer.h"
 
+#include "BitVolume.h"
 #include "ConvexHull.h"
-#include "ConvexHullModifier.h"
 
 #include "BenchCommon.h"
 
+#include "vtkDataArray.h"
 #include "vtkDiscreteFlyingEdges3D.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
@@ -34,7 +44,6 @@ extern "C"
 #include <libqhull_r/qhull_ra.h>
 }
 
-#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -43,24 +52,10 @@ namespace
 {
 
 using namespace vbrbench;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-Input ball(const std::string& name, int r, bool mouth)
-{
-  const int n = 2 * r + 3;
-  const double c = r + 1;
-  Input in = emptyInput(name, { n, n, n });
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x)
-      {
-        const double dx = x - c, dy = y - c, dz = z - c;
-        const bool cut = mouth && dx > 0 && std::abs(dy) < 0.6 * dx;
-        in.at(x, y, z) = dx * dx + dy * dy + dz * dz <= double(r) * r && !cut;
-      }
-  return in;
-}
-
-long qhullFacets(const std::vector<vbr::LatticePoint>& points)
+/// Qhull's facets of the points (default options), -1 when it fails.
+long long qhullFacets(const std::vector<vbr::LatticePoint>& points)
 {
   std::vector<coordT> coords;
   for (const auto& p : points)
@@ -70,7 +65,7 @@ long qhullFacets(const std::vector<vbr::LatticePoint>& points)
   static FILE* quiet = std::fopen("/dev/null", "w");
   qh_zero(qh, quiet);
   char options[] = "qhull";
-  long facets = -1;
+  long long facets = -1;
   if (qh_new_qhull(qh, 3, int(points.size()), coords.data(), False, options, nullptr, quiet) == 0)
     facets = qh->num_facets;
   int curlong, totlong;
@@ -81,113 +76,167 @@ long qhullFacets(const std::vector<vbr::LatticePoint>& points)
 
 long long field(vtkPolyData* p, const char* name)
 {
-  auto* a = p->GetFieldData()->GetArray(name);
-  return a ? static_cast<long long>(a->GetTuple1(0)) : -1;
+  auto* a = vtkDataArray::SafeDownCast(p->GetFieldData()->GetAbstractArray(name));
+  return a && a->GetNumberOfTuples() > 0 ? static_cast<long long>(a->GetTuple1(0)) : -1;
 }
 
-void run(const Input& in, int repeat)
+/// What the hull contenders leave for the line after the table.
+struct HullRuns
 {
-  const vbr::BitVolume voxels = bitsOf(in);
-  const auto candidates = vbr::vertexCandidates(voxels);
+  std::vector<vbr::LatticePoint> candidates;
+  std::vector<Kernel::Point_3> cgalPoints;
   vbr::CellList hull;
-  const double tOurs = medianSeconds(repeat, [&] { hull = vbr::convexHull(candidates); });
-  const double tVisible =
-    medianSeconds(repeat, [&] { vbr::convexHull(candidates, vbr::CoplanarFaces::Visible); });
-  const double tInvisible =
-    medianSeconds(repeat, [&] { vbr::convexHull(candidates, vbr::CoplanarFaces::Invisible); });
-  long qfacets = 0;
-  const double tQhull = medianSeconds(repeat, [&] { qfacets = qhullFacets(candidates); });
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  std::vector<K::Point_3> cp;
-  for (const auto& p : candidates)
-    cp.emplace_back(double(p[0]), double(p[1]), double(p[2]));
-  CGAL::Surface_mesh<K::Point_3> cgalHull;
-  const double tCgal = medianSeconds(repeat,
-    [&]
-    {
-      cgalHull.clear();
-      CGAL::convex_hull_3(cp.begin(), cp.end(), cgalHull);
-    });
+  long long qhull = -1;
+  CGAL::Surface_mesh<Kernel::Point_3> cgal;
+};
 
-  vtkNew<vtkImageData> image = imageOf(in);
+std::vector<Contender> hullContenders(HullRuns& h)
+{
+  auto variant = [&h](const char* name, vbr::CoplanarFaces coplanar)
+  {
+    return Contender{ name,
+      Role::Phase,
+      "hull",
+      [&h, coplanar] { vbr::convexHull(h.candidates, coplanar); },
+      nullptr };
+  };
+  return {
+    { "hull",
+      Role::Tool,
+      "hull",
+      [&h] { h.hull = vbr::convexHull(h.candidates); },
+      [&h] { return static_cast<long long>(h.hull.faces.size()); } },
+    variant("hull Visible", vbr::CoplanarFaces::Visible),
+    variant("hull Invisible", vbr::CoplanarFaces::Invisible),
+    { "Qhull",
+      Role::Peer,
+      "hull",
+      [&h] { h.qhull = qhullFacets(h.candidates); },
+      [&h] { return h.qhull; } },
+    { "CGAL convex_hull_3",
+      Role::Peer,
+      "hull",
+      [&h]
+      {
+        h.cgal.clear();
+        CGAL::convex_hull_3(h.cgalPoints.begin(), h.cgalPoints.end(), h.cgal);
+      },
+      [&h] { return static_cast<long long>(h.cgal.number_of_faces()); } },
+  };
+}
+
+/// The filter and its peers on the same image.
+struct FilterRuns
+{
   vtkNew<vtkConvexHullModifier> filter;
-  filter->SetInputData(image);
-  const double tFilter = medianSeconds(repeat, [&] { update(filter); });
-  vtkPolyData* out = filter->GetOutput();
   vtkNew<vtkDiscreteFlyingEdges3D> dfe;
-  dfe->SetInputData(image);
-  dfe->SetValue(0, 1);
-  dfe->ComputeNormalsOff();
-  dfe->ComputeGradientsOff();
-  update(dfe);
   vtkNew<vtkEVMBoundaryFilter> evm;
-  evm->SetInputData(image);
-  evm->SetOutputModeToPolygons();
-  update(evm);
   vtkNew<vtkStandardPlanePolyhedrizer> spp;
-  spp->SetInputData(image);
-  spp->GenerateReversionOff();
-  update(spp);
+
+  explicit FilterRuns(vtkImageData* image)
+  {
+    this->filter->SetInputData(image);
+    this->dfe->SetInputData(image);
+    this->dfe->SetValue(0, 1);
+    this->dfe->ComputeNormalsOff();
+    this->dfe->ComputeGradientsOff();
+    this->evm->SetInputData(image);
+    this->evm->SetOutputModeToPolygons();
+    this->spp->SetInputData(image);
+    this->spp->GenerateReversionOff();
+  }
+};
+
+Contender filterContender(const char* name, Role role, vtkAlgorithm* a, vtkPolyData* out)
+{
+  return { name,
+    role,
+    "filter",
+    [a] { update(a); },
+    [out] { return static_cast<long long>(out->GetNumberOfCells()); } };
+}
+
+std::vector<Contender> filterContenders(FilterRuns& f)
+{
+  return {
+    filterContender("filter", Role::Tool, f.filter, f.filter->GetOutput()),
+    filterContender("DiscreteFlyingEdges3D", Role::Peer, f.dfe, f.dfe->GetOutput()),
+    filterContender("EVMBoundary Polygons", Role::Peer, f.evm, f.evm->GetOutput()),
+    filterContender("StandardPlanePolyhedrizer", Role::Peer, f.spp, f.spp->GetOutput()),
+  };
+}
+
+/// The counts of the hull and of the filter's output; a note where our hull's faces are not
+/// Qhull's merged facets.
+void printCounts(const Input& in, const HullRuns& h, FilterRuns& f)
+{
+  vtkPolyData* out = f.filter->GetOutput();
   const long long faces = field(out, "NumberOfFaces");
-  const long long triangles = dfe->GetOutput()->GetNumberOfCells();
-  std::printf("%-18s %8zu voxels %6zu candidates | hull %5zu faces %5zu vertices: ours %7.2f ms "
-              "(Visible %7.2f, Invisible %7.2f), Qhull %7.2f ms (%ld facets), CGAL %7.2f ms | "
-              "H %5lld faces %5lld edges %5lld vertices NK %lld Separates %lld %8.1f ms | "
-              "DFE %7lld triangles (%.1fx) EVM %6lld polygons polyhedrizer %6lld faces\n",
-    in.name.c_str(),
-    voxels.count(),
-    candidates.size(),
-    hull.faces.size(),
-    hull.vertices.size(),
-    1e3 * tOurs,
-    1e3 * tVisible,
-    1e3 * tInvisible,
-    1e3 * tQhull,
-    qfacets,
-    1e3 * tCgal,
-    faces,
-    field(out, "NumberOfEdges"),
-    field(out, "NumberOfVertices"),
+  const long long triangles = f.dfe->GetOutput()->GetNumberOfCells();
+  const bool same = h.qhull == static_cast<long long>(h.hull.faces.size());
+  std::printf("voxels %s, candidates %s | hull %s faces, %s vertices, Qhull %s facets%s | H %s "
+              "faces, %s edges, %s vertices, NK %lld, Separates %lld | DFE triangles / faces "
+              "%s | EVM %s polygons, polyhedrizer %s faces\n\n",
+    formatCount(static_cast<long long>(selectedCount(in))).c_str(),
+    formatCount(static_cast<long long>(h.candidates.size())).c_str(),
+    formatCount(static_cast<long long>(h.hull.faces.size())).c_str(),
+    formatCount(static_cast<long long>(h.hull.vertices.size())).c_str(),
+    formatCount(h.qhull).c_str(),
+    same ? "" : " (not our faces)",
+    formatCount(faces).c_str(),
+    formatCount(field(out, "NumberOfEdges")).c_str(),
+    formatCount(field(out, "NumberOfVertices")).c_str(),
     field(out, "DegreeOfNonConvexity"),
     field(out, "Separates"),
-    1e3 * tFilter,
-    triangles,
-    faces > 0 ? double(triangles) / faces : 0.0,
-    evm->GetOutput()->GetNumberOfCells(),
-    field(spp->GetOutput(), "NumberOfFaces"));
+    formatRatio(faces > 0 ? double(triangles) / double(faces) : 0.0).c_str(),
+    formatCount(f.evm->GetOutput()->GetNumberOfCells()).c_str(),
+    formatCount(field(f.spp->GetOutput(), "NumberOfFaces")).c_str());
+  // The synthetic inputs all separate (the README); the real objects not yet.
+  if (in.inputClass != "volumes" && field(out, "Separates") != 1)
+    std::printf("WARNING: the filter does not separate %s\n\n", in.name.c_str());
+}
+
+/// The real volumes this benchmark runs (the pressing-in of the others takes many minutes).
+bool skipped(const Input& in)
+{
+  return in.inputClass == "volumes" && in.name != "Al (v=1)" && in.name != "lobster>=40";
+}
+
+void benchmarkInput(const Input& in, const Options& options, Report& report)
+{
+  if (skipped(in))
+    return;
+  Report::printInput(in);
+  HullRuns h;
+  h.candidates = vbr::vertexCandidates(bitsOf(in));
+  for (const auto& p : h.candidates)
+    h.cgalPoints.emplace_back(double(p[0]), double(p[1]), double(p[2]));
+  vtkNew<vtkImageData> image = maskImageOf(in);
+  forEachBackend(options,
+    [&](const std::string& backend)
+    {
+      FilterRuns f(image);
+      std::vector<Contender> contenders = hullContenders(h);
+      for (Contender& c : filterContenders(f))
+        contenders.push_back(std::move(c));
+      report.add(in, backend, timeInTurns(options.repeat, contenders));
+      printCounts(in, h, f);
+    });
 }
 
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  Arguments args;
-  args.list = { 12, 24, 32, 48, 64 };
-  args.repeat = 3;
-  args.dataDir = VOXELBREP_DEFAULT_DATA_DIR;
-  if (!parseArguments(argc, argv, "radii", args))
-    return 2;
-  run(ball("pac-man r=11", 11, true), args.repeat);
-  for (int r : args.list)
-    run(ball("ball r=" + std::to_string(r), r, false), args.repeat);
-  if (!args.data)
-    return 0;
-  struct Real
-  {
-    const char* file;
-    std::array<int, 3> dims;
-    int lo, hi;
-    const char* name;
-  };
-  const Real objects[] = {
-    { "/dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, "Al (v=1)" },
-    { "/lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 40, 255, "lobster>=40" },
-  };
-  for (const Real& r : objects)
-  {
-    Input in;
-    if (readThresholded(args.dataDir + r.file, r.dims, r.lo, r.hi, r.name, in))
-      run(in, args.repeat);
-  }
-  return 0;
+  Options options;
+  options.inputs.classes = splitList("pacman,balls,volumes");
+  options.inputs.radii = { 12, 24, 32, 48, 64 };
+  options.repeat = 3;
+  return runBenchmark(argc,
+    argv,
+    "BenchConvexHullModifier",
+    "vtkConvexHullModifier (and its exact hull against Qhull and CGAL) against "
+    "vtkDiscreteFlyingEdges3D, vtkEVMBoundaryFilter and vtkStandardPlanePolyhedrizer",
+    options,
+    benchmarkInput);
 }

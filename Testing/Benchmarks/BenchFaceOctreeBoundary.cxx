@@ -1,68 +1,44 @@
 // Benchmark of vtkFaceOctreeBoundaryFilter against the pipeline a VTK user runs today for a
 // smooth, compact surface of voxels: vtkDiscreteFlyingEdges3D, vtkWindowedSincPolyDataFilter
 // (20 iterations, pass band 0.1), then vtkQuadricDecimation, decimated as far as its distance
-// to the voxel boundary stays at most this filter's (bisection on the target reduction).
+// to the voxel boundary stays at most this filter's (bisection on the target reduction, before
+// the timing), in turns in one process (the harness of BenchCommon.h).
 //
 // Distance: the largest distance from an output vertex to the surfels (the same measure for
 // both, vbr::maximumDistanceToSurfels; vertices beyond two voxels count as 2). Both outputs
 // are in the same index frame (point scalars, unit spacing; the surfels half a voxel from the
-// points). Reported per solid: cells, triangles (each polygon counted as its fan), median
-// time, the peak memory of a first run, the distance, and this filter's polygons per voxel
-// (the paper's Table 1: 0.19-0.31 at 128^3), then voxels per second on a 256^3 ball.
+// points). Per solid (the solids class: ball, torus, CSG of n^3 voxels): the table of the
+// harness (median time, cells, peak memory of a first run of the whole pipeline, time ratio),
+// then for both: polygons, triangles (each polygon counted as its fan), the distance, and
+// polygons per object voxel (the paper's Table 1: 0.19-0.31 at 128^3), the ratio of the
+// triangles, and the filter's voxels per second (the paper's target on 256^3: --sizes 256).
 //
-// Run by hand: BenchFaceOctreeBoundary [--sizes 128] [--repeat 3]
-#include "BenchCommon.h"
-
-#include "FaceOctreeBoundary.h"
+//   BenchFaceOctreeBoundary --help     the options, with this program's defaults
+//   BenchFaceOctreeBoundary --quick    the smoke run of ctest
 #include "vtkFaceOctreeBoundaryFilter.h"
+
+#include "BitVolume.h"
+#include "FaceOctreeBoundary.h"
+
+#include "BenchCommon.h"
 
 #include "vtkCellArray.h"
 #include "vtkDiscreteFlyingEdges3D.h"
-#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkQuadricDecimation.h"
-#include "vtkSmartPointer.h"
 #include "vtkWindowedSincPolyDataFilter.h"
 
-#include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace
 {
 
-using vbrbench::Input;
-
-Input solid(const std::string& name, int n, const std::function<bool(double, double, double)>& f)
-{
-  Input in = vbrbench::emptyInput(name, { n, n, n });
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x)
-        in.at(x, y, z) = f((x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5, (z + 0.5) / n - 0.5);
-  return in;
-}
-
-std::vector<Input> solids(int n)
-{
-  auto sq = [](double x) { return x * x; };
-  std::vector<Input> out;
-  out.push_back(solid(
-    "ball", n, [&](double x, double y, double z) { return sq(x) + sq(y) + sq(z) < sq(0.38); }));
-  out.push_back(solid("torus",
-    n,
-    [&](double x, double y, double z)
-    { return sq(std::sqrt(sq(x) + sq(y)) - 0.27) + sq(z) < sq(0.13); }));
-  out.push_back(solid("csg",
-    n,
-    [&](double x, double y, double z)
-    {
-      const bool box = std::abs(x + 0.05) < 0.3 && std::abs(y) < 0.2 && std::abs(z) < 0.3;
-      const bool cylinder = sq(x - 0.2) + sq(y) < sq(0.18) && std::abs(z) < 0.4;
-      const bool hole = sq(x + 0.15) + sq(y) + sq(z - 0.3) < sq(0.2);
-      return (box || cylinder) && !hole;
-    }));
-  return out;
-}
+using namespace vbrbench;
 
 /// Output vertices in the core's frame (voxel i spans [i, i + 1]).
 std::vector<vbr::Vec3> vertices(vtkPolyData* p)
@@ -77,134 +53,143 @@ std::vector<vbr::Vec3> vertices(vtkPolyData* p)
   return out;
 }
 
-vtkIdType fanTriangles(vtkPolyData* p)
+long long fanTriangles(vtkPolyData* p)
 {
-  vtkIdType n = 0;
+  long long n = 0;
   vtkCellArray* polys = p->GetPolys();
   for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
     n += polys->GetCellSize(c) - 2;
   return n;
 }
 
-struct Row
+/// vtkDiscreteFlyingEdges3D -> vtkWindowedSincPolyDataFilter -> vtkQuadricDecimation.
+struct Pipeline
 {
-  vtkIdType cells = 0, triangles = 0;
-  double seconds = 0, distance = 0;
-  long long peak = 0;
+  vtkNew<vtkDiscreteFlyingEdges3D> contour;
+  vtkNew<vtkWindowedSincPolyDataFilter> smooth;
+  vtkNew<vtkQuadricDecimation> decimate;
+
+  explicit Pipeline(vtkImageData* image)
+  {
+    this->contour->SetInputData(image);
+    this->contour->SetValue(0, 1);
+    this->contour->ComputeNormalsOff();
+    this->contour->ComputeGradientsOff();
+    this->smooth->SetInputConnection(this->contour->GetOutputPort());
+    this->smooth->SetNumberOfIterations(20);
+    this->smooth->SetPassBand(0.1);
+    this->smooth->NonManifoldSmoothingOn();
+    this->smooth->NormalizeCoordinatesOn();
+    this->decimate->SetInputConnection(this->smooth->GetOutputPort());
+  }
+
+  /// Decimates as far as the distance stays within `bound` (8 bisection steps).
+  void decimateWithin(const vbr::BitVolume& bits, double bound)
+  {
+    double lo = 0.0, hi = 0.995;
+    for (int i = 0; i < 8; ++i)
+    {
+      const double mid = 0.5 * (lo + hi);
+      this->decimate->SetTargetReduction(mid);
+      this->decimate->Update();
+      const double d = vbr::maximumDistanceToSurfels(bits, vertices(this->decimate->GetOutput()));
+      (d <= bound ? lo : hi) = mid;
+    }
+    this->decimate->SetTargetReduction(lo);
+  }
+
+  void run()
+  {
+    this->contour->Modified();
+    this->decimate->Update();
+  }
 };
 
-Row runFilter(const Input& in, vtkImageData* image, int repeat, const vbr::BitVolume& bits)
+Contender contenderOf(const char* name, Role role, std::function<void()> run, vtkPolyData* out)
 {
-  vtkNew<vtkFaceOctreeBoundaryFilter> f;
-  f->SetInputData(image);
-  Row r;
-  r.peak = vbrbench::peakBytesOf([&] { f->Update(); });
-  r.seconds = vbrbench::medianSeconds(repeat, [&] { vbrbench::update(f); });
-  vtkPolyData* out = f->GetOutput();
-  r.cells = out->GetNumberOfCells();
-  r.triangles = fanTriangles(out);
-  r.distance = vbr::maximumDistanceToSurfels(bits, vertices(out));
-  (void)in;
-  return r;
+  return { name, role, "", std::move(run), [out] {
+            return static_cast<long long>(out->GetNumberOfCells());
+          } };
 }
 
-/// The pipeline, decimated as far as its distance stays within `bound`.
-Row runPipeline(vtkImageData* image, int repeat, const vbr::BitVolume& bits, double bound)
+/// One output's polygons, triangles, distance and polygons per voxel.
+std::vector<std::string> outputRow(const char* who, vtkPolyData* out, double distance, double v)
 {
-  vtkNew<vtkDiscreteFlyingEdges3D> fe;
-  fe->SetInputData(image);
-  fe->SetValue(0, 1);
-  fe->ComputeNormalsOff();
-  fe->ComputeGradientsOff();
-  vtkNew<vtkWindowedSincPolyDataFilter> smooth;
-  smooth->SetInputConnection(fe->GetOutputPort());
-  smooth->SetNumberOfIterations(20);
-  smooth->SetPassBand(0.1);
-  smooth->NonManifoldSmoothingOn();
-  smooth->NormalizeCoordinatesOn();
-  vtkNew<vtkQuadricDecimation> decimate;
-  decimate->SetInputConnection(smooth->GetOutputPort());
-  smooth->Update();
-  double lo = 0.0, hi = 0.995;
-  for (int i = 0; i < 8; ++i)
-  {
-    const double mid = 0.5 * (lo + hi);
-    decimate->SetTargetReduction(mid);
-    decimate->Update();
-    (vbr::maximumDistanceToSurfels(bits, vertices(decimate->GetOutput())) <= bound ? lo : hi) = mid;
-  }
-  decimate->SetTargetReduction(lo);
-  Row r;
-  r.peak = vbrbench::peakBytesOf([&] { decimate->Update(); });
-  r.seconds = vbrbench::medianSeconds(repeat,
-    [&]
+  return { who,
+    formatCount(out->GetNumberOfCells()),
+    formatCount(fanTriangles(out)),
+    formatFixed(distance, 3),
+    formatFixed(double(out->GetNumberOfCells()) / v, 3) };
+}
+
+void printOutputs(const Input& in,
+  const vbr::BitVolume& bits,
+  vtkPolyData* ours,
+  vtkPolyData* theirs,
+  double filterSeconds)
+{
+  const double voxels = double(std::max<std::size_t>(bits.count(), 1));
+  const double mine = vbr::maximumDistanceToSurfels(bits, vertices(ours));
+  const double peer = vbr::maximumDistanceToSurfels(bits, vertices(theirs));
+  Table table({ "output", "polygons", "triangles", "distance", "polygons/voxel" });
+  table.add(outputRow("FaceOctreeBoundary", ours, mine, voxels));
+  table.add(outputRow("DFE+WindowedSinc+QDec", theirs, peer, voxels));
+  table.print();
+  if (peer > mine)
+    std::printf("\n(the pipeline is farther than the filter even undecimated)\n");
+  std::printf("\ntriangles: pipeline / filter %s | filter %s M voxels/s (of %s voxels)\n\n",
+    formatRatio(double(fanTriangles(theirs)) / double(std::max(1LL, fanTriangles(ours)))).c_str(),
+    formatFixed(double(in.voxelCount()) / std::max(1e-9, filterSeconds) / 1e6, 1).c_str(),
+    formatCount(static_cast<long long>(in.voxelCount())).c_str());
+}
+
+void benchmarkInput(const Input& in, const Options& options, Report& report)
+{
+  Report::printInput(in);
+  const vbr::BitVolume bits = bitsOf(in);
+  vtkNew<vtkImageData> image = maskImageOf(in);
+  forEachBackend(options,
+    [&](const std::string& backend)
     {
-      fe->Modified();
-      decimate->Update();
+      vtkNew<vtkFaceOctreeBoundaryFilter> filter;
+      filter->SetInputData(image);
+      filter->Update();
+      Pipeline pipeline(image);
+      pipeline.decimateWithin(
+        bits, vbr::maximumDistanceToSurfels(bits, vertices(filter->GetOutput())));
+      vtkAlgorithm* f = filter;
+      const std::vector<Contender> contenders{
+        contenderOf(
+          "FaceOctreeBoundary", Role::Tool, [f] { update(f); }, filter->GetOutput()),
+        contenderOf(
+          "DFE+WindowedSinc+QDec",
+          Role::Peer,
+          [&pipeline] { pipeline.run(); },
+          pipeline.decimate->GetOutput()),
+      };
+      const std::vector<Measured> rows = timeInTurns(options.repeat, contenders);
+      report.add(in, backend, rows);
+      printOutputs(in,
+        bits,
+        filter->GetOutput(),
+        pipeline.decimate->GetOutput(),
+        findMeasured(rows, "FaceOctreeBoundary")->median);
     });
-  vtkPolyData* out = decimate->GetOutput();
-  r.cells = out->GetNumberOfCells();
-  r.triangles = fanTriangles(out);
-  r.distance = vbr::maximumDistanceToSurfels(bits, vertices(out));
-  return r;
-}
-
-void print(const char* solidName, const char* who, const Row& r, double voxels)
-{
-  std::printf("%-6s %-22s %9lld %9lld %9.3f %9.1f %8.3f %7.3f\n",
-    solidName,
-    who,
-    (long long)r.cells,
-    (long long)r.triangles,
-    r.seconds * 1e3,
-    r.peak / 1048576.0,
-    r.distance,
-    r.cells / voxels);
 }
 
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  vbrbench::Arguments args;
-  args.list = { 128 };
-  args.repeat = 3;
-  if (!vbrbench::parseArguments(argc, argv, "sizes", args))
-    return 1;
-  std::printf("%-6s %-22s %9s %9s %9s %9s %8s %7s\n",
-    "solid",
-    "method",
-    "cells",
-    "triangles",
-    "ms",
-    "peak MiB",
-    "distance",
-    "cells/v");
-  for (int n : args.list)
-    for (const Input& in : solids(n))
-    {
-      vtkNew<vtkImageData> image = vbrbench::imageOf(in);
-      const vbr::BitVolume bits = vbrbench::bitsOf(in);
-      const double voxels = double(bits.count());
-      const Row mine = runFilter(in, image, args.repeat, bits);
-      const std::string name = in.name + std::to_string(n);
-      print(name.c_str(), "FaceOctreeBoundary", mine, voxels);
-      const Row theirs = runPipeline(image, args.repeat, bits, mine.distance);
-      print(name.c_str(), "DFE+WindowedSinc+QDec", theirs, voxels);
-      std::printf("%-6s triangles ratio %.2f, time ratio %.2f\n",
-        name.c_str(),
-        double(theirs.triangles) / std::max<vtkIdType>(1, mine.triangles),
-        theirs.seconds / std::max(1e-9, mine.seconds));
-    }
-  const int big = args.list.empty() ? 256 : std::max(256, 2 * args.list.front());
-  if (args.list.front() >= 64)
-  {
-    const Input ball = solids(big).front();
-    vtkNew<vtkImageData> image = vbrbench::imageOf(ball);
-    vtkNew<vtkFaceOctreeBoundaryFilter> f;
-    f->SetInputData(image);
-    const double s = vbrbench::medianSeconds(args.repeat, [&] { vbrbench::update(f); });
-    std::printf("ball%d: %.3f s, %.1f M voxels/s\n", big, s, double(big) * big * big / s / 1e6);
-  }
-  return 0;
+  Options options;
+  options.inputs.classes = { "solids" };
+  options.inputs.sizes = { 128 };
+  options.repeat = 3;
+  return runBenchmark(argc,
+    argv,
+    "BenchFaceOctreeBoundary",
+    "vtkFaceOctreeBoundaryFilter against vtkDiscreteFlyingEdges3D -> "
+    "vtkWindowedSincPolyDataFilter -> vtkQuadricDecimation at the same distance",
+    options,
+    benchmarkInput);
 }

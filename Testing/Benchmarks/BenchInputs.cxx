@@ -188,6 +188,66 @@ Input hexahedron()
   return in;
 }
 
+/// The convex hull paper's pac-man: a ball of radius r (voxel centres within r of the centre,
+/// r + 1 voxels from the border) without its mouth, the wedge |y| < 0.6 x on the positive x
+/// side.
+Input pacman(int r)
+{
+  const int n = 2 * r + 3;
+  const double c = r + 1;
+  Input in = emptyInput("pac-man r=" + std::to_string(r), "pacman", { n, n, n });
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+      {
+        const double dx = x - c, dy = y - c, dz = z - c;
+        const bool mouth = dx > 0 && std::abs(dy) < 0.6 * dx;
+        in.at(x, y, z) = dx * dx + dy * dy + dz * dz <= double(r) * r && !mouth;
+      }
+  return in;
+}
+
+/// A smooth solid of n^3 voxels: the voxels whose centre, in [-0.5, 0.5]^3, is inside.
+Input solid(const std::string& shape, int n, const std::function<bool(double, double, double)>& f)
+{
+  Input in = emptyInput(shape + " " + cube(n), "solids", { n, n, n });
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        in.at(x, y, z) = f((x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5, (z + 0.5) / n - 0.5);
+  return in;
+}
+
+double square(double x)
+{
+  return x * x;
+}
+
+/// The face octree paper's kind of solids: a ball, a torus, and a CSG solid (a box united
+/// with a cylinder, less a ball).
+Input smoothSolid(const std::string& shape, int n)
+{
+  if (shape == "ball")
+    return solid(shape,
+      n,
+      [](double x, double y, double z)
+      { return square(x) + square(y) + square(z) < square(0.38); });
+  if (shape == "torus")
+    return solid(shape,
+      n,
+      [](double x, double y, double z)
+      { return square(std::sqrt(square(x) + square(y)) - 0.27) + square(z) < square(0.13); });
+  return solid(shape,
+    n,
+    [](double x, double y, double z)
+    {
+      const bool box = std::abs(x + 0.05) < 0.3 && std::abs(y) < 0.2 && std::abs(z) < 0.3;
+      const bool cylinder = square(x - 0.2) + square(y) < square(0.18) && std::abs(z) < 0.4;
+      const bool hole = square(x + 0.15) + square(y) + square(z - 0.3) < square(0.2);
+      return (box || cylinder) && !hole;
+    });
+}
+
 Input checkerboard(int n)
 {
   Input in = emptyInput("checkerboard " + cube(n), "checkerboard", { n, n, n });
@@ -414,6 +474,18 @@ void addProcedural(const InputOptions& o, const std::string& cls, std::vector<In
         [r] { return ball("ball r=" + std::to_string(r), long(r) * r); });
     return;
   }
+  if (cls == "pacman")
+  {
+    add("pac-man r=11", [] { return pacman(11); });
+    return;
+  }
+  if (cls == "solids")
+  {
+    for (int n : o.sizes)
+      for (const char* shape : { "ball", "torus", "CSG" })
+        add(std::string(shape) + " " + cube(n), [shape, n] { return smoothSolid(shape, n); });
+    return;
+  }
   if (cls == "compact")
   {
     for (int n : o.labels)
@@ -461,9 +533,11 @@ std::vector<std::string> splitList(const std::string& text)
 
 const std::vector<std::string>& inputClasses()
 {
-  static const std::vector<std::string> classes = splitList("phantom,boxes,blobs,balls,porous,"
-                                                            "checkerboard,noise,compact,berea,"
-                                                            "volumes,labelmaps,porous2d,images2d");
+  static const std::vector<std::string> classes =
+    splitList("phantom,boxes,blobs,pacman,balls,solids,"
+              "porous,"
+              "checkerboard,noise,compact,berea,"
+              "volumes,labelmaps,porous2d,images2d");
   return classes;
 }
 

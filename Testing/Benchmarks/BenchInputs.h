@@ -9,6 +9,8 @@
 //  - boxes: a row of separate boxes; blobs: a union of random balls (n^3);
 //  - balls: the polyhedrization paper's sphere (r^2 <= 240), its hexahedron and balls of the
 //    radii in --radii;
+//  - pacman: the convex hull paper's pac-man (a ball of radius 11 without its mouth);
+//  - solids: a ball, a torus and a CSG solid (box and cylinder less a ball) of n^3 voxels;
 //  - porous: Gaussian-filtered white noise (sigma 2 voxels) thresholded so that exactly
 //    the --solid percentage of voxels is solid, n^3, one volume per seed in --seeds;
 //  - checkerboard: the 3D checkerboard of single voxels (every voxel face a face); noise: 50 %
