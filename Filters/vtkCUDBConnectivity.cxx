@@ -2,6 +2,7 @@
 
 #include "CUDB.h"
 #include "EVM.h"
+#include "Geometry.h"
 #include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepDistributed.h"
 
@@ -46,7 +47,7 @@ vtkStandardNewMacro(vtkCUDBConnectivity);
 namespace
 {
 
-using Int3 = std::array<std::int32_t, 3>;
+using Int3 = vbr::Point3; // a lattice point or voxel index
 
 const char* const OrderNames[] = { "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX" };
 

@@ -1,6 +1,7 @@
 #include "vtkConvexHullModifier.h"
 
 #include "ConvexHullModifier.h"
+#include "Geometry.h"
 #include "vtkVoxelBRepAdapters.h"
 
 #include "vtkCellArray.h"
@@ -32,7 +33,7 @@ vtkStandardNewMacro(vtkConvexHullModifier);
 namespace
 {
 
-using Int3 = std::array<std::int32_t, 3>;
+using Int3 = vbr::Point3; // a lattice point or voxel index
 
 /// One selected object: its label, the offset of its box in the grid, its voxels and H.
 struct ModifiedObject
@@ -73,10 +74,7 @@ vbr::BitVolume inImageAxes(const vbr::BitVolume& voxels,
 
 bool mirrored(const vbr::vtk::VoxelGrid& grid)
 {
-  const auto& m = grid.direction;
-  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-    m[2] * (m[3] * m[7] - m[4] * m[6]);
-  return det * grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
+  return grid.mirrorsSpace();
 }
 
 /// The cells and arrays of port 0.

@@ -3,6 +3,7 @@
 #include "BRep.h"
 #include "EVM.h"
 #include "FaceTriangulator.h"
+#include "Geometry.h"
 #include "GridPointIndex.h"
 #include "PlaneSweep3D.h"
 #include "RadixSort.h"
@@ -58,22 +59,13 @@ struct Statistics
   std::array<vtkIdType, 3> planes{ 0, 0, 0 };
 };
 
-Point3 shifted(const Point3& p, const std::array<std::int32_t, 3>& offset)
-{
-  return { p[0] + offset[0], p[1] + offset[1], p[2] + offset[2] };
-}
-
 /// Whether the map from processing axes to world coordinates mirrors space: an odd
 /// permutation of the axes (a 2D image flat along y), a direction matrix with negative
 /// determinant, or a negative spacing. Cells are then reversed to keep their orientation.
 bool reversesOrientation(const vbr::vtk::VoxelGrid& grid, const std::array<int, 3>& axes)
 {
   const bool odd = (axes[1] - axes[0] + 3) % 3 != 1;
-  const auto& m = grid.direction;
-  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-    m[2] * (m[3] * m[7] - m[4] * m[6]);
-  const double scale = det * grid.spacing[0] * grid.spacing[1] * grid.spacing[2];
-  return odd != (scale < 0);
+  return odd != grid.mirrorsSpace();
 }
 
 /// Builds the output polydata: shared points, then cells and their attributes gathered in
@@ -101,7 +93,7 @@ public:
     std::vector<vtkIdType> ids(corners.size());
     for (std::size_t i = 0; i < corners.size(); ++i)
     {
-      const Point3 p = shifted(corners[i], offset);
+      const Point3 p = vbr::add(corners[i], offset);
       const std::uint64_t key = this->Packer.pack(p[0], p[1], p[2]);
       const auto number = this->Index.insert(key);
       if (number.second)

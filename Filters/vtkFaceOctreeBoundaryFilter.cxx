@@ -55,10 +55,7 @@ struct ObjectSettings
 /// negative determinant, or a negative spacing): cells are then reversed.
 bool reversesOrientation(const vbr::vtk::VoxelGrid& grid)
 {
-  const auto& m = grid.direction;
-  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-    m[2] * (m[3] * m[7] - m[4] * m[6]);
-  return det * grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
+  return grid.mirrorsSpace();
 }
 
 /// The boundary and the face octree in world coordinates, gathered object by object.

@@ -1,5 +1,6 @@
 #include "vtkStandardPlanePolyhedrizer.h"
 
+#include "Geometry.h"
 #include "PolygonTriangulator.h"
 #include "Polyhedrization.h"
 #include "SurfelGraph.h"
@@ -42,7 +43,7 @@ vtkStandardNewMacro(vtkStandardPlanePolyhedrizer);
 namespace
 {
 
-using Int3 = std::array<std::int32_t, 3>;
+using Int3 = vbr::Point3; // a lattice point or voxel index
 
 /// Faces of one selected object, with what the output needs.
 struct ObjectFaces
@@ -89,19 +90,16 @@ struct Statistics
 };
 
 /// A pointel of an object in the grid's corner index space.
-Int3 inGrid(const ObjectFaces& o, const vbr::Point3& p)
+vbr::Point3 inGrid(const ObjectFaces& o, const vbr::Point3& p)
 {
-  return { p[0] + o.offset[0], p[1] + o.offset[1], p[2] + o.offset[2] };
+  return vbr::add(p, o.offset);
 }
 
 /// Whether the grid's index-to-world map reverses orientation (then polygons are reversed
 /// so that normals still point out of the object).
 bool mirrored(const vbr::vtk::VoxelGrid& grid)
 {
-  const auto& m = grid.direction;
-  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-    m[2] * (m[3] * m[7] - m[4] * m[6]);
-  return det * grid.spacing[0] * grid.spacing[1] * grid.spacing[2] < 0;
+  return grid.mirrorsSpace();
 }
 
 /// The cells of output port 0 and their arrays.

@@ -97,6 +97,18 @@ void VoxelGrid::positionToWorld(const double v[3], double world[3]) const
   }
 }
 
+double VoxelGrid::directionDeterminant() const
+{
+  const auto& m = this->direction;
+  return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+    m[2] * (m[3] * m[7] - m[4] * m[6]);
+}
+
+bool VoxelGrid::mirrorsSpace() const
+{
+  return this->directionDeterminant() * this->spacing[0] * this->spacing[1] * this->spacing[2] < 0;
+}
+
 bool VoxelGrid::worldToVoxel(const double world[3], std::array<std::int32_t, 3>& voxel) const
 {
   vtkNew<vtkMatrix3x3> inverse;
@@ -262,9 +274,7 @@ std::string geometryProblem(const VoxelGrid& grid)
         << ") is not finite";
     return msg.str();
   }
-  const std::array<double, 9>& m = grid.direction;
-  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-    m[2] * (m[3] * m[7] - m[4] * m[6]);
+  const double det = grid.directionDeterminant();
   if (!(std::abs(det) > 1e-12)) // also NaN
   {
     return "the direction matrix is singular or not finite (its determinant is " +

@@ -57,6 +57,12 @@ struct VoxelGrid
   void vertexToWorld(const std::array<std::int32_t, 3>& v, double world[3]) const;
   /// The same for a position in continuous vertex coordinates (voxel centres at i + 0.5).
   void positionToWorld(const double v[3], double world[3]) const;
+  /// The determinant of the direction matrix.
+  double directionDeterminant() const;
+  /// Whether index-to-world coordinates mirror space (a direction matrix of negative
+  /// determinant, or an odd number of negative spacings): cells are then reversed so that
+  /// normals still point out of the object.
+  bool mirrorsSpace() const;
   /// The voxel whose cell of the grid contains a world position; false when outside.
   bool worldToVoxel(const double world[3], std::array<std::int32_t, 3>& voxel) const;
 };
