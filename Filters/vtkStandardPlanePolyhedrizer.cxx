@@ -359,8 +359,8 @@ private:
 
   vtkIdType point(const Int3& p)
   {
-    const std::uint64_t key = (std::uint64_t(std::uint32_t(p[2])) << 42) ^
-      (std::uint64_t(std::uint32_t(p[1])) << 21) ^ std::uint64_t(std::uint32_t(p[0]));
+    // Grid corners lie in [0, 2^20] (at most 2^20 - 1 voxels per axis): 21 bits each.
+    const std::uint64_t key = vbr::KeyPacker().pack(p[2], p[1], p[0]);
     const auto it = this->PointOf.find(key);
     if (it != this->PointOf.end())
       return it->second;
