@@ -442,16 +442,21 @@ bool HullBuilder::initialSimplex(std::array<Index, 4>& simplex, CellList& flat)
   {
   }
   simplex[1] = static_cast<Index>(i);
-  for (++i; i < n && cross(sub(P[simplex[1]], P[0]), sub(P[i], P[0])) == LatticePoint{ 0, 0, 0 };
+  for (++i; simplex[1] < n && i < n &&
+       cross(sub(P[simplex[1]], P[0]), sub(P[i], P[0])) == LatticePoint{ 0, 0, 0 };
        ++i)
   {
   }
-  simplex[2] = static_cast<Index>(i);
-  const LatticePoint normal = cross(sub(P[simplex[1]], P[0]), sub(P[std::min(i, n - 1)], P[0]));
-  for (++i; i < n && dot(normal, sub(P[i], P[0])) == 0; ++i)
+  simplex[2] = static_cast<Index>(std::min(i, n));
+  if (simplex[2] < n)
   {
+    // A plane through three points: the first point off it is the fourth corner.
+    const LatticePoint normal = cross(sub(P[simplex[1]], P[0]), sub(P[simplex[2]], P[0]));
+    for (++i; i < n && dot(normal, sub(P[i], P[0])) == 0; ++i)
+    {
+    }
   }
-  simplex[3] = static_cast<Index>(i);
+  simplex[3] = static_cast<Index>(std::min(i, n));
   if (simplex[1] >= n || simplex[2] >= n)
   {
     // One point, or collinear points: the sorted order runs along the line.

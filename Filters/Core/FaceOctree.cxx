@@ -119,8 +119,13 @@ void Compactor::forbiddenIntervals(const FaceNode& node,
         double a = (lo - r - base) / n[0] - 0.5, b = (hi + r - base) / n[0] - 0.5;
         if (a > b)
           std::swap(a, b);
-        i0 = std::max<std::int32_t>(i0, std::int32_t(std::floor(a)) - 1);
-        i1 = std::min<std::int32_t>(i1, std::int32_t(std::ceil(b)) + 2);
+        // Clamped in double first: a nearly perpendicular normal gives offsets far outside
+        // the int range.
+        const double first = std::floor(a) - 1, last = std::ceil(b) + 2;
+        if (first > i0)
+          i0 = first >= i1 ? i1 : static_cast<std::int32_t>(first);
+        if (last < i1)
+          i1 = last <= i0 ? i0 : static_cast<std::int32_t>(last);
       }
       for (std::int32_t i = i0; i < i1; ++i)
       {

@@ -754,7 +754,8 @@ TEST(DeformedModel, RelaxationLowersTheCostInsideTheVoxels)
 TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
 {
   // A grid that is no power of two along any axis.
-  const Shape& s = solids()[4];
+  const std::vector<Shape> shapes = solids(); // the shape must outlive the sampling
+  const Shape& s = shapes[4];
   const BitVolume v = sample(
     { 45, 38, 41 }, [&](double x, double y, double z) { return s.inside(x / 45, y / 38, z / 41); });
   const auto model = vbr::buildDeformedModel(v, {}, sequential);
