@@ -124,13 +124,7 @@ def check_surface(name, mask, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0),
     pts, cells = vt.points(out), vt.cells(out)
     check.true(name + " has cells", len(cells) > 0)
     check.true(name + " closed and oriented", closed_and_oriented(cells))
-    worst = 0.0
-    for c in cells:
-        if len(c) > 3:
-            p = pts[c]
-            n = sum(np.cross(p[i], p[(i + 1) % len(p)]) for i in range(len(p)))
-            n /= np.linalg.norm(n)
-            worst = max(worst, float(np.abs((p - p.mean(axis=0)) @ n).max()))
+    worst = vt.polygon_planarity(pts, cells)
     if mode != F.QUADRILATERALS:  # the relaxed net's quadrilaterals are not planar
         check.true(name + " planar polygons (%g)" % worst, worst < 1e-9 * max(spacing))
     vox = float(mask.sum()) * abs(np.prod(spacing))

@@ -87,13 +87,7 @@ def check_volume(name, values, select, spacing=(1.0, 1.0, 1.0), mask=None, label
         check.equal(name + ": NumberOfBoundaryVoxels",
                     vt.field_value(out, "NumberOfBoundaryVoxels"), boundary_count(mask))
     check.true(name + ": closed and oriented", closed_and_oriented(cells, len(pts)))
-    worst = 0.0
-    for c in cells:
-        if len(c) > 3:
-            p = pts[c]
-            n = sum(np.cross(p[i], p[(i + 1) % len(p)]) for i in range(len(p)))
-            n /= np.linalg.norm(n)
-            worst = max(worst, float(np.abs((p - p.mean(axis=0)) @ n).max()))
+    worst = vt.polygon_planarity(pts, cells)
     check.true(name + ": planar polygons (%g)" % worst, worst < 1e-9 * max(spacing))
     index = pts / np.asarray(spacing)
     d, _ = cKDTree(surfel_points(mask)).query(index)

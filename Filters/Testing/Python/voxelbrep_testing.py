@@ -199,6 +199,19 @@ def faces_and_holes_3d(mask, merge_non_manifold):
     return faces, holes
 
 
+def polygon_planarity(pts, cells):
+    """The largest distance of a vertex of a polygon (more than three corners) from the plane
+    through the polygon's centroid along its Newell normal; 0 without such polygons."""
+    worst = 0.0
+    for c in cells:
+        if len(c) > 3:
+            p = pts[c]
+            n = sum(np.cross(p[i], p[(i + 1) % len(p)]) for i in range(len(p)))
+            n /= np.linalg.norm(n)
+            worst = max(worst, float(np.abs((p - p.mean(axis=0)) @ n).max()))
+    return worst
+
+
 def plugin_proxies(xml_path):
     """The proxies of the plugin XML that ParaView makes (not the bases in voxelbrep_bases),
     each as ParaView reads it: the elements of its base proxy (base_proxygroup,
