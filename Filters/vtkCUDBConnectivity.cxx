@@ -977,7 +977,7 @@ int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector*)
 {
   // Components are global: the whole image is needed whatever piece is asked for.
-  vbr::vtk::requestWholeExtent(inputVector[0]);
+  vbr::vtk::requestWholeExtent(this, inputVector[0]);
   return 1;
 }
 

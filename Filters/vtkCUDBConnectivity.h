@@ -58,6 +58,10 @@
  * vtkSMPTools (set VTK_SMP_BACKEND_IN_USE=STDThread with ParaView's VTK, whose default is
  * sequential).
  *
+ * Under MPI (ParaView running the filter on N ranks, one piece each) the RegionIds are the
+ * 1-rank ones on every rank's piece: rank 0 labels the whole image from the ranks' extreme
+ * vertices and sends the kept boxes back (see vtkVoxelBRepDistributed.h).
+ *
  * @sa vtkImageConnectivityFilter vtkConnectivityFilter vtkEVMBoundaryFilter
  */
 #ifndef vtkCUDBConnectivity_h

@@ -44,34 +44,6 @@ struct ModifiedObject
   vbr::ModifiedHull result;
 };
 
-/// The voxels of an object with the axes of the image (the selection may permute them).
-vbr::BitVolume inImageAxes(const vbr::BitVolume& voxels,
-  const std::array<int, 3>& axes,
-  Int3& offset)
-{
-  if (axes == std::array<int, 3>{ 0, 1, 2 })
-    return voxels;
-  Int3 dims, moved;
-  for (int k = 0; k < 3; ++k)
-  {
-    dims[axes[k]] = voxels.size(k);
-    moved[axes[k]] = offset[k];
-  }
-  offset = moved;
-  vbr::BitVolume out(dims[0], dims[1], dims[2]);
-  Int3 p, q;
-  for (p[2] = 0; p[2] < voxels.size(2); ++p[2])
-    for (p[1] = 0; p[1] < voxels.size(1); ++p[1])
-      for (p[0] = 0; p[0] < voxels.size(0); ++p[0])
-        if (voxels.get(p[0], p[1], p[2]))
-        {
-          for (int k = 0; k < 3; ++k)
-            q[axes[k]] = p[k];
-          out.set(q[0], q[1], q[2]);
-        }
-  return out;
-}
-
 bool mirrored(const vbr::vtk::VoxelGrid& grid)
 {
   return grid.mirrorsSpace();
@@ -209,7 +181,7 @@ bool modifyObjects(vtkConvexHullModifier* self,
     ModifiedObject o;
     o.label = in.objects[i].label;
     o.offset = in.objects[i].offset;
-    o.voxels = inImageAxes(
+    o.voxels = vbr::vtk::inImageAxes(
       in.objects[i].select(vbr::vtk::makeExecution(self, from, from)), in.axes, o.offset);
     if (o.voxels.empty())
       continue;
@@ -274,33 +246,22 @@ void writeStatistics(const std::vector<ModifiedObject>& objects, bool separates,
   fd->AddArray(onSurface);
 }
 
-void markVoxels(const vbr::BitVolume& voxels,
-  const Int3& offset,
-  const Int3& dims,
-  unsigned char* array)
-{
-  for (std::int32_t z = 0; z < voxels.size(2); ++z)
-    for (std::int32_t y = 0; y < voxels.size(1); ++y)
-      for (std::int32_t x = 0; x < voxels.size(0); ++x)
-        if (voxels.get(x, y, z))
-          array[(vtkIdType(z + offset[2]) * dims[1] + y + offset[1]) * dims[0] + x + offset[0]] = 1;
-}
-
 /// PASS 2, port 1: the voxels rebuilt from H and its marks alone, per object, compared with
-/// the object's voxels and, written as the user reads them, with the selection. Returns the
-/// first object whose reversion differs (or whose H is incomplete), or -1.
+/// the object's voxels and, written as the user reads them, with the selection (each rank's
+/// piece under MPI, collective then; on the ranks other than 0 `objects` is empty). Returns
+/// the first object whose reversion differs (or whose H is incomplete), or -1.
 long writeReversion(const std::vector<ModifiedObject>& objects,
-  const vbr::vtk::VoxelGrid& grid,
+  vbr::vtk::InputObjects& in,
   vtkImageData* input,
   vtkImageData* output)
 {
-  output->CopyStructure(input);
+  const vbr::vtk::VoxelGrid& grid = in.grid;
   const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  const bool distributed = in.piece.distributed();
   vtkNew<vtkUnsignedCharArray> selection;
-  selection->SetName("Selection");
-  vbr::vtk::resizeOrThrow(selection, n);
-  std::fill_n(selection->GetPointer(0), n, 0);
-  std::vector<unsigned char> expected(static_cast<std::size_t>(n), 0);
+  vbr::vtk::resizeOrThrow(selection, distributed && in.piece.rank != 0 ? 0 : n);
+  std::fill_n(selection->GetPointer(0), selection->GetNumberOfValues(), 0);
+  std::vector<unsigned char> expected(static_cast<std::size_t>(selection->GetNumberOfValues()), 0);
   long wrong = -1;
   for (std::size_t i = 0; i < objects.size(); ++i)
   {
@@ -309,20 +270,16 @@ long writeReversion(const std::vector<ModifiedObject>& objects,
       vbr::revertModifiedHull(o.result.surface, o.result.backgroundOnSurface, o.voxels.dims());
     if ((back != o.voxels || !o.result.complete) && wrong < 0)
       wrong = static_cast<long>(i);
-    markVoxels(back, o.offset, grid.dims, selection->GetPointer(0));
-    markVoxels(o.voxels, o.offset, grid.dims, expected.data());
+    vbr::vtk::markVoxels(back, o.offset, grid.dims, selection->GetPointer(0));
+    vbr::vtk::markVoxels(o.voxels, o.offset, grid.dims, expected.data());
   }
-  const vtkIdType tuples = grid.cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  // Under MPI rank 0's grid is the whole image's, by construction; its input is a piece.
+  const vtkIdType tuples = distributed ? n
+    : grid.cellData                    ? input->GetNumberOfCells()
+                                       : input->GetNumberOfPoints();
   const bool same = wrong < 0 && tuples == n &&
     std::equal(expected.begin(), expected.end(), selection->GetPointer(0));
-  vtkDataSetAttributes* attributes = grid.cellData
-    ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
-    : static_cast<vtkDataSetAttributes*>(output->GetPointData());
-  attributes->SetScalars(selection);
-  vtkNew<vtkIntArray> matches;
-  matches->SetName("ReversionMatches");
-  matches->InsertNextValue(same ? 1 : 0);
-  output->GetFieldData()->AddArray(matches);
+  vbr::vtk::writeReversionImage(in, selection, same, input, output);
   return same ? -1 : std::max(wrong, 0L);
 }
 
@@ -363,7 +320,7 @@ int vtkConvexHullModifier::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
-  vbr::vtk::requestWholeExtent(inputVector[0]);
+  vbr::vtk::requestWholeExtent(this, inputVector[0]);
   return 1;
 }
 
@@ -420,6 +377,7 @@ int vtkConvexHullModifier::Execute(vtkInformationVector** inputVector,
   settings.flatImagesAs2D = false; // a flat image is a one-voxel-thick slab
   settings.maximumVoxelsPerAxis = (1 << 20) - 1;
   settings.bytesPerVoxel = 1.0 / 8.0 + 2.0;
+  settings.distributed = true; // H of the whole image on rank 0 (N ranks = 1 rank)
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
     return 0;
@@ -430,18 +388,20 @@ int vtkConvexHullModifier::Execute(vtkInformationVector** inputVector,
   if (!modifyObjects(this, in, objects))
   {
     output->Initialize(); // aborted
+    if (in.piece.distributed())
+      vbr::vtk::writeReversionImage(in, nullptr, false, input, reversion); // tell the others
     reversion->Initialize();
     return 1;
   }
   this->UpdateProgress(0.9);
 
   // PASS 2: the voxels rebuilt from H and its marks alone, checked against the selection.
-  reversion->Initialize();
-  const long wrong = writeReversion(objects, in.grid, input, reversion);
+  const long wrong = writeReversion(objects, in, input, reversion);
 
   // PASS 3: the cells and statistics.
   writeCells(objects, in, this->OutputMode, this->GetSelectionMode() == LABELS, output);
   writeStatistics(objects, wrong < 0, output->GetFieldData());
+  vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   if (wrong >= 0)
   {
     const ModifiedObject& o = objects[static_cast<std::size_t>(wrong)];

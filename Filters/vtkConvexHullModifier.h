@@ -52,6 +52,10 @@
  * voxels touching along edges and at corners (random noise) are not resolved by the
  * pressing-in yet: Separates is 0 and an error names the object.
  *
+ * Under MPI (ParaView running the filter on N ranks, one piece each) H is the 1-rank H, output
+ * once by rank 0 (from the extreme vertices of every rank's voxels), and port 1 gives every
+ * rank its own piece of the reversion (see vtkVoxelBRepDistributed.h).
+ *
  * @sa vtkStandardPlanePolyhedrizer vtkEVMBoundaryFilter
  */
 #ifndef vtkConvexHullModifier_h

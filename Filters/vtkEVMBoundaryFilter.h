@@ -72,6 +72,10 @@
  * @warning The EVM extraction and the three sweeps run with vtkSMPTools (set
  * VTK_SMP_BACKEND_IN_USE=STDThread with ParaView's VTK, whose default is sequential).
  *
+ * Under MPI (ParaView running the filter on N ranks, one piece each) the output is the
+ * 1-rank output: the ranks send the extreme vertices of the voxels they own to rank 0, which
+ * outputs the faces of the whole image once (see vtkVoxelBRepDistributed.h).
+ *
  * @sa vtkDiscreteFlyingEdges3D vtkThreshold vtkGeometryFilter
  */
 #ifndef vtkEVMBoundaryFilter_h

@@ -364,6 +364,7 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   settings.flatImagesAs2D = false;
   settings.maximumVoxelsPerAxis = (1 << 21) - 2;
   settings.bytesPerVoxel = 1.0 / 8.0 * 3; // object, interior vertices and far voxels
+  settings.distributed = true; // the boundary of the whole image on rank 0 (N ranks = 1 rank)
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
     return 0;
@@ -398,6 +399,7 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   if (this->GetSelectionMode() == LABELS)
     output->GetCellData()->SetActiveScalars("Label");
   writeStatistics(stats, output->GetFieldData());
+  vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   return 1;
 }
 

@@ -63,6 +63,10 @@
  * and the voxel classifications run with vtkSMPTools (set VTK_SMP_BACKEND_IN_USE=STDThread
  * with ParaView's VTK, whose default is sequential).
  *
+ * Under MPI (ParaView running the filter on N ranks, one piece each) both outputs are the
+ * 1-rank outputs, by rank 0 (from the extreme vertices of every rank's voxels; see
+ * vtkVoxelBRepDistributed.h).
+ *
  * @sa vtkEVMBoundaryFilter vtkDiscreteFlyingEdges3D vtkSurfaceNets3D
  */
 #ifndef vtkFaceOctreeBoundaryFilter_h

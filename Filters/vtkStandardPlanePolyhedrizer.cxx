@@ -447,66 +447,22 @@ void writeGrid(const vbr::vtk::VoxelGrid& grid,
   fd->AddArray(direction);
 }
 
-/// The voxels of an object in the image's own axes: the selection hands the voxels of a
-/// flat image over in its processing axes (flat axis last), the faces are in the image's.
-vbr::BitVolume inImageAxes(const vbr::BitVolume& voxels,
-  const std::array<int, 3>& axes,
-  Int3& offset)
-{
-  if (axes == std::array<int, 3>{ 0, 1, 2 })
-    return voxels;
-  Int3 dims, moved;
-  for (int k = 0; k < 3; ++k)
-  {
-    dims[axes[k]] = voxels.size(k);
-    moved[axes[k]] = offset[k];
-  }
-  offset = moved;
-  vbr::BitVolume out(dims[0], dims[1], dims[2]);
-  std::array<std::int32_t, 3> p, q;
-  for (p[2] = 0; p[2] < voxels.size(2); ++p[2])
-    for (p[1] = 0; p[1] < voxels.size(1); ++p[1])
-      for (p[0] = 0; p[0] < voxels.size(0); ++p[0])
-        if (voxels.get(p[0], p[1], p[2]))
-        {
-          for (int k = 0; k < 3; ++k)
-            q[axes[k]] = p[k];
-          out.set(q[0], q[1], q[2]);
-        }
-  return out;
-}
-
-/// Sets to 1 the values of `array` (one per voxel of the grid, x fastest: the order of the
-/// image's point or cell tuples) at the voxels of an object.
-void markVoxels(const vbr::BitVolume& voxels,
-  const Int3& offset,
-  const Int3& dims,
-  unsigned char* array)
-{
-  for (std::int32_t z = 0; z < voxels.size(2); ++z)
-    for (std::int32_t y = 0; y < voxels.size(1); ++y)
-      for (std::int32_t x = 0; x < voxels.size(0); ++x)
-        if (voxels.get(x, y, z))
-          array[(vtkIdType(z + offset[2]) * dims[1] + y + offset[1]) * dims[0] + x + offset[0]] = 1;
-}
-
-/// Output port 1: the voxels recomputed from the faces alone (planes and loops), with the
-/// input's layout. The self-check compares the array written with the input's selection
-/// written the same way, tuple by tuple, and the tuple count with the input's.
-bool writeReversion(const std::vector<ObjectFaces>& objects,
-  const vbr::vtk::VoxelGrid& grid,
-  const int extent[6],
+/// The voxels recomputed from the faces alone, one value per voxel of `in.grid` (x fastest:
+/// the order of the image's tuples), and whether they are the selection: each object's own
+/// voxels (in Labels mode a voxel reverted into another label's object would pass the combined
+/// comparison), the array as the user reads it, and the tuple count. Null when a face could
+/// not be reverted (`problem`).
+vtkSmartPointer<vtkUnsignedCharArray> revertedSelection(const std::vector<ObjectFaces>& objects,
+  const vbr::vtk::InputObjects& in,
   const std::vector<vbr::BitVolume>& selections,
   vtkImageData* input,
-  vtkImageData* output,
   const vbr::Execution& exec,
+  bool& same,
   std::string& problem)
 {
-  output->CopyStructure(input);
-  output->SetExtent(const_cast<int*>(extent)); // the whole image's under MPI
+  const vbr::vtk::VoxelGrid& grid = in.grid;
   const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   vtkNew<vtkUnsignedCharArray> selection;
-  selection->SetName("Selection");
   vbr::vtk::resizeOrThrow(selection, n);
   std::fill_n(selection->GetPointer(0), n, 0);
   std::vector<unsigned char> expected(static_cast<std::size_t>(n), 0);
@@ -527,25 +483,48 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
     vbr::BitVolume voxels;
     problem = vbr::revert(outlines, o.graph.dims, surfels, voxels, exec);
     if (!problem.empty())
-      return false;
-    // Each object's own voxels back (in Labels mode a voxel reverted into another label's
-    // object would pass the combined comparison below), then the array as the user reads it.
+      return nullptr;
     objectsMatch = objectsMatch && voxels == selections[i];
-    markVoxels(voxels, o.offset, grid.dims, selection->GetPointer(0));
-    markVoxels(selections[i], o.offset, grid.dims, expected.data());
+    vbr::vtk::markVoxels(voxels, o.offset, grid.dims, selection->GetPointer(0));
+    vbr::vtk::markVoxels(selections[i], o.offset, grid.dims, expected.data());
   }
-  const vtkIdType tuples = grid.cellData ? output->GetNumberOfCells() : output->GetNumberOfPoints();
-  const bool same = objectsMatch && tuples == n &&
+  // Under MPI rank 0's grid is the whole image's, by construction; its input is a piece.
+  const vtkIdType tuples = in.piece.distributed() ? n
+    : grid.cellData                               ? input->GetNumberOfCells()
+                                                  : input->GetNumberOfPoints();
+  same = objectsMatch && tuples == n &&
     std::equal(expected.begin(), expected.end(), selection->GetPointer(0));
-  vtkDataSetAttributes* attributes = grid.cellData
-    ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
-    : static_cast<vtkDataSetAttributes*>(output->GetPointData());
-  attributes->SetScalars(selection);
-  vtkNew<vtkIntArray> matches;
-  matches->SetName("ReversionMatches");
-  matches->InsertNextValue(same ? 1 : 0);
-  output->GetFieldData()->AddArray(matches);
-  if (!same)
+  return selection;
+}
+
+/// Output port 1: the voxels recomputed from the faces alone (planes and loops), with the
+/// input's layout (each rank's piece under MPI). The self-check compares the array written
+/// with the input's selection written the same way, tuple by tuple, and the tuple count with
+/// the input's. Under MPI it is collective; on the ranks other than 0 `objects` is empty.
+bool writeReversion(const std::vector<ObjectFaces>& objects,
+  vbr::vtk::InputObjects& in,
+  const std::vector<vbr::BitVolume>& selections,
+  vtkImageData* input,
+  vtkImageData* output,
+  const vbr::Execution& exec,
+  std::string& problem)
+{
+  const bool distributed = in.piece.distributed();
+  vtkSmartPointer<vtkUnsignedCharArray> selection;
+  bool same = true;
+  if (!distributed || in.piece.rank == 0)
+  {
+    selection = revertedSelection(objects, in, selections, input, exec, same, problem);
+    if (!selection && !distributed)
+      return false;
+  }
+  if (!vbr::vtk::writeReversionImage(in, selection, same, input, output))
+  {
+    if (problem.empty())
+      problem = "the first rank could not rebuild the voxels";
+    return false;
+  }
+  if (!same && problem.empty())
     problem = "the reversion differs from the selection";
   return same;
 }
@@ -624,7 +603,8 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
   const double a = from + 0.05 * (to - from), b = from + 0.15 * (to - from);
   o.label = selected.label;
   o.offset = selected.offset;
-  voxels = inImageAxes(selected.select(vbr::vtk::makeExecution(self, from, a)), axes, o.offset);
+  voxels =
+    vbr::vtk::inImageAxes(selected.select(vbr::vtk::makeExecution(self, from, a)), axes, o.offset);
   if (voxels.empty())
     return true;
   {
@@ -706,7 +686,7 @@ int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector*)
 {
   // Faces are global: the whole image is needed whatever piece is asked for.
-  vbr::vtk::requestWholeExtent(inputVector[0]);
+  vbr::vtk::requestWholeExtent(this, inputVector[0]);
   return 1;
 }
 
@@ -756,6 +736,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   settings.maximumVoxelsPerAxis = (1 << 20) - 1;
   // Selection bits, and for the reversion its Selection array and the self-check's copy.
   settings.bytesPerVoxel = 1.0 / 8.0 + (this->GenerateReversion ? 2.0 : 0.0);
+  settings.distributed = true; // the faces of the whole image on rank 0 (N ranks = 1 rank)
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
     return 0;
@@ -768,15 +749,21 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   if (!buildObjectFaces(this, in, optionsOf(this), objects, selections))
   {
     output->Initialize(); // aborted
+    if (this->GenerateReversion && in.piece.distributed())
+      vbr::vtk::writeReversionImage(in, nullptr, false, input, reversion); // tell the others
     reversion->Initialize();
     return 1;
   }
 
   // PASS 2: the faces as cells.
   writeFaces(objects, in, this->OutputMode, this->GetSelectionMode() == LABELS, output);
+  // Under MPI the faces are the whole image's, and every rank names its grid.
   int extent[6];
-  input->GetExtent(extent); // not distributed: each rank's piece is its own image
-  writeGrid(grid, extent, input, output->GetFieldData());
+  input->GetExtent(extent);
+  if (in.piece.distributed())
+    std::copy_n(in.piece.wholeExtent, 6, extent);
+  writeGrid(in.piece.distributed() ? in.piece.whole : grid, extent, input, output->GetFieldData());
+  vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   this->UpdateProgress(0.95);
 
   // PASS 3: the voxels rebuilt from the faces alone, checked against the input.
@@ -786,7 +773,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
     vtkLogScopeF(TRACE, "reversion");
     std::string why;
     const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.95, 1.0);
-    if (!writeReversion(objects, grid, extent, selections, input, reversion, exec, why))
+    if (!writeReversion(objects, in, selections, input, reversion, exec, why))
     {
       if (!this->GetAbortExecute())
       {

@@ -70,6 +70,10 @@
  *
  * A flat image (one voxel along an axis) is polyhedrized as a one-voxel-thick slab.
  *
+ * Under MPI (ParaView running the filter on N ranks, one piece each) the faces are the 1-rank
+ * faces, output once by rank 0 (from the extreme vertices of every rank's voxels), and port 1
+ * gives every rank its own piece of the reversion (see vtkVoxelBRepDistributed.h).
+ *
  * @sa vtkEVMBoundaryFilter vtkStandardPlaneReversion
  */
 #ifndef vtkStandardPlanePolyhedrizer_h

@@ -2,6 +2,7 @@
 
 #include "Polyhedrization.h"
 #include "vtkVoxelBRepAdapters.h"
+#include "vtkVoxelBRepDistributed.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
@@ -13,6 +14,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -580,6 +582,14 @@ int vtkStandardPlaneReversion::Execute(vtkInformationVector** inputVector,
                      "vtkStandardPlanePolyhedrizer.");
     return 0;
   }
+  if (vtkMultiProcessController* c = vbr::vtk::distributedController(this))
+    if (c->GetLocalProcessId() != 0)
+    {
+      // Under MPI the faces are the whole image's, on rank 0 (see vtkVoxelBRepDistributed.h):
+      // rank 0 rebuilds the whole image, the other ranks output none of it.
+      output->Initialize();
+      return 1;
+    }
   Grid grid;
   std::string problem = readVoxelGrid(input->GetFieldData(), grid);
   if (problem.empty())

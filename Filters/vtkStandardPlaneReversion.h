@@ -31,6 +31,9 @@
  * error. Faces made from an image with a direction matrix (field `VoxelGridDirection` not
  * the identity) are not supported: the filter reports an error.
  *
+ * Under MPI (ParaView running the filter on N ranks) the faces are on rank 0 (see
+ * vtkStandardPlanePolyhedrizer): rank 0 outputs the whole image, the other ranks none.
+ *
  * @sa vtkStandardPlanePolyhedrizer
  */
 #ifndef vtkStandardPlaneReversion_h

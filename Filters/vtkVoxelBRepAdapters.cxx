@@ -6,6 +6,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCellData.h"
 #include "vtkDataObject.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -13,14 +14,17 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSetGet.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUniformGrid.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -373,6 +377,74 @@ void addDistributionFields(vtkFieldData* fd, const Piece& piece)
     fd, "BytesExchanged", static_cast<vtkIdType>(piece.bytesReceived + piece.bytesSent));
 }
 
+BitVolume inImageAxes(const BitVolume& voxels, const std::array<int, 3>& axes, Point3& offset)
+{
+  if (axes == std::array<int, 3>{ 0, 1, 2 })
+    return voxels;
+  Point3 dims, moved;
+  for (int k = 0; k < 3; ++k)
+  {
+    dims[axes[k]] = voxels.size(k);
+    moved[axes[k]] = offset[k];
+  }
+  offset = moved;
+  BitVolume out(dims[0], dims[1], dims[2]);
+  Point3 p, q;
+  for (p[2] = 0; p[2] < voxels.size(2); ++p[2])
+    for (p[1] = 0; p[1] < voxels.size(1); ++p[1])
+      for (p[0] = 0; p[0] < voxels.size(0); ++p[0])
+        if (voxels.get(p[0], p[1], p[2]))
+        {
+          for (int k = 0; k < 3; ++k)
+            q[axes[k]] = p[k];
+          out.set(q[0], q[1], q[2]);
+        }
+  return out;
+}
+
+void markVoxels(const BitVolume& voxels,
+  const Point3& offset,
+  const std::array<std::int32_t, 3>& dims,
+  unsigned char* array)
+{
+  for (std::int32_t z = 0; z < voxels.size(2); ++z)
+    for (std::int32_t y = 0; y < voxels.size(1); ++y)
+      for (std::int32_t x = 0; x < voxels.size(0); ++x)
+        if (voxels.get(x, y, z))
+          array[(vtkIdType(z + offset[2]) * dims[1] + y + offset[1]) * dims[0] + x + offset[0]] = 1;
+}
+
+bool writeReversionImage(InputObjects& in,
+  vtkUnsignedCharArray* selection,
+  bool matches,
+  vtkImageData* input,
+  vtkImageData* output)
+{
+  output->Initialize();
+  vtkSmartPointer<vtkUnsignedCharArray> values = selection;
+  if (in.piece.distributed())
+  {
+    int status = matches ? 2 : 1; // 0: rank 0 has nothing to send
+    values = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    if (!scatterSelection(in.piece, in.piece.rank == 0 ? selection : nullptr, status, values))
+      return false;
+    matches = status == 2;
+  }
+  if (!values)
+    return false;
+  values->SetName("Selection");
+  output->CopyStructure(input);
+  vtkDataSetAttributes* attributes = in.grid.cellData
+    ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
+    : static_cast<vtkDataSetAttributes*>(output->GetPointData());
+  attributes->SetScalars(values);
+  vtkNew<vtkIntArray> flag;
+  flag->SetName("ReversionMatches");
+  flag->InsertNextValue(matches ? 1 : 0);
+  output->GetFieldData()->AddArray(flag);
+  return true;
+}
+
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
 {
   vtkNew<vtkIdTypeArray> a;
@@ -657,10 +729,10 @@ int executeGuarded(vtkAlgorithm* algorithm,
   }
 }
 
-void requestWholeExtent(vtkInformationVector* input)
+void requestWholeExtent(vtkAlgorithm* algorithm, vtkInformationVector* input)
 {
   vtkInformation* in = input->GetInformationObject(0);
-  if (!in)
+  if (!in || distributedController(algorithm))
     return;
   if (in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {

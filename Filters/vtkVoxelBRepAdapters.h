@@ -32,6 +32,7 @@ class vtkImageData;
 class vtkInformationVector;
 class vtkMultiProcessController;
 class vtkPolyData;
+class vtkUnsignedCharArray;
 
 namespace vbr
 {
@@ -402,9 +403,36 @@ bool readInputObjects(vtkAlgorithm* algorithm,
   const SelectionSettings& settings,
   InputObjects& out);
 
+/// The voxels of an object in the image's own axes: the selection hands the voxels over in
+/// its processing axes (see processingAxes: a flat image's flat axis last), the faces and the
+/// reversion are in the image's. `offset` (the object's box in the grid) is moved with them.
+BitVolume inImageAxes(const BitVolume& voxels, const std::array<int, 3>& axes, Point3& offset);
+
+/// Sets to 1 the values of `array` (one per voxel of a grid of `dims`, x fastest: the order of
+/// the image's point or cell tuples) at the voxels of an object whose box starts at `offset`.
+void markVoxels(const BitVolume& voxels,
+  const Point3& offset,
+  const std::array<std::int32_t, 3>& dims,
+  unsigned char* array);
+
+/// Port 1 of the filters that rebuild the voxels from their own output alone: `output` takes
+/// the layout of `input` with the scalars `Selection` (1 at the rebuilt voxels; cell or point
+/// data as the input's voxels) and the field value ReversionMatches (`matches`). `selection`
+/// has one value per voxel of `in.grid`. Under MPI this is collective: rank 0 passes the
+/// whole image's selection (null when it failed or was aborted), the other ranks null, and
+/// every rank writes its own piece (see scatterSelection). Returns false, with `output`
+/// empty, when there is nothing to write.
+bool writeReversionImage(InputObjects& in,
+  vtkUnsignedCharArray* selection,
+  bool matches,
+  vtkImageData* input,
+  vtkImageData* output);
+
 /// Asks the input of `input` (a port's information vector) for its whole extent, whatever
-/// piece the output is asked for: the filters' results (faces, components) are global.
-void requestWholeExtent(vtkInformationVector* input);
+/// piece the output is asked for: the filters' results (faces, components) are global. Under
+/// MPI, when ParaView runs `algorithm` on every rank (see distributedController), the piece
+/// request stays: each rank reads its own piece and the filter gathers what it needs.
+void requestWholeExtent(vtkAlgorithm* algorithm, vtkInformationVector* input);
 /// Removes the extent, origin and spacing the executive copies from an image input to output
 /// `port`, whose data is not an image.
 void removeImageInformation(vtkInformationVector* outputVector, int port);

@@ -243,6 +243,63 @@ std::vector<Selected> mergeMessages(const std::vector<std::vector<long long>>& a
   return out;
 }
 
+/// The voxels `selection` marks (one value per voxel of a grid of `dims`, x fastest).
+BitVolume markedVoxels(const unsigned char* selection, const std::array<std::int32_t, 3>& dims)
+{
+  BitVolume voxels(dims[0], dims[1], dims[2]);
+  for (std::int32_t z = 0; z < dims[2]; ++z)
+    for (std::int32_t y = 0; y < dims[1]; ++y)
+    {
+      const unsigned char* row = selection + (std::size_t(z) * dims[1] + y) * dims[0];
+      for (std::int32_t x = 0; x < dims[0]; ++x)
+        if (row[x])
+          voxels.set(x, y, z);
+    }
+  return voxels;
+}
+
+/// The EVM (vertices in extractEVM's order) of the voxels of the box [lo, lo + dims) of the
+/// set whose EVM is `vertices`: a vertex below the box along an axis counts for every voxel of
+/// the box at or above it along the others, so it moves onto the box's lower face; a vertex
+/// at or past the box's upper end counts for none, so it goes.
+EVM croppedEVM(const std::vector<Vertex>& vertices,
+  const std::array<std::int32_t, 3>& lo,
+  const std::array<std::int32_t, 3>& dims)
+{
+  const AxisOrder order{ 2, 1, 0 };
+  std::vector<Vertex> inBox;
+  inBox.reserve(vertices.size());
+  for (const Vertex& v : vertices)
+  {
+    Vertex moved;
+    bool kept = true;
+    for (int k = 0; k < 3 && kept; ++k)
+    {
+      const std::int64_t c = std::int64_t(v[k]) - lo[order[k]];
+      kept = c < dims[order[k]];
+      moved[k] = static_cast<Coord>(std::max<std::int64_t>(c, 0));
+    }
+    if (kept)
+      inBox.push_back(moved);
+  }
+  return EVM(3, order, xorOfVertices(std::move(inBox)));
+}
+
+/// Rank 0's message of scatterSelection: [status, vertex count, vertices (z, y, x)].
+std::vector<long long> selectionMessage(const unsigned char* wholeSelection,
+  int status,
+  const Piece& piece)
+{
+  if (!wholeSelection || status == 0)
+    return { 0, 0 };
+  const EVM evm = extractEVM(markedVoxels(wholeSelection, piece.whole.dims));
+  std::vector<long long> m{ status, static_cast<long long>(evm.size()) };
+  m.reserve(2 + 3 * evm.size());
+  for (const Vertex& v : evm.vertices())
+    m.insert(m.end(), { v[0], v[1], v[2] });
+  return m;
+}
+
 } // namespace
 
 vtkMultiProcessController* distributedController(vtkAlgorithm* algorithm)
@@ -389,6 +446,34 @@ vtkSmartPointer<vtkDataSet> gatherPoints(Piece& piece, vtkDataSet* points)
   vtkSmartPointer<vtkPolyData> out = vtkSmartPointer<vtkPolyData>::New();
   out->SetPoints(gathered);
   return out;
+}
+
+bool scatterSelection(Piece& piece,
+  vtkUnsignedCharArray* wholeSelection,
+  int& status,
+  vtkUnsignedCharArray* pieceSelection)
+{
+  std::vector<long long> message;
+  if (piece.rank == 0)
+    message =
+      selectionMessage(wholeSelection ? wholeSelection->GetPointer(0) : nullptr, status, piece);
+  status = 0;
+  if (!broadcastValues(piece, message) || message.size() < 2 || message[0] == 0)
+    return false;
+  status = static_cast<int>(message[0]);
+  std::vector<Vertex> vertices(static_cast<std::size_t>(message[1]));
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      vertices[i][k] = static_cast<Coord>(message[2 + 3 * i + k]);
+  const std::array<std::int32_t, 3>& dims = piece.local.dims;
+  const BitVolume voxels = croppedEVM(vertices, piece.offset, dims).toVoxels(dims);
+  resizeOrThrow(pieceSelection, vtkIdType(dims[0]) * dims[1] * dims[2]);
+  unsigned char* out = pieceSelection->GetPointer(0);
+  for (std::int32_t z = 0; z < dims[2]; ++z)
+    for (std::int32_t y = 0; y < dims[1]; ++y)
+      for (std::int32_t x = 0; x < dims[0]; ++x)
+        *out++ = voxels.get(x, y, z) ? 1 : 0;
+  return true;
 }
 
 } // namespace vtk

@@ -23,6 +23,21 @@
 // objects' label bits and vertices (GatherV of 64-bit values), then the status of all
 // (Broadcast). CUDB connectivity adds one broadcast of the boxes and one of the region
 // numbering, so that every rank writes the RegionIds of its own piece (ghosts included).
+// Every filter gathers this way (EVM boundary, CUDB connectivity, standard-plane
+// polyhedrizer, convex hull modifier, face octree boundary): their faces are those of the
+// whole image, output once, by rank 0; the other ranks output none.
+//
+// Reversions. The filters whose port 1 is the image rebuilt from their faces (the
+// polyhedrizer, the hull modifier) give every rank its own piece of it: rank 0 broadcasts the
+// EVM of the rebuilt voxels of the whole image and the self-check's result; each rank crops
+// the EVM to its piece (see scatterSelection) and rebuilds only the piece's voxels, ghosts
+// included. So the reversion too costs extreme vertices, not voxels.
+//
+// Costs and limits. Rank 0 holds the whole image's objects (as bits, one object at a time
+// where the filter allows) and does the whole computation; the other ranks only read and
+// select their pieces. The distribution is for volumes read and selected on several
+// machines, not a parallel speed-up. An exception on one rank (out of memory) between two
+// collective steps leaves the others waiting at the next one.
 //
 // Without MPI, in a serial ParaView or with one rank, nothing of this runs.
 #ifndef vtkVoxelBRepDistributed_h
@@ -40,6 +55,7 @@ class vtkDataSet;
 class vtkImageData;
 class vtkInformation;
 class vtkMultiProcessController;
+class vtkUnsignedCharArray;
 
 namespace vbr
 {
@@ -75,6 +91,20 @@ bool broadcastValues(Piece& piece, std::vector<long long>& values);
 
 /// Collective: the points of every rank's `points` (null: none) on rank 0, null elsewhere.
 vtkSmartPointer<vtkDataSet> gatherPoints(Piece& piece, vtkDataSet* points);
+
+/// Collective, from rank 0: the voxels that rank 0's `wholeSelection` marks (one value per
+/// voxel of the whole image, image axes, x fastest; null when rank 0 failed) and its `status`,
+/// to every rank, which writes the voxels of its own piece (`piece.local`, ghost voxels
+/// included, x fastest) into `pieceSelection` as 0 and 1. On rank 0 `pieceSelection` may be
+/// `wholeSelection` itself. Rank 0 sends the EVM of the marked voxels;
+/// each rank crops it to its piece (a vertex below the piece's box is moved onto the box, one
+/// above it dropped: the parity of the vertices at or below every voxel of the box is kept) and
+/// rebuilds only its piece. Returns false on every rank when the exchange failed or rank 0 had
+/// nothing to send; `status` is then 0.
+bool scatterSelection(Piece& piece,
+  vtkUnsignedCharArray* wholeSelection,
+  int& status,
+  vtkUnsignedCharArray* pieceSelection);
 
 } // namespace vtk
 } // namespace vbr

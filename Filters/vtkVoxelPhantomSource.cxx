@@ -4,6 +4,7 @@
 #include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepMemory.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -14,6 +15,8 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -43,6 +46,8 @@ int vtkVoxelPhantomSource::RequestInformation(vtkInformation*,
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 1);
+  // Any sub-extent on request: under MPI each rank computes its own piece alone.
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   return 1;
 }
 
@@ -62,10 +67,21 @@ int vtkVoxelPhantomSource::RequestData(vtkInformation* request,
 void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output,
   vtkInformation* outInfo)
 {
-  // The image and the phantom's own labels: two bytes per voxel, refused before allocating.
-  const double voxels = double(std::max(this->Dimensions[0], 1)) *
-    std::max(this->Dimensions[1], 1) * std::max(this->Dimensions[2], 1);
-  const std::string refused = vbr::vtk::checkAllocation(2.0 * voxels, "The phantom");
+  // The piece asked for (the whole extent unless a consumer streams or distributes pieces).
+  int extent[6];
+  outInfo->Get(outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT())
+      ? vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()
+      : vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
+    extent);
+  std::array<std::int32_t, 3> first, size;
+  for (int d = 0; d < 3; ++d)
+  {
+    first[d] = extent[2 * d];
+    size[d] = std::max(extent[2 * d + 1] - extent[2 * d] + 1, 0);
+  }
+  // The image and the piece's labels: two bytes per voxel, refused before allocating.
+  const std::string refused =
+    vbr::vtk::checkAllocation(2.0 * size[0] * size[1] * size[2], "The phantom");
   if (!refused.empty())
   {
     vtkErrorMacro(<< refused);
@@ -80,21 +96,11 @@ void vtkVoxelPhantomSource::ExecuteDataWithInformation(vtkDataObject* output,
     return;
   }
   scalars->SetName("Labels");
-  int extent[6];
-  image->GetExtent(extent);
   const std::array<std::int32_t, 3> dims{ std::max(this->Dimensions[0], 1),
     std::max(this->Dimensions[1], 1),
     std::max(this->Dimensions[2], 1) };
-  const std::vector<std::uint8_t> labels = vbr::makePhantom(dims);
-  // Copy the requested extent (the whole extent unless a consumer streams pieces).
-  unsigned char* out = scalars->GetPointer(0);
-  for (int k = extent[4]; k <= extent[5]; ++k)
-    for (int j = extent[2]; j <= extent[3]; ++j)
-    {
-      const std::size_t src = (static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + extent[0];
-      std::copy_n(labels.data() + src, extent[1] - extent[0] + 1, out);
-      out += extent[1] - extent[0] + 1;
-    }
+  const std::vector<std::uint8_t> labels = vbr::makePhantomPiece(dims, first, size);
+  std::copy(labels.begin(), labels.end(), scalars->GetPointer(0));
 }
 
 //------------------------------------------------------------------------------

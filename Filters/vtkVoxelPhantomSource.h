@@ -10,7 +10,10 @@
  * contacts). All parts scale with the dimensions, so the same shapes exist at every size. It
  * is the default input of the VoxelBRep examples and benchmarks.
  *
- * Dimensions whose image (and the phantom's own copy: two bytes per voxel) cannot fit in the
+ * It produces any sub-extent asked for (CAN_PRODUCE_SUB_EXTENT), computing only that piece:
+ * under MPI each rank makes its own piece.
+ *
+ * Pieces whose image (and the phantom's own copy: two bytes per voxel) cannot fit in the
  * memory this process can allocate are refused with an error and an empty output.
  */
 #ifndef vtkVoxelPhantomSource_h

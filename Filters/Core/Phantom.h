@@ -15,6 +15,12 @@ namespace vbr
 /// Labels of an nx * ny * nz volume, x fastest. Every part scales with the volume.
 std::vector<std::uint8_t> makePhantom(const std::array<std::int32_t, 3>& dims);
 
+/// The labels of the voxels [first, first + size) of the phantom of `dims`, x fastest: the
+/// piece of a distributed image, computed without the rest.
+std::vector<std::uint8_t> makePhantomPiece(const std::array<std::int32_t, 3>& dims,
+  const std::array<std::int32_t, 3>& first,
+  const std::array<std::int32_t, 3>& size);
+
 /// Number of labels makePhantom uses (1..count).
 constexpr int PhantomLabelCount = 5;
 
