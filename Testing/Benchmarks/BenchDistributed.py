@@ -2,7 +2,7 @@
 on, against the voxels of the volume.
 
 Usage: mpiexec -n N pvbatch BenchDistributed.py /path/to/VoxelBRep.so [options]
-  --inputs wavelet,phantom,berea   the inputs (default: all three)
+  --inputs wavelet,phantom,berea,pacman   the inputs (default: all four)
   --size S        the Wavelet's and the phantom's points per axis (default 256)
   --repeat R      timed updates per filter (default 3; the median is printed)
   --filters a,b   EVM,CUDB,Polyhedrizer,Hull,FaceOctree (default: all)
@@ -11,12 +11,13 @@ Usage: mpiexec -n N pvbatch BenchDistributed.py /path/to/VoxelBRep.so [options]
 Inputs: ParaView's Wavelet (each rank computes its own piece) thresholded at RTData >= 150 (a
 smooth field: a few large components); the Voxel Phantom (each rank computes its own piece),
 every label > 0; the Berea sandstone's pores (v == 0), written by rank 0 as a .pvti of one
-piece per rank and read back by every rank. Prints one line per filter and input: ranks,
+piece per rank and read back by every rank; a pac-man (a ball of radius n/4 with a wedge cut
+out, a Calculator on the Wavelet's grid, n = min(size, 96)). Prints one line per filter and input: ranks,
 median seconds of an update, the bytes the ranks exchanged for it (field data
 BytesExchanged: the extreme vertices sent to rank 0 and what rank 0 sends back), the
 voxels, and the bytes per voxel. On one rank nothing is exchanged. The Convex Hull Modifier
-runs on the Wavelet only (it does not separate the phantom's touching parts or the porous
-rock yet, see the README).
+runs on the pac-man only (it does not separate the Wavelet's and the phantom's touching parts
+or the porous rock yet, see the README), the other filters on the other inputs.
 """
 
 import argparse
@@ -32,7 +33,7 @@ from paraview.simple import *  # noqa: F401,F403
 
 parser = argparse.ArgumentParser()
 parser.add_argument("plugin")
-parser.add_argument("--inputs", default="wavelet,phantom,berea")
+parser.add_argument("--inputs", default="wavelet,phantom,berea,pacman")
 parser.add_argument("--size", type=int, default=256)
 parser.add_argument("--repeat", type=int, default=3)
 parser.add_argument("--filters", default="EVM,CUDB,Polyhedrizer,Hull,FaceOctree")
@@ -79,6 +80,15 @@ def make_input(name):
         return (Wavelet(WholeExtent=[0, n - 1] * 3),
                 dict(Scalars=["POINTS", "RTData"], SelectionMode="Range", LowerThreshold=150.0,
                      UpperThreshold=1000.0), n ** 3)
+    if name == "pacman":
+        m = min(n, 96)
+        c, r = (m - 1) / 2.0, m / 4.0
+        function = ("(coordsX-{c})^2+(coordsY-{c})^2+(coordsZ-{c})^2"
+                    "+1e9*((coordsX>{c})*(abs(coordsY-{c})<coordsX-{c}))").format(c=c)
+        return (Calculator(Input=Wavelet(WholeExtent=[0, m - 1] * 3), ResultArrayName="PacMan",
+                           Function=function),
+                dict(Scalars=["POINTS", "PacMan"], SelectionMode="Range", LowerThreshold=-1.0,
+                     UpperThreshold=r * r + 0.3), m ** 3)
     if name == "phantom":
         return (VoxelPhantom(Dimensions=[n, n, n]),
                 dict(Scalars=["POINTS", "Labels"], SelectionMode="Positive"), n ** 3)
@@ -128,7 +138,7 @@ for input_name in args.inputs.split(","):
         continue
     source, selection, voxels = made
     for filter_name in args.filters.split(","):
-        if filter_name == "Hull" and input_name != "wavelet":
+        if (filter_name == "Hull") != (input_name == "pacman"):
             continue
         proxy = FILTERS[filter_name](source, selection)
         seconds = time_updates(proxy, selection)
