@@ -972,12 +972,13 @@ int vtkCUDBConnectivity::RequestInformation(vtkInformation*,
 }
 
 //------------------------------------------------------------------------------
-int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformation*,
+int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformation* request,
   vtkInformationVector** inputVector,
-  vtkInformationVector*)
+  vtkInformationVector* outputVector)
 {
   // Components are global: the whole image is needed whatever piece is asked for.
   vbr::vtk::requestWholeExtent(this, inputVector[0]);
+  vbr::vtk::requestSamePieceOnEveryPort(request, outputVector);
   return 1;
 }
 

@@ -316,11 +316,12 @@ int vtkConvexHullModifier::RequestInformation(vtkInformation*,
   return 1;
 }
 
-int vtkConvexHullModifier::RequestUpdateExtent(vtkInformation*,
+int vtkConvexHullModifier::RequestUpdateExtent(vtkInformation* request,
   vtkInformationVector** inputVector,
-  vtkInformationVector*)
+  vtkInformationVector* outputVector)
 {
   vbr::vtk::requestWholeExtent(this, inputVector[0]);
+  vbr::vtk::requestSamePieceOnEveryPort(request, outputVector);
   return 1;
 }
 

@@ -681,12 +681,13 @@ int vtkStandardPlanePolyhedrizer::RequestInformation(vtkInformation*,
   return 1;
 }
 
-int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation*,
+int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation* request,
   vtkInformationVector** inputVector,
-  vtkInformationVector*)
+  vtkInformationVector* outputVector)
 {
   // Faces are global: the whole image is needed whatever piece is asked for.
   vbr::vtk::requestWholeExtent(this, inputVector[0]);
+  vbr::vtk::requestSamePieceOnEveryPort(request, outputVector);
   return 1;
 }
 

@@ -8,6 +8,7 @@
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -739,6 +740,27 @@ void requestWholeExtent(vtkAlgorithm* algorithm, vtkInformationVector* input)
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
       in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
       6);
+  }
+}
+
+void requestSamePieceOnEveryPort(vtkInformation* request, vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  const int from = request && request->Has(vtkExecutive::FROM_OUTPUT_PORT())
+    ? std::max(request->Get(vtkExecutive::FROM_OUTPUT_PORT()), 0)
+    : 0;
+  vtkInformation* asked = outputVector->GetInformationObject(from);
+  if (!asked || !asked->Has(SDDP::UPDATE_NUMBER_OF_PIECES()))
+    return;
+  for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)
+  {
+    vtkInformation* info = outputVector->GetInformationObject(port);
+    if (port == from || !info)
+      continue;
+    info->Set(SDDP::UPDATE_PIECE_NUMBER(), asked->Get(SDDP::UPDATE_PIECE_NUMBER()));
+    info->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), asked->Get(SDDP::UPDATE_NUMBER_OF_PIECES()));
+    info->Set(
+      SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), asked->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS()));
   }
 }
 

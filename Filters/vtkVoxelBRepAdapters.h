@@ -29,6 +29,7 @@
 class vtkAlgorithm;
 class vtkFieldData;
 class vtkImageData;
+class vtkInformation;
 class vtkInformationVector;
 class vtkMultiProcessController;
 class vtkPolyData;
@@ -433,6 +434,11 @@ bool writeReversionImage(InputObjects& in,
 /// MPI, when ParaView runs `algorithm` on every rank (see distributedController), the piece
 /// request stays: each rank reads its own piece and the filter gathers what it needs.
 void requestWholeExtent(vtkAlgorithm* algorithm, vtkInformationVector* input);
+/// The piece asked of the output port `request` comes from (FROM_OUTPUT_PORT), asked of every
+/// other output port too: one execution then serves them all. Without it, ParaView under MPI
+/// updates port 0 for piece r of N, the other ports are marked as made for piece 0 of 1, and
+/// their update executes the filter a second time.
+void requestSamePieceOnEveryPort(vtkInformation* request, vtkInformationVector* outputVector);
 /// Removes the extent, origin and spacing the executive copies from an image input to output
 /// `port`, whose data is not an image.
 void removeImageInformation(vtkInformationVector* outputVector, int port);
