@@ -439,6 +439,12 @@ bool writeReversionImage(InputObjects& in,
     ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
     : static_cast<vtkDataSetAttributes*>(output->GetPointData());
   attributes->SetScalars(values);
+  // The piece's ghost marks stay, so that downstream filters do not count ghosts twice.
+  const char* ghosts = vtkDataSetAttributes::GhostArrayName();
+  if (vtkDataArray* marks = input->GetPointData()->GetArray(ghosts))
+    output->GetPointData()->AddArray(marks);
+  if (vtkDataArray* marks = input->GetCellData()->GetArray(ghosts))
+    output->GetCellData()->AddArray(marks);
   vtkNew<vtkIntArray> flag;
   flag->SetName("ReversionMatches");
   flag->InsertNextValue(matches ? 1 : 0);
