@@ -418,23 +418,19 @@ void appendFaceCells(const vbr::BRep& brep,
   }
 }
 
-/// Faces of an EVM by the plane sweeps, with the T-junction vertices of neighbouring faces
-/// inserted into their loops. False when aborted.
+/// Faces of an EVM by the plane sweeps (their loops without the T-junction vertices of
+/// neighbouring faces yet). False when aborted.
 bool boundaryOf(const vbr::EVM& evm,
   bool planar,
   vbr::FaceConnectivity connectivity,
   const vbr::Execution& exec,
   vbr::BRep& brep)
 {
-  {
-    vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
-    if (planar)
-      brep = vbr::extractBoundary2D(evm, connectivity);
-    else if (!vbr::planeSweep3D(evm, connectivity, exec, brep))
-      return false;
-  }
-  vtkLogScopeF(TRACE, "T-junction vertices");
-  vbr::insertTJunctionVertices(brep, exec);
+  vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
+  if (planar)
+    brep = vbr::extractBoundary2D(evm, connectivity);
+  else if (!vbr::planeSweep3D(evm, connectivity, exec, brep))
+    return false;
   return true;
 }
 
@@ -491,14 +487,14 @@ void countObject(const vbr::BitVolume& voxels,
     stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
 }
 
-/// The cells of one object: voxels -> EVM -> faces (plane sweeps) -> output cells (paper 000).
-/// False when aborted.
-bool appendObject(const vbr::vtk::Selected& object,
+/// The faces of one object: voxels -> EVM -> faces (plane sweeps, paper 000), counted in
+/// `stats`; in Surfels mode its cells instead (then `brep` stays empty). False when aborted.
+bool boundaryOfObject(const vbr::vtk::Selected& object,
   const ObjectSettings& settings,
   const vbr::Execution& exec,
   Statistics& stats,
-  vtkIdType& faceBase,
-  OutputBuilder& builder)
+  OutputBuilder& builder,
+  vbr::BRep& brep)
 {
   vbr::BitVolume voxels;
   {
@@ -514,19 +510,29 @@ bool appendObject(const vbr::vtk::Selected& object,
     evm = settings.planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
   }
   countObject(voxels, count, evm, settings, stats);
-  const int mode = settings.outputMode;
-  if (mode == vtkEVMBoundaryFilter::SURFELS)
+  if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS)
   {
     vtkLogScopeF(TRACE, "surfel cells");
     appendSurfelCells(object, voxels, settings.planar, builder);
     return true;
   }
-  vbr::BRep brep;
   if (!boundaryOf(evm, settings.planar, settings.connectivity, exec, brep))
     return false;
   stats.faces += static_cast<vtkIdType>(brep.faces.size());
   stats.holes += static_cast<vtkIdType>(brep.holeCount());
   stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
+  return true;
+}
+
+/// The output cells of an object's faces, whose loops hold their T-junction vertices.
+void appendBoundaryCells(const vbr::vtk::Selected& object,
+  const vbr::BRep& brep,
+  const ObjectSettings& settings,
+  const vbr::Execution& exec,
+  vtkIdType& faceBase,
+  OutputBuilder& builder)
+{
+  const int mode = settings.outputMode;
   const auto triangles =
     mode == vtkEVMBoundaryFilter::TRIANGLES ? triangulate(brep, exec) : Triangulation();
   const auto polygons =
@@ -536,7 +542,68 @@ bool appendObject(const vbr::vtk::Selected& object,
     appendFaceCells(brep, triangles, polygons, object, mode, faceBase, builder, exec);
   }
   faceBase += static_cast<vtkIdType>(brep.faces.size());
+}
+
+/// The cells of one object alone: its faces, their T-junction vertices among its own
+/// corners, its cells. False when aborted.
+bool appendObject(const vbr::vtk::Selected& object,
+  const ObjectSettings& settings,
+  const vbr::Execution& exec,
+  Statistics& stats,
+  vtkIdType& faceBase,
+  OutputBuilder& builder)
+{
+  vbr::BRep brep;
+  if (!boundaryOfObject(object, settings, exec, stats, builder, brep))
+    return false;
+  if (brep.faces.empty())
+    return true;
+  {
+    vtkLogScopeF(TRACE, "T-junction vertices");
+    vbr::insertTJunctionVertices(brep, exec);
+  }
+  appendBoundaryCells(object, brep, settings, exec, faceBase, builder);
   return true;
+}
+
+/// The cells of the objects of a label map, whose faces meet: first the faces of every
+/// object, then, with the corners of all of them in one set, the T-junction vertices of
+/// each object's loops (so that two labels' edges on a shared edge match too), then its
+/// cells. Every object's faces are alive at once: memory in the size of the output. False
+/// when aborted.
+bool appendObjectsSharingCorners(vtkAlgorithm* self,
+  const std::vector<vbr::vtk::Selected>& objects,
+  const ObjectSettings& settings,
+  const std::array<std::int32_t, 3>& dims,
+  Statistics& stats,
+  OutputBuilder& builder)
+{
+  const std::size_t n = objects.size();
+  std::vector<vbr::BRep> breps(n);
+  for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
+  {
+    const double from = 0.1 + 0.6 * o / n, to = 0.1 + 0.6 * (o + 1) / n;
+    if (!boundaryOfObject(
+          objects[o], settings, vbr::vtk::makeExecution(self, from, to), stats, builder, breps[o]))
+      return false;
+  }
+  vtkLogScopeF(TRACE, "T-junction vertices of all labels");
+  const vbr::KeyPacker packer =
+    vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
+  vbr::GridPointIndex corners;
+  for (std::size_t o = 0; o < n; ++o)
+    vbr::insertCorners(breps[o], objects[o].offset, packer, corners);
+  vtkIdType faceBase = 0;
+  for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
+  {
+    const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
+    const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to);
+    vbr::insertTJunctionVertices(breps[o], corners, packer, objects[o].offset, exec);
+    appendBoundaryCells(objects[o], breps[o], settings, exec, faceBase, builder);
+    breps[o] = vbr::BRep(); // released as soon as written
+    self->UpdateProgress(to);
+  }
+  return !self->GetAbortExecute();
 }
 
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
@@ -640,14 +707,17 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   OutputBuilder builder(grid, axes, planar);
   Statistics stats;
   vtkIdType faceBase = 0;
-  for (std::size_t o = 0; o < objects.size() && !this->GetAbortExecute(); ++o)
-  {
-    const double to = 0.1 + 0.9 * (o + 1) / objects.size();
-    const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.1 + 0.9 * o / objects.size(), to);
-    if (!appendObject(objects[o], each, exec, stats, faceBase, builder))
-      break; // aborted
-    this->UpdateProgress(to);
-  }
+  if (objects.size() > 1 && this->OutputMode != SURFELS)
+    appendObjectsSharingCorners(this, objects, each, grid.dims, stats, builder);
+  else
+    for (std::size_t o = 0; o < objects.size() && !this->GetAbortExecute(); ++o)
+    {
+      const double to = 0.1 + 0.9 * (o + 1) / objects.size();
+      const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.1 + 0.9 * o / objects.size(), to);
+      if (!appendObject(objects[o], each, exec, stats, faceBase, builder))
+        break; // aborted
+      this->UpdateProgress(to);
+    }
 
   if (this->GetAbortExecute())
   {

@@ -35,7 +35,8 @@
  * - Loops (for export): one polygon per loop, the faces as they are. An outer loop runs
  *   counter-clockwise seen from outside (its right-hand normal points out of the object), a
  *   hole loop the other way. Loops carry every vertex of neighbouring faces that lies on
- *   their edges (no T-junctions). Does not render correctly: a hole is drawn as a filled
+ *   their edges (no T-junctions), in Labels mode those of the other labels' faces too. Does
+ *   not render correctly: a hole is drawn as a filled
  *   polygon over its face and concave loops as wrong fans.
  * - Polylines: the same loops as closed polylines (the contours of a 2D image).
  * - Surfels: one quad per boundary voxel face (what Threshold + Extract Surface gives), for

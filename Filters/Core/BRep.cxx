@@ -10,7 +10,9 @@
 // into a hash set of packed keys (GridPointIndex, KeyPacker); each loop's edges are walked
 // unit step by unit step and the corners of other loops found inside them are inserted in
 // order (walkWithEdgeVertices). Two parallel passes over the loops, one counting and one
-// writing after a prefix sum, so that no thread allocates.
+// writing after a prefix sum, so that no thread allocates. Several B-Reps placed in one grid
+// (the objects of a label map) share one set of corners (insertCorners), so that the edges
+// of neighbouring objects match too.
 
 #include "BRep.h"
 
@@ -98,6 +100,7 @@ template<typename Emit>
 void walkWithEdgeVertices(const PointRange& points,
   const GridPointIndex& corners,
   const KeyPacker& packer,
+  const Point3& offset,
   Emit&& emit)
 {
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -113,7 +116,7 @@ void walkWithEdgeVertices(const PointRange& points,
     const Coord step = q[d] > p[d] ? 1 : -1;
     Point3 r = p;
     for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
-      if (corners.find(packer.pack(r[0], r[1], r[2])) >= 0)
+      if (corners.find(packer.pack(r[0] + offset[0], r[1] + offset[1], r[2] + offset[2])) >= 0)
         emit(r);
   }
 }
@@ -142,8 +145,29 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
   // Every corner in a hash set.
   const KeyPacker packer = KeyPacker::forMaximum(checkedMaximum(brep.points));
   GridPointIndex corners(brep.points.size() / 2); // corners repeat about three times
+  insertCorners(brep, { 0, 0, 0 }, packer, corners);
+  insertTJunctionVertices(brep, corners, packer, { 0, 0, 0 }, exec);
+}
+
+void insertCorners(const BRep& brep,
+  const Point3& offset,
+  const KeyPacker& packer,
+  GridPointIndex& corners)
+{
+  const std::int64_t highest = brep.points.empty() ? 0 : checkedMaximum(brep.points);
+  for (Coord o : offset)
+    if (o < 0 || highest + o >= PackedCoordinateLimit)
+      throw std::out_of_range("insertCorners: coordinates outside [0, 2^21)");
   for (const Point3& p : brep.points)
-    corners.insert(packer.pack(p[0], p[1], p[2]));
+    corners.insert(packer.pack(p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]));
+}
+
+void insertTJunctionVertices(BRep& brep,
+  const GridPointIndex& corners,
+  const KeyPacker& packer,
+  const Point3& offset,
+  const Execution& exec)
+{
   // Two parallel passes over the loops: count each loop's corners with the vertices inside
   // its edges, then (after a prefix sum) write them, so that no thread allocates.
   const std::int64_t loops = static_cast<std::int64_t>(brep.loops.size());
@@ -154,8 +178,11 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
       for (std::int64_t l = b; l < e; ++l)
       {
         std::size_t n = 0;
-        walkWithEdgeVertices(
-          brep.loopPoints(static_cast<int>(l)), corners, packer, [&n](const Point3&) { ++n; });
+        walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
+          corners,
+          packer,
+          offset,
+          [&n](const Point3&) { ++n; });
         start[l + 1] = n;
       }
     });
@@ -171,6 +198,7 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
         walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
           corners,
           packer,
+          offset,
           [&out](const Point3& p) { *out++ = p; });
       }
     });

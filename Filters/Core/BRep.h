@@ -8,6 +8,8 @@
 
 #include "EVM.h"
 #include "Execution.h"
+#include "Geometry.h"
+#include "GridPointIndex.h"
 #include "PlaneSweep2D.h"
 
 #include <array>
@@ -78,6 +80,23 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity);
 /// Inserts into every loop the vertices of other loops lying inside its edges, so that edges
 /// of adjacent faces match exactly (no T-junctions).
 void insertTJunctionVertices(BRep& brep, const Execution& exec = Execution());
+
+/// Adds the corners of `brep`, whose points lie at `offset` in a grid common to several
+/// B-Reps, to `corners` (keys of `packer`, which must hold every coordinate of that grid).
+/// Throws std::out_of_range for coordinates outside [0, 2^21).
+void insertCorners(const BRep& brep,
+  const Point3& offset,
+  const KeyPacker& packer,
+  GridPointIndex& corners);
+
+/// Inserts into every loop of `brep` (at `offset` in the common grid) the `corners` lying
+/// inside its edges: with the corners of several B-Reps, the edges of neighbouring B-Reps
+/// (the labels of a label map) match exactly as well.
+void insertTJunctionVertices(BRep& brep,
+  const GridPointIndex& corners,
+  const KeyPacker& packer,
+  const Point3& offset,
+  const Execution& exec = Execution());
 
 } // namespace vbr
 

@@ -10,7 +10,9 @@ maps and the paper's sphere:
 * vtkEVMBoundaryFilter Polygons: what VTK draws, the fan of triangles from each polygon's
   first point, covers each face exactly: every fan triangle faces outwards or is flat, and
   per face the fan's area equals the face's surfel count; closed; every corner of the
-  Loops output is a corner of the pieces (no T-junction).
+  Loops output is a corner of the pieces; no point of the output lies inside an edge of a
+  Loops, Polygons or Triangles cell (no T-junction), in Labels mode between labels too
+  (Triangles there: every loop corner is a corner of its face's triangles).
 
 Coordinates are integers (voxel corners), so everything is compared exactly.
 """
@@ -32,6 +34,21 @@ def corners_of(polydata):
     r = np.rint(p)
     assert np.allclose(p, r)
     return r.astype(np.int64)
+
+
+def points_inside_edges(polydata):
+    """Points of the output lying strictly inside an edge of one of its cells (T-junctions),
+    by walking the lattice points of every edge."""
+    corner = corners_of(polydata)
+    present = set(map(tuple, corner.tolist()))
+    found = 0
+    for c in cells(polydata):
+        for a, b in zip(c, list(c[1:]) + [c[0]]):
+            d = corner[b] - corner[a]
+            steps = int(np.gcd.reduce(np.abs(d)))
+            for k in range(1, steps):
+                found += tuple((corner[a] + d // steps * k).tolist()) in present
+    return found
 
 
 def directed_edge_balance(polys):
@@ -171,6 +188,27 @@ def check_evm(tag, values, labels=False, merge=False, planar=False):
     for f, c in zip(loops_faces, cells(loops)):
         missing += sum(1 for i in c if tuple(loop_corner[i]) not in piece_points[int(f)])
     check.equal(tag + ": loop corners that are not corners of the pieces", missing, 0)
+    triangles = evm(image, E.TRIANGLES, labels, merge)
+    for name, out in (("Loops", loops), ("Polygons", pieces), ("Triangles", triangles)):
+        if labels and name == "Triangles":
+            # Two labels may cut their shared surface into faces differently: a corner of one
+            # label's face can lie inside another label's face, and a diagonal of that face's
+            # triangles through it. Along the loops the triangles keep every loop corner.
+            check.equal(tag + ": loop corners that are not corners of the triangles",
+                        loop_corners_missing(loops, out), 0)
+            continue
+        check.equal(tag + ": points inside edges (T-junctions) in " + name,
+                    points_inside_edges(out), 0)
+
+
+def loop_corners_missing(loops, out):
+    """Corners of the Loops output that are not corners of `out`'s cells of the same face."""
+    corner, loop_corner = corners_of(out), corners_of(loops)
+    of_face = collections.defaultdict(set)
+    for f, c in zip(cell_array(out, "FaceId"), cells(out)):
+        of_face[int(f)].update(tuple(corner[i]) for i in c)
+    return sum(1 for f, c in zip(cell_array(loops, "FaceId"), cells(loops))
+               for i in c if tuple(loop_corner[i]) not in of_face[int(f)])
 
 
 def sphere(n, r):
@@ -189,6 +227,14 @@ def main():
     labels = rng.integers(0, 4, size=(6, 7, 8)).astype(np.uint8)
     check_polyhedrizer("labels", labels, labels=True)
     check_evm("labels", labels, labels=True)
+    for trial in range(4):  # label maps of blocks: faces of different sizes meet
+        blocks = rng.integers(0, 6, size=(3, 3, 3)).astype(np.uint8)
+        sizes = [rng.integers(1, 4, size=3) for _ in range(3)]
+        values = blocks.repeat(sizes[0], axis=0).repeat(sizes[1], axis=1).repeat(sizes[2], axis=2)
+        values[rng.random(values.shape) < 0.1] = 0
+        check_evm("label blocks %d" % trial, values, labels=True, merge=trial % 2 == 1)
+    check_evm("2D labels", rng.integers(0, 4, size=(1, 9, 11)).astype(np.uint8), labels=True,
+              planar=True)
     ball = sphere(25, 11.5)  # the paper's sphere
     check_polyhedrizer("sphere", ball)
     check_evm("sphere", ball)
