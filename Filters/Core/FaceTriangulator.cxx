@@ -276,6 +276,43 @@ private:
 
 } // namespace
 
+/// The loops of a face as the constraints of `cdt`, each vertex carrying the index (in the
+/// face's loop corners) of the first corner at its location. The distinct corners go in at
+/// once, spatially sorted by CGAL (one by one, each point location walks from the last
+/// vertex: quadratic on faces with many holes, such as a checkerboard's merged faces); the
+/// loop edges follow as constraints between their vertices.
+void insertLoops(const BRep& brep, const BRepFace& face, int u, int v, Cdt& cdt)
+{
+  std::vector<std::pair<Kernel::Point_2, int>> distinct;
+  std::vector<int> firstAt; // per corner: the index of the first corner at its location
+  std::unordered_map<std::uint64_t, int> seen;
+  int index = 0;
+  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+    for (const Point3& p : brep.loopPoints(l))
+    {
+      const std::uint64_t key =
+        (std::uint64_t(std::uint32_t(p[u])) << 32) | std::uint64_t(std::uint32_t(p[v]));
+      const auto found = seen.emplace(key, index);
+      if (found.second)
+        distinct.emplace_back(Kernel::Point_2(p[u], p[v]), index);
+      firstAt.push_back(found.first->second);
+      ++index;
+    }
+  cdt.insert(distinct.begin(), distinct.end());
+  std::unordered_map<int, Cdt::Vertex_handle> handleOf;
+  handleOf.reserve(distinct.size());
+  for (auto vh = cdt.finite_vertices_begin(); vh != cdt.finite_vertices_end(); ++vh)
+    handleOf[vh->info()] = vh;
+  int start = 0;
+  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+  {
+    const int n = static_cast<int>(brep.loopPoints(l).size());
+    for (int i = 0; i < n; ++i)
+      cdt.insert_constraint(handleOf[firstAt[start + i]], handleOf[firstAt[start + (i + 1) % n]]);
+    start += n;
+  }
+}
+
 std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
 {
   const BRepFace& face = brep.faces[f];
@@ -288,24 +325,7 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
       return triangles;
   }
   Cdt cdt;
-  int index = 0;
-  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
-  {
-    const PointRange pts = brep.loopPoints(l);
-    std::vector<Cdt::Vertex_handle> handles;
-    handles.reserve(pts.size());
-    for (const Point3& p : pts)
-    {
-      const auto before = cdt.number_of_vertices();
-      Cdt::Vertex_handle h = cdt.insert(Kernel::Point_2(p[u], p[v]));
-      if (cdt.number_of_vertices() != before)
-        h->info() = index; // first corner at this location
-      handles.push_back(h);
-      ++index;
-    }
-    for (std::size_t i = 0; i < handles.size(); ++i)
-      cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
-  }
+  insertLoops(brep, face, u, v, cdt);
   markNesting(cdt);
   std::vector<std::array<int, 3>> triangles;
   const bool flip = face.normalSign < 0; // CGAL faces are counter-clockwise in (u, v)
