@@ -1041,7 +1041,14 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   std::vector<ObjectBoxes> objects;
   const std::uint32_t regionCount = buildObjectBoxes(this, in, objects, summary);
   if (in.piece.distributed())
-    return writeDistributed(this, in, objects, regionCount, summary, ports) ? 1 : 0;
+  {
+    // The boxes and the table are whole on rank 0 and absent elsewhere: no ghost layer can be
+    // missing from them. ParaView asks unstructured outputs for one by default (the image
+    // port for none); without this the filter would execute again for that request.
+    const bool written = writeDistributed(this, in, objects, regionCount, summary, ports);
+    vbr::vtk::markGhostLevelsComplete(outputVector, { 1, 2 });
+    return written ? 1 : 0;
+  }
   if (this->GetAbortExecute())
   {
     output->GetPointData()->Initialize(); // aborted: no labels

@@ -770,6 +770,19 @@ void requestSamePieceOnEveryPort(vtkInformation* request, vtkInformationVector* 
   }
 }
 
+void markGhostLevelsComplete(vtkInformationVector* outputVector, std::initializer_list<int> ports)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  int levels = 1;
+  for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)
+    levels = std::max(
+      levels, outputVector->GetInformationObject(port)->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS()));
+  for (int port : ports)
+    if (vtkInformation* info = outputVector->GetInformationObject(port))
+      if (vtkDataObject* data = info->Get(vtkDataObject::DATA_OBJECT()))
+        data->GetInformation()->Set(vtkDataObject::DATA_NUMBER_OF_GHOST_LEVELS(), levels);
+}
+
 void removeImageInformation(vtkInformationVector* outputVector, int port)
 {
   vtkInformation* info = outputVector->GetInformationObject(port);

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -439,6 +440,10 @@ void requestWholeExtent(vtkAlgorithm* algorithm, vtkInformationVector* input);
 /// updates port 0 for piece r of N, the other ports are marked as made for piece 0 of 1, and
 /// their update executes the filter a second time.
 void requestSamePieceOnEveryPort(vtkInformation* request, vtkInformationVector* outputVector);
+/// Marks the data of output `ports` as having every ghost level asked of any output port, and
+/// at least one: for outputs that hold a global result (whole on rank 0 under MPI, absent
+/// elsewhere), so that a ghost request alone does not execute the filter again.
+void markGhostLevelsComplete(vtkInformationVector* outputVector, std::initializer_list<int> ports);
 /// Removes the extent, origin and spacing the executive copies from an image input to output
 /// `port`, whose data is not an image.
 void removeImageInformation(vtkInformationVector* outputVector, int port);
