@@ -504,10 +504,11 @@ bool boundaryOfObject(const vbr::vtk::Selected& object,
   const std::size_t count = voxels.count();
   if (count == 0)
     return true;
+  const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(count));
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "extreme vertices");
-    evm = settings.planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
+    evm = settings.planar ? vbr::extractEVM2D(voxels, local) : vbr::extractEVM(voxels, local);
   }
   countObject(voxels, count, evm, settings, stats);
   if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS)
@@ -516,7 +517,7 @@ bool boundaryOfObject(const vbr::vtk::Selected& object,
     appendSurfelCells(object, voxels, settings.planar, builder);
     return true;
   }
-  if (!boundaryOf(evm, settings.planar, settings.connectivity, exec, brep))
+  if (!boundaryOf(evm, settings.planar, settings.connectivity, local, brep))
     return false;
   stats.faces += static_cast<vtkIdType>(brep.faces.size());
   stats.holes += static_cast<vtkIdType>(brep.holeCount());
@@ -558,11 +559,12 @@ bool appendObject(const vbr::vtk::Selected& object,
     return false;
   if (brep.faces.empty())
     return true;
+  const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(brep.points.size()));
   {
     vtkLogScopeF(TRACE, "T-junction vertices");
-    vbr::insertTJunctionVertices(brep, exec);
+    vbr::insertTJunctionVertices(brep, local);
   }
-  appendBoundaryCells(object, brep, settings, exec, faceBase, builder);
+  appendBoundaryCells(object, brep, settings, local, faceBase, builder);
   return true;
 }
 
@@ -597,7 +599,8 @@ bool appendObjectsSharingCorners(vtkAlgorithm* self,
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
-    const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to);
+    const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to)
+                                  .forWork(static_cast<std::int64_t>(breps[o].points.size()));
     vbr::insertTJunctionVertices(breps[o], corners, packer, objects[o].offset, exec);
     appendBoundaryCells(objects[o], breps[o], settings, exec, faceBase, builder);
     breps[o] = vbr::BRep(); // released as soon as written

@@ -227,7 +227,7 @@ std::vector<Selected> selectObjects(const ScalarGrid<T>& grid,
     s.label = LabelValue::of(label);
     s.offset = box.lo;
     s.select = [grid, box, selected](const Execution& exec)
-    { return selectVoxels(grid, box, selected, exec); };
+    { return selectVoxels(grid, box, selected, exec.forWork(box.volume())); };
     out.push_back(std::move(s));
   };
   Box whole;
