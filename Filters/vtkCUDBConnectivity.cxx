@@ -977,8 +977,7 @@ int vtkCUDBConnectivity::RequestUpdateExtent(vtkInformation* request,
   vtkInformationVector* outputVector)
 {
   // Components are global: the whole image is needed whatever piece is asked for.
-  vbr::vtk::requestWholeExtent(this, inputVector[0]);
-  vbr::vtk::requestSamePieceOnEveryPort(request, outputVector);
+  vbr::vtk::requestWholeImage(this, request, inputVector[0], outputVector);
   return 1;
 }
 

@@ -320,8 +320,7 @@ int vtkConvexHullModifier::RequestUpdateExtent(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vbr::vtk::requestWholeExtent(this, inputVector[0]);
-  vbr::vtk::requestSamePieceOnEveryPort(request, outputVector);
+  vbr::vtk::requestWholeImage(this, request, inputVector[0], outputVector);
   return 1;
 }
 

@@ -545,35 +545,12 @@ void appendBoundaryCells(const vbr::vtk::Selected& object,
   faceBase += static_cast<vtkIdType>(brep.faces.size());
 }
 
-/// The cells of one object alone: its faces, their T-junction vertices among its own
-/// corners, its cells. False when aborted.
-bool appendObject(const vbr::vtk::Selected& object,
-  const ObjectSettings& settings,
-  const vbr::Execution& exec,
-  Statistics& stats,
-  vtkIdType& faceBase,
-  OutputBuilder& builder)
-{
-  vbr::BRep brep;
-  if (!boundaryOfObject(object, settings, exec, stats, builder, brep))
-    return false;
-  if (brep.faces.empty())
-    return true;
-  const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(brep.points.size()));
-  {
-    vtkLogScopeF(TRACE, "T-junction vertices");
-    vbr::insertTJunctionVertices(brep, local);
-  }
-  appendBoundaryCells(object, brep, settings, local, faceBase, builder);
-  return true;
-}
-
-/// The cells of the objects of a label map, whose faces meet: first the faces of every
-/// object, then, with the corners of all of them in one set, the T-junction vertices of
-/// each object's loops (so that two labels' edges on a shared edge match too), then its
-/// cells. Every object's faces are alive at once: memory in the size of the output. False
-/// when aborted.
-bool appendObjectsSharingCorners(vtkAlgorithm* self,
+/// The cells of every object (paper 000): first the faces of each (in Surfels mode its cells
+/// instead), then, with the corners of all of them in one set, the T-junction vertices of
+/// each object's loops (the objects of a label map meet: two labels' loops on a shared edge
+/// carry each other's vertices), then its cells. Every object's faces are alive at once:
+/// memory in the size of the output. Stops when aborted.
+void appendObjects(vtkAlgorithm* self,
   const std::vector<vbr::vtk::Selected>& objects,
   const ObjectSettings& settings,
   const std::array<std::int32_t, 3>& dims,
@@ -587,12 +564,15 @@ bool appendObjectsSharingCorners(vtkAlgorithm* self,
     const double from = 0.1 + 0.6 * o / n, to = 0.1 + 0.6 * (o + 1) / n;
     if (!boundaryOfObject(
           objects[o], settings, vbr::vtk::makeExecution(self, from, to), stats, builder, breps[o]))
-      return false;
+      return; // aborted
   }
-  vtkLogScopeF(TRACE, "T-junction vertices of all labels");
+  vtkLogScopeF(TRACE, "T-junction vertices and output cells");
   const vbr::KeyPacker packer =
     vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
-  vbr::GridPointIndex corners;
+  std::size_t cornerCount = 0;
+  for (const vbr::BRep& brep : breps)
+    cornerCount += brep.points.size();
+  vbr::GridPointIndex corners(cornerCount / 2); // corners repeat about three times
   for (std::size_t o = 0; o < n; ++o)
     vbr::insertCorners(breps[o], objects[o].offset, packer, corners);
   vtkIdType faceBase = 0;
@@ -606,7 +586,6 @@ bool appendObjectsSharingCorners(vtkAlgorithm* self,
     breps[o] = vbr::BRep(); // released as soon as written
     self->UpdateProgress(to);
   }
-  return !self->GetAbortExecute();
 }
 
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
@@ -709,18 +688,7 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
     axes };
   OutputBuilder builder(grid, axes, planar);
   Statistics stats;
-  vtkIdType faceBase = 0;
-  if (objects.size() > 1 && this->OutputMode != SURFELS)
-    appendObjectsSharingCorners(this, objects, each, grid.dims, stats, builder);
-  else
-    for (std::size_t o = 0; o < objects.size() && !this->GetAbortExecute(); ++o)
-    {
-      const double to = 0.1 + 0.9 * (o + 1) / objects.size();
-      const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.1 + 0.9 * o / objects.size(), to);
-      if (!appendObject(objects[o], each, exec, stats, faceBase, builder))
-        break; // aborted
-      this->UpdateProgress(to);
-    }
+  appendObjects(this, objects, each, grid.dims, stats, builder);
 
   if (this->GetAbortExecute())
   {

@@ -686,8 +686,7 @@ int vtkStandardPlanePolyhedrizer::RequestUpdateExtent(vtkInformation* request,
   vtkInformationVector* outputVector)
 {
   // Faces are global: the whole image is needed whatever piece is asked for.
-  vbr::vtk::requestWholeExtent(this, inputVector[0]);
-  vbr::vtk::requestSamePieceOnEveryPort(request, outputVector);
+  vbr::vtk::requestWholeImage(this, request, inputVector[0], outputVector);
   return 1;
 }
 

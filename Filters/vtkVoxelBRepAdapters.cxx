@@ -736,6 +736,9 @@ int executeGuarded(vtkAlgorithm* algorithm,
   }
 }
 
+namespace
+{
+
 void requestWholeExtent(vtkAlgorithm* algorithm, vtkInformationVector* input)
 {
   vtkInformation* in = input->GetInformationObject(0);
@@ -768,6 +771,17 @@ void requestSamePieceOnEveryPort(vtkInformation* request, vtkInformationVector* 
     info->Set(
       SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), asked->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS()));
   }
+}
+
+} // namespace
+
+void requestWholeImage(vtkAlgorithm* algorithm,
+  vtkInformation* request,
+  vtkInformationVector* input,
+  vtkInformationVector* outputVector)
+{
+  requestWholeExtent(algorithm, input);
+  requestSamePieceOnEveryPort(request, outputVector);
 }
 
 void markGhostLevelsComplete(vtkInformationVector* outputVector, std::initializer_list<int> ports)

@@ -430,16 +430,18 @@ bool writeReversionImage(InputObjects& in,
   vtkImageData* input,
   vtkImageData* output);
 
-/// Asks the input of `input` (a port's information vector) for its whole extent, whatever
-/// piece the output is asked for: the filters' results (faces, components) are global. Under
-/// MPI, when ParaView runs `algorithm` on every rank (see distributedController), the piece
-/// request stays: each rank reads its own piece and the filter gathers what it needs.
-void requestWholeExtent(vtkAlgorithm* algorithm, vtkInformationVector* input);
-/// The piece asked of the output port `request` comes from (FROM_OUTPUT_PORT), asked of every
-/// other output port too: one execution then serves them all. Without it, ParaView under MPI
-/// updates port 0 for piece r of N, the other ports are marked as made for piece 0 of 1, and
-/// their update executes the filter a second time.
-void requestSamePieceOnEveryPort(vtkInformation* request, vtkInformationVector* outputVector);
+/// RequestUpdateExtent of the filters whose results (faces, components) are global: asks the
+/// input for its whole extent, whatever piece the output is asked for. Under MPI, when
+/// ParaView runs `algorithm` on every rank (see distributedController), the piece request
+/// stays: each rank reads its own piece and the filter gathers what it needs. And every output
+/// port is asked for the piece asked of the one `request` comes from (FROM_OUTPUT_PORT), so
+/// that one execution serves them all: else ParaView updates port 0 for piece r of N, the
+/// other ports are marked as made for piece 0 of 1, and their update executes the filter a
+/// second time.
+void requestWholeImage(vtkAlgorithm* algorithm,
+  vtkInformation* request,
+  vtkInformationVector* input,
+  vtkInformationVector* outputVector);
 /// Marks the data of output `ports` as having every ghost level asked of any output port, and
 /// at least one: for outputs that hold a global result (whole on rank 0 under MPI, absent
 /// elsewhere), so that a ghost request alone does not execute the filter again.

@@ -299,8 +299,7 @@ void insertLoops(const BRep& brep, const BRepFace& face, int u, int v, Cdt& cdt)
       ++index;
     }
   cdt.insert(distinct.begin(), distinct.end());
-  std::unordered_map<int, Cdt::Vertex_handle> handleOf;
-  handleOf.reserve(distinct.size());
+  std::vector<Cdt::Vertex_handle> handleOf(firstAt.size()); // by index of a first corner
   for (auto vh = cdt.finite_vertices_begin(); vh != cdt.finite_vertices_end(); ++vh)
     handleOf[vh->info()] = vh;
   int start = 0;

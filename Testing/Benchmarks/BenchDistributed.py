@@ -31,6 +31,10 @@ import numpy as np
 from paraview import servermanager as sm
 from paraview.simple import *  # noqa: F401,F403
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "Filters", "Testing", "Python"))
+from voxelbrep_testing import write_partitioned  # noqa: E402
+
 parser = argparse.ArgumentParser()
 parser.add_argument("plugin")
 parser.add_argument("--inputs", default="wavelet,phantom,berea,pacman")
@@ -51,25 +55,9 @@ def berea_reader():
     if not os.path.exists(raw):
         print("Berea not found under %s: skipped" % args.data)
         return None
-    from vtkmodules.util import numpy_support as ns
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOParallelXML import vtkXMLPImageDataWriter
-    from vtkmodules.vtkParallelCore import vtkDummyController
-    values = np.fromfile(raw, np.uint8)
-    image = vtkImageData()
-    image.SetExtent(0, 199, 0, 199, 0, 199)
-    array = ns.numpy_to_vtk(values, deep=1)
-    array.SetName("values")
-    image.GetPointData().SetScalars(array)
+    values = np.fromfile(raw, np.uint8).reshape(200, 200, 200)
     path = os.path.join(tempfile.mkdtemp(prefix="voxelbrep-bench-"), "berea.pvti")
-    writer = vtkXMLPImageDataWriter()
-    writer.SetInputData(image)
-    writer.SetFileName(path)
-    writer.SetNumberOfPieces(ranks)
-    writer.SetController(vtkDummyController())  # rank 0 alone writes every piece
-    writer.SetStartPiece(0)
-    writer.SetEndPiece(ranks - 1)
-    writer.Write()
+    write_partitioned(values, path, ranks)
     return OpenDataFile(path), 200 ** 3
 
 

@@ -42,6 +42,7 @@ from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 
 from voxelbrep_testing import extreme_vertices, faces_and_holes_3d, surfel_count
+from voxelbrep_testing import write_partitioned
 
 LoadPlugin(sys.argv[1], remote=False, ns=globals())
 PACKAGE_DIR = sys.argv[2]
@@ -188,9 +189,16 @@ def check_cudb(association, ghosts):
     cudb = CUDBConnectivity(Input=pieces_source(association, ghosts),
                             Scalars=[association, "RTData"], SelectionMode="Range",
                             LowerThreshold=LOWER, UpperThreshold=1000.0)
-    ids, index = gathered_region_ids(cudb, association == "CELLS")
     cells = association == "CELLS"
-    labels, count = scipy.ndimage.label(whole_values(cells) >= LOWER)
+    ids, index = gathered_region_ids(cudb, cells)
+    check_partition(tag, ids, index, whole_values(cells) >= LOWER)
+
+
+def check_partition(tag, ids, index, mask):
+    """RegionIds gathered from the ranks (non-ghost voxels at `index`) against scipy's
+    face-connected components of the whole `mask`: 0 outside, one id per component on every
+    rank, every component seen, numbered largest first."""
+    labels, count = scipy.ndimage.label(mask)
     expected = labels[index[:, 2], index[:, 1], index[:, 0]]
     pairs = set(zip(expected.tolist(), ids.tolist()))
     expect(tag + "unselected voxels have RegionId 0",
@@ -226,38 +234,40 @@ def single_process(runs, values, cells, name="RTData"):
         return json.load(f)
 
 
-# The filters whose results must equal the 1-rank ones: (key, proxy, VTK class, properties
-# with their VTK calls, the field values compared).
+# The filters whose results must equal the 1-rank ones: their proxy and VTK class, the output
+# mode as a proxy property and as VTK calls, the field values compared, the array and range
+# selected, and whether port 1 is their reversion.
 POLY_FIELDS = ["NumberOfSurfels", "NumberOfFaces", "NumberOfStandardVertices",
                "NumberOfBoundaryComponents"]
 HULL_FIELDS = ["NumberOfVertices", "NumberOfEdges", "NumberOfFaces", "NumberOfHullFaces",
                "NumberOfConcavities", "Separates"]
 OCTREE_FIELDS = ["NumberOfBoundaryVoxels", "NumberOfFaceNodes", "NumberOfPolygons",
                  "NumberOfTriangles", "NumberOfPrunedVoxels"]
-# (key, proxy, VTK class, proxy properties, the same as VTK calls, fields compared, the array
-# and the range selected).
-WHOLE_IMAGE_FILTERS = [
-    ("polyhedrizer", "StandardPlanePolyhedrizer", "vtkStandardPlanePolyhedrizer",
-     dict(OutputMode="StandardFaces"), [("SetOutputModeToStandardFaces", [])], POLY_FIELDS,
-     ("RTData", LOWER, 1000.0)),
-    ("hull", "ConvexHullModifier", "vtkConvexHullModifier", dict(OutputMode="Polyhedron"),
-     [("SetOutputModeToPolyhedron", [])], HULL_FIELDS, ("PacMan", -1.0, PACMAN_RADIUS2)),
-    ("octree", "FaceOctreeBoundary", "vtkFaceOctreeBoundaryFilter",
-     dict(OutputMode="Polygons"), [("SetOutputModeToPolygons", [])], OCTREE_FIELDS,
-     ("RTData", LOWER, 1000.0)),
-]
+WHOLE_IMAGE_FILTERS = {
+    "polyhedrizer": dict(proxy="StandardPlanePolyhedrizer", cls="vtkStandardPlanePolyhedrizer",
+                         properties=dict(OutputMode="StandardFaces"),
+                         calls=[("SetOutputModeToStandardFaces", [])], fields=POLY_FIELDS,
+                         selected=("RTData", LOWER, 1000.0), reverts=True),
+    "hull": dict(proxy="ConvexHullModifier", cls="vtkConvexHullModifier",
+                 properties=dict(OutputMode="Polyhedron"),
+                 calls=[("SetOutputModeToPolyhedron", [])], fields=HULL_FIELDS,
+                 selected=("PacMan", -1.0, PACMAN_RADIUS2), reverts=True),
+    "octree": dict(proxy="FaceOctreeBoundary", cls="vtkFaceOctreeBoundaryFilter",
+                   properties=dict(OutputMode="Polygons"), calls=[("SetOutputModeToPolygons", [])],
+                   fields=OCTREE_FIELDS, selected=("RTData", LOWER, 1000.0), reverts=False),
+}
 
 
 def references(cells):
     """The 1-rank results of WHOLE_IMAGE_FILTERS, by key."""
     out = {}
     for array in ("RTData", "PacMan"):
-        runs = [{"key": key, "class": cls,
-                 "calls": [("SetSelectionModeToRange", []), ("SetLowerThreshold", [lower]),
-                           ("SetUpperThreshold", [upper])] + calls,
-                 "fields": fields}
-                for key, _, cls, _, calls, fields, (name, lower, upper) in WHOLE_IMAGE_FILTERS
-                if name == array]
+        runs = [{"key": key, "class": f["cls"],
+                 "calls": [("SetSelectionModeToRange", []),
+                           ("SetLowerThreshold", [f["selected"][1]]),
+                           ("SetUpperThreshold", [f["selected"][2]])] + f["calls"],
+                 "fields": f["fields"]}
+                for key, f in WHOLE_IMAGE_FILTERS.items() if f["selected"][0] == array]
         out.update(single_process(runs, whole_values(cells, array), cells, array))
     return out
 
@@ -266,22 +276,23 @@ def check_whole_image_filters(association, ghosts, reference):
     tag = "%d ranks, %s scalars, %s: " % (ranks, association.lower(),
                                            "with ghost layers" if ghosts else "no ghosts")
     cells = association == "CELLS"
-    for key, proxy_name, _, properties, _, fields, selected in WHOLE_IMAGE_FILTERS:
-        array, lower, upper = selected
-        proxy = globals()[proxy_name](Input=pieces_source(association, ghosts, array == "PacMan"),
+    for key, f in WHOLE_IMAGE_FILTERS.items():
+        array, lower, upper = f["selected"]
+        proxy = globals()[f["proxy"]](Input=pieces_source(association, ghosts, array == "PacMan"),
                                       Scalars=[association, array], SelectionMode="Range",
-                                      LowerThreshold=lower, UpperThreshold=upper, **properties)
+                                      LowerThreshold=lower, UpperThreshold=upper,
+                                      **f["properties"])
         proxy.UpdatePipeline()
         data = sm.Fetch(proxy, idx=0)
         expected = reference[key]
         expect(tag + key + ": cells as on 1 rank", data.GetNumberOfCells(), expected["cells"])
-        for name in fields:
+        for name in f["fields"]:
             expect(tag + key + ": " + name + " as on 1 rank", field(data, name), expected[name])
         expect(tag + key + ": ranks that took part", field(data, "NumberOfRanks"),
                ranks if ranks > 1 else None)
         values = whole_values(cells, array)
         mask = (values >= lower) & (values <= upper)
-        if "selected" in expected:
+        if f["reverts"]:
             check_reversion(tag + key, proxy, cells, mask)
         if key == "polyhedrizer":
             check_standard_plane_reversion(tag, proxy, cells, mask)
@@ -325,15 +336,9 @@ def check_phantom():
     whole[index[:, 2], index[:, 1], index[:, 0]] = labels
     expect("phantom: each rank has a piece of its own", len(set(extents)), ranks)
     folder = tempfile.mkdtemp(prefix="voxelbrep-phantom-")
-    env = child_environment()
-    subprocess.run(["/usr/bin/python3", "-c",
-                    "import numpy as np, voxelbrep\n"
-                    "from vtkmodules.util import numpy_support as ns\n"
-                    "s = voxelbrep.vtkVoxelPhantomSource(); s.SetDimensions(%d, %d, %d)\n"
-                    "s.Update()\n"
-                    "np.save(%r, ns.vtk_to_numpy(s.GetOutput().GetPointData()"
-                    ".GetArray('Labels')))" % (dims + (folder + "/labels.npy",))],
-                   check=True, env=env)
+    subprocess.run(["/usr/bin/python3", os.path.join(HERE, "single_process_reference.py"),
+                    "--phantom"] + [str(d) for d in dims] + [folder + "/labels.npy"],
+                   check=True, env=child_environment())
     single = np.load(folder + "/labels.npy").reshape(dims[::-1])
     expect("phantom: the ranks' pieces are the 1-process phantom",
            bool((whole == single).all()), True)
@@ -350,21 +355,6 @@ def check_phantom():
     Delete(phantom)
 
 
-def write_partitioned(values, path, pieces=4):
-    """Rank 0 alone: `values` ([z, y, x], point data) as a .pvti of `pieces` pieces."""
-    from vtkmodules.vtkIOParallelXML import vtkXMLPImageDataWriter
-    from vtkmodules.vtkParallelCore import vtkDummyController
-    from voxelbrep_testing import make_image
-    writer = vtkXMLPImageDataWriter()
-    writer.SetInputData(make_image(values, name="values"))
-    writer.SetFileName(path)
-    writer.SetNumberOfPieces(pieces)
-    writer.SetController(vtkDummyController())  # rank 0 alone writes every piece
-    writer.SetStartPiece(0)
-    writer.SetEndPiece(pieces - 1)
-    writer.Write()
-
-
 def check_real_volume():
     """The headsq bone (v >= 1150, 64 components), from a .pvti of four pieces read by every
     rank: the EVM boundary and the CUDB components of the whole volume."""
@@ -374,7 +364,7 @@ def check_real_volume():
         return
     values = np.fromfile(raw, "<i2").reshape(93, 64, 64)
     path = os.path.join(tempfile.mkdtemp(prefix="voxelbrep-pvti-"), "headsq.pvti")
-    write_partitioned(values, path)
+    write_partitioned(values, path, 4)
     reader = OpenDataFile(path)
     selection = dict(Scalars=["POINTS", "values"], SelectionMode="Range", LowerThreshold=1150.0,
                      UpperThreshold=40000.0)
@@ -390,12 +380,7 @@ def check_real_volume():
     expect(tag + "holes", field(data, "NumberOfHoles"), holes)
     cudb = CUDBConnectivity(Input=reader, **selection)
     ids, index = gathered_region_ids(cudb, False)
-    labels, count = scipy.ndimage.label(mask)
-    expected = labels[index[:, 2], index[:, 1], index[:, 0]]
-    pairs = set(zip(expected.tolist(), ids.tolist()))
-    expect(tag + "CUDB: one RegionId per component",
-           len(pairs) == len({e for e, _ in pairs}) == len({r for _, r in pairs}), True)
-    expect(tag + "CUDB: components", len({r for _, r in pairs if r}), count)
+    check_partition(tag + "CUDB: ", ids, index, mask)
     Delete(cudb)
     Delete(boundary)
 

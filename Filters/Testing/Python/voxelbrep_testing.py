@@ -68,6 +68,21 @@ def make_image(values, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), index_mi
     return image
 
 
+def write_partitioned(values, path, pieces, name="values"):
+    """`values` ([z, y, x], point data) as a .pvti of `pieces` pieces, all written by this
+    process (under MPI too: a dummy controller, not the ranks')."""
+    from vtkmodules.vtkIOParallelXML import vtkXMLPImageDataWriter
+    from vtkmodules.vtkParallelCore import vtkDummyController
+    writer = vtkXMLPImageDataWriter()
+    writer.SetInputData(make_image(values, name=name))
+    writer.SetFileName(path)
+    writer.SetNumberOfPieces(pieces)
+    writer.SetController(vtkDummyController())
+    writer.SetStartPiece(0)
+    writer.SetEndPiece(pieces - 1)
+    writer.Write()
+
+
 def field_value(polydata, name):
     array = polydata.GetFieldData().GetArray(name)
     if array is None:
