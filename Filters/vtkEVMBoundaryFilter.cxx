@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <limits>
@@ -103,6 +104,15 @@ public:
       ids[i] = static_cast<vtkIdType>(number.first);
     }
     return ids;
+  }
+
+  /// Adds the corners of the objects' faces (common grid, permuted axes) as the output's
+  /// points, their numbers as point ids; first, before any other point.
+  void addCornerPoints(const std::vector<Point3>& corners)
+  {
+    reserveMore(this->Coordinates, 3 * corners.size());
+    for (const Point3& p : corners)
+      this->addPoint(p);
   }
 
   /// Room for `cells` more cells of `corners` corners in all. Capacity grows geometrically:
@@ -385,6 +395,7 @@ void appendLoops(const vbr::BRep& brep,
 
 /// The cells of an object's faces: its triangles, its polygons, or one cell per loop.
 void appendFaceCells(const vbr::BRep& brep,
+  const std::vector<vtkIdType>& cornerIds,
   const Triangulation& triangles,
   const FacePolygons& polygons,
   const vbr::vtk::Selected& object,
@@ -394,7 +405,6 @@ void appendFaceCells(const vbr::BRep& brep,
   const vbr::Execution& exec)
 {
   vbr::ProgressPoll poll(exec, 0.9, 1.0, 1024); // the last tenth of the object's progress
-  const std::vector<vtkIdType> cornerIds = builder.pointIds(brep.points, object.offset);
   reserveFaceCells(brep, triangles, polygons, mode, builder);
   std::vector<vtkIdType> ids;
   ids.reserve(3);
@@ -525,9 +535,11 @@ bool boundaryOfObject(const vbr::vtk::Selected& object,
   return true;
 }
 
-/// The output cells of an object's faces, whose loops hold their T-junction vertices.
+/// The output cells of an object's faces, whose loops hold their T-junction vertices, and
+/// whose corners are output points `cornerIds`.
 void appendBoundaryCells(const vbr::vtk::Selected& object,
   const vbr::BRep& brep,
+  const std::vector<vtkIdType>& cornerIds,
   const ObjectSettings& settings,
   const vbr::Execution& exec,
   vtkIdType& faceBase,
@@ -540,7 +552,7 @@ void appendBoundaryCells(const vbr::vtk::Selected& object,
     mode == vtkEVMBoundaryFilter::POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
   {
     vtkLogScopeF(TRACE, "output cells");
-    appendFaceCells(brep, triangles, polygons, object, mode, faceBase, builder, exec);
+    appendFaceCells(brep, cornerIds, triangles, polygons, object, mode, faceBase, builder, exec);
   }
   faceBase += static_cast<vtkIdType>(brep.faces.size());
 }
@@ -572,17 +584,21 @@ void appendObjects(vtkAlgorithm* self,
   std::size_t cornerCount = 0;
   for (const vbr::BRep& brep : breps)
     cornerCount += brep.points.size();
-  vbr::GridPointIndex corners(cornerCount / 2); // corners repeat about three times
+  vbr::CornerSet corners(packer, cornerCount / 3); // corners repeat about three times
+  std::vector<std::vector<std::int64_t>> numbers(n);
   for (std::size_t o = 0; o < n; ++o)
-    vbr::insertCorners(breps[o], objects[o].offset, packer, corners);
+    numbers[o] = corners.insert(breps[o], objects[o].offset);
+  builder.addCornerPoints(corners.points());
   vtkIdType faceBase = 0;
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
     const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to)
                                   .forWork(static_cast<std::int64_t>(breps[o].points.size()));
-    vbr::insertTJunctionVertices(breps[o], corners, packer, objects[o].offset, exec);
-    appendBoundaryCells(objects[o], breps[o], settings, exec, faceBase, builder);
+    vbr::insertTJunctionVertices(breps[o], numbers[o], corners, objects[o].offset, exec);
+    const std::vector<vtkIdType> cornerIds(numbers[o].begin(), numbers[o].end());
+    numbers[o] = std::vector<std::int64_t>();
+    appendBoundaryCells(objects[o], breps[o], cornerIds, settings, exec, faceBase, builder);
     breps[o] = vbr::BRep(); // released as soon as written
     self->UpdateProgress(to);
   }

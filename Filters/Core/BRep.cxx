@@ -7,12 +7,12 @@
 // extractBoundary2D is that for a 2D EVM, the whole image being one plane.
 //
 // insertTJunctionVertices makes the edges of adjacent faces match exactly: every corner goes
-// into a hash set of packed keys (GridPointIndex, KeyPacker); each loop's edges are walked
-// unit step by unit step and the corners of other loops found inside them are inserted in
-// order (walkWithEdgeVertices). Two parallel passes over the loops, one counting and one
-// writing after a prefix sum, so that no thread allocates. Several B-Reps placed in one grid
-// (the objects of a label map) share one set of corners (insertCorners), so that the edges
-// of neighbouring objects match too.
+// into a hash set of packed keys (CornerSet: GridPointIndex, KeyPacker) that numbers it; each
+// loop's edges are walked unit step by unit step and the corners of other loops found inside
+// them are inserted in order (walkWithEdgeVertices), with their numbers, which the filters
+// use as point ids. Runs of loops are walked concurrently, once each, into vectors of their
+// own, joined in order afterwards. Several B-Reps placed in one grid (the objects of a label
+// map) share one set of corners, so that the edges of neighbouring objects match too.
 
 #include "BRep.h"
 
@@ -92,14 +92,14 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
 namespace
 {
 
-/// Calls emit(p) for each corner of a loop and, after it, for each corner of other loops
+/// Calls emit(p, number) for each corner of a loop and, after it, for each corner of the set
 /// lying strictly inside the edge that starts there, in order along the edge. The grid
 /// positions inside an edge are probed one by one, so the work is bounded by the number of
 /// unit edges of the boundary.
 template<typename Emit>
 void walkWithEdgeVertices(const PointRange& points,
-  const GridPointIndex& corners,
-  const KeyPacker& packer,
+  const std::int64_t* numbers,
+  const CornerSet& corners,
   const Point3& offset,
   Emit&& emit)
 {
@@ -107,7 +107,7 @@ void walkWithEdgeVertices(const PointRange& points,
   {
     const Point3& p = points[i];
     const Point3& q = points[(i + 1) % points.size()];
-    emit(p);
+    emit(p, numbers[i]);
     int d = 0;
     while (d < 3 && p[d] == q[d])
       ++d;
@@ -116,8 +116,11 @@ void walkWithEdgeVertices(const PointRange& points,
     const Coord step = q[d] > p[d] ? 1 : -1;
     Point3 r = p;
     for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
-      if (corners.find(packer.pack(r[0] + offset[0], r[1] + offset[1], r[2] + offset[2])) >= 0)
-        emit(r);
+    {
+      const std::int64_t number = corners.find(add(r, offset));
+      if (number >= 0)
+        emit(r, number);
+    }
   }
 }
 
@@ -136,78 +139,134 @@ Coord checkedMaximum(const std::vector<Point3>& points)
   return hi;
 }
 
+/// The loops of a run of consecutive loops, with their T-junction vertices.
+struct LoopBlock
+{
+  std::size_t firstLoop = 0, endLoop = 0;
+  std::vector<Point3> points;
+  std::vector<std::int64_t> numbers;
+  std::vector<std::size_t> ends; ///< per loop, where it ends in `points`
+};
+
+/// Walks the loops of `block` once, writing them with their T-junction vertices.
+void walkBlock(const BRep& brep,
+  const std::vector<std::int64_t>& numbers,
+  const CornerSet& corners,
+  const Point3& offset,
+  LoopBlock& block)
+{
+  const std::size_t first = brep.loops[block.firstLoop].begin;
+  const std::size_t last = brep.loops[block.endLoop - 1].end;
+  block.points.reserve(last - first + (last - first) / 4);
+  block.numbers.reserve(block.points.capacity());
+  for (std::size_t l = block.firstLoop; l < block.endLoop; ++l)
+  {
+    walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
+      numbers.data() + brep.loops[l].begin,
+      corners,
+      offset,
+      [&block](const Point3& p, std::int64_t number)
+      {
+        block.points.push_back(p);
+        block.numbers.push_back(number);
+      });
+    block.ends.push_back(block.points.size());
+  }
+}
+
+/// Cuts the loops into runs walked concurrently; one run when sequential, so that its
+/// vectors become the B-Rep's own without a copy.
+std::vector<LoopBlock> cutIntoBlocks(std::size_t loops, const Execution& exec)
+{
+  const std::size_t count = exec.parallelFor ? std::min<std::size_t>(loops, 256) : 1;
+  std::vector<LoopBlock> blocks(count);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    blocks[k].firstLoop = loops * k / count;
+    blocks[k].endLoop = loops * (k + 1) / count;
+  }
+  return blocks;
+}
+
 } // namespace
 
 void insertTJunctionVertices(BRep& brep, const Execution& exec)
 {
   if (brep.points.empty())
     return;
-  // Every corner in a hash set.
   const KeyPacker packer = KeyPacker::forMaximum(checkedMaximum(brep.points));
-  GridPointIndex corners(brep.points.size() / 2); // corners repeat about three times
-  insertCorners(brep, { 0, 0, 0 }, packer, corners);
-  insertTJunctionVertices(brep, corners, packer, { 0, 0, 0 }, exec);
+  CornerSet corners(packer, brep.points.size() / 3); // corners repeat about three times
+  std::vector<std::int64_t> numbers = corners.insert(brep, { 0, 0, 0 });
+  insertTJunctionVertices(brep, numbers, corners, { 0, 0, 0 }, exec);
 }
 
-void insertCorners(const BRep& brep,
-  const Point3& offset,
-  const KeyPacker& packer,
-  GridPointIndex& corners)
+CornerSet::CornerSet(const KeyPacker& packer, std::size_t expected)
+  : Packer(packer)
+  , Index(expected)
 {
-  const std::int64_t highest = brep.points.empty() ? 0 : checkedMaximum(brep.points);
-  for (Coord o : offset)
-    if (o < 0 || highest + o >= PackedCoordinateLimit)
-      throw std::out_of_range("insertCorners: coordinates outside [0, 2^21)");
-  for (const Point3& p : brep.points)
-    corners.insert(packer.pack(p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]));
+  this->Points.reserve(expected);
+}
+
+std::vector<std::int64_t> CornerSet::insert(const BRep& brep, const Point3& offset)
+{
+  const std::int64_t limit = std::int64_t(1) << this->Packer.bits;
+  std::vector<std::int64_t> numbers(brep.points.size());
+  for (std::size_t i = 0; i < brep.points.size(); ++i)
+  {
+    const Point3 p = add(brep.points[i], offset);
+    for (Coord c : p)
+      if (c < 0 || c >= limit)
+        throw std::out_of_range("CornerSet: a corner lies outside the common grid");
+    const auto found = this->Index.insert(this->Packer.pack(p[0], p[1], p[2]));
+    if (found.second)
+      this->Points.push_back(p);
+    numbers[i] = found.first;
+  }
+  return numbers;
 }
 
 void insertTJunctionVertices(BRep& brep,
-  const GridPointIndex& corners,
-  const KeyPacker& packer,
+  std::vector<std::int64_t>& numbers,
+  const CornerSet& corners,
   const Point3& offset,
   const Execution& exec)
 {
-  // Two parallel passes over the loops: count each loop's corners with the vertices inside
-  // its edges, then (after a prefix sum) write them, so that no thread allocates.
-  const std::int64_t loops = static_cast<std::int64_t>(brep.loops.size());
-  std::vector<std::size_t> start(brep.loops.size() + 1, 0);
-  exec.forRange(loops,
+  if (brep.loops.empty())
+    return;
+  // One walk per loop, runs of loops concurrently, each into vectors of its own; the runs are
+  // then joined in order.
+  std::vector<LoopBlock> blocks = cutIntoBlocks(brep.loops.size(), exec);
+  exec.forRange(static_cast<std::int64_t>(blocks.size()),
     [&](std::int64_t b, std::int64_t e)
     {
-      for (std::int64_t l = b; l < e; ++l)
-      {
-        std::size_t n = 0;
-        walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
-          corners,
-          packer,
-          offset,
-          [&n](const Point3&) { ++n; });
-        start[l + 1] = n;
-      }
+      for (std::int64_t k = b; k < e; ++k)
+        walkBlock(brep, numbers, corners, offset, blocks[k]);
     });
-  for (std::size_t l = 0; l < brep.loops.size(); ++l)
-    start[l + 1] += start[l];
-  std::vector<Point3> points(start.back());
-  exec.forRange(loops,
-    [&](std::int64_t b, std::int64_t e)
-    {
-      for (std::int64_t l = b; l < e; ++l)
-      {
-        Point3* out = points.data() + start[l];
-        walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
-          corners,
-          packer,
-          offset,
-          [&out](const Point3& p) { *out++ = p; });
-      }
-    });
-  for (std::size_t l = 0; l < brep.loops.size(); ++l)
+  std::vector<Point3> points;
+  std::vector<std::int64_t> pointNumbers;
+  if (blocks.size() == 1)
   {
-    brep.loops[l].begin = start[l];
-    brep.loops[l].end = start[l + 1];
+    points.swap(blocks[0].points);
+    pointNumbers.swap(blocks[0].numbers);
+  }
+  std::size_t base = 0;
+  for (LoopBlock& block : blocks)
+  {
+    for (std::size_t l = block.firstLoop; l < block.endLoop; ++l)
+    {
+      brep.loops[l].begin = base + (l == block.firstLoop ? 0 : block.ends[l - block.firstLoop - 1]);
+      brep.loops[l].end = base + block.ends[l - block.firstLoop];
+    }
+    base += block.ends.empty() ? 0 : block.ends.back();
+    if (blocks.size() > 1)
+    {
+      points.insert(points.end(), block.points.begin(), block.points.end());
+      pointNumbers.insert(pointNumbers.end(), block.numbers.begin(), block.numbers.end());
+      block = LoopBlock(); // released as soon as copied
+    }
   }
   brep.points.swap(points);
+  numbers.swap(pointNumbers);
 }
 
 } // namespace vbr

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace vbr
@@ -81,20 +82,43 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity);
 /// of adjacent faces match exactly (no T-junctions).
 void insertTJunctionVertices(BRep& brep, const Execution& exec = Execution());
 
-/// Adds the corners of `brep`, whose points lie at `offset` in a grid common to several
-/// B-Reps, to `corners` (keys of `packer`, which must hold every coordinate of that grid).
-/// Throws std::out_of_range for coordinates outside [0, 2^21).
-void insertCorners(const BRep& brep,
-  const Point3& offset,
-  const KeyPacker& packer,
-  GridPointIndex& corners);
+/// The distinct corners of one or more B-Reps placed in a grid common to them (the objects
+/// of a label map), numbered in the order they are first met. The T-junction pass finds in
+/// it the corners lying inside edges, and the numbers serve as the output's point ids: every
+/// corner is a vertex of some output cell.
+class CornerSet
+{
+public:
+  /// `packer` must hold every coordinate of the common grid; about `expected` corners.
+  CornerSet(const KeyPacker& packer, std::size_t expected);
+
+  /// Adds the corners of `brep`, whose points lie at `offset` in the common grid; returns the
+  /// number of each of its points. Throws std::out_of_range for coordinates outside the
+  /// packer's range.
+  std::vector<std::int64_t> insert(const BRep& brep, const Point3& offset);
+
+  /// The number of the corner at `p` (common grid), or -1.
+  std::int64_t find(const Point3& p) const
+  {
+    return this->Index.find(this->Packer.pack(p[0], p[1], p[2]));
+  }
+
+  /// Every corner, in the common grid, by number.
+  const std::vector<Point3>& points() const { return this->Points; }
+
+private:
+  KeyPacker Packer;
+  GridPointIndex Index;
+  std::vector<Point3> Points;
+};
 
 /// Inserts into every loop of `brep` (at `offset` in the common grid) the `corners` lying
 /// inside its edges: with the corners of several B-Reps, the edges of neighbouring B-Reps
-/// (the labels of a label map) match exactly as well.
+/// (the labels of a label map) match exactly as well. `numbers` holds the corner number of
+/// every point of `brep` (CornerSet::insert) and follows the points.
 void insertTJunctionVertices(BRep& brep,
-  const GridPointIndex& corners,
-  const KeyPacker& packer,
+  std::vector<std::int64_t>& numbers,
+  const CornerSet& corners,
   const Point3& offset,
   const Execution& exec = Execution());
 
