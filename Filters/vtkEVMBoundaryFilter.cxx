@@ -47,10 +47,13 @@ namespace
 
 using vbr::Point3;
 
-/// Triangles of every face, as indices into the face's loop corners.
-using Triangulation = std::vector<std::vector<std::array<int, 3>>>;
-/// Polygons of every face (Polygons mode), as indices into the face's loop corners.
-using FacePolygons = std::vector<std::vector<std::vector<int>>>;
+/// The cells of the faces (Triangles or Polygons mode) in runs of consecutive faces, one run
+/// per concurrent task, as indices into each face's loop corners.
+struct FaceRuns
+{
+  std::vector<vbr::FaceCells> runs;
+  std::vector<std::size_t> firstFace; ///< per run
+};
 
 /// Statistics written to the output's field data.
 struct Statistics
@@ -303,25 +306,17 @@ void appendSurfelCells(const vbr::vtk::Selected& object,
 
 /// Room in the builder for an object's cells in `mode`.
 void reserveFaceCells(const vbr::BRep& brep,
-  const Triangulation& triangles,
-  const FacePolygons& polygons,
+  const FaceRuns& cells,
   int mode,
   OutputBuilder& builder)
 {
   std::size_t count = 0, corners = 0;
-  if (mode == vtkEVMBoundaryFilter::TRIANGLES)
+  if (mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS)
   {
-    for (const auto& t : triangles)
-      count += t.size();
-    corners = 3 * count;
-  }
-  else if (mode == vtkEVMBoundaryFilter::POLYGONS)
-  {
-    for (const auto& face : polygons)
+    for (const vbr::FaceCells& run : cells.runs)
     {
-      count += face.size();
-      for (const auto& polygon : face)
-        corners += polygon.size();
+      count += run.cellEnds.size();
+      corners += run.corners.size();
     }
   }
   else
@@ -343,28 +338,19 @@ struct FaceCellContext
   const vtkIdType* corner; ///< point ids of the face's loops' corners
 };
 
-void appendFanPolygons(const std::vector<std::vector<int>>& polygons,
+/// The cells of the i-th face of a run (triangles or fan polygons).
+void appendRunCells(const vbr::FaceCells& run,
+  std::size_t i,
   const FaceCellContext& c,
   std::vector<vtkIdType>& ids,
   OutputBuilder& builder)
 {
-  for (const std::vector<int>& polygon : polygons)
+  for (std::size_t cell = run.cellBegin(i); cell < run.faceEnds[i]; ++cell)
   {
     ids.clear();
-    for (int k : polygon)
-      ids.push_back(c.corner[k]);
+    for (std::size_t k = run.cornerBegin(cell); k < run.cellEnds[cell]; ++k)
+      ids.push_back(c.corner[run.corners[k]]);
     builder.addCell(ids.data(), ids.size(), c.faceId, 0, c.label, c.parent, c.depth);
-  }
-}
-
-void appendTriangles(const std::vector<std::array<int, 3>>& triangles,
-  const FaceCellContext& c,
-  OutputBuilder& builder)
-{
-  for (const auto& t : triangles)
-  {
-    const vtkIdType triangle[3] = { c.corner[t[0]], c.corner[t[1]], c.corner[t[2]] };
-    builder.addCell(triangle, 3, c.faceId, 0, c.label, c.parent, c.depth);
   }
 }
 
@@ -396,8 +382,7 @@ void appendLoops(const vbr::BRep& brep,
 /// The cells of an object's faces: its triangles, its polygons, or one cell per loop.
 void appendFaceCells(const vbr::BRep& brep,
   const std::vector<vtkIdType>& cornerIds,
-  const Triangulation& triangles,
-  const FacePolygons& polygons,
+  const FaceRuns& cells,
   const vbr::vtk::Selected& object,
   int mode,
   vtkIdType faceBase,
@@ -405,9 +390,11 @@ void appendFaceCells(const vbr::BRep& brep,
   const vbr::Execution& exec)
 {
   vbr::ProgressPoll poll(exec, 0.9, 1.0, 1024); // the last tenth of the object's progress
-  reserveFaceCells(brep, triangles, polygons, mode, builder);
+  reserveFaceCells(brep, cells, mode, builder);
+  const bool fromRuns =
+    mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS;
   std::vector<vtkIdType> ids;
-  ids.reserve(3);
+  std::size_t run = 0;
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
   {
     poll.at(double(f) / double(brep.faces.size()));
@@ -419,12 +406,14 @@ void appendFaceCells(const vbr::BRep& brep,
       face.depth,
       object.label,
       cornerIds.data() + brep.loops[face.firstLoop].begin };
-    if (mode == vtkEVMBoundaryFilter::POLYGONS)
-      appendFanPolygons(polygons[f], c, ids, builder);
-    else if (mode == vtkEVMBoundaryFilter::TRIANGLES)
-      appendTriangles(triangles[f], c, builder);
-    else
+    if (!fromRuns)
+    {
       appendLoops(brep, face, c, mode == vtkEVMBoundaryFilter::POLYLINES, ids, builder);
+      continue;
+    }
+    while (run + 1 < cells.firstFace.size() && cells.firstFace[run + 1] <= f)
+      ++run;
+    appendRunCells(cells.runs[run], f - cells.firstFace[run], c, ids, builder);
   }
 }
 
@@ -444,32 +433,31 @@ bool boundaryOf(const vbr::EVM& evm,
   return true;
 }
 
-/// `make(brep, f)` for every face f, in parallel.
-template<typename Make>
-auto perFace(const vbr::BRep& brep, const vbr::Execution& exec, Make make)
+/// The triangles (Triangles mode) or the polygons that VTK draws right (Polygons mode) of
+/// every face, runs of faces in parallel.
+FaceRuns cellsOfFaces(const vbr::BRep& brep, int mode, const vbr::Execution& exec)
 {
-  std::vector<decltype(make(brep, 0))> out(brep.faces.size());
-  exec.forRange(static_cast<std::int64_t>(brep.faces.size()),
+  vtkLogScopeF(TRACE, "triangles or fan polygons of the faces");
+  const std::size_t faces = brep.faces.size();
+  const std::size_t count = exec.parallelFor ? std::min<std::size_t>(faces, 256) : 1;
+  FaceRuns cells;
+  cells.runs.resize(count);
+  for (std::size_t k = 0; k < count; ++k)
+    cells.firstFace.push_back(faces * k / count);
+  const auto append =
+    mode == vtkEVMBoundaryFilter::TRIANGLES ? vbr::appendTriangles : vbr::appendFanPolygons;
+  exec.forRange(static_cast<std::int64_t>(count),
     [&](std::int64_t b, std::int64_t e)
     {
-      for (std::int64_t f = b; f < e; ++f)
-        out[f] = make(brep, static_cast<int>(f));
+      for (std::int64_t k = b; k < e; ++k)
+      {
+        const std::size_t end =
+          k + 1 < static_cast<std::int64_t>(count) ? cells.firstFace[k + 1] : faces;
+        for (std::size_t f = cells.firstFace[k]; f < end; ++f)
+          append(brep, static_cast<int>(f), cells.runs[k]);
+      }
     });
-  return out;
-}
-
-/// The triangles of every face, in parallel.
-Triangulation triangulate(const vbr::BRep& brep, const vbr::Execution& exec)
-{
-  vtkLogScopeF(TRACE, "triangulation");
-  return perFace(brep, exec, vbr::triangulateFace);
-}
-
-/// The polygons of every face that VTK draws right (fanPolygons), in parallel.
-FacePolygons fanPolygons(const vbr::BRep& brep, const vbr::Execution& exec)
-{
-  vtkLogScopeF(TRACE, "polygons drawn as fans");
-  return perFace(brep, exec, vbr::fanPolygons);
+  return cells;
 }
 
 /// How every object is processed.
@@ -546,13 +534,13 @@ void appendBoundaryCells(const vbr::vtk::Selected& object,
   OutputBuilder& builder)
 {
   const int mode = settings.outputMode;
-  const auto triangles =
-    mode == vtkEVMBoundaryFilter::TRIANGLES ? triangulate(brep, exec) : Triangulation();
-  const auto polygons =
-    mode == vtkEVMBoundaryFilter::POLYGONS ? fanPolygons(brep, exec) : FacePolygons();
+  const FaceRuns cells =
+    mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS
+    ? cellsOfFaces(brep, mode, exec)
+    : FaceRuns();
   {
     vtkLogScopeF(TRACE, "output cells");
-    appendFaceCells(brep, cornerIds, triangles, polygons, object, mode, faceBase, builder, exec);
+    appendFaceCells(brep, cornerIds, cells, object, mode, faceBase, builder, exec);
   }
   faceBase += static_cast<vtkIdType>(brep.faces.size());
 }
@@ -581,13 +569,11 @@ void appendObjects(vtkAlgorithm* self,
   vtkLogScopeF(TRACE, "T-junction vertices and output cells");
   const vbr::KeyPacker packer =
     vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
-  std::size_t cornerCount = 0;
-  for (const vbr::BRep& brep : breps)
-    cornerCount += brep.points.size();
-  vbr::CornerSet corners(packer, cornerCount / 3); // corners repeat about three times
-  std::vector<std::vector<std::int64_t>> numbers(n);
+  std::vector<vbr::PlacedBRep> placed;
   for (std::size_t o = 0; o < n; ++o)
-    numbers[o] = corners.insert(breps[o], objects[o].offset);
+    placed.push_back({ &breps[o], objects[o].offset });
+  std::vector<std::vector<std::int64_t>> numbers;
+  const vbr::CornerSet corners(placed, packer, numbers);
   builder.addCornerPoints(corners.points());
   vtkIdType faceBase = 0;
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)

@@ -6,22 +6,25 @@
 // loops turn when the parity of the sorting and the side the face looks to differ.
 // extractBoundary2D is that for a 2D EVM, the whole image being one plane.
 //
-// insertTJunctionVertices makes the edges of adjacent faces match exactly: every corner goes
-// into a hash set of packed keys (CornerSet: GridPointIndex, KeyPacker) that numbers it; each
-// loop's edges are walked unit step by unit step and the corners of other loops found inside
-// them are inserted in order (walkWithEdgeVertices), with their numbers, which the filters
-// use as point ids. Runs of loops are walked concurrently, once each, into vectors of their
-// own, joined in order afterwards. Several B-Reps placed in one grid (the objects of a label
-// map) share one set of corners, so that the edges of neighbouring objects match too.
+// insertTJunctionVertices makes the edges of adjacent faces match exactly. The distinct
+// corners are numbered by one radix sort of their packed keys (CornerSet, KeyPacker), and
+// ordered along the lines of the two other axes by two more; the corners strictly inside an
+// edge are then those between its two ends in its axis's order, inserted in order
+// (walkWithEdgeVertices) with their numbers, which the filters use as point ids. Runs of loops are
+// walked concurrently, once each, into vectors of their own, joined in order afterwards. Several
+// B-Reps placed in one grid (the objects of a label map) share one set of corners, so that the
+// edges of neighbouring objects match too.
 
 #include "BRep.h"
 
-#include "GridPointIndex.h"
 #include "RadixSort.h"
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace vbr
 {
@@ -93,9 +96,7 @@ namespace
 {
 
 /// Calls emit(p, number) for each corner of a loop and, after it, for each corner of the set
-/// lying strictly inside the edge that starts there, in order along the edge. The grid
-/// positions inside an edge are probed one by one, so the work is bounded by the number of
-/// unit edges of the boundary.
+/// lying strictly inside the edge that starts there, in order along the edge.
 template<typename Emit>
 void walkWithEdgeVertices(const PointRange& points,
   const std::int64_t* numbers,
@@ -103,24 +104,20 @@ void walkWithEdgeVertices(const PointRange& points,
   const Point3& offset,
   Emit&& emit)
 {
+  const std::vector<Point3>& all = corners.points();
   for (std::size_t i = 0; i < points.size(); ++i)
   {
+    const std::size_t j = (i + 1) % points.size();
     const Point3& p = points[i];
-    const Point3& q = points[(i + 1) % points.size()];
+    const Point3& q = points[j];
     emit(p, numbers[i]);
     int d = 0;
     while (d < 3 && p[d] == q[d])
       ++d;
-    if (d == 3)
-      continue;
-    const Coord step = q[d] > p[d] ? 1 : -1;
-    Point3 r = p;
-    for (r[d] = p[d] + step; r[d] != q[d]; r[d] += step)
-    {
-      const std::int64_t number = corners.find(add(r, offset));
-      if (number >= 0)
-        emit(r, number);
-    }
+    if (d == 3 || std::abs(q[d] - p[d]) == 1)
+      continue; // no grid point inside the edge
+    corners.forEachBetween(
+      d, numbers[i], numbers[j], [&](std::int64_t n) { emit(sub(all[n], offset), n); });
   }
 }
 
@@ -195,34 +192,94 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
   if (brep.points.empty())
     return;
   const KeyPacker packer = KeyPacker::forMaximum(checkedMaximum(brep.points));
-  CornerSet corners(packer, brep.points.size() / 3); // corners repeat about three times
-  std::vector<std::int64_t> numbers = corners.insert(brep, { 0, 0, 0 });
-  insertTJunctionVertices(brep, numbers, corners, { 0, 0, 0 }, exec);
+  std::vector<std::vector<std::int64_t>> numbers;
+  const CornerSet corners({ { &brep, { 0, 0, 0 } } }, packer, numbers);
+  insertTJunctionVertices(brep, numbers[0], corners, { 0, 0, 0 }, exec);
 }
 
-CornerSet::CornerSet(const KeyPacker& packer, std::size_t expected)
-  : Packer(packer)
-  , Index(expected)
+namespace
 {
-  this->Points.reserve(expected);
-}
 
-std::vector<std::int64_t> CornerSet::insert(const BRep& brep, const Point3& offset)
+/// A corner of one of the B-Reps by its packed key: which B-Rep, which point.
+struct KeyedCorner
 {
-  const std::int64_t limit = std::int64_t(1) << this->Packer.bits;
-  std::vector<std::int64_t> numbers(brep.points.size());
-  for (std::size_t i = 0; i < brep.points.size(); ++i)
+  std::uint64_t key;
+  std::uint32_t brep;
+  std::uint32_t point;
+};
+
+/// The corners of every B-Rep with their keys in the common grid.
+std::vector<KeyedCorner> keyedCorners(const std::vector<PlacedBRep>& breps, const KeyPacker& packer)
+{
+  const std::int64_t limit = std::int64_t(1) << packer.bits;
+  std::size_t total = 0;
+  for (const PlacedBRep& b : breps)
+    total += b.brep->points.size();
+  if (breps.size() > UINT32_MAX || total >= UINT32_MAX)
+    throw std::length_error("CornerSet: more than 2^32 corners");
+  std::vector<KeyedCorner> keyed;
+  keyed.reserve(total);
+  for (std::size_t k = 0; k < breps.size(); ++k)
   {
-    const Point3 p = add(brep.points[i], offset);
-    for (Coord c : p)
-      if (c < 0 || c >= limit)
-        throw std::out_of_range("CornerSet: a corner lies outside the common grid");
-    const auto found = this->Index.insert(this->Packer.pack(p[0], p[1], p[2]));
-    if (found.second)
-      this->Points.push_back(p);
-    numbers[i] = found.first;
+    const std::vector<Point3>& points = breps[k].brep->points;
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      const Point3 p = add(points[i], breps[k].offset);
+      for (Coord c : p)
+        if (c < 0 || c >= limit)
+          throw std::out_of_range("CornerSet: a corner lies outside the common grid");
+      keyed.push_back({ packer.pack(p[0], p[1], p[2]),
+        static_cast<std::uint32_t>(k),
+        static_cast<std::uint32_t>(i) });
+    }
   }
-  return numbers;
+  return keyed;
+}
+
+} // namespace
+
+CornerSet::CornerSet(const std::vector<PlacedBRep>& breps,
+  const KeyPacker& packer,
+  std::vector<std::vector<std::int64_t>>& numbers)
+{
+  // Sorting numbers the corners in key order: no hash table, whose every probe would miss
+  // the cache.
+  std::vector<KeyedCorner> keyed = keyedCorners(breps, packer);
+  radixSortBy(keyed, [](const KeyedCorner& c) { return c.key; });
+  numbers.assign(breps.size(), {});
+  for (std::size_t k = 0; k < breps.size(); ++k)
+    numbers[k].resize(breps[k].brep->points.size());
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+  {
+    const KeyedCorner& c = keyed[i];
+    if (i == 0 || c.key != keyed[i - 1].key)
+      this->Points.push_back(add(breps[c.brep].brep->points[c.point], breps[c.brep].offset));
+    numbers[c.brep][c.point] = static_cast<std::int64_t>(this->Points.size()) - 1;
+  }
+  this->orderLinesAlong(0, packer);
+  this->orderLinesAlong(1, packer);
+}
+
+void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)
+{
+  // Key (the two other coordinates, then this one): a line along `axis` is a run of keys.
+  const int other1 = axis == 0 ? 1 : 0, other2 = 2;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(this->Points.size());
+  for (std::size_t n = 0; n < this->Points.size(); ++n)
+  {
+    const Point3& p = this->Points[n];
+    keyed[n] = { packer.pack(p[other1], p[other2], p[axis]), static_cast<std::uint32_t>(n) };
+  }
+  radixSortBy(keyed, [](const std::pair<std::uint64_t, std::uint32_t>& k) { return k.first; });
+  std::vector<std::uint32_t>& order = this->OrderAlong[axis];
+  std::vector<std::uint32_t>& rank = this->RankAlong[axis];
+  order.resize(keyed.size());
+  rank.resize(keyed.size());
+  for (std::size_t r = 0; r < keyed.size(); ++r)
+  {
+    order[r] = keyed[r].second;
+    rank[keyed[r].second] = static_cast<std::uint32_t>(r);
+  }
 }
 
 void insertTJunctionVertices(BRep& brep,

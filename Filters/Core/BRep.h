@@ -9,7 +9,6 @@
 #include "EVM.h"
 #include "Execution.h"
 #include "Geometry.h"
-#include "GridPointIndex.h"
 #include "PlaneSweep2D.h"
 
 #include <array>
@@ -82,40 +81,67 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity);
 /// of adjacent faces match exactly (no T-junctions).
 void insertTJunctionVertices(BRep& brep, const Execution& exec = Execution());
 
-/// The distinct corners of one or more B-Reps placed in a grid common to them (the objects
-/// of a label map), numbered in the order they are first met. The T-junction pass finds in
-/// it the corners lying inside edges, and the numbers serve as the output's point ids: every
-/// corner is a vertex of some output cell.
+/// A B-Rep and where its points lie in a grid common to several (the objects of a label map).
+struct PlacedBRep
+{
+  const BRep* brep;
+  Point3 offset;
+};
+
+/// The distinct corners of one or more B-Reps placed in a common grid, numbered in the order
+/// of their packed keys (KeyPacker), so that the corners of a line along the last axis have
+/// consecutive numbers; the orders of the lines along the two other axes are kept as well.
+/// The corners strictly inside an edge are then the ones between its two ends in the order of
+/// its axis: the T-junction pass looks them up without a search. The numbers serve as the
+/// output's point ids: every corner is a vertex of some output cell.
 class CornerSet
 {
 public:
-  /// `packer` must hold every coordinate of the common grid; about `expected` corners.
-  CornerSet(const KeyPacker& packer, std::size_t expected);
+  /// Numbers the corners of `breps`; `numbers[k][i]` becomes the number of point i of
+  /// breps[k]. Throws std::out_of_range for a corner outside the packer's range.
+  CornerSet(const std::vector<PlacedBRep>& breps,
+    const KeyPacker& packer,
+    std::vector<std::vector<std::int64_t>>& numbers);
 
-  /// Adds the corners of `brep`, whose points lie at `offset` in the common grid; returns the
-  /// number of each of its points. Throws std::out_of_range for coordinates outside the
-  /// packer's range.
-  std::vector<std::int64_t> insert(const BRep& brep, const Point3& offset);
-
-  /// The number of the corner at `p` (common grid), or -1.
-  std::int64_t find(const Point3& p) const
-  {
-    return this->Index.find(this->Packer.pack(p[0], p[1], p[2]));
-  }
+  std::size_t size() const { return this->Points.size(); }
 
   /// Every corner, in the common grid, by number.
   const std::vector<Point3>& points() const { return this->Points; }
 
+  /// Calls emit(number) for the corners strictly between corners `from` and `to`, two corners
+  /// of one line along `axis`, in order from `from` to `to`.
+  template<typename Emit>
+  void forEachBetween(int axis, std::int64_t from, std::int64_t to, Emit&& emit) const
+  {
+    if (axis == 2)
+    {
+      for (std::int64_t n = from + 1; n < to; ++n)
+        emit(n);
+      for (std::int64_t n = from - 1; n > to; --n)
+        emit(n);
+      return;
+    }
+    const std::vector<std::uint32_t>& order = this->OrderAlong[axis];
+    const std::int64_t a = this->RankAlong[axis][from], b = this->RankAlong[axis][to];
+    for (std::int64_t r = a + 1; r < b; ++r)
+      emit(order[r]);
+    for (std::int64_t r = a - 1; r > b; --r)
+      emit(order[r]);
+  }
+
 private:
-  KeyPacker Packer;
-  GridPointIndex Index;
+  void orderLinesAlong(int axis, const KeyPacker& packer);
+
   std::vector<Point3> Points;
+  /// Per axis 0 and 1: the numbers in the order of the lines along that axis, and the place
+  /// of each number in it.
+  std::vector<std::uint32_t> OrderAlong[2], RankAlong[2];
 };
 
 /// Inserts into every loop of `brep` (at `offset` in the common grid) the `corners` lying
 /// inside its edges: with the corners of several B-Reps, the edges of neighbouring B-Reps
-/// (the labels of a label map) match exactly as well. `numbers` holds the corner number of
-/// every point of `brep` (CornerSet::insert) and follows the points.
+/// (the labels of a label map) match exactly as well. `numbers` holds the corner number of every
+/// point of `brep` (from the CornerSet) and follows the points.
 void insertTJunctionVertices(BRep& brep,
   std::vector<std::int64_t>& numbers,
   const CornerSet& corners,

@@ -15,11 +15,13 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <list>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace vbr
 {
@@ -82,15 +84,12 @@ void markNesting(Cdt& cdt)
 }
 
 /// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
-/// corner whose triangle holds no other corner (not even on its border). Returns false when
-/// no ear is found (left to the general triangulation).
-bool clipEars(const PointRange& pts,
-  int u,
-  int v,
-  int sign,
-  std::vector<std::array<int, 3>>& triangles)
+/// corner whose triangle holds no other corner (not even on its border). Appends the
+/// triangles to `out`; returns false when no ear is found (left to the general triangulation,
+/// the caller then drops what was appended). `ring` is scratch space.
+bool clipEars(const PointRange& pts, int u, int v, int sign, std::vector<int>& ring, FaceCells& out)
 {
-  std::vector<int> ring(pts.size());
+  ring.resize(pts.size());
   for (std::size_t i = 0; i < ring.size(); ++i)
     ring[i] = static_cast<int>(i);
   auto cross = [&](int a, int b, int c)
@@ -98,6 +97,11 @@ bool clipEars(const PointRange& pts,
     return sign *
       (static_cast<long long>(pts[b][u] - pts[a][u]) * (pts[c][v] - pts[a][v]) -
         static_cast<long long>(pts[b][v] - pts[a][v]) * (pts[c][u] - pts[a][u]));
+  };
+  auto emit = [&out](int a, int b, int c)
+  {
+    out.corners.insert(out.corners.end(), { a, b, c });
+    out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
   };
   while (ring.size() > 3)
   {
@@ -126,7 +130,7 @@ bool clipEars(const PointRange& pts,
       }
       if (!empty)
         continue;
-      triangles.push_back({ a, b, c });
+      emit(a, b, c);
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
       clipped = true;
     }
@@ -135,7 +139,7 @@ bool clipEars(const PointRange& pts,
   }
   if (cross(ring[0], ring[1], ring[2]) <= 0)
     return false;
-  triangles.push_back({ ring[0], ring[1], ring[2] });
+  emit(ring[0], ring[1], ring[2]);
   return true;
 }
 
@@ -143,13 +147,12 @@ bool clipEars(const PointRange& pts,
 constexpr std::size_t EarClippingLimit = 24;
 
 /// The outer loop of a face in (u, v) coordinates, counter-clockwise seen from outside.
-std::vector<Point2L> outerLoop2D(const BRep& brep, const BRepFace& face)
+void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& corners)
 {
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
-  std::vector<Point2L> corners;
+  corners.clear();
   for (const Point3& p : brep.loopPoints(face.firstLoop))
     corners.push_back(face.normalSign > 0 ? Point2L{ p[u], p[v] } : Point2L{ p[v], p[u] });
-  return corners;
 }
 
 /// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
@@ -158,21 +161,21 @@ std::vector<Point2L> outerLoop2D(const BRep& brep, const BRepFace& face)
 int fanApex(const std::vector<Point2L>& corners)
 {
   const std::size_t n = corners.size();
-  std::vector<std::size_t> candidates;
-  std::size_t convex = n;
-  for (std::size_t i = 0; i < n && candidates.size() < 4; ++i)
+  std::array<std::size_t, 5> candidates;
+  std::size_t count = 0, convex = n;
+  for (std::size_t i = 0; i < n && count < 4; ++i)
   {
     const int turn = orientation(corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]);
     if (turn < 0)
-      candidates.push_back(i);
+      candidates[count++] = i;
     else if (turn > 0 && convex == n)
       convex = i;
   }
   if (convex < n)
-    candidates.push_back(convex);
-  for (std::size_t i : candidates)
-    if (fanCoversPolygon(corners, i))
-      return static_cast<int>(i);
+    candidates[count++] = convex;
+  for (std::size_t k = 0; k < count; ++k)
+    if (fanCoversPolygon(corners, candidates[k]))
+      return static_cast<int>(candidates[k]);
   return -1;
 }
 
@@ -312,50 +315,98 @@ void insertLoops(const BRep& brep, const BRepFace& face, int u, int v, Cdt& cdt)
   }
 }
 
-std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
+namespace
 {
-  const BRepFace& face = brep.faces[f];
+
+/// Appends the triangles of the constrained Delaunay triangulation of the face's loops that
+/// lie inside the face.
+void appendDelaunayTriangles(const BRep& brep, const BRepFace& face, FaceCells& out)
+{
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3; // (u, v, axis) is right-handed
-  const PointRange outer = brep.loopPoints(face.firstLoop);
-  if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
-  {
-    std::vector<std::array<int, 3>> triangles;
-    if (clipEars(outer, u, v, face.normalSign, triangles))
-      return triangles;
-  }
   Cdt cdt;
   insertLoops(brep, face, u, v, cdt);
   markNesting(cdt);
-  std::vector<std::array<int, 3>> triangles;
   const bool flip = face.normalSign < 0; // CGAL faces are counter-clockwise in (u, v)
   for (auto fh = cdt.finite_faces_begin(); fh != cdt.finite_faces_end(); ++fh)
   {
     if (!fh->info().inside())
       continue;
-    std::array<int, 3> t{ fh->vertex(0)->info(), fh->vertex(1)->info(), fh->vertex(2)->info() };
-    if (flip)
-      std::swap(t[1], t[2]);
-    triangles.push_back(t);
+    const int a = fh->vertex(0)->info(), b = fh->vertex(1)->info(), c = fh->vertex(2)->info();
+    out.corners.insert(out.corners.end(), { a, flip ? c : b, flip ? b : c });
+    out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
   }
+}
+
+/// Appends the triangles of face `f` without closing the face.
+void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
+{
+  const BRepFace& face = brep.faces[f];
+  const PointRange outer = brep.loopPoints(face.firstLoop);
+  if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
+  {
+    const std::size_t corners = out.corners.size(), cells = out.cellEnds.size();
+    const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
+    if (clipEars(outer, u, v, face.normalSign, out.ring, out))
+      return;
+    out.corners.resize(corners); // no ear: the general method from scratch
+    out.cellEnds.resize(cells);
+  }
+  appendDelaunayTriangles(brep, face, out);
+}
+
+} // namespace
+
+void appendTriangles(const BRep& brep, int f, FaceCells& cells)
+{
+  appendTrianglesOf(brep, f, cells);
+  cells.endFace();
+}
+
+std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
+{
+  FaceCells cells;
+  appendTrianglesOf(brep, f, cells);
+  std::vector<std::array<int, 3>> triangles(cells.cellEnds.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      triangles[t][k] = cells.corners[3 * t + k];
   return triangles;
 }
 
-std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f)
+void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
 {
   const BRepFace& face = brep.faces[f];
   if (face.loopCount == 1)
   {
-    const std::vector<Point2L> corners = outerLoop2D(brep, face);
-    const int apex = fanApex(corners);
+    outerLoop2D(brep, face, cells.loop2D);
+    const int apex = fanApex(cells.loop2D);
     if (apex >= 0)
     {
-      std::vector<int> polygon(corners.size());
-      for (std::size_t i = 0; i < corners.size(); ++i)
-        polygon[i] = static_cast<int>((apex + i) % corners.size());
-      return { polygon };
+      const std::size_t n = cells.loop2D.size();
+      for (std::size_t i = 0; i < n; ++i)
+        cells.corners.push_back(static_cast<int>((apex + i) % n));
+      cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
+      cells.endFace();
+      return;
     }
   }
-  return FanGrouper(triangulateFace(brep, f)).run();
+  for (const std::vector<int>& fan : FanGrouper(triangulateFace(brep, f)).run())
+  {
+    cells.corners.insert(cells.corners.end(), fan.begin(), fan.end());
+    cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
+  }
+  cells.endFace();
+}
+
+std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f)
+{
+  FaceCells cells;
+  appendFanPolygons(brep, f, cells);
+  std::vector<std::vector<int>> polygons;
+  for (std::size_t c = 0; c < cells.cellEnds.size(); ++c)
+    polygons.emplace_back(
+      cells.corners.begin() + cells.cornerBegin(c), cells.corners.begin() + cells.cellEnds[c]);
+  return polygons;
 }
 
 } // namespace vbr

@@ -6,6 +6,7 @@
 #include "PolygonTriangulator.h"
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace vbr
@@ -24,6 +25,33 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f);
 /// Indices and orientation as in triangulateFace; every corner of the loops is a corner of
 /// the polygons.
 std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f);
+
+/// The cells of a run of faces in flat arrays (no allocation per face or per cell): cell k has
+/// the corners `corners[cellEnds[k - 1] .. cellEnds[k])` (cellEnds[-1] = 0), indices as in
+/// triangulateFace; the cells of the run's i-th face end at cell `faceEnds[i]`. `ring` and
+/// `loop2D` are scratch space reused from face to face.
+struct FaceCells
+{
+  std::vector<int> corners;
+  std::vector<std::uint32_t> cellEnds;
+  std::vector<std::uint32_t> faceEnds;
+  std::vector<int> ring;
+  std::vector<Point2L> loop2D;
+
+  std::size_t cellBegin(std::size_t face) const { return face == 0 ? 0 : this->faceEnds[face - 1]; }
+  std::size_t cornerBegin(std::size_t cell) const
+  {
+    return cell == 0 ? 0 : this->cellEnds[cell - 1];
+  }
+  /// Closes the current face's list of cells.
+  void endFace() { this->faceEnds.push_back(static_cast<std::uint32_t>(this->cellEnds.size())); }
+};
+
+/// Appends the triangles of face `f` (triangulateFace) to `cells` as one face.
+void appendTriangles(const BRep& brep, int f, FaceCells& cells);
+
+/// Appends the polygons of face `f` (fanPolygons) to `cells` as one face.
+void appendFanPolygons(const BRep& brep, int f, FaceCells& cells);
 
 } // namespace vbr
 

@@ -50,6 +50,36 @@ inline void radixSort(std::vector<std::uint64_t>& keys)
     std::copy(from, from + keys.size(), keys.data());
 }
 
+/// The same sort of records by a 64-bit key, `key(record)`: stable, so records of equal keys
+/// keep their order.
+template<typename Record, typename Key>
+void radixSortBy(std::vector<Record>& records, Key key)
+{
+  if (records.size() < 2)
+    return;
+  std::uint64_t differing = 0;
+  const std::uint64_t first = key(records[0]);
+  for (const Record& r : records)
+    differing |= key(r) ^ first;
+  constexpr int Bits = 11;
+  constexpr std::uint64_t Mask = (1u << Bits) - 1;
+  std::vector<Record> scratch(records.size());
+  std::array<std::size_t, (1u << Bits) + 1> count;
+  for (int shift = 0; shift < 64; shift += Bits)
+  {
+    if (((differing >> shift) & Mask) == 0)
+      continue; // every key has the same digit here
+    count.fill(0);
+    for (const Record& r : records)
+      ++count[((key(r) >> shift) & Mask) + 1];
+    for (std::size_t i = 1; i < count.size(); ++i)
+      count[i] += count[i - 1];
+    for (const Record& r : records)
+      scratch[count[(key(r) >> shift) & Mask]++] = r;
+    records.swap(scratch);
+  }
+}
+
 } // namespace vbr
 
 #endif
