@@ -335,7 +335,7 @@ struct FaceCellContext
   vtkIdType parent;
   int depth;
   vbr::vtk::LabelValue label;
-  const vtkIdType* corner; ///< point ids of the face's loops' corners
+  const std::int64_t* corner; ///< point ids of the face's loops' corners
 };
 
 /// The cells of the i-th face of a run (triangles or fan polygons).
@@ -362,7 +362,7 @@ void appendLoops(const vbr::BRep& brep,
   std::vector<vtkIdType>& ids,
   OutputBuilder& builder)
 {
-  const vtkIdType* first = c.corner - brep.loops[face.firstLoop].begin; // ids of all corners
+  const std::int64_t* first = c.corner - brep.loops[face.firstLoop].begin; // ids of all corners
   for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
   {
     const vbr::BRepLoop& loop = brep.loops[l];
@@ -381,7 +381,7 @@ void appendLoops(const vbr::BRep& brep,
 
 /// The cells of an object's faces: its triangles, its polygons, or one cell per loop.
 void appendFaceCells(const vbr::BRep& brep,
-  const std::vector<vtkIdType>& cornerIds,
+  const std::vector<std::int64_t>& cornerIds,
   const FaceRuns& cells,
   const vbr::vtk::Selected& object,
   int mode,
@@ -527,7 +527,7 @@ bool boundaryOfObject(const vbr::vtk::Selected& object,
 /// whose corners are output points `cornerIds`.
 void appendBoundaryCells(const vbr::vtk::Selected& object,
   const vbr::BRep& brep,
-  const std::vector<vtkIdType>& cornerIds,
+  const std::vector<std::int64_t>& cornerIds,
   const ObjectSettings& settings,
   const vbr::Execution& exec,
   vtkIdType& faceBase,
@@ -582,9 +582,8 @@ void appendObjects(vtkAlgorithm* self,
     const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to)
                                   .forWork(static_cast<std::int64_t>(breps[o].points.size()));
     vbr::insertTJunctionVertices(breps[o], numbers[o], corners, objects[o].offset, exec);
-    const std::vector<vtkIdType> cornerIds(numbers[o].begin(), numbers[o].end());
+    appendBoundaryCells(objects[o], breps[o], numbers[o], settings, exec, faceBase, builder);
     numbers[o] = std::vector<std::int64_t>();
-    appendBoundaryCells(objects[o], breps[o], cornerIds, settings, exec, faceBase, builder);
     breps[o] = vbr::BRep(); // released as soon as written
     self->UpdateProgress(to);
   }

@@ -51,7 +51,8 @@ inline void radixSort(std::vector<std::uint64_t>& keys)
 }
 
 /// The same sort of records by a 64-bit key, `key(record)`: stable, so records of equal keys
-/// keep their order.
+/// keep their order. Only the bits where keys differ are sorted, in as few passes of at most
+/// 12-bit digits as they need (grid keys of 24 bits take two passes, not three).
 template<typename Record, typename Key>
 void radixSortBy(std::vector<Record>& records, Key key)
 {
@@ -61,21 +62,25 @@ void radixSortBy(std::vector<Record>& records, Key key)
   const std::uint64_t first = key(records[0]);
   for (const Record& r : records)
     differing |= key(r) ^ first;
-  constexpr int Bits = 11;
-  constexpr std::uint64_t Mask = (1u << Bits) - 1;
+  if (differing == 0)
+    return;
+  int low = countTrailingZeros(differing), high = 64;
+  while (((differing >> (high - 1)) & 1) == 0)
+    --high;
+  const int passes = (high - low + 11) / 12;
+  const int bits = (high - low + passes - 1) / passes;
+  const std::uint64_t mask = (std::uint64_t(1) << bits) - 1;
   std::vector<Record> scratch(records.size());
-  std::array<std::size_t, (1u << Bits) + 1> count;
-  for (int shift = 0; shift < 64; shift += Bits)
+  std::vector<std::size_t> count((std::size_t(1) << bits) + 1);
+  for (int shift = low; shift < high; shift += bits)
   {
-    if (((differing >> shift) & Mask) == 0)
-      continue; // every key has the same digit here
-    count.fill(0);
+    std::fill(count.begin(), count.end(), 0);
     for (const Record& r : records)
-      ++count[((key(r) >> shift) & Mask) + 1];
+      ++count[((key(r) >> shift) & mask) + 1];
     for (std::size_t i = 1; i < count.size(); ++i)
       count[i] += count[i - 1];
     for (const Record& r : records)
-      scratch[count[(key(r) >> shift) & Mask]++] = r;
+      scratch[count[(key(r) >> shift) & mask]++] = r;
     records.swap(scratch);
   }
 }
