@@ -16,10 +16,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <random>
 #include <set>
+#include <string>
 
 namespace
 {
@@ -211,6 +213,34 @@ vbr::BitVolume piercedCube(int n, int w, int tunnels)
     });
 }
 
+/// Every step-th voxel (per axis) of a raw volume of 1-byte or 2-byte little-endian values at
+/// or above the threshold; false when the file is missing.
+bool readSubsampled(const std::string& file,
+  const std::array<int, 3>& d,
+  int bytes,
+  long threshold,
+  int step,
+  vbr::BitVolume& out)
+{
+  std::ifstream in(std::string(VOXELBREP_DATA_DIR) + "/" + file, std::ios::binary);
+  std::vector<unsigned char> data(static_cast<std::size_t>(d[0]) * d[1] * d[2] * bytes);
+  if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size())))
+    return false;
+  out =
+    vbr::BitVolume((d[0] + step - 1) / step, (d[1] + step - 1) / step, (d[2] + step - 1) / step);
+  for (int z = 0; z < d[2]; z += step)
+    for (int y = 0; y < d[1]; y += step)
+      for (int x = 0; x < d[0]; x += step)
+      {
+        const std::size_t i = ((static_cast<std::size_t>(z) * d[1] + y) * d[0] + x) * bytes;
+        const long value =
+          bytes == 1 ? data[i] : static_cast<std::int16_t>(data[i] | (data[i + 1] << 8));
+        if (value >= threshold)
+          out.set(x / step, y / step, z / step);
+      }
+  return true;
+}
+
 } // namespace
 
 TEST(ConvexHullModifier, ConvexShapesAreTheirHull)
@@ -334,6 +364,24 @@ TEST(ConvexHullModifier, RandomPorousBlobsSeparate)
       });
     SCOPED_TRACE(trial);
     expectSeparating(v, { false });
+  }
+}
+
+TEST(ConvexHullModifier, RealObjectsSeparate)
+{
+  // The Al cartoon (every 4th voxel) and the headsq bone (value >= 1150, every 3rd voxel): real
+  // objects whose voxels touch along edges and at corners, subsampled to keep the test short.
+  vbr::BitVolume al, bone;
+  if (!readSubsampled("dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, 4, al) ||
+    !readSubsampled("headsq/headsq_quarter_64x64x93_int16le.raw", { 64, 64, 93 }, 2, 1150, 3, bone))
+    GTEST_SKIP() << "real volumes not found under " << VOXELBREP_DATA_DIR;
+  {
+    SCOPED_TRACE("Al");
+    expectSeparating(al, { false });
+  }
+  {
+    SCOPED_TRACE("headsq bone");
+    expectSeparating(bone, { false });
   }
 }
 
