@@ -19,7 +19,9 @@
  *   corefinement with an exact kernel, confined to LatticeMesh.cxx), which needs no genus-0
  *   restriction: tori and pierced cubes keep their tunnels. Every corner of H is a voxel
  *   centre. Where pieces would touch only along an edge or at a corner (voxels touching that
- *   way), the surfaces are kept apart so that H stays a closed 2-manifold.
+ *   way), the surfaces are kept apart (a cavity inside, or a solid pressed in from one empty
+ *   lattice triangle of the surface; see ConvexHullModifier.h) so that H stays a closed
+ *   embedded 2-manifold.
  *
  * Output port 0, by OutputMode (vertices are voxel centres in world coordinates: origin,
  * spacing and direction matrix; cells counter-clockwise seen from outside, reversed on a
@@ -48,9 +50,9 @@
  *
  * @warning A 2D image (or any flat object) gives its convex polygon, two-sided, with every
  * centre on it: the separating polygon with holes of the 2D analogue is not built. An object
- * that is a single voxel or a row has no polyhedron (Separates 0, error). Some inputs full of
- * voxels touching along edges and at corners (random noise) are not resolved by the
- * pressing-in yet: Separates is 0 and an error names the object.
+ * that is a single voxel or a row has no polyhedron (Separates 0, error). Inputs full of voxels
+ * touching along edges and at corners (random noise, porous blobs) separate; the pressing-in
+ * of large real objects can take minutes.
  *
  * Under MPI (ParaView running the filter on N ranks, one piece each) H is the 1-rank H, output
  * once by rank 0 (from the extreme vertices of every rank's voxels), and port 1 gives every

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <map>
 #include <numeric>
+#include <queue>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -144,6 +145,57 @@ bool strictlyInside(const CellList& c, const LatticePoint& p)
     [&](const FacePlane& plane) { return plane.evaluate(p) < 0; });
 }
 
+/// Whether p lies on the closed triangle abc (exactly).
+bool onTriangle(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  const FacePlane& plane,
+  const LatticePoint& p)
+{
+  if (plane.evaluate(p) != 0)
+    return false;
+  return dot(plane.normal, cross(sub(b, a), sub(p, a))) >= 0 &&
+    dot(plane.normal, cross(sub(c, b), sub(p, b))) >= 0 &&
+    dot(plane.normal, cross(sub(a, c), sub(p, c))) >= 0;
+}
+
+/// Bounds of a box of lattice points, [lo, hi] per axis; kUnbounded leaves them open.
+using LatticeBox = std::array<LatticePoint, 2>;
+const LatticeBox kUnbounded{ LatticePoint{ INT64_MIN / 4, INT64_MIN / 4, INT64_MIN / 4 },
+  LatticePoint{ INT64_MAX / 4, INT64_MAX / 4, INT64_MAX / 4 } };
+
+/// Calls f(p) for every lattice point p of the closed triangle t within the box (each once: the
+/// points of the triangle's plane are one per point of its projection along its largest normal
+/// component).
+template<typename F>
+void forEachPointOnTriangle(const std::array<LatticePoint, 3>& t, const LatticeBox& box, F&& f)
+{
+  const LatticePoint &a = t[0], &b = t[1], &c = t[2];
+  const FacePlane plane = planeThrough(a, b, c);
+  int k = 0;
+  for (int q = 1; q < 3; ++q)
+    if (std::abs(plane.normal[q]) > std::abs(plane.normal[k]))
+      k = q;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const std::int64_t loI = std::max(box[0][i], std::min({ a[i], b[i], c[i] }));
+  const std::int64_t hiI = std::min(box[1][i], std::max({ a[i], b[i], c[i] }));
+  const std::int64_t loJ = std::max(box[0][j], std::min({ a[j], b[j], c[j] }));
+  const std::int64_t hiJ = std::min(box[1][j], std::max({ a[j], b[j], c[j] }));
+  for (std::int64_t u = loI; u <= hiI; ++u)
+    for (std::int64_t v = loJ; v <= hiJ; ++v)
+    {
+      const std::int64_t r = plane.offset - plane.normal[i] * u - plane.normal[j] * v;
+      if (r % plane.normal[k] != 0)
+        continue;
+      LatticePoint p;
+      p[i] = u;
+      p[j] = v;
+      p[k] = r / plane.normal[k];
+      if (p[k] >= box[0][k] && p[k] <= box[1][k] && onTriangle(a, b, c, plane, p))
+        f(p);
+    }
+}
+
 /// A lattice vector v with n.v = 1 for a primitive normal n (extended Euclid, twice).
 LatticePoint unitStep(const LatticePoint& n)
 {
@@ -185,6 +237,8 @@ struct Context
   const Execution& exec;
   std::map<FacePlane, int> planeLevel;
   int keptApart = 0;
+  /// Whether groups are pressed in as pits (the first pass) or all kept apart (the second).
+  bool pits = true;
 };
 
 /// The hull of the points; a flat one is thickened by the points one lattice step off its
@@ -375,54 +429,324 @@ LatticeMesh solveLevel(Context& ctx,
   const CellList& c,
   const CellList* parent,
   bool cls,
+  bool pit,
   int level,
   int& depth);
 
-/// Pressing-in from each face of C in turn, nearest first, until the difference succeeds.
-bool pressFromFace(Context& ctx,
-  const CellList& c,
-  bool cls,
-  int level,
-  const std::vector<LatticePoint>& inner,
-  LatticeMesh& out,
-  int& below)
+/// A lattice triangle on a face of C (counter-clockwise about the face's outer normal), with the
+/// lattice points of its closed area once enumerated, and its distance from the group pressed in.
+struct FaceTriangle
 {
-  std::vector<std::pair<__int128, std::size_t>> order;
-  for (std::size_t f = 0; f < c.faces.size(); ++f)
+  std::array<LatticePoint, 3> corners;
+  FacePlane plane;
+  std::vector<LatticePoint> points;
+  bool enumerated = false;
+  __int128 distance = 0;
+  /// Reversed, so that a priority queue gives the nearest first.
+  bool operator<(const FaceTriangle& o) const { return this->distance > o.distance; }
+};
+
+/// The squared distance, scaled by m^2, between the point p / k and the centroid sum / m of a
+/// group of m points (it only orders the candidates).
+__int128 scaledDistance(const LatticePoint& p,
+  std::int64_t k,
+  const LatticePoint& sum,
+  std::int64_t m)
+{
+  __int128 d = 0;
+  for (int a = 0; a < 3; ++a)
   {
-    __int128 sum = 0;
-    for (const auto& p : inner)
-      sum += c.planes[f].evaluate(p);
-    order.push_back({ -sum, f });
+    const __int128 e = __int128(m) * p[a] - __int128(k) * sum[a];
+    d += e * e;
   }
-  std::sort(order.begin(), order.end());
-  for (const auto& entry : order)
+  return d;
+}
+
+/// The empty lattice triangles on the surface of a solid hull (no lattice point but their
+/// corners), nearest to a group of points first: its faces are fanned, and a triangle holding
+/// another lattice point is split at the one nearest to the group. In its plane an empty lattice
+/// triangle is unimodular (Pick), so a solid pressed in from it meets no other centre of C.
+struct EmptyFaceTriangles
+{
+  std::priority_queue<FaceTriangle> queue;
+  LatticePoint sum{ 0, 0, 0 };
+  std::int64_t m = 0;
+
+  EmptyFaceTriangles(const CellList& c, const std::vector<LatticePoint>& group)
+    : m(static_cast<std::int64_t>(group.size()))
   {
-    std::vector<LatticePoint> points = inner;
-    for (auto v : c.faces[entry.second])
-      points.push_back(c.vertices[v]);
-    const CellList child = convexHull(points, ctx.coplanar);
-    if (child.dimension < 3 || latticeCount(child) >= latticeCount(c))
-      continue;
-    const LatticeMesh g = solveLevel(ctx, child, &c, !cls, level + 1, below);
-    LatticeMesh pressed;
-    if (latticeDifference(out, g, pressed))
+    for (const auto& p : group)
+      for (int a = 0; a < 3; ++a)
+        this->sum[a] += p[a];
+    for (std::size_t f = 0; f < c.faces.size(); ++f)
+      for (std::size_t k = 1; k + 1 < c.faces[f].size(); ++k)
+        this->push(
+          { c.vertices[c.faces[f][0]], c.vertices[c.faces[f][k]], c.vertices[c.faces[f][k + 1]] },
+          c.planes[f],
+          {},
+          false);
+  }
+
+  void push(const std::array<LatticePoint, 3>& t,
+    const FacePlane& plane,
+    std::vector<LatticePoint> points,
+    bool enumerated)
+  {
+    FaceTriangle f{ t, plane, std::move(points), enumerated, 0 };
+    const LatticePoint corners{
+      t[0][0] + t[1][0] + t[2][0], t[0][1] + t[1][1] + t[2][1], t[0][2] + t[1][2] + t[2][2]
+    };
+    f.distance = scaledDistance(corners, 3, this->sum, this->m);
+    this->queue.push(std::move(f));
+  }
+
+  /// The next empty triangle, false when none is left.
+  bool next(std::array<LatticePoint, 3>& out);
+};
+
+bool EmptyFaceTriangles::next(std::array<LatticePoint, 3>& out)
+{
+  while (!this->queue.empty())
+  {
+    FaceTriangle t = this->queue.top();
+    this->queue.pop();
+    if (!t.enumerated)
+      forEachPointOnTriangle(
+        t.corners, kUnbounded, [&](const LatticePoint& p) { t.points.push_back(p); });
+    if (t.points.size() <= 3)
     {
-      out = std::move(pressed);
+      out = t.corners;
       return true;
+    }
+    const LatticePoint* split = nullptr;
+    for (const auto& p : t.points)
+      if (p != t.corners[0] && p != t.corners[1] && p != t.corners[2] &&
+        (!split ||
+          scaledDistance(p, 1, this->sum, this->m) < scaledDistance(*split, 1, this->sum, this->m)))
+        split = &p;
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::array<LatticePoint, 3> child{ t.corners[e], t.corners[(e + 1) % 3], *split };
+      if (planeThrough(child[0], child[1], child[2]).normal == LatticePoint{ 0, 0, 0 })
+        continue; // the split point lies on this edge
+      std::vector<LatticePoint> inside;
+      for (const auto& p : t.points)
+        if (onTriangle(child[0], child[1], child[2], t.plane, p))
+          inside.push_back(p);
+      this->push(child, t.plane, std::move(inside), true);
     }
   }
   return false;
 }
 
-/// One level of Algorithm 1: C minus the solved hulls of the groups of points of the other
-/// class in it (see the header): those that reach its open interior, and those on the part of
-/// its surface it shares with its parent (which the parent's difference removes).
-/// `depth` receives the number of levels below this one.
+/// Definition PR with an empty triangle: the hull of the group and an empty triangle T on the
+/// surface of C whose corners lie in the open interior of the parent (so T keeps off every piece
+/// of surface C shares with it), the nearest T whose hull keeps off the other regions, or when
+/// every candidate meets one, the nearest (its group is then merged with that region's group).
+bool pressedRegion(const CellList& c,
+  const CellList* parent,
+  const std::vector<LatticePoint>& group,
+  const std::vector<const CellList*>& others,
+  CoplanarFaces coplanar,
+  CellList& out)
+{
+  EmptyFaceTriangles triangles(c, group);
+  std::array<LatticePoint, 3> t;
+  bool found = false;
+  for (int tried = 0; tried < 64 && triangles.next(t);)
+  {
+    if (parent &&
+      !std::all_of(
+        t.begin(), t.end(), [&](const LatticePoint& p) { return strictlyInside(*parent, p); }))
+      continue;
+    ++tried;
+    std::vector<LatticePoint> points = group;
+    points.insert(points.end(), t.begin(), t.end());
+    CellList region = convexHull(points, coplanar);
+    const bool apart = std::none_of(
+      others.begin(), others.end(), [&](const CellList* o) { return hullsIntersect(region, *o); });
+    if (!found || apart)
+      out = std::move(region);
+    found = true;
+    if (apart)
+      return true;
+  }
+  return found;
+}
+
+/// Merges the groups of the first two regions that meet (their regions to be found again).
+bool mergeMeetingRegions(std::vector<std::vector<LatticePoint>>& groups,
+  std::vector<CellList>& regions,
+  std::vector<bool>& pressed)
+{
+  for (std::size_t i = 0; i < groups.size(); ++i)
+    for (std::size_t j = i + 1; j < groups.size(); ++j)
+      if (hullsIntersect(regions[i], regions[j]))
+      {
+        groups[i].insert(groups[i].end(), groups[j].begin(), groups[j].end());
+        groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(j));
+        regions.erase(regions.begin() + static_cast<std::ptrdiff_t>(j));
+        pressed.erase(pressed.begin() + static_cast<std::ptrdiff_t>(j));
+        regions[i] = CellList();
+        pressed[i] = false;
+        return true;
+      }
+  return false;
+}
+
+/// The regions of the touching rule (see the header) for the points of the other class in the
+/// open interior of C: their face-connected groups, each with a solid region holding it that
+/// meets the surface of C at most in one empty triangle (a cavity: the hull of its thickening in
+/// the open interior; or pressed in, pressedRegion). Groups whose regions meet are merged until
+/// the regions are apart. False when a region meets an obstacle (a pit of this level).
+bool apartRegions(Context& ctx,
+  const CellList& c,
+  const CellList* parent,
+  const std::vector<LatticePoint>& points,
+  const std::vector<CellList>& obstacles,
+  std::vector<std::vector<LatticePoint>>& groups,
+  std::vector<CellList>& regions,
+  std::vector<bool>& pressed)
+{
+  groups = componentsOf(points, ctx.objects.dims(), false);
+  regions.assign(groups.size(), CellList());
+  pressed.assign(groups.size(), false);
+  for (;;)
+  {
+    for (std::size_t i = 0; i < groups.size(); ++i)
+      if (regions[i].dimension < 0 && !solidHull(groups[i], c, true, ctx.coplanar, regions[i]))
+        regions[i] = CellList();
+    for (std::size_t i = 0; i < groups.size(); ++i)
+    {
+      if (regions[i].dimension >= 0)
+        continue;
+      std::vector<const CellList*> others;
+      for (const auto& o : obstacles)
+        others.push_back(&o);
+      for (const auto& o : regions)
+        if (o.dimension == 3)
+          others.push_back(&o);
+      if (!pressedRegion(c, parent, groups[i], others, ctx.coplanar, regions[i]))
+        throw Unresolved("no empty triangle of the surface to press a group in from");
+      pressed[i] = true;
+    }
+    for (const auto& region : regions)
+      for (const auto& o : obstacles)
+        if (hullsIntersect(region, o))
+          return false;
+    if (!mergeMeetingRegions(groups, regions, pressed))
+      return true;
+  }
+}
+
+/// The regions of apartRegions solved one level down: the pressed ones subtracted from C (each
+/// meets its surface in its triangle only, so the difference is a 2-manifold), the cavities
+/// added inside out.
+void solveApart(Context& ctx,
+  const CellList& c,
+  bool cls,
+  int level,
+  const std::vector<CellList>& regions,
+  const std::vector<bool>& pressed,
+  LatticeMesh& out,
+  int& depth)
+{
+  std::vector<LatticeMesh> cavities;
+  for (std::size_t i = 0; i < regions.size(); ++i)
+  {
+    ++ctx.keptApart;
+    int below = 0;
+    LatticeMesh g = solveLevel(ctx, regions[i], &c, !cls, false, level + 1, below);
+    depth = std::max(depth, below + 1);
+    LatticeMesh difference;
+    if (!pressed[i])
+      cavities.push_back(std::move(g));
+    else if (latticeDifference(out, g, difference))
+      out = std::move(difference);
+    else
+      throw Unresolved("a region pressed in from an empty triangle did not give a 2-manifold");
+  }
+  for (const auto& g : cavities)
+    out.append(g, true);
+}
+
+/// Presses the solved hull G of a group in as a pit, C - G, when the difference is a closed
+/// 2-manifold with lattice corners and every level below resolves.
+bool pressInPit(Context& ctx,
+  const CellList& c,
+  const CellList& hull,
+  bool cls,
+  int level,
+  LatticeMesh& out,
+  int& depth)
+{
+  const int keptApart = ctx.keptApart;
+  try
+  {
+    int below = 0;
+    const LatticeMesh g = solveLevel(ctx, hull, &c, !cls, true, level + 1, below);
+    LatticeMesh difference;
+    if (latticeDifference(out, g, difference))
+    {
+      out = std::move(difference);
+      depth = std::max(depth, below + 1);
+      return true;
+    }
+  }
+  catch (const Unresolved&)
+  {
+  }
+  ctx.keptApart = keptApart;
+  return false;
+}
+
+/// The pits of one level: the groups of pressingInGroups pressed in where pressInPit succeeds
+/// (their hulls returned as obstacles), the points of the others in the open interior of C
+/// returned in `apart`. A group holding a point on the surface C shares with its parent (`pit`)
+/// can only stay on H through a pit: when that fails, the level throws and the parent keeps C
+/// apart instead.
+void pressInPits(Context& ctx,
+  const CellList& c,
+  const CellList* parent,
+  bool cls,
+  bool pit,
+  int level,
+  LatticeMesh& out,
+  std::vector<LatticePoint>& apart,
+  std::vector<CellList>& pits,
+  int& depth)
+{
+  std::vector<std::vector<LatticePoint>> groups;
+  std::vector<CellList> hulls;
+  std::vector<bool> solid;
+  pressingInGroups(ctx, c, pit ? parent : nullptr, cls, groups, hulls, solid);
+  const std::size_t count = groups.empty() ? 0 : latticeCount(c);
+  for (std::size_t i = 0; i < groups.size(); ++i)
+  {
+    if (solid[i] && latticeCount(hulls[i]) < count &&
+      pressInPit(ctx, c, hulls[i], cls, level, out, depth))
+    {
+      pits.push_back(std::move(hulls[i]));
+      continue;
+    }
+    for (const auto& p : groups[i])
+    {
+      if (strictlyInside(c, p))
+        apart.push_back(p);
+      else if (pit && onSurface(*parent, p))
+        throw Unresolved("a centre on a shared surface can only be kept by a pit");
+    }
+  }
+}
+
+/// One level of Algorithm 1 (see the header): C minus the pits, the groups that fail as pits
+/// kept apart (cavities and regions pressed in from empty triangles). `pit`: C touches the
+/// surface of its parent in pieces of faces. `depth` receives the number of levels below.
 LatticeMesh solveLevel(Context& ctx,
   const CellList& c,
   const CellList* parent,
   bool cls,
+  bool pit,
   int level,
   int& depth)
 {
@@ -431,50 +755,28 @@ LatticeMesh solveLevel(Context& ctx,
   recordPlanes(ctx, c, level);
   depth = 0;
   LatticeMesh out = triangulateHull(c);
+  std::vector<LatticePoint> apart;
+  std::vector<CellList> pits;
+  if (ctx.pits)
+    pressInPits(ctx, c, parent, cls, pit, level, out, apart, pits, depth);
+  else
+    apart = pointsOfClass(c, ctx.objects, !cls, true);
+  if (apart.empty())
+    return out;
   std::vector<std::vector<LatticePoint>> groups;
-  std::vector<CellList> hulls;
-  std::vector<bool> solid;
-  pressingInGroups(ctx, c, parent, cls, groups, hulls, solid);
-  const std::size_t count = groups.empty() ? 0 : latticeCount(c);
-  for (std::size_t i = 0; i < groups.size(); ++i)
+  std::vector<CellList> regions;
+  std::vector<bool> pressed;
+  if (!apartRegions(ctx, c, parent, apart, pits, groups, regions, pressed))
   {
-    int below = 0;
-    if (solid[i] && latticeCount(hulls[i]) < count)
-    {
-      const LatticeMesh g = solveLevel(ctx, hulls[i], &c, !cls, level + 1, below);
-      LatticeMesh pressed;
-      if (latticeDifference(out, g, pressed))
-      {
-        out = std::move(pressed);
-        depth = std::max(depth, below + 1);
-        continue;
-      }
-    }
-    // The touching rule: keep apart, with the group's points in the open interior of C (when
-    // none of them lies on the part of C's surface shared with the parent).
-    ++ctx.keptApart;
-    std::vector<LatticePoint> inner;
-    bool contact = false;
-    for (const auto& p : groups[i])
-    {
-      const bool shared = parent && !strictlyInside(c, p) && onSurface(*parent, p);
-      contact = contact || shared;
-      if (strictlyInside(c, p) || shared)
-        inner.push_back(p);
-    }
-    CellList child;
-    if (!contact && solidHull(inner, c, true, ctx.coplanar, child))
-    {
-      out.append(solveLevel(ctx, child, &c, !cls, level + 1, below), true);
-      depth = std::max(depth, below + 1);
-      continue;
-    }
-    // No solid lattice polytope fits in the open interior: press in towards the points from
-    // the nearest face F of C (definition PR); conv(points + F) meets the surface of C in F.
-    if (!pressFromFace(ctx, c, cls, level, inner, out, below))
-      throw Unresolved("a flat set of centres touching the surface cannot be pressed in");
-    depth = std::max(depth, below + 1);
+    // A region kept apart meets a pit: the whole level kept apart, unless C must keep pits.
+    if (pit)
+      throw Unresolved("a group kept apart meets a pit");
+    out = triangulateHull(c);
+    depth = 0;
+    apartRegions(
+      ctx, c, parent, pointsOfClass(c, ctx.objects, !cls, true), {}, groups, regions, pressed);
   }
+  solveApart(ctx, c, cls, level, regions, pressed, out, depth);
   return out;
 }
 
@@ -677,20 +979,6 @@ void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel, ModifiedHull& r)
   r.edgeCount = loopsOfFaces(m, owner, faceOf, r.faces);
 }
 
-/// Whether p lies on the closed triangle abc (exactly).
-bool onTriangle(const LatticePoint& a,
-  const LatticePoint& b,
-  const LatticePoint& c,
-  const FacePlane& plane,
-  const LatticePoint& p)
-{
-  if (plane.evaluate(p) != 0)
-    return false;
-  return dot(plane.normal, cross(sub(b, a), sub(p, a))) >= 0 &&
-    dot(plane.normal, cross(sub(c, b), sub(p, b))) >= 0 &&
-    dot(plane.normal, cross(sub(a, c), sub(p, c))) >= 0;
-}
-
 /// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive.
 int perturbedOrientation(const LatticePoint& u,
   const LatticePoint& v,
@@ -710,34 +998,13 @@ int perturbedOrientation(const LatticePoint& u,
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface, const Dims& dims)
 {
   std::vector<LatticePoint> found;
+  const LatticeBox grid{ LatticePoint{ 0, 0, 0 },
+    LatticePoint{ dims[0] - 1, dims[1] - 1, dims[2] - 1 } };
   for (const auto& tri : surface.triangles)
-  {
-    const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
-                       &c = surface.points[tri[2]];
-    const FacePlane plane = planeThrough(a, b, c);
-    int k = 0;
-    for (int q = 1; q < 3; ++q)
-      if (std::abs(plane.normal[q]) > std::abs(plane.normal[k]))
-        k = q;
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const std::int64_t loI = std::max<std::int64_t>(0, std::min({ a[i], b[i], c[i] }));
-    const std::int64_t hiI = std::min<std::int64_t>(dims[i] - 1, std::max({ a[i], b[i], c[i] }));
-    const std::int64_t loJ = std::max<std::int64_t>(0, std::min({ a[j], b[j], c[j] }));
-    const std::int64_t hiJ = std::min<std::int64_t>(dims[j] - 1, std::max({ a[j], b[j], c[j] }));
-    for (std::int64_t u = loI; u <= hiI; ++u)
-      for (std::int64_t v = loJ; v <= hiJ; ++v)
-      {
-        const std::int64_t r = plane.offset - plane.normal[i] * u - plane.normal[j] * v;
-        if (r % plane.normal[k] != 0)
-          continue;
-        LatticePoint p;
-        p[i] = u;
-        p[j] = v;
-        p[k] = r / plane.normal[k];
-        if (inGrid(dims, p) && onTriangle(a, b, c, plane, p))
-          found.push_back(p);
-      }
-  }
+    forEachPointOnTriangle(
+      { surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]] },
+      grid,
+      [&](const LatticePoint& p) { found.push_back(p); });
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
   return found;
@@ -799,6 +1066,55 @@ BitVolume revertModifiedHull(const LatticeMesh& surface,
   return out;
 }
 
+namespace
+{
+
+/// Whether H separates: a closed embedded 2-manifold from which the voxel set reverts exactly.
+bool separates(const BitVolume& objects, const LatticeMesh& surface)
+{
+  if (!isClosedEmbeddedManifold(surface))
+    return false;
+  std::vector<LatticePoint> background;
+  for (const auto& p : latticePointsOnSurface(surface, objects.dims()))
+    if (!voxelClass(objects, p))
+      background.push_back(p);
+  return revertModifiedHull(surface, background, objects.dims()) == objects;
+}
+
+/// The levels solved with pits and, when that leaves something unresolved or the result does
+/// not separate (checked, see the header), again with every level kept apart.
+void solveAndCheck(Context& ctx, ModifiedHull& r)
+{
+  r.complete = false;
+  for (bool pits : { true, false })
+  {
+    ctx.pits = pits;
+    ctx.keptApart = 0;
+    ctx.planeLevel.clear();
+    try
+    {
+      r.surface = solveLevel(ctx, r.hull, nullptr, true, false, 0, r.degreeOfNonConvexity);
+    }
+    catch (const Unresolved& e)
+    {
+      r.failure = e.what();
+      continue;
+    }
+    if (separates(ctx.objects, r.surface))
+    {
+      r.complete = true;
+      r.failure.clear();
+      r.withoutPits = !pits;
+      r.keptApart = ctx.keptApart;
+      return;
+    }
+    r.failure = "the surface does not separate";
+  }
+  r.surface = triangulateHull(r.hull);
+}
+
+} // namespace
+
 ModifiedHull modifyConvexHull(const BitVolume& objects,
   CoplanarFaces coplanar,
   const Execution& exec)
@@ -827,22 +1143,7 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
   {
     classifyBackgroundComponents(objects, r.hull, r);
     Context ctx{ objects, coplanar, exec, {}, 0 };
-    try
-    {
-      r.surface = solveLevel(ctx, r.hull, nullptr, true, 0, r.degreeOfNonConvexity);
-    }
-    catch (const Unresolved& e)
-    {
-      r.complete = false;
-      r.failure = e.what();
-      r.surface = triangulateHull(r.hull);
-    }
-    r.keptApart = ctx.keptApart;
-    if (r.complete && !isClosedEmbeddedManifold(r.surface))
-    {
-      r.complete = false;
-      r.failure = "surfaces kept apart cross each other";
-    }
+    solveAndCheck(ctx, r);
     if (!exec.report(0.8))
       throw std::runtime_error("aborted");
     mergeIntoFaces(ctx.planeLevel, r);

@@ -24,15 +24,41 @@
 // corners, along edges or in coplanar pieces of faces) and never cross, so every corner of the
 // result is a corner of one of the nested hulls: a lattice point. The difference opens a pit or
 // a tunnel wherever C' touches C in pieces of faces, so tori, pierced cubes and porous blobs come
-// out with their genus; nothing in it depends on the genus. Where C' touches C only along an edge
-// or at a corner the difference would not be a 2-manifold (the touching-voxels case); the rule
-// is then to keep the two apart: that level uses only the points in the open interior of C,
-// whose hull lies strictly inside C, and G is added as an inward-oriented inner surface (a
-// cavity, section 4.2, last paragraphs). Flat sets of points are thickened by their lattice
+// out with their genus; nothing in it depends on the genus. Where C' touches C only along an
+// edge or at a corner the difference would not be a 2-manifold (the touching-voxels case); the
+// touching rule below then keeps them apart. Flat sets of points are thickened by their lattice
 // neighbours inside C (one lattice step off their plane or line), so every hull is solid.
-// Separation follows by induction on the levels (each answer is a regular closed set holding all
-// points of its class of its hull and no point of the other class in its interior); the lattice
-// count of the hulls strictly decreases, so the recursion ends.
+//
+// The touching rule (voxels touching along an edge or at a corner; flat sets). A group is
+// pressed in as a pit only when the exact difference is a closed 2-manifold with lattice corners
+// and every level below it resolves; otherwise the group is kept apart: its points in the open
+// interior of C, grouped again (face-connected), each group given one solid region R that meets
+// the surface of C at most in one empty lattice triangle T:
+//   a cavity: the hull of the group thickened by its lattice neighbours in the open interior of
+//     C, strictly inside C, added as an inward-oriented inner surface (section 4.2, last
+//     paragraphs);
+//   pressed in (definition PR) when no solid fits in the open interior there: R = conv(T + the
+//     group), T an empty triangle of the surface of C (no lattice point but its corners; the
+//     faces of C fanned and split at lattice points, nearest to the group first) whose corners
+//     lie in the open interior of C's parent hull. R meets the surface of C exactly in T and T
+//     keeps off every surface C shares with its parent, so C - R is a 2-manifold, and the only
+//     centres of T, its corners, stay on H.
+// Regions that meet are merged into one group until they are pairwise apart (and apart from the
+// pits of the level; if not, the whole level is kept apart). Below a region the same rule holds
+// with C as the parent, so regions pressed in from T' keep off T. A centre of the other class on
+// the part of C's surface shared with its parent (a pit's floor) stays on H only through a pit
+// below C; when that fails the level fails and its parent keeps C apart instead. So every region
+// is a pit accepted by the exact difference, a cavity strictly inside C apart from the others,
+// or a solid meeting C in one triangle away from the rest: H is a closed 2-manifold.
+//
+// Separation, by induction on the levels: each level's answer holds every point of its class of
+// its hull and no point of the other class in its interior; the lattice count of the hulls
+// strictly decreases (a region misses a corner of C), so the recursion ends. The answer is
+// checked (a closed embedded 2-manifold whose reversion equals the input); should the first pass
+// fail that check or leave a level unresolved, a second pass keeps every level apart (no pits:
+// cavities and triangles only, for which the induction needs no difference to be accepted;
+// withoutPits). Only when no empty triangle is left for a group (not seen on the inputs of the
+// tests) is the result incomplete.
 //
 // The degree of non-convexity (definition NK) is the number of levels below the hull.
 //
@@ -83,14 +109,17 @@ struct ModifiedHull
   int cavities = 0;
   int tunnels = 0;
   int degreeOfNonConvexity = 0;
-  /// Levels where the touching rule kept the surfaces apart.
+  /// Groups the touching rule kept apart (cavities and regions pressed in from a triangle).
   int keptApart = 0;
+  /// Whether H came from the second pass, every level kept apart (no pits, see above).
+  bool withoutPits = false;
   bool complete = true;
   std::string failure;
 };
 
-/// H of the object voxels (empty input: an empty result). Throws std::runtime_error when a flat
-/// set cannot be thickened inside its hull (the result is then incomplete).
+/// H of the object voxels (empty input: an empty result). Incomplete (complete false, failure
+/// saying why) for a segment or a point, or when no empty triangle is left to press a group in
+/// from (see above).
 ModifiedHull modifyConvexHull(const BitVolume& objects,
   CoplanarFaces coplanar = CoplanarFaces::Extension,
   const Execution& exec = Execution());

@@ -205,6 +205,14 @@ bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& 
     index[v] = static_cast<std::uint32_t>(result.points.size());
     result.points.push_back(q);
   }
+  // Pieces touching at a corner or along an edge can come out with that corner as two
+  // vertices at one point: a closed 2-manifold combinatorially, but not an embedded one.
+  std::vector<LatticePoint> sorted = result.points;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+  {
+    return false;
+  }
   for (auto f : out.faces())
   {
     std::vector<std::uint32_t> corners;
