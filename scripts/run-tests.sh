@@ -115,7 +115,7 @@ stage_asan() {
   run cmake --build build-asan -j"$JOBS" || return 1
   ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1} \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    run_ctest build-asan asan -- -E "NetDoesNotSelfIntersect|LargeVolumesUpTo64Cubed|RandomVolumesSeparate|RandomPorousBlobsSeparate" || ok=1
+    run_ctest build-asan asan -- -E "NetDoesNotSelfIntersect|LargeVolumesUpTo64Cubed|RandomVolumesSeparate|RandomPorousBlobsSeparate|RandomNoiseCubesSeparate|RealObjectsSeparate" || ok=1
   # The VTK module (adapters and filters) with its C++ tests, against ParaView's VTK, -O1 to
   # keep the data tests fast. Leak detection is off (VTK's and Mesa's singletons live until
   # exit) and the image tests are left out (Mesa's llvmpipe raises SIGFPE under the
