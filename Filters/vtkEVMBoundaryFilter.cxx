@@ -573,15 +573,19 @@ void appendObjects(vtkAlgorithm* self,
   for (std::size_t o = 0; o < n; ++o)
     placed.push_back({ &breps[o], objects[o].offset });
   std::vector<std::vector<std::int64_t>> numbers;
+  vtkLogStartScope(TRACE, "numbered corners");
   const vbr::CornerSet corners(placed, packer, numbers);
   builder.addCornerPoints(corners.points());
+  vtkLogEndScope("numbered corners");
   vtkIdType faceBase = 0;
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
     const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to)
                                   .forWork(static_cast<std::int64_t>(breps[o].points.size()));
+    vtkLogStartScope(TRACE, "T-junction vertices");
     vbr::insertTJunctionVertices(breps[o], numbers[o], corners, objects[o].offset, exec);
+    vtkLogEndScope("T-junction vertices");
     appendBoundaryCells(objects[o], breps[o], numbers[o], settings, exec, faceBase, builder);
     numbers[o] = std::vector<std::int64_t>();
     breps[o] = vbr::BRep(); // released as soon as written
