@@ -15,10 +15,10 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <list>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -43,40 +43,40 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
 
 /// Flood fill from the infinite face: crossing a constrained edge increases the nesting level,
-/// and the triangles at odd levels are inside the face.
+/// and the triangles at odd levels are inside the face. The constrained edges met are
+/// crossed first in, first out, so that each region gets the level of the first region that
+/// reaches it (a region touching the outside is at level 1 whatever else it touches). The
+/// queues are vectors read from the front, not lists: one allocation per face, not per
+/// triangle.
 void markNesting(Cdt& cdt)
 {
-  std::list<Cdt::Edge> border;
+  std::vector<Cdt::Edge> border;
+  std::vector<Cdt::Face_handle> queue;
   auto fill = [&](Cdt::Face_handle start, int level)
   {
-    if (start->info().nesting != -1)
-      return;
-    std::list<Cdt::Face_handle> queue{ start };
-    while (!queue.empty())
+    queue.assign(1, start);
+    for (std::size_t next = 0; next < queue.size(); ++next)
     {
-      Cdt::Face_handle fh = queue.front();
-      queue.pop_front();
+      Cdt::Face_handle fh = queue[next];
       if (fh->info().nesting != -1)
         continue;
       fh->info().nesting = level;
       for (int i = 0; i < 3; ++i)
       {
         Cdt::Face_handle n = fh->neighbor(i);
-        if (n->info().nesting == -1)
-        {
-          if (cdt.is_constrained(Cdt::Edge(fh, i)))
-            border.push_back(Cdt::Edge(fh, i));
-          else
-            queue.push_back(n);
-        }
+        if (n->info().nesting != -1)
+          continue;
+        if (cdt.is_constrained(Cdt::Edge(fh, i)))
+          border.push_back(Cdt::Edge(fh, i));
+        else
+          queue.push_back(n);
       }
     }
   };
   fill(cdt.infinite_face(), 0);
-  while (!border.empty())
+  for (std::size_t next = 0; next < border.size(); ++next)
   {
-    Cdt::Edge e = border.front();
-    border.pop_front();
+    const Cdt::Edge e = border[next];
     Cdt::Face_handle n = e.first->neighbor(e.second);
     if (n->info().nesting == -1)
       fill(n, e.first->info().nesting + 1);
@@ -181,63 +181,88 @@ int fanApex(const std::vector<Point2L>& corners)
 
 /// Triangles grouped into fans: from each triangle not yet taken, the longest fan of
 /// untaken triangles round one of its corners (neighbours across the edges at that corner).
+/// Neighbours come from one sort of the edges, and a fan's rim grows at both ends in two
+/// vectors: linear work in the triangles, whatever the size of the face and of its fans.
 class FanGrouper
 {
 public:
   explicit FanGrouper(const std::vector<std::array<int, 3>>& triangles)
     : Triangles(triangles)
+    , Across(triangles.size(), { -1, -1, -1 })
     , Taken(triangles.size(), 0)
     , Stamp(triangles.size(), -1)
   {
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k)
-      {
-        auto it = this->ByEdge.emplace(
-          key(triangles[t][k], triangles[t][(k + 1) % 3]), std::array<int, 2>{ -1, -1 });
-        it.first->second[it.first->second[0] < 0 ? 0 : 1] = static_cast<int>(t);
-      }
+    this->findNeighbours();
   }
 
-  std::vector<std::vector<int>> run()
+  void run(FaceCells& out)
   {
-    std::vector<std::vector<int>> fans;
     for (std::size_t start = 0; start < this->Triangles.size(); ++start)
     {
       if (this->Taken[start])
         continue;
-      std::vector<int> best, bestTriangles;
+      int best = 0;
+      std::size_t bestSize = 0;
       for (int k = 0; k < 3; ++k)
       {
-        std::vector<int> members, rim;
-        const int apex = this->Triangles[start][k];
-        this->growFan(static_cast<int>(start), apex, members, rim);
-        if (members.size() > bestTriangles.size())
+        const std::size_t size = this->growFan(static_cast<int>(start), k, false);
+        if (size > bestSize)
         {
-          bestTriangles = members;
-          best.assign(1, apex);
-          best.insert(best.end(), rim.begin(), rim.end());
+          bestSize = size;
+          best = k;
         }
       }
-      for (int t : bestTriangles)
-        this->Taken[t] = 1;
-      fans.push_back(std::move(best));
+      this->growFan(static_cast<int>(start), best, true);
+      const int apex = this->Triangles[start][best];
+      out.corners.push_back(apex);
+      out.corners.insert(out.corners.end(), this->Back.rbegin(), this->Back.rend());
+      out.corners.insert(out.corners.end(), this->Front.begin(), this->Front.end());
+      out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
     }
-    return fans;
   }
 
 private:
+  /// Across[t][k]: the triangle on the other side of edge (t[k], t[k+1]), or -1.
+  void findNeighbours()
+  {
+    std::vector<std::pair<std::uint64_t, int>> edges; // (undirected edge, 3 * t + k)
+    edges.reserve(3 * this->Triangles.size());
+    for (std::size_t t = 0; t < this->Triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        edges.emplace_back(
+          key(this->Triangles[t][k], this->Triangles[t][(k + 1) % 3]), static_cast<int>(3 * t + k));
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i + 1 < edges.size(); ++i)
+    {
+      if (edges[i].first != edges[i + 1].first)
+        continue;
+      const int a = edges[i].second, b = edges[i + 1].second;
+      this->Across[a / 3][a % 3] = b / 3;
+      this->Across[b / 3][b % 3] = a / 3;
+      ++i;
+    }
+  }
+
   static std::uint64_t key(int a, int b)
   {
     return a < b ? (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)
                  : (std::uint64_t(std::uint32_t(b)) << 32) | std::uint32_t(a);
   }
 
-  /// The triangle across edge (apex, w) from triangle t, if untaken and not yet in this fan.
-  int across(int t, int apex, int w)
+  /// The triangle across edge (apex, w) of triangle t, if untaken and not yet in this fan.
+  int across(int t, int apex, int w) const
   {
-    const auto& pair = this->ByEdge[key(apex, w)];
-    const int other = pair[0] == t ? pair[1] : pair[0];
-    return other >= 0 && !this->Taken[other] && this->Stamp[other] != this->Round ? other : -1;
+    const auto& tri = this->Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      if ((a == apex && b == w) || (a == w && b == apex))
+      {
+        const int other = this->Across[t][k];
+        return other >= 0 && !this->Taken[other] && this->Stamp[other] != this->Round ? other : -1;
+      }
+    }
+    return -1;
   }
 
   /// Corner that follows `apex` in triangle t (counter-clockwise), and the one before it.
@@ -248,32 +273,42 @@ private:
   }
   int before(int t, int apex) const { return this->after(t, this->after(t, apex)); }
 
-  /// The fan of untaken triangles round `apex` from triangle t0, both ways: its triangles and
-  /// its rim (the corners after the apex, counter-clockwise).
-  void growFan(int t0, int apex, std::vector<int>& members, std::vector<int>& rim)
+  /// The fan of untaken triangles round corner k of triangle t0, both ways; returns its
+  /// number of triangles. With `take`, marks them taken and leaves the rim (the corners after
+  /// the apex, counter-clockwise) in Back reversed, then Front.
+  std::size_t growFan(int t0, int k, bool take)
   {
+    const int apex = this->Triangles[t0][k];
     ++this->Round;
+    this->Members.assign(1, t0);
     this->Stamp[t0] = this->Round;
-    members.assign(1, t0);
-    rim = { this->after(t0, apex), this->before(t0, apex) };
-    for (int t = this->across(t0, apex, rim.back()); t >= 0; t = this->across(t, apex, rim.back()))
+    this->Front.assign({ this->after(t0, apex), this->before(t0, apex) });
+    this->Back.clear();
+    for (int t = this->across(t0, apex, this->Front.back()); t >= 0;
+         t = this->across(t, apex, this->Front.back()))
     {
       this->Stamp[t] = this->Round;
-      members.push_back(t);
-      rim.push_back(this->before(t, apex));
+      this->Members.push_back(t);
+      this->Front.push_back(this->before(t, apex));
     }
-    for (int t = this->across(t0, apex, rim.front()); t >= 0;
-         t = this->across(t, apex, rim.front()))
+    int rimStart = this->Front.front();
+    for (int t = this->across(t0, apex, rimStart); t >= 0; t = this->across(t, apex, rimStart))
     {
       this->Stamp[t] = this->Round;
-      members.push_back(t);
-      rim.insert(rim.begin(), this->after(t, apex));
+      this->Members.push_back(t);
+      rimStart = this->after(t, apex);
+      this->Back.push_back(rimStart);
     }
+    if (take)
+      for (int t : this->Members)
+        this->Taken[t] = 1;
+    return this->Members.size();
   }
 
   const std::vector<std::array<int, 3>>& Triangles;
-  std::unordered_map<std::uint64_t, std::array<int, 2>> ByEdge; ///< the triangles at an edge
+  std::vector<std::array<int, 3>> Across;
   std::vector<int> Taken, Stamp;
+  std::vector<int> Members, Front, Back;
   int Round = 0;
 };
 
@@ -390,11 +425,7 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
       return;
     }
   }
-  for (const std::vector<int>& fan : FanGrouper(triangulateFace(brep, f)).run())
-  {
-    cells.corners.insert(cells.corners.end(), fan.begin(), fan.end());
-    cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
-  }
+  FanGrouper(triangulateFace(brep, f)).run(cells);
   cells.endFace();
 }
 
