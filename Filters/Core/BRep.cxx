@@ -107,7 +107,7 @@ void walkWithEdgeVertices(const PointRange& points,
   const std::vector<Point3>& all = corners.points();
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const std::size_t j = (i + 1) % points.size();
+    const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
     const Point3& p = points[i];
     const Point3& q = points[j];
     emit(p, numbers[i]);
