@@ -583,9 +583,15 @@ void appendObjects(vtkAlgorithm* self,
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
     const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to)
                                   .forWork(static_cast<std::int64_t>(breps[o].points.size()));
-    vtkLogStartScope(TRACE, "T-junction vertices");
-    vbr::insertTJunctionVertices(breps[o], numbers[o], corners, objects[o].offset, exec);
-    vtkLogEndScope("T-junction vertices");
+    // One object of a 2D image has none: at a grid point strictly inside an edge, the two
+    // pixels on either side of the edge are alike, so no loop turns there. Two labels can
+    // meet there.
+    if (!settings.planar || n > 1)
+    {
+      vtkLogStartScope(TRACE, "T-junction vertices");
+      vbr::insertTJunctionVertices(breps[o], numbers[o], corners, objects[o].offset, exec);
+      vtkLogEndScope("T-junction vertices");
+    }
     appendBoundaryCells(objects[o], breps[o], numbers[o], settings, exec, faceBase, builder);
     numbers[o] = std::vector<std::int64_t>();
     breps[o] = vbr::BRep(); // released as soon as written

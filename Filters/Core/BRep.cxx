@@ -256,8 +256,17 @@ CornerSet::CornerSet(const std::vector<PlacedBRep>& breps,
       this->Points.push_back(add(breps[c.brep].brep->points[c.point], breps[c.brep].offset));
     numbers[c.brep][c.point] = static_cast<std::int64_t>(this->Points.size()) - 1;
   }
-  this->orderLinesAlong(0, packer);
-  this->orderLinesAlong(1, packer);
+  for (int axis = 0; axis < 2; ++axis)
+    if (this->spans(axis)) // no edge runs along an axis all the corners share (a 2D image's)
+      this->orderLinesAlong(axis, packer);
+}
+
+bool CornerSet::spans(int axis) const
+{
+  for (const Point3& p : this->Points)
+    if (p[axis] != this->Points[0][axis])
+      return true;
+  return false;
 }
 
 void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)

@@ -130,6 +130,7 @@ public:
   }
 
 private:
+  bool spans(int axis) const;
   void orderLinesAlong(int axis, const KeyPacker& packer);
 
   std::vector<Point3> Points;
