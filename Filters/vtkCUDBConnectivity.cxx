@@ -109,21 +109,29 @@ std::vector<vbr::AxisOrder> candidateSortings(int sorting,
   return out;
 }
 
-/// The CUDB of the EVM in the candidate sorting with the fewest boxes. False when aborted.
+/// The CUDB of the EVM in the candidate sorting with the fewest boxes, and the components of
+/// its boxes (labelled during the sweep: the filter needs no contacts). False when aborted.
 bool buildBestCUDB(const vbr::EVM& evm,
   const std::vector<vbr::AxisOrder>& sortings,
+  vbr::Connectivity connectivity,
   const vbr::Execution& exec,
-  vbr::CUDB& best)
+  vbr::CUDB& best,
+  vbr::Components& components)
 {
   bool found = false;
   for (const vbr::AxisOrder& order : sortings)
   {
     vbr::CUDB cudb;
+    vbr::Components labelled;
     const vbr::EVM sorted = order == evm.order() ? vbr::EVM() : evm.sortedAs(order, exec);
-    if (!vbr::buildCUDB(order == evm.order() ? evm : sorted, exec, cudb))
+    if (!vbr::buildCUDBComponents(
+          order == evm.order() ? evm : sorted, connectivity, exec, cudb, labelled))
       return false;
     if (!found || cudb.boxes.size() < best.boxes.size())
+    {
       best = std::move(cudb);
+      components = std::move(labelled);
+    }
     found = true;
   }
   return true;
@@ -684,13 +692,9 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
   if (evm.empty())
     return false;
   {
-    vtkLogScopeF(TRACE, "EVM to CUDB");
-    if (!buildBestCUDB(evm, sortings, exec, o.cudb))
+    vtkLogScopeF(TRACE, "EVM to CUDB and the connected components of the boxes");
+    if (!buildBestCUDB(evm, sortings, connectivity, exec, o.cudb, o.components))
       return false;
-  }
-  {
-    vtkLogScopeF(TRACE, "connected components of the boxes");
-    o.components = vbr::labelComponents(o.cudb, connectivity);
   }
   o.extremeVertices = evm.size();
   return true;

@@ -130,6 +130,28 @@ void expectSamePartition(const std::vector<int>& got, const std::vector<int>& ex
   EXPECT_EQ(forward.size(), backward.size());
 }
 
+/// The sweep that labels as it goes gives the boxes of buildCUDB and the components that
+/// labelComponents finds on them, for both connectivities, without contacts.
+void expectLabelledSweepSame(const vbr::EVM& evm,
+  const vbr::CUDB& cudb,
+  const vbr::Execution& exec = vbr::Execution(),
+  int pieces = 0)
+{
+  for (vbr::Connectivity connectivity : { vbr::Connectivity::Face, vbr::Connectivity::Vertex })
+  {
+    SCOPED_TRACE(
+      connectivity == vbr::Connectivity::Face ? "labelled sweep, face" : "labelled sweep, vertex");
+    vbr::CUDB boxes;
+    vbr::Components labelled;
+    ASSERT_TRUE(vbr::buildCUDBComponents(evm, connectivity, exec, boxes, labelled, pieces));
+    const vbr::Components expected = vbr::labelComponents(cudb, connectivity);
+    EXPECT_EQ(boxes.boxes, cudb.boxes);
+    EXPECT_EQ(boxes.oudbBoxCount, cudb.oudbBoxCount);
+    EXPECT_EQ(labelled.count, expected.count);
+    EXPECT_EQ(labelled.boxLabel, expected.boxLabel);
+  }
+}
+
 /// Everything the conversion and the labelling promise, for one voxel set and sorting.
 void checkAll(const vbr::BitVolume& v, const vbr::EVM& evm, bool checkPairs = true)
 {
@@ -153,6 +175,7 @@ void checkAll(const vbr::BitVolume& v, const vbr::EVM& evm, bool checkPairs = tr
     EXPECT_EQ(c.count, static_cast<std::uint32_t>(count)) << (vertex ? "vertex" : "face");
     expectSamePartition(paintedLabels(v, cudb, c), expected);
   }
+  expectLabelledSweepSame(evm, cudb);
 }
 
 vbr::BitVolume fromPoints(const vbr::Point3& dims, const std::vector<vbr::Point3>& points)
@@ -254,6 +277,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
           EXPECT_EQ(stitched.boxes, sequential.boxes);
           EXPECT_EQ(sortedContacts(stitched), sortedContacts(sequential));
           EXPECT_EQ(stitched.oudbBoxCount, sequential.oudbBoxCount);
+          expectLabelledSweepSame(evm, sequential, threadedExecution(3), pieces);
           ++stitchedVolumes;
         }
       }
@@ -273,6 +297,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
   const std::vector<int> expected = bf::floodFillLabels(big, true, count);
   EXPECT_EQ(c.count, static_cast<std::uint32_t>(count));
   expectSamePartition(paintedLabels(big, stitched, c), expected);
+  expectLabelledSweepSame(evm, sequential, threadedExecution(2));
 }
 
 TEST(CUDB, TwoDimensionalImages)
@@ -434,6 +459,9 @@ TEST(CUDB, Abort)
   exec.aborted = [] { return true; };
   vbr::CUDB out;
   EXPECT_FALSE(vbr::buildCUDB(vbr::extractEVM(v), exec, out));
+  vbr::Components components;
+  EXPECT_FALSE(
+    vbr::buildCUDBComponents(vbr::extractEVM(v), vbr::Connectivity::Face, exec, out, components));
 }
 
 TEST(CUDB, InvalidEVMIsRejected)
