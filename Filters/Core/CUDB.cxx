@@ -270,16 +270,19 @@ void nextSection(const Vertex* begin, const Vertex* end, Section& section, Secti
   section.swap(scratch);
 }
 
-/// Box of a rectangle spanning [a0, a1) along A, in world axes.
+/// Box of a rectangle spanning [a0, a1) along A, in world axes. Each world axis picks its
+/// sorting role, so that the box is written at fixed places: stores at places known only at
+/// run time, read back at once as a whole box, stalled the sweep.
 Box boxOf(const Rect& r, Coord a0, Coord a1, const AxisOrder& order)
 {
+  const Coord lo[3] = { a0, r.b0, r.c0 }, hi[3] = { a1, r.b1, r.c1 };
   Box box;
-  box.lo[order[0]] = a0;
-  box.hi[order[0]] = a1;
-  box.lo[order[1]] = r.b0;
-  box.hi[order[1]] = r.b1;
-  box.lo[order[2]] = r.c0;
-  box.hi[order[2]] = r.c1;
+  for (int d = 0; d < 3; ++d)
+  {
+    const int role = order[0] == d ? 0 : (order[1] == d ? 1 : 2);
+    box.lo[d] = lo[role];
+    box.hi[d] = hi[role];
+  }
   return box;
 }
 
@@ -478,10 +481,10 @@ private:
       if (meet(x.c0, x.c1, y.c0, y.c1) && !this->PreviousContinues[x.rect] &&
         this->CurrentIsNew[y.rect])
         found(x, y);
-      if (x.c1 < y.c1)
-        ++i;
-      else
-        ++j;
+      // The interval that ends first goes: without a branch, which noise makes random.
+      const bool nextX = x.c1 < y.c1;
+      i += nextX;
+      j += !nextX;
     }
   }
 
@@ -564,7 +567,9 @@ struct SweptPiece
     // Pages reserved but never written cost nothing.
     const std::size_t vertices = starts[last] - starts[first];
     this->part.boxes.reserve(vertices / 2);
-    if (!labelling)
+    if (labelling)
+      this->equivalences.reserve(vertices / 2);
+    else
       this->part.contacts.reserve(vertices * 5 / 2 + 16);
     SliceSweep sweep(evm.order(),
       this->part,
@@ -869,6 +874,38 @@ Components labelComponents(const CUDB& cudb, Connectivity connectivity)
   return result;
 }
 
+namespace
+{
+
+/// How paintBoxes walks a box: its coordinates k = 0..2 (box axes) and their steps in the
+/// grid, the row axis (the grid's x, contiguous) and the two others.
+struct PaintLayout
+{
+  std::array<std::int64_t, 3> step;
+  int row, outer, inner, split;
+};
+
+PaintLayout paintLayout(const std::array<int, 3>& axes, const std::array<Coord, 3>& dims)
+{
+  const std::int64_t gridStep[3] = { 1, dims[0], std::int64_t(dims[0]) * dims[1] };
+  PaintLayout layout{};
+  // Workers own disjoint ranges of slices (of rows when the grid is a single slice).
+  const int splitAxis = dims[2] > 1 ? 2 : 1;
+  for (int k = 0; k < 3; ++k)
+  {
+    layout.step[k] = gridStep[axes[k]];
+    if (axes[k] == 0)
+      layout.row = k;
+    if (axes[k] == splitAxis)
+      layout.split = k;
+  }
+  layout.inner = (layout.row + 1) % 3;
+  layout.outer = (layout.row + 2) % 3;
+  return layout;
+}
+
+} // namespace
+
 void paintBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
@@ -877,31 +914,33 @@ void paintBoxes(const std::vector<Box>& boxes,
   std::int32_t* labels,
   const Execution& exec)
 {
-  const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
-  // Workers own disjoint ranges of slices (of rows when the grid is a single slice) and
-  // paint the part of every box inside them.
-  const int split = dims[2] > 1 ? 2 : 1;
-  exec.forRange(dims[split],
+  const PaintLayout layout = paintLayout(axes, dims);
+  exec.forRange(dims[axes[layout.split]],
     [&](std::int64_t from, std::int64_t to)
     {
+      // Each worker paints the part of every box inside its range. Steps fixed in advance and
+      // a plain loop per row: noise has hundreds of thousands of boxes of a few voxels.
       for (std::size_t b = 0; b < boxes.size(); ++b)
       {
         const std::int32_t v = value[b];
         if (v == 0)
           continue;
-        std::array<std::int64_t, 3> lo, hi;
+        std::int64_t lo[3], hi[3];
         for (int k = 0; k < 3; ++k)
         {
-          lo[axes[k]] = std::int64_t(boxes[b].lo[k]) + offset[k];
-          hi[axes[k]] = std::int64_t(boxes[b].hi[k]) + offset[k];
+          lo[k] = std::int64_t(boxes[b].lo[k]) + offset[k];
+          hi[k] = std::int64_t(boxes[b].hi[k]) + offset[k];
         }
-        lo[split] = std::max(lo[split], from);
-        hi[split] = std::min(hi[split], to);
-        for (std::int64_t z = lo[2]; z < hi[2]; ++z)
-          for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+        lo[layout.split] = std::max(lo[layout.split], from);
+        hi[layout.split] = std::min(hi[layout.split], to);
+        const std::int64_t length = hi[layout.row] - lo[layout.row];
+        for (std::int64_t i = lo[layout.outer]; i < hi[layout.outer]; ++i)
+          for (std::int64_t j = lo[layout.inner]; j < hi[layout.inner]; ++j)
           {
-            std::int32_t* row = labels + z * nxy + y * nx;
-            std::fill(row + lo[0], row + hi[0], v);
+            std::int32_t* row = labels + i * layout.step[layout.outer] +
+              j * layout.step[layout.inner] + lo[layout.row];
+            for (std::int64_t x = 0; x < length; ++x)
+              row[x] = v;
           }
       }
     });

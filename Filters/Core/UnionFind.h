@@ -38,6 +38,9 @@ public:
 
   std::size_t size() const { return this->Parent.size(); }
 
+  /// Room for n elements in all, so that add() does not reallocate up to there.
+  void reserve(std::size_t n) { this->Parent.reserve(n); }
+
   /// Appends the elements of `other` with their classes, numbered after this one's (element
   /// i of `other` becomes size() + i): roots stay the smallest elements of their classes.
   void append(UnionFind&& other)
