@@ -59,6 +59,7 @@ struct Interval
 {
   Coord c0, c1;
   std::uint32_t rect;
+  std::uint32_t box = 0; ///< the rectangle's box, once known (labelling only)
 };
 
 /// The B-range [b0, b1) between two lines of vertices, over which the 1D section is
@@ -195,57 +196,81 @@ private:
     if (this->Breaks.size() % 2 != 0)
       throw std::invalid_argument("odd 1D section: not a valid EVM");
     std::uint32_t prevFirst = 0, prevEnd = 0;
-    if (!this->segments.empty() && this->segments.back().b1 == Open)
-    {
-      Segment& previous = this->segments.back();
-      previous.b1 = b;
-      prevFirst = previous.first;
-      prevEnd = previous.end;
-      if (this->LastLineOnly && prevFirst > 0)
-      {
-        this->intervals.erase(this->intervals.begin(), this->intervals.begin() + prevFirst);
-        prevEnd -= prevFirst;
-        prevFirst = 0;
-        this->segments.assign(1, { previous.b0, b, prevFirst, prevEnd });
-      }
-    }
-    // Every rectangle of the previous line ends here unless an equal interval extends it.
-    for (std::uint32_t p = prevFirst; p < prevEnd; ++p)
-      this->rects[this->intervals[p].rect].b1 = b;
+    this->closePreviousSegment(b, prevFirst, prevEnd);
     if (this->Breaks.empty())
       return;
-
     const std::uint32_t first = static_cast<std::uint32_t>(this->intervals.size());
-    std::uint32_t p = prevFirst;
-    for (std::size_t k = 0; k < this->Breaks.size(); k += 2)
-    {
-      const Coord c0 = this->Breaks[k], c1 = this->Breaks[k + 1];
-      // Previous intervals entirely before this one meet no later interval either.
-      while (p < prevEnd && this->intervals[p].c1 < c0)
-        ++p;
-      std::uint32_t q = p;
-      if (q < prevEnd && this->intervals[q].c0 == c0 && this->intervals[q].c1 == c1)
-      {
-        // 2D compaction: the same interval continues its rectangle. No other previous
-        // interval can meet it (intervals of a line are separated by a gap).
-        const std::uint32_t rect = this->intervals[q].rect;
-        this->rects[rect].b1 = Open;
-        this->intervals.push_back({ c0, c1, rect });
-        continue;
-      }
-      const std::uint32_t rect = static_cast<std::uint32_t>(this->rects.size());
-      this->rects.push_back({ b, Open, c0, c1 });
-      this->intervals.push_back({ c0, c1, rect });
-      for (; q < prevEnd && this->intervals[q].c0 <= c1; ++q)
-      {
-        const Interval& prev = this->intervals[q];
-        if (meet(prev.c0, prev.c1, c0, c1))
-          this->contacts.push_back({ prev.rect, rect, overlap(prev.c0, prev.c1, c0, c1) });
-      }
-    }
+    this->appendIntervals(b, prevFirst, prevEnd);
     this->segments.push_back(
       { b, Open, first, static_cast<std::uint32_t>(this->intervals.size()) });
     this->intervalCount += this->intervals.size() - first;
+  }
+
+  /// The segment before line b ends there, with every rectangle of its intervals (those that
+  /// an equal interval of the line extends are opened again by appendIntervals). Gives that
+  /// segment's intervals [prevFirst, prevEnd).
+  void closePreviousSegment(Coord b, std::uint32_t& prevFirst, std::uint32_t& prevEnd)
+  {
+    if (this->segments.empty() || this->segments.back().b1 != Open)
+      return;
+    Segment& previous = this->segments.back();
+    previous.b1 = b;
+    prevFirst = previous.first;
+    prevEnd = previous.end;
+    if (this->LastLineOnly && prevFirst > 0)
+    {
+      this->intervals.erase(this->intervals.begin(), this->intervals.begin() + prevFirst);
+      prevEnd -= prevFirst;
+      prevFirst = 0;
+      this->segments.assign(1, { previous.b0, b, prevFirst, prevEnd });
+    }
+    for (std::uint32_t p = prevFirst; p < prevEnd; ++p)
+      this->rects[this->intervals[p].rect].b1 = b;
+  }
+
+  /// The intervals of the 1D section `Breaks` after line b: an interval equal to one of the
+  /// previous segment [prevFirst, prevEnd) continues its rectangle (no other previous interval
+  /// can meet it: intervals of a line are separated by a gap), any other starts a rectangle
+  /// and meets previous intervals along B. The lists are grown to their largest size first
+  /// (at most n + m - 1 pairs of two lines' intervals meet) and written through pointers:
+  /// push_back re-read the vectors after every store into a rectangle.
+  void appendIntervals(Coord b, std::uint32_t prevFirst, std::uint32_t prevEnd)
+  {
+    const std::size_t count = this->Breaks.size() / 2;
+    const std::size_t firstInterval = this->intervals.size(), firstRect = this->rects.size();
+    const std::size_t firstContact = this->contacts.size();
+    this->intervals.resize(firstInterval + count);
+    this->rects.resize(firstRect + count);
+    this->contacts.resize(firstContact + count + (prevEnd - prevFirst));
+    const Coord* const breaks = this->Breaks.data();
+    Interval* const in = this->intervals.data();
+    Interval* out = in + firstInterval;
+    Rect* const rects = this->rects.data();
+    auto rect = static_cast<std::uint32_t>(firstRect);
+    RectContact* contact = this->contacts.data() + firstContact;
+    std::uint32_t p = prevFirst;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const Coord c0 = breaks[2 * k], c1 = breaks[2 * k + 1];
+      // Previous intervals entirely before this one meet no later interval either.
+      while (p < prevEnd && in[p].c1 < c0)
+        ++p;
+      std::uint32_t q = p;
+      if (q < prevEnd && in[q].c0 == c0 && in[q].c1 == c1)
+      {
+        rects[in[q].rect].b1 = Open; // 2D compaction
+        *out++ = { c0, c1, in[q].rect };
+        continue;
+      }
+      rects[rect] = { b, Open, c0, c1 };
+      *out++ = { c0, c1, rect };
+      for (; q < prevEnd && in[q].c0 <= c1; ++q)
+        if (meet(in[q].c0, in[q].c1, c0, c1))
+          *contact++ = { in[q].rect, rect, overlap(in[q].c0, in[q].c1, c0, c1) };
+      ++rect;
+    }
+    this->rects.resize(rect);
+    this->contacts.resize(static_cast<std::size_t>(contact - this->contacts.data()));
   }
 
   std::vector<Coord> Breaks, Next, Line;
@@ -366,6 +391,9 @@ public:
     for (std::size_t i = 0; i < n; ++i)
       this->PreviousBox[i] = GhostBit | static_cast<std::uint32_t>(i);
     this->GhostEnd.assign(n, Open);
+    if (this->Sink.labelling())
+      for (Interval& in : this->Previous.intervals)
+        in.box = this->PreviousBox[in.rect];
   }
 
   /// The section of the slice starting at plane a (empty past the last plane).
@@ -378,6 +406,9 @@ public:
     this->CurrentIsNew.assign(n, 1);
     this->PreviousContinues.assign(this->Previous.rects.size(), 0);
     this->compactRectangles(a);
+    if (this->Sink.labelling())
+      for (Interval& in : this->Current.intervals)
+        in.box = this->CurrentBox[in.rect];
     this->addContactsAlongB();
     this->addContactsAlongA();
     std::swap(this->Previous, this->Current);
@@ -435,7 +466,7 @@ private:
 
   /// Contacts across the plane between the previous slice and this one, between a box that
   /// ends there and a box that starts there. Segments of the two sections that meet along B
-  /// are compared interval by interval (only those that overlap when labelling by faces:
+  /// are compared interval by interval (when labelling by faces, only those that overlap:
   /// segments that merely touch give edge or vertex contacts).
   void addContactsAlongA()
   {
@@ -451,25 +482,16 @@ private:
       while (first < cs.size() && cs[first].b1 < s.b0)
         ++first;
       for (std::size_t j = first; j < cs.size() && cs[j].b0 <= s.b1; ++j)
-      {
-        const bool open = overlap(s.b0, s.b1, cs[j].b0, cs[j].b1);
         if (!this->Sink.labelling())
-          this->compareSegments(s,
-            cs[j],
-            [&](const Interval& x, const Interval& y)
-            { this->addContactAlongA(x.rect, y.rect, s.b0, cs[j].b0); });
-        else if (open || touchingToo)
-          this->compareSegments(s,
-            cs[j],
-            [&](const Interval& x, const Interval& y) { this->addEquivalenceAlongA(x, y, open); });
-      }
+          this->compareSegments(s, cs[j]);
+        else if (touchingToo || overlap(s.b0, s.b1, cs[j].b0, cs[j].b1))
+          this->uniteAlongA(s, cs[j]);
     }
   }
 
-  /// Calls found(x, y) for every interval x of s (previous section) and y of t (current) that
-  /// meet, x of a box that ends at the plane and y of a box that starts there.
-  template<typename Found>
-  void compareSegments(const Segment& s, const Segment& t, Found found)
+  /// Every interval x of s (previous section) and y of t (current) that meet, x of a box
+  /// that ends at the plane and y of a box that starts there, is a contact candidate.
+  void compareSegments(const Segment& s, const Segment& t)
   {
     const auto& pi = this->Previous.intervals;
     const auto& ci = this->Current.intervals;
@@ -480,7 +502,7 @@ private:
       const Interval& y = ci[j];
       if (meet(x.c0, x.c1, y.c0, y.c1) && !this->PreviousContinues[x.rect] &&
         this->CurrentIsNew[y.rect])
-        found(x, y);
+        this->addContactAlongA(x.rect, y.rect, s.b0, t.b0);
       // The interval that ends first goes: without a branch, which noise makes random.
       const bool nextX = x.c1 < y.c1;
       i += nextX;
@@ -488,14 +510,33 @@ private:
     }
   }
 
-  /// Labelling: every meeting pair of segments gives the equivalence again (harmless), so
-  /// the segments and intervals tell the kind of contact without the rectangles.
-  void addEquivalenceAlongA(const Interval& x, const Interval& y, bool openAlongB)
+  /// Labelling: every pair of intervals of s and t that meet (overlap, by faces: s and t
+  /// then overlap) is an equivalence, found again in every pair of segments of the same
+  /// rectangles and whether or not its boxes end and start at the plane: a box that goes on
+  /// through the plane touches the other box within one slice too, so no extra equivalence
+  /// changes a class. The pairs are gathered without branches (noise makes them random),
+  /// then united.
+  void uniteAlongA(const Segment& s, const Segment& t)
   {
-    this->Sink.add(this->PreviousBox[x.rect],
-      this->CurrentBox[y.rect],
-      this->Order[0],
-      openAlongB && overlap(x.c0, x.c1, y.c0, y.c1));
+    const auto& pi = this->Previous.intervals;
+    const auto& ci = this->Current.intervals;
+    this->Pending.resize((s.end - s.first) + (t.end - t.first));
+    std::size_t n = 0;
+    const bool faceOnly = this->Sink.faceOnly();
+    std::uint32_t i = s.first, j = t.first;
+    while (i < s.end && j < t.end)
+    {
+      const Interval& x = pi[i];
+      const Interval& y = ci[j];
+      const bool hit = faceOnly ? overlap(x.c0, x.c1, y.c0, y.c1) : meet(x.c0, x.c1, y.c0, y.c1);
+      this->Pending[n] = { x.box, y.box };
+      n += hit;
+      const bool nextX = x.c1 < y.c1;
+      i += nextX;
+      j += !nextX;
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      this->Sink.add(this->Pending[k].first, this->Pending[k].second, this->Order[0], true);
   }
 
   /// Two rectangles that meet do so in every pair of their segments that meet (a rectangle
@@ -528,6 +569,7 @@ private:
   SectionDecomposition Previous, Current;
   std::vector<std::uint32_t> PreviousBox, CurrentBox; ///< box of each rectangle
   std::vector<char> CurrentIsNew, PreviousContinues;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> Pending; ///< see uniteAlongA
 };
 
 /// Pieces of a 3D sweep: one per thread when the EVM is large enough to repay the
