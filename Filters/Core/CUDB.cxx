@@ -111,15 +111,16 @@ Coord cOf(SectionPoint p)
 }
 
 /// The XOR of two sorted sequences without repeats, written from `out` (room for both):
-/// an element in both cancels. Without branches on the comparisons, which a porous or noisy
-/// object makes unpredictable. Returns the end of the output.
-template<typename T>
-T* mergeCancelling(const T* a, const T* aEnd, const T* b, const T* bEnd, T* out)
+/// an element in both cancels. The second sequence is read through `key` (a plane's vertices,
+/// a line's points), so that it is not copied first. Without branches on the comparisons,
+/// which a porous or noisy object makes unpredictable. Returns the end of the output.
+template<typename T, typename U, typename Key>
+T* mergeCancelling(const T* a, const T* aEnd, const U* b, const U* bEnd, Key key, T* out)
 {
   while (a != aEnd && b != bEnd)
   {
     // Two flags rather than `x != y` keep the compiler from branching again.
-    const T x = *a, y = *b;
+    const T x = *a, y = key(*b);
     const bool takeA = x <= y, takeB = y <= x;
     *out = takeA ? x : y;
     out += takeA != takeB;
@@ -127,7 +128,7 @@ T* mergeCancelling(const T* a, const T* aEnd, const T* b, const T* bEnd, T* out)
     b += takeB;
   }
   out = std::copy(a, aEnd, out);
-  return std::copy(b, bEnd, out);
+  return std::transform(b, bEnd, out, key);
 }
 
 /// The 2D CUDB of one section (Algorithm 1 at Dim2, with Algorithm 2, AppendBox, for its lines):
@@ -177,13 +178,12 @@ private:
   /// (both sorted), in buffers kept from line to line.
   void crossLine(const SectionPoint* line, const SectionPoint* end)
   {
-    this->Line.resize(static_cast<std::size_t>(end - line));
-    std::transform(line, end, this->Line.begin(), cOf);
-    this->Next.resize(this->Breaks.size() + this->Line.size());
+    this->Next.resize(this->Breaks.size() + static_cast<std::size_t>(end - line));
     const Coord* out = mergeCancelling(this->Breaks.data(),
       this->Breaks.data() + this->Breaks.size(),
-      this->Line.data(),
-      this->Line.data() + this->Line.size(),
+      line,
+      end,
+      cOf,
       this->Next.data());
     this->Next.resize(static_cast<std::size_t>(out - this->Next.data()));
     this->Breaks.swap(this->Next);
@@ -273,7 +273,7 @@ private:
     this->contacts.resize(static_cast<std::size_t>(contact - this->contacts.data()));
   }
 
-  std::vector<Coord> Breaks, Next, Line;
+  std::vector<Coord> Breaks, Next;
   bool LastLineOnly = false;
 };
 
@@ -281,15 +281,13 @@ private:
 /// previous section XOR the plane's projection.
 void nextSection(const Vertex* begin, const Vertex* end, Section& section, Section& scratch)
 {
-  const std::size_t n = section.size(), m = static_cast<std::size_t>(end - begin);
-  scratch.resize(n + 2 * m);
-  SectionPoint* plane = scratch.data() + n + m; // the plane's points after the output's room
-  for (const Vertex* v = begin; v != end; ++v)
-    *plane++ = sectionPoint((*v)[1], (*v)[2]);
-  const SectionPoint* out = mergeCancelling(section.data(),
-    section.data() + n,
-    scratch.data() + n + m,
-    scratch.data() + n + 2 * m,
+  scratch.resize(section.size() + static_cast<std::size_t>(end - begin));
+  const SectionPoint* out = mergeCancelling(
+    section.data(),
+    section.data() + section.size(),
+    begin,
+    end,
+    [](const Vertex& v) { return sectionPoint(v[1], v[2]); },
     scratch.data());
   scratch.resize(static_cast<std::size_t>(out - scratch.data()));
   section.swap(scratch);
