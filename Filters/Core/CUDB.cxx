@@ -419,29 +419,42 @@ private:
   /// previous section not continued end at a.
   void compactRectangles(Coord a)
   {
-    const auto& prev = this->Previous.rects;
+    this->matchRectangles();
     const auto& cur = this->Current.rects;
-    std::size_t p = 0;
     for (std::size_t r = 0; r < cur.size(); ++r)
+      if (this->CurrentIsNew[r])
+      {
+        this->CurrentBox[r] = static_cast<std::uint32_t>(this->Out.boxes.size());
+        this->Out.boxes.push_back(boxOf(cur[r], a, Open, this->Order));
+        this->Sink.addBox();
+      }
+    for (std::size_t q = 0; q < this->Previous.rects.size(); ++q)
+      if (!this->PreviousContinues[q])
+        this->endBox(this->PreviousBox[q], a);
+  }
+
+  /// The rectangles equal in both sections, found by one merge of the two lists (sorted by
+  /// (b0, c0), disjoint rectangles) whose steps do not branch: equal rectangles are few in
+  /// noise and the order of the others random.
+  void matchRectangles()
+  {
+    const Rect* const prev = this->Previous.rects.data();
+    const Rect* const cur = this->Current.rects.data();
+    const std::size_t np = this->Previous.rects.size(), nc = this->Current.rects.size();
+    std::size_t p = 0, r = 0;
+    while (p < np && r < nc)
     {
-      // Both lists are sorted by (b0, c0) and hold disjoint rectangles.
-      while (p < prev.size() &&
-        (prev[p].b0 < cur[r].b0 || (prev[p].b0 == cur[r].b0 && prev[p].c0 < cur[r].c0)))
-        ++p;
-      if (p < prev.size() && prev[p].sameAs(cur[r]))
+      const SectionPoint kp = sectionPoint(prev[p].b0, prev[p].c0);
+      const SectionPoint kc = sectionPoint(cur[r].b0, cur[r].c0);
+      if (kp == kc && prev[p].sameAs(cur[r]))
       {
         this->CurrentBox[r] = this->PreviousBox[p];
         this->CurrentIsNew[r] = 0;
         this->PreviousContinues[p] = 1;
-        continue;
       }
-      this->CurrentBox[r] = static_cast<std::uint32_t>(this->Out.boxes.size());
-      this->Out.boxes.push_back(boxOf(cur[r], a, Open, this->Order));
-      this->Sink.addBox();
+      p += kp <= kc;
+      r += kc <= kp;
     }
-    for (std::size_t q = 0; q < prev.size(); ++q)
-      if (!this->PreviousContinues[q])
-        this->endBox(this->PreviousBox[q], a);
   }
 
   void endBox(std::uint32_t box, Coord a)
