@@ -148,6 +148,8 @@ public:
   /// Keep only the last line's intervals and segment (enough for a 2D EVM, whose boxes
   /// have no neighbours along A): memory in the width of the image, not its area.
   void keepLastLineOnly(bool last) { this->LastLineOnly = last; }
+  /// Keep only the contacts of positive area (labelling with face connectivity).
+  void keepFaceContactsOnly(bool faceOnly) { this->FaceContactsOnly = faceOnly; }
 
   void build(const Section& section)
   {
@@ -264,9 +266,14 @@ private:
       }
       rects[rect] = { b, Open, c0, c1 };
       *out++ = { c0, c1, rect };
+      // Every previous interval from p on that starts no later than c1 meets [c0, c1]; kept
+      // without a branch (all, or those with a face when labelling by faces).
       for (; q < prevEnd && in[q].c0 <= c1; ++q)
-        if (meet(in[q].c0, in[q].c1, c0, c1))
-          *contact++ = { in[q].rect, rect, overlap(in[q].c0, in[q].c1, c0, c1) };
+      {
+        const bool face = overlap(in[q].c0, in[q].c1, c0, c1);
+        *contact = { in[q].rect, rect, face };
+        contact += face || !this->FaceContactsOnly;
+      }
       ++rect;
     }
     this->rects.resize(rect);
@@ -275,6 +282,7 @@ private:
 
   std::vector<Coord> Breaks, Next;
   bool LastLineOnly = false;
+  bool FaceContactsOnly = false;
 };
 
 /// Formula (1) of Cruz-Matias & Ayala: the section after plane of vertices [begin, end) is the
@@ -375,6 +383,8 @@ public:
     , Out(out)
     , Sink(sink)
   {
+    for (SectionDecomposition* d : { &this->Previous, &this->Current })
+      d->keepFaceContactsOnly(sink.labelling() && sink.faceOnly());
   }
 
   /// Starts a piece of the sweep after an earlier piece: the section before the first slice
