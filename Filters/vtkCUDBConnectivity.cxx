@@ -30,6 +30,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
+#include "vtkTypeFloat64Array.h"
+#include "vtkTypeInt32Array.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
@@ -530,8 +532,9 @@ struct RegionColumns
   vtkNew<vtkIdTypeArray> voxels, boxes;
   vtkNew<vtkDoubleArray> volumes, centroids;
   // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
-  std::array<vtkNew<vtkIntArray>, 6> indexBounds;
-  std::array<vtkNew<vtkDoubleArray>, 6> worldBounds;
+  // (The fixed-size classes, which the columns have always had.)
+  std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
+  std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
 
   RegionColumns(int labelType, vtkIdType count)
     : labels(vbr::vtk::newLabelArray(labelType, count))
@@ -590,9 +593,9 @@ struct RegionColumns
     table->AddColumn(this->labels);
     table->AddColumn(this->voxels);
     table->AddColumn(this->volumes);
-    for (vtkIntArray* a : this->indexBounds)
+    for (vtkTypeInt32Array* a : this->indexBounds)
       table->AddColumn(a);
-    for (vtkDoubleArray* a : this->worldBounds)
+    for (vtkTypeFloat64Array* a : this->worldBounds)
       table->AddColumn(a);
     table->AddColumn(this->centroids);
     table->AddColumn(this->boxes);
