@@ -30,6 +30,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
+#include "vtkTypeFloat64Array.h"
+#include "vtkTypeInt32Array.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
@@ -109,21 +111,29 @@ std::vector<vbr::AxisOrder> candidateSortings(int sorting,
   return out;
 }
 
-/// The CUDB of the EVM in the candidate sorting with the fewest boxes. False when aborted.
+/// The CUDB of the EVM in the candidate sorting with the fewest boxes, and the components of
+/// its boxes (labelled during the sweep: the filter needs no contacts). False when aborted.
 bool buildBestCUDB(const vbr::EVM& evm,
   const std::vector<vbr::AxisOrder>& sortings,
+  vbr::Connectivity connectivity,
   const vbr::Execution& exec,
-  vbr::CUDB& best)
+  vbr::CUDB& best,
+  vbr::Components& components)
 {
   bool found = false;
   for (const vbr::AxisOrder& order : sortings)
   {
     vbr::CUDB cudb;
+    vbr::Components labelled;
     const vbr::EVM sorted = order == evm.order() ? vbr::EVM() : evm.sortedAs(order, exec);
-    if (!vbr::buildCUDB(order == evm.order() ? evm : sorted, exec, cudb))
+    if (!vbr::buildCUDBComponents(
+          order == evm.order() ? evm : sorted, connectivity, exec, cudb, labelled))
       return false;
     if (!found || cudb.boxes.size() < best.boxes.size())
+    {
       best = std::move(cudb);
+      components = std::move(labelled);
+    }
     found = true;
   }
   return true;
@@ -457,20 +467,6 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   cells.moveTo(output);
 }
 
-/// One table column per component of `array`, named `names`, of the array's type.
-void addColumnsOfComponents(vtkTable* table, vtkDataArray* array, const char* const* names)
-{
-  for (int c = 0; c < array->GetNumberOfComponents(); ++c)
-  {
-    vtkSmartPointer<vtkDataArray> column;
-    column.TakeReference(vtkDataArray::CreateDataArray(array->GetDataType()));
-    column->SetName(names[c]);
-    vbr::vtk::resizeOrThrow(column, array->GetNumberOfTuples());
-    column->CopyComponent(0, array, c);
-    table->AddColumn(column);
-  }
-}
-
 /// A region's voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
 void indexBoundsOf(const Region& r,
   const vbr::vtk::VoxelGrid& grid,
@@ -526,49 +522,69 @@ void centroidOf(const Region& r,
   grid.positionToWorld(image.data(), world);
 }
 
-/// The columns of port 2, filled region by region.
+/// The columns of port 2, sized for the kept regions and filled region by region (a table of
+/// tens of thousands of regions, as noise gives, filled value by value through the generic
+/// array interface cost more than its labelling).
 struct RegionColumns
 {
-  vtkNew<vtkIntArray> ids, indexBounds;
+  vtkNew<vtkIntArray> ids;
   vtkSmartPointer<vtkDataArray> labels;
-  vtkNew<vtkDoubleArray> volumes, bounds, centroids;
   vtkNew<vtkIdTypeArray> voxels, boxes;
+  vtkNew<vtkDoubleArray> volumes, centroids;
+  // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
+  // (The fixed-size classes, which the columns have always had.)
+  std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
+  std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
 
-  explicit RegionColumns(int labelType)
-    : labels(vbr::vtk::newLabelArray(labelType))
+  RegionColumns(int labelType, vtkIdType count)
+    : labels(vbr::vtk::newLabelArray(labelType, count))
   {
+    static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
+    static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
     this->ids->SetName("RegionId");
     this->voxels->SetName("VoxelCount");
     this->volumes->SetName("Volume");
-    this->indexBounds->SetNumberOfComponents(6);
-    this->bounds->SetNumberOfComponents(6);
     this->centroids->SetName("Centroid");
     this->centroids->SetNumberOfComponents(3);
     this->centroids->SetComponentName(0, "X");
     this->centroids->SetComponentName(1, "Y");
     this->centroids->SetComponentName(2, "Z");
     this->boxes->SetName("NumberOfBoxes");
+    for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{
+           this->ids, this->voxels, this->volumes, this->centroids, this->boxes })
+      vbr::vtk::resizeOrThrow(a, count);
+    for (int k = 0; k < 6; ++k)
+    {
+      this->indexBounds[k]->SetName(indexNames[k]);
+      vbr::vtk::resizeOrThrow(this->indexBounds[k], count);
+      this->worldBounds[k]->SetName(worldNames[k]);
+      vbr::vtk::resizeOrThrow(this->worldBounds[k], count);
+    }
   }
 
-  void append(const Region& r,
+  void set(vtkIdType row,
+    const Region& r,
     const vbr::vtk::VoxelGrid& grid,
     const std::array<int, 3>& axes,
     double voxelMeasure)
   {
-    this->ids->InsertNextValue(r.id);
-    vbr::vtk::appendLabel(this->labels, r.label);
-    this->voxels->InsertNextValue(static_cast<vtkIdType>(r.voxels));
-    this->volumes->InsertNextValue(static_cast<double>(r.voxels) * voxelMeasure);
-    this->boxes->InsertNextValue(static_cast<vtkIdType>(r.boxes));
+    this->ids->SetValue(row, r.id);
+    vbr::vtk::setLabel(this->labels, row, r.label);
+    this->voxels->SetValue(row, static_cast<vtkIdType>(r.voxels));
+    this->volumes->SetValue(row, static_cast<double>(r.voxels) * voxelMeasure);
+    this->boxes->SetValue(row, static_cast<vtkIdType>(r.boxes));
     int index[6];
     indexBoundsOf(r, grid, axes, index);
-    this->indexBounds->InsertNextTypedTuple(index);
     double world[6];
     worldBoundsOf(r, grid, axes, world);
-    this->bounds->InsertNextTuple(world);
+    for (int k = 0; k < 6; ++k)
+    {
+      this->indexBounds[k]->SetValue(row, index[k]);
+      this->worldBounds[k]->SetValue(row, world[k]);
+    }
     double centroid[3];
     centroidOf(r, grid, axes, centroid);
-    this->centroids->InsertNextTuple(centroid);
+    this->centroids->SetTypedTuple(row, centroid);
   }
 
   void addTo(vtkTable* table)
@@ -577,11 +593,10 @@ struct RegionColumns
     table->AddColumn(this->labels);
     table->AddColumn(this->voxels);
     table->AddColumn(this->volumes);
-    // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
-    static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
-    static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
-    addColumnsOfComponents(table, this->indexBounds, indexNames);
-    addColumnsOfComponents(table, this->bounds, worldNames);
+    for (vtkTypeInt32Array* a : this->indexBounds)
+      table->AddColumn(a);
+    for (vtkTypeFloat64Array* a : this->worldBounds)
+      table->AddColumn(a);
     table->AddColumn(this->centroids);
     table->AddColumn(this->boxes);
   }
@@ -599,10 +614,10 @@ void writeRegionTable(const std::vector<Region>& regions,
   for (const Region& r : regions)
     if (r.id > 0)
       byId[r.id - 1] = &r;
-  RegionColumns columns(labelType);
+  RegionColumns columns(labelType, kept);
   const double measure = voxelMeasure(grid);
-  for (const Region* r : byId)
-    columns.append(*r, grid, axes, measure);
+  for (vtkIdType row = 0; row < kept; ++row)
+    columns.set(row, *byId[row], grid, axes, measure);
   columns.addTo(table);
 }
 
@@ -684,13 +699,9 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
   if (evm.empty())
     return false;
   {
-    vtkLogScopeF(TRACE, "EVM to CUDB");
-    if (!buildBestCUDB(evm, sortings, exec, o.cudb))
+    vtkLogScopeF(TRACE, "EVM to CUDB and the connected components of the boxes");
+    if (!buildBestCUDB(evm, sortings, connectivity, exec, o.cudb, o.components))
       return false;
-  }
-  {
-    vtkLogScopeF(TRACE, "connected components of the boxes");
-    o.components = vbr::labelComponents(o.cudb, connectivity);
   }
   o.extremeVertices = evm.size();
   return true;

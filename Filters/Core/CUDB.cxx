@@ -17,10 +17,19 @@
 // The OUDB (buildOUDB) is the same sweep without compaction; toEVM (section 3.3) XORs the
 // boxes' corners; volume (section 3.4) adds up the boxes.
 //
-// The labelling (section 3.5) reads the contacts: earlierNeighbours lists at each box the
-// boxes it is compared with (all created before it), labelProvisionally is Algorithm 3 with
-// the union-find's unite as Algorithm 4 (makeEquivalence), relabel is Algorithm 5. paintBoxes
-// writes a value per box into a label grid, parallel over slices.
+// Cost: every XOR (of a section with a plane, of a 1D section with a line) is one merge of
+// sorted integers without branches on the comparisons (mergeCancelling: porous and noisy
+// objects make them unpredictable); sections are packed (B, C) integers (SectionPoint); the
+// per-slice and per-line lists live in buffers kept from slice to slice; a pair of rectangles
+// is recorded once at a segment pair chosen from the rectangles (addContactAlongA), not by
+// sorting the pairs found.
+//
+// The labelling (section 3.5) reads the contacts: each box starts as its own provisional
+// label, every usable contact is an equivalence (Algorithms 3 and 4, makeEquivalences, in the
+// union-find whose representatives are the first boxes of their classes) and relabel is
+// Algorithm 5. buildCUDBComponents makes the same equivalences during the sweep, as each
+// contact is found (ContactSink), for callers that need no contact list. paintBoxes writes a
+// value per box into a label grid, parallel over slices.
 
 #include "CUDB.h"
 
@@ -28,7 +37,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -51,6 +59,7 @@ struct Interval
 {
   Coord c0, c1;
   std::uint32_t rect;
+  std::uint32_t box = 0; ///< the rectangle's box, once known (labelling only)
 };
 
 /// The B-range [b0, b1) between two lines of vertices, over which the 1D section is
@@ -81,6 +90,47 @@ bool overlap(Coord a0, Coord a1, Coord b0, Coord b1)
 
 constexpr Coord Open = std::numeric_limits<Coord>::max(); ///< end not reached yet
 
+/// A point (B, C) of a section packed in one integer whose order is the points' order (B
+/// first): sections are merged as plain integers. The sign bits are flipped so that negative
+/// coordinates keep their order.
+using SectionPoint = std::uint64_t;
+using Section = std::vector<SectionPoint>;
+
+SectionPoint sectionPoint(Coord b, Coord c)
+{
+  constexpr std::uint32_t Sign = std::uint32_t(1) << 31;
+  return std::uint64_t(std::uint32_t(b) ^ Sign) << 32 | (std::uint32_t(c) ^ Sign);
+}
+Coord bOf(SectionPoint p)
+{
+  return static_cast<Coord>(std::uint32_t(p >> 32) ^ (std::uint32_t(1) << 31));
+}
+Coord cOf(SectionPoint p)
+{
+  return static_cast<Coord>(std::uint32_t(p) ^ (std::uint32_t(1) << 31));
+}
+
+/// The XOR of two sorted sequences without repeats, written from `out` (room for both):
+/// an element in both cancels. The second sequence is read through `key` (a plane's vertices,
+/// a line's points), so that it is not copied first. Without branches on the comparisons,
+/// which a porous or noisy object makes unpredictable. Returns the end of the output.
+template<typename T, typename U, typename Key>
+T* mergeCancelling(const T* a, const T* aEnd, const U* b, const U* bEnd, Key key, T* out)
+{
+  while (a != aEnd && b != bEnd)
+  {
+    // Two flags rather than `x != y` keep the compiler from branching again.
+    const T x = *a, y = key(*b);
+    const bool takeA = x <= y, takeB = y <= x;
+    *out = takeA ? x : y;
+    out += takeA != takeB;
+    a += takeA;
+    b += takeB;
+  }
+  out = std::copy(a, aEnd, out);
+  return std::transform(b, bEnd, out, key);
+}
+
 /// The 2D CUDB of one section (Algorithm 1 at Dim2, with Algorithm 2, AppendBox, for its lines):
 /// line by line, the 1D section is the XOR of the previous one with the line of vertices;
 /// an interval equal to one of the previous line extends its rectangle, any other interval
@@ -98,8 +148,10 @@ public:
   /// Keep only the last line's intervals and segment (enough for a 2D EVM, whose boxes
   /// have no neighbours along A): memory in the width of the image, not its area.
   void keepLastLineOnly(bool last) { this->LastLineOnly = last; }
+  /// Keep only the contacts of positive area (labelling with face connectivity).
+  void keepFaceContactsOnly(bool faceOnly) { this->FaceContactsOnly = faceOnly; }
 
-  void build(const std::vector<Point2>& section)
+  void build(const Section& section)
   {
     this->intervalCount = 0;
     this->rects.clear();
@@ -107,28 +159,38 @@ public:
     this->intervals.clear();
     this->contacts.clear();
     this->Breaks.clear();
-    std::size_t i = 0;
-    const std::size_t n = section.size();
-    while (i < n)
+    const SectionPoint* line = section.data();
+    const SectionPoint* const end = line + section.size();
+    while (line != end)
     {
-      const Coord b = section[i].u;
-      this->Line.clear();
-      for (; i < n && section[i].u == b; ++i)
-        this->Line.push_back(section[i].v);
-      this->Next.clear();
-      std::set_symmetric_difference(this->Breaks.begin(),
-        this->Breaks.end(),
-        this->Line.begin(),
-        this->Line.end(),
-        std::back_inserter(this->Next));
-      this->Breaks.swap(this->Next);
+      const Coord b = bOf(*line);
+      const SectionPoint* next = line;
+      while (next != end && bOf(*next) == b)
+        ++next;
+      this->crossLine(line, next);
       this->appendLineBoxes(b);
+      line = next;
     }
     if (!this->Breaks.empty())
       throw std::invalid_argument("section is not closed: not a valid EVM");
   }
 
 private:
+  /// The 1D section past a line of vertices: the one before it XOR the line's C coordinates
+  /// (both sorted), in buffers kept from line to line.
+  void crossLine(const SectionPoint* line, const SectionPoint* end)
+  {
+    this->Next.resize(this->Breaks.size() + static_cast<std::size_t>(end - line));
+    const Coord* out = mergeCancelling(this->Breaks.data(),
+      this->Breaks.data() + this->Breaks.size(),
+      line,
+      end,
+      cOf,
+      this->Next.data());
+    this->Next.resize(static_cast<std::size_t>(out - this->Next.data()));
+    this->Breaks.swap(this->Next);
+  }
+
   /// Algorithm 2 (AppendBox) for the brinks of line b, with the 2D compaction: the segment
   /// before b ends, the one after it has the 1D section `Breaks`.
   void appendLineBoxes(Coord b)
@@ -136,97 +198,178 @@ private:
     if (this->Breaks.size() % 2 != 0)
       throw std::invalid_argument("odd 1D section: not a valid EVM");
     std::uint32_t prevFirst = 0, prevEnd = 0;
-    if (!this->segments.empty() && this->segments.back().b1 == Open)
-    {
-      Segment& previous = this->segments.back();
-      previous.b1 = b;
-      prevFirst = previous.first;
-      prevEnd = previous.end;
-      if (this->LastLineOnly && prevFirst > 0)
-      {
-        this->intervals.erase(this->intervals.begin(), this->intervals.begin() + prevFirst);
-        prevEnd -= prevFirst;
-        prevFirst = 0;
-        this->segments.assign(1, { previous.b0, b, prevFirst, prevEnd });
-      }
-    }
-    // Every rectangle of the previous line ends here unless an equal interval extends it.
-    for (std::uint32_t p = prevFirst; p < prevEnd; ++p)
-      this->rects[this->intervals[p].rect].b1 = b;
+    this->closePreviousSegment(b, prevFirst, prevEnd);
     if (this->Breaks.empty())
       return;
-
     const std::uint32_t first = static_cast<std::uint32_t>(this->intervals.size());
-    std::uint32_t p = prevFirst;
-    for (std::size_t k = 0; k < this->Breaks.size(); k += 2)
-    {
-      const Coord c0 = this->Breaks[k], c1 = this->Breaks[k + 1];
-      // Previous intervals entirely before this one meet no later interval either.
-      while (p < prevEnd && this->intervals[p].c1 < c0)
-        ++p;
-      std::uint32_t q = p;
-      if (q < prevEnd && this->intervals[q].c0 == c0 && this->intervals[q].c1 == c1)
-      {
-        // 2D compaction: the same interval continues its rectangle. No other previous
-        // interval can meet it (intervals of a line are separated by a gap).
-        const std::uint32_t rect = this->intervals[q].rect;
-        this->rects[rect].b1 = Open;
-        this->intervals.push_back({ c0, c1, rect });
-        continue;
-      }
-      const std::uint32_t rect = static_cast<std::uint32_t>(this->rects.size());
-      this->rects.push_back({ b, Open, c0, c1 });
-      this->intervals.push_back({ c0, c1, rect });
-      for (; q < prevEnd && this->intervals[q].c0 <= c1; ++q)
-      {
-        const Interval& prev = this->intervals[q];
-        if (meet(prev.c0, prev.c1, c0, c1))
-          this->contacts.push_back({ prev.rect, rect, overlap(prev.c0, prev.c1, c0, c1) });
-      }
-    }
+    this->appendIntervals(b, prevFirst, prevEnd);
     this->segments.push_back(
       { b, Open, first, static_cast<std::uint32_t>(this->intervals.size()) });
     this->intervalCount += this->intervals.size() - first;
   }
 
-  std::vector<Coord> Breaks, Next, Line;
+  /// The segment before line b ends there, with every rectangle of its intervals (those that
+  /// an equal interval of the line extends are opened again by appendIntervals). Gives that
+  /// segment's intervals [prevFirst, prevEnd).
+  void closePreviousSegment(Coord b, std::uint32_t& prevFirst, std::uint32_t& prevEnd)
+  {
+    if (this->segments.empty() || this->segments.back().b1 != Open)
+      return;
+    Segment& previous = this->segments.back();
+    previous.b1 = b;
+    prevFirst = previous.first;
+    prevEnd = previous.end;
+    if (this->LastLineOnly && prevFirst > 0)
+    {
+      this->intervals.erase(this->intervals.begin(), this->intervals.begin() + prevFirst);
+      prevEnd -= prevFirst;
+      prevFirst = 0;
+      this->segments.assign(1, { previous.b0, b, prevFirst, prevEnd });
+    }
+    for (std::uint32_t p = prevFirst; p < prevEnd; ++p)
+      this->rects[this->intervals[p].rect].b1 = b;
+  }
+
+  /// The intervals of the 1D section `Breaks` after line b: an interval equal to one of the
+  /// previous segment [prevFirst, prevEnd) continues its rectangle (no other previous interval
+  /// can meet it: intervals of a line are separated by a gap), any other starts a rectangle
+  /// and meets previous intervals along B. The lists are grown to their largest size first
+  /// (at most n + m - 1 pairs of two lines' intervals meet) and written through pointers:
+  /// push_back re-read the vectors after every store into a rectangle.
+  void appendIntervals(Coord b, std::uint32_t prevFirst, std::uint32_t prevEnd)
+  {
+    const std::size_t count = this->Breaks.size() / 2;
+    const std::size_t firstInterval = this->intervals.size(), firstRect = this->rects.size();
+    const std::size_t firstContact = this->contacts.size();
+    this->intervals.resize(firstInterval + count);
+    this->rects.resize(firstRect + count);
+    this->contacts.resize(firstContact + count + (prevEnd - prevFirst));
+    const Coord* const breaks = this->Breaks.data();
+    Interval* const in = this->intervals.data();
+    Interval* out = in + firstInterval;
+    Rect* const rects = this->rects.data();
+    auto rect = static_cast<std::uint32_t>(firstRect);
+    RectContact* contact = this->contacts.data() + firstContact;
+    std::uint32_t p = prevFirst;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const Coord c0 = breaks[2 * k], c1 = breaks[2 * k + 1];
+      // Previous intervals entirely before this one meet no later interval either.
+      while (p < prevEnd && in[p].c1 < c0)
+        ++p;
+      std::uint32_t q = p;
+      if (q < prevEnd && in[q].c0 == c0 && in[q].c1 == c1)
+      {
+        rects[in[q].rect].b1 = Open; // 2D compaction
+        *out++ = { c0, c1, in[q].rect };
+        continue;
+      }
+      rects[rect] = { b, Open, c0, c1 };
+      *out++ = { c0, c1, rect };
+      // Every previous interval from p on that starts no later than c1 meets [c0, c1]; kept
+      // without a branch (all, or those with a face when labelling by faces).
+      for (; q < prevEnd && in[q].c0 <= c1; ++q)
+      {
+        const bool face = overlap(in[q].c0, in[q].c1, c0, c1);
+        *contact = { in[q].rect, rect, face };
+        contact += face || !this->FaceContactsOnly;
+      }
+      ++rect;
+    }
+    this->rects.resize(rect);
+    this->contacts.resize(static_cast<std::size_t>(contact - this->contacts.data()));
+  }
+
+  std::vector<Coord> Breaks, Next;
   bool LastLineOnly = false;
+  bool FaceContactsOnly = false;
 };
 
 /// Formula (1) of Cruz-Matias & Ayala: the section after plane of vertices [begin, end) is the
 /// previous section XOR the plane's projection.
-void nextSection(const Vertex* begin,
-  const Vertex* end,
-  std::vector<Point2>& section,
-  std::vector<Point2>& scratch)
+void nextSection(const Vertex* begin, const Vertex* end, Section& section, Section& scratch)
 {
-  scratch.clear();
-  std::size_t i = 0;
-  const Vertex* v = begin;
-  while (i < section.size() || v != end)
-  {
-    if (v == end || (i < section.size() && section[i] < Point2{ (*v)[1], (*v)[2] }))
-      scratch.push_back(section[i++]);
-    else if (i == section.size() || Point2{ (*v)[1], (*v)[2] } < section[i])
-      scratch.push_back({ (*v)[1], (*v)[2] }), ++v;
-    else
-      ++i, ++v; // a vertex in both cancels
-  }
+  scratch.resize(section.size() + static_cast<std::size_t>(end - begin));
+  const SectionPoint* out = mergeCancelling(
+    section.data(),
+    section.data() + section.size(),
+    begin,
+    end,
+    [](const Vertex& v) { return sectionPoint(v[1], v[2]); },
+    scratch.data());
+  scratch.resize(static_cast<std::size_t>(out - scratch.data()));
   section.swap(scratch);
 }
 
-/// Box of a rectangle spanning [a0, a1) along A, in world axes.
+/// Box of a rectangle spanning [a0, a1) along A, in world axes. Each world axis picks its
+/// sorting role, so that the box is written at fixed places: stores at places known only at
+/// run time, read back at once as a whole box, stalled the sweep.
 Box boxOf(const Rect& r, Coord a0, Coord a1, const AxisOrder& order)
 {
+  const Coord lo[3] = { a0, r.b0, r.c0 }, hi[3] = { a1, r.b1, r.c1 };
   Box box;
-  box.lo[order[0]] = a0;
-  box.hi[order[0]] = a1;
-  box.lo[order[1]] = r.b0;
-  box.hi[order[1]] = r.b1;
-  box.lo[order[2]] = r.c0;
-  box.hi[order[2]] = r.c1;
+  for (int d = 0; d < 3; ++d)
+  {
+    const int role = order[0] == d ? 0 : (order[1] == d ? 1 : 2);
+    box.lo[d] = lo[role];
+    box.hi[d] = hi[role];
+  }
   return box;
 }
+
+/// Box ids with this bit are ghosts: in a piece of the sweep, the boxes of the piece before
+/// that are still open where it starts (see SliceSweep::enterAfter).
+constexpr std::uint32_t GhostBit = std::uint32_t(1) << 31;
+
+/// Where the sweep's contacts go. Recording: every contact into the CUDB's list, once. Labelling
+/// (Algorithms 3 and 4 on the fly): each contact of the wanted connectivity is an equivalence
+/// as soon as it is found, so that no contact list is written and read back; a contact may
+/// then be found more than once (the equivalence is the same), and contacts with a ghost box
+/// are kept in the list for the stitching, which knows the ghost's box.
+class ContactSink
+{
+public:
+  explicit ContactSink(std::vector<BoxContact>& list)
+    : List(list)
+  {
+  }
+  ContactSink(std::vector<BoxContact>& ghostContacts,
+    UnionFind& equivalences,
+    Connectivity connectivity)
+    : List(ghostContacts)
+    , Equivalences(&equivalences)
+    , FaceOnly(connectivity == Connectivity::Face)
+  {
+  }
+
+  bool labelling() const { return this->Equivalences != nullptr; }
+  /// Only contacts of positive area count (labelling with face connectivity).
+  bool faceOnly() const { return this->FaceOnly; }
+
+  /// A new box, numbered after the others.
+  void addBox()
+  {
+    if (this->Equivalences)
+      this->Equivalences->add();
+  }
+
+  void add(std::uint32_t backward, std::uint32_t forward, int axis, bool face)
+  {
+    if (this->Equivalences && ((backward | forward) & GhostBit) == 0)
+    {
+      if (face || !this->FaceOnly)
+        this->Equivalences->unite(backward, forward);
+      return;
+    }
+    if (face || !this->FaceOnly)
+      this->List.push_back({ backward, forward, static_cast<std::uint8_t>(axis), face });
+  }
+
+private:
+  std::vector<BoxContact>& List;
+  UnionFind* Equivalences = nullptr;
+  bool FaceOnly = false;
+};
 
 /// The 3D part of Algorithm 1 (at Dim3): slice after slice, the rectangles of the section are
 /// matched with those of the previous section; an equal rectangle extends its box along A (3D
@@ -235,17 +378,20 @@ Box boxOf(const Rect& r, Coord a0, Coord a1, const AxisOrder& order)
 class SliceSweep
 {
 public:
-  SliceSweep(const AxisOrder& order, CUDB& out)
+  SliceSweep(const AxisOrder& order, CUDB& out, ContactSink sink)
     : Order(order)
     , Out(out)
+    , Sink(sink)
   {
+    for (SectionDecomposition* d : { &this->Previous, &this->Current })
+      d->keepFaceContactsOnly(sink.labelling() && sink.faceOnly());
   }
 
   /// Starts a piece of the sweep after an earlier piece: the section before the first slice
   /// stands for the slice the earlier piece ended with. Its rectangles get ghost boxes,
   /// which the stitching maps to the earlier piece's open boxes (the two decompositions of
   /// one section are the same).
-  void enterAfter(const std::vector<Point2>& section)
+  void enterAfter(const Section& section)
   {
     this->Previous.build(section);
     const std::size_t n = this->Previous.rects.size();
@@ -253,10 +399,13 @@ public:
     for (std::size_t i = 0; i < n; ++i)
       this->PreviousBox[i] = GhostBit | static_cast<std::uint32_t>(i);
     this->GhostEnd.assign(n, Open);
+    if (this->Sink.labelling())
+      for (Interval& in : this->Previous.intervals)
+        in.box = this->PreviousBox[in.rect];
   }
 
   /// The section of the slice starting at plane a (empty past the last plane).
-  void nextSlice(Coord a, const std::vector<Point2>& section)
+  void nextSlice(Coord a, const Section& section)
   {
     this->Current.build(section);
     this->Out.oudbBoxCount += this->Current.intervalCount;
@@ -265,6 +414,9 @@ public:
     this->CurrentIsNew.assign(n, 1);
     this->PreviousContinues.assign(this->Previous.rects.size(), 0);
     this->compactRectangles(a);
+    if (this->Sink.labelling())
+      for (Interval& in : this->Current.intervals)
+        in.box = this->CurrentBox[in.rect];
     this->addContactsAlongB();
     this->addContactsAlongA();
     std::swap(this->Previous, this->Current);
@@ -277,28 +429,42 @@ private:
   /// previous section not continued end at a.
   void compactRectangles(Coord a)
   {
-    const auto& prev = this->Previous.rects;
+    this->matchRectangles();
     const auto& cur = this->Current.rects;
-    std::size_t p = 0;
     for (std::size_t r = 0; r < cur.size(); ++r)
+      if (this->CurrentIsNew[r])
+      {
+        this->CurrentBox[r] = static_cast<std::uint32_t>(this->Out.boxes.size());
+        this->Out.boxes.push_back(boxOf(cur[r], a, Open, this->Order));
+        this->Sink.addBox();
+      }
+    for (std::size_t q = 0; q < this->Previous.rects.size(); ++q)
+      if (!this->PreviousContinues[q])
+        this->endBox(this->PreviousBox[q], a);
+  }
+
+  /// The rectangles equal in both sections, found by one merge of the two lists (sorted by
+  /// (b0, c0), disjoint rectangles) whose steps do not branch: equal rectangles are few in
+  /// noise and the order of the others random.
+  void matchRectangles()
+  {
+    const Rect* const prev = this->Previous.rects.data();
+    const Rect* const cur = this->Current.rects.data();
+    const std::size_t np = this->Previous.rects.size(), nc = this->Current.rects.size();
+    std::size_t p = 0, r = 0;
+    while (p < np && r < nc)
     {
-      // Both lists are sorted by (b0, c0) and hold disjoint rectangles.
-      while (p < prev.size() &&
-        (prev[p].b0 < cur[r].b0 || (prev[p].b0 == cur[r].b0 && prev[p].c0 < cur[r].c0)))
-        ++p;
-      if (p < prev.size() && prev[p].sameAs(cur[r]))
+      const SectionPoint kp = sectionPoint(prev[p].b0, prev[p].c0);
+      const SectionPoint kc = sectionPoint(cur[r].b0, cur[r].c0);
+      if (kp == kc && prev[p].sameAs(cur[r]))
       {
         this->CurrentBox[r] = this->PreviousBox[p];
         this->CurrentIsNew[r] = 0;
         this->PreviousContinues[p] = 1;
-        continue;
       }
-      this->CurrentBox[r] = static_cast<std::uint32_t>(this->Out.boxes.size());
-      this->Out.boxes.push_back(boxOf(cur[r], a, Open, this->Order));
+      p += kp <= kc;
+      r += kc <= kp;
     }
-    for (std::size_t q = 0; q < prev.size(); ++q)
-      if (!this->PreviousContinues[q])
-        this->endBox(this->PreviousBox[q], a);
   }
 
   void endBox(std::uint32_t box, Coord a)
@@ -315,20 +481,19 @@ private:
   {
     for (const RectContact& c : this->Current.contacts)
       if (this->CurrentIsNew[c.backward] || this->CurrentIsNew[c.forward])
-        this->Out.contacts.push_back({ this->CurrentBox[c.backward],
-          this->CurrentBox[c.forward],
-          static_cast<std::uint8_t>(this->Order[1]),
-          c.face });
+        this->Sink.add(
+          this->CurrentBox[c.backward], this->CurrentBox[c.forward], this->Order[1], c.face);
   }
 
   /// Contacts across the plane between the previous slice and this one, between a box that
   /// ends there and a box that starts there. Segments of the two sections that meet along B
-  /// are compared interval by interval; a pair found in several segments is kept once.
+  /// are compared interval by interval (when labelling by faces, only those that overlap:
+  /// segments that merely touch give edge or vertex contacts).
   void addContactsAlongA()
   {
     const auto& ps = this->Previous.segments;
     const auto& cs = this->Current.segments;
-    this->Found.clear();
+    const bool touchingToo = !this->Sink.faceOnly();
     std::size_t first = 0;
     for (const Segment& s : ps)
     {
@@ -338,30 +503,16 @@ private:
       while (first < cs.size() && cs[first].b1 < s.b0)
         ++first;
       for (std::size_t j = first; j < cs.size() && cs[j].b0 <= s.b1; ++j)
-        this->compareSegments(s, cs[j], overlap(s.b0, s.b1, cs[j].b0, cs[j].b1));
-    }
-    if (this->Found.empty())
-      return;
-    std::sort(this->Found.begin(),
-      this->Found.end(),
-      [](const RectContact& x, const RectContact& y)
-      { return x.backward < y.backward || (x.backward == y.backward && x.forward < y.forward); });
-    std::size_t k = 0;
-    while (k < this->Found.size())
-    {
-      RectContact c = this->Found[k];
-      for (++k; k < this->Found.size() && this->Found[k].backward == c.backward &&
-           this->Found[k].forward == c.forward;
-           ++k)
-        c.face = c.face || this->Found[k].face;
-      this->Out.contacts.push_back({ this->PreviousBox[c.backward],
-        this->CurrentBox[c.forward],
-        static_cast<std::uint8_t>(this->Order[0]),
-        c.face });
+        if (!this->Sink.labelling())
+          this->compareSegments(s, cs[j]);
+        else if (touchingToo || overlap(s.b0, s.b1, cs[j].b0, cs[j].b1))
+          this->uniteAlongA(s, cs[j]);
     }
   }
 
-  void compareSegments(const Segment& s, const Segment& t, bool openAlongB)
+  /// Every interval x of s (previous section) and y of t (current) that meet, x of a box
+  /// that ends at the plane and y of a box that starts there, is a contact candidate.
+  void compareSegments(const Segment& s, const Segment& t)
   {
     const auto& pi = this->Previous.intervals;
     const auto& ci = this->Current.intervals;
@@ -372,17 +523,60 @@ private:
       const Interval& y = ci[j];
       if (meet(x.c0, x.c1, y.c0, y.c1) && !this->PreviousContinues[x.rect] &&
         this->CurrentIsNew[y.rect])
-        this->Found.push_back({ x.rect, y.rect, openAlongB && overlap(x.c0, x.c1, y.c0, y.c1) });
-      if (x.c1 < y.c1)
-        ++i;
-      else
-        ++j;
+        this->addContactAlongA(x.rect, y.rect, s.b0, t.b0);
+      // The interval that ends first goes: without a branch, which noise makes random.
+      const bool nextX = x.c1 < y.c1;
+      i += nextX;
+      j += !nextX;
     }
   }
 
+  /// Labelling: every pair of intervals of s and t that meet (overlap, by faces: s and t
+  /// then overlap) is an equivalence, found again in every pair of segments of the same
+  /// rectangles and whether or not its boxes end and start at the plane: a box that goes on
+  /// through the plane touches the other box within one slice too, so no extra equivalence
+  /// changes a class. The pairs are gathered without branches (noise makes them random),
+  /// then united.
+  void uniteAlongA(const Segment& s, const Segment& t)
+  {
+    const auto& pi = this->Previous.intervals;
+    const auto& ci = this->Current.intervals;
+    this->Pending.resize((s.end - s.first) + (t.end - t.first));
+    std::size_t n = 0;
+    const bool faceOnly = this->Sink.faceOnly();
+    std::uint32_t i = s.first, j = t.first;
+    while (i < s.end && j < t.end)
+    {
+      const Interval& x = pi[i];
+      const Interval& y = ci[j];
+      const bool hit = faceOnly ? overlap(x.c0, x.c1, y.c0, y.c1) : meet(x.c0, x.c1, y.c0, y.c1);
+      this->Pending[n] = { x.box, y.box };
+      n += hit;
+      const bool nextX = x.c1 < y.c1;
+      i += nextX;
+      j += !nextX;
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      this->Sink.add(this->Pending[k].first, this->Pending[k].second, this->Order[0], true);
+  }
+
+  /// Two rectangles that meet do so in every pair of their segments that meet (a rectangle
+  /// has the same interval in all its segments): the pair is recorded once, at the first
+  /// segment of the previous rectangle that meets the current one and the first segment of
+  /// the current rectangle that meets that one. No list of found pairs to sort and merge.
+  void addContactAlongA(std::uint32_t previous, std::uint32_t current, Coord sb0, Coord tb0)
+  {
+    const Rect& p = this->Previous.rects[previous];
+    const Rect& c = this->Current.rects[current];
+    // The segment before s in p (ending at sb0) meets c unless c starts after sb0; the same
+    // for the segment before t in c against s.
+    if ((sb0 != p.b0 && sb0 >= c.b0) || (tb0 != c.b0 && tb0 >= sb0))
+      return;
+    const bool face = overlap(p.b0, p.b1, c.b0, c.b1) && overlap(p.c0, p.c1, c.c0, c.c1);
+    this->Sink.add(this->PreviousBox[previous], this->CurrentBox[current], this->Order[0], face);
+  }
+
 public:
-  /// Box ids with this bit are ghosts (see enterAfter).
-  static constexpr std::uint32_t GhostBit = std::uint32_t(1) << 31;
   /// Boxes still open after the last slice, by rectangle of that slice.
   const std::vector<std::uint32_t>& openBoxes() const { return this->PreviousBox; }
   /// Where each ghost box ended along A (Open: it goes on past this piece).
@@ -391,11 +585,12 @@ public:
 private:
   const AxisOrder Order;
   CUDB& Out;
+  ContactSink Sink;
   std::vector<Coord> GhostEnd;
   SectionDecomposition Previous, Current;
   std::vector<std::uint32_t> PreviousBox, CurrentBox; ///< box of each rectangle
   std::vector<char> CurrentIsNew, PreviousContinues;
-  std::vector<RectContact> Found;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> Pending; ///< see uniteAlongA
 };
 
 /// Pieces of a 3D sweep: one per thread when the EVM is large enough to repay the
@@ -408,10 +603,12 @@ int automaticPieces(std::size_t vertices, std::size_t planes, int concurrency)
   return static_cast<int>(std::min<std::size_t>(concurrency, planes / MinimumPlanesPerPiece));
 }
 
-/// The sweep over planes [first, last) of an EVM, with its own boxes and contacts.
+/// The sweep over planes [first, last) of an EVM, with its own boxes and contacts (when
+/// labelling: its equivalences, and only the contacts with ghost boxes).
 struct SweptPiece
 {
   CUDB part;
+  UnionFind equivalences;
   std::vector<std::uint32_t> openBoxes;
   std::vector<Coord> ghostEnds;
   bool aborted = false;
@@ -419,15 +616,28 @@ struct SweptPiece
 
   void sweep(const EVM& evm,
     const std::vector<std::size_t>& starts,
-    std::vector<Point2> section,
+    Section section,
     std::size_t first,
     std::size_t last,
     bool afterAnotherPiece,
+    const Connectivity* labelling,
     const Execution& exec)
   {
     const std::vector<Vertex>& v = evm.vertices();
-    std::vector<Point2> scratch;
-    SliceSweep sweep(evm.order(), this->part);
+    Section scratch;
+    // Room for the boxes and contacts of porous and noisy volumes (about 0.4 boxes and 2.1
+    // contacts per extreme vertex): growing would copy them and fault their pages in twice.
+    // Pages reserved but never written cost nothing.
+    const std::size_t vertices = starts[last] - starts[first];
+    this->part.boxes.reserve(vertices / 2);
+    if (labelling)
+      this->equivalences.reserve(vertices / 2);
+    else
+      this->part.contacts.reserve(vertices * 5 / 2 + 16);
+    SliceSweep sweep(evm.order(),
+      this->part,
+      labelling ? ContactSink(this->part.contacts, this->equivalences, *labelling)
+                : ContactSink(this->part.contacts));
     if (afterAnotherPiece)
       sweep.enterAfter(section);
     for (std::size_t k = first; k < last; ++k)
@@ -446,9 +656,54 @@ struct SweptPiece
   }
 };
 
+/// Sweeps the planes of a 3D EVM in `pieces` runs (0: automatic), concurrently. False when
+/// aborted.
+bool sweepPieces(const EVM& evm,
+  const Execution& exec,
+  int pieces,
+  const Connectivity* labelling,
+  std::vector<SweptPiece>& swept)
+{
+  const std::vector<Vertex>& v = evm.vertices();
+  const std::vector<std::size_t> starts = evm.planeStarts();
+  const std::size_t planes = starts.size() - 1;
+  if (pieces <= 0)
+    pieces = automaticPieces(evm.size(), planes, exec.concurrency);
+  pieces =
+    static_cast<int>(std::min<std::size_t>(std::max(pieces, 1), std::max<std::size_t>(planes, 1)));
+  std::vector<std::size_t> firstPlane(pieces + 1);
+  for (int p = 0; p <= pieces; ++p)
+    firstPlane[p] = planes * p / pieces;
+  // The section entering each piece: the XOR of all planes before it (a sequential pass,
+  // cheap next to the decompositions).
+  std::vector<Section> entering(pieces);
+  Section section, scratch;
+  for (int p = 1; p < pieces; ++p)
+  {
+    for (std::size_t k = firstPlane[p - 1]; k < firstPlane[p]; ++k)
+      nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+    entering[p] = section;
+  }
+  swept.resize(pieces);
+  exec.forRange(pieces,
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (std::int64_t p = begin; p < end; ++p)
+        swept[p].sweep(
+          evm, starts, entering[p], firstPlane[p], firstPlane[p + 1], p > 0, labelling, exec);
+    });
+  for (const SweptPiece& piece : swept)
+    if (piece.aborted)
+      return false;
+  if (!swept.back().lastSectionEmpty)
+    throw std::invalid_argument("the last section is not empty: not a valid EVM");
+  return true;
+}
+
 /// Joins the pieces in sweep order: a piece's ghost boxes are the open boxes of the piece
-/// before, so its boxes come after theirs and the result is the one sequential sweep's.
-void stitch(std::vector<SweptPiece>& pieces, CUDB& out)
+/// before, so its boxes come after theirs and the result is the one sequential sweep's. When
+/// labelling, the pieces' equivalences are joined into `equivalences` instead of contacts.
+void stitch(std::vector<SweptPiece>& pieces, CUDB& out, UnionFind* equivalences)
 {
   const int axisA = out.order[0];
   std::vector<std::uint32_t> open; // global ids of the boxes open before the current piece
@@ -456,20 +711,71 @@ void stitch(std::vector<SweptPiece>& pieces, CUDB& out)
   {
     const std::uint32_t offset = static_cast<std::uint32_t>(out.boxes.size());
     auto global = [&](std::uint32_t id)
-    { return (id & SliceSweep::GhostBit) ? open[id & ~SliceSweep::GhostBit] : offset + id; };
+    { return (id & GhostBit) ? open[id & ~GhostBit] : offset + id; };
     for (std::size_t g = 0; g < piece.ghostEnds.size(); ++g)
       if (piece.ghostEnds[g] != Open)
         out.boxes[open[g]].hi[axisA] = piece.ghostEnds[g];
-    out.boxes.insert(out.boxes.end(), piece.part.boxes.begin(), piece.part.boxes.end());
-    out.contacts.reserve(out.contacts.size() + piece.part.contacts.size());
-    for (const BoxContact& c : piece.part.contacts)
-      out.contacts.push_back({ global(c.backward), global(c.forward), c.axis, c.face });
+    if (offset == 0) // the first piece (the only one of a sequential sweep): ids are global
+      out.boxes.swap(piece.part.boxes);
+    else
+      out.boxes.insert(out.boxes.end(), piece.part.boxes.begin(), piece.part.boxes.end());
+    if (equivalences)
+      equivalences->append(std::move(piece.equivalences));
+    std::vector<BoxContact>& contacts = equivalences ? piece.part.contacts : out.contacts;
+    if (offset == 0 && !equivalences)
+      out.contacts.swap(piece.part.contacts);
+    else
+      for (const BoxContact& c : piece.part.contacts)
+        if (equivalences)
+          equivalences->unite(global(c.backward), global(c.forward));
+        else
+          contacts.push_back({ global(c.backward), global(c.forward), c.axis, c.face });
     out.oudbBoxCount += piece.part.oudbBoxCount;
     for (std::uint32_t& id : piece.openBoxes)
       id = global(id);
     open.swap(piece.openBoxes);
     piece.part = CUDB(); // memory: one copy of the boxes at a time
   }
+}
+
+/// A 2D EVM is a single section: its rectangles are the boxes, one voxel thick.
+void buildCUDB2D(const EVM& evm, CUDB& out)
+{
+  Section section, scratch;
+  const std::vector<Vertex>& v = evm.vertices();
+  nextSection(v.data(), v.data() + v.size(), section, scratch);
+  SectionDecomposition d;
+  d.keepLastLineOnly(true);
+  d.build(section);
+  out.oudbBoxCount = d.intervalCount;
+  for (const Rect& r : d.rects)
+    out.boxes.push_back(boxOf(r, 0, 1, out.order));
+  for (const RectContact& c : d.contacts)
+    out.contacts.push_back(
+      { c.backward, c.forward, static_cast<std::uint8_t>(out.order[1]), c.face });
+}
+
+/// Algorithms 3 and 4 (CCL, makeEquivalence) with the box itself as its provisional label:
+/// every usable contact is an equivalence between two boxes, recorded in the union-find
+/// whose representative is the smallest member, i.e. the box created first. The classes come
+/// out as the paper's labelling leaves them, without per-box neighbour lists to build.
+void makeEquivalences(const CUDB& cudb, Connectivity connectivity, UnionFind& equivalences)
+{
+  const bool all = connectivity == Connectivity::Vertex;
+  for (const BoxContact& c : cudb.contacts)
+    if (all || c.face)
+      equivalences.unite(c.backward, c.forward);
+}
+
+/// Algorithm 5 (relabeling): the classes numbered 1..count in order of first appearance
+/// along the boxes (the order of their representatives). Returns count.
+std::uint32_t relabel(UnionFind& equivalences, std::vector<std::uint32_t>& label)
+{
+  std::uint32_t count = 0;
+  label = equivalences.numberClasses(count);
+  for (std::uint32_t& l : label)
+    ++l;
+  return count;
 }
 
 } // namespace
@@ -487,54 +793,42 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces)
   out = CUDB();
   out.dimension = evm.dimension();
   out.order = evm.order();
-  const std::vector<Vertex>& v = evm.vertices();
-  const std::vector<std::size_t> starts = evm.planeStarts();
-  std::vector<Point2> section, scratch;
   if (evm.dimension() == 2)
   {
-    // A 2D EVM is a single section: its rectangles are the boxes, one voxel thick.
-    nextSection(v.data(), v.data() + v.size(), section, scratch);
-    SectionDecomposition d;
-    d.keepLastLineOnly(true);
-    d.build(section);
-    out.oudbBoxCount = d.intervalCount;
-    for (const Rect& r : d.rects)
-      out.boxes.push_back(boxOf(r, 0, 1, out.order));
-    for (const RectContact& c : d.contacts)
-      out.contacts.push_back(
-        { c.backward, c.forward, static_cast<std::uint8_t>(out.order[1]), c.face });
+    buildCUDB2D(evm, out);
     return true;
   }
-  const std::size_t planes = starts.size() - 1;
-  if (pieces <= 0)
-    pieces = automaticPieces(evm.size(), planes, exec.concurrency);
-  pieces =
-    static_cast<int>(std::min<std::size_t>(std::max(pieces, 1), std::max<std::size_t>(planes, 1)));
-  std::vector<std::size_t> firstPlane(pieces + 1);
-  for (int p = 0; p <= pieces; ++p)
-    firstPlane[p] = planes * p / pieces;
-  // The section entering each piece: the XOR of all planes before it (a sequential pass,
-  // cheap next to the decompositions).
-  std::vector<std::vector<Point2>> entering(pieces);
-  for (int p = 1; p < pieces; ++p)
+  std::vector<SweptPiece> swept;
+  if (!sweepPieces(evm, exec, pieces, nullptr, swept))
+    return false;
+  stitch(swept, out, nullptr);
+  return true;
+}
+
+bool buildCUDBComponents(const EVM& evm,
+  Connectivity connectivity,
+  const Execution& exec,
+  CUDB& out,
+  Components& components,
+  int pieces)
+{
+  if (evm.dimension() == 2)
   {
-    for (std::size_t k = firstPlane[p - 1]; k < firstPlane[p]; ++k)
-      nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
-    entering[p] = section;
-  }
-  std::vector<SweptPiece> swept(pieces);
-  exec.forRange(pieces,
-    [&](std::int64_t begin, std::int64_t end)
-    {
-      for (std::int64_t p = begin; p < end; ++p)
-        swept[p].sweep(evm, starts, entering[p], firstPlane[p], firstPlane[p + 1], p > 0, exec);
-    });
-  for (const SweptPiece& piece : swept)
-    if (piece.aborted)
+    // One section: its contacts are few next to a volume's; they are kept.
+    if (!buildCUDB(evm, exec, out, pieces))
       return false;
-  if (!swept.back().lastSectionEmpty)
-    throw std::invalid_argument("the last section is not empty: not a valid EVM");
-  stitch(swept, out);
+    components = labelComponents(out, connectivity);
+    return true;
+  }
+  out = CUDB();
+  out.dimension = evm.dimension();
+  out.order = evm.order();
+  std::vector<SweptPiece> swept;
+  if (!sweepPieces(evm, exec, pieces, &connectivity, swept))
+    return false;
+  UnionFind equivalences;
+  stitch(swept, out, &equivalences);
+  components.count = relabel(equivalences, components.boxLabel);
   return true;
 }
 
@@ -551,7 +845,7 @@ std::vector<Box> buildOUDB(const EVM& evm)
   const AxisOrder& order = evm.order();
   const std::vector<Vertex>& v = evm.vertices();
   const std::vector<std::size_t> starts = evm.planeStarts();
-  std::vector<Point2> section, scratch;
+  Section section, scratch;
   SectionDecomposition d;
   // Every interval of every segment is a box: no compaction along B nor along A.
   auto addBoxes = [&](Coord a0, Coord a1)
@@ -634,82 +928,46 @@ CUDB::NeighbourLists CUDB::neighbours(int axisRole, bool forward, Connectivity c
   return lists;
 }
 
-namespace
-{
-
-/// The neighbours each box is compared with when it is labelled (the paper's
-/// ABackwardNeighbors and BBackwardNeighbors together): every usable contact listed at the
-/// later of its two boxes in creation order, pointing to the earlier one, so that each box
-/// is labelled after all the boxes it is compared with.
-CUDB::NeighbourLists earlierNeighbours(const CUDB& cudb, Connectivity connectivity)
-{
-  const std::size_t n = cudb.boxes.size();
-  CUDB::NeighbourLists lists;
-  lists.start.assign(n + 1, 0);
-  auto usable = [&](const BoxContact& c) { return connectivity == Connectivity::Vertex || c.face; };
-  for (const BoxContact& c : cudb.contacts)
-    if (usable(c))
-      ++lists.start[std::max(c.backward, c.forward) + 1];
-  for (std::size_t i = 0; i < n; ++i)
-    lists.start[i + 1] += lists.start[i];
-  lists.boxes.resize(lists.start.back());
-  std::vector<std::uint32_t> fill(lists.start.begin(), lists.start.end() - 1);
-  for (const BoxContact& c : cudb.contacts)
-    if (usable(c))
-      lists.boxes[fill[std::max(c.backward, c.forward)]++] = std::min(c.backward, c.forward);
-  return lists;
-}
-
-/// Algorithm 3 (CCL), the labelling pass: boxes in creation order take the smallest label of
-/// their backward neighbours, or a new label when they have none; where two labels meet, the
-/// equivalence is recorded (Algorithm 4, makeEquivalence: the union-find's unite, which keeps
-/// the smaller label as representative). Provisional labels are 0-based here.
-std::vector<std::uint32_t> labelProvisionally(const CUDB::NeighbourLists& earlier,
-  UnionFind& equivalences)
-{
-  const std::size_t n = earlier.start.size() - 1;
-  std::vector<std::uint32_t> label(n, 0);
-  for (std::size_t b = 0; b < n; ++b)
-  {
-    if (earlier.start[b] == earlier.start[b + 1])
-    {
-      label[b] = equivalences.add();
-      continue;
-    }
-    std::uint32_t l = equivalences.find(label[earlier.boxes[earlier.start[b]]]);
-    for (std::uint32_t k = earlier.start[b] + 1; k < earlier.start[b + 1]; ++k)
-      l = equivalences.unite(l, label[earlier.boxes[k]]);
-    label[b] = l;
-  }
-  return label;
-}
-
-/// Algorithm 5 (relabeling): every label replaced by the representative of its class, then
-/// the classes numbered 1..count in order of first appearance along the boxes. Returns count.
-std::uint32_t relabel(UnionFind& equivalences, std::vector<std::uint32_t>& label)
-{
-  std::uint32_t count = 0;
-  std::vector<std::uint32_t> consecutive(equivalences.size(), 0);
-  for (std::uint32_t& l : label)
-  {
-    const std::uint32_t root = equivalences.find(l);
-    if (consecutive[root] == 0)
-      consecutive[root] = ++count;
-    l = consecutive[root];
-  }
-  return count;
-}
-
-} // namespace
-
 Components labelComponents(const CUDB& cudb, Connectivity connectivity)
 {
-  UnionFind equivalences;
+  UnionFind equivalences(cudb.boxes.size());
+  makeEquivalences(cudb, connectivity, equivalences);
   Components result;
-  result.boxLabel = labelProvisionally(earlierNeighbours(cudb, connectivity), equivalences);
   result.count = relabel(equivalences, result.boxLabel);
   return result;
 }
+
+namespace
+{
+
+/// How paintBoxes walks a box: its coordinates k = 0..2 (box axes) and their steps in the
+/// grid, the row axis (the grid's x, contiguous) and the two others.
+struct PaintLayout
+{
+  std::array<std::int64_t, 3> step;
+  int row, outer, inner, split;
+};
+
+PaintLayout paintLayout(const std::array<int, 3>& axes, const std::array<Coord, 3>& dims)
+{
+  const std::int64_t gridStep[3] = { 1, dims[0], std::int64_t(dims[0]) * dims[1] };
+  PaintLayout layout{};
+  // Workers own disjoint ranges of slices (of rows when the grid is a single slice).
+  const int splitAxis = dims[2] > 1 ? 2 : 1;
+  for (int k = 0; k < 3; ++k)
+  {
+    layout.step[k] = gridStep[axes[k]];
+    if (axes[k] == 0)
+      layout.row = k;
+    if (axes[k] == splitAxis)
+      layout.split = k;
+  }
+  layout.inner = (layout.row + 1) % 3;
+  layout.outer = (layout.row + 2) % 3;
+  return layout;
+}
+
+} // namespace
 
 void paintBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
@@ -719,31 +977,33 @@ void paintBoxes(const std::vector<Box>& boxes,
   std::int32_t* labels,
   const Execution& exec)
 {
-  const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
-  // Workers own disjoint ranges of slices (of rows when the grid is a single slice) and
-  // paint the part of every box inside them.
-  const int split = dims[2] > 1 ? 2 : 1;
-  exec.forRange(dims[split],
+  const PaintLayout layout = paintLayout(axes, dims);
+  exec.forRange(dims[axes[layout.split]],
     [&](std::int64_t from, std::int64_t to)
     {
+      // Each worker paints the part of every box inside its range. Steps fixed in advance and
+      // a plain loop per row: noise has hundreds of thousands of boxes of a few voxels.
       for (std::size_t b = 0; b < boxes.size(); ++b)
       {
         const std::int32_t v = value[b];
         if (v == 0)
           continue;
-        std::array<std::int64_t, 3> lo, hi;
+        std::int64_t lo[3], hi[3];
         for (int k = 0; k < 3; ++k)
         {
-          lo[axes[k]] = std::int64_t(boxes[b].lo[k]) + offset[k];
-          hi[axes[k]] = std::int64_t(boxes[b].hi[k]) + offset[k];
+          lo[k] = std::int64_t(boxes[b].lo[k]) + offset[k];
+          hi[k] = std::int64_t(boxes[b].hi[k]) + offset[k];
         }
-        lo[split] = std::max(lo[split], from);
-        hi[split] = std::min(hi[split], to);
-        for (std::int64_t z = lo[2]; z < hi[2]; ++z)
-          for (std::int64_t y = lo[1]; y < hi[1]; ++y)
+        lo[layout.split] = std::max(lo[layout.split], from);
+        hi[layout.split] = std::min(hi[layout.split], to);
+        const std::int64_t length = hi[layout.row] - lo[layout.row];
+        for (std::int64_t i = lo[layout.outer]; i < hi[layout.outer]; ++i)
+          for (std::int64_t j = lo[layout.inner]; j < hi[layout.inner]; ++j)
           {
-            std::int32_t* row = labels + z * nxy + y * nx;
-            std::fill(row + lo[0], row + hi[0], v);
+            std::int32_t* row = labels + i * layout.step[layout.outer] +
+              j * layout.step[layout.inner] + lo[layout.row];
+            for (std::int64_t x = 0; x < length; ++x)
+              row[x] = v;
           }
       }
     });

@@ -91,16 +91,29 @@ std::vector<Box> buildOUDB(const EVM& evm);
 /// disjoint), in the CUDB's order. Test oracle only: the round trip EVM -> CUDB -> EVM.
 EVM toEVM(const CUDB& cudb);
 
-/// Connected components of the boxes by the paper's Algorithms 3 to 5: boxes in creation
-/// order take the smallest label of their already labelled neighbours (a new label when
-/// there is none), equivalences are recorded only where two labels meet, and a final pass
-/// renumbers the labels 1..count in order of first appearance.
+/// Connected components of the boxes by the paper's Algorithms 3 to 5: every contact of the
+/// connectivity is an equivalence between its two boxes (each box its own provisional label,
+/// a class represented by its first box in creation order, which is the smallest label the
+/// paper's pass would give it), and a final pass numbers the classes 1..count in order of
+/// first appearance along the boxes.
 struct Components
 {
   std::vector<std::uint32_t> boxLabel; ///< 1..count per box
   std::uint32_t count = 0;
 };
 Components labelComponents(const CUDB& cudb, Connectivity connectivity);
+
+/// EVM -> CUDB and the components of its boxes in one sweep, for callers that need the boxes
+/// and their labels but not the contacts: each contact of `connectivity` is an equivalence as
+/// soon as the sweep finds it, so no contact list is written and read back. `out` has the
+/// boxes (in the same order) and box counts of buildCUDB, and no contacts; `components` is
+/// labelComponents(buildCUDB(evm), connectivity). Returns false when aborted.
+bool buildCUDBComponents(const EVM& evm,
+  Connectivity connectivity,
+  const Execution& exec,
+  CUDB& out,
+  Components& components,
+  int pieces = 0);
 
 /// Writes value[b] into every voxel of box b (boxes with value 0 are skipped) of `labels`, a
 /// grid of `dims` voxels stored x fastest. Box coordinates are shifted by `offset` and then

@@ -38,6 +38,24 @@ public:
 
   std::size_t size() const { return this->Parent.size(); }
 
+  /// Room for n elements in all, so that add() does not reallocate up to there.
+  void reserve(std::size_t n) { this->Parent.reserve(n); }
+
+  /// Appends the elements of `other` with their classes, numbered after this one's (element
+  /// i of `other` becomes size() + i): roots stay the smallest elements of their classes.
+  void append(UnionFind&& other)
+  {
+    if (this->Parent.empty())
+    {
+      this->Parent = std::move(other.Parent);
+      return;
+    }
+    const auto offset = static_cast<std::uint32_t>(this->Parent.size());
+    this->Parent.reserve(this->Parent.size() + other.Parent.size());
+    for (std::uint32_t p : other.Parent)
+      this->Parent.push_back(offset + p);
+  }
+
   /// The smallest element of the class of x.
   std::uint32_t find(std::uint32_t x)
   {

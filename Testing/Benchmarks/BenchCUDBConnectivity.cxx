@@ -4,8 +4,9 @@
 //
 // For each input: the EVM, OUDB and CUDB sizes (the paper's Table 1); the phases run on the
 // core alone, one thread (image -> EVM, EVM -> CUDB, CCL on the boxes, label write-back: the
-// paper's Table 2); the whole filter with face and vertex connectivity and with seeds (every
-// 16th selected voxel), and the peer, all in turns. The peer's region count must be the
+// paper's Table 2; and EVM -> CUDB + CCL, the sweep that labels as it goes, which the filter
+// runs in place of the two); the whole filter with face and vertex connectivity and with seeds
+// (every 16th selected voxel), and the peer, all in turns. The peer's region count must be the
 // filter's. Run with VTK_SMP_BACKEND_IN_USE=STDThread (or --backends) to use every core.
 //
 //   BenchCUDBConnectivity --help     the options, with this program's defaults
@@ -81,6 +82,17 @@ void addCorePhases(const Input& in, Core& core, std::vector<Contender>& out)
     Role::Phase,
     "",
     [c] { c->comps = vbr::labelComponents(c->cudb, vbr::Connectivity::Face); },
+    nullptr });
+  out.push_back({ "EVM -> CUDB + CCL",
+    Role::Phase,
+    "",
+    [c]
+    {
+      vbr::CUDB boxes;
+      vbr::Components components;
+      vbr::buildCUDBComponents(
+        c->evm, vbr::Connectivity::Face, vbr::Execution(), boxes, components);
+    },
     nullptr });
   out.push_back({ "write-back",
     Role::Phase,

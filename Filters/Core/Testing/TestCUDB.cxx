@@ -130,6 +130,28 @@ void expectSamePartition(const std::vector<int>& got, const std::vector<int>& ex
   EXPECT_EQ(forward.size(), backward.size());
 }
 
+/// The sweep that labels as it goes gives the boxes of buildCUDB and the components that
+/// labelComponents finds on them, for both connectivities, without contacts.
+void expectLabelledSweepSame(const vbr::EVM& evm,
+  const vbr::CUDB& cudb,
+  const vbr::Execution& exec = vbr::Execution(),
+  int pieces = 0)
+{
+  for (vbr::Connectivity connectivity : { vbr::Connectivity::Face, vbr::Connectivity::Vertex })
+  {
+    SCOPED_TRACE(
+      connectivity == vbr::Connectivity::Face ? "labelled sweep, face" : "labelled sweep, vertex");
+    vbr::CUDB boxes;
+    vbr::Components labelled;
+    ASSERT_TRUE(vbr::buildCUDBComponents(evm, connectivity, exec, boxes, labelled, pieces));
+    const vbr::Components expected = vbr::labelComponents(cudb, connectivity);
+    EXPECT_EQ(boxes.boxes, cudb.boxes);
+    EXPECT_EQ(boxes.oudbBoxCount, cudb.oudbBoxCount);
+    EXPECT_EQ(labelled.count, expected.count);
+    EXPECT_EQ(labelled.boxLabel, expected.boxLabel);
+  }
+}
+
 /// Everything the conversion and the labelling promise, for one voxel set and sorting.
 void checkAll(const vbr::BitVolume& v, const vbr::EVM& evm, bool checkPairs = true)
 {
@@ -153,6 +175,7 @@ void checkAll(const vbr::BitVolume& v, const vbr::EVM& evm, bool checkPairs = tr
     EXPECT_EQ(c.count, static_cast<std::uint32_t>(count)) << (vertex ? "vertex" : "face");
     expectSamePartition(paintedLabels(v, cudb, c), expected);
   }
+  expectLabelledSweepSame(evm, cudb);
 }
 
 vbr::BitVolume fromPoints(const vbr::Point3& dims, const std::vector<vbr::Point3>& points)
@@ -254,6 +277,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
           EXPECT_EQ(stitched.boxes, sequential.boxes);
           EXPECT_EQ(sortedContacts(stitched), sortedContacts(sequential));
           EXPECT_EQ(stitched.oudbBoxCount, sequential.oudbBoxCount);
+          expectLabelledSweepSame(evm, sequential, threadedExecution(3), pieces);
           ++stitchedVolumes;
         }
       }
@@ -273,6 +297,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
   const std::vector<int> expected = bf::floodFillLabels(big, true, count);
   EXPECT_EQ(c.count, static_cast<std::uint32_t>(count));
   expectSamePartition(paintedLabels(big, stitched, c), expected);
+  expectLabelledSweepSame(evm, sequential, threadedExecution(2));
 }
 
 TEST(CUDB, TwoDimensionalImages)
@@ -427,6 +452,59 @@ TEST(CUDB, NeighbourListsAreTheContacts)
   }
 }
 
+TEST(CUDB, PaintBoxesInEveryAxisOrder)
+{
+  // Boxes in permuted, shifted coordinates painted by parallel slices (or rows of a single
+  // slice) against one voxel at a time; later boxes overwrite earlier ones in both.
+  const std::array<int, 3> permutations[] = {
+    { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 }, { 2, 1, 0 }
+  };
+  const std::array<vbr::Coord, 3> grids[] = { { 9, 7, 5 }, { 6, 11, 1 } };
+  unsigned seed = 11;
+  for (const auto& axes : permutations)
+    for (const auto& dims : grids)
+    {
+      std::array<vbr::Coord, 3> offset{ 1, 0, 2 };
+      for (int k = 0; k < 3; ++k)
+        offset[k] = std::min(offset[k], dims[axes[k]] - 1); // room for a voxel
+      std::vector<vbr::Box> boxes;
+      std::vector<std::int32_t> value;
+      for (int b = 0; b < 40; ++b)
+      {
+        vbr::Box box;
+        for (int k = 0; k < 3; ++k)
+        {
+          const vbr::Coord n = dims[axes[k]] - offset[k];
+          seed = seed * 1103515245u + 12345u;
+          box.lo[k] = static_cast<vbr::Coord>((seed >> 8) % n);
+          seed = seed * 1103515245u + 12345u;
+          box.hi[k] = box.lo[k] + 1 + static_cast<vbr::Coord>((seed >> 8) % (n - box.lo[k]));
+        }
+        boxes.push_back(box);
+        value.push_back(b % 7); // 0: skipped
+      }
+      std::vector<std::int32_t> expected(std::size_t(dims[0]) * dims[1] * dims[2], -1);
+      for (std::size_t b = 0; b < boxes.size(); ++b)
+      {
+        if (value[b] == 0)
+          continue;
+        std::array<vbr::Coord, 3> p;
+        for (p[0] = boxes[b].lo[0]; p[0] < boxes[b].hi[0]; ++p[0])
+          for (p[1] = boxes[b].lo[1]; p[1] < boxes[b].hi[1]; ++p[1])
+            for (p[2] = boxes[b].lo[2]; p[2] < boxes[b].hi[2]; ++p[2])
+            {
+              std::array<std::size_t, 3> g;
+              for (int k = 0; k < 3; ++k)
+                g[axes[k]] = static_cast<std::size_t>(p[k] + offset[k]);
+              expected[(g[2] * dims[1] + g[1]) * dims[0] + g[0]] = value[b];
+            }
+      }
+      std::vector<std::int32_t> painted(expected.size(), -1);
+      vbr::paintBoxes(boxes, value, offset, axes, dims, painted.data(), threadedExecution(3));
+      EXPECT_EQ(painted, expected);
+    }
+}
+
 TEST(CUDB, Abort)
 {
   const vbr::BitVolume v = bf::randomVolume({ 40, 40, 40 }, 0.5, 9);
@@ -434,6 +512,9 @@ TEST(CUDB, Abort)
   exec.aborted = [] { return true; };
   vbr::CUDB out;
   EXPECT_FALSE(vbr::buildCUDB(vbr::extractEVM(v), exec, out));
+  vbr::Components components;
+  EXPECT_FALSE(
+    vbr::buildCUDBComponents(vbr::extractEVM(v), vbr::Connectivity::Face, exec, out, components));
 }
 
 TEST(CUDB, InvalidEVMIsRejected)
