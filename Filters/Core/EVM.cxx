@@ -3,10 +3,11 @@
 // Extraction (extractEVM) is one pass over the bit rows: for each row of vertices (y, z) the
 // XOR of the four voxel rows around it holds, per x, the parity of the voxels on that side;
 // vertex x is extreme where that parity changes (rowParityToVertexBits), i.e. where an odd
-// number of the eight voxels around it is set. The set bits are appended as vertices in
-// order (appendRowVertices), planes of vertices in parallel, then concatenated: the result is
-// ZYX-sorted without sorting. extractEVM2D does the same with the two pixel rows around a
-// line of vertices.
+// number of the eight voxels around it is set. Two passes over the planes of vertices, in
+// parallel: the first counts each plane's set bits, the second (after a prefix sum) writes
+// them in order straight into the EVM's one array (writeRowVertices), with no per-plane
+// vector to grow and copy: the result is ZYX-sorted without sorting. extractEVM2D does the
+// same with the two pixel rows around a line of vertices.
 //
 // Sorting (sortedAs): when the new order is a rotation or a swap of the old one, a single
 // stable bucket pass on one coordinate keeps the order of the two others (bucketedOn);
@@ -31,23 +32,27 @@ namespace
 
 const char* const AxisNames = "XYZ";
 
-/// Appends the set bits of a row of vertex words as vertices (a, b, x).
-void appendRowVertices(const Word* bits,
-  std::size_t words,
-  Coord a,
-  Coord b,
-  std::vector<Vertex>& out)
+/// Writes the set bits of a row of vertex words as vertices (a, b, x) from `out` on.
+void writeRowVertices(const Word* bits, std::size_t words, Coord a, Coord b, Vertex*& out)
 {
   for (std::size_t w = 0; w < words; ++w)
   {
     Word e = bits[w];
     while (e)
     {
-      const Coord x = static_cast<Coord>(w * 64 + countTrailingZeros(e));
-      out.push_back({ a, b, x });
+      *out++ = { a, b, static_cast<Coord>(w * 64 + countTrailingZeros(e)) };
       e &= e - 1;
     }
   }
+}
+
+/// The number of set bits of a row of vertex words.
+std::size_t countRowVertices(const Word* bits, std::size_t words)
+{
+  std::size_t n = 0;
+  for (std::size_t w = 0; w < words; ++w)
+    n += static_cast<std::size_t>(popCount(bits[w]));
+  return n;
 }
 
 /// Turns the XOR of the voxel rows around a row of vertices into the vertex bits: vertex x is
@@ -63,20 +68,37 @@ void rowParityToVertexBits(const Word* parity, std::size_t rowWords, Word* verte
   vertexBits[rowWords] = carry;
 }
 
-/// Concatenates per-plane vertex lists in plane order.
-std::vector<Vertex> concatenate(std::vector<std::vector<Vertex>>& parts)
+/// The vertices of `count` runs (planes or lines of vertices) in one array, in run order:
+/// rows(r, visit) calls visit(a, b, vertexBits) for each row (a, b) of vertices of run r, in
+/// order; counted in parallel, then written in parallel after a prefix sum.
+template<typename Rows>
+std::vector<Vertex> collectVertices(std::int64_t count,
+  std::size_t words,
+  const Execution& exec,
+  Rows&& rows)
 {
-  std::size_t total = 0;
-  for (const auto& p : parts)
-    total += p.size();
-  std::vector<Vertex> out;
-  out.reserve(total);
-  for (auto& p : parts)
-  {
-    out.insert(out.end(), p.begin(), p.end());
-    std::vector<Vertex>().swap(p);
-  }
-  return out;
+  std::vector<std::size_t> start(static_cast<std::size_t>(count) + 1, 0);
+  exec.forRange(count,
+    [&](std::int64_t rb, std::int64_t re)
+    {
+      for (std::int64_t r = rb; r < re; ++r)
+        rows(r,
+          [&](Coord, Coord, const Word* bits) { start[r + 1] += countRowVertices(bits, words); });
+    });
+  for (std::size_t r = 0; r + 1 < start.size(); ++r)
+    start[r + 1] += start[r];
+  std::vector<Vertex> vertices(start.back());
+  exec.forRange(count,
+    [&](std::int64_t rb, std::int64_t re)
+    {
+      for (std::int64_t r = rb; r < re; ++r)
+      {
+        Vertex* out = vertices.data() + start[r];
+        rows(
+          r, [&](Coord a, Coord b, const Word* bits) { writeRowVertices(bits, words, a, b, out); });
+      }
+    });
+  return vertices;
 }
 
 } // namespace
@@ -249,40 +271,33 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
 {
   const std::int32_t ny = voxels.size(1), nz = voxels.size(2);
   const std::size_t rowWords = voxels.wordsPerRow();
-  std::vector<std::vector<Vertex>> planes(static_cast<std::size_t>(nz) + 1);
-  if (voxels.size(0) > 0 && ny > 0 && nz > 0)
+  if (voxels.size(0) == 0 || ny == 0 || nz == 0)
+    return EVM(3, AxisOrder{ 2, 1, 0 }, {});
+  // The rows of vertices of plane kz: the XOR of the (up to) four voxel rows around each.
+  auto rowsOfPlane = [&](std::int64_t kz, auto&& visit)
   {
-    exec.forRange(nz + 1,
-      [&](std::int64_t zb, std::int64_t ze)
-      {
-        std::vector<Word> parity(rowWords), bits(rowWords + 1);
-        for (std::int64_t kz = zb; kz < ze; ++kz)
+    std::vector<Word> parity(rowWords), bits(rowWords + 1);
+    for (std::int32_t ky = 0; ky <= ny; ++ky)
+    {
+      std::fill(parity.begin(), parity.end(), 0);
+      bool any = false;
+      for (std::int32_t z = static_cast<std::int32_t>(kz) - 1; z <= kz; ++z)
+        for (std::int32_t y = ky - 1; y <= ky; ++y)
         {
-          for (std::int32_t ky = 0; ky <= ny; ++ky)
-          {
-            std::fill(parity.begin(), parity.end(), 0);
-            bool any = false;
-            for (std::int32_t z = static_cast<std::int32_t>(kz) - 1; z <= kz; ++z)
-            {
-              for (std::int32_t y = ky - 1; y <= ky; ++y)
-              {
-                if (z < 0 || z >= nz || y < 0 || y >= ny)
-                  continue;
-                const Word* r = voxels.row(y, z);
-                for (std::size_t w = 0; w < rowWords; ++w)
-                  parity[w] ^= r[w];
-                any = true;
-              }
-            }
-            if (!any)
-              continue;
-            rowParityToVertexBits(parity.data(), rowWords, bits.data());
-            appendRowVertices(bits.data(), rowWords + 1, static_cast<Coord>(kz), ky, planes[kz]);
-          }
+          if (z < 0 || z >= nz || y < 0 || y >= ny)
+            continue;
+          const Word* r = voxels.row(y, z);
+          for (std::size_t w = 0; w < rowWords; ++w)
+            parity[w] ^= r[w];
+          any = true;
         }
-      });
-  }
-  return EVM(3, AxisOrder{ 2, 1, 0 }, concatenate(planes));
+      if (!any)
+        continue;
+      rowParityToVertexBits(parity.data(), rowWords, bits.data());
+      visit(static_cast<Coord>(kz), ky, bits.data());
+    }
+  };
+  return EVM(3, AxisOrder{ 2, 1, 0 }, collectVertices(nz + 1, rowWords + 1, exec, rowsOfPlane));
 }
 
 EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
@@ -291,30 +306,24 @@ EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
     throw std::invalid_argument("extractEVM2D needs a single slice (nz == 1)");
   const std::int32_t ny = pixels.size(1);
   const std::size_t rowWords = pixels.wordsPerRow();
-  std::vector<std::vector<Vertex>> lines(static_cast<std::size_t>(ny) + 1);
-  if (pixels.size(0) > 0 && ny > 0)
+  if (pixels.size(0) == 0 || ny == 0)
+    return EVM(2, AxisOrder{ 2, 1, 0 }, {});
+  // One row of vertices per run: the XOR of the (up to) two pixel rows around line ky.
+  auto rowsOfLine = [&](std::int64_t ky, auto&& visit)
   {
-    exec.forRange(ny + 1,
-      [&](std::int64_t yb, std::int64_t ye)
-      {
-        std::vector<Word> parity(rowWords), bits(rowWords + 1);
-        for (std::int64_t ky = yb; ky < ye; ++ky)
-        {
-          std::fill(parity.begin(), parity.end(), 0);
-          for (std::int64_t y = ky - 1; y <= ky; ++y)
-          {
-            if (y < 0 || y >= ny)
-              continue;
-            const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
-            for (std::size_t w = 0; w < rowWords; ++w)
-              parity[w] ^= r[w];
-          }
-          rowParityToVertexBits(parity.data(), rowWords, bits.data());
-          appendRowVertices(bits.data(), rowWords + 1, 0, static_cast<Coord>(ky), lines[ky]);
-        }
-      });
-  }
-  return EVM(2, AxisOrder{ 2, 1, 0 }, concatenate(lines));
+    std::vector<Word> parity(rowWords, 0), bits(rowWords + 1);
+    for (std::int64_t y = ky - 1; y <= ky; ++y)
+    {
+      if (y < 0 || y >= ny)
+        continue;
+      const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
+      for (std::size_t w = 0; w < rowWords; ++w)
+        parity[w] ^= r[w];
+    }
+    rowParityToVertexBits(parity.data(), rowWords, bits.data());
+    visit(0, static_cast<Coord>(ky), bits.data());
+  };
+  return EVM(2, AxisOrder{ 2, 1, 0 }, collectVertices(ny + 1, rowWords + 1, exec, rowsOfLine));
 }
 
 std::array<std::size_t, 3> planesPerAxis(const EVM& evm)

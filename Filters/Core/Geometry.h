@@ -171,6 +171,19 @@ inline int countTrailingZeros(std::uint64_t w)
 #endif
 }
 
+/// Number of set bits of a word.
+inline int popCount(std::uint64_t w)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_popcountll(w);
+#else
+  int n = 0;
+  for (; w; w &= w - 1)
+    ++n;
+  return n;
+#endif
+}
+
 } // namespace vbr
 
 #endif
