@@ -1,10 +1,11 @@
 // Separating polygons of a 2D pixel set by recursive pressing-in of lattice hulls (the method
 // is described in ConvexHullModifier2D.h). The passes: group the centres of one class strictly
-// inside a hull (8-connected components), give each group a region (its lattice hull by
-// Andrew's monotone chain; a thickened triangle when flat; a notch from an edge piece of the
-// parent when nothing off its line fits inside), merge the groups of regions that meet until
-// the regions are pairwise apart, recurse into every hull; then write each hull's loop with its
-// notches spliced in, holes reversed, and the background centres on the loops. Every decision
+// inside a region with those on its boundary (8-connected components), give each group a
+// region (a notch opened through the edge it touches; else its lattice hull by Andrew's
+// monotone chain, a thickened triangle when flat, or a notch from an empty edge piece), merge
+// the groups of regions that meet until the regions are pairwise apart, recurse into every
+// region; then write each region's loop with its notches spliced in recursively, holes
+// reversed, and the background centres on the loops. Every decision
 // is an exact integer test: orientations and row spans of hulls in 128-bit products, lattice
 // points inside a notch by Pick's theorem, disjointness of convex regions by separating edges.
 // The triangles of a polygon with holes come from a constrained Delaunay triangulation of its
@@ -183,11 +184,28 @@ std::vector<Points> components(Points p)
   return groups;
 }
 
+/// Calls f for every lattice point of the loop (each once: an edge without its end).
+template<typename F>
+void forLatticePointsOf(const Points& loop, F&& f)
+{
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    const Point2L& u = loop[i];
+    const Point2L& v = loop[(i + 1) % loop.size()];
+    const std::int64_t k = gcdOf(v[0] - u[0], v[1] - u[1]);
+    for (std::int64_t j = 0; j < k; ++j)
+      f(Point2L{ u[0] + j * (v[0] - u[0]) / k, u[1] + j * (v[1] - u[1]) / k });
+  }
+}
+
 /// The region of one group: a hull (three corners or more, counter-clockwise), or none.
 struct Shape
 {
   /// The hull of the group's centres (one or two corners when flat): all a merge needs.
   Points core;
+  /// Centres of the group's class on the parent's boundary 8-connected to it (a concavity
+  /// opening there), not on a notch parent's own piece.
+  Points touching;
   Points hull;
   bool notch = false;
   std::size_t edge = 0; ///< a notch's edge of the parent hull, and its piece [a, b] on it
@@ -329,13 +347,17 @@ std::int64_t interiorLatticePoints(const Points& p)
 
 /// A flat group pressed in from a piece [a, b] of an edge of the parent between consecutive
 /// lattice points: the notch conv(a, b, group) of least area with no lattice point inside.
-bool notchFrom(Shape& s, const Points& flat, const Points& parent)
+/// Never from a notch parent's own piece (that is its parent's boundary).
+bool notchFrom(Shape& s, const Points& flat, const Shape& region)
 {
+  const Points& parent = region.hull;
   Wide bestArea = -1;
   for (std::size_t e = 0; e < parent.size(); ++e)
   {
     const Point2L& u = parent[e];
     const Point2L& v = parent[(e + 1) % parent.size()];
+    if (region.notch && u == region.a && v == region.b)
+      continue;
     const std::int64_t k = gcdOf(v[0] - u[0], v[1] - u[1]);
     const Point2L step{ (v[0] - u[0]) / k, (v[1] - u[1]) / k };
     for (std::int64_t j = 0; j < k; ++j)
@@ -363,9 +385,69 @@ bool notchFrom(Shape& s, const Points& flat, const Points& parent)
   return bestArea >= 0;
 }
 
-/// The region of a group below `parent` (null at level 0). False when none was found.
-bool shapeGroup(Shape& s, const Points* parent, const Image2D& img)
+/// Whether every lattice point strictly between a and b has the class `object`.
+bool openRun(const Point2L& a, const Point2L& b, const Image2D& img, bool object)
 {
+  const std::int64_t k = gcdOf(b[0] - a[0], b[1] - a[1]);
+  for (std::int64_t j = 1; j < k; ++j)
+    if (img.object({ a[0] + j * (b[0] - a[0]) / k, a[1] + j * (b[1] - a[1]) / k }) != object)
+      return false;
+  return true;
+}
+
+/// A group touching its parent's boundary on one edge opens there (definition CO, pressing-in
+/// of the paper): the notch conv(group, a, b), [a, b] the touching centres' span on that edge
+/// (one lattice step when a single centre touches), every centre strictly between a and b of
+/// the group's class (they end up outside the parent's region). False when the touching
+/// centres lie on no single edge or the run between them holds the other class.
+bool openNotch(Shape& s, const Points& parent, const Image2D& img, bool object)
+{
+  for (std::size_t e = 0; e < parent.size(); ++e)
+  {
+    const Point2L& u = parent[e];
+    const Point2L& v = parent[(e + 1) % parent.size()];
+    if (!std::all_of(s.touching.begin(),
+          s.touching.end(),
+          [&](const Point2L& p) { return cross(u, v, p) == 0; }))
+      continue;
+    auto along = [&](const Point2L& p)
+    { return Wide(p[0] - u[0]) * (v[0] - u[0]) + Wide(p[1] - u[1]) * (v[1] - u[1]); };
+    const auto [lo, hi] = std::minmax_element(s.touching.begin(),
+      s.touching.end(),
+      [&](const Point2L& x, const Point2L& y) { return along(x) < along(y); });
+    Point2L a = *lo, b = *hi;
+    if (a == b)
+    {
+      const std::int64_t k = gcdOf(v[0] - u[0], v[1] - u[1]);
+      const Point2L step{ (v[0] - u[0]) / k, (v[1] - u[1]) / k };
+      if (b != v)
+        b = { a[0] + step[0], a[1] + step[1] };
+      else
+        a = { b[0] - step[0], b[1] - step[1] };
+    }
+    if (!openRun(a, b, img, object))
+      return false;
+    Points corners = s.core;
+    corners.push_back(a);
+    corners.push_back(b);
+    s.hull = latticeHull(corners);
+    s.notch = true;
+    s.edge = e;
+    s.a = a;
+    s.b = b;
+    return s.hull.size() >= 3;
+  }
+  return false;
+}
+
+/// The region of a group of class `object` below `parent` (null at level 0): opened through
+/// the parent's boundary where it touches it, else a hull strictly inside (thickened when
+/// flat) or a notch from an empty edge piece. False when none was found.
+bool shapeGroup(Shape& s, const Shape* parent, const Image2D& img, bool object)
+{
+  s.notch = false;
+  if (parent && !s.touching.empty() && openNotch(s, parent->hull, img, object))
+    return true;
   s.notch = false;
   s.hull = s.core;
   if (s.hull.size() >= 3)
@@ -377,7 +459,7 @@ bool shapeGroup(Shape& s, const Points* parent, const Image2D& img)
     s.hull = thickenFree(flat, img);
     return true;
   }
-  return thickenInside(s, flat, *parent) || notchFrom(s, flat, *parent);
+  return thickenInside(s, flat, parent->hull) || notchFrom(s, flat, *parent);
 }
 
 /// Whether every corner of q lies strictly outside one edge of p.
@@ -404,22 +486,19 @@ bool meet(const Points& p, const Points& q)
   return !separatedByEdgeOf(p, q) && !separatedByEdgeOf(q, p);
 }
 
-/// The regions of one level: every group shaped, groups of regions that meet merged until
-/// the regions are pairwise apart. Each region is checked against all others once; one that
-/// grew by a merge is checked again (the others were apart from each other already). Groups
-/// without a region are reported in `failed`.
-std::vector<Shape> settleLevel(const std::vector<Points>& groups,
-  const Points* parent,
+/// The regions of one level (groups of class `object`): every group shaped, groups of regions
+/// that meet merged until the regions are pairwise apart. Each region is checked against all
+/// others once; one that grew by a merge is checked again (the others were apart from each
+/// other already). Groups without a region are reported in `failed`.
+std::vector<Shape> settleLevel(std::vector<Shape> shapes,
+  const Shape* parent,
   const Image2D& img,
+  bool object,
   std::size_t& failed)
 {
-  std::vector<Shape> shapes(groups.size());
-  std::vector<char> alive(groups.size(), 1);
-  for (std::size_t i = 0; i < groups.size(); ++i)
-  {
-    shapes[i].core = latticeHull(groups[i]);
-    shapeGroup(shapes[i], parent, img);
-  }
+  std::vector<char> alive(shapes.size(), 1);
+  for (Shape& shape : shapes)
+    shapeGroup(shape, parent, img, object);
   for (std::size_t i = 0; i < shapes.size(); ++i)
     for (std::size_t k = 0; alive[i] && k < shapes.size(); ++k)
       if (k != i && alive[k] && meet(shapes[i].hull, shapes[k].hull))
@@ -427,8 +506,10 @@ std::vector<Shape> settleLevel(const std::vector<Points>& groups,
         Points& c = shapes[i].core;
         c.insert(c.end(), shapes[k].core.begin(), shapes[k].core.end());
         c = latticeHull(c);
+        Points& t = shapes[i].touching;
+        t.insert(t.end(), shapes[k].touching.begin(), shapes[k].touching.end());
         alive[k] = 0;
-        shapeGroup(shapes[i], parent, img);
+        shapeGroup(shapes[i], parent, img, object);
         k = std::numeric_limits<std::size_t>::max(); // grown: against all again (k wraps to 0)
       }
   std::vector<Shape> settled;
@@ -449,23 +530,63 @@ struct Node
   std::vector<std::size_t> children;
 };
 
-/// The tree, breadth first: level 0 from the object's groups, then the centres of the other
-/// class strictly inside every hull (notches hold none).
+/// The groups of class `object` below a region: the 8-connected components of its centres of
+/// that class strictly inside and on its boundary (not on a notch's own piece, which is the
+/// parent's boundary), each with its inside centres (its core) and its boundary ones.
+std::vector<Shape> groupsBelow(const Shape& region, const Image2D& img, bool object)
+{
+  Points inside = centresInside(region.hull, img, object);
+  if (inside.empty())
+    return {};
+  std::sort(inside.begin(), inside.end()); // for the binary search below
+  Points all = inside;
+  forLatticePointsOf(region.hull,
+    [&](const Point2L& p)
+    {
+      const bool own = region.notch && cross(region.a, region.b, p) == 0 &&
+        std::min(region.a, region.b) <= p && p <= std::max(region.a, region.b);
+      if (img.inside(p) && img.object(p) == object && !own)
+        all.push_back(p);
+    });
+  const std::vector<Points> parts = components(all);
+  std::vector<Shape> groups;
+  for (const Points& part : parts)
+  {
+    Shape g;
+    Points core;
+    for (const Point2L& p : part)
+      (std::binary_search(inside.begin(), inside.end(), p) ? core : g.touching).push_back(p);
+    if (core.empty())
+      continue; // only on the boundary: marked there, nothing to press in
+    g.core = latticeHull(core);
+    groups.push_back(std::move(g));
+  }
+  return groups;
+}
+
+/// The tree, breadth first: level 0 from the object's groups, then the groups of the other
+/// class below every region.
 std::vector<Node> buildTree(const Image2D& img, const Points& objects, std::size_t& failed)
 {
   std::vector<Node> nodes;
-  for (Shape& s : settleLevel(components(objects), nullptr, img, failed))
+  std::vector<Shape> first;
+  for (const Points& group : components(objects))
+  {
+    first.emplace_back();
+    first.back().core = latticeHull(group);
+  }
+  for (Shape& s : settleLevel(std::move(first), nullptr, img, true, failed))
     nodes.push_back({ std::move(s), 0, {} });
   for (std::size_t n = 0; n < nodes.size(); ++n)
   {
-    if (nodes[n].shape.notch || nodes[n].shape.hull.empty())
+    if (nodes[n].shape.hull.empty())
       continue;
-    const Points hull = nodes[n].shape.hull;
+    const Shape region = nodes[n].shape;
     const int level = nodes[n].level + 1;
-    const Points inside = centresInside(hull, img, level % 2 == 0);
-    if (inside.empty())
+    std::vector<Shape> groups = groupsBelow(region, img, level % 2 == 0);
+    if (groups.empty())
       continue;
-    for (Shape& s : settleLevel(components(inside), &hull, img, failed))
+    for (Shape& s : settleLevel(std::move(groups), &region, img, level % 2 == 0, failed))
     {
       nodes[n].children.push_back(nodes.size());
       nodes.push_back({ std::move(s), level, {} });
@@ -480,9 +601,9 @@ void append(Points& loop, const Point2L& p)
     loop.push_back(p);
 }
 
-/// A hull's loop with the notches of its children spliced into their edge pieces (each
-/// notch's other sides, walked clockwise from a to b), reversed for odd levels.
-Points nodeLoop(const std::vector<Node>& nodes, const Node& node)
+/// A region's loop, counter-clockwise: its hull with the loops of its notch children spliced
+/// into their pieces (each notch's loop walked backwards from a to b), recursively.
+Points ccwLoop(const std::vector<Node>& nodes, const Node& node)
 {
   const Points& h = node.shape.hull;
   std::vector<std::pair<std::pair<std::size_t, Wide>, std::size_t>> notches;
@@ -504,7 +625,7 @@ Points nodeLoop(const std::vector<Node>& nodes, const Node& node)
     for (; k < notches.size() && notches[k].first.first == i; ++k)
     {
       const Shape& s = nodes[notches[k].second].shape;
-      const Points& p = s.hull;
+      const Points p = ccwLoop(nodes, nodes[notches[k].second]);
       const std::size_t ia =
         static_cast<std::size_t>(std::find(p.begin(), p.end(), s.a) - p.begin());
       append(loop, s.a);
@@ -514,53 +635,47 @@ Points nodeLoop(const std::vector<Node>& nodes, const Node& node)
   }
   if (loop.size() > 1 && loop.front() == loop.back())
     loop.pop_back();
+  return loop;
+}
+
+/// The region's loop with the object on the left: reversed for odd levels (holes).
+Points nodeLoop(const std::vector<Node>& nodes, const Node& node)
+{
+  Points loop = ccwLoop(nodes, node);
   if (node.level % 2 == 1)
     std::reverse(loop.begin(), loop.end());
   return loop;
 }
 
-/// The loops and polygons of the tree: every hull that is not a notch gives a loop; even ones
-/// are outer boundaries, their odd children the holes.
+/// The loops and polygons of the tree: every region that is not a notch gives a loop; even
+/// ones are outer boundaries, odd ones holes of the polygon that owns their parent (a polygon
+/// owns itself and, through notches, the regions spliced into its loops).
 void writeLoops(const std::vector<Node>& nodes, SeparatingPolygons& out)
 {
-  std::vector<std::size_t> loopOf(nodes.size(), 0);
+  std::vector<std::size_t> parent(nodes.size(), nodes.size()), owner(nodes.size());
   for (std::size_t n = 0; n < nodes.size(); ++n)
+    for (std::size_t c : nodes[n].children)
+      parent[c] = n;
+  std::vector<std::size_t> polygonOf(nodes.size(), 0);
+  for (std::size_t n = 0; n < nodes.size(); ++n) // breadth first: parents come first
   {
     const Node& node = nodes[n];
+    const bool own = !node.shape.notch && node.level % 2 == 0;
+    owner[n] = own || parent[n] == nodes.size() ? n : owner[parent[n]];
+    out.degreeOfNonConvexity = std::max(out.degreeOfNonConvexity, node.level);
+    out.notches += node.shape.notch ? 1 : 0;
     if (node.shape.hull.empty() || node.shape.notch)
+      continue;
+    const std::size_t loop = out.loops.size();
+    out.loops.push_back({ nodeLoop(nodes, node), node.level });
+    if (own)
     {
-      out.notches += node.shape.notch ? 1 : 0;
+      polygonOf[n] = out.polygons.size();
+      out.polygons.push_back({ loop, {}, node.level });
       continue;
     }
-    loopOf[n] = out.loops.size();
-    out.loops.push_back({ nodeLoop(nodes, node), node.level });
-    out.degreeOfNonConvexity = std::max(out.degreeOfNonConvexity, node.level);
-    out.holes += node.level % 2;
-  }
-  for (std::size_t n = 0; n < nodes.size(); ++n)
-  {
-    const Node& node = nodes[n];
-    if (node.shape.hull.empty() || node.shape.notch || node.level % 2 == 1)
-      continue;
-    SeparatingPolygon polygon{ loopOf[n], {}, node.level };
-    for (std::size_t c : node.children)
-      if (!nodes[c].shape.hull.empty() && !nodes[c].shape.notch)
-        polygon.holes.push_back(loopOf[c]);
-    out.polygons.push_back(std::move(polygon));
-  }
-}
-
-/// Calls f for every lattice point of the loop (each once: an edge without its end).
-template<typename F>
-void forLatticePointsOf(const Points& loop, F&& f)
-{
-  for (std::size_t i = 0; i < loop.size(); ++i)
-  {
-    const Point2L& u = loop[i];
-    const Point2L& v = loop[(i + 1) % loop.size()];
-    const std::int64_t k = gcdOf(v[0] - u[0], v[1] - u[1]);
-    for (std::int64_t j = 0; j < k; ++j)
-      f(Point2L{ u[0] + j * (v[0] - u[0]) / k, u[1] + j * (v[1] - u[1]) / k });
+    ++out.holes;
+    out.polygons[polygonOf[owner[parent[n]]]].holes.push_back(loop);
   }
 }
 
@@ -594,7 +709,7 @@ SeparatingPolygons separatingPolygons2D(const BitVolume& image)
     return out;
   Shape all;
   all.core = latticeHull(objects);
-  shapeGroup(all, nullptr, img);
+  shapeGroup(all, nullptr, img, true);
   out.hull = all.hull;
 
   std::size_t failed = 0;

@@ -9,41 +9,52 @@
 // inside; the centres on a loop are marked, so that the pixel set is rebuilt from the loops and
 // the marks alone (revertSeparatingPolygons2D).
 //
-// The method is a tree of nested lattice hulls, the plane version of Algorithm 1 with the
-// touching rule of the 3D method applied everywhere (every piece kept apart). Level 0: the
-// object centres grouped by 8-connectivity, each group's convex hull; hulls that meet (closed
+// The method is a tree of nested regions, the plane version of Algorithm 1 with the touching
+// rule of the 3D method (pieces kept apart unless they share a whole edge piece). Level 0: the
+// object centres grouped by 8-connectivity, each group's convex hull; regions that meet (closed
 // sets, corners and edges included) have their groups merged until they are pairwise apart.
-// Below a hull C of one class (object at even levels, background at odd ones) the centres of
-// the other class strictly inside C are grouped the same way, and each group gets one convex
-// region strictly inside C (its hull) or, when no such region exists, a notch pressed in from
-// one edge of C (below). The regions of a level are merged until they are pairwise apart, and
-// the recursion goes on inside every hull. The separating set is C0 - (C1 - (C2 - ...)) over
-// the tree: even-level hulls bound the object, odd-level ones its holes.
-//
-// Flat groups (a single centre or centres on one line) are thickened: at level 0 by one lattice
-// point off their line, chosen so that the triangle holds no lattice point but its corners and
-// the group (a pixel touching others only at a corner, or a row, becomes such a triangle; its
-// extra corner is a background centre on the boundary, off the image when the image is one
-// pixel thick); below C by the lattice points strictly inside C nearest to them. When C holds no
-// lattice point off the group's line strictly inside, the group is pressed in as a notch
-// conv(a, b, group) from a piece [a, b] of an edge of C between consecutive lattice points
-// (definition PR of the paper): accepted only when the notch holds no lattice point strictly
-// inside, so that nothing lies below it. A notch meets C exactly in [a, b] (its other corners
-// are strictly inside C), so the loop of C with [a, b] replaced by the notch's other sides is
-// still simple.
+// Below a region C of one class (object at even levels, background at odd ones) the centres of
+// the other class strictly inside C are grouped with those on C's boundary (8-connected
+// components; a component with no centre strictly inside needs nothing, its centres are marked
+// on the boundary). Each group gets one convex region R:
+//   a concavity (definition CO) opens: when the group's centres on C's boundary lie on one edge
+//     of C, R = conv(group inside, a, b) with [a, b] their span on that edge (one lattice step
+//     when a single centre touches), accepted when every centre strictly between a and b has
+//     the group's class (those end up outside C's region);
+//   otherwise R is the group's hull strictly inside C (a hole, a cavity of the paper);
+//   a flat group that touches nothing is thickened: by the lattice points strictly inside C
+//     nearest to it, or, when C holds none off its line, pressed in as a notch conv(a, b, group)
+//     from a piece [a, b] of an edge of C between consecutive lattice points with no lattice
+//     point inside the notch (definition PR).
+// A notch R meets C exactly in [a, b] (its other corners are strictly inside C), so C's loop with
+// [a, b] replaced by R's other sides (and, recursively, the notches of R spliced into those) is
+// still simple. The regions of a level are merged until pairwise apart, and the recursion goes
+// on inside every region; a notch's own piece [a, b] is never pressed in again from below. The
+// separating set is C0 - (C1 - (C2 - ...)) over the tree: even levels bound the object, odd ones
+// its holes and notches. Level 0 thickens flat groups by one lattice point off their line, so
+// that the triangle holds no lattice point but its corners and the group (a lone pixel or a row
+// becomes such a triangle; its extra corner is a background centre on the boundary, off the
+// image when the image is one pixel thick).
 //
 // Touching pixels (the documented rule). Pieces that would touch only at a corner are kept
-// apart: hulls of one level are closed sets pairwise apart, every hull lies strictly inside its
+// apart: regions of one level are closed sets pairwise apart, hulls lie strictly inside their
 // parent, and notches meet their parent only in their own edge piece. So no boundary pinches:
 // pixels touching only at a corner end up in one polygon (their groups merge, 8-connectivity)
 // with the other two centres of that 2x2 square on its boundary or outside it.
 //
-// Separation, by induction over the tree: let p be a centre and C the deepest hull holding p.
-// If p has C's class it lies in C minus its children (closed): inside or on the boundary. If
-// not, p is on C's boundary, since a centre of the other class strictly inside C lies in a child
-// of C. Every child holds fewer lattice points than its parent (it misses the parent's corners),
-// so the recursion ends. The result is checked (its reversion against the input); `complete`
-// is false, with a reason, only when a flat group finds neither a thickening nor a notch.
+// Separation, by induction over the tree: let p be a centre and R the deepest region holding p.
+// If p has R's class it lies in R minus its children (closed): on R's side, or on a boundary.
+// If not, p is on R's boundary, since a centre of the other class strictly inside R lies in a
+// child of R; it stays on the final boundary unless it lies strictly inside a notch's piece,
+// which only centres of the notch's class do. Every child holds fewer lattice points than its
+// parent (it misses the parent's corners), so the recursion ends. The result is checked (its
+// reversion against the input); `complete` is false, with a reason, only when a flat group finds
+// neither a thickening nor a notch.
+//
+// Where it departs from the paper: one region per group and level, merged while they meet (the
+// paper spans one hull per concavity from the labelled faces); a concavity touching the hull
+// on more than one edge (around a corner of the hull) is kept apart as a hole inside, its
+// centres on the hull marked, rather than opened.
 #ifndef vbr_ConvexHullModifier2D_h
 #define vbr_ConvexHullModifier2D_h
 

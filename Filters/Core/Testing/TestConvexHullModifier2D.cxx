@@ -332,6 +332,20 @@ TEST(ConvexHullModifier2D, DiscWithHolesAndRing)
   ASSERT_EQ(ring.polygons.size(), 1u);
   EXPECT_EQ(ring.polygons[0].holes.size(), 1u);
   EXPECT_EQ(ring.degreeOfNonConvexity, 1);
+  // A square ring with a mouth through the bottom edge of its hull: the hole opens there
+  // (a concavity pressed in from the touching edge piece), no hole is left.
+  const auto c = check(image(15,
+                         15,
+                         [](int x, int y)
+                         {
+                           const bool hole = x >= 4 && x <= 10 && y >= 4 && y <= 10;
+                           const bool mouth = x >= 5 && x <= 9 && y < 4;
+                           return !hole && !mouth;
+                         }),
+    "C shape");
+  ASSERT_EQ(c.polygons.size(), 1u);
+  EXPECT_TRUE(c.polygons[0].holes.empty());
+  EXPECT_EQ(c.notches, 1);
   const auto two = check(
     image(20, 9, [](int x, int y) { return y > 1 && y < 7 && (x < 6 || x > 12); }), "two blobs");
   EXPECT_EQ(two.polygons.size(), 2u);
