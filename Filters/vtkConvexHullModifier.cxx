@@ -1,6 +1,7 @@
 #include "vtkConvexHullModifier.h"
 
 #include "ConvexHullModifier.h"
+#include "ConvexHullModifier2D.h"
 #include "Geometry.h"
 #include "vtkVoxelBRepAdapters.h"
 
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -35,14 +37,107 @@ namespace
 
 using Int3 = vbr::Point3; // a lattice point or voxel index
 
-/// One selected object: its label, the offset of its box in the grid, its voxels and H.
+/// One selected object: its label, the offset of its box in the grid, its voxels and H, or on
+/// a 2D image (flatAxis >= 0) its separating polygons in the plane axes (u, v) of the box.
 struct ModifiedObject
 {
   vbr::vtk::LabelValue label;
   Int3 offset{ 0, 0, 0 };
   vbr::BitVolume voxels;
   vbr::ModifiedHull result;
+  int flatAxis = -1;
+  vbr::SeparatingPolygons polygons;
+  /// The background centres of the image on the loops (the core lists those of the box only;
+  /// a thickened corner can lie outside the box), in index coordinates.
+  std::vector<Int3> backgroundOnLoops;
+
+  bool complete() const
+  {
+    return this->flatAxis >= 0 ? this->polygons.complete : this->result.complete;
+  }
+  const std::string& failure() const
+  {
+    return this->flatAxis >= 0 ? this->polygons.failure : this->result.failure;
+  }
 };
+
+/// The axes of a 2D image's plane, (u, v, flat) right-handed: loops counter-clockwise in (u, v)
+/// face the flat axis.
+std::array<int, 2> planeAxes(int flat)
+{
+  return { (flat + 1) % 3, (flat + 2) % 3 };
+}
+
+/// The axis of a 2D image (one pixel thick along it), or -1 for a volume: the grid's own flat
+/// axis (cell data on one layer of points), else the last axis with one voxel.
+int flatAxisOf(const vbr::vtk::VoxelGrid& grid)
+{
+  if (grid.flatAxis >= 0)
+    return grid.flatAxis;
+  for (int d = 2; d >= 0; --d)
+    if (grid.dims[d] == 1)
+      return d;
+  return -1;
+}
+
+/// The pixels of an object's box in its plane axes.
+vbr::BitVolume planeImage(const vbr::BitVolume& voxels, int flat)
+{
+  const auto uv = planeAxes(flat);
+  vbr::BitVolume image(voxels.size(uv[0]), voxels.size(uv[1]), 1);
+  std::array<std::int32_t, 3> i{ 0, 0, 0 };
+  for (i[uv[1]] = 0; i[uv[1]] < voxels.size(uv[1]); ++i[uv[1]])
+    for (i[uv[0]] = 0; i[uv[0]] < voxels.size(uv[0]); ++i[uv[0]])
+      if (voxels.get(i[0], i[1], i[2]))
+        image.set(i[uv[0]], i[uv[1]], 0);
+  return image;
+}
+
+/// The object's separating polygons and the background centres of the image on them.
+void separateInPlane(ModifiedObject& o, int flat, const std::array<std::int32_t, 3>& dims)
+{
+  o.flatAxis = flat;
+  o.polygons = vbr::separatingPolygons2D(planeImage(o.voxels, flat));
+  const auto uv = planeAxes(flat);
+  for (const vbr::Point2L& p : vbr::latticePointsOnLoops(o.polygons.loops))
+  {
+    Int3 box{ 0, 0, 0 };
+    box[uv[0]] = p[0];
+    box[uv[1]] = p[1];
+    Int3 index = box;
+    bool inImage = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      index[a] += o.offset[a];
+      inImage = inImage && index[a] >= 0 && index[a] < dims[a];
+    }
+    const bool inBox =
+      p[0] >= 0 && p[1] >= 0 && p[0] < o.voxels.size(uv[0]) && p[1] < o.voxels.size(uv[1]);
+    const bool object = inBox &&
+      o.voxels.get(static_cast<std::int32_t>(box[0]),
+        static_cast<std::int32_t>(box[1]),
+        static_cast<std::int32_t>(box[2]));
+    if (inImage && !object)
+      o.backgroundOnLoops.push_back(index);
+  }
+}
+
+/// The voxels of an object rebuilt from its H or its polygons and their marks alone.
+vbr::BitVolume revertObject(const ModifiedObject& o)
+{
+  if (o.flatAxis < 0)
+    return vbr::revertModifiedHull(o.result.surface, o.result.backgroundOnSurface, o.voxels.dims());
+  const auto uv = planeAxes(o.flatAxis);
+  const vbr::BitVolume plane = vbr::revertSeparatingPolygons2D(
+    o.polygons.loops, o.polygons.backgroundOnBoundary, o.voxels.size(uv[0]), o.voxels.size(uv[1]));
+  vbr::BitVolume back(o.voxels.size(0), o.voxels.size(1), o.voxels.size(2));
+  std::array<std::int32_t, 3> i{ 0, 0, 0 };
+  for (i[uv[1]] = 0; i[uv[1]] < plane.size(1); ++i[uv[1]])
+    for (i[uv[0]] = 0; i[uv[0]] < plane.size(0); ++i[uv[0]])
+      if (plane.get(i[uv[0]], i[uv[1]], 0))
+        back.set(i[0], i[1], i[2]);
+  return back;
+}
 
 bool mirrored(const vbr::vtk::VoxelGrid& grid)
 {
@@ -130,6 +225,68 @@ public:
     }
   }
 
+  /// A 2D object: the convex polygon, or every polygon with holes (one cell when it has no
+  /// hole and triangles are not asked for, else its triangles), in the image plane.
+  void addPolygons(const ModifiedObject& o, int mode)
+  {
+    const vbr::SeparatingPolygons& r = o.polygons;
+    if (mode == vtkConvexHullModifier::CONVEX_HULL)
+    {
+      const vtkIdType base = this->addPlanePoints(o, r.hull);
+      std::vector<vtkIdType> ids(r.hull.size());
+      std::iota(ids.begin(), ids.end(), 0);
+      this->addCell(ids, base, this->NextFace++, 0, o.label);
+      return;
+    }
+    for (const vbr::SeparatingPolygon& polygon : r.polygons)
+    {
+      const vtkIdType id = this->NextFace++;
+      const std::vector<vbr::Point2L> corners = vbr::polygonCorners(r, polygon);
+      const vtkIdType base = this->addPlanePoints(o, corners);
+      if (mode == vtkConvexHullModifier::POLYHEDRON && polygon.holes.empty())
+      {
+        std::vector<vtkIdType> ids(corners.size());
+        std::iota(ids.begin(), ids.end(), 0);
+        this->addCell(ids, base, id, polygon.level, o.label);
+        continue;
+      }
+      for (const vbr::Triangle& t : vbr::triangulatePolygonWithHoles(r, polygon))
+        this->addCell({ t[0], t[1], t[2] }, base, id, polygon.level, o.label);
+    }
+  }
+
+  /// Corners of a 2D object (lattice points of its box's plane) at their pixel centres in the
+  /// image plane, with their marks.
+  vtkIdType addPlanePoints(const ModifiedObject& o, const std::vector<vbr::Point2L>& corners)
+  {
+    const auto uv = planeAxes(o.flatAxis);
+    // A flat axis of the grid (cell data on one layer of points) has no half-voxel shift: the
+    // pixels' plane is the points' plane either way.
+    const double flatPosition = this->Grid.flatAxis == o.flatAxis ? 0.0 : 0.5;
+    const vtkIdType first = this->Points->GetNumberOfPoints();
+    for (const vbr::Point2L& c : corners)
+    {
+      double index[3], world[3];
+      index[uv[0]] = static_cast<double>(c[0] + o.offset[uv[0]]) + 0.5;
+      index[uv[1]] = static_cast<double>(c[1] + o.offset[uv[1]]) + 0.5;
+      index[o.flatAxis] = static_cast<double>(o.offset[o.flatAxis]) + flatPosition;
+      this->Grid.positionToWorld(index, world);
+      this->Points->InsertNextPoint(world);
+      Int3 box{ 0, 0, 0 };
+      box[uv[0]] = c[0];
+      box[uv[1]] = c[1];
+      const bool inBox =
+        c[0] >= 0 && c[1] >= 0 && c[0] < o.voxels.size(uv[0]) && c[1] < o.voxels.size(uv[1]);
+      this->Marks->InsertNextValue(inBox &&
+            o.voxels.get(static_cast<std::int32_t>(box[0]),
+              static_cast<std::int32_t>(box[1]),
+              static_cast<std::int32_t>(box[2]))
+          ? 1
+          : 0);
+    }
+    return first;
+  }
+
   void finish(vtkPolyData* output)
   {
     output->SetPoints(this->Points);
@@ -173,6 +330,7 @@ bool modifyObjects(vtkConvexHullModifier* self,
 {
   const std::size_t n = in.objects.size();
   const auto coplanar = static_cast<vbr::CoplanarFaces>(self->GetCoplanarFaces());
+  const int flat = flatAxisOf(in.grid); // a 2D image: separating polygons in its plane
   for (std::size_t i = 0; i < n; ++i)
   {
     if (self->GetAbortExecute())
@@ -185,7 +343,10 @@ bool modifyObjects(vtkConvexHullModifier* self,
       in.objects[i].select(vbr::vtk::makeExecution(self, from, from)), in.axes, o.offset);
     if (o.voxels.empty())
       continue;
-    o.result = vbr::modifyConvexHull(o.voxels, coplanar, vbr::vtk::makeExecution(self, from, to));
+    if (flat >= 0)
+      separateInPlane(o, flat, in.grid.dims);
+    else
+      o.result = vbr::modifyConvexHull(o.voxels, coplanar, vbr::vtk::makeExecution(self, from, to));
     objects.push_back(std::move(o));
   }
   return !self->GetAbortExecute();
@@ -201,7 +362,9 @@ void writeCells(const std::vector<ModifiedObject>& objects,
   OutputBuilder builder(in.grid, in.labelType);
   for (const ModifiedObject& o : objects)
   {
-    if (mode == vtkConvexHullModifier::CONVEX_HULL)
+    if (o.flatAxis >= 0)
+      builder.addPolygons(o, mode);
+    else if (mode == vtkConvexHullModifier::CONVEX_HULL)
       builder.addHull(o);
     else
       builder.addPolyhedron(o, mode == vtkConvexHullModifier::TRIANGLES);
@@ -210,38 +373,79 @@ void writeCells(const std::vector<ModifiedObject>& objects,
   vbr::vtk::setBoundaryColoring(output, labelsMode);
 }
 
-/// The statistics of section 5 and the marks (field data of port 0).
-void writeStatistics(const std::vector<ModifiedObject>& objects, bool separates, vtkFieldData* fd)
+/// The statistics of section 5, summed over the objects (the degree: their maximum).
+struct Statistics
 {
   vtkIdType vertices = 0, edges = 0, faces = 0, hullFaces = 0, concavities = 0, cavities = 0,
             tunnels = 0, degree = 0;
+
+  /// H of a volume's object, or the polygons of a 2D image's (loops: as many edges as corners;
+  /// notches count as concavities, holes as cavities, no tunnels in the plane).
+  void add(const ModifiedObject& o)
+  {
+    if (o.flatAxis >= 0)
+    {
+      const vbr::SeparatingPolygons& r = o.polygons;
+      for (const vbr::SeparatingLoop& loop : r.loops)
+      {
+        this->vertices += static_cast<vtkIdType>(loop.corners.size());
+        this->edges += static_cast<vtkIdType>(loop.corners.size());
+      }
+      this->faces += static_cast<vtkIdType>(r.polygons.size());
+      this->hullFaces += r.hull.empty() ? 0 : 1;
+      this->concavities += r.notches;
+      this->cavities += r.holes;
+      this->degree = std::max<vtkIdType>(this->degree, r.degreeOfNonConvexity);
+      return;
+    }
+    const vbr::ModifiedHull& r = o.result;
+    this->vertices += static_cast<vtkIdType>(r.surface.points.size());
+    this->edges += static_cast<vtkIdType>(r.edgeCount);
+    this->faces += static_cast<vtkIdType>(r.faces.size());
+    this->hullFaces += static_cast<vtkIdType>(r.hull.faces.size());
+    this->concavities += r.concavities;
+    this->cavities += r.cavities;
+    this->tunnels += r.tunnels;
+    this->degree = std::max<vtkIdType>(this->degree, r.degreeOfNonConvexity);
+  }
+};
+
+/// The background centres on H (or on the loops) of every object, in index coordinates.
+void addBackgroundCentres(const ModifiedObject& o, vtkIntArray* onSurface)
+{
+  if (o.flatAxis >= 0)
+  {
+    for (const Int3& p : o.backgroundOnLoops)
+      onSurface->InsertNextTuple3(
+        static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]));
+    return;
+  }
+  for (const auto& p : o.result.backgroundOnSurface)
+    onSurface->InsertNextTuple3(static_cast<double>(p[0] + o.offset[0]),
+      static_cast<double>(p[1] + o.offset[1]),
+      static_cast<double>(p[2] + o.offset[2]));
+}
+
+/// The statistics of section 5 and the marks (field data of port 0).
+void writeStatistics(const std::vector<ModifiedObject>& objects, bool separates, vtkFieldData* fd)
+{
+  Statistics n;
   vtkNew<vtkIntArray> onSurface;
   onSurface->SetName("BackgroundCentresOnSurface");
   onSurface->SetNumberOfComponents(3);
   for (const ModifiedObject& o : objects)
   {
-    const vbr::ModifiedHull& r = o.result;
-    vertices += static_cast<vtkIdType>(r.surface.points.size());
-    edges += static_cast<vtkIdType>(r.edgeCount);
-    faces += static_cast<vtkIdType>(r.faces.size());
-    hullFaces += static_cast<vtkIdType>(r.hull.faces.size());
-    concavities += r.concavities;
-    cavities += r.cavities;
-    tunnels += r.tunnels;
-    degree = std::max<vtkIdType>(degree, r.degreeOfNonConvexity);
-    for (const auto& p : r.backgroundOnSurface)
-      onSurface->InsertNextTuple3(static_cast<double>(p[0] + o.offset[0]),
-        static_cast<double>(p[1] + o.offset[1]),
-        static_cast<double>(p[2] + o.offset[2]));
+    n.add(o);
+    addBackgroundCentres(o, onSurface);
   }
-  vbr::vtk::addFieldValue(fd, "NumberOfVertices", vertices);
-  vbr::vtk::addFieldValue(fd, "NumberOfEdges", edges);
-  vbr::vtk::addFieldValue(fd, "NumberOfFaces", faces);
-  vbr::vtk::addFieldValue(fd, "NumberOfHullFaces", hullFaces);
-  vbr::vtk::addFieldValue(fd, "NumberOfConcavities", concavities);
-  vbr::vtk::addFieldValue(fd, "NumberOfCavities", cavities);
-  vbr::vtk::addFieldValue(fd, "NumberOfTunnels", tunnels);
-  vbr::vtk::addFieldValue(fd, "DegreeOfNonConvexity", degree);
+  vbr::vtk::addFieldValue(fd, "NumberOfVertices", n.vertices);
+  vbr::vtk::addFieldValue(fd, "NumberOfEdges", n.edges);
+  vbr::vtk::addFieldValue(fd, "NumberOfFaces", n.faces);
+  vbr::vtk::addFieldValue(fd, "NumberOfHullFaces", n.hullFaces);
+  vbr::vtk::addFieldValue(fd, "NumberOfConcavities", n.concavities);
+  vbr::vtk::addFieldValue(fd, "NumberOfCavities", n.cavities);
+  vbr::vtk::addFieldValue(fd, "NumberOfTunnels", n.tunnels);
+  vbr::vtk::addFieldValue(fd, "DegreeOfNonConvexity", n.degree);
   vbr::vtk::addFieldValue(fd, "Separates", separates ? 1 : 0);
   fd->AddArray(onSurface);
 }
@@ -266,9 +470,8 @@ long writeReversion(const std::vector<ModifiedObject>& objects,
   for (std::size_t i = 0; i < objects.size(); ++i)
   {
     const ModifiedObject& o = objects[i];
-    const vbr::BitVolume back =
-      vbr::revertModifiedHull(o.result.surface, o.result.backgroundOnSurface, o.voxels.dims());
-    if ((back != o.voxels || !o.result.complete) && wrong < 0)
+    const vbr::BitVolume back = revertObject(o);
+    if ((back != o.voxels || !o.complete()) && wrong < 0)
       wrong = static_cast<long>(i);
     vbr::vtk::markVoxels(back, o.offset, grid.dims, selection->GetPointer(0));
     vbr::vtk::markVoxels(o.voxels, o.offset, grid.dims, expected.data());
@@ -374,7 +577,8 @@ int vtkConvexHullModifier::Execute(vtkInformationVector** inputVector,
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
   vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
-  settings.flatImagesAs2D = false; // a flat image is a one-voxel-thick slab
+  // The selection reads a flat image like any other; flatAxisOf then finds its plane.
+  settings.flatImagesAs2D = false;
   settings.maximumVoxelsPerAxis = (1 << 20) - 1;
   settings.bytesPerVoxel = 1.0 / 8.0 + 2.0;
   settings.distributed = true; // H of the whole image on rank 0 (N ranks = 1 rank)
@@ -405,9 +609,9 @@ int vtkConvexHullModifier::Execute(vtkInformationVector** inputVector,
   if (wrong >= 0)
   {
     const ModifiedObject& o = objects[static_cast<std::size_t>(wrong)];
-    vtkErrorMacro(<< "The polyhedron does not separate object " << wrong << " (" << o.voxels.count()
-                  << " voxels)" << (o.result.failure.empty() ? "" : ": " + o.result.failure)
-                  << ".");
+    vtkErrorMacro(<< "The " << (o.flatAxis >= 0 ? "polygons do" : "polyhedron does")
+                  << " not separate object " << wrong << " (" << o.voxels.count() << " voxels)"
+                  << (o.failure().empty() ? "" : ": " + o.failure()) << ".");
     return 0;
   }
   return 1;

@@ -48,11 +48,26 @@
  * alone (exact ray crossing parity with a symbolic perturbation), and `ReversionMatches` in
  * its field data.
  *
- * @warning A 2D image (or any flat object) gives its convex polygon, two-sided, with every
- * centre on it: the separating polygon with holes of the 2D analogue is not built. An object
- * that is a single voxel or a row has no polyhedron (Separates 0, error). Inputs full of voxels
- * touching along edges and at corners (random noise, porous blobs) separate; the pressing-in
- * of large real objects can take minutes.
+ * A 2D image (one voxel thick along an axis: the flat axis of cell data on one layer of
+ * points, else the last axis with one voxel) gives the 2D analogue (ConvexHullModifier2D.h):
+ * polygons with holes in the image plane, whose loops are simple closed polygons with pixel
+ * centres as corners, pairwise apart, straight edges as long as possible; no object centre
+ * outside, no background centre inside, the centres on the loops marked. Polyhedron writes a
+ * polygon without holes as one cell and one with holes as its triangles (with its FaceId),
+ * Triangles writes triangles, ConvexHull the convex polygon of the pixel centres. Cells are
+ * counter-clockwise seen from the flat axis's positive side (x, y, z cyclic; reversed on a
+ * mirrored grid). Level is the polygon's nesting level (0, 2, ...); NumberOfCavities counts
+ * holes, NumberOfConcavities notches, NumberOfTunnels is 0, NumberOfHullFaces is 1 per object.
+ *
+ * @warning On a 2D image a flat object (one pixel, a row) is thickened by lattice points off
+ * its line, background centres on the boundary; for an image one pixel thick in the plane too
+ * such a corner lies off the image (outside the grid, background by definition, not listed in
+ * BackgroundCentresOnSurface). Pixels touching only at a corner are kept in one polygon, the two
+ * other centres of their square on its boundary or outside, so no boundary pinches. A noisy 2D
+ * image gives deeply nested rings (one region per group and level: 512^2 pixels of noise take
+ * 5 to 12 s). In 3D an object that is a single voxel or a row has no polyhedron (Separates 0,
+ * error). Inputs full of voxels touching along edges and at corners (random noise, porous
+ * blobs) separate; the pressing-in of large real objects can take minutes.
  *
  * Under MPI (ParaView running the filter on N ranks, one piece each) H is the 1-rank H, output
  * once by rank 0 (from the extreme vertices of every rank's voxels), and port 1 gives every

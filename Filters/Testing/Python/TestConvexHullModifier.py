@@ -4,7 +4,10 @@ every output point a voxel centre with its VoxelMark, the winding number of ever
 (numpy, van Oosterom-Strackee) inside the triangles only for object centres and outside only
 for background ones, the closed oriented surface (every edge twice, opposite directions,
 positive volume), and the reversion equal to the selection. Point and cell scalars, origin,
-spacing, extent not at 0, a mirroring direction matrix, label maps.
+spacing, extent not at 0, a mirroring direction matrix, label maps. 2D images (one pixel
+thick): polygons with holes in the image plane, checked from their triangles alone (boundary
+edges, simple boundaries, every lattice point of the plane inside, outside or on them, the marks
+and the reversion).
 """
 
 import math
@@ -138,6 +141,146 @@ def check_case(tag, mask, spacing=(1, 1, 1), origin=(0, 0, 0), index_min=(0, 0, 
     return out
 
 
+def image_2d(mask, flat, spacing, origin, index_min):
+    """A point-data image one pixel thick along `flat` holding `mask` ([v, u]) in its plane."""
+    u, v = (flat + 1) % 3, (flat + 2) % 3
+    shape3 = [1, 1, 1]
+    shape3[u], shape3[v] = mask.shape[1], mask.shape[0]
+    values = np.zeros(shape3[::-1], np.uint8)  # [z, y, x]
+    for (j, i) in np.argwhere(mask):
+        idx = [0, 0, 0]
+        idx[u], idx[v] = i, j
+        values[idx[2], idx[1], idx[0]] = 1
+    return values, make_image(values, spacing, origin, index_min)
+
+
+def plane_points(tag, out, flat, spacing, origin, index_min):
+    """Output points as lattice points (u, v) of the plane, checked to be pixel centres on it."""
+    u, v = (flat + 1) % 3, (flat + 2) % 3
+    rel = (points(out) - np.asarray(origin, float)) / np.asarray(spacing, float)
+    index = rel - np.asarray(index_min)
+    check.true(tag + ": in the image plane", bool(np.allclose(index[:, flat], 0.0, atol=1e-9)))
+    check.true(tag + ": corners are pixel centres",
+               bool(np.allclose(index, np.rint(index), atol=1e-6)))
+    return np.rint(index).astype(np.int64)[:, [u, v]]
+
+
+def boundary_edges(tag, tris, n):
+    """The edges of one triangle only; every corner on them has exactly two (no pinch)."""
+    edges = {}
+    for t in tris:
+        for k in range(3):
+            e = tuple(sorted((int(t[k]), int(t[(k + 1) % 3]))))
+            edges[e] = edges.get(e, 0) + 1
+    boundary = [e for e, count in edges.items() if count == 1]
+    check.true(tag + ": no edge in three triangles", all(c <= 2 for c in edges.values()))
+    degree = np.bincount(np.array(boundary, dtype=np.int64).ravel(), minlength=n)
+    check.true(tag + ": simple boundaries (two boundary edges per corner)",
+               bool(((degree == 0) | (degree == 2)).all()))
+    return boundary
+
+
+def classify_plane(q, tris, boundary, g):
+    """Exact integer tests of lattice points g: on a boundary edge, and in a closed triangle."""
+    on = np.zeros(len(g), bool)
+    for e0, e1 in boundary:
+        p0, p1 = q[e0], q[e1]
+        cr = (p1[0] - p0[0]) * (g[:, 1] - p0[1]) - (p1[1] - p0[1]) * (g[:, 0] - p0[0])
+        within = ((np.minimum(p0, p1) <= g) & (g <= np.maximum(p0, p1))).all(axis=1)
+        on |= (cr == 0) & within
+    covered = np.zeros(len(g), bool)
+    for t in tris:
+        side = []
+        for k in range(3):
+            a, b = q[t[k]], q[t[(k + 1) % 3]]
+            side.append((b[0] - a[0]) * (g[:, 1] - a[1]) - (b[1] - a[1]) * (g[:, 0] - a[0]) >= 0)
+        covered |= side[0] & side[1] & side[2]
+    return on, covered
+
+
+def check_2d(tag, mask, flat=2, spacing=(1, 1, 1), origin=(0, 0, 0), index_min=(0, 0, 0)):
+    """A 2D image (one pixel thick along `flat`; `mask` is [v, u] over its plane axes u, v with
+    (u, v, flat) right-handed): polygons with holes in the image plane, checked here from the
+    triangles alone against every pixel centre and a margin of two."""
+    values, image = image_2d(mask, flat, spacing, origin, index_min)
+    f = run(image, voxelbrep.vtkConvexHullModifier.TRIANGLES)
+    out = f.GetOutput()
+    check.equal(tag + ": separates", field_value(out, "Separates"), 1)
+    q = plane_points(tag, out, flat, spacing, origin, index_min)
+    tris = np.array([c for c in cells(out)], dtype=np.int64).reshape(-1, 3)
+    a, b, c = q[tris[:, 0]], q[tris[:, 1]], q[tris[:, 2]]
+    twice = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    check.true(tag + ": triangles counter-clockwise, none flat", bool((twice > 0).all()))
+    boundary = boundary_edges(tag, tris, len(q))
+    ny, nx = mask.shape
+    in_box = (q[:, 0] >= 0) & (q[:, 1] >= 0) & (q[:, 0] < nx) & (q[:, 1] < ny)
+    expected = np.zeros(len(q), bool)
+    expected[in_box] = mask[q[in_box, 1], q[in_box, 0]]
+    marks = ns.vtk_to_numpy(out.GetPointData().GetArray("VoxelMark"))
+    check.true(tag + ": VoxelMark", bool((marks == expected).all()))
+    on_surface = ns.vtk_to_numpy(out.GetFieldData().GetArray("BackgroundCentresOnSurface"))
+    u, v = (flat + 1) % 3, (flat + 2) % 3
+    listed = {(int(p[u]), int(p[v])) for p in on_surface.reshape(-1, 3)}  # grid indices
+    gy, gx = np.mgrid[-2:ny + 2, -2:nx + 2]
+    g = np.stack([gx.ravel(), gy.ravel()], axis=1)
+    on, covered = classify_plane(q, tris, boundary, g)
+    in_grid = (g[:, 0] >= 0) & (g[:, 1] >= 0) & (g[:, 0] < nx) & (g[:, 1] < ny)
+    obj = np.zeros(len(g), bool)
+    obj[in_grid] = mask[g[in_grid, 1], g[in_grid, 0]]
+    check.equal(tag + ": object centres outside", int((obj & ~covered).sum()), 0)
+    check.equal(tag + ": background centres inside", int((~obj & covered & ~on).sum()), 0)
+    marked = np.array([(int(x), int(y)) in listed for x, y in g])
+    check.true(tag + ": background marks exactly on the boundary",
+               bool((marked == (on & in_grid & ~obj)).all()))
+    rebuilt = in_grid & ((covered & ~on) | (on & ~marked))
+    check.true(tag + ": reversion from the triangles and marks", bool((rebuilt == obj).all()))
+    back = ns.vtk_to_numpy(f.GetOutputDataObject(1).GetPointData().GetArray("Selection"))
+    check.true(tag + ": reversion port equals the selection",
+               bool((back.reshape(values.shape) == values).all()))
+    return check_2d_modes(tag, image, flat, spacing, origin, index_min, float(twice.sum()))
+
+
+def check_2d_modes(tag, image, flat, spacing, origin, index_min, area):
+    """Polyhedron: a polygon per face without holes, triangles for the others, the same area
+    as the triangles (twice the area, shoelace); ConvexHull: one polygon."""
+    poly = run(image, voxelbrep.vtkConvexHullModifier.POLYHEDRON).GetOutput()
+    check.equal(tag + ": polyhedron separates", field_value(poly, "Separates"), 1)
+    pq = plane_points(tag + " polyhedron", poly, flat, spacing, origin, index_min)
+    shoelace = sum(float(np.dot(pq[c, 0], np.roll(pq[c, 1], -1)) -
+                         np.dot(pq[c, 1], np.roll(pq[c, 0], -1))) for c in cells(poly))
+    check.equal(tag + ": polyhedron covers the same area", shoelace, area)
+    face_ids = ns.vtk_to_numpy(poly.GetCellData().GetArray("FaceId"))
+    check.equal(tag + ": faces", field_value(poly, "NumberOfFaces"), len(set(face_ids.tolist())))
+    hull = run(image, voxelbrep.vtkConvexHullModifier.CONVEX_HULL).GetOutput()
+    check.equal(tag + ": one convex polygon", hull.GetNumberOfCells(), 1)
+    return poly
+
+def check_2d_labels():
+    """Labels on a 2D image: each label its own polygons; a one-pixel label's triangle has
+    corners outside the label's box but inside the image, background centres of that label
+    that BackgroundCentresOnSurface must list (grid indices)."""
+    labels = np.zeros((1, 5, 9), np.uint8)
+    labels[0, 2, 2] = 3
+    labels[0, 0:4, 5:9] = 7
+    labels[0, 1, 6] = 0
+    f = run(make_image(labels, spacing=(2, 0.5, 1), origin=(1, 1, 1)),
+            voxelbrep.vtkConvexHullModifier.TRIANGLES, labels=True)
+    out = f.GetOutput()
+    check.equal("2D labels: separates", field_value(out, "Separates"), 1)
+    lab = ns.vtk_to_numpy(out.GetCellData().GetArray("Label"))
+    check.equal("2D labels: both labels", sorted(set(lab.tolist())), [3, 7])
+    q = np.rint((points(out) - 1.0) / np.array([2, 0.5, 1])).astype(np.int64)
+    listed = {tuple(int(x) for x in p) for p in ns.vtk_to_numpy(
+        out.GetFieldData().GetArray("BackgroundCentresOnSurface")).reshape(-1, 3)}
+    corners = {tuple(int(x) for x in q[i]) for c, v in zip(cells(out), lab) if v == 3 for i in c}
+    in_image = {p for p in corners if 0 <= p[0] < 9 and 0 <= p[1] < 5}
+    check.equal("2D labels: the pixel's triangle", len(corners), 3)
+    check.true("2D labels: its background corners in the image listed",
+               in_image - {(2, 2, 0)} <= listed and len(in_image) == 3)
+    back = ns.vtk_to_numpy(f.GetOutputDataObject(1).GetPointData().GetArray("Selection"))
+    check.true("2D labels: reversion", bool((back.reshape(labels.shape) == (labels > 0)).all()))
+
+
 def shape(n, inside):
     z, y, x = np.meshgrid(np.arange(n), np.arange(n), np.arange(n), indexing="ij")
     return inside(x.astype(float), y.astype(float), z.astype(float))
@@ -158,6 +301,25 @@ def main():
                                       (z - 7.5) ** 2) <= 2.2 ** 2)
     out = check_case("torus", ring)
     check.true("torus: a tunnel", field_value(out, "NumberOfTunnels") >= 1)
+    # 2D images: separating polygons with holes in the image plane.
+    yy, xx = np.mgrid[0:21, 0:23]
+    disc = np.hypot(xx - 11, yy - 10) < 9.5
+    holes = (np.hypot(xx - 7, yy - 10) < 2) | (np.hypot(xx - 15, yy - 7) < 2.2) | \
+        ((xx == 14) & (yy == 14))
+    out = check_2d("2D disc with holes", disc & ~holes, spacing=(0.5, 2.0, 3.0),
+                   origin=(3, -2, 1), index_min=(2, -1, 4))
+    check.equal("2D disc with holes: three holes", field_value(out, "NumberOfCavities"), 3)
+    check_2d("2D ring in the xz plane", (np.hypot(xx - 11, yy - 10) < 9) &
+             (np.hypot(xx - 11, yy - 10) > 5), flat=1, spacing=(0.7, 1.0, 1.5),
+             origin=(-1, 5, 2), index_min=(-3, 7, 1))
+    rng = np.random.default_rng(7)
+    for trial in range(6):
+        check_2d("2D noise %d" % trial, rng.random((13, 17)) < 0.3 + 0.1 * trial,
+                 spacing=(1.5, 0.25, 1.0), origin=(0.5, 0.5, -4), index_min=(1, 2, 3))
+    check_2d("2D checkerboard", (xx[:6, :7] + yy[:6, :7]) % 2 == 0)
+    check_2d("2D one pixel", np.array([[0, 0, 0], [0, 1, 0]], bool))
+    check_2d("2D one row", np.array([[1, 1, 0, 1, 1, 1]], bool), spacing=(2, 3, 4))
+    check_2d_labels()
     # Labels: two objects, each its own polyhedron.
     labels = np.zeros((12, 12, 24), np.uint8)
     labels[2:10, 2:10, 2:10] = 3
