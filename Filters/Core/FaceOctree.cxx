@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numeric>
 #include <utility>
 
@@ -325,11 +326,175 @@ NodeFit Compactor::fit(const Candidate& c) const
       corners.push_back(f.projected[it - (this->order.begin() + c.begin)]);
     }
     const auto flat = planeCoordinates(node, corners);
-    if (!(doubledArea(flat) > 0) || !isSimplePolygon(flat))
+    if (!(doubledArea(flat) > 0) || !isSimplePolygon(flat) ||
+      polygonTriangles(node, corners).empty())
       return f;
   }
   f.ok = true;
   return f;
+}
+
+inline Wide cross2(const Point2L& a, const Point2L& b, const Point2L& c)
+{
+  return Wide(b[0] - a[0]) * (c[1] - a[1]) - Wide(b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/// Straight runs, in plane units of 2^-30 voxel: a corner off the chord of its run by at
+/// most `runTolerance` lies on the run, and a run's end lies more than `endTolerance` off the
+/// chord of its neighbouring ends. The grid rounds by half a unit, the doubles far less: both
+/// are well above that and far below anything the voxels shape.
+constexpr double endTolerance = 16.0, runTolerance = 64.0;
+
+double offChord(const std::vector<Point2L>& c, std::size_t a, std::size_t i, std::size_t b)
+{
+  const double len = std::hypot(double(c[b][0] - c[a][0]), double(c[b][1] - c[a][1]));
+  return len > 0 ? std::abs(double(cross2(c[a], c[i], c[b]))) / len : HUGE_VAL;
+}
+
+/// The corner between ends a and b (cyclic) farthest off their chord or out of order along
+/// it, if it is not on the run; n when the run holds.
+std::size_t breakOfRun(const std::vector<Point2L>& c, std::size_t a, std::size_t b)
+{
+  const std::size_t n = c.size();
+  const double dx = double(c[b][0] - c[a][0]), dy = double(c[b][1] - c[a][1]);
+  std::size_t worst = n;
+  double far = runTolerance, last = 0.0;
+  for (std::size_t i = (a + 1) % n; i != b; i = (i + 1) % n)
+  {
+    const double along = dx * double(c[i][0] - c[a][0]) + dy * double(c[i][1] - c[a][1]);
+    if (!(along > last) || !(along < dx * dx + dy * dy))
+      return i;
+    last = along;
+    const double off = offChord(c, a, i, b);
+    if (off > far)
+      far = off, worst = i;
+  }
+  return worst;
+}
+
+/// The ends of the straight runs of a polygon (corners kept), by splitting runs at their
+/// farthest corner and merging runs at ends that go nearly straight, until both hold; empty
+/// if that does not settle or leaves fewer than three ends.
+std::vector<char> runEnds(const std::vector<Point2L>& c)
+{
+  const std::size_t n = c.size();
+  std::vector<char> end(n);
+  for (std::size_t i = 0; i < n; ++i)
+    end[i] = offChord(c, (i + n - 1) % n, i, (i + 1) % n) > endTolerance;
+  for (std::size_t round = 0; round < 2 * n; ++round)
+  {
+    std::vector<std::size_t> ends;
+    for (std::size_t i = 0; i < n; ++i)
+      if (end[i])
+        ends.push_back(i);
+    const std::size_t m = ends.size();
+    if (m < 3)
+      return {};
+    bool changed = false;
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      const std::size_t split = breakOfRun(c, ends[k], ends[(k + 1) % m]);
+      if (split < n)
+        end[split] = 1, changed = true;
+    }
+    for (std::size_t k = 0; k < m && !changed && m > 3; ++k)
+      if (offChord(c, ends[(k + m - 1) % m], ends[k], ends[(k + 1) % m]) <= endTolerance)
+        end[ends[k]] = 0, changed = true;
+    if (!changed)
+      return end;
+  }
+  return {};
+}
+
+/// The coordinates a polygon is cut into triangles in: the plane coordinates scaled up, with
+/// the corners of each straight run moved exactly onto the chord of the run. The triangles
+/// keep the points' own (double) positions, and a corner the plane grid rounds onto one side
+/// of its neighbours' chord may lie a hair on the other: a sliver decided on the grid would
+/// then fold, or a triangle's edge pass through a corner where sewing triangles meet the
+/// polygon. Runs are common: points clamped to a face of their voxel box line up where the
+/// node's plane crosses that face, and flat faces relax into rows. On exact chords a run's
+/// corner is never an ear's tip nor inside a triangle's edge; its triangles take their third
+/// corner well off the run.
+std::vector<Point2L> straightened(const std::vector<Point2L>& flat)
+{
+  const std::size_t n = flat.size();
+  std::int64_t extent = 1;
+  for (const Point2L& p : flat)
+    extent = std::max<std::int64_t>({ extent, std::llabs(p[0]), std::llabs(p[1]) });
+  int bits = 0;
+  while (bits < 63 && (extent >> bits) > 0)
+    ++bits;
+  const std::int64_t scale = std::int64_t(1) << std::clamp(55 - bits, 0, 20);
+  std::vector<Point2L> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = { flat[i][0] * scale, flat[i][1] * scale };
+  const std::vector<char> end = n > 3 ? runEnds(flat) : std::vector<char>();
+  if (end.empty())
+    return out;
+  std::size_t a = 0;
+  while (!end[a])
+    ++a;
+  for (std::size_t steps = 0; steps < n;)
+  {
+    std::size_t b = (a + 1) % n;
+    while (!end[b])
+      b = (b + 1) % n;
+    const double dx = double(flat[b][0] - flat[a][0]), dy = double(flat[b][1] - flat[a][1]);
+    std::int64_t last = 0;
+    for (std::size_t i = (a + 1) % n; i != b; i = (i + 1) % n)
+    {
+      const double along =
+        (dx * double(flat[i][0] - flat[a][0]) + dy * double(flat[i][1] - flat[a][1])) /
+        (dx * dx + dy * dy);
+      const std::int64_t j =
+        std::clamp<std::int64_t>(std::llround(along * double(scale)), last + 1, scale - 1);
+      for (int d = 0; d < 2; ++d)
+        out[i][d] = flat[a][d] * scale + j * (flat[b][d] - flat[a][d]);
+      last = j;
+    }
+    steps += (b + n - a) % n;
+    a = b;
+  }
+  return out;
+}
+
+/// Distance from p to segment ab (plane units).
+double toSegment(const Point2L& p, const Point2L& a, const Point2L& b)
+{
+  const double dx = double(b[0] - a[0]), dy = double(b[1] - a[1]);
+  const double px = double(p[0] - a[0]), py = double(p[1] - a[1]);
+  const double len2 = dx * dx + dy * dy;
+  const double s = len2 > 0 ? std::clamp((dx * px + dy * py) / len2, 0.0, 1.0) : 0.0;
+  return std::hypot(px - s * dx, py - s * dy);
+}
+
+/// Whether the triangles of a polygon keep the orientation and the incidences they have on
+/// the grid once their corners are back at their own positions: no triangle thinner than
+/// the tolerance, and no corner that close to a diagonal it does not end.
+bool robustTriangles(const std::vector<Point2L>& c, const std::vector<Triangle>& triangles)
+{
+  const std::size_t n = c.size();
+  for (const Triangle& t : triangles)
+  {
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const Point2L &a = c[t[k]], &b = c[t[(k + 1) % 3]];
+      longest = std::max(longest, std::hypot(double(b[0] - a[0]), double(b[1] - a[1])));
+    }
+    if (!(double(cross2(c[t[0]], c[t[1]], c[t[2]])) > endTolerance * longest))
+      return false;
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::size_t a = std::size_t(t[k]), b = std::size_t(t[(k + 1) % 3]);
+      if ((a + 1) % n == b || (b + 1) % n == a)
+        continue; // an edge of the polygon
+      for (std::size_t i = 0; i < n; ++i)
+        if (i != a && i != b && toSegment(c[i], c[a], c[b]) <= endTolerance)
+          return false;
+    }
+  }
+  return true;
 }
 
 } // namespace
@@ -359,6 +524,15 @@ std::vector<Point2L> planeCoordinates(const FaceNode& node, const std::vector<Ve
       { std::llround(dot(d, u) * 1073741824.0), std::llround(dot(d, v) * 1073741824.0) });
   }
   return out;
+}
+
+std::vector<Triangle> polygonTriangles(const FaceNode& node, const std::vector<Vec3>& corners)
+{
+  const std::vector<Point2L> grid = planeCoordinates(node, corners);
+  std::vector<Triangle> triangles = triangulateSimplePolygon(straightened(grid));
+  if (triangles.size() + 2 != grid.size() || !robustTriangles(grid, triangles))
+    triangles.clear();
+  return triangles;
 }
 
 BitVolume farVoxels(const BitVolume& object, const Execution& exec)

@@ -22,7 +22,15 @@
 //  - the quadrilaterals with all four points in the node form one disk, whose boundary, with
 //    each point moved to the nearest point of the plane inside its own voxel (the projection
 //    of section 3.4, kept inside the voxel), is a simple polygon turning counter-clockwise
-//    about the normal: the planar polygon that replaces the node's quadrilaterals.
+//    about the normal: the planar polygon that replaces the node's quadrilaterals;
+//  - that polygon can be cut into triangles that keep their orientations and incidences at
+//    the points' own (double) positions (polygonTriangles below). Points clamped to a face of
+//    their box line up along the plane's trace on that face, and flat faces relax into rows:
+//    the 2^-30 plane grid rounds such corners to either side of their neighbours' chord, and
+//    a triangle cut there could fold by a hair or pass through a corner where the sewing
+//    triangles meet the polygon (self-intersections in exact arithmetic). Straight runs are
+//    cut on exact chords; a node whose cut still has a sliver or a diagonal grazing a corner
+//    (a corner on the line of a run elsewhere on the boundary) stays uncompacted.
 // The normal is the sum of the points' GDM normals (area-weighted); the offset is the one
 // nearest the points' mean that the constraints allow (an interval minus open intervals).
 #ifndef vbr_FaceOctree_h
@@ -76,6 +84,13 @@ Vec3 projectIntoBox(const Vec3& p, const Vec3& n, double t, const Vec3& lo, cons
 /// Coordinates of points of a node's plane in an orthonormal basis (u, v) with u x v = the
 /// normal, relative to the node's lowest corner, on an integer grid of 2^-30 voxel.
 std::vector<Point2L> planeCoordinates(const FaceNode& node, const std::vector<Vec3>& points);
+
+/// The triangles of a node's polygon (indices into its corners, counter-clockwise), cut
+/// so that they keep their orientation and incidences at the corners' own positions: the
+/// corners of straight runs (which the plane grid rounds to either side) are cut on exact
+/// chords, and no triangle is a sliver nor has a diagonal grazing a corner. Empty when that
+/// cannot be had: the node is then not compacted.
+std::vector<Triangle> polygonTriangles(const FaceNode& node, const std::vector<Vec3>& corners);
 
 FaceOctree buildFaceOctree(const BitVolume& object,
   const DeformedModel& model,

@@ -37,7 +37,7 @@ std::vector<int> joined(const std::vector<int>& first, const std::vector<int>& s
   return out;
 }
 
-int fanApex(const std::vector<Point2L>& flat, bool* strictFan = nullptr);
+int fanApex(const std::vector<Point2L>& flat);
 
 struct Assembler
 {
@@ -84,6 +84,12 @@ void Assembler::addNodePolygon(std::int32_t id, BoundaryCells cells)
   std::vector<Vec3> corners;
   for (std::int32_t p : loop)
     corners.push_back(this->octree.projected[p]);
+  if (cells == BoundaryCells::Triangles)
+  {
+    for (const Triangle& t : polygonTriangles(node, corners))
+      this->addCell({ loop[t[0]], loop[t[1]], loop[t[2]] }, id, node.level, this->octree.projected);
+    return;
+  }
   const auto flat = planeCoordinates(node, corners);
   std::vector<std::vector<int>> pieces;
   if (fanApex(flat) >= 0)
@@ -93,29 +99,17 @@ void Assembler::addNodePolygon(std::int32_t id, BoundaryCells cells)
   }
   else
     pieces = convexPieces(flat);
-  // Each piece from the corner whose fan has no flat triangle if there is one: drawn as
-  // that fan, or cut into it (ear clipping would leave slivers along straight runs).
+  // Each piece from the corner whose fan has no flat triangle if there is one.
   for (const auto& piece : pieces)
   {
     std::vector<Point2L> sub;
     for (int i : piece)
       sub.push_back(flat[i]);
-    bool strict = false;
-    const int apex = std::max(0, fanApex(sub, &strict));
+    const int apex = std::max(0, fanApex(sub));
     std::vector<std::int32_t> ids;
     for (std::size_t k = 0; k < piece.size(); ++k)
       ids.push_back(loop[piece[(apex + k) % piece.size()]]);
-    if (cells == BoundaryCells::Polygons)
-      this->addCell(ids, id, node.level, this->octree.projected);
-    else if (strict)
-      for (std::size_t k = 1; k + 1 < ids.size(); ++k)
-        this->addCell({ ids[0], ids[k], ids[k + 1] }, id, node.level, this->octree.projected);
-    else // straight runs on every side: ear clipping never makes a flat triangle
-      for (const Triangle& t : triangulateSimplePolygon(sub))
-        this->addCell({ loop[piece[t[0]]], loop[piece[t[1]]], loop[piece[t[2]]] },
-          id,
-          node.level,
-          this->octree.projected);
+    this->addCell(ids, id, node.level, this->octree.projected);
   }
 }
 
@@ -148,9 +142,8 @@ void Assembler::addSewingTriangles(const Quad& q)
   }
 }
 
-/// A corner whose fan covers the polygon, preferring one with no flat triangle (then
-/// *strictFan is set); -1 if none.
-int fanApex(const std::vector<Point2L>& flat, bool* strictFan)
+/// A corner whose fan covers the polygon, preferring one with no flat triangle; -1 if none.
+int fanApex(const std::vector<Point2L>& flat)
 {
   const std::size_t n = flat.size();
   int covering = -1;
@@ -162,11 +155,7 @@ int fanApex(const std::vector<Point2L>& flat, bool* strictFan)
     for (std::size_t i = 1; i + 1 < n && strict; ++i)
       strict = turn(flat[apex], flat[(apex + i) % n], flat[(apex + i + 1) % n]) > 0;
     if (strict)
-    {
-      if (strictFan)
-        *strictFan = true;
       return int(apex);
-    }
     if (covering < 0)
       covering = int(apex);
   }

@@ -10,7 +10,11 @@
 // corner whose fan covers it (PolygonTriangulator.h's fanCoversPolygon); a polygon no corner
 // of which does is cut along diagonals of an ear-clipping triangulation into convex pieces
 // (Hertel and Mehlhorn: a diagonal is removed while both its ends stay convex), each drawn
-// from any corner and each carrying its node's id.
+// from any corner and each carrying its node's id. Such a fan is flat wherever corners run
+// straight (points clamped to a face of their voxel box line up), so the triangles of the
+// Triangles output are cut apart from it, by FaceOctree.h's polygonTriangles: the cut that
+// keeps its orientations and incidences at the points' own positions, which the compaction
+// made sure exists. That triangle mesh is free of self-intersections (CGAL, in the tests).
 #ifndef vbr_FaceOctreeBoundary_h
 #define vbr_FaceOctreeBoundary_h
 
@@ -28,7 +32,7 @@ namespace vbr
 enum class BoundaryCells
 {
   Polygons,      ///< a polygon per face node (or its convex pieces) and sewing triangles
-  Triangles,     ///< the same surface, every polygon triangulated
+  Triangles,     ///< the same surface, every polygon cut into triangles (polygonTriangles)
   Quadrilaterals ///< the relaxed net's quadrilaterals (non-planar), before the octree
 };
 
