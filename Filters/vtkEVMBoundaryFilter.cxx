@@ -574,7 +574,11 @@ void appendObjects(vtkAlgorithm* self,
     placed.push_back({ &breps[o], objects[o].offset });
   std::vector<std::vector<std::int64_t>> numbers;
   vtkLogStartScope(TRACE, "numbered corners");
-  const vbr::CornerSet corners(placed, packer, numbers);
+  // One object of a 2D image has no T-junction vertex: at a grid point strictly inside an
+  // edge, the two pixels on either side of the edge are alike, so no loop turns there. Two
+  // labels can meet there.
+  const bool tJunctions = !settings.planar || n > 1;
+  const vbr::CornerSet corners(placed, packer, numbers, tJunctions);
   builder.addCornerPoints(corners.points());
   vtkLogEndScope("numbered corners");
   vtkIdType faceBase = 0;
@@ -583,10 +587,7 @@ void appendObjects(vtkAlgorithm* self,
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
     const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to)
                                   .forWork(static_cast<std::int64_t>(breps[o].points.size()));
-    // One object of a 2D image has none: at a grid point strictly inside an edge, the two
-    // pixels on either side of the edge are alike, so no loop turns there. Two labels can
-    // meet there.
-    if (!settings.planar || n > 1)
+    if (tJunctions)
     {
       vtkLogStartScope(TRACE, "T-junction vertices");
       vbr::insertTJunctionVertices(breps[o], numbers[o], corners, objects[o].offset, exec);

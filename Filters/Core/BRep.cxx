@@ -240,7 +240,8 @@ std::vector<KeyedCorner> keyedCorners(const std::vector<PlacedBRep>& breps, cons
 
 CornerSet::CornerSet(const std::vector<PlacedBRep>& breps,
   const KeyPacker& packer,
-  std::vector<std::vector<std::int64_t>>& numbers)
+  std::vector<std::vector<std::int64_t>>& numbers,
+  bool orderLines)
 {
   // Sorting numbers the corners in key order: no hash table, whose every probe would miss
   // the cache.
@@ -256,7 +257,7 @@ CornerSet::CornerSet(const std::vector<PlacedBRep>& breps,
       this->Points.push_back(add(breps[c.brep].brep->points[c.point], breps[c.brep].offset));
     numbers[c.brep][c.point] = static_cast<std::int64_t>(this->Points.size()) - 1;
   }
-  for (int axis = 0; axis < 2; ++axis)
+  for (int axis = 0; axis < 2 && orderLines; ++axis)
     if (this->spans(axis)) // no edge runs along an axis all the corners share (a 2D image's)
       this->orderLinesAlong(axis, packer);
 }

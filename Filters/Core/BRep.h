@@ -98,10 +98,12 @@ class CornerSet
 {
 public:
   /// Numbers the corners of `breps`; `numbers[k][i]` becomes the number of point i of
-  /// breps[k]. Throws std::out_of_range for a corner outside the packer's range.
+  /// breps[k]. Without `orderLines`, only the numbers (no T-junction pass can use the set).
+  /// Throws std::out_of_range for a corner outside the packer's range.
   CornerSet(const std::vector<PlacedBRep>& breps,
     const KeyPacker& packer,
-    std::vector<std::vector<std::int64_t>>& numbers);
+    std::vector<std::vector<std::int64_t>>& numbers,
+    bool orderLines = true);
 
   std::size_t size() const { return this->Points.size(); }
 
