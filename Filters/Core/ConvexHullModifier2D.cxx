@@ -167,15 +167,23 @@ Points centresInside(const Points& h, const Image2D& img, bool object)
 std::vector<Points> components(Points p)
 {
   std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
   UnionFind sets(p.size());
+  // In (x, y) order the neighbour (x, y + 1) is the next point, and the neighbours (x + 1,
+  // y - 1 .. y + 1) lie at a position that only moves forward: one pass, no search.
+  std::size_t next = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    for (const Point2L& d : { Point2L{ 1, -1 }, Point2L{ 1, 0 }, Point2L{ 1, 1 }, Point2L{ 0, 1 } })
-    {
-      const Point2L q{ p[i][0] + d[0], p[i][1] + d[1] };
-      const auto it = std::lower_bound(p.begin(), p.end(), q);
-      if (it != p.end() && *it == q)
-        sets.unite(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(it - p.begin()));
-    }
+  {
+    const auto i32 = static_cast<std::uint32_t>(i);
+    if (i + 1 < p.size() && p[i + 1] == Point2L{ p[i][0], p[i][1] + 1 })
+      sets.unite(i32, i32 + 1);
+    const Point2L lowest{ p[i][0] + 1, p[i][1] - 1 };
+    while (next < p.size() && p[next] < lowest)
+      ++next;
+    for (std::size_t j = next; j < p.size() && j < next + 3; ++j)
+      if (p[j][0] == lowest[0] && p[j][1] <= lowest[1] + 2)
+        sets.unite(i32, static_cast<std::uint32_t>(j));
+  }
   std::uint32_t count = 0;
   const std::vector<std::uint32_t> number = sets.numberClasses(count);
   std::vector<Points> groups(count);
@@ -475,13 +483,16 @@ bool separatedByEdgeOf(const Points& p, const Points& q)
   return false;
 }
 
-/// Whether two closed convex regions meet (share a point); a missing region meets nothing.
-bool meet(const Points& p, const Points& q)
+bool boxesApart(const Box& a, const Box& b)
 {
-  if (p.empty() || q.empty())
-    return false;
-  const Box a = boxOf(p), b = boxOf(q);
-  if (a.x1 < b.x0 || b.x1 < a.x0 || a.y1 < b.y0 || b.y1 < a.y0)
+  return a.x1 < b.x0 || b.x1 < a.x0 || a.y1 < b.y0 || b.y1 < a.y0;
+}
+
+/// Whether two closed convex regions, with their boxes, meet (share a point); a missing region
+/// meets nothing.
+bool meet(const Points& p, const Box& a, const Points& q, const Box& b)
+{
+  if (p.empty() || q.empty() || boxesApart(a, b))
     return false;
   return !separatedByEdgeOf(p, q) && !separatedByEdgeOf(q, p);
 }
@@ -489,7 +500,8 @@ bool meet(const Points& p, const Points& q)
 /// The regions of one level (groups of class `object`): every group shaped, groups of regions
 /// that meet merged until the regions are pairwise apart. Each region is checked against all
 /// others once; one that grew by a merge is checked again (the others were apart from each
-/// other already). Groups without a region are reported in `failed`.
+/// other already). The regions' boxes are kept, so that most pairs, far apart, cost one box
+/// test rather than a pass over both hulls. Groups without a region are reported in `failed`.
 std::vector<Shape> settleLevel(std::vector<Shape> shapes,
   const Shape* parent,
   const Image2D& img,
@@ -497,11 +509,18 @@ std::vector<Shape> settleLevel(std::vector<Shape> shapes,
   std::size_t& failed)
 {
   std::vector<char> alive(shapes.size(), 1);
-  for (Shape& shape : shapes)
-    shapeGroup(shape, parent, img, object);
+  std::vector<Box> boxes(shapes.size(), Box{ 0, 0, -1, -1 });
+  auto shape = [&](std::size_t i)
+  {
+    shapeGroup(shapes[i], parent, img, object);
+    if (!shapes[i].hull.empty())
+      boxes[i] = boxOf(shapes[i].hull);
+  };
+  for (std::size_t i = 0; i < shapes.size(); ++i)
+    shape(i);
   for (std::size_t i = 0; i < shapes.size(); ++i)
     for (std::size_t k = 0; alive[i] && k < shapes.size(); ++k)
-      if (k != i && alive[k] && meet(shapes[i].hull, shapes[k].hull))
+      if (k != i && alive[k] && meet(shapes[i].hull, boxes[i], shapes[k].hull, boxes[k]))
       {
         Points& c = shapes[i].core;
         c.insert(c.end(), shapes[k].core.begin(), shapes[k].core.end());
@@ -509,7 +528,7 @@ std::vector<Shape> settleLevel(std::vector<Shape> shapes,
         Points& t = shapes[i].touching;
         t.insert(t.end(), shapes[k].touching.begin(), shapes[k].touching.end());
         alive[k] = 0;
-        shapeGroup(shapes[i], parent, img, object);
+        shape(i);
         k = std::numeric_limits<std::size_t>::max(); // grown: against all again (k wraps to 0)
       }
   std::vector<Shape> settled;
