@@ -64,8 +64,8 @@
  * such a corner lies off the image (outside the grid, background by definition, not listed in
  * BackgroundCentresOnSurface). Pixels touching only at a corner are kept in one polygon, the two
  * other centres of their square on its boundary or outside, so no boundary pinches. A noisy 2D
- * image gives deeply nested rings (one region per group and level: 512^2 pixels of noise take
- * 5 to 12 s). In 3D an object that is a single voxel or a row has no polyhedron (Separates 0,
+ * image gives deeply nested rings (one region per group and level: 512^2 pixels of 50 % noise
+ * take about 7 s). In 3D an object that is a single voxel or a row has no polyhedron (Separates 0,
  * error). Inputs full of voxels touching along edges and at corners (random noise, porous
  * blobs) separate; the pressing-in of large real objects can take minutes.
  *
