@@ -1,5 +1,7 @@
 #include "ConvexHull.h"
 
+#include "Geometry.h"
+
 #include <algorithm>
 #include <map>
 #include <numeric>
@@ -100,25 +102,7 @@ std::vector<Index> convexPolygon(std::vector<Index> ids,
     const auto po = uv(o), pa = uv(a), pb = uv(b);
     return __int128(pa[0] - po[0]) * (pb[1] - po[1]) - __int128(pa[1] - po[1]) * (pb[0] - po[0]);
   };
-  std::vector<Index> chain(2 * ids.size());
-  std::size_t n = 0;
-  for (std::size_t s = 0; s < ids.size(); ++s)
-  {
-    while (n >= 2 && turn(chain[n - 2], chain[n - 1], ids[s]) <= 0)
-    {
-      --n;
-    }
-    chain[n++] = ids[s];
-  }
-  for (std::size_t s = ids.size() - 1, lower = n + 1; s-- > 0;)
-  {
-    while (n >= lower && turn(chain[n - 2], chain[n - 1], ids[s]) <= 0)
-    {
-      --n;
-    }
-    chain[n++] = ids[s];
-  }
-  chain.resize(n - 1);
+  std::vector<Index> chain = monotoneChain(ids, turn);
   if (plane.normal[k] < 0)
   {
     std::reverse(chain.begin(), chain.end());

@@ -52,30 +52,13 @@ std::int64_t dist2(const Point2L& a, const Point2L& b)
   return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]);
 }
 
-/// Andrew's monotone chain: the strictly convex hull, counter-clockwise; one or two corners
-/// when the points are flat.
+/// The strictly convex hull, counter-clockwise; one or two corners when the points are flat.
 Points latticeHull(Points p)
 {
   std::sort(p.begin(), p.end());
   p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() <= 1)
-    return p;
-  Points h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i)
-  {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0)
-      --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;)
-  {
-    while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0)
-      --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
+  return monotoneChain(
+    p, [](const Point2L& o, const Point2L& a, const Point2L& b) { return cross(o, a, b); });
 }
 
 /// The x of the lattice points strictly inside a convex counter-clockwise polygon on row y,

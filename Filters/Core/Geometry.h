@@ -10,7 +10,9 @@
 #define vbr_Geometry_h
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #if defined(_MSC_VER) && !defined(__clang__)
 #include <intrin.h>
@@ -182,6 +184,35 @@ inline int popCount(std::uint64_t w)
     ++n;
   return n;
 #endif
+}
+
+// ---- convex polygons ---------------------------------------------------------------------
+
+/// Andrew's monotone chain over items sorted lexicographically by their 2D position, without
+/// repeats: the corners of their strictly convex hull, counter-clockwise when turn(o, a, b) is
+/// the cross product (a - o) x (b - o); corners where the boundary goes straight on are
+/// dropped. One item gives itself, flat items their two extremes.
+template<typename T, typename Turn>
+std::vector<T> monotoneChain(const std::vector<T>& sorted, Turn turn)
+{
+  if (sorted.size() <= 1)
+    return sorted;
+  std::vector<T> chain(2 * sorted.size());
+  std::size_t n = 0;
+  for (std::size_t s = 0; s < sorted.size(); ++s)
+  {
+    while (n >= 2 && turn(chain[n - 2], chain[n - 1], sorted[s]) <= 0)
+      --n;
+    chain[n++] = sorted[s];
+  }
+  for (std::size_t s = sorted.size() - 1, lower = n + 1; s-- > 0;)
+  {
+    while (n >= lower && turn(chain[n - 2], chain[n - 1], sorted[s]) <= 0)
+      --n;
+    chain[n++] = sorted[s];
+  }
+  chain.resize(n - 1);
+  return chain;
 }
 
 } // namespace vbr
