@@ -10,8 +10,9 @@
 // corners are numbered by one radix sort of their packed keys (CornerSet, KeyPacker), and
 // ordered along the lines of the two other axes by two more; the corners strictly inside an
 // edge are then those between its two ends in its axis's order, inserted in order
-// (walkWithEdgeVertices) with their numbers, which the filters use as point ids. Runs of loops are
-// walked concurrently, once each, into vectors of their own, joined in order afterwards. Several
+// (walkWithEdgeVertices) with their numbers, which the filters use as point ids. How many each
+// loop gains is the distance of the two ends in that order, so the loops are counted first and
+// then walked concurrently, once each, into arrays of their final size. Several
 // B-Reps placed in one grid (the objects of a label map) share one set of corners, so that the
 // edges of neighbouring objects match too.
 
@@ -136,53 +137,49 @@ Coord checkedMaximum(const std::vector<Point3>& points)
   return hi;
 }
 
-/// The loops of a run of consecutive loops, with their T-junction vertices.
-struct LoopBlock
+/// How many corners of the set lie strictly inside the edges of a loop.
+std::size_t countEdgeVertices(const PointRange& points,
+  const std::int64_t* numbers,
+  const CornerSet& corners)
 {
-  std::size_t firstLoop = 0, endLoop = 0;
-  std::vector<Point3> points;
-  std::vector<std::int64_t> numbers;
-  std::vector<std::size_t> ends; ///< per loop, where it ends in `points`
-};
-
-/// Walks the loops of `block` once, writing them with their T-junction vertices.
-void walkBlock(const BRep& brep,
-  const std::vector<std::int64_t>& numbers,
-  const CornerSet& corners,
-  const Point3& offset,
-  LoopBlock& block)
-{
-  const std::size_t first = brep.loops[block.firstLoop].begin;
-  const std::size_t last = brep.loops[block.endLoop - 1].end;
-  block.points.reserve(last - first + (last - first) / 4);
-  block.numbers.reserve(block.points.capacity());
-  for (std::size_t l = block.firstLoop; l < block.endLoop; ++l)
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
   {
-    walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
-      numbers.data() + brep.loops[l].begin,
-      corners,
-      offset,
-      [&block](const Point3& p, std::int64_t number)
-      {
-        block.points.push_back(p);
-        block.numbers.push_back(number);
-      });
-    block.ends.push_back(block.points.size());
+    const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
+    const Point3& p = points[i];
+    const Point3& q = points[j];
+    int d = 0;
+    while (d < 3 && p[d] == q[d])
+      ++d;
+    if (d < 3 && std::abs(q[d] - p[d]) > 1)
+      count += corners.countBetween(d, numbers[i], numbers[j]);
   }
+  return count;
 }
 
-/// Cuts the loops into runs walked concurrently; one run when sequential, so that its
-/// vectors become the B-Rep's own without a copy.
-std::vector<LoopBlock> cutIntoBlocks(std::size_t loops, const Execution& exec)
+/// Per loop, where it begins once its T-junction vertices are in (the last entry: the new
+/// number of points).
+std::vector<std::size_t> newLoopBegins(const BRep& brep,
+  const std::vector<std::int64_t>& numbers,
+  const CornerSet& corners,
+  const Execution& exec)
 {
-  const std::size_t count = exec.parallelFor ? std::min<std::size_t>(loops, 256) : 1;
-  std::vector<LoopBlock> blocks(count);
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    blocks[k].firstLoop = loops * k / count;
-    blocks[k].endLoop = loops * (k + 1) / count;
-  }
-  return blocks;
+  const std::size_t n = brep.loops.size();
+  std::vector<std::size_t> begins(n + 1, 0);
+  exec.forRange(static_cast<std::int64_t>(n),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t l = b; l < e; ++l)
+      {
+        const BRepLoop& loop = brep.loops[l];
+        begins[l + 1] = loop.end - loop.begin +
+          countEdgeVertices(
+            brep.loopPoints(static_cast<int>(l)), numbers.data() + loop.begin, corners);
+      }
+    });
+  for (std::size_t l = 0; l < n; ++l)
+    begins[l + 1] += begins[l];
+  return begins;
 }
 
 } // namespace
@@ -300,37 +297,35 @@ void insertTJunctionVertices(BRep& brep,
 {
   if (brep.loops.empty())
     return;
-  // One walk per loop, runs of loops concurrently, each into vectors of its own; the runs are
-  // then joined in order.
-  std::vector<LoopBlock> blocks = cutIntoBlocks(brep.loops.size(), exec);
-  exec.forRange(static_cast<std::int64_t>(blocks.size()),
+  // The vertices each loop gains are counted first (in O(1) per edge), so that the loops are
+  // written once, concurrently, straight into arrays of their final size: no buffers per run
+  // to join, and nothing at all when no edge holds a corner (a checkerboard's unit faces).
+  const std::vector<std::size_t> begins = newLoopBegins(brep, numbers, corners, exec);
+  if (begins.back() == brep.points.size())
+    return;
+  std::vector<Point3> points(begins.back());
+  std::vector<std::int64_t> pointNumbers(begins.back());
+  exec.forRange(static_cast<std::int64_t>(brep.loops.size()),
     [&](std::int64_t b, std::int64_t e)
     {
-      for (std::int64_t k = b; k < e; ++k)
-        walkBlock(brep, numbers, corners, offset, blocks[k]);
+      for (std::int64_t l = b; l < e; ++l)
+      {
+        std::size_t at = begins[l];
+        walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
+          numbers.data() + brep.loops[l].begin,
+          corners,
+          offset,
+          [&](const Point3& p, std::int64_t number)
+          {
+            points[at] = p;
+            pointNumbers[at++] = number;
+          });
+      }
     });
-  std::vector<Point3> points;
-  std::vector<std::int64_t> pointNumbers;
-  if (blocks.size() == 1)
+  for (std::size_t l = 0; l < brep.loops.size(); ++l)
   {
-    points.swap(blocks[0].points);
-    pointNumbers.swap(blocks[0].numbers);
-  }
-  std::size_t base = 0;
-  for (LoopBlock& block : blocks)
-  {
-    for (std::size_t l = block.firstLoop; l < block.endLoop; ++l)
-    {
-      brep.loops[l].begin = base + (l == block.firstLoop ? 0 : block.ends[l - block.firstLoop - 1]);
-      brep.loops[l].end = base + block.ends[l - block.firstLoop];
-    }
-    base += block.ends.empty() ? 0 : block.ends.back();
-    if (blocks.size() > 1)
-    {
-      points.insert(points.end(), block.points.begin(), block.points.end());
-      pointNumbers.insert(pointNumbers.end(), block.numbers.begin(), block.numbers.end());
-      block = LoopBlock(); // released as soon as copied
-    }
+    brep.loops[l].begin = begins[l];
+    brep.loops[l].end = begins[l + 1];
   }
   brep.points.swap(points);
   numbers.swap(pointNumbers);

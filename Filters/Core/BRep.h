@@ -11,9 +11,11 @@
 #include "Geometry.h"
 #include "PlaneSweep2D.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 namespace vbr
@@ -129,6 +131,14 @@ public:
       emit(order[r]);
     for (std::int64_t r = a - 1; r > b; --r)
       emit(order[r]);
+  }
+
+  /// How many corners lie strictly between corners `from` and `to` of one line along `axis`.
+  std::size_t countBetween(int axis, std::int64_t from, std::int64_t to) const
+  {
+    const std::int64_t a = axis == 2 ? from : std::int64_t(this->RankAlong[axis][from]);
+    const std::int64_t b = axis == 2 ? to : std::int64_t(this->RankAlong[axis][to]);
+    return static_cast<std::size_t>(std::max<std::int64_t>(std::abs(b - a) - 1, 0));
   }
 
 private:
