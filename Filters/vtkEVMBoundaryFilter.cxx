@@ -30,13 +30,19 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#if defined(__GLIBC__)
+#include <malloc.h> // malloc_trim
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <limits>
+#include <new>
 #include <type_traits>
 #include <vector>
 
@@ -72,11 +78,62 @@ bool reversesOrientation(const vbr::vtk::VoxelGrid& grid, const std::array<int, 
   return odd != grid.mirrorsSpace();
 }
 
+/// An append-only array in malloc'ed memory that VTK takes over without a copy
+/// (VTK_DATA_ARRAY_FREE). It grows by realloc, which moves a large block by remapping its
+/// pages: the output's arrays grow as the faces are written (the cells of a face are known
+/// only once it is triangulated) without ever being held twice, as a growing std::vector
+/// would hold them, and without a copy into VTK at the end.
+template<typename T>
+class MallocBuffer
+{
+public:
+  MallocBuffer() = default;
+  MallocBuffer(const MallocBuffer&) = delete;
+  MallocBuffer& operator=(const MallocBuffer&) = delete;
+  ~MallocBuffer() { std::free(this->Data); }
+
+  std::size_t size() const { return this->Size; }
+  void push_back(T value)
+  {
+    if (this->Size == this->Capacity)
+      this->reserve(std::max<std::size_t>(1024, 2 * this->Capacity));
+    this->Data[this->Size++] = value;
+  }
+  void reserve(std::size_t capacity)
+  {
+    if (capacity <= this->Capacity)
+      return;
+    void* grown = std::realloc(this->Data, capacity * sizeof(T));
+    if (!grown)
+      throw std::bad_alloc();
+    this->Data = static_cast<T*>(grown);
+    this->Capacity = capacity;
+  }
+  /// Hands the values to `array`, which frees them; the buffer is then empty.
+  template<typename ArrayType>
+  void handTo(ArrayType* array)
+  {
+    static_assert(std::is_same<typename ArrayType::ValueType, T>::value, "no conversion");
+    if (this->Size == 0)
+      return;
+    T* data = static_cast<T*>(std::realloc(this->Data, this->Size * sizeof(T))); // the slack
+    array->SetArray(data ? data : this->Data,
+      static_cast<vtkIdType>(this->Size),
+      0,
+      vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+    this->Data = nullptr;
+    this->Size = this->Capacity = 0;
+  }
+
+private:
+  T* Data = nullptr;
+  std::size_t Size = 0, Capacity = 0;
+};
+
 /// Builds the output polydata: shared points, then cells and their attributes gathered in
-/// plain arrays and handed to VTK at the end. Per cell only what varies is kept (corners,
-/// offset, FaceId, a one-byte LoopType; ParentFace and Depth for 2D images only); the Label
-/// is kept once per run of cells of one object. Each array is released as soon as VTK's copy
-/// is made, so the peak stays near one copy of the output.
+/// plain arrays (MallocBuffer) that VTK takes over at the end. Per cell only what varies is
+/// kept (corners, offset, FaceId, LoopType; ParentFace and Depth for 2D images only); the Label
+/// is kept once per run of cells of one object.
 class OutputBuilder
 {
 public:
@@ -87,6 +144,7 @@ public:
     , Reverse(reversesOrientation(grid, axes))
     , Packer(vbr::KeyPacker::forMaximum(std::max({ grid.dims[0], grid.dims[1], grid.dims[2] })))
   {
+    this->Offsets.push_back(0);
   }
 
   /// Point ids of grid vertices given in an object's coordinates (permuted axes) plus its
@@ -113,33 +171,9 @@ public:
   /// points, their numbers as point ids; first, before any other point.
   void addCornerPoints(const std::vector<Point3>& corners)
   {
-    reserveMore(this->Coordinates, 3 * corners.size());
+    this->Coordinates.reserve(this->Coordinates.size() + 3 * corners.size());
     for (const Point3& p : corners)
       this->addPoint(p);
-  }
-
-  /// Room for `cells` more cells of `corners` corners in all. Capacity grows geometrically:
-  /// reserving exactly the sum for each object (label) would copy the whole output every
-  /// time, quadratic in the number of labels.
-  void reserve(std::size_t cells, std::size_t corners)
-  {
-    reserveMore(this->Connectivity, corners);
-    reserveMore(this->Offsets, cells);
-    reserveMore(this->FaceId, cells);
-    reserveMore(this->LoopType, cells);
-    if (this->Planar)
-    {
-      reserveMore(this->ParentFace, cells);
-      reserveMore(this->Depth, cells);
-    }
-  }
-
-  template<typename V>
-  static void reserveMore(V& values, std::size_t more)
-  {
-    const std::size_t needed = values.size() + more;
-    if (needed > values.capacity())
-      values.reserve(std::max(needed, values.capacity() + values.capacity() / 2));
   }
 
   void addCell(const vtkIdType* ids,
@@ -156,7 +190,7 @@ public:
       this->Connectivity.push_back(ids[this->Reverse ? n - 1 - i : i]);
     this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
     this->FaceId.push_back(faceId);
-    this->LoopType.push_back(static_cast<std::uint8_t>(loopType));
+    this->LoopType.push_back(loopType);
     if (this->Planar)
     {
       this->ParentFace.push_back(parent);
@@ -168,9 +202,7 @@ public:
   {
     vtkNew<vtkDoubleArray> coordinates;
     coordinates->SetNumberOfComponents(3);
-    vbr::vtk::resizeOrThrow(coordinates, this->pointCount());
-    std::copy(this->Coordinates.begin(), this->Coordinates.end(), coordinates->GetPointer(0));
-    release(this->Coordinates);
+    this->Coordinates.handTo(coordinates.GetPointer());
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
     output->SetPoints(points);
@@ -196,8 +228,6 @@ public:
   }
 
 private:
-  vtkIdType pointCount() const { return static_cast<vtkIdType>(this->Coordinates.size() / 3); }
-
   /// Appends the world position of a grid vertex given in permuted axes.
   void addPoint(const Point3& p)
   {
@@ -206,7 +236,8 @@ private:
       v[this->Axes[k]] = p[k];
     double xyz[3];
     this->Grid.vertexToWorld(v, xyz);
-    this->Coordinates.insert(this->Coordinates.end(), xyz, xyz + 3);
+    for (double c : xyz)
+      this->Coordinates.push_back(c);
   }
 
   /// The Label of every cell from the runs.
@@ -237,14 +268,12 @@ private:
     return a;
   }
 
-  /// VTK's copy of `v`; `v` is released.
+  /// A VTK array that takes over the values of `v`.
   template<typename ArrayType, typename Value>
-  static vtkSmartPointer<ArrayType> toArray(std::vector<Value>& v)
+  static vtkSmartPointer<ArrayType> toArray(MallocBuffer<Value>& v)
   {
     auto a = vtkSmartPointer<ArrayType>::New();
-    vbr::vtk::resizeOrThrow(a, static_cast<vtkIdType>(v.size()));
-    std::copy(v.begin(), v.end(), a->GetPointer(0));
-    release(v);
+    v.handTo(a.GetPointer());
     return a;
   }
 
@@ -254,12 +283,12 @@ private:
   const bool Reverse; ///< world coordinates mirror the processing axes: reverse every cell
   const vbr::KeyPacker Packer;
   vbr::GridPointIndex Index;
-  std::vector<double> Coordinates;
-  std::vector<vtkIdType> Offsets{ 0 };
-  std::vector<vtkIdType> Connectivity;
-  std::vector<vtkIdType> FaceId, ParentFace;
-  std::vector<std::uint8_t> LoopType;
-  std::vector<int> Depth;
+  MallocBuffer<double> Coordinates;
+  MallocBuffer<vtkIdType> Offsets;
+  MallocBuffer<vtkIdType> Connectivity;
+  MallocBuffer<vtkIdType> FaceId, ParentFace;
+  MallocBuffer<int> LoopType;
+  MallocBuffer<int> Depth;
   std::vector<std::pair<vtkIdType, vbr::vtk::LabelValue>> LabelRuns; ///< (first cell, label)
 };
 
@@ -304,28 +333,19 @@ void appendSurfelCells(const vbr::vtk::Selected& object,
   }
 }
 
-/// Room in the builder for an object's cells in `mode`.
-void reserveFaceCells(const vbr::BRep& brep,
-  const FaceRuns& cells,
-  int mode,
-  OutputBuilder& builder)
+/// The progress of writing one object's cells, over all the parts of its faces.
+struct CellProgress
 {
-  std::size_t count = 0, corners = 0;
-  if (mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS)
+  vbr::ProgressPoll poll;
+  std::size_t faces;         ///< of the object
+  std::size_t facesDone = 0; ///< in the parts written before
+  /// Counts face `f` of the current part; false when the caller asked to stop.
+  bool tick(std::size_t f)
   {
-    for (const vbr::FaceCells& run : cells.runs)
-    {
-      count += run.cellEnds.size();
-      corners += run.corners.size();
-    }
+    this->poll.at(double(this->facesDone + f) / double(this->faces));
+    return this->poll.tick();
   }
-  else
-  {
-    count = brep.loops.size();
-    corners = brep.points.size() + brep.loops.size();
-  }
-  builder.reserve(count, corners);
-}
+};
 
 /// Where a face's cells go: its id, its parent face and depth (2D), its label, and the point
 /// ids of its loops' corners (contiguous, in loop order).
@@ -379,27 +399,27 @@ void appendLoops(const vbr::BRep& brep,
   }
 }
 
-/// The cells of an object's faces: its triangles, its polygons, or one cell per loop.
-void appendFaceCells(const vbr::BRep& brep,
+/// The cells of an object's faces [first, end) (their runs `cells` in Triangles and Polygons
+/// modes): its triangles, its polygons, or one cell per loop. False when aborted.
+bool appendFaceCells(const vbr::BRep& brep,
   const std::vector<std::int64_t>& cornerIds,
   const FaceRuns& cells,
   const vbr::vtk::Selected& object,
   int mode,
   vtkIdType faceBase,
-  OutputBuilder& builder,
-  const vbr::Execution& exec)
+  std::size_t first,
+  std::size_t end,
+  CellProgress& progress,
+  OutputBuilder& builder)
 {
-  vbr::ProgressPoll poll(exec, 0.9, 1.0, 1024); // the last tenth of the object's progress
-  reserveFaceCells(brep, cells, mode, builder);
   const bool fromRuns =
     mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS;
   std::vector<vtkIdType> ids;
   std::size_t run = 0;
-  for (std::size_t f = 0; f < brep.faces.size(); ++f)
+  for (std::size_t f = first; f < end; ++f)
   {
-    poll.at(double(f) / double(brep.faces.size()));
-    if (!poll.tick())
-      return; // aborted: the caller empties the output
+    if (!progress.tick(f))
+      return false; // aborted: the caller empties the output
     const vbr::BRepFace& face = brep.faces[f];
     const FaceCellContext c{ faceBase + static_cast<vtkIdType>(f),
       face.parent < 0 ? -1 : faceBase + face.parent,
@@ -415,35 +435,40 @@ void appendFaceCells(const vbr::BRep& brep,
       ++run;
     appendRunCells(cells.runs[run], f - cells.firstFace[run], c, ids, builder);
   }
+  return true;
 }
 
 /// Faces of an EVM by the plane sweeps (their loops without the T-junction vertices of
-/// neighbouring faces yet). False when aborted.
+/// neighbouring faces yet), in parts that are written and released one after the other (in 3D,
+/// one per chunk of planes). False when aborted.
 bool boundaryOf(const vbr::EVM& evm,
   bool planar,
   vbr::FaceConnectivity connectivity,
   const vbr::Execution& exec,
-  vbr::BRep& brep)
+  std::vector<vbr::BRep>& parts)
 {
   vtkLogScopeF(TRACE, "EVM to B-Rep (plane sweeps)");
-  if (planar)
-    brep = vbr::extractBoundary2D(evm, connectivity);
-  else if (!vbr::planeSweep3D(evm, connectivity, exec, brep))
-    return false;
+  if (!planar)
+    return vbr::planeSweep3DParts(evm, connectivity, exec, parts);
+  parts.clear();
+  parts.push_back(vbr::extractBoundary2D(evm, connectivity));
   return true;
 }
 
 /// The triangles (Triangles mode) or the polygons that VTK draws right (Polygons mode) of
-/// every face, runs of faces in parallel.
-FaceRuns cellsOfFaces(const vbr::BRep& brep, int mode, const vbr::Execution& exec)
+/// the faces [first, end), runs of faces in parallel.
+FaceRuns cellsOfFaces(const vbr::BRep& brep,
+  int mode,
+  std::size_t first,
+  std::size_t end,
+  const vbr::Execution& exec)
 {
-  vtkLogScopeF(TRACE, "triangles or fan polygons of the faces");
-  const std::size_t faces = brep.faces.size();
+  const std::size_t faces = end - first;
   const std::size_t count = exec.parallelFor ? std::min<std::size_t>(faces, 256) : 1;
   FaceRuns cells;
   cells.runs.resize(count);
   for (std::size_t k = 0; k < count; ++k)
-    cells.firstFace.push_back(faces * k / count);
+    cells.firstFace.push_back(first + faces * k / count);
   const auto append =
     mode == vtkEVMBoundaryFilter::TRIANGLES ? vbr::appendTriangles : vbr::appendFanPolygons;
   exec.forRange(static_cast<std::int64_t>(count),
@@ -451,9 +476,9 @@ FaceRuns cellsOfFaces(const vbr::BRep& brep, int mode, const vbr::Execution& exe
     {
       for (std::int64_t k = b; k < e; ++k)
       {
-        const std::size_t end =
-          k + 1 < static_cast<std::int64_t>(count) ? cells.firstFace[k + 1] : faces;
-        for (std::size_t f = cells.firstFace[k]; f < end; ++f)
+        const std::size_t last =
+          k + 1 < static_cast<std::int64_t>(count) ? cells.firstFace[k + 1] : end;
+        for (std::size_t f = cells.firstFace[k]; f < last; ++f)
           append(brep, static_cast<int>(f), cells.runs[k]);
       }
     });
@@ -485,14 +510,15 @@ void countObject(const vbr::BitVolume& voxels,
     stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
 }
 
-/// The faces of one object: voxels -> EVM -> faces (plane sweeps, paper 000), counted in
-/// `stats`; in Surfels mode its cells instead (then `brep` stays empty). False when aborted.
+/// The faces of one object: voxels -> EVM -> faces (plane sweeps, paper 000) in parts,
+/// counted in `stats`; in Surfels mode its cells instead (then `parts` stays empty). False
+/// when aborted.
 bool boundaryOfObject(const vbr::vtk::Selected& object,
   const ObjectSettings& settings,
   const vbr::Execution& exec,
   Statistics& stats,
   OutputBuilder& builder,
-  vbr::BRep& brep)
+  std::vector<vbr::BRep>& parts)
 {
   vbr::BitVolume voxels;
   {
@@ -515,41 +541,64 @@ bool boundaryOfObject(const vbr::vtk::Selected& object,
     appendSurfelCells(object, voxels, settings.planar, builder);
     return true;
   }
-  if (!boundaryOf(evm, settings.planar, settings.connectivity, local, brep))
+  if (!boundaryOf(evm, settings.planar, settings.connectivity, local, parts))
     return false;
-  stats.faces += static_cast<vtkIdType>(brep.faces.size());
-  stats.holes += static_cast<vtkIdType>(brep.holeCount());
-  stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
+  for (const vbr::BRep& brep : parts)
+  {
+    stats.faces += static_cast<vtkIdType>(brep.faces.size());
+    stats.holes += static_cast<vtkIdType>(brep.holeCount());
+    stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
+  }
   return true;
 }
 
 /// The output cells of an object's faces, whose loops hold their T-junction vertices, and
-/// whose corners are output points `cornerIds`.
-void appendBoundaryCells(const vbr::vtk::Selected& object,
+/// whose corners are output points `cornerIds`. The faces are triangulated slice by slice,
+/// each slice's cells written before the next is made: the triangles of one slice, not of the
+/// whole object, are alive next to the output. False when aborted.
+bool appendBoundaryCells(const vbr::vtk::Selected& object,
   const vbr::BRep& brep,
   const std::vector<std::int64_t>& cornerIds,
   const ObjectSettings& settings,
   const vbr::Execution& exec,
   vtkIdType& faceBase,
+  CellProgress& progress,
   OutputBuilder& builder)
 {
+  constexpr std::size_t SliceOfFaces = std::size_t(1) << 16;
   const int mode = settings.outputMode;
-  const FaceRuns cells =
-    mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS
-    ? cellsOfFaces(brep, mode, exec)
-    : FaceRuns();
+  const bool fromRuns =
+    mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS;
+  vtkLogScopeF(TRACE, "triangles or fan polygons of the faces, and output cells");
+  const std::size_t faces = brep.faces.size();
+  for (std::size_t first = 0; first < faces; first += SliceOfFaces)
   {
-    vtkLogScopeF(TRACE, "output cells");
-    appendFaceCells(brep, cornerIds, cells, object, mode, faceBase, builder, exec);
+    const std::size_t end = std::min(faces, first + SliceOfFaces);
+    const FaceRuns cells = fromRuns ? cellsOfFaces(brep, mode, first, end, exec) : FaceRuns();
+    if (!appendFaceCells(
+          brep, cornerIds, cells, object, mode, faceBase, first, end, progress, builder))
+      return false;
   }
-  faceBase += static_cast<vtkIdType>(brep.faces.size());
+  faceBase += static_cast<vtkIdType>(faces);
+  progress.facesDone += faces;
+  return true;
+}
+
+/// Returns the heap's free pages to the system. The parts of the faces live in the heap and
+/// the output's large arrays in pages of their own, which never reuse the heap's free space:
+/// without this the parts released would stay resident next to the output that replaces them.
+void giveBackFreedMemory()
+{
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 /// The cells of every object (paper 000): first the faces of each (in Surfels mode its cells
 /// instead), then, with the corners of all of them in one set, the T-junction vertices of
-/// each object's loops (the objects of a label map meet: two labels' loops on a shared edge
-/// carry each other's vertices), then its cells. Every object's faces are alive at once:
-/// memory in the size of the output. Stops when aborted.
+/// each part of each object's faces (the objects of a label map meet: two labels' loops on a
+/// shared edge carry each other's vertices), then its cells, and the part is released. Memory:
+/// the faces, then the cells, never both whole at once. Stops when aborted.
 void appendObjects(vtkAlgorithm* self,
   const std::vector<vbr::vtk::Selected>& objects,
   const ObjectSettings& settings,
@@ -558,12 +607,12 @@ void appendObjects(vtkAlgorithm* self,
   OutputBuilder& builder)
 {
   const std::size_t n = objects.size();
-  std::vector<vbr::BRep> breps(n);
+  std::vector<std::vector<vbr::BRep>> parts(n);
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
     const double from = 0.1 + 0.6 * o / n, to = 0.1 + 0.6 * (o + 1) / n;
     if (!boundaryOfObject(
-          objects[o], settings, vbr::vtk::makeExecution(self, from, to), stats, builder, breps[o]))
+          objects[o], settings, vbr::vtk::makeExecution(self, from, to), stats, builder, parts[o]))
       return; // aborted
   }
   vtkLogScopeF(TRACE, "T-junction vertices and output cells");
@@ -571,31 +620,42 @@ void appendObjects(vtkAlgorithm* self,
     vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
   std::vector<vbr::PlacedBRep> placed;
   for (std::size_t o = 0; o < n; ++o)
-    placed.push_back({ &breps[o], objects[o].offset });
-  std::vector<std::vector<std::int64_t>> numbers;
+    for (const vbr::BRep& part : parts[o])
+      placed.push_back({ &part, objects[o].offset });
   vtkLogStartScope(TRACE, "numbered corners");
   // One object of a 2D image has no T-junction vertex: at a grid point strictly inside an
   // edge, the two pixels on either side of the edge are alike, so no loop turns there. Two
   // labels can meet there.
   const bool tJunctions = !settings.planar || n > 1;
-  const vbr::CornerSet corners(placed, packer, numbers, tJunctions);
+  const vbr::CornerSet corners(placed, packer, tJunctions);
   builder.addCornerPoints(corners.points());
   vtkLogEndScope("numbered corners");
   vtkIdType faceBase = 0;
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
-    const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to)
-                                  .forWork(static_cast<std::int64_t>(breps[o].points.size()));
-    if (tJunctions)
+    const vbr::Execution objectExec = vbr::vtk::makeExecution(self, from, to);
+    std::size_t faces = 0;
+    for (const vbr::BRep& part : parts[o])
+      faces += part.faces.size();
+    CellProgress progress{ vbr::ProgressPoll(objectExec, 0.0, 1.0, 1024),
+      std::max<std::size_t>(faces, 1) };
+    for (vbr::BRep& part : parts[o])
     {
-      vtkLogStartScope(TRACE, "T-junction vertices");
-      vbr::insertTJunctionVertices(breps[o], numbers[o], corners, objects[o].offset, exec);
-      vtkLogEndScope("T-junction vertices");
+      const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
+      std::vector<std::int64_t> numbers = corners.numbersOf(part, objects[o].offset);
+      if (tJunctions)
+      {
+        vtkLogStartScope(TRACE, "T-junction vertices");
+        vbr::insertTJunctionVertices(part, numbers, corners, objects[o].offset, exec);
+        vtkLogEndScope("T-junction vertices");
+      }
+      if (!appendBoundaryCells(
+            objects[o], part, numbers, settings, exec, faceBase, progress, builder))
+        return;           // aborted
+      part = vbr::BRep(); // released as soon as written
+      giveBackFreedMemory();
     }
-    appendBoundaryCells(objects[o], breps[o], numbers[o], settings, exec, faceBase, builder);
-    numbers[o] = std::vector<std::int64_t>();
-    breps[o] = vbr::BRep(); // released as soon as written
     self->UpdateProgress(to);
   }
 }

@@ -7,8 +7,9 @@
 // extractBoundary2D is that for a 2D EVM, the whole image being one plane.
 //
 // insertTJunctionVertices makes the edges of adjacent faces match exactly. The distinct
-// corners are numbered by one radix sort of their packed keys (CornerSet, KeyPacker), and
-// ordered along the lines of the two other axes by two more; the corners strictly inside an
+// corners are numbered in the order of their packed keys (CornerSet, KeyPacker) by the ranks
+// of their bits in a bitmap of their box, and ordered along the lines of the two other axes by
+// two radix sorts of the distinct corners' keys; the corners strictly inside an
 // edge are then those between its two ends in its axis's order, inserted in order
 // (walkWithEdgeVertices) with their numbers, which the filters use as point ids. How many each
 // loop gains is the distance of the two ends in that order, so the loops are counted first and
@@ -21,6 +22,7 @@
 #include "RadixSort.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
@@ -189,74 +191,102 @@ void insertTJunctionVertices(BRep& brep, const Execution& exec)
   if (brep.points.empty())
     return;
   const KeyPacker packer = KeyPacker::forMaximum(checkedMaximum(brep.points));
-  std::vector<std::vector<std::int64_t>> numbers;
-  const CornerSet corners({ { &brep, { 0, 0, 0 } } }, packer, numbers);
-  insertTJunctionVertices(brep, numbers[0], corners, { 0, 0, 0 }, exec);
+  const CornerSet corners({ { &brep, { 0, 0, 0 } } }, packer);
+  std::vector<std::int64_t> numbers = corners.numbersOf(brep, { 0, 0, 0 });
+  insertTJunctionVertices(brep, numbers, corners, { 0, 0, 0 }, exec);
 }
 
 namespace
 {
 
-/// A corner of one of the B-Reps by its packed key: which B-Rep, which point.
-struct KeyedCorner
+/// Calls visit(corner in the common grid) for every corner of every B-Rep.
+template<typename Visit>
+void forEachCorner(const std::vector<PlacedBRep>& breps, Visit&& visit)
 {
-  std::uint64_t key;
-  std::uint32_t brep;
-  std::uint32_t point;
-};
-
-/// The corners of every B-Rep with their keys in the common grid.
-std::vector<KeyedCorner> keyedCorners(const std::vector<PlacedBRep>& breps, const KeyPacker& packer)
-{
-  const std::int64_t limit = std::int64_t(1) << packer.bits;
-  std::size_t total = 0;
   for (const PlacedBRep& b : breps)
-    total += b.brep->points.size();
-  if (breps.size() > UINT32_MAX || total >= UINT32_MAX)
-    throw std::length_error("CornerSet: more than 2^32 corners");
-  std::vector<KeyedCorner> keyed;
-  keyed.reserve(total);
-  for (std::size_t k = 0; k < breps.size(); ++k)
-  {
-    const std::vector<Point3>& points = breps[k].brep->points;
-    for (std::size_t i = 0; i < points.size(); ++i)
-    {
-      const Point3 p = add(points[i], breps[k].offset);
-      for (Coord c : p)
-        if (c < 0 || c >= limit)
-          throw std::out_of_range("CornerSet: a corner lies outside the common grid");
-      keyed.push_back({ packer.pack(p[0], p[1], p[2]),
-        static_cast<std::uint32_t>(k),
-        static_cast<std::uint32_t>(i) });
-    }
-  }
-  return keyed;
+    for (const Point3& p : b.brep->points)
+      visit(add(p, b.offset));
 }
 
 } // namespace
 
-CornerSet::CornerSet(const std::vector<PlacedBRep>& breps,
-  const KeyPacker& packer,
-  std::vector<std::vector<std::int64_t>>& numbers,
-  bool orderLines)
+void CornerSet::boundCorners(const std::vector<PlacedBRep>& breps, const KeyPacker& packer)
 {
-  // Sorting numbers the corners in key order: no hash table, whose every probe would miss
-  // the cache.
-  std::vector<KeyedCorner> keyed = keyedCorners(breps, packer);
-  radixSortBy(keyed, [](const KeyedCorner& c) { return c.key; });
-  numbers.assign(breps.size(), {});
-  for (std::size_t k = 0; k < breps.size(); ++k)
-    numbers[k].resize(breps[k].brep->points.size());
-  for (std::size_t i = 0; i < keyed.size(); ++i)
+  const Coord limit = Coord(1) << packer.bits;
+  std::size_t total = 0;
+  for (const PlacedBRep& b : breps)
+    total += b.brep->points.size();
+  if (total >= UINT32_MAX)
+    throw std::length_error("CornerSet: more than 2^32 corners");
+  if (total == 0)
+    return;
+  Point3 lo{ limit, limit, limit }, hi{ -1, -1, -1 };
+  forEachCorner(breps,
+    [&](const Point3& p)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        if (p[d] < 0 || p[d] >= limit)
+          throw std::out_of_range("CornerSet: a corner lies outside the common grid");
+        lo[d] = std::min(lo[d], p[d]);
+        hi[d] = std::max(hi[d], p[d]);
+      }
+    });
+  this->Lo = lo;
+  for (int d = 0; d < 3; ++d)
+    this->Extent[d] = std::uint64_t(hi[d] - lo[d]) + 1;
+}
+
+Point3 CornerSet::pointInBox(std::uint64_t i) const
+{
+  const Coord z = static_cast<Coord>(i % this->Extent[2]);
+  i /= this->Extent[2];
+  const Coord y = static_cast<Coord>(i % this->Extent[1]);
+  const Coord x = static_cast<Coord>(i / this->Extent[1]);
+  return { this->Lo[0] + x, this->Lo[1] + y, this->Lo[2] + z };
+}
+
+CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines)
+{
+  // One bit per grid point of the corners' box marks the corners, and a corner's number is
+  // the rank of its bit: the set bits of the words before it (kept per word) and of its own
+  // word below it. The numbers follow the packed keys' order with no sort and no hash table,
+  // in 1.5 bits per grid point of the box (no more than the selection's own bit volume),
+  // where sorting the corners' keys took 32 bytes per corner of every loop.
+  this->boundCorners(breps, packer);
+  this->Words.assign((this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64, 0);
+  forEachCorner(breps,
+    [&](const Point3& p)
+    {
+      const std::uint64_t i = this->indexInBox(p);
+      this->Words[i >> 6] |= std::uint64_t(1) << (i & 63);
+    });
+  this->Ranks.resize(this->Words.size());
+  std::uint32_t count = 0;
+  for (std::size_t w = 0; w < this->Words.size(); ++w)
   {
-    const KeyedCorner& c = keyed[i];
-    if (i == 0 || c.key != keyed[i - 1].key)
-      this->Points.push_back(add(breps[c.brep].brep->points[c.point], breps[c.brep].offset));
-    numbers[c.brep][c.point] = static_cast<std::int64_t>(this->Points.size()) - 1;
+    this->Ranks[w] = count;
+    count += static_cast<std::uint32_t>(popCount(this->Words[w]));
   }
+  this->Points.reserve(count);
+  for (std::size_t w = 0; w < this->Words.size(); ++w)
+    for (std::uint64_t bits = this->Words[w]; bits != 0; bits &= bits - 1)
+      this->Points.push_back(this->pointInBox(64 * w + countTrailingZeros(bits)));
   for (int axis = 0; axis < 2 && orderLines; ++axis)
     if (this->spans(axis)) // no edge runs along an axis all the corners share (a 2D image's)
       this->orderLinesAlong(axis, packer);
+}
+
+std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const
+{
+  std::vector<std::int64_t> numbers(brep.points.size());
+  for (std::size_t n = 0; n < numbers.size(); ++n)
+  {
+    const std::uint64_t i = this->indexInBox(add(brep.points[n], offset));
+    const std::uint64_t below = this->Words[i >> 6] & ((std::uint64_t(1) << (i & 63)) - 1);
+    numbers[n] = std::int64_t(this->Ranks[i >> 6]) + popCount(below);
+  }
+  return numbers;
 }
 
 bool CornerSet::spans(int axis) const

@@ -99,13 +99,14 @@ struct PlacedBRep
 class CornerSet
 {
 public:
-  /// Numbers the corners of `breps`; `numbers[k][i]` becomes the number of point i of
-  /// breps[k]. Without `orderLines`, only the numbers (no T-junction pass can use the set).
-  /// Throws std::out_of_range for a corner outside the packer's range.
-  CornerSet(const std::vector<PlacedBRep>& breps,
-    const KeyPacker& packer,
-    std::vector<std::vector<std::int64_t>>& numbers,
-    bool orderLines = true);
+  /// Numbers the corners of `breps`. Without `orderLines`, only the numbers (no T-junction
+  /// pass can use the set). Throws std::out_of_range for a corner outside the packer's range,
+  /// std::length_error for 2^32 corners or more.
+  CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines = true);
+
+  /// The numbers of the points of `brep` at `offset`, one of the B-Reps numbered (as they were
+  /// then): asked for one B-Rep at a time, so that all of them are never held at once.
+  std::vector<std::int64_t> numbersOf(const BRep& brep, const Point3& offset) const;
 
   std::size_t size() const { return this->Points.size(); }
 
@@ -144,6 +145,23 @@ public:
 private:
   bool spans(int axis) const;
   void orderLinesAlong(int axis, const KeyPacker& packer);
+
+  /// The box of grid points holding the corners, its points indexed in lexicographic order
+  /// (the last coordinate fastest: the order of their packed keys); a bit per point of it,
+  /// set for the corners; per word of bits, the corners before it.
+  Point3 Lo{ 0, 0, 0 };
+  std::array<std::uint64_t, 3> Extent{ 0, 0, 0 };
+  std::vector<std::uint64_t> Words;
+  std::vector<std::uint32_t> Ranks;
+  std::uint64_t indexInBox(const Point3& p) const
+  {
+    return (std::uint64_t(p[0] - this->Lo[0]) * this->Extent[1] +
+             std::uint64_t(p[1] - this->Lo[1])) *
+      this->Extent[2] +
+      std::uint64_t(p[2] - this->Lo[2]);
+  }
+  Point3 pointInBox(std::uint64_t i) const;
+  void boundCorners(const std::vector<PlacedBRep>& breps, const KeyPacker& packer);
 
   std::vector<Point3> Points;
   /// Per axis 0 and 1: the numbers in the order of the lines along that axis, and the place

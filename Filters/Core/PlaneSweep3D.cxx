@@ -121,6 +121,10 @@ bool sweepChunk(const PlaneChunk& chunk,
       out);
     section.swap(next);
   }
+  // The parts stay alive side by side until their cells are written: no slack in them.
+  out.faces.shrink_to_fit();
+  out.loops.shrink_to_fit();
+  out.points.shrink_to_fit();
   return true;
 }
 
@@ -161,9 +165,12 @@ void appendBRep(BRep& to, BRep&& from)
 
 } // namespace
 
-bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out)
+bool planeSweep3DParts(const EVM& evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  std::vector<BRep>& parts)
 {
-  out = BRep();
+  parts.clear();
   std::atomic<bool> abort{ false };
   EVM sorted[3];
   sortForTheThreeSweeps(evm, exec, sorted);
@@ -172,19 +179,31 @@ bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution
     sorted[0].planeStarts(), sorted[1].planeStarts(), sorted[2].planeStarts()
   };
   const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, starts, 8);
-  std::vector<BRep> perChunk(chunks.size());
+  parts.resize(chunks.size());
   exec.forRange(static_cast<std::int64_t>(chunks.size()),
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t c = b; c < e; ++c)
-        if (!sweepChunk(chunks[c], connectivity, exec, abort, perChunk[c]))
+        if (!sweepChunk(chunks[c], connectivity, exec, abort, parts[c]))
           abort = true;
     });
   if (abort || !exec.report(1.0))
+  {
+    parts.clear();
+    return false;
+  }
+  return true;
+}
+
+bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out)
+{
+  out = BRep();
+  std::vector<BRep> parts;
+  if (!planeSweep3DParts(evm, connectivity, exec, parts))
     return false;
   // The chunks' faces in order: by axis, then plane.
   std::size_t faces = 0, loops = 0, points = 0;
-  for (const BRep& b : perChunk)
+  for (const BRep& b : parts)
   {
     faces += b.faces.size();
     loops += b.loops.size();
@@ -193,8 +212,11 @@ bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution
   out.faces.reserve(faces);
   out.loops.reserve(loops);
   out.points.reserve(points);
-  for (BRep& b : perChunk)
+  for (BRep& b : parts)
+  {
     appendBRep(out, std::move(b));
+    b = BRep(); // released as soon as copied
+  }
   return true;
 }
 

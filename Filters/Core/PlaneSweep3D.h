@@ -17,6 +17,8 @@
 #include "Execution.h"
 #include "PlaneSweep2D.h"
 
+#include <vector>
+
 namespace vbr
 {
 
@@ -24,6 +26,15 @@ namespace vbr
 /// Returns false (and an empty BRep) when the caller asked to abort. The three sweeps are
 /// cut into chunks of planes swept concurrently; the result does not depend on the chunks.
 bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out);
+
+/// The same faces in parts, one per chunk of planes, in order: concatenated, they are
+/// planeSweep3D's B-Rep. Each part's vectors fit their size, and a caller that writes and
+/// releases the parts one after the other never holds the faces twice (the concatenation
+/// does, for a moment). False (and no part) when the caller asked to abort.
+bool planeSweep3DParts(const EVM& evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  std::vector<BRep>& parts);
 
 } // namespace vbr
 
