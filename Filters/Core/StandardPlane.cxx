@@ -270,9 +270,18 @@ std::int64_t StandardPlane::omega() const
 
 void StandardPlaneRecognizer::reset()
 {
-  // Storage is kept from face to face: a recognizer is reset once per face.
+  // Storage is kept from face to face: a recognizer is reset once per face. But a point index
+  // grown by an earlier, larger face is replaced by a small one rather than cleared, so that a
+  // reset costs the size of the face it ends, not that of the largest face so far.
+  this->KeysPeak = std::max(this->KeysPeak, this->Points.size());
+  if (this->KeysPeak > 2 * this->Points.size() + 16)
+  {
+    this->Keys = GridPointIndex();
+    this->KeysPeak = 0;
+  }
+  else
+    this->Keys.clear();
   this->Points.clear();
-  this->Keys.clear();
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
   for (int s = 0; s < 8; ++s)
@@ -597,7 +606,11 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
   std::sort(fresh.begin(),
     fresh.end(),
     [](const Point3& a, const Point3& b) { return packBiased(a) < packBiased(b); });
-  fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+  fresh.erase(std::unique(fresh.begin(),
+                fresh.end(),
+                [](const Point3& a, const Point3& b)
+                { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }),
+    fresh.end());
   for (const Point3& q : fresh)
     this->FreshKeys.push_back(packBiased(q));
   return true;

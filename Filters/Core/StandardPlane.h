@@ -135,6 +135,7 @@ private:
   Point3 Origin{ 0, 0, 0 };             ///< points are kept relative to the first one
   std::vector<Point3> Points;           ///< without repeats
   GridPointIndex Keys;                  ///< of Points
+  std::size_t KeysPeak = 0;             ///< most points Keys held since it was made
   std::vector<Point3> Fresh;            ///< the new points of a call
   std::vector<std::uint64_t> FreshKeys; ///< theirs, sorted
   std::array<Octant, 8> Octants;        ///< one per sign pattern of the normal
