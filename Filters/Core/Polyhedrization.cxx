@@ -332,9 +332,11 @@ private:
   /// and lie in one standard plane (the seed of one umbrella that Francon & Papier prefer).
   bool seedUmbrella(std::uint32_t seed, std::uint32_t f)
   {
+    std::vector<std::uint32_t>& umbrella = this->Umbrella; // storage kept from seed to seed
+    std::vector<Point3>& points = this->UmbrellaPoints;
     for (int k = 0; k < 4; ++k)
     {
-      std::vector<std::uint32_t> umbrella;
+      umbrella.clear();
       bool free = true;
       this->Graph.aroundVertex(seed,
         k,
@@ -347,7 +349,7 @@ private:
       if (!free ||
         (this->Options.maximumFaceSize && umbrella.size() > this->Options.maximumFaceSize))
         continue;
-      std::vector<Point3> points;
+      points.clear();
       std::array<int, 3> signs{ 0, 0, 0 };
       bool opposite = false;
       for (std::uint32_t u : umbrella)
@@ -405,6 +407,8 @@ private:
   bool Growing = false;
   std::size_t Taken = 0; ///< surfels taken by the growth, for its progress
   std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
+  std::vector<std::uint32_t> Umbrella;                      ///< in seedUmbrella
+  std::vector<Point3> UmbrellaPoints;                       ///< in seedUmbrella
   std::vector<std::uint32_t> Queued, Refused;               ///< stamped with the face
   std::uint32_t DepthLimit;
 };

@@ -6,16 +6,19 @@
 // points without repeats (collectFreshPoints), the fast path where the current plane takes
 // them (takenByCurrentPlane), and the slow path (searchOctants) that clips a copy of every
 // octant still alive, drops those without interior (hasInterior), and searches each for the
-// integer normal of smallest omega (solve: omega level by level, n_x over the polygon's range,
-// n_y bounded by every edge: rangeOfNy, each candidate checked by fits); adoptNormal keeps the
-// result. All arithmetic is on integers; determinants use Wide.
+// integer normal of smallest omega (solve: omega level by level, columns k = u.(n_x, n_y) over
+// the polygon's range in a thin frame, thinFrame, and t along each column bounded by every
+// edge, rangeOfT; each candidate checked by fits); adoptNormal keeps the result. All
+// arithmetic that decides is on integers; determinants and column bounds use Wide.
 
 #include "StandardPlane.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace vbr
@@ -62,35 +65,196 @@ std::int64_t ceilDiv(std::int64_t a, std::int64_t b) // b > 0
   return -floorDiv(-a, b);
 }
 
-/// The normals n = (nx, ny, sigma_z (omega - sigma_x nx - sigma_y ny)) of the slice
-/// sigma.n = omega inside the polygon of `edges` (strictly on the strict ones): every edge
-/// bounds ny, to [yLo, yHi] (empty when yLo > yHi).
-void rangeOfNy(const std::vector<Vec>& edges,
-  const std::vector<char>& strict,
-  const Vec& sigma,
-  std::int64_t omega,
-  std::int64_t nx,
-  std::int64_t& yLo,
-  std::int64_t& yHi)
+Wide floorDiv(Wide a, Wide b) // b > 0
 {
-  yLo = -MaximumOmega - 1;
-  yHi = MaximumOmega + 1;
-  for (std::size_t e = 0; e < edges.size() && yLo <= yHi; ++e)
+  constexpr Wide Small = Wide(1) << 62; // 64-bit division when it suffices: much cheaper
+  if (-Small < a && a < Small && b < Small)
   {
-    const Vec& E = edges[e];
-    const std::int64_t a = E[1] - E[2] * sigma[2] * sigma[1];
-    const std::int64_t b = E[0] * nx + E[2] * sigma[2] * (omega - sigma[0] * nx);
-    if (a == 0)
-    {
-      if (b < 0 || (strict[e] && b == 0))
-        yLo = yHi + 1;
-    }
-    else if (a > 0) // a ny + b >= 0 (> 0)
-      yLo = std::max(yLo, strict[e] ? floorDiv(-b, a) + 1 : ceilDiv(-b, a));
-    else // ny <= b / -a (<)
-      yHi = std::min(yHi, strict[e] ? ceilDiv(b, -a) - 1 : floorDiv(b, -a));
+    const std::int64_t x = std::int64_t(a), y = std::int64_t(b);
+    return x >= 0 ? x / y : -((-x + y - 1) / y);
   }
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
+
+Wide ceilDiv(Wide a, Wide b) // b > 0
+{
+  return -floorDiv(-a, b);
+}
+
+/// Lattice coordinates of the slice in which a polygon is thin along the first one: the
+/// integer (nx, ny) with u.(nx, ny) = k are k a + t v for every integer t (u primitive,
+/// u.a = 1, v = (-u_y, u_x)). Any such frame has the same lattice points as (nx, ny); a thin
+/// one has few columns k per level.
+struct ColumnFrame
+{
+  std::array<std::int64_t, 2> u{ 1, 0 }, a{ 1, 0 }, v{ 0, 1 };
+};
+
+/// Reduction stops before a basis vector gets this long (the frame then is merely less thin).
+constexpr std::int64_t FrameLimit = std::int64_t(1) << 20;
+/// Levels below this one are scanned in the frame of (n_x, n_y); most searches end there, and
+/// a thin frame is computed only for those that go on.
+constexpr std::int64_t ThinFrameLevel = 6;
+
+/// The polygon's range of k / omega in a frame (minNum / minDen to maxNum / maxDen).
+struct ColumnRange
+{
+  std::int64_t minNum = 0, minDen = 1, maxNum = 0, maxDen = 1;
+};
+
+ColumnRange columnRange(const std::vector<Vec>& rays, const Vec& sigma, const ColumnFrame& frame)
+{
+  ColumnRange r;
+  for (std::size_t i = 0; i < rays.size(); ++i)
+  {
+    const std::int64_t num = frame.u[0] * rays[i][0] + frame.u[1] * rays[i][1];
+    const std::int64_t den = dot(sigma, rays[i]);
+    if (i == 0 || Wide(num) * r.minDen < Wide(r.minNum) * den)
+      r.minNum = num, r.minDen = den;
+    if (i == 0 || Wide(num) * r.maxDen > Wide(r.maxNum) * den)
+      r.maxNum = num, r.maxDen = den;
+  }
+  return r;
+}
+
+/// Width of the polygon of `rays` (on the slice sigma.n = 1, in (nx, ny)) along u: half the
+/// sum of |u.e| over its edges e. Floating point only chooses the frame, never the result.
+double widthAlong(const std::vector<std::array<double, 2>>& edges,
+  const std::array<std::int64_t, 2>& u)
+{
+  double w = 0;
+  for (const auto& e : edges)
+    w += std::fabs(double(u[0]) * e[0] + double(u[1]) * e[1]);
+  return w / 2;
+}
+
+/// The integer mu minimizing the width along b2 - mu b1: the width is convex and piecewise
+/// linear in mu, least at the weighted median of the edges' breakpoints.
+std::int64_t bestShift(const std::vector<std::array<double, 2>>& edges,
+  const std::array<std::int64_t, 2>& b1,
+  const std::array<std::int64_t, 2>& b2,
+  std::vector<std::pair<double, double>>& breaks)
+{
+  breaks.clear(); // (breakpoint, weight)
+  double total = 0;
+  for (const auto& e : edges)
+  {
+    const double d = double(b1[0]) * e[0] + double(b1[1]) * e[1];
+    const double c = double(b2[0]) * e[0] + double(b2[1]) * e[1];
+    if (d != 0)
+      breaks.emplace_back(c / d, std::fabs(d)), total += std::fabs(d);
+  }
+  if (breaks.empty())
+    return 0;
+  std::sort(breaks.begin(), breaks.end());
+  double sum = 0, median = breaks.back().first;
+  for (const auto& [at, weight] : breaks)
+    if ((sum += weight) >= total / 2)
+    {
+      median = at;
+      break;
+    }
+  const double limit = double(FrameLimit);
+  median = std::max(-limit, std::min(limit, median));
+  auto widthAt = [&](std::int64_t mu) {
+    return widthAlong(edges, { b2[0] - mu * b1[0], b2[1] - mu * b1[1] });
+  };
+  const std::int64_t lo = std::int64_t(std::floor(median)), hi = lo + 1;
+  return widthAt(lo) <= widthAt(hi) ? lo : hi;
+}
+
+/// x, y with a x + b y = gcd(a, b) = 1 (a, b coprime).
+std::array<std::int64_t, 2> bezout(std::int64_t a, std::int64_t b)
+{
+  std::int64_t r0 = a, r1 = b, x0 = 1, x1 = 0, y0 = 0, y1 = 1;
+  while (r1 != 0)
+  {
+    const std::int64_t q = r0 / r1;
+    std::tie(r0, r1) = std::make_pair(r1, r0 - q * r1);
+    std::tie(x0, x1) = std::make_pair(x1, x0 - q * x1);
+    std::tie(y0, y1) = std::make_pair(y1, y0 - q * y1);
+  }
+  return r0 < 0 ? std::array<std::int64_t, 2>{ -x0, -y0 } : std::array<std::int64_t, 2>{ x0, y0 };
+}
+
+/// The frame whose first coordinate is a shortest lattice vector for the polygon's width
+/// norm (Gauss's reduction, which finds one for any norm of the plane): the polygon's lattice
+/// width. Every level omega then has at most omega * width + 1 columns.
+ColumnFrame thinFrame(const std::vector<Vec>& rays,
+  const Vec& sigma,
+  std::vector<std::array<double, 2>>& edges,
+  std::vector<std::pair<double, double>>& breaks)
+{
+  edges.clear();
+  for (std::size_t i = 0; i < rays.size(); ++i)
+  {
+    const Vec& p = rays[i];
+    const Vec& q = rays[(i + 1) % rays.size()];
+    const double sp = double(dot(sigma, p)), sq = double(dot(sigma, q));
+    edges.push_back({ q[0] / sq - p[0] / sp, q[1] / sq - p[1] / sp });
+  }
+  std::array<std::int64_t, 2> b1{ 1, 0 }, b2{ 0, 1 };
+  if (widthAlong(edges, b1) > widthAlong(edges, b2))
+    std::swap(b1, b2);
+  for (int step = 0; step < 64; ++step)
+  {
+    const std::int64_t mu = bestShift(edges, b1, b2, breaks);
+    const std::array<std::int64_t, 2> c{ b2[0] - mu * b1[0], b2[1] - mu * b1[1] };
+    if (std::llabs(c[0]) >= FrameLimit || std::llabs(c[1]) >= FrameLimit ||
+      widthAlong(edges, c) >= widthAlong(edges, b1))
+      break;
+    b2 = b1;
+    b1 = c;
+  }
+  ColumnFrame f;
+  f.u = b1; // primitive: a basis vector of the lattice
+  f.a = bezout(b1[0], b1[1]);
+  f.v = { -b1[1], b1[0] };
+  return f;
+}
+
+/// The half-plane of normals of a polygon edge in the coordinates (nx, ny, omega) of the
+/// slices: alpha nx + beta ny + gamma omega >= 0 (> 0 when strict).
+std::array<std::int64_t, 3> sliceForm(const Vec& E, const Vec& sigma)
+{
+  return { E[0] - E[2] * sigma[2] * sigma[0], E[1] - E[2] * sigma[2] * sigma[1], E[2] * sigma[2] };
+}
+
+/// The t of column k of level omega inside every edge's half-plane (strictly on the strict
+/// ones): [tLo, tHi], empty when tLo > tHi. In Int: std::int64_t when |k| and omega are below
+/// SmallColumn (forms < 2^18 and frames < 2^20 keep every product below 2^59), else Wide.
+template<typename Int>
+void rangeOfT(const std::vector<std::array<std::int64_t, 3>>& forms,
+  const std::vector<char>& strict,
+  const ColumnFrame& f,
+  std::int64_t omega,
+  Int k,
+  std::int64_t& tLo,
+  std::int64_t& tHi)
+{
+  constexpr Int Far = Int(1) << 62;
+  Int lo = -Far, hi = Far;
+  for (std::size_t e = 0; e < forms.size() && lo <= hi; ++e)
+  {
+    const auto& F = forms[e];
+    // F.(k a + t v, omega) = A t + B
+    const Int A = Int(F[0]) * f.v[0] + Int(F[1]) * f.v[1];
+    const Int B = k * (Int(F[0]) * f.a[0] + Int(F[1]) * f.a[1]) + Int(F[2]) * omega;
+    if (A == 0)
+    {
+      if (B < 0 || (strict[e] && B == 0))
+        lo = hi + 1;
+    }
+    else if (A > 0) // t >= -B / A (>)
+      lo = std::max(lo, strict[e] ? floorDiv(-B, A) + 1 : ceilDiv(-B, A));
+    else // t <= B / -A (<)
+      hi = std::min(hi, strict[e] ? ceilDiv(B, -A) - 1 : floorDiv(B, -A));
+  }
+  tLo = std::int64_t(std::max(lo, -Far));
+  tHi = std::int64_t(std::min(hi, Far));
+}
+
+constexpr std::int64_t SmallColumn = std::int64_t(1) << 20;
 
 Vec sigmaOf(const std::array<int, 3>& s)
 {
@@ -106,9 +270,18 @@ std::int64_t StandardPlane::omega() const
 
 void StandardPlaneRecognizer::reset()
 {
-  // Storage is kept from face to face: a recognizer is reset once per face.
+  // Storage is kept from face to face: a recognizer is reset once per face. But a point index
+  // grown by an earlier, larger face is replaced by a small one rather than cleared, so that a
+  // reset costs the size of the face it ends, not that of the largest face so far.
+  this->KeysPeak = std::max(this->KeysPeak, this->Points.size());
+  if (this->KeysPeak > 2 * this->Points.size() + 16)
+  {
+    this->Keys = GridPointIndex();
+    this->KeysPeak = 0;
+  }
+  else
+    this->Keys.clear();
   this->Points.clear();
-  this->Keys.clear();
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
   for (int s = 0; s < 8; ++s)
@@ -155,7 +328,8 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
 {
   ++this->Clips;
   const std::size_t n = o.vertices.size();
-  std::vector<std::int64_t> f(n);
+  std::vector<std::int64_t>& f = this->ClipValues;
+  f.resize(n);
   bool anyNegative = false, anyNonNegative = false;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -173,9 +347,13 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
     return false;
   }
   const Vec sigma = sigmaOf(o.sigma);
-  std::vector<Vertex> vertices;
-  std::vector<Vec> edges;
-  std::vector<char> octantEdge;
+  // Built in the scratch polygon, then swapped in: no allocation once the storage has grown.
+  std::vector<Vertex>& vertices = this->ClipPolygon.vertices;
+  std::vector<Vec>& edges = this->ClipPolygon.edges;
+  std::vector<char>& octantEdge = this->ClipPolygon.octantEdge;
+  vertices.clear();
+  edges.clear();
+  octantEdge.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
     const std::size_t j = (i + 1) % n;
@@ -304,29 +482,46 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   strict.assign(o.edges.size(), 0);
   for (std::size_t e = 0; e < o.edges.size(); ++e)
     strict[e] = !o.octantEdge[e] || this->saturated(o, e);
-  // Range of n_x / omega over the polygon, as fractions.
-  std::int64_t minNum = 0, minDen = 1, maxNum = 0, maxDen = 1;
-  for (std::size_t i = 0; i < o.vertices.size(); ++i)
-  {
-    const std::int64_t num = o.vertices[i].ray[0], den = dot(sigma, o.vertices[i].ray);
-    if (i == 0 || Wide(num) * minDen < Wide(minNum) * den)
-      minNum = num, minDen = den;
-    if (i == 0 || Wide(num) * maxDen > Wide(maxNum) * den)
-      maxNum = num, maxDen = den;
-  }
+  // Columns k = u.(nx, ny), first with u = (1, 0), then over a thin frame of the polygon
+  // (thinFrame): the range of k / omega over the polygon, as fractions.
+  std::vector<Vec>& rays = this->Rays;
+  rays.clear();
+  for (const Vertex& v : o.vertices)
+    rays.push_back(v.ray);
+  ColumnFrame frame;
+  ColumnRange range = columnRange(rays, sigma, frame);
+  std::vector<std::array<std::int64_t, 3>>& forms = this->Forms;
+  forms.clear();
+  for (const Vec& E : o.edges)
+    forms.push_back(sliceForm(E, sigma));
+  // Level by level; within the first level that holds a solution, the smallest (nx, ny) in
+  // lexicographic order, whatever the frame.
   std::int64_t budget = SearchBudget;
   for (std::int64_t omega = 1; omega <= omegaLimit && budget > 0; ++omega, --budget)
   {
-    const std::int64_t xLo = ceilDiv(omega * minNum, minDen);
-    const std::int64_t xHi = floorDiv(omega * maxNum, maxDen);
-    for (std::int64_t nx = xLo; nx <= xHi && budget > 0; ++nx, --budget)
+    if (omega == ThinFrameLevel)
     {
-      std::int64_t yLo, yHi;
-      rangeOfNy(o.edges, strict, sigma, omega, nx, yLo, yHi);
-      for (std::int64_t ny = yLo; ny <= yHi && budget > 0; ++ny, --budget)
+      frame = thinFrame(rays, sigma, this->FrameEdges, this->FrameBreaks);
+      range = columnRange(rays, sigma, frame);
+    }
+    bool found = false;
+    const Wide kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
+    const Wide kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
+    for (Wide k = kLo; k <= kHi && budget > 0; ++k, --budget)
+    {
+      std::int64_t tLo, tHi;
+      if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
+        rangeOfT(forms, strict, frame, omega, std::int64_t(k), tLo, tHi);
+      else
+        rangeOfT(forms, strict, frame, omega, k, tLo, tHi);
+      for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
       {
+        const std::int64_t nx = std::int64_t(k * frame.a[0] + Wide(t) * frame.v[0]);
+        const std::int64_t ny = std::int64_t(k * frame.a[1] + Wide(t) * frame.v[1]);
         const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
         if (sigma[0] * n[0] < 0 || sigma[1] * n[1] < 0 || sigma[2] * n[2] < 0)
+          continue;
+        if (found && (nx > normal[0] || (nx == normal[0] && ny >= normal[1])))
           continue;
         // A multiple k n of a normal n fits exactly when n does, and n came first.
         if (std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) > 1)
@@ -334,10 +529,12 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
         if (this->fits(n, present))
         {
           normal = n;
-          return true;
+          found = true;
         }
       }
     }
+    if (found)
+      return true;
   }
   return false;
 }
@@ -409,7 +606,11 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
   std::sort(fresh.begin(),
     fresh.end(),
     [](const Point3& a, const Point3& b) { return packBiased(a) < packBiased(b); });
-  fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+  fresh.erase(std::unique(fresh.begin(),
+                fresh.end(),
+                [](const Point3& a, const Point3& b)
+                { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }),
+    fresh.end());
   for (const Point3& q : fresh)
     this->FreshKeys.push_back(packBiased(q));
   return true;

@@ -16,8 +16,16 @@
 // the origin) and clipped lazily: a vertex whose width exceeds 1 is cut by the pair (q, r)
 // realizing its extremes, until every vertex fits; since the width is convex, the whole
 // polygon then fits. Strict inequalities are decided at a relative interior point. The
-// integer normal returned is the one of smallest omega found by scanning the lattice
-// points of the polygon level by level. No floating point decides anything.
+// integer normal returned is the one of smallest omega (the smallest (n_x, n_y) among those),
+// found by scanning the lattice points of the polygon level by level (omega = 1, 2, ...), in
+// columns along the polygon's lattice-width direction (a shortest vector of the lattice for
+// the polygon's width norm, by Gauss's reduction): level omega has at most omega * w + 1
+// columns for a polygon of lattice width w, and a polygon with no lattice point inside at
+// level W - 1 has (W - 1) w <= 1 + 2 / sqrt(3) (Hurkens' flatness bound in the plane), so
+// reaching the smallest omega W costs O(W * E) column bounds for E edges, plus the
+// candidates, instead of O(W^2 * E * x-extent) along a fixed axis (thin polygons, long across
+// n_x, were the superlinear cliff). Floating point only chooses the frame (any frame finds
+// the same normal); no floating point decides anything.
 #ifndef vbr_StandardPlane_h
 #define vbr_StandardPlane_h
 
@@ -27,6 +35,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace vbr
@@ -126,6 +135,7 @@ private:
   Point3 Origin{ 0, 0, 0 };             ///< points are kept relative to the first one
   std::vector<Point3> Points;           ///< without repeats
   GridPointIndex Keys;                  ///< of Points
+  std::size_t KeysPeak = 0;             ///< most points Keys held since it was made
   std::vector<Point3> Fresh;            ///< the new points of a call
   std::vector<std::uint64_t> FreshKeys; ///< theirs, sorted
   std::array<Octant, 8> Octants;        ///< one per sign pattern of the normal
@@ -135,7 +145,13 @@ private:
   StandardPlane Current;
   std::int64_t CurrentLo = 0, CurrentHi = 0; ///< range of the current normal over the points
   mutable std::size_t Clips = 0, Searches = 0;
-  mutable std::vector<char> StrictEdges; ///< per polygon edge, in solve
+  mutable std::vector<char> StrictEdges;                      ///< per polygon edge, in solve
+  mutable std::vector<Vec> Rays;                              ///< the polygon's vertices, in solve
+  mutable std::vector<std::array<double, 2>> FrameEdges;      ///< in solve's thinFrame
+  mutable std::vector<std::pair<double, double>> FrameBreaks; ///< in solve's thinFrame
+  mutable std::vector<std::int64_t> ClipValues;               ///< per vertex, in clip
+  mutable Octant ClipPolygon; ///< the clipped polygon's storage, in clip
+  mutable std::vector<std::array<std::int64_t, 3>> Forms; ///< its edges on the slices, in solve
 };
 
 } // namespace vbr

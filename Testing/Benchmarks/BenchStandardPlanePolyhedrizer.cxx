@@ -1,7 +1,10 @@
 // Benchmark of vtkStandardPlanePolyhedrizer: faces and time on the paper's sphere, on balls,
-// on a twice-rotated cube (a hexahedron, the intersection of six half-spaces), on real objects
-// and on porous volumes, next to vtkDiscreteFlyingEdges3D (the triangles a user would get
-// instead) on the same input, in turns in the same process (the harness of BenchCommon.h).
+// on a twice-rotated cube (a hexahedron, the intersection of six half-spaces), on real objects,
+// on porous volumes, on 50 % noise and on one-voxel-thin spirals of several sizes (the class
+// `spiral`, built here: long thin faces whose polygons of normals are thin; sizes 32, 64 and
+// 96, 128 too with --large, 24 with --quick), next to vtkDiscreteFlyingEdges3D (the triangles
+// a user would get instead) on the same input, in turns in the same process (the harness of
+// BenchCommon.h).
 //
 // Per input: surfels, faces (the paper's growth alone, then with the move to larger faces,
 // the default, then with the merging pass too), face sizes, the number of faces of at most
@@ -24,6 +27,7 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -151,20 +155,78 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
     });
 }
 
+/// A one-voxel-thin Archimedean spiral wall, r = 4 theta / (2 pi) (turns 4 voxels apart) out
+/// to 2 voxels from the border, 4-connected in each slice and extruded along z over n - 2
+/// slices: the inner turns are short arcs, the outer ones long, gently curved strips.
+Input spiral(int n)
+{
+  Input in;
+  in.name = "spiral " + std::to_string(n) + "^3";
+  in.inputClass = "spiral";
+  in.dims = { n, n, n };
+  in.values.assign(in.voxelCount(), 0);
+  const double c = (n - 1) / 2.0, gap = 4.0, pi = std::acos(-1.0);
+  auto wall = [&](int x, int y)
+  {
+    for (int z = 1; z < n - 1; ++z)
+      in.at(x, y, z) = 1;
+  };
+  int px = -1, py = -1;
+  for (long i = 0;; ++i)
+  {
+    const double t = 0.002 * double(i), r = gap * t / (2 * pi);
+    if (r >= c - 2)
+      break;
+    const int x = int(std::lround(c + r * std::cos(t))), y = int(std::lround(c + r * std::sin(t)));
+    if (px >= 0 && x != px && y != py)
+      wall(x, py); // a diagonal step: the corner keeps the wall 4-connected
+    wall(x, y);
+    px = x, py = y;
+  }
+  return in;
+}
+
+/// The spiral sizes the options select (the class `spiral`).
+std::vector<int> spiralSizes(const Options& options)
+{
+  const auto& classes = options.inputs.classes;
+  const bool all = std::find(classes.begin(), classes.end(), "all") != classes.end();
+  if (!all && std::find(classes.begin(), classes.end(), "spiral") == classes.end())
+    return {};
+  if (options.inputs.quick)
+    return { 24 };
+  std::vector<int> sizes{ 32, 64, 96 };
+  if (options.inputs.large)
+    sizes.push_back(128);
+  return sizes;
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
 {
   Options options;
-  options.inputs.classes = splitList("balls,porous,berea,volumes,labelmaps");
+  options.inputs.classes = splitList("balls,porous,noise,spiral,berea,volumes,labelmaps");
   options.inputs.sizes = { 64 };
   options.inputs.solid = { 45 };
   options.inputs.seeds = { 1 };
   options.repeat = 3;
-  return runBenchmark(argc,
-    argv,
-    "BenchStandardPlanePolyhedrizer",
-    "vtkStandardPlanePolyhedrizer against vtkDiscreteFlyingEdges3D",
-    options,
-    benchmarkInput);
+  // runBenchmark, with the spirals (a class of this benchmark only) after the shared inputs.
+  const char* title = "BenchStandardPlanePolyhedrizer";
+  const std::string purpose = std::string(title) +
+    ": vtkStandardPlanePolyhedrizer against vtkDiscreteFlyingEdges3D (input class 'spiral': "
+    "one-voxel-thin spirals, built here)";
+  const int stop = parseOptions(argc, argv, purpose.c_str(), options);
+  if (stop >= 0)
+    return stop;
+  printPreamble(title, options);
+  Report report;
+  forEachInput(options, [&](const Input& in) { benchmarkInput(in, options, report); });
+  for (int n : spiralSizes(options))
+  {
+    benchmarkInput(spiral(n), options, report);
+    std::fflush(stdout);
+  }
+  report.printSummary();
+  return 0;
 }

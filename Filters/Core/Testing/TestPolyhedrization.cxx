@@ -56,6 +56,34 @@ bool bruteForcePlane(const std::vector<Point3>& points, const std::array<int, 3>
   return false;
 }
 
+/// The smallest omega <= bound of a normal that fits the points with the orientations asked,
+/// level by level over every integer normal; 0 when there is none.
+int bruteForceOmega(const std::vector<Point3>& points, const std::array<int, 3>& signs, int bound)
+{
+  for (int omega = 1; omega <= bound; ++omega)
+    for (int a = -omega; a <= omega; ++a)
+      for (int b = std::abs(a) - omega; b <= omega - std::abs(a); ++b)
+        for (int c : { omega - std::abs(a) - std::abs(b), std::abs(a) + std::abs(b) - omega })
+        {
+          const int n[3] = { a, b, c };
+          bool oriented = true;
+          for (int d = 0; d < 3; ++d)
+            oriented = oriented && (signs[d] == 0 || signs[d] * n[d] > 0);
+          long lo = 0, hi = 0;
+          for (std::size_t i = 0; i < points.size() && oriented; ++i)
+          {
+            const long v = long(a) * points[i][0] + long(b) * points[i][1] + long(c) * points[i][2];
+            lo = i == 0 ? v : std::min(lo, v);
+            hi = i == 0 ? v : std::max(hi, v);
+          }
+          if (oriented && hi - lo < omega)
+            return omega;
+          if (c == 0)
+            break; // one normal, not two
+        }
+  return 0;
+}
+
 /// mu <= a x + b y + c z < mu + |a| + |b| + |c|, evaluated here.
 bool inPlane(const vbr::StandardPlane& p, const Point3& q)
 {
@@ -211,6 +239,74 @@ TEST(StandardPlane, AgreesWithBruteForce)
   }
   EXPECT_GT(feasible, 300);
   EXPECT_LT(feasible, checked - 300);
+}
+
+TEST(StandardPlane, SmallestOmegaOnThinStrips)
+{
+  // Points added one by one along thin strips (a digital segment of a random direction and a
+  // neighbouring one), whose polygons of normals are long and thin in directions the search
+  // frame must find, and random sets: after every call, the recognizer's feasibility and
+  // omega against every integer normal of omega <= Bound (such small sets have their smallest
+  // omega far below the recognizer's limit, so a refusal means no plane at all).
+  constexpr int Bound = 28;
+  std::mt19937 rng(23);
+  int accepted = 0, refused = 0, large = 0;
+  for (int t = 0; t < 400; ++t)
+  {
+    std::vector<Point3> candidates;
+    if (t % 4 == 3)
+      for (int i = 0; i < 10; ++i)
+        candidates.push_back({ int(rng() % 7) - 3, int(rng() % 7) - 3, int(rng() % 4) });
+    else
+    {
+      std::array<int, 3> dir{ int(rng() % 11) - 5, int(rng() % 11) - 5, int(rng() % 11) - 5 };
+      const int den = 2 + int(rng() % 7);
+      const std::array<int, 3> side{ int(rng() % 3) - 1, int(rng() % 3) - 1, int(rng() % 3) - 1 };
+      for (int i = 0; i < 14; ++i)
+      {
+        Point3 q;
+        for (int d = 0; d < 3; ++d)
+          q[d] = int(std::floor(double(i * dir[d]) / den + 0.5)) + (i % 2) * side[d];
+        candidates.push_back(q);
+      }
+      std::shuffle(candidates.begin(), candidates.end(), rng);
+    }
+    std::array<int, 3> signs{ 0, 0, 0 };
+    signs[rng() % 3] = rng() % 2 ? 1 : -1;
+    vbr::StandardPlaneRecognizer r;
+    std::vector<Point3> points;
+    for (const Point3& q : candidates)
+    {
+      std::vector<Point3> with = points;
+      with.push_back(q);
+      const int expected = bruteForceOmega(with, signs, Bound);
+      const bool added = r.tryAdd({ q }, signs);
+      SCOPED_TRACE("trial " + std::to_string(t) + ", point " + std::to_string(with.size()));
+      if (!added)
+      {
+        ++refused;
+        EXPECT_EQ(expected, 0) << "a plane of omega " << expected << " exists but was refused";
+        continue;
+      }
+      ++accepted;
+      points = with;
+      const vbr::StandardPlane& plane = r.plane();
+      for (const Point3& p : points)
+        ASSERT_TRUE(inPlane(plane, p)) << "point outside the plane returned";
+      for (int d = 0; d < 3; ++d)
+        ASSERT_TRUE(signs[d] == 0 || signs[d] * plane.normal[d] > 0) << "wrong orientation";
+      if (expected == 0)
+      {
+        EXPECT_GT(plane.omega(), Bound) << "a plane the exhaustive search missed";
+        ++large;
+      }
+      else
+        EXPECT_EQ(plane.omega(), expected) << "not the smallest omega";
+    }
+  }
+  EXPECT_GT(accepted, 1500);
+  EXPECT_GT(refused, 200);
+  RecordProperty("omega above the bound", large);
 }
 
 TEST(StandardPlane, PaperUmbrellaAndCube)
