@@ -584,13 +584,22 @@ bool appendBoundaryCells(const vbr::vtk::Selected& object,
   return true;
 }
 
-/// Returns the heap's free pages to the system. The parts of the faces live in the heap and
-/// the output's large arrays in pages of their own, which never reuse the heap's free space:
+/// Releases a part of the faces and, once the parts released since the last time hold 32 MB
+/// or more, returns the heap's free pages to the system. The parts live in the heap and the
+/// output's large arrays in pages of their own, which never reuse the heap's free space:
 /// without this the parts released would stay resident next to the output that replaces them.
-void giveBackFreedMemory()
+/// Small outputs never pay for it.
+void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
 {
+  releasedBytes += part.faces.capacity() * sizeof(vbr::BRepFace) +
+    part.loops.capacity() * sizeof(vbr::BRepLoop) + part.points.capacity() * sizeof(Point3);
+  part = vbr::BRep();
 #if defined(__GLIBC__)
-  malloc_trim(0);
+  if (releasedBytes >= (std::size_t(32) << 20))
+  {
+    malloc_trim(0);
+    releasedBytes = 0;
+  }
 #endif
 }
 
@@ -631,6 +640,7 @@ void appendObjects(vtkAlgorithm* self,
   builder.addCornerPoints(corners.points());
   vtkLogEndScope("numbered corners");
   vtkIdType faceBase = 0;
+  std::size_t releasedBytes = 0;
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
@@ -652,9 +662,8 @@ void appendObjects(vtkAlgorithm* self,
       }
       if (!appendBoundaryCells(
             objects[o], part, numbers, settings, exec, faceBase, progress, builder))
-        return;           // aborted
-      part = vbr::BRep(); // released as soon as written
-      giveBackFreedMemory();
+        return;                         // aborted
+      releasePart(part, releasedBytes); // as soon as written
     }
     self->UpdateProgress(to);
   }
