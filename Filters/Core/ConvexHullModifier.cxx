@@ -11,6 +11,7 @@
 #include <numeric>
 #include <queue>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 namespace vbr
@@ -278,11 +279,14 @@ bool solidHull(const std::vector<LatticePoint>& points,
   return out.dimension == 3;
 }
 
-std::size_t latticeCount(const CellList& c)
+/// Whether a hull inside the closed C misses a corner of C, that is (C being the hull of its
+/// lattice corners) whether it holds fewer lattice points than C: the lattice count of the
+/// hulls strictly decreases from level to level, so the recursion ends.
+bool missesACorner(const CellList& inside, const CellList& c)
 {
-  std::size_t n = 0;
-  forEachPointIn(c, false, [&](const LatticePoint&) { ++n; });
-  return n;
+  return std::any_of(c.vertices.begin(),
+    c.vertices.end(),
+    [&](const LatticePoint& p) { return !hullContains(inside, p); });
 }
 
 std::vector<LatticePoint> pointsOfClass(const CellList& c,
@@ -319,33 +323,64 @@ void recordPlanes(Context& ctx, const CellList& c, int level)
   }
 }
 
-/// Components of a set of lattice points of the grid (CUDB, connected through faces, edges or
-/// corners when `vertex`), as point lists.
+/// Components of a set of lattice points (CUDB, connected through faces, edges or corners when
+/// `vertex`), as point lists. Only the box of the points is voxelised: a level deep inside a
+/// large grid pays for its own points, not for the grid. `plane`: the grid is one slice (2D
+/// components); a 3D grid keeps 3D extraction even when the points lie in one slice.
 std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoint>& points,
-  const Dims& d,
+  bool plane,
   bool vertex)
 {
+  if (points.empty())
+    return {};
+  LatticePoint lo = points[0], hi = points[0];
+  for (const auto& p : points)
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  const Dims d{ static_cast<std::int32_t>(hi[0] - lo[0] + 1),
+    static_cast<std::int32_t>(hi[1] - lo[1] + 1),
+    static_cast<std::int32_t>(hi[2] - lo[2] + 1) };
   BitVolume set(d[0], d[1], d[2]);
   for (const auto& p : points)
-    set.set(static_cast<std::int32_t>(p[0]),
-      static_cast<std::int32_t>(p[1]),
-      static_cast<std::int32_t>(p[2]));
-  const CUDB cudb = buildCUDB(d[2] == 1 ? extractEVM2D(set) : extractEVM(set));
-  const Components comps =
-    labelComponents(cudb, vertex ? Connectivity::Vertex : Connectivity::Face);
+    set.set(static_cast<std::int32_t>(p[0] - lo[0]),
+      static_cast<std::int32_t>(p[1] - lo[1]),
+      static_cast<std::int32_t>(p[2] - lo[2]));
+  CUDB cudb;
+  Components comps;
+  buildCUDBComponents(plane ? extractEVM2D(set) : extractEVM(set),
+    vertex ? Connectivity::Vertex : Connectivity::Face,
+    Execution(),
+    cudb,
+    comps);
   std::vector<std::int32_t> value(comps.boxLabel.begin(), comps.boxLabel.end());
   std::vector<std::int32_t> labels(set.voxelCount(), 0);
   paintBoxes(cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, d, labels.data());
   std::vector<std::vector<LatticePoint>> groups(comps.count);
   for (const auto& p : points)
-    groups[labels[(p[2] * d[1] + p[1]) * d[0] + p[0]] - 1].push_back(p);
+  {
+    const std::size_t at =
+      (static_cast<std::size_t>(p[2] - lo[2]) * d[1] + (p[1] - lo[1])) * d[0] + (p[0] - lo[0]);
+    groups[labels[at] - 1].push_back(p);
+  }
   return groups;
 }
 
 /// Whether two solid convex hulls share a point (separating axis test, exact): the axes are
-/// the face normals of both and the cross products of their edge directions.
+/// the face normals of both and the cross products of their edge directions. A corner of one
+/// inside the other answers first, since meeting hulls mostly overlap that way.
 bool hullsIntersect(const CellList& a, const CellList& b)
 {
+  auto contains = [](const CellList& h, const CellList& o)
+  {
+    return std::any_of(o.vertices.begin(),
+      o.vertices.end(),
+      [&](const LatticePoint& p) { return hullContains(h, p); });
+  };
+  if (a.dimension == 3 && b.dimension == 3 && (contains(a, b) || contains(b, a)))
+    return true;
   auto separates = [&](const LatticePoint& n)
   {
     if (n == LatticePoint{ 0, 0, 0 })
@@ -377,6 +412,30 @@ bool hullsIntersect(const CellList& a, const CellList& b)
   return true;
 }
 
+/// A hull with its bounding box: hulls whose boxes miss each other are apart without the
+/// separating axis test, which is what keeps the pairwise merging of groups cheap.
+struct BoxedHull
+{
+  CellList hull;
+  std::array<std::int64_t, 6> box{ 0, -1, 0, -1, 0, -1 };
+
+  BoxedHull() = default;
+  explicit BoxedHull(CellList h)
+    : hull(std::move(h))
+  {
+    if (this->hull.dimension >= 0)
+      this->box = boundsOf(this->hull);
+  }
+};
+
+bool hullsMeet(const BoxedHull& a, const BoxedHull& b)
+{
+  for (int k = 0; k < 3; ++k)
+    if (a.box[2 * k + 1] < b.box[2 * k] || b.box[2 * k + 1] < a.box[2 * k])
+      return false;
+  return hullsIntersect(a.hull, b.hull);
+}
+
 /// Whether p lies on a face plane of the (solid) hull.
 bool onSurface(const CellList& c, const LatticePoint& p)
 {
@@ -385,44 +444,149 @@ bool onSurface(const CellList& c, const LatticePoint& p)
     [&](const FacePlane& plane) { return plane.evaluate(p) == 0; });
 }
 
+/// A group of points of the other class: its points, the hull of the points (any dimension)
+/// and a solid hull holding them (solidHull; dimension below 3 when no thickening fits). The
+/// hull of two merged groups is the hull of their hulls' corners, so a merge costs the
+/// corners, not the points.
+struct PointGroup
+{
+  std::vector<LatticePoint> points;
+  CellList shape;
+  BoxedHull solid;
+};
+
+/// The solid hull of the group (its shape when that is solid, else its points thickened inside
+/// C, in C's open interior when `strict`).
+BoxedHull solidOf(const PointGroup& g, const CellList& c, bool strict, CoplanarFaces coplanar)
+{
+  if (g.shape.dimension == 3)
+    return BoxedHull(g.shape);
+  CellList out;
+  solidHull(g.points, c, strict, coplanar, out);
+  return BoxedHull(std::move(out));
+}
+
+/// The first and last point of every row (along x) of the points: every other point lies
+/// between two of them, so they span the same hull, and a solid group of n points gives the
+/// hull about n^(2/3) points instead of n.
+std::vector<LatticePoint> rowEnds(std::vector<LatticePoint> points)
+{
+  auto zyx = [](const LatticePoint& a, const LatticePoint& b)
+  { return std::tie(a[2], a[1], a[0]) < std::tie(b[2], b[1], b[0]); };
+  if (!std::is_sorted(points.begin(), points.end(), zyx))
+    std::sort(points.begin(), points.end(), zyx);
+  std::vector<LatticePoint> ends;
+  for (std::size_t k = 0; k < points.size(); ++k)
+  {
+    const bool first =
+      k == 0 || points[k - 1][1] != points[k][1] || points[k - 1][2] != points[k][2];
+    const bool last = k + 1 == points.size() || points[k + 1][1] != points[k][1] ||
+      points[k + 1][2] != points[k][2];
+    if (first || last)
+      ends.push_back(points[k]);
+  }
+  return ends;
+}
+
+PointGroup makeGroup(std::vector<LatticePoint> points,
+  const CellList& c,
+  bool strict,
+  CoplanarFaces coplanar)
+{
+  PointGroup g;
+  g.points = std::move(points);
+  g.shape = convexHull(rowEnds(g.points), coplanar);
+  g.solid = solidOf(g, c, strict, coplanar);
+  return g;
+}
+
+/// Moves the points of the groups `from` into `into` (the largest list kept, so a growing group
+/// is not copied again and again) and finds the hulls of the union from the shapes' corners.
+void mergeGroups(PointGroup& into,
+  const std::vector<PointGroup*>& from,
+  const CellList& c,
+  bool strict,
+  CoplanarFaces coplanar)
+{
+  std::vector<LatticePoint> corners = into.shape.vertices;
+  for (PointGroup* g : from)
+  {
+    if (into.points.size() < g->points.size())
+      std::swap(into.points, g->points);
+    into.points.insert(into.points.end(), g->points.begin(), g->points.end());
+    corners.insert(corners.end(), g->shape.vertices.begin(), g->shape.vertices.end());
+    *g = PointGroup();
+  }
+  into.shape = convexHull(corners, coplanar);
+  into.solid = solidOf(into, c, strict, coplanar);
+}
+
+/// Merges groups while two of them meet, until they are pairwise apart: a group takes every
+/// group it meets at once (they all end up with it: a hull holding it meets them), and having
+/// grown is tested again. Two groups found apart stay apart until one of them grows, so no
+/// pair is tested twice at the same size. The survivors keep their order.
+template<typename Meet>
+void mergeWhileMeeting(std::vector<PointGroup>& groups,
+  const CellList& c,
+  bool strict,
+  CoplanarFaces coplanar,
+  Meet&& meet)
+{
+  std::vector<bool> alive(groups.size(), true);
+  std::vector<std::size_t> todo(groups.size());
+  std::iota(todo.rbegin(), todo.rend(), std::size_t(0));
+  while (!todo.empty())
+  {
+    const std::size_t i = todo.back();
+    todo.pop_back();
+    if (!alive[i])
+      continue;
+    std::vector<PointGroup*> meeting;
+    for (std::size_t j = 0; j < groups.size(); ++j)
+      if (j != i && alive[j] && meet(groups[i], groups[j]))
+      {
+        meeting.push_back(&groups[j]);
+        alive[j] = false;
+      }
+    if (meeting.empty())
+      continue;
+    mergeGroups(groups[i], meeting, c, strict, coplanar);
+    todo.push_back(i);
+  }
+  std::vector<PointGroup> kept;
+  for (std::size_t i = 0; i < groups.size(); ++i)
+    if (alive[i])
+      kept.push_back(std::move(groups[i]));
+  groups = std::move(kept);
+}
+
 /// The groups of points of the other class to press in: the components (face-connected: two
 /// groups meeting only along an edge or at a corner stay two, and their hulls apart) in the
-/// closed hull that reach its open interior, merged while their hulls meet, each with its hull.
-void pressingInGroups(Context& ctx,
+/// closed hull that reach its open interior, merged while their hulls meet (a group without a
+/// solid hull meets every other), each with its hull.
+std::vector<PointGroup> pressingInGroups(Context& ctx,
   const CellList& c,
   const CellList* parent,
-  bool cls,
-  std::vector<std::vector<LatticePoint>>& groups,
-  std::vector<CellList>& hulls,
-  std::vector<bool>& solid)
+  bool cls)
 {
+  std::vector<PointGroup> groups;
   for (auto& g :
-    componentsOf(pointsOfClass(c, ctx.objects, !cls, false), ctx.objects.dims(), false))
+    componentsOf(pointsOfClass(c, ctx.objects, !cls, false), ctx.objects.dims()[2] == 1, false))
     if (std::any_of(g.begin(),
           g.end(),
           [&](const LatticePoint& p)
           { return strictlyInside(c, p) || (parent && onSurface(*parent, p)); }))
-      groups.push_back(std::move(g));
-  hulls.assign(groups.size(), CellList());
-  solid.assign(groups.size(), false);
-  for (std::size_t i = 0; i < groups.size(); ++i)
-    solid[i] = solidHull(groups[i], c, false, ctx.coplanar, hulls[i]);
-  for (bool merged = true; merged;)
-  {
-    merged = false;
-    for (std::size_t i = 0; i < groups.size() && !merged; ++i)
-      for (std::size_t j = i + 1; j < groups.size() && !merged; ++j)
-        if (hulls[i].dimension >= 0 && hulls[j].dimension >= 0 &&
-          (hulls[i].dimension < 3 || hulls[j].dimension < 3 || hullsIntersect(hulls[i], hulls[j])))
-        {
-          groups[i].insert(groups[i].end(), groups[j].begin(), groups[j].end());
-          groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(j));
-          hulls.erase(hulls.begin() + static_cast<std::ptrdiff_t>(j));
-          solid.erase(solid.begin() + static_cast<std::ptrdiff_t>(j));
-          solid[i] = solidHull(groups[i], c, false, ctx.coplanar, hulls[i]);
-          merged = true;
-        }
-  }
+      groups.push_back(makeGroup(std::move(g), c, false, ctx.coplanar));
+  mergeWhileMeeting(groups,
+    c,
+    false,
+    ctx.coplanar,
+    [](const PointGroup& a, const PointGroup& b)
+    {
+      return a.solid.hull.dimension < 3 || b.solid.hull.dimension < 3 ||
+        hullsMeet(a.solid, b.solid);
+    });
+  return groups;
 }
 
 LatticeMesh solveLevel(Context& ctx,
@@ -543,14 +707,15 @@ bool EmptyFaceTriangles::next(std::array<LatticePoint, 3>& out)
 /// surface of C whose corners lie in the open interior of the parent (so T keeps off every piece
 /// of surface C shares with it), the nearest T whose hull keeps off the other regions, or when
 /// every candidate meets one, the nearest (its group is then merged with that region's group).
+/// The hull of the group and T is the hull of the group's corners and T.
 bool pressedRegion(const CellList& c,
   const CellList* parent,
-  const std::vector<LatticePoint>& group,
-  const std::vector<const CellList*>& others,
+  const PointGroup& group,
+  const std::vector<const BoxedHull*>& others,
   CoplanarFaces coplanar,
-  CellList& out)
+  BoxedHull& out)
 {
-  EmptyFaceTriangles triangles(c, group);
+  EmptyFaceTriangles triangles(c, group.points);
   std::array<LatticePoint, 3> t;
   bool found = false;
   for (int tried = 0; tried < 64 && triangles.next(t);)
@@ -560,11 +725,11 @@ bool pressedRegion(const CellList& c,
         t.begin(), t.end(), [&](const LatticePoint& p) { return strictlyInside(*parent, p); }))
       continue;
     ++tried;
-    std::vector<LatticePoint> points = group;
+    std::vector<LatticePoint> points = group.shape.vertices;
     points.insert(points.end(), t.begin(), t.end());
-    CellList region = convexHull(points, coplanar);
+    BoxedHull region(convexHull(points, coplanar));
     const bool apart = std::none_of(
-      others.begin(), others.end(), [&](const CellList* o) { return hullsIntersect(region, *o); });
+      others.begin(), others.end(), [&](const BoxedHull* o) { return hullsMeet(region, *o); });
     if (!found || apart)
       out = std::move(region);
     found = true;
@@ -574,23 +739,79 @@ bool pressedRegion(const CellList& c,
   return found;
 }
 
-/// Merges the groups of the first two regions that meet (their regions to be found again).
-bool mergeMeetingRegions(std::vector<std::vector<LatticePoint>>& groups,
-  std::vector<CellList>& regions,
-  std::vector<bool>& pressed)
+/// A group kept apart and its region (dimension -1 until found), pressed in or a cavity;
+/// `checked` once the region is known to keep off every other live region.
+struct ApartGroup
+{
+  PointGroup group;
+  BoxedHull region;
+  bool pressed = false;
+  bool alive = true;
+  bool checked = false;
+};
+
+/// The regions of the live groups that have none: a cavity where the group's hull thickened in
+/// the open interior of C is solid, otherwise pressed in (pressedRegion) away from the
+/// obstacles and every region found so far. False when a new region meets an obstacle.
+bool findRegions(Context& ctx,
+  const CellList& c,
+  const CellList* parent,
+  const std::vector<BoxedHull>& obstacles,
+  std::vector<ApartGroup>& groups)
+{
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < groups.size(); ++i)
+    if (groups[i].alive && groups[i].region.hull.dimension < 0)
+    {
+      todo.push_back(i);
+      groups[i].pressed = groups[i].group.solid.hull.dimension < 3;
+      if (!groups[i].pressed)
+        groups[i].region = groups[i].group.solid;
+    }
+  for (std::size_t i : todo)
+  {
+    if (!groups[i].pressed)
+      continue;
+    std::vector<const BoxedHull*> others;
+    for (const auto& o : obstacles)
+      others.push_back(&o);
+    for (const auto& g : groups)
+      if (g.alive && g.region.hull.dimension == 3)
+        others.push_back(&g.region);
+    if (!pressedRegion(c, parent, groups[i].group, others, ctx.coplanar, groups[i].region))
+      throw Unresolved("no empty triangle of the surface to press a group in from");
+  }
+  return std::none_of(todo.begin(),
+    todo.end(),
+    [&](std::size_t i)
+    {
+      return std::any_of(obstacles.begin(),
+        obstacles.end(),
+        [&](const BoxedHull& o) { return hullsMeet(groups[i].region, o); });
+    });
+}
+
+/// Merges the groups of the first two regions that meet (into the lower index, whose region is
+/// to be found again, so that it can still find a triangle apart from the rest). Regions
+/// already checked keep off every other live region, so only the unchecked ones are tested.
+bool mergeMeetingRegions(Context& ctx, const CellList& c, std::vector<ApartGroup>& groups)
 {
   for (std::size_t i = 0; i < groups.size(); ++i)
-    for (std::size_t j = i + 1; j < groups.size(); ++j)
-      if (hullsIntersect(regions[i], regions[j]))
+  {
+    if (!groups[i].alive || groups[i].checked)
+      continue;
+    for (std::size_t j = 0; j < groups.size(); ++j)
+      if (j != i && groups[j].alive && hullsMeet(groups[i].region, groups[j].region))
       {
-        groups[i].insert(groups[i].end(), groups[j].begin(), groups[j].end());
-        groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(j));
-        regions.erase(regions.begin() + static_cast<std::ptrdiff_t>(j));
-        pressed.erase(pressed.begin() + static_cast<std::ptrdiff_t>(j));
-        regions[i] = CellList();
-        pressed[i] = false;
+        const std::size_t k = std::min(i, j), l = std::max(i, j);
+        mergeGroups(groups[k].group, { &groups[l].group }, c, true, ctx.coplanar);
+        groups[l].alive = false;
+        groups[k].region = BoxedHull();
+        groups[k].checked = false;
         return true;
       }
+    groups[i].checked = true;
+  }
   return false;
 }
 
@@ -603,40 +824,27 @@ bool apartRegions(Context& ctx,
   const CellList& c,
   const CellList* parent,
   const std::vector<LatticePoint>& points,
-  const std::vector<CellList>& obstacles,
-  std::vector<std::vector<LatticePoint>>& groups,
+  const std::vector<BoxedHull>& obstacles,
   std::vector<CellList>& regions,
   std::vector<bool>& pressed)
 {
-  groups = componentsOf(points, ctx.objects.dims(), false);
-  regions.assign(groups.size(), CellList());
-  pressed.assign(groups.size(), false);
-  for (;;)
+  std::vector<ApartGroup> groups;
+  for (auto& g : componentsOf(points, ctx.objects.dims()[2] == 1, false))
+    groups.push_back({ makeGroup(std::move(g), c, true, ctx.coplanar) });
+  do
   {
-    for (std::size_t i = 0; i < groups.size(); ++i)
-      if (regions[i].dimension < 0 && !solidHull(groups[i], c, true, ctx.coplanar, regions[i]))
-        regions[i] = CellList();
-    for (std::size_t i = 0; i < groups.size(); ++i)
+    if (!findRegions(ctx, c, parent, obstacles, groups))
+      return false;
+  } while (mergeMeetingRegions(ctx, c, groups));
+  regions.clear();
+  pressed.clear();
+  for (auto& g : groups)
+    if (g.alive)
     {
-      if (regions[i].dimension >= 0)
-        continue;
-      std::vector<const CellList*> others;
-      for (const auto& o : obstacles)
-        others.push_back(&o);
-      for (const auto& o : regions)
-        if (o.dimension == 3)
-          others.push_back(&o);
-      if (!pressedRegion(c, parent, groups[i], others, ctx.coplanar, regions[i]))
-        throw Unresolved("no empty triangle of the surface to press a group in from");
-      pressed[i] = true;
+      regions.push_back(std::move(g.region.hull));
+      pressed.push_back(g.pressed);
     }
-    for (const auto& region : regions)
-      for (const auto& o : obstacles)
-        if (hullsIntersect(region, o))
-          return false;
-    if (!mergeMeetingRegions(groups, regions, pressed))
-      return true;
-  }
+  return true;
 }
 
 /// The regions of apartRegions solved one level down: the pressed ones subtracted from C (each
@@ -713,23 +921,18 @@ void pressInPits(Context& ctx,
   int level,
   LatticeMesh& out,
   std::vector<LatticePoint>& apart,
-  std::vector<CellList>& pits,
+  std::vector<BoxedHull>& pits,
   int& depth)
 {
-  std::vector<std::vector<LatticePoint>> groups;
-  std::vector<CellList> hulls;
-  std::vector<bool> solid;
-  pressingInGroups(ctx, c, pit ? parent : nullptr, cls, groups, hulls, solid);
-  const std::size_t count = groups.empty() ? 0 : latticeCount(c);
-  for (std::size_t i = 0; i < groups.size(); ++i)
+  for (PointGroup& g : pressingInGroups(ctx, c, pit ? parent : nullptr, cls))
   {
-    if (solid[i] && latticeCount(hulls[i]) < count &&
-      pressInPit(ctx, c, hulls[i], cls, level, out, depth))
+    if (g.solid.hull.dimension == 3 && missesACorner(g.solid.hull, c) &&
+      pressInPit(ctx, c, g.solid.hull, cls, level, out, depth))
     {
-      pits.push_back(std::move(hulls[i]));
+      pits.push_back(std::move(g.solid));
       continue;
     }
-    for (const auto& p : groups[i])
+    for (const auto& p : g.points)
     {
       if (strictlyInside(c, p))
         apart.push_back(p);
@@ -756,25 +959,23 @@ LatticeMesh solveLevel(Context& ctx,
   depth = 0;
   LatticeMesh out = triangulateHull(c);
   std::vector<LatticePoint> apart;
-  std::vector<CellList> pits;
+  std::vector<BoxedHull> pits;
   if (ctx.pits)
     pressInPits(ctx, c, parent, cls, pit, level, out, apart, pits, depth);
   else
     apart = pointsOfClass(c, ctx.objects, !cls, true);
   if (apart.empty())
     return out;
-  std::vector<std::vector<LatticePoint>> groups;
   std::vector<CellList> regions;
   std::vector<bool> pressed;
-  if (!apartRegions(ctx, c, parent, apart, pits, groups, regions, pressed))
+  if (!apartRegions(ctx, c, parent, apart, pits, regions, pressed))
   {
     // A region kept apart meets a pit: the whole level kept apart, unless C must keep pits.
     if (pit)
       throw Unresolved("a group kept apart meets a pit");
     out = triangulateHull(c);
     depth = 0;
-    apartRegions(
-      ctx, c, parent, pointsOfClass(c, ctx.objects, !cls, true), {}, groups, regions, pressed);
+    apartRegions(ctx, c, parent, pointsOfClass(c, ctx.objects, !cls, true), {}, regions, pressed);
   }
   solveApart(ctx, c, cls, level, regions, pressed, out, depth);
   return out;

@@ -58,7 +58,13 @@
 // fail that check or leave a level unresolved, a second pass keeps every level apart (no pits:
 // cavities and triangles only, for which the induction needs no difference to be accepted;
 // withoutPits). Only when no empty triangle is left for a group (not seen on the inputs of the
-// tests) is the result incomplete.
+// tests, but on the full lobster, v >= 40, in both passes) is the result incomplete.
+//
+// Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
+// hulls), a group's first hull from the ends of its rows, boxes are compared before the exact
+// separating axis test, and components are labelled in the box of their points; what remains
+// is the recursion itself (every level enumerates the lattice points of its hull) and the exact
+// differences of the pits.
 //
 // The degree of non-convexity (definition NK) is the number of levels below the hull.
 //
