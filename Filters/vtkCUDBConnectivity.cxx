@@ -530,6 +530,13 @@ struct RegionColumns
   // (The fixed-size classes, which the columns have always had.)
   std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
   std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
+  /// Where addBox gathers: the storage of the columns above (set by startGathering).
+  struct
+  {
+    vtkIdType *voxels, *boxes;
+    double* centres;
+    std::array<std::int32_t*, 6> bounds;
+  } gathered{};
 
   RegionColumns(int labelType, vtkIdType count)
     : labels(vbr::vtk::newLabelArray(labelType, count))
@@ -558,18 +565,24 @@ struct RegionColumns
   }
 
   /// Empty sums, and bounds that any box replaces.
-  void clear()
+  /// Empty sums, and bounds that any box replaces; the columns' storage is then written
+  /// through raw pointers (the arrays' GetPointer is a library call, once per value).
+  void startGathering()
   {
     const vtkIdType n = this->ids->GetNumberOfValues();
-    std::fill_n(this->voxels->GetPointer(0), n, 0);
-    std::fill_n(this->boxes->GetPointer(0), n, 0);
-    std::fill_n(this->centroids->GetPointer(0), 3 * n, 0.0);
-    for (int d = 0; d < 3; ++d)
+    this->gathered.voxels = this->voxels->GetPointer(0);
+    this->gathered.boxes = this->boxes->GetPointer(0);
+    this->gathered.centres = this->centroids->GetPointer(0);
+    std::fill_n(this->gathered.voxels, n, 0);
+    std::fill_n(this->gathered.boxes, n, 0);
+    std::fill_n(this->gathered.centres, 3 * n, 0.0);
+    for (int k = 0; k < 6; ++k)
     {
-      std::fill_n(
-        this->indexBounds[2 * d]->GetPointer(0), n, std::numeric_limits<std::int32_t>::max());
-      std::fill_n(
-        this->indexBounds[2 * d + 1]->GetPointer(0), n, std::numeric_limits<std::int32_t>::min());
+      this->gathered.bounds[k] = this->indexBounds[k]->GetPointer(0);
+      std::fill_n(this->gathered.bounds[k],
+        n,
+        k % 2 == 0 ? std::numeric_limits<std::int32_t>::max()
+                   : std::numeric_limits<std::int32_t>::min());
     }
   }
 
@@ -579,17 +592,16 @@ struct RegionColumns
     const Int3& offset,
     const vbr::vtk::LabelValue& label)
   {
-    vtkIdType& boxCount = this->boxes->GetPointer(0)[row];
-    if (boxCount++ == 0)
+    if (this->gathered.boxes[row]++ == 0)
       vbr::vtk::setLabel(this->labels, row, label);
     const std::int64_t volume = box.volume();
-    this->voxels->GetPointer(0)[row] += volume;
-    double* centre = this->centroids->GetPointer(3 * row);
+    this->gathered.voxels[row] += volume;
+    double* centre = this->gathered.centres + 3 * row;
     for (int d = 0; d < 3; ++d)
     {
       const std::int32_t lo = box.lo[d] + offset[d], hi = box.hi[d] + offset[d];
-      std::int32_t& first = this->indexBounds[2 * d]->GetPointer(0)[row];
-      std::int32_t& last = this->indexBounds[2 * d + 1]->GetPointer(0)[row];
+      std::int32_t& first = this->gathered.bounds[2 * d][row];
+      std::int32_t& last = this->gathered.bounds[2 * d + 1][row];
       first = std::min(first, lo);
       last = std::max(last, hi);
       centre[d] += static_cast<double>(volume) * (0.5 * (lo + hi));
@@ -651,7 +663,7 @@ void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   vtkTable* table)
 {
   RegionColumns columns(labelType, kept);
-  columns.clear();
+  columns.startGathering();
   for (const ObjectBoxes& o : objects)
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
     {
