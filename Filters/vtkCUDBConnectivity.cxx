@@ -64,21 +64,22 @@ struct ObjectBoxes
   std::size_t extremeVertices = 0;
 };
 
-/// What is known of one connected component.
+/// What numbering needs of one connected component, while it is numbered. Kept small: a
+/// checkerboard has a component per selected voxel, so the statistics of the region table
+/// are gathered later, for the kept regions only, in the table's own columns (RegionColumns),
+/// and only the RegionId of each region outlives the numbering.
 struct Region
 {
-  vbr::vtk::LabelValue label;
   std::int64_t voxels = 0;
-  std::int64_t boxes = 0;
-  std::array<double, 3> weightedCentre{ 0, 0, 0 }; ///< sum of voxel centres, processing axes
-  Int3 lo{ std::numeric_limits<std::int32_t>::max(),
-    std::numeric_limits<std::int32_t>::max(),
-    std::numeric_limits<std::int32_t>::max() };
-  Int3 hi{ std::numeric_limits<std::int32_t>::min(),
-    std::numeric_limits<std::int32_t>::min(),
-    std::numeric_limits<std::int32_t>::min() };
   bool seeded = false;
-  std::int32_t id = 0; ///< output RegionId, 0 when removed
+};
+
+/// The statistics of one region's row of the table, as gathered from its boxes.
+struct RegionStats
+{
+  std::int64_t voxels = 0;
+  std::array<double, 3> weightedCentre{ 0, 0, 0 }; ///< sum of voxel centres, processing axes
+  Int3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };               ///< processing axes, hi exclusive
 };
 
 /// The sortings to try, in processing axes. A 2D image (flat processing axis 2) is swept
@@ -180,29 +181,13 @@ bool axisAligned(const vbr::vtk::VoxelGrid& grid)
     grid.spacing[2] > 0;
 }
 
-/// Statistics of every region from its boxes.
+/// The voxel count of every region from its boxes (what the size filters and the ranking need).
 std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t count)
 {
   std::vector<Region> regions(count);
   for (const ObjectBoxes& o : objects)
-  {
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-    {
-      Region& r = regions[o.firstRegion + o.components.boxLabel[b] - 1];
-      const vbr::Box& box = o.cudb.boxes[b];
-      const std::int64_t volume = box.volume();
-      r.label = o.label;
-      r.voxels += volume;
-      ++r.boxes;
-      for (int d = 0; d < 3; ++d)
-      {
-        const std::int32_t lo = box.lo[d] + o.offset[d], hi = box.hi[d] + o.offset[d];
-        r.lo[d] = std::min(r.lo[d], lo);
-        r.hi[d] = std::max(r.hi[d], hi);
-        r.weightedCentre[d] += static_cast<double>(volume) * (0.5 * (lo + hi));
-      }
-    }
-  }
+      regions[o.firstRegion + o.components.boxLabel[b] - 1].voxels += o.cudb.boxes[b].volume();
   return regions;
 }
 
@@ -235,12 +220,14 @@ vtkIdType markSeeds(vtkDataSet* seeds,
   return hits;
 }
 
-/// Applies the region filters and numbers the kept regions; returns how many are kept.
-std::int32_t numberRegions(std::vector<Region>& regions,
+/// Applies the region filters and numbers the kept regions: `ids` has the RegionId of every
+/// region (0 when removed). Returns how many are kept.
+std::int32_t numberRegions(const std::vector<Region>& regions,
   vtkIdType minimumSize,
   bool useSeeds,
   vtkIdType largest,
-  int ordering)
+  int ordering,
+  std::vector<std::int32_t>& ids)
 {
   std::vector<std::size_t> kept;
   for (std::size_t r = 0; r < regions.size(); ++r)
@@ -253,15 +240,16 @@ std::int32_t numberRegions(std::vector<Region>& regions,
     kept.resize(static_cast<std::size_t>(largest));
   if (ordering == vtkCUDBConnectivity::SWEEP_ORDER)
     std::sort(kept.begin(), kept.end());
+  ids.assign(regions.size(), 0);
   for (std::size_t k = 0; k < kept.size(); ++k)
-    regions[kept[k]].id = static_cast<std::int32_t>(k + 1);
+    ids[kept[k]] = static_cast<std::int32_t>(k + 1);
   return static_cast<std::int32_t>(kept.size());
 }
 
-/// Every voxel painted from its box: with `regions`, the region's RegionId (0 where removed);
+/// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
 /// without, the region's number (index + 1). Voxels of no box stay 0.
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>* regions,
+  const std::vector<std::int32_t>* regionIds,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   const vbr::Execution& exec)
@@ -277,7 +265,7 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
     {
       const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
-      values[b] = regions ? (*regions)[r].id : static_cast<std::int32_t>(r + 1);
+      values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
     }
     vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
   }
@@ -285,7 +273,7 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
 }
 
 /// Region numbers (index + 1) replaced in place by the regions' RegionIds (0: removed).
-void renumberRegions(vtkIntArray* ids, const std::vector<Region>& regions)
+void renumberRegions(vtkIntArray* ids, const std::vector<std::int32_t>& regionIds)
 {
   std::int32_t* values = ids->GetPointer(0);
   vtkSMPTools::For(0,
@@ -294,7 +282,7 @@ void renumberRegions(vtkIntArray* ids, const std::vector<Region>& regions)
     {
       for (vtkIdType i = begin; i < end; ++i)
         if (values[i] > 0)
-          values[i] = regions[values[i] - 1].id;
+          values[i] = regionIds[values[i] - 1];
     });
 }
 
@@ -350,19 +338,21 @@ BoxCellLayout boxCellLayout(const vbr::vtk::VoxelGrid& grid, const std::array<in
   return layout;
 }
 
-/// The region of box b of an object.
-const Region& regionOfBox(const ObjectBoxes& o, std::size_t b, const std::vector<Region>& regions)
+/// The RegionId of box b of an object (0: its region is removed).
+std::int32_t regionIdOfBox(const ObjectBoxes& o,
+  std::size_t b,
+  const std::vector<std::int32_t>& regionIds)
 {
-  return regions[o.firstRegion + o.components.boxLabel[b] - 1];
+  return regionIds[o.firstRegion + o.components.boxLabel[b] - 1];
 }
 
 vtkIdType countKeptBoxes(const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions)
+  const std::vector<std::int32_t>& regionIds)
 {
   vtkIdType count = 0;
   for (const ObjectBoxes& o : objects)
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-      count += regionOfBox(o, b, regions).id != 0;
+      count += regionIdOfBox(o, b, regionIds) != 0;
   return count;
 }
 
@@ -397,7 +387,8 @@ struct BoxCells
     const Int3& lo,
     const Int3& hi,
     vtkIdType boxId,
-    const Region& region)
+    std::int32_t regionId,
+    const vbr::vtk::LabelValue& label)
   {
     const int corners = this->layout.corners;
     double* xyz = this->coordinates->GetPointer(3 * cell * corners);
@@ -412,8 +403,8 @@ struct BoxCells
     }
     this->offsets->SetValue(cell + 1, (cell + 1) * corners);
     this->boxIds->SetValue(cell, boxId);
-    this->regionIds->SetValue(cell, region.id);
-    vbr::vtk::setLabel(this->labels, cell, region.label);
+    this->regionIds->SetValue(cell, regionId);
+    vbr::vtk::setLabel(this->labels, cell, label);
   }
 
   void moveTo(vtkUnstructuredGrid* output)
@@ -433,20 +424,20 @@ struct BoxCells
 
 /// Port 1: the boxes of the kept regions, one voxel (or hexahedron, pixel, quad) cell each.
 void writeBoxes(const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions,
+  const std::vector<std::int32_t>& regionIds,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
   vtkUnstructuredGrid* output)
 {
-  BoxCells cells(boxCellLayout(grid, axes), countKeptBoxes(objects, regions), labelType);
+  BoxCells cells(boxCellLayout(grid, axes), countKeptBoxes(objects, regionIds), labelType);
   vtkIdType cell = 0, boxBase = 0;
   for (const ObjectBoxes& o : objects)
   {
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
     {
-      const Region& region = regionOfBox(o, b, regions);
-      if (region.id == 0)
+      const std::int32_t id = regionIdOfBox(o, b, regionIds);
+      if (id == 0)
         continue;
       const vbr::Box& box = o.cudb.boxes[b];
       Int3 lo = box.lo, hi = box.hi;
@@ -460,7 +451,8 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
         toImageAxes(lo, axes),
         toImageAxes(hi, axes),
         boxBase + static_cast<vtkIdType>(b),
-        region);
+        id,
+        o.label);
     }
     boxBase += static_cast<vtkIdType>(o.cudb.boxes.size());
   }
@@ -468,7 +460,7 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
 }
 
 /// A region's voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
-void indexBoundsOf(const Region& r,
+void indexBoundsOf(const RegionStats& r,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int index[6])
@@ -482,7 +474,7 @@ void indexBoundsOf(const Region& r,
 }
 
 /// A region's world bounds: those of the corners of its index box.
-void worldBoundsOf(const Region& r,
+void worldBoundsOf(const RegionStats& r,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   double world[6])
@@ -508,7 +500,7 @@ void worldBoundsOf(const Region& r,
 }
 
 /// A region's centroid in world coordinates (the mean of its voxel centres).
-void centroidOf(const Region& r,
+void centroidOf(const RegionStats& r,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   double world[3])
@@ -522,9 +514,12 @@ void centroidOf(const Region& r,
   grid.positionToWorld(image.data(), world);
 }
 
-/// The columns of port 2, sized for the kept regions and filled region by region (a table of
-/// tens of thousands of regions, as noise gives, filled value by value through the generic
-/// array interface cost more than its labelling).
+/// The columns of port 2, sized for the kept regions. They first gather each region's
+/// statistics from its boxes in place (addBox: sums, and bounds in processing axes), then
+/// each row is rewritten with its final values (finish): no per-region record is held next to
+/// the table, which on a checkerboard has a row per selected voxel. Written through raw
+/// pointers (a table of tens of thousands of regions, as noise gives, filled value by value
+/// through the generic array interface cost more than its labelling).
 struct RegionColumns
 {
   vtkNew<vtkIntArray> ids;
@@ -535,6 +530,13 @@ struct RegionColumns
   // (The fixed-size classes, which the columns have always had.)
   std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
   std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
+  /// Where addBox gathers: the storage of the columns above (set by startGathering).
+  struct
+  {
+    vtkIdType *voxels, *boxes;
+    double* centres;
+    std::array<std::int32_t*, 6> bounds;
+  } gathered{};
 
   RegionColumns(int labelType, vtkIdType count)
     : labels(vbr::vtk::newLabelArray(labelType, count))
@@ -562,17 +564,66 @@ struct RegionColumns
     }
   }
 
-  void set(vtkIdType row,
-    const Region& r,
+  /// Empty sums, and bounds that any box replaces.
+  /// Empty sums, and bounds that any box replaces; the columns' storage is then written
+  /// through raw pointers (the arrays' GetPointer is a library call, once per value).
+  void startGathering()
+  {
+    const vtkIdType n = this->ids->GetNumberOfValues();
+    this->gathered.voxels = this->voxels->GetPointer(0);
+    this->gathered.boxes = this->boxes->GetPointer(0);
+    this->gathered.centres = this->centroids->GetPointer(0);
+    std::fill_n(this->gathered.voxels, n, 0);
+    std::fill_n(this->gathered.boxes, n, 0);
+    std::fill_n(this->gathered.centres, 3 * n, 0.0);
+    for (int k = 0; k < 6; ++k)
+    {
+      this->gathered.bounds[k] = this->indexBounds[k]->GetPointer(0);
+      std::fill_n(this->gathered.bounds[k],
+        n,
+        k % 2 == 0 ? std::numeric_limits<std::int32_t>::max()
+                   : std::numeric_limits<std::int32_t>::min());
+    }
+  }
+
+  /// Adds a box (processing axes, at `offset`) of the region of row `row`.
+  void addBox(vtkIdType row,
+    const vbr::Box& box,
+    const Int3& offset,
+    const vbr::vtk::LabelValue& label)
+  {
+    if (this->gathered.boxes[row]++ == 0)
+      vbr::vtk::setLabel(this->labels, row, label);
+    const std::int64_t volume = box.volume();
+    this->gathered.voxels[row] += volume;
+    double* centre = this->gathered.centres + 3 * row;
+    for (int d = 0; d < 3; ++d)
+    {
+      const std::int32_t lo = box.lo[d] + offset[d], hi = box.hi[d] + offset[d];
+      std::int32_t& first = this->gathered.bounds[2 * d][row];
+      std::int32_t& last = this->gathered.bounds[2 * d + 1][row];
+      first = std::min(first, lo);
+      last = std::max(last, hi);
+      centre[d] += static_cast<double>(volume) * (0.5 * (lo + hi));
+    }
+  }
+
+  /// Row `row` (id row + 1) from its gathered statistics to the table's values.
+  void finish(vtkIdType row,
     const vbr::vtk::VoxelGrid& grid,
     const std::array<int, 3>& axes,
     double voxelMeasure)
   {
-    this->ids->SetValue(row, r.id);
-    vbr::vtk::setLabel(this->labels, row, r.label);
-    this->voxels->SetValue(row, static_cast<vtkIdType>(r.voxels));
+    RegionStats r;
+    r.voxels = this->voxels->GetValue(row);
+    for (int d = 0; d < 3; ++d)
+    {
+      r.lo[d] = this->indexBounds[2 * d]->GetValue(row);
+      r.hi[d] = this->indexBounds[2 * d + 1]->GetValue(row);
+      r.weightedCentre[d] = this->centroids->GetTypedComponent(row, d);
+    }
+    this->ids->SetValue(row, static_cast<int>(row + 1));
     this->volumes->SetValue(row, static_cast<double>(r.voxels) * voxelMeasure);
-    this->boxes->SetValue(row, static_cast<vtkIdType>(r.boxes));
     int index[6];
     indexBoundsOf(r, grid, axes, index);
     double world[6];
@@ -602,22 +653,27 @@ struct RegionColumns
   }
 };
 
-/// Port 2: one row per kept region, in RegionId order.
-void writeRegionTable(const std::vector<Region>& regions,
+/// Port 2: one row per kept region, in RegionId order, gathered from the kept boxes.
+void writeRegionTable(const std::vector<ObjectBoxes>& objects,
+  const std::vector<std::int32_t>& regionIds,
   std::int32_t kept,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
   vtkTable* table)
 {
-  std::vector<const Region*> byId(static_cast<std::size_t>(kept), nullptr);
-  for (const Region& r : regions)
-    if (r.id > 0)
-      byId[r.id - 1] = &r;
   RegionColumns columns(labelType, kept);
+  columns.startGathering();
+  for (const ObjectBoxes& o : objects)
+    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
+    {
+      const std::int32_t id = regionIdOfBox(o, b, regionIds);
+      if (id != 0)
+        columns.addBox(id - 1, o.cudb.boxes[b], o.offset, o.label);
+    }
   const double measure = voxelMeasure(grid);
   for (vtkIdType row = 0; row < kept; ++row)
-    columns.set(row, *byId[row], grid, axes, measure);
+    columns.finish(row, grid, axes, measure);
   columns.addTo(table);
 }
 
@@ -771,7 +827,7 @@ void addRegionIds(vtkImageData* output, vtkIntArray* ids, bool cellData)
 /// Rank 0: the kept boxes of all objects as [lo, hi (image axes, whole-grid voxels), RegionId]
 /// per box; [-1] when aborted.
 std::vector<long long> keptBoxValues(const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions,
+  const std::vector<std::int32_t>& regionIds,
   const std::array<int, 3>& axes,
   bool aborted)
 {
@@ -781,15 +837,15 @@ std::vector<long long> keptBoxValues(const std::vector<ObjectBoxes>& objects,
   for (const ObjectBoxes& o : objects)
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
     {
-      const Region& region = regionOfBox(o, b, regions);
-      if (region.id == 0)
+      const std::int32_t id = regionIdOfBox(o, b, regionIds);
+      if (id == 0)
         continue;
       Int3 lo = o.cudb.boxes[b].lo, hi = o.cudb.boxes[b].hi;
       for (int d = 0; d < 3; ++d)
         lo[d] += o.offset[d], hi[d] += o.offset[d];
       for (const Int3& corner : { toImageAxes(lo, axes), toImageAxes(hi, axes) })
         values.insert(values.end(), corner.begin(), corner.end());
-      values.push_back(region.id);
+      values.push_back(id);
     }
   return values;
 }
@@ -826,17 +882,18 @@ vtkSmartPointer<vtkIntArray> paintPieceFromBoxes(vbr::vtk::Piece& piece,
 
 /// PASS 2 of the filter: the regions measured, those with a seed marked (`painted`, when
 /// given, keeps the image of region numbers the seeds were read from), filtered and
-/// numbered; returns how many are kept.
+/// numbered: `regionIds` has the RegionId of every region (0 when removed), and only that
+/// outlives this pass. Returns how many are kept.
 std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   vtkDataSet* seeds,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
   std::uint32_t regionCount,
-  std::vector<Region>& regions,
+  std::vector<std::int32_t>& regionIds,
   Summary& summary,
   vtkSmartPointer<vtkIntArray>* painted)
 {
-  regions = measureRegions(objects, regionCount);
+  std::vector<Region> regions = measureRegions(objects, regionCount);
   if (seeds)
   {
     vtkSmartPointer<vtkIntArray> ids = markRegionsOfSeeds(self, seeds, in, objects, regions);
@@ -847,7 +904,8 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
     self->GetMinimumRegionSize(),
     seeds != nullptr,
     self->GetLargestRegions(),
-    self->GetRegionOrdering());
+    self->GetRegionOrdering(),
+    regionIds);
   summary.components = static_cast<vtkIdType>(regionCount);
   summary.regions = kept;
   return kept;
@@ -857,15 +915,15 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
 void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions,
+  const std::vector<std::int32_t>& regionIds,
   std::int32_t kept,
   const Summary& summary,
   const Ports& ports)
 {
   vtkLogScopeF(TRACE, "boxes and region table");
   if (self->GetGenerateBoxes())
-    writeBoxes(objects, regions, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(regions, kept, in.grid, in.axes, in.labelType, ports.table);
+    writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
+  writeRegionTable(objects, regionIds, kept, in.grid, in.axes, in.labelType, ports.table);
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
@@ -888,13 +946,13 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   vtkSmartPointer<vtkDataSet> seeds =
     ports.seeds ? vbr::vtk::gatherPoints(piece, ports.seeds) : nullptr;
   const bool first = piece.rank == 0, aborted = first && self->GetAbortExecute();
-  std::vector<Region> regions;
+  std::vector<std::int32_t> regionIds;
   const std::int32_t kept = first && !aborted
-    ? numberAllRegions(self, seeds, in, objects, regionCount, regions, summary, nullptr)
+    ? numberAllRegions(self, seeds, in, objects, regionCount, regionIds, summary, nullptr)
     : 0;
   vtkSmartPointer<vtkIntArray> ids = paintPieceFromBoxes(piece,
     piece.local,
-    first ? keptBoxValues(objects, regions, in.axes, aborted) : std::vector<long long>());
+    first ? keptBoxValues(objects, regionIds, in.axes, aborted) : std::vector<long long>());
   if (!ids)
   {
     ports.output->GetPointData()->Initialize(); // aborted: no labels
@@ -904,7 +962,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   addRegionIds(ports.output, ids, piece.local.cellData);
   if (!first)
     return true;
-  writeBoxesAndTable(self, in, objects, regions, kept, summary, ports);
+  writeBoxesAndTable(self, in, objects, regionIds, kept, summary, ports);
   return true;
 }
 
@@ -1067,23 +1125,23 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   }
 
   // PASS 2: the regions, filtered (size, seeds, largest) and numbered.
-  std::vector<Region> regions;
+  std::vector<std::int32_t> regionIds;
   vtkSmartPointer<vtkIntArray> ids; // with seeds, painted now to find their regions
   const std::int32_t kept =
-    numberAllRegions(this, seeds, in, objects, regionCount, regions, summary, &ids);
+    numberAllRegions(this, seeds, in, objects, regionCount, regionIds, summary, &ids);
 
   // PASS 3: the outputs: RegionId image, boxes, region table.
   {
     vtkLogScopeF(TRACE, "write the region ids");
     if (seeds)
-      renumberRegions(ids, regions);
+      renumberRegions(ids, regionIds);
     else
-      ids =
-        paintRegions(objects, &regions, in.grid, in.axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
+      ids = paintRegions(
+        objects, &regionIds, in.grid, in.axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
     addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);
-  writeBoxesAndTable(this, in, objects, regions, kept, summary, ports);
+  writeBoxesAndTable(this, in, objects, regionIds, kept, summary, ports);
   return 1;
 }
 

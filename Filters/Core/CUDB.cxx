@@ -648,11 +648,35 @@ struct SweptPiece
         return;
       }
       nextSection(v.data() + starts[k], v.data() + starts[k + 1], section, scratch);
+      const std::size_t before = this->part.boxes.size();
       sweep.nextSlice(v[starts[k]][0], section);
+      this->reserveAhead(
+        this->part.boxes.size() - before, k + 1 - first, last - first, labelling != nullptr);
     }
     this->openBoxes = sweep.openBoxes();
     this->ghostEnds = sweep.ghostEnds();
     this->lastSectionEmpty = section.empty();
+  }
+
+  /// Before the room for boxes runs out (less than two more slices like the last one), room
+  /// for as many as the planes swept so far predict for the whole piece, with a margin. Left
+  /// to itself the vector doubles when full, and holds the old and the new copy at once, of
+  /// up to twice the final size: a checkerboard has a box per selected voxel from a handful of
+  /// extreme vertices, so the first reservation is far too small. Growth is at least 3/2.
+  void reserveAhead(std::size_t lastSlice,
+    std::size_t planesDone,
+    std::size_t planes,
+    bool labelling)
+  {
+    std::vector<Box>& boxes = this->part.boxes;
+    if (boxes.capacity() - boxes.size() >= 2 * lastSlice)
+      return;
+    const std::size_t predicted = boxes.size() / planesDone * planes;
+    const std::size_t room =
+      std::max(predicted + predicted / 8 + 2 * lastSlice, boxes.capacity() / 2 * 3);
+    boxes.reserve(room);
+    if (labelling)
+      this->equivalences.reserve(room);
   }
 };
 

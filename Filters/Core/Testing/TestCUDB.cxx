@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -298,6 +299,53 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
   EXPECT_EQ(c.count, static_cast<std::uint32_t>(count));
   expectSamePartition(paintedLabels(big, stitched, c), expected);
   expectLabelledSweepSame(evm, sequential, threadedExecution(2));
+}
+
+TEST(CUDB, CheckerboardAndNoiseLabelledInPieces)
+{
+  // The inputs with the most boxes per extreme vertex (a 3D checkerboard: a box per selected
+  // voxel from a few vertices, so the room for boxes is predicted from the planes swept) and
+  // per voxel (noise), labelled as the sweep goes, in one piece and in several, against a
+  // flood fill, with both connectivities.
+  vbr::BitVolume board(23, 19, 40);
+  for (int z = 0; z < 40; ++z)
+    for (int y = 0; y < 19; ++y)
+      for (int x = 0; x < 23; ++x)
+        if ((x + y + z) % 2 == 0)
+          board.set(x, y, z);
+  const vbr::BitVolume noise = bf::randomVolume({ 30, 26, 48 }, 0.5, 900);
+  for (const vbr::BitVolume* v : std::initializer_list<const vbr::BitVolume*>{ &board, &noise })
+  {
+    const vbr::EVM zyx = vbr::extractEVM(*v);
+    for (const char* name : { "ZYX", "XZY" })
+    {
+      const vbr::EVM evm = zyx.sortedAs(vbr::axisOrderFromName(name));
+      checkAll(*v, evm, false);
+      for (bool vertex : { false, true })
+      {
+        int count = 0;
+        const std::vector<int> expected = bf::floodFillLabels(*v, vertex, count);
+        for (int pieces : { 1, 3 })
+        {
+          SCOPED_TRACE(std::string(v == &board ? "checkerboard " : "noise ") + name + " in " +
+            std::to_string(pieces) + (vertex ? " pieces, vertex" : " pieces, face"));
+          vbr::CUDB boxes;
+          vbr::Components c;
+          ASSERT_TRUE(vbr::buildCUDBComponents(evm,
+            vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face,
+            threadedExecution(pieces),
+            boxes,
+            c,
+            pieces));
+          EXPECT_EQ(c.count, static_cast<std::uint32_t>(count));
+          expectExactCover(*v, boxes.boxes);
+          expectSamePartition(paintedLabels(*v, boxes, c), expected);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(componentCount(board, vbr::Connectivity::Face), 23u * 19 * 40 / 2);
+  EXPECT_EQ(componentCount(board, vbr::Connectivity::Vertex), 1u);
 }
 
 TEST(CUDB, TwoDimensionalImages)

@@ -2,7 +2,8 @@
 // identical labels (in sweep or size order), region sizes, the region table, the boxes of
 // port 1 (disjoint, covering, carrying the region of their voxels), region filters and
 // seeds, for point and cell scalars, several scalar types, extents not at 0, anisotropic
-// spacing, 2D images in the three planes, all sortings and both connectivities.
+// spacing, 2D images in the three planes, all sortings and both connectivities, and the
+// inputs with the most regions and boxes per voxel (checkerboard, noise).
 #include "vtkCUDBConnectivity.h"
 
 #include "TestImages.h"
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <iostream>
 #include <map>
 #include <numeric>
@@ -429,6 +431,49 @@ void checkRandomVolumes()
   }
 }
 
+/// The inputs with the most regions and boxes per voxel: a 3D checkerboard (a region per
+/// selected voxel with face connectivity, one region with vertex connectivity) and 50 % noise,
+/// whose region tables are gathered from the most boxes; a region size filter and the largest
+/// regions leave rows out of the table.
+void checkHostileVolumes()
+{
+  Volume board;
+  board.dims = { 13, 10, 9 };
+  board.values.resize(13 * 10 * 9);
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 10; ++y)
+      for (int x = 0; x < 13; ++x)
+        board.values[(std::size_t(z) * 10 + y) * 13 + x] = (x + y + z) % 2;
+  const Volume noise = randomVolume({ 24, 21, 19 }, 0.5, 1, 77);
+  Layout l;
+  l.extentMin = { -2, 3, 1 };
+  l.spacing = { 0.5, 1.0, 2.0 };
+  for (const Volume* v : std::initializer_list<const Volume*>{ &board, &noise })
+    for (bool vertex : { false, true })
+      for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
+        checkRun(*v,
+          l,
+          Rule(),
+          vertex,
+          vtkCUDBConnectivity::ZYX,
+          ordering,
+          v == &board ? "checkerboard" : "noise",
+          true);
+  int count = 0;
+  const std::vector<int> sweep = floodFill(noise, Rule(), false, count);
+  vtkNew<vtkCUDBConnectivity> f;
+  f->SetInputData(makeImage(noise, l));
+  f->SetMinimumRegionSize(3);
+  f->SetLargestRegions(5);
+  f->SetSortingOrder(vtkCUDBConnectivity::ZYX);
+  f->Update();
+  const std::vector<int> ranked = sizeRanked(
+    sweep, count, [](int, long long size) { return size >= 3; }, 5);
+  const std::vector<int> got = regionIds(f, l);
+  CHECK(got == ranked, "noise, 5 largest regions of 3 voxels or more: labels differ");
+  checkBoxesAndTable(f, noise, l, got, "noise, 5 largest regions", false);
+}
+
 void checkTwoDimensional()
 {
   const Int3 shapes[] = { { 40, 30, 1 }, { 25, 1, 35 }, { 1, 33, 27 } };
@@ -617,6 +662,7 @@ int TestCUDBConnectivity(int, char*[])
 {
   checkRandomVolumes();
   checkTwoDimensional();
+  checkHostileVolumes();
   checkRegionFilters();
   checkManySeeds();
   checkErrorsAndDegenerateInputs();
