@@ -357,9 +357,9 @@ void NetBuilder::addVertex(const std::array<std::int32_t, 3>& v, const Star& sta
   }
 }
 
-/// A point on each edge copy of the sheet (a quarter voxel out along the edge, a fifth of a
-/// voxel towards the voxel a split copy is formed around), the faces' corners replaced by
-/// them, and a patch for each region of another label than the ball's.
+/// A point on each edge copy of the sheet (on the ball, leaning towards the voxel a split
+/// copy is formed around), the faces' corners replaced by them, and a patch for each region
+/// of another label than the ball's.
 void NetBuilder::blowUp(const std::array<std::int32_t, 3>& v, const Star& star, int sheet)
 {
   std::array<std::array<std::int32_t, 2>, 6> pointOf;

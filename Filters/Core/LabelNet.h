@@ -19,14 +19,19 @@
 // joined and the two voxels of the smaller kept apart. Every other edge stays one edge (with
 // two, three or four faces: three or four labels meet there and each has two). Every label
 // then has two faces at each copy of an edge. At a vertex the faces linked through shared
-// edge copies form the vertex's sheets, each with its own point (kept in the box of its
-// faces' quarters, so that sheets stay apart, and not relaxed). A sheet along which one label
-// has two or more separate regions (the voxels of that label touch only at this vertex, or
-// the edges split above meet here) is blown up: the vertex becomes a small ball of the
-// largest such label, the ball has a point on each edge copy of the sheet (a quarter voxel
-// from the vertex), each face at the vertex replaces its corner by the two points of its
-// edges there, and the ball's surface gets one polygon (a patch) for each region of another
-// label around it. The ball joins the regions of its label at the vertex and separates those
+// edge copies form the vertex's sheets, each with its own point (several sheets: each point
+// fixed at half the mean of its faces' centres from the vertex, so that sheets stay apart). A
+// sheet along which one label has two or more separate regions (the voxels of that label
+// touch only at this vertex), or that holds both copies of a split edge (they would meet
+// again here), is blown up: the vertex becomes a small ball of the largest label with two
+// regions there, else of the label joined across that edge. The ball has a point on each
+// edge copy of the sheet (0.3 voxel from the vertex, leaning towards the voxel a split copy
+// is formed around), each face at the vertex replaces its corner by the two points of its
+// edges there, and the ball's surface gets a patch for each region of another label around
+// it. Such patches and faces (more than four corners, not planar) become fans of triangles
+// around a new point (the mean of their corners, moved a twentieth of a voxel towards the
+// region for a patch), their corners fixed: a fan from a corner could cross the ball. The
+// ball joins the regions of its label at the vertex and separates those
 // of the others. Each label's surface is then closed and manifold: every edge bounds exactly
 // two of its polygons, and the polygons around each of its points form one disk.
 //
