@@ -796,36 +796,9 @@ LabelBoundary assembleLabelBoundary(const LabelNet& net,
 
 double maximumDistanceToLabelFaces(const LabelVolume& volume, const std::vector<Vec3>& points)
 {
-  double worst = 0.0;
-  for (const Vec3& p : points)
-  {
-    const std::int32_t c[3] = {
-      std::int32_t(std::floor(p[0])), std::int32_t(std::floor(p[1])), std::int32_t(std::floor(p[2]))
-    };
-    double best = 4.0; // squared search radius
-    for (std::int32_t k = c[2] - 2; k <= c[2] + 2; ++k)
-      for (std::int32_t j = c[1] - 2; j <= c[1] + 2; ++j)
-        for (std::int32_t i = c[0] - 2; i <= c[0] + 2; ++i)
-          for (int a = 0; a < 3; ++a)
-          {
-            std::int32_t w[3] = { i, j, k };
-            ++w[a];
-            if (volume.at(i, j, k) == volume.at(w[0], w[1], w[2]))
-              continue;
-            // The face between voxel (i, j, k) and the next along a.
-            const std::int32_t v[3] = { i, j, k };
-            double d2 = 0;
-            for (int d = 0; d < 3; ++d)
-            {
-              const double lo = d == a ? v[d] + 1 : v[d], hi = v[d] + 1;
-              const double e = p[d] < lo ? lo - p[d] : (p[d] > hi ? p[d] - hi : 0.0);
-              d2 += e * e;
-            }
-            best = std::min(best, d2);
-          }
-    worst = std::max(worst, std::sqrt(best));
-  }
-  return worst;
+  return maximumDistanceToFaces(points,
+    [&volume](std::int32_t i, std::int32_t j, std::int32_t k, int a)
+    { return volume.at(i, j, k) != volume.at(i + (a == 0), j + (a == 1), k + (a == 2)); });
 }
 
 } // namespace vbr

@@ -186,18 +186,7 @@ bool selfIntersecting(const Mesh& m, const std::vector<std::vector<int>>& cells)
         vertex[p] = sm.add_vertex(K::Point_3(m.points[p][0], m.points[p][1], m.points[p][2]));
   for (const auto& c : cells)
     for (std::size_t i = 1; i + 1 < c.size(); ++i)
-    {
-      // A flat fan triangle (its apex in line with an edge: corners clamped to one face of
-      // their boxes line up) covers nothing: left out, as VTK draws nothing there.
-      const Vec3 &a = m.points[c[0]], &b = m.points[c[i]], &d = m.points[c[i + 1]];
-      const Vec3 u{ b[0] - a[0], b[1] - a[1], b[2] - a[2] },
-        w{ d[0] - a[0], d[1] - a[1], d[2] - a[2] };
-      const double area2 = std::pow(u[1] * w[2] - u[2] * w[1], 2) +
-        std::pow(u[2] * w[0] - u[0] * w[2], 2) + std::pow(u[0] * w[1] - u[1] * w[0], 2);
-      if (c.size() > 3 && area2 < 1e-24)
-        continue;
       sm.add_face(vertex[c[0]], vertex[c[i]], vertex[c[i + 1]]);
-    }
   return CGAL::Polygon_mesh_processing::does_self_intersect(sm);
 }
 
