@@ -3,6 +3,7 @@
 #include "DeformedModel.h"
 #include "FaceOctree.h"
 #include "FaceOctreeBoundary.h"
+#include "LabelNet.h"
 #include "vtkVoxelBRepAdapters.h"
 
 #include "vtkCellArray.h"
@@ -113,7 +114,25 @@ public:
 
   void appendOctree(const vbr::FaceOctree& octree,
     const vbr::vtk::Selected& object,
-    vtkIdType nodeBase);
+    vtkIdType nodeBase)
+  {
+    for (std::size_t id = 0; id < octree.nodes.size(); ++id)
+      this->appendNode(
+        octree.nodes[id], object.label, object.offset, 0.0, int(nodeBase + vtkIdType(id)));
+  }
+
+  /// The shared boundary of Labels mode: each cell's `Label` is its larger label (the one
+  /// that is not the background), `BoundaryLabels` both; `labels[i]` is the value of label
+  /// i (0: the background).
+  void appendLabelBoundary(const vbr::LabelBoundary& b,
+    const std::vector<vbr::vtk::LabelValue>& labels,
+    int labelType);
+
+  void appendNode(const vbr::FaceNode& node,
+    const vbr::vtk::LabelValue& label,
+    const std::array<std::int32_t, 3>& offset,
+    double shift,
+    int id);
 
   void finish(vtkPolyData* output, vtkUnstructuredGrid* boxes)
   {
@@ -123,6 +142,8 @@ public:
     cd->AddArray(this->FaceNodeId);
     cd->AddArray(this->NodeLevel);
     cd->AddArray(this->Labels);
+    if (this->BoundaryLabels)
+      cd->AddArray(this->BoundaryLabels);
     cd->SetActiveScalars("FaceNodeId");
     boxes->SetPoints(this->BoxPoints);
     boxes->SetCells(VTK_HEXAHEDRON, this->Boxes);
@@ -141,19 +162,43 @@ private:
   vtkNew<vtkCellArray> Cells, Boxes;
   vtkNew<vtkIntArray> FaceNodeId, NodeLevel, BoxNodeId, BoxLevel;
   vtkNew<vtkDoubleArray> PlaneNormal, PlaneOffset;
-  vtkSmartPointer<vtkDataArray> Labels, BoxLabels;
+  vtkSmartPointer<vtkDataArray> Labels, BoxLabels, BoundaryLabels;
 };
 
-/// One hexahedron per face node, with its plane mapped to world coordinates: the plane's
-/// normal from two tangents' images (oriented like the normal's image), its offset through
-/// the image of a point on it.
-void OutputBuilder::appendOctree(const vbr::FaceOctree& octree,
-  const vbr::vtk::Selected& object,
-  vtkIdType nodeBase)
+void OutputBuilder::appendLabelBoundary(const vbr::LabelBoundary& b,
+  const std::vector<vbr::vtk::LabelValue>& labels,
+  int labelType)
 {
-  for (std::size_t id = 0; id < octree.nodes.size(); ++id)
+  const std::array<std::int32_t, 3> origin{ 0, 0, 0 };
+  vbr::vtk::Selected whole;
+  vtkIdType nodeBase = 0;
+  this->BoundaryLabels = vbr::vtk::newLabelArray(labelType);
+  this->BoundaryLabels->SetName("BoundaryLabels");
+  this->BoundaryLabels->SetNumberOfComponents(2);
+  this->BoundaryLabels->SetNumberOfTuples(vtkIdType(b.mesh.cellCount()));
+  const vtkIdType first = this->Labels->GetNumberOfTuples();
+  whole.offset = origin;
+  this->appendMesh(b.mesh, whole, nodeBase);
+  for (std::size_t c = 0; c < b.mesh.cellCount(); ++c)
   {
-    const vbr::FaceNode& node = octree.nodes[id];
+    vbr::vtk::setLabel(this->Labels, first + vtkIdType(c), labels[b.labels[c][1]]);
+    vbr::vtk::setLabel(this->BoundaryLabels, 2 * vtkIdType(c), labels[b.labels[c][0]]);
+    vbr::vtk::setLabel(this->BoundaryLabels, 2 * vtkIdType(c) + 1, labels[b.labels[c][1]]);
+  }
+  for (std::size_t id = 0; id < b.nodes.size(); ++id)
+    this->appendNode(b.nodes[id], labels[b.nodePair[id][1]], origin, -0.5, int(id));
+}
+
+/// One hexahedron per face node (its box: [lo, hi) + shift in voxel units), with its plane
+/// mapped to world coordinates: the plane's normal from two tangents' images (oriented like
+/// the normal's image), its offset through the image of a point on it.
+void OutputBuilder::appendNode(const vbr::FaceNode& node,
+  const vbr::vtk::LabelValue& label,
+  const std::array<std::int32_t, 3>& offset,
+  double shift,
+  int id)
+{
+  {
     vtkIdType corners[8];
     const int order[8][3] = { { 0, 0, 0 },
       { 1, 0, 0 },
@@ -167,8 +212,8 @@ void OutputBuilder::appendOctree(const vbr::FaceOctree& octree,
     {
       Vec3 p;
       for (int d = 0; d < 3; ++d)
-        p[d] = order[c][d] ? node.hi[d] : node.lo[d];
-      corners[c] = this->BoxPoints->InsertNextPoint(this->toWorld(p, object.offset).data());
+        p[d] = (order[c][d] ? node.hi[d] : node.lo[d]) + shift;
+      corners[c] = this->BoxPoints->InsertNextPoint(this->toWorld(p, offset).data());
     }
     this->Boxes->InsertNextCell(8, corners);
     const Vec3& n = node.normal;
@@ -183,8 +228,8 @@ void OutputBuilder::appendOctree(const vbr::FaceOctree& octree,
     };
     auto image = [&](const Vec3& d)
     {
-      const Vec3 a = this->toWorld(o, object.offset);
-      const Vec3 b = this->toWorld({ o[0] + d[0], o[1] + d[1], o[2] + d[2] }, object.offset);
+      const Vec3 a = this->toWorld(o, offset);
+      const Vec3 b = this->toWorld({ o[0] + d[0], o[1] + d[1], o[2] + d[2] }, offset);
       return Vec3{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
     };
     const Vec3 a = image(t1), b = image(t2), along = image(n);
@@ -193,12 +238,12 @@ void OutputBuilder::appendOctree(const vbr::FaceOctree& octree,
     const double sign = (w[0] * along[0] + w[1] * along[1] + w[2] * along[2]) < 0 ? -1.0 : 1.0;
     for (double& x : w)
       x *= sign / len;
-    const Vec3 origin = this->toWorld(o, object.offset);
+    const Vec3 origin = this->toWorld(o, offset);
     this->PlaneNormal->InsertNextTuple(w.data());
     this->PlaneOffset->InsertNextValue(w[0] * origin[0] + w[1] * origin[1] + w[2] * origin[2]);
     this->BoxLevel->InsertNextValue(node.level);
-    this->BoxNodeId->InsertNextValue(int(nodeBase + vtkIdType(id)));
-    vbr::vtk::appendLabel(this->BoxLabels, object.label);
+    this->BoxNodeId->InsertNextValue(id);
+    vbr::vtk::appendLabel(this->BoxLabels, label);
   }
 }
 
@@ -278,6 +323,72 @@ bool appendObject(const vbr::vtk::Selected& object,
     stats.faceNodes += vtkIdType(octree.nodes.size());
   }
   return !exec.stopRequested();
+}
+
+/// The label map of Labels mode: each selected label's voxels numbered by its object (1, 2,
+/// ...), 0 elsewhere (the background); `values` gets the label of each number.
+vbr::LabelVolume labelMap(const vbr::vtk::InputObjects& in,
+  const vbr::vtk::LabelValue& background,
+  const vbr::Execution& exec,
+  std::vector<vbr::vtk::LabelValue>& values)
+{
+  vbr::LabelVolume volume;
+  volume.dims = in.grid.dims;
+  volume.labels.assign(std::size_t(volume.dims[0]) * volume.dims[1] * volume.dims[2], 0);
+  values.assign(1, background);
+  for (std::size_t o = 0; o < in.objects.size() && !exec.stopRequested(); ++o)
+  {
+    const vbr::vtk::Selected& object = in.objects[o];
+    values.push_back(object.label);
+    const vbr::BitVolume voxels = object.select(exec);
+    const auto& n = voxels.dims();
+    for (std::int32_t k = 0; k < n[2]; ++k)
+      for (std::int32_t j = 0; j < n[1]; ++j)
+      {
+        const vbr::Word* row = voxels.row(j, k);
+        const std::size_t base = object.offset[0] +
+          std::size_t(volume.dims[0]) *
+            (object.offset[1] + j + std::size_t(volume.dims[1]) * (object.offset[2] + k));
+        for (std::size_t w = 0; w < voxels.wordsPerRow(); ++w)
+          for (vbr::Word m = row[w]; m; m &= m - 1)
+            volume.labels[base + w * 64 + std::size_t(__builtin_ctzll(m))] = std::int32_t(o + 1);
+      }
+  }
+  return volume;
+}
+
+/// Labels mode: one net of all labels, its face octree compacted per pair of labels and the
+/// shared boundary (LabelNet.h). False when aborted.
+bool appendLabelBoundary(const vbr::vtk::InputObjects& in,
+  const ObjectSettings& settings,
+  const vbr::vtk::LabelValue& background,
+  const vbr::Execution& exec,
+  Statistics& stats,
+  OutputBuilder& builder)
+{
+  std::vector<vbr::vtk::LabelValue> values;
+  const vbr::LabelVolume volume = labelMap(in, background, exec, values);
+  const vbr::LabelNet net = vbr::buildLabelNet(volume, settings.relaxation, exec);
+  if (!exec.report(0.4))
+    return false;
+  vbr::FaceOctreeOptions options = settings.octree;
+  if (settings.outputMode == vtkFaceOctreeBoundaryFilter::QUADRILATERALS)
+    options.maximumLevel = 0;
+  const vbr::BoundaryCells cells = settings.outputMode == vtkFaceOctreeBoundaryFilter::POLYGONS
+    ? vbr::BoundaryCells::Polygons
+    : settings.outputMode == vtkFaceOctreeBoundaryFilter::TRIANGLES
+    ? vbr::BoundaryCells::Triangles
+    : vbr::BoundaryCells::Quadrilaterals;
+  const vbr::LabelBoundary boundary = vbr::assembleLabelBoundary(net, options, cells, exec);
+  if (exec.stopRequested())
+    return false;
+  stats.boundaryVoxels += vtkIdType(net.model.pointCount());
+  stats.polygons += vtkIdType(boundary.mesh.polygons);
+  stats.triangles += vtkIdType(boundary.mesh.triangles);
+  stats.faceNodes += vtkIdType(boundary.nodes.size());
+  stats.maximumDistance = vbr::maximumDistanceToLabelFaces(volume, boundary.mesh.points);
+  builder.appendLabelBoundary(boundary, values, in.labelType);
+  return true;
 }
 
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
@@ -363,7 +474,8 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   vbr::vtk::SelectionSettings settings = vbr::vtk::selectionSettingsOf(this);
   settings.flatImagesAs2D = false;
   settings.maximumVoxelsPerAxis = (1 << 21) - 2;
-  settings.bytesPerVoxel = 1.0 / 8.0 * 3; // object, interior vertices and far voxels
+  // object, interior vertices and far voxels; Labels mode: a 32-bit label map
+  settings.bytesPerVoxel = 1.0 / 8.0 * 3 + (this->GetSelectionMode() == LABELS ? 4.0 : 0.0);
   settings.distributed = true; // the boundary of the whole image on rank 0 (N ranks = 1 rank)
   vbr::vtk::InputObjects in;
   if (!vbr::vtk::readInputObjects(this, input, scalars, association, settings, in))
@@ -385,7 +497,22 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   OutputBuilder builder(grid, in.labelType);
   Statistics stats;
   const auto& objects = in.objects;
-  for (std::size_t o = 0; o < objects.size() && !this->GetAbortExecute(); ++o)
+  if (this->GetSelectionMode() == LABELS && !objects.empty() &&
+    !(this->OutputMode == QUADRILATERALS && !this->PruneCrests))
+  {
+    vtkSmartPointer<vtkDataArray> background = vbr::vtk::newLabelArray(in.labelType, 1);
+    background->SetComponent(0, 0, this->GetBackgroundValue());
+    appendLabelBoundary(in,
+      each,
+      vbr::vtk::labelAt(background, 0),
+      vbr::vtk::makeExecution(this, 0.1, 1.0),
+      stats,
+      builder);
+  }
+  for (std::size_t o = 0; o < objects.size() && !this->GetAbortExecute() &&
+       (this->GetSelectionMode() != LABELS ||
+         (this->OutputMode == QUADRILATERALS && !this->PruneCrests));
+       ++o)
   {
     const double to = 0.1 + 0.9 * (o + 1) / objects.size();
     const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.1 + 0.9 * o / objects.size(), to);

@@ -43,7 +43,8 @@
  *
  * Cell data: `FaceNodeId` (the face node of a polygon, -1 for sewing triangles and
  * quadrilaterals), `NodeLevel` (its level: 2^level voxels a side; -1 likewise), `Label` (the
- * selected label, 1 outside Labels mode, in the selected values' type). Field data:
+ * selected label, 1 outside Labels mode, in the selected values' type; in Labels mode the
+ * larger of the cell's two labels) and, in Labels mode, `BoundaryLabels` (see below). Field data:
  * `NumberOfBoundaryVoxels`, `NumberOfFaceNodes`, `NumberOfPolygons` (cells of face nodes),
  * `NumberOfTriangles` (triangles among all cells), `NumberOfPrunedVoxels` and
  * `MaximumDistance` (the largest distance from an output vertex to the voxel boundary, the
@@ -51,13 +52,38 @@
  *
  * Output port 1: the face octree, one hexahedron per face node (its box, in world
  * coordinates) with cell data `PlaneNormal` (unit, world), `PlaneOffset` (world: the plane is
- * PlaneNormal . x = PlaneOffset), `NodeLevel`, `FaceNodeId` and `Label`.
+ * PlaneNormal . x = PlaneOffset), `NodeLevel`, `FaceNodeId` and `Label` (in Labels mode the
+ * larger label of the node's pair; its box is that of its grid vertices' boxes, offset by
+ * half a voxel from the voxels).
  *
- * Labels mode extracts each label on its own: neighbouring labels get two surfaces (shared
- * surfaces are not implemented yet). Point scalars are voxels centred at the points; cell
- * scalars are the voxels. Images are 3D (a flat image is a one-voxel slab, all pruned). A
- * direction matrix with negative determinant (a mirrored image) reverses the cells so that
- * normals still point out of the object.
+ * Labels mode (beyond the paper; Filters/Core/LabelNet.h): neighbouring labels share one
+ * surface, with no gap and no overlap between them. One net serves all labels: a point near
+ * each grid vertex where labels meet (relaxed inside the box of half a voxel around the
+ * vertex, shrunk by the margin) and a quadrilateral for each voxel face between two labels,
+ * oriented from the smaller label to the larger; the face octree is then compacted per pair
+ * of labels (a node's plane and polygon belong to one pair; points where three labels meet
+ * are never projected) and the boundary assembled as above. Every cell carries its two
+ * labels in the 2-component cell array `BoundaryLabels` (the background, BackgroundValue,
+ * first, then by value: the order of the labels; the normal points from the first label to
+ * the second), and `Label` holds the second (the label that is not the background). The
+ * cells carrying a label, turned out of it, are that label's closed, manifold surface,
+ * within one voxel diagonal of its voxels' boundary; the Triangles output is free of
+ * self-intersections (tested on random label maps). NumberOfBoundaryVoxels counts the net's
+ * points in Labels mode, NumberOfPrunedVoxels is 0 (nothing is pruned), and MaximumDistance
+ * is measured to the faces between different labels. With PruneCrests off the
+ * Quadrilaterals output stays the unpruned net of each label on its own.
+ *
+ * Manifold rule of Labels mode: where two voxels of one label touch only along an edge, and
+ * neither other voxel around the edge has that label, the label is joined across the edge
+ * (the edge is split, one copy for each other voxel); in a checkerboard A B A B the larger
+ * label is joined and the smaller kept apart. Where a label's voxels touch only at a vertex,
+ * or both copies of a split edge meet again there, the vertex becomes a small ball of the
+ * largest such label (the label joined by the split edge otherwise), with a point on each
+ * edge copy and a fan of triangles for each region of another label around it.
+ *
+ * Point scalars are voxels centred at the points; cell scalars are the voxels. Images are 3D (a
+ * flat image is a one-voxel slab, all pruned). A direction matrix with negative determinant (a
+ * mirrored image) reverses the cells so that normals still point out of the object.
  *
  * @warning The relaxation (per point, in two colours), the plane fits of each octree level
  * and the voxel classifications run with vtkSMPTools (set VTK_SMP_BACKEND_IN_USE=STDThread

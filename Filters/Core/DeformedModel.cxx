@@ -448,9 +448,11 @@ void buildQuads(const PointBuilder& points,
     });
 }
 
+} // namespace
+
 /// CSR lists of each point's quadrilaterals and links (the successor of the point in each
 /// of its quadrilaterals: every link once, on an oriented closed net).
-void buildLinks(DeformedModel& m)
+void linkQuadrilaterals(DeformedModel& m)
 {
   const std::size_t np = m.pointCount();
   m.linkOffsets.assign(np + 1, 0);
@@ -472,6 +474,9 @@ void buildLinks(DeformedModel& m)
     }
   }
 }
+
+namespace
+{
 
 /// The ambiguous faces (voxel linear index * 8 + face, for both voxels of the face) across
 /// which two points are linked twice.
@@ -548,7 +553,11 @@ double relaxColour(DeformedModel& m,
   return moved;
 }
 
-void relax(DeformedModel& m, const DeformedModelOptions& options, const Execution& exec)
+} // namespace
+
+void relaxDeformedModel(DeformedModel& m,
+  const DeformedModelOptions& options,
+  const Execution& exec)
 {
   std::vector<std::int32_t> colour[2];
   for (std::size_t p = 0; p < m.pointCount(); ++p)
@@ -568,6 +577,9 @@ void relax(DeformedModel& m, const DeformedModelOptions& options, const Executio
       break;
   }
 }
+
+namespace
+{
 
 inline Vec3 sub(const Vec3& a, const Vec3& b)
 {
@@ -642,7 +654,7 @@ DeformedModel buildDeformedModel(const BitVolume& object,
     PointBuilder points{ object, interior, m, {}, {}, {}, options.margin, flipped };
     points.build(exec);
     buildQuads(points, interior, m, exec);
-    buildLinks(m);
+    linkQuadrilaterals(m);
     // Where the rule still links two points twice (chains joined through other faces), the
     // face between them is chained the other way, and the net built again.
     const std::vector<std::uint64_t> twice = doublyLinkedFaces(m);
@@ -652,7 +664,7 @@ DeformedModel buildDeformedModel(const BitVolume& object,
     std::sort(flipped.begin(), flipped.end());
   }
   countBoundaryVoxels(object, interior, m);
-  relax(m, options, exec);
+  relaxDeformedModel(m, options, exec);
   computeNormals(m, exec);
   return m;
 }

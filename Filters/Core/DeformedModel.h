@@ -106,6 +106,16 @@ DeformedModel buildDeformedModel(const BitVolume& object,
 std::vector<std::array<std::array<std::int32_t, 3>, 4>> unprunedQuadrilaterals(
   const BitVolume& object);
 
+/// The relaxation above, on a model whose points, boxes, anchors and links are set (the
+/// label net of LabelNet.h uses it too): links join points whose voxels' index parities
+/// differ, except points whose box is a single position.
+void relaxDeformedModel(DeformedModel& model,
+  const DeformedModelOptions& options,
+  const Execution& exec);
+
+/// Fills the links and quadsOf lists (CSR, in linkOffsets) of a model from its quads.
+void linkQuadrilaterals(DeformedModel& model);
+
 /// The relaxation's cost: sum over links of |p_a - p_b|^2 + attachment * sum over points of
 /// |p - anchor|^2.
 double relaxationCost(const DeformedModel& model, double attachment);

@@ -56,7 +56,6 @@ struct NodeFit
 
 struct Compactor
 {
-  const BitVolume& object;
   const BitVolume& far;
   const DeformedModel& model;
   const FaceOctreeOptions& options;
@@ -718,8 +717,15 @@ FaceOctree buildFaceOctree(const BitVolume& object,
   const FaceOctreeOptions& options,
   const Execution& exec)
 {
-  const BitVolume far = farVoxels(object, exec);
-  Compactor cp{ object, far, model, options, {}, {} };
+  return buildFaceOctreeAvoiding(farVoxels(object, exec), model, options, exec);
+}
+
+FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
+  const DeformedModel& model,
+  const FaceOctreeOptions& options,
+  const Execution& exec)
+{
+  Compactor cp{ far, model, options, {}, {} };
   if (options.precision > 0)
     cp.precision = options.precision;
   const std::size_t np = model.pointCount();

@@ -97,6 +97,13 @@ FaceOctree buildFaceOctree(const BitVolume& object,
   const FaceOctreeOptions& options,
   const Execution& exec);
 
+/// The same compaction with the voxels no plane may cut given: `far` has the model's dims
+/// (the label net of LabelNet.h compacts in the grid of its vertices' boxes).
+FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
+  const DeformedModel& model,
+  const FaceOctreeOptions& options,
+  const Execution& exec);
+
 } // namespace vbr
 
 #endif

@@ -234,41 +234,9 @@ double maximumDistanceToSurfels(const BitVolume& object, const std::vector<Vec3>
   const auto& n = object.dims();
   auto at = [&](std::int32_t i, std::int32_t j, std::int32_t k)
   { return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && object.get(i, j, k); };
-  double worst = 0.0;
-  for (const Vec3& p : points)
-  {
-    const std::int32_t c[3] = {
-      std::int32_t(std::floor(p[0])), std::int32_t(std::floor(p[1])), std::int32_t(std::floor(p[2]))
-    };
-    double best = 4.0; // squared search radius
-    for (std::int32_t k = c[2] - 2; k <= c[2] + 2; ++k)
-      for (std::int32_t j = c[1] - 2; j <= c[1] + 2; ++j)
-        for (std::int32_t i = c[0] - 2; i <= c[0] + 2; ++i)
-        {
-          if (!at(i, j, k))
-            continue;
-          const std::int32_t v[3] = { i, j, k };
-          for (int a = 0; a < 3; ++a)
-            for (int s = 0; s < 2; ++s)
-            {
-              std::int32_t w[3] = { i, j, k };
-              w[a] += s ? 1 : -1;
-              if (at(w[0], w[1], w[2]))
-                continue;
-              // Surfel: the face of voxel v at v[a] + s along a.
-              double d2 = 0;
-              for (int d = 0; d < 3; ++d)
-              {
-                const double lo = d == a ? v[d] + s : v[d], hi = d == a ? v[d] + s : v[d] + 1;
-                const double e = p[d] < lo ? lo - p[d] : (p[d] > hi ? p[d] - hi : 0.0);
-                d2 += e * e;
-              }
-              best = std::min(best, d2);
-            }
-        }
-    worst = std::max(worst, std::sqrt(best));
-  }
-  return worst;
+  return maximumDistanceToFaces(points,
+    [&](std::int32_t i, std::int32_t j, std::int32_t k, int a)
+    { return at(i, j, k) != at(i + (a == 0), j + (a == 1), k + (a == 2)); });
 }
 
 } // namespace vbr

@@ -23,6 +23,8 @@
 #include "FaceOctree.h"
 #include "PolygonTriangulator.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -60,6 +62,41 @@ std::vector<std::vector<int>> convexPieces(const std::vector<Point2L>& corners);
 /// Largest distance from the points to the surfels of `object` (voxel units), each point
 /// searched within two voxels of its own (distances beyond are reported as 2).
 double maximumDistanceToSurfels(const BitVolume& object, const std::vector<Vec3>& points);
+
+/// Largest distance from the points to the voxel faces for which isFace(i, j, k, a) holds
+/// (the face between voxel (i, j, k) and the next along axis a), each point searched within
+/// two voxels of its own (distances beyond are reported as 2).
+template<typename IsFace>
+double maximumDistanceToFaces(const std::vector<Vec3>& points, IsFace isFace)
+{
+  double worst = 0.0;
+  for (const Vec3& p : points)
+  {
+    const std::int32_t c[3] = {
+      std::int32_t(std::floor(p[0])), std::int32_t(std::floor(p[1])), std::int32_t(std::floor(p[2]))
+    };
+    double best = 4.0; // squared search radius
+    for (std::int32_t k = c[2] - 3; k <= c[2] + 2; ++k)
+      for (std::int32_t j = c[1] - 3; j <= c[1] + 2; ++j)
+        for (std::int32_t i = c[0] - 3; i <= c[0] + 2; ++i)
+          for (int a = 0; a < 3; ++a)
+          {
+            if (!isFace(i, j, k, a))
+              continue;
+            const std::int32_t v[3] = { i, j, k };
+            double d2 = 0;
+            for (int d = 0; d < 3; ++d)
+            {
+              const double lo = d == a ? v[d] + 1 : v[d], hi = v[d] + 1;
+              const double e = p[d] < lo ? lo - p[d] : (p[d] > hi ? p[d] - hi : 0.0);
+              d2 += e * e;
+            }
+            best = std::min(best, d2);
+          }
+    worst = std::max(worst, std::sqrt(best));
+  }
+  return worst;
+}
 
 } // namespace vbr
 

@@ -1,6 +1,7 @@
 """vtkFaceOctreeBoundaryFilter on the real volumes of the shared data (MANIFEST.md): the "Al"
 object (v == 1), the engine (v >= 130), the headsq bone (v >= 1150, anisotropic spacing) and
-two labels of the AAL atlas (37 and 38, the hippocampi, in Labels mode). Checked against
+two labels of the AAL atlas (37 and 38, the hippocampi, in Labels mode), and two labels of
+it that touch (37 and 39, hippocampus and parahippocampal gyrus: one shared surface). Checked against
 numpy: the boundary voxel count (26-neighbourhood erosion), closed and consistently oriented
 (every directed edge once and its reverse once), planar polygons, positive enclosed volume
 near the voxel volume, every vertex within one voxel diagonal of the surfels (index space),
@@ -126,4 +127,40 @@ def labels(f):
 
 
 check_volume("AAL 37 and 38", two, labels, mask=two > 0, labels=True)
+
+
+def check_shared_labels(name, values, pair):
+    """Labels mode with touching labels: each cell once, BoundaryLabels (smaller first, 0 the
+    background) and Label (the larger), and each label's cells (those that carry it, turned
+    out of it) closed and oriented, within one voxel diagonal of that label's own surfels."""
+    f = voxelbrep.vtkFaceOctreeBoundaryFilter()
+    f.SetInputData(vt.make_image(values))
+    f.SetSelectionModeToLabels()
+    f.Update()
+    out = f.GetOutput()
+    pts, cells = vt.points(out), vt.cells(out)
+    both = vt.cell_array(out, "BoundaryLabels").reshape(-1, 2)
+    label = vt.cell_array(out, "Label")
+    check.true(name + ": smaller label first", bool((both[:, 0] < both[:, 1]).all()))
+    check.true(name + ": Label is the larger", bool((label == both[:, 1]).all()))
+    check.true(name + ": labels of the map", set(np.unique(both)) <= {0, pair[0], pair[1]})
+    shared = int(((both[:, 0] == pair[0]) & (both[:, 1] == pair[1])).sum())
+    check.true(name + ": a shared surface (%d cells)" % shared, shared > 0)
+    keys = {tuple(sorted(c)) for c in cells}
+    check.equal(name + ": each cell once", len(keys), len(cells))
+    for value in pair:
+        mine = [c if both[i, 0] == value else c[::-1]
+                for i, c in enumerate(cells) if value in both[i]]
+        check.true(name + ": label %d closed and oriented" % value,
+                   closed_and_oriented(mine, len(pts)))
+        used = np.unique(np.concatenate(mine))
+        d, _ = cKDTree(surfel_points(values == value)).query(pts[used])
+        check.true(name + ": label %d within a voxel diagonal (%g)" % (value, d.max()),
+                   d.max() <= 3 ** 0.5)
+    print("%s: %d cells, %d shared, %d face nodes" % (
+        name, len(cells), shared, vt.field_value(out, "NumberOfFaceNodes")))
+
+
+touching = np.where((aal == 37) | (aal == 39), aal, 0).astype(np.uint8)
+check_shared_labels("AAL 37 and 39", touching, (37, 39))
 check.finish()
