@@ -234,11 +234,8 @@ struct NetBuilder
       std::uint64_t(d);
   }
 
-  std::int32_t addPoint(const std::array<std::int32_t, 3>& v,
-    const Vec3& at,
-    const Vec3& lo,
-    const Vec3& hi,
-    bool fixed);
+  /// The arguments are copies: they may lie in the net's own arrays, which this grows.
+  std::int32_t addPoint(std::array<std::int32_t, 3> v, Vec3 at, Vec3 lo, Vec3 hi, bool fixed);
   void addVertex(const std::array<std::int32_t, 3>& v, const Star& star);
   void addRecord(const std::array<std::int32_t, 3>& v, int f, std::int32_t p, std::int32_t q);
   void blowUp(const std::array<std::int32_t, 3>& v, const Star& star, int sheet);
@@ -283,10 +280,10 @@ void NetBuilder::addPolygon(const std::vector<std::int32_t>& polygon,
     append({ c, polygon[i], polygon[(i + 1) % polygon.size()] });
 }
 
-std::int32_t NetBuilder::addPoint(const std::array<std::int32_t, 3>& v,
-  const Vec3& at,
-  const Vec3& lo,
-  const Vec3& hi,
+std::int32_t NetBuilder::addPoint(std::array<std::int32_t, 3> v,
+  Vec3 at,
+  Vec3 lo,
+  Vec3 hi,
   bool fixed)
 {
   DeformedModel& m = this->net.model;
