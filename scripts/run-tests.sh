@@ -4,12 +4,12 @@
 #   deps  scripts/install-deps.sh (skips what is installed; no network needed then)
 #   A     primary build against ParaView 5.11's VTK 9.2 in `build` (module, Python package,
 #         ParaView plugin, tests): xvfb-run -a ctest
-#   B     sanitizer builds (AddressSanitizer + UndefinedBehaviorSanitizer): the VTK-free core
-#         in `build-asan` (VOXELBREP_CORE_ONLY=ON, Debug) with its unit tests, and the VTK
-#         module and its Python package in `build-asan-filters` (against ParaView's VTK) with
-#         its C++ filter tests and the hostile-input corpus (Testing/Python)
-#   C     build against Debian's stock VTK 9.1 in `build-vtk91` (plugin and Python wrapping
-#         off): xvfb-run -a ctest
+#   B     one sanitizer build (AddressSanitizer + UndefinedBehaviorSanitizer) in `build-asan`
+#         against ParaView's VTK (Debug, -O1): the VTK-free core's unit tests, the module's C++
+#         filter tests, and the hostile-input corpus (Testing/Python) through its Python package
+#   C     build against Debian's stock VTK 9.1 in `build-vtk91` (plugin, Python wrapping and
+#         the core's unit tests off: the core uses no VTK, stages A and B run them):
+#         xvfb-run -a ctest
 #
 # Stage C needs libvtk9-dev, which conflicts with python3-paraview: the stage swaps the two
 # packages, configures and builds, swaps them back at once (the VTK 9.1 runtime libraries,
@@ -106,29 +106,27 @@ stage_paraview() {
 
 stage_asan() {
   local ok=0
-  # -O1: CGAL's exact arithmetic at -O0 under the sanitizers takes minutes per test. The
-  # largest exact-geometry tests (a self-intersection search on porous blobs, hulls of 64^3
-  # volumes, the hull modifier's random volumes, blobs and real objects, the face octree's
-  # closed-surface checks of every label of random label maps: minutes each here) are left out;
-  # stage A runs them.
-  run cmake -S . -B build-asan -DVOXELBREP_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Debug \
-    -DBUILD_TESTING=ON "-DCMAKE_CXX_FLAGS=-O1 $SAN_FLAGS" || return 1
-  run cmake --build build-asan -j"$JOBS" || return 1
-  ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1} \
-    UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    run_ctest build-asan asan -- -E "NetDoesNotSelfIntersect|LargeVolumesUpTo64Cubed|RandomVolumesSeparate|RandomPorousBlobsSeparate|RandomNoiseCubesSeparate|RealObjectsSeparate|EachLabelsNetIsClosedManifold|EachLabelsBoundaryIsClosedManifold" || ok=1
-  # The VTK module (adapters and filters) with its C++ tests, against ParaView's VTK, -O1 to
-  # keep the data tests fast. Leak detection is off (VTK's and Mesa's singletons live until
-  # exit) and the image tests are left out (Mesa's llvmpipe raises SIGFPE under the
-  # sanitizers' floating-point settings, in its own code).
-  run cmake -S . -B build-asan-filters -DVTK_DIR="$PV_VTK_DIR" \
+  # One build serves both: the core (with its unit tests) and the VTK module are compiled once,
+  # against ParaView's VTK. -O1: CGAL's exact arithmetic at -O0 under the sanitizers takes
+  # minutes per test.
+  run cmake -S . -B build-asan -DVTK_DIR="$PV_VTK_DIR" \
     -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=ON \
     -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF -DVOXELBREP_WRAP_PYTHON=ON \
     -DVOXELBREP_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=-O1 $SAN_FLAGS" || return 1
-  run cmake --build build-asan-filters -j"$JOBS" || return 1
+  run cmake --build build-asan -j"$JOBS" || return 1
+  # The core's unit tests, with leak detection (they use no VTK). The largest exact-geometry
+  # tests (a self-intersection search on porous blobs, hulls of 64^3 volumes, the hull
+  # modifier's random volumes, blobs and real objects, the face octree's closed-surface checks
+  # of every label of random label maps: minutes each here) are left out; stage A runs them.
+  ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1} \
+    UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+    run_ctest build-asan asan-core -- -R "^Core[.]" -E "NetDoesNotSelfIntersect|LargeVolumesUpTo64Cubed|RandomVolumesSeparate|RandomPorousBlobsSeparate|RandomNoiseCubesSeparate|RealObjectsSeparate|EachLabelsNetIsClosedManifold|EachLabelsBoundaryIsClosedManifold" || ok=1
+  # The module's C++ filter tests. Leak detection is off (VTK's and Mesa's singletons live
+  # until exit) and the image tests are left out (Mesa's llvmpipe raises SIGFPE under the
+  # sanitizers' floating-point settings, in its own code).
   ASAN_OPTIONS=detect_leaks=0:strict_string_checks=1 \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    run_ctest build-asan-filters asan-filters "${XVFB[@]}" -- -E "^Core[.]|Render|^Python[.]|^Example" ||
+    run_ctest build-asan asan-filters "${XVFB[@]}" -- -E "^Core[.]|Render|^Python[.]|^Example" ||
     ok=1
   # The hostile-input corpus through the sanitized Python package: the sanitizer runtimes
   # preloaded into /usr/bin/python3 (the memory-limit cases cannot run there: the sanitizers
@@ -142,7 +140,7 @@ run_sanitized_corpus() {
   echo "+ (sanitized) Testing/Python/TestHostileInputs.py"
   LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
     ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    PYTHONPATH="$ROOT/build-asan-filters/lib/python3/dist-packages" \
+    PYTHONPATH="$ROOT/build-asan/lib/python3/dist-packages" \
     /usr/bin/python3 Testing/Python/TestHostileInputs.py 2>&1 | tee "$log"
   rc=${PIPESTATUS[0]}
   if [ "$rc" = 0 ]; then
@@ -223,7 +221,8 @@ stage_vtk91() {
   local ok=1
   run cmake -S . -B build-vtk91 -DVTK_DIR="$VTK91_DIR" -DPython3_EXECUTABLE=/usr/bin/python3 \
     -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF \
-    -DVOXELBREP_WRAP_PYTHON=OFF 2>&1 | tee "$LOGDIR/configure-vtk91.log"
+    -DVOXELBREP_WRAP_PYTHON=OFF -DVOXELBREP_BUILD_CORE_TESTS=OFF 2>&1 |
+    tee "$LOGDIR/configure-vtk91.log"
   [ "${PIPESTATUS[0]}" = 0 ] || ok=0
   if [ "$ok" = 1 ] && ! grep -q 'building against VTK 9\.1' "$LOGDIR/configure-vtk91.log"; then
     echo "error: build-vtk91 is not configured against VTK 9.1" >&2
@@ -274,7 +273,7 @@ run_stage() {
 TOTAL_START=$SECONDS
 run_stage deps "install Debian packages" stage_deps
 run_stage A "ParaView 5.11 / VTK 9.2 build + tests (build)" stage_paraview
-run_stage B "core and module with ASan+UBSan (build-asan*)" stage_asan
+run_stage B "core and module with ASan+UBSan (build-asan)" stage_asan
 run_stage C "stock Debian VTK 9.1 build + tests (build-vtk91)" stage_vtk91
 restore_paraview
 [ "$RESTORE_STATUS" = FAIL ] && FAILED=1
