@@ -703,21 +703,47 @@ bool EmptyFaceTriangles::next(std::array<LatticePoint, 3>& out)
   return false;
 }
 
+/// Whether the open interior of a region holds no centre of class `cls`: such a region is
+/// final one level down (nothing in it is pressed in again).
+bool holdsNoCentreOf(const CellList& region, const BitVolume& objects, bool cls)
+{
+  bool none = true;
+  forEachPointIn(region,
+    true,
+    [&](const LatticePoint& p)
+    {
+      if (none && voxelClass(objects, p) == cls)
+        none = false;
+    });
+  return none;
+}
+
 /// Definition PR with an empty triangle: the hull of the group and an empty triangle T on the
 /// surface of C whose corners lie in the open interior of the parent (so T keeps off every piece
-/// of surface C shares with it), the nearest T whose hull keeps off the other regions, or when
-/// every candidate meets one, the nearest (its group is then merged with that region's group).
-/// The hull of the group and T is the hull of the group's corners and T.
+/// of surface C shares with it), the nearest T whose hull keeps off the other regions and holds
+/// no centre of C's class `cls` in its open interior, else the nearest that keeps off the other
+/// regions, or when every candidate meets one, the nearest (its group is then merged with that
+/// region's group). The hull of the group and T is the hull of the group's corners and T.
+///
+/// Why a clean hull first: the region's own pressed-in groups need empty triangles of its
+/// surface inside C, and its faces away from T are spanned by the group's corners alone. A flat
+/// group (a row or a sheet of one layer of a thin plate) with T on the far side of its plane has
+/// no such face at all: every face of the hull then has a corner of T on C's surface, and a
+/// centre of C's class inside that hull can be pressed in from nowhere. With T on one side of
+/// the group's plane the group's polygon is a face of the region, and a thin region has no
+/// lattice point inside.
 bool pressedRegion(const CellList& c,
   const CellList* parent,
   const PointGroup& group,
   const std::vector<const BoxedHull*>& others,
+  const BitVolume& objects,
+  bool cls,
   CoplanarFaces coplanar,
   BoxedHull& out)
 {
   EmptyFaceTriangles triangles(c, group.points);
   std::array<LatticePoint, 3> t;
-  bool found = false;
+  BoxedHull nearest, nearestApart;
   for (int tried = 0; tried < 64 && triangles.next(t);)
   {
     if (parent &&
@@ -730,13 +756,23 @@ bool pressedRegion(const CellList& c,
     BoxedHull region(convexHull(points, coplanar));
     const bool apart = std::none_of(
       others.begin(), others.end(), [&](const BoxedHull* o) { return hullsMeet(region, *o); });
-    if (!found || apart)
+    if (apart && holdsNoCentreOf(region.hull, objects, cls))
+    {
       out = std::move(region);
-    found = true;
-    if (apart)
       return true;
+    }
+    if (apart && nearestApart.hull.dimension < 0)
+      nearestApart = std::move(region);
+    else if (nearest.hull.dimension < 0)
+      nearest = std::move(region);
   }
-  return found;
+  if (nearestApart.hull.dimension >= 0)
+    out = std::move(nearestApart);
+  else if (nearest.hull.dimension >= 0)
+    out = std::move(nearest);
+  else
+    return false;
+  return true;
 }
 
 /// A group kept apart and its region (dimension -1 until found), pressed in or a cavity;
@@ -756,6 +792,7 @@ struct ApartGroup
 bool findRegions(Context& ctx,
   const CellList& c,
   const CellList* parent,
+  bool cls,
   const std::vector<BoxedHull>& obstacles,
   std::vector<ApartGroup>& groups)
 {
@@ -778,7 +815,8 @@ bool findRegions(Context& ctx,
     for (const auto& g : groups)
       if (g.alive && g.region.hull.dimension == 3)
         others.push_back(&g.region);
-    if (!pressedRegion(c, parent, groups[i].group, others, ctx.coplanar, groups[i].region))
+    if (!pressedRegion(
+          c, parent, groups[i].group, others, ctx.objects, cls, ctx.coplanar, groups[i].region))
       throw Unresolved("no empty triangle of the surface to press a group in from");
   }
   return std::none_of(todo.begin(),
@@ -816,13 +854,15 @@ bool mergeMeetingRegions(Context& ctx, const CellList& c, std::vector<ApartGroup
 }
 
 /// The regions of the touching rule (see the header) for the points of the other class in the
-/// open interior of C: their face-connected groups, each with a solid region holding it that
-/// meets the surface of C at most in one empty triangle (a cavity: the hull of its thickening in
-/// the open interior; or pressed in, pressedRegion). Groups whose regions meet are merged until
-/// the regions are apart. False when a region meets an obstacle (a pit of this level).
+/// open interior of C (a hull of class `cls`): their face-connected groups, each with a solid
+/// region holding it that meets the surface of C at most in one empty triangle (a cavity: the
+/// hull of its thickening in the open interior; or pressed in, pressedRegion). Groups whose
+/// regions meet are merged until the regions are apart. False when a region meets an obstacle
+/// (a pit of this level).
 bool apartRegions(Context& ctx,
   const CellList& c,
   const CellList* parent,
+  bool cls,
   const std::vector<LatticePoint>& points,
   const std::vector<BoxedHull>& obstacles,
   std::vector<CellList>& regions,
@@ -833,7 +873,7 @@ bool apartRegions(Context& ctx,
     groups.push_back({ makeGroup(std::move(g), c, true, ctx.coplanar) });
   do
   {
-    if (!findRegions(ctx, c, parent, obstacles, groups))
+    if (!findRegions(ctx, c, parent, cls, obstacles, groups))
       return false;
   } while (mergeMeetingRegions(ctx, c, groups));
   regions.clear();
@@ -968,14 +1008,15 @@ LatticeMesh solveLevel(Context& ctx,
     return out;
   std::vector<CellList> regions;
   std::vector<bool> pressed;
-  if (!apartRegions(ctx, c, parent, apart, pits, regions, pressed))
+  if (!apartRegions(ctx, c, parent, cls, apart, pits, regions, pressed))
   {
     // A region kept apart meets a pit: the whole level kept apart, unless C must keep pits.
     if (pit)
       throw Unresolved("a group kept apart meets a pit");
     out = triangulateHull(c);
     depth = 0;
-    apartRegions(ctx, c, parent, pointsOfClass(c, ctx.objects, !cls, true), {}, regions, pressed);
+    apartRegions(
+      ctx, c, parent, cls, pointsOfClass(c, ctx.objects, !cls, true), {}, regions, pressed);
   }
   solveApart(ctx, c, cls, level, regions, pressed, out, depth);
   return out;

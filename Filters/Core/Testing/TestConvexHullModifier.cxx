@@ -395,7 +395,8 @@ TEST(ConvexHullModifier, LargerRealObjectsSeparate)
 {
   // Real objects at half and quarter resolution, and a full-resolution piece: the Al cartoon
   // and the headsq bone (value >= 1150) at every 2nd voxel, the lobster (value >= 40) at every
-  // 4th, and the top of the bone (its last 23 slices) at full resolution. Deeply nested
+  // 4th, a piece of it at every 2nd, and the top of the bone (its last 23 slices) at full
+  // resolution. Deeply nested
   // (up to 11 levels), with many groups kept apart; the first three took 7 to 18 s of CPU in
   // the core before groups were merged from their hulls' corners, about 1 s now.
   struct Case
@@ -419,6 +420,18 @@ TEST(ConvexHullModifier, LargerRealObjectsSeparate)
       {},
       {} },
     { "lobster / 4", "lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 1, 40, 4, {}, {} },
+    // A piece of the lobster at half resolution, three layers thick where its groups are flat
+    // sheets of one layer: a region pressed in from a triangle on the far side of such a sheet
+    // had no face inside its parent to press the sheet's holes in from (unresolved before the
+    // clean regions came first).
+    { "lobster piece / 2",
+      "lobster/lobster_301x324x56_uint8.raw",
+      { 301, 324, 56 },
+      1,
+      40,
+      2,
+      { 0, 162, 0 },
+      { 154, 247, 56 } },
     { "bone top",
       "headsq/headsq_quarter_64x64x93_int16le.raw",
       { 64, 64, 93 },
