@@ -42,7 +42,10 @@
 //     faces of C fanned and split at lattice points, nearest to the group first) whose corners
 //     lie in the open interior of C's parent hull. R meets the surface of C exactly in T and T
 //     keeps off every surface C shares with its parent, so C - R is a 2-manifold, and the only
-//     centres of T, its corners, stay on H.
+//     centres of T, its corners, stay on H. Of the candidate triangles the nearest whose R holds
+//     no centre of C's class in its open interior comes first: R's own groups could only be
+//     pressed in from faces of R with every corner inside C, and a flat group (one layer of a
+//     thin plate) with T beyond its plane gives R no such face.
 // Regions that meet are merged into one group until they are pairwise apart (and apart from the
 // pits of the level; if not, the whole level is kept apart). Below a region the same rule holds
 // with C as the parent, so regions pressed in from T' keep off T. A centre of the other class on
@@ -57,8 +60,9 @@
 // checked (a closed embedded 2-manifold whose reversion equals the input); should the first pass
 // fail that check or leave a level unresolved, a second pass keeps every level apart (no pits:
 // cavities and triangles only, for which the induction needs no difference to be accepted;
-// withoutPits). Only when no empty triangle is left for a group (not seen on the inputs of the
-// tests, but on the full lobster, v >= 40, in both passes) is the result incomplete.
+// withoutPits). Only when no empty triangle is left for a group is the result incomplete (not
+// seen on any input tried since the clean regions come first; the full lobster, v >= 40, failed
+// so in both passes before).
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact

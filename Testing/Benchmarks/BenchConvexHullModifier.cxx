@@ -15,7 +15,7 @@
 // faces, edges, vertices, degree of non-convexity and Separates, and the ratio of DFE
 // triangles to our faces; a WARNING (a failed smoke run) where the filter does not separate a
 // synthetic input. Of the real volumes only the Al runs (about a minute of pressing-in; the
-// lobster's takes minutes and does not separate, see the README).
+// lobster's takes several minutes, see the README).
 //
 //   BenchConvexHullModifier --help     the options, with this program's defaults
 //   BenchConvexHullModifier --quick --no-data     the smoke run of ctest
