@@ -315,7 +315,7 @@ bool appendObject(const vbr::vtk::Selected& object,
   stats.polygons += vtkIdType(mesh.polygons);
   stats.triangles += vtkIdType(mesh.triangles);
   stats.maximumDistance =
-    std::max(stats.maximumDistance, vbr::maximumDistanceToSurfels(voxels, mesh.points));
+    std::max(stats.maximumDistance, vbr::maximumDistanceToSurfels(voxels, mesh.points, exec));
   builder.appendMesh(mesh, object, stats.faceNodes);
   if (settings.outputMode != vtkFaceOctreeBoundaryFilter::QUADRILATERALS)
   {
@@ -386,7 +386,7 @@ bool appendLabelBoundary(const vbr::vtk::InputObjects& in,
   stats.polygons += vtkIdType(boundary.mesh.polygons);
   stats.triangles += vtkIdType(boundary.mesh.triangles);
   stats.faceNodes += vtkIdType(boundary.nodes.size());
-  stats.maximumDistance = vbr::maximumDistanceToLabelFaces(volume, boundary.mesh.points);
+  stats.maximumDistance = vbr::maximumDistanceToLabelFaces(volume, boundary.mesh.points, exec);
   builder.appendLabelBoundary(boundary, values, in.labelType);
   return true;
 }

@@ -20,12 +20,14 @@
 
 #include "BitVolume.h"
 #include "DeformedModel.h"
+#include "Execution.h"
 #include "FaceOctree.h"
 #include "PolygonTriangulator.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 namespace vbr
@@ -61,40 +63,84 @@ std::vector<std::vector<int>> convexPieces(const std::vector<Point2L>& corners);
 
 /// Largest distance from the points to the surfels of `object` (voxel units), each point
 /// searched within two voxels of its own (distances beyond are reported as 2).
-double maximumDistanceToSurfels(const BitVolume& object, const std::vector<Vec3>& points);
+double maximumDistanceToSurfels(const BitVolume& object,
+  const std::vector<Vec3>& points,
+  const Execution& exec = Execution());
 
-/// Largest distance from the points to the voxel faces for which isFace(i, j, k, a) holds
-/// (the face between voxel (i, j, k) and the next along axis a), each point searched within
-/// two voxels of its own (distances beyond are reported as 2).
+/// The smallest squared distance from p to the voxel faces for which isFace(i, j, k, a) holds
+/// (the face between voxel (i, j, k) and the next along axis a) among the faces of the voxels
+/// lo..hi (per axis, inclusive), or `best` when none is nearer.
 template<typename IsFace>
-double maximumDistanceToFaces(const std::vector<Vec3>& points, IsFace isFace)
+double nearestFaceSquared(const Vec3& p,
+  const std::int32_t lo[3],
+  const std::int32_t hi[3],
+  double best,
+  const IsFace& isFace)
 {
-  double worst = 0.0;
-  for (const Vec3& p : points)
-  {
-    const std::int32_t c[3] = {
-      std::int32_t(std::floor(p[0])), std::int32_t(std::floor(p[1])), std::int32_t(std::floor(p[2]))
-    };
-    double best = 4.0; // squared search radius
-    for (std::int32_t k = c[2] - 3; k <= c[2] + 2; ++k)
-      for (std::int32_t j = c[1] - 3; j <= c[1] + 2; ++j)
-        for (std::int32_t i = c[0] - 3; i <= c[0] + 2; ++i)
-          for (int a = 0; a < 3; ++a)
+  for (std::int32_t k = lo[2]; k <= hi[2]; ++k)
+    for (std::int32_t j = lo[1]; j <= hi[1]; ++j)
+      for (std::int32_t i = lo[0]; i <= hi[0]; ++i)
+        for (int a = 0; a < 3; ++a)
+        {
+          if (!isFace(i, j, k, a))
+            continue;
+          const std::int32_t v[3] = { i, j, k };
+          double d2 = 0;
+          for (int d = 0; d < 3; ++d)
           {
-            if (!isFace(i, j, k, a))
-              continue;
-            const std::int32_t v[3] = { i, j, k };
-            double d2 = 0;
-            for (int d = 0; d < 3; ++d)
-            {
-              const double lo = d == a ? v[d] + 1 : v[d], hi = v[d] + 1;
-              const double e = p[d] < lo ? lo - p[d] : (p[d] > hi ? p[d] - hi : 0.0);
-              d2 += e * e;
-            }
-            best = std::min(best, d2);
+            const double faceLo = d == a ? v[d] + 1 : v[d], faceHi = v[d] + 1;
+            const double e = p[d] < faceLo ? faceLo - p[d] : (p[d] > faceHi ? p[d] - faceHi : 0.0);
+            d2 += e * e;
           }
-    worst = std::max(worst, std::sqrt(best));
-  }
+          best = std::min(best, d2);
+        }
+  return best;
+}
+
+/// Distance from p to the nearest face for which isFace holds, searched among the faces of the
+/// voxels within two of p's own (distances beyond are reported as 2). The faces of the voxels
+/// next to p's own come first: a face of any other voxel lies at least `margin` away (at least
+/// one voxel), so when one of them is that near the wider search cannot find a nearer one. The
+/// answer is the same; most points stop after 81 faces instead of 648.
+template<typename IsFace>
+double distanceToNearestFace(const Vec3& p, const IsFace& isFace)
+{
+  const std::int32_t c[3] = {
+    std::int32_t(std::floor(p[0])), std::int32_t(std::floor(p[1])), std::int32_t(std::floor(p[2]))
+  };
+  const std::int32_t nearLo[3] = { c[0] - 1, c[1] - 1, c[2] - 1 };
+  const std::int32_t nearHi[3] = { c[0] + 1, c[1] + 1, c[2] + 1 };
+  const double best = nearestFaceSquared(p, nearLo, nearHi, 4.0, isFace);
+  double margin = 2.0;
+  for (int d = 0; d < 3; ++d)
+    margin = std::min({ margin, p[d] - (c[d] - 1), (c[d] + 2) - p[d] });
+  if (best <= margin * margin)
+    return std::sqrt(best);
+  const std::int32_t lo[3] = { c[0] - 3, c[1] - 3, c[2] - 3 };
+  const std::int32_t hi[3] = { c[0] + 2, c[1] + 2, c[2] + 2 };
+  return std::sqrt(nearestFaceSquared(p, lo, hi, best, isFace));
+}
+
+/// Largest distance from the points to the voxel faces for which isFace(i, j, k, a) holds, each
+/// point searched within two voxels of its own (distances beyond are reported as 2). isFace is
+/// called from several threads at once.
+template<typename IsFace>
+double maximumDistanceToFaces(const std::vector<Vec3>& points,
+  const IsFace& isFace,
+  const Execution& exec = Execution())
+{
+  std::mutex guard;
+  double worst = 0.0;
+  exec.forWork(std::int64_t(points.size()))
+    .forRange(std::int64_t(points.size()),
+      [&](std::int64_t begin, std::int64_t end)
+      {
+        double local = 0.0;
+        for (std::int64_t i = begin; i < end; ++i)
+          local = std::max(local, distanceToNearestFace(points[std::size_t(i)], isFace));
+        const std::lock_guard<std::mutex> lock(guard);
+        worst = std::max(worst, local);
+      });
   return worst;
 }
 

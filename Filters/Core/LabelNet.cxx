@@ -791,11 +791,15 @@ LabelBoundary assembleLabelBoundary(const LabelNet& net,
   return out;
 }
 
-double maximumDistanceToLabelFaces(const LabelVolume& volume, const std::vector<Vec3>& points)
+double maximumDistanceToLabelFaces(const LabelVolume& volume,
+  const std::vector<Vec3>& points,
+  const Execution& exec)
 {
-  return maximumDistanceToFaces(points,
+  return maximumDistanceToFaces(
+    points,
     [&volume](std::int32_t i, std::int32_t j, std::int32_t k, int a)
-    { return volume.at(i, j, k) != volume.at(i + (a == 0), j + (a == 1), k + (a == 2)); });
+    { return volume.at(i, j, k) != volume.at(i + (a == 0), j + (a == 1), k + (a == 2)); },
+    exec);
 }
 
 } // namespace vbr

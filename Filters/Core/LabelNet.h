@@ -113,7 +113,9 @@ LabelBoundary assembleLabelBoundary(const LabelNet& net,
 /// Largest distance from the points to the faces between voxels of different labels (voxel
 /// units), each point searched within two voxels of its own (distances beyond are reported
 /// as 2).
-double maximumDistanceToLabelFaces(const LabelVolume& volume, const std::vector<Vec3>& points);
+double maximumDistanceToLabelFaces(const LabelVolume& volume,
+  const std::vector<Vec3>& points,
+  const Execution& exec = Execution());
 
 } // namespace vbr
 

@@ -955,6 +955,53 @@ TEST(FaceOctreeBoundary, RandomVoxels)
   }
 }
 
+TEST(FaceOctreeBoundary, MaximumDistanceToSurfelsMatchesEverySurfel)
+{
+  // The filter's MaximumDistance against the distance to every surfel of the volume, on noise
+  // and a ball, for points spread over the grid and a margin around it (the search near each
+  // point is capped at 2 voxels: so is the reference), with one thread and with a pool.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coordinate(-2.5, 14.5);
+  BitVolume noise(12, 11, 10), ball(12, 11, 10);
+  std::bernoulli_distribution b(0.4);
+  for (int k = 0; k < 10; ++k)
+    for (int j = 0; j < 11; ++j)
+      for (int i = 0; i < 12; ++i)
+      {
+        if (b(rng))
+          noise.set(i, j, k);
+        if ((i - 5.5) * (i - 5.5) + (j - 5) * (j - 5) + (k - 4.5) * (k - 4.5) < 16)
+          ball.set(i, j, k);
+      }
+  vbr::Execution pool;
+  pool.parallelFor = [](std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& f)
+  {
+    for (std::int64_t b = 0; b < n; b += 7)
+      f(b, std::min(n, b + 7));
+  };
+  for (const BitVolume* v : { &noise, &ball })
+  {
+    const auto faces = surfels(*v);
+    ASSERT_FALSE(faces.empty());
+    for (int trial = 0; trial < 200; ++trial)
+    {
+      std::vector<Vec3> points(1 + trial % 5);
+      for (Vec3& p : points)
+        p = { coordinate(rng), coordinate(rng), coordinate(rng) };
+      double expected = 0;
+      for (const Vec3& p : points)
+      {
+        double best = 2.0;
+        for (const auto& f : faces)
+          best = std::min(best, pointSquareDistance(p, f));
+        expected = std::max(expected, best);
+      }
+      EXPECT_NEAR(vbr::maximumDistanceToSurfels(*v, points), expected, 1e-12) << trial;
+      EXPECT_NEAR(vbr::maximumDistanceToSurfels(*v, points, pool), expected, 1e-12) << trial;
+    }
+  }
+}
+
 TEST(DeformedModel, NetIsClosedManifold)
 {
   std::mt19937 rng(7);
