@@ -116,14 +116,15 @@ bool VoxelGrid::mirrorsSpace() const
 
 bool VoxelGrid::worldToVoxel(const double world[3], std::array<std::int32_t, 3>& voxel) const
 {
-  vtkNew<vtkMatrix3x3> inverse;
-  inverse->DeepCopy(this->direction.data());
-  inverse->Invert();
+  // The static forms of vtkMatrix3x3 (the same arithmetic): a vtkMatrix3x3 object per call
+  // cost more than the lookup itself with tens of thousands of seed points.
+  double inverse[9];
+  vtkMatrix3x3::Invert(this->direction.data(), inverse);
   const double p[3] = {
     world[0] - this->origin[0], world[1] - this->origin[1], world[2] - this->origin[2]
   };
   double local[3];
-  inverse->MultiplyPoint(p, local);
+  vtkMatrix3x3::MultiplyPoint(inverse, p, local);
   for (int d = 0; d < 3; ++d)
   {
     if (this->spacing[d] == 0.0)
