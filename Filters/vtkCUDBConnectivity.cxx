@@ -557,16 +557,17 @@ struct RegionColumns
     this->centroids->SetComponentName(1, "Y");
     this->centroids->SetComponentName(2, "Z");
     this->boxes->SetName("NumberOfBoxes");
-    for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{
-           this->ids, this->voxels, this->volumes, this->centroids, this->boxes })
-      vbr::vtk::resizeOrThrow(a, count);
+    std::vector<vtkAbstractArray*> columns{
+      this->ids, this->voxels, this->volumes, this->centroids, this->boxes
+    };
     for (int k = 0; k < 6; ++k)
     {
       this->indexBounds[k]->SetName(indexNames[k]);
-      vbr::vtk::resizeOrThrow(this->indexBounds[k], count);
       this->worldBounds[k]->SetName(worldNames[k]);
-      vbr::vtk::resizeOrThrow(this->worldBounds[k], count);
+      columns.push_back(this->indexBounds[k]);
+      columns.push_back(this->worldBounds[k]);
     }
+    vbr::vtk::resizeOrThrow(columns, count);
   }
 
   /// Empty sums, and bounds that any box replaces.
