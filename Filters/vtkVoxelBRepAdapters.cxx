@@ -116,14 +116,15 @@ bool VoxelGrid::mirrorsSpace() const
 
 bool VoxelGrid::worldToVoxel(const double world[3], std::array<std::int32_t, 3>& voxel) const
 {
-  vtkNew<vtkMatrix3x3> inverse;
-  inverse->DeepCopy(this->direction.data());
-  inverse->Invert();
+  // The static forms of vtkMatrix3x3 (the same arithmetic): a vtkMatrix3x3 object per call
+  // cost more than the lookup itself with tens of thousands of seed points.
+  double inverse[9];
+  vtkMatrix3x3::Invert(this->direction.data(), inverse);
   const double p[3] = {
     world[0] - this->origin[0], world[1] - this->origin[1], world[2] - this->origin[2]
   };
   double local[3];
-  inverse->MultiplyPoint(p, local);
+  vtkMatrix3x3::MultiplyPoint(inverse, p, local);
   for (int d = 0; d < 3; ++d)
   {
     if (this->spacing[d] == 0.0)
@@ -354,19 +355,44 @@ vtkSmartPointer<vtkIntArray> newZeroedIntArray(vtkIdType n)
   return array;
 }
 
+namespace
+{
+double bytesOf(vtkAbstractArray* array, vtkIdType tuples)
+{
+  return double(tuples) * array->GetNumberOfComponents() * array->GetDataTypeSize();
+}
+
+void resizeChecked(vtkAbstractArray* array, vtkIdType tuples)
+{
+  array->SetNumberOfTuples(tuples);
+  if (array->GetNumberOfTuples() != tuples)
+    throw std::bad_alloc();
+}
+} // namespace
+
 void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples)
 {
   // VTK aborts the process when an array cannot be allocated: refuse before asking it.
-  const double bytes = double(tuples) * array->GetNumberOfComponents() * array->GetDataTypeSize();
   const std::string name = array->GetName() ? array->GetName() : "";
-  const std::string refused = checkAllocation(bytes,
+  const std::string refused = checkAllocation(bytesOf(array, tuples),
     (name.empty() ? std::string("An output array") : "The array '" + name + "'") + " of " +
       std::to_string(tuples) + " tuples");
   if (!refused.empty())
     throw std::runtime_error(refused);
-  array->SetNumberOfTuples(tuples);
-  if (array->GetNumberOfTuples() != tuples)
-    throw std::bad_alloc();
+  resizeChecked(array, tuples);
+}
+
+void resizeOrThrow(const std::vector<vtkAbstractArray*>& arrays, vtkIdType tuples)
+{
+  double bytes = 0.0;
+  for (vtkAbstractArray* array : arrays)
+    bytes += bytesOf(array, tuples);
+  const std::string refused = checkAllocation(bytes,
+    std::to_string(arrays.size()) + " output arrays of " + std::to_string(tuples) + " tuples");
+  if (!refused.empty())
+    throw std::runtime_error(refused);
+  for (vtkAbstractArray* array : arrays)
+    resizeChecked(array, tuples);
 }
 
 void addDistributionFields(vtkFieldData* fd, const Piece& piece)

@@ -118,6 +118,9 @@ vtkSmartPointer<vtkIntArray> newZeroedIntArray(vtkIdType n);
 /// fails), then std::bad_alloc if VTK still came back short. executeGuarded turns the
 /// exception into an error and empty outputs.
 void resizeOrThrow(vtkAbstractArray* array, vtkIdType tuples);
+/// The same for several arrays of `tuples` tuples each, with one memory check for all of
+/// them: each check reads /proc/meminfo, which cost more than a small table of 17 columns.
+void resizeOrThrow(const std::vector<vtkAbstractArray*>& arrays, vtkIdType tuples);
 
 /// Appends a one-value field array.
 void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value);

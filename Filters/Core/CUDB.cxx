@@ -153,39 +153,56 @@ public:
 
   void build(const Section& section)
   {
+    this->build(section.data(), section.data() + section.size(), bOf, cOf);
+  }
+
+  /// The same for points [begin, end) sorted by (B, C) and read through `b` and `c`: a 2D
+  /// EVM is its own section, read in place (a copy is as large as the EVM).
+  template<typename Point, typename BOf, typename COf>
+  void build(const Point* begin, const Point* end, BOf b, COf c)
+  {
     this->intervalCount = 0;
     this->rects.clear();
     this->segments.clear();
     this->intervals.clear();
     this->contacts.clear();
     this->Breaks.clear();
-    const SectionPoint* line = section.data();
-    const SectionPoint* const end = line + section.size();
+    const Point* line = begin;
     while (line != end)
     {
-      const Coord b = bOf(*line);
-      const SectionPoint* next = line;
-      while (next != end && bOf(*next) == b)
+      const Coord lineB = b(*line);
+      const Point* next = line;
+      while (next != end && b(*next) == lineB)
         ++next;
-      this->crossLine(line, next);
-      this->appendLineBoxes(b);
+      this->crossLine(line, next, c);
+      this->appendLineBoxes(lineB);
       line = next;
     }
     if (!this->Breaks.empty())
       throw std::invalid_argument("section is not closed: not a valid EVM");
   }
 
+  /// Room for `rects` rectangles and as many contacts, so that a section of millions of
+  /// rectangles (a 2D image) is not copied each time its lists double. Reserved only: pages
+  /// that are never written cost no memory.
+  void reserve(std::size_t rects)
+  {
+    this->rects.reserve(rects);
+    this->contacts.reserve(rects);
+  }
+
 private:
   /// The 1D section past a line of vertices: the one before it XOR the line's C coordinates
   /// (both sorted), in buffers kept from line to line.
-  void crossLine(const SectionPoint* line, const SectionPoint* end)
+  template<typename Point, typename COf>
+  void crossLine(const Point* line, const Point* end, COf c)
   {
     this->Next.resize(this->Breaks.size() + static_cast<std::size_t>(end - line));
     const Coord* out = mergeCancelling(this->Breaks.data(),
       this->Breaks.data() + this->Breaks.size(),
       line,
       end,
-      cOf,
+      c,
       this->Next.data());
     this->Next.resize(static_cast<std::size_t>(out - this->Next.data()));
     this->Breaks.swap(this->Next);
@@ -762,18 +779,37 @@ void stitch(std::vector<SweptPiece>& pieces, CUDB& out, UnionFind* equivalences)
   }
 }
 
-/// A 2D EVM is a single section: its rectangles are the boxes, one voxel thick.
-void buildCUDB2D(const EVM& evm, CUDB& out)
+/// A 2D EVM is a single section: its rectangles are the boxes, one voxel thick. The contacts
+/// go to `out`, or, when labelling (`equivalences`), each usable one is an equivalence at once
+/// (rectangle r is box r), so that no contact list is copied and read back. Each list is
+/// released once read: on a 6001^2 maze they are tens of MB each.
+void buildCUDB2D(const EVM& evm, CUDB& out, UnionFind* equivalences, Connectivity connectivity)
 {
-  Section section, scratch;
-  const std::vector<Vertex>& v = evm.vertices();
-  nextSection(v.data(), v.data() + v.size(), section, scratch);
   SectionDecomposition d;
   d.keepLastLineOnly(true);
-  d.build(section);
+  d.keepFaceContactsOnly(equivalences && connectivity == Connectivity::Face);
+  // Images have fewer rectangles than half their vertices (the 6001^2 maze: 12.5 M vertices,
+  // 4.9 M rectangles; the fax pages 3 to 4 vertices a rectangle); more only grow the lists.
+  const std::vector<Vertex>& v = evm.vertices();
+  d.reserve(v.size() / 2);
+  d.build(
+    v.data(),
+    v.data() + v.size(),
+    [](const Vertex& p) { return p[1]; },
+    [](const Vertex& p) { return p[2]; });
   out.oudbBoxCount = d.intervalCount;
+  out.boxes.reserve(d.rects.size());
   for (const Rect& r : d.rects)
     out.boxes.push_back(boxOf(r, 0, 1, out.order));
+  std::vector<Rect>().swap(d.rects);
+  if (equivalences)
+  {
+    *equivalences = UnionFind(out.boxes.size());
+    for (const RectContact& c : d.contacts)
+      equivalences->unite(c.backward, c.forward); // only usable ones were kept
+    return;
+  }
+  out.contacts.reserve(d.contacts.size());
   for (const RectContact& c : d.contacts)
     out.contacts.push_back(
       { c.backward, c.forward, static_cast<std::uint8_t>(out.order[1]), c.face });
@@ -819,7 +855,7 @@ bool buildCUDB(const EVM& evm, const Execution& exec, CUDB& out, int pieces)
   out.order = evm.order();
   if (evm.dimension() == 2)
   {
-    buildCUDB2D(evm, out);
+    buildCUDB2D(evm, out, nullptr, Connectivity::Vertex);
     return true;
   }
   std::vector<SweptPiece> swept;
@@ -836,17 +872,16 @@ bool buildCUDBComponents(const EVM& evm,
   Components& components,
   int pieces)
 {
-  if (evm.dimension() == 2)
-  {
-    // One section: its contacts are few next to a volume's; they are kept.
-    if (!buildCUDB(evm, exec, out, pieces))
-      return false;
-    components = labelComponents(out, connectivity);
-    return true;
-  }
   out = CUDB();
   out.dimension = evm.dimension();
   out.order = evm.order();
+  if (evm.dimension() == 2)
+  {
+    UnionFind equivalences;
+    buildCUDB2D(evm, out, &equivalences, connectivity);
+    components.count = relabel(equivalences, components.boxLabel);
+    return true;
+  }
   std::vector<SweptPiece> swept;
   if (!sweepPieces(evm, exec, pieces, &connectivity, swept))
     return false;
