@@ -476,7 +476,7 @@ HullBuilder::NewFaces HullBuilder::facesOverHorizon(Index ip,
   NewFaces created;
   for (Index f : region)
   {
-    const std::vector<Index> v = this->Faces[f].v;
+    const std::vector<Index>& v = this->Faces[f].v;
     for (std::size_t k = 0; k < v.size(); ++k)
     {
       const Index a = v[k], b = v[(k + 1) % v.size()];
@@ -522,7 +522,12 @@ void HullBuilder::replaceRegion(Index ip,
       this->removeFace(t, orphans);
   const Index first = static_cast<Index>(this->Faces.size());
   for (auto& c : created)
-    this->addFace(extend ? convexPolygon(c.second, this->Points, c.first) : c.second, c.first);
+  {
+    // A lone triangle over a horizon edge is convex and in order already; only merged
+    // triangles and extended faces need their polygon.
+    const bool polygon = extend && c.second.size() > 3;
+    this->addFace(polygon ? convexPolygon(c.second, this->Points, c.first) : c.second, c.first);
+  }
   this->reassign(orphans, first, ip);
 }
 
@@ -656,7 +661,8 @@ void HullBuilder::addInitialTetrahedron(const std::array<Index, 4>& s)
     this->PointFace[k] = Processed;
 }
 
-/// The live faces as a cell list, their vertices numbered in order of appearance.
+/// The live faces as a cell list, their vertices numbered in order of appearance (the
+/// incidences are left to the caller).
 CellList HullBuilder::cellList() const
 {
   CellList hull;
@@ -680,7 +686,6 @@ CellList HullBuilder::cellList() const
     hull.faces.push_back(std::move(v));
     hull.planes.push_back(this->Planes[k]);
   }
-  hull.buildIncidences();
   return hull;
 }
 
@@ -831,10 +836,11 @@ CellList convexHull(const std::vector<LatticePoint>& input, CoplanarFaces coplan
   }
   points = extremesFirst(points);
   CellList hull = HullBuilder(points, coplanar).run();
+  // The merge builds the incidences of its own faces; the flat hulls come with theirs.
   if (merge)
-  {
     mergeCoplanarFaces(hull);
-  }
+  else if (hull.dimension == 3)
+    hull.buildIncidences();
   return hull;
 }
 
