@@ -116,8 +116,8 @@ std::uint64_t edgeKey(Index a, Index b)
 }
 
 /// The face on the left of each directed edge, in one flat table with linear probing: every
-/// insertion adds and removes a few dozen edges, and a node-based hash map spent most of its
-/// time allocating and freeing its nodes.
+/// insertion adds and removes a few dozen edges, and a node-based hash map allocates and frees
+/// a node for each.
 class EdgeOwners
 {
 public:
