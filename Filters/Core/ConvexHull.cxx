@@ -115,6 +115,99 @@ std::uint64_t edgeKey(Index a, Index b)
   return (std::uint64_t(a) << 32) | b;
 }
 
+/// The face on the left of each directed edge, in one flat table with linear probing: every
+/// insertion adds and removes a few dozen edges, and a node-based hash map allocates and frees
+/// a node for each.
+class EdgeOwners
+{
+public:
+  void reserve(std::size_t edges)
+  {
+    std::size_t capacity = 16;
+    while (capacity < 2 * edges)
+      capacity *= 2;
+    this->Slots.assign(capacity, Slot{ Empty, 0 });
+    this->Count = 0;
+  }
+
+  void set(std::uint64_t key, Index face)
+  {
+    if (2 * (this->Count + 1) > this->Slots.size())
+      this->grow();
+    std::size_t i = this->home(key);
+    while (this->Slots[i].key != Empty && this->Slots[i].key != key)
+      i = (i + 1) & (this->Slots.size() - 1);
+    this->Count += this->Slots[i].key == Empty;
+    this->Slots[i] = Slot{ key, face };
+  }
+
+  Index at(std::uint64_t key) const
+  {
+    std::size_t i = this->home(key);
+    while (this->Slots[i].key != key)
+    {
+      if (this->Slots[i].key == Empty)
+        throw std::logic_error("convexHull: an edge without its face");
+      i = (i + 1) & (this->Slots.size() - 1);
+    }
+    return this->Slots[i].face;
+  }
+
+  /// Removes the key if `face` owns it (a newer face may have taken the edge over).
+  void eraseOwnedBy(std::uint64_t key, Index face);
+
+private:
+  static constexpr std::uint64_t Empty = ~std::uint64_t(0);
+  struct Slot
+  {
+    std::uint64_t key;
+    Index face;
+  };
+  std::vector<Slot> Slots;
+  std::size_t Count = 0;
+
+  std::size_t home(std::uint64_t key) const
+  {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & (this->Slots.size() - 1);
+  }
+  void grow();
+};
+
+void EdgeOwners::eraseOwnedBy(std::uint64_t key, Index face)
+{
+  const std::size_t mask = this->Slots.size() - 1;
+  std::size_t i = this->home(key);
+  while (this->Slots[i].key != key)
+  {
+    if (this->Slots[i].key == Empty)
+      return;
+    i = (i + 1) & mask;
+  }
+  if (this->Slots[i].face != face)
+    return;
+  // Backward shift: later keys of the probe run move into the hole, so no tombstones pile up.
+  for (std::size_t j = (i + 1) & mask; this->Slots[j].key != Empty; j = (j + 1) & mask)
+  {
+    const std::size_t h = this->home(this->Slots[j].key);
+    if (((j - h) & mask) >= ((j - i) & mask))
+    {
+      this->Slots[i] = this->Slots[j];
+      i = j;
+    }
+  }
+  this->Slots[i].key = Empty;
+  --this->Count;
+}
+
+void EdgeOwners::grow()
+{
+  std::vector<Slot> old = std::move(this->Slots);
+  this->reserve(old.size());
+  for (const Slot& s : old)
+    if (s.key != Empty)
+      this->set(s.key, s.face);
+}
+
 /// The incremental construction of section 3.1 with the conflict lists described on top.
 class HullBuilder
 {
@@ -131,9 +224,11 @@ private:
   struct Face
   {
     std::vector<Index> v;
-    FacePlane plane;
     bool alive = true;
     std::vector<Index> conflicts;
+    /// The conflict point farthest from the plane, the next one inserted from this face.
+    Index farthest = 0;
+    __int128 farthestHeight = 0;
   };
   /// Per face and per insertion: not reached, visible, coplanar, invisible, in the region.
   enum State : std::uint8_t
@@ -148,13 +243,21 @@ private:
   const std::vector<LatticePoint>& Points;
   CoplanarFaces Coplanar;
   std::vector<Face> Faces;
-  std::unordered_map<std::uint64_t, Index> Owner;
+  /// Apart from the faces: the conflict tests scan the planes of all new faces.
+  std::vector<FacePlane> Planes;
+  /// Faces that were given conflict points (some may be gone since).
+  std::vector<Index> Pending;
+  /// All coordinates below 2^19 in magnitude: heights fit in 64 bits.
+  bool Small = false;
+  EdgeOwners Owner;
   std::vector<std::int32_t> PointFace;
   std::vector<std::uint32_t> Tag;
   std::vector<State> States;
   std::uint32_t Epoch = 0;
 
   Index neighbour(Index a, Index b) const { return this->Owner.at(edgeKey(b, a)); }
+  __int128 height(Index f, const LatticePoint& p) const;
+  void insertFarthestFirst();
   State classify(Index f, const LatticePoint& p);
   Index addFace(std::vector<Index> v, const FacePlane& plane);
   void removeFace(Index f, std::vector<Index>& orphans);
@@ -172,15 +275,54 @@ private:
   void collectRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
   void closeVisibleRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
   void reassign(const std::vector<Index>& orphans, Index first, Index ip);
+  void attach(Index q, Index f, __int128 h);
   CellList flatHull(const std::array<Index, 3>& corners) const;
 };
+
+/// n.p - d of face f's plane, in 64 bits when the coordinates allow it: |n| <= 8 M^2 for
+/// coordinates below M, so |n.p - d| <= 48 M^3 < 2^63 for M <= 2^19.
+__int128 HullBuilder::height(Index f, const LatticePoint& p) const
+{
+  const FacePlane& plane = this->Planes[f];
+  if (this->Small)
+    return plane.normal[0] * p[0] + plane.normal[1] * p[1] + plane.normal[2] * p[2] - plane.offset;
+  return plane.evaluate(p);
+}
+
+void HullBuilder::attach(Index q, Index f, __int128 h)
+{
+  Face& face = this->Faces[f];
+  if (face.conflicts.empty())
+    this->Pending.push_back(f);
+  if (face.conflicts.empty() || h > face.farthestHeight)
+  {
+    face.farthest = q;
+    face.farthestHeight = h;
+  }
+  this->PointFace[q] = static_cast<std::int32_t>(f);
+  face.conflicts.push_back(q);
+}
+
+/// The rest of the points, farthest first (as Qhull and CGAL do): the farthest point of a face
+/// is a vertex of the final hull more often than a point close to the plane, so fewer faces
+/// are built only to be replaced again. The output does not depend on the order.
+void HullBuilder::insertFarthestFirst()
+{
+  while (!this->Pending.empty())
+  {
+    const Index f = this->Pending.back();
+    this->Pending.pop_back();
+    if (this->Faces[f].alive && !this->Faces[f].conflicts.empty())
+      this->insert(this->Faces[f].farthest);
+  }
+}
 
 HullBuilder::State HullBuilder::classify(Index f, const LatticePoint& p)
 {
   if (this->Tag[f] != this->Epoch)
   {
     this->Tag[f] = this->Epoch;
-    const int s = sign(this->Faces[f].plane.evaluate(p));
+    const int s = sign(this->height(f, p));
     this->States[f] = s > 0 ? Visible : (s == 0 ? Coplanar_ : Hidden);
   }
   return this->States[f];
@@ -191,9 +333,10 @@ Index HullBuilder::addFace(std::vector<Index> v, const FacePlane& plane)
   const Index f = static_cast<Index>(this->Faces.size());
   for (std::size_t k = 0; k < v.size(); ++k)
   {
-    this->Owner[edgeKey(v[k], v[(k + 1) % v.size()])] = f;
+    this->Owner.set(edgeKey(v[k], v[(k + 1) % v.size()]), f);
   }
-  this->Faces.push_back(Face{ std::move(v), plane, true, {} });
+  this->Faces.push_back(Face{ std::move(v), true, {} });
+  this->Planes.push_back(plane);
   this->Tag.push_back(0);
   this->States.push_back(Unseen);
   return f;
@@ -204,11 +347,7 @@ void HullBuilder::removeFace(Index f, std::vector<Index>& orphans)
   Face& face = this->Faces[f];
   for (std::size_t k = 0; k < face.v.size(); ++k)
   {
-    auto it = this->Owner.find(edgeKey(face.v[k], face.v[(k + 1) % face.v.size()]));
-    if (it != this->Owner.end() && it->second == f)
-    {
-      this->Owner.erase(it);
-    }
+    this->Owner.eraseOwnedBy(edgeKey(face.v[k], face.v[(k + 1) % face.v.size()]), f);
   }
   for (Index q : face.conflicts)
   {
@@ -276,7 +415,7 @@ void HullBuilder::closeVisibleRegion(Index ip,
     {
       const LatticePoint& a = this->Points[v[k]];
       const LatticePoint& b = this->Points[v[(k + 1) % v.size()]];
-      if (dot(this->Faces[t].plane.normal, cross(sub(b, a), sub(p, a))) > 0)
+      if (dot(this->Planes[t].normal, cross(sub(b, a), sub(p, a))) > 0)
       {
         continue;
       }
@@ -302,10 +441,10 @@ void HullBuilder::reassign(const std::vector<Index>& orphans, Index first, Index
     this->PointFace[q] = NoFace;
     for (Index f = first; f < this->Faces.size(); ++f)
     {
-      if (this->Faces[f].plane.evaluate(this->Points[q]) > 0)
+      const __int128 h = this->height(f, this->Points[q]);
+      if (h > 0)
       {
-        this->PointFace[q] = static_cast<std::int32_t>(f);
-        this->Faces[f].conflicts.push_back(q);
+        this->attach(q, f, h);
         break;
       }
     }
@@ -337,7 +476,7 @@ HullBuilder::NewFaces HullBuilder::facesOverHorizon(Index ip,
   NewFaces created;
   for (Index f : region)
   {
-    const std::vector<Index> v = this->Faces[f].v;
+    const std::vector<Index>& v = this->Faces[f].v;
     for (std::size_t k = 0; k < v.size(); ++k)
     {
       const Index a = v[k], b = v[(k + 1) % v.size()];
@@ -372,7 +511,7 @@ void HullBuilder::replaceRegion(Index ip,
     {
       std::vector<Index> ids = this->Faces[t].v;
       ids.push_back(ip);
-      created.push_back({ this->Faces[t].plane, std::move(ids) });
+      created.push_back({ this->Planes[t], std::move(ids) });
     }
   this->PointFace[ip] = Processed;
   std::vector<Index> orphans;
@@ -383,7 +522,12 @@ void HullBuilder::replaceRegion(Index ip,
       this->removeFace(t, orphans);
   const Index first = static_cast<Index>(this->Faces.size());
   for (auto& c : created)
-    this->addFace(extend ? convexPolygon(c.second, this->Points, c.first) : c.second, c.first);
+  {
+    // A lone triangle over a horizon edge is convex and in order already; only merged
+    // triangles and extended faces need their polygon.
+    const bool polygon = extend && c.second.size() > 3;
+    this->addFace(polygon ? convexPolygon(c.second, this->Points, c.first) : c.second, c.first);
+  }
   this->reassign(orphans, first, ip);
 }
 
@@ -475,6 +619,15 @@ CellList HullBuilder::run()
   if (n == 0)
     return hull;
   this->PointFace.assign(n, NoFace);
+  this->Owner.reserve(64);
+  this->Small = std::all_of(this->Points.begin(),
+    this->Points.end(),
+    [](const LatticePoint& p)
+    {
+      return std::all_of(p.begin(),
+        p.end(),
+        [](std::int64_t c) { return c > -(std::int64_t(1) << 19) && c < (std::int64_t(1) << 19); });
+    });
   std::array<Index, 4> s;
   if (!this->initialSimplex(s, hull))
     return hull; // flat: the degenerate hull
@@ -482,9 +635,11 @@ CellList HullBuilder::run()
   std::vector<Index> all(n);
   std::iota(all.begin(), all.end(), Index(0));
   this->reassign(all, 0, s[0]);
-  for (Index ip = 0; ip < n; ++ip)
+  // The octahedron of section 3.2: the remaining extremes (the first eight of L_s) in order.
+  for (Index ip = 0; ip < std::min<std::size_t>(n, 8); ++ip)
     if (this->PointFace[ip] >= 0)
       this->insert(ip);
+  this->insertFarthestFirst();
   return this->cellList();
 }
 
@@ -506,14 +661,16 @@ void HullBuilder::addInitialTetrahedron(const std::array<Index, 4>& s)
     this->PointFace[k] = Processed;
 }
 
-/// The live faces as a cell list, their vertices numbered in order of appearance.
+/// The live faces as a cell list, their vertices numbered in order of appearance (the
+/// incidences are left to the caller).
 CellList HullBuilder::cellList() const
 {
   CellList hull;
   std::vector<std::int64_t> local(this->Points.size(), -1);
   hull.dimension = 3;
-  for (const Face& f : this->Faces)
+  for (std::size_t k = 0; k < this->Faces.size(); ++k)
   {
+    const Face& f = this->Faces[k];
     if (!f.alive)
       continue;
     std::vector<Index> v;
@@ -527,9 +684,8 @@ CellList HullBuilder::cellList() const
       v.push_back(static_cast<Index>(local[id]));
     }
     hull.faces.push_back(std::move(v));
-    hull.planes.push_back(f.plane);
+    hull.planes.push_back(this->Planes[k]);
   }
-  hull.buildIncidences();
   return hull;
 }
 
@@ -680,10 +836,11 @@ CellList convexHull(const std::vector<LatticePoint>& input, CoplanarFaces coplan
   }
   points = extremesFirst(points);
   CellList hull = HullBuilder(points, coplanar).run();
+  // The merge builds the incidences of its own faces; the flat hulls come with theirs.
   if (merge)
-  {
     mergeCoplanarFaces(hull);
-  }
+  else if (hull.dimension == 3)
+    hull.buildIncidences();
   return hull;
 }
 

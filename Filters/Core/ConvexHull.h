@@ -32,7 +32,11 @@
 // are not coplanar, then the other four). Every point not yet processed is attached to one
 // face it sees; when faces are removed their points are tested against the new faces only (a
 // point outside the new polyhedron that saw a removed face sees a new face), and points that
-// see none are inside for good. Points are processed in the order of L_s.
+// see none are inside for good. After the octahedron the points are processed farthest first
+// (as in Qhull and CGAL): a face's next point is its conflict point farthest from its plane
+// (largest n.p - d, an exact comparison), which is far more often a vertex of the final hull
+// than the next point of L_s, so fewer faces are built only to be removed again. The
+// polyhedron does not depend on the order.
 //
 // Flat input (section 3.1 needs four non-coplanar points for its tetrahedron): the hull of
 // coplanar points is their convex polygon, given as two faces with opposite orientations (a
@@ -40,7 +44,8 @@
 // extreme ones (2 vertices, 1 edge, no face); of one point, that point.
 //
 // Coordinates are lattice points of magnitude below 2^20 (so cross products and plane offsets
-// fit in 64 bits and every evaluation in 128 bits).
+// fit in 64 bits and every evaluation in 128 bits); below 2^19, as voxel indices are, the
+// evaluations fit in 64 bits and are done so.
 #ifndef vbr_ConvexHull_h
 #define vbr_ConvexHull_h
 
