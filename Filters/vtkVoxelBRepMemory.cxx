@@ -20,6 +20,11 @@ namespace
 
 constexpr std::uint64_t Unknown = std::numeric_limits<std::uint64_t>::max();
 
+/// Below this size an allocation is checked against the address-space limit only. Reading
+/// /proc/meminfo takes tens of microseconds, which every update of a small image would pay
+/// several times, and the system does not refuse so little memory: it overcommits.
+constexpr double SmallAllocationBytes = 64.0 * 1024 * 1024;
+
 /// The value of `key` (in kiB) in /proc/meminfo, in bytes; Unknown when absent.
 std::uint64_t memInfoBytes(const std::string& key)
 {
@@ -67,6 +72,16 @@ std::uint64_t addressSpaceLeft()
 #endif
 }
 
+/// Whether `bytes` is a small allocation within the address-space limit (ulimit -v); without
+/// a limit that is one system call.
+bool fitsWithoutAsking(double bytes)
+{
+  if (!std::isfinite(bytes) || bytes < 0.0 || bytes >= SmallAllocationBytes)
+    return false;
+  const std::uint64_t left = addressSpaceLeft();
+  return left == Unknown || bytes <= double(left);
+}
+
 } // namespace
 
 std::uint64_t availableMemoryBytes()
@@ -94,6 +109,8 @@ std::string formatBytes(double bytes)
 
 std::string checkAllocation(double bytes, const std::string& what)
 {
+  if (fitsWithoutAsking(bytes))
+    return std::string();
   const std::uint64_t available = availableMemoryBytes();
   const bool known = available != Unknown;
   if (std::isfinite(bytes) && bytes >= 0.0 && (!known || bytes <= double(available)))

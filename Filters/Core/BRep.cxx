@@ -91,6 +91,9 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
   BRep out;
   const auto& v = evm.vertices();
   const Boundary2D b2 = planeSweep2D(v.data(), v.data() + v.size(), connectivity);
+  out.faces.reserve(b2.faces.size());
+  out.loops.reserve(b2.loops.size());
+  out.points.reserve(b2.points.size());
   appendFaces(b2, evm.order(), 0, +1, out);
   return out;
 }

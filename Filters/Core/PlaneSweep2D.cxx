@@ -27,6 +27,10 @@
 #include <limits>
 #include <stdexcept>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace vbr
 {
 
@@ -34,6 +38,23 @@ namespace
 {
 
 constexpr Coord Unset = std::numeric_limits<Coord>::min();
+
+/// Asks for huge pages under a large array that is read in no order of memory (the domino
+/// step's edges): a miss in the cache then rarely misses in the TLB as well. A hint only.
+void adviseHugePages(void* data, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t HugePage = std::uintptr_t(1) << 21;
+  const std::uintptr_t first =
+    (reinterpret_cast<std::uintptr_t>(data) + HugePage - 1) & ~(HugePage - 1);
+  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(HugePage - 1);
+  if (last > first)
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
 
 struct Edge
 {
@@ -77,6 +98,10 @@ public:
   /// the domino step and the second sweep.
   Boundary2D run(const Vertex* begin, const Vertex* end)
   {
+    // Every extreme vertex is the corner where one edge starts (a non-manifold vertex, which
+    // is none, adds two): growing the edges instead would copy them about twice.
+    this->Edges.reserve(static_cast<std::size_t>(end - begin));
+    adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge));
     while (begin != end)
     {
       const Vertex* lineEnd = begin;
@@ -352,30 +377,37 @@ private:
   }
 
   /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
-  /// corner to corner, are followed into loops, each keeping its face on the left.
+  /// corner to corner, are followed into loops, each keeping its face on the left. A loop
+  /// visits its edges in no order of memory (a long loop jumps across the whole sweep at every
+  /// step), so each edge is read once and marked in place: its interval, no longer needed,
+  /// becomes its loop (loopOfEdge), without a second array to miss in.
   void orderEdgesIntoLoops(Boundary2D& out)
   {
-    this->LoopOfEdge.assign(this->Edges.size(), -1);
     out.points.reserve(this->Edges.size());
     for (std::size_t e0 = 0; e0 < this->Edges.size(); ++e0)
     {
-      if (this->LoopOfEdge[e0] >= 0)
-        continue;
+      if (this->Edges[e0].interval < 0)
+        continue; // in a loop already
       Loop2D loop;
       loop.face = this->FaceOfRoot[this->find(this->Edges[e0].interval)];
       loop.begin = out.points.size();
-      const int id = static_cast<int>(out.loops.size());
-      for (int e = static_cast<int>(e0); this->LoopOfEdge[e] < 0; e = this->Edges[e].next)
+      const int visited = -1 - static_cast<int>(out.loops.size());
+      for (int e = static_cast<int>(e0); this->Edges[e].interval >= 0;)
       {
-        if (e < 0 || this->Edges[e].next < 0)
+        Edge& edge = this->Edges[e];
+        if (edge.next < 0)
           throw std::logic_error("planeSweep2D: open contour");
-        this->LoopOfEdge[e] = id;
-        out.points.push_back(this->Edges[e].from);
+        edge.interval = visited;
+        out.points.push_back(edge.from);
+        e = edge.next;
       }
       loop.end = out.points.size();
       out.loops.push_back(loop);
     }
   }
+
+  /// The loop of an edge, once orderEdgesIntoLoops has run.
+  int loopOfEdge(int e) const { return -1 - this->Edges[e].interval; }
 
   /// The second sweep (Ayala & Vergara, section 3.1): faces in order of first appearance, with 1D
   /// inclusion tests only. A face's first interval is bounded below by its outer loop; the
@@ -387,10 +419,10 @@ private:
     {
       Face2D& face = out.faces[f];
       const FirstInterval& first = *this->FirstOfFace[f];
-      face.outerLoop = this->LoopOfEdge[first.bottomEdge];
+      face.outerLoop = this->loopOfEdge(first.bottomEdge);
       if (first.belowEdge >= 0)
       {
-        const int belowLoop = this->LoopOfEdge[first.belowEdge];
+        const int belowLoop = this->loopOfEdge(first.belowEdge);
         const Loop2D& below = out.loops[belowLoop];
         const bool inHole = out.faces[below.face].outerLoop != belowLoop;
         face.parent = inHole ? below.face : out.faces[below.face].parent;
@@ -421,7 +453,6 @@ private:
   std::vector<NonManifoldVertex> NonManifold;
   std::vector<int> FaceOfRoot;                   ///< face of each root interval, or -1
   std::vector<const FirstInterval*> FirstOfFace; ///< by face
-  std::vector<int> LoopOfEdge;                   ///< by edge
 };
 
 } // namespace
