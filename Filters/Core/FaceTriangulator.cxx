@@ -168,7 +168,9 @@ void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& c
 
 /// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
 /// that turn right (the kernel of an orthogonal polygon starts at them), then the first one
-/// that turns left (enough for a rectangle with corners on its sides).
+/// that turns left (enough for a rectangle with corners on its sides). A loop that never
+/// turns right is convex: the first left turn is its apex, with no check (most faces of
+/// porous volumes are rectangles, often with corners of their neighbours on their sides).
 int fanApex(const std::vector<Point2L>& corners)
 {
   const std::size_t n = corners.size();
@@ -182,6 +184,8 @@ int fanApex(const std::vector<Point2L>& corners)
     else if (turn > 0 && convex == n)
       convex = i;
   }
+  if (count == 0 && convex < n)
+    return static_cast<int>(convex);
   if (convex < n)
     candidates[count++] = convex;
   for (std::size_t k = 0; k < count; ++k)
@@ -419,20 +423,35 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
   return triangles;
 }
 
+namespace
+{
+
+/// Appends the loop of `n` corners, from corner `apex` on, as one polygon.
+void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
+{
+  for (std::size_t i = 0; i < n; ++i)
+    cells.corners.push_back(static_cast<int>((apex + i) % n));
+  cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
+  cells.endFace();
+}
+
+} // namespace
+
 void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
 {
   const BRepFace& face = brep.faces[f];
+  if (face.loopCount == 1 && brep.loopPoints(face.firstLoop).size() == 4)
+  {
+    appendLoopFrom(0, 4, cells); // a rectangle: the fan from any corner covers it
+    return;
+  }
   if (face.loopCount == 1)
   {
     outerLoop2D(brep, face, cells.loop2D);
     const int apex = fanApex(cells.loop2D);
     if (apex >= 0)
     {
-      const std::size_t n = cells.loop2D.size();
-      for (std::size_t i = 0; i < n; ++i)
-        cells.corners.push_back(static_cast<int>((apex + i) % n));
-      cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
-      cells.endFace();
+      appendLoopFrom(static_cast<std::size_t>(apex), cells.loop2D.size(), cells);
       return;
     }
   }
