@@ -399,6 +399,13 @@ void appendLoops(const vbr::BRep& brep,
   }
 }
 
+/// Whether an output mode's cells come from the triangulated runs of faces (cellsOfFaces):
+/// triangles and fan polygons do, loops and polylines are the faces' loops themselves.
+bool cellsFromRuns(int mode)
+{
+  return mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS;
+}
+
 /// The cells of an object's faces [first, end) (their runs `cells` in Triangles and Polygons
 /// modes): its triangles, its polygons, or one cell per loop. False when aborted.
 bool appendFaceCells(const vbr::BRep& brep,
@@ -412,8 +419,7 @@ bool appendFaceCells(const vbr::BRep& brep,
   CellProgress& progress,
   OutputBuilder& builder)
 {
-  const bool fromRuns =
-    mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS;
+  const bool fromRuns = cellsFromRuns(mode);
   std::vector<vtkIdType> ids;
   std::size_t run = 0;
   for (std::size_t f = first; f < end; ++f)
@@ -567,8 +573,7 @@ bool appendBoundaryCells(const vbr::vtk::Selected& object,
 {
   constexpr std::size_t SliceOfFaces = std::size_t(1) << 16;
   const int mode = settings.outputMode;
-  const bool fromRuns =
-    mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS;
+  const bool fromRuns = cellsFromRuns(mode);
   vtkLogScopeF(TRACE, "triangles or fan polygons of the faces, and output cells");
   const std::size_t faces = brep.faces.size();
   for (std::size_t first = 0; first < faces; first += SliceOfFaces)

@@ -101,29 +101,43 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
 namespace
 {
 
+/// The axis along which the edge from p to q runs (3 for a point).
+int edgeAxis(const Point3& p, const Point3& q)
+{
+  int d = 0;
+  while (d < 3 && p[d] == q[d])
+    ++d;
+  return d;
+}
+
 /// Calls emit(p, number) for each corner of a loop and, after it, for each corner of the set
-/// lying strictly inside the edge that starts there, in order along the edge.
+/// lying strictly inside the edge that starts there, in order along the edge. `inside` holds
+/// per corner how many lie inside its edge (countEdgeVertices): the edges that hold none,
+/// most of them, are passed without looking their ends up in the corner set.
 template<typename Emit>
 void walkWithEdgeVertices(const PointRange& points,
   const std::int64_t* numbers,
+  const std::uint32_t* inside,
   const CornerSet& corners,
   const Point3& offset,
   Emit&& emit)
 {
-  const std::vector<Point3>& all = corners.points();
   for (std::size_t i = 0; i < points.size(); ++i)
   {
+    emit(points[i], numbers[i]);
+    if (inside[i] == 0)
+      continue;
     const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
-    const Point3& p = points[i];
-    const Point3& q = points[j];
-    emit(p, numbers[i]);
-    int d = 0;
-    while (d < 3 && p[d] == q[d])
-      ++d;
-    if (d == 3 || std::abs(q[d] - p[d]) == 1)
-      continue; // no grid point inside the edge
-    corners.forEachBetween(
-      d, numbers[i], numbers[j], [&](std::int64_t n) { emit(sub(all[n], offset), n); });
+    const int d = edgeAxis(points[i], points[j]);
+    Point3 q = points[i]; // a corner inside the edge differs from its start along d only
+    corners.forEachBetween(d,
+      numbers[i],
+      numbers[j],
+      [&](std::int64_t n, Coord c)
+      {
+        q[d] = c - offset[d];
+        emit(q, n);
+      });
   }
 }
 
@@ -142,10 +156,12 @@ Coord checkedMaximum(const std::vector<Point3>& points)
   return hi;
 }
 
-/// How many corners of the set lie strictly inside the edges of a loop.
+/// How many corners of the set lie strictly inside the edges of a loop: per edge into
+/// `inside` (at the edge's first corner), and in all.
 std::size_t countEdgeVertices(const PointRange& points,
   const std::int64_t* numbers,
-  const CornerSet& corners)
+  const CornerSet& corners,
+  std::uint32_t* inside)
 {
   std::size_t count = 0;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -153,24 +169,26 @@ std::size_t countEdgeVertices(const PointRange& points,
     const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
     const Point3& p = points[i];
     const Point3& q = points[j];
-    int d = 0;
-    while (d < 3 && p[d] == q[d])
-      ++d;
-    if (d < 3 && std::abs(q[d] - p[d]) > 1)
-      count += corners.countBetween(d, numbers[i], numbers[j]);
+    const int d = edgeAxis(p, q);
+    const std::size_t between =
+      d < 3 && std::abs(q[d] - p[d]) > 1 ? corners.countBetween(d, numbers[i], numbers[j]) : 0;
+    inside[i] = static_cast<std::uint32_t>(between); // fewer than 2^32 corners in the set
+    count += between;
   }
   return count;
 }
 
 /// Per loop, where it begins once its T-junction vertices are in (the last entry: the new
-/// number of points).
+/// number of points); per point, the corners inside the edge that starts there (`inside`).
 std::vector<std::size_t> newLoopBegins(const BRep& brep,
   const std::vector<std::int64_t>& numbers,
   const CornerSet& corners,
-  const Execution& exec)
+  const Execution& exec,
+  std::vector<std::uint32_t>& inside)
 {
   const std::size_t n = brep.loops.size();
   std::vector<std::size_t> begins(n + 1, 0);
+  inside.resize(brep.points.size());
   exec.forRange(static_cast<std::int64_t>(n),
     [&](std::int64_t b, std::int64_t e)
     {
@@ -178,8 +196,10 @@ std::vector<std::size_t> newLoopBegins(const BRep& brep,
       {
         const BRepLoop& loop = brep.loops[l];
         begins[l + 1] = loop.end - loop.begin +
-          countEdgeVertices(
-            brep.loopPoints(static_cast<int>(l)), numbers.data() + loop.begin, corners);
+          countEdgeVertices(brep.loopPoints(static_cast<int>(l)),
+            numbers.data() + loop.begin,
+            corners,
+            inside.data() + loop.begin);
       }
     });
   for (std::size_t l = 0; l < n; ++l)
@@ -313,12 +333,15 @@ void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)
   radixSortBy(keyed, [](const std::pair<std::uint64_t, std::uint32_t>& k) { return k.first; });
   std::vector<std::uint32_t>& order = this->OrderAlong[axis];
   std::vector<std::uint32_t>& rank = this->RankAlong[axis];
+  std::vector<Coord>& coordinate = this->CoordinateAlong[axis];
   order.resize(keyed.size());
   rank.resize(keyed.size());
+  coordinate.resize(keyed.size());
   for (std::size_t r = 0; r < keyed.size(); ++r)
   {
     order[r] = keyed[r].second;
     rank[keyed[r].second] = static_cast<std::uint32_t>(r);
+    coordinate[r] = this->Points[keyed[r].second][axis];
   }
 }
 
@@ -333,7 +356,8 @@ void insertTJunctionVertices(BRep& brep,
   // The vertices each loop gains are counted first (in O(1) per edge), so that the loops are
   // written once, concurrently, straight into arrays of their final size: no buffers per run
   // to join, and nothing at all when no edge holds a corner (a checkerboard's unit faces).
-  const std::vector<std::size_t> begins = newLoopBegins(brep, numbers, corners, exec);
+  std::vector<std::uint32_t> inside;
+  const std::vector<std::size_t> begins = newLoopBegins(brep, numbers, corners, exec, inside);
   if (begins.back() == brep.points.size())
     return;
   std::vector<Point3> points(begins.back());
@@ -346,6 +370,7 @@ void insertTJunctionVertices(BRep& brep,
         std::size_t at = begins[l];
         walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
           numbers.data() + brep.loops[l].begin,
+          inside.data() + brep.loops[l].begin,
           corners,
           offset,
           [&](const Point3& p, std::int64_t number)

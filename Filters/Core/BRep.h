@@ -113,25 +113,28 @@ public:
   /// Every corner, in the common grid, by number.
   const std::vector<Point3>& points() const { return this->Points; }
 
-  /// Calls emit(number) for the corners strictly between corners `from` and `to`, two corners
-  /// of one line along `axis`, in order from `from` to `to`.
+  /// Calls emit(number, coordinate along `axis`) for the corners strictly between corners
+  /// `from` and `to`, two corners of one line along `axis`, in order from `from` to `to`. The
+  /// corners of a line are read one after the other, their coordinates too (the other two are
+  /// the line's): no access to a corner's point at random.
   template<typename Emit>
   void forEachBetween(int axis, std::int64_t from, std::int64_t to, Emit&& emit) const
   {
     if (axis == 2)
     {
       for (std::int64_t n = from + 1; n < to; ++n)
-        emit(n);
+        emit(n, this->Points[n][2]);
       for (std::int64_t n = from - 1; n > to; --n)
-        emit(n);
+        emit(n, this->Points[n][2]);
       return;
     }
     const std::vector<std::uint32_t>& order = this->OrderAlong[axis];
+    const std::vector<Coord>& coordinate = this->CoordinateAlong[axis];
     const std::int64_t a = this->RankAlong[axis][from], b = this->RankAlong[axis][to];
     for (std::int64_t r = a + 1; r < b; ++r)
-      emit(order[r]);
+      emit(order[r], coordinate[r]);
     for (std::int64_t r = a - 1; r > b; --r)
-      emit(order[r]);
+      emit(order[r], coordinate[r]);
   }
 
   /// How many corners lie strictly between corners `from` and `to` of one line along `axis`.
@@ -164,9 +167,10 @@ private:
   void boundCorners(const std::vector<PlacedBRep>& breps, const KeyPacker& packer);
 
   std::vector<Point3> Points;
-  /// Per axis 0 and 1: the numbers in the order of the lines along that axis, and the place
-  /// of each number in it.
+  /// Per axis 0 and 1: the numbers in the order of the lines along that axis, the place of
+  /// each number in it, and the coordinate along that axis in that order.
   std::vector<std::uint32_t> OrderAlong[2], RankAlong[2];
+  std::vector<Coord> CoordinateAlong[2];
 };
 
 /// Inserts into every loop of `brep` (at `offset` in the common grid) the `corners` lying

@@ -147,6 +147,13 @@ std::vector<Vertex> xorVertices(const std::vector<Vertex>& a, const std::vector<
   return out;
 }
 
+void xorVertices(const std::vector<Vertex>& a,
+  const std::vector<Vertex>& b,
+  std::vector<Vertex>& out)
+{
+  symmetricDifference(a, b, out);
+}
+
 std::vector<Vertex> booleanVertices(const Vertex* p,
   const Vertex* pEnd,
   const Vertex* q,

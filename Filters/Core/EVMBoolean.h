@@ -23,6 +23,12 @@ enum class BooleanOp
 /// Symmetric difference of two sorted vertex sets (the XOR of the sets they represent).
 std::vector<Vertex> xorVertices(const std::vector<Vertex>& a, const std::vector<Vertex>& b);
 
+/// The same into `out` (neither `a` nor `b`), whose memory is reused: a sweep calls it once
+/// per plane.
+void xorVertices(const std::vector<Vertex>& a,
+  const std::vector<Vertex>& b,
+  std::vector<Vertex>& out);
+
 /// Boolean of two sorted vertex sets whose coordinates before `level` are all equal:
 /// level 0 sweeps 3D planes, 1 sweeps 2D lines, 2 merges 1D intervals.
 std::vector<Vertex> booleanVertices(const Vertex* p,

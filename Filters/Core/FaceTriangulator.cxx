@@ -84,67 +84,78 @@ void markNesting(Cdt& cdt)
 }
 
 /// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
-/// corner whose triangle holds no other corner (not even on its border). Appends the
-/// triangles to `out`; returns false when no ear is found (left to the general triangulation,
-/// the caller then drops what was appended). `ring` is scratch space.
+/// corner whose triangle holds no other corner (not even on its border). The corners left
+/// form a ring linked both ways, walked from corner to corner: after an ear is cut the walk
+/// goes back to the corner before it, the only one besides the next whose ear changed, so
+/// that a face takes about one pass round its ring rather than one per ear. Appends the
+/// triangles to `out`; returns false when a whole round finds no ear (left to the general
+/// triangulation, the caller then drops what was appended). `ring` is scratch space.
 bool clipEars(const PointRange& pts, int u, int v, int sign, std::vector<int>& ring, FaceCells& out)
 {
-  ring.resize(pts.size());
-  for (std::size_t i = 0; i < ring.size(); ++i)
-    ring[i] = static_cast<int>(i);
+  const int n = static_cast<int>(pts.size());
+  ring.resize(2 * static_cast<std::size_t>(n));
+  int* prev = ring.data();
+  int* next = ring.data() + n;
+  for (int i = 0; i < n; ++i)
+  {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
   auto cross = [&](int a, int b, int c)
   {
     return sign *
       (static_cast<long long>(pts[b][u] - pts[a][u]) * (pts[c][v] - pts[a][v]) -
         static_cast<long long>(pts[b][v] - pts[a][v]) * (pts[c][u] - pts[a][u]));
   };
+  auto isEar = [&](int a, int b, int c)
+  {
+    if (cross(a, b, c) <= 0)
+      return false;
+    for (int k = next[c]; k != a; k = next[k])
+    {
+      if (pts[k] == pts[a] || pts[k] == pts[b] || pts[k] == pts[c])
+        return false; // a corner visited twice: leave it to the general method
+      if (cross(a, b, k) >= 0 && cross(b, c, k) >= 0 && cross(c, a, k) >= 0)
+        return false;
+    }
+    return true;
+  };
   auto emit = [&out](int a, int b, int c)
   {
     out.corners.insert(out.corners.end(), { a, b, c });
     out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
   };
-  while (ring.size() > 3)
+  int left = n, b = 0, misses = 0;
+  while (left > 3)
   {
-    bool clipped = false;
-    const std::size_t n = ring.size();
-    for (std::size_t i = 0; i < n && !clipped; ++i)
-    {
-      const int a = ring[(i + n - 1) % n], b = ring[i], c = ring[(i + 1) % n];
-      if (cross(a, b, c) <= 0)
-        continue;
-      bool empty = true;
-      for (int k : ring)
-      {
-        if (k == a || k == b || k == c)
-          continue;
-        if (pts[k] == pts[a] || pts[k] == pts[b] || pts[k] == pts[c])
-        {
-          empty = false; // a corner visited twice: leave it to the general method
-          break;
-        }
-        if (cross(a, b, k) >= 0 && cross(b, c, k) >= 0 && cross(c, a, k) >= 0)
-        {
-          empty = false;
-          break;
-        }
-      }
-      if (!empty)
-        continue;
-      emit(a, b, c);
-      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-      clipped = true;
-    }
-    if (!clipped)
+    if (misses >= left)
       return false;
+    const int a = prev[b], c = next[b];
+    if (!isEar(a, b, c))
+    {
+      b = c;
+      ++misses;
+      continue;
+    }
+    emit(a, b, c);
+    next[a] = c;
+    prev[c] = a;
+    --left;
+    misses = 0;
+    b = a;
   }
-  if (cross(ring[0], ring[1], ring[2]) <= 0)
+  const int a = prev[b], c = next[b];
+  if (cross(a, b, c) <= 0)
     return false;
-  emit(ring[0], ring[1], ring[2]);
+  emit(a, b, c);
   return true;
 }
 
-/// Faces up to this many corners without holes are ear-clipped (quadratic, but tiny).
-constexpr std::size_t EarClippingLimit = 24;
+/// Faces up to this many corners without holes are ear-clipped. Measured against the
+/// constrained Delaunay triangulation face by face on porous volumes and the Berea pore
+/// space: ear clipping is 5x to 10x faster up to 48 corners, 1.5x to 5x up to 96, about
+/// level near 200 corners, and slower beyond (its cost grows as the cube in the worst case).
+constexpr std::size_t EarClippingLimit = 128;
 
 /// The outer loop of a face in (u, v) coordinates, counter-clockwise seen from outside.
 void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& corners)
@@ -157,7 +168,9 @@ void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& c
 
 /// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
 /// that turn right (the kernel of an orthogonal polygon starts at them), then the first one
-/// that turns left (enough for a rectangle with corners on its sides).
+/// that turns left (enough for a rectangle with corners on its sides). A loop that never
+/// turns right is convex: the first left turn is its apex, with no check (most faces of
+/// porous volumes are rectangles, often with corners of their neighbours on their sides).
 int fanApex(const std::vector<Point2L>& corners)
 {
   const std::size_t n = corners.size();
@@ -171,6 +184,8 @@ int fanApex(const std::vector<Point2L>& corners)
     else if (turn > 0 && convex == n)
       convex = i;
   }
+  if (count == 0 && convex < n)
+    return static_cast<int>(convex);
   if (convex < n)
     candidates[count++] = convex;
   for (std::size_t k = 0; k < count; ++k)
@@ -408,20 +423,35 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f)
   return triangles;
 }
 
+namespace
+{
+
+/// Appends the loop of `n` corners, from corner `apex` on, as one polygon.
+void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
+{
+  for (std::size_t i = 0; i < n; ++i)
+    cells.corners.push_back(static_cast<int>((apex + i) % n));
+  cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
+  cells.endFace();
+}
+
+} // namespace
+
 void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
 {
   const BRepFace& face = brep.faces[f];
+  if (face.loopCount == 1 && brep.loopPoints(face.firstLoop).size() == 4)
+  {
+    appendLoopFrom(0, 4, cells); // a rectangle: the fan from any corner covers it
+    return;
+  }
   if (face.loopCount == 1)
   {
     outerLoop2D(brep, face, cells.loop2D);
     const int apex = fanApex(cells.loop2D);
     if (apex >= 0)
     {
-      const std::size_t n = cells.loop2D.size();
-      for (std::size_t i = 0; i < n; ++i)
-        cells.corners.push_back(static_cast<int>((apex + i) % n));
-      cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
-      cells.endFace();
+      appendLoopFrom(static_cast<std::size_t>(apex), cells.loop2D.size(), cells);
       return;
     }
   }

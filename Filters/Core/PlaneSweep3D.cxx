@@ -82,7 +82,19 @@ void forwardAndBackwardDifferences(const std::vector<Vertex>& cut,
     previousSection.data() + previousSection.size(),
     1,
     BooleanOp::Intersection);
-  bd = xorVertices(cut, fd);
+  xorVertices(cut, fd, bd);
+}
+
+/// The cut of plane `p` (formula 1's C(i)): its vertices projected along the sweep's axis, into
+/// `cut`, whose memory is reused from plane to plane.
+void cutOf(const Vertex* v,
+  const std::vector<std::size_t>& starts,
+  std::size_t p,
+  std::vector<Vertex>& cut)
+{
+  cut.assign(v + starts[p], v + starts[p + 1]);
+  for (Vertex& c : cut)
+    c[0] = 0;
 }
 
 /// Sweeps a chunk of planes: for each cut, the next section (formula 1), the forward and
@@ -97,7 +109,7 @@ bool sweepChunk(const PlaneChunk& chunk,
   const EVM& sorted = *chunk.sorted;
   const auto& starts = *chunk.starts;
   const Vertex* v = sorted.vertices().data();
-  std::vector<Vertex> section = chunk.section, next, fd, bd;
+  std::vector<Vertex> section = chunk.section, next, cut, fd, bd;
   for (std::size_t p = chunk.firstPlane; p < chunk.endPlane; ++p)
   {
     if (abort || exec.stopRequested())
@@ -106,8 +118,8 @@ bool sweepChunk(const PlaneChunk& chunk,
       return false;
     }
     const Coord position = v[starts[p]][0];
-    const std::vector<Vertex> cut = project(v + starts[p], v + starts[p + 1], 0);
-    next = xorVertices(section, cut);
+    cutOf(v, starts, p, cut);
+    xorVertices(section, cut, next);
     forwardAndBackwardDifferences(cut, section, fd, bd);
     appendFaces(planeSweep2D(fd.data(), fd.data() + fd.size(), connectivity),
       sorted.order(),
