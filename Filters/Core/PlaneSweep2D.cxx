@@ -98,8 +98,9 @@ public:
   /// the domino step and the second sweep.
   Boundary2D run(const Vertex* begin, const Vertex* end)
   {
-    // Every extreme vertex is the corner where one edge starts (a non-manifold vertex, which
-    // is none, adds two): growing the edges instead would copy them about twice.
+    // Every extreme vertex is the corner where one edge starts (a non-manifold vertex starts
+    // two, and only then does the array grow): growing it from empty would copy the edges
+    // about twice.
     this->Edges.reserve(static_cast<std::size_t>(end - begin));
     adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge));
     while (begin != end)
