@@ -111,6 +111,7 @@ stage_asan() {
   # minutes per test.
   run cmake -S . -B build-asan -DVTK_DIR="$PV_VTK_DIR" \
     -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=ON \
+    -DVOXELBREP_CORE_ONLY=OFF -DVOXELBREP_BUILD_CORE_TESTS=ON \
     -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF -DVOXELBREP_WRAP_PYTHON=ON \
     -DVOXELBREP_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=-O1 $SAN_FLAGS" || return 1
   run cmake --build build-asan -j"$JOBS" || return 1
