@@ -52,10 +52,18 @@ std::int64_t dist2(const Point2L& a, const Point2L& b)
   return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]);
 }
 
-/// The strictly convex hull, counter-clockwise; one or two corners when the points are flat.
+/// Row order: by y, then x, the order in which the image and a hull's interior are scanned.
+bool rowOrder(const Point2L& a, const Point2L& b)
+{
+  return a[1] < b[1] || (a[1] == b[1] && a[0] < b[0]);
+}
+
+/// The strictly convex hull, counter-clockwise from its lowest corner; one or two corners when
+/// the points are flat. The monotone chain runs along y: points scanned row by row need no sort.
 Points latticeHull(Points p)
 {
-  std::sort(p.begin(), p.end());
+  if (!std::is_sorted(p.begin(), p.end(), rowOrder))
+    std::sort(p.begin(), p.end(), rowOrder);
   p.erase(std::unique(p.begin(), p.end()), p.end());
   return monotoneChain(
     p, [](const Point2L& o, const Point2L& a, const Point2L& b) { return cross(o, a, b); });
@@ -146,25 +154,28 @@ Points centresInside(const Points& h, const Image2D& img, bool object)
   return found;
 }
 
-/// The 8-connected components of a set of lattice points.
+/// The 8-connected components of a set of lattice points (sorted only when not in row order
+/// already: every nested level scans its hull's points in that order, and sorting them again
+/// was half of the time on noise).
 std::vector<Points> components(Points p)
 {
-  std::sort(p.begin(), p.end());
+  if (!std::is_sorted(p.begin(), p.end(), rowOrder))
+    std::sort(p.begin(), p.end(), rowOrder);
   p.erase(std::unique(p.begin(), p.end()), p.end());
   UnionFind sets(p.size());
-  // In (x, y) order the neighbour (x, y + 1) is the next point, and the neighbours (x + 1,
-  // y - 1 .. y + 1) lie at a position that only moves forward: one pass, no search.
+  // In row order the neighbour (x + 1, y) is the next point, and the neighbours (x - 1 ..
+  // x + 1, y + 1) lie at a position that only moves forward: one pass, no search.
   std::size_t next = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
   {
     const auto i32 = static_cast<std::uint32_t>(i);
-    if (i + 1 < p.size() && p[i + 1] == Point2L{ p[i][0], p[i][1] + 1 })
+    if (i + 1 < p.size() && p[i + 1] == Point2L{ p[i][0] + 1, p[i][1] })
       sets.unite(i32, i32 + 1);
-    const Point2L lowest{ p[i][0] + 1, p[i][1] - 1 };
-    while (next < p.size() && p[next] < lowest)
+    const Point2L lowest{ p[i][0] - 1, p[i][1] + 1 };
+    while (next < p.size() && rowOrder(p[next], lowest))
       ++next;
     for (std::size_t j = next; j < p.size() && j < next + 3; ++j)
-      if (p[j][0] == lowest[0] && p[j][1] <= lowest[1] + 2)
+      if (p[j][1] == lowest[1] && p[j][0] <= lowest[0] + 2)
         sets.unite(i32, static_cast<std::uint32_t>(j));
   }
   std::uint32_t count = 0;
@@ -537,27 +548,30 @@ struct Node
 /// parent's boundary), each with its inside centres (its core) and its boundary ones.
 std::vector<Shape> groupsBelow(const Shape& region, const Image2D& img, bool object)
 {
-  Points inside = centresInside(region.hull, img, object);
+  const Points inside = centresInside(region.hull, img, object); // in row order
   if (inside.empty())
     return {};
-  std::sort(inside.begin(), inside.end()); // for the binary search below
-  Points all = inside;
+  Points boundary;
   forLatticePointsOf(region.hull,
     [&](const Point2L& p)
     {
       const bool own = region.notch && cross(region.a, region.b, p) == 0 &&
         std::min(region.a, region.b) <= p && p <= std::max(region.a, region.b);
       if (img.inside(p) && img.object(p) == object && !own)
-        all.push_back(p);
+        boundary.push_back(p);
     });
-  const std::vector<Points> parts = components(all);
+  std::sort(boundary.begin(), boundary.end(), rowOrder);
+  Points all(inside.size() + boundary.size());
+  std::merge(inside.begin(), inside.end(), boundary.begin(), boundary.end(), all.begin(), rowOrder);
+  const std::vector<Points> parts = components(std::move(all));
   std::vector<Shape> groups;
   for (const Points& part : parts)
   {
     Shape g;
     Points core;
     for (const Point2L& p : part)
-      (std::binary_search(inside.begin(), inside.end(), p) ? core : g.touching).push_back(p);
+      (std::binary_search(inside.begin(), inside.end(), p, rowOrder) ? core : g.touching)
+        .push_back(p);
     if (core.empty())
       continue; // only on the boundary: marked there, nothing to press in
     g.core = latticeHull(core);
