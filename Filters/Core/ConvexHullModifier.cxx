@@ -1022,16 +1022,22 @@ LatticeMesh solveLevel(Context& ctx,
   return out;
 }
 
-/// Whether a neighbour (26) of p lies outside the closed hull: only then can a corner of the
-/// voxel of p lie outside or on the hull.
+/// Whether a neighbour (26) of p lies outside the closed (solid) hull: only then can a corner
+/// of the voxel of p lie outside or on the hull. Over the offsets d in {-1, 0, 1}^3 the largest
+/// n.d is |n|_1 (d the signs of n), so the neighbours all lie inside exactly when every plane
+/// keeps n.p - d + |n|_1 <= 0: one pass over the planes instead of one per neighbour.
 bool nearHullBoundary(const CellList& c, const LatticePoint& p)
 {
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        if (!hullContains(c, { p[0] + dx, p[1] + dy, p[2] + dz }))
-          return true;
-  return false;
+  if (c.dimension < 3)
+    return true; // a flat hull holds no neighbourhood
+  return std::any_of(c.planes.begin(),
+    c.planes.end(),
+    [&](const FacePlane& plane)
+    {
+      const __int128 reach =
+        std::abs(plane.normal[0]) + std::abs(plane.normal[1]) + std::abs(plane.normal[2]);
+      return plane.evaluate(p) + reach > 0;
+    });
 }
 
 /// Number of edge-connected sets among the marked faces of the hull.
