@@ -210,11 +210,7 @@ def benchmark(name, mask, args, summary):
         name, mask.shape[2], mask.shape[1], mask.shape[0], int(mask.sum())))
     image = image_of(mask)
     failures = []
-    backends = args.backends.split(",") if args.backends else [vtkSMPTools.GetBackend()]
-    for backend in backends:
-        if not vtkSMPTools.SetBackend(backend):
-            print("WARNING: vtkSMPTools backend %s is not in this VTK; skipped" % backend)
-            continue
+    for backend in backends_in_turn(args):
         counts = {}
         contenders = [filter_contender(image, c, counts) for c in ("face", "vertex")]
         contenders += peer_contenders(mask, counts)
@@ -242,20 +238,38 @@ def print_summary(summary):
         print()
 
 
-def main():
-    args = parse_arguments()
+def backends_in_turn(args):
+    """The vtkSMPTools backends asked for (default: the one at start), each set in turn; one
+    this VTK lacks is skipped with a warning."""
+    backends = args.backends.split(",") if args.backends else [vtkSMPTools.GetBackend()]
+    for backend in backends:
+        if not vtkSMPTools.SetBackend(backend):
+            print("WARNING: vtkSMPTools backend %s is not in this VTK; skipped" % backend)
+            continue
+        yield backend
+
+
+def run_benchmarks(title, args, benchmark, finish, accept=lambda mask: True):
+    """The driver both Python benchmarks share: --list, the header, benchmark(name, mask, args,
+    summary) on every accepted input, finish(summary), and the mismatches, which fail the run
+    (exit code 1)."""
     if args.list:
         return subprocess.run(inputs_command(args) + ["--list"]).returncode
-    print("# BenchCUDBConnectivity.py\n\n- VTK_SMP_BACKEND_IN_USE=%s, OpenCV %s\n" % (
-        os.environ.get("VTK_SMP_BACKEND_IN_USE", "(unset)"),
+    print("# %s\n\n- VTK_SMP_BACKEND_IN_USE=%s, OpenCV %s\n" % (
+        title, os.environ.get("VTK_SMP_BACKEND_IN_USE", "(unset)"),
         cv2.__version__ if cv2 is not None else "absent"), flush=True)
     failures, summary = [], []
     for name, _, mask in load_inputs(args):
-        failures += benchmark(name, mask, args, summary)
-    print_summary(summary)
+        if accept(mask):
+            failures += benchmark(name, mask, args, summary)
+    finish(summary)
     for f in failures:
         print("MISMATCH " + f, file=sys.stderr)
     return 1 if failures else 0
+
+
+def main():
+    return run_benchmarks("BenchCUDBConnectivity.py", parse_arguments(), benchmark, print_summary)
 
 
 if __name__ == "__main__":

@@ -23,12 +23,12 @@ from collections import Counter
 
 import numpy as np
 from vtkmodules.util import numpy_support as ns
-from vtkmodules.vtkCommonCore import vtkSMPTools
 
 import voxelbrep
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from BenchCUDBConnectivity import image_of, inputs_command, load_inputs, time_in_turns  # noqa: E402
+from BenchCUDBConnectivity import (  # noqa: E402
+    backends_in_turn, image_of, run_benchmarks, time_in_turns)
 
 try:
     import cv2
@@ -138,11 +138,7 @@ def benchmark(name, mask, args, summary):
         name, mask.shape[2], mask.shape[1], int(mask.sum())))
     image = image_of(mask)
     failures = []
-    backends = args.backends.split(",") if args.backends else [vtkSMPTools.GetBackend()]
-    for backend in backends:
-        if not vtkSMPTools.SetBackend(backend):
-            print("WARNING: vtkSMPTools backend %s is not in this VTK; skipped" % backend)
-            continue
+    for backend in backends_in_turn(args):
         answers = {}
         made = [filter_contender(image, m, answers) for m in args.modes.split(",")]
         if cv2 is not None:
@@ -176,21 +172,9 @@ def print_summary(summary, modes):
 
 def main():
     args = parse_arguments()
-    if args.list:
-        import subprocess
-        return subprocess.run(inputs_command(args) + ["--list"]).returncode
-    print("# BenchEVMBoundary2D.py\n\n- VTK_SMP_BACKEND_IN_USE=%s, OpenCV %s\n" % (
-        os.environ.get("VTK_SMP_BACKEND_IN_USE", "(unset)"),
-        cv2.__version__ if cv2 is not None else "absent"), flush=True)
-    failures, summary = [], []
-    for name, _, mask in load_inputs(args):
-        if mask.shape[0] != 1:
-            continue  # a 3D input: not this benchmark's
-        failures += benchmark(name, mask, args, summary)
-    print_summary(summary, args.modes.split(","))
-    for f in failures:
-        print("MISMATCH " + f, file=sys.stderr)
-    return 1 if failures else 0
+    return run_benchmarks("BenchEVMBoundary2D.py", args, benchmark,
+                          lambda summary: print_summary(summary, args.modes.split(",")),
+                          accept=lambda mask: mask.shape[0] == 1)  # 3D inputs: not this one's
 
 
 if __name__ == "__main__":
