@@ -34,7 +34,6 @@
 #include <exception>
 #include <set>
 #include <string>
-#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -45,7 +44,8 @@ namespace
 
 using Int3 = vbr::Point3; // a lattice point or voxel index
 
-/// Faces of one selected object, with what the output needs.
+/// Faces of one selected object, with what the output needs; kept only while the object's
+/// cells are written (its surfel graph is most of the filter's memory).
 struct ObjectFaces
 {
   vbr::vtk::LabelValue label;
@@ -53,6 +53,32 @@ struct ObjectFaces
   vbr::SurfelGraph graph;
   vbr::Polyhedron poly;
 };
+
+/// What the reversion needs of an object once its graph is gone: the faces' planes and loops.
+struct ObjectOutlines
+{
+  Int3 offset{ 0, 0, 0 };
+  std::array<std::int32_t, 3> dims{ 0, 0, 0 };
+  std::vector<vbr::FaceOutline> faces;
+};
+
+ObjectOutlines outlinesOf(const ObjectFaces& o)
+{
+  ObjectOutlines out;
+  out.offset = o.offset;
+  out.dims = o.graph.dims;
+  out.faces.reserve(o.poly.faces.size());
+  for (const vbr::StandardFace& f : o.poly.faces)
+  {
+    vbr::FaceOutline outline;
+    outline.plane = f.plane;
+    outline.loop.reserve(f.loop.size());
+    for (std::uint32_t v : f.loop)
+      outline.loop.push_back(o.graph.vertexPointel[v]);
+    out.faces.push_back(std::move(outline));
+  }
+  return out;
+}
 
 struct Statistics
 {
@@ -102,6 +128,46 @@ bool mirrored(const vbr::vtk::VoxelGrid& grid)
   return grid.mirrorsSpace();
 }
 
+/// The output points of an object's graph vertices: one per pointel (the vertices of several
+/// umbrellas at one pointel share it), each made on its first use, so that points come in the
+/// order in which the cells first use them. Indexed by vertex (12 bytes per vertex), with no
+/// hash table of the points (about 56 bytes per point).
+class PointIds
+{
+public:
+  /// For the vertices of `graph`: the first vertex at each one's pointel, found by a sort.
+  void reset(const vbr::SurfelGraph& graph)
+  {
+    const std::size_t n = graph.vertexPointel.size();
+    this->Ids.assign(n, -1);
+    this->First.resize(n);
+    {
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> byPointel(n);
+      for (std::uint32_t v = 0; v < n; ++v)
+        byPointel[v] = { vbr::packBiased(graph.vertexPointel[v]), v };
+      std::sort(byPointel.begin(), byPointel.end());
+      for (std::size_t i = 0; i < n; ++i)
+        this->First[byPointel[i].second] = i > 0 && byPointel[i].first == byPointel[i - 1].first
+          ? this->First[byPointel[i - 1].second]
+          : byPointel[i].second;
+    }
+  }
+
+  /// The point of vertex v, made by make(first vertex at its pointel) on first use.
+  template<typename Make>
+  vtkIdType get(std::uint32_t v, Make make)
+  {
+    const std::uint32_t first = this->First[v];
+    if (this->Ids[first] < 0)
+      this->Ids[first] = make(first);
+    return this->Ids[first];
+  }
+
+private:
+  std::vector<vtkIdType> Ids;       ///< per vertex: its point (at its pointel's first vertex)
+  std::vector<std::uint32_t> First; ///< per vertex: the first vertex at its pointel
+};
+
 /// The cells of output port 0 and their arrays.
 class OutputBuilder
 {
@@ -121,19 +187,19 @@ public:
 
   void addObject(const ObjectFaces& o, int mode)
   {
-    this->PointOf.clear();
+    this->Ids.reset(o.graph);
     if (mode == vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
     {
       this->addEdges(o);
     }
     else if (mode == vtkStandardPlanePolyhedrizer::SURFELS)
     {
+      std::vector<vtkIdType> ids;
       for (std::uint32_t s = 0; s < o.graph.size(); ++s)
       {
-        const auto& surfel = o.graph.surfels[s];
-        std::vector<vtkIdType> ids;
+        ids.clear();
         for (int k = 0; k < 4; ++k)
-          ids.push_back(this->point(inGrid(o, surfel.corner(k))));
+          ids.push_back(this->point(o, o.graph.vertexOf(s, k)));
         this->addCell(ids, o, o.poly.faceOfSurfel[s]);
       }
     }
@@ -143,7 +209,7 @@ public:
       {
         std::vector<vtkIdType> ids;
         for (std::uint32_t v : o.poly.faces[f].loop)
-          ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[v])));
+          ids.push_back(this->point(o, v));
         this->addCell(ids, o, f);
       }
     }
@@ -202,7 +268,7 @@ private:
         {
           std::vector<vtkIdType> ids;
           for (std::uint32_t v : face.loop)
-            ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[v])));
+            ids.push_back(this->point(o, v));
           ids.push_back(ids.front());
           this->addLine(ids, o, f, face.across[0]);
         }
@@ -213,9 +279,9 @@ private:
       {
         const std::size_t i = (start + step) % m;
         if (ids.empty())
-          ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[face.loop[i]])));
+          ids.push_back(this->point(o, face.loop[i]));
         const std::uint32_t next = face.loop[(i + 1) % m];
-        ids.push_back(this->point(inGrid(o, o.graph.vertexPointel[next])));
+        ids.push_back(this->point(o, next));
         if (o.poly.facesAtVertex[next] >= 3)
         {
           if (f < face.across[i])
@@ -267,8 +333,8 @@ private:
     std::set<std::pair<vtkIdType, vtkIdType>> loopEdges;
     if (markLoops)
       for (std::size_t i = 0; i < face.loop.size(); ++i)
-        loopEdges.emplace(this->point(inGrid(o, o.graph.vertexPointel[face.loop[i]])),
-          this->point(inGrid(o, o.graph.vertexPointel[face.loop[(i + 1) % face.loop.size()]])));
+        loopEdges.emplace(
+          this->point(o, face.loop[i]), this->point(o, face.loop[(i + 1) % face.loop.size()]));
     std::vector<vtkIdType> ids(3);
     auto add = [&]()
     {
@@ -285,7 +351,7 @@ private:
     for (const vbr::Triangle& t : triangles)
     {
       for (int k = 0; k < 3; ++k)
-        ids[k] = this->point(inGrid(o, o.graph.vertexPointel[polygon[t[k]]]));
+        ids[k] = this->point(o, polygon[t[k]]);
       add();
     }
     if (!triangles.empty())
@@ -296,7 +362,7 @@ private:
       {
         const int corner[3] = { 0, 1 + half, 2 + half };
         for (int k = 0; k < 3; ++k)
-          ids[k] = this->point(inGrid(o, o.graph.cornerOf(s, corner[k])));
+          ids[k] = this->point(o, o.graph.vertexOf(s, corner[k]));
         add();
       }
     }
@@ -357,18 +423,16 @@ private:
     return polygons;
   }
 
-  vtkIdType point(const Int3& p)
+  /// The output point of graph vertex v of object o, made on its first use.
+  vtkIdType point(const ObjectFaces& o, std::uint32_t v)
   {
-    // Grid corners lie in [0, 2^20] (at most 2^20 - 1 voxels per axis): 21 bits each.
-    const std::uint64_t key = vbr::KeyPacker().pack(p[2], p[1], p[0]);
-    const auto it = this->PointOf.find(key);
-    if (it != this->PointOf.end())
-      return it->second;
-    double world[3];
-    this->Grid.vertexToWorld(p, world);
-    const vtkIdType id = this->Points->InsertNextPoint(world);
-    this->PointOf.emplace(key, id);
-    return id;
+    return this->Ids.get(v,
+      [&](std::uint32_t u)
+      {
+        double world[3];
+        this->Grid.vertexToWorld(inGrid(o, o.graph.vertexPointel[u]), world);
+        return this->Points->InsertNextPoint(world);
+      });
   }
 
   void addCell(std::vector<vtkIdType>& ids, const ObjectFaces& o, std::uint32_t f)
@@ -390,7 +454,7 @@ private:
   const vbr::vtk::VoxelGrid& Grid;
   const bool Reverse;
   vtkIdType FaceBase = 0;
-  std::unordered_map<std::uint64_t, vtkIdType> PointOf; ///< per object
+  PointIds Ids; ///< of the object's vertices
   vtkNew<vtkPoints> Points;
   vtkNew<vtkCellArray> Polys;
   vtkNew<vtkCellArray> Lines;
@@ -452,7 +516,7 @@ void writeGrid(const vbr::vtk::VoxelGrid& grid,
 /// voxels (in Labels mode a voxel reverted into another label's object would pass the combined
 /// comparison), the array as the user reads it, and the tuple count. Null when a face could
 /// not be reverted (`problem`).
-vtkSmartPointer<vtkUnsignedCharArray> revertedSelection(const std::vector<ObjectFaces>& objects,
+vtkSmartPointer<vtkUnsignedCharArray> revertedSelection(const std::vector<ObjectOutlines>& objects,
   const vbr::vtk::InputObjects& in,
   const std::vector<vbr::BitVolume>& selections,
   vtkImageData* input,
@@ -469,19 +533,9 @@ vtkSmartPointer<vtkUnsignedCharArray> revertedSelection(const std::vector<Object
   bool objectsMatch = true;
   for (std::size_t i = 0; i < objects.size(); ++i)
   {
-    const ObjectFaces& o = objects[i];
-    std::vector<vbr::FaceOutline> outlines;
-    for (const vbr::StandardFace& f : o.poly.faces)
-    {
-      vbr::FaceOutline outline;
-      outline.plane = f.plane;
-      for (std::uint32_t v : f.loop)
-        outline.loop.push_back(o.graph.vertexPointel[v]);
-      outlines.push_back(std::move(outline));
-    }
-    std::vector<vbr::Surfel> surfels;
+    const ObjectOutlines& o = objects[i];
     vbr::BitVolume voxels;
-    problem = vbr::revert(outlines, o.graph.dims, surfels, voxels, exec);
+    problem = vbr::revert(o.faces, o.dims, voxels, exec);
     if (!problem.empty())
       return nullptr;
     objectsMatch = objectsMatch && voxels == selections[i];
@@ -501,7 +555,7 @@ vtkSmartPointer<vtkUnsignedCharArray> revertedSelection(const std::vector<Object
 /// input's layout (each rank's piece under MPI). The self-check compares the array written
 /// with the input's selection written the same way, tuple by tuple, and the tuple count with
 /// the input's. Under MPI it is collective; on the ranks other than 0 `objects` is empty.
-bool writeReversion(const std::vector<ObjectFaces>& objects,
+bool writeReversion(const std::vector<ObjectOutlines>& objects,
   vbr::vtk::InputObjects& in,
   const std::vector<vbr::BitVolume>& selections,
   vtkImageData* input,
@@ -533,24 +587,35 @@ bool writeReversion(const std::vector<ObjectFaces>& objects,
 /// 0.3 to 1 M surfels per second, several times slower with MergeFaces).
 constexpr vtkIdType LargeSurfelCount = vtkIdType(1) << 21;
 
-/// Port 0: the cells of every object's faces in `mode`, their colouring and statistics.
-void writeFaces(const std::vector<ObjectFaces>& objects,
-  const vbr::vtk::InputObjects& in,
-  int mode,
-  bool labelsMode,
-  vtkPolyData* output)
+/// Port 0: the cells of every object's faces in `mode`, their colouring and statistics, written
+/// object by object as each object's faces are made.
+class FaceWriter
 {
-  Statistics stats;
-  OutputBuilder builder(in.grid, in.labelType);
-  for (const ObjectFaces& o : objects)
+public:
+  FaceWriter(const vbr::vtk::InputObjects& in, int mode)
+    : Builder(in.grid, in.labelType)
+    , Mode(mode)
   {
-    stats.add(o);
-    builder.addObject(o, mode);
   }
-  builder.finish(output);
-  vbr::vtk::setBoundaryColoring(output, labelsMode);
-  stats.write(output->GetFieldData());
-}
+
+  void add(const ObjectFaces& o)
+  {
+    this->Stats.add(o);
+    this->Builder.addObject(o, this->Mode);
+  }
+
+  void finish(bool labelsMode, vtkPolyData* output)
+  {
+    this->Builder.finish(output);
+    vbr::vtk::setBoundaryColoring(output, labelsMode);
+    this->Stats.write(output->GetFieldData());
+  }
+
+private:
+  Statistics Stats;
+  OutputBuilder Builder;
+  int Mode;
+};
 
 /// The options of the polyhedrization from the filter's properties.
 vbr::PolyhedrizationOptions optionsOf(vtkStandardPlanePolyhedrizer* self)
@@ -617,12 +682,14 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
   return vbr::polyhedrize(o.graph, options, vbr::vtk::makeExecution(self, b, to), o.poly);
 }
 
-/// PASS 1 of the filter: the faces of every selected object, and with the reversion on their
-/// voxels. False when aborted.
+/// PASS 1 of the filter: the faces of every selected object, and with the reversion their
+/// outlines and voxels; PASS 2 with it, object by object, so that only one object's surfel
+/// graph is held at a time: the faces as cells. False when aborted.
 bool buildObjectFaces(vtkStandardPlanePolyhedrizer* self,
   const vbr::vtk::InputObjects& in,
   const vbr::PolyhedrizationOptions& options,
-  std::vector<ObjectFaces>& objects,
+  FaceWriter& writer,
+  std::vector<ObjectOutlines>& outlines,
   std::vector<vbr::BitVolume>& selections)
 {
   SurfelCounter counter;
@@ -638,9 +705,12 @@ bool buildObjectFaces(vtkStandardPlanePolyhedrizer* self,
       return false;
     if (voxels.empty())
       continue;
-    objects.push_back(std::move(o));
+    writer.add(o);
     if (self->GetGenerateReversion())
+    {
+      outlines.push_back(outlinesOf(o));
       selections.push_back(std::move(voxels));
+    }
   }
   return !self->GetAbortExecute();
 }
@@ -743,10 +813,12 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   const vbr::vtk::VoxelGrid& grid = in.grid;
   this->UpdateProgress(0.05);
 
-  // PASS 1: the standard faces of every object (paper 003), one object at a time.
-  std::vector<ObjectFaces> objects;
+  // PASS 1 and 2: the standard faces of every object (paper 003), one object at a time, and
+  // the faces as cells.
+  FaceWriter writer(in, this->OutputMode);
+  std::vector<ObjectOutlines> objects;    // the faces' planes and loops, for the reversion
   std::vector<vbr::BitVolume> selections; // the objects' voxels, kept for the self-check
-  if (!buildObjectFaces(this, in, optionsOf(this), objects, selections))
+  if (!buildObjectFaces(this, in, optionsOf(this), writer, objects, selections))
   {
     output->Initialize(); // aborted
     if (this->GenerateReversion && in.piece.distributed())
@@ -754,9 +826,7 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
     reversion->Initialize();
     return 1;
   }
-
-  // PASS 2: the faces as cells.
-  writeFaces(objects, in, this->OutputMode, this->GetSelectionMode() == LABELS, output);
+  writer.finish(this->GetSelectionMode() == LABELS, output);
   // Under MPI the faces are the whole image's, and every rank names its grid.
   int extent[6];
   input->GetExtent(extent);

@@ -445,9 +445,8 @@ std::string revertInBox(const std::vector<vbr::FaceOutline>& outlines,
 {
   std::vector<vbr::FaceOutline> boxed;
   std::string problem = outlinesInBox(outlines, grid.dims, boxed, lo, boxDims);
-  std::vector<vbr::Surfel> surfels;
   if (problem.empty())
-    problem = vbr::revert(boxed, boxDims, surfels, voxels, exec);
+    problem = vbr::revert(boxed, boxDims, voxels, exec);
   return problem;
 }
 

@@ -13,10 +13,11 @@
 // loop edge, and the number of faces around each vertex (countFacesAtVertices: the standard
 // vertices have three or more).
 //
-// The reversion (revert): each face's surfels are refilled from its outline (fillFace: the
+// The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
-// linel that is not a loop edge), faces are checked disjoint (checkDisjoint), and the voxels
-// follow by parity along x (fillByParity).
+// linel that is not a loop edge), marked in bits per voxel and direction (SurfelBits), which
+// also tells a surfel filled by two faces, and the voxels follow by parity along x
+// (fillByParity).
 
 #include "Polyhedrization.h"
 
@@ -27,13 +28,11 @@
 #include <cstddef>
 #include <cstdlib>
 #include <deque>
-#include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 namespace vbr
@@ -154,6 +153,8 @@ private:
     }
     this->drainWave(f);
     this->Poly->faces[f].plane = this->Recognizer.plane();
+    if (!this->Options.moveToLargerFaces) // else the moves make the lists again, to size
+      this->Poly->faces[f].surfels.shrink_to_fit();
   }
 
   /// The growth of face f over its queue q(f) (Francon & Papier, section 3), breadth first
@@ -369,7 +370,14 @@ private:
     return false;
   }
 
-  const Point3* pointelsOf(std::uint32_t s) const { return &this->Graph.cornerOf(s, 0); }
+  /// The 4 corners of surfel s (computed: the graph does not store them), valid until the next
+  /// call.
+  const Point3* pointelsOf(std::uint32_t s)
+  {
+    for (int k = 0; k < 4; ++k)
+      this->Corners[k] = this->Graph.cornerOf(s, k);
+    return this->Corners.data();
+  }
 
   void take(std::uint32_t s, std::uint32_t f, std::uint32_t depth)
   {
@@ -409,6 +417,7 @@ private:
   std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
   std::vector<std::uint32_t> Umbrella;                      ///< in seedUmbrella
   std::vector<Point3> UmbrellaPoints;                       ///< in seedUmbrella
+  std::array<Point3, 4> Corners;                            ///< in pointelsOf
   std::vector<std::uint32_t> Queued, Refused;               ///< stamped with the face
   std::uint32_t DepthLimit;
 };
@@ -445,6 +454,8 @@ public:
         }
     face.loop.clear();
     face.across.clear();
+    face.loop.reserve(edges); // one allocation each, of the loop's size
+    face.across.reserve(edges);
     if (start == None)
       return;
     std::uint32_t v = start;
@@ -528,9 +539,13 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         queue.push_back(graph.neighbourOf(t, k));
     }
   }
-  // The lists follow the moves (a surfel may have moved more than once).
-  for (StandardFace& face : poly.faces)
-    face.surfels.clear();
+  // The lists follow the moves (a surfel may have moved more than once), each allocated to its
+  // size: faces that grew would double their storage.
+  for (std::size_t f = 0; f < poly.faces.size(); ++f)
+  {
+    std::vector<std::uint32_t>().swap(poly.faces[f].surfels);
+    poly.faces[f].surfels.reserve(size[f]);
+  }
   for (std::uint32_t s = 0; s < graph.size(); ++s)
     poly.faces[faceOf[s]].surfels.push_back(s);
   return moved;
@@ -668,19 +683,6 @@ bool polyhedrize(const SurfelGraph& graph,
 namespace
 {
 
-/// Key of the linel p -> q (a unit step): its start and direction.
-std::uint64_t edgeKey(const Point3& p, const Point3& q)
-{
-  const int direction = directionOf(sub(q, p)); // -1: a repeated corner, refused below
-  return packBiased(p) * 8 + static_cast<std::uint64_t>(direction < 0 ? 7 : direction);
-}
-
-/// Key of a surfel: its voxel and direction.
-std::uint64_t surfelKey(const Surfel& s)
-{
-  return packBiased(s.voxel) * 8 + s.direction;
-}
-
 /// The digital half-space below a standard plane: voxels whose centre c has
 /// n.c < mu + omega / 2, i.e. 2 n.v + (a + b + c) < 2 mu + omega for the lower corner v.
 bool below(const StandardPlane& plane, const Point3& voxel)
@@ -724,9 +726,6 @@ bool surfelLeftOf(const StandardPlane& plane, const Point3& p, const Point3& q, 
 namespace
 {
 
-/// (surfel key, face) of every surfel the reversion finds.
-using SurfelFaces = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
-
 std::string faceError(std::size_t f, const char* what)
 {
   std::ostringstream msg;
@@ -734,109 +733,212 @@ std::string faceError(std::size_t f, const char* what)
   return msg.str();
 }
 
-/// The surfels of the plane on the left of the loop's edges: where the filling starts.
-std::string seedFromLoop(const FaceOutline& face,
-  std::size_t f,
-  std::unordered_set<std::uint64_t>& seen,
-  std::vector<Surfel>& stack)
+/// A set of surfels whose voxels lie in the grid: one bit per voxel and direction (6 bits per
+/// voxel), in place of a list of every surfel and its sort (32 bytes per surfel, most of the
+/// reversion's memory on boundaries with many surfels per voxel).
+class SurfelBits
 {
-  const std::size_t n = face.loop.size();
-  for (std::size_t i = 0; i < n; ++i)
+public:
+  explicit SurfelBits(const std::array<std::int32_t, 3>& dims)
   {
-    Surfel s;
-    const Point3& p = face.loop[i];
-    const Point3& q = face.loop[(i + 1) % n];
-    const Point3 t = sub(q, p);
-    if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !surfelLeftOf(face.plane, p, q, s))
+    for (BitVolume& b : this->Bits)
+      b = BitVolume(dims[0], dims[1], dims[2]);
+  }
+
+  /// Whether the surfel's voxel lies in the grid (only those can be held).
+  bool holds(const Surfel& s) const
+  {
+    const auto& d = this->Bits[0].dims();
+    const Point3& v = s.voxel;
+    return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < d[0] && v[1] < d[1] && v[2] < d[2];
+  }
+  bool get(const Surfel& s) const
+  {
+    return this->Bits[s.direction].get(s.voxel[0], s.voxel[1], s.voxel[2]);
+  }
+  void set(const Surfel& s, bool value = true)
+  {
+    this->Bits[s.direction].set(s.voxel[0], s.voxel[1], s.voxel[2], value);
+  }
+  const BitVolume& direction(int d) const { return this->Bits[d]; }
+
+private:
+  std::array<BitVolume, 6> Bits;
+};
+
+/// Key of the linel p -> q (a unit step): its start and direction.
+std::uint64_t edgeKey(const Point3& p, const Point3& q)
+{
+  const int direction = directionOf(sub(q, p)); // -1: a repeated corner, refused below
+  return packBiased(p) * 8 + static_cast<std::uint64_t>(direction < 0 ? 7 : direction);
+}
+
+/// The filling of the faces, one after the other: the surfels of every face filled so far
+/// (All) and of the face being filled (Face, cleared after it from its list).
+class FaceFiller
+{
+public:
+  explicit FaceFiller(const std::array<std::int32_t, 3>& dims)
+    : All(dims)
+    , Face(dims)
+  {
+  }
+
+  /// The surfels of face f: the squares of its plane enclosed by its loop, filled from the
+  /// loop's edges across every linel that is not a loop edge. Adds them to All.
+  std::string fill(const FaceOutline& face, std::size_t f)
+  {
+    const std::size_t n = face.loop.size();
+    this->LoopEdges.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      this->LoopEdges.push_back(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
+    std::sort(this->LoopEdges.begin(), this->LoopEdges.end());
+    this->Visited.clear();
+    this->Stack.clear();
+    std::string error = this->seedFromLoop(face, f);
+    if (error.empty())
+      error = this->flood(face, f, 8 * n * n + 64);
+    for (const Surfel& s : this->Visited) // the face's marks go, All keeps them
+    {
+      this->Face.set(s, false);
+      this->All.set(s);
+    }
+    this->Count += this->Visited.size();
+    return error;
+  }
+
+  /// Surfels filled in all.
+  std::size_t count() const { return this->Count; }
+  const SurfelBits& surfels() const { return this->All; }
+
+private:
+  /// Visits surfel s of face f once: marked and stacked; an error when it lies outside the
+  /// grid or in an earlier face.
+  std::string visit(const Surfel& s, std::size_t f)
+  {
+    if (!this->Face.holds(s))
+      return faceError(f, "it leaves the grid (the faces do not bound a set of voxels of it)");
+    if (this->Face.get(s))
+      return std::string();
+    if (this->All.get(s))
     {
       std::ostringstream msg;
-      msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
+      msg << "face " << f << " shares surfels with an earlier face (is a face given twice?)";
       return msg.str();
     }
-    if (seen.insert(surfelKey(s)).second)
-      stack.push_back(s);
-  }
-  return std::string();
-}
-
-/// The surfels of face f: the squares of its plane enclosed by its loop, filled from the
-/// loop's edges across every linel that is not a loop edge.
-std::string fillFace(const FaceOutline& face,
-  std::size_t f,
-  std::vector<Surfel>& surfels,
-  SurfelFaces& faceOf)
-{
-  const std::size_t n = face.loop.size();
-  std::unordered_set<std::uint64_t> loopEdges;
-  for (std::size_t i = 0; i < n; ++i)
-    loopEdges.insert(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
-  std::unordered_set<std::uint64_t> seen;
-  std::vector<Surfel> stack;
-  const std::string error = seedFromLoop(face, f, seen, stack);
-  if (!error.empty())
-    return error;
-  const std::size_t limit = 8 * n * n + 64;
-  while (!stack.empty())
-  {
-    const Surfel s = stack.back();
-    stack.pop_back();
-    surfels.push_back(s);
-    faceOf.emplace_back(surfelKey(s), static_cast<std::uint32_t>(f));
-    if (seen.size() > limit)
-      return faceError(f, "its loop does not enclose a disk of its plane");
-    for (int k = 0; k < 4; ++k)
-    {
-      const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
-      if (loopEdges.count(edgeKey(a, b)))
-        continue;
-      Surfel t;
-      if (!surfelLeftOf(face.plane, b, a, t))
-        return faceError(f, "its plane is not a surface around a linel");
-      if (seen.insert(surfelKey(t)).second)
-        stack.push_back(t);
-    }
-  }
-  return std::string();
-}
-
-/// Faces are disjoint: a surfel in two faces (a face given twice, say) would cancel out in
-/// the parity of fillByParity.
-std::string checkDisjoint(SurfelFaces& faceOf)
-{
-  std::sort(faceOf.begin(), faceOf.end());
-  const auto shared = std::adjacent_find(
-    faceOf.begin(), faceOf.end(), [](const auto& a, const auto& b) { return a.first == b.first; });
-  if (shared == faceOf.end())
+    this->Face.set(s);
+    this->Visited.push_back(s);
+    this->Stack.push_back(s);
     return std::string();
-  std::ostringstream msg;
-  msg << "faces " << shared->second << " and " << std::next(shared)->second
-      << " share surfels (is a face given twice?)";
-  return msg.str();
-}
+  }
 
-/// Voxels by parity along x: each row starts at a -x surfel and ends at a +x one.
-std::string fillByParity(const std::vector<Surfel>& surfels,
+  /// The surfels of the plane on the left of the loop's edges: where the filling starts.
+  std::string seedFromLoop(const FaceOutline& face, std::size_t f)
+  {
+    const std::size_t n = face.loop.size();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      Surfel s;
+      const Point3& p = face.loop[i];
+      const Point3& q = face.loop[(i + 1) % n];
+      const Point3 t = sub(q, p);
+      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 ||
+        !surfelLeftOf(face.plane, p, q, s))
+      {
+        std::ostringstream msg;
+        msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
+        return msg.str();
+      }
+      const std::string error = this->visit(s, f);
+      if (!error.empty())
+        return error;
+    }
+    return std::string();
+  }
+
+  /// Across every linel that is not a loop edge, at most `limit` surfels.
+  std::string flood(const FaceOutline& face, std::size_t f, std::size_t limit)
+  {
+    while (!this->Stack.empty())
+    {
+      const Surfel s = this->Stack.back();
+      this->Stack.pop_back();
+      if (this->Visited.size() > limit)
+        return faceError(f, "its loop does not enclose a disk of its plane");
+      for (int k = 0; k < 4; ++k)
+      {
+        const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
+        if (std::binary_search(this->LoopEdges.begin(), this->LoopEdges.end(), edgeKey(a, b)))
+          continue;
+        Surfel t;
+        if (!surfelLeftOf(face.plane, b, a, t))
+          return faceError(f, "its plane is not a surface around a linel");
+        const std::string error = this->visit(t, f);
+        if (!error.empty())
+          return error;
+      }
+    }
+    return std::string();
+  }
+
+  SurfelBits All, Face;
+  std::vector<std::uint64_t> LoopEdges; ///< of the face, sorted
+  std::vector<Surfel> Visited, Stack;   ///< of the face
+  std::size_t Count = 0;
+};
+
+/// Voxels by parity along x: each row starts at a -x surfel and ends at a +x one (a voxel
+/// is inside from the -x surfel of its row's run to the +x surfel of it). Whole words without
+/// x surfels are filled at once.
+std::string fillByParity(const SurfelBits& surfels,
   const std::array<std::int32_t, 3>& dims,
   BitVolume& voxels)
 {
   voxels = BitVolume(dims[0], dims[1], dims[2]);
-  std::vector<std::array<std::int32_t, 3>> xSurfels; // (z, y, plane x)
-  for (const Surfel& s : surfels)
-    if (s.axis() == 0)
-      xSurfels.push_back({ s.voxel[2], s.voxel[1], s.voxel[0] + (s.sign() > 0 ? 1 : 0) });
-  std::sort(xSurfels.begin(), xSurfels.end());
-  for (std::size_t i = 0; i + 1 < xSurfels.size(); i += 2)
-  {
-    const auto& a = xSurfels[i];
-    const auto& b = xSurfels[i + 1];
-    if (a[0] != b[0] || a[1] != b[1] || a[0] < 0 || a[0] >= dims[2] || a[1] < 0 ||
-      a[1] >= dims[1] || a[2] < 0 || b[2] > dims[0])
-      return "the faces do not bound a set of voxels of the grid";
-    for (std::int32_t x = a[2]; x < b[2]; ++x)
-      voxels.set(x, a[1], a[0]);
-  }
-  if (xSurfels.size() % 2 != 0)
-    return "the faces do not bound a set of voxels of the grid";
+  const BitVolume& minus = surfels.direction(0);
+  const BitVolume& plus = surfels.direction(1);
+  const std::size_t words = voxels.wordsPerRow();
+  const char* const notBounding = "the faces do not bound a set of voxels of the grid";
+  for (std::int32_t z = 0; z < dims[2]; ++z)
+    for (std::int32_t y = 0; y < dims[1]; ++y)
+    {
+      const Word* m = minus.row(y, z);
+      const Word* p = plus.row(y, z);
+      Word* out = voxels.row(y, z);
+      bool inside = false;
+      for (std::size_t i = 0; i < words; ++i)
+      {
+        const int bits = static_cast<int>(std::min<std::size_t>(64, dims[0] - 64 * i));
+        const Word valid = bits == 64 ? ~Word(0) : (Word(1) << bits) - 1;
+        if ((m[i] | p[i]) == 0)
+        {
+          out[i] = inside ? valid : 0;
+          continue;
+        }
+        Word w = 0;
+        for (int b = 0; b < bits; ++b)
+        {
+          if ((m[i] >> b) & 1)
+          {
+            if (inside)
+              return notBounding; // a run opened twice
+            inside = true;
+          }
+          if (!inside)
+          {
+            if ((p[i] >> b) & 1)
+              return notBounding; // a run closed before it opened
+            continue;
+          }
+          w |= Word(1) << b;
+          if ((p[i] >> b) & 1)
+            inside = false;
+        }
+        out[i] = w;
+      }
+      if (inside)
+        return notBounding; // a run never closed
+    }
   return std::string();
 }
 
@@ -844,26 +946,24 @@ std::string fillByParity(const std::vector<Surfel>& surfels,
 
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
-  std::vector<Surfel>& surfels,
   BitVolume& voxels,
-  const Execution& exec)
+  const Execution& exec,
+  std::size_t* surfelCount)
 {
-  surfels.clear();
   ProgressPoll poll(exec, 0.0, 1.0);
-  SurfelFaces faceOf;
+  FaceFiller filler(dims);
   for (std::size_t f = 0; f < faces.size(); ++f)
   {
     poll.at(0.9 * double(f) / double(faces.size()));
     if (!poll.tick())
       return "aborted";
-    const std::string error = fillFace(faces[f], f, surfels, faceOf);
+    const std::string error = filler.fill(faces[f], f);
     if (!error.empty())
       return error;
   }
-  const std::string error = checkDisjoint(faceOf);
-  if (!error.empty())
-    return error;
-  return fillByParity(surfels, dims, voxels);
+  if (surfelCount)
+    *surfelCount = filler.count();
+  return fillByParity(filler.surfels(), dims, voxels);
 }
 
 } // namespace vbr

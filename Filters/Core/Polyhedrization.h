@@ -80,13 +80,14 @@ struct FaceOutline
 /// Surfels of each face recomputed from its outline: the squares of the plane enclosed by
 /// the loop. Then the voxels, by parity along x, in a grid of `dims`. Returns an error
 /// message for outlines that do not bound a disk of their plane, for faces that share
-/// surfels (a face given twice), or "aborted" when `exec` asked to stop; else an empty
-/// string.
+/// surfels (a face given twice), for surfels outside the grid, or "aborted" when `exec` asked
+/// to stop; else an empty string. The surfels are kept as bits (6 per voxel of the grid),
+/// not listed; `surfelCount`, when given, receives their number.
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
-  std::vector<Surfel>& surfels,
   BitVolume& voxels,
-  const Execution& exec = Execution());
+  const Execution& exec = Execution(),
+  std::size_t* surfelCount = nullptr);
 
 } // namespace vbr
 

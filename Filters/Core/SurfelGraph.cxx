@@ -1,19 +1,22 @@
 // The surfel graph built in four stages (buildSurfelGraph).
 //
 // findSurfels scans the bit rows a word at a time for the voxels with an unselected
-// face-neighbour and lists their boundary faces, each keyed in a hash index. linkNeighbours
-// finds the surfel across each edge (neighbourKey: concave, flat or convex, the voxel beyond
-// reached only through a face-neighbour, which keeps edge-touching voxels apart).
-// matchSharedEdges records which edge of the neighbour is the same linel. glueVertices unites
-// the corners glued across shared edges (one vertex per umbrella, so a pointel where voxels
-// touch only at a corner gets several) and the surfels into connected components.
+// face-neighbour and lists their boundary faces; they come in the order of their voxels (z, y,
+// x) then direction, so a surfel is found again by a binary search within its row of voxels
+// (RowIndex: where each row's surfels start, 4 bytes per row), with no hash table (it took
+// 32 to 64 bytes per surfel). linkNeighbours finds the surfel across each edge (neighbourKey:
+// concave, flat or convex, the voxel beyond reached only through a face-neighbour, which keeps
+// edge-touching voxels apart). matchSharedEdges records which edge of the neighbour is the same
+// linel. numberVertices walks the umbrella of each corner not yet numbered (one vertex per
+// umbrella, so a pointel where voxels touch only at a corner gets several), and
+// countComponents unites the surfels into connected components.
 
 #include "SurfelGraph.h"
 
-#include "GridPointIndex.h"
 #include "Surfels.h"
 #include "UnionFind.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 
@@ -35,18 +38,54 @@ struct VoxelSet
     return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < dims[0] && v[1] < dims[1] &&
       v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
   }
-  std::uint64_t key(const Point3& v, int direction) const
+};
+
+/// A surfel as searched for: its voxel and direction.
+struct SurfelKey
+{
+  Point3 voxel;
+  int direction;
+};
+
+/// Where the surfels of each row of voxels start in the graph's list (in (z, y) order, one more
+/// for the end), so that a surfel is found by a binary search among the few of its row.
+class RowIndex
+{
+public:
+  RowIndex(const Point3& dims)
+    : Ny(dims[1])
   {
-    return ((std::uint64_t(v[2]) * dims[1] + v[1]) * dims[0] + v[0]) * 6 + direction;
+    this->Start.reserve(static_cast<std::size_t>(dims[1]) * dims[2] + 1);
   }
+
+  /// Records that the next row starts at surfel `first` (rows in order).
+  void beginRow(std::size_t first) { this->Start.push_back(static_cast<std::uint32_t>(first)); }
+
+  /// The number of the surfel, or -1 when absent.
+  std::int64_t find(const std::vector<Surfel>& surfels, const SurfelKey& key) const
+  {
+    const std::size_t row = static_cast<std::size_t>(key.voxel[2]) * this->Ny + key.voxel[1];
+    const auto first = surfels.begin() + this->Start[row];
+    const auto last = surfels.begin() + this->Start[row + 1];
+    const std::int64_t wanted = std::int64_t(key.voxel[0]) * 8 + key.direction;
+    const auto it = std::lower_bound(first,
+      last,
+      wanted,
+      [](const Surfel& s, std::int64_t w)
+      { return std::int64_t(s.voxel[0]) * 8 + s.direction < w; });
+    if (it == last || it->voxel[0] != key.voxel[0] || it->direction != key.direction)
+      return -1;
+    return it - surfels.begin();
+  }
+
+private:
+  std::size_t Ny;
+  std::vector<std::uint32_t> Start;
 };
 
 /// Stage 1, the surfels: only voxels with an unselected face-neighbour bear surfels, found a
 /// word at a time. Returns false when aborted.
-bool findSurfels(const VoxelSet& set,
-  const Execution& exec,
-  SurfelGraph& out,
-  GridPointIndex& index)
+bool findSurfels(const VoxelSet& set, const Execution& exec, SurfelGraph& out, RowIndex& index)
 {
   const BitVolume& voxels = set.voxels;
   const Point3& dims = set.dims;
@@ -58,6 +97,7 @@ bool findSurfels(const VoxelSet& set,
       return false;
     for (std::int32_t y = 0; y < dims[1]; ++y)
     {
+      index.beginRow(out.surfels.size());
       const Word* row = voxels.row(y, z);
       const Word* down = y > 0 ? voxels.row(y - 1, z) : none.data();
       const Word* up = y + 1 < dims[1] ? voxels.row(y + 1, z) : none.data();
@@ -78,47 +118,42 @@ bool findSurfels(const VoxelSet& set,
           const Point3 v{ static_cast<std::int32_t>(i * 64 + bit), y, z };
           for (int d = 0; d < 6; ++d)
             if (!set.contains(add(v, unitVector(d))))
-            {
               out.surfels.push_back({ v, static_cast<std::uint8_t>(d) });
-              index.insert(set.key(v, d));
-            }
         }
       }
     }
   }
+  index.beginRow(out.surfels.size()); // the end of the last row
   return true;
 }
 
 /// The surfel beyond edge (a, b) of surfel sf: the surface turns into the voxel beyond
 /// (concave), goes on flat, or turns round its own voxel (convex). The voxel beyond is
 /// reached only through a face-neighbour in the set, which keeps edge-touching voxels apart.
-std::uint64_t neighbourKey(const VoxelSet& set, const Surfel& sf, const Point3& a, const Point3& b)
+SurfelKey neighbourKey(const VoxelSet& set, const Surfel& sf, const Point3& a, const Point3& b)
 {
   const Point3 normal = unitVector(sf.direction);
   const Point3 g = cross(sub(b, a), normal); // from the surfel towards the edge
   const Point3 side = add(sf.voxel, g);
   if (!set.contains(side))
-    return set.key(sf.voxel, directionOf(g)); // g is a unit vector
+    return { sf.voxel, directionOf(g) }; // g is a unit vector
   const Point3 beyond = add(side, normal);
   if (set.contains(beyond))
-    return set.key(beyond, directionOf({ -g[0], -g[1], -g[2] }));
-  return set.key(side, sf.direction);
+    return { beyond, directionOf({ -g[0], -g[1], -g[2] }) };
+  return { side, sf.direction };
 }
 
 /// Stage 2, the neighbour across each edge.
-void linkNeighbours(const VoxelSet& set, const GridPointIndex& index, SurfelGraph& out)
+void linkNeighbours(const VoxelSet& set, const RowIndex& index, SurfelGraph& out)
 {
   const std::size_t n = out.surfels.size();
-  out.corners.resize(4 * n);
-  for (std::size_t s = 0; s < n; ++s)
-    for (int k = 0; k < 4; ++k)
-      out.corners[4 * s + k] = out.surfels[s].corner(k);
   out.neighbour.resize(4 * n);
   for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
     {
-      const std::int64_t id = index.find(
-        neighbourKey(set, out.surfels[s], out.cornerOf(s, k), out.cornerOf(s, (k + 1) % 4)));
+      const Surfel& sf = out.surfels[s];
+      const std::int64_t id =
+        index.find(out.surfels, neighbourKey(set, sf, sf.corner(k), sf.corner((k + 1) % 4)));
       if (id < 0)
         throw std::logic_error("surfel neighbour missing");
       out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
@@ -134,7 +169,7 @@ void matchSharedEdges(SurfelGraph& out)
     for (int k = 0; k < 4; ++k)
     {
       const std::uint32_t t = out.neighbourOf(s, k);
-      const Point3& from = out.cornerOf(s, (k + 1) % 4);
+      const Point3 from = out.cornerOf(s, (k + 1) % 4);
       int j = 0;
       while (j < 4 && out.cornerOf(t, j) != from)
         ++j;
@@ -144,28 +179,52 @@ void matchSharedEdges(SurfelGraph& out)
     }
 }
 
-/// Stage 4, the vertices: corners glued across shared edges, so that a pointel gets one
-/// vertex per umbrella; and the connected components of the surface.
-void glueVertices(SurfelGraph& out)
+/// Stage 4, the vertices: one per umbrella of corners glued across shared edges (so that a
+/// pointel gets one vertex per umbrella), numbered in the order of their first corner. A walk
+/// round each umbrella, with no union-find over the 4 corners of every surfel.
+void numberVertices(SurfelGraph& out)
 {
+  constexpr std::uint32_t None = ~std::uint32_t(0);
   const std::size_t n = out.surfels.size();
-  UnionFind corners(4 * n);
-  UnionFind faces(n);
+  out.vertex.assign(4 * n, None);
+  std::uint32_t count = 0;
   for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
     {
-      const std::uint32_t t = out.neighbourOf(s, k);
-      const int j = out.sharedEdge(s, k);
-      corners.unite(4 * s + k, 4 * t + (j + 1) % 4);
-      corners.unite(4 * s + (k + 1) % 4, 4 * t + j);
-      faces.unite(s, t);
+      if (out.vertex[4 * s + k] != None)
+        continue;
+      const std::uint32_t v = count++;
+      std::uint32_t u = s;
+      int corner = k; // the edge of u that starts at the vertex
+      int steps = 0;
+      do
+      {
+        if (++steps > 64) // an umbrella has a handful of surfels
+          throw std::logic_error("surfel umbrella does not close");
+        out.vertex[4 * u + corner] = v;
+        const int j = out.sharedEdge(u, corner);
+        u = out.neighbourOf(u, corner);
+        corner = (j + 1) % 4;
+      } while (u != s || corner != k);
     }
-  std::uint32_t vertexCount = 0;
-  out.vertex = corners.numberClasses(vertexCount);
-  out.vertexPointel.resize(vertexCount);
-  for (std::uint32_t c = 0; c < 4 * n; ++c)
-    out.vertexPointel[out.vertex[c]] = out.corners[c];
-  out.component = faces.numberClasses(out.componentCount);
+  out.vertexPointel.resize(count);
+  for (std::uint32_t s = 0; s < n; ++s)
+    for (int k = 0; k < 4; ++k)
+      out.vertexPointel[out.vertex[4 * s + k]] = out.cornerOf(s, k);
+}
+
+/// The connected components of the surface (only their number is kept).
+void countComponents(SurfelGraph& out)
+{
+  const std::size_t n = out.surfels.size();
+  UnionFind faces(n);
+  for (std::uint32_t s = 0; s < n; ++s)
+    for (int k = 0; k < 4; ++k)
+      faces.unite(s, out.neighbourOf(s, k));
+  std::uint32_t roots = 0;
+  for (std::uint32_t s = 0; s < n; ++s)
+    roots += faces.find(s) == s;
+  out.componentCount = roots;
 }
 
 } // namespace
@@ -175,14 +234,16 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   out = SurfelGraph();
   out.dims = voxels.dims();
   const VoxelSet set{ voxels, voxels.dims() };
-  const std::size_t expected = countSurfels(voxels);
-  GridPointIndex index(expected);
-  out.surfels.reserve(expected);
-  if (!findSurfels(set, exec, out, index))
-    return false;
-  linkNeighbours(set, index, out);
+  out.surfels.reserve(countSurfels(voxels)); // exactly: no growth by doubling
+  {
+    RowIndex index(out.dims);
+    if (!findSurfels(set, exec, out, index))
+      return false;
+    linkNeighbours(set, index, out);
+  }
   matchSharedEdges(out);
-  glueVertices(out);
+  numberVertices(out);
+  countComponents(out);
   return true;
 }
 

@@ -26,17 +26,18 @@
 namespace vbr
 {
 
+/// About 64 bytes per surfel (16 for the surfel, 16 for its neighbours, 4 for their edges, 16
+/// for its vertices, 12 for about one vertex per surfel): the corners are computed from the
+/// surfel when asked, not stored (they were 48 bytes per surfel, the largest array).
 struct SurfelGraph
 {
   std::array<std::int32_t, 3> dims{ 0, 0, 0 };
   std::vector<Surfel> surfels;             ///< by voxel (z, y, x) then direction
-  std::vector<Point3> corners;             ///< 4 per surfel, counter-clockwise from outside
   std::vector<std::uint32_t> neighbour;    ///< 4 per surfel: across edge k (corner k to k+1)
   std::vector<std::uint8_t> neighbourEdge; ///< 4 per surfel: that edge seen from the neighbour
   std::vector<std::uint32_t> vertex;       ///< 4 per surfel: vertex at corner k
   std::vector<Point3> vertexPointel;       ///< per vertex
-  std::vector<std::uint32_t> component;    ///< per surfel: connected boundary component
-  std::uint32_t componentCount = 0;
+  std::uint32_t componentCount = 0;        ///< connected boundary components
 
   std::size_t size() const { return this->surfels.size(); }
   std::uint32_t neighbourOf(std::uint32_t s, int edge) const
@@ -44,7 +45,7 @@ struct SurfelGraph
     return this->neighbour[4 * s + edge];
   }
   std::uint32_t vertexOf(std::uint32_t s, int k) const { return this->vertex[4 * s + k]; }
-  const Point3& cornerOf(std::uint32_t s, int k) const { return this->corners[4 * s + k]; }
+  Point3 cornerOf(std::uint32_t s, int k) const { return this->surfels[s].corner(k); }
   /// The edge of the neighbour across edge `edge` of surfel s that is the same linel.
   int sharedEdge(std::uint32_t s, int edge) const { return this->neighbourEdge[4 * s + edge]; }
 

@@ -1,7 +1,7 @@
 // Surfels of a voxel set. countSurfels counts the transitions between neighbouring voxels a
 // word at a time (popcount of the XOR of a row with its shifted self, and with the rows
 // before it along y and z, plus the rows at the grid's ends). extractSurfels lists them voxel
-// by voxel. Surfel::corner walks the unit square counter-clockwise seen from outside.
+// by voxel.
 
 #include "Surfels.h"
 
@@ -56,22 +56,6 @@ std::size_t countSurfels(const BitVolume& voxels)
     }
   }
   return n;
-}
-
-Point3 Surfel::corner(int k) const
-{
-  const int a = this->axis(), u = (a + 1) % 3, v = (a + 2) % 3;
-  Point3 p = this->voxel;
-  if (this->sign() > 0)
-    ++p[a];
-  // Counter-clockwise about +e_a is base, +e_u, +e_u+e_v, +e_v (e_u x e_v = e_a); about
-  // -e_a the reverse.
-  static const int du[4] = { 0, 1, 1, 0 };
-  static const int dv[4] = { 0, 0, 1, 1 };
-  const int j = this->sign() > 0 ? k : (4 - k) % 4;
-  p[u] += du[j];
-  p[v] += dv[j];
-  return p;
 }
 
 std::vector<Surfel> extractSurfels(const BitVolume& voxels, bool planar)

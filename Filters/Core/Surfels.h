@@ -27,7 +27,21 @@ struct Surfel
   /// +1 when the normal points to +axis.
   int sign() const { return (this->direction & 1) ? 1 : -1; }
   /// Corner k (0..3) counter-clockwise seen from outside; corner 0 is the lowest one.
-  Point3 corner(int k) const;
+  /// Inline: the surfel graph computes corners whenever asked rather than store them.
+  Point3 corner(int k) const
+  {
+    const int a = this->axis(), u = a == 2 ? 0 : a + 1, v = a == 0 ? 2 : a - 1;
+    Point3 p = this->voxel;
+    // Counter-clockwise about +e_a is base, +e_u, +e_u+e_v, +e_v (e_u x e_v = e_a); about
+    // -e_a the reverse.
+    static constexpr int du[4] = { 0, 1, 1, 0 };
+    static constexpr int dv[4] = { 0, 0, 1, 1 };
+    const int j = (this->direction & 1) ? k : (4 - k) & 3;
+    p[a] += this->direction & 1;
+    p[u] += du[j];
+    p[v] += dv[j];
+    return p;
+  }
 };
 
 /// Number of surfels, by word-wide XOR of neighbouring rows.

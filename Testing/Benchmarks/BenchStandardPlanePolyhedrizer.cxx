@@ -59,9 +59,8 @@ std::string reversionError(const vbr::SurfelGraph& graph,
       o.loop.push_back(graph.vertexPointel[v]);
     outlines.push_back(std::move(o));
   }
-  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
-  const std::string error = vbr::revert(outlines, voxels.dims(), surfels, back);
+  const std::string error = vbr::revert(outlines, voxels.dims(), back);
   return !error.empty() ? error : (back == voxels ? "" : "the voxels differ");
 }
 

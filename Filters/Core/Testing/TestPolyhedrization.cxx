@@ -170,10 +170,10 @@ void checkPolyhedron(const vbr::BitVolume& v,
     outlines.push_back(outline);
   }
   // Reversion from the planes and loops alone.
-  std::vector<vbr::Surfel> surfels;
+  std::size_t surfels = 0;
   vbr::BitVolume back;
-  EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back), "");
-  EXPECT_EQ(surfels.size(), g.size());
+  EXPECT_EQ(vbr::revert(outlines, v.dims(), back, vbr::Execution(), &surfels), "");
+  EXPECT_EQ(surfels, g.size());
   EXPECT_TRUE(back == v) << "the reversion gives other voxels";
 }
 
@@ -602,15 +602,14 @@ TEST(Polyhedrization, AbortAndBadOutlines)
   EXPECT_FALSE(vbr::buildSurfelGraph(v, stop, none));
 
   // An outline whose loop is not made of linels of its plane is refused, not followed.
-  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
   vbr::FaceOutline bad;
   bad.plane.normal = { 0, 0, 1 };
   bad.plane.mu = 0;
   bad.loop = { { 0, 0, 0 }, { 2, 0, 0 }, { 2, 1, 0 } };
-  EXPECT_NE(vbr::revert({ bad }, { 4, 4, 4 }, surfels, back), "");
+  EXPECT_NE(vbr::revert({ bad }, { 4, 4, 4 }, back), "");
   bad.loop = { { 0, 0, 5 }, { 1, 0, 5 }, { 1, 1, 5 }, { 0, 1, 5 } }; // off the plane
-  EXPECT_NE(vbr::revert({ bad }, { 4, 4, 4 }, surfels, back), "");
+  EXPECT_NE(vbr::revert({ bad }, { 4, 4, 4 }, back), "");
 }
 
 // Abort inside each phase: a progress callback asks to stop at its first report inside the
@@ -669,10 +668,9 @@ TEST(Polyhedrization, AbortInsideEachPhase)
   }
   vbr::Execution stopNow;
   stopNow.aborted = [] { return true; };
-  std::vector<vbr::Surfel> surfels;
   vbr::BitVolume back;
-  EXPECT_EQ(vbr::revert(outlines, v.dims(), surfels, back, stopNow), "aborted");
+  EXPECT_EQ(vbr::revert(outlines, v.dims(), back, stopNow), "aborted");
   // A face given twice is an error (the parity would cancel it silently).
   outlines.push_back(outlines.front());
-  EXPECT_NE(vbr::revert(outlines, v.dims(), surfels, back).find("twice"), std::string::npos);
+  EXPECT_NE(vbr::revert(outlines, v.dims(), back).find("twice"), std::string::npos);
 }
