@@ -54,20 +54,11 @@ struct ObjectFaces
   vbr::Polyhedron poly;
 };
 
-/// What the reversion needs of an object once its graph is gone: the faces' planes and loops.
-struct ObjectOutlines
+/// The faces' planes and loops of pointels, all the reversion reads.
+std::vector<vbr::FaceOutline> outlinesOf(const ObjectFaces& o)
 {
-  Int3 offset{ 0, 0, 0 };
-  std::array<std::int32_t, 3> dims{ 0, 0, 0 };
-  std::vector<vbr::FaceOutline> faces;
-};
-
-ObjectOutlines outlinesOf(const ObjectFaces& o)
-{
-  ObjectOutlines out;
-  out.offset = o.offset;
-  out.dims = o.graph.dims;
-  out.faces.reserve(o.poly.faces.size());
+  std::vector<vbr::FaceOutline> out;
+  out.reserve(o.poly.faces.size());
   for (const vbr::StandardFace& f : o.poly.faces)
   {
     vbr::FaceOutline outline;
@@ -75,7 +66,7 @@ ObjectOutlines outlinesOf(const ObjectFaces& o)
     outline.loop.reserve(f.loop.size());
     for (std::uint32_t v : f.loop)
       outline.loop.push_back(o.graph.vertexPointel[v]);
-    out.faces.push_back(std::move(outline));
+    out.push_back(std::move(outline));
   }
   return out;
 }
@@ -194,6 +185,7 @@ public:
     }
     else if (mode == vtkStandardPlanePolyhedrizer::SURFELS)
     {
+      this->reserveCells(o.graph.size(), 4 * o.graph.size(), false);
       std::vector<vtkIdType> ids;
       for (std::uint32_t s = 0; s < o.graph.size(); ++s)
       {
@@ -205,6 +197,10 @@ public:
     }
     else if (mode == vtkStandardPlanePolyhedrizer::STANDARD_FACES)
     {
+      std::size_t corners = 0;
+      for (const vbr::StandardFace& face : o.poly.faces)
+        corners += face.loop.size();
+      this->reserveCells(o.poly.faces.size(), corners, false);
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
       {
         std::vector<vtkIdType> ids;
@@ -215,11 +211,18 @@ public:
     }
     else
     {
+      // The semi-discrete polygons, or the loops themselves (not copied).
+      const bool semiDiscrete = mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE;
       const std::vector<std::vector<std::uint32_t>> polygons =
-        mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE ? semiDiscretePolygons(o) : loopsOf(o);
+        semiDiscrete ? semiDiscretePolygons(o) : std::vector<std::vector<std::uint32_t>>();
       const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
+      std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        this->addTriangulatedFace(o, f, polygons[f], markLoops);
+        triangles += (semiDiscrete ? polygons[f] : o.poly.faces[f].loop).size() - 2;
+      this->reserveCells(triangles, 3 * triangles, markLoops);
+      for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
+        this->addTriangulatedFace(
+          o, f, semiDiscrete ? polygons[f] : o.poly.faces[f].loop, markLoops);
     }
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
@@ -301,14 +304,6 @@ private:
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
     this->OtherFaceIds->InsertNextValue(static_cast<int>(this->FaceBase + other));
     vbr::vtk::appendLabel(this->Labels, o.label);
-  }
-
-  static std::vector<std::vector<std::uint32_t>> loopsOf(const ObjectFaces& o)
-  {
-    std::vector<std::vector<std::uint32_t>> loops;
-    for (const vbr::StandardFace& face : o.poly.faces)
-      loops.push_back(face.loop);
-    return loops;
   }
 
   /// The triangles of a face's polygon (graph vertices along its loop, simple in the
@@ -423,6 +418,30 @@ private:
     return polygons;
   }
 
+  /// Room for `cells` more polygons of `corners` corners in all, and their arrays: the object's
+  /// exact need (when polygons triangulate as they always have), not the doubling of
+  /// InsertNext, which left up to half of every output array unused. A second object's
+  /// reservation at least doubles the room (Resize), so many objects cost no quadratic copying.
+  void reserveCells(std::size_t cells, std::size_t corners, bool loopEdges)
+  {
+    auto reserve = [](vtkDataArray* a, std::size_t more)
+    {
+      const vtkIdType wanted = a->GetNumberOfTuples() + static_cast<vtkIdType>(more);
+      if (wanted * a->GetNumberOfComponents() > a->GetSize())
+        a->Resize(wanted);
+    };
+    reserve(this->Polys->GetOffsetsArray(), cells);
+    reserve(this->Polys->GetConnectivityArray(), corners);
+    for (vtkDataArray* a : { static_cast<vtkDataArray*>(this->FaceIds),
+           static_cast<vtkDataArray*>(this->Normals),
+           static_cast<vtkDataArray*>(this->Offsets),
+           static_cast<vtkDataArray*>(this->Sizes),
+           this->Labels.Get() })
+      reserve(a, cells);
+    if (loopEdges)
+      reserve(this->LoopEdges, cells);
+  }
+
   /// The output point of graph vertex v of object o, made on its first use.
   vtkIdType point(const ObjectFaces& o, std::uint32_t v)
   {
@@ -511,56 +530,89 @@ void writeGrid(const vbr::vtk::VoxelGrid& grid,
   fd->AddArray(direction);
 }
 
-/// The voxels recomputed from the faces alone, one value per voxel of `in.grid` (x fastest:
-/// the order of the image's tuples), and whether they are the selection: each object's own
-/// voxels (in Labels mode a voxel reverted into another label's object would pass the combined
-/// comparison), the array as the user reads it, and the tuple count. Null when a face could
-/// not be reverted (`problem`).
-vtkSmartPointer<vtkUnsignedCharArray> revertedSelection(const std::vector<ObjectOutlines>& objects,
-  const vbr::vtk::InputObjects& in,
-  const std::vector<vbr::BitVolume>& selections,
-  vtkImageData* input,
-  const vbr::Execution& exec,
-  bool& same,
-  std::string& problem)
+/// The self-check of the reversion, made object by object in PASS 1 while each object's faces
+/// are at hand (so that neither their outlines nor the objects' voxels are kept for a pass of
+/// their own): the voxels recomputed from the faces alone, one value per voxel of `in.grid`
+/// (x fastest: the order of the image's tuples), and whether they are the selection: each
+/// object's own voxels (in Labels mode a voxel reverted into another label's object would pass
+/// the combined comparison), the array as the user reads it, and the tuple count.
+class ReversionCheck
 {
-  const vbr::vtk::VoxelGrid& grid = in.grid;
-  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
-  vtkNew<vtkUnsignedCharArray> selection;
-  vbr::vtk::resizeOrThrow(selection, n);
-  std::fill_n(selection->GetPointer(0), n, 0);
-  std::vector<unsigned char> expected(static_cast<std::size_t>(n), 0);
-  bool objectsMatch = true;
-  for (std::size_t i = 0; i < objects.size(); ++i)
+public:
+  explicit ReversionCheck(const vbr::vtk::VoxelGrid& grid)
+    : Grid(grid)
   {
-    const ObjectOutlines& o = objects[i];
-    vbr::BitVolume voxels;
-    problem = vbr::revert(o.faces, o.dims, voxels, exec);
-    if (!problem.empty())
-      return nullptr;
-    objectsMatch = objectsMatch && voxels == selections[i];
-    vbr::vtk::markVoxels(voxels, o.offset, grid.dims, selection->GetPointer(0));
-    vbr::vtk::markVoxels(selections[i], o.offset, grid.dims, expected.data());
   }
-  // Under MPI rank 0's grid is the whole image's, by construction; its input is a piece.
-  const vtkIdType tuples = in.piece.distributed() ? n
-    : grid.cellData                               ? input->GetNumberOfCells()
-                                                  : input->GetNumberOfPoints();
-  same = objectsMatch && tuples == n &&
-    std::equal(expected.begin(), expected.end(), selection->GetPointer(0));
-  return selection;
-}
+
+  /// Reverts the faces of o and compares them with its voxels `selected`; after a face that
+  /// could not be reverted (problem()), does nothing.
+  void add(const ObjectFaces& o, const vbr::BitVolume& selected, const vbr::Execution& exec)
+  {
+    if (!this->Problem.empty())
+      return;
+    this->allocate();
+    vbr::BitVolume voxels;
+    this->Problem = vbr::revert(outlinesOf(o), o.graph.dims, voxels, exec);
+    if (!this->Problem.empty())
+      return;
+    this->ObjectsMatch = this->ObjectsMatch && voxels == selected;
+    vbr::vtk::markVoxels(voxels, o.offset, this->Grid.dims, this->Selection->GetPointer(0));
+    vbr::vtk::markVoxels(selected, o.offset, this->Grid.dims, this->Expected.data());
+  }
+
+  /// The Selection array, null when a face could not be reverted, and whether it is the
+  /// input's selection (`same`).
+  vtkSmartPointer<vtkUnsignedCharArray> finish(const vbr::vtk::InputObjects& in,
+    vtkImageData* input,
+    bool& same)
+  {
+    if (!this->Problem.empty())
+      return nullptr;
+    this->allocate();
+    const vtkIdType n = this->voxelCount();
+    // Under MPI rank 0's grid is the whole image's, by construction; its input is a piece.
+    const vtkIdType tuples = in.piece.distributed() ? n
+      : this->Grid.cellData                         ? input->GetNumberOfCells()
+                                                    : input->GetNumberOfPoints();
+    same = this->ObjectsMatch && tuples == n &&
+      std::equal(this->Expected.begin(), this->Expected.end(), this->Selection->GetPointer(0));
+    return this->Selection;
+  }
+
+  const std::string& problem() const { return this->Problem; }
+
+private:
+  vtkIdType voxelCount() const
+  {
+    return vtkIdType(this->Grid.dims[0]) * this->Grid.dims[1] * this->Grid.dims[2];
+  }
+
+  void allocate()
+  {
+    if (this->Selection)
+      return;
+    const vtkIdType n = this->voxelCount();
+    this->Selection = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    vbr::vtk::resizeOrThrow(this->Selection, n);
+    std::fill_n(this->Selection->GetPointer(0), n, 0);
+    this->Expected.assign(static_cast<std::size_t>(n), 0);
+  }
+
+  const vbr::vtk::VoxelGrid& Grid;
+  vtkSmartPointer<vtkUnsignedCharArray> Selection;
+  std::vector<unsigned char> Expected; ///< the objects' voxels, marked the same way
+  bool ObjectsMatch = true;
+  std::string Problem;
+};
 
 /// Output port 1: the voxels recomputed from the faces alone (planes and loops), with the
 /// input's layout (each rank's piece under MPI). The self-check compares the array written
 /// with the input's selection written the same way, tuple by tuple, and the tuple count with
 /// the input's. Under MPI it is collective; on the ranks other than 0 `objects` is empty.
-bool writeReversion(const std::vector<ObjectOutlines>& objects,
+bool writeReversion(ReversionCheck& check,
   vbr::vtk::InputObjects& in,
-  const std::vector<vbr::BitVolume>& selections,
   vtkImageData* input,
   vtkImageData* output,
-  const vbr::Execution& exec,
   std::string& problem)
 {
   const bool distributed = in.piece.distributed();
@@ -568,7 +620,8 @@ bool writeReversion(const std::vector<ObjectOutlines>& objects,
   bool same = true;
   if (!distributed || in.piece.rank == 0)
   {
-    selection = revertedSelection(objects, in, selections, input, exec, same, problem);
+    selection = check.finish(in, input, same);
+    problem = check.problem();
     if (!selection && !distributed)
       return false;
   }
@@ -682,15 +735,28 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
   return vbr::polyhedrize(o.graph, options, vbr::vtk::makeExecution(self, b, to), o.poly);
 }
 
+/// Frees what the cells of `mode` do not read, before they are written: the neighbours across
+/// the surfels' edges (20 bytes per surfel), but for Surfels the face of each surfel, and but
+/// for StandardEdges the face beyond each loop edge.
+void releaseAfterFaces(ObjectFaces& o, int mode)
+{
+  std::vector<std::uint32_t>().swap(o.graph.neighbour);
+  std::vector<std::uint8_t>().swap(o.graph.neighbourEdge);
+  if (mode != vtkStandardPlanePolyhedrizer::SURFELS)
+    std::vector<std::uint32_t>().swap(o.poly.faceOfSurfel);
+  if (mode != vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
+    for (vbr::StandardFace& f : o.poly.faces)
+      std::vector<std::uint32_t>().swap(f.across);
+}
+
 /// PASS 1 of the filter: the faces of every selected object, and with the reversion their
-/// outlines and voxels; PASS 2 with it, object by object, so that only one object's surfel
-/// graph is held at a time: the faces as cells. False when aborted.
+/// self-check; PASS 2 with it, object by object, so that only one object's surfel graph is
+/// held at a time: the faces as cells. False when aborted.
 bool buildObjectFaces(vtkStandardPlanePolyhedrizer* self,
   const vbr::vtk::InputObjects& in,
   const vbr::PolyhedrizationOptions& options,
   FaceWriter& writer,
-  std::vector<ObjectOutlines>& outlines,
-  std::vector<vbr::BitVolume>& selections)
+  ReversionCheck* check)
 {
   SurfelCounter counter;
   const std::size_t n = in.objects.size();
@@ -705,12 +771,15 @@ bool buildObjectFaces(vtkStandardPlanePolyhedrizer* self,
       return false;
     if (voxels.empty())
       continue;
-    writer.add(o);
-    if (self->GetGenerateReversion())
+    if (check)
     {
-      outlines.push_back(outlinesOf(o));
-      selections.push_back(std::move(voxels));
+      vtkLogScopeF(TRACE, "reversion");
+      check->add(o, voxels, vbr::vtk::makeExecution(self, to, to)); // polls, reports no progress
+      if (self->GetAbortExecute())
+        return false;
     }
+    releaseAfterFaces(o, self->GetOutputMode());
+    writer.add(o);
   }
   return !self->GetAbortExecute();
 }
@@ -816,9 +885,9 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   // PASS 1 and 2: the standard faces of every object (paper 003), one object at a time, and
   // the faces as cells.
   FaceWriter writer(in, this->OutputMode);
-  std::vector<ObjectOutlines> objects;    // the faces' planes and loops, for the reversion
-  std::vector<vbr::BitVolume> selections; // the objects' voxels, kept for the self-check
-  if (!buildObjectFaces(this, in, optionsOf(this), writer, objects, selections))
+  ReversionCheck check(grid);
+  if (!buildObjectFaces(
+        this, in, optionsOf(this), writer, this->GenerateReversion ? &check : nullptr))
   {
     output->Initialize(); // aborted
     if (this->GenerateReversion && in.piece.distributed())
@@ -836,14 +905,14 @@ int vtkStandardPlanePolyhedrizer::Execute(vtkInformationVector** inputVector,
   vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   this->UpdateProgress(0.95);
 
-  // PASS 3: the voxels rebuilt from the faces alone, checked against the input.
+  // PASS 3: the voxels rebuilt from the faces alone (object by object in PASS 1), checked
+  // against the input.
   reversion->Initialize(); // no stale reversion when it is off
   if (this->GenerateReversion)
   {
     vtkLogScopeF(TRACE, "reversion");
     std::string why;
-    const vbr::Execution exec = vbr::vtk::makeExecution(this, 0.95, 1.0);
-    if (!writeReversion(objects, in, selections, input, reversion, exec, why))
+    if (!writeReversion(check, in, input, reversion, why))
     {
       if (!this->GetAbortExecute())
       {
