@@ -557,7 +557,7 @@ public:
       return;
     this->ObjectsMatch = this->ObjectsMatch && voxels == selected;
     vbr::vtk::markVoxels(voxels, o.offset, this->Grid.dims, this->Selection->GetPointer(0));
-    vbr::vtk::markVoxels(selected, o.offset, this->Grid.dims, this->Expected.data());
+    this->Expected += static_cast<vtkIdType>(selected.count());
   }
 
   /// The Selection array, null when a face could not be reverted, and whether it is the
@@ -574,8 +574,10 @@ public:
     const vtkIdType tuples = in.piece.distributed() ? n
       : this->Grid.cellData                         ? input->GetNumberOfCells()
                                                     : input->GetNumberOfPoints();
-    same = this->ObjectsMatch && tuples == n &&
-      std::equal(this->Expected.begin(), this->Expected.end(), this->Selection->GetPointer(0));
+    // Each object's voxels are its selection: then the array holds them all, once each, when
+    // it counts as many (no copy of the array is marked from the selections to compare).
+    const unsigned char* marked = this->Selection->GetPointer(0);
+    same = this->ObjectsMatch && tuples == n && std::count(marked, marked + n, 1) == this->Expected;
     return this->Selection;
   }
 
@@ -595,12 +597,11 @@ private:
     this->Selection = vtkSmartPointer<vtkUnsignedCharArray>::New();
     vbr::vtk::resizeOrThrow(this->Selection, n);
     std::fill_n(this->Selection->GetPointer(0), n, 0);
-    this->Expected.assign(static_cast<std::size_t>(n), 0);
   }
 
   const vbr::vtk::VoxelGrid& Grid;
   vtkSmartPointer<vtkUnsignedCharArray> Selection;
-  std::vector<unsigned char> Expected; ///< the objects' voxels, marked the same way
+  vtkIdType Expected = 0; ///< the objects' voxels
   bool ObjectsMatch = true;
   std::string Problem;
 };

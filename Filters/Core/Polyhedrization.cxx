@@ -766,6 +766,14 @@ private:
   std::array<BitVolume, 6> Bits;
 };
 
+/// Key of a surfel whose voxel lies in the grid (coordinates below 2^20): 63 bits.
+std::uint64_t surfelKey(const Surfel& s)
+{
+  const Point3& v = s.voxel;
+  return ((((std::uint64_t(v[2]) << 20) | std::uint64_t(v[1])) << 20 | std::uint64_t(v[0])) << 3) |
+    s.direction;
+}
+
 /// Key of the linel p -> q (a unit step): its start and direction.
 std::uint64_t edgeKey(const Point3& p, const Point3& q)
 {
@@ -774,13 +782,13 @@ std::uint64_t edgeKey(const Point3& p, const Point3& q)
 }
 
 /// The filling of the faces, one after the other: the surfels of every face filled so far
-/// (All) and of the face being filled (Face, cleared after it from its list).
+/// (All, bits over the grid) and of the face being filled (Face, a small index of its own, so
+/// that the grid needs one set of bits, not two).
 class FaceFiller
 {
 public:
   explicit FaceFiller(const std::array<std::int32_t, 3>& dims)
     : All(dims)
-    , Face(dims)
   {
   }
 
@@ -795,14 +803,12 @@ public:
     std::sort(this->LoopEdges.begin(), this->LoopEdges.end());
     this->Visited.clear();
     this->Stack.clear();
+    this->Face.clear();
     std::string error = this->seedFromLoop(face, f);
     if (error.empty())
       error = this->flood(face, f, 8 * n * n + 64);
-    for (const Surfel& s : this->Visited) // the face's marks go, All keeps them
-    {
-      this->Face.set(s, false);
+    for (const Surfel& s : this->Visited) // All keeps the face's surfels
       this->All.set(s);
-    }
     this->Count += this->Visited.size();
     return error;
   }
@@ -816,17 +822,16 @@ private:
   /// grid or in an earlier face.
   std::string visit(const Surfel& s, std::size_t f)
   {
-    if (!this->Face.holds(s))
+    if (!this->All.holds(s))
       return faceError(f, "it leaves the grid (the faces do not bound a set of voxels of it)");
-    if (this->Face.get(s))
-      return std::string();
+    if (!this->Face.insert(surfelKey(s)).second)
+      return std::string(); // seen in this face
     if (this->All.get(s))
     {
       std::ostringstream msg;
       msg << "face " << f << " shares surfels with an earlier face (is a face given twice?)";
       return msg.str();
     }
-    this->Face.set(s);
     this->Visited.push_back(s);
     this->Stack.push_back(s);
     return std::string();
@@ -881,7 +886,8 @@ private:
     return std::string();
   }
 
-  SurfelBits All, Face;
+  SurfelBits All;
+  GridPointIndex Face;                  ///< keys of the face's surfels
   std::vector<std::uint64_t> LoopEdges; ///< of the face, sorted
   std::vector<Surfel> Visited, Stack;   ///< of the face
   std::size_t Count = 0;

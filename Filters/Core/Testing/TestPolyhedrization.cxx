@@ -674,3 +674,116 @@ TEST(Polyhedrization, AbortInsideEachPhase)
   outlines.push_back(outlines.front());
   EXPECT_NE(vbr::revert(outlines, v.dims(), back).find("twice"), std::string::npos);
 }
+
+// The surfel graph against an independent reference: the corners of every surfel are the four
+// corners of its unit square, counter-clockwise about its outward normal; its vertices are
+// the classes of corners glued across shared edges (a union-find over all 4n corners, the
+// graph's own method before it walked umbrellas), numbered by their first corner. And the
+// graph holds no more than its documented arrays: about 52 bytes per surfel plus 12 per
+// vertex (it held 48 more per surfel when it stored the corners).
+TEST(SurfelGraph, VerticesAreGluedCornersAndTheGraphIsCompact)
+{
+  unsigned seed = 40;
+  for (const Point3 d : { Point3{ 5, 4, 6 }, Point3{ 9, 9, 9 }, Point3{ 16, 3, 11 } })
+    for (double density : { 0.2, 0.5, 0.8 })
+    {
+      SCOPED_TRACE("seed " + std::to_string(seed));
+      const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+      vbr::SurfelGraph g;
+      ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+      const std::size_t n = g.size();
+      for (std::uint32_t s = 0; s < n; ++s)
+      {
+        const vbr::Surfel& sf = g.surfels[s];
+        Point3 c[4];
+        for (int k = 0; k < 4; ++k)
+        {
+          c[k] = g.cornerOf(s, k);
+          for (int a = 0; a < 3; ++a)
+          {
+            const int lo = sf.voxel[a] + (a == sf.axis() && sf.sign() > 0 ? 1 : 0);
+            const int hi = a == sf.axis() ? lo : lo + 1;
+            ASSERT_TRUE(c[k][a] >= lo && c[k][a] <= hi) << "corner off the surfel's square";
+          }
+        }
+        for (int k = 0; k < 4; ++k) // each turn is to the left about the outward normal
+        {
+          const Point3 e = vbr::sub(c[(k + 1) % 4], c[k]),
+                       f = vbr::sub(c[(k + 2) % 4], c[(k + 1) % 4]);
+          const Point3 turn = vbr::cross(e, f);
+          ASSERT_EQ(turn[sf.axis()], sf.sign()) << "corners not counter-clockwise";
+        }
+      }
+      // The reference: corners glued across each shared edge, in both directions.
+      std::vector<std::uint32_t> parent(4 * n);
+      for (std::uint32_t i = 0; i < 4 * n; ++i)
+        parent[i] = i;
+      auto find = [&](std::uint32_t x)
+      {
+        while (parent[x] != x)
+          x = parent[x] = parent[parent[x]];
+        return x;
+      };
+      auto unite = [&](std::uint32_t a, std::uint32_t b)
+      {
+        a = find(a), b = find(b);
+        parent[std::max(a, b)] = std::min(a, b);
+      };
+      for (std::uint32_t s = 0; s < n; ++s)
+        for (int k = 0; k < 4; ++k)
+        {
+          const std::uint32_t t = g.neighbourOf(s, k);
+          const int j = g.sharedEdge(s, k);
+          ASSERT_EQ(g.cornerOf(t, j), g.cornerOf(s, (k + 1) % 4)) << "edges not shared";
+          ASSERT_EQ(g.cornerOf(t, (j + 1) % 4), g.cornerOf(s, k)) << "edges not shared";
+          unite(4 * s + k, 4 * t + (j + 1) % 4);
+          unite(4 * s + (k + 1) % 4, 4 * t + j);
+        }
+      std::map<std::uint32_t, std::uint32_t> number; // root -> vertex, by first corner
+      for (std::uint32_t c = 0; c < 4 * n; ++c)
+      {
+        const std::uint32_t root = find(c);
+        const auto it = number.emplace(root, static_cast<std::uint32_t>(number.size())).first;
+        ASSERT_EQ(g.vertex[c], it->second) << "vertex of corner " << c;
+        ASSERT_EQ(g.vertexPointel[g.vertex[c]], g.cornerOf(c / 4, c % 4));
+      }
+      ASSERT_EQ(g.vertexPointel.size(), number.size());
+      const std::size_t perSurfel = g.surfels.capacity() * sizeof(vbr::Surfel) +
+        g.neighbour.capacity() * 4 + g.neighbourEdge.capacity() + g.vertex.capacity() * 4;
+      EXPECT_LE(perSurfel, 52 * n) << "the graph stores more than its arrays per surfel";
+      EXPECT_LE(g.vertexPointel.capacity(), g.vertexPointel.size());
+    }
+}
+
+// The reversion into a grid too small for the faces: an error that names the grid, not a
+// write outside it.
+TEST(Polyhedrization, RevertIntoTooSmallAGrid)
+{
+  vbr::BitVolume v(4, 4, 4);
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x)
+        v.set(x, y, z, x * x + y * y + z * z <= 12);
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+  vbr::Polyhedron p;
+  ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
+  std::vector<vbr::FaceOutline> outlines;
+  for (const vbr::StandardFace& f : p.faces)
+  {
+    vbr::FaceOutline o;
+    o.plane = f.plane;
+    for (std::uint32_t u : f.loop)
+      o.loop.push_back(g.vertexPointel[u]);
+    outlines.push_back(o);
+  }
+  vbr::BitVolume back;
+  std::size_t surfels = 0;
+  ASSERT_EQ(vbr::revert(outlines, v.dims(), back, vbr::Execution(), &surfels), "");
+  EXPECT_TRUE(back == v);
+  EXPECT_EQ(surfels, g.size());
+  for (const std::array<std::int32_t, 3> small : { std::array<std::int32_t, 3>{ 3, 4, 4 },
+         std::array<std::int32_t, 3>{ 4, 3, 4 },
+         std::array<std::int32_t, 3>{ 4, 4, 3 } })
+    EXPECT_NE(vbr::revert(outlines, small, back).find("grid"), std::string::npos);
+}
