@@ -32,7 +32,9 @@
 #include <array>
 #include <cstdint>
 #include <exception>
+#include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -52,24 +54,9 @@ struct ObjectFaces
   Int3 offset{ 0, 0, 0 }; ///< the object's box in the grid
   vbr::SurfelGraph graph;
   vbr::Polyhedron poly;
+  std::size_t surfelCount = 0;          ///< the graph's, kept when its surfels are freed
+  std::vector<std::uint32_t> faceSizes; ///< surfels per face, kept when the lists are freed
 };
-
-/// The faces' planes and loops of pointels, all the reversion reads.
-std::vector<vbr::FaceOutline> outlinesOf(const ObjectFaces& o)
-{
-  std::vector<vbr::FaceOutline> out;
-  out.reserve(o.poly.faces.size());
-  for (const vbr::StandardFace& f : o.poly.faces)
-  {
-    vbr::FaceOutline outline;
-    outline.plane = f.plane;
-    outline.loop.reserve(f.loop.size());
-    for (std::uint32_t v : f.loop)
-      outline.loop.push_back(o.graph.vertexPointel[v]);
-    out.push_back(std::move(outline));
-  }
-  return out;
-}
 
 struct Statistics
 {
@@ -78,11 +65,11 @@ struct Statistics
 
   void add(const ObjectFaces& o)
   {
-    this->surfels += static_cast<vtkIdType>(o.graph.size());
+    this->surfels += static_cast<vtkIdType>(o.surfelCount);
     this->components += static_cast<vtkIdType>(o.graph.componentCount);
-    for (const vbr::StandardFace& f : o.poly.faces)
+    for (std::uint32_t count : o.faceSizes)
     {
-      const vtkIdType size = static_cast<vtkIdType>(f.surfels.size());
+      const vtkIdType size = static_cast<vtkIdType>(count);
       this->minimumFaceSize = this->faces == 0 ? size : std::min(this->minimumFaceSize, size);
       this->maximumFaceSize = std::max(this->maximumFaceSize, size);
       ++this->faces;
@@ -351,16 +338,37 @@ private:
     }
     if (!triangles.empty())
       return;
-    for (std::uint32_t s : face.surfels)
+    // The surfels, refilled from the face's outline (the graph's lists are freed by now):
+    // corners on the loop take the loop's points, the others points of their own.
+    vbr::FaceOutline outline;
+    outline.plane = face.plane;
+    std::map<std::uint64_t, vtkIdType> pointOf; // pointel -> point, for this face only
+    for (std::uint32_t v : face.loop)
     {
+      outline.loop.push_back(o.graph.vertexPointel[v]);
+      pointOf.emplace(vbr::packBiased(outline.loop.back()), this->point(o, v));
+    }
+    std::vector<vbr::Surfel> surfels;
+    if (!vbr::surfelsOfOutline(outline, o.graph.dims, surfels).empty())
+      throw std::logic_error("a face's loop neither triangulates nor bounds its surfels");
+    for (const vbr::Surfel& s : surfels)
       for (int half = 0; half < 2; ++half)
       {
         const int corner[3] = { 0, 1 + half, 2 + half };
         for (int k = 0; k < 3; ++k)
-          ids[k] = this->point(o, o.graph.vertexOf(s, corner[k]));
+        {
+          const vbr::Point3 p = s.corner(corner[k]);
+          auto it = pointOf.find(vbr::packBiased(p));
+          if (it == pointOf.end())
+          {
+            double world[3];
+            this->Grid.vertexToWorld(inGrid(o, p), world);
+            it = pointOf.emplace(vbr::packBiased(p), this->Points->InsertNextPoint(world)).first;
+          }
+          ids[k] = it->second;
+        }
         add();
       }
-    }
   }
 
   /// The polygons of the semi-discrete faces. Each standard edge (the piece of loop
@@ -466,7 +474,7 @@ private:
     this->Normals->InsertNextTuple3(double(n[0]), double(n[1]), double(n[2]));
     this->Offsets->InsertNextValue(static_cast<vtkIdType>(
       face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
-    this->Sizes->InsertNextValue(static_cast<int>(face.surfels.size()));
+    this->Sizes->InsertNextValue(static_cast<int>(o.faceSizes[f]));
     vbr::vtk::appendLabel(this->Labels, o.label);
   }
 
@@ -551,8 +559,27 @@ public:
     if (!this->Problem.empty())
       return;
     this->allocate();
+    // Face by face: an outline at a time, not a copy of every loop.
+    vbr::ProgressPoll poll(exec, 0.0, 1.0);
+    vbr::Reversion reversion(o.graph.dims);
+    vbr::FaceOutline outline;
+    for (const vbr::StandardFace& f : o.poly.faces)
+    {
+      if (!poll.tick())
+      {
+        this->Problem = "aborted";
+        return;
+      }
+      outline.plane = f.plane;
+      outline.loop.clear();
+      for (std::uint32_t v : f.loop)
+        outline.loop.push_back(o.graph.vertexPointel[v]);
+      this->Problem = reversion.add(outline);
+      if (!this->Problem.empty())
+        return;
+    }
     vbr::BitVolume voxels;
-    this->Problem = vbr::revert(outlinesOf(o), o.graph.dims, voxels, exec);
+    this->Problem = reversion.finish(voxels);
     if (!this->Problem.empty())
       return;
     this->ObjectsMatch = this->ObjectsMatch && voxels == selected;
@@ -736,15 +763,26 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
   return vbr::polyhedrize(o.graph, options, vbr::vtk::makeExecution(self, b, to), o.poly);
 }
 
-/// Frees what the cells of `mode` do not read, before they are written: the neighbours across
-/// the surfels' edges (20 bytes per surfel), but for Surfels the face of each surfel, and but
-/// for StandardEdges the face beyond each loop edge.
+/// Frees what the cells of `mode` do not read, before they are written (the counts of surfels
+/// kept): the neighbours across the surfels' edges (20 bytes per surfel); but for Surfels the
+/// surfels, their vertices, the face of each surfel and the faces' lists of surfels (36 bytes
+/// per surfel and a list per face); and but for StandardEdges the face beyond each loop edge.
 void releaseAfterFaces(ObjectFaces& o, int mode)
 {
+  o.surfelCount = o.graph.size();
+  o.faceSizes.reserve(o.poly.faces.size());
+  for (const vbr::StandardFace& f : o.poly.faces)
+    o.faceSizes.push_back(static_cast<std::uint32_t>(f.surfels.size()));
   std::vector<std::uint32_t>().swap(o.graph.neighbour);
   std::vector<std::uint8_t>().swap(o.graph.neighbourEdge);
   if (mode != vtkStandardPlanePolyhedrizer::SURFELS)
+  {
     std::vector<std::uint32_t>().swap(o.poly.faceOfSurfel);
+    std::vector<vbr::Surfel>().swap(o.graph.surfels);
+    std::vector<std::uint32_t>().swap(o.graph.vertex);
+    for (vbr::StandardFace& f : o.poly.faces)
+      std::vector<std::uint32_t>().swap(f.surfels);
+  }
   if (mode != vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
     for (vbr::StandardFace& f : o.poly.faces)
       std::vector<std::uint32_t>().swap(f.across);

@@ -551,20 +551,23 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
   return moved;
 }
 
-/// Renumbers the faces left (those with surfels), in order.
+/// Renumbers the faces left (those with surfels), in order, moving them down in place (a
+/// second array of faces was the growth's peak on boundaries of small faces).
 void dropEmptyFaces(Polyhedron& poly)
 {
   std::vector<std::uint32_t> number(poly.faces.size(), None);
-  std::vector<StandardFace> faces;
+  std::uint32_t kept = 0;
   for (std::uint32_t f = 0; f < poly.faces.size(); ++f)
     if (!poly.faces[f].surfels.empty())
     {
-      number[f] = static_cast<std::uint32_t>(faces.size());
-      faces.push_back(std::move(poly.faces[f]));
+      number[f] = kept;
+      if (kept != f)
+        poly.faces[kept] = std::move(poly.faces[f]);
+      ++kept;
     }
+  poly.faces.resize(kept);
   for (std::uint32_t& f : poly.faceOfSurfel)
     f = number[f];
-  poly.faces.swap(faces);
 }
 
 /// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
@@ -648,6 +651,9 @@ bool polyhedrize(const SurfelGraph& graph,
   std::vector<std::uint32_t> seeds(graph.size());
   for (std::uint32_t s = 0; s < seeds.size(); ++s)
     seeds[s] = s;
+  // Room for faces of 4 surfels on average (noise makes 7, a checkerboard 3): pages not
+  // reached are never touched, and each doubling past it copies every face.
+  out.faces.reserve(graph.size() / 4 + 16);
   FaceGrower grower(graph, options, out);
   ProgressPoll growth(exec, 0.0, 0.6);
   grower.watch(growth);
@@ -745,13 +751,6 @@ public:
       b = BitVolume(dims[0], dims[1], dims[2]);
   }
 
-  /// Whether the surfel's voxel lies in the grid (only those can be held).
-  bool holds(const Surfel& s) const
-  {
-    const auto& d = this->Bits[0].dims();
-    const Point3& v = s.voxel;
-    return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < d[0] && v[1] < d[1] && v[2] < d[2];
-  }
   bool get(const Surfel& s) const
   {
     return this->Bits[s.direction].get(s.voxel[0], s.voxel[1], s.voxel[2]);
@@ -787,8 +786,11 @@ std::uint64_t edgeKey(const Point3& p, const Point3& q)
 class FaceFiller
 {
 public:
-  explicit FaceFiller(const std::array<std::int32_t, 3>& dims)
-    : All(dims)
+  /// With `keepAll` false, faces are filled one by one and forgotten (no bits over the grid).
+  explicit FaceFiller(const std::array<std::int32_t, 3>& dims, bool keepAll = true)
+    : Dims(dims)
+    , All(keepAll ? dims : std::array<std::int32_t, 3>{ 0, 0, 0 })
+    , KeepAll(keepAll)
   {
   }
 
@@ -807,14 +809,17 @@ public:
     std::string error = this->seedFromLoop(face, f);
     if (error.empty())
       error = this->flood(face, f, 8 * n * n + 64);
-    for (const Surfel& s : this->Visited) // All keeps the face's surfels
-      this->All.set(s);
+    if (this->KeepAll)
+      for (const Surfel& s : this->Visited) // All keeps the face's surfels
+        this->All.set(s);
     this->Count += this->Visited.size();
     return error;
   }
 
   /// Surfels filled in all.
   std::size_t count() const { return this->Count; }
+  /// The surfels of the last face filled.
+  const std::vector<Surfel>& lastFace() const { return this->Visited; }
   const SurfelBits& surfels() const { return this->All; }
 
 private:
@@ -822,11 +827,13 @@ private:
   /// grid or in an earlier face.
   std::string visit(const Surfel& s, std::size_t f)
   {
-    if (!this->All.holds(s))
+    const Point3& v = s.voxel;
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= this->Dims[0] || v[1] >= this->Dims[1] ||
+      v[2] >= this->Dims[2])
       return faceError(f, "it leaves the grid (the faces do not bound a set of voxels of it)");
     if (!this->Face.insert(surfelKey(s)).second)
       return std::string(); // seen in this face
-    if (this->All.get(s))
+    if (this->KeepAll && this->All.get(s))
     {
       std::ostringstream msg;
       msg << "face " << f << " shares surfels with an earlier face (is a face given twice?)";
@@ -886,7 +893,9 @@ private:
     return std::string();
   }
 
+  std::array<std::int32_t, 3> Dims;
   SurfelBits All;
+  bool KeepAll;
   GridPointIndex Face;                  ///< keys of the face's surfels
   std::vector<std::uint64_t> LoopEdges; ///< of the face, sorted
   std::vector<Surfel> Visited, Stack;   ///< of the face
@@ -950,6 +959,45 @@ std::string fillByParity(const SurfelBits& surfels,
 
 } // namespace
 
+std::string surfelsOfOutline(const FaceOutline& face,
+  const std::array<std::int32_t, 3>& dims,
+  std::vector<Surfel>& surfels)
+{
+  FaceFiller filler(dims, false);
+  const std::string error = filler.fill(face, 0);
+  surfels = error.empty() ? filler.lastFace() : std::vector<Surfel>();
+  return error;
+}
+
+struct Reversion::Filling
+{
+  explicit Filling(const std::array<std::int32_t, 3>& dims)
+    : filler(dims)
+  {
+  }
+  FaceFiller filler;
+};
+
+Reversion::Reversion(const std::array<std::int32_t, 3>& dims)
+  : Dims(dims)
+  , State(std::make_unique<Filling>(dims))
+{
+}
+
+Reversion::~Reversion() = default;
+
+std::string Reversion::add(const FaceOutline& face)
+{
+  return this->State->filler.fill(face, this->Faces++);
+}
+
+std::string Reversion::finish(BitVolume& voxels, std::size_t* surfelCount)
+{
+  if (surfelCount)
+    *surfelCount = this->State->filler.count();
+  return fillByParity(this->State->filler.surfels(), this->Dims, voxels);
+}
+
 std::string revert(const std::vector<FaceOutline>& faces,
   const std::array<std::int32_t, 3>& dims,
   BitVolume& voxels,
@@ -957,19 +1005,17 @@ std::string revert(const std::vector<FaceOutline>& faces,
   std::size_t* surfelCount)
 {
   ProgressPoll poll(exec, 0.0, 1.0);
-  FaceFiller filler(dims);
+  Reversion reversion(dims);
   for (std::size_t f = 0; f < faces.size(); ++f)
   {
     poll.at(0.9 * double(f) / double(faces.size()));
     if (!poll.tick())
       return "aborted";
-    const std::string error = filler.fill(faces[f], f);
+    const std::string error = reversion.add(faces[f]);
     if (!error.empty())
       return error;
   }
-  if (surfelCount)
-    *surfelCount = filler.count();
-  return fillByParity(filler.surfels(), dims, voxels);
+  return reversion.finish(voxels, surfelCount);
 }
 
 } // namespace vbr

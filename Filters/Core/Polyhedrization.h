@@ -21,6 +21,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,28 @@ struct FaceOutline
   std::vector<Point3> loop;
 };
 
+/// The reversion face by face, for outlines made one at a time (revert is this over a list):
+/// add each face, then finish. Holds 6 bits per voxel of the grid and the face being filled.
+class Reversion
+{
+public:
+  explicit Reversion(const std::array<std::int32_t, 3>& dims);
+  ~Reversion();
+  Reversion(const Reversion&) = delete;
+  Reversion& operator=(const Reversion&) = delete;
+
+  /// Fills the next face's surfels; an error message as revert's, else empty.
+  std::string add(const FaceOutline& face);
+  /// The voxels, by parity along x; an error message as revert's, else empty.
+  std::string finish(BitVolume& voxels, std::size_t* surfelCount = nullptr);
+
+private:
+  struct Filling;
+  std::array<std::int32_t, 3> Dims;
+  std::unique_ptr<Filling> State;
+  std::size_t Faces = 0;
+};
+
 /// Surfels of each face recomputed from its outline: the squares of the plane enclosed by
 /// the loop. Then the voxels, by parity along x, in a grid of `dims`. Returns an error
 /// message for outlines that do not bound a disk of their plane, for faces that share
@@ -88,6 +111,13 @@ std::string revert(const std::vector<FaceOutline>& faces,
   BitVolume& voxels,
   const Execution& exec = Execution(),
   std::size_t* surfelCount = nullptr);
+
+/// The surfels of one face recomputed from its outline alone, as the reversion fills them
+/// (their voxels within a grid of `dims`); an error message, and no surfels, when the outline
+/// does not bound a disk of its plane in the grid.
+std::string surfelsOfOutline(const FaceOutline& face,
+  const std::array<std::int32_t, 3>& dims,
+  std::vector<Surfel>& surfels);
 
 } // namespace vbr
 

@@ -787,3 +787,33 @@ TEST(Polyhedrization, RevertIntoTooSmallAGrid)
          std::array<std::int32_t, 3>{ 4, 4, 3 } })
     EXPECT_NE(vbr::revert(outlines, small, back).find("grid"), std::string::npos);
 }
+
+// Each face's surfels refilled from its outline alone (what the filter draws when a loop does
+// not triangulate) are the surfels the growth gave it, on random volumes.
+TEST(Polyhedrization, SurfelsOfOutlineAreTheFacesSurfels)
+{
+  for (unsigned seed = 60; seed < 66; ++seed)
+  {
+    const vbr::BitVolume v = bf::randomVolume({ 9, 8, 7 }, 0.3 + 0.1 * (seed % 5), seed);
+    vbr::SurfelGraph g;
+    ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+    vbr::Polyhedron p;
+    ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
+    for (const vbr::StandardFace& f : p.faces)
+    {
+      vbr::FaceOutline o;
+      o.plane = f.plane;
+      for (std::uint32_t u : f.loop)
+        o.loop.push_back(g.vertexPointel[u]);
+      std::vector<vbr::Surfel> refilled;
+      ASSERT_EQ(vbr::surfelsOfOutline(o, v.dims(), refilled), "");
+      std::set<std::pair<Point3, int>> got, want;
+      for (const vbr::Surfel& s : refilled)
+        got.emplace(s.voxel, s.direction);
+      for (std::uint32_t s : f.surfels)
+        want.emplace(g.surfels[s].voxel, g.surfels[s].direction);
+      EXPECT_EQ(got, want) << "seed " << seed;
+      EXPECT_EQ(refilled.size(), f.surfels.size());
+    }
+  }
+}
