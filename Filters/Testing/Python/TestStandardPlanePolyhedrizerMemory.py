@@ -4,8 +4,8 @@ the rise of the resident set's high-water mark (VmHWM, reset through /proc/self/
 the resident set just before the update, per boundary surfel (counted here with numpy). On a 3D
 checkerboard every voxel is its own object face, the worst case for the faces' own storage.
 Before the surfel graph lost its stored corners and hash index and the reversion its sorted list
-of surfels, the filter took about 8x the memory of Flying Edges here; the bound is 6x, and at most
-300 bytes per surfel (the old code took 445 on a 64^3 checkerboard).
+of surfels, the filter took about 8x the memory of Flying Edges here (445 bytes per surfel on a
+64^3 checkerboard); now about 3.6x (210 bytes). The bounds: 5x, and 260 bytes per surfel.
 """
 
 import subprocess
@@ -48,8 +48,12 @@ if sys.argv[2] == "dfe":
 else:
     f = voxelbrep.vtkStandardPlanePolyhedrizer()
 f.SetInputData(image)
-with open("/proc/self/clear_refs", "w") as c:
-    c.write("5")
+try:
+    with open("/proc/self/clear_refs", "w") as c:
+        c.write("5")
+except OSError:
+    print(-1, 0)  # the high-water mark cannot be reset here
+    sys.exit(0)
 before = status("VmRSS")
 f.Update()
 print(status("VmHWM") - before, f.GetOutput().GetNumberOfCells())
@@ -68,13 +72,17 @@ def main():
     surfels = 6 * int(((x + y + z) % 2).sum())  # every selected voxel is alone
     filter_bytes, cells = peak(n, "filter")
     dfe_bytes, _ = peak(n, "dfe")
+    if filter_bytes < 0:
+        print("skipped: /proc/self/clear_refs cannot be written on this system")
+        check.finish()
+        return
     check.true("the filter ran (%d cells)" % cells, cells > 0)
     per_surfel = filter_bytes / surfels
     print("peak bytes per surfel: filter %.0f, DiscreteFlyingEdges3D %.0f"
           % (per_surfel, dfe_bytes / surfels))
-    check.true("at most 300 bytes per surfel (got %.0f)" % per_surfel, per_surfel <= 300)
-    check.true("at most 6x Flying Edges' peak (got %.1fx)" % (filter_bytes / dfe_bytes),
-               filter_bytes <= 6 * dfe_bytes)
+    check.true("at most 260 bytes per surfel (got %.0f)" % per_surfel, per_surfel <= 260)
+    check.true("at most 5x Flying Edges' peak (got %.1fx)" % (filter_bytes / dfe_bytes),
+               filter_bytes <= 5 * dfe_bytes)
     check.finish()
 
 
