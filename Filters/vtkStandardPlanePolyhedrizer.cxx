@@ -205,7 +205,8 @@ public:
       const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
       std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        triangles += (semiDiscrete ? polygons[f] : o.poly.faces[f].loop).size() - 2;
+        triangles +=
+          std::max<std::size_t>((semiDiscrete ? polygons[f] : o.poly.faces[f].loop).size(), 2) - 2;
       this->reserveCells(triangles, 3 * triangles, markLoops);
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
         this->addTriangulatedFace(
