@@ -516,6 +516,47 @@ void countObject(const vbr::BitVolume& voxels,
     stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
 }
 
+/// The EVM of one object (voxels -> EVM), counted in `stats`; in Surfels mode its cells
+/// instead. Returns its number of voxels, 0 when it has no faces to make (no voxels, or
+/// Surfels mode).
+std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
+  const ObjectSettings& settings,
+  const vbr::Execution& exec,
+  Statistics& stats,
+  OutputBuilder& builder,
+  vbr::EVM& evm)
+{
+  vbr::BitVolume voxels;
+  {
+    vtkLogScopeF(TRACE, "select voxels");
+    voxels = object.select(exec);
+  }
+  const std::size_t count = voxels.count();
+  if (count == 0)
+    return 0;
+  const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(count));
+  {
+    vtkLogScopeF(TRACE, "extreme vertices");
+    evm = settings.planar ? vbr::extractEVM2D(voxels, local) : vbr::extractEVM(voxels, local);
+  }
+  countObject(voxels, count, evm, settings, stats);
+  if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS)
+  {
+    vtkLogScopeF(TRACE, "surfel cells");
+    appendSurfelCells(object, voxels, settings.planar, builder);
+    return 0;
+  }
+  return count;
+}
+
+/// Counts the faces, holes and non-manifold vertices of a part of an object's faces.
+void countFaces(const vbr::BRep& brep, Statistics& stats)
+{
+  stats.faces += static_cast<vtkIdType>(brep.faces.size());
+  stats.holes += static_cast<vtkIdType>(brep.holeCount());
+  stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
+}
+
 /// The faces of one object: voxels -> EVM -> faces (plane sweeps, paper 000) in parts,
 /// counted in `stats`; in Surfels mode its cells instead (then `parts` stays empty). False
 /// when aborted.
@@ -526,35 +567,15 @@ bool boundaryOfObject(const vbr::vtk::Selected& object,
   OutputBuilder& builder,
   std::vector<vbr::BRep>& parts)
 {
-  vbr::BitVolume voxels;
-  {
-    vtkLogScopeF(TRACE, "select voxels");
-    voxels = object.select(exec);
-  }
-  const std::size_t count = voxels.count();
+  vbr::EVM evm;
+  const std::size_t count = extremeVerticesOfObject(object, settings, exec, stats, builder, evm);
   if (count == 0)
     return true;
   const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(count));
-  vbr::EVM evm;
-  {
-    vtkLogScopeF(TRACE, "extreme vertices");
-    evm = settings.planar ? vbr::extractEVM2D(voxels, local) : vbr::extractEVM(voxels, local);
-  }
-  countObject(voxels, count, evm, settings, stats);
-  if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS)
-  {
-    vtkLogScopeF(TRACE, "surfel cells");
-    appendSurfelCells(object, voxels, settings.planar, builder);
-    return true;
-  }
   if (!boundaryOf(evm, settings.planar, settings.connectivity, local, parts))
     return false;
   for (const vbr::BRep& brep : parts)
-  {
-    stats.faces += static_cast<vtkIdType>(brep.faces.size());
-    stats.holes += static_cast<vtkIdType>(brep.holeCount());
-    stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
-  }
+    countFaces(brep, stats);
   return true;
 }
 
@@ -608,6 +629,48 @@ void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
 #endif
 }
 
+/// The cells of the only object of a 2D image: its faces from the 2D plane sweep, which
+/// numbers their corners in the order of the output's points as it meets them, so that no
+/// set of corners is built nor looked up (appendObjects' way for several objects, which
+/// share their corners). One object of a 2D image has no T-junction vertex (see
+/// appendObjects). Stops when aborted.
+void appendPlanarObject(vtkAlgorithm* self,
+  const vbr::vtk::Selected& object,
+  const ObjectSettings& settings,
+  Statistics& stats,
+  OutputBuilder& builder)
+{
+  vbr::NumberedBRep faces;
+  {
+    vbr::EVM evm;
+    const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.1, 0.7);
+    if (extremeVerticesOfObject(object, settings, exec, stats, builder, evm) == 0)
+      return;
+    vtkLogScopeF(TRACE, "EVM to B-Rep (2D plane sweep, corners numbered)");
+    faces = vbr::extractNumberedBoundary2D(
+      evm, settings.connectivity, cellsFromRuns(settings.outputMode));
+  }
+  countFaces(faces.brep, stats);
+  if (self->GetAbortExecute())
+    return;
+  for (Point3& p : faces.corners)
+    p = vbr::add(p, object.offset);
+  builder.addCornerPoints(faces.corners);
+  faces.corners = std::vector<Point3>();
+  const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.7, 1.0);
+  CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),
+    std::max<std::size_t>(faces.brep.faces.size(), 1) };
+  vtkIdType faceBase = 0;
+  appendBoundaryCells(object,
+    faces.brep,
+    faces.numbers,
+    settings,
+    exec.forWork(static_cast<std::int64_t>(faces.numbers.size())),
+    faceBase,
+    progress,
+    builder);
+}
+
 /// The cells of every object (paper 000): first the faces of each (in Surfels mode its cells
 /// instead), then, with the corners of all of them in one set, the T-junction vertices of
 /// each part of each object's faces (the objects of a label map meet: two labels' loops on a
@@ -621,6 +684,11 @@ void appendObjects(vtkAlgorithm* self,
   OutputBuilder& builder)
 {
   const std::size_t n = objects.size();
+  if (settings.planar && n == 1)
+  {
+    appendPlanarObject(self, objects[0], settings, stats, builder);
+    return;
+  }
   std::vector<std::vector<vbr::BRep>> parts(n);
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
