@@ -99,6 +99,13 @@ public:
       this->reserve(std::max<std::size_t>(1024, 2 * this->Capacity));
     this->Data[this->Size++] = value;
   }
+  /// Grows the array by n values, left for the caller to write.
+  T* extend(std::size_t n)
+  {
+    this->reserve(this->Size + n);
+    this->Size += n;
+    return this->Data + this->Size - n;
+  }
   void reserve(std::size_t capacity)
   {
     if (capacity <= this->Capacity)
@@ -168,12 +175,47 @@ public:
   }
 
   /// Adds the corners of the objects' faces (common grid, permuted axes) as the output's
-  /// points, their numbers as point ids; first, before any other point.
-  void addCornerPoints(const std::vector<Point3>& corners)
+  /// points, their numbers as point ids; first, before any other point. `offset` is added
+  /// to every corner (an object's corners in its own grid). Each world
+  /// coordinate is origin + t0 + t1 + t2, a term per image axis (VoxelGrid::vertexToWorld's
+  /// products and sums, in its order, so the same values): the terms are tabulated once per
+  /// index along each axis rather than multiplied out per corner.
+  void addCornerPoints(const std::vector<Point3>& corners,
+    const std::array<std::int32_t, 3>& offset = { 0, 0, 0 })
   {
-    this->Coordinates.reserve(this->Coordinates.size() + 3 * corners.size());
+    if (corners.empty())
+      return;
+    Point3 lo = corners[0], hi = lo;
     for (const Point3& p : corners)
-      this->addPoint(p);
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    std::array<int, 3> axisOf;               // the processing axis of each image axis
+    std::array<std::vector<double>, 9> term; // [3 * image axis + world axis][index - lo]
+    for (int k = 0; k < 3; ++k)
+    {
+      const int d = this->Axes[k];
+      axisOf[d] = k;
+      for (std::int32_t c = lo[k]; c <= hi[k]; ++c)
+      {
+        const double local =
+          (this->Grid.extentMin[d] + this->Grid.vertexShift[d] + double(c + offset[k])) *
+          this->Grid.spacing[d];
+        for (int r = 0; r < 3; ++r)
+          term[3 * d + r].push_back(this->Grid.direction[3 * r + d] * local);
+      }
+    }
+    double* xyz = this->Coordinates.extend(3 * corners.size());
+    for (const Point3& p : corners)
+    {
+      const std::size_t i0 = static_cast<std::size_t>(p[axisOf[0]] - lo[axisOf[0]]);
+      const std::size_t i1 = static_cast<std::size_t>(p[axisOf[1]] - lo[axisOf[1]]);
+      const std::size_t i2 = static_cast<std::size_t>(p[axisOf[2]] - lo[axisOf[2]]);
+      for (int r = 0; r < 3; ++r)
+        *xyz++ = this->Grid.origin[r] + term[r][i0] + term[3 + r][i1] + term[6 + r][i2];
+    }
   }
 
   void addCell(const vtkIdType* ids,
@@ -653,9 +695,7 @@ void appendPlanarObject(vtkAlgorithm* self,
   countFaces(faces.brep, stats);
   if (self->GetAbortExecute())
     return;
-  for (Point3& p : faces.corners)
-    p = vbr::add(p, object.offset);
-  builder.addCornerPoints(faces.corners);
+  builder.addCornerPoints(faces.corners, object.offset);
   faces.corners = std::vector<Point3>();
   const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.7, 1.0);
   CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),

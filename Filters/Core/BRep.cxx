@@ -149,9 +149,10 @@ NumberedBRep extractNumberedBoundary2D(const EVM& evm,
     out.corners.push_back(placed(order, 0, p));
   out.brep.faces.reserve(c.boundary.faces.size());
   out.brep.loops.reserve(c.boundary.loops.size());
-  out.numbers.reserve(c.loopCorners.size());
+  out.numbers.resize(c.loopCorners.size());
   if (withPoints)
     out.brep.points.reserve(c.loopCorners.size());
+  std::int64_t* to = out.numbers.data();
   appendFacesOf(c.boundary,
     order,
     0,
@@ -160,14 +161,14 @@ NumberedBRep extractNumberedBoundary2D(const EVM& evm,
     out.brep,
     [&](std::size_t begin, std::size_t end, bool reverse)
     {
-      const std::size_t first = out.numbers.size();
-      for (std::size_t i = begin; i < end; ++i)
-        out.numbers.push_back(c.loopCorners[i]);
-      if (reverse)
-        std::reverse(out.numbers.begin() + first, out.numbers.end());
+      const std::uint32_t* from = c.loopCorners.data() + begin;
+      const std::size_t n = end - begin;
+      for (std::size_t i = 0; i < n; ++i)
+        to[i] = from[reverse ? n - 1 - i : i];
       if (withPoints)
-        for (std::size_t i = first; i < out.numbers.size(); ++i)
-          out.brep.points.push_back(out.corners[out.numbers[i]]);
+        for (std::size_t i = 0; i < n; ++i)
+          out.brep.points.push_back(out.corners[to[i]]);
+      to += n;
     });
   return out;
 }
