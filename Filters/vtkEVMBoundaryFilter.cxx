@@ -99,6 +99,13 @@ public:
       this->reserve(std::max<std::size_t>(1024, 2 * this->Capacity));
     this->Data[this->Size++] = value;
   }
+  /// Grows the array by n values, left for the caller to write.
+  T* extend(std::size_t n)
+  {
+    this->reserve(this->Size + n);
+    this->Size += n;
+    return this->Data + this->Size - n;
+  }
   void reserve(std::size_t capacity)
   {
     if (capacity <= this->Capacity)
@@ -168,12 +175,47 @@ public:
   }
 
   /// Adds the corners of the objects' faces (common grid, permuted axes) as the output's
-  /// points, their numbers as point ids; first, before any other point.
-  void addCornerPoints(const std::vector<Point3>& corners)
+  /// points, their numbers as point ids; first, before any other point. `offset` is added
+  /// to every corner (an object's corners in its own grid). Each world
+  /// coordinate is origin + t0 + t1 + t2, a term per image axis (VoxelGrid::vertexToWorld's
+  /// products and sums, in its order, so the same values): the terms are tabulated once per
+  /// index along each axis rather than multiplied out per corner.
+  void addCornerPoints(const std::vector<Point3>& corners,
+    const std::array<std::int32_t, 3>& offset = { 0, 0, 0 })
   {
-    this->Coordinates.reserve(this->Coordinates.size() + 3 * corners.size());
+    if (corners.empty())
+      return;
+    Point3 lo = corners[0], hi = lo;
     for (const Point3& p : corners)
-      this->addPoint(p);
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    std::array<int, 3> axisOf;               // the processing axis of each image axis
+    std::array<std::vector<double>, 9> term; // [3 * image axis + world axis][index - lo]
+    for (int k = 0; k < 3; ++k)
+    {
+      const int d = this->Axes[k];
+      axisOf[d] = k;
+      for (std::int32_t c = lo[k]; c <= hi[k]; ++c)
+      {
+        const double local =
+          (this->Grid.extentMin[d] + this->Grid.vertexShift[d] + double(c + offset[k])) *
+          this->Grid.spacing[d];
+        for (int r = 0; r < 3; ++r)
+          term[3 * d + r].push_back(this->Grid.direction[3 * r + d] * local);
+      }
+    }
+    double* xyz = this->Coordinates.extend(3 * corners.size());
+    for (const Point3& p : corners)
+    {
+      const std::size_t i0 = static_cast<std::size_t>(p[axisOf[0]] - lo[axisOf[0]]);
+      const std::size_t i1 = static_cast<std::size_t>(p[axisOf[1]] - lo[axisOf[1]]);
+      const std::size_t i2 = static_cast<std::size_t>(p[axisOf[2]] - lo[axisOf[2]]);
+      for (int r = 0; r < 3; ++r)
+        *xyz++ = this->Grid.origin[r] + term[r][i0] + term[3 + r][i1] + term[6 + r][i2];
+    }
   }
 
   void addCell(const vtkIdType* ids,
@@ -516,6 +558,47 @@ void countObject(const vbr::BitVolume& voxels,
     stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
 }
 
+/// The EVM of one object (voxels -> EVM), counted in `stats`; in Surfels mode its cells
+/// instead. Returns its number of voxels, 0 when it has no faces to make (no voxels, or
+/// Surfels mode).
+std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
+  const ObjectSettings& settings,
+  const vbr::Execution& exec,
+  Statistics& stats,
+  OutputBuilder& builder,
+  vbr::EVM& evm)
+{
+  vbr::BitVolume voxels;
+  {
+    vtkLogScopeF(TRACE, "select voxels");
+    voxels = object.select(exec);
+  }
+  const std::size_t count = voxels.count();
+  if (count == 0)
+    return 0;
+  const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(count));
+  {
+    vtkLogScopeF(TRACE, "extreme vertices");
+    evm = settings.planar ? vbr::extractEVM2D(voxels, local) : vbr::extractEVM(voxels, local);
+  }
+  countObject(voxels, count, evm, settings, stats);
+  if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS)
+  {
+    vtkLogScopeF(TRACE, "surfel cells");
+    appendSurfelCells(object, voxels, settings.planar, builder);
+    return 0;
+  }
+  return count;
+}
+
+/// Counts the faces, holes and non-manifold vertices of a part of an object's faces.
+void countFaces(const vbr::BRep& brep, Statistics& stats)
+{
+  stats.faces += static_cast<vtkIdType>(brep.faces.size());
+  stats.holes += static_cast<vtkIdType>(brep.holeCount());
+  stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
+}
+
 /// The faces of one object: voxels -> EVM -> faces (plane sweeps, paper 000) in parts,
 /// counted in `stats`; in Surfels mode its cells instead (then `parts` stays empty). False
 /// when aborted.
@@ -526,35 +609,15 @@ bool boundaryOfObject(const vbr::vtk::Selected& object,
   OutputBuilder& builder,
   std::vector<vbr::BRep>& parts)
 {
-  vbr::BitVolume voxels;
-  {
-    vtkLogScopeF(TRACE, "select voxels");
-    voxels = object.select(exec);
-  }
-  const std::size_t count = voxels.count();
+  vbr::EVM evm;
+  const std::size_t count = extremeVerticesOfObject(object, settings, exec, stats, builder, evm);
   if (count == 0)
     return true;
   const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(count));
-  vbr::EVM evm;
-  {
-    vtkLogScopeF(TRACE, "extreme vertices");
-    evm = settings.planar ? vbr::extractEVM2D(voxels, local) : vbr::extractEVM(voxels, local);
-  }
-  countObject(voxels, count, evm, settings, stats);
-  if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS)
-  {
-    vtkLogScopeF(TRACE, "surfel cells");
-    appendSurfelCells(object, voxels, settings.planar, builder);
-    return true;
-  }
   if (!boundaryOf(evm, settings.planar, settings.connectivity, local, parts))
     return false;
   for (const vbr::BRep& brep : parts)
-  {
-    stats.faces += static_cast<vtkIdType>(brep.faces.size());
-    stats.holes += static_cast<vtkIdType>(brep.holeCount());
-    stats.nonManifoldVertices += static_cast<vtkIdType>(brep.nonManifoldVertices);
-  }
+    countFaces(brep, stats);
   return true;
 }
 
@@ -608,6 +671,46 @@ void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
 #endif
 }
 
+/// The cells of the only object of a 2D image: its faces from the 2D plane sweep, which
+/// numbers their corners in the order of the output's points as it meets them, so that no
+/// set of corners is built nor looked up (appendObjects' way for several objects, which
+/// share their corners). One object of a 2D image has no T-junction vertex (see
+/// appendObjects). Stops when aborted.
+void appendPlanarObject(vtkAlgorithm* self,
+  const vbr::vtk::Selected& object,
+  const ObjectSettings& settings,
+  Statistics& stats,
+  OutputBuilder& builder)
+{
+  vbr::NumberedBRep faces;
+  {
+    vbr::EVM evm;
+    const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.1, 0.7);
+    if (extremeVerticesOfObject(object, settings, exec, stats, builder, evm) == 0)
+      return;
+    vtkLogScopeF(TRACE, "EVM to B-Rep (2D plane sweep, corners numbered)");
+    faces = vbr::extractNumberedBoundary2D(
+      evm, settings.connectivity, cellsFromRuns(settings.outputMode));
+  }
+  countFaces(faces.brep, stats);
+  if (self->GetAbortExecute())
+    return;
+  builder.addCornerPoints(faces.corners, object.offset);
+  faces.corners = std::vector<Point3>();
+  const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.7, 1.0);
+  CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),
+    std::max<std::size_t>(faces.brep.faces.size(), 1) };
+  vtkIdType faceBase = 0;
+  appendBoundaryCells(object,
+    faces.brep,
+    faces.numbers,
+    settings,
+    exec.forWork(static_cast<std::int64_t>(faces.numbers.size())),
+    faceBase,
+    progress,
+    builder);
+}
+
 /// The cells of every object (paper 000): first the faces of each (in Surfels mode its cells
 /// instead), then, with the corners of all of them in one set, the T-junction vertices of
 /// each part of each object's faces (the objects of a label map meet: two labels' loops on a
@@ -621,6 +724,11 @@ void appendObjects(vtkAlgorithm* self,
   OutputBuilder& builder)
 {
   const std::size_t n = objects.size();
+  if (settings.planar && n == 1)
+  {
+    appendPlanarObject(self, objects[0], settings, stats, builder);
+    return;
+  }
   std::vector<std::vector<vbr::BRep>> parts(n);
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {

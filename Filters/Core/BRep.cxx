@@ -32,11 +32,29 @@
 namespace vbr
 {
 
-void appendFaces(const Boundary2D& b2,
+namespace
+{
+
+/// The point (position, u, v) of a plane A = position in the order (A, B, C), in (x, y, z).
+Point3 placed(const AxisOrder& order, Coord position, const Point2& p)
+{
+  Point3 q;
+  q[order[0]] = position;
+  q[order[1]] = p.u;
+  q[order[2]] = p.v;
+  return q;
+}
+
+/// appendFaces, the corners of each loop [begin, end) of b2 appended by
+/// copyLoop(begin, end, reverse) as `corners` counts them.
+template<typename CopyLoop>
+void appendFacesOf(const Boundary2D& b2,
   const AxisOrder& order,
   Coord position,
   int normalSign,
-  BRep& out)
+  std::size_t corners,
+  BRep& out,
+  CopyLoop&& copyLoop)
 {
   // planeSweep2D loops are counter-clockwise in (B, C), whose right-hand normal is parity * A.
   const bool reverse = axisOrderParity(order) != normalSign;
@@ -57,19 +75,11 @@ void appendFaces(const Boundary2D& b2,
       BRepLoop loop;
       loop.face = faceId;
       loop.hole = hole;
-      loop.begin = out.points.size();
+      loop.begin = corners;
       const Loop2D& l2 = b2.loops[l];
-      for (std::size_t i = l2.begin; i < l2.end; ++i)
-      {
-        Point3 q;
-        q[order[0]] = position;
-        q[order[1]] = b2.points[i].u;
-        q[order[2]] = b2.points[i].v;
-        out.points.push_back(q);
-      }
-      loop.end = out.points.size();
-      if (reverse)
-        std::reverse(out.points.begin() + loop.begin, out.points.end());
+      copyLoop(l2.begin, l2.end, reverse);
+      corners += l2.end - l2.begin;
+      loop.end = corners;
       out.loops.push_back(loop);
     };
     addLoop(f2.outerLoop, false);
@@ -78,6 +88,30 @@ void appendFaces(const Boundary2D& b2,
     out.faces.push_back(face);
   }
   out.nonManifoldVertices += b2.nonManifoldVertices;
+}
+
+} // namespace
+
+void appendFaces(const Boundary2D& b2,
+  const AxisOrder& order,
+  Coord position,
+  int normalSign,
+  BRep& out)
+{
+  appendFacesOf(b2,
+    order,
+    position,
+    normalSign,
+    out.points.size(),
+    out,
+    [&](std::size_t begin, std::size_t end, bool reverse)
+    {
+      const std::size_t first = out.points.size();
+      for (std::size_t i = begin; i < end; ++i)
+        out.points.push_back(placed(order, position, b2.points[i]));
+      if (reverse)
+        std::reverse(out.points.begin() + first, out.points.end());
+    });
 }
 
 std::size_t BRep::holeCount() const
@@ -95,6 +129,47 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
   out.loops.reserve(b2.loops.size());
   out.points.reserve(b2.points.size());
   appendFaces(b2, evm.order(), 0, +1, out);
+  return out;
+}
+
+NumberedBRep extractNumberedBoundary2D(const EVM& evm,
+  FaceConnectivity connectivity,
+  bool withPoints)
+{
+  // The key of corner (0, u, v) is that of the point q, q[order[1]] = u, q[order[2]] = v:
+  // keys compare u first when u's axis comes first.
+  const AxisOrder& order = evm.order();
+  const CornerOrder cornerOrder = order[1] < order[2] ? CornerOrder::UThenV : CornerOrder::VThenU;
+  const auto& v = evm.vertices();
+  const Contours2D c =
+    planeSweep2DNumbered(v.data(), v.data() + v.size(), cornerOrder, connectivity);
+  NumberedBRep out;
+  out.corners.reserve(c.corners.size());
+  for (const Point2& p : c.corners)
+    out.corners.push_back(placed(order, 0, p));
+  out.brep.faces.reserve(c.boundary.faces.size());
+  out.brep.loops.reserve(c.boundary.loops.size());
+  out.numbers.resize(c.loopCorners.size());
+  if (withPoints)
+    out.brep.points.reserve(c.loopCorners.size());
+  std::int64_t* to = out.numbers.data();
+  appendFacesOf(c.boundary,
+    order,
+    0,
+    +1,
+    0,
+    out.brep,
+    [&](std::size_t begin, std::size_t end, bool reverse)
+    {
+      const std::uint32_t* from = c.loopCorners.data() + begin;
+      const std::size_t n = end - begin;
+      for (std::size_t i = 0; i < n; ++i)
+        to[i] = from[reverse ? n - 1 - i : i];
+      if (withPoints)
+        for (std::size_t i = 0; i < n; ++i)
+          out.brep.points.push_back(out.corners[to[i]]);
+      to += n;
+    });
   return out;
 }
 

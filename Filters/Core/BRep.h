@@ -79,6 +79,20 @@ void appendFaces(const Boundary2D& b2,
 /// positive side of the plane's normal axis (holes clockwise).
 BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity);
 
+/// The faces of a 2D EVM as extractBoundary2D makes them, every loop corner given by its
+/// number among the distinct corners in the order of their keys (the numbers of a CornerSet
+/// of this B-Rep alone), as the sweep met them: no set of corners to build, no corner to
+/// look up.
+struct NumberedBRep
+{
+  BRep brep;                         ///< the points only when asked for
+  std::vector<Point3> corners;       ///< the distinct corners, by number
+  std::vector<std::int64_t> numbers; ///< the number of every loop corner, in brep's loops
+};
+NumberedBRep extractNumberedBoundary2D(const EVM& evm,
+  FaceConnectivity connectivity,
+  bool withPoints);
+
 /// Inserts into every loop the vertices of other loops lying inside its edges, so that edges
 /// of adjacent faces match exactly (no T-junctions).
 void insertTJunctionVertices(BRep& brep, const Execution& exec = Execution());

@@ -4,7 +4,8 @@
 
 #include "BitVolume.h"
 
-#include <bitset>
+#include "Geometry.h"
+
 #include <stdexcept>
 
 namespace vbr
@@ -23,7 +24,7 @@ std::size_t BitVolume::count() const
 {
   std::size_t n = 0;
   for (Word w : this->Words)
-    n += std::bitset<64>(w).count();
+    n += static_cast<std::size_t>(popCount(w));
   return n;
 }
 

@@ -331,19 +331,25 @@ std::array<std::size_t, 3> planesPerAxis(const EVM& evm)
   std::array<std::size_t, 3> counts{ 0, 0, 0 };
   if (evm.empty())
     return counts;
-  for (int k = evm.dimension() == 2 ? 1 : 0; k < 3; ++k)
-  {
-    Coord lo = evm.vertices()[0][k], hi = lo;
-    for (const Vertex& v : evm.vertices())
+  // One pass for the bounds of every coordinate and one to mark the values met: the
+  // vertices are read twice in all rather than twice per axis.
+  const int first = evm.dimension() == 2 ? 1 : 0;
+  Vertex lo = evm.vertices()[0], hi = lo;
+  for (const Vertex& v : evm.vertices())
+    for (int k = first; k < 3; ++k)
     {
-      lo = std::min(lo, v[k]);
-      hi = std::max(hi, v[k]);
+      lo[k] = std::min(lo[k], v[k]);
+      hi[k] = std::max(hi[k], v[k]);
     }
-    std::vector<bool> seen(static_cast<std::size_t>(hi - lo) + 1, false);
-    for (const Vertex& v : evm.vertices())
-      seen[v[k] - lo] = true;
-    counts[evm.order()[k]] = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), true));
-  }
+  std::array<std::vector<unsigned char>, 3> seen;
+  for (int k = first; k < 3; ++k)
+    seen[k].assign(static_cast<std::size_t>(hi[k] - lo[k]) + 1, 0);
+  for (const Vertex& v : evm.vertices())
+    for (int k = first; k < 3; ++k)
+      seen[k][static_cast<std::size_t>(v[k] - lo[k])] = 1;
+  for (int k = first; k < 3; ++k)
+    counts[evm.order()[k]] =
+      static_cast<std::size_t>(std::count(seen[k].begin(), seen[k].end(), 1));
   return counts;
 }
 

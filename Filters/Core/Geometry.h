@@ -176,13 +176,15 @@ inline int countTrailingZeros(std::uint64_t w)
 /// Number of set bits of a word.
 inline int popCount(std::uint64_t w)
 {
-#if defined(__GNUC__) || defined(__clang__)
+#if defined(__POPCNT__) && (defined(__GNUC__) || defined(__clang__))
   return __builtin_popcountll(w);
 #else
-  int n = 0;
-  for (; w; w &= w - 1)
-    ++n;
-  return n;
+  // Without the instruction the builtin is a call into the compiler's runtime library, per
+  // word: the same sum of bits by halves, inline.
+  w -= (w >> 1) & 0x5555555555555555ULL;
+  w = (w & 0x3333333333333333ULL) + ((w >> 2) & 0x3333333333333333ULL);
+  w = (w + (w >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
+  return static_cast<int>((w * 0x0101010101010101ULL) >> 56);
 #endif
 }
 

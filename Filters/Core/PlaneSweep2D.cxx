@@ -23,6 +23,7 @@
 
 #include "UnionFind.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -37,7 +38,8 @@ namespace vbr
 namespace
 {
 
-constexpr Coord Unset = std::numeric_limits<Coord>::min();
+/// An edge end not reached yet.
+constexpr std::uint32_t Unset = std::numeric_limits<std::uint32_t>::max();
 
 /// Asks for huge pages under a large array that is read in no order of memory (the domino
 /// step's edges): a miss in the cache then rarely misses in the TLB as well. A hint only.
@@ -56,10 +58,12 @@ void adviseHugePages(void* data, std::size_t bytes)
 #endif
 }
 
+/// An oriented edge between two corners, by their numbers (16 bytes: the domino step reads
+/// the edges in no order of memory, the fewer cache lines the better).
 struct Edge
 {
-  Point2 from{ Unset, Unset };
-  Point2 to{ Unset, Unset };
+  std::uint32_t from = Unset;
+  std::uint32_t to = Unset;
   int interval = -1; ///< a section interval of the face on the edge's left
   int next = -1;     ///< following edge of the loop (domino)
 };
@@ -82,8 +86,8 @@ struct FirstInterval
 
 struct NonManifoldVertex
 {
-  Point2 at;
-  int edges[4]; ///< two in, two out
+  std::uint32_t at; ///< its corner
+  int edges[4];     ///< two in, two out
 };
 
 class Sweep
@@ -95,13 +99,46 @@ public:
   }
 
   /// The whole method: the first sweep line by line, the pairing at non-manifold vertices,
-  /// the domino step and the second sweep.
+  /// the domino step and the second sweep; the loops' corners as points.
   Boundary2D run(const Vertex* begin, const Vertex* end)
+  {
+    this->firstSweep(begin, end);
+    Boundary2D out;
+    out.nonManifoldVertices = this->NonManifold.size();
+    this->numberFaces(out);
+    out.points.reserve(this->Edges.size());
+    this->orderEdgesIntoLoops(
+      out, [&](std::uint32_t c) { out.points.push_back(this->Corners[c]); });
+    this->classifyContours(out);
+    return out;
+  }
+
+  /// The same method, the loops' corners as numbers of the distinct corners in `order`.
+  Contours2D runNumbered(const Vertex* begin, const Vertex* end, CornerOrder order)
+  {
+    this->firstSweep(begin, end);
+    Contours2D out;
+    out.boundary.nonManifoldVertices = this->NonManifold.size();
+    if (order == CornerOrder::VThenU)
+      this->numberCornersAlongV();
+    this->numberFaces(out.boundary);
+    out.loopCorners.reserve(this->Edges.size());
+    this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
+    this->classifyContours(out.boundary);
+    out.corners.swap(this->Corners);
+    return out;
+  }
+
+private:
+  /// The first sweep (line by line) and the pairing at the non-manifold vertices: every edge
+  /// then knows the next one of its loop.
+  void firstSweep(const Vertex* begin, const Vertex* end)
   {
     // Every extreme vertex is the corner where one edge starts (a non-manifold vertex starts
     // two, and only then does the array grow): growing it from empty would copy the edges
     // about twice.
     this->Edges.reserve(static_cast<std::size_t>(end - begin));
+    this->Corners.reserve(static_cast<std::size_t>(end - begin));
     adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge));
     while (begin != end)
     {
@@ -117,15 +154,8 @@ public:
     if (!this->Section.empty())
       throw std::invalid_argument("planeSweep2D: the last section is not empty (not an EVM)");
     this->pairNonManifoldVertices();
-    Boundary2D out;
-    out.nonManifoldVertices = this->NonManifold.size();
-    this->numberFaces(out);
-    this->orderEdgesIntoLoops(out);
-    this->classifyContours(out);
-    return out;
   }
 
-private:
   // ---- union-find over section intervals (roots follow sweep order) -----------------------
   int newInterval() { return static_cast<int>(this->Intervals.add()); }
   int find(int i) { return static_cast<int>(this->Intervals.find(static_cast<std::uint32_t>(i))); }
@@ -134,26 +164,35 @@ private:
     this->Intervals.unite(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
   }
 
-  // ---- edges ---------------------------------------------------------------------------------
-  /// Starts an edge at `here`; `outgoing` says whether it leaves or enters `here`.
-  int startEdge(Point2 here, bool outgoing, int interval)
+  // ---- corners and edges ---------------------------------------------------------------------
+  /// Numbers a corner: the sweep meets them line after line, along each line in order, so
+  /// their numbers follow the order (u, v).
+  std::uint32_t newCorner(Point2 here)
+  {
+    if (this->Corners.size() >= Unset)
+      throw std::length_error("planeSweep2D: 2^32 corners or more");
+    this->Corners.push_back(here);
+    return static_cast<std::uint32_t>(this->Corners.size() - 1);
+  }
+  /// Starts an edge at corner c; `outgoing` says whether it leaves or enters c.
+  int startEdge(std::uint32_t c, bool outgoing, int interval)
   {
     Edge e;
-    (outgoing ? e.from : e.to) = here;
+    (outgoing ? e.from : e.to) = c;
     e.interval = interval;
     this->Edges.push_back(e);
     return static_cast<int>(this->Edges.size()) - 1;
   }
-  void finishEdge(int e, Point2 here)
+  void finishEdge(int e, std::uint32_t c)
   {
     Edge& edge = this->Edges[e];
-    (edge.from.u == Unset ? edge.from : edge.to) = here;
+    (edge.from == Unset ? edge.from : edge.to) = c;
   }
-  /// Links the two edges meeting at an ordinary corner: the one entering it is followed by
+  /// Links the two edges meeting at an ordinary corner c: the one entering it is followed by
   /// the one leaving it.
-  void link(int a, int b, Point2 here)
+  void link(int a, int b, std::uint32_t c)
   {
-    if (this->Edges[a].to == here)
+    if (this->Edges[a].to == c)
       this->Edges[a].next = b;
     else
       this->Edges[b].next = a;
@@ -249,15 +288,15 @@ private:
 
   /// A vertical piece starting at v keeps the face on its left: upwards when the face lies
   /// before u.
-  int startPiece(const OpenIntervals& o, const Point& at)
+  int startPiece(const OpenIntervals& o, const Point& at, std::uint32_t c)
   {
-    return this->startEdge(at.here, !at.inNew2, at.inNew2 ? o.newInterval : o.prevInterval);
+    return this->startEdge(c, !at.inNew2, at.inNew2 ? o.newInterval : o.prevInterval);
   }
 
   /// A horizontal edge of the next section starting at v, its end kept in the next section.
-  int startHorizontalEdge(OpenIntervals& o, const Point& at)
+  int startHorizontalEdge(OpenIntervals& o, const Point& at, std::uint32_t c)
   {
-    const int h = this->startEdge(at.here, at.inNew2, o.newInterval);
+    const int h = this->startEdge(c, at.inNew2, o.newInterval);
     if (at.inNew2)
       o.newBottomEdge = h;
     this->NextSection.push_back({ at.here.v, h });
@@ -266,34 +305,36 @@ private:
 
   /// The brink being crossed ends at v (its vertical piece ends there, at horizontal edge h)
   /// or starts there (a piece starts); either way the corner links the two edges.
-  void turnAtCorner(OpenIntervals& o, const Point& at, int h)
+  void turnAtCorner(OpenIntervals& o, const Point& at, int h, std::uint32_t c)
   {
     if (at.inCut)
     {
-      this->finishEdge(o.piece, at.here);
-      this->link(o.piece, h, at.here);
+      this->finishEdge(o.piece, c);
+      this->link(o.piece, h, c);
       o.piece = -1;
     }
     else
     {
-      o.piece = this->startPiece(o, at);
-      this->link(o.piece, h, at.here);
+      o.piece = this->startPiece(o, at, c);
+      this->link(o.piece, h, c);
     }
   }
 
   /// An extreme vertex of the cut matching one of the section: its horizontal edge ends here.
   void closeHorizontalEdge(OpenIntervals& o, const Point& at)
   {
+    const std::uint32_t c = this->newCorner(at.here);
     const int h = this->Section[at.i].edge;
-    this->finishEdge(h, at.here);
-    this->turnAtCorner(o, at, h);
+    this->finishEdge(h, c);
+    this->turnAtCorner(o, at, h, c);
   }
 
   /// A new extreme vertex of the section: a horizontal edge starts here.
   void openHorizontalEdge(OpenIntervals& o, const Point& at)
   {
-    const int h = this->startHorizontalEdge(o, at);
-    this->turnAtCorner(o, at, h);
+    const std::uint32_t c = this->newCorner(at.here);
+    const int h = this->startHorizontalEdge(o, at, c);
+    this->turnAtCorner(o, at, h, c);
   }
 
   /// A non-manifold vertex (Ayala & Vergara, section 3.3): a brink of the cut contains a
@@ -302,13 +343,14 @@ private:
   /// are known.
   void splitAtNonManifoldVertex(OpenIntervals& o, const Point& at)
   {
+    const std::uint32_t c = this->newCorner(at.here);
     const int hOld = this->Section[at.i].edge;
-    this->finishEdge(hOld, at.here);
-    this->finishEdge(o.piece, at.here);
+    this->finishEdge(hOld, c);
+    this->finishEdge(o.piece, c);
     const int below = o.piece;
-    o.piece = this->startPiece(o, at);
-    const int hNew = this->startHorizontalEdge(o, at);
-    this->NonManifold.push_back({ at.here, { hOld, hNew, below, o.piece } });
+    o.piece = this->startPiece(o, at, c);
+    const int hNew = this->startHorizontalEdge(o, at, c);
+    this->NonManifold.push_back({ c, { hOld, hNew, below, o.piece } });
     if (this->MergeAtVertices)
     {
       this->unite(o.prevInterval, o.newInterval);
@@ -342,8 +384,10 @@ private:
           const Edge& b = this->Edges[o];
           if (sameFace)
           {
-            const long long du1 = a.to.u - a.from.u, dv1 = a.to.v - a.from.v;
-            const long long du2 = b.to.u - b.from.u, dv2 = b.to.v - b.from.v;
+            const Point2 a0 = this->Corners[a.from], a1 = this->Corners[a.to];
+            const Point2 b0 = this->Corners[b.from], b1 = this->Corners[b.to];
+            const long long du1 = a1.u - a0.u, dv1 = a1.v - a0.v;
+            const long long du2 = b1.u - b0.u, dv2 = b1.v - b0.v;
             if (du1 * dv2 - dv1 * du2 < 0)
               chosen = o; // right turn
           }
@@ -377,32 +421,65 @@ private:
     out.faces.resize(this->FirstOfFace.size());
   }
 
-  /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
-  /// corner to corner, are followed into loops, each keeping its face on the left. A loop
-  /// visits its edges in no order of memory (a long loop jumps across the whole sweep at every
-  /// step), so each edge is read once and marked in place: its interval, no longer needed,
-  /// becomes its loop (loopOfEdge), without a second array to miss in.
-  void orderEdgesIntoLoops(Boundary2D& out)
+  /// Numbers the corners in the order (v, u) instead of the sweep's (u, v): a stable counting
+  /// sort of the corners by v. Only the edges' starts are renumbered: the domino step reads
+  /// nothing else of the corners.
+  void numberCornersAlongV()
   {
-    out.points.reserve(this->Edges.size());
+    if (this->Corners.empty())
+      return;
+    Coord lo = this->Corners[0].v, hi = lo;
+    for (const Point2& p : this->Corners)
+    {
+      lo = std::min(lo, p.v);
+      hi = std::max(hi, p.v);
+    }
+    std::vector<std::uint32_t> next(static_cast<std::size_t>(hi - lo) + 2, 0);
+    for (const Point2& p : this->Corners)
+      ++next[static_cast<std::size_t>(p.v - lo) + 1];
+    for (std::size_t k = 1; k < next.size(); ++k)
+      next[k] += next[k - 1];
+    std::vector<std::uint32_t> number(this->Corners.size());
+    std::vector<Point2> sorted(this->Corners.size());
+    for (std::size_t c = 0; c < this->Corners.size(); ++c)
+    {
+      const std::uint32_t n = next[static_cast<std::size_t>(this->Corners[c].v - lo)]++;
+      number[c] = n;
+      sorted[n] = this->Corners[c];
+    }
+    this->Corners.swap(sorted);
+    for (Edge& e : this->Edges)
+      e.from = number[e.from];
+  }
+
+  /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
+  /// corner to corner, are followed into loops, each keeping its face on the left; emit gets
+  /// the corner each edge starts at. A loop visits its edges in no order of memory (a long
+  /// loop jumps across the whole sweep at every step), so each edge is read once and marked in
+  /// place: its interval, no longer needed, becomes its loop (loopOfEdge), without a second
+  /// array to miss in.
+  template<typename Emit>
+  void orderEdgesIntoLoops(Boundary2D& out, Emit&& emit)
+  {
+    std::size_t corners = 0;
     for (std::size_t e0 = 0; e0 < this->Edges.size(); ++e0)
     {
       if (this->Edges[e0].interval < 0)
         continue; // in a loop already
       Loop2D loop;
       loop.face = this->FaceOfRoot[this->find(this->Edges[e0].interval)];
-      loop.begin = out.points.size();
+      loop.begin = corners;
       const int visited = -1 - static_cast<int>(out.loops.size());
-      for (int e = static_cast<int>(e0); this->Edges[e].interval >= 0;)
+      for (int e = static_cast<int>(e0); this->Edges[e].interval >= 0; ++corners)
       {
         Edge& edge = this->Edges[e];
         if (edge.next < 0)
           throw std::logic_error("planeSweep2D: open contour");
         edge.interval = visited;
-        out.points.push_back(edge.from);
+        emit(edge.from);
         e = edge.next;
       }
-      loop.end = out.points.size();
+      loop.end = corners;
       out.loops.push_back(loop);
     }
   }
@@ -449,6 +526,7 @@ private:
   std::vector<int> NextIntervals;
   std::vector<int> SectionIntervals; ///< interval id of each pair of section ends
   UnionFind Intervals;               ///< the section intervals, united into faces
+  std::vector<Point2> Corners;       ///< by number
   std::vector<Edge> Edges;
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;
@@ -461,6 +539,14 @@ private:
 Boundary2D planeSweep2D(const Vertex* begin, const Vertex* end, FaceConnectivity connectivity)
 {
   return Sweep(connectivity).run(begin, end);
+}
+
+Contours2D planeSweep2DNumbered(const Vertex* begin,
+  const Vertex* end,
+  CornerOrder order,
+  FaceConnectivity connectivity)
+{
+  return Sweep(connectivity).runNumbered(begin, end, order);
 }
 
 } // namespace vbr

@@ -22,6 +22,7 @@
 #include "Geometry.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace vbr
@@ -68,6 +69,31 @@ struct Boundary2D
 /// Faces, loops and inclusion tree of a 2D EVM given as vertices (0, u, v) in sorted order.
 Boundary2D planeSweep2D(const Vertex* begin,
   const Vertex* end,
+  FaceConnectivity connectivity = FaceConnectivity::Edge);
+
+/// The order in which planeSweep2DNumbered numbers the distinct corners: lexicographic in
+/// (u, v), the sweep's own order, or in (v, u).
+enum class CornerOrder
+{
+  UThenV,
+  VThenU
+};
+
+/// The loops of planeSweep2D with each corner given by its number among the distinct corners
+/// (a non-manifold vertex is one corner of two loops, or twice of one).
+struct Contours2D
+{
+  Boundary2D boundary;                    ///< its loops index loopCorners; no points
+  std::vector<Point2> corners;            ///< the distinct corners, by number
+  std::vector<std::uint32_t> loopCorners; ///< the numbers of all loops' corners, loop after loop
+};
+
+/// planeSweep2D, with the corners numbered in `order` as the sweep meets them: the same faces,
+/// loops (each from the same corner) and inclusion tree, without a later pass to number them.
+/// Throws std::length_error for 2^32 corners or more.
+Contours2D planeSweep2DNumbered(const Vertex* begin,
+  const Vertex* end,
+  CornerOrder order,
   FaceConnectivity connectivity = FaceConnectivity::Edge);
 
 } // namespace vbr

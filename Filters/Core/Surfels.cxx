@@ -5,8 +5,6 @@
 
 #include "Surfels.h"
 
-#include <bitset>
-
 namespace vbr
 {
 
@@ -15,7 +13,7 @@ namespace
 
 std::size_t popcount(Word w)
 {
-  return std::bitset<64>(w).count();
+  return static_cast<std::size_t>(popCount(w));
 }
 
 } // namespace

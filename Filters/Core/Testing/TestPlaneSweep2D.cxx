@@ -179,11 +179,10 @@ void checkInclusionTree(const vbr::BRep& brep,
   }
 }
 
-/// Checks faces, holes, orientation and the inclusion tree of a 2D image against brute force.
-void checkImage(const vbr::BitVolume& image, bool merged)
+/// Checks the faces, holes, orientation and inclusion tree of a 2D image's B-Rep against
+/// brute force.
+void checkFaces(const vbr::BitVolume& image, const vbr::BRep& brep, bool merged)
 {
-  const vbr::BRep brep = vbr::extractBoundary2D(
-    vbr::extractEVM2D(image), merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge);
   bf::PixelSet pixels;
   for (int y = 0; y < image.size(1); ++y)
     for (int x = 0; x < image.size(0); ++x)
@@ -213,6 +212,64 @@ void checkImage(const vbr::BitVolume& image, bool merged)
   }
 
   checkInclusionTree(brep, expected, faceOf);
+}
+
+/// The grid points (x, y, 0) where a loop turns, by brute force: their four pixels hold an odd
+/// count of the image's pixels, or two diagonal ones (a non-manifold vertex).
+std::vector<vbr::Point3> cornersOf(const vbr::BitVolume& image)
+{
+  std::vector<vbr::Point3> corners;
+  for (int x = 0; x <= image.size(0); ++x)
+    for (int y = 0; y <= image.size(1); ++y)
+    {
+      const bool a = bf::voxel(image, x - 1, y - 1, 0), b = bf::voxel(image, x, y - 1, 0);
+      const bool c = bf::voxel(image, x - 1, y, 0), d = bf::voxel(image, x, y, 0);
+      if ((a != b) != (c != d) || (a == d && b == c && a != b))
+        corners.push_back({ x, y, 0 }); // in (x, y, z) order: sorted as keys compare
+    }
+  return corners;
+}
+
+/// extractNumberedBoundary2D on an EVM sorted in `order`: the faces pass checkFaces, the
+/// corners are those of brute force in the order of their keys, and the numbers of every
+/// loop's corners name its points.
+void checkNumbered(const vbr::BitVolume& image, bool merged, const char* order)
+{
+  SCOPED_TRACE(order);
+  const vbr::EVM evm = vbr::extractEVM2D(image).sortedAs(vbr::axisOrderFromName(order));
+  const auto connectivity = merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
+  const vbr::NumberedBRep n = vbr::extractNumberedBoundary2D(evm, connectivity, true);
+  checkFaces(image, n.brep, merged);
+  EXPECT_EQ(n.corners, cornersOf(image));
+  ASSERT_EQ(n.numbers.size(), n.brep.points.size());
+  for (std::size_t i = 0; i < n.numbers.size(); ++i)
+  {
+    ASSERT_LT(static_cast<std::size_t>(n.numbers[i]), n.corners.size());
+    EXPECT_EQ(n.corners[n.numbers[i]], n.brep.points[i]) << "corner " << i;
+  }
+  // The same faces, loops and corners as extractBoundary2D's, which the filters relied on.
+  const vbr::BRep b = vbr::extractBoundary2D(evm, connectivity);
+  EXPECT_EQ(n.brep.points, b.points);
+  ASSERT_EQ(n.brep.faces.size(), b.faces.size());
+  for (std::size_t f = 0; f < b.faces.size(); ++f)
+  {
+    EXPECT_EQ(n.brep.faces[f].parent, b.faces[f].parent);
+    EXPECT_EQ(n.brep.faces[f].loopCount, b.faces[f].loopCount);
+  }
+  const vbr::NumberedBRep bare = vbr::extractNumberedBoundary2D(evm, connectivity, false);
+  EXPECT_TRUE(bare.brep.points.empty());
+  EXPECT_EQ(bare.numbers, n.numbers);
+}
+
+/// Checks a 2D image's faces from extractBoundary2D and extractNumberedBoundary2D.
+void checkImage(const vbr::BitVolume& image, bool merged)
+{
+  checkFaces(image,
+    vbr::extractBoundary2D(vbr::extractEVM2D(image),
+      merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge),
+    merged);
+  checkNumbered(image, merged, "ZYX"); // corners numbered across the sweep's lines
+  checkNumbered(image, merged, "ZXY"); // corners numbered along them
 }
 
 } // namespace
@@ -259,4 +316,7 @@ TEST(PlaneSweep2D, NestedRingsAndDegenerateImages)
   vbr::BitVolume empty(5, 4, 1);
   EXPECT_TRUE(
     vbr::extractBoundary2D(vbr::extractEVM2D(empty), vbr::FaceConnectivity::Edge).faces.empty());
+  const vbr::NumberedBRep none =
+    vbr::extractNumberedBoundary2D(vbr::extractEVM2D(empty), vbr::FaceConnectivity::Edge, true);
+  EXPECT_TRUE(none.brep.faces.empty() && none.corners.empty() && none.numbers.empty());
 }
