@@ -50,11 +50,12 @@
  * `MaximumDistance` (the largest distance from an output vertex to the voxel boundary, the
  * surfels, measured by the filter in voxel units: 1 is a voxel edge, the bound is sqrt(3)).
  *
- * Output port 1: the face octree, one hexahedron per face node (its box, in world
- * coordinates) with cell data `PlaneNormal` (unit, world), `PlaneOffset` (world: the plane is
- * PlaneNormal . x = PlaneOffset), `NodeLevel`, `FaceNodeId` and `Label` (in Labels mode the
- * larger label of the node's pair; its box is that of its grid vertices' boxes, offset by
- * half a voxel from the voxels).
+ * Output port 1: the face octree, one hexahedron per face node of the octree (its box, in
+ * world coordinates; with MergeFaceNodes, the octree's nodes before the merging, each with
+ * its own plane and the `FaceNodeId` of the merged face it went into) with cell data `PlaneNormal`
+ * (unit, world), `PlaneOffset` (world: the plane is PlaneNormal . x = PlaneOffset), `NodeLevel`,
+ * `FaceNodeId` and `Label` (in Labels mode the larger label of the node's pair; its box is that of
+ * its grid vertices' boxes, offset by half a voxel from the voxels).
  *
  * Labels mode (beyond the paper; Filters/Core/LabelNet.h): neighbouring labels share one
  * surface, with no gap and no overlap between them. One net serves all labels: a point near
@@ -182,6 +183,22 @@ public:
   vtkBooleanMacro(PruneCrests, bool);
   ///@}
 
+  ///@{
+  /**
+   * Merge adjacent face nodes (beyond the paper; default on): after the octree's compaction,
+   * face nodes that share quadrilaterals are merged greedily, the largest first, whenever one
+   * plane fits their union under the same rules as an octree node (FaceOctree.h), so that a
+   * planar patch across octree cell boundaries becomes one polygon and the sewing triangles
+   * between the merged nodes disappear. A merged face is one face node: its `FaceNodeId`,
+   * and as `NodeLevel` the largest level of the octree nodes merged into it. Output port 1
+   * keeps the octree's own face nodes (their boxes, levels and planes) with the
+   * `FaceNodeId` of the face each went into. Off: the paper's face octree alone.
+   */
+  vtkSetMacro(MergeFaceNodes, bool);
+  vtkGetMacro(MergeFaceNodes, bool);
+  vtkBooleanMacro(MergeFaceNodes, bool);
+  ///@}
+
 protected:
   vtkFaceOctreeBoundaryFilter();
   ~vtkFaceOctreeBoundaryFilter() override;
@@ -200,6 +217,7 @@ protected:
   int MaximumOctreeLevel = 10;
   double Precision = 0.0;
   bool PruneCrests = true;
+  bool MergeFaceNodes = true;
 
 private:
   vtkFaceOctreeBoundaryFilter(const vtkFaceOctreeBoundaryFilter&) = delete;

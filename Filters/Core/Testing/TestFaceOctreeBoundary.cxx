@@ -575,6 +575,9 @@ struct Result
   vbr::BoundaryMesh mesh;
 };
 
+/// Whether run() merges adjacent face nodes (the default of the options).
+bool mergeFaceNodes = true;
+
 Result run(const BitVolume& v,
   vbr::BoundaryCells cells,
   const vbr::Execution& exec = sequential,
@@ -584,6 +587,7 @@ Result run(const BitVolume& v,
   r.model = vbr::buildDeformedModel(v, {}, exec);
   vbr::FaceOctreeOptions o;
   o.maximumLevel = maximumLevel;
+  o.mergeFaceNodes = mergeFaceNodes;
   r.octree = vbr::buildFaceOctree(v, r.model, o, exec);
   r.mesh = vbr::assembleBoundary(r.model, r.octree, cells);
   return r;
@@ -800,15 +804,14 @@ TEST(DeformedModel, RelaxationLowersTheCostInsideTheVoxels)
   EXPECT_LE(m.lastDisplacement, 1e-3);
 }
 
-TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
+/// The face nodes' rules, checked directly: every point projected inside its voxel and in its
+/// node's box, on the node's plane, and no plane cutting a voxel whose 26 neighbours are all
+/// of its own kind inside the node's box; octree nodes are aligned cubes.
+static void checkCompactionCriterion(const BitVolume& v,
+  const vbr::DeformedModel& model,
+  const vbr::FaceOctree& octree,
+  bool merged)
 {
-  // A grid that is no power of two along any axis.
-  const std::vector<Shape> shapes = solids(); // the shape must outlive the sampling
-  const Shape& s = shapes[4];
-  const BitVolume v = sample(
-    { 45, 38, 41 }, [&](double x, double y, double z) { return s.inside(x / 45, y / 38, z / 41); });
-  const auto model = vbr::buildDeformedModel(v, {}, sequential);
-  const auto octree = vbr::buildFaceOctree(v, model, {}, sequential);
   int maxLevel = 0;
   for (std::size_t p = 0; p < model.pointCount(); ++p)
   {
@@ -832,7 +835,8 @@ TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
   // No plane cuts the open interior of a voxel whose 26 neighbours are all of its own kind.
   for (const auto& node : octree.nodes)
   {
-    ASSERT_EQ(node.lo[0] % (1 << node.level), 0);
+    if (!merged)
+      ASSERT_EQ(node.lo[0] % (1 << node.level), 0);
     for (int k = node.lo[2]; k < node.hi[2]; ++k)
       for (int j = node.lo[1]; j < node.hi[1]; ++j)
         for (int i = node.lo[0]; i < node.hi[0]; ++i)
@@ -853,6 +857,60 @@ TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
           ASSERT_FALSE(lo < node.offset - 1e-9 && hi > node.offset + 1e-9)
             << "node at level " << node.level << " cuts voxel " << i << " " << j << " " << k;
         }
+  }
+}
+
+TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
+{
+  // A grid that is no power of two along any axis.
+  const std::vector<Shape> shapes = solids(); // the shape must outlive the sampling
+  const Shape& s = shapes[4];
+  const BitVolume v = sample(
+    { 45, 38, 41 }, [&](double x, double y, double z) { return s.inside(x / 45, y / 38, z / 41); });
+  const auto model = vbr::buildDeformedModel(v, {}, sequential);
+  for (bool merge : { false, true })
+  {
+    SCOPED_TRACE(merge ? "merged" : "octree");
+    vbr::FaceOctreeOptions options;
+    options.mergeFaceNodes = merge;
+    checkCompactionCriterion(v, model, vbr::buildFaceOctree(v, model, options, sequential), merge);
+  }
+}
+
+TEST(FaceOctree, MergingCrossesOctreeCellsAndDropsSewingTriangles)
+{
+  // The same surface rules (the boundary checks above run with merging, the default); here
+  // what merging is for: faces whose box is no octree cube, and fewer cells than without.
+  for (const Shape& s : solids())
+  {
+    SCOPED_TRACE(s.name);
+    const BitVolume v = shapeVolume(s, 48);
+    const auto model = vbr::buildDeformedModel(v, {}, sequential);
+    vbr::FaceOctreeOptions options;
+    options.mergeFaceNodes = false;
+    const auto octree = vbr::buildFaceOctree(v, model, options, sequential);
+    options.mergeFaceNodes = true;
+    const auto merged = vbr::buildFaceOctree(v, model, options, sequential);
+    EXPECT_LT(merged.nodes.size(), octree.nodes.size());
+    std::size_t across = 0;
+    for (const auto& node : merged.nodes)
+      for (int d = 0; d < 3; ++d)
+        if (node.lo[d] % (1 << node.level) != 0 || node.hi[d] - node.lo[d] > (1 << node.level))
+        {
+          ++across;
+          break;
+        }
+    EXPECT_GT(across, 0u);
+    // Port 1's octree nodes: each went into the face holding its points.
+    ASSERT_EQ(merged.octreeNodes.size(), octree.nodes.size());
+    for (std::size_t p = 0; p < model.pointCount(); ++p)
+      if (octree.nodeOf[p] >= 0)
+        ASSERT_EQ(merged.faceOfOctreeNode[octree.nodeOf[p]], merged.nodeOf[p]);
+    const auto cells = [&](const vbr::FaceOctree& o)
+    { return vbr::assembleBoundary(model, o, vbr::BoundaryCells::Triangles).cellCount(); };
+    EXPECT_LT(cells(merged), cells(octree));
+    std::cout << s.name << "48: " << octree.nodes.size() << " -> " << merged.nodes.size()
+              << " face nodes, " << cells(octree) << " -> " << cells(merged) << " triangles\n";
   }
 }
 
@@ -896,6 +954,14 @@ TEST(FaceOctreeBoundary, SolidsAt32)
 {
   for (const Shape& s : solids())
     checkBoundary(s.name + "32", shapeVolume(s, 32), true);
+}
+
+TEST(FaceOctreeBoundary, SolidsAt32WithoutMerging)
+{
+  mergeFaceNodes = false;
+  for (const Shape& s : solids())
+    checkBoundary(s.name + "32", shapeVolume(s, 32), true);
+  mergeFaceNodes = true;
 }
 
 TEST(FaceOctreeBoundary, RoundSolidsAt64)
