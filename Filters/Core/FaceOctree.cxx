@@ -742,6 +742,117 @@ void keepTerminalNodes(FaceOctree& out, std::vector<std::int32_t>& renumber)
   out.nodes = std::move(kept);
 }
 
+/// The boxes of the faces and the voxels of the points in no face, in buckets of 8^3 voxels:
+/// a merged face's box must overlap no other. The octree's boxes are disjoint cells holding
+/// their own points only; keeping them so keeps every polygon in a box of its own, apart from
+/// the others' (their sewing is checked as for octree nodes).
+class BoxIndex
+{
+public:
+  static constexpr int bucket = 8;
+
+  BoxIndex(const std::array<std::int32_t, 3>& dims, const FaceOctree& out, const DeformedModel& m)
+    : faces(std::int32_t(out.nodes.size()))
+    , nodes(out.nodes)
+    , model(m)
+  {
+    for (int d = 0; d < 3; ++d)
+      this->n[d] = dims[d] / bucket + 1;
+    this->entries.resize(std::size_t(this->n[0]) * this->n[1] * this->n[2]);
+    for (std::int32_t f = 0; f < this->faces; ++f)
+      this->insert(f, out.nodes[f].lo, out.nodes[f].hi);
+    for (std::size_t p = 0; p < out.nodeOf.size(); ++p)
+      if (out.nodeOf[p] < 0)
+      {
+        const auto& v = m.voxel[p];
+        this->insert(this->faces + std::int32_t(p), v, { v[0] + 1, v[1] + 1, v[2] + 1 });
+      }
+  }
+
+  void insert(std::int32_t id,
+    const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi)
+  {
+    this->forBuckets(lo,
+      hi,
+      [&](std::vector<std::int32_t>& e)
+      {
+        e.push_back(id);
+        return false;
+      });
+  }
+
+  /// Whether the box [lo, hi) overlaps the box of a face other than a and b for which
+  /// `counts` holds, or the voxel of a point in no face.
+  template<typename Counts>
+  bool overlapsOther(const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    std::int32_t a,
+    std::int32_t b,
+    const Counts& counts) const
+  {
+    return this->forBuckets(lo,
+      hi,
+      [&](const std::vector<std::int32_t>& e)
+      {
+        for (std::int32_t id : e)
+        {
+          if (id == a || id == b || (id < this->faces && !counts(id)))
+            continue;
+          std::array<std::int32_t, 3> olo, ohi;
+          if (id < this->faces)
+            olo = this->nodes[id].lo, ohi = this->nodes[id].hi;
+          else
+          {
+            olo = this->model.voxel[id - this->faces];
+            ohi = { olo[0] + 1, olo[1] + 1, olo[2] + 1 };
+          }
+          if (lo[0] < ohi[0] && olo[0] < hi[0] && lo[1] < ohi[1] && olo[1] < hi[1] &&
+            lo[2] < ohi[2] && olo[2] < hi[2])
+            return true;
+        }
+        return false;
+      });
+  }
+
+private:
+  std::int32_t faces;
+  const std::vector<FaceNode>& nodes; ///< the faces' current boxes
+  const DeformedModel& model;
+  std::array<std::int32_t, 3> n{ 1, 1, 1 };
+  std::vector<std::vector<std::int32_t>> entries;
+
+  /// Calls visit on each bucket the box meets until it returns true.
+  template<typename Entries, typename Visit>
+  static bool visitBuckets(Entries& entries,
+    const std::array<std::int32_t, 3>& n,
+    const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    const Visit& visit)
+  {
+    for (std::int32_t k = lo[2] / bucket; k <= (hi[2] - 1) / bucket; ++k)
+      for (std::int32_t j = lo[1] / bucket; j <= (hi[1] - 1) / bucket; ++j)
+        for (std::int32_t i = lo[0] / bucket; i <= (hi[0] - 1) / bucket; ++i)
+          if (visit(entries[(std::size_t(k) * n[1] + j) * n[0] + i]))
+            return true;
+    return false;
+  }
+  template<typename Visit>
+  bool forBuckets(const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    const Visit& visit)
+  {
+    return visitBuckets(this->entries, this->n, lo, hi, visit);
+  }
+  template<typename Visit>
+  bool forBuckets(const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    const Visit& visit) const
+  {
+    return visitBuckets(this->entries, this->n, lo, hi, visit);
+  }
+};
+
 /// The merging of adjacent face nodes (beyond the paper; see FaceOctree.h): the faces, each
 /// with its points (by id), the faces next to it across a quadrilateral, and where it went.
 struct FaceMerger
@@ -750,6 +861,7 @@ struct FaceMerger
   FaceOctree& out;
   std::vector<std::vector<std::int32_t>> members, neighbours;
   std::vector<std::int32_t> into; ///< per face: itself, or a face it was merged into
+  BoxIndex boxes;
 
   std::int32_t find(std::int32_t f)
   {
@@ -761,6 +873,7 @@ struct FaceMerger
   FaceMerger(const Compactor& c, FaceOctree& o)
     : cp(c)
     , out(o)
+    , boxes(c.model.dims, o, c.model)
   {
     const std::size_t faces = o.nodes.size();
     this->members.resize(faces);
@@ -802,6 +915,31 @@ struct FaceMerger
     return c;
   }
 
+  /// Whether the union's box overlaps another face's box, or its box grown by a voxel meets
+  /// a point in no face or a face facing away (normals more than 90 degrees apart): another
+  /// sheet close by, whose sewing triangles a larger projection could cross (noise, thin
+  /// walls; random voxels at 85 % showed such crossings before this rule). Creases, with
+  /// their faces at right angles, still merge along them.
+  bool crowded(const Region& r, std::int32_t a, std::int32_t b)
+  {
+    auto alive = [&](std::int32_t f) { return this->into[f] == f; };
+    if (this->boxes.overlapsOther(r.lo, r.hi, a, b, alive))
+      return true;
+    const Vec3 &na = this->out.nodes[a].normal, &nb = this->out.nodes[b].normal;
+    std::array<std::int32_t, 3> lo = r.lo, hi = r.hi;
+    for (int d = 0; d < 3; ++d)
+      lo[d] = std::max(0, lo[d] - 1), hi[d] = std::min(this->cp.model.dims[d], hi[d] + 1);
+    return this->boxes.overlapsOther(lo,
+      hi,
+      a,
+      b,
+      [&](std::int32_t f)
+      {
+        const Vec3& m = this->out.nodes[f].normal;
+        return alive(f) && (dot(m, na) < 0 || dot(m, nb) < 0);
+      });
+  }
+
   /// Merges face b into face a if one plane fits both (the rules of the octree's nodes).
   bool tryMerge(std::int32_t a, std::int32_t b)
   {
@@ -824,6 +962,8 @@ struct FaceMerger
     r.faceOf = this->out.nodeOf.data();
     r.a = a;
     r.b = b;
+    if (this->crowded(r, a, b))
+      return false;
     NodeFit f = this->cp.fit(r);
     if (!f.ok)
       return false;
@@ -838,6 +978,7 @@ struct FaceMerger
     this->neighbours[a].insert(
       this->neighbours[a].end(), this->neighbours[b].begin(), this->neighbours[b].end());
     this->into[b] = a;
+    this->boxes.insert(a, this->out.nodes[a].lo, this->out.nodes[a].hi);
     return true;
   }
 

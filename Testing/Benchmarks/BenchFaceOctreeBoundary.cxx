@@ -15,9 +15,10 @@
 // The distance is the larger of the two. The earlier one-sided measure (output vertices to
 // the surfels only) is printed too: with it a decimated mesh whose large triangles cut far
 // from the voxels in their interiors still "matched". Both outputs are in the same index
-// frame (point scalars, unit spacing; the surfels half a voxel from the points). Per solid (the
-// solids class: ball, torus, CSG of n^3 voxels): the table of the harness (median time, cells, peak
-// memory of a first run of the whole pipeline, time ratio), then for both: polygons, triangles
+// frame (point scalars, unit spacing; the surfels half a voxel from the points). The filter
+// runs twice: with MergeFaceNodes (the default) and without (the paper's octree alone). Per solid
+// (the solids class: ball, torus, CSG of n^3 voxels): the table of the harness (median time, cells,
+// peak memory of a first run of the whole pipeline, time ratio), then for both: polygons, triangles
 // (each polygon counted as its fan), the distance, and polygons per object voxel (the paper's Table
 // 1: 0.19-0.31 at 128^3), the ratio of the triangles, and the filter's voxels per second (the
 // paper's target on 256^3: --sizes 256).
@@ -189,10 +190,12 @@ struct Pipeline
     this->decimate->SetInputConnection(this->smooth->GetOutputPort());
   }
 
-  /// Decimates as far as the two-sided distance stays within `bound` (10 bisection steps).
+  /// Decimates as far as the distance (the two-sided one, or the former vertex measure)
+  /// stays within `bound` (10 bisection steps).
   void decimateWithin(const vbr::BitVolume& bits,
     const std::vector<vbr::Vec3>& surfels,
-    double bound)
+    double bound,
+    bool verticesOnly = false)
   {
     double lo = 0.0, hi = 0.999;
     for (int i = 0; i < 10; ++i)
@@ -200,7 +203,9 @@ struct Pipeline
       const double mid = 0.5 * (lo + hi);
       this->decimate->SetTargetReduction(mid);
       this->decimate->Update();
-      const double d = twoSidedDistance(bits, surfels, this->decimate->GetOutput()).hausdorff();
+      vtkPolyData* out = this->decimate->GetOutput();
+      const double d = verticesOnly ? vbr::maximumDistanceToSurfels(bits, vertices(out))
+                                    : twoSidedDistance(bits, surfels, out).hausdorff();
       (d <= bound ? lo : hi) = mid;
     }
     this->decimate->SetTargetReduction(lo);
@@ -237,11 +242,13 @@ void printOutputs(const Input& in,
   const vbr::BitVolume& bits,
   const std::vector<vbr::Vec3>& surfels,
   vtkPolyData* ours,
+  vtkPolyData* octreeOnly,
   vtkPolyData* theirs,
   double filterSeconds)
 {
   const double voxels = double(std::max<std::size_t>(bits.count(), 1));
   const Distance mine = twoSidedDistance(bits, surfels, ours);
+  const Distance unmerged = twoSidedDistance(bits, surfels, octreeOnly);
   const Distance peer = twoSidedDistance(bits, surfels, theirs);
   Table table({ "output",
     "polygons",
@@ -252,6 +259,7 @@ void printOutputs(const Input& in,
     "vertices (old)",
     "polygons/voxel" });
   table.add(outputRow("FaceOctreeBoundary", ours, mine, voxels));
+  table.add(outputRow("FaceOctreeBoundary (octree only)", octreeOnly, unmerged, voxels));
   table.add(outputRow("DFE+WindowedSinc+QDec", theirs, peer, voxels));
   table.print();
   if (peer.hausdorff() > mine.hausdorff())
@@ -270,17 +278,37 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
   forEachBackend(options,
     [&](const std::string& backend)
     {
-      vtkNew<vtkFaceOctreeBoundaryFilter> filter;
+      vtkNew<vtkFaceOctreeBoundaryFilter> filter, octreeOnly;
       filter->SetInputData(image);
       filter->Update();
+      octreeOnly->SetInputData(image);
+      octreeOnly->MergeFaceNodesOff();
+      octreeOnly->Update();
       const std::vector<vbr::Vec3> surfels = surfelSamples(bits);
       Pipeline pipeline(image);
       pipeline.decimateWithin(
         bits, surfels, twoSidedDistance(bits, surfels, filter->GetOutput()).hausdorff());
+      {
+        // The former measure, for comparison with earlier reports: output vertices only.
+        Pipeline former(image);
+        const double bound = vbr::maximumDistanceToSurfels(bits, vertices(filter->GetOutput()));
+        former.decimateWithin(bits, surfels, bound, true);
+        former.decimate->Update();
+        std::printf("former measure (vertices to surfels): filter %s, pipeline decimated to it: "
+                    "%s triangles\n",
+          formatFixed(bound, 3).c_str(),
+          formatCount(fanTriangles(former.decimate->GetOutput())).c_str());
+      }
       vtkAlgorithm* f = filter;
+      vtkAlgorithm* g = octreeOnly;
       const std::vector<Contender> contenders{
         contenderOf(
           "FaceOctreeBoundary", Role::Tool, [f] { update(f); }, filter->GetOutput()),
+        contenderOf(
+          "FaceOctreeBoundary (octree only)",
+          Role::Tool,
+          [g] { update(g); },
+          octreeOnly->GetOutput()),
         contenderOf(
           "DFE+WindowedSinc+QDec",
           Role::Peer,
@@ -293,6 +321,7 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
         bits,
         surfels,
         filter->GetOutput(),
+        octreeOnly->GetOutput(),
         pipeline.decimate->GetOutput(),
         findMeasured(rows, "FaceOctreeBoundary")->median);
     });
