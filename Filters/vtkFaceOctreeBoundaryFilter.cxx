@@ -116,16 +116,6 @@ public:
     const vbr::vtk::Selected& object,
     vtkIdType nodeBase)
   {
-    if (!octree.octreeNodes.empty())
-    {
-      for (std::size_t i = 0; i < octree.octreeNodes.size(); ++i)
-        this->appendNode(octree.octreeNodes[i],
-          object.label,
-          object.offset,
-          0.0,
-          int(nodeBase + vtkIdType(octree.faceOfOctreeNode[i])));
-      return;
-    }
     for (std::size_t id = 0; id < octree.nodes.size(); ++id)
       this->appendNode(
         octree.nodes[id], object.label, object.offset, 0.0, int(nodeBase + vtkIdType(id)));

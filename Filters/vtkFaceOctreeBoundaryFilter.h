@@ -50,9 +50,9 @@
  * `MaximumDistance` (the largest distance from an output vertex to the voxel boundary, the
  * surfels, measured by the filter in voxel units: 1 is a voxel edge, the bound is sqrt(3)).
  *
- * Output port 1: the face octree, one hexahedron per face node of the octree (its box, in
- * world coordinates; with MergeFaceNodes, the octree's nodes before the merging, each with
- * its own plane and the `FaceNodeId` of the merged face it went into) with cell data `PlaneNormal`
+ * Output port 1: the face octree, one hexahedron per face node (its box, in world
+ * coordinates; with MergeFaceNodes a merged face's box is the bounding box of its octree
+ * nodes, and the boxes stay disjoint like the octree's cells) with cell data `PlaneNormal`
  * (unit, world), `PlaneOffset` (world: the plane is PlaneNormal . x = PlaneOffset), `NodeLevel`,
  * `FaceNodeId` and `Label` (in Labels mode the larger label of the node's pair; its box is that of
  * its grid vertices' boxes, offset by half a voxel from the voxels).
@@ -189,10 +189,12 @@ public:
    * face nodes that share quadrilaterals are merged greedily, the largest first, whenever one
    * plane fits their union under the same rules as an octree node (FaceOctree.h), so that a
    * planar patch across octree cell boundaries becomes one polygon and the sewing triangles
-   * between the merged nodes disappear. A merged face is one face node: its `FaceNodeId`,
-   * and as `NodeLevel` the largest level of the octree nodes merged into it. Output port 1
-   * keeps the octree's own face nodes (their boxes, levels and planes) with the
-   * `FaceNodeId` of the face each went into. Off: the paper's face octree alone.
+   * between the merged nodes disappear. A merged face is one face node: one `FaceNodeId`,
+   * as `NodeLevel` the largest level of the octree nodes merged into it, and on output port
+   * 1 one box, the bounding box of its octree nodes. Faces merge only while their boxes
+   * stay disjoint and no face facing away (another sheet) or point in no face lies within a
+   * voxel of the box: each polygon keeps a box of its own, as in the octree. Off: the
+   * paper's face octree alone.
    */
   vtkSetMacro(MergeFaceNodes, bool);
   vtkGetMacro(MergeFaceNodes, bool);

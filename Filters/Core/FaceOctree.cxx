@@ -994,14 +994,10 @@ struct FaceMerger
   }
 };
 
-/// Keeps the octree's face nodes (without polygons) for output port 1, merges adjacent face
-/// nodes greedily (the largest first) and renumbers the faces in the order of their first
-/// point.
+/// Merges adjacent face nodes greedily (the largest first) and renumbers the faces in the
+/// order of their first point.
 void mergeFaceNodes(const Compactor& cp, const Execution& exec, FaceOctree& out)
 {
-  out.octreeNodes = out.nodes;
-  for (FaceNode& node : out.octreeNodes)
-    node.polygon.clear();
   FaceMerger m(cp, out);
   std::vector<std::int32_t> order(out.nodes.size());
   std::iota(order.begin(), order.end(), 0);
@@ -1015,13 +1011,8 @@ void mergeFaceNodes(const Compactor& cp, const Execution& exec, FaceOctree& out)
     if (m.find(s) == s)
       m.grow(s);
   }
-  out.faceOfOctreeNode.resize(out.octreeNodes.size());
-  for (std::size_t i = 0; i < out.octreeNodes.size(); ++i)
-    out.faceOfOctreeNode[i] = m.find(std::int32_t(i));
   std::vector<std::int32_t> renumber(out.nodes.size(), -1);
   keepTerminalNodes(out, renumber);
-  for (std::int32_t& f : out.faceOfOctreeNode)
-    f = renumber[f];
 }
 
 } // namespace

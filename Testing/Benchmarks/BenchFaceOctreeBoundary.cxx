@@ -16,12 +16,14 @@
 // the surfels only) is printed too: with it a decimated mesh whose large triangles cut far
 // from the voxels in their interiors still "matched". Both outputs are in the same index
 // frame (point scalars, unit spacing; the surfels half a voxel from the points). The filter
-// runs twice: with MergeFaceNodes (the default) and without (the paper's octree alone). Per solid
-// (the solids class: ball, torus, CSG of n^3 voxels): the table of the harness (median time, cells,
-// peak memory of a first run of the whole pipeline, time ratio), then for both: polygons, triangles
-// (each polygon counted as its fan), the distance, and polygons per object voxel (the paper's Table
-// 1: 0.19-0.31 at 128^3), the ratio of the triangles, and the filter's voxels per second (the
-// paper's target on 256^3: --sizes 256).
+// runs twice: with MergeFaceNodes (the default) and without (the paper's octree alone).
+// With VOXELBREP_BENCH_FORMER_MEASURE set, the pipeline is also decimated to the filter's
+// vertex distance (the former measure) and its triangles printed (eight more decimations). Per
+// solid (the solids class: ball, torus, CSG of n^3 voxels): the table of the harness (median time,
+// cells, peak memory of a first run of the whole pipeline, time ratio), then for both: polygons,
+// triangles (each polygon counted as its fan), the distance, and polygons per object voxel (the
+// paper's Table 1: 0.19-0.31 at 128^3), the ratio of the triangles, and the filter's voxels per
+// second (the paper's target on 256^3: --sizes 256).
 //
 //   BenchFaceOctreeBoundary --help     the options, with this program's defaults
 //   BenchFaceOctreeBoundary --quick    the smoke run of ctest
@@ -44,6 +46,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -191,14 +194,14 @@ struct Pipeline
   }
 
   /// Decimates as far as the distance (the two-sided one, or the former vertex measure)
-  /// stays within `bound` (10 bisection steps).
+  /// stays within `bound` (8 bisection steps).
   void decimateWithin(const vbr::BitVolume& bits,
     const std::vector<vbr::Vec3>& surfels,
     double bound,
     bool verticesOnly = false)
   {
     double lo = 0.0, hi = 0.999;
-    for (int i = 0; i < 10; ++i)
+    for (int i = 0; i < 8; ++i)
     {
       const double mid = 0.5 * (lo + hi);
       this->decimate->SetTargetReduction(mid);
@@ -288,6 +291,7 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
       Pipeline pipeline(image);
       pipeline.decimateWithin(
         bits, surfels, twoSidedDistance(bits, surfels, filter->GetOutput()).hausdorff());
+      if (std::getenv("VOXELBREP_BENCH_FORMER_MEASURE"))
       {
         // The former measure, for comparison with earlier reports: output vertices only.
         Pipeline former(image);
