@@ -185,7 +185,7 @@ public:
 
   ///@{
   /**
-   * Merge adjacent face nodes (beyond the paper; default on): after the octree's compaction,
+   * Merge adjacent face nodes (beyond the paper; default off): after the octree's compaction,
    * face nodes that share quadrilaterals are merged greedily, the largest first, whenever one
    * plane fits their union under the same rules as an octree node (FaceOctree.h), so that a
    * planar patch across octree cell boundaries becomes one polygon and the sewing triangles
@@ -193,8 +193,9 @@ public:
    * as `NodeLevel` the largest level of the octree nodes merged into it, and on output port
    * 1 one box, the bounding box of its octree nodes. Faces merge only while their boxes
    * stay disjoint and no face facing away (another sheet) or point in no face lies within a
-   * voxel of the box: each polygon keeps a box of its own, as in the octree. Off: the
-   * paper's face octree alone.
+   * voxel of the box: each polygon keeps a box of its own, as in the octree. Off (the
+   * default): the paper's face octree alone. The merging is serial and about doubles the
+   * filter's time for 10 to 15 % fewer cells on round solids (README).
    */
   vtkSetMacro(MergeFaceNodes, bool);
   vtkGetMacro(MergeFaceNodes, bool);
@@ -219,7 +220,7 @@ protected:
   int MaximumOctreeLevel = 10;
   double Precision = 0.0;
   bool PruneCrests = true;
-  bool MergeFaceNodes = true;
+  bool MergeFaceNodes = false;
 
 private:
   vtkFaceOctreeBoundaryFilter(const vtkFaceOctreeBoundaryFilter&) = delete;

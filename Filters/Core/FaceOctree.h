@@ -70,7 +70,7 @@ struct FaceOctreeOptions
   double precision = 0.5; ///< largest point-to-plane distance (voxel units)
   double minimumCosine = 0.5;
   /// Merge adjacent face nodes after the compaction (beyond the paper, see above).
-  bool mergeFaceNodes = true;
+  bool mergeFaceNodes = false;
 };
 
 struct FaceNode

@@ -575,7 +575,7 @@ struct Result
   vbr::BoundaryMesh mesh;
 };
 
-/// Whether run() merges adjacent face nodes (the default of the options).
+/// Whether run() merges adjacent face nodes (the boundary checks run with merging).
 bool mergeFaceNodes = true;
 
 Result run(const BitVolume& v,
@@ -891,7 +891,7 @@ TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
 
 TEST(FaceOctree, MergingCrossesOctreeCellsAndDropsSewingTriangles)
 {
-  // The same surface rules (the boundary checks above run with merging, the default); here
+  // The same surface rules (the boundary checks above run with merging); here
   // what merging is for: faces whose box is no octree cube, and fewer cells than without.
   for (const Shape& s : solids())
   {
