@@ -491,6 +491,7 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   each.relaxation.iterations = this->RelaxationIterations;
   each.relaxation.tolerance = this->RelaxationTolerance;
   each.octree.maximumLevel = this->MaximumOctreeLevel;
+  each.octree.mergeFaceNodes = this->MergeFaceNodes;
   const double spacing =
     std::min({ std::abs(grid.spacing[0]), std::abs(grid.spacing[1]), std::abs(grid.spacing[2]) });
   each.octree.precision = (this->Precision > 0 && spacing > 0) ? this->Precision / spacing : 0.5;
@@ -542,4 +543,5 @@ void vtkFaceOctreeBoundaryFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumOctreeLevel: " << this->MaximumOctreeLevel << "\n";
   os << indent << "Precision: " << this->Precision << "\n";
   os << indent << "PruneCrests: " << (this->PruneCrests ? "On\n" : "Off\n");
+  os << indent << "MergeFaceNodes: " << (this->MergeFaceNodes ? "On\n" : "Off\n");
 }

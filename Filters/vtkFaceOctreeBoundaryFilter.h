@@ -51,10 +51,11 @@
  * surfels, measured by the filter in voxel units: 1 is a voxel edge, the bound is sqrt(3)).
  *
  * Output port 1: the face octree, one hexahedron per face node (its box, in world
- * coordinates) with cell data `PlaneNormal` (unit, world), `PlaneOffset` (world: the plane is
- * PlaneNormal . x = PlaneOffset), `NodeLevel`, `FaceNodeId` and `Label` (in Labels mode the
- * larger label of the node's pair; its box is that of its grid vertices' boxes, offset by
- * half a voxel from the voxels).
+ * coordinates; with MergeFaceNodes a merged face's box is the bounding box of its octree
+ * nodes, and the boxes stay disjoint like the octree's cells) with cell data `PlaneNormal`
+ * (unit, world), `PlaneOffset` (world: the plane is PlaneNormal . x = PlaneOffset), `NodeLevel`,
+ * `FaceNodeId` and `Label` (in Labels mode the larger label of the node's pair; its box is that of
+ * its grid vertices' boxes, offset by half a voxel from the voxels).
  *
  * Labels mode (beyond the paper; Filters/Core/LabelNet.h): neighbouring labels share one
  * surface, with no gap and no overlap between them. One net serves all labels: a point near
@@ -182,6 +183,25 @@ public:
   vtkBooleanMacro(PruneCrests, bool);
   ///@}
 
+  ///@{
+  /**
+   * Merge adjacent face nodes (beyond the paper; default off): after the octree's compaction,
+   * face nodes that share quadrilaterals are merged greedily, the largest first, whenever one
+   * plane fits their union under the same rules as an octree node (FaceOctree.h), so that a
+   * planar patch across octree cell boundaries becomes one polygon and the sewing triangles
+   * between the merged nodes disappear. A merged face is one face node: one `FaceNodeId`,
+   * as `NodeLevel` the largest level of the octree nodes merged into it, and on output port
+   * 1 one box, the bounding box of its octree nodes. Faces merge only while their boxes
+   * stay disjoint and no face facing away (another sheet) or point in no face lies within a
+   * voxel of the box: each polygon keeps a box of its own, as in the octree. Off (the
+   * default): the paper's face octree alone. The merging is serial and about doubles the
+   * filter's time for 10 to 15 % fewer cells on round solids (README).
+   */
+  vtkSetMacro(MergeFaceNodes, bool);
+  vtkGetMacro(MergeFaceNodes, bool);
+  vtkBooleanMacro(MergeFaceNodes, bool);
+  ///@}
+
 protected:
   vtkFaceOctreeBoundaryFilter();
   ~vtkFaceOctreeBoundaryFilter() override;
@@ -200,6 +220,7 @@ protected:
   int MaximumOctreeLevel = 10;
   double Precision = 0.0;
   bool PruneCrests = true;
+  bool MergeFaceNodes = false;
 
 private:
   vtkFaceOctreeBoundaryFilter(const vtkFaceOctreeBoundaryFilter&) = delete;

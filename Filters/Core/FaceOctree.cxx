@@ -47,6 +47,42 @@ struct Candidate
   std::size_t begin, end;
 };
 
+/// The points a plane is fitted to: an octree node's (the cube of a Morton prefix) or the
+/// union of two face nodes (the merging of mergeFaceNodes below), with the box no far voxel
+/// of which the plane may cut.
+struct Region
+{
+  const std::int32_t* first = nullptr; ///< its points: by Morton code, or by id for faces
+  std::size_t size = 0;
+  int level = 0;
+  std::array<std::int32_t, 3> lo{ 0, 0, 0 }, hi{ 0, 0, 0 };
+  const std::uint64_t* codes = nullptr; ///< an octree node: codes >> 3 level == key
+  std::uint64_t key = 0;
+  const std::int32_t* faceOf = nullptr; ///< else two faces: faceOf[p] is a or b
+  std::int32_t a = -1, b = -1;
+
+  bool contains(std::int32_t p) const
+  {
+    if (this->codes)
+      return (this->codes[p] >> (3 * this->level)) == this->key;
+    return this->faceOf[p] == this->a || this->faceOf[p] == this->b;
+  }
+  /// The position of one of its points among them.
+  std::size_t indexOf(std::int32_t p) const
+  {
+    const std::int32_t* last = this->first + this->size;
+    const std::int32_t* it = this->codes
+      ? std::lower_bound(this->first,
+          last,
+          p,
+          [&](std::int32_t x, std::int32_t y) { return this->codes[x] < this->codes[y]; })
+      : std::lower_bound(this->first, last, p);
+    while (*it != p)
+      ++it; // two points share a voxel (and its code)
+    return std::size_t(it - this->first);
+  }
+};
+
 struct NodeFit
 {
   bool ok = false;
@@ -64,35 +100,49 @@ struct Compactor
   double precision = std::sqrt(3.0);
   const std::vector<Vec3>* current = nullptr; ///< the points' positions so far
 
-  bool inNode(std::int32_t p, const Candidate& c) const
-  {
-    return (this->codes[p] >> (3 * c.level)) == c.key;
-  }
-  NodeFit fit(const Candidate& c) const;
-  bool sewingUnfolded(const Candidate& c, const std::vector<Vec3>& projected) const;
-  bool planeNormal(const Candidate& c, Vec3& n) const;
-  bool planeOffset(const Candidate& c, const FaceNode& node, double& t) const;
+  Region regionOf(const Candidate& c) const;
+  NodeFit fit(const Region& c) const;
+  bool sewingUnfolded(const Region& c, const std::vector<Vec3>& projected) const;
+  bool planeNormal(const Region& c, Vec3& n) const;
+  bool planeOffset(const Region& c, const FaceNode& node, double& t) const;
   void forbiddenIntervals(const FaceNode& node,
     double lo,
     double hi,
     std::vector<std::pair<double, double>>& out) const;
-  bool collapseToPolygon(const Candidate& c, NodeFit& f) const;
+  bool collapseToPolygon(const Region& c, NodeFit& f) const;
 };
 
-bool Compactor::planeNormal(const Candidate& c, Vec3& n) const
+Region Compactor::regionOf(const Candidate& c) const
+{
+  Region r;
+  r.first = this->order.data() + c.begin;
+  r.size = c.end - c.begin;
+  r.level = c.level;
+  r.codes = this->codes.data();
+  r.key = c.key;
+  const auto& v = this->model.voxel[*r.first];
+  for (int d = 0; d < 3; ++d)
+  {
+    r.lo[d] = (v[d] >> c.level) << c.level;
+    r.hi[d] = std::min<std::int32_t>(this->model.dims[d], r.lo[d] + (std::int32_t(1) << c.level));
+  }
+  return r;
+}
+
+bool Compactor::planeNormal(const Region& c, Vec3& n) const
 {
   n = { 0, 0, 0 };
-  for (std::size_t i = c.begin; i < c.end; ++i)
+  for (std::size_t i = 0; i < c.size; ++i)
     for (int d = 0; d < 3; ++d)
-      n[d] += this->model.normal[this->order[i]][d];
+      n[d] += this->model.normal[c.first[i]][d];
   const double len = norm(n);
   if (!(len > 1e-12))
     return false;
   for (int d = 0; d < 3; ++d)
     n[d] /= len;
-  for (std::size_t i = c.begin; i < c.end; ++i)
+  for (std::size_t i = 0; i < c.size; ++i)
   {
-    const Vec3& m = this->model.normal[this->order[i]];
+    const Vec3& m = this->model.normal[c.first[i]];
     if (dot(m, n) < this->options.minimumCosine * norm(m))
       return false;
   }
@@ -136,13 +186,13 @@ void Compactor::forbiddenIntervals(const FaceNode& node,
     }
 }
 
-bool Compactor::planeOffset(const Candidate& c, const FaceNode& node, double& t) const
+bool Compactor::planeOffset(const Region& c, const FaceNode& node, double& t) const
 {
   const Vec3& n = node.normal;
   double lo = -1e300, hi = 1e300, sum = 0.0, weight = 0.0;
-  for (std::size_t i = c.begin; i < c.end; ++i)
+  for (std::size_t i = 0; i < c.size; ++i)
   {
-    const std::int32_t p = this->order[i];
+    const std::int32_t p = c.first[i];
     double bmin = 0.0, bmax = 0.0;
     for (int d = 0; d < 3; ++d)
     {
@@ -184,21 +234,20 @@ bool Compactor::planeOffset(const Candidate& c, const FaceNode& node, double& t)
 }
 
 /// The inside quadrilaterals' boundary as one simple counter-clockwise loop around a disk.
-bool Compactor::collapseToPolygon(const Candidate& c, NodeFit& f) const
+bool Compactor::collapseToPolygon(const Region& c, NodeFit& f) const
 {
   const DeformedModel& m = this->model;
   std::vector<std::uint64_t> edges; // directed edges of the inside quadrilaterals
   std::size_t faces = 0;
   std::vector<std::int32_t> used;
-  for (std::size_t i = c.begin; i < c.end; ++i)
+  for (std::size_t i = 0; i < c.size; ++i)
   {
-    const std::int32_t p = this->order[i];
+    const std::int32_t p = c.first[i];
     bool any = false;
     for (std::int64_t l = m.linkOffsets[p]; l < m.linkOffsets[p + 1]; ++l)
     {
       const Quad& q = m.quads[m.quadsOf[l]];
-      if (!(this->inNode(q[0], c) && this->inNode(q[1], c) && this->inNode(q[2], c) &&
-            this->inNode(q[3], c)))
+      if (!(c.contains(q[0]) && c.contains(q[1]) && c.contains(q[2]) && c.contains(q[3])))
         continue;
       any = true;
       if (q[0] != p)
@@ -247,35 +296,24 @@ bool Compactor::collapseToPolygon(const Candidate& c, NodeFit& f) const
 /// Whether every quadrilateral that leaves the node still has a split into two triangles
 /// facing the way the relaxed quadrilateral faces (with the node's points projected and the
 /// others where they are now): projecting must not fold the sewing triangles.
-bool Compactor::sewingUnfolded(const Candidate& c, const std::vector<Vec3>& projected) const
+bool Compactor::sewingUnfolded(const Region& c, const std::vector<Vec3>& projected) const
 {
   const DeformedModel& m = this->model;
   auto positionOf = [&](std::int32_t p) -> const Vec3&
-  {
-    if (!this->inNode(p, c))
-      return (*this->current)[p];
-    auto it = std::lower_bound(this->order.begin() + c.begin,
-      this->order.begin() + c.end,
-      p,
-      [&](std::int32_t a, std::int32_t b) { return this->codes[a] < this->codes[b]; });
-    while (*it != p)
-      ++it;
-    return projected[it - (this->order.begin() + c.begin)];
-  };
+  { return c.contains(p) ? projected[c.indexOf(p)] : (*this->current)[p]; };
   auto normal = [](const Vec3& a, const Vec3& b, const Vec3& d)
   {
     const Vec3 u{ b[0] - a[0], b[1] - a[1], b[2] - a[2] },
       v{ d[0] - a[0], d[1] - a[1], d[2] - a[2] };
     return Vec3{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
   };
-  for (std::size_t i = c.begin; i < c.end; ++i)
+  for (std::size_t i = 0; i < c.size; ++i)
   {
-    const std::int32_t p = this->order[i];
+    const std::int32_t p = c.first[i];
     for (std::int64_t l = m.linkOffsets[p]; l < m.linkOffsets[p + 1]; ++l)
     {
       const Quad& q = m.quads[m.quadsOf[l]];
-      if (this->inNode(q[0], c) && this->inNode(q[1], c) && this->inNode(q[2], c) &&
-        this->inNode(q[3], c))
+      if (c.contains(q[0]) && c.contains(q[1]) && c.contains(q[2]) && c.contains(q[3]))
         continue;
       const Vec3 a = normal(m.position[q[0]], m.position[q[1]], m.position[q[2]]);
       const Vec3 b = normal(m.position[q[0]], m.position[q[2]], m.position[q[3]]);
@@ -291,23 +329,18 @@ bool Compactor::sewingUnfolded(const Candidate& c, const std::vector<Vec3>& proj
   return true;
 }
 
-NodeFit Compactor::fit(const Candidate& c) const
+NodeFit Compactor::fit(const Region& c) const
 {
   NodeFit f;
   FaceNode& node = f.node;
   node.level = c.level;
-  const auto& dims = this->model.dims;
-  for (int d = 0; d < 3; ++d)
-  {
-    const auto& v = this->model.voxel[this->order[c.begin]];
-    node.lo[d] = (v[d] >> c.level) << c.level;
-    node.hi[d] = std::min<std::int32_t>(dims[d], node.lo[d] + (std::int32_t(1) << c.level));
-  }
+  node.lo = c.lo;
+  node.hi = c.hi;
   if (!this->planeNormal(c, node.normal) || !this->planeOffset(c, node, node.offset))
     return f;
-  for (std::size_t i = c.begin; i < c.end; ++i)
+  for (std::size_t i = 0; i < c.size; ++i)
   {
-    const std::int32_t p = this->order[i];
+    const std::int32_t p = c.first[i];
     f.projected.push_back(projectIntoBox(this->model.position[p],
       node.normal,
       node.offset,
@@ -321,8 +354,7 @@ NodeFit Compactor::fit(const Candidate& c) const
     std::vector<Vec3> corners;
     for (std::int32_t p : node.polygon)
     {
-      const auto it = std::find(this->order.begin() + c.begin, this->order.begin() + c.end, p);
-      corners.push_back(f.projected[it - (this->order.begin() + c.begin)]);
+      corners.push_back(f.projected[c.indexOf(p)]);
     }
     const auto flat = planeCoordinates(node, corners);
     if (!(doubledArea(flat) > 0) || !isSimplePolygon(flat) ||
@@ -670,12 +702,12 @@ bool compactLevel(const Compactor& cp,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t c = b; c < e; ++c)
-        fits[c] = cp.fit(candidates[c]);
+        fits[c] = cp.fit(cp.regionOf(candidates[c]));
     });
   bool any = false;
   for (std::size_t c = 0; c < candidates.size(); ++c)
   {
-    if (!fits[c].ok || !cp.sewingUnfolded(candidates[c], fits[c].projected))
+    if (!fits[c].ok || !cp.sewingUnfolded(cp.regionOf(candidates[c]), fits[c].projected))
       continue;
     const std::int32_t id = std::int32_t(out.nodes.size());
     for (std::size_t i = candidates[c].begin; i < candidates[c].end; ++i)
@@ -692,9 +724,9 @@ bool compactLevel(const Compactor& cp,
 }
 
 /// Keeps the terminal face nodes only, renumbered in the order of their first point.
-void keepTerminalNodes(FaceOctree& out)
+void keepTerminalNodes(FaceOctree& out, std::vector<std::int32_t>& renumber)
 {
-  std::vector<std::int32_t> renumber(out.nodes.size(), -1);
+  renumber.assign(out.nodes.size(), -1);
   std::vector<FaceNode> kept;
   for (std::int32_t& id : out.nodeOf)
   {
@@ -708,6 +740,279 @@ void keepTerminalNodes(FaceOctree& out)
     id = renumber[id];
   }
   out.nodes = std::move(kept);
+}
+
+/// The boxes of the faces and the voxels of the points in no face, in buckets of 8^3 voxels:
+/// a merged face's box must overlap no other. The octree's boxes are disjoint cells holding
+/// their own points only; keeping them so keeps every polygon in a box of its own, apart from
+/// the others' (their sewing is checked as for octree nodes).
+class BoxIndex
+{
+public:
+  static constexpr int bucket = 8;
+
+  BoxIndex(const std::array<std::int32_t, 3>& dims, const FaceOctree& out, const DeformedModel& m)
+    : faces(std::int32_t(out.nodes.size()))
+    , nodes(out.nodes)
+    , model(m)
+  {
+    for (int d = 0; d < 3; ++d)
+      this->n[d] = dims[d] / bucket + 1;
+    this->entries.resize(std::size_t(this->n[0]) * this->n[1] * this->n[2]);
+    for (std::int32_t f = 0; f < this->faces; ++f)
+      this->insert(f, out.nodes[f].lo, out.nodes[f].hi);
+    for (std::size_t p = 0; p < out.nodeOf.size(); ++p)
+      if (out.nodeOf[p] < 0)
+      {
+        const auto& v = m.voxel[p];
+        this->insert(this->faces + std::int32_t(p), v, { v[0] + 1, v[1] + 1, v[2] + 1 });
+      }
+  }
+
+  void insert(std::int32_t id,
+    const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi)
+  {
+    this->forBuckets(lo,
+      hi,
+      [&](std::vector<std::int32_t>& e)
+      {
+        e.push_back(id);
+        return false;
+      });
+  }
+
+  /// Whether the box [lo, hi) overlaps the box of a face other than a and b for which
+  /// `counts` holds, or the voxel of a point in no face.
+  template<typename Counts>
+  bool overlapsOther(const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    std::int32_t a,
+    std::int32_t b,
+    const Counts& counts) const
+  {
+    return this->forBuckets(lo,
+      hi,
+      [&](const std::vector<std::int32_t>& e)
+      {
+        for (std::int32_t id : e)
+        {
+          if (id == a || id == b || (id < this->faces && !counts(id)))
+            continue;
+          std::array<std::int32_t, 3> olo, ohi;
+          if (id < this->faces)
+            olo = this->nodes[id].lo, ohi = this->nodes[id].hi;
+          else
+          {
+            olo = this->model.voxel[id - this->faces];
+            ohi = { olo[0] + 1, olo[1] + 1, olo[2] + 1 };
+          }
+          if (lo[0] < ohi[0] && olo[0] < hi[0] && lo[1] < ohi[1] && olo[1] < hi[1] &&
+            lo[2] < ohi[2] && olo[2] < hi[2])
+            return true;
+        }
+        return false;
+      });
+  }
+
+private:
+  std::int32_t faces;
+  const std::vector<FaceNode>& nodes; ///< the faces' current boxes
+  const DeformedModel& model;
+  std::array<std::int32_t, 3> n{ 1, 1, 1 };
+  std::vector<std::vector<std::int32_t>> entries;
+
+  /// Calls visit on each bucket the box meets until it returns true.
+  template<typename Entries, typename Visit>
+  static bool visitBuckets(Entries& entries,
+    const std::array<std::int32_t, 3>& n,
+    const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    const Visit& visit)
+  {
+    for (std::int32_t k = lo[2] / bucket; k <= (hi[2] - 1) / bucket; ++k)
+      for (std::int32_t j = lo[1] / bucket; j <= (hi[1] - 1) / bucket; ++j)
+        for (std::int32_t i = lo[0] / bucket; i <= (hi[0] - 1) / bucket; ++i)
+          if (visit(entries[(std::size_t(k) * n[1] + j) * n[0] + i]))
+            return true;
+    return false;
+  }
+  template<typename Visit>
+  bool forBuckets(const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    const Visit& visit)
+  {
+    return visitBuckets(this->entries, this->n, lo, hi, visit);
+  }
+  template<typename Visit>
+  bool forBuckets(const std::array<std::int32_t, 3>& lo,
+    const std::array<std::int32_t, 3>& hi,
+    const Visit& visit) const
+  {
+    return visitBuckets(this->entries, this->n, lo, hi, visit);
+  }
+};
+
+/// The merging of adjacent face nodes (beyond the paper; see FaceOctree.h): the faces, each
+/// with its points (by id), the faces next to it across a quadrilateral, and where it went.
+struct FaceMerger
+{
+  const Compactor& cp;
+  FaceOctree& out;
+  std::vector<std::vector<std::int32_t>> members, neighbours;
+  std::vector<std::int32_t> into; ///< per face: itself, or a face it was merged into
+  BoxIndex boxes;
+
+  std::int32_t find(std::int32_t f)
+  {
+    while (this->into[f] != f)
+      f = this->into[f] = this->into[this->into[f]];
+    return f;
+  }
+
+  FaceMerger(const Compactor& c, FaceOctree& o)
+    : cp(c)
+    , out(o)
+    , boxes(c.model.dims, o, c.model)
+  {
+    const std::size_t faces = o.nodes.size();
+    this->members.resize(faces);
+    this->neighbours.resize(faces);
+    this->into.resize(faces);
+    std::iota(this->into.begin(), this->into.end(), 0);
+    for (std::size_t p = 0; p < o.nodeOf.size(); ++p)
+      if (o.nodeOf[p] >= 0)
+        this->members[o.nodeOf[p]].push_back(std::int32_t(p));
+    for (const Quad& q : c.model.quads)
+      for (int r = 0; r < 4; ++r)
+        for (int t = r + 1; t < 4; ++t)
+        {
+          const std::int32_t a = o.nodeOf[q[r]], b = o.nodeOf[q[t]];
+          if (a >= 0 && b >= 0 && a != b)
+            this->neighbours[a].push_back(b), this->neighbours[b].push_back(a);
+        }
+    for (auto& n : this->neighbours)
+    {
+      std::sort(n.begin(), n.end());
+      n.erase(std::unique(n.begin(), n.end()), n.end());
+    }
+  }
+
+  /// The faces next to s now, the best aligned with its plane first.
+  std::vector<std::int32_t> candidates(std::int32_t s)
+  {
+    std::vector<std::int32_t> c;
+    for (std::int32_t n : this->neighbours[s])
+      if (this->find(n) != s)
+        c.push_back(this->find(n));
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    const Vec3& m = this->out.nodes[s].normal;
+    std::stable_sort(c.begin(),
+      c.end(),
+      [&](std::int32_t a, std::int32_t b)
+      { return dot(m, this->out.nodes[a].normal) > dot(m, this->out.nodes[b].normal); });
+    return c;
+  }
+
+  /// Whether the union's box overlaps another face's box, or its box grown by a voxel meets
+  /// a point in no face or a face facing away (normals more than 90 degrees apart): another
+  /// sheet close by, whose sewing triangles a larger projection could cross (noise, thin
+  /// walls; random voxels at 85 % showed such crossings before this rule). Creases, with
+  /// their faces at right angles, still merge along them.
+  bool crowded(const Region& r, std::int32_t a, std::int32_t b)
+  {
+    auto alive = [&](std::int32_t f) { return this->into[f] == f; };
+    if (this->boxes.overlapsOther(r.lo, r.hi, a, b, alive))
+      return true;
+    const Vec3 &na = this->out.nodes[a].normal, &nb = this->out.nodes[b].normal;
+    std::array<std::int32_t, 3> lo = r.lo, hi = r.hi;
+    for (int d = 0; d < 3; ++d)
+      lo[d] = std::max(0, lo[d] - 1), hi[d] = std::min(this->cp.model.dims[d], hi[d] + 1);
+    return this->boxes.overlapsOther(lo,
+      hi,
+      a,
+      b,
+      [&](std::int32_t f)
+      {
+        const Vec3& m = this->out.nodes[f].normal;
+        return alive(f) && (dot(m, na) < 0 || dot(m, nb) < 0);
+      });
+  }
+
+  /// Merges face b into face a if one plane fits both (the rules of the octree's nodes).
+  bool tryMerge(std::int32_t a, std::int32_t b)
+  {
+    const FaceNode &na = this->out.nodes[a], &nb = this->out.nodes[b];
+    if (dot(na.normal, nb.normal) < this->cp.options.minimumCosine)
+      return false;
+    std::vector<std::int32_t> points;
+    points.reserve(this->members[a].size() + this->members[b].size());
+    std::merge(this->members[a].begin(),
+      this->members[a].end(),
+      this->members[b].begin(),
+      this->members[b].end(),
+      std::back_inserter(points));
+    Region r;
+    r.first = points.data();
+    r.size = points.size();
+    r.level = std::max(na.level, nb.level);
+    for (int d = 0; d < 3; ++d)
+      r.lo[d] = std::min(na.lo[d], nb.lo[d]), r.hi[d] = std::max(na.hi[d], nb.hi[d]);
+    r.faceOf = this->out.nodeOf.data();
+    r.a = a;
+    r.b = b;
+    if (this->crowded(r, a, b))
+      return false;
+    NodeFit f = this->cp.fit(r);
+    if (!f.ok)
+      return false;
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      this->out.nodeOf[points[i]] = a;
+      this->out.projected[points[i]] = f.projected[i];
+    }
+    this->out.nodes[a] = std::move(f.node);
+    this->members[a] = std::move(points);
+    this->members[b].clear();
+    this->neighbours[a].insert(
+      this->neighbours[a].end(), this->neighbours[b].begin(), this->neighbours[b].end());
+    this->into[b] = a;
+    this->boxes.insert(a, this->out.nodes[a].lo, this->out.nodes[a].hi);
+    return true;
+  }
+
+  /// Grows face s over its neighbours, in rounds, until a round merges none.
+  void grow(std::int32_t s)
+  {
+    for (bool grew = true; grew;)
+    {
+      grew = false;
+      for (std::int32_t n : this->candidates(s))
+        grew = this->tryMerge(s, n) || grew;
+    }
+  }
+};
+
+/// Merges adjacent face nodes greedily (the largest first) and renumbers the faces in the
+/// order of their first point.
+void mergeFaceNodes(const Compactor& cp, const Execution& exec, FaceOctree& out)
+{
+  FaceMerger m(cp, out);
+  std::vector<std::int32_t> order(out.nodes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](std::int32_t a, std::int32_t b) { return m.members[a].size() > m.members[b].size(); });
+  for (std::int32_t s : order)
+  {
+    if (exec.stopRequested())
+      break;
+    if (m.find(s) == s)
+      m.grow(s);
+  }
+  std::vector<std::int32_t> renumber(out.nodes.size(), -1);
+  keepTerminalNodes(out, renumber);
 }
 
 } // namespace
@@ -747,7 +1052,10 @@ FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
   for (int level = 1; level <= options.maximumLevel && level < 21; ++level)
     if (exec.stopRequested() || !compactLevel(cp, level, exec, out, faceLevel))
       break;
-  keepTerminalNodes(out);
+  std::vector<std::int32_t> renumber;
+  keepTerminalNodes(out, renumber);
+  if (options.mergeFaceNodes && options.maximumLevel > 0)
+    mergeFaceNodes(cp, exec, out);
   return out;
 }
 

@@ -4,14 +4,27 @@
 // to the voxel boundary stays at most this filter's (bisection on the target reduction, before
 // the timing), in turns in one process (the harness of BenchCommon.h).
 //
-// Distance: the largest distance from an output vertex to the surfels (the same measure for
-// both, vbr::maximumDistanceToSurfels; vertices beyond two voxels count as 2). Both outputs
-// are in the same index frame (point scalars, unit spacing; the surfels half a voxel from the
-// points). Per solid (the solids class: ball, torus, CSG of n^3 voxels): the table of the
-// harness (median time, cells, peak memory of a first run of the whole pipeline, time ratio),
-// then for both: polygons, triangles (each polygon counted as its fan), the distance, and
-// polygons per object voxel (the paper's Table 1: 0.19-0.31 at 128^3), the ratio of the
-// triangles, and the filter's voxels per second (the paper's target on 256^3: --sizes 256).
+// Distance: the two-sided Hausdorff distance between the output surface and the surfels, the
+// same measure for both, by samples on both sides (twoSidedDistance below):
+//  - surface to surfels: every vertex and a barycentric lattice on every triangle (each
+//    polygon as its fan) with at most 1/8 voxel between neighbouring samples along an edge,
+//    each sample's distance to the nearest surfel (vbr::maximumDistanceToSurfels; beyond two
+//    voxels counts as 2);
+//  - surfels to surface: the 3 x 3 lattice of every surfel (centre, corners, edge midpoints),
+//    each point's distance to the nearest point of the surface (vtkStaticCellLocator).
+// The distance is the larger of the two. The earlier one-sided measure (output vertices to
+// the surfels only) is printed too: with it a decimated mesh whose large triangles cut far
+// from the voxels in their interiors still "matched". Both outputs are in the same index
+// frame (point scalars, unit spacing; the surfels half a voxel from the points). The filter
+// runs twice: with MergeFaceNodes and without (the default: the paper's octree alone); the
+// pipeline is decimated to the distance of the merged output.
+// With VOXELBREP_BENCH_FORMER_MEASURE set, the pipeline is also decimated to the filter's
+// vertex distance (the former measure) and its triangles printed (eight more decimations). Per
+// solid (the solids class: ball, torus, CSG of n^3 voxels): the table of the harness (median time,
+// cells, peak memory of a first run of the whole pipeline, time ratio), then for both: polygons,
+// triangles (each polygon counted as its fan), the distance, and polygons per object voxel (the
+// paper's Table 1: 0.19-0.31 at 128^3), the ratio of the triangles, and the filter's voxels per
+// second (the paper's target on 256^3: --sizes 256).
 //
 //   BenchFaceOctreeBoundary --help     the options, with this program's defaults
 //   BenchFaceOctreeBoundary --quick    the smoke run of ctest
@@ -28,10 +41,13 @@
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkQuadricDecimation.h"
+#include "vtkStaticCellLocator.h"
 #include "vtkWindowedSincPolyDataFilter.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -51,6 +67,101 @@ std::vector<vbr::Vec3> vertices(vtkPolyData* p)
     out[i] = { x[0] + 0.5, x[1] + 0.5, x[2] + 0.5 };
   }
   return out;
+}
+
+/// Samples of the surface in the core's frame: the vertices, and on each triangle of each
+/// polygon's fan a barycentric lattice with at most `spacing` between neighbours on an edge.
+std::vector<vbr::Vec3> surfaceSamples(vtkPolyData* p, double spacing)
+{
+  std::vector<vbr::Vec3> out = vertices(p);
+  const std::vector<vbr::Vec3> v = out;
+  vtkCellArray* polys = p->GetPolys();
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+    for (vtkIdType i = 1; i + 1 < n; ++i)
+    {
+      const vbr::Vec3 &a = v[ids[0]], &b = v[ids[i]], &c = v[ids[i + 1]];
+      double longest = 0;
+      for (const auto& e :
+        { std::make_pair(&a, &b), std::make_pair(&b, &c), std::make_pair(&c, &a) })
+        longest = std::max(longest,
+          std::sqrt(std::pow((*e.first)[0] - (*e.second)[0], 2) +
+            std::pow((*e.first)[1] - (*e.second)[1], 2) +
+            std::pow((*e.first)[2] - (*e.second)[2], 2)));
+      const int steps = std::max(1, int(std::ceil(longest / spacing)));
+      for (int s = 0; s <= steps; ++s)
+        for (int t = 0; s + t <= steps; ++t)
+        {
+          const double u = double(s) / steps, w = double(t) / steps;
+          out.push_back({ a[0] + u * (b[0] - a[0]) + w * (c[0] - a[0]),
+            a[1] + u * (b[1] - a[1]) + w * (c[1] - a[1]),
+            a[2] + u * (b[2] - a[2]) + w * (c[2] - a[2]) });
+        }
+    }
+  return out;
+}
+
+/// The 3 x 3 lattice of every surfel (the face between an object voxel and a background one,
+/// outside the grid counting as background), in the core's frame.
+std::vector<vbr::Vec3> surfelSamples(const vbr::BitVolume& bits)
+{
+  const auto& n = bits.dims();
+  auto at = [&](std::int32_t i, std::int32_t j, std::int32_t k)
+  { return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && bits.get(i, j, k); };
+  std::vector<vbr::Vec3> out;
+  for (std::int32_t k = -1; k < n[2]; ++k)
+    for (std::int32_t j = -1; j < n[1]; ++j)
+      for (std::int32_t i = -1; i < n[0]; ++i)
+        for (int a = 0; a < 3; ++a)
+        {
+          if (at(i, j, k) == at(i + (a == 0), j + (a == 1), k + (a == 2)))
+            continue;
+          for (int s = 0; s <= 2; ++s)
+            for (int t = 0; t <= 2; ++t)
+            {
+              vbr::Vec3 p{ double(i), double(j), double(k) };
+              p[a] += 1;
+              p[(a + 1) % 3] += 0.5 * s;
+              p[(a + 2) % 3] += 0.5 * t;
+              out.push_back(p);
+            }
+        }
+  return out;
+}
+
+/// Distances between an output and the voxel boundary (voxel units).
+struct Distance
+{
+  double vertices = 0.0;    ///< the former, one-sided measure: vertices to surfels
+  double toSurfels = 0.0;   ///< surface samples to surfels
+  double fromSurfels = 0.0; ///< surfel samples to the surface
+  double hausdorff() const { return std::max(this->toSurfels, this->fromSurfels); }
+};
+
+/// The two-sided distance described on top (spacing 1/8 voxel on the surface).
+Distance twoSidedDistance(const vbr::BitVolume& bits,
+  const std::vector<vbr::Vec3>& surfels,
+  vtkPolyData* p)
+{
+  Distance d;
+  d.vertices = vbr::maximumDistanceToSurfels(bits, vertices(p));
+  d.toSurfels = vbr::maximumDistanceToSurfels(bits, surfaceSamples(p, 0.125));
+  vtkNew<vtkStaticCellLocator> locator;
+  locator->SetDataSet(p);
+  locator->BuildLocator();
+  double worst2 = 0.0;
+  for (const vbr::Vec3& s : surfels)
+  {
+    const double x[3] = { s[0] - 0.5, s[1] - 0.5, s[2] - 0.5 };
+    double closest[3], d2 = 0.0;
+    vtkIdType cell = -1;
+    int sub = 0;
+    locator->FindClosestPoint(x, closest, cell, sub, d2);
+    worst2 = std::max(worst2, d2);
+  }
+  d.fromSurfels = std::sqrt(worst2);
+  return d;
 }
 
 long long fanTriangles(vtkPolyData* p)
@@ -83,16 +194,22 @@ struct Pipeline
     this->decimate->SetInputConnection(this->smooth->GetOutputPort());
   }
 
-  /// Decimates as far as the distance stays within `bound` (8 bisection steps).
-  void decimateWithin(const vbr::BitVolume& bits, double bound)
+  /// Decimates as far as the distance (the two-sided one, or the former vertex measure)
+  /// stays within `bound` (8 bisection steps).
+  void decimateWithin(const vbr::BitVolume& bits,
+    const std::vector<vbr::Vec3>& surfels,
+    double bound,
+    bool verticesOnly = false)
   {
-    double lo = 0.0, hi = 0.995;
+    double lo = 0.0, hi = 0.999;
     for (int i = 0; i < 8; ++i)
     {
       const double mid = 0.5 * (lo + hi);
       this->decimate->SetTargetReduction(mid);
       this->decimate->Update();
-      const double d = vbr::maximumDistanceToSurfels(bits, vertices(this->decimate->GetOutput()));
+      vtkPolyData* out = this->decimate->GetOutput();
+      const double d = verticesOnly ? vbr::maximumDistanceToSurfels(bits, vertices(out))
+                                    : twoSidedDistance(bits, surfels, out).hausdorff();
       (d <= bound ? lo : hi) = mid;
     }
     this->decimate->SetTargetReduction(lo);
@@ -112,30 +229,44 @@ Contender contenderOf(const char* name, Role role, std::function<void()> run, vt
           } };
 }
 
-/// One output's polygons, triangles, distance and polygons per voxel.
-std::vector<std::string> outputRow(const char* who, vtkPolyData* out, double distance, double v)
+/// One output's polygons, triangles, distances and polygons per voxel.
+std::vector<std::string> outputRow(const char* who, vtkPolyData* out, const Distance& d, double v)
 {
   return { who,
     formatCount(out->GetNumberOfCells()),
     formatCount(fanTriangles(out)),
-    formatFixed(distance, 3),
+    formatFixed(d.hausdorff(), 3),
+    formatFixed(d.toSurfels, 3),
+    formatFixed(d.fromSurfels, 3),
+    formatFixed(d.vertices, 3),
     formatFixed(double(out->GetNumberOfCells()) / v, 3) };
 }
 
 void printOutputs(const Input& in,
   const vbr::BitVolume& bits,
+  const std::vector<vbr::Vec3>& surfels,
   vtkPolyData* ours,
+  vtkPolyData* octreeOnly,
   vtkPolyData* theirs,
   double filterSeconds)
 {
   const double voxels = double(std::max<std::size_t>(bits.count(), 1));
-  const double mine = vbr::maximumDistanceToSurfels(bits, vertices(ours));
-  const double peer = vbr::maximumDistanceToSurfels(bits, vertices(theirs));
-  Table table({ "output", "polygons", "triangles", "distance", "polygons/voxel" });
+  const Distance mine = twoSidedDistance(bits, surfels, ours);
+  const Distance unmerged = twoSidedDistance(bits, surfels, octreeOnly);
+  const Distance peer = twoSidedDistance(bits, surfels, theirs);
+  Table table({ "output",
+    "polygons",
+    "triangles",
+    "Hausdorff",
+    "to surfels",
+    "from surfels",
+    "vertices (old)",
+    "polygons/voxel" });
   table.add(outputRow("FaceOctreeBoundary", ours, mine, voxels));
+  table.add(outputRow("FaceOctreeBoundary (octree only)", octreeOnly, unmerged, voxels));
   table.add(outputRow("DFE+WindowedSinc+QDec", theirs, peer, voxels));
   table.print();
-  if (peer > mine)
+  if (peer.hausdorff() > mine.hausdorff())
     std::printf("\n(the pipeline is farther than the filter even undecimated)\n");
   std::printf("\ntriangles: pipeline / filter %s | filter %s M voxels/s (of %s voxels)\n\n",
     formatRatio(double(fanTriangles(theirs)) / double(std::max(1LL, fanTriangles(ours)))).c_str(),
@@ -151,16 +282,39 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
   forEachBackend(options,
     [&](const std::string& backend)
     {
-      vtkNew<vtkFaceOctreeBoundaryFilter> filter;
+      vtkNew<vtkFaceOctreeBoundaryFilter> filter, octreeOnly;
       filter->SetInputData(image);
+      filter->MergeFaceNodesOn();
       filter->Update();
+      octreeOnly->SetInputData(image);
+      octreeOnly->MergeFaceNodesOff();
+      octreeOnly->Update();
+      const std::vector<vbr::Vec3> surfels = surfelSamples(bits);
       Pipeline pipeline(image);
       pipeline.decimateWithin(
-        bits, vbr::maximumDistanceToSurfels(bits, vertices(filter->GetOutput())));
+        bits, surfels, twoSidedDistance(bits, surfels, filter->GetOutput()).hausdorff());
+      if (std::getenv("VOXELBREP_BENCH_FORMER_MEASURE"))
+      {
+        // The former measure, for comparison with earlier reports: output vertices only.
+        Pipeline former(image);
+        const double bound = vbr::maximumDistanceToSurfels(bits, vertices(filter->GetOutput()));
+        former.decimateWithin(bits, surfels, bound, true);
+        former.decimate->Update();
+        std::printf("former measure (vertices to surfels): filter %s, pipeline decimated to it: "
+                    "%s triangles\n",
+          formatFixed(bound, 3).c_str(),
+          formatCount(fanTriangles(former.decimate->GetOutput())).c_str());
+      }
       vtkAlgorithm* f = filter;
+      vtkAlgorithm* g = octreeOnly;
       const std::vector<Contender> contenders{
         contenderOf(
           "FaceOctreeBoundary", Role::Tool, [f] { update(f); }, filter->GetOutput()),
+        contenderOf(
+          "FaceOctreeBoundary (octree only)",
+          Role::Tool,
+          [g] { update(g); },
+          octreeOnly->GetOutput()),
         contenderOf(
           "DFE+WindowedSinc+QDec",
           Role::Peer,
@@ -171,7 +325,9 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
       report.add(in, backend, rows);
       printOutputs(in,
         bits,
+        surfels,
         filter->GetOutput(),
+        octreeOnly->GetOutput(),
         pipeline.decimate->GetOutput(),
         findMeasured(rows, "FaceOctreeBoundary")->median);
     });

@@ -575,6 +575,9 @@ struct Result
   vbr::BoundaryMesh mesh;
 };
 
+/// Whether run() merges adjacent face nodes (the boundary checks run with merging).
+bool mergeFaceNodes = true;
+
 Result run(const BitVolume& v,
   vbr::BoundaryCells cells,
   const vbr::Execution& exec = sequential,
@@ -584,6 +587,7 @@ Result run(const BitVolume& v,
   r.model = vbr::buildDeformedModel(v, {}, exec);
   vbr::FaceOctreeOptions o;
   o.maximumLevel = maximumLevel;
+  o.mergeFaceNodes = mergeFaceNodes;
   r.octree = vbr::buildFaceOctree(v, r.model, o, exec);
   r.mesh = vbr::assembleBoundary(r.model, r.octree, cells);
   return r;
@@ -597,7 +601,19 @@ void checkPolygons(const std::string& name, const BitVolume& v, const Result& r,
   for (std::size_t c = 0; c < m.cells.size(); ++c)
   {
     bool fanRight = true;
-    const double flatness = m.cells[c].size() > 3 ? planarity(m, m.cells[c], fanRight) : 0.0;
+    double flatness = m.cells[c].size() > 3 ? planarity(m, m.cells[c], fanRight) : 0.0;
+    // A long, thin convex piece of a large (merged) face has an ill-conditioned Newell
+    // normal: its node's plane is a second witness of planarity (any plane that close will do).
+    if (r.mesh.faceNode[c] >= 0 && flatness > 0)
+    {
+      const auto& node = r.octree.nodes[r.mesh.faceNode[c]];
+      double worst = 0;
+      for (int p : m.cells[c])
+        worst = std::max(worst,
+          std::abs(node.normal[0] * m.points[p][0] + node.normal[1] * m.points[p][1] +
+            node.normal[2] * m.points[p][2] - node.offset));
+      flatness = std::min(flatness, worst);
+    }
     EXPECT_LT(flatness, 1e-9) << "cell " << c << " of " << m.cells[c].size() << " points, node "
                               << r.mesh.faceNode[c];
     worstPlanarity = std::max(worstPlanarity, flatness);
@@ -800,15 +816,14 @@ TEST(DeformedModel, RelaxationLowersTheCostInsideTheVoxels)
   EXPECT_LE(m.lastDisplacement, 1e-3);
 }
 
-TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
+/// The face nodes' rules, checked directly: every point projected inside its voxel and in its
+/// node's box, on the node's plane, and no plane cutting a voxel whose 26 neighbours are all
+/// of its own kind inside the node's box; octree nodes are aligned cubes.
+static void checkCompactionCriterion(const BitVolume& v,
+  const vbr::DeformedModel& model,
+  const vbr::FaceOctree& octree,
+  bool merged)
 {
-  // A grid that is no power of two along any axis.
-  const std::vector<Shape> shapes = solids(); // the shape must outlive the sampling
-  const Shape& s = shapes[4];
-  const BitVolume v = sample(
-    { 45, 38, 41 }, [&](double x, double y, double z) { return s.inside(x / 45, y / 38, z / 41); });
-  const auto model = vbr::buildDeformedModel(v, {}, sequential);
-  const auto octree = vbr::buildFaceOctree(v, model, {}, sequential);
   int maxLevel = 0;
   for (std::size_t p = 0; p < model.pointCount(); ++p)
   {
@@ -832,7 +847,8 @@ TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
   // No plane cuts the open interior of a voxel whose 26 neighbours are all of its own kind.
   for (const auto& node : octree.nodes)
   {
-    ASSERT_EQ(node.lo[0] % (1 << node.level), 0);
+    if (!merged)
+      ASSERT_EQ(node.lo[0] % (1 << node.level), 0);
     for (int k = node.lo[2]; k < node.hi[2]; ++k)
       for (int j = node.lo[1]; j < node.hi[1]; ++j)
         for (int i = node.lo[0]; i < node.hi[0]; ++i)
@@ -853,6 +869,65 @@ TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
           ASSERT_FALSE(lo < node.offset - 1e-9 && hi > node.offset + 1e-9)
             << "node at level " << node.level << " cuts voxel " << i << " " << j << " " << k;
         }
+  }
+}
+
+TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
+{
+  // A grid that is no power of two along any axis.
+  const std::vector<Shape> shapes = solids(); // the shape must outlive the sampling
+  const Shape& s = shapes[4];
+  const BitVolume v = sample(
+    { 45, 38, 41 }, [&](double x, double y, double z) { return s.inside(x / 45, y / 38, z / 41); });
+  const auto model = vbr::buildDeformedModel(v, {}, sequential);
+  for (bool merge : { false, true })
+  {
+    SCOPED_TRACE(merge ? "merged" : "octree");
+    vbr::FaceOctreeOptions options;
+    options.mergeFaceNodes = merge;
+    checkCompactionCriterion(v, model, vbr::buildFaceOctree(v, model, options, sequential), merge);
+  }
+}
+
+TEST(FaceOctree, MergingCrossesOctreeCellsAndDropsSewingTriangles)
+{
+  // The same surface rules (the boundary checks above run with merging); here
+  // what merging is for: faces whose box is no octree cube, and fewer cells than without.
+  for (const Shape& s : solids())
+  {
+    SCOPED_TRACE(s.name);
+    const BitVolume v = shapeVolume(s, 48);
+    const auto model = vbr::buildDeformedModel(v, {}, sequential);
+    vbr::FaceOctreeOptions options;
+    options.mergeFaceNodes = false;
+    const auto octree = vbr::buildFaceOctree(v, model, options, sequential);
+    options.mergeFaceNodes = true;
+    const auto merged = vbr::buildFaceOctree(v, model, options, sequential);
+    EXPECT_LT(merged.nodes.size(), octree.nodes.size());
+    std::size_t across = 0;
+    for (const auto& node : merged.nodes)
+      for (int d = 0; d < 3; ++d)
+        if (node.lo[d] % (1 << node.level) != 0 || node.hi[d] - node.lo[d] > (1 << node.level))
+        {
+          ++across;
+          break;
+        }
+    EXPECT_GT(across, 0u);
+    // Merged boxes stay disjoint (port 1 of the filter draws them), as the octree's cells.
+    for (std::size_t x = 0; x < merged.nodes.size(); ++x)
+      for (std::size_t y = x + 1; y < merged.nodes.size(); ++y)
+      {
+        const auto &a = merged.nodes[x], &b = merged.nodes[y];
+        bool overlap = true;
+        for (int d = 0; d < 3; ++d)
+          overlap = overlap && a.lo[d] < b.hi[d] && b.lo[d] < a.hi[d];
+        ASSERT_FALSE(overlap) << "faces " << x << " and " << y;
+      }
+    const auto cells = [&](const vbr::FaceOctree& o)
+    { return vbr::assembleBoundary(model, o, vbr::BoundaryCells::Triangles).cellCount(); };
+    EXPECT_LT(cells(merged), cells(octree));
+    std::cout << s.name << "48: " << octree.nodes.size() << " -> " << merged.nodes.size()
+              << " face nodes, " << cells(octree) << " -> " << cells(merged) << " triangles\n";
   }
 }
 
@@ -896,6 +971,14 @@ TEST(FaceOctreeBoundary, SolidsAt32)
 {
   for (const Shape& s : solids())
     checkBoundary(s.name + "32", shapeVolume(s, 32), true);
+}
+
+TEST(FaceOctreeBoundary, SolidsAt32WithoutMerging)
+{
+  mergeFaceNodes = false;
+  for (const Shape& s : solids())
+    checkBoundary(s.name + "32", shapeVolume(s, 32), true);
+  mergeFaceNodes = true;
 }
 
 TEST(FaceOctreeBoundary, RoundSolidsAt64)

@@ -101,6 +101,7 @@ void checkTypesAndLayouts()
       l.spacing = { 0.5, 0.5, 0.5 };
       vtkNew<vtkFaceOctreeBoundaryFilter> f;
       f->SetInputData(makeImage(v, l));
+      f->SetMergeFaceNodes(cells); // both ways, once per type
       f->Update();
       double volume = 0;
       CHECK(closed(f->GetOutput(), volume), "closed for type " << type << " cells " << cells);
