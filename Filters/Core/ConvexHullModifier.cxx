@@ -10,6 +10,7 @@
 #include <map>
 #include <numeric>
 #include <queue>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
@@ -1329,6 +1330,384 @@ bool separates(const BitVolume& objects, const LatticeMesh& surface)
   return revertModifiedHull(surface, background, objects.dims()) == objects;
 }
 
+/// Repairing the topology (see the header): a void of H whose background centres reach the
+/// rest of the background through face-connected background centres, or a piece of H whose
+/// object centres are face-neighbours of object centres of another piece, is joined to the rest
+/// by a prism conv(T1 + T2) between an empty lattice triangle T1 of its shell and one T2 of
+/// another shell, cut out of H (a void) or added to it (a piece).
+
+/// A shell of H (a connected set of triangles; H's points are distinct, so triangles sharing a
+/// point belong to one shell) with six times its signed volume (negative: an inner surface,
+/// oriented into a void).
+struct Shell
+{
+  LatticeMesh mesh;
+  __int128 volume = 0;
+};
+
+std::vector<Shell> shellsOf(const LatticeMesh& m)
+{
+  UnionFind sets(m.points.size());
+  for (const auto& t : m.triangles)
+  {
+    sets.unite(t[0], t[1]);
+    sets.unite(t[0], t[2]);
+  }
+  std::map<Index, std::size_t> shellOfRoot;
+  std::vector<Shell> shells;
+  std::vector<std::map<Index, Index>> local;
+  for (const auto& t : m.triangles)
+  {
+    auto it = shellOfRoot.emplace(sets.find(t[0]), shells.size()).first;
+    if (it->second == shells.size())
+    {
+      shells.emplace_back();
+      local.emplace_back();
+    }
+    Shell& s = shells[it->second];
+    std::array<Index, 3> tri;
+    for (int k = 0; k < 3; ++k)
+    {
+      auto at = local[it->second].emplace(t[k], static_cast<Index>(s.mesh.points.size()));
+      if (at.second)
+        s.mesh.points.push_back(m.points[t[k]]);
+      tri[k] = at.first->second;
+    }
+    s.mesh.triangles.push_back(tri);
+    s.volume += dot(m.points[t[0]], cross(m.points[t[1]], m.points[t[2]]));
+  }
+  return shells;
+}
+
+long eulerCharacteristic(const LatticeMesh& m)
+{
+  return static_cast<long>(m.points.size()) - static_cast<long>(m.triangles.size()) / 2;
+}
+
+std::size_t gridIndex(const Dims& d, const LatticePoint& p)
+{
+  return (static_cast<std::size_t>(p[2]) * d[1] + p[1]) * d[0] + p[0];
+}
+
+/// Flags (value `flag`) the lattice points of the grid strictly enclosed by a closed shell (ray
+/// parity) and, with `onFlag`, those on it; only the shell's box is scanned.
+void markShell(const LatticeMesh& shell,
+  const Dims& d,
+  std::uint8_t flag,
+  std::uint8_t onFlag,
+  std::vector<std::uint8_t>& out)
+{
+  LatticePoint lo = shell.points[0], hi = shell.points[0];
+  for (const auto& p : shell.points)
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  LatticeMesh local = shell;
+  for (auto& p : local.points)
+    p = sub(p, lo);
+  const Dims box{ static_cast<std::int32_t>(hi[0] - lo[0] + 1),
+    static_cast<std::int32_t>(hi[1] - lo[1] + 1),
+    static_cast<std::int32_t>(hi[2] - lo[2] + 1) };
+  const std::vector<LatticePoint> on = latticePointsOnSurface(local, box);
+  const BitVolume inside = revertModifiedHull(local, on, box);
+  for (std::int32_t z = 0; z < box[2]; ++z)
+    for (std::int32_t y = 0; y < box[1]; ++y)
+      for (std::int32_t x = 0; x < box[0]; ++x)
+      {
+        const LatticePoint p{ x + lo[0], y + lo[1], z + lo[2] };
+        if (inside.get(x, y, z) && inGrid(d, p))
+          out[gridIndex(d, p)] = flag;
+      }
+  for (const auto& q : on)
+  {
+    const LatticePoint p{ q[0] + lo[0], q[1] + lo[1], q[2] + lo[2] };
+    if (onFlag && inGrid(d, p))
+      out[gridIndex(d, p)] = onFlag;
+  }
+}
+
+/// Where each lattice point of the grid lies with respect to H.
+enum Where : std::uint8_t
+{
+  Outside = 0,
+  On = 1,
+  Inside = 2
+};
+
+std::vector<std::uint8_t> whereInGrid(const LatticeMesh& surface, const Dims& d)
+{
+  std::vector<std::uint8_t> where(static_cast<std::size_t>(d[0]) * d[1] * d[2], Outside);
+  markShell(surface, d, Inside, On, where);
+  return where;
+}
+
+LatticePoint step(const LatticePoint& p, int k)
+{
+  LatticePoint q = p;
+  q[k / 2] += k % 2 ? 1 : -1;
+  return q;
+}
+
+/// The shortest face-connected path of background centres from a centre of a void (`mine`
+/// flags the centres the shell encloses or holds) to a background centre strictly outside H
+/// and not flagged (or off the grid), every centre between them on H. The two centres where
+/// the path leaves the shell (the last one flagged and the next), or nothing when the void is
+/// sealed from the rest of the background.
+std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
+  const std::vector<std::uint8_t>& where,
+  const std::vector<std::uint8_t>& mine)
+{
+  const Dims d = objects.dims();
+  std::vector<std::int64_t> from(where.size(), -2);
+  std::queue<LatticePoint> todo;
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0]; ++x)
+      {
+        const LatticePoint p{ x, y, z };
+        if (mine[gridIndex(d, p)] == 1 && where[gridIndex(d, p)] == Outside &&
+          !voxelClass(objects, p))
+        {
+          from[gridIndex(d, p)] = -1;
+          todo.push(p);
+        }
+      }
+  while (!todo.empty())
+  {
+    const LatticePoint p = todo.front();
+    todo.pop();
+    for (int k = 0; k < 6; ++k)
+    {
+      const LatticePoint q = step(p, k);
+      if (!inGrid(d, q) ||
+        (where[gridIndex(d, q)] == Outside && !mine[gridIndex(d, q)] && !voxelClass(objects, q)))
+      {
+        std::vector<LatticePoint> path{ q };
+        for (LatticePoint r = p;;)
+        {
+          path.push_back(r);
+          const std::int64_t f = from[gridIndex(d, r)];
+          if (f < 0)
+            break;
+          r = { f % d[0], (f / d[0]) % d[1], f / (static_cast<std::int64_t>(d[0]) * d[1]) };
+        }
+        // path runs from outside back to the void: the crossing is the first step (from the
+        // void's side) onto a centre the shell does not hold.
+        for (std::size_t i = path.size() - 1; i > 0; --i)
+          if (!inGrid(d, path[i - 1]) || !mine[gridIndex(d, path[i - 1])])
+            return { path[i], path[i - 1] };
+        return {};
+      }
+      if (where[gridIndex(d, q)] == On && !voxelClass(objects, q) && from[gridIndex(d, q)] == -2)
+      {
+        from[gridIndex(d, q)] = static_cast<std::int64_t>(gridIndex(d, p));
+        todo.push(q);
+      }
+    }
+  }
+  return {};
+}
+
+/// An object centre of the piece (flagged in `mine`) and an object centre of another piece
+/// that are face-neighbours, or nothing.
+std::vector<LatticePoint> pieceCrossing(const BitVolume& objects,
+  const std::vector<std::uint8_t>& mine)
+{
+  const Dims d = objects.dims();
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0]; ++x)
+      {
+        const LatticePoint p{ x, y, z };
+        if (!mine[gridIndex(d, p)] || !voxelClass(objects, p))
+          continue;
+        for (int k = 0; k < 6; ++k)
+        {
+          const LatticePoint q = step(p, k);
+          if (voxelClass(objects, q) && !mine[gridIndex(d, q)])
+            return { p, q };
+        }
+      }
+  return {};
+}
+
+/// The empty lattice triangles of the mesh's triangles near the two centres (their boxes
+/// within one step), nearest first, at most `count`.
+std::vector<std::array<LatticePoint, 3>> emptyTrianglesNear(const LatticeMesh& m,
+  const std::vector<LatticePoint>& near,
+  std::size_t count)
+{
+  CellList faces;
+  faces.vertices = m.points;
+  for (const auto& t : m.triangles)
+  {
+    bool close = false;
+    for (const auto& p : near)
+    {
+      bool in = true;
+      for (int k = 0; k < 3; ++k)
+        in = in &&
+          std::min({ m.points[t[0]][k], m.points[t[1]][k], m.points[t[2]][k] }) <= p[k] + 1 &&
+          std::max({ m.points[t[0]][k], m.points[t[1]][k], m.points[t[2]][k] }) >= p[k] - 1;
+      close = close || in;
+    }
+    if (!close)
+      continue;
+    faces.faces.push_back({ t[0], t[1], t[2] });
+    faces.planes.push_back(planeThrough(m.points[t[0]], m.points[t[1]], m.points[t[2]]));
+  }
+  std::vector<std::array<LatticePoint, 3>> found;
+  EmptyFaceTriangles triangles(faces, near);
+  std::array<LatticePoint, 3> t;
+  while (found.size() < count && triangles.next(t))
+    found.push_back(t);
+  return found;
+}
+
+/// The prisms conv(T1 + T2) between empty triangles of the shell and of the rest of H near the
+/// crossing, with no lattice point in their open interior, nearest first.
+std::vector<CellList> prismsAt(const LatticeMesh& shell,
+  const LatticeMesh& rest,
+  const std::vector<LatticePoint>& crossing)
+{
+  std::vector<CellList> prisms;
+  const auto first = emptyTrianglesNear(shell, crossing, 6);
+  const auto second = emptyTrianglesNear(rest, crossing, 6);
+  for (const auto& a : first)
+    for (const auto& b : second)
+    {
+      std::vector<LatticePoint> corners(a.begin(), a.end());
+      corners.insert(corners.end(), b.begin(), b.end());
+      CellList prism = convexHull(corners);
+      if (prism.dimension != 3)
+        continue;
+      bool empty = true;
+      forEachPointIn(prism, true, [&](const LatticePoint&) { empty = false; });
+      if (empty)
+        prisms.push_back(std::move(prism));
+    }
+  return prisms;
+}
+
+/// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
+/// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
+int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
+{
+  int parity = 0;
+  for (const auto& tri : surface.triangles)
+  {
+    LatticePoint q[3];
+    for (int v = 0; v < 3; ++v)
+      for (int a = 0; a < 3; ++a)
+        q[v][a] = surface.points[tri[v]][a] * k;
+    const FacePlane plane = planeThrough(q[0], q[1], q[2]);
+    if (plane.evaluate(p) == 0 && onTriangle(q[0], q[1], q[2], plane, p))
+      return 0;
+    const std::int64_t nx = plane.normal[0];
+    if (nx == 0)
+      continue;
+    const int s = nx > 0 ? 1 : -1;
+    if (perturbedOrientation(q[0], q[1], p[1], p[2]) != s ||
+      perturbedOrientation(q[1], q[2], p[1], p[2]) != s ||
+      perturbedOrientation(q[2], q[0], p[1], p[2]) != s)
+      continue;
+    // The crossing lies beyond p when n.p < d along +x for an outward normal with nx > 0.
+    const __int128 e = plane.evaluate(p);
+    parity ^= (nx > 0) == (e < 0);
+  }
+  return parity ? 1 : -1;
+}
+
+/// H with the prism cut out (a void) or added (a piece), kept only when the exact Boolean is a
+/// closed 2-manifold with lattice corners and one shell less (its Euler characteristic 2
+/// lower). The prism's open interior holds no lattice point, so no centre changes side.
+bool joinAlongPrism(Context& ctx,
+  const CellList& prism,
+  bool cut,
+  std::size_t shells,
+  LatticeMesh& surface)
+{
+  // The prism runs through H's solid (a cut) or through the space between two pieces (a
+  // join): its centroid tells, cheaply, before the exact Boolean.
+  LatticePoint centroid{ 0, 0, 0 };
+  for (const auto& v : prism.vertices)
+    for (int a = 0; a < 3; ++a)
+      centroid[a] += v[a];
+  if (sideOf(surface, centroid, static_cast<std::int64_t>(prism.vertices.size())) != (cut ? 1 : -1))
+    return false;
+  LatticeMesh joined;
+  const LatticeMesh p = triangulateHull(prism);
+  if (!(cut ? latticeDifference(surface, p, joined) : latticeUnion(surface, p, joined)) ||
+    shellsOf(joined).size() + 1 != shells ||
+    eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface))
+    return false;
+  recordPlanes(ctx, prism, cut ? 1 : 2);
+  surface = std::move(joined);
+  return true;
+}
+
+/// The prisms tried per shell, nearest first (each costs an exact Boolean and a check).
+constexpr std::size_t kPrismsTried = 16;
+
+/// Joins one shell of H to the rest where the object's or the background's face-connected
+/// centres cross it (see above); false when none could be joined.
+bool joinOneShell(Context& ctx, LatticeMesh& surface, std::set<LatticePoint>& failed)
+{
+  const std::vector<Shell> shells = shellsOf(surface);
+  if (shells.size() < 2)
+    return false;
+  const Dims d = ctx.objects.dims();
+  const std::vector<std::uint8_t> where = whereInGrid(surface, d);
+  for (std::size_t s = 0; s < shells.size(); ++s)
+  {
+    const LatticePoint key =
+      *std::min_element(shells[s].mesh.points.begin(), shells[s].mesh.points.end());
+    if (failed.count(key))
+      continue;
+    failed.insert(key);
+    const bool isVoid = shells[s].volume < 0;
+    std::vector<std::uint8_t> mine(where.size(), 0);
+    markShell(shells[s].mesh, d, 1, 2, mine);
+    const std::vector<LatticePoint> crossing =
+      isVoid ? voidCrossing(ctx.objects, where, mine) : pieceCrossing(ctx.objects, mine);
+    if (crossing.empty())
+      continue;
+    LatticeMesh rest;
+    for (std::size_t o = 0; o < shells.size(); ++o)
+      if (o != s)
+        rest.append(shells[o].mesh, false);
+    const auto prisms = prismsAt(shells[s].mesh, rest, crossing);
+    for (std::size_t k = 0; k < std::min<std::size_t>(prisms.size(), kPrismsTried); ++k)
+      if (joinAlongPrism(ctx, prisms[k], isVoid, shells.size(), surface))
+      {
+        failed.erase(key);
+        return true;
+      }
+  }
+  return false;
+}
+
+/// Joins shells while one can be joined; returns how many were.
+int joinShells(Context& ctx, LatticeMesh& surface)
+{
+  int joined = 0;
+  std::set<LatticePoint> failed;
+  LatticeMesh repaired = surface;
+  const auto planes = ctx.planeLevel;
+  while (joinOneShell(ctx, repaired, failed))
+    ++joined;
+  // Checked once at the end (each check tests the whole surface for self-intersections).
+  if (joined == 0 || !separates(ctx.objects, repaired))
+  {
+    ctx.planeLevel = planes;
+    return 0;
+  }
+  surface = std::move(repaired);
+  return joined;
+}
+
 /// The levels solved with pits and, when that leaves something unresolved or the result does
 /// not separate (checked, see the header), again with every level kept apart.
 void solveAndCheck(Context& ctx, ModifiedHull& r)
@@ -1354,6 +1733,7 @@ void solveAndCheck(Context& ctx, ModifiedHull& r)
       r.failure.clear();
       r.withoutPits = !pits;
       r.keptApart = ctx.keptApart;
+      r.joinedShells = joinShells(ctx, r.surface);
       return;
     }
     r.failure = "the surface does not separate";

@@ -64,6 +64,28 @@
 // seen on any input tried since the clean regions come first; the full lobster, v >= 40, failed
 // so in both passes before).
 //
+// Joining shells (after H separates). The recursion can leave H with more shells than the
+// object has: a void whose background centres are face-connected to the rest of the background
+// through background centres lying on H (a hollow ball whose tunnel into the cavity is sealed by
+// a face through the tunnel's centres), or a piece of H whose object centres are
+// face-neighbours of object centres of another piece (a level kept apart as a cavity of its
+// parent's region, which comes back as a solid of its own). Each such shell is joined to the
+// rest: a void by the shortest face-connected path of background centres from it, through
+// centres on H, to a background centre outside H beyond it (the step where the path leaves the
+// shell is the crossing); a piece by a pair of face-neighbouring object centres, one in it and
+// one in another piece. Near the crossing an empty lattice triangle T1 of the shell and one T2 of
+// the rest of H (no lattice point but their corners) span a prism P = conv(T1 + T2) with no
+// lattice point in its open interior; P is cut out of H for a void (exact difference) and added
+// to H for a piece (exact union), the nearest candidates first. Sound: P's open interior holds
+// no centre, so no centre changes side, and the centres on P's faces are on H and marked by
+// their class; a join is kept only when the exact Boolean is a closed 2-manifold with lattice
+// corners, with one shell less and an Euler characteristic 2 lower (a tube between two shells,
+// not a handle), and the whole result is checked once more at the end (closed, embedded,
+// exact reversion), else H stays as it was. Octahedra conv{c +- e_i} along the path (the
+// obvious channel) do not work: their faces cut H's faces at points that are not lattice
+// points. Not done: shells for which no prism near the crossing is accepted, and spurious
+// handles (one shell of genus 1 where the object is a ball); see the README's limits.
+//
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact
 // separating axis test, and components are labelled in the box of their points; what remains
@@ -121,15 +143,17 @@ struct ModifiedHull
   int degreeOfNonConvexity = 0;
   /// Groups the touching rule kept apart (cavities and regions pressed in from a triangle).
   int keptApart = 0;
+  /// Shells of H joined to the rest after H separated (see above).
+  int joinedShells = 0;
   /// Whether H came from the second pass, every level kept apart (no pits, see above).
   bool withoutPits = false;
   bool complete = true;
   std::string failure;
 };
 
-/// H of the object voxels (empty input: an empty result). Incomplete (complete false, failure
-/// saying why) for a segment or a point, or when no empty triangle is left to press a group in
-/// from (see above).
+/// H of the object voxels (empty input: an empty result), its shells joined (see above). Incomplete
+/// (complete false, failure saying why) for a segment or a point, or when no empty triangle is left
+/// to press a group in from (see above).
 ModifiedHull modifyConvexHull(const BitVolume& objects,
   CoplanarFaces coplanar = CoplanarFaces::Extension,
   const Execution& exec = Execution());

@@ -167,7 +167,10 @@ bool isClosedEmbeddedManifold(const LatticeMesh& m)
     !PMP::does_self_intersect(mesh);
 }
 
-bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result)
+namespace
+{
+
+bool latticeBoolean(const LatticeMesh& a, const LatticeMesh& b, bool unite, LatticeMesh& result)
 {
   Mesh first = toSurfaceMesh(a), second = toSurfaceMesh(b), out;
   bool ok = false;
@@ -178,7 +181,8 @@ bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& 
   }
   try
   {
-    ok = PMP::corefine_and_compute_difference(first, second, out);
+    ok = unite ? PMP::corefine_and_compute_union(first, second, out)
+               : PMP::corefine_and_compute_difference(first, second, out);
   }
   catch (const std::exception&)
   {
@@ -226,6 +230,18 @@ bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& 
     }
   }
   return true;
+}
+
+} // namespace
+
+bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result)
+{
+  return latticeBoolean(a, b, false, result);
+}
+
+bool latticeUnion(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result)
+{
+  return latticeBoolean(a, b, true, result);
 }
 
 } // namespace vbr

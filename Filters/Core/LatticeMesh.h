@@ -1,6 +1,6 @@
-// Closed triangle meshes with lattice-point corners, and the exact Boolean difference of two of
-// them (the "merge H and CH(S')" of section 4.2 of Schulz 2009), the only place of the core that
-// uses CGAL (kept to one translation unit: LatticeMesh.cxx).
+// Closed triangle meshes with lattice-point corners, and the exact Boolean difference (and union)
+// of two of them (the "merge H and CH(S')" of section 4.2 of Schulz 2009), the only place of the
+// core that uses CGAL (kept to one translation unit: LatticeMesh.cxx).
 //
 // The difference is CGAL's Polygon Mesh Processing corefinement
 // (corefine_and_compute_difference) on Surface_mesh with the
@@ -40,6 +40,9 @@ bool isClosedEmbeddedManifold(const LatticeMesh& mesh);
 
 /// a minus b, exactly; false when the result is not a closed 2-manifold with lattice corners.
 bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result);
+
+/// a united with b, exactly; false as for the difference.
+bool latticeUnion(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result);
 
 } // namespace vbr
 

@@ -79,6 +79,67 @@ long voxelBoundaryEuler(const vbr::BitVolume& v)
   return static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) + faces;
 }
 
+/// The Euler characteristic of the union of the closed voxel cubes, V - E + F - C over the cells
+/// of the cubical complex (doubled coordinates: an odd coordinate spans one voxel, an even one
+/// touches two; a cell belongs to the union when one of the voxels it touches is an object
+/// voxel). The object is 26-connected and the background 6-connected in it, the connectivity the
+/// filter groups background centres by; for a well-composed set every choice agrees.
+long closedCubesEuler(const vbr::BitVolume& v)
+{
+  long chi = 0;
+  for (long z = 0; z <= 2 * v.size(2); ++z)
+    for (long y = 0; y <= 2 * v.size(1); ++y)
+      for (long x = 0; x <= 2 * v.size(0); ++x)
+      {
+        const long c[3] = { x, y, z };
+        long lo[3], hi[3];
+        int dim = 0;
+        for (int k = 0; k < 3; ++k)
+        {
+          dim += c[k] % 2;
+          lo[k] = c[k] % 2 ? (c[k] - 1) / 2 : c[k] / 2 - 1;
+          hi[k] = c[k] % 2 ? lo[k] : lo[k] + 1;
+        }
+        bool in = false;
+        for (long k = lo[2]; k <= hi[2] && !in; ++k)
+          for (long j = lo[1]; j <= hi[1] && !in; ++j)
+            for (long i = lo[0]; i <= hi[0] && !in; ++i)
+              in = at(v, i, j, k);
+        if (in)
+          chi += dim % 2 ? -1 : 1;
+      }
+  return chi;
+}
+
+/// Whether the set is well-composed (Latecki): no 2x2 square of voxels whose two diagonals
+/// differ in class with each diagonal one class, no 2x2x2 block with only two opposite voxels
+/// of one class. Then 6- and 26-connectivity give the same components and Euler
+/// characteristics, so H's topology is the object's whatever the touching rule.
+bool wellComposed(const vbr::BitVolume& v)
+{
+  for (long z = -1; z < v.size(2); ++z)
+    for (long y = -1; y < v.size(1); ++y)
+      for (long x = -1; x < v.size(0); ++x)
+      {
+        bool b[8];
+        int count = 0;
+        for (int k = 0; k < 8; ++k)
+          count += b[k] = at(v, x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1));
+        for (int k = 0; k < 4; ++k)
+          if ((count == 2 && b[k] && b[7 - k]) || (count == 6 && !b[k] && !b[7 - k]))
+            return false; // two opposite corners alone
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          // The square of the block at the low side of the axis, corners in cyclic order.
+          const int u = 1 << ((axis + 1) % 3), w = 1 << ((axis + 2) % 3);
+          const bool s0 = b[0], s1 = b[u], s2 = b[u | w], s3 = b[w];
+          if (s0 == s2 && s1 == s3 && s0 != s1)
+            return false;
+        }
+      }
+  return true;
+}
+
 Mesh surfaceMesh(const vbr::LatticeMesh& m, bool& manifold)
 {
   Mesh mesh;
@@ -95,6 +156,8 @@ Mesh surfaceMesh(const vbr::LatticeMesh& m, bool& manifold)
 struct Expect
 {
   bool euler = true; ///< compare the Euler characteristic with the voxel boundary's
+  /// compare it with twice the closed cubes' (the object 26-, the background 6-connected)
+  bool closedEuler = false;
 };
 
 vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
@@ -144,6 +207,8 @@ vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
     static_cast<long>(r.surface.triangles.size());
   if (expect.euler)
     EXPECT_EQ(chi, voxelBoundaryEuler(v)) << "Euler characteristic";
+  if (expect.closedEuler)
+    EXPECT_EQ(chi, 2 * closedCubesEuler(v)) << "Euler characteristic (closed cubes)";
   EXPECT_EQ(vbr::revertModifiedHull(r.surface, r.backgroundOnSurface, v.dims()), v) << "reversion";
   return r;
 }
@@ -213,6 +278,38 @@ vbr::BitVolume piercedCube(int n, int w, int tunnels)
     });
 }
 
+/// A hollow ball (radii r < R about the centre of a grid of 2R + 3) with a tunnel from its
+/// cavity out: the voxels whose offset q from the centre has q.axis >= 0 and lies within
+/// `half` of the tunnel's axis (the axis through `shift`, in the max norm across it).
+/// `diagonal`: the axis is (1, 1, 0), `half` bounds |qx - qy| and |qz| (half 0: one row of
+/// voxels touching along edges, not face-connected).
+vbr::BitVolume hollowBall(int R,
+  double r,
+  int axis,
+  double half,
+  std::array<double, 3> shift = { 0, 0, 0 },
+  bool diagonal = false,
+  int sign = 1)
+{
+  const double c = R + 1;
+  return shape(2 * R + 3,
+    [&](double x, double y, double z)
+    {
+      const double q[3] = { x - c - shift[0], y - c - shift[1], z - c - shift[2] };
+      const double d = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+      bool tunnel;
+      if (diagonal)
+        tunnel = q[0] + q[1] >= 0 && std::abs(q[0] - q[1]) <= half && std::abs(q[2]) <= half;
+      else
+      {
+        tunnel = sign * q[axis] >= 0;
+        for (int k = 0; k < 3; ++k)
+          tunnel = tunnel && (k == axis || std::abs(q[k]) <= half);
+      }
+      return d <= R && d > r && !tunnel;
+    });
+}
+
 /// Every step-th voxel (per axis) of the box [lo, hi) of a raw volume of 1-byte or 2-byte
 /// little-endian values at or above the threshold (hi 0: the whole volume); false when the file
 /// is missing.
@@ -279,26 +376,43 @@ TEST(ConvexHullModifier, GenusAboveZero)
 {
   {
     SCOPED_TRACE("torus");
-    const auto r = expectSeparating(torus(5, 2.2));
+    const auto r = expectSeparating(torus(5, 2.2), { true, true });
     EXPECT_GE(r.tunnels, 1);
   }
   for (int tunnels : { 1, 2, 3 })
   {
     SCOPED_TRACE(tunnels);
-    expectSeparating(piercedCube(11, 3, tunnels));
+    expectSeparating(piercedCube(11, 3, tunnels), { true, true });
   }
+}
+
+TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
+{
+  // A tunnel of face-connected background voxels from the cavity out makes the hollow ball a
+  // ball with a dent: H must be one sphere (Euler characteristic 2, checked against the closed
+  // cubes' count and the voxel boundary's). Without the joining of shells each of these came
+  // out with 2 to 4 shells (a sealed void, or pieces of the shell split off). Still wrong (not
+  // tested here): a 5 wide tunnel in R 11 and an off-centre 3 wide one in R 9 give a spurious
+  // handle (Euler characteristic 0), a 1 wide off-centre one in R 10 four shells, a diagonal
+  // one in R 11 genus 2.
+  struct Case
   {
-    // Separates, but the pressed-back object hull seals the tunnel with a face through
-    // tunnel centres (marked background): two spheres instead of one.
-    SCOPED_TRACE("hollow ball with a tunnel into the cavity");
-    const vbr::BitVolume v = shape(17,
-      [](double x, double y, double z)
-      {
-        const double d = std::sqrt((x - 8) * (x - 8) + (y - 8) * (y - 8) + (z - 8) * (z - 8));
-        const bool tunnel = x >= 8 && std::abs(y - 8) <= 1 && std::abs(z - 8) <= 1;
-        return d <= 7 && d > 3.5 && !tunnel;
-      });
-    expectSeparating(v, { false });
+    const char* name;
+    vbr::BitVolume v;
+  };
+  const std::vector<Case> cases{
+    { "R 7, +x, width 3", hollowBall(7, 3.5, 0, 1) },
+    { "R 7, +x, width 1", hollowBall(7, 3.5, 0, 0) },
+    { "R 9, -y, width 2", hollowBall(9, 5, 1, 0.5, { 0.5, 0, 0.5 }, false, -1) },
+    { "R 9, diagonal, width 3", hollowBall(9, 5, 0, 1, { 0, 0, 0 }, true) },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    EXPECT_TRUE(wellComposed(c.v));
+    EXPECT_EQ(2 * closedCubesEuler(c.v), 2);
+    const auto r = expectSeparating(c.v, { true, true });
+    EXPECT_GE(r.joinedShells, 1);
   }
 }
 
@@ -348,6 +462,7 @@ TEST(ConvexHullModifier, RandomNoiseCubesSeparate)
 
 TEST(ConvexHullModifier, RandomPorousBlobsSeparate)
 {
+  int wellComposedBlobs = 0, mismatches = 0;
   std::mt19937 rng(5);
   for (int trial = 0; trial < 40; ++trial)
   {
@@ -369,8 +484,16 @@ TEST(ConvexHullModifier, RandomPorousBlobsSeparate)
         return true;
       });
     SCOPED_TRACE(trial);
-    expectSeparating(v, { false });
+    const bool composed = wellComposed(v);
+    const auto h = expectSeparating(v, { false });
+    const long chi = static_cast<long>(h.surface.points.size()) -
+      static_cast<long>(h.surface.triangles.size()) / 2;
+    wellComposedBlobs += composed;
+    mismatches += composed && chi != 2 * closedCubesEuler(v);
   }
+  // Not asserted: many blobs still come out with extra shells (the joining finds no prism).
+  std::cout << wellComposedBlobs << " well-composed blobs, " << mismatches
+            << " of them with H's Euler characteristic not the closed cubes' (twice)" << std::endl;
 }
 
 TEST(ConvexHullModifier, RealObjectsSeparate)
@@ -449,7 +572,8 @@ TEST(ConvexHullModifier, LargerRealObjectsSeparate)
     SCOPED_TRACE(c.name);
     const auto r = expectSeparating(v, { false });
     std::cout << c.name << ": " << v.count() << " voxels, " << r.faces.size() << " faces, NK "
-              << r.degreeOfNonConvexity << ", kept apart " << r.keptApart << std::endl;
+              << r.degreeOfNonConvexity << ", kept apart " << r.keptApart << ", shells joined "
+              << r.joinedShells << std::endl;
   }
 }
 
