@@ -62,6 +62,9 @@ struct ObjectBoxes
   vbr::Components components;
   std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
+  /// The pixels of a 2D object whose boxes were built from its rows (empty otherwise): its
+  /// RegionIds are written from them run by run (a few MB even for a 6001^2 image).
+  vbr::BitVolume pixels;
 };
 
 /// What numbering needs of one connected component, while it is numbered. Kept small: a
@@ -274,7 +277,10 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
       const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
       values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
     }
-    vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
+    if (o.pixels.voxelCount() > 0)
+      vbr::paintPixelRuns2D(o.pixels, values, o.offset, axes, grid.dims, out);
+    else
+      vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
   }
   return ids;
 }
@@ -741,6 +747,20 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
   return planar ? name.substr(1) : name; // 2D: lines along B, rows along C
 }
 
+/// The CUDB of a 2D object with rows along the image's first in-plane axis (the sorting the
+/// pixels are stored in), and the components of its boxes, straight from the pixel rows: the
+/// same boxes, counts and components as through its EVM, without the EVM. False when empty.
+bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
+  vbr::Connectivity connectivity,
+  const vbr::Execution& exec,
+  ObjectBoxes& o)
+{
+  vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
+  o.pixels = selected.select(exec);
+  o.extremeVertices = vbr::buildCUDBComponents2D(o.pixels, connectivity, o.cudb, o.components);
+  return !o.cudb.boxes.empty();
+}
+
 /// The CUDB of one object and the components of its boxes; false when the object is empty or
 /// the work was aborted. Its voxels live only while its EVM is built.
 bool boxesOfObject(const vbr::vtk::Selected& selected,
@@ -752,6 +772,8 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
 {
   o.label = selected.label;
   o.offset = selected.offset;
+  if (planar && sortings.size() == 1 && sortings[0] == vbr::AxisOrder{ 2, 1, 0 })
+    return boxesOfPixelRows(selected, connectivity, exec, o);
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "select voxels and extract the EVM");

@@ -364,6 +364,120 @@ TEST(CUDB, TwoDimensionalImages)
     }
 }
 
+/// A random image whose rows often repeat the row before (runs continued over several rows,
+/// rows equal to the one before: no line of vertices between them), with set pixels in the
+/// last column too.
+vbr::BitVolume imageWithRepeatedRows(vbr::Coord nx, vbr::Coord ny, double density, unsigned seed)
+{
+  const vbr::BitVolume noise = bf::randomVolume({ nx, ny, 1 }, density, seed);
+  vbr::BitVolume v(nx, ny, 1);
+  vbr::Coord source = 0;
+  for (vbr::Coord y = 0; y < ny; ++y)
+  {
+    seed = seed * 1103515245u + 12345u;
+    if ((seed >> 8) % 3 != 0)
+      source = y; // else: the row before again
+    for (vbr::Coord x = 0; x < nx; ++x)
+      v.set(x, y, 0, noise.get(x, source, 0));
+  }
+  return v;
+}
+
+TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
+{
+  // The direct 2D path against the EVM's: the same boxes in the same order, OUDB count, EVM
+  // size and labels; its components against a flood fill; its run painting against the
+  // image's set pixels. Widths around the 64-bit words' boundaries.
+  const vbr::Point3 sizes[] = { { 1, 1, 1 },
+    { 7, 5, 1 },
+    { 63, 20, 1 },
+    { 64, 33, 1 },
+    { 65, 17, 1 },
+    { 128, 40, 1 },
+    { 130, 9, 1 },
+    { 3, 90, 1 } };
+  unsigned seed = 900;
+  for (const auto& d : sizes)
+    for (double density : { 0.0, 0.1, 0.5, 0.9, 1.0 })
+      for (bool repeated : { false, true })
+      {
+        const vbr::BitVolume v = repeated ? imageWithRepeatedRows(d[0], d[1], density, seed++)
+                                          : bf::randomVolume(d, density, seed++);
+        const vbr::EVM evm = vbr::extractEVM2D(v);
+        const vbr::CUDB expected = vbr::buildCUDB(evm);
+        for (bool vertex : { false, true })
+        {
+          SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " density " +
+            std::to_string(density) + (repeated ? " repeated rows" : "") +
+            (vertex ? " vertex" : " face"));
+          const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+          vbr::CUDB cudb;
+          vbr::Components components;
+          EXPECT_EQ(vbr::buildCUDBComponents2D(v, c, cudb, components), evm.size());
+          EXPECT_EQ(cudb.dimension, 2);
+          EXPECT_EQ(cudb.order, (vbr::AxisOrder{ 2, 1, 0 }));
+          EXPECT_EQ(cudb.boxes, expected.boxes);
+          EXPECT_EQ(cudb.oudbBoxCount, expected.oudbBoxCount);
+          EXPECT_EQ(components.boxLabel, vbr::labelComponents(expected, c).boxLabel);
+          int count = 0;
+          const std::vector<int> flood = bf::floodFillLabels(v, vertex, count);
+          EXPECT_EQ(components.count, static_cast<std::uint32_t>(count));
+          std::vector<std::int32_t> value(components.boxLabel.begin(), components.boxLabel.end());
+          std::vector<std::int32_t> labels(v.voxelCount(), 0);
+          vbr::paintPixelRuns2D(v, value, { 0, 0, 0 }, { 0, 1, 2 }, v.dims(), labels.data());
+          expectSamePartition(std::vector<int>(labels.begin(), labels.end()), flood);
+        }
+      }
+}
+
+TEST(CUDB, PaintPixelRuns2DShiftedAndTransposed)
+{
+  // Every set pixel gets its box's value (0: left as it was), placed by the offset and the
+  // axes like paintBoxes; the pixels not set and the rest of the grid are left as they were.
+  unsigned seed = 77;
+  for (const std::array<int, 3>& axes : { std::array<int, 3>{ 0, 1, 2 },
+         std::array<int, 3>{ 1, 0, 2 },
+         std::array<int, 3>{ 0, 2, 1 },
+         std::array<int, 3>{ 2, 0, 1 } })
+  {
+    const vbr::BitVolume v = imageWithRepeatedRows(70, 9, 0.5, seed++);
+    vbr::CUDB cudb;
+    vbr::Components components;
+    vbr::buildCUDBComponents2D(v, vbr::Connectivity::Face, cudb, components);
+    std::vector<std::int32_t> value(cudb.boxes.size());
+    for (std::size_t b = 0; b < value.size(); ++b)
+      value[b] = static_cast<std::int32_t>(b % 5); // 0: skipped
+    const std::array<vbr::Coord, 3> offset{ 3, 2, 1 };
+    std::array<vbr::Coord, 3> dims{ 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+      dims[axes[k]] = (k == 2 ? 1 : v.size(k)) + offset[k] + 1;
+    std::vector<std::int32_t> expected(std::size_t(dims[0]) * dims[1] * dims[2], -1);
+    for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
+      for (vbr::Coord y = cudb.boxes[b].lo[1]; y < cudb.boxes[b].hi[1]; ++y)
+        for (vbr::Coord x = cudb.boxes[b].lo[0]; x < cudb.boxes[b].hi[0]; ++x)
+        {
+          ASSERT_TRUE(v.get(x, y, 0));
+          if (value[b] == 0)
+            continue;
+          std::array<std::size_t, 3> g;
+          const vbr::Coord p[3] = { x, y, 0 };
+          for (int k = 0; k < 3; ++k)
+            g[axes[k]] = static_cast<std::size_t>(p[k] + offset[k]);
+          expected[(g[2] * dims[1] + g[1]) * dims[0] + g[0]] = value[b];
+        }
+    std::vector<std::int32_t> painted(expected.size(), -1);
+    vbr::paintPixelRuns2D(v, value, offset, axes, dims, painted.data());
+    EXPECT_EQ(painted, expected);
+  }
+  EXPECT_THROW(
+    {
+      vbr::CUDB c;
+      vbr::Components k;
+      vbr::buildCUDBComponents2D(vbr::BitVolume(4, 4, 2), vbr::Connectivity::Face, c, k);
+    },
+    std::invalid_argument);
+}
+
 TEST(CUDB, DegenerateInputs)
 {
   const vbr::BitVolume empty(6, 5, 4);
