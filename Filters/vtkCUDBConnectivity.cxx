@@ -64,9 +64,6 @@ struct ObjectBoxes
   vbr::Components components;
   std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
-  /// The pixels of a 2D object whose boxes were built from its rows (empty otherwise): its
-  /// RegionIds are written from them run by run (a few MB even for a 6001^2 image).
-  vbr::BitVolume pixels;
 };
 
 /// What numbering needs of one connected component, while it is numbered. Kept small: a
@@ -311,10 +308,7 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
       const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
       values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
     }
-    if (o.pixels.voxelCount() > 0)
-      vbr::paintPixelRuns2D(o.pixels, values, o.offset, axes, grid.dims, out);
-    else
-      vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
+    vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
   }
   return ids;
 }
@@ -821,8 +815,8 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
-  o.pixels = selected.select(exec);
-  o.extremeVertices = vbr::buildCUDBComponents2D(o.pixels, connectivity, o.cudb, o.components);
+  o.extremeVertices =
+    vbr::buildCUDBComponents2D(selected.select(exec), connectivity, o.cudb, o.components);
   return !o.cudb.boxes.empty();
 }
 

@@ -1202,28 +1202,6 @@ struct BoxesAndEquivalences
   void continued(const PixelRun& run) { this->Out.boxes[run.box].hi[1] = this->Row + 1; }
 };
 
-/// What paintPixelRuns2D does with them: each run written with its box's value.
-struct RunPainter
-{
-  const std::vector<std::int32_t>& Value;
-  std::int32_t* RowStart = nullptr; ///< pixel x = 0 of the current row
-  std::int64_t Step = 1;            ///< from pixel x to x + 1
-
-  void paint(const PixelRun& run) const
-  {
-    const std::int32_t v = this->Value[run.box];
-    if (v == 0)
-      return;
-    if (this->Step == 1)
-      std::fill(this->RowStart + run.c0, this->RowStart + run.c1, v);
-    else
-      for (Coord x = run.c0; x < run.c1; ++x)
-        this->RowStart[x * this->Step] = v;
-  }
-  void started(const PixelRun& run, const PixelRun*, const PixelRun*) { this->paint(run); }
-  void continued(const PixelRun& run) { this->paint(run); }
-};
-
 void checkSingleSlice(const BitVolume& pixels)
 {
   if (pixels.size(2) != 1)
@@ -1269,29 +1247,6 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   }
   components.count = relabel(equivalences, components.boxLabel);
   return vertices;
-}
-
-void paintPixelRuns2D(const BitVolume& pixels,
-  const std::vector<std::int32_t>& value,
-  const std::array<Coord, 3>& offset,
-  const std::array<int, 3>& axes,
-  const std::array<Coord, 3>& dims,
-  std::int32_t* labels)
-{
-  checkSingleSlice(pixels);
-  const std::int64_t gridStep[3] = { 1, dims[0], std::int64_t(dims[0]) * dims[1] };
-  std::int64_t step[3];
-  for (int k = 0; k < 3; ++k)
-    step[k] = gridStep[axes[k]];
-  RunPainter visit{ value };
-  visit.Step = step[0];
-  PixelRowSweep sweep(pixels);
-  for (std::int32_t y = 0; y < pixels.size(1); ++y)
-  {
-    visit.RowStart = labels + (std::int64_t(y) + offset[1]) * step[1] +
-      std::int64_t(offset[0]) * step[0] + std::int64_t(offset[2]) * step[2];
-    sweep.nextRow(y, visit);
-  }
 }
 
 } // namespace vbr

@@ -127,17 +127,6 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   CUDB& out,
   Components& components);
 
-/// Writes value[b] into every pixel of box b of buildCUDBComponents2D(pixels), run by run in
-/// row order (the boxes are found again from the rows, not read: each row is written once,
-/// in order), into `labels` as paintBoxes does (same offset, axes and dims). Pixels not set
-/// are left as they are. Sequential.
-void paintPixelRuns2D(const BitVolume& pixels,
-  const std::vector<std::int32_t>& value,
-  const std::array<Coord, 3>& offset,
-  const std::array<int, 3>& axes,
-  const std::array<Coord, 3>& dims,
-  std::int32_t* labels);
-
 /// Writes value[b] into every voxel of box b (boxes with value 0 are skipped) of `labels`, a
 /// grid of `dims` voxels stored x fastest. Box coordinates are shifted by `offset` and then
 /// permuted: coordinate k of a box is along axis axes[k] of the grid. Voxels outside the

@@ -386,8 +386,8 @@ vbr::BitVolume imageWithRepeatedRows(vbr::Coord nx, vbr::Coord ny, double densit
 TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
 {
   // The direct 2D path against the EVM's: the same boxes in the same order, OUDB count, EVM
-  // size and labels; its components against a flood fill; its run painting against the
-  // image's set pixels. Widths around the 64-bit words' boundaries.
+  // size and labels; its boxes against the pixels, its components against a flood fill.
+  // Widths around the 64-bit words' boundaries.
   const vbr::Point3 sizes[] = { { 1, 1, 1 },
     { 7, 5, 1 },
     { 63, 20, 1 },
@@ -422,59 +422,18 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
           int count = 0;
           const std::vector<int> flood = bf::floodFillLabels(v, vertex, count);
           EXPECT_EQ(components.count, static_cast<std::uint32_t>(count));
-          std::vector<std::int32_t> value(components.boxLabel.begin(), components.boxLabel.end());
-          std::vector<std::int32_t> labels(v.voxelCount(), 0);
-          vbr::paintPixelRuns2D(v, value, { 0, 0, 0 }, { 0, 1, 2 }, v.dims(), labels.data());
-          expectSamePartition(std::vector<int>(labels.begin(), labels.end()), flood);
+          expectExactCover(v, cudb.boxes);
+          expectSamePartition(paintedLabels(v, cudb, components), flood);
         }
       }
 }
 
-TEST(CUDB, PaintPixelRuns2DShiftedAndTransposed)
+TEST(CUDB, PixelRowsNeedASingleSlice)
 {
-  // Every set pixel gets its box's value (0: left as it was), placed by the offset and the
-  // axes like paintBoxes; the pixels not set and the rest of the grid are left as they were.
-  unsigned seed = 77;
-  for (const std::array<int, 3>& axes : { std::array<int, 3>{ 0, 1, 2 },
-         std::array<int, 3>{ 1, 0, 2 },
-         std::array<int, 3>{ 0, 2, 1 },
-         std::array<int, 3>{ 2, 0, 1 } })
-  {
-    const vbr::BitVolume v = imageWithRepeatedRows(70, 9, 0.5, seed++);
-    vbr::CUDB cudb;
-    vbr::Components components;
-    vbr::buildCUDBComponents2D(v, vbr::Connectivity::Face, cudb, components);
-    std::vector<std::int32_t> value(cudb.boxes.size());
-    for (std::size_t b = 0; b < value.size(); ++b)
-      value[b] = static_cast<std::int32_t>(b % 5); // 0: skipped
-    const std::array<vbr::Coord, 3> offset{ 3, 2, 1 };
-    std::array<vbr::Coord, 3> dims{ 0, 0, 0 };
-    for (int k = 0; k < 3; ++k)
-      dims[axes[k]] = (k == 2 ? 1 : v.size(k)) + offset[k] + 1;
-    std::vector<std::int32_t> expected(std::size_t(dims[0]) * dims[1] * dims[2], -1);
-    for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
-      for (vbr::Coord y = cudb.boxes[b].lo[1]; y < cudb.boxes[b].hi[1]; ++y)
-        for (vbr::Coord x = cudb.boxes[b].lo[0]; x < cudb.boxes[b].hi[0]; ++x)
-        {
-          ASSERT_TRUE(v.get(x, y, 0));
-          if (value[b] == 0)
-            continue;
-          std::array<std::size_t, 3> g;
-          const vbr::Coord p[3] = { x, y, 0 };
-          for (int k = 0; k < 3; ++k)
-            g[axes[k]] = static_cast<std::size_t>(p[k] + offset[k]);
-          expected[(g[2] * dims[1] + g[1]) * dims[0] + g[0]] = value[b];
-        }
-    std::vector<std::int32_t> painted(expected.size(), -1);
-    vbr::paintPixelRuns2D(v, value, offset, axes, dims, painted.data());
-    EXPECT_EQ(painted, expected);
-  }
+  vbr::CUDB cudb;
+  vbr::Components components;
   EXPECT_THROW(
-    {
-      vbr::CUDB c;
-      vbr::Components k;
-      vbr::buildCUDBComponents2D(vbr::BitVolume(4, 4, 2), vbr::Connectivity::Face, c, k);
-    },
+    vbr::buildCUDBComponents2D(vbr::BitVolume(4, 4, 2), vbr::Connectivity::Face, cudb, components),
     std::invalid_argument);
 }
 
