@@ -1122,7 +1122,7 @@ std::size_t rowChanges(const Word* a, const Word* b, std::size_t words)
 /// rectangles, their creation order (by first row, then c0) and their contacts across lines
 /// are those of SectionDecomposition on the EVM of the pixels. Boxes are numbered 0, 1, ... as
 /// they start; `visit` hears of each: started(run, [first, end) of the previous row's runs
-/// that may meet it), continued(run).
+/// from the first that may meet it), continued(run).
 class PixelRowSweep
 {
 public:
@@ -1159,11 +1159,8 @@ public:
         continue;
       }
       this->Same = false;
-      std::size_t q = p;
-      while (q < np && prev[q].c0 <= c1)
-        ++q;
       cur[k] = { c0, c1, this->NextBox++ };
-      visit.started(cur[k], prev + p, prev + q);
+      visit.started(cur[k], prev + p, prev + np);
     }
     return this->Current;
   }
@@ -1195,9 +1192,13 @@ struct BoxesAndEquivalences
     box.hi = { run.c1, this->Row + 1, 1 };
     this->Out.boxes.push_back(box);
     this->Equivalences.add();
-    for (const PixelRun* r = first; r != end; ++r)
+    // The runs from `first` on that start no later than this one ends meet it (one loop that
+    // finds and unites them: its exits are mispredicted once, not twice). The union's root
+    // is carried from contact to contact rather than found again from the new box.
+    std::uint32_t root = run.box;
+    for (const PixelRun* r = first; r != end && r->c0 <= run.c1; ++r)
       if (!this->FaceOnly || (r->c0 < run.c1 && run.c0 < r->c1))
-        this->Equivalences.unite(r->box, run.box);
+        root = this->Equivalences.unite(r->box, root);
   }
   void continued(const PixelRun& run) { this->Out.boxes[run.box].hi[1] = this->Row + 1; }
 };
