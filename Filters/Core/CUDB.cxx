@@ -1026,6 +1026,40 @@ PaintLayout paintLayout(const std::array<int, 3>& axes, const std::array<Coord, 
   return layout;
 }
 
+/// paintBoxes on a single slice (a 2D image): boxes one voxel thick, of a few rows each, by a
+/// loop with fewer steps per box than the 3D one (a maze has millions of boxes of 3.6 pixels
+/// on 1.9 rows; the 3D loop took half again as long there). Workers own ranges of rows.
+void paintPlanarBoxes(const std::vector<Box>& boxes,
+  const std::vector<std::int32_t>& value,
+  const std::array<Coord, 3>& offset,
+  const PaintLayout& layout,
+  const std::array<Coord, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec)
+{
+  const int row = layout.row, split = layout.split, flat = 3 - row - split;
+  const std::int64_t rowStep = layout.step[split];
+  exec.forRange(dims[1],
+    [&](std::int64_t from, std::int64_t to)
+    {
+      for (std::size_t b = 0; b < boxes.size(); ++b)
+      {
+        const std::int32_t v = value[b];
+        if (v == 0)
+          continue;
+        const Box& box = boxes[b];
+        const std::int64_t lo = std::max<std::int64_t>(box.lo[split] + offset[split], from);
+        const std::int64_t hi = std::min<std::int64_t>(box.hi[split] + offset[split], to);
+        const std::int64_t length = box.hi[row] - box.lo[row];
+        std::int32_t* line = labels + lo * rowStep + (box.lo[row] + offset[row]) +
+          std::int64_t(box.lo[flat] + offset[flat]) * layout.step[flat];
+        for (std::int64_t y = lo; y < hi; ++y, line += rowStep)
+          for (std::int64_t x = 0; x < length; ++x)
+            line[x] = v;
+      }
+    });
+}
+
 } // namespace
 
 void paintBoxes(const std::vector<Box>& boxes,
@@ -1037,6 +1071,8 @@ void paintBoxes(const std::vector<Box>& boxes,
   const Execution& exec)
 {
   const PaintLayout layout = paintLayout(axes, dims);
+  if (dims[2] == 1)
+    return paintPlanarBoxes(boxes, value, offset, layout, dims, labels, exec);
   exec.forRange(dims[axes[layout.split]],
     [&](std::int64_t from, std::int64_t to)
     {
