@@ -30,6 +30,12 @@
 // Algorithm 5. buildCUDBComponents makes the same equivalences during the sweep, as each
 // contact is found (ContactSink), for callers that need no contact list. paintBoxes writes a
 // value per box into a label grid, parallel over slices.
+//
+// A 2D image in its stored sorting needs no EVM: buildCUDBComponents2D reads the runs of each
+// pixel row from its bits and matches them with the runs of the row before (PixelRowSweep),
+// which gives the rectangles, their order and their contacts of the EVM sweep, and unites the
+// boxes of each contact as it goes. On a 6001^2 maze the EVM (12.5 M vertices, 150 MB) and
+// its section decomposition cost more than all the rest of the update.
 
 #include "CUDB.h"
 
