@@ -10,7 +10,9 @@
  * slices of the EVM are cut into boxes that are merged on the fly wherever the Ordered Union
  * of Disjoint Boxes would split them needlessly, and every box records the boxes it touches.
  * The connected components are then labelled on the boxes (a few thousand where the image
- * has millions of voxels) and written back to the voxels.
+ * has millions of voxels) and written back to the voxels. A 2D image swept in its stored
+ * order (the default sorting) gets the same boxes straight from its pixel rows, without
+ * building the EVM.
  *
  * Connectivity: Face (6-connected in 3D, 4 in 2D, the default) or Vertex (26 in 3D, 8 in
  * 2D: voxels touching along an edge or at a corner are connected too). In Labels mode the

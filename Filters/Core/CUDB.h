@@ -115,6 +115,18 @@ bool buildCUDBComponents(const EVM& evm,
   Components& components,
   int pieces = 0);
 
+/// A one-slice pixel set (nz = 1) -> its 2D CUDB in the ZYX sorting (lines along y, rows along
+/// x) and the components of its boxes, in one pass over the pixel rows without building the
+/// EVM: each row's runs of set pixels are read from its bits, a run equal to a run of the row
+/// before continues that run's rectangle (the 2D compaction) and any other starts a box,
+/// united at once with the runs of the row before that it meets. Same boxes (in the same
+/// order), oudbBoxCount and components as buildCUDBComponents(extractEVM2D(pixels), ...);
+/// returns the number of vertices that EVM would have.
+std::size_t buildCUDBComponents2D(const BitVolume& pixels,
+  Connectivity connectivity,
+  CUDB& out,
+  Components& components);
+
 /// Writes value[b] into every voxel of box b (boxes with value 0 are skipped) of `labels`, a
 /// grid of `dims` voxels stored x fastest. Box coordinates are shifted by `offset` and then
 /// permuted: coordinate k of a box is along axis axes[k] of the grid. Voxels outside the

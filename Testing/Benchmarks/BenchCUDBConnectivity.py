@@ -61,6 +61,9 @@ def parse_arguments():
     p.add_argument("--large", action="store_true", help="sizes 128,256,512, the mazes")
     p.add_argument("--backends", help="vtkSMPTools backends (default: the one at start)")
     p.add_argument("--list", action="store_true", help="print the selected inputs and stop")
+    p.add_argument("--cpu", action="store_true",
+                   help="time the process's CPU time rather than the wall clock (a loaded "
+                        "machine; meaningful with one thread)")
     p.add_argument("--inputs-program", help="the BenchInputs program")
     args = p.parse_args()
     if args.quick and "--repeat" not in sys.argv:
@@ -118,16 +121,16 @@ def peak_bytes_of(run):
     return 1024 * max(0, status("VmHWM") - before)
 
 
-def time_in_turns(repeat, contenders):
+def time_in_turns(repeat, contenders, clock=time.perf_counter):
     """(name, role, group, median s, min s, peak bytes) of each contender."""
     peaks = [peak_bytes_of(c[3]) for c in contenders]
     times = [[] for _ in contenders]
     for r in range(repeat):
         for i in range(len(contenders)):
             k = (i + r) % len(contenders)
-            t0 = time.perf_counter()
+            t0 = clock()
             contenders[k][3]()
-            times[k].append(time.perf_counter() - t0)
+            times[k].append(clock() - t0)
     return [(c[0], c[1], c[2], statistics.median(t), min(t), p)
             for c, t, p in zip(contenders, times, peaks)]
 
@@ -214,7 +217,8 @@ def benchmark(name, mask, args, summary):
         counts = {}
         contenders = [filter_contender(image, c, counts) for c in ("face", "vertex")]
         contenders += peer_contenders(mask, counts)
-        rows = time_in_turns(max(1, args.repeat), contenders)
+        rows = time_in_turns(max(1, args.repeat), contenders,
+                             time.process_time if args.cpu else time.perf_counter)
         print_rows(name, backend, rows, mask.size)
         summary.append((backend, name, rows))
         failures += check_counts(name, counts)
@@ -255,9 +259,10 @@ def run_benchmarks(title, args, benchmark, finish, accept=lambda mask: True):
     (exit code 1)."""
     if args.list:
         return subprocess.run(inputs_command(args) + ["--list"]).returncode
-    print("# %s\n\n- VTK_SMP_BACKEND_IN_USE=%s, OpenCV %s\n" % (
+    print("# %s\n\n- VTK_SMP_BACKEND_IN_USE=%s, OpenCV %s, %s\n" % (
         title, os.environ.get("VTK_SMP_BACKEND_IN_USE", "(unset)"),
-        cv2.__version__ if cv2 is not None else "absent"), flush=True)
+        cv2.__version__ if cv2 is not None else "absent",
+        "CPU time" if getattr(args, "cpu", False) else "wall clock"), flush=True)
     failures, summary = [], []
     for name, _, mask in load_inputs(args):
         if accept(mask):

@@ -364,6 +364,79 @@ TEST(CUDB, TwoDimensionalImages)
     }
 }
 
+/// A random image whose rows often repeat the row before (runs continued over several rows,
+/// rows equal to the one before: no line of vertices between them), with set pixels in the
+/// last column too.
+vbr::BitVolume imageWithRepeatedRows(vbr::Coord nx, vbr::Coord ny, double density, unsigned seed)
+{
+  const vbr::BitVolume noise = bf::randomVolume({ nx, ny, 1 }, density, seed);
+  vbr::BitVolume v(nx, ny, 1);
+  vbr::Coord source = 0;
+  for (vbr::Coord y = 0; y < ny; ++y)
+  {
+    seed = seed * 1103515245u + 12345u;
+    if ((seed >> 8) % 3 != 0)
+      source = y; // else: the row before again
+    for (vbr::Coord x = 0; x < nx; ++x)
+      v.set(x, y, 0, noise.get(x, source, 0));
+  }
+  return v;
+}
+
+TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
+{
+  // The direct 2D path against the EVM's: the same boxes in the same order, OUDB count, EVM
+  // size and labels; its boxes against the pixels, its components against a flood fill.
+  // Widths around the 64-bit words' boundaries.
+  const vbr::Point3 sizes[] = { { 1, 1, 1 },
+    { 7, 5, 1 },
+    { 63, 20, 1 },
+    { 64, 33, 1 },
+    { 65, 17, 1 },
+    { 128, 40, 1 },
+    { 130, 9, 1 },
+    { 3, 90, 1 } };
+  unsigned seed = 900;
+  for (const auto& d : sizes)
+    for (double density : { 0.0, 0.1, 0.5, 0.9, 1.0 })
+      for (bool repeated : { false, true })
+      {
+        const vbr::BitVolume v = repeated ? imageWithRepeatedRows(d[0], d[1], density, seed++)
+                                          : bf::randomVolume(d, density, seed++);
+        const vbr::EVM evm = vbr::extractEVM2D(v);
+        const vbr::CUDB expected = vbr::buildCUDB(evm);
+        for (bool vertex : { false, true })
+        {
+          SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " density " +
+            std::to_string(density) + (repeated ? " repeated rows" : "") +
+            (vertex ? " vertex" : " face"));
+          const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+          vbr::CUDB cudb;
+          vbr::Components components;
+          EXPECT_EQ(vbr::buildCUDBComponents2D(v, c, cudb, components), evm.size());
+          EXPECT_EQ(cudb.dimension, 2);
+          EXPECT_EQ(cudb.order, (vbr::AxisOrder{ 2, 1, 0 }));
+          EXPECT_EQ(cudb.boxes, expected.boxes);
+          EXPECT_EQ(cudb.oudbBoxCount, expected.oudbBoxCount);
+          EXPECT_EQ(components.boxLabel, vbr::labelComponents(expected, c).boxLabel);
+          int count = 0;
+          const std::vector<int> flood = bf::floodFillLabels(v, vertex, count);
+          EXPECT_EQ(components.count, static_cast<std::uint32_t>(count));
+          expectExactCover(v, cudb.boxes);
+          expectSamePartition(paintedLabels(v, cudb, components), flood);
+        }
+      }
+}
+
+TEST(CUDB, PixelRowsNeedASingleSlice)
+{
+  vbr::CUDB cudb;
+  vbr::Components components;
+  EXPECT_THROW(
+    vbr::buildCUDBComponents2D(vbr::BitVolume(4, 4, 2), vbr::Connectivity::Face, cudb, components),
+    std::invalid_argument);
+}
+
 TEST(CUDB, DegenerateInputs)
 {
   const vbr::BitVolume empty(6, 5, 4);
