@@ -1623,6 +1623,70 @@ int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
   return parity ? 1 : -1;
 }
 
+/// Whether the triangle meets the open interior of the solid hull (exact separating axes: the
+/// hull's face normals, the triangle's normal and the cross products of their edges; a plane
+/// along one of them that leaves the triangle on one closed side and the hull on the other is
+/// the witness that it does not, as for any two convex polytopes).
+bool meetsOpenInterior(const CellList& solid, const std::array<LatticePoint, 3>& t)
+{
+  auto apart = [&](const LatticePoint& n)
+  {
+    if (n == LatticePoint{ 0, 0, 0 })
+      return false;
+    __int128 tLo = dot(n, t[0]), tHi = tLo, sLo = dot(n, solid.vertices[0]), sHi = sLo;
+    for (const auto& p : t)
+    {
+      tLo = std::min(tLo, dot(n, p));
+      tHi = std::max(tHi, dot(n, p));
+    }
+    for (const auto& p : solid.vertices)
+    {
+      sLo = std::min(sLo, dot(n, p));
+      sHi = std::max(sHi, dot(n, p));
+    }
+    return tHi <= sLo || sHi <= tLo;
+  };
+  if (apart(cross(sub(t[1], t[0]), sub(t[2], t[0]))))
+    return false;
+  for (const auto& plane : solid.planes)
+    if (apart(plane.normal))
+      return false;
+  for (int k = 0; k < 3; ++k)
+    for (const auto& e : solid.edges)
+      if (apart(cross(sub(t[(k + 1) % 3], t[k]), sub(solid.vertices[e[1]], solid.vertices[e[0]]))))
+        return false;
+  return true;
+}
+
+/// Whether the prism's open interior misses H: then the Boolean changes H only on the prism's
+/// boundary (a tube between T1 and T2). Where a triangle of H crosses the prism the Boolean
+/// cuts it at points that are mostly not lattice points, or adds more than a tube: such prisms
+/// were the bulk of the rejected Booleans (each an exact corefinement of the whole H), so they
+/// are tried last; this test costs the triangles in the prism's box.
+bool prismMissesSurface(const CellList& prism, const LatticeMesh& surface)
+{
+  LatticePoint lo = prism.vertices[0], hi = lo;
+  for (const auto& v : prism.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  for (const auto& tri : surface.triangles)
+  {
+    const std::array<LatticePoint, 3> t{
+      surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]]
+    };
+    bool inBox = true;
+    for (int a = 0; a < 3 && inBox; ++a)
+      inBox = std::max({ t[0][a], t[1][a], t[2][a] }) > lo[a] &&
+        std::min({ t[0][a], t[1][a], t[2][a] }) < hi[a];
+    if (inBox && meetsOpenInterior(prism, t))
+      return false;
+  }
+  return true;
+}
+
 /// `where` after P was cut out of H or added to it: the solid changes only inside the closed
 /// prism P, so a lattice point outside P keeps its side (a neighbourhood of it misses P), and the
 /// lattice points of P, all on its boundary, are located again (exact ray parity). This replaces
@@ -1717,7 +1781,11 @@ bool joinOneShell(Context& ctx,
     for (std::size_t o = 0; o < shells.size(); ++o)
       if (o != s)
         rest.append(shells[o].mesh, false);
-    const auto prisms = prismsAt(shells[s].mesh, rest, crossing);
+    auto prisms = prismsAt(shells[s].mesh, rest, crossing);
+    // The prisms whose open interior misses H first (nearest first among them).
+    std::stable_partition(prisms.begin(),
+      prisms.end(),
+      [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
     for (std::size_t k = 0; k < std::min<std::size_t>(prisms.size(), kPrismsTried); ++k)
       if (joinAlongPrism(ctx, prisms[k], isVoid, shells.size(), surface, where))
       {

@@ -78,13 +78,15 @@
 // triangle T1 of the shell and one T2 of the rest of H (no lattice point but their corners;
 // the 12 nearest of each) span a prism P = conv(T1 + T2) with no lattice point in its open
 // interior; P is cut out of H for a void (exact difference) and added to H for a piece (exact
-// union), the nearest of at most 48 candidates first. Sound: P's open interior holds no
-// centre, so no centre changes side, and the centres on P's faces are on H and marked by their
-// class; a join is kept only when the exact Boolean is a closed 2-manifold with lattice
-// corners, with one shell less and an Euler characteristic 2 lower (a tube between two
-// shells), and the whole result is checked once more at the end (closed, embedded, exact
-// reversion), else H stays as it was. Octahedra conv{c +- e_i} along the path (the obvious
-// channel) do not work: their faces cut H's faces at points that are not lattice points.
+// union), at most 48 candidates: first those whose open interior no triangle of H meets (exact
+// separating axes; only they change H on P's boundary alone, a clean tube), nearest first.
+// Sound: P's open interior holds no centre, so no centre changes side, and the centres on P's
+// faces are on H and marked by their class; a join is kept only when the exact Boolean is a
+// closed 2-manifold with lattice corners, with one shell less and an Euler characteristic 2
+// lower (a tube between two shells), and the whole result is checked once more at the end
+// (closed, embedded, exact reversion), else H stays as it was. Octahedra conv{c +- e_i} along
+// the path (the obvious channel) do not work: their faces cut H's faces at points that are not
+// lattice points.
 // Cost of the joining: H is embedded before a join and the Boolean changes it only inside P,
 // so the operands are not tested for self-intersections again (that test of a large H cost
 // about as much as the corefinement), only the result's triangles that meet P's box are; and
@@ -94,9 +96,10 @@
 // Not done (the README's limits): shells for which no prism near the crossing is accepted (a
 // void whose triangles near the crossing are long slivers reaching out along a 1 wide tunnel:
 // every prism between one of them and the outer shell holds a lattice point), and spurious
-// handles: the recursion leaves a piece of genus 1 (a ring of object voxels around a wide
-// tunnel, kept apart) that is object-face-next to the rest all around, and one tube joins
-// them (a tube is all a join can add: Euler characteristic 2 lower, one shell less).
+// handles: the recursion itself leaves a shell of genus 1 where the object has none (a hollow
+// ball of R 11 with a 5 wide tunnel into a cavity of radius 6: a sphere and a torus before the
+// joining, Euler characteristic 2 with two shells), and a join can only add a tube (Euler
+// characteristic 2 lower, one shell less), never remove a handle.
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact

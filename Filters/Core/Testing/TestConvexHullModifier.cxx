@@ -393,7 +393,8 @@ TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
   // cubes' count and the voxel boundary's). Without the joining of shells each of these came
   // out with 2 to 4 shells (a sealed void, or pieces of the shell split off); the 5 wide
   // tunnels into cavities of radius 5 and 7 in R 11 kept an extra shell until 12 empty
-  // triangles per side (not 6) were tried. Still wrong (printed, not asserted): a spurious
+  // triangles per side (not 6) were tried, the off-centre one in R 9 until the prisms whose
+  // interior misses H came first. Still wrong (printed, not asserted): a spurious
   // handle where a ring of object voxels about a wide tunnel is a piece of its own joined by
   // one tube, and an extra shell where no prism is accepted (a void reaching out along a 1
   // wide tunnel in long thin triangles).
@@ -409,6 +410,7 @@ TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
     { "R 9, diagonal, width 3", hollowBall(9, 5, 0, 1, { 0, 0, 0 }, true) },
     { "R 11, r 5, +x, width 5", hollowBall(11, 5, 0, 2) },
     { "R 11, r 7, +x, width 5", hollowBall(11, 7, 0, 2) },
+    { "R 9, +z, width 3 off-centre", hollowBall(9, 5, 2, 1, { 1, 2, 0 }) },
   };
   for (const Case& c : cases)
   {
@@ -423,7 +425,6 @@ TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
     { "R 11, r 7, diagonal, width 3 (handles)", hollowBall(11, 7, 0, 1, { 0, 0, 0 }, true) },
     { "R 10, +x, width 1 off-centre (an extra shell)", hollowBall(10, 5.5, 0, 0, { 0, 1, 1 }) },
     { "R 10, +y, width 1 off-centre (an extra shell)", hollowBall(10, 6, 1, 0, { 2, 0, 1 }) },
-    { "R 9, +z, width 3 off-centre (an extra shell)", hollowBall(9, 5, 2, 1, { 1, 2, 0 }) },
   };
   for (const Case& c : wrong)
   {
