@@ -71,10 +71,10 @@
 // face-neighbours of object centres of another piece (a level kept apart as a cavity of its
 // parent's region, which comes back as a solid of its own). Each such shell is joined to the
 // rest: a void by the shortest face-connected path of background centres from it (from a centre
-// it encloses or one on its shell: a thin void, a tetrahedron between four background centres,
-// encloses none), through centres on H, to a background centre outside H beyond it (the step
-// where the path leaves the shell is the crossing); a piece by a pair of face-neighbouring
-// object centres, one in it and one in another piece. Near the crossing an empty lattice
+// it encloses or one on its shell: a thin void, a polyhedron spanned by a few background
+// centres, encloses none), through centres on H, to a background centre outside H beyond it
+// (the step where the path leaves the shell is the crossing); a piece by a pair of
+// face-neighbouring object centres, one in it and one in another piece. Near the crossing an empty lattice
 // triangle T1 of the shell and one T2 of the rest of H (no lattice point but their corners;
 // the 12 nearest of each) span a prism P = conv(T1 + T2) with no lattice point in its open
 // interior; P is cut out of H for a void (exact difference) and added to H for a piece (exact
