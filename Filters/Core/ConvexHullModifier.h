@@ -74,8 +74,8 @@
 // it encloses or one on its shell: a thin void, a polyhedron spanned by a few background
 // centres, encloses none), through centres on H, to a background centre outside H beyond it
 // (the step where the path leaves the shell is the crossing); a piece by a pair of
-// face-neighbouring object centres, one in it and one in another piece. Near the crossing an empty lattice
-// triangle T1 of the shell and one T2 of the rest of H (no lattice point but their corners;
+// face-neighbouring object centres, one in it and one in another piece. Near the crossing an empty
+// lattice triangle T1 of the shell and one T2 of the rest of H (no lattice point but their corners;
 // the 12 nearest of each) span a prism P = conv(T1 + T2) with no lattice point in its open
 // interior; P is cut out of H for a void (exact difference) and added to H for a piece (exact
 // union), at most 48 candidates: first those whose open interior no triangle of H meets (exact
