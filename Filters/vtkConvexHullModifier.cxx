@@ -377,7 +377,7 @@ void writeCells(const std::vector<ModifiedObject>& objects,
 struct Statistics
 {
   vtkIdType vertices = 0, edges = 0, faces = 0, hullFaces = 0, concavities = 0, cavities = 0,
-            tunnels = 0, degree = 0;
+            tunnels = 0, degree = 0, joinedShells = 0;
 
   /// H of a volume's object, or the polygons of a 2D image's (loops: as many edges as corners;
   /// notches count as concavities, holes as cavities, no tunnels in the plane).
@@ -407,6 +407,7 @@ struct Statistics
     this->cavities += r.cavities;
     this->tunnels += r.tunnels;
     this->degree = std::max<vtkIdType>(this->degree, r.degreeOfNonConvexity);
+    this->joinedShells += r.joinedShells;
   }
 };
 
@@ -446,6 +447,7 @@ void writeStatistics(const std::vector<ModifiedObject>& objects, bool separates,
   vbr::vtk::addFieldValue(fd, "NumberOfCavities", n.cavities);
   vbr::vtk::addFieldValue(fd, "NumberOfTunnels", n.tunnels);
   vbr::vtk::addFieldValue(fd, "DegreeOfNonConvexity", n.degree);
+  vbr::vtk::addFieldValue(fd, "NumberOfJoinedShells", n.joinedShells);
   vbr::vtk::addFieldValue(fd, "Separates", separates ? 1 : 0);
   fd->AddArray(onSurface);
 }

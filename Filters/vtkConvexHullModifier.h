@@ -38,6 +38,9 @@
  * data: `VoxelMark` (1 object voxel, 0 background voxel). Field data: `NumberOfVertices`,
  * `NumberOfEdges`, `NumberOfFaces`, `NumberOfHullFaces`, `NumberOfConcavities`,
  * `NumberOfCavities`, `NumberOfTunnels`, `DegreeOfNonConvexity` (maxima and sums over labels),
+ * `NumberOfJoinedShells` (shells of H joined to the rest after H separated, summed over
+ * labels: voids reached by face-connected background centres and pieces face-next to others,
+ * each joined by a lattice prism; ConvexHullModifier.h; 0 on a 2D image),
  * `Separates` (1 when the filter's own check passed for every object: the voxels rebuilt from
  * H and its marks equal the selection; a 0 comes with an error message) and
  * `BackgroundCentresOnSurface` (the index coordinates of the background voxel centres that lie

@@ -1451,10 +1451,10 @@ LatticePoint step(const LatticePoint& p, int k)
 }
 
 /// The shortest face-connected path of background centres from a centre of a void (`mine`
-/// flags the centres the shell encloses or holds) to a background centre strictly outside H
-/// and not flagged (or off the grid), every centre between them on H. The two centres where
-/// the path leaves the shell (the last one flagged and the next), or nothing when the void is
-/// sealed from the rest of the background.
+/// flags the centres the shell encloses or holds: a thin void encloses none) to a background centre
+/// strictly outside H and not flagged (or off the grid), every centre between them on H. The two
+/// centres where the path leaves the shell (the last one flagged and the next), or nothing when the
+/// void is sealed from the rest of the background.
 std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
   const std::vector<std::uint8_t>& where,
   const std::vector<std::uint8_t>& mine)
@@ -1467,8 +1467,7 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
       for (std::int32_t x = 0; x < d[0]; ++x)
       {
         const LatticePoint p{ x, y, z };
-        if (mine[gridIndex(d, p)] == 1 && where[gridIndex(d, p)] == Outside &&
-          !voxelClass(objects, p))
+        if (mine[gridIndex(d, p)] && !voxelClass(objects, p))
         {
           from[gridIndex(d, p)] = -1;
           todo.push(p);
@@ -1566,6 +1565,10 @@ std::vector<std::array<LatticePoint, 3>> emptyTrianglesNear(const LatticeMesh& m
   return found;
 }
 
+/// The empty triangles taken on each side of a crossing. 6 left extra shells on porous blobs
+/// and hollow balls whose prisms all held a lattice point or failed the Boolean.
+constexpr std::size_t kTrianglesNear = 12;
+
 /// The prisms conv(T1 + T2) between empty triangles of the shell and of the rest of H near the
 /// crossing, with no lattice point in their open interior, nearest first.
 std::vector<CellList> prismsAt(const LatticeMesh& shell,
@@ -1573,8 +1576,8 @@ std::vector<CellList> prismsAt(const LatticeMesh& shell,
   const std::vector<LatticePoint>& crossing)
 {
   std::vector<CellList> prisms;
-  const auto first = emptyTrianglesNear(shell, crossing, 6);
-  const auto second = emptyTrianglesNear(rest, crossing, 6);
+  const auto first = emptyTrianglesNear(shell, crossing, kTrianglesNear);
+  const auto second = emptyTrianglesNear(rest, crossing, kTrianglesNear);
   for (const auto& a : first)
     for (const auto& b : second)
     {
@@ -1620,6 +1623,90 @@ int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
   return parity ? 1 : -1;
 }
 
+/// Whether the triangle meets the open interior of the solid hull (exact separating axes: the
+/// hull's face normals, the triangle's normal and the cross products of their edges; a plane
+/// along one of them that leaves the triangle on one closed side and the hull on the other is
+/// the witness that it does not, as for any two convex polytopes).
+bool meetsOpenInterior(const CellList& solid, const std::array<LatticePoint, 3>& t)
+{
+  auto apart = [&](const LatticePoint& n)
+  {
+    if (n == LatticePoint{ 0, 0, 0 })
+      return false;
+    __int128 tLo = dot(n, t[0]), tHi = tLo, sLo = dot(n, solid.vertices[0]), sHi = sLo;
+    for (const auto& p : t)
+    {
+      tLo = std::min(tLo, dot(n, p));
+      tHi = std::max(tHi, dot(n, p));
+    }
+    for (const auto& p : solid.vertices)
+    {
+      sLo = std::min(sLo, dot(n, p));
+      sHi = std::max(sHi, dot(n, p));
+    }
+    return tHi <= sLo || sHi <= tLo;
+  };
+  if (apart(cross(sub(t[1], t[0]), sub(t[2], t[0]))))
+    return false;
+  for (const auto& plane : solid.planes)
+    if (apart(plane.normal))
+      return false;
+  for (int k = 0; k < 3; ++k)
+    for (const auto& e : solid.edges)
+      if (apart(cross(sub(t[(k + 1) % 3], t[k]), sub(solid.vertices[e[1]], solid.vertices[e[0]]))))
+        return false;
+  return true;
+}
+
+/// Whether the prism's open interior misses H: then the Boolean changes H only on the prism's
+/// boundary (a tube between T1 and T2). Where a triangle of H crosses the prism the Boolean
+/// cuts it at points that are mostly not lattice points, or adds more than a tube: such prisms
+/// were the bulk of the rejected Booleans (each an exact corefinement of the whole H), so they
+/// are tried last; this test costs the triangles in the prism's box.
+bool prismMissesSurface(const CellList& prism, const LatticeMesh& surface)
+{
+  LatticePoint lo = prism.vertices[0], hi = lo;
+  for (const auto& v : prism.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  for (const auto& tri : surface.triangles)
+  {
+    const std::array<LatticePoint, 3> t{
+      surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]]
+    };
+    bool inBox = true;
+    for (int a = 0; a < 3 && inBox; ++a)
+      inBox = std::max({ t[0][a], t[1][a], t[2][a] }) > lo[a] &&
+        std::min({ t[0][a], t[1][a], t[2][a] }) < hi[a];
+    if (inBox && meetsOpenInterior(prism, t))
+      return false;
+  }
+  return true;
+}
+
+/// `where` after P was cut out of H or added to it: the solid changes only inside the closed
+/// prism P, so a lattice point outside P keeps its side (a neighbourhood of it misses P), and the
+/// lattice points of P, all on its boundary, are located again (exact ray parity). This replaces
+/// a location of every lattice point of the grid after each join.
+void updateWhere(const LatticeMesh& surface,
+  const CellList& prism,
+  const Dims& d,
+  std::vector<std::uint8_t>& where)
+{
+  forEachPointIn(prism,
+    false,
+    [&](const LatticePoint& p)
+    {
+      if (!inGrid(d, p))
+        return;
+      const int side = sideOf(surface, p, 1);
+      where[gridIndex(d, p)] = side > 0 ? Inside : side == 0 ? On : Outside;
+    });
+}
+
 /// H with the prism cut out (a void) or added (a piece), kept only when the exact Boolean is a
 /// closed 2-manifold with lattice corners and one shell less (its Euler characteristic 2
 /// lower). The prism's open interior holds no lattice point, so no centre changes side.
@@ -1627,7 +1714,8 @@ bool joinAlongPrism(Context& ctx,
   const CellList& prism,
   bool cut,
   std::size_t shells,
-  LatticeMesh& surface)
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
 {
   // The prism runs through H's solid (a cut) or through the space between two pieces (a
   // join): its centroid tells, cheaply, before the exact Boolean.
@@ -1637,29 +1725,44 @@ bool joinAlongPrism(Context& ctx,
       centroid[a] += v[a];
   if (sideOf(surface, centroid, static_cast<std::int64_t>(prism.vertices.size())) != (cut ? 1 : -1))
     return false;
+  // H was embedded and the Boolean changed it only inside P, so only triangles meeting P's box
+  // can cross (the operands are not tested again: that test of a large H costs about as much
+  // as the corefinement).
+  std::array<LatticePoint, 2> box{ prism.vertices[0], prism.vertices[0] };
+  for (const auto& v : prism.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      box[0][a] = std::min(box[0][a], v[a]);
+      box[1][a] = std::max(box[1][a], v[a]);
+    }
   LatticeMesh joined;
   const LatticeMesh p = triangulateHull(prism);
-  if (!(cut ? latticeDifference(surface, p, joined) : latticeUnion(surface, p, joined)) ||
-    shellsOf(joined).size() + 1 != shells ||
-    eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface))
+  const bool ok = cut ? latticeDifference(surface, p, joined, Operands::Embedded)
+                      : latticeUnion(surface, p, joined, Operands::Embedded);
+  if (!ok || shellsOf(joined).size() + 1 != shells ||
+    eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface) ||
+    !isEmbeddedWithin(joined, box[0], box[1]))
     return false;
   recordPlanes(ctx, prism, cut ? 1 : 2);
   surface = std::move(joined);
+  updateWhere(surface, prism, ctx.objects.dims(), where);
   return true;
 }
 
 /// The prisms tried per shell, nearest first (each costs an exact Boolean and a check).
-constexpr std::size_t kPrismsTried = 16;
+constexpr std::size_t kPrismsTried = 48;
 
 /// Joins one shell of H to the rest where the object's or the background's face-connected
 /// centres cross it (see above); false when none could be joined.
-bool joinOneShell(Context& ctx, LatticeMesh& surface, std::set<LatticePoint>& failed)
+bool joinOneShell(Context& ctx,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where,
+  std::set<LatticePoint>& failed)
 {
   const std::vector<Shell> shells = shellsOf(surface);
   if (shells.size() < 2)
     return false;
   const Dims d = ctx.objects.dims();
-  const std::vector<std::uint8_t> where = whereInGrid(surface, d);
   for (std::size_t s = 0; s < shells.size(); ++s)
   {
     const LatticePoint key =
@@ -1678,9 +1781,13 @@ bool joinOneShell(Context& ctx, LatticeMesh& surface, std::set<LatticePoint>& fa
     for (std::size_t o = 0; o < shells.size(); ++o)
       if (o != s)
         rest.append(shells[o].mesh, false);
-    const auto prisms = prismsAt(shells[s].mesh, rest, crossing);
+    auto prisms = prismsAt(shells[s].mesh, rest, crossing);
+    // The prisms whose open interior misses H first (nearest first among them).
+    std::stable_partition(prisms.begin(),
+      prisms.end(),
+      [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
     for (std::size_t k = 0; k < std::min<std::size_t>(prisms.size(), kPrismsTried); ++k)
-      if (joinAlongPrism(ctx, prisms[k], isVoid, shells.size(), surface))
+      if (joinAlongPrism(ctx, prisms[k], isVoid, shells.size(), surface, where))
       {
         failed.erase(key);
         return true;
@@ -1692,11 +1799,14 @@ bool joinOneShell(Context& ctx, LatticeMesh& surface, std::set<LatticePoint>& fa
 /// Joins shells while one can be joined; returns how many were.
 int joinShells(Context& ctx, LatticeMesh& surface)
 {
+  if (shellsOf(surface).size() < 2)
+    return 0; // nothing to join: the grid is not located at all
   int joined = 0;
   std::set<LatticePoint> failed;
   LatticeMesh repaired = surface;
   const auto planes = ctx.planeLevel;
-  while (joinOneShell(ctx, repaired, failed))
+  std::vector<std::uint8_t> where = whereInGrid(repaired, ctx.objects.dims());
+  while (joinOneShell(ctx, repaired, where, failed))
     ++joined;
   // Checked once at the end (each check tests the whole surface for self-intersections).
   if (joined == 0 || !separates(ctx.objects, repaired))

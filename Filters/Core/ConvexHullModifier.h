@@ -70,21 +70,36 @@
 // a face through the tunnel's centres), or a piece of H whose object centres are
 // face-neighbours of object centres of another piece (a level kept apart as a cavity of its
 // parent's region, which comes back as a solid of its own). Each such shell is joined to the
-// rest: a void by the shortest face-connected path of background centres from it, through
-// centres on H, to a background centre outside H beyond it (the step where the path leaves the
-// shell is the crossing); a piece by a pair of face-neighbouring object centres, one in it and
-// one in another piece. Near the crossing an empty lattice triangle T1 of the shell and one T2 of
-// the rest of H (no lattice point but their corners) span a prism P = conv(T1 + T2) with no
-// lattice point in its open interior; P is cut out of H for a void (exact difference) and added
-// to H for a piece (exact union), the nearest candidates first. Sound: P's open interior holds
-// no centre, so no centre changes side, and the centres on P's faces are on H and marked by
-// their class; a join is kept only when the exact Boolean is a closed 2-manifold with lattice
-// corners, with one shell less and an Euler characteristic 2 lower (a tube between two shells,
-// not a handle), and the whole result is checked once more at the end (closed, embedded,
-// exact reversion), else H stays as it was. Octahedra conv{c +- e_i} along the path (the
-// obvious channel) do not work: their faces cut H's faces at points that are not lattice
-// points. Not done: shells for which no prism near the crossing is accepted, and spurious
-// handles (one shell of genus 1 where the object is a ball); see the README's limits.
+// rest: a void by the shortest face-connected path of background centres from it (from a centre
+// it encloses or one on its shell: a thin void, a polyhedron spanned by a few background
+// centres, encloses none), through centres on H, to a background centre outside H beyond it
+// (the step where the path leaves the shell is the crossing); a piece by a pair of
+// face-neighbouring object centres, one in it and one in another piece. Near the crossing an empty
+// lattice triangle T1 of the shell and one T2 of the rest of H (no lattice point but their corners;
+// the 12 nearest of each) span a prism P = conv(T1 + T2) with no lattice point in its open
+// interior; P is cut out of H for a void (exact difference) and added to H for a piece (exact
+// union), at most 48 candidates: first those whose open interior no triangle of H meets (exact
+// separating axes; only they change H on P's boundary alone, a clean tube), nearest first.
+// Sound: P's open interior holds no centre, so no centre changes side, and the centres on P's
+// faces are on H and marked by their class; a join is kept only when the exact Boolean is a
+// closed 2-manifold with lattice corners, with one shell less and an Euler characteristic 2
+// lower (a tube between two shells), and the whole result is checked once more at the end
+// (closed, embedded, exact reversion), else H stays as it was. Octahedra conv{c +- e_i} along
+// the path (the obvious channel) do not work: their faces cut H's faces at points that are not
+// lattice points.
+// Cost of the joining: H is embedded before a join and the Boolean changes it only inside P,
+// so the operands are not tested for self-intersections again (that test of a large H cost
+// about as much as the corefinement), only the result's triangles that meet P's box are; and
+// the side of every lattice point of the grid (inside, on or outside H) is found once and,
+// after a join, only at the lattice points of P (a point outside the closed P keeps its side).
+// Nothing is located when H has one shell.
+// Not done (the README's limits): shells for which no prism near the crossing is accepted (a
+// void whose triangles near the crossing are long slivers reaching out along a 1 wide tunnel:
+// every prism between one of them and the outer shell holds a lattice point), and spurious
+// handles: the recursion itself leaves a shell of genus 1 where the object has none (a hollow
+// ball of R 11 with a 5 wide tunnel into a cavity of radius 6: a sphere and a torus before the
+// joining, Euler characteristic 2 with two shells), and a join can only add a tube (Euler
+// characteristic 2 lower, one shell less), never remove a handle.
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact

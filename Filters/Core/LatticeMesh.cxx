@@ -167,15 +167,51 @@ bool isClosedEmbeddedManifold(const LatticeMesh& m)
     !PMP::does_self_intersect(mesh);
 }
 
+bool isEmbeddedWithin(const LatticeMesh& m, const LatticePoint& lo, const LatticePoint& hi)
+{
+  Mesh mesh;
+  std::map<std::uint32_t, Mesh::Vertex_index> vertices;
+  auto vertex = [&](std::uint32_t i)
+  {
+    auto it = vertices.find(i);
+    if (it == vertices.end())
+    {
+      const auto& p = m.points[i];
+      it = vertices
+             .emplace(i,
+               mesh.add_vertex(Kernel::Point_3(
+                 static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]))))
+             .first;
+    }
+    return it->second;
+  };
+  for (const auto& t : m.triangles)
+  {
+    bool meets = true;
+    for (int k = 0; k < 3 && meets; ++k)
+      meets = std::max({ m.points[t[0]][k], m.points[t[1]][k], m.points[t[2]][k] }) >= lo[k] &&
+        std::min({ m.points[t[0]][k], m.points[t[1]][k], m.points[t[2]][k] }) <= hi[k];
+    if (meets && mesh.add_face(vertex(t[0]), vertex(t[1]), vertex(t[2])) == Mesh::null_face())
+      return isClosedEmbeddedManifold(m); // a subset CGAL does not take: test the whole mesh
+  }
+  return !PMP::does_self_intersect(mesh);
+}
+
 namespace
 {
 
-bool latticeBoolean(const LatticeMesh& a, const LatticeMesh& b, bool unite, LatticeMesh& result)
+bool latticeBoolean(const LatticeMesh& a,
+  const LatticeMesh& b,
+  bool unite,
+  Operands operands,
+  LatticeMesh& result)
 {
   Mesh first = toSurfaceMesh(a), second = toSurfaceMesh(b), out;
   bool ok = false;
-  if (!CGAL::is_closed(first) || !CGAL::is_closed(second) || PMP::does_self_intersect(first) ||
-    PMP::does_self_intersect(second))
+  // The self-intersection test of a large operand costs about as much as the corefinement.
+  const bool check = operands == Operands::Check;
+  if (!CGAL::is_closed(first) || !CGAL::is_closed(second) ||
+    (check && (PMP::does_self_intersect(first) || PMP::does_self_intersect(second))))
   {
     return false; // not valid operands (corefinement needs two closed, embedded surfaces)
   }
@@ -234,14 +270,20 @@ bool latticeBoolean(const LatticeMesh& a, const LatticeMesh& b, bool unite, Latt
 
 } // namespace
 
-bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result)
+bool latticeDifference(const LatticeMesh& a,
+  const LatticeMesh& b,
+  LatticeMesh& result,
+  Operands operands)
 {
-  return latticeBoolean(a, b, false, result);
+  return latticeBoolean(a, b, false, operands, result);
 }
 
-bool latticeUnion(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result)
+bool latticeUnion(const LatticeMesh& a,
+  const LatticeMesh& b,
+  LatticeMesh& result,
+  Operands operands)
 {
-  return latticeBoolean(a, b, true, result);
+  return latticeBoolean(a, b, true, operands, result);
 }
 
 } // namespace vbr

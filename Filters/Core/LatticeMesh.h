@@ -38,11 +38,33 @@ LatticeMesh triangulateHull(const CellList& hull);
 /// Whether the mesh is a closed oriented 2-manifold without self-intersections (exact).
 bool isClosedEmbeddedManifold(const LatticeMesh& mesh);
 
+/// Whether no two triangles of the mesh that meet the box [lo, hi] intersect but in their
+/// shared corners and edges (exact). A closed embedded mesh that a Boolean changed only inside
+/// the box is embedded exactly when this holds: two triangles that cross are both new (inside
+/// the box) or one new and one meeting it there.
+bool isEmbeddedWithin(const LatticeMesh& m, const LatticePoint& lo, const LatticePoint& hi);
+
+/// What the Booleans check of their operands: Check, that both are closed embedded surfaces
+/// (corefinement needs them so; false otherwise); Embedded, only that they are closed, the
+/// caller knowing them embedded (the self-intersection test of a large operand costs about as
+/// much as the corefinement itself).
+enum class Operands
+{
+  Check,
+  Embedded
+};
+
 /// a minus b, exactly; false when the result is not a closed 2-manifold with lattice corners.
-bool latticeDifference(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result);
+bool latticeDifference(const LatticeMesh& a,
+  const LatticeMesh& b,
+  LatticeMesh& result,
+  Operands operands = Operands::Check);
 
 /// a united with b, exactly; false as for the difference.
-bool latticeUnion(const LatticeMesh& a, const LatticeMesh& b, LatticeMesh& result);
+bool latticeUnion(const LatticeMesh& a,
+  const LatticeMesh& b,
+  LatticeMesh& result,
+  Operands operands = Operands::Check);
 
 } // namespace vbr
 

@@ -12,8 +12,8 @@
 //    vtkDiscreteFlyingEdges3D, vtkEVMBoundaryFilter (Polygons) and
 //    vtkStandardPlanePolyhedrizer (standard faces, no reversion).
 // Then: voxels, candidates, the hull's faces and vertices (and Qhull's facets), the filter's
-// faces, edges, vertices, degree of non-convexity and Separates, and the ratio of DFE
-// triangles to our faces; a WARNING (a failed smoke run) where the filter does not separate a
+// faces, edges, vertices, degree of non-convexity, joined shells and Separates, and the ratio of
+// DFE triangles to our faces; a WARNING (a failed smoke run) where the filter does not separate a
 // synthetic input. Of the real volumes only the Al runs (about a minute of pressing-in; the
 // lobster's takes several minutes, see the README).
 //
@@ -175,7 +175,8 @@ void printCounts(const Input& in, const HullRuns& h, FilterRuns& f)
   const long long triangles = f.dfe->GetOutput()->GetNumberOfCells();
   const bool same = h.qhull == static_cast<long long>(h.hull.faces.size());
   std::printf("voxels %s, candidates %s | hull %s faces, %s vertices, Qhull %s facets%s | H %s "
-              "faces, %s edges, %s vertices, NK %lld, Separates %lld | DFE triangles / faces "
+              "faces, %s edges, %s vertices, NK %lld, shells joined %lld, Separates %lld | DFE "
+              "triangles / faces "
               "%s | EVM %s polygons, polyhedrizer %s faces\n\n",
     formatCount(static_cast<long long>(selectedCount(in))).c_str(),
     formatCount(static_cast<long long>(h.candidates.size())).c_str(),
@@ -187,6 +188,7 @@ void printCounts(const Input& in, const HullRuns& h, FilterRuns& f)
     formatCount(field(out, "NumberOfEdges")).c_str(),
     formatCount(field(out, "NumberOfVertices")).c_str(),
     field(out, "DegreeOfNonConvexity"),
+    field(out, "NumberOfJoinedShells"),
     field(out, "Separates"),
     formatRatio(faces > 0 ? double(triangles) / double(faces) : 0.0).c_str(),
     formatCount(f.evm->GetOutput()->GetNumberOfCells()).c_str(),

@@ -391,10 +391,13 @@ TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
   // A tunnel of face-connected background voxels from the cavity out makes the hollow ball a
   // ball with a dent: H must be one sphere (Euler characteristic 2, checked against the closed
   // cubes' count and the voxel boundary's). Without the joining of shells each of these came
-  // out with 2 to 4 shells (a sealed void, or pieces of the shell split off). Still wrong (not
-  // tested here): a 5 wide tunnel in R 11 and an off-centre 3 wide one in R 9 give a spurious
-  // handle (Euler characteristic 0), a 1 wide off-centre one in R 10 four shells, a diagonal
-  // one in R 11 genus 2.
+  // out with 2 to 4 shells (a sealed void, or pieces of the shell split off); the 5 wide
+  // tunnels into cavities of radius 5 and 7 in R 11 kept an extra shell until 12 empty
+  // triangles per side (not 6) were tried, the off-centre one in R 9 until the prisms whose
+  // interior misses H came first. Still wrong (printed, not asserted): a spurious
+  // handle where a ring of object voxels about a wide tunnel is a piece of its own joined by
+  // one tube, and an extra shell where no prism is accepted (a void reaching out along a 1
+  // wide tunnel in long thin triangles).
   struct Case
   {
     const char* name;
@@ -405,6 +408,9 @@ TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
     { "R 7, +x, width 1", hollowBall(7, 3.5, 0, 0) },
     { "R 9, -y, width 2", hollowBall(9, 5, 1, 0.5, { 0.5, 0, 0.5 }, false, -1) },
     { "R 9, diagonal, width 3", hollowBall(9, 5, 0, 1, { 0, 0, 0 }, true) },
+    { "R 11, r 5, +x, width 5", hollowBall(11, 5, 0, 2) },
+    { "R 11, r 7, +x, width 5", hollowBall(11, 7, 0, 2) },
+    { "R 9, +z, width 3 off-centre", hollowBall(9, 5, 2, 1, { 1, 2, 0 }) },
   };
   for (const Case& c : cases)
   {
@@ -413,6 +419,22 @@ TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
     EXPECT_EQ(2 * closedCubesEuler(c.v), 2);
     const auto r = expectSeparating(c.v, { true, true });
     EXPECT_GE(r.joinedShells, 1);
+  }
+  const std::vector<Case> wrong{
+    { "R 11, r 6, +x, width 5 (a handle)", hollowBall(11, 6, 0, 2) },
+    { "R 11, r 7, diagonal, width 3 (handles)", hollowBall(11, 7, 0, 1, { 0, 0, 0 }, true) },
+    { "R 10, +x, width 1 off-centre (an extra shell)", hollowBall(10, 5.5, 0, 0, { 0, 1, 1 }) },
+    { "R 10, +y, width 1 off-centre (an extra shell)", hollowBall(10, 6, 1, 0, { 2, 0, 1 }) },
+  };
+  for (const Case& c : wrong)
+  {
+    SCOPED_TRACE(c.name);
+    const auto r = expectSeparating(c.v, { false });
+    const long chi = static_cast<long>(r.surface.points.size()) -
+      static_cast<long>(r.surface.triangles.size()) / 2;
+    std::cout << c.name << ": Euler characteristic " << chi
+              << " (closed cubes, twice: " << 2 * closedCubesEuler(c.v) << "), well-composed "
+              << wellComposed(c.v) << ", shells joined " << r.joinedShells << std::endl;
   }
 }
 
@@ -490,10 +512,13 @@ TEST(ConvexHullModifier, RandomPorousBlobsSeparate)
       static_cast<long>(h.surface.triangles.size()) / 2;
     wellComposedBlobs += composed;
     mismatches += composed && chi != 2 * closedCubesEuler(v);
+    if (composed)
+      EXPECT_EQ(chi, 2 * closedCubesEuler(v)) << "Euler characteristic (closed cubes)";
   }
-  // Not asserted: many blobs still come out with extra shells (the joining finds no prism).
+  // The blobs that are not well-composed have no one topology to compare with.
   std::cout << wellComposedBlobs << " well-composed blobs, " << mismatches
             << " of them with H's Euler characteristic not the closed cubes' (twice)" << std::endl;
+  EXPECT_GE(wellComposedBlobs, 10);
 }
 
 TEST(ConvexHullModifier, RealObjectsSeparate)

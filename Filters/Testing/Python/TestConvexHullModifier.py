@@ -281,6 +281,27 @@ def check_2d_labels():
     check.true("2D labels: reversion", bool((back.reshape(labels.shape) == (labels > 0)).all()))
 
 
+def closed_cubes_euler(mask):
+    """V - E + F - C of the union of the closed voxel cubes: a cell of the cubical complex
+    belongs to it when one of the voxels it touches is set (the cells by their doubled
+    coordinates, even along an axis where the cell spans no voxel)."""
+    m = np.pad(mask.astype(bool), 1)
+    chi = 0
+    for spans in np.ndindex(2, 2, 2):  # per axis (z, y, x): 1 the cell spans a voxel
+        touched = np.zeros(tuple(s - 1 + t for s, t in zip(m.shape, spans)), bool)
+        for shift in np.ndindex(*(1 if t else 2 for t in spans)):
+            sl = tuple(slice(d, d + n) for d, n in zip(shift, touched.shape))
+            touched |= m[sl]
+        chi += (-1) ** sum(spans) * int(touched.sum())
+    return chi
+
+
+def euler_of_triangles(tris):
+    used = np.unique(tris)
+    edges = {tuple(sorted((t[k], t[(k + 1) % 3]))) for t in tris for k in range(3)}
+    return len(used) - len(edges) + len(tris)
+
+
 def shape(n, inside):
     z, y, x = np.meshgrid(np.arange(n), np.arange(n), np.arange(n), indexing="ij")
     return inside(x.astype(float), y.astype(float), z.astype(float))
@@ -301,6 +322,17 @@ def main():
                                       (z - 7.5) ** 2) <= 2.2 ** 2)
     out = check_case("torus", ring)
     check.true("torus: a tunnel", field_value(out, "NumberOfTunnels") >= 1)
+    # A hollow ball whose 3 wide tunnel reaches the cavity: a ball with a dent (the closed
+    # cubes' Euler characteristic 1), H one sphere only after a shell is joined.
+    R, cb = 7, 8.0
+    d2 = lambda x, y, z: (x - cb) ** 2 + (y - cb) ** 2 + (z - cb) ** 2
+    hollow = shape(2 * R + 3, lambda x, y, z: (d2(x, y, z) <= R * R) & (d2(x, y, z) > 3.5 ** 2) &
+                   ~((x >= cb) & (np.abs(y - cb) <= 1) & (np.abs(z - cb) <= 1)))
+    out = check_case("hollow ball with a tunnel", hollow)
+    tris = np.array([c for c in cells(out)])
+    check.equal("hollow ball: Euler characteristic twice the closed cubes'",
+                euler_of_triangles(tris), 2 * closed_cubes_euler(hollow))
+    check.true("hollow ball: NumberOfJoinedShells", field_value(out, "NumberOfJoinedShells") >= 1)
     # 2D images: separating polygons with holes in the image plane.
     yy, xx = np.mgrid[0:21, 0:23]
     disc = np.hypot(xx - 11, yy - 10) < 9.5
