@@ -395,7 +395,106 @@ bool CornerSet::spans(int axis) const
   return false;
 }
 
+namespace
+{
+
+/// The bound on the buckets of the one-pass ordering of the lines along x: its counts cost no
+/// more than the orders themselves (or a small table).
+std::uint64_t bucketBound(std::size_t corners)
+{
+  return 4 * std::uint64_t(corners) + (std::uint64_t(1) << 16);
+}
+
+/// The order of the corners along the lines of one axis, being made.
+struct LineOrder
+{
+  std::vector<std::uint32_t>& order;
+  std::vector<std::uint32_t>& rank;
+  std::vector<Coord>& coordinate;
+};
+
+/// Orders the corners [first, last) (whole lines along `axis`, numbered in the order of the
+/// coordinate along it within each line) by a stable counting sort on their line's bucket
+/// (below `buckets`), bucketOf(corner).
+template<typename BucketOf>
+void sortLinesBy(const std::vector<Point3>& points,
+  int axis,
+  std::size_t first,
+  std::size_t last,
+  std::size_t buckets,
+  BucketOf&& bucketOf,
+  std::vector<std::uint32_t>& count,
+  const LineOrder& out)
+{
+  count.assign(buckets + 1, 0);
+  for (std::size_t n = first; n < last; ++n)
+    ++count[bucketOf(points[n]) + 1];
+  count[0] = static_cast<std::uint32_t>(first);
+  for (std::size_t b = 1; b <= buckets; ++b)
+    count[b] += count[b - 1];
+  for (std::size_t n = first; n < last; ++n)
+  {
+    const Point3& p = points[n];
+    const std::uint32_t r = count[bucketOf(p)]++;
+    out.order[r] = static_cast<std::uint32_t>(n);
+    out.rank[n] = r;
+    out.coordinate[r] = p[axis];
+  }
+}
+
+} // namespace
+
 void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)
+{
+  // The corners are numbered in the order (x, y, z), so a line along an axis is a run of
+  // one stable counting sort by the line, no sort of keys: along y, the corners of each plane
+  // x = const by z; along x, all the corners by (y, z) when the lines are few enough to count,
+  // else by a radix sort of the keys (y, z, x).
+  const std::size_t n = this->Points.size();
+  this->OrderAlong[axis].resize(n);
+  this->RankAlong[axis].resize(n);
+  this->CoordinateAlong[axis].resize(n);
+  std::vector<std::uint32_t> count;
+  const LineOrder out{ this->OrderAlong[axis], this->RankAlong[axis], this->CoordinateAlong[axis] };
+  const Point3 lo = this->Lo;
+  const std::uint64_t extent2 = this->Extent[2];
+  if (axis == 1)
+  {
+    for (std::size_t first = 0, last = 0; first < n; first = last)
+    {
+      while (last < n && this->Points[last][0] == this->Points[first][0])
+        ++last;
+      sortLinesBy(
+        this->Points,
+        axis,
+        first,
+        last,
+        extent2,
+        [lo](const Point3& p) { return std::size_t(p[2] - lo[2]); },
+        count,
+        out);
+    }
+    return;
+  }
+  const std::uint64_t lines = this->Extent[1] * extent2;
+  if (lines <= bucketBound(n))
+  {
+    sortLinesBy(
+      this->Points,
+      axis,
+      0,
+      n,
+      lines,
+      [lo, extent2](const Point3& p)
+      { return std::size_t(std::uint64_t(p[1] - lo[1]) * extent2 + std::uint64_t(p[2] - lo[2])); },
+      count,
+      out);
+    return;
+  }
+  this->sortLinesByKeys(axis, packer);
+}
+
+void CornerSet::sortLinesByKeys(int axis, const KeyPacker& packer)
 {
   // Key (the two other coordinates, then this one): a line along `axis` is a run of keys.
   const int other1 = axis == 0 ? 1 : 0, other2 = 2;
@@ -409,9 +508,6 @@ void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)
   std::vector<std::uint32_t>& order = this->OrderAlong[axis];
   std::vector<std::uint32_t>& rank = this->RankAlong[axis];
   std::vector<Coord>& coordinate = this->CoordinateAlong[axis];
-  order.resize(keyed.size());
-  rank.resize(keyed.size());
-  coordinate.resize(keyed.size());
   for (std::size_t r = 0; r < keyed.size(); ++r)
   {
     order[r] = keyed[r].second;
