@@ -106,11 +106,17 @@ void appendFaces(const Boundary2D& b2,
     out,
     [&](std::size_t begin, std::size_t end, bool reverse)
     {
+      // Written in place, in the loop's final order: no check of capacity per corner.
       const std::size_t first = out.points.size();
-      for (std::size_t i = begin; i < end; ++i)
-        out.points.push_back(placed(order, position, b2.points[i]));
+      out.points.resize(first + (end - begin));
+      Point3* to = out.points.data() + first;
+      const Point2* from = b2.points.data();
       if (reverse)
-        std::reverse(out.points.begin() + first, out.points.end());
+        for (std::size_t i = end; i-- > begin;)
+          *to++ = placed(order, position, from[i]);
+      else
+        for (std::size_t i = begin; i < end; ++i)
+          *to++ = placed(order, position, from[i]);
     });
 }
 
