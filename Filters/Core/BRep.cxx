@@ -191,35 +191,42 @@ int edgeAxis(const Point3& p, const Point3& q)
   return d;
 }
 
-/// Calls emit(p, number) for each corner of a loop and, after it, for each corner of the set
-/// lying strictly inside the edge that starts there, in order along the edge. `inside` holds
-/// per corner how many lie inside its edge (countEdgeVertices): the edges that hold none,
-/// most of them, are passed without looking their ends up in the corner set.
-template<typename Emit>
-void walkWithEdgeVertices(const PointRange& points,
-  const std::int64_t* numbers,
+/// Writes a loop's corners to `points` and their numbers to `numbers`, each followed by the
+/// corners of the set lying strictly inside the edge that starts there, in order along the
+/// edge. `inside` holds per corner how many lie inside its edge (countEdgeVertices): the runs of
+/// edges that hold none, most of them, are copied whole, without looking their ends up in the
+/// corner set.
+void walkWithEdgeVertices(const PointRange& loop,
+  const std::int64_t* loopNumbers,
   const std::uint32_t* inside,
   const CornerSet& corners,
   const Point3& offset,
-  Emit&& emit)
+  Point3* points,
+  std::int64_t* numbers)
 {
-  for (std::size_t i = 0; i < points.size(); ++i)
+  std::size_t run = 0; // the first corner not written yet
+  for (std::size_t i = 0; i < loop.size(); ++i)
   {
-    emit(points[i], numbers[i]);
     if (inside[i] == 0)
       continue;
-    const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
-    const int d = edgeAxis(points[i], points[j]);
-    Point3 q = points[i]; // a corner inside the edge differs from its start along d only
+    points = std::copy(loop.begin() + run, loop.begin() + i + 1, points);
+    numbers = std::copy(loopNumbers + run, loopNumbers + i + 1, numbers);
+    run = i + 1;
+    const std::size_t j = i + 1 < loop.size() ? i + 1 : 0;
+    const int d = edgeAxis(loop[i], loop[j]);
+    Point3 q = loop[i]; // a corner inside the edge differs from its start along d only
     corners.forEachBetween(d,
-      numbers[i],
-      numbers[j],
+      loopNumbers[i],
+      loopNumbers[j],
       [&](std::int64_t n, Coord c)
       {
         q[d] = c - offset[d];
-        emit(q, n);
+        *points++ = q;
+        *numbers++ = n;
       });
   }
+  std::copy(loop.begin() + run, loop.end(), points);
+  std::copy(loopNumbers + run, loopNumbers + loop.size(), numbers);
 }
 
 /// The largest coordinate of the corners; throws when one lies outside [0, 2^21).
@@ -543,19 +550,13 @@ void insertTJunctionVertices(BRep& brep,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t l = b; l < e; ++l)
-      {
-        std::size_t at = begins[l];
         walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
           numbers.data() + brep.loops[l].begin,
           inside.data() + brep.loops[l].begin,
           corners,
           offset,
-          [&](const Point3& p, std::int64_t number)
-          {
-            points[at] = p;
-            pointNumbers[at++] = number;
-          });
-      }
+          points.data() + begins[l],
+          pointNumbers.data() + begins[l]);
     });
   for (std::size_t l = 0; l < brep.loops.size(); ++l)
   {
