@@ -106,11 +106,17 @@ void appendFaces(const Boundary2D& b2,
     out,
     [&](std::size_t begin, std::size_t end, bool reverse)
     {
+      // Written in place, in the loop's final order: no check of capacity per corner.
       const std::size_t first = out.points.size();
-      for (std::size_t i = begin; i < end; ++i)
-        out.points.push_back(placed(order, position, b2.points[i]));
+      out.points.resize(first + (end - begin));
+      Point3* to = out.points.data() + first;
+      const Point2* from = b2.points.data();
       if (reverse)
-        std::reverse(out.points.begin() + first, out.points.end());
+        for (std::size_t i = end; i-- > begin;)
+          *to++ = placed(order, position, from[i]);
+      else
+        for (std::size_t i = begin; i < end; ++i)
+          *to++ = placed(order, position, from[i]);
     });
 }
 
@@ -185,35 +191,42 @@ int edgeAxis(const Point3& p, const Point3& q)
   return d;
 }
 
-/// Calls emit(p, number) for each corner of a loop and, after it, for each corner of the set
-/// lying strictly inside the edge that starts there, in order along the edge. `inside` holds
-/// per corner how many lie inside its edge (countEdgeVertices): the edges that hold none,
-/// most of them, are passed without looking their ends up in the corner set.
-template<typename Emit>
-void walkWithEdgeVertices(const PointRange& points,
-  const std::int64_t* numbers,
+/// Writes a loop's corners to `points` and their numbers to `numbers`, each followed by the
+/// corners of the set lying strictly inside the edge that starts there, in order along the
+/// edge. `inside` holds per corner how many lie inside its edge (countEdgeVertices): the runs of
+/// edges that hold none, most of them, are copied whole, without looking their ends up in the
+/// corner set.
+void walkWithEdgeVertices(const PointRange& loop,
+  const std::int64_t* loopNumbers,
   const std::uint32_t* inside,
   const CornerSet& corners,
   const Point3& offset,
-  Emit&& emit)
+  Point3* points,
+  std::int64_t* numbers)
 {
-  for (std::size_t i = 0; i < points.size(); ++i)
+  std::size_t run = 0; // the first corner not written yet
+  for (std::size_t i = 0; i < loop.size(); ++i)
   {
-    emit(points[i], numbers[i]);
     if (inside[i] == 0)
       continue;
-    const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
-    const int d = edgeAxis(points[i], points[j]);
-    Point3 q = points[i]; // a corner inside the edge differs from its start along d only
+    points = std::copy(loop.begin() + run, loop.begin() + i + 1, points);
+    numbers = std::copy(loopNumbers + run, loopNumbers + i + 1, numbers);
+    run = i + 1;
+    const std::size_t j = i + 1 < loop.size() ? i + 1 : 0;
+    const int d = edgeAxis(loop[i], loop[j]);
+    Point3 q = loop[i]; // a corner inside the edge differs from its start along d only
     corners.forEachBetween(d,
-      numbers[i],
-      numbers[j],
+      loopNumbers[i],
+      loopNumbers[j],
       [&](std::int64_t n, Coord c)
       {
         q[d] = c - offset[d];
-        emit(q, n);
+        *points++ = q;
+        *numbers++ = n;
       });
   }
+  std::copy(loop.begin() + run, loop.end(), points);
+  std::copy(loopNumbers + run, loopNumbers + loop.size(), numbers);
 }
 
 /// The largest coordinate of the corners; throws when one lies outside [0, 2^21).
@@ -395,7 +408,106 @@ bool CornerSet::spans(int axis) const
   return false;
 }
 
+namespace
+{
+
+/// The bound on the buckets of the one-pass ordering of the lines along x: its counts cost no
+/// more than the orders themselves (or a small table).
+std::uint64_t bucketBound(std::size_t corners)
+{
+  return 4 * std::uint64_t(corners) + (std::uint64_t(1) << 16);
+}
+
+/// The order of the corners along the lines of one axis, being made.
+struct LineOrder
+{
+  std::vector<std::uint32_t>& order;
+  std::vector<std::uint32_t>& rank;
+  std::vector<Coord>& coordinate;
+};
+
+/// Orders the corners [first, last) (whole lines along `axis`, numbered in the order of the
+/// coordinate along it within each line) by a stable counting sort on their line's bucket
+/// (below `buckets`), bucketOf(corner).
+template<typename BucketOf>
+void sortLinesBy(const std::vector<Point3>& points,
+  int axis,
+  std::size_t first,
+  std::size_t last,
+  std::size_t buckets,
+  BucketOf&& bucketOf,
+  std::vector<std::uint32_t>& count,
+  const LineOrder& out)
+{
+  count.assign(buckets + 1, 0);
+  for (std::size_t n = first; n < last; ++n)
+    ++count[bucketOf(points[n]) + 1];
+  count[0] = static_cast<std::uint32_t>(first);
+  for (std::size_t b = 1; b <= buckets; ++b)
+    count[b] += count[b - 1];
+  for (std::size_t n = first; n < last; ++n)
+  {
+    const Point3& p = points[n];
+    const std::uint32_t r = count[bucketOf(p)]++;
+    out.order[r] = static_cast<std::uint32_t>(n);
+    out.rank[n] = r;
+    out.coordinate[r] = p[axis];
+  }
+}
+
+} // namespace
+
 void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)
+{
+  // The corners are numbered in the order (x, y, z), so a line along an axis is a run of
+  // one stable counting sort by the line, no sort of keys: along y, the corners of each plane
+  // x = const by z; along x, all the corners by (y, z) when the lines are few enough to count,
+  // else by a radix sort of the keys (y, z, x).
+  const std::size_t n = this->Points.size();
+  this->OrderAlong[axis].resize(n);
+  this->RankAlong[axis].resize(n);
+  this->CoordinateAlong[axis].resize(n);
+  std::vector<std::uint32_t> count;
+  const LineOrder out{ this->OrderAlong[axis], this->RankAlong[axis], this->CoordinateAlong[axis] };
+  const Point3 lo = this->Lo;
+  const std::uint64_t extent2 = this->Extent[2];
+  if (axis == 1)
+  {
+    for (std::size_t first = 0, last = 0; first < n; first = last)
+    {
+      while (last < n && this->Points[last][0] == this->Points[first][0])
+        ++last;
+      sortLinesBy(
+        this->Points,
+        axis,
+        first,
+        last,
+        extent2,
+        [lo](const Point3& p) { return std::size_t(p[2] - lo[2]); },
+        count,
+        out);
+    }
+    return;
+  }
+  const std::uint64_t lines = this->Extent[1] * extent2;
+  if (lines <= bucketBound(n))
+  {
+    sortLinesBy(
+      this->Points,
+      axis,
+      0,
+      n,
+      lines,
+      [lo, extent2](const Point3& p)
+      { return std::size_t(std::uint64_t(p[1] - lo[1]) * extent2 + std::uint64_t(p[2] - lo[2])); },
+      count,
+      out);
+    return;
+  }
+  this->sortLinesByKeys(axis, packer);
+}
+
+void CornerSet::sortLinesByKeys(int axis, const KeyPacker& packer)
 {
   // Key (the two other coordinates, then this one): a line along `axis` is a run of keys.
   const int other1 = axis == 0 ? 1 : 0, other2 = 2;
@@ -409,9 +521,6 @@ void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)
   std::vector<std::uint32_t>& order = this->OrderAlong[axis];
   std::vector<std::uint32_t>& rank = this->RankAlong[axis];
   std::vector<Coord>& coordinate = this->CoordinateAlong[axis];
-  order.resize(keyed.size());
-  rank.resize(keyed.size());
-  coordinate.resize(keyed.size());
   for (std::size_t r = 0; r < keyed.size(); ++r)
   {
     order[r] = keyed[r].second;
@@ -441,19 +550,13 @@ void insertTJunctionVertices(BRep& brep,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t l = b; l < e; ++l)
-      {
-        std::size_t at = begins[l];
         walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
           numbers.data() + brep.loops[l].begin,
           inside.data() + brep.loops[l].begin,
           corners,
           offset,
-          [&](const Point3& p, std::int64_t number)
-          {
-            points[at] = p;
-            pointNumbers[at++] = number;
-          });
-      }
+          points.data() + begins[l],
+          pointNumbers.data() + begins[l]);
     });
   for (std::size_t l = 0; l < brep.loops.size(); ++l)
   {

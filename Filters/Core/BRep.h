@@ -162,6 +162,8 @@ public:
 private:
   bool spans(int axis) const;
   void orderLinesAlong(int axis, const KeyPacker& packer);
+  /// orderLinesAlong by a radix sort of the corners' keys, for lines too many to count.
+  void sortLinesByKeys(int axis, const KeyPacker& packer);
 
   /// The box of grid points holding the corners, its points indexed in lexicographic order
   /// (the last coordinate fastest: the order of their packed keys); a bit per point of it,

@@ -26,6 +26,39 @@ namespace vbr
 namespace
 {
 
+/// The order of a vertex of a plane (first coordinate 0, as the sections and cuts are) as one
+/// integer: (u, v) with the sign bits flipped, so that unsigned order is Vertex order.
+std::uint64_t planeKey(const Vertex& p)
+{
+  return (std::uint64_t(std::uint32_t(p[1]) ^ 0x80000000u) << 32) |
+    (std::uint32_t(p[2]) ^ 0x80000000u);
+}
+
+/// The XOR of two sorted vertex lists of a plane (formula 1, and BD = C XOR FD), into `out`:
+/// xorVertices with one comparison of integers per step, the hot merge of the sweep.
+void xorPlanes(const std::vector<Vertex>& a, const std::vector<Vertex>& b, std::vector<Vertex>& out)
+{
+  out.resize(a.size() + b.size());
+  const Vertex *i = a.data(), *iEnd = i + a.size(), *j = b.data(), *jEnd = j + b.size();
+  Vertex* o = out.data();
+  while (i != iEnd && j != jEnd)
+  {
+    const std::uint64_t ki = planeKey(*i), kj = planeKey(*j);
+    if (ki < kj)
+      *o++ = *i++;
+    else if (kj < ki)
+      *o++ = *j++;
+    else
+    {
+      ++i;
+      ++j;
+    }
+  }
+  o = std::copy(i, iEnd, o);
+  o = std::copy(j, jEnd, o);
+  out.resize(static_cast<std::size_t>(o - out.data()));
+}
+
 /// A run of consecutive planes of vertices of one sorting, with the section before it.
 struct PlaneChunk
 {
@@ -62,7 +95,9 @@ std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3],
         c.section = section;
         chunks.push_back(std::move(c));
       }
-      section = xorVertices(section, project(v + starts[p], v + starts[p + 1], 0));
+      std::vector<Vertex> next;
+      xorPlanes(section, project(v + starts[p], v + starts[p + 1], 0), next);
+      section.swap(next);
     }
   }
   return chunks;
@@ -82,7 +117,7 @@ void forwardAndBackwardDifferences(const std::vector<Vertex>& cut,
     previousSection.data() + previousSection.size(),
     1,
     BooleanOp::Intersection);
-  xorVertices(cut, fd, bd);
+  xorPlanes(cut, fd, bd);
 }
 
 /// The cut of plane `p` (formula 1's C(i)): its vertices projected along the sweep's axis, into
@@ -119,7 +154,7 @@ bool sweepChunk(const PlaneChunk& chunk,
     }
     const Coord position = v[starts[p]][0];
     cutOf(v, starts, p, cut);
-    xorVertices(section, cut, next);
+    xorPlanes(section, cut, next);
     forwardAndBackwardDifferences(cut, section, fd, bd);
     appendFaces(planeSweep2D(fd.data(), fd.data() + fd.size(), connectivity),
       sorted.order(),

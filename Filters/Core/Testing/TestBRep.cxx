@@ -13,6 +13,8 @@
 #include <array>
 #include <cstddef>
 #include <map>
+#include <set>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -188,7 +190,93 @@ void checkVolume(const vbr::BitVolume& v, bool merged)
   checkTriangles(brep);
 }
 
+/// The loops with the corners of all loops that lie strictly inside their edges inserted in
+/// order, found by brute force: the corners of every line of the grid in a set.
+std::vector<std::vector<vbr::Point3>> loopsWithEdgeCorners(const vbr::BRep& brep)
+{
+  std::map<std::tuple<int, int, int>, std::set<int>> lines; // (axis, other coordinates)
+  for (const vbr::Point3& p : brep.points)
+    for (int d = 0; d < 3; ++d)
+      lines[{ d, p[(d + 1) % 3], p[(d + 2) % 3] }].insert(p[d]);
+  std::vector<std::vector<vbr::Point3>> loops;
+  for (std::size_t l = 0; l < brep.loops.size(); ++l)
+  {
+    const auto points = brep.loopPoints(static_cast<int>(l));
+    std::vector<vbr::Point3> loop;
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      const vbr::Point3 p = points[i], q = points[(i + 1) % points.size()];
+      loop.push_back(p);
+      int d = 0;
+      while (d < 3 && p[d] == q[d])
+        ++d;
+      if (d == 3)
+        continue;
+      const std::set<int>& line = lines[{ d, p[(d + 1) % 3], p[(d + 2) % 3] }];
+      std::vector<int> inside(
+        line.upper_bound(std::min(p[d], q[d])), line.lower_bound(std::max(p[d], q[d])));
+      if (q[d] < p[d])
+        std::reverse(inside.begin(), inside.end());
+      for (int c : inside)
+      {
+        vbr::Point3 r = p;
+        r[d] = c;
+        loop.push_back(r);
+      }
+    }
+    loops.push_back(loop);
+  }
+  return loops;
+}
+
+/// insertTJunctionVertices against loopsWithEdgeCorners, the B-Rep placed at `offset` in a
+/// grid of the packer's size; the numbers it keeps are those of the corners they follow.
+void checkEdgeCorners(vbr::BRep brep, const vbr::Point3& offset, const vbr::KeyPacker& packer)
+{
+  const auto expected = loopsWithEdgeCorners(brep);
+  const vbr::CornerSet corners({ { &brep, offset } }, packer);
+  std::vector<std::int64_t> numbers = corners.numbersOf(brep, offset);
+  vbr::insertTJunctionVertices(brep, numbers, corners, offset);
+  ASSERT_EQ(brep.loops.size(), expected.size());
+  ASSERT_EQ(numbers.size(), brep.points.size());
+  for (std::size_t l = 0; l < expected.size(); ++l)
+  {
+    const auto points = brep.loopPoints(static_cast<int>(l));
+    ASSERT_EQ(std::vector<vbr::Point3>(points.begin(), points.end()), expected[l]) << "loop " << l;
+  }
+  for (std::size_t i = 0; i < numbers.size(); ++i)
+    ASSERT_EQ(corners.points()[numbers[i]], vbr::add(brep.points[i], offset)) << "point " << i;
+}
+
 } // namespace
+
+TEST(BRep, TJunctionVerticesMatchBruteForce)
+{
+  unsigned seed = 4100;
+  for (int trial = 0; trial < 8; ++trial)
+  {
+    const vbr::Point3 d{ 3 + (trial * 5) % 11, 3 + (trial * 3) % 9, 3 + (trial * 7) % 8 };
+    const vbr::BitVolume v = bf::randomVolume(d, 0.2 + 0.1 * trial, seed++);
+    vbr::BRep brep;
+    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, {}, brep));
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    checkEdgeCorners(brep, { 0, 0, 0 }, vbr::KeyPacker::forMaximum(16));
+    checkEdgeCorners(brep, { 5, 2, 7 }, vbr::KeyPacker::forMaximum(40));
+  }
+  // A small porous block and one voxel far from it: the lines along x are too many to count
+  // (the set orders them by a sort of keys instead).
+  vbr::BitVolume sparse(12, 300, 300);
+  const vbr::BitVolume block = bf::randomVolume({ 10, 8, 6 }, 0.5, 99);
+  for (int z = 0; z < 6; ++z)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 10; ++x)
+        if (block.get(x, y, z))
+          sparse.set(x, y, z);
+  sparse.set(11, 299, 299);
+  vbr::BRep brep;
+  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(sparse), vbr::FaceConnectivity::Vertex, {}, brep));
+  checkEdgeCorners(brep, { 0, 0, 0 }, vbr::KeyPacker::forMaximum(300));
+}
 
 TEST(BRep, RandomVolumesMatchBruteForce)
 {
