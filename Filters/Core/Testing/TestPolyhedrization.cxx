@@ -497,6 +497,17 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
         checkPolyhedron(inputs[i], g, sequential, settings[o]);
     }
   }
+  // The surfel graph on threads (its stages split over the surfels past 2^15 of them): the
+  // same arrays as on one thread.
+  const vbr::BitVolume large = bf::randomVolume({ 40, 36, 34 }, 0.5, 41);
+  vbr::SurfelGraph one, several;
+  ASSERT_TRUE(vbr::buildSurfelGraph(large, vbr::Execution(), one));
+  ASSERT_TRUE(vbr::buildSurfelGraph(large, threadedExecution(3), several));
+  ASSERT_GT(one.size(), std::size_t(1) << 15);
+  EXPECT_EQ(one.neighbour, several.neighbour);
+  EXPECT_EQ(one.neighbourEdge, several.neighbourEdge);
+  EXPECT_EQ(one.vertex, several.vertex);
+  EXPECT_EQ(one.componentCount, several.componentCount);
   // Aborted on every thread: no faces claimed finished.
   vbr::SurfelGraph g;
   ASSERT_TRUE(vbr::buildSurfelGraph(inputs[0], vbr::Execution(), g));
