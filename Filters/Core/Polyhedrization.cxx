@@ -705,7 +705,8 @@ ComponentGroups groupComponents(const SurfelGraph& graph, std::size_t count)
 /// 0 in the stamps; then all the faces in the order of their seeds (the sequential growth's
 /// order: faces start from the free surfels in increasing order, and a face never leaves its
 /// component), with the stamps renumbered to match. Same faces, same numbers, same refusals as
-/// the sequential growth. The workers poll the abort and report no progress.
+/// the sequential growth. The groups run in waves of `exec.concurrency`, between which the
+/// calling thread reports the progress (the workers only poll the abort).
 bool growGroups(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,
   const Execution& exec,
@@ -714,24 +715,33 @@ bool growGroups(const SurfelGraph& graph,
   std::vector<StandardFace>& faces)
 {
   const std::size_t count = groups.seeds.size();
+  const std::size_t wave = static_cast<std::size_t>(std::max(1, exec.concurrency));
   std::vector<std::vector<StandardFace>> grown(count);
   std::vector<char> finished(count, 0);
   Execution quiet = exec;
   quiet.progress = nullptr;
-  exec.forRange(static_cast<std::int64_t>(count),
-    [&](std::int64_t b, std::int64_t e)
-    {
-      for (std::int64_t g = b; g < e; ++g)
+  std::size_t done = 0;
+  for (std::size_t first = 0; first < count; first += wave)
+  {
+    const std::size_t end = std::min(count, first + wave);
+    exec.forRange(static_cast<std::int64_t>(end - first),
+      [&](std::int64_t b, std::int64_t e)
       {
-        grown[g].reserve(groups.seeds[g].size() / 4 + 16);
-        FaceGrower grower(graph, options, grown[g], stamps);
-        ProgressPoll poll(quiet, 0.0, 0.6);
-        grower.watch(poll);
-        finished[g] = grower.run(groups.seeds[g]);
-      }
-    });
-  if (std::find(finished.begin(), finished.end(), 0) != finished.end())
-    return false;
+        for (std::size_t g = first + b; g < first + e; ++g)
+        {
+          grown[g].reserve(groups.seeds[g].size() / 4 + 16);
+          FaceGrower grower(graph, options, grown[g], stamps);
+          ProgressPoll poll(quiet, 0.0, 0.6);
+          grower.watch(poll);
+          finished[g] = grower.run(groups.seeds[g]);
+        }
+      });
+    for (std::size_t g = first; g < end; ++g)
+      done += groups.seeds[g].size();
+    if (std::find(finished.begin() + first, finished.begin() + end, 0) != finished.begin() + end ||
+      !exec.report(0.6 * double(done) / double(graph.size())))
+      return false;
+  }
   std::vector<std::vector<std::uint32_t>> number(count);
   std::size_t total = 0;
   for (std::size_t g = 0; g < count; ++g)
@@ -813,10 +823,10 @@ bool polyhedrize(const SurfelGraph& graph,
     graph.size() >= ParallelGrowthMinimum;
   if (threaded)
   {
+    // Four waves of groups, for the progress between them.
     const std::size_t groups =
       std::min<std::size_t>(graph.componentCount, 4 * static_cast<std::size_t>(exec.concurrency));
-    if (!growGroups(graph, options, exec, groupComponents(graph, groups), stamps, out.faces) ||
-      !exec.report(0.6))
+    if (!growGroups(graph, options, exec, groupComponents(graph, groups), stamps, out.faces))
       return false;
   }
   else

@@ -515,6 +515,23 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
   stop.aborted = [] { return true; };
   vbr::Polyhedron p;
   EXPECT_FALSE(vbr::polyhedrize(g, {}, stop, p));
+  // The threaded growth reports its progress (between its waves, on the calling thread), and
+  // an abort asked there stops it within the growth.
+  const std::thread::id caller = std::this_thread::get_id();
+  bool offThread = false, stopped = false;
+  double highest = 0.0;
+  vbr::Execution watched = threadedExecution(2);
+  watched.progress = [&](double f)
+  {
+    offThread = offThread || std::this_thread::get_id() != caller;
+    highest = std::max(highest, f);
+    stopped = stopped || (f > 0.0 && f < 0.6);
+    return !stopped;
+  };
+  EXPECT_FALSE(vbr::polyhedrize(g, {}, watched, p));
+  EXPECT_TRUE(stopped) << "no progress inside the growth";
+  EXPECT_LT(highest, 0.6);
+  EXPECT_FALSE(offThread) << "progress reported off the calling thread";
 }
 
 TEST(Polyhedrization, DegenerateAndNonManifold)
