@@ -9,9 +9,12 @@
 // plane is never offered to that face again. Beyond the paper: moveToLargerFaces gives the rim
 // of large faces back to them, mergeSmallFaces hands small faces to their neighbours
 // (absorb, extend, with recognizers kept for large faces: recognizerOf), dropEmptyFaces
-// renumbers. The output: each face's boundary loop (LoopTracer) with the face beyond each
-// loop edge, and the number of faces around each vertex (countFacesAtVertices: the standard
-// vertices have three or more).
+// renumbers. Threads (growFaces): a face never leaves its boundary component, so the components
+// are dealt to groups grown concurrently (groupComponents, growGroups), and their faces put back
+// in the order of their seeds, the sequential order, with the stamps renumbered: the same faces,
+// numbers and refusals as on one thread. The output: each face's boundary loop (LoopTracer) with
+// the face beyond each loop edge, and the number of faces around each vertex (countFacesAtVertices:
+// the standard vertices have three or more).
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
@@ -777,6 +780,39 @@ bool growGroups(const SurfelGraph& graph,
   return true;
 }
 
+/// The growth of all the faces (progress 0 - 0.6): the boundary components on the threads of
+/// `exec` when there are several and enough surfels, else on the calling thread, with the same
+/// faces either way. False when aborted.
+bool growFaces(const SurfelGraph& graph,
+  const PolyhedrizationOptions& options,
+  const Execution& exec,
+  SurfelStamps& stamps,
+  std::vector<StandardFace>& faces)
+{
+  const bool threaded = exec.parallelFor && exec.concurrency > 1 && graph.componentCount > 1 &&
+    graph.size() >= ParallelGrowthMinimum;
+  if (threaded)
+  {
+    // Four waves of groups, for the progress between them.
+    const std::size_t groups =
+      std::min<std::size_t>(graph.componentCount, 4 * static_cast<std::size_t>(exec.concurrency));
+    return growGroups(graph, options, exec, groupComponents(graph, groups), stamps, faces);
+  }
+  else
+  {
+    std::vector<std::uint32_t> seeds(graph.size());
+    for (std::uint32_t s = 0; s < seeds.size(); ++s)
+      seeds[s] = s;
+    // Room for faces of 4 surfels on average (noise makes 7, a checkerboard 3): pages not
+    // reached are never touched, and each doubling past it copies every face.
+    faces.reserve(graph.size() / 4 + 16);
+    FaceGrower grower(graph, options, faces, stamps);
+    ProgressPoll growth(exec, 0.0, 0.6);
+    grower.watch(growth);
+    return grower.run(seeds);
+  }
+}
+
 /// The merging pass, smallest faces first: each is handed to its neighbours when they can
 /// take it whole. Returns false when stopped.
 bool mergeSmallFaces(FaceGrower& grower,
@@ -819,30 +855,8 @@ bool polyhedrize(const SurfelGraph& graph,
   // Progress: growth 0 - 0.6, moves 0.6 - 0.7, merging 0.7 - 0.95, loops 0.95 - 1.
   out = Polyhedron();
   SurfelStamps stamps(out.faceOfSurfel, graph.size());
-  const bool threaded = exec.parallelFor && exec.concurrency > 1 && graph.componentCount > 1 &&
-    graph.size() >= ParallelGrowthMinimum;
-  if (threaded)
-  {
-    // Four waves of groups, for the progress between them.
-    const std::size_t groups =
-      std::min<std::size_t>(graph.componentCount, 4 * static_cast<std::size_t>(exec.concurrency));
-    if (!growGroups(graph, options, exec, groupComponents(graph, groups), stamps, out.faces))
-      return false;
-  }
-  else
-  {
-    std::vector<std::uint32_t> seeds(graph.size());
-    for (std::uint32_t s = 0; s < seeds.size(); ++s)
-      seeds[s] = s;
-    // Room for faces of 4 surfels on average (noise makes 7, a checkerboard 3): pages not
-    // reached are never touched, and each doubling past it copies every face.
-    out.faces.reserve(graph.size() / 4 + 16);
-    FaceGrower grower(graph, options, out.faces, stamps);
-    ProgressPoll growth(exec, 0.0, 0.6);
-    grower.watch(growth);
-    if (!grower.run(seeds))
-      return false;
-  }
+  if (!growFaces(graph, options, exec, stamps, out.faces))
+    return false;
   if (options.moveToLargerFaces)
   {
     ProgressPoll moves(exec, 0.6, 0.7);
