@@ -33,7 +33,6 @@
 #include <cstdint>
 #include <exception>
 #include <map>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
@@ -308,17 +307,24 @@ private:
   {
     const vbr::StandardFace& face = o.poly.faces[f];
     const vbr::ProjectionAlong project(face.plane.normal);
-    std::vector<vbr::Point2L> corners;
-    corners.reserve(polygon.size());
+    std::vector<vbr::Point2L>& corners = this->Corners; // storage kept from face to face
+    corners.clear();
     for (std::uint32_t v : polygon)
       corners.push_back(project(o.graph.vertexPointel[v]));
     const std::vector<vbr::Triangle> triangles = vbr::triangulateSimplePolygon(corners);
-    std::set<std::pair<vtkIdType, vtkIdType>> loopEdges;
+    // The loop's edges as point pairs, sorted for a binary search (a std::set of them, a node
+    // allocated per edge, took as long as the triangulation).
+    std::vector<std::pair<vtkIdType, vtkIdType>>& loopEdges = this->FaceLoopEdges;
+    loopEdges.clear();
     if (markLoops)
+    {
       for (std::size_t i = 0; i < face.loop.size(); ++i)
-        loopEdges.emplace(
+        loopEdges.emplace_back(
           this->point(o, face.loop[i]), this->point(o, face.loop[(i + 1) % face.loop.size()]));
-    std::vector<vtkIdType> ids(3);
+      std::sort(loopEdges.begin(), loopEdges.end());
+    }
+    std::vector<vtkIdType>& ids = this->TriangleIds;
+    ids.resize(3);
     auto add = [&]()
     {
       this->addCell(ids, o, f); // reverses ids on a mirrored grid, as the loop is written
@@ -326,8 +332,10 @@ private:
         return;
       unsigned char bits = 0;
       for (int k = 0; k < 3; ++k)
-        if (loopEdges.count(this->Reverse ? std::make_pair(ids[(k + 1) % 3], ids[k])
-                                          : std::make_pair(ids[k], ids[(k + 1) % 3])))
+        if (std::binary_search(loopEdges.begin(),
+              loopEdges.end(),
+              this->Reverse ? std::make_pair(ids[(k + 1) % 3], ids[k])
+                            : std::make_pair(ids[k], ids[(k + 1) % 3])))
           bits |= static_cast<unsigned char>(1 << k);
       this->LoopEdges->InsertNextValue(bits);
     };
@@ -472,7 +480,8 @@ private:
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
     // The plane in the grid's index space: n.(p + offset) = n.p + n.offset.
     const auto& n = face.plane.normal;
-    this->Normals->InsertNextTuple3(double(n[0]), double(n[1]), double(n[2]));
+    const int normal[3] = { n[0], n[1], n[2] };
+    this->Normals->InsertNextTypedTuple(normal);
     this->Offsets->InsertNextValue(static_cast<vtkIdType>(
       face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
     this->Sizes->InsertNextValue(static_cast<int>(o.faceSizes[f]));
@@ -482,7 +491,10 @@ private:
   const vbr::vtk::VoxelGrid& Grid;
   const bool Reverse;
   vtkIdType FaceBase = 0;
-  PointIds Ids; ///< of the object's vertices
+  PointIds Ids;                                               ///< of the object's vertices
+  std::vector<vbr::Point2L> Corners;                          ///< in addTriangulatedFace
+  std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< in addTriangulatedFace
+  std::vector<vtkIdType> TriangleIds;                         ///< in addTriangulatedFace
   vtkNew<vtkPoints> Points;
   vtkNew<vtkCellArray> Polys;
   vtkNew<vtkCellArray> Lines;
@@ -665,6 +677,10 @@ bool writeReversion(ReversionCheck& check,
   return same;
 }
 
+/// Surfels below which an object's reversion check and cells are made one after the other
+/// (threads cost more than they save on a small object, and Labels mode has many).
+constexpr std::size_t SideBySideMinimum = 4096;
+
 /// Surfels from which the polyhedrization takes more than a few seconds (measured: about
 /// 0.3 to 1 M surfels per second, several times slower with MergeFaces).
 constexpr vtkIdType LargeSurfelCount = vtkIdType(1) << 21;
@@ -789,6 +805,33 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
       std::vector<std::uint32_t>().swap(f.across);
 }
 
+/// The reversion's self-check of object o and its cells: both only read o, so with threads
+/// they run side by side (the check polls the abort and reports no progress: it may run off
+/// the calling thread); on one thread, or for a small object, one after the other.
+void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
+  const ObjectFaces& o,
+  const vbr::BitVolume& voxels,
+  FaceWriter& writer,
+  ReversionCheck* check)
+{
+  vbr::Execution exec = vbr::vtk::makeExecution(self, 0.0, 0.0);
+  exec.progress = nullptr;
+  if (!check || o.surfelCount < SideBySideMinimum || exec.concurrency < 2)
+    exec = exec.sequential();
+  exec.forRange(check ? 2 : 1,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t task = b; task < e; ++task)
+        if (task == 0)
+          writer.add(o);
+        else
+        {
+          vtkLogScopeF(TRACE, "reversion");
+          check->add(o, voxels, exec);
+        }
+    });
+}
+
 /// PASS 1 of the filter: the faces of every selected object, and with the reversion their
 /// self-check; PASS 2 with it, object by object, so that only one object's surfel graph is
 /// held at a time: the faces as cells. False when aborted.
@@ -811,15 +854,10 @@ bool buildObjectFaces(vtkStandardPlanePolyhedrizer* self,
       return false;
     if (voxels.empty())
       continue;
-    if (check)
-    {
-      vtkLogScopeF(TRACE, "reversion");
-      check->add(o, voxels, vbr::vtk::makeExecution(self, to, to)); // polls, reports no progress
-      if (self->GetAbortExecute())
-        return false;
-    }
-    releaseAfterFaces(o, self->GetOutputMode());
-    writer.add(o);
+    releaseAfterFaces(o, self->GetOutputMode()); // neither the check nor the cells need them
+    checkAndWrite(self, o, voxels, writer, check);
+    if (self->GetAbortExecute())
+      return false;
   }
   return !self->GetAbortExecute();
 }

@@ -70,6 +70,12 @@
  *
  * A flat image (one voxel along an axis) is polyhedrized as a one-voxel-thick slab.
  *
+ * @warning Threaded with vtkSMPTools (VTK_SMP_BACKEND_IN_USE=STDThread, for instance): the
+ * faces of different boundary components grow concurrently, with the same faces, in the same
+ * order, as on one thread; the surfel graph's stages are split over the surfels; and each
+ * object's reversion check runs beside the writing of its cells, which raises the peak memory
+ * (by about 50 bytes per surfel on noise). The faces of one component grow on one thread.
+ *
  * Under MPI (ParaView running the filter on N ranks, one piece each) the faces are the 1-rank
  * faces, output once by rank 0 (from the extreme vertices of every rank's voxels), and port 1
  * gives every rank its own piece of the reversion (see vtkVoxelBRepDistributed.h).

@@ -9,9 +9,12 @@
 // plane is never offered to that face again. Beyond the paper: moveToLargerFaces gives the rim
 // of large faces back to them, mergeSmallFaces hands small faces to their neighbours
 // (absorb, extend, with recognizers kept for large faces: recognizerOf), dropEmptyFaces
-// renumbers. The output: each face's boundary loop (LoopTracer) with the face beyond each
-// loop edge, and the number of faces around each vertex (countFacesAtVertices: the standard
-// vertices have three or more).
+// renumbers. Threads (growFaces): a face never leaves its boundary component, so the components
+// are dealt to groups grown concurrently (groupComponents, growGroups), and their faces put back
+// in the order of their seeds, the sequential order, with the stamps renumbered: the same faces,
+// numbers and refusals as on one thread. The output: each face's boundary loop (LoopTracer) with
+// the face beyond each loop edge, and the number of faces around each vertex (countFacesAtVertices:
+// the standard vertices have three or more).
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
@@ -98,21 +101,42 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
   return arcs == 1;
 }
 
+/// Per surfel: its face, and the face that last queued it and last refused it (the growth's
+/// stamps; the merging reads the refusals the growth left).
+struct SurfelStamps
+{
+  SurfelStamps(std::vector<std::uint32_t>& faceOfSurfel, std::size_t surfels)
+    : faceOf(faceOfSurfel)
+    , queued(surfels, None)
+    , refused(surfels, None)
+  {
+    faceOf.assign(surfels, None);
+  }
+  std::vector<std::uint32_t>& faceOf;
+  std::vector<std::uint32_t> queued, refused;
+};
+
 /// The growth of the faces: per-face state kept in arrays stamped with the face number, so
 /// that starting a face costs nothing. Every surfel examined ticks the progress poll being
 /// watched; once it says stop, the growth ends early and the faces are left unfinished.
 class FaceGrower
 {
 public:
-  FaceGrower(const SurfelGraph& graph, const PolyhedrizationOptions& options, Polyhedron& out)
+  /// Grows into `faces`, with the face of each surfel, the queue stamps and the refusals in
+  /// arrays over all the graph's surfels (all None at first), which growers of other boundary
+  /// components share: each grower touches only its own components' surfels.
+  FaceGrower(const SurfelGraph& graph,
+    const PolyhedrizationOptions& options,
+    std::vector<StandardFace>& faces,
+    SurfelStamps& stamps)
     : Graph(graph)
     , Options(options)
-    , Poly(&out)
-    , Queued(graph.size(), None)
-    , Refused(graph.size(), None)
+    , Faces(faces)
+    , FaceOf(stamps.faceOf)
+    , Queued(stamps.queued)
+    , Refused(stamps.refused)
     , DepthLimit(options.maximumDepth)
   {
-    out.faceOfSurfel.assign(graph.size(), None);
   }
 
   /// The poll the growth ticks from now on (it must outlive the calls).
@@ -124,7 +148,7 @@ public:
     this->Growing = true;
     for (std::uint32_t s : seeds)
     {
-      if (this->Poly->faceOfSurfel[s] != None)
+      if (this->FaceOf[s] != None)
         continue;
       if (!this->Poll->tick())
         return false;
@@ -142,8 +166,8 @@ public:
 private:
   void growFrom(std::uint32_t seed)
   {
-    const std::uint32_t f = static_cast<std::uint32_t>(this->Poly->faces.size());
-    this->Poly->faces.emplace_back();
+    const std::uint32_t f = static_cast<std::uint32_t>(this->Faces.size());
+    this->Faces.emplace_back();
     this->Recognizer.reset();
     this->Wave.clear();
     if (!this->seedUmbrella(seed, f))
@@ -152,9 +176,9 @@ private:
       this->take(seed, f, 0);
     }
     this->drainWave(f);
-    this->Poly->faces[f].plane = this->Recognizer.plane();
+    this->Faces[f].plane = this->Recognizer.plane();
     if (!this->Options.moveToLargerFaces) // else the moves make the lists again, to size
-      this->Poly->faces[f].surfels.shrink_to_fit();
+      this->Faces[f].surfels.shrink_to_fit();
   }
 
   /// The growth of face f over its queue q(f) (Francon & Papier, section 3), breadth first
@@ -169,12 +193,12 @@ private:
       const auto [s, depth] = this->Wave.front();
       this->Wave.pop_front();
       this->Queued[s] = None;
-      if (this->Poly->faceOfSurfel[s] != None || this->Refused[s] == f)
+      if (this->FaceOf[s] != None || this->Refused[s] == f)
         continue;
       if (this->Options.maximumFaceSize &&
-        this->Poly->faces[f].surfels.size() >= this->Options.maximumFaceSize)
+        this->Faces[f].surfels.size() >= this->Options.maximumFaceSize)
         break;
-      if (!meetsAlongOneArc(this->Graph, this->Poly->faceOfSurfel, s, f, false))
+      if (!meetsAlongOneArc(this->Graph, this->FaceOf, s, f, false))
         continue; // may fit later, when it is queued again by a new neighbour
       if (!this->Active->tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
       {
@@ -194,9 +218,9 @@ public:
   /// surfels find a face.
   bool absorb(std::uint32_t f)
   {
-    std::vector<std::uint32_t>& freed = this->Poly->faces[f].surfels;
+    std::vector<std::uint32_t>& freed = this->Faces[f].surfels;
     for (std::uint32_t s : freed)
-      this->Poly->faceOfSurfel[s] = None;
+      this->FaceOf[s] = None;
     struct Saved
     {
       std::uint32_t face;
@@ -212,7 +236,7 @@ public:
         break;
       for (std::uint32_t g : around)
       {
-        saved.push_back({ g, this->Poly->faces[g].surfels.size(), this->Poly->faces[g].plane });
+        saved.push_back({ g, this->Faces[g].surfels.size(), this->Faces[g].plane });
         left -= this->extend(g, freed);
         if (left == 0 || this->Poll->stopped())
           break;
@@ -228,14 +252,14 @@ public:
     // Undo, latest first, so that each face gets its first saved state back.
     for (auto it = saved.rbegin(); it != saved.rend(); ++it)
     {
-      StandardFace& g = this->Poly->faces[it->face];
+      StandardFace& g = this->Faces[it->face];
       if (g.surfels.size() != it->size)
         this->Cache.erase(it->face); // its recognizer holds the surfels given back
       g.surfels.resize(it->size);
       g.plane = it->plane;
     }
     for (std::uint32_t s : freed)
-      this->Poly->faceOfSurfel[s] = f;
+      this->FaceOf[s] = f;
     return false;
   }
 
@@ -245,10 +269,10 @@ private:
   {
     std::unordered_map<std::uint32_t, int> shared;
     for (std::uint32_t s : surfels)
-      if (this->Poly->faceOfSurfel[s] == None)
+      if (this->FaceOf[s] == None)
         for (int k = 0; k < 4; ++k)
         {
-          const std::uint32_t g = this->Poly->faceOfSurfel[this->Graph.neighbourOf(s, k)];
+          const std::uint32_t g = this->FaceOf[this->Graph.neighbourOf(s, k)];
           if (g != None)
             ++shared[g];
         }
@@ -269,7 +293,7 @@ private:
   /// beyond the search's reach from scratch.
   StandardPlaneRecognizer* recognizerOf(std::uint32_t g)
   {
-    const std::vector<std::uint32_t>& surfels = this->Poly->faces[g].surfels;
+    const std::vector<std::uint32_t>& surfels = this->Faces[g].surfels;
     StandardPlaneRecognizer* r = &this->Recognizer;
     if (surfels.size() >= CachedFrom)
     {
@@ -302,16 +326,16 @@ private:
   /// Grows face g again over the free surfels next to it; returns how many it took.
   std::size_t extend(std::uint32_t g, const std::vector<std::uint32_t>& freed)
   {
-    StandardFace& face = this->Poly->faces[g];
+    StandardFace& face = this->Faces[g];
     StandardPlaneRecognizer* recognizer = this->recognizerOf(g);
     if (!recognizer)
       return 0; // leave g as it is
     const std::size_t before = face.surfels.size();
     this->Wave.clear();
     for (std::uint32_t s : freed)
-      if (this->Poly->faceOfSurfel[s] == None)
+      if (this->FaceOf[s] == None)
         for (int k = 0; k < 4; ++k)
-          if (this->Poly->faceOfSurfel[this->Graph.neighbourOf(s, k)] == g && this->Queued[s] != g)
+          if (this->FaceOf[this->Graph.neighbourOf(s, k)] == g && this->Queued[s] != g)
           {
             this->Queued[s] = g;
             this->Wave.emplace_back(s, 0);
@@ -344,7 +368,7 @@ private:
         [&](std::uint32_t u)
         {
           umbrella.push_back(u);
-          free = free && this->Poly->faceOfSurfel[u] == None;
+          free = free && this->FaceOf[u] == None;
           return free;
         });
       if (!free ||
@@ -381,8 +405,8 @@ private:
 
   void take(std::uint32_t s, std::uint32_t f, std::uint32_t depth)
   {
-    this->Poly->faceOfSurfel[s] = f;
-    this->Poly->faces[f].surfels.push_back(s);
+    this->FaceOf[s] = f;
+    this->Faces[f].surfels.push_back(s);
     if (this->Growing)
       this->Poll->at(double(++this->Taken) / double(this->Graph.size()));
     if (this->DepthLimit && depth + 1 > this->DepthLimit)
@@ -390,7 +414,7 @@ private:
     for (int k = 0; k < 4; ++k)
     {
       const std::uint32_t t = this->Graph.neighbourOf(s, k);
-      if (this->Poly->faceOfSurfel[t] == None && this->Queued[t] != f && this->Refused[t] != f)
+      if (this->FaceOf[t] == None && this->Queued[t] != f && this->Refused[t] != f)
       {
         this->Queued[t] = f;
         this->Wave.emplace_back(t, depth + 1);
@@ -400,7 +424,8 @@ private:
 
   const SurfelGraph& Graph;
   const PolyhedrizationOptions& Options;
-  Polyhedron* Poly; ///< where the faces go
+  std::vector<StandardFace>& Faces; ///< where the faces go
+  std::vector<std::uint32_t>& FaceOf;
   StandardPlaneRecognizer Recognizer;
   StandardPlaneRecognizer* Active = &this->Recognizer; ///< the one drainWave grows with
   /// Faces of at least this many surfels keep their recognizer through the merging.
@@ -418,7 +443,7 @@ private:
   std::vector<std::uint32_t> Umbrella;                      ///< in seedUmbrella
   std::vector<Point3> UmbrellaPoints;                       ///< in seedUmbrella
   std::array<Point3, 4> Corners;                            ///< in pointelsOf
-  std::vector<std::uint32_t> Queued, Refused;               ///< stamped with the face
+  std::vector<std::uint32_t>&Queued, &Refused;              ///< stamped with the face
   std::uint32_t DepthLimit;
 };
 
@@ -607,6 +632,187 @@ std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph,
 namespace
 {
 
+/// Surfels below which the growth stays on the calling thread (it takes a few microseconds a
+/// surfel: below this, starting threads costs more than it saves).
+constexpr std::size_t ParallelGrowthMinimum = 4096;
+
+/// The boundary components dealt to groups that threads grow concurrently: the group of each
+/// surfel, and the surfels of each group in increasing order (its seeds, met in the order of
+/// the sequential growth).
+struct ComponentGroups
+{
+  std::vector<std::uint32_t> groupOf;
+  std::vector<std::vector<std::uint32_t>> seeds;
+};
+
+/// The components (depth first over the neighbours), dealt to `count` groups: the largest first,
+/// each to the lightest group so far, so that the groups weigh about the same.
+ComponentGroups groupComponents(const SurfelGraph& graph, std::size_t count)
+{
+  const std::uint32_t n = static_cast<std::uint32_t>(graph.size());
+  ComponentGroups groups;
+  std::vector<std::uint32_t>& label = groups.groupOf; // the component first, then its group
+  label.assign(n, None);
+  std::vector<std::uint32_t> sizes, stack;
+  for (std::uint32_t s = 0; s < n; ++s)
+  {
+    if (label[s] != None)
+      continue;
+    const std::uint32_t c = static_cast<std::uint32_t>(sizes.size());
+    std::uint32_t size = 0;
+    label[s] = c;
+    stack.push_back(s);
+    while (!stack.empty())
+    {
+      const std::uint32_t u = stack.back();
+      stack.pop_back();
+      ++size;
+      for (int k = 0; k < 4; ++k)
+      {
+        const std::uint32_t t = graph.neighbourOf(u, k);
+        if (label[t] == None)
+        {
+          label[t] = c;
+          stack.push_back(t);
+        }
+      }
+    }
+    sizes.push_back(size);
+  }
+  std::vector<std::uint32_t> order(sizes.size());
+  for (std::uint32_t c = 0; c < order.size(); ++c)
+    order[c] = c;
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](std::uint32_t a, std::uint32_t b) { return sizes[a] > sizes[b]; });
+  std::vector<std::uint64_t> weight(count, 0);
+  std::vector<std::uint32_t> groupOfComponent(sizes.size());
+  for (std::uint32_t c : order)
+  {
+    const auto lightest = std::min_element(weight.begin(), weight.end()) - weight.begin();
+    groupOfComponent[c] = static_cast<std::uint32_t>(lightest);
+    weight[lightest] += sizes[c];
+  }
+  groups.seeds.resize(count);
+  for (std::size_t g = 0; g < count; ++g)
+    groups.seeds[g].reserve(weight[g]);
+  for (std::uint32_t s = 0; s < n; ++s)
+  {
+    label[s] = groupOfComponent[label[s]];
+    groups.seeds[label[s]].push_back(s);
+  }
+  return groups;
+}
+
+/// The growth of each group of components on its own, concurrently, its faces numbered from
+/// 0 in the stamps; then all the faces in the order of their seeds (the sequential growth's
+/// order: faces start from the free surfels in increasing order, and a face never leaves its
+/// component), with the stamps renumbered to match. Same faces, same numbers, same refusals as
+/// the sequential growth. The groups run in waves of `exec.concurrency`, between which the
+/// calling thread reports the progress (the workers only poll the abort).
+bool growGroups(const SurfelGraph& graph,
+  const PolyhedrizationOptions& options,
+  const Execution& exec,
+  const ComponentGroups& groups,
+  SurfelStamps& stamps,
+  std::vector<StandardFace>& faces)
+{
+  const std::size_t count = groups.seeds.size();
+  const std::size_t wave = static_cast<std::size_t>(std::max(1, exec.concurrency));
+  std::vector<std::vector<StandardFace>> grown(count);
+  std::vector<char> finished(count, 0);
+  Execution quiet = exec;
+  quiet.progress = nullptr;
+  std::size_t done = 0;
+  for (std::size_t first = 0; first < count; first += wave)
+  {
+    const std::size_t end = std::min(count, first + wave);
+    exec.forRange(static_cast<std::int64_t>(end - first),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        for (std::size_t g = first + b; g < first + e; ++g)
+        {
+          grown[g].reserve(groups.seeds[g].size() / 4 + 16);
+          FaceGrower grower(graph, options, grown[g], stamps);
+          ProgressPoll poll(quiet, 0.0, 0.6);
+          grower.watch(poll);
+          finished[g] = grower.run(groups.seeds[g]);
+        }
+      });
+    for (std::size_t g = first; g < end; ++g)
+      done += groups.seeds[g].size();
+    if (std::find(finished.begin() + first, finished.begin() + end, 0) != finished.begin() + end ||
+      !exec.report(0.6 * double(done) / double(graph.size())))
+      return false;
+  }
+  std::vector<std::vector<std::uint32_t>> number(count);
+  std::size_t total = 0;
+  for (std::size_t g = 0; g < count; ++g)
+  {
+    number[g].resize(grown[g].size());
+    total += grown[g].size();
+  }
+  faces.reserve(total);
+  std::vector<std::size_t> next(count, 0);
+  for (std::uint32_t s = 0; s < graph.size(); ++s)
+  {
+    const std::uint32_t g = groups.groupOf[s];
+    const std::size_t i = next[g];
+    if (i < grown[g].size() && grown[g][i].surfels.front() == s) // a face's seed comes first
+    {
+      number[g][i] = static_cast<std::uint32_t>(faces.size());
+      faces.push_back(std::move(grown[g][i]));
+      ++next[g];
+    }
+  }
+  exec.forWork(static_cast<std::int64_t>(graph.size()))
+    .forRange(static_cast<std::int64_t>(graph.size()),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        for (std::int64_t s = b; s < e; ++s)
+        {
+          const std::vector<std::uint32_t>& to = number[groups.groupOf[s]];
+          stamps.faceOf[s] = to[stamps.faceOf[s]];
+          if (stamps.refused[s] != None)
+            stamps.refused[s] = to[stamps.refused[s]];
+        }
+      });
+  return true;
+}
+
+/// The growth of all the faces (progress 0 - 0.6): the boundary components on the threads of
+/// `exec` when there are several and enough surfels, else on the calling thread, with the same
+/// faces either way. False when aborted.
+bool growFaces(const SurfelGraph& graph,
+  const PolyhedrizationOptions& options,
+  const Execution& exec,
+  SurfelStamps& stamps,
+  std::vector<StandardFace>& faces)
+{
+  const bool threaded = exec.parallelFor && exec.concurrency > 1 && graph.componentCount > 1 &&
+    graph.size() >= ParallelGrowthMinimum;
+  if (threaded)
+  {
+    // Four waves of groups, for the progress between them.
+    const std::size_t groups =
+      std::min<std::size_t>(graph.componentCount, 4 * static_cast<std::size_t>(exec.concurrency));
+    return growGroups(graph, options, exec, groupComponents(graph, groups), stamps, faces);
+  }
+  else
+  {
+    std::vector<std::uint32_t> seeds(graph.size());
+    for (std::uint32_t s = 0; s < seeds.size(); ++s)
+      seeds[s] = s;
+    // Room for faces of 4 surfels on average (noise makes 7, a checkerboard 3): pages not
+    // reached are never touched, and each doubling past it copies every face.
+    faces.reserve(graph.size() / 4 + 16);
+    FaceGrower grower(graph, options, faces, stamps);
+    ProgressPoll growth(exec, 0.0, 0.6);
+    grower.watch(growth);
+    return grower.run(seeds);
+  }
+}
+
 /// The merging pass, smallest faces first: each is handed to its neighbours when they can
 /// take it whole. Returns false when stopped.
 bool mergeSmallFaces(FaceGrower& grower,
@@ -648,16 +854,8 @@ bool polyhedrize(const SurfelGraph& graph,
 {
   // Progress: growth 0 - 0.6, moves 0.6 - 0.7, merging 0.7 - 0.95, loops 0.95 - 1.
   out = Polyhedron();
-  std::vector<std::uint32_t> seeds(graph.size());
-  for (std::uint32_t s = 0; s < seeds.size(); ++s)
-    seeds[s] = s;
-  // Room for faces of 4 surfels on average (noise makes 7, a checkerboard 3): pages not
-  // reached are never touched, and each doubling past it copies every face.
-  out.faces.reserve(graph.size() / 4 + 16);
-  FaceGrower grower(graph, options, out);
-  ProgressPoll growth(exec, 0.0, 0.6);
-  grower.watch(growth);
-  if (!grower.run(seeds))
+  SurfelStamps stamps(out.faceOfSurfel, graph.size());
+  if (!growFaces(graph, options, exec, stamps, out.faces))
     return false;
   if (options.moveToLargerFaces)
   {
@@ -668,8 +866,13 @@ bool polyhedrize(const SurfelGraph& graph,
     dropEmptyFaces(out);
   }
   ProgressPoll merging(exec, 0.7, 0.95);
-  if (options.mergeFaces && !mergeSmallFaces(grower, options, out, merging))
-    return false;
+  if (options.mergeFaces)
+  {
+    // A grower of its own: it reads only the refusals the growth left in the stamps.
+    FaceGrower merger(graph, options, out.faces, stamps);
+    if (!mergeSmallFaces(merger, options, out, merging))
+      return false;
+  }
   ProgressPoll loops(exec, 0.95, 1.0);
   LoopTracer tracer(graph);
   for (std::uint32_t f = 0; f < out.faces.size(); ++f)

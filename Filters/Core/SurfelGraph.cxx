@@ -143,40 +143,65 @@ SurfelKey neighbourKey(const VoxelSet& set, const Surfel& sf, const Point3& a, c
   return { side, sf.direction };
 }
 
+/// Runs body(s) for every surfel, on the threads of `exec` when they are many (each surfel's
+/// entries are its own: no two threads write the same).
+template<typename Body>
+void forEachSurfel(const Execution& exec, std::size_t n, Body body)
+{
+  exec.forWork(static_cast<std::int64_t>(n))
+    .forRange(static_cast<std::int64_t>(n),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        for (std::int64_t s = b; s < e; ++s)
+          body(static_cast<std::uint32_t>(s));
+      });
+}
+
 /// Stage 2, the neighbour across each edge.
-void linkNeighbours(const VoxelSet& set, const RowIndex& index, SurfelGraph& out)
+void linkNeighbours(const VoxelSet& set,
+  const RowIndex& index,
+  const Execution& exec,
+  SurfelGraph& out)
 {
   const std::size_t n = out.surfels.size();
   out.neighbour.resize(4 * n);
-  for (std::uint32_t s = 0; s < n; ++s)
-    for (int k = 0; k < 4; ++k)
+  forEachSurfel(exec,
+    n,
+    [&](std::uint32_t s)
     {
-      const Surfel& sf = out.surfels[s];
-      const std::int64_t id =
-        index.find(out.surfels, neighbourKey(set, sf, sf.corner(k), sf.corner((k + 1) % 4)));
-      if (id < 0)
-        throw std::logic_error("surfel neighbour missing");
-      out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
-    }
+      for (int k = 0; k < 4; ++k)
+      {
+        const Surfel& sf = out.surfels[s];
+        const std::int64_t id =
+          index.find(out.surfels, neighbourKey(set, sf, sf.corner(k), sf.corner((k + 1) % 4)));
+        if (id < 0)
+          throw std::logic_error("surfel neighbour missing");
+        out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
+      }
+    });
 }
 
 /// Stage 3, the same linel seen from the neighbour: its edge runs the other way.
-void matchSharedEdges(SurfelGraph& out)
+void matchSharedEdges(const Execution& exec, SurfelGraph& out)
 {
   const std::size_t n = out.surfels.size();
   out.neighbourEdge.resize(4 * n);
-  for (std::uint32_t s = 0; s < n; ++s)
-    for (int k = 0; k < 4; ++k)
+  forEachSurfel(exec,
+    n,
+    [&](std::uint32_t s)
     {
-      const std::uint32_t t = out.neighbourOf(s, k);
-      const Point3 from = out.cornerOf(s, (k + 1) % 4);
-      int j = 0;
-      while (j < 4 && out.cornerOf(t, j) != from)
-        ++j;
-      if (j == 4 || out.cornerOf(t, (j + 1) % 4) != out.cornerOf(s, k))
-        throw std::logic_error("neighbouring surfels do not share their linel");
-      out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
-    }
+      for (int k = 0; k < 4; ++k)
+      {
+        const std::uint32_t t = out.neighbourOf(s, k);
+        const Point3 from = out.cornerOf(s, (k + 1) % 4);
+        int j = 0;
+        while (j < 4 && out.cornerOf(t, j) != from)
+          ++j;
+        if (j == 4 || out.cornerOf(t, (j + 1) % 4) != out.cornerOf(s, k))
+          throw std::logic_error("neighbouring surfels do not share their linel");
+        out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
+      }
+    });
 }
 
 /// Stage 4, the vertices: one per umbrella of corners glued across shared edges (so that a
@@ -239,9 +264,9 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
     RowIndex index(out.dims);
     if (!findSurfels(set, exec, out, index))
       return false;
-    linkNeighbours(set, index, out);
+    linkNeighbours(set, index, exec, out);
   }
-  matchSharedEdges(out);
+  matchSharedEdges(exec, out);
   numberVertices(out);
   countComponents(out);
   return true;

@@ -15,10 +15,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -397,6 +399,139 @@ TEST(Polyhedrization, RandomVolumes)
     SCOPED_TRACE("small volume " + std::to_string(t));
     polyhedrizeAndCheck(bf::randomVolume(d, 0.2 + 0.1 * (t % 7), 900 + t));
   }
+}
+
+namespace
+{
+
+/// A parallel loop on real threads, one per sub-range, as vtkSMPTools would run it.
+vbr::Execution threadedExecution(int threads)
+{
+  vbr::Execution exec;
+  exec.concurrency = threads;
+  exec.parallelFor = [threads](
+                       std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
+  {
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t)
+      workers.emplace_back(body, n * t / threads, n * (t + 1) / threads);
+    for (std::thread& w : workers)
+      w.join();
+  };
+  return exec;
+}
+
+/// Whether two polyhedrizations are the same: every face in the same place, with the same
+/// surfels in the same order, plane, loop and faces across; the same counts.
+void expectSamePolyhedron(const vbr::Polyhedron& a, const vbr::Polyhedron& b)
+{
+  ASSERT_EQ(a.faces.size(), b.faces.size());
+  EXPECT_EQ(a.faceOfSurfel, b.faceOfSurfel);
+  EXPECT_EQ(a.facesAtVertex, b.facesAtVertex);
+  EXPECT_EQ(a.mergedFaces, b.mergedFaces);
+  EXPECT_EQ(a.movedSurfels, b.movedSurfels);
+  for (std::size_t f = 0; f < a.faces.size(); ++f)
+  {
+    const vbr::StandardFace &p = a.faces[f], &q = b.faces[f];
+    ASSERT_EQ(p.surfels, q.surfels) << "face " << f;
+    ASSERT_EQ(p.loop, q.loop) << "face " << f;
+    ASSERT_EQ(p.across, q.across) << "face " << f;
+    ASSERT_EQ(p.plane.normal, q.plane.normal) << "face " << f;
+    ASSERT_EQ(p.plane.mu, q.plane.mu) << "face " << f;
+  }
+}
+
+} // namespace
+
+// The growth of boundary components on several threads gives the sequential growth's faces
+// exactly, with every option (the merging reads the refusals the growth left), on inputs of
+// many components (noise, scattered balls, a checkerboard) and of one large component next
+// to small ones; and the faces are still checked independently.
+TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
+{
+  std::vector<vbr::BitVolume> inputs;
+  for (unsigned seed : { 31u, 32u, 33u })
+    inputs.push_back(bf::randomVolume({ 18, 16, 16 }, 0.3 + 0.1 * (seed - 31), seed));
+  vbr::BitVolume checker(14, 14, 14), shell(30, 30, 30);
+  for (int z = 0; z < 14; ++z)
+    for (int y = 0; y < 14; ++y)
+      for (int x = 0; x < 14; ++x)
+        checker.set(x, y, z, (x + y + z) % 2 == 0);
+  // A hollow ball (two components: outside and cavity) with small cubes around it.
+  std::mt19937 rng(5);
+  for (int z = 0; z < 30; ++z)
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 30; ++x)
+      {
+        const int r2 = (x - 15) * (x - 15) + (y - 15) * (y - 15) + (z - 15) * (z - 15);
+        shell.set(x, y, z, (r2 >= 36 && r2 <= 100) || (r2 > 150 && (x & y & z & 2) && rng() % 3));
+      }
+  inputs.push_back(checker);
+  inputs.push_back(shell);
+  std::vector<vbr::PolyhedrizationOptions> settings(4);
+  settings[1].mergeFaces = true;
+  settings[2].moveToLargerFaces = false;
+  settings[3].maximumFaceSize = 12;
+  settings[3].maximumDepth = 3;
+  settings[3].mergeFaces = true;
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+  {
+    SCOPED_TRACE("input " + std::to_string(i));
+    vbr::SurfelGraph g;
+    ASSERT_TRUE(vbr::buildSurfelGraph(inputs[i], vbr::Execution(), g));
+    ASSERT_GE(g.size(), 4096u) << "below the threaded growth's minimum";
+    ASSERT_GT(g.componentCount, 2u);
+    for (std::size_t o = 0; o < settings.size(); ++o)
+    {
+      SCOPED_TRACE("options " + std::to_string(o));
+      vbr::Polyhedron sequential;
+      ASSERT_TRUE(vbr::polyhedrize(g, settings[o], vbr::Execution(), sequential));
+      for (int threads : { 1, 2, 5 })
+      {
+        SCOPED_TRACE(std::to_string(threads) + " threads");
+        vbr::Polyhedron threaded;
+        ASSERT_TRUE(vbr::polyhedrize(g, settings[o], threadedExecution(threads), threaded));
+        expectSamePolyhedron(sequential, threaded);
+      }
+      if (o == 1)
+        checkPolyhedron(inputs[i], g, sequential, settings[o]);
+    }
+  }
+  // The surfel graph on threads (its stages split over the surfels past 2^15 of them): the
+  // same arrays as on one thread.
+  const vbr::BitVolume large = bf::randomVolume({ 40, 36, 34 }, 0.5, 41);
+  vbr::SurfelGraph one, several;
+  ASSERT_TRUE(vbr::buildSurfelGraph(large, vbr::Execution(), one));
+  ASSERT_TRUE(vbr::buildSurfelGraph(large, threadedExecution(3), several));
+  ASSERT_GT(one.size(), std::size_t(1) << 15);
+  EXPECT_EQ(one.neighbour, several.neighbour);
+  EXPECT_EQ(one.neighbourEdge, several.neighbourEdge);
+  EXPECT_EQ(one.vertex, several.vertex);
+  EXPECT_EQ(one.componentCount, several.componentCount);
+  // Aborted on every thread: no faces claimed finished.
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(inputs[0], vbr::Execution(), g));
+  vbr::Execution stop = threadedExecution(2);
+  stop.aborted = [] { return true; };
+  vbr::Polyhedron p;
+  EXPECT_FALSE(vbr::polyhedrize(g, {}, stop, p));
+  // The threaded growth reports its progress (between its waves, on the calling thread), and
+  // an abort asked there stops it within the growth.
+  const std::thread::id caller = std::this_thread::get_id();
+  bool offThread = false, stopped = false;
+  double highest = 0.0;
+  vbr::Execution watched = threadedExecution(2);
+  watched.progress = [&](double f)
+  {
+    offThread = offThread || std::this_thread::get_id() != caller;
+    highest = std::max(highest, f);
+    stopped = stopped || (f > 0.0 && f < 0.6);
+    return !stopped;
+  };
+  EXPECT_FALSE(vbr::polyhedrize(g, {}, watched, p));
+  EXPECT_TRUE(stopped) << "no progress inside the growth";
+  EXPECT_LT(highest, 0.6);
+  EXPECT_FALSE(offThread) << "progress reported off the calling thread";
 }
 
 TEST(Polyhedrization, DegenerateAndNonManifold)
