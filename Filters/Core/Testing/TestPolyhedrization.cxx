@@ -29,6 +29,25 @@ namespace
 
 using vbr::Point3;
 
+/// A face's outline as the reversion reads it: its plane and its loop's pointels.
+vbr::FaceOutline outlineOf(const vbr::StandardFace& face, const vbr::SurfelGraph& g)
+{
+  vbr::FaceOutline outline;
+  outline.plane = face.plane;
+  for (std::uint32_t u : face.loop)
+    outline.loop.push_back(g.vertexPointel[u]);
+  return outline;
+}
+
+/// The outlines of all faces of p, in face order.
+std::vector<vbr::FaceOutline> outlinesOf(const vbr::Polyhedron& p, const vbr::SurfelGraph& g)
+{
+  std::vector<vbr::FaceOutline> outlines;
+  for (const vbr::StandardFace& f : p.faces)
+    outlines.push_back(outlineOf(f, g));
+  return outlines;
+}
+
 /// Whether some normal with |n|_1 <= bound fits the points with the orientations asked.
 bool bruteForcePlane(const std::vector<Point3>& points, const std::array<int, 3>& signs, int bound)
 {
@@ -165,11 +184,7 @@ void checkPolyhedron(const vbr::BitVolume& v,
     EXPECT_EQ(face.loop.size(), boundaryEdges) << "boundary is not one loop";
     EXPECT_EQ(std::set<std::uint32_t>(face.loop.begin(), face.loop.end()).size(), face.loop.size())
       << "loop visits a vertex twice";
-    vbr::FaceOutline outline;
-    outline.plane = face.plane;
-    for (std::uint32_t vtx : face.loop)
-      outline.loop.push_back(g.vertexPointel[vtx]);
-    outlines.push_back(outline);
+    outlines.push_back(outlineOf(face, g));
   }
   // Reversion from the planes and loops alone.
   std::size_t surfels = 0;
@@ -792,15 +807,7 @@ TEST(Polyhedrization, AbortInsideEachPhase)
   // The reversion stops too.
   vbr::Polyhedron p;
   ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
-  std::vector<vbr::FaceOutline> outlines;
-  for (const vbr::StandardFace& f : p.faces)
-  {
-    vbr::FaceOutline o;
-    o.plane = f.plane;
-    for (std::uint32_t u : f.loop)
-      o.loop.push_back(g.vertexPointel[u]);
-    outlines.push_back(o);
-  }
+  std::vector<vbr::FaceOutline> outlines = outlinesOf(p, g);
   vbr::Execution stopNow;
   stopNow.aborted = [] { return true; };
   vbr::BitVolume back;
@@ -903,15 +910,7 @@ TEST(Polyhedrization, RevertIntoTooSmallAGrid)
   ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
   vbr::Polyhedron p;
   ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
-  std::vector<vbr::FaceOutline> outlines;
-  for (const vbr::StandardFace& f : p.faces)
-  {
-    vbr::FaceOutline o;
-    o.plane = f.plane;
-    for (std::uint32_t u : f.loop)
-      o.loop.push_back(g.vertexPointel[u]);
-    outlines.push_back(o);
-  }
+  std::vector<vbr::FaceOutline> outlines = outlinesOf(p, g);
   vbr::BitVolume back;
   std::size_t surfels = 0;
   ASSERT_EQ(vbr::revert(outlines, v.dims(), back, vbr::Execution(), &surfels), "");
@@ -936,10 +935,7 @@ TEST(Polyhedrization, SurfelsOfOutlineAreTheFacesSurfels)
     ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
     for (const vbr::StandardFace& f : p.faces)
     {
-      vbr::FaceOutline o;
-      o.plane = f.plane;
-      for (std::uint32_t u : f.loop)
-        o.loop.push_back(g.vertexPointel[u]);
+      const vbr::FaceOutline o = outlineOf(f, g);
       std::vector<vbr::Surfel> refilled;
       ASSERT_EQ(vbr::surfelsOfOutline(o, v.dims(), refilled), "");
       std::set<std::pair<Point3, int>> got, want;
