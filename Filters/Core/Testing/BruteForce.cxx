@@ -4,10 +4,28 @@
 #include <cstddef>
 #include <cstdlib>
 #include <deque>
+#include <functional>
 #include <random>
+#include <thread>
 
 namespace bf
 {
+
+vbr::Execution threadedExecution(int threads)
+{
+  vbr::Execution exec;
+  exec.concurrency = threads;
+  exec.parallelFor = [threads](
+                       std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
+  {
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t)
+      workers.emplace_back(body, n * t / threads, n * (t + 1) / threads);
+    for (std::thread& w : workers)
+      w.join();
+  };
+  return exec;
+}
 
 vbr::BitVolume randomVolume(const vbr::Point3& dims, double density, unsigned seed)
 {

@@ -6,6 +6,7 @@
 
 #include "BRep.h"
 #include "BitVolume.h"
+#include "Execution.h"
 #include "Geometry.h"
 #include "PixelTopology.h"
 
@@ -19,6 +20,10 @@
 
 namespace bf
 {
+
+/// Not a reference but the tests' thread pool: a parallel loop on real threads, one per
+/// sub-range, as vtkSMPTools would run it.
+vbr::Execution threadedExecution(int threads);
 
 /// Random voxel set with the given density; seeds give reproducible volumes.
 vbr::BitVolume randomVolume(const vbr::Point3& dims, double density, unsigned seed);

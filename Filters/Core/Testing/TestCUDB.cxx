@@ -17,7 +17,6 @@
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -226,23 +225,6 @@ TEST(CUDB, LargerRandomVolumes)
 namespace
 {
 
-/// A parallel loop on real threads, one per sub-range, as vtkSMPTools would run it.
-vbr::Execution threadedExecution(int threads)
-{
-  vbr::Execution exec;
-  exec.concurrency = threads;
-  exec.parallelFor = [threads](
-                       std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
-  {
-    std::vector<std::thread> workers;
-    for (int t = 0; t < threads; ++t)
-      workers.emplace_back(body, n * t / threads, n * (t + 1) / threads);
-    for (std::thread& w : workers)
-      w.join();
-  };
-  return exec;
-}
-
 std::vector<std::tuple<std::uint32_t, std::uint32_t, int, bool>> sortedContacts(const vbr::CUDB& c)
 {
   std::vector<std::tuple<std::uint32_t, std::uint32_t, int, bool>> out;
@@ -274,11 +256,11 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
         {
           SCOPED_TRACE(std::string(name) + " in " + std::to_string(pieces) + " pieces");
           vbr::CUDB stitched;
-          ASSERT_TRUE(vbr::buildCUDB(evm, threadedExecution(3), stitched, pieces));
+          ASSERT_TRUE(vbr::buildCUDB(evm, bf::threadedExecution(3), stitched, pieces));
           EXPECT_EQ(stitched.boxes, sequential.boxes);
           EXPECT_EQ(sortedContacts(stitched), sortedContacts(sequential));
           EXPECT_EQ(stitched.oudbBoxCount, sequential.oudbBoxCount);
-          expectLabelledSweepSame(evm, sequential, threadedExecution(3), pieces);
+          expectLabelledSweepSame(evm, sequential, bf::threadedExecution(3), pieces);
           ++stitchedVolumes;
         }
       }
@@ -289,7 +271,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
   const vbr::EVM evm = vbr::extractEVM(big);
   ASSERT_GE(evm.size(), 50000u);
   vbr::CUDB stitched;
-  ASSERT_TRUE(vbr::buildCUDB(evm, threadedExecution(2), stitched));
+  ASSERT_TRUE(vbr::buildCUDB(evm, bf::threadedExecution(2), stitched));
   const vbr::CUDB sequential = vbr::buildCUDB(evm);
   EXPECT_EQ(stitched.boxes, sequential.boxes);
   EXPECT_EQ(sortedContacts(stitched), sortedContacts(sequential));
@@ -298,7 +280,7 @@ TEST(CUDB, PiecesGiveTheSequentialSweep)
   const std::vector<int> expected = bf::floodFillLabels(big, true, count);
   EXPECT_EQ(c.count, static_cast<std::uint32_t>(count));
   expectSamePartition(paintedLabels(big, stitched, c), expected);
-  expectLabelledSweepSame(evm, sequential, threadedExecution(2));
+  expectLabelledSweepSame(evm, sequential, bf::threadedExecution(2));
 }
 
 TEST(CUDB, CheckerboardAndNoiseLabelledInPieces)
@@ -333,7 +315,7 @@ TEST(CUDB, CheckerboardAndNoiseLabelledInPieces)
           vbr::Components c;
           ASSERT_TRUE(vbr::buildCUDBComponents(evm,
             vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face,
-            threadedExecution(pieces),
+            bf::threadedExecution(pieces),
             boxes,
             c,
             pieces));
@@ -621,7 +603,7 @@ TEST(CUDB, PaintBoxesInEveryAxisOrder)
             }
       }
       std::vector<std::int32_t> painted(expected.size(), -1);
-      vbr::paintBoxes(boxes, value, offset, axes, dims, painted.data(), threadedExecution(3));
+      vbr::paintBoxes(boxes, value, offset, axes, dims, painted.data(), bf::threadedExecution(3));
       EXPECT_EQ(painted, expected);
     }
 }

@@ -419,23 +419,6 @@ TEST(Polyhedrization, RandomVolumes)
 namespace
 {
 
-/// A parallel loop on real threads, one per sub-range, as vtkSMPTools would run it.
-vbr::Execution threadedExecution(int threads)
-{
-  vbr::Execution exec;
-  exec.concurrency = threads;
-  exec.parallelFor = [threads](
-                       std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
-  {
-    std::vector<std::thread> workers;
-    for (int t = 0; t < threads; ++t)
-      workers.emplace_back(body, n * t / threads, n * (t + 1) / threads);
-    for (std::thread& w : workers)
-      w.join();
-  };
-  return exec;
-}
-
 /// Whether two polyhedrizations are the same: every face in the same place, with the same
 /// surfels in the same order, plane, loop and faces across; the same counts.
 void expectSamePolyhedron(const vbr::Polyhedron& a, const vbr::Polyhedron& b)
@@ -505,7 +488,7 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
       {
         SCOPED_TRACE(std::to_string(threads) + " threads");
         vbr::Polyhedron threaded;
-        ASSERT_TRUE(vbr::polyhedrize(g, settings[o], threadedExecution(threads), threaded));
+        ASSERT_TRUE(vbr::polyhedrize(g, settings[o], bf::threadedExecution(threads), threaded));
         expectSamePolyhedron(sequential, threaded);
       }
       if (o == 1)
@@ -517,7 +500,7 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
   const vbr::BitVolume large = bf::randomVolume({ 40, 36, 34 }, 0.5, 41);
   vbr::SurfelGraph one, several;
   ASSERT_TRUE(vbr::buildSurfelGraph(large, vbr::Execution(), one));
-  ASSERT_TRUE(vbr::buildSurfelGraph(large, threadedExecution(3), several));
+  ASSERT_TRUE(vbr::buildSurfelGraph(large, bf::threadedExecution(3), several));
   ASSERT_GT(one.size(), std::size_t(1) << 15);
   EXPECT_EQ(one.neighbour, several.neighbour);
   EXPECT_EQ(one.neighbourEdge, several.neighbourEdge);
@@ -526,7 +509,7 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
   // Aborted on every thread: no faces claimed finished.
   vbr::SurfelGraph g;
   ASSERT_TRUE(vbr::buildSurfelGraph(inputs[0], vbr::Execution(), g));
-  vbr::Execution stop = threadedExecution(2);
+  vbr::Execution stop = bf::threadedExecution(2);
   stop.aborted = [] { return true; };
   vbr::Polyhedron p;
   EXPECT_FALSE(vbr::polyhedrize(g, {}, stop, p));
@@ -535,7 +518,7 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
   const std::thread::id caller = std::this_thread::get_id();
   bool offThread = false, stopped = false;
   double highest = 0.0;
-  vbr::Execution watched = threadedExecution(2);
+  vbr::Execution watched = bf::threadedExecution(2);
   watched.progress = [&](double f)
   {
     offThread = offThread || std::this_thread::get_id() != caller;
