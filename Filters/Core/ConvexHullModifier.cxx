@@ -1687,29 +1687,52 @@ bool prismMissesSurface(const CellList& prism, const LatticeMesh& surface)
   return true;
 }
 
-/// `where` after P was cut out of H or added to it: the solid changes only inside the closed
-/// prism P, so a lattice point outside P keeps its side (a neighbourhood of it misses P), and the
-/// lattice points of P, all on its boundary, are located again (exact ray parity). This replaces
-/// a location of every lattice point of the grid after each join.
-void updateWhere(const LatticeMesh& surface,
+/// Whether every lattice point of the closed prism P lies on the right side of `joined`, H
+/// after P was cut out of it or added to it (no object centre outside, no background centre
+/// inside, off the grid included), with the new sides of those in the grid. The solid changes
+/// only inside the closed P, so a lattice point outside P keeps its side (a neighbourhood of it
+/// misses P); P's open interior holds no lattice point, but a centre on its boundary can change
+/// side, so each is located again (exact ray parity) instead of every point of the grid.
+bool prismKeepsSeparation(const LatticeMesh& joined,
   const CellList& prism,
-  const Dims& d,
-  std::vector<std::uint8_t>& where)
+  const BitVolume& objects,
+  std::vector<std::pair<std::size_t, std::uint8_t>>& sides)
 {
+  const Dims d = objects.dims();
+  bool ok = true;
   forEachPointIn(prism,
     false,
     [&](const LatticePoint& p)
     {
-      if (!inGrid(d, p))
+      if (!ok)
         return;
-      const int side = sideOf(surface, p, 1);
-      where[gridIndex(d, p)] = side > 0 ? Inside : side == 0 ? On : Outside;
+      const int side = sideOf(joined, p, 1);
+      const bool object = voxelClass(objects, p);
+      if ((object && side < 0) || (!object && side > 0))
+        ok = false;
+      else if (inGrid(d, p))
+        sides.emplace_back(gridIndex(d, p), side > 0 ? Inside : side == 0 ? On : Outside);
     });
+  return ok;
+}
+
+/// P's bounding box.
+std::array<LatticePoint, 2> boxOf(const CellList& prism)
+{
+  std::array<LatticePoint, 2> box{ prism.vertices[0], prism.vertices[0] };
+  for (const auto& v : prism.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      box[0][a] = std::min(box[0][a], v[a]);
+      box[1][a] = std::max(box[1][a], v[a]);
+    }
+  return box;
 }
 
 /// H with the prism cut out (a void) or added (a piece), kept only when the exact Boolean is a
 /// closed 2-manifold with lattice corners and one shell less (its Euler characteristic 2
-/// lower). The prism's open interior holds no lattice point, so no centre changes side.
+/// lower) and every lattice point of P stays on its class's side (prismKeepsSeparation). A
+/// Boolean that fails, or throws, rejects this prism only.
 bool joinAlongPrism(Context& ctx,
   const CellList& prism,
   bool cut,
@@ -1728,24 +1751,28 @@ bool joinAlongPrism(Context& ctx,
   // H was embedded and the Boolean changed it only inside P, so only triangles meeting P's box
   // can cross (the operands are not tested again: that test of a large H costs about as much
   // as the corefinement).
-  std::array<LatticePoint, 2> box{ prism.vertices[0], prism.vertices[0] };
-  for (const auto& v : prism.vertices)
-    for (int a = 0; a < 3; ++a)
-    {
-      box[0][a] = std::min(box[0][a], v[a]);
-      box[1][a] = std::max(box[1][a], v[a]);
-    }
+  const std::array<LatticePoint, 2> box = boxOf(prism);
   LatticeMesh joined;
-  const LatticeMesh p = triangulateHull(prism);
-  const bool ok = cut ? latticeDifference(surface, p, joined, Operands::Embedded)
-                      : latticeUnion(surface, p, joined, Operands::Embedded);
-  if (!ok || shellsOf(joined).size() + 1 != shells ||
-    eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface) ||
-    !isEmbeddedWithin(joined, box[0], box[1]))
-    return false;
+  std::vector<std::pair<std::size_t, std::uint8_t>> sides;
+  try
+  {
+    const LatticeMesh p = triangulateHull(prism);
+    const bool ok = cut ? latticeDifference(surface, p, joined, Operands::Embedded)
+                        : latticeUnion(surface, p, joined, Operands::Embedded);
+    if (!ok || shellsOf(joined).size() + 1 != shells ||
+      eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface) ||
+      !isEmbeddedWithin(joined, box[0], box[1]) ||
+      !prismKeepsSeparation(joined, prism, ctx.objects, sides))
+      return false;
+  }
+  catch (const std::exception&)
+  {
+    return false; // CGAL refused the operands or the result: try the next prism
+  }
   recordPlanes(ctx, prism, cut ? 1 : 2);
   surface = std::move(joined);
-  updateWhere(surface, prism, ctx.objects.dims(), where);
+  for (const auto& [index, side] : sides)
+    where[index] = side;
   return true;
 }
 
@@ -1765,6 +1792,8 @@ bool joinOneShell(Context& ctx,
   const Dims d = ctx.objects.dims();
   for (std::size_t s = 0; s < shells.size(); ++s)
   {
+    if (ctx.exec.stopRequested())
+      throw std::runtime_error("aborted");
     const LatticePoint key =
       *std::min_element(shells[s].mesh.points.begin(), shells[s].mesh.points.end());
     if (failed.count(key))
@@ -1787,11 +1816,17 @@ bool joinOneShell(Context& ctx,
       prisms.end(),
       [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
     for (std::size_t k = 0; k < std::min<std::size_t>(prisms.size(), kPrismsTried); ++k)
+    {
+      if (ctx.exec.stopRequested())
+        throw std::runtime_error("aborted");
       if (joinAlongPrism(ctx, prisms[k], isVoid, shells.size(), surface, where))
       {
+        // A shell that failed stays failed although a later join may open a way for it:
+        // trying it again after every join would cost up to kPrismsTried Booleans each time.
         failed.erase(key);
         return true;
       }
+    }
   }
   return false;
 }

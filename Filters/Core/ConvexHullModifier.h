@@ -80,10 +80,12 @@
 // interior; P is cut out of H for a void (exact difference) and added to H for a piece (exact
 // union), at most 48 candidates: first those whose open interior no triangle of H meets (exact
 // separating axes; only they change H on P's boundary alone, a clean tube), nearest first.
-// Sound: P's open interior holds no centre, so no centre changes side, and the centres on P's
-// faces are on H and marked by their class; a join is kept only when the exact Boolean is a
-// closed 2-manifold with lattice corners, with one shell less and an Euler characteristic 2
-// lower (a tube between two shells), and the whole result is checked once more at the end
+// Sound: P's open interior holds no centre, so only the centres on P's boundary can change
+// side, and each of them is located again after the Boolean (no object centre may fall
+// outside, no background centre inside); a join is kept only when that holds and the exact
+// Boolean is a closed 2-manifold with lattice corners, with one shell less and an Euler
+// characteristic 2 lower (a tube between two shells), and the whole result is checked once more
+// at the end
 // (closed, embedded, exact reversion), else H stays as it was. Octahedra conv{c +- e_i} along
 // the path (the obvious channel) do not work: their faces cut H's faces at points that are not
 // lattice points.

@@ -200,38 +200,10 @@ bool isEmbeddedWithin(const LatticeMesh& m, const LatticePoint& lo, const Lattic
 namespace
 {
 
-bool latticeBoolean(const LatticeMesh& a,
-  const LatticeMesh& b,
-  bool unite,
-  Operands operands,
-  LatticeMesh& result)
+/// `out` (a corefinement's result without its Steiner points) as a LatticeMesh: false when a
+/// corner is not a lattice point or two corners coincide.
+bool toLatticeMesh(const Mesh& out, LatticeMesh& result)
 {
-  Mesh first = toSurfaceMesh(a), second = toSurfaceMesh(b), out;
-  bool ok = false;
-  // The self-intersection test of a large operand costs about as much as the corefinement.
-  const bool check = operands == Operands::Check;
-  if (!CGAL::is_closed(first) || !CGAL::is_closed(second) ||
-    (check && (PMP::does_self_intersect(first) || PMP::does_self_intersect(second))))
-  {
-    return false; // not valid operands (corefinement needs two closed, embedded surfaces)
-  }
-  try
-  {
-    ok = unite ? PMP::corefine_and_compute_union(first, second, out)
-               : PMP::corefine_and_compute_difference(first, second, out);
-  }
-  catch (const std::exception&)
-  {
-    return false;
-  }
-  if (!ok || !CGAL::is_closed(out) || PMP::duplicate_non_manifold_vertices(out) != 0)
-  {
-    return false;
-  }
-  if (!removeSteinerPoints(out))
-  {
-    return false;
-  }
   result = LatticeMesh();
   std::map<Mesh::Vertex_index, std::uint32_t> index;
   for (auto v : out.vertices())
@@ -239,9 +211,7 @@ bool latticeBoolean(const LatticeMesh& a,
     const auto& p = out.point(v);
     LatticePoint q;
     if (!integerValue(p.x(), q[0]) || !integerValue(p.y(), q[1]) || !integerValue(p.z(), q[2]))
-    {
       return false;
-    }
     index[v] = static_cast<std::uint32_t>(result.points.size());
     result.points.push_back(q);
   }
@@ -250,22 +220,43 @@ bool latticeBoolean(const LatticeMesh& a,
   std::vector<LatticePoint> sorted = result.points;
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-  {
     return false;
-  }
   for (auto f : out.faces())
   {
     std::vector<std::uint32_t> corners;
     for (auto v : CGAL::vertices_around_face(out.halfedge(f), out))
-    {
       corners.push_back(index[v]);
-    }
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
-    {
       result.triangles.push_back({ corners[0], corners[k], corners[k + 1] });
-    }
   }
   return true;
+}
+
+/// The exact union or difference of two closed lattice meshes; false (never an exception)
+/// when CGAL refuses the operands or the result is not a closed 2-manifold of lattice points.
+bool latticeBoolean(const LatticeMesh& a,
+  const LatticeMesh& b,
+  bool unite,
+  Operands operands,
+  LatticeMesh& result)
+{
+  try
+  {
+    Mesh first = toSurfaceMesh(a), second = toSurfaceMesh(b), out;
+    // The self-intersection test of a large operand costs about as much as the corefinement.
+    const bool check = operands == Operands::Check;
+    if (!CGAL::is_closed(first) || !CGAL::is_closed(second) ||
+      (check && (PMP::does_self_intersect(first) || PMP::does_self_intersect(second))))
+      return false; // not valid operands (corefinement needs two closed, embedded surfaces)
+    const bool ok = unite ? PMP::corefine_and_compute_union(first, second, out)
+                          : PMP::corefine_and_compute_difference(first, second, out);
+    return ok && CGAL::is_closed(out) && PMP::duplicate_non_manifold_vertices(out) == 0 &&
+      removeSteinerPoints(out) && toLatticeMesh(out, result);
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
 }
 
 } // namespace

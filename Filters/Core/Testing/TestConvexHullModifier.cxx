@@ -279,7 +279,7 @@ vbr::BitVolume piercedCube(int n, int w, int tunnels)
 }
 
 /// A hollow ball (radii r < R about the centre of a grid of 2R + 3) with a tunnel from its
-/// cavity out: the voxels whose offset q from the centre has q.axis >= 0 and lies within
+/// cavity out: the voxels whose offset q from the centre has sign * q.axis >= 0 and lies within
 /// `half` of the tunnel's axis (the axis through `shift`, in the max norm across it).
 /// `diagonal`: the axis is (1, 1, 0), `half` bounds |qx - qy| and |qz| (half 0: one row of
 /// voxels touching along edges, not face-connected).
