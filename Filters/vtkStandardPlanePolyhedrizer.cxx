@@ -480,7 +480,9 @@ private:
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
     // The plane in the grid's index space: n.(p + offset) = n.p + n.offset.
     const auto& n = face.plane.normal;
-    const int normal[3] = { n[0], n[1], n[2] };
+    const int normal[3] = {
+      static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2])
+    };
     this->Normals->InsertNextTypedTuple(normal);
     this->Offsets->InsertNextValue(static_cast<vtkIdType>(
       face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));

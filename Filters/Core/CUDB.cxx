@@ -45,6 +45,7 @@
 #include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace vbr
@@ -1276,6 +1277,10 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
     if (row || before)
       vertices += rowChanges(row ? row : before, row ? before : nullptr, words);
   }
+  // Box numbers and the union-find are 32-bit: refuse rather than wrap.
+  if (runs >= std::numeric_limits<std::uint32_t>::max())
+    throw std::length_error(
+      "a 2D CUDB of " + std::to_string(runs) + " runs of pixels: more than 2^32 - 1 boxes");
   UnionFind equivalences;
   equivalences.reserve(runs);
   out.boxes.reserve(runs);

@@ -724,9 +724,9 @@ bool compactLevel(const Compactor& cp,
 }
 
 /// Keeps the terminal face nodes only, renumbered in the order of their first point.
-void keepTerminalNodes(FaceOctree& out, std::vector<std::int32_t>& renumber)
+void keepTerminalNodes(FaceOctree& out)
 {
-  renumber.assign(out.nodes.size(), -1);
+  std::vector<std::int32_t> renumber(out.nodes.size(), -1);
   std::vector<FaceNode> kept;
   for (std::int32_t& id : out.nodeOf)
   {
@@ -1011,8 +1011,7 @@ void mergeFaceNodes(const Compactor& cp, const Execution& exec, FaceOctree& out)
     if (m.find(s) == s)
       m.grow(s);
   }
-  std::vector<std::int32_t> renumber(out.nodes.size(), -1);
-  keepTerminalNodes(out, renumber);
+  keepTerminalNodes(out);
 }
 
 } // namespace
@@ -1052,8 +1051,7 @@ FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
   for (int level = 1; level <= options.maximumLevel && level < 21; ++level)
     if (exec.stopRequested() || !compactLevel(cp, level, exec, out, faceLevel))
       break;
-  std::vector<std::int32_t> renumber;
-  keepTerminalNodes(out, renumber);
+  keepTerminalNodes(out);
   if (options.mergeFaceNodes && options.maximumLevel > 0)
     mergeFaceNodes(cp, exec, out);
   return out;

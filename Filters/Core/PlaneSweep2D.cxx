@@ -180,6 +180,9 @@ private:
     Edge e;
     (outgoing ? e.from : e.to) = c;
     e.interval = interval;
+    // Edges are numbered by int (their links and the non-manifold pairs): refuse, not wrap.
+    if (this->Edges.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw std::length_error("planeSweep2D: 2^31 - 1 edges or more");
     this->Edges.push_back(e);
     return static_cast<int>(this->Edges.size()) - 1;
   }

@@ -90,7 +90,7 @@ struct Contours2D
 
 /// planeSweep2D, with the corners numbered in `order` as the sweep meets them: the same faces,
 /// loops (each from the same corner) and inclusion tree, without a later pass to number them.
-/// Throws std::length_error for 2^32 corners or more.
+/// Throws std::length_error for 2^32 corners or 2^31 - 1 edges or more.
 Contours2D planeSweep2DNumbered(const Vertex* begin,
   const Vertex* end,
   CornerOrder order,

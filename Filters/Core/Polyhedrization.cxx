@@ -741,8 +741,9 @@ bool growGroups(const SurfelGraph& graph,
       });
     for (std::size_t g = first; g < end; ++g)
       done += groups.seeds[g].size();
+    // A group of fewer surfels than the poll's period never polls: ask here too.
     if (std::find(finished.begin() + first, finished.begin() + end, 0) != finished.begin() + end ||
-      !exec.report(0.6 * double(done) / double(graph.size())))
+      exec.stopRequested() || !exec.report(0.6 * double(done) / double(graph.size())))
       return false;
   }
   std::vector<std::vector<std::uint32_t>> number(count);

@@ -65,8 +65,9 @@ struct Polyhedron
   std::size_t movedSurfels = 0; ///< surfels moved to larger faces
 };
 
-/// Grows the faces; returns false when aborted. With `exec.parallelFor` and a concurrency
-/// above 1, different boundary components grow on different threads; the result is the
+/// Grows the faces; returns false when aborted, and `out` is then unspecified (partial faces,
+/// or face numbers of faces not yet gathered): not to be read. With `exec.parallelFor` and a
+/// concurrency above 1, different boundary components grow on different threads; the result is the
 /// same, face for face and in the same order, as on one thread.
 bool polyhedrize(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,

@@ -513,6 +513,9 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
   stop.aborted = [] { return true; };
   vbr::Polyhedron p;
   EXPECT_FALSE(vbr::polyhedrize(g, {}, stop, p));
+  // Only an abort within the threaded growth leaves no faces gathered (a later phase's poll
+  // would stop a growth that ran to its end, after gathering them).
+  EXPECT_TRUE(p.faces.empty()) << "the threaded growth did not stop";
   // The threaded growth reports its progress (between its waves, on the calling thread), and
   // an abort asked there stops it within the growth.
   const std::thread::id caller = std::this_thread::get_id();
