@@ -24,10 +24,12 @@ gathered from every rank's piece must be the selection of the whole image. The V
 source must hand each rank its own piece, which together are the 1-process phantom.
 """
 
+import atexit
 import builtins
 import glob
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -48,6 +50,10 @@ LoadPlugin(sys.argv[1], remote=False, ns=globals())
 PACKAGE_DIR = sys.argv[2]
 DATA_DIR = sys.argv[3] if len(sys.argv) > 3 else ""
 HERE = os.path.dirname(os.path.abspath(__file__))
+# The test's scratch folders (pieces saved by the ranks, references, the partitioned headsq)
+# live in one, removed when the test ends.
+SCRATCH = tempfile.mkdtemp(prefix="voxelbrep-distributed-")
+atexit.register(shutil.rmtree, SCRATCH, True)
 ranks = sm.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
 EXTENT = [0, 36, 0, 29, 0, 25]
 LOWER = 150.0
@@ -164,7 +170,7 @@ np.savez(%(folder)r + "/piece%%d.npz" %% rank, values=values[keep], index=index[
 def gathered_pieces(port, cells, array):
     """The values of `array` and voxel indices of the non-ghost voxels of every rank's piece
     of `port`, and the pieces' extents."""
-    folder = tempfile.mkdtemp(prefix="voxelbrep-mpi-")
+    folder = tempfile.mkdtemp(prefix="mpi-", dir=SCRATCH)
     saver = ProgrammableFilter(Input=port, CopyArrays=1,
                                Script=SAVE_PIECE % {"cells": cells, "folder": folder,
                                                     "array": array})
@@ -223,7 +229,7 @@ def child_environment():
 
 def single_process(runs, values, cells, name="RTData"):
     """The 1-rank results of `runs` (see single_process_reference.py) on the whole image."""
-    folder = tempfile.mkdtemp(prefix="voxelbrep-reference-")
+    folder = tempfile.mkdtemp(prefix="reference-", dir=SCRATCH)
     np.savez(folder + "/image.npz", values=values, cells=cells, name=name)
     with open(folder + "/runs.json", "w") as f:
         json.dump(runs, f)
@@ -335,7 +341,7 @@ def check_phantom():
     whole = np.full(dims[::-1], -1, np.int64)
     whole[index[:, 2], index[:, 1], index[:, 0]] = labels
     expect("phantom: each rank has a piece of its own", len(set(extents)), ranks)
-    folder = tempfile.mkdtemp(prefix="voxelbrep-phantom-")
+    folder = tempfile.mkdtemp(prefix="phantom-", dir=SCRATCH)
     subprocess.run(["/usr/bin/python3", os.path.join(HERE, "single_process_reference.py"),
                     "--phantom"] + [str(d) for d in dims] + [folder + "/labels.npy"],
                    check=True, env=child_environment())
@@ -363,7 +369,7 @@ def check_real_volume():
         print("headsq not found under %r: the real-volume part is skipped" % DATA_DIR)
         return
     values = np.fromfile(raw, "<i2").reshape(93, 64, 64)
-    path = os.path.join(tempfile.mkdtemp(prefix="voxelbrep-pvti-"), "headsq.pvti")
+    path = os.path.join(tempfile.mkdtemp(prefix="pvti-", dir=SCRATCH), "headsq.pvti")
     write_partitioned(values, path, 4)
     reader = OpenDataFile(path)
     selection = dict(Scalars=["POINTS", "values"], SelectionMode="Range", LowerThreshold=1150.0,
