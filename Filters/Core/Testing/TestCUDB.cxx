@@ -369,7 +369,7 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
 {
   // The direct 2D path against the EVM's: the same boxes in the same order, OUDB count, EVM
   // size and labels; its boxes against the pixels, its components against a flood fill.
-  // Widths around the 64-bit words' boundaries.
+  // Widths around the 64-bit words' boundaries, and a column one pixel wide.
   const vbr::Point3 sizes[] = { { 1, 1, 1 },
     { 7, 5, 1 },
     { 63, 20, 1 },
@@ -377,7 +377,8 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
     { 65, 17, 1 },
     { 128, 40, 1 },
     { 130, 9, 1 },
-    { 3, 90, 1 } };
+    { 3, 90, 1 },
+    { 1, 40, 1 } }; // one bit of one word per row
   unsigned seed = 900;
   for (const auto& d : sizes)
     for (double density : { 0.0, 0.1, 0.5, 0.9, 1.0 })
