@@ -303,7 +303,7 @@ bool appendObject(const vbr::vtk::Selected& object,
   vbr::FaceOctreeOptions options = settings.octree;
   if (settings.outputMode == vtkFaceOctreeBoundaryFilter::QUADRILATERALS)
     options.maximumLevel = 0;
-  octree = vbr::buildFaceOctree(voxels, model, options, exec);
+  octree = vbr::buildFaceOctree(voxels, model, options, exec.within(0.4, 0.8));
   if (!exec.report(0.8))
     return false;
   const vbr::BoundaryCells cells = settings.outputMode == vtkFaceOctreeBoundaryFilter::POLYGONS

@@ -40,6 +40,26 @@ struct Execution
     return e;
   }
 
+  /// The same execution reporting its progress [0, 1] as [from, to] of this one's: a phase
+  /// that reports its own progress, run as one part of a longer job.
+  Execution within(double from, double to) const
+  {
+    Execution e = *this;
+    if (this->progress)
+      e.progress = [outer = this->progress, from, to](double f)
+      { return outer(from + (to - from) * f); };
+    return e;
+  }
+
+  /// The same execution without progress reports (it still polls the abort): for a phase run
+  /// many times over, whose own fractions would make the reported progress jump back.
+  Execution silent() const
+  {
+    Execution e = *this;
+    e.progress = nullptr;
+    return e;
+  }
+
   /// This execution for `work` items, or the same on the calling thread alone when they are
   /// too few to pay for the threads (ThreadedWorkMinimum).
   Execution forWork(std::int64_t work) const

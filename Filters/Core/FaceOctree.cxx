@@ -982,15 +982,22 @@ struct FaceMerger
     return true;
   }
 
-  /// Grows face s over its neighbours, in rounds, until a round merges none.
-  void grow(std::int32_t s)
+  /// Grows face s over its neighbours, in rounds, until a round merges none. Each attempt
+  /// refits a plane to both faces' points, so a large face's growth alone can be long: the
+  /// poll counts attempts. False when the caller asked to stop.
+  bool grow(std::int32_t s, ProgressPoll& poll)
   {
     for (bool grew = true; grew;)
     {
       grew = false;
       for (std::int32_t n : this->candidates(s))
+      {
+        if (!poll.tick())
+          return false;
         grew = this->tryMerge(s, n) || grew;
+      }
     }
+    return true;
   }
 };
 
@@ -1004,12 +1011,12 @@ void mergeFaceNodes(const Compactor& cp, const Execution& exec, FaceOctree& out)
   std::stable_sort(order.begin(),
     order.end(),
     [&](std::int32_t a, std::int32_t b) { return m.members[a].size() > m.members[b].size(); });
-  for (std::int32_t s : order)
+  ProgressPoll poll(exec, 0.0, 1.0, 4);
+  for (std::size_t i = 0; i < order.size(); ++i)
   {
-    if (exec.stopRequested())
+    poll.at(double(i) / double(order.size()));
+    if (m.find(order[i]) == order[i] && !m.grow(order[i], poll))
       break;
-    if (m.find(s) == s)
-      m.grow(s);
   }
   keepTerminalNodes(out);
 }
@@ -1048,12 +1055,18 @@ FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
   out.nodeOf.assign(np, -1);
   std::vector<int> faceLevel(np, -1);
   voxelFaceNodes(model, out, faceLevel);
-  for (int level = 1; level <= options.maximumLevel && level < 21; ++level)
-    if (exec.stopRequested() || !compactLevel(cp, level, exec, out, faceLevel))
+  // Progress: the levels take the first part (the lower levels, with the most candidates,
+  // the most time), the merging, when asked, the rest (about as long as the compaction).
+  const bool merging = options.mergeFaceNodes && options.maximumLevel > 0;
+  const double compaction = merging ? 0.5 : 1.0;
+  const int levels = std::min(options.maximumLevel, 20);
+  for (int level = 1; level <= levels; ++level)
+    if (!exec.report(compaction * (level - 1) / levels) ||
+      !compactLevel(cp, level, exec, out, faceLevel))
       break;
   keepTerminalNodes(out);
-  if (options.mergeFaceNodes && options.maximumLevel > 0)
-    mergeFaceNodes(cp, exec, out);
+  if (merging && !exec.stopRequested())
+    mergeFaceNodes(cp, exec.within(compaction, 1.0), out);
   return out;
 }
 

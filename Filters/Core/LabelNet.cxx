@@ -714,7 +714,8 @@ void LabelAssembler::addPair(const std::vector<std::size_t>& quads,
   std::vector<std::int32_t>& localOf)
 {
   const PairModel pm = pairModel(this->net, quads, localOf);
-  const FaceOctree octree = buildFaceOctreeAvoiding(pm.far, pm.model, options, exec);
+  // One pair of many: its own progress fractions would make the job's go back and forth.
+  const FaceOctree octree = buildFaceOctreeAvoiding(pm.far, pm.model, options, exec.silent());
   const Vec3 t = pm.shift();
   for (std::size_t p = 0; p < pm.global.size(); ++p)
     if (octree.nodeOf[p] >= 0)

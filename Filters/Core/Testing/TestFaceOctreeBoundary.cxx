@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -929,6 +930,43 @@ TEST(FaceOctree, MergingCrossesOctreeCellsAndDropsSewingTriangles)
     std::cout << s.name << "48: " << octree.nodes.size() << " -> " << merged.nodes.size()
               << " face nodes, " << cells(octree) << " -> " << cells(merged) << " triangles\n";
   }
+}
+
+TEST(FaceOctree, MergingReportsProgressAndStopsWhenAsked)
+{
+  // The merging is about as long as the compaction: it takes the second half of the
+  // progress, rising, and an abort asked in its middle stops it there (fewer merges done).
+  const BitVolume v = shapeVolume(solids().front(), 48);
+  const auto model = vbr::buildDeformedModel(v, {}, sequential);
+  vbr::FaceOctreeOptions options;
+  options.mergeFaceNodes = true;
+  std::vector<double> reported;
+  vbr::Execution watched;
+  watched.progress = [&](double f)
+  {
+    reported.push_back(f);
+    return true;
+  };
+  const auto merged = vbr::buildFaceOctree(v, model, options, watched);
+  ASSERT_FALSE(reported.empty());
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+  EXPECT_GE(reported.front(), 0.0);
+  EXPECT_LE(reported.back(), 1.0);
+  const double middle = 0.75;
+  ASSERT_TRUE(std::any_of(reported.begin(), reported.end(), [&](double f) { return f > middle; }))
+    << "the merging reports its progress";
+
+  bool stop = false;
+  vbr::Execution stopped;
+  stopped.progress = [&](double f)
+  {
+    stop = stop || f > middle;
+    return true;
+  };
+  stopped.aborted = [&] { return stop; };
+  const auto partial = vbr::buildFaceOctree(v, model, options, stopped);
+  EXPECT_TRUE(stop);
+  EXPECT_GT(partial.nodes.size(), merged.nodes.size());
 }
 
 TEST(FaceOctreeBoundary, ConvexPiecesCoverThePolygon)
