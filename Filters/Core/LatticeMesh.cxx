@@ -277,4 +277,85 @@ bool latticeUnion(const LatticeMesh& a,
   return latticeBoolean(a, b, true, operands, result);
 }
 
+namespace
+{
+
+LatticePoint minus(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+
+/// Sign of the volume of the tetrahedron abcd (exact: lattice coordinates below 2^20).
+int orientation(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  const LatticePoint& d)
+{
+  const LatticePoint u = minus(b, a), v = minus(c, a), w = minus(d, a);
+  const __int128 det = static_cast<__int128>(u[0]) * (v[1] * w[2] - v[2] * w[1]) -
+    static_cast<__int128>(u[1]) * (v[0] * w[2] - v[2] * w[0]) +
+    static_cast<__int128>(u[2]) * (v[0] * w[1] - v[1] * w[0]);
+  return (det > 0) - (det < 0);
+}
+
+/// Whether the segment ab crosses the open triangle t transversally (a and b strictly on
+/// either side of its plane, the line through them strictly inside its edges) at a point that
+/// is not a lattice point: a + s (b - a) with s = n.(t0 - a) / n.(b - a), exactly.
+bool crossesOffLattice(const LatticePoint& a,
+  const LatticePoint& b,
+  const std::array<LatticePoint, 3>& t)
+{
+  const int sa = orientation(t[0], t[1], t[2], a), sb = orientation(t[0], t[1], t[2], b);
+  if (sa == 0 || sb == 0 || sa == sb)
+    return false;
+  const int s0 = orientation(a, b, t[0], t[1]), s1 = orientation(a, b, t[1], t[2]),
+            s2 = orientation(a, b, t[2], t[0]);
+  if (s0 == 0 || s0 != s1 || s1 != s2)
+    return false;
+  const LatticePoint u = minus(t[1], t[0]), v = minus(t[2], t[0]), e = minus(b, a),
+                     w = minus(t[0], a);
+  const LatticePoint n{
+    u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+  };
+  __int128 num = 0, den = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    num += static_cast<__int128>(n[k]) * w[k];
+    den += static_cast<__int128>(n[k]) * e[k];
+  }
+  for (int k = 0; k < 3; ++k)
+    if ((num * e[k]) % den != 0)
+      return true;
+  return false;
+}
+
+} // namespace
+
+bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
+{
+  LatticePoint lo = convex.vertices[0], hi = lo;
+  for (const auto& v : convex.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  for (const auto& tri : surface.triangles)
+  {
+    const std::array<LatticePoint, 3> t{
+      surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]]
+    };
+    bool inBox = true;
+    for (int a = 0; a < 3 && inBox; ++a)
+      inBox = std::max({ t[0][a], t[1][a], t[2][a] }) > lo[a] &&
+        std::min({ t[0][a], t[1][a], t[2][a] }) < hi[a];
+    if (!inBox)
+      continue;
+    for (const auto& e : convex.edges)
+      if (crossesOffLattice(convex.vertices[e[0]], convex.vertices[e[1]], t))
+        return true;
+  }
+  return false;
+}
+
 } // namespace vbr

@@ -66,6 +66,17 @@ bool latticeUnion(const LatticeMesh& a,
   LatticeMesh& result,
   Operands operands = Operands::Check);
 
+/// Whether the exact union and the exact difference of the closed mesh and a solid convex
+/// hull (its faces merged: every edge a crease) are both bound to have a corner that is not a
+/// lattice point, so that latticeUnion and latticeDifference refuse them: an edge of the hull
+/// crosses the open interior of a triangle of the mesh transversally at a point off the
+/// lattice. That point lies on both surfaces, hence on the surface of the union and of the
+/// difference, where the planes of the two faces along the edge meet the triangle's plane in
+/// two lines crossing there: a corner that no collapse keeps the shape without. Exact and cheap
+/// (the triangles in the hull's box against its edges), to skip such Booleans before the
+/// corefinement. False does not promise a lattice result.
+bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex);
+
 } // namespace vbr
 
 #endif
