@@ -1324,6 +1324,7 @@ std::size_t countRuns(const BitVolume& pixels, std::size_t& vertices)
 /// 2048 words of pixels or so (a few ms of a maze, a few dozen rows) and reports the rows done.
 bool sweepPixelRows(const BitVolume& pixels,
   Connectivity connectivity,
+  std::int32_t stride,
   ProgressPoll& poll,
   CUDB& out,
   UnionFind& equivalences)
@@ -1331,15 +1332,19 @@ bool sweepPixelRows(const BitVolume& pixels,
   const std::int32_t ny = pixels.size(1);
   BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
   PixelRowSweep sweep(pixels);
-  for (std::int32_t y = 0; y < ny; ++y)
+  // Polled between blocks of rows, so that the loop over a block's rows has no test of its own.
+  for (std::int32_t block = 0; block < ny; block += stride)
   {
-    if (!poll.tick())
+    poll.at(double(block) / ny);
+    if (!poll.poll())
       return false;
-    poll.at(double(y) / ny);
-    visit.Row = y;
-    const std::size_t count = sweep.nextRow(y, visit).size();
-    if (!sweep.sameAsPrevious())
-      out.oudbBoxCount += count; // a line of vertices at y: the OUDB cuts every interval there
+    for (std::int32_t y = block; y < std::min(ny, block + stride); ++y)
+    {
+      visit.Row = y;
+      const std::size_t count = sweep.nextRow(y, visit).size();
+      if (!sweep.sameAsPrevious())
+        out.oudbBoxCount += count; // a line of vertices at y: the OUDB cuts every interval there
+    }
   }
   return true;
 }
@@ -1372,9 +1377,9 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   equivalences.reserve(runs);
   out.boxes.reserve(runs);
   const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
-  const auto stride = static_cast<std::uint32_t>(std::max<std::size_t>(2048 / words, 1));
-  ProgressPoll poll(exec, 0.0, 1.0, stride);
-  if (!poll.poll() || !sweepPixelRows(rows, connectivity, poll, out, equivalences))
+  const auto stride = static_cast<std::int32_t>(std::max<std::size_t>(2048 / words, 1));
+  ProgressPoll poll(exec, 0.0, 1.0);
+  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences) || !poll.poll())
   {
     out = CUDB();
     return false;
