@@ -806,17 +806,52 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
   return planar ? name.substr(1) : name; // 2D: lines along B, rows along C
 }
 
-/// The CUDB of a 2D object with rows along the image's first in-plane axis (the sorting the
-/// pixels are stored in), and the components of its boxes, straight from the pixel rows: the
-/// same boxes, counts and components as through its EVM, without the EVM. False when empty.
+/// The execution of a part [from, to) of the work of `exec`: its progress within that range.
+vbr::Execution partOf(const vbr::Execution& exec, double from, double to)
+{
+  vbr::Execution part = exec;
+  if (exec.progress)
+    part.progress = [whole = exec.progress, from, to](double f)
+    { return whole(from + f * (to - from)); };
+  return part;
+}
+
+/// The CUDB of a 2D object in the candidate sorting with the fewest boxes (the first of
+/// equals, as buildBestCUDB), and the components of its boxes, straight from the pixel rows
+/// (of the transposed pixels for lines along the first in-plane axis): the same boxes, counts
+/// and components as through its EVM, without the EVM. False when empty or aborted.
 bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
+  const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
-  o.extremeVertices =
-    vbr::buildCUDBComponents2D(selected.select(exec), connectivity, o.cudb, o.components);
+  const vbr::BitVolume pixels = selected.select(partOf(exec, 0.0, 0.1));
+  bool found = false;
+  const double step = 0.9 / static_cast<double>(sortings.size());
+  for (std::size_t k = 0; k < sortings.size(); ++k)
+  {
+    const double from = 0.1 + step * static_cast<double>(k);
+    vbr::CUDB cudb;
+    vbr::Components labelled;
+    std::size_t vertices = 0;
+    if (!vbr::buildCUDBComponents2D(pixels,
+          sortings[k],
+          connectivity,
+          partOf(exec, from, from + step),
+          cudb,
+          labelled,
+          &vertices))
+      return false;
+    if (!found || cudb.boxes.size() < o.cudb.boxes.size())
+    {
+      o.cudb = std::move(cudb);
+      o.components = std::move(labelled);
+      o.extremeVertices = vertices;
+    }
+    found = true;
+  }
   return !o.cudb.boxes.empty();
 }
 
@@ -831,13 +866,13 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
 {
   o.label = selected.label;
   o.offset = selected.offset;
-  if (planar && sortings.size() == 1 && sortings[0] == vbr::AxisOrder{ 2, 1, 0 })
-    return boxesOfPixelRows(selected, connectivity, exec, o);
+  if (planar)
+    return boxesOfPixelRows(selected, sortings, connectivity, exec, o);
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "select voxels and extract the EVM");
     const vbr::BitVolume voxels = selected.select(exec);
-    evm = planar ? vbr::extractEVM2D(voxels, exec) : vbr::extractEVM(voxels, exec);
+    evm = vbr::extractEVM(voxels, exec);
   }
   if (evm.empty())
     return false;

@@ -1252,22 +1252,57 @@ void checkSingleSlice(const BitVolume& pixels)
     throw std::invalid_argument("a 2D CUDB needs a single slice (nz == 1)");
 }
 
-} // namespace
-
-std::size_t buildCUDBComponents2D(const BitVolume& pixels,
-  Connectivity connectivity,
-  CUDB& out,
-  Components& components)
+/// Transposes a 64 x 64 block of bits in place: bit j of word i goes to bit i of word j
+/// (the recursive exchange of off-diagonal blocks, 32 x 32 down to 1 x 1).
+void transposeBlock(Word block[64])
 {
-  checkSingleSlice(pixels);
-  out = CUDB();
-  out.dimension = 2;
-  out.order = AxisOrder{ 2, 1, 0 };
+  Word mask = 0x00000000FFFFFFFFull;
+  for (int width = 32; width != 0; width >>= 1, mask ^= mask << width)
+    for (int i = 0; i < 64; i = (i + width + 1) & ~width)
+    {
+      const Word t = ((block[i] >> width) ^ block[i + width]) & mask;
+      block[i] ^= t << width;
+      block[i + width] ^= t;
+    }
+}
+
+/// The image with its two axes exchanged (pixel (x, y) becomes (y, x)), a block of 64 x 64
+/// bits at a time: rows along y, so that the sweep of the sorting with lines along x reads
+/// the runs of its columns from words, as it reads those of rows.
+BitVolume transposed(const BitVolume& pixels)
+{
+  const std::int32_t nx = pixels.size(0), ny = pixels.size(1);
+  BitVolume out(ny, nx, 1);
+  const std::size_t inWords = pixels.wordsPerRow(), outWords = out.wordsPerRow();
+  Word block[64];
+  for (std::size_t by = 0; by < outWords; ++by)  // 64 rows of the input
+    for (std::size_t bx = 0; bx < inWords; ++bx) // 64 columns of the input
+    {
+      for (std::int32_t i = 0; i < 64; ++i)
+      {
+        const auto y = static_cast<std::int32_t>(by * 64) + i;
+        block[i] = y < ny ? pixels.row(y, 0)[bx] : 0;
+      }
+      transposeBlock(block);
+      for (std::int32_t j = 0; j < 64; ++j)
+      {
+        const auto x = static_cast<std::int32_t>(bx * 64) + j;
+        if (x < nx)
+          out.row(x, 0)[by] = block[j];
+      }
+    }
+  return out;
+}
+
+/// The runs of set pixels of all rows, the extreme vertices of the EVM (the changes between
+/// consecutive rows) and their count: a pass over the bits (a few words per row) that bounds
+/// the boxes, so that their lists are reserved once.
+std::size_t countRuns(const BitVolume& pixels, std::size_t& vertices)
+{
   const std::int32_t ny = pixels.size(1);
   const std::size_t words = pixels.wordsPerRow();
-  // A first pass over the bits (a few words per row) counts the runs, which bound the boxes,
-  // so that their lists are reserved once, and the extreme vertices between rows.
-  std::size_t runs = 0, vertices = 0;
+  std::size_t runs = 0;
+  vertices = 0;
   for (std::int32_t y = 0; y <= ny; ++y)
   {
     const Word* row = y < ny ? pixels.row(y, 0) : nullptr;
@@ -1281,19 +1316,92 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   if (runs >= std::numeric_limits<std::uint32_t>::max())
     throw std::length_error(
       "a 2D CUDB of " + std::to_string(runs) + " runs of pixels: more than 2^32 - 1 boxes");
+  return runs;
+}
+
+/// The sweep of buildCUDBComponents2D over rows along x (stored sorting, or of the transposed
+/// image), boxes in the sweep's own (x, y); false when aborted. It asks whether to stop every
+/// 2048 words of pixels or so (a few ms of a maze, a few dozen rows) and reports the rows done.
+bool sweepPixelRows(const BitVolume& pixels,
+  Connectivity connectivity,
+  std::int32_t stride,
+  ProgressPoll& poll,
+  CUDB& out,
+  UnionFind& equivalences)
+{
+  const std::int32_t ny = pixels.size(1);
+  BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
+  PixelRowSweep sweep(pixels);
+  // Polled between blocks of rows, so that the loop over a block's rows has no test of its own.
+  for (std::int32_t block = 0; block < ny; block += stride)
+  {
+    poll.at(double(block) / ny);
+    if (!poll.poll())
+      return false;
+    for (std::int32_t y = block; y < std::min(ny, block + stride); ++y)
+    {
+      visit.Row = y;
+      const std::size_t count = sweep.nextRow(y, visit).size();
+      if (!sweep.sameAsPrevious())
+        out.oudbBoxCount += count; // a line of vertices at y: the OUDB cuts every interval there
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+bool buildCUDBComponents2D(const BitVolume& pixels,
+  const AxisOrder& order,
+  Connectivity connectivity,
+  const Execution& exec,
+  CUDB& out,
+  Components& components,
+  std::size_t* vertices)
+{
+  checkSingleSlice(pixels);
+  const bool alongY = order == AxisOrder{ 2, 0, 1 };
+  if (!alongY && order != AxisOrder{ 2, 1, 0 })
+    throw std::invalid_argument("a 2D CUDB from pixel rows sorts ZYX or ZXY");
+  out = CUDB();
+  out.dimension = 2;
+  out.order = order;
+  components = Components();
+  const BitVolume columns = alongY ? transposed(pixels) : BitVolume();
+  const BitVolume& rows = alongY ? columns : pixels;
+  std::size_t extremeVertices = 0;
+  const std::size_t runs = countRuns(rows, extremeVertices);
+  if (vertices)
+    *vertices = extremeVertices;
   UnionFind equivalences;
   equivalences.reserve(runs);
   out.boxes.reserve(runs);
-  BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
-  PixelRowSweep sweep(pixels);
-  for (std::int32_t y = 0; y < ny; ++y)
+  const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
+  const auto stride = static_cast<std::int32_t>(std::max<std::size_t>(2048 / words, 1));
+  ProgressPoll poll(exec, 0.0, 1.0);
+  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences) || !poll.poll())
   {
-    visit.Row = y;
-    const std::size_t count = sweep.nextRow(y, visit).size();
-    if (!sweep.sameAsPrevious())
-      out.oudbBoxCount += count; // a line of vertices at y: the OUDB cuts every interval there
+    out = CUDB();
+    return false;
   }
+  if (alongY) // the sweep's (x, y) are the image's (y, x)
+    for (Box& box : out.boxes)
+    {
+      std::swap(box.lo[0], box.lo[1]);
+      std::swap(box.hi[0], box.hi[1]);
+    }
   components.count = relabel(equivalences, components.boxLabel);
+  return true;
+}
+
+std::size_t buildCUDBComponents2D(const BitVolume& pixels,
+  Connectivity connectivity,
+  CUDB& out,
+  Components& components)
+{
+  std::size_t vertices = 0;
+  buildCUDBComponents2D(
+    pixels, AxisOrder{ 2, 1, 0 }, connectivity, Execution(), out, components, &vertices);
   return vertices;
 }
 

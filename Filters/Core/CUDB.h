@@ -115,13 +115,24 @@ bool buildCUDBComponents(const EVM& evm,
   Components& components,
   int pieces = 0);
 
-/// A one-slice pixel set (nz = 1) -> its 2D CUDB in the ZYX sorting (lines along y, rows along
-/// x) and the components of its boxes, in one pass over the pixel rows without building the
-/// EVM: each row's runs of set pixels are read from its bits, a run equal to a run of the row
-/// before continues that run's rectangle (the 2D compaction) and any other starts a box,
+/// A one-slice pixel set (nz = 1) -> its 2D CUDB in the sorting `order`, ZYX {2, 1, 0} (lines
+/// along y, rows along x) or ZXY {2, 0, 1} (lines along x, read from a transposed copy of the
+/// bits), and the components of its boxes, in one pass over the pixel rows without building
+/// the EVM: each row's runs of set pixels are read from its bits, a run equal to a run of the
+/// row before continues that run's rectangle (the 2D compaction) and any other starts a box,
 /// united at once with the runs of the row before that it meets. Same boxes (in the same
-/// order), oudbBoxCount and components as buildCUDBComponents(extractEVM2D(pixels), ...);
-/// returns the number of vertices that EVM would have.
+/// order), oudbBoxCount and components as buildCUDBComponents(extractEVM2D(pixels) sorted as
+/// `order`, ...); `vertices` (if given) receives the number of vertices that EVM would have.
+/// Polls `exec` every few thousand rows (fewer on wide images); returns false when aborted,
+/// with `out` empty.
+bool buildCUDBComponents2D(const BitVolume& pixels,
+  const AxisOrder& order,
+  Connectivity connectivity,
+  const Execution& exec,
+  CUDB& out,
+  Components& components,
+  std::size_t* vertices = nullptr);
+/// The same in the ZYX sorting, never aborted; returns the number of vertices of the EVM.
 std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   Connectivity connectivity,
   CUDB& out,

@@ -365,11 +365,23 @@ vbr::BitVolume imageWithRepeatedRows(vbr::Coord nx, vbr::Coord ny, double densit
   return v;
 }
 
+/// The image with x and y exchanged, pixel by pixel (the reference for the 64 x 64 block
+/// transposition of the direct path's other sorting).
+vbr::BitVolume transposedPixels(const vbr::BitVolume& v)
+{
+  vbr::BitVolume t(v.size(1), v.size(0), 1);
+  for (vbr::Coord y = 0; y < v.size(1); ++y)
+    for (vbr::Coord x = 0; x < v.size(0); ++x)
+      t.set(y, x, 0, v.get(x, y, 0));
+  return t;
+}
+
 TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
 {
-  // The direct 2D path against the EVM's: the same boxes in the same order, OUDB count, EVM
-  // size and labels; its boxes against the pixels, its components against a flood fill.
-  // Widths around the 64-bit words' boundaries, and a column one pixel wide.
+  // The direct 2D path against the EVM's, in both sortings (ZYX: rows along x; ZXY: lines
+  // along x, read from the transposed bits): the same boxes in the same order, OUDB count,
+  // EVM size and labels; its boxes against the pixels, its components against a flood fill.
+  // Sizes around the 64-bit words' boundaries in both axes, and a column one pixel wide.
   const vbr::Point3 sizes[] = { { 1, 1, 1 },
     { 7, 5, 1 },
     { 63, 20, 1 },
@@ -377,38 +389,105 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
     { 65, 17, 1 },
     { 128, 40, 1 },
     { 130, 9, 1 },
+    { 20, 129, 1 },
     { 3, 90, 1 },
     { 1, 40, 1 } }; // one bit of one word per row
   unsigned seed = 900;
   for (const auto& d : sizes)
     for (double density : { 0.0, 0.1, 0.5, 0.9, 1.0 })
-      for (bool repeated : { false, true })
+      for (int repeated : { 0, 1, 2 }) // repeated rows, repeated columns
       {
-        const vbr::BitVolume v = repeated ? imageWithRepeatedRows(d[0], d[1], density, seed++)
-                                          : bf::randomVolume(d, density, seed++);
+        const vbr::BitVolume v = repeated == 0 ? bf::randomVolume(d, density, seed++)
+          : repeated == 1                      ? imageWithRepeatedRows(d[0], d[1], density, seed++)
+                          : transposedPixels(imageWithRepeatedRows(d[1], d[0], density, seed++));
         const vbr::EVM evm = vbr::extractEVM2D(v);
-        const vbr::CUDB expected = vbr::buildCUDB(evm);
-        for (bool vertex : { false, true })
+        for (const vbr::AxisOrder order : { vbr::AxisOrder{ 2, 1, 0 }, vbr::AxisOrder{ 2, 0, 1 } })
         {
-          SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " density " +
-            std::to_string(density) + (repeated ? " repeated rows" : "") +
-            (vertex ? " vertex" : " face"));
-          const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
-          vbr::CUDB cudb;
-          vbr::Components components;
-          EXPECT_EQ(vbr::buildCUDBComponents2D(v, c, cudb, components), evm.size());
-          EXPECT_EQ(cudb.dimension, 2);
-          EXPECT_EQ(cudb.order, (vbr::AxisOrder{ 2, 1, 0 }));
-          EXPECT_EQ(cudb.boxes, expected.boxes);
-          EXPECT_EQ(cudb.oudbBoxCount, expected.oudbBoxCount);
-          EXPECT_EQ(components.boxLabel, vbr::labelComponents(expected, c).boxLabel);
-          int count = 0;
-          const std::vector<int> flood = bf::floodFillLabels(v, vertex, count);
-          EXPECT_EQ(components.count, static_cast<std::uint32_t>(count));
-          expectExactCover(v, cudb.boxes);
-          expectSamePartition(paintedLabels(v, cudb, components), flood);
+          const vbr::CUDB expected = vbr::buildCUDB(evm.sortedAs(order));
+          for (bool vertex : { false, true })
+          {
+            SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " density " +
+              std::to_string(density) + " repeated " + std::to_string(repeated) + " order " +
+              vbr::axisOrderName(order) + (vertex ? " vertex" : " face"));
+            const vbr::Connectivity c =
+              vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+            vbr::CUDB cudb;
+            vbr::Components components;
+            std::size_t vertices = 0;
+            ASSERT_TRUE(vbr::buildCUDBComponents2D(
+              v, order, c, vbr::Execution(), cudb, components, &vertices));
+            EXPECT_EQ(vertices, evm.size());
+            EXPECT_EQ(cudb.dimension, 2);
+            EXPECT_EQ(cudb.order, order);
+            EXPECT_EQ(cudb.boxes, expected.boxes);
+            EXPECT_EQ(cudb.oudbBoxCount, expected.oudbBoxCount);
+            EXPECT_EQ(components.boxLabel, vbr::labelComponents(expected, c).boxLabel);
+            int count = 0;
+            const std::vector<int> flood = bf::floodFillLabels(v, vertex, count);
+            EXPECT_EQ(components.count, static_cast<std::uint32_t>(count));
+            expectExactCover(v, cudb.boxes);
+            expectSamePartition(paintedLabels(v, cudb, components), flood);
+            if (order == vbr::AxisOrder{ 2, 1, 0 })
+            {
+              vbr::CUDB plain;
+              vbr::Components plainComponents;
+              EXPECT_EQ(vbr::buildCUDBComponents2D(v, c, plain, plainComponents), evm.size());
+              EXPECT_EQ(plain.boxes, cudb.boxes);
+            }
+          }
         }
       }
+}
+
+TEST(CUDB, PixelRowsAbortInsideTheImage)
+{
+  // A stop asked for while the rows are swept: the sweep stops within a poll's stride of rows
+  // and returns an empty CUDB, and it reported progress (increasing, within [0, 1]) before.
+  // The image is wide (its rows are many words): over 20 polls in either sorting.
+  vbr::BitVolume v(8192, 1000, 1);
+  std::uint64_t state = 31;
+  auto next = [&state]
+  {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return state;
+  };
+  for (vbr::Coord y = 0; y < v.size(1); ++y) // a pixel in 16 set, filled a word at a time
+    for (std::size_t w = 0; w < v.wordsPerRow(); ++w)
+      v.row(y, 0)[w] = next() & next() & next() & next();
+  for (const vbr::AxisOrder order : { vbr::AxisOrder{ 2, 1, 0 }, vbr::AxisOrder{ 2, 0, 1 } })
+  {
+    int polls = 0;
+    std::vector<double> reported;
+    vbr::Execution exec;
+    exec.aborted = [&polls] { return ++polls > 20; };
+    exec.progress = [&reported](double f)
+    {
+      reported.push_back(f);
+      return true;
+    };
+    vbr::CUDB cudb;
+    vbr::Components components;
+    EXPECT_FALSE(
+      vbr::buildCUDBComponents2D(v, order, vbr::Connectivity::Face, exec, cudb, components));
+    EXPECT_EQ(polls, 21) << "stops at the first poll that is told to";
+    EXPECT_TRUE(cudb.boxes.empty());
+    EXPECT_EQ(components.count, 0u);
+    ASSERT_FALSE(reported.empty());
+    EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+    EXPECT_GE(reported.front(), 0.0);
+    EXPECT_LT(reported.back(), 1.0);
+    EXPECT_GT(reported.back(), 0.0) << "progress within the sweep, not only at its start";
+
+    // Not told to stop: it polls the same way all through and finishes.
+    int quiet = 0;
+    exec.aborted = [&quiet] { return ++quiet < 0; };
+    ASSERT_TRUE(
+      vbr::buildCUDBComponents2D(v, order, vbr::Connectivity::Face, exec, cudb, components));
+    EXPECT_GT(quiet, 21) << "polled all along the sweep";
+    EXPECT_FALSE(cudb.boxes.empty());
+  }
 }
 
 TEST(CUDB, PixelRowsNeedASingleSlice)

@@ -26,11 +26,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <initializer_list>
 #include <iostream>
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace
@@ -656,6 +658,59 @@ void checkErrorsAndDegenerateInputs()
   }
 }
 
+/// Records the progress events and aborts at the first one past `at`.
+class AbortPastProgress : public vtkCommand
+{
+public:
+  static AbortPastProgress* New() { return new AbortPastProgress; }
+  void Execute(vtkObject* caller, unsigned long, void* data) override
+  {
+    const double p = *static_cast<double*>(data);
+    this->Seen.push_back(p);
+    auto* algorithm = static_cast<vtkAlgorithm*>(caller);
+    if (this->AbortedAt < 0 && p > this->At)
+    {
+      algorithm->SetAbortExecute(1);
+      this->AbortedAt = p;
+      this->EventsBefore = this->Seen.size();
+    }
+  }
+  double At = 0;
+  double AbortedAt = -1;
+  std::size_t EventsBefore = 0;
+  std::vector<double> Seen;
+};
+
+/// An abort inside one large 2D image (the direct path from the pixel rows, in either sorting
+/// and both with Auto): asked for while the rows are swept, it stops the sweep there (no
+/// progress event of the filter after it) and the filter writes no labels.
+void checkAbortInsideA2DImage()
+{
+  const Volume v = randomVolume({ 4096, 2048, 1 }, 0.5, 1, 404);
+  vtkNew<vtkImageData> image;
+  image->DeepCopy(makeImage(v, Layout()));
+  for (int sorting :
+    { vtkCUDBConnectivity::ZYX, vtkCUDBConnectivity::XYZ, vtkCUDBConnectivity::AUTO })
+  {
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(image);
+    f->SetSortingOrder(sorting);
+    vtkNew<AbortPastProgress> abort;
+    abort->At = 0.3; // past the selection: inside the sweep (PASS 1 spans 0.05 to 0.7)
+    f->AddObserver(vtkCommand::ProgressEvent, abort);
+    f->Update();
+    const std::string name = std::string("2D abort, sorting ") + f->GetSortingOrderAsString();
+    CHECK(abort->AbortedAt > 0.3 && abort->AbortedAt < 0.7,
+      name + ": progress is reported inside the sweep of one image");
+    // The executive reports 1.0 when RequestData returns; the filter reports nothing more.
+    CHECK(std::all_of(abort->Seen.begin() + static_cast<std::ptrdiff_t>(abort->EventsBefore),
+            abort->Seen.end(),
+            [](double p) { return p == 1.0; }),
+      name + ": nothing runs after the abort");
+    CHECK(regionIds(f, Layout()).empty(), name + ": an aborted run writes no labels");
+  }
+}
+
 } // namespace
 
 int TestCUDBConnectivity(int, char*[])
@@ -666,6 +721,7 @@ int TestCUDBConnectivity(int, char*[])
   checkRegionFilters();
   checkManySeeds();
   checkErrorsAndDegenerateInputs();
+  checkAbortInsideA2DImage();
   vtkNew<vtkCUDBConnectivity> f;
   std::ostringstream print;
   f->Print(print);
