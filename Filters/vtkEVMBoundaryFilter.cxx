@@ -711,6 +711,86 @@ void appendPlanarObject(vtkAlgorithm* self,
     builder);
 }
 
+/// The faces of every object (in Surfels mode its cells instead), in parts, object by object.
+/// False when aborted.
+bool facesOfObjects(vtkAlgorithm* self,
+  const std::vector<vbr::vtk::Selected>& objects,
+  const ObjectSettings& settings,
+  Statistics& stats,
+  OutputBuilder& builder,
+  std::vector<std::vector<vbr::BRep>>& parts)
+{
+  const std::size_t n = objects.size();
+  parts.assign(n, {});
+  for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
+  {
+    const double from = 0.1 + 0.6 * o / n, to = 0.1 + 0.6 * (o + 1) / n;
+    if (!boundaryOfObject(
+          objects[o], settings, vbr::vtk::makeExecution(self, from, to), stats, builder, parts[o]))
+      return false;
+  }
+  return true;
+}
+
+/// The corners of all objects' faces in one set, numbered as the output's points: the
+/// objects of a label map share their corners. With `tJunctions` the set also orders them
+/// along lines, for the T-junction pass.
+vbr::CornerSet numberCorners(const std::vector<vbr::vtk::Selected>& objects,
+  const std::vector<std::vector<vbr::BRep>>& parts,
+  const std::array<std::int32_t, 3>& dims,
+  bool tJunctions)
+{
+  vtkLogScopeF(TRACE, "numbered corners");
+  const vbr::KeyPacker packer =
+    vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
+  std::vector<vbr::PlacedBRep> placed;
+  for (std::size_t o = 0; o < objects.size(); ++o)
+    for (const vbr::BRep& part : parts[o])
+      placed.push_back({ &part, objects[o].offset });
+  return vbr::CornerSet(placed, packer, tJunctions);
+}
+
+/// Where the cells of the objects are written: the corners' numbers, the ids of the faces
+/// written so far and the bytes of the parts released since the heap was last trimmed.
+struct CellWriter
+{
+  const vbr::CornerSet& corners;
+  bool tJunctions;
+  vtkIdType faceBase = 0;
+  std::size_t releasedBytes = 0;
+};
+
+/// The cells of one object, part after part: each part gets its T-junction vertices, is
+/// written, then released. False when aborted.
+bool appendObjectCells(const vbr::vtk::Selected& object,
+  std::vector<vbr::BRep>& parts,
+  const ObjectSettings& settings,
+  const vbr::Execution& objectExec,
+  CellWriter& writer,
+  OutputBuilder& builder)
+{
+  std::size_t faces = 0;
+  for (const vbr::BRep& part : parts)
+    faces += part.faces.size();
+  CellProgress progress{ vbr::ProgressPoll(objectExec, 0.0, 1.0, 1024),
+    std::max<std::size_t>(faces, 1) };
+  for (vbr::BRep& part : parts)
+  {
+    const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
+    std::vector<std::int64_t> numbers = writer.corners.numbersOf(part, object.offset);
+    if (writer.tJunctions)
+    {
+      vtkLogScopeF(TRACE, "T-junction vertices");
+      vbr::insertTJunctionVertices(part, numbers, writer.corners, object.offset, exec);
+    }
+    if (!appendBoundaryCells(
+          object, part, numbers, settings, exec, writer.faceBase, progress, builder))
+      return false;                          // aborted
+    releasePart(part, writer.releasedBytes); // as soon as written
+  }
+  return true;
+}
+
 /// The cells of every object (paper 000): first the faces of each (in Surfels mode its cells
 /// instead), then, with the corners of all of them in one set, the T-junction vertices of
 /// each part of each object's faces (the objects of a label map meet: two labels' loops on a
@@ -729,55 +809,23 @@ void appendObjects(vtkAlgorithm* self,
     appendPlanarObject(self, objects[0], settings, stats, builder);
     return;
   }
-  std::vector<std::vector<vbr::BRep>> parts(n);
-  for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
-  {
-    const double from = 0.1 + 0.6 * o / n, to = 0.1 + 0.6 * (o + 1) / n;
-    if (!boundaryOfObject(
-          objects[o], settings, vbr::vtk::makeExecution(self, from, to), stats, builder, parts[o]))
-      return; // aborted
-  }
+  std::vector<std::vector<vbr::BRep>> parts;
+  if (!facesOfObjects(self, objects, settings, stats, builder, parts))
+    return; // aborted
   vtkLogScopeF(TRACE, "T-junction vertices and output cells");
-  const vbr::KeyPacker packer =
-    vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
-  std::vector<vbr::PlacedBRep> placed;
-  for (std::size_t o = 0; o < n; ++o)
-    for (const vbr::BRep& part : parts[o])
-      placed.push_back({ &part, objects[o].offset });
-  vtkLogStartScope(TRACE, "numbered corners");
   // One object of a 2D image has no T-junction vertex: at a grid point strictly inside an
   // edge, the two pixels on either side of the edge are alike, so no loop turns there. Two
   // labels can meet there.
   const bool tJunctions = !settings.planar || n > 1;
-  const vbr::CornerSet corners(placed, packer, tJunctions);
+  const vbr::CornerSet corners = numberCorners(objects, parts, dims, tJunctions);
   builder.addCornerPoints(corners.points());
-  vtkLogEndScope("numbered corners");
-  vtkIdType faceBase = 0;
-  std::size_t releasedBytes = 0;
+  CellWriter writer{ corners, tJunctions };
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
     const double from = 0.7 + 0.3 * o / n, to = 0.7 + 0.3 * (o + 1) / n;
-    const vbr::Execution objectExec = vbr::vtk::makeExecution(self, from, to);
-    std::size_t faces = 0;
-    for (const vbr::BRep& part : parts[o])
-      faces += part.faces.size();
-    CellProgress progress{ vbr::ProgressPoll(objectExec, 0.0, 1.0, 1024),
-      std::max<std::size_t>(faces, 1) };
-    for (vbr::BRep& part : parts[o])
-    {
-      const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
-      std::vector<std::int64_t> numbers = corners.numbersOf(part, objects[o].offset);
-      if (tJunctions)
-      {
-        vtkLogStartScope(TRACE, "T-junction vertices");
-        vbr::insertTJunctionVertices(part, numbers, corners, objects[o].offset, exec);
-        vtkLogEndScope("T-junction vertices");
-      }
-      if (!appendBoundaryCells(
-            objects[o], part, numbers, settings, exec, faceBase, progress, builder))
-        return;                         // aborted
-      releasePart(part, releasedBytes); // as soon as written
-    }
+    if (!appendObjectCells(
+          objects[o], parts[o], settings, vbr::vtk::makeExecution(self, from, to), writer, builder))
+      return; // aborted
     self->UpdateProgress(to);
   }
 }

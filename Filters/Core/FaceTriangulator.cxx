@@ -197,17 +197,24 @@ int fanApex(const std::vector<Point2L>& corners)
 /// Triangles grouped into fans: from each triangle not yet taken, the longest fan of
 /// untaken triangles round one of its corners (neighbours across the edges at that corner).
 /// Neighbours come from one sort of the edges, and a fan's rim grows at both ends in two
-/// vectors: linear work in the triangles, whatever the size of the face and of its fans.
+/// vectors: linear work in the triangles, whatever the size of the face and of its fans. Its
+/// arrays live in a FanScratch reused from face to face (no allocation per face).
 class FanGrouper
 {
 public:
-  explicit FanGrouper(const std::vector<std::array<int, 3>>& triangles)
+  FanGrouper(const std::vector<std::array<int, 3>>& triangles, FanScratch& scratch)
     : Triangles(triangles)
-    , Across(triangles.size(), { -1, -1, -1 })
-    , Taken(triangles.size(), 0)
-    , Stamp(triangles.size(), -1)
+    , Across(scratch.across)
+    , Taken(scratch.taken)
+    , Stamp(scratch.stamp)
+    , Members(scratch.members)
+    , Front(scratch.front)
+    , Back(scratch.back)
   {
-    this->findNeighbours();
+    this->Across.assign(triangles.size(), { -1, -1, -1 });
+    this->Taken.assign(triangles.size(), 0);
+    this->Stamp.assign(triangles.size(), -1);
+    this->findNeighbours(scratch.edges);
   }
 
   void run(FaceCells& out)
@@ -238,10 +245,9 @@ public:
 
 private:
   /// Across[t][k]: the triangle on the other side of edge (t[k], t[k+1]), or -1.
-  void findNeighbours()
+  void findNeighbours(std::vector<std::pair<std::uint64_t, int>>& edges)
   {
-    std::vector<std::pair<std::uint64_t, int>> edges; // (undirected edge, 3 * t + k)
-    edges.reserve(3 * this->Triangles.size());
+    edges.clear(); // (undirected edge, 3 * t + k)
     for (std::size_t t = 0; t < this->Triangles.size(); ++t)
       for (int k = 0; k < 3; ++k)
         edges.emplace_back(
@@ -321,9 +327,9 @@ private:
   }
 
   const std::vector<std::array<int, 3>>& Triangles;
-  std::vector<std::array<int, 3>> Across;
-  std::vector<int> Taken, Stamp;
-  std::vector<int> Members, Front, Back;
+  std::vector<std::array<int, 3>>& Across;
+  std::vector<int>&Taken, &Stamp;
+  std::vector<int>&Members, &Front, &Back;
   int Round = 0;
 };
 
@@ -435,6 +441,22 @@ void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
   cells.endFace();
 }
 
+/// Appends the fans of the triangles of face `f` (triangulateFace), its triangles made in
+/// `cells` itself and moved to its scratch space.
+void appendFanGroups(const BRep& brep, int f, FaceCells& cells)
+{
+  const std::size_t corners = cells.corners.size(), cellCount = cells.cellEnds.size();
+  appendTrianglesOf(brep, f, cells);
+  std::vector<std::array<int, 3>>& triangles = cells.fans.triangles;
+  triangles.resize((cells.corners.size() - corners) / 3);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      triangles[t][k] = cells.corners[corners + 3 * t + k];
+  cells.corners.resize(corners);
+  cells.cellEnds.resize(cellCount);
+  FanGrouper(triangles, cells.fans).run(cells);
+}
+
 } // namespace
 
 void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
@@ -455,7 +477,7 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
       return;
     }
   }
-  FanGrouper(triangulateFace(brep, f)).run(cells);
+  appendFanGroups(brep, f, cells);
   cells.endFace();
 }
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace vbr
@@ -26,10 +27,19 @@ std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f);
 /// the polygons.
 std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f);
 
+/// Scratch space of the faces whose polygons are fans of their triangles (fanPolygons), kept
+/// from face to face so that such a face allocates nothing once the run has met a larger one.
+struct FanScratch
+{
+  std::vector<std::array<int, 3>> triangles, across;
+  std::vector<int> taken, stamp, members, front, back;
+  std::vector<std::pair<std::uint64_t, int>> edges;
+};
+
 /// The cells of a run of faces in flat arrays (no allocation per face or per cell): cell k has
 /// the corners `corners[cellEnds[k - 1] .. cellEnds[k])` (cellEnds[-1] = 0), indices as in
 /// triangulateFace; the cells of the run's i-th face end at cell `faceEnds[i]`. `ring` and
-/// `loop2D` are scratch space reused from face to face.
+/// `loop2D` and `fans` are scratch space reused from face to face.
 struct FaceCells
 {
   std::vector<int> corners;
@@ -37,6 +47,7 @@ struct FaceCells
   std::vector<std::uint32_t> faceEnds;
   std::vector<int> ring;
   std::vector<Point2L> loop2D;
+  FanScratch fans;
 
   std::size_t cellBegin(std::size_t face) const { return face == 0 ? 0 : this->faceEnds[face - 1]; }
   std::size_t cornerBegin(std::size_t cell) const

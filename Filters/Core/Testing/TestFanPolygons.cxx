@@ -1,7 +1,9 @@
 // fanPolygons (FaceTriangulator.h) against brute force on the orthogonal faces, holes
 // included, of the B-Reps of random volumes: every polygon drawn as the fan from its first
 // corner (as VTK draws it) must tile the face. Checked with signed areas, orientations and
-// generic sample points per pixel, counted against the face's own rasterization.
+// generic sample points per pixel, counted against the face's own rasterization; the same for
+// the faces' polygons made one after the other in one run of faces (the filter's way, with
+// scratch space reused from face to face).
 #include "BRep.h"
 #include "BruteForce.h"
 #include "EVM.h"
@@ -71,7 +73,10 @@ void checkPixelCoverage(const vbr::BRepFace& face,
 /// (seen from outside) whose doubled areas add up to twice the face's pixels, every pixel
 /// centre (moved to a generic point) in exactly one triangle when the face holds the pixel
 /// and in none otherwise, every loop corner a polygon corner.
-void checkFace(const vbr::BRep& brep, int f, FaceStats& stats)
+void checkFace(const vbr::BRep& brep,
+  int f,
+  const std::vector<std::vector<int>>& polygons,
+  FaceStats& stats)
 {
   const vbr::BRepFace& face = brep.faces[f];
   SCOPED_TRACE("face " + std::to_string(f));
@@ -86,7 +91,6 @@ void checkFace(const vbr::BRep& brep, int f, FaceStats& stats)
       loopCorners.insert(corner.back());
     }
   const bf::PixelSet pixels = bf::rasterize(brep, f);
-  const std::vector<std::vector<int>> polygons = vbr::fanPolygons(brep, f);
   ASSERT_FALSE(polygons.empty());
   ++stats.faces;
   stats.withHoles += face.loopCount > 1;
@@ -120,6 +124,16 @@ void checkFace(const vbr::BRep& brep, int f, FaceStats& stats)
   checkPixelCoverage(face, pixels, corner, fan);
 }
 
+/// The polygons of the i-th face of a run of faces (FaceCells).
+std::vector<std::vector<int>> polygonsOfRun(const vbr::FaceCells& run, std::size_t i)
+{
+  std::vector<std::vector<int>> polygons;
+  for (std::size_t c = run.cellBegin(i); c < run.faceEnds[i]; ++c)
+    polygons.emplace_back(
+      run.corners.begin() + run.cornerBegin(c), run.corners.begin() + run.cellEnds[c]);
+  return polygons;
+}
+
 void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, FaceStats& stats)
 {
   vbr::BRep brep;
@@ -130,7 +144,21 @@ void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, Fac
   if (tJunctions)
     vbr::insertTJunctionVertices(brep);
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
-    checkFace(brep, static_cast<int>(f), stats);
+    checkFace(brep, static_cast<int>(f), vbr::fanPolygons(brep, static_cast<int>(f)), stats);
+  // The filter's way: all faces in one run whose scratch space passes from face to face, the
+  // faces in reverse order (the larger plates' faces come last in the sweep, so smaller faces
+  // then reuse a larger face's scratch). Each face's cells must tile it all the same.
+  vbr::FaceCells run;
+  const std::size_t n = brep.faces.size();
+  for (std::size_t i = 0; i < n; ++i)
+    vbr::appendFanPolygons(brep, static_cast<int>(n - 1 - i), run);
+  ASSERT_EQ(run.faceEnds.size(), n);
+  FaceStats runStats;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    SCOPED_TRACE("in one run");
+    checkFace(brep, static_cast<int>(n - 1 - i), polygonsOfRun(run, i), runStats);
+  }
 }
 
 } // namespace
