@@ -508,12 +508,15 @@ private:
 /// when the larger face's plane takes them as it is and both faces stay disks (or the
 /// smaller one empties).
 /// The growth leaves the rim of a large face to whichever face reached it first; this gives
-/// it back, and faces emptied this way disappear. Returns the number of surfels moved.
+/// it back, and faces emptied this way disappear. Returns the number of surfels moved, and
+/// marks the faces that gave surfels away in `shrunk`.
 std::size_t moveToLargerFaces(const SurfelGraph& graph,
   Polyhedron& poly,
   std::size_t maximumSize,
-  ProgressPoll& poll)
+  ProgressPoll& poll,
+  std::vector<char>& shrunk)
 {
+  shrunk.assign(poly.faces.size(), 0);
   std::vector<std::size_t> size(poly.faces.size());
   for (std::size_t f = 0; f < size.size(); ++f)
     size[f] = poly.faces[f].surfels.size();
@@ -557,6 +560,7 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         (size[g] > 1 && !meetsAlongOneArc(graph, faceOf, t, g, true)))
         continue;
       faceOf[t] = f;
+      shrunk[g] = 1;
       --size[g];
       ++size[f];
       ++moved;
@@ -577,8 +581,13 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
 }
 
 /// Renumbers the faces left (those with surfels), in order, moving them down in place (a
-/// second array of faces was the growth's peak on boundaries of small faces).
-void dropEmptyFaces(Polyhedron& poly)
+/// second array of faces was the growth's peak on boundaries of small faces). The refusals the
+/// growth stamped follow the numbers (the merging compares them with the faces it extends);
+/// those of a face dropped, or of a face that gave surfels away (`shrunk`: its points no
+/// longer hold those that refused), are forgotten.
+void dropEmptyFaces(Polyhedron& poly,
+  std::vector<std::uint32_t>& refused,
+  const std::vector<char>& shrunk = {})
 {
   std::vector<std::uint32_t> number(poly.faces.size(), None);
   std::uint32_t kept = 0;
@@ -593,6 +602,9 @@ void dropEmptyFaces(Polyhedron& poly)
   poly.faces.resize(kept);
   for (std::uint32_t& f : poly.faceOfSurfel)
     f = number[f];
+  for (std::uint32_t& f : refused)
+    if (f != None)
+      f = !shrunk.empty() && shrunk[f] ? None : number[f];
 }
 
 /// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
@@ -842,7 +854,8 @@ bool mergeSmallFaces(FaceGrower& grower,
       return false;
   }
   grower.releaseCache();
-  dropEmptyFaces(out);
+  std::vector<std::uint32_t> noRefusals; // none are read after the merging
+  dropEmptyFaces(out, noRefusals);
   return true;
 }
 
@@ -861,10 +874,11 @@ bool polyhedrize(const SurfelGraph& graph,
   if (options.moveToLargerFaces)
   {
     ProgressPoll moves(exec, 0.6, 0.7);
-    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, moves);
+    std::vector<char> shrunk;
+    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, moves, shrunk);
     if (moves.stopped())
       return false;
-    dropEmptyFaces(out);
+    dropEmptyFaces(out, stamps.refused, shrunk);
   }
   ProgressPoll merging(exec, 0.7, 0.95);
   if (options.mergeFaces)
