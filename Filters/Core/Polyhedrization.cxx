@@ -10,11 +10,11 @@
 // of large faces back to them, mergeSmallFaces hands small faces to their neighbours
 // (absorb, extend, with recognizers kept for large faces: recognizerOf), dropEmptyFaces
 // renumbers. Threads (growFaces): a face never leaves its boundary component, so the components
-// are dealt to groups grown concurrently (groupComponents, growGroups), and their faces put back
-// in the order of their seeds, the sequential order, with the stamps renumbered: the same faces,
-// numbers and refusals as on one thread. The output: each face's boundary loop (LoopTracer) with
-// the face beyond each loop edge, and the number of faces around each vertex (countFacesAtVertices:
-// the standard vertices have three or more).
+// are dealt to groups grown concurrently (groupComponents, growGroupsInWaves), and their faces put
+// back in the order of their seeds (gatherInSeedOrder), the sequential order, with the stamps
+// renumbered: the same faces, numbers and refusals as on one thread. The output: each face's
+// boundary loop (LoopTracer) with the face beyond each loop edge, and the number of faces around
+// each vertex (countFacesAtVertices: the standard vertices have three or more).
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
@@ -716,22 +716,20 @@ ComponentGroups groupComponents(const SurfelGraph& graph, std::size_t count)
   return groups;
 }
 
-/// The growth of each group of components on its own, concurrently, its faces numbered from
-/// 0 in the stamps; then all the faces in the order of their seeds (the sequential growth's
-/// order: faces start from the free surfels in increasing order, and a face never leaves its
-/// component), with the stamps renumbered to match. Same faces, same numbers, same refusals as
-/// the sequential growth. The groups run in waves of `exec.concurrency`, between which the
-/// calling thread reports the progress (the workers only poll the abort).
-bool growGroups(const SurfelGraph& graph,
+/// The growth of each group of components on its own, concurrently, into `grown` (its faces
+/// numbered from 0 in the stamps). The groups run in waves of `exec.concurrency`, between which
+/// the calling thread reports the progress (the workers only poll the abort). False when
+/// aborted.
+bool growGroupsInWaves(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,
   const Execution& exec,
   const ComponentGroups& groups,
   SurfelStamps& stamps,
-  std::vector<StandardFace>& faces)
+  std::vector<std::vector<StandardFace>>& grown)
 {
   const std::size_t count = groups.seeds.size();
   const std::size_t wave = static_cast<std::size_t>(std::max(1, exec.concurrency));
-  std::vector<std::vector<StandardFace>> grown(count);
+  grown.assign(count, {});
   std::vector<char> finished(count, 0);
   Execution quiet = exec;
   quiet.progress = nullptr;
@@ -758,6 +756,18 @@ bool growGroups(const SurfelGraph& graph,
       exec.stopRequested() || !exec.report(0.6 * double(done) / double(graph.size())))
       return false;
   }
+  return true;
+}
+
+/// The faces of all groups into `faces` in the order of their seeds (the sequential growth's
+/// order: faces start from the free surfels in increasing order, and a face never leaves its
+/// component); returns, per group, the number each of its faces gets.
+std::vector<std::vector<std::uint32_t>> gatherInSeedOrder(const SurfelGraph& graph,
+  const ComponentGroups& groups,
+  std::vector<std::vector<StandardFace>>& grown,
+  std::vector<StandardFace>& faces)
+{
+  const std::size_t count = groups.seeds.size();
   std::vector<std::vector<std::uint32_t>> number(count);
   std::size_t total = 0;
   for (std::size_t g = 0; g < count; ++g)
@@ -778,6 +788,24 @@ bool growGroups(const SurfelGraph& graph,
       ++next[g];
     }
   }
+  return number;
+}
+
+/// The growth of the groups (growGroupsInWaves), then all the faces in the order of their
+/// seeds (gatherInSeedOrder), with the stamps renumbered to match. Same faces, same numbers,
+/// same refusals as the sequential growth.
+bool growGroups(const SurfelGraph& graph,
+  const PolyhedrizationOptions& options,
+  const Execution& exec,
+  const ComponentGroups& groups,
+  SurfelStamps& stamps,
+  std::vector<StandardFace>& faces)
+{
+  std::vector<std::vector<StandardFace>> grown;
+  if (!growGroupsInWaves(graph, options, exec, groups, stamps, grown))
+    return false;
+  const std::vector<std::vector<std::uint32_t>> number =
+    gatherInSeedOrder(graph, groups, grown, faces);
   exec.forWork(static_cast<std::int64_t>(graph.size()))
     .forRange(static_cast<std::int64_t>(graph.size()),
       [&](std::int64_t b, std::int64_t e)
