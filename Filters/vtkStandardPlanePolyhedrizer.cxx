@@ -312,43 +312,57 @@ private:
     for (std::uint32_t v : polygon)
       corners.push_back(project(o.graph.vertexPointel[v]));
     const std::vector<vbr::Triangle> triangles = vbr::triangulateSimplePolygon(corners);
-    // The loop's edges as point pairs, sorted for a binary search (a std::set of them, a node
-    // allocated per edge, took as long as the triangulation).
-    std::vector<std::pair<vtkIdType, vtkIdType>>& loopEdges = this->FaceLoopEdges;
-    loopEdges.clear();
     if (markLoops)
-    {
-      for (std::size_t i = 0; i < face.loop.size(); ++i)
-        loopEdges.emplace_back(
-          this->point(o, face.loop[i]), this->point(o, face.loop[(i + 1) % face.loop.size()]));
-      std::sort(loopEdges.begin(), loopEdges.end());
-    }
+      this->sortLoopEdges(o, face);
     std::vector<vtkIdType>& ids = this->TriangleIds;
     ids.resize(3);
-    auto add = [&]()
-    {
-      this->addCell(ids, o, f); // reverses ids on a mirrored grid, as the loop is written
-      if (!markLoops)
-        return;
-      unsigned char bits = 0;
-      for (int k = 0; k < 3; ++k)
-        if (std::binary_search(loopEdges.begin(),
-              loopEdges.end(),
-              this->Reverse ? std::make_pair(ids[(k + 1) % 3], ids[k])
-                            : std::make_pair(ids[k], ids[(k + 1) % 3])))
-          bits |= static_cast<unsigned char>(1 << k);
-      this->LoopEdges->InsertNextValue(bits);
-    };
     for (const vbr::Triangle& t : triangles)
     {
       for (int k = 0; k < 3; ++k)
         ids[k] = this->point(o, polygon[t[k]]);
-      add();
+      this->addFaceTriangle(o, f, markLoops);
     }
-    if (!triangles.empty())
+    if (triangles.empty())
+      this->addSurfelTriangles(o, f, markLoops);
+  }
+
+  /// The face's loop edges as point pairs into FaceLoopEdges, sorted for a binary search (a
+  /// std::set of them, a node allocated per edge, took as long as the triangulation).
+  void sortLoopEdges(const ObjectFaces& o, const vbr::StandardFace& face)
+  {
+    std::vector<std::pair<vtkIdType, vtkIdType>>& loopEdges = this->FaceLoopEdges;
+    loopEdges.clear();
+    for (std::size_t i = 0; i < face.loop.size(); ++i)
+      loopEdges.emplace_back(
+        this->point(o, face.loop[i]), this->point(o, face.loop[(i + 1) % face.loop.size()]));
+    std::sort(loopEdges.begin(), loopEdges.end());
+  }
+
+  /// The triangle of points TriangleIds for face f; with `markLoops`, its LoopEdges bits, from
+  /// the loop edges that sortLoopEdges listed.
+  void addFaceTriangle(const ObjectFaces& o, std::uint32_t f, bool markLoops)
+  {
+    std::vector<vtkIdType>& ids = this->TriangleIds;
+    this->addCell(ids, o, f); // reverses ids on a mirrored grid, as the loop is written
+    if (!markLoops)
       return;
-    // The surfels, refilled from the face's outline (the graph's lists are freed by now):
-    // corners on the loop take the loop's points, the others points of their own.
+    const auto& loopEdges = this->FaceLoopEdges;
+    unsigned char bits = 0;
+    for (int k = 0; k < 3; ++k)
+      if (std::binary_search(loopEdges.begin(),
+            loopEdges.end(),
+            this->Reverse ? std::make_pair(ids[(k + 1) % 3], ids[k])
+                          : std::make_pair(ids[k], ids[(k + 1) % 3])))
+        bits |= static_cast<unsigned char>(1 << k);
+    this->LoopEdges->InsertNextValue(bits);
+  }
+
+  /// Face f drawn by its surfels, two triangles each, refilled from the face's outline (the
+  /// graph's lists are freed by now): corners on the loop take the loop's points, the others
+  /// points of their own.
+  void addSurfelTriangles(const ObjectFaces& o, std::uint32_t f, bool markLoops)
+  {
+    const vbr::StandardFace& face = o.poly.faces[f];
     vbr::FaceOutline outline;
     outline.plane = face.plane;
     std::map<std::uint64_t, vtkIdType> pointOf; // pointel -> point, for this face only
@@ -360,6 +374,7 @@ private:
     std::vector<vbr::Surfel> surfels;
     if (!vbr::surfelsOfOutline(outline, o.graph.dims, surfels).empty())
       throw std::logic_error("a face's loop neither triangulates nor bounds its surfels");
+    std::vector<vtkIdType>& ids = this->TriangleIds;
     for (const vbr::Surfel& s : surfels)
       for (int half = 0; half < 2; ++half)
       {
@@ -376,7 +391,7 @@ private:
           }
           ids[k] = it->second;
         }
-        add();
+        this->addFaceTriangle(o, f, markLoops);
       }
   }
 
@@ -495,8 +510,8 @@ private:
   vtkIdType FaceBase = 0;
   PointIds Ids;                                               ///< of the object's vertices
   std::vector<vbr::Point2L> Corners;                          ///< in addTriangulatedFace
-  std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< in addTriangulatedFace
-  std::vector<vtkIdType> TriangleIds;                         ///< in addTriangulatedFace
+  std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< from sortLoopEdges
+  std::vector<vtkIdType> TriangleIds;                         ///< the triangle being added
   vtkNew<vtkPoints> Points;
   vtkNew<vtkCellArray> Polys;
   vtkNew<vtkCellArray> Lines;

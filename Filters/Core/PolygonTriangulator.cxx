@@ -123,6 +123,11 @@ private:
     if (!this->Convex[b])
       return false;
     const int a = this->Prev[b], c = this->Next[b];
+    // The triangle's bounding box: most blockers fall outside it, decided without products.
+    const Point2L lo{ std::min({ this->P[a][0], this->P[b][0], this->P[c][0] }),
+      std::min({ this->P[a][1], this->P[b][1], this->P[c][1] }) };
+    const Point2L hi{ std::max({ this->P[a][0], this->P[b][0], this->P[c][0] }),
+      std::max({ this->P[a][1], this->P[b][1], this->P[c][1] }) };
     std::size_t stale = 0;
     for (int k : this->Blockers)
     {
@@ -134,6 +139,8 @@ private:
       // A corner at the same place as one of the ear's (where the boundary touches itself)
       // leaves that place on the other side: it does not block the ear.
       const Point2L& q = this->P[k];
+      if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1])
+        continue;
       if (q != this->P[a] && q != this->P[b] && q != this->P[c] &&
         inClosedTriangle(this->P[a], this->P[b], this->P[c], q))
         return false;

@@ -10,11 +10,11 @@
 // of large faces back to them, mergeSmallFaces hands small faces to their neighbours
 // (absorb, extend, with recognizers kept for large faces: recognizerOf), dropEmptyFaces
 // renumbers. Threads (growFaces): a face never leaves its boundary component, so the components
-// are dealt to groups grown concurrently (groupComponents, growGroups), and their faces put back
-// in the order of their seeds, the sequential order, with the stamps renumbered: the same faces,
-// numbers and refusals as on one thread. The output: each face's boundary loop (LoopTracer) with
-// the face beyond each loop edge, and the number of faces around each vertex (countFacesAtVertices:
-// the standard vertices have three or more).
+// are dealt to groups grown concurrently (groupComponents, growGroupsInWaves), and their faces put
+// back in the order of their seeds (gatherInSeedOrder), the sequential order, with the stamps
+// renumbered: the same faces, numbers and refusals as on one thread. The output: each face's
+// boundary loop (LoopTracer) with the face beyond each loop edge, and the number of faces around
+// each vertex (countFacesAtVertices: the standard vertices have three or more).
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
@@ -508,12 +508,15 @@ private:
 /// when the larger face's plane takes them as it is and both faces stay disks (or the
 /// smaller one empties).
 /// The growth leaves the rim of a large face to whichever face reached it first; this gives
-/// it back, and faces emptied this way disappear. Returns the number of surfels moved.
+/// it back, and faces emptied this way disappear. Returns the number of surfels moved, and
+/// marks the faces that gave surfels away in `shrunk`.
 std::size_t moveToLargerFaces(const SurfelGraph& graph,
   Polyhedron& poly,
   std::size_t maximumSize,
-  ProgressPoll& poll)
+  ProgressPoll& poll,
+  std::vector<char>& shrunk)
 {
+  shrunk.assign(poly.faces.size(), 0);
   std::vector<std::size_t> size(poly.faces.size());
   for (std::size_t f = 0; f < size.size(); ++f)
     size[f] = poly.faces[f].surfels.size();
@@ -557,6 +560,7 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         (size[g] > 1 && !meetsAlongOneArc(graph, faceOf, t, g, true)))
         continue;
       faceOf[t] = f;
+      shrunk[g] = 1;
       --size[g];
       ++size[f];
       ++moved;
@@ -577,8 +581,13 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
 }
 
 /// Renumbers the faces left (those with surfels), in order, moving them down in place (a
-/// second array of faces was the growth's peak on boundaries of small faces).
-void dropEmptyFaces(Polyhedron& poly)
+/// second array of faces was the growth's peak on boundaries of small faces). The refusals the
+/// growth stamped follow the numbers (the merging compares them with the faces it extends);
+/// those of a face dropped, or of a face that gave surfels away (`shrunk`: its points no
+/// longer hold those that refused), are forgotten.
+void dropEmptyFaces(Polyhedron& poly,
+  std::vector<std::uint32_t>& refused,
+  const std::vector<char>& shrunk = {})
 {
   std::vector<std::uint32_t> number(poly.faces.size(), None);
   std::uint32_t kept = 0;
@@ -593,6 +602,9 @@ void dropEmptyFaces(Polyhedron& poly)
   poly.faces.resize(kept);
   for (std::uint32_t& f : poly.faceOfSurfel)
     f = number[f];
+  for (std::uint32_t& f : refused)
+    if (f != None)
+      f = !shrunk.empty() && shrunk[f] ? None : number[f];
 }
 
 /// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
@@ -704,22 +716,20 @@ ComponentGroups groupComponents(const SurfelGraph& graph, std::size_t count)
   return groups;
 }
 
-/// The growth of each group of components on its own, concurrently, its faces numbered from
-/// 0 in the stamps; then all the faces in the order of their seeds (the sequential growth's
-/// order: faces start from the free surfels in increasing order, and a face never leaves its
-/// component), with the stamps renumbered to match. Same faces, same numbers, same refusals as
-/// the sequential growth. The groups run in waves of `exec.concurrency`, between which the
-/// calling thread reports the progress (the workers only poll the abort).
-bool growGroups(const SurfelGraph& graph,
+/// The growth of each group of components on its own, concurrently, into `grown` (its faces
+/// numbered from 0 in the stamps). The groups run in waves of `exec.concurrency`, between which
+/// the calling thread reports the progress (the workers only poll the abort). False when
+/// aborted.
+bool growGroupsInWaves(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,
   const Execution& exec,
   const ComponentGroups& groups,
   SurfelStamps& stamps,
-  std::vector<StandardFace>& faces)
+  std::vector<std::vector<StandardFace>>& grown)
 {
   const std::size_t count = groups.seeds.size();
   const std::size_t wave = static_cast<std::size_t>(std::max(1, exec.concurrency));
-  std::vector<std::vector<StandardFace>> grown(count);
+  grown.assign(count, {});
   std::vector<char> finished(count, 0);
   Execution quiet = exec;
   quiet.progress = nullptr;
@@ -746,6 +756,18 @@ bool growGroups(const SurfelGraph& graph,
       exec.stopRequested() || !exec.report(0.6 * double(done) / double(graph.size())))
       return false;
   }
+  return true;
+}
+
+/// The faces of all groups into `faces` in the order of their seeds (the sequential growth's
+/// order: faces start from the free surfels in increasing order, and a face never leaves its
+/// component); returns, per group, the number each of its faces gets.
+std::vector<std::vector<std::uint32_t>> gatherInSeedOrder(const SurfelGraph& graph,
+  const ComponentGroups& groups,
+  std::vector<std::vector<StandardFace>>& grown,
+  std::vector<StandardFace>& faces)
+{
+  const std::size_t count = groups.seeds.size();
   std::vector<std::vector<std::uint32_t>> number(count);
   std::size_t total = 0;
   for (std::size_t g = 0; g < count; ++g)
@@ -766,6 +788,24 @@ bool growGroups(const SurfelGraph& graph,
       ++next[g];
     }
   }
+  return number;
+}
+
+/// The growth of the groups (growGroupsInWaves), then all the faces in the order of their
+/// seeds (gatherInSeedOrder), with the stamps renumbered to match. Same faces, same numbers,
+/// same refusals as the sequential growth.
+bool growGroups(const SurfelGraph& graph,
+  const PolyhedrizationOptions& options,
+  const Execution& exec,
+  const ComponentGroups& groups,
+  SurfelStamps& stamps,
+  std::vector<StandardFace>& faces)
+{
+  std::vector<std::vector<StandardFace>> grown;
+  if (!growGroupsInWaves(graph, options, exec, groups, stamps, grown))
+    return false;
+  const std::vector<std::vector<std::uint32_t>> number =
+    gatherInSeedOrder(graph, groups, grown, faces);
   exec.forWork(static_cast<std::int64_t>(graph.size()))
     .forRange(static_cast<std::int64_t>(graph.size()),
       [&](std::int64_t b, std::int64_t e)
@@ -842,7 +882,8 @@ bool mergeSmallFaces(FaceGrower& grower,
       return false;
   }
   grower.releaseCache();
-  dropEmptyFaces(out);
+  std::vector<std::uint32_t> noRefusals; // none are read after the merging
+  dropEmptyFaces(out, noRefusals);
   return true;
 }
 
@@ -861,10 +902,11 @@ bool polyhedrize(const SurfelGraph& graph,
   if (options.moveToLargerFaces)
   {
     ProgressPoll moves(exec, 0.6, 0.7);
-    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, moves);
+    std::vector<char> shrunk;
+    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, moves, shrunk);
     if (moves.stopped())
       return false;
-    dropEmptyFaces(out);
+    dropEmptyFaces(out, stamps.refused, shrunk);
   }
   ProgressPoll merging(exec, 0.7, 0.95);
   if (options.mergeFaces)

@@ -467,6 +467,7 @@ bool StandardPlaneRecognizer::saturated(const Octant& o, std::size_t e) const
 
 bool StandardPlaneRecognizer::solve(const Octant& o,
   const std::array<int, 3>& present,
+  std::int64_t omegaStart,
   std::int64_t omegaLimit,
   Vec& normal) const
 {
@@ -497,9 +498,9 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   // Level by level; within the first level that holds a solution, the smallest (nx, ny) in
   // lexicographic order, whatever the frame.
   std::int64_t budget = SearchBudget;
-  for (std::int64_t omega = 1; omega <= omegaLimit && budget > 0; ++omega, --budget)
+  for (std::int64_t omega = omegaStart; omega <= omegaLimit && budget > 0; ++omega, --budget)
   {
-    if (omega == ThinFrameLevel)
+    if (omega == std::max(omegaStart, ThinFrameLevel))
     {
       frame = thinFrame(rays, sigma, this->FrameEdges, this->FrameBreaks);
       range = columnRange(rays, sigma, frame);
@@ -662,6 +663,10 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
   Vec& best)
 {
   std::int64_t bestOmega = MaximumOmega + 1;
+  // Points and orientations only accumulate, so the normals that fit them only get fewer: no
+  // normal of an omega below the current plane's fits now (its omega was the smallest).
+  const std::int64_t omegaStart =
+    this->Points.size() > this->Fresh.size() ? this->Current.omega() : 1;
   for (int i = 0; i < 8; ++i)
   {
     const Octant& original = this->Octants[i];
@@ -674,7 +679,7 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
       continue;
     survives[i] = true;
     Vec n;
-    if (this->solve(o, present, bestOmega - 1, n))
+    if (this->solve(o, present, omegaStart, bestOmega - 1, n))
     {
       best = n;
       bestOmega = std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);

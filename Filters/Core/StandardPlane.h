@@ -24,7 +24,9 @@
 // level W - 1 has (W - 1) w <= 1 + 2 / sqrt(3) (Hurkens' flatness bound in the plane), so
 // reaching the smallest omega W costs O(W * E) column bounds for E edges, plus the
 // candidates, instead of O(W^2 * E * x-extent) along a fixed axis (thin polygons, long across
-// n_x, were the superlinear cliff). Floating point only chooses the frame (any frame finds
+// n_x, were the superlinear cliff). Points only accumulate, so the smallest omega never
+// decreases: a search after the first starts at the current plane's omega, not at 1 (a face
+// grown to omega W paid O(W^2 * E) over its searches, now O(W * E) plus one level a search). Floating point only chooses the frame (any frame finds
 // the same normal); no floating point decides anything.
 #ifndef vbr_StandardPlane_h
 #define vbr_StandardPlane_h
@@ -109,6 +111,7 @@ private:
   static bool hasInterior(const Octant& o);
   bool solve(const Octant& o,
     const std::array<int, 3>& present,
+    std::int64_t omegaStart,
     std::int64_t omegaLimit,
     Vec& normal) const;
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
