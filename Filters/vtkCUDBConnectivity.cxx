@@ -806,16 +806,6 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
   return planar ? name.substr(1) : name; // 2D: lines along B, rows along C
 }
 
-/// The execution of a part [from, to) of the work of `exec`: its progress within that range.
-vbr::Execution partOf(const vbr::Execution& exec, double from, double to)
-{
-  vbr::Execution part = exec;
-  if (exec.progress)
-    part.progress = [whole = exec.progress, from, to](double f)
-    { return whole(from + f * (to - from)); };
-  return part;
-}
-
 /// The CUDB of a 2D object in the candidate sorting with the fewest boxes (the first of
 /// equals, as buildBestCUDB), and the components of its boxes, straight from the pixel rows
 /// (of the transposed pixels for lines along the first in-plane axis): the same boxes, counts
@@ -827,7 +817,7 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
-  const vbr::BitVolume pixels = selected.select(partOf(exec, 0.0, 0.1));
+  const vbr::BitVolume pixels = selected.select(exec.within(0.0, 0.1));
   bool found = false;
   const double step = 0.9 / static_cast<double>(sortings.size());
   for (std::size_t k = 0; k < sortings.size(); ++k)
@@ -839,7 +829,7 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
     if (!vbr::buildCUDBComponents2D(pixels,
           sortings[k],
           connectivity,
-          partOf(exec, from, from + step),
+          exec.within(from, from + step),
           cudb,
           labelled,
           &vertices))

@@ -729,7 +729,7 @@ bool facesOfObjects(vtkAlgorithm* self,
           objects[o], settings, vbr::vtk::makeExecution(self, from, to), stats, builder, parts[o]))
       return false;
   }
-  return true;
+  return !self->GetAbortExecute();
 }
 
 /// The corners of all objects' faces in one set, numbered as the output's points: the

@@ -108,13 +108,12 @@ stage_asan() {
   local ok=0
   # One build serves both: the core (with its unit tests) and the VTK module are compiled once,
   # against ParaView's VTK. -O1: CGAL's exact arithmetic at -O0 under the sanitizers takes
-  # minutes per test. The library and its Python package are instrumented, with line tables
-  # only (-g1, enough for the reports' stacks); the test programs and their references (CGAL,
-  # Qhull) are compiled plain: instrumented with full debug information, they took most of
-  # the stage's 12-minute build.
+  # minutes per test. Line tables only (-g1, enough for the reports' stacks); the core tests'
+  # sources that build exact references on CGAL and Qhull are compiled plain: instrumented
+  # with full debug information, they took most of the stage's 12-minute build.
   run cmake -S . -B build-asan -DVTK_DIR="$PV_VTK_DIR" \
     -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 \
-    "-DVOXELBREP_TEST_COMPILE_OPTIONS=-fno-sanitize=all;-g0" -DBUILD_TESTING=ON \
+    "-DVOXELBREP_REFERENCE_COMPILE_OPTIONS=-fno-sanitize=all;-g0" -DBUILD_TESTING=ON \
     -DVOXELBREP_CORE_ONLY=OFF -DVOXELBREP_BUILD_CORE_TESTS=ON \
     -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF -DVOXELBREP_WRAP_PYTHON=ON \
     -DVOXELBREP_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=-O1 $SAN_FLAGS" || return 1

@@ -1333,12 +1333,13 @@ bool sweepPixelRows(const BitVolume& pixels,
   BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
   PixelRowSweep sweep(pixels);
   // Polled between blocks of rows, so that the loop over a block's rows has no test of its own.
-  for (std::int32_t block = 0; block < ny; block += stride)
+  for (std::int64_t block = 0; block < ny; block += stride)
   {
     poll.at(double(block) / ny);
     if (!poll.poll())
       return false;
-    for (std::int32_t y = block; y < std::min(ny, block + stride); ++y)
+    const auto end = static_cast<std::int32_t>(std::min<std::int64_t>(ny, block + stride));
+    for (auto y = static_cast<std::int32_t>(block); y < end; ++y)
     {
       visit.Row = y;
       const std::size_t count = sweep.nextRow(y, visit).size();

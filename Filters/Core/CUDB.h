@@ -123,8 +123,8 @@ bool buildCUDBComponents(const EVM& evm,
 /// united at once with the runs of the row before that it meets. Same boxes (in the same
 /// order), oudbBoxCount and components as buildCUDBComponents(extractEVM2D(pixels) sorted as
 /// `order`, ...); `vertices` (if given) receives the number of vertices that EVM would have.
-/// Polls `exec` every few thousand rows (fewer on wide images); returns false when aborted,
-/// with `out` empty.
+/// Polls `exec` every 2048 words of pixels or so (a few dozen rows of a wide image); returns
+/// false when aborted, with `out` empty.
 bool buildCUDBComponents2D(const BitVolume& pixels,
   const AxisOrder& order,
   Connectivity connectivity,

@@ -1061,7 +1061,7 @@ FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
   const double compaction = merging ? 0.5 : 1.0;
   const int levels = std::min(options.maximumLevel, 20);
   for (int level = 1; level <= levels; ++level)
-    if (!exec.report(compaction * (level - 1) / levels) ||
+    if (exec.stopRequested() || !exec.report(compaction * (level - 1) / levels) ||
       !compactLevel(cp, level, exec, out, faceLevel))
       break;
   keepTerminalNodes(out);

@@ -1,5 +1,7 @@
 #include "LatticeMesh.h"
 
+#include "Geometry.h"
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Fraction_traits.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -292,9 +294,9 @@ int orientation(const LatticePoint& a,
   const LatticePoint& d)
 {
   const LatticePoint u = minus(b, a), v = minus(c, a), w = minus(d, a);
-  const __int128 det = static_cast<__int128>(u[0]) * (v[1] * w[2] - v[2] * w[1]) -
-    static_cast<__int128>(u[1]) * (v[0] * w[2] - v[2] * w[0]) +
-    static_cast<__int128>(u[2]) * (v[0] * w[1] - v[1] * w[0]);
+  const Wide det = static_cast<Wide>(u[0]) * (v[1] * w[2] - v[2] * w[1]) -
+    static_cast<Wide>(u[1]) * (v[0] * w[2] - v[2] * w[0]) +
+    static_cast<Wide>(u[2]) * (v[0] * w[1] - v[1] * w[0]);
   return (det > 0) - (det < 0);
 }
 
@@ -317,11 +319,11 @@ bool crossesOffLattice(const LatticePoint& a,
   const LatticePoint n{
     u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
   };
-  __int128 num = 0, den = 0;
+  Wide num = 0, den = 0;
   for (int k = 0; k < 3; ++k)
   {
-    num += static_cast<__int128>(n[k]) * w[k];
-    den += static_cast<__int128>(n[k]) * e[k];
+    num += static_cast<Wide>(n[k]) * w[k];
+    den += static_cast<Wide>(n[k]) * e[k];
   }
   for (int k = 0; k < 3; ++k)
     if ((num * e[k]) % den != 0)

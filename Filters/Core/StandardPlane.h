@@ -26,8 +26,11 @@
 // candidates, instead of O(W^2 * E * x-extent) along a fixed axis (thin polygons, long across
 // n_x, were the superlinear cliff). Points only accumulate, so the smallest omega never
 // decreases: a search after the first starts at the current plane's omega, not at 1 (a face
-// grown to omega W paid O(W^2 * E) over its searches, now O(W * E) plus one level a search). Floating point only chooses the frame (any frame finds
-// the same normal); no floating point decides anything.
+// grown to omega W paid O(W^2 * E) over its searches, now O(W * E) plus one level a search).
+// The same planes as searching from 1, except where a search from 1 ran out of its level
+// budget (SearchBudget) before the solution's level: starting higher, it may now find it.
+// Floating point only chooses the frame (any frame finds the same normal); no floating point
+// decides anything.
 #ifndef vbr_StandardPlane_h
 #define vbr_StandardPlane_h
 

@@ -390,6 +390,9 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
     { 128, 40, 1 },
     { 130, 9, 1 },
     { 20, 129, 1 },
+    { 65, 64, 1 },
+    { 64, 65, 1 },
+    { 130, 129, 1 }, // blocks of 64 x 64 bits past the first in both axes, partial in both
     { 3, 90, 1 },
     { 1, 40, 1 } }; // one bit of one word per row
   unsigned seed = 900;

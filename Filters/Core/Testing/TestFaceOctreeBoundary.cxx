@@ -967,6 +967,15 @@ TEST(FaceOctree, MergingReportsProgressAndStopsWhenAsked)
   const auto partial = vbr::buildFaceOctree(v, model, options, stopped);
   EXPECT_TRUE(stop);
   EXPECT_GT(partial.nodes.size(), merged.nodes.size());
+
+  // Asked to stop before it starts, with no progress callback (as Labels mode runs each pair):
+  // no level is compacted, the voxel faces stay what they are at level 0.
+  vbr::Execution before;
+  before.aborted = [] { return true; };
+  vbr::FaceOctreeOptions flat = options;
+  flat.maximumLevel = 0;
+  EXPECT_EQ(vbr::buildFaceOctree(v, model, options, before).nodes.size(),
+    vbr::buildFaceOctree(v, model, flat, sequential).nodes.size());
 }
 
 TEST(FaceOctreeBoundary, ConvexPiecesCoverThePolygon)
