@@ -1665,25 +1665,9 @@ bool meetsOpenInterior(const CellList& solid, const std::array<LatticePoint, 3>&
 /// are tried last; this test costs the triangles in the prism's box.
 bool prismMissesSurface(const CellList& prism, const LatticeMesh& surface)
 {
-  LatticePoint lo = prism.vertices[0], hi = lo;
-  for (const auto& v : prism.vertices)
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min(lo[a], v[a]);
-      hi[a] = std::max(hi[a], v[a]);
-    }
-  for (const auto& tri : surface.triangles)
-  {
-    const std::array<LatticePoint, 3> t{
-      surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]]
-    };
-    bool inBox = true;
-    for (int a = 0; a < 3 && inBox; ++a)
-      inBox = std::max({ t[0][a], t[1][a], t[2][a] }) > lo[a] &&
-        std::min({ t[0][a], t[1][a], t[2][a] }) < hi[a];
-    if (inBox && meetsOpenInterior(prism, t))
+  for (const auto& t : trianglesInBoxOf(surface, prism))
+    if (meetsOpenInterior(prism, t))
       return false;
-  }
   return true;
 }
 

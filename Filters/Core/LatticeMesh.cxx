@@ -333,7 +333,8 @@ bool crossesOffLattice(const LatticePoint& a,
 
 } // namespace
 
-bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
+std::vector<std::array<LatticePoint, 3>> trianglesInBoxOf(const LatticeMesh& surface,
+  const CellList& convex)
 {
   LatticePoint lo = convex.vertices[0], hi = lo;
   for (const auto& v : convex.vertices)
@@ -342,21 +343,28 @@ bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
       lo[a] = std::min(lo[a], v[a]);
       hi[a] = std::max(hi[a], v[a]);
     }
+  std::vector<std::array<LatticePoint, 3>> inBox;
   for (const auto& tri : surface.triangles)
   {
     const std::array<LatticePoint, 3> t{
       surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]]
     };
-    bool inBox = true;
-    for (int a = 0; a < 3 && inBox; ++a)
-      inBox = std::max({ t[0][a], t[1][a], t[2][a] }) > lo[a] &&
+    bool meets = true;
+    for (int a = 0; a < 3 && meets; ++a)
+      meets = std::max({ t[0][a], t[1][a], t[2][a] }) > lo[a] &&
         std::min({ t[0][a], t[1][a], t[2][a] }) < hi[a];
-    if (!inBox)
-      continue;
+    if (meets)
+      inBox.push_back(t);
+  }
+  return inBox;
+}
+
+bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
+{
+  for (const auto& t : trianglesInBoxOf(surface, convex))
     for (const auto& e : convex.edges)
       if (crossesOffLattice(convex.vertices[e[0]], convex.vertices[e[1]], t))
         return true;
-  }
   return false;
 }
 

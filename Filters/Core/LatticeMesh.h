@@ -66,6 +66,11 @@ bool latticeUnion(const LatticeMesh& a,
   LatticeMesh& result,
   Operands operands = Operands::Check);
 
+/// The mesh's triangles that meet the open bounding box of a convex cell list (by their own
+/// boxes: a superset of those meeting the hull), for the tests local to a hull.
+std::vector<std::array<LatticePoint, 3>> trianglesInBoxOf(const LatticeMesh& surface,
+  const CellList& convex);
+
 /// Whether the exact union and the exact difference of the closed mesh and a solid convex
 /// hull (its faces merged: every edge a crease) are both bound to have a corner that is not a
 /// lattice point, so that latticeUnion and latticeDifference refuse them: an edge of the hull
