@@ -504,6 +504,41 @@ private:
   std::vector<std::uint32_t> Stamp; ///< the face Edge is for
 };
 
+/// Whether surfel t, now in face g (of more than one surfel when `leavesRest`), may move to
+/// face f of plane `plane`: the larger face's plane must take the surfel as it is (its
+/// coefficients stay), and both faces must stay disks (t meets f along one arc, and the rest
+/// of g along one arc).
+bool surfelCanMove(const SurfelGraph& graph,
+  const std::vector<std::uint32_t>& faceOf,
+  std::uint32_t t,
+  std::uint32_t f,
+  const StandardPlane& plane,
+  bool leavesRest)
+{
+  const auto& tf = graph.surfels[t];
+  bool fits = tf.sign() * plane.normal[tf.axis()] > 0;
+  for (int k = 0; k < 4 && fits; ++k)
+    fits = plane.contains(graph.cornerOf(t, k));
+  const std::uint32_t g = faceOf[t];
+  return fits && meetsAlongOneArc(graph, faceOf, t, f, false) &&
+    (!leavesRest || meetsAlongOneArc(graph, faceOf, t, g, true));
+}
+
+/// The faces' surfel lists after the moves (a surfel may have moved more than once), each
+/// allocated to its size: faces that grew would double their storage.
+void refillSurfelLists(const SurfelGraph& graph,
+  const std::vector<std::size_t>& size,
+  Polyhedron& poly)
+{
+  for (std::size_t f = 0; f < poly.faces.size(); ++f)
+  {
+    std::vector<std::uint32_t>().swap(poly.faces[f].surfels);
+    poly.faces[f].surfels.reserve(size[f]);
+  }
+  for (std::uint32_t s = 0; s < graph.size(); ++s)
+    poly.faces[poly.faceOfSurfel[s]].surfels.push_back(s);
+}
+
 /// Moves surfels from smaller faces to a larger neighbouring face, largest faces first,
 /// when the larger face's plane takes them as it is and both faces stay disks (or the
 /// smaller one empties).
@@ -551,13 +586,7 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
       const std::uint32_t g = faceOf[t];
       if (g == f || size[g] >= size[f] || (maximumSize && size[f] >= maximumSize))
         continue;
-      // The larger face's plane must take the surfel as it is: its coefficients stay.
-      const auto& tf = graph.surfels[t];
-      bool fits = tf.sign() * face.plane.normal[tf.axis()] > 0;
-      for (int k = 0; k < 4 && fits; ++k)
-        fits = face.plane.contains(graph.cornerOf(t, k));
-      if (!fits || !meetsAlongOneArc(graph, faceOf, t, f, false) ||
-        (size[g] > 1 && !meetsAlongOneArc(graph, faceOf, t, g, true)))
+      if (!surfelCanMove(graph, faceOf, t, f, face.plane, size[g] > 1))
         continue;
       faceOf[t] = f;
       shrunk[g] = 1;
@@ -568,15 +597,7 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         queue.push_back(graph.neighbourOf(t, k));
     }
   }
-  // The lists follow the moves (a surfel may have moved more than once), each allocated to its
-  // size: faces that grew would double their storage.
-  for (std::size_t f = 0; f < poly.faces.size(); ++f)
-  {
-    std::vector<std::uint32_t>().swap(poly.faces[f].surfels);
-    poly.faces[f].surfels.reserve(size[f]);
-  }
-  for (std::uint32_t s = 0; s < graph.size(); ++s)
-    poly.faces[faceOf[s]].surfels.push_back(s);
+  refillSurfelLists(graph, size, poly);
   return moved;
 }
 
