@@ -6,9 +6,9 @@
 //
 // Distance: the two-sided Hausdorff distance between the output surface and the surfels, the
 // same measure for both, by samples on both sides (twoSidedDistance below):
-//  - surface to surfels: every vertex and a barycentric lattice on every triangle (each
-//    polygon as its fan) with at most 1/8 voxel between neighbouring samples along an edge,
-//    each sample's distance to the nearest surfel (vbr::maximumDistanceToSurfels; beyond two
+//  - surface to surfels: every vertex and the corners of the pieces of every triangle (each
+//    polygon as its fan) halved at their longest edge until no edge exceeds 1/8 voxel, each
+//    sample's distance to the nearest surfel (vbr::maximumDistanceToSurfels; beyond two
 //    voxels counts as 2);
 //  - surfels to surface: the 3 x 3 lattice of every surfel (centre, corners, edge midpoints),
 //    each point's distance to the nearest point of the surface (vtkStaticCellLocator).
@@ -45,6 +45,7 @@
 #include "vtkWindowedSincPolyDataFilter.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -69,37 +70,55 @@ std::vector<vbr::Vec3> vertices(vtkPolyData* p)
   return out;
 }
 
-/// Samples of the surface in the core's frame: the vertices, and on each triangle of each
-/// polygon's fan a barycentric lattice with at most `spacing` between neighbours on an edge.
-std::vector<vbr::Vec3> surfaceSamples(vtkPolyData* p, double spacing)
+/// The largest distance from the surface to the surfels, sampled at the vertices and on each
+/// triangle of each polygon's fan at the corners of its pieces after halving the longest edge
+/// until no edge is longer than `spacing`. Halving rather than a barycentric lattice keeps the
+/// samples of a long thin triangle (decimation makes them) in proportion to its area and
+/// length, not to its longest edge squared; the samples go to the distance search in batches,
+/// so memory stays bounded whatever the triangles.
+double surfaceDistance(const vbr::BitVolume& bits, vtkPolyData* p, double spacing)
 {
-  std::vector<vbr::Vec3> out = vertices(p);
-  const std::vector<vbr::Vec3> v = out;
+  const std::vector<vbr::Vec3> v = vertices(p);
+  double worst = vbr::maximumDistanceToSurfels(bits, v);
+  std::vector<vbr::Vec3> batch;
+  auto flush = [&]
+  {
+    worst = std::max(worst, vbr::maximumDistanceToSurfels(bits, batch));
+    batch.clear();
+  };
+  auto length2 = [](const vbr::Vec3& a, const vbr::Vec3& b)
+  { return std::pow(a[0] - b[0], 2) + std::pow(a[1] - b[1], 2) + std::pow(a[2] - b[2], 2); };
+  std::vector<std::array<vbr::Vec3, 3>> pieces;
   vtkCellArray* polys = p->GetPolys();
   vtkIdType n = 0;
   const vtkIdType* ids = nullptr;
   for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
     for (vtkIdType i = 1; i + 1 < n; ++i)
     {
-      const vbr::Vec3 &a = v[ids[0]], &b = v[ids[i]], &c = v[ids[i + 1]];
-      double longest = 0;
-      for (const auto& e :
-        { std::make_pair(&a, &b), std::make_pair(&b, &c), std::make_pair(&c, &a) })
-        longest = std::max(longest,
-          std::sqrt(std::pow((*e.first)[0] - (*e.second)[0], 2) +
-            std::pow((*e.first)[1] - (*e.second)[1], 2) +
-            std::pow((*e.first)[2] - (*e.second)[2], 2)));
-      const int steps = std::max(1, int(std::ceil(longest / spacing)));
-      for (int s = 0; s <= steps; ++s)
-        for (int t = 0; s + t <= steps; ++t)
+      pieces.push_back({ v[ids[0]], v[ids[i]], v[ids[i + 1]] });
+      while (!pieces.empty())
+      {
+        const std::array<vbr::Vec3, 3> t = pieces.back();
+        pieces.pop_back();
+        int longest = 0; // the edge from corner `longest` to the next
+        for (int e = 1; e < 3; ++e)
+          if (length2(t[e], t[(e + 1) % 3]) > length2(t[longest], t[(longest + 1) % 3]))
+            longest = e;
+        const vbr::Vec3 &a = t[longest], &b = t[(longest + 1) % 3], &c = t[(longest + 2) % 3];
+        if (length2(a, b) <= spacing * spacing)
         {
-          const double u = double(s) / steps, w = double(t) / steps;
-          out.push_back({ a[0] + u * (b[0] - a[0]) + w * (c[0] - a[0]),
-            a[1] + u * (b[1] - a[1]) + w * (c[1] - a[1]),
-            a[2] + u * (b[2] - a[2]) + w * (c[2] - a[2]) });
+          batch.insert(batch.end(), { a, b, c });
+          continue;
         }
+        const vbr::Vec3 m{ 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
+        pieces.push_back({ a, m, c });
+        pieces.push_back({ m, b, c });
+      }
+      if (batch.size() >= (1u << 20))
+        flush();
     }
-  return out;
+  flush();
+  return worst;
 }
 
 /// The 3 x 3 lattice of every surfel (the face between an object voxel and a background one,
@@ -146,7 +165,7 @@ Distance twoSidedDistance(const vbr::BitVolume& bits,
 {
   Distance d;
   d.vertices = vbr::maximumDistanceToSurfels(bits, vertices(p));
-  d.toSurfels = vbr::maximumDistanceToSurfels(bits, surfaceSamples(p, 0.125));
+  d.toSurfels = surfaceDistance(bits, p, 0.125);
   vtkNew<vtkStaticCellLocator> locator;
   locator->SetDataSet(p);
   locator->BuildLocator();
