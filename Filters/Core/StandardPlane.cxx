@@ -38,6 +38,10 @@ constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
 /// Lattice candidates examined by one search before giving up (the face then stops growing
 /// in that direction: a refusal is always safe).
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
+/// Faces of fewer points measure them all: the midpoints would cost more than they save.
+constexpr std::size_t ExtremesFrom = 64;
+/// Calls of at most this many points insert their fresh points in order instead of sorting.
+constexpr std::size_t SmallCall = 16;
 
 Vec primitive(Vec v)
 {
@@ -282,6 +286,8 @@ void StandardPlaneRecognizer::reset()
   else
     this->Keys.clear();
   this->Points.clear();
+  this->Extremes.clear();
+  this->Midpoint.clear();
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
   for (int s = 0; s < 8; ++s)
@@ -310,17 +316,87 @@ void StandardPlaneRecognizer::reset()
   }
 }
 
+template<typename F>
+void StandardPlaneRecognizer::forEachExtreme(std::size_t count, F&& f) const
+{
+  for (std::uint32_t j : this->Extremes)
+  {
+    if (j >= count)
+      return;
+    f(j);
+  }
+  for (std::size_t j = this->Midpoint.size(); j < count; ++j)
+    f(j);
+}
+
+void StandardPlaneRecognizer::markMidpoints(std::size_t i)
+{
+  // Pairs along the axes and the face diagonals: a standard plane's points lie in layers
+  // n.p = const, and a point inside a tilted layer has its pair along a diagonal.
+  static constexpr std::array<std::array<int, 3>, 9> Steps{ { { 1, 0, 0 },
+    { 0, 1, 0 },
+    { 0, 0, 1 },
+    { 1, 1, 0 },
+    { 1, -1, 0 },
+    { 1, 0, 1 },
+    { 1, 0, -1 },
+    { 0, 1, 1 },
+    { 0, 1, -1 } } };
+  const Point3& q = this->Points[i];
+  auto indexOf = [&](int k, const std::array<int, 3>& s) {
+    return this->Keys.find(packBiased({ q[0] + k * s[0], q[1] + k * s[1], q[2] + k * s[2] }));
+  };
+  for (const auto& s : Steps)
+  {
+    const std::int64_t up = indexOf(1, s), down = indexOf(-1, s);
+    if (up >= 0 && down >= 0)
+      this->Midpoint[i] = 1;
+    // q is an end: its neighbour is the midpoint of q and the next point along s.
+    if (up >= 0 && !this->Midpoint[up] && indexOf(2, s) >= 0)
+      this->Midpoint[up] = 1;
+    if (down >= 0 && !this->Midpoint[down] && indexOf(-2, s) >= 0)
+      this->Midpoint[down] = 1;
+  }
+}
+
+void StandardPlaneRecognizer::refreshExtremes()
+{
+  const std::size_t from = this->Midpoint.size(), to = this->Points.size();
+  if (from == to || to < ExtremesFrom)
+    return;
+  this->Midpoint.resize(to, 0);
+  for (std::size_t i = from; i < to; ++i)
+    this->Extremes.push_back(static_cast<std::uint32_t>(i));
+  for (std::size_t i = from; i < to; ++i)
+    this->markMidpoints(i);
+  this->Extremes.erase(std::remove_if(this->Extremes.begin(),
+                         this->Extremes.end(),
+                         [&](std::uint32_t j) { return this->Midpoint[j] != 0; }),
+    this->Extremes.end());
+}
+
+// The range of a new vertex over the points before count, read on the extremes only: they
+// hold every vertex of the hull of all the points (committed and trial) that comes before
+// count, and applyPoints applies every later point to the vertex, so once all points are
+// applied every range is exact and the polygon is the same set as with every point measured
+// (only the pair chosen for a cut, among equal extremes, may differ).
 void StandardPlaneRecognizer::measure(Vertex& v, std::size_t count) const
 {
-  v.lo = v.hi = 0;
-  v.argLo = v.argHi = 0;
-  for (std::size_t j = 0; j < count; ++j)
+  bool first = true;
+  this->forEachExtreme(count,
+    [&](std::size_t j)
+    {
+      const std::int64_t x = dot(v.ray, this->Points[j]);
+      if (first || x < v.lo)
+        v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
+      if (first || x > v.hi)
+        v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
+      first = false;
+    });
+  if (first) // every scanned point before count is a midpoint of later ones: take the last
   {
-    const std::int64_t x = dot(v.ray, this->Points[j]);
-    if (j == 0 || x < v.lo)
-      v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
-    if (j == 0 || x > v.hi)
-      v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
+    v.lo = v.hi = dot(v.ray, this->Points[count - 1]);
+    v.argLo = v.argHi = static_cast<std::uint32_t>(count - 1);
   }
 }
 
@@ -426,14 +502,21 @@ bool StandardPlaneRecognizer::fits(const Vec& n, const std::array<int, 3>& prese
   for (int d = 0; d < 3; ++d)
     if (present[d] != 0 && present[d] * n[d] <= 0)
       return false;
-  std::int64_t lo = 0, hi = 0;
-  for (std::size_t j = 0; j < this->Points.size(); ++j)
-  {
-    const std::int64_t x = dot(n, this->Points[j]);
-    lo = j == 0 ? x : std::min(lo, x);
-    hi = j == 0 ? x : std::max(hi, x);
-  }
+  std::int64_t lo, hi;
+  this->rangeOf(n, lo, hi);
   return hi - lo < std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
+}
+
+void StandardPlaneRecognizer::rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const
+{
+  lo = hi = dot(n, this->Points.front());
+  this->forEachExtreme(this->Points.size(),
+    [&](std::size_t j)
+    {
+      const std::int64_t x = dot(n, this->Points[j]);
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    });
 }
 
 bool StandardPlaneRecognizer::hasInterior(const Octant& o)
@@ -455,13 +538,8 @@ bool StandardPlaneRecognizer::saturated(const Octant& o, std::size_t e) const
   if (u.hi - u.lo < dot(sigma, u.ray) || v.hi - v.lo < dot(sigma, v.ray))
     return false;
   const Vec m{ u.ray[0] + v.ray[0], u.ray[1] + v.ray[1], u.ray[2] + v.ray[2] };
-  std::int64_t lo = 0, hi = 0;
-  for (std::size_t j = 0; j < this->Points.size(); ++j)
-  {
-    const std::int64_t x = dot(m, this->Points[j]);
-    lo = j == 0 ? x : std::min(lo, x);
-    hi = j == 0 ? x : std::max(hi, x);
-  }
+  std::int64_t lo, hi;
+  this->rangeOf(m, lo, hi);
   return hi - lo >= dot(sigma, m);
 }
 
@@ -557,6 +635,7 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
     return true;
   // Slow path: clip the octants with the points already accepted (for good), then with the
   // new ones (on copies), and search each surviving octant for a normal.
+  this->refreshExtremes();
   for (int i = 0; i < 8; ++i)
     this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
   const std::size_t before = this->Points.size();
@@ -590,20 +669,41 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
 {
   if (this->Points.empty() && count > 0)
     this->Origin = points[0];
-  // New points relative to the origin, without repeats.
+  // New points relative to the origin, without repeats, sorted by key (their order does not
+  // matter, but it is the same whatever the order of the call's points).
   std::vector<Point3>& fresh = this->Fresh;
+  std::vector<std::uint64_t>& keys = this->FreshKeys;
   fresh.clear();
-  this->FreshKeys.clear();
+  keys.clear();
   for (std::size_t i = 0; i < count; ++i)
   {
     const Point3 q = sub(points[i], this->Origin);
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
         return false;
-    if (this->Keys.find(packBiased(q)) < 0)
+    const std::uint64_t key = packBiased(q);
+    if (this->Keys.find(key) >= 0)
+      continue;
+    if (count > SmallCall) // a whole face (merging): sorted once below
+    {
       fresh.push_back(q);
+      continue;
+    }
+    // A surfel's corners (the growth's calls): inserted in place, without a sort.
+    const auto at = std::lower_bound(keys.begin(), keys.end(), key);
+    if (at != keys.end() && *at == key)
+      continue;
+    fresh.insert(fresh.begin() + (at - keys.begin()), q);
+    keys.insert(at, key);
   }
-  // Repeats within the call: sorted, kept once (their order does not matter).
+  if (count > SmallCall)
+    this->sortFreshPoints();
+  return true;
+}
+
+void StandardPlaneRecognizer::sortFreshPoints()
+{
+  std::vector<Point3>& fresh = this->Fresh;
   std::sort(fresh.begin(),
     fresh.end(),
     [](const Point3& a, const Point3& b) { return packBiased(a) < packBiased(b); });
@@ -614,7 +714,6 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
     fresh.end());
   for (const Point3& q : fresh)
     this->FreshKeys.push_back(packBiased(q));
-  return true;
 }
 
 bool StandardPlaneRecognizer::takenByCurrentPlane(const std::array<int, 3>& present)
@@ -701,13 +800,7 @@ void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool
     }
   }
   this->Current.normal = best;
-  this->CurrentLo = this->CurrentHi = dot(best, this->Points.front());
-  for (const Point3& q : this->Points)
-  {
-    const std::int64_t x = dot(best, q);
-    this->CurrentLo = std::min(this->CurrentLo, x);
-    this->CurrentHi = std::max(this->CurrentHi, x);
-  }
+  this->rangeOf(best, this->CurrentLo, this->CurrentHi);
   this->Current.mu = this->CurrentLo + dot(best, this->Origin);
 }
 
