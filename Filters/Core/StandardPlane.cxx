@@ -265,6 +265,57 @@ Vec sigmaOf(const std::array<int, 3>& s)
   return { s[0], s[1], s[2] };
 }
 
+/// Whether a lattice normal n of a level must be measured: in the octant, before the best
+/// found so far in (nx, ny) order, and primitive.
+bool worthTesting(const Vec& n, const Vec& sigma, bool found, const Vec& best)
+{
+  if (sigma[0] * n[0] < 0 || sigma[1] * n[1] < 0 || sigma[2] * n[2] < 0)
+    return false;
+  if (found && (n[0] > best[0] || (n[0] == best[0] && n[1] >= best[1])))
+    return false;
+  // A multiple k n of a normal n fits exactly when n does, and n came first.
+  return std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) == 1;
+}
+
+/// Level omega of an octant's search, column by column (each bounded by the polygon's edges,
+/// rangeOfT): the normal of smallest (nx, ny) that fits, into `normal`; false when none.
+template<typename Fits>
+bool searchLevel(const std::vector<std::array<std::int64_t, 3>>& forms,
+  const std::vector<char>& strict,
+  const Vec& sigma,
+  const ColumnFrame& frame,
+  const ColumnRange& range,
+  std::int64_t omega,
+  std::int64_t& budget,
+  Vec& normal,
+  const Fits& fits)
+{
+  // Within the level, the smallest (nx, ny) in lexicographic order, whatever the frame.
+  bool found = false;
+  const Wide kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
+  const Wide kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
+  for (Wide k = kLo; k <= kHi && budget > 0; ++k, --budget)
+  {
+    std::int64_t tLo, tHi;
+    if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
+      rangeOfT(forms, strict, frame, omega, std::int64_t(k), tLo, tHi);
+    else
+      rangeOfT(forms, strict, frame, omega, k, tLo, tHi);
+    for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
+    {
+      const std::int64_t nx = std::int64_t(k * frame.a[0] + Wide(t) * frame.v[0]);
+      const std::int64_t ny = std::int64_t(k * frame.a[1] + Wide(t) * frame.v[1]);
+      const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
+      if (worthTesting(n, sigma, found, normal) && fits(n))
+      {
+        normal = n;
+        found = true;
+      }
+    }
+  }
+  return found;
+}
+
 } // namespace
 
 std::int64_t StandardPlane::omega() const
@@ -287,7 +338,7 @@ void StandardPlaneRecognizer::reset()
     this->Keys.clear();
   this->Points.clear();
   this->Extremes.clear();
-  this->Midpoint.clear();
+  this->Scanned = 0;
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
   for (int s = 0; s < 8; ++s)
@@ -325,13 +376,13 @@ void StandardPlaneRecognizer::forEachExtreme(std::size_t count, F&& f) const
       return;
     f(j);
   }
-  for (std::size_t j = this->Midpoint.size(); j < count; ++j)
+  for (std::size_t j = this->Scanned; j < count; ++j)
     f(j);
 }
 
-void StandardPlaneRecognizer::markMidpoints(std::size_t i)
+bool StandardPlaneRecognizer::isMidpoint(const Point3& q) const
 {
-  // Pairs along the axes and the face diagonals: a standard plane's points lie in layers
+  // Pairs along the axes, then the face diagonals: a standard plane's points lie in layers
   // n.p = const, and a point inside a tilted layer has its pair along a diagonal.
   static constexpr std::array<std::array<int, 3>, 9> Steps{ { { 1, 0, 0 },
     { 0, 1, 0 },
@@ -342,36 +393,27 @@ void StandardPlaneRecognizer::markMidpoints(std::size_t i)
     { 1, 0, -1 },
     { 0, 1, 1 },
     { 0, 1, -1 } } };
-  const Point3& q = this->Points[i];
-  auto indexOf = [&](int k, const std::array<int, 3>& s) {
-    return this->Keys.find(packBiased({ q[0] + k * s[0], q[1] + k * s[1], q[2] + k * s[2] }));
-  };
   for (const auto& s : Steps)
-  {
-    const std::int64_t up = indexOf(1, s), down = indexOf(-1, s);
-    if (up >= 0 && down >= 0)
-      this->Midpoint[i] = 1;
-    // q is an end: its neighbour is the midpoint of q and the next point along s.
-    if (up >= 0 && !this->Midpoint[up] && indexOf(2, s) >= 0)
-      this->Midpoint[up] = 1;
-    if (down >= 0 && !this->Midpoint[down] && indexOf(-2, s) >= 0)
-      this->Midpoint[down] = 1;
-  }
+    if (this->Keys.find(packBiased({ q[0] + s[0], q[1] + s[1], q[2] + s[2] })) >= 0 &&
+      this->Keys.find(packBiased({ q[0] - s[0], q[1] - s[1], q[2] - s[2] })) >= 0)
+      return true;
+  return false;
 }
 
 void StandardPlaneRecognizer::refreshExtremes()
 {
-  const std::size_t from = this->Midpoint.size(), to = this->Points.size();
-  if (from == to || to < ExtremesFrom)
+  // Points join the face on its rim, where they are seldom midpoints yet: the extremes are
+  // sifted again (each checked anew) only when the face has grown by a quarter, a constant
+  // number of checks per point; the points since are measured all.
+  const std::size_t to = this->Points.size();
+  if (to < ExtremesFrom || 4 * to < 5 * this->Scanned)
     return;
-  this->Midpoint.resize(to, 0);
-  for (std::size_t i = from; i < to; ++i)
+  for (std::size_t i = this->Scanned; i < to; ++i)
     this->Extremes.push_back(static_cast<std::uint32_t>(i));
-  for (std::size_t i = from; i < to; ++i)
-    this->markMidpoints(i);
+  this->Scanned = to;
   this->Extremes.erase(std::remove_if(this->Extremes.begin(),
                          this->Extremes.end(),
-                         [&](std::uint32_t j) { return this->Midpoint[j] != 0; }),
+                         [&](std::uint32_t j) { return this->isMidpoint(this->Points[j]); }),
     this->Extremes.end());
 }
 
@@ -543,14 +585,8 @@ bool StandardPlaneRecognizer::saturated(const Octant& o, std::size_t e) const
   return hi - lo >= dot(sigma, m);
 }
 
-bool StandardPlaneRecognizer::solve(const Octant& o,
-  const std::array<int, 3>& present,
-  std::int64_t omegaStart,
-  std::int64_t omegaLimit,
-  Vec& normal) const
+void StandardPlaneRecognizer::markStrictEdges(const Octant& o) const
 {
-  ++this->Searches;
-  const Vec sigma = sigmaOf(o.sigma);
   // Every normal strictly inside the polygon fits (the width is convex, at most 1 on the
   // polygon, and 1 inside only if constant). On an octant edge, where n_d = 0 is allowed,
   // the width is convex along the edge too: it is exactly 1 inside the edge only when it is
@@ -561,58 +597,43 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   strict.assign(o.edges.size(), 0);
   for (std::size_t e = 0; e < o.edges.size(); ++e)
     strict[e] = !o.octantEdge[e] || this->saturated(o, e);
+}
+
+void StandardPlaneRecognizer::sliceThePolygon(const Octant& o, const Vec& sigma) const
+{
+  this->Rays.clear();
+  for (const Vertex& v : o.vertices)
+    this->Rays.push_back(v.ray);
+  this->Forms.clear();
+  for (const Vec& E : o.edges)
+    this->Forms.push_back(sliceForm(E, sigma));
+}
+
+bool StandardPlaneRecognizer::solve(const Octant& o,
+  const std::array<int, 3>& present,
+  std::int64_t omegaStart,
+  std::int64_t omegaLimit,
+  Vec& normal) const
+{
+  ++this->Searches;
+  const Vec sigma = sigmaOf(o.sigma);
+  this->markStrictEdges(o);
+  this->sliceThePolygon(o, sigma);
   // Columns k = u.(nx, ny), first with u = (1, 0), then over a thin frame of the polygon
   // (thinFrame): the range of k / omega over the polygon, as fractions.
-  std::vector<Vec>& rays = this->Rays;
-  rays.clear();
-  for (const Vertex& v : o.vertices)
-    rays.push_back(v.ray);
   ColumnFrame frame;
-  ColumnRange range = columnRange(rays, sigma, frame);
-  std::vector<std::array<std::int64_t, 3>>& forms = this->Forms;
-  forms.clear();
-  for (const Vec& E : o.edges)
-    forms.push_back(sliceForm(E, sigma));
-  // Level by level; within the first level that holds a solution, the smallest (nx, ny) in
-  // lexicographic order, whatever the frame.
+  ColumnRange range = columnRange(this->Rays, sigma, frame);
   std::int64_t budget = SearchBudget;
   for (std::int64_t omega = omegaStart; omega <= omegaLimit && budget > 0; ++omega, --budget)
   {
     if (omega == std::max(omegaStart, ThinFrameLevel))
     {
-      frame = thinFrame(rays, sigma, this->FrameEdges, this->FrameBreaks);
-      range = columnRange(rays, sigma, frame);
+      frame = thinFrame(this->Rays, sigma, this->FrameEdges, this->FrameBreaks);
+      range = columnRange(this->Rays, sigma, frame);
     }
-    bool found = false;
-    const Wide kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
-    const Wide kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
-    for (Wide k = kLo; k <= kHi && budget > 0; ++k, --budget)
-    {
-      std::int64_t tLo, tHi;
-      if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
-        rangeOfT(forms, strict, frame, omega, std::int64_t(k), tLo, tHi);
-      else
-        rangeOfT(forms, strict, frame, omega, k, tLo, tHi);
-      for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
-      {
-        const std::int64_t nx = std::int64_t(k * frame.a[0] + Wide(t) * frame.v[0]);
-        const std::int64_t ny = std::int64_t(k * frame.a[1] + Wide(t) * frame.v[1]);
-        const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
-        if (sigma[0] * n[0] < 0 || sigma[1] * n[1] < 0 || sigma[2] * n[2] < 0)
-          continue;
-        if (found && (nx > normal[0] || (nx == normal[0] && ny >= normal[1])))
-          continue;
-        // A multiple k n of a normal n fits exactly when n does, and n came first.
-        if (std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) > 1)
-          continue;
-        if (this->fits(n, present))
-        {
-          normal = n;
-          found = true;
-        }
-      }
-    }
-    if (found)
+    auto fits = [&](const Vec& n) { return this->fits(n, present); };
+    if (searchLevel(
+          this->Forms, this->StrictEdges, sigma, frame, range, omega, budget, normal, fits))
       return true;
   }
   return false;

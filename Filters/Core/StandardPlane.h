@@ -112,19 +112,23 @@ private:
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
   void measure(Vertex& v, std::size_t count) const;
   /// Calls f(j) for every point index j < count that may be a vertex of the points' convex
-  /// hull: the scanned points not known to be a midpoint, then every later one.
+  /// hull: the sifted points not known to be a midpoint (Extremes), then every later one.
   template<typename F>
   void forEachExtreme(std::size_t count, F&& f) const;
-  /// Scans the points committed since the last call into Extremes, marks the points that are
-  /// the midpoint of two others around them, and drops the marked ones from Extremes.
+  /// Sifts the committed points into Extremes, when there are enough of them to matter.
   void refreshExtremes();
-  void markMidpoints(std::size_t i);
+  /// Whether q is the midpoint of two committed points along an axis or a face diagonal.
+  bool isMidpoint(const Point3& q) const;
   static bool hasInterior(const Octant& o);
   bool solve(const Octant& o,
     const std::array<int, 3>& present,
     std::int64_t omegaStart,
     std::int64_t omegaLimit,
     Vec& normal) const;
+  /// The phases of solve: the polygon's strict edges (StrictEdges), its vertices and its
+  /// edges' half-planes on the slices (Rays, Forms).
+  void markStrictEdges(const Octant& o) const;
+  void sliceThePolygon(const Octant& o, const Vec& sigma) const;
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
   /// The min and max of n.p over the points (not empty).
   void rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const;
@@ -154,12 +158,12 @@ private:
   std::vector<Point3> Points; ///< without repeats
   GridPointIndex Keys;        ///< of Points
   std::size_t KeysPeak = 0;   ///< most points Keys held since it was made
-  /// Indices of the scanned points (the first Midpoint.size() ones) not known to be the
-  /// midpoint of two other points, in increasing order. A midpoint is not a vertex of the
-  /// points' convex hull, and every linear form reaches its minimum and maximum over the
-  /// points on a vertex: the recognizer's measures read only these and the later points.
+  /// Indices of the first Scanned points but the midpoints of two other points, in
+  /// increasing order. A midpoint is not a vertex of the points' convex hull, and every
+  /// linear form reaches its minimum and maximum over the points on a vertex: the
+  /// recognizer's measures read only these and the points after the first Scanned.
   std::vector<std::uint32_t> Extremes;
-  std::vector<char> Midpoint;           ///< per scanned point: the midpoint of two others
+  std::size_t Scanned = 0;
   std::vector<Point3> Fresh;            ///< the new points of a call
   std::vector<std::uint64_t> FreshKeys; ///< theirs, sorted
   std::array<Octant, 8> Octants;        ///< one per sign pattern of the normal
