@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <limits>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -424,22 +425,27 @@ void StandardPlaneRecognizer::refreshExtremes()
 // (only the pair chosen for a cut, among equal extremes, may differ).
 void StandardPlaneRecognizer::measure(Vertex& v, std::size_t count) const
 {
-  bool first = true;
+  // In locals: stores through v could alias the counters the loop reads.
+  const Vec ray = v.ray;
+  std::int64_t lo = std::numeric_limits<std::int64_t>::max();
+  std::int64_t hi = std::numeric_limits<std::int64_t>::min();
+  std::uint32_t argLo = 0, argHi = 0;
   this->forEachExtreme(count,
     [&](std::size_t j)
     {
-      const std::int64_t x = dot(v.ray, this->Points[j]);
-      if (first || x < v.lo)
-        v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
-      if (first || x > v.hi)
-        v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
-      first = false;
+      const std::int64_t x = dot(ray, this->Points[j]);
+      if (x < lo)
+        lo = x, argLo = static_cast<std::uint32_t>(j);
+      if (x > hi)
+        hi = x, argHi = static_cast<std::uint32_t>(j);
     });
-  if (first) // every scanned point before count is a midpoint of later ones: take the last
+  // Every scanned point before count is the midpoint of later ones: take the last.
+  if (lo == std::numeric_limits<std::int64_t>::max())
   {
-    v.lo = v.hi = dot(v.ray, this->Points[count - 1]);
-    v.argLo = v.argHi = static_cast<std::uint32_t>(count - 1);
+    lo = hi = dot(ray, this->Points[count - 1]);
+    argLo = argHi = static_cast<std::uint32_t>(count - 1);
   }
+  v.lo = lo, v.hi = hi, v.argLo = argLo, v.argHi = argHi;
 }
 
 bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) const
@@ -551,14 +557,15 @@ bool StandardPlaneRecognizer::fits(const Vec& n, const std::array<int, 3>& prese
 
 void StandardPlaneRecognizer::rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const
 {
-  lo = hi = dot(n, this->Points.front());
+  std::int64_t l = dot(n, this->Points.front()), h = l; // locals: lo, hi could alias counters
   this->forEachExtreme(this->Points.size(),
     [&](std::size_t j)
     {
       const std::int64_t x = dot(n, this->Points[j]);
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
+      l = std::min(l, x);
+      h = std::max(h, x);
     });
+  lo = l, hi = h;
 }
 
 bool StandardPlaneRecognizer::hasInterior(const Octant& o)
