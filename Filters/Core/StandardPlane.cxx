@@ -6,10 +6,14 @@
 // points without repeats (collectFreshPoints), the fast path where the current plane takes
 // them (takenByCurrentPlane), and the slow path (searchOctants) that clips a copy of every
 // octant still alive, drops those without interior (hasInterior), and searches each for the
-// integer normal of smallest omega (solve: omega level by level, columns k = u.(n_x, n_y) over
-// the polygon's range in a thin frame, thinFrame, and t along each column bounded by every
-// edge, rangeOfT; each candidate checked by fits); adoptNormal keeps the result. All
-// arithmetic that decides is on integers; determinants and column bounds use Wide.
+// integer normal of smallest omega (solve: the strict edges, markStrictEdges, the polygon on
+// the slices, sliceThePolygon, then omega level by level, searchLevel: columns
+// k = u.(n_x, n_y) over the polygon's range in a thin frame, thinFrame, and t along each
+// column bounded by every edge, rangeOfT; each candidate checked by fits); adoptNormal keeps
+// the result. Every range over the points (measure, rangeOf) reads only the points that may
+// be vertices of their hull (forEachExtreme; refreshExtremes drops the midpoints of two
+// others once a face has 64 points). All arithmetic that decides is on integers;
+// determinants and column bounds use Wide.
 
 #include "StandardPlane.h"
 
