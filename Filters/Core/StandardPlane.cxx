@@ -6,10 +6,14 @@
 // points without repeats (collectFreshPoints), the fast path where the current plane takes
 // them (takenByCurrentPlane), and the slow path (searchOctants) that clips a copy of every
 // octant still alive, drops those without interior (hasInterior), and searches each for the
-// integer normal of smallest omega (solve: omega level by level, columns k = u.(n_x, n_y) over
-// the polygon's range in a thin frame, thinFrame, and t along each column bounded by every
-// edge, rangeOfT; each candidate checked by fits); adoptNormal keeps the result. All
-// arithmetic that decides is on integers; determinants and column bounds use Wide.
+// integer normal of smallest omega (solve: the strict edges, markStrictEdges, the polygon on
+// the slices, sliceThePolygon, then omega level by level, searchLevel: columns
+// k = u.(n_x, n_y) over the polygon's range in a thin frame, thinFrame, and t along each
+// column bounded by every edge, rangeOfT; each candidate checked by fits); adoptNormal keeps
+// the result. Every range over the points (measure, rangeOf) reads only the points that may
+// be vertices of their hull (forEachExtreme; refreshExtremes drops the midpoints of two
+// others once a face has 64 points). All arithmetic that decides is on integers;
+// determinants and column bounds use Wide.
 
 #include "StandardPlane.h"
 
@@ -17,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <limits>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -38,6 +43,10 @@ constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
 /// Lattice candidates examined by one search before giving up (the face then stops growing
 /// in that direction: a refusal is always safe).
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
+/// Faces of fewer points measure them all: the midpoints would cost more than they save.
+constexpr std::size_t ExtremesFrom = 64;
+/// Calls of at most this many points insert their fresh points in order instead of sorting.
+constexpr std::size_t SmallCall = 16;
 
 Vec primitive(Vec v)
 {
@@ -261,6 +270,57 @@ Vec sigmaOf(const std::array<int, 3>& s)
   return { s[0], s[1], s[2] };
 }
 
+/// Whether a lattice normal n of a level must be measured: in the octant, before the best
+/// found so far in (nx, ny) order, and primitive.
+bool worthTesting(const Vec& n, const Vec& sigma, bool found, const Vec& best)
+{
+  if (sigma[0] * n[0] < 0 || sigma[1] * n[1] < 0 || sigma[2] * n[2] < 0)
+    return false;
+  if (found && (n[0] > best[0] || (n[0] == best[0] && n[1] >= best[1])))
+    return false;
+  // A multiple k n of a normal n fits exactly when n does, and n came first.
+  return std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) == 1;
+}
+
+/// Level omega of an octant's search, column by column (each bounded by the polygon's edges,
+/// rangeOfT): the normal of smallest (nx, ny) that fits, into `normal`; false when none.
+template<typename Fits>
+bool searchLevel(const std::vector<std::array<std::int64_t, 3>>& forms,
+  const std::vector<char>& strict,
+  const Vec& sigma,
+  const ColumnFrame& frame,
+  const ColumnRange& range,
+  std::int64_t omega,
+  std::int64_t& budget,
+  Vec& normal,
+  const Fits& fits)
+{
+  // Within the level, the smallest (nx, ny) in lexicographic order, whatever the frame.
+  bool found = false;
+  const Wide kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
+  const Wide kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
+  for (Wide k = kLo; k <= kHi && budget > 0; ++k, --budget)
+  {
+    std::int64_t tLo, tHi;
+    if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
+      rangeOfT(forms, strict, frame, omega, std::int64_t(k), tLo, tHi);
+    else
+      rangeOfT(forms, strict, frame, omega, k, tLo, tHi);
+    for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
+    {
+      const std::int64_t nx = std::int64_t(k * frame.a[0] + Wide(t) * frame.v[0]);
+      const std::int64_t ny = std::int64_t(k * frame.a[1] + Wide(t) * frame.v[1]);
+      const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
+      if (worthTesting(n, sigma, found, normal) && fits(n))
+      {
+        normal = n;
+        found = true;
+      }
+    }
+  }
+  return found;
+}
+
 } // namespace
 
 std::int64_t StandardPlane::omega() const
@@ -282,6 +342,8 @@ void StandardPlaneRecognizer::reset()
   else
     this->Keys.clear();
   this->Points.clear();
+  this->Extremes.clear();
+  this->Scanned = 0;
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
   for (int s = 0; s < 8; ++s)
@@ -310,18 +372,84 @@ void StandardPlaneRecognizer::reset()
   }
 }
 
+template<typename F>
+void StandardPlaneRecognizer::forEachExtreme(std::size_t count, F&& f) const
+{
+  for (std::uint32_t j : this->Extremes)
+  {
+    if (j >= count)
+      return;
+    f(j);
+  }
+  for (std::size_t j = this->Scanned; j < count; ++j)
+    f(j);
+}
+
+bool StandardPlaneRecognizer::isMidpoint(const Point3& q) const
+{
+  // Pairs along the axes, then the face diagonals: a standard plane's points lie in layers
+  // n.p = const, and a point inside a tilted layer has its pair along a diagonal.
+  static constexpr std::array<std::array<int, 3>, 9> Steps{ { { 1, 0, 0 },
+    { 0, 1, 0 },
+    { 0, 0, 1 },
+    { 1, 1, 0 },
+    { 1, -1, 0 },
+    { 1, 0, 1 },
+    { 1, 0, -1 },
+    { 0, 1, 1 },
+    { 0, 1, -1 } } };
+  for (const auto& s : Steps)
+    if (this->Keys.find(packBiased({ q[0] + s[0], q[1] + s[1], q[2] + s[2] })) >= 0 &&
+      this->Keys.find(packBiased({ q[0] - s[0], q[1] - s[1], q[2] - s[2] })) >= 0)
+      return true;
+  return false;
+}
+
+void StandardPlaneRecognizer::refreshExtremes()
+{
+  // Points join the face on its rim, where they are seldom midpoints yet: the extremes are
+  // sifted again (each checked anew) only when the face has grown by a quarter, a constant
+  // number of checks per point; the points since are measured all.
+  const std::size_t to = this->Points.size();
+  if (to < ExtremesFrom || 4 * to < 5 * this->Scanned)
+    return;
+  for (std::size_t i = this->Scanned; i < to; ++i)
+    this->Extremes.push_back(static_cast<std::uint32_t>(i));
+  this->Scanned = to;
+  this->Extremes.erase(std::remove_if(this->Extremes.begin(),
+                         this->Extremes.end(),
+                         [&](std::uint32_t j) { return this->isMidpoint(this->Points[j]); }),
+    this->Extremes.end());
+}
+
+// The range of a new vertex over the points before count, read on the extremes only: they
+// hold every vertex of the hull of all the points (committed and trial) that comes before
+// count, and applyPoints applies every later point to the vertex, so once all points are
+// applied every range is exact and the polygon is the same set as with every point measured
+// (only the pair chosen for a cut, among equal extremes, may differ).
 void StandardPlaneRecognizer::measure(Vertex& v, std::size_t count) const
 {
-  v.lo = v.hi = 0;
-  v.argLo = v.argHi = 0;
-  for (std::size_t j = 0; j < count; ++j)
+  // In locals: stores through v could alias the counters the loop reads.
+  const Vec ray = v.ray;
+  std::int64_t lo = std::numeric_limits<std::int64_t>::max();
+  std::int64_t hi = std::numeric_limits<std::int64_t>::min();
+  std::uint32_t argLo = 0, argHi = 0;
+  this->forEachExtreme(count,
+    [&](std::size_t j)
+    {
+      const std::int64_t x = dot(ray, this->Points[j]);
+      if (x < lo)
+        lo = x, argLo = static_cast<std::uint32_t>(j);
+      if (x > hi)
+        hi = x, argHi = static_cast<std::uint32_t>(j);
+    });
+  // Every scanned point before count is the midpoint of later ones: take the last.
+  if (lo == std::numeric_limits<std::int64_t>::max())
   {
-    const std::int64_t x = dot(v.ray, this->Points[j]);
-    if (j == 0 || x < v.lo)
-      v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
-    if (j == 0 || x > v.hi)
-      v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
+    lo = hi = dot(ray, this->Points[count - 1]);
+    argLo = argHi = static_cast<std::uint32_t>(count - 1);
   }
+  v.lo = lo, v.hi = hi, v.argLo = argLo, v.argHi = argHi;
 }
 
 bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) const
@@ -426,14 +554,22 @@ bool StandardPlaneRecognizer::fits(const Vec& n, const std::array<int, 3>& prese
   for (int d = 0; d < 3; ++d)
     if (present[d] != 0 && present[d] * n[d] <= 0)
       return false;
-  std::int64_t lo = 0, hi = 0;
-  for (std::size_t j = 0; j < this->Points.size(); ++j)
-  {
-    const std::int64_t x = dot(n, this->Points[j]);
-    lo = j == 0 ? x : std::min(lo, x);
-    hi = j == 0 ? x : std::max(hi, x);
-  }
+  std::int64_t lo, hi;
+  this->rangeOf(n, lo, hi);
   return hi - lo < std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
+}
+
+void StandardPlaneRecognizer::rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const
+{
+  std::int64_t l = dot(n, this->Points.front()), h = l; // locals: lo, hi could alias counters
+  this->forEachExtreme(this->Points.size(),
+    [&](std::size_t j)
+    {
+      const std::int64_t x = dot(n, this->Points[j]);
+      l = std::min(l, x);
+      h = std::max(h, x);
+    });
+  lo = l, hi = h;
 }
 
 bool StandardPlaneRecognizer::hasInterior(const Octant& o)
@@ -455,24 +591,13 @@ bool StandardPlaneRecognizer::saturated(const Octant& o, std::size_t e) const
   if (u.hi - u.lo < dot(sigma, u.ray) || v.hi - v.lo < dot(sigma, v.ray))
     return false;
   const Vec m{ u.ray[0] + v.ray[0], u.ray[1] + v.ray[1], u.ray[2] + v.ray[2] };
-  std::int64_t lo = 0, hi = 0;
-  for (std::size_t j = 0; j < this->Points.size(); ++j)
-  {
-    const std::int64_t x = dot(m, this->Points[j]);
-    lo = j == 0 ? x : std::min(lo, x);
-    hi = j == 0 ? x : std::max(hi, x);
-  }
+  std::int64_t lo, hi;
+  this->rangeOf(m, lo, hi);
   return hi - lo >= dot(sigma, m);
 }
 
-bool StandardPlaneRecognizer::solve(const Octant& o,
-  const std::array<int, 3>& present,
-  std::int64_t omegaStart,
-  std::int64_t omegaLimit,
-  Vec& normal) const
+void StandardPlaneRecognizer::markStrictEdges(const Octant& o) const
 {
-  ++this->Searches;
-  const Vec sigma = sigmaOf(o.sigma);
   // Every normal strictly inside the polygon fits (the width is convex, at most 1 on the
   // polygon, and 1 inside only if constant). On an octant edge, where n_d = 0 is allowed,
   // the width is convex along the edge too: it is exactly 1 inside the edge only when it is
@@ -483,58 +608,43 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   strict.assign(o.edges.size(), 0);
   for (std::size_t e = 0; e < o.edges.size(); ++e)
     strict[e] = !o.octantEdge[e] || this->saturated(o, e);
+}
+
+void StandardPlaneRecognizer::sliceThePolygon(const Octant& o, const Vec& sigma) const
+{
+  this->Rays.clear();
+  for (const Vertex& v : o.vertices)
+    this->Rays.push_back(v.ray);
+  this->Forms.clear();
+  for (const Vec& E : o.edges)
+    this->Forms.push_back(sliceForm(E, sigma));
+}
+
+bool StandardPlaneRecognizer::solve(const Octant& o,
+  const std::array<int, 3>& present,
+  std::int64_t omegaStart,
+  std::int64_t omegaLimit,
+  Vec& normal) const
+{
+  ++this->Searches;
+  const Vec sigma = sigmaOf(o.sigma);
+  this->markStrictEdges(o);
+  this->sliceThePolygon(o, sigma);
   // Columns k = u.(nx, ny), first with u = (1, 0), then over a thin frame of the polygon
   // (thinFrame): the range of k / omega over the polygon, as fractions.
-  std::vector<Vec>& rays = this->Rays;
-  rays.clear();
-  for (const Vertex& v : o.vertices)
-    rays.push_back(v.ray);
   ColumnFrame frame;
-  ColumnRange range = columnRange(rays, sigma, frame);
-  std::vector<std::array<std::int64_t, 3>>& forms = this->Forms;
-  forms.clear();
-  for (const Vec& E : o.edges)
-    forms.push_back(sliceForm(E, sigma));
-  // Level by level; within the first level that holds a solution, the smallest (nx, ny) in
-  // lexicographic order, whatever the frame.
+  ColumnRange range = columnRange(this->Rays, sigma, frame);
   std::int64_t budget = SearchBudget;
   for (std::int64_t omega = omegaStart; omega <= omegaLimit && budget > 0; ++omega, --budget)
   {
     if (omega == std::max(omegaStart, ThinFrameLevel))
     {
-      frame = thinFrame(rays, sigma, this->FrameEdges, this->FrameBreaks);
-      range = columnRange(rays, sigma, frame);
+      frame = thinFrame(this->Rays, sigma, this->FrameEdges, this->FrameBreaks);
+      range = columnRange(this->Rays, sigma, frame);
     }
-    bool found = false;
-    const Wide kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
-    const Wide kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
-    for (Wide k = kLo; k <= kHi && budget > 0; ++k, --budget)
-    {
-      std::int64_t tLo, tHi;
-      if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
-        rangeOfT(forms, strict, frame, omega, std::int64_t(k), tLo, tHi);
-      else
-        rangeOfT(forms, strict, frame, omega, k, tLo, tHi);
-      for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
-      {
-        const std::int64_t nx = std::int64_t(k * frame.a[0] + Wide(t) * frame.v[0]);
-        const std::int64_t ny = std::int64_t(k * frame.a[1] + Wide(t) * frame.v[1]);
-        const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
-        if (sigma[0] * n[0] < 0 || sigma[1] * n[1] < 0 || sigma[2] * n[2] < 0)
-          continue;
-        if (found && (nx > normal[0] || (nx == normal[0] && ny >= normal[1])))
-          continue;
-        // A multiple k n of a normal n fits exactly when n does, and n came first.
-        if (std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) > 1)
-          continue;
-        if (this->fits(n, present))
-        {
-          normal = n;
-          found = true;
-        }
-      }
-    }
-    if (found)
+    auto fits = [&](const Vec& n) { return this->fits(n, present); };
+    if (searchLevel(
+          this->Forms, this->StrictEdges, sigma, frame, range, omega, budget, normal, fits))
       return true;
   }
   return false;
@@ -557,6 +667,7 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
     return true;
   // Slow path: clip the octants with the points already accepted (for good), then with the
   // new ones (on copies), and search each surviving octant for a normal.
+  this->refreshExtremes();
   for (int i = 0; i < 8; ++i)
     this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
   const std::size_t before = this->Points.size();
@@ -590,20 +701,41 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
 {
   if (this->Points.empty() && count > 0)
     this->Origin = points[0];
-  // New points relative to the origin, without repeats.
+  // New points relative to the origin, without repeats, sorted by key (their order does not
+  // matter, but it is the same whatever the order of the call's points).
   std::vector<Point3>& fresh = this->Fresh;
+  std::vector<std::uint64_t>& keys = this->FreshKeys;
   fresh.clear();
-  this->FreshKeys.clear();
+  keys.clear();
   for (std::size_t i = 0; i < count; ++i)
   {
     const Point3 q = sub(points[i], this->Origin);
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
         return false;
-    if (this->Keys.find(packBiased(q)) < 0)
+    const std::uint64_t key = packBiased(q);
+    if (this->Keys.find(key) >= 0)
+      continue;
+    if (count > SmallCall) // a whole face (merging): sorted once below
+    {
       fresh.push_back(q);
+      continue;
+    }
+    // A surfel's corners (the growth's calls): inserted in place, without a sort.
+    const auto at = std::lower_bound(keys.begin(), keys.end(), key);
+    if (at != keys.end() && *at == key)
+      continue;
+    fresh.insert(fresh.begin() + (at - keys.begin()), q);
+    keys.insert(at, key);
   }
-  // Repeats within the call: sorted, kept once (their order does not matter).
+  if (count > SmallCall)
+    this->sortFreshPoints();
+  return true;
+}
+
+void StandardPlaneRecognizer::sortFreshPoints()
+{
+  std::vector<Point3>& fresh = this->Fresh;
   std::sort(fresh.begin(),
     fresh.end(),
     [](const Point3& a, const Point3& b) { return packBiased(a) < packBiased(b); });
@@ -614,7 +746,6 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
     fresh.end());
   for (const Point3& q : fresh)
     this->FreshKeys.push_back(packBiased(q));
-  return true;
 }
 
 bool StandardPlaneRecognizer::takenByCurrentPlane(const std::array<int, 3>& present)
@@ -701,13 +832,7 @@ void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool
     }
   }
   this->Current.normal = best;
-  this->CurrentLo = this->CurrentHi = dot(best, this->Points.front());
-  for (const Point3& q : this->Points)
-  {
-    const std::int64_t x = dot(best, q);
-    this->CurrentLo = std::min(this->CurrentLo, x);
-    this->CurrentHi = std::max(this->CurrentHi, x);
-  }
+  this->rangeOf(best, this->CurrentLo, this->CurrentHi);
   this->Current.mu = this->CurrentLo + dot(best, this->Origin);
 }
 

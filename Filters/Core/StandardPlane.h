@@ -111,13 +111,27 @@ private:
   bool applyPoints(Octant& o) const;
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
   void measure(Vertex& v, std::size_t count) const;
+  /// Calls f(j) for every point index j < count that may be a vertex of the points' convex
+  /// hull: the sifted points not known to be a midpoint (Extremes), then every later one.
+  template<typename F>
+  void forEachExtreme(std::size_t count, F&& f) const;
+  /// Sifts the committed points into Extremes, when there are enough of them to matter.
+  void refreshExtremes();
+  /// Whether q is the midpoint of two committed points along an axis or a face diagonal.
+  bool isMidpoint(const Point3& q) const;
   static bool hasInterior(const Octant& o);
   bool solve(const Octant& o,
     const std::array<int, 3>& present,
     std::int64_t omegaStart,
     std::int64_t omegaLimit,
     Vec& normal) const;
+  /// The phases of solve: the polygon's strict edges (StrictEdges), its vertices and its
+  /// edges' half-planes on the slices (Rays, Forms).
+  void markStrictEdges(const Octant& o) const;
+  void sliceThePolygon(const Octant& o, const Vec& sigma) const;
   bool fits(const Vec& n, const std::array<int, 3>& present) const;
+  /// The min and max of n.p over the points (not empty).
+  void rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const;
   /// Whether the width is exactly 1 all along polygon edge e (between vertices e, e + 1).
   bool saturated(const Octant& o, std::size_t e) const;
   // The phases of tryAdd.
@@ -126,6 +140,8 @@ private:
   /// The new points relative to Origin, without repeats, into Fresh (and FreshKeys); false
   /// when one is too far from Origin.
   bool collectFreshPoints(const Point3* points, std::size_t count);
+  /// Sorts Fresh by key without repeats, and fills FreshKeys.
+  void sortFreshPoints();
   /// Fast path: the current plane takes the new points and orientations (then committed).
   bool takenByCurrentPlane(const std::array<int, 3>& present);
   /// Whether an octant cannot hold a normal for the orientations and the new points.
@@ -138,10 +154,16 @@ private:
   void commit(const std::array<int, 3>& present);
   bool known(std::uint64_t key) const;
 
-  Point3 Origin{ 0, 0, 0 };             ///< points are kept relative to the first one
-  std::vector<Point3> Points;           ///< without repeats
-  GridPointIndex Keys;                  ///< of Points
-  std::size_t KeysPeak = 0;             ///< most points Keys held since it was made
+  Point3 Origin{ 0, 0, 0 };   ///< points are kept relative to the first one
+  std::vector<Point3> Points; ///< without repeats
+  GridPointIndex Keys;        ///< of Points
+  std::size_t KeysPeak = 0;   ///< most points Keys held since it was made
+  /// Indices of the first Scanned points but the midpoints of two other points, in
+  /// increasing order. A midpoint is not a vertex of the points' convex hull, and every
+  /// linear form reaches its minimum and maximum over the points on a vertex: the
+  /// recognizer's measures read only these and the points after the first Scanned.
+  std::vector<std::uint32_t> Extremes;
+  std::size_t Scanned = 0;
   std::vector<Point3> Fresh;            ///< the new points of a call
   std::vector<std::uint64_t> FreshKeys; ///< theirs, sorted
   std::array<Octant, 8> Octants;        ///< one per sign pattern of the normal

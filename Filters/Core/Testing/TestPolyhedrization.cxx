@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <string>
@@ -325,6 +326,79 @@ TEST(StandardPlane, SmallestOmegaOnThinStrips)
   EXPECT_GT(accepted, 1500);
   EXPECT_GT(refused, 200);
   RecordProperty("omega above the bound", large);
+}
+
+TEST(StandardPlane, LargePiecesAgreeWithBruteForce)
+{
+  // Pieces of standard planes of 121 to 363 points, added one by one (in random order or row
+  // by row), then probes near them. Faces of 64 points or more measure only the points that
+  // are not the midpoint of two others (StandardPlane.h); the answers must stay those of every
+  // integer normal of omega <= Bound over all the points.
+  constexpr int Bound = 12, R = 5;
+  std::mt19937 rng(5);
+  int accepted = 0, refused = 0;
+  for (int t = 0; t < 16; ++t)
+  {
+    std::array<int, 3> n{ 0, 0, 0 };
+    while (std::gcd(std::gcd(n[0], n[1]), n[2]) != 1)
+      for (int& c : n)
+        c = int(rng() % 7) - 3;
+    const int omega = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
+    int m = 0; // the dominant axis: the piece is a graph over the other two
+    for (int d = 1; d < 3; ++d)
+      m = std::abs(n[d]) > std::abs(n[m]) ? d : m;
+    const int mu = int(rng() % omega);
+    auto point = [&](int u, int v, int w)
+    {
+      Point3 p;
+      p[m] = w, p[(m + 1) % 3] = u, p[(m + 2) % 3] = v;
+      return p;
+    };
+    auto value = [&](const Point3& p) { return n[0] * p[0] + n[1] * p[1] + n[2] * p[2]; };
+    std::vector<Point3> piece;
+    for (int u = -R; u <= R; ++u)
+      for (int v = -R; v <= R; ++v)
+        for (int w = -25; w <= 25; ++w)
+          if (mu <= value(point(u, v, w)) && value(point(u, v, w)) < mu + omega)
+            piece.push_back(point(u, v, w));
+    if (t % 2)
+      std::shuffle(piece.begin(), piece.end(), rng);
+    std::array<int, 3> signs{ 0, 0, 0 };
+    signs[m] = n[m] > 0 ? 1 : -1;
+    vbr::StandardPlaneRecognizer r;
+    for (const Point3& q : piece)
+      ASSERT_TRUE(r.tryAdd({ q }, signs)) << "a point of the piece refused (trial " << t << ")";
+    ASSERT_EQ(r.plane().omega(), bruteForceOmega(piece, signs, Bound));
+    for (int probe = 0; probe < 16; ++probe)
+    {
+      // Near the piece: a column of it, shifted by up to 2 along the dominant axis.
+      const int u = int(rng() % (2 * R + 3)) - R - 1, v = int(rng() % (2 * R + 3)) - R - 1;
+      int w = -25;
+      while (value(point(u, v, w)) * signs[m] < mu * signs[m] && w < 25)
+        ++w;
+      const Point3 q = point(u, v, w + int(rng() % 5) - 2);
+      std::vector<Point3> with = piece;
+      with.push_back(q);
+      const int expected = bruteForceOmega(with, signs, Bound);
+      SCOPED_TRACE("trial " + std::to_string(t) + ", probe " + std::to_string(probe));
+      if (!r.tryAdd({ q }, signs))
+      {
+        ++refused;
+        EXPECT_EQ(expected, 0) << "a plane of omega " << expected << " exists but was refused";
+        continue;
+      }
+      ++accepted;
+      piece = with;
+      for (const Point3& p : piece)
+        ASSERT_TRUE(inPlane(r.plane(), p)) << "point outside the plane returned";
+      if (expected == 0)
+        EXPECT_GT(r.plane().omega(), Bound) << "a plane the exhaustive search missed";
+      else
+        EXPECT_EQ(r.plane().omega(), expected) << "not the smallest omega";
+    }
+  }
+  EXPECT_GT(accepted, 30);
+  EXPECT_GT(refused, 30);
 }
 
 TEST(StandardPlane, PaperUmbrellaAndCube)
