@@ -1844,37 +1844,147 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   return joined;
 }
 
+/// The contribution to the Euler characteristic of the union of the closed voxel cubes of the
+/// cells whose lowest corner is a grid corner, from the 8 voxels about that corner (bit
+/// dx + 2 dy + 4 dz for the voxel at corner - 1 + (dx, dy, dz)): the corner itself (any voxel),
+/// its edges towards +x, +y, +z (the 4 voxels on that side), its faces (the 2 voxels on both
+/// sides) and its cube (the one voxel on all three).
+int cornerEuler(unsigned config)
+{
+  auto any = [&](unsigned mask, unsigned value)
+  {
+    for (unsigned b = 0; b < 8; ++b)
+      if ((b & mask) == value && (config >> b & 1))
+        return 1;
+    return 0;
+  };
+  return any(0, 0) - any(1, 1) - any(2, 2) - any(4, 4) + any(3, 3) + any(5, 5) + any(6, 6) -
+    any(7, 7);
+}
+
+/// Whether the 8 voxels about a grid corner (bits as in cornerEuler) are not well-composed:
+/// two diagonally opposite voxels alone (of either class), or a face of the block whose two
+/// diagonals hold different classes (its low faces; every face is the low face of some block).
+bool criticalCorner(unsigned config)
+{
+  const int count = __builtin_popcount(config);
+  for (unsigned k = 0; k < 4; ++k)
+  {
+    const bool a = config >> k & 1, b = config >> (7 - k) & 1;
+    if ((count == 2 && a && b) || (count == 6 && !a && !b))
+      return true;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const unsigned u = 1u << ((axis + 1) % 3), w = 1u << ((axis + 2) % 3);
+    const bool s0 = config & 1, s1 = config & u, s2 = config & (u | w), s3 = config & w;
+    if (s0 == s2 && s1 == s3 && s0 != s1)
+      return true;
+  }
+  return false;
+}
+
+/// Twice the Euler characteristic of the union of the object's closed voxel cubes, the Euler
+/// characteristic of its boundary, when the object is well-composed (then its boundary is a
+/// 2-manifold and H must have its genus); -1, as no Euler characteristic of a closed surface,
+/// when voxels touch along an edge or at a corner only (the touching rule decides H there).
+long wellComposedBoundaryEuler(const BitVolume& objects)
+{
+  std::array<int, 256> euler;
+  std::array<bool, 256> critical;
+  for (unsigned c = 0; c < 256; ++c)
+  {
+    euler[c] = cornerEuler(c);
+    critical[c] = criticalCorner(c);
+  }
+  const Dims d = objects.dims();
+  long chi = 0;
+  for (std::int32_t z = 0; z <= d[2]; ++z)
+    for (std::int32_t y = 0; y <= d[1]; ++y)
+      for (std::int32_t x = 0; x <= d[0]; ++x)
+      {
+        unsigned config = 0;
+        for (unsigned b = 0; b < 8; ++b)
+          config |= static_cast<unsigned>(voxelClass(
+                      objects, { x - 1 + (b & 1), y - 1 + (b >> 1 & 1), z - 1 + (b >> 2) }))
+            << b;
+        if (critical[config])
+          return -1;
+        chi += euler[config];
+      }
+  return 2 * chi;
+}
+
+/// One pass of the levels, with pits or with every level kept apart: true when H separates
+/// (checked, see the header), its shells then joined.
+bool solvePass(Context& ctx, ModifiedHull& r, bool pits)
+{
+  ctx.pits = pits;
+  ctx.keptApart = 0;
+  ctx.planeLevel.clear();
+  try
+  {
+    r.surface = solveLevel(ctx, r.hull, nullptr, true, false, 0, r.degreeOfNonConvexity);
+  }
+  catch (const Unresolved& e)
+  {
+    r.failure = e.what();
+    return false;
+  }
+  if (!separates(ctx.objects, r.surface))
+  {
+    r.failure = "the surface does not separate";
+    return false;
+  }
+  r.complete = true;
+  r.failure.clear();
+  r.withoutPits = !pits;
+  r.keptApart = ctx.keptApart;
+  r.joinedShells = joinShells(ctx, r.surface);
+  return true;
+}
+
+/// Whether a shell of the closed surface has genus above 0.
+bool hasAHandle(const LatticeMesh& surface)
+{
+  for (const Shell& shell : shellsOf(surface))
+    if (eulerCharacteristic(shell.mesh) < 2)
+      return true;
+  return false;
+}
+
+/// Spurious handles (see the header): when H from the pits has a lower Euler characteristic
+/// than the boundary of the object's closed cubes, H with every level kept apart is made as well
+/// and kept when its Euler characteristic is the object's. A ring of object voxels about a wide
+/// tunnel that a pit cut off comes back as a torus of its own that one tube joins; kept apart, the
+/// ring stays part of its level's solid.
+void keepFewerHandles(Context& ctx, ModifiedHull& r)
+{
+  const long target = wellComposedBoundaryEuler(ctx.objects);
+  if (target < 0 || eulerCharacteristic(r.surface) >= target || !hasAHandle(r.surface))
+    return;
+  ModifiedHull apart = r;
+  const auto planes = ctx.planeLevel;
+  if (solvePass(ctx, apart, false) && eulerCharacteristic(apart.surface) == target)
+  {
+    r = std::move(apart);
+    return;
+  }
+  ctx.planeLevel = planes;
+}
+
 /// The levels solved with pits and, when that leaves something unresolved or the result does
-/// not separate (checked, see the header), again with every level kept apart.
+/// not separate, again with every level kept apart.
 void solveAndCheck(Context& ctx, ModifiedHull& r)
 {
   r.complete = false;
-  for (bool pits : { true, false })
+  if (solvePass(ctx, r, true))
   {
-    ctx.pits = pits;
-    ctx.keptApart = 0;
-    ctx.planeLevel.clear();
-    try
-    {
-      r.surface = solveLevel(ctx, r.hull, nullptr, true, false, 0, r.degreeOfNonConvexity);
-    }
-    catch (const Unresolved& e)
-    {
-      r.failure = e.what();
-      continue;
-    }
-    if (separates(ctx.objects, r.surface))
-    {
-      r.complete = true;
-      r.failure.clear();
-      r.withoutPits = !pits;
-      r.keptApart = ctx.keptApart;
-      r.joinedShells = joinShells(ctx, r.surface);
-      return;
-    }
-    r.failure = "the surface does not separate";
+    keepFewerHandles(ctx, r);
+    return;
   }
-  r.surface = triangulateHull(r.hull);
+  if (!solvePass(ctx, r, false))
+    r.surface = triangulateHull(r.hull);
 }
 
 } // namespace
