@@ -109,9 +109,11 @@
 // object's; kept apart, the ring stays part of its level's solid. The check costs one pass
 // over the grid; the second H is made only for such H (none of the random, porous or real
 // inputs of the tests, whose objects are mostly not well-composed).
-// Not done (the README's limits): shells for which no prism near the crossing is accepted (a
-// void whose triangles near the crossing are long slivers reaching out along a 1 wide tunnel:
-// every prism between one of them and the outer shell holds a lattice point), and spurious
+// When none of the prisms from the 12 nearest empty triangles joins a shell, those from the 60
+// nearest are tried (a void reaching out along a 1 wide tunnel in long thin triangles, the
+// hollow balls of R 10 with an off-centre tunnel, needs them); the prisms the cheap tests
+// reject (centroid, booleanLeavesTheLattice) do not count against the 48 Booleans per round.
+// Not done (the README's limits): shells for which no prism of those is accepted, and spurious
 // handles on objects that are not well-composed or where the second pass has them too (a join
 // can only add a tube, Euler characteristic 2 lower, one shell less, never remove a handle).
 //
