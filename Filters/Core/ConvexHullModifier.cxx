@@ -1569,18 +1569,31 @@ std::vector<std::array<LatticePoint, 3>> emptyTrianglesNear(const LatticeMesh& m
 /// and hollow balls whose prisms all held a lattice point or failed the Boolean.
 constexpr std::size_t kTrianglesNear = 12;
 
-/// The prisms conv(T1 + T2) between empty triangles of the shell and of the rest of H near the
-/// crossing, with no lattice point in their open interior, nearest first.
+/// The empty triangles taken when none of the first prisms joined the shell: a void reaching
+/// out along a 1 wide tunnel in long thin triangles (the hollow balls of R 10 with an
+/// off-centre tunnel) has no prism of the 12 nearest that a Boolean accepts (36 joined one of
+/// the two, 60 both).
+constexpr std::size_t kMoreTrianglesNear = 60;
+
+/// The prisms conv(T1 + T2) between the `count` nearest empty triangles of the shell and of the
+/// rest of H near the crossing, with no lattice point in their open interior, nearest first;
+/// the pairs of the `tried` nearest on both sides left out.
 std::vector<CellList> prismsAt(const LatticeMesh& shell,
   const LatticeMesh& rest,
-  const std::vector<LatticePoint>& crossing)
+  const std::vector<LatticePoint>& crossing,
+  std::size_t count,
+  std::size_t tried)
 {
   std::vector<CellList> prisms;
-  const auto first = emptyTrianglesNear(shell, crossing, kTrianglesNear);
-  const auto second = emptyTrianglesNear(rest, crossing, kTrianglesNear);
-  for (const auto& a : first)
-    for (const auto& b : second)
+  const auto first = emptyTrianglesNear(shell, crossing, count);
+  const auto second = emptyTrianglesNear(rest, crossing, count);
+  for (std::size_t i = 0; i < first.size(); ++i)
+    for (std::size_t j = 0; j < second.size(); ++j)
     {
+      if (i < tried && j < tried)
+        continue;
+      const auto& a = first[i];
+      const auto& b = second[j];
       std::vector<LatticePoint> corners(a.begin(), a.end());
       corners.insert(corners.end(), b.begin(), b.end());
       CellList prism = convexHull(corners);
@@ -1713,6 +1726,21 @@ std::array<LatticePoint, 2> boxOf(const CellList& prism)
   return box;
 }
 
+/// Whether the prism may join a shell by a Boolean, from the cheap tests: it runs through H's
+/// solid (a cut) or through the space between two pieces (a join), as its centroid tells, and
+/// no edge of it crosses a triangle of H off the lattice (a Boolean latticeBoolean refuses,
+/// nearly all the prisms refused on the Al cartoon and the headsq bone), found from the
+/// triangles in P's box, without the corefinement.
+bool worthABoolean(const LatticeMesh& surface, const CellList& prism, bool cut)
+{
+  LatticePoint centroid{ 0, 0, 0 };
+  for (const auto& v : prism.vertices)
+    for (int a = 0; a < 3; ++a)
+      centroid[a] += v[a];
+  const auto n = static_cast<std::int64_t>(prism.vertices.size());
+  return sideOf(surface, centroid, n) == (cut ? 1 : -1) && !booleanLeavesTheLattice(surface, prism);
+}
+
 /// H with the prism cut out (a void) or added (a piece), kept only when the exact Boolean is a
 /// closed 2-manifold with lattice corners and one shell less (its Euler characteristic 2
 /// lower) and every lattice point of P stays on its class's side (prismKeepsSeparation). A
@@ -1724,19 +1752,6 @@ bool joinAlongPrism(Context& ctx,
   LatticeMesh& surface,
   std::vector<std::uint8_t>& where)
 {
-  // The prism runs through H's solid (a cut) or through the space between two pieces (a
-  // join): its centroid tells, cheaply, before the exact Boolean.
-  LatticePoint centroid{ 0, 0, 0 };
-  for (const auto& v : prism.vertices)
-    for (int a = 0; a < 3; ++a)
-      centroid[a] += v[a];
-  if (sideOf(surface, centroid, static_cast<std::int64_t>(prism.vertices.size())) != (cut ? 1 : -1))
-    return false;
-  // A prism whose edge crosses a triangle of H off the lattice gives a Boolean that
-  // latticeBoolean refuses (nearly all the prisms refused on the Al cartoon and the headsq
-  // bone): found from the triangles in P's box, without the corefinement.
-  if (booleanLeavesTheLattice(surface, prism))
-    return false;
   // H was embedded and the Boolean changed it only inside P, so only triangles meeting P's box
   // can cross (the operands are not tested again: that test of a large H costs about as much
   // as the corefinement).
@@ -1765,11 +1780,48 @@ bool joinAlongPrism(Context& ctx,
   return true;
 }
 
-/// The prisms tried per shell, nearest first (each costs an exact Boolean and a check).
+/// The prisms tried per shell and round, nearest first (each costs an exact Boolean and a check;
+/// those worthABoolean rejects are not counted).
 constexpr std::size_t kPrismsTried = 48;
 
+/// Joins the shell to the rest of H by one of the prisms between the `count` nearest empty
+/// triangles on each side of the crossing (see prismsAt for `tried`); false when none joins.
+bool joinAtCrossing(Context& ctx,
+  const std::vector<Shell>& shells,
+  std::size_t s,
+  const std::vector<LatticePoint>& crossing,
+  std::size_t count,
+  std::size_t tried,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
+{
+  LatticeMesh rest;
+  for (std::size_t o = 0; o < shells.size(); ++o)
+    if (o != s)
+      rest.append(shells[o].mesh, false);
+  auto prisms = prismsAt(shells[s].mesh, rest, crossing, count, tried);
+  const bool cut = shells[s].volume < 0;
+  prisms.erase(std::remove_if(prisms.begin(),
+                 prisms.end(),
+                 [&](const CellList& prism) { return !worthABoolean(surface, prism, cut); }),
+    prisms.end());
+  // The prisms whose open interior misses H first (nearest first among them).
+  std::stable_partition(prisms.begin(),
+    prisms.end(),
+    [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
+  for (std::size_t k = 0; k < std::min<std::size_t>(prisms.size(), kPrismsTried); ++k)
+  {
+    if (ctx.exec.stopRequested())
+      throw std::runtime_error("aborted");
+    if (joinAlongPrism(ctx, prisms[k], cut, shells.size(), surface, where))
+      return true;
+  }
+  return false;
+}
+
 /// Joins one shell of H to the rest where the object's or the background's face-connected
-/// centres cross it (see above); false when none could be joined.
+/// centres cross it (see above), from the nearest empty triangles and, when none of their
+/// prisms joins, from more of them; false when no shell could be joined.
 bool joinOneShell(Context& ctx,
   LatticeMesh& surface,
   std::vector<std::uint8_t>& where,
@@ -1788,35 +1840,22 @@ bool joinOneShell(Context& ctx,
     if (failed.count(key))
       continue;
     failed.insert(key);
-    const bool isVoid = shells[s].volume < 0;
     std::vector<std::uint8_t> mine(where.size(), 0);
     markShell(shells[s].mesh, d, 1, 2, mine);
-    const std::vector<LatticePoint> crossing =
-      isVoid ? voidCrossing(ctx.objects, where, mine) : pieceCrossing(ctx.objects, mine);
+    const std::vector<LatticePoint> crossing = shells[s].volume < 0
+      ? voidCrossing(ctx.objects, where, mine)
+      : pieceCrossing(ctx.objects, mine);
     if (crossing.empty())
       continue;
-    LatticeMesh rest;
-    for (std::size_t o = 0; o < shells.size(); ++o)
-      if (o != s)
-        rest.append(shells[o].mesh, false);
-    auto prisms = prismsAt(shells[s].mesh, rest, crossing);
-    // The prisms whose open interior misses H first (nearest first among them).
-    std::stable_partition(prisms.begin(),
-      prisms.end(),
-      [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
-    for (std::size_t k = 0; k < std::min<std::size_t>(prisms.size(), kPrismsTried); ++k)
+    if (joinAtCrossing(ctx, shells, s, crossing, kTrianglesNear, 0, surface, where) ||
+      joinAtCrossing(ctx, shells, s, crossing, kMoreTrianglesNear, kTrianglesNear, surface, where))
     {
-      if (ctx.exec.stopRequested())
-        throw std::runtime_error("aborted");
-      if (joinAlongPrism(ctx, prisms[k], isVoid, shells.size(), surface, where))
-      {
-        // A shell that failed stays failed although a later join may open a way for it: trying
-        // the failed ones again once after a later join did not join a single further shell on
-        // the hollow balls (their voids' prisms still crossed H off the lattice) and cost
-        // Booleans on the Al cartoon.
-        failed.erase(key);
-        return true;
-      }
+      // A shell that failed stays failed although a later join may open a way for it: trying
+      // the failed ones again once after a later join did not join a single further shell on
+      // the hollow balls (their voids' prisms still crossed H off the lattice) and cost
+      // Booleans on the Al cartoon.
+      failed.erase(key);
+      return true;
     }
   }
   return false;
@@ -1844,37 +1883,147 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   return joined;
 }
 
+/// The contribution to the Euler characteristic of the union of the closed voxel cubes of the
+/// cells whose lowest corner is a grid corner, from the 8 voxels about that corner (bit
+/// dx + 2 dy + 4 dz for the voxel at corner - 1 + (dx, dy, dz)): the corner itself (any voxel),
+/// its edges towards +x, +y, +z (the 4 voxels on that side), its faces (the 2 voxels on both
+/// sides) and its cube (the one voxel on all three).
+int cornerEuler(unsigned config)
+{
+  auto any = [&](unsigned mask, unsigned value)
+  {
+    for (unsigned b = 0; b < 8; ++b)
+      if ((b & mask) == value && (config >> b & 1))
+        return 1;
+    return 0;
+  };
+  return any(0, 0) - any(1, 1) - any(2, 2) - any(4, 4) + any(3, 3) + any(5, 5) + any(6, 6) -
+    any(7, 7);
+}
+
+/// Whether the 8 voxels about a grid corner (bits as in cornerEuler) are not well-composed:
+/// two diagonally opposite voxels alone (of either class), or a face of the block whose two
+/// diagonals hold different classes (its low faces; every face is the low face of some block).
+bool criticalCorner(unsigned config)
+{
+  const int count = __builtin_popcount(config);
+  for (unsigned k = 0; k < 4; ++k)
+  {
+    const bool a = config >> k & 1, b = config >> (7 - k) & 1;
+    if ((count == 2 && a && b) || (count == 6 && !a && !b))
+      return true;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const unsigned u = 1u << ((axis + 1) % 3), w = 1u << ((axis + 2) % 3);
+    const bool s0 = config & 1, s1 = config & u, s2 = config & (u | w), s3 = config & w;
+    if (s0 == s2 && s1 == s3 && s0 != s1)
+      return true;
+  }
+  return false;
+}
+
+/// Twice the Euler characteristic of the union of the object's closed voxel cubes, the Euler
+/// characteristic of its boundary, when the object is well-composed (then its boundary is a
+/// 2-manifold and H must have its genus); -1, as no Euler characteristic of a closed surface,
+/// when voxels touch along an edge or at a corner only (the touching rule decides H there).
+long wellComposedBoundaryEuler(const BitVolume& objects)
+{
+  std::array<int, 256> euler;
+  std::array<bool, 256> critical;
+  for (unsigned c = 0; c < 256; ++c)
+  {
+    euler[c] = cornerEuler(c);
+    critical[c] = criticalCorner(c);
+  }
+  const Dims d = objects.dims();
+  long chi = 0;
+  for (std::int32_t z = 0; z <= d[2]; ++z)
+    for (std::int32_t y = 0; y <= d[1]; ++y)
+      for (std::int32_t x = 0; x <= d[0]; ++x)
+      {
+        unsigned config = 0;
+        for (unsigned b = 0; b < 8; ++b)
+          config |= static_cast<unsigned>(voxelClass(
+                      objects, { x - 1 + (b & 1), y - 1 + (b >> 1 & 1), z - 1 + (b >> 2) }))
+            << b;
+        if (critical[config])
+          return -1;
+        chi += euler[config];
+      }
+  return 2 * chi;
+}
+
+/// One pass of the levels, with pits or with every level kept apart: true when H separates
+/// (checked, see the header), its shells then joined.
+bool solvePass(Context& ctx, ModifiedHull& r, bool pits)
+{
+  ctx.pits = pits;
+  ctx.keptApart = 0;
+  ctx.planeLevel.clear();
+  try
+  {
+    r.surface = solveLevel(ctx, r.hull, nullptr, true, false, 0, r.degreeOfNonConvexity);
+  }
+  catch (const Unresolved& e)
+  {
+    r.failure = e.what();
+    return false;
+  }
+  if (!separates(ctx.objects, r.surface))
+  {
+    r.failure = "the surface does not separate";
+    return false;
+  }
+  r.complete = true;
+  r.failure.clear();
+  r.withoutPits = !pits;
+  r.keptApart = ctx.keptApart;
+  r.joinedShells = joinShells(ctx, r.surface);
+  return true;
+}
+
+/// Whether a shell of the closed surface has genus above 0.
+bool hasAHandle(const LatticeMesh& surface)
+{
+  for (const Shell& shell : shellsOf(surface))
+    if (eulerCharacteristic(shell.mesh) < 2)
+      return true;
+  return false;
+}
+
+/// Spurious handles (see the header): when H from the pits has a lower Euler characteristic
+/// than the boundary of the object's closed cubes, H with every level kept apart is made as well
+/// and kept when its Euler characteristic is the object's. A ring of object voxels about a wide
+/// tunnel that a pit cut off comes back as a torus of its own that one tube joins; kept apart, the
+/// ring stays part of its level's solid.
+void keepFewerHandles(Context& ctx, ModifiedHull& r)
+{
+  const long target = wellComposedBoundaryEuler(ctx.objects);
+  if (target < 0 || eulerCharacteristic(r.surface) >= target || !hasAHandle(r.surface))
+    return;
+  ModifiedHull apart = r;
+  const auto planes = ctx.planeLevel;
+  if (solvePass(ctx, apart, false) && eulerCharacteristic(apart.surface) == target)
+  {
+    r = std::move(apart);
+    return;
+  }
+  ctx.planeLevel = planes;
+}
+
 /// The levels solved with pits and, when that leaves something unresolved or the result does
-/// not separate (checked, see the header), again with every level kept apart.
+/// not separate, again with every level kept apart.
 void solveAndCheck(Context& ctx, ModifiedHull& r)
 {
   r.complete = false;
-  for (bool pits : { true, false })
+  if (solvePass(ctx, r, true))
   {
-    ctx.pits = pits;
-    ctx.keptApart = 0;
-    ctx.planeLevel.clear();
-    try
-    {
-      r.surface = solveLevel(ctx, r.hull, nullptr, true, false, 0, r.degreeOfNonConvexity);
-    }
-    catch (const Unresolved& e)
-    {
-      r.failure = e.what();
-      continue;
-    }
-    if (separates(ctx.objects, r.surface))
-    {
-      r.complete = true;
-      r.failure.clear();
-      r.withoutPits = !pits;
-      r.keptApart = ctx.keptApart;
-      r.joinedShells = joinShells(ctx, r.surface);
-      return;
-    }
-    r.failure = "the surface does not separate";
+    keepFewerHandles(ctx, r);
+    return;
   }
-  r.surface = triangulateHull(r.hull);
+  if (!solvePass(ctx, r, false))
+    r.surface = triangulateHull(r.hull);
 }
 
 } // namespace
