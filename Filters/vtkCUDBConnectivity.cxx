@@ -64,6 +64,10 @@ struct ObjectBoxes
   vbr::Components components;
   std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
+  /// A 2D object swept along its rows (ZYX in processing axes): its pixels and the box of
+  /// each of their runs, from which its RegionIds are painted (vbr::paintPixelRuns).
+  vbr::BitVolume pixels;
+  std::vector<std::uint32_t> runBoxes;
 };
 
 /// Asks the cache for the line at `address`, which is read soon (a hint; nothing without it).
@@ -342,7 +346,17 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
       const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
       values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
     }
-    vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
+    // From the pixel runs when the object's rows are the image's (x fastest) and no other
+    // object shares its rectangle (the runs' painting writes its gaps too).
+    if (objects.size() == 1 && !o.runBoxes.empty() && axes[0] == 0)
+    {
+      const std::int64_t rowStep =
+        axes[1] == 1 ? grid.dims[0] : std::int64_t(grid.dims[0]) * grid.dims[1];
+      vbr::paintPixelRuns(
+        o.pixels, o.runBoxes, values, { o.offset[0], o.offset[1] }, rowStep, out, exec);
+    }
+    else
+      vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
   }
   return ids;
 }
@@ -778,7 +792,7 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
-  const vbr::BitVolume pixels = selected.select(exec.within(0.0, 0.1));
+  vbr::BitVolume pixels = selected.select(exec.within(0.0, 0.1));
   bool found = false;
   const double step = 0.9 / static_cast<double>(sortings.size());
   for (std::size_t k = 0; k < sortings.size(); ++k)
@@ -787,22 +801,28 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
     vbr::CUDB cudb;
     vbr::Components labelled;
     std::size_t vertices = 0;
+    std::vector<std::uint32_t> runBoxes; // rows along processing x: painted from the runs
+    const bool alongRows = sortings[k] == vbr::AxisOrder{ 2, 1, 0 };
     if (!vbr::buildCUDBComponents2D(pixels,
           sortings[k],
           connectivity,
           exec.within(from, from + step),
           cudb,
           labelled,
-          &vertices))
+          &vertices,
+          alongRows ? &runBoxes : nullptr))
       return false;
     if (!found || cudb.boxes.size() < o.cudb.boxes.size())
     {
       o.cudb = std::move(cudb);
       o.components = std::move(labelled);
       o.extremeVertices = vertices;
+      o.runBoxes = std::move(runBoxes);
     }
     found = true;
   }
+  if (!o.runBoxes.empty())
+    o.pixels = std::move(pixels);
   return !o.cudb.boxes.empty();
 }
 

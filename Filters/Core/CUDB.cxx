@@ -1035,7 +1035,9 @@ PaintLayout paintLayout(const std::array<int, 3>& axes, const std::array<Coord, 
 
 /// paintBoxes on a single slice (a 2D image): boxes one voxel thick, of a few rows each, by a
 /// loop with fewer steps per box than the 3D one (a maze has millions of boxes of 3.6 pixels
-/// on 1.9 rows; the 3D loop took half again as long there). Workers own ranges of rows.
+/// on 1.9 rows; the 3D loop took half again as long there). Workers own ranges of rows. The
+/// box's numbers are read into locals before its pixels are written: the pixels are int32
+/// like the coordinates, so each store would otherwise reload them.
 void paintPlanarBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
@@ -1046,20 +1048,25 @@ void paintPlanarBoxes(const std::vector<Box>& boxes,
 {
   const int row = layout.row, split = layout.split, flat = 3 - row - split;
   const std::int64_t rowStep = layout.step[split];
+  const std::int64_t rowOffset = offset[row], splitOffset = offset[split];
+  std::int32_t* const origin = labels + std::int64_t(offset[flat]) * layout.step[flat];
+  const Box* const box = boxes.data();
+  const std::int32_t* const values = value.data();
+  const std::size_t count = boxes.size();
   exec.forRange(dims[1],
-    [&](std::int64_t from, std::int64_t to)
+    [=](std::int64_t from, std::int64_t to)
     {
-      for (std::size_t b = 0; b < boxes.size(); ++b)
+      for (std::size_t b = 0; b < count; ++b)
       {
-        const std::int32_t v = value[b];
+        const std::int32_t v = values[b];
+        const std::int64_t lo = std::max<std::int64_t>(box[b].lo[split] + splitOffset, from);
+        const std::int64_t hi = std::min<std::int64_t>(box[b].hi[split] + splitOffset, to);
+        const std::int64_t x0 = box[b].lo[row] + rowOffset,
+                           length = box[b].hi[row] - box[b].lo[row];
+        const std::int64_t flatAt = std::int64_t(box[b].lo[flat]) * layout.step[flat];
         if (v == 0)
           continue;
-        const Box& box = boxes[b];
-        const std::int64_t lo = std::max<std::int64_t>(box.lo[split] + offset[split], from);
-        const std::int64_t hi = std::min<std::int64_t>(box.hi[split] + offset[split], to);
-        const std::int64_t length = box.hi[row] - box.lo[row];
-        std::int32_t* line = labels + lo * rowStep + (box.lo[row] + offset[row]) +
-          std::int64_t(box.lo[flat] + offset[flat]) * layout.step[flat];
+        std::int32_t* line = origin + flatAt + lo * rowStep + x0;
         for (std::int64_t y = lo; y < hi; ++y, line += rowStep)
           for (std::int64_t x = 0; x < length; ++x)
             line[x] = v;
@@ -1327,7 +1334,8 @@ bool sweepPixelRows(const BitVolume& pixels,
   std::int32_t stride,
   ProgressPoll& poll,
   CUDB& out,
-  UnionFind& equivalences)
+  UnionFind& equivalences,
+  std::vector<std::uint32_t>* runBoxes)
 {
   const std::int32_t ny = pixels.size(1);
   BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
@@ -1342,9 +1350,12 @@ bool sweepPixelRows(const BitVolume& pixels,
     for (auto y = static_cast<std::int32_t>(block); y < end; ++y)
     {
       visit.Row = y;
-      const std::size_t count = sweep.nextRow(y, visit).size();
+      const std::vector<PixelRun>& runs = sweep.nextRow(y, visit);
       if (!sweep.sameAsPrevious())
-        out.oudbBoxCount += count; // a line of vertices at y: the OUDB cuts every interval there
+        out.oudbBoxCount += runs.size(); // a line of vertices at y: the OUDB cuts every interval
+      if (runBoxes)
+        for (const PixelRun& run : runs)
+          runBoxes->push_back(run.box);
     }
   }
   return true;
@@ -1358,7 +1369,8 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   const Execution& exec,
   CUDB& out,
   Components& components,
-  std::size_t* vertices)
+  std::size_t* vertices,
+  std::vector<std::uint32_t>* runBoxes)
 {
   checkSingleSlice(pixels);
   const bool alongY = order == AxisOrder{ 2, 0, 1 };
@@ -1377,12 +1389,20 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   UnionFind equivalences;
   equivalences.reserve(runs);
   out.boxes.reserve(runs);
+  if (runBoxes)
+  {
+    runBoxes->clear();
+    runBoxes->reserve(runs);
+  }
   const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
   const auto stride = static_cast<std::int32_t>(std::max<std::size_t>(2048 / words, 1));
   ProgressPoll poll(exec, 0.0, 1.0);
-  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences) || !poll.poll())
+  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences, runBoxes) ||
+    !poll.poll())
   {
     out = CUDB();
+    if (runBoxes)
+      runBoxes->clear();
     return false;
   }
   if (alongY) // the sweep's (x, y) are the image's (y, x)
@@ -1404,6 +1424,78 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   buildCUDBComponents2D(
     pixels, AxisOrder{ 2, 1, 0 }, connectivity, Execution(), out, components, &vertices);
   return vertices;
+}
+
+namespace
+{
+
+/// Writes v over [from, to) of a row that ends at `end`: by a fixed 8 values when they fit
+/// before the end (the values past `to` are overwritten later by the caller), exactly else.
+inline void fillAhead(std::int32_t* from, std::int32_t* to, std::int32_t* end, std::int32_t v)
+{
+  constexpr std::ptrdiff_t Width = 8;
+  if (to - from <= Width && end - from >= Width)
+  {
+    for (std::ptrdiff_t k = 0; k < Width; ++k)
+      from[k] = v;
+    return;
+  }
+  for (; from < to; ++from)
+    *from = v;
+}
+
+/// paintPixelRuns over rows [from, to), whose first run is run `firstRun`.
+void paintRowsOfRuns(const BitVolume& pixels,
+  std::int64_t from,
+  std::int64_t to,
+  const std::uint32_t* runBox,
+  const std::int32_t* value,
+  std::int32_t* origin,
+  std::int64_t rowStep,
+  Coord* ends)
+{
+  const std::size_t words = pixels.wordsPerRow();
+  const std::int32_t nx = pixels.size(0);
+  for (std::int64_t y = from; y < to; ++y)
+  {
+    std::int32_t* const row = origin + y * rowStep;
+    std::int32_t* const rowEnd = row + nx;
+    const Coord* const last = rowRunEnds(pixels.row(static_cast<std::int32_t>(y), 0), words, ends);
+    std::int32_t* at = row; // the first pixel not yet written for good
+    for (const Coord* e = ends; e != last; e += 2)
+    {
+      fillAhead(at, row + e[0], rowEnd, 0);
+      at = row + e[1];
+      fillAhead(row + e[0], at, rowEnd, value[*runBox++]);
+    }
+    fillAhead(at, rowEnd, rowEnd, 0);
+  }
+}
+
+} // namespace
+
+void paintPixelRuns(const BitVolume& pixels,
+  const std::vector<std::uint32_t>& runBoxes,
+  const std::vector<std::int32_t>& value,
+  const std::array<Coord, 2>& offset,
+  std::int64_t rowStep,
+  std::int32_t* labels,
+  const Execution& exec)
+{
+  checkSingleSlice(pixels);
+  std::int32_t* const origin = labels + std::int64_t(offset[1]) * rowStep + offset[0];
+  exec.forRange(pixels.size(1),
+    [&](std::int64_t from, std::int64_t to)
+    {
+      std::size_t firstRun = 0; // the runs of the rows before this range
+      for (std::int64_t y = 0; y < from; ++y)
+        firstRun +=
+          rowChanges(pixels.row(static_cast<std::int32_t>(y), 0), nullptr, pixels.wordsPerRow()) /
+          2;
+      std::vector<Coord> ends(pixels.wordsPerRow() * 64 + 2);
+      paintRowsOfRuns(
+        pixels, from, to, runBoxes.data() + firstRun, value.data(), origin, rowStep, ends.data());
+    });
 }
 
 } // namespace vbr

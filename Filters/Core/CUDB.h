@@ -123,15 +123,18 @@ bool buildCUDBComponents(const EVM& evm,
 /// united at once with the runs of the row before that it meets. Same boxes (in the same
 /// order), oudbBoxCount and components as buildCUDBComponents(extractEVM2D(pixels) sorted as
 /// `order`, ...); `vertices` (if given) receives the number of vertices that EVM would have.
-/// Polls `exec` every 2048 words of pixels or so (a few dozen rows of a wide image); returns
-/// false when aborted, with `out` empty.
+/// `runBoxes` (if given) receives the box of every run of set pixels of the rows the sweep
+/// reads (the image's rows in ZYX, its columns in ZXY), row after row and along each row, as
+/// paintPixelRuns reads them. Polls `exec` every 2048 words of pixels or so (a few dozen rows
+/// of a wide image); returns false when aborted, with `out` empty.
 bool buildCUDBComponents2D(const BitVolume& pixels,
   const AxisOrder& order,
   Connectivity connectivity,
   const Execution& exec,
   CUDB& out,
   Components& components,
-  std::size_t* vertices = nullptr);
+  std::size_t* vertices = nullptr,
+  std::vector<std::uint32_t>* runBoxes = nullptr);
 /// The same in the ZYX sorting, never aborted; returns the number of vertices of the EVM.
 std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   Connectivity connectivity,
@@ -147,6 +150,22 @@ void paintBoxes(const std::vector<Box>& boxes,
   const std::array<Coord, 3>& offset,
   const std::array<int, 3>& axes,
   const std::array<Coord, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec = Execution());
+
+/// Writes every pixel of a one-slice pixel set into `labels`, row by row: value[runBoxes[i]]
+/// on the pixels of its run i (the runs of set pixels in the order of buildCUDBComponents2D's
+/// `runBoxes` in ZYX), 0 between runs. Pixel (x, y) is labels[(y + offset[1]) * rowStep + x +
+/// offset[0]]; nothing outside the pixels' rectangle is written. The same labels as paintBoxes
+/// of the sweep's boxes into a zeroed grid, in one sequential pass that writes each pixel
+/// once: runs and gaps are filled with stores of a fixed width, each overwritten in turn by
+/// the next run or gap (runs of a few pixels, as a maze has, mispredicted every loop exit
+/// of the boxes' painting). Parallel over rows.
+void paintPixelRuns(const BitVolume& pixels,
+  const std::vector<std::uint32_t>& runBoxes,
+  const std::vector<std::int32_t>& value,
+  const std::array<Coord, 2>& offset,
+  std::int64_t rowStep,
   std::int32_t* labels,
   const Execution& exec = Execution());
 
