@@ -43,6 +43,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -1191,27 +1192,31 @@ public:
     const Coord* endsEnd = rowRunEnds(this->Pixels.row(y, 0), this->Pixels.wordsPerRow(), ends);
     const std::size_t count = static_cast<std::size_t>(endsEnd - ends) / 2;
     this->Current.resize(count);
-    const PixelRun* const prev = this->Previous.data();
-    const std::size_t np = this->Previous.size();
-    PixelRun* const cur = this->Current.data();
-    this->Same = count == np;
-    std::size_t p = 0;
-    for (std::size_t k = 0; k < count; ++k)
+    // Pointers and counters in locals: the runs' and boxes' int32 stores could alias members,
+    // which were reloaded (and spilled) at every run.
+    const PixelRun* p = this->Previous.data();
+    const PixelRun* const prevEnd = p + this->Previous.size();
+    PixelRun* cur = this->Current.data();
+    std::uint32_t nextBox = this->NextBox;
+    bool same = count == this->Previous.size();
+    for (const Coord* e = ends; e != endsEnd; e += 2, ++cur)
     {
-      const Coord c0 = ends[2 * k], c1 = ends[2 * k + 1];
+      const Coord c0 = e[0], c1 = e[1];
       // Runs of the row before that end before this one meet no later run either.
-      while (p < np && prev[p].c1 < c0)
+      while (p != prevEnd && p->c1 < c0)
         ++p;
-      if (p < np && prev[p].c0 == c0 && prev[p].c1 == c1)
+      if (p != prevEnd && p->c0 == c0 && p->c1 == c1)
       {
-        cur[k] = prev[p]; // no other run of the row before meets it: runs have gaps
-        visit.continued(cur[k]);
+        *cur = *p; // no other run of the row before meets it: runs have gaps
+        visit.continued(*cur);
         continue;
       }
-      this->Same = false;
-      cur[k] = { c0, c1, this->NextBox++ };
-      visit.started(cur[k], prev + p, prev + np);
+      same = false;
+      *cur = { c0, c1, nextBox++ };
+      visit.started(*cur, p, prevEnd);
     }
+    this->NextBox = nextBox;
+    this->Same = same;
     return this->Current;
   }
 
@@ -1353,9 +1358,11 @@ bool sweepPixelRows(const BitVolume& pixels,
       const std::vector<PixelRun>& runs = sweep.nextRow(y, visit);
       if (!sweep.sameAsPrevious())
         out.oudbBoxCount += runs.size(); // a line of vertices at y: the OUDB cuts every interval
-      if (runBoxes)
-        for (const PixelRun& run : runs)
-          runBoxes->push_back(run.box);
+      if (runBoxes)                      // reserved for all runs: no reallocation
+        std::transform(runs.begin(),
+          runs.end(),
+          std::back_inserter(*runBoxes),
+          [](const PixelRun& run) { return run.box; });
     }
   }
   return true;
