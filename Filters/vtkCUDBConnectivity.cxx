@@ -347,7 +347,7 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
       values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
     }
     // From the pixel runs when the object's rows are the image's (x fastest) and no other
-    // object shares its rectangle (the runs' painting writes its gaps too).
+    // object shares its rectangle (the runs' painting writes 0 past short runs).
     if (objects.size() == 1 && !o.runBoxes.empty() && axes[0] == 0)
     {
       const std::int64_t rowStep =

@@ -1436,22 +1436,7 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
 namespace
 {
 
-/// Writes v over [from, to) of a row that ends at `end`: by a fixed 8 values when they fit
-/// before the end (the values past `to` are overwritten later by the caller), exactly else.
-inline void fillAhead(std::int32_t* from, std::int32_t* to, std::int32_t* end, std::int32_t v)
-{
-  constexpr std::ptrdiff_t Width = 8;
-  if (to - from <= Width && end - from >= Width)
-  {
-    for (std::ptrdiff_t k = 0; k < Width; ++k)
-      from[k] = v;
-    return;
-  }
-  for (; from < to; ++from)
-    *from = v;
-}
-
-/// paintPixelRuns over rows [from, to), whose first run is run `firstRun`.
+/// paintPixelRuns over rows [from, to), whose first run is runBox[0].
 void paintRowsOfRuns(const BitVolume& pixels,
   std::int64_t from,
   std::int64_t to,
@@ -1468,14 +1453,23 @@ void paintRowsOfRuns(const BitVolume& pixels,
     std::int32_t* const row = origin + y * rowStep;
     std::int32_t* const rowEnd = row + nx;
     const Coord* const last = rowRunEnds(pixels.row(static_cast<std::int32_t>(y), 0), words, ends);
-    std::int32_t* at = row; // the first pixel not yet written for good
+    constexpr std::ptrdiff_t Width = 8;
     for (const Coord* e = ends; e != last; e += 2)
     {
-      fillAhead(at, row + e[0], rowEnd, 0);
-      at = row + e[1];
-      fillAhead(row + e[0], at, rowEnd, value[*runBox++]);
+      std::int32_t *const first = row + e[0], *const end = row + e[1];
+      const std::int32_t v = value[*runBox++];
+      if (end - first <= Width && rowEnd - first >= 2 * Width)
+      {
+        // A short run: Width values from its start, then Width zeros from its end over the
+        // gap's pixels they covered (the gap is 0 already; the next run is written after).
+        for (std::ptrdiff_t k = 0; k < Width; ++k)
+          first[k] = v;
+        for (std::ptrdiff_t k = 0; k < Width; ++k)
+          end[k] = 0;
+      }
+      else
+        std::fill(first, end, v);
     }
-    fillAhead(at, rowEnd, rowEnd, 0);
   }
 }
 

@@ -153,14 +153,15 @@ void paintBoxes(const std::vector<Box>& boxes,
   std::int32_t* labels,
   const Execution& exec = Execution());
 
-/// Writes every pixel of a one-slice pixel set into `labels`, row by row: value[runBoxes[i]]
-/// on the pixels of its run i (the runs of set pixels in the order of buildCUDBComponents2D's
-/// `runBoxes` in ZYX), 0 between runs. Pixel (x, y) is labels[(y + offset[1]) * rowStep + x +
-/// offset[0]]; nothing outside the pixels' rectangle is written. The same labels as paintBoxes
-/// of the sweep's boxes into a zeroed grid, in one sequential pass that writes each pixel
-/// once: runs and gaps are filled with stores of a fixed width, each overwritten in turn by
-/// the next run or gap (runs of a few pixels, as a maze has, mispredicted every loop exit
-/// of the boxes' painting). Parallel over rows.
+/// Paints a one-slice pixel set into `labels`, which must hold 0 on the pixels' rectangle:
+/// value[runBoxes[i]] on the pixels of run i (the runs of set pixels in the order of
+/// buildCUDBComponents2D's `runBoxes` in ZYX). Pixel (x, y) is labels[(y + offset[1]) *
+/// rowStep + x + offset[0]]; nothing outside the rectangle is written. The labels of
+/// paintBoxes of the sweep's boxes into a zeroed grid, in one pass along the rows: a run of up
+/// to 8 pixels is written by stores of a fixed width (8 values, then 8 zeros from its end over
+/// the gap they covered; the next run is written after), a longer one exactly (runs of a few
+/// pixels, as a maze has, mispredicted every loop exit of the boxes' painting). Parallel over
+/// rows.
 void paintPixelRuns(const BitVolume& pixels,
   const std::vector<std::uint32_t>& runBoxes,
   const std::vector<std::int32_t>& value,

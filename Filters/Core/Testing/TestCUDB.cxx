@@ -444,15 +444,16 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
 
 TEST(CUDB, PixelRunsPaintTheBoxes)
 {
-  // paintPixelRuns from the runs of the ZYX sweep against box-by-box loops: every pixel of a
-  // run gets the value of the box that covers it, every other pixel of the image's rectangle
-  // 0 (removed boxes too), nothing outside the rectangle is written. Widths around the fixed
-  // stores (8 pixels) and the 64-bit words, the rectangle at an offset in a wider grid, one
-  // thread and three (ranges of rows that start inside the runs).
+  // paintPixelRuns from the runs of the ZYX sweep into a zeroed rectangle, against box-by-box
+  // loops: every pixel of a run gets the value of the box that covers it, every other pixel
+  // of the rectangle stays 0 (removed boxes too), nothing outside the rectangle is written. Widths
+  // around the fixed stores (8 pixels) and the 64-bit words, the rectangle at an offset in a wider
+  // grid, one thread and three (ranges of rows that start inside the runs).
   const vbr::Point3 sizes[] = { { 1, 1, 1 },
     { 3, 7, 1 },
     { 8, 5, 1 },
     { 9, 6, 1 },
+    { 16, 4, 1 },
     { 17, 30, 1 },
     { 63, 20, 1 },
     { 64, 33, 1 },
@@ -499,6 +500,8 @@ TEST(CUDB, PixelRunsPaintTheBoxes)
           for (int threads : { 1, 3 })
           {
             std::vector<std::int32_t> painted(expected.size(), -7);
+            for (vbr::Coord y = 0; y < d[1]; ++y)
+              std::fill_n(painted.begin() + std::ptrdiff_t(y + oy) * width + ox, d[0], 0);
             vbr::paintPixelRuns(v,
               runBoxes,
               value,
