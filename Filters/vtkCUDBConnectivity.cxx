@@ -64,17 +64,21 @@ struct ObjectBoxes
   vbr::Components components;
   std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
+  /// A 2D object swept along its rows (ZYX in processing axes): its pixels and the box of
+  /// each of their runs, from which its RegionIds are painted (vbr::paintPixelRuns).
+  vbr::BitVolume pixels;
+  std::vector<std::uint32_t> runBoxes;
 };
 
-/// What numbering needs of one connected component, while it is numbered. Kept small: a
-/// checkerboard has a component per selected voxel, so the statistics of the region table
-/// are gathered later, for the kept regions only, in the table's own columns (RegionColumns),
-/// and only the RegionId of each region outlives the numbering.
-struct Region
+/// Asks the cache for the line at `address`, which is read soon (a hint; nothing without it).
+inline void prefetch(const void* address)
 {
-  std::int64_t voxels = 0;
-  bool seeded = false;
-};
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
 
 /// The statistics of one region's row of the table, as gathered from its boxes.
 struct RegionStats
@@ -82,6 +86,37 @@ struct RegionStats
   std::int64_t voxels = 0;
   std::array<double, 3> weightedCentre{ 0, 0, 0 }; ///< sum of voxel centres, processing axes
   Int3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };               ///< processing axes, hi exclusive
+};
+
+/// One connected component: what numbering needs (size, seeds) and its row of the table, all
+/// gathered in one pass over the boxes in sweep order. One cache line per region: the boxes
+/// of a region are met in turn with those of its neighbours, and a maze's 4.9 M boxes missed
+/// the cache in ten separate columns when the table gathered them in a pass of its own.
+struct alignas(64) Region : RegionStats
+{
+  std::uint32_t boxes = 0;
+  bool seeded = false;
+
+  Region()
+  {
+    this->lo.fill(std::numeric_limits<std::int32_t>::max()); // any box replaces them
+    this->hi.fill(std::numeric_limits<std::int32_t>::min());
+  }
+
+  /// Adds a box (processing axes, at `offset`) of the region.
+  void add(const vbr::Box& box, const Int3& offset)
+  {
+    ++this->boxes;
+    const std::int64_t volume = box.volume();
+    this->voxels += volume;
+    for (int d = 0; d < 3; ++d)
+    {
+      const std::int32_t first = box.lo[d] + offset[d], last = box.hi[d] + offset[d];
+      this->lo[d] = std::min(this->lo[d], first);
+      this->hi[d] = std::max(this->hi[d], last);
+      this->weightedCentre[d] += static_cast<double>(volume) * (0.5 * (first + last));
+    }
+  }
 };
 
 /// The sortings to try, in processing axes. A 2D image (flat processing axis 2) is swept
@@ -183,13 +218,16 @@ bool axisAligned(const vbr::vtk::VoxelGrid& grid)
     grid.spacing[2] > 0;
 }
 
-/// The voxel count of every region from its boxes (what the size filters and the ranking need).
+/// The size and the statistics of every region from its boxes, in sweep order.
 std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t count)
 {
   std::vector<Region> regions(count);
   for (const ObjectBoxes& o : objects)
+  {
+    Region* first = regions.data() + o.firstRegion - 1; // labels start at 1
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-      regions[o.firstRegion + o.components.boxLabel[b] - 1].voxels += o.cudb.boxes[b].volume();
+      first[o.components.boxLabel[b]].add(o.cudb.boxes[b], o.offset);
+  }
   return regions;
 }
 
@@ -308,7 +346,17 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
       const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
       values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
     }
-    vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
+    // From the pixel runs when the object's rows are the image's (x fastest) and no other
+    // object shares its rectangle (the runs' painting writes 0 past short runs).
+    if (objects.size() == 1 && !o.runBoxes.empty() && axes[0] == 0)
+    {
+      const std::int64_t rowStep =
+        axes[1] == 1 ? grid.dims[0] : std::int64_t(grid.dims[0]) * grid.dims[1];
+      vbr::paintPixelRuns(
+        o.pixels, o.runBoxes, values, { o.offset[0], o.offset[1] }, rowStep, out, exec);
+    }
+    else
+      vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
   }
   return ids;
 }
@@ -553,12 +601,9 @@ void centroidOf(const RegionStats& r,
   grid.positionToWorld(image.data(), world);
 }
 
-/// The columns of port 2, sized for the kept regions. They first gather each region's
-/// statistics from its boxes in place (addBox: sums, and bounds in processing axes), then
-/// each row is rewritten with its final values (finish): no per-region record is held next to
-/// the table, which on a checkerboard has a row per selected voxel. Written through raw
-/// pointers (a table of tens of thousands of regions, as noise gives, filled value by value
-/// through the generic array interface cost more than its labelling).
+/// The columns of port 2, sized for the kept regions, each row written once from its region's
+/// statistics through raw pointers (a table of tens of thousands of regions, as noise gives,
+/// filled value by value through the generic array interface cost more than its labelling).
 struct RegionColumns
 {
   vtkNew<vtkIntArray> ids;
@@ -569,13 +614,6 @@ struct RegionColumns
   // (The fixed-size classes, which the columns have always had.)
   std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
   std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
-  /// Where addBox gathers: the storage of the columns above (set by startGathering).
-  struct
-  {
-    vtkIdType *voxels, *boxes;
-    double* centres;
-    std::array<std::int32_t*, 6> bounds;
-  } gathered{};
 
   RegionColumns(int labelType, vtkIdType count)
     : labels(vbr::vtk::newLabelArray(labelType, count))
@@ -604,91 +642,47 @@ struct RegionColumns
     vbr::vtk::resizeOrThrow(columns, count);
   }
 
-  /// Empty sums, and bounds that any box replaces.
-  /// Empty sums, and bounds that any box replaces; the columns' storage is then written
-  /// through raw pointers (the arrays' GetPointer is a library call, once per value).
-  void startGathering()
-  {
-    const vtkIdType n = this->ids->GetNumberOfValues();
-    this->gathered.voxels = this->voxels->GetPointer(0);
-    this->gathered.boxes = this->boxes->GetPointer(0);
-    this->gathered.centres = this->centroids->GetPointer(0);
-    std::fill_n(this->gathered.voxels, n, 0);
-    std::fill_n(this->gathered.boxes, n, 0);
-    std::fill_n(this->gathered.centres, 3 * n, 0.0);
-    for (int k = 0; k < 6; ++k)
-    {
-      this->gathered.bounds[k] = this->indexBounds[k]->GetPointer(0);
-      std::fill_n(this->gathered.bounds[k],
-        n,
-        k % 2 == 0 ? std::numeric_limits<std::int32_t>::max()
-                   : std::numeric_limits<std::int32_t>::min());
-    }
-  }
-
-  /// Adds a box (processing axes, at `offset`) of the region of row `row`.
-  void addBox(vtkIdType row, const vbr::Box& box, const Int3& offset)
-  {
-    ++this->gathered.boxes[row];
-    const std::int64_t volume = box.volume();
-    this->gathered.voxels[row] += volume;
-    double* centre = this->gathered.centres + 3 * row;
-    for (int d = 0; d < 3; ++d)
-    {
-      const std::int32_t lo = box.lo[d] + offset[d], hi = box.hi[d] + offset[d];
-      std::int32_t& first = this->gathered.bounds[2 * d][row];
-      std::int32_t& last = this->gathered.bounds[2 * d + 1][row];
-      first = std::min(first, lo);
-      last = std::max(last, hi);
-      centre[d] += static_cast<double>(volume) * (0.5 * (lo + hi));
-    }
-  }
-
-  /// The gathered statistics moved from row `from[k]` to row k, for every row.
-  void permuteGathered(const std::vector<vtkIdType>& from)
-  {
-    auto permute = [&from](auto* values, int width)
-    {
-      using T = std::remove_pointer_t<decltype(values)>;
-      const std::vector<T> copy(values, values + from.size() * width);
-      for (std::size_t k = 0; k < from.size(); ++k)
-        std::copy_n(copy.data() + from[k] * width, width, values + k * width);
-    };
-    permute(this->gathered.voxels, 1);
-    permute(this->gathered.boxes, 1);
-    permute(this->gathered.centres, 3);
-    for (std::int32_t* bounds : this->gathered.bounds)
-      permute(bounds, 1);
-  }
-
-  /// Row `row` (id row + 1) from its gathered statistics to the table's values.
-  void finish(vtkIdType row,
+  /// Rows [0, regionOfRow.size()) (ids 1, 2, ...) from the statistics of their regions.
+  void write(const std::vector<Region>& regions,
+    const std::vector<std::size_t>& regionOfRow,
     const vbr::vtk::VoxelGrid& grid,
     const std::array<int, 3>& axes,
     double voxelMeasure)
   {
-    RegionStats r;
-    r.voxels = this->voxels->GetValue(row);
-    for (int d = 0; d < 3; ++d)
-    {
-      r.lo[d] = this->indexBounds[2 * d]->GetValue(row);
-      r.hi[d] = this->indexBounds[2 * d + 1]->GetValue(row);
-      r.weightedCentre[d] = this->centroids->GetTypedComponent(row, d);
-    }
-    this->ids->SetValue(row, static_cast<int>(row + 1));
-    this->volumes->SetValue(row, static_cast<double>(r.voxels) * voxelMeasure);
-    int index[6];
-    indexBoundsOf(r, grid, axes, index);
-    double world[6];
-    worldBoundsOf(r, grid, axes, world);
+    int* ids = this->ids->GetPointer(0);
+    vtkIdType *voxels = this->voxels->GetPointer(0), *boxes = this->boxes->GetPointer(0);
+    double *volumes = this->volumes->GetPointer(0), *centroids = this->centroids->GetPointer(0);
+    std::array<std::int32_t*, 6> index;
+    std::array<double*, 6> world;
     for (int k = 0; k < 6; ++k)
     {
-      this->indexBounds[k]->SetValue(row, index[k]);
-      this->worldBounds[k]->SetValue(row, world[k]);
+      index[k] = this->indexBounds[k]->GetPointer(0);
+      world[k] = this->worldBounds[k]->GetPointer(0);
     }
-    double centroid[3];
-    centroidOf(r, grid, axes, centroid);
-    this->centroids->SetTypedTuple(row, centroid);
+    // Rows in RegionId (size) order read the regions, in sweep order, at random: a maze's
+    // 642,115 rows waited for a cache miss each, so the region of a row further on is
+    // fetched ahead.
+    constexpr std::size_t Ahead = 16;
+    for (std::size_t row = 0; row < regionOfRow.size(); ++row)
+    {
+      if (row + Ahead < regionOfRow.size())
+        prefetch(&regions[regionOfRow[row + Ahead]]);
+      const Region& r = regions[regionOfRow[row]];
+      ids[row] = static_cast<int>(row + 1);
+      voxels[row] = r.voxels;
+      boxes[row] = r.boxes;
+      volumes[row] = static_cast<double>(r.voxels) * voxelMeasure;
+      int indexBounds[6];
+      indexBoundsOf(r, grid, axes, indexBounds);
+      double worldBounds[6];
+      worldBoundsOf(r, grid, axes, worldBounds);
+      for (int k = 0; k < 6; ++k)
+      {
+        index[k][row] = indexBounds[k];
+        world[k][row] = worldBounds[k];
+      }
+      centroidOf(r, grid, axes, centroids + 3 * row);
+    }
   }
 
   void addTo(vtkTable* table)
@@ -706,8 +700,9 @@ struct RegionColumns
   }
 };
 
-/// Port 2: one row per kept region, in RegionId order, gathered from the kept boxes.
+/// Port 2: one row per kept region, in RegionId order, from the regions' statistics.
 void writeRegionTable(const std::vector<ObjectBoxes>& objects,
+  const std::vector<Region>& regions,
   const std::vector<std::int32_t>& regionIds,
   std::int32_t kept,
   const vbr::vtk::VoxelGrid& grid,
@@ -716,35 +711,15 @@ void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   vtkTable* table)
 {
   RegionColumns columns(labelType, kept);
-  columns.startGathering();
-  // Gathered in sweep order (rows of the kept regions as the sweep met them), whose rows the
-  // boxes, in sweep order too, visit nearly in turn, then moved to RegionId order: gathered
-  // in RegionId order, each box of a maze's 642,115 size-ranked regions missed the cache in
-  // ten columns.
-  std::vector<std::int32_t> sweepRow(regionIds.size(), -1);
-  std::vector<vtkIdType> fromSweepRow(static_cast<std::size_t>(kept));
-  std::int32_t rows = 0;
+  std::vector<std::size_t> regionOfRow(static_cast<std::size_t>(kept));
   for (std::size_t r = 0; r < regionIds.size(); ++r)
     if (regionIds[r] != 0)
-    {
-      fromSweepRow[static_cast<std::size_t>(regionIds[r] - 1)] = rows;
-      sweepRow[r] = rows++;
-    }
-  for (const ObjectBoxes& o : objects)
-    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-    {
-      const std::int32_t row = sweepRow[o.firstRegion + o.components.boxLabel[b] - 1];
-      if (row >= 0)
-        columns.addBox(row, o.cudb.boxes[b], o.offset);
-    }
-  columns.permuteGathered(fromSweepRow);
+      regionOfRow[static_cast<std::size_t>(regionIds[r] - 1)] = r;
   for (const ObjectBoxes& o : objects)
     for (std::uint32_t c = 0; c < o.components.count; ++c)
       if (const std::int32_t id = regionIds[o.firstRegion + c])
         vbr::vtk::setLabel(columns.labels, id - 1, o.label);
-  const double measure = voxelMeasure(grid);
-  for (vtkIdType row = 0; row < kept; ++row)
-    columns.finish(row, grid, axes, measure);
+  columns.write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
   columns.addTo(table);
 }
 
@@ -817,7 +792,7 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
-  const vbr::BitVolume pixels = selected.select(exec.within(0.0, 0.1));
+  vbr::BitVolume pixels = selected.select(exec.within(0.0, 0.1));
   bool found = false;
   const double step = 0.9 / static_cast<double>(sortings.size());
   for (std::size_t k = 0; k < sortings.size(); ++k)
@@ -826,22 +801,28 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
     vbr::CUDB cudb;
     vbr::Components labelled;
     std::size_t vertices = 0;
+    std::vector<std::uint32_t> runBoxes; // rows along processing x: painted from the runs
+    const bool alongRows = sortings[k] == vbr::AxisOrder{ 2, 1, 0 };
     if (!vbr::buildCUDBComponents2D(pixels,
           sortings[k],
           connectivity,
           exec.within(from, from + step),
           cudb,
           labelled,
-          &vertices))
+          &vertices,
+          alongRows ? &runBoxes : nullptr))
       return false;
     if (!found || cudb.boxes.size() < o.cudb.boxes.size())
     {
       o.cudb = std::move(cudb);
       o.components = std::move(labelled);
       o.extremeVertices = vertices;
+      o.runBoxes = std::move(runBoxes);
     }
     found = true;
   }
+  if (!o.runBoxes.empty())
+    o.pixels = std::move(pixels);
   return !o.cudb.boxes.empty();
 }
 
@@ -992,20 +973,21 @@ vtkSmartPointer<vtkIntArray> paintPieceFromBoxes(vbr::vtk::Piece& piece,
   return ids;
 }
 
-/// PASS 2 of the filter: the regions measured, those with a seed marked (`painted`, when
-/// given, keeps the image of region numbers the seeds were read from), filtered and
-/// numbered: `regionIds` has the RegionId of every region (0 when removed), and only that
-/// outlives this pass. Returns how many are kept.
+/// PASS 2 of the filter: the regions measured (`regions`, with their table's statistics),
+/// those with a seed marked (`painted`, when given, keeps the image of region numbers the
+/// seeds were read from), filtered and numbered: `regionIds` has the RegionId of every region
+/// (0 when removed). Returns how many are kept.
 std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   vtkDataSet* seeds,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
   std::uint32_t regionCount,
+  std::vector<Region>& regions,
   std::vector<std::int32_t>& regionIds,
   Summary& summary,
   vtkSmartPointer<vtkIntArray>* painted)
 {
-  std::vector<Region> regions = measureRegions(objects, regionCount);
+  regions = measureRegions(objects, regionCount);
   if (seeds)
   {
     vtkSmartPointer<vtkIntArray> ids = markRegionsOfSeeds(self, seeds, in, objects, regions);
@@ -1027,6 +1009,7 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
 void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
+  const std::vector<Region>& regions,
   const std::vector<std::int32_t>& regionIds,
   std::int32_t kept,
   const Summary& summary,
@@ -1035,7 +1018,7 @@ void writeBoxesAndTable(vtkCUDBConnectivity* self,
   vtkLogScopeF(TRACE, "boxes and region table");
   if (self->GetGenerateBoxes())
     writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(objects, regionIds, kept, in.grid, in.axes, in.labelType, ports.table);
+  writeRegionTable(objects, regions, regionIds, kept, in.grid, in.axes, in.labelType, ports.table);
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
@@ -1058,9 +1041,10 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   vtkSmartPointer<vtkDataSet> seeds =
     ports.seeds ? vbr::vtk::gatherPoints(piece, ports.seeds) : nullptr;
   const bool first = piece.rank == 0, aborted = first && self->GetAbortExecute();
+  std::vector<Region> regions;
   std::vector<std::int32_t> regionIds;
   const std::int32_t kept = first && !aborted
-    ? numberAllRegions(self, seeds, in, objects, regionCount, regionIds, summary, nullptr)
+    ? numberAllRegions(self, seeds, in, objects, regionCount, regions, regionIds, summary, nullptr)
     : 0;
   vtkSmartPointer<vtkIntArray> ids = paintPieceFromBoxes(piece,
     piece.local,
@@ -1074,7 +1058,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   addRegionIds(ports.output, ids, piece.local.cellData);
   if (!first)
     return true;
-  writeBoxesAndTable(self, in, objects, regionIds, kept, summary, ports);
+  writeBoxesAndTable(self, in, objects, regions, regionIds, kept, summary, ports);
   return true;
 }
 
@@ -1237,10 +1221,11 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   }
 
   // PASS 2: the regions, filtered (size, seeds, largest) and numbered.
+  std::vector<Region> regions;
   std::vector<std::int32_t> regionIds;
   vtkSmartPointer<vtkIntArray> ids; // with seeds, painted now to find their regions
   const std::int32_t kept =
-    numberAllRegions(this, seeds, in, objects, regionCount, regionIds, summary, &ids);
+    numberAllRegions(this, seeds, in, objects, regionCount, regions, regionIds, summary, &ids);
 
   // PASS 3: the outputs: RegionId image, boxes, region table.
   {
@@ -1253,7 +1238,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);
-  writeBoxesAndTable(this, in, objects, regionIds, kept, summary, ports);
+  writeBoxesAndTable(this, in, objects, regions, regionIds, kept, summary, ports);
   return 1;
 }
 

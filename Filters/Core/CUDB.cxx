@@ -43,6 +43,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -1035,7 +1036,9 @@ PaintLayout paintLayout(const std::array<int, 3>& axes, const std::array<Coord, 
 
 /// paintBoxes on a single slice (a 2D image): boxes one voxel thick, of a few rows each, by a
 /// loop with fewer steps per box than the 3D one (a maze has millions of boxes of 3.6 pixels
-/// on 1.9 rows; the 3D loop took half again as long there). Workers own ranges of rows.
+/// on 1.9 rows; the 3D loop took half again as long there). Workers own ranges of rows. The
+/// box's numbers are read into locals before its pixels are written: the pixels are int32
+/// like the coordinates, so each store would otherwise reload them.
 void paintPlanarBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
@@ -1046,20 +1049,25 @@ void paintPlanarBoxes(const std::vector<Box>& boxes,
 {
   const int row = layout.row, split = layout.split, flat = 3 - row - split;
   const std::int64_t rowStep = layout.step[split];
+  const std::int64_t rowOffset = offset[row], splitOffset = offset[split];
+  std::int32_t* const origin = labels + std::int64_t(offset[flat]) * layout.step[flat];
+  const Box* const box = boxes.data();
+  const std::int32_t* const values = value.data();
+  const std::size_t count = boxes.size();
   exec.forRange(dims[1],
-    [&](std::int64_t from, std::int64_t to)
+    [=](std::int64_t from, std::int64_t to)
     {
-      for (std::size_t b = 0; b < boxes.size(); ++b)
+      for (std::size_t b = 0; b < count; ++b)
       {
-        const std::int32_t v = value[b];
+        const std::int32_t v = values[b];
+        const std::int64_t lo = std::max<std::int64_t>(box[b].lo[split] + splitOffset, from);
+        const std::int64_t hi = std::min<std::int64_t>(box[b].hi[split] + splitOffset, to);
+        const std::int64_t x0 = box[b].lo[row] + rowOffset,
+                           length = box[b].hi[row] - box[b].lo[row];
+        const std::int64_t flatAt = std::int64_t(box[b].lo[flat]) * layout.step[flat];
         if (v == 0)
           continue;
-        const Box& box = boxes[b];
-        const std::int64_t lo = std::max<std::int64_t>(box.lo[split] + offset[split], from);
-        const std::int64_t hi = std::min<std::int64_t>(box.hi[split] + offset[split], to);
-        const std::int64_t length = box.hi[row] - box.lo[row];
-        std::int32_t* line = labels + lo * rowStep + (box.lo[row] + offset[row]) +
-          std::int64_t(box.lo[flat] + offset[flat]) * layout.step[flat];
+        std::int32_t* line = origin + flatAt + lo * rowStep + x0;
         for (std::int64_t y = lo; y < hi; ++y, line += rowStep)
           for (std::int64_t x = 0; x < length; ++x)
             line[x] = v;
@@ -1184,27 +1192,31 @@ public:
     const Coord* endsEnd = rowRunEnds(this->Pixels.row(y, 0), this->Pixels.wordsPerRow(), ends);
     const std::size_t count = static_cast<std::size_t>(endsEnd - ends) / 2;
     this->Current.resize(count);
-    const PixelRun* const prev = this->Previous.data();
-    const std::size_t np = this->Previous.size();
-    PixelRun* const cur = this->Current.data();
-    this->Same = count == np;
-    std::size_t p = 0;
-    for (std::size_t k = 0; k < count; ++k)
+    // Pointers and counters in locals: the runs' and boxes' int32 stores could alias members,
+    // which were reloaded (and spilled) at every run.
+    const PixelRun* p = this->Previous.data();
+    const PixelRun* const prevEnd = p + this->Previous.size();
+    PixelRun* cur = this->Current.data();
+    std::uint32_t nextBox = this->NextBox;
+    bool same = count == this->Previous.size();
+    for (const Coord* e = ends; e != endsEnd; e += 2, ++cur)
     {
-      const Coord c0 = ends[2 * k], c1 = ends[2 * k + 1];
+      const Coord c0 = e[0], c1 = e[1];
       // Runs of the row before that end before this one meet no later run either.
-      while (p < np && prev[p].c1 < c0)
+      while (p != prevEnd && p->c1 < c0)
         ++p;
-      if (p < np && prev[p].c0 == c0 && prev[p].c1 == c1)
+      if (p != prevEnd && p->c0 == c0 && p->c1 == c1)
       {
-        cur[k] = prev[p]; // no other run of the row before meets it: runs have gaps
-        visit.continued(cur[k]);
+        *cur = *p; // no other run of the row before meets it: runs have gaps
+        visit.continued(*cur);
         continue;
       }
-      this->Same = false;
-      cur[k] = { c0, c1, this->NextBox++ };
-      visit.started(cur[k], prev + p, prev + np);
+      same = false;
+      *cur = { c0, c1, nextBox++ };
+      visit.started(*cur, p, prevEnd);
     }
+    this->NextBox = nextBox;
+    this->Same = same;
     return this->Current;
   }
 
@@ -1327,7 +1339,8 @@ bool sweepPixelRows(const BitVolume& pixels,
   std::int32_t stride,
   ProgressPoll& poll,
   CUDB& out,
-  UnionFind& equivalences)
+  UnionFind& equivalences,
+  std::vector<std::uint32_t>* runBoxes)
 {
   const std::int32_t ny = pixels.size(1);
   BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
@@ -1342,9 +1355,14 @@ bool sweepPixelRows(const BitVolume& pixels,
     for (auto y = static_cast<std::int32_t>(block); y < end; ++y)
     {
       visit.Row = y;
-      const std::size_t count = sweep.nextRow(y, visit).size();
+      const std::vector<PixelRun>& runs = sweep.nextRow(y, visit);
       if (!sweep.sameAsPrevious())
-        out.oudbBoxCount += count; // a line of vertices at y: the OUDB cuts every interval there
+        out.oudbBoxCount += runs.size(); // a line of vertices at y: the OUDB cuts every interval
+      if (runBoxes)                      // reserved for all runs: no reallocation
+        std::transform(runs.begin(),
+          runs.end(),
+          std::back_inserter(*runBoxes),
+          [](const PixelRun& run) { return run.box; });
     }
   }
   return true;
@@ -1358,7 +1376,8 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   const Execution& exec,
   CUDB& out,
   Components& components,
-  std::size_t* vertices)
+  std::size_t* vertices,
+  std::vector<std::uint32_t>* runBoxes)
 {
   checkSingleSlice(pixels);
   const bool alongY = order == AxisOrder{ 2, 0, 1 };
@@ -1377,12 +1396,20 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   UnionFind equivalences;
   equivalences.reserve(runs);
   out.boxes.reserve(runs);
+  if (runBoxes)
+  {
+    runBoxes->clear();
+    runBoxes->reserve(runs);
+  }
   const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
   const auto stride = static_cast<std::int32_t>(std::max<std::size_t>(2048 / words, 1));
   ProgressPoll poll(exec, 0.0, 1.0);
-  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences) || !poll.poll())
+  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences, runBoxes) ||
+    !poll.poll())
   {
     out = CUDB();
+    if (runBoxes)
+      runBoxes->clear();
     return false;
   }
   if (alongY) // the sweep's (x, y) are the image's (y, x)
@@ -1404,6 +1431,72 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   buildCUDBComponents2D(
     pixels, AxisOrder{ 2, 1, 0 }, connectivity, Execution(), out, components, &vertices);
   return vertices;
+}
+
+namespace
+{
+
+/// paintPixelRuns over rows [from, to), whose first run is runBox[0].
+void paintRowsOfRuns(const BitVolume& pixels,
+  std::int64_t from,
+  std::int64_t to,
+  const std::uint32_t* runBox,
+  const std::int32_t* value,
+  std::int32_t* origin,
+  std::int64_t rowStep,
+  Coord* ends)
+{
+  const std::size_t words = pixels.wordsPerRow();
+  const std::int32_t nx = pixels.size(0);
+  for (std::int64_t y = from; y < to; ++y)
+  {
+    std::int32_t* const row = origin + y * rowStep;
+    std::int32_t* const rowEnd = row + nx;
+    const Coord* const last = rowRunEnds(pixels.row(static_cast<std::int32_t>(y), 0), words, ends);
+    constexpr std::ptrdiff_t Width = 8;
+    for (const Coord* e = ends; e != last; e += 2)
+    {
+      std::int32_t *const first = row + e[0], *const end = row + e[1];
+      const std::int32_t v = value[*runBox++];
+      if (end - first <= Width && rowEnd - first >= 2 * Width)
+      {
+        // A short run: Width values from its start, then Width zeros from its end over the
+        // gap's pixels they covered (the gap is 0 already; the next run is written after).
+        for (std::ptrdiff_t k = 0; k < Width; ++k)
+          first[k] = v;
+        for (std::ptrdiff_t k = 0; k < Width; ++k)
+          end[k] = 0;
+      }
+      else
+        std::fill(first, end, v);
+    }
+  }
+}
+
+} // namespace
+
+void paintPixelRuns(const BitVolume& pixels,
+  const std::vector<std::uint32_t>& runBoxes,
+  const std::vector<std::int32_t>& value,
+  const std::array<Coord, 2>& offset,
+  std::int64_t rowStep,
+  std::int32_t* labels,
+  const Execution& exec)
+{
+  checkSingleSlice(pixels);
+  std::int32_t* const origin = labels + std::int64_t(offset[1]) * rowStep + offset[0];
+  exec.forRange(pixels.size(1),
+    [&](std::int64_t from, std::int64_t to)
+    {
+      std::size_t firstRun = 0; // the runs of the rows before this range
+      for (std::int64_t y = 0; y < from; ++y)
+        firstRun +=
+          rowChanges(pixels.row(static_cast<std::int32_t>(y), 0), nullptr, pixels.wordsPerRow()) /
+          2;
+      std::vector<Coord> ends(pixels.wordsPerRow() * 64 + 2);
+      paintRowsOfRuns(
+        pixels, from, to, runBoxes.data() + firstRun, value.data(), origin, rowStep, ends.data());
+    });
 }
 
 } // namespace vbr

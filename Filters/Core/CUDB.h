@@ -123,15 +123,18 @@ bool buildCUDBComponents(const EVM& evm,
 /// united at once with the runs of the row before that it meets. Same boxes (in the same
 /// order), oudbBoxCount and components as buildCUDBComponents(extractEVM2D(pixels) sorted as
 /// `order`, ...); `vertices` (if given) receives the number of vertices that EVM would have.
-/// Polls `exec` every 2048 words of pixels or so (a few dozen rows of a wide image); returns
-/// false when aborted, with `out` empty.
+/// `runBoxes` (if given) receives the box of every run of set pixels of the rows the sweep
+/// reads (the image's rows in ZYX, its columns in ZXY), row after row and along each row, as
+/// paintPixelRuns reads them. Polls `exec` every 2048 words of pixels or so (a few dozen rows
+/// of a wide image); returns false when aborted, with `out` empty.
 bool buildCUDBComponents2D(const BitVolume& pixels,
   const AxisOrder& order,
   Connectivity connectivity,
   const Execution& exec,
   CUDB& out,
   Components& components,
-  std::size_t* vertices = nullptr);
+  std::size_t* vertices = nullptr,
+  std::vector<std::uint32_t>* runBoxes = nullptr);
 /// The same in the ZYX sorting, never aborted; returns the number of vertices of the EVM.
 std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   Connectivity connectivity,
@@ -147,6 +150,23 @@ void paintBoxes(const std::vector<Box>& boxes,
   const std::array<Coord, 3>& offset,
   const std::array<int, 3>& axes,
   const std::array<Coord, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec = Execution());
+
+/// Paints a one-slice pixel set into `labels`, which must hold 0 on the pixels' rectangle:
+/// value[runBoxes[i]] on the pixels of run i (the runs of set pixels in the order of
+/// buildCUDBComponents2D's `runBoxes` in ZYX). Pixel (x, y) is labels[(y + offset[1]) *
+/// rowStep + x + offset[0]]; nothing outside the rectangle is written. The labels of
+/// paintBoxes of the sweep's boxes into a zeroed grid, in one pass along the rows: a run of up
+/// to 8 pixels is written by stores of a fixed width (8 values, then 8 zeros from its end over
+/// the gap they covered; the next run is written after), a longer one exactly (runs of a few
+/// pixels, as a maze has, mispredicted every loop exit of the boxes' painting). Parallel over
+/// rows.
+void paintPixelRuns(const BitVolume& pixels,
+  const std::vector<std::uint32_t>& runBoxes,
+  const std::vector<std::int32_t>& value,
+  const std::array<Coord, 2>& offset,
+  std::int64_t rowStep,
   std::int32_t* labels,
   const Execution& exec = Execution());
 

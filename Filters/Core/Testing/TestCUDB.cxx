@@ -442,6 +442,79 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
       }
 }
 
+TEST(CUDB, PixelRunsPaintTheBoxes)
+{
+  // paintPixelRuns from the runs of the ZYX sweep into a zeroed rectangle, against box-by-box
+  // loops: every pixel of a run gets the value of the box that covers it, every other pixel
+  // of the rectangle stays 0 (removed boxes too), nothing outside the rectangle is written. Widths
+  // around the fixed stores (8 pixels) and the 64-bit words, the rectangle at an offset in a wider
+  // grid, one thread and three (ranges of rows that start inside the runs).
+  const vbr::Point3 sizes[] = { { 1, 1, 1 },
+    { 3, 7, 1 },
+    { 8, 5, 1 },
+    { 9, 6, 1 },
+    { 16, 4, 1 },
+    { 17, 30, 1 },
+    { 63, 20, 1 },
+    { 64, 33, 1 },
+    { 65, 17, 1 },
+    { 130, 41, 1 } };
+  unsigned seed = 1700;
+  for (const auto& d : sizes)
+    for (double density : { 0.0, 0.2, 0.5, 0.8, 1.0 })
+      for (bool vertex : { false, true })
+      {
+        SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " density " +
+          std::to_string(density) + (vertex ? " vertex" : " face"));
+        const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+        vbr::CUDB cudb;
+        vbr::Components components;
+        std::vector<std::uint32_t> runBoxes;
+        ASSERT_TRUE(vbr::buildCUDBComponents2D(v,
+          vbr::AxisOrder{ 2, 1, 0 },
+          vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face,
+          vbr::Execution(),
+          cudb,
+          components,
+          nullptr,
+          &runBoxes));
+        std::size_t runs = 0;
+        for (vbr::Coord y = 0; y < d[1]; ++y)
+          for (vbr::Coord x = 0; x < d[0]; ++x)
+            runs += v.get(x, y, 0) && (x == 0 || !v.get(x - 1, y, 0));
+        EXPECT_EQ(runBoxes.size(), runs);
+        const vbr::Coord width = d[0] + 11, height = d[1] + 5, ox = 3, oy = 2;
+        for (int removed : { 0, 3 }) // every box kept; every third box's value 0
+        {
+          std::vector<std::int32_t> value(cudb.boxes.size());
+          for (std::size_t b = 0; b < value.size(); ++b)
+            value[b] = removed && b % removed == 0 ? 0 : static_cast<std::int32_t>(b + 1);
+          std::vector<std::int32_t> expected(std::size_t(width) * height, -7);
+          for (vbr::Coord y = 0; y < d[1]; ++y)
+            for (vbr::Coord x = 0; x < d[0]; ++x)
+              expected[std::size_t(y + oy) * width + x + ox] = 0;
+          for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
+            for (vbr::Coord y = cudb.boxes[b].lo[1]; y < cudb.boxes[b].hi[1]; ++y)
+              for (vbr::Coord x = cudb.boxes[b].lo[0]; x < cudb.boxes[b].hi[0]; ++x)
+                expected[std::size_t(y + oy) * width + x + ox] = value[b];
+          for (int threads : { 1, 3 })
+          {
+            std::vector<std::int32_t> painted(expected.size(), -7);
+            for (vbr::Coord y = 0; y < d[1]; ++y)
+              std::fill_n(painted.begin() + std::ptrdiff_t(y + oy) * width + ox, d[0], 0);
+            vbr::paintPixelRuns(v,
+              runBoxes,
+              value,
+              { ox, oy },
+              width,
+              painted.data(),
+              threads == 1 ? vbr::Execution() : bf::threadedExecution(threads));
+            EXPECT_EQ(painted, expected) << threads << " threads, removed " << removed;
+          }
+        }
+      }
+}
+
 TEST(CUDB, PixelRowsAbortInsideTheImage)
 {
   // A stop asked for while the rows are swept: the sweep stops within a poll's stride of rows
