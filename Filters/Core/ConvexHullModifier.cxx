@@ -5,10 +5,12 @@
 #include "UnionFind.h"
 
 #include <algorithm>
+#include <bitset>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <queue>
 #include <set>
 #include <stdexcept>
@@ -1577,7 +1579,8 @@ constexpr std::size_t kMoreTrianglesNear = 60;
 
 /// The prisms conv(T1 + T2) between the `count` nearest empty triangles of the shell and of the
 /// rest of H near the crossing, with no lattice point in their open interior, nearest first;
-/// the pairs of the `tried` nearest on both sides left out.
+/// the pairs of the `tried` nearest on both sides left out (the round before offered them; it
+/// may not have tried them all).
 std::vector<CellList> prismsAt(const LatticeMesh& shell,
   const LatticeMesh& rest,
   const std::vector<LatticePoint>& crossing,
@@ -1801,18 +1804,19 @@ bool joinAtCrossing(Context& ctx,
       rest.append(shells[o].mesh, false);
   auto prisms = prismsAt(shells[s].mesh, rest, crossing, count, tried);
   const bool cut = shells[s].volume < 0;
-  prisms.erase(std::remove_if(prisms.begin(),
-                 prisms.end(),
-                 [&](const CellList& prism) { return !worthABoolean(surface, prism, cut); }),
-    prisms.end());
-  // The prisms whose open interior misses H first (nearest first among them).
+  // The prisms whose open interior misses H first (nearest first among them); the cheap tests
+  // of worthABoolean run only until kPrismsTried prisms have passed them.
   std::stable_partition(prisms.begin(),
     prisms.end(),
     [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
-  for (std::size_t k = 0; k < std::min<std::size_t>(prisms.size(), kPrismsTried); ++k)
+  std::size_t booleans = 0;
+  for (std::size_t k = 0; k < prisms.size() && booleans < kPrismsTried; ++k)
   {
     if (ctx.exec.stopRequested())
       throw std::runtime_error("aborted");
+    if (!worthABoolean(surface, prisms[k], cut))
+      continue;
+    ++booleans;
     if (joinAlongPrism(ctx, prisms[k], cut, shells.size(), surface, where))
       return true;
   }
@@ -1906,7 +1910,7 @@ int cornerEuler(unsigned config)
 /// diagonals hold different classes (its low faces; every face is the low face of some block).
 bool criticalCorner(unsigned config)
 {
-  const int count = __builtin_popcount(config);
+  const std::size_t count = std::bitset<8>(config).count();
   for (unsigned k = 0; k < 4; ++k)
   {
     const bool a = config >> k & 1, b = config >> (7 - k) & 1;
@@ -1915,19 +1919,19 @@ bool criticalCorner(unsigned config)
   }
   for (int axis = 0; axis < 3; ++axis)
   {
+    // u and w: the indices of the voxels one step along the face's two axes from voxel 0.
     const unsigned u = 1u << ((axis + 1) % 3), w = 1u << ((axis + 2) % 3);
-    const bool s0 = config & 1, s1 = config & u, s2 = config & (u | w), s3 = config & w;
+    const bool s0 = config & 1, s1 = config >> u & 1, s2 = config >> (u | w) & 1,
+               s3 = config >> w & 1;
     if (s0 == s2 && s1 == s3 && s0 != s1)
       return true;
   }
   return false;
 }
 
-/// Twice the Euler characteristic of the union of the object's closed voxel cubes, the Euler
-/// characteristic of its boundary, when the object is well-composed (then its boundary is a
-/// 2-manifold and H must have its genus); -1, as no Euler characteristic of a closed surface,
-/// when voxels touch along an edge or at a corner only (the touching rule decides H there).
-long wellComposedBoundaryEuler(const BitVolume& objects)
+} // namespace
+
+std::optional<long> wellComposedBoundaryEuler(const BitVolume& objects, const Execution& exec)
 {
   std::array<int, 256> euler;
   std::array<bool, 256> critical;
@@ -1939,6 +1943,9 @@ long wellComposedBoundaryEuler(const BitVolume& objects)
   const Dims d = objects.dims();
   long chi = 0;
   for (std::int32_t z = 0; z <= d[2]; ++z)
+  {
+    if (exec.stopRequested())
+      throw std::runtime_error("aborted");
     for (std::int32_t y = 0; y <= d[1]; ++y)
       for (std::int32_t x = 0; x <= d[0]; ++x)
       {
@@ -1948,11 +1955,15 @@ long wellComposedBoundaryEuler(const BitVolume& objects)
                       objects, { x - 1 + (b & 1), y - 1 + (b >> 1 & 1), z - 1 + (b >> 2) }))
             << b;
         if (critical[config])
-          return -1;
+          return std::nullopt;
         chi += euler[config];
       }
+  }
   return 2 * chi;
 }
+
+namespace
+{
 
 /// One pass of the levels, with pits or with every level kept apart: true when H separates
 /// (checked, see the header), its shells then joined.
@@ -1999,12 +2010,16 @@ bool hasAHandle(const LatticeMesh& surface)
 /// ring stays part of its level's solid.
 void keepFewerHandles(Context& ctx, ModifiedHull& r)
 {
-  const long target = wellComposedBoundaryEuler(ctx.objects);
-  if (target < 0 || eulerCharacteristic(r.surface) >= target || !hasAHandle(r.surface))
+  if (!hasAHandle(r.surface))
+    return;
+  const std::optional<long> target = wellComposedBoundaryEuler(ctx.objects, ctx.exec);
+  if (!target || eulerCharacteristic(r.surface) >= *target)
     return;
   ModifiedHull apart = r;
   const auto planes = ctx.planeLevel;
-  if (solvePass(ctx, apart, false) && eulerCharacteristic(apart.surface) == target)
+  // No more shells than before: one more shell and one handle less would count the same.
+  if (solvePass(ctx, apart, false) && eulerCharacteristic(apart.surface) == *target &&
+    shellsOf(apart.surface).size() <= shellsOf(r.surface).size())
   {
     r = std::move(apart);
     return;

@@ -140,6 +140,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -194,6 +195,14 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
 BitVolume revertModifiedHull(const LatticeMesh& surface,
   const std::vector<LatticePoint>& backgroundOnSurface,
   const std::array<std::int32_t, 3>& dims);
+
+/// Twice the Euler characteristic of the union of the object's closed voxel cubes, the Euler
+/// characteristic of its boundary, counted from the 2x2x2 blocks about every grid corner, when
+/// the object is well-composed (no two voxels of one class touching only along an edge or at a
+/// corner; then its boundary is a 2-manifold and H must have its genus); none otherwise (the
+/// touching rule decides H there). Throws std::runtime_error when `exec` asks to stop.
+std::optional<long> wellComposedBoundaryEuler(const BitVolume& objects,
+  const Execution& exec = Execution());
 
 /// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,

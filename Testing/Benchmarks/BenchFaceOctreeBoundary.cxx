@@ -11,7 +11,9 @@
 //    sample's distance to the nearest surfel (vbr::maximumDistanceToSurfels; beyond two
 //    voxels counts as 2);
 //  - surfels to surface: the 3 x 3 lattice of every surfel (centre, corners, edge midpoints),
-//    each point's distance to the nearest point of the surface (vtkStaticCellLocator).
+//    each point's distance to the nearest point of the surface (vtkStaticCellLocator),
+//    searched within two voxels like the other side (beyond counts as 2: an unbounded search
+//    from points far from a decimated surface visited most of the locator's bins).
 // The distance is the larger of the two. The earlier one-sided measure (output vertices to
 // the surfels only) is printed too: with it a decimated mesh whose large triangles cut far
 // from the voxels in their interiors still "matched". Both outputs are in the same index
@@ -37,6 +39,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkDiscreteFlyingEdges3D.h"
+#include "vtkGenericCell.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
@@ -169,15 +172,18 @@ Distance twoSidedDistance(const vbr::BitVolume& bits,
   vtkNew<vtkStaticCellLocator> locator;
   locator->SetDataSet(p);
   locator->BuildLocator();
+  vtkNew<vtkGenericCell> generic;
   double worst2 = 0.0;
   for (const vbr::Vec3& s : surfels)
   {
-    const double x[3] = { s[0] - 0.5, s[1] - 0.5, s[2] - 0.5 };
+    double x[3] = { s[0] - 0.5, s[1] - 0.5, s[2] - 0.5 };
     double closest[3], d2 = 0.0;
     vtkIdType cell = -1;
     int sub = 0;
-    locator->FindClosestPoint(x, closest, cell, sub, d2);
-    worst2 = std::max(worst2, d2);
+    int inside = 0;
+    if (!locator->FindClosestPointWithinRadius(x, 2.0, closest, generic, cell, sub, d2, inside))
+      d2 = 4.0;
+    worst2 = std::max(worst2, std::min(d2, 4.0));
   }
   d.fromSurfels = std::sqrt(worst2);
   return d;

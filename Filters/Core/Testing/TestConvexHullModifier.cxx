@@ -386,6 +386,35 @@ TEST(ConvexHullModifier, GenusAboveZero)
   }
 }
 
+TEST(ConvexHullModifier, WellComposedBoundaryEulerMatchesTheCubicalComplex)
+{
+  // The core's count from the 2x2x2 blocks decides the second pass against spurious handles:
+  // it must say "not well-composed" exactly when the test's check does, and otherwise give twice
+  // the cubical complex's V - E + F - C.
+  std::vector<vbr::BitVolume> volumes{
+    ball(5), torus(6, 2.5), piercedCube(11, 3, 3), hollowBall(11, 6, 0, 2), pacMan(6)
+  };
+  unsigned seed = 7;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const int n = 2 + trial % 5;
+    volumes.push_back(
+      bf::randomVolume({ n, n + trial % 2, n }, 0.05 + 0.9 * (trial % 7) / 6, seed++));
+  }
+  int composed = 0, notComposed = 0;
+  for (std::size_t i = 0; i < volumes.size(); ++i)
+  {
+    SCOPED_TRACE(i);
+    const std::optional<long> euler = vbr::wellComposedBoundaryEuler(volumes[i]);
+    ASSERT_EQ(euler.has_value(), wellComposed(volumes[i]));
+    if (euler)
+      EXPECT_EQ(*euler, 2 * closedCubesEuler(volumes[i]));
+    ++(euler ? composed : notComposed);
+  }
+  EXPECT_GE(composed, 20);
+  EXPECT_GE(notComposed, 20);
+}
+
 TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
 {
   // A tunnel of face-connected background voxels from the cavity out makes the hollow ball a
