@@ -45,6 +45,7 @@
 #include <memory>
 #include <new>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkEVMBoundaryFilter);
@@ -835,6 +836,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
   corners.reset(new vbr::CornerSet(points, packer, true));
   points = std::vector<Point3>();
   builder.addCornerPoints(corners->points());
+  corners->releasePoints(); // now the output's
   return true;
 }
 
@@ -888,7 +890,7 @@ void appendObjectsStreamed(vtkAlgorithm* self,
     const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(evms[o].size()));
     const vbr::Execution quiet = local.silent(); // the sweep reports the progress
     if (evms[o].size() != 0 &&
-      !vbr::planeSweep3DStream(evms[o],
+      !vbr::planeSweep3DStream(std::move(evms[o]), // freed once sorted
         settings.connectivity,
         local,
         [&](vbr::BRep& part)

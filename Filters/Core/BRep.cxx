@@ -388,6 +388,12 @@ void CornerSet::numberCorners(std::size_t total,
   for (int axis = 0; axis < 2 && orderLines; ++axis)
     if (this->spans(axis)) // no edge runs along an axis all the corners share (a 2D image's)
       this->orderLinesAlong(axis, packer);
+  if (orderLines)
+  {
+    this->CoordinateAlong[2].reserve(count);
+    for (const Point3& p : this->Points)
+      this->CoordinateAlong[2].push_back(p[2]);
+  }
 }
 
 CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines)

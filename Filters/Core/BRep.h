@@ -130,8 +130,12 @@ public:
 
   std::size_t size() const { return this->Points.size(); }
 
-  /// Every corner, in the common grid, by number.
+  /// Every corner, in the common grid, by number (empty after releasePoints).
   const std::vector<Point3>& points() const { return this->Points; }
+
+  /// Frees points() once the caller has copied them (the output's points): a third of the
+  /// set's memory. The numbers and the T-junction pass keep working.
+  void releasePoints() { std::vector<Point3>().swap(this->Points); }
 
   /// Calls emit(number, coordinate along `axis`) for the corners strictly between corners
   /// `from` and `to`, two corners of one line along `axis`, in order from `from` to `to`. The
@@ -142,10 +146,11 @@ public:
   {
     if (axis == 2)
     {
+      const std::vector<Coord>& z = this->CoordinateAlong[2];
       for (std::int64_t n = from + 1; n < to; ++n)
-        emit(n, this->Points[n][2]);
+        emit(n, z[n]);
       for (std::int64_t n = from - 1; n > to; --n)
-        emit(n, this->Points[n][2]);
+        emit(n, z[n]);
       return;
     }
     const std::vector<std::uint32_t>& order = this->OrderAlong[axis];
@@ -197,9 +202,10 @@ private:
 
   std::vector<Point3> Points;
   /// Per axis 0 and 1: the numbers in the order of the lines along that axis, the place of
-  /// each number in it, and the coordinate along that axis in that order.
+  /// each number in it, and the coordinate along that axis in that order; along 2 (the order
+  /// of the numbers), the coordinate of every number.
   std::vector<std::uint32_t> OrderAlong[2], RankAlong[2];
-  std::vector<Coord> CoordinateAlong[2];
+  std::vector<Coord> CoordinateAlong[3];
 };
 
 /// The corners of the faces planeSweep3D makes of these voxels (voxel (x, y, z) spans

@@ -262,13 +262,14 @@ bool streamSorting(const EVM& sorted,
 
 } // namespace
 
-bool planeSweep3DStream(const EVM& evm,
+bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
   const std::function<bool(BRep&)>& consume)
 {
   // sortForTheThreeSweeps' sortings, made as late and released as early as the sweeps allow.
   EVM first = evm.sortedAs({ 1, 2, 0 }, exec);
+  evm = EVM();
   EVM zeroth = first.sortedAs({ 0, 1, 2 }, exec);
   const std::size_t planesAll =
     3 * std::max<std::size_t>(1, zeroth.planeStarts().size() - 1); // about

@@ -41,9 +41,10 @@ bool planeSweep3DParts(const EVM& evm,
 /// of planes (as many as `exec.concurrency`) are swept at a time, then given to consume(part)
 /// one after the other on the calling thread, before the next chunks are swept. Only those
 /// chunks' faces are alive at a time (and two of the three sortings): a caller that writes and
-/// releases each part never holds the object's faces. Parts may be empty. False when the
-/// caller asked to abort or consume returned false.
-bool planeSweep3DStream(const EVM& evm,
+/// releases each part never holds the object's faces. The EVM is taken (moved in) and freed
+/// once sorted. Parts may be empty. False when the caller asked to abort or consume returned
+/// false.
+bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
   const std::function<bool(BRep&)>& consume);
