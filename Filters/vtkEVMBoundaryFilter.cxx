@@ -42,8 +42,10 @@
 #include <exception>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <new>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkEVMBoundaryFilter);
@@ -566,7 +568,8 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
   const vbr::Execution& exec,
   Statistics& stats,
   OutputBuilder& builder,
-  vbr::EVM& evm)
+  vbr::EVM& evm,
+  std::vector<Point3>* corners = nullptr)
 {
   vbr::BitVolume voxels;
   {
@@ -587,6 +590,12 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
     vtkLogScopeF(TRACE, "surfel cells");
     appendSurfelCells(object, voxels, settings.planar, builder);
     return 0;
+  }
+  if (corners)
+  {
+    vtkLogScopeF(TRACE, "corners of the faces");
+    vbr::appendFaceCorners(
+      voxels, { object.offset[0], object.offset[1], object.offset[2] }, *corners);
   }
   return count;
 }
@@ -791,6 +800,106 @@ bool appendObjectCells(const vbr::vtk::Selected& object,
   return true;
 }
 
+/// The EVM of every object of a 3D image and the corners of all their faces in one set (from
+/// the voxels, before any face is made), numbered as the output's points and added to them.
+/// False when aborted or when nothing is left to do (Surfels mode: the cells are written).
+bool evmsAndCorners(vtkAlgorithm* self,
+  const std::vector<vbr::vtk::Selected>& objects,
+  const ObjectSettings& settings,
+  const std::array<std::int32_t, 3>& dims,
+  Statistics& stats,
+  OutputBuilder& builder,
+  std::vector<vbr::EVM>& evms,
+  std::unique_ptr<vbr::CornerSet>& corners)
+{
+  const std::size_t n = objects.size();
+  evms.assign(n, vbr::EVM());
+  std::vector<Point3> points;
+  for (std::size_t o = 0; o < n; ++o)
+  {
+    if (self->GetAbortExecute())
+      return false;
+    const double from = 0.1 * o / n, to = 0.1 * (o + 1) / n;
+    extremeVerticesOfObject(objects[o],
+      settings,
+      vbr::vtk::makeExecution(self, 0.1 + from, 0.1 + to),
+      stats,
+      builder,
+      evms[o],
+      &points);
+  }
+  if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS || self->GetAbortExecute())
+    return false;
+  vtkLogScopeF(TRACE, "numbered corners");
+  const vbr::KeyPacker packer =
+    vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
+  corners.reset(new vbr::CornerSet(points, packer, true));
+  points = std::vector<Point3>();
+  builder.addCornerPoints(corners->points());
+  corners->releasePoints(); // now the output's
+  return true;
+}
+
+/// The cells of one part of an object's faces: its T-junction vertices, then its cells; then
+/// it is released. False when aborted.
+bool appendPartCells(const vbr::vtk::Selected& object,
+  vbr::BRep& part,
+  const ObjectSettings& settings,
+  const vbr::Execution& objectExec,
+  CellWriter& writer,
+  Statistics& stats,
+  OutputBuilder& builder)
+{
+  countFaces(part, stats);
+  const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
+  std::vector<std::int64_t> numbers = writer.corners.numbersOf(part, object.offset);
+  vbr::insertTJunctionVertices(part, numbers, writer.corners, object.offset, exec);
+  CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),
+    std::max<std::size_t>(part.faces.size(), 1) };
+  if (!appendBoundaryCells(
+        object, part, numbers, settings, exec, writer.faceBase, progress, builder))
+    return false;
+  releasePart(part, writer.releasedBytes);
+  return true;
+}
+
+/// The cells of every object of a 3D image (paper 000), streamed: the corners of all the
+/// objects' faces are known from their voxels first (evmsAndCorners), so each chunk of planes
+/// of each object's sweeps gets its T-junction vertices and its cells as soon as it is swept,
+/// and is released before the next chunks are swept. Memory: the output, the corners and the
+/// faces of the chunks being swept, never the faces of a whole object. The cells are those of
+/// appendObjects, in the same order. Stops when aborted.
+void appendObjectsStreamed(vtkAlgorithm* self,
+  const std::vector<vbr::vtk::Selected>& objects,
+  const ObjectSettings& settings,
+  const std::array<std::int32_t, 3>& dims,
+  Statistics& stats,
+  OutputBuilder& builder)
+{
+  std::vector<vbr::EVM> evms;
+  std::unique_ptr<vbr::CornerSet> corners;
+  if (!evmsAndCorners(self, objects, settings, dims, stats, builder, evms, corners))
+    return; // aborted, or Surfels mode
+  vtkLogScopeF(TRACE, "faces (plane sweeps), T-junction vertices and output cells");
+  CellWriter writer{ *corners, true };
+  const std::size_t n = objects.size();
+  for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
+  {
+    const double from = 0.2 + 0.8 * o / n, to = 0.2 + 0.8 * (o + 1) / n;
+    const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to);
+    const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(evms[o].size()));
+    const vbr::Execution quiet = local.silent(); // the sweep reports the progress
+    if (evms[o].size() != 0 &&
+      !vbr::planeSweep3DStream(std::move(evms[o]), // freed once sorted
+        settings.connectivity,
+        local,
+        [&](vbr::BRep& part)
+        { return appendPartCells(objects[o], part, settings, quiet, writer, stats, builder); }))
+      return; // aborted
+    evms[o] = vbr::EVM();
+  }
+}
+
 /// The cells of every object (paper 000): first the faces of each (in Surfels mode its cells
 /// instead), then, with the corners of all of them in one set, the T-junction vertices of
 /// each part of each object's faces (the objects of a label map meet: two labels' loops on a
@@ -807,6 +916,11 @@ void appendObjects(vtkAlgorithm* self,
   if (settings.planar && n == 1)
   {
     appendPlanarObject(self, objects[0], settings, stats, builder);
+    return;
+  }
+  if (!settings.planar)
+  {
+    appendObjectsStreamed(self, objects, settings, dims, stats, builder);
     return;
   }
   std::vector<std::vector<vbr::BRep>> parts;

@@ -321,18 +321,16 @@ void forEachCorner(const std::vector<PlacedBRep>& breps, Visit&& visit)
 
 } // namespace
 
-void CornerSet::boundCorners(const std::vector<PlacedBRep>& breps, const KeyPacker& packer)
+template<typename ForEach>
+void CornerSet::boundCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer)
 {
   const Coord limit = Coord(1) << packer.bits;
-  std::size_t total = 0;
-  for (const PlacedBRep& b : breps)
-    total += b.brep->points.size();
   if (total >= UINT32_MAX)
     throw std::length_error("CornerSet: more than 2^32 corners");
   if (total == 0)
     return;
   Point3 lo{ limit, limit, limit }, hi{ -1, -1, -1 };
-  forEachCorner(breps,
+  forEach(
     [&](const Point3& p)
     {
       for (int d = 0; d < 3; ++d)
@@ -357,16 +355,20 @@ Point3 CornerSet::pointInBox(std::uint64_t i) const
   return { this->Lo[0] + x, this->Lo[1] + y, this->Lo[2] + z };
 }
 
-CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines)
+template<typename ForEach>
+void CornerSet::numberCorners(std::size_t total,
+  ForEach&& forEach,
+  const KeyPacker& packer,
+  bool orderLines)
 {
   // One bit per grid point of the corners' box marks the corners, and a corner's number is
   // the rank of its bit: the set bits of the words before it (kept per word) and of its own
   // word below it. The numbers follow the packed keys' order with no sort and no hash table,
   // in 1.5 bits per grid point of the box (no more than the selection's own bit volume),
   // where sorting the corners' keys took 32 bytes per corner of every loop.
-  this->boundCorners(breps, packer);
+  this->boundCorners(total, forEach, packer);
   this->Words.assign((this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64, 0);
-  forEachCorner(breps,
+  forEach(
     [&](const Point3& p)
     {
       const std::uint64_t i = this->indexInBox(p);
@@ -386,6 +388,117 @@ CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& pack
   for (int axis = 0; axis < 2 && orderLines; ++axis)
     if (this->spans(axis)) // no edge runs along an axis all the corners share (a 2D image's)
       this->orderLinesAlong(axis, packer);
+  if (orderLines)
+  {
+    this->CoordinateAlong[2].reserve(count);
+    for (const Point3& p : this->Points)
+      this->CoordinateAlong[2].push_back(p[2]);
+  }
+}
+
+CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines)
+{
+  std::size_t total = 0;
+  for (const PlacedBRep& b : breps)
+    total += b.brep->points.size();
+  this->numberCorners(
+    total, [&](auto&& visit) { forEachCorner(breps, visit); }, packer, orderLines);
+}
+
+CornerSet::CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer, bool orderLines)
+{
+  this->numberCorners(
+    corners.size(),
+    [&](auto&& visit)
+    {
+      for (const Point3& p : corners)
+        visit(p);
+    },
+    packer,
+    orderLines);
+}
+
+namespace
+{
+
+/// Bit k of the result: bit k - 1 of the row (voxel x - 1 at vertex x), `carry` the word before.
+std::uint64_t shiftedByOne(std::uint64_t word, std::uint64_t carry)
+{
+  return (word << 1) | (carry >> 63);
+}
+
+/// Per bit: whether the boundary of a set of unit squares turns at the point where the four
+/// squares p00, p10 (along u), p01 (along v) and p11 meet: neither both pairs along u nor both
+/// pairs along v alike (one or three squares, or two diagonal ones).
+std::uint64_t turns(std::uint64_t p00, std::uint64_t p10, std::uint64_t p01, std::uint64_t p11)
+{
+  return ((p00 ^ p10) | (p01 ^ p11)) & ((p00 ^ p01) | (p10 ^ p11));
+}
+
+/// Per bit: whether the faces facing +axis (before & ~after) or -axis (~before & after) of the
+/// plane between the voxels `before[4]` and `after[4]` (the four squares around the point in
+/// the order p00, p10, p01, p11) turn at the point.
+std::uint64_t facesTurn(const std::uint64_t (&before)[4], const std::uint64_t (&after)[4])
+{
+  std::uint64_t fd[4], bd[4];
+  for (int k = 0; k < 4; ++k)
+  {
+    fd[k] = before[k] & ~after[k];
+    bd[k] = ~before[k] & after[k];
+  }
+  return turns(fd[0], fd[1], fd[2], fd[3]) | turns(bd[0], bd[1], bd[2], bd[3]);
+}
+
+/// The corner bits of a word of vertices from the 2x2x2 voxels a[dx][dy][dz] around each.
+std::uint64_t cornerBits(const std::uint64_t (&a)[2][2][2])
+{
+  const std::uint64_t x0[4] = { a[0][0][0], a[0][1][0], a[0][0][1], a[0][1][1] };
+  const std::uint64_t x1[4] = { a[1][0][0], a[1][1][0], a[1][0][1], a[1][1][1] };
+  const std::uint64_t y0[4] = { a[0][0][0], a[1][0][0], a[0][0][1], a[1][0][1] };
+  const std::uint64_t y1[4] = { a[0][1][0], a[1][1][0], a[0][1][1], a[1][1][1] };
+  const std::uint64_t z0[4] = { a[0][0][0], a[1][0][0], a[0][1][0], a[1][1][0] };
+  const std::uint64_t z1[4] = { a[0][0][1], a[1][0][1], a[0][1][1], a[1][1][1] };
+  return facesTurn(x0, x1) | facesTurn(y0, y1) | facesTurn(z0, z1);
+}
+
+} // namespace
+
+void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vector<Point3>& out)
+{
+  const std::int32_t nx = voxels.size(0), ny = voxels.size(1), nz = voxels.size(2);
+  const std::size_t rowWords = voxels.wordsPerRow();
+  if (nx == 0 || ny == 0 || nz == 0)
+    return;
+  std::vector<Word> empty(rowWords + 1, 0);
+  for (std::int32_t kz = 0; kz <= nz; ++kz)
+    for (std::int32_t ky = 0; ky <= ny; ++ky)
+    {
+      // The four rows of voxels around the row of vertices (none outside the volume).
+      const Word* rows[2][2];
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dz = 0; dz < 2; ++dz)
+        {
+          const std::int32_t y = ky - 1 + dy, z = kz - 1 + dz;
+          rows[dy][dz] = y < 0 || y >= ny || z < 0 || z >= nz ? empty.data() : voxels.row(y, z);
+        }
+      for (std::size_t w = 0; w <= rowWords; ++w)
+      {
+        std::uint64_t a[2][2][2];
+        for (int dy = 0; dy < 2; ++dy)
+          for (int dz = 0; dz < 2; ++dz)
+          {
+            const Word* r = rows[dy][dz];
+            const Word here = w < rowWords ? r[w] : 0, before = w > 0 ? r[w - 1] : 0;
+            a[0][dy][dz] = shiftedByOne(here, before);
+            a[1][dy][dz] = here;
+          }
+        for (std::uint64_t bits = cornerBits(a); bits != 0; bits &= bits - 1)
+        {
+          const Coord x = static_cast<Coord>(64 * w + countTrailingZeros(bits));
+          out.push_back({ x + offset[0], ky + offset[1], kz + offset[2] });
+        }
+      }
+    }
 }
 
 std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const

@@ -6,6 +6,7 @@
 #ifndef vbr_BRep_h
 #define vbr_BRep_h
 
+#include "BitVolume.h"
 #include "EVM.h"
 #include "Execution.h"
 #include "Geometry.h"
@@ -118,14 +119,23 @@ public:
   /// std::length_error for 2^32 corners or more.
   CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines = true);
 
+  /// The same set from its corners given directly (in the common grid, repeats allowed), e.g.
+  /// faceCorners of the objects' voxels: no B-Rep needs to exist yet, so that the faces can be
+  /// made, given their numbers and written part after part.
+  CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer, bool orderLines = true);
+
   /// The numbers of the points of `brep` at `offset`, one of the B-Reps numbered (as they were
   /// then): asked for one B-Rep at a time, so that all of them are never held at once.
   std::vector<std::int64_t> numbersOf(const BRep& brep, const Point3& offset) const;
 
   std::size_t size() const { return this->Points.size(); }
 
-  /// Every corner, in the common grid, by number.
+  /// Every corner, in the common grid, by number (empty after releasePoints).
   const std::vector<Point3>& points() const { return this->Points; }
+
+  /// Frees points() once the caller has copied them (the output's points): a third of the
+  /// set's memory. The numbers and the T-junction pass keep working.
+  void releasePoints() { std::vector<Point3>().swap(this->Points); }
 
   /// Calls emit(number, coordinate along `axis`) for the corners strictly between corners
   /// `from` and `to`, two corners of one line along `axis`, in order from `from` to `to`. The
@@ -136,10 +146,11 @@ public:
   {
     if (axis == 2)
     {
+      const std::vector<Coord>& z = this->CoordinateAlong[2];
       for (std::int64_t n = from + 1; n < to; ++n)
-        emit(n, this->Points[n][2]);
+        emit(n, z[n]);
       for (std::int64_t n = from - 1; n > to; --n)
-        emit(n, this->Points[n][2]);
+        emit(n, z[n]);
       return;
     }
     const std::vector<std::uint32_t>& order = this->OrderAlong[axis];
@@ -180,14 +191,30 @@ private:
       std::uint64_t(p[2] - this->Lo[2]);
   }
   Point3 pointInBox(std::uint64_t i) const;
-  void boundCorners(const std::vector<PlacedBRep>& breps, const KeyPacker& packer);
+  /// Both constructors: forEach(visit) calls visit(corner) for `total` corners.
+  template<typename ForEach>
+  void numberCorners(std::size_t total,
+    ForEach&& forEach,
+    const KeyPacker& packer,
+    bool orderLines);
+  template<typename ForEach>
+  void boundCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer);
 
   std::vector<Point3> Points;
   /// Per axis 0 and 1: the numbers in the order of the lines along that axis, the place of
-  /// each number in it, and the coordinate along that axis in that order.
+  /// each number in it, and the coordinate along that axis in that order; along 2 (the order
+  /// of the numbers), the coordinate of every number.
   std::vector<std::uint32_t> OrderAlong[2], RankAlong[2];
-  std::vector<Coord> CoordinateAlong[2];
+  std::vector<Coord> CoordinateAlong[3];
 };
+
+/// The corners of the faces planeSweep3D makes of these voxels (voxel (x, y, z) spans
+/// [x, x + 1] x [y, y + 1] x [z, z + 1]), plus `offset`, appended to `out` in no particular
+/// order: the grid points where, in the plane of one axis through the point, the faces
+/// facing +axis or those facing -axis turn (one or three of the four unit squares around the
+/// point, or two diagonal ones: the corners of a loop, under either FaceConnectivity). Read
+/// from the 2x2x2 voxels around each point, 64 points per step, without making the faces.
+void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vector<Point3>& out);
 
 /// Inserts into every loop of `brep` (at `offset` in the common grid) the `corners` lying
 /// inside its edges: with the corners of several B-Reps, the edges of neighbouring B-Reps

@@ -59,6 +59,10 @@ void xorPlanes(const std::vector<Vertex>& a, const std::vector<Vertex>& b, std::
   out.resize(static_cast<std::size_t>(o - out.data()));
 }
 
+/// Chunks of planes per sorting when the faces are streamed (planeSweep3DStream): the faces
+/// of the few chunks swept at a time are all that is alive of them.
+constexpr std::size_t StreamChunks = 64;
+
 /// A run of consecutive planes of vertices of one sorting, with the section before it.
 struct PlaneChunk
 {
@@ -168,10 +172,6 @@ bool sweepChunk(const PlaneChunk& chunk,
       out);
     section.swap(next);
   }
-  // The parts stay alive side by side until their cells are written: no slack in them.
-  out.faces.shrink_to_fit();
-  out.loops.shrink_to_fit();
-  out.points.shrink_to_fit();
   return true;
 }
 
@@ -210,7 +210,79 @@ void appendBRep(BRep& to, BRep&& from)
   to.nonManifoldVertices += from.nonManifoldVertices;
 }
 
+/// Sweeps the planes of one sorting in chunks of `step` planes, `batch` chunks at a time
+/// (concurrently), each batch's parts handed to consume in order before the next batch is
+/// swept. `planesDone` (of `planesAll`, for the progress) counts the planes swept so far.
+bool streamSorting(const EVM& sorted,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  const std::function<bool(BRep&)>& consume,
+  std::size_t& planesDone,
+  std::size_t planesAll)
+{
+  const std::vector<std::size_t> starts = sorted.planeStarts();
+  const std::size_t planes = starts.size() - 1;
+  const std::size_t batch = static_cast<std::size_t>(std::max(1, exec.concurrency));
+  const std::size_t step = std::max<std::size_t>(1, (planes + StreamChunks - 1) / StreamChunks);
+  const Vertex* v = sorted.vertices().data();
+  std::atomic<bool> abort{ false };
+  std::vector<Vertex> section, next; // S(p - 1), entering the next chunk
+  std::vector<PlaneChunk> chunks;
+  std::vector<BRep> parts;
+  for (std::size_t p = 0; p < planes;)
+  {
+    // The next chunks with the sections entering them (formula 1, sequential and cheap).
+    chunks.clear();
+    for (; p < planes && chunks.size() < batch; p = chunks.back().endPlane)
+    {
+      chunks.push_back({ &sorted, &starts, p, std::min(planes, p + step), section });
+      for (std::size_t q = p; q < chunks.back().endPlane; ++q)
+      {
+        xorPlanes(section, project(v + starts[q], v + starts[q + 1], 0), next);
+        section.swap(next);
+      }
+    }
+    parts.assign(chunks.size(), BRep());
+    exec.forRange(static_cast<std::int64_t>(chunks.size()),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        for (std::int64_t c = b; c < e; ++c)
+          if (!sweepChunk(chunks[c], connectivity, exec, abort, parts[c]))
+            abort = true;
+      });
+    for (BRep& part : parts)
+      if (abort || !consume(part))
+        return false;
+    planesDone += p - chunks.front().firstPlane;
+    if (!exec.report(double(planesDone) / double(std::max<std::size_t>(planesAll, 1))))
+      return false;
+  }
+  return true;
+}
+
 } // namespace
+
+bool planeSweep3DStream(EVM evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  const std::function<bool(BRep&)>& consume)
+{
+  // sortForTheThreeSweeps' sortings, made as late and released as early as the sweeps allow.
+  EVM first = evm.sortedAs({ 1, 2, 0 }, exec);
+  evm = EVM();
+  EVM zeroth = first.sortedAs({ 0, 1, 2 }, exec);
+  const std::size_t planesAll =
+    3 * std::max<std::size_t>(1, zeroth.planeStarts().size() - 1); // about
+  std::size_t done = 0;
+  if (!streamSorting(zeroth, connectivity, exec, consume, done, planesAll))
+    return false;
+  EVM second = zeroth.sortedAs({ 2, 0, 1 }, exec);
+  zeroth = EVM();
+  if (!streamSorting(first, connectivity, exec, consume, done, planesAll))
+    return false;
+  first = EVM();
+  return streamSorting(second, connectivity, exec, consume, done, planesAll);
+}
 
 bool planeSweep3DParts(const EVM& evm,
   FaceConnectivity connectivity,
@@ -231,8 +303,14 @@ bool planeSweep3DParts(const EVM& evm,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t c = b; c < e; ++c)
+      {
         if (!sweepChunk(chunks[c], connectivity, exec, abort, parts[c]))
           abort = true;
+        // The parts stay alive side by side until their cells are written: no slack in them.
+        parts[c].faces.shrink_to_fit();
+        parts[c].loops.shrink_to_fit();
+        parts[c].points.shrink_to_fit();
+      }
     });
   if (abort || !exec.report(1.0))
   {

@@ -17,6 +17,7 @@
 #include "Execution.h"
 #include "PlaneSweep2D.h"
 
+#include <functional>
 #include <vector>
 
 namespace vbr
@@ -35,6 +36,18 @@ bool planeSweep3DParts(const EVM& evm,
   FaceConnectivity connectivity,
   const Execution& exec,
   std::vector<BRep>& parts);
+
+/// The same faces made and handed over part by part, in planeSweep3DParts' order: a few chunks
+/// of planes (as many as `exec.concurrency`) are swept at a time, then given to consume(part)
+/// one after the other on the calling thread, before the next chunks are swept. Only those
+/// chunks' faces are alive at a time (and two of the three sortings): a caller that writes and
+/// releases each part never holds the object's faces. The EVM is taken (moved in) and freed
+/// once sorted. Parts may be empty. False when the caller asked to abort or consume returned
+/// false.
+bool planeSweep3DStream(EVM evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  const std::function<bool(BRep&)>& consume);
 
 } // namespace vbr
 

@@ -342,3 +342,144 @@ TEST(BRep, AbortStopsTheSweep)
   EXPECT_FALSE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, polled, b));
   EXPECT_GT(polls, 3);
 }
+
+namespace
+{
+
+/// The corners of a B-Rep's loops, placed at `offset`, as a set.
+std::set<vbr::Point3> loopCorners(const vbr::BRep& brep, const vbr::Point3& offset)
+{
+  std::set<vbr::Point3> corners;
+  for (const vbr::Point3& p : brep.points)
+    corners.insert(vbr::add(p, offset));
+  return corners;
+}
+
+/// Faces, loops and points of `parts` joined in order, face and point indices shifted.
+vbr::BRep joined(const std::vector<vbr::BRep>& parts)
+{
+  vbr::BRep all;
+  for (const vbr::BRep& part : parts)
+  {
+    const int faceBase = static_cast<int>(all.faces.size());
+    const int loopBase = static_cast<int>(all.loops.size());
+    const std::size_t pointBase = all.points.size();
+    for (vbr::BRepFace f : part.faces)
+    {
+      f.firstLoop += loopBase;
+      all.faces.push_back(f);
+    }
+    for (vbr::BRepLoop l : part.loops)
+    {
+      l.face += faceBase;
+      l.begin += pointBase;
+      l.end += pointBase;
+      all.loops.push_back(l);
+    }
+    all.points.insert(all.points.end(), part.points.begin(), part.points.end());
+  }
+  return all;
+}
+
+void expectSameBRep(const vbr::BRep& a, const vbr::BRep& b)
+{
+  ASSERT_EQ(a.faces.size(), b.faces.size());
+  for (std::size_t f = 0; f < a.faces.size(); ++f)
+  {
+    const vbr::BRepFace &x = a.faces[f], &y = b.faces[f];
+    ASSERT_EQ(std::make_tuple(x.axis, x.normalSign, x.position, x.firstLoop, x.loopCount),
+      std::make_tuple(y.axis, y.normalSign, y.position, y.firstLoop, y.loopCount))
+      << "face " << f;
+  }
+  ASSERT_EQ(a.loops.size(), b.loops.size());
+  for (std::size_t l = 0; l < a.loops.size(); ++l)
+    ASSERT_EQ(std::make_tuple(a.loops[l].begin, a.loops[l].end, a.loops[l].face, a.loops[l].hole),
+      std::make_tuple(b.loops[l].begin, b.loops[l].end, b.loops[l].face, b.loops[l].hole))
+      << "loop " << l;
+  ASSERT_EQ(a.points, b.points);
+}
+
+} // namespace
+
+// The corners read from the voxels are exactly those of the plane sweep's loops (its own
+// output is the reference: two unrelated ways to the same set), under both connectivities,
+// across 64-voxel words along x, and the set numbered from them is the one numbered from the
+// loops.
+TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
+{
+  unsigned seed = 5200;
+  for (int trial = 0; trial < 14; ++trial)
+  {
+    const vbr::Point3 d{
+      trial < 4 ? 60 + 5 * trial : 1 + (trial * 5) % 13, 1 + (trial * 3) % 11, 1 + (trial * 7) % 9
+    };
+    const double density = 0.1 + 0.8 * (trial % 6) / 5.0;
+    const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << " density " << density);
+    const vbr::Point3 offset{ 3, 1, 4 };
+    std::vector<vbr::Point3> fromVoxels;
+    vbr::appendFaceCorners(v, offset, fromVoxels);
+    const std::set<vbr::Point3> voxelSet(fromVoxels.begin(), fromVoxels.end());
+    EXPECT_EQ(voxelSet.size(), fromVoxels.size()); // each once
+    for (vbr::FaceConnectivity c : { vbr::FaceConnectivity::Edge, vbr::FaceConnectivity::Vertex })
+    {
+      vbr::BRep brep;
+      ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v), c, {}, brep));
+      ASSERT_EQ(voxelSet, loopCorners(brep, offset));
+      const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(80);
+      const vbr::CornerSet a(fromVoxels, packer), b({ { &brep, offset } }, packer);
+      ASSERT_EQ(a.points(), b.points());
+      ASSERT_EQ(a.numbersOf(brep, offset), b.numbersOf(brep, offset));
+    }
+  }
+  // The checkerboard: every grid point of the volume is a corner but the four corners of the
+  // box whose one voxel is not selected.
+  vbr::BitVolume checker(5, 4, 3);
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 5; ++x)
+        checker.set(x, y, z, (x + y + z) % 2 == 0);
+  std::vector<vbr::Point3> corners;
+  vbr::appendFaceCorners(checker, { 0, 0, 0 }, corners);
+  EXPECT_EQ(corners.size(), 6u * 5u * 4u - 4u);
+  vbr::BitVolume empty(4, 4, 4);
+  corners.clear();
+  vbr::appendFaceCorners(empty, { 0, 0, 0 }, corners);
+  EXPECT_TRUE(corners.empty());
+}
+
+// The streamed parts, joined, are planeSweep3D's B-Rep, on one thread and on several, and the
+// caller stops the stream by returning false.
+TEST(BRep, StreamedPartsAreTheSweepsFaces)
+{
+  unsigned seed = 6100;
+  for (int trial = 0; trial < 6; ++trial)
+  {
+    const vbr::Point3 d{ 3 + (trial * 5) % 17, 150 + trial, 2 + (trial * 7) % 9 };
+    const vbr::BitVolume v = bf::randomVolume(d, 0.2 + 0.12 * trial, seed++);
+    const vbr::EVM evm = vbr::extractEVM(v);
+    const vbr::FaceConnectivity c =
+      trial % 2 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
+    vbr::BRep whole;
+    ASSERT_TRUE(vbr::planeSweep3D(evm, c, {}, whole));
+    for (int threads : { 1, 3 })
+    {
+      SCOPED_TRACE(testing::Message() << "trial " << trial << " threads " << threads);
+      const vbr::Execution exec = threads == 1 ? vbr::Execution() : bf::threadedExecution(threads);
+      std::vector<vbr::BRep> parts;
+      ASSERT_TRUE(vbr::planeSweep3DStream(evm,
+        c,
+        exec,
+        [&](vbr::BRep& part)
+        {
+          parts.push_back(std::move(part));
+          return true;
+        }));
+      EXPECT_GT(parts.size(), 40u); // the chunks of the long axis were streamed
+      expectSameBRep(joined(parts), whole);
+      int calls = 0;
+      EXPECT_FALSE(vbr::planeSweep3DStream(evm, c, exec, [&](vbr::BRep&) { return ++calls < 5; }));
+      EXPECT_EQ(calls, 5);
+    }
+  }
+}
