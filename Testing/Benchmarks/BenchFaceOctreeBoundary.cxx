@@ -111,14 +111,14 @@ double surfaceDistance(const vbr::BitVolume& bits, vtkPolyData* p, double spacin
         if (length2(a, b) <= spacing * spacing)
         {
           batch.insert(batch.end(), { a, b, c });
+          if (batch.size() >= (1u << 20))
+            flush();
           continue;
         }
         const vbr::Vec3 m{ 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
         pieces.push_back({ a, m, c });
         pieces.push_back({ m, b, c });
       }
-      if (batch.size() >= (1u << 20))
-        flush();
     }
   flush();
   return worst;
