@@ -89,9 +89,9 @@ struct RegionStats
 };
 
 /// One connected component: what numbering needs (size, seeds) and its row of the table, all
-/// gathered in one pass over the boxes in sweep order. One cache line per region: the boxes
-/// of a region are met in turn with those of its neighbours, and a maze's 4.9 M boxes missed
-/// the cache in ten separate columns when the table gathered them in a pass of its own.
+/// gathered in one pass over the boxes in sweep order. One cache line per region, since the
+/// boxes of a region are met in turn with those of its neighbours; the price is 64 bytes per
+/// region, removed ones included, where a checkerboard has a region per selected voxel.
 struct alignas(64) Region : RegionStats
 {
   std::uint32_t boxes = 0;
@@ -224,9 +224,9 @@ std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std:
   std::vector<Region> regions(count);
   for (const ObjectBoxes& o : objects)
   {
-    Region* first = regions.data() + o.firstRegion - 1; // labels start at 1
+    Region* first = regions.data() + o.firstRegion;
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-      first[o.components.boxLabel[b]].add(o.cudb.boxes[b], o.offset);
+      first[o.components.boxLabel[b] - 1].add(o.cudb.boxes[b], o.offset); // labels start at 1
   }
   return regions;
 }
@@ -784,10 +784,14 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
 /// The CUDB of a 2D object in the candidate sorting with the fewest boxes (the first of
 /// equals, as buildBestCUDB), and the components of its boxes, straight from the pixel rows
 /// (of the transposed pixels for lines along the first in-plane axis): the same boxes, counts
-/// and components as through its EVM, without the EVM. False when empty or aborted.
+/// and components as through its EVM, without the EVM. False when empty or aborted. With
+/// `keepRuns` (the image's only object: only then are RegionIds painted from the runs) an
+/// object swept along its rows keeps its pixels and runs; others free them at once, as a
+/// label image of many objects would otherwise hold a bit image per label.
 bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
+  bool keepRuns,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
@@ -802,7 +806,7 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
     vbr::Components labelled;
     std::size_t vertices = 0;
     std::vector<std::uint32_t> runBoxes; // rows along processing x: painted from the runs
-    const bool alongRows = sortings[k] == vbr::AxisOrder{ 2, 1, 0 };
+    const bool alongRows = keepRuns && sortings[k] == vbr::AxisOrder{ 2, 1, 0 };
     if (!vbr::buildCUDBComponents2D(pixels,
           sortings[k],
           connectivity,
@@ -832,13 +836,14 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
   bool planar,
+  bool onlyObject,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
   o.label = selected.label;
   o.offset = selected.offset;
   if (planar)
-    return boxesOfPixelRows(selected, sortings, connectivity, exec, o);
+    return boxesOfPixelRows(selected, sortings, connectivity, onlyObject, exec, o);
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "select voxels and extract the EVM");
@@ -876,7 +881,7 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
     const vbr::Execution exec =
       vbr::vtk::makeExecution(self, 0.05 + 0.65 * i / n, 0.05 + 0.65 * (i + 1) / n);
     ObjectBoxes o;
-    if (!boxesOfObject(in.objects[i], sortings, connectivity, planar, exec, o))
+    if (!boxesOfObject(in.objects[i], sortings, connectivity, planar, n == 1, exec, o))
       continue; // empty, or aborted
     o.firstRegion = regionCount;
     regionCount += o.components.count;

@@ -1484,18 +1484,26 @@ void paintPixelRuns(const BitVolume& pixels,
   const Execution& exec)
 {
   checkSingleSlice(pixels);
+  // The first run of every row (a serial count of bit changes, cheap beside the painting), so
+  // that any range of rows starts at once however finely the backend splits them.
+  std::vector<std::size_t> firstRun(std::size_t(pixels.size(1)) + 1, 0);
+  for (std::int32_t y = 0; y < pixels.size(1); ++y)
+    firstRun[y + 1] = firstRun[y] + rowChanges(pixels.row(y, 0), nullptr, pixels.wordsPerRow()) / 2;
+  if (firstRun.back() != runBoxes.size())
+    throw std::invalid_argument("paintPixelRuns: the runs are not those of the pixels' rows");
   std::int32_t* const origin = labels + std::int64_t(offset[1]) * rowStep + offset[0];
   exec.forRange(pixels.size(1),
     [&](std::int64_t from, std::int64_t to)
     {
-      std::size_t firstRun = 0; // the runs of the rows before this range
-      for (std::int64_t y = 0; y < from; ++y)
-        firstRun +=
-          rowChanges(pixels.row(static_cast<std::int32_t>(y), 0), nullptr, pixels.wordsPerRow()) /
-          2;
       std::vector<Coord> ends(pixels.wordsPerRow() * 64 + 2);
-      paintRowsOfRuns(
-        pixels, from, to, runBoxes.data() + firstRun, value.data(), origin, rowStep, ends.data());
+      paintRowsOfRuns(pixels,
+        from,
+        to,
+        runBoxes.data() + firstRun[from],
+        value.data(),
+        origin,
+        rowStep,
+        ends.data());
     });
 }
 

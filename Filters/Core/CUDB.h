@@ -161,7 +161,7 @@ void paintBoxes(const std::vector<Box>& boxes,
 /// to 8 pixels is written by stores of a fixed width (8 values, then 8 zeros from its end over
 /// the gap they covered; the next run is written after), a longer one exactly (runs of a few
 /// pixels, as a maze has, mispredicted every loop exit of the boxes' painting). Parallel over
-/// rows.
+/// rows. Throws std::invalid_argument when `runBoxes` does not hold one box per run.
 void paintPixelRuns(const BitVolume& pixels,
   const std::vector<std::uint32_t>& runBoxes,
   const std::vector<std::int32_t>& value,

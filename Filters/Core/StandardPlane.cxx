@@ -443,7 +443,8 @@ void StandardPlaneRecognizer::measure(Vertex& v, std::size_t count) const
       if (x > hi)
         hi = x, argHi = static_cast<std::uint32_t>(j);
     });
-  // Every scanned point before count is the midpoint of later ones: take the last.
+  // Every scanned point before count is the midpoint of other points, some at or after count:
+  // take the last.
   if (lo == std::numeric_limits<std::int64_t>::max())
   {
     lo = hi = dot(ray, this->Points[count - 1]);

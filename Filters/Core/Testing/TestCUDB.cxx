@@ -484,6 +484,16 @@ TEST(CUDB, PixelRunsPaintTheBoxes)
             runs += v.get(x, y, 0) && (x == 0 || !v.get(x - 1, y, 0));
         EXPECT_EQ(runBoxes.size(), runs);
         const vbr::Coord width = d[0] + 11, height = d[1] + 5, ox = 3, oy = 2;
+        if (runs > 0) // a list that is not one box per run is refused before anything is written
+        {
+          std::vector<std::int32_t> untouched(std::size_t(width) * height, -7);
+          const std::vector<std::uint32_t> shorter(runBoxes.begin(), runBoxes.end() - 1);
+          const std::vector<std::int32_t> value(cudb.boxes.size(), 1);
+          EXPECT_THROW(vbr::paintPixelRuns(v, shorter, value, { ox, oy }, width, untouched.data()),
+            std::invalid_argument);
+          EXPECT_EQ(
+            std::count(untouched.begin(), untouched.end(), -7), std::ptrdiff_t(untouched.size()));
+        }
         for (int removed : { 0, 3 }) // every box kept; every third box's value 0
         {
           std::vector<std::int32_t> value(cudb.boxes.size());
