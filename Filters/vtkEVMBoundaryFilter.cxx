@@ -769,6 +769,30 @@ struct CellWriter
   std::size_t releasedBytes = 0;
 };
 
+/// One part of an object's faces: its T-junction vertices (when the writer inserts them), its
+/// cells, then it is released as soon as written. False when aborted.
+bool writePart(const vbr::vtk::Selected& object,
+  vbr::BRep& part,
+  const ObjectSettings& settings,
+  const vbr::Execution& objectExec,
+  CellWriter& writer,
+  CellProgress& progress,
+  OutputBuilder& builder)
+{
+  const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
+  std::vector<std::int64_t> numbers = writer.corners.numbersOf(part, object.offset);
+  if (writer.tJunctions)
+  {
+    vtkLogScopeF(TRACE, "T-junction vertices");
+    vbr::insertTJunctionVertices(part, numbers, writer.corners, object.offset, exec);
+  }
+  if (!appendBoundaryCells(
+        object, part, numbers, settings, exec, writer.faceBase, progress, builder))
+    return false;
+  releasePart(part, writer.releasedBytes);
+  return true;
+}
+
 /// The cells of one object, part after part: each part gets its T-junction vertices, is
 /// written, then released. False when aborted.
 bool appendObjectCells(const vbr::vtk::Selected& object,
@@ -784,19 +808,8 @@ bool appendObjectCells(const vbr::vtk::Selected& object,
   CellProgress progress{ vbr::ProgressPoll(objectExec, 0.0, 1.0, 1024),
     std::max<std::size_t>(faces, 1) };
   for (vbr::BRep& part : parts)
-  {
-    const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
-    std::vector<std::int64_t> numbers = writer.corners.numbersOf(part, object.offset);
-    if (writer.tJunctions)
-    {
-      vtkLogScopeF(TRACE, "T-junction vertices");
-      vbr::insertTJunctionVertices(part, numbers, writer.corners, object.offset, exec);
-    }
-    if (!appendBoundaryCells(
-          object, part, numbers, settings, exec, writer.faceBase, progress, builder))
-      return false;                          // aborted
-    releasePart(part, writer.releasedBytes); // as soon as written
-  }
+    if (!writePart(object, part, settings, objectExec, writer, progress, builder))
+      return false; // aborted
   return true;
 }
 
@@ -852,15 +865,9 @@ bool appendPartCells(const vbr::vtk::Selected& object,
 {
   countFaces(part, stats);
   const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
-  std::vector<std::int64_t> numbers = writer.corners.numbersOf(part, object.offset);
-  vbr::insertTJunctionVertices(part, numbers, writer.corners, object.offset, exec);
   CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),
     std::max<std::size_t>(part.faces.size(), 1) };
-  if (!appendBoundaryCells(
-        object, part, numbers, settings, exec, writer.faceBase, progress, builder))
-    return false;
-  releasePart(part, writer.releasedBytes);
-  return true;
+  return writePart(object, part, settings, objectExec, writer, progress, builder);
 }
 
 /// The cells of every object of a 3D image (paper 000), streamed: the corners of all the
