@@ -89,6 +89,8 @@ public:
   /// Recognition work done: polygon clips and solution searches (for benchmarks).
   std::size_t clipCount() const { return this->Clips; }
   std::size_t searchCount() const { return this->Searches; }
+  /// Points sifted out of the measures, known to be the midpoint of two others (for tests).
+  std::size_t siftedOutCount() const { return this->Scanned - this->Extremes.size(); }
 
 private:
   using Vec = std::array<std::int64_t, 3>;

@@ -337,6 +337,7 @@ TEST(StandardPlane, LargePiecesAgreeWithBruteForce)
   constexpr int Bound = 12, R = 5;
   std::mt19937 rng(5);
   int accepted = 0, refused = 0;
+  std::size_t siftedOut = 0;
   for (int t = 0; t < 16; ++t)
   {
     std::array<int, 3> n{ 0, 0, 0 };
@@ -396,9 +397,11 @@ TEST(StandardPlane, LargePiecesAgreeWithBruteForce)
       else
         EXPECT_EQ(r.plane().omega(), expected) << "not the smallest omega";
     }
+    siftedOut += r.siftedOutCount(); // the probes' slow paths sift the piece
   }
   EXPECT_GT(accepted, 30);
   EXPECT_GT(refused, 30);
+  EXPECT_GT(siftedOut, 1000u) << "the probes never met a face that measures its extremes only";
 }
 
 TEST(StandardPlane, PaperUmbrellaAndCube)
