@@ -105,10 +105,11 @@
 // well-composed (its boundary a 2-manifold, so H must have its Euler characteristic, twice
 // that of the union of its closed voxel cubes, counted from the 2x2x2 blocks) and H has a
 // shell of genus above 0 and a lower Euler characteristic than that, H with every level kept
-// apart (the second pass) is made as well and kept when its Euler characteristic is the
-// object's; kept apart, the ring stays part of its level's solid. The check costs one pass
-// over the grid; the second H is made only for such H (none of the random, porous or real
-// inputs of the tests, whose objects are mostly not well-composed).
+// apart (the second pass) is made as well and kept when it separates with the object's Euler
+// characteristic and no more shells (one shell more and one handle less would count the
+// same); kept apart, the ring stays part of its level's solid. The check costs one pass over
+// the grid when H has a handle; the second H is made only for such H (none of the random,
+// porous or real inputs of the tests, whose objects are mostly not well-composed).
 // When none of the prisms from the 12 nearest empty triangles joins a shell, those from the 60
 // nearest are tried (a void reaching out along a 1 wide tunnel in long thin triangles, the
 // hollow balls of R 10 with an off-centre tunnel, needs them); the prisms the cheap tests
