@@ -9,6 +9,7 @@
 #include "RadixSort.h"
 #include "Surfels.h"
 #include "vtkVoxelBRepAdapters.h"
+#include "vtkVoxelBRepBuffers.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -43,8 +44,6 @@
 #include <functional>
 #include <limits>
 #include <memory>
-#include <new>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -54,6 +53,7 @@ namespace
 {
 
 using vbr::Point3;
+using vbr::vtk::MallocBuffer;
 
 /// The cells of the faces (Triangles or Polygons mode) in runs of consecutive faces, one run
 /// per concurrent task, as indices into each face's loop corners.
@@ -80,69 +80,10 @@ bool reversesOrientation(const vbr::vtk::VoxelGrid& grid, const std::array<int, 
   return odd != grid.mirrorsSpace();
 }
 
-/// An append-only array in malloc'ed memory that VTK takes over without a copy
-/// (VTK_DATA_ARRAY_FREE). It grows by realloc, which moves a large block by remapping its
-/// pages: the output's arrays grow as the faces are written (the cells of a face are known
-/// only once it is triangulated) without ever being held twice, as a growing std::vector
-/// would hold them, and without a copy into VTK at the end.
-template<typename T>
-class MallocBuffer
-{
-public:
-  MallocBuffer() = default;
-  MallocBuffer(const MallocBuffer&) = delete;
-  MallocBuffer& operator=(const MallocBuffer&) = delete;
-  ~MallocBuffer() { std::free(this->Data); }
-
-  std::size_t size() const { return this->Size; }
-  void push_back(T value)
-  {
-    if (this->Size == this->Capacity)
-      this->reserve(std::max<std::size_t>(1024, 2 * this->Capacity));
-    this->Data[this->Size++] = value;
-  }
-  /// Grows the array by n values, left for the caller to write.
-  T* extend(std::size_t n)
-  {
-    this->reserve(this->Size + n);
-    this->Size += n;
-    return this->Data + this->Size - n;
-  }
-  void reserve(std::size_t capacity)
-  {
-    if (capacity <= this->Capacity)
-      return;
-    void* grown = std::realloc(this->Data, capacity * sizeof(T));
-    if (!grown)
-      throw std::bad_alloc();
-    this->Data = static_cast<T*>(grown);
-    this->Capacity = capacity;
-  }
-  /// Hands the values to `array`, which frees them; the buffer is then empty.
-  template<typename ArrayType>
-  void handTo(ArrayType* array)
-  {
-    static_assert(std::is_same<typename ArrayType::ValueType, T>::value, "no conversion");
-    if (this->Size == 0)
-      return;
-    T* data = static_cast<T*>(std::realloc(this->Data, this->Size * sizeof(T))); // the slack
-    array->SetArray(data ? data : this->Data,
-      static_cast<vtkIdType>(this->Size),
-      0,
-      vtkAbstractArray::VTK_DATA_ARRAY_FREE);
-    this->Data = nullptr;
-    this->Size = this->Capacity = 0;
-  }
-
-private:
-  T* Data = nullptr;
-  std::size_t Size = 0, Capacity = 0;
-};
-
 /// Builds the output polydata: shared points, then cells and their attributes gathered in
-/// plain arrays (MallocBuffer) that VTK takes over at the end. Per cell only what varies is
-/// kept (corners, offset, FaceId, LoopType; ParentFace and Depth for 2D images only); the Label
-/// is kept once per run of cells of one object.
+/// plain arrays (MallocBuffer, CellArrayBuffer) that VTK takes over at the end. Per cell only what
+/// varies is kept (corners, offset, FaceId, LoopType; ParentFace and Depth for 2D images only); the
+/// Label is kept once per run of cells of one object.
 class OutputBuilder
 {
 public:
@@ -153,7 +94,6 @@ public:
     , Reverse(reversesOrientation(grid, axes))
     , Packer(vbr::KeyPacker::forMaximum(std::max({ grid.dims[0], grid.dims[1], grid.dims[2] })))
   {
-    this->Offsets.push_back(0);
   }
 
   /// Point ids of grid vertices given in an object's coordinates (permuted axes) plus its
@@ -230,9 +170,7 @@ public:
   {
     if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
       this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->FaceId.size()), label);
-    for (std::size_t i = 0; i < n; ++i) // cells are small: no call to memmove
-      this->Connectivity.push_back(ids[this->Reverse ? n - 1 - i : i]);
-    this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
+    this->Cells.addCell(ids, n, this->Reverse);
     this->FaceId.push_back(faceId);
     this->LoopType.push_back(loopType);
     if (this->Planar)
@@ -252,9 +190,7 @@ public:
     output->SetPoints(points);
 
     const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
-    vtkNew<vtkCellArray> cells;
-    vtkSmartPointer<vtkIdTypeArray> connectivity = toArray<vtkIdTypeArray>(this->Connectivity);
-    cells->SetData(toArray<vtkIdTypeArray>(this->Offsets), connectivity);
+    vtkSmartPointer<vtkCellArray> cells = this->Cells.release();
     if (lines)
       output->SetLines(cells);
     else
@@ -328,8 +264,7 @@ private:
   const vbr::KeyPacker Packer;
   vbr::GridPointIndex Index;
   MallocBuffer<double> Coordinates;
-  MallocBuffer<vtkIdType> Offsets;
-  MallocBuffer<vtkIdType> Connectivity;
+  vbr::vtk::CellArrayBuffer Cells;
   MallocBuffer<vtkIdType> FaceId, ParentFace;
   MallocBuffer<int> LoopType;
   MallocBuffer<int> Depth;

@@ -1,0 +1,170 @@
+// The output cell buffer (vtkVoxelBRepBuffers.h) against cells kept in plain vectors: random
+// cells read back through vtkCellArray equal the cells written, in order or reversed; 32-bit
+// storage while every offset and point id fits, 64-bit storage (the same cells) once an id or
+// the connectivity size passes the limit, which the test lowers so that the widening happens
+// on small inputs. Then the filter that writes through it: the EVM boundary's cells of a
+// random volume use 32-bit storage and every cell refers to an existing point.
+#include "vtkVoxelBRepBuffers.h"
+
+#include "TestImages.h"
+#include "vtkEVMBoundaryFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <iostream>
+#include <random>
+#include <vector>
+
+namespace
+{
+
+using Cell = std::vector<vtkIdType>;
+
+std::vector<Cell> randomCells(std::size_t count, vtkIdType maximumId, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> size(1, 8);
+  std::uniform_int_distribution<vtkIdType> id(0, maximumId);
+  std::vector<Cell> cells(count);
+  for (Cell& c : cells)
+  {
+    c.resize(static_cast<std::size_t>(size(rng)));
+    for (vtkIdType& v : c)
+      v = id(rng);
+  }
+  return cells;
+}
+
+/// The cells of `array` as written, or an empty list with a message when a cell differs.
+bool sameCells(vtkCellArray* array, const std::vector<Cell>& expected, bool reversed)
+{
+  if (array->GetNumberOfCells() != static_cast<vtkIdType>(expected.size()))
+  {
+    std::cerr << "cells: " << array->GetNumberOfCells() << " instead of " << expected.size()
+              << "\n";
+    return false;
+  }
+  auto it = vtk::TakeSmartPointer(array->NewIterator());
+  std::size_t c = 0;
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++c)
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    Cell want = expected[c];
+    if (reversed)
+      want.assign(expected[c].rbegin(), expected[c].rend());
+    if (Cell(ids, ids + n) != want)
+    {
+      std::cerr << "cell " << c << " differs\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Writes `cells` through a buffer with the given limit and reads them back.
+bool roundTrip(const std::vector<Cell>& cells, std::int64_t limit, bool reversed, bool wide)
+{
+  vbr::vtk::CellArrayBuffer buffer(limit);
+  for (const Cell& c : cells)
+    buffer.addCell(c.data(), c.size(), reversed);
+  if (buffer.isWide() != wide || buffer.numberOfCells() != cells.size())
+  {
+    std::cerr << "limit " << limit << ": wide " << buffer.isWide() << ", expected " << wide << "\n";
+    return false;
+  }
+  vtkSmartPointer<vtkCellArray> array = buffer.release();
+  if (array->IsStorage64Bit() != wide)
+  {
+    std::cerr << "limit " << limit << ": the storage is not " << (wide ? 64 : 32) << "-bit\n";
+    return false;
+  }
+  if (buffer.numberOfCells() != 0 || buffer.isWide())
+  {
+    std::cerr << "the buffer is not empty after release\n";
+    return false;
+  }
+  return sameCells(array, cells, reversed);
+}
+
+bool testBuffer()
+{
+  bool ok = true;
+  for (unsigned seed = 1; seed <= 20; ++seed)
+  {
+    const std::vector<Cell> cells = randomCells(200 + 37 * seed, 100, seed);
+    std::size_t corners = 0;
+    for (const Cell& c : cells)
+      corners += c.size();
+    for (bool reversed : { false, true })
+    {
+      ok &= roundTrip(cells, 1 << 30, reversed, false);
+      // The connectivity size passes the limit partway: widened, nothing lost.
+      ok &= roundTrip(cells, static_cast<std::int64_t>(corners / 2), reversed, true);
+      // A point id passes the limit (ids go up to 100): widened at once.
+      ok &= roundTrip(cells, 99, reversed, true);
+    }
+  }
+  // The first cell alone passes it, and an empty buffer gives an empty array.
+  ok &= roundTrip({ { 5, 6, 7 } }, 2, false, true);
+  ok &= roundTrip({}, 10, false, false);
+  // Ids at the 32-bit maximum stay narrow; one above it widens even with the default limit.
+  const vtkIdType max32 = 2147483647;
+  ok &= roundTrip({ { 0, max32 } }, max32, false, false);
+  ok &= roundTrip({ { 0, max32 + 1 } }, max32, false, true);
+  return ok;
+}
+
+bool testFilterOutput()
+{
+  const vbrtest::Volume v = vbrtest::randomVolume({ 12, 11, 10 }, 0.45, 1, 7);
+  auto image = vbrtest::makeImage(v, vbrtest::Layout{});
+  bool ok = true;
+  for (int mode : { vtkEVMBoundaryFilter::POLYGONS, vtkEVMBoundaryFilter::TRIANGLES })
+  {
+    vtkNew<vtkEVMBoundaryFilter> filter;
+    filter->SetInputData(image);
+    filter->SetOutputMode(mode);
+    filter->Update();
+    vtkPolyData* out = filter->GetOutput();
+    vtkCellArray* polys = out->GetPolys();
+    if (polys->GetNumberOfCells() == 0 || polys->IsStorage64Bit())
+    {
+      std::cerr << "mode " << mode << ": " << polys->GetNumberOfCells() << " cells, 64-bit storage "
+                << polys->IsStorage64Bit() << "\n";
+      ok = false;
+      continue;
+    }
+    auto it = vtk::TakeSmartPointer(polys->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      vtkIdType n;
+      const vtkIdType* ids;
+      it->GetCurrentCell(n, ids);
+      for (vtkIdType i = 0; i < n; ++i)
+        if (ids[i] < 0 || ids[i] >= out->GetNumberOfPoints())
+        {
+          std::cerr << "mode " << mode << ": point id " << ids[i] << " out of range\n";
+          return false;
+        }
+    }
+  }
+  return ok;
+}
+
+} // namespace
+
+int TestVoxelBRepBuffers(int, char*[])
+{
+  const bool ok = testBuffer() && testFilterOutput();
+  std::cout << (ok ? "passed" : "FAILED") << "\n";
+  return ok ? 0 : 1;
+}

@@ -1,0 +1,200 @@
+// Output arrays that grow while a filter writes its cells and that VTK then takes over without
+// a copy: the cells of a boundary are known one face at a time, so their arrays cannot be
+// sized beforehand, and a growing std::vector copied into VTK at the end would hold them twice.
+#ifndef vtkVoxelBRepBuffers_h
+#define vtkVoxelBRepBuffers_h
+
+#include "vtkAbstractArray.h"
+#include "vtkCellArray.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <new>
+#include <type_traits>
+
+namespace vbr
+{
+namespace vtk
+{
+
+/// An append-only array in malloc'ed memory that VTK takes over without a copy
+/// (VTK_DATA_ARRAY_FREE). It grows by realloc, which moves a large block by remapping its
+/// pages rather than copying it.
+template<typename T>
+class MallocBuffer
+{
+public:
+  MallocBuffer() = default;
+  MallocBuffer(const MallocBuffer&) = delete;
+  MallocBuffer& operator=(const MallocBuffer&) = delete;
+  ~MallocBuffer() { std::free(this->Data); }
+
+  std::size_t size() const { return this->Size; }
+  const T* data() const { return this->Data; }
+  void push_back(T value)
+  {
+    if (this->Size == this->Capacity)
+      this->reserve(std::max<std::size_t>(1024, 2 * this->Capacity));
+    this->Data[this->Size++] = value;
+  }
+  /// Grows the array by n values, left for the caller to write.
+  T* extend(std::size_t n)
+  {
+    this->reserve(this->Size + n);
+    this->Size += n;
+    return this->Data + this->Size - n;
+  }
+  void reserve(std::size_t capacity)
+  {
+    if (capacity <= this->Capacity)
+      return;
+    void* grown = std::realloc(this->Data, capacity * sizeof(T));
+    if (!grown)
+      throw std::bad_alloc();
+    this->Data = static_cast<T*>(grown);
+    this->Capacity = capacity;
+  }
+  /// Empties the buffer and frees its memory.
+  void clear()
+  {
+    std::free(this->Data);
+    this->Data = nullptr;
+    this->Size = this->Capacity = 0;
+  }
+  /// Hands the values to `array`, which frees them; the buffer is then empty.
+  template<typename ArrayType>
+  void handTo(ArrayType* array)
+  {
+    static_assert(std::is_same<typename ArrayType::ValueType, T>::value, "no conversion");
+    if (this->Size == 0)
+      return;
+    T* data = static_cast<T*>(std::realloc(this->Data, this->Size * sizeof(T))); // the slack
+    array->SetArray(data ? data : this->Data,
+      static_cast<vtkIdType>(this->Size),
+      0,
+      vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+    this->Data = nullptr;
+    this->Size = this->Capacity = 0;
+  }
+
+private:
+  T* Data = nullptr;
+  std::size_t Size = 0, Capacity = 0;
+};
+
+/// The offsets and connectivity of a vtkCellArray, written cell by cell, in 32-bit integers
+/// while every value fits (vtkCellArray's 32-bit storage, which every VTK filter and writer
+/// reads like the 64-bit one) and widened to 64 bits the first time one does not. The ids are
+/// most of a large boundary's memory: a triangle's offset and three corners take 16 bytes
+/// instead of 32. Ids are never negative.
+class CellArrayBuffer
+{
+public:
+  /// `narrowLimit`: the largest value kept in 32 bits (a smaller one lets a test widen).
+  explicit CellArrayBuffer(std::int64_t narrowLimit = std::numeric_limits<std::int32_t>::max())
+    : NarrowLimit(std::min<std::int64_t>(narrowLimit, std::numeric_limits<std::int32_t>::max()))
+  {
+    this->Narrow.Offsets.push_back(0);
+  }
+
+  bool isWide() const { return this->Wide; }
+  std::size_t numberOfCells() const
+  {
+    return (this->Wide ? this->Large.Offsets.size() : this->Narrow.Offsets.size()) - 1;
+  }
+  std::size_t connectivitySize() const
+  {
+    return this->Wide ? this->Large.Connectivity.size() : this->Narrow.Connectivity.size();
+  }
+
+  /// Appends one cell of `n` point ids, in reverse order when `reverse`.
+  template<typename Id>
+  void addCell(const Id* ids, std::size_t n, bool reverse = false)
+  {
+    const std::int64_t end = static_cast<std::int64_t>(this->connectivitySize() + n);
+    if (!this->Wide && (end > this->NarrowLimit || !this->fitNarrow(ids, n)))
+      this->widen();
+    if (this->Wide)
+      this->Large.append(ids, n, reverse);
+    else
+      this->Narrow.append(ids, n, reverse);
+  }
+
+  /// Hands the cells to a new vtkCellArray (32- or 64-bit storage); the buffer is then empty.
+  vtkSmartPointer<vtkCellArray> release()
+  {
+    auto cells = vtkSmartPointer<vtkCellArray>::New();
+    if (this->Wide)
+      this->Large.handTo<vtkTypeInt64Array>(cells);
+    else
+      this->Narrow.handTo<vtkTypeInt32Array>(cells);
+    this->Narrow.Offsets.push_back(0);
+    this->Wide = false;
+    return cells;
+  }
+
+private:
+  template<typename T>
+  struct Ids
+  {
+    MallocBuffer<T> Offsets, Connectivity;
+
+    template<typename Id>
+    void append(const Id* ids, std::size_t n, bool reverse)
+    {
+      T* out = this->Connectivity.extend(n);
+      for (std::size_t i = 0; i < n; ++i) // cells are small: no call to memmove
+        out[i] = static_cast<T>(ids[reverse ? n - 1 - i : i]);
+      this->Offsets.push_back(static_cast<T>(this->Connectivity.size()));
+    }
+    template<typename ArrayType>
+    void handTo(vtkCellArray* cells)
+    {
+      vtkSmartPointer<ArrayType> offsets = vtkSmartPointer<ArrayType>::New();
+      vtkSmartPointer<ArrayType> connectivity = vtkSmartPointer<ArrayType>::New();
+      this->Offsets.handTo(offsets.GetPointer());
+      this->Connectivity.handTo(connectivity.GetPointer());
+      cells->SetData(offsets, connectivity);
+    }
+  };
+
+  template<typename Id>
+  bool fitNarrow(const Id* ids, std::size_t n) const
+  {
+    for (std::size_t i = 0; i < n; ++i)
+      if (static_cast<std::int64_t>(ids[i]) > this->NarrowLimit)
+        return false;
+    return true;
+  }
+
+  /// Copies the 32-bit ids into 64-bit ones, once.
+  void widen()
+  {
+    copyWide(this->Narrow.Offsets, this->Large.Offsets);
+    copyWide(this->Narrow.Connectivity, this->Large.Connectivity);
+    this->Wide = true;
+  }
+  static void copyWide(MallocBuffer<vtkTypeInt32>& from, MallocBuffer<vtkTypeInt64>& to)
+  {
+    vtkTypeInt64* out = to.extend(from.size());
+    std::copy(from.data(), from.data() + from.size(), out);
+    from.clear();
+  }
+
+  const std::int64_t NarrowLimit;
+  bool Wide = false;
+  Ids<vtkTypeInt32> Narrow;
+  Ids<vtkTypeInt64> Large;
+};
+
+} // namespace vtk
+} // namespace vbr
+
+#endif
