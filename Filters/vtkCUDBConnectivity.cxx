@@ -33,11 +33,13 @@
 #include "vtkTable.h"
 #include "vtkTypeFloat64Array.h"
 #include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <initializer_list>
 #include <limits>
@@ -439,7 +441,7 @@ struct BoxCells
 {
   BoxCellLayout layout;
   vtkNew<vtkDoubleArray> coordinates;
-  vtkNew<vtkIdTypeArray> offsets, connectivity, boxIds;
+  vtkNew<vtkIdTypeArray> boxIds;
   vtkNew<vtkIntArray> regionIds;
   vtkSmartPointer<vtkDataArray> labels;
 
@@ -450,13 +452,10 @@ struct BoxCells
     this->coordinates->SetNumberOfComponents(3);
     vbr::vtk::resizeOrThrow(this->coordinates, count * corners);
     this->labels = vbr::vtk::newLabelArray(labelType, count);
-    vbr::vtk::resizeOrThrow(this->offsets, count + 1);
-    vbr::vtk::resizeOrThrow(this->connectivity, count * corners);
     vbr::vtk::resizeOrThrow(this->boxIds, count);
     vbr::vtk::resizeOrThrow(this->regionIds, count);
     this->boxIds->SetName("BoxId");
     this->regionIds->SetName("RegionId");
-    this->offsets->SetValue(0, 0);
   }
 
   /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label.
@@ -477,12 +476,31 @@ struct BoxCells
         if (this->layout.bits[k][r])
           v[this->layout.role[r]] = hi[this->layout.role[r]];
       grid.vertexToWorld(v, xyz + 3 * k); // a 2D image's corners lie in its plane (flat at 0)
-      this->connectivity->SetValue(cell * corners + k, cell * corners + k);
     }
-    this->offsets->SetValue(cell + 1, (cell + 1) * corners);
     this->boxIds->SetValue(cell, boxId);
     this->regionIds->SetValue(cell, regionId);
     vbr::vtk::setLabel(this->labels, cell, label);
+  }
+
+  /// Cells whose corners are their own points, in order (cell i: points corners * i to
+  /// corners * i + corners - 1), with 32-bit ids when they fit: vtkCellArray reads both, and
+  /// on a checkerboard (a box per voxel) the ids were a quarter of the boxes' memory.
+  template<typename ArrayType>
+  static vtkSmartPointer<vtkCellArray> ownCornerCells(vtkIdType count, int corners)
+  {
+    vtkNew<ArrayType> offsets, connectivity;
+    vbr::vtk::resizeOrThrow(offsets, count + 1);
+    vbr::vtk::resizeOrThrow(connectivity, count * corners);
+    auto* offset = offsets->GetPointer(0);
+    for (vtkIdType i = 0; i <= count; ++i)
+      offset[i] = static_cast<typename ArrayType::ValueType>(i * corners);
+    if (count > 0)
+      std::iota(connectivity->GetPointer(0),
+        connectivity->GetPointer(0) + count * corners,
+        typename ArrayType::ValueType(0));
+    auto cells = vtkSmartPointer<vtkCellArray>::New();
+    cells->SetData(offsets, connectivity);
+    return cells;
   }
 
   void moveTo(vtkUnstructuredGrid* output)
@@ -490,9 +508,12 @@ struct BoxCells
     vtkNew<vtkPoints> points;
     points->SetData(this->coordinates);
     output->SetPoints(points);
-    vtkNew<vtkCellArray> cells;
-    cells->SetData(this->offsets, this->connectivity);
-    output->SetCells(this->layout.cellType, cells);
+    const vtkIdType count = this->boxIds->GetNumberOfTuples();
+    const vtkIdType ids = count * this->layout.corners;
+    output->SetCells(this->layout.cellType,
+      ids <= std::numeric_limits<std::int32_t>::max()
+        ? ownCornerCells<vtkTypeInt32Array>(count, this->layout.corners)
+        : ownCornerCells<vtkTypeInt64Array>(count, this->layout.corners));
     output->GetCellData()->AddArray(this->regionIds);
     output->GetCellData()->AddArray(this->boxIds);
     output->GetCellData()->AddArray(this->labels);

@@ -8,12 +8,14 @@
 
 #include "TestImages.h"
 
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -216,6 +218,19 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
   CHECK(boxRegion && boxes->GetCellData()->GetArray("BoxId"), what << ": box arrays");
   if (!boxRegion)
     return;
+  // Each box has its own corners: cell c is points 8c..8c+7 (4c..4c+3 in 2D), in 32-bit ids.
+  CHECK(!boxes->GetCells()->IsStorage64Bit(), what << ": 32-bit cell storage");
+  const vtkIdType corners = planar ? 4 : 8;
+  bool ownCorners = boxes->GetNumberOfPoints() == corners * boxes->GetNumberOfCells();
+  vtkNew<vtkIdList> cellPoints;
+  for (vtkIdType c = 0; ownCorners && c < boxes->GetNumberOfCells(); ++c)
+  {
+    boxes->GetCellPoints(c, cellPoints);
+    ownCorners = cellPoints->GetNumberOfIds() == corners;
+    for (vtkIdType k = 0; ownCorners && k < corners; ++k)
+      ownCorners = cellPoints->GetId(k) == corners * c + k;
+  }
+  CHECK(ownCorners, what << ": every box has its own corner points, in order");
   std::vector<int> covered(ids.size(), 0);
   long long selected = 0;
   for (int id : ids)
