@@ -129,6 +129,7 @@ std::size_t BRep::holeCount() const
 BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
 {
   BRep out;
+  out.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   const auto& v = evm.vertices();
   const Boundary2D b2 = planeSweep2D(v.data(), v.data() + v.size(), connectivity);
   out.faces.reserve(b2.faces.size());
@@ -150,6 +151,7 @@ NumberedBRep extractNumberedBoundary2D(const EVM& evm,
   const Contours2D c =
     planeSweep2DNumbered(v.data(), v.data() + v.size(), cornerOrder, connectivity);
   NumberedBRep out;
+  out.brep.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   out.corners.reserve(c.corners.size());
   for (const Point2& p : c.corners)
     out.corners.push_back(placed(order, 0, p));

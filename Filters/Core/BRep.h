@@ -59,6 +59,9 @@ struct BRep
   /// outside, holes the other way.
   std::vector<Point3> points;
   std::size_t nonManifoldVertices = 0;
+  /// The faces are vertex-connected regions (FaceConnectivity::Vertex): a face's parts may
+  /// touch at corners, where it can be cut into its edge-connected parts.
+  bool mergedAtVertices = false;
   std::size_t holeCount() const;
   PointRange loopPoints(int loop) const
   {

@@ -2,13 +2,17 @@
 // with (u, v, axis) right-handed.
 //
 // A face without holes and of at most EarClippingLimit corners is ear-clipped exactly
-// (clipEars); every other face goes through CGAL's constrained Delaunay triangulation of all
-// its loops, whose triangles inside the face are those at odd nesting depth from the outside
-// (markNesting). fanPolygons gives what a renderer drawing a polygon as the fan from its
-// first corner draws right: the outer loop itself, started at a corner whose fan covers it
-// (fanApex), or else the triangles grouped into fans round shared corners (FanGrouper).
+// (clipEars); so is each edge-connected part of a face whose parts touch at corners, when no
+// part has a hole (edgeConnectedParts); every other face goes through CGAL's constrained
+// Delaunay triangulation of all its loops, whose triangles inside the face are those at odd
+// nesting depth from the outside (markNesting). fanPolygons gives what a renderer drawing a polygon
+// as the fan from its first corner draws right: the outer loop itself, started at a corner whose
+// fan covers it (fanApex), or else the triangles grouped into fans round shared corners
+// (FanGrouper).
 
 #include "FaceTriangulator.h"
+
+#include "RadixSort.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -192,6 +196,19 @@ int fanApex(const std::vector<Point2L>& corners)
     if (fanCoversPolygon(corners, candidates[k]))
       return static_cast<int>(candidates[k]);
   return -1;
+}
+
+/// Whether a loop passes a corner twice (parts of a face, or of its background, touching
+/// there): such a loop is no simple polygon even where its fan would cover it. `keys` is
+/// scratch space.
+bool visitsACornerTwice(const std::vector<Point2L>& corners, std::vector<std::uint64_t>& keys)
+{
+  keys.resize(corners.size());
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    keys[i] = (std::uint64_t(std::uint32_t(corners[i][0])) << 32) |
+      std::uint64_t(std::uint32_t(corners[i][1]));
+  std::sort(keys.begin(), keys.end());
+  return std::adjacent_find(keys.begin(), keys.end()) != keys.end();
 }
 
 /// Triangles grouped into fans: from each triangle not yet taken, the longest fan of
@@ -393,20 +410,155 @@ void appendDelaunayTriangles(const BRep& brep, const BRepFace& face, FaceCells& 
   }
 }
 
+/// The corners of all the loops of a face (outer loop first), each with the next corner of its
+/// own loop.
+struct LoopCorners
+{
+  std::vector<Point3> at;
+  std::vector<int> next;
+
+  LoopCorners(const BRep& brep, const BRepFace& face)
+  {
+    for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+    {
+      const PointRange pts = brep.loopPoints(l);
+      const int start = static_cast<int>(this->at.size()), n = static_cast<int>(pts.size());
+      this->at.insert(this->at.end(), pts.begin(), pts.end());
+      for (int i = 0; i < n; ++i)
+        this->next.push_back(start + (i + 1) % n);
+    }
+  }
+};
+
+/// The edge-connected parts of a face, each a cycle of corners: cycle k is corners
+/// `corners[ends[k - 1] .. ends[k])` (ends[-1] = 0), indices as in triangulateFace (a corner
+/// shared by two loops or visited twice by one by its first index), at `points`.
+struct FaceParts
+{
+  std::vector<int> corners;
+  std::vector<std::size_t> ends;
+  std::vector<Point3> points;
+
+  std::size_t count() const { return this->ends.size(); }
+  std::size_t begin(std::size_t k) const { return k == 0 ? 0 : this->ends[k - 1]; }
+  PointRange pointsOf(std::size_t k) const
+  {
+    return { this->points.data() + this->begin(k), this->points.data() + this->ends[k] };
+  }
+};
+
+/// The parts of a face whose loops touch at corners. Where two parts of the face meet
+/// diagonally at a corner (parts merged at vertices, MergeNonManifoldFaces), each loop edge
+/// coming into the corner is joined to the edge going out that turns left from it (the corner
+/// of its own part) rather than to the one crossing over to the other part. The cycles so
+/// formed bound the face's edge-connected parts. When each turns counter-clockwise, the parts
+/// have no holes and do not nest (a part inside another would need a clockwise cycle between
+/// them): each is a polygon of its own, to be cut on its own, in linear time for a face of
+/// many small parts where the triangulation of all its loops at once takes a point location
+/// per corner. False when no corner is shared, or a cycle is clockwise (a hole), longer than
+/// EarClippingLimit or touches itself.
+bool edgeConnectedParts(const BRep& brep, const BRepFace& face, int u, int v, FaceParts& parts)
+{
+  LoopCorners loops(brep, face);
+  const int n = static_cast<int>(loops.at.size());
+  std::vector<std::pair<std::uint64_t, int>> byLocation(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    byLocation[i] = { (std::uint64_t(std::uint32_t(loops.at[i][u])) << 32) |
+        std::uint64_t(std::uint32_t(loops.at[i][v])),
+      i };
+  if (byLocation.size() < 256)
+    std::sort(byLocation.begin(), byLocation.end());
+  else // stable: the corners of one location stay in index order
+    radixSortBy(byLocation, [](const std::pair<std::uint64_t, int>& c) { return c.first; });
+  std::vector<int> prev(static_cast<std::size_t>(n)), first(static_cast<std::size_t>(n)),
+    partner(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i)
+    prev[loops.next[i]] = i;
+  const auto turn = [&](int from, int at, int to)
+  {
+    const Point3 &a = loops.at[from], &b = loops.at[at], &c = loops.at[to];
+    return face.normalSign *
+      (static_cast<long long>(b[u] - a[u]) * (c[v] - b[v]) -
+        static_cast<long long>(b[v] - a[v]) * (c[u] - b[u]));
+  };
+  bool shared = false;
+  for (int k = 0; k < n; ++k)
+  {
+    const bool repeated = k > 0 && byLocation[k - 1].first == byLocation[k].first;
+    first[byLocation[k].second] = repeated ? first[byLocation[k - 1].second] : byLocation[k].second;
+    if (!repeated)
+      continue;
+    if (k > 1 && byLocation[k - 2].first == byLocation[k].first)
+      return false; // an orthogonal face's loops meet at most twice at a corner
+    const int a = byLocation[k - 1].second, b = byLocation[k].second;
+    partner[a] = b;
+    partner[b] = a;
+    if (turn(prev[a], a, loops.next[a]) <= 0)
+      std::swap(loops.next[a], loops.next[b]);
+    shared = true;
+  }
+  if (!shared)
+    return false;
+  std::vector<int> cycleOf(static_cast<std::size_t>(n), -1);
+  for (int start = 0; start < n; ++start)
+  {
+    if (cycleOf[start] >= 0)
+      continue;
+    const int cycle = static_cast<int>(parts.count());
+    long long area = 0;
+    std::size_t size = 0;
+    for (int i = start; cycleOf[i] < 0; i = loops.next[i], ++size)
+    {
+      if (partner[i] >= 0 && cycleOf[partner[i]] == cycle)
+        return false; // the part touches itself: not a simple polygon
+      cycleOf[i] = cycle;
+      parts.corners.push_back(first[i]);
+      parts.points.push_back(loops.at[i]);
+      const Point3 &p = loops.at[i], &q = loops.at[loops.next[i]];
+      area += static_cast<long long>(p[u]) * q[v] - static_cast<long long>(q[u]) * p[v];
+    }
+    if (size > EarClippingLimit || face.normalSign * area <= 0)
+      return false;
+    parts.ends.push_back(parts.corners.size());
+  }
+  return true;
+}
+
+/// Ear clipping of each part of a face (edgeConnectedParts); false when a part has no ear,
+/// the triangles then left in `out` for the caller to drop.
+bool clipParts(const FaceParts& parts, int u, int v, int sign, FaceCells& out)
+{
+  for (std::size_t k = 0; k < parts.count(); ++k)
+  {
+    const std::size_t from = out.corners.size(), first = parts.begin(k);
+    if (!clipEars(parts.pointsOf(k), u, v, sign, out.ring, out))
+      return false;
+    for (std::size_t c = from; c < out.corners.size(); ++c)
+      out.corners[c] = parts.corners[first + static_cast<std::size_t>(out.corners[c])];
+  }
+  return true;
+}
+
 /// Appends the triangles of face `f` without closing the face.
 void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
 {
   const BRepFace& face = brep.faces[f];
   const PointRange outer = brep.loopPoints(face.firstLoop);
+  const std::size_t corners = out.corners.size(), cells = out.cellEnds.size();
+  const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
   {
-    const std::size_t corners = out.corners.size(), cells = out.cellEnds.size();
-    const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
     if (clipEars(outer, u, v, face.normalSign, out.ring, out))
       return;
     out.corners.resize(corners); // no ear: the general method from scratch
     out.cellEnds.resize(cells);
   }
+  FaceParts parts;
+  if (brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts) &&
+    clipParts(parts, u, v, face.normalSign, out))
+    return;
+  out.corners.resize(corners);
+  out.cellEnds.resize(cells);
   appendDelaunayTriangles(brep, face, out);
 }
 
@@ -459,6 +611,42 @@ void appendFanGroups(const BRep& brep, int f, FaceCells& cells)
 
 } // namespace
 
+namespace
+{
+
+/// The polygons of a face whose edge-connected parts touch at corners (edgeConnectedParts),
+/// one per part, when each part is drawn right as the fan from one of its corners; false,
+/// with nothing appended, otherwise.
+bool appendPartPolygons(const BRep& brep, const BRepFace& face, FaceCells& cells)
+{
+  const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
+  FaceParts parts;
+  if (!brep.mergedAtVertices || !edgeConnectedParts(brep, face, u, v, parts))
+    return false;
+  const std::size_t corners = cells.corners.size(), cellCount = cells.cellEnds.size();
+  for (std::size_t k = 0; k < parts.count(); ++k)
+  {
+    cells.loop2D.clear();
+    for (const Point3& p : parts.pointsOf(k))
+      cells.loop2D.push_back(face.normalSign > 0 ? Point2L{ p[u], p[v] } : Point2L{ p[v], p[u] });
+    const std::size_t m = cells.loop2D.size();
+    const int apex = m == 4 ? 0 : fanApex(cells.loop2D); // 4 corners: a rectangle
+    if (apex < 0)
+    {
+      cells.corners.resize(corners);
+      cells.cellEnds.resize(cellCount);
+      return false;
+    }
+    for (std::size_t i = 0; i < m; ++i)
+      cells.corners.push_back(
+        parts.corners[parts.begin(k) + (static_cast<std::size_t>(apex) + i) % m]);
+    cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
+  }
+  return true;
+}
+
+} // namespace
+
 void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
 {
   const BRepFace& face = brep.faces[f];
@@ -470,15 +658,28 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
   if (face.loopCount == 1)
   {
     outerLoop2D(brep, face, cells.loop2D);
-    const int apex = fanApex(cells.loop2D);
+    const int apex = visitsACornerTwice(cells.loop2D, cells.keys) ? -1 : fanApex(cells.loop2D);
     if (apex >= 0)
     {
       appendLoopFrom(static_cast<std::size_t>(apex), cells.loop2D.size(), cells);
       return;
     }
   }
-  appendFanGroups(brep, f, cells);
+  if (!appendPartPolygons(brep, face, cells))
+    appendFanGroups(brep, f, cells);
   cells.endFace();
+}
+
+std::vector<std::vector<int>> edgeConnectedPartsOf(const BRep& brep, int f)
+{
+  const BRepFace& face = brep.faces[f];
+  FaceParts parts;
+  std::vector<std::vector<int>> out;
+  if (edgeConnectedParts(brep, face, (face.axis + 1) % 3, (face.axis + 2) % 3, parts))
+    for (std::size_t k = 0; k < parts.count(); ++k)
+      out.emplace_back(parts.corners.begin() + static_cast<std::ptrdiff_t>(parts.begin(k)),
+        parts.corners.begin() + static_cast<std::ptrdiff_t>(parts.ends[k]));
+  return out;
 }
 
 std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f)

@@ -19,13 +19,21 @@ namespace vbr
 std::vector<std::array<int, 3>> triangulateFace(const BRep& brep, int f);
 
 /// Polygons covering face `f` exactly, each drawn right by a renderer that draws a polygon
-/// as the fan of triangles from its first corner (VTK's OpenGL mapper does): the outer loop
-/// itself, started at a corner from which its fan covers it, when the face has no holes and
-/// such a corner exists; otherwise the triangles of triangulateFace grouped into fans round
-/// shared corners (each polygon is a corner followed by the far sides of its triangles).
-/// Indices and orientation as in triangulateFace; every corner of the loops is a corner of
-/// the polygons.
+/// as the fan of triangles from its first corner (VTK's OpenGL mapper does), and each simple
+/// (no corner twice): the outer loop itself, started at a corner from which its fan covers
+/// it, when the face has no holes, its loop passes no corner twice and such a corner exists;
+/// else, for a face whose edge-connected parts touch at corners (merged at vertices) and have
+/// no holes, each part likewise; otherwise the triangles of triangulateFace grouped into fans
+/// round shared corners (each polygon is a corner followed by the far sides of its
+/// triangles). Indices and orientation as in triangulateFace; every corner of the loops is a
+/// corner of the polygons.
 std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f);
+
+/// The edge-connected parts of face `f` when its loops touch at corners (a face merged at
+/// vertices) and every part is a polygon without holes of at most 128 corners that passes no
+/// corner twice: each part's corners, counter-clockwise seen from outside, indices as in
+/// triangulateFace. Empty otherwise: the face is then triangulated as a whole.
+std::vector<std::vector<int>> edgeConnectedPartsOf(const BRep& brep, int f);
 
 /// Scratch space of the faces whose polygons are fans of their triangles (fanPolygons), kept
 /// from face to face so that such a face allocates nothing once the run has met a larger one.
@@ -38,8 +46,8 @@ struct FanScratch
 
 /// The cells of a run of faces in flat arrays (no allocation per face or per cell): cell k has
 /// the corners `corners[cellEnds[k - 1] .. cellEnds[k])` (cellEnds[-1] = 0), indices as in
-/// triangulateFace; the cells of the run's i-th face end at cell `faceEnds[i]`. `ring` and
-/// `loop2D` and `fans` are scratch space reused from face to face.
+/// triangulateFace; the cells of the run's i-th face end at cell `faceEnds[i]`. `ring`,
+/// `loop2D`, `keys` and `fans` are scratch space reused from face to face.
 struct FaceCells
 {
   std::vector<int> corners;
@@ -47,6 +55,7 @@ struct FaceCells
   std::vector<std::uint32_t> faceEnds;
   std::vector<int> ring;
   std::vector<Point2L> loop2D;
+  std::vector<std::uint64_t> keys;
   FanScratch fans;
 
   std::size_t cellBegin(std::size_t face) const { return face == 0 ? 0 : this->faceEnds[face - 1]; }

@@ -145,6 +145,7 @@ bool sweepChunk(const PlaneChunk& chunk,
   std::atomic<bool>& abort,
   BRep& out)
 {
+  out.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   const EVM& sorted = *chunk.sorted;
   const auto& starts = *chunk.starts;
   const Vertex* v = sorted.vertices().data();
@@ -323,6 +324,7 @@ bool planeSweep3DParts(const EVM& evm,
 bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution& exec, BRep& out)
 {
   out = BRep();
+  out.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   std::vector<BRep> parts;
   if (!planeSweep3DParts(evm, connectivity, exec, parts))
     return false;

@@ -102,11 +102,14 @@ void checkFace(const vbr::BRep& brep,
   for (const auto& polygon : polygons)
   {
     ASSERT_GE(polygon.size(), 3u);
+    std::set<P2> distinct;
     for (int i : polygon)
     {
       ASSERT_TRUE(i >= 0 && i < static_cast<int>(corner.size())) << "not a loop corner";
       used.insert(corner[i]);
+      distinct.insert(corner[i]);
     }
+    EXPECT_EQ(distinct.size(), polygon.size()) << "a polygon visits a corner twice";
     for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
     {
       const std::array<P2, 3> t{ corner[polygon[0]], corner[polygon[i]], corner[polygon[i + 1]] };
@@ -194,4 +197,121 @@ TEST(FanPolygons, TileTheFacesOfRandomVolumes)
   EXPECT_GT(stats.grouped, 100u);
   EXPECT_GT(stats.single, 1000u);
   EXPECT_GT(stats.flat, 100u);
+}
+
+// Faces merged at vertices (MergeNonManifoldFaces) whose parts touch only at corners: a
+// checkerboard plate's top and bottom faces are one face each, with the white squares as
+// holes that touch the outer loop and each other at corners. Each black square is an
+// edge-connected part of its own, so the face's polygons are its squares, one 4-corner
+// polygon each (the triangulation of the whole face would group its triangles otherwise);
+// and the same face with one black square grown into an L (a part of 6 corners).
+TEST(FanPolygons, FacesMergedAtCornersArePolygonsPerPart)
+{
+  for (bool grown : { false, true })
+  {
+    SCOPED_TRACE(grown ? "one part an L" : "checkerboard");
+    vbr::BitVolume v({ 9, 7, 1 });
+    int black = 0;
+    for (int y = 0; y < 7; ++y)
+      for (int x = 0; x < 9; ++x)
+        if ((x + y) % 2 == 0)
+        {
+          v.set(x, y, 0, true);
+          ++black;
+        }
+    if (grown) // (3, 3), (4, 3) and (4, 2) as an L: (4, 3) set, its other neighbours cleared
+    {
+      v.set(4, 3, 0, true);
+      v.set(5, 3, 0, false);
+      v.set(4, 4, 0, false);
+    }
+    vbr::BRep brep;
+    ASSERT_TRUE(
+      vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Vertex, vbr::Execution(), brep));
+    FaceStats stats;
+    int plateFaces = 0;
+    for (std::size_t f = 0; f < brep.faces.size(); ++f)
+    {
+      const std::vector<std::vector<int>> polygons = vbr::fanPolygons(brep, static_cast<int>(f));
+      checkFace(brep, static_cast<int>(f), polygons, stats);
+      if (brep.faces[f].axis != 2)
+        continue;
+      ++plateFaces;
+      std::size_t squares = 0, others = 0;
+      for (const auto& p : polygons)
+        (p.size() == 4 ? squares : others) += 1;
+      EXPECT_EQ(squares + others, polygons.size());
+      EXPECT_EQ(int(squares), grown ? black - 4 : black) << "face " << f;
+      EXPECT_EQ(int(others), grown ? 1 : 0) << "face " << f;
+    }
+    EXPECT_EQ(plateFaces, 2);
+  }
+}
+
+// The parts of faces merged at vertices (edgeConnectedPartsOf) against a flood fill of the
+// face's pixels: as many parts as 4-connected components, the same areas, each part a
+// counter-clockwise polygon that passes no corner twice. Random volumes and checkerboard
+// plates, merged at vertices or not (a face that is not split yields no parts, or one).
+TEST(FanPolygons, PartsOfFacesAreTheirEdgeConnectedComponents)
+{
+  int split = 0, parts = 0;
+  unsigned seed = 7300;
+  for (int trial = 0; trial < 48; ++trial)
+  {
+    const bool merged = trial % 4 != 3;
+    const vbr::Point3 d{ 3 + (trial * 5) % 10, 3 + (trial * 3) % 9, 1 + (trial * 7) % 6 };
+    vbr::BitVolume v = bf::randomVolume(d, 0.2 + 0.6 * (trial % 7) / 6.0, seed++);
+    if (trial % 6 == 0) // a checkerboard plate with a few voxels flipped
+      for (int z = 0; z < d[2]; ++z)
+        for (int y = 0; y < d[1]; ++y)
+          for (int x = 0; x < d[0]; ++x)
+            v.set(x, y, z, ((x + y + z) % 2 == 0) != (v.get(x, y, z) && (x * y + z) % 7 == 0));
+    SCOPED_TRACE(testing::Message() << "trial " << trial << (merged ? " merged" : ""));
+    vbr::BRep brep;
+    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v),
+      merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
+      vbr::Execution(),
+      brep));
+    if (trial % 2 == 0)
+      vbr::insertTJunctionVertices(brep);
+    for (std::size_t f = 0; f < brep.faces.size(); ++f)
+    {
+      const std::vector<std::vector<int>> found = vbr::edgeConnectedPartsOf(brep, int(f));
+      if (found.empty())
+        continue;
+      SCOPED_TRACE(testing::Message() << "face " << f);
+      const vbr::BRepFace& face = brep.faces[f];
+      const int u = (face.axis + 1) % 3, v2 = (face.axis + 2) % 3;
+      std::vector<vbr::Point3> corner;
+      for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+        for (const vbr::Point3& p : brep.loopPoints(l))
+          corner.push_back(p);
+      std::multiset<long long> partAreas, componentAreas;
+      for (const std::vector<int>& part : found)
+      {
+        std::set<std::pair<int, int>> distinct;
+        long long twice = 0;
+        for (std::size_t i = 0; i < part.size(); ++i)
+        {
+          const vbr::Point3& p = corner[part[i]];
+          const vbr::Point3& q = corner[part[(i + 1) % part.size()]];
+          twice += static_cast<long long>(p[u]) * q[v2] - static_cast<long long>(q[u]) * p[v2];
+          distinct.insert({ p[u], p[v2] });
+        }
+        EXPECT_EQ(distinct.size(), part.size()) << "a part passes a corner twice";
+        EXPECT_GT(face.normalSign * twice, 0) << "a part turns clockwise";
+        EXPECT_EQ(twice % 2, 0);
+        partAreas.insert(face.normalSign * twice / 2);
+      }
+      for (const bf::PixelSet& c : bf::components(bf::rasterize(brep, int(f)), false))
+        componentAreas.insert(static_cast<long long>(c.size()));
+      EXPECT_EQ(partAreas, componentAreas);
+      split += found.size() > 1;
+      parts += static_cast<int>(found.size());
+    }
+  }
+  RecordProperty("split", split);
+  RecordProperty("parts", parts);
+  EXPECT_GT(split, 30) << "too few faces split into parts to test";
+  EXPECT_GT(parts, 300);
 }
