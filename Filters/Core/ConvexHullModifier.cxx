@@ -2022,9 +2022,11 @@ void keepFewerHandles(Context& ctx, ModifiedHull& r)
     shellsOf(apart.surface).size() <= shellsOf(r.surface).size())
   {
     r = std::move(apart);
+    r.handlePass = ModifiedHull::HandlePass::Kept;
     return;
   }
   ctx.planeLevel = planes;
+  r.handlePass = ModifiedHull::HandlePass::Rejected;
 }
 
 /// The levels solved with pits and, when that leaves something unresolved or the result does

@@ -180,6 +180,16 @@ struct ModifiedHull
   int joinedShells = 0;
   /// Whether H came from the second pass, every level kept apart (no pits, see above).
   bool withoutPits = false;
+  /// The second pass against spurious handles (see above): NotRun when the first pass did not
+  /// call for it, Kept when H is its result, Rejected when it did not separate with the object's
+  /// Euler characteristic and no more shells and H is the first pass's.
+  enum class HandlePass
+  {
+    NotRun,
+    Kept,
+    Rejected
+  };
+  HandlePass handlePass = HandlePass::NotRun;
   bool complete = true;
   std::string failure;
 };
