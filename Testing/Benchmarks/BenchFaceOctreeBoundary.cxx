@@ -14,19 +14,32 @@
 //    each point's distance to the nearest point of the surface (vtkStaticCellLocator),
 //    searched within two voxels like the other side (beyond counts as 2: an unbounded search
 //    from points far from a decimated surface visited most of the locator's bins).
-// The distance is the larger of the two. The earlier one-sided measure (output vertices to
-// the surfels only) is printed too: with it a decimated mesh whose large triangles cut far
-// from the voxels in their interiors still "matched". Both outputs are in the same index
-// frame (point scalars, unit spacing; the surfels half a voxel from the points). The filter
-// runs twice: with MergeFaceNodes and without (the default: the paper's octree alone); the
-// pipeline is decimated to the distance of the merged output.
-// With VOXELBREP_BENCH_FORMER_MEASURE set, the pipeline is also decimated to the filter's
-// vertex distance (the former measure) and its triangles printed (eight more decimations). Per
-// solid (the solids class: ball, torus, CSG of n^3 voxels): the table of the harness (median time,
-// cells, peak memory of a first run of the whole pipeline, time ratio), then for both: polygons,
-// triangles (each polygon counted as its fan), the distance, and polygons per object voxel (the
-// paper's Table 1: 0.19-0.31 at 128^3), the ratio of the triangles, and the filter's voxels per
-// second (the paper's target on 256^3: --sizes 256).
+// The distance is the larger of the two; a value printed "(cap)" is that bound of 2, not a
+// distance. The earlier one-sided measure (output vertices to the surfels only) is printed
+// too: with it a decimated mesh whose large triangles cut far from the voxels in their
+// interiors still "matched". Both outputs are in the same index frame (point scalars, unit
+// spacing; the surfels half a voxel from the points).
+//
+// Pruned voxels: the bound of one voxel diagonal does not hold there. They are the object
+// voxels none of whose eight corners is interior (a grid vertex whose eight voxels are all
+// object voxels; see DeformedModel.h): the voxels of one-voxel crests, whose points the filter
+// drops. They are found here from the voxels by that definition, their count checked against
+// the filter's NumberOfPrunedVoxels, and the surfels-to-surface side is measured twice: over
+// all surfels, and over the surfels of unpruned voxels only ("excl. pruned").
+//
+// The filter runs twice: with MergeFaceNodes and without (the default: the paper's octree
+// alone); the pipeline is decimated to the merged output's distance excluding the pruned
+// voxels' surfels, measured the same way on both (with all surfels, a crest the filter drops
+// would set the bound at the search's cap). With VOXELBREP_BENCH_ONLY set, only the inputs
+// whose name starts with its value run (e.g. "CSG": the CSG solid of each size). With
+// VOXELBREP_BENCH_FORMER_MEASURE set, the pipeline is also decimated to the filter's vertex
+// distance (the former measure) and its triangles printed (eight more decimations). Per
+// solid (the solids class: ball, torus, CSG of n^3 voxels): the pruned voxels, the table of
+// the harness (median time, cells, peak memory of a first run of the whole pipeline, time
+// ratio), then for both: polygons, triangles (each polygon counted as its fan), the
+// distances, and polygons per object voxel (the paper's Table 1: 0.19-0.31 at 128^3), the
+// ratio of the triangles, and the filter's voxels per second (the paper's target on 256^3:
+// --sizes 256).
 //
 //   BenchFaceOctreeBoundary --help     the options, with this program's defaults
 //   BenchFaceOctreeBoundary --quick    the smoke run of ctest
@@ -38,7 +51,9 @@
 #include "BenchCommon.h"
 
 #include "vtkCellArray.h"
+#include "vtkDataArray.h"
 #include "vtkDiscreteFlyingEdges3D.h"
+#include "vtkFieldData.h"
 #include "vtkGenericCell.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -50,6 +65,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -124,21 +140,69 @@ double surfaceDistance(const vbr::BitVolume& bits, vtkPolyData* p, double spacin
   return worst;
 }
 
-/// The 3 x 3 lattice of every surfel (the face between an object voxel and a background one,
-/// outside the grid counting as background), in the core's frame.
-std::vector<vbr::Vec3> surfelSamples(const vbr::BitVolume& bits)
+/// Whether voxel (i, j, k) is an object voxel, outside the grid counting as background.
+bool objectAt(const vbr::BitVolume& bits, std::int32_t i, std::int32_t j, std::int32_t k)
 {
   const auto& n = bits.dims();
-  auto at = [&](std::int32_t i, std::int32_t j, std::int32_t k)
-  { return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && bits.get(i, j, k); };
-  std::vector<vbr::Vec3> out;
+  return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && bits.get(i, j, k);
+}
+
+/// The pruned voxels (x fastest), by the definition on top, from the voxels alone: grid
+/// vertex (i, j, k) is the corner shared by voxels i - 1..i, j - 1..j, k - 1..k.
+std::vector<char> prunedVoxels(const vbr::BitVolume& bits)
+{
+  const auto& n = bits.dims();
+  const std::size_t nx = std::size_t(n[0]) + 1, ny = std::size_t(n[1]) + 1;
+  std::vector<char> interior(nx * ny * (std::size_t(n[2]) + 1), 0);
+  for (std::int32_t k = 0; k <= n[2]; ++k)
+    for (std::int32_t j = 0; j <= n[1]; ++j)
+      for (std::int32_t i = 0; i <= n[0]; ++i)
+      {
+        bool all = true;
+        for (int c = 0; c < 8 && all; ++c)
+          all = objectAt(bits, i - 1 + (c & 1), j - 1 + ((c >> 1) & 1), k - 1 + (c >> 2));
+        interior[(k * ny + j) * nx + i] = all;
+      }
+  std::vector<char> pruned(std::size_t(n[0]) * n[1] * n[2], 0);
+  for (std::int32_t k = 0; k < n[2]; ++k)
+    for (std::int32_t j = 0; j < n[1]; ++j)
+      for (std::int32_t i = 0; i < n[0]; ++i)
+      {
+        bool any = false;
+        for (int c = 0; c < 8 && !any; ++c)
+          any = interior[((k + (c >> 2)) * ny + j + ((c >> 1) & 1)) * nx + i + (c & 1)];
+        pruned[(std::size_t(k) * n[1] + j) * n[0] + i] = objectAt(bits, i, j, k) && !any;
+      }
+  return pruned;
+}
+
+/// Samples of the surfels, each flagged with whether its object voxel is pruned.
+struct SurfelSamples
+{
+  std::vector<vbr::Vec3> points;
+  std::vector<char> pruned;
+  long long prunedVoxels = 0;
+};
+
+/// The 3 x 3 lattice of every surfel (the face between an object voxel and a background one,
+/// outside the grid counting as background), in the core's frame.
+SurfelSamples surfelSamples(const vbr::BitVolume& bits)
+{
+  const auto& n = bits.dims();
+  const std::vector<char> pruned = prunedVoxels(bits);
+  SurfelSamples out;
+  out.prunedVoxels = std::count(pruned.begin(), pruned.end(), 1);
   for (std::int32_t k = -1; k < n[2]; ++k)
     for (std::int32_t j = -1; j < n[1]; ++j)
       for (std::int32_t i = -1; i < n[0]; ++i)
         for (int a = 0; a < 3; ++a)
         {
-          if (at(i, j, k) == at(i + (a == 0), j + (a == 1), k + (a == 2)))
+          const std::int32_t i1 = i + (a == 0), j1 = j + (a == 1), k1 = k + (a == 2);
+          const bool here = objectAt(bits, i, j, k);
+          if (here == objectAt(bits, i1, j1, k1))
             continue;
+          const std::size_t object = here ? (std::size_t(k) * n[1] + j) * n[0] + i
+                                          : (std::size_t(k1) * n[1] + j1) * n[0] + i1;
           for (int s = 0; s <= 2; ++s)
             for (int t = 0; t <= 2; ++t)
             {
@@ -146,7 +210,8 @@ std::vector<vbr::Vec3> surfelSamples(const vbr::BitVolume& bits)
               p[a] += 1;
               p[(a + 1) % 3] += 0.5 * s;
               p[(a + 2) % 3] += 0.5 * t;
-              out.push_back(p);
+              out.points.push_back(p);
+              out.pruned.push_back(pruned[object]);
             }
         }
   return out;
@@ -155,16 +220,25 @@ std::vector<vbr::Vec3> surfelSamples(const vbr::BitVolume& bits)
 /// Distances between an output and the voxel boundary (voxel units).
 struct Distance
 {
-  double vertices = 0.0;    ///< the former, one-sided measure: vertices to surfels
-  double toSurfels = 0.0;   ///< surface samples to surfels
-  double fromSurfels = 0.0; ///< surfel samples to the surface
+  double vertices = 0.0;        ///< the former, one-sided measure: vertices to surfels
+  double toSurfels = 0.0;       ///< surface samples to surfels
+  double fromSurfels = 0.0;     ///< surfel samples to the surface
+  double fromKeptSurfels = 0.0; ///< the same over the surfels of unpruned voxels
   double hausdorff() const { return std::max(this->toSurfels, this->fromSurfels); }
+  /// The bound the issue sets: all but the pruned voxels' surfels.
+  double hausdorffExclPruned() const { return std::max(this->toSurfels, this->fromKeptSurfels); }
 };
 
+/// The distance search's bound: a value there is "at least this", not a distance.
+constexpr double searchCap = 2.0;
+
+std::string formatDistance(double d)
+{
+  return formatFixed(d, 3) + (d >= searchCap ? " (cap)" : "");
+}
+
 /// The two-sided distance described on top (spacing 1/8 voxel on the surface).
-Distance twoSidedDistance(const vbr::BitVolume& bits,
-  const std::vector<vbr::Vec3>& surfels,
-  vtkPolyData* p)
+Distance twoSidedDistance(const vbr::BitVolume& bits, const SurfelSamples& surfels, vtkPolyData* p)
 {
   Distance d;
   d.vertices = vbr::maximumDistanceToSurfels(bits, vertices(p));
@@ -173,19 +247,26 @@ Distance twoSidedDistance(const vbr::BitVolume& bits,
   locator->SetDataSet(p);
   locator->BuildLocator();
   vtkNew<vtkGenericCell> generic;
-  double worst2 = 0.0;
-  for (const vbr::Vec3& s : surfels)
+  const double cap2 = searchCap * searchCap;
+  double worst2 = 0.0, worstKept2 = 0.0;
+  for (std::size_t i = 0; i < surfels.points.size(); ++i)
   {
+    const vbr::Vec3& s = surfels.points[i];
     double x[3] = { s[0] - 0.5, s[1] - 0.5, s[2] - 0.5 };
     double closest[3], d2 = 0.0;
     vtkIdType cell = -1;
     int sub = 0;
     int inside = 0;
-    if (!locator->FindClosestPointWithinRadius(x, 2.0, closest, generic, cell, sub, d2, inside))
-      d2 = 4.0;
-    worst2 = std::max(worst2, std::min(d2, 4.0));
+    if (!locator->FindClosestPointWithinRadius(
+          x, searchCap, closest, generic, cell, sub, d2, inside))
+      d2 = cap2;
+    d2 = std::min(d2, cap2);
+    worst2 = std::max(worst2, d2);
+    if (!surfels.pruned[i])
+      worstKept2 = std::max(worstKept2, d2);
   }
   d.fromSurfels = std::sqrt(worst2);
+  d.fromKeptSurfels = std::sqrt(worstKept2);
   return d;
 }
 
@@ -219,10 +300,10 @@ struct Pipeline
     this->decimate->SetInputConnection(this->smooth->GetOutputPort());
   }
 
-  /// Decimates as far as the distance (the two-sided one, or the former vertex measure)
-  /// stays within `bound` (8 bisection steps).
+  /// Decimates as far as the distance (the two-sided one without the pruned voxels' surfels,
+  /// or the former vertex measure) stays within `bound` (8 bisection steps).
   void decimateWithin(const vbr::BitVolume& bits,
-    const std::vector<vbr::Vec3>& surfels,
+    const SurfelSamples& surfels,
     double bound,
     bool verticesOnly = false)
   {
@@ -234,7 +315,7 @@ struct Pipeline
       this->decimate->Update();
       vtkPolyData* out = this->decimate->GetOutput();
       const double d = verticesOnly ? vbr::maximumDistanceToSurfels(bits, vertices(out))
-                                    : twoSidedDistance(bits, surfels, out).hausdorff();
+                                    : twoSidedDistance(bits, surfels, out).hausdorffExclPruned();
       (d <= bound ? lo : hi) = mid;
     }
     this->decimate->SetTargetReduction(lo);
@@ -260,16 +341,18 @@ std::vector<std::string> outputRow(const char* who, vtkPolyData* out, const Dist
   return { who,
     formatCount(out->GetNumberOfCells()),
     formatCount(fanTriangles(out)),
-    formatFixed(d.hausdorff(), 3),
-    formatFixed(d.toSurfels, 3),
-    formatFixed(d.fromSurfels, 3),
-    formatFixed(d.vertices, 3),
+    formatDistance(d.hausdorff()),
+    formatDistance(d.hausdorffExclPruned()),
+    formatDistance(d.toSurfels),
+    formatDistance(d.fromSurfels),
+    formatDistance(d.fromKeptSurfels),
+    formatDistance(d.vertices),
     formatFixed(double(out->GetNumberOfCells()) / v, 3) };
 }
 
 void printOutputs(const Input& in,
   const vbr::BitVolume& bits,
-  const std::vector<vbr::Vec3>& surfels,
+  const SurfelSamples& surfels,
   vtkPolyData* ours,
   vtkPolyData* octreeOnly,
   vtkPolyData* theirs,
@@ -283,15 +366,17 @@ void printOutputs(const Input& in,
     "polygons",
     "triangles",
     "Hausdorff",
+    "excl. pruned",
     "to surfels",
     "from surfels",
+    "from excl. pruned",
     "vertices (old)",
     "polygons/voxel" });
   table.add(outputRow("FaceOctreeBoundary", ours, mine, voxels));
   table.add(outputRow("FaceOctreeBoundary (octree only)", octreeOnly, unmerged, voxels));
   table.add(outputRow("DFE+WindowedSinc+QDec", theirs, peer, voxels));
   table.print();
-  if (peer.hausdorff() > mine.hausdorff())
+  if (peer.hausdorffExclPruned() > mine.hausdorffExclPruned())
     std::printf("\n(the pipeline is farther than the filter even undecimated)\n");
   std::printf("\ntriangles: pipeline / filter %s | filter %s M voxels/s (of %s voxels)\n\n",
     formatRatio(double(fanTriangles(theirs)) / double(std::max(1LL, fanTriangles(ours)))).c_str(),
@@ -299,8 +384,33 @@ void printOutputs(const Input& in,
     formatCount(static_cast<long long>(in.voxelCount())).c_str());
 }
 
+/// Set when the filter's NumberOfPrunedVoxels differs from the count here: the exit code is
+/// then 1, so that the smoke run of ctest fails.
+bool prunedMismatch = false;
+
+/// Prints the pruned voxels found here, and a mismatch line when the filter reports another
+/// count.
+void checkPrunedVoxels(const SurfelSamples& surfels, vtkPolyData* out)
+{
+  vtkDataArray* reported = out->GetFieldData()->GetArray("NumberOfPrunedVoxels");
+  const long long filter = reported ? static_cast<long long>(reported->GetTuple1(0)) : -1;
+  const long long samples = std::count(surfels.pruned.begin(), surfels.pruned.end(), 1);
+  std::printf("pruned voxels (no interior corner): %s, their surfels %s of %s\n",
+    formatCount(surfels.prunedVoxels).c_str(),
+    formatCount(samples / 9).c_str(),
+    formatCount(static_cast<long long>(surfels.points.size() / 9)).c_str());
+  prunedMismatch = prunedMismatch || filter != surfels.prunedVoxels;
+  if (filter != surfels.prunedVoxels)
+    std::printf("MISMATCH: the filter reports NumberOfPrunedVoxels %s, the benchmark counts %s\n",
+      formatCount(filter).c_str(),
+      formatCount(surfels.prunedVoxels).c_str());
+}
+
 void benchmarkInput(const Input& in, const Options& options, Report& report)
 {
+  const char* only = std::getenv("VOXELBREP_BENCH_ONLY");
+  if (only && in.name.rfind(only, 0) != 0)
+    return;
   Report::printInput(in);
   const vbr::BitVolume bits = bitsOf(in);
   vtkNew<vtkImageData> image = maskImageOf(in);
@@ -314,10 +424,11 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
       octreeOnly->SetInputData(image);
       octreeOnly->MergeFaceNodesOff();
       octreeOnly->Update();
-      const std::vector<vbr::Vec3> surfels = surfelSamples(bits);
+      const SurfelSamples surfels = surfelSamples(bits);
+      checkPrunedVoxels(surfels, filter->GetOutput());
       Pipeline pipeline(image);
       pipeline.decimateWithin(
-        bits, surfels, twoSidedDistance(bits, surfels, filter->GetOutput()).hausdorff());
+        bits, surfels, twoSidedDistance(bits, surfels, filter->GetOutput()).hausdorffExclPruned());
       if (std::getenv("VOXELBREP_BENCH_FORMER_MEASURE"))
       {
         // The former measure, for comparison with earlier reports: output vertices only.
@@ -366,11 +477,12 @@ int main(int argc, char* argv[])
   options.inputs.classes = { "solids" };
   options.inputs.sizes = { 128 };
   options.repeat = 3;
-  return runBenchmark(argc,
+  const int code = runBenchmark(argc,
     argv,
     "BenchFaceOctreeBoundary",
     "vtkFaceOctreeBoundaryFilter against vtkDiscreteFlyingEdges3D -> "
     "vtkWindowedSincPolyDataFilter -> vtkQuadricDecimation at the same distance",
     options,
     benchmarkInput);
+  return code != 0 ? code : (prunedMismatch ? 1 : 0);
 }
