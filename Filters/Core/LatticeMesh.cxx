@@ -92,6 +92,22 @@ bool collapseKeepsShape(const Mesh& m, Mesh::Halfedge_index h)
   return true;
 }
 
+/// Whether two vertices lie at one point: pieces touching only there come out of the
+/// corefinement that way, a closed 2-manifold combinatorially but not an embedded one, and
+/// still touching after such a point, when it is no lattice point, is removed from both.
+bool hasCoincidentVertices(const Mesh& m)
+{
+  std::vector<Kernel::Point_3> points;
+  points.reserve(m.number_of_vertices());
+  for (auto v : m.vertices())
+    points.push_back(m.point(v));
+  std::sort(points.begin(),
+    points.end(),
+    [](const Kernel::Point_3& a, const Kernel::Point_3& b)
+    { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; });
+  return std::adjacent_find(points.begin(), points.end()) != points.end();
+}
+
 /// Removes the corners that are not lattice points: the triangulations of coplanar pieces meet
 /// at such points (diagonals crossing), which lie inside faces or on straight edges of the
 /// true result; each is collapsed onto a neighbour when that keeps the shape exactly.
@@ -253,7 +269,7 @@ bool latticeBoolean(const LatticeMesh& a,
     const bool ok = unite ? PMP::corefine_and_compute_union(first, second, out)
                           : PMP::corefine_and_compute_difference(first, second, out);
     return ok && CGAL::is_closed(out) && PMP::duplicate_non_manifold_vertices(out) == 0 &&
-      removeSteinerPoints(out) && toLatticeMesh(out, result);
+      !hasCoincidentVertices(out) && removeSteinerPoints(out) && toLatticeMesh(out, result);
   }
   catch (const std::exception&)
   {

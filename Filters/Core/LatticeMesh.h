@@ -7,9 +7,9 @@
 // Exact_predicates_exact_constructions_kernel: every intersection and every coplanar contact is
 // decided exactly, and the result is the regularised difference (closure of the interior). It
 // fails, and latticeDifference() returns false, when the result would not be a closed embedded
-// 2-manifold (two pieces touching only along an edge or at a corner, also when the corefinement
-// gives that corner as two vertices at one point) or when one of its corners is not a lattice
-// point; the caller then keeps the two surfaces apart.
+// 2-manifold (two pieces touching only along an edge or at a point, also when the
+// corefinement gives that point as two vertices, on the lattice or not) or when one of its
+// corners is not a lattice point; the caller then keeps the two surfaces apart.
 #ifndef vbr_LatticeMesh_h
 #define vbr_LatticeMesh_h
 
