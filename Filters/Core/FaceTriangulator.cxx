@@ -447,19 +447,19 @@ struct FaceParts
   }
 };
 
-/// The parts of a face whose loops touch at corners. Where two parts of the face meet
-/// diagonally at a corner (parts merged at vertices, MergeNonManifoldFaces), each loop edge
-/// coming into the corner is joined to the edge going out that turns left from it (the corner
-/// of its own part) rather than to the one crossing over to the other part. The cycles so
-/// formed bound the face's edge-connected parts. When each turns counter-clockwise, the parts
-/// have no holes and do not nest (a part inside another would need a clockwise cycle between
-/// them): each is a polygon of its own, to be cut on its own, in linear time for a face of
-/// many small parts where the triangulation of all its loops at once takes a point location
-/// per corner. False when no corner is shared, or a cycle is clockwise (a hole), longer than
-/// EarClippingLimit or touches itself.
-bool edgeConnectedParts(const BRep& brep, const BRepFace& face, int u, int v, FaceParts& parts)
+/// Joins the loop edges at the corners where two parts of a face meet diagonally (parts merged
+/// at vertices, MergeNonManifoldFaces): each edge coming into such a corner is joined to the
+/// edge going out that turns left from it (the corner of its own part) rather than to the one
+/// crossing over to the other part. `first[i]`: the first index at corner i's location;
+/// `partner[i]`: the other index there, or -1. False when no corner is shared (nothing to
+/// cut) or a location holds three (never on an orthogonal face).
+bool joinPartsAtSharedCorners(LoopCorners& loops,
+  int u,
+  int v,
+  int sign,
+  std::vector<int>& first,
+  std::vector<int>& partner)
 {
-  LoopCorners loops(brep, face);
   const int n = static_cast<int>(loops.at.size());
   std::vector<std::pair<std::uint64_t, int>> byLocation(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
@@ -470,17 +470,19 @@ bool edgeConnectedParts(const BRep& brep, const BRepFace& face, int u, int v, Fa
     std::sort(byLocation.begin(), byLocation.end());
   else // stable: the corners of one location stay in index order
     radixSortBy(byLocation, [](const std::pair<std::uint64_t, int>& c) { return c.first; });
-  std::vector<int> prev(static_cast<std::size_t>(n)), first(static_cast<std::size_t>(n)),
-    partner(static_cast<std::size_t>(n), -1);
+  std::vector<int> prev(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
     prev[loops.next[i]] = i;
-  const auto turn = [&](int from, int at, int to)
+  const auto turnsLeft = [&](int from, int at, int to)
   {
     const Point3 &a = loops.at[from], &b = loops.at[at], &c = loops.at[to];
-    return face.normalSign *
+    return sign *
       (static_cast<long long>(b[u] - a[u]) * (c[v] - b[v]) -
-        static_cast<long long>(b[v] - a[v]) * (c[u] - b[u]));
+        static_cast<long long>(b[v] - a[v]) * (c[u] - b[u])) >
+      0;
   };
+  first.assign(static_cast<std::size_t>(n), -1);
+  partner.assign(static_cast<std::size_t>(n), -1);
   bool shared = false;
   for (int k = 0; k < n; ++k)
   {
@@ -489,16 +491,31 @@ bool edgeConnectedParts(const BRep& brep, const BRepFace& face, int u, int v, Fa
     if (!repeated)
       continue;
     if (k > 1 && byLocation[k - 2].first == byLocation[k].first)
-      return false; // an orthogonal face's loops meet at most twice at a corner
+      return false;
     const int a = byLocation[k - 1].second, b = byLocation[k].second;
     partner[a] = b;
     partner[b] = a;
-    if (turn(prev[a], a, loops.next[a]) <= 0)
+    if (!turnsLeft(prev[a], a, loops.next[a]))
       std::swap(loops.next[a], loops.next[b]);
     shared = true;
   }
-  if (!shared)
+  return shared;
+}
+
+/// The parts of a face whose loops touch at corners: the cycles of the loop edges joined at
+/// the shared corners (joinPartsAtSharedCorners) bound the face's edge-connected parts. When
+/// each turns counter-clockwise, the parts have no holes and do not nest (a part inside
+/// another would need a clockwise cycle between them): each is a polygon of its own, to be cut
+/// on its own, in linear time for a face of many small parts where the triangulation of all
+/// its loops at once takes a point location per corner. False when no corner is shared, or a
+/// cycle is clockwise (a hole), longer than EarClippingLimit or touches itself.
+bool edgeConnectedParts(const BRep& brep, const BRepFace& face, int u, int v, FaceParts& parts)
+{
+  LoopCorners loops(brep, face);
+  std::vector<int> first, partner;
+  if (!joinPartsAtSharedCorners(loops, u, v, face.normalSign, first, partner))
     return false;
+  const int n = static_cast<int>(loops.at.size());
   std::vector<int> cycleOf(static_cast<std::size_t>(n), -1);
   for (int start = 0; start < n; ++start)
   {
@@ -608,11 +625,6 @@ void appendFanGroups(const BRep& brep, int f, FaceCells& cells)
   cells.cellEnds.resize(cellCount);
   FanGrouper(triangles, cells.fans).run(cells);
 }
-
-} // namespace
-
-namespace
-{
 
 /// The polygons of a face whose edge-connected parts touch at corners (edgeConnectedParts),
 /// one per part, when each part is drawn right as the fan from one of its corners; false,
