@@ -44,10 +44,11 @@ public:
       this->reserve(std::max<std::size_t>(1024, 2 * this->Capacity));
     this->Data[this->Size++] = value;
   }
-  /// Grows the array by n values, left for the caller to write.
+  /// Grows the array by n values, left for the caller to write (room grows by doubling).
   T* extend(std::size_t n)
   {
-    this->reserve(this->Size + n);
+    if (this->Size + n > this->Capacity)
+      this->reserve(std::max<std::size_t>({ 1024, 2 * this->Capacity, this->Size + n }));
     this->Size += n;
     return this->Data + this->Size - n;
   }

@@ -203,6 +203,8 @@ int fanApex(const std::vector<Point2L>& corners)
 /// scratch space.
 bool visitsACornerTwice(const std::vector<Point2L>& corners, std::vector<std::uint64_t>& keys)
 {
+  if (corners.size() < 8) // the fewest: two squares touching at a corner, merged
+    return false;
   keys.resize(corners.size());
   for (std::size_t i = 0; i < corners.size(); ++i)
     keys[i] = (std::uint64_t(std::uint32_t(corners[i][0])) << 32) |
