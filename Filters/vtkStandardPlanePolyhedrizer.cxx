@@ -26,12 +26,14 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkType.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -107,16 +109,19 @@ bool mirrored(const vbr::vtk::VoxelGrid& grid)
 
 /// The output points of an object's graph vertices: one per pointel (the vertices of several
 /// umbrellas at one pointel share it), each made on its first use, so that points come in the
-/// order in which the cells first use them. Indexed by vertex (12 bytes per vertex), with no
-/// hash table of the points (about 56 bytes per point).
+/// order in which the cells first use them. Indexed by vertex (8 bytes per vertex: the points
+/// are numbered from the object's first, in 32 bits), with no hash table of the points (about
+/// 56 bytes per point).
 class PointIds
 {
 public:
-  /// For the vertices of `graph`: the first vertex at each one's pointel, found by a sort.
-  void reset(const vbr::SurfelGraph& graph)
+  /// For the vertices of `graph`, whose points are numbered from `first` on: the first vertex
+  /// at each one's pointel, found by a sort.
+  void reset(const vbr::SurfelGraph& graph, vtkIdType first)
   {
     const std::size_t n = graph.vertexPointel.size();
-    this->Ids.assign(n, -1);
+    this->Base = first;
+    this->Ids.assign(n, None);
     this->First.resize(n);
     {
       std::vector<std::pair<std::uint64_t, std::uint32_t>> byPointel(n);
@@ -135,13 +140,16 @@ public:
   vtkIdType get(std::uint32_t v, Make make)
   {
     const std::uint32_t first = this->First[v];
-    if (this->Ids[first] < 0)
-      this->Ids[first] = make(first);
-    return this->Ids[first];
+    if (this->Ids[first] == None)
+      this->Ids[first] = static_cast<std::uint32_t>(make(first) - this->Base);
+    return this->Base + this->Ids[first];
   }
 
 private:
-  std::vector<vtkIdType> Ids;       ///< per vertex: its point (at its pointel's first vertex)
+  static constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
+  vtkIdType Base = 0; ///< the object's first point
+  std::vector<std::uint32_t>
+    Ids; ///< per vertex: its point less Base (at its pointel's first vertex)
   std::vector<std::uint32_t> First; ///< per vertex: the first vertex at its pointel
 };
 
@@ -160,11 +168,18 @@ public:
     this->Normals->SetNumberOfComponents(3);
     this->Offsets->SetName("PlaneOffset");
     this->Sizes->SetName("SurfelCount");
+    this->Polys->Use32BitStorage(); // widened by fitIds when an id does not fit
+    this->Lines->Use32BitStorage();
   }
 
   void addObject(const ObjectFaces& o, int mode)
   {
-    this->Ids.reset(o.graph);
+    this->Ids.reset(o.graph, this->Points->GetNumberOfPoints());
+    // The object's points are at most one per vertex: all may be numbered in 32 bits.
+    this->fitIds(this->Polys,
+      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + o.graph.vertexPointel.size());
+    this->fitIds(this->Lines,
+      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + o.graph.vertexPointel.size());
     if (mode == vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
     {
       this->addEdges(o);
@@ -287,6 +302,8 @@ private:
     std::uint32_t f,
     std::uint32_t other)
   {
+    this->fitIds(this->Lines, this->Lines->GetNumberOfConnectivityIds() + ids.size());
+    this->fitIds(this->Lines, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
     this->Lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
     this->OtherFaceIds->InsertNextValue(static_cast<int>(this->FaceBase + other));
@@ -462,6 +479,7 @@ private:
       if (wanted * a->GetNumberOfComponents() > a->GetSize())
         a->Resize(wanted);
     };
+    this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + corners);
     reserve(this->Polys->GetOffsetsArray(), cells);
     reserve(this->Polys->GetConnectivityArray(), corners);
     for (vtkDataArray* a : { static_cast<vtkDataArray*>(this->FaceIds),
@@ -472,6 +490,15 @@ private:
       reserve(a, cells);
     if (loopEdges)
       reserve(this->LoopEdges, cells);
+  }
+
+  /// The cells in 32-bit storage (half the memory of the ids, which most readers take alike)
+  /// while `count` ids or offsets up to `count` fit in it; else, once, in 64-bit storage.
+  static void fitIds(vtkCellArray* cells, std::size_t count)
+  {
+    if (!cells->IsStorage64Bit() &&
+      count > static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
+      cells->ConvertTo64BitStorage();
   }
 
   /// The output point of graph vertex v of object o, made on its first use.
@@ -490,6 +517,9 @@ private:
   {
     if (this->Reverse)
       std::reverse(ids.begin(), ids.end());
+    // Beyond the reservation only when a polygon is drawn by its surfels (never seen).
+    this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + ids.size());
+    this->fitIds(this->Polys, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
     this->Polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     const vbr::StandardFace& face = o.poly.faces[f];
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
