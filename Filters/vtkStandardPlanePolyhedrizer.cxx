@@ -219,12 +219,16 @@ public:
       const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
       std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        triangles +=
-          std::max<std::size_t>((semiDiscrete ? polygons[f] : o.poly.faces[f].loop).size(), 2) - 2;
+        triangles += std::max<std::size_t>(
+                       (semiDiscrete ? polygons[f].size() : o.poly.faces[f].loop.size()), 2) -
+          2;
       this->reserveCells(triangles, 3 * triangles, markLoops);
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        this->addTriangulatedFace(
-          o, f, semiDiscrete ? polygons[f] : o.poly.faces[f].loop, markLoops);
+        this->addTriangulatedFace(o,
+          f,
+          semiDiscrete ? vbr::IdRange{ polygons[f].data(), polygons[f].size() }
+                       : o.poly.faces[f].loop,
+          markLoops);
     }
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
@@ -319,7 +323,7 @@ private:
   /// needs to rebuild the loops from the triangles (a loop may run along an edge and back).
   void addTriangulatedFace(const ObjectFaces& o,
     std::uint32_t f,
-    const std::vector<std::uint32_t>& polygon,
+    const vbr::IdRange& polygon,
     bool markLoops)
   {
     const vbr::StandardFace& face = o.poly.faces[f];
@@ -441,7 +445,7 @@ private:
       changed = false;
       for (std::size_t f = 0; f < faces.size(); ++f)
       {
-        const std::vector<std::uint32_t>& loop = faces[f].loop;
+        const vbr::IdRange& loop = faces[f].loop;
         const std::size_t m = loop.size();
         std::vector<std::uint32_t>& polygon = polygons[f];
         polygon.clear();
@@ -459,7 +463,7 @@ private:
         if (!vbr::isSimplePolygon(corners) || vbr::doubledArea(corners) <= 0)
         {
           refineFace(faces[f]);
-          polygon = loop;
+          polygon.assign(loop.begin(), loop.end());
           changed = true;
         }
       }
@@ -848,8 +852,11 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
       std::vector<std::uint32_t>().swap(f.surfels);
   }
   if (mode != vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
+  {
+    std::vector<std::uint32_t>().swap(o.poly.loopAcross);
     for (vbr::StandardFace& f : o.poly.faces)
-      std::vector<std::uint32_t>().swap(f.across);
+      f.across = {};
+  }
 }
 
 /// The reversion's self-check of object o and its cells: both only read o, so with threads

@@ -461,7 +461,19 @@ public:
   {
   }
 
-  void trace(const Polyhedron& poly, std::uint32_t f, StandardFace& face)
+  /// Room for every loop in `poly`'s arrays: the edges between surfels of different faces.
+  void reserve(Polyhedron& poly) const
+  {
+    std::size_t edges = 0;
+    for (std::uint32_t s = 0; s < this->Graph.size(); ++s)
+      for (int k = 0; k < 4; ++k)
+        edges += poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != poly.faceOfSurfel[s];
+    poly.loopVertices.reserve(edges);
+    poly.loopAcross.reserve(edges);
+  }
+
+  /// Appends face f's loop to `poly`'s arrays (the face's ranges are set by pointLoops).
+  void trace(Polyhedron& poly, std::uint32_t f, const StandardFace& face)
   {
     std::size_t edges = 0;
     std::uint32_t start = None;
@@ -477,25 +489,35 @@ public:
           start = v;
           ++edges;
         }
-    face.loop.clear();
-    face.across.clear();
-    face.loop.reserve(edges); // one allocation each, of the loop's size
-    face.across.reserve(edges);
     if (start == None)
       return;
+    const std::size_t first = poly.loopVertices.size();
     std::uint32_t v = start;
     do
     {
-      if (this->Stamp[v] != f || face.loop.size() >= edges)
+      if (this->Stamp[v] != f || poly.loopVertices.size() - first >= edges)
         throw std::logic_error("face boundary is not one loop");
       const std::uint32_t s = this->Edge[v] / 4;
       const int k = static_cast<int>(this->Edge[v] % 4);
-      face.loop.push_back(v);
-      face.across.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
+      poly.loopVertices.push_back(v);
+      poly.loopAcross.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
       v = this->Graph.vertexOf(s, (k + 1) % 4);
     } while (v != start);
-    if (face.loop.size() != edges)
+    if (poly.loopVertices.size() - first != edges)
       throw std::logic_error("face boundary is not one loop");
+  }
+
+  /// Each face's loop and faces across as its runs of `poly`'s arrays, once all are traced
+  /// (`lengths`: each face's loop length).
+  static void pointLoops(Polyhedron& poly, const std::vector<std::size_t>& lengths)
+  {
+    std::size_t first = 0;
+    for (std::size_t f = 0; f < poly.faces.size(); ++f)
+    {
+      poly.faces[f].loop = { poly.loopVertices.data() + first, lengths[f] };
+      poly.faces[f].across = { poly.loopAcross.data() + first, lengths[f] };
+      first += lengths[f];
+    }
   }
 
 private:
@@ -939,13 +961,18 @@ bool polyhedrize(const SurfelGraph& graph,
   }
   ProgressPoll loops(exec, 0.95, 1.0);
   LoopTracer tracer(graph);
+  tracer.reserve(out);
+  std::vector<std::size_t> lengths(out.faces.size());
   for (std::uint32_t f = 0; f < out.faces.size(); ++f)
   {
     loops.at(0.5 * f / double(out.faces.size()));
     if (!loops.tick())
       return false;
+    const std::size_t before = out.loopVertices.size();
     tracer.trace(out, f, out.faces[f]);
+    lengths[f] = out.loopVertices.size() - before;
   }
+  LoopTracer::pointLoops(out, lengths);
   loops.at(0.5);
   out.facesAtVertex = countFacesAtVertices(graph, out, loops);
   return !loops.stopped() && exec.report(1.0);
