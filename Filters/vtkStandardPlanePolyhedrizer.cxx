@@ -29,6 +29,10 @@
 #include "vtkType.h"
 #include "vtkUnsignedCharArray.h"
 
+#if defined(__GLIBC__)
+#include <malloc.h> // malloc_trim
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -736,6 +740,10 @@ constexpr std::size_t SideBySideMinimum = 4096;
 /// 0.3 to 1 M surfels per second, several times slower with MergeFaces).
 constexpr vtkIdType LargeSurfelCount = vtkIdType(1) << 21;
 
+/// Objects from which the memory freed before the cells are written is given back to the
+/// system (tens of megabytes; the trim takes milliseconds).
+constexpr std::size_t TrimFromSurfels = std::size_t(1) << 20;
+
 /// Port 0: the cells of every object's faces in `mode`, their colouring and statistics, written
 /// object by object as each object's faces are made.
 class FaceWriter
@@ -835,6 +843,10 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
 /// kept): the neighbours across the surfels' edges (20 bytes per surfel); but for Surfels the
 /// surfels, their vertices, the face of each surfel and the faces' lists of surfels (36 bytes
 /// per surfel and a list per face); and but for StandardEdges the face beyond each loop edge.
+/// Then, for a large object, the heap's free pages go back to the system: the faces' lists
+/// and the growth's small blocks lie in the heap, and the cells' large arrays, in pages of
+/// their own, would never reuse them (on a checkerboard they stayed resident, 50 to 70
+/// bytes per voxel, under the cells).
 void releaseAfterFaces(ObjectFaces& o, int mode)
 {
   o.surfelCount = o.graph.size();
@@ -857,6 +869,10 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
     for (vbr::StandardFace& f : o.poly.faces)
       f.across = {};
   }
+#if defined(__GLIBC__)
+  if (o.surfelCount >= TrimFromSurfels)
+    malloc_trim(0);
+#endif
 }
 
 /// The reversion's self-check of object o and its cells: both only read o, so with threads

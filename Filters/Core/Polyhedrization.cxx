@@ -114,6 +114,13 @@ struct SurfelStamps
   }
   std::vector<std::uint32_t>& faceOf;
   std::vector<std::uint32_t> queued, refused;
+
+  /// Frees the queue stamps and the refusals, which only the growth and the merging read.
+  void releaseQueues()
+  {
+    std::vector<std::uint32_t>().swap(this->queued);
+    std::vector<std::uint32_t>().swap(this->refused);
+  }
 };
 
 /// The growth of the faces: per-face state kept in arrays stamped with the face number, so
@@ -930,6 +937,26 @@ bool mergeSmallFaces(FaceGrower& grower,
   return true;
 }
 
+/// Every face's loop (progress 0 - 0.5 of `poll`), with the tracer's arrays freed on return.
+/// False when stopped.
+bool traceLoops(const SurfelGraph& graph, Polyhedron& out, ProgressPoll& poll)
+{
+  LoopTracer tracer(graph);
+  tracer.reserve(out);
+  std::vector<std::size_t> lengths(out.faces.size());
+  for (std::uint32_t f = 0; f < out.faces.size(); ++f)
+  {
+    poll.at(0.5 * f / double(out.faces.size()));
+    if (!poll.tick())
+      return false;
+    const std::size_t before = out.loopVertices.size();
+    tracer.trace(out, f, out.faces[f]);
+    lengths[f] = out.loopVertices.size() - before;
+  }
+  LoopTracer::pointLoops(out, lengths);
+  return true;
+}
+
 } // namespace
 
 bool polyhedrize(const SurfelGraph& graph,
@@ -959,20 +986,10 @@ bool polyhedrize(const SurfelGraph& graph,
     if (!mergeSmallFaces(merger, options, out, merging))
       return false;
   }
+  stamps.releaseQueues(); // the peak is the loops' tracing, with the whole graph
   ProgressPoll loops(exec, 0.95, 1.0);
-  LoopTracer tracer(graph);
-  tracer.reserve(out);
-  std::vector<std::size_t> lengths(out.faces.size());
-  for (std::uint32_t f = 0; f < out.faces.size(); ++f)
-  {
-    loops.at(0.5 * f / double(out.faces.size()));
-    if (!loops.tick())
-      return false;
-    const std::size_t before = out.loopVertices.size();
-    tracer.trace(out, f, out.faces[f]);
-    lengths[f] = out.loopVertices.size() - before;
-  }
-  LoopTracer::pointLoops(out, lengths);
+  if (!traceLoops(graph, out, loops))
+    return false;
   loops.at(0.5);
   out.facesAtVertex = countFacesAtVertices(graph, out, loops);
   return !loops.stopped() && exec.report(1.0);
