@@ -270,6 +270,7 @@ private:
     for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
     {
       const vbr::StandardFace& face = o.poly.faces[f];
+      const vbr::IdRange across = o.poly.across(f);
       const std::size_t m = face.loop.size();
       std::size_t start = 0;
       while (start < m && o.poly.facesAtVertex[face.loop[start]] < 3)
@@ -277,13 +278,13 @@ private:
       if (start == m)
       {
         // Two faces along a whole loop: one closed edge.
-        if (f < face.across[0])
+        if (f < across[0])
         {
           std::vector<vtkIdType> ids;
           for (std::uint32_t v : face.loop)
             ids.push_back(this->point(o, v));
           ids.push_back(ids.front());
-          this->addLine(ids, o, f, face.across[0]);
+          this->addLine(ids, o, f, across[0]);
         }
         continue;
       }
@@ -297,8 +298,8 @@ private:
         ids.push_back(this->point(o, next));
         if (o.poly.facesAtVertex[next] >= 3)
         {
-          if (f < face.across[i])
-            this->addLine(ids, o, f, face.across[i]);
+          if (f < across[i])
+            this->addLine(ids, o, f, across[i]);
           ids.clear();
         }
       }
@@ -783,6 +784,7 @@ vbr::PolyhedrizationOptions optionsOf(vtkStandardPlanePolyhedrizer* self)
   options.moveToLargerFaces = self->GetMoveToLargerFaces();
   options.mergeFaces = self->GetMergeFaces();
   options.mergeFacesUpTo = static_cast<std::size_t>(self->GetMergeFacesUpTo());
+  options.facesAcross = self->GetOutputMode() == vtkStandardPlanePolyhedrizer::STANDARD_EDGES;
   return options;
 }
 
@@ -842,11 +844,10 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
 /// Frees what the cells of `mode` do not read, before they are written (the counts of surfels
 /// kept): the neighbours across the surfels' edges (20 bytes per surfel); but for Surfels the
 /// surfels, their vertices, the face of each surfel and the faces' lists of surfels (36 bytes
-/// per surfel and a list per face); and but for StandardEdges the face beyond each loop edge.
-/// Then, for a large object, the heap's free pages go back to the system: the faces' lists
-/// and the growth's small blocks lie in the heap, and the cells' large arrays, in pages of
-/// their own, would never reuse them (on a checkerboard they stayed resident, 50 to 70
-/// bytes per voxel, under the cells).
+/// per surfel and a list per face). Then, for a large object, the heap's free pages go back to
+/// the system: the faces' lists and the growth's small blocks lie in the heap, and the cells'
+/// large arrays, in pages of their own, would never reuse them (on 50% noise they stayed
+/// resident under the cells: 10 bytes per voxel of the peak).
 void releaseAfterFaces(ObjectFaces& o, int mode)
 {
   o.surfelCount = o.graph.size();
@@ -862,12 +863,6 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
     std::vector<std::uint32_t>().swap(o.graph.vertex);
     for (vbr::StandardFace& f : o.poly.faces)
       std::vector<std::uint32_t>().swap(f.surfels);
-  }
-  if (mode != vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
-  {
-    std::vector<std::uint32_t>().swap(o.poly.loopAcross);
-    for (vbr::StandardFace& f : o.poly.faces)
-      f.across = {};
   }
 #if defined(__GLIBC__)
   if (o.surfelCount >= TrimFromSurfels)

@@ -461,8 +461,10 @@ private:
 class LoopTracer
 {
 public:
-  explicit LoopTracer(const SurfelGraph& graph)
+  /// With `across`, also the face beyond each loop edge.
+  LoopTracer(const SurfelGraph& graph, bool across)
     : Graph(graph)
+    , Across(across)
     , Edge(graph.vertexPointel.size())
     , Stamp(graph.vertexPointel.size(), None)
   {
@@ -476,7 +478,8 @@ public:
       for (int k = 0; k < 4; ++k)
         edges += poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != poly.faceOfSurfel[s];
     poly.loopVertices.reserve(edges);
-    poly.loopAcross.reserve(edges);
+    if (this->Across)
+      poly.loopAcross.reserve(edges);
   }
 
   /// Appends face f's loop to `poly`'s arrays (the face's ranges are set by pointLoops).
@@ -507,14 +510,15 @@ public:
       const std::uint32_t s = this->Edge[v] / 4;
       const int k = static_cast<int>(this->Edge[v] % 4);
       poly.loopVertices.push_back(v);
-      poly.loopAcross.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
+      if (this->Across)
+        poly.loopAcross.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
       v = this->Graph.vertexOf(s, (k + 1) % 4);
     } while (v != start);
     if (poly.loopVertices.size() - first != edges)
       throw std::logic_error("face boundary is not one loop");
   }
 
-  /// Each face's loop and faces across as its runs of `poly`'s arrays, once all are traced
+  /// Each face's loop as its run of `poly`'s array, once all are traced
   /// (`lengths`: each face's loop length).
   static void pointLoops(Polyhedron& poly, const std::vector<std::size_t>& lengths)
   {
@@ -522,7 +526,6 @@ public:
     for (std::size_t f = 0; f < poly.faces.size(); ++f)
     {
       poly.faces[f].loop = { poly.loopVertices.data() + first, lengths[f] };
-      poly.faces[f].across = { poly.loopAcross.data() + first, lengths[f] };
       first += lengths[f];
     }
   }
@@ -531,6 +534,7 @@ private:
   const SurfelGraph& Graph;
   std::vector<std::uint32_t> Edge;  ///< 4 * surfel + edge leaving each boundary vertex
   std::vector<std::uint32_t> Stamp; ///< the face Edge is for
+  const bool Across;
 };
 
 /// Whether surfel t, now in face g (of more than one surfel when `leavesRest`), may move to
@@ -939,9 +943,9 @@ bool mergeSmallFaces(FaceGrower& grower,
 
 /// Every face's loop (progress 0 - 0.5 of `poll`), with the tracer's arrays freed on return.
 /// False when stopped.
-bool traceLoops(const SurfelGraph& graph, Polyhedron& out, ProgressPoll& poll)
+bool traceLoops(const SurfelGraph& graph, bool across, Polyhedron& out, ProgressPoll& poll)
 {
-  LoopTracer tracer(graph);
+  LoopTracer tracer(graph, across);
   tracer.reserve(out);
   std::vector<std::size_t> lengths(out.faces.size());
   for (std::uint32_t f = 0; f < out.faces.size(); ++f)
@@ -988,7 +992,7 @@ bool polyhedrize(const SurfelGraph& graph,
   }
   stamps.releaseQueues(); // the peak is the loops' tracing, with the whole graph
   ProgressPoll loops(exec, 0.95, 1.0);
-  if (!traceLoops(graph, out, loops))
+  if (!traceLoops(graph, options.facesAcross, out, loops))
     return false;
   loops.at(0.5);
   out.facesAtVertex = countFacesAtVertices(graph, out, loops);

@@ -46,6 +46,9 @@ struct PolyhedrizationOptions
   /// Faces of more surfels are not offered to their neighbours (their surfels have nearly
   /// always been refused by them already, and each offer costs a recognition).
   std::size_t mergeFacesUpTo = 8;
+  /// Also trace the face beyond each loop edge (Polyhedron::across: 4 bytes per loop edge,
+  /// held with the whole surfel graph).
+  bool facesAcross = true;
 };
 
 /// A face's run of ids in one of its Polyhedron's arrays (valid while they are).
@@ -70,8 +73,7 @@ struct StandardFace
 {
   StandardPlane plane;
   std::vector<std::uint32_t> surfels;
-  IdRange loop;   ///< graph vertices, counter-clockwise seen from outside
-  IdRange across; ///< the face beyond loop edge i (loop[i] to loop[i + 1])
+  IdRange loop; ///< graph vertices, counter-clockwise seen from outside
 };
 
 /// Move-only: the faces' loops point into its arrays (a move keeps them, a copy would not).
@@ -84,9 +86,20 @@ struct Polyhedron
   Polyhedron& operator=(const Polyhedron&) = delete;
 
   std::vector<StandardFace> faces;
-  /// The loops of all the faces, face after face, and the face beyond each loop edge: two
-  /// arrays of the boundary's size, not two heap blocks per face (most faces are small).
+  /// The loops of all the faces, face after face, and the face beyond each loop edge (with
+  /// PolyhedrizationOptions::facesAcross, else empty): arrays of the boundary's size, not heap
+  /// blocks per face (most faces are small).
   std::vector<std::uint32_t> loopVertices, loopAcross;
+
+  /// The face beyond each edge of face f's loop (loop[i] to loop[i + 1]); empty when they
+  /// were not traced.
+  IdRange across(std::uint32_t f) const
+  {
+    if (this->loopAcross.empty())
+      return {};
+    const IdRange& loop = this->faces[f].loop;
+    return { this->loopAcross.data() + (loop.first - this->loopVertices.data()), loop.count };
+  }
   std::vector<std::uint32_t> faceOfSurfel;
   /// Number of faces around each graph vertex; standard vertices have 3 or more.
   std::vector<std::uint8_t> facesAtVertex;
