@@ -13,8 +13,9 @@
 // are dealt to groups grown concurrently (groupComponents, growGroupsInWaves), and their faces put
 // back in the order of their seeds (gatherInSeedOrder), the sequential order, with the stamps
 // renumbered: the same faces, numbers and refusals as on one thread. The output: each face's
-// boundary loop (LoopTracer) with the face beyond each loop edge, and the number of faces around
-// each vertex (countFacesAtVertices: the standard vertices have three or more).
+// boundary loop (LoopTracer, all loops in one array), when asked the face beyond each loop edge,
+// and the number of faces around each vertex (countFacesAtVertices: the standard vertices have
+// three or more).
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
