@@ -26,12 +26,18 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkType.h"
 #include "vtkUnsignedCharArray.h"
+
+#if defined(__GLIBC__)
+#include <malloc.h> // malloc_trim
+#endif
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -107,16 +113,19 @@ bool mirrored(const vbr::vtk::VoxelGrid& grid)
 
 /// The output points of an object's graph vertices: one per pointel (the vertices of several
 /// umbrellas at one pointel share it), each made on its first use, so that points come in the
-/// order in which the cells first use them. Indexed by vertex (12 bytes per vertex), with no
-/// hash table of the points (about 56 bytes per point).
+/// order in which the cells first use them. Indexed by vertex (8 bytes per vertex: the points
+/// are numbered from the object's first, in 32 bits), with no hash table of the points (about
+/// 56 bytes per point).
 class PointIds
 {
 public:
-  /// For the vertices of `graph`: the first vertex at each one's pointel, found by a sort.
-  void reset(const vbr::SurfelGraph& graph)
+  /// For the vertices of `graph`, whose points are numbered from `first` on: the first vertex
+  /// at each one's pointel, found by a sort.
+  void reset(const vbr::SurfelGraph& graph, vtkIdType first)
   {
     const std::size_t n = graph.vertexPointel.size();
-    this->Ids.assign(n, -1);
+    this->Base = first;
+    this->Ids.assign(n, None);
     this->First.resize(n);
     {
       std::vector<std::pair<std::uint64_t, std::uint32_t>> byPointel(n);
@@ -135,13 +144,16 @@ public:
   vtkIdType get(std::uint32_t v, Make make)
   {
     const std::uint32_t first = this->First[v];
-    if (this->Ids[first] < 0)
-      this->Ids[first] = make(first);
-    return this->Ids[first];
+    if (this->Ids[first] == None)
+      this->Ids[first] = static_cast<std::uint32_t>(make(first) - this->Base);
+    return this->Base + this->Ids[first];
   }
 
 private:
-  std::vector<vtkIdType> Ids;       ///< per vertex: its point (at its pointel's first vertex)
+  static constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
+  vtkIdType Base = 0; ///< the object's first point
+  std::vector<std::uint32_t>
+    Ids; ///< per vertex: its point less Base (at its pointel's first vertex)
   std::vector<std::uint32_t> First; ///< per vertex: the first vertex at its pointel
 };
 
@@ -160,11 +172,18 @@ public:
     this->Normals->SetNumberOfComponents(3);
     this->Offsets->SetName("PlaneOffset");
     this->Sizes->SetName("SurfelCount");
+    this->Polys->Use32BitStorage(); // widened by fitIds when an id does not fit
+    this->Lines->Use32BitStorage();
   }
 
   void addObject(const ObjectFaces& o, int mode)
   {
-    this->Ids.reset(o.graph);
+    this->Ids.reset(o.graph, this->Points->GetNumberOfPoints());
+    // The object's points are at most one per vertex: all may be numbered in 32 bits.
+    this->fitIds(this->Polys,
+      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + o.graph.vertexPointel.size());
+    this->fitIds(this->Lines,
+      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + o.graph.vertexPointel.size());
     if (mode == vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
     {
       this->addEdges(o);
@@ -204,12 +223,16 @@ public:
       const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
       std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        triangles +=
-          std::max<std::size_t>((semiDiscrete ? polygons[f] : o.poly.faces[f].loop).size(), 2) - 2;
+        triangles += std::max<std::size_t>(
+                       (semiDiscrete ? polygons[f].size() : o.poly.faces[f].loop.size()), 2) -
+          2;
       this->reserveCells(triangles, 3 * triangles, markLoops);
       for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        this->addTriangulatedFace(
-          o, f, semiDiscrete ? polygons[f] : o.poly.faces[f].loop, markLoops);
+        this->addTriangulatedFace(o,
+          f,
+          semiDiscrete ? vbr::IdRange{ polygons[f].data(), polygons[f].size() }
+                       : o.poly.faces[f].loop,
+          markLoops);
     }
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
@@ -247,6 +270,7 @@ private:
     for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
     {
       const vbr::StandardFace& face = o.poly.faces[f];
+      const vbr::IdRange across = o.poly.across(f);
       const std::size_t m = face.loop.size();
       std::size_t start = 0;
       while (start < m && o.poly.facesAtVertex[face.loop[start]] < 3)
@@ -254,13 +278,13 @@ private:
       if (start == m)
       {
         // Two faces along a whole loop: one closed edge.
-        if (f < face.across[0])
+        if (f < across[0])
         {
           std::vector<vtkIdType> ids;
           for (std::uint32_t v : face.loop)
             ids.push_back(this->point(o, v));
           ids.push_back(ids.front());
-          this->addLine(ids, o, f, face.across[0]);
+          this->addLine(ids, o, f, across[0]);
         }
         continue;
       }
@@ -274,8 +298,8 @@ private:
         ids.push_back(this->point(o, next));
         if (o.poly.facesAtVertex[next] >= 3)
         {
-          if (f < face.across[i])
-            this->addLine(ids, o, f, face.across[i]);
+          if (f < across[i])
+            this->addLine(ids, o, f, across[i]);
           ids.clear();
         }
       }
@@ -287,6 +311,8 @@ private:
     std::uint32_t f,
     std::uint32_t other)
   {
+    this->fitIds(this->Lines, this->Lines->GetNumberOfConnectivityIds() + ids.size());
+    this->fitIds(this->Lines, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
     this->Lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
     this->OtherFaceIds->InsertNextValue(static_cast<int>(this->FaceBase + other));
@@ -302,7 +328,7 @@ private:
   /// needs to rebuild the loops from the triangles (a loop may run along an edge and back).
   void addTriangulatedFace(const ObjectFaces& o,
     std::uint32_t f,
-    const std::vector<std::uint32_t>& polygon,
+    const vbr::IdRange& polygon,
     bool markLoops)
   {
     const vbr::StandardFace& face = o.poly.faces[f];
@@ -424,7 +450,7 @@ private:
       changed = false;
       for (std::size_t f = 0; f < faces.size(); ++f)
       {
-        const std::vector<std::uint32_t>& loop = faces[f].loop;
+        const vbr::IdRange& loop = faces[f].loop;
         const std::size_t m = loop.size();
         std::vector<std::uint32_t>& polygon = polygons[f];
         polygon.clear();
@@ -442,7 +468,7 @@ private:
         if (!vbr::isSimplePolygon(corners) || vbr::doubledArea(corners) <= 0)
         {
           refineFace(faces[f]);
-          polygon = loop;
+          polygon.assign(loop.begin(), loop.end());
           changed = true;
         }
       }
@@ -462,6 +488,7 @@ private:
       if (wanted * a->GetNumberOfComponents() > a->GetSize())
         a->Resize(wanted);
     };
+    this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + corners);
     reserve(this->Polys->GetOffsetsArray(), cells);
     reserve(this->Polys->GetConnectivityArray(), corners);
     for (vtkDataArray* a : { static_cast<vtkDataArray*>(this->FaceIds),
@@ -472,6 +499,15 @@ private:
       reserve(a, cells);
     if (loopEdges)
       reserve(this->LoopEdges, cells);
+  }
+
+  /// The cells in 32-bit storage (half the memory of the ids, which most readers take alike)
+  /// while `count` ids or offsets up to `count` fit in it; else, once, in 64-bit storage.
+  static void fitIds(vtkCellArray* cells, std::size_t count)
+  {
+    if (!cells->IsStorage64Bit() &&
+      count > static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
+      cells->ConvertTo64BitStorage();
   }
 
   /// The output point of graph vertex v of object o, made on its first use.
@@ -490,6 +526,9 @@ private:
   {
     if (this->Reverse)
       std::reverse(ids.begin(), ids.end());
+    // Beyond the reservation only when a polygon is drawn by its surfels (never seen).
+    this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + ids.size());
+    this->fitIds(this->Polys, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
     this->Polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     const vbr::StandardFace& face = o.poly.faces[f];
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
@@ -702,6 +741,10 @@ constexpr std::size_t SideBySideMinimum = 4096;
 /// 0.3 to 1 M surfels per second, several times slower with MergeFaces).
 constexpr vtkIdType LargeSurfelCount = vtkIdType(1) << 21;
 
+/// Objects from which the memory freed before the cells are written is given back to the
+/// system (tens of megabytes; the trim takes milliseconds).
+constexpr std::size_t TrimFromSurfels = std::size_t(1) << 20;
+
 /// Port 0: the cells of every object's faces in `mode`, their colouring and statistics, written
 /// object by object as each object's faces are made.
 class FaceWriter
@@ -741,6 +784,7 @@ vbr::PolyhedrizationOptions optionsOf(vtkStandardPlanePolyhedrizer* self)
   options.moveToLargerFaces = self->GetMoveToLargerFaces();
   options.mergeFaces = self->GetMergeFaces();
   options.mergeFacesUpTo = static_cast<std::size_t>(self->GetMergeFacesUpTo());
+  options.facesAcross = self->GetOutputMode() == vtkStandardPlanePolyhedrizer::STANDARD_EDGES;
   return options;
 }
 
@@ -800,7 +844,10 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
 /// Frees what the cells of `mode` do not read, before they are written (the counts of surfels
 /// kept): the neighbours across the surfels' edges (20 bytes per surfel); but for Surfels the
 /// surfels, their vertices, the face of each surfel and the faces' lists of surfels (36 bytes
-/// per surfel and a list per face); and but for StandardEdges the face beyond each loop edge.
+/// per surfel and a list per face). Then, for a large object, the heap's free pages go back to
+/// the system: the faces' lists and the growth's small blocks lie in the heap, and the cells'
+/// large arrays, in pages of their own, would never reuse them (on 50% noise they stayed
+/// resident under the cells: 10 bytes per voxel of the peak).
 void releaseAfterFaces(ObjectFaces& o, int mode)
 {
   o.surfelCount = o.graph.size();
@@ -817,9 +864,10 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
     for (vbr::StandardFace& f : o.poly.faces)
       std::vector<std::uint32_t>().swap(f.surfels);
   }
-  if (mode != vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
-    for (vbr::StandardFace& f : o.poly.faces)
-      std::vector<std::uint32_t>().swap(f.across);
+#if defined(__GLIBC__)
+  if (o.surfelCount >= TrimFromSurfels)
+    malloc_trim(0);
+#endif
 }
 
 /// The reversion's self-check of object o and its cells: both only read o, so with threads

@@ -13,8 +13,9 @@
 // are dealt to groups grown concurrently (groupComponents, growGroupsInWaves), and their faces put
 // back in the order of their seeds (gatherInSeedOrder), the sequential order, with the stamps
 // renumbered: the same faces, numbers and refusals as on one thread. The output: each face's
-// boundary loop (LoopTracer) with the face beyond each loop edge, and the number of faces around
-// each vertex (countFacesAtVertices: the standard vertices have three or more).
+// boundary loop (LoopTracer, all loops in one array), when asked the face beyond each loop edge,
+// and the number of faces around each vertex (countFacesAtVertices: the standard vertices have
+// three or more).
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
@@ -114,6 +115,13 @@ struct SurfelStamps
   }
   std::vector<std::uint32_t>& faceOf;
   std::vector<std::uint32_t> queued, refused;
+
+  /// Frees the queue stamps and the refusals, which only the growth and the merging read.
+  void releaseQueues()
+  {
+    std::vector<std::uint32_t>().swap(this->queued);
+    std::vector<std::uint32_t>().swap(this->refused);
+  }
 };
 
 /// The growth of the faces: per-face state kept in arrays stamped with the face number, so
@@ -454,14 +462,29 @@ private:
 class LoopTracer
 {
 public:
-  explicit LoopTracer(const SurfelGraph& graph)
+  /// With `across`, also the face beyond each loop edge.
+  LoopTracer(const SurfelGraph& graph, bool across)
     : Graph(graph)
+    , Across(across)
     , Edge(graph.vertexPointel.size())
     , Stamp(graph.vertexPointel.size(), None)
   {
   }
 
-  void trace(const Polyhedron& poly, std::uint32_t f, StandardFace& face)
+  /// Room for every loop in `poly`'s arrays: the edges between surfels of different faces.
+  void reserve(Polyhedron& poly) const
+  {
+    std::size_t edges = 0;
+    for (std::uint32_t s = 0; s < this->Graph.size(); ++s)
+      for (int k = 0; k < 4; ++k)
+        edges += poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != poly.faceOfSurfel[s];
+    poly.loopVertices.reserve(edges);
+    if (this->Across)
+      poly.loopAcross.reserve(edges);
+  }
+
+  /// Appends face f's loop to `poly`'s arrays (the face's ranges are set by pointLoops).
+  void trace(Polyhedron& poly, std::uint32_t f, const StandardFace& face)
   {
     std::size_t edges = 0;
     std::uint32_t start = None;
@@ -477,31 +500,42 @@ public:
           start = v;
           ++edges;
         }
-    face.loop.clear();
-    face.across.clear();
-    face.loop.reserve(edges); // one allocation each, of the loop's size
-    face.across.reserve(edges);
     if (start == None)
       return;
+    const std::size_t first = poly.loopVertices.size();
     std::uint32_t v = start;
     do
     {
-      if (this->Stamp[v] != f || face.loop.size() >= edges)
+      if (this->Stamp[v] != f || poly.loopVertices.size() - first >= edges)
         throw std::logic_error("face boundary is not one loop");
       const std::uint32_t s = this->Edge[v] / 4;
       const int k = static_cast<int>(this->Edge[v] % 4);
-      face.loop.push_back(v);
-      face.across.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
+      poly.loopVertices.push_back(v);
+      if (this->Across)
+        poly.loopAcross.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
       v = this->Graph.vertexOf(s, (k + 1) % 4);
     } while (v != start);
-    if (face.loop.size() != edges)
+    if (poly.loopVertices.size() - first != edges)
       throw std::logic_error("face boundary is not one loop");
+  }
+
+  /// Each face's loop as its run of `poly`'s array, once all are traced
+  /// (`lengths`: each face's loop length).
+  static void pointLoops(Polyhedron& poly, const std::vector<std::size_t>& lengths)
+  {
+    std::size_t first = 0;
+    for (std::size_t f = 0; f < poly.faces.size(); ++f)
+    {
+      poly.faces[f].loop = { poly.loopVertices.data() + first, lengths[f] };
+      first += lengths[f];
+    }
   }
 
 private:
   const SurfelGraph& Graph;
   std::vector<std::uint32_t> Edge;  ///< 4 * surfel + edge leaving each boundary vertex
   std::vector<std::uint32_t> Stamp; ///< the face Edge is for
+  const bool Across;
 };
 
 /// Whether surfel t, now in face g (of more than one surfel when `leavesRest`), may move to
@@ -908,6 +942,26 @@ bool mergeSmallFaces(FaceGrower& grower,
   return true;
 }
 
+/// Every face's loop (progress 0 - 0.5 of `poll`), with the tracer's arrays freed on return.
+/// False when stopped.
+bool traceLoops(const SurfelGraph& graph, bool across, Polyhedron& out, ProgressPoll& poll)
+{
+  LoopTracer tracer(graph, across);
+  tracer.reserve(out);
+  std::vector<std::size_t> lengths(out.faces.size());
+  for (std::uint32_t f = 0; f < out.faces.size(); ++f)
+  {
+    poll.at(0.5 * f / double(out.faces.size()));
+    if (!poll.tick())
+      return false;
+    const std::size_t before = out.loopVertices.size();
+    tracer.trace(out, f, out.faces[f]);
+    lengths[f] = out.loopVertices.size() - before;
+  }
+  LoopTracer::pointLoops(out, lengths);
+  return true;
+}
+
 } // namespace
 
 bool polyhedrize(const SurfelGraph& graph,
@@ -937,15 +991,10 @@ bool polyhedrize(const SurfelGraph& graph,
     if (!mergeSmallFaces(merger, options, out, merging))
       return false;
   }
+  stamps.releaseQueues(); // the peak is the loops' tracing, with the whole graph
   ProgressPoll loops(exec, 0.95, 1.0);
-  LoopTracer tracer(graph);
-  for (std::uint32_t f = 0; f < out.faces.size(); ++f)
-  {
-    loops.at(0.5 * f / double(out.faces.size()));
-    if (!loops.tick())
-      return false;
-    tracer.trace(out, f, out.faces[f]);
-  }
+  if (!traceLoops(graph, options.facesAcross, out, loops))
+    return false;
   loops.at(0.5);
   out.facesAtVertex = countFacesAtVertices(graph, out, loops);
   return !loops.stopped() && exec.report(1.0);

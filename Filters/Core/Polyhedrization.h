@@ -18,6 +18,7 @@
 #include "StandardPlane.h"
 #include "SurfelGraph.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -45,19 +46,60 @@ struct PolyhedrizationOptions
   /// Faces of more surfels are not offered to their neighbours (their surfels have nearly
   /// always been refused by them already, and each offer costs a recognition).
   std::size_t mergeFacesUpTo = 8;
+  /// Also trace the face beyond each loop edge (Polyhedron::across: 4 bytes per loop edge,
+  /// held with the whole surfel graph).
+  bool facesAcross = true;
+};
+
+/// A face's run of ids in one of its Polyhedron's arrays (valid while they are).
+struct IdRange
+{
+  const std::uint32_t* first = nullptr;
+  std::size_t count = 0;
+
+  const std::uint32_t* begin() const { return this->first; }
+  const std::uint32_t* end() const { return this->first + this->count; }
+  std::size_t size() const { return this->count; }
+  bool empty() const { return this->count == 0; }
+  std::uint32_t operator[](std::size_t i) const { return this->first[i]; }
+  std::uint32_t front() const { return this->first[0]; }
+  bool operator==(const IdRange& other) const
+  {
+    return this->count == other.count && std::equal(this->begin(), this->end(), other.begin());
+  }
 };
 
 struct StandardFace
 {
   StandardPlane plane;
   std::vector<std::uint32_t> surfels;
-  std::vector<std::uint32_t> loop;   ///< graph vertices, counter-clockwise seen from outside
-  std::vector<std::uint32_t> across; ///< the face beyond loop edge i (loop[i] to loop[i + 1])
+  IdRange loop; ///< graph vertices, counter-clockwise seen from outside
 };
 
+/// Move-only: the faces' loops point into its arrays (a move keeps them, a copy would not).
 struct Polyhedron
 {
+  Polyhedron() = default;
+  Polyhedron(Polyhedron&&) = default;
+  Polyhedron& operator=(Polyhedron&&) = default;
+  Polyhedron(const Polyhedron&) = delete;
+  Polyhedron& operator=(const Polyhedron&) = delete;
+
   std::vector<StandardFace> faces;
+  /// The loops of all the faces, face after face, and the face beyond each loop edge (with
+  /// PolyhedrizationOptions::facesAcross, else empty): arrays of the boundary's size, not heap
+  /// blocks per face (most faces are small).
+  std::vector<std::uint32_t> loopVertices, loopAcross;
+
+  /// The face beyond each edge of face f's loop (loop[i] to loop[i + 1]); empty when they
+  /// were not traced.
+  IdRange across(std::uint32_t f) const
+  {
+    if (this->loopAcross.empty())
+      return {};
+    const IdRange& loop = this->faces[f].loop;
+    return { this->loopAcross.data() + (loop.first - this->loopVertices.data()), loop.count };
+  }
   std::vector<std::uint32_t> faceOfSurfel;
   /// Number of faces around each graph vertex; standard vertices have 3 or more.
   std::vector<std::uint8_t> facesAtVertex;

@@ -98,6 +98,8 @@ void checkImage(const Volume& v, const Layout& l, bool labels, const std::string
   CHECK(out->GetNumberOfCells() == surfels,
     what << ": " << out->GetNumberOfCells() << " quads, " << surfels << " surfels");
   CHECK(fieldValue(out, "NumberOfSurfels") == surfels, what << ": NumberOfSurfels");
+  // The ids fit in 32 bits: the cells use vtkCellArray's 32-bit storage (half the memory).
+  CHECK(!out->GetPolys()->IsStorage64Bit(), what << ": 64-bit cell storage for small ids");
   vtkDataArray* normals = out->GetCellData()->GetArray("PlaneNormal");
   vtkDataArray* offsets = out->GetCellData()->GetArray("PlaneOffset");
   vtkDataArray* ids = out->GetCellData()->GetArray("FaceId");
@@ -152,6 +154,7 @@ void checkImage(const Volume& v, const Layout& l, bool labels, const std::string
   f->Update();
   CHECK(f->GetOutput()->GetNumberOfCells() == fieldValue(f->GetOutput(), "NumberOfFaces"),
     what << ": one polygon per face");
+  CHECK(!f->GetOutput()->GetPolys()->IsStorage64Bit(), what << ": 64-bit polygon storage");
   // The reversion, from the faces alone.
   vtkImageData* back = vtkImageData::SafeDownCast(f->GetOutputDataObject(1));
   vtkDataArray* selection = nullptr;
