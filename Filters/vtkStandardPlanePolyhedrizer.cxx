@@ -5,6 +5,7 @@
 #include "Polyhedrization.h"
 #include "SurfelGraph.h"
 #include "vtkVoxelBRepAdapters.h"
+#include "vtkVoxelBRepMemory.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -39,6 +40,7 @@
 #include <exception>
 #include <limits>
 #include <map>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
@@ -179,7 +181,8 @@ public:
   void addObject(const ObjectFaces& o, int mode)
   {
     this->Ids.reset(o.graph, this->Points->GetNumberOfPoints());
-    // The object's points are at most one per vertex: all may be numbered in 32 bits.
+    // The object's vertices' points may all be numbered in 32 bits; the points that
+    // addSurfelTriangles makes of its own are checked cell by cell (addCell, addLine).
     this->fitIds(this->Polys,
       static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + o.graph.vertexPointel.size());
     this->fitIds(this->Lines,
@@ -272,6 +275,8 @@ private:
       const vbr::StandardFace& face = o.poly.faces[f];
       const vbr::IdRange across = o.poly.across(f);
       const std::size_t m = face.loop.size();
+      if (across.size() != m)
+        throw std::logic_error("the faces across the loops were not traced");
       std::size_t start = 0;
       while (start < m && o.poly.facesAtVertex[face.loop[start]] < 3)
         ++start;
@@ -485,8 +490,8 @@ private:
     auto reserve = [](vtkDataArray* a, std::size_t more)
     {
       const vtkIdType wanted = a->GetNumberOfTuples() + static_cast<vtkIdType>(more);
-      if (wanted * a->GetNumberOfComponents() > a->GetSize())
-        a->Resize(wanted);
+      if (wanted * a->GetNumberOfComponents() > a->GetSize() && !a->Resize(wanted))
+        throw std::bad_alloc();
     };
     this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + corners);
     reserve(this->Polys->GetOffsetsArray(), cells);
@@ -503,11 +508,21 @@ private:
 
   /// The cells in 32-bit storage (half the memory of the ids, which most readers take alike)
   /// while `count` ids or offsets up to `count` fit in it; else, once, in 64-bit storage.
+  /// A conversion that cannot allocate throws (an error and empty outputs), rather than leave
+  /// 32-bit storage that later ids would overflow.
   static void fitIds(vtkCellArray* cells, std::size_t count)
   {
-    if (!cells->IsStorage64Bit() &&
-      count > static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
-      cells->ConvertTo64BitStorage();
+    if (cells->IsStorage64Bit() ||
+      count <= static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
+      return;
+    const double bytes = 8.0 *
+      (static_cast<double>(cells->GetNumberOfConnectivityIds()) +
+        static_cast<double>(cells->GetNumberOfOffsets()));
+    const std::string refused = vbr::vtk::checkAllocation(bytes, "64-bit output cells");
+    if (!refused.empty())
+      throw std::runtime_error(refused);
+    if (!cells->ConvertTo64BitStorage())
+      throw std::bad_alloc();
   }
 
   /// The output point of graph vertex v of object o, made on its first use.

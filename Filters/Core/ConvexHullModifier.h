@@ -181,8 +181,9 @@ struct ModifiedHull
   /// Whether H came from the second pass, every level kept apart (no pits, see above).
   bool withoutPits = false;
   /// The second pass against spurious handles (see above): NotRun when the first pass did not
-  /// call for it, Kept when H is its result, Rejected when it did not separate with the object's
-  /// Euler characteristic and no more shells and H is the first pass's.
+  /// call for it (also when H comes from the pass run after a first pass that failed, where
+  /// withoutPits is true), Kept when H is its result, Rejected when it did not separate with the
+  /// object's Euler characteristic and no more shells and H is the first pass's.
   enum class HandlePass
   {
     NotRun,

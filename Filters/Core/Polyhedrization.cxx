@@ -533,9 +533,9 @@ public:
 
 private:
   const SurfelGraph& Graph;
+  const bool Across;
   std::vector<std::uint32_t> Edge;  ///< 4 * surfel + edge leaving each boundary vertex
   std::vector<std::uint32_t> Stamp; ///< the face Edge is for
-  const bool Across;
 };
 
 /// Whether surfel t, now in face g (of more than one surfel when `leavesRest`), may move to

@@ -225,7 +225,8 @@ struct Distance
   double fromSurfels = 0.0;     ///< surfel samples to the surface
   double fromKeptSurfels = 0.0; ///< the same over the surfels of unpruned voxels
   double hausdorff() const { return std::max(this->toSurfels, this->fromSurfels); }
-  /// The bound the issue sets: all but the pruned voxels' surfels.
+  /// The filter's bound (one voxel diagonal) holds everywhere but at the pruned voxels: the
+  /// distance over all but their surfels.
   double hausdorffExclPruned() const { return std::max(this->toSurfels, this->fromKeptSurfels); }
 };
 
