@@ -726,6 +726,30 @@ void checkAbortInsideA2DImage()
   }
 }
 
+/// An abort while the RegionIds of one large 2D image are painted from its pixel runs (ZYX:
+/// rows along x): the painting reports its progress (PASS 3 spans 0.7 to 0.9) and stops at
+/// the next step, nothing runs after it, and the filter writes no labels.
+void checkAbortWhilePainting()
+{
+  const Volume v = randomVolume({ 4096, 2048, 1 }, 0.5, 1, 405);
+  vtkNew<vtkCUDBConnectivity> f;
+  f->SetInputData(makeImage(v, Layout()));
+  f->SetSortingOrderToZYX();
+  vtkNew<AbortPastProgress> abort;
+  abort->At = 0.71; // PASS 1 ends at 0.7 (a little above, rounded): past it, the painting's
+  f->AddObserver(vtkCommand::ProgressEvent, abort);
+  f->Update();
+  CHECK(abort->AbortedAt > 0.71 && abort->AbortedAt < 0.9,
+    "painting: progress is reported while the runs are painted");
+  CHECK(std::all_of(abort->Seen.begin() + static_cast<std::ptrdiff_t>(abort->EventsBefore),
+          abort->Seen.end(),
+          [](double p) { return p == 1.0; }),
+    "painting: nothing runs after the abort");
+  CHECK(regionIds(f, Layout()).empty(), "painting: an aborted run writes no labels");
+  CHECK(f->GetOutput()->GetPointData()->GetNumberOfArrays() == 0,
+    "painting: an aborted run passes no arrays");
+}
+
 } // namespace
 
 int TestCUDBConnectivity(int, char*[])
@@ -737,6 +761,7 @@ int TestCUDBConnectivity(int, char*[])
   checkManySeeds();
   checkErrorsAndDegenerateInputs();
   checkAbortInsideA2DImage();
+  checkAbortWhilePainting();
   vtkNew<vtkCUDBConnectivity> f;
   std::ostringstream print;
   f->Print(print);
