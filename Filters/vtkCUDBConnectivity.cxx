@@ -66,10 +66,10 @@ struct ObjectBoxes
   vbr::Components components;
   std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
-  /// A 2D object swept along its rows (ZYX in processing axes): its pixels and the box of
-  /// each of their runs, from which its RegionIds are painted (vbr::paintPixelRuns).
+  /// A 2D object swept along its rows (ZYX in processing axes): its pixels and their runs,
+  /// from which its RegionIds are painted (vbr::paintPixelRuns).
   vbr::BitVolume pixels;
-  std::vector<std::uint32_t> runBoxes;
+  vbr::PixelRuns runs;
 };
 
 /// Asks the cache for the line at `address`, which is read soon (a hint; nothing without it).
@@ -328,7 +328,8 @@ std::int32_t numberRegions(const std::vector<Region>& regions,
 }
 
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
-/// without, the region's number (index + 1). Voxels of no box stay 0.
+/// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted (only
+/// the painting from pixel runs, of one huge image, stops on the way).
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
   const std::vector<std::int32_t>* regionIds,
   const vbr::vtk::VoxelGrid& grid,
@@ -350,12 +351,13 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
     }
     // From the pixel runs when the object's rows are the image's (x fastest) and no other
     // object shares its rectangle (the runs' painting writes 0 past short runs).
-    if (objects.size() == 1 && !o.runBoxes.empty() && axes[0] == 0)
+    if (objects.size() == 1 && !o.runs.empty() && axes[0] == 0)
     {
       const std::int64_t rowStep =
         axes[1] == 1 ? grid.dims[0] : std::int64_t(grid.dims[0]) * grid.dims[1];
-      vbr::paintPixelRuns(
-        o.pixels, o.runBoxes, values, { o.offset[0], o.offset[1] }, rowStep, out, exec);
+      if (!vbr::paintPixelRuns(
+            o.pixels, o.runs, values, { o.offset[0], o.offset[1] }, rowStep, out, exec))
+        return nullptr;
     }
     else
       vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
@@ -826,7 +828,7 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
     vbr::CUDB cudb;
     vbr::Components labelled;
     std::size_t vertices = 0;
-    std::vector<std::uint32_t> runBoxes; // rows along processing x: painted from the runs
+    vbr::PixelRuns runs; // rows along processing x: painted from the runs
     const bool alongRows = keepRuns && sortings[k] == vbr::AxisOrder{ 2, 1, 0 };
     if (!vbr::buildCUDBComponents2D(pixels,
           sortings[k],
@@ -835,18 +837,18 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
           cudb,
           labelled,
           &vertices,
-          alongRows ? &runBoxes : nullptr))
+          alongRows ? &runs : nullptr))
       return false;
     if (!found || cudb.boxes.size() < o.cudb.boxes.size())
     {
       o.cudb = std::move(cudb);
       o.components = std::move(labelled);
       o.extremeVertices = vertices;
-      o.runBoxes = std::move(runBoxes);
+      o.runs = std::move(runs);
     }
     found = true;
   }
-  if (!o.runBoxes.empty())
+  if (!o.runs.empty())
     o.pixels = std::move(pixels);
   return !o.cudb.boxes.empty();
 }
@@ -914,7 +916,8 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
 }
 
 /// Marks the regions that hold a seed, from the image of region numbers painted for them
-/// (returned, to be renumbered), with a warning when no seed lies on a selected voxel.
+/// (returned, to be renumbered; null when aborted), with a warning when no seed lies on a
+/// selected voxel.
 vtkSmartPointer<vtkIntArray> markRegionsOfSeeds(vtkCUDBConnectivity* self,
   vtkDataSet* seeds,
   const vbr::vtk::InputObjects& in,
@@ -924,13 +927,20 @@ vtkSmartPointer<vtkIntArray> markRegionsOfSeeds(vtkCUDBConnectivity* self,
   vtkLogScopeF(TRACE, "regions of the seeds");
   vtkSmartPointer<vtkIntArray> ids =
     paintRegions(objects, nullptr, in.grid, in.axes, vbr::vtk::makeExecution(self, 0.7, 0.8));
-  if (markSeeds(seeds, in.grid, ids->GetPointer(0), regions) == 0 && !regions.empty())
+  if (ids && markSeeds(seeds, in.grid, ids->GetPointer(0), regions) == 0 && !regions.empty())
   {
     vtkWarningWithObjectMacro(self,
       << "None of the " << seeds->GetNumberOfPoints()
       << " seed points lies on a selected voxel: every region is removed.");
   }
   return ids;
+}
+
+/// An aborted run writes no labels: the input's arrays, passed on, are removed too.
+void clearLabels(vtkImageData* output)
+{
+  output->GetPointData()->Initialize();
+  output->GetCellData()->Initialize();
 }
 
 /// The RegionId array on the output image, with the association of the selected scalars.
@@ -1241,8 +1251,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   }
   if (this->GetAbortExecute())
   {
-    output->GetPointData()->Initialize(); // aborted: no labels
-    output->GetCellData()->Initialize();
+    clearLabels(output);
     return 1;
   }
 
@@ -1256,11 +1265,16 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   // PASS 3: the outputs: RegionId image, boxes, region table.
   {
     vtkLogScopeF(TRACE, "write the region ids");
-    if (seeds)
-      renumberRegions(ids, regionIds);
-    else
+    if (!seeds)
       ids = paintRegions(
         objects, &regionIds, in.grid, in.axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
+    else if (ids)
+      renumberRegions(ids, regionIds);
+    if (!ids)
+    {
+      clearLabels(output);
+      return 1;
+    }
     addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);

@@ -43,7 +43,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -1340,7 +1339,7 @@ bool sweepPixelRows(const BitVolume& pixels,
   ProgressPoll& poll,
   CUDB& out,
   UnionFind& equivalences,
-  std::vector<std::uint32_t>* runBoxes)
+  PixelRuns* kept)
 {
   const std::int32_t ny = pixels.size(1);
   BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
@@ -1358,13 +1357,21 @@ bool sweepPixelRows(const BitVolume& pixels,
       const std::vector<PixelRun>& runs = sweep.nextRow(y, visit);
       if (!sweep.sameAsPrevious())
         out.oudbBoxCount += runs.size(); // a line of vertices at y: the OUDB cuts every interval
-      if (runBoxes)                      // reserved for all runs: no reallocation
+      if (kept)                          // reserved for all runs and rows: no reallocation
+      {
+        std::vector<std::uint32_t>& boxes = kept->boxes;
+        const std::size_t first = boxes.size();
+        kept->rowStarts.push_back(first);
+        boxes.resize(first + runs.size());
         std::transform(runs.begin(),
           runs.end(),
-          std::back_inserter(*runBoxes),
+          boxes.begin() + static_cast<std::ptrdiff_t>(first),
           [](const PixelRun& run) { return run.box; });
+      }
     }
   }
+  if (kept)
+    kept->rowStarts.push_back(kept->boxes.size());
   return true;
 }
 
@@ -1377,7 +1384,7 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   CUDB& out,
   Components& components,
   std::size_t* vertices,
-  std::vector<std::uint32_t>* runBoxes)
+  PixelRuns* pixelRuns)
 {
   checkSingleSlice(pixels);
   const bool alongY = order == AxisOrder{ 2, 0, 1 };
@@ -1396,20 +1403,21 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   UnionFind equivalences;
   equivalences.reserve(runs);
   out.boxes.reserve(runs);
-  if (runBoxes)
+  if (pixelRuns)
   {
-    runBoxes->clear();
-    runBoxes->reserve(runs);
+    pixelRuns->clear();
+    pixelRuns->boxes.reserve(runs);
+    pixelRuns->rowStarts.reserve(std::size_t(rows.size(1)) + 1);
   }
   const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
   const auto stride = static_cast<std::int32_t>(std::max<std::size_t>(2048 / words, 1));
   ProgressPoll poll(exec, 0.0, 1.0);
-  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences, runBoxes) ||
+  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences, pixelRuns) ||
     !poll.poll())
   {
     out = CUDB();
-    if (runBoxes)
-      runBoxes->clear();
+    if (pixelRuns)
+      pixelRuns->clear();
     return false;
   }
   if (alongY) // the sweep's (x, y) are the image's (y, x)
@@ -1436,11 +1444,12 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
 namespace
 {
 
-/// paintPixelRuns over rows [from, to), whose first run is runBox[0].
+/// paintPixelRuns over rows [from, to). Each row's count of runs is checked before its
+/// pixels are written (a compare per row): runs that are not the row's own would be read past.
 void paintRowsOfRuns(const BitVolume& pixels,
   std::int64_t from,
   std::int64_t to,
-  const std::uint32_t* runBox,
+  const PixelRuns& runs,
   const std::int32_t* value,
   std::int32_t* origin,
   std::int64_t rowStep,
@@ -1448,11 +1457,14 @@ void paintRowsOfRuns(const BitVolume& pixels,
 {
   const std::size_t words = pixels.wordsPerRow();
   const std::int32_t nx = pixels.size(0);
+  const std::uint32_t* runBox = runs.boxes.data() + runs.rowStarts[from];
   for (std::int64_t y = from; y < to; ++y)
   {
     std::int32_t* const row = origin + y * rowStep;
     std::int32_t* const rowEnd = row + nx;
     const Coord* const last = rowRunEnds(pixels.row(static_cast<std::int32_t>(y), 0), words, ends);
+    if (std::size_t(last - ends) / 2 != runs.rowStarts[y + 1] - runs.rowStarts[y])
+      throw std::invalid_argument("paintPixelRuns: the runs are not those of the pixels' rows");
     constexpr std::ptrdiff_t Width = 8;
     for (const Coord* e = ends; e != last; e += 2)
     {
@@ -1473,10 +1485,19 @@ void paintRowsOfRuns(const BitVolume& pixels,
   }
 }
 
+/// Whether `runs` could be one box per run of the rows of `pixels` (their row starts
+/// increasing from 0 to the number of boxes); each row's own count is checked as it is painted.
+bool fitsRows(const BitVolume& pixels, const PixelRuns& runs)
+{
+  const std::vector<std::size_t>& starts = runs.rowStarts;
+  return starts.size() == std::size_t(pixels.size(1)) + 1 && starts.front() == 0 &&
+    starts.back() == runs.boxes.size() && std::is_sorted(starts.begin(), starts.end());
+}
+
 } // namespace
 
-void paintPixelRuns(const BitVolume& pixels,
-  const std::vector<std::uint32_t>& runBoxes,
+bool paintPixelRuns(const BitVolume& pixels,
+  const PixelRuns& runs,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 2>& offset,
   std::int64_t rowStep,
@@ -1484,27 +1505,29 @@ void paintPixelRuns(const BitVolume& pixels,
   const Execution& exec)
 {
   checkSingleSlice(pixels);
-  // The first run of every row (a serial count of bit changes, cheap beside the painting), so
-  // that any range of rows starts at once however finely the backend splits them.
-  std::vector<std::size_t> firstRun(std::size_t(pixels.size(1)) + 1, 0);
-  for (std::int32_t y = 0; y < pixels.size(1); ++y)
-    firstRun[y + 1] = firstRun[y] + rowChanges(pixels.row(y, 0), nullptr, pixels.wordsPerRow()) / 2;
-  if (firstRun.back() != runBoxes.size())
+  if (!fitsRows(pixels, runs))
     throw std::invalid_argument("paintPixelRuns: the runs are not those of the pixels' rows");
   std::int32_t* const origin = labels + std::int64_t(offset[1]) * rowStep + offset[0];
-  exec.forRange(pixels.size(1),
-    [&](std::int64_t from, std::int64_t to)
-    {
-      std::vector<Coord> ends(pixels.wordsPerRow() * 64 + 2);
-      paintRowsOfRuns(pixels,
-        from,
-        to,
-        runBoxes.data() + firstRun[from],
-        value.data(),
-        origin,
-        rowStep,
-        ends.data());
-    });
+  // Steps of rows on the calling thread, each painted in parallel: progress is reported and
+  // the stop asked for between them, from the calling thread. Few and large, as a parallel
+  // loop may cost a thread start-up; a huge image still stops within a sixteenth of it.
+  const std::int64_t ny = pixels.size(1);
+  const auto words = static_cast<std::int64_t>(std::max<std::size_t>(pixels.wordsPerRow(), 1));
+  const std::int64_t step = std::max((ny + 15) / 16, ((std::int64_t(1) << 14) + words - 1) / words);
+  for (std::int64_t first = 0; first < ny; first += step)
+  {
+    if (exec.stopRequested() || !exec.report(double(first) / double(ny)))
+      return false;
+    const std::int64_t last = std::min(ny, first + step);
+    exec.forRange(last - first,
+      [&](std::int64_t from, std::int64_t to)
+      {
+        std::vector<Coord> ends(pixels.wordsPerRow() * 64 + 2);
+        paintRowsOfRuns(
+          pixels, first + from, first + to, runs, value.data(), origin, rowStep, ends.data());
+      });
+  }
+  return !exec.stopRequested();
 }
 
 } // namespace vbr

@@ -115,6 +115,23 @@ bool buildCUDBComponents(const EVM& evm,
   Components& components,
   int pieces = 0);
 
+/// The runs of set pixels of the rows of a one-slice pixel set, as its 2D sweep met them: the
+/// box of every run, row after row and along each row, and where each row's runs begin (the
+/// sweep knows it; counting them again from the bits would read the whole image once more).
+struct PixelRuns
+{
+  std::vector<std::uint32_t> boxes;
+  /// The runs of row y are boxes[rowStarts[y]] to boxes[rowStarts[y + 1] - 1].
+  std::vector<std::size_t> rowStarts;
+
+  bool empty() const { return this->boxes.empty(); }
+  void clear()
+  {
+    this->boxes.clear();
+    this->rowStarts.clear();
+  }
+};
+
 /// A one-slice pixel set (nz = 1) -> its 2D CUDB in the sorting `order`, ZYX {2, 1, 0} (lines
 /// along y, rows along x) or ZXY {2, 0, 1} (lines along x, read from a transposed copy of the
 /// bits), and the components of its boxes, in one pass over the pixel rows without building
@@ -123,10 +140,9 @@ bool buildCUDBComponents(const EVM& evm,
 /// united at once with the runs of the row before that it meets. Same boxes (in the same
 /// order), oudbBoxCount and components as buildCUDBComponents(extractEVM2D(pixels) sorted as
 /// `order`, ...); `vertices` (if given) receives the number of vertices that EVM would have.
-/// `runBoxes` (if given) receives the box of every run of set pixels of the rows the sweep
-/// reads (the image's rows in ZYX, its columns in ZXY), row after row and along each row, as
-/// paintPixelRuns reads them. Polls `exec` every 2048 words of pixels or so (a few dozen rows
-/// of a wide image); returns false when aborted, with `out` empty.
+/// `runs` (if given) receives the runs of set pixels of the rows the sweep reads (the image's
+/// rows in ZYX, its columns in ZXY), as paintPixelRuns reads them. Polls `exec` every 2048 words of
+/// pixels or so (a few dozen rows of a wide image); returns false when aborted, with `out` empty.
 bool buildCUDBComponents2D(const BitVolume& pixels,
   const AxisOrder& order,
   Connectivity connectivity,
@@ -134,7 +150,7 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   CUDB& out,
   Components& components,
   std::size_t* vertices = nullptr,
-  std::vector<std::uint32_t>* runBoxes = nullptr);
+  PixelRuns* runs = nullptr);
 /// The same in the ZYX sorting, never aborted; returns the number of vertices of the EVM.
 std::size_t buildCUDBComponents2D(const BitVolume& pixels,
   Connectivity connectivity,
@@ -154,16 +170,19 @@ void paintBoxes(const std::vector<Box>& boxes,
   const Execution& exec = Execution());
 
 /// Paints a one-slice pixel set into `labels`, which must hold 0 on the pixels' rectangle:
-/// value[runBoxes[i]] on the pixels of run i (the runs of set pixels in the order of
-/// buildCUDBComponents2D's `runBoxes` in ZYX). Pixel (x, y) is labels[(y + offset[1]) *
-/// rowStep + x + offset[0]]; nothing outside the rectangle is written. The labels of
-/// paintBoxes of the sweep's boxes into a zeroed grid, in one pass along the rows: a run of up
-/// to 8 pixels is written by stores of a fixed width (8 values, then 8 zeros from its end over
-/// the gap they covered; the next run is written after), a longer one exactly (runs of a few
-/// pixels, as a maze has, mispredicted every loop exit of the boxes' painting). Parallel over
-/// rows. Throws std::invalid_argument when `runBoxes` does not hold one box per run.
-void paintPixelRuns(const BitVolume& pixels,
-  const std::vector<std::uint32_t>& runBoxes,
+/// value[runs.boxes[i]] on the pixels of run i (the runs of buildCUDBComponents2D in ZYX).
+/// Pixel (x, y) is labels[(y + offset[1]) * rowStep + x + offset[0]]; nothing outside the
+/// rectangle is written. The labels of paintBoxes of the sweep's boxes into a zeroed grid, in
+/// one pass along the rows: a run of up to 8 pixels is written by stores of a fixed width (8
+/// values, then 8 zeros from its end over the gap they covered; the next run is written after),
+/// a longer one exactly (runs of a few pixels, as a maze has, mispredicted every loop exit of
+/// the boxes' painting). Parallel over rows, in up to 16 steps of at least 2^14 words of pixels
+/// (a few ms of a maze), between which it reports its progress and asks whether to stop.
+/// Returns false when aborted, the rows of the steps done painted. Throws
+/// std::invalid_argument when `runs` is not one box per run: before anything is written when
+/// the counts disagree, at the row whose runs are not its own otherwise.
+bool paintPixelRuns(const BitVolume& pixels,
+  const PixelRuns& runs,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 2>& offset,
   std::int64_t rowStep,

@@ -469,7 +469,7 @@ TEST(CUDB, PixelRunsPaintTheBoxes)
         const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
         vbr::CUDB cudb;
         vbr::Components components;
-        std::vector<std::uint32_t> runBoxes;
+        vbr::PixelRuns pixelRuns;
         ASSERT_TRUE(vbr::buildCUDBComponents2D(v,
           vbr::AxisOrder{ 2, 1, 0 },
           vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face,
@@ -477,22 +477,40 @@ TEST(CUDB, PixelRunsPaintTheBoxes)
           cudb,
           components,
           nullptr,
-          &runBoxes));
+          &pixelRuns));
         std::size_t runs = 0;
+        std::vector<std::size_t> rowStarts{ 0 };
         for (vbr::Coord y = 0; y < d[1]; ++y)
+        {
           for (vbr::Coord x = 0; x < d[0]; ++x)
             runs += v.get(x, y, 0) && (x == 0 || !v.get(x - 1, y, 0));
-        EXPECT_EQ(runBoxes.size(), runs);
+          rowStarts.push_back(runs);
+        }
+        EXPECT_EQ(pixelRuns.boxes.size(), runs);
+        EXPECT_EQ(pixelRuns.rowStarts, rowStarts);
         const vbr::Coord width = d[0] + 11, height = d[1] + 5, ox = 3, oy = 2;
         if (runs > 0) // a list that is not one box per run is refused before anything is written
         {
           std::vector<std::int32_t> untouched(std::size_t(width) * height, -7);
-          const std::vector<std::uint32_t> shorter(runBoxes.begin(), runBoxes.end() - 1);
+          vbr::PixelRuns shorter = pixelRuns;
+          shorter.boxes.pop_back();
           const std::vector<std::int32_t> value(cudb.boxes.size(), 1);
           EXPECT_THROW(vbr::paintPixelRuns(v, shorter, value, { ox, oy }, width, untouched.data()),
             std::invalid_argument);
           EXPECT_EQ(
             std::count(untouched.begin(), untouched.end(), -7), std::ptrdiff_t(untouched.size()));
+          // The right count, one run moved to the next row: refused at that row, not read past.
+          const auto moved = std::find_if(pixelRuns.rowStarts.begin() + 1,
+            pixelRuns.rowStarts.end() - 1,
+            [](std::size_t start) { return start > 0; });
+          if (moved != pixelRuns.rowStarts.end() - 1)
+          {
+            vbr::PixelRuns shifted = pixelRuns;
+            --shifted.rowStarts[std::size_t(moved - pixelRuns.rowStarts.begin())];
+            EXPECT_THROW(
+              vbr::paintPixelRuns(v, shifted, value, { ox, oy }, width, untouched.data()),
+              std::invalid_argument);
+          }
         }
         for (int removed : { 0, 3 }) // every box kept; every third box's value 0
         {
@@ -512,17 +530,78 @@ TEST(CUDB, PixelRunsPaintTheBoxes)
             std::vector<std::int32_t> painted(expected.size(), -7);
             for (vbr::Coord y = 0; y < d[1]; ++y)
               std::fill_n(painted.begin() + std::ptrdiff_t(y + oy) * width + ox, d[0], 0);
-            vbr::paintPixelRuns(v,
-              runBoxes,
+            EXPECT_TRUE(vbr::paintPixelRuns(v,
+              pixelRuns,
               value,
               { ox, oy },
               width,
               painted.data(),
-              threads == 1 ? vbr::Execution() : bf::threadedExecution(threads));
+              threads == 1 ? vbr::Execution() : bf::threadedExecution(threads)));
             EXPECT_EQ(painted, expected) << threads << " threads, removed " << removed;
           }
         }
       }
+}
+
+TEST(CUDB, PixelRunsAbortBetweenSteps)
+{
+  // A stop asked for while the runs are painted: the painting stops at the first poll told to,
+  // between its steps of rows (here 4 of 256 rows: 2^14 words each), returns false, and the
+  // rows after the steps done stay 0; the progress reported before it increases within [0, 1).
+  // Not told to stop, it polls before every step and paints what box-by-box loops paint.
+  const vbr::BitVolume v = bf::randomVolume({ 4096, 1024, 1 }, 0.5, 77);
+  vbr::CUDB cudb;
+  vbr::Components components;
+  vbr::PixelRuns runs;
+  ASSERT_TRUE(vbr::buildCUDBComponents2D(v,
+    vbr::AxisOrder{ 2, 1, 0 },
+    vbr::Connectivity::Vertex,
+    vbr::Execution(),
+    cudb,
+    components,
+    nullptr,
+    &runs));
+  std::vector<std::int32_t> value(cudb.boxes.size());
+  for (std::size_t b = 0; b < value.size(); ++b)
+    value[b] = static_cast<std::int32_t>(b + 1);
+  const std::size_t width = 4096, rows = 1024, stepRows = 256;
+  std::vector<std::int32_t> expected(width * rows, 0);
+  for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
+    for (vbr::Coord y = cudb.boxes[b].lo[1]; y < cudb.boxes[b].hi[1]; ++y)
+      for (vbr::Coord x = cudb.boxes[b].lo[0]; x < cudb.boxes[b].hi[0]; ++x)
+        expected[std::size_t(y) * width + std::size_t(x)] = value[b];
+  for (int threads : { 1, 2 })
+  {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    vbr::Execution exec = threads == 1 ? vbr::Execution() : bf::threadedExecution(threads);
+    int polls = 0;
+    std::vector<double> reported;
+    exec.aborted = [&polls] { return ++polls > 2; };
+    exec.progress = [&reported](double f)
+    {
+      reported.push_back(f);
+      return true;
+    };
+    std::vector<std::int32_t> painted(expected.size(), 0);
+    EXPECT_FALSE(vbr::paintPixelRuns(v, runs, value, { 0, 0 }, width, painted.data(), exec));
+    EXPECT_EQ(polls, 3) << "stops at the first poll that is told to";
+    const auto done = static_cast<std::ptrdiff_t>(2 * stepRows * width);
+    EXPECT_TRUE(std::equal(painted.begin(), painted.begin() + done, expected.begin()))
+      << "the steps before the stop are painted";
+    EXPECT_EQ(
+      std::count(painted.begin() + done, painted.end(), 0), std::ptrdiff_t(painted.size()) - done)
+      << "nothing is painted after the stop";
+    EXPECT_EQ(reported, (std::vector<double>{ 0.0, 0.25 }));
+
+    int quiet = 0;
+    reported.clear();
+    exec.aborted = [&quiet] { return ++quiet < 0; };
+    std::fill(painted.begin(), painted.end(), 0);
+    EXPECT_TRUE(vbr::paintPixelRuns(v, runs, value, { 0, 0 }, width, painted.data(), exec));
+    EXPECT_EQ(quiet, 5) << "before every step, and once done";
+    EXPECT_EQ(reported, (std::vector<double>{ 0.0, 0.25, 0.5, 0.75 }));
+    EXPECT_EQ(painted, expected);
+  }
 }
 
 TEST(CUDB, PixelRowsAbortInsideTheImage)

@@ -726,6 +726,43 @@ void checkAbortInsideA2DImage()
   }
 }
 
+/// An abort while the RegionIds of one large 2D image are painted from its pixel runs (ZYX:
+/// rows along x), without seeds (PASS 3, 0.7 to 0.9) and with one (the painting that finds
+/// the seeds' regions, 0.7 to 0.8): the painting reports its progress and stops at the next
+/// step, nothing runs after it, and the filter writes no labels.
+void checkAbortWhilePainting()
+{
+  const Volume v = randomVolume({ 4096, 2048, 1 }, 0.5, 1, 405);
+  vtkNew<vtkImageData> image;
+  image->DeepCopy(makeImage(v, Layout()));
+  for (bool withSeeds : { false, true })
+  {
+    const std::string name = withSeeds ? "painting with seeds" : "painting";
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(image);
+    f->SetSortingOrderToZYX();
+    vtkNew<vtkPolyData> seeds;
+    vtkNew<vtkPoints> points;
+    points->InsertNextPoint(100.2, 50.3, 0);
+    seeds->SetPoints(points);
+    if (withSeeds)
+      f->SetSeedData(seeds);
+    vtkNew<AbortPastProgress> abort;
+    abort->At = 0.71; // PASS 1 ends at 0.7 (a little above, rounded): past it, the painting's
+    f->AddObserver(vtkCommand::ProgressEvent, abort);
+    f->Update();
+    CHECK(abort->AbortedAt > 0.71 && abort->AbortedAt < (withSeeds ? 0.8 : 0.9),
+      name + ": progress is reported while the runs are painted");
+    CHECK(std::all_of(abort->Seen.begin() + static_cast<std::ptrdiff_t>(abort->EventsBefore),
+            abort->Seen.end(),
+            [](double p) { return p == 1.0; }),
+      name + ": nothing runs after the abort");
+    CHECK(regionIds(f, Layout()).empty(), name + ": an aborted run writes no labels");
+    CHECK(f->GetOutput()->GetPointData()->GetNumberOfArrays() == 0,
+      name + ": an aborted run passes no arrays");
+  }
+}
+
 } // namespace
 
 int TestCUDBConnectivity(int, char*[])
@@ -737,6 +774,7 @@ int TestCUDBConnectivity(int, char*[])
   checkManySeeds();
   checkErrorsAndDegenerateInputs();
   checkAbortInsideA2DImage();
+  checkAbortWhilePainting();
   vtkNew<vtkCUDBConnectivity> f;
   std::ostringstream print;
   f->Print(print);
