@@ -10,6 +10,7 @@
 #include "vtkType.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
+#include "vtkVoxelBRepMemory.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -17,6 +18,8 @@
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 namespace vbr
@@ -91,8 +94,10 @@ private:
 };
 
 /// The offsets and connectivity of a vtkCellArray, written cell by cell, in 32-bit integers
-/// while every value fits (vtkCellArray's 32-bit storage, which every VTK filter and writer
-/// reads like the 64-bit one) and widened to 64 bits the first time one does not. The ids are
+/// while every value fits (vtkCellArray's 32-bit storage, which VTK's filters, writers and
+/// mappers read through the cell array's interface like the 64-bit one; code that takes the
+/// connectivity array for a vtkIdTypeArray does not) and widened to 64 bits the first time one
+/// does not. The ids are
 /// most of a large boundary's memory: a triangle's offset and three corners take 16 bytes
 /// instead of 32. Ids are never negative.
 class CellArrayBuffer
@@ -175,18 +180,26 @@ private:
     return true;
   }
 
-  /// Copies the 32-bit ids into 64-bit ones, once.
+  /// Copies the 32-bit ids into 64-bit ones, once. Both copies exist for a moment (12 bytes
+  /// an id): the need is checked first, and a failure leaves the buffer as it was.
   void widen()
   {
-    copyWide(this->Narrow.Offsets, this->Large.Offsets);
-    copyWide(this->Narrow.Connectivity, this->Large.Connectivity);
+    const double bytes =
+      8.0 * static_cast<double>(this->Narrow.Offsets.size() + this->Narrow.Connectivity.size());
+    const std::string refused = checkAllocation(bytes, "64-bit output cells");
+    if (!refused.empty())
+      throw std::runtime_error(refused);
+    vtkTypeInt64* offsets = this->Large.Offsets.extend(this->Narrow.Offsets.size());
+    vtkTypeInt64* connectivity = this->Large.Connectivity.extend(this->Narrow.Connectivity.size());
+    std::copy(this->Narrow.Offsets.data(),
+      this->Narrow.Offsets.data() + this->Narrow.Offsets.size(),
+      offsets);
+    std::copy(this->Narrow.Connectivity.data(),
+      this->Narrow.Connectivity.data() + this->Narrow.Connectivity.size(),
+      connectivity);
+    this->Narrow.Offsets.clear();
+    this->Narrow.Connectivity.clear();
     this->Wide = true;
-  }
-  static void copyWide(MallocBuffer<vtkTypeInt32>& from, MallocBuffer<vtkTypeInt64>& to)
-  {
-    vtkTypeInt64* out = to.extend(from.size());
-    std::copy(from.data(), from.data() + from.size(), out);
-    from.clear();
   }
 
   const std::int64_t NarrowLimit;

@@ -7,8 +7,9 @@
 // Delaunay triangulation of all its loops, whose triangles inside the face are those at odd
 // nesting depth from the outside (markNesting). fanPolygons gives what a renderer drawing a polygon
 // as the fan from its first corner draws right: the outer loop itself, started at a corner whose
-// fan covers it (fanApex), or else the triangles grouped into fans round shared corners
-// (FanGrouper).
+// fan covers it (fanApex), unless it passes a corner twice; else each edge-connected part of a
+// face merged at vertices likewise; or else the triangles grouped into fans round shared
+// corners (FanGrouper).
 
 #include "FaceTriangulator.h"
 

@@ -44,10 +44,10 @@ struct FanScratch
   std::vector<std::pair<std::uint64_t, int>> edges;
 };
 
-/// The cells of a run of faces in flat arrays (no allocation per face or per cell): cell k has
-/// the corners `corners[cellEnds[k - 1] .. cellEnds[k])` (cellEnds[-1] = 0), indices as in
-/// triangulateFace; the cells of the run's i-th face end at cell `faceEnds[i]`. `ring`,
-/// `loop2D`, `keys` and `fans` are scratch space reused from face to face.
+/// The cells of a run of faces in flat arrays (no allocation per cell, nor per face but for faces
+/// merged at vertices): cell k has the corners `corners[cellEnds[k - 1] .. cellEnds[k])`
+/// (cellEnds[-1] = 0), indices as in triangulateFace; the cells of the run's i-th face end at cell
+/// `faceEnds[i]`. `ring`, `loop2D`, `keys` and `fans` are scratch space reused from face to face.
 struct FaceCells
 {
   std::vector<int> corners;

@@ -93,8 +93,9 @@ bool collapseKeepsShape(const Mesh& m, Mesh::Halfedge_index h)
 }
 
 /// Whether two vertices lie at one point: pieces touching only there come out of the
-/// corefinement that way, a closed 2-manifold combinatorially but not an embedded one, and
-/// still touching after such a point, when it is no lattice point, is removed from both.
+/// corefinement that way, a closed 2-manifold combinatorially but not an embedded one. If that
+/// point is off the lattice, removeSteinerPoints would delete both vertices and hide the
+/// contact.
 bool hasCoincidentVertices(const Mesh& m)
 {
   std::vector<Kernel::Point_3> points;

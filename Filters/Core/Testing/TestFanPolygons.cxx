@@ -203,8 +203,8 @@ TEST(FanPolygons, TileTheFacesOfRandomVolumes)
 // checkerboard plate's top and bottom faces are one face each, with the white squares as
 // holes that touch the outer loop and each other at corners. Each black square is an
 // edge-connected part of its own, so the face's polygons are its squares, one 4-corner
-// polygon each (the triangulation of the whole face would group its triangles otherwise);
-// and the same face with one black square grown into an L (a part of 6 corners).
+// polygon each, and they are its parts (edgeConnectedPartsOf) up to the corner they start at;
+// the same with one black square grown into an L (a part of 6 corners).
 TEST(FanPolygons, FacesMergedAtCornersArePolygonsPerPart)
 {
   for (bool grown : { false, true })
@@ -243,6 +243,17 @@ TEST(FanPolygons, FacesMergedAtCornersArePolygonsPerPart)
       EXPECT_EQ(squares + others, polygons.size());
       EXPECT_EQ(int(squares), grown ? black - 4 : black) << "face " << f;
       EXPECT_EQ(int(others), grown ? 1 : 0) << "face " << f;
+      std::set<std::vector<int>> parts, drawn;
+      const auto fromSmallest = [](std::vector<int> p)
+      {
+        std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
+        return p;
+      };
+      for (const auto& p : vbr::edgeConnectedPartsOf(brep, static_cast<int>(f)))
+        parts.insert(fromSmallest(p));
+      for (const auto& p : polygons)
+        drawn.insert(fromSmallest(p));
+      EXPECT_EQ(parts, drawn) << "face " << f;
     }
     EXPECT_EQ(plateFaces, 2);
   }
@@ -251,7 +262,7 @@ TEST(FanPolygons, FacesMergedAtCornersArePolygonsPerPart)
 // The parts of faces merged at vertices (edgeConnectedPartsOf) against a flood fill of the
 // face's pixels: as many parts as 4-connected components, the same areas, each part a
 // counter-clockwise polygon that passes no corner twice. Random volumes and checkerboard
-// plates, merged at vertices or not (a face that is not split yields no parts, or one).
+// plates, merged at vertices or not (a face that is not split yields no parts).
 TEST(FanPolygons, PartsOfFacesAreTheirEdgeConnectedComponents)
 {
   int split = 0, parts = 0;
