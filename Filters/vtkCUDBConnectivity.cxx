@@ -328,8 +328,7 @@ std::int32_t numberRegions(const std::vector<Region>& regions,
 }
 
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
-/// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted (only
-/// the painting from pixel runs, of one huge image, stops on the way).
+/// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted.
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
   const std::vector<std::int32_t>* regionIds,
   const vbr::vtk::VoxelGrid& grid,
@@ -359,8 +358,8 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
             o.pixels, o.runs, values, { o.offset[0], o.offset[1] }, rowStep, out, exec))
         return nullptr;
     }
-    else
-      vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec);
+    else if (!vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec))
+      return nullptr;
   }
   return ids;
 }

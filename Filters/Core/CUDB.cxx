@@ -1006,6 +1006,9 @@ Components labelComponents(const CUDB& cudb, Connectivity connectivity)
 namespace
 {
 
+/// How many boxes a painting worker paints between two questions whether to stop.
+constexpr std::size_t StopPollBoxes = 4096;
+
 /// How paintBoxes walks a box: its coordinates k = 0..2 (box axes) and their steps in the
 /// grid, the row axis (the grid's x, contiguous) and the two others.
 struct PaintLayout
@@ -1038,7 +1041,7 @@ PaintLayout paintLayout(const std::array<int, 3>& axes, const std::array<Coord, 
 /// on 1.9 rows; the 3D loop took half again as long there). Workers own ranges of rows. The
 /// box's numbers are read into locals before its pixels are written: the pixels are int32
 /// like the coordinates, so each store would otherwise reload them.
-void paintPlanarBoxes(const std::vector<Box>& boxes,
+bool paintPlanarBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
   const PaintLayout& layout,
@@ -1053,11 +1056,14 @@ void paintPlanarBoxes(const std::vector<Box>& boxes,
   const Box* const box = boxes.data();
   const std::int32_t* const values = value.data();
   const std::size_t count = boxes.size();
+  const Execution* const stop = &exec;
   exec.forRange(dims[1],
     [=](std::int64_t from, std::int64_t to)
     {
       for (std::size_t b = 0; b < count; ++b)
       {
+        if (b % StopPollBoxes == 0 && stop->stopRequested())
+          return;
         const std::int32_t v = values[b];
         const std::int64_t lo = std::max<std::int64_t>(box[b].lo[split] + splitOffset, from);
         const std::int64_t hi = std::min<std::int64_t>(box[b].hi[split] + splitOffset, to);
@@ -1072,11 +1078,12 @@ void paintPlanarBoxes(const std::vector<Box>& boxes,
             line[x] = v;
       }
     });
+  return !exec.stopRequested();
 }
 
 } // namespace
 
-void paintBoxes(const std::vector<Box>& boxes,
+bool paintBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
   const std::array<int, 3>& axes,
@@ -1094,6 +1101,8 @@ void paintBoxes(const std::vector<Box>& boxes,
       // a plain loop per row: noise has hundreds of thousands of boxes of a few voxels.
       for (std::size_t b = 0; b < boxes.size(); ++b)
       {
+        if (b % StopPollBoxes == 0 && exec.stopRequested())
+          return;
         const std::int32_t v = value[b];
         if (v == 0)
           continue;
@@ -1116,6 +1125,7 @@ void paintBoxes(const std::vector<Box>& boxes,
           }
       }
     });
+  return !exec.stopRequested();
 }
 
 namespace

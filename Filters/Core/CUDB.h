@@ -160,8 +160,10 @@ std::size_t buildCUDBComponents2D(const BitVolume& pixels,
 /// Writes value[b] into every voxel of box b (boxes with value 0 are skipped) of `labels`, a
 /// grid of `dims` voxels stored x fastest. Box coordinates are shifted by `offset` and then
 /// permuted: coordinate k of a box is along axis axes[k] of the grid. Voxels outside the
-/// boxes are left as they are. Parallel over slices along z (rows for a single slice).
-void paintBoxes(const std::vector<Box>& boxes,
+/// boxes are left as they are. Parallel over slices along z (rows for a single slice). Every
+/// 4096 boxes each worker asks whether to stop; false when stopped (the labels then partly
+/// written).
+bool paintBoxes(const std::vector<Box>& boxes,
   const std::vector<std::int32_t>& value,
   const std::array<Coord, 3>& offset,
   const std::array<int, 3>& axes,

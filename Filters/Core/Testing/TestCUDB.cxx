@@ -9,11 +9,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -863,6 +865,47 @@ TEST(CUDB, Abort)
   vbr::Components components;
   EXPECT_FALSE(
     vbr::buildCUDBComponents(vbr::extractEVM(v), vbr::Connectivity::Face, exec, out, components));
+}
+
+// paintBoxes asks whether to stop every 4096 boxes in each worker: told to stop at once it
+// writes nothing and says so; told after a few polls it stops partway (fewer voxels written
+// than boxes hold); never told, it paints every box. A volume and a single slice (the planar
+// loop), one and three threads.
+TEST(CUDB, PaintBoxesStopsWhenAsked)
+{
+  for (const vbr::Point3 dims : { vbr::Point3{ 48, 48, 48 }, vbr::Point3{ 700, 700, 1 } })
+    for (int threads : { 1, 3 })
+    {
+      SCOPED_TRACE(testing::Message()
+        << dims[0] << "x" << dims[1] << "x" << dims[2] << ", " << threads << " threads");
+      const vbr::BitVolume v = bf::randomVolume(dims, 0.5, 21);
+      vbr::CUDB cudb;
+      vbr::Components components;
+      ASSERT_TRUE(vbr::buildCUDBComponents(
+        vbr::extractEVM(v), vbr::Connectivity::Face, vbr::Execution(), cudb, components));
+      ASSERT_GT(cudb.boxes.size(), 3u * 4096u); // three polls per worker at least
+      const std::vector<std::int32_t> value(cudb.boxes.size(), 1);
+      auto written = [&](int stopAfter, bool& finished)
+      {
+        vbr::Execution exec = bf::threadedExecution(threads);
+        auto polls = std::make_shared<std::atomic<int>>(0);
+        exec.aborted = [polls, stopAfter] { return stopAfter >= 0 && (*polls)++ >= stopAfter; };
+        std::vector<std::int32_t> labels(v.voxelCount(), 0);
+        finished = vbr::paintBoxes(
+          cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, v.dims(), labels.data(), exec);
+        return std::count(labels.begin(), labels.end(), 1);
+      };
+      bool finished = true;
+      EXPECT_EQ(written(0, finished), 0);
+      EXPECT_FALSE(finished);
+      const auto all = written(-1, finished);
+      EXPECT_TRUE(finished);
+      EXPECT_EQ(all, static_cast<long>(v.count()));
+      const auto partway = written(2, finished);
+      EXPECT_FALSE(finished);
+      EXPECT_GT(partway, 0);
+      EXPECT_LT(partway, all);
+    }
 }
 
 TEST(CUDB, InvalidEVMIsRejected)
