@@ -97,9 +97,8 @@ private:
 /// while every value fits (vtkCellArray's 32-bit storage, which VTK's filters, writers and
 /// mappers read through the cell array's interface like the 64-bit one; code that takes the
 /// connectivity array for a vtkIdTypeArray does not) and widened to 64 bits the first time one
-/// does not. The ids are
-/// most of a large boundary's memory: a triangle's offset and three corners take 16 bytes
-/// instead of 32. Ids are never negative.
+/// does not. The ids are most of a large boundary's memory: a triangle's offset and three
+/// corners take 16 bytes instead of 32. Ids are never negative.
 class CellArrayBuffer
 {
 public:
@@ -189,8 +188,18 @@ private:
     const std::string refused = checkAllocation(bytes, "64-bit output cells");
     if (!refused.empty())
       throw std::runtime_error(refused);
-    vtkTypeInt64* offsets = this->Large.Offsets.extend(this->Narrow.Offsets.size());
-    vtkTypeInt64* connectivity = this->Large.Connectivity.extend(this->Narrow.Connectivity.size());
+    vtkTypeInt64 *offsets = nullptr, *connectivity = nullptr;
+    try
+    {
+      offsets = this->Large.Offsets.extend(this->Narrow.Offsets.size());
+      connectivity = this->Large.Connectivity.extend(this->Narrow.Connectivity.size());
+    }
+    catch (...)
+    {
+      this->Large.Offsets.clear();
+      this->Large.Connectivity.clear();
+      throw;
+    }
     std::copy(this->Narrow.Offsets.data(),
       this->Narrow.Offsets.data() + this->Narrow.Offsets.size(),
       offsets);
