@@ -34,6 +34,13 @@ namespace vbr
 namespace
 {
 
+/// Two 32-bit integers as one key whose order is theirs, the first first: a corner's (u, v)
+/// location, or an edge's two corner indices.
+std::uint64_t pairKey(std::int64_t a, std::int64_t b)
+{
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint64_t(std::uint32_t(b));
+}
+
 struct FaceInfo
 {
   int nesting = -1;
@@ -208,8 +215,7 @@ bool visitsACornerTwice(const std::vector<Point2L>& corners, std::vector<std::ui
     return false;
   keys.resize(corners.size());
   for (std::size_t i = 0; i < corners.size(); ++i)
-    keys[i] = (std::uint64_t(std::uint32_t(corners[i][0])) << 32) |
-      std::uint64_t(std::uint32_t(corners[i][1]));
+    keys[i] = pairKey(corners[i][0], corners[i][1]);
   std::sort(keys.begin(), keys.end());
   return std::adjacent_find(keys.begin(), keys.end()) != keys.end();
 }
@@ -284,11 +290,7 @@ private:
     }
   }
 
-  static std::uint64_t key(int a, int b)
-  {
-    return a < b ? (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)
-                 : (std::uint64_t(std::uint32_t(b)) << 32) | std::uint32_t(a);
-  }
+  static std::uint64_t key(int a, int b) { return a < b ? pairKey(a, b) : pairKey(b, a); }
 
   /// The triangle across edge (apex, w) of triangle t, if untaken and not yet in this fan.
   int across(int t, int apex, int w) const
@@ -369,8 +371,7 @@ void insertLoops(const BRep& brep, const BRepFace& face, int u, int v, Cdt& cdt)
   for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
     for (const Point3& p : brep.loopPoints(l))
     {
-      const std::uint64_t key =
-        (std::uint64_t(std::uint32_t(p[u])) << 32) | std::uint64_t(std::uint32_t(p[v]));
+      const std::uint64_t key = pairKey(p[u], p[v]);
       const auto found = seen.emplace(key, index);
       if (found.second)
         distinct.emplace_back(Kernel::Point_2(p[u], p[v]), index);
@@ -466,9 +467,7 @@ bool joinPartsAtSharedCorners(LoopCorners& loops,
   const int n = static_cast<int>(loops.at.size());
   std::vector<std::pair<std::uint64_t, int>> byLocation(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
-    byLocation[i] = { (std::uint64_t(std::uint32_t(loops.at[i][u])) << 32) |
-        std::uint64_t(std::uint32_t(loops.at[i][v])),
-      i };
+    byLocation[i] = { pairKey(loops.at[i][u], loops.at[i][v]), i };
   if (byLocation.size() < 256)
     std::sort(byLocation.begin(), byLocation.end());
   else // stable: the corners of one location stay in index order

@@ -690,6 +690,13 @@ public:
       this->EventsBefore = this->Seen.size();
     }
   }
+  /// Whether every event after the abort is the executive's 1.0 when RequestData returns.
+  bool nothingRanAfter() const
+  {
+    return std::all_of(this->Seen.begin() + static_cast<std::ptrdiff_t>(this->EventsBefore),
+      this->Seen.end(),
+      [](double p) { return p == 1.0; });
+  }
   double At = 0;
   double AbortedAt = -1;
   std::size_t EventsBefore = 0;
@@ -717,11 +724,7 @@ void checkAbortInsideA2DImage()
     const std::string name = std::string("2D abort, sorting ") + f->GetSortingOrderAsString();
     CHECK(abort->AbortedAt > 0.3 && abort->AbortedAt < 0.7,
       name + ": progress is reported inside the sweep of one image");
-    // The executive reports 1.0 when RequestData returns; the filter reports nothing more.
-    CHECK(std::all_of(abort->Seen.begin() + static_cast<std::ptrdiff_t>(abort->EventsBefore),
-            abort->Seen.end(),
-            [](double p) { return p == 1.0; }),
-      name + ": nothing runs after the abort");
+    CHECK(abort->nothingRanAfter(), name + ": nothing runs after the abort");
     CHECK(regionIds(f, Layout()).empty(), name + ": an aborted run writes no labels");
   }
 }
@@ -753,10 +756,7 @@ void checkAbortWhilePainting()
     f->Update();
     CHECK(abort->AbortedAt > 0.71 && abort->AbortedAt < (withSeeds ? 0.8 : 0.9),
       name + ": progress is reported while the runs are painted");
-    CHECK(std::all_of(abort->Seen.begin() + static_cast<std::ptrdiff_t>(abort->EventsBefore),
-            abort->Seen.end(),
-            [](double p) { return p == 1.0; }),
-      name + ": nothing runs after the abort");
+    CHECK(abort->nothingRanAfter(), name + ": nothing runs after the abort");
     CHECK(regionIds(f, Layout()).empty(), name + ": an aborted run writes no labels");
     CHECK(f->GetOutput()->GetPointData()->GetNumberOfArrays() == 0,
       name + ": an aborted run passes no arrays");
