@@ -901,10 +901,15 @@ TEST(CUDB, PaintBoxesStopsWhenAsked)
       const auto all = written(-1, finished);
       EXPECT_TRUE(finished);
       EXPECT_EQ(all, static_cast<long>(v.count()));
+      // Told after two polls: some worker is told at its first poll and paints none of its
+      // rows, so not everything is written whatever the threads' order; only one thread
+      // surely paints the boxes before its third poll (with three, the first two polls may
+      // go to workers whose rows the first boxes do not reach).
       const auto partway = written(2, finished);
       EXPECT_FALSE(finished);
-      EXPECT_GT(partway, 0);
       EXPECT_LT(partway, all);
+      if (threads == 1)
+        EXPECT_GT(partway, 0);
     }
 }
 
