@@ -222,22 +222,23 @@ public:
     appendLineVertices(this->BdBelow.data(), words, top, this->Box.lowV, bd);
   }
 
-  /// The vertices (0, u, v) of S, sorted.
-  void vertices(std::vector<Vertex>& out)
+  /// Formula 1 alone: S ^= the region of the cut [cut, cutEnd), whose rows end where the cut's
+  /// lines do (the rows past its last line are outside its region).
+  void xorCut(const Vertex* cut, const Vertex* cutEnd)
   {
-    out.clear();
-    const std::size_t words = this->Box.words;
-    std::fill(this->Change.begin(), this->Change.end(), 0);
-    for (std::size_t r = 0; r <= this->Box.rows; ++r)
+    std::fill(this->Cut.begin(), this->Cut.end(), 0);
+    for (std::size_t r = 0; r < this->Box.rows && cut != cutEnd; ++r)
     {
-      const Word* below = r > 0 ? this->Cells.data() + (r - 1) * words : nullptr;
-      const Word* above = r < this->Box.rows ? this->Cells.data() + r * words : nullptr;
-      for (std::size_t w = 0; w < words; ++w)
-        this->Change[w] = (below ? below[w] : 0) ^ (above ? above[w] : 0);
-      appendLineVertices(
-        this->Change.data(), words, this->Box.lowU + static_cast<Coord>(r), this->Box.lowV, out);
+      this->readLine(cut, cutEnd, this->Box.lowU + static_cast<Coord>(r));
+      Word* s = this->Cells.data() + r * this->Box.words;
+      for (std::size_t w = 0; w < this->Box.words; ++w)
+        s[w] ^= this->Cut[w];
     }
   }
+
+  /// S as its rows of bits, to be handed to another BitSection of the same box.
+  const std::vector<Word>& cells() const { return this->Cells; }
+  void assignCells(const std::vector<Word>& cells) { this->Cells = cells; }
 
 private:
   /// Reads the vertices of line u from `at` on (advancing it) into Cut, the region of the
@@ -268,8 +269,9 @@ struct PlaneChunk
   const EVM* sorted = nullptr;
   const std::vector<std::size_t>* starts = nullptr; ///< plane starts of *sorted
   std::size_t firstPlane = 0, endPlane = 0;
-  std::vector<Vertex> section;     ///< S(firstPlane - 1)
+  std::vector<Vertex> section;     ///< S(firstPlane - 1), as vertices
   const SectionBox* box = nullptr; ///< when the sections are kept as rows of bits
+  std::vector<Word> cells; ///< S(firstPlane - 1) as rows of bits, when not empty (then not section)
 };
 
 /// The cut of plane `p` (formula 1's C(i)): its vertices projected along the sweep's axis, into
@@ -331,13 +333,14 @@ void forwardAndBackwardDifferences(const std::vector<Vertex>& cut,
 
 /// Sweeps a chunk of planes: for each cut, the next section (formula 1), the forward and
 /// backward differences (formula 4) and their faces by the 2D plane sweep, FD facing +A and
-/// BD facing -A. With `exit`, the section after the chunk's last plane goes there.
+/// BD facing -A. With `exit`, the section after the chunk's last plane goes there (as the
+/// chunk holds it: rows of bits or vertices).
 bool sweepChunk(const PlaneChunk& chunk,
   FaceConnectivity connectivity,
   const Execution& exec,
   std::atomic<bool>& abort,
   BRep& out,
-  std::vector<Vertex>* exit = nullptr)
+  PlaneChunk* exit = nullptr)
 {
   out.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   const EVM& sorted = *chunk.sorted;
@@ -348,7 +351,10 @@ bool sweepChunk(const PlaneChunk& chunk,
   if (chunk.box)
   {
     bits.reset(new BitSection(*chunk.box));
-    bits->assign(chunk.section);
+    if (chunk.cells.empty())
+      bits->assign(chunk.section);
+    else
+      bits->assignCells(chunk.cells);
   }
   else
     section = chunk.section;
@@ -381,9 +387,9 @@ bool sweepChunk(const PlaneChunk& chunk,
       out);
   }
   if (exit && bits)
-    bits->vertices(*exit);
+    exit->cells = bits->cells();
   else if (exit)
-    exit->swap(section);
+    exit->section.swap(section);
   return true;
 }
 
@@ -441,24 +447,42 @@ bool streamSorting(const EVM& sorted,
   const Vertex* v = sorted.vertices().data();
   std::atomic<bool> abort{ false };
   // S(p - 1), entering the next batch: the last chunk of a batch leaves it, so that only the
-  // sections entering the batch's other chunks need the sequential XORs (none on one thread).
-  std::vector<Vertex> section, next, cut;
+  // sections entering the batch's other chunks need the sequential XORs (none on one thread),
+  // word by word when the sections are rows of bits.
+  PlaneChunk entering{ &sorted, &starts, 0, 0, {}, bitBox, {} };
+  std::unique_ptr<BitSection> walker(bitBox ? new BitSection(*bitBox) : nullptr);
+  std::vector<Vertex> next, cut;
   std::vector<PlaneChunk> chunks;
   std::vector<BRep> parts;
   for (std::size_t p = 0; p < planes;)
   {
     chunks.clear();
-    chunks.push_back({ &sorted, &starts, p, std::min(planes, p + step), section, bitBox });
+    entering.firstPlane = p;
+    entering.endPlane = std::min(planes, p + step);
+    chunks.push_back(entering);
     while (chunks.size() < batch && chunks.back().endPlane < planes)
     {
-      const std::size_t from = chunks.back().endPlane;
-      for (std::size_t q = chunks.back().firstPlane; q < from; ++q)
+      PlaneChunk c = chunks.back();
+      if (walker)
       {
-        cutOf(v, starts, q, cut);
-        xorPlanes(section, cut, next);
-        section.swap(next);
+        if (c.cells.empty())
+          walker->assign(c.section);
+        else
+          walker->assignCells(c.cells);
+        for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
+          walker->xorCut(v + starts[q], v + starts[q + 1]);
+        c.cells = walker->cells();
       }
-      chunks.push_back({ &sorted, &starts, from, std::min(planes, from + step), section, bitBox });
+      else
+        for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
+        {
+          cutOf(v, starts, q, cut);
+          xorPlanes(c.section, cut, next);
+          c.section.swap(next);
+        }
+      c.firstPlane = c.endPlane;
+      c.endPlane = std::min(planes, c.firstPlane + step);
+      chunks.push_back(std::move(c));
     }
     p = chunks.back().endPlane;
     parts.assign(chunks.size(), BRep());
@@ -472,7 +496,7 @@ bool streamSorting(const EVM& sorted,
                 exec,
                 abort,
                 parts[c],
-                static_cast<std::size_t>(c) == last ? &section : nullptr))
+                static_cast<std::size_t>(c) == last ? &entering : nullptr))
             abort = true;
       });
     for (BRep& part : parts)
