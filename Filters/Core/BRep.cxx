@@ -98,18 +98,19 @@ void appendFaces(const Boundary2D& b2,
   int normalSign,
   BRep& out)
 {
+  // The loops hold all of b2's points: one resize, then each loop written in place in its
+  // final order, with no check of capacity per corner.
+  const std::size_t first = out.points.size();
+  out.points.resize(first + b2.points.size());
+  Point3* to = out.points.data() + first;
   appendFacesOf(b2,
     order,
     position,
     normalSign,
-    out.points.size(),
+    first,
     out,
     [&](std::size_t begin, std::size_t end, bool reverse)
     {
-      // Written in place, in the loop's final order: no check of capacity per corner.
-      const std::size_t first = out.points.size();
-      out.points.resize(first + (end - begin));
-      Point3* to = out.points.data() + first;
       const Point2* from = b2.points.data();
       if (reverse)
         for (std::size_t i = end; i-- > begin;)

@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -63,19 +64,233 @@ void xorPlanes(const std::vector<Vertex>& a, const std::vector<Vertex>& b, std::
 /// of the few chunks swept at a time are all that is alive of them.
 constexpr std::size_t StreamChunks = 64;
 
+/// The box of (B, C) cells that every section and cut of one sorting lies in: row r holds the
+/// cells between lines u = lowU + r and u + 1, bit k of it the cell between v = lowV + k and
+/// v + 1. With one word per 64 cells, a section is a few words per line.
+struct SectionBox
+{
+  Coord lowU = 0, lowV = 0;
+  std::size_t rows = 0;  ///< lines of vertices - 1
+  std::size_t words = 0; ///< per row, room for the vertices' bits too (one more than the cells)
+};
+
+/// The box of the vertices of a sorting in (B, C).
+SectionBox sectionBoxOf(const EVM& sorted)
+{
+  SectionBox box;
+  if (sorted.empty())
+    return box;
+  const Vertex& first = sorted.vertices()[0];
+  Coord lowU = first[1], highU = lowU, lowV = first[2], highV = lowV;
+  for (const Vertex& p : sorted.vertices())
+  {
+    lowU = std::min(lowU, p[1]);
+    highU = std::max(highU, p[1]);
+    lowV = std::min(lowV, p[2]);
+    highV = std::max(highV, p[2]);
+  }
+  box.lowU = lowU;
+  box.lowV = lowV;
+  box.rows = static_cast<std::size_t>(std::int64_t(highU) - lowU);
+  box.words = static_cast<std::size_t>(std::int64_t(highV) - lowV) / 64 + 1;
+  return box;
+}
+
+/// Whether the sections of a sorting are better kept as rows of bits than as vertex lists:
+/// when the words of all its planes' boxes are no more than a few per vertex (porous and noisy
+/// volumes, whose planes are full of vertices). A sparse object in a large box keeps lists.
+bool bitRowsPay(const SectionBox& box, std::size_t planes, std::size_t vertices)
+{
+  const double words = double(box.rows + 1) * double(box.words) * double(planes);
+  return box.rows > 0 && words <= 4.0 * double(vertices);
+}
+
+/// The prefix XOR of a row of bits along v, XORed into `into`: cell k of a region is the
+/// parity of the vertices at or before k on its line and the lines before.
+void xorPrefixInto(const std::vector<Word>& bits, std::vector<Word>& into)
+{
+  Word carry = 0; // all ones when the bits of the words before have odd parity
+  for (std::size_t w = 0; w < bits.size(); ++w)
+  {
+    Word x = bits[w];
+    x ^= x << 1;
+    x ^= x << 2;
+    x ^= x << 4;
+    x ^= x << 8;
+    x ^= x << 16;
+    x ^= x << 32;
+    x ^= carry;
+    carry = Word(0) - (x >> 63);
+    into[w] ^= x;
+  }
+}
+
+/// The vertices (0, u, v) of a line, where the cells of `change` (the XOR of the cell rows on
+/// either side of the line) begin or end, appended in order of v.
+void appendLineVertices(const Word* change,
+  std::size_t words,
+  Coord u,
+  Coord lowV,
+  std::vector<Vertex>& out)
+{
+  Word carry = 0;
+  for (std::size_t w = 0; w < words; ++w)
+  {
+    Word x = change[w] ^ ((change[w] << 1) | carry);
+    carry = change[w] >> 63;
+    for (; x != 0; x &= x - 1)
+      out.push_back(
+        { 0, u, static_cast<Coord>(lowV + 64 * std::int64_t(w) + countTrailingZeros(x)) });
+  }
+}
+
+/// The section of a sweep kept as rows of bits over the sorting's box (formula 1 as a word
+/// XOR), with the forward and backward differences of each cut found word by word: FD = S(i-1)
+/// AND C(i), BD = S(i) AND C(i), their vertices where their rows change from line to line.
+/// The results are the vertex lists the merges of sorted lists give (an EVM is unique).
+class BitSection
+{
+public:
+  explicit BitSection(const SectionBox& box)
+    : Box(box)
+    , Cells(box.rows * box.words, 0)
+    , Cut(box.words)
+    , LineBits(box.words)
+    , FdBelow(box.words)
+    , BdBelow(box.words)
+    , Change(box.words)
+  {
+  }
+
+  /// S = the region of these vertices (0, u, v), sorted.
+  void assign(const std::vector<Vertex>& section)
+  {
+    std::fill(this->Cells.begin(), this->Cells.end(), 0);
+    std::fill(this->Cut.begin(), this->Cut.end(), 0);
+    const Vertex *c = section.data(), *end = c + section.size();
+    for (std::size_t r = 0; r < this->Box.rows; ++r)
+    {
+      this->readLine(c, end, this->Box.lowU + static_cast<Coord>(r));
+      Word* s = this->Cells.data() + r * this->Box.words;
+      for (std::size_t w = 0; w < this->Box.words; ++w)
+        s[w] = this->Cut[w];
+    }
+  }
+
+  /// Formula 1 for the cut [cut, cutEnd) (vertices (a, u, v), sorted) and the vertices of its
+  /// forward and backward differences (formula 4), into `fd` and `bd`.
+  void sweepCut(const Vertex* cut,
+    const Vertex* cutEnd,
+    std::vector<Vertex>& fd,
+    std::vector<Vertex>& bd)
+  {
+    fd.clear();
+    bd.clear();
+    const std::size_t words = this->Box.words;
+    std::fill(this->Cut.begin(), this->Cut.end(), 0);
+    std::fill(this->FdBelow.begin(), this->FdBelow.end(), 0);
+    std::fill(this->BdBelow.begin(), this->BdBelow.end(), 0);
+    bool cutAny = false, fdAny = false, bdAny = false; // in Cut, FdBelow, BdBelow
+    for (std::size_t r = 0; r < this->Box.rows; ++r)
+    {
+      const Coord u = this->Box.lowU + static_cast<Coord>(r);
+      if (this->readLine(cut, cutEnd, u))
+        cutAny = std::any_of(this->Cut.begin(), this->Cut.end(), [](Word x) { return x != 0; });
+      if (!cutAny && !fdAny && !bdAny)
+        continue; // no cut here nor a difference below: nothing changes on this line
+      Word* s = this->Cells.data() + r * words;
+      Word fdOr = 0, bdOr = 0;
+      for (std::size_t w = 0; w < words; ++w)
+      {
+        const Word c = this->Cut[w], before = s[w], after = before ^ c;
+        const Word f = before & c, b = after & c;
+        s[w] = after;
+        this->Change[w] = f ^ this->FdBelow[w];
+        this->FdBelow[w] = f;
+        this->LineBits[w] = b ^ this->BdBelow[w];
+        this->BdBelow[w] = b;
+        fdOr |= f;
+        bdOr |= b;
+      }
+      appendLineVertices(this->Change.data(), words, u, this->Box.lowV, fd);
+      appendLineVertices(this->LineBits.data(), words, u, this->Box.lowV, bd);
+      fdAny = fdOr != 0;
+      bdAny = bdOr != 0;
+    }
+    const Coord top = this->Box.lowU + static_cast<Coord>(this->Box.rows);
+    appendLineVertices(this->FdBelow.data(), words, top, this->Box.lowV, fd);
+    appendLineVertices(this->BdBelow.data(), words, top, this->Box.lowV, bd);
+  }
+
+  /// Formula 1 alone: S ^= the region of the cut [cut, cutEnd), whose rows end where the cut's
+  /// lines do (the rows past its last line are outside its region).
+  void xorCut(const Vertex* cut, const Vertex* cutEnd)
+  {
+    std::fill(this->Cut.begin(), this->Cut.end(), 0);
+    for (std::size_t r = 0; r < this->Box.rows && cut != cutEnd; ++r)
+    {
+      this->readLine(cut, cutEnd, this->Box.lowU + static_cast<Coord>(r));
+      Word* s = this->Cells.data() + r * this->Box.words;
+      for (std::size_t w = 0; w < this->Box.words; ++w)
+        s[w] ^= this->Cut[w];
+    }
+  }
+
+  /// S as its rows of bits, to be handed to another BitSection of the same box.
+  const std::vector<Word>& cells() const { return this->Cells; }
+  void assignCells(const std::vector<Word>& cells) { this->Cells = cells; }
+
+private:
+  /// Reads the vertices of line u from `at` on (advancing it) into Cut, the region of the
+  /// lines read so far at this line; false when the line has none.
+  bool readLine(const Vertex*& at, const Vertex* end, Coord u)
+  {
+    if (at == end || (*at)[1] != u)
+      return false;
+    std::fill(this->LineBits.begin(), this->LineBits.end(), 0);
+    for (; at != end && (*at)[1] == u; ++at)
+    {
+      const std::size_t k = static_cast<std::size_t>(std::int64_t((*at)[2]) - this->Box.lowV);
+      this->LineBits[k >> 6] ^= Word(1) << (k & 63);
+    }
+    xorPrefixInto(this->LineBits, this->Cut);
+    return true;
+  }
+
+  SectionBox Box;
+  std::vector<Word> Cells; ///< S, row after row
+  std::vector<Word> Cut;   ///< the cut's region on the current row
+  std::vector<Word> LineBits, FdBelow, BdBelow, Change;
+};
+
 /// A run of consecutive planes of vertices of one sorting, with the section before it.
 struct PlaneChunk
 {
   const EVM* sorted = nullptr;
   const std::vector<std::size_t>* starts = nullptr; ///< plane starts of *sorted
   std::size_t firstPlane = 0, endPlane = 0;
-  std::vector<Vertex> section; ///< S(firstPlane - 1)
+  std::vector<Vertex> section;     ///< S(firstPlane - 1), as vertices
+  const SectionBox* box = nullptr; ///< when the sections are kept as rows of bits
+  std::vector<Word> cells; ///< S(firstPlane - 1) as rows of bits, when not empty (then not section)
 };
+
+/// The cut of plane `p` (formula 1's C(i)): its vertices projected along the sweep's axis, into
+/// `cut`, whose memory is reused from plane to plane.
+void cutOf(const Vertex* v,
+  const std::vector<std::size_t>& starts,
+  std::size_t p,
+  std::vector<Vertex>& cut)
+{
+  cut.assign(v + starts[p], v + starts[p + 1]);
+  for (Vertex& c : cut)
+    c[0] = 0;
+}
 
 /// Splits every sorting's planes into about `perAxis` chunks; the sections at chunk starts come
 /// from one sequential pass of XORs (formula 1), the cheap part of the sweep.
 std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3],
   const std::vector<std::size_t> (&planeStarts)[3],
+  const SectionBox* (&boxes)[3],
   std::size_t perAxis)
 {
   std::vector<PlaneChunk> chunks;
@@ -86,21 +301,13 @@ std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3],
     const std::size_t planes = starts.size() - 1;
     const std::size_t step = std::max<std::size_t>(1, (planes + perAxis - 1) / perAxis);
     const Vertex* v = evm.vertices().data();
-    std::vector<Vertex> section;
+    std::vector<Vertex> section, next, cut;
     for (std::size_t p = 0; p < planes; ++p)
     {
       if (p % step == 0)
-      {
-        PlaneChunk c;
-        c.sorted = &evm;
-        c.starts = &starts;
-        c.firstPlane = p;
-        c.endPlane = std::min(planes, p + step);
-        c.section = section;
-        chunks.push_back(std::move(c));
-      }
-      std::vector<Vertex> next;
-      xorPlanes(section, project(v + starts[p], v + starts[p + 1], 0), next);
+        chunks.push_back({ &evm, &starts, p, std::min(planes, p + step), section, boxes[axis] });
+      cutOf(v, starts, p, cut);
+      xorPlanes(section, cut, next);
       section.swap(next);
     }
   }
@@ -124,32 +331,33 @@ void forwardAndBackwardDifferences(const std::vector<Vertex>& cut,
   xorPlanes(cut, fd, bd);
 }
 
-/// The cut of plane `p` (formula 1's C(i)): its vertices projected along the sweep's axis, into
-/// `cut`, whose memory is reused from plane to plane.
-void cutOf(const Vertex* v,
-  const std::vector<std::size_t>& starts,
-  std::size_t p,
-  std::vector<Vertex>& cut)
-{
-  cut.assign(v + starts[p], v + starts[p + 1]);
-  for (Vertex& c : cut)
-    c[0] = 0;
-}
-
 /// Sweeps a chunk of planes: for each cut, the next section (formula 1), the forward and
 /// backward differences (formula 4) and their faces by the 2D plane sweep, FD facing +A and
-/// BD facing -A.
+/// BD facing -A. With `exit`, the section after the chunk's last plane goes there (as the
+/// chunk holds it: rows of bits or vertices).
 bool sweepChunk(const PlaneChunk& chunk,
   FaceConnectivity connectivity,
   const Execution& exec,
   std::atomic<bool>& abort,
-  BRep& out)
+  BRep& out,
+  PlaneChunk* exit = nullptr)
 {
   out.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   const EVM& sorted = *chunk.sorted;
   const auto& starts = *chunk.starts;
   const Vertex* v = sorted.vertices().data();
-  std::vector<Vertex> section = chunk.section, next, cut, fd, bd;
+  std::vector<Vertex> section, next, cut, fd, bd;
+  std::unique_ptr<BitSection> bits;
+  if (chunk.box)
+  {
+    bits.reset(new BitSection(*chunk.box));
+    if (chunk.cells.empty())
+      bits->assign(chunk.section);
+    else
+      bits->assignCells(chunk.cells);
+  }
+  else
+    section = chunk.section;
   for (std::size_t p = chunk.firstPlane; p < chunk.endPlane; ++p)
   {
     if (abort || exec.stopRequested())
@@ -158,9 +366,15 @@ bool sweepChunk(const PlaneChunk& chunk,
       return false;
     }
     const Coord position = v[starts[p]][0];
-    cutOf(v, starts, p, cut);
-    xorPlanes(section, cut, next);
-    forwardAndBackwardDifferences(cut, section, fd, bd);
+    if (bits)
+      bits->sweepCut(v + starts[p], v + starts[p + 1], fd, bd);
+    else
+    {
+      cutOf(v, starts, p, cut);
+      xorPlanes(section, cut, next);
+      forwardAndBackwardDifferences(cut, section, fd, bd);
+      section.swap(next);
+    }
     appendFaces(planeSweep2D(fd.data(), fd.data() + fd.size(), connectivity),
       sorted.order(),
       position,
@@ -171,8 +385,11 @@ bool sweepChunk(const PlaneChunk& chunk,
       position,
       -1,
       out);
-    section.swap(next);
   }
+  if (exit && bits)
+    exit->cells = bits->cells();
+  else if (exit)
+    exit->section.swap(section);
   return true;
 }
 
@@ -225,30 +442,61 @@ bool streamSorting(const EVM& sorted,
   const std::size_t planes = starts.size() - 1;
   const std::size_t batch = static_cast<std::size_t>(std::max(1, exec.concurrency));
   const std::size_t step = std::max<std::size_t>(1, (planes + StreamChunks - 1) / StreamChunks);
+  const SectionBox box = sectionBoxOf(sorted);
+  const SectionBox* bitBox = bitRowsPay(box, planes, sorted.size()) ? &box : nullptr;
   const Vertex* v = sorted.vertices().data();
   std::atomic<bool> abort{ false };
-  std::vector<Vertex> section, next; // S(p - 1), entering the next chunk
+  // S(p - 1), entering the next batch: the last chunk of a batch leaves it, so that only the
+  // sections entering the batch's other chunks need the sequential XORs (none on one thread),
+  // word by word when the sections are rows of bits.
+  PlaneChunk entering{ &sorted, &starts, 0, 0, {}, bitBox, {} };
+  std::unique_ptr<BitSection> walker(bitBox ? new BitSection(*bitBox) : nullptr);
+  std::vector<Vertex> next, cut;
   std::vector<PlaneChunk> chunks;
   std::vector<BRep> parts;
   for (std::size_t p = 0; p < planes;)
   {
-    // The next chunks with the sections entering them (formula 1, sequential and cheap).
     chunks.clear();
-    for (; p < planes && chunks.size() < batch; p = chunks.back().endPlane)
+    entering.firstPlane = p;
+    entering.endPlane = std::min(planes, p + step);
+    chunks.push_back(entering);
+    while (chunks.size() < batch && chunks.back().endPlane < planes)
     {
-      chunks.push_back({ &sorted, &starts, p, std::min(planes, p + step), section });
-      for (std::size_t q = p; q < chunks.back().endPlane; ++q)
+      PlaneChunk c = chunks.back();
+      if (walker)
       {
-        xorPlanes(section, project(v + starts[q], v + starts[q + 1], 0), next);
-        section.swap(next);
+        if (c.cells.empty())
+          walker->assign(c.section);
+        else
+          walker->assignCells(c.cells);
+        for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
+          walker->xorCut(v + starts[q], v + starts[q + 1]);
+        c.cells = walker->cells();
       }
+      else
+        for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
+        {
+          cutOf(v, starts, q, cut);
+          xorPlanes(c.section, cut, next);
+          c.section.swap(next);
+        }
+      c.firstPlane = c.endPlane;
+      c.endPlane = std::min(planes, c.firstPlane + step);
+      chunks.push_back(std::move(c));
     }
+    p = chunks.back().endPlane;
     parts.assign(chunks.size(), BRep());
+    const std::size_t last = chunks.size() - 1;
     exec.forRange(static_cast<std::int64_t>(chunks.size()),
       [&](std::int64_t b, std::int64_t e)
       {
         for (std::int64_t c = b; c < e; ++c)
-          if (!sweepChunk(chunks[c], connectivity, exec, abort, parts[c]))
+          if (!sweepChunk(chunks[c],
+                connectivity,
+                exec,
+                abort,
+                parts[c],
+                static_cast<std::size_t>(c) == last ? &entering : nullptr))
             abort = true;
       });
     for (BRep& part : parts)
@@ -298,7 +546,15 @@ bool planeSweep3DParts(const EVM& evm,
   const std::vector<std::size_t> starts[3] = {
     sorted[0].planeStarts(), sorted[1].planeStarts(), sorted[2].planeStarts()
   };
-  const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, starts, 8);
+  SectionBox box[3];
+  const SectionBox* bitBoxes[3];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    box[axis] = sectionBoxOf(sorted[axis]);
+    bitBoxes[axis] =
+      bitRowsPay(box[axis], starts[axis].size() - 1, sorted[axis].size()) ? &box[axis] : nullptr;
+  }
+  const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, starts, bitBoxes, 8);
   parts.resize(chunks.size());
   exec.forRange(static_cast<std::int64_t>(chunks.size()),
     [&](std::int64_t b, std::int64_t e)

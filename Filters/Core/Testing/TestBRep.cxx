@@ -399,6 +399,32 @@ void expectSameBRep(const vbr::BRep& a, const vbr::BRep& b)
   ASSERT_EQ(a.points, b.points);
 }
 
+/// The faces of `brep` whose plane is not one of `skipped` (axis, position), with their loops
+/// and points, in order.
+vbr::BRep withoutFacesAt(const vbr::BRep& brep, const std::set<std::pair<int, int>>& skipped)
+{
+  vbr::BRep kept;
+  for (const vbr::BRepFace& f : brep.faces)
+  {
+    if (skipped.count({ f.axis, f.position }))
+      continue;
+    vbr::BRepFace g = f;
+    g.firstLoop = static_cast<int>(kept.loops.size());
+    for (int l = f.firstLoop; l < f.firstLoop + f.loopCount; ++l)
+    {
+      vbr::BRepLoop loop = brep.loops[l];
+      loop.face = static_cast<int>(kept.faces.size());
+      loop.begin = kept.points.size();
+      const auto points = brep.loopPoints(l);
+      kept.points.insert(kept.points.end(), points.begin(), points.end());
+      loop.end = kept.points.size();
+      kept.loops.push_back(loop);
+    }
+    kept.faces.push_back(g);
+  }
+  return kept;
+}
+
 } // namespace
 
 // The corners read from the voxels are exactly those of the plane sweep's loops (its own
@@ -480,6 +506,53 @@ TEST(BRep, StreamedPartsAreTheSweepsFaces)
       int calls = 0;
       EXPECT_FALSE(vbr::planeSweep3DStream(evm, c, exec, [&](vbr::BRep&) { return ++calls < 5; }));
       EXPECT_EQ(calls, 5);
+    }
+  }
+}
+
+// The sweep keeps its sections as rows of bits when its planes are full of vertices and as
+// vertex lists when they are sparse in their box: a porous block alone (rows of bits, checked
+// against brute force by RandomVolumesMatchBruteForce) and with one voxel far from it (lists)
+// has the same faces, streamed or not, on one thread or several.
+TEST(BRep, SparseAndDenseSectionsGiveTheSameFaces)
+{
+  unsigned seed = 7300;
+  for (int trial = 0; trial < 4; ++trial)
+  {
+    const vbr::Point3 d{ 9 + trial, 8, 6 + trial };
+    const vbr::BitVolume block = bf::randomVolume(d, 0.3 + 0.15 * trial, seed++);
+    vbr::BitVolume sparse(200, 400, 400);
+    for (int z = 0; z < d[2]; ++z)
+      for (int y = 0; y < d[1]; ++y)
+        for (int x = 0; x < d[0]; ++x)
+          if (block.get(x, y, z))
+            sparse.set(x, y, z);
+    sparse.set(199, 399, 399);
+    const std::set<std::pair<int, int>> farPlanes{
+      { 0, 199 }, { 0, 200 }, { 1, 399 }, { 1, 400 }, { 2, 399 }, { 2, 400 }
+    };
+    const vbr::FaceConnectivity c =
+      trial % 2 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    vbr::BRep alone, withFar;
+    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(block), c, {}, alone));
+    const vbr::EVM evm = vbr::extractEVM(sparse);
+    ASSERT_TRUE(vbr::planeSweep3D(evm, c, {}, withFar));
+    EXPECT_EQ(withFar.faces.size(), alone.faces.size() + 6);
+    expectSameBRep(withoutFacesAt(withFar, farPlanes), alone);
+    for (int threads : { 1, 3 })
+    {
+      const vbr::Execution exec = threads == 1 ? vbr::Execution() : bf::threadedExecution(threads);
+      std::vector<vbr::BRep> parts;
+      ASSERT_TRUE(vbr::planeSweep3DStream(evm,
+        c,
+        exec,
+        [&](vbr::BRep& part)
+        {
+          parts.push_back(std::move(part));
+          return true;
+        }));
+      expectSameBRep(joined(parts), withFar);
     }
   }
 }
