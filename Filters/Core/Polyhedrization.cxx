@@ -1005,43 +1005,59 @@ bool polyhedrize(const SurfelGraph& graph,
 namespace
 {
 
-/// The digital half-space below a standard plane: voxels whose centre c has
-/// n.c < mu + omega / 2, i.e. 2 n.v + (a + b + c) < 2 mu + omega for the lower corner v.
-bool below(const StandardPlane& plane, const Point3& voxel)
+/// The surfels of a standard plane, with its constants computed once per face: the boundary of
+/// the digital half-space below it (the voxels whose centre c has n.c < mu + omega / 2, i.e.
+/// 2 n.v < 2 mu + omega - (a + b + c) for the lower corner v).
+class PlaneSurfels
 {
-  const auto& n = plane.normal;
-  return 2 * plane.value(voxel) + n[0] + n[1] + n[2] < 2 * plane.mu + plane.omega();
-}
-
-/// The surfel of the plane whose counter-clockwise boundary runs p -> q, if any.
-bool surfelLeftOf(const StandardPlane& plane, const Point3& p, const Point3& q, Surfel& out)
-{
-  const Point3 t = sub(q, p);
-  const int along = directionOf(t) >> 1;
-  int found = 0;
-  for (int d = 0; d < 3; ++d)
+public:
+  explicit PlaneSurfels(const StandardPlane& plane)
+    : Normal(plane.normal)
+    , Bound(2 * plane.mu + plane.omega() - plane.normal[0] - plane.normal[1] - plane.normal[2])
   {
-    if (d == along || plane.normal[d] == 0)
-      continue;
-    Point3 normal{ 0, 0, 0 };
-    normal[d] = plane.normal[d] > 0 ? 1 : -1;
-    const Point3 left = cross(normal, t);
-    // Lower corner of the square p, q, q + left, p + left; its inner voxel.
-    Point3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
-    low = { std::min(low[0], low[0] + left[0]),
-      std::min(low[1], low[1] + left[1]),
-      std::min(low[2], low[2] + left[2]) };
-    Point3 inner = low;
-    if (normal[d] > 0)
-      --inner[d];
-    if (below(plane, inner) && !below(plane, add(inner, normal)))
-    {
-      out = { inner, static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)) };
-      ++found;
-    }
   }
-  return found == 1;
-}
+
+  /// The surfel of the plane whose counter-clockwise boundary runs p -> q (a unit step), if
+  /// any: of the two squares on the left of the step, the one whose inner voxel is below the
+  /// plane and whose outer voxel is not.
+  bool leftOf(const Point3& p, const Point3& q, Surfel& out) const
+  {
+    const Point3 t = sub(q, p);
+    const int along = directionOf(t) >> 1;
+    int found = 0;
+    for (int d = 0; d < 3; ++d)
+    {
+      if (d == along || this->Normal[d] == 0)
+        continue;
+      Point3 normal{ 0, 0, 0 };
+      normal[d] = this->Normal[d] > 0 ? 1 : -1;
+      const Point3 left = cross(normal, t);
+      // Lower corner of the square p, q, q + left, p + left; its inner voxel.
+      Point3 inner;
+      for (int i = 0; i < 3; ++i)
+        inner[i] = std::min(std::min(p[i], q[i]), std::min(p[i], q[i]) + left[i]);
+      if (normal[d] > 0)
+        --inner[d];
+      // The outer voxel is one step along the normal: n.v grows by |n_d|.
+      const std::int64_t twice = 2 * this->value(inner);
+      if (twice < this->Bound && twice + 2 * std::llabs(this->Normal[d]) >= this->Bound)
+      {
+        out = { inner, static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)) };
+        ++found;
+      }
+    }
+    return found == 1;
+  }
+
+private:
+  std::int64_t value(const Point3& v) const
+  {
+    return this->Normal[0] * v[0] + this->Normal[1] * v[1] + this->Normal[2] * v[2];
+  }
+
+  std::array<std::int64_t, 3> Normal;
+  std::int64_t Bound; ///< 2 n.v below this: the voxel with lower corner v is below the plane
+};
 
 } // namespace
 
@@ -1096,9 +1112,119 @@ std::uint64_t edgeKey(const Point3& p, const Point3& q)
   return packBiased(p) * 8 + static_cast<std::uint64_t>(direction < 0 ? 7 : direction);
 }
 
+/// The surfels of the face being filled and the pointels of its loop, stamped in a 2D array.
+/// A standard plane's surfels bound the digital half-space below it, which is closed under the
+/// steps -sign(n_i) e_i: they form a stepped surface that meets every line along s = (sign
+/// a, sign b, sign c) once (0 counted positive), so projected along s they tile the plane.
+/// A surfel of the plane is then known by its axis and the projection of its lowest corner, a
+/// pointel by its projection. The array covers the projection of the loop (where a disk's
+/// surfels lie) within the grid's; surfels outside it (an outline that bounds no disk, which
+/// the flood reports) go to a hash index. Stamps, not clearing: a face costs its surfels.
+class FaceMarks
+{
+public:
+  explicit FaceMarks(const std::array<std::int32_t, 3>& dims)
+    : Dims(dims)
+  {
+  }
+
+  /// Starts a face of `plane` bounded by `loop`: no surfel marked.
+  void begin(const StandardPlane& plane, const std::vector<Point3>& loop)
+  {
+    for (int d = 0; d < 3; ++d)
+      this->Sign[d] = plane.normal[d] < 0 ? -1 : 1;
+    std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      const std::array<std::int64_t, 2> uv = this->project(loop[i]);
+      for (int j = 0; j < 2; ++j)
+      {
+        lo[j] = i == 0 ? uv[j] : std::min(lo[j], uv[j]);
+        hi[j] = i == 0 ? uv[j] : std::max(hi[j], uv[j]);
+      }
+    }
+    // Lowest corners of surfels of the grid project within the projection of [0, dims]^3.
+    for (int j = 0; j < 2; ++j)
+    {
+      const std::int64_t a = this->Sign[j] * std::int64_t(this->Dims[j]);
+      const std::int64_t c = this->Sign[2] * std::int64_t(this->Dims[2]);
+      lo[j] = std::max(lo[j], std::min<std::int64_t>(0, a) - std::max<std::int64_t>(0, c));
+      hi[j] = std::min(hi[j], std::max<std::int64_t>(0, a) - std::min<std::int64_t>(0, c));
+    }
+    this->Low = lo;
+    this->Width = std::max<std::int64_t>(0, hi[0] - lo[0] + 1);
+    this->Height = std::max<std::int64_t>(0, hi[1] - lo[1] + 1);
+    const std::size_t cells = static_cast<std::size_t>(this->Width * this->Height);
+    if (this->Stamps.size() < 4 * cells)
+      this->Stamps.resize(4 * cells, 0);
+    if (++this->Stamp == 0) // after 2^32 faces: every stamp forgotten
+    {
+      std::fill(this->Stamps.begin(), this->Stamps.end(), 0);
+      this->Stamp = 1;
+    }
+    this->Outside.clear();
+  }
+
+  /// Marks surfel s of the plane (its voxel in the grid); false when it was marked already.
+  bool markSurfel(const Surfel& s)
+  {
+    Point3 lowest = s.voxel;
+    lowest[s.axis()] += s.direction & 1;
+    std::size_t cell = 0;
+    if (!this->cellOf(lowest, cell))
+      return this->Outside.insert(surfelKey(s)).second;
+    std::uint32_t& stamp = this->Stamps[4 * cell + s.axis()];
+    if (stamp == this->Stamp)
+      return false;
+    stamp = this->Stamp;
+    return true;
+  }
+
+  /// Marks pointel p of the loop (a corner of a surfel of the grid).
+  void markLoopPointel(const Point3& p)
+  {
+    std::size_t cell = 0;
+    if (this->cellOf(p, cell))
+      this->Stamps[4 * cell + 3] = this->Stamp;
+  }
+
+  /// False when pointel p (a corner of a surfel of the grid) is not on the loop; true when
+  /// it may be (a pointel off the plane's surface may share a loop pointel's projection).
+  bool mayBeOnLoop(const Point3& p) const
+  {
+    std::size_t cell = 0;
+    return this->cellOf(p, cell) && this->Stamps[4 * cell + 3] == this->Stamp;
+  }
+
+private:
+  std::array<std::int64_t, 2> project(const Point3& p) const
+  {
+    const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
+    return { this->Sign[0] * std::int64_t(p[0]) - w, this->Sign[1] * std::int64_t(p[1]) - w };
+  }
+
+  bool cellOf(const Point3& p, std::size_t& cell) const
+  {
+    const std::array<std::int64_t, 2> uv = this->project(p);
+    const std::int64_t u = uv[0] - this->Low[0], v = uv[1] - this->Low[1];
+    if (u < 0 || v < 0 || u >= this->Width || v >= this->Height)
+      return false;
+    cell = static_cast<std::size_t>(v * this->Width + u);
+    return true;
+  }
+
+  std::array<std::int32_t, 3> Dims;
+  std::array<int, 3> Sign{ 1, 1, 1 };
+  std::array<std::int64_t, 2> Low{ 0, 0 };
+  std::int64_t Width = 0, Height = 0;
+  std::vector<std::uint32_t> Stamps; ///< 4 per cell: a surfel per axis, a loop pointel
+  std::uint32_t Stamp = 0;           ///< of the face being filled
+  GridPointIndex Outside;            ///< keys of the face's surfels outside the array
+};
+
 /// The filling of the faces, one after the other: the surfels of every face filled so far
-/// (All, bits over the grid) and of the face being filled (Face, a small index of its own, so
-/// that the grid needs one set of bits, not two).
+/// (All, bits over the grid) and of the face being filled (Face, stamps in the plane of its
+/// projection, so that the grid needs one set of bits, not two).
 class FaceFiller
 {
 public:
@@ -1107,6 +1233,7 @@ public:
     : Dims(dims)
     , All(keepAll ? dims : std::array<std::int32_t, 3>{ 0, 0, 0 })
     , KeepAll(keepAll)
+    , Face(dims)
   {
   }
 
@@ -1121,15 +1248,18 @@ public:
     std::sort(this->LoopEdges.begin(), this->LoopEdges.end());
     this->Visited.clear();
     this->Stack.clear();
-    this->Face.clear();
-    std::string error = this->seedFromLoop(face, f);
-    if (error.empty())
-      error = this->flood(face, f, 8 * n * n + 64);
+    this->Face.begin(face.plane, face.loop);
+    const PlaneSurfels plane(face.plane);
+    const char* error = this->seedFromLoop(face, plane);
+    if (!error)
+      error = this->flood(plane, 8 * n * n + 64);
     if (this->KeepAll)
       for (const Surfel& s : this->Visited) // All keeps the face's surfels
         this->All.set(s);
     this->Count += this->Visited.size();
-    return error;
+    if (error == SharedSurfels)
+      return "face " + std::to_string(f) + " " + SharedSurfels;
+    return error ? faceError(f, error) : std::string();
   }
 
   /// Surfels filled in all.
@@ -1139,29 +1269,28 @@ public:
   const SurfelBits& surfels() const { return this->All; }
 
 private:
-  /// Visits surfel s of face f once: marked and stacked; an error when it lies outside the
-  /// grid or in an earlier face.
-  std::string visit(const Surfel& s, std::size_t f)
+  static constexpr const char* SharedSurfels =
+    "shares surfels with an earlier face (is a face given twice?)";
+
+  /// Visits surfel s of the face once: marked and stacked; an error when it lies outside
+  /// the grid or in an earlier face.
+  const char* visit(const Surfel& s)
   {
     const Point3& v = s.voxel;
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= this->Dims[0] || v[1] >= this->Dims[1] ||
       v[2] >= this->Dims[2])
-      return faceError(f, "it leaves the grid (the faces do not bound a set of voxels of it)");
-    if (!this->Face.insert(surfelKey(s)).second)
-      return std::string(); // seen in this face
+      return "it leaves the grid (the faces do not bound a set of voxels of it)";
+    if (!this->Face.markSurfel(s))
+      return nullptr; // seen in this face
     if (this->KeepAll && this->All.get(s))
-    {
-      std::ostringstream msg;
-      msg << "face " << f << " shares surfels with an earlier face (is a face given twice?)";
-      return msg.str();
-    }
+      return SharedSurfels;
     this->Visited.push_back(s);
     this->Stack.push_back(s);
-    return std::string();
+    return nullptr;
   }
 
   /// The surfels of the plane on the left of the loop's edges: where the filling starts.
-  std::string seedFromLoop(const FaceOutline& face, std::size_t f)
+  const char* seedFromLoop(const FaceOutline& face, const PlaneSurfels& plane)
   {
     const std::size_t n = face.loop.size();
     for (std::size_t i = 0; i < n; ++i)
@@ -1170,51 +1299,54 @@ private:
       const Point3& p = face.loop[i];
       const Point3& q = face.loop[(i + 1) % n];
       const Point3 t = sub(q, p);
-      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 ||
-        !surfelLeftOf(face.plane, p, q, s))
+      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !plane.leftOf(p, q, s))
       {
-        std::ostringstream msg;
-        msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
-        return msg.str();
+        this->BadEdge = "loop edge " + std::to_string(i) + " is not a linel of its plane";
+        return this->BadEdge.c_str();
       }
-      const std::string error = this->visit(s, f);
-      if (!error.empty())
+      if (const char* error = this->visit(s))
         return error;
+      this->Face.markLoopPointel(p); // a corner of s, a surfel of the grid
     }
-    return std::string();
+    return nullptr;
   }
 
   /// Across every linel that is not a loop edge, at most `limit` surfels.
-  std::string flood(const FaceOutline& face, std::size_t f, std::size_t limit)
+  const char* flood(const PlaneSurfels& plane, std::size_t limit)
   {
     while (!this->Stack.empty())
     {
       const Surfel s = this->Stack.back();
       this->Stack.pop_back();
       if (this->Visited.size() > limit)
-        return faceError(f, "its loop does not enclose a disk of its plane");
+        return "its loop does not enclose a disk of its plane";
+      std::array<Point3, 4> corners;
+      for (int k = 0; k < 4; ++k)
+        corners[k] = s.corner(k);
       for (int k = 0; k < 4; ++k)
       {
-        const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
-        if (std::binary_search(this->LoopEdges.begin(), this->LoopEdges.end(), edgeKey(a, b)))
+        const Point3& a = corners[k];
+        const Point3& b = corners[(k + 1) & 3];
+        if (this->Face.mayBeOnLoop(a) &&
+          std::binary_search(this->LoopEdges.begin(), this->LoopEdges.end(), edgeKey(a, b)))
           continue;
         Surfel t;
-        if (!surfelLeftOf(face.plane, b, a, t))
-          return faceError(f, "its plane is not a surface around a linel");
-        const std::string error = this->visit(t, f);
-        if (!error.empty())
+        if (!plane.leftOf(b, a, t))
+          return "its plane is not a surface around a linel";
+        if (const char* error = this->visit(t))
           return error;
       }
     }
-    return std::string();
+    return nullptr;
   }
 
   std::array<std::int32_t, 3> Dims;
   SurfelBits All;
   bool KeepAll;
-  GridPointIndex Face;                  ///< keys of the face's surfels
+  FaceMarks Face;                       ///< the face's surfels and loop pointels
   std::vector<std::uint64_t> LoopEdges; ///< of the face, sorted
   std::vector<Surfel> Visited, Stack;   ///< of the face
+  std::string BadEdge;                  ///< the message of a loop edge off the plane
   std::size_t Count = 0;
 };
 
