@@ -84,6 +84,8 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
     // Touched: another surfel of f round the vertex. Taken out, s must not pinch f at a
     // vertex inside the arc: f must fill the rest of that umbrella (f + s is a disk, so
     // then f alone is one).
+    // The walk stops at the first surfel of f unless the whole umbrella is asked for.
+    const bool whole = removing && insideArc;
     bool touched = false, filled = true;
     graph.aroundVertex(s,
       k,
@@ -94,7 +96,7 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
           touched = touched || faceOf[u] == f;
           filled = filled && faceOf[u] == f;
         }
-        return true;
+        return whole || !touched;
       });
     if (touched != onArc || (removing && insideArc && !filled))
       return false;
@@ -1105,21 +1107,16 @@ std::uint64_t surfelKey(const Surfel& s)
     s.direction;
 }
 
-/// Key of the linel p -> q (a unit step): its start and direction.
-std::uint64_t edgeKey(const Point3& p, const Point3& q)
-{
-  const int direction = directionOf(sub(q, p)); // -1: a repeated corner, refused below
-  return packBiased(p) * 8 + static_cast<std::uint64_t>(direction < 0 ? 7 : direction);
-}
-
-/// The surfels of the face being filled and the pointels of its loop, stamped in a 2D array.
-/// A standard plane's surfels bound the digital half-space below it, which is closed under the
+/// The surfels of the face being filled and the edges of its loop, marked in a 2D array. A
+/// standard plane's surfels bound the digital half-space below it, which is closed under the
 /// steps -sign(n_i) e_i: they form a stepped surface that meets every line along s = (sign
-/// a, sign b, sign c) once (0 counted positive), so projected along s they tile the plane.
-/// A surfel of the plane is then known by its axis and the projection of its lowest corner, a
-/// pointel by its projection. The array covers the projection of the loop (where a disk's
+/// a, sign b, sign c) once (0 counted positive), so projected along s they tile the plane and
+/// no two of its points share a projection. A surfel of the plane is then known by its axis
+/// and the projection of its lowest corner, a directed linel of it by its direction and the
+/// projection of its start. The array covers the projection of the loop (where a disk's
 /// surfels lie) within the grid's; surfels outside it (an outline that bounds no disk, which
-/// the flood reports) go to a hash index. Stamps, not clearing: a face costs its surfels.
+/// the flood reports) go to a hash index. The marked cells are cleared after each face, so a
+/// face costs its surfels, not its box.
 class FaceMarks
 {
 public:
@@ -1128,9 +1125,13 @@ public:
   {
   }
 
-  /// Starts a face of `plane` bounded by `loop`: no surfel marked.
+  /// Starts a face of `plane` bounded by `loop`: nothing marked.
   void begin(const StandardPlane& plane, const std::vector<Point3>& loop)
   {
+    for (std::size_t cell : this->Touched)
+      this->Marks[cell] = 0;
+    this->Touched.clear();
+    this->Outside.clear();
     for (int d = 0; d < 3; ++d)
       this->Sign[d] = plane.normal[d] < 0 ? -1 : 1;
     std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
@@ -1155,14 +1156,8 @@ public:
     this->Width = std::max<std::int64_t>(0, hi[0] - lo[0] + 1);
     this->Height = std::max<std::int64_t>(0, hi[1] - lo[1] + 1);
     const std::size_t cells = static_cast<std::size_t>(this->Width * this->Height);
-    if (this->Stamps.size() < 4 * cells)
-      this->Stamps.resize(4 * cells, 0);
-    if (++this->Stamp == 0) // after 2^32 faces: every stamp forgotten
-    {
-      std::fill(this->Stamps.begin(), this->Stamps.end(), 0);
-      this->Stamp = 1;
-    }
-    this->Outside.clear();
+    if (this->Marks.size() < cells)
+      this->Marks.resize(cells, 0);
   }
 
   /// Marks surfel s of the plane (its voxel in the grid); false when it was marked already.
@@ -1173,30 +1168,36 @@ public:
     std::size_t cell = 0;
     if (!this->cellOf(lowest, cell))
       return this->Outside.insert(surfelKey(s)).second;
-    std::uint32_t& stamp = this->Stamps[4 * cell + s.axis()];
-    if (stamp == this->Stamp)
-      return false;
-    stamp = this->Stamp;
-    return true;
+    return this->mark(cell, 1u << s.axis());
   }
 
-  /// Marks pointel p of the loop (a corner of a surfel of the grid).
-  void markLoopPointel(const Point3& p)
+  /// Marks the loop edge p -> q (a linel of a surfel of the plane in the grid).
+  void markLoopEdge(const Point3& p, const Point3& q)
   {
     std::size_t cell = 0;
     if (this->cellOf(p, cell))
-      this->Stamps[4 * cell + 3] = this->Stamp;
+      this->mark(cell, 8u << directionOf(sub(q, p)));
   }
 
-  /// False when pointel p (a corner of a surfel of the grid) is not on the loop; true when
-  /// it may be (a pointel off the plane's surface may share a loop pointel's projection).
-  bool mayBeOnLoop(const Point3& p) const
+  /// Whether p -> q, a linel of a surfel of the plane in the grid, is a loop edge.
+  bool isLoopEdge(const Point3& p, const Point3& q) const
   {
     std::size_t cell = 0;
-    return this->cellOf(p, cell) && this->Stamps[4 * cell + 3] == this->Stamp;
+    return this->cellOf(p, cell) && (this->Marks[cell] & (8u << directionOf(sub(q, p))));
   }
 
 private:
+  bool mark(std::size_t cell, unsigned bit)
+  {
+    std::uint16_t& marks = this->Marks[cell];
+    if (marks & bit)
+      return false;
+    if (!marks)
+      this->Touched.push_back(cell);
+    marks = static_cast<std::uint16_t>(marks | bit);
+    return true;
+  }
+
   std::array<std::int64_t, 2> project(const Point3& p) const
   {
     const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
@@ -1217,13 +1218,14 @@ private:
   std::array<int, 3> Sign{ 1, 1, 1 };
   std::array<std::int64_t, 2> Low{ 0, 0 };
   std::int64_t Width = 0, Height = 0;
-  std::vector<std::uint32_t> Stamps; ///< 4 per cell: a surfel per axis, a loop pointel
-  std::uint32_t Stamp = 0;           ///< of the face being filled
-  GridPointIndex Outside;            ///< keys of the face's surfels outside the array
+  /// Per cell: bit a, a surfel of axis a; bit 3 + d, a loop edge of direction d.
+  std::vector<std::uint16_t> Marks;
+  std::vector<std::size_t> Touched; ///< the cells marked for this face
+  GridPointIndex Outside;           ///< keys of the face's surfels outside the array
 };
 
 /// The filling of the faces, one after the other: the surfels of every face filled so far
-/// (All, bits over the grid) and of the face being filled (Face, stamps in the plane of its
+/// (All, bits over the grid) and of the face being filled (Face, marks in the plane of its
 /// projection, so that the grid needs one set of bits, not two).
 class FaceFiller
 {
@@ -1242,10 +1244,6 @@ public:
   std::string fill(const FaceOutline& face, std::size_t f)
   {
     const std::size_t n = face.loop.size();
-    this->LoopEdges.clear();
-    for (std::size_t i = 0; i < n; ++i)
-      this->LoopEdges.push_back(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
-    std::sort(this->LoopEdges.begin(), this->LoopEdges.end());
     this->Visited.clear();
     this->Stack.clear();
     this->Face.begin(face.plane, face.loop);
@@ -1306,7 +1304,7 @@ private:
       }
       if (const char* error = this->visit(s))
         return error;
-      this->Face.markLoopPointel(p); // a corner of s, a surfel of the grid
+      this->Face.markLoopEdge(p, q); // an edge of s, a surfel of the grid
     }
     return nullptr;
   }
@@ -1327,8 +1325,7 @@ private:
       {
         const Point3& a = corners[k];
         const Point3& b = corners[(k + 1) & 3];
-        if (this->Face.mayBeOnLoop(a) &&
-          std::binary_search(this->LoopEdges.begin(), this->LoopEdges.end(), edgeKey(a, b)))
+        if (this->Face.isLoopEdge(a, b))
           continue;
         Surfel t;
         if (!plane.leftOf(b, a, t))
@@ -1343,10 +1340,9 @@ private:
   std::array<std::int32_t, 3> Dims;
   SurfelBits All;
   bool KeepAll;
-  FaceMarks Face;                       ///< the face's surfels and loop pointels
-  std::vector<std::uint64_t> LoopEdges; ///< of the face, sorted
-  std::vector<Surfel> Visited, Stack;   ///< of the face
-  std::string BadEdge;                  ///< the message of a loop edge off the plane
+  FaceMarks Face;                     ///< the face's surfels and loop edges
+  std::vector<Surfel> Visited, Stack; ///< of the face
+  std::string BadEdge;                ///< the message of a loop edge off the plane
   std::size_t Count = 0;
 };
 
