@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <limits>
 #include <map>
@@ -351,10 +352,71 @@ private:
     {
       for (int k = 0; k < 3; ++k)
         ids[k] = this->point(o, polygon[t[k]]);
-      this->addFaceTriangle(o, f, markLoops);
+      this->addTriangle(markLoops);
     }
+    this->addFaceValues(o, f, triangles.size());
     if (triangles.empty())
       this->addSurfelTriangles(o, f, markLoops);
+  }
+
+  /// The triangle of points TriangleIds, without its face's values (addFaceValues); with
+  /// `markLoops`, its LoopEdges bits, from the loop edges that sortLoopEdges listed.
+  void addTriangle(bool markLoops)
+  {
+    std::vector<vtkIdType>& ids = this->TriangleIds;
+    if (this->Reverse)
+      std::reverse(ids.begin(), ids.end());
+    this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + ids.size());
+    this->fitIds(this->Polys, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
+    this->Polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    if (markLoops)
+      this->LoopEdges->InsertNextValue(this->loopEdgeBits());
+  }
+
+  /// The values of face f for its next `count` cells, written at once (they are the same
+  /// for every cell of the face: a value at a time cost more than the triangulation).
+  void addFaceValues(const ObjectFaces& o, std::uint32_t f, std::size_t count)
+  {
+    if (count == 0)
+      return;
+    const vbr::StandardFace& face = o.poly.faces[f];
+    const auto& n = face.plane.normal;
+    const vtkIdType cells = static_cast<vtkIdType>(count);
+    const vtkIdType first = this->FaceIds->GetNumberOfTuples();
+    std::fill_n(
+      this->FaceIds->WritePointer(first, cells), count, static_cast<int>(this->FaceBase + f));
+    int* normals = this->Normals->WritePointer(3 * first, 3 * cells);
+    for (std::size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k)
+        normals[3 * i + k] = static_cast<int>(n[k]);
+    // The plane in the grid's index space: n.(p + offset) = n.p + n.offset.
+    std::fill_n(this->Offsets->WritePointer(first, cells),
+      count,
+      static_cast<vtkIdType>(
+        face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
+    std::fill_n(this->Sizes->WritePointer(first, cells), count, static_cast<int>(o.faceSizes[f]));
+    vbr::vtk::appendLabel(this->Labels, o.label); // in the array's type, whatever it is
+    const int bytes = this->Labels->GetDataTypeSize() * this->Labels->GetNumberOfComponents();
+    auto* labels = static_cast<unsigned char*>(
+      this->Labels->WriteVoidPointer(first * this->Labels->GetNumberOfComponents(),
+        cells * this->Labels->GetNumberOfComponents()));
+    for (std::size_t i = 1; i < count; ++i)
+      std::memcpy(labels + i * bytes, labels, static_cast<std::size_t>(bytes));
+  }
+
+  /// The LoopEdges bits of the triangle TriangleIds (as written: reversed on a mirrored grid).
+  unsigned char loopEdgeBits() const
+  {
+    const std::vector<vtkIdType>& ids = this->TriangleIds;
+    const auto& loopEdges = this->FaceLoopEdges;
+    unsigned char bits = 0;
+    for (int k = 0; k < 3; ++k)
+      if (std::binary_search(loopEdges.begin(),
+            loopEdges.end(),
+            this->Reverse ? std::make_pair(ids[(k + 1) % 3], ids[k])
+                          : std::make_pair(ids[k], ids[(k + 1) % 3])))
+        bits |= static_cast<unsigned char>(1 << k);
+    return bits;
   }
 
   /// The face's loop edges as point pairs into FaceLoopEdges, sorted for a binary search (a
@@ -375,17 +437,8 @@ private:
   {
     std::vector<vtkIdType>& ids = this->TriangleIds;
     this->addCell(ids, o, f); // reverses ids on a mirrored grid, as the loop is written
-    if (!markLoops)
-      return;
-    const auto& loopEdges = this->FaceLoopEdges;
-    unsigned char bits = 0;
-    for (int k = 0; k < 3; ++k)
-      if (std::binary_search(loopEdges.begin(),
-            loopEdges.end(),
-            this->Reverse ? std::make_pair(ids[(k + 1) % 3], ids[k])
-                          : std::make_pair(ids[k], ids[(k + 1) % 3])))
-        bits |= static_cast<unsigned char>(1 << k);
-    this->LoopEdges->InsertNextValue(bits);
+    if (markLoops)
+      this->LoopEdges->InsertNextValue(this->loopEdgeBits());
   }
 
   /// Face f drawn by its surfels, two triangles each, refilled from the face's outline (the

@@ -434,11 +434,23 @@ void markVoxels(const BitVolume& voxels,
   const std::array<std::int32_t, 3>& dims,
   unsigned char* array)
 {
+  // A word of the bit rows at a time: a large box around a thin object is mostly empty words.
+  const std::size_t words = voxels.wordsPerRow();
+  const std::int32_t nx = voxels.size(0);
   for (std::int32_t z = 0; z < voxels.size(2); ++z)
     for (std::int32_t y = 0; y < voxels.size(1); ++y)
-      for (std::int32_t x = 0; x < voxels.size(0); ++x)
-        if (voxels.get(x, y, z))
-          array[(vtkIdType(z + offset[2]) * dims[1] + y + offset[1]) * dims[0] + x + offset[0]] = 1;
+    {
+      const Word* row = voxels.row(y, z);
+      unsigned char* out =
+        array + (vtkIdType(z + offset[2]) * dims[1] + y + offset[1]) * dims[0] + offset[0];
+      for (std::size_t i = 0; i < words; ++i)
+        for (Word w = row[i]; w; w &= w - 1)
+        {
+          const std::int32_t x = static_cast<std::int32_t>(64 * i) + countTrailingZeros(w);
+          if (x < nx)
+            out[x] = 1;
+        }
+    }
 }
 
 bool writeReversionImage(InputObjects& in,

@@ -84,6 +84,8 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
     // Touched: another surfel of f round the vertex. Taken out, s must not pinch f at a
     // vertex inside the arc: f must fill the rest of that umbrella (f + s is a disk, so
     // then f alone is one).
+    // The walk stops at the first surfel of f unless the whole umbrella is asked for.
+    const bool whole = removing && insideArc;
     bool touched = false, filled = true;
     graph.aroundVertex(s,
       k,
@@ -94,7 +96,7 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
           touched = touched || faceOf[u] == f;
           filled = filled && faceOf[u] == f;
         }
-        return true;
+        return whole || !touched;
       });
     if (touched != onArc || (removing && insideArc && !filled))
       return false;
@@ -1005,43 +1007,59 @@ bool polyhedrize(const SurfelGraph& graph,
 namespace
 {
 
-/// The digital half-space below a standard plane: voxels whose centre c has
-/// n.c < mu + omega / 2, i.e. 2 n.v + (a + b + c) < 2 mu + omega for the lower corner v.
-bool below(const StandardPlane& plane, const Point3& voxel)
+/// The surfels of a standard plane, with its constants computed once per face: the boundary of
+/// the digital half-space below it (the voxels whose centre c has n.c < mu + omega / 2, i.e.
+/// 2 n.v < 2 mu + omega - (a + b + c) for the lower corner v).
+class PlaneSurfels
 {
-  const auto& n = plane.normal;
-  return 2 * plane.value(voxel) + n[0] + n[1] + n[2] < 2 * plane.mu + plane.omega();
-}
-
-/// The surfel of the plane whose counter-clockwise boundary runs p -> q, if any.
-bool surfelLeftOf(const StandardPlane& plane, const Point3& p, const Point3& q, Surfel& out)
-{
-  const Point3 t = sub(q, p);
-  const int along = directionOf(t) >> 1;
-  int found = 0;
-  for (int d = 0; d < 3; ++d)
+public:
+  explicit PlaneSurfels(const StandardPlane& plane)
+    : Normal(plane.normal)
+    , Bound(2 * plane.mu + plane.omega() - plane.normal[0] - plane.normal[1] - plane.normal[2])
   {
-    if (d == along || plane.normal[d] == 0)
-      continue;
-    Point3 normal{ 0, 0, 0 };
-    normal[d] = plane.normal[d] > 0 ? 1 : -1;
-    const Point3 left = cross(normal, t);
-    // Lower corner of the square p, q, q + left, p + left; its inner voxel.
-    Point3 low{ std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]) };
-    low = { std::min(low[0], low[0] + left[0]),
-      std::min(low[1], low[1] + left[1]),
-      std::min(low[2], low[2] + left[2]) };
-    Point3 inner = low;
-    if (normal[d] > 0)
-      --inner[d];
-    if (below(plane, inner) && !below(plane, add(inner, normal)))
-    {
-      out = { inner, static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)) };
-      ++found;
-    }
   }
-  return found == 1;
-}
+
+  /// The surfel of the plane whose counter-clockwise boundary runs p -> q (a unit step), if
+  /// any: of the two squares on the left of the step, the one whose inner voxel is below the
+  /// plane and whose outer voxel is not.
+  bool leftOf(const Point3& p, const Point3& q, Surfel& out) const
+  {
+    const Point3 t = sub(q, p);
+    const int along = directionOf(t) >> 1;
+    int found = 0;
+    for (int d = 0; d < 3; ++d)
+    {
+      if (d == along || this->Normal[d] == 0)
+        continue;
+      Point3 normal{ 0, 0, 0 };
+      normal[d] = this->Normal[d] > 0 ? 1 : -1;
+      const Point3 left = cross(normal, t);
+      // Lower corner of the square p, q, q + left, p + left; its inner voxel.
+      Point3 inner;
+      for (int i = 0; i < 3; ++i)
+        inner[i] = std::min(std::min(p[i], q[i]), std::min(p[i], q[i]) + left[i]);
+      if (normal[d] > 0)
+        --inner[d];
+      // The outer voxel is one step along the normal: n.v grows by |n_d|.
+      const std::int64_t twice = 2 * this->value(inner);
+      if (twice < this->Bound && twice + 2 * std::llabs(this->Normal[d]) >= this->Bound)
+      {
+        out = { inner, static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)) };
+        ++found;
+      }
+    }
+    return found == 1;
+  }
+
+private:
+  std::int64_t value(const Point3& v) const
+  {
+    return this->Normal[0] * v[0] + this->Normal[1] * v[1] + this->Normal[2] * v[2];
+  }
+
+  std::array<std::int64_t, 3> Normal;
+  std::int64_t Bound; ///< 2 n.v below this: the voxel with lower corner v is below the plane
+};
 
 } // namespace
 
@@ -1089,16 +1107,126 @@ std::uint64_t surfelKey(const Surfel& s)
     s.direction;
 }
 
-/// Key of the linel p -> q (a unit step): its start and direction.
-std::uint64_t edgeKey(const Point3& p, const Point3& q)
+/// The surfels of the face being filled and the edges of its loop, marked in a 2D array. A
+/// standard plane's surfels bound the digital half-space below it, which is closed under the
+/// steps -sign(n_i) e_i: they form a stepped surface that meets every line along s = (sign
+/// a, sign b, sign c) once (0 counted positive), so projected along s they tile the plane and
+/// no two of its points share a projection. A surfel of the plane is then known by its axis
+/// and the projection of its lowest corner, a directed linel of it by its direction and the
+/// projection of its start. The array covers the projection of the loop (where a disk's
+/// surfels lie) within the grid's; surfels outside it (an outline that bounds no disk, which
+/// the flood reports) go to a hash index. The marked cells are cleared after each face, so a
+/// face costs its surfels, not its box.
+class FaceMarks
 {
-  const int direction = directionOf(sub(q, p)); // -1: a repeated corner, refused below
-  return packBiased(p) * 8 + static_cast<std::uint64_t>(direction < 0 ? 7 : direction);
-}
+public:
+  explicit FaceMarks(const std::array<std::int32_t, 3>& dims)
+    : Dims(dims)
+  {
+  }
+
+  /// Starts a face of `plane` bounded by `loop`: nothing marked.
+  void begin(const StandardPlane& plane, const std::vector<Point3>& loop)
+  {
+    for (std::size_t cell : this->Touched)
+      this->Marks[cell] = 0;
+    this->Touched.clear();
+    this->Outside.clear();
+    for (int d = 0; d < 3; ++d)
+      this->Sign[d] = plane.normal[d] < 0 ? -1 : 1;
+    std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      const std::array<std::int64_t, 2> uv = this->project(loop[i]);
+      for (int j = 0; j < 2; ++j)
+      {
+        lo[j] = i == 0 ? uv[j] : std::min(lo[j], uv[j]);
+        hi[j] = i == 0 ? uv[j] : std::max(hi[j], uv[j]);
+      }
+    }
+    // Lowest corners of surfels of the grid project within the projection of [0, dims]^3.
+    for (int j = 0; j < 2; ++j)
+    {
+      const std::int64_t a = this->Sign[j] * std::int64_t(this->Dims[j]);
+      const std::int64_t c = this->Sign[2] * std::int64_t(this->Dims[2]);
+      lo[j] = std::max(lo[j], std::min<std::int64_t>(0, a) - std::max<std::int64_t>(0, c));
+      hi[j] = std::min(hi[j], std::max<std::int64_t>(0, a) - std::min<std::int64_t>(0, c));
+    }
+    this->Low = lo;
+    this->Width = std::max<std::int64_t>(0, hi[0] - lo[0] + 1);
+    this->Height = std::max<std::int64_t>(0, hi[1] - lo[1] + 1);
+    const std::size_t cells = static_cast<std::size_t>(this->Width * this->Height);
+    if (this->Marks.size() < cells)
+      this->Marks.resize(cells, 0);
+  }
+
+  /// Marks surfel s of the plane (its voxel in the grid); false when it was marked already.
+  bool markSurfel(const Surfel& s)
+  {
+    Point3 lowest = s.voxel;
+    lowest[s.axis()] += s.direction & 1;
+    std::size_t cell = 0;
+    if (!this->cellOf(lowest, cell))
+      return this->Outside.insert(surfelKey(s)).second;
+    return this->mark(cell, 1u << s.axis());
+  }
+
+  /// Marks the loop edge p -> q (a linel of a surfel of the plane in the grid).
+  void markLoopEdge(const Point3& p, const Point3& q)
+  {
+    std::size_t cell = 0;
+    if (this->cellOf(p, cell))
+      this->mark(cell, 8u << directionOf(sub(q, p)));
+  }
+
+  /// Whether p -> q, a linel of a surfel of the plane in the grid, is a loop edge.
+  bool isLoopEdge(const Point3& p, const Point3& q) const
+  {
+    std::size_t cell = 0;
+    return this->cellOf(p, cell) && (this->Marks[cell] & (8u << directionOf(sub(q, p))));
+  }
+
+private:
+  bool mark(std::size_t cell, unsigned bit)
+  {
+    std::uint16_t& marks = this->Marks[cell];
+    if (marks & bit)
+      return false;
+    if (!marks)
+      this->Touched.push_back(cell);
+    marks = static_cast<std::uint16_t>(marks | bit);
+    return true;
+  }
+
+  std::array<std::int64_t, 2> project(const Point3& p) const
+  {
+    const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
+    return { this->Sign[0] * std::int64_t(p[0]) - w, this->Sign[1] * std::int64_t(p[1]) - w };
+  }
+
+  bool cellOf(const Point3& p, std::size_t& cell) const
+  {
+    const std::array<std::int64_t, 2> uv = this->project(p);
+    const std::int64_t u = uv[0] - this->Low[0], v = uv[1] - this->Low[1];
+    if (u < 0 || v < 0 || u >= this->Width || v >= this->Height)
+      return false;
+    cell = static_cast<std::size_t>(v * this->Width + u);
+    return true;
+  }
+
+  std::array<std::int32_t, 3> Dims;
+  std::array<int, 3> Sign{ 1, 1, 1 };
+  std::array<std::int64_t, 2> Low{ 0, 0 };
+  std::int64_t Width = 0, Height = 0;
+  /// Per cell: bit a, a surfel of axis a; bit 3 + d, a loop edge of direction d.
+  std::vector<std::uint16_t> Marks;
+  std::vector<std::size_t> Touched; ///< the cells marked for this face
+  GridPointIndex Outside;           ///< keys of the face's surfels outside the array
+};
 
 /// The filling of the faces, one after the other: the surfels of every face filled so far
-/// (All, bits over the grid) and of the face being filled (Face, a small index of its own, so
-/// that the grid needs one set of bits, not two).
+/// (All, bits over the grid) and of the face being filled (Face, marks in the plane of its
+/// projection, so that the grid needs one set of bits, not two).
 class FaceFiller
 {
 public:
@@ -1107,6 +1235,7 @@ public:
     : Dims(dims)
     , All(keepAll ? dims : std::array<std::int32_t, 3>{ 0, 0, 0 })
     , KeepAll(keepAll)
+    , Face(dims)
   {
   }
 
@@ -1115,21 +1244,20 @@ public:
   std::string fill(const FaceOutline& face, std::size_t f)
   {
     const std::size_t n = face.loop.size();
-    this->LoopEdges.clear();
-    for (std::size_t i = 0; i < n; ++i)
-      this->LoopEdges.push_back(edgeKey(face.loop[i], face.loop[(i + 1) % n]));
-    std::sort(this->LoopEdges.begin(), this->LoopEdges.end());
     this->Visited.clear();
     this->Stack.clear();
-    this->Face.clear();
-    std::string error = this->seedFromLoop(face, f);
-    if (error.empty())
-      error = this->flood(face, f, 8 * n * n + 64);
+    this->Face.begin(face.plane, face.loop);
+    const PlaneSurfels plane(face.plane);
+    const char* error = this->seedFromLoop(face, plane);
+    if (!error)
+      error = this->flood(plane, 8 * n * n + 64);
     if (this->KeepAll)
       for (const Surfel& s : this->Visited) // All keeps the face's surfels
         this->All.set(s);
     this->Count += this->Visited.size();
-    return error;
+    if (error == SharedSurfels)
+      return "face " + std::to_string(f) + " " + SharedSurfels;
+    return error ? faceError(f, error) : std::string();
   }
 
   /// Surfels filled in all.
@@ -1139,29 +1267,28 @@ public:
   const SurfelBits& surfels() const { return this->All; }
 
 private:
-  /// Visits surfel s of face f once: marked and stacked; an error when it lies outside the
-  /// grid or in an earlier face.
-  std::string visit(const Surfel& s, std::size_t f)
+  static constexpr const char* SharedSurfels =
+    "shares surfels with an earlier face (is a face given twice?)";
+
+  /// Visits surfel s of the face once: marked and stacked; an error when it lies outside
+  /// the grid or in an earlier face.
+  const char* visit(const Surfel& s)
   {
     const Point3& v = s.voxel;
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= this->Dims[0] || v[1] >= this->Dims[1] ||
       v[2] >= this->Dims[2])
-      return faceError(f, "it leaves the grid (the faces do not bound a set of voxels of it)");
-    if (!this->Face.insert(surfelKey(s)).second)
-      return std::string(); // seen in this face
+      return "it leaves the grid (the faces do not bound a set of voxels of it)";
+    if (!this->Face.markSurfel(s))
+      return nullptr; // seen in this face
     if (this->KeepAll && this->All.get(s))
-    {
-      std::ostringstream msg;
-      msg << "face " << f << " shares surfels with an earlier face (is a face given twice?)";
-      return msg.str();
-    }
+      return SharedSurfels;
     this->Visited.push_back(s);
     this->Stack.push_back(s);
-    return std::string();
+    return nullptr;
   }
 
   /// The surfels of the plane on the left of the loop's edges: where the filling starts.
-  std::string seedFromLoop(const FaceOutline& face, std::size_t f)
+  const char* seedFromLoop(const FaceOutline& face, const PlaneSurfels& plane)
   {
     const std::size_t n = face.loop.size();
     for (std::size_t i = 0; i < n; ++i)
@@ -1170,51 +1297,52 @@ private:
       const Point3& p = face.loop[i];
       const Point3& q = face.loop[(i + 1) % n];
       const Point3 t = sub(q, p);
-      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 ||
-        !surfelLeftOf(face.plane, p, q, s))
+      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !plane.leftOf(p, q, s))
       {
-        std::ostringstream msg;
-        msg << "face " << f << ": loop edge " << i << " is not a linel of its plane";
-        return msg.str();
+        this->BadEdge = "loop edge " + std::to_string(i) + " is not a linel of its plane";
+        return this->BadEdge.c_str();
       }
-      const std::string error = this->visit(s, f);
-      if (!error.empty())
+      if (const char* error = this->visit(s))
         return error;
+      this->Face.markLoopEdge(p, q); // an edge of s, a surfel of the grid
     }
-    return std::string();
+    return nullptr;
   }
 
   /// Across every linel that is not a loop edge, at most `limit` surfels.
-  std::string flood(const FaceOutline& face, std::size_t f, std::size_t limit)
+  const char* flood(const PlaneSurfels& plane, std::size_t limit)
   {
     while (!this->Stack.empty())
     {
       const Surfel s = this->Stack.back();
       this->Stack.pop_back();
       if (this->Visited.size() > limit)
-        return faceError(f, "its loop does not enclose a disk of its plane");
+        return "its loop does not enclose a disk of its plane";
+      std::array<Point3, 4> corners;
+      for (int k = 0; k < 4; ++k)
+        corners[k] = s.corner(k);
       for (int k = 0; k < 4; ++k)
       {
-        const Point3 a = s.corner(k), b = s.corner((k + 1) % 4);
-        if (std::binary_search(this->LoopEdges.begin(), this->LoopEdges.end(), edgeKey(a, b)))
+        const Point3& a = corners[k];
+        const Point3& b = corners[(k + 1) & 3];
+        if (this->Face.isLoopEdge(a, b))
           continue;
         Surfel t;
-        if (!surfelLeftOf(face.plane, b, a, t))
-          return faceError(f, "its plane is not a surface around a linel");
-        const std::string error = this->visit(t, f);
-        if (!error.empty())
+        if (!plane.leftOf(b, a, t))
+          return "its plane is not a surface around a linel";
+        if (const char* error = this->visit(t))
           return error;
       }
     }
-    return std::string();
+    return nullptr;
   }
 
   std::array<std::int32_t, 3> Dims;
   SurfelBits All;
   bool KeepAll;
-  GridPointIndex Face;                  ///< keys of the face's surfels
-  std::vector<std::uint64_t> LoopEdges; ///< of the face, sorted
-  std::vector<Surfel> Visited, Stack;   ///< of the face
+  FaceMarks Face;                     ///< the face's surfels and loop edges
+  std::vector<Surfel> Visited, Stack; ///< of the face
+  std::string BadEdge;                ///< the message of a loop edge off the plane
   std::size_t Count = 0;
 };
 

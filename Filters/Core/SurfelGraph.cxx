@@ -61,19 +61,37 @@ public:
   /// Records that the next row starts at surfel `first` (rows in order).
   void beginRow(std::size_t first) { this->Start.push_back(static_cast<std::uint32_t>(first)); }
 
-  /// The number of the surfel, or -1 when absent.
-  std::int64_t find(const std::vector<Surfel>& surfels, const SurfelKey& key) const
+  /// The number of the surfel, or -1 when absent. `near` is a surfel of the graph: when the
+  /// key's voxel lies in its row (a surfel of the same voxel, or of the next voxel along x),
+  /// a walk from it finds the key in a few steps, with no search of the row.
+  std::int64_t find(const std::vector<Surfel>& surfels,
+    const SurfelKey& key,
+    std::uint32_t near) const
   {
     const std::size_t row = static_cast<std::size_t>(key.voxel[2]) * this->Ny + key.voxel[1];
+    const std::int64_t wanted = std::int64_t(key.voxel[0]) * 8 + key.direction;
+    auto order = [](const Surfel& s) { return std::int64_t(s.voxel[0]) * 8 + s.direction; };
+    const Surfel& from = surfels[near];
+    if (from.voxel[1] == key.voxel[1] && from.voxel[2] == key.voxel[2])
+    {
+      std::int64_t i = near;
+      if (order(from) < wanted)
+      {
+        const std::int64_t last = this->Start[row + 1];
+        while (++i < last && order(surfels[i]) < wanted)
+          ;
+        return i < last && order(surfels[i]) == wanted ? i : -1;
+      }
+      const std::int64_t first = this->Start[row];
+      while (i > first && order(surfels[i]) > wanted)
+        --i;
+      return order(surfels[i]) == wanted ? i : -1;
+    }
     const auto first = surfels.begin() + this->Start[row];
     const auto last = surfels.begin() + this->Start[row + 1];
-    const std::int64_t wanted = std::int64_t(key.voxel[0]) * 8 + key.direction;
-    const auto it = std::lower_bound(first,
-      last,
-      wanted,
-      [](const Surfel& s, std::int64_t w)
-      { return std::int64_t(s.voxel[0]) * 8 + s.direction < w; });
-    if (it == last || it->voxel[0] != key.voxel[0] || it->direction != key.direction)
+    const auto it = std::lower_bound(
+      first, last, wanted, [&](const Surfel& s, std::int64_t w) { return order(s) < w; });
+    if (it == last || order(*it) != wanted)
       return -1;
     return it - surfels.begin();
   }
@@ -127,19 +145,42 @@ bool findSurfels(const VoxelSet& set, const Execution& exec, SurfelGraph& out, R
   return true;
 }
 
-/// The surfel beyond edge (a, b) of surfel sf: the surface turns into the voxel beyond
-/// (concave), goes on flat, or turns round its own voxel (convex). The voxel beyond is
-/// reached only through a face-neighbour in the set, which keeps edge-touching voxels apart.
-SurfelKey neighbourKey(const VoxelSet& set, const Surfel& sf, const Point3& a, const Point3& b)
+/// For each direction of a surfel and each of its edges, the step g from the surfel towards
+/// the edge (in the surfel's plane) and the directions of the surfel beyond it when the surface
+/// turns round the surfel's own voxel (convex) or into the voxel beyond (concave).
+struct EdgeSteps
 {
-  const Point3 normal = unitVector(sf.direction);
-  const Point3 g = cross(sub(b, a), normal); // from the surfel towards the edge
-  const Point3 side = add(sf.voxel, g);
+  Point3 Toward[6][4];
+  std::uint8_t Convex[6][4], Concave[6][4];
+
+  EdgeSteps()
+  {
+    for (int d = 0; d < 6; ++d)
+    {
+      const Surfel s{ { 0, 0, 0 }, static_cast<std::uint8_t>(d) };
+      for (int k = 0; k < 4; ++k)
+      {
+        const Point3 g = cross(sub(s.corner((k + 1) % 4), s.corner(k)), unitVector(d));
+        this->Toward[d][k] = g; // a unit vector
+        this->Convex[d][k] = static_cast<std::uint8_t>(directionOf(g));
+        this->Concave[d][k] = static_cast<std::uint8_t>(directionOf(g) ^ 1);
+      }
+    }
+  }
+};
+
+/// The surfel beyond edge k of surfel sf: the surface turns into the voxel beyond (concave),
+/// goes on flat, or turns round its own voxel (convex). The voxel beyond is reached only
+/// through a face-neighbour in the set, which keeps edge-touching voxels apart.
+SurfelKey neighbourKey(const VoxelSet& set, const Surfel& sf, int k)
+{
+  static const EdgeSteps steps;
+  const Point3 side = add(sf.voxel, steps.Toward[sf.direction][k]);
   if (!set.contains(side))
-    return { sf.voxel, directionOf(g) }; // g is a unit vector
-  const Point3 beyond = add(side, normal);
+    return { sf.voxel, steps.Convex[sf.direction][k] };
+  const Point3 beyond = add(side, unitVector(sf.direction));
   if (set.contains(beyond))
-    return { beyond, directionOf({ -g[0], -g[1], -g[2] }) };
+    return { beyond, steps.Concave[sf.direction][k] };
   return { side, sf.direction };
 }
 
@@ -172,8 +213,7 @@ void linkNeighbours(const VoxelSet& set,
       for (int k = 0; k < 4; ++k)
       {
         const Surfel& sf = out.surfels[s];
-        const std::int64_t id =
-          index.find(out.surfels, neighbourKey(set, sf, sf.corner(k), sf.corner((k + 1) % 4)));
+        const std::int64_t id = index.find(out.surfels, neighbourKey(set, sf, k), s);
         if (id < 0)
           throw std::logic_error("surfel neighbour missing");
         out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
@@ -181,23 +221,50 @@ void linkNeighbours(const VoxelSet& set,
     });
 }
 
+/// The edges of surfels by direction: SharedEdge[d][k][e] is the edge of a surfel of direction e
+/// that runs against edge k of a surfel of direction d (-1 when none does). Two surfels that
+/// share a linel see it run in opposite directions, and the four edges of a surfel run in four
+/// different directions, so the shared edge follows from the two directions alone.
+struct SharedEdgeTable
+{
+  std::int8_t SharedEdge[6][4][6];
+
+  SharedEdgeTable()
+  {
+    int along[6][4]; // the direction of each edge of a surfel of each direction
+    for (int d = 0; d < 6; ++d)
+    {
+      const Surfel s{ { 0, 0, 0 }, static_cast<std::uint8_t>(d) };
+      for (int k = 0; k < 4; ++k)
+        along[d][k] = directionOf(sub(s.corner((k + 1) % 4), s.corner(k)));
+    }
+    for (int d = 0; d < 6; ++d)
+      for (int k = 0; k < 4; ++k)
+        for (int e = 0; e < 6; ++e)
+        {
+          this->SharedEdge[d][k][e] = -1;
+          for (int j = 0; j < 4; ++j)
+            if (along[e][j] == (along[d][k] ^ 1))
+              this->SharedEdge[d][k][e] = static_cast<std::int8_t>(j);
+        }
+  }
+};
+
 /// Stage 3, the same linel seen from the neighbour: its edge runs the other way.
 void matchSharedEdges(const Execution& exec, SurfelGraph& out)
 {
+  static const SharedEdgeTable table;
   const std::size_t n = out.surfels.size();
   out.neighbourEdge.resize(4 * n);
   forEachSurfel(exec,
     n,
     [&](std::uint32_t s)
     {
+      const int d = out.surfels[s].direction;
       for (int k = 0; k < 4; ++k)
       {
-        const std::uint32_t t = out.neighbourOf(s, k);
-        const Point3 from = out.cornerOf(s, (k + 1) % 4);
-        int j = 0;
-        while (j < 4 && out.cornerOf(t, j) != from)
-          ++j;
-        if (j == 4 || out.cornerOf(t, (j + 1) % 4) != out.cornerOf(s, k))
+        const int j = table.SharedEdge[d][k][out.surfels[out.neighbourOf(s, k)].direction];
+        if (j < 0)
           throw std::logic_error("neighbouring surfels do not share their linel");
         out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
       }
