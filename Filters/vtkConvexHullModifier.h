@@ -41,6 +41,9 @@
  * `NumberOfJoinedShells` (shells of H joined to the rest after H separated, summed over
  * labels: voids reached by face-connected background centres and pieces face-next to others,
  * each joined by a lattice prism; ConvexHullModifier.h; 0 on a 2D image),
+ * `NumberOfCutHandles` (handles cut through walls of H that sealed a tunnel of a well-composed
+ * object, summed over labels: a thin torus whose hole's centres lie on its hull's faces, each
+ * cut by a lattice prism; ConvexHullModifier.h; 0 on a 2D image),
  * `Separates` (1 when the filter's own check passed for every object: the voxels rebuilt from
  * H and its marks equal the selection; a 0 comes with an error message) and
  * `BackgroundCentresOnSurface` (the index coordinates of the background voxel centres that lie
