@@ -129,9 +129,10 @@
 // level kept apart (the second pass, its shells joined and its handles cut as well) is made
 // and kept when it has (kept apart, the ring stays part of its level's solid; a hollow ball
 // with a spurious handle and a real tunnel beside the cavity gets a sphere whose sealed tunnel
-// is then cut). The count costs one pass over the grid and two component labellings, only for
-// well-composed objects; the second H is made only when the first has not the topology (none of
-// the random, porous or real inputs of the tests, whose objects are mostly not well-composed).
+// is then cut). The count costs one pass over the grid (the 2x2x2 blocks, about 0.02 s of CPU
+// on 131^3) and, for a well-composed object, two component labellings (not measurable against
+// the rest on a ball of radius 64); the second H is made only when the first has not the
+// object's topology.
 // Not done (the README's limits): shells for which no prism of those is accepted (6 of 72
 // hollow balls of R 8 to 10 with a 1 wide off-centre tunnel into the cavity: the void's shell
 // reaches out along the tunnel in long thin triangles, and none of the prisms near the
