@@ -32,7 +32,8 @@
  *   fan from its first point, so this output is for export: use Triangles to look at it.
  * - Triangles: the triangles of H (the faces triangulated exactly), which render correctly.
  * - ConvexHull: the faces of the convex hull only, convex polygons.
- * Cell data: `FaceId`, `Level` (0 for pieces of faces of the object's hull, 1 for faces
+ * Cell data: `FaceId`, `Level` (0 for pieces of faces of the object's hull, or of its
+ * component's hull where the components of a well-composed object are solved apart, 1 for faces
  * pressed in from a background hull, 2 for faces pushed back out, ...), `Label` (the selected
  * label, 1 outside Labels mode, in the selected values' data type) and `FaceColor`. Point
  * data: `VoxelMark` (1 object voxel, 0 background voxel). Field data: `NumberOfVertices`,

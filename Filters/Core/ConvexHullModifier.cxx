@@ -2215,6 +2215,54 @@ void solveAndCheck(Context& ctx, ModifiedHull& r)
     r.surface = triangulateHull(r.hull);
 }
 
+/// Components apart (see the header): when H has not the topology of a well-composed object
+/// of several components, H of each component alone (the other components its background),
+/// kept when together they separate (their surfaces then miss each other) with the object's
+/// topology. The faces' levels are those of each component's own hulls.
+void solveComponentsApart(Context& ctx, ModifiedHull& r)
+{
+  const Dims d = ctx.objects.dims();
+  std::vector<LatticePoint> points;
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0]; ++x)
+        if (ctx.objects.get(x, y, z))
+          points.push_back({ x, y, z });
+  const auto components = componentsOf(points, d[2] == 1, false);
+  if (components.size() < 2)
+    return;
+  LatticeMesh together;
+  std::map<FacePlane, int> levels;
+  int joined = 0, cut = 0, keptApart = 0, degree = 0;
+  for (const auto& component : components)
+  {
+    BitVolume part(d[0], d[1], d[2]);
+    for (const auto& p : component)
+      part.set(static_cast<std::int32_t>(p[0]),
+        static_cast<std::int32_t>(p[1]),
+        static_cast<std::int32_t>(p[2]));
+    const ModifiedHull h = modifyConvexHull(part, ctx.coplanar, ctx.exec);
+    if (!h.complete || h.hull.dimension < 3)
+      return;
+    together.append(h.surface, false);
+    for (const auto& f : h.faces)
+      levels.emplace(f.plane, f.level);
+    joined += h.joinedShells;
+    cut += h.cutHandles;
+    keptApart += h.keptApart;
+    degree = std::max(degree, h.degreeOfNonConvexity);
+  }
+  if (!separates(ctx.objects, together) || !hasTopology(ctx, together))
+    return;
+  r.surface = std::move(together);
+  ctx.planeLevel = std::move(levels);
+  r.joinedShells = joined;
+  r.cutHandles = cut;
+  r.keptApart = keptApart;
+  r.degreeOfNonConvexity = degree;
+  r.componentsApart = true;
+}
+
 } // namespace
 
 ModifiedHull modifyConvexHull(const BitVolume& objects,
@@ -2246,6 +2294,8 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
     classifyBackgroundComponents(objects, r.hull, r);
     Context ctx{ objects, coplanar, exec, {}, 0 };
     solveAndCheck(ctx, r);
+    if (r.complete && objectEuler(ctx) && !hasTopology(ctx, r.surface))
+      solveComponentsApart(ctx, r);
     if (!exec.report(0.8))
       throw std::runtime_error("aborted");
     mergeIntoFaces(ctx.planeLevel, r);

@@ -133,6 +133,14 @@
 // on 131^3) and, for a well-composed object, two component labellings (not measurable against
 // the rest on a ball of radius 64); the second H is made only when the first has not the
 // object's topology.
+// Components apart: the pressing-in between two objects can leave a bridge that the joins keep,
+// so one H for both came out as one shell (two balls 5 voxels apart as a surface of genus 2, a
+// ball beside a thin torus as one sphere). When H of a well-composed object of several
+// (face-connected) components still has not its topology, H of each component alone (the
+// other components its background) is made, and their union kept when it separates (so the
+// surfaces miss each other: a centre of one component cannot lie on another's H, which holds
+// all of that one's centres and no other centre) with the object's topology. Its faces'
+// levels are those of each component's hulls (level 0: a face of its component's hull).
 // Not done (the README's limits): shells for which no prism of those is accepted (6 of 72
 // hollow balls of R 8 to 10 with a 1 wide off-centre tunnel into the cavity: the void's shell
 // reaches out along the tunnel in long thin triangles, and none of the prisms near the
@@ -179,8 +187,8 @@ struct ModifiedFace
   FacePlane plane;
   std::vector<std::uint32_t> triangles;
   std::vector<std::vector<std::uint32_t>> loops;
-  /// 0 for pieces of faces of CH(S), 1 for faces pressed in from a background hull, 2 for faces
-  /// pushed back out, ...
+  /// 0 for pieces of faces of CH(S) (of the component's hull when componentsApart), 1 for faces
+  /// pressed in from a background hull, 2 for faces pushed back out, ...
   int level = 0;
 };
 
@@ -204,6 +212,8 @@ struct ModifiedHull
   int joinedShells = 0;
   /// Handles cut through walls of H that sealed a tunnel of the object (see above).
   int cutHandles = 0;
+  /// Whether H is the union of the H of each component of the object (see above).
+  bool componentsApart = false;
   /// Whether H came from the second pass, every level kept apart (no pits, see above).
   bool withoutPits = false;
   /// The second pass for the object's topology (see above): NotRun when the first pass did not

@@ -165,6 +165,28 @@ std::size_t componentCount(const vbr::LatticeMesh& m)
   return CGAL::Polygon_mesh_processing::connected_components(mesh, component);
 }
 
+/// The Euler characteristic of each connected component of H's triangles (CGAL), sorted.
+std::vector<long> componentEulers(const vbr::LatticeMesh& m)
+{
+  bool manifold = false;
+  Mesh mesh = surfaceMesh(m, manifold);
+  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:c", 0).first;
+  const std::size_t n = CGAL::Polygon_mesh_processing::connected_components(mesh, component);
+  std::vector<std::set<Mesh::Vertex_index>> vertices(n);
+  std::vector<long> faces(n, 0);
+  for (const auto f : mesh.faces())
+  {
+    ++faces[component[f]];
+    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      vertices[component[f]].insert(v);
+  }
+  std::vector<long> euler;
+  for (std::size_t c = 0; c < n; ++c)
+    euler.push_back(static_cast<long>(vertices[c].size()) - faces[c] / 2);
+  std::sort(euler.begin(), euler.end());
+  return euler;
+}
+
 /// The solid a closed mesh bounds, as a Nef polyhedron.
 Nef nefOf(const vbr::LatticeMesh& m)
 {
@@ -603,6 +625,40 @@ TEST(ConvexHullModifier, ThinToriKeepTheirHandle)
   std::cout << tori << " tori, " << cut << " with a handle cut" << std::endl;
   EXPECT_GE(tori, 30);
   EXPECT_GE(cut, 15);
+}
+
+TEST(ConvexHullModifier, SeparateComponentsKeepTheirOwnTopology)
+{
+  // Two objects 5 voxels apart: two balls, and a ball beside a thin torus. One H for both came
+  // out as one shell (the pressing-in between them left a bridge that the joins kept): two
+  // balls as a surface of genus 2 (Euler characteristic -2), the ball and the torus as one
+  // sphere (2, the total of a sphere and a torus, with one surface where the object has two).
+  // H is now the union of the H of each component: per component of H (CGAL) the Euler
+  // characteristic of the component of the object it holds (twice its closed cubes', counted
+  // here for each component alone), and every centre separated.
+  for (double minor : { 0.0, 1.0, 1.2 })
+  {
+    SCOPED_TRACE(minor);
+    const vbr::BitVolume a = minor > 0 ? torus(5, minor) : ball(5), b = ball(6);
+    const int shift = a.size(0) + 2;
+    vbr::BitVolume v(shift + b.size(0), std::max(a.size(1), b.size(1)), b.size(2));
+    vbr::BitVolume first(v.size(0), v.size(1), v.size(2)), second = first;
+    for (int z = 0; z < v.size(2); ++z)
+      for (int y = 0; y < v.size(1); ++y)
+        for (int x = 0; x < v.size(0); ++x)
+        {
+          const bool inA = at(a, x, y, z), inB = at(b, x - shift, y, z);
+          v.set(x, y, z, inA || inB);
+          first.set(x, y, z, inA);
+          second.set(x, y, z, inB);
+        }
+    ASSERT_TRUE(wellComposed(v));
+    std::vector<long> expected{ 2 * closedCubesEuler(first), 2 * closedCubesEuler(second) };
+    std::sort(expected.begin(), expected.end());
+    const auto r = expectSeparating(v, { true, true });
+    EXPECT_TRUE(r.componentsApart);
+    EXPECT_EQ(componentEulers(r.surface), expected);
+  }
 }
 
 TEST(ConvexHullModifier, HollowBallsWithOffCentreTunnels)
