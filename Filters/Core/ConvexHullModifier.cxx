@@ -2236,17 +2236,33 @@ void solveComponentsApart(Context& ctx, ModifiedHull& r)
   int joined = 0, cut = 0, keptApart = 0, degree = 0;
   for (const auto& component : components)
   {
-    BitVolume part(d[0], d[1], d[2]);
+    // The component in its own box (its H lies in the hull of its centres), so that many small
+    // components do not each pay for the whole grid.
+    LatticePoint lo = component[0], hi = component[0];
     for (const auto& p : component)
-      part.set(static_cast<std::int32_t>(p[0]),
-        static_cast<std::int32_t>(p[1]),
-        static_cast<std::int32_t>(p[2]));
-    const ModifiedHull h = modifyConvexHull(part, ctx.coplanar, ctx.exec);
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    BitVolume part(static_cast<std::int32_t>(hi[0] - lo[0] + 1),
+      static_cast<std::int32_t>(hi[1] - lo[1] + 1),
+      static_cast<std::int32_t>(hi[2] - lo[2] + 1));
+    for (const auto& p : component)
+      part.set(static_cast<std::int32_t>(p[0] - lo[0]),
+        static_cast<std::int32_t>(p[1] - lo[1]),
+        static_cast<std::int32_t>(p[2] - lo[2]));
+    ModifiedHull h = modifyConvexHull(part, ctx.coplanar, ctx.exec);
     if (!h.complete || h.hull.dimension < 3)
       return;
+    for (auto& p : h.surface.points)
+      for (int k = 0; k < 3; ++k)
+        p[k] += lo[k];
     together.append(h.surface, false);
     for (const auto& f : h.faces)
-      levels.emplace(f.plane, f.level);
+      levels.emplace(FacePlane{ f.plane.normal,
+                       f.plane.offset + static_cast<std::int64_t>(dot(f.plane.normal, lo)) },
+        f.level);
     joined += h.joinedShells;
     cut += h.cutHandles;
     keptApart += h.keptApart;
