@@ -377,7 +377,7 @@ void writeCells(const std::vector<ModifiedObject>& objects,
 struct Statistics
 {
   vtkIdType vertices = 0, edges = 0, faces = 0, hullFaces = 0, concavities = 0, cavities = 0,
-            tunnels = 0, degree = 0, joinedShells = 0;
+            tunnels = 0, degree = 0, joinedShells = 0, cutHandles = 0;
 
   /// H of a volume's object, or the polygons of a 2D image's (loops: as many edges as corners;
   /// notches count as concavities, holes as cavities, no tunnels in the plane).
@@ -408,6 +408,7 @@ struct Statistics
     this->tunnels += r.tunnels;
     this->degree = std::max<vtkIdType>(this->degree, r.degreeOfNonConvexity);
     this->joinedShells += r.joinedShells;
+    this->cutHandles += r.cutHandles;
   }
 };
 
@@ -448,6 +449,7 @@ void writeStatistics(const std::vector<ModifiedObject>& objects, bool separates,
   vbr::vtk::addFieldValue(fd, "NumberOfTunnels", n.tunnels);
   vbr::vtk::addFieldValue(fd, "DegreeOfNonConvexity", n.degree);
   vbr::vtk::addFieldValue(fd, "NumberOfJoinedShells", n.joinedShells);
+  vbr::vtk::addFieldValue(fd, "NumberOfCutHandles", n.cutHandles);
   vbr::vtk::addFieldValue(fd, "Separates", separates ? 1 : 0);
   fd->AddArray(onSurface);
 }

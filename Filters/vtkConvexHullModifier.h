@@ -32,7 +32,8 @@
  *   fan from its first point, so this output is for export: use Triangles to look at it.
  * - Triangles: the triangles of H (the faces triangulated exactly), which render correctly.
  * - ConvexHull: the faces of the convex hull only, convex polygons.
- * Cell data: `FaceId`, `Level` (0 for pieces of faces of the object's hull, 1 for faces
+ * Cell data: `FaceId`, `Level` (0 for pieces of faces of the object's hull, or of its
+ * component's hull where the components of a well-composed object are solved apart, 1 for faces
  * pressed in from a background hull, 2 for faces pushed back out, ...), `Label` (the selected
  * label, 1 outside Labels mode, in the selected values' data type) and `FaceColor`. Point
  * data: `VoxelMark` (1 object voxel, 0 background voxel). Field data: `NumberOfVertices`,
@@ -41,6 +42,9 @@
  * `NumberOfJoinedShells` (shells of H joined to the rest after H separated, summed over
  * labels: voids reached by face-connected background centres and pieces face-next to others,
  * each joined by a lattice prism; ConvexHullModifier.h; 0 on a 2D image),
+ * `NumberOfCutHandles` (handles cut through walls of H that sealed a tunnel of a well-composed
+ * object, summed over labels: a thin torus whose hole's centres lie on its hull's faces, each
+ * cut by a lattice prism; ConvexHullModifier.h; 0 on a 2D image),
  * `Separates` (1 when the filter's own check passed for every object: the voxels rebuilt from
  * H and its marks equal the selection; a 0 comes with an error message) and
  * `BackgroundCentresOnSurface` (the index coordinates of the background voxel centres that lie

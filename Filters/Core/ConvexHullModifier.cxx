@@ -243,6 +243,10 @@ struct Context
   int keptApart = 0;
   /// Whether groups are pressed in as pits (the first pass) or all kept apart (the second).
   bool pits = true;
+  /// The object's boundary Euler characteristic once counted (none inside when the object is
+  /// not well-composed) and its number of surfaces (-1 until counted; objectSurfaces).
+  std::optional<std::optional<long>> euler;
+  long surfaces = -1;
 };
 
 /// The hull of the points; a flat one is thickened by the points one lattice step off its
@@ -1744,10 +1748,11 @@ bool worthABoolean(const LatticeMesh& surface, const CellList& prism, bool cut)
   return sideOf(surface, centroid, n) == (cut ? 1 : -1) && !booleanLeavesTheLattice(surface, prism);
 }
 
-/// H with the prism cut out (a void) or added (a piece), kept only when the exact Boolean is a
-/// closed 2-manifold with lattice corners and one shell less (its Euler characteristic 2
-/// lower) and every lattice point of P stays on its class's side (prismKeepsSeparation). A
-/// Boolean that fails, or throws, rejects this prism only.
+/// H with the prism cut out (a void or a handle) or added (a piece), kept only when the exact
+/// Boolean is a closed 2-manifold with lattice corners, `shells` shells (one less for a join,
+/// as many for a handle) and an Euler characteristic 2 lower, and every lattice point of P
+/// stays on its class's side (prismKeepsSeparation). A Boolean that fails, or throws, rejects
+/// this prism only.
 bool joinAlongPrism(Context& ctx,
   const CellList& prism,
   bool cut,
@@ -1766,7 +1771,7 @@ bool joinAlongPrism(Context& ctx,
     const LatticeMesh p = triangulateHull(prism);
     const bool ok = cut ? latticeDifference(surface, p, joined, Operands::Embedded)
                         : latticeUnion(surface, p, joined, Operands::Embedded);
-    if (!ok || shellsOf(joined).size() + 1 != shells ||
+    if (!ok || shellsOf(joined).size() != shells ||
       eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface) ||
       !isEmbeddedWithin(joined, box[0], box[1]) ||
       !prismKeepsSeparation(joined, prism, ctx.objects, sides))
@@ -1787,6 +1792,33 @@ bool joinAlongPrism(Context& ctx,
 /// those worthABoolean rejects are not counted).
 constexpr std::size_t kPrismsTried = 48;
 
+/// Cuts out (`cut`) or adds the first of the prisms that joinAlongPrism keeps with `shells`
+/// shells: those whose open interior misses H first (nearest first among them); the cheap tests
+/// of worthABoolean run only until kPrismsTried prisms have passed them.
+bool tryPrisms(Context& ctx,
+  std::vector<CellList> prisms,
+  bool cut,
+  std::size_t shells,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
+{
+  std::stable_partition(prisms.begin(),
+    prisms.end(),
+    [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
+  std::size_t booleans = 0;
+  for (std::size_t k = 0; k < prisms.size() && booleans < kPrismsTried; ++k)
+  {
+    if (ctx.exec.stopRequested())
+      throw std::runtime_error("aborted");
+    if (!worthABoolean(surface, prisms[k], cut))
+      continue;
+    ++booleans;
+    if (joinAlongPrism(ctx, prisms[k], cut, shells, surface, where))
+      return true;
+  }
+  return false;
+}
+
 /// Joins the shell to the rest of H by one of the prisms between the `count` nearest empty
 /// triangles on each side of the crossing (see prismsAt for `tried`); false when none joins.
 bool joinAtCrossing(Context& ctx,
@@ -1802,25 +1834,12 @@ bool joinAtCrossing(Context& ctx,
   for (std::size_t o = 0; o < shells.size(); ++o)
     if (o != s)
       rest.append(shells[o].mesh, false);
-  auto prisms = prismsAt(shells[s].mesh, rest, crossing, count, tried);
-  const bool cut = shells[s].volume < 0;
-  // The prisms whose open interior misses H first (nearest first among them); the cheap tests
-  // of worthABoolean run only until kPrismsTried prisms have passed them.
-  std::stable_partition(prisms.begin(),
-    prisms.end(),
-    [&](const CellList& prism) { return prismMissesSurface(prism, surface); });
-  std::size_t booleans = 0;
-  for (std::size_t k = 0; k < prisms.size() && booleans < kPrismsTried; ++k)
-  {
-    if (ctx.exec.stopRequested())
-      throw std::runtime_error("aborted");
-    if (!worthABoolean(surface, prisms[k], cut))
-      continue;
-    ++booleans;
-    if (joinAlongPrism(ctx, prisms[k], cut, shells.size(), surface, where))
-      return true;
-  }
-  return false;
+  return tryPrisms(ctx,
+    prismsAt(shells[s].mesh, rest, crossing, count, tried),
+    shells[s].volume < 0,
+    shells.size() - 1,
+    surface,
+    where);
 }
 
 /// Joins one shell of H to the rest where the object's or the background's face-connected
@@ -1965,8 +1984,165 @@ std::optional<long> wellComposedBoundaryEuler(const BitVolume& objects, const Ex
 namespace
 {
 
+/// The face-connected components of a voxel set: how many, and how many of them reach the
+/// border of the grid.
+std::array<long, 2> componentCount(const BitVolume& set, bool plane)
+{
+  CUDB cudb;
+  Components comps;
+  buildCUDBComponents(
+    plane ? extractEVM2D(set) : extractEVM(set), Connectivity::Face, Execution(), cudb, comps);
+  const Dims d = set.dims();
+  std::vector<std::int32_t> value(comps.boxLabel.begin(), comps.boxLabel.end());
+  std::vector<std::int32_t> labels(set.voxelCount(), 0);
+  paintBoxes(cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, d, labels.data());
+  std::vector<bool> border(static_cast<std::size_t>(comps.count) + 1, false);
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0]; ++x)
+        if (x == 0 || y == 0 || z == 0 || x == d[0] - 1 || y == d[1] - 1 || z == d[2] - 1)
+          border[labels[gridIndex(d, { x, y, z })]] = true;
+  return { static_cast<long>(comps.count),
+    static_cast<long>(std::count(border.begin() + 1, border.end(), true)) };
+}
+
+/// The Euler characteristic of the object's boundary, counted once; none when the object is not
+/// well-composed (see wellComposedBoundaryEuler).
+const std::optional<long>& objectEuler(Context& ctx)
+{
+  if (!ctx.euler)
+    ctx.euler = wellComposedBoundaryEuler(ctx.objects, ctx.exec);
+  return *ctx.euler;
+}
+
+/// The number of surfaces of the object's boundary, counted once: its face-connected
+/// components and those of the background that do not reach the grid's border.
+long objectSurfaces(Context& ctx)
+{
+  if (ctx.surfaces < 0)
+  {
+    const Dims d = ctx.objects.dims();
+    BitVolume background(d[0], d[1], d[2]);
+    for (std::int32_t z = 0; z < d[2]; ++z)
+      for (std::int32_t y = 0; y < d[1]; ++y)
+        for (std::int32_t x = 0; x < d[0]; ++x)
+          background.set(x, y, z, !ctx.objects.get(x, y, z));
+    const std::array<long, 2> voids = componentCount(background, d[2] == 1);
+    ctx.surfaces = componentCount(ctx.objects, d[2] == 1)[0] + voids[0] - voids[1];
+  }
+  return ctx.surfaces;
+}
+
+/// Missing handles (see the header): the walls of H between two face-neighbouring background
+/// centres, neither inside H and one on it, whose segment's midpoint lies strictly inside H.
+/// At most `limit`, in grid order; `skip` holds those already tried.
+std::vector<std::array<LatticePoint, 2>> wallCrossings(const BitVolume& objects,
+  const LatticeMesh& surface,
+  const std::vector<std::uint8_t>& where,
+  const std::set<std::array<LatticePoint, 2>>& skip,
+  std::size_t limit)
+{
+  const Dims d = objects.dims();
+  std::vector<std::array<LatticePoint, 2>> found;
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0] && found.size() < limit; ++x)
+      {
+        const LatticePoint p{ x, y, z };
+        if (where[gridIndex(d, p)] != On || voxelClass(objects, p))
+          continue;
+        for (int k = 0; k < 6 && found.size() < limit; ++k)
+        {
+          const LatticePoint q = step(p, k);
+          if (!inGrid(d, q) || voxelClass(objects, q) || where[gridIndex(d, q)] == Inside ||
+            (where[gridIndex(d, q)] == On && q < p) || skip.count({ p, q }))
+            continue;
+          if (sideOf(surface, { p[0] + q[0], p[1] + q[1], p[2] + q[2] }, 2) > 0)
+            found.push_back({ p, q });
+        }
+      }
+  return found;
+}
+
+/// Cuts one handle through H at a wall crossing: a prism conv(T1 + T2) between an empty
+/// triangle of H near each of the two centres, cut out when H keeps its shells, its Euler
+/// characteristic drops by 2 and every centre stays on its side (joinAlongPrism).
+bool cutAtCrossing(Context& ctx,
+  const std::array<LatticePoint, 2>& crossing,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
+{
+  const std::size_t shells = shellsOf(surface).size();
+  for (const auto& [count, tried] : { std::array<std::size_t, 2>{ kTrianglesNear, 0 },
+         std::array<std::size_t, 2>{ kMoreTrianglesNear, kTrianglesNear } })
+  {
+    const auto first = emptyTrianglesNear(surface, { crossing[0] }, count);
+    const auto second = emptyTrianglesNear(surface, { crossing[1] }, count);
+    std::vector<CellList> prisms;
+    for (std::size_t i = 0; i < first.size(); ++i)
+      for (std::size_t j = 0; j < second.size(); ++j)
+      {
+        if (i < tried && j < tried)
+          continue;
+        std::vector<LatticePoint> corners(first[i].begin(), first[i].end());
+        corners.insert(corners.end(), second[j].begin(), second[j].end());
+        CellList prism = convexHull(corners);
+        bool empty = prism.dimension == 3;
+        forEachPointIn(prism, true, [&](const LatticePoint&) { empty = false; });
+        if (empty)
+          prisms.push_back(std::move(prism));
+      }
+    if (tryPrisms(ctx, std::move(prisms), true, shells, surface, where))
+      return true;
+  }
+  return false;
+}
+
+/// The wall crossings tried per round of cutMissingHandles.
+constexpr std::size_t kCrossingsTried = 16;
+
+/// Missing handles (see the header): while H has the object's number of surfaces and a higher
+/// Euler characteristic than its boundary (a well-composed object), handles are cut through the
+/// walls that seal its tunnels. Returns how many; H unchanged when none was cut or the result
+/// does not separate.
+int cutMissingHandles(Context& ctx, LatticeMesh& surface)
+{
+  const std::optional<long>& target = objectEuler(ctx);
+  if (!target || eulerCharacteristic(surface) <= *target ||
+    static_cast<long>(shellsOf(surface).size()) != objectSurfaces(ctx))
+    return 0;
+  const auto planes = ctx.planeLevel;
+  LatticeMesh cut = surface;
+  std::vector<std::uint8_t> where = whereInGrid(cut, ctx.objects.dims());
+  std::set<std::array<LatticePoint, 2>> failed;
+  int cuts = 0;
+  while (eulerCharacteristic(cut) > *target)
+  {
+    bool done = false;
+    for (const auto& c : wallCrossings(ctx.objects, cut, where, failed, kCrossingsTried))
+    {
+      if (cutAtCrossing(ctx, c, cut, where))
+      {
+        done = true;
+        break;
+      }
+      failed.insert(c);
+    }
+    if (!done)
+      break;
+    ++cuts;
+  }
+  if (cuts == 0 || !separates(ctx.objects, cut))
+  {
+    ctx.planeLevel = planes;
+    return 0;
+  }
+  surface = std::move(cut);
+  return cuts;
+}
+
 /// One pass of the levels, with pits or with every level kept apart: true when H separates
-/// (checked, see the header), its shells then joined.
+/// (checked, see the header), its shells then joined and its missing handles cut.
 bool solvePass(Context& ctx, ModifiedHull& r, bool pits)
 {
   ctx.pits = pits;
@@ -1991,35 +2167,31 @@ bool solvePass(Context& ctx, ModifiedHull& r, bool pits)
   r.withoutPits = !pits;
   r.keptApart = ctx.keptApart;
   r.joinedShells = joinShells(ctx, r.surface);
+  r.cutHandles = cutMissingHandles(ctx, r.surface);
   return true;
 }
 
-/// Whether a shell of the closed surface has genus above 0.
-bool hasAHandle(const LatticeMesh& surface)
+/// Whether H has the topology of the well-composed object's boundary: its Euler characteristic
+/// and number of surfaces (one shell per surface).
+bool hasTopology(Context& ctx, const LatticeMesh& surface)
 {
-  for (const Shell& shell : shellsOf(surface))
-    if (eulerCharacteristic(shell.mesh) < 2)
-      return true;
-  return false;
+  return eulerCharacteristic(surface) == *objectEuler(ctx) &&
+    static_cast<long>(shellsOf(surface).size()) == objectSurfaces(ctx);
 }
 
-/// Spurious handles (see the header): when H from the pits has a lower Euler characteristic
-/// than the boundary of the object's closed cubes, H with every level kept apart is made as well
-/// and kept when its Euler characteristic is the object's. A ring of object voxels about a wide
-/// tunnel that a pit cut off comes back as a torus of its own that one tube joins; kept apart, the
-/// ring stays part of its level's solid.
-void keepFewerHandles(Context& ctx, ModifiedHull& r)
+/// Topology of the second pass (see the header): when H from the pits, its shells joined and
+/// its missing handles cut, has not the topology of the well-composed object's boundary (a
+/// spurious handle, or a shell no prism joined), H with every level kept apart is made as well
+/// and kept when it has. A ring of object voxels about a wide tunnel that a pit cut off comes
+/// back as a torus of its own that one tube joins; kept apart, the ring stays part of its
+/// level's solid.
+void keepTheObjectsTopology(Context& ctx, ModifiedHull& r)
 {
-  if (!hasAHandle(r.surface))
-    return;
-  const std::optional<long> target = wellComposedBoundaryEuler(ctx.objects, ctx.exec);
-  if (!target || eulerCharacteristic(r.surface) >= *target)
+  if (!objectEuler(ctx) || hasTopology(ctx, r.surface))
     return;
   ModifiedHull apart = r;
   const auto planes = ctx.planeLevel;
-  // No more shells than before: one more shell and one handle less would count the same.
-  if (solvePass(ctx, apart, false) && eulerCharacteristic(apart.surface) == *target &&
-    shellsOf(apart.surface).size() <= shellsOf(r.surface).size())
+  if (solvePass(ctx, apart, false) && hasTopology(ctx, apart.surface))
   {
     r = std::move(apart);
     r.handlePass = ModifiedHull::HandlePass::Kept;
@@ -2036,11 +2208,75 @@ void solveAndCheck(Context& ctx, ModifiedHull& r)
   r.complete = false;
   if (solvePass(ctx, r, true))
   {
-    keepFewerHandles(ctx, r);
+    keepTheObjectsTopology(ctx, r);
     return;
   }
   if (!solvePass(ctx, r, false))
     r.surface = triangulateHull(r.hull);
+}
+
+/// Components apart (see the header): when H has not the topology of a well-composed object
+/// of several components, H of each component alone (the other components its background),
+/// kept when together they separate (their surfaces then miss each other) with the object's
+/// topology. The faces' levels are those of each component's own hulls.
+void solveComponentsApart(Context& ctx, ModifiedHull& r)
+{
+  const Dims d = ctx.objects.dims();
+  std::vector<LatticePoint> points;
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0]; ++x)
+        if (ctx.objects.get(x, y, z))
+          points.push_back({ x, y, z });
+  const auto components = componentsOf(points, d[2] == 1, false);
+  if (components.size() < 2)
+    return;
+  LatticeMesh together;
+  std::map<FacePlane, int> levels;
+  int joined = 0, cut = 0, keptApart = 0, degree = 0;
+  for (const auto& component : components)
+  {
+    // The component in its own box (its H lies in the hull of its centres), so that many small
+    // components do not each pay for the whole grid.
+    LatticePoint lo = component[0], hi = component[0];
+    for (const auto& p : component)
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    BitVolume part(static_cast<std::int32_t>(hi[0] - lo[0] + 1),
+      static_cast<std::int32_t>(hi[1] - lo[1] + 1),
+      static_cast<std::int32_t>(hi[2] - lo[2] + 1));
+    for (const auto& p : component)
+      part.set(static_cast<std::int32_t>(p[0] - lo[0]),
+        static_cast<std::int32_t>(p[1] - lo[1]),
+        static_cast<std::int32_t>(p[2] - lo[2]));
+    ModifiedHull h = modifyConvexHull(part, ctx.coplanar, ctx.exec);
+    if (!h.complete || h.hull.dimension < 3)
+      return;
+    for (auto& p : h.surface.points)
+      for (int k = 0; k < 3; ++k)
+        p[k] += lo[k];
+    together.append(h.surface, false);
+    for (const auto& f : h.faces)
+      levels.emplace(FacePlane{ f.plane.normal,
+                       f.plane.offset + static_cast<std::int64_t>(dot(f.plane.normal, lo)) },
+        f.level);
+    joined += h.joinedShells;
+    cut += h.cutHandles;
+    keptApart += h.keptApart;
+    degree = std::max(degree, h.degreeOfNonConvexity);
+  }
+  if (!separates(ctx.objects, together) || !hasTopology(ctx, together))
+    return;
+  r.surface = std::move(together);
+  ctx.planeLevel = std::move(levels);
+  r.joinedShells = joined;
+  r.cutHandles = cut;
+  r.keptApart = keptApart;
+  r.degreeOfNonConvexity = degree;
+  r.componentsApart = true;
 }
 
 } // namespace
@@ -2074,6 +2310,8 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
     classifyBackgroundComponents(objects, r.hull, r);
     Context ctx{ objects, coplanar, exec, {}, 0 };
     solveAndCheck(ctx, r);
+    if (r.complete && objectEuler(ctx) && !hasTopology(ctx, r.surface))
+      solveComponentsApart(ctx, r);
     if (!exec.report(0.8))
       throw std::runtime_error("aborted");
     mergeIntoFaces(ctx.planeLevel, r);

@@ -10,6 +10,7 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
@@ -153,6 +154,37 @@ Mesh surfaceMesh(const vbr::LatticeMesh& m, bool& manifold)
     manifold = mesh.add_face(vs[t[0]], vs[t[1]], vs[t[2]]) != Mesh::null_face() && manifold;
   manifold = manifold && CGAL::is_closed(mesh);
   return mesh;
+}
+
+/// The connected components of H's triangles, counted by CGAL.
+std::size_t componentCount(const vbr::LatticeMesh& m)
+{
+  bool manifold = false;
+  Mesh mesh = surfaceMesh(m, manifold);
+  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:c", 0).first;
+  return CGAL::Polygon_mesh_processing::connected_components(mesh, component);
+}
+
+/// The Euler characteristic of each connected component of H's triangles (CGAL), sorted.
+std::vector<long> componentEulers(const vbr::LatticeMesh& m)
+{
+  bool manifold = false;
+  Mesh mesh = surfaceMesh(m, manifold);
+  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:c", 0).first;
+  const std::size_t n = CGAL::Polygon_mesh_processing::connected_components(mesh, component);
+  std::vector<std::set<Mesh::Vertex_index>> vertices(n);
+  std::vector<long> faces(n, 0);
+  for (const auto f : mesh.faces())
+  {
+    ++faces[component[f]];
+    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      vertices[component[f]].insert(v);
+  }
+  std::vector<long> euler;
+  for (std::size_t c = 0; c < n; ++c)
+    euler.push_back(static_cast<long>(vertices[c].size()) - faces[c] / 2);
+  std::sort(euler.begin(), euler.end());
+  return euler;
 }
 
 /// The solid a closed mesh bounds, as a Nef polyhedron.
@@ -515,17 +547,17 @@ TEST(ConvexHullModifier, HollowBallTunnelsReachTheCavity)
   }
 }
 
-TEST(ConvexHullModifier, SecondPassWithoutTheObjectsTopologyIsRejected)
+TEST(ConvexHullModifier, SecondPassCutsTheRealTunnel)
 {
   // Hollow balls whose first H has a spurious handle (a wide tunnel into the cavity, as in the
   // cases kept above) and a real one: a straight tunnel through the shell beside the cavity, so
   // the object's boundary is a torus (Euler characteristic 0, counted here from the closed
-  // cubes). The second pass runs (H has a handle and a lower Euler characteristic) but cannot
-  // open the real tunnel: every region it keeps apart meets its parent in one triangle, so its H
-  // separates as a sphere (Euler characteristic 2), not the object's, and is rejected. H is then
-  // the first pass's: with pits, its Euler characteristic below the object's (the spurious
-  // handle stays, since the pass that has none loses the real one too), its faces' levels those
-  // of that pass, and it separates and reverts exactly (checked against the brute force).
+  // cubes). The pass with every level kept apart cannot open the real tunnel (every region it
+  // keeps apart meets its parent in one triangle), so its H is a sphere whose wall seals it;
+  // that wall is cut (a prism between two empty triangles of H where two face-neighbouring
+  // background centres of the tunnel lie on either side of it) and H has the object's topology:
+  // one shell, Euler characteristic 0. Without the cut the second pass was rejected and H kept
+  // the spurious handle (Euler characteristic -2 and -4).
   using Pass = vbr::ModifiedHull::HandlePass;
   struct Case
   {
@@ -552,16 +584,173 @@ TEST(ConvexHullModifier, SecondPassWithoutTheObjectsTopologyIsRejected)
             std::abs((c.axis == 1 ? z : y) - centre) <= c.tunnelHalf)
             v.set(x, y, z, false);
     ASSERT_TRUE(wellComposed(v));
-    const long target = 2 * closedCubesEuler(v);
-    EXPECT_EQ(target, 0);
-    const auto r = expectSeparating(v, { false });
-    EXPECT_STREQ(passName(r.handlePass), passName(Pass::Rejected));
-    EXPECT_FALSE(r.withoutPits);
-    EXPECT_LT(eulerOf(r), target) << "H is not the first pass's";
+    EXPECT_EQ(2 * closedCubesEuler(v), 0);
+    const auto r = expectSeparating(v, { true, true });
+    EXPECT_STREQ(passName(r.handlePass), passName(Pass::Kept));
+    EXPECT_TRUE(r.withoutPits);
+    EXPECT_GE(r.cutHandles, 1);
+    EXPECT_EQ(componentCount(r.surface), 1u);
     expectFaceLevels(r);
-    std::cout << c.name << ": H's Euler characteristic " << eulerOf(r) << ", the object's "
-              << target << ", shells joined " << r.joinedShells << std::endl;
+    std::cout << c.name << ": H's Euler characteristic " << eulerOf(r) << ", handles cut "
+              << r.cutHandles << ", shells joined " << r.joinedShells << std::endl;
   }
+}
+
+TEST(ConvexHullModifier, ThinToriKeepTheirHandle)
+{
+  // Tori of tube radius 0.8 to 2.2 about major radii 2 to 6. On the thin ones every background
+  // centre of the hole lies on a face of the hull (a tube two voxels thick has no lattice point
+  // strictly between its top and bottom faces), so the hull alone separates: a sphere, Euler
+  // characteristic 2 where the object's boundary (its surfels counted here, and the closed
+  // cubes) has 0. H must have its genus: a wall of H between two face-neighbouring background
+  // centres of the hole (their midpoint strictly inside H) is cut by a prism between two empty
+  // triangles of H. Checked: one component (CGAL), Euler characteristic 0, separation of every
+  // centre (CGAL Side_of_triangle_mesh), no self-intersection, exact reversion. Tori whose
+  // centres all lie in one plane are left out (H is their two-sided polygon, see the README).
+  int tori = 0, cut = 0;
+  for (double major : { 2.0, 2.5, 3.0, 3.5, 4.0, 5.0, 6.0 })
+    for (double minor : { 0.8, 1.0, 1.2, 1.5, 1.8, 2.2 })
+    {
+      const vbr::BitVolume v = torus(major, minor);
+      if (minor >= major || !wellComposed(v) ||
+        vbr::convexHull(vbr::vertexCandidates(v)).dimension < 3)
+        continue;
+      SCOPED_TRACE(testing::Message() << "torus " << major << ", " << minor);
+      ASSERT_EQ(2 * closedCubesEuler(v), 0);
+      const auto r = expectSeparating(v, { true, true });
+      EXPECT_EQ(componentCount(r.surface), 1u);
+      ++tori;
+      cut += r.cutHandles > 0;
+    }
+  std::cout << tori << " tori, " << cut << " with a handle cut" << std::endl;
+  EXPECT_GE(tori, 30);
+  EXPECT_GE(cut, 15);
+}
+
+TEST(ConvexHullModifier, SeparateComponentsKeepTheirOwnTopology)
+{
+  // Two objects 5 voxels apart: two balls, and a ball beside a thin torus. One H for both came
+  // out as one shell (the pressing-in between them left a bridge that the joins kept): two
+  // balls as a surface of genus 2 (Euler characteristic -2), the ball and the torus as one
+  // sphere (2, the total of a sphere and a torus, with one surface where the object has two).
+  // H is now the union of the H of each component: per component of H (CGAL) the Euler
+  // characteristic of the component of the object it holds (twice its closed cubes', counted
+  // here for each component alone), and every centre separated.
+  for (double minor : { 0.0, 1.0, 1.2 })
+  {
+    SCOPED_TRACE(minor);
+    const vbr::BitVolume a = minor > 0 ? torus(5, minor) : ball(5), b = ball(6);
+    const int shift = a.size(0) + 2;
+    vbr::BitVolume v(shift + b.size(0), std::max(a.size(1), b.size(1)), b.size(2));
+    vbr::BitVolume first(v.size(0), v.size(1), v.size(2)), second = first;
+    for (int z = 0; z < v.size(2); ++z)
+      for (int y = 0; y < v.size(1); ++y)
+        for (int x = 0; x < v.size(0); ++x)
+        {
+          const bool inA = at(a, x, y, z), inB = at(b, x - shift, y, z);
+          v.set(x, y, z, inA || inB);
+          first.set(x, y, z, inA);
+          second.set(x, y, z, inB);
+        }
+    ASSERT_TRUE(wellComposed(v));
+    std::vector<long> expected{ 2 * closedCubesEuler(first), 2 * closedCubesEuler(second) };
+    std::sort(expected.begin(), expected.end());
+    const auto r = expectSeparating(v, { true, true });
+    EXPECT_TRUE(r.componentsApart);
+    EXPECT_EQ(componentEulers(r.surface), expected);
+  }
+}
+
+TEST(ConvexHullModifier, HollowBallsWithOffCentreTunnels)
+{
+  // Hollow balls of R 8 to 10 with a tunnel 1 or 3 wide into the cavity, off-centre, along x or
+  // y: all separate and are closed embedded 2-manifolds; the object's boundary is a sphere
+  // (Euler characteristic 2, the closed cubes'). Not all have its topology yet: where a 1 wide
+  // off-centre tunnel leaves the void's shell reaching out along the tunnel in long thin
+  // triangles, no prism from the empty triangles near the tunnel's exit passes the checks, and
+  // the pass with every level kept apart keeps the void too (an extra shell, Euler
+  // characteristic 4). Their number is recorded here so that it can only go down.
+  int total = 0, wrong = 0;
+  for (int R : { 8, 9, 10 })
+    for (double r : { R / 2.0, R / 2.0 + 1 })
+      for (int axis : { 0, 1 })
+        for (double half : { 0.0, 1.0 })
+          for (std::array<double, 3> shift : { std::array<double, 3>{ 0, 1, 1 },
+                 std::array<double, 3>{ 2, 0, 1 },
+                 std::array<double, 3>{ 1, 2, 0 },
+                 std::array<double, 3>{ 0, 2, 2 } })
+          {
+            const vbr::BitVolume v = hollowBall(R, r, axis, half, shift);
+            if (!wellComposed(v))
+              continue;
+            SCOPED_TRACE(testing::Message()
+              << "R " << R << ", r " << r << ", axis " << axis << ", half " << half << ", shift "
+              << shift[0] << " " << shift[1] << " " << shift[2]);
+            ASSERT_EQ(2 * closedCubesEuler(v), 2);
+            const auto h = expectSeparating(v, { false });
+            ++total;
+            if (eulerOf(h) != 2 || componentCount(h.surface) != 1)
+            {
+              ++wrong;
+              std::cout << "R " << R << ", r " << r << ", axis " << axis << ", half " << half
+                        << ", shift " << shift[0] << " " << shift[1] << " " << shift[2]
+                        << ": Euler characteristic " << eulerOf(h) << ", "
+                        << componentCount(h.surface) << " shells" << std::endl;
+            }
+          }
+  std::cout << total << " hollow balls, " << wrong << " without the object's topology" << std::endl;
+  EXPECT_GE(total, 60);
+  EXPECT_LE(wrong, 6);
+}
+
+TEST(ConvexHullModifier, FlatRingHasAGenusOneSeparatingSolid)
+{
+  // A ring of 8 voxels in one plane (3 x 3 less its middle; well-composed, a torus's
+  // boundary): its H is the two-sided square (every centre on it, the middle marked
+  // background), genus 0. A separating polyhedron of genus 1 with corners at voxel centres
+  // exists all the same, so the object's genus is not out of reach by definition there: the
+  // box [-1, 3]^2 x [-1, 1] less the diamond prism about the middle, built here and checked
+  // independently (CGAL: every centre on its side, Euler characteristic 0, one component).
+  vbr::BitVolume v(5, 5, 3);
+  for (int y = 1; y <= 3; ++y)
+    for (int x = 1; x <= 3; ++x)
+      if (x != 2 || y != 2)
+        v.set(x, y, 1);
+  ASSERT_TRUE(wellComposed(v));
+  EXPECT_EQ(2 * closedCubesEuler(v), 0);
+  const auto r = vbr::modifyConvexHull(v);
+  EXPECT_EQ(r.hull.dimension, 2);
+  EXPECT_EQ(vbr::revertModifiedHull(r.surface, r.backgroundOnSurface, v.dims()), v);
+  std::vector<LatticePoint> box, diamond;
+  for (long z : { 0, 2 })
+  {
+    for (long y : { 0, 4 })
+      for (long x : { 0, 4 })
+        box.push_back({ x, y, z });
+    for (const auto& d : { LatticePoint{ 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 } })
+      diamond.push_back({ 2 + d[0], 2 + d[1], z });
+  }
+  vbr::LatticeMesh solid;
+  ASSERT_TRUE(vbr::latticeDifference(vbr::triangulateHull(vbr::convexHull(box)),
+    vbr::triangulateHull(vbr::convexHull(diamond)),
+    solid));
+  bool manifold = false;
+  const Mesh mesh = surfaceMesh(solid, manifold);
+  ASSERT_TRUE(manifold);
+  EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(mesh));
+  EXPECT_EQ(
+    static_cast<long>(solid.points.size()) - static_cast<long>(solid.triangles.size()) / 2, 0);
+  EXPECT_EQ(componentCount(solid), 1u);
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(mesh);
+  long wrong = 0;
+  for (long z = -1; z <= v.size(2); ++z)
+    for (long y = -1; y <= v.size(1); ++y)
+      for (long x = -1; x <= v.size(0); ++x)
+      {
+        const auto where = side(Kernel::Point_3(x, y, z));
+        wrong += at(v, x, y, z) ? where == CGAL::ON_UNBOUNDED_SIDE : where == CGAL::ON_BOUNDED_SIDE;
+      }
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(ConvexHullModifier, RandomVolumesSeparate)

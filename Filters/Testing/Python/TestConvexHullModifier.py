@@ -333,6 +333,16 @@ def main():
     check.equal("hollow ball: Euler characteristic twice the closed cubes'",
                 euler_of_triangles(tris), 2 * closed_cubes_euler(hollow))
     check.true("hollow ball: NumberOfJoinedShells", field_value(out, "NumberOfJoinedShells") >= 1)
+    # A thin torus (a tube two voxels thick): the centres of its hole all lie on its hull's
+    # faces, so the hull alone separates; H gets the torus's handle by a cut (Euler
+    # characteristic 0, twice the closed cubes').
+    thin = shape(16, lambda x, y, z: ((np.hypot(x - 7.5, y - 7.5) - 5) ** 2 +
+                                      (z - 7.5) ** 2) <= 1.2 ** 2)
+    out = check_case("thin torus", thin)
+    check.equal("thin torus: Euler characteristic twice the closed cubes'",
+                euler_of_triangles(np.array([c for c in cells(out)])), 2 * closed_cubes_euler(thin))
+    check.equal("thin torus: Euler characteristic", 2 * closed_cubes_euler(thin), 0)
+    check.true("thin torus: NumberOfCutHandles", field_value(out, "NumberOfCutHandles") >= 1)
     # 2D images: separating polygons with holes in the image plane.
     yy, xx = np.mgrid[0:21, 0:23]
     disc = np.hypot(xx - 11, yy - 10) < 9.5
