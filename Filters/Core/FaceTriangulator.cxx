@@ -95,55 +95,141 @@ void markNesting(Cdt& cdt)
   }
 }
 
+} // namespace
+
+void EarCorners::reset(const PointRange& pts, int x, int y)
+{
+  const std::size_t n = pts.size();
+  this->X.resize(n);
+  this->Y.resize(n);
+  this->Alive.resize(n);
+  this->Slot.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    this->X[i] = pts.begin()[i][x];
+    this->Y[i] = pts.begin()[i][y];
+    this->Alive[i] = static_cast<int>(i);
+    this->Slot[i] = static_cast<int>(i);
+  }
+  this->AliveX = this->X;
+  this->AliveY = this->Y;
+}
+
+std::int64_t EarCorners::turn(int a, int b, int c) const
+{
+  return (this->X[b] - this->X[a]) * (this->Y[c] - this->Y[a]) -
+    (this->Y[b] - this->Y[a]) * (this->X[c] - this->X[a]);
+}
+
+bool EarCorners::isEar(int a, int b, int c) const
+{
+  if (this->turn(a, b, c) <= 0)
+    return false;
+  const std::int64_t xa = this->X[a], xb = this->X[b], xc = this->X[c];
+  const std::int64_t ya = this->Y[a], yb = this->Y[b], yc = this->Y[c];
+  // The triangle's bounding box: most corners fall outside it, decided without products.
+  const std::int64_t xlo = std::min({ xa, xb, xc }), xhi = std::max({ xa, xb, xc });
+  const std::int64_t ylo = std::min({ ya, yb, yc }), yhi = std::max({ ya, yb, yc });
+  const std::size_t n = this->Alive.size();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::int64_t x = this->AliveX[k], y = this->AliveY[k];
+    if (x < xlo || x > xhi || y < ylo || y > yhi)
+      continue;
+    const int i = this->Alive[k];
+    if (i == a || i == b || i == c)
+      continue;
+    if ((xb - xa) * (y - ya) - (yb - ya) * (x - xa) >= 0 &&
+      (xc - xb) * (y - yb) - (yc - yb) * (x - xb) >= 0 &&
+      (xa - xc) * (y - yc) - (ya - yc) * (x - xc) >= 0)
+      return false;
+  }
+  return true;
+}
+
+void EarCorners::remove(int i)
+{
+  const int slot = this->Slot[i];
+  const int last = this->Alive.back();
+  this->Alive[slot] = last;
+  this->AliveX[slot] = this->AliveX.back();
+  this->AliveY[slot] = this->AliveY.back();
+  this->Slot[last] = slot;
+  this->Alive.pop_back();
+  this->AliveX.pop_back();
+  this->AliveY.pop_back();
+}
+
+namespace
+{
+
+/// clipEars on a ring of four corners (most faces: rectangles), with no ring to set up: the
+/// same tests in the same order. (x, y): the coordinates in which the ring runs
+/// counter-clockwise.
+bool clipQuadrilateral(const PointRange& pts, int x, int y, FaceCells& out)
+{
+  const Point3* p = pts.begin();
+  const auto turn = [&](int a, int b, int c)
+  {
+    return (std::int64_t(p[b][x]) - p[a][x]) * (std::int64_t(p[c][y]) - p[a][y]) -
+      (std::int64_t(p[b][y]) - p[a][y]) * (std::int64_t(p[c][x]) - p[a][x]);
+  };
+  const auto emit = [&out](int a, int b, int c)
+  {
+    out.corners.insert(out.corners.end(), { a, b, c });
+    out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
+  };
+  for (int b = 0; b < 4; ++b)
+  {
+    const int a = (b + 3) % 4, c = (b + 1) % 4, d = (b + 2) % 4;
+    // An ear: a left turn whose closed triangle does not hold the fourth corner.
+    if (turn(a, b, c) <= 0 || (turn(a, b, d) >= 0 && turn(b, c, d) >= 0 && turn(c, a, d) >= 0))
+      continue;
+    emit(a, b, c);
+    if (turn(d, a, c) <= 0)
+      return false;
+    emit(d, a, c);
+    return true;
+  }
+  return false;
+}
+
 /// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
-/// corner whose triangle holds no other corner (not even on its border). The corners left
+/// corner whose triangle holds no other corner (not even on its border; a corner at the same
+/// place as one of the ear's, where the loop visits a place twice, is on it). The corners left
 /// form a ring linked both ways, walked from corner to corner: after an ear is cut the walk
 /// goes back to the corner before it, the only one besides the next whose ear changed, so
 /// that a face takes about one pass round its ring rather than one per ear. Appends the
 /// triangles to `out`; returns false when a whole round finds no ear (left to the general
-/// triangulation, the caller then drops what was appended). `ring` is scratch space.
-bool clipEars(const PointRange& pts, int u, int v, int sign, std::vector<int>& ring, FaceCells& out)
+/// triangulation, the caller then drops what was appended). `out.ring` and `out.earCorners`
+/// are scratch space.
+bool clipEars(const PointRange& pts, int u, int v, int sign, FaceCells& out)
 {
   const int n = static_cast<int>(pts.size());
-  ring.resize(2 * static_cast<std::size_t>(n));
-  int* prev = ring.data();
-  int* next = ring.data() + n;
+  if (n == 4)
+    return clipQuadrilateral(pts, sign > 0 ? u : v, sign > 0 ? v : u, out);
+  out.ring.resize(2 * static_cast<std::size_t>(n));
+  int* prev = out.ring.data();
+  int* next = out.ring.data() + n;
   for (int i = 0; i < n; ++i)
   {
     prev[i] = (i + n - 1) % n;
     next[i] = (i + 1) % n;
   }
-  auto cross = [&](int a, int b, int c)
-  {
-    return sign *
-      (static_cast<long long>(pts[b][u] - pts[a][u]) * (pts[c][v] - pts[a][v]) -
-        static_cast<long long>(pts[b][v] - pts[a][v]) * (pts[c][u] - pts[a][u]));
-  };
-  auto isEar = [&](int a, int b, int c)
-  {
-    if (cross(a, b, c) <= 0)
-      return false;
-    for (int k = next[c]; k != a; k = next[k])
-    {
-      if (pts[k] == pts[a] || pts[k] == pts[b] || pts[k] == pts[c])
-        return false; // a corner visited twice: leave it to the general method
-      if (cross(a, b, k) >= 0 && cross(b, c, k) >= 0 && cross(c, a, k) >= 0)
-        return false;
-    }
-    return true;
-  };
+  EarCorners& left = out.earCorners;
+  left.reset(pts, sign > 0 ? u : v, sign > 0 ? v : u);
   auto emit = [&out](int a, int b, int c)
   {
     out.corners.insert(out.corners.end(), { a, b, c });
     out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
   };
-  int left = n, b = 0, misses = 0;
-  while (left > 3)
+  int b = 0, misses = 0;
+  while (left.size() > 3)
   {
-    if (misses >= left)
+    if (misses >= static_cast<int>(left.size()))
       return false;
     const int a = prev[b], c = next[b];
-    if (!isEar(a, b, c))
+    if (!left.isEar(a, b, c))
     {
       b = c;
       ++misses;
@@ -152,12 +238,12 @@ bool clipEars(const PointRange& pts, int u, int v, int sign, std::vector<int>& r
     emit(a, b, c);
     next[a] = c;
     prev[c] = a;
-    --left;
+    left.remove(b);
     misses = 0;
     b = a;
   }
   const int a = prev[b], c = next[b];
-  if (cross(a, b, c) <= 0)
+  if (left.turn(a, b, c) <= 0)
     return false;
   emit(a, b, c);
   return true;
@@ -176,6 +262,24 @@ void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& c
   corners.clear();
   for (const Point3& p : brep.loopPoints(face.firstLoop))
     corners.push_back(face.normalSign > 0 ? Point2L{ p[u], p[v] } : Point2L{ p[v], p[u] });
+}
+
+/// Whether the fan from corner `apex` covers the loop (fanCoversPolygon), its doubled area
+/// `area` known.
+bool fanCovers(const std::vector<Point2L>& corners, std::size_t apex, Wide area)
+{
+  const std::size_t n = corners.size();
+  if (n < 3 || area <= 0)
+    return false;
+  const Point2L& o = corners[apex];
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    const Point2L& b = corners[(apex + i) % n];
+    const Point2L& c = corners[(apex + i + 1) % n];
+    if (Wide(b[0] - o[0]) * (c[1] - o[1]) - Wide(b[1] - o[1]) * (c[0] - o[0]) < 0)
+      return false;
+  }
+  return true;
 }
 
 /// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
@@ -200,10 +304,41 @@ int fanApex(const std::vector<Point2L>& corners)
     return static_cast<int>(convex);
   if (convex < n)
     candidates[count++] = convex;
+  const Wide area = count > 0 ? doubledArea(corners) : 0;
   for (std::size_t k = 0; k < count; ++k)
-    if (fanCoversPolygon(corners, candidates[k]))
+    if (fanCovers(corners, candidates[k], area))
       return static_cast<int>(candidates[k]);
   return -1;
+}
+
+/// The apex fanApex picks for a face's outer loop that goes round a rectangle: four left
+/// turns, no right turn, straight on at every other corner (the corners of neighbouring
+/// faces on its sides), as most faces of porous volumes do. Such a loop turns once round, so
+/// it is a convex polygon that passes no corner twice, and fanApex takes its first left turn
+/// without a check. -1 for any other loop. Read from the face's points, in the coordinates of
+/// outerLoop2D, without making them.
+int rectangleApex(const PointRange& pts, int u, int v, int sign)
+{
+  const int x = sign > 0 ? u : v, y = sign > 0 ? v : u;
+  const std::size_t n = pts.size();
+  const Point3* p = pts.begin();
+  int first = -1, lefts = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point3& a = p[i == 0 ? n - 1 : i - 1];
+    const Point3& b = p[i];
+    const Point3& c = p[i + 1 == n ? 0 : i + 1];
+    const std::int64_t dx0 = std::int64_t(b[x]) - a[x], dy0 = std::int64_t(b[y]) - a[y];
+    const std::int64_t dx1 = std::int64_t(c[x]) - b[x], dy1 = std::int64_t(c[y]) - b[y];
+    const Wide turn = Wide(dx0) * dy1 - Wide(dy0) * dx1;
+    if (turn < 0)
+      return -1;
+    if (turn > 0 && lefts++ == 0)
+      first = static_cast<int>(i);
+    else if (turn == 0 && Wide(dx0) * dx1 + Wide(dy0) * dy1 <= 0)
+      return -1; // going back, or a corner twice in a row
+  }
+  return lefts == 4 ? first : -1;
 }
 
 /// Whether a loop passes a corner twice (parts of a face, or of its background, touching
@@ -236,11 +371,14 @@ public:
     , Members(scratch.members)
     , Front(scratch.front)
     , Back(scratch.back)
+    , BestMembers(scratch.bestMembers)
+    , BestFront(scratch.bestFront)
+    , BestBack(scratch.bestBack)
   {
     this->Across.assign(triangles.size(), { -1, -1, -1 });
     this->Taken.assign(triangles.size(), 0);
     this->Stamp.assign(triangles.size(), -1);
-    this->findNeighbours(scratch.edges);
+    this->findNeighbours(scratch);
   }
 
   void run(FaceCells& out)
@@ -253,44 +391,81 @@ public:
       std::size_t bestSize = 0;
       for (int k = 0; k < 3; ++k)
       {
-        const std::size_t size = this->growFan(static_cast<int>(start), k, false);
+        const std::size_t size = this->growFan(static_cast<int>(start), k);
         if (size > bestSize)
         {
           bestSize = size;
           best = k;
+          this->Members.swap(this->BestMembers); // kept: the fan taken, not grown again
+          this->Front.swap(this->BestFront);
+          this->Back.swap(this->BestBack);
         }
       }
-      this->growFan(static_cast<int>(start), best, true);
+      for (int t : this->BestMembers)
+        this->Taken[t] = 1;
       const int apex = this->Triangles[start][best];
       out.corners.push_back(apex);
-      out.corners.insert(out.corners.end(), this->Back.rbegin(), this->Back.rend());
-      out.corners.insert(out.corners.end(), this->Front.begin(), this->Front.end());
+      out.corners.insert(out.corners.end(), this->BestBack.rbegin(), this->BestBack.rend());
+      out.corners.insert(out.corners.end(), this->BestFront.begin(), this->BestFront.end());
       out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
     }
   }
 
 private:
-  /// Across[t][k]: the triangle on the other side of edge (t[k], t[k+1]), or -1.
-  void findNeighbours(std::vector<std::pair<std::uint64_t, int>>& edges)
+  /// Across[t][k]: the triangle on the other side of edge (t[k], t[k+1]), or -1. The edges
+  /// (3t + k) in the order of their corners, smaller then larger, then of 3t + k: a counting
+  /// sort by the smaller corner, stable, then each bucket (the edges from one corner to larger
+  /// ones, a handful) by the larger by insertion. The two sides of an edge then come together.
+  void findNeighbours(FanScratch& s)
   {
-    edges.clear(); // (undirected edge, 3 * t + k)
-    for (std::size_t t = 0; t < this->Triangles.size(); ++t)
+    const std::size_t n = this->Triangles.size();
+    int top = 0;
+    for (const auto& tri : this->Triangles)
+      top = std::max({ top, tri[0], tri[1], tri[2] });
+    s.bucketEnd.assign(static_cast<std::size_t>(top) + 2, 0);
+    for (const auto& tri : this->Triangles)
       for (int k = 0; k < 3; ++k)
-        edges.emplace_back(
-          key(this->Triangles[t][k], this->Triangles[t][(k + 1) % 3]), static_cast<int>(3 * t + k));
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; i + 1 < edges.size(); ++i)
+        ++s.bucketEnd[static_cast<std::size_t>(std::min(tri[k], tri[(k + 1) % 3])) + 1];
+    for (std::size_t c = 1; c < s.bucketEnd.size(); ++c)
+      s.bucketEnd[c] += s.bucketEnd[c - 1];
+    s.edges.resize(3 * n); // (larger corner, 3t + k)
+    for (std::size_t t = 0; t < n; ++t)
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = this->Triangles[t][k], b = this->Triangles[t][(k + 1) % 3];
+        s.edges[s.bucketEnd[std::min(a, b)]++] = { std::max(a, b), static_cast<int>(3 * t + k) };
+      }
+    // bucketEnd[c] now ends the bucket of corner c.
+    for (std::size_t c = 0, begin = 0; c <= static_cast<std::size_t>(top); begin = s.bucketEnd[c++])
+      this->pairBucket(s.edges.data() + begin, s.edges.data() + s.bucketEnd[c]);
+  }
+
+  /// Orders one bucket of edges (all from one corner, by 3t + k) by their larger corner, 3t + k
+  /// next (by insertion, stable, unless the corner has many edges), and joins the triangles of
+  /// each two edges in a row with the same corners.
+  void pairBucket(std::pair<int, int>* first, std::pair<int, int>* last)
+  {
+    if (last - first > 32)
+      std::sort(first, last);
+    else
+      for (std::pair<int, int>* i = first + 1; i < last; ++i)
+      {
+        const std::pair<int, int> edge = *i;
+        std::pair<int, int>* j = i;
+        for (; j > first && (j - 1)->first > edge.first; --j)
+          *j = *(j - 1);
+        *j = edge;
+      }
+    for (std::pair<int, int>* i = first; i + 1 < last; ++i)
     {
-      if (edges[i].first != edges[i + 1].first)
+      if (i->first != (i + 1)->first)
         continue;
-      const int a = edges[i].second, b = edges[i + 1].second;
+      const int a = i->second, b = (i + 1)->second;
       this->Across[a / 3][a % 3] = b / 3;
       this->Across[b / 3][b % 3] = a / 3;
       ++i;
     }
   }
-
-  static std::uint64_t key(int a, int b) { return a < b ? pairKey(a, b) : pairKey(b, a); }
 
   /// The triangle across edge (apex, w) of triangle t, if untaken and not yet in this fan.
   int across(int t, int apex, int w) const
@@ -316,10 +491,10 @@ private:
   }
   int before(int t, int apex) const { return this->after(t, this->after(t, apex)); }
 
-  /// The fan of untaken triangles round corner k of triangle t0, both ways; returns its
-  /// number of triangles. With `take`, marks them taken and leaves the rim (the corners after
-  /// the apex, counter-clockwise) in Back reversed, then Front.
-  std::size_t growFan(int t0, int k, bool take)
+  /// The fan of untaken triangles round corner k of triangle t0, both ways, in Members;
+  /// returns its number of triangles. Leaves its rim (the corners after the apex,
+  /// counter-clockwise) in Back reversed, then Front.
+  std::size_t growFan(int t0, int k)
   {
     const int apex = this->Triangles[t0][k];
     ++this->Round;
@@ -342,9 +517,6 @@ private:
       rimStart = this->after(t, apex);
       this->Back.push_back(rimStart);
     }
-    if (take)
-      for (int t : this->Members)
-        this->Taken[t] = 1;
     return this->Members.size();
   }
 
@@ -352,6 +524,7 @@ private:
   std::vector<std::array<int, 3>>& Across;
   std::vector<int>&Taken, &Stamp;
   std::vector<int>&Members, &Front, &Back;
+  std::vector<int>&BestMembers, &BestFront, &BestBack; ///< the largest fan of the three tried
   int Round = 0;
 };
 
@@ -550,7 +723,7 @@ bool clipParts(const FaceParts& parts, int u, int v, int sign, FaceCells& out)
   for (std::size_t k = 0; k < parts.count(); ++k)
   {
     const std::size_t from = out.corners.size(), first = parts.begin(k);
-    if (!clipEars(parts.pointsOf(k), u, v, sign, out.ring, out))
+    if (!clipEars(parts.pointsOf(k), u, v, sign, out))
       return false;
     for (std::size_t c = from; c < out.corners.size(); ++c)
       out.corners[c] = parts.corners[first + static_cast<std::size_t>(out.corners[c])];
@@ -567,7 +740,7 @@ void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
   {
-    if (clipEars(outer, u, v, face.normalSign, out.ring, out))
+    if (clipEars(outer, u, v, face.normalSign, out))
       return;
     out.corners.resize(corners); // no ear: the general method from scratch
     out.cellEnds.resize(cells);
@@ -671,11 +844,18 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
   }
   if (face.loopCount == 1)
   {
-    outerLoop2D(brep, face, cells.loop2D);
-    const int apex = visitsACornerTwice(cells.loop2D, cells.keys) ? -1 : fanApex(cells.loop2D);
+    const PointRange outer = brep.loopPoints(face.firstLoop);
+    int apex = rectangleApex(outer, (face.axis + 1) % 3, (face.axis + 2) % 3, face.normalSign);
+    if (apex < 0)
+    {
+      outerLoop2D(brep, face, cells.loop2D);
+      apex = fanApex(cells.loop2D);
+      if (apex >= 0 && visitsACornerTwice(cells.loop2D, cells.keys))
+        apex = -1;
+    }
     if (apex >= 0)
     {
-      appendLoopFrom(static_cast<std::size_t>(apex), cells.loop2D.size(), cells);
+      appendLoopFrom(static_cast<std::size_t>(apex), outer.size(), cells);
       return;
     }
   }

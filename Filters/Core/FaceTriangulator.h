@@ -40,20 +40,48 @@ std::vector<std::vector<int>> edgeConnectedPartsOf(const BRep& brep, int f);
 struct FanScratch
 {
   std::vector<std::array<int, 3>> triangles, across;
-  std::vector<int> taken, stamp, members, front, back;
-  std::vector<std::pair<std::uint64_t, int>> edges;
+  std::vector<int> taken, stamp, members, front, back, bestMembers, bestFront, bestBack;
+  std::vector<int> bucketEnd;
+  std::vector<std::pair<int, int>> edges;
+};
+
+/// The corners of a ring being ear-clipped, in coordinates (x, y) in which it runs
+/// counter-clockwise, those still in the ring also listed densely (in no order) with their
+/// coordinates, for the scan of an ear's triangle: scratch space of the ear clipping, kept
+/// from face to face.
+class EarCorners
+{
+public:
+  /// Starts a ring of the corners `pts`, (x, y) their coordinates along axes `x` and `y`.
+  void reset(const PointRange& pts, int x, int y);
+  /// The number of corners still in the ring.
+  std::size_t size() const { return this->Alive.size(); }
+  /// Twice the signed area of triangle abc (corners of the ring).
+  std::int64_t turn(int a, int b, int c) const;
+  /// Whether b, between a and c in the ring, is an ear: it turns strictly left and no other
+  /// corner of the ring lies in the closed triangle abc.
+  bool isEar(int a, int b, int c) const;
+  /// Takes corner i out of the ring.
+  void remove(int i);
+
+private:
+  std::vector<std::int64_t> X, Y;           ///< by corner
+  std::vector<int> Alive, Slot;             ///< the corners in the ring; the place of each in Alive
+  std::vector<std::int64_t> AliveX, AliveY; ///< the coordinates of Alive's corners
 };
 
 /// The cells of a run of faces in flat arrays (no allocation per cell, nor per face but for faces
 /// merged at vertices): cell k has the corners `corners[cellEnds[k - 1] .. cellEnds[k])`
 /// (cellEnds[-1] = 0), indices as in triangulateFace; the cells of the run's i-th face end at cell
-/// `faceEnds[i]`. `ring`, `loop2D`, `keys` and `fans` are scratch space reused from face to face.
+/// `faceEnds[i]`. `ring`, `earCorners`, `loop2D`, `keys` and `fans` are scratch space reused
+/// from face to face.
 struct FaceCells
 {
   std::vector<int> corners;
   std::vector<std::uint32_t> cellEnds;
   std::vector<std::uint32_t> faceEnds;
   std::vector<int> ring;
+  EarCorners earCorners;
   std::vector<Point2L> loop2D;
   std::vector<std::uint64_t> keys;
   FanScratch fans;
