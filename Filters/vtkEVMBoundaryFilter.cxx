@@ -202,11 +202,7 @@ public:
     ids.resize(ends[count - 1] - begin);
     for (std::size_t j = begin; j < ends[count - 1]; ++j)
       ids[j - begin] = static_cast<vtkIdType>(pointIds[corners[j]]);
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const std::size_t from = k == 0 ? begin : ends[k - 1];
-      this->Cells.addCell(ids.data() + (from - begin), ends[k] - from, this->Reverse);
-    }
+    this->Cells.addCells(ids.data(), ends, count, begin, this->Reverse);
     std::fill_n(this->FaceId.extend(count), count, faceId);
     std::fill_n(this->LoopType.extend(count), count, 0);
     if (this->Planar)

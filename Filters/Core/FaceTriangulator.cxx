@@ -95,73 +95,86 @@ void markNesting(Cdt& cdt)
   }
 }
 
-} // namespace
-
-void EarCorners::reset(const PointRange& pts, int x, int y)
+/// The corners of a ring being ear-clipped, in coordinates (x, y) in which it runs
+/// counter-clockwise, those still in the ring also listed densely (in no order) with their
+/// coordinates, for the scan of an ear's triangle; kept in an EarScratch.
+class EarCorners
 {
-  const std::size_t n = pts.size();
-  this->X.resize(n);
-  this->Y.resize(n);
-  this->Alive.resize(n);
-  this->Slot.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
+public:
+  /// Starts a ring of the corners `pts`, (x, y) their coordinates along axes `x` and `y`.
+  EarCorners(EarScratch& scratch, const PointRange& pts, int x, int y)
+    : S(scratch)
   {
-    this->X[i] = pts.begin()[i][x];
-    this->Y[i] = pts.begin()[i][y];
-    this->Alive[i] = static_cast<int>(i);
-    this->Slot[i] = static_cast<int>(i);
+    const std::size_t n = pts.size();
+    this->S.x.resize(n);
+    this->S.y.resize(n);
+    this->S.alive.resize(n);
+    this->S.slot.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      this->S.x[i] = pts[i][x];
+      this->S.y[i] = pts[i][y];
+      this->S.alive[i] = static_cast<int>(i);
+      this->S.slot[i] = static_cast<int>(i);
+    }
+    this->S.aliveX.assign(this->S.x.begin(), this->S.x.end());
+    this->S.aliveY.assign(this->S.y.begin(), this->S.y.end());
   }
-  this->AliveX = this->X;
-  this->AliveY = this->Y;
-}
 
-std::int64_t EarCorners::turn(int a, int b, int c) const
-{
-  return (this->X[b] - this->X[a]) * (this->Y[c] - this->Y[a]) -
-    (this->Y[b] - this->Y[a]) * (this->X[c] - this->X[a]);
-}
+  /// The number of corners still in the ring.
+  std::size_t size() const { return this->S.alive.size(); }
 
-bool EarCorners::isEar(int a, int b, int c) const
-{
-  if (this->turn(a, b, c) <= 0)
-    return false;
-  const std::int64_t xa = this->X[a], xb = this->X[b], xc = this->X[c];
-  const std::int64_t ya = this->Y[a], yb = this->Y[b], yc = this->Y[c];
-  // The triangle's bounding box: most corners fall outside it, decided without products.
-  const std::int64_t xlo = std::min({ xa, xb, xc }), xhi = std::max({ xa, xb, xc });
-  const std::int64_t ylo = std::min({ ya, yb, yc }), yhi = std::max({ ya, yb, yc });
-  const std::size_t n = this->Alive.size();
-  for (std::size_t k = 0; k < n; ++k)
+  /// Twice the signed area of triangle abc (corners of the ring).
+  std::int64_t turn(int a, int b, int c) const
   {
-    const std::int64_t x = this->AliveX[k], y = this->AliveY[k];
-    if (x < xlo || x > xhi || y < ylo || y > yhi)
-      continue;
-    const int i = this->Alive[k];
-    if (i == a || i == b || i == c)
-      continue;
-    if ((xb - xa) * (y - ya) - (yb - ya) * (x - xa) >= 0 &&
-      (xc - xb) * (y - yb) - (yc - yb) * (x - xb) >= 0 &&
-      (xa - xc) * (y - yc) - (ya - yc) * (x - xc) >= 0)
+    const std::int64_t *x = this->S.x.data(), *y = this->S.y.data();
+    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]);
+  }
+
+  /// Whether b, between a and c in the ring, is an ear: it turns strictly left and no other
+  /// corner of the ring lies in the closed triangle abc.
+  bool isEar(int a, int b, int c) const
+  {
+    if (this->turn(a, b, c) <= 0)
       return false;
+    const std::int64_t xa = this->S.x[a], xb = this->S.x[b], xc = this->S.x[c];
+    const std::int64_t ya = this->S.y[a], yb = this->S.y[b], yc = this->S.y[c];
+    // Every corner is tested in full without a branch but the one that stops at a corner in
+    // the triangle: a test that stopped early at one condition or another would branch
+    // unpredictably (corners of orthogonal faces often lie on the lines of the ear's sides).
+    const std::int64_t *ax = this->S.aliveX.data(), *ay = this->S.aliveY.data();
+    const int* alive = this->S.alive.data();
+    const std::size_t n = this->S.alive.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const std::int64_t x = ax[k], y = ay[k];
+      const int i = alive[k];
+      const bool inside = ((xb - xa) * (y - ya) - (yb - ya) * (x - xa) >= 0) &
+        ((xc - xb) * (y - yb) - (yc - yb) * (x - xb) >= 0) &
+        ((xa - xc) * (y - yc) - (ya - yc) * (x - xc) >= 0) & (i != a) & (i != b) & (i != c);
+      if (inside)
+        return false;
+    }
+    return true;
   }
-  return true;
-}
 
-void EarCorners::remove(int i)
-{
-  const int slot = this->Slot[i];
-  const int last = this->Alive.back();
-  this->Alive[slot] = last;
-  this->AliveX[slot] = this->AliveX.back();
-  this->AliveY[slot] = this->AliveY.back();
-  this->Slot[last] = slot;
-  this->Alive.pop_back();
-  this->AliveX.pop_back();
-  this->AliveY.pop_back();
-}
+  /// Takes corner i out of the ring.
+  void remove(int i)
+  {
+    const int slot = this->S.slot[i];
+    const int last = this->S.alive.back();
+    this->S.alive[slot] = last;
+    this->S.aliveX[slot] = this->S.aliveX.back();
+    this->S.aliveY[slot] = this->S.aliveY.back();
+    this->S.slot[last] = slot;
+    this->S.alive.pop_back();
+    this->S.aliveX.pop_back();
+    this->S.aliveY.pop_back();
+  }
 
-namespace
-{
+private:
+  EarScratch& S;
+};
 
 /// clipEars on a ring of four corners (most faces: rectangles), with no ring to set up: the
 /// same tests in the same order. (x, y): the coordinates in which the ring runs
@@ -216,8 +229,7 @@ bool clipEars(const PointRange& pts, int u, int v, int sign, FaceCells& out)
     prev[i] = (i + n - 1) % n;
     next[i] = (i + 1) % n;
   }
-  EarCorners& left = out.earCorners;
-  left.reset(pts, sign > 0 ? u : v, sign > 0 ? v : u);
+  EarCorners left(out.earCorners, pts, sign > 0 ? u : v, sign > 0 ? v : u);
   auto emit = [&out](int a, int b, int c)
   {
     out.corners.insert(out.corners.end(), { a, b, c });
@@ -259,42 +271,80 @@ constexpr std::size_t EarClippingLimit = 128;
 void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& corners)
 {
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
-  corners.clear();
-  for (const Point3& p : brep.loopPoints(face.firstLoop))
-    corners.push_back(face.normalSign > 0 ? Point2L{ p[u], p[v] } : Point2L{ p[v], p[u] });
+  const PointRange pts = brep.loopPoints(face.firstLoop);
+  const int x = face.normalSign > 0 ? u : v, y = face.normalSign > 0 ? v : u;
+  corners.resize(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+  {
+    corners[i][0] = pts[i][x];
+    corners[i][1] = pts[i][y];
+  }
+}
+
+/// Twice the signed area of triangle abc in integers of type Int: exact in Wide, and in 64
+/// bits when every coordinate lies in [-2^30, 2^30) (smallCoordinates).
+template<typename Int>
+Int cross2(const Point2L& a, const Point2L& b, const Point2L& c)
+{
+  return Int(b[0] - a[0]) * (c[1] - a[1]) - Int(b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/// Whether every coordinate of the loop lies in [-2^30, 2^30), so that the products of the
+/// differences of two coordinates fit in 64 bits.
+bool smallCoordinates(const std::vector<Point2L>& corners)
+{
+  constexpr std::int64_t Limit = std::int64_t(1) << 30;
+  bool small = true;
+  for (const Point2L& p : corners)
+    small &= p[0] >= -Limit && p[0] < Limit && p[1] >= -Limit && p[1] < Limit;
+  return small;
+}
+
+/// Twice the signed area of a polygon (doubledArea, here to be inlined).
+Wide loopArea(const std::vector<Point2L>& corners)
+{
+  Wide sum = 0;
+  const std::size_t n = corners.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point2L& p = corners[i];
+    const Point2L& q = corners[i + 1 == n ? 0 : i + 1];
+    sum += Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
+  }
+  return sum;
 }
 
 /// Whether the fan from corner `apex` covers the loop (fanCoversPolygon), its doubled area
 /// `area` known.
+template<typename Int>
 bool fanCovers(const std::vector<Point2L>& corners, std::size_t apex, Wide area)
 {
   const std::size_t n = corners.size();
   if (n < 3 || area <= 0)
     return false;
   const Point2L& o = corners[apex];
+  std::size_t b = apex + 1 == n ? 0 : apex + 1;
   for (std::size_t i = 1; i + 1 < n; ++i)
   {
-    const Point2L& b = corners[(apex + i) % n];
-    const Point2L& c = corners[(apex + i + 1) % n];
-    if (Wide(b[0] - o[0]) * (c[1] - o[1]) - Wide(b[1] - o[1]) * (c[0] - o[0]) < 0)
+    const std::size_t c = b + 1 == n ? 0 : b + 1;
+    if (cross2<Int>(o, corners[b], corners[c]) < 0)
       return false;
+    b = c;
   }
   return true;
 }
 
-/// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
-/// that turn right (the kernel of an orthogonal polygon starts at them), then the first one
-/// that turns left (enough for a rectangle with corners on its sides). A loop that never
-/// turns right is convex: the first left turn is its apex, with no check (most faces of
-/// porous volumes are rectangles, often with corners of their neighbours on their sides).
-int fanApex(const std::vector<Point2L>& corners)
+/// fanApex in integers of type Int (see cross2).
+template<typename Int>
+int fanApexAs(const std::vector<Point2L>& corners)
 {
   const std::size_t n = corners.size();
   std::array<std::size_t, 5> candidates;
   std::size_t count = 0, convex = n;
   for (std::size_t i = 0; i < n && count < 4; ++i)
   {
-    const int turn = orientation(corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]);
+    const Int turn =
+      cross2<Int>(corners[i == 0 ? n - 1 : i - 1], corners[i], corners[i + 1 == n ? 0 : i + 1]);
     if (turn < 0)
       candidates[count++] = i;
     else if (turn > 0 && convex == n)
@@ -304,11 +354,23 @@ int fanApex(const std::vector<Point2L>& corners)
     return static_cast<int>(convex);
   if (convex < n)
     candidates[count++] = convex;
-  const Wide area = count > 0 ? doubledArea(corners) : 0;
+  const Wide area = count > 0 ? loopArea(corners) : 0;
   for (std::size_t k = 0; k < count; ++k)
-    if (fanCovers(corners, candidates[k], area))
+    if (fanCovers<Int>(corners, candidates[k], area))
       return static_cast<int>(candidates[k]);
   return -1;
+}
+
+/// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
+/// that turn right (the kernel of an orthogonal polygon starts at them), then the first one
+/// that turns left (enough for a rectangle with corners on its sides). A loop that never
+/// turns right is convex: the first left turn is its apex, with no check (most faces of
+/// porous volumes are rectangles, often with corners of their neighbours on their sides).
+int fanApex(const std::vector<Point2L>& corners)
+{
+  if (corners.empty())
+    return -1;
+  return smallCoordinates(corners) ? fanApexAs<std::int64_t>(corners) : fanApexAs<Wide>(corners);
 }
 
 /// The apex fanApex picks for a face's outer loop that goes round a rectangle: four left
@@ -779,8 +841,10 @@ namespace
 /// Appends the loop of `n` corners, from corner `apex` on, as one polygon.
 void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
 {
-  for (std::size_t i = 0; i < n; ++i)
-    cells.corners.push_back(static_cast<int>((apex + i) % n));
+  for (std::size_t i = apex; i < n; ++i)
+    cells.corners.push_back(static_cast<int>(i));
+  for (std::size_t i = 0; i < apex; ++i)
+    cells.corners.push_back(static_cast<int>(i));
   cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
   cells.endFace();
 }

@@ -45,29 +45,13 @@ struct FanScratch
   std::vector<std::pair<int, int>> edges;
 };
 
-/// The corners of a ring being ear-clipped, in coordinates (x, y) in which it runs
-/// counter-clockwise, those still in the ring also listed densely (in no order) with their
-/// coordinates, for the scan of an ear's triangle: scratch space of the ear clipping, kept
-/// from face to face.
-class EarCorners
+/// Scratch space of the ear clipping, kept from face to face: the coordinates of a ring's
+/// corners, and the corners still in the ring listed densely (in no order) with theirs.
+struct EarScratch
 {
-public:
-  /// Starts a ring of the corners `pts`, (x, y) their coordinates along axes `x` and `y`.
-  void reset(const PointRange& pts, int x, int y);
-  /// The number of corners still in the ring.
-  std::size_t size() const { return this->Alive.size(); }
-  /// Twice the signed area of triangle abc (corners of the ring).
-  std::int64_t turn(int a, int b, int c) const;
-  /// Whether b, between a and c in the ring, is an ear: it turns strictly left and no other
-  /// corner of the ring lies in the closed triangle abc.
-  bool isEar(int a, int b, int c) const;
-  /// Takes corner i out of the ring.
-  void remove(int i);
-
-private:
-  std::vector<std::int64_t> X, Y;           ///< by corner
-  std::vector<int> Alive, Slot;             ///< the corners in the ring; the place of each in Alive
-  std::vector<std::int64_t> AliveX, AliveY; ///< the coordinates of Alive's corners
+  std::vector<std::int64_t> x, y;           ///< by corner
+  std::vector<int> alive, slot;             ///< the corners in the ring; the place of each in alive
+  std::vector<std::int64_t> aliveX, aliveY; ///< the coordinates of alive's corners
 };
 
 /// The cells of a run of faces in flat arrays (no allocation per cell, nor per face but for faces
@@ -81,7 +65,7 @@ struct FaceCells
   std::vector<std::uint32_t> cellEnds;
   std::vector<std::uint32_t> faceEnds;
   std::vector<int> ring;
-  EarCorners earCorners;
+  EarScratch earCorners;
   std::vector<Point2L> loop2D;
   std::vector<std::uint64_t> keys;
   FanScratch fans;
