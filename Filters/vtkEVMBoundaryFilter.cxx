@@ -180,6 +180,38 @@ public:
     }
   }
 
+  /// The cells of one face, in a run of faces' cells (triangles or fan polygons): cell k has
+  /// the points `pointIds[corners[j]]` for j in [ends[k - 1], ends[k]) (ends[-1] = `begin`).
+  /// The same as addCell cell after cell, with the face's attributes and label added once.
+  /// `ids` is scratch space.
+  void addFaceCells(const int* corners,
+    std::size_t begin,
+    const std::uint32_t* ends,
+    std::size_t count,
+    const std::int64_t* pointIds,
+    vtkIdType faceId,
+    const vbr::vtk::LabelValue& label,
+    vtkIdType parent,
+    int depth,
+    std::vector<vtkIdType>& ids)
+  {
+    if (count == 0)
+      return;
+    if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
+      this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->FaceId.size()), label);
+    ids.resize(ends[count - 1] - begin);
+    for (std::size_t j = begin; j < ends[count - 1]; ++j)
+      ids[j - begin] = static_cast<vtkIdType>(pointIds[corners[j]]);
+    this->Cells.addCells(ids.data(), ends, count, begin, this->Reverse);
+    std::fill_n(this->FaceId.extend(count), count, faceId);
+    std::fill_n(this->LoopType.extend(count), count, 0);
+    if (this->Planar)
+    {
+      std::fill_n(this->ParentFace.extend(count), count, parent);
+      std::fill_n(this->Depth.extend(count), count, depth);
+    }
+  }
+
   void finish(vtkPolyData* output, bool lines, int labelType)
   {
     vtkNew<vtkDoubleArray> coordinates;
@@ -344,13 +376,17 @@ void appendRunCells(const vbr::FaceCells& run,
   std::vector<vtkIdType>& ids,
   OutputBuilder& builder)
 {
-  for (std::size_t cell = run.cellBegin(i); cell < run.faceEnds[i]; ++cell)
-  {
-    ids.clear();
-    for (std::size_t k = run.cornerBegin(cell); k < run.cellEnds[cell]; ++k)
-      ids.push_back(c.corner[run.corners[k]]);
-    builder.addCell(ids.data(), ids.size(), c.faceId, 0, c.label, c.parent, c.depth);
-  }
+  const std::size_t first = run.cellBegin(i);
+  builder.addFaceCells(run.corners.data(),
+    run.cornerBegin(first),
+    run.cellEnds.data() + first,
+    run.faceEnds[i] - first,
+    c.corner,
+    c.faceId,
+    c.label,
+    c.parent,
+    c.depth,
+    ids);
 }
 
 /// One polygon (or closed polyline) per loop of the face.

@@ -132,6 +132,25 @@ public:
       this->Narrow.append(ids, n, reverse);
   }
 
+  /// Appends `count` cells whose point ids follow one another from `ids`: cell k has the ids
+  /// from ends[k - 1] - first to ends[k] - first (ends[-1] = first), each cell reversed when
+  /// `reverse`. The same arrays as addCell cell after cell: the 32 bits are given up for all
+  /// the cells at once when one of them would give them up.
+  template<typename Id, typename End>
+  void addCells(const Id* ids, const End* ends, std::size_t count, std::size_t first, bool reverse)
+  {
+    if (count == 0)
+      return;
+    const std::size_t total = static_cast<std::size_t>(ends[count - 1]) - first;
+    const std::int64_t end = static_cast<std::int64_t>(this->connectivitySize() + total);
+    if (!this->Wide && (end > this->NarrowLimit || !this->fitNarrow(ids, total)))
+      this->widen();
+    if (this->Wide)
+      this->Large.appendCells(ids, ends, count, first, reverse);
+    else
+      this->Narrow.appendCells(ids, ends, count, first, reverse);
+  }
+
   /// Hands the cells to a new vtkCellArray (32- or 64-bit storage); the buffer is then empty.
   vtkSmartPointer<vtkCellArray> release()
   {
@@ -158,6 +177,28 @@ private:
       for (std::size_t i = 0; i < n; ++i) // cells are small: no call to memmove
         out[i] = static_cast<T>(ids[reverse ? n - 1 - i : i]);
       this->Offsets.push_back(static_cast<T>(this->Connectivity.size()));
+    }
+    template<typename Id, typename End>
+    void appendCells(const Id* ids,
+      const End* ends,
+      std::size_t count,
+      std::size_t first,
+      bool reverse)
+    {
+      const std::size_t total = static_cast<std::size_t>(ends[count - 1]) - first;
+      const std::size_t base = this->Connectivity.size();
+      T* out = this->Connectivity.extend(total);
+      T* offsets = this->Offsets.extend(count);
+      std::size_t from = 0;
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        const std::size_t to = static_cast<std::size_t>(ends[k]) - first;
+        const std::size_t n = to - from;
+        for (std::size_t i = 0; i < n; ++i)
+          out[from + i] = static_cast<T>(ids[from + (reverse ? n - 1 - i : i)]);
+        offsets[k] = static_cast<T>(base + to);
+        from = to;
+      }
     }
     template<typename ArrayType>
     void handTo(vtkCellArray* cells)

@@ -95,55 +95,153 @@ void markNesting(Cdt& cdt)
   }
 }
 
+/// The corners of a ring being ear-clipped, in coordinates (x, y) in which it runs
+/// counter-clockwise, those still in the ring also listed densely (in no order) with their
+/// coordinates, for the scan of an ear's triangle; kept in an EarScratch.
+class EarCorners
+{
+public:
+  /// Starts a ring of the corners `pts`, (x, y) their coordinates along axes `x` and `y`.
+  EarCorners(EarScratch& scratch, const PointRange& pts, int x, int y)
+    : S(scratch)
+  {
+    const std::size_t n = pts.size();
+    this->S.x.resize(n);
+    this->S.y.resize(n);
+    this->S.alive.resize(n);
+    this->S.slot.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      this->S.x[i] = pts[i][x];
+      this->S.y[i] = pts[i][y];
+      this->S.alive[i] = static_cast<int>(i);
+      this->S.slot[i] = static_cast<int>(i);
+    }
+    this->S.aliveX.assign(this->S.x.begin(), this->S.x.end());
+    this->S.aliveY.assign(this->S.y.begin(), this->S.y.end());
+  }
+
+  /// The number of corners still in the ring.
+  std::size_t size() const { return this->S.alive.size(); }
+
+  /// Twice the signed area of triangle abc (corners of the ring).
+  std::int64_t turn(int a, int b, int c) const
+  {
+    const std::int64_t *x = this->S.x.data(), *y = this->S.y.data();
+    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]);
+  }
+
+  /// Whether b, between a and c in the ring, is an ear: it turns strictly left and no other
+  /// corner of the ring lies in the closed triangle abc.
+  bool isEar(int a, int b, int c) const
+  {
+    if (this->turn(a, b, c) <= 0)
+      return false;
+    const std::int64_t xa = this->S.x[a], xb = this->S.x[b], xc = this->S.x[c];
+    const std::int64_t ya = this->S.y[a], yb = this->S.y[b], yc = this->S.y[c];
+    // Every corner is tested in full without a branch but the one that stops at a corner in
+    // the triangle: a test that stopped early at one condition or another would branch
+    // unpredictably (corners of orthogonal faces often lie on the lines of the ear's sides).
+    const std::int64_t *ax = this->S.aliveX.data(), *ay = this->S.aliveY.data();
+    const int* alive = this->S.alive.data();
+    const std::size_t n = this->S.alive.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const std::int64_t x = ax[k], y = ay[k];
+      const int i = alive[k];
+      const bool inside = ((xb - xa) * (y - ya) - (yb - ya) * (x - xa) >= 0) &
+        ((xc - xb) * (y - yb) - (yc - yb) * (x - xb) >= 0) &
+        ((xa - xc) * (y - yc) - (ya - yc) * (x - xc) >= 0) & (i != a) & (i != b) & (i != c);
+      if (inside)
+        return false;
+    }
+    return true;
+  }
+
+  /// Takes corner i out of the ring.
+  void remove(int i)
+  {
+    const int slot = this->S.slot[i];
+    const int last = this->S.alive.back();
+    this->S.alive[slot] = last;
+    this->S.aliveX[slot] = this->S.aliveX.back();
+    this->S.aliveY[slot] = this->S.aliveY.back();
+    this->S.slot[last] = slot;
+    this->S.alive.pop_back();
+    this->S.aliveX.pop_back();
+    this->S.aliveY.pop_back();
+  }
+
+private:
+  EarScratch& S;
+};
+
+/// clipEars on a ring of four corners (most faces: rectangles), with no ring to set up: the
+/// same tests in the same order. (x, y): the coordinates in which the ring runs
+/// counter-clockwise.
+bool clipQuadrilateral(const PointRange& pts, int x, int y, FaceCells& out)
+{
+  const Point3* p = pts.begin();
+  const auto turn = [&](int a, int b, int c)
+  {
+    return (std::int64_t(p[b][x]) - p[a][x]) * (std::int64_t(p[c][y]) - p[a][y]) -
+      (std::int64_t(p[b][y]) - p[a][y]) * (std::int64_t(p[c][x]) - p[a][x]);
+  };
+  const auto emit = [&out](int a, int b, int c)
+  {
+    out.corners.insert(out.corners.end(), { a, b, c });
+    out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
+  };
+  for (int b = 0; b < 4; ++b)
+  {
+    const int a = (b + 3) % 4, c = (b + 1) % 4, d = (b + 2) % 4;
+    // An ear: a left turn whose closed triangle does not hold the fourth corner.
+    if (turn(a, b, c) <= 0 || (turn(a, b, d) >= 0 && turn(b, c, d) >= 0 && turn(c, a, d) >= 0))
+      continue;
+    emit(a, b, c);
+    if (turn(d, a, c) <= 0)
+      return false;
+    emit(d, a, c);
+    return true;
+  }
+  return false;
+}
+
 /// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
-/// corner whose triangle holds no other corner (not even on its border). The corners left
+/// corner whose triangle holds no other corner (not even on its border; a corner at the same
+/// place as one of the ear's, where the loop visits a place twice, is on it). The corners left
 /// form a ring linked both ways, walked from corner to corner: after an ear is cut the walk
 /// goes back to the corner before it, the only one besides the next whose ear changed, so
 /// that a face takes about one pass round its ring rather than one per ear. Appends the
 /// triangles to `out`; returns false when a whole round finds no ear (left to the general
-/// triangulation, the caller then drops what was appended). `ring` is scratch space.
-bool clipEars(const PointRange& pts, int u, int v, int sign, std::vector<int>& ring, FaceCells& out)
+/// triangulation, the caller then drops what was appended). `out.ring` and `out.earCorners`
+/// are scratch space.
+bool clipEars(const PointRange& pts, int u, int v, int sign, FaceCells& out)
 {
   const int n = static_cast<int>(pts.size());
-  ring.resize(2 * static_cast<std::size_t>(n));
-  int* prev = ring.data();
-  int* next = ring.data() + n;
+  if (n == 4)
+    return clipQuadrilateral(pts, sign > 0 ? u : v, sign > 0 ? v : u, out);
+  out.ring.resize(2 * static_cast<std::size_t>(n));
+  int* prev = out.ring.data();
+  int* next = out.ring.data() + n;
   for (int i = 0; i < n; ++i)
   {
     prev[i] = (i + n - 1) % n;
     next[i] = (i + 1) % n;
   }
-  auto cross = [&](int a, int b, int c)
-  {
-    return sign *
-      (static_cast<long long>(pts[b][u] - pts[a][u]) * (pts[c][v] - pts[a][v]) -
-        static_cast<long long>(pts[b][v] - pts[a][v]) * (pts[c][u] - pts[a][u]));
-  };
-  auto isEar = [&](int a, int b, int c)
-  {
-    if (cross(a, b, c) <= 0)
-      return false;
-    for (int k = next[c]; k != a; k = next[k])
-    {
-      if (pts[k] == pts[a] || pts[k] == pts[b] || pts[k] == pts[c])
-        return false; // a corner visited twice: leave it to the general method
-      if (cross(a, b, k) >= 0 && cross(b, c, k) >= 0 && cross(c, a, k) >= 0)
-        return false;
-    }
-    return true;
-  };
+  EarCorners left(out.earCorners, pts, sign > 0 ? u : v, sign > 0 ? v : u);
   auto emit = [&out](int a, int b, int c)
   {
     out.corners.insert(out.corners.end(), { a, b, c });
     out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
   };
-  int left = n, b = 0, misses = 0;
-  while (left > 3)
+  int b = 0, misses = 0;
+  while (left.size() > 3)
   {
-    if (misses >= left)
+    if (misses >= static_cast<int>(left.size()))
       return false;
     const int a = prev[b], c = next[b];
-    if (!isEar(a, b, c))
+    if (!left.isEar(a, b, c))
     {
       b = c;
       ++misses;
@@ -152,12 +250,12 @@ bool clipEars(const PointRange& pts, int u, int v, int sign, std::vector<int>& r
     emit(a, b, c);
     next[a] = c;
     prev[c] = a;
-    --left;
+    left.remove(b);
     misses = 0;
     b = a;
   }
   const int a = prev[b], c = next[b];
-  if (cross(a, b, c) <= 0)
+  if (left.turn(a, b, c) <= 0)
     return false;
   emit(a, b, c);
   return true;
@@ -173,24 +271,80 @@ constexpr std::size_t EarClippingLimit = 128;
 void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& corners)
 {
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
-  corners.clear();
-  for (const Point3& p : brep.loopPoints(face.firstLoop))
-    corners.push_back(face.normalSign > 0 ? Point2L{ p[u], p[v] } : Point2L{ p[v], p[u] });
+  const PointRange pts = brep.loopPoints(face.firstLoop);
+  const int x = face.normalSign > 0 ? u : v, y = face.normalSign > 0 ? v : u;
+  corners.resize(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+  {
+    corners[i][0] = pts[i][x];
+    corners[i][1] = pts[i][y];
+  }
 }
 
-/// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
-/// that turn right (the kernel of an orthogonal polygon starts at them), then the first one
-/// that turns left (enough for a rectangle with corners on its sides). A loop that never
-/// turns right is convex: the first left turn is its apex, with no check (most faces of
-/// porous volumes are rectangles, often with corners of their neighbours on their sides).
-int fanApex(const std::vector<Point2L>& corners)
+/// Twice the signed area of triangle abc in integers of type Int: exact in Wide, and in 64
+/// bits when every coordinate lies in [-2^30, 2^30) (smallCoordinates).
+template<typename Int>
+Int cross2(const Point2L& a, const Point2L& b, const Point2L& c)
+{
+  return Int(b[0] - a[0]) * (c[1] - a[1]) - Int(b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/// Whether every coordinate of the loop lies in [-2^30, 2^30), so that the products of the
+/// differences of two coordinates fit in 64 bits.
+bool smallCoordinates(const std::vector<Point2L>& corners)
+{
+  constexpr std::int64_t Limit = std::int64_t(1) << 30;
+  bool small = true;
+  for (const Point2L& p : corners)
+    small &= p[0] >= -Limit && p[0] < Limit && p[1] >= -Limit && p[1] < Limit;
+  return small;
+}
+
+/// Twice the signed area of a polygon (doubledArea, here to be inlined).
+Wide loopArea(const std::vector<Point2L>& corners)
+{
+  Wide sum = 0;
+  const std::size_t n = corners.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point2L& p = corners[i];
+    const Point2L& q = corners[i + 1 == n ? 0 : i + 1];
+    sum += Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
+  }
+  return sum;
+}
+
+/// Whether the fan from corner `apex` covers the loop (fanCoversPolygon), its doubled area
+/// `area` known.
+template<typename Int>
+bool fanCovers(const std::vector<Point2L>& corners, std::size_t apex, Wide area)
+{
+  const std::size_t n = corners.size();
+  if (n < 3 || area <= 0)
+    return false;
+  const Point2L& o = corners[apex];
+  std::size_t b = apex + 1 == n ? 0 : apex + 1;
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    const std::size_t c = b + 1 == n ? 0 : b + 1;
+    if (cross2<Int>(o, corners[b], corners[c]) < 0)
+      return false;
+    b = c;
+  }
+  return true;
+}
+
+/// fanApex in integers of type Int (see cross2).
+template<typename Int>
+int fanApexAs(const std::vector<Point2L>& corners)
 {
   const std::size_t n = corners.size();
   std::array<std::size_t, 5> candidates;
   std::size_t count = 0, convex = n;
   for (std::size_t i = 0; i < n && count < 4; ++i)
   {
-    const int turn = orientation(corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]);
+    const Int turn =
+      cross2<Int>(corners[i == 0 ? n - 1 : i - 1], corners[i], corners[i + 1 == n ? 0 : i + 1]);
     if (turn < 0)
       candidates[count++] = i;
     else if (turn > 0 && convex == n)
@@ -200,10 +354,53 @@ int fanApex(const std::vector<Point2L>& corners)
     return static_cast<int>(convex);
   if (convex < n)
     candidates[count++] = convex;
+  const Wide area = count > 0 ? loopArea(corners) : 0;
   for (std::size_t k = 0; k < count; ++k)
-    if (fanCoversPolygon(corners, candidates[k]))
+    if (fanCovers<Int>(corners, candidates[k], area))
       return static_cast<int>(candidates[k]);
   return -1;
+}
+
+/// A corner of the loop from which its fan covers it, or -1. Tried: the first few corners
+/// that turn right (the kernel of an orthogonal polygon starts at them), then the first one
+/// that turns left (enough for a rectangle with corners on its sides). A loop that never
+/// turns right is convex: the first left turn is its apex, with no check (most faces of
+/// porous volumes are rectangles, often with corners of their neighbours on their sides).
+int fanApex(const std::vector<Point2L>& corners)
+{
+  if (corners.empty())
+    return -1;
+  return smallCoordinates(corners) ? fanApexAs<std::int64_t>(corners) : fanApexAs<Wide>(corners);
+}
+
+/// The apex fanApex picks for a face's outer loop that goes round a rectangle: four left
+/// turns, no right turn, straight on at every other corner (the corners of neighbouring
+/// faces on its sides), as most faces of porous volumes do. Such a loop turns once round, so
+/// it is a convex polygon that passes no corner twice, and fanApex takes its first left turn
+/// without a check. -1 for any other loop. Read from the face's points, in the coordinates of
+/// outerLoop2D, without making them.
+int rectangleApex(const PointRange& pts, int u, int v, int sign)
+{
+  const int x = sign > 0 ? u : v, y = sign > 0 ? v : u;
+  const std::size_t n = pts.size();
+  const Point3* p = pts.begin();
+  int first = -1, lefts = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point3& a = p[i == 0 ? n - 1 : i - 1];
+    const Point3& b = p[i];
+    const Point3& c = p[i + 1 == n ? 0 : i + 1];
+    const std::int64_t dx0 = std::int64_t(b[x]) - a[x], dy0 = std::int64_t(b[y]) - a[y];
+    const std::int64_t dx1 = std::int64_t(c[x]) - b[x], dy1 = std::int64_t(c[y]) - b[y];
+    const Wide turn = Wide(dx0) * dy1 - Wide(dy0) * dx1;
+    if (turn < 0)
+      return -1;
+    if (turn > 0 && lefts++ == 0)
+      first = static_cast<int>(i);
+    else if (turn == 0 && Wide(dx0) * dx1 + Wide(dy0) * dy1 <= 0)
+      return -1; // going back, or a corner twice in a row
+  }
+  return lefts == 4 ? first : -1;
 }
 
 /// Whether a loop passes a corner twice (parts of a face, or of its background, touching
@@ -236,11 +433,14 @@ public:
     , Members(scratch.members)
     , Front(scratch.front)
     , Back(scratch.back)
+    , BestMembers(scratch.bestMembers)
+    , BestFront(scratch.bestFront)
+    , BestBack(scratch.bestBack)
   {
     this->Across.assign(triangles.size(), { -1, -1, -1 });
     this->Taken.assign(triangles.size(), 0);
     this->Stamp.assign(triangles.size(), -1);
-    this->findNeighbours(scratch.edges);
+    this->findNeighbours(scratch);
   }
 
   void run(FaceCells& out)
@@ -253,44 +453,81 @@ public:
       std::size_t bestSize = 0;
       for (int k = 0; k < 3; ++k)
       {
-        const std::size_t size = this->growFan(static_cast<int>(start), k, false);
+        const std::size_t size = this->growFan(static_cast<int>(start), k);
         if (size > bestSize)
         {
           bestSize = size;
           best = k;
+          this->Members.swap(this->BestMembers); // kept: the fan taken, not grown again
+          this->Front.swap(this->BestFront);
+          this->Back.swap(this->BestBack);
         }
       }
-      this->growFan(static_cast<int>(start), best, true);
+      for (int t : this->BestMembers)
+        this->Taken[t] = 1;
       const int apex = this->Triangles[start][best];
       out.corners.push_back(apex);
-      out.corners.insert(out.corners.end(), this->Back.rbegin(), this->Back.rend());
-      out.corners.insert(out.corners.end(), this->Front.begin(), this->Front.end());
+      out.corners.insert(out.corners.end(), this->BestBack.rbegin(), this->BestBack.rend());
+      out.corners.insert(out.corners.end(), this->BestFront.begin(), this->BestFront.end());
       out.cellEnds.push_back(static_cast<std::uint32_t>(out.corners.size()));
     }
   }
 
 private:
-  /// Across[t][k]: the triangle on the other side of edge (t[k], t[k+1]), or -1.
-  void findNeighbours(std::vector<std::pair<std::uint64_t, int>>& edges)
+  /// Across[t][k]: the triangle on the other side of edge (t[k], t[k+1]), or -1. The edges
+  /// (3t + k) in the order of their corners, smaller then larger, then of 3t + k: a counting
+  /// sort by the smaller corner, stable, then each bucket (the edges from one corner to larger
+  /// ones, a handful) by the larger by insertion. The two sides of an edge then come together.
+  void findNeighbours(FanScratch& s)
   {
-    edges.clear(); // (undirected edge, 3 * t + k)
-    for (std::size_t t = 0; t < this->Triangles.size(); ++t)
+    const std::size_t n = this->Triangles.size();
+    int top = 0;
+    for (const auto& tri : this->Triangles)
+      top = std::max({ top, tri[0], tri[1], tri[2] });
+    s.bucketEnd.assign(static_cast<std::size_t>(top) + 2, 0);
+    for (const auto& tri : this->Triangles)
       for (int k = 0; k < 3; ++k)
-        edges.emplace_back(
-          key(this->Triangles[t][k], this->Triangles[t][(k + 1) % 3]), static_cast<int>(3 * t + k));
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; i + 1 < edges.size(); ++i)
+        ++s.bucketEnd[static_cast<std::size_t>(std::min(tri[k], tri[(k + 1) % 3])) + 1];
+    for (std::size_t c = 1; c < s.bucketEnd.size(); ++c)
+      s.bucketEnd[c] += s.bucketEnd[c - 1];
+    s.edges.resize(3 * n); // (larger corner, 3t + k)
+    for (std::size_t t = 0; t < n; ++t)
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = this->Triangles[t][k], b = this->Triangles[t][(k + 1) % 3];
+        s.edges[s.bucketEnd[std::min(a, b)]++] = { std::max(a, b), static_cast<int>(3 * t + k) };
+      }
+    // bucketEnd[c] now ends the bucket of corner c.
+    for (std::size_t c = 0, begin = 0; c <= static_cast<std::size_t>(top); begin = s.bucketEnd[c++])
+      this->pairBucket(s.edges.data() + begin, s.edges.data() + s.bucketEnd[c]);
+  }
+
+  /// Orders one bucket of edges (all from one corner, by 3t + k) by their larger corner, 3t + k
+  /// next (by insertion, stable, unless the corner has many edges), and joins the triangles of
+  /// each two edges in a row with the same corners.
+  void pairBucket(std::pair<int, int>* first, std::pair<int, int>* last)
+  {
+    if (last - first > 32)
+      std::sort(first, last);
+    else
+      for (std::pair<int, int>* i = first + 1; i < last; ++i)
+      {
+        const std::pair<int, int> edge = *i;
+        std::pair<int, int>* j = i;
+        for (; j > first && (j - 1)->first > edge.first; --j)
+          *j = *(j - 1);
+        *j = edge;
+      }
+    for (std::pair<int, int>* i = first; i + 1 < last; ++i)
     {
-      if (edges[i].first != edges[i + 1].first)
+      if (i->first != (i + 1)->first)
         continue;
-      const int a = edges[i].second, b = edges[i + 1].second;
+      const int a = i->second, b = (i + 1)->second;
       this->Across[a / 3][a % 3] = b / 3;
       this->Across[b / 3][b % 3] = a / 3;
       ++i;
     }
   }
-
-  static std::uint64_t key(int a, int b) { return a < b ? pairKey(a, b) : pairKey(b, a); }
 
   /// The triangle across edge (apex, w) of triangle t, if untaken and not yet in this fan.
   int across(int t, int apex, int w) const
@@ -316,10 +553,10 @@ private:
   }
   int before(int t, int apex) const { return this->after(t, this->after(t, apex)); }
 
-  /// The fan of untaken triangles round corner k of triangle t0, both ways; returns its
-  /// number of triangles. With `take`, marks them taken and leaves the rim (the corners after
-  /// the apex, counter-clockwise) in Back reversed, then Front.
-  std::size_t growFan(int t0, int k, bool take)
+  /// The fan of untaken triangles round corner k of triangle t0, both ways, in Members;
+  /// returns its number of triangles. Leaves its rim (the corners after the apex,
+  /// counter-clockwise) in Back reversed, then Front.
+  std::size_t growFan(int t0, int k)
   {
     const int apex = this->Triangles[t0][k];
     ++this->Round;
@@ -342,9 +579,6 @@ private:
       rimStart = this->after(t, apex);
       this->Back.push_back(rimStart);
     }
-    if (take)
-      for (int t : this->Members)
-        this->Taken[t] = 1;
     return this->Members.size();
   }
 
@@ -352,6 +586,7 @@ private:
   std::vector<std::array<int, 3>>& Across;
   std::vector<int>&Taken, &Stamp;
   std::vector<int>&Members, &Front, &Back;
+  std::vector<int>&BestMembers, &BestFront, &BestBack; ///< the largest fan of the three tried
   int Round = 0;
 };
 
@@ -550,7 +785,7 @@ bool clipParts(const FaceParts& parts, int u, int v, int sign, FaceCells& out)
   for (std::size_t k = 0; k < parts.count(); ++k)
   {
     const std::size_t from = out.corners.size(), first = parts.begin(k);
-    if (!clipEars(parts.pointsOf(k), u, v, sign, out.ring, out))
+    if (!clipEars(parts.pointsOf(k), u, v, sign, out))
       return false;
     for (std::size_t c = from; c < out.corners.size(); ++c)
       out.corners[c] = parts.corners[first + static_cast<std::size_t>(out.corners[c])];
@@ -567,7 +802,7 @@ void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
   {
-    if (clipEars(outer, u, v, face.normalSign, out.ring, out))
+    if (clipEars(outer, u, v, face.normalSign, out))
       return;
     out.corners.resize(corners); // no ear: the general method from scratch
     out.cellEnds.resize(cells);
@@ -606,8 +841,10 @@ namespace
 /// Appends the loop of `n` corners, from corner `apex` on, as one polygon.
 void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
 {
-  for (std::size_t i = 0; i < n; ++i)
-    cells.corners.push_back(static_cast<int>((apex + i) % n));
+  for (std::size_t i = apex; i < n; ++i)
+    cells.corners.push_back(static_cast<int>(i));
+  for (std::size_t i = 0; i < apex; ++i)
+    cells.corners.push_back(static_cast<int>(i));
   cells.cellEnds.push_back(static_cast<std::uint32_t>(cells.corners.size()));
   cells.endFace();
 }
@@ -671,11 +908,18 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
   }
   if (face.loopCount == 1)
   {
-    outerLoop2D(brep, face, cells.loop2D);
-    const int apex = visitsACornerTwice(cells.loop2D, cells.keys) ? -1 : fanApex(cells.loop2D);
+    const PointRange outer = brep.loopPoints(face.firstLoop);
+    int apex = rectangleApex(outer, (face.axis + 1) % 3, (face.axis + 2) % 3, face.normalSign);
+    if (apex < 0)
+    {
+      outerLoop2D(brep, face, cells.loop2D);
+      apex = fanApex(cells.loop2D);
+      if (apex >= 0 && visitsACornerTwice(cells.loop2D, cells.keys))
+        apex = -1;
+    }
     if (apex >= 0)
     {
-      appendLoopFrom(static_cast<std::size_t>(apex), cells.loop2D.size(), cells);
+      appendLoopFrom(static_cast<std::size_t>(apex), outer.size(), cells);
       return;
     }
   }

@@ -40,20 +40,32 @@ std::vector<std::vector<int>> edgeConnectedPartsOf(const BRep& brep, int f);
 struct FanScratch
 {
   std::vector<std::array<int, 3>> triangles, across;
-  std::vector<int> taken, stamp, members, front, back;
-  std::vector<std::pair<std::uint64_t, int>> edges;
+  std::vector<int> taken, stamp, members, front, back, bestMembers, bestFront, bestBack;
+  std::vector<int> bucketEnd;
+  std::vector<std::pair<int, int>> edges;
+};
+
+/// Scratch space of the ear clipping, kept from face to face: the coordinates of a ring's
+/// corners, and the corners still in the ring listed densely (in no order) with theirs.
+struct EarScratch
+{
+  std::vector<std::int64_t> x, y;           ///< by corner
+  std::vector<int> alive, slot;             ///< the corners in the ring; the place of each in alive
+  std::vector<std::int64_t> aliveX, aliveY; ///< the coordinates of alive's corners
 };
 
 /// The cells of a run of faces in flat arrays (no allocation per cell, nor per face but for faces
 /// merged at vertices): cell k has the corners `corners[cellEnds[k - 1] .. cellEnds[k])`
 /// (cellEnds[-1] = 0), indices as in triangulateFace; the cells of the run's i-th face end at cell
-/// `faceEnds[i]`. `ring`, `loop2D`, `keys` and `fans` are scratch space reused from face to face.
+/// `faceEnds[i]`. `ring`, `earCorners`, `loop2D`, `keys` and `fans` are scratch space reused
+/// from face to face.
 struct FaceCells
 {
   std::vector<int> corners;
   std::vector<std::uint32_t> cellEnds;
   std::vector<std::uint32_t> faceEnds;
   std::vector<int> ring;
+  EarScratch earCorners;
   std::vector<Point2L> loop2D;
   std::vector<std::uint64_t> keys;
   FanScratch fans;

@@ -17,6 +17,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <string>
@@ -325,4 +326,78 @@ TEST(FanPolygons, PartsOfFacesAreTheirEdgeConnectedComponents)
   RecordProperty("parts", parts);
   EXPECT_GT(split, 30) << "too few faces split into parts to test";
   EXPECT_GT(parts, 300);
+}
+
+// A face whose loop goes round a rectangle with corners of neighbouring faces on its sides
+// (most faces of porous volumes) is one polygon: the loop from its first corner that turns
+// left (brute force on the loop's own coordinates), whichever corner the loop starts at and
+// whichever way the face looks. Its triangles: n - 2 counter-clockwise ones, none flat, that
+// add up to the rectangle's area.
+TEST(FanPolygons, RectanglesWithCornersOnTheirSidesStartAtTheirFirstLeftTurn)
+{
+  unsigned seed = 9100;
+  auto next = [&seed](unsigned m)
+  {
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<int>((seed >> 16) % m);
+  };
+  for (int trial = 0; trial < 400; ++trial)
+  {
+    const int w = 1 + next(9), h = 1 + next(9), x0 = next(20) - 10, y0 = next(20) - 10;
+    // Counter-clockwise in (X, Y), the coordinates in which the face is seen from outside.
+    std::vector<P2> loop;
+    const std::array<P2, 4> corner{
+      P2{ x0, y0 }, P2{ x0 + w, y0 }, P2{ x0 + w, y0 + h }, P2{ x0, y0 + h }
+    };
+    for (int side = 0; side < 4; ++side)
+    {
+      loop.push_back(corner[side]);
+      const P2 &a = corner[side], &b = corner[(side + 1) % 4];
+      const int length = static_cast<int>(std::abs(b[0] - a[0]) + std::abs(b[1] - a[1]));
+      for (int s = 1; s < length; ++s)
+        if (trial % 4 != 0 && next(3) == 0)
+          loop.push_back({ a[0] + (b[0] - a[0]) / length * s, a[1] + (b[1] - a[1]) / length * s });
+    }
+    const std::size_t n = loop.size(), shift = static_cast<std::size_t>(next(int(n)));
+    std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(shift), loop.end());
+    vbr::BRepFace face;
+    face.axis = trial % 3;
+    face.normalSign = trial % 2 == 0 ? 1 : -1;
+    face.position = 3;
+    face.loopCount = 1;
+    const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
+    vbr::BRep brep;
+    for (const P2& p : loop)
+    {
+      vbr::Point3 q{ 0, 0, 0 };
+      q[face.axis] = face.position;
+      q[face.normalSign > 0 ? u : v] = static_cast<vbr::Coord>(p[0]);
+      q[face.normalSign > 0 ? v : u] = static_cast<vbr::Coord>(p[1]);
+      brep.points.push_back(q);
+    }
+    brep.loops.push_back({ 0, n, 0, false });
+    brep.faces.push_back(face);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << n << " corners");
+
+    std::size_t firstLeft = 0;
+    while (cross(loop[(firstLeft + n - 1) % n], loop[firstLeft], loop[(firstLeft + 1) % n]) <= 0)
+      ++firstLeft;
+    std::vector<int> expected;
+    for (std::size_t i = 0; i < n; ++i)
+      expected.push_back(static_cast<int>((firstLeft + i) % n));
+    const std::vector<std::vector<int>> polygons = vbr::fanPolygons(brep, 0);
+    ASSERT_EQ(polygons.size(), 1u);
+    EXPECT_EQ(polygons[0], expected);
+
+    const std::vector<std::array<int, 3>> triangles = vbr::triangulateFace(brep, 0);
+    ASSERT_EQ(triangles.size(), n - 2);
+    Wide area = 0;
+    for (const auto& t : triangles)
+    {
+      const Wide a = cross(loop[t[0]], loop[t[1]], loop[t[2]]);
+      EXPECT_GT(a, 0);
+      area += a;
+    }
+    EXPECT_TRUE(area == Wide(2) * w * h);
+  }
 }

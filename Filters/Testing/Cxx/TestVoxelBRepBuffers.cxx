@@ -2,8 +2,9 @@
 // cells read back through vtkCellArray equal the cells written, in order or reversed; 32-bit
 // storage while every offset and point id fits, 64-bit storage (the same cells) once an id or
 // the connectivity size passes the limit, which the test lowers so that the widening happens
-// on small inputs. Then the filter that writes through it: the EVM boundary's cells of a
-// random volume use 32-bit storage and every cell refers to an existing point.
+// on small inputs; the same with the cells written in runs of several cells (addCells). Then
+// the filter that writes through it: the EVM boundary's cells of a random volume use 32-bit
+// storage and every cell refers to an existing point.
 #include "vtkVoxelBRepBuffers.h"
 
 #include "TestImages.h"
@@ -16,6 +17,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <iostream>
@@ -70,12 +72,40 @@ bool sameCells(vtkCellArray* array, const std::vector<Cell>& expected, bool reve
   return true;
 }
 
-/// Writes `cells` through a buffer with the given limit and reads them back.
-bool roundTrip(const std::vector<Cell>& cells, std::int64_t limit, bool reversed, bool wide)
+/// Writes `cells` through the buffer in runs of one to five cells (addCells), each run's ids
+/// in one array whose ends count from a run's own first index.
+void addInRuns(vbr::vtk::CellArrayBuffer& buffer, const std::vector<Cell>& cells, bool reversed)
+{
+  std::vector<vtkIdType> ids;
+  std::vector<std::uint32_t> ends;
+  for (std::size_t c = 0, run = 1; c < cells.size(); c += run, run = run % 5 + 1)
+  {
+    const std::size_t count = std::min(run, cells.size() - c), first = 3 * c + 1;
+    ids.clear();
+    ends.clear();
+    for (std::size_t k = c; k < c + count; ++k)
+    {
+      ids.insert(ids.end(), cells[k].begin(), cells[k].end());
+      ends.push_back(static_cast<std::uint32_t>(first + ids.size()));
+    }
+    buffer.addCells(ids.data(), ends.data(), count, first, reversed);
+  }
+}
+
+/// Writes `cells` through a buffer with the given limit, cell by cell or in runs, and reads
+/// them back.
+bool roundTrip(const std::vector<Cell>& cells,
+  std::int64_t limit,
+  bool reversed,
+  bool wide,
+  bool runs = false)
 {
   vbr::vtk::CellArrayBuffer buffer(limit);
-  for (const Cell& c : cells)
-    buffer.addCell(c.data(), c.size(), reversed);
+  if (runs)
+    addInRuns(buffer, cells, reversed);
+  else
+    for (const Cell& c : cells)
+      buffer.addCell(c.data(), c.size(), reversed);
   if (buffer.isWide() != wide || buffer.numberOfCells() != cells.size())
   {
     std::cerr << "limit " << limit << ": wide " << buffer.isWide() << ", expected " << wide << "\n";
@@ -105,15 +135,16 @@ bool testBuffer()
     for (const Cell& c : cells)
       corners += c.size();
     for (bool reversed : { false, true })
-    {
-      ok &= roundTrip(cells, 1 << 30, reversed, false);
-      // The connectivity size passes the limit partway: widened, nothing lost.
-      ok &= roundTrip(cells, static_cast<std::int64_t>(corners / 2), reversed, true);
-      // A point id passes the limit: widened at the cell that holds it, partway.
-      std::vector<Cell> withLargeId = cells;
-      withLargeId[cells.size() / 2].push_back(200);
-      ok &= roundTrip(withLargeId, 150, reversed, true);
-    }
+      for (bool runs : { false, true })
+      {
+        ok &= roundTrip(cells, 1 << 30, reversed, false, runs);
+        // The connectivity size passes the limit partway: widened, nothing lost.
+        ok &= roundTrip(cells, static_cast<std::int64_t>(corners / 2), reversed, true, runs);
+        // A point id passes the limit: widened at the cell that holds it, partway.
+        std::vector<Cell> withLargeId = cells;
+        withLargeId[cells.size() / 2].push_back(200);
+        ok &= roundTrip(withLargeId, 150, reversed, true, runs);
+      }
   }
   // The first cell alone passes it, and an empty buffer gives an empty array.
   ok &= roundTrip({ { 5, 6, 7 } }, 2, false, true);
