@@ -247,6 +247,9 @@ struct Context
   /// not well-composed) and its number of surfaces (-1 until counted; objectSurfaces).
   std::optional<std::optional<long>> euler;
   long surfaces = -1;
+  /// The level of each triangle of H when its components were solved apart (empty otherwise):
+  /// a plane can then hold faces of different levels in different components.
+  std::vector<int> triangleLevel;
 };
 
 /// The hull of the points; a flat one is thickened by the points one lattice step off its
@@ -1200,8 +1203,11 @@ std::size_t loopsOfFaces(const LatticeMesh& m,
 }
 
 /// The faces of the surface: coplanar edge-adjacent triangles merged, with their loops and
-/// the level of their plane.
-void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel, ModifiedHull& r)
+/// the level of their first triangle when `triangleLevel` holds one per triangle, else of
+/// their plane.
+void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel,
+  const std::vector<int>& triangleLevel,
+  ModifiedHull& r)
 {
   const LatticeMesh& m = r.surface;
   const std::size_t nt = m.triangles.size();
@@ -1225,8 +1231,13 @@ void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel, ModifiedHull& r)
       it = faceOfRoot.emplace(root, static_cast<Index>(r.faces.size())).first;
       ModifiedFace face;
       face.plane = planes[t];
-      auto level = planeLevel.find(planes[t]);
-      face.level = level == planeLevel.end() ? -1 : level->second;
+      if (triangleLevel.size() == nt)
+        face.level = triangleLevel[t];
+      else
+      {
+        auto level = planeLevel.find(planes[t]);
+        face.level = level == planeLevel.end() ? -1 : level->second;
+      }
       r.faces.push_back(face);
     }
     r.faces[it->second].triangles.push_back(static_cast<Index>(t));
@@ -1581,28 +1592,22 @@ constexpr std::size_t kTrianglesNear = 12;
 /// the two, 60 both).
 constexpr std::size_t kMoreTrianglesNear = 60;
 
-/// The prisms conv(T1 + T2) between the `count` nearest empty triangles of the shell and of the
-/// rest of H near the crossing, with no lattice point in their open interior, nearest first;
-/// the pairs of the `tried` nearest on both sides left out (the round before offered them; it
-/// may not have tried them all).
-std::vector<CellList> prismsAt(const LatticeMesh& shell,
-  const LatticeMesh& rest,
-  const std::vector<LatticePoint>& crossing,
-  std::size_t count,
+/// The prisms conv(T1 + T2) with T1 from `first` and T2 from `second` (empty lattice
+/// triangles, nearest first) with no lattice point in their open interior, nearest first; the
+/// pairs of the `tried` first on both sides left out (the round before offered them; it may not
+/// have tried them all).
+std::vector<CellList> emptyPrisms(const std::vector<std::array<LatticePoint, 3>>& first,
+  const std::vector<std::array<LatticePoint, 3>>& second,
   std::size_t tried)
 {
   std::vector<CellList> prisms;
-  const auto first = emptyTrianglesNear(shell, crossing, count);
-  const auto second = emptyTrianglesNear(rest, crossing, count);
   for (std::size_t i = 0; i < first.size(); ++i)
     for (std::size_t j = 0; j < second.size(); ++j)
     {
       if (i < tried && j < tried)
         continue;
-      const auto& a = first[i];
-      const auto& b = second[j];
-      std::vector<LatticePoint> corners(a.begin(), a.end());
-      corners.insert(corners.end(), b.begin(), b.end());
+      std::vector<LatticePoint> corners(first[i].begin(), first[i].end());
+      corners.insert(corners.end(), second[j].begin(), second[j].end());
       CellList prism = convexHull(corners);
       if (prism.dimension != 3)
         continue;
@@ -1612,6 +1617,18 @@ std::vector<CellList> prismsAt(const LatticeMesh& shell,
         prisms.push_back(std::move(prism));
     }
   return prisms;
+}
+
+/// The prisms between the `count` nearest empty triangles of the shell and of the rest of H
+/// near the crossing (emptyPrisms).
+std::vector<CellList> prismsAt(const LatticeMesh& shell,
+  const LatticeMesh& rest,
+  const std::vector<LatticePoint>& crossing,
+  std::size_t count,
+  std::size_t tried)
+{
+  return emptyPrisms(
+    emptyTrianglesNear(shell, crossing, count), emptyTrianglesNear(rest, crossing, count), tried);
 }
 
 /// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
@@ -2076,22 +2093,9 @@ bool cutAtCrossing(Context& ctx,
   for (const auto& [count, tried] : { std::array<std::size_t, 2>{ kTrianglesNear, 0 },
          std::array<std::size_t, 2>{ kMoreTrianglesNear, kTrianglesNear } })
   {
-    const auto first = emptyTrianglesNear(surface, { crossing[0] }, count);
-    const auto second = emptyTrianglesNear(surface, { crossing[1] }, count);
-    std::vector<CellList> prisms;
-    for (std::size_t i = 0; i < first.size(); ++i)
-      for (std::size_t j = 0; j < second.size(); ++j)
-      {
-        if (i < tried && j < tried)
-          continue;
-        std::vector<LatticePoint> corners(first[i].begin(), first[i].end());
-        corners.insert(corners.end(), second[j].begin(), second[j].end());
-        CellList prism = convexHull(corners);
-        bool empty = prism.dimension == 3;
-        forEachPointIn(prism, true, [&](const LatticePoint&) { empty = false; });
-        if (empty)
-          prisms.push_back(std::move(prism));
-      }
+    auto prisms = emptyPrisms(emptyTrianglesNear(surface, { crossing[0] }, count),
+      emptyTrianglesNear(surface, { crossing[1] }, count),
+      tried);
     if (tryPrisms(ctx, std::move(prisms), true, shells, surface, where))
       return true;
   }
@@ -2215,11 +2219,84 @@ void solveAndCheck(Context& ctx, ModifiedHull& r)
     r.surface = triangulateHull(r.hull);
 }
 
+/// Whether the points span a solid (four of them not in one plane): a component that does
+/// not has no H of its own (see flat objects in the header).
+bool spanSolid(const std::vector<LatticePoint>& points)
+{
+  const LatticePoint& a = points[0];
+  std::size_t k = 1;
+  while (k < points.size() && points[k] == a)
+    ++k;
+  if (k == points.size())
+    return false;
+  const LatticePoint ab = sub(points[k], a);
+  LatticePoint normal{ 0, 0, 0 };
+  for (; k < points.size() && normal == LatticePoint{ 0, 0, 0 }; ++k)
+    normal = cross(ab, sub(points[k], a));
+  for (; k < points.size(); ++k)
+    if (dot(normal, sub(points[k], a)) != 0)
+      return true;
+  return false;
+}
+
+/// The component in its own box, whose corner is `lo` in the grid: its H lies in the hull of
+/// its centres, so many small components do not each pay for the whole grid.
+BitVolume inItsBox(const std::vector<LatticePoint>& component, LatticePoint& lo)
+{
+  lo = component[0];
+  LatticePoint hi = component[0];
+  for (const auto& p : component)
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  BitVolume part(static_cast<std::int32_t>(hi[0] - lo[0] + 1),
+    static_cast<std::int32_t>(hi[1] - lo[1] + 1),
+    static_cast<std::int32_t>(hi[2] - lo[2] + 1));
+  for (const auto& p : component)
+    part.set(static_cast<std::int32_t>(p[0] - lo[0]),
+      static_cast<std::int32_t>(p[1] - lo[1]),
+      static_cast<std::int32_t>(p[2] - lo[2]));
+  return part;
+}
+
+/// H of one component alone appended to `together`, moved back into the grid, with the level
+/// of each of its triangles (those of its own faces).
+bool appendComponentH(Context& ctx,
+  const std::vector<LatticePoint>& component,
+  const Execution& exec,
+  ModifiedHull& r,
+  LatticeMesh& together,
+  std::vector<int>& levels)
+{
+  LatticePoint lo;
+  ModifiedHull h = modifyConvexHull(inItsBox(component, lo), ctx.coplanar, exec);
+  if (!h.complete || h.hull.dimension < 3)
+    return false;
+  for (auto& p : h.surface.points)
+    for (int k = 0; k < 3; ++k)
+      p[k] += lo[k];
+  const std::size_t base = levels.size();
+  levels.resize(base + h.surface.triangles.size(), -1);
+  for (const auto& f : h.faces)
+    for (const Index t : f.triangles)
+      levels[base + t] = f.level;
+  together.append(h.surface, false);
+  r.joinedShells += h.joinedShells;
+  r.cutHandles += h.cutHandles;
+  r.keptApart += h.keptApart;
+  r.degreeOfNonConvexity = std::max(r.degreeOfNonConvexity, h.degreeOfNonConvexity);
+  return true;
+}
+
 /// Components apart (see the header): when H has not the topology of a well-composed object
 /// of several components, H of each component alone (the other components its background),
 /// kept when together they separate (their surfaces then miss each other) with the object's
-/// topology. The faces' levels are those of each component's own hulls.
-void solveComponentsApart(Context& ctx, ModifiedHull& r)
+/// topology. Each face keeps the level it has in its component's H (a plane can hold a face
+/// of one component's hull and a pit's bottom in another). The components share [from, to]
+/// of the progress.
+void solveComponentsApart(Context& ctx, ModifiedHull& r, double from, double to)
 {
   const Dims d = ctx.objects.dims();
   std::vector<LatticePoint> points;
@@ -2229,53 +2306,26 @@ void solveComponentsApart(Context& ctx, ModifiedHull& r)
         if (ctx.objects.get(x, y, z))
           points.push_back({ x, y, z });
   const auto components = componentsOf(points, d[2] == 1, false);
-  if (components.size() < 2)
+  if (components.size() < 2 || !std::all_of(components.begin(), components.end(), spanSolid))
     return;
+  ModifiedHull apart;
   LatticeMesh together;
-  std::map<FacePlane, int> levels;
-  int joined = 0, cut = 0, keptApart = 0, degree = 0;
-  for (const auto& component : components)
+  std::vector<int> levels;
+  const double step = (to - from) / static_cast<double>(components.size());
+  for (std::size_t c = 0; c < components.size(); ++c)
   {
-    // The component in its own box (its H lies in the hull of its centres), so that many small
-    // components do not each pay for the whole grid.
-    LatticePoint lo = component[0], hi = component[0];
-    for (const auto& p : component)
-      for (int k = 0; k < 3; ++k)
-      {
-        lo[k] = std::min(lo[k], p[k]);
-        hi[k] = std::max(hi[k], p[k]);
-      }
-    BitVolume part(static_cast<std::int32_t>(hi[0] - lo[0] + 1),
-      static_cast<std::int32_t>(hi[1] - lo[1] + 1),
-      static_cast<std::int32_t>(hi[2] - lo[2] + 1));
-    for (const auto& p : component)
-      part.set(static_cast<std::int32_t>(p[0] - lo[0]),
-        static_cast<std::int32_t>(p[1] - lo[1]),
-        static_cast<std::int32_t>(p[2] - lo[2]));
-    ModifiedHull h = modifyConvexHull(part, ctx.coplanar, ctx.exec);
-    if (!h.complete || h.hull.dimension < 3)
+    const Execution exec = ctx.exec.within(from + step * c, from + step * (c + 1));
+    if (!appendComponentH(ctx, components[c], exec, apart, together, levels))
       return;
-    for (auto& p : h.surface.points)
-      for (int k = 0; k < 3; ++k)
-        p[k] += lo[k];
-    together.append(h.surface, false);
-    for (const auto& f : h.faces)
-      levels.emplace(FacePlane{ f.plane.normal,
-                       f.plane.offset + static_cast<std::int64_t>(dot(f.plane.normal, lo)) },
-        f.level);
-    joined += h.joinedShells;
-    cut += h.cutHandles;
-    keptApart += h.keptApart;
-    degree = std::max(degree, h.degreeOfNonConvexity);
   }
   if (!separates(ctx.objects, together) || !hasTopology(ctx, together))
     return;
   r.surface = std::move(together);
-  ctx.planeLevel = std::move(levels);
-  r.joinedShells = joined;
-  r.cutHandles = cut;
-  r.keptApart = keptApart;
-  r.degreeOfNonConvexity = degree;
+  ctx.triangleLevel = std::move(levels);
+  r.joinedShells = apart.joinedShells;
+  r.cutHandles = apart.cutHandles;
+  r.keptApart = apart.keptApart;
+  r.degreeOfNonConvexity = apart.degreeOfNonConvexity;
   r.componentsApart = true;
 }
 
@@ -2311,15 +2361,15 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
     Context ctx{ objects, coplanar, exec, {}, 0 };
     solveAndCheck(ctx, r);
     if (r.complete && objectEuler(ctx) && !hasTopology(ctx, r.surface))
-      solveComponentsApart(ctx, r);
+      solveComponentsApart(ctx, r, 0.2, 0.8);
     if (!exec.report(0.8))
       throw std::runtime_error("aborted");
-    mergeIntoFaces(ctx.planeLevel, r);
+    mergeIntoFaces(ctx.planeLevel, ctx.triangleLevel, r);
   }
   if (r.hull.dimension == 2)
   {
     std::map<FacePlane, int> levels{ { r.hull.planes[0], 0 }, { r.hull.planes[1], 0 } };
-    mergeIntoFaces(levels, r);
+    mergeIntoFaces(levels, {}, r);
   }
   for (const auto& p : r.surface.points)
     r.vertexMark.push_back(voxelClass(objects, p) ? 1 : 0);

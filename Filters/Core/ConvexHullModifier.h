@@ -111,6 +111,8 @@
 // compared with its boundary: the Euler characteristic, twice that of the union of the closed
 // voxel cubes counted from the 2x2x2 blocks, and the number of surfaces, the object's
 // face-connected components plus the background's that do not reach the grid's border.
+// Only these totals are compared, not shell by shell: two tori whose H were a shell of genus 2
+// and a sphere would pass (Euler characteristics -2 + 2 against 0 + 0, two surfaces each).
 // Missing handles: while H has that many shells and a higher Euler characteristic, a handle is
 // cut where a wall of H seals a tunnel: two face-neighbouring background centres, neither
 // inside H and one on it, whose midpoint lies strictly inside H (the hole's centres on the top
@@ -130,17 +132,25 @@
 // and kept when it has (kept apart, the ring stays part of its level's solid; a hollow ball
 // with a spurious handle and a real tunnel beside the cavity gets a sphere whose sealed tunnel
 // is then cut). The count costs one pass over the grid (the 2x2x2 blocks, about 0.02 s of CPU
-// on 131^3) and, for a well-composed object, two component labellings (not measurable against
-// the rest on a ball of radius 64); the second H is made only when the first has not the
-// object's topology.
-// Components apart: the pressing-in between two objects can leave a bridge that the joins keep,
-// so one H for both came out as one shell (two balls 5 voxels apart as a surface of genus 2, a
-// ball beside a thin torus as one sphere). When H of a well-composed object of several
-// (face-connected) components still has not its topology, H of each component alone (the
-// other components its background) is made, and their union kept when it separates (so the
-// surfaces miss each other: a centre of one component cannot lie on another's H, which holds
-// all of that one's centres and no other centre) with the object's topology. Its faces'
-// levels are those of each component's hulls (level 0: a face of its component's hull).
+// on 131^3) and, for a well-composed object, two component labellings (4 bytes per voxel;
+// not measurable against the rest on a ball of radius 64, which cut no handle and solved no
+// components apart); the second H is made only when the first has not the object's topology.
+// Not covered by that timing, and limits of the method as it stands: each search for wall
+// crossings locates the midpoint of every candidate pair of background centres by scanning all
+// triangles of H, each handle tries up to 16 crossings with up to 2 rounds of 48 Booleans
+// each, and components apart labels the object's points again and makes H of every component.
+// Components apart: the pressing-in between two objects can leave a bridge that the joins
+// keep, so that one H for both is one shell (two balls 5 voxels apart give a surface of genus
+// 2, a ball beside a thin torus one sphere). When H of a well-composed object of several
+// (face-connected) components still has not its topology, and every component spans a solid
+// (four centres not in one plane, tested before any is solved), H of each component alone is
+// made in the component's box (the other components are its background there), and their
+// union is kept when it separates with the object's topology. That check is needed: where the
+// hulls of two components overlap, a centre of one (background in the other's box) can lie
+// on or inside the other's H, and such a union is rejected.
+// Its faces' levels are those of each component's own H, carried triangle by triangle (level
+// 0: a face of its component's hull); one plane can hold a face of one component's hull and
+// the bottom of another's pit. The components share the progress range of this step.
 // Not done (the README's limits): shells for which no prism of those is accepted (6 of 72
 // hollow balls of R 8 to 10 with a 1 wide off-centre tunnel into the cavity: the void's shell
 // reaches out along the tunnel in long thin triangles, and none of the prisms near the

@@ -175,7 +175,8 @@ void printCounts(const Input& in, const HullRuns& h, FilterRuns& f)
   const long long triangles = f.dfe->GetOutput()->GetNumberOfCells();
   const bool same = h.qhull == static_cast<long long>(h.hull.faces.size());
   std::printf("voxels %s, candidates %s | hull %s faces, %s vertices, Qhull %s facets%s | H %s "
-              "faces, %s edges, %s vertices, NK %lld, shells joined %lld, Separates %lld | DFE "
+              "faces, %s edges, %s vertices, NK %lld, shells joined %lld, handles cut %lld, "
+              "Separates %lld | DFE "
               "triangles / faces "
               "%s | EVM %s polygons, polyhedrizer %s faces\n\n",
     formatCount(static_cast<long long>(selectedCount(in))).c_str(),
@@ -189,6 +190,7 @@ void printCounts(const Input& in, const HullRuns& h, FilterRuns& f)
     formatCount(field(out, "NumberOfVertices")).c_str(),
     field(out, "DegreeOfNonConvexity"),
     field(out, "NumberOfJoinedShells"),
+    field(out, "NumberOfCutHandles"),
     field(out, "Separates"),
     formatRatio(faces > 0 ? double(triangles) / double(faces) : 0.0).c_str(),
     formatCount(f.evm->GetOutput()->GetNumberOfCells()).c_str(),

@@ -17,10 +17,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
@@ -556,8 +558,9 @@ TEST(ConvexHullModifier, SecondPassCutsTheRealTunnel)
   // keeps apart meets its parent in one triangle), so its H is a sphere whose wall seals it;
   // that wall is cut (a prism between two empty triangles of H where two face-neighbouring
   // background centres of the tunnel lie on either side of it) and H has the object's topology:
-  // one shell, Euler characteristic 0. Without the cut the second pass was rejected and H kept
-  // the spurious handle (Euler characteristic -2 and -4).
+  // one shell, Euler characteristic 0. The cut is what makes the second pass acceptable: its
+  // sphere alone has not the object's topology, and H would keep the first pass's spurious
+  // handle (Euler characteristic -2 and -4).
   using Pass = vbr::ModifiedHull::HandlePass;
   struct Case
   {
@@ -629,13 +632,13 @@ TEST(ConvexHullModifier, ThinToriKeepTheirHandle)
 
 TEST(ConvexHullModifier, SeparateComponentsKeepTheirOwnTopology)
 {
-  // Two objects 5 voxels apart: two balls, and a ball beside a thin torus. One H for both came
-  // out as one shell (the pressing-in between them left a bridge that the joins kept): two
-  // balls as a surface of genus 2 (Euler characteristic -2), the ball and the torus as one
-  // sphere (2, the total of a sphere and a torus, with one surface where the object has two).
-  // H is now the union of the H of each component: per component of H (CGAL) the Euler
-  // characteristic of the component of the object it holds (twice its closed cubes', counted
-  // here for each component alone), and every centre separated.
+  // Two objects 5 voxels apart: two balls, and a ball beside a thin torus. One H for both is
+  // one shell (the pressing-in between them leaves a bridge that the joins keep): two balls as
+  // a surface of genus 2 (Euler characteristic -2), the ball and the torus as one sphere (2,
+  // the total of a sphere and a torus, with one surface where the object has two). So H is the
+  // union of the H of each component: per component of H (CGAL) the Euler characteristic of
+  // the component of the object it holds (twice its closed cubes', counted here for each
+  // component alone), and every centre separated.
   for (double minor : { 0.0, 1.0, 1.2 })
   {
     SCOPED_TRACE(minor);
@@ -659,6 +662,80 @@ TEST(ConvexHullModifier, SeparateComponentsKeepTheirOwnTopology)
     EXPECT_TRUE(r.componentsApart);
     EXPECT_EQ(componentEulers(r.surface), expected);
   }
+}
+
+/// Whether the plane supports the centres: none beyond it, some on it (a plane of their hull
+/// when a face of H lies in it).
+bool supports(const vbr::FacePlane& plane, const std::vector<LatticePoint>& centres)
+{
+  std::int64_t most = std::numeric_limits<std::int64_t>::min();
+  for (const auto& p : centres)
+    most = std::max(most,
+      plane.normal[0] * p[0] + plane.normal[1] * p[1] + plane.normal[2] * p[2] - plane.offset);
+  return most == 0;
+}
+
+TEST(ConvexHullModifier, ComponentsApartKeepTheLevelsOfTheirOwnFaces)
+{
+  // Two balls 5 voxels apart (whose one H has not their topology, see above, so the components
+  // are solved apart), a cup and a box whose top lies in the plane of the cup's pit bottom,
+  // outward as it: a face of level 0 in the box's H and of level 1 in the cup's share one plane.
+  // Each face of H must keep its own component's level: level 0 exactly on the planes that
+  // support its component's centres (brute force over the centres).
+  const vbr::BitVolume a = ball(5), b = ball(6);
+  vbr::BitVolume cup(11, 11, 9);
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 11; ++y)
+      for (int x = 0; x < 11; ++x)
+        cup.set(x, y, z, !(z >= 4 && x >= 3 && x <= 7 && y >= 3 && y <= 7));
+  // The plane of the pit bottom, from the cup's H alone.
+  std::int64_t bottom = -1;
+  for (const vbr::ModifiedFace& f : vbr::modifyConvexHull(cup).faces)
+    if (f.level == 1 && f.plane.normal == LatticePoint{ 0, 0, 1 })
+      bottom = f.plane.offset;
+  ASSERT_GE(bottom, 1);
+  const int shift = a.size(0) + 2, gap = b.size(1) + 5;
+  std::vector<std::vector<LatticePoint>> centres(4);
+  vbr::BitVolume v(shift + b.size(0), gap + cup.size(1), b.size(2));
+  for (int z = 0; z < v.size(2); ++z)
+    for (int y = 0; y < v.size(1); ++y)
+      for (int x = 0; x < v.size(0); ++x)
+      {
+        const bool in[4] = { at(a, x, y, z),
+          at(b, x - shift, y, z),
+          at(cup, x - 10, y - gap, z),
+          x < 5 && y >= gap && y < gap + 5 && z <= bottom };
+        for (int c = 0; c < 4; ++c)
+          if (in[c])
+          {
+            v.set(x, y, z);
+            centres[c].push_back({ x, y, z });
+          }
+      }
+  ASSERT_TRUE(wellComposed(v));
+  const auto r = expectSeparating(v, { true, true });
+  ASSERT_TRUE(r.componentsApart);
+  int unknown = 0, wrong = 0;
+  for (const vbr::ModifiedFace& f : r.faces)
+  {
+    const LatticePoint& p = r.surface.points[r.surface.triangles[f.triangles[0]][0]];
+    const int c = p[1] >= gap ? (p[0] < 5 ? 3 : 2) : p[0] >= shift ? 1 : 0;
+    unknown += f.level < 0;
+    wrong += (f.level == 0) != supports(f.plane, centres[c]);
+  }
+  EXPECT_EQ(unknown, 0) << "faces without a level";
+  EXPECT_EQ(wrong, 0) << "faces whose level 0 is not a plane of their component's hull";
+  // The components share the progress range of their step: what is reported never goes back.
+  std::vector<double> reported;
+  vbr::Execution exec;
+  exec.progress = [&](double f)
+  {
+    reported.push_back(f);
+    return true;
+  };
+  EXPECT_TRUE(vbr::modifyConvexHull(v, vbr::CoplanarFaces::Extension, exec).componentsApart);
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end())) << "progress goes back";
+  EXPECT_GT(reported.size(), 2u);
 }
 
 TEST(ConvexHullModifier, HollowBallsWithOffCentreTunnels)
@@ -1030,9 +1107,9 @@ TEST(ConvexHullModifier, BooleansLeavingTheLatticeAreFoundBeforehand)
       unionsOffLatticeMissed += unionLeaves;
     }
     // A Boolean kept is a closed embedded surface with lattice corners (two solids touching
-    // at one point off the lattice gave two vertices there, which were removed as Steiner
-    // points, leaving two shells touching where neither has a vertex: now refused), so the
-    // exact one must have its corners on the lattice too (the reference itself checked).
+    // at one point off the lattice would give two vertices there, removed as Steiner points,
+    // leaving two shells touching where neither has a vertex: refused), so the exact one must
+    // have its corners on the lattice too (the reference itself checked).
     EXPECT_TRUE(!differenceOk || vbr::isClosedEmbeddedManifold(difference)) << "difference";
     EXPECT_TRUE(!unionOk || vbr::isClosedEmbeddedManifold(unionMesh)) << "union";
     if (differenceOk)
