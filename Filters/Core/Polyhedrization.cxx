@@ -1148,11 +1148,12 @@ public:
       this->Sign[d] = plane.normal[d] < 0 ? -1 : 1;
     std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
     std::int64_t twiceArea = 0; // the shoelace sum of the loop's projection
+    std::array<std::int64_t, 2> last = loop.empty() ? lo : this->project(loop.back());
     for (std::size_t i = 0; i < loop.size(); ++i)
     {
       const std::array<std::int64_t, 2> uv = this->project(loop[i]);
-      const std::array<std::int64_t, 2> next = this->project(loop[(i + 1) % loop.size()]);
-      twiceArea += uv[0] * next[1] - next[0] * uv[1];
+      twiceArea += last[0] * uv[1] - uv[0] * last[1];
+      last = uv;
       for (int j = 0; j < 2; ++j)
       {
         lo[j] = i == 0 ? uv[j] : std::min(lo[j], uv[j]);
