@@ -363,12 +363,7 @@ private:
   /// `markLoops`, its LoopEdges bits, from the loop edges that sortLoopEdges listed.
   void addTriangle(bool markLoops)
   {
-    std::vector<vtkIdType>& ids = this->TriangleIds;
-    if (this->Reverse)
-      std::reverse(ids.begin(), ids.end());
-    this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + ids.size());
-    this->fitIds(this->Polys, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
-    this->Polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    this->insertCell(this->TriangleIds);
     if (markLoops)
       this->LoopEdges->InsertNextValue(this->loopEdgeBits());
   }
@@ -383,6 +378,11 @@ private:
     const auto& n = face.plane.normal;
     const vtkIdType cells = static_cast<vtkIdType>(count);
     const vtkIdType first = this->FaceIds->GetNumberOfTuples();
+    for (vtkDataArray* a : { static_cast<vtkDataArray*>(this->FaceIds),
+           static_cast<vtkDataArray*>(this->Normals),
+           static_cast<vtkDataArray*>(this->Offsets),
+           static_cast<vtkDataArray*>(this->Sizes) })
+      reserveTuples(a, first + cells);
     std::fill_n(
       this->FaceIds->WritePointer(first, cells), count, static_cast<int>(this->FaceBase + f));
     int* normals = this->Normals->WritePointer(3 * first, 3 * cells);
@@ -395,6 +395,7 @@ private:
       static_cast<vtkIdType>(
         face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
     std::fill_n(this->Sizes->WritePointer(first, cells), count, static_cast<int>(o.faceSizes[f]));
+    reserveTuples(this->Labels, first + cells);
     vbr::vtk::appendLabel(this->Labels, o.label); // in the array's type, whatever it is
     const int bytes = this->Labels->GetDataTypeSize() * this->Labels->GetNumberOfComponents();
     auto* labels = static_cast<unsigned char*>(
@@ -402,6 +403,16 @@ private:
         cells * this->Labels->GetNumberOfComponents()));
     for (std::size_t i = 1; i < count; ++i)
       std::memcpy(labels + i * bytes, labels, static_cast<std::size_t>(bytes));
+  }
+
+  /// Room for `tuples` tuples in `a`: WritePointer beyond the size resizes to the exact size,
+  /// which, face after face past reserveCells' reservation (faces drawn by their surfels), would
+  /// copy the array once per face; doubled instead, as InsertNextValue does.
+  static void reserveTuples(vtkDataArray* a, vtkIdType tuples)
+  {
+    if (tuples * a->GetNumberOfComponents() > a->GetSize() &&
+      !a->Resize(std::max(tuples, 2 * a->GetNumberOfTuples())))
+      throw std::bad_alloc();
   }
 
   /// The LoopEdges bits of the triangle TriangleIds (as written: reversed on a mirrored grid).
@@ -590,7 +601,8 @@ private:
       });
   }
 
-  void addCell(std::vector<vtkIdType>& ids, const ObjectFaces& o, std::uint32_t f)
+  /// The polygon of points `ids` (reversed first on a mirrored grid), without values.
+  void insertCell(std::vector<vtkIdType>& ids)
   {
     if (this->Reverse)
       std::reverse(ids.begin(), ids.end());
@@ -598,18 +610,13 @@ private:
     this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + ids.size());
     this->fitIds(this->Polys, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
     this->Polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-    const vbr::StandardFace& face = o.poly.faces[f];
-    this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
-    // The plane in the grid's index space: n.(p + offset) = n.p + n.offset.
-    const auto& n = face.plane.normal;
-    const int normal[3] = {
-      static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2])
-    };
-    this->Normals->InsertNextTypedTuple(normal);
-    this->Offsets->InsertNextValue(static_cast<vtkIdType>(
-      face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
-    this->Sizes->InsertNextValue(static_cast<int>(o.faceSizes[f]));
-    vbr::vtk::appendLabel(this->Labels, o.label);
+  }
+
+  /// The polygon of points `ids` of face f, with the face's values.
+  void addCell(std::vector<vtkIdType>& ids, const ObjectFaces& o, std::uint32_t f)
+  {
+    this->insertCell(ids);
+    this->addFaceValues(o, f, 1);
   }
 
   const vbr::vtk::VoxelGrid& Grid;

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
@@ -119,6 +120,8 @@ void appendFaces(const Boundary2D& b2,
         for (std::size_t i = begin; i < end; ++i)
           *to++ = placed(order, position, from[i]);
     });
+  // Every point of b2 lies in exactly one of its loops, so the loops fill the resize exactly.
+  assert(to == out.points.data() + out.points.size());
 }
 
 std::size_t BRep::holeCount() const

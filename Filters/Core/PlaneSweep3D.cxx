@@ -8,6 +8,24 @@
 // planeSweep2D, placed in their plane by appendFaces, FD facing +A and BD facing -A. The
 // chunks' B-Reps are joined in order (appendBRep), so the result does not depend on the
 // chunking.
+//
+// A section is kept one of two ways, chosen per sorting by bitRowsPay. As a sorted vertex
+// list, a cut costs merges proportional to the vertices of the section and the cut. As rows
+// of bits over the box of all the sorting's vertices (BitSection: one bit per cell, 64 per
+// word), formula 1 and both differences are word ANDs and XORs, a cost proportional to the
+// box's words whatever the vertices. The rows are chosen when all the planes' boxes together
+// hold no more than 4 words per vertex of the sorting: a step of a merge (a comparison and a
+// copy of a vertex) costs about what a few word operations do, so then the words cost no more
+// than the merges would, and a box (one is alive per chunk being swept) takes at most 32 /
+// planes bytes per vertex, against the EVM's 12. Porous and noisy volumes, whose planes are
+// full of vertices, take the rows; a sparse object in a large box keeps the lists.
+// Either way the differences found are the same vertex lists (an EVM is unique), so the faces
+// do not depend on the choice.
+//
+// Streamed (planeSweep3DStream), a sorting is swept in batches of as many chunks as threads.
+// The last chunk of a batch hands its exit section to the first chunk of the next, so only the
+// sections entering the batch's other chunks are found by sequential XORs (findEntering): none
+// on one thread; with rows of bits, by a walker BitSection XORing whole cuts into its rows.
 
 #include "PlaneSweep3D.h"
 
@@ -103,6 +121,14 @@ bool bitRowsPay(const SectionBox& box, std::size_t planes, std::size_t vertices)
 {
   const double words = double(box.rows + 1) * double(box.words) * double(planes);
   return box.rows > 0 && words <= 4.0 * double(vertices);
+}
+
+/// Whether the sections of the planes `sorted` are swept in are kept as rows of bits (then over
+/// `box`, set) or as vertex lists.
+bool bitRowsOf(const EVM& sorted, std::size_t planes, SectionBox& box)
+{
+  box = sectionBoxOf(sorted);
+  return bitRowsPay(box, planes, sorted.size());
 }
 
 /// The prefix XOR of a row of bits along v, XORed into `into`: cell k of a region is the
@@ -240,6 +266,15 @@ public:
   const std::vector<Word>& cells() const { return this->Cells; }
   void assignCells(const std::vector<Word>& cells) { this->Cells = cells; }
 
+  /// S = the section a chunk enters with, as the chunk holds it (see PlaneChunk).
+  void assignEntering(const std::vector<Vertex>& section, const std::vector<Word>& cells)
+  {
+    if (cells.empty())
+      this->assign(section);
+    else
+      this->assignCells(cells);
+  }
+
 private:
   /// Reads the vertices of line u from `at` on (advancing it) into Cut, the region of the
   /// lines read so far at this line; false when the line has none.
@@ -287,7 +322,10 @@ void cutOf(const Vertex* v,
 }
 
 /// Splits every sorting's planes into about `perAxis` chunks; the sections at chunk starts come
-/// from one sequential pass of XORs (formula 1), the cheap part of the sweep.
+/// from one sequential pass of XORs of vertex lists (formula 1), the cheap part of the sweep.
+/// A chunk of a sorting whose `boxes` entry is set turns its entering section into rows of bits
+/// itself (BitSection::assign), in its own task, so that only one box per chunk being swept is
+/// alive.
 std::vector<PlaneChunk> chunkPlanes(const EVM (&sorted)[3],
   const std::vector<std::size_t> (&planeStarts)[3],
   const SectionBox* (&boxes)[3],
@@ -350,11 +388,8 @@ bool sweepChunk(const PlaneChunk& chunk,
   std::unique_ptr<BitSection> bits;
   if (chunk.box)
   {
-    bits.reset(new BitSection(*chunk.box));
-    if (chunk.cells.empty())
-      bits->assign(chunk.section);
-    else
-      bits->assignCells(chunk.cells);
+    bits = std::make_unique<BitSection>(*chunk.box);
+    bits->assignEntering(chunk.section, chunk.cells);
   }
   else
     section = chunk.section;
@@ -428,6 +463,48 @@ void appendBRep(BRep& to, BRep&& from)
   to.nonManifoldVertices += from.nonManifoldVertices;
 }
 
+/// The chunks of planes [p, p + step), [p + step, p + 2 step), ... of a sorting swept in one
+/// batch, at most `batch` of them, into `chunks`. `entering`, S(p - 1), is the first chunk's
+/// section; the others' come from it by sequential XORs of the cuts between (formula 1), by
+/// `walker` when the sections are rows of bits.
+void findEntering(const PlaneChunk& entering,
+  std::size_t p,
+  std::size_t step,
+  std::size_t batch,
+  BitSection* walker,
+  std::vector<PlaneChunk>& chunks)
+{
+  const std::vector<std::size_t>& starts = *entering.starts;
+  const std::size_t planes = starts.size() - 1;
+  const Vertex* v = entering.sorted->vertices().data();
+  std::vector<Vertex> next, cut;
+  chunks.clear();
+  chunks.push_back(entering);
+  chunks.back().firstPlane = p;
+  chunks.back().endPlane = std::min(planes, p + step);
+  while (chunks.size() < batch && chunks.back().endPlane < planes)
+  {
+    PlaneChunk c = chunks.back();
+    if (walker)
+    {
+      walker->assignEntering(c.section, c.cells);
+      for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
+        walker->xorCut(v + starts[q], v + starts[q + 1]);
+      c.cells = walker->cells();
+    }
+    else
+      for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
+      {
+        cutOf(v, starts, q, cut);
+        xorPlanes(c.section, cut, next);
+        c.section.swap(next);
+      }
+    c.firstPlane = c.endPlane;
+    c.endPlane = std::min(planes, c.firstPlane + step);
+    chunks.push_back(std::move(c));
+  }
+}
+
 /// Sweeps the planes of one sorting in chunks of `step` planes, `batch` chunks at a time
 /// (concurrently), each batch's parts handed to consume in order before the next batch is
 /// swept. `planesDone` (of `planesAll`, for the progress) counts the planes swept so far.
@@ -442,48 +519,21 @@ bool streamSorting(const EVM& sorted,
   const std::size_t planes = starts.size() - 1;
   const std::size_t batch = static_cast<std::size_t>(std::max(1, exec.concurrency));
   const std::size_t step = std::max<std::size_t>(1, (planes + StreamChunks - 1) / StreamChunks);
-  const SectionBox box = sectionBoxOf(sorted);
-  const SectionBox* bitBox = bitRowsPay(box, planes, sorted.size()) ? &box : nullptr;
-  const Vertex* v = sorted.vertices().data();
+  SectionBox box;
+  const SectionBox* bitBox = bitRowsOf(sorted, planes, box) ? &box : nullptr;
   std::atomic<bool> abort{ false };
   // S(p - 1), entering the next batch: the last chunk of a batch leaves it, so that only the
-  // sections entering the batch's other chunks need the sequential XORs (none on one thread),
-  // word by word when the sections are rows of bits.
+  // sections entering the batch's other chunks need the sequential XORs (none on one thread,
+  // which needs no walker), word by word when the sections are rows of bits.
   PlaneChunk entering{ &sorted, &starts, 0, 0, {}, bitBox, {} };
-  std::unique_ptr<BitSection> walker(bitBox ? new BitSection(*bitBox) : nullptr);
-  std::vector<Vertex> next, cut;
+  std::unique_ptr<BitSection> walker;
+  if (bitBox && batch > 1)
+    walker = std::make_unique<BitSection>(*bitBox);
   std::vector<PlaneChunk> chunks;
   std::vector<BRep> parts;
   for (std::size_t p = 0; p < planes;)
   {
-    chunks.clear();
-    entering.firstPlane = p;
-    entering.endPlane = std::min(planes, p + step);
-    chunks.push_back(entering);
-    while (chunks.size() < batch && chunks.back().endPlane < planes)
-    {
-      PlaneChunk c = chunks.back();
-      if (walker)
-      {
-        if (c.cells.empty())
-          walker->assign(c.section);
-        else
-          walker->assignCells(c.cells);
-        for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
-          walker->xorCut(v + starts[q], v + starts[q + 1]);
-        c.cells = walker->cells();
-      }
-      else
-        for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
-        {
-          cutOf(v, starts, q, cut);
-          xorPlanes(c.section, cut, next);
-          c.section.swap(next);
-        }
-      c.firstPlane = c.endPlane;
-      c.endPlane = std::min(planes, c.firstPlane + step);
-      chunks.push_back(std::move(c));
-    }
+    findEntering(entering, p, step, batch, walker.get(), chunks);
     p = chunks.back().endPlane;
     parts.assign(chunks.size(), BRep());
     const std::size_t last = chunks.size() - 1;
@@ -549,11 +599,8 @@ bool planeSweep3DParts(const EVM& evm,
   SectionBox box[3];
   const SectionBox* bitBoxes[3];
   for (int axis = 0; axis < 3; ++axis)
-  {
-    box[axis] = sectionBoxOf(sorted[axis]);
     bitBoxes[axis] =
-      bitRowsPay(box[axis], starts[axis].size() - 1, sorted[axis].size()) ? &box[axis] : nullptr;
-  }
+      bitRowsOf(sorted[axis], starts[axis].size() - 1, box[axis]) ? &box[axis] : nullptr;
   const std::vector<PlaneChunk> chunks = chunkPlanes(sorted, starts, bitBoxes, 8);
   parts.resize(chunks.size());
   exec.forRange(static_cast<std::int64_t>(chunks.size()),
@@ -602,5 +649,21 @@ bool planeSweep3D(const EVM& evm, FaceConnectivity connectivity, const Execution
   }
   return true;
 }
+
+namespace detail
+{
+std::array<bool, 3> sectionsAsBitRows(const EVM& evm)
+{
+  EVM sorted[3];
+  sortForTheThreeSweeps(evm, Execution(), sorted);
+  std::array<bool, 3> bitRows{};
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    SectionBox box;
+    bitRows[axis] = bitRowsOf(sorted[axis], sorted[axis].planeStarts().size() - 1, box);
+  }
+  return bitRows;
+}
+} // namespace detail
 
 } // namespace vbr

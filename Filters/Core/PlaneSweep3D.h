@@ -17,6 +17,7 @@
 #include "Execution.h"
 #include "PlaneSweep2D.h"
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -48,6 +49,13 @@ bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
   const std::function<bool(BRep&)>& consume);
+
+namespace detail
+{
+/// Whether each of the three sweeps of `evm` (normal axis x, y, z) keeps its sections as rows
+/// of bits rather than vertex lists (see PlaneSweep3D.cxx): for tests of both ways.
+std::array<bool, 3> sectionsAsBitRows(const EVM& evm);
+} // namespace detail
 
 } // namespace vbr
 

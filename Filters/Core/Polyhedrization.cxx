@@ -1117,6 +1117,17 @@ std::uint64_t surfelKey(const Surfel& s)
 /// surfels lie) within the grid's; surfels outside it (an outline that bounds no disk, which
 /// the flood reports) go to a hash index. The marked cells are cleared after each face, so a
 /// face costs its surfels, not its box.
+///
+/// The box can be far larger than the face: a thin diagonal strip of length L has about L
+/// surfels in an L x L box. Each surfel projects to a parallelogram of area 1 and they tile
+/// the loop's projection, so the loop's shoelace area counts the face's surfels before they are
+/// filled. A box of more than 8 cells per surfel (or per loop edge, for loops that enclose
+/// little, and 64 cells for the smallest faces) is not allocated: its surfels and loop edges
+/// all go to the hash indexes. 8 cells of 2 bytes are the size of a surfel in the face's list
+/// of them, so the array never outweighs that list, while a face that fills an eighth of its
+/// box (rectangles, discs, any face about as wide as it is long) keeps the array's cheaper
+/// marks. Either way a surfel and a linel are keyed by the same things (the array's cell is
+/// the projection), so the faces filled are the same.
 class FaceMarks
 {
 public:
@@ -1132,12 +1143,17 @@ public:
       this->Marks[cell] = 0;
     this->Touched.clear();
     this->Outside.clear();
+    this->OutsideEdges.clear();
     for (int d = 0; d < 3; ++d)
       this->Sign[d] = plane.normal[d] < 0 ? -1 : 1;
     std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
+    std::int64_t twiceArea = 0; // the shoelace sum of the loop's projection
+    std::array<std::int64_t, 2> last = loop.empty() ? lo : this->project(loop.back());
     for (std::size_t i = 0; i < loop.size(); ++i)
     {
       const std::array<std::int64_t, 2> uv = this->project(loop[i]);
+      twiceArea += last[0] * uv[1] - uv[0] * last[1];
+      last = uv;
       for (int j = 0; j < 2; ++j)
       {
         lo[j] = i == 0 ? uv[j] : std::min(lo[j], uv[j]);
@@ -1155,6 +1171,9 @@ public:
     this->Low = lo;
     this->Width = std::max<std::int64_t>(0, hi[0] - lo[0] + 1);
     this->Height = std::max<std::int64_t>(0, hi[1] - lo[1] + 1);
+    const std::uint64_t surfels = std::uint64_t(twiceArea < 0 ? -twiceArea : twiceArea) / 2;
+    if (!arrayPays(std::uint64_t(this->Width) * std::uint64_t(this->Height), surfels, loop.size()))
+      this->Width = this->Height = 0; // every cell "outside": all hashed
     const std::size_t cells = static_cast<std::size_t>(this->Width * this->Height);
     if (this->Marks.size() < cells)
       this->Marks.resize(cells, 0);
@@ -1177,14 +1196,28 @@ public:
     std::size_t cell = 0;
     if (this->cellOf(p, cell))
       this->mark(cell, 8u << directionOf(sub(q, p)));
+    else
+      this->OutsideEdges.insert(this->edgeKey(p, q));
   }
 
   /// Whether p -> q, a linel of a surfel of the plane in the grid, is a loop edge.
   bool isLoopEdge(const Point3& p, const Point3& q) const
   {
     std::size_t cell = 0;
-    return this->cellOf(p, cell) && (this->Marks[cell] & (8u << directionOf(sub(q, p))));
+    if (this->cellOf(p, cell))
+      return this->Marks[cell] & (8u << directionOf(sub(q, p)));
+    return this->OutsideEdges.size() != 0 && this->OutsideEdges.find(this->edgeKey(p, q)) >= 0;
   }
+
+  /// Whether a face of `surfels` (its loop's shoelace area) and `loopEdges` is marked in an
+  /// array of `boxCells` cells, not in the hash indexes (see the class comment for the 8).
+  static bool arrayPays(std::uint64_t boxCells, std::uint64_t surfels, std::size_t loopEdges)
+  {
+    return boxCells <= 8 * std::max<std::uint64_t>(surfels, loopEdges) + 64;
+  }
+
+  /// The cells of the array of the face begun last (0 when it is all hashed).
+  std::size_t arrayCells() const { return static_cast<std::size_t>(this->Width * this->Height); }
 
 private:
   bool mark(std::size_t cell, unsigned bit)
@@ -1202,6 +1235,16 @@ private:
   {
     const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
     return { this->Sign[0] * std::int64_t(p[0]) - w, this->Sign[1] * std::int64_t(p[1]) - w };
+  }
+
+  /// A linel p -> q of the plane by the cell of p and the direction, as the array keys it:
+  /// projections lie within +-2^21 (coordinates below 2^20), shifted to 23 bits each.
+  std::uint64_t edgeKey(const Point3& p, const Point3& q) const
+  {
+    const std::array<std::int64_t, 2> uv = this->project(p);
+    const std::uint64_t u = std::uint64_t(uv[0] + (std::int64_t(1) << 22));
+    const std::uint64_t v = std::uint64_t(uv[1] + (std::int64_t(1) << 22));
+    return (((u << 23) | v) << 3) | std::uint64_t(directionOf(sub(q, p)));
   }
 
   bool cellOf(const Point3& p, std::size_t& cell) const
@@ -1222,6 +1265,7 @@ private:
   std::vector<std::uint16_t> Marks;
   std::vector<std::size_t> Touched; ///< the cells marked for this face
   GridPointIndex Outside;           ///< keys of the face's surfels outside the array
+  GridPointIndex OutsideEdges;      ///< keys of the loop edges outside the array (edgeKey)
 };
 
 /// The filling of the faces, one after the other: the surfels of every face filled so far
@@ -1412,6 +1456,16 @@ std::string surfelsOfOutline(const FaceOutline& face,
   surfels = error.empty() ? filler.lastFace() : std::vector<Surfel>();
   return error;
 }
+
+namespace detail
+{
+std::size_t faceMarkArrayCells(const FaceOutline& face, const std::array<std::int32_t, 3>& dims)
+{
+  FaceMarks marks(dims);
+  marks.begin(face.plane, face.loop);
+  return marks.arrayCells();
+}
+} // namespace detail
 
 struct Reversion::Filling
 {

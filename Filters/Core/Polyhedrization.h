@@ -164,6 +164,13 @@ std::string surfelsOfOutline(const FaceOutline& face,
   const std::array<std::int32_t, 3>& dims,
   std::vector<Surfel>& surfels);
 
+namespace detail
+{
+/// The cells of the array in which the reversion marks the surfels of `face` (0 when its box
+/// is too large for its surfels and they all go to hash indexes instead): for tests of both ways.
+std::size_t faceMarkArrayCells(const FaceOutline& face, const std::array<std::int32_t, 3>& dims);
+} // namespace detail
+
 } // namespace vbr
 
 #endif

@@ -387,8 +387,8 @@ void expectSameBRep(const vbr::BRep& a, const vbr::BRep& b)
   for (std::size_t f = 0; f < a.faces.size(); ++f)
   {
     const vbr::BRepFace &x = a.faces[f], &y = b.faces[f];
-    ASSERT_EQ(std::make_tuple(x.axis, x.normalSign, x.position, x.firstLoop, x.loopCount),
-      std::make_tuple(y.axis, y.normalSign, y.position, y.firstLoop, y.loopCount))
+    ASSERT_EQ(std::make_tuple(x.axis, x.normalSign, x.position, x.firstLoop, x.loopCount, x.parent),
+      std::make_tuple(y.axis, y.normalSign, y.position, y.firstLoop, y.loopCount, y.parent))
       << "face " << f;
   }
   ASSERT_EQ(a.loops.size(), b.loops.size());
@@ -400,15 +400,19 @@ void expectSameBRep(const vbr::BRep& a, const vbr::BRep& b)
 }
 
 /// The faces of `brep` whose plane is not one of `skipped` (axis, position), with their loops
-/// and points, in order.
+/// and points, in order, and their parents renumbered (none when the parent is skipped).
 vbr::BRep withoutFacesAt(const vbr::BRep& brep, const std::set<std::pair<int, int>>& skipped)
 {
   vbr::BRep kept;
-  for (const vbr::BRepFace& f : brep.faces)
+  std::vector<int> keptAs(brep.faces.size(), -1); // the new number of each face kept
+  for (std::size_t i = 0; i < brep.faces.size(); ++i)
   {
+    const vbr::BRepFace& f = brep.faces[i];
     if (skipped.count({ f.axis, f.position }))
       continue;
+    keptAs[i] = static_cast<int>(kept.faces.size());
     vbr::BRepFace g = f;
+    g.parent = f.parent < 0 ? -1 : keptAs[static_cast<std::size_t>(f.parent)];
     g.firstLoop = static_cast<int>(kept.loops.size());
     for (int l = f.firstLoop; l < f.firstLoop + f.loopCount; ++l)
     {
@@ -513,7 +517,8 @@ TEST(BRep, StreamedPartsAreTheSweepsFaces)
 // The sweep keeps its sections as rows of bits when its planes are full of vertices and as
 // vertex lists when they are sparse in their box: a porous block alone (rows of bits, checked
 // against brute force by RandomVolumesMatchBruteForce) and with one voxel far from it (lists)
-// has the same faces, streamed or not, on one thread or several.
+// has the same faces, streamed or not, on one thread or several (on 3 threads the sections
+// are handed from batch to batch and walked to the batch's other chunks, both ways).
 TEST(BRep, SparseAndDenseSectionsGiveTheSameFaces)
 {
   unsigned seed = 7300;
@@ -535,24 +540,30 @@ TEST(BRep, SparseAndDenseSectionsGiveTheSameFaces)
       trial % 2 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
     SCOPED_TRACE(testing::Message() << "trial " << trial);
     vbr::BRep alone, withFar;
-    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(block), c, {}, alone));
+    const vbr::EVM dense = vbr::extractEVM(block);
+    ASSERT_TRUE(vbr::planeSweep3D(dense, c, {}, alone));
     const vbr::EVM evm = vbr::extractEVM(sparse);
     ASSERT_TRUE(vbr::planeSweep3D(evm, c, {}, withFar));
+    EXPECT_EQ(vbr::detail::sectionsAsBitRows(dense), (std::array<bool, 3>{ true, true, true }));
+    EXPECT_EQ(vbr::detail::sectionsAsBitRows(evm), (std::array<bool, 3>{ false, false, false }));
     EXPECT_EQ(withFar.faces.size(), alone.faces.size() + 6);
     expectSameBRep(withoutFacesAt(withFar, farPlanes), alone);
     for (int threads : { 1, 3 })
     {
       const vbr::Execution exec = threads == 1 ? vbr::Execution() : bf::threadedExecution(threads);
-      std::vector<vbr::BRep> parts;
-      ASSERT_TRUE(vbr::planeSweep3DStream(evm,
-        c,
-        exec,
-        [&](vbr::BRep& part)
-        {
-          parts.push_back(std::move(part));
-          return true;
-        }));
-      expectSameBRep(joined(parts), withFar);
+      for (const vbr::BRep* whole : { &alone, &withFar })
+      {
+        std::vector<vbr::BRep> parts;
+        ASSERT_TRUE(vbr::planeSweep3DStream(whole == &alone ? dense : evm,
+          c,
+          exec,
+          [&](vbr::BRep& part)
+          {
+            parts.push_back(std::move(part));
+            return true;
+          }));
+        expectSameBRep(joined(parts), *whole);
+      }
     }
   }
 }

@@ -1013,6 +1013,46 @@ TEST(Polyhedrization, SurfelsOfOutlineAreTheFacesSurfels)
   }
 }
 
+TEST(Polyhedrization, ThinDiagonalFacesAreMarkedInHashes)
+{
+  // A wall 3 voxels thick and 3 high along the diagonal x = y of a 160 x 160 grid: its long
+  // faces are strips of about 500 surfels whose loops project to boxes of about 160 x 160
+  // cells, more than 8 per surfel, so the reversion marks them in hash indexes, not in an array.
+  // Their surfels must still be the graph's (which the array's marks give, as
+  // SurfelsOfOutlineAreTheFacesSurfels checks), and the reversion the voxels: the two ways of
+  // marking are keyed alike, so the faces and the reversion do not depend on the box.
+  const int n = 160;
+  vbr::BitVolume v(n, n, 3);
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = y; x < std::min(n, y + 3); ++x)
+        v.set(x, y, z);
+  vbr::SurfelGraph g;
+  ASSERT_TRUE(vbr::buildSurfelGraph(v, vbr::Execution(), g));
+  vbr::Polyhedron p;
+  ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
+  checkPolyhedron(v, g, p); // the reversion gives the voxels
+  std::size_t hashed = 0, arrayed = 0;
+  for (const vbr::StandardFace& f : p.faces)
+  {
+    const vbr::FaceOutline o = outlineOf(f, g);
+    const std::size_t cells = vbr::detail::faceMarkArrayCells(o, v.dims());
+    (cells == 0 ? hashed : arrayed) += 1;
+    EXPECT_LE(cells, 8 * std::max(f.surfels.size(), o.loop.size()) + 64);
+    std::vector<vbr::Surfel> refilled;
+    ASSERT_EQ(vbr::surfelsOfOutline(o, v.dims(), refilled), "");
+    std::set<std::pair<Point3, int>> got, want;
+    for (const vbr::Surfel& s : refilled)
+      got.emplace(s.voxel, s.direction);
+    for (std::uint32_t s : f.surfels)
+      want.emplace(g.surfels[s].voxel, g.surfels[s].direction);
+    EXPECT_EQ(got, want) << (cells == 0 ? "hashed" : "in an array") << " face";
+    EXPECT_EQ(refilled.size(), f.surfels.size());
+  }
+  EXPECT_GE(hashed, 2u) << "the long faces should be marked in hashes";
+  EXPECT_GE(arrayed, 2u) << "the end caps should be marked in arrays";
+}
+
 namespace
 {
 
