@@ -1901,6 +1901,24 @@ bool joinOneShell(Context& ctx,
   return false;
 }
 
+/// Puts `changed` (made by `count` changes to `surface`) in the place of `surface` when there
+/// was a change and it still separates; otherwise keeps `surface` and gives the face planes back
+/// the levels they had before (`planes`). Returns the changes kept.
+int keepIfSeparates(Context& ctx,
+  int count,
+  LatticeMesh&& changed,
+  const std::map<FacePlane, int>& planes,
+  LatticeMesh& surface)
+{
+  if (count == 0 || !separates(ctx.objects, changed))
+  {
+    ctx.planeLevel = planes;
+    return 0;
+  }
+  surface = std::move(changed);
+  return count;
+}
+
 /// Joins shells while one can be joined; returns how many were.
 int joinShells(Context& ctx, LatticeMesh& surface)
 {
@@ -1914,13 +1932,7 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   while (joinOneShell(ctx, repaired, where, failed))
     ++joined;
   // Checked once at the end (each check tests the whole surface for self-intersections).
-  if (joined == 0 || !separates(ctx.objects, repaired))
-  {
-    ctx.planeLevel = planes;
-    return 0;
-  }
-  surface = std::move(repaired);
-  return joined;
+  return keepIfSeparates(ctx, joined, std::move(repaired), planes, surface);
 }
 
 /// The contribution to the Euler characteristic of the union of the closed voxel cubes of the
@@ -2136,13 +2148,7 @@ int cutMissingHandles(Context& ctx, LatticeMesh& surface)
       break;
     ++cuts;
   }
-  if (cuts == 0 || !separates(ctx.objects, cut))
-  {
-    ctx.planeLevel = planes;
-    return 0;
-  }
-  surface = std::move(cut);
-  return cuts;
+  return keepIfSeparates(ctx, cuts, std::move(cut), planes, surface);
 }
 
 /// One pass of the levels, with pits or with every level kept apart: true when H separates

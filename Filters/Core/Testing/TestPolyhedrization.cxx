@@ -988,6 +988,27 @@ TEST(Polyhedrization, RevertIntoTooSmallAGrid)
 
 // Each face's surfels refilled from its outline alone (what the filter draws when a loop does
 // not triangulate) are the surfels the growth gave it, on random volumes.
+namespace
+{
+// The surfels that surfelsOfOutline refills from a face's outline are the face's own, each once.
+void expectOutlineRefillsFace(const vbr::FaceOutline& o,
+  const vbr::StandardFace& f,
+  const vbr::SurfelGraph& g,
+  const std::array<int, 3>& dims,
+  const std::string& what)
+{
+  std::vector<vbr::Surfel> refilled;
+  ASSERT_EQ(vbr::surfelsOfOutline(o, dims, refilled), "") << what;
+  std::set<std::pair<Point3, int>> got, want;
+  for (const vbr::Surfel& s : refilled)
+    got.emplace(s.voxel, s.direction);
+  for (std::uint32_t s : f.surfels)
+    want.emplace(g.surfels[s].voxel, g.surfels[s].direction);
+  EXPECT_EQ(got, want) << what;
+  EXPECT_EQ(refilled.size(), f.surfels.size()) << what;
+}
+} // namespace
+
 TEST(Polyhedrization, SurfelsOfOutlineAreTheFacesSurfels)
 {
   for (unsigned seed = 60; seed < 66; ++seed)
@@ -999,16 +1020,7 @@ TEST(Polyhedrization, SurfelsOfOutlineAreTheFacesSurfels)
     ASSERT_TRUE(vbr::polyhedrize(g, {}, vbr::Execution(), p));
     for (const vbr::StandardFace& f : p.faces)
     {
-      const vbr::FaceOutline o = outlineOf(f, g);
-      std::vector<vbr::Surfel> refilled;
-      ASSERT_EQ(vbr::surfelsOfOutline(o, v.dims(), refilled), "");
-      std::set<std::pair<Point3, int>> got, want;
-      for (const vbr::Surfel& s : refilled)
-        got.emplace(s.voxel, s.direction);
-      for (std::uint32_t s : f.surfels)
-        want.emplace(g.surfels[s].voxel, g.surfels[s].direction);
-      EXPECT_EQ(got, want) << "seed " << seed;
-      EXPECT_EQ(refilled.size(), f.surfels.size());
+      expectOutlineRefillsFace(outlineOf(f, g), f, g, v.dims(), "seed " + std::to_string(seed));
     }
   }
 }
@@ -1039,15 +1051,7 @@ TEST(Polyhedrization, ThinDiagonalFacesAreMarkedInHashes)
     const std::size_t cells = vbr::detail::faceMarkArrayCells(o, v.dims());
     (cells == 0 ? hashed : arrayed) += 1;
     EXPECT_LE(cells, 8 * std::max(f.surfels.size(), o.loop.size()) + 64);
-    std::vector<vbr::Surfel> refilled;
-    ASSERT_EQ(vbr::surfelsOfOutline(o, v.dims(), refilled), "");
-    std::set<std::pair<Point3, int>> got, want;
-    for (const vbr::Surfel& s : refilled)
-      got.emplace(s.voxel, s.direction);
-    for (std::uint32_t s : f.surfels)
-      want.emplace(g.surfels[s].voxel, g.surfels[s].direction);
-    EXPECT_EQ(got, want) << (cells == 0 ? "hashed" : "in an array") << " face";
-    EXPECT_EQ(refilled.size(), f.surfels.size());
+    expectOutlineRefillsFace(o, f, g, v.dims(), cells == 0 ? "hashed face" : "face in an array");
   }
   EXPECT_GE(hashed, 2u) << "the long faces should be marked in hashes";
   EXPECT_GE(arrayed, 2u) << "the end caps should be marked in arrays";
