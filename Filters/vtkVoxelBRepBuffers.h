@@ -93,12 +93,12 @@ private:
   std::size_t Size = 0, Capacity = 0;
 };
 
-/// The offsets and connectivity of a vtkCellArray, written cell by cell, in 32-bit integers
-/// while every value fits (vtkCellArray's 32-bit storage, which VTK's filters, writers and
-/// mappers read through the cell array's interface like the 64-bit one; code that takes the
-/// connectivity array for a vtkIdTypeArray does not) and widened to 64 bits the first time one
-/// does not. The ids are most of a large boundary's memory: a triangle's offset and three
-/// corners take 16 bytes instead of 32. Ids are never negative.
+/// The offsets and connectivity of a vtkCellArray, written a cell or a face's cells at a time
+/// (addCells), in 32-bit integers while every value fits (vtkCellArray's 32-bit storage, which
+/// VTK's filters, writers and mappers read through the cell array's interface like the 64-bit one;
+/// code that takes the connectivity array for a vtkIdTypeArray does not) and widened to 64 bits the
+/// first time one does not. The ids are most of a large boundary's memory: a triangle's offset and
+/// three corners take 16 bytes instead of 32. Ids are never negative.
 class CellArrayBuffer
 {
 public:

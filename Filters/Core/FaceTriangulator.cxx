@@ -124,7 +124,9 @@ public:
   /// The number of corners still in the ring.
   std::size_t size() const { return this->S.alive.size(); }
 
-  /// Twice the signed area of triangle abc (corners of the ring).
+  /// Twice the signed area of triangle abc (corners of the ring). Exact in 64 bits: it
+  /// overflows only for a face that spans 2^31 voxels along both of its axes, which no image
+  /// held in memory has.
   std::int64_t turn(int a, int b, int c) const
   {
     const std::int64_t *x = this->S.x.data(), *y = this->S.y.data();
@@ -289,8 +291,8 @@ Int cross2(const Point2L& a, const Point2L& b, const Point2L& c)
   return Int(b[0] - a[0]) * (c[1] - a[1]) - Int(b[1] - a[1]) * (c[0] - a[0]);
 }
 
-/// Whether every coordinate of the loop lies in [-2^30, 2^30), so that the products of the
-/// differences of two coordinates fit in 64 bits.
+/// Whether every coordinate of the loop lies in [-2^30, 2^30), so that the difference of two
+/// products of coordinate differences fits in 64 bits.
 bool smallCoordinates(const std::vector<Point2L>& corners)
 {
   constexpr std::int64_t Limit = std::int64_t(1) << 30;
@@ -300,7 +302,8 @@ bool smallCoordinates(const std::vector<Point2L>& corners)
   return small;
 }
 
-/// Twice the signed area of a polygon (doubledArea, here to be inlined).
+/// Twice the signed area of a polygon (doubledArea, in this file so that the hot loop of
+/// fanApexAs inlines it).
 Wide loopArea(const std::vector<Point2L>& corners)
 {
   Wide sum = 0;
@@ -419,9 +422,9 @@ bool visitsACornerTwice(const std::vector<Point2L>& corners, std::vector<std::ui
 
 /// Triangles grouped into fans: from each triangle not yet taken, the longest fan of
 /// untaken triangles round one of its corners (neighbours across the edges at that corner).
-/// Neighbours come from one sort of the edges, and a fan's rim grows at both ends in two
-/// vectors: linear work in the triangles, whatever the size of the face and of its fans. Its
-/// arrays live in a FanScratch reused from face to face (no allocation per face).
+/// Neighbours come from a counting sort of the edges by their smaller corner, and a fan's rim grows
+/// at both ends in two vectors: linear work in the triangles, whatever the size of the face and of
+/// its fans. Its arrays live in a FanScratch reused from face to face (no allocation per face).
 class FanGrouper
 {
 public:
@@ -458,7 +461,7 @@ public:
         {
           bestSize = size;
           best = k;
-          this->Members.swap(this->BestMembers); // kept: the fan taken, not grown again
+          this->Members.swap(this->BestMembers); // the largest fan so far, taken as it is
           this->Front.swap(this->BestFront);
           this->Back.swap(this->BestBack);
         }
@@ -503,7 +506,8 @@ private:
   }
 
   /// Orders one bucket of edges (all from one corner, by 3t + k) by their larger corner, 3t + k
-  /// next (by insertion, stable, unless the corner has many edges), and joins the triangles of
+  /// next (by insertion; a sort for large buckets gives the same order, the ids being distinct),
+  /// and joins the triangles of
   /// each two edges in a row with the same corners.
   void pairBucket(std::pair<int, int>* first, std::pair<int, int>* last)
   {
@@ -591,6 +595,14 @@ private:
 };
 
 } // namespace
+
+namespace detail
+{
+int rectangleApexOf(const PointRange& pts, int u, int v, int sign)
+{
+  return rectangleApex(pts, u, v, sign);
+}
+} // namespace detail
 
 /// The loops of a face as the constraints of `cdt`, each vertex carrying the index (in the
 /// face's loop corners) of the first corner at its location. The distinct corners go in at

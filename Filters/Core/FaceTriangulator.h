@@ -85,6 +85,15 @@ void appendTriangles(const BRep& brep, int f, FaceCells& cells);
 /// Appends the polygons of face `f` (fanPolygons) to `cells` as one face.
 void appendFanPolygons(const BRep& brep, int f, FaceCells& cells);
 
+namespace detail
+{
+/// For tests: the corner appendFanPolygons takes as the apex of a face's outer loop `pts`
+/// (coordinates along axes u and v, swapped when `sign` < 0) without its general search, when
+/// the loop goes round a rectangle (four left turns, no right turn, straight on elsewhere);
+/// -1 for any other loop, which then takes the general search.
+int rectangleApexOf(const PointRange& pts, int u, int v, int sign);
+} // namespace detail
+
 } // namespace vbr
 
 #endif

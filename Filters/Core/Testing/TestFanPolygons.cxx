@@ -328,6 +328,34 @@ TEST(FanPolygons, PartsOfFacesAreTheirEdgeConnectedComponents)
   EXPECT_GT(parts, 300);
 }
 
+// Loops that are no rectangle for the test that spares rectangles the general apex search:
+// each has four left turns or looks like a rectangle in some way, and a fan from its first
+// left turn would draw it wrong (overlapping sides, a loop round twice) or it turns right.
+TEST(FanPolygons, OnlyLoopsRoundARectangleSkipTheApexSearch)
+{
+  auto apexOf = [](const std::vector<P2>& loop)
+  {
+    std::vector<vbr::Point3> points;
+    for (const P2& p : loop)
+      points.push_back({ static_cast<vbr::Coord>(p[0]), static_cast<vbr::Coord>(p[1]), 0 });
+    return vbr::detail::rectangleApexOf(
+      vbr::PointRange{ points.data(), points.data() + points.size() }, 0, 1, 1);
+  };
+  EXPECT_EQ(apexOf({ { 0, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 } }), 0);
+  EXPECT_EQ(apexOf({ { 2, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 }, { 0, 0 } }), 1);
+  // Back and forth along the bottom side: four left turns, but its sides overlap.
+  EXPECT_EQ(apexOf({ { 0, 0 }, { 3, 0 }, { 1, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 } }), -1);
+  // A corner twice in a row.
+  EXPECT_EQ(apexOf({ { 0, 0 }, { 4, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 } }), -1);
+  // Round the rectangle twice: eight left turns.
+  EXPECT_EQ(
+    apexOf({ { 0, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 }, { 0, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 } }), -1);
+  // An L: five left turns and a right one.
+  EXPECT_EQ(apexOf({ { 0, 0 }, { 4, 0 }, { 4, 1 }, { 1, 1 }, { 1, 3 }, { 0, 3 } }), -1);
+  // Clockwise: four right turns.
+  EXPECT_EQ(apexOf({ { 0, 0 }, { 0, 2 }, { 4, 2 }, { 4, 0 } }), -1);
+}
+
 // A face whose loop goes round a rectangle with corners of neighbouring faces on its sides
 // (most faces of porous volumes) is one polygon: the loop from its first corner that turns
 // left (brute force on the loop's own coordinates), whichever corner the loop starts at and
@@ -388,6 +416,10 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesStartAtTheirFirstLeftTurn)
     const std::vector<std::vector<int>> polygons = vbr::fanPolygons(brep, 0);
     ASSERT_EQ(polygons.size(), 1u);
     EXPECT_EQ(polygons[0], expected);
+    // The same apex from the rectangle's own test, without the general search.
+    const vbr::PointRange points{ brep.points.data(), brep.points.data() + n };
+    EXPECT_EQ(
+      vbr::detail::rectangleApexOf(points, u, v, face.normalSign), static_cast<int>(firstLeft));
 
     const std::vector<std::array<int, 3>> triangles = vbr::triangulateFace(brep, 0);
     ASSERT_EQ(triangles.size(), n - 2);
