@@ -507,8 +507,7 @@ private:
 
   /// Orders one bucket of edges (all from one corner, by 3t + k) by their larger corner, 3t + k
   /// next (by insertion; a sort for large buckets gives the same order, the ids being distinct),
-  /// and joins the triangles of
-  /// each two edges in a row with the same corners.
+  /// and joins the triangles of each two edges in a row with the same corners.
   void pairBucket(std::pair<int, int>* first, std::pair<int, int>* last)
   {
     if (last - first > 32)
