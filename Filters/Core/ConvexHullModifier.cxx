@@ -2021,16 +2021,18 @@ std::array<long, 2> componentCount(const BitVolume& set, bool plane)
   Components comps;
   buildCUDBComponents(
     plane ? extractEVM2D(set) : extractEVM(set), Connectivity::Face, Execution(), cudb, comps);
+  // A component reaches the border when one of its boxes does: no labels painted.
   const Dims d = set.dims();
-  std::vector<std::int32_t> value(comps.boxLabel.begin(), comps.boxLabel.end());
-  std::vector<std::int32_t> labels(set.voxelCount(), 0);
-  paintBoxes(cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, d, labels.data());
   std::vector<bool> border(static_cast<std::size_t>(comps.count) + 1, false);
-  for (std::int32_t z = 0; z < d[2]; ++z)
-    for (std::int32_t y = 0; y < d[1]; ++y)
-      for (std::int32_t x = 0; x < d[0]; ++x)
-        if (x == 0 || y == 0 || z == 0 || x == d[0] - 1 || y == d[1] - 1 || z == d[2] - 1)
-          border[labels[gridIndex(d, { x, y, z })]] = true;
+  for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
+  {
+    const Box& box = cudb.boxes[b];
+    bool atBorder = false;
+    for (int a = 0; a < 3; ++a)
+      atBorder |= box.lo[a] == 0 || box.hi[a] == d[a];
+    if (atBorder)
+      border[comps.boxLabel[b]] = true;
+  }
   return { static_cast<long>(comps.count),
     static_cast<long>(std::count(border.begin() + 1, border.end(), true)) };
 }
