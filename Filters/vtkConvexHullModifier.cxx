@@ -47,8 +47,9 @@ struct ModifiedObject
   vbr::ModifiedHull result;
   int flatAxis = -1;
   vbr::SeparatingPolygons polygons;
-  /// The background centres of the image on the loops (the core lists those of the box only;
-  /// a thickened corner can lie outside the box), in index coordinates.
+  /// The background centres of the image on the loops, or of the grid on the prism of a flat
+  /// object in a volume (the core lists those of the box only; a thickened corner and the
+  /// prism's caps lie outside the box), in index coordinates.
   std::vector<Int3> backgroundOnLoops;
 
   bool complete() const
@@ -119,6 +120,30 @@ void separateInPlane(ModifiedObject& o, int flat, const std::array<std::int32_t,
         static_cast<std::int32_t>(box[2]));
     if (inImage && !object)
       o.backgroundOnLoops.push_back(index);
+  }
+}
+
+/// The background centres of the grid on H of a flat object in a volume (the prism of its
+/// polygons, whose caps lie one layer off its box on either side): the core lists those of the
+/// box only.
+void listFlatBackground(ModifiedObject& o, const std::array<std::int32_t, 3>& dims)
+{
+  vbr::LatticeMesh inGrid = o.result.surface;
+  for (auto& p : inGrid.points)
+    for (int a = 0; a < 3; ++a)
+      p[a] += o.offset[a];
+  for (const vbr::LatticePoint& p : vbr::latticePointsOnSurface(inGrid, dims))
+  {
+    bool inBox = true;
+    for (int a = 0; a < 3; ++a)
+      inBox = inBox && p[a] >= o.offset[a] && p[a] < o.offset[a] + o.voxels.size(a);
+    if (!inBox ||
+      !o.voxels.get(static_cast<std::int32_t>(p[0] - o.offset[0]),
+        static_cast<std::int32_t>(p[1] - o.offset[1]),
+        static_cast<std::int32_t>(p[2] - o.offset[2])))
+      o.backgroundOnLoops.push_back({ static_cast<std::int32_t>(p[0]),
+        static_cast<std::int32_t>(p[1]),
+        static_cast<std::int32_t>(p[2]) });
   }
 }
 
@@ -347,6 +372,8 @@ bool modifyObjects(vtkConvexHullModifier* self,
       separateInPlane(o, flat, in.grid.dims);
     else
       o.result = vbr::modifyConvexHull(o.voxels, coplanar, vbr::vtk::makeExecution(self, from, to));
+    if (flat < 0 && o.result.hull.dimension < 3)
+      listFlatBackground(o, in.grid.dims);
     objects.push_back(std::move(o));
   }
   return !self->GetAbortExecute();
@@ -415,7 +442,7 @@ struct Statistics
 /// The background centres on H (or on the loops) of every object, in index coordinates.
 void addBackgroundCentres(const ModifiedObject& o, vtkIntArray* onSurface)
 {
-  if (o.flatAxis >= 0)
+  if (o.flatAxis >= 0 || o.result.hull.dimension < 3)
   {
     for (const Int3& p : o.backgroundOnLoops)
       onSurface->InsertNextTuple3(

@@ -1,6 +1,7 @@
 #include "ConvexHullModifier.h"
 
 #include "CUDB.h"
+#include "ConvexHullModifier2D.h"
 #include "EVM.h"
 #include "UnionFind.h"
 
@@ -2337,6 +2338,229 @@ void solveComponentsApart(Context& ctx, ModifiedHull& r, double from, double to)
   r.componentsApart = true;
 }
 
+/// Flat objects (see the header): every object centre in one plane x_a = c. H is the prism of
+/// the object's separating polygons in that plane (ConvexHullModifier2D) from x_a = c - 1 to
+/// c + 1: the planes beside hold no object centre, so their centres inside the polygons may lie
+/// on its caps, and the prism is a solid whose genus is the polygons' number of holes. A hole
+/// whose background reaches beyond its polygon in the plane (a dent under an edge of the hull
+/// that passes between lattice points) is no hole of the object: it is filled below the plane,
+/// a pit from the top cap down to x_a = c, so that it adds no handle.
+
+/// The last axis along which every point has one coordinate (that of flatAxisOf in the vtk
+/// filter, so a 2D image in z is solved in its (x, y) plane), or -1 when the points lie in no
+/// plane of the grid's axes.
+int gridPlaneAxis(const std::vector<LatticePoint>& points)
+{
+  for (int a = 2; a >= 0; --a)
+    if (std::all_of(points.begin(),
+          points.end(),
+          [&](const LatticePoint& p) { return p[a] == points.front()[a]; }))
+      return a;
+  return -1;
+}
+
+/// The plane axes (u, v) of a flat axis a, (u, v, a) right-handed: polygons counter-clockwise
+/// in (u, v) face +a.
+std::array<int, 2> planeAxesOf(int a)
+{
+  return { (a + 1) % 3, (a + 2) % 3 };
+}
+
+/// The object's layer x_a = c as a 2D image in its plane axes.
+BitVolume layerImage(const BitVolume& objects, int a, std::int32_t c)
+{
+  const auto uv = planeAxesOf(a);
+  BitVolume image(objects.size(uv[0]), objects.size(uv[1]), 1);
+  std::array<std::int32_t, 3> i{ 0, 0, 0 };
+  i[a] = c;
+  for (i[uv[1]] = 0; i[uv[1]] < objects.size(uv[1]); ++i[uv[1]])
+    for (i[uv[0]] = 0; i[uv[0]] < objects.size(uv[0]); ++i[uv[0]])
+      if (objects.get(i[0], i[1], i[2]))
+        image.set(i[uv[0]], i[uv[1]], 0);
+  return image;
+}
+
+/// Whether the face-connected background of the image through the hole's first background
+/// corner reaches a centre that is not strictly inside its polygon's outer loop, or the
+/// image's border (all background beyond): then the hole is a dent of the object, not a hole.
+/// A centre strictly inside a ring of object centres is strictly inside every loop about the
+/// ring, so a hole of the object never does.
+bool holeReachesOut(const SeparatingPolygons& s,
+  const SeparatingPolygon& polygon,
+  std::size_t hole,
+  const BitVolume& image)
+{
+  const std::int32_t nx = image.size(0), ny = image.size(1);
+  const std::vector<SeparatingLoop> outer{ s.loops[polygon.outer] };
+  const BitVolume inside = revertSeparatingPolygons2D(outer, latticePointsOnLoops(outer), nx, ny);
+  auto background = [&](const Point2L& p)
+  {
+    return p[0] < 0 || p[1] < 0 || p[0] >= nx || p[1] >= ny ||
+      !image.get(static_cast<std::int32_t>(p[0]), static_cast<std::int32_t>(p[1]), 0);
+  };
+  const auto& corners = s.loops[hole].corners;
+  auto start = std::find_if(corners.begin(), corners.end(), background);
+  if (start == corners.end())
+    return false;
+  BitVolume seen(nx, ny, 1);
+  std::vector<Point2L> stack{ *start };
+  while (!stack.empty())
+  {
+    const Point2L p = stack.back();
+    stack.pop_back();
+    if (p[0] < 0 || p[1] < 0 || p[0] >= nx || p[1] >= ny)
+      return true;
+    const auto x = static_cast<std::int32_t>(p[0]), y = static_cast<std::int32_t>(p[1]);
+    if (seen.get(x, y, 0))
+      continue;
+    seen.set(x, y, 0);
+    if (!inside.get(x, y, 0))
+      return true;
+    for (const Point2L& q : { Point2L{ p[0] + 1, p[1] },
+           Point2L{ p[0] - 1, p[1] },
+           Point2L{ p[0], p[1] + 1 },
+           Point2L{ p[0], p[1] - 1 } })
+      if (background(q))
+        stack.push_back(q);
+  }
+  return false;
+}
+
+/// Whether a polygon of the plane lies inside the hole (its loops are apart from the hole's,
+/// so one corner tells).
+bool holdsAPolygon(const SeparatingPolygons& s, std::size_t hole)
+{
+  const auto& loop = s.loops[hole].corners;
+  for (const SeparatingPolygon& other : s.polygons)
+  {
+    const Point2L& p = s.loops[other.outer].corners.front();
+    bool in = false;
+    for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++)
+      if ((loop[i][1] > p[1]) != (loop[j][1] > p[1]) &&
+        (orientation(loop[j], loop[i], p) > 0) == (loop[i][1] > loop[j][1]))
+        in = !in;
+    if (in)
+      return true;
+  }
+  return false;
+}
+
+/// The triangles of a flat object's H, one vertex per lattice point, with their levels.
+struct FlatMesh
+{
+  int axis;
+  LatticeMesh& mesh;
+  std::vector<int>& levels;
+  std::map<LatticePoint, Index> index;
+
+  Index vertex(const Point2L& p, std::int64_t h)
+  {
+    const auto uv = planeAxesOf(this->axis);
+    LatticePoint q{ 0, 0, 0 };
+    q[uv[0]] = p[0];
+    q[uv[1]] = p[1];
+    q[this->axis] = h;
+    auto it = this->index.emplace(q, static_cast<Index>(this->mesh.points.size()));
+    if (it.second)
+      this->mesh.points.push_back(q);
+    return it.first->second;
+  }
+
+  /// The polygon's triangles at height h, counter-clockwise seen from +a unless `down`.
+  void cap(const std::vector<Point2L>& corners,
+    const std::vector<Triangle>& triangles,
+    std::int64_t h,
+    bool down,
+    int level)
+  {
+    for (const Triangle& t : triangles)
+    {
+      std::array<Index, 3> tri{ this->vertex(corners[static_cast<std::size_t>(t[0])], h),
+        this->vertex(corners[static_cast<std::size_t>(t[1])], h),
+        this->vertex(corners[static_cast<std::size_t>(t[2])], h) };
+      if (down)
+        std::swap(tri[0], tri[2]);
+      this->mesh.triangles.push_back(tri);
+      this->levels.push_back(level);
+    }
+  }
+
+  /// One quad per edge of the loop from height lo to hi, facing away from the loop's left side
+  /// (the object's).
+  void sides(const SeparatingLoop& loop, std::int64_t lo, std::int64_t hi)
+  {
+    const std::size_t n = loop.corners.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const Point2L &p = loop.corners[k], &q = loop.corners[(k + 1) % n];
+      const Index p0 = this->vertex(p, lo), q0 = this->vertex(q, lo), q1 = this->vertex(q, hi),
+                  p1 = this->vertex(p, hi);
+      this->mesh.triangles.push_back({ p0, q0, q1 });
+      this->mesh.triangles.push_back({ p0, q1, p1 });
+      this->levels.insert(this->levels.end(), 2, loop.level);
+    }
+  }
+};
+
+/// The prism of one polygon with holes from x_a = c - 1 to c + 1: its caps at the polygon's
+/// level, a quad per loop edge at the loop's level; a hole that reaches out (and holds no
+/// polygon) only from c to c + 1 above its floor at c, and closed in the bottom cap. The loops
+/// are simple, pairwise apart and carry the object on their left, so the sides face outwards
+/// (away from holes as well) and the prisms of different polygons are apart: a closed
+/// 2-manifold.
+void appendPrism(const SeparatingPolygons& s,
+  const SeparatingPolygon& polygon,
+  const BitVolume& image,
+  std::int64_t c,
+  FlatMesh& out)
+{
+  SeparatingPolygon bottom = polygon;
+  bottom.holes.clear();
+  std::vector<std::size_t> dents;
+  for (const std::size_t h : polygon.holes)
+    if (!holdsAPolygon(s, h) && holeReachesOut(s, polygon, h, image))
+      dents.push_back(h);
+    else
+      bottom.holes.push_back(h);
+  out.cap(polygonCorners(s, polygon),
+    triangulatePolygonWithHoles(s, polygon),
+    c + 1,
+    false,
+    polygon.level);
+  out.cap(
+    polygonCorners(s, bottom), triangulatePolygonWithHoles(s, bottom), c - 1, true, polygon.level);
+  out.sides(s.loops[polygon.outer], c - 1, c + 1);
+  for (const std::size_t h : bottom.holes)
+    out.sides(s.loops[h], c - 1, c + 1);
+  for (const std::size_t h : dents)
+  {
+    // The floor: the hole's region (its loop reversed, counter-clockwise) facing +a.
+    std::vector<Point2L> floor(s.loops[h].corners.rbegin(), s.loops[h].corners.rend());
+    out.cap(floor, triangulateSimplePolygon(floor), c, false, s.loops[h].level);
+    out.sides(s.loops[h], c, c + 1);
+  }
+}
+
+/// H of a flat object whose centres lie in x_a = c: the prisms of its separating polygons, with
+/// the level of every triangle; the counts of the plane (notches as concavities, holes as
+/// cavities). Incomplete when the plane's polygons are.
+std::vector<int> solveFlatObject(const BitVolume& objects, int a, std::int64_t c, ModifiedHull& r)
+{
+  const BitVolume image = layerImage(objects, a, static_cast<std::int32_t>(c));
+  const SeparatingPolygons s = separatingPolygons2D(image);
+  r.complete = s.complete;
+  if (!s.complete)
+    r.failure = "in the object's plane: " + s.failure;
+  r.concavities = s.notches;
+  r.cavities = s.holes;
+  r.degreeOfNonConvexity = s.degreeOfNonConvexity;
+  std::vector<int> levels;
+  FlatMesh out{ a, r.surface, levels, {} };
+  for (const SeparatingPolygon& polygon : s.polygons)
+    appendPrism(s, polygon, image, c, out);
+  return levels;
+}
+
 } // namespace
 
 ModifiedHull modifyConvexHull(const BitVolume& objects,
@@ -2350,9 +2574,13 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
   r.hull = convexHull(candidates, coplanar);
   if (!exec.report(0.2))
     throw std::runtime_error("aborted");
-  if (r.hull.dimension < 3)
+  const int flat = r.hull.dimension < 3 ? gridPlaneAxis(candidates) : -1;
+  if (flat >= 0)
+    mergeIntoFaces({}, solveFlatObject(objects, flat, candidates.front()[flat], r), r);
+  else if (r.hull.dimension < 3)
   {
-    // A flat object: every centre in its polygon, segment or point lies on H.
+    // A flat object in no plane of the grid's axes (never face-connected): every centre in its
+    // polygon, segment or point lies on H.
     r.complete = r.hull.dimension == 2;
     if (r.hull.dimension == 2)
       r.surface = LatticeMesh{ r.hull.vertices, {} };
@@ -2374,7 +2602,7 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
       throw std::runtime_error("aborted");
     mergeIntoFaces(ctx.planeLevel, ctx.triangleLevel, r);
   }
-  if (r.hull.dimension == 2)
+  if (r.hull.dimension == 2 && flat < 0)
   {
     std::map<FacePlane, int> levels{ { r.hull.planes[0], 0 }, { r.hull.planes[1], 0 } };
     mergeIntoFaces(levels, {}, r);

@@ -7,7 +7,8 @@ positive volume), and the reversion equal to the selection. Point and cell scala
 spacing, extent not at 0, a mirroring direction matrix, label maps. 2D images (one pixel
 thick): polygons with holes in the image plane, checked from their triangles alone (boundary
 edges, simple boundaries, every lattice point of the plane inside, outside or on them, the marks
-and the reversion).
+and the reversion). Flat objects in volumes: prisms of genus that of their boundary, their caps
+one layer off the object, checked like the volumes' H.
 """
 
 import math
@@ -281,6 +282,91 @@ def check_2d_labels():
     check.true("2D labels: reversion", bool((back.reshape(labels.shape) == (labels > 0)).all()))
 
 
+def check_flat_volume(tag, mask, spacing=(1, 1, 1), origin=(0, 0, 0), index_min=(0, 0, 0)):
+    """An object whose centres lie in one layer of a volume: H is the prism of its polygons
+    one layer off it on either side (caps beyond the grid when the layer is its first or last).
+    Checked from the triangles alone: closed and oriented, the winding number of every centre
+    of the grid and a margin of one, the marks (VoxelMark and BackgroundCentresOnSurface, which
+    must list the caps' centres in the grid outside the object's box), the Euler characteristic
+    twice the closed cubes' (well-composed masks) and the reversion."""
+    image = make_image(mask.astype(np.uint8), spacing, origin, index_min)
+    f = run(image, voxelbrep.vtkConvexHullModifier.TRIANGLES)
+    out = f.GetOutput()
+    check.equal(tag + ": separates", field_value(out, "Separates"), 1)
+    p = to_index(points(out), spacing, origin, index_min, False)
+    tris = np.array([c for c in cells(out)], dtype=np.int64).reshape(-1, 3)
+    nz, ny, nx = mask.shape
+    in_grid = lambda q: ((q >= 0) & (q < np.array([nx, ny, nz]))).all(axis=1)
+    inside = in_grid(p)
+    expected = np.zeros(len(p), bool)
+    expected[inside] = mask[p[inside, 2], p[inside, 1], p[inside, 0]]
+    marks = ns.vtk_to_numpy(out.GetPointData().GetArray("VoxelMark"))
+    check.true(tag + ": VoxelMark", bool((marks == expected).all()))
+    edges = {}
+    for t in tris:
+        for k in range(3):
+            e = (t[k], t[(k + 1) % 3])
+            edges[e] = edges.get(e, 0) + 1
+    check.true(tag + ": closed oriented surface",
+               all(n == 1 and edges.get((e[1], e[0]), 0) == 1 for e, n in edges.items()))
+    check.equal(tag + ": Euler characteristic twice the closed cubes'",
+                euler_of_triangles(tris), 2 * closed_cubes_euler(mask))
+    z, y, x = np.meshgrid(np.arange(-1, nz + 1), np.arange(-1, ny + 1), np.arange(-1, nx + 1),
+                          indexing="ij")
+    q = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    w = np.rint(winding_numbers(p.astype(float), tris, q.astype(float)))
+    on = on_surface(p, tris, q)
+    g = in_grid(q)
+    obj = np.zeros(len(q), bool)
+    obj[g] = mask[q[g, 2], q[g, 1], q[g, 0]]
+    check.equal(tag + ": object centres outside", int((obj & ~on & (w == 0)).sum()), 0)
+    check.equal(tag + ": background centres inside", int((~obj & ~on & (w != 0)).sum()), 0)
+    listed = {tuple(int(c) for c in r) for r in ns.vtk_to_numpy(
+        out.GetFieldData().GetArray("BackgroundCentresOnSurface")).reshape(-1, 3)}
+    marked = np.array([tuple(int(c) for c in r) in listed for r in q])
+    check.true(tag + ": background centres on H listed exactly",
+               bool((marked == (on & g & ~obj)).all()))
+    back = ns.vtk_to_numpy(f.GetOutputDataObject(1).GetPointData().GetArray("Selection"))
+    check.true(tag + ": reversion equals the selection",
+               bool((back.reshape(mask.shape) == (mask != 0)).all()))
+    return out
+
+
+def check_flat_labels():
+    """Labels on flat objects in a volume: each label's box is one layer thick, its prism's
+    caps lie outside the box but inside the grid, and their centres are background centres of
+    that label on H that BackgroundCentresOnSurface must list (grid indices): the list equals
+    the union over the labels of their grid centres on their own triangles, not of their
+    label."""
+    labels = np.zeros((5, 8, 9), np.uint8)
+    labels[1, 1:6, 1:6] = 3
+    labels[1, 2:5, 2:5] = 0  # a ring
+    labels[3, 2:7, 2:4] = 5
+    labels[3, 5:7, 2:8] = 5  # an L
+    f = run(make_image(labels), voxelbrep.vtkConvexHullModifier.TRIANGLES, labels=True)
+    out = f.GetOutput()
+    check.equal("flat labels: separates", field_value(out, "Separates"), 1)
+    p = to_index(points(out), (1, 1, 1), (0, 0, 0), (0, 0, 0), False)
+    lab = ns.vtk_to_numpy(out.GetCellData().GetArray("Label"))
+    tris = np.array([c for c in cells(out)], dtype=np.int64).reshape(-1, 3)
+    z, y, x = np.meshgrid(*(np.arange(n) for n in labels.shape), indexing="ij")
+    q = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    expected = set()
+    for value, euler in ((3, 0), (5, 2)):
+        own = tris[lab == value]
+        check.equal("flat labels: Euler characteristic of label %d" % value,
+                    euler_of_triangles(own), euler)
+        on = on_surface(p, own, q) & (labels.ravel() != value)
+        expected |= {tuple(int(c) for c in r) for r in q[on]}
+    listed = {tuple(int(c) for c in r) for r in ns.vtk_to_numpy(
+        out.GetFieldData().GetArray("BackgroundCentresOnSurface")).reshape(-1, 3)}
+    check.true("flat labels: the caps' background centres listed", listed == expected)
+    check.true("flat labels: caps off the labels' layers",
+               any(r[2] in (0, 2) for r in expected) and any(r[2] in (2, 4) for r in expected))
+    back = ns.vtk_to_numpy(f.GetOutputDataObject(1).GetPointData().GetArray("Selection"))
+    check.true("flat labels: reversion", bool((back.reshape(labels.shape) == (labels > 0)).all()))
+
+
 def closed_cubes_euler(mask):
     """V - E + F - C of the union of the closed voxel cubes: a cell of the cubical complex
     belongs to it when one of the voxels it touches is set (the cells by their doubled
@@ -362,6 +448,21 @@ def main():
     check_2d("2D one pixel", np.array([[0, 0, 0], [0, 1, 0]], bool))
     check_2d("2D one row", np.array([[1, 1, 0, 1, 1, 1]], bool), spacing=(2, 3, 4))
     check_2d_labels()
+    # Flat objects in volumes: the prism of their polygons, with the genus of their boundary.
+    flat = np.zeros((3, 9, 10), bool)
+    flat[1, 1:8, 1:8] = True
+    flat[1, 3:6, 3:6] = False
+    out = check_flat_volume("flat ring in a volume", flat, spacing=(0.5, 2.0, 1.5),
+                            origin=(3, -2, 1), index_min=(2, -1, 4))
+    check.equal("flat ring: a torus", 2 * closed_cubes_euler(flat), 0)
+    plate = np.zeros((6, 4, 11), bool)
+    plate[:, 0, :] = True
+    plate[1:3, 0, 1:3] = plate[1:3, 0, 5:7] = plate[2:5, 0, 8:10] = False
+    check_flat_volume("flat plate with three holes in the first layer", plate)
+    row = np.zeros((4, 5, 6), bool)
+    row[3, 2, 1:5] = True
+    check_flat_volume("one row in the last layer", row)
+    check_flat_labels()
     # Labels: two objects, each its own polyhedron.
     labels = np.zeros((12, 12, 24), np.uint8)
     labels[2:10, 2:10, 2:10] = 3
