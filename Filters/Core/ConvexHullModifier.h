@@ -156,9 +156,37 @@
 // reaches out along the tunnel in long thin triangles, and none of the prisms near the
 // tunnel's exit passes the checks, in either pass), spurious handles on objects that are not
 // well-composed or where the second pass has them too (a join can only add a tube and a cut a
-// handle, never remove one), and flat objects (every centre in one plane: H is their two-sided
-// polygon, genus 0 even for a ring, although a genus 1 solid with corners at voxel centres
-// exists: the ring's box one step thicker less a prism about the hole; the core test builds it).
+// handle, never remove one), and the flat objects' limits below.
+//
+// Flat objects (every object centre in one plane x_a = c of the grid's axes: a plate, a ring,
+// a row, one voxel, a 2D image): no hull of theirs is solid, so H is made in the plane. The
+// layer is solved by the 2D modifier (ConvexHullModifier2D.h: polygons with holes, lattice
+// corners, pairwise apart) and each polygon P becomes the prism P x [c - 1, c + 1]: its caps
+// are P's triangles, its sides a quad per loop edge. It separates: the centres of the plane
+// lie on P's side as they do in 2D (strictly inside the prism or on its sides), the planes
+// c - 1 and c + 1 hold only background centres, which lie on the caps or outside, and beyond
+// them nothing is inside. The loops are simple and apart, so the prisms are closed 2-manifolds
+// apart from each other, and a prism's genus is its polygon's number of holes: a ring gives a
+// torus. Pixels touching only at a corner share one polygon (the 2D touching rule), so two
+// squares touching at a corner give one prism. A row or a point is a lattice triangle in the
+// plane (thickened by a lattice point off its line, a background centre), a prism of genus 0.
+// Corners may lie beyond the grid (caps beside its first or last layer, a thickened corner);
+// the reversion reads the grid's rows only and the centres beyond are background. A hole of a
+// polygon whose face-connected background reaches a centre not strictly inside the polygon's
+// outer loop (a dent under a hull edge that passes between lattice points, as beside an L's
+// inner corner) is no hole of the object: it is filled below the plane, a pit from the top cap
+// down to its floor at c (the hole's region, whose centres are background and lie on it), so
+// it adds no handle; a hole of the object never reaches out (a centre strictly inside a ring
+// of object centres is strictly inside every loop about the ring). Levels: the caps have their
+// polygon's level (0 for the object's, 2 for an island in a hole), the sides and a filled
+// hole's floor their loop's. Limits: a hole of the object becomes a notch, and H loses its
+// handle, when the 2D modifier finds no lattice triangle for it inside the polygon (its centres
+// in one row and no lattice point off that row inside the ring: a ring one voxel wide about one
+// voxel or a row; then a genus 1 solid with corners at voxel centres exists beyond the object's
+// hull, the ring's box one step thicker less a prism about the hole, built in the core test);
+// an island in such a hole is joined to the ring by the notch; a dent that holds an island
+// keeps its hole. Flat sets in no plane of the grid's axes are never face-connected: H is their
+// two-sided polygon, and a segment off the axes' planes is incomplete.
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact
@@ -198,7 +226,8 @@ struct ModifiedFace
   std::vector<std::uint32_t> triangles;
   std::vector<std::vector<std::uint32_t>> loops;
   /// 0 for pieces of faces of CH(S) (of the component's hull when componentsApart), 1 for faces
-  /// pressed in from a background hull, 2 for faces pushed back out, ...
+  /// pressed in from a background hull, 2 for faces pushed back out, ...; for a flat object the
+  /// levels of its polygons and loops in the plane (see above).
   int level = 0;
 };
 
@@ -212,6 +241,7 @@ struct ModifiedHull
   /// Every background centre on H (vertices and points inside faces or on edges).
   std::vector<LatticePoint> backgroundOnSurface;
   std::size_t edgeCount = 0;
+  /// Section 4.1's counts; for a flat object the notches and holes of its polygons.
   int concavities = 0;
   int cavities = 0;
   int tunnels = 0;
@@ -241,9 +271,10 @@ struct ModifiedHull
   std::string failure;
 };
 
-/// H of the object voxels (empty input: an empty result), its shells joined (see above). Incomplete
-/// (complete false, failure saying why) for a segment or a point, or when no empty triangle is left
-/// to press a group in from (see above).
+/// H of the object voxels (empty input: an empty result), its shells joined (see above); for a
+/// flat object the prisms of its polygons (see above). Incomplete (complete false, failure saying
+/// why) for a segment in no plane of the grid's axes, or when no empty triangle is left to press
+/// a group in from (see above).
 ModifiedHull modifyConvexHull(const BitVolume& objects,
   CoplanarFaces coplanar = CoplanarFaces::Extension,
   const Execution& exec = Execution());
