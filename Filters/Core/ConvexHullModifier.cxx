@@ -2380,42 +2380,69 @@ BitVolume layerImage(const BitVolume& objects, int a, std::int32_t c)
   return image;
 }
 
+/// The lattice points strictly inside a polygon's outer loop, in the loop's box (none beyond).
+struct OuterRegion
+{
+  Point2L lo{ 0, 0 };
+  BitVolume inside;
+
+  explicit OuterRegion(const SeparatingLoop& outer)
+  {
+    Point2L hi = outer.corners.front();
+    this->lo = hi;
+    for (const Point2L& p : outer.corners)
+      for (int k = 0; k < 2; ++k)
+      {
+        this->lo[k] = std::min(this->lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    std::vector<SeparatingLoop> local{ outer };
+    for (Point2L& p : local[0].corners)
+      p = { p[0] - this->lo[0], p[1] - this->lo[1] };
+    this->inside = revertSeparatingPolygons2D(local,
+      latticePointsOnLoops(local),
+      static_cast<std::int32_t>(hi[0] - this->lo[0] + 1),
+      static_cast<std::int32_t>(hi[1] - this->lo[1] + 1));
+  }
+
+  bool strictlyInside(const Point2L& p) const
+  {
+    const std::int64_t x = p[0] - this->lo[0], y = p[1] - this->lo[1];
+    return x >= 0 && y >= 0 && x < this->inside.size(0) && y < this->inside.size(1) &&
+      this->inside.get(static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), 0);
+  }
+};
+
 /// Whether the face-connected background of the image through the hole's first background
-/// corner reaches a centre that is not strictly inside its polygon's outer loop, or the
-/// image's border (all background beyond): then the hole is a dent of the object, not a hole.
-/// A centre strictly inside a ring of object centres is strictly inside every loop about the
-/// ring, so a hole of the object never does.
-bool holeReachesOut(const SeparatingPolygons& s,
-  const SeparatingPolygon& polygon,
-  std::size_t hole,
-  const BitVolume& image)
+/// corner reaches a centre that is not strictly inside its polygon's outer loop (beyond the
+/// image everything is background, and outside the loop): then the hole is a dent of the
+/// object, not a hole. A centre strictly inside a ring of object centres is strictly inside
+/// every loop about the ring, so a hole of the object never does. Only the outer loop's box
+/// is searched.
+bool holeReachesOut(const SeparatingLoop& hole, const OuterRegion& region, const BitVolume& image)
 {
   const std::int32_t nx = image.size(0), ny = image.size(1);
-  const std::vector<SeparatingLoop> outer{ s.loops[polygon.outer] };
-  const BitVolume inside = revertSeparatingPolygons2D(outer, latticePointsOnLoops(outer), nx, ny);
   auto background = [&](const Point2L& p)
   {
     return p[0] < 0 || p[1] < 0 || p[0] >= nx || p[1] >= ny ||
       !image.get(static_cast<std::int32_t>(p[0]), static_cast<std::int32_t>(p[1]), 0);
   };
-  const auto& corners = s.loops[hole].corners;
-  auto start = std::find_if(corners.begin(), corners.end(), background);
-  if (start == corners.end())
+  auto start = std::find_if(hole.corners.begin(), hole.corners.end(), background);
+  if (start == hole.corners.end())
     return false;
-  BitVolume seen(nx, ny, 1);
+  BitVolume seen(region.inside.size(0), region.inside.size(1), 1);
   std::vector<Point2L> stack{ *start };
   while (!stack.empty())
   {
     const Point2L p = stack.back();
     stack.pop_back();
-    if (p[0] < 0 || p[1] < 0 || p[0] >= nx || p[1] >= ny)
-      return true;
-    const auto x = static_cast<std::int32_t>(p[0]), y = static_cast<std::int32_t>(p[1]);
+    if (!region.strictlyInside(p))
+      return true; // beyond the image too: the loop lies about object centres of the image
+    const auto x = static_cast<std::int32_t>(p[0] - region.lo[0]),
+               y = static_cast<std::int32_t>(p[1] - region.lo[1]);
     if (seen.get(x, y, 0))
       continue;
     seen.set(x, y, 0);
-    if (!inside.get(x, y, 0))
-      return true;
     for (const Point2L& q : { Point2L{ p[0] + 1, p[1] },
            Point2L{ p[0] - 1, p[1] },
            Point2L{ p[0], p[1] + 1 },
@@ -2517,18 +2544,23 @@ void appendPrism(const SeparatingPolygons& s,
   SeparatingPolygon bottom = polygon;
   bottom.holes.clear();
   std::vector<std::size_t> dents;
+  const std::optional<OuterRegion> region = polygon.holes.empty()
+    ? std::nullopt
+    : std::optional<OuterRegion>(OuterRegion(s.loops[polygon.outer]));
   for (const std::size_t h : polygon.holes)
-    if (!holdsAPolygon(s, h) && holeReachesOut(s, polygon, h, image))
+    if (holeReachesOut(s.loops[h], *region, image) && !holdsAPolygon(s, h))
       dents.push_back(h);
     else
       bottom.holes.push_back(h);
-  out.cap(polygonCorners(s, polygon),
-    triangulatePolygonWithHoles(s, polygon),
-    c + 1,
-    false,
+  // The bottom cap is the top one unless a dent is filled (the triangulation tests every
+  // triangle against every loop: the costly part of a plate with many holes).
+  const std::vector<Triangle> top = triangulatePolygonWithHoles(s, polygon);
+  out.cap(polygonCorners(s, polygon), top, c + 1, false, polygon.level);
+  out.cap(polygonCorners(s, bottom),
+    dents.empty() ? top : triangulatePolygonWithHoles(s, bottom),
+    c - 1,
+    true,
     polygon.level);
-  out.cap(
-    polygonCorners(s, bottom), triangulatePolygonWithHoles(s, bottom), c - 1, true, polygon.level);
   out.sides(s.loops[polygon.outer], c - 1, c + 1);
   for (const std::size_t h : bottom.holes)
     out.sides(s.loops[h], c - 1, c + 1);

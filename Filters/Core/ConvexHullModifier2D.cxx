@@ -18,9 +18,11 @@
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <deque>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -695,21 +697,6 @@ void writeLoops(const std::vector<Node>& nodes, SeparatingPolygons& out)
   }
 }
 
-/// Whether a point lies strictly inside a set of loops (crossing parity; not on them).
-bool insideLoops(const std::vector<const Points*>& loops, const Point2L& q)
-{
-  bool in = false;
-  for (const Points* loop : loops)
-    for (std::size_t i = 0; i < loop->size(); ++i)
-    {
-      const Point2L& u = (*loop)[i];
-      const Point2L& v = (*loop)[(i + 1) % loop->size()];
-      if ((u[1] <= q[1]) != (v[1] <= q[1]) && (cross(u, v, q) > 0) == (v[1] > u[1]))
-        in = !in;
-    }
-  return in;
-}
-
 } // namespace
 
 SeparatingPolygons separatingPolygons2D(const BitVolume& image)
@@ -774,7 +761,8 @@ std::vector<Triangle> triangulatePolygonWithHoles(const SeparatingPolygons& resu
 {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-  using Fb = CGAL::Constrained_triangulation_face_base_2<K>;
+  using Fb = CGAL::Constrained_triangulation_face_base_2<K,
+    CGAL::Triangulation_face_base_with_info_2<int, K>>;
   using CDT =
     CGAL::Constrained_Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
   std::vector<const Points*> loops{ &result.loops[polygon.outer].corners };
@@ -793,30 +781,38 @@ std::vector<Triangle> triangulatePolygonWithHoles(const SeparatingPolygons& resu
     for (std::size_t i = 0; i < vertices.size(); ++i)
       cdt.insert_constraint(vertices[i], vertices[(i + 1) % vertices.size()]);
   }
-  // A triangle is inside when its centroid is: three times the centroid against the loops
-  // scaled by three, exact in integers (a centroid never lies on a constrained edge).
-  std::vector<Points> scaled;
-  for (const Points* loop : loops)
+  // A triangle is inside when an odd number of loop edges separates it from the infinite face
+  // (the loops are simple and apart): one walk over the faces, each face's nesting depth the
+  // number of constrained edges crossed to reach it.
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f)
+    f->info() = -1;
+  std::deque<std::pair<CDT::Face_handle, int>> across{ { cdt.infinite_face(), 0 } };
+  while (!across.empty())
   {
-    scaled.emplace_back();
-    for (const Point2L& p : *loop)
-      scaled.back().push_back({ 3 * p[0], 3 * p[1] });
+    const auto [start, depth] = across.front();
+    across.pop_front();
+    std::deque<CDT::Face_handle> queue{ start };
+    while (!queue.empty())
+    {
+      const CDT::Face_handle f = queue.front();
+      queue.pop_front();
+      if (f->info() != -1)
+        continue;
+      f->info() = depth;
+      for (int i = 0; i < 3; ++i)
+        if (f->neighbor(i)->info() == -1)
+        {
+          if (cdt.is_constrained(CDT::Edge(f, i)))
+            across.push_back({ f->neighbor(i), depth + 1 });
+          else
+            queue.push_back(f->neighbor(i));
+        }
+    }
   }
-  std::vector<const Points*> scaledLoops;
-  for (const Points& loop : scaled)
-    scaledLoops.push_back(&loop);
-  const Points corners = polygonCorners(result, polygon);
   std::vector<Triangle> triangles;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
-  {
-    const Triangle t{ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
-    Point2L c{ 0, 0 };
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 2; ++a)
-        c[a] += corners[static_cast<std::size_t>(t[k])][a];
-    if (insideLoops(scaledLoops, c))
-      triangles.push_back(t);
-  }
+    if (f->info() % 2 == 1)
+      triangles.push_back({ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
   return triangles;
 }
 
