@@ -2472,6 +2472,17 @@ bool holdsAPolygon(const SeparatingPolygons& s, std::size_t hole)
   return false;
 }
 
+/// The point (u, v) of the plane at height h along axis a.
+LatticePoint inSpace(const Point2L& p, int a, std::int64_t h)
+{
+  const auto uv = planeAxesOf(a);
+  LatticePoint q{ 0, 0, 0 };
+  q[uv[0]] = p[0];
+  q[uv[1]] = p[1];
+  q[a] = h;
+  return q;
+}
+
 /// The triangles of a flat object's H, one vertex per lattice point, with their levels.
 struct FlatMesh
 {
@@ -2482,11 +2493,7 @@ struct FlatMesh
 
   Index vertex(const Point2L& p, std::int64_t h)
   {
-    const auto uv = planeAxesOf(this->axis);
-    LatticePoint q{ 0, 0, 0 };
-    q[uv[0]] = p[0];
-    q[uv[1]] = p[1];
-    q[this->axis] = h;
+    const LatticePoint q = inSpace(p, this->axis, h);
     auto it = this->index.emplace(q, static_cast<Index>(this->mesh.points.size()));
     if (it.second)
       this->mesh.points.push_back(q);
@@ -2573,10 +2580,175 @@ void appendPrism(const SeparatingPolygons& s,
   }
 }
 
-/// H of a flat object whose centres lie in x_a = c: the prisms of its separating polygons, with
-/// the level of every triangle; the counts of the plane (notches as concavities, holes as
-/// cavities). Incomplete when the plane's polygons are.
-std::vector<int> solveFlatObject(const BitVolume& objects, int a, std::int64_t c, ModifiedHull& r)
+/// The bounded face-connected background components of the layer that lie in one row of an
+/// axis and outside every hole of the plane's polygons (closed): holes of the object that the
+/// polygons lost (the 2D modifier found no lattice triangle for them inside the ring and
+/// opened them as notches).
+std::vector<std::vector<Point2L>> lostHoles(const BitVolume& image, const SeparatingPolygons& s)
+{
+  const std::int32_t nx = image.size(0), ny = image.size(1);
+  std::vector<SeparatingLoop> holeLoops;
+  for (const SeparatingLoop& loop : s.loops)
+    if (loop.level % 2 == 1)
+      holeLoops.push_back(loop);
+  const BitVolume inHole = revertSeparatingPolygons2D(holeLoops, {}, nx, ny);
+  BitVolume seen(nx, ny, 1);
+  std::vector<std::vector<Point2L>> lost;
+  for (std::int32_t y = 0; y < ny; ++y)
+    for (std::int32_t x = 0; x < nx; ++x)
+    {
+      if (image.get(x, y, 0) || seen.get(x, y, 0))
+        continue;
+      std::vector<Point2L> component, stack{ { x, y } };
+      bool bounded = true;
+      seen.set(x, y, 0);
+      while (!stack.empty())
+      {
+        const Point2L p = stack.back();
+        stack.pop_back();
+        component.push_back(p);
+        for (const Point2L& q : { Point2L{ p[0] + 1, p[1] },
+               Point2L{ p[0] - 1, p[1] },
+               Point2L{ p[0], p[1] + 1 },
+               Point2L{ p[0], p[1] - 1 } })
+        {
+          const auto qx = static_cast<std::int32_t>(q[0]), qy = static_cast<std::int32_t>(q[1]);
+          if (qx < 0 || qy < 0 || qx >= nx || qy >= ny)
+            bounded = false;
+          else if (!image.get(qx, qy, 0) && !seen.get(qx, qy, 0))
+          {
+            seen.set(qx, qy, 0);
+            stack.push_back(q);
+          }
+        }
+      }
+      auto sameAs = [&](int k)
+      {
+        return std::all_of(component.begin(),
+          component.end(),
+          [&](const Point2L& p) { return p[k] == component.front()[k]; });
+      };
+      if (bounded && (sameAs(0) || sameAs(1)) && !inHole.get(x, y, 0))
+        lost.push_back(std::move(component));
+    }
+  return lost;
+}
+
+/// The planes of a mesh's triangles given `level` where they have none yet.
+void addPlanes(const LatticeMesh& m, int level, std::map<FacePlane, int>& planeLevel)
+{
+  for (const auto& t : m.triangles)
+    planeLevel.emplace(planeThrough(m.points[t[0]], m.points[t[1]], m.points[t[2]]), level);
+}
+
+/// B's box two steps wider than B on the plane's axes, from c - 1 to c + 1: its open interior
+/// holds, in the plane, B and its eight neighbours only.
+LatticeMesh lostHoleBox(const std::vector<Point2L>& hole, int a, std::int64_t c, bool tunnel)
+{
+  Point2L lo = hole.front(), hi = lo;
+  for (const Point2L& p : hole)
+    for (int k = 0; k < 2; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  std::vector<LatticePoint> corners;
+  for (const std::int64_t h : { c - 1, c + 1 })
+    if (!tunnel)
+    {
+      for (const std::int64_t u : { lo[0] - 2, hi[0] + 2 })
+        for (const std::int64_t v : { lo[1] - 2, hi[1] + 2 })
+          corners.push_back(inSpace({ u, v }, a, h));
+    }
+    else
+      for (const Point2L& p : { lo, hi })
+        for (const Point2L& d :
+          { Point2L{ 1, 0 }, Point2L{ -1, 0 }, Point2L{ 0, 1 }, Point2L{ 0, -1 } })
+          corners.push_back(inSpace({ p[0] + d[0], p[1] + d[1] }, a, h));
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  return triangulateHull(convexHull(corners));
+}
+
+/// Whether a cut through the lost hole B can separate, checked in the plane before any
+/// Boolean: B's eight neighbours are object centres (they come strictly inside its box, B
+/// inside its tunnel).
+bool cuttable(const std::vector<Point2L>& hole, const BitVolume& image)
+{
+  Point2L lo = hole.front(), hi = lo;
+  for (const Point2L& p : hole)
+    for (int k = 0; k < 2; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  for (std::int64_t v = lo[1] - 1; v <= hi[1] + 1; ++v)
+    for (std::int64_t u = lo[0] - 1; u <= hi[0] + 1; ++u)
+    {
+      const bool inHole = u >= lo[0] && v >= lo[1] && u <= hi[0] && v <= hi[1];
+      const bool object = u >= 0 && v >= 0 && u < image.size(0) && v < image.size(1) &&
+        image.get(static_cast<std::int32_t>(u), static_cast<std::int32_t>(v), 0);
+      if (!inHole && !object)
+        return false;
+    }
+  return true;
+}
+
+/// Handles through lost holes (see the header): H united with the box of the holes two steps
+/// wider than them (lostHoleBox; one notch can hold several holes, and a hole on another's box
+/// would come inside it) less the prism of each hole B's hexagon (the hull of B's four
+/// neighbours, which holds B alone inside), kept when the result separates with as many shells
+/// and one handle more per hole. The new planes get level 0 (the box) and 1 (the tunnels).
+bool cutLostHoles(const BitVolume& objects,
+  int a,
+  std::int64_t c,
+  const std::vector<std::vector<Point2L>>& holes,
+  LatticeMesh& surface,
+  std::map<FacePlane, int>& planeLevel)
+{
+  std::vector<Point2L> all;
+  std::vector<LatticeMesh> tunnels;
+  for (const auto& hole : holes)
+  {
+    all.insert(all.end(), hole.begin(), hole.end());
+    tunnels.push_back(lostHoleBox(hole, a, c, true));
+  }
+  const LatticeMesh box = lostHoleBox(all, a, c, false);
+  LatticeMesh cut;
+  if (!latticeUnion(surface, box, cut))
+    return false;
+  for (const LatticeMesh& t : tunnels)
+  {
+    LatticeMesh next;
+    if (!latticeDifference(cut, t, next))
+      return false;
+    cut = std::move(next);
+  }
+  const long handles = static_cast<long>(holes.size());
+  if (shellsOf(cut).size() != shellsOf(surface).size() ||
+    eulerCharacteristic(cut) != eulerCharacteristic(surface) - 2 * handles ||
+    !separates(objects, cut))
+    return false;
+  surface = std::move(cut);
+  addPlanes(box, 0, planeLevel);
+  for (const LatticeMesh& t : tunnels)
+  {
+    LatticeMesh walls; // the tunnel's faces as H has them: facing into the tunnel
+    walls.append(t, true);
+    addPlanes(walls, 1, planeLevel);
+  }
+  return true;
+}
+
+/// At most this many lost holes are cut per object: each costs two exact Booleans of H, and
+/// three more when they are tried one by one.
+constexpr std::size_t MaxLostHoles = 16;
+
+/// H of a flat object whose centres lie in x_a = c: the prisms of its separating polygons, a
+/// handle cut through each hole they lost (when one separates), its faces with their levels;
+/// the counts of the plane (notches as concavities, holes as cavities). Incomplete when the
+/// plane's polygons are.
+void solveFlatObject(const BitVolume& objects, int a, std::int64_t c, ModifiedHull& r)
 {
   const BitVolume image = layerImage(objects, a, static_cast<std::int32_t>(c));
   const SeparatingPolygons s = separatingPolygons2D(image);
@@ -2590,7 +2762,28 @@ std::vector<int> solveFlatObject(const BitVolume& objects, int a, std::int64_t c
   FlatMesh out{ a, r.surface, levels, {} };
   for (const SeparatingPolygon& polygon : s.polygons)
     appendPrism(s, polygon, image, c, out);
-  return levels;
+  std::map<FacePlane, int> planeLevel;
+  std::vector<std::vector<Point2L>> lost;
+  for (auto& hole : lostHoles(image, s))
+    if (lost.size() < MaxLostHoles && cuttable(hole, image))
+      lost.push_back(std::move(hole));
+  if (!lost.empty())
+  {
+    for (std::size_t t = 0; t < r.surface.triangles.size(); ++t)
+    {
+      const auto& tri = r.surface.triangles[t];
+      planeLevel.emplace(
+        planeThrough(r.surface.points[tri[0]], r.surface.points[tri[1]], r.surface.points[tri[2]]),
+        levels[t]);
+    }
+    // All together first; when that fails (a hole's box that holds background), one by one.
+    if (cutLostHoles(objects, a, c, lost, r.surface, planeLevel))
+      r.cutHandles = static_cast<int>(lost.size());
+    else if (lost.size() > 1)
+      for (const auto& hole : lost)
+        r.cutHandles += cutLostHoles(objects, a, c, { hole }, r.surface, planeLevel);
+  }
+  mergeIntoFaces(planeLevel, r.cutHandles > 0 ? std::vector<int>() : levels, r);
 }
 
 } // namespace
@@ -2608,7 +2801,7 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
     throw std::runtime_error("aborted");
   const int flat = r.hull.dimension < 3 ? gridPlaneAxis(candidates) : -1;
   if (flat >= 0)
-    mergeIntoFaces({}, solveFlatObject(objects, flat, candidates.front()[flat], r), r);
+    solveFlatObject(objects, flat, candidates.front()[flat], r);
   else if (r.hull.dimension < 3)
   {
     // A flat object in no plane of the grid's axes (never face-connected): every centre in its

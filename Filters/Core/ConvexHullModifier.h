@@ -179,14 +179,28 @@
 // it adds no handle; a hole of the object never reaches out (a centre strictly inside a ring
 // of object centres is strictly inside every loop about the ring). Levels: the caps have their
 // polygon's level (0 for the object's, 2 for an island in a hole), the sides and a filled
-// hole's floor their loop's. Limits: a hole of the object becomes a notch, and H loses its
-// handle, when the 2D modifier finds no lattice triangle for it inside the polygon (its centres
-// in one row and no lattice point off that row inside the ring: a ring one voxel wide about one
-// voxel or a row; then a genus 1 solid with corners at voxel centres exists beyond the object's
-// hull, the ring's box one step thicker less a prism about the hole, built in the core test);
-// an island in such a hole is joined to the ring by the notch; a dent that holds an island
-// keeps its hole. Flat sets in no plane of the grid's axes are never face-connected: H is their
-// two-sided polygon, and a segment off the axes' planes is incomplete.
+// hole's floor their loop's.
+// Thin holes: a hole of the object whose centres lie in one row (or a single voxel) inside a
+// ring one voxel wide has no lattice triangle inside the polygon's hull about it, so the 2D
+// modifier opens it as a notch and the prism loses its handle. Such lost holes (bounded
+// face-connected background components of the layer in one row, outside every hole of the
+// polygons, their eight neighbours object centres) get it back by a cut: H united with the
+// holes' box two lattice steps wider than them from c - 1 to c + 1 (its open interior holds,
+// in the plane, the holes and their neighbours only; outside the plane only caps) less, for
+// each hole B, the prism of B's hexagon (the hull of B's four neighbours, which holds B alone
+// inside, B's neighbours on it). That is the ring's box one step thicker less a prism about
+// its hole, a solid of genus 1 with lattice corners beyond the object's hull. The cut is kept
+// when the exact Booleans give a closed 2-manifold with lattice corners that separates (the
+// reversion is exact), with as many shells and one handle more per hole; all lost holes are
+// tried together first (one notch can hold several, and a hole on another's box would come
+// inside it), then one by one, at most 16 per object (each try costs two exact Booleans of
+// H or more). Its faces' levels then go by plane (the box's planes 0, the tunnels' 1; an
+// island's cap takes the level of the first cap in its plane).
+// Limits: two thin holes one voxel apart keep no handle (their tunnels would touch along the
+// voxel between them); an island in a thin hole is joined to the ring by the notch, and a
+// dent that holds an island keeps its hole. Flat sets in no plane of the grid's axes are
+// never face-connected: H is their two-sided polygon, and a segment off the axes' planes is
+// incomplete.
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact
@@ -250,7 +264,8 @@ struct ModifiedHull
   int keptApart = 0;
   /// Shells of H joined to the rest after H separated (see above).
   int joinedShells = 0;
-  /// Handles cut through walls of H that sealed a tunnel of the object (see above).
+  /// Handles cut through walls of H that sealed a tunnel of the object, or through the thin
+  /// holes of a flat object (see above).
   int cutHandles = 0;
   /// Whether H is the union of the H of each component of the object (see above).
   bool componentsApart = false;

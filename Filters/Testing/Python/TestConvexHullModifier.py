@@ -459,6 +459,11 @@ def main():
     plate[:, 0, :] = True
     plate[1:3, 0, 1:3] = plate[1:3, 0, 5:7] = plate[2:5, 0, 8:10] = False
     check_flat_volume("flat plate with three holes in the first layer", plate)
+    thin = np.zeros((3, 5, 5), bool)
+    thin[2, 1:4, 1:4] = True
+    thin[2, 2, 2] = False
+    out = check_flat_volume("thin flat ring in the last layer", thin)
+    check.equal("thin flat ring: NumberOfCutHandles", field_value(out, "NumberOfCutHandles"), 1)
     row = np.zeros((4, 5, 6), bool)
     row[3, 2, 1:5] = True
     check_flat_volume("one row in the last layer", row)
