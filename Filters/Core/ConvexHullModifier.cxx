@@ -1767,15 +1767,16 @@ bool worthABoolean(const LatticeMesh& surface, const CellList& prism, bool cut)
 
 /// H with the prism cut out (a void or a handle) or added (a piece), kept only when the exact
 /// Boolean is a closed 2-manifold with lattice corners, `shells` shells (one less for a join,
-/// as many for a handle) and an Euler characteristic 2 lower, and every lattice point of P
-/// stays on its class's side (prismKeepsSeparation). A Boolean that fails, or throws, rejects
-/// this prism only.
+/// as many for a handle or a dent) and an Euler characteristic `eulerDrop` lower (2: a tube;
+/// 0: the dent of a chain, joinByChain), and every lattice point of P stays on its class's side
+/// (prismKeepsSeparation). A Boolean that fails, or throws, rejects this prism only.
 bool joinAlongPrism(Context& ctx,
   const CellList& prism,
   bool cut,
   std::size_t shells,
   LatticeMesh& surface,
-  std::vector<std::uint8_t>& where)
+  std::vector<std::uint8_t>& where,
+  long eulerDrop = 2)
 {
   // H was embedded and the Boolean changed it only inside P, so only triangles meeting P's box
   // can cross (the operands are not tested again: that test of a large H costs about as much
@@ -1789,7 +1790,7 @@ bool joinAlongPrism(Context& ctx,
     const bool ok = cut ? latticeDifference(surface, p, joined, Operands::Embedded)
                         : latticeUnion(surface, p, joined, Operands::Embedded);
     if (!ok || shellsOf(joined).size() != shells ||
-      eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface) ||
+      eulerCharacteristic(joined) + eulerDrop != eulerCharacteristic(surface) ||
       !isEmbeddedWithin(joined, box[0], box[1]) ||
       !prismKeepsSeparation(joined, prism, ctx.objects, sides))
       return false;
@@ -1859,9 +1860,151 @@ bool joinAtCrossing(Context& ctx,
     where);
 }
 
+/// The chains of two prisms tried per void whose single prisms all failed (each one or two
+/// exact Booleans).
+constexpr std::size_t kChainsTried = 8;
+
+/// The lattice points strictly inside H within one step (in each coordinate) of a centre of the
+/// crossing, nearest to its middle first: the corners of the middle triangles of the chains.
+std::vector<LatticePoint> chainCorners(const std::vector<std::uint8_t>& where,
+  const Dims& d,
+  const std::vector<LatticePoint>& crossing)
+{
+  std::set<LatticePoint> found;
+  LatticePoint sum{ 0, 0, 0 };
+  for (const LatticePoint& c : crossing)
+  {
+    for (int a = 0; a < 3; ++a)
+      sum[a] += c[a];
+    for (std::int64_t z = c[2] - 1; z <= c[2] + 1; ++z)
+      for (std::int64_t y = c[1] - 1; y <= c[1] + 1; ++y)
+        for (std::int64_t x = c[0] - 1; x <= c[0] + 1; ++x)
+          if (inGrid(d, { x, y, z }) && where[gridIndex(d, { x, y, z })] == Inside)
+            found.insert({ x, y, z });
+  }
+  std::vector<LatticePoint> corners(found.begin(), found.end());
+  const auto m = static_cast<std::int64_t>(crossing.size());
+  std::stable_sort(corners.begin(),
+    corners.end(),
+    [&](const LatticePoint& p, const LatticePoint& q)
+    { return scaledDistance(p, 1, sum, m) < scaledDistance(q, 1, sum, m); });
+  return corners;
+}
+
+/// conv(t + m) when it is solid with no lattice point in its open interior, its open interior
+/// misses H and the cheap tests of worthABoolean pass for a cut.
+std::optional<CellList> emptyCut(const std::array<LatticePoint, 3>& t,
+  const std::array<LatticePoint, 3>& m,
+  const LatticeMesh& surface)
+{
+  CellList prism = convexHull({ t[0], t[1], t[2], m[0], m[1], m[2] });
+  bool empty = prism.dimension == 3;
+  if (empty)
+    forEachPointIn(prism, true, [&](const LatticePoint&) { empty = false; });
+  if (!empty || !prismMissesSurface(prism, surface) || !worthABoolean(surface, prism, true))
+    return std::nullopt;
+  return prism;
+}
+
+/// Whether the triangles lie on the two closed sides of the plane, neither in it: the plane's
+/// triangle is then a face of the hull of each with it, and the two hulls meet only there.
+bool onEitherSide(const FacePlane& plane,
+  const std::array<LatticePoint, 3>& a,
+  const std::array<LatticePoint, 3>& b)
+{
+  __int128 aLo = 0, aHi = 0, bLo = 0, bHi = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    aLo = std::min(aLo, plane.evaluate(a[k]));
+    aHi = std::max(aHi, plane.evaluate(a[k]));
+    bLo = std::min(bLo, plane.evaluate(b[k]));
+    bHi = std::max(bHi, plane.evaluate(b[k]));
+  }
+  return (aLo == 0 && aHi > 0 && bHi == 0 && bLo < 0) ||
+    (aHi == 0 && aLo < 0 && bLo == 0 && bHi > 0);
+}
+
+/// Cuts the chain out of H: P1 first (a dent: as many shells, the same Euler characteristic),
+/// then the first of the P2 that joins (joinAlongPrism checks each); H unchanged unless one
+/// does.
+bool cutChain(Context& ctx,
+  const CellList& first,
+  const std::vector<CellList>& second,
+  std::size_t shells,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
+{
+  const auto planes = ctx.planeLevel;
+  LatticeMesh dented = surface;
+  std::vector<std::uint8_t> sides = where;
+  if (joinAlongPrism(ctx, first, true, shells, dented, sides, 0))
+    for (const CellList& p2 : second)
+      if (joinAlongPrism(ctx, p2, true, shells - 1, dented, sides))
+      {
+        surface = std::move(dented);
+        where = std::move(sides);
+        return true;
+      }
+  ctx.planeLevel = planes;
+  return false;
+}
+
+/// A void whose shell reaches the crossing only in long thin triangles, so that every prism
+/// between one of them and a triangle of the rest of H holds a lattice point (the hollow balls
+/// of R 8 to 10 with a 1 wide off-centre tunnel: the void's shell ends in a cone whose apex is
+/// the tunnel's last centre, a lattice plane of object centres between it and the hull face
+/// beyond): a chain of two prisms through a middle triangle M of lattice points strictly inside
+/// H near the crossing, P1 = conv(T1 + M) from an empty triangle T1 of the void's shell and
+/// P2 = conv(M + T2) to one T2 of the rest of H (the 12 nearest of each), M a face of both,
+/// each with no lattice point in its open interior and its open interior missing H.
+bool joinByChain(Context& ctx,
+  const std::vector<Shell>& shells,
+  std::size_t s,
+  const std::vector<LatticePoint>& crossing,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
+{
+  LatticeMesh rest;
+  for (std::size_t o = 0; o < shells.size(); ++o)
+    if (o != s)
+      rest.append(shells[o].mesh, false);
+  const auto first = emptyTrianglesNear(shells[s].mesh, crossing, kTrianglesNear);
+  const auto second = emptyTrianglesNear(rest, crossing, kTrianglesNear);
+  const std::vector<LatticePoint> c = chainCorners(where, ctx.objects.dims(), crossing);
+  std::size_t chains = 0;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = i + 1; j < c.size(); ++j)
+      for (std::size_t k = j + 1; k < c.size(); ++k)
+      {
+        const std::array<LatticePoint, 3> m{ c[i], c[j], c[k] };
+        const FacePlane plane = planeThrough(m[0], m[1], m[2]);
+        if (plane.normal == LatticePoint{ 0, 0, 0 })
+          continue;
+        for (const auto& t1 : first)
+        {
+          if (ctx.exec.stopRequested())
+            throw std::runtime_error("aborted");
+          const auto p1 = emptyCut(t1, m, surface);
+          std::vector<CellList> p2;
+          for (const auto& t2 : second)
+            if (p1 && onEitherSide(plane, t1, t2))
+              if (auto p = emptyCut(t2, m, surface))
+                p2.push_back(std::move(*p));
+          if (p2.empty())
+            continue;
+          if (cutChain(ctx, *p1, p2, shells.size(), surface, where))
+            return true;
+          if (++chains == kChainsTried)
+            return false;
+        }
+      }
+  return false;
+}
+
 /// Joins one shell of H to the rest where the object's or the background's face-connected
 /// centres cross it (see above), from the nearest empty triangles and, when none of their
-/// prisms joins, from more of them; false when no shell could be joined.
+/// prisms joins, from more of them, and a void then by a chain of two prisms; false when no
+/// shell could be joined.
 bool joinOneShell(Context& ctx,
   LatticeMesh& surface,
   std::vector<std::uint8_t>& where,
@@ -1888,7 +2031,9 @@ bool joinOneShell(Context& ctx,
     if (crossing.empty())
       continue;
     if (joinAtCrossing(ctx, shells, s, crossing, kTrianglesNear, 0, surface, where) ||
-      joinAtCrossing(ctx, shells, s, crossing, kMoreTrianglesNear, kTrianglesNear, surface, where))
+      joinAtCrossing(
+        ctx, shells, s, crossing, kMoreTrianglesNear, kTrianglesNear, surface, where) ||
+      (shells[s].volume < 0 && joinByChain(ctx, shells, s, crossing, surface, where)))
     {
       // A shell that failed stays failed although a later join may open a way for it: trying
       // the failed ones again once after a later join did not join a single further shell on
