@@ -1864,8 +1864,12 @@ bool joinAtCrossing(Context& ctx,
 /// exact Booleans).
 constexpr std::size_t kChainsTried = 8;
 
+/// The corners of the middle triangles of the chains: at most this many, nearest first (560
+/// triangles; the hollow balls have 10 to 16 near their crossing).
+constexpr std::size_t kChainCorners = 16;
+
 /// The lattice points strictly inside H within one step (in each coordinate) of a centre of the
-/// crossing, nearest to its middle first: the corners of the middle triangles of the chains.
+/// crossing, the kChainCorners nearest to its middle: the corners of the middle triangles.
 std::vector<LatticePoint> chainCorners(const std::vector<std::uint8_t>& where,
   const Dims& d,
   const std::vector<LatticePoint>& crossing)
@@ -1888,12 +1892,29 @@ std::vector<LatticePoint> chainCorners(const std::vector<std::uint8_t>& where,
     corners.end(),
     [&](const LatticePoint& p, const LatticePoint& q)
     { return scaledDistance(p, 1, sum, m) < scaledDistance(q, 1, sum, m); });
+  if (corners.size() > kChainCorners)
+    corners.resize(kChainCorners);
   return corners;
 }
 
-/// conv(t + m) when it is solid with no lattice point in its open interior, its open interior
-/// misses H and the cheap tests of worthABoolean pass for a cut.
-std::optional<CellList> emptyCut(const std::array<LatticePoint, 3>& t,
+/// The side of the plane the triangle lies on: 1 or -1 when it lies in that closed side and
+/// not in the plane, 0 otherwise. A triangle on one side and one on the other make the plane's
+/// triangle M a face of the hull of each with M, and those two hulls meet only in M.
+int sideOfPlane(const FacePlane& plane, const std::array<LatticePoint, 3>& t)
+{
+  bool below = false, above = false;
+  for (const auto& p : t)
+  {
+    below = below || plane.evaluate(p) < 0;
+    above = above || plane.evaluate(p) > 0;
+  }
+  return above == below ? 0 : above ? 1 : -1;
+}
+
+/// conv(t + m) when it is solid with no lattice point in its open interior and its open
+/// interior misses H (tests local to its box; worthABoolean, which scans H, is left for the
+/// prisms that are cut).
+std::optional<CellList> emptyPrismMissingH(const std::array<LatticePoint, 3>& t,
   const std::array<LatticePoint, 3>& m,
   const LatticeMesh& surface)
 {
@@ -1901,27 +1922,9 @@ std::optional<CellList> emptyCut(const std::array<LatticePoint, 3>& t,
   bool empty = prism.dimension == 3;
   if (empty)
     forEachPointIn(prism, true, [&](const LatticePoint&) { empty = false; });
-  if (!empty || !prismMissesSurface(prism, surface) || !worthABoolean(surface, prism, true))
+  if (!empty || !prismMissesSurface(prism, surface))
     return std::nullopt;
   return prism;
-}
-
-/// Whether the triangles lie on the two closed sides of the plane, neither in it: the plane's
-/// triangle is then a face of the hull of each with it, and the two hulls meet only there.
-bool onEitherSide(const FacePlane& plane,
-  const std::array<LatticePoint, 3>& a,
-  const std::array<LatticePoint, 3>& b)
-{
-  __int128 aLo = 0, aHi = 0, bLo = 0, bHi = 0;
-  for (int k = 0; k < 3; ++k)
-  {
-    aLo = std::min(aLo, plane.evaluate(a[k]));
-    aHi = std::max(aHi, plane.evaluate(a[k]));
-    bLo = std::min(bLo, plane.evaluate(b[k]));
-    bHi = std::max(bHi, plane.evaluate(b[k]));
-  }
-  return (aLo == 0 && aHi > 0 && bHi == 0 && bLo < 0) ||
-    (aHi == 0 && aLo < 0 && bLo == 0 && bHi > 0);
 }
 
 /// Cuts the chain out of H: P1 first (a dent: as many shells, the same Euler characteristic),
@@ -1976,23 +1979,36 @@ bool joinByChain(Context& ctx,
     for (std::size_t j = i + 1; j < c.size(); ++j)
       for (std::size_t k = j + 1; k < c.size(); ++k)
       {
+        if (ctx.exec.stopRequested())
+          throw std::runtime_error("aborted");
         const std::array<LatticePoint, 3> m{ c[i], c[j], c[k] };
         const FacePlane plane = planeThrough(m[0], m[1], m[2]);
         if (plane.normal == LatticePoint{ 0, 0, 0 })
           continue;
+        // The P2 beyond M from each side, made only once a P1 from that side is found (the
+        // prisms from the long thin triangles of the void's shell mostly hold a lattice point).
+        std::optional<std::vector<CellList>> beyond[2];
         for (const auto& t1 : first)
         {
-          if (ctx.exec.stopRequested())
-            throw std::runtime_error("aborted");
-          const auto p1 = emptyCut(t1, m, surface);
-          std::vector<CellList> p2;
-          for (const auto& t2 : second)
-            if (p1 && onEitherSide(plane, t1, t2))
-              if (auto p = emptyCut(t2, m, surface))
-                p2.push_back(std::move(*p));
-          if (p2.empty())
+          const int side = sideOfPlane(plane, t1);
+          if (side == 0)
             continue;
-          if (cutChain(ctx, *p1, p2, shells.size(), surface, where))
+          const auto p1 = emptyPrismMissingH(t1, m, surface);
+          if (!p1 || !worthABoolean(surface, *p1, true))
+            continue;
+          auto& p2 = beyond[side > 0];
+          if (!p2)
+          {
+            p2.emplace();
+            for (const auto& t2 : second)
+              if (sideOfPlane(plane, t2) == -side)
+                if (auto p = emptyPrismMissingH(t2, m, surface))
+                  if (worthABoolean(surface, *p, true))
+                    p2->push_back(std::move(*p));
+          }
+          if (p2->empty())
+            continue;
+          if (cutChain(ctx, *p1, *p2, shells.size(), surface, where))
             return true;
           if (++chains == kChainsTried)
             return false;
