@@ -110,25 +110,30 @@ stage_asan() {
   # against ParaView's VTK. -O1: CGAL's exact arithmetic at -O0 under the sanitizers takes
   # minutes per test. Line tables only (-g1, enough for the reports' stacks); the core tests'
   # sources that build exact references on CGAL and Qhull are compiled plain: instrumented
-  # with full debug information, they took most of the stage's 12-minute build.
+  # with full debug information, they took most of the stage's 12-minute build. CGAL_NDEBUG:
+  # CGAL 5.5's own assertions off (ours stay on). With them on, corefine_and_compute_difference
+  # never returns on some valid closed operands (a 16-vertex H and a 6-vertex prism of a thin
+  # torus's handle cut loop in append_patches_to_triangle_mesh) where the same call built with
+  # them off returns false at once, as in every Release build.
   run cmake -S . -B build-asan -DVTK_DIR="$PV_VTK_DIR" \
     -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 \
     "-DVOXELBREP_REFERENCE_COMPILE_OPTIONS=-fno-sanitize=all;-g0" -DBUILD_TESTING=ON \
     -DVOXELBREP_CORE_ONLY=OFF -DVOXELBREP_BUILD_CORE_TESTS=ON \
     -DVOXELBREP_BUILD_PARAVIEW_PLUGIN=OFF -DVOXELBREP_WRAP_PYTHON=ON \
-    -DVOXELBREP_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=-O1 $SAN_FLAGS" || return 1
+    -DVOXELBREP_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=-O1 -DCGAL_NDEBUG $SAN_FLAGS" || return 1
   # The test programs and the Python package; not the example programs (never run here).
   run cmake --build build-asan -j"$JOBS" --target VoxelBRepCoreTests VoxelBRepFiltersCxxTests \
     VoxelBRepFiltersPython || return 1
   # The core's unit tests, with leak detection (they use no VTK). The largest exact-geometry
-  # tests (a self-intersection search on porous blobs, hulls of 64^3 volumes, the hull
-  # modifier's random volumes, blobs, hollow balls, real objects and handle cuts (CGAL's
-  # own checks of a Debug build on every Boolean: over 20 minutes for a thin torus), the face octree's
+  # tests (a self-intersection search on porous blobs, the hull modifier's 72 hollow balls
+  # with off-centre tunnels (over 5 minutes here) and its noise cubes, the face octree's
   # closed-surface checks of every label of random label maps and its CSG solids and porous
-  # blobs at 64^3: minutes each here) are left out; stage A runs them.
+  # blobs at 64^3: a minute or more each here) are left out; stage A runs them. The hull
+  # modifier's handle cuts, joins, components apart, random volumes, blobs and real objects
+  # run here (5 to 50 s each).
   ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1} \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    run_ctest build-asan asan-core -- -R "^Core[.]" -E "NetDoesNotSelfIntersect|BooleansLeavingTheLatticeAreFoundBeforehand|LargeVolumesUpTo64Cubed|RandomVolumesSeparate|RandomPorousBlobsSeparate|HollowBallTunnelsReachTheCavity|HollowBallsWithOffCentreTunnels|SecondPassCutsTheRealTunnel|ThinToriKeepTheirHandle|SeparateComponentsKeepTheirOwnTopology|ComponentsApartKeepTheLevelsOfTheirOwnFaces|CubesAndCSGAt64|FaceOctreeBoundary.PorousBlobs|RandomNoiseCubesSeparate|RealObjectsSeparate|EachLabelsNetIsClosedManifold|EachLabelsBoundaryIsClosedManifold" || ok=1
+    run_ctest build-asan asan-core -- -R "^Core[.]" -E "NetDoesNotSelfIntersect|HollowBallsWithOffCentreTunnels|CubesAndCSGAt64|FaceOctreeBoundary.PorousBlobs|RandomNoiseCubesSeparate|EachLabelsNetIsClosedManifold|EachLabelsBoundaryIsClosedManifold" || ok=1
   # The module's C++ filter tests. Leak detection is off (VTK's and Mesa's singletons live
   # until exit) and the image tests are left out (Mesa's llvmpipe raises SIGFPE under the
   # sanitizers' floating-point settings, in its own code).

@@ -1768,15 +1768,16 @@ bool worthABoolean(const LatticeMesh& surface, const CellList& prism, bool cut)
 
 /// H with the prism cut out (a void or a handle) or added (a piece), kept only when the exact
 /// Boolean is a closed 2-manifold with lattice corners, `shells` shells (one less for a join,
-/// as many for a handle) and an Euler characteristic 2 lower, and every lattice point of P
-/// stays on its class's side (prismKeepsSeparation). A Boolean that fails, or throws, rejects
-/// this prism only.
+/// as many for a handle or a dent) and an Euler characteristic `eulerDrop` lower (2: a tube;
+/// 0: the dent of a chain, joinByChain), and every lattice point of P stays on its class's side
+/// (prismKeepsSeparation). A Boolean that fails, or throws, rejects this prism only.
 bool joinAlongPrism(Context& ctx,
   const CellList& prism,
   bool cut,
   std::size_t shells,
   LatticeMesh& surface,
-  std::vector<std::uint8_t>& where)
+  std::vector<std::uint8_t>& where,
+  long eulerDrop = 2)
 {
   // H was embedded and the Boolean changed it only inside P, so only triangles meeting P's box
   // can cross (the operands are not tested again: that test of a large H costs about as much
@@ -1790,7 +1791,7 @@ bool joinAlongPrism(Context& ctx,
     const bool ok = cut ? latticeDifference(surface, p, joined, Operands::Embedded)
                         : latticeUnion(surface, p, joined, Operands::Embedded);
     if (!ok || shellsOf(joined).size() != shells ||
-      eulerCharacteristic(joined) + 2 != eulerCharacteristic(surface) ||
+      eulerCharacteristic(joined) + eulerDrop != eulerCharacteristic(surface) ||
       !isEmbeddedWithin(joined, box[0], box[1]) ||
       !prismKeepsSeparation(joined, prism, ctx.objects, sides))
       return false;
@@ -1860,9 +1861,167 @@ bool joinAtCrossing(Context& ctx,
     where);
 }
 
+/// The chains of two prisms tried per void whose single prisms all failed (each one or two
+/// exact Booleans).
+constexpr std::size_t kChainsTried = 8;
+
+/// The corners of the middle triangles of the chains: at most this many, nearest first (560
+/// triangles; the hollow balls have 10 to 16 near their crossing).
+constexpr std::size_t kChainCorners = 16;
+
+/// The lattice points strictly inside H within one step (in each coordinate) of a centre of the
+/// crossing, the kChainCorners nearest to its middle: the corners of the middle triangles.
+std::vector<LatticePoint> chainCorners(const std::vector<std::uint8_t>& where,
+  const Dims& d,
+  const std::vector<LatticePoint>& crossing)
+{
+  std::set<LatticePoint> found;
+  LatticePoint sum{ 0, 0, 0 };
+  for (const LatticePoint& c : crossing)
+  {
+    for (int a = 0; a < 3; ++a)
+      sum[a] += c[a];
+    for (std::int64_t z = c[2] - 1; z <= c[2] + 1; ++z)
+      for (std::int64_t y = c[1] - 1; y <= c[1] + 1; ++y)
+        for (std::int64_t x = c[0] - 1; x <= c[0] + 1; ++x)
+          if (inGrid(d, { x, y, z }) && where[gridIndex(d, { x, y, z })] == Inside)
+            found.insert({ x, y, z });
+  }
+  std::vector<LatticePoint> corners(found.begin(), found.end());
+  const auto m = static_cast<std::int64_t>(crossing.size());
+  std::stable_sort(corners.begin(),
+    corners.end(),
+    [&](const LatticePoint& p, const LatticePoint& q)
+    { return scaledDistance(p, 1, sum, m) < scaledDistance(q, 1, sum, m); });
+  if (corners.size() > kChainCorners)
+    corners.resize(kChainCorners);
+  return corners;
+}
+
+/// The side of the plane the triangle lies on: 1 or -1 when it lies in that closed side and
+/// not in the plane, 0 otherwise. A triangle on one side and one on the other make the plane's
+/// triangle M a face of the hull of each with M, and those two hulls meet only in M.
+int sideOfPlane(const FacePlane& plane, const std::array<LatticePoint, 3>& t)
+{
+  bool below = false, above = false;
+  for (const auto& p : t)
+  {
+    below = below || plane.evaluate(p) < 0;
+    above = above || plane.evaluate(p) > 0;
+  }
+  return above == below ? 0 : above ? 1 : -1;
+}
+
+/// conv(t + m) when it is solid with no lattice point in its open interior and its open
+/// interior misses H (tests local to its box; worthABoolean, which scans H, is left for the
+/// prisms that are cut).
+std::optional<CellList> emptyPrismMissingH(const std::array<LatticePoint, 3>& t,
+  const std::array<LatticePoint, 3>& m,
+  const LatticeMesh& surface)
+{
+  CellList prism = convexHull({ t[0], t[1], t[2], m[0], m[1], m[2] });
+  bool empty = prism.dimension == 3;
+  if (empty)
+    forEachPointIn(prism, true, [&](const LatticePoint&) { empty = false; });
+  if (!empty || !prismMissesSurface(prism, surface))
+    return std::nullopt;
+  return prism;
+}
+
+/// Cuts the chain out of H: P1 first (a dent: as many shells, the same Euler characteristic),
+/// then the first of the P2 that joins (joinAlongPrism checks each); H unchanged unless one
+/// does.
+bool cutChain(Context& ctx,
+  const CellList& first,
+  const std::vector<CellList>& second,
+  std::size_t shells,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
+{
+  const auto planes = ctx.planeLevel;
+  LatticeMesh dented = surface;
+  std::vector<std::uint8_t> sides = where;
+  if (joinAlongPrism(ctx, first, true, shells, dented, sides, 0))
+    for (const CellList& p2 : second)
+      if (joinAlongPrism(ctx, p2, true, shells - 1, dented, sides))
+      {
+        surface = std::move(dented);
+        where = std::move(sides);
+        return true;
+      }
+  ctx.planeLevel = planes;
+  return false;
+}
+
+/// A void whose shell reaches the crossing only in long thin triangles, so that every prism
+/// between one of them and a triangle of the rest of H holds a lattice point (the hollow balls
+/// of R 8 to 10 with a 1 wide off-centre tunnel: the void's shell ends in a cone whose apex is
+/// the tunnel's last centre, a lattice plane of object centres between it and the hull face
+/// beyond): a chain of two prisms through a middle triangle M of lattice points strictly inside
+/// H near the crossing, P1 = conv(T1 + M) from an empty triangle T1 of the void's shell and
+/// P2 = conv(M + T2) to one T2 of the rest of H (the 12 nearest of each), M a face of both,
+/// each with no lattice point in its open interior and its open interior missing H.
+bool joinByChain(Context& ctx,
+  const std::vector<Shell>& shells,
+  std::size_t s,
+  const std::vector<LatticePoint>& crossing,
+  LatticeMesh& surface,
+  std::vector<std::uint8_t>& where)
+{
+  LatticeMesh rest;
+  for (std::size_t o = 0; o < shells.size(); ++o)
+    if (o != s)
+      rest.append(shells[o].mesh, false);
+  const auto first = emptyTrianglesNear(shells[s].mesh, crossing, kTrianglesNear);
+  const auto second = emptyTrianglesNear(rest, crossing, kTrianglesNear);
+  const std::vector<LatticePoint> c = chainCorners(where, ctx.objects.dims(), crossing);
+  std::size_t chains = 0;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = i + 1; j < c.size(); ++j)
+      for (std::size_t k = j + 1; k < c.size(); ++k)
+      {
+        if (ctx.exec.stopRequested())
+          throw std::runtime_error("aborted");
+        const std::array<LatticePoint, 3> m{ c[i], c[j], c[k] };
+        const FacePlane plane = planeThrough(m[0], m[1], m[2]);
+        if (plane.normal == LatticePoint{ 0, 0, 0 })
+          continue;
+        // The P2 beyond M from each side, made only once a P1 from that side is found (the
+        // prisms from the long thin triangles of the void's shell mostly hold a lattice point).
+        std::optional<std::vector<CellList>> beyond[2];
+        for (const auto& t1 : first)
+        {
+          const int side = sideOfPlane(plane, t1);
+          if (side == 0)
+            continue;
+          const auto p1 = emptyPrismMissingH(t1, m, surface);
+          if (!p1 || !worthABoolean(surface, *p1, true))
+            continue;
+          auto& p2 = beyond[side > 0];
+          if (!p2)
+          {
+            p2.emplace();
+            for (const auto& t2 : second)
+              if (sideOfPlane(plane, t2) == -side)
+                if (auto p = emptyPrismMissingH(t2, m, surface))
+                  if (worthABoolean(surface, *p, true))
+                    p2->push_back(std::move(*p));
+          }
+          if (p2->empty())
+            continue;
+          if (cutChain(ctx, *p1, *p2, shells.size(), surface, where))
+            return true;
+          if (++chains == kChainsTried)
+            return false;
+        }
+      }
+  return false;
+}
+
 /// Joins one shell of H to the rest where the object's or the background's face-connected
 /// centres cross it (see above), from the nearest empty triangles and, when none of their
-/// prisms joins, from more of them; false when no shell could be joined.
+/// prisms joins, from more of them, and a void then by a chain of two prisms; false when no
+/// shell could be joined.
 bool joinOneShell(Context& ctx,
   LatticeMesh& surface,
   std::vector<std::uint8_t>& where,
@@ -1889,7 +2048,9 @@ bool joinOneShell(Context& ctx,
     if (crossing.empty())
       continue;
     if (joinAtCrossing(ctx, shells, s, crossing, kTrianglesNear, 0, surface, where) ||
-      joinAtCrossing(ctx, shells, s, crossing, kMoreTrianglesNear, kTrianglesNear, surface, where))
+      joinAtCrossing(
+        ctx, shells, s, crossing, kMoreTrianglesNear, kTrianglesNear, surface, where) ||
+      (shells[s].volume < 0 && joinByChain(ctx, shells, s, crossing, surface, where)))
     {
       // A shell that failed stays failed although a later join may open a way for it: trying
       // the failed ones again once after a later join did not join a single further shell on

@@ -365,11 +365,6 @@ NodeFit Compactor::fit(const Region& c) const
   return f;
 }
 
-inline Wide cross2(const Point2L& a, const Point2L& b, const Point2L& c)
-{
-  return Wide(b[0] - a[0]) * (c[1] - a[1]) - Wide(b[1] - a[1]) * (c[0] - a[0]);
-}
-
 /// Straight runs, in plane units of 2^-30 voxel: a corner off the chord of its run by at
 /// most `runTolerance` lies on the run, and a run's end lies more than `endTolerance` off the
 /// chord of its neighbouring ends. The grid rounds by half a unit, the doubles far less: both

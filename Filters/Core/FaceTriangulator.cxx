@@ -283,14 +283,6 @@ void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& c
   }
 }
 
-/// Twice the signed area of triangle abc in integers of type Int: exact in Wide, and in 64
-/// bits when every coordinate lies in [-2^30, 2^30) (smallCoordinates).
-template<typename Int>
-Int cross2(const Point2L& a, const Point2L& b, const Point2L& c)
-{
-  return Int(b[0] - a[0]) * (c[1] - a[1]) - Int(b[1] - a[1]) * (c[0] - a[0]);
-}
-
 /// Whether every coordinate of the loop lies in [-2^30, 2^30), so that the difference of two
 /// products of coordinate differences fits in 64 bits.
 bool smallCoordinates(const std::vector<Point2L>& corners)
@@ -300,41 +292,6 @@ bool smallCoordinates(const std::vector<Point2L>& corners)
   for (const Point2L& p : corners)
     small &= p[0] >= -Limit && p[0] < Limit && p[1] >= -Limit && p[1] < Limit;
   return small;
-}
-
-/// Twice the signed area of a polygon (doubledArea, in this file so that the hot loop of
-/// fanApexAs inlines it).
-Wide loopArea(const std::vector<Point2L>& corners)
-{
-  Wide sum = 0;
-  const std::size_t n = corners.size();
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Point2L& p = corners[i];
-    const Point2L& q = corners[i + 1 == n ? 0 : i + 1];
-    sum += Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
-  }
-  return sum;
-}
-
-/// Whether the fan from corner `apex` covers the loop (fanCoversPolygon), its doubled area
-/// `area` known.
-template<typename Int>
-bool fanCovers(const std::vector<Point2L>& corners, std::size_t apex, Wide area)
-{
-  const std::size_t n = corners.size();
-  if (n < 3 || area <= 0)
-    return false;
-  const Point2L& o = corners[apex];
-  std::size_t b = apex + 1 == n ? 0 : apex + 1;
-  for (std::size_t i = 1; i + 1 < n; ++i)
-  {
-    const std::size_t c = b + 1 == n ? 0 : b + 1;
-    if (cross2<Int>(o, corners[b], corners[c]) < 0)
-      return false;
-    b = c;
-  }
-  return true;
 }
 
 /// fanApex in integers of type Int (see cross2).
@@ -357,9 +314,9 @@ int fanApexAs(const std::vector<Point2L>& corners)
     return static_cast<int>(convex);
   if (convex < n)
     candidates[count++] = convex;
-  const Wide area = count > 0 ? loopArea(corners) : 0;
+  const Wide area = count > 0 ? doubledArea(corners) : 0;
   for (std::size_t k = 0; k < count; ++k)
-    if (fanCovers<Int>(corners, candidates[k], area))
+    if (fanCoversPolygonOfArea<Int>(corners, candidates[k], area))
       return static_cast<int>(candidates[k]);
   return -1;
 }

@@ -20,12 +20,6 @@ namespace vbr
 namespace
 {
 
-/// Twice the signed area of triangle abc, exactly.
-Wide cross(const Point2L& a, const Point2L& b, const Point2L& c)
-{
-  return Wide(b[0] - a[0]) * (c[1] - a[1]) - Wide(b[1] - a[1]) * (c[0] - a[0]);
-}
-
 int sign(Wide w)
 {
   return (w > 0) - (w < 0);
@@ -34,7 +28,7 @@ int sign(Wide w)
 /// Whether p lies in the closed counter-clockwise triangle abc.
 bool inClosedTriangle(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& p)
 {
-  return cross(a, b, p) >= 0 && cross(b, c, p) >= 0 && cross(c, a, p) >= 0;
+  return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
 }
 
 /// Whether p, known to be collinear with segment ab, lies on it.
@@ -47,8 +41,8 @@ bool onSegment(const Point2L& a, const Point2L& b, const Point2L& p)
 /// Whether the closed segments ab and cd have a point in common.
 bool segmentsMeet(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& d)
 {
-  const int o1 = sign(cross(a, b, c)), o2 = sign(cross(a, b, d));
-  const int o3 = sign(cross(c, d, a)), o4 = sign(cross(c, d, b));
+  const int o1 = sign(cross2(a, b, c)), o2 = sign(cross2(a, b, d));
+  const int o3 = sign(cross2(c, d, a)), o4 = sign(cross2(c, d, b));
   if (o1 * o2 < 0 && o3 * o4 < 0)
     return true;
   return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) ||
@@ -106,7 +100,7 @@ public:
       b = c;
     }
     const int a = this->Prev[b], c = this->Next[b];
-    if (cross(this->P[a], this->P[b], this->P[c]) <= 0)
+    if (cross2(this->P[a], this->P[b], this->P[c]) <= 0)
       return false;
     triangles.push_back({ a, b, c });
     return true;
@@ -115,7 +109,7 @@ public:
 private:
   void updateConvexity(int i)
   {
-    this->Convex[i] = cross(this->P[this->Prev[i]], this->P[i], this->P[this->Next[i]]) > 0;
+    this->Convex[i] = cross2(this->P[this->Prev[i]], this->P[i], this->P[this->Next[i]]) > 0;
   }
 
   bool isEar(int b)
@@ -220,19 +214,7 @@ bool triangulatePiece(const std::vector<Point2L>& corners,
 
 int orientation(const Point2L& a, const Point2L& b, const Point2L& c)
 {
-  return sign(cross(a, b, c));
-}
-
-Wide doubledArea(const std::vector<Point2L>& corners)
-{
-  Wide sum = 0;
-  for (std::size_t i = 0; i < corners.size(); ++i)
-  {
-    const Point2L& p = corners[i];
-    const Point2L& q = corners[(i + 1) % corners.size()];
-    sum += Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
-  }
-  return sum;
+  return sign(cross2(a, b, c));
 }
 
 bool isSimplePolygon(const std::vector<Point2L>& corners)
@@ -250,7 +232,7 @@ bool isSimplePolygon(const std::vector<Point2L>& corners)
     const Point2L& b = corners[(i + 1) % n];
     const Point2L& c = corners[(i + 2) % n];
     // Consecutive edges meet only at b: they must not fold back onto each other.
-    if (cross(a, b, c) == 0 &&
+    if (cross2(a, b, c) == 0 &&
       Wide(b[0] - a[0]) * (c[0] - b[0]) + Wide(b[1] - a[1]) * (c[1] - b[1]) < 0)
       return false;
     for (std::size_t j = i + 2; j < n; ++j)
@@ -280,13 +262,7 @@ std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corne
 
 bool fanCoversPolygon(const std::vector<Point2L>& corners, std::size_t apex)
 {
-  const std::size_t n = corners.size();
-  if (n < 3 || apex >= n || doubledArea(corners) <= 0)
-    return false;
-  for (std::size_t i = 1; i + 1 < n; ++i)
-    if (cross(corners[apex], corners[(apex + i) % n], corners[(apex + i + 1) % n]) < 0)
-      return false;
-  return true;
+  return apex < corners.size() && fanCoversPolygonOfArea(corners, apex, doubledArea(corners));
 }
 
 ProjectionAlong::ProjectionAlong(const std::array<std::int64_t, 3>& n)

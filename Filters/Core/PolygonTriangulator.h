@@ -38,8 +38,27 @@ using Triangle = std::array<int, 3>;
 /// Sign of twice the signed area of triangle abc: +1 counter-clockwise, -1 clockwise, 0 flat.
 int orientation(const Point2L& a, const Point2L& b, const Point2L& c);
 
+/// Twice the signed area of triangle abc in integers of type Int: exact in Wide, and in 64
+/// bits when every coordinate lies in [-2^30, 2^30). Inline: the faces' hot loops call it.
+template<typename Int = Wide>
+inline Int cross2(const Point2L& a, const Point2L& b, const Point2L& c)
+{
+  return Int(b[0] - a[0]) * (c[1] - a[1]) - Int(b[1] - a[1]) * (c[0] - a[0]);
+}
+
 /// Twice the signed area of a polygon (positive when counter-clockwise).
-Wide doubledArea(const std::vector<Point2L>& corners);
+inline Wide doubledArea(const std::vector<Point2L>& corners)
+{
+  Wide sum = 0;
+  const std::size_t n = corners.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point2L& p = corners[i];
+    const Point2L& q = corners[i + 1 == n ? 0 : i + 1];
+    sum += Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
+  }
+  return sum;
+}
 
 /// Whether the closed polygon is simple: no corner repeated, no two edges meeting except
 /// consecutive edges at their common corner (exact, quadratic).
@@ -59,6 +78,26 @@ std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corne
 /// counter-clockwise polygon exactly (every triangle counter-clockwise or flat): then a
 /// renderer that draws the polygon as that fan (VTK does, from its first point) draws it right.
 bool fanCoversPolygon(const std::vector<Point2L>& corners, std::size_t apex);
+
+/// fanCoversPolygon for a corner `apex` of the polygon whose doubled area `area` is known
+/// (doubledArea), in integers of type Int (see cross2).
+template<typename Int = Wide>
+inline bool fanCoversPolygonOfArea(const std::vector<Point2L>& corners, std::size_t apex, Wide area)
+{
+  const std::size_t n = corners.size();
+  if (n < 3 || area <= 0)
+    return false;
+  const Point2L& o = corners[apex];
+  std::size_t b = apex + 1 == n ? 0 : apex + 1;
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    const std::size_t c = b + 1 == n ? 0 : b + 1;
+    if (cross2<Int>(o, corners[b], corners[c]) < 0)
+      return false;
+    b = c;
+  }
+  return true;
+}
 
 /// Exact 2D coordinates of 3D points projected along a normal (see the file comment).
 class ProjectionAlong
