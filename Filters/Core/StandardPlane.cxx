@@ -795,6 +795,7 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
   Vec& best)
 {
   std::int64_t bestOmega = MaximumOmega + 1;
+  this->Deferred.fill(false);
   // Points and orientations only accumulate, so the normals that fit them only get fewer: no
   // normal of an omega below the current plane's fits now (its omega was the smallest).
   const std::int64_t omegaStart =
@@ -805,6 +806,15 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
     survives[i] = false;
     if (!this->Alive[i] || this->octantExcluded(original, present))
       continue;
+    if (bestOmega == omegaStart)
+    {
+      // No normal of a later octant can win (a tie goes to the earlier octant): this one is
+      // clipped with the new points lazily, by the next slow path's applyPoints, which gives
+      // the same polygon. Only the exclusion above reads the new points of this call alone.
+      survives[i] = true;
+      this->Deferred[i] = true;
+      continue;
+    }
     Octant& o = this->Trials[i];
     o = original; // reuses the trial's storage
     if (!this->applyPoints(o) || !hasInterior(o))
@@ -826,7 +836,7 @@ void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool
   {
     // Octants the new points emptied, or whose signs they contradict, stay dead.
     this->Alive[i] = survives[i];
-    if (survives[i])
+    if (survives[i] && !this->Deferred[i])
     {
       std::swap(this->Octants[i], this->Trials[i]);
       this->Octants[i].applied = this->Points.size();
