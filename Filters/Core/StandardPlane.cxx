@@ -12,7 +12,7 @@
 // column bounded by every edge, rangeOfT; each candidate checked by fits); adoptNormal keeps
 // the result. Every range over the points (measure, rangeOf) reads only the points that may
 // be vertices of their hull (forEachExtreme; refreshExtremes drops the midpoints of two
-// others once a face has 64 points). All arithmetic that decides is on integers;
+// others once a face has 128 points). All arithmetic that decides is on integers;
 // determinants and column bounds use Wide.
 
 #include "StandardPlane.h"
@@ -44,7 +44,7 @@ constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
 /// in that direction: a refusal is always safe).
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
 /// Faces of fewer points measure them all: the midpoints would cost more than they save.
-constexpr std::size_t ExtremesFrom = 64;
+constexpr std::size_t ExtremesFrom = 128;
 /// Calls of at most this many points insert their fresh points in order instead of sorting.
 constexpr std::size_t SmallCall = 16;
 
