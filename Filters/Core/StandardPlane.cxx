@@ -12,7 +12,7 @@
 // column bounded by every edge, rangeOfT; each candidate checked by fits); adoptNormal keeps
 // the result. Every range over the points (measure, rangeOf) reads only the points that may
 // be vertices of their hull (forEachExtreme; refreshExtremes drops the midpoints of two
-// others once a face has 64 points). All arithmetic that decides is on integers;
+// others once a face has 128 points). All arithmetic that decides is on integers;
 // determinants and column bounds use Wide.
 
 #include "StandardPlane.h"
@@ -44,7 +44,7 @@ constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
 /// in that direction: a refusal is always safe).
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
 /// Faces of fewer points measure them all: the midpoints would cost more than they save.
-constexpr std::size_t ExtremesFrom = 64;
+constexpr std::size_t ExtremesFrom = 128;
 /// Calls of at most this many points insert their fresh points in order instead of sorting.
 constexpr std::size_t SmallCall = 16;
 
@@ -795,6 +795,7 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
   Vec& best)
 {
   std::int64_t bestOmega = MaximumOmega + 1;
+  this->Deferred.fill(false);
   // Points and orientations only accumulate, so the normals that fit them only get fewer: no
   // normal of an omega below the current plane's fits now (its omega was the smallest).
   const std::int64_t omegaStart =
@@ -805,6 +806,15 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
     survives[i] = false;
     if (!this->Alive[i] || this->octantExcluded(original, present))
       continue;
+    if (bestOmega == omegaStart)
+    {
+      // No normal of a later octant can win (a tie goes to the earlier octant): this one is
+      // clipped with the new points lazily, by the next slow path's applyPoints, which gives
+      // the same polygon. Only the exclusion above reads the new points of this call alone.
+      survives[i] = true;
+      this->Deferred[i] = true;
+      continue;
+    }
     Octant& o = this->Trials[i];
     o = original; // reuses the trial's storage
     if (!this->applyPoints(o) || !hasInterior(o))
@@ -826,7 +836,7 @@ void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool
   {
     // Octants the new points emptied, or whose signs they contradict, stay dead.
     this->Alive[i] = survives[i];
-    if (survives[i])
+    if (survives[i] && !this->Deferred[i])
     {
       std::swap(this->Octants[i], this->Trials[i]);
       this->Octants[i].applied = this->Points.size();

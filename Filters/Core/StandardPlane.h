@@ -171,6 +171,8 @@ private:
   std::array<Octant, 8> Octants;        ///< one per sign pattern of the normal
   std::array<Octant, 8> Trials; ///< the octants with the points of a call, until it succeeds
   std::array<bool, 8> Alive;    ///< octants that may still hold a solution
+  /// Octants a call left without its new points (see searchOctants), until it succeeds.
+  std::array<bool, 8> Deferred{};
   std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis
   StandardPlane Current;
   std::int64_t CurrentLo = 0, CurrentHi = 0; ///< range of the current normal over the points

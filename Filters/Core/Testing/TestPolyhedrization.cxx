@@ -331,7 +331,7 @@ TEST(StandardPlane, SmallestOmegaOnThinStrips)
 TEST(StandardPlane, LargePiecesAgreeWithBruteForce)
 {
   // Pieces of standard planes of 121 to 363 points, added one by one (in random order or row
-  // by row), then probes near them. Faces of 64 points or more measure only the points that
+  // by row), then probes near them. Faces of 128 points or more measure only the points that
   // are not the midpoint of two others (StandardPlane.h); the answers must stay those of every
   // integer normal of omega <= Bound over all the points.
   constexpr int Bound = 12, R = 5;
