@@ -8,15 +8,18 @@
 //      1-Lipschitz: a piece of triangle whose centroid c is at distance dc from the surfels
 //      and whose corners are within r of c is within dc + r; pieces are halved at their
 //      longest edge until dc + r <= d (accepted) or r < 1/20 voxel (rejected);
-//  (b) surfels to surface: every sample of the surfels (the 3 x 3 lattice of each: centre,
-//      corners, edge midpoints; any point of a unit square lies within sqrt(2)/4 of one) is
-//      assigned to a triangle within its allowance, max(d - sqrt(2)/4, its distance to the
-//      input surface); the samples of the star's triangles must find such a triangle among
-//      the new star, and are reassigned to it. Triangles outside the star keep theirs, so
-//      every surfel point stays within d of the surface (within its input distance plus
-//      sqrt(2)/4 where the input is already farther). The surfels of pruned voxels (no
-//      interior corner: DeformedModel.h's one-voxel crests, which the input already misses)
-//      carry no samples;
+//  (b) surfels to surface: every surfel of an unpruned voxel is covered by square pieces
+//      (the whole surfel, or its quarters, down to 1/8 voxel), each assigned to a triangle
+//      within its limit of the piece's centre: d minus the piece's half diagonal, so that
+//      every point of the piece is within d of that triangle. The pieces of the star's
+//      triangles must find such a triangle among the new star (a piece that finds none is
+//      quartered, the quarters' limits being larger) and are reassigned to it; triangles
+//      outside the star keep theirs. So every surfel point stays within d of the surface,
+//      except where the input itself is farther: a piece of the smallest side that no
+//      triangle keeps within d at the start keeps its input distance as its limit (the
+//      surface there stays within that distance plus 1/8 voxel's half diagonal, 0.09). The
+//      surfels of pruned voxels (no interior corner: DeformedModel.h's one-voxel crests,
+//      which the input already misses) are left out;
 //  (c) no self-intersection: each new triangle is tested with exact predicates against the
 //      triangles whose boxes meet its box (a uniform grid of triangle boxes, updated after
 //      each collapse) and against the other new triangles; triangles that share a vertex
@@ -64,8 +67,9 @@ struct SimplifiedSurface
   bool simplified = false;    ///< false: the input returned (aborted, or a final check failed)
   bool aborted = false;       ///< the caller asked to stop
   double surfaceDistance = 0; ///< upper bound (within 0.02) of the surface's distance to surfels
-  double surfelDistance = 0;  ///< largest distance from a sample of an unpruned voxel's surfel
-                              ///< to its triangle (an upper bound of its distance to the surface)
+  double surfelDistance = 0;  ///< upper bound of the distance from the surfels of unpruned
+                              ///< voxels to the surface (each piece: its centre's distance to
+                              ///< its triangle plus its half diagonal)
   std::size_t collapses = 0;
 };
 
