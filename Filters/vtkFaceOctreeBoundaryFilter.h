@@ -48,7 +48,9 @@
  * `NumberOfBoundaryVoxels`, `NumberOfFaceNodes`, `NumberOfPolygons` (cells of face nodes),
  * `NumberOfTriangles` (triangles among all cells), `NumberOfPrunedVoxels` and
  * `MaximumDistance` (the largest distance from an output vertex to the voxel boundary, the
- * surfels, measured by the filter in voxel units: 1 is a voxel edge, the bound is sqrt(3)).
+ * surfels, measured by the filter in voxel units: 1 is a voxel edge, the bound is sqrt(3);
+ * with Simplify an upper bound over the whole surface, and `MaximumSurfelDistance` is added:
+ * an upper bound of the distance from the surfels of unpruned voxels to the surface).
  *
  * Output port 1: the face octree, one hexahedron per face node (its box, in world
  * coordinates; with MergeFaceNodes a merged face's box is the bounding box of its octree

@@ -798,31 +798,31 @@ void checkSimplified(const std::string& name,
 
 } // namespace
 
-TEST(BoundarySimplifier, SolidsAt32)
+TEST(FaceOctreeBoundarySimplifier, SolidsAt32)
 {
   for (const Shape& s : solids())
     checkSimplified(s.name + "32", shapeVolume(s, 32), true, 20);
 }
 
-TEST(BoundarySimplifier, RoundSolidsAndCSGAt64)
+TEST(FaceOctreeBoundarySimplifier, RoundSolidsAndCSGAt64)
 {
   for (const Shape& s : solids())
     if (s.name == "ball" || s.name == "torus" || s.name == "csg")
       checkSimplified(s.name + "64", shapeVolume(s, 64), true, 50);
 }
 
-TEST(BoundarySimplifier, PorousBlobs)
+TEST(FaceOctreeBoundarySimplifier, PorousBlobs)
 {
   for (unsigned seed : { 1u, 2u })
     checkSimplified("porous" + std::to_string(seed), porous(48, seed), false, 20);
 }
 
-TEST(BoundarySimplifier, TighterBound)
+TEST(FaceOctreeBoundarySimplifier, TighterBound)
 {
   checkSimplified("ball48 within 1.5", shapeVolume(solids()[0], 48), true, 2, 1.5);
 }
 
-TEST(BoundarySimplifier, StopsWhenAskedAndReturnsItsInput)
+TEST(FaceOctreeBoundarySimplifier, StopsWhenAskedAndReturnsItsInput)
 {
   const BitVolume v = shapeVolume(solids()[0], 32);
   const vbr::TriangleSurface in = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
