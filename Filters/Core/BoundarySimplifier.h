@@ -33,6 +33,12 @@
 //
 // Distances are in voxel units (voxel i spans [i, i + 1]); d is at most 1.99 (the distance
 // search of FaceOctreeBoundary.h's distanceToNearestFace reaches two voxels).
+//
+// Cost: serial, about 50 to 100 microseconds per collapse (the 128^3 ball: 66,256 -> 412
+// triangles in about 3 s of CPU, 20 to 60 times the unsimplified filter's time and 3 to 4
+// times the time of flying edges, windowed-sinc smoothing and quadric decimation, which keep
+// about as few triangles at that distance: README). So vtkFaceOctreeBoundaryFilter leaves it
+// off by default.
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
