@@ -94,6 +94,8 @@ bool simplifyObject(const vbr::BitVolume& voxels,
   vbr::BoundaryMesh& mesh,
   Statistics& stats)
 {
+  if (mesh.cellCount() == 0)
+    return true; // nothing to simplify (every voxel pruned)
   const vbr::SimplifiedSurface out =
     vbr::simplifyBoundary(voxels, triangleSurface(mesh), settings.simplification, exec);
   if (out.aborted)
@@ -608,8 +610,10 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   if (this->GetSelectionMode() == LABELS)
     output->GetCellData()->SetActiveScalars("Label");
   if (stats.simplifyFailed)
-    vtkWarningMacro(<< "The simplified boundary failed its final checks (closed, manifold, "
-                       "free of self-intersections): the unsimplified triangles are output.");
+    vtkWarningMacro(<< "The boundary was not simplified (its triangles were not a closed "
+                       "mesh free of degenerate triangles, or the simplified surface failed "
+                       "its final checks: closed, manifold, free of self-intersections): the "
+                       "unsimplified triangles are output.");
   writeStatistics(stats, each.simplify, output->GetFieldData());
   vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   return 1;
