@@ -689,6 +689,43 @@ struct ApplyVisitor : SMS::Edge_collapse_visitor_base<Mesh>
   }
 };
 
+/// How far the collapsed vertex is moved outwards from Lindstrom-Turk's placement (voxels):
+/// the input surface runs about half a voxel inside the surfels, so the surfels' side of the
+/// bound binds first; a small push outwards evens the two sides (0.05 to 0.1 halved the
+/// triangles of the 64^3 ball and torus, 0.2 gave back the count without it).
+constexpr double OutwardShift = 0.1;
+
+/// Lindstrom-Turk's placement moved OutwardShift along the area-weighted normal of the
+/// collapsed star (outwards: the surface is oriented outwards).
+struct OutwardPlacement
+{
+  SMS::LindstromTurk_placement<Mesh> base;
+
+  template<typename Profile>
+  boost::optional<typename Profile::Point> operator()(const Profile& profile) const
+  {
+    boost::optional<typename Profile::Point> p = this->base(profile);
+    if (!p)
+      return p;
+    Vec3 n{ 0, 0, 0 };
+    for (const auto& t : profile.triangles())
+    {
+      const Vec3 a = vec(get(profile.vertex_point_map(), t.v0)),
+                 b = vec(get(profile.vertex_point_map(), t.v1)),
+                 c = vec(get(profile.vertex_point_map(), t.v2));
+      const Vec3 x = cross(sub(b, a), sub(c, a));
+      for (int d = 0; d < 3; ++d)
+        n[d] += x[d];
+    }
+    const double len = std::sqrt(dot(n, n));
+    if (len == 0)
+      return p;
+    return Point3(p->x() + OutwardShift * n[0] / len,
+      p->y() + OutwardShift * n[1] / len,
+      p->z() + OutwardShift * n[2] / len);
+  }
+};
+
 Mesh meshOf(const TriangleSurface& s)
 {
   Mesh mesh;
@@ -759,7 +796,7 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
     CGAL::parameters::filter(AcceptFilter{ &state })
       .visitor(visitor)
       .get_cost(SMS::LindstromTurk_cost<Mesh>())
-      .get_placement(SMS::LindstromTurk_placement<Mesh>()));
+      .get_placement(OutwardPlacement()));
   if (state.aborted() || exec.stopRequested())
   {
     out.aborted = true;

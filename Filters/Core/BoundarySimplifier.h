@@ -1,5 +1,6 @@
 // Bounded simplification of a closed boundary surface (beyond the paper): edge collapses
-// (CGAL's Surface_mesh_simplification, Lindstrom-Turk cost and placement) that keep the
+// (CGAL's Surface_mesh_simplification, Lindstrom-Turk cost; its placement moved 0.1 voxel
+// outwards along the star's normal, since the input runs inside the surfels) that keep the
 // surface within a distance d of the voxel boundary (the surfels) on both sides, and free of
 // self-intersections. The collapses run until no edge may collapse; a collapse is accepted
 // only when all of these hold:
