@@ -1,5 +1,6 @@
 #include "vtkFaceOctreeBoundaryFilter.h"
 
+#include "BoundarySimplifier.h"
 #include "DeformedModel.h"
 #include "FaceOctree.h"
 #include "FaceOctreeBoundary.h"
@@ -41,6 +42,8 @@ struct Statistics
 {
   vtkIdType boundaryVoxels = 0, faceNodes = 0, polygons = 0, triangles = 0, prunedVoxels = 0;
   double maximumDistance = 0.0;
+  double surfelDistance = 0.0; ///< with Simplify: bound of the surfels' distance to the output
+  bool simplifyFailed = false; ///< a simplified surface failed its checks: its input was kept
 };
 
 /// What every object is extracted with.
@@ -50,7 +53,63 @@ struct ObjectSettings
   bool pruneCrests;
   vbr::DeformedModelOptions relaxation;
   vbr::FaceOctreeOptions octree;
+  bool simplify;
+  vbr::SimplifyOptions simplification;
 };
+
+/// The triangles of a Triangles boundary as a plain surface.
+vbr::TriangleSurface triangleSurface(const vbr::BoundaryMesh& mesh)
+{
+  vbr::TriangleSurface s;
+  s.points = mesh.points;
+  for (std::size_t c = 0; c < mesh.cellCount(); ++c)
+    s.triangles.push_back({ mesh.connectivity[mesh.offsets[c]],
+      mesh.connectivity[mesh.offsets[c] + 1],
+      mesh.connectivity[mesh.offsets[c] + 2] });
+  return s;
+}
+
+/// A simplified surface as a boundary mesh: triangles of no face node (FaceNodeId and
+/// NodeLevel -1).
+vbr::BoundaryMesh boundaryOf(const vbr::TriangleSurface& s)
+{
+  vbr::BoundaryMesh mesh;
+  mesh.points = s.points;
+  for (const auto& t : s.triangles)
+  {
+    mesh.connectivity.insert(mesh.connectivity.end(), t.begin(), t.end());
+    mesh.offsets.push_back(std::int64_t(mesh.connectivity.size()));
+  }
+  mesh.faceNode.assign(s.triangles.size(), -1);
+  mesh.nodeLevel.assign(s.triangles.size(), -1);
+  mesh.triangles = s.triangles.size();
+  return mesh;
+}
+
+/// The Triangles boundary of one object simplified (BoundarySimplifier.h), its measured
+/// distances added to the statistics; false when aborted.
+bool simplifyObject(const vbr::BitVolume& voxels,
+  const ObjectSettings& settings,
+  const vbr::Execution& exec,
+  vbr::BoundaryMesh& mesh,
+  Statistics& stats)
+{
+  if (mesh.cellCount() == 0)
+    return true; // nothing to simplify (every voxel pruned)
+  const vbr::SimplifiedSurface out =
+    vbr::simplifyBoundary(voxels, triangleSurface(mesh), settings.simplification, exec);
+  if (out.aborted)
+    return false;
+  if (!out.simplified)
+  {
+    stats.simplifyFailed = true;
+    return true;
+  }
+  mesh = boundaryOf(out.surface);
+  stats.maximumDistance = std::max(stats.maximumDistance, out.surfaceDistance);
+  stats.surfelDistance = std::max(stats.surfelDistance, out.surfelDistance);
+  return true;
+}
 
 /// Whether the grid's map to world coordinates mirrors space (a direction matrix with
 /// negative determinant, or a negative spacing): cells are then reversed.
@@ -306,16 +365,22 @@ bool appendObject(const vbr::vtk::Selected& object,
   octree = vbr::buildFaceOctree(voxels, model, options, exec.within(0.4, 0.8));
   if (!exec.report(0.8))
     return false;
-  const vbr::BoundaryCells cells = settings.outputMode == vtkFaceOctreeBoundaryFilter::POLYGONS
+  const bool simplify =
+    settings.simplify && settings.outputMode != vtkFaceOctreeBoundaryFilter::QUADRILATERALS;
+  const vbr::BoundaryCells cells =
+    settings.outputMode == vtkFaceOctreeBoundaryFilter::POLYGONS && !simplify
     ? vbr::BoundaryCells::Polygons
-    : settings.outputMode == vtkFaceOctreeBoundaryFilter::TRIANGLES
+    : settings.outputMode != vtkFaceOctreeBoundaryFilter::QUADRILATERALS
     ? vbr::BoundaryCells::Triangles
     : vbr::BoundaryCells::Quadrilaterals;
-  const vbr::BoundaryMesh mesh = vbr::assembleBoundary(model, octree, cells);
+  vbr::BoundaryMesh mesh = vbr::assembleBoundary(model, octree, cells);
+  if (simplify && !simplifyObject(voxels, settings, exec.within(0.8, 1.0), mesh, stats))
+    return false;
   stats.polygons += vtkIdType(mesh.polygons);
   stats.triangles += vtkIdType(mesh.triangles);
-  stats.maximumDistance =
-    std::max(stats.maximumDistance, vbr::maximumDistanceToSurfels(voxels, mesh.points, exec));
+  if (!simplify || stats.simplifyFailed)
+    stats.maximumDistance =
+      std::max(stats.maximumDistance, vbr::maximumDistanceToSurfels(voxels, mesh.points, exec));
   builder.appendMesh(mesh, object, stats.faceNodes);
   if (settings.outputMode != vtkFaceOctreeBoundaryFilter::QUADRILATERALS)
   {
@@ -391,7 +456,7 @@ bool appendLabelBoundary(const vbr::vtk::InputObjects& in,
   return true;
 }
 
-void writeStatistics(const Statistics& stats, vtkFieldData* fd)
+void writeStatistics(const Statistics& stats, bool simplified, vtkFieldData* fd)
 {
   vbr::vtk::addFieldValue(fd, "NumberOfBoundaryVoxels", stats.boundaryVoxels);
   vbr::vtk::addFieldValue(fd, "NumberOfFaceNodes", stats.faceNodes);
@@ -402,6 +467,13 @@ void writeStatistics(const Statistics& stats, vtkFieldData* fd)
   distance->SetName("MaximumDistance");
   distance->InsertNextValue(stats.maximumDistance);
   fd->AddArray(distance);
+  if (simplified)
+  {
+    vtkNew<vtkDoubleArray> back;
+    back->SetName("MaximumSurfelDistance");
+    back->InsertNextValue(stats.surfelDistance);
+    fd->AddArray(back);
+  }
 }
 
 } // namespace
@@ -492,6 +564,17 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   each.relaxation.tolerance = this->RelaxationTolerance;
   each.octree.maximumLevel = this->MaximumOctreeLevel;
   each.octree.mergeFaceNodes = this->MergeFaceNodes;
+  const double largestSpacing =
+    std::max({ std::abs(grid.spacing[0]), std::abs(grid.spacing[1]), std::abs(grid.spacing[2]) });
+  each.simplify = this->Simplify && this->OutputMode != QUADRILATERALS;
+  if (this->SimplificationDistance > 0 && largestSpacing > 0)
+    each.simplification.distance = this->SimplificationDistance / largestSpacing;
+  if (each.simplify && this->GetSelectionMode() == LABELS)
+  {
+    vtkWarningMacro(<< "Simplify is not supported in Labels mode: the shared boundary is "
+                       "not simplified.");
+    each.simplify = false;
+  }
   const double spacing =
     std::min({ std::abs(grid.spacing[0]), std::abs(grid.spacing[1]), std::abs(grid.spacing[2]) });
   each.octree.precision = (this->Precision > 0 && spacing > 0) ? this->Precision / spacing : 0.5;
@@ -526,7 +609,12 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   builder.finish(output, boxes);
   if (this->GetSelectionMode() == LABELS)
     output->GetCellData()->SetActiveScalars("Label");
-  writeStatistics(stats, output->GetFieldData());
+  if (stats.simplifyFailed)
+    vtkWarningMacro(<< "The boundary was not simplified (its triangles were not a closed "
+                       "mesh free of degenerate triangles, or the simplified surface failed "
+                       "its final checks: closed, manifold, free of self-intersections): the "
+                       "unsimplified triangles are output.");
+  writeStatistics(stats, each.simplify, output->GetFieldData());
   vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   return 1;
 }
@@ -544,4 +632,6 @@ void vtkFaceOctreeBoundaryFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Precision: " << this->Precision << "\n";
   os << indent << "PruneCrests: " << (this->PruneCrests ? "On\n" : "Off\n");
   os << indent << "MergeFaceNodes: " << (this->MergeFaceNodes ? "On\n" : "Off\n");
+  os << indent << "Simplify: " << (this->Simplify ? "On\n" : "Off\n");
+  os << indent << "SimplificationDistance: " << this->SimplificationDistance << "\n";
 }

@@ -1,7 +1,7 @@
 // Benchmark of vtkFaceOctreeBoundaryFilter against the pipeline a VTK user runs today for a
 // smooth, compact surface of voxels: vtkDiscreteFlyingEdges3D, vtkWindowedSincPolyDataFilter
 // (20 iterations, pass band 0.1), then vtkQuadricDecimation, decimated as far as its distance
-// to the voxel boundary stays at most this filter's (bisection on the target reduction, before
+// to the voxel boundary stays at most this filter's (bisection on the kept fraction, before
 // the timing), in turns in one process (the harness of BenchCommon.h).
 //
 // Distance: the two-sided Hausdorff distance between the output surface and the surfels, the
@@ -27,18 +27,19 @@
 // the filter's NumberOfPrunedVoxels, and the surfels-to-surface side is measured twice: over
 // all surfels, and over the surfels of unpruned voxels only ("excl. pruned").
 //
-// The filter runs twice: with MergeFaceNodes and without (the default: the paper's octree
-// alone); the pipeline is decimated to the merged output's distance excluding the pruned
-// voxels' surfels, measured the same way on both (with all surfels, a crest the filter drops
-// would set the bound at the search's cap). With VOXELBREP_BENCH_ONLY set, only the inputs
-// whose name starts with its value run (e.g. "CSG": the CSG solid of each size). With
-// VOXELBREP_BENCH_FORMER_MEASURE set, the pipeline is also decimated to the filter's vertex
-// distance (the former measure) and its triangles printed (eight more decimations). Per
-// solid (the solids class: ball, torus, CSG of n^3 voxels): the pruned voxels, the table of
-// the harness (median time, cells, peak memory of a first run of the whole pipeline, time
-// ratio), then for both: polygons, triangles (each polygon counted as its fan), the
-// distances, and polygons per object voxel (the paper's Table 1: 0.19-0.31 at 128^3), the
-// ratio of the triangles, and the filter's voxels per second (the paper's target on 256^3:
+// The filter runs three times: with MergeFaceNodes, without (the default: the paper's octree
+// alone), and with Simplify (BoundarySimplifier.h, its default distance: one voxel diagonal);
+// the pipeline is decimated twice, to the merged output's distance and to the simplified
+// output's, both excluding the pruned voxels' surfels, measured the same way on all (with all
+// surfels, a crest the filter drops would set the bound at the search's cap). With
+// VOXELBREP_BENCH_ONLY set, only the inputs whose name starts with its value run (e.g. "CSG": the
+// CSG solid of each size). With VOXELBREP_BENCH_FORMER_MEASURE set, the pipeline is also decimated
+// to the filter's vertex distance (the former measure) and its triangles printed (eight more
+// decimations). Per solid (the solids class: ball, torus, CSG of n^3 voxels): the pruned voxels,
+// the table of the harness (median time, cells, peak memory of a first run of the whole pipeline,
+// time ratio), then for both: polygons, triangles (each polygon counted as its fan), the distances,
+// and polygons per object voxel (the paper's Table 1: 0.19-0.31 at 128^3), the ratio of the
+// triangles, and the filter's voxels per second (the paper's target on 256^3:
 // --sizes 256).
 //
 //   BenchFaceOctreeBoundary --help     the options, with this program's defaults
@@ -302,24 +303,28 @@ struct Pipeline
   }
 
   /// Decimates as far as the distance (the two-sided one without the pruned voxels' surfels,
-  /// or the former vertex measure) stays within `bound` (8 bisection steps).
+  /// or the former vertex measure) stays within `bound`: 10 bisection steps on the logarithm
+  /// of the kept fraction (1 down to 1e-4), so that the kept triangles are found within about
+  /// 1 % whatever their number (a bisection on the reduction itself left steps of 0.4 % of the
+  /// input, hundreds of triangles at 128^3).
   void decimateWithin(const vbr::BitVolume& bits,
     const SurfelSamples& surfels,
     double bound,
     bool verticesOnly = false)
   {
-    double lo = 0.0, hi = 0.999;
-    for (int i = 0; i < 8; ++i)
+    auto reduction = [](double u) { return 1.0 - std::pow(10.0, -u); };
+    double lo = 0.0, hi = 4.0;
+    for (int i = 0; i < 10; ++i)
     {
       const double mid = 0.5 * (lo + hi);
-      this->decimate->SetTargetReduction(mid);
+      this->decimate->SetTargetReduction(reduction(mid));
       this->decimate->Update();
       vtkPolyData* out = this->decimate->GetOutput();
       const double d = verticesOnly ? vbr::maximumDistanceToSurfels(bits, vertices(out))
                                     : twoSidedDistance(bits, surfels, out).hausdorffExclPruned();
       (d <= bound ? lo : hi) = mid;
     }
-    this->decimate->SetTargetReduction(lo);
+    this->decimate->SetTargetReduction(reduction(lo));
   }
 
   void run()
@@ -356,13 +361,19 @@ void printOutputs(const Input& in,
   const SurfelSamples& surfels,
   vtkPolyData* ours,
   vtkPolyData* octreeOnly,
+  vtkPolyData* simplified,
   vtkPolyData* theirs,
-  double filterSeconds)
+  vtkPolyData* theirsAtSimplified,
+  double filterSeconds,
+  double simplifiedSeconds,
+  double theirsAtSimplifiedSeconds)
 {
   const double voxels = double(std::max<std::size_t>(bits.count(), 1));
   const Distance mine = twoSidedDistance(bits, surfels, ours);
   const Distance unmerged = twoSidedDistance(bits, surfels, octreeOnly);
+  const Distance simple = twoSidedDistance(bits, surfels, simplified);
   const Distance peer = twoSidedDistance(bits, surfels, theirs);
+  const Distance peerAtSimplified = twoSidedDistance(bits, surfels, theirsAtSimplified);
   Table table({ "output",
     "polygons",
     "triangles",
@@ -375,8 +386,19 @@ void printOutputs(const Input& in,
     "polygons/voxel" });
   table.add(outputRow("FaceOctreeBoundary", ours, mine, voxels));
   table.add(outputRow("FaceOctreeBoundary (octree only)", octreeOnly, unmerged, voxels));
+  table.add(outputRow("FaceOctreeBoundary (Simplify)", simplified, simple, voxels));
   table.add(outputRow("DFE+WindowedSinc+QDec", theirs, peer, voxels));
+  table.add(
+    outputRow("DFE+WindowedSinc+QDec (at Simplify)", theirsAtSimplified, peerAtSimplified, voxels));
   table.print();
+  std::printf("\nSimplify: triangles pipeline / filter %s at distance %s / %s, time filter / "
+              "pipeline %s\n",
+    formatRatio(
+      double(fanTriangles(theirsAtSimplified)) / double(std::max(1LL, fanTriangles(simplified))))
+      .c_str(),
+    formatFixed(peerAtSimplified.hausdorffExclPruned(), 3).c_str(),
+    formatFixed(simple.hausdorffExclPruned(), 3).c_str(),
+    formatRatio(simplifiedSeconds / std::max(1e-9, theirsAtSimplifiedSeconds)).c_str());
   if (peer.hausdorffExclPruned() > mine.hausdorffExclPruned())
     std::printf("\n(the pipeline is farther than the filter even undecimated)\n");
   std::printf("\ntriangles: pipeline / filter %s | filter %s M voxels/s (of %s voxels)\n\n",
@@ -418,18 +440,25 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
   forEachBackend(options,
     [&](const std::string& backend)
     {
-      vtkNew<vtkFaceOctreeBoundaryFilter> filter, octreeOnly;
+      vtkNew<vtkFaceOctreeBoundaryFilter> filter, octreeOnly, simplified;
       filter->SetInputData(image);
       filter->MergeFaceNodesOn();
       filter->Update();
       octreeOnly->SetInputData(image);
       octreeOnly->MergeFaceNodesOff();
       octreeOnly->Update();
+      simplified->SetInputData(image);
+      simplified->SimplifyOn();
+      simplified->Update();
       const SurfelSamples surfels = surfelSamples(bits);
       checkPrunedVoxels(surfels, filter->GetOutput());
       Pipeline pipeline(image);
       pipeline.decimateWithin(
         bits, surfels, twoSidedDistance(bits, surfels, filter->GetOutput()).hausdorffExclPruned());
+      Pipeline pipelineAtSimplified(image);
+      pipelineAtSimplified.decimateWithin(bits,
+        surfels,
+        twoSidedDistance(bits, surfels, simplified->GetOutput()).hausdorffExclPruned());
       if (std::getenv("VOXELBREP_BENCH_FORMER_MEASURE"))
       {
         // The former measure, for comparison with earlier reports: output vertices only.
@@ -444,6 +473,7 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
       }
       vtkAlgorithm* f = filter;
       vtkAlgorithm* g = octreeOnly;
+      vtkAlgorithm* h = simplified;
       const std::vector<Contender> contenders{
         contenderOf(
           "FaceOctreeBoundary", Role::Tool, [f] { update(f); }, filter->GetOutput()),
@@ -453,10 +483,17 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
           [g] { update(g); },
           octreeOnly->GetOutput()),
         contenderOf(
+          "FaceOctreeBoundary (Simplify)", Role::Tool, [h] { update(h); }, simplified->GetOutput()),
+        contenderOf(
           "DFE+WindowedSinc+QDec",
           Role::Peer,
           [&pipeline] { pipeline.run(); },
           pipeline.decimate->GetOutput()),
+        contenderOf(
+          "DFE+WindowedSinc+QDec (at Simplify)",
+          Role::Peer,
+          [&pipelineAtSimplified] { pipelineAtSimplified.run(); },
+          pipelineAtSimplified.decimate->GetOutput()),
       };
       const std::vector<Measured> rows = timeInTurns(options.repeat, contenders);
       report.add(in, backend, rows);
@@ -465,8 +502,12 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
         surfels,
         filter->GetOutput(),
         octreeOnly->GetOutput(),
+        simplified->GetOutput(),
         pipeline.decimate->GetOutput(),
-        findMeasured(rows, "FaceOctreeBoundary")->median);
+        pipelineAtSimplified.decimate->GetOutput(),
+        findMeasured(rows, "FaceOctreeBoundary")->median,
+        findMeasured(rows, "FaceOctreeBoundary (Simplify)")->median,
+        findMeasured(rows, "DFE+WindowedSinc+QDec (at Simplify)")->median);
     });
 }
 

@@ -2,6 +2,7 @@
 // independent references: brute-force quadrilateral sets, plane checks voxel by voxel, mesh
 // topology from the cells alone, CGAL's exact self-intersection test, and distances to the
 // surfels computed here by a separate bucketed search.
+#include "BoundarySimplifier.h"
 #include "DeformedModel.h"
 #include "FaceOctree.h"
 #include "FaceOctreeBoundary.h"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -728,7 +730,118 @@ void checkBoundary(const std::string& name, const BitVolume& v, bool expectTopol
     EXPECT_NEAR(triangleArea[node], area, 1e-9 * (1 + area)) << "node " << node;
 }
 
+/// The Triangles boundary of a Result as a plain surface.
+vbr::TriangleSurface triangleSurface(const Result& r)
+{
+  vbr::TriangleSurface in;
+  in.points = r.mesh.points;
+  for (std::size_t c = 0; c < r.mesh.cellCount(); ++c)
+    in.triangles.push_back({ r.mesh.connectivity[r.mesh.offsets[c]],
+      r.mesh.connectivity[r.mesh.offsets[c] + 1],
+      r.mesh.connectivity[r.mesh.offsets[c] + 2] });
+  return in;
+}
+
+Mesh meshOf(const vbr::TriangleSurface& s)
+{
+  Mesh m;
+  m.points = s.points;
+  for (const auto& t : s.triangles)
+    m.cells.push_back({ t[0], t[1], t[2] });
+  return m;
+}
+
+/// The simplified boundary of one object (Triangles cut, then BoundarySimplifier) against the
+/// references: closed and manifold with the voxels' Euler characteristic (when expected), no
+/// self-intersection (CGAL), within the bound both ways (the surfels of pruned voxels
+/// excepted; where the input itself is farther from the surfels, no farther than it plus the
+/// half diagonal of the smallest surfel piece), the reported distances upper bounds of the
+/// measured ones, and at least `fewer` times fewer triangles than its input.
+void checkSimplified(const std::string& name,
+  const BitVolume& v,
+  bool expectTopology,
+  double fewer,
+  double bound = std::sqrt(3.0))
+{
+  SCOPED_TRACE(name);
+  const vbr::TriangleSurface in = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
+  vbr::SimplifyOptions options;
+  options.distance = bound;
+  const auto start = std::chrono::steady_clock::now();
+  const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, options);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_TRUE(out.simplified);
+  const Mesh m = meshOf(out.surface);
+  std::string error;
+  const long long euler = checkClosedManifold(m, error);
+  ASSERT_TRUE(error.empty()) << error;
+  if (expectTopology)
+    EXPECT_EQ(euler, 2 * solidEuler(v));
+  EXPECT_FALSE(selfIntersects(m));
+  EXPECT_GT(enclosedVolume(m), 0);
+  const std::set<Int3> pruned = prunedVoxelSet(v);
+  double there = 0, back = 0, inThere = 0, inBack = 0;
+  hausdorff(m, v, pruned, there, back);
+  hausdorff(meshOf(in), v, pruned, inThere, inBack);
+  EXPECT_LE(there, bound + 1e-9);
+  EXPECT_LE(back, std::max(bound, inBack + 0.125 * std::sqrt(0.5)) + 1e-9);
+  EXPECT_LE(there, out.surfaceDistance + 1e-9); // the reported distances are upper bounds
+  EXPECT_LE(back, out.surfelDistance + 1e-9);
+  EXPECT_LE(out.surfaceDistance, there + 0.1); // and close ones
+  EXPECT_LE(double(out.surface.triangles.size()) * fewer, double(in.triangles.size()));
+  std::cout << name << ": " << in.triangles.size() << " -> " << out.surface.triangles.size()
+            << " triangles, Hausdorff " << there << " / " << back << " (input " << inThere << " / "
+            << inBack << ", reported " << out.surfaceDistance << " / " << out.surfelDistance
+            << "), " << seconds << " s\n";
+}
+
 } // namespace
+
+TEST(FaceOctreeBoundarySimplifier, SolidsAt32)
+{
+  for (const Shape& s : solids())
+    checkSimplified(s.name + "32", shapeVolume(s, 32), true, 20);
+}
+
+TEST(FaceOctreeBoundarySimplifier, RoundSolidsAndCSGAt64)
+{
+  for (const Shape& s : solids())
+    if (s.name == "ball" || s.name == "torus" || s.name == "csg")
+      checkSimplified(s.name + "64", shapeVolume(s, 64), true, 50);
+}
+
+TEST(FaceOctreeBoundarySimplifier, PorousBlobs)
+{
+  for (unsigned seed : { 1u, 2u })
+    checkSimplified("porous" + std::to_string(seed), porous(48, seed), false, 20);
+}
+
+TEST(FaceOctreeBoundarySimplifier, TighterBound)
+{
+  checkSimplified("ball48 within 1.5", shapeVolume(solids()[0], 48), true, 2, 1.5);
+}
+
+TEST(FaceOctreeBoundarySimplifier, StopsWhenAskedAndReturnsItsInput)
+{
+  const BitVolume v = shapeVolume(solids()[0], 32);
+  const vbr::TriangleSurface in = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
+  int polls = 0;
+  std::vector<double> reported;
+  vbr::Execution exec;
+  exec.aborted = [&] { return ++polls > 20; };
+  exec.progress = [&](double f)
+  {
+    reported.push_back(f);
+    return true;
+  };
+  const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, {}, exec);
+  EXPECT_TRUE(out.aborted);
+  EXPECT_FALSE(out.simplified);
+  EXPECT_EQ(out.surface.triangles, in.triangles);
+  EXPECT_FALSE(reported.empty());
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+}
 
 TEST(DeformedModel, QuadrilateralsArePrunedNet)
 {

@@ -10,7 +10,11 @@ references:
   centres and corners), enclosed volume positive (outwards) and near the voxel volume, for a
   mirrored direction matrix too (cells reversed), world placement (spacing, origin, extent);
 * point and cell scalars, several scalar types, Range and Labels selection, the three output
-  modes, the face octree port (one box per FaceNodeId, unit normals).
+  modes, the face octree port (one box per FaceNodeId, unit normals);
+* Simplify: triangles of no face node, closed and oriented, far fewer than without, within
+  SimplificationDistance of the surfels both ways (surface points to the exact nearest
+  surfel square; the 5 x 5 lattice of every surfel of an unpruned voxel to the surface by
+  VTK's cell locator), the field distances upper bounds of these, a warning in Labels mode.
 """
 
 import os
@@ -196,6 +200,185 @@ check.equal("range boundary voxels", vt.field_value(f.GetOutput(), "NumberOfBoun
 # An empty selection and a missing array.
 f = run(vt.make_image(np.zeros((5, 5, 5), dtype=np.uint8)))
 check.equal("empty selection", f.GetOutput().GetNumberOfCells(), 0)
-check.true("PrintSelf", "PruneCrests" in str(F()))
+check.true("PrintSelf", "PruneCrests" in str(F()) and "SimplificationDistance" in str(F()))
+
+
+# ---- Simplify ----
+
+def surfels_of(mask):
+    """Every surfel as (lower corner x, y, z; normal axis 0-2 as x, y, z), voxel i spanning
+    [i, i + 1] (point scalars: world = index - 0.5 at unit spacing)."""
+    padded = np.pad(mask.astype(bool), 1)
+    out = []
+    for axis in range(3):
+        d = np.diff(padded.astype(np.int8), axis=axis)
+        idx = np.argwhere(d != 0).astype(float)[:, ::-1] - 1.0
+        ax = 2 - axis
+        idx[:, ax] += 1.0
+        out.append(np.column_stack([idx, np.full(len(idx), ax)]))
+    return np.concatenate(out)
+
+
+def pruned_voxels(mask):
+    padded = np.pad(mask.astype(bool), 1)
+    vz, vy, vx = padded.shape
+    interior = np.zeros((vz + 1, vy + 1, vx + 1), dtype=bool)
+    interior[1:-1, 1:-1, 1:-1] = np.logical_and.reduce(
+        [padded[dz:vz - 1 + dz, dy:vy - 1 + dy, dx:vx - 1 + dx]
+         for dz in (0, 1) for dy in (0, 1) for dx in (0, 1)])
+    has_corner = np.logical_or.reduce(
+        [interior[dz:vz + dz, dy:vy + dy, dx:vx + dx]
+         for dz in (0, 1) for dy in (0, 1) for dx in (0, 1)])
+    return (padded & ~has_corner)[1:-1, 1:-1, 1:-1]
+
+
+def distance_to_surfels(points, surfels):
+    """Exact distance from each point to the nearest surfel square (searched among the
+    surfels whose centre is within 3)."""
+    from scipy.spatial import cKDTree
+    lo = surfels[:, :3]
+    hi = lo + 1.0
+    axis = surfels[:, 3].astype(int)
+    hi[np.arange(len(hi)), axis] = lo[np.arange(len(lo)), axis]
+    tree = cKDTree(0.5 * (lo + hi))
+    out = np.empty(len(points))
+    for i, near in enumerate(tree.query_ball_point(points, 3.0)):
+        near = np.asarray(near, dtype=int)
+        e = np.maximum(np.maximum(lo[near] - points[i], 0.0), points[i] - hi[near])
+        out[i] = np.sqrt((e * e).sum(axis=1)).min() if len(near) else 3.0
+    return out
+
+
+def surface_samples(pts, cells, per_edge=8):
+    """Vertices and a barycentric lattice of each triangle."""
+    out = [pts]
+    for c in cells:
+        a, b, d = pts[c[0]], pts[c[1]], pts[c[2]]
+        n = max(2, int(np.ceil(per_edge * max(np.linalg.norm(b - a), np.linalg.norm(d - a),
+                                                 np.linalg.norm(d - b)))))
+        u, v = np.meshgrid(np.arange(n + 1), np.arange(n + 1))
+        keep = (u + v) <= n
+        u, v = u[keep] / n, v[keep] / n
+        out.append(a + np.outer(u, b - a) + np.outer(v, d - a))
+    return np.concatenate(out)
+
+
+def surfel_lattice(mask, surfels):
+    """The 5 x 5 lattice of every surfel of an unpruned voxel."""
+    pruned = pruned_voxels(mask)
+    keep = []
+    for s in surfels:
+        x, y, z, a = int(s[0]), int(s[1]), int(s[2]), int(s[3])
+        inner = [x, y, z]
+        outer = [x, y, z]
+        outer[a] -= 1  # the voxel before the face along its axis
+        voxels = [v for v in (inner, outer)
+                  if all(0 <= v[k] < mask.shape[2 - k] for k in range(3))
+                  and mask[v[2], v[1], v[0]]]
+        if voxels and not pruned[voxels[0][2], voxels[0][1], voxels[0][0]]:
+            keep.append(s)
+    pts = []
+    for s in keep:
+        a = int(s[3])
+        u, w = [k for k in range(3) if k != a]
+        for i in range(5):
+            for j in range(5):
+                p = s[:3].copy()
+                p[u] += i / 4.0
+                p[w] += j / 4.0
+                pts.append(p)
+    return np.asarray(pts)
+
+
+def distance_from_surfels(samples, polydata):
+    from vtkmodules.vtkCommonDataModel import vtkCellLocator, vtkGenericCell
+    locator = vtkCellLocator()
+    locator.SetDataSet(polydata)
+    locator.BuildLocator()
+    closest, cell = [0.0, 0.0, 0.0], vtkGenericCell()
+    import vtkmodules.vtkCommonCore as cc
+    cid, sub, d2 = cc.reference(0), cc.reference(0), cc.reference(0.0)
+    worst = 0.0
+    for p in samples:
+        locator.FindClosestPoint(p, closest, cell, cid, sub, d2)
+        worst = max(worst, float(d2) ** 0.5)
+    return worst
+
+
+def check_simplified(name, mask, distance=0.0):
+    f = F()
+    f.SetInputData(vt.make_image(mask))
+    f.SimplifyOn()
+    f.SetSimplificationDistance(distance)
+    f.Update()
+    out = f.GetOutput()
+    plain = run(vt.make_image(mask), F.TRIANGLES).GetOutput()
+    bound = distance if distance > 0 else 3 ** 0.5
+    pts, cells = vt.points(out) + 0.5, vt.cells(out)  # voxel i spans [i, i + 1]
+    check.true(name + " triangles only", len(cells) > 0 and all(len(c) == 3 for c in cells))
+    check.true(name + " FaceNodeId -1", (vt.cell_array(out, "FaceNodeId") == -1).all())
+    check.equal(name + " NumberOfTriangles", vt.field_value(out, "NumberOfTriangles"), len(cells))
+    check.true(name + " closed and oriented", closed_and_oriented(cells))
+    # Outwards, and between the unsimplified surface's volume (it runs through the boundary
+    # voxels, well inside a thin torus's voxels) and a little more than the voxels' (the
+    # simplification pushes the surface outwards, towards the surfels).
+    v, before = volume(pts, cells), volume(vt.points(plain), vt.cells(plain))
+    vox = float(mask.sum())
+    check.true(name + " outwards (volume %g, unsimplified %g, voxels %g)" % (v, before, vox),
+               0.9 * before < v < 1.1 * vox)
+    check.true(name + " %d triangles, 5x fewer than %d" % (len(cells), plain.GetNumberOfCells()),
+               5 * len(cells) <= plain.GetNumberOfCells())
+    surfels = surfels_of(mask)
+    there = distance_to_surfels(surface_samples(pts, cells), surfels).max()
+    shifted = vtk_shifted(out)
+    lattice = surfel_lattice(mask, surfels)
+    back = distance_from_surfels(lattice, shifted)
+    # Where the unsimplified surface is already farther than the bound, no farther than it
+    # plus the half diagonal of the smallest surfel piece (1/8 voxel).
+    back_bound = max(bound, distance_from_surfels(lattice, vtk_shifted(plain)) + 0.125 * 0.5 ** 0.5)
+    check.true(name + " surface within %g of the surfels (%g)" % (bound, there),
+               there <= bound + 1e-9)
+    check.true(name + " surfels within %g of the surface (%g)" % (back_bound, back),
+               back <= back_bound + 1e-6)
+    fd = out.GetFieldData()
+    reported = fd.GetArray("MaximumDistance").GetValue(0)
+    reported_back = fd.GetArray("MaximumSurfelDistance").GetValue(0)
+    check.true(name + " MaximumDistance %g bounds %g" % (reported, there),
+               there <= reported + 1e-9 <= bound + 0.03)
+    check.true(name + " MaximumSurfelDistance %g bounds %g" % (reported_back, back),
+               back <= reported_back + 1e-6)
+    return f
+
+
+def vtk_shifted(polydata):
+    """The output moved by half a voxel (point scalars: voxel i spans [i, i + 1])."""
+    from vtkmodules.vtkCommonTransforms import vtkTransform
+    from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
+    t = vtkTransform()
+    t.Translate(0.5, 0.5, 0.5)
+    tf = vtkTransformPolyDataFilter()
+    tf.SetTransform(t)
+    tf.SetInputData(polydata)
+    tf.Update()
+    return tf.GetOutput()
+
+
+check_simplified("simplified ball", ball(24, 9.3))
+z, y, x = np.mgrid[0:24, 0:24, 0:24]
+torus = (((np.sqrt((x - 11.5) ** 2 + (y - 11.5) ** 2) - 6.5) ** 2 + (z - 11.5) ** 2) < 9.0)
+check_simplified("simplified torus", torus.astype(np.uint8))
+check_simplified("simplified wall within 1.5", wall, 1.5)
+
+# Labels mode: not simplified, with a warning.
+from vtkmodules.vtkCommonCore import vtkCommand  # noqa: E402
+warnings = []
+f = F()
+f.AddObserver(vtkCommand.WarningEvent, lambda *a: warnings.append(a))
+f.SetInputData(vt.make_image(labels))
+f.SetSelectionModeToLabels()
+f.SimplifyOn()
+f.Update()
+check.true("Labels mode: a warning", len(warnings) == 1)
+check.true("Labels mode: not simplified", (vt.cell_array(f.GetOutput(), "FaceNodeId") >= 0).any())
 
 check.finish()
