@@ -39,11 +39,9 @@ def ball(n, r, centre=None, dtype=np.uint8):
     return (((x - c) ** 2 + (y - c) ** 2 + (z - c) ** 2) < r * r).astype(dtype)
 
 
-def expected_counts(mask):
+def pruned_voxels(mask):
+    """The object voxels none of whose 8 corners is interior (all 8 voxels about it object)."""
     padded = np.pad(mask.astype(bool), 1)
-    inner = ndimage.binary_erosion(padded, structure=np.ones((3, 3, 3)), border_value=0)
-    boundary = padded & ~inner
-    # Grid vertex (i, j, k) of the padded grid is interior when its 8 voxels are object.
     vz, vy, vx = padded.shape
     interior = np.zeros((vz + 1, vy + 1, vx + 1), dtype=bool)
     interior[1:-1, 1:-1, 1:-1] = np.logical_and.reduce(
@@ -52,7 +50,16 @@ def expected_counts(mask):
     has_corner = np.logical_or.reduce(
         [interior[dz:vz + dz, dy:vy + dy, dx:vx + dx]
          for dz in (0, 1) for dy in (0, 1) for dx in (0, 1)])
-    return int(boundary.sum()), int((boundary & ~has_corner).sum())
+    return (padded & ~has_corner)[1:-1, 1:-1, 1:-1]
+
+
+def expected_counts(mask):
+    padded = np.pad(mask.astype(bool), 1)
+    inner = ndimage.binary_erosion(padded, structure=np.ones((3, 3, 3)), border_value=0)
+    boundary = (padded & ~inner)[1:-1, 1:-1, 1:-1]
+    # A pruned voxel has no interior corner, so it is a boundary voxel (an object voxel with
+    # a background voxel among its 26 neighbours) too.
+    return int(boundary.sum()), int((boundary & pruned_voxels(mask)).sum())
 
 
 def run(image, mode=F.POLYGONS, selection=None):
@@ -217,19 +224,6 @@ def surfels_of(mask):
         idx[:, ax] += 1.0
         out.append(np.column_stack([idx, np.full(len(idx), ax)]))
     return np.concatenate(out)
-
-
-def pruned_voxels(mask):
-    padded = np.pad(mask.astype(bool), 1)
-    vz, vy, vx = padded.shape
-    interior = np.zeros((vz + 1, vy + 1, vx + 1), dtype=bool)
-    interior[1:-1, 1:-1, 1:-1] = np.logical_and.reduce(
-        [padded[dz:vz - 1 + dz, dy:vy - 1 + dy, dx:vx - 1 + dx]
-         for dz in (0, 1) for dy in (0, 1) for dx in (0, 1)])
-    has_corner = np.logical_or.reduce(
-        [interior[dz:vz + dz, dy:vy + dy, dx:vx + dx]
-         for dz in (0, 1) for dy in (0, 1) for dx in (0, 1)])
-    return (padded & ~has_corner)[1:-1, 1:-1, 1:-1]
 
 
 def distance_to_surfels(points, surfels):
