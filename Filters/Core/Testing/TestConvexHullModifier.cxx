@@ -466,7 +466,7 @@ vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
   const std::vector<LatticePoint> on = vbr::latticePointsOnSurface(r.surface, v.dims());
   const std::set<LatticePoint> onSet(on.begin(), on.end());
   const std::set<LatticePoint> bgOn(r.backgroundOnSurface.begin(), r.backgroundOnSurface.end());
-  long outside = 0, inside = 0, wrongOn = 0;
+  long outside = 0, inside = 0, wrongOn = 0, offGridOn = 0;
   for (long z = -1; z <= v.size(2); ++z)
     for (long y = -1; y <= v.size(1); ++y)
       for (long x = -1; x <= v.size(0); ++x)
@@ -483,9 +483,13 @@ vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
           wrongOn += (where == CGAL::ON_BOUNDARY) != (onSet.count(p) == 1);
           wrongOn += (where == CGAL::ON_BOUNDARY && !object) != (bgOn.count(p) == 1);
         }
-        // Off the grid, centres are background and may lie on H (the caps of a flat object
-        // in the grid's first or last layer); the core reports the grid's only.
+        // Off the grid, centres are background and may lie on H only for a flat object (its
+        // caps in the grid's first or last layer); the core reports the grid's only.
+        else
+          offGridOn += where == CGAL::ON_BOUNDARY;
       }
+  if (r.hull.dimension == 3)
+    EXPECT_EQ(offGridOn, 0) << "centres off the grid on H";
   EXPECT_EQ(outside, 0) << "object centres outside H";
   EXPECT_EQ(inside, 0) << "background centres inside H";
   EXPECT_EQ(wrongOn, 0) << "centres on H reported or marked wrong";
