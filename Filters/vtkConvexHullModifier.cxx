@@ -645,6 +645,18 @@ int vtkConvexHullModifier::Execute(vtkInformationVector** inputVector,
                   << (o.failure().empty() ? "" : ": " + o.failure()) << ".");
     return 0;
   }
+  // A complete H that misses something (a topology it could not give, lost holes not cut)
+  // says so in its failure text: warned, never silent.
+  long noted = -1, notes = 0;
+  for (std::size_t k = 0; k < objects.size(); ++k)
+    if (objects[k].complete() && !objects[k].failure().empty())
+    {
+      noted = noted < 0 ? static_cast<long>(k) : noted;
+      ++notes;
+    }
+  if (noted >= 0)
+    vtkWarningMacro(<< notes << " object(s) with a note, the first object " << noted << ": "
+                    << objects[static_cast<std::size_t>(noted)].failure() << ".");
   return 1;
 }
 

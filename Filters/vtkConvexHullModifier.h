@@ -72,9 +72,10 @@
  * BackgroundCentresOnSurface). Pixels touching only at a corner are kept in one polygon, the two
  * other centres of their square on its boundary or outside, so no boundary pinches. A noisy 2D
  * image gives deeply nested rings (one region per group and level: 512^2 pixels of 50 % noise
- * take about 7 s). In 3D an object that is a single voxel or a row has no polyhedron (Separates 0,
- * error). Inputs full of voxels touching along edges and at corners (random noise, porous
- * blobs) separate; the pressing-in of large real objects can take minutes.
+ * take about 7 s). In 3D a single voxel or a row becomes a lattice triangle in its plane and
+ * H its prism (Separates 1); a segment in no plane of the grid's axes has no polyhedron. Inputs
+ * full of voxels touching along edges and at corners (random noise, porous blobs) separate; the
+ * pressing-in of large real objects can take minutes.
  *
  * Under MPI (ParaView running the filter on N ranks, one piece each) H is the 1-rank H, output
  * once by rank 0 (from the extreme vertices of every rank's voxels), and port 1 gives every
