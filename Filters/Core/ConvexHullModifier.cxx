@@ -1838,6 +1838,16 @@ bool tryPrisms(Context& ctx,
   return false;
 }
 
+/// The shells of H other than shell s, as one mesh.
+LatticeMesh restOfH(const std::vector<Shell>& shells, std::size_t s)
+{
+  LatticeMesh rest;
+  for (std::size_t o = 0; o < shells.size(); ++o)
+    if (o != s)
+      rest.append(shells[o].mesh, false);
+  return rest;
+}
+
 /// Joins the shell to the rest of H by one of the prisms between the `count` nearest empty
 /// triangles on each side of the crossing (see prismsAt for `tried`); false when none joins.
 bool joinAtCrossing(Context& ctx,
@@ -1849,10 +1859,7 @@ bool joinAtCrossing(Context& ctx,
   LatticeMesh& surface,
   std::vector<std::uint8_t>& where)
 {
-  LatticeMesh rest;
-  for (std::size_t o = 0; o < shells.size(); ++o)
-    if (o != s)
-      rest.append(shells[o].mesh, false);
+  const LatticeMesh rest = restOfH(shells, s);
   return tryPrisms(ctx,
     prismsAt(shells[s].mesh, rest, crossing, count, tried),
     shells[s].volume < 0,
@@ -1971,10 +1978,7 @@ bool joinByChain(Context& ctx,
   LatticeMesh& surface,
   std::vector<std::uint8_t>& where)
 {
-  LatticeMesh rest;
-  for (std::size_t o = 0; o < shells.size(); ++o)
-    if (o != s)
-      rest.append(shells[o].mesh, false);
+  const LatticeMesh rest = restOfH(shells, s);
   const auto first = emptyTrianglesNear(shells[s].mesh, crossing, kTrianglesNear);
   const auto second = emptyTrianglesNear(rest, crossing, kTrianglesNear);
   const std::vector<LatticePoint> c = chainCorners(where, ctx.objects.dims(), crossing);
