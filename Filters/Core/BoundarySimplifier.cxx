@@ -12,6 +12,7 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
+#include <limits>
 #include <mutex>
 
 namespace vbr
@@ -774,6 +775,29 @@ bool simplifiable(const Mesh& mesh)
   return true;
 }
 
+/// The input returned unchanged, with its own distances: the triangles' bound, and the
+/// surfels' measured as at the start of a simplification (infinite when the input is no
+/// triangle mesh CGAL can hold).
+SimplifiedSurface unsimplified(const BitVolume& object,
+  const TriangleSurface& input,
+  Mesh mesh,
+  const SimplifyOptions& options,
+  const Execution& exec)
+{
+  SimplifiedSurface out;
+  out.surface = input;
+  out.surfaceDistance = maximumTriangleDistanceToSurfels(object, input);
+  out.surfelDistance = std::numeric_limits<double>::infinity();
+  if (mesh.number_of_faces() == 0)
+    return out;
+  const Simplifier state(object, mesh, options.distance, exec);
+  if (state.aborted() || exec.stopRequested())
+    out.aborted = true;
+  else
+    out.surfelDistance = state.surfelDistance();
+  return out;
+}
+
 } // namespace
 
 SimplifiedSurface simplifyBoundary(const BitVolume& object,
@@ -785,14 +809,15 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
   out.surface = input;
   Mesh mesh = meshOf(input);
   if (!simplifiable(mesh))
-    return out;
+    return unsimplified(object, input, mesh, options, exec);
   Simplifier state(object, mesh, options.distance, exec);
   ApplyVisitor visitor;
   visitor.state = &state;
   visitor.collapses = &out.collapses;
   SMS::edge_collapse(
     mesh,
-    [](const auto&, const auto&, const auto&, const auto&) { return false; },
+    // after an abort, CGAL would otherwise still visit every edge
+    [&state](const auto&, const auto&, const auto&, const auto&) { return state.aborted(); },
     CGAL::parameters::filter(AcceptFilter{ &state })
       .visitor(visitor)
       .get_cost(SMS::LindstromTurk_cost<Mesh>())
@@ -805,7 +830,7 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
   out.surfelDistance = state.surfelDistance();
   if (!CGAL::is_valid_polygon_mesh(mesh) || !CGAL::is_closed(mesh) ||
     CGAL::Polygon_mesh_processing::does_self_intersect(mesh))
-    return out;
+    return unsimplified(object, input, meshOf(input), options, exec);
   out.surface = surfaceOf(mesh);
   out.simplified = true;
   out.surfaceDistance = maximumTriangleDistanceToSurfels(object, out.surface);

@@ -822,6 +822,36 @@ TEST(FaceOctreeBoundarySimplifier, TighterBound)
   checkSimplified("ball48 within 1.5", shapeVolume(solids()[0], 48), true, 2, 1.5);
 }
 
+/// An input the simplifier refuses comes back unchanged with its own distances: upper bounds
+/// of the measured ones both ways (the surfels' side infinite when CGAL cannot hold it).
+TEST(FaceOctreeBoundarySimplifier, RefusedInputKeepsItsOwnDistances)
+{
+  const BitVolume v = shapeVolume(solids()[0], 32);
+  const vbr::TriangleSurface closed = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
+  const std::set<Int3> pruned = prunedVoxelSet(v);
+  vbr::TriangleSurface open = closed; // not closed: refused, but a mesh CGAL holds
+  open.triangles.pop_back();
+  vbr::TriangleSurface twice = closed; // a triangle twice: not a manifold mesh
+  twice.triangles.push_back(twice.triangles.front());
+  for (const vbr::TriangleSurface* in : { &open, &twice })
+  {
+    const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, *in);
+    EXPECT_FALSE(out.simplified);
+    EXPECT_FALSE(out.aborted);
+    EXPECT_EQ(out.surface.triangles, in->triangles);
+    double there = 0, back = 0;
+    hausdorff(meshOf(*in), v, pruned, there, back);
+    EXPECT_GT(there, 0.5); // a surface measured, not a default
+    EXPECT_LE(there, out.surfaceDistance + 1e-9);
+    EXPECT_LE(out.surfaceDistance, there + 0.1);
+    EXPECT_LE(back, out.surfelDistance + 1e-9);
+    if (in == &open)
+      EXPECT_LE(out.surfelDistance, std::sqrt(3.0));
+    else
+      EXPECT_TRUE(std::isinf(out.surfelDistance));
+  }
+}
+
 TEST(FaceOctreeBoundarySimplifier, StopsWhenAskedAndReturnsItsInput)
 {
   const BitVolume v = shapeVolume(solids()[0], 32);
