@@ -327,7 +327,9 @@ public:
   }
 
   bool accept(VertexId v0, VertexId v1, const Point3& placed);
-  void collapsed();
+  /// Applies the accepted collapse of (v0, v1); false (nothing applied) when the last
+  /// accepted collapse was another edge's.
+  bool collapsed(VertexId v0, VertexId v1);
   bool stopped() { return !this->Poll.tick(); }
   bool aborted() const { return this->Poll.stopped(); }
   void at(double fraction) { this->Poll.at(fraction); }
@@ -360,6 +362,7 @@ private:
   }
   void assignSamples(const BitVolume& object, const Execution& exec);
   FaceId nearestFace(const Vec3& p, double halfWidth, double& best2);
+  FaceId nearestFaceAnywhere(const Vec3& p) const;
   bool newStar(VertexId v0, VertexId v1, const Point3& placed);
   bool reassignSamples();
   bool placePiece(const SurfelPiece& piece);
@@ -385,6 +388,7 @@ private:
   std::vector<StarFace> Star;
   std::vector<std::pair<std::int32_t, std::size_t>> Moves;    // piece, index in Star
   std::vector<std::pair<SurfelPiece, std::size_t>> NewPieces; // quarters of moved pieces
+  std::array<VertexId, 2> Accepted;                           // the edge they are for
 };
 
 FaceId Simplifier::nearestFace(const Vec3& p, double halfWidth, double& best2)
@@ -408,9 +412,26 @@ FaceId Simplifier::nearestFace(const Vec3& p, double halfWidth, double& best2)
   return nearest;
 }
 
+/// The nearest face of all (for the rare point no face is near).
+FaceId Simplifier::nearestFaceAnywhere(const Vec3& p) const
+{
+  FaceId nearest;
+  double best2 = std::numeric_limits<double>::infinity();
+  for (FaceId f : this->M.faces())
+  {
+    const Corners t = this->triangleOf(f);
+    const double d2 = squaredDistanceToTriangle(p, t[0], t[1], t[2]);
+    if (d2 <= best2)
+      best2 = d2, nearest = f;
+  }
+  return nearest;
+}
+
 /// Each surfel of an unpruned voxel, quartered until each piece's centre is within d minus
-/// its half diagonal of its nearest triangle; a piece of the smallest side still farther keeps
-/// its input distance as its limit.
+/// its half diagonal of its nearest triangle; a piece of the smallest side still farther, or
+/// whose smallest pieces would all be, keeps its input distance as its limit; one with no
+/// triangle within 2.5 has no limit. Stops early when the caller asks (the state is then
+/// dropped).
 void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
 {
   const std::vector<SurfelPiece> surfels = unprunedSurfels(object, this->Surfels);
@@ -422,6 +443,7 @@ void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
         std::vector<std::pair<SurfelPiece, FaceId>> local;
         std::vector<SurfelPiece> stack;
         for (std::int64_t i = begin; i < end; ++i)
+        {
           for (stack.assign(1, surfels[std::size_t(i)]); !stack.empty();)
           {
             SurfelPiece piece = stack.back();
@@ -431,9 +453,20 @@ void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
             if (f == FaceId())
               f = this->nearestFace(piece.centre, 2.5, d2);
             if (f == FaceId())
-              continue; // nothing within 2.5: no triangle to keep near it
+            {
+              // an input farther than allowed: kept on its nearest triangle, any triangle
+              // will do, and its distance (beyond 2.5) is reported
+              f = this->nearestFaceAnywhere(piece.centre);
+              piece.limit = std::numeric_limits<double>::infinity();
+              local.emplace_back(piece, f);
+              continue;
+            }
             const double d = std::sqrt(d2);
-            if (d + piece.halfDiagonal() > this->Reach && piece.side > SmallestSide)
+            // the smallest pieces inside this one have centres within its half diagonal
+            // less theirs: none passes when even the nearest would be too far
+            const double smallest = SmallestSide * std::sqrt(0.5);
+            const bool somePasses = d - piece.halfDiagonal() + 2 * smallest <= this->Reach;
+            if (d + piece.halfDiagonal() > this->Reach && piece.side > SmallestSide && somePasses)
             {
               for (const SurfelPiece& q : piece.quarters())
                 stack.push_back(q);
@@ -442,6 +475,9 @@ void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
             piece.limit = std::max(this->Reach - piece.halfDiagonal(), d);
             local.emplace_back(piece, f);
           }
+          if (i % 64 == 0 && exec.stopRequested())
+            break;
+        }
         const std::lock_guard<std::mutex> lock(guard);
         for (const auto& [piece, f] : local)
         {
@@ -619,11 +655,15 @@ bool Simplifier::accept(VertexId v0, VertexId v1, const Point3& placed)
   for (const StarFace& s : this->Star)
     if (!withinReach(s.t, this->Reach, this->Surfels))
       return false;
+  this->Accepted = { v0, v1 };
   return true;
 }
 
-void Simplifier::collapsed()
+bool Simplifier::collapsed(VertexId v0, VertexId v1)
 {
+  if (this->Accepted != std::array<VertexId, 2>{ v0, v1 })
+    return false;
+  this->Accepted = {};
   for (FaceId f : this->OldStar)
     this->SamplesOf[std::size_t(f)].clear();
   for (const auto& [piece, to] : this->Moves)
@@ -639,6 +679,7 @@ void Simplifier::collapsed()
     box(this->triangleOf(s.face), b[0], b[1]);
     this->Grid.insert(s.face, b[0], b[1], [this](FaceId f) { return this->M.is_removed(f); });
   }
+  return true;
 }
 
 double Simplifier::surfelDistance() const
@@ -677,10 +718,12 @@ struct ApplyVisitor : SMS::Edge_collapse_visitor_base<Mesh>
 {
   Simplifier* state;
   std::size_t* collapses;
+  bool* unchecked; ///< a collapse that was not the one accepted last
 
-  void OnCollapsed(const Profile&, const VertexId&)
+  void OnCollapsed(const Profile& profile, const VertexId&)
   {
-    this->state->collapsed();
+    if (!this->state->collapsed(profile.v0(), profile.v1()))
+      *this->unchecked = true;
     ++*this->collapses;
   }
   void OnSelected(const Profile&, const boost::optional<FT>&, size_type initial, size_type current)
@@ -811,13 +854,21 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
   if (!simplifiable(mesh))
     return unsimplified(object, input, mesh, options, exec);
   Simplifier state(object, mesh, options.distance, exec);
+  if (exec.stopRequested())
+  {
+    out.aborted = true;
+    return out;
+  }
+  bool unchecked = false;
   ApplyVisitor visitor;
   visitor.state = &state;
   visitor.collapses = &out.collapses;
+  visitor.unchecked = &unchecked;
   SMS::edge_collapse(
     mesh,
     // after an abort, CGAL would otherwise still visit every edge
-    [&state](const auto&, const auto&, const auto&, const auto&) { return state.aborted(); },
+    [&](const auto&, const auto&, const auto&, const auto&)
+    { return state.aborted() || unchecked; },
     CGAL::parameters::filter(AcceptFilter{ &state })
       .visitor(visitor)
       .get_cost(SMS::LindstromTurk_cost<Mesh>())
@@ -827,6 +878,8 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
     out.aborted = true;
     return out;
   }
+  if (unchecked) // the samples no longer follow the mesh: nothing after it is proven
+    return unsimplified(object, input, meshOf(input), options, exec);
   out.surfelDistance = state.surfelDistance();
   if (!CGAL::is_valid_polygon_mesh(mesh) || !CGAL::is_closed(mesh) ||
     CGAL::Polygon_mesh_processing::does_self_intersect(mesh))

@@ -18,7 +18,11 @@
 //      outside the star keep theirs. So every surfel point stays within d of the surface,
 //      except where the input itself is farther: a piece of the smallest side that no
 //      triangle keeps within d at the start keeps its input distance as its limit (the
-//      surface there stays within that distance plus 1/8 voxel's half diagonal, 0.09). The
+//      surface there stays within that distance plus 1/8 voxel's half diagonal, 0.09), and so
+//      does, whole, a larger piece none of whose smallest pieces could be kept within d (the
+//      surface there stays within its centre's input distance plus its half diagonal, the
+//      input's own bound for it); a piece with no triangle within 2.5 (an input farther than
+//      the precondition) has no limit and its distance is reported. The
 //      surfels of pruned voxels (no interior corner: DeformedModel.h's one-voxel crests,
 //      which the input already misses) are left out;
 //  (c) no self-intersection: each new triangle is tested with exact predicates against the

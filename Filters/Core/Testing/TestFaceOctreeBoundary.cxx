@@ -856,21 +856,33 @@ TEST(FaceOctreeBoundarySimplifier, StopsWhenAskedAndReturnsItsInput)
 {
   const BitVolume v = shapeVolume(solids()[0], 32);
   const vbr::TriangleSurface in = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
-  int polls = 0;
-  std::vector<double> reported;
-  vbr::Execution exec;
-  exec.aborted = [&] { return ++polls > 20; };
-  exec.progress = [&](double f)
+  int total = 0; // the polls of a whole run
+  vbr::Execution counting;
+  counting.aborted = [&] { return ++total < 0; };
+  ASSERT_TRUE(vbr::simplifyBoundary(v, in, {}, counting).simplified);
+  // asked while the surfels are assigned, then during the collapses (most polls)
+  for (int asked : { 2, total - total / 4 })
   {
-    reported.push_back(f);
-    return true;
-  };
-  const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, {}, exec);
-  EXPECT_TRUE(out.aborted);
-  EXPECT_FALSE(out.simplified);
-  EXPECT_EQ(out.surface.triangles, in.triangles);
-  EXPECT_FALSE(reported.empty());
-  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+    SCOPED_TRACE(asked);
+    int polls = 0;
+    std::vector<double> reported;
+    vbr::Execution exec;
+    exec.aborted = [&] { return ++polls > asked; };
+    exec.progress = [&](double f)
+    {
+      reported.push_back(f);
+      return true;
+    };
+    const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, {}, exec);
+    EXPECT_TRUE(out.aborted);
+    EXPECT_FALSE(out.simplified);
+    EXPECT_EQ(out.surface.triangles, in.triangles);
+    std::cout << "asked at poll " << asked << " of " << total << ": " << out.collapses
+              << " collapses\n";
+    EXPECT_EQ(out.collapses == 0, asked == 2);
+    EXPECT_EQ(reported.empty(), asked == 2);
+    EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+  }
 }
 
 TEST(DeformedModel, QuadrilateralsArePrunedNet)
