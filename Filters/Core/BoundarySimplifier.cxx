@@ -175,10 +175,16 @@ class FaceGrid
 public:
   static constexpr double CellSize = 4.0;
 
-  void reset(const std::array<std::int32_t, 3>& dims)
+  /// Cells over the box [lo, hi] (the surface's, so that a small object in a large grid
+  /// costs little) with a margin; points outside fall in the border cells, which keeps the
+  /// search exact, only slower there.
+  void reset(const Vec3& lo, const Vec3& hi)
   {
     for (int d = 0; d < 3; ++d)
-      this->Cells[d] = std::int32_t(std::ceil((dims[d] + 2) / CellSize)) + 1;
+    {
+      this->Origin[d] = std::floor(lo[d]) - 2;
+      this->Cells[d] = std::int32_t(std::ceil((hi[d] - this->Origin[d] + 2) / CellSize)) + 1;
+    }
     this->Faces.assign(std::size_t(this->Cells[0]) * this->Cells[1] * this->Cells[2], {});
   }
 
@@ -219,9 +225,11 @@ public:
 private:
   std::int32_t cell(double x, int d) const
   {
-    return std::clamp(std::int32_t(std::floor((x + 1) / CellSize)), 0, this->Cells[d] - 1);
+    const double at = std::floor((x - this->Origin[d]) / CellSize);
+    return std::int32_t(std::clamp(at, 0.0, double(this->Cells[d] - 1)));
   }
 
+  double Origin[3] = { 0, 0, 0 };
   std::int32_t Cells[3] = { 1, 1, 1 };
   std::vector<std::vector<FaceId>> Faces;
 };
@@ -313,7 +321,19 @@ public:
     , Reach(std::min(distance, 1.99))
     , Poll(exec, 0.1, 0.95)
   {
-    this->Grid.reset(object.dims());
+    Vec3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };
+    bool first = true;
+    for (VertexId v : mesh.vertices())
+    {
+      const Vec3 p = vec(mesh.point(v));
+      for (int d = 0; d < 3; ++d)
+      {
+        lo[d] = first ? p[d] : std::min(lo[d], p[d]);
+        hi[d] = first ? p[d] : std::max(hi[d], p[d]);
+      }
+      first = false;
+    }
+    this->Grid.reset(lo, hi);
     this->Stamp.assign(mesh.number_of_faces(), 0);
     this->Boxes.resize(mesh.number_of_faces());
     this->SamplesOf.assign(mesh.number_of_faces(), {});
