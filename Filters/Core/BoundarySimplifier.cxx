@@ -1,6 +1,7 @@
 #include "BoundarySimplifier.h"
 
 #include "FaceOctreeBoundary.h"
+#include "Geometry.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -38,14 +39,6 @@ Vec3 vec(const Point3& p)
 double dot(const Vec3& a, const Vec3& b)
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 sub(const Vec3& a, const Vec3& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-Vec3 cross(const Vec3& a, const Vec3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
 }
 
 /// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
@@ -98,17 +91,10 @@ public:
 
   bool at(std::int32_t i, std::int32_t j, std::int32_t k) const
   {
-    const auto& n = this->Object.dims();
-    return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] &&
-      this->Object.get(i, j, k);
+    return inObject(this->Object, i, j, k);
   }
 
-  double operator()(const Vec3& p) const
-  {
-    return distanceToNearestFace(p,
-      [this](std::int32_t i, std::int32_t j, std::int32_t k, int a)
-      { return this->at(i, j, k) != this->at(i + (a == 0), j + (a == 1), k + (a == 2)); });
-  }
+  double operator()(const Vec3& p) const { return distanceToSurfels(this->Object, p); }
 
 private:
   const BitVolume& Object;
@@ -388,10 +374,7 @@ private:
   bool placePiece(const SurfelPiece& piece);
 
   bool freeOfIntersections();
-  bool intersects(const StarFace& s,
-    FaceId f,
-    const Corners& t,
-    const std::array<VertexId, 3>& ids) const;
+  bool intersects(const StarFace& s, const Corners& t, const std::array<VertexId, 3>& ids) const;
 
   SurfelDistance Surfels;
   Mesh& M;
@@ -592,10 +575,9 @@ bool Simplifier::reassignSamples()
   return true;
 }
 
-/// Whether new triangle s meets triangle t (of face f, or of another new triangle when f is
-/// null) anywhere but their common vertices and edge.
+/// Whether new triangle s meets triangle t (of a face, or another new triangle) with corner
+/// ids `ids` anywhere but their common vertices and edge.
 bool Simplifier::intersects(const StarFace& s,
-  FaceId,
   const Corners& t,
   const std::array<VertexId, 3>& ids) const
 {
@@ -632,7 +614,7 @@ bool Simplifier::freeOfIntersections()
   {
     const StarFace& s = this->Star[i];
     for (std::size_t j = i + 1; j < this->Star.size(); ++j)
-      if (this->intersects(s, FaceId(), this->Star[j].t, this->Star[j].ids))
+      if (this->intersects(s, this->Star[j].t, this->Star[j].ids))
         return false;
     if (++this->Round == 0)
       std::fill(this->Stamp.begin(), this->Stamp.end(), 0), this->Round = 1;
@@ -658,7 +640,7 @@ bool Simplifier::freeOfIntersections()
           if (apart)
             continue;
           const Corners t = this->triangleOf(f);
-          hit = this->intersects(s, f, t, this->idsOf(f));
+          hit = this->intersects(s, t, this->idsOf(f));
         }
       });
     if (hit)
