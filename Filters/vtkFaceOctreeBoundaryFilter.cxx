@@ -101,11 +101,9 @@ bool simplifyObject(const vbr::BitVolume& voxels,
   if (out.aborted)
     return false;
   if (!out.simplified)
-  {
-    stats.simplifyFailed = true;
-    return true;
-  }
-  mesh = boundaryOf(out.surface);
+    stats.simplifyFailed = true; // the input kept, with its own distances
+  else
+    mesh = boundaryOf(out.surface);
   stats.maximumDistance = std::max(stats.maximumDistance, out.surfaceDistance);
   stats.surfelDistance = std::max(stats.surfelDistance, out.surfelDistance);
   return true;
@@ -378,7 +376,7 @@ bool appendObject(const vbr::vtk::Selected& object,
     return false;
   stats.polygons += vtkIdType(mesh.polygons);
   stats.triangles += vtkIdType(mesh.triangles);
-  if (!simplify || stats.simplifyFailed)
+  if (!simplify)
     stats.maximumDistance =
       std::max(stats.maximumDistance, vbr::maximumDistanceToSurfels(voxels, mesh.points, exec));
   builder.appendMesh(mesh, object, stats.faceNodes);
@@ -614,6 +612,11 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
                        "mesh free of degenerate triangles, or the simplified surface failed "
                        "its final checks: closed, manifold, free of self-intersections): the "
                        "unsimplified triangles are output.");
+  const double bound = std::min(each.simplification.distance, 1.99);
+  if (each.simplify && stats.surfelDistance > bound + 1e-9)
+    vtkWarningMacro(<< "Some surfels stay " << stats.surfelDistance
+                    << " voxels from the surface, beyond SimplificationDistance (" << bound
+                    << " voxels): the unsimplified surface is already that far there.");
   writeStatistics(stats, each.simplify, output->GetFieldData());
   vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   return 1;

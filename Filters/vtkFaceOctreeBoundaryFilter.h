@@ -215,7 +215,12 @@ public:
    * of self-intersections (checked at the end with CGAL; if a check fails, a warning and
    * the unsimplified triangles). MaximumDistance is then an upper bound (within 0.02 voxel)
    * of the largest distance from the surface to the surfels, not only from its vertices,
-   * and the field `MaximumSurfelDistance` bounds the other side. Ignored in the
+   * and the field `MaximumSurfelDistance` bounds the other side (both measured on the
+   * unsimplified triangles of an object that kept them). Exception: where the unsimplified
+   * surface is itself farther from a surfel than SimplificationDistance (it reaches about
+   * 1.56 voxels), that surfel may stay farther (at most its input distance plus 0.09 voxel;
+   * measured: distance 1.0 gives MaximumSurfelDistance 1.38); a warning says so whenever
+   * MaximumSurfelDistance exceeds SimplificationDistance. Ignored in the
    * Quadrilaterals mode; not supported in Labels mode (a warning). Off by default: it is
    * serial, 20 to 60 times the filter's own time, slower than flying edges with smoothing and
    * quadric decimation, which keep about as few triangles at that distance (README).

@@ -1,6 +1,7 @@
 #include "BoundarySimplifier.h"
 
 #include "FaceOctreeBoundary.h"
+#include "Geometry.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -12,6 +13,7 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
+#include <limits>
 #include <mutex>
 
 namespace vbr
@@ -37,14 +39,6 @@ Vec3 vec(const Point3& p)
 double dot(const Vec3& a, const Vec3& b)
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 sub(const Vec3& a, const Vec3& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-Vec3 cross(const Vec3& a, const Vec3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
 }
 
 /// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
@@ -97,17 +91,10 @@ public:
 
   bool at(std::int32_t i, std::int32_t j, std::int32_t k) const
   {
-    const auto& n = this->Object.dims();
-    return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] &&
-      this->Object.get(i, j, k);
+    return inObject(this->Object, i, j, k);
   }
 
-  double operator()(const Vec3& p) const
-  {
-    return distanceToNearestFace(p,
-      [this](std::int32_t i, std::int32_t j, std::int32_t k, int a)
-      { return this->at(i, j, k) != this->at(i + (a == 0), j + (a == 1), k + (a == 2)); });
-  }
+  double operator()(const Vec3& p) const { return distanceToSurfels(this->Object, p); }
 
 private:
   const BitVolume& Object;
@@ -174,10 +161,16 @@ class FaceGrid
 public:
   static constexpr double CellSize = 4.0;
 
-  void reset(const std::array<std::int32_t, 3>& dims)
+  /// Cells over the box [lo, hi] (the surface's, so that a small object in a large grid
+  /// costs little) with a margin; points outside fall in the border cells, which keeps the
+  /// search exact, only slower there.
+  void reset(const Vec3& lo, const Vec3& hi)
   {
     for (int d = 0; d < 3; ++d)
-      this->Cells[d] = std::int32_t(std::ceil((dims[d] + 2) / CellSize)) + 1;
+    {
+      this->Origin[d] = std::floor(lo[d]) - 2;
+      this->Cells[d] = std::int32_t(std::ceil((hi[d] - this->Origin[d] + 2) / CellSize)) + 1;
+    }
     this->Faces.assign(std::size_t(this->Cells[0]) * this->Cells[1] * this->Cells[2], {});
   }
 
@@ -218,9 +211,11 @@ public:
 private:
   std::int32_t cell(double x, int d) const
   {
-    return std::clamp(std::int32_t(std::floor((x + 1) / CellSize)), 0, this->Cells[d] - 1);
+    const double at = std::floor((x - this->Origin[d]) / CellSize);
+    return std::int32_t(std::clamp(at, 0.0, double(this->Cells[d] - 1)));
   }
 
+  double Origin[3] = { 0, 0, 0 };
   std::int32_t Cells[3] = { 1, 1, 1 };
   std::vector<std::vector<FaceId>> Faces;
 };
@@ -312,7 +307,19 @@ public:
     , Reach(std::min(distance, 1.99))
     , Poll(exec, 0.1, 0.95)
   {
-    this->Grid.reset(object.dims());
+    Vec3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };
+    bool first = true;
+    for (VertexId v : mesh.vertices())
+    {
+      const Vec3 p = vec(mesh.point(v));
+      for (int d = 0; d < 3; ++d)
+      {
+        lo[d] = first ? p[d] : std::min(lo[d], p[d]);
+        hi[d] = first ? p[d] : std::max(hi[d], p[d]);
+      }
+      first = false;
+    }
+    this->Grid.reset(lo, hi);
     this->Stamp.assign(mesh.number_of_faces(), 0);
     this->Boxes.resize(mesh.number_of_faces());
     this->SamplesOf.assign(mesh.number_of_faces(), {});
@@ -326,7 +333,9 @@ public:
   }
 
   bool accept(VertexId v0, VertexId v1, const Point3& placed);
-  void collapsed();
+  /// Applies the accepted collapse of (v0, v1); false (nothing applied) when the last
+  /// accepted collapse was another edge's.
+  bool collapsed(VertexId v0, VertexId v1);
   bool stopped() { return !this->Poll.tick(); }
   bool aborted() const { return this->Poll.stopped(); }
   void at(double fraction) { this->Poll.at(fraction); }
@@ -359,15 +368,13 @@ private:
   }
   void assignSamples(const BitVolume& object, const Execution& exec);
   FaceId nearestFace(const Vec3& p, double halfWidth, double& best2);
+  FaceId nearestFaceAnywhere(const Vec3& p) const;
   bool newStar(VertexId v0, VertexId v1, const Point3& placed);
   bool reassignSamples();
   bool placePiece(const SurfelPiece& piece);
 
   bool freeOfIntersections();
-  bool intersects(const StarFace& s,
-    FaceId f,
-    const Corners& t,
-    const std::array<VertexId, 3>& ids) const;
+  bool intersects(const StarFace& s, const Corners& t, const std::array<VertexId, 3>& ids) const;
 
   SurfelDistance Surfels;
   Mesh& M;
@@ -384,6 +391,7 @@ private:
   std::vector<StarFace> Star;
   std::vector<std::pair<std::int32_t, std::size_t>> Moves;    // piece, index in Star
   std::vector<std::pair<SurfelPiece, std::size_t>> NewPieces; // quarters of moved pieces
+  std::array<VertexId, 2> Accepted;                           // the edge they are for
 };
 
 FaceId Simplifier::nearestFace(const Vec3& p, double halfWidth, double& best2)
@@ -407,9 +415,26 @@ FaceId Simplifier::nearestFace(const Vec3& p, double halfWidth, double& best2)
   return nearest;
 }
 
+/// The nearest face of all (for the rare point no face is near).
+FaceId Simplifier::nearestFaceAnywhere(const Vec3& p) const
+{
+  FaceId nearest;
+  double best2 = std::numeric_limits<double>::infinity();
+  for (FaceId f : this->M.faces())
+  {
+    const Corners t = this->triangleOf(f);
+    const double d2 = squaredDistanceToTriangle(p, t[0], t[1], t[2]);
+    if (d2 <= best2)
+      best2 = d2, nearest = f;
+  }
+  return nearest;
+}
+
 /// Each surfel of an unpruned voxel, quartered until each piece's centre is within d minus
-/// its half diagonal of its nearest triangle; a piece of the smallest side still farther keeps
-/// its input distance as its limit.
+/// its half diagonal of its nearest triangle; a piece of the smallest side still farther, or
+/// whose smallest pieces would all be, keeps its input distance as its limit; one with no
+/// triangle within 2.5 has no limit. Stops early when the caller asks (the state is then
+/// dropped).
 void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
 {
   const std::vector<SurfelPiece> surfels = unprunedSurfels(object, this->Surfels);
@@ -421,6 +446,7 @@ void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
         std::vector<std::pair<SurfelPiece, FaceId>> local;
         std::vector<SurfelPiece> stack;
         for (std::int64_t i = begin; i < end; ++i)
+        {
           for (stack.assign(1, surfels[std::size_t(i)]); !stack.empty();)
           {
             SurfelPiece piece = stack.back();
@@ -430,9 +456,20 @@ void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
             if (f == FaceId())
               f = this->nearestFace(piece.centre, 2.5, d2);
             if (f == FaceId())
-              continue; // nothing within 2.5: no triangle to keep near it
+            {
+              // an input farther than allowed: kept on its nearest triangle, any triangle
+              // will do, and its distance (beyond 2.5) is reported
+              f = this->nearestFaceAnywhere(piece.centre);
+              piece.limit = std::numeric_limits<double>::infinity();
+              local.emplace_back(piece, f);
+              continue;
+            }
             const double d = std::sqrt(d2);
-            if (d + piece.halfDiagonal() > this->Reach && piece.side > SmallestSide)
+            // the smallest pieces inside this one have centres within its half diagonal
+            // less theirs: none passes when even the nearest would be too far
+            const double smallest = SmallestSide * std::sqrt(0.5);
+            const bool somePasses = d - piece.halfDiagonal() + 2 * smallest <= this->Reach;
+            if (d + piece.halfDiagonal() > this->Reach && piece.side > SmallestSide && somePasses)
             {
               for (const SurfelPiece& q : piece.quarters())
                 stack.push_back(q);
@@ -441,6 +478,9 @@ void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
             piece.limit = std::max(this->Reach - piece.halfDiagonal(), d);
             local.emplace_back(piece, f);
           }
+          if (i % 64 == 0 && exec.stopRequested())
+            break;
+        }
         const std::lock_guard<std::mutex> lock(guard);
         for (const auto& [piece, f] : local)
         {
@@ -535,10 +575,9 @@ bool Simplifier::reassignSamples()
   return true;
 }
 
-/// Whether new triangle s meets triangle t (of face f, or of another new triangle when f is
-/// null) anywhere but their common vertices and edge.
+/// Whether new triangle s meets triangle t (of a face, or another new triangle) with corner
+/// ids `ids` anywhere but their common vertices and edge.
 bool Simplifier::intersects(const StarFace& s,
-  FaceId,
   const Corners& t,
   const std::array<VertexId, 3>& ids) const
 {
@@ -575,7 +614,7 @@ bool Simplifier::freeOfIntersections()
   {
     const StarFace& s = this->Star[i];
     for (std::size_t j = i + 1; j < this->Star.size(); ++j)
-      if (this->intersects(s, FaceId(), this->Star[j].t, this->Star[j].ids))
+      if (this->intersects(s, this->Star[j].t, this->Star[j].ids))
         return false;
     if (++this->Round == 0)
       std::fill(this->Stamp.begin(), this->Stamp.end(), 0), this->Round = 1;
@@ -601,7 +640,7 @@ bool Simplifier::freeOfIntersections()
           if (apart)
             continue;
           const Corners t = this->triangleOf(f);
-          hit = this->intersects(s, f, t, this->idsOf(f));
+          hit = this->intersects(s, t, this->idsOf(f));
         }
       });
     if (hit)
@@ -618,11 +657,15 @@ bool Simplifier::accept(VertexId v0, VertexId v1, const Point3& placed)
   for (const StarFace& s : this->Star)
     if (!withinReach(s.t, this->Reach, this->Surfels))
       return false;
+  this->Accepted = { v0, v1 };
   return true;
 }
 
-void Simplifier::collapsed()
+bool Simplifier::collapsed(VertexId v0, VertexId v1)
 {
+  if (this->Accepted != std::array<VertexId, 2>{ v0, v1 })
+    return false;
+  this->Accepted = {};
   for (FaceId f : this->OldStar)
     this->SamplesOf[std::size_t(f)].clear();
   for (const auto& [piece, to] : this->Moves)
@@ -638,6 +681,7 @@ void Simplifier::collapsed()
     box(this->triangleOf(s.face), b[0], b[1]);
     this->Grid.insert(s.face, b[0], b[1], [this](FaceId f) { return this->M.is_removed(f); });
   }
+  return true;
 }
 
 double Simplifier::surfelDistance() const
@@ -676,10 +720,12 @@ struct ApplyVisitor : SMS::Edge_collapse_visitor_base<Mesh>
 {
   Simplifier* state;
   std::size_t* collapses;
+  bool* unchecked; ///< a collapse that was not the one accepted last
 
-  void OnCollapsed(const Profile&, const VertexId&)
+  void OnCollapsed(const Profile& profile, const VertexId&)
   {
-    this->state->collapsed();
+    if (!this->state->collapsed(profile.v0(), profile.v1()))
+      *this->unchecked = true;
     ++*this->collapses;
   }
   void OnSelected(const Profile&, const boost::optional<FT>&, size_type initial, size_type current)
@@ -774,6 +820,29 @@ bool simplifiable(const Mesh& mesh)
   return true;
 }
 
+/// The input returned unchanged, with its own distances: the triangles' bound, and the
+/// surfels' measured as at the start of a simplification (infinite when the input is no
+/// triangle mesh CGAL can hold).
+SimplifiedSurface unsimplified(const BitVolume& object,
+  const TriangleSurface& input,
+  Mesh mesh,
+  const SimplifyOptions& options,
+  const Execution& exec)
+{
+  SimplifiedSurface out;
+  out.surface = input;
+  out.surfaceDistance = maximumTriangleDistanceToSurfels(object, input);
+  out.surfelDistance = std::numeric_limits<double>::infinity();
+  if (mesh.number_of_faces() == 0)
+    return out;
+  const Simplifier state(object, mesh, options.distance, exec);
+  if (state.aborted() || exec.stopRequested())
+    out.aborted = true;
+  else
+    out.surfelDistance = state.surfelDistance();
+  return out;
+}
+
 } // namespace
 
 SimplifiedSurface simplifyBoundary(const BitVolume& object,
@@ -785,14 +854,23 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
   out.surface = input;
   Mesh mesh = meshOf(input);
   if (!simplifiable(mesh))
-    return out;
+    return unsimplified(object, input, mesh, options, exec);
   Simplifier state(object, mesh, options.distance, exec);
+  if (exec.stopRequested())
+  {
+    out.aborted = true;
+    return out;
+  }
+  bool unchecked = false;
   ApplyVisitor visitor;
   visitor.state = &state;
   visitor.collapses = &out.collapses;
+  visitor.unchecked = &unchecked;
   SMS::edge_collapse(
     mesh,
-    [](const auto&, const auto&, const auto&, const auto&) { return false; },
+    // after an abort, CGAL would otherwise still visit every edge
+    [&](const auto&, const auto&, const auto&, const auto&)
+    { return state.aborted() || unchecked; },
     CGAL::parameters::filter(AcceptFilter{ &state })
       .visitor(visitor)
       .get_cost(SMS::LindstromTurk_cost<Mesh>())
@@ -802,10 +880,12 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
     out.aborted = true;
     return out;
   }
+  if (unchecked) // the samples no longer follow the mesh: nothing after it is proven
+    return unsimplified(object, input, meshOf(input), options, exec);
   out.surfelDistance = state.surfelDistance();
   if (!CGAL::is_valid_polygon_mesh(mesh) || !CGAL::is_closed(mesh) ||
     CGAL::Polygon_mesh_processing::does_self_intersect(mesh))
-    return out;
+    return unsimplified(object, input, meshOf(input), options, exec);
   out.surface = surfaceOf(mesh);
   out.simplified = true;
   out.surfaceDistance = maximumTriangleDistanceToSurfels(object, out.surface);

@@ -18,7 +18,11 @@
 //      outside the star keep theirs. So every surfel point stays within d of the surface,
 //      except where the input itself is farther: a piece of the smallest side that no
 //      triangle keeps within d at the start keeps its input distance as its limit (the
-//      surface there stays within that distance plus 1/8 voxel's half diagonal, 0.09). The
+//      surface there stays within that distance plus 1/8 voxel's half diagonal, 0.09), and so
+//      does, whole, a larger piece none of whose smallest pieces could be kept within d (the
+//      surface there stays within its centre's input distance plus its half diagonal, the
+//      input's own bound for it); a piece with no triangle within 2.5 (an input farther than
+//      the precondition) has no limit and its distance is reported. The
 //      surfels of pruned voxels (no interior corner: DeformedModel.h's one-voxel crests,
 //      which the input already misses) are left out;
 //  (c) no self-intersection: each new triangle is tested with exact predicates against the
@@ -29,17 +33,18 @@
 //      degenerate nor turn their normal by more than 90 degrees.
 // The topology (closed, manifold, the genus of each component) is kept by CGAL's link
 // condition. The result is checked at the end with Polygon_mesh_processing's
-// does_self_intersect, is_closed and is_valid_polygon_mesh; if a check fails, the input is
-// returned unchanged with `simplified` false.
+// does_self_intersect, is_closed and is_valid_polygon_mesh; if a check fails (or the input
+// is not a closed triangle mesh without degenerate triangles), the input is returned
+// unchanged with `simplified` false and its own distances (those of the returned surface).
 //
 // Distances are in voxel units (voxel i spans [i, i + 1]); d is at most 1.99 (the distance
 // search of FaceOctreeBoundary.h's distanceToNearestFace reaches two voxels).
 //
-// Cost: serial, about 50 to 100 microseconds per collapse (the 128^3 ball: 66,256 -> 412
-// triangles in about 3 s of CPU, 20 to 60 times the unsimplified filter's time and 3 to 4
-// times the time of flying edges, windowed-sinc smoothing and quadric decimation, which keep
-// about as few triangles at that distance: README). So vtkFaceOctreeBoundaryFilter leaves it
-// off by default.
+// Cost: serial, about 50 to 100 microseconds per collapse (the 128^3 ball: 82,220 -> 238
+// triangles in about 3 s of CPU, 20 to 60 times the unsimplified filter's time and 1.9 times
+// the time of flying edges, windowed-sinc smoothing and quadric decimation, which keep 386
+// triangles at that distance, 1.688, in one timed round: README). So
+// vtkFaceOctreeBoundaryFilter leaves it off by default.
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
@@ -71,12 +76,15 @@ struct TriangleSurface
 struct SimplifiedSurface
 {
   TriangleSurface surface;
-  bool simplified = false;    ///< false: the input returned (aborted, or a final check failed)
-  bool aborted = false;       ///< the caller asked to stop
+  bool simplified = false; ///< false: the input returned (aborted, refused, or a final check
+                           ///< failed)
+  bool aborted = false;    ///< the caller asked to stop (the distances are then not measured)
+  /// Both distances are those of the returned surface, the input's when not simplified.
   double surfaceDistance = 0; ///< upper bound (within 0.02) of the surface's distance to surfels
   double surfelDistance = 0;  ///< upper bound of the distance from the surfels of unpruned
                               ///< voxels to the surface (each piece: its centre's distance to
-                              ///< its triangle plus its half diagonal)
+                              ///< its triangle plus its half diagonal); infinite when the input
+                              ///< is refused as no manifold mesh
   std::size_t collapses = 0;
 };
 

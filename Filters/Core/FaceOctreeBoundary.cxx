@@ -233,14 +233,7 @@ double maximumDistanceToSurfels(const BitVolume& object,
   const std::vector<Vec3>& points,
   const Execution& exec)
 {
-  const auto& n = object.dims();
-  auto at = [&](std::int32_t i, std::int32_t j, std::int32_t k)
-  { return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && object.get(i, j, k); };
-  return maximumDistanceToFaces(
-    points,
-    [&](std::int32_t i, std::int32_t j, std::int32_t k, int a)
-    { return at(i, j, k) != at(i + (a == 0), j + (a == 1), k + (a == 2)); },
-    exec);
+  return maximumDistanceToFaces(points, SurfelFaces{ object }, exec);
 }
 
 } // namespace vbr

@@ -121,6 +121,32 @@ double distanceToNearestFace(const Vec3& p, const IsFace& isFace)
   return std::sqrt(nearestFaceSquared(p, lo, hi, best, isFace));
 }
 
+/// Whether voxel (i, j, k) is in `object` (false outside its grid).
+inline bool inObject(const BitVolume& object, std::int32_t i, std::int32_t j, std::int32_t k)
+{
+  const auto& n = object.dims();
+  return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && object.get(i, j, k);
+}
+
+/// The surfels of `object` as an isFace predicate: the faces between its voxels and others.
+struct SurfelFaces
+{
+  const BitVolume& object;
+
+  bool operator()(std::int32_t i, std::int32_t j, std::int32_t k, int a) const
+  {
+    return inObject(this->object, i, j, k) !=
+      inObject(this->object, i + (a == 0), j + (a == 1), k + (a == 2));
+  }
+};
+
+/// Distance from p to the surfels of `object`, as distanceToNearestFace (beyond two voxels
+/// reported as 2).
+inline double distanceToSurfels(const BitVolume& object, const Vec3& p)
+{
+  return distanceToNearestFace(p, SurfelFaces{ object });
+}
+
 /// Largest distance from the points to the voxel faces for which isFace(i, j, k, a) holds, each
 /// point searched within two voxels of its own (distances beyond are reported as 2). isFace is
 /// called from several threads at once.

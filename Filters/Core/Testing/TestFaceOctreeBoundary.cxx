@@ -822,25 +822,67 @@ TEST(FaceOctreeBoundarySimplifier, TighterBound)
   checkSimplified("ball48 within 1.5", shapeVolume(solids()[0], 48), true, 2, 1.5);
 }
 
+/// An input the simplifier refuses comes back unchanged with its own distances: upper bounds
+/// of the measured ones both ways (the surfels' side infinite when CGAL cannot hold it).
+TEST(FaceOctreeBoundarySimplifier, RefusedInputKeepsItsOwnDistances)
+{
+  const BitVolume v = shapeVolume(solids()[0], 32);
+  const vbr::TriangleSurface closed = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
+  const std::set<Int3> pruned = prunedVoxelSet(v);
+  vbr::TriangleSurface open = closed; // not closed: refused, but a mesh CGAL holds
+  open.triangles.pop_back();
+  vbr::TriangleSurface twice = closed; // a triangle twice: not a manifold mesh
+  twice.triangles.push_back(twice.triangles.front());
+  for (const vbr::TriangleSurface* in : { &open, &twice })
+  {
+    const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, *in);
+    EXPECT_FALSE(out.simplified);
+    EXPECT_FALSE(out.aborted);
+    EXPECT_EQ(out.surface.triangles, in->triangles);
+    double there = 0, back = 0;
+    hausdorff(meshOf(*in), v, pruned, there, back);
+    EXPECT_GT(there, 0.5); // a surface measured, not a default
+    EXPECT_LE(there, out.surfaceDistance + 1e-9);
+    EXPECT_LE(out.surfaceDistance, there + 0.1);
+    EXPECT_LE(back, out.surfelDistance + 1e-9);
+    if (in == &open)
+      EXPECT_LE(out.surfelDistance, std::sqrt(3.0));
+    else
+      EXPECT_TRUE(std::isinf(out.surfelDistance));
+  }
+}
+
 TEST(FaceOctreeBoundarySimplifier, StopsWhenAskedAndReturnsItsInput)
 {
   const BitVolume v = shapeVolume(solids()[0], 32);
   const vbr::TriangleSurface in = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
-  int polls = 0;
-  std::vector<double> reported;
-  vbr::Execution exec;
-  exec.aborted = [&] { return ++polls > 20; };
-  exec.progress = [&](double f)
+  int total = 0; // the polls of a whole run
+  vbr::Execution counting;
+  counting.aborted = [&] { return ++total < 0; };
+  ASSERT_TRUE(vbr::simplifyBoundary(v, in, {}, counting).simplified);
+  // asked while the surfels are assigned, then during the collapses (most polls)
+  for (int asked : { 2, total - total / 4 })
   {
-    reported.push_back(f);
-    return true;
-  };
-  const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, {}, exec);
-  EXPECT_TRUE(out.aborted);
-  EXPECT_FALSE(out.simplified);
-  EXPECT_EQ(out.surface.triangles, in.triangles);
-  EXPECT_FALSE(reported.empty());
-  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+    SCOPED_TRACE(asked);
+    int polls = 0;
+    std::vector<double> reported;
+    vbr::Execution exec;
+    exec.aborted = [&] { return ++polls > asked; };
+    exec.progress = [&](double f)
+    {
+      reported.push_back(f);
+      return true;
+    };
+    const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, {}, exec);
+    EXPECT_TRUE(out.aborted);
+    EXPECT_FALSE(out.simplified);
+    EXPECT_EQ(out.surface.triangles, in.triangles);
+    std::cout << "asked at poll " << asked << " of " << total << ": " << out.collapses
+              << " collapses\n";
+    EXPECT_EQ(out.collapses == 0, asked == 2);
+    EXPECT_EQ(reported.empty(), asked == 2);
+    EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+  }
 }
 
 TEST(DeformedModel, QuadrilateralsArePrunedNet)

@@ -300,7 +300,10 @@ def distance_from_surfels(samples, polydata):
 
 
 def check_simplified(name, mask, distance=0.0):
+    from vtkmodules.vtkCommonCore import vtkCommand
     f = F()
+    warned = []
+    f.AddObserver(vtkCommand.WarningEvent, lambda *a: warned.append(a))
     f.SetInputData(vt.make_image(mask))
     f.SimplifyOn()
     f.SetSimplificationDistance(distance)
@@ -341,7 +344,10 @@ def check_simplified(name, mask, distance=0.0):
                there <= reported + 1e-9 <= bound + 0.03)
     check.true(name + " MaximumSurfelDistance %g bounds %g" % (reported_back, back),
                back <= reported_back + 1e-6)
-    return f
+    # A warning exactly when the surfels' side is reported beyond the bound.
+    check.equal(name + " warned (MaximumSurfelDistance %g, bound %g)" % (reported_back, bound),
+                len(warned) == 1, reported_back > bound + 1e-9)
+    return reported_back
 
 
 def vtk_shifted(polydata):
@@ -362,6 +368,10 @@ z, y, x = np.mgrid[0:24, 0:24, 0:24]
 torus = (((np.sqrt((x - 11.5) ** 2 + (y - 11.5) ** 2) - 6.5) ** 2 + (z - 11.5) ** 2) < 9.0)
 check_simplified("simplified torus", torus.astype(np.uint8))
 check_simplified("simplified wall within 1.5", wall, 1.5)
+# Below the unsimplified surface's own surfel distance (about 1.56) the surfels' side cannot
+# hold everywhere: reported beyond the bound, with a warning.
+check.true("simplified ball within 1.0: surfels farther",
+           check_simplified("simplified ball within 1.0", ball(24, 9.3), 1.0) > 1.0)
 
 # Labels mode: not simplified, with a warning.
 from vtkmodules.vtkCommonCore import vtkCommand  # noqa: E402
