@@ -62,13 +62,6 @@ struct ModifiedObject
   }
 };
 
-/// The axes of a 2D image's plane, (u, v, flat) right-handed: loops counter-clockwise in (u, v)
-/// face the flat axis.
-std::array<int, 2> planeAxes(int flat)
-{
-  return { (flat + 1) % 3, (flat + 2) % 3 };
-}
-
 /// The axis of a 2D image (one pixel thick along it), or -1 for a volume: the grid's own flat
 /// axis (cell data on one layer of points), else the last axis with one voxel.
 int flatAxisOf(const vbr::vtk::VoxelGrid& grid)
@@ -81,25 +74,12 @@ int flatAxisOf(const vbr::vtk::VoxelGrid& grid)
   return -1;
 }
 
-/// The pixels of an object's box in its plane axes.
-vbr::BitVolume planeImage(const vbr::BitVolume& voxels, int flat)
-{
-  const auto uv = planeAxes(flat);
-  vbr::BitVolume image(voxels.size(uv[0]), voxels.size(uv[1]), 1);
-  std::array<std::int32_t, 3> i{ 0, 0, 0 };
-  for (i[uv[1]] = 0; i[uv[1]] < voxels.size(uv[1]); ++i[uv[1]])
-    for (i[uv[0]] = 0; i[uv[0]] < voxels.size(uv[0]); ++i[uv[0]])
-      if (voxels.get(i[0], i[1], i[2]))
-        image.set(i[uv[0]], i[uv[1]], 0);
-  return image;
-}
-
 /// The object's separating polygons and the background centres of the image on them.
 void separateInPlane(ModifiedObject& o, int flat, const std::array<std::int32_t, 3>& dims)
 {
   o.flatAxis = flat;
-  o.polygons = vbr::separatingPolygons2D(planeImage(o.voxels, flat));
-  const auto uv = planeAxes(flat);
+  o.polygons = vbr::separatingPolygons2D(vbr::layerImage(o.voxels, flat, 0));
+  const auto uv = vbr::planeAxesOf(flat);
   for (const vbr::Point2L& p : vbr::latticePointsOnLoops(o.polygons.loops))
   {
     Int3 box{ 0, 0, 0 };
@@ -152,7 +132,7 @@ vbr::BitVolume revertObject(const ModifiedObject& o)
 {
   if (o.flatAxis < 0)
     return vbr::revertModifiedHull(o.result.surface, o.result.backgroundOnSurface, o.voxels.dims());
-  const auto uv = planeAxes(o.flatAxis);
+  const auto uv = vbr::planeAxesOf(o.flatAxis);
   const vbr::BitVolume plane = vbr::revertSeparatingPolygons2D(
     o.polygons.loops, o.polygons.backgroundOnBoundary, o.voxels.size(uv[0]), o.voxels.size(uv[1]));
   vbr::BitVolume back(o.voxels.size(0), o.voxels.size(1), o.voxels.size(2));
@@ -284,7 +264,7 @@ public:
   /// image plane, with their marks.
   vtkIdType addPlanePoints(const ModifiedObject& o, const std::vector<vbr::Point2L>& corners)
   {
-    const auto uv = planeAxes(o.flatAxis);
+    const auto uv = vbr::planeAxesOf(o.flatAxis);
     // A flat axis of the grid (cell data on one layer of points) has no half-voxel shift: the
     // pixels' plane is the points' plane either way.
     const double flatPosition = this->Grid.flatAxis == o.flatAxis ? 0.0 : 0.5;

@@ -2527,14 +2527,13 @@ int gridPlaneAxis(const std::vector<LatticePoint>& points)
   return -1;
 }
 
-/// The plane axes (u, v) of a flat axis a, (u, v, a) right-handed: polygons counter-clockwise
-/// in (u, v) face +a.
+} // namespace
+
 std::array<int, 2> planeAxesOf(int a)
 {
   return { (a + 1) % 3, (a + 2) % 3 };
 }
 
-/// The object's layer x_a = c as a 2D image in its plane axes.
 BitVolume layerImage(const BitVolume& objects, int a, std::int32_t c)
 {
   const auto uv = planeAxesOf(a);
@@ -2547,6 +2546,9 @@ BitVolume layerImage(const BitVolume& objects, int a, std::int32_t c)
         image.set(i[uv[0]], i[uv[1]], 0);
   return image;
 }
+
+namespace
+{
 
 /// The lattice points strictly inside a polygon's outer loop, in the loop's box (none beyond).
 struct OuterRegion

@@ -325,6 +325,13 @@ BitVolume revertModifiedHull(const LatticeMesh& surface,
 std::optional<long> wellComposedBoundaryEuler(const BitVolume& objects,
   const Execution& exec = Execution());
 
+/// The plane axes (u, v) of a flat axis a, (u, v, a) right-handed: polygons counter-clockwise
+/// in (u, v) face +a.
+std::array<int, 2> planeAxesOf(int a);
+
+/// The layer x_a = c of `objects` as a 2D image in its plane axes (planeAxesOf).
+BitVolume layerImage(const BitVolume& objects, int a, std::int32_t c);
+
 /// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,
   const std::array<std::int32_t, 3>& dims);
