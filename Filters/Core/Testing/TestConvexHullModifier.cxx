@@ -47,6 +47,22 @@ bool at(const vbr::BitVolume& v, long x, long y, long z)
     v.get(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z));
 }
 
+/// The four corners (grid-vertex coordinates, in order round the square) of the face of voxel
+/// (x, y, z) on side `side` (0 low, 1 high) of axis `axis`.
+std::array<std::array<long, 3>, 4> surfelCorners(int x, int y, int z, int axis, int side)
+{
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  std::array<std::array<long, 3>, 4> c;
+  for (int k = 0; k < 4; ++k)
+  {
+    c[k] = { x, y, z };
+    c[k][axis] += side;
+    c[k][u] += (k == 1 || k == 2);
+    c[k][w] += (k >= 2);
+  }
+  return c;
+}
+
 /// V - E + F of the boundary of the union of the voxel cubes (well-composed inputs).
 long voxelBoundaryEuler(const vbr::BitVolume& v)
 {
@@ -67,16 +83,7 @@ long voxelBoundaryEuler(const vbr::BitVolume& v)
             if (at(v, n[0], n[1], n[2]))
               continue;
             ++faces;
-            // The surfel's four corners in grid-vertex coordinates.
-            const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-            std::array<std::array<long, 3>, 4> c;
-            for (int k = 0; k < 4; ++k)
-            {
-              c[k] = { x, y, z };
-              c[k][axis] += side;
-              c[k][u] += (k == 1 || k == 2);
-              c[k][w] += (k >= 2);
-            }
+            const auto c = surfelCorners(x, y, z, axis, side);
             for (int k = 0; k < 4; ++k)
             {
               vertices.insert(c[k]);
@@ -270,15 +277,7 @@ std::map<std::pair<int, int>, long> surfaceEulers(const vbr::BitVolume& v,
               continue;
             Complex& c = surfaces[{ object(x, y, z), background(n[0], n[1], n[2]) }];
             ++c.faces;
-            const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-            std::array<std::array<long, 3>, 4> corner;
-            for (int k = 0; k < 4; ++k)
-            {
-              corner[k] = { x, y, z };
-              corner[k][axis] += side;
-              corner[k][u] += (k == 1 || k == 2);
-              corner[k][w] += (k >= 2);
-            }
+            const auto corner = surfelCorners(x, y, z, axis, side);
             for (int k = 0; k < 4; ++k)
             {
               c.vertices.insert(corner[k]);
