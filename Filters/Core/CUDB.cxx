@@ -43,6 +43,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <new>
@@ -601,7 +602,10 @@ private:
   {
     const auto& pi = this->Previous.intervals;
     const auto& ci = this->Current.intervals;
-    this->Pending.resize((s.end - s.first) + (t.end - t.first));
+    // Only grown: resizing down and up again constructed the pairs anew at every segment.
+    const std::size_t room = (s.end - s.first) + (t.end - t.first);
+    if (this->Pending.size() < room)
+      this->Pending.resize(room);
     std::size_t n = 0;
     const bool faceOnly = this->Sink.faceOnly();
     std::uint32_t i = s.first, j = t.first;
@@ -1117,6 +1121,36 @@ bool paintPlanarBoxes(const std::vector<Box>& boxes,
   return !exec.stopRequested();
 }
 
+/// Writes v into line[0, length), length > 0, by stores that may overlap but never leave the
+/// range: three single values for up to 3, two or four groups of 4 (one from each end) for up
+/// to 16, groups of 4 then one from the end beyond. The rows of porous and noisy boxes are a
+/// few voxels of random lengths, and a store loop mispredicted its exit at nearly every row.
+inline void fillRow(std::int32_t* line, std::int64_t length, std::int32_t v)
+{
+  if (length < 4)
+  {
+    line[0] = v;
+    line[length / 2] = v;
+    line[length - 1] = v;
+    return;
+  }
+  const std::int32_t four[4] = { v, v, v, v };
+  std::int32_t* const last = line + length - 4;
+  if (length > 8)
+  {
+    if (length > 16)
+    {
+      for (std::int32_t* at = line + 8; at < last; at += 4)
+        std::memcpy(at, four, sizeof four);
+    }
+    else
+      std::memcpy(last - 4, four, sizeof four);
+    std::memcpy(line + 4, four, sizeof four);
+  }
+  std::memcpy(line, four, sizeof four);
+  std::memcpy(last, four, sizeof four);
+}
+
 /// The part of every box between slices [from, to) along the layout's split axis, painted:
 /// the box's first voxel found by one sum and a plain loop per row. Noise has hundreds of
 /// thousands of boxes of a few voxels, so the work per box (six clipped coordinates, steps
@@ -1152,13 +1186,15 @@ inline void paintSlab(const std::vector<Box>& boxes,
     };
     extent[split] = hi - lo;
     const std::int64_t length = extent[layout.row], rows = extent[layout.inner];
+    if (length <= 0)
+      continue;
     std::int32_t* plane = labels + firstVoxel + box.lo[0] * layout.step[0] +
       box.lo[1] * layout.step[1] + box.lo[2] * layout.step[2] + (lo - start) * layout.step[split];
     for (std::int64_t i = extent[layout.outer]; i > 0; --i, plane += outerStep)
     {
       std::int32_t* line = plane;
       for (std::int64_t j = rows; j > 0; --j, line += innerStep)
-        std::fill_n(line, length, v);
+        fillRow(line, length, v);
     }
   }
 }
