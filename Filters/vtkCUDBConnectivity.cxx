@@ -86,8 +86,11 @@ inline void prefetch(const void* address)
 struct RegionStats
 {
   std::int64_t voxels = 0;
-  std::array<double, 3> weightedCentre{ 0, 0, 0 }; ///< sum of voxel centres, processing axes
-  Int3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };               ///< processing axes, hi exclusive
+  /// Twice the sum of the voxel centres, processing axes: integers, whose sums are one cycle
+  /// each where the doubles' were a chain of four-cycle adds for a region of many boxes, and
+  /// exact as the doubles were (below 2^53).
+  std::array<std::int64_t, 3> doubledCentre{ 0, 0, 0 };
+  Int3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 }; ///< processing axes, hi exclusive
 };
 
 /// One connected component: what numbering needs (size, seeds) and its row of the table, all
@@ -116,7 +119,7 @@ struct alignas(64) Region : RegionStats
       const std::int32_t first = box.lo[d] + offset[d], last = box.hi[d] + offset[d];
       this->lo[d] = std::min(this->lo[d], first);
       this->hi[d] = std::max(this->hi[d], last);
-      this->weightedCentre[d] += static_cast<double>(volume) * (0.5 * (first + last));
+      this->doubledCentre[d] += volume * (std::int64_t(first) + last);
     }
   }
 };
@@ -616,7 +619,7 @@ void centroidOf(const RegionStats& r,
 {
   std::array<double, 3> centre; // processing axes, continuous vertex coordinates
   for (int d = 0; d < 3; ++d)
-    centre[d] = r.weightedCentre[d] / static_cast<double>(r.voxels);
+    centre[d] = 0.5 * static_cast<double>(r.doubledCentre[d]) / static_cast<double>(r.voxels);
   if (grid.flatAxis >= 0)
     centre[2] = 0.0;
   const std::array<double, 3> image = toImageAxes(centre, axes);
