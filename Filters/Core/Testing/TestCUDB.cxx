@@ -805,11 +805,13 @@ TEST(CUDB, NeighbourListsAreTheContacts)
 TEST(CUDB, PaintBoxesInEveryAxisOrder)
 {
   // Boxes in permuted, shifted coordinates painted by parallel slices (or rows of a single
-  // slice) against one voxel at a time; later boxes overwrite earlier ones in both.
+  // slice) against one voxel at a time; later boxes overwrite earlier ones in both. The long
+  // rows of the third grid reach every length class of the row writes (up to 3, 4 to 8, 9 to
+  // 16, longer), with the image's own axis order and the others.
   const std::array<int, 3> permutations[] = {
     { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 }, { 2, 1, 0 }
   };
-  const std::array<vbr::Coord, 3> grids[] = { { 9, 7, 5 }, { 6, 11, 1 } };
+  const std::array<vbr::Coord, 3> grids[] = { { 9, 7, 5 }, { 6, 11, 1 }, { 45, 9, 4 } };
   unsigned seed = 11;
   for (const auto& axes : permutations)
     for (const auto& dims : grids)
@@ -819,7 +821,7 @@ TEST(CUDB, PaintBoxesInEveryAxisOrder)
         offset[k] = std::min(offset[k], dims[axes[k]] - 1); // room for a voxel
       std::vector<vbr::Box> boxes;
       std::vector<std::int32_t> value;
-      for (int b = 0; b < 40; ++b)
+      for (int b = 0; b < 120; ++b)
       {
         vbr::Box box;
         for (int k = 0; k < 3; ++k)
