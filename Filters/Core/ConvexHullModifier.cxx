@@ -70,38 +70,60 @@ bool voxelClass(const BitVolume& v, const LatticePoint& p)
       static_cast<std::int32_t>(p[2]));
 }
 
-/// The x range [lo, hi] of the row (y, z) inside the hull (its open interior when `strict`).
-bool rowRange(const CellList& c,
-  std::int64_t y,
-  std::int64_t z,
-  bool strict,
-  std::int64_t& lo,
-  std::int64_t& hi)
+/// The planes of a hull arranged for scanning its rows along x: those parallel to x first (they
+/// decide whether a row meets the hull without a division), each with its offset at the current
+/// slice. Most rows of a hull's box miss the hull, and a row is left at the first plane that
+/// empties it; every level of the recursion scans its hull's rows this way (pointsOfClass).
+class RowScan
 {
-  lo = std::numeric_limits<std::int64_t>::min() / 4;
-  hi = std::numeric_limits<std::int64_t>::max() / 4;
-  for (const FacePlane& p : c.planes)
+public:
+  RowScan(const CellList& c, bool strict)
+    : Strict(strict)
   {
-    const std::int64_t r = p.offset - p.normal[1] * y - p.normal[2] * z;
-    const std::int64_t nx = p.normal[0];
-    if (nx == 0)
-    {
-      if (strict ? r <= 0 : r < 0)
-      {
-        return false;
-      }
-    }
-    else if (nx > 0)
-    {
-      hi = std::min(hi, strict ? ceilDiv(r, nx) - 1 : floorDiv(r, nx));
-    }
-    else
-    {
-      lo = std::max(lo, strict ? floorDiv(r, nx) + 1 : ceilDiv(r, nx));
-    }
+    for (const FacePlane& p : c.planes)
+      this->Planes.push_back({ p.normal[0], p.normal[1], p.normal[2], p.offset, p.offset });
+    std::stable_partition(
+      this->Planes.begin(), this->Planes.end(), [](const Plane& p) { return p.nx == 0; });
   }
-  return lo <= hi;
-}
+
+  void setSlice(std::int64_t z)
+  {
+    for (Plane& p : this->Planes)
+      p.atSlice = p.offset - p.nz * z;
+  }
+
+  /// The x range [lo, hi] of the row y of the slice inside the hull (its open interior when
+  /// `strict`); false when the row misses it.
+  bool range(std::int64_t y, std::int64_t& lo, std::int64_t& hi) const
+  {
+    lo = std::numeric_limits<std::int64_t>::min() / 4;
+    hi = std::numeric_limits<std::int64_t>::max() / 4;
+    for (const Plane& p : this->Planes)
+    {
+      const std::int64_t r = p.atSlice - p.ny * y;
+      if (p.nx == 0)
+      {
+        if (this->Strict ? r <= 0 : r < 0)
+          return false;
+      }
+      else if (p.nx > 0)
+        hi = std::min(hi, this->Strict ? ceilDiv(r, p.nx) - 1 : floorDiv(r, p.nx));
+      else
+        lo = std::max(lo, this->Strict ? floorDiv(r, p.nx) + 1 : ceilDiv(r, p.nx));
+      if (lo > hi)
+        return false;
+    }
+    return true;
+  }
+
+private:
+  struct Plane
+  {
+    std::int64_t nx, ny, nz, offset, atSlice;
+  };
+  std::vector<Plane> Planes;
+  bool Strict;
+};
 
 std::array<std::int64_t, 6> boundsOf(const CellList& c)
 {
@@ -127,12 +149,14 @@ template<typename F>
 void forEachPointIn(const CellList& c, bool strict, F&& f)
 {
   const auto b = boundsOf(c);
+  RowScan rows(c, strict);
   for (std::int64_t z = b[4]; z <= b[5]; ++z)
   {
+    rows.setSlice(z);
     for (std::int64_t y = b[2]; y <= b[3]; ++y)
     {
       std::int64_t lo, hi;
-      if (rowRange(c, y, z, strict, lo, hi))
+      if (rows.range(y, lo, hi))
       {
         for (std::int64_t x = std::max(lo, b[0]); x <= std::min(hi, b[1]); ++x)
         {
@@ -164,8 +188,7 @@ bool onTriangle(const LatticePoint& a,
     dot(plane.normal, cross(sub(a, c), sub(p, c))) >= 0;
 }
 
-/// Bounds of a box of lattice points, [lo, hi] per axis; kUnbounded leaves them open.
-using LatticeBox = std::array<LatticePoint, 2>;
+/// A box that leaves the lattice points' bounds open.
 const LatticeBox kUnbounded{ LatticePoint{ INT64_MIN / 4, INT64_MIN / 4, INT64_MIN / 4 },
   LatticePoint{ INT64_MAX / 4, INT64_MAX / 4, INT64_MAX / 4 } };
 
@@ -898,6 +921,34 @@ bool apartRegions(Context& ctx,
   return true;
 }
 
+/// A level's surface while its pits and regions are cut out of it, with the box of the
+/// triangles the cuts made since it was last tested embedded (none: test it all). A level of a
+/// large object cuts many pits, and testing the whole surface for self-intersections before
+/// each cut cost about as much as the cuts themselves.
+struct LevelSurface
+{
+  LatticeMesh mesh;
+  std::optional<LatticeBox> changed;
+
+  explicit LevelSurface(const CellList& c)
+    : mesh(triangulateHull(c))
+  {
+  }
+
+  /// The surface minus g when the exact difference is a closed 2-manifold with lattice corners.
+  bool subtract(const LatticeMesh& g)
+  {
+    LatticeMesh difference;
+    if (!latticeDifference(
+          this->mesh, g, difference, Operands::Check, this->changed ? &*this->changed : nullptr))
+      return false;
+    // The difference tested the surface embedded: what is new is the difference's own.
+    this->changed = newTrianglesBox(this->mesh, difference);
+    this->mesh = std::move(difference);
+    return true;
+  }
+};
+
 /// The regions of apartRegions solved one level down: the pressed ones subtracted from C (each
 /// meets its surface in its triangle only, so the difference is a 2-manifold), the cavities
 /// added inside out.
@@ -907,7 +958,7 @@ void solveApart(Context& ctx,
   int level,
   const std::vector<CellList>& regions,
   const std::vector<bool>& pressed,
-  LatticeMesh& out,
+  LevelSurface& out,
   int& depth)
 {
   std::vector<LatticeMesh> cavities;
@@ -917,16 +968,13 @@ void solveApart(Context& ctx,
     int below = 0;
     LatticeMesh g = solveLevel(ctx, regions[i], &c, !cls, false, level + 1, below);
     depth = std::max(depth, below + 1);
-    LatticeMesh difference;
     if (!pressed[i])
       cavities.push_back(std::move(g));
-    else if (latticeDifference(out, g, difference))
-      out = std::move(difference);
-    else
+    else if (!out.subtract(g))
       throw Unresolved("a region pressed in from an empty triangle did not give a 2-manifold");
   }
   for (const auto& g : cavities)
-    out.append(g, true);
+    out.mesh.append(g, true);
 }
 
 /// Presses the solved hull G of a group in as a pit, C - G, when the difference is a closed
@@ -936,7 +984,7 @@ bool pressInPit(Context& ctx,
   const CellList& hull,
   bool cls,
   int level,
-  LatticeMesh& out,
+  LevelSurface& out,
   int& depth)
 {
   const int keptApart = ctx.keptApart;
@@ -944,10 +992,8 @@ bool pressInPit(Context& ctx,
   {
     int below = 0;
     const LatticeMesh g = solveLevel(ctx, hull, &c, !cls, true, level + 1, below);
-    LatticeMesh difference;
-    if (latticeDifference(out, g, difference))
+    if (out.subtract(g))
     {
-      out = std::move(difference);
       depth = std::max(depth, below + 1);
       return true;
     }
@@ -970,7 +1016,7 @@ void pressInPits(Context& ctx,
   bool cls,
   bool pit,
   int level,
-  LatticeMesh& out,
+  LevelSurface& out,
   std::vector<LatticePoint>& apart,
   std::vector<BoxedHull>& pits,
   int& depth)
@@ -1008,7 +1054,7 @@ LatticeMesh solveLevel(Context& ctx,
     throw std::runtime_error("aborted");
   recordPlanes(ctx, c, level);
   depth = 0;
-  LatticeMesh out = triangulateHull(c);
+  LevelSurface out(c);
   std::vector<LatticePoint> apart;
   std::vector<BoxedHull> pits;
   if (ctx.pits)
@@ -1016,7 +1062,7 @@ LatticeMesh solveLevel(Context& ctx,
   else
     apart = pointsOfClass(c, ctx.objects, !cls, true);
   if (apart.empty())
-    return out;
+    return std::move(out.mesh);
   std::vector<CellList> regions;
   std::vector<bool> pressed;
   if (!apartRegions(ctx, c, parent, cls, apart, pits, regions, pressed))
@@ -1024,13 +1070,13 @@ LatticeMesh solveLevel(Context& ctx,
     // A region kept apart meets a pit: the whole level kept apart, unless C must keep pits.
     if (pit)
       throw Unresolved("a group kept apart meets a pit");
-    out = triangulateHull(c);
+    out = LevelSurface(c);
     depth = 0;
     apartRegions(
       ctx, c, parent, cls, pointsOfClass(c, ctx.objects, !cls, true), {}, regions, pressed);
   }
   solveApart(ctx, c, cls, level, regions, pressed, out, depth);
-  return out;
+  return std::move(out.mesh);
 }
 
 /// Whether a neighbour (26) of p lies outside the closed (solid) hull: only then can a corner
