@@ -623,7 +623,8 @@ std::vector<PointGroup> pressingInGroups(Context& ctx,
   return groups;
 }
 
-LatticeMesh solveLevel(Context& ctx,
+struct LevelSurface;
+LevelSurface solveLevel(Context& ctx,
   const CellList& c,
   const CellList* parent,
   bool cls,
@@ -921,10 +922,64 @@ bool apartRegions(Context& ctx,
   return true;
 }
 
+/// Whether the faces of a solid hull fanned (triangulateHull) make an embedded surface, in
+/// exact integer arithmetic: every face strictly convex, counter-clockwise about its outward
+/// normal (each corner strictly left of every edge it is not on) and no corner beyond a face's
+/// plane. Fan triangles of one strictly convex face then meet only in their shared corner and
+/// edges, and those of two faces only where the faces meet, in corners and edges of both.
+/// Checking that costs far less than CGAL's self-intersection test of the fan, which every
+/// level ran on its hull and on every leaf hull pressed into it.
+bool fanIsEmbedded(const CellList& c)
+{
+  if (c.dimension != 3)
+    return false;
+  for (std::size_t f = 0; f < c.faces.size(); ++f)
+  {
+    const auto& face = c.faces[f];
+    const FacePlane& plane = c.planes[f];
+    for (std::size_t k = 0; k < face.size(); ++k)
+    {
+      const LatticePoint& a = c.vertices[face[k]];
+      const LatticePoint edge = sub(c.vertices[face[(k + 1) % face.size()]], a);
+      if (plane.evaluate(a) != 0)
+        return false;
+      for (std::size_t j = 0; j < face.size(); ++j)
+        if (j != k && j != (k + 1) % face.size() &&
+          dot(plane.normal, cross(edge, sub(c.vertices[face[j]], a))) <= 0)
+          return false;
+    }
+  }
+  return std::all_of(c.vertices.begin(),
+    c.vertices.end(),
+    [&](const LatticePoint& p)
+    {
+      return std::all_of(c.planes.begin(),
+        c.planes.end(),
+        [&](const FacePlane& plane) { return plane.evaluate(p) <= 0; });
+    });
+}
+
+/// A box holding no lattice point.
+const LatticeBox kEmptyBox{ LatticePoint{ INT64_MAX, INT64_MAX, INT64_MAX },
+  LatticePoint{ INT64_MIN, INT64_MIN, INT64_MIN } };
+
+/// The union of two boxes.
+LatticeBox unite(const LatticeBox& a, const LatticeBox& b)
+{
+  LatticeBox u = a;
+  for (int k = 0; k < 3; ++k)
+  {
+    u[0][k] = std::min(a[0][k], b[0][k]);
+    u[1][k] = std::max(a[1][k], b[1][k]);
+  }
+  return u;
+}
+
 /// A level's surface while its pits and regions are cut out of it, with the box of the
-/// triangles the cuts made since it was last tested embedded (none: test it all). A level of a
-/// large object cuts many pits, and testing the whole surface for self-intersections before
-/// each cut cost about as much as the cuts themselves.
+/// triangles made since it was last known embedded (none: test it all; empty: embedded).
+/// Levels of large objects cut thousands of pits, mostly small hulls out of small hulls, and
+/// testing both whole operands of every cut for self-intersections cost about a third of the
+/// cut; the test of a known part is skipped (latticeDifference's aChangedIn and bChangedIn).
 struct LevelSurface
 {
   LatticeMesh mesh;
@@ -933,19 +988,33 @@ struct LevelSurface
   explicit LevelSurface(const CellList& c)
     : mesh(triangulateHull(c))
   {
+    if (fanIsEmbedded(c))
+      this->changed = kEmptyBox;
   }
 
   /// The surface minus g when the exact difference is a closed 2-manifold with lattice corners.
-  bool subtract(const LatticeMesh& g)
+  bool subtract(const LevelSurface& g)
   {
     LatticeMesh difference;
-    if (!latticeDifference(
-          this->mesh, g, difference, Operands::Check, this->changed ? &*this->changed : nullptr))
+    if (!latticeDifference(this->mesh,
+          g.mesh,
+          difference,
+          Operands::Check,
+          this->changed ? &*this->changed : nullptr,
+          g.changed ? &*g.changed : nullptr))
       return false;
     // The difference tested the surface embedded: what is new is the difference's own.
     this->changed = newTrianglesBox(this->mesh, difference);
     this->mesh = std::move(difference);
     return true;
+  }
+
+  /// Adds a cavity's surface inside out; its triangles are new.
+  void addCavity(const LatticeMesh& cavity)
+  {
+    this->mesh.append(cavity, true);
+    if (this->changed)
+      this->changed = unite(*this->changed, newTrianglesBox(LatticeMesh(), cavity));
   }
 };
 
@@ -966,15 +1035,15 @@ void solveApart(Context& ctx,
   {
     ++ctx.keptApart;
     int below = 0;
-    LatticeMesh g = solveLevel(ctx, regions[i], &c, !cls, false, level + 1, below);
+    LevelSurface g = solveLevel(ctx, regions[i], &c, !cls, false, level + 1, below);
     depth = std::max(depth, below + 1);
     if (!pressed[i])
-      cavities.push_back(std::move(g));
+      cavities.push_back(std::move(g.mesh));
     else if (!out.subtract(g))
       throw Unresolved("a region pressed in from an empty triangle did not give a 2-manifold");
   }
   for (const auto& g : cavities)
-    out.mesh.append(g, true);
+    out.addCavity(g);
 }
 
 /// Presses the solved hull G of a group in as a pit, C - G, when the difference is a closed
@@ -991,7 +1060,7 @@ bool pressInPit(Context& ctx,
   try
   {
     int below = 0;
-    const LatticeMesh g = solveLevel(ctx, hull, &c, !cls, true, level + 1, below);
+    const LevelSurface g = solveLevel(ctx, hull, &c, !cls, true, level + 1, below);
     if (out.subtract(g))
     {
       depth = std::max(depth, below + 1);
@@ -1042,7 +1111,7 @@ void pressInPits(Context& ctx,
 /// One level of Algorithm 1 (see the header): C minus the pits, the groups that fail as pits
 /// kept apart (cavities and regions pressed in from empty triangles). `pit`: C touches the
 /// surface of its parent in pieces of faces. `depth` receives the number of levels below.
-LatticeMesh solveLevel(Context& ctx,
+LevelSurface solveLevel(Context& ctx,
   const CellList& c,
   const CellList* parent,
   bool cls,
@@ -1062,7 +1131,7 @@ LatticeMesh solveLevel(Context& ctx,
   else
     apart = pointsOfClass(c, ctx.objects, !cls, true);
   if (apart.empty())
-    return std::move(out.mesh);
+    return out;
   std::vector<CellList> regions;
   std::vector<bool> pressed;
   if (!apartRegions(ctx, c, parent, cls, apart, pits, regions, pressed))
@@ -1076,7 +1145,7 @@ LatticeMesh solveLevel(Context& ctx,
       ctx, c, parent, cls, pointsOfClass(c, ctx.objects, !cls, true), {}, regions, pressed);
   }
   solveApart(ctx, c, cls, level, regions, pressed, out, depth);
-  return std::move(out.mesh);
+  return out;
 }
 
 /// Whether a neighbour (26) of p lies outside the closed (solid) hull: only then can a corner
@@ -2377,7 +2446,7 @@ bool solvePass(Context& ctx, ModifiedHull& r, bool pits)
   ctx.planeLevel.clear();
   try
   {
-    r.surface = solveLevel(ctx, r.hull, nullptr, true, false, 0, r.degreeOfNonConvexity);
+    r.surface = solveLevel(ctx, r.hull, nullptr, true, false, 0, r.degreeOfNonConvexity).mesh;
   }
   catch (const Unresolved& e)
   {

@@ -270,6 +270,9 @@ bool selfIntersects(const Mesh& m, const LatticeBox* changed)
 {
   if (!changed)
     return PMP::does_self_intersect(m);
+  for (int k = 0; k < 3; ++k)
+    if ((*changed)[0][k] > (*changed)[1][k])
+      return false;
   const CGAL::Bbox_3 box(static_cast<double>((*changed)[0][0]),
     static_cast<double>((*changed)[0][1]),
     static_cast<double>((*changed)[0][2]),
@@ -295,6 +298,7 @@ bool latticeBoolean(const LatticeMesh& a,
   bool unite,
   Operands operands,
   const LatticeBox* aChangedIn,
+  const LatticeBox* bChangedIn,
   LatticeMesh& result)
 {
   try
@@ -303,7 +307,7 @@ bool latticeBoolean(const LatticeMesh& a,
     // The self-intersection test of a large operand costs about as much as the corefinement.
     const bool check = operands == Operands::Check;
     if (!CGAL::is_closed(first) || !CGAL::is_closed(second) ||
-      (check && (selfIntersects(first, aChangedIn) || PMP::does_self_intersect(second))))
+      (check && (selfIntersects(first, aChangedIn) || selfIntersects(second, bChangedIn))))
       return false; // not valid operands (corefinement needs two closed, embedded surfaces)
     const bool ok = unite ? PMP::corefine_and_compute_union(first, second, out)
                           : PMP::corefine_and_compute_difference(first, second, out);
@@ -322,9 +326,10 @@ bool latticeDifference(const LatticeMesh& a,
   const LatticeMesh& b,
   LatticeMesh& result,
   Operands operands,
-  const LatticeBox* aChangedIn)
+  const LatticeBox* aChangedIn,
+  const LatticeBox* bChangedIn)
 {
-  return latticeBoolean(a, b, false, operands, aChangedIn, result);
+  return latticeBoolean(a, b, false, operands, aChangedIn, bChangedIn, result);
 }
 
 LatticeBox newTrianglesBox(const LatticeMesh& before, const LatticeMesh& after)
@@ -364,7 +369,7 @@ bool latticeUnion(const LatticeMesh& a,
   LatticeMesh& result,
   Operands operands)
 {
-  return latticeBoolean(a, b, true, operands, nullptr, result);
+  return latticeBoolean(a, b, true, operands, nullptr, nullptr, result);
 }
 
 namespace
