@@ -264,28 +264,41 @@ bool toLatticeMesh(const Mesh& out, LatticeMesh& result)
   return true;
 }
 
-/// Whether the mesh self-intersects; with `changed`, among its faces that meet that box only
-/// (the mesh being embedded elsewhere, see latticeDifference).
-bool selfIntersects(const Mesh& m, const LatticeBox* changed)
+CGAL::Bbox_3 toBbox(const LatticeBox& b)
+{
+  return CGAL::Bbox_3(static_cast<double>(b[0][0]),
+    static_cast<double>(b[0][1]),
+    static_cast<double>(b[0][2]),
+    static_cast<double>(b[1][0]),
+    static_cast<double>(b[1][1]),
+    static_cast<double>(b[1][2]));
+}
+
+/// Whether the mesh self-intersects; with `changed`, among its faces that meet one of those
+/// boxes only (the mesh being embedded elsewhere, see latticeDifference).
+bool selfIntersects(const Mesh& m, const std::vector<LatticeBox>* changed)
 {
   if (!changed)
     return PMP::does_self_intersect(m);
-  for (int k = 0; k < 3; ++k)
-    if ((*changed)[0][k] > (*changed)[1][k])
-      return false;
-  const CGAL::Bbox_3 box(static_cast<double>((*changed)[0][0]),
-    static_cast<double>((*changed)[0][1]),
-    static_cast<double>((*changed)[0][2]),
-    static_cast<double>((*changed)[1][0]),
-    static_cast<double>((*changed)[1][1]),
-    static_cast<double>((*changed)[1][2]));
+  if (changed->empty())
+    return false;
+  std::vector<CGAL::Bbox_3> boxes;
+  CGAL::Bbox_3 all;
+  for (const auto& b : *changed)
+  {
+    boxes.push_back(toBbox(b));
+    all += boxes.back();
+  }
   std::vector<Mesh::Face_index> near;
   for (auto f : m.faces())
   {
     CGAL::Bbox_3 faceBox;
     for (auto v : CGAL::vertices_around_face(m.halfedge(f), m))
       faceBox += m.point(v).bbox();
-    if (CGAL::do_overlap(faceBox, box))
+    if (CGAL::do_overlap(faceBox, all) &&
+      std::any_of(boxes.begin(),
+        boxes.end(),
+        [&](const CGAL::Bbox_3& b) { return CGAL::do_overlap(faceBox, b); }))
       near.push_back(f);
   }
   return PMP::does_self_intersect(near, m);
@@ -297,8 +310,8 @@ bool latticeBoolean(const LatticeMesh& a,
   const LatticeMesh& b,
   bool unite,
   Operands operands,
-  const LatticeBox* aChangedIn,
-  const LatticeBox* bChangedIn,
+  const std::vector<LatticeBox>* aChangedIn,
+  const std::vector<LatticeBox>* bChangedIn,
   LatticeMesh& result)
 {
   try
@@ -326,13 +339,13 @@ bool latticeDifference(const LatticeMesh& a,
   const LatticeMesh& b,
   LatticeMesh& result,
   Operands operands,
-  const LatticeBox* aChangedIn,
-  const LatticeBox* bChangedIn)
+  const std::vector<LatticeBox>* aChangedIn,
+  const std::vector<LatticeBox>* bChangedIn)
 {
   return latticeBoolean(a, b, false, operands, aChangedIn, bChangedIn, result);
 }
 
-LatticeBox newTrianglesBox(const LatticeMesh& before, const LatticeMesh& after)
+std::vector<LatticeBox> newTriangleBoxes(const LatticeMesh& before, const LatticeMesh& after)
 {
   using Corners = std::array<LatticePoint, 3>;
   // Each triangle from its least corner on, so that one cyclic order gives one key.
@@ -347,21 +360,22 @@ LatticeBox newTrianglesBox(const LatticeMesh& before, const LatticeMesh& after)
   for (const auto& t : before.triangles)
     old.push_back(corners(before, t));
   std::sort(old.begin(), old.end());
-  LatticeBox box{ LatticePoint{ INT64_MAX, INT64_MAX, INT64_MAX },
-    LatticePoint{ INT64_MIN, INT64_MIN, INT64_MIN } };
+  std::vector<LatticeBox> boxes;
   for (const auto& t : after.triangles)
   {
     const Corners c = corners(after, t);
     if (std::binary_search(old.begin(), old.end(), c))
       continue;
+    LatticeBox box{ c[0], c[0] };
     for (const auto& p : c)
       for (int k = 0; k < 3; ++k)
       {
         box[0][k] = std::min(box[0][k], p[k]);
         box[1][k] = std::max(box[1][k], p[k]);
       }
+    boxes.push_back(box);
   }
-  return box;
+  return boxes;
 }
 
 bool latticeUnion(const LatticeMesh& a,
