@@ -13,6 +13,7 @@
 #include <CGAL/boost/graph/iterator.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -43,9 +44,21 @@ Mesh toSurfaceMesh(const LatticeMesh& m)
   return mesh;
 }
 
-/// The integer value of an exact number, or false when it has a fractional part.
+/// The integer value of an exact number, or false when it has a fractional part. The lazy
+/// number's interval decides first: a point interval is the exact value, and an interval holding
+/// no integer rules one out. Only the rest (corners of the corefinement near a lattice point)
+/// pays for the exact rational, which every corner of every Boolean's result is tested for.
 bool integerValue(const Kernel::FT& value, std::int64_t& out)
 {
+  const std::pair<double, double> range = CGAL::to_interval(value);
+  if (range.first == range.second && std::abs(range.first) < 0x1p52 &&
+    std::floor(range.first) == range.first)
+  {
+    out = static_cast<std::int64_t>(range.first);
+    return true;
+  }
+  if (std::floor(range.second) < range.first)
+    return false;
   using Exact = std::decay_t<decltype(CGAL::exact(value))>;
   using Traits = CGAL::Fraction_traits<Exact>;
   const Exact exact = CGAL::exact(value);
@@ -251,12 +264,54 @@ bool toLatticeMesh(const Mesh& out, LatticeMesh& result)
   return true;
 }
 
+CGAL::Bbox_3 toBbox(const LatticeBox& b)
+{
+  return CGAL::Bbox_3(static_cast<double>(b[0][0]),
+    static_cast<double>(b[0][1]),
+    static_cast<double>(b[0][2]),
+    static_cast<double>(b[1][0]),
+    static_cast<double>(b[1][1]),
+    static_cast<double>(b[1][2]));
+}
+
+/// Whether the mesh self-intersects; with `changed`, among its faces that meet one of those
+/// boxes only (the mesh being embedded elsewhere, see latticeDifference).
+bool selfIntersects(const Mesh& m, const std::vector<LatticeBox>* changed)
+{
+  if (!changed)
+    return PMP::does_self_intersect(m);
+  if (changed->empty())
+    return false;
+  std::vector<CGAL::Bbox_3> boxes;
+  CGAL::Bbox_3 all;
+  for (const auto& b : *changed)
+  {
+    boxes.push_back(toBbox(b));
+    all += boxes.back();
+  }
+  std::vector<Mesh::Face_index> near;
+  for (auto f : m.faces())
+  {
+    CGAL::Bbox_3 faceBox;
+    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+      faceBox += m.point(v).bbox();
+    if (CGAL::do_overlap(faceBox, all) &&
+      std::any_of(boxes.begin(),
+        boxes.end(),
+        [&](const CGAL::Bbox_3& b) { return CGAL::do_overlap(faceBox, b); }))
+      near.push_back(f);
+  }
+  return PMP::does_self_intersect(near, m);
+}
+
 /// The exact union or difference of two closed lattice meshes; false (never an exception)
 /// when CGAL refuses the operands or the result is not a closed 2-manifold of lattice points.
 bool latticeBoolean(const LatticeMesh& a,
   const LatticeMesh& b,
   bool unite,
   Operands operands,
+  const std::vector<LatticeBox>* aChangedIn,
+  const std::vector<LatticeBox>* bChangedIn,
   LatticeMesh& result)
 {
   try
@@ -265,7 +320,7 @@ bool latticeBoolean(const LatticeMesh& a,
     // The self-intersection test of a large operand costs about as much as the corefinement.
     const bool check = operands == Operands::Check;
     if (!CGAL::is_closed(first) || !CGAL::is_closed(second) ||
-      (check && (PMP::does_self_intersect(first) || PMP::does_self_intersect(second))))
+      (check && (selfIntersects(first, aChangedIn) || selfIntersects(second, bChangedIn))))
       return false; // not valid operands (corefinement needs two closed, embedded surfaces)
     const bool ok = unite ? PMP::corefine_and_compute_union(first, second, out)
                           : PMP::corefine_and_compute_difference(first, second, out);
@@ -283,9 +338,44 @@ bool latticeBoolean(const LatticeMesh& a,
 bool latticeDifference(const LatticeMesh& a,
   const LatticeMesh& b,
   LatticeMesh& result,
-  Operands operands)
+  Operands operands,
+  const std::vector<LatticeBox>* aChangedIn,
+  const std::vector<LatticeBox>* bChangedIn)
 {
-  return latticeBoolean(a, b, false, operands, result);
+  return latticeBoolean(a, b, false, operands, aChangedIn, bChangedIn, result);
+}
+
+std::vector<LatticeBox> newTriangleBoxes(const LatticeMesh& before, const LatticeMesh& after)
+{
+  using Corners = std::array<LatticePoint, 3>;
+  // Each triangle from its least corner on, so that one cyclic order gives one key.
+  auto corners = [](const LatticeMesh& m, const std::array<std::uint32_t, 3>& t)
+  {
+    Corners c{ m.points[t[0]], m.points[t[1]], m.points[t[2]] };
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    return c;
+  };
+  std::vector<Corners> old;
+  old.reserve(before.triangles.size());
+  for (const auto& t : before.triangles)
+    old.push_back(corners(before, t));
+  std::sort(old.begin(), old.end());
+  std::vector<LatticeBox> boxes;
+  for (const auto& t : after.triangles)
+  {
+    const Corners c = corners(after, t);
+    if (std::binary_search(old.begin(), old.end(), c))
+      continue;
+    LatticeBox box{ c[0], c[0] };
+    for (const auto& p : c)
+      for (int k = 0; k < 3; ++k)
+      {
+        box[0][k] = std::min(box[0][k], p[k]);
+        box[1][k] = std::max(box[1][k], p[k]);
+      }
+    boxes.push_back(box);
+  }
+  return boxes;
 }
 
 bool latticeUnion(const LatticeMesh& a,
@@ -293,7 +383,7 @@ bool latticeUnion(const LatticeMesh& a,
   LatticeMesh& result,
   Operands operands)
 {
-  return latticeBoolean(a, b, true, operands, result);
+  return latticeBoolean(a, b, true, operands, nullptr, nullptr, result);
 }
 
 namespace

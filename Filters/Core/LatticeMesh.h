@@ -54,11 +54,26 @@ enum class Operands
   Embedded
 };
 
+/// Bounds of a box of lattice points, [lo, hi] per axis (empty when lo > hi on an axis).
+using LatticeBox = std::array<LatticePoint, 2>;
+
 /// a minus b, exactly; false when the result is not a closed 2-manifold with lattice corners.
+/// `aChangedIn`, `bChangedIn` (with Operands::Check): the operand is known to be embedded but
+/// for its triangles that meet one of these boxes (a Boolean's result, whose first operand was
+/// embedded, with the boxes of its new triangles: newTriangleBoxes; none when it is known
+/// embedded), so only those are tested for self-intersections. That is the whole test: two
+/// triangles that cross are both new or one new and one meeting it, so both meet a new
+/// triangle's box; it saves testing a large H again for every pit pressed into it.
 bool latticeDifference(const LatticeMesh& a,
   const LatticeMesh& b,
   LatticeMesh& result,
-  Operands operands = Operands::Check);
+  Operands operands = Operands::Check,
+  const std::vector<LatticeBox>* aChangedIn = nullptr,
+  const std::vector<LatticeBox>* bChangedIn = nullptr);
+
+/// The boxes of the triangles of `after` that are not triangles of `before` (the same corners
+/// in the same cyclic order).
+std::vector<LatticeBox> newTriangleBoxes(const LatticeMesh& before, const LatticeMesh& after);
 
 /// a united with b, exactly; false as for the difference.
 bool latticeUnion(const LatticeMesh& a,

@@ -28,6 +28,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -1775,4 +1776,109 @@ TEST(ConvexHullModifier, BooleansLeavingTheLatticeAreFoundBeforehand)
   // The check must have something to check, and the small hulls give Booleans that succeed.
   EXPECT_GE(predicted, pairs / 4);
   EXPECT_GE(kept, pairs / 8);
+}
+
+TEST(ConvexHullModifier, DifferencesTestOnlyTheChangedPartsOfTheirOperands)
+{
+  // newTriangleBoxes against a brute-force search (a triangle of the result is new when no
+  // triangle of the operand has its corners in the same cyclic order), and latticeDifference
+  // told where its first operand changed (the levels' chains of cuts) against the full test:
+  // the same answer and the same mesh along chains of random boxes cut out of a cube (pits,
+  // notches and tunnels, some touching earlier ones); a self-intersection inside a changed box
+  // is refused as by the full test.
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<long> at(-2, 10), size(1, 4);
+  auto box = [](const LatticePoint& lo, const LatticePoint& hi)
+  {
+    std::vector<LatticePoint> c;
+    for (int k = 0; k < 8; ++k)
+      c.push_back({ k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2] });
+    return vbr::triangulateHull(vbr::convexHull(c));
+  };
+  auto randomBox = [&]()
+  {
+    const LatticePoint lo{ at(rng), at(rng), at(rng) };
+    return box(lo, { lo[0] + size(rng), lo[1] + size(rng), lo[2] + size(rng) });
+  };
+  auto corners = [](const vbr::LatticeMesh& m, std::size_t t)
+  {
+    return std::array<LatticePoint, 3>{
+      m.points[m.triangles[t][0]], m.points[m.triangles[t][1]], m.points[m.triangles[t][2]]
+    };
+  };
+  auto newBoxesBruteForce = [&](const vbr::LatticeMesh& before, const vbr::LatticeMesh& after)
+  {
+    std::vector<vbr::LatticeBox> boxes;
+    for (std::size_t t = 0; t < after.triangles.size(); ++t)
+    {
+      const auto c = corners(after, t);
+      bool old = false;
+      for (std::size_t s = 0; s < before.triangles.size() && !old; ++s)
+        for (int r = 0; r < 3 && !old; ++r)
+        {
+          const auto o = corners(before, s);
+          old = o[r] == c[0] && o[(r + 1) % 3] == c[1] && o[(r + 2) % 3] == c[2];
+        }
+      if (old)
+        continue;
+      vbr::LatticeBox box{ c[0], c[0] };
+      for (const auto& p : c)
+        for (int k = 0; k < 3; ++k)
+        {
+          box[0][k] = std::min(box[0][k], p[k]);
+          box[1][k] = std::max(box[1][k], p[k]);
+        }
+      boxes.push_back(box);
+    }
+    std::sort(boxes.begin(), boxes.end());
+    return boxes;
+  };
+  int cuts = 0, refused = 0;
+  for (int chain = 0; chain < 12; ++chain)
+  {
+    SCOPED_TRACE(chain);
+    vbr::LatticeMesh surface = box({ 0, 0, 0 }, { 10, 10, 10 });
+    std::optional<std::vector<vbr::LatticeBox>> changed;
+    for (int step = 0; step < 8; ++step)
+    {
+      const vbr::LatticeMesh cut = randomBox();
+      vbr::LatticeMesh full, local;
+      const bool fullOk = vbr::latticeDifference(surface, cut, full);
+      const bool localOk = vbr::latticeDifference(
+        surface, cut, local, vbr::Operands::Check, changed ? &*changed : nullptr);
+      ASSERT_EQ(fullOk, localOk);
+      if (!fullOk)
+      {
+        ++refused;
+        continue;
+      }
+      EXPECT_EQ(full.points, local.points);
+      EXPECT_EQ(full.triangles, local.triangles);
+      std::vector<vbr::LatticeBox> boxes = vbr::newTriangleBoxes(surface, local);
+      std::sort(boxes.begin(), boxes.end());
+      EXPECT_EQ(boxes, newBoxesBruteForce(surface, local));
+      changed = boxes;
+      cuts += !boxes.empty();
+      surface = std::move(local);
+    }
+  }
+  std::cout << cuts << " cuts that changed the surface, " << refused << " refused" << std::endl;
+  EXPECT_GE(cuts, 30);
+  // Two cubes crossing each other, one closed mesh: the crossing is found when the second
+  // cube's triangles are the changed ones, as by the full test.
+  auto cube = [&](const LatticePoint& lo, long edge) {
+    return box(lo, { lo[0] + edge, lo[1] + edge, lo[2] + edge });
+  };
+  vbr::LatticeMesh crossing = cube({ 0, 0, 0 }, 4);
+  const vbr::LatticeMesh second = cube({ 2, 2, 2 }, 4);
+  crossing.append(second, false);
+  const vbr::LatticeMesh far = cube({ 20, 20, 20 }, 2);
+  const std::vector<vbr::LatticeBox> secondBoxes =
+    vbr::newTriangleBoxes(cube({ 0, 0, 0 }, 4), crossing);
+  EXPECT_EQ(secondBoxes.size(), second.triangles.size());
+  vbr::LatticeMesh result;
+  EXPECT_FALSE(vbr::latticeDifference(crossing, far, result));
+  EXPECT_FALSE(vbr::latticeDifference(crossing, far, result, vbr::Operands::Check, &secondBoxes));
+  EXPECT_FALSE(
+    vbr::latticeDifference(far, crossing, result, vbr::Operands::Check, nullptr, &secondBoxes));
 }
