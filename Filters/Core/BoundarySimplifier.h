@@ -3,8 +3,8 @@
 // outwards along the star's normal, since the input runs inside the surfels) that keep the
 // surface within a distance d of the voxel boundary (the surfels) on both sides, and free of
 // self-intersections. The collapses run until no edge may collapse; a collapse is accepted
-// with its vertex at that placement, or else at one of the edge's ends or its midpoint (the
-// first point for which all of these hold):
+// with its vertex at that placement, or else at Lindstrom-Turk's point pushed out less, at one
+// of the edge's ends or at its midpoint (the first point for which all of these hold):
 //  (a) surface to surfels: every new triangle (the star of the collapsed vertex) lies within d
 //      of the surfels. Proven by branch and bound on the distance to the surfels, which is
 //      1-Lipschitz: a piece of triangle whose centroid c is at distance dc from the surfels
@@ -41,7 +41,7 @@
 // Distances are in voxel units (voxel i spans [i, i + 1]); d is at most 1.99 (the distance
 // search of FaceOctreeBoundary.h's distanceToNearestFace reaches two voxels).
 //
-// Cost: serial, about 50 microseconds per collapse (the 128^3 ball: 82,220 -> 196 triangles
+// Cost: serial, about 50 microseconds per collapse (the 128^3 ball: 82,220 -> 194 triangles
 // in about 2.3 s of CPU, 20 to 30 times the unsimplified filter's time and 2.3 times the time
 // of flying edges, windowed-sinc smoothing and quadric decimation, which keep 386 triangles at
 // about that distance: README). So vtkFaceOctreeBoundaryFilter leaves it off by default.
