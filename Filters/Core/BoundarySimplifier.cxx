@@ -833,8 +833,8 @@ struct OutwardPlacement
   template<typename Profile>
   boost::optional<typename Profile::Point> operator()(const Profile& profile) const
   {
-    SMS::internal::LindstromTurkCore<Mesh, Profile> core(
-      SMS::internal::LindstromTurk_params(), profile);
+    const SMS::internal::LindstromTurk_params params; // the core keeps a reference to it
+    SMS::internal::LindstromTurkCore<Mesh, Profile> core(params, profile);
     boost::optional<typename Profile::Point> p = core.compute_placement();
     if (!p)
       return p;
