@@ -1242,9 +1242,10 @@ TEST(FaceOctreeBoundary, RandomVoxels)
 
 TEST(FaceOctreeBoundary, MaximumDistanceToSurfelsMatchesEverySurfel)
 {
-  // The filter's MaximumDistance against the distance to every surfel of the volume, on noise
-  // and a ball, for points spread over the grid and a margin around it (the search near each
-  // point is capped at 2 voxels: so is the reference), with one thread and with a pool.
+  // The filter's MaximumDistance and distanceToSurfels against the distance to every surfel of
+  // the volume, on noise and a ball, for points spread over the grid and a margin around it
+  // (the search near each point is capped at 2 voxels: so is the reference), with one thread
+  // and with a pool.
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coordinate(-2.5, 14.5);
   BitVolume noise(12, 11, 10), ball(12, 11, 10);
@@ -1283,6 +1284,15 @@ TEST(FaceOctreeBoundary, MaximumDistanceToSurfelsMatchesEverySurfel)
       }
       EXPECT_NEAR(vbr::maximumDistanceToSurfels(*v, points), expected, 1e-12) << trial;
       EXPECT_NEAR(vbr::maximumDistanceToSurfels(*v, points, pool), expected, 1e-12) << trial;
+      // the single-point search the simplifier proves its triangles with (its voxels read
+      // once per block)
+      for (const Vec3& p : points)
+      {
+        double best = 2.0;
+        for (const auto& f : faces)
+          best = std::min(best, pointSquareDistance(p, f));
+        EXPECT_NEAR(vbr::distanceToSurfels(*v, p), best, 1e-12) << trial;
+      }
     }
   }
 }
