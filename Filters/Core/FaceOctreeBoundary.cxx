@@ -233,7 +233,8 @@ double maximumDistanceToSurfels(const BitVolume& object,
   const std::vector<Vec3>& points,
   const Execution& exec)
 {
-  return maximumDistanceToFaces(points, SurfelFaces{ object }, exec);
+  return maximumOverPoints(
+    points, [&object](const Vec3& p) { return distanceToSurfels(object, p); }, exec);
 }
 
 } // namespace vbr

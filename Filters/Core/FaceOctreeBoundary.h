@@ -136,18 +136,6 @@ inline bool inObject(const BitVolume& object, std::int32_t i, std::int32_t j, st
   return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && object.get(i, j, k);
 }
 
-/// The surfels of `object` as an isFace predicate: the faces between its voxels and others.
-struct SurfelFaces
-{
-  const BitVolume& object;
-
-  bool operator()(std::int32_t i, std::int32_t j, std::int32_t k, int a) const
-  {
-    return inObject(this->object, i, j, k) !=
-      inObject(this->object, i + (a == 0), j + (a == 1), k + (a == 2));
-  }
-};
-
 /// The surfels among the faces of the voxels c - Below to c - Below + N - 2 per axis around a
 /// voxel c, from the N^3 voxels from c - Below read once (each face would read two):
 /// distanceToNearestFace's first search needs 4^3 voxels for 81 faces (162 reads), its wider
@@ -189,12 +177,11 @@ inline double distanceToSurfels(const BitVolume& object, const Vec3& p)
     [&object](const std::int32_t around[3]) { return SurfelFacesAround<7, 3>(object, around); });
 }
 
-/// Largest distance from the points to the voxel faces for which isFace(i, j, k, a) holds, each
-/// point searched within two voxels of its own (distances beyond are reported as 2). isFace is
-/// called from several threads at once.
-template<typename IsFace>
-double maximumDistanceToFaces(const std::vector<Vec3>& points,
-  const IsFace& isFace,
+/// Largest distanceOf(p) over the points, the points shared among threads (distanceOf is
+/// called from several at once).
+template<typename DistanceOf>
+double maximumOverPoints(const std::vector<Vec3>& points,
+  const DistanceOf& distanceOf,
   const Execution& exec = Execution())
 {
   std::mutex guard;
@@ -205,11 +192,23 @@ double maximumDistanceToFaces(const std::vector<Vec3>& points,
       {
         double local = 0.0;
         for (std::int64_t i = begin; i < end; ++i)
-          local = std::max(local, distanceToNearestFace(points[std::size_t(i)], isFace));
+          local = std::max(local, distanceOf(points[std::size_t(i)]));
         const std::lock_guard<std::mutex> lock(guard);
         worst = std::max(worst, local);
       });
   return worst;
+}
+
+/// Largest distance from the points to the voxel faces for which isFace(i, j, k, a) holds, each
+/// point searched within two voxels of its own (distances beyond are reported as 2). isFace is
+/// called from several threads at once.
+template<typename IsFace>
+double maximumDistanceToFaces(const std::vector<Vec3>& points,
+  const IsFace& isFace,
+  const Execution& exec = Execution())
+{
+  return maximumOverPoints(
+    points, [&isFace](const Vec3& p) { return distanceToNearestFace(p, isFace); }, exec);
 }
 
 } // namespace vbr
