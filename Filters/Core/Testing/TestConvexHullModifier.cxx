@@ -1065,6 +1065,77 @@ TEST(ConvexHullModifier, ComponentsApartKeepTheLevelsOfTheirOwnFaces)
   EXPECT_GT(reported.size(), 2u);
 }
 
+TEST(ConvexHullModifier, DiagonalSegmentsAreTetrahedra)
+{
+  // Voxels touching only at corners along a line off the axes' planes (direction (+-1, +-1,
+  // +-1)), 2 to 5 of them: H is a tetrahedron with the segment as an edge (no polyhedron
+  // spanned them before), every centre of the grid checked against it. A segment whose
+  // direction has no component +-1 ((0,0,0) to (2,3,5)) still has none and says so.
+  for (int n = 2; n <= 5; ++n)
+    for (int signs = 0; signs < 8; ++signs)
+    {
+      SCOPED_TRACE(testing::Message() << n << " voxels, signs " << signs);
+      vbr::BitVolume v(n + 2, n + 2, n + 2);
+      for (int k = 0; k < n; ++k)
+        v.set(
+          (signs & 1) ? n - k : 1 + k, (signs & 2) ? n - k : 1 + k, (signs & 4) ? n - k : 1 + k);
+      const auto r = expectSeparating(v, { false });
+      EXPECT_EQ(r.surface.triangles.size(), 4u);
+      EXPECT_EQ(r.faces.size(), 4u);
+    }
+  vbr::BitVolume w(3, 4, 6);
+  w.set(0, 0, 0);
+  w.set(2, 3, 5);
+  const auto r = vbr::modifyConvexHull(w);
+  EXPECT_FALSE(r.complete);
+  EXPECT_FALSE(r.failure.empty());
+}
+
+TEST(ConvexHullModifier, ComponentsFirstSolveFarPartsAlone)
+{
+  // A torus with a small ball in its hole (their hulls meet: one part), a ball, a diagonal
+  // pair of voxels and a single voxel far from them (an object that is not well-composed):
+  // H is made part by part (componentsApart), and it must separate every centre of the grid.
+  // Its shells: one for each part alone (ball, pair, voxel) and those of the torus part's own
+  // H (made here from that part alone). The same object in a grid whose side the single voxel
+  // touches is solved as one (its prism would leave the grid), and separates as well.
+  const vbr::BitVolume t = torus(5, 1.2), b = ball(3);
+  const int side = t.size(0) + b.size(0) + 8;
+  const int c = t.size(0) / 2, zc = t.size(2) / 2 + 1;
+  vbr::BitVolume withRow(t.size(0), t.size(1), t.size(2) + 2);
+  for (int z = 0; z < t.size(2); ++z)
+    for (int y = 0; y < t.size(1); ++y)
+      for (int x = 0; x < t.size(0); ++x)
+        if (at(t, x, y, z))
+          withRow.set(x, y, z + 1);
+  withRow.set(c, c, zc);
+  withRow.set(c - 1, c, zc);
+  const std::size_t torusShells = componentEulers(vbr::modifyConvexHull(withRow).surface).size();
+  EXPECT_GE(torusShells, 1u);
+  for (int voxelAt : { side / 2, side - 1 })
+  {
+    SCOPED_TRACE(voxelAt);
+    vbr::BitVolume v(side, side, t.size(2) + 2);
+    for (int z = 0; z < withRow.size(2); ++z)
+      for (int y = 0; y < withRow.size(1); ++y)
+        for (int x = 0; x < withRow.size(0); ++x)
+          if (at(withRow, x, y, z))
+            v.set(x, y, z);
+    for (int z = 0; z < b.size(2); ++z)
+      for (int y = 0; y < b.size(1); ++y)
+        for (int x = 0; x < b.size(0); ++x)
+          if (at(b, x, y, z))
+            v.set(side - b.size(0) - 1 + x, y, z);
+    v.set(3, side - 4, 2);
+    v.set(4, side - 3, 3);
+    v.set(side - 5, voxelAt, 4);
+    const auto r = expectSeparating(v, { false });
+    EXPECT_EQ(r.componentsApart, voxelAt != side - 1);
+    if (r.componentsApart)
+      EXPECT_EQ(componentEulers(r.surface).size(), torusShells + 3);
+  }
+}
+
 TEST(ConvexHullModifier, HollowBallsWithOffCentreTunnels)
 {
   // Hollow balls of R 8 to 10 with a tunnel 1 or 3 wide into the cavity, off-centre, along x or
