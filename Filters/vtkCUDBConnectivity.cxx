@@ -392,9 +392,12 @@ std::int32_t numberRegions(const std::vector<Region>& regions,
 }
 
 /// The voxels of an object labelled on its runs painted from the runs, as paintRegions does.
+/// The only object of the image has nothing but zeros around its runs: they are painted by wide
+/// stores that zero the voxels after them (vbr::paintRuns).
 bool paintRegionsOfRuns(const ObjectBoxes& o,
   const std::vector<std::int32_t>* regionIds,
   const vbr::vtk::VoxelGrid& grid,
+  bool onlyObject,
   std::int32_t* out,
   const vbr::Execution& exec)
 {
@@ -405,7 +408,7 @@ bool paintRegionsOfRuns(const ObjectBoxes& o,
     values[c] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
   }
   return vbr::paintRuns(
-    o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec);
+    o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec, onlyObject);
 }
 
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
@@ -425,7 +428,7 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   {
     if (o.labelledFromRuns)
     {
-      if (!paintRegionsOfRuns(o, regionIds, grid, out, exec))
+      if (!paintRegionsOfRuns(o, regionIds, grid, objects.size() == 1, out, exec))
         return nullptr;
       continue;
     }

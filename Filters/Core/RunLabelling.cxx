@@ -69,7 +69,8 @@ VoxelRun* writeRowRuns(const Word* bits, std::size_t words, VoxelRun* out)
 
 /// Unites every run of one row [a, aEnd) with the runs of a neighbour row [b, bEnd) it touches:
 /// overlapping (Widen = 0) or also meeting diagonally at an end (Widen = 1). With `twin`, the
-/// run of the neighbour row equal to run i (if any) is written to twin[i]. Both rows are sorted
+/// run of the neighbour row equal to run i (if any) is written to twin[i], and with `twinOf`,
+/// i to twinOf[that run]. Both rows are sorted
 /// and their runs have gaps, so one forward walk finds every pair; the union's root is carried
 /// from contact to contact rather than found again from the run.
 template<int Widen>
@@ -79,7 +80,8 @@ void uniteRow(UnionFind& uf,
   std::uint32_t aEnd,
   std::uint32_t b,
   std::uint32_t bEnd,
-  std::uint32_t* twin)
+  std::uint32_t* twin,
+  std::uint32_t* twinOf = nullptr)
 {
   for (; a < aEnd; ++a)
   {
@@ -92,21 +94,25 @@ void uniteRow(UnionFind& uf,
     {
       root = uf.unite(k, root);
       if (twin && runs[k].x0 == run.x0 && runs[k].x1 == run.x1)
+      {
         twin[a] = k;
+        if (twinOf)
+          twinOf[k] = a;
+      }
     }
   }
 }
 
-/// Where the CUDB compactions are read from: for every run, the first run of its chain of equal
-/// runs in consecutive rows (its rectangle, the 2D compaction), and the equal run of the same
-/// row in the plane before (None if none), from which the 3D compaction is decided.
+/// Where the CUDB compactions are read from: for every run, the equal run of the row before
+/// and of the row after in its plane (chains of them are the rectangles, the 2D compaction), and
+/// the equal run of the same row in the plane before (the 3D compaction); None where none.
 struct CompactionNotes
 {
-  std::vector<std::uint32_t> above;  ///< the equal run of the row before, then the rectangle
-  std::vector<std::uint32_t> behind; ///< the equal run of the plane before
+  std::vector<std::uint32_t> above, below, behind;
 
   explicit CompactionNotes(std::size_t n)
     : above(n, None)
+    , below(n, None)
     , behind(n, None)
   {
   }
@@ -126,7 +132,8 @@ void unitePlane(const VoxelRuns& r, std::int32_t z, UnionFind& uf, CompactionNot
     if (a == aEnd)
       continue;
     if (y > 0)
-      uniteRow<Widen>(uf, runs, a, aEnd, starts[row - 1], starts[row], notes.above.data());
+      uniteRow<Widen>(
+        uf, runs, a, aEnd, starts[row - 1], starts[row], notes.above.data(), notes.below.data());
     if (z == 0)
       continue;
     const std::size_t back = r.rowOf(y, z - 1);
@@ -140,29 +147,32 @@ void unitePlane(const VoxelRuns& r, std::int32_t z, UnionFind& uf, CompactionNot
   }
 }
 
+/// Whether the rectangles whose first runs are a and b have as many rows.
+bool sameHeight(const CompactionNotes& notes, std::uint32_t a, std::uint32_t b)
+{
+  for (;;)
+  {
+    a = notes.below[a];
+    b = notes.below[b];
+    if (a == None || b == None)
+      return a == b;
+  }
+}
+
 /// The runs that begin a CUDB box: the first run of a rectangle (no equal run in the row before)
 /// whose plane before holds no equal rectangle, that is no rectangle beginning with the equal
-/// run of the same row and as many rows high. Turns `notes.above` into the rectangles' first
-/// runs. Returns the number of boxes.
-std::size_t boxBeginnings(CompactionNotes& notes, std::vector<std::uint8_t>& begins)
+/// run of the same row and as many rows high. Returns the number of boxes.
+std::size_t boxBeginnings(const CompactionNotes& notes, std::vector<std::uint8_t>& begins)
 {
   const std::size_t n = notes.above.size();
-  std::vector<std::uint32_t>& rectangle = notes.above;
-  std::vector<std::uint32_t> height(n, 0);
-  for (std::size_t i = 0; i < n; ++i) // runs in scan order: the run above is done
-  {
-    const std::uint32_t up = rectangle[i];
-    rectangle[i] = up == None ? static_cast<std::uint32_t>(i) : rectangle[up];
-    ++height[rectangle[i]];
-  }
   begins.assign(n, 0);
   std::size_t boxes = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::uint32_t i = 0; i < n; ++i)
   {
-    if (rectangle[i] != i)
+    if (notes.above[i] != None)
       continue;
     const std::uint32_t back = notes.behind[i];
-    const bool continued = back != None && rectangle[back] == back && height[back] == height[i];
+    const bool continued = back != None && notes.above[back] == None && sameHeight(notes, i, back);
     begins[i] = !continued;
     boxes += !continued;
   }
@@ -227,6 +237,37 @@ std::size_t countExtremeVertices(const BitVolume& voxels)
   return vertices;
 }
 
+/// Writes v into 8 consecutive values.
+inline void store8(std::int32_t* p, std::int32_t v)
+{
+  for (int k = 0; k < 8; ++k)
+    p[k] = v;
+}
+
+/// Writes v into line[run.x0, run.x1). A run of up to 8 voxels whose row has `room` for 8 values
+/// past its end is written by stores of a fixed width: 8 values from its start, then 8 zeros
+/// from its end over what they wrote past it (the gap, 0 before; a later run of the row is
+/// written after). A longer run by 8-wide stores, the last one ending at its end. The runs of
+/// porous and noisy volumes are a few voxels of random lengths, and a store loop mispredicted
+/// its exit at nearly every run.
+inline void paintRun(std::int32_t* line, const VoxelRun& run, std::int32_t v, std::int32_t room)
+{
+  const std::int32_t length = run.x1 - run.x0;
+  if (length <= 8 && run.x1 + 8 <= room)
+  {
+    store8(line + run.x0, v);
+    store8(line + run.x1, 0);
+  }
+  else if (length >= 8)
+  {
+    for (std::int32_t x = run.x0; x + 8 <= run.x1; x += 8)
+      store8(line + x, v);
+    store8(line + run.x1 - 8, v);
+  }
+  else
+    std::fill(line + run.x0, line + run.x1, v);
+}
+
 } // namespace
 
 bool extractRuns(const BitVolume& voxels, const Execution& exec, VoxelRuns& out)
@@ -286,9 +327,15 @@ bool labelRuns(const BitVolume& voxels,
     if (!poll.tick())
       return false;
   }
-  out.runLabel = uf.numberClasses(out.count);
-  for (std::uint32_t& label : out.runLabel)
-    ++label; // components from 1
+  // The classes numbered from 1 in order of their first run (the root, met before the other
+  // runs of its class).
+  out.runLabel.resize(n);
+  out.count = 0;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t root = uf.find(i);
+    out.runLabel[i] = root == i ? ++out.count : out.runLabel[root];
+  }
   out.boxCount = boxBeginnings(notes, out.beginsBox);
   out.oudbBoxCount = countOUDBBoxes(voxels, runs);
   out.extremeVertices = countExtremeVertices(voxels);
@@ -301,9 +348,12 @@ bool paintRuns(const VoxelRuns& runs,
   const std::array<std::int32_t, 3>& offset,
   const std::array<std::int32_t, 3>& dims,
   std::int32_t* labels,
-  const Execution& exec)
+  const Execution& exec,
+  bool zeroAround)
 {
   const std::int32_t ny = runs.dims[1];
+  // The room from the runs' x = 0 to the end of the grid's row, which wide stores stay within.
+  const std::int32_t room = zeroAround ? dims[0] - offset[0] : 0;
   std::atomic<bool> stopped{ false };
   const Execution work = exec.forWork(static_cast<std::int64_t>(runs.runs.size()));
   work.forRange(runs.dims[2],
@@ -319,7 +369,7 @@ bool paintRuns(const VoxelRuns& runs,
             offset[0];
           for (std::uint32_t i = runs.rowStarts[row]; i < runs.rowStarts[row + 1]; ++i)
             if (const std::int32_t v = value[runLabel[i]])
-              std::fill(line + runs.runs[i].x0, line + runs.runs[i].x1, v);
+              paintRun(line, runs.runs[i], v, room);
         }
         if ((z & 7) == 7 && exec.stopRequested())
           stopped = true;

@@ -84,14 +84,18 @@ bool labelRuns(const BitVolume& voxels,
 
 /// Writes value[runLabel[i]] into every voxel of run i (value 0 are skipped) of `labels`, a grid
 /// of `dims` voxels stored x fastest, the runs' voxel (x, y, z) at (x, y, z) + offset. Voxels of
-/// no run are left as they are. Parallel over planes; false when stopped (partly written).
+/// no run are left as they are, unless `zeroAround`: then the grid must hold 0 on the rows of the
+/// runs, from the runs' box to the row's end, and nothing else may write there: the runs are
+/// written by wide stores that zero the voxels after them (see paintRun). Parallel over planes;
+/// false when stopped (partly written).
 bool paintRuns(const VoxelRuns& runs,
   const std::vector<std::uint32_t>& runLabel,
   const std::vector<std::int32_t>& value,
   const std::array<std::int32_t, 3>& offset,
   const std::array<std::int32_t, 3>& dims,
   std::int32_t* labels,
-  const Execution& exec = Execution());
+  const Execution& exec = Execution(),
+  bool zeroAround = false);
 
 } // namespace vbr
 

@@ -38,6 +38,27 @@ Labelled labelAndPaint(const vbr::BitVolume& v,
   out.grid.assign(v.voxelCount(), 0);
   EXPECT_TRUE(vbr::paintRuns(
     out.runs, out.components.runLabel, value, { 0, 0, 0 }, v.dims(), out.grid.data(), exec));
+  // The wide stores (zeros around the runs) paint the same, here and in a grid one voxel larger
+  // at each end, the runs at an offset of one.
+  std::vector<std::int32_t> wide(v.voxelCount(), 0);
+  EXPECT_TRUE(vbr::paintRuns(
+    out.runs, out.components.runLabel, value, { 0, 0, 0 }, v.dims(), wide.data(), exec, true));
+  EXPECT_EQ(wide, out.grid) << "painted by wide stores";
+  const std::array<std::int32_t, 3> d = v.dims(), larger{ d[0] + 2, d[1] + 2, d[2] + 2 };
+  std::vector<std::int32_t> framed(std::size_t(larger[0]) * larger[1] * larger[2], 0);
+  EXPECT_TRUE(vbr::paintRuns(
+    out.runs, out.components.runLabel, value, { 1, 1, 1 }, larger, framed.data(), exec, true));
+  std::size_t wrong = 0;
+  for (std::int32_t z = 0; z < larger[2]; ++z)
+    for (std::int32_t y = 0; y < larger[1]; ++y)
+      for (std::int32_t x = 0; x < larger[0]; ++x)
+      {
+        const bool inside = x >= 1 && y >= 1 && z >= 1 && x <= d[0] && y <= d[1] && z <= d[2];
+        const std::int32_t expected =
+          inside ? out.grid[((z - 1) * std::size_t(d[1]) + y - 1) * d[0] + x - 1] : 0;
+        wrong += framed[(z * std::size_t(larger[1]) + y) * larger[0] + x] != expected;
+      }
+  EXPECT_EQ(wrong, 0u) << "painted by wide stores at an offset";
   return out;
 }
 
