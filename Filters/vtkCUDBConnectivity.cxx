@@ -142,22 +142,27 @@ struct alignas(64) Region : RegionStats
     }
   }
 
-  /// Adds a run [x0, x1) of row (y, z) (processing axes, offset included) of the region, and
-  /// counts a box when the run begins one.
-  void addRun(const vbr::VoxelRun& run, std::int32_t y, std::int32_t z, bool beginsBox)
+  /// Adds runs of row (y, z) of the region (processing axes, offset included): `voxels` voxels
+  /// from extent.x0 to extent.x1, whose doubled x centres add up to `doubledX`, of which
+  /// `boxes` begin a box.
+  void addRowRuns(const vbr::VoxelRun& extent,
+    std::int32_t y,
+    std::int32_t z,
+    std::int64_t voxelCount,
+    std::int64_t doubledX,
+    std::uint32_t boxCount)
   {
-    this->boxes += beginsBox;
-    const std::int64_t length = run.x1 - run.x0;
-    this->voxels += length;
+    this->boxes += boxCount;
+    this->voxels += voxelCount;
     this->lo = {
-      std::min(this->lo[0], run.x0), std::min(this->lo[1], y), std::min(this->lo[2], z)
+      std::min(this->lo[0], extent.x0), std::min(this->lo[1], y), std::min(this->lo[2], z)
     };
     this->hi = {
-      std::max(this->hi[0], run.x1), std::max(this->hi[1], y + 1), std::max(this->hi[2], z + 1)
+      std::max(this->hi[0], extent.x1), std::max(this->hi[1], y + 1), std::max(this->hi[2], z + 1)
     };
-    this->doubledCentre[0] += length * (std::int64_t(run.x0) + run.x1);
-    this->doubledCentre[1] += length * (2 * std::int64_t(y) + 1);
-    this->doubledCentre[2] += length * (2 * std::int64_t(z) + 1);
+    this->doubledCentre[0] += doubledX;
+    this->doubledCentre[1] += voxelCount * (2 * std::int64_t(y) + 1);
+    this->doubledCentre[2] += voxelCount * (2 * std::int64_t(z) + 1);
   }
 };
 
@@ -267,14 +272,33 @@ void measureRegionsOfRuns(const ObjectBoxes& o, Region* first)
   const std::vector<vbr::VoxelRun>& runs = r.runs;
   const std::vector<std::uint32_t>& label = o.runComponents.runLabel;
   const std::vector<std::uint8_t>& begins = o.runComponents.beginsBox;
+  const std::int32_t dx = o.offset[0];
   for (std::int32_t z = 0; z < r.dims[2]; ++z)
     for (std::int32_t y = 0; y < r.dims[1]; ++y)
     {
       const std::size_t row = r.rowOf(y, z);
-      for (std::uint32_t i = r.rowStarts[row]; i < r.rowStarts[row + 1]; ++i)
+      const std::uint32_t end = r.rowStarts[row + 1];
+      // Consecutive runs of one region (most runs of a porous volume's large component) are
+      // added up before their region's record is read and written once.
+      for (std::uint32_t i = r.rowStarts[row]; i < end;)
       {
-        const vbr::VoxelRun run{ runs[i].x0 + o.offset[0], runs[i].x1 + o.offset[0] };
-        first[label[i] - 1].addRun(run, y + o.offset[1], z + o.offset[2], begins[i] != 0);
+        const std::uint32_t region = label[i];
+        std::int64_t voxels = 0, doubledX = 0;
+        std::uint32_t boxes = 0, j = i;
+        do
+        {
+          const std::int64_t length = runs[j].x1 - runs[j].x0;
+          voxels += length;
+          doubledX += length * (std::int64_t(runs[j].x0) + runs[j].x1 + 2 * dx);
+          boxes += begins[j];
+        } while (++j < end && label[j] == region);
+        first[region - 1].addRowRuns({ runs[i].x0 + dx, runs[j - 1].x1 + dx },
+          y + o.offset[1],
+          z + o.offset[2],
+          voxels,
+          doubledX,
+          boxes);
+        i = j;
       }
     }
 }
