@@ -118,9 +118,24 @@ struct CompactionNotes
   }
 };
 
-/// The rows (y, z) of one plane united with their backward neighbour rows.
+/// Which backward neighbour rows of a plane's rows unitePlane reads: all, those of the plane
+/// itself (the first plane of a piece labelled concurrently), or those of the plane before
+/// (the same plane when the pieces are joined).
+enum class NeighbourRows
+{
+  All,
+  InPlane,
+  PlaneBefore
+};
+
+/// The rows (y, z) of one plane united with their backward neighbour rows: (y - 1, z) and
+/// (y, z - 1), and with vertex connectivity (Widen = 1) (y - 1, z - 1) and (y + 1, z - 1) too.
 template<int Widen>
-void unitePlane(const VoxelRuns& r, std::int32_t z, UnionFind& uf, CompactionNotes& notes)
+void unitePlane(const VoxelRuns& r,
+  std::int32_t z,
+  NeighbourRows which,
+  UnionFind& uf,
+  CompactionNotes& notes)
 {
   const std::int32_t ny = r.dims[1];
   const VoxelRun* runs = r.runs.data();
@@ -131,10 +146,10 @@ void unitePlane(const VoxelRuns& r, std::int32_t z, UnionFind& uf, CompactionNot
     const std::uint32_t a = starts[row], aEnd = starts[row + 1];
     if (a == aEnd)
       continue;
-    if (y > 0)
+    if (y > 0 && which != NeighbourRows::PlaneBefore)
       uniteRow<Widen>(
         uf, runs, a, aEnd, starts[row - 1], starts[row], notes.above.data(), notes.below.data());
-    if (z == 0)
+    if (z == 0 || which == NeighbourRows::InPlane)
       continue;
     const std::size_t back = r.rowOf(y, z - 1);
     uniteRow<Widen>(uf, runs, a, aEnd, starts[back], starts[back + 1], notes.behind.data());
@@ -145,6 +160,83 @@ void unitePlane(const VoxelRuns& r, std::int32_t z, UnionFind& uf, CompactionNot
     if (y + 1 < ny)
       uniteRow<Widen>(uf, runs, a, aEnd, starts[back + 1], starts[back + 2], nullptr);
   }
+}
+
+void unitePlane(const VoxelRuns& r,
+  std::int32_t z,
+  NeighbourRows which,
+  Connectivity connectivity,
+  UnionFind& uf,
+  CompactionNotes& notes)
+{
+  if (connectivity == Connectivity::Face)
+    unitePlane<0>(r, z, which, uf, notes);
+  else
+    unitePlane<1>(r, z, which, uf, notes);
+}
+
+/// How many pieces of consecutive planes to label concurrently: one per thread when the runs
+/// are many and each piece keeps several planes, else one.
+int labellingPieces(std::size_t runs, std::int32_t planes, int concurrency)
+{
+  if (concurrency < 2 || runs < (std::size_t(1) << 16))
+    return 1;
+  return std::max(1, std::min(concurrency, planes / 8));
+}
+
+/// All planes united in one sweep on the calling thread, with progress and abort.
+bool uniteSequentially(const VoxelRuns& r,
+  Connectivity connectivity,
+  const Execution& exec,
+  UnionFind& uf,
+  CompactionNotes& notes)
+{
+  const std::int32_t nz = r.dims[2];
+  ProgressPoll poll(exec, 0.0, 0.8, 4);
+  for (std::int32_t z = 0; z < nz; ++z)
+  {
+    unitePlane(r, z, NeighbourRows::All, connectivity, uf, notes);
+    poll.at(static_cast<double>(z + 1) / nz);
+    if (!poll.tick())
+      return false;
+  }
+  return true;
+}
+
+/// The planes cut into `pieces` runs of consecutive planes united concurrently, then joined:
+/// the first plane of each piece but the first with the plane before. A piece's runs are
+/// consecutive numbers that only its own unions touch, so the pieces share the union-find and
+/// the notes without locks; the classes, and their smallest elements, are the sequential
+/// sweep's. Workers ask whether to stop after every plane.
+bool uniteInPieces(const VoxelRuns& r,
+  Connectivity connectivity,
+  int pieces,
+  const Execution& exec,
+  UnionFind& uf,
+  CompactionNotes& notes)
+{
+  const std::int32_t nz = r.dims[2];
+  auto firstPlane = [nz, pieces](std::int64_t piece)
+  { return static_cast<std::int32_t>(nz * piece / pieces); };
+  std::atomic<bool> stopped{ false };
+  exec.forRange(pieces,
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (std::int64_t piece = begin; piece < end; ++piece)
+        for (std::int32_t z = firstPlane(piece); z < firstPlane(piece + 1) && !stopped; ++z)
+        {
+          const bool first = z == firstPlane(piece);
+          unitePlane(
+            r, z, first ? NeighbourRows::InPlane : NeighbourRows::All, connectivity, uf, notes);
+          if (exec.stopRequested())
+            stopped = true;
+        }
+    });
+  if (stopped || !exec.report(0.7))
+    return false;
+  for (int piece = 1; piece < pieces; ++piece)
+    unitePlane(r, firstPlane(piece), NeighbourRows::PlaneBefore, connectivity, uf, notes);
+  return exec.report(0.8);
 }
 
 /// Whether the rectangles whose first runs are a and b have as many rows.
@@ -316,17 +408,11 @@ bool labelRuns(const BitVolume& voxels,
   const std::int32_t nz = runs.dims[2];
   UnionFind uf(n);
   CompactionNotes notes(n);
-  ProgressPoll poll(exec, 0.0, 0.8, 4);
-  for (std::int32_t z = 0; z < nz; ++z)
-  {
-    if (connectivity == Connectivity::Face)
-      unitePlane<0>(runs, z, uf, notes);
-    else
-      unitePlane<1>(runs, z, uf, notes);
-    poll.at(static_cast<double>(z + 1) / nz);
-    if (!poll.tick())
-      return false;
-  }
+  const int pieces = labellingPieces(n, nz, exec.concurrency);
+  const bool united = pieces > 1 ? uniteInPieces(runs, connectivity, pieces, exec, uf, notes)
+                                 : uniteSequentially(runs, connectivity, exec, uf, notes);
+  if (!united)
+    return false;
   // The classes numbered from 1 in order of their first run (the root, met before the other
   // runs of its class).
   out.runLabel.resize(n);

@@ -197,12 +197,15 @@ TEST(RunLabelling, CheckerboardComponents)
 
 TEST(RunLabelling, ThreadsChangeNothing)
 {
+  // Enough runs (over 2^16) and planes for the labelling to be cut into pieces of planes.
   const vbr::BitVolume v = bf::randomVolume({ 100, 60, 70 }, 0.45, 11);
   for (vbr::Connectivity c : { vbr::Connectivity::Face, vbr::Connectivity::Vertex })
   {
     const Labelled one = labelAndPaint(v, c);
     const Labelled three = labelAndPaint(v, c, bf::threadedExecution(3));
     EXPECT_EQ(one.components.runLabel, three.components.runLabel);
+    EXPECT_EQ(one.components.beginsBox, three.components.beginsBox);
+    EXPECT_EQ(one.components.boxCount, three.components.boxCount);
     EXPECT_EQ(one.grid, three.grid);
   }
 }
