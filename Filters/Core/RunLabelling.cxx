@@ -4,8 +4,9 @@
 // them (bit scans of the rows' changes), parallel over planes; labelRuns sweeps the rows in
 // scan order, merging each row's runs with those of its backward neighbour rows (uniteRow), and
 // notes on the way the equal runs that the CUDB's compactions join (the row before, the plane
-// before); boxBeginnings, countOUDBBoxes and countExtremeVertices turn those notes and the bits
-// into the CUDB's counts; paintRuns writes a value per run into a label grid.
+// before; uniteSequentially, or with threads uniteInPieces: pieces of planes swept concurrently,
+// then joined plane to plane); boxBeginnings, countOUDBBoxes and countExtremeVertices turn those
+// notes and the bits into the CUDB's counts; paintRuns writes a value per run into a label grid.
 #include "RunLabelling.h"
 
 #include "Geometry.h"

@@ -74,8 +74,10 @@ struct RunComponents
 };
 
 /// Labels the runs of `voxels` (as extractRuns gave them) with `connectivity`, and counts the
-/// CUDB's boxes, the OUDB's and the EVM's vertices. Asks `exec` whether to stop every few
-/// planes and reports its progress; returns false when aborted.
+/// CUDB's boxes, the OUDB's and the EVM's vertices. With several threads (exec.concurrency) and
+/// many runs, pieces of consecutive planes are labelled concurrently and then joined; the
+/// result is the same. Asks `exec` whether to stop every few planes and reports its progress;
+/// returns false when aborted.
 bool labelRuns(const BitVolume& voxels,
   const VoxelRuns& runs,
   Connectivity connectivity,
