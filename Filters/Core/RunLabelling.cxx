@@ -71,9 +71,9 @@ VoxelRun* writeRowRuns(const Word* bits, std::size_t words, VoxelRun* out)
 /// Unites every run of one row [a, aEnd) with the runs of a neighbour row [b, bEnd) it touches:
 /// overlapping (Widen = 0) or also meeting diagonally at an end (Widen = 1). With `twin`, the
 /// run of the neighbour row equal to run i (if any) is written to twin[i], and with `twinOf`,
-/// i to twinOf[that run]. Both rows are sorted
-/// and their runs have gaps, so one forward walk finds every pair; the union's root is carried
-/// from contact to contact rather than found again from the run.
+/// i to twinOf[that run]. Both rows are sorted and their runs have gaps, so one forward walk
+/// finds every pair; the union's root is carried from contact to contact rather than found
+/// again from the run.
 template<int Widen>
 void uniteRow(UnionFind& uf,
   const VoxelRun* runs,
@@ -163,6 +163,7 @@ void unitePlane(const VoxelRuns& r,
   }
 }
 
+/// unitePlane for a connectivity given at run time.
 void unitePlane(const VoxelRuns& r,
   std::int32_t z,
   NeighbourRows which,
