@@ -4,6 +4,7 @@
 #include "EVM.h"
 #include "Geometry.h"
 #include "RadixSort.h"
+#include "RunLabelling.h"
 #include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepDistributed.h"
 
@@ -70,6 +71,24 @@ struct ObjectBoxes
   /// from which its RegionIds are painted (vbr::paintPixelRuns).
   vbr::BitVolume pixels;
   vbr::PixelRuns runs;
+  /// A 3D object labelled on the runs of its rows (labelledFromRuns): no boxes, the runs'
+  /// labels and the counts of the CUDB the boxes would have been.
+  bool labelledFromRuns = false;
+  vbr::VoxelRuns voxelRuns;
+  vbr::RunComponents runComponents;
+
+  std::uint32_t componentCount() const
+  {
+    return this->labelledFromRuns ? this->runComponents.count : this->components.count;
+  }
+  std::size_t boxCount() const
+  {
+    return this->labelledFromRuns ? this->runComponents.boxCount : this->cudb.boxes.size();
+  }
+  std::size_t oudbBoxCount() const
+  {
+    return this->labelledFromRuns ? this->runComponents.oudbBoxCount : this->cudb.oudbBoxCount;
+  }
 };
 
 /// Asks the cache for the line at `address`, which is read soon (a hint; nothing without it).
@@ -121,6 +140,29 @@ struct alignas(64) Region : RegionStats
       this->hi[d] = std::max(this->hi[d], last);
       this->doubledCentre[d] += volume * (std::int64_t(first) + last);
     }
+  }
+
+  /// Adds runs of row (y, z) of the region (processing axes, offset included): `voxels` voxels
+  /// from extent.x0 to extent.x1, whose doubled x centres add up to `doubledX`, of which
+  /// `boxes` begin a box.
+  void addRowRuns(const vbr::VoxelRun& extent,
+    std::int32_t y,
+    std::int32_t z,
+    std::int64_t voxelCount,
+    std::int64_t doubledX,
+    std::uint32_t boxCount)
+  {
+    this->boxes += boxCount;
+    this->voxels += voxelCount;
+    this->lo = {
+      std::min(this->lo[0], extent.x0), std::min(this->lo[1], y), std::min(this->lo[2], z)
+    };
+    this->hi = {
+      std::max(this->hi[0], extent.x1), std::max(this->hi[1], y + 1), std::max(this->hi[2], z + 1)
+    };
+    this->doubledCentre[0] += doubledX;
+    this->doubledCentre[1] += voxelCount * (2 * std::int64_t(y) + 1);
+    this->doubledCentre[2] += voxelCount * (2 * std::int64_t(z) + 1);
   }
 };
 
@@ -223,13 +265,56 @@ bool axisAligned(const vbr::vtk::VoxelGrid& grid)
     grid.spacing[2] > 0;
 }
 
-/// The size and the statistics of every region from its boxes, in sweep order.
+/// The statistics of the regions of an object labelled on its runs, from the runs.
+void measureRegionsOfRuns(const ObjectBoxes& o, Region* first)
+{
+  const vbr::VoxelRuns& r = o.voxelRuns;
+  const std::vector<vbr::VoxelRun>& runs = r.runs;
+  const std::vector<std::uint32_t>& label = o.runComponents.runLabel;
+  const std::vector<std::uint8_t>& begins = o.runComponents.beginsBox;
+  const std::int32_t dx = o.offset[0];
+  for (std::int32_t z = 0; z < r.dims[2]; ++z)
+    for (std::int32_t y = 0; y < r.dims[1]; ++y)
+    {
+      const std::size_t row = r.rowOf(y, z);
+      const std::uint32_t end = r.rowStarts[row + 1];
+      // Consecutive runs of one region (most runs of a porous volume's large component) are
+      // added up before their region's record is read and written once.
+      for (std::uint32_t i = r.rowStarts[row]; i < end;)
+      {
+        const std::uint32_t region = label[i];
+        std::int64_t voxels = 0, doubledX = 0;
+        std::uint32_t boxes = 0, j = i;
+        do
+        {
+          const std::int64_t length = runs[j].x1 - runs[j].x0;
+          voxels += length;
+          doubledX += length * (std::int64_t(runs[j].x0) + runs[j].x1 + 2 * dx);
+          boxes += begins[j];
+        } while (++j < end && label[j] == region);
+        first[region - 1].addRowRuns({ runs[i].x0 + dx, runs[j - 1].x1 + dx },
+          y + o.offset[1],
+          z + o.offset[2],
+          voxels,
+          doubledX,
+          boxes);
+        i = j;
+      }
+    }
+}
+
+/// The size and the statistics of every region from its boxes (or runs), in sweep order.
 std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t count)
 {
   std::vector<Region> regions(count);
   for (const ObjectBoxes& o : objects)
   {
     Region* first = regions.data() + o.firstRegion;
+    if (o.labelledFromRuns)
+    {
+      measureRegionsOfRuns(o, first);
+      continue;
+    }
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
       first[o.components.boxLabel[b] - 1].add(o.cudb.boxes[b], o.offset); // labels start at 1
   }
@@ -286,15 +371,19 @@ int bitsFor(std::uint64_t n)
 /// maze has 642,115 regions, whose comparison sort took longer than their table.
 void rankBySize(const std::vector<Region>& regions, std::vector<std::size_t>& kept)
 {
+  // Regions of one size, or already largest first (a checkerboard's million regions of one
+  // voxel), are in order: the sort's keys and scratch were a fifth of that update.
+  const auto larger = [&regions](std::size_t a, std::size_t b)
+  { return regions[a].voxels > regions[b].voxels; };
+  if (std::is_sorted(kept.begin(), kept.end(), larger))
+    return;
   std::int64_t largest = 0;
   for (std::size_t r : kept)
     largest = std::max(largest, regions[r].voxels);
   const int indexBits = bitsFor(regions.size());
   if (bitsFor(static_cast<std::uint64_t>(largest)) + indexBits > 64)
   {
-    std::stable_sort(kept.begin(),
-      kept.end(),
-      [&regions](std::size_t a, std::size_t b) { return regions[a].voxels > regions[b].voxels; });
+    std::stable_sort(kept.begin(), kept.end(), larger);
     return;
   }
   std::vector<std::uint64_t> keys(kept.size());
@@ -330,6 +419,26 @@ std::int32_t numberRegions(const std::vector<Region>& regions,
   return static_cast<std::int32_t>(kept.size());
 }
 
+/// The voxels of an object labelled on its runs painted from the runs, as paintRegions does.
+/// The only object of the image has nothing but zeros around its runs: they are painted by wide
+/// stores that zero the voxels after them (vbr::paintRuns).
+bool paintRegionsOfRuns(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds,
+  const vbr::vtk::VoxelGrid& grid,
+  bool onlyObject,
+  std::int32_t* out,
+  const vbr::Execution& exec)
+{
+  std::vector<std::int32_t> values(o.runComponents.count + 1, 0); // by label, from 1
+  for (std::uint32_t c = 1; c <= o.runComponents.count; ++c)
+  {
+    const std::size_t r = o.firstRegion + c - 1;
+    values[c] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
+  }
+  return vbr::paintRuns(
+    o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec, onlyObject);
+}
+
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
 /// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted.
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
@@ -345,6 +454,12 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   std::vector<std::int32_t> values;
   for (const ObjectBoxes& o : objects)
   {
+    if (o.labelledFromRuns)
+    {
+      if (!paintRegionsOfRuns(o, regionIds, grid, objects.size() == 1, out, exec))
+        return nullptr;
+      continue;
+    }
     values.resize(o.cudb.boxes.size());
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
     {
@@ -741,7 +856,7 @@ void writeRegionTable(const std::vector<ObjectBoxes>& objects,
     if (regionIds[r] != 0)
       regionOfRow[static_cast<std::size_t>(regionIds[r] - 1)] = r;
   for (const ObjectBoxes& o : objects)
-    for (std::uint32_t c = 0; c < o.components.count; ++c)
+    for (std::uint32_t c = 0; c < o.componentCount(); ++c)
       if (const std::int32_t id = regionIds[o.firstRegion + c])
         vbr::vtk::setLabel(columns.labels, id - 1, o.label);
   columns.write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
@@ -776,8 +891,8 @@ struct Summary
   /// Counts an object's boxes and extreme vertices, and the sorting its boxes were built in.
   void add(const ObjectBoxes& o, const std::string& sorting)
   {
-    this->boxes += static_cast<vtkIdType>(o.cudb.boxes.size());
-    this->oudbBoxes += static_cast<vtkIdType>(o.cudb.oudbBoxCount);
+    this->boxes += static_cast<vtkIdType>(o.boxCount());
+    this->oudbBoxes += static_cast<vtkIdType>(o.oudbBoxCount());
     this->extremeVertices += static_cast<vtkIdType>(o.extremeVertices);
     if (std::find(this->sortings.begin(), this->sortings.end(), sorting) == this->sortings.end())
       this->sortings.push_back(sorting);
@@ -855,18 +970,40 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   return !o.cudb.boxes.empty();
 }
 
-/// The CUDB of one object and the components of its boxes; false when the object is empty or
-/// the work was aborted. Its voxels live only while its EVM is built.
+/// The components of a 3D object labelled on the runs of its rows, with the counts of the CUDB
+/// in the ZYX sorting; false when the object is empty or the work was aborted.
+bool labelObjectRuns(const vbr::vtk::Selected& selected,
+  vbr::Connectivity connectivity,
+  const vbr::Execution& exec,
+  ObjectBoxes& o)
+{
+  vtkLogScopeF(TRACE, "select voxels and label the runs of their rows");
+  const vbr::BitVolume voxels = selected.select(exec.within(0.0, 0.2));
+  if (!vbr::extractRuns(voxels, exec.within(0.2, 0.3), o.voxelRuns) || o.voxelRuns.empty())
+    return false;
+  if (!vbr::labelRuns(voxels, o.voxelRuns, connectivity, exec.within(0.3, 1.0), o.runComponents))
+    return false;
+  o.labelledFromRuns = true;
+  o.extremeVertices = o.runComponents.extremeVertices;
+  return true;
+}
+
+/// The CUDB of one object and the components of its boxes (or, `fromRuns`, the components of
+/// the runs of its rows and the CUDB's counts); false when the object is empty or the work was
+/// aborted. Its voxels live only while its EVM is built.
 bool boxesOfObject(const vbr::vtk::Selected& selected,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
   bool planar,
   bool onlyObject,
+  bool fromRuns,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
   o.label = selected.label;
   o.offset = selected.offset;
+  if (fromRuns)
+    return labelObjectRuns(selected, connectivity, exec, o);
   if (planar)
     return boxesOfPixelRows(selected, sortings, connectivity, onlyObject, exec, o);
   vbr::EVM evm;
@@ -899,6 +1036,12 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
   const vbr::Connectivity connectivity = self->GetConnectivity() == vtkCUDBConnectivity::VERTEX
     ? vbr::Connectivity::Vertex
     : vbr::Connectivity::Face;
+  // Without the boxes output (and on one rank, where the boxes are exchanged), the ZYX CUDB is
+  // needed only for its counts: the runs of the rows give them, and the components, faster
+  // (a box of a porous volume is barely larger than a run).
+  const bool fromRuns = !planar && !self->GetGenerateBoxes() && !in.piece.distributed() &&
+    in.axes == std::array<int, 3>{ 0, 1, 2 } && sortings.size() == 1 &&
+    sortings[0] == vbr::AxisOrder{ 2, 1, 0 };
   const std::size_t n = in.objects.size();
   std::uint32_t regionCount = 0;
   for (std::size_t i = 0; i < n && !self->GetAbortExecute(); ++i)
@@ -906,10 +1049,10 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
     const vbr::Execution exec =
       vbr::vtk::makeExecution(self, 0.05 + 0.65 * i / n, 0.05 + 0.65 * (i + 1) / n);
     ObjectBoxes o;
-    if (!boxesOfObject(in.objects[i], sortings, connectivity, planar, n == 1, exec, o))
+    if (!boxesOfObject(in.objects[i], sortings, connectivity, planar, n == 1, fromRuns, exec, o))
       continue; // empty, or aborted
     o.firstRegion = regionCount;
-    regionCount += o.components.count;
+    regionCount += o.componentCount();
     summary.add(o, sortingName(o.cudb.order, in.axes, planar));
     objects.push_back(std::move(o));
     self->UpdateProgress(0.05 + 0.65 * (i + 1) / n);

@@ -12,7 +12,10 @@ makes a first run (its peak memory, and the warm-up), then --repeat rounds in tu
 is the middle of the sorted times (of an even count, the mean of the middle two); the ratio is
 the peer's time over the filter's with the same connectivity (above 1: the filter is faster).
 The component counts of the filter and of every peer must agree (MISMATCH, exit code 1):
-a benchmark that compares different answers measures nothing.
+a benchmark that compares different answers measures nothing. So must the filter's two ways
+of labelling a 3D image: every output but the boxes, value for value, without the boxes output
+(the runs of the voxel rows) and with it (the CUDB's boxes), on every input and, with --check
+(40 random images with --quick, the ctest smoke run), on random images and options.
 """
 
 import argparse
@@ -27,7 +30,8 @@ import numpy as np
 from scipy import ndimage
 from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkSMPTools
-from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
 
 import voxelbrep
 
@@ -56,6 +60,10 @@ def parse_arguments():
     p.add_argument("--repeat", type=int, default=5, help="timed rounds after the first run")
     p.add_argument("--data", default=DEFAULT_DATA, help="the shared data")
     p.add_argument("--no-data", action="store_true", help="procedural inputs only")
+    p.add_argument("--check", type=int, default=None, metavar="N",
+                   help="before the benchmark, N random images (sizes, densities, label maps, "
+                        "options, seeds, cell data, extents) whose outputs must be the same "
+                        "without and with the boxes output (default 40 with --quick, else 0)")
     p.add_argument("--quick", action="store_true",
                    help="tiny sizes, --repeat 1, small files only (the ctest smoke run)")
     p.add_argument("--large", action="store_true", help="sizes 128,256,512, the mazes")
@@ -68,6 +76,8 @@ def parse_arguments():
     args = p.parse_args()
     if args.quick and "--repeat" not in sys.argv:
         args.repeat = 1
+    if args.check is None:
+        args.check = 40 if args.quick else 0
     if args.sizes is None and not (args.quick or args.large):
         args.sizes = "128,256"  # the default of BenchCUDBConnectivity.cxx
     return args
@@ -160,6 +170,107 @@ def filter_contender(image, connectivity, counts):
     return ("filter " + connectivity, "tool", connectivity, run)
 
 
+def outputs_of(image, connectivity, boxes, options=None, seeds=None):
+    """Every output of the filter but the boxes, as arrays: the RegionId image, each column of
+    the region table, and the field data of ports 0 and 2. `options`: setter name -> value."""
+    f = voxelbrep.vtkCUDBConnectivity()
+    f.SetInputData(image)
+    f.SetGenerateBoxes(boxes)
+    if connectivity == "vertex":
+        f.SetConnectivityToVertex()
+    for setter, value in (options or {}).items():
+        getattr(f, setter)(value)
+    if seeds is not None:
+        f.SetSeedData(seeds)
+    f.Update()
+    out = {}
+    for data in (f.GetOutput().GetPointData(), f.GetOutput().GetCellData()):
+        if data.GetArray("RegionId") is not None:
+            out["RegionId"] = ns.vtk_to_numpy(data.GetArray("RegionId"))
+    table = f.GetRegionsOutput()
+    for c in range(table.GetNumberOfColumns()):
+        column = table.GetColumn(c)
+        out["column " + column.GetName()] = ns.vtk_to_numpy(column)
+    for port in (0, 2):
+        fd = f.GetOutputDataObject(port).GetFieldData()
+        for a in range(fd.GetNumberOfArrays()):
+            array = fd.GetAbstractArray(a)
+            values = [array.GetValue(i) for i in range(array.GetNumberOfValues())]
+            out["port %d field %s" % (port, array.GetName())] = np.array(values)
+    return out
+
+
+def check_same_outputs(name, image, connectivities=("face", "vertex"), options=None,
+                       seeds=None):
+    """Without the boxes output a 3D image is labelled on the runs of its voxel rows, with it on
+    the boxes of the CUDB: every other output must be the same, value for value."""
+    failures = []
+    for connectivity in connectivities:
+        runs = outputs_of(image, connectivity, False, options, seeds)
+        cudb = outputs_of(image, connectivity, True, options, seeds)
+        for key in sorted(set(runs) | set(cudb)):
+            if key not in runs or key not in cudb or not np.array_equal(runs[key], cudb[key]):
+                failures.append("%s, %s: %s differs without and with the boxes output" % (
+                    name, connectivity, key))
+    return failures
+
+
+def random_image(rng):
+    """A random image for check_random_images: a mask or a label map of random size (rows of
+    one to three words), density, extent, origin and spacing, as point or cell scalars."""
+    dims = rng.integers(1, 40, 3)
+    if rng.random() < 0.3:
+        dims[0] = rng.integers(60, 140)
+    labels = rng.random() < 0.3
+    shape = tuple(int(d) for d in dims[::-1])
+    values = (rng.integers(0, 4, shape).astype(np.int16) if labels
+              else (rng.random(shape) < rng.uniform(0.05, 0.95)).astype(np.uint8))
+    cell = rng.random() < 0.3
+    image = vtkImageData()
+    start = rng.integers(-3, 3, 3)
+    image.SetExtent(*[int(v) for s, d in zip(start, dims)
+                      for v in (s, s + d - (0 if cell else 1))])
+    image.SetOrigin(*rng.uniform(-5, 5, 3))
+    image.SetSpacing(*rng.uniform(0.2, 2, 3))
+    scalars = ns.numpy_to_vtk(values.ravel(), deep=1)
+    scalars.SetName("values")
+    (image.GetCellData() if cell else image.GetPointData()).SetScalars(scalars)
+    return image, labels
+
+
+def random_options(rng, labels, image):
+    """Random region filters and ordering (Labels mode for a label map), and seeds or None."""
+    options = {"SetSelectionMode": 2} if labels else {}
+    for setter, chance, value in (("SetRegionOrdering", 0.3, 1),
+                                  ("SetMinimumRegionSize", 0.3, int(rng.integers(1, 5))),
+                                  ("SetLargestRegions", 0.3, int(rng.integers(1, 5)))):
+        if rng.random() < chance:
+            options[setter] = value
+    if rng.random() >= 0.2:
+        return options, None
+    points = vtkPoints()
+    bounds = image.GetBounds()
+    for _ in range(int(rng.integers(1, 20))):
+        points.InsertNextPoint(*[rng.uniform(bounds[2 * i], bounds[2 * i + 1]) for i in range(3)])
+    seeds = vtkPolyData()
+    seeds.SetPoints(points)
+    return options, seeds
+
+
+def check_random_images(trials):
+    """check_same_outputs on `trials` random images with random options (seeded: reproducible)."""
+    rng = np.random.default_rng(11)
+    failures = []
+    for trial in range(trials):
+        image, labels = random_image(rng)
+        options, seeds = random_options(rng, labels, image)
+        connectivity = "vertex" if rng.random() < 0.5 else "face"
+        failures += check_same_outputs("random image %d" % trial, image, (connectivity,),
+                                       options, seeds)
+    print("random images checked: %d, %d differ\n" % (trials, len(failures)), flush=True)
+    return failures
+
+
 def peer_contenders(mask, counts):
     """scipy (6/26 in 3D, 4/8 in 2D) and, in 2D, OpenCV, with the filter's connectivities."""
     flat = mask.shape[0] == 1
@@ -212,7 +323,7 @@ def benchmark(name, mask, args, summary):
     print("## %s (%dx%dx%d)\n\nselected voxels: %d\n" % (
         name, mask.shape[2], mask.shape[1], mask.shape[0], int(mask.sum())))
     image = image_of(mask)
-    failures = []
+    failures = check_same_outputs(name, image)
     for backend in backends_in_turn(args):
         counts = {}
         contenders = [filter_contender(image, c, counts) for c in ("face", "vertex")]
@@ -274,7 +385,12 @@ def run_benchmarks(title, args, benchmark, finish, accept=lambda mask: True):
 
 
 def main():
-    return run_benchmarks("BenchCUDBConnectivity.py", parse_arguments(), benchmark, print_summary)
+    args = parse_arguments()
+    failures = check_random_images(args.check) if args.check and not args.list else []
+    code = run_benchmarks("BenchCUDBConnectivity.py", args, benchmark, print_summary)
+    for f in failures:
+        print("MISMATCH " + f, file=sys.stderr)
+    return 1 if failures else code
 
 
 if __name__ == "__main__":

@@ -1,0 +1,469 @@
+// Scan-line labelling of the runs of a bit volume's rows (see RunLabelling.h for the method).
+//
+// Passes: extractRuns counts the runs of every row (popcounts of the run starts) and writes
+// them (bit scans of the rows' changes), parallel over planes; labelRuns sweeps the rows in
+// scan order, merging each row's runs with those of its backward neighbour rows (uniteRow), and
+// notes on the way the equal runs that the CUDB's compactions join (the row before, the plane
+// before; uniteSequentially, or with threads uniteInPieces: pieces of planes swept concurrently,
+// then joined plane to plane); boxBeginnings, countOUDBBoxes and countExtremeVertices turn those
+// notes and the bits into the CUDB's counts; paintRuns writes a value per run into a label grid.
+#include "RunLabelling.h"
+
+#include "Geometry.h"
+#include "UnionFind.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace vbr
+{
+namespace
+{
+
+constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
+
+/// The number of runs of a row of bits (the bits past the row's end are clear): its run starts,
+/// a set bit whose left neighbour is clear.
+std::uint32_t countRowRuns(const Word* bits, std::size_t words)
+{
+  std::uint32_t n = 0;
+  Word carry = 0;
+  for (std::size_t w = 0; w < words; ++w)
+  {
+    const Word b = bits[w];
+    n += static_cast<std::uint32_t>(popCount(b & ~((b << 1) | carry)));
+    carry = b >> 63;
+  }
+  return n;
+}
+
+/// The runs of a row of bits from `out` on: a run starts or ends at x where bits x - 1 and x
+/// differ. Returns the end of the output.
+VoxelRun* writeRowRuns(const Word* bits, std::size_t words, VoxelRun* out)
+{
+  Word carry = 0;
+  bool open = false;
+  std::int32_t start = 0;
+  for (std::size_t w = 0; w < words; ++w)
+  {
+    const Word b = bits[w];
+    Word change = b ^ ((b << 1) | carry);
+    carry = b >> 63;
+    while (change)
+    {
+      const auto x = static_cast<std::int32_t>(w * 64 + countTrailingZeros(change));
+      if (open)
+        *out++ = { start, x };
+      start = x;
+      open = !open;
+      change &= change - 1;
+    }
+  }
+  if (open)
+    *out++ = { start, static_cast<std::int32_t>(words * 64) };
+  return out;
+}
+
+/// Unites every run of one row [a, aEnd) with the runs of a neighbour row [b, bEnd) it touches:
+/// overlapping (Widen = 0) or also meeting diagonally at an end (Widen = 1). With `twin`, the
+/// run of the neighbour row equal to run i (if any) is written to twin[i], and with `twinOf`,
+/// i to twinOf[that run]. Both rows are sorted and their runs have gaps, so one forward walk
+/// finds every pair; the union's root is carried from contact to contact rather than found
+/// again from the run.
+template<int Widen>
+void uniteRow(UnionFind& uf,
+  const VoxelRun* runs,
+  std::uint32_t a,
+  std::uint32_t aEnd,
+  std::uint32_t b,
+  std::uint32_t bEnd,
+  std::uint32_t* twin,
+  std::uint32_t* twinOf = nullptr)
+{
+  for (; a < aEnd; ++a)
+  {
+    const VoxelRun run = runs[a];
+    // Runs of the neighbour row that end before this one begins meet no later run either.
+    while (b < bEnd && runs[b].x1 + Widen <= run.x0)
+      ++b;
+    std::uint32_t root = a;
+    for (std::uint32_t k = b; k < bEnd && runs[k].x0 < run.x1 + Widen; ++k)
+    {
+      root = uf.unite(k, root);
+      if (twin && runs[k].x0 == run.x0 && runs[k].x1 == run.x1)
+      {
+        twin[a] = k;
+        if (twinOf)
+          twinOf[k] = a;
+      }
+    }
+  }
+}
+
+/// Where the CUDB compactions are read from: for every run, the equal run of the row before
+/// and of the row after in its plane (chains of them are the rectangles, the 2D compaction), and
+/// the equal run of the same row in the plane before (the 3D compaction); None where none.
+struct CompactionNotes
+{
+  std::vector<std::uint32_t> above, below, behind;
+
+  explicit CompactionNotes(std::size_t n)
+    : above(n, None)
+    , below(n, None)
+    , behind(n, None)
+  {
+  }
+};
+
+/// Which backward neighbour rows of a plane's rows unitePlane reads: all, those of the plane
+/// itself (the first plane of a piece labelled concurrently), or those of the plane before
+/// (the same plane when the pieces are joined).
+enum class NeighbourRows
+{
+  All,
+  InPlane,
+  PlaneBefore
+};
+
+/// The rows (y, z) of one plane united with their backward neighbour rows: (y - 1, z) and
+/// (y, z - 1), and with vertex connectivity (Widen = 1) (y - 1, z - 1) and (y + 1, z - 1) too.
+template<int Widen>
+void unitePlane(const VoxelRuns& r,
+  std::int32_t z,
+  NeighbourRows which,
+  UnionFind& uf,
+  CompactionNotes& notes)
+{
+  const std::int32_t ny = r.dims[1];
+  const VoxelRun* runs = r.runs.data();
+  const std::uint32_t* starts = r.rowStarts.data();
+  for (std::int32_t y = 0; y < ny; ++y)
+  {
+    const std::size_t row = r.rowOf(y, z);
+    const std::uint32_t a = starts[row], aEnd = starts[row + 1];
+    if (a == aEnd)
+      continue;
+    if (y > 0 && which != NeighbourRows::PlaneBefore)
+      uniteRow<Widen>(
+        uf, runs, a, aEnd, starts[row - 1], starts[row], notes.above.data(), notes.below.data());
+    if (z == 0 || which == NeighbourRows::InPlane)
+      continue;
+    const std::size_t back = r.rowOf(y, z - 1);
+    uniteRow<Widen>(uf, runs, a, aEnd, starts[back], starts[back + 1], notes.behind.data());
+    if (Widen == 0)
+      continue;
+    if (y > 0)
+      uniteRow<Widen>(uf, runs, a, aEnd, starts[back - 1], starts[back], nullptr);
+    if (y + 1 < ny)
+      uniteRow<Widen>(uf, runs, a, aEnd, starts[back + 1], starts[back + 2], nullptr);
+  }
+}
+
+/// unitePlane for a connectivity given at run time.
+void unitePlane(const VoxelRuns& r,
+  std::int32_t z,
+  NeighbourRows which,
+  Connectivity connectivity,
+  UnionFind& uf,
+  CompactionNotes& notes)
+{
+  if (connectivity == Connectivity::Face)
+    unitePlane<0>(r, z, which, uf, notes);
+  else
+    unitePlane<1>(r, z, which, uf, notes);
+}
+
+/// How many pieces of consecutive planes to label concurrently: one per thread when the runs
+/// are many and each piece keeps several planes, else one.
+int labellingPieces(std::size_t runs, std::int32_t planes, int concurrency)
+{
+  if (concurrency < 2 || runs < (std::size_t(1) << 16))
+    return 1;
+  return std::max(1, std::min(concurrency, planes / 8));
+}
+
+/// All planes united in one sweep on the calling thread, with progress and abort.
+bool uniteSequentially(const VoxelRuns& r,
+  Connectivity connectivity,
+  const Execution& exec,
+  UnionFind& uf,
+  CompactionNotes& notes)
+{
+  const std::int32_t nz = r.dims[2];
+  ProgressPoll poll(exec, 0.0, 0.8, 4);
+  for (std::int32_t z = 0; z < nz; ++z)
+  {
+    unitePlane(r, z, NeighbourRows::All, connectivity, uf, notes);
+    poll.at(static_cast<double>(z + 1) / nz);
+    if (!poll.tick())
+      return false;
+  }
+  return true;
+}
+
+/// The planes cut into `pieces` runs of consecutive planes united concurrently, then joined:
+/// the first plane of each piece but the first with the plane before. A piece's runs are
+/// consecutive numbers that only its own unions touch, so the pieces share the union-find and
+/// the notes without locks; the classes, and their smallest elements, are the sequential
+/// sweep's. Workers ask whether to stop after every plane.
+bool uniteInPieces(const VoxelRuns& r,
+  Connectivity connectivity,
+  int pieces,
+  const Execution& exec,
+  UnionFind& uf,
+  CompactionNotes& notes)
+{
+  const std::int32_t nz = r.dims[2];
+  auto firstPlane = [nz, pieces](std::int64_t piece)
+  { return static_cast<std::int32_t>(nz * piece / pieces); };
+  std::atomic<bool> stopped{ false };
+  exec.forRange(pieces,
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (std::int64_t piece = begin; piece < end; ++piece)
+        for (std::int32_t z = firstPlane(piece); z < firstPlane(piece + 1) && !stopped; ++z)
+        {
+          const bool first = z == firstPlane(piece);
+          unitePlane(
+            r, z, first ? NeighbourRows::InPlane : NeighbourRows::All, connectivity, uf, notes);
+          if (exec.stopRequested())
+            stopped = true;
+        }
+    });
+  if (stopped || !exec.report(0.7))
+    return false;
+  for (int piece = 1; piece < pieces; ++piece)
+    unitePlane(r, firstPlane(piece), NeighbourRows::PlaneBefore, connectivity, uf, notes);
+  return exec.report(0.8);
+}
+
+/// Whether the rectangles whose first runs are a and b have as many rows.
+bool sameHeight(const CompactionNotes& notes, std::uint32_t a, std::uint32_t b)
+{
+  for (;;)
+  {
+    a = notes.below[a];
+    b = notes.below[b];
+    if (a == None || b == None)
+      return a == b;
+  }
+}
+
+/// The runs that begin a CUDB box: the first run of a rectangle (no equal run in the row before)
+/// whose plane before holds no equal rectangle, that is no rectangle beginning with the equal
+/// run of the same row and as many rows high. Returns the number of boxes.
+std::size_t boxBeginnings(const CompactionNotes& notes, std::vector<std::uint8_t>& begins)
+{
+  const std::size_t n = notes.above.size();
+  begins.assign(n, 0);
+  std::size_t boxes = 0;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    if (notes.above[i] != None)
+      continue;
+    const std::uint32_t back = notes.behind[i];
+    const bool continued = back != None && notes.above[back] == None && sameHeight(notes, i, back);
+    begins[i] = !continued;
+    boxes += !continued;
+  }
+  return boxes;
+}
+
+/// Whether `words` words from a and from b are equal.
+bool sameWords(const Word* a, const Word* b, std::size_t words)
+{
+  return std::memcmp(a, b, words * sizeof(Word)) == 0;
+}
+
+/// The OUDB's boxes: each slice (planes equal to the one before belong to its slice) cut at
+/// every line of vertices (rows equal to the one before belong to its line), one box per run
+/// of the first row of a line in the first plane of a slice.
+std::size_t countOUDBBoxes(const BitVolume& voxels, const VoxelRuns& r)
+{
+  const std::int32_t ny = voxels.size(1), nz = voxels.size(2);
+  const std::size_t words = voxels.wordsPerRow();
+  std::size_t boxes = 0;
+  for (std::int32_t z = 0; z < nz; ++z)
+  {
+    if (z > 0 && sameWords(voxels.row(0, z), voxels.row(0, z - 1), words * ny))
+      continue;
+    for (std::int32_t y = 0; y < ny; ++y)
+      if (y == 0 || !sameWords(voxels.row(y, z), voxels.row(y - 1, z), words))
+        boxes += r.rowStarts[r.rowOf(y, z) + 1] - r.rowStarts[r.rowOf(y, z)];
+  }
+  return boxes;
+}
+
+/// The EVM's vertices: the lattice points (x, y, z) with an odd number of set voxels among the
+/// eight around them. The parity of the four rows around a line of points, then its changes
+/// along x.
+std::size_t countExtremeVertices(const BitVolume& voxels)
+{
+  const std::int32_t ny = voxels.size(1), nz = voxels.size(2);
+  const std::size_t words = voxels.wordsPerRow();
+  std::size_t vertices = 0;
+  for (std::int32_t z = 0; z <= nz; ++z)
+    for (std::int32_t y = 0; y <= ny; ++y)
+    {
+      const Word* rows[4] = { nullptr, nullptr, nullptr, nullptr };
+      int n = 0;
+      for (std::int32_t dz = -1; dz <= 0; ++dz)
+        for (std::int32_t dy = -1; dy <= 0; ++dy)
+          if (z + dz >= 0 && z + dz < nz && y + dy >= 0 && y + dy < ny)
+            rows[n++] = voxels.row(y + dy, z + dz);
+      if (n == 0)
+        continue;
+      Word carry = 0;
+      for (std::size_t w = 0; w < words; ++w)
+      {
+        Word parity = 0;
+        for (int k = 0; k < n; ++k)
+          parity ^= rows[k][w];
+        vertices += static_cast<std::size_t>(popCount(parity ^ ((parity << 1) | carry)));
+        carry = parity >> 63;
+      }
+      vertices += static_cast<std::size_t>(carry);
+    }
+  return vertices;
+}
+
+/// Writes v into 8 consecutive values.
+inline void store8(std::int32_t* p, std::int32_t v)
+{
+  for (int k = 0; k < 8; ++k)
+    p[k] = v;
+}
+
+/// Writes v into line[run.x0, run.x1). A run of up to 8 voxels whose row has `room` for 8 values
+/// past its end is written by stores of a fixed width: 8 values from its start, then 8 zeros
+/// from its end over what they wrote past it (the gap, 0 before; a later run of the row is
+/// written after). A longer run by 8-wide stores, the last one ending at its end. The runs of
+/// porous and noisy volumes are a few voxels of random lengths, and a store loop mispredicted
+/// its exit at nearly every run.
+inline void paintRun(std::int32_t* line, const VoxelRun& run, std::int32_t v, std::int32_t room)
+{
+  const std::int32_t length = run.x1 - run.x0;
+  if (length <= 8 && run.x1 + 8 <= room)
+  {
+    store8(line + run.x0, v);
+    store8(line + run.x1, 0);
+  }
+  else if (length >= 8)
+  {
+    for (std::int32_t x = run.x0; x + 8 <= run.x1; x += 8)
+      store8(line + x, v);
+    store8(line + run.x1 - 8, v);
+  }
+  else
+    std::fill(line + run.x0, line + run.x1, v);
+}
+
+} // namespace
+
+bool extractRuns(const BitVolume& voxels, const Execution& exec, VoxelRuns& out)
+{
+  const std::int32_t ny = voxels.size(1), nz = voxels.size(2);
+  const std::size_t words = voxels.wordsPerRow();
+  const std::size_t rows = static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+  out.dims = voxels.dims();
+  out.rowStarts.assign(rows + 1, 0);
+  std::vector<std::uint64_t> counts(rows + 1, 0);
+  const Execution work = exec.forWork(static_cast<std::int64_t>(voxels.voxelCount() / 64));
+  work.forRange(nz,
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (auto z = static_cast<std::int32_t>(begin); z < end; ++z)
+        for (std::int32_t y = 0; y < ny; ++y)
+          counts[out.rowOf(y, z) + 1] = countRowRuns(voxels.row(y, z), words);
+    });
+  for (std::size_t r = 0; r < rows; ++r)
+    counts[r + 1] += counts[r];
+  // Run numbers and the union-find are 32-bit: refuse rather than wrap.
+  if (counts[rows] >= None)
+    throw std::length_error(
+      "labelling " + std::to_string(counts[rows]) + " runs of voxels: more than 2^32 - 2 runs");
+  std::copy(counts.begin(), counts.end(), out.rowStarts.begin());
+  out.runs.resize(counts[rows]);
+  if (exec.stopRequested())
+    return false;
+  work.forRange(nz,
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (auto z = static_cast<std::int32_t>(begin); z < end; ++z)
+        for (std::int32_t y = 0; y < ny; ++y)
+          writeRowRuns(voxels.row(y, z), words, out.runs.data() + out.rowStarts[out.rowOf(y, z)]);
+    });
+  return !exec.stopRequested();
+}
+
+bool labelRuns(const BitVolume& voxels,
+  const VoxelRuns& runs,
+  Connectivity connectivity,
+  const Execution& exec,
+  RunComponents& out)
+{
+  const std::size_t n = runs.runs.size();
+  const std::int32_t nz = runs.dims[2];
+  UnionFind uf(n);
+  CompactionNotes notes(n);
+  const int pieces = labellingPieces(n, nz, exec.concurrency);
+  const bool united = pieces > 1 ? uniteInPieces(runs, connectivity, pieces, exec, uf, notes)
+                                 : uniteSequentially(runs, connectivity, exec, uf, notes);
+  if (!united)
+    return false;
+  // The classes numbered from 1 in order of their first run (the root, met before the other
+  // runs of its class).
+  out.runLabel.resize(n);
+  out.count = 0;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t root = uf.find(i);
+    out.runLabel[i] = root == i ? ++out.count : out.runLabel[root];
+  }
+  out.boxCount = boxBeginnings(notes, out.beginsBox);
+  out.oudbBoxCount = countOUDBBoxes(voxels, runs);
+  out.extremeVertices = countExtremeVertices(voxels);
+  return exec.report(1.0);
+}
+
+bool paintRuns(const VoxelRuns& runs,
+  const std::vector<std::uint32_t>& runLabel,
+  const std::vector<std::int32_t>& value,
+  const std::array<std::int32_t, 3>& offset,
+  const std::array<std::int32_t, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec,
+  bool zeroAround)
+{
+  const std::int32_t ny = runs.dims[1];
+  // The room from the runs' x = 0 to the end of the grid's row, which wide stores stay within.
+  const std::int32_t room = zeroAround ? dims[0] - offset[0] : 0;
+  std::atomic<bool> stopped{ false };
+  const Execution work = exec.forWork(static_cast<std::int64_t>(runs.runs.size()));
+  work.forRange(runs.dims[2],
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (auto z = static_cast<std::int32_t>(begin); z < end && !stopped; ++z)
+      {
+        for (std::int32_t y = 0; y < ny; ++y)
+        {
+          const std::size_t row = runs.rowOf(y, z);
+          std::int32_t* line = labels +
+            ((static_cast<std::int64_t>(z) + offset[2]) * dims[1] + y + offset[1]) * dims[0] +
+            offset[0];
+          for (std::uint32_t i = runs.rowStarts[row]; i < runs.rowStarts[row + 1]; ++i)
+            if (const std::int32_t v = value[runLabel[i]])
+              paintRun(line, runs.runs[i], v, room);
+        }
+        if ((z & 7) == 7 && exec.stopRequested())
+          stopped = true;
+      }
+    });
+  return !stopped && !exec.stopRequested();
+}
+
+} // namespace vbr

@@ -1,0 +1,248 @@
+// Scan-line labelling of voxel runs against a flood fill (labels and their numbering, voxel by
+// voxel), a parity count of the extreme vertices, and the CUDB of the same voxels (its boxes'
+// origins and order, the OUDB's count, the components of the boxes).
+#include "BruteForce.h"
+#include "CUDB.h"
+#include "EVM.h"
+#include "RunLabelling.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+/// The runs of v labelled, painted with their labels into a grid of v's size.
+struct Labelled
+{
+  vbr::VoxelRuns runs;
+  vbr::RunComponents components;
+  std::vector<std::int32_t> grid;
+};
+
+Labelled labelAndPaint(const vbr::BitVolume& v,
+  vbr::Connectivity connectivity,
+  const vbr::Execution& exec = vbr::Execution())
+{
+  Labelled out;
+  EXPECT_TRUE(vbr::extractRuns(v, exec, out.runs));
+  EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, out.components));
+  std::vector<std::int32_t> value(out.components.count + 1);
+  for (std::size_t l = 0; l < value.size(); ++l)
+    value[l] = static_cast<std::int32_t>(l);
+  out.grid.assign(v.voxelCount(), 0);
+  EXPECT_TRUE(vbr::paintRuns(
+    out.runs, out.components.runLabel, value, { 0, 0, 0 }, v.dims(), out.grid.data(), exec));
+  // The wide stores (zeros around the runs) paint the same, here and in a grid one voxel larger
+  // at each end, the runs at an offset of one.
+  std::vector<std::int32_t> wide(v.voxelCount(), 0);
+  EXPECT_TRUE(vbr::paintRuns(
+    out.runs, out.components.runLabel, value, { 0, 0, 0 }, v.dims(), wide.data(), exec, true));
+  EXPECT_EQ(wide, out.grid) << "painted by wide stores";
+  const std::array<std::int32_t, 3> d = v.dims(), larger{ d[0] + 2, d[1] + 2, d[2] + 2 };
+  std::vector<std::int32_t> framed(std::size_t(larger[0]) * larger[1] * larger[2], 0);
+  EXPECT_TRUE(vbr::paintRuns(
+    out.runs, out.components.runLabel, value, { 1, 1, 1 }, larger, framed.data(), exec, true));
+  std::size_t wrong = 0;
+  for (std::int32_t z = 0; z < larger[2]; ++z)
+    for (std::int32_t y = 0; y < larger[1]; ++y)
+      for (std::int32_t x = 0; x < larger[0]; ++x)
+      {
+        const bool inside = x >= 1 && y >= 1 && z >= 1 && x <= d[0] && y <= d[1] && z <= d[2];
+        const std::int32_t expected =
+          inside ? out.grid[((z - 1) * std::size_t(d[1]) + y - 1) * d[0] + x - 1] : 0;
+        wrong += framed[(z * std::size_t(larger[1]) + y) * larger[0] + x] != expected;
+      }
+  EXPECT_EQ(wrong, 0u) << "painted by wide stores at an offset";
+  return out;
+}
+
+/// The labels, voxel by voxel and numbered alike, are the flood fill's.
+void expectFloodFillLabels(const vbr::BitVolume& v, bool vertex, const Labelled& l)
+{
+  int count = 0;
+  const std::vector<int> expected = bf::floodFillLabels(v, vertex, count);
+  ASSERT_EQ(l.components.count, static_cast<std::uint32_t>(count));
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    wrong += expected[i] != l.grid[i];
+  EXPECT_EQ(wrong, 0u) << "voxels labelled differently from the flood fill";
+}
+
+/// The counts and box origins are those of the CUDB of v's EVM (ZYX), and the run beginning
+/// each box has the label labelComponents gives the box.
+void expectCUDBCounts(const vbr::BitVolume& v, vbr::Connectivity connectivity, const Labelled& l)
+{
+  const vbr::EVM evm = vbr::extractEVM(v);
+  ASSERT_EQ(evm.order(), (vbr::AxisOrder{ 2, 1, 0 }));
+  EXPECT_EQ(l.components.extremeVertices, evm.size());
+  EXPECT_EQ(l.components.extremeVertices, bf::extremeVertices(v).size());
+  const vbr::CUDB cudb = vbr::buildCUDB(evm);
+  EXPECT_EQ(l.components.oudbBoxCount, cudb.oudbBoxCount);
+  ASSERT_EQ(l.components.boxCount, cudb.boxes.size());
+  const vbr::Components boxes = vbr::labelComponents(cudb, connectivity);
+  EXPECT_EQ(boxes.count, l.components.count);
+  std::size_t b = 0;
+  const std::int32_t ny = v.size(1);
+  for (std::int32_t z = 0; z < v.size(2); ++z)
+    for (std::int32_t y = 0; y < ny; ++y)
+    {
+      const std::size_t row = l.runs.rowOf(y, z);
+      for (std::uint32_t i = l.runs.rowStarts[row]; i < l.runs.rowStarts[row + 1]; ++i)
+      {
+        if (!l.components.beginsBox[i])
+          continue;
+        ASSERT_LT(b, cudb.boxes.size());
+        const vbr::Box& box = cudb.boxes[b];
+        EXPECT_EQ(box.lo, (vbr::Point3{ l.runs.runs[i].x0, y, z })) << "box " << b;
+        EXPECT_EQ(box.hi[0], l.runs.runs[i].x1) << "box " << b;
+        EXPECT_EQ(boxes.boxLabel[b], l.components.runLabel[i]) << "box " << b;
+        ++b;
+      }
+    }
+}
+
+void expectAll(const vbr::BitVolume& v, const std::string& what)
+{
+  SCOPED_TRACE(what);
+  for (bool vertex : { false, true })
+  {
+    SCOPED_TRACE(vertex ? "vertex" : "face");
+    const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+    const Labelled l = labelAndPaint(v, c);
+    expectFloodFillLabels(v, vertex, l);
+    expectCUDBCounts(v, c, l);
+  }
+}
+
+TEST(RunLabelling, RandomVolumesMatchFloodFillAndCUDB)
+{
+  const vbr::Point3 sizes[] = { { 1, 1, 1 },
+    { 5, 4, 3 },
+    { 17, 9, 6 },
+    { 1, 12, 11 },
+    { 64, 3, 5 },
+    { 65, 7, 4 },
+    { 130, 5, 3 },
+    { 23, 21, 19 } };
+  unsigned seed = 1;
+  for (const vbr::Point3& d : sizes)
+    for (double density : { 0.1, 0.3, 0.5, 0.7, 0.95 })
+      for (int repeat = 0; repeat < 3; ++repeat)
+      {
+        const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+        expectAll(v,
+          std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) + " " +
+            std::to_string(density) + " seed " + std::to_string(seed - 1));
+      }
+}
+
+TEST(RunLabelling, DegenerateVolumes)
+{
+  expectAll(vbr::BitVolume(7, 5, 3), "empty");
+  vbr::BitVolume full(66, 4, 3), one(9, 8, 7), checker(12, 11, 10), diagonal(10, 10, 10);
+  vbr::BitVolume plates(70, 9, 9), edges(8, 8, 8);
+  for (std::int32_t z = 0; z < 10; ++z)
+    for (std::int32_t y = 0; y < 11; ++y)
+      for (std::int32_t x = 0; x < 12; ++x)
+        checker.set(x, y, z, (x + y + z) % 2 == 0);
+  for (std::int32_t z = 0; z < 3; ++z)
+    for (std::int32_t y = 0; y < 4; ++y)
+      for (std::int32_t x = 0; x < 66; ++x)
+        full.set(x, y, z);
+  one.set(4, 3, 5);
+  for (std::int32_t i = 0; i < 10; ++i)
+  {
+    diagonal.set(i, i, i);         // vertex contacts only
+    diagonal.set(9 - i, i, 0);     // edge contacts only, in one plane
+    diagonal.set(i, 9 - i, 9 - i); // vertex contacts, crossing the first diagonal
+  }
+  for (std::int32_t z = 0; z < 9; ++z)
+    for (std::int32_t y = 0; y < 9; ++y)
+    {
+      plates.set(3, y, z); // a plate across x, one voxel thick
+      for (std::int32_t x = 5; x < 70; ++x)
+        if (z == 2 || y == 6) // plates across z and y, crossing
+          plates.set(x, y, z);
+    }
+  for (std::int32_t k = 0; k < 7; ++k) // pairs of voxels sharing an edge along each axis
+  {
+    edges.set(k, 0, 0);
+    edges.set(k + 1, 1, 0);
+    edges.set(0, k, 3 + (k % 2));
+  }
+  expectAll(full, "full");
+  expectAll(one, "one voxel");
+  expectAll(checker, "checkerboard");
+  expectAll(diagonal, "diagonal contacts");
+  expectAll(plates, "thin plates");
+  expectAll(edges, "edge contacts");
+}
+
+TEST(RunLabelling, CheckerboardComponents)
+{
+  vbr::BitVolume checker(9, 8, 7);
+  for (std::int32_t z = 0; z < 7; ++z)
+    for (std::int32_t y = 0; y < 8; ++y)
+      for (std::int32_t x = 0; x < 9; ++x)
+        checker.set(x, y, z, (x + y + z) % 2 == 1);
+  EXPECT_EQ(labelAndPaint(checker, vbr::Connectivity::Face).components.count, checker.count());
+  EXPECT_EQ(labelAndPaint(checker, vbr::Connectivity::Vertex).components.count, 1u);
+}
+
+TEST(RunLabelling, ThreadsChangeNothing)
+{
+  // Enough runs (over 2^16) and planes for the labelling to be cut into pieces of planes.
+  const vbr::BitVolume v = bf::randomVolume({ 100, 60, 70 }, 0.45, 11);
+  for (vbr::Connectivity c : { vbr::Connectivity::Face, vbr::Connectivity::Vertex })
+  {
+    const Labelled one = labelAndPaint(v, c);
+    const Labelled three = labelAndPaint(v, c, bf::threadedExecution(3));
+    EXPECT_EQ(one.components.runLabel, three.components.runLabel);
+    EXPECT_EQ(one.components.beginsBox, three.components.beginsBox);
+    EXPECT_EQ(one.components.boxCount, three.components.boxCount);
+    EXPECT_EQ(one.grid, three.grid);
+  }
+}
+
+TEST(RunLabelling, PaintsAtAnOffsetAndSkipsZero)
+{
+  vbr::BitVolume v(4, 3, 2);
+  v.set(0, 0, 0);
+  v.set(1, 0, 0);
+  v.set(3, 2, 1);
+  vbr::VoxelRuns runs;
+  ASSERT_TRUE(vbr::extractRuns(v, vbr::Execution(), runs));
+  vbr::RunComponents c;
+  ASSERT_TRUE(vbr::labelRuns(v, runs, vbr::Connectivity::Face, vbr::Execution(), c));
+  ASSERT_EQ(c.count, 2u);
+  const std::array<std::int32_t, 3> dims{ 6, 5, 4 }, offset{ 1, 2, 1 };
+  std::vector<std::int32_t> grid(6 * 5 * 4, -1);
+  ASSERT_TRUE(vbr::paintRuns(runs, c.runLabel, { 0, 0, 7 }, offset, dims, grid.data()));
+  for (std::int32_t z = 0; z < 4; ++z)
+    for (std::int32_t y = 0; y < 5; ++y)
+      for (std::int32_t x = 0; x < 6; ++x)
+      {
+        const bool second = x == 4 && y == 4 && z == 2;
+        EXPECT_EQ(grid[(z * 5 + y) * 6 + x], second ? 7 : -1) << x << " " << y << " " << z;
+      }
+}
+
+TEST(RunLabelling, Aborts)
+{
+  const vbr::BitVolume v = bf::randomVolume({ 40, 40, 40 }, 0.5, 3);
+  vbr::Execution stop;
+  stop.aborted = [] { return true; };
+  vbr::VoxelRuns runs;
+  EXPECT_FALSE(vbr::extractRuns(v, stop, runs));
+  ASSERT_TRUE(vbr::extractRuns(v, vbr::Execution(), runs));
+  vbr::RunComponents c;
+  EXPECT_FALSE(vbr::labelRuns(v, runs, vbr::Connectivity::Face, stop, c));
+}
+
+} // namespace
