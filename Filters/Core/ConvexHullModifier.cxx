@@ -2664,12 +2664,16 @@ bool mergeMeetingParts(std::vector<ObjectPart>& parts, CoplanarFaces coplanar)
 }
 
 /// The object's components (vertex-connected, so that voxels touching at an edge or a corner
-/// stay in one part and the touching rule decides there), merged until no two parts may meet.
+/// stay in one part and the touching rule decides there), merged until no two parts may meet;
+/// none for an object of one component.
 std::vector<ObjectPart> separateParts(const std::vector<LatticePoint>& points,
   CoplanarFaces coplanar)
 {
+  std::vector<std::vector<LatticePoint>> components = componentsOf(points, false, true);
+  if (components.size() < 2)
+    return {}; // no parts to make
   std::vector<ObjectPart> parts;
-  for (auto& c : componentsOf(points, false, true))
+  for (auto& c : components)
     parts.push_back(partOf(std::move(c), coplanar));
   while (parts.size() > 1 && mergeMeetingParts(parts, coplanar))
     continue;
