@@ -289,6 +289,9 @@ struct ModifiedHull
   int cutHandles = 0;
   /// Whether H is the union of the H of each component of the object (see above).
   bool componentsApart = false;
+  /// Whether H of a flat object is its sheared pixel solid (see above) rather than the prisms
+  /// of its polygons.
+  bool flatPixelSolid = false;
   /// Whether H came from the second pass, every level kept apart (no pits, see above).
   bool withoutPits = false;
   /// The second pass for the object's topology (see above): NotRun when the first pass did not
