@@ -3152,8 +3152,8 @@ PlaneRegions planeRegions(const BitVolume& image)
   for (std::int32_t y = 0; y < g.ny; ++y)
     for (std::int32_t x = 0; x < g.nx; ++x)
     {
-      const bool in = x > 0 && y > 0 && x <= image.size(0) && y <= image.size(1) &&
-        image.get(x - 1, y - 1, 0);
+      const bool in =
+        x > 0 && y > 0 && x <= image.size(0) && y <= image.size(1) && image.get(x - 1, y - 1, 0);
       points[in].push_back({ x, y, 0 });
     }
   for (const bool cls : { false, true })
@@ -3245,8 +3245,7 @@ bool flatShellsMatch(const BitVolume& objects,
     if (count.size() != 1)
       return false; // no component, or two in one shell
     const auto r = static_cast<std::size_t>(count.begin()->first);
-    if (claimed[r] || count.begin()->second != size[r] ||
-      eulerCharacteristic(shell.mesh) != chi[r])
+    if (claimed[r] || count.begin()->second != size[r] || eulerCharacteristic(shell.mesh) != chi[r])
       return false;
     claimed[r] = true;
   }
@@ -3262,15 +3261,13 @@ bool flatShellsMatch(const BitVolume& objects,
 /// of their two regions (0 about the outer background, 1 about a hole, 2 about an island, ...).
 void appendPixelSolid(const PlaneRegions& g, std::int64_t c, FlatMesh& out)
 {
-  static const std::array<Point2L, 4> corner{ Point2L{ 0, 0 },
-    Point2L{ 1, 0 },
-    Point2L{ 1, 1 },
-    Point2L{ 0, 1 } };
+  static const std::array<Point2L, 4> corner{
+    Point2L{ 0, 0 }, Point2L{ 1, 0 }, Point2L{ 1, 1 }, Point2L{ 0, 1 }
+  };
   // The pixel's sides, counter-clockwise: the neighbour beyond corner k -> k + 1.
-  static const std::array<Point2L, 4> beyond{ Point2L{ 0, -1 },
-    Point2L{ 1, 0 },
-    Point2L{ 0, 1 },
-    Point2L{ -1, 0 } };
+  static const std::array<Point2L, 4> beyond{
+    Point2L{ 0, -1 }, Point2L{ 1, 0 }, Point2L{ 0, 1 }, Point2L{ -1, 0 }
+  };
   const std::vector<Triangle> square{ { 0, 1, 2 }, { 0, 2, 3 } };
   for (std::int32_t y = 1; y + 1 < g.ny; ++y)
     for (std::int32_t x = 1; x + 1 < g.nx; ++x)
