@@ -3227,21 +3227,30 @@ bool flatShellsMatch(const BitVolume& objects,
   for (const std::int32_t r : g.region)
     ++size[static_cast<std::size_t>(r)];
   std::vector<bool> claimed(g.object.size(), false);
+  std::vector<std::uint8_t> held(objects.voxelCount(), 0);
   for (const Shell& shell : shells)
   {
-    std::vector<std::uint8_t> held(objects.voxelCount(), 0);
+    // The shell's box in the grid: only there can it hold a centre (and be cleared again).
+    LatticePoint lo = shell.mesh.points[0], hi = lo;
+    for (const auto& q : shell.mesh.points)
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::max<std::int64_t>(std::min(lo[k], q[k]), 0);
+        hi[k] = std::min<std::int64_t>(std::max(hi[k], q[k]), d[k] - 1);
+      }
     markShell(shell.mesh, d, 1, 1, held);
     std::map<std::int32_t, long> count; // object pixels held, per component
-    for (std::int32_t y = 1; y + 1 < g.ny; ++y)
-      for (std::int32_t x = 1; x + 1 < g.nx; ++x)
-      {
-        LatticePoint p{ 0, 0, 0 };
-        p[uv[0]] = x - 1;
-        p[uv[1]] = y - 1;
-        p[a] = c;
-        if (g.object[static_cast<std::size_t>(g.at(x, y))] && held[gridIndex(d, p)] != 0)
-          ++count[g.at(x, y)];
-      }
+    LatticePoint p = lo;
+    for (p[2] = lo[2]; p[2] <= hi[2]; ++p[2])
+      for (p[1] = lo[1]; p[1] <= hi[1]; ++p[1])
+        for (p[0] = lo[0]; p[0] <= hi[0]; ++p[0])
+        {
+          std::uint8_t& mark = held[gridIndex(d, p)];
+          const std::int32_t r = g.at(p[uv[0]] + 1, p[uv[1]] + 1);
+          if (mark != 0 && p[a] == c && g.object[static_cast<std::size_t>(r)])
+            ++count[r];
+          mark = 0;
+        }
     if (count.size() != 1)
       return false; // no component, or two in one shell
     const auto r = static_cast<std::size_t>(count.begin()->first);
