@@ -3220,9 +3220,16 @@ bool flatShellsMatch(const BitVolume& objects,
   const long objectRegions = std::count(g.object.begin(), g.object.end(), true);
   if (static_cast<long>(shells.size()) != objectRegions)
     return false;
+  const std::vector<long> chi = regionSurfaceEulers(g);
+  if (objectRegions == 1)
+  {
+    // One shell for one component: H separates, so the shell holds all of its centres.
+    const auto r = static_cast<std::size_t>(
+      std::find(g.object.begin(), g.object.end(), true) - g.object.begin());
+    return eulerCharacteristic(shells[0].mesh) == chi[r];
+  }
   const Dims d = objects.dims();
   const auto uv = planeAxesOf(a);
-  const std::vector<long> chi = regionSurfaceEulers(g);
   std::vector<long> size(g.object.size(), 0);
   for (const std::int32_t r : g.region)
     ++size[static_cast<std::size_t>(r)];
