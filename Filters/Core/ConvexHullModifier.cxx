@@ -3337,6 +3337,7 @@ void usePixelSolid(const PlaneRegions& g, int a, std::int64_t c, ModifiedHull& r
   std::vector<int> levels;
   FlatMesh out{ a, r.surface, levels, {} };
   appendPixelSolid(g, c, out);
+  r.complete = true;
   r.failure.clear();
   r.cutHandles = 0;
   r.concavities = 0;
@@ -3355,8 +3356,8 @@ void usePixelSolid(const PlaneRegions& g, int a, std::int64_t c, ModifiedHull& r
 /// handle cut through each hole they lost (when one separates), its faces with their levels;
 /// the counts of the plane (notches as concavities, holes as cavities). Incomplete when the
 /// plane's polygons are; lost holes beyond MaxLostHoles are noted in the failure text. A
-/// well-composed layer whose prisms have not its topology shell by shell gets its sheared
-/// pixel solid instead (complete, nothing noted).
+/// well-composed layer whose prisms are incomplete or have not its topology shell by shell
+/// gets its sheared pixel solid instead (complete, nothing noted).
 void solveFlatObject(const BitVolume& objects,
   int a,
   std::int64_t c,
@@ -3411,13 +3412,11 @@ void solveFlatObject(const BitVolume& objects,
       }
   }
   mergeIntoFaces(planeLevel, r.cutHandles > 0 ? std::vector<int>() : levels, r);
-  if (!r.complete)
-    return;
   flatStep(exec, 0.7);
   if (!wellComposedLayer(image, exec))
     return;
   const PlaneRegions g = planeRegions(image);
-  if (!flatShellsMatch(objects, a, c, g, r.surface))
+  if (!r.complete || !flatShellsMatch(objects, a, c, g, r.surface))
     usePixelSolid(g, a, c, r);
 }
 
