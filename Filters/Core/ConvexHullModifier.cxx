@@ -2999,6 +2999,23 @@ struct FlatMesh
     }
   }
 
+  /// The quad from the edge [p0, q0] at height lo to [p1, q1] at hi, facing to the right of
+  /// p -> q (away from the object on its left).
+  void wall(const Point2L& p0,
+    const Point2L& q0,
+    const Point2L& p1,
+    const Point2L& q1,
+    std::int64_t lo,
+    std::int64_t hi,
+    int level)
+  {
+    const Index a0 = this->vertex(p0, lo), b0 = this->vertex(q0, lo), b1 = this->vertex(q1, hi),
+                a1 = this->vertex(p1, hi);
+    this->mesh.triangles.push_back({ a0, b0, b1 });
+    this->mesh.triangles.push_back({ a0, b1, a1 });
+    this->levels.insert(this->levels.end(), 2, level);
+  }
+
   /// One quad per edge of the loop from height lo to hi, facing away from the loop's left side
   /// (the object's).
   void sides(const SeparatingLoop& loop, std::int64_t lo, std::int64_t hi)
@@ -3237,119 +3254,246 @@ void note(ModifiedHull& r, const std::string& text)
   r.failure += (r.failure.empty() ? "" : "; ") + text;
 }
 
-/// H of a flat object whose centres lie in x_a = c: the prisms of its separating polygons, a
-/// handle cut through each hole they lost (when one separates), its faces with their levels;
-/// the counts of the plane (notches as concavities, holes as cavities). Incomplete when the
-/// plane's polygons are; lost holes beyond MaxLostHoles are noted in the failure text. The
-/// whole object's H then gets the topology check of solveFlatComponentsApart.
-void solveFlatObject(const BitVolume& objects,
+/// The face-connected regions of a layer's image padded by one pixel (both classes: in a
+/// well-composed layer face and corner connectivity agree), with their nesting depth: the
+/// number of region boundaries crossed from the outer background (the padding's region, depth
+/// 0; the object components about it 1, their holes 2, islands in those 3, ...).
+struct PlaneRegions
+{
+  std::int32_t nx = 0, ny = 0; ///< the padded size; pixel (x, y) of the image is (x + 1, y + 1)
+  std::vector<std::int32_t> region; ///< per padded pixel
+  std::vector<bool> object;         ///< per region: of the object's class
+  std::vector<int> depth;           ///< per region
+
+  std::int32_t at(std::int64_t x, std::int64_t y) const
+  {
+    return this->region[static_cast<std::size_t>(y * this->nx + x)];
+  }
+};
+
+/// The regions of the padded image (CUDB components of each class) and their depths (breadth
+/// first over the regions that share a pixel edge).
+PlaneRegions planeRegions(const BitVolume& image)
+{
+  PlaneRegions g;
+  g.nx = image.size(0) + 2;
+  g.ny = image.size(1) + 2;
+  g.region.assign(static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny), -1);
+  std::array<std::vector<LatticePoint>, 2> points; // background, object
+  for (std::int32_t y = 0; y < g.ny; ++y)
+    for (std::int32_t x = 0; x < g.nx; ++x)
+    {
+      const bool in =
+        x > 0 && y > 0 && x <= image.size(0) && y <= image.size(1) && image.get(x - 1, y - 1, 0);
+      points[in].push_back({ x, y, 0 });
+    }
+  for (const bool cls : { false, true })
+    for (const auto& component : componentsOf(points[cls], true, false))
+    {
+      for (const auto& p : component)
+        g.region[static_cast<std::size_t>(p[1] * g.nx + p[0])] =
+          static_cast<std::int32_t>(g.object.size());
+      g.object.push_back(cls);
+    }
+  std::vector<std::set<std::int32_t>> next(g.object.size());
+  for (std::int32_t y = 0; y < g.ny; ++y)
+    for (std::int32_t x = 0; x < g.nx; ++x)
+      for (const Point2L& q : { Point2L{ x + 1, y }, Point2L{ x, y + 1 } })
+        if (q[0] < g.nx && q[1] < g.ny && g.at(x, y) != g.at(q[0], q[1]))
+        {
+          next[static_cast<std::size_t>(g.at(x, y))].insert(g.at(q[0], q[1]));
+          next[static_cast<std::size_t>(g.at(q[0], q[1]))].insert(g.at(x, y));
+        }
+  g.depth.assign(g.object.size(), -1);
+  std::vector<std::int32_t> queue{ g.at(0, 0) };
+  g.depth[static_cast<std::size_t>(queue[0])] = 0;
+  for (std::size_t k = 0; k < queue.size(); ++k)
+    for (const std::int32_t r : next[static_cast<std::size_t>(queue[k])])
+      if (g.depth[static_cast<std::size_t>(r)] < 0)
+      {
+        g.depth[static_cast<std::size_t>(r)] = g.depth[static_cast<std::size_t>(queue[k])] + 1;
+        queue.push_back(r);
+      }
+  return g;
+}
+
+/// Per region, twice the Euler characteristic of its pixels' union (V - E + F of the pixels,
+/// the pixel edges and the 2 x 2 blocks within it: in a well-composed layer that complex has
+/// the homotopy type of the union of the closed pixel squares): for an object component, the
+/// Euler characteristic of the surface about it.
+std::vector<long> regionSurfaceEulers(const PlaneRegions& g)
+{
+  std::vector<long> chi(g.object.size(), 0);
+  for (std::int32_t y = 0; y < g.ny; ++y)
+    for (std::int32_t x = 0; x < g.nx; ++x)
+    {
+      const std::int32_t r = g.at(x, y);
+      const bool right = x + 1 < g.nx && g.at(x + 1, y) == r,
+                 up = y + 1 < g.ny && g.at(x, y + 1) == r;
+      const bool block = right && up && g.at(x + 1, y + 1) == r;
+      chi[static_cast<std::size_t>(r)] += 2 * (1 - right - up + block);
+    }
+  return chi;
+}
+
+/// Whether H of a well-composed flat layer has the topology of the object's boundary shell by
+/// shell: as many shells as object components, each shell holding (inside or on it) the
+/// centres of exactly one component and all of them, and with the Euler characteristic of the
+/// surface about that component (the layer's background is one component in space, about
+/// every shell: separation keeps its centres out of H).
+bool flatShellsMatch(const BitVolume& objects,
   int a,
   std::int64_t c,
-  const Execution& exec,
-  ModifiedHull& r,
-  bool whole = true);
+  const PlaneRegions& g,
+  const LatticeMesh& surface)
+{
+  const std::vector<Shell> shells = shellsOf(surface);
+  const long objectRegions = std::count(g.object.begin(), g.object.end(), true);
+  if (static_cast<long>(shells.size()) != objectRegions)
+    return false;
+  const std::vector<long> chi = regionSurfaceEulers(g);
+  if (objectRegions == 1)
+  {
+    // One shell for one component: H separates, so the shell holds all of its centres.
+    const auto r = static_cast<std::size_t>(
+      std::find(g.object.begin(), g.object.end(), true) - g.object.begin());
+    return eulerCharacteristic(shells[0].mesh) == chi[r];
+  }
+  const Dims d = objects.dims();
+  const auto uv = planeAxesOf(a);
+  std::vector<long> size(g.object.size(), 0);
+  for (const std::int32_t r : g.region)
+    ++size[static_cast<std::size_t>(r)];
+  std::vector<bool> claimed(g.object.size(), false);
+  std::vector<std::uint8_t> held(objects.voxelCount(), 0);
+  for (const Shell& shell : shells)
+  {
+    // The shell's box in the grid: only there can it hold a centre (and be cleared again).
+    LatticePoint lo = shell.mesh.points[0], hi = lo;
+    for (const auto& q : shell.mesh.points)
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::max<std::int64_t>(std::min(lo[k], q[k]), 0);
+        hi[k] = std::min<std::int64_t>(std::max(hi[k], q[k]), d[k] - 1);
+      }
+    markShell(shell.mesh, d, 1, 1, held);
+    std::map<std::int32_t, long> count; // object pixels held, per component
+    LatticePoint p = lo;
+    for (p[2] = lo[2]; p[2] <= hi[2]; ++p[2])
+      for (p[1] = lo[1]; p[1] <= hi[1]; ++p[1])
+        for (p[0] = lo[0]; p[0] <= hi[0]; ++p[0])
+        {
+          std::uint8_t& mark = held[gridIndex(d, p)];
+          const std::int32_t r = g.at(p[uv[0]] + 1, p[uv[1]] + 1);
+          if (mark != 0 && p[a] == c && g.object[static_cast<std::size_t>(r)])
+            ++count[r];
+          mark = 0;
+        }
+    if (count.size() != 1)
+      return false; // no component, or two in one shell
+    const auto r = static_cast<std::size_t>(count.begin()->first);
+    if (claimed[r] || count.begin()->second != size[r] || eulerCharacteristic(shell.mesh) != chi[r])
+      return false;
+    claimed[r] = true;
+  }
+  return true;
+}
 
-/// The layer's object alone in a grid three voxels thick (the layer in the middle): its
-/// boundary's Euler characteristic (none when not well-composed) and its number of surfaces
-/// (its face-connected components: the background about a layer is one).
-std::optional<std::array<long, 2>> flatTopology(const BitVolume& image, const Execution& exec)
+/// The sheared pixel solid of a well-composed layer (see the header): each object pixel p's
+/// square p + [-1/2, 1/2]^2 at x_a = c is the middle section of the parallelepiped with top
+/// p + [0, 1]^2 at c + 1 and bottom p + [-1, 0]^2 at c - 1; those of all pixels tile the slab
+/// face to face, and H is the boundary of the union of the object pixels' ones: a cap square
+/// per pixel on top and below, a wall per pixel edge between an object and a background
+/// pixel. Levels: caps one less than their component's depth, walls one less than the deeper
+/// of their two regions (0 about the outer background, 1 about a hole, 2 about an island, ...).
+void appendPixelSolid(const PlaneRegions& g, std::int64_t c, FlatMesh& out)
+{
+  static const std::array<Point2L, 4> corner{
+    Point2L{ 0, 0 }, Point2L{ 1, 0 }, Point2L{ 1, 1 }, Point2L{ 0, 1 }
+  };
+  // The pixel's sides, counter-clockwise: the neighbour beyond corner k -> k + 1.
+  static const std::array<Point2L, 4> beyond{
+    Point2L{ 0, -1 }, Point2L{ 1, 0 }, Point2L{ 0, 1 }, Point2L{ -1, 0 }
+  };
+  const std::vector<Triangle> square{ { 0, 1, 2 }, { 0, 2, 3 } };
+  for (std::int32_t y = 1; y + 1 < g.ny; ++y)
+    for (std::int32_t x = 1; x + 1 < g.nx; ++x)
+    {
+      const auto r = static_cast<std::size_t>(g.at(x, y));
+      if (!g.object[r])
+        continue;
+      const Point2L p{ x - 1, y - 1 };
+      std::vector<Point2L> top, bottom;
+      for (const Point2L& k : corner)
+      {
+        top.push_back({ p[0] + k[0], p[1] + k[1] });
+        bottom.push_back({ p[0] + k[0] - 1, p[1] + k[1] - 1 });
+      }
+      out.cap(top, square, c + 1, false, g.depth[r] - 1);
+      out.cap(bottom, square, c - 1, true, g.depth[r] - 1);
+      for (std::size_t k = 0; k < 4; ++k)
+      {
+        const auto n = static_cast<std::size_t>(g.at(x + beyond[k][0], y + beyond[k][1]));
+        if (!g.object[n])
+          out.wall(bottom[k],
+            bottom[(k + 1) % 4],
+            top[k],
+            top[(k + 1) % 4],
+            c - 1,
+            c + 1,
+            std::max(g.depth[r], g.depth[n]) - 1);
+      }
+    }
+}
+
+/// Whether the layer is well-composed (no two object pixels touching only at a corner: then
+/// its boundary in space is a 2-manifold, which H must match shell by shell).
+bool wellComposedLayer(const BitVolume& image, const Execution& exec)
 {
   BitVolume layer(image.size(0), image.size(1), 3);
   for (std::int32_t y = 0; y < image.size(1); ++y)
     for (std::int32_t x = 0; x < image.size(0); ++x)
       if (image.get(x, y, 0))
         layer.set(x, y, 1);
-  const std::optional<long> euler = wellComposedBoundaryEuler(layer, exec);
-  if (!euler)
-    return std::nullopt;
-  return std::array<long, 2>{ *euler, componentCount(layer, false)[0] };
+  return wellComposedBoundaryEuler(layer, exec).has_value();
 }
 
-/// Flat components apart: the 2D modifier may put a component on another polygon's loop, one
-/// prism shell for two components. Each face-connected component is then solved alone (the
-/// others its background) and the prisms kept when no two share a vertex, their exact union
-/// has as many shells and the same Euler characteristic as they have apart (no overlap), and
-/// together they separate with the object's topology `target` (Euler characteristic,
-/// surfaces). The components share the progress of `exec`.
-bool solveFlatComponentsApart(const BitVolume& objects,
-  int a,
-  std::int64_t c,
-  const std::array<long, 2>& target,
-  const Execution& exec,
-  ModifiedHull& r)
+/// H of a well-composed layer replaced by its sheared pixel solid (see the header), complete
+/// and with nothing to note: the plane's counts become its holes (background regions below
+/// the outer one) and its deepest level.
+void usePixelSolid(const PlaneRegions& g, int a, std::int64_t c, ModifiedHull& r)
 {
-  const Dims d = objects.dims();
-  std::vector<LatticePoint> points;
-  for (std::int32_t z = 0; z < d[2]; ++z)
-    for (std::int32_t y = 0; y < d[1]; ++y)
-      for (std::int32_t x = 0; x < d[0]; ++x)
-        if (objects.get(x, y, z))
-          points.push_back({ x, y, z });
-  const auto components = componentsOf(points, false, false);
-  if (components.size() < 2)
-    return false;
-  ModifiedHull apart;
-  LatticeMesh together, united;
-  std::vector<int> levels;
-  std::set<LatticePoint> vertices;
-  const double step = 1.0 / static_cast<double>(components.size());
-  for (std::size_t k = 0; k < components.size(); ++k)
-  {
-    flatStep(exec, step * k);
-    BitVolume part(d[0], d[1], d[2]);
-    for (const auto& p : components[k])
-      part.set(static_cast<std::int32_t>(p[0]),
-        static_cast<std::int32_t>(p[1]),
-        static_cast<std::int32_t>(p[2]));
-    ModifiedHull h;
-    solveFlatObject(part, a, c, exec.within(step * k, step * (k + 1)), h, false);
-    if (!h.complete)
-      return false;
-    for (const auto& p : h.surface.points)
-      if (!vertices.insert(p).second)
-        return false; // two prisms meet at a point
-    const std::size_t base = levels.size();
-    levels.resize(base + h.surface.triangles.size(), -1);
-    for (const auto& f : h.faces)
-      for (const Index t : f.triangles)
-        levels[base + t] = f.level;
-    if (k == 0)
-      united = h.surface;
-    else
-    {
-      LatticeMesh next;
-      if (!latticeUnion(united, h.surface, next))
-        return false;
-      united = std::move(next);
-    }
-    together.append(h.surface, false);
-    apart.cutHandles += h.cutHandles;
-    apart.degreeOfNonConvexity = std::max(apart.degreeOfNonConvexity, h.degreeOfNonConvexity);
-    if (!h.failure.empty())
-      note(apart, h.failure);
-  }
-  const long euler = eulerCharacteristic(together);
-  const auto shells = static_cast<long>(shellsOf(together).size());
-  if (static_cast<long>(shellsOf(united).size()) != shells ||
-    eulerCharacteristic(united) != euler || euler != target[0] || shells != target[1] ||
-    !separates(objects, together))
-    return false;
-  r.surface = std::move(together);
+  r.surface = LatticeMesh();
   r.faces.clear();
-  r.cutHandles = apart.cutHandles;
-  r.degreeOfNonConvexity = std::max(r.degreeOfNonConvexity, apart.degreeOfNonConvexity);
-  r.failure = apart.failure;
-  r.componentsApart = true;
+  std::vector<int> levels;
+  FlatMesh out{ a, r.surface, levels, {} };
+  appendPixelSolid(g, c, out);
+  r.complete = true;
+  r.failure.clear();
+  r.cutHandles = 0;
+  r.concavities = 0;
+  r.cavities = 0;
+  r.degreeOfNonConvexity = 0;
+  for (std::size_t k = 0; k < g.object.size(); ++k)
+  {
+    r.cavities += !g.object[k] && g.depth[k] > 0;
+    r.degreeOfNonConvexity = std::max(r.degreeOfNonConvexity, g.depth[k] - 1);
+  }
+  r.flatPixelSolid = true;
   mergeIntoFaces({}, levels, r);
-  return true;
 }
 
+/// H of a flat object whose centres lie in x_a = c: the prisms of its separating polygons, a
+/// handle cut through each hole they lost (when one separates), its faces with their levels;
+/// the counts of the plane (notches as concavities, holes as cavities). Incomplete when the
+/// plane's polygons are; lost holes beyond MaxLostHoles are noted in the failure text. A
+/// well-composed layer whose prisms are incomplete or have not its topology shell by shell
+/// gets its sheared pixel solid instead (complete, nothing noted).
 void solveFlatObject(const BitVolume& objects,
   int a,
   std::int64_t c,
   const Execution& exec,
-  ModifiedHull& r,
-  bool whole)
+  ModifiedHull& r)
 {
   const BitVolume image = layerImage(objects, a, static_cast<std::int32_t>(c));
   const SeparatingPolygons s = separatingPolygons2D(image);
@@ -3399,21 +3543,12 @@ void solveFlatObject(const BitVolume& objects,
       }
   }
   mergeIntoFaces(planeLevel, r.cutHandles > 0 ? std::vector<int>() : levels, r);
-  if (!whole || !r.complete)
-    return;
   flatStep(exec, 0.7);
-  const auto target = flatTopology(image, exec);
-  if (!target ||
-    (eulerCharacteristic(r.surface) == (*target)[0] &&
-      static_cast<long>(shellsOf(r.surface).size()) == (*target)[1]))
+  if (!wellComposedLayer(image, exec))
     return;
-  if (!solveFlatComponentsApart(objects, a, c, *target, exec.within(0.7, 1.0), r))
-    note(r,
-      "in the object's plane: H has not the topology of the object's boundary (Euler "
-      "characteristic " +
-        std::to_string(eulerCharacteristic(r.surface)) + " for " + std::to_string((*target)[0]) +
-        ", " + std::to_string(shellsOf(r.surface).size()) + " shells for " +
-        std::to_string((*target)[1]) + " components)");
+  const PlaneRegions g = planeRegions(image);
+  if (!r.complete || !flatShellsMatch(objects, a, c, g, r.surface))
+    usePixelSolid(g, a, c, r);
 }
 
 } // namespace

@@ -182,7 +182,7 @@
 // Not done (the README's limits): shells for which no prism or chain of those is accepted (none
 // left in the tests' hollow balls and porous blobs), spurious handles on objects that are not
 // well-composed or where the second pass has them too (a join can only add a tube and a cut a
-// handle, never remove one), and the flat objects' limits below.
+// handle, never remove one); flat objects are below.
 //
 // Flat objects (every object centre in one plane x_a = c of the grid's axes: a plate, a ring,
 // a row, one voxel, a 2D image): no hull of theirs is solid, so H is made in the plane. The
@@ -222,11 +222,37 @@
 // inside it), then one by one, at most 16 per object (each try costs two exact Booleans of
 // H or more). Its faces' levels then go by plane (the box's planes 0, the tunnels' 1; an
 // island's cap takes the level of the first cap in its plane).
-// Limits: two thin holes one voxel apart keep no handle (their tunnels would touch along the
-// voxel between them); an island in a thin hole is joined to the ring by the notch, and a
-// dent that holds an island keeps its hole. Flat sets in no plane of the grid's axes are
-// never face-connected: H is their two-sided polygon, and a segment off the axes' planes is
-// incomplete.
+// The topology, shell by shell. The prisms and cuts above can still miss it: two thin holes one
+// voxel apart keep no handle (their tunnels would touch along the voxel between them), an island in
+// a thin hole is joined to the ring by the notch, a dent that holds an island keeps its hole, and a
+// component the plane's modifier puts on another polygon's loop shares that polygon's prism. So H
+// of a well-composed layer (no two object pixels touching only at a corner; then the object's
+// boundary is a 2-manifold) is checked against the layer shell by shell: one shell per
+// face-connected component, holding (inside or on it) all of that component's centres and no
+// other's, with the Euler characteristic 2 (V - E + F) of the component's pixels, their edges and
+// their 2 x 2 blocks (that complex has the homotopy type of the union of the closed pixel squares).
+// When it differs (or the plane's polygons are incomplete), H is the layer's sheared pixel solid
+// instead. The parallelepiped of pixel p, with top p + [0, 1]^2 at c + 1 and bottom p + [-1, 0]^2
+// at c - 1 (in the plane axes), has the pixel's square p + [-1/2, 1/2]^2 as its section at c: it is
+// the image of the square's prism under the shear (y, t) -> (y + (t - c) / 2 (1, 1), t), whose
+// determinant is 1, so the parallelepipeds of all pixels tile the slab face to face and the union U
+// of the object pixels' ones is the shear of the pixel union's prism. Every corner is a lattice
+// point (the squares' corners at c +- 1). The shear is affine, so U has the topology of the union
+// of the closed pixel squares times an interval: one solid per face-connected component (components
+// of a well-composed layer are never 8-adjacent, so their squares are apart), a 2-manifold boundary
+// (no two squares of it meet at a corner only) of genus its number of holes. It separates: a
+// lattice point of the plane c lies in U exactly when it is an object centre, strictly inside (the
+// centre of its square); the planes c +- 1 meet U only in its caps (their centres on H,
+// background); nothing lies beyond. H is then the boundary of U: per object pixel two cap squares,
+// per pixel edge between an object and a background pixel a wall (a lattice parallelogram, no
+// lattice point but its corners), merged into faces by plane. Levels follow the nesting of the
+// layer's regions: a component at depth k (regions crossed from the outer background: 1 for the
+// object about it, 3 for an island in its hole) has caps of level k - 1, a wall the level of the
+// deeper of its two regions less one (0 outside, 1 about a hole, 2 about an island). The counts:
+// its holes as cavities, no concavities or cut handles. Layers that are not well-composed keep the
+// prisms (no one topology to match; they separate as above). Flat sets in no plane of the grid's
+// axes are never face-connected: H is their two-sided polygon, and a segment off the axes' planes
+// is incomplete.
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact
@@ -298,6 +324,9 @@ struct ModifiedHull
   int cutHandles = 0;
   /// Whether H is the union of the H of each component of the object (see above).
   bool componentsApart = false;
+  /// Whether H of a flat object is its sheared pixel solid (see above) rather than the prisms
+  /// of its polygons.
+  bool flatPixelSolid = false;
   /// Whether H came from the second pass, every level kept apart (no pits, see above).
   bool withoutPits = false;
   /// The second pass for the object's topology (see above): NotRun when the first pass did not
