@@ -251,8 +251,11 @@
 // deeper of its two regions less one (0 outside, 1 about a hole, 2 about an island). The counts:
 // its holes as cavities, no concavities or cut handles. Layers that are not well-composed keep the
 // prisms (no one topology to match; they separate as above). Flat sets in no plane of the grid's
-// axes are never face-connected: H is their two-sided polygon, and a segment off the axes' planes
-// is incomplete.
+// axes are never face-connected: H is their two-sided polygon. A segment off the axes' planes
+// whose direction d has a component +-1 (voxels touching at corners along a line) is the
+// tetrahedron conv{a, b, a + e_i, a + e_j} of its ends a, b and the unit steps along the two
+// other axes: unimodular, so no lattice point lies inside it, the segment's centres lie on an
+// edge and the two other corners are background centres on H. Any other segment is incomplete.
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the ends of its rows, boxes are compared before the exact
@@ -346,8 +349,8 @@ struct ModifiedHull
 
 /// H of the object voxels (empty input: an empty result), its shells joined (see above); for a
 /// flat object the prisms of its polygons (see above). Incomplete (complete false, failure saying
-/// why) for a segment in no plane of the grid's axes, or when no empty triangle is left to press
-/// a group in from (see above).
+/// why) for a segment in no plane of the grid's axes whose direction has no component +-1, or when
+/// no empty triangle is left to press a group in from (see above).
 ModifiedHull modifyConvexHull(const BitVolume& objects,
   CoplanarFaces coplanar = CoplanarFaces::Extension,
   const Execution& exec = Execution());
