@@ -578,7 +578,11 @@ struct BoxCells
     this->regionIds->SetName("RegionId");
   }
 
-  /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label.
+  /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label. A corner's world
+  /// coordinate is origin + t0 + t1 + t2, a term per image axis taken at lo or hi: the terms
+  /// are VoxelGrid::vertexToWorld's products, summed in its order (so the same values), and
+  /// computed once per box rather than per corner (eight full transforms per box were a third
+  /// of an update of a porous volume). A 2D image's corners lie in its plane (flat axis at lo).
   void set(vtkIdType cell,
     const vbr::vtk::VoxelGrid& grid,
     const Int3& lo,
@@ -587,15 +591,27 @@ struct BoxCells
     std::int32_t regionId,
     const vbr::vtk::LabelValue& label)
   {
+    double term[3][3][2]; // [world axis][image axis][lo, hi]
+    for (int d = 0; d < 3; ++d)
+    {
+      const double base = grid.extentMin[d] + grid.vertexShift[d];
+      const double local[2] = { (base + double(lo[d])) * grid.spacing[d],
+        (base + double(hi[d])) * grid.spacing[d] };
+      for (int w = 0; w < 3; ++w)
+        for (int s = 0; s < 2; ++s)
+          term[w][d][s] = grid.direction[3 * w + d] * local[s];
+    }
     const int corners = this->layout.corners;
     double* xyz = this->coordinates->GetPointer(3 * cell * corners);
     for (int k = 0; k < corners; ++k)
     {
-      Int3 v = lo;
+      int atHi[3] = { 0, 0, 0 };
       for (int r = 0; r < 3; ++r)
         if (this->layout.bits[k][r])
-          v[this->layout.role[r]] = hi[this->layout.role[r]];
-      grid.vertexToWorld(v, xyz + 3 * k); // a 2D image's corners lie in its plane (flat at 0)
+          atHi[this->layout.role[r]] = 1;
+      for (int w = 0; w < 3; ++w)
+        xyz[3 * k + w] =
+          grid.origin[w] + term[w][0][atHi[0]] + term[w][1][atHi[1]] + term[w][2][atHi[2]];
     }
     this->boxIds->SetValue(cell, boxId);
     this->regionIds->SetValue(cell, regionId);
