@@ -6,7 +6,8 @@
 // notes on the way the equal runs that the CUDB's compactions join (the row before, the plane
 // before; uniteSequentially, or with threads uniteInPieces: pieces of planes swept concurrently,
 // then joined plane to plane); boxBeginnings, countOUDBBoxes and countExtremeVertices turn those
-// notes and the bits into the CUDB's counts; paintRuns writes a value per run into a label grid.
+// notes and the bits into the CUDB's counts, and buildBoxes (when asked) the notes into the
+// CUDB's boxes; paintRuns writes a value per run into a label grid.
 #include "RunLabelling.h"
 
 #include "Geometry.h"

@@ -18,8 +18,12 @@
 // no rectangle equal to the one it begins. The OUDB cuts a box at every plane and line of
 // vertices, that is wherever a plane differs from the one before or a row from the one before
 // in its plane; the extreme vertices are the lattice points with an odd number of set voxels
-// among their eight. Where a box is barely larger than a run (porous volumes: 1.4 rows a box),
-// labelling the runs does without the EVM, its sections and the sweep's three levels of merges.
+// among their eight. The boxes themselves follow: a box begins at such a run, spans its x
+// interval, the rows of its chain of equal runs, and the planes of its chain of equal
+// rectangles, and the boxes come in the scan order of their first runs, which is the sweep's
+// (by z, then y, then x where they begin). Where a box is barely larger than a run (porous
+// volumes: 1.4 rows a box), labelling the runs does without the EVM, its sections and the
+// sweep's three levels of merges.
 #ifndef vbr_RunLabelling_h
 #define vbr_RunLabelling_h
 
