@@ -71,8 +71,9 @@ struct ObjectBoxes
   /// from which its RegionIds are painted (vbr::paintPixelRuns).
   vbr::BitVolume pixels;
   vbr::PixelRuns runs;
-  /// A 3D object labelled on the runs of its rows (labelledFromRuns): no boxes, the runs'
-  /// labels and the counts of the CUDB the boxes would have been.
+  /// A 3D object labelled on the runs of its rows (labelledFromRuns): the runs' labels and the
+  /// counts of the CUDB, and its boxes only when they are output (then in `cudb` and
+  /// `components`, as the sweep would have left them).
   bool labelledFromRuns = false;
   vbr::VoxelRuns voxelRuns;
   vbr::RunComponents runComponents;
@@ -577,7 +578,11 @@ struct BoxCells
     this->regionIds->SetName("RegionId");
   }
 
-  /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label.
+  /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label. A corner's world
+  /// coordinate is origin + t0 + t1 + t2, a term per image axis taken at lo or hi: the terms
+  /// are VoxelGrid::vertexToWorld's products, summed in its order (so the same values), and
+  /// computed once per box rather than per corner (eight full transforms per box were a third
+  /// of an update of a porous volume). A 2D image's corners lie in its plane (flat axis at lo).
   void set(vtkIdType cell,
     const vbr::vtk::VoxelGrid& grid,
     const Int3& lo,
@@ -586,15 +591,27 @@ struct BoxCells
     std::int32_t regionId,
     const vbr::vtk::LabelValue& label)
   {
+    double term[3][3][2]; // [world axis][image axis][lo, hi]
+    for (int d = 0; d < 3; ++d)
+    {
+      const double base = grid.extentMin[d] + grid.vertexShift[d];
+      const double local[2] = { (base + double(lo[d])) * grid.spacing[d],
+        (base + double(hi[d])) * grid.spacing[d] };
+      for (int w = 0; w < 3; ++w)
+        for (int s = 0; s < 2; ++s)
+          term[w][d][s] = grid.direction[3 * w + d] * local[s];
+    }
     const int corners = this->layout.corners;
     double* xyz = this->coordinates->GetPointer(3 * cell * corners);
     for (int k = 0; k < corners; ++k)
     {
-      Int3 v = lo;
+      int atHi[3] = { 0, 0, 0 };
       for (int r = 0; r < 3; ++r)
         if (this->layout.bits[k][r])
-          v[this->layout.role[r]] = hi[this->layout.role[r]];
-      grid.vertexToWorld(v, xyz + 3 * k); // a 2D image's corners lie in its plane (flat at 0)
+          atHi[this->layout.role[r]] = 1;
+      for (int w = 0; w < 3; ++w)
+        xyz[3 * k + w] =
+          grid.origin[w] + term[w][0][atHi[0]] + term[w][1][atHi[1]] + term[w][2][atHi[2]];
     }
     this->boxIds->SetValue(cell, boxId);
     this->regionIds->SetValue(cell, regionId);
@@ -971,9 +988,11 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
 }
 
 /// The components of a 3D object labelled on the runs of its rows, with the counts of the CUDB
-/// in the ZYX sorting; false when the object is empty or the work was aborted.
+/// in the ZYX sorting and, `withBoxes`, its boxes and their labels (moved where the sweep would
+/// have put them); false when the object is empty or the work was aborted.
 bool labelObjectRuns(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
+  bool withBoxes,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
@@ -981,10 +1000,16 @@ bool labelObjectRuns(const vbr::vtk::Selected& selected,
   const vbr::BitVolume voxels = selected.select(exec.within(0.0, 0.2));
   if (!vbr::extractRuns(voxels, exec.within(0.2, 0.3), o.voxelRuns) || o.voxelRuns.empty())
     return false;
-  if (!vbr::labelRuns(voxels, o.voxelRuns, connectivity, exec.within(0.3, 1.0), o.runComponents))
+  vbr::RunComponents& c = o.runComponents;
+  if (!vbr::labelRuns(voxels, o.voxelRuns, connectivity, exec.within(0.3, 1.0), c, withBoxes))
     return false;
   o.labelledFromRuns = true;
-  o.extremeVertices = o.runComponents.extremeVertices;
+  o.extremeVertices = c.extremeVertices;
+  o.cudb.order = vbr::AxisOrder{ 2, 1, 0 };
+  o.cudb.oudbBoxCount = c.oudbBoxCount;
+  o.cudb.boxes = std::move(c.boxes);
+  o.components.boxLabel = std::move(c.boxLabel);
+  o.components.count = c.count;
   return true;
 }
 
@@ -997,13 +1022,14 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
   bool planar,
   bool onlyObject,
   bool fromRuns,
+  bool withBoxes,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
   o.label = selected.label;
   o.offset = selected.offset;
   if (fromRuns)
-    return labelObjectRuns(selected, connectivity, exec, o);
+    return labelObjectRuns(selected, connectivity, withBoxes, exec, o);
   if (planar)
     return boxesOfPixelRows(selected, sortings, connectivity, onlyObject, exec, o);
   vbr::EVM evm;
@@ -1036,12 +1062,13 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
   const vbr::Connectivity connectivity = self->GetConnectivity() == vtkCUDBConnectivity::VERTEX
     ? vbr::Connectivity::Vertex
     : vbr::Connectivity::Face;
-  // Without the boxes output (and on one rank, where the boxes are exchanged), the ZYX CUDB is
-  // needed only for its counts: the runs of the rows give them, and the components, faster
-  // (a box of a porous volume is barely larger than a run).
-  const bool fromRuns = !planar && !self->GetGenerateBoxes() && !in.piece.distributed() &&
+  // On one rank (several exchange the boxes of their sweeps), the ZYX CUDB is fixed by the
+  // voxels: the runs of the rows give its counts, its boxes and the components, faster (a box
+  // of a porous volume is barely larger than a run).
+  const bool fromRuns = !planar && self->GetRunLabelling() && !in.piece.distributed() &&
     in.axes == std::array<int, 3>{ 0, 1, 2 } && sortings.size() == 1 &&
     sortings[0] == vbr::AxisOrder{ 2, 1, 0 };
+  const bool withBoxes = self->GetGenerateBoxes();
   const std::size_t n = in.objects.size();
   std::uint32_t regionCount = 0;
   for (std::size_t i = 0; i < n && !self->GetAbortExecute(); ++i)
@@ -1049,7 +1076,8 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
     const vbr::Execution exec =
       vbr::vtk::makeExecution(self, 0.05 + 0.65 * i / n, 0.05 + 0.65 * (i + 1) / n);
     ObjectBoxes o;
-    if (!boxesOfObject(in.objects[i], sortings, connectivity, planar, n == 1, fromRuns, exec, o))
+    if (!boxesOfObject(
+          in.objects[i], sortings, connectivity, planar, n == 1, fromRuns, withBoxes, exec, o))
       continue; // empty, or aborted
     o.firstRegion = regionCount;
     regionCount += o.componentCount();
@@ -1439,4 +1467,5 @@ void vtkCUDBConnectivity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumRegionSize: " << this->MinimumRegionSize << "\n";
   os << indent << "LargestRegions: " << this->LargestRegions << "\n";
   os << indent << "GenerateBoxes: " << (this->GenerateBoxes ? "On\n" : "Off\n");
+  os << indent << "RunLabelling: " << (this->RunLabelling ? "On\n" : "Off\n");
 }

@@ -12,11 +12,13 @@
  * The connected components are then labelled on the boxes (a few thousand where the image
  * has millions of voxels) and written back to the voxels. A 2D image swept in its stored
  * order (the default sorting) gets the same boxes straight from its pixel rows, without
- * building the EVM. A 3D image in the default sorting without the boxes output (GenerateBoxes
- * off, one process) needs no boxes: its components are labelled on the runs of its voxel rows
- * (scan-line labelling, vbr::labelRuns), and the CUDB's counts in the field data and the
- * table's NumberOfBoxes are read from the runs; every output is the same as through the boxes,
- * faster on porous and noisy volumes, whose boxes are barely larger than the runs.
+ * building the EVM. A 3D image in the default sorting (one process) needs no EVM either: its
+ * components are labelled on the runs of its voxel rows (scan-line labelling,
+ * vbr::labelRuns), the CUDB's counts in the field data and the table's NumberOfBoxes are read
+ * from the runs, and with GenerateBoxes the CUDB's boxes are built from them (a run, the equal
+ * runs of the rows after it, the equal rectangles of the planes after it); every output is the
+ * same as through the sweep, faster on porous and noisy volumes, whose boxes are barely
+ * larger than the runs.
  *
  * Connectivity: Face (6-connected in 3D, 4 in 2D, the default) or Vertex (26 in 3D, 8 in
  * 2D: voxels touching along an edge or at a corner are connected too). In Labels mode the
@@ -186,6 +188,17 @@ public:
 
   ///@{
   /**
+   * Whether a 3D image in the default sorting is labelled on the runs of its voxel rows (the
+   * default, on) rather than through its EVM and the CUDB sweep. Every output is the same
+   * either way; off is there to compare the two (tests, benchmarks).
+   */
+  vtkSetMacro(RunLabelling, bool);
+  vtkGetMacro(RunLabelling, bool);
+  vtkBooleanMacro(RunLabelling, bool);
+  ///@}
+
+  ///@{
+  /**
    * Optional seed points (any vtkDataSet, world coordinates): when given, only the regions
    * containing a seed are kept. Seeds outside the selected voxels select nothing.
    */
@@ -220,6 +233,7 @@ protected:
   vtkIdType MinimumRegionSize = 1;
   vtkIdType LargestRegions = 0;
   bool GenerateBoxes = true;
+  bool RunLabelling = true;
 
 private:
   vtkCUDBConnectivity(const vtkCUDBConnectivity&) = delete;

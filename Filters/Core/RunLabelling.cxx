@@ -6,7 +6,8 @@
 // notes on the way the equal runs that the CUDB's compactions join (the row before, the plane
 // before; uniteSequentially, or with threads uniteInPieces: pieces of planes swept concurrently,
 // then joined plane to plane); boxBeginnings, countOUDBBoxes and countExtremeVertices turn those
-// notes and the bits into the CUDB's counts; paintRuns writes a value per run into a label grid.
+// notes and the bits into the CUDB's counts, and buildBoxes (when asked) the notes into the
+// CUDB's boxes; paintRuns writes a value per run into a label grid.
 #include "RunLabelling.h"
 
 #include "Geometry.h"
@@ -273,6 +274,57 @@ std::size_t boxBeginnings(const CompactionNotes& notes, std::vector<std::uint8_t
   return boxes;
 }
 
+/// The number of rows of the rectangle whose first run is `first`: its chain of equal runs.
+std::int32_t rectangleHeight(const CompactionNotes& notes, std::uint32_t first)
+{
+  std::int32_t rows = 1;
+  for (std::uint32_t i = notes.below[first]; i != None; i = notes.below[i])
+    ++rows;
+  return rows;
+}
+
+/// The CUDB's boxes from the runs, in its order. The sweep meets the rectangles of a plane by
+/// their first row, then x, and appends those that begin a box, so the boxes come in the scan
+/// order of the runs that begin them. A rectangle that continues a box (the equal rectangle of
+/// the plane before) moves the box's end along z to its own plane; the rectangle's box is
+/// noted at its first run, where the rectangle of the plane after finds it (`behind`).
+void buildBoxes(const VoxelRuns& r,
+  const CompactionNotes& notes,
+  const std::vector<std::uint8_t>& begins,
+  const std::vector<std::uint32_t>& runLabel,
+  std::size_t boxCount,
+  std::vector<Box>& boxes,
+  std::vector<std::uint32_t>& boxLabel)
+{
+  boxes.clear();
+  boxLabel.clear();
+  boxes.reserve(boxCount);
+  boxLabel.reserve(boxCount);
+  std::vector<std::uint32_t> boxOfRun(r.runs.size(), None);
+  const std::int32_t ny = r.dims[1], nz = r.dims[2];
+  for (std::int32_t z = 0; z < nz; ++z)
+    for (std::int32_t y = 0; y < ny; ++y)
+    {
+      const std::size_t row = r.rowOf(y, z);
+      for (std::uint32_t i = r.rowStarts[row]; i < r.rowStarts[row + 1]; ++i)
+      {
+        if (notes.above[i] != None) // inside a rectangle, not its first run
+          continue;
+        if (!begins[i])
+        {
+          const std::uint32_t box = boxOfRun[notes.behind[i]];
+          boxOfRun[i] = box;
+          boxes[box].hi[2] = z + 1;
+          continue;
+        }
+        const VoxelRun run = r.runs[i];
+        boxOfRun[i] = static_cast<std::uint32_t>(boxes.size());
+        boxes.push_back({ { run.x0, y, z }, { run.x1, y + rectangleHeight(notes, i), z + 1 } });
+        boxLabel.push_back(runLabel[i]);
+      }
+    }
+}
+
 /// Whether `words` words from a and from b are equal.
 bool sameWords(const Word* a, const Word* b, std::size_t words)
 {
@@ -404,7 +456,8 @@ bool labelRuns(const BitVolume& voxels,
   const VoxelRuns& runs,
   Connectivity connectivity,
   const Execution& exec,
-  RunComponents& out)
+  RunComponents& out,
+  bool withBoxes)
 {
   const std::size_t n = runs.runs.size();
   const std::int32_t nz = runs.dims[2];
@@ -425,6 +478,13 @@ bool labelRuns(const BitVolume& voxels,
     out.runLabel[i] = root == i ? ++out.count : out.runLabel[root];
   }
   out.boxCount = boxBeginnings(notes, out.beginsBox);
+  if (withBoxes)
+    buildBoxes(runs, notes, out.beginsBox, out.runLabel, out.boxCount, out.boxes, out.boxLabel);
+  else
+  {
+    out.boxes.clear();
+    out.boxLabel.clear();
+  }
   out.oudbBoxCount = countOUDBBoxes(voxels, runs);
   out.extremeVertices = countExtremeVertices(voxels);
   return exec.report(1.0);

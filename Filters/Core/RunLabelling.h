@@ -18,8 +18,12 @@
 // no rectangle equal to the one it begins. The OUDB cuts a box at every plane and line of
 // vertices, that is wherever a plane differs from the one before or a row from the one before
 // in its plane; the extreme vertices are the lattice points with an odd number of set voxels
-// among their eight. Where a box is barely larger than a run (porous volumes: 1.4 rows a box),
-// labelling the runs does without the EVM, its sections and the sweep's three levels of merges.
+// among their eight. The boxes themselves follow: a box begins at such a run, spans its x
+// interval, the rows of its chain of equal runs, and the planes of its chain of equal
+// rectangles, and the boxes come in the scan order of their first runs, which is the sweep's
+// (by z, then y, then x where they begin). Where a box is barely larger than a run (porous
+// volumes: 1.4 rows a box), labelling the runs does without the EVM, its sections and the
+// sweep's three levels of merges.
 #ifndef vbr_RunLabelling_h
 #define vbr_RunLabelling_h
 
@@ -71,18 +75,26 @@ struct RunComponents
   std::size_t boxCount = 0;        ///< CUDB boxes
   std::size_t oudbBoxCount = 0;    ///< OUDB boxes
   std::size_t extremeVertices = 0; ///< vertices of the EVM
+  /// With `withBoxes`: the CUDB's boxes themselves (those of buildCUDB of the voxels' EVM in
+  /// the ZYX sorting, in its order: by z, then y, then x where they begin) and the label of each
+  /// box (labelComponents' boxLabel: the label of the run that begins it).
+  std::vector<Box> boxes;
+  std::vector<std::uint32_t> boxLabel;
 };
 
 /// Labels the runs of `voxels` (as extractRuns gave them) with `connectivity`, and counts the
 /// CUDB's boxes, the OUDB's and the EVM's vertices. With several threads (exec.concurrency) and
 /// many runs, pieces of consecutive planes are labelled concurrently and then joined; the
 /// result is the same. Asks `exec` whether to stop every few planes and reports its progress;
-/// returns false when aborted.
+/// returns false when aborted. With `withBoxes`, builds the CUDB's boxes too (RunComponents::
+/// boxes): a box is a rectangle (a run and the chain of equal runs in the rows after it), grown
+/// through the planes after it while they hold an equal rectangle.
 bool labelRuns(const BitVolume& voxels,
   const VoxelRuns& runs,
   Connectivity connectivity,
   const Execution& exec,
-  RunComponents& out);
+  RunComponents& out,
+  bool withBoxes = false);
 
 /// Writes value[runLabel[i]] into every voxel of run i (value 0 are skipped) of `labels`, a grid
 /// of `dims` voxels stored x fastest, the runs' voxel (x, y, z) at (x, y, z) + offset. Voxels of

@@ -12,10 +12,13 @@ makes a first run (its peak memory, and the warm-up), then --repeat rounds in tu
 is the middle of the sorted times (of an even count, the mean of the middle two); the ratio is
 the peer's time over the filter's with the same connectivity (above 1: the filter is faster).
 The component counts of the filter and of every peer must agree (MISMATCH, exit code 1):
-a benchmark that compares different answers measures nothing. So must the filter's two ways
-of labelling a 3D image: every output but the boxes, value for value, without the boxes output
-(the runs of the voxel rows) and with it (the CUDB's boxes), on every input and, with --check
-(40 random images with --quick, the ctest smoke run), on random images and options.
+a benchmark that compares different answers measures nothing. So must the filter's ways of
+labelling a 3D image, on every input and, with --check (40 random images with --quick, the
+ctest smoke run), on random images and options: every output but the boxes, value for value,
+without the boxes output and with it, and every output, the boxes' cells included, on the runs
+of the voxel rows (RunLabelling on, the default) and through the EVM and the CUDB sweep
+(RunLabelling off). The filter is timed without the boxes output unless --boxes; --sweep adds
+it labelled through the sweep (RunLabelling off) as a peer, in the same turns.
 """
 
 import argparse
@@ -63,7 +66,13 @@ def parse_arguments():
     p.add_argument("--check", type=int, default=None, metavar="N",
                    help="before the benchmark, N random images (sizes, densities, label maps, "
                         "options, seeds, cell data, extents) whose outputs must be the same "
-                        "without and with the boxes output (default 40 with --quick, else 0)")
+                        "without and with the boxes output, on the runs and through the "
+                        "sweep (default 40 with --quick, else 0)")
+    p.add_argument("--boxes", action="store_true",
+                   help="time the filter with the boxes output (GenerateBoxes on, its default)")
+    p.add_argument("--sweep", action="store_true",
+                   help="time the filter through the EVM and the CUDB sweep too (RunLabelling "
+                        "off), as a peer ('sweep face', 'sweep vertex')")
     p.add_argument("--quick", action="store_true",
                    help="tiny sizes, --repeat 1, small files only (the ctest smoke run)")
     p.add_argument("--large", action="store_true", help="sizes 128,256,512, the mazes")
@@ -154,28 +163,57 @@ def image_of(mask):
     return image
 
 
-def filter_contender(image, connectivity, counts):
+def filter_contender(image, connectivity, counts, boxes=False, sweep=False):
+    """The filter timed, with or without the boxes output; `sweep`: through the EVM and the
+    CUDB sweep (RunLabelling off), a peer named 'sweep <connectivity>'."""
     f = voxelbrep.vtkCUDBConnectivity()
     f.SetInputData(image)
-    f.GenerateBoxesOff()
+    f.SetGenerateBoxes(boxes)
+    if sweep:
+        f.RunLabellingOff()
     if connectivity == "vertex":
         f.SetConnectivityToVertex()
+    name = ("sweep " if sweep else "filter ") + connectivity
 
     def run():
         f.Modified()
         f.Update()
         regions = f.GetOutput().GetFieldData().GetArray("NumberOfRegions").GetValue(0)
-        counts["filter " + connectivity] = int(regions)
+        counts[name] = int(regions)
 
-    return ("filter " + connectivity, "tool", connectivity, run)
+    return (name, "peer" if sweep else "tool", connectivity, run)
 
 
-def outputs_of(image, connectivity, boxes, options=None, seeds=None):
-    """Every output of the filter but the boxes, as arrays: the RegionId image, each column of
-    the region table, and the field data of ports 0 and 2. `options`: setter name -> value."""
+def boxes_of(output):
+    """The boxes output (port 1) as arrays: points, cells, cell types and cell arrays."""
+    out = {"boxes points": ns.vtk_to_numpy(output.GetPoints().GetData())
+           if output.GetPoints() is not None else np.zeros((0, 3)),
+           "boxes cell types": np.array([output.GetCellType(i)
+                                         for i in range(output.GetNumberOfCells())])}
+    cells = output.GetCells()
+    if cells is not None:
+        out["boxes offsets"] = ns.vtk_to_numpy(cells.GetOffsetsArray())
+        out["boxes connectivity"] = ns.vtk_to_numpy(cells.GetConnectivityArray())
+    data = output.GetCellData()
+    for a in range(data.GetNumberOfArrays()):
+        out["boxes cell array %s" % data.GetArrayName(a)] = ns.vtk_to_numpy(data.GetArray(a))
+    return out
+
+
+def has_run_labelling():
+    """Whether this build's filter can be told to label through the sweep (RunLabelling)."""
+    return hasattr(voxelbrep.vtkCUDBConnectivity(), "SetRunLabelling")
+
+
+def outputs_of(image, connectivity, boxes, options=None, seeds=None, run_labelling=True):
+    """Every output of the filter, as arrays: the RegionId image, each column of the region
+    table, the field data of ports 0 and 2, and with `boxes` the boxes output. `options`:
+    setter name -> value; `run_labelling` off: through the EVM and the CUDB sweep."""
     f = voxelbrep.vtkCUDBConnectivity()
     f.SetInputData(image)
     f.SetGenerateBoxes(boxes)
+    if not run_labelling:
+        f.RunLabellingOff()
     if connectivity == "vertex":
         f.SetConnectivityToVertex()
     for setter, value in (options or {}).items():
@@ -197,21 +235,33 @@ def outputs_of(image, connectivity, boxes, options=None, seeds=None):
             array = fd.GetAbstractArray(a)
             values = [array.GetValue(i) for i in range(array.GetNumberOfValues())]
             out["port %d field %s" % (port, array.GetName())] = np.array(values)
+    if boxes:
+        out.update(boxes_of(f.GetBoxesOutput()))
     return out
+
+
+def differences(name, connectivity, a, b, what):
+    return ["%s, %s: %s differs %s" % (name, connectivity, key, what)
+            for key in sorted(set(a) | set(b))
+            if key not in a or key not in b or not np.array_equal(a[key], b[key])]
 
 
 def check_same_outputs(name, image, connectivities=("face", "vertex"), options=None,
                        seeds=None):
-    """Without the boxes output a 3D image is labelled on the runs of its voxel rows, with it on
-    the boxes of the CUDB: every other output must be the same, value for value."""
+    """Every output but the boxes the same without and with the boxes output, and every
+    output, the boxes included, the same on the runs of the voxel rows and through the sweep
+    (when this build has the switch), value for value."""
     failures = []
     for connectivity in connectivities:
-        runs = outputs_of(image, connectivity, False, options, seeds)
-        cudb = outputs_of(image, connectivity, True, options, seeds)
-        for key in sorted(set(runs) | set(cudb)):
-            if key not in runs or key not in cudb or not np.array_equal(runs[key], cudb[key]):
-                failures.append("%s, %s: %s differs without and with the boxes output" % (
-                    name, connectivity, key))
+        plain = outputs_of(image, connectivity, False, options, seeds)
+        runs = outputs_of(image, connectivity, True, options, seeds)
+        failures += differences(name, connectivity, plain,
+                                {k: v for k, v in runs.items() if not k.startswith("boxes ")},
+                                "without and with the boxes output")
+        if has_run_labelling():
+            sweep = outputs_of(image, connectivity, True, options, seeds, run_labelling=False)
+            failures += differences(name, connectivity, runs, sweep,
+                                    "on the runs and through the sweep")
     return failures
 
 
@@ -312,7 +362,7 @@ def check_counts(name, counts):
     for key, value in counts.items():
         if key.startswith("filter"):
             continue
-        face = key in ("scipy 6", "scipy 4", "OpenCV 4")
+        face = key in ("scipy 6", "scipy 4", "OpenCV 4", "sweep face")
         mine = counts["filter face" if face else "filter vertex"]
         if value != mine:
             failures.append("%s: %s finds %d regions, the filter %d" % (name, key, value, mine))
@@ -326,7 +376,10 @@ def benchmark(name, mask, args, summary):
     failures = check_same_outputs(name, image)
     for backend in backends_in_turn(args):
         counts = {}
-        contenders = [filter_contender(image, c, counts) for c in ("face", "vertex")]
+        contenders = [filter_contender(image, c, counts, args.boxes) for c in ("face", "vertex")]
+        if args.sweep:
+            contenders += [filter_contender(image, c, counts, args.boxes, sweep=True)
+                           for c in ("face", "vertex")]
         contenders += peer_contenders(mask, counts)
         rows = time_in_turns(max(1, args.repeat), contenders,
                              time.process_time if args.cpu else time.perf_counter)

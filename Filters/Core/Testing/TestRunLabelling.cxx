@@ -1,6 +1,6 @@
 // Scan-line labelling of voxel runs against a flood fill (labels and their numbering, voxel by
-// voxel), a parity count of the extreme vertices, and the CUDB of the same voxels (its boxes'
-// origins and order, the OUDB's count, the components of the boxes).
+// voxel), a parity count of the extreme vertices, and the CUDB of the same voxels (its boxes,
+// built from the runs box for box in its order, the OUDB's count, the components of the boxes).
 #include "BruteForce.h"
 #include "CUDB.h"
 #include "EVM.h"
@@ -31,7 +31,13 @@ Labelled labelAndPaint(const vbr::BitVolume& v,
 {
   Labelled out;
   EXPECT_TRUE(vbr::extractRuns(v, exec, out.runs));
-  EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, out.components));
+  EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, out.components, true));
+  // Without the boxes, the same labels and counts and no boxes.
+  vbr::RunComponents plain;
+  EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, plain));
+  EXPECT_EQ(plain.runLabel, out.components.runLabel);
+  EXPECT_EQ(plain.boxCount, out.components.boxCount);
+  EXPECT_TRUE(plain.boxes.empty() && plain.boxLabel.empty());
   std::vector<std::int32_t> value(out.components.count + 1);
   for (std::size_t l = 0; l < value.size(); ++l)
     value[l] = static_cast<std::int32_t>(l);
@@ -74,6 +80,46 @@ void expectFloodFillLabels(const vbr::BitVolume& v, bool vertex, const Labelled&
   EXPECT_EQ(wrong, 0u) << "voxels labelled differently from the flood fill";
 }
 
+/// The boxes built from the runs are the CUDB's (ZYX), box for box in its order, with the labels
+/// of labelComponents and of buildCUDBComponents; together they cover exactly the set voxels.
+void expectSameBoxes(const vbr::BitVolume& v,
+  vbr::Connectivity connectivity,
+  const vbr::CUDB& cudb,
+  const vbr::Components& labelled,
+  const Labelled& l)
+{
+  ASSERT_EQ(l.components.boxes.size(), cudb.boxes.size());
+  ASSERT_EQ(l.components.boxLabel.size(), cudb.boxes.size());
+  std::size_t wrongBoxes = 0, wrongLabels = 0;
+  for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
+  {
+    if (!(l.components.boxes[b] == cudb.boxes[b]) && wrongBoxes++ == 0)
+      ADD_FAILURE() << "first different box: " << b;
+    wrongLabels += l.components.boxLabel[b] != labelled.boxLabel[b];
+  }
+  EXPECT_EQ(wrongBoxes, 0u) << "boxes differ from buildCUDB's";
+  EXPECT_EQ(wrongLabels, 0u) << "box labels differ from labelComponents'";
+  vbr::CUDB swept;
+  vbr::Components sweptLabels;
+  ASSERT_TRUE(vbr::buildCUDBComponents(
+    vbr::extractEVM(v), connectivity, vbr::Execution(), swept, sweptLabels));
+  EXPECT_EQ(sweptLabels.boxLabel, l.components.boxLabel) << "labels of buildCUDBComponents";
+  // Independently of the CUDB: every set voxel in exactly one box, no empty voxel in any.
+  std::vector<std::uint8_t> covered(v.voxelCount(), 0);
+  for (const vbr::Box& box : l.components.boxes)
+    for (std::int32_t z = box.lo[2]; z < box.hi[2]; ++z)
+      for (std::int32_t y = box.lo[1]; y < box.hi[1]; ++y)
+        for (std::int32_t x = box.lo[0]; x < box.hi[0]; ++x)
+          ++covered[(std::size_t(z) * v.size(1) + y) * v.size(0) + x];
+  std::size_t wrongVoxels = 0;
+  for (std::int32_t z = 0; z < v.size(2); ++z)
+    for (std::int32_t y = 0; y < v.size(1); ++y)
+      for (std::int32_t x = 0; x < v.size(0); ++x)
+        wrongVoxels +=
+          covered[(std::size_t(z) * v.size(1) + y) * v.size(0) + x] != (v.get(x, y, z) ? 1 : 0);
+  EXPECT_EQ(wrongVoxels, 0u) << "voxels not covered exactly once by the boxes";
+}
+
 /// The counts and box origins are those of the CUDB of v's EVM (ZYX), and the run beginning
 /// each box has the label labelComponents gives the box.
 void expectCUDBCounts(const vbr::BitVolume& v, vbr::Connectivity connectivity, const Labelled& l)
@@ -105,6 +151,7 @@ void expectCUDBCounts(const vbr::BitVolume& v, vbr::Connectivity connectivity, c
         ++b;
       }
     }
+  expectSameBoxes(v, connectivity, cudb, boxes, l);
 }
 
 void expectAll(const vbr::BitVolume& v, const std::string& what)
@@ -140,6 +187,42 @@ TEST(RunLabelling, RandomVolumesMatchFloodFillAndCUDB)
           std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) + " " +
             std::to_string(density) + " seed " + std::to_string(seed - 1));
       }
+}
+
+/// A random volume of `cells` cells of `scale` voxels each (per axis), every cell set or not:
+/// equal runs in consecutive rows and equal rectangles in consecutive planes, which random
+/// voxels seldom have, so boxes grow along y and z. A few voxels flipped at random break
+/// some of them.
+vbr::BitVolume blockyVolume(const vbr::Point3& cells,
+  const vbr::Point3& scale,
+  double density,
+  double flips,
+  unsigned seed)
+{
+  const vbr::BitVolume coarse = bf::randomVolume(cells, density, seed);
+  const vbr::Point3 d{ cells[0] * scale[0], cells[1] * scale[1], cells[2] * scale[2] };
+  const vbr::BitVolume noise = bf::randomVolume(d, flips, seed + 7777);
+  vbr::BitVolume v(d[0], d[1], d[2]);
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0]; ++x)
+        v.set(x, y, z, coarse.get(x / scale[0], y / scale[1], z / scale[2]) != noise.get(x, y, z));
+  return v;
+}
+
+TEST(RunLabelling, BlockyVolumesBuildTheCUDBBoxes)
+{
+  const vbr::Point3 cells[] = { { 4, 4, 4 }, { 9, 5, 3 }, { 3, 7, 8 }, { 30, 4, 4 } };
+  const vbr::Point3 scales[] = { { 1, 2, 3 }, { 3, 3, 3 }, { 2, 1, 4 }, { 5, 4, 2 } };
+  unsigned seed = 100;
+  for (const vbr::Point3& c : cells)
+    for (const vbr::Point3& s : scales)
+      for (double density : { 0.3, 0.6, 0.9 })
+        for (double flips : { 0.0, 0.02 })
+        {
+          const vbr::BitVolume v = blockyVolume(c, s, density, flips, seed++);
+          expectAll(v, "blocky seed " + std::to_string(seed - 1));
+        }
 }
 
 TEST(RunLabelling, DegenerateVolumes)
@@ -206,6 +289,8 @@ TEST(RunLabelling, ThreadsChangeNothing)
     EXPECT_EQ(one.components.runLabel, three.components.runLabel);
     EXPECT_EQ(one.components.beginsBox, three.components.beginsBox);
     EXPECT_EQ(one.components.boxCount, three.components.boxCount);
+    EXPECT_EQ(one.components.boxes, three.components.boxes);
+    EXPECT_EQ(one.components.boxLabel, three.components.boxLabel);
     EXPECT_EQ(one.grid, three.grid);
   }
 }
