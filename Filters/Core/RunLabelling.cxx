@@ -399,7 +399,7 @@ inline void store8(std::int32_t* p, std::int32_t v)
 inline void paintRun(std::int32_t* line, const VoxelRun& run, std::int32_t v, std::int32_t room)
 {
   const std::int32_t length = run.x1 - run.x0;
-  if (length <= 8 && run.x1 + 8 <= room)
+  if (length <= 8 && run.x1 <= room - 8)
   {
     store8(line + run.x0, v);
     store8(line + run.x1, 0);

@@ -369,11 +369,20 @@ def check_counts(name, counts):
     return failures
 
 
+CHECKED_VOXELS = 128 ** 3
+
+
 def benchmark(name, mask, args, summary):
     print("## %s (%dx%dx%d)\n\nselected voxels: %d\n" % (
         name, mask.shape[2], mask.shape[1], mask.shape[0], int(mask.sum())))
     image = image_of(mask)
-    failures = check_same_outputs(name, image)
+    # Both paths' outputs compared up to 128^3: with --large, a 512^3 checkerboard's boxes
+    # alone would take about 13 GB each way.
+    if mask.size <= CHECKED_VOXELS:
+        failures = check_same_outputs(name, image)
+    else:
+        print("(outputs of the two paths not compared above %d voxels)\n" % CHECKED_VOXELS)
+        failures = []
     for backend in backends_in_turn(args):
         counts = {}
         contenders = [filter_contender(image, c, counts, args.boxes) for c in ("face", "vertex")]
