@@ -580,7 +580,8 @@ struct BoxCells
 
   /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label. A corner's world
   /// coordinate is origin + t0 + t1 + t2, a term per image axis taken at lo or hi: the terms
-  /// are VoxelGrid::vertexToWorld's products, summed in its order (so the same values), and
+  /// are VoxelGrid::vertexToWorld's products, summed in its order (so the same values where
+  /// the compiler contracts neither into fused multiply-adds: x86-64 without -march), and
   /// computed once per box rather than per corner (eight full transforms per box were a third
   /// of an update of a porous volume). A 2D image's corners lie in its plane (flat axis at lo).
   void set(vtkIdType cell,

@@ -12,7 +12,8 @@
  * The connected components are then labelled on the boxes (a few thousand where the image
  * has millions of voxels) and written back to the voxels. A 2D image swept in its stored
  * order (the default sorting) gets the same boxes straight from its pixel rows, without
- * building the EVM. A 3D image in the default sorting (one process) needs no EVM either: its
+ * building the EVM. A 3D image in the default sorting (one process, RunLabelling on, the
+ * default) needs no EVM either: its
  * components are labelled on the runs of its voxel rows (scan-line labelling,
  * vbr::labelRuns), the CUDB's counts in the field data and the table's NumberOfBoxes are read
  * from the runs, and with GenerateBoxes the CUDB's boxes are built from them (a run, the equal

@@ -406,7 +406,7 @@ inline void paintRun(std::int32_t* line, const VoxelRun& run, std::int32_t v, st
   }
   else if (length >= 8)
   {
-    for (std::int32_t x = run.x0; x + 8 <= run.x1; x += 8)
+    for (std::int32_t x = run.x0; x <= run.x1 - 8; x += 8)
       store8(line + x, v);
     store8(line + run.x1 - 8, v);
   }
@@ -478,6 +478,8 @@ bool labelRuns(const BitVolume& voxels,
     out.runLabel[i] = root == i ? ++out.count : out.runLabel[root];
   }
   out.boxCount = boxBeginnings(notes, out.beginsBox);
+  if (exec.stopRequested())
+    return false;
   if (withBoxes)
     buildBoxes(runs, notes, out.beginsBox, out.runLabel, out.boxCount, out.boxes, out.boxLabel);
   else
@@ -485,6 +487,8 @@ bool labelRuns(const BitVolume& voxels,
     out.boxes.clear();
     out.boxLabel.clear();
   }
+  if (exec.stopRequested())
+    return false;
   out.oudbBoxCount = countOUDBBoxes(voxels, runs);
   out.extremeVertices = countExtremeVertices(voxels);
   return exec.report(1.0);

@@ -79,7 +79,7 @@ def check(mask, cells, tag):
 
 
 def check_table(mask, tag):
-    """The region table against scipy (default ZYX sorting, size ranked, boxes off: the regions
+    """The region table against scipy (default ZYX sorting, size ranked: the regions
     labelled on the runs of the voxel rows): voxel counts, index bounds and centroids."""
     image = make_image(mask, False)
     for vertex in (False, True):
