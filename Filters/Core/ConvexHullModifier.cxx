@@ -2664,10 +2664,11 @@ bool mergeMeetingParts(std::vector<ObjectPart>& parts, CoplanarFaces coplanar)
 }
 
 /// The object's components (vertex-connected, so that voxels touching at an edge or a corner
-/// stay in one part and the touching rule decides there), merged until no two parts may meet;
-/// none for an object of one component.
+/// stay in one part and the touching rule decides there), merged until no two parts may meet
+/// (when `mergeMeeting`); none for an object of one component.
 std::vector<ObjectPart> separateParts(const std::vector<LatticePoint>& points,
-  CoplanarFaces coplanar)
+  CoplanarFaces coplanar,
+  bool mergeMeeting)
 {
   std::vector<std::vector<LatticePoint>> components = componentsOf(points, false, true);
   if (components.size() < 2)
@@ -2675,7 +2676,7 @@ std::vector<ObjectPart> separateParts(const std::vector<LatticePoint>& points,
   std::vector<ObjectPart> parts;
   for (auto& c : components)
     parts.push_back(partOf(std::move(c), coplanar));
-  while (parts.size() > 1 && mergeMeetingParts(parts, coplanar))
+  while (mergeMeeting && parts.size() > 1 && mergeMeetingParts(parts, coplanar))
     continue;
   return parts;
 }
@@ -2684,6 +2685,25 @@ ModifiedHull modifyHull(const BitVolume& objects,
   CoplanarFaces coplanar,
   const Execution& exec,
   bool componentsFirst);
+
+int gridPlaneAxis(const std::vector<LatticePoint>& points);
+
+/// Whether the part can have an H of its own: not a flat set in no plane of the grid's axes
+/// (its two-sided polygon is no solid) nor a segment with no direction component +-1.
+bool partHasH(const ObjectPart& part)
+{
+  const CellList& hull = part.extent.hull;
+  if (hull.dimension == 2)
+    return gridPlaneAxis(part.points) >= 0;
+  if (hull.dimension != 1)
+    return true;
+  const LatticePoint ab = sub(hull.vertices[1], hull.vertices[0]);
+  std::int64_t m = 0;
+  for (int k = 0; k < 3; ++k)
+    m = std::gcd(m, std::abs(ab[k]));
+  return std::any_of(ab.begin(), ab.end(), [m](std::int64_t c) { return std::abs(c) == m; }) ||
+    gridPlaneAxis(part.points) >= 0;
+}
 
 /// Whether the part's H stays in the grid: a flat part's prism (or a segment's tetrahedron)
 /// near the grid's side would put centres off the grid on H, which only a flat object's H may
@@ -2719,6 +2739,8 @@ bool appendPartH(Context& ctx,
     for (const Index t : f.triangles)
       levels[base + t] = f.level;
   together.append(h.surface, false);
+  if (!h.failure.empty())
+    r.failure += (r.failure.empty() ? "" : "; ") + h.failure; // a part's note stays
   r.joinedShells += h.joinedShells;
   r.cutHandles += h.cutHandles;
   r.keptApart += h.keptApart;
@@ -2734,7 +2756,11 @@ bool appendPartH(Context& ctx,
 /// CPU as one object, 3.2 s one by one). Each face keeps the level it has in its part's H (a
 /// plane can hold a face of one part's hull and a pit's bottom in another). The parts share
 /// [from, to] of the progress.
-bool solveComponentsFirst(Context& ctx, ModifiedHull& r, double from, double to)
+bool solveComponentsFirst(Context& ctx,
+  ModifiedHull& r,
+  double from,
+  double to,
+  bool mergeMeeting = true)
 {
   const Dims d = ctx.objects.dims();
   std::vector<LatticePoint> points;
@@ -2743,9 +2769,11 @@ bool solveComponentsFirst(Context& ctx, ModifiedHull& r, double from, double to)
       for (std::int32_t x = 0; x < d[0]; ++x)
         if (ctx.objects.get(x, y, z))
           points.push_back({ x, y, z });
-  const std::vector<ObjectPart> parts = separateParts(points, ctx.coplanar);
+  const std::vector<ObjectPart> parts = separateParts(points, ctx.coplanar, mergeMeeting);
   if (parts.size() < 2 ||
-    !std::all_of(parts.begin(), parts.end(), [&](const ObjectPart& p) { return partInGrid(p, d); }))
+    !std::all_of(parts.begin(),
+      parts.end(),
+      [&](const ObjectPart& p) { return partInGrid(p, d) && partHasH(p); }))
     return false;
   ModifiedHull apart;
   LatticeMesh together;
@@ -2767,19 +2795,20 @@ bool solveComponentsFirst(Context& ctx, ModifiedHull& r, double from, double to)
   r.degreeOfNonConvexity = apart.degreeOfNonConvexity;
   r.componentsApart = true;
   r.complete = true;
-  r.failure.clear();
+  r.failure = apart.failure;
   return true;
 }
 
 /// H of a segment off the axes' planes (its centres on a line whose direction d has no zero
 /// component: voxels touching only at corners): the tetrahedron T = conv{a, b, a + e_i, a + e_j}
-/// of its ends a, b = a + m d and the unit steps along the two axes other than one where
-/// |d_k| = 1. In the basis (d, e_i, e_j), unimodular since det = +-d_k, a lattice point of T has
-/// integer coordinates (t, u, v), all >= 0 with t / m + u + v <= 1: a point of the segment
-/// (u = v = 0) or a + e_i, a + e_j. So no lattice point lies inside T, the segment's centres are
-/// its edge and the two other corners are background centres (off the line that holds every
-/// object centre) on H, marked. False when no component of d is +-1 (left without H).
-bool segmentTetrahedron(const CellList& hull, LatticeMesh& out)
+/// of its ends a, b = a + m d and unit steps e_i, e_j (either sign, into the grid) along the two
+/// axes other than one where |d_k| = 1. In the basis (d, e_i, e_j), unimodular since det =
+/// +-d_k, a lattice point of T has integer coordinates (t, u, v), all >= 0 with t / m + u + v
+/// <= 1: a point of the segment (u = v = 0) or a + e_i, a + e_j. So no lattice point lies inside T,
+/// the segment's centres are its edge and the two other corners are background centres (off the
+/// line that holds every object centre) on H, marked. False when no component of d is +-1 (left
+/// without H).
+bool segmentTetrahedron(const CellList& hull, const Dims& dims, LatticeMesh& out)
 {
   const LatticePoint a = hull.vertices[0], b = hull.vertices[1];
   const LatticePoint ab = sub(b, a);
@@ -2794,9 +2823,12 @@ bool segmentTetrahedron(const CellList& hull, LatticeMesh& out)
       unit = k;
   if (unit < 0)
     return false;
+  // a step into the grid along each of the two other axes (either sign keeps the basis
+  // unimodular; the grid is at least two voxels wide there, the segment spanning it)
   LatticePoint ei = a, ej = a;
-  ei[(unit + 1) % 3] += 1;
-  ej[(unit + 2) % 3] += 1;
+  const int i = (unit + 1) % 3, j = (unit + 2) % 3;
+  ei[i] += a[i] + 1 < dims[i] ? 1 : -1;
+  ej[j] += a[j] + 1 < dims[j] ? 1 : -1;
   out.points = { a, b, ei, ej };
   // orient each face away from the fourth corner
   const std::array<std::array<std::uint32_t, 4>, 4> faces{
@@ -3571,7 +3603,7 @@ ModifiedHull modifyHull(const BitVolume& objects,
   const int flat = r.hull.dimension < 3 ? gridPlaneAxis(candidates) : -1;
   if (flat >= 0)
     solveFlatObject(objects, flat, candidates.front()[flat], exec.within(0.2, 0.8), r);
-  else if (r.hull.dimension == 1 && segmentTetrahedron(r.hull, r.surface))
+  else if (r.hull.dimension == 1 && segmentTetrahedron(r.hull, objects.dims(), r.surface))
   {
     r.complete = true;
     mergeIntoFaces({}, std::vector<int>(r.surface.triangles.size(), 0), r);
@@ -3595,7 +3627,13 @@ ModifiedHull modifyHull(const BitVolume& objects,
     classifyBackgroundComponents(objects, r.hull, r);
     Context ctx{ objects, coplanar, exec, {}, 0 };
     if (!componentsFirst || !solveComponentsFirst(ctx, r, 0.2, 0.8))
+    {
       solveAndCheck(ctx, r);
+      // When H of the object as one misses its topology (a ball in a torus's hole: their hulls
+      // meet, so they were one part), each component alone, as a last resort.
+      if (r.complete && objectEuler(ctx) && !hasTopology(ctx, r.surface))
+        solveComponentsFirst(ctx, r, 0.2, 0.8, false);
+    }
     if (!exec.report(0.8))
       throw std::runtime_error("aborted");
     mergeIntoFaces(ctx.planeLevel, ctx.triangleLevel, r);

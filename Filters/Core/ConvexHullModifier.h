@@ -170,15 +170,16 @@
 // until none may. With two parts or more, each in the grid, H of each part alone is made in
 // the part's box (the rest of the object its background there) and their union is kept when
 // it separates (with the object's topology when the object is well-composed); otherwise the
-// object is solved as one. The check stays: nothing else keeps a centre of one part off another
-// part's H. A flat part whose prism would leave the grid makes the object solved as one, so
-// only a flat object's H has centres off the grid. The faces' levels are those of each part's
-// own H, carried triangle by triangle (level 0: a face of its part's hull); one plane can hold
-// a face of one part's hull and the bottom of another's pit. The parts share the progress
-// range of this step. On the lobster at v >= 128 (one component of 62,332 voxels, 130 smaller
-// ones, not well-composed) the smaller components took 15.5 s of CPU as one object and 3.2 s
-// one by one; the whole object 39 s before, 30 s with the parts (the largest part, the large
-// component with the 36 small ones inside its hull, takes most of it).
+// object is solved as one, and when that H of a well-composed object misses its topology, the
+// union of the H of each component alone (parts not merged) is tried as a last resort. The check
+// stays: nothing else keeps a centre of one part off another part's H. A flat part whose prism
+// would leave the grid makes the object solved as one, so only a flat object's H has centres off
+// the grid. The faces' levels are those of each part's own H, carried triangle by triangle (level
+// 0: a face of its part's hull); one plane can hold a face of one part's hull and the bottom of
+// another's pit. The parts share the progress range of this step. On the lobster at v >= 128 (one
+// component of 62,826 voxels, 130 smaller ones, not well-composed) the smaller components took 15.5
+// s of CPU as one object and 3.2 s one by one; the whole object 39 s before, 30 s with the parts
+// (the largest part, the large component with the 36 small ones inside its hull, takes most of it).
 // Not done (the README's limits): shells for which no prism or chain of those is accepted (none
 // left in the tests' hollow balls and porous blobs), spurious handles on objects that are not
 // well-composed or where the second pass has them too (a join can only add a tube and a cut a

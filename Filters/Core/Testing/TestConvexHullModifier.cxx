@@ -1082,6 +1082,16 @@ TEST(ConvexHullModifier, DiagonalSegmentsAreTetrahedra)
       const auto r = expectSeparating(v, { false });
       EXPECT_EQ(r.surface.triangles.size(), 4u);
       EXPECT_EQ(r.faces.size(), 4u);
+      // oriented outwards: six times the enclosed volume, positive
+      long sixVolume = 0;
+      for (const auto& tri : r.surface.triangles)
+      {
+        const auto &p = r.surface.points[tri[0]], &q = r.surface.points[tri[1]],
+                   &s = r.surface.points[tri[2]];
+        sixVolume += p[0] * (q[1] * s[2] - q[2] * s[1]) - p[1] * (q[0] * s[2] - q[2] * s[0]) +
+          p[2] * (q[0] * s[1] - q[1] * s[0]);
+      }
+      EXPECT_GT(sixVolume, 0);
     }
   vbr::BitVolume w(3, 4, 6);
   w.set(0, 0, 0);
@@ -1093,46 +1103,51 @@ TEST(ConvexHullModifier, DiagonalSegmentsAreTetrahedra)
 
 TEST(ConvexHullModifier, ComponentsFirstSolveFarPartsAlone)
 {
-  // A torus with a small ball in its hole (their hulls meet: one part), a ball, a diagonal
-  // pair of voxels and a single voxel far from them (an object that is not well-composed):
-  // H is made part by part (componentsApart), and it must separate every centre of the grid.
-  // Its shells: one for each part alone (ball, pair, voxel) and those of the torus part's own
-  // H (made here from that part alone). The same object in a grid whose side the single voxel
-  // touches is solved as one (its prism would leave the grid), and separates as well.
-  const vbr::BitVolume t = torus(5, 1.2), b = ball(3);
-  const int side = t.size(0) + b.size(0) + 8;
-  const int c = t.size(0) / 2, zc = t.size(2) / 2 + 1;
-  vbr::BitVolume withRow(t.size(0), t.size(1), t.size(2) + 2);
-  for (int z = 0; z < t.size(2); ++z)
-    for (int y = 0; y < t.size(1); ++y)
-      for (int x = 0; x < t.size(0); ++x)
-        if (at(t, x, y, z))
-          withRow.set(x, y, z + 1);
-  withRow.set(c, c, zc);
-  withRow.set(c - 1, c, zc);
-  const std::size_t torusShells = componentEulers(vbr::modifyConvexHull(withRow).surface).size();
-  EXPECT_GE(torusShells, 1u);
-  for (int voxelAt : { side / 2, side - 1 })
+  // A cup with a small ball in its pit (their hulls meet: one part), a torus, a diagonal pair
+  // of voxels and a single voxel far from them (an object that is not well-composed): H is
+  // made part by part (componentsApart), and it must separate every centre of the grid. The
+  // cup with the ball in its pit, alone, is well-composed: its H must have its topology shell
+  // by shell, two spheres (made as one, or else each component alone). The whole H's shells:
+  // one for the torus, the pair and the voxel each, and those two. The same object in a grid
+  // whose side (the first or the last row) the single voxel touches is solved as one (its
+  // prism would leave the grid), and separates as well.
+  vbr::BitVolume cupWithBall(11, 11, 9);
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 11; ++y)
+      for (int x = 0; x < 11; ++x)
+      {
+        const bool pit = z >= 4 && x >= 3 && x <= 7 && y >= 3 && y <= 7;
+        const int far = std::abs(x - 5) + std::abs(y - 5) + std::abs(z - 6);
+        cupWithBall.set(x, y, z, !pit || far <= 1);
+      }
+  ASSERT_TRUE(wellComposed(cupWithBall));
+  ASSERT_EQ(faceComponents(cupWithBall).size(), 2u);
+  EXPECT_EQ(
+    componentEulers(vbr::modifyConvexHull(cupWithBall).surface), (std::vector<long>{ 2, 2 }))
+    << "the cup and the ball in its pit";
+  const vbr::BitVolume t = torus(5, 1.2);
+  const int side = cupWithBall.size(0) + t.size(0) + 8;
+  for (int voxelAt : { side / 2, 0, side - 1 })
   {
     SCOPED_TRACE(voxelAt);
-    vbr::BitVolume v(side, side, t.size(2) + 2);
-    for (int z = 0; z < withRow.size(2); ++z)
-      for (int y = 0; y < withRow.size(1); ++y)
-        for (int x = 0; x < withRow.size(0); ++x)
-          if (at(withRow, x, y, z))
+    vbr::BitVolume v(side, side, t.size(2));
+    for (int z = 0; z < cupWithBall.size(2); ++z)
+      for (int y = 0; y < cupWithBall.size(1); ++y)
+        for (int x = 0; x < cupWithBall.size(0); ++x)
+          if (at(cupWithBall, x, y, z))
             v.set(x, y, z);
-    for (int z = 0; z < b.size(2); ++z)
-      for (int y = 0; y < b.size(1); ++y)
-        for (int x = 0; x < b.size(0); ++x)
-          if (at(b, x, y, z))
-            v.set(side - b.size(0) - 1 + x, y, z);
+    for (int z = 0; z < t.size(2); ++z)
+      for (int y = 0; y < t.size(1); ++y)
+        for (int x = 0; x < t.size(0); ++x)
+          if (at(t, x, y, z))
+            v.set(side - t.size(0) + x, y, z);
     v.set(3, side - 4, 2);
     v.set(4, side - 3, 3);
     v.set(side - 5, voxelAt, 4);
     const auto r = expectSeparating(v, { false });
-    EXPECT_EQ(r.componentsApart, voxelAt != side - 1);
+    EXPECT_EQ(r.componentsApart, voxelAt == side / 2);
     if (r.componentsApart)
-      EXPECT_EQ(componentEulers(r.surface).size(), torusShells + 3);
+      EXPECT_EQ(componentEulers(r.surface).size(), 5u);
   }
 }
 
