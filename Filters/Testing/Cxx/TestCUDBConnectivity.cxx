@@ -338,9 +338,11 @@ void checkRun(const Volume& v,
   int sorting,
   int ordering,
   const std::string& what,
-  bool detailed)
+  bool detailed,
+  bool runLabelling = true)
 {
   vtkNew<vtkCUDBConnectivity> f;
+  f->SetRunLabelling(runLabelling);
   f->SetInputData(makeImage(v, l));
   f->SetSelectionMode(rule.mode);
   f->SetLowerThreshold(rule.lower);
@@ -431,6 +433,18 @@ void checkRandomVolumes()
               ordering,
               what.str() + " mode " + std::to_string(rule.mode),
               ordering == vtkCUDBConnectivity::SIZE_RANK);
+    // ZYX takes the runs of the voxel rows: once more through the sweep, which it replaces
+    for (const Rule& rule : rules)
+      for (bool vertex : { false, true })
+        checkRun(v,
+          l,
+          rule,
+          vertex,
+          vtkCUDBConnectivity::ZYX,
+          vtkCUDBConnectivity::SIZE_RANK,
+          what.str() + " mode " + std::to_string(rule.mode) + " (sweep)",
+          true,
+          false);
   }
   // Two larger ones, fewer combinations.
   for (double density : { 0.3, 0.6 })
