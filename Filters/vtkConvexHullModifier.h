@@ -33,8 +33,8 @@
  * - Triangles: the triangles of H (the faces triangulated exactly), which render correctly.
  * - ConvexHull: the faces of the convex hull only, convex polygons.
  * Cell data: `FaceId`, `Level` (0 for pieces of faces of the object's hull, or of its
- * component's hull where the components of a well-composed object are solved apart, 1 for faces
- * pressed in from a background hull, 2 for faces pushed back out, ...), `Label` (the selected
+ * part's hull where the object's components are solved in parts (see ConvexHullModifier.h), 1 for
+ * faces pressed in from a background hull, 2 for faces pushed back out, ...), `Label` (the selected
  * label, 1 outside Labels mode, in the selected values' data type) and `FaceColor`. Point
  * data: `VoxelMark` (1 object voxel, 0 background voxel). Field data: `NumberOfVertices`,
  * `NumberOfEdges`, `NumberOfFaces`, `NumberOfHullFaces`, `NumberOfConcavities`,
