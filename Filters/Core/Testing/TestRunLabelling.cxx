@@ -176,6 +176,8 @@ TEST(RunLabelling, RandomVolumesMatchFloodFillAndCUDB)
     { 64, 3, 5 },
     { 65, 7, 4 },
     { 130, 5, 3 },
+    { 40, 9, 1 },
+    { 70, 1, 6 },
     { 23, 21, 19 } };
   unsigned seed = 1;
   for (const vbr::Point3& d : sizes)
