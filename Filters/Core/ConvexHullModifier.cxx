@@ -2688,6 +2688,23 @@ ModifiedHull modifyHull(const BitVolume& objects,
 
 int gridPlaneAxis(const std::vector<LatticePoint>& points);
 
+/// For a segment off the axes' planes (no component of ab zero), an axis along which its
+/// primitive direction ab / gcd has a component +-1; -1 when there is none or the segment lies
+/// in an axis plane (the flat path's).
+int unitStepAxis(const LatticePoint& ab)
+{
+  std::int64_t m = 0;
+  for (int k = 0; k < 3; ++k)
+    m = std::gcd(m, std::abs(ab[k]));
+  int unit = -1;
+  for (int k = 0; k < 3 && m > 0; ++k)
+    if (ab[k] == 0)
+      return -1;
+    else if (std::abs(ab[k]) == m)
+      unit = k;
+  return unit;
+}
+
 /// Whether the part can have an H of its own: not a flat set in no plane of the grid's axes
 /// (its two-sided polygon is no solid) nor a segment with no direction component +-1.
 bool partHasH(const ObjectPart& part)
@@ -2697,11 +2714,7 @@ bool partHasH(const ObjectPart& part)
     return gridPlaneAxis(part.points) >= 0;
   if (hull.dimension != 1)
     return true;
-  const LatticePoint ab = sub(hull.vertices[1], hull.vertices[0]);
-  std::int64_t m = 0;
-  for (int k = 0; k < 3; ++k)
-    m = std::gcd(m, std::abs(ab[k]));
-  return std::any_of(ab.begin(), ab.end(), [m](std::int64_t c) { return std::abs(c) == m; }) ||
+  return unitStepAxis(sub(hull.vertices[1], hull.vertices[0])) >= 0 ||
     gridPlaneAxis(part.points) >= 0;
 }
 
@@ -2811,16 +2824,7 @@ bool solveComponentsFirst(Context& ctx,
 bool segmentTetrahedron(const CellList& hull, const Dims& dims, LatticeMesh& out)
 {
   const LatticePoint a = hull.vertices[0], b = hull.vertices[1];
-  const LatticePoint ab = sub(b, a);
-  std::int64_t m = 0;
-  for (int k = 0; k < 3; ++k)
-    m = std::gcd(m, std::abs(ab[k]));
-  int unit = -1;
-  for (int k = 0; k < 3 && m > 0; ++k)
-    if (ab[k] == 0)
-      return false; // in an axis plane: the flat path's
-    else if (std::abs(ab[k]) == m)
-      unit = k;
+  const int unit = unitStepAxis(sub(b, a));
   if (unit < 0)
     return false;
   // a step into the grid along each of the two other axes (either sign keeps the basis
