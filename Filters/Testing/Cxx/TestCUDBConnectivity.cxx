@@ -862,17 +862,23 @@ void checkAbortInsideA2DImage()
   const Volume v = randomVolume({ 4096, 2048, 1 }, 0.5, 1, 404);
   vtkNew<vtkImageData> image;
   image->DeepCopy(makeImage(v, Layout()));
-  for (int sorting :
-    { vtkCUDBConnectivity::ZYX, vtkCUDBConnectivity::XYZ, vtkCUDBConnectivity::AUTO })
+  // ZYX twice: with the boxes output, and without it (the runs of the pixel rows)
+  const int sortings[] = { vtkCUDBConnectivity::ZYX,
+    vtkCUDBConnectivity::XYZ,
+    vtkCUDBConnectivity::AUTO,
+    vtkCUDBConnectivity::ZYX };
+  for (int k = 0; k < 4; ++k)
   {
     vtkNew<vtkCUDBConnectivity> f;
     f->SetInputData(image);
-    f->SetSortingOrder(sorting);
+    f->SetSortingOrder(sortings[k]);
+    f->SetGenerateBoxes(k < 3);
     vtkNew<AbortPastProgress> abort;
     abort->At = 0.3; // past the selection: inside the sweep (PASS 1 spans 0.05 to 0.7)
     f->AddObserver(vtkCommand::ProgressEvent, abort);
     f->Update();
-    const std::string name = std::string("2D abort, sorting ") + f->GetSortingOrderAsString();
+    const std::string name = std::string("2D abort, sorting ") + f->GetSortingOrderAsString() +
+      (k < 3 ? "" : " without boxes");
     CHECK(abort->AbortedAt > 0.3 && abort->AbortedAt < 0.7,
       name + ": progress is reported inside the sweep of one image");
     CHECK(abort->nothingRanAfter(), name + ": nothing runs after the abort");
@@ -895,6 +901,7 @@ void checkAbortWhilePainting()
     vtkNew<vtkCUDBConnectivity> f;
     f->SetInputData(image);
     f->SetSortingOrderToZYX();
+    f->SetGenerateBoxes(withSeeds); // without: the runs of the pixel rows
     vtkNew<vtkPolyData> seeds;
     vtkNew<vtkPoints> points;
     points->InsertNextPoint(100.2, 50.3, 0);
