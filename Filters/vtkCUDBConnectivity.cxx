@@ -1009,16 +1009,16 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
 /// and components as through its EVM, without the EVM. False when empty or aborted. With
 /// `keepRuns` (the image's only object: only then are RegionIds painted from the runs) an
 /// object swept along its rows keeps its pixels and runs; others free them at once, as a
-/// label image of many objects would otherwise hold a bit image per label.
-bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
+/// label image of many objects would otherwise hold a bit image per label. `pixels` are the
+/// object's, selected already (progress 0 to 0.1 of `exec`).
+bool boxesOfPixels(vbr::BitVolume pixels,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
   bool keepRuns,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
-  vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
-  vbr::BitVolume pixels = selected.select(exec.within(0.0, 0.1));
+  vtkLogScopeF(TRACE, "the 2D CUDB of the pixels and its components");
   bool found = false;
   const double step = 0.9 / static_cast<double>(sortings.size());
   for (std::size_t k = 0; k < sortings.size(); ++k)
@@ -1052,17 +1052,37 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   return !o.cudb.boxes.empty();
 }
 
+/// boxesOfPixels of the object's pixels, selected here.
+bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
+  const std::vector<vbr::AxisOrder>& sortings,
+  vbr::Connectivity connectivity,
+  bool keepRuns,
+  const vbr::Execution& exec,
+  ObjectBoxes& o)
+{
+  vtkLogScopeF(TRACE, "select pixels");
+  return boxesOfPixels(
+    selected.select(exec.within(0.0, 0.1)), sortings, connectivity, keepRuns, exec, o);
+}
+
 /// The components of a 2D object labelled on the runs of its rows, the image's only object,
 /// swept along its rows (ZYX) and without the boxes output: the counts of its CUDB, and its
-/// pixels and runs, from which its regions are measured and its RegionIds painted. False when
-/// the object is empty or the work was aborted.
+/// pixels and runs, from which its regions are measured and its RegionIds painted. With fewer
+/// than `minimumRuns` runs, from its boxes (boxesOfPixels): measuring a region per box is
+/// cheaper than per run, and the run route only gains where the boxes are many (a maze's 4.9
+/// million boxes, 117 MB, were written and faulted in for nothing). False when the object is
+/// empty or the work was aborted.
 bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
+  vtkIdType minimumRuns,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels and label the runs of their rows");
   o.pixels = selected.select(exec.within(0.0, 0.1));
+  if (vbr::countPixelRuns(o.pixels) < static_cast<std::uint64_t>(minimumRuns))
+    return boxesOfPixels(
+      std::move(o.pixels), { vbr::AxisOrder{ 2, 1, 0 } }, connectivity, true, exec, o);
   vbr::PixelRunComponents labelled;
   if (!vbr::labelPixelRuns(o.pixels, connectivity, exec.within(0.1, 1.0), labelled) ||
     labelled.boxCount() == 0)
@@ -1103,27 +1123,34 @@ bool labelObjectRuns(const vbr::vtk::Selected& selected,
   return true;
 }
 
-/// The CUDB of one object and the components of its boxes (or, `fromRuns`, the components of
+/// How the objects of an image are labelled (see buildObjectBoxes).
+struct Route
+{
+  bool planar = false;     ///< a 2D image
+  bool onlyObject = false; ///< the image's only object
+  bool fromRuns = false;   ///< on the runs of the rows
+  bool withBoxes = false;  ///< the boxes are output
+  vtkIdType minimumPixelRuns = 0;
+};
+
+/// The CUDB of one object and the components of its boxes (or, from runs, the components of
 /// the runs of its rows and the CUDB's counts); false when the object is empty or the work was
 /// aborted. Its voxels live only while its EVM is built.
 bool boxesOfObject(const vbr::vtk::Selected& selected,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
-  bool planar,
-  bool onlyObject,
-  bool fromRuns,
-  bool withBoxes,
+  const Route& route,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
   o.label = selected.label;
   o.offset = selected.offset;
-  if (fromRuns && planar)
-    return labelObjectPixelRuns(selected, connectivity, exec, o);
-  if (fromRuns)
-    return labelObjectRuns(selected, connectivity, withBoxes, exec, o);
-  if (planar)
-    return boxesOfPixelRows(selected, sortings, connectivity, onlyObject, exec, o);
+  if (route.fromRuns && route.planar)
+    return labelObjectPixelRuns(selected, connectivity, route.minimumPixelRuns, exec, o);
+  if (route.fromRuns)
+    return labelObjectRuns(selected, connectivity, route.withBoxes, exec, o);
+  if (route.planar)
+    return boxesOfPixelRows(selected, sortings, connectivity, route.onlyObject, exec, o);
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "select voxels and extract the EVM");
@@ -1159,21 +1186,26 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
   // of a porous volume is barely larger than a run). A 2D image's sweep reads the runs of its
   // rows already and its boxes are the chains of equal runs: without the boxes output, the
   // image's only object, rows along the image's x (painted from the runs), keeps the sweep's
-  // labelling and measures its regions from the runs instead of writing its boxes.
-  const bool withBoxes = self->GetGenerateBoxes();
+  // labelling and, with many runs, measures its regions from the runs instead of writing its
+  // boxes.
   const std::size_t n = in.objects.size();
+  Route route;
+  route.planar = planar;
+  route.onlyObject = n == 1;
+  route.withBoxes = self->GetGenerateBoxes();
+  route.minimumPixelRuns = self->GetMinimumPixelRuns();
   const bool zyx = self->GetRunLabelling() && !in.piece.distributed() && sortings.size() == 1 &&
     sortings[0] == vbr::AxisOrder{ 2, 1, 0 };
-  const bool fromRuns = zyx &&
-    (planar ? !withBoxes && n == 1 && in.axes[0] == 0 : in.axes == std::array<int, 3>{ 0, 1, 2 });
+  route.fromRuns = zyx &&
+    (planar ? !route.withBoxes && n == 1 && in.axes[0] == 0
+            : in.axes == std::array<int, 3>{ 0, 1, 2 });
   std::uint32_t regionCount = 0;
   for (std::size_t i = 0; i < n && !self->GetAbortExecute(); ++i)
   {
     const vbr::Execution exec =
       vbr::vtk::makeExecution(self, 0.05 + 0.65 * i / n, 0.05 + 0.65 * (i + 1) / n);
     ObjectBoxes o;
-    if (!boxesOfObject(
-          in.objects[i], sortings, connectivity, planar, n == 1, fromRuns, withBoxes, exec, o))
+    if (!boxesOfObject(in.objects[i], sortings, connectivity, route, exec, o))
       continue; // empty, or aborted
     o.firstRegion = regionCount;
     regionCount += o.componentCount();
@@ -1564,4 +1596,5 @@ void vtkCUDBConnectivity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LargestRegions: " << this->LargestRegions << "\n";
   os << indent << "GenerateBoxes: " << (this->GenerateBoxes ? "On\n" : "Off\n");
   os << indent << "RunLabelling: " << (this->RunLabelling ? "On\n" : "Off\n");
+  os << indent << "MinimumPixelRuns: " << this->MinimumPixelRuns << "\n";
 }

@@ -1602,6 +1602,15 @@ bool labelPixelRuns(const BitVolume& pixels,
   return true;
 }
 
+std::size_t countPixelRuns(const BitVolume& pixels)
+{
+  checkSingleSlice(pixels);
+  std::size_t runs = 0;
+  for (std::int32_t y = 0; y < pixels.size(1); ++y)
+    runs += rowChanges(pixels.row(y, 0), nullptr, pixels.wordsPerRow()) / 2;
+  return runs;
+}
+
 Coord* pixelRowRunEnds(const BitVolume& pixels, std::int32_t y, Coord* out)
 {
   return rowRunEnds(pixels.row(y, 0), pixels.wordsPerRow(), out);

@@ -184,6 +184,9 @@ bool labelPixelRuns(const BitVolume& pixels,
   const Execution& exec,
   PixelRunComponents& out);
 
+/// The number of runs of set pixels of all rows of a one-slice pixel set (a popcount pass).
+std::size_t countPixelRuns(const BitVolume& pixels);
+
 /// The ends of the runs of set pixels of row y of a one-slice pixel set, x0 and x1 of each run
 /// in turn, written from `out` on (room for pixels.wordsPerRow() * 64 + 2 values); returns the
 /// end of what was written.

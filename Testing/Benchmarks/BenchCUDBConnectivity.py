@@ -205,15 +205,20 @@ def has_run_labelling():
     return hasattr(voxelbrep.vtkCUDBConnectivity(), "SetRunLabelling")
 
 
-def outputs_of(image, connectivity, boxes, options=None, seeds=None, run_labelling=True):
+def outputs_of(image, connectivity, boxes, options=None, seeds=None, run_labelling=True,
+               all_pixel_runs=False):
     """Every output of the filter, as arrays: the RegionId image, each column of the region
     table, the field data of ports 0 and 2, and with `boxes` the boxes output. `options`:
-    setter name -> value; `run_labelling` off: through the EVM and the CUDB sweep."""
+    setter name -> value; `run_labelling` off: through the EVM and the CUDB sweep;
+    `all_pixel_runs`: a 2D image on the runs of its pixel rows however few (MinimumPixelRuns
+    0)."""
     f = voxelbrep.vtkCUDBConnectivity()
     f.SetInputData(image)
     f.SetGenerateBoxes(boxes)
     if not run_labelling:
         f.RunLabellingOff()
+    if all_pixel_runs:
+        f.SetMinimumPixelRuns(0)
     if connectivity == "vertex":
         f.SetConnectivityToVertex()
     for setter, value in (options or {}).items():
@@ -251,7 +256,8 @@ def check_same_outputs(name, image, connectivities=("face", "vertex"), options=N
     """Every output but the boxes the same without and with the boxes output, and every
     output, the boxes included, the same on the runs of the voxel rows and through the sweep
     (when this build has the switch), without the boxes output too (a 2D image takes the runs
-    of its pixel rows only then), value for value."""
+    of its pixel rows only then, and by default only with many runs: once more with
+    MinimumPixelRuns 0), value for value."""
     failures = []
     for connectivity in connectivities:
         plain = outputs_of(image, connectivity, False, options, seeds)
@@ -267,6 +273,11 @@ def check_same_outputs(name, image, connectivities=("face", "vertex"), options=N
                                      run_labelling=False)
             failures += differences(name, connectivity, plain, plain_sweep,
                                     "on the runs and through the sweep, without the boxes")
+        if hasattr(voxelbrep.vtkCUDBConnectivity(), "SetMinimumPixelRuns"):
+            pixel_runs = outputs_of(image, connectivity, False, options, seeds,
+                                    all_pixel_runs=True)
+            failures += differences(name, connectivity, pixel_runs, plain,
+                                    "on all the pixel runs and by default, without the boxes")
     return failures
 
 

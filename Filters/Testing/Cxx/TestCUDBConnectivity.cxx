@@ -367,6 +367,8 @@ void checkRun(const Volume& v,
   vtkNew<vtkCUDBConnectivity> f;
   f->SetRunLabelling(runLabelling);
   f->SetGenerateBoxes(generateBoxes);
+  if (!generateBoxes)
+    f->SetMinimumPixelRuns(0); // a 2D image: the runs of its pixel rows, however few
   f->SetInputData(makeImage(v, l));
   f->SetSelectionMode(rule.mode);
   f->SetLowerThreshold(rule.lower);
@@ -643,8 +645,8 @@ void checkTwoDimensionalRuns()
           // the region filters too.
           for (int filters = 0; filters < 2; ++filters)
           {
-            vtkNew<vtkCUDBConnectivity> runs, sweep, boxes;
-            for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get(), boxes.Get() })
+            vtkNew<vtkCUDBConnectivity> runs, sweep, boxes, fewRuns;
+            for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get(), boxes.Get(), fewRuns.Get() })
             {
               f->SetInputData(makeImage(v, l));
               f->SetSelectionMode(rule.mode);
@@ -657,17 +659,42 @@ void checkTwoDimensionalRuns()
               }
             }
             runs->GenerateBoxesOff();
+            runs->SetMinimumPixelRuns(0);
+            fewRuns->GenerateBoxesOff(); // the default MinimumPixelRuns: from the boxes
             sweep->GenerateBoxesOff();
             sweep->RunLabellingOff();
-            for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get(), boxes.Get() })
+            for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get(), boxes.Get(), fewRuns.Get() })
               f->Update();
             const std::string named =
               name + (vertex ? " vertex" : " face") + (filters ? " filtered" : "");
             checkSameOutputs(runs, sweep, named + ", runs and sweep");
             checkSameOutputs(runs, boxes, named + ", without and with boxes");
+            checkSameOutputs(runs, fewRuns, named + ", runs and boxes below MinimumPixelRuns");
           }
         }
     }
+  // One image of more runs than the default MinimumPixelRuns (about 2.4 million): the runs
+  // against the boxes and the sweep, and the labels against the flood fill.
+  const Volume v = randomVolume({ 3100, 3100, 1 }, 0.5, 1, 977);
+  for (bool vertex : { false, true })
+  {
+    vtkNew<vtkCUDBConnectivity> runs, sweep;
+    for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get() })
+    {
+      f->SetInputData(makeImage(v, Layout()));
+      f->SetConnectivity(vertex ? vtkCUDBConnectivity::VERTEX : vtkCUDBConnectivity::FACE);
+      f->SetRegionOrderingToSweepOrder();
+      f->GenerateBoxesOff();
+    }
+    sweep->RunLabellingOff();
+    runs->Update();
+    sweep->Update();
+    const std::string name = std::string("2D runs 3100^2") + (vertex ? " vertex" : " face");
+    checkSameOutputs(runs, sweep, name + ", runs and sweep");
+    int count = 0;
+    CHECK(regionIds(runs, Layout()) == floodFill(v, Rule(), vertex, count),
+      name << ": labels against the flood fill");
+  }
 }
 
 void checkRegionFilters()
@@ -873,6 +900,7 @@ void checkAbortInsideA2DImage()
     f->SetInputData(image);
     f->SetSortingOrder(sortings[k]);
     f->SetGenerateBoxes(k < 3);
+    f->SetMinimumPixelRuns(0);
     vtkNew<AbortPastProgress> abort;
     abort->At = 0.3; // past the selection: inside the sweep (PASS 1 spans 0.05 to 0.7)
     f->AddObserver(vtkCommand::ProgressEvent, abort);
@@ -902,6 +930,7 @@ void checkAbortWhilePainting()
     f->SetInputData(image);
     f->SetSortingOrderToZYX();
     f->SetGenerateBoxes(withSeeds); // without: the runs of the pixel rows
+    f->SetMinimumPixelRuns(0);
     vtkNew<vtkPolyData> seeds;
     vtkNew<vtkPoints> points;
     points->InsertNextPoint(100.2, 50.3, 0);
