@@ -13,11 +13,12 @@ is the middle of the sorted times (of an even count, the mean of the middle two)
 the peer's time over the filter's with the same connectivity (above 1: the filter is faster).
 The component counts of the filter and of every peer must agree (MISMATCH, exit code 1):
 a benchmark that compares different answers measures nothing. So must the filter's ways of
-labelling a 3D image, on every input and, with --check (40 random images with --quick, the
-ctest smoke run), on random images and options: every output but the boxes, value for value,
-without the boxes output and with it, and every output, the boxes' cells included, on the runs
-of the voxel rows (RunLabelling on, the default) and through the EVM and the CUDB sweep
-(RunLabelling off). The filter is timed without the boxes output unless --boxes; --sweep adds
+labelling an image, on every input and, with --check (40 random images and 40 random 2D ones
+with --quick, the ctest smoke run), on random images and options: every output but the boxes,
+value for value, without the boxes output and with it, and every output, the boxes' cells
+included, on the runs of the voxel rows (RunLabelling on, the default) and through the EVM and
+the CUDB sweep (RunLabelling off); a 2D image without the boxes output on the runs of its
+pixel rows (MinimumPixelRuns 0), by default and through the sweep. The filter is timed without the boxes output unless --boxes; --sweep adds
 it labelled through the sweep (RunLabelling off) as a peer, in the same turns.
 """
 
