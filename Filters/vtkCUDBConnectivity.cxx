@@ -71,6 +71,9 @@ struct ObjectBoxes
   /// from which its RegionIds are painted (vbr::paintPixelRuns).
   vbr::BitVolume pixels;
   vbr::PixelRuns runs;
+  /// A 2D object labelled on the runs of its rows without its boxes (vbr::labelPixelRuns): its
+  /// regions are measured from the runs too, and `cudb` has no boxes.
+  bool labelledFromPixelRuns = false;
   /// A 3D object labelled on the runs of its rows (labelledFromRuns): the runs' labels and the
   /// counts of the CUDB, and its boxes only when they are output (then in `cudb` and
   /// `components`, as the sweep would have left them).
@@ -84,7 +87,9 @@ struct ObjectBoxes
   }
   std::size_t boxCount() const
   {
-    return this->labelledFromRuns ? this->runComponents.boxCount : this->cudb.boxes.size();
+    if (this->labelledFromRuns)
+      return this->runComponents.boxCount;
+    return this->labelledFromPixelRuns ? this->components.boxLabel.size() : this->cudb.boxes.size();
   }
   std::size_t oudbBoxCount() const
   {
@@ -304,6 +309,53 @@ void measureRegionsOfRuns(const ObjectBoxes& o, Region* first)
     }
 }
 
+/// The statistics of the regions of a 2D object labelled on its pixel runs, from the runs read
+/// again from its pixels (a bit scan per row: cheaper than keeping 8 bytes per run). A run
+/// begins a box when its box number is the next one not met yet (boxes are numbered as their
+/// first runs come in scan order).
+void measureRegionsOfPixelRuns(const ObjectBoxes& o, Region* first)
+{
+  const vbr::BitVolume& pixels = o.pixels;
+  const std::uint32_t* runBox = o.runs.boxes.data();
+  const std::uint32_t* const runsEnd = runBox + o.runs.boxes.size();
+  const std::uint32_t* label = o.components.boxLabel.data();
+  std::vector<vbr::Coord> ends(pixels.wordsPerRow() * 64 + 2);
+  const std::int32_t dx = o.offset[0];
+  std::uint32_t nextBox = 0;
+  for (std::int32_t y = 0; y < pixels.size(1); ++y)
+  {
+    const vbr::Coord* const last = vbr::pixelRowRunEnds(pixels, y, ends.data());
+    // Consecutive runs of one region are added up before their region's record is touched.
+    for (const vbr::Coord* e = ends.data(); e != last;)
+    {
+      // The runs of a row meet regions at random (a maze's 642,115): the record of a run
+      // further on is fetched ahead.
+      constexpr std::ptrdiff_t Ahead = 16;
+      if (runsEnd - runBox > Ahead)
+        prefetch(first + label[runBox[Ahead]] - 1);
+      const std::uint32_t region = label[*runBox];
+      const vbr::Coord x0 = e[0];
+      std::int64_t voxels = 0, doubledX = 0;
+      std::uint32_t boxes = 0;
+      vbr::Coord x1 = x0;
+      do
+      {
+        x1 = e[1];
+        const std::int64_t length = x1 - e[0];
+        voxels += length;
+        doubledX += length * (std::int64_t(e[0]) + x1 + 2 * dx);
+        const bool begins = *runBox == nextBox;
+        boxes += begins;
+        nextBox += begins;
+        ++runBox;
+        e += 2;
+      } while (e != last && label[*runBox] == region);
+      first[region - 1].addRowRuns(
+        { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
+    }
+  }
+}
+
 /// The size and the statistics of every region from its boxes (or runs), in sweep order.
 std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t count)
 {
@@ -314,6 +366,11 @@ std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std:
     if (o.labelledFromRuns)
     {
       measureRegionsOfRuns(o, first);
+      continue;
+    }
+    if (o.labelledFromPixelRuns)
+    {
+      measureRegionsOfPixelRuns(o, first);
       continue;
     }
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
@@ -367,21 +424,21 @@ int bitsFor(std::uint64_t n)
   return bits;
 }
 
-/// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order. When
-/// the sizes and the indices fit in one 64-bit key together, by a radix sort of those keys: a
-/// maze has 642,115 regions, whose comparison sort took longer than their table.
-void rankBySize(const std::vector<Region>& regions, std::vector<std::size_t>& kept)
+/// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
+/// their sizes (`sizes`, by region). When the sizes and the indices fit in one 64-bit key
+/// together, by a radix sort of those keys: a maze has 642,115 regions, whose comparison sort
+/// took longer than their table.
+void rankBySize(const std::vector<std::int64_t>& sizes, std::vector<std::size_t>& kept)
 {
   // Regions of one size, or already largest first (a checkerboard's million regions of one
   // voxel), are in order: the sort's keys and scratch were a fifth of that update.
-  const auto larger = [&regions](std::size_t a, std::size_t b)
-  { return regions[a].voxels > regions[b].voxels; };
+  const auto larger = [&sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
   if (std::is_sorted(kept.begin(), kept.end(), larger))
     return;
   std::int64_t largest = 0;
   for (std::size_t r : kept)
-    largest = std::max(largest, regions[r].voxels);
-  const int indexBits = bitsFor(regions.size());
+    largest = std::max(largest, sizes[r]);
+  const int indexBits = bitsFor(sizes.size());
   if (bitsFor(static_cast<std::uint64_t>(largest)) + indexBits > 64)
   {
     std::stable_sort(kept.begin(), kept.end(), larger);
@@ -389,7 +446,7 @@ void rankBySize(const std::vector<Region>& regions, std::vector<std::size_t>& ke
   }
   std::vector<std::uint64_t> keys(kept.size());
   for (std::size_t k = 0; k < kept.size(); ++k)
-    keys[k] = static_cast<std::uint64_t>(largest - regions[kept[k]].voxels) << indexBits | kept[k];
+    keys[k] = static_cast<std::uint64_t>(largest - sizes[kept[k]]) << indexBits | kept[k];
   vbr::radixSort(keys);
   const std::uint64_t indexMask = (std::uint64_t(1) << indexBits) - 1;
   for (std::size_t k = 0; k < kept.size(); ++k)
@@ -397,7 +454,9 @@ void rankBySize(const std::vector<Region>& regions, std::vector<std::size_t>& ke
 }
 
 /// Applies the region filters and numbers the kept regions: `ids` has the RegionId of every
-/// region (0 when removed). Returns how many are kept.
+/// region (0 when removed). Returns how many are kept. The sizes are gathered once from the
+/// regions' records (a cache line each) for the passes that read nothing else: on images of
+/// many small regions (a halftone's 278,445) those passes read every record three times.
 std::int32_t numberRegions(const std::vector<Region>& regions,
   vtkIdType minimumSize,
   bool useSeeds,
@@ -405,11 +464,16 @@ std::int32_t numberRegions(const std::vector<Region>& regions,
   int ordering,
   std::vector<std::int32_t>& ids)
 {
+  std::vector<std::int64_t> sizes(regions.size());
   std::vector<std::size_t> kept;
+  kept.reserve(regions.size());
   for (std::size_t r = 0; r < regions.size(); ++r)
-    if (regions[r].voxels >= minimumSize && (!useSeeds || regions[r].seeded))
+  {
+    sizes[r] = regions[r].voxels;
+    if (sizes[r] >= minimumSize && (!useSeeds || regions[r].seeded))
       kept.push_back(r);
-  rankBySize(regions, kept);
+  }
+  rankBySize(sizes, kept);
   if (largest > 0 && static_cast<std::size_t>(largest) < kept.size())
     kept.resize(static_cast<std::size_t>(largest));
   if (ordering == vtkCUDBConnectivity::SWEEP_ORDER)
@@ -461,8 +525,8 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
         return nullptr;
       continue;
     }
-    values.resize(o.cudb.boxes.size());
-    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
+    values.resize(o.components.boxLabel.size()); // a label per box, kept or not
+    for (std::size_t b = 0; b < values.size(); ++b)
     {
       const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
       values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
@@ -945,16 +1009,16 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
 /// and components as through its EVM, without the EVM. False when empty or aborted. With
 /// `keepRuns` (the image's only object: only then are RegionIds painted from the runs) an
 /// object swept along its rows keeps its pixels and runs; others free them at once, as a
-/// label image of many objects would otherwise hold a bit image per label.
-bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
+/// label image of many objects would otherwise hold a bit image per label. `pixels` are the
+/// object's, selected already (progress 0 to 0.1 of `exec`).
+bool boxesOfPixels(vbr::BitVolume pixels,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
   bool keepRuns,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
-  vtkLogScopeF(TRACE, "select pixels, their 2D CUDB and its components");
-  vbr::BitVolume pixels = selected.select(exec.within(0.0, 0.1));
+  vtkLogScopeF(TRACE, "the 2D CUDB of the pixels and its components");
   bool found = false;
   const double step = 0.9 / static_cast<double>(sortings.size());
   for (std::size_t k = 0; k < sortings.size(); ++k)
@@ -988,6 +1052,51 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   return !o.cudb.boxes.empty();
 }
 
+/// boxesOfPixels of the object's pixels, selected here.
+bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
+  const std::vector<vbr::AxisOrder>& sortings,
+  vbr::Connectivity connectivity,
+  bool keepRuns,
+  const vbr::Execution& exec,
+  ObjectBoxes& o)
+{
+  vtkLogScopeF(TRACE, "select pixels");
+  return boxesOfPixels(
+    selected.select(exec.within(0.0, 0.1)), sortings, connectivity, keepRuns, exec, o);
+}
+
+/// The components of a 2D object labelled on the runs of its rows, the image's only object,
+/// swept along its rows (ZYX) and without the boxes output: the counts of its CUDB, and its
+/// pixels and runs, from which its regions are measured and its RegionIds painted. With fewer
+/// than `minimumRuns` runs, from its boxes (boxesOfPixels): measuring a region per box is
+/// cheaper than per run, and the run route only gains where the boxes are many (a maze's 4.9
+/// million boxes, 117 MB, were written and faulted in for nothing). False when the object is
+/// empty or the work was aborted.
+bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
+  vbr::Connectivity connectivity,
+  vtkIdType minimumRuns,
+  const vbr::Execution& exec,
+  ObjectBoxes& o)
+{
+  vtkLogScopeF(TRACE, "select pixels and label the runs of their rows");
+  o.pixels = selected.select(exec.within(0.0, 0.1));
+  if (vbr::countPixelRuns(o.pixels) < static_cast<std::uint64_t>(minimumRuns))
+    return boxesOfPixels(
+      std::move(o.pixels), { vbr::AxisOrder{ 2, 1, 0 } }, connectivity, true, exec, o);
+  vbr::PixelRunComponents labelled;
+  if (!vbr::labelPixelRuns(o.pixels, connectivity, exec.within(0.1, 1.0), labelled) ||
+    labelled.boxCount() == 0)
+    return false;
+  o.labelledFromPixelRuns = true;
+  o.runs = std::move(labelled.runs);
+  o.components = std::move(labelled.components);
+  o.extremeVertices = labelled.extremeVertices;
+  o.cudb.dimension = 2;
+  o.cudb.order = vbr::AxisOrder{ 2, 1, 0 };
+  o.cudb.oudbBoxCount = labelled.oudbBoxCount;
+  return true;
+}
+
 /// The components of a 3D object labelled on the runs of its rows, with the counts of the CUDB
 /// in the ZYX sorting and, `withBoxes`, its boxes and their labels (moved where the sweep would
 /// have put them); false when the object is empty or the work was aborted.
@@ -1014,25 +1123,34 @@ bool labelObjectRuns(const vbr::vtk::Selected& selected,
   return true;
 }
 
-/// The CUDB of one object and the components of its boxes (or, `fromRuns`, the components of
+/// How the objects of an image are labelled (see buildObjectBoxes).
+struct Route
+{
+  bool planar = false;     ///< a 2D image
+  bool onlyObject = false; ///< the image's only object
+  bool fromRuns = false;   ///< on the runs of the rows
+  bool withBoxes = false;  ///< the boxes are output
+  vtkIdType minimumPixelRuns = 0;
+};
+
+/// The CUDB of one object and the components of its boxes (or, from runs, the components of
 /// the runs of its rows and the CUDB's counts); false when the object is empty or the work was
 /// aborted. Its voxels live only while its EVM is built.
 bool boxesOfObject(const vbr::vtk::Selected& selected,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
-  bool planar,
-  bool onlyObject,
-  bool fromRuns,
-  bool withBoxes,
+  const Route& route,
   const vbr::Execution& exec,
   ObjectBoxes& o)
 {
   o.label = selected.label;
   o.offset = selected.offset;
-  if (fromRuns)
-    return labelObjectRuns(selected, connectivity, withBoxes, exec, o);
-  if (planar)
-    return boxesOfPixelRows(selected, sortings, connectivity, onlyObject, exec, o);
+  if (route.fromRuns && route.planar)
+    return labelObjectPixelRuns(selected, connectivity, route.minimumPixelRuns, exec, o);
+  if (route.fromRuns)
+    return labelObjectRuns(selected, connectivity, route.withBoxes, exec, o);
+  if (route.planar)
+    return boxesOfPixelRows(selected, sortings, connectivity, route.onlyObject, exec, o);
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "select voxels and extract the EVM");
@@ -1065,20 +1183,29 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
     : vbr::Connectivity::Face;
   // On one rank (several exchange the boxes of their sweeps), the ZYX CUDB is fixed by the
   // voxels: the runs of the rows give its counts, its boxes and the components, faster (a box
-  // of a porous volume is barely larger than a run).
-  const bool fromRuns = !planar && self->GetRunLabelling() && !in.piece.distributed() &&
-    in.axes == std::array<int, 3>{ 0, 1, 2 } && sortings.size() == 1 &&
-    sortings[0] == vbr::AxisOrder{ 2, 1, 0 };
-  const bool withBoxes = self->GetGenerateBoxes();
+  // of a porous volume is barely larger than a run). A 2D image's sweep reads the runs of its
+  // rows already and its boxes are the chains of equal runs: without the boxes output, the
+  // image's only object, rows along the image's x (painted from the runs), keeps the sweep's
+  // labelling and, with many runs, measures its regions from the runs instead of writing its
+  // boxes.
   const std::size_t n = in.objects.size();
+  Route route;
+  route.planar = planar;
+  route.onlyObject = n == 1;
+  route.withBoxes = self->GetGenerateBoxes();
+  route.minimumPixelRuns = self->GetMinimumPixelRuns();
+  const bool zyx = self->GetRunLabelling() && !in.piece.distributed() && sortings.size() == 1 &&
+    sortings[0] == vbr::AxisOrder{ 2, 1, 0 };
+  route.fromRuns = zyx &&
+    (planar ? !route.withBoxes && n == 1 && in.axes[0] == 0
+            : in.axes == std::array<int, 3>{ 0, 1, 2 });
   std::uint32_t regionCount = 0;
   for (std::size_t i = 0; i < n && !self->GetAbortExecute(); ++i)
   {
     const vbr::Execution exec =
       vbr::vtk::makeExecution(self, 0.05 + 0.65 * i / n, 0.05 + 0.65 * (i + 1) / n);
     ObjectBoxes o;
-    if (!boxesOfObject(
-          in.objects[i], sortings, connectivity, planar, n == 1, fromRuns, withBoxes, exec, o))
+    if (!boxesOfObject(in.objects[i], sortings, connectivity, route, exec, o))
       continue; // empty, or aborted
     o.firstRegion = regionCount;
     regionCount += o.componentCount();
@@ -1469,4 +1596,5 @@ void vtkCUDBConnectivity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LargestRegions: " << this->LargestRegions << "\n";
   os << indent << "GenerateBoxes: " << (this->GenerateBoxes ? "On\n" : "Off\n");
   os << indent << "RunLabelling: " << (this->RunLabelling ? "On\n" : "Off\n");
+  os << indent << "MinimumPixelRuns: " << this->MinimumPixelRuns << "\n";
 }

@@ -19,7 +19,11 @@
  * from the runs, and with GenerateBoxes the CUDB's boxes are built from them (a run, the equal
  * runs of the rows after it, the equal rectangles of the planes after it); every output is the
  * same as through the sweep, faster on porous and noisy volumes, whose boxes are barely
- * larger than the runs.
+ * larger than the runs. A 2D image of one object in the default sorting without the boxes
+ * output (GenerateBoxes off) and many runs (MinimumPixelRuns) is labelled on the runs of its
+ * pixel rows in the same way (vbr::labelPixelRuns: the sweep's union-find over the chains of
+ * equal runs, no box written) and its regions are measured from the runs; otherwise (the
+ * boxes output, a label map, fewer runs) it takes the boxes straight from the pixel rows.
  *
  * Connectivity: Face (6-connected in 3D, 4 in 2D, the default) or Vertex (26 in 3D, 8 in
  * 2D: voxels touching along an edge or at a corner are connected too). In Labels mode the
@@ -190,12 +194,25 @@ public:
   ///@{
   /**
    * Whether a 3D image in the default sorting is labelled on the runs of its voxel rows (the
-   * default, on) rather than through its EVM and the CUDB sweep. Every output is the same
-   * either way; off is there to compare the two (tests, benchmarks).
+   * default, on) rather than through its EVM and the CUDB sweep, and a 2D image of one object
+   * without the boxes output on the runs of its pixel rows rather than from its boxes. Every
+   * output is the same either way; off is there to compare the two (tests, benchmarks).
    */
   vtkSetMacro(RunLabelling, bool);
   vtkGetMacro(RunLabelling, bool);
   vtkBooleanMacro(RunLabelling, bool);
+  ///@}
+
+  ///@{
+  /**
+   * A 2D image takes the runs of its pixel rows (RunLabelling on, GenerateBoxes off, one
+   * object, the default sorting) when it has at least this many runs of selected pixels; with
+   * fewer, it is labelled from its boxes. Measuring the regions per box is cheaper than per
+   * run, and the runs only gain where the boxes would be many (millions, on a maze). Every
+   * output is the same either way. The default is 2^21; 0 takes the runs always.
+   */
+  vtkSetClampMacro(MinimumPixelRuns, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MinimumPixelRuns, vtkIdType);
   ///@}
 
   ///@{
@@ -235,6 +252,7 @@ protected:
   vtkIdType LargestRegions = 0;
   bool GenerateBoxes = true;
   bool RunLabelling = true;
+  vtkIdType MinimumPixelRuns = vtkIdType(1) << 21;
 
 private:
   vtkCUDBConnectivity(const vtkCUDBConnectivity&) = delete;

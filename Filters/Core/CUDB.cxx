@@ -1344,21 +1344,26 @@ private:
   bool Same = false;
 };
 
-/// What buildCUDBComponents2D does with the sweep's rectangles: boxes grown a row at a time,
-/// and the contacts of the connectivity as equivalences.
+/// What buildCUDBComponents2D does with the sweep's rectangles: boxes grown a row at a time
+/// (WithBoxes; labelPixelRuns keeps only their numbers), and the contacts of the connectivity
+/// as equivalences.
+template<bool WithBoxes>
 struct BoxesAndEquivalences
 {
-  CUDB& Out;
+  std::vector<Box>& Boxes;
   UnionFind& Equivalences;
   bool FaceOnly;
   Coord Row = 0;
 
   void started(const PixelRun& run, const PixelRun* first, const PixelRun* end)
   {
-    Box box;
-    box.lo = { run.c0, this->Row, 0 };
-    box.hi = { run.c1, this->Row + 1, 1 };
-    this->Out.boxes.push_back(box);
+    if (WithBoxes)
+    {
+      Box box;
+      box.lo = { run.c0, this->Row, 0 };
+      box.hi = { run.c1, this->Row + 1, 1 };
+      this->Boxes.push_back(box);
+    }
     this->Equivalences.add();
     // The runs from `first` on that start no later than this one ends meet it (one loop that
     // finds and unites them: its exits are mispredicted once, not twice). The union's root
@@ -1368,7 +1373,11 @@ struct BoxesAndEquivalences
       if (!this->FaceOnly || (r->c0 < run.c1 && run.c0 < r->c1))
         root = this->Equivalences.unite(r->box, root);
   }
-  void continued(const PixelRun& run) { this->Out.boxes[run.box].hi[1] = this->Row + 1; }
+  void continued(const PixelRun& run)
+  {
+    if (WithBoxes)
+      this->Boxes[run.box].hi[1] = this->Row + 1;
+  }
 };
 
 void checkSingleSlice(const BitVolume& pixels)
@@ -1445,8 +1454,10 @@ std::size_t countRuns(const BitVolume& pixels, std::size_t& vertices)
 }
 
 /// The sweep of buildCUDBComponents2D over rows along x (stored sorting, or of the transposed
-/// image), boxes in the sweep's own (x, y); false when aborted. It asks whether to stop every
-/// 2048 words of pixels or so (a few ms of a maze, a few dozen rows) and reports the rows done.
+/// image), boxes (WithBoxes) in the sweep's own (x, y); false when aborted. It asks whether to
+/// stop every 2048 words of pixels or so (a few ms of a maze, a few dozen rows) and reports
+/// the rows done.
+template<bool WithBoxes>
 bool sweepPixelRows(const BitVolume& pixels,
   Connectivity connectivity,
   std::int32_t stride,
@@ -1456,7 +1467,9 @@ bool sweepPixelRows(const BitVolume& pixels,
   PixelRuns* kept)
 {
   const std::int32_t ny = pixels.size(1);
-  BoxesAndEquivalences visit{ out, equivalences, connectivity == Connectivity::Face };
+  BoxesAndEquivalences<WithBoxes> visit{
+    out.boxes, equivalences, connectivity == Connectivity::Face
+  };
   PixelRowSweep sweep(pixels);
   // Polled between blocks of rows, so that the loop over a block's rows has no test of its own.
   for (std::int64_t block = 0; block < ny; block += stride)
@@ -1489,6 +1502,47 @@ bool sweepPixelRows(const BitVolume& pixels,
   return true;
 }
 
+/// buildCUDBComponents2D on rows along x (`rows`: the pixels, or their transpose), the boxes
+/// only `withBoxes`; false when aborted, with `out` and `pixelRuns` empty.
+bool sweepRowsForComponents(const BitVolume& rows,
+  Connectivity connectivity,
+  bool withBoxes,
+  const Execution& exec,
+  CUDB& out,
+  Components& components,
+  std::size_t& vertices,
+  PixelRuns* pixelRuns)
+{
+  components = Components();
+  const std::size_t runs = countRuns(rows, vertices);
+  UnionFind equivalences;
+  equivalences.reserve(runs);
+  if (withBoxes)
+    out.boxes.reserve(runs);
+  if (pixelRuns)
+  {
+    pixelRuns->clear();
+    pixelRuns->boxes.reserve(runs);
+    pixelRuns->rowStarts.reserve(std::size_t(rows.size(1)) + 1);
+  }
+  const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
+  const auto stride = static_cast<std::int32_t>(std::max<std::size_t>(2048 / words, 1));
+  ProgressPoll poll(exec, 0.0, 1.0);
+  const bool swept = withBoxes
+    ? sweepPixelRows<true>(rows, connectivity, stride, poll, out, equivalences, pixelRuns)
+    : sweepPixelRows<false>(rows, connectivity, stride, poll, out, equivalences, pixelRuns);
+  if (!swept || !poll.poll())
+  {
+    out.boxes.clear();
+    out.oudbBoxCount = 0;
+    if (pixelRuns)
+      pixelRuns->clear();
+    return false;
+  }
+  components.count = relabel(equivalences, components.boxLabel);
+  return true;
+}
+
 } // namespace
 
 bool buildCUDBComponents2D(const BitVolume& pixels,
@@ -1507,41 +1561,59 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   out = CUDB();
   out.dimension = 2;
   out.order = order;
-  components = Components();
   const BitVolume columns = alongY ? transposed(pixels) : BitVolume();
-  const BitVolume& rows = alongY ? columns : pixels;
   std::size_t extremeVertices = 0;
-  const std::size_t runs = countRuns(rows, extremeVertices);
-  if (vertices)
-    *vertices = extremeVertices;
-  UnionFind equivalences;
-  equivalences.reserve(runs);
-  out.boxes.reserve(runs);
-  if (pixelRuns)
-  {
-    pixelRuns->clear();
-    pixelRuns->boxes.reserve(runs);
-    pixelRuns->rowStarts.reserve(std::size_t(rows.size(1)) + 1);
-  }
-  const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
-  const auto stride = static_cast<std::int32_t>(std::max<std::size_t>(2048 / words, 1));
-  ProgressPoll poll(exec, 0.0, 1.0);
-  if (!sweepPixelRows(rows, connectivity, stride, poll, out, equivalences, pixelRuns) ||
-    !poll.poll())
+  if (!sweepRowsForComponents(alongY ? columns : pixels,
+        connectivity,
+        true,
+        exec,
+        out,
+        components,
+        extremeVertices,
+        pixelRuns))
   {
     out = CUDB();
-    if (pixelRuns)
-      pixelRuns->clear();
     return false;
   }
+  if (vertices)
+    *vertices = extremeVertices;
   if (alongY) // the sweep's (x, y) are the image's (y, x)
     for (Box& box : out.boxes)
     {
       std::swap(box.lo[0], box.lo[1]);
       std::swap(box.hi[0], box.hi[1]);
     }
-  components.count = relabel(equivalences, components.boxLabel);
   return true;
+}
+
+bool labelPixelRuns(const BitVolume& pixels,
+  Connectivity connectivity,
+  const Execution& exec,
+  PixelRunComponents& out)
+{
+  checkSingleSlice(pixels);
+  CUDB counts; // its OUDB count only: no boxes
+  out.oudbBoxCount = 0;
+  out.extremeVertices = 0;
+  if (!sweepRowsForComponents(
+        pixels, connectivity, false, exec, counts, out.components, out.extremeVertices, &out.runs))
+    return false;
+  out.oudbBoxCount = counts.oudbBoxCount;
+  return true;
+}
+
+std::size_t countPixelRuns(const BitVolume& pixels)
+{
+  checkSingleSlice(pixels);
+  std::size_t runs = 0;
+  for (std::int32_t y = 0; y < pixels.size(1); ++y)
+    runs += rowChanges(pixels.row(y, 0), nullptr, pixels.wordsPerRow()) / 2;
+  return runs;
+}
+
+Coord* pixelRowRunEnds(const BitVolume& pixels, std::int32_t y, Coord* out)
+{
+  return rowRunEnds(pixels.row(y, 0), pixels.wordsPerRow(), out);
 }
 
 std::size_t buildCUDBComponents2D(const BitVolume& pixels,

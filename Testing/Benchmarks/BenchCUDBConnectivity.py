@@ -13,11 +13,12 @@ is the middle of the sorted times (of an even count, the mean of the middle two)
 the peer's time over the filter's with the same connectivity (above 1: the filter is faster).
 The component counts of the filter and of every peer must agree (MISMATCH, exit code 1):
 a benchmark that compares different answers measures nothing. So must the filter's ways of
-labelling a 3D image, on every input and, with --check (40 random images with --quick, the
-ctest smoke run), on random images and options: every output but the boxes, value for value,
-without the boxes output and with it, and every output, the boxes' cells included, on the runs
-of the voxel rows (RunLabelling on, the default) and through the EVM and the CUDB sweep
-(RunLabelling off). The filter is timed without the boxes output unless --boxes; --sweep adds
+labelling an image, on every input and, with --check (40 random images and 40 random 2D ones
+with --quick, the ctest smoke run), on random images and options: every output but the boxes,
+value for value, without the boxes output and with it, and every output, the boxes' cells
+included, on the runs of the voxel rows (RunLabelling on, the default) and through the EVM and
+the CUDB sweep (RunLabelling off); a 2D image without the boxes output on the runs of its
+pixel rows (MinimumPixelRuns 0), by default and through the sweep. The filter is timed without the boxes output unless --boxes; --sweep adds
 it labelled through the sweep (RunLabelling off) as a peer, in the same turns.
 """
 
@@ -205,15 +206,20 @@ def has_run_labelling():
     return hasattr(voxelbrep.vtkCUDBConnectivity(), "SetRunLabelling")
 
 
-def outputs_of(image, connectivity, boxes, options=None, seeds=None, run_labelling=True):
+def outputs_of(image, connectivity, boxes, options=None, seeds=None, run_labelling=True,
+               all_pixel_runs=False):
     """Every output of the filter, as arrays: the RegionId image, each column of the region
     table, the field data of ports 0 and 2, and with `boxes` the boxes output. `options`:
-    setter name -> value; `run_labelling` off: through the EVM and the CUDB sweep."""
+    setter name -> value; `run_labelling` off: through the EVM and the CUDB sweep;
+    `all_pixel_runs`: a 2D image on the runs of its pixel rows however few (MinimumPixelRuns
+    0)."""
     f = voxelbrep.vtkCUDBConnectivity()
     f.SetInputData(image)
     f.SetGenerateBoxes(boxes)
     if not run_labelling:
         f.RunLabellingOff()
+    if all_pixel_runs:
+        f.SetMinimumPixelRuns(0)
     if connectivity == "vertex":
         f.SetConnectivityToVertex()
     for setter, value in (options or {}).items():
@@ -250,7 +256,9 @@ def check_same_outputs(name, image, connectivities=("face", "vertex"), options=N
                        seeds=None):
     """Every output but the boxes the same without and with the boxes output, and every
     output, the boxes included, the same on the runs of the voxel rows and through the sweep
-    (when this build has the switch), value for value."""
+    (when this build has the switch), without the boxes output too (a 2D image takes the runs
+    of its pixel rows only then, and by default only with many runs: once more with
+    MinimumPixelRuns 0), value for value."""
     failures = []
     for connectivity in connectivities:
         plain = outputs_of(image, connectivity, False, options, seeds)
@@ -262,15 +270,31 @@ def check_same_outputs(name, image, connectivities=("face", "vertex"), options=N
             sweep = outputs_of(image, connectivity, True, options, seeds, run_labelling=False)
             failures += differences(name, connectivity, runs, sweep,
                                     "on the runs and through the sweep")
+            plain_sweep = outputs_of(image, connectivity, False, options, seeds,
+                                     run_labelling=False)
+            failures += differences(name, connectivity, plain, plain_sweep,
+                                    "on the runs and through the sweep, without the boxes")
+        if hasattr(voxelbrep.vtkCUDBConnectivity(), "SetMinimumPixelRuns"):
+            pixel_runs = outputs_of(image, connectivity, False, options, seeds,
+                                    all_pixel_runs=True)
+            failures += differences(name, connectivity, pixel_runs, plain,
+                                    "on all the pixel runs and by default, without the boxes")
     return failures
 
 
-def random_image(rng):
+def random_image(rng, planar=False):
     """A random image for check_random_images: a mask or a label map of random size (rows of
-    one to three words), density, extent, origin and spacing, as point or cell scalars."""
+    one to three words), density, extent, origin and spacing, as point or cell scalars;
+    `planar`: a 2D image (one voxel along one axis, z most often), up to 200 pixels a side."""
     dims = rng.integers(1, 40, 3)
     if rng.random() < 0.3:
         dims[0] = rng.integers(60, 140)
+    if planar:
+        dims[:2] = rng.integers(1, 200, 2)
+        flat = 2 if rng.random() < 0.7 else int(rng.integers(0, 2))
+        dims[flat] = 1
+        if flat != 2:
+            dims[2] = rng.integers(2, 120)
     labels = rng.random() < 0.3
     shape = tuple(int(d) for d in dims[::-1])
     values = (rng.integers(0, 4, shape).astype(np.int16) if labels
@@ -308,16 +332,19 @@ def random_options(rng, labels, image):
 
 
 def check_random_images(trials):
-    """check_same_outputs on `trials` random images with random options (seeded: reproducible)."""
-    rng = np.random.default_rng(11)
+    """check_same_outputs on `trials` random images and as many random 2D images (rows of 2D
+    images are labelled on their runs), with random options (seeded: reproducible)."""
     failures = []
-    for trial in range(trials):
-        image, labels = random_image(rng)
-        options, seeds = random_options(rng, labels, image)
-        connectivity = "vertex" if rng.random() < 0.5 else "face"
-        failures += check_same_outputs("random image %d" % trial, image, (connectivity,),
-                                       options, seeds)
-    print("random images checked: %d, %d differ\n" % (trials, len(failures)), flush=True)
+    for planar, seed in ((False, 11), (True, 12)):
+        rng = np.random.default_rng(seed)
+        for trial in range(trials):
+            image, labels = random_image(rng, planar)
+            options, seeds = random_options(rng, labels, image)
+            connectivity = "vertex" if rng.random() < 0.5 else "face"
+            failures += check_same_outputs("random %simage %d" % ("2D " if planar else "", trial),
+                                           image, (connectivity,), options, seeds)
+    print("random images checked: %d and %d 2D, %d differ\n" % (trials, trials, len(failures)),
+          flush=True)
     return failures
 
 

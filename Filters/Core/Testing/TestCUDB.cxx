@@ -444,6 +444,74 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
       }
 }
 
+TEST(CUDB, PixelRunsWithoutBoxes)
+{
+  // labelPixelRuns against the EVM's CUDB in the ZYX sorting: the same components of the
+  // boxes, box count, OUDB count and EVM size, and for every run, found here pixel by pixel,
+  // the box that holds it (same x interval, its row inside); countPixelRuns and
+  // pixelRowRunEnds against the same runs.
+  const vbr::Point3 sizes[] = { { 1, 1, 1 },
+    { 7, 5, 1 },
+    { 63, 20, 1 },
+    { 64, 33, 1 },
+    { 65, 17, 1 },
+    { 130, 29, 1 },
+    { 3, 90, 1 },
+    { 1, 40, 1 } };
+  unsigned seed = 1300;
+  for (const auto& d : sizes)
+    for (double density : { 0.0, 0.1, 0.5, 0.9, 1.0 })
+      for (bool repeated : { false, true })
+      {
+        const vbr::BitVolume v = repeated ? imageWithRepeatedRows(d[0], d[1], density, seed++)
+                                          : bf::randomVolume(d, density, seed++);
+        const vbr::EVM evm = vbr::extractEVM2D(v);
+        const vbr::CUDB expected = vbr::buildCUDB(evm.sortedAs(vbr::AxisOrder{ 2, 1, 0 }));
+        std::vector<std::array<vbr::Coord, 3>> runs; // y, x0, x1 in scan order
+        for (vbr::Coord y = 0; y < d[1]; ++y)
+          for (vbr::Coord x = 0; x < d[0]; ++x)
+            if (v.get(x, y, 0) && (x == 0 || !v.get(x - 1, y, 0)))
+            {
+              vbr::Coord end = x;
+              while (end < d[0] && v.get(end, y, 0))
+                ++end;
+              runs.push_back({ y, x, end });
+            }
+        EXPECT_EQ(vbr::countPixelRuns(v), runs.size());
+        std::vector<vbr::Coord> ends(v.wordsPerRow() * 64 + 2);
+        std::size_t next = 0;
+        for (vbr::Coord y = 0; y < d[1]; ++y)
+        {
+          const vbr::Coord* last = vbr::pixelRowRunEnds(v, y, ends.data());
+          for (const vbr::Coord* e = ends.data(); e != last; e += 2, ++next)
+            ASSERT_TRUE(
+              next < runs.size() && runs[next] == (std::array<vbr::Coord, 3>{ y, e[0], e[1] }));
+        }
+        EXPECT_EQ(next, runs.size());
+        for (bool vertex : { false, true })
+        {
+          SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " density " +
+            std::to_string(density) + (repeated ? " repeated" : "") +
+            (vertex ? " vertex" : " face"));
+          const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+          vbr::PixelRunComponents got;
+          ASSERT_TRUE(vbr::labelPixelRuns(v, c, vbr::Execution(), got));
+          EXPECT_EQ(got.boxCount(), expected.boxes.size());
+          EXPECT_EQ(got.oudbBoxCount, expected.oudbBoxCount);
+          EXPECT_EQ(got.extremeVertices, evm.size());
+          EXPECT_EQ(got.components.boxLabel, vbr::labelComponents(expected, c).boxLabel);
+          ASSERT_EQ(got.runs.boxes.size(), runs.size());
+          for (std::size_t i = 0; i < runs.size(); ++i)
+          {
+            const vbr::Box& box = expected.boxes[got.runs.boxes[i]];
+            EXPECT_TRUE(box.lo[0] == runs[i][1] && box.hi[0] == runs[i][2] &&
+              box.lo[1] <= runs[i][0] && runs[i][0] < box.hi[1])
+              << "run " << i;
+          }
+        }
+      }
+}
+
 TEST(CUDB, PixelRunsPaintTheBoxes)
 {
   // paintPixelRuns from the runs of the ZYX sweep into a zeroed rectangle, against box-by-box

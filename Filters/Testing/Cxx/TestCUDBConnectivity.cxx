@@ -205,7 +205,15 @@ void boxIndexRange(vtkUnstructuredGrid* boxes, vtkIdType cell, const Layout& l, 
   }
 }
 
-/// Port 1 and port 2 against the labels of port 0.
+/// Port 2 against the labels of port 0.
+void checkTable(vtkCUDBConnectivity* f,
+  const Volume& v,
+  const Layout& l,
+  const std::vector<int>& ids,
+  const std::string& what);
+
+/// Port 1 (when GenerateBoxes is on; else it must be empty) and port 2 against the labels of
+/// port 0.
 void checkBoxesAndTable(vtkCUDBConnectivity* f,
   const Volume& v,
   const Layout& l,
@@ -214,6 +222,12 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
   bool planar)
 {
   vtkUnstructuredGrid* boxes = f->GetBoxesOutput();
+  if (!f->GetGenerateBoxes())
+  {
+    CHECK(boxes->GetNumberOfCells() == 0, what << ": no boxes without the boxes output");
+    checkTable(f, v, l, ids, what);
+    return;
+  }
   vtkDataArray* boxRegion = boxes->GetCellData()->GetArray("RegionId");
   CHECK(boxRegion && boxes->GetCellData()->GetArray("BoxId"), what << ": box arrays");
   if (!boxRegion)
@@ -269,7 +283,15 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
   CHECK(consistent && coveredCount == selected,
     what << ": boxes are disjoint, carry their voxels' region and cover the " << selected
          << " labelled voxels (" << coveredCount << ")");
+  checkTable(f, v, l, ids, what);
+}
 
+void checkTable(vtkCUDBConnectivity* f,
+  const Volume& v,
+  const Layout& l,
+  const std::vector<int>& ids,
+  const std::string& what)
+{
   vtkTable* table = f->GetRegionsOutput();
   int count = 0;
   for (int id : ids)
@@ -339,10 +361,14 @@ void checkRun(const Volume& v,
   int ordering,
   const std::string& what,
   bool detailed,
-  bool runLabelling = true)
+  bool runLabelling = true,
+  bool generateBoxes = true)
 {
   vtkNew<vtkCUDBConnectivity> f;
   f->SetRunLabelling(runLabelling);
+  f->SetGenerateBoxes(generateBoxes);
+  if (!generateBoxes)
+    f->SetMinimumPixelRuns(0); // a 2D image: the runs of its pixel rows, however few
   f->SetInputData(makeImage(v, l));
   f->SetSelectionMode(rule.mode);
   f->SetLowerThreshold(rule.lower);
@@ -531,6 +557,144 @@ void checkTwoDimensional()
               std::to_string(dims[2]) + (cells ? " cells" : " points"),
             true);
     }
+}
+
+/// Whether two runs of the filter wrote the same RegionIds, region table (every column, value
+/// for value) and field data (port 0).
+void checkSameOutputs(vtkCUDBConnectivity* a, vtkCUDBConnectivity* b, const std::string& what)
+{
+  CHECK(regionIds(a, Layout()) == regionIds(b, Layout()) &&
+      regionIds(a, Layout{ true }) == regionIds(b, Layout{ true }),
+    what << ": RegionIds");
+  vtkTable *ta = a->GetRegionsOutput(), *tb = b->GetRegionsOutput();
+  CHECK(ta->GetNumberOfColumns() == tb->GetNumberOfColumns() &&
+      ta->GetNumberOfRows() == tb->GetNumberOfRows(),
+    what << ": table shape");
+  for (vtkIdType c = 0; c < ta->GetNumberOfColumns(); ++c)
+  {
+    auto* ca = vtkDataArray::SafeDownCast(ta->GetColumn(c));
+    auto* cb = vtkDataArray::SafeDownCast(tb->GetColumnByName(ta->GetColumnName(c)));
+    bool same = ca && cb && ca->GetNumberOfValues() == cb->GetNumberOfValues() &&
+      ca->GetDataType() == cb->GetDataType();
+    for (vtkIdType i = 0; same && i < ca->GetNumberOfValues(); ++i)
+      same = ca->GetVariantValue(i) == cb->GetVariantValue(i);
+    CHECK(same, what << ": table column " << ta->GetColumnName(c));
+  }
+  for (const char* name : { "NumberOfRegions",
+         "NumberOfComponents",
+         "NumberOfBoxes",
+         "NumberOfOUDBBoxes",
+         "NumberOfExtremeVertices" })
+    CHECK(fieldValue(a->GetOutput(), name) == fieldValue(b->GetOutput(), name),
+      what << ": " << name << " " << fieldValue(a->GetOutput(), name) << " and "
+           << fieldValue(b->GetOutput(), name));
+  vtkAbstractArray* sa = a->GetOutput()->GetFieldData()->GetAbstractArray("SortingOrder");
+  vtkAbstractArray* sb = b->GetOutput()->GetFieldData()->GetAbstractArray("SortingOrder");
+  CHECK(sa && sb && sa->GetNumberOfValues() == sb->GetNumberOfValues() &&
+      (sa->GetNumberOfValues() == 0 || sa->GetVariantValue(0) == sb->GetVariantValue(0)),
+    what << ": SortingOrder");
+}
+
+/// 2D images without the boxes output take the runs of their pixel rows (the regions measured
+/// from the runs, no boxes written): against the flood fill and brute-force table, and every
+/// output the same as through the sweep's boxes (RunLabelling off) and as with the boxes
+/// output, on random images of many sizes (one row, one column, rows of one to three words),
+/// densities and seeds, in the three planes, masks and label maps, with region filters.
+void checkTwoDimensionalRuns()
+{
+  const Int3 shapes[] = { { 1, 1, 1 },
+    { 70, 1, 1 },
+    { 1, 1, 45 },
+    { 63, 17, 1 },
+    { 64, 40, 1 },
+    { 65, 33, 1 },
+    { 130, 21, 1 },
+    { 37, 1, 29 },
+    { 1, 26, 31 },
+    { 200, 150, 1 } };
+  unsigned seed = 900;
+  int c = 0;
+  for (const Int3& dims : shapes)
+    for (double density : { 0.15, 0.5, 0.85 })
+    {
+      const int labels = c % 3 == 2 ? 3 : 1;
+      const Volume v = randomVolume(dims, density, labels, seed++);
+      Layout l;
+      // (A line of cells is a 3D image one cell thick, not a 2D one: its centroids are not
+      // what checkTable expects of a flat axis.)
+      const int flat = (dims[0] == 1) + (dims[1] == 1) + (dims[2] == 1);
+      l.cellData = c % 2 == 1 && flat == 1;
+      l.extentMin = { c % 5 - 2, 3 - c % 4, c % 3 };
+      l.spacing = { 0.5, 1.25, 2.0 };
+      l.origin = { -1, 0.5, 3 };
+      ++c;
+      std::ostringstream what;
+      what << "2D runs " << dims[0] << "x" << dims[1] << "x" << dims[2] << " density " << density
+           << (l.cellData ? " cells" : " points");
+      std::vector<Rule> rules(1);
+      if (labels > 1)
+        rules.push_back(Rule{ vtkCUDBConnectivity::LABELS });
+      for (const Rule& rule : rules)
+        for (bool vertex : { false, true })
+        {
+          const std::string name = what.str() + " mode " + std::to_string(rule.mode);
+          for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
+            checkRun(
+              v, l, rule, vertex, vtkCUDBConnectivity::ZYX, ordering, name, true, true, false);
+          // The same outputs as through the sweep's boxes and as with the boxes output, with
+          // the region filters too.
+          for (int filters = 0; filters < 2; ++filters)
+          {
+            vtkNew<vtkCUDBConnectivity> runs, sweep, boxes, fewRuns;
+            for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get(), boxes.Get(), fewRuns.Get() })
+            {
+              f->SetInputData(makeImage(v, l));
+              f->SetSelectionMode(rule.mode);
+              f->SetConnectivity(vertex ? vtkCUDBConnectivity::VERTEX : vtkCUDBConnectivity::FACE);
+              if (filters)
+              {
+                f->SetMinimumRegionSize(2);
+                f->SetLargestRegions(4);
+                f->SetRegionOrderingToSweepOrder();
+              }
+            }
+            runs->GenerateBoxesOff();
+            runs->SetMinimumPixelRuns(0);
+            fewRuns->GenerateBoxesOff(); // the default MinimumPixelRuns: from the boxes
+            sweep->GenerateBoxesOff();
+            sweep->RunLabellingOff();
+            for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get(), boxes.Get(), fewRuns.Get() })
+              f->Update();
+            const std::string named =
+              name + (vertex ? " vertex" : " face") + (filters ? " filtered" : "");
+            checkSameOutputs(runs, sweep, named + ", runs and sweep");
+            checkSameOutputs(runs, boxes, named + ", without and with boxes");
+            checkSameOutputs(runs, fewRuns, named + ", runs and boxes below MinimumPixelRuns");
+          }
+        }
+    }
+  // One image of more runs than the default MinimumPixelRuns (about 2.4 million): the runs
+  // against the boxes and the sweep, and the labels against the flood fill.
+  const Volume v = randomVolume({ 3100, 3100, 1 }, 0.5, 1, 977);
+  for (bool vertex : { false, true })
+  {
+    vtkNew<vtkCUDBConnectivity> runs, sweep;
+    for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get() })
+    {
+      f->SetInputData(makeImage(v, Layout()));
+      f->SetConnectivity(vertex ? vtkCUDBConnectivity::VERTEX : vtkCUDBConnectivity::FACE);
+      f->SetRegionOrderingToSweepOrder();
+      f->GenerateBoxesOff();
+    }
+    sweep->RunLabellingOff();
+    runs->Update();
+    sweep->Update();
+    const std::string name = std::string("2D runs 3100^2") + (vertex ? " vertex" : " face");
+    checkSameOutputs(runs, sweep, name + ", runs and sweep");
+    int count = 0;
+    CHECK(regionIds(runs, Layout()) == floodFill(v, Rule(), vertex, count),
+      name << ": labels against the flood fill");
+  }
 }
 
 void checkRegionFilters()
@@ -725,17 +889,24 @@ void checkAbortInsideA2DImage()
   const Volume v = randomVolume({ 4096, 2048, 1 }, 0.5, 1, 404);
   vtkNew<vtkImageData> image;
   image->DeepCopy(makeImage(v, Layout()));
-  for (int sorting :
-    { vtkCUDBConnectivity::ZYX, vtkCUDBConnectivity::XYZ, vtkCUDBConnectivity::AUTO })
+  // ZYX twice: with the boxes output, and without it (the runs of the pixel rows)
+  const int sortings[] = { vtkCUDBConnectivity::ZYX,
+    vtkCUDBConnectivity::XYZ,
+    vtkCUDBConnectivity::AUTO,
+    vtkCUDBConnectivity::ZYX };
+  for (int k = 0; k < 4; ++k)
   {
     vtkNew<vtkCUDBConnectivity> f;
     f->SetInputData(image);
-    f->SetSortingOrder(sorting);
+    f->SetSortingOrder(sortings[k]);
+    f->SetGenerateBoxes(k < 3);
+    f->SetMinimumPixelRuns(0);
     vtkNew<AbortPastProgress> abort;
     abort->At = 0.3; // past the selection: inside the sweep (PASS 1 spans 0.05 to 0.7)
     f->AddObserver(vtkCommand::ProgressEvent, abort);
     f->Update();
-    const std::string name = std::string("2D abort, sorting ") + f->GetSortingOrderAsString();
+    const std::string name = std::string("2D abort, sorting ") + f->GetSortingOrderAsString() +
+      (k < 3 ? "" : " without boxes");
     CHECK(abort->AbortedAt > 0.3 && abort->AbortedAt < 0.7,
       name + ": progress is reported inside the sweep of one image");
     CHECK(abort->nothingRanAfter(), name + ": nothing runs after the abort");
@@ -758,6 +929,8 @@ void checkAbortWhilePainting()
     vtkNew<vtkCUDBConnectivity> f;
     f->SetInputData(image);
     f->SetSortingOrderToZYX();
+    f->SetGenerateBoxes(withSeeds); // without: the runs of the pixel rows
+    f->SetMinimumPixelRuns(0);
     vtkNew<vtkPolyData> seeds;
     vtkNew<vtkPoints> points;
     points->InsertNextPoint(100.2, 50.3, 0);
@@ -783,6 +956,7 @@ int TestCUDBConnectivity(int, char*[])
 {
   checkRandomVolumes();
   checkTwoDimensional();
+  checkTwoDimensionalRuns();
   checkHostileVolumes();
   checkRegionFilters();
   checkManySeeds();
