@@ -1157,6 +1157,7 @@ void pressInPits(Context& ctx,
   for (PointGroup& g : pressingInGroups(ctx, c, pit ? parent : nullptr, cls))
   {
     if (g.solid.hull.dimension == 3 && missesACorner(g.solid.hull, c) &&
+      convexDifferenceIsManifold(c, g.solid.hull) &&
       pressInPit(ctx, c, g.solid.hull, cls, level, out, depth))
     {
       pits.push_back(std::move(g.solid));
@@ -1440,6 +1441,57 @@ int perturbedOrientation(const LatticePoint& u,
 }
 
 } // namespace
+
+bool convexDifferenceIsManifold(const CellList& c, const CellList& g)
+{
+  const std::set<FacePlane> planesOfC(c.planes.begin(), c.planes.end());
+  std::vector<bool> contactFace(g.faces.size());
+  for (std::size_t f = 0; f < g.faces.size(); ++f)
+    contactFace[f] = planesOfC.count(g.planes[f]) > 0;
+  // Per corner of G, the faces of C through it (sorted indices).
+  std::vector<std::vector<std::uint32_t>> onC(g.vertices.size());
+  for (std::size_t v = 0; v < g.vertices.size(); ++v)
+    for (std::size_t f = 0; f < c.planes.size(); ++f)
+      if (c.planes[f].evaluate(g.vertices[v]) == 0)
+        onC[v].push_back(static_cast<std::uint32_t>(f));
+  std::vector<bool> contactEdge(g.edges.size());
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+  {
+    const auto& a = onC[g.edges[e][0]];
+    const auto& b = onC[g.edges[e][1]];
+    std::vector<std::uint32_t> common;
+    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+    contactEdge[e] = !common.empty();
+    if (contactEdge[e] && !contactFace[g.edgeFaces[e][0]] && !contactFace[g.edgeFaces[e][1]])
+      return false;
+  }
+  for (std::size_t v = 0; v < g.vertices.size(); ++v)
+  {
+    if (onC[v].empty())
+      continue;
+    // The contact edges at v, joined through the contact faces holding two of them.
+    const auto& edges = g.vertexEdges[v];
+    UnionFind pieces(edges.size());
+    for (std::uint32_t f : g.vertexFaces[v])
+    {
+      if (!contactFace[f])
+        continue;
+      std::vector<std::size_t> atV;
+      for (std::size_t k = 0; k < edges.size(); ++k)
+        if (g.edgeFaces[edges[k]][0] == f || g.edgeFaces[edges[k]][1] == f)
+          atV.push_back(k);
+      for (std::size_t k = 1; k < atV.size(); ++k)
+        pieces.unite(static_cast<std::uint32_t>(atV[0]), static_cast<std::uint32_t>(atV[k]));
+    }
+    std::set<std::uint32_t> roots;
+    for (std::size_t k = 0; k < edges.size(); ++k)
+      if (contactEdge[edges[k]])
+        roots.insert(pieces.find(static_cast<std::uint32_t>(k)));
+    if (roots.size() != 1)
+      return false;
+  }
+  return true;
+}
 
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface, const Dims& dims)
 {
