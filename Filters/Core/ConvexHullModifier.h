@@ -268,6 +268,11 @@
 // triangles). Those test their operands for self-intersections only where they are not known
 // to be embedded: a hull's fan is checked in integer arithmetic instead, and a level's surface
 // keeps the boxes of the triangles its last cut made, the rest being the surface the cut tested.
+// Pits whose hull meets C so that C less it is no 2-manifold are refused before they are solved
+// (convexDifferenceIsManifold): on the aneurism's vessel tree they were two thirds of the pits
+// tried, each solved down several levels (and its failure often passed up through the levels
+// above) before the difference or a level below refused it, and nearly all the time. What
+// remains there is joining the shells: an exact corefinement of the whole H per prism tried.
 //
 // The degree of non-convexity (definition NK) is the number of levels below the hull.
 //
