@@ -9,6 +9,7 @@
 #include <bitset>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -1602,25 +1603,29 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
     sets.unite(t[0], t[1]);
     sets.unite(t[0], t[2]);
   }
-  std::map<Index, std::size_t> shellOfRoot;
+  // Flat tables, not maps: the joins split a large H into its shells after every Boolean. A
+  // point lies in one shell, so one local index per point does.
+  constexpr Index none = std::numeric_limits<Index>::max();
+  std::vector<Index> shellOfRoot(m.points.size(), none), local(m.points.size(), none);
   std::vector<Shell> shells;
-  std::vector<std::map<Index, Index>> local;
   for (const auto& t : m.triangles)
   {
-    auto it = shellOfRoot.emplace(sets.find(t[0]), shells.size()).first;
-    if (it->second == shells.size())
+    Index& shell = shellOfRoot[sets.find(t[0])];
+    if (shell == none)
     {
+      shell = static_cast<Index>(shells.size());
       shells.emplace_back();
-      local.emplace_back();
     }
-    Shell& s = shells[it->second];
+    Shell& s = shells[shell];
     std::array<Index, 3> tri;
     for (int k = 0; k < 3; ++k)
     {
-      auto at = local[it->second].emplace(t[k], static_cast<Index>(s.mesh.points.size()));
-      if (at.second)
+      if (local[t[k]] == none)
+      {
+        local[t[k]] = static_cast<Index>(s.mesh.points.size());
         s.mesh.points.push_back(m.points[t[k]]);
-      tri[k] = at.first->second;
+      }
+      tri[k] = local[t[k]];
     }
     s.mesh.triangles.push_back(tri);
     s.volume += dot(m.points[t[0]], cross(m.points[t[1]], m.points[t[2]]));
@@ -1863,6 +1868,27 @@ std::vector<CellList> prismsAt(const LatticeMesh& shell,
     emptyTrianglesNear(shell, crossing, count), emptyTrianglesNear(rest, crossing, count), tried);
 }
 
+/// Whether the triangle's box (scaled by k) misses the row of p across y or z, or ends before p
+/// along x.
+bool behindOrBeside(const LatticeMesh& surface,
+  const std::array<Index, 3>& tri,
+  const LatticePoint& p,
+  std::int64_t k)
+{
+  const LatticePoint& a = surface.points[tri[0]];
+  const LatticePoint& b = surface.points[tri[1]];
+  const LatticePoint& c = surface.points[tri[2]];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const std::int64_t hi = k * std::max({ a[axis], b[axis], c[axis] });
+    if (p[axis] > hi)
+      return true;
+    if (axis > 0 && p[axis] < k * std::min({ a[axis], b[axis], c[axis] }))
+      return true;
+  }
+  return false;
+}
+
 /// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
 /// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
 int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
@@ -1870,6 +1896,11 @@ int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
   int parity = 0;
   for (const auto& tri : surface.triangles)
   {
+    // A triangle whose box misses p's row across y and z, or lies wholly before p along x,
+    // neither holds p nor crosses the ray beyond it (the ray's perturbation stays in the row):
+    // integer comparisons spare most triangles of a large H their plane.
+    if (behindOrBeside(surface, tri, p, k))
+      continue;
     LatticePoint q[3];
     for (int v = 0; v < 3; ++v)
       for (int a = 0; a < 3; ++a)
