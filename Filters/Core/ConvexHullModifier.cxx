@@ -9,6 +9,7 @@
 #include <bitset>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -1157,6 +1158,7 @@ void pressInPits(Context& ctx,
   for (PointGroup& g : pressingInGroups(ctx, c, pit ? parent : nullptr, cls))
   {
     if (g.solid.hull.dimension == 3 && missesACorner(g.solid.hull, c) &&
+      convexDifferenceIsManifold(c, g.solid.hull) &&
       pressInPit(ctx, c, g.solid.hull, cls, level, out, depth))
     {
       pits.push_back(std::move(g.solid));
@@ -1441,6 +1443,57 @@ int perturbedOrientation(const LatticePoint& u,
 
 } // namespace
 
+bool convexDifferenceIsManifold(const CellList& c, const CellList& g)
+{
+  const std::set<FacePlane> planesOfC(c.planes.begin(), c.planes.end());
+  std::vector<bool> contactFace(g.faces.size());
+  for (std::size_t f = 0; f < g.faces.size(); ++f)
+    contactFace[f] = planesOfC.count(g.planes[f]) > 0;
+  // Per corner of G, the faces of C through it (sorted indices).
+  std::vector<std::vector<std::uint32_t>> onC(g.vertices.size());
+  for (std::size_t v = 0; v < g.vertices.size(); ++v)
+    for (std::size_t f = 0; f < c.planes.size(); ++f)
+      if (c.planes[f].evaluate(g.vertices[v]) == 0)
+        onC[v].push_back(static_cast<std::uint32_t>(f));
+  std::vector<bool> contactEdge(g.edges.size());
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+  {
+    const auto& a = onC[g.edges[e][0]];
+    const auto& b = onC[g.edges[e][1]];
+    std::vector<std::uint32_t> common;
+    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+    contactEdge[e] = !common.empty();
+    if (contactEdge[e] && !contactFace[g.edgeFaces[e][0]] && !contactFace[g.edgeFaces[e][1]])
+      return false;
+  }
+  for (std::size_t v = 0; v < g.vertices.size(); ++v)
+  {
+    if (onC[v].empty())
+      continue;
+    // The contact edges at v, joined through the contact faces holding two of them.
+    const auto& edges = g.vertexEdges[v];
+    UnionFind pieces(edges.size());
+    for (std::uint32_t f : g.vertexFaces[v])
+    {
+      if (!contactFace[f])
+        continue;
+      std::vector<std::size_t> atV;
+      for (std::size_t k = 0; k < edges.size(); ++k)
+        if (g.edgeFaces[edges[k]][0] == f || g.edgeFaces[edges[k]][1] == f)
+          atV.push_back(k);
+      for (std::size_t k = 1; k < atV.size(); ++k)
+        pieces.unite(static_cast<std::uint32_t>(atV[0]), static_cast<std::uint32_t>(atV[k]));
+    }
+    std::set<std::uint32_t> roots;
+    for (std::size_t k = 0; k < edges.size(); ++k)
+      if (contactEdge[edges[k]])
+        roots.insert(pieces.find(static_cast<std::uint32_t>(k)));
+    if (roots.size() != 1)
+      return false;
+  }
+  return true;
+}
+
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface, const Dims& dims)
 {
   std::vector<LatticePoint> found;
@@ -1550,25 +1603,29 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
     sets.unite(t[0], t[1]);
     sets.unite(t[0], t[2]);
   }
-  std::map<Index, std::size_t> shellOfRoot;
+  // Flat tables, not maps: the joins split a large H into its shells after every Boolean. A
+  // point lies in one shell, so one local index per point does.
+  constexpr Index none = std::numeric_limits<Index>::max();
+  std::vector<Index> shellOfRoot(m.points.size(), none), local(m.points.size(), none);
   std::vector<Shell> shells;
-  std::vector<std::map<Index, Index>> local;
   for (const auto& t : m.triangles)
   {
-    auto it = shellOfRoot.emplace(sets.find(t[0]), shells.size()).first;
-    if (it->second == shells.size())
+    Index& shell = shellOfRoot[sets.find(t[0])];
+    if (shell == none)
     {
+      shell = static_cast<Index>(shells.size());
       shells.emplace_back();
-      local.emplace_back();
     }
-    Shell& s = shells[it->second];
+    Shell& s = shells[shell];
     std::array<Index, 3> tri;
     for (int k = 0; k < 3; ++k)
     {
-      auto at = local[it->second].emplace(t[k], static_cast<Index>(s.mesh.points.size()));
-      if (at.second)
+      if (local[t[k]] == none)
+      {
+        local[t[k]] = static_cast<Index>(s.mesh.points.size());
         s.mesh.points.push_back(m.points[t[k]]);
-      tri[k] = at.first->second;
+      }
+      tri[k] = local[t[k]];
     }
     s.mesh.triangles.push_back(tri);
     s.volume += dot(m.points[t[0]], cross(m.points[t[1]], m.points[t[2]]));
@@ -1811,6 +1868,27 @@ std::vector<CellList> prismsAt(const LatticeMesh& shell,
     emptyTrianglesNear(shell, crossing, count), emptyTrianglesNear(rest, crossing, count), tried);
 }
 
+/// Whether the triangle's box (scaled by k) misses the row of p across y or z, or ends before p
+/// along x.
+bool behindOrBeside(const LatticeMesh& surface,
+  const std::array<Index, 3>& tri,
+  const LatticePoint& p,
+  std::int64_t k)
+{
+  const LatticePoint& a = surface.points[tri[0]];
+  const LatticePoint& b = surface.points[tri[1]];
+  const LatticePoint& c = surface.points[tri[2]];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const std::int64_t hi = k * std::max({ a[axis], b[axis], c[axis] });
+    if (p[axis] > hi)
+      return true;
+    if (axis > 0 && p[axis] < k * std::min({ a[axis], b[axis], c[axis] }))
+      return true;
+  }
+  return false;
+}
+
 /// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
 /// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
 int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
@@ -1818,6 +1896,11 @@ int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
   int parity = 0;
   for (const auto& tri : surface.triangles)
   {
+    // A triangle whose box misses p's row across y and z, or lies wholly before p along x,
+    // neither holds p nor crosses the ray beyond it (the ray's perturbation stays in the row):
+    // integer comparisons spare most triangles of a large H their plane.
+    if (behindOrBeside(surface, tri, p, k))
+      continue;
     LatticePoint q[3];
     for (int v = 0; v < 3; ++v)
       for (int a = 0; a < 3; ++a)

@@ -1972,6 +1972,80 @@ TEST(ConvexHullModifier, BooleansLeavingTheLatticeAreFoundBeforehand)
   EXPECT_GE(kept, pairs / 8);
 }
 
+TEST(ConvexHullModifier, ConvexDifferencesThatCannotBeManifoldsAreFoundBeforehand)
+{
+  // convexDifferenceIsManifold refuses a pit before it is solved: C - G, G a solid hull inside
+  // the closed hull C, must be a 2-manifold exactly when it says so. Reference: the regularised
+  // difference made independently as Nef polyhedra and its is_simple() (a 2-manifold), and the
+  // exact Boolean the pressing-in uses, which must refuse every pair refused beforehand. G is
+  // spanned by lattice points of C, most of them on its surface, so that G touches C in faces,
+  // along edges and at corners.
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<long> coord(0, 9);
+  int manifold = 0, refused = 0, kept = 0, pairs = 0;
+  while (pairs < 200)
+  {
+    std::vector<LatticePoint> corners;
+    for (int k = 0; k < 8; ++k)
+      corners.push_back({ coord(rng), coord(rng), coord(rng) });
+    const vbr::CellList c = vbr::convexHull(corners);
+    if (c.dimension != 3)
+      continue;
+    std::vector<LatticePoint> surface, inside;
+    for (long x = 0; x <= 9; ++x)
+      for (long y = 0; y <= 9; ++y)
+        for (long z = 0; z <= 9; ++z)
+        {
+          const LatticePoint p{ x, y, z };
+          if (!vbr::hullContains(c, p))
+            continue;
+          const bool on = std::any_of(c.planes.begin(),
+            c.planes.end(),
+            [&](const vbr::FacePlane& plane) { return plane.evaluate(p) == 0; });
+          (on ? surface : inside).push_back(p);
+        }
+    // Every third G has three of its points on one face of C (a contact in a face, often a
+    // 2-manifold), the others mostly on the surface or mostly inside.
+    std::vector<LatticePoint> points, onFace;
+    const vbr::FacePlane face = c.planes[rng() % c.planes.size()];
+    for (const auto& p : surface)
+      if (face.evaluate(p) == 0)
+        onFace.push_back(p);
+    const int n = 4 + pairs % 5;
+    for (int k = 0; k < n; ++k)
+    {
+      const bool fromFace = pairs % 3 == 1 && k < 3;
+      const bool fromSurface = inside.empty() || rng() % 4 < (pairs % 3 == 0 ? 3u : 1u);
+      const auto& from = fromFace ? onFace : fromSurface ? surface : inside;
+      points.push_back(from[rng() % from.size()]);
+    }
+    const vbr::CellList g = vbr::convexHull(points);
+    if (g.dimension != 3 ||
+      std::all_of(c.vertices.begin(),
+        c.vertices.end(),
+        [&](const LatticePoint& p) { return vbr::hullContains(g, p); }))
+      continue; // not solid, or G = C
+    SCOPED_TRACE(pairs);
+    ++pairs;
+    const vbr::LatticeMesh cMesh = vbr::triangulateHull(c), gMesh = vbr::triangulateHull(g);
+    const bool simple = (nefOf(cMesh) - nefOf(gMesh)).regularization().is_simple();
+    vbr::LatticeMesh difference;
+    const bool differenceOk = vbr::latticeDifference(cMesh, gMesh, difference);
+    const bool predicted = vbr::convexDifferenceIsManifold(c, g);
+    EXPECT_EQ(predicted, simple);
+    if (!predicted)
+      EXPECT_FALSE(differenceOk) << "a difference refused beforehand was kept";
+    manifold += simple;
+    refused += !predicted;
+    kept += differenceOk;
+  }
+  std::cout << pairs << " pairs, " << manifold << " differences 2-manifolds, " << refused
+            << " refused beforehand, " << kept << " kept by the exact Boolean" << std::endl;
+  // Both answers must occur often enough to be checked.
+  EXPECT_GE(refused, pairs / 5);
+  EXPECT_GE(manifold, pairs / 5);
+}
+
 TEST(ConvexHullModifier, DifferencesTestOnlyTheChangedPartsOfTheirOperands)
 {
   // newTriangleBoxes against a brute-force search (a triangle of the result is new when no
