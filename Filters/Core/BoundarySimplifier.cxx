@@ -924,9 +924,10 @@ bool Simplifier::freeOfIntersections()
         if (e.apart(star[0], star[1]) || this->Stamp[std::size_t(f)] == this->Round ||
           this->M.is_removed(f))
           continue;
+        // by a stale entry a face whose box is now apart may come in: it is then apart from
+        // every new triangle's box too, and skipped below
         this->Stamp[std::size_t(f)] = this->Round;
-        if (!apart(this->Boxes[std::size_t(f)], star))
-          this->Near.push_back(this->faceOf(f));
+        this->Near.push_back(this->faceOf(f));
       }
     });
   for (const StarFace& s : this->Star)
