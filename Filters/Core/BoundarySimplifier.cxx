@@ -42,6 +42,10 @@ double dot(const Vec3& a, const Vec3& b)
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/// Squared distances compared with a box's lower bound are allowed this rounding (voxel units
+/// squared; the rounding of both is below 1e-10 for coordinates up to 10^4).
+constexpr double NearestSlack = 1e-6;
+
 /// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
 double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 {
@@ -82,6 +86,12 @@ double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, co
 }
 
 /// The distance from a point to the surfels of an object (FaceOctreeBoundary.h's search).
+/// With a box given, the surfels among the faces of the box's voxels are marked once (three
+/// bits per voxel, the faces towards +x, +y, +z), and a point whose search stays inside the
+/// box reads them there instead of reading the voxels around it on each call: the same faces
+/// in the same search (distanceToNearestFace), so the same distance, several times faster
+/// (the simplifier asks for millions of distances). Points whose search leaves the box are
+/// answered as without it.
 class SurfelDistance
 {
 public:
@@ -90,15 +100,116 @@ public:
   {
   }
 
+  /// Marks the surfels of the voxels within Margin of the box [lo, hi] (voxel units).
+  SurfelDistance(const BitVolume& object, const Vec3& lo, const Vec3& hi, const Execution& exec)
+    : Object(object)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      this->First[d] = std::int32_t(std::floor(lo[d])) - Margin;
+      this->Size[d] = std::int32_t(std::floor(hi[d])) + Margin + 1 - this->First[d];
+    }
+    for (int d = 0; d < 3; ++d)
+      this->Bricks[d] = std::size_t(this->Size[d] + 3) / 4;
+    this->Faces.assign(this->Bricks[0] * this->Bricks[1] * this->Bricks[2] * 64, 0);
+    exec.forWork(std::int64_t(this->Faces.size()))
+      .forRange(std::int64_t(this->Bricks[2]),
+        [this](std::int64_t begin, std::int64_t end)
+        {
+          for (std::int32_t z = 4 * std::int32_t(begin);
+               z < std::min(4 * std::int32_t(end), this->Size[2]);
+               ++z)
+            this->markSlice(z);
+        });
+  }
+
   bool at(std::int32_t i, std::int32_t j, std::int32_t k) const
   {
     return inObject(this->Object, i, j, k);
   }
 
-  double operator()(const Vec3& p) const { return distanceToSurfels(this->Object, p); }
+  double operator()(const Vec3& p) const
+  {
+    const std::int32_t c[3] = {
+      std::int32_t(std::floor(p[0])), std::int32_t(std::floor(p[1])), std::int32_t(std::floor(p[2]))
+    };
+    for (int d = 0; d < 3; ++d) // the wide search reads the faces of the voxels c - 3..c + 2
+      if (this->Faces.empty() || c[d] - 3 < this->First[d] ||
+        c[d] + 2 >= this->First[d] + this->Size[d])
+        return distanceToSurfels(this->Object, p);
+    // distanceToNearestFace's two searches, over the marked faces
+    const std::int32_t nearLo[3] = { c[0] - 1, c[1] - 1, c[2] - 1 };
+    const std::int32_t nearHi[3] = { c[0] + 1, c[1] + 1, c[2] + 1 };
+    const double best = this->nearestMarkedSquared(p, nearLo, nearHi, 4.0);
+    double margin = 2.0;
+    for (int d = 0; d < 3; ++d)
+      margin = std::min({ margin, p[d] - (c[d] - 1), (c[d] + 2) - p[d] });
+    if (best <= margin * margin)
+      return std::sqrt(best);
+    const std::int32_t lo[3] = { c[0] - 3, c[1] - 3, c[2] - 3 };
+    const std::int32_t hi[3] = { c[0] + 2, c[1] + 2, c[2] + 2 };
+    return std::sqrt(this->nearestMarkedSquared(p, lo, hi, best));
+  }
 
 private:
+  static constexpr std::int32_t Margin = 4;
+
+  /// The marks are stored by bricks of 4^3 voxels, 64 bytes: a search's 27 voxels then span
+  /// about 3 cache lines instead of 9 rows (the marks miss the cache: the pieces measured one
+  /// after the other are far apart on the surface).
+  std::size_t index(std::int32_t i, std::int32_t j, std::int32_t k) const
+  {
+    const std::uint32_t x = std::uint32_t(i - this->First[0]),
+                        y = std::uint32_t(j - this->First[1]),
+                        z = std::uint32_t(k - this->First[2]);
+    const std::size_t brick =
+      (std::size_t(z >> 2) * this->Bricks[1] + (y >> 2)) * this->Bricks[0] + (x >> 2);
+    return brick * 64 + (x & 3) + ((y & 3) << 2) + ((z & 3) << 4);
+  }
+
+  /// nearestFaceSquared over the marked faces, visiting only those (most voxels have none):
+  /// the same squared distances, so the same smallest.
+  double nearestMarkedSquared(const Vec3& p,
+    const std::int32_t lo[3],
+    const std::int32_t hi[3],
+    double best) const
+  {
+    for (std::int32_t k = lo[2]; k <= hi[2]; ++k)
+      for (std::int32_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::int32_t i = lo[0]; i <= hi[0]; ++i)
+          for (unsigned bits = this->Faces[this->index(i, j, k)]; bits != 0; bits &= bits - 1)
+          {
+            const int a = bits & 1 ? 0 : (bits & 2 ? 1 : 2);
+            const std::int32_t v[3] = { i, j, k };
+            double d2 = 0;
+            for (int d = 0; d < 3; ++d)
+            {
+              const double faceLo = d == a ? v[d] + 1 : v[d], faceHi = v[d] + 1;
+              const double e =
+                p[d] < faceLo ? faceLo - p[d] : (p[d] > faceHi ? p[d] - faceHi : 0.0);
+              d2 += e * e;
+            }
+            best = std::min(best, d2);
+          }
+    return best;
+  }
+
+  void markSlice(std::int32_t z)
+  {
+    const std::int32_t k = this->First[2] + z;
+    for (std::int32_t j = this->First[1]; j < this->First[1] + this->Size[1]; ++j)
+      for (std::int32_t i = this->First[0]; i < this->First[0] + this->Size[0]; ++i)
+      {
+        const bool here = this->at(i, j, k);
+        this->Faces[this->index(i, j, k)] = std::uint8_t((here != this->at(i + 1, j, k)) |
+          ((here != this->at(i, j + 1, k)) << 1) | ((here != this->at(i, j, k + 1)) << 2));
+      }
+  }
+
   const BitVolume& Object;
+  std::int32_t First[3] = { 0, 0, 0 }, Size[3] = { 0, 0, 0 };
+  std::size_t Bricks[3] = { 0, 0, 0 };
+  std::vector<std::uint8_t> Faces; ///< per voxel of the box, bit a: its face towards +a
 };
 
 using Corners = std::array<Vec3, 3>;
@@ -136,10 +247,14 @@ struct Piece
   }
 };
 
-/// Whether every point of t is proven within `reach` of the surfels ((a) on top).
-bool withinReach(const Corners& t, double reach, const SurfelDistance& distance)
+/// Whether every point of t is proven within `reach` of the surfels ((a) on top). `stack` is
+/// the caller's workspace, kept between calls so that a call allocates nothing.
+bool withinReach(const Corners& t,
+  double reach,
+  const SurfelDistance& distance,
+  std::vector<Corners>& stack)
 {
-  std::vector<Corners> stack{ t };
+  stack.assign(1, t);
   while (!stack.empty())
   {
     Piece piece{ stack.back() };
@@ -155,9 +270,54 @@ bool withinReach(const Corners& t, double reach, const SurfelDistance& distance)
   return true;
 }
 
+/// A face in a cell of the grid below, with its box when it was inserted, in floats rounded
+/// outwards (it contains the box in doubles): the queries reject most entries by these boxes
+/// without reading the face's own data, which is scattered in memory.
+struct GridEntry
+{
+  FaceId face;
+  std::array<float, 3> lo, hi;
+
+  /// Whether the box [lo, hi] is apart from this entry's box (a box that touches is not).
+  bool apart(const Vec3& l, const Vec3& h) const
+  {
+    for (int d = 0; d < 3; ++d)
+      if (double(this->lo[d]) > h[d] || double(this->hi[d]) < l[d])
+        return true;
+    return false;
+  }
+
+  /// Squared distance from p to this entry's box (no point of the face's box is nearer).
+  double squaredDistance(const Vec3& p) const
+  {
+    double d2 = 0;
+    for (int d = 0; d < 3; ++d)
+    {
+      const double l = this->lo[d], h = this->hi[d];
+      const double e = p[d] < l ? l - p[d] : (p[d] > h ? p[d] - h : 0.0);
+      d2 += e * e;
+    }
+    return d2;
+  }
+};
+
+/// x in float, rounded down (up) when it is not exact.
+float floatBelow(double x)
+{
+  const float f = float(x);
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float floatAbove(double x)
+{
+  const float f = float(x);
+  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
 /// A uniform grid of triangle boxes. Entries of removed or moved faces stay until their cell
 /// is cleaned or the grid rebuilt: a query returns candidates, which the caller checks against
-/// the current mesh (removed faces, moved faces).
+/// the current mesh (removed faces, moved faces). An entry's box may so be stale, but a face's
+/// newest entry is in every cell its current box meets: a query that skips an entry by its
+/// box finds the face by its newest entry wherever its current box meets the query's.
 class FaceGrid
 {
 public:
@@ -176,21 +336,33 @@ public:
   }
 
   /// Adds f to the cells its box meets; a cell that doubled since it was last cleaned is
-  /// cleaned of the faces that are gone (removed(face)) and of repeats: every collapse
-  /// inserts its star again.
+  /// cleaned of the faces that are gone (removed(face)) and of repeats, keeping the newest
+  /// (every collapse inserts its star again), in the order of the faces.
   template<typename Removed>
   void insert(FaceId f, const Vec3& lo, const Vec3& hi, const Removed& removed)
   {
+    GridEntry entry{ f, {}, {} };
+    for (int d = 0; d < 3; ++d)
+      entry.lo[d] = floatBelow(lo[d]), entry.hi[d] = floatAbove(hi[d]);
     this->forCells(lo,
       hi,
-      [&](std::vector<FaceId>& cell)
+      [&](std::vector<GridEntry>& cell)
       {
-        cell.push_back(f);
+        cell.push_back(entry);
         if (cell.size() < 64 || (cell.size() & (cell.size() - 1)) != 0)
           return; // cleaned when its size reaches a power of two
-        cell.erase(std::remove_if(cell.begin(), cell.end(), removed), cell.end());
-        std::sort(cell.begin(), cell.end());
-        cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
+        cell.erase(
+          std::remove_if(
+            cell.begin(), cell.end(), [&removed](const GridEntry& e) { return removed(e.face); }),
+          cell.end());
+        const auto byFace = [](const GridEntry& a, const GridEntry& b) { return a.face < b.face; };
+        std::stable_sort(cell.begin(), cell.end(), byFace);
+        std::reverse(cell.begin(), cell.end()); // the newest of each face first
+        cell.erase(std::unique(cell.begin(),
+                     cell.end(),
+                     [](const GridEntry& a, const GridEntry& b) { return a.face == b.face; }),
+          cell.end());
+        std::reverse(cell.begin(), cell.end());
       });
   }
 
@@ -219,7 +391,7 @@ private:
   double CellSize = 4;
   double Origin[3] = { 0, 0, 0 };
   std::int32_t Cells[3] = { 1, 1, 1 };
-  std::vector<std::vector<FaceId>> Faces;
+  std::vector<std::vector<GridEntry>> Faces;
 };
 
 /// A square piece of a surfel ((b) on top): its centre, side and normal axis, and how far
@@ -296,7 +468,70 @@ struct StarFace
   FaceId face;
   std::array<VertexId, 3> ids;
   Corners t;
+  Box box; ///< of t
 };
+
+/// Whether two boxes are apart (boxes that touch are not).
+bool apart(const Box& a, const Box& b)
+{
+  for (int d = 0; d < 3; ++d)
+    if (a[0][d] > b[1][d] || a[1][d] < b[0][d])
+      return true;
+  return false;
+}
+
+/// Squared distance from p to box b: no point of the box is nearer.
+double squaredDistanceToBox(const Vec3& p, const Box& b)
+{
+  double d2 = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    const double e = p[d] < b[0][d] ? b[0][d] - p[d] : (p[d] > b[1][d] ? p[d] - b[1][d] : 0.0);
+    d2 += e * e;
+  }
+  return d2;
+}
+
+/// Whether the corners of t not in `skip` (a bit per corner) lie strictly on one side of the
+/// plane of s, decided in floating point where the sign is certain: the orientation
+/// determinant beyond an error bound 20 times that of CGAL's static filter for orientation
+/// (5.1e-15 times the largest coordinate differences); false where it is not certain. Such a t
+/// does not meet s but at the skipped corners, which spares most exact tests.
+bool strictlyOneSide(const Corners& s, const Corners& t, int skip)
+{
+  const Vec3 u = sub(s[1], s[0]), v = sub(s[2], s[0]), n = cross(u, v);
+  int side = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (skip & (1 << c))
+      continue;
+    const Vec3 w = sub(t[c], s[0]);
+    double bound = 1e-13;
+    for (int d = 0; d < 3; ++d)
+      bound *= std::max({ std::abs(u[d]), std::abs(v[d]), std::abs(w[d]) });
+    const double o = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
+    const int here = o > bound ? 1 : (o < -bound ? -1 : 0);
+    if (here == 0 || (side != 0 && here != side))
+      return false;
+    side = here;
+  }
+  return side != 0;
+}
+
+/// The lower (or upper) corner of the box of a mesh's points.
+Vec3 corner(const Mesh& mesh, bool upper)
+{
+  Vec3 c{ 0, 0, 0 };
+  bool first = true;
+  for (VertexId v : mesh.vertices())
+  {
+    const Vec3 p = vec(mesh.point(v));
+    for (int d = 0; d < 3; ++d)
+      c[d] = first ? p[d] : (upper ? std::max(c[d], p[d]) : std::min(c[d], p[d]));
+    first = false;
+  }
+  return c;
+}
 
 /// The simplification's state, shared by the filter (which checks a collapse and records
 /// the reassignment of the samples) and the visitor (which applies it after the collapse).
@@ -304,22 +539,13 @@ class Simplifier
 {
 public:
   Simplifier(const BitVolume& object, Mesh& mesh, double distance, const Execution& exec)
-    : Surfels(object)
+    : Lo(corner(mesh, false))
+    , Hi(corner(mesh, true))
+    , Surfels(object, this->Lo, this->Hi, exec)
     , M(mesh)
     , Reach(std::min(distance, 1.99))
     , Poll(exec, 0.1, 0.95)
   {
-    bool first = true;
-    for (VertexId v : mesh.vertices())
-    {
-      const Vec3 p = vec(mesh.point(v));
-      for (int d = 0; d < 3; ++d)
-      {
-        this->Lo[d] = first ? p[d] : std::min(this->Lo[d], p[d]);
-        this->Hi[d] = first ? p[d] : std::max(this->Hi[d], p[d]);
-      }
-      first = false;
-    }
     this->Stamp.assign(mesh.number_of_faces(), 0);
     this->Boxes.resize(mesh.number_of_faces());
     this->SamplesOf.assign(mesh.number_of_faces(), {});
@@ -350,13 +576,16 @@ private:
       t[i++] = vec(this->M.point(v));
     return t;
   }
-  std::array<VertexId, 3> idsOf(FaceId f) const
+  /// Face f as a StarFace (its ids, corners and box), walked once.
+  StarFace faceOf(FaceId f) const
   {
-    std::array<VertexId, 3> ids;
+    StarFace s;
+    s.face = f;
     int i = 0;
     for (VertexId v : CGAL::vertices_around_face(this->M.halfedge(f), this->M))
-      ids[i++] = v;
-    return ids;
+      s.ids[i] = v, s.t[i++] = vec(this->M.point(v));
+    box(s.t, s.box[0], s.box[1]);
+    return s;
   }
   static void box(const Corners& t, Vec3& lo, Vec3& hi)
   {
@@ -377,11 +606,11 @@ private:
   bool freeOfIntersections();
   bool intersects(const StarFace& s, const Corners& t, const std::array<VertexId, 3>& ids) const;
 
+  Vec3 Lo, Hi; // the input surface's box
   SurfelDistance Surfels;
   Mesh& M;
   double Reach;
   ProgressPoll Poll;
-  Vec3 Lo{ 0, 0, 0 }, Hi{ 0, 0, 0 }; // the input surface's box
   FaceGrid Grid;
   std::size_t FacesInGrid = 0; // when the grid was built
   std::vector<Box> Boxes;      // per face
@@ -394,6 +623,9 @@ private:
   std::vector<FaceId> OldStar;
   std::vector<StarFace> Star;
   std::vector<std::pair<SurfelPiece, std::size_t>> Moves; // piece or quarter, index in Star
+  std::size_t Guess = 0;                                  // the last piece's triangle
+  std::vector<StarFace> Near;                             // faces near the star
+  std::vector<Corners> Pieces;                            // withinReach's workspace
   std::array<VertexId, 2> Accepted;                       // the edge they are for
   Point3 AcceptedPoint;                                   // and where its vertex goes
 };
@@ -433,14 +665,18 @@ FaceId Simplifier::nearestFace(const Vec3& p, double halfWidth, double& best2)
   best2 = halfWidth * halfWidth;
   this->Grid.forCells(lo,
     hi,
-    [&](const std::vector<FaceId>& cell)
+    [&](const std::vector<GridEntry>& cell)
     {
-      for (FaceId f : cell)
+      for (const GridEntry& e : cell)
       {
-        const Corners t = this->triangleOf(f);
+        // a face whose box is farther than the nearest so far would not be taken (the entries
+        // are the faces' current boxes here: the grid is new)
+        if (e.squaredDistance(p) > best2 + NearestSlack)
+          continue;
+        const Corners t = this->triangleOf(e.face);
         const double d2 = squaredDistanceToTriangle(p, t[0], t[1], t[2]);
         if (d2 <= best2)
-          best2 = d2, nearest = f;
+          best2 = d2, nearest = e.face;
       }
     });
   return nearest;
@@ -532,7 +768,7 @@ bool Simplifier::newStar(VertexId v0, VertexId v1, const Point3& placed)
   const Vec3 p = vec(placed);
   for (FaceId f : this->OldStar)
   {
-    StarFace s{ f, this->idsOf(f), this->triangleOf(f) };
+    StarFace s = this->faceOf(f);
     const bool has0 = std::find(s.ids.begin(), s.ids.end(), v0) != s.ids.end();
     const bool has1 = std::find(s.ids.begin(), s.ids.end(), v1) != s.ids.end();
     if (has0 && has1)
@@ -546,20 +782,37 @@ bool Simplifier::newStar(VertexId v0, VertexId v1, const Point3& placed)
     if (CGAL::collinear(a, b, c) ||
       dot(before, cross(sub(s.t[1], s.t[0]), sub(s.t[2], s.t[0]))) <= 0)
       return false;
+    box(s.t, s.box[0], s.box[1]);
     this->Star.push_back(s);
   }
   return true;
 }
 
-/// The new triangle nearest to a piece's centre within its limit, or Star.size().
-std::size_t nearestOf(const std::vector<StarFace>& star, const SurfelPiece& piece)
+/// The new triangle nearest to a piece's centre within its limit (of those equally near, the
+/// last), or star.size(). `guess` (an index, or star.size()): a triangle likely to be the
+/// nearest (the previous piece's), measured first. A triangle whose box is farther than the
+/// nearest so far or than the guess is skipped: it would not be taken, or could not be the
+/// nearest (the slack covers the rounding of both squared distances), so the answer is the
+/// one of measuring every triangle in order, with a few measured instead of all.
+std::size_t nearestOf(const std::vector<StarFace>& star,
+  const SurfelPiece& piece,
+  std::size_t guess)
 {
-  double best = piece.limit * piece.limit;
+  constexpr double Slack = NearestSlack;
+  const Vec3& p = piece.centre;
+  double best = piece.limit * piece.limit, guessed = best;
+  if (guess < star.size())
+  {
+    const Corners& t = star[guess].t;
+    guessed = std::min(best, squaredDistanceToTriangle(p, t[0], t[1], t[2]));
+  }
   std::size_t to = star.size();
   for (std::size_t i = 0; i < star.size(); ++i)
   {
+    if (squaredDistanceToBox(p, star[i].box) > std::min(best, guessed) + Slack)
+      continue;
     const Corners& t = star[i].t;
-    const double d2 = squaredDistanceToTriangle(piece.centre, t[0], t[1], t[2]);
+    const double d2 = squaredDistanceToTriangle(p, t[0], t[1], t[2]);
     if (d2 <= best)
       best = d2, to = i;
   }
@@ -575,9 +828,9 @@ bool Simplifier::placePiece(const SurfelPiece& piece)
   for (SurfelPiece q : piece.quarters())
   {
     q.limit = this->Reach - q.halfDiagonal();
-    const std::size_t to = nearestOf(this->Star, q);
+    const std::size_t to = nearestOf(this->Star, q, this->Guess);
     if (to < this->Star.size())
-      this->Moves.emplace_back(q, to);
+      this->Moves.emplace_back(q, to), this->Guess = to;
     else if (!this->placePiece(q))
       return false;
   }
@@ -589,12 +842,13 @@ bool Simplifier::placePiece(const SurfelPiece& piece)
 bool Simplifier::reassignSamples()
 {
   this->Moves.clear();
+  this->Guess = this->Star.size();
   for (FaceId f : this->OldStar)
     for (const SurfelPiece& piece : this->SamplesOf[std::size_t(f)])
     {
-      const std::size_t to = nearestOf(this->Star, piece);
+      const std::size_t to = nearestOf(this->Star, piece, this->Guess);
       if (to < this->Star.size())
-        this->Moves.emplace_back(piece, to);
+        this->Moves.emplace_back(piece, to), this->Guess = to;
       else if (!this->placePiece(piece))
         return false;
     }
@@ -613,6 +867,11 @@ bool Simplifier::intersects(const StarFace& s,
     for (int j = 0; j < 3; ++j)
       if (s.ids[i] == ids[j])
         si[shared] = i, ti[shared] = j, ++shared;
+  // separated by the plane of either (but at the shared corner): no exact test needed
+  if (shared < 2 &&
+    (strictlyOneSide(s.t, t, shared ? 1 << ti[0] : 0) ||
+      strictlyOneSide(t, s.t, shared ? 1 << si[0] : 0)))
+    return false;
   const Kernel::Triangle_3 a(point(s.t[0]), point(s.t[1]), point(s.t[2]));
   const Kernel::Triangle_3 b(point(t[0]), point(t[1]), point(t[2]));
   if (shared == 0)
@@ -633,45 +892,48 @@ bool Simplifier::intersects(const StarFace& s,
   return true; // the same three vertices twice
 }
 
-/// (c): the new star against the faces near it and against itself.
+/// (c): the new star against itself and against the faces near it: the faces whose boxes
+/// meet the star's box, gathered once from the grid with their corners (not for each new
+/// triangle: the new triangles' boxes overlap), then each new triangle against those whose
+/// boxes meet its own.
 bool Simplifier::freeOfIntersections()
 {
+  Box star = this->Star.front().box;
   for (std::size_t i = 0; i < this->Star.size(); ++i)
   {
     const StarFace& s = this->Star[i];
     for (std::size_t j = i + 1; j < this->Star.size(); ++j)
       if (this->intersects(s, this->Star[j].t, this->Star[j].ids))
         return false;
-    if (++this->Round == 0)
-      std::fill(this->Stamp.begin(), this->Stamp.end(), 0), this->Round = 1;
-    for (FaceId f : this->OldStar)
-      this->Stamp[std::size_t(f)] = this->Round;
-    Vec3 lo, hi;
-    box(s.t, lo, hi);
-    bool hit = false;
-    this->Grid.forCells(lo,
-      hi,
-      [&](const std::vector<FaceId>& cell)
-      {
-        for (std::size_t c = 0; c < cell.size() && !hit; ++c)
-        {
-          const FaceId f = cell[c];
-          if (this->Stamp[std::size_t(f)] == this->Round || this->M.is_removed(f))
-            continue;
-          this->Stamp[std::size_t(f)] = this->Round;
-          const Box& b = this->Boxes[std::size_t(f)];
-          bool apart = false;
-          for (int d = 0; d < 3; ++d)
-            apart = apart || b[0][d] > hi[d] || b[1][d] < lo[d];
-          if (apart)
-            continue;
-          const Corners t = this->triangleOf(f);
-          hit = this->intersects(s, t, this->idsOf(f));
-        }
-      });
-    if (hit)
-      return false;
+    for (int d = 0; d < 3; ++d)
+      star[0][d] = std::min(star[0][d], s.box[0][d]),
+      star[1][d] = std::max(star[1][d], s.box[1][d]);
   }
+  if (++this->Round == 0)
+    std::fill(this->Stamp.begin(), this->Stamp.end(), 0), this->Round = 1;
+  for (FaceId f : this->OldStar)
+    this->Stamp[std::size_t(f)] = this->Round;
+  this->Near.clear();
+  this->Grid.forCells(star[0],
+    star[1],
+    [&](const std::vector<GridEntry>& cell)
+    {
+      for (const GridEntry& e : cell)
+      {
+        const FaceId f = e.face;
+        if (e.apart(star[0], star[1]) || this->Stamp[std::size_t(f)] == this->Round ||
+          this->M.is_removed(f))
+          continue;
+        // by a stale entry a face whose box is now apart may come in: it is then apart from
+        // every new triangle's box too, and skipped below
+        this->Stamp[std::size_t(f)] = this->Round;
+        this->Near.push_back(this->faceOf(f));
+      }
+    });
+  for (const StarFace& s : this->Star)
+    for (const StarFace& n : this->Near)
+      if (!apart(n.box, s.box) && this->intersects(s, n.t, n.ids))
+        return false;
   return true;
 }
 
@@ -681,7 +943,7 @@ bool Simplifier::accept(VertexId v0, VertexId v1, const Point3& placed)
   if (!this->newStar(v0, v1, placed) || !this->reassignSamples() || !this->freeOfIntersections())
     return false;
   for (const StarFace& s : this->Star)
-    if (!withinReach(s.t, this->Reach, this->Surfels))
+    if (!withinReach(s.t, this->Reach, this->Surfels, this->Pieces))
       return false;
   this->Accepted = { v0, v1 };
   this->AcceptedPoint = placed;

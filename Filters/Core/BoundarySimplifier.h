@@ -41,10 +41,11 @@
 // Distances are in voxel units (voxel i spans [i, i + 1]); d is at most 1.99 (the distance
 // search of FaceOctreeBoundary.h's distanceToNearestFace reaches two voxels).
 //
-// Cost: serial, about 50 microseconds per collapse (the 128^3 ball: 82,220 -> 194 triangles
-// in about 2.3 s of CPU, 20 to 30 times the unsimplified filter's time and 2.3 times the time
-// of flying edges, windowed-sinc smoothing and quadric decimation, which keep 386 triangles at
-// about that distance: README). So vtkFaceOctreeBoundaryFilter leaves it off by default.
+// Cost: serial, about 40 microseconds per collapse (the 128^3 ball: 82,220 -> 194 triangles,
+// 41,000 collapses), about half of it in CGAL's own bookkeeping (the Lindstrom-Turk cost and
+// placement of the 20 to 40 edges around each collapse); still slower than flying edges,
+// windowed-sinc smoothing and quadric decimation, which keep about twice the triangles at that
+// distance (README). So vtkFaceOctreeBoundaryFilter leaves it off by default.
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
