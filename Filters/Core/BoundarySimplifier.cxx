@@ -137,18 +137,10 @@ public:
       if (this->Faces.empty() || c[d] - 3 < this->First[d] ||
         c[d] + 2 >= this->First[d] + this->Size[d])
         return distanceToSurfels(this->Object, p);
-    // distanceToNearestFace's two searches, over the marked faces
-    const std::int32_t nearLo[3] = { c[0] - 1, c[1] - 1, c[2] - 1 };
-    const std::int32_t nearHi[3] = { c[0] + 1, c[1] + 1, c[2] + 1 };
-    const double best = this->nearestMarkedSquared(p, nearLo, nearHi, 4.0);
-    double margin = 2.0;
-    for (int d = 0; d < 3; ++d)
-      margin = std::min({ margin, p[d] - (c[d] - 1), (c[d] + 2) - p[d] });
-    if (best <= margin * margin)
-      return std::sqrt(best);
-    const std::int32_t lo[3] = { c[0] - 3, c[1] - 3, c[2] - 3 };
-    const std::int32_t hi[3] = { c[0] + 2, c[1] + 2, c[2] + 2 };
-    return std::sqrt(this->nearestMarkedSquared(p, lo, hi, best));
+    return distanceInTwoSearches(p, // distanceToNearestFace's searches, over the marked faces
+      [&](
+        const std::int32_t*, const std::int32_t lo[3], const std::int32_t hi[3], double best, bool)
+      { return this->nearestMarkedSquared(p, lo, hi, best); });
   }
 
 private:

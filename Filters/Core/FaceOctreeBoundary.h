@@ -97,22 +97,23 @@ double nearestFaceSquared(const Vec3& p,
   return best;
 }
 
-/// Distance from p to the nearest face for which isFace holds, searched among the faces of the
-/// voxels within two of p's own (distances beyond are reported as 2). The faces of the voxels
-/// next to p's own come first: a face of any other voxel lies at least `margin` away (at least
-/// one voxel), so when one of them is that near the wider search cannot find a nearer one. The
-/// answer is the same; most points stop after 81 faces instead of 648. The wider search asks
-/// wideFaces(c), given p's voxel c, for its predicate (one that reads the voxels around c once,
-/// say).
-template<typename IsFace, typename WideFaces>
-double distanceToNearestFace(const Vec3& p, const IsFace& isFace, const WideFaces& wideFaces)
+/// Distance from p to the nearest of some voxel faces, in two searches among the faces of the
+/// voxels within two of p's own (distances beyond are reported as 2):
+/// nearestSquared(c, lo, hi, best, wide) returns the smallest squared distance from p to those
+/// faces of the voxels lo..hi (inclusive), or `best` when none is nearer, given p's voxel c and
+/// whether this is the wider search. The faces of the voxels next to p's own come first: a face
+/// of any other voxel lies at least `margin` away (at least one voxel), so when one of them is
+/// that near the wider search cannot find a nearer one. The answer is the same; most points
+/// stop after 81 faces instead of 648.
+template<typename NearestSquared>
+double distanceInTwoSearches(const Vec3& p, const NearestSquared& nearestSquared)
 {
   const std::int32_t c[3] = {
     std::int32_t(std::floor(p[0])), std::int32_t(std::floor(p[1])), std::int32_t(std::floor(p[2]))
   };
   const std::int32_t nearLo[3] = { c[0] - 1, c[1] - 1, c[2] - 1 };
   const std::int32_t nearHi[3] = { c[0] + 1, c[1] + 1, c[2] + 1 };
-  const double best = nearestFaceSquared(p, nearLo, nearHi, 4.0, isFace);
+  const double best = nearestSquared(c, nearLo, nearHi, 4.0, false);
   double margin = 2.0;
   for (int d = 0; d < 3; ++d)
     margin = std::min({ margin, p[d] - (c[d] - 1), (c[d] + 2) - p[d] });
@@ -120,7 +121,25 @@ double distanceToNearestFace(const Vec3& p, const IsFace& isFace, const WideFace
     return std::sqrt(best);
   const std::int32_t lo[3] = { c[0] - 3, c[1] - 3, c[2] - 3 };
   const std::int32_t hi[3] = { c[0] + 2, c[1] + 2, c[2] + 2 };
-  return std::sqrt(nearestFaceSquared(p, lo, hi, best, wideFaces(c)));
+  return std::sqrt(nearestSquared(c, lo, hi, best, true));
+}
+
+/// Distance from p to the nearest face for which isFace holds (distanceInTwoSearches). The
+/// wider search asks wideFaces(c), given p's voxel c, for its predicate (one that reads the
+/// voxels around c once, say).
+template<typename IsFace, typename WideFaces>
+double distanceToNearestFace(const Vec3& p, const IsFace& isFace, const WideFaces& wideFaces)
+{
+  return distanceInTwoSearches(p,
+    [&](const std::int32_t c[3],
+      const std::int32_t lo[3],
+      const std::int32_t hi[3],
+      double best,
+      bool wide)
+    {
+      return wide ? nearestFaceSquared(p, lo, hi, best, wideFaces(c))
+                  : nearestFaceSquared(p, lo, hi, best, isFace);
+    });
 }
 
 template<typename IsFace>
