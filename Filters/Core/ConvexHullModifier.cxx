@@ -1157,8 +1157,11 @@ void pressInPits(Context& ctx,
     parentSides.emplace(*parent);
   for (PointGroup& g : pressingInGroups(ctx, c, pit ? parent : nullptr, cls))
   {
+    // The difference is decided beforehand only for a group that is its own solid hull: a
+    // thickened one's corners are points of the other class, which a pit of the next level
+    // can take off the surface again (and with them an edge or corner that made C - G fail).
     if (g.solid.hull.dimension == 3 && missesACorner(g.solid.hull, c) &&
-      convexDifferenceIsManifold(c, g.solid.hull) &&
+      (g.shape.dimension < 3 || convexDifferenceIsManifold(c, g.solid.hull)) &&
       pressInPit(ctx, c, g.solid.hull, cls, level, out, depth))
     {
       pits.push_back(std::move(g.solid));
@@ -1445,6 +1448,8 @@ int perturbedOrientation(const LatticePoint& u,
 
 bool convexDifferenceIsManifold(const CellList& c, const CellList& g)
 {
+  if (c.dimension < 3 || g.dimension < 3)
+    return true; // a flat G takes nothing off C: the regularised difference is C
   const std::set<FacePlane> planesOfC(c.planes.begin(), c.planes.end());
   std::vector<bool> contactFace(g.faces.size());
   for (std::size_t f = 0; f < g.faces.size(); ++f)

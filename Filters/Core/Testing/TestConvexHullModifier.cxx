@@ -2041,9 +2041,17 @@ TEST(ConvexHullModifier, ConvexDifferencesThatCannotBeManifoldsAreFoundBeforehan
   }
   std::cout << pairs << " pairs, " << manifold << " differences 2-manifolds, " << refused
             << " refused beforehand, " << kept << " kept by the exact Boolean" << std::endl;
-  // Both answers must occur often enough to be checked.
-  EXPECT_GE(refused, pairs / 5);
-  EXPECT_GE(manifold, pairs / 5);
+  // Both answers must occur often enough to be checked (43 and 157 of 200 with libstdc++'s
+  // distributions; other libraries draw other pairs).
+  EXPECT_GE(refused, pairs / 10);
+  EXPECT_GE(manifold, pairs / 10);
+  // A flat G (a triangle touching the cube at one corner) takes nothing off C.
+  std::vector<LatticePoint> cube;
+  for (long k = 0; k < 8; ++k)
+    cube.push_back({ 4 * (k & 1), 4 * ((k >> 1) & 1), 4 * ((k >> 2) & 1) });
+  const vbr::CellList triangle = vbr::convexHull({ { 0, 0, 0 }, { 2, 1, 1 }, { 1, 2, 1 } });
+  ASSERT_EQ(triangle.dimension, 2);
+  EXPECT_TRUE(vbr::convexDifferenceIsManifold(vbr::convexHull(cube), triangle));
 }
 
 TEST(ConvexHullModifier, DifferencesTestOnlyTheChangedPartsOfTheirOperands)
