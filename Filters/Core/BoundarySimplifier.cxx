@@ -100,15 +100,26 @@ public:
   {
   }
 
-  /// Marks the surfels of the voxels within Margin of the box [lo, hi] (voxel units).
-  SurfelDistance(const BitVolume& object, const Vec3& lo, const Vec3& hi, const Execution& exec)
+  /// Marks the surfels of the voxels within Margin of the box [lo, hi] (voxel units) of a
+  /// surface of `faces` triangles, unless the box is large for the surface (a byte per voxel
+  /// of a sparse surface's box would grow with the box, not the surface): then every distance
+  /// is searched in the object itself, as without marks.
+  SurfelDistance(const BitVolume& object,
+    const Vec3& lo,
+    const Vec3& hi,
+    std::size_t faces,
+    const Execution& exec)
     : Object(object)
   {
+    double voxels = 1;
     for (int d = 0; d < 3; ++d)
     {
       this->First[d] = std::int32_t(std::floor(lo[d])) - Margin;
       this->Size[d] = std::int32_t(std::floor(hi[d])) + Margin + 1 - this->First[d];
+      voxels *= double(this->Size[d]);
     }
+    if (voxels > 64.0 * double(faces) + double(std::int64_t(1) << 24))
+      return;
     for (int d = 0; d < 3; ++d)
       this->Bricks[d] = std::size_t(this->Size[d] + 3) / 4;
     this->Faces.assign(this->Bricks[0] * this->Bricks[1] * this->Bricks[2] * 64, 0);
@@ -533,7 +544,7 @@ public:
   Simplifier(const BitVolume& object, Mesh& mesh, double distance, const Execution& exec)
     : Lo(corner(mesh, false))
     , Hi(corner(mesh, true))
-    , Surfels(object, this->Lo, this->Hi, exec)
+    , Surfels(object, this->Lo, this->Hi, mesh.number_of_faces(), exec)
     , M(mesh)
     , Reach(std::min(distance, 1.99))
     , Poll(exec, 0.1, 0.95)
@@ -890,6 +901,8 @@ bool Simplifier::intersects(const StarFace& s,
 /// boxes meet its own.
 bool Simplifier::freeOfIntersections()
 {
+  if (this->Star.empty())
+    return true; // nothing kept: nothing to meet
   Box star = this->Star.front().box;
   for (std::size_t i = 0; i < this->Star.size(); ++i)
   {
