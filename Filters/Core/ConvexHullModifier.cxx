@@ -1598,6 +1598,7 @@ struct Shell
 {
   LatticeMesh mesh;
   __int128 volume = 0;
+  LatticeBox box; ///< the box of its points
 };
 
 std::vector<Shell> shellsOf(const LatticeMesh& m)
@@ -1635,8 +1636,53 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
     s.mesh.triangles.push_back(tri);
     s.volume += dot(m.points[t[0]], cross(m.points[t[1]], m.points[t[2]]));
   }
+  for (Shell& s : shells)
+  {
+    s.box = { s.mesh.points[0], s.mesh.points[0] };
+    for (const auto& p : s.mesh.points)
+      for (int k = 0; k < 3; ++k)
+      {
+        s.box[0][k] = std::min(s.box[0][k], p[k]);
+        s.box[1][k] = std::max(s.box[1][k], p[k]);
+      }
+  }
   return shells;
 }
+
+/// H and its shells, kept side by side while shells are joined: a join replaces the shells it
+/// changed (joinAlongPrism), so H is not split into its shells again after every join.
+struct ShelledSurface
+{
+  LatticeMesh mesh;
+  std::vector<Shell> shells;
+
+  explicit ShelledSurface(const LatticeMesh& m)
+    : mesh(m)
+    , shells(shellsOf(m))
+  {
+  }
+
+  /// Puts `pieces` in the place of the shells flagged in `changed` (where the first of them
+  /// was), and H together again from its shells.
+  void replace(const std::vector<bool>& changed, std::vector<Shell>&& pieces)
+  {
+    std::vector<Shell> kept;
+    bool placed = false;
+    for (std::size_t i = 0; i < this->shells.size(); ++i)
+      if (!changed[i])
+        kept.push_back(std::move(this->shells[i]));
+      else if (!placed)
+      {
+        placed = true;
+        for (Shell& p : pieces)
+          kept.push_back(std::move(p));
+      }
+    this->shells = std::move(kept);
+    this->mesh = LatticeMesh{};
+    for (const Shell& s : this->shells)
+      this->mesh.append(s.mesh, false);
+  }
+};
 
 long eulerCharacteristic(const LatticeMesh& m)
 {
@@ -1709,6 +1755,28 @@ LatticePoint step(const LatticePoint& p, int k)
   return q;
 }
 
+/// Calls f for each lattice point of the box, x fastest (the order of a scan of the grid).
+template<typename F>
+void forEachInBox(const LatticeBox& box, F&& f)
+{
+  for (std::int64_t z = box[0][2]; z <= box[1][2]; ++z)
+    for (std::int64_t y = box[0][1]; y <= box[1][1]; ++y)
+      for (std::int64_t x = box[0][0]; x <= box[1][0]; ++x)
+        f(LatticePoint{ x, y, z });
+}
+
+/// The shell's box within the grid: where markShell flags centres (the box may be empty).
+LatticeBox gridBoxOf(const Shell& shell, const Dims& d)
+{
+  LatticeBox box = shell.box;
+  for (int k = 0; k < 3; ++k)
+  {
+    box[0][k] = std::max<std::int64_t>(box[0][k], 0);
+    box[1][k] = std::min<std::int64_t>(box[1][k], d[k] - 1);
+  }
+  return box;
+}
+
 /// The shortest face-connected path of background centres from a centre of a void (`mine`
 /// flags the centres the shell encloses or holds: a thin void encloses none) to a background centre
 /// strictly outside H and not flagged (or off the grid), every centre between them on H. The two
@@ -1716,22 +1784,24 @@ LatticePoint step(const LatticePoint& p, int k)
 /// void is sealed from the rest of the background.
 std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
   const std::vector<std::uint8_t>& where,
-  const std::vector<std::uint8_t>& mine)
+  const std::vector<std::uint8_t>& mine,
+  const LatticeBox& box)
 {
   const Dims d = objects.dims();
-  std::vector<std::int64_t> from(where.size(), -2);
+  // The centres reached and where from (-1: a centre of the void), in a map: the search stays
+  // near the shell, and a table of the whole grid per shell cost more than the search on the
+  // full aneurism.
+  std::unordered_map<std::size_t, std::int64_t> from;
   std::queue<LatticePoint> todo;
-  for (std::int32_t z = 0; z < d[2]; ++z)
-    for (std::int32_t y = 0; y < d[1]; ++y)
-      for (std::int32_t x = 0; x < d[0]; ++x)
+  forEachInBox(box,
+    [&](const LatticePoint& p)
+    {
+      if (mine[gridIndex(d, p)] && !voxelClass(objects, p))
       {
-        const LatticePoint p{ x, y, z };
-        if (mine[gridIndex(d, p)] && !voxelClass(objects, p))
-        {
-          from[gridIndex(d, p)] = -1;
-          todo.push(p);
-        }
+        from[gridIndex(d, p)] = -1;
+        todo.push(p);
       }
+    });
   while (!todo.empty())
   {
     const LatticePoint p = todo.front();
@@ -1746,7 +1816,7 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
         for (LatticePoint r = p;;)
         {
           path.push_back(r);
-          const std::int64_t f = from[gridIndex(d, r)];
+          const std::int64_t f = from.at(gridIndex(d, r));
           if (f < 0)
             break;
           r = { f % d[0], (f / d[0]) % d[1], f / (static_cast<std::int64_t>(d[0]) * d[1]) };
@@ -1758,7 +1828,7 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
             return { path[i], path[i - 1] };
         return {};
       }
-      if (where[gridIndex(d, q)] == On && !voxelClass(objects, q) && from[gridIndex(d, q)] == -2)
+      if (where[gridIndex(d, q)] == On && !voxelClass(objects, q) && !from.count(gridIndex(d, q)))
       {
         from[gridIndex(d, q)] = static_cast<std::int64_t>(gridIndex(d, p));
         todo.push(q);
@@ -1771,24 +1841,24 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
 /// An object centre of the piece (flagged in `mine`) and an object centre of another piece
 /// that are face-neighbours, or nothing.
 std::vector<LatticePoint> pieceCrossing(const BitVolume& objects,
-  const std::vector<std::uint8_t>& mine)
+  const std::vector<std::uint8_t>& mine,
+  const LatticeBox& box)
 {
   const Dims d = objects.dims();
-  for (std::int32_t z = 0; z < d[2]; ++z)
-    for (std::int32_t y = 0; y < d[1]; ++y)
-      for (std::int32_t x = 0; x < d[0]; ++x)
+  std::vector<LatticePoint> found;
+  forEachInBox(box,
+    [&](const LatticePoint& p)
+    {
+      if (!found.empty() || !mine[gridIndex(d, p)] || !voxelClass(objects, p))
+        return;
+      for (int k = 0; k < 6 && found.empty(); ++k)
       {
-        const LatticePoint p{ x, y, z };
-        if (!mine[gridIndex(d, p)] || !voxelClass(objects, p))
-          continue;
-        for (int k = 0; k < 6; ++k)
-        {
-          const LatticePoint q = step(p, k);
-          if (voxelClass(objects, q) && !mine[gridIndex(d, q)])
-            return { p, q };
-        }
+        const LatticePoint q = step(p, k);
+        if (voxelClass(objects, q) && !mine[gridIndex(d, q)])
+          found = { p, q };
       }
-  return {};
+    });
+  return found;
 }
 
 /// The empty lattice triangles of the mesh's triangles near the two centres (their boxes
@@ -1928,11 +1998,12 @@ int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
   return parity ? 1 : -1;
 }
 
-/// Whether the triangle meets the open interior of the solid hull (exact separating axes: the
-/// hull's face normals, the triangle's normal and the cross products of their edges; a plane
-/// along one of them that leaves the triangle on one closed side and the hull on the other is
-/// the witness that it does not, as for any two convex polytopes).
-bool meetsOpenInterior(const CellList& solid, const std::array<LatticePoint, 3>& t)
+/// Whether the triangle meets the open interior of the solid hull, or with `closed` the closed
+/// hull (exact separating axes: the hull's face normals, the triangle's normal and the cross
+/// products of their edges; a plane along one of them that leaves the triangle on one closed
+/// side and the hull on the other, or with `closed` strictly apart, is the witness that it does
+/// not, as for any two convex polytopes).
+bool meetsConvex(const CellList& solid, const std::array<LatticePoint, 3>& t, bool closed)
 {
   auto apart = [&](const LatticePoint& n)
   {
@@ -1949,7 +2020,7 @@ bool meetsOpenInterior(const CellList& solid, const std::array<LatticePoint, 3>&
       sLo = std::min(sLo, dot(n, p));
       sHi = std::max(sHi, dot(n, p));
     }
-    return tHi <= sLo || sHi <= tLo;
+    return closed ? tHi < sLo || sHi < tLo : tHi <= sLo || sHi <= tLo;
   };
   if (apart(cross(sub(t[1], t[0]), sub(t[2], t[0]))))
     return false;
@@ -1963,46 +2034,9 @@ bool meetsOpenInterior(const CellList& solid, const std::array<LatticePoint, 3>&
   return true;
 }
 
-/// Whether the prism's open interior misses H: then the Boolean changes H only on the prism's
-/// boundary (a tube between T1 and T2). Where a triangle of H crosses the prism the Boolean
-/// cuts it at points that are mostly not lattice points, or adds more than a tube: such prisms
-/// were the bulk of the rejected Booleans (each an exact corefinement of the whole H), so they
-/// are tried last; this test costs the triangles in the prism's box.
-bool prismMissesSurface(const CellList& prism, const LatticeMesh& surface)
+bool meetsOpenInterior(const CellList& solid, const std::array<LatticePoint, 3>& t)
 {
-  for (const auto& t : trianglesInBoxOf(surface, prism))
-    if (meetsOpenInterior(prism, t))
-      return false;
-  return true;
-}
-
-/// Whether every lattice point of the closed prism P lies on the right side of `joined`, H
-/// after P was cut out of it or added to it (no object centre outside, no background centre
-/// inside, off the grid included), with the new sides of those in the grid. The solid changes
-/// only inside the closed P, so a lattice point outside P keeps its side (a neighbourhood of it
-/// misses P); P's open interior holds no lattice point, but a centre on its boundary can change
-/// side, so each is located again (exact ray parity) instead of every point of the grid.
-bool prismKeepsSeparation(const LatticeMesh& joined,
-  const CellList& prism,
-  const BitVolume& objects,
-  std::vector<std::pair<std::size_t, std::uint8_t>>& sides)
-{
-  const Dims d = objects.dims();
-  bool ok = true;
-  forEachPointIn(prism,
-    false,
-    [&](const LatticePoint& p)
-    {
-      if (!ok)
-        return;
-      const int side = sideOf(joined, p, 1);
-      const bool object = voxelClass(objects, p);
-      if ((object && side < 0) || (!object && side > 0))
-        ok = false;
-      else if (inGrid(d, p))
-        sides.emplace_back(gridIndex(d, p), side > 0 ? Inside : side == 0 ? On : Outside);
-    });
-  return ok;
+  return meetsConvex(solid, t, false);
 }
 
 /// P's bounding box.
@@ -2018,12 +2052,205 @@ std::array<LatticePoint, 2> boxOf(const CellList& prism)
   return box;
 }
 
+/// Whether the prism's open interior misses H: then the Boolean changes H only on the prism's
+/// boundary (a tube between T1 and T2). Where a triangle of H crosses the prism the Boolean
+/// cuts it at points that are mostly not lattice points, or adds more than a tube: such prisms
+/// were the bulk of the rejected Booleans (each an exact corefinement of the whole H), so they
+/// are tried last; this test costs the triangles in the prism's box.
+bool prismMissesSurface(const CellList& prism, const LatticeMesh& surface)
+{
+  for (const auto& t : trianglesInBoxOf(surface, prism))
+    if (meetsOpenInterior(prism, t))
+      return false;
+  return true;
+}
+
+/// Whether the shell's box meets the open box of the convex hull: the shells that do not hold no
+/// triangle that trianglesInBoxOf gives, so the tests local to the hull skip them whole.
+bool shellNear(const Shell& shell, const CellList& convex)
+{
+  const LatticeBox box = boxOf(convex);
+  for (int a = 0; a < 3; ++a)
+    if (shell.box[1][a] <= box[0][a] || shell.box[0][a] >= box[1][a])
+      return false;
+  return true;
+}
+
+bool prismMissesSurface(const CellList& prism, const ShelledSurface& surface)
+{
+  for (const Shell& shell : surface.shells)
+    if (shellNear(shell, prism) && !prismMissesSurface(prism, shell.mesh))
+      return false;
+  return true;
+}
+
+bool booleanLeavesTheLattice(const ShelledSurface& surface, const CellList& prism)
+{
+  for (const Shell& shell : surface.shells)
+    if (shellNear(shell, prism) && booleanLeavesTheLattice(shell.mesh, prism))
+      return true;
+  return false;
+}
+
+/// sideOf for H from its shells: the parity of the crossings is the sum of the shells'; those
+/// whose box misses p's row or ends before p are not crossed (as in sideOf).
+int sideOf(const ShelledSurface& surface, const LatticePoint& p, std::int64_t k)
+{
+  bool inside = false;
+  for (const Shell& shell : surface.shells)
+  {
+    const LatticeBox& b = shell.box;
+    if (p[0] > k * b[1][0] || p[1] < k * b[0][1] || p[1] > k * b[1][1] || p[2] < k * b[0][2] ||
+      p[2] > k * b[1][2])
+      continue;
+    const int side = sideOf(shell.mesh, p, k);
+    if (side == 0)
+      return 0;
+    inside = inside != (side > 0);
+  }
+  return inside ? 1 : -1;
+}
+
+/// Whether every lattice point of the closed prism P lies on the right side of `joined`, the
+/// part of H that P changed after P was cut out of it or added to it (no object centre outside,
+/// no background centre inside, off the grid included), with the new sides of those in the grid;
+/// `reversed`: P lies inside the other shells of H, so a point inside the part is outside H
+/// (changedPart). The solid changes only inside the closed P, so a lattice point outside P keeps
+/// its side (a neighbourhood of it misses P); P's open interior holds no lattice point, but a
+/// centre on its boundary can change side, so each is located again (exact ray parity) instead
+/// of every point of the grid.
+bool prismKeepsSeparation(const LatticeMesh& joined,
+  bool reversed,
+  const CellList& prism,
+  const BitVolume& objects,
+  std::vector<std::pair<std::size_t, std::uint8_t>>& sides)
+{
+  const Dims d = objects.dims();
+  bool ok = true;
+  forEachPointIn(prism,
+    false,
+    [&](const LatticePoint& p)
+    {
+      if (!ok)
+        return;
+      const int side = reversed ? -sideOf(joined, p, 1) : sideOf(joined, p, 1);
+      const bool object = voxelClass(objects, p);
+      if ((object && side < 0) || (!object && side > 0))
+        ok = false;
+      else if (inGrid(d, p))
+        sides.emplace_back(gridIndex(d, p), side > 0 ? Inside : side == 0 ? On : Outside);
+    });
+  return ok;
+}
+
+bool boxesMeet(const LatticeBox& a, const LatticeBox& b)
+{
+  for (int k = 0; k < 3; ++k)
+    if (a[1][k] < b[0][k] || b[1][k] < a[0][k])
+      return false;
+  return true;
+}
+
+/// The shells of H that the closed P meets (exact separating axes against their triangles in
+/// P's box).
+std::vector<bool> shellsMeeting(const std::vector<Shell>& shells, const CellList& prism)
+{
+  const LatticeBox box = boxOf(prism);
+  std::vector<bool> met(shells.size(), false);
+  for (std::size_t i = 0; i < shells.size(); ++i)
+  {
+    if (!boxesMeet(shells[i].box, box))
+      continue;
+    const LatticeMesh& m = shells[i].mesh;
+    for (const auto& t : m.triangles)
+    {
+      const std::array<LatticePoint, 3> c{ m.points[t[0]], m.points[t[1]], m.points[t[2]] };
+      LatticeBox b{ c[0], c[0] };
+      for (const auto& p : c)
+        for (int k = 0; k < 3; ++k)
+        {
+          b[0][k] = std::min(b[0][k], p[k]);
+          b[1][k] = std::max(b[1][k], p[k]);
+        }
+      if (boxesMeet(b, box) && meetsConvex(prism, c, true))
+      {
+        met[i] = true;
+        break;
+      }
+    }
+  }
+  return met;
+}
+
+/// Whether p lies inside an odd number of the shells not flagged in `skip` (p on none of them).
+bool insideOtherShells(const std::vector<Shell>& shells,
+  const std::vector<bool>& skip,
+  const LatticePoint& p)
+{
+  bool inside = false;
+  for (std::size_t i = 0; i < shells.size(); ++i)
+  {
+    // sideOf's ray towards +x stays in p's row: a shell whose box misses the row or ends
+    // before p is not crossed.
+    const LatticeBox& b = shells[i].box;
+    if (skip[i] || p[0] > b[1][0] || p[1] < b[0][1] || p[1] > b[1][1] || p[2] < b[0][2] ||
+      p[2] > b[1][2])
+      continue;
+    inside = inside != (sideOf(shells[i].mesh, p, 1) > 0);
+  }
+  return inside;
+}
+
+/// The part of H that a Boolean with the prism P can change: the shells that the closed P meets
+/// (flagged in `changed`) as one mesh, reversed when P lies inside an odd number of the other
+/// shells (`reversed`).
+///
+/// Why the Boolean of the part is the Boolean of H (so that a join costs a corefinement of the
+/// shells it joins, not of all of H, and its checks look at those shells only). The solid of H
+/// is the set of points inside an odd number of its shells. The other shells miss the closed P
+/// (each triangle of theirs strictly apart from it) and P is connected, so the parity c of the
+/// other shells is one constant on a neighbourhood of P; it is c on each shell of the part too
+/// (checked below; it holds for every shell that meets P). Near P and the part, the solid of H
+/// is then the part's solid (c = 0: the part bounds a volume as it is oriented) or its
+/// complement (c = 1: the reversed part bounds the complement, and cutting P out of H is adding
+/// P to it, and back); away from them nothing changes. So H op P is (part op P) with the other
+/// shells, which miss it (it lies in the part and the boundary of P, both apart from them): H
+/// op P is embedded exactly when part op P is, its shells and Euler characteristic change as
+/// the part's do, and a point of P lies inside H op P exactly when it lies inside part op P,
+/// or outside when c = 1. Should the parity differ on a shell of the part (it cannot when the
+/// separating axes are exact), the part is all of H.
+struct ChangedPart
+{
+  std::vector<bool> changed;
+  LatticeMesh mesh;
+  bool reversed = false;
+};
+
+ChangedPart changedPart(const std::vector<Shell>& shells, const CellList& prism)
+{
+  ChangedPart part;
+  part.changed = shellsMeeting(shells, prism);
+  part.reversed = insideOtherShells(shells, part.changed, prism.vertices[0]);
+  for (std::size_t i = 0; i < shells.size(); ++i)
+    if (part.changed[i] &&
+      insideOtherShells(shells, part.changed, shells[i].mesh.points[0]) != part.reversed)
+    {
+      part.changed.assign(shells.size(), true);
+      part.reversed = false;
+      break;
+    }
+  for (std::size_t i = 0; i < shells.size(); ++i)
+    if (part.changed[i])
+      part.mesh.append(shells[i].mesh, part.reversed);
+  return part;
+}
+
 /// Whether the prism may join a shell by a Boolean, from the cheap tests: it runs through H's
 /// solid (a cut) or through the space between two pieces (a join), as its centroid tells, and
 /// no edge of it crosses a triangle of H off the lattice (a Boolean latticeBoolean refuses,
 /// nearly all the prisms refused on the Al cartoon and the headsq bone), found from the
 /// triangles in P's box, without the corefinement.
-bool worthABoolean(const LatticeMesh& surface, const CellList& prism, bool cut)
+bool worthABoolean(const ShelledSurface& surface, const CellList& prism, bool cut)
 {
   LatticePoint centroid{ 0, 0, 0 };
   for (const auto& v : prism.vertices)
@@ -2037,30 +2264,46 @@ bool worthABoolean(const LatticeMesh& surface, const CellList& prism, bool cut)
 /// Boolean is a closed 2-manifold with lattice corners, `shells` shells (one less for a join,
 /// as many for a handle or a dent) and an Euler characteristic `eulerDrop` lower (2: a tube;
 /// 0: the dent of a chain, joinByChain), and every lattice point of P stays on its class's side
-/// (prismKeepsSeparation). A Boolean that fails, or throws, rejects this prism only.
+/// (prismKeepsSeparation). The Boolean and the checks are those of the part of H that P meets
+/// (changedPart says why that is H's). A Boolean that fails, or throws, rejects this prism only.
 bool joinAlongPrism(Context& ctx,
   const CellList& prism,
   bool cut,
   std::size_t shells,
-  LatticeMesh& surface,
+  ShelledSurface& surface,
   std::vector<std::uint8_t>& where,
   long eulerDrop = 2)
 {
-  // H was embedded and the Boolean changed it only inside P, so only triangles meeting P's box
-  // can cross (the operands are not tested again: that test of a large H costs about as much
-  // as the corefinement).
+  // The part was embedded and the Boolean changed it only inside P, so only triangles meeting
+  // P's box can cross (the operands are not tested again: that test of a large operand costs
+  // about as much as the corefinement).
   const std::array<LatticePoint, 2> box = boxOf(prism);
+  const ChangedPart part = changedPart(surface.shells, prism);
+  // A Boolean bound to fail costs no corefinement (it still counts as one tried: tryPrisms).
+  if (creaseLeavesTheLattice(part.mesh, prism))
+    return false;
+  const auto others =
+    static_cast<std::size_t>(std::count(part.changed.begin(), part.changed.end(), false));
   LatticeMesh joined;
+  std::vector<Shell> pieces;
   std::vector<std::pair<std::size_t, std::uint8_t>> sides;
   try
   {
     const LatticeMesh p = triangulateHull(prism);
-    const bool ok = cut ? latticeDifference(surface, p, joined, Operands::Embedded)
-                        : latticeUnion(surface, p, joined, Operands::Embedded);
-    if (!ok || shellsOf(joined).size() != shells ||
-      eulerCharacteristic(joined) + eulerDrop != eulerCharacteristic(surface) ||
+    // Reversed, the part bounds the complement of H's solid near P: cutting is adding.
+    const bool ok = cut != part.reversed
+      ? latticeDifference(part.mesh, p, joined, Operands::Embedded)
+      : latticeUnion(part.mesh, p, joined, Operands::Embedded);
+    if (!ok)
+      return false;
+    if (part.reversed)
+      for (auto& t : joined.triangles)
+        std::swap(t[1], t[2]);
+    pieces = shellsOf(joined);
+    if (pieces.size() + others != shells ||
+      eulerCharacteristic(joined) + eulerDrop != eulerCharacteristic(part.mesh) ||
       !isEmbeddedWithin(joined, box[0], box[1]) ||
-      !prismKeepsSeparation(joined, prism, ctx.objects, sides))
+      !prismKeepsSeparation(joined, part.reversed, prism, ctx.objects, sides))
       return false;
   }
   catch (const std::exception&)
@@ -2068,7 +2311,7 @@ bool joinAlongPrism(Context& ctx,
     return false; // CGAL refused the operands or the result: try the next prism
   }
   recordPlanes(ctx, prism, cut ? 1 : 2);
-  surface = std::move(joined);
+  surface.replace(part.changed, std::move(pieces));
   for (const auto& [index, side] : sides)
     where[index] = side;
   return true;
@@ -2085,7 +2328,7 @@ bool tryPrisms(Context& ctx,
   std::vector<CellList> prisms,
   bool cut,
   std::size_t shells,
-  LatticeMesh& surface,
+  ShelledSurface& surface,
   std::vector<std::uint8_t>& where)
 {
   std::stable_partition(prisms.begin(),
@@ -2123,7 +2366,7 @@ bool joinAtCrossing(Context& ctx,
   const std::vector<LatticePoint>& crossing,
   std::size_t count,
   std::size_t tried,
-  LatticeMesh& surface,
+  ShelledSurface& surface,
   std::vector<std::uint8_t>& where)
 {
   const LatticeMesh rest = restOfH(shells, s);
@@ -2194,7 +2437,7 @@ int sideOfPlane(const FacePlane& plane, const std::array<LatticePoint, 3>& t)
 /// prisms that are cut).
 std::optional<CellList> emptyPrismMissingH(const std::array<LatticePoint, 3>& t,
   const std::array<LatticePoint, 3>& m,
-  const LatticeMesh& surface)
+  const ShelledSurface& surface)
 {
   CellList prism = convexHull({ t[0], t[1], t[2], m[0], m[1], m[2] });
   bool empty = prism.dimension == 3;
@@ -2212,11 +2455,11 @@ bool cutChain(Context& ctx,
   const CellList& first,
   const std::vector<CellList>& second,
   std::size_t shells,
-  LatticeMesh& surface,
+  ShelledSurface& surface,
   std::vector<std::uint8_t>& where)
 {
   const auto planes = ctx.planeLevel;
-  LatticeMesh dented = surface;
+  ShelledSurface dented = surface;
   std::vector<std::uint8_t> sides = where;
   if (joinAlongPrism(ctx, first, true, shells, dented, sides, 0))
     for (const CellList& p2 : second)
@@ -2242,7 +2485,7 @@ bool joinByChain(Context& ctx,
   const std::vector<Shell>& shells,
   std::size_t s,
   const std::vector<LatticePoint>& crossing,
-  LatticeMesh& surface,
+  ShelledSurface& surface,
   std::vector<std::uint8_t>& where)
 {
   const LatticeMesh rest = restOfH(shells, s);
@@ -2297,11 +2540,13 @@ bool joinByChain(Context& ctx,
 /// prisms joins, from more of them, and a void then by a chain of two prisms; false when no
 /// shell could be joined.
 bool joinOneShell(Context& ctx,
-  LatticeMesh& surface,
+  ShelledSurface& surface,
   std::vector<std::uint8_t>& where,
+  std::vector<std::uint8_t>& mine,
   std::set<LatticePoint>& failed)
 {
-  const std::vector<Shell> shells = shellsOf(surface);
+  // A join changes the shells only when it returns true, and then this returns at once.
+  const std::vector<Shell>& shells = surface.shells;
   if (shells.size() < 2)
     return false;
   const Dims d = ctx.objects.dims();
@@ -2314,11 +2559,13 @@ bool joinOneShell(Context& ctx,
     if (failed.count(key))
       continue;
     failed.insert(key);
-    std::vector<std::uint8_t> mine(where.size(), 0);
+    // `mine` is all 0 but where markShell flags the shell's box, cleared after the search.
+    const LatticeBox box = gridBoxOf(shells[s], d);
     markShell(shells[s].mesh, d, 1, 2, mine);
     const std::vector<LatticePoint> crossing = shells[s].volume < 0
-      ? voidCrossing(ctx.objects, where, mine)
-      : pieceCrossing(ctx.objects, mine);
+      ? voidCrossing(ctx.objects, where, mine, box)
+      : pieceCrossing(ctx.objects, mine, box);
+    forEachInBox(box, [&](const LatticePoint& p) { mine[gridIndex(d, p)] = 0; });
     if (crossing.empty())
       continue;
     if (joinAtCrossing(ctx, shells, s, crossing, kTrianglesNear, 0, surface, where) ||
@@ -2362,13 +2609,14 @@ int joinShells(Context& ctx, LatticeMesh& surface)
     return 0; // nothing to join: the grid is not located at all
   int joined = 0;
   std::set<LatticePoint> failed;
-  LatticeMesh repaired = surface;
+  ShelledSurface repaired(surface);
   const auto planes = ctx.planeLevel;
-  std::vector<std::uint8_t> where = whereInGrid(repaired, ctx.objects.dims());
-  while (joinOneShell(ctx, repaired, where, failed))
+  std::vector<std::uint8_t> where = whereInGrid(repaired.mesh, ctx.objects.dims());
+  std::vector<std::uint8_t> mine(where.size(), 0);
+  while (joinOneShell(ctx, repaired, where, mine, failed))
     ++joined;
   // Checked once at the end (each check tests the whole surface for self-intersections).
-  return keepIfSeparates(ctx, joined, std::move(repaired), planes, surface);
+  return keepIfSeparates(ctx, joined, std::move(repaired.mesh), planes, surface);
 }
 
 /// The contribution to the Euler characteristic of the union of the closed voxel cubes of the
@@ -2539,15 +2787,19 @@ bool cutAtCrossing(Context& ctx,
   LatticeMesh& surface,
   std::vector<std::uint8_t>& where)
 {
-  const std::size_t shells = shellsOf(surface).size();
+  ShelledSurface shelled(surface);
+  const std::size_t shells = shelled.shells.size();
   for (const auto& [count, tried] : { std::array<std::size_t, 2>{ kTrianglesNear, 0 },
          std::array<std::size_t, 2>{ kMoreTrianglesNear, kTrianglesNear } })
   {
     auto prisms = emptyPrisms(emptyTrianglesNear(surface, { crossing[0] }, count),
       emptyTrianglesNear(surface, { crossing[1] }, count),
       tried);
-    if (tryPrisms(ctx, std::move(prisms), true, shells, surface, where))
+    if (tryPrisms(ctx, std::move(prisms), true, shells, shelled, where))
+    {
+      surface = std::move(shelled.mesh);
       return true;
+    }
   }
   return false;
 }

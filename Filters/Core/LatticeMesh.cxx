@@ -475,4 +475,51 @@ bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
   return false;
 }
 
+bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
+{
+  LatticePoint lo = convex.vertices[0], hi = lo;
+  for (const auto& v : convex.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  // The triangles in the hull's open box by their edges (a crossing point lies in the box, so
+  // both triangles of its edge are there, or the edge is left out).
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t i = 0; i < surface.triangles.size(); ++i)
+  {
+    const auto& tri = surface.triangles[i];
+    bool meets = true;
+    for (int a = 0; a < 3 && meets; ++a)
+    {
+      const auto c = [&](int k) { return surface.points[tri[k]][a]; };
+      meets = std::max({ c(0), c(1), c(2) }) > lo[a] && std::min({ c(0), c(1), c(2) }) < hi[a];
+    }
+    for (int k = 0; k < 3 && meets; ++k)
+      edges[std::minmax(tri[k], tri[(k + 1) % 3])].push_back(i);
+  }
+  const LatticeMesh faces = triangulateHull(convex);
+  for (const auto& [edge, incident] : edges)
+  {
+    if (incident.size() != 2)
+      continue;
+    const auto& t = surface.triangles[incident[0]];
+    const auto& u = surface.triangles[incident[1]];
+    const std::uint32_t apex = u[0] != edge.first && u[0] != edge.second ? u[0]
+      : u[1] != edge.first && u[1] != edge.second                        ? u[1]
+                                                                         : u[2];
+    if (orientation(
+          surface.points[t[0]], surface.points[t[1]], surface.points[t[2]], surface.points[apex]) ==
+      0)
+      continue; // a flat edge: a crossing on it may be a removable point of a straight crease
+    for (const auto& f : faces.triangles)
+      if (crossesOffLattice(surface.points[edge.first],
+            surface.points[edge.second],
+            { faces.points[f[0]], faces.points[f[1]], faces.points[f[2]] }))
+        return true;
+  }
+  return false;
+}
+
 } // namespace vbr

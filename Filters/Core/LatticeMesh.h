@@ -97,6 +97,14 @@ std::vector<std::array<LatticePoint, 3>> trianglesInBoxOf(const LatticeMesh& sur
 /// corefinement. False does not promise a lattice result.
 bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex);
 
+/// The other half of that: whether a crease edge of the mesh (its two triangles not coplanar)
+/// crosses the open interior of a face of the hull transversally at a point off the lattice.
+/// Three planes meet there (the two triangles' and the face's; the edge crosses the face's
+/// plane at that point only), so it is a corner of both the union and the difference that is
+/// not a lattice point, and both Booleans refuse. Exact; a crossing on a flat edge (a diagonal
+/// of a planar face) is left to the Boolean, whose straight crease may not need the point.
+bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex);
+
 } // namespace vbr
 
 #endif

@@ -1410,6 +1410,81 @@ TEST(ConvexHullModifier, RandomPorousBlobsSeparate)
   EXPECT_GE(wellComposedBlobs, 10);
 }
 
+TEST(ConvexHullModifier, CavitiesJoinedThroughTheSolidSeparate)
+{
+  // A block with two ball cavities joined by a bent passage one voxel wide (up in y from each,
+  // then across in x): the background inside is one component, whose pressed-in surfaces come
+  // out as several voids that are joined through the block's solid. Such a join is a Boolean of
+  // the two voids only, which lie inside the block's outer shell: reversed, they bound the
+  // complement of the solid there, so the cut is done as a union (and the dents of the chains
+  // of two prisms likewise). A wrong side there leaves a void unjoined (the Euler
+  // characteristic and the shells are compared with the voxel boundary's) or a wrong solid
+  // (every centre is located by CGAL).
+  int joined = 0;
+  for (int variant = 0; variant < 8; ++variant)
+  {
+    SCOPED_TRACE(variant);
+    const int n = 20;
+    // The balls stay two voxels apart: touching, they would close a loop with the passage.
+    const double r = 2.5 + 0.5 * (variant % 3), a = 5, b = 14, c = 9.5 + variant % 2;
+    const int h = 4 + variant / 2, row = static_cast<int>(c);
+    vbr::BitVolume v = shape(n,
+      [&](double x, double y, double z)
+      {
+        auto in = [&](double cx)
+        { return (x - cx) * (x - cx) + (y - c) * (y - c) + (z - c) * (z - c) <= r * r; };
+        return x >= 1 && y >= 1 && z >= 1 && x < n - 1 && y < n - 1 && z < n - 1 && !in(a) &&
+          !in(b);
+      });
+    for (int y = row; y <= row + h; ++y)
+    {
+      v.set(static_cast<int>(a), y, row, false);
+      v.set(static_cast<int>(b), y, row, false);
+    }
+    for (int x = static_cast<int>(a); x <= static_cast<int>(b); ++x)
+      v.set(x, row + h, row, false);
+    joined += expectSeparating(v).joinedShells;
+  }
+  // 18 joins measured; most of the 8 blocks need some.
+  std::cout << "8 blocks with joined cavities: " << joined << " shells joined" << std::endl;
+  EXPECT_GE(joined, 8);
+}
+
+TEST(ConvexHullModifier, ManyShellsJoinedOnPorousBlobs)
+{
+  // Larger porous blobs with 10 to 15 pores: many pieces and voids of H to join (43 joins in
+  // the 12 blobs measured), each a Boolean of the shells the prism meets, the other shells
+  // left as they are; every centre is located by CGAL, and the topology is compared shell by
+  // shell where the blob is well-composed.
+  std::mt19937 rng(11);
+  int joined = 0;
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    const int r = 9 + trial % 3;
+    std::uniform_real_distribution<double> u(1, 2 * r + 1);
+    std::vector<std::array<double, 4>> pores;
+    for (int k = 0; k < 10 + trial % 6; ++k)
+      pores.push_back({ u(rng), u(rng), u(rng), 1.0 + 0.5 * (k % 3) });
+    const double c = r + 1;
+    const vbr::BitVolume v = shape(2 * r + 3,
+      [&](double x, double y, double z)
+      {
+        if ((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c) > r * r)
+          return false;
+        for (const auto& p : pores)
+          if ((x - p[0]) * (x - p[0]) + (y - p[1]) * (y - p[1]) + (z - p[2]) * (z - p[2]) <=
+            p[3] * p[3])
+            return false;
+        return true;
+      });
+    SCOPED_TRACE(trial);
+    const bool composed = wellComposed(v);
+    joined += expectSeparating(v, { false, composed }).joinedShells;
+  }
+  std::cout << "12 porous blobs: " << joined << " shells joined" << std::endl;
+  EXPECT_GE(joined, 20);
+}
+
 TEST(ConvexHullModifier, RealObjectsSeparate)
 {
   // The Al cartoon (every 4th voxel) and the headsq bone (value >= 1150, every 3rd voxel): real
@@ -1892,6 +1967,60 @@ TEST(ConvexHullModifier, RandomFlatLayersSeparate)
             << withGenus << " of them with the object's genus" << std::endl;
   EXPECT_GE(tried, 100);
   EXPECT_EQ(withGenus, wellComposedCount);
+}
+
+TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
+{
+  // creaseLeavesTheLattice skips a join's Boolean where a crease edge of H crosses a face of the
+  // prism off the lattice: whenever it says so, latticeUnion and latticeDifference must both
+  // refuse, and the exact union and regularised difference (Nef polyhedra, independently) have
+  // a corner off the lattice. Random lattice hulls against the pac-man's H (crease and flat
+  // edges) and against other random hulls, counted apart from those booleanLeavesTheLattice
+  // finds (the prism's edges crossing H).
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<long> coord(0, 8), small(0, 3);
+  auto randomHull = [&](int n, bool large)
+  {
+    const LatticePoint at{ coord(rng), coord(rng), coord(rng) };
+    for (;;)
+    {
+      std::vector<LatticePoint> points;
+      for (int k = 0; k < n; ++k)
+        points.push_back(large
+            ? LatticePoint{ coord(rng), coord(rng), coord(rng) }
+            : LatticePoint{ at[0] + small(rng), at[1] + small(rng), at[2] + small(rng) });
+      vbr::CellList hull = vbr::convexHull(points);
+      if (hull.dimension == 3)
+        return hull;
+    }
+  };
+  const vbr::LatticeMesh pacMan5 = vbr::modifyConvexHull(pacMan(5)).surface;
+  const Nef pacMan5Solid = nefOf(pacMan5);
+  int predicted = 0, only = 0, pairs = 0;
+  for (int trial = 0; trial < 160; ++trial)
+  {
+    SCOPED_TRACE(trial);
+    const vbr::LatticeMesh a = trial % 2 ? pacMan5 : vbr::triangulateHull(randomHull(8, true));
+    const vbr::CellList b = randomHull(4 + trial % 4, trial % 3 == 0);
+    ++pairs;
+    if (!vbr::creaseLeavesTheLattice(a, b))
+      continue;
+    ++predicted;
+    only += !vbr::booleanLeavesTheLattice(a, b);
+    const vbr::LatticeMesh bMesh = vbr::triangulateHull(b);
+    vbr::LatticeMesh difference, unionMesh;
+    EXPECT_FALSE(vbr::latticeDifference(a, bMesh, difference)) << "difference kept";
+    EXPECT_FALSE(vbr::latticeUnion(a, bMesh, unionMesh)) << "union kept";
+    const Nef aSolid = trial % 2 ? pacMan5Solid : nefOf(a), bSolid = nefOf(bMesh);
+    EXPECT_TRUE(cornerOffLattice((aSolid - bSolid).regularization()))
+      << "the exact difference has its corners on the lattice";
+    EXPECT_TRUE(cornerOffLattice(aSolid + bSolid))
+      << "the exact union has its corners on the lattice";
+  }
+  std::cout << pairs << " pairs, " << predicted << " found by the creases, " << only
+            << " of them not by the prism's edges" << std::endl;
+  EXPECT_GE(predicted, pairs / 4);
+  EXPECT_GE(only, 1);
 }
 
 TEST(ConvexHullModifier, BooleansLeavingTheLatticeAreFoundBeforehand)
