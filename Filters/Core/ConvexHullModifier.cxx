@@ -275,6 +275,8 @@ struct Context
   const Execution& exec;
   std::map<FacePlane, int> planeLevel;
   int keptApart = 0;
+  /// Joins or handle cuts dropped together because H with all of them did not separate.
+  int discardedChanges = 0;
   /// Whether groups are pressed in as pits (the first pass) or all kept apart (the second).
   bool pits = true;
   /// The object's boundary Euler characteristic once counted (none inside when the object is
@@ -1573,10 +1575,11 @@ BitVolume revertModifiedHull(const LatticeMesh& surface,
 namespace
 {
 
-/// Whether H separates: a closed embedded 2-manifold from which the voxel set reverts exactly.
+/// Whether H separates: a closed embedded 2-manifold, each shell oriented away from its solid
+/// (the joins turn parts of H over and back), from which the voxel set reverts exactly.
 bool separates(const BitVolume& objects, const LatticeMesh& surface)
 {
-  if (!isClosedEmbeddedManifold(surface))
+  if (!boundsAVolume(surface))
     return false;
   std::vector<LatticePoint> background;
   for (const auto& p : latticePointsOnSurface(surface, objects.dims()))
@@ -2595,6 +2598,7 @@ int keepIfSeparates(Context& ctx,
 {
   if (count == 0 || !separates(ctx.objects, changed))
   {
+    ctx.discardedChanges += count;
     ctx.planeLevel = planes;
     return 0;
   }
@@ -2868,6 +2872,7 @@ bool solvePass(Context& ctx, ModifiedHull& r, bool pits)
   r.keptApart = ctx.keptApart;
   r.joinedShells = joinShells(ctx, r.surface);
   r.cutHandles = cutMissingHandles(ctx, r.surface);
+  r.discardedChanges = ctx.discardedChanges;
   return true;
 }
 
@@ -3096,6 +3101,7 @@ bool appendPartH(Context& ctx,
     r.failure += (r.failure.empty() ? "" : "; ") + h.failure; // a part's note stays
   r.joinedShells += h.joinedShells;
   r.cutHandles += h.cutHandles;
+  r.discardedChanges += h.discardedChanges;
   r.keptApart += h.keptApart;
   r.degreeOfNonConvexity = std::max(r.degreeOfNonConvexity, h.degreeOfNonConvexity);
   return true;
@@ -3144,6 +3150,7 @@ bool solveComponentsFirst(Context& ctx,
   ctx.triangleLevel = std::move(levels);
   r.joinedShells = apart.joinedShells;
   r.cutHandles = apart.cutHandles;
+  r.discardedChanges = apart.discardedChanges;
   r.keptApart = apart.keptApart;
   r.degreeOfNonConvexity = apart.degreeOfNonConvexity;
   r.componentsApart = true;

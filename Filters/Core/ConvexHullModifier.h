@@ -333,6 +333,10 @@ struct ModifiedHull
   /// Handles cut through walls of H that sealed a tunnel of the object, or through the thin
   /// holes of a flat object (see above).
   int cutHandles = 0;
+  /// Joins and handle cuts each checked on the part of H it changed but dropped together
+  /// because H with all of them did not separate (H is then the one before them): 0 unless the
+  /// local checks missed something the whole H's check found.
+  int discardedChanges = 0;
   /// Whether H is the union of the H of each component of the object (see above).
   bool componentsApart = false;
   /// Whether H of a flat object is its sheared pixel solid (see above) rather than the prisms

@@ -5,6 +5,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Fraction_traits.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
@@ -185,9 +186,13 @@ LatticeMesh triangulateHull(const CellList& hull)
   return mesh;
 }
 
-bool isClosedEmbeddedManifold(const LatticeMesh& m)
+namespace
 {
-  Mesh mesh;
+
+/// The mesh as a CGAL surface mesh; false when a triangle cannot be added (an edge used twice
+/// the same way, or a non-manifold edge).
+bool toSurfaceMesh(const LatticeMesh& m, Mesh& mesh)
+{
   std::vector<Mesh::Vertex_index> vertices;
   for (const auto& p : m.points)
     vertices.push_back(mesh.add_vertex(Kernel::Point_3(
@@ -195,8 +200,27 @@ bool isClosedEmbeddedManifold(const LatticeMesh& m)
   for (const auto& t : m.triangles)
     if (mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Mesh::null_face())
       return false;
+  return true;
+}
+
+bool isClosedEmbedded(Mesh& mesh)
+{
   return CGAL::is_closed(mesh) && PMP::duplicate_non_manifold_vertices(mesh) == 0 &&
     !PMP::does_self_intersect(mesh);
+}
+
+} // namespace
+
+bool isClosedEmbeddedManifold(const LatticeMesh& m)
+{
+  Mesh mesh;
+  return toSurfaceMesh(m, mesh) && isClosedEmbedded(mesh);
+}
+
+bool boundsAVolume(const LatticeMesh& m)
+{
+  Mesh mesh;
+  return toSurfaceMesh(m, mesh) && isClosedEmbedded(mesh) && PMP::does_bound_a_volume(mesh);
 }
 
 bool isEmbeddedWithin(const LatticeMesh& m, const LatticePoint& lo, const LatticePoint& hi)

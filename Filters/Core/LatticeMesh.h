@@ -38,6 +38,11 @@ LatticeMesh triangulateHull(const CellList& hull);
 /// Whether the mesh is a closed oriented 2-manifold without self-intersections (exact).
 bool isClosedEmbeddedManifold(const LatticeMesh& mesh);
 
+/// Whether the mesh is a closed embedded 2-manifold each of whose shells is oriented away from
+/// the solid it bounds (an outer shell outwards, the shell of a void into the void), exact. A
+/// whole shell turned over is consistent within itself, so isClosedEmbeddedManifold takes it.
+bool boundsAVolume(const LatticeMesh& mesh);
+
 /// Whether no two triangles of the mesh that meet the box [lo, hi] intersect but in their
 /// shared corners and edges (exact). A closed embedded mesh that a Boolean changed only inside
 /// the box is embedded exactly when this holds: two triangles that cross are both new (inside

@@ -14,6 +14,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
@@ -461,7 +462,14 @@ vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
   EXPECT_TRUE(manifold) << "not a closed oriented 2-manifold";
   if (!manifold)
     return r;
-  EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(mesh));
+  if (CGAL::Polygon_mesh_processing::does_self_intersect(mesh))
+  {
+    ADD_FAILURE() << "H intersects itself";
+    return r;
+  }
+  // Each shell oriented away from its solid: a shell turned over whole passes every test below
+  // (sides, Euler characteristic, reversion), as none of them reads the orientation.
+  EXPECT_TRUE(CGAL::Polygon_mesh_processing::does_bound_a_volume(mesh)) << "a shell turned over";
   const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(mesh);
   const std::vector<LatticePoint> on = vbr::latticePointsOnSurface(r.surface, v.dims());
   const std::set<LatticePoint> onSet(on.begin(), on.end());
@@ -508,6 +516,9 @@ vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
   if ((expect.euler || expect.closedEuler) && wellComposed(v))
     EXPECT_EQ(shellTopologyMismatch(v, r.surface), "") << "topology shell by shell";
   EXPECT_EQ(vbr::revertModifiedHull(r.surface, r.backgroundOnSurface, v.dims()), v) << "reversion";
+  // Each join and handle cut is checked on the part of H it changes; H with all of them must
+  // then separate too, or the local checks missed something.
+  EXPECT_EQ(r.discardedChanges, 0) << "joins or handle cuts dropped by the whole H's check";
   return r;
 }
 
