@@ -1054,76 +1054,86 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   cells.moveTo(output);
 }
 
-/// A region's voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
-void indexBoundsOf(const RegionStats& r,
-  const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  int index[6])
+/// A region's row of the table from its statistics (processing axes) in the image's index and
+/// world coordinates, with VoxelGrid's arithmetic in its order (the same values). Each image
+/// axis reads its processing axis from the region's record (`source`): permuted copies of the
+/// bounds on the stack stalled every row of a million-region table on their reloads.
+struct RowTransform
 {
-  const Int3 lo = toImageAxes(r.lo, axes), hi = toImageAxes(r.hi, axes);
-  for (int d = 0; d < 3; ++d)
-  {
-    index[2 * d] = grid.extentMin[d] + lo[d];
-    index[2 * d + 1] = grid.extentMin[d] + (hi[d] - 1); // no overflow at INT_MAX
-  }
-}
+  const vbr::vtk::VoxelGrid& grid;
+  std::array<int, 3> source{}; ///< the processing axis of each image axis
+  bool planar = false;
 
-/// A region's world bounds: those of the corners of its index box. Each world coordinate is
-/// origin + t0 + t1 + t2 (vertexToWorld's terms, one per image axis), and a rounded sum only
-/// grows with its terms: the extreme corner takes each term at its own extreme, so two terms
-/// per axis give the bounds of the eight corners exactly (a table of 100,000 regions spent
-/// more on eight full transforms per row than on labelling).
-void worldBoundsOf(const RegionStats& r,
-  const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  double world[6])
-{
-  Int3 lo = r.lo, hi = r.hi;
-  if (grid.flatAxis >= 0)
-    lo[2] = hi[2] = 0; // worldOf's plane of a 2D image
-  const Int3 imageLo = toImageAxes(lo, axes), imageHi = toImageAxes(hi, axes);
-  double local[2][3]; // as VoxelGrid::vertexToWorld computes them
-  for (int d = 0; d < 3; ++d)
+  RowTransform(const vbr::vtk::VoxelGrid& voxelGrid, const std::array<int, 3>& axes)
+    : grid(voxelGrid)
+    , planar(voxelGrid.flatAxis >= 0)
   {
-    local[0][d] = (grid.extentMin[d] + grid.vertexShift[d] + double(imageLo[d])) * grid.spacing[d];
-    local[1][d] = (grid.extentMin[d] + grid.vertexShift[d] + double(imageHi[d])) * grid.spacing[d];
+    for (int k = 0; k < 3; ++k)
+      this->source[axes[k]] = k;
   }
-  for (int w = 0; w < 3; ++w)
+
+  /// The voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
+  void indexBounds(const RegionStats& r, std::int32_t index[6]) const
   {
-    double least = grid.origin[w], most = grid.origin[w];
     for (int d = 0; d < 3; ++d)
     {
-      const double a = grid.direction[3 * w + d] * local[0][d];
-      const double b = grid.direction[3 * w + d] * local[1][d];
-      least += std::min(a, b);
-      most += std::max(a, b);
+      const int k = this->source[d];
+      index[2 * d] = this->grid.extentMin[d] + r.lo[k];
+      index[2 * d + 1] = this->grid.extentMin[d] + (r.hi[k] - 1); // no overflow at INT_MAX
     }
-    world[2 * w] = least;
-    world[2 * w + 1] = most;
   }
-}
 
-/// A region's centroid in world coordinates (the mean of its voxel centres).
-void centroidOf(const RegionStats& r,
-  const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  double world[3])
-{
-  std::array<double, 3> centre; // processing axes, continuous vertex coordinates
-  for (int d = 0; d < 3; ++d)
-    centre[d] = 0.5 * static_cast<double>(r.doubledCentre[d]) / static_cast<double>(r.voxels);
-  if (grid.flatAxis >= 0)
-    centre[2] = 0.0;
-  const std::array<double, 3> image = toImageAxes(centre, axes);
-  // VoxelGrid::positionToWorld's arithmetic, in its order (the same doubles), inlined: the
-  // call was a sixth of the table of a million regions.
-  double local[3];
-  for (int d = 0; d < 3; ++d)
-    local[d] = (grid.extentMin[d] + grid.vertexShift[d] + image[d]) * grid.spacing[d];
-  for (int r = 0; r < 3; ++r)
-    world[r] = grid.origin[r] + grid.direction[3 * r] * local[0] +
-      grid.direction[3 * r + 1] * local[1] + grid.direction[3 * r + 2] * local[2];
-}
+  /// The world bounds: those of the corners of the index box. Each world coordinate is
+  /// origin + t0 + t1 + t2 (vertexToWorld's terms, one per image axis), and a rounded sum
+  /// only grows with its terms: the extreme corner takes each term at its own extreme, so two
+  /// terms per axis give the bounds of the eight corners exactly (a table of 100,000 regions
+  /// spent more on eight full transforms per row than on labelling). A 2D image's corners lie
+  /// in its plane (worldOf's: processing axis 2 at 0).
+  void worldBounds(const RegionStats& r, double world[6]) const
+  {
+    double local[2][3]; // as VoxelGrid::vertexToWorld computes them
+    for (int d = 0; d < 3; ++d)
+    {
+      const int k = this->source[d];
+      const bool flat = this->planar && k == 2;
+      const double base = this->grid.extentMin[d] + this->grid.vertexShift[d];
+      local[0][d] = (base + double(flat ? 0 : r.lo[k])) * this->grid.spacing[d];
+      local[1][d] = (base + double(flat ? 0 : r.hi[k])) * this->grid.spacing[d];
+    }
+    for (int w = 0; w < 3; ++w)
+    {
+      double least = this->grid.origin[w], most = this->grid.origin[w];
+      for (int d = 0; d < 3; ++d)
+      {
+        const double a = this->grid.direction[3 * w + d] * local[0][d];
+        const double b = this->grid.direction[3 * w + d] * local[1][d];
+        least += std::min(a, b);
+        most += std::max(a, b);
+      }
+      world[2 * w] = least;
+      world[2 * w + 1] = most;
+    }
+  }
+
+  /// The centroid in world coordinates (the mean of the voxel centres): positionToWorld's
+  /// arithmetic inlined (the call was a sixth of the table of a million regions).
+  void centroid(const RegionStats& r, double world[3]) const
+  {
+    double local[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      const int k = this->source[d];
+      const double centre = this->planar && k == 2
+        ? 0.0
+        : 0.5 * static_cast<double>(r.doubledCentre[k]) / static_cast<double>(r.voxels);
+      local[d] =
+        (this->grid.extentMin[d] + this->grid.vertexShift[d] + centre) * this->grid.spacing[d];
+    }
+    for (int w = 0; w < 3; ++w)
+      world[w] = this->grid.origin[w] + this->grid.direction[3 * w] * local[0] +
+        this->grid.direction[3 * w + 1] * local[1] + this->grid.direction[3 * w + 2] * local[2];
+  }
+};
 
 /// The columns of port 2, sized for the kept regions, each row written once from its region's
 /// statistics through raw pointers (a table of tens of thousands of regions, as noise gives,
@@ -1187,6 +1197,7 @@ struct RegionColumns
     // 642,115 rows waited for a cache miss each, so the region of a row further on is
     // fetched ahead.
     constexpr std::size_t Ahead = 16;
+    const RowTransform transform(grid, axes);
     for (std::size_t row = 0; row < regionOfRow.size(); ++row)
     {
       if (row + Ahead < regionOfRow.size())
@@ -1196,16 +1207,16 @@ struct RegionColumns
       voxels[row] = r.voxels;
       boxes[row] = r.boxes;
       volumes[row] = static_cast<double>(r.voxels) * voxelMeasure;
-      int indexBounds[6];
-      indexBoundsOf(r, grid, axes, indexBounds);
+      std::int32_t indexBounds[6];
+      transform.indexBounds(r, indexBounds);
       double worldBounds[6];
-      worldBoundsOf(r, grid, axes, worldBounds);
+      transform.worldBounds(r, worldBounds);
       for (int k = 0; k < 6; ++k)
       {
         index[k][row] = indexBounds[k];
         world[k][row] = worldBounds[k];
       }
-      centroidOf(r, grid, axes, centroids + 3 * row);
+      transform.centroid(r, centroids + 3 * row);
     }
   }
 
