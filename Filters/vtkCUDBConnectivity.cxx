@@ -574,7 +574,7 @@ int bitsFor(std::uint64_t n)
 /// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, by a
 /// counting sort of their sizes, all at most `largest`: two passes over the regions and one
 /// over the sizes (noise and halftones have hundreds of thousands of regions of a few voxels).
-void countingSortBySize(const std::vector<std::int64_t>& sizes,
+void countingSortBySize(const std::int64_t* sizes,
   std::int64_t largest,
   std::vector<std::size_t>& kept)
 {
@@ -593,13 +593,9 @@ void countingSortBySize(const std::vector<std::int64_t>& sizes,
 /// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
 /// the indices fit in one 64-bit key together, by a radix sort of those keys: a maze has 642,115
 /// regions, whose comparison sort took longer than their table.
-void rankBySize(const std::vector<std::int64_t>& sizes, std::vector<std::size_t>& kept)
+void rankBySize(const std::int64_t* sizes, std::size_t count, std::vector<std::size_t>& kept)
 {
-  // Regions of one size, or already largest first (a checkerboard's million regions of one
-  // voxel), are in order: the sort's keys and scratch were a fifth of that update.
-  const auto larger = [&sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
-  if (std::is_sorted(kept.begin(), kept.end(), larger))
-    return;
+  const auto larger = [sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
   std::int64_t largest = 0;
   for (std::size_t r : kept)
     largest = std::max(largest, sizes[r]);
@@ -608,7 +604,7 @@ void rankBySize(const std::vector<std::int64_t>& sizes, std::vector<std::size_t>
     countingSortBySize(sizes, largest, kept);
     return;
   }
-  const int indexBits = bitsFor(sizes.size());
+  const int indexBits = bitsFor(count);
   if (bitsFor(static_cast<std::uint64_t>(largest)) + indexBits > 64)
   {
     std::stable_sort(kept.begin(), kept.end(), larger);
@@ -636,17 +632,27 @@ std::int32_t numberRegions(const Regions& regions,
   std::vector<std::int32_t>& ids,
   std::vector<std::size_t>& rows)
 {
-  std::vector<std::int64_t> sizes(regions.size());
+  // Every value is written: not zeroed first (8 MB on a checkerboard).
+  const std::unique_ptr<std::int64_t[]> sizes(new std::int64_t[regions.size()]);
   std::vector<std::size_t>& kept = rows;
   kept.clear();
   kept.reserve(regions.size());
+  // Regions of one size, or already largest first (a checkerboard's million regions of one
+  // voxel), are in order: the sort's keys and scratch were a fifth of that update.
+  bool ranked = true;
+  std::int64_t previous = std::numeric_limits<std::int64_t>::max();
   for (std::size_t r = 0; r < regions.size(); ++r)
   {
-    sizes[r] = regions[r].voxels;
-    if (sizes[r] >= minimumSize && (!useSeeds || regions[r].seeded))
+    const std::int64_t size = sizes[r] = regions[r].voxels;
+    if (size >= minimumSize && (!useSeeds || regions[r].seeded))
+    {
+      ranked = ranked && size <= previous;
+      previous = size;
       kept.push_back(r);
+    }
   }
-  rankBySize(sizes, kept);
+  if (!ranked)
+    rankBySize(sizes.get(), regions.size(), kept);
   if (largest > 0 && static_cast<std::size_t>(largest) < kept.size())
     kept.resize(static_cast<std::size_t>(largest));
   if (ordering == vtkCUDBConnectivity::SWEEP_ORDER)
