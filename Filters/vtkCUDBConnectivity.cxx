@@ -121,30 +121,30 @@ inline void prefetch(const void* address)
 
 /// Whether the blocks of an output or scratch of `bytes` in all go on huge pages. glibc maps
 /// a block of 32 MiB or more afresh at each update, and returns the heap's top to the kernel
-/// when more than twice that is freed: the kernel then faulted them in 4 KiB at a time (about
-/// 2 microseconds a page on the benchmark machine: half of a checkerboard's update, which
-/// writes hundreds of MB once). Smaller groups stay on the heap, which recycles its pages
-/// from one update to the next (a porous volume's boxes: zeroing huge pages at each update
-/// would cost more).
+/// when much is freed: the kernel then faulted the outputs in 4 KiB at a time (about 2
+/// microseconds a page on the benchmark machine: half of a checkerboard's update, which
+/// writes hundreds of MB once), and did so for a porous volume's 21 MB of boxes whenever other
+/// work had moved the heap's top. Smaller groups stay on the heap.
 bool onHugePages(double bytes)
 {
-  return bytes >= 32.0 * 1024 * 1024;
+  return bytes >= 8.0 * 1024 * 1024;
 }
 
-/// Memory of `bytes` that std::free releases, aligned to 64 bytes; with `huge`, 2 MiB-aligned
-/// and marked for transparent huge pages (as vbr::vtk::newZeroedIntArray's RegionId image).
-/// Null when refused.
+/// Memory of `bytes` that std::free releases, aligned to 64 bytes. With `huge`, a block of 2
+/// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
+/// faulted in 4 KiB pages) and marked for transparent huge pages, as
+/// vbr::vtk::newZeroedIntArray's RegionId image. Null when refused.
 void* allocateBlock(std::size_t bytes, bool huge)
 {
   constexpr std::size_t HugePage = std::size_t(2) << 20;
+  huge = huge && bytes >= HugePage;
+  const std::size_t length = huge ? (bytes + HugePage - 1) / HugePage * HugePage : bytes;
   void* block = nullptr;
-  if (posix_memalign(&block, huge ? HugePage : 64, std::max<std::size_t>(bytes, 1)) != 0)
+  if (posix_memalign(&block, huge ? HugePage : 64, std::max<std::size_t>(length, 1)) != 0)
     return nullptr;
 #ifdef __linux__
   if (huge)
-    madvise(block, bytes, MADV_HUGEPAGE); // a hint: failure only costs time
-#else
-  (void)huge;
+    madvise(block, length, MADV_HUGEPAGE); // a hint: failure only costs time
 #endif
   return block;
 }
