@@ -7,7 +7,9 @@
 #include "RunLabelling.h"
 #include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepDistributed.h"
+#include "vtkVoxelBRepMemory.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
@@ -41,13 +43,23 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <exception>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 vtkStandardNewMacro(vtkCUDBConnectivity);
 
@@ -107,15 +119,97 @@ inline void prefetch(const void* address)
 #endif
 }
 
-/// The statistics of one region's row of the table, as gathered from its boxes.
+/// Whether the blocks of an output or scratch of `bytes` in all go on huge pages. glibc maps
+/// a block of 32 MiB or more afresh at each update, and returns the heap's top to the kernel
+/// when much is freed: the kernel then faulted the outputs in 4 KiB at a time (about 2
+/// microseconds a page on the benchmark machine: half of a checkerboard's update, which
+/// writes hundreds of MB once), and did so for a porous volume's 21 MB of boxes whenever other
+/// work had moved the heap's top. Smaller groups stay on the heap.
+bool onHugePages(double bytes)
+{
+  return bytes >= 8.0 * 1024 * 1024;
+}
+
+/// Memory of `bytes` that std::free releases, aligned to 64 bytes. With `huge`, a block of 2
+/// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
+/// faulted in 4 KiB pages) and marked for transparent huge pages, as
+/// vbr::vtk::newZeroedIntArray's RegionId image. Null when refused.
+void* allocateBlock(std::size_t bytes, bool huge)
+{
+  constexpr std::size_t HugePage = std::size_t(2) << 20;
+  huge = huge && bytes >= HugePage;
+  const std::size_t length = huge ? (bytes + HugePage - 1) / HugePage * HugePage : bytes;
+  void* block = nullptr;
+  if (posix_memalign(&block, huge ? HugePage : 64, std::max<std::size_t>(length, 1)) != 0)
+    return nullptr;
+#ifdef __linux__
+  if (huge)
+    madvise(block, length, MADV_HUGEPAGE); // a hint: failure only costs time
+#endif
+  return block;
+}
+
+/// Refuses (throws) `bytes` of new arrays the memory cannot take (what resizeOrThrow checks).
+void checkBytes(double bytes, vtkIdType tuples, std::size_t arrays)
+{
+  const std::string refused = vbr::vtk::checkAllocation(
+    bytes, std::to_string(arrays) + " output arrays of " + std::to_string(tuples) + " tuples");
+  if (!refused.empty())
+    throw std::runtime_error(refused);
+}
+
+/// `tuples` tuples of each array (of the AOS layout: every array the filter writes), in
+/// memory of allocateBlock, unset: the filter writes every value. On huge pages when the
+/// arrays are `groupBytes` together with the others of their output. Throws when refused.
+void allocateTuples(const std::vector<vtkDataArray*>& arrays, vtkIdType tuples, double groupBytes)
+{
+  double bytes = 0.0;
+  for (vtkDataArray* array : arrays)
+    bytes += double(tuples) * array->GetNumberOfComponents() * array->GetDataTypeSize();
+  checkBytes(bytes, tuples, arrays.size());
+  const bool huge = onHugePages(std::max(bytes, groupBytes));
+  for (vtkDataArray* array : arrays)
+  {
+    const vtkIdType values = tuples * array->GetNumberOfComponents();
+    void* block = allocateBlock(static_cast<std::size_t>(values) * array->GetDataTypeSize(), huge);
+    if (!block)
+      throw std::bad_alloc();
+    bool taken = false;
+    switch (array->GetDataType())
+    {
+      vtkTemplateMacro(if (auto* aos = vtkAOSDataArrayTemplate<VTK_TT>::FastDownCast(array)) {
+        aos->SetArray(
+          static_cast<VTK_TT*>(block), values, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+        taken = true;
+      });
+    }
+    if (!taken)
+    {
+      std::free(block);
+      vbr::vtk::resizeOrThrow(array, tuples);
+    }
+  }
+}
+
+/// A Label array of `tuples` values of `labelType` (as vbr::vtk::newLabelArray), unset.
+vtkSmartPointer<vtkDataArray> newUnsetLabelArray(int labelType, vtkIdType tuples, double groupBytes)
+{
+  vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType, 0);
+  allocateTuples({ labels }, tuples, groupBytes);
+  return labels;
+}
+
+/// The statistics of one region's row of the table, as gathered from its boxes. Trivial: the
+/// records of a million regions are started one by one as the pass meets them, not zeroed
+/// first (start()).
 struct RegionStats
 {
-  std::int64_t voxels = 0;
+  std::int64_t voxels;
   /// Twice the sum of the voxel centres, processing axes: integers, whose sums are one cycle
   /// each where the doubles' were a chain of four-cycle adds for a region of many boxes, and
   /// exact as the doubles were (below 2^53).
-  std::array<std::int64_t, 3> doubledCentre{ 0, 0, 0 };
-  Int3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 }; ///< processing axes, hi exclusive
+  std::array<std::int64_t, 3> doubledCentre;
+  Int3 lo, hi; ///< processing axes, hi exclusive
 };
 
 /// One connected component: what numbering needs (size, seeds) and its row of the table, all
@@ -124,13 +218,18 @@ struct RegionStats
 /// region, removed ones included, where a checkerboard has a region per selected voxel.
 struct alignas(64) Region : RegionStats
 {
-  std::uint32_t boxes = 0;
-  bool seeded = false;
+  std::uint32_t boxes;
+  bool seeded;
 
-  Region()
+  /// An empty region: no voxels, bounds any box replaces.
+  void start()
   {
-    this->lo.fill(std::numeric_limits<std::int32_t>::max()); // any box replaces them
+    this->voxels = 0;
+    this->doubledCentre = { 0, 0, 0 };
+    this->lo.fill(std::numeric_limits<std::int32_t>::max());
     this->hi.fill(std::numeric_limits<std::int32_t>::min());
+    this->boxes = 0;
+    this->seeded = false;
   }
 
   /// Adds a box (processing axes, at `offset`) of the region.
@@ -170,6 +269,53 @@ struct alignas(64) Region : RegionStats
     this->doubledCentre[1] += voxelCount * (2 * std::int64_t(y) + 1);
     this->doubledCentre[2] += voxelCount * (2 * std::int64_t(z) + 1);
   }
+};
+
+/// The records of all regions, in sweep order (global region index), in one block of
+/// allocateBlock. Regions are numbered in the order of their first box or run, so a pass in
+/// that order starts each record when it first meets it (touch): the block is written once,
+/// not zeroed and then written.
+class Regions
+{
+public:
+  Regions() = default;
+  explicit Regions(std::size_t count)
+    : records(static_cast<Region*>(
+        allocateBlock(count * sizeof(Region), onHugePages(double(count) * sizeof(Region)))))
+    , count(count)
+  {
+    if (!this->records)
+      throw std::bad_alloc();
+    std::uninitialized_default_construct_n(this->records.get(), count); // trivial: no writes
+  }
+
+  std::size_t size() const { return this->count; }
+  Region& operator[](std::size_t r) { return this->records[r]; }
+  const Region& operator[](std::size_t r) const { return this->records[r]; }
+  const Region* data() const { return this->records.get(); }
+
+  /// Region r, started with those before it that were not yet.
+  Region& touch(std::size_t r)
+  {
+    while (this->started <= r)
+      this->records[this->started++].start();
+    return this->records[r];
+  }
+
+  /// Starts the records not met (none when every region has a voxel).
+  void startAll()
+  {
+    if (this->count > 0)
+      this->touch(this->count - 1);
+  }
+
+private:
+  struct Free
+  {
+    void operator()(Region* p) const { std::free(p); }
+  };
+  std::unique_ptr<Region[], Free> records;
+  std::size_t count = 0, started = 0;
 };
 
 /// The sortings to try, in processing axes. A 2D image (flat processing axis 2) is swept
@@ -272,7 +418,7 @@ bool axisAligned(const vbr::vtk::VoxelGrid& grid)
 }
 
 /// The statistics of the regions of an object labelled on its runs, from the runs.
-void measureRegionsOfRuns(const ObjectBoxes& o, Region* first)
+void measureRegionsOfRuns(const ObjectBoxes& o, Regions& regions)
 {
   const vbr::VoxelRuns& r = o.voxelRuns;
   const std::vector<vbr::VoxelRun>& runs = r.runs;
@@ -298,12 +444,13 @@ void measureRegionsOfRuns(const ObjectBoxes& o, Region* first)
           doubledX += length * (std::int64_t(runs[j].x0) + runs[j].x1 + 2 * dx);
           boxes += begins[j];
         } while (++j < end && label[j] == region);
-        first[region - 1].addRowRuns({ runs[i].x0 + dx, runs[j - 1].x1 + dx },
-          y + o.offset[1],
-          z + o.offset[2],
-          voxels,
-          doubledX,
-          boxes);
+        regions.touch(o.firstRegion + region - 1)
+          .addRowRuns({ runs[i].x0 + dx, runs[j - 1].x1 + dx },
+            y + o.offset[1],
+            z + o.offset[2],
+            voxels,
+            doubledX,
+            boxes);
         i = j;
       }
     }
@@ -313,7 +460,7 @@ void measureRegionsOfRuns(const ObjectBoxes& o, Region* first)
 /// again from its pixels (a bit scan per row: cheaper than keeping 8 bytes per run). A run
 /// begins a box when its box number is the next one not met yet (boxes are numbered as their
 /// first runs come in scan order).
-void measureRegionsOfPixelRuns(const ObjectBoxes& o, Region* first)
+void measureRegionsOfPixelRuns(const ObjectBoxes& o, Regions& regions)
 {
   const vbr::BitVolume& pixels = o.pixels;
   const std::uint32_t* runBox = o.runs.boxes.data();
@@ -332,7 +479,7 @@ void measureRegionsOfPixelRuns(const ObjectBoxes& o, Region* first)
       // further on is fetched ahead.
       constexpr std::ptrdiff_t Ahead = 16;
       if (runsEnd - runBox > Ahead)
-        prefetch(first + label[runBox[Ahead]] - 1);
+        prefetch(regions.data() + o.firstRegion + label[runBox[Ahead]] - 1);
       const std::uint32_t region = label[*runBox];
       const vbr::Coord x0 = e[0];
       std::int64_t voxels = 0, doubledX = 0;
@@ -350,32 +497,32 @@ void measureRegionsOfPixelRuns(const ObjectBoxes& o, Region* first)
         ++runBox;
         e += 2;
       } while (e != last && label[*runBox] == region);
-      first[region - 1].addRowRuns(
-        { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
+      regions.touch(o.firstRegion + region - 1)
+        .addRowRuns({ x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
     }
   }
 }
 
 /// The size and the statistics of every region from its boxes (or runs), in sweep order.
-std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t count)
+Regions measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t count)
 {
-  std::vector<Region> regions(count);
+  Regions regions(count);
   for (const ObjectBoxes& o : objects)
   {
-    Region* first = regions.data() + o.firstRegion;
     if (o.labelledFromRuns)
     {
-      measureRegionsOfRuns(o, first);
+      measureRegionsOfRuns(o, regions);
       continue;
     }
     if (o.labelledFromPixelRuns)
     {
-      measureRegionsOfPixelRuns(o, first);
+      measureRegionsOfPixelRuns(o, regions);
       continue;
     }
-    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-      first[o.components.boxLabel[b] - 1].add(o.cudb.boxes[b], o.offset); // labels start at 1
+    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b) // labels start at 1
+      regions.touch(o.firstRegion + o.components.boxLabel[b] - 1).add(o.cudb.boxes[b], o.offset);
   }
+  regions.startAll();
   return regions;
 }
 
@@ -389,7 +536,7 @@ std::vector<Region> measureRegions(const std::vector<ObjectBoxes>& objects, std:
 vtkIdType markSeeds(vtkDataSet* seeds,
   const vbr::vtk::VoxelGrid& grid,
   const std::int32_t* regionOf,
-  std::vector<Region>& regions)
+  Regions& regions)
 {
   std::vector<std::int64_t> voxels;
   voxels.reserve(static_cast<std::size_t>(seeds->GetNumberOfPoints()));
@@ -424,21 +571,40 @@ int bitsFor(std::uint64_t n)
   return bits;
 }
 
-/// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
-/// their sizes (`sizes`, by region). When the sizes and the indices fit in one 64-bit key
-/// together, by a radix sort of those keys: a maze has 642,115 regions, whose comparison sort
-/// took longer than their table.
-void rankBySize(const std::vector<std::int64_t>& sizes, std::vector<std::size_t>& kept)
+/// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, by a
+/// counting sort of their sizes, all at most `largest`: two passes over the regions and one
+/// over the sizes (noise and halftones have hundreds of thousands of regions of a few voxels).
+void countingSortBySize(const std::int64_t* sizes,
+  std::int64_t largest,
+  std::vector<std::size_t>& kept)
 {
-  // Regions of one size, or already largest first (a checkerboard's million regions of one
-  // voxel), are in order: the sort's keys and scratch were a fifth of that update.
-  const auto larger = [&sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
-  if (std::is_sorted(kept.begin(), kept.end(), larger))
-    return;
+  std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 2, 0);
+  for (std::size_t r : kept)
+    ++start[static_cast<std::size_t>(largest - sizes[r]) + 1];
+  for (std::size_t k = 1; k < start.size(); ++k)
+    start[k] += start[k - 1];
+  std::vector<std::size_t> sorted(kept.size());
+  for (std::size_t r : kept) // in sweep order: ties stay in it
+    sorted[start[static_cast<std::size_t>(largest - sizes[r])]++] = r;
+  kept = std::move(sorted);
+}
+
+/// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
+/// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
+/// the indices fit in one 64-bit key together, by a radix sort of those keys: a maze has 642,115
+/// regions, whose comparison sort took longer than their table.
+void rankBySize(const std::int64_t* sizes, std::size_t count, std::vector<std::size_t>& kept)
+{
+  const auto larger = [sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
   std::int64_t largest = 0;
   for (std::size_t r : kept)
     largest = std::max(largest, sizes[r]);
-  const int indexBits = bitsFor(sizes.size());
+  if (largest <= static_cast<std::int64_t>(kept.size()) + 65536)
+  {
+    countingSortBySize(sizes, largest, kept);
+    return;
+  }
+  const int indexBits = bitsFor(count);
   if (bitsFor(static_cast<std::uint64_t>(largest)) + indexBits > 64)
   {
     std::stable_sort(kept.begin(), kept.end(), larger);
@@ -454,26 +620,39 @@ void rankBySize(const std::vector<std::int64_t>& sizes, std::vector<std::size_t>
 }
 
 /// Applies the region filters and numbers the kept regions: `ids` has the RegionId of every
-/// region (0 when removed). Returns how many are kept. The sizes are gathered once from the
+/// region (0 when removed), `rows` the region of each RegionId (row of the table, from 0).
+/// Returns how many are kept. The sizes are gathered once from the
 /// regions' records (a cache line each) for the passes that read nothing else: on images of
 /// many small regions (a halftone's 278,445) those passes read every record three times.
-std::int32_t numberRegions(const std::vector<Region>& regions,
+std::int32_t numberRegions(const Regions& regions,
   vtkIdType minimumSize,
   bool useSeeds,
   vtkIdType largest,
   int ordering,
-  std::vector<std::int32_t>& ids)
+  std::vector<std::int32_t>& ids,
+  std::vector<std::size_t>& rows)
 {
-  std::vector<std::int64_t> sizes(regions.size());
-  std::vector<std::size_t> kept;
+  // Every value is written: not zeroed first (8 MB on a checkerboard).
+  const std::unique_ptr<std::int64_t[]> sizes(new std::int64_t[regions.size()]);
+  std::vector<std::size_t>& kept = rows;
+  kept.clear();
   kept.reserve(regions.size());
+  // Regions of one size, or already largest first (a checkerboard's million regions of one
+  // voxel), are in order: the sort's keys and scratch were a fifth of that update.
+  bool ranked = true;
+  std::int64_t previous = std::numeric_limits<std::int64_t>::max();
   for (std::size_t r = 0; r < regions.size(); ++r)
   {
-    sizes[r] = regions[r].voxels;
-    if (sizes[r] >= minimumSize && (!useSeeds || regions[r].seeded))
+    const std::int64_t size = sizes[r] = regions[r].voxels;
+    if (size >= minimumSize && (!useSeeds || regions[r].seeded))
+    {
+      ranked = ranked && size <= previous;
+      previous = size;
       kept.push_back(r);
+    }
   }
-  rankBySize(sizes, kept);
+  if (!ranked)
+    rankBySize(sizes.get(), regions.size(), kept);
   if (largest > 0 && static_cast<std::size_t>(largest) < kept.size())
     kept.resize(static_cast<std::size_t>(largest));
   if (ordering == vtkCUDBConnectivity::SWEEP_ORDER)
@@ -620,7 +799,120 @@ vtkIdType countKeptBoxes(const std::vector<ObjectBoxes>& objects,
   return count;
 }
 
-/// The arrays of port 1 for `count` boxes, filled box by box.
+/// Writes the Label values [begin, end) of a Label array (of the label's type), in one loop.
+void fillLabels(vtkDataArray* labels,
+  vtkIdType begin,
+  vtkIdType end,
+  const vbr::vtk::LabelValue& label)
+{
+  if (begin >= end)
+    return;
+  switch (labels->GetDataType())
+  {
+    vtkTemplateMacro(std::fill(static_cast<VTK_TT*>(labels->GetVoidPointer(0)) + begin,
+      static_cast<VTK_TT*>(labels->GetVoidPointer(0)) + end,
+      label.as<VTK_TT>()));
+  }
+}
+
+/// Writes `label` at the rows of the regions of one object (ids[c] - 1 for its component c,
+/// where ids[c] is not 0), in one loop of its type.
+void scatterLabel(vtkDataArray* labels,
+  const std::int32_t* ids,
+  std::uint32_t count,
+  const vbr::vtk::LabelValue& label)
+{
+  switch (labels->GetDataType())
+  {
+    vtkTemplateMacro(
+      VTK_TT* out = static_cast<VTK_TT*>(labels->GetVoidPointer(0));
+      const VTK_TT value = label.as<VTK_TT>();
+      for (std::uint32_t c = 0; c < count; ++c) if (ids[c] != 0) out[ids[c] - 1] = value;);
+  }
+}
+
+/// The corners of boxes in world coordinates, in a cell layout's order. A corner's world
+/// coordinate is origin + t0 + t1 + t2, a term per image axis taken at the box's low or high
+/// index: the terms are VoxelGrid::vertexToWorld's products, summed in its order (so the same
+/// values where the compiler contracts neither into fused multiply-adds: x86-64 without
+/// -march). The eight sums of a world axis share their partial sums (14 additions, not 24),
+/// and each corner of the layout reads its sum by a fixed index (a 2D image's corners lie in
+/// its plane, flat axis at lo).
+struct CornerWriter
+{
+  const vbr::vtk::VoxelGrid& grid;
+  int corners = 8;
+  std::array<int, 8> sumOfCorner{}; ///< corner k: bit d of the index is "image axis d at hi"
+  std::array<double, 3> base{};     ///< extentMin + vertexShift, as vertexToWorld adds them
+  std::array<int, 3> source{};      ///< the processing axis of each image axis
+
+  CornerWriter(const vbr::vtk::VoxelGrid& voxelGrid,
+    const BoxCellLayout& layout,
+    const std::array<int, 3>& axes)
+    : grid(voxelGrid)
+    , corners(layout.corners)
+  {
+    for (int k = 0; k < 3; ++k)
+      this->source[axes[k]] = k;
+    for (int k = 0; k < layout.corners; ++k)
+    {
+      int index = 0;
+      for (int r = 0; r < 3; ++r)
+        if (layout.bits[k][r])
+          index |= 1 << layout.role[r];
+      this->sumOfCorner[k] = index;
+    }
+    for (int d = 0; d < 3; ++d)
+      this->base[d] = this->grid.extentMin[d] + this->grid.vertexShift[d];
+  }
+
+  /// The corners of `box` (processing axes, at `offset`) into xyz (3 * corners doubles).
+  void write(const vbr::Box& box, const Int3& offset, double* xyz) const
+  {
+    double local[3][2]; // [image axis][lo, hi]
+    for (int d = 0; d < 3; ++d)
+    {
+      const int k = this->source[d];
+      local[d][0] = (this->base[d] + double(box.lo[k] + offset[k])) * this->grid.spacing[d];
+      local[d][1] = (this->base[d] + double(box.hi[k] + offset[k])) * this->grid.spacing[d];
+    }
+    double sum[3][8]; // [world axis][corner index]
+    for (int w = 0; w < 3; ++w)
+    {
+      const double* m = &this->grid.direction[3 * w];
+      for (int a = 0; a < 2; ++a)
+      {
+        const double s0 = this->grid.origin[w] + m[0] * local[0][a];
+        for (int b = 0; b < 2; ++b)
+        {
+          const double s1 = s0 + m[1] * local[1][b];
+          sum[w][a | b << 1] = s1 + m[2] * local[2][0];
+          sum[w][a | b << 1 | 4] = s1 + m[2] * local[2][1];
+        }
+      }
+    }
+    double out[24];
+    for (int k = 0; k < this->corners; ++k)
+      for (int w = 0; w < 3; ++w)
+        out[3 * k + w] = sum[w][this->sumOfCorner[k]];
+    streamValues(out, 3 * this->corners, xyz);
+  }
+
+  /// `n` (even) doubles to `to` (16-byte aligned) past the caches where SSE2 allows: the
+  /// coordinates are written once, and the cache lines read in before each write (the
+  /// boxes' 192 bytes are the most of port 1) were half of the memory traffic.
+  static void streamValues(const double* values, int n, double* to)
+  {
+#ifdef __SSE2__
+    for (int i = 0; i < n; i += 2)
+      _mm_stream_pd(to + i, _mm_loadu_pd(values + i));
+#else
+    std::copy(values, values + n, to);
+#endif
+  }
+};
+
+/// The arrays of port 1 for `count` boxes, written through their raw pointers.
 struct BoxCells
 {
   BoxCellLayout layout;
@@ -634,53 +926,45 @@ struct BoxCells
   {
     const int corners = this->layout.corners;
     this->coordinates->SetNumberOfComponents(3);
-    vbr::vtk::resizeOrThrow(this->coordinates, count * corners);
-    this->labels = vbr::vtk::newLabelArray(labelType, count);
-    vbr::vtk::resizeOrThrow(this->boxIds, count);
-    vbr::vtk::resizeOrThrow(this->regionIds, count);
+    const double bytes = outputBytes(count, corners);
+    allocateTuples({ this->coordinates }, count * corners, bytes);
+    this->labels = newUnsetLabelArray(labelType, count, bytes);
+    allocateTuples({ this->boxIds, this->regionIds }, count, bytes);
     this->boxIds->SetName("BoxId");
     this->regionIds->SetName("RegionId");
   }
 
-  /// Cell `cell`: the box [lo, hi) in image axes, with its ids and label. A corner's world
-  /// coordinate is origin + t0 + t1 + t2, a term per image axis taken at lo or hi: the terms
-  /// are VoxelGrid::vertexToWorld's products, summed in its order (so the same values where
-  /// the compiler contracts neither into fused multiply-adds: x86-64 without -march), and
-  /// computed once per box rather than per corner (eight full transforms per box were a third
-  /// of an update of a porous volume). A 2D image's corners lie in its plane (flat axis at lo).
-  void set(vtkIdType cell,
-    const vbr::vtk::VoxelGrid& grid,
-    const Int3& lo,
-    const Int3& hi,
-    vtkIdType boxId,
-    std::int32_t regionId,
-    const vbr::vtk::LabelValue& label)
+  /// The bytes of port 1 for `count` boxes: coordinates, cell ids (32-bit), ids and labels.
+  static double outputBytes(vtkIdType count, int corners)
   {
-    double term[3][3][2]; // [world axis][image axis][lo, hi]
-    for (int d = 0; d < 3; ++d)
+    return double(count) *
+      (corners * (3 * sizeof(double) + sizeof(std::int32_t)) + sizeof(std::int32_t) +
+        sizeof(vtkIdType) + sizeof(int) + 1);
+  }
+
+  /// 0, 1, ..., n - 1 into `out`, as 32-bit values past the caches where SSE2 allows (as
+  /// the coordinates).
+  template<typename T>
+  static void writeIota(T* out, vtkIdType n)
+  {
+#ifdef __SSE2__
+    if (sizeof(T) == 4 && reinterpret_cast<std::uintptr_t>(out) % 16 == 0)
     {
-      const double base = grid.extentMin[d] + grid.vertexShift[d];
-      const double local[2] = { (base + double(lo[d])) * grid.spacing[d],
-        (base + double(hi[d])) * grid.spacing[d] };
-      for (int w = 0; w < 3; ++w)
-        for (int s = 0; s < 2; ++s)
-          term[w][d][s] = grid.direction[3 * w + d] * local[s];
+      __m128i values = _mm_setr_epi32(0, 1, 2, 3);
+      const __m128i step = _mm_set1_epi32(4);
+      vtkIdType i = 0;
+      for (; i + 4 <= n; i += 4)
+      {
+        _mm_stream_si128(reinterpret_cast<__m128i*>(out + i), values);
+        values = _mm_add_epi32(values, step);
+      }
+      for (; i < n; ++i)
+        out[i] = static_cast<T>(i);
+      _mm_sfence(); // the streamed values before anything reads them
+      return;
     }
-    const int corners = this->layout.corners;
-    double* xyz = this->coordinates->GetPointer(3 * cell * corners);
-    for (int k = 0; k < corners; ++k)
-    {
-      int atHi[3] = { 0, 0, 0 };
-      for (int r = 0; r < 3; ++r)
-        if (this->layout.bits[k][r])
-          atHi[this->layout.role[r]] = 1;
-      for (int w = 0; w < 3; ++w)
-        xyz[3 * k + w] =
-          grid.origin[w] + term[w][0][atHi[0]] + term[w][1][atHi[1]] + term[w][2][atHi[2]];
-    }
-    this->boxIds->SetValue(cell, boxId);
-    this->regionIds->SetValue(cell, regionId);
-    vbr::vtk::setLabel(this->labels, cell, label);
+#endif
+    std::iota(out, out + n, T(0));
   }
 
   /// Cells whose corners are their own points, in order (cell i: points corners * i to
@@ -690,15 +974,14 @@ struct BoxCells
   static vtkSmartPointer<vtkCellArray> ownCornerCells(vtkIdType count, int corners)
   {
     vtkNew<ArrayType> offsets, connectivity;
-    vbr::vtk::resizeOrThrow(offsets, count + 1);
-    vbr::vtk::resizeOrThrow(connectivity, count * corners);
+    const double bytes = outputBytes(count, corners);
+    allocateTuples({ offsets }, count + 1, bytes);
+    allocateTuples({ connectivity }, count * corners, bytes);
     auto* offset = offsets->GetPointer(0);
     for (vtkIdType i = 0; i <= count; ++i)
       offset[i] = static_cast<typename ArrayType::ValueType>(i * corners);
     if (count > 0)
-      std::iota(connectivity->GetPointer(0),
-        connectivity->GetPointer(0) + count * corners,
-        typename ArrayType::ValueType(0));
+      writeIota(connectivity->GetPointer(0), count * corners);
     auto cells = vtkSmartPointer<vtkCellArray>::New();
     cells->SetData(offsets, connectivity);
     return cells;
@@ -722,6 +1005,37 @@ struct BoxCells
   }
 };
 
+/// The kept boxes of one object into cells [cell, ...) of `cells`; returns the next cell. The
+/// arrays are written through raw pointers and the object's one label in one fill: a box
+/// of a porous volume is about ten voxels, and calls per box were a good part of its cost.
+vtkIdType writeObjectBoxes(const ObjectBoxes& o,
+  const std::int32_t* regionIdOfLabel, // by the object's labels, from 1 (at index 0)
+  vtkIdType boxBase,
+  const CornerWriter& corners,
+  BoxCells& cells,
+  vtkIdType cell)
+{
+  const vtkIdType first = cell;
+  double* xyz = cells.coordinates->GetPointer(0) + 3 * corners.corners * cell;
+  vtkIdType* boxIds = cells.boxIds->GetPointer(0);
+  int* regionIds = cells.regionIds->GetPointer(0);
+  const std::uint32_t* label = o.components.boxLabel.data();
+  const std::vector<vbr::Box>& boxes = o.cudb.boxes;
+  for (std::size_t b = 0; b < boxes.size(); ++b)
+  {
+    const std::int32_t id = regionIdOfLabel[label[b] - 1];
+    if (id == 0)
+      continue;
+    corners.write(boxes[b], o.offset, xyz);
+    xyz += 3 * corners.corners;
+    boxIds[cell] = boxBase + static_cast<vtkIdType>(b);
+    regionIds[cell] = id;
+    ++cell;
+  }
+  fillLabels(cells.labels, first, cell, o.label);
+  return cell;
+}
+
 /// Port 1: the boxes of the kept regions, one voxel (or hexahedron, pixel, quad) cell each.
 void writeBoxes(const std::vector<ObjectBoxes>& objects,
   const std::vector<std::int32_t>& regionIds,
@@ -730,98 +1044,102 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   int labelType,
   vtkUnstructuredGrid* output)
 {
-  BoxCells cells(boxCellLayout(grid, axes), countKeptBoxes(objects, regionIds), labelType);
+  const BoxCellLayout layout = boxCellLayout(grid, axes);
+  BoxCells cells(layout, countKeptBoxes(objects, regionIds), labelType);
+  const CornerWriter corners(grid, layout, axes);
   vtkIdType cell = 0, boxBase = 0;
   for (const ObjectBoxes& o : objects)
   {
-    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
-    {
-      const std::int32_t id = regionIdOfBox(o, b, regionIds);
-      if (id == 0)
-        continue;
-      const vbr::Box& box = o.cudb.boxes[b];
-      Int3 lo = box.lo, hi = box.hi;
-      for (int d = 0; d < 3; ++d)
-      {
-        lo[d] += o.offset[d];
-        hi[d] += o.offset[d];
-      }
-      cells.set(cell++,
-        grid,
-        toImageAxes(lo, axes),
-        toImageAxes(hi, axes),
-        boxBase + static_cast<vtkIdType>(b),
-        id,
-        o.label);
-    }
+    const std::int32_t* regionIdOfLabel = regionIds.data() + o.firstRegion;
+    cell = writeObjectBoxes(o, regionIdOfLabel, boxBase, corners, cells, cell);
     boxBase += static_cast<vtkIdType>(o.cudb.boxes.size());
   }
+#ifdef __SSE2__
+  _mm_sfence(); // the streamed coordinates before anything reads them
+#endif
   cells.moveTo(output);
 }
 
-/// A region's voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
-void indexBoundsOf(const RegionStats& r,
-  const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  int index[6])
+/// A region's row of the table from its statistics (processing axes) in the image's index and
+/// world coordinates, with VoxelGrid's arithmetic in its order (the same values). Each image
+/// axis reads its processing axis from the region's record (`source`): permuted copies of the
+/// bounds on the stack stalled every row of a million-region table on their reloads.
+struct RowTransform
 {
-  const Int3 lo = toImageAxes(r.lo, axes), hi = toImageAxes(r.hi, axes);
-  for (int d = 0; d < 3; ++d)
-  {
-    index[2 * d] = grid.extentMin[d] + lo[d];
-    index[2 * d + 1] = grid.extentMin[d] + (hi[d] - 1); // no overflow at INT_MAX
-  }
-}
+  const vbr::vtk::VoxelGrid& grid;
+  std::array<int, 3> source{}; ///< the processing axis of each image axis
+  bool planar = false;
 
-/// A region's world bounds: those of the corners of its index box. Each world coordinate is
-/// origin + t0 + t1 + t2 (vertexToWorld's terms, one per image axis), and a rounded sum only
-/// grows with its terms: the extreme corner takes each term at its own extreme, so two terms
-/// per axis give the bounds of the eight corners exactly (a table of 100,000 regions spent
-/// more on eight full transforms per row than on labelling).
-void worldBoundsOf(const RegionStats& r,
-  const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  double world[6])
-{
-  Int3 lo = r.lo, hi = r.hi;
-  if (grid.flatAxis >= 0)
-    lo[2] = hi[2] = 0; // worldOf's plane of a 2D image
-  const Int3 imageLo = toImageAxes(lo, axes), imageHi = toImageAxes(hi, axes);
-  double local[2][3]; // as VoxelGrid::vertexToWorld computes them
-  for (int d = 0; d < 3; ++d)
+  RowTransform(const vbr::vtk::VoxelGrid& voxelGrid, const std::array<int, 3>& axes)
+    : grid(voxelGrid)
+    , planar(voxelGrid.flatAxis >= 0)
   {
-    local[0][d] = (grid.extentMin[d] + grid.vertexShift[d] + double(imageLo[d])) * grid.spacing[d];
-    local[1][d] = (grid.extentMin[d] + grid.vertexShift[d] + double(imageHi[d])) * grid.spacing[d];
+    for (int k = 0; k < 3; ++k)
+      this->source[axes[k]] = k;
   }
-  for (int w = 0; w < 3; ++w)
+
+  /// The voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
+  void indexBounds(const RegionStats& r, std::int32_t index[6]) const
   {
-    double least = grid.origin[w], most = grid.origin[w];
     for (int d = 0; d < 3; ++d)
     {
-      const double a = grid.direction[3 * w + d] * local[0][d];
-      const double b = grid.direction[3 * w + d] * local[1][d];
-      least += std::min(a, b);
-      most += std::max(a, b);
+      const int k = this->source[d];
+      index[2 * d] = this->grid.extentMin[d] + r.lo[k];
+      index[2 * d + 1] = this->grid.extentMin[d] + (r.hi[k] - 1); // no overflow at INT_MAX
     }
-    world[2 * w] = least;
-    world[2 * w + 1] = most;
   }
-}
 
-/// A region's centroid in world coordinates (the mean of its voxel centres).
-void centroidOf(const RegionStats& r,
-  const vbr::vtk::VoxelGrid& grid,
-  const std::array<int, 3>& axes,
-  double world[3])
-{
-  std::array<double, 3> centre; // processing axes, continuous vertex coordinates
-  for (int d = 0; d < 3; ++d)
-    centre[d] = 0.5 * static_cast<double>(r.doubledCentre[d]) / static_cast<double>(r.voxels);
-  if (grid.flatAxis >= 0)
-    centre[2] = 0.0;
-  const std::array<double, 3> image = toImageAxes(centre, axes);
-  grid.positionToWorld(image.data(), world);
-}
+  /// The world bounds: those of the corners of the index box. Each world coordinate is
+  /// origin + t0 + t1 + t2 (vertexToWorld's terms, one per image axis), and a rounded sum
+  /// only grows with its terms: the extreme corner takes each term at its own extreme, so two
+  /// terms per axis give the bounds of the eight corners exactly (a table of 100,000 regions
+  /// spent more on eight full transforms per row than on labelling). A 2D image's corners lie
+  /// in its plane (worldOf's: processing axis 2 at 0).
+  void worldBounds(const RegionStats& r, double world[6]) const
+  {
+    double local[2][3]; // as VoxelGrid::vertexToWorld computes them
+    for (int d = 0; d < 3; ++d)
+    {
+      const int k = this->source[d];
+      const bool flat = this->planar && k == 2;
+      const double base = this->grid.extentMin[d] + this->grid.vertexShift[d];
+      local[0][d] = (base + double(flat ? 0 : r.lo[k])) * this->grid.spacing[d];
+      local[1][d] = (base + double(flat ? 0 : r.hi[k])) * this->grid.spacing[d];
+    }
+    for (int w = 0; w < 3; ++w)
+    {
+      double least = this->grid.origin[w], most = this->grid.origin[w];
+      for (int d = 0; d < 3; ++d)
+      {
+        const double a = this->grid.direction[3 * w + d] * local[0][d];
+        const double b = this->grid.direction[3 * w + d] * local[1][d];
+        least += std::min(a, b);
+        most += std::max(a, b);
+      }
+      world[2 * w] = least;
+      world[2 * w + 1] = most;
+    }
+  }
+
+  /// The centroid in world coordinates (the mean of the voxel centres): positionToWorld's
+  /// arithmetic inlined (the call was a sixth of the table of a million regions).
+  void centroid(const RegionStats& r, double world[3]) const
+  {
+    double local[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      const int k = this->source[d];
+      const double centre = this->planar && k == 2
+        ? 0.0
+        : 0.5 * static_cast<double>(r.doubledCentre[k]) / static_cast<double>(r.voxels);
+      local[d] =
+        (this->grid.extentMin[d] + this->grid.vertexShift[d] + centre) * this->grid.spacing[d];
+    }
+    for (int w = 0; w < 3; ++w)
+      world[w] = this->grid.origin[w] + this->grid.direction[3 * w] * local[0] +
+        this->grid.direction[3 * w + 1] * local[1] + this->grid.direction[3 * w + 2] * local[2];
+  }
+};
 
 /// The columns of port 2, sized for the kept regions, each row written once from its region's
 /// statistics through raw pointers (a table of tens of thousands of regions, as noise gives,
@@ -838,7 +1156,7 @@ struct RegionColumns
   std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
 
   RegionColumns(int labelType, vtkIdType count)
-    : labels(vbr::vtk::newLabelArray(labelType, count))
+    : labels(vbr::vtk::newLabelArray(labelType, 0))
   {
     static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
     static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
@@ -851,8 +1169,8 @@ struct RegionColumns
     this->centroids->SetComponentName(1, "Y");
     this->centroids->SetComponentName(2, "Z");
     this->boxes->SetName("NumberOfBoxes");
-    std::vector<vtkAbstractArray*> columns{
-      this->ids, this->voxels, this->volumes, this->centroids, this->boxes
+    std::vector<vtkDataArray*> columns{
+      this->ids, this->labels, this->voxels, this->volumes, this->centroids, this->boxes
     };
     for (int k = 0; k < 6; ++k)
     {
@@ -861,11 +1179,11 @@ struct RegionColumns
       columns.push_back(this->indexBounds[k]);
       columns.push_back(this->worldBounds[k]);
     }
-    vbr::vtk::resizeOrThrow(columns, count);
+    allocateTuples(columns, count, 0.0);
   }
 
   /// Rows [0, regionOfRow.size()) (ids 1, 2, ...) from the statistics of their regions.
-  void write(const std::vector<Region>& regions,
+  void write(const Regions& regions,
     const std::vector<std::size_t>& regionOfRow,
     const vbr::vtk::VoxelGrid& grid,
     const std::array<int, 3>& axes,
@@ -885,6 +1203,7 @@ struct RegionColumns
     // 642,115 rows waited for a cache miss each, so the region of a row further on is
     // fetched ahead.
     constexpr std::size_t Ahead = 16;
+    const RowTransform transform(grid, axes);
     for (std::size_t row = 0; row < regionOfRow.size(); ++row)
     {
       if (row + Ahead < regionOfRow.size())
@@ -894,16 +1213,16 @@ struct RegionColumns
       voxels[row] = r.voxels;
       boxes[row] = r.boxes;
       volumes[row] = static_cast<double>(r.voxels) * voxelMeasure;
-      int indexBounds[6];
-      indexBoundsOf(r, grid, axes, indexBounds);
+      std::int32_t indexBounds[6];
+      transform.indexBounds(r, indexBounds);
       double worldBounds[6];
-      worldBoundsOf(r, grid, axes, worldBounds);
+      transform.worldBounds(r, worldBounds);
       for (int k = 0; k < 6; ++k)
       {
         index[k][row] = indexBounds[k];
         world[k][row] = worldBounds[k];
       }
-      centroidOf(r, grid, axes, centroids + 3 * row);
+      transform.centroid(r, centroids + 3 * row);
     }
   }
 
@@ -924,23 +1243,17 @@ struct RegionColumns
 
 /// Port 2: one row per kept region, in RegionId order, from the regions' statistics.
 void writeRegionTable(const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions,
+  const Regions& regions,
   const std::vector<std::int32_t>& regionIds,
-  std::int32_t kept,
+  const std::vector<std::size_t>& regionOfRow,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
   vtkTable* table)
 {
-  RegionColumns columns(labelType, kept);
-  std::vector<std::size_t> regionOfRow(static_cast<std::size_t>(kept));
-  for (std::size_t r = 0; r < regionIds.size(); ++r)
-    if (regionIds[r] != 0)
-      regionOfRow[static_cast<std::size_t>(regionIds[r] - 1)] = r;
+  RegionColumns columns(labelType, static_cast<vtkIdType>(regionOfRow.size()));
   for (const ObjectBoxes& o : objects)
-    for (std::uint32_t c = 0; c < o.componentCount(); ++c)
-      if (const std::int32_t id = regionIds[o.firstRegion + c])
-        vbr::vtk::setLabel(columns.labels, id - 1, o.label);
+    scatterLabel(columns.labels, regionIds.data() + o.firstRegion, o.componentCount(), o.label);
   columns.write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
   columns.addTo(table);
 }
@@ -1223,12 +1536,12 @@ vtkSmartPointer<vtkIntArray> markRegionsOfSeeds(vtkCUDBConnectivity* self,
   vtkDataSet* seeds,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
-  std::vector<Region>& regions)
+  Regions& regions)
 {
   vtkLogScopeF(TRACE, "regions of the seeds");
   vtkSmartPointer<vtkIntArray> ids =
     paintRegions(objects, nullptr, in.grid, in.axes, vbr::vtk::makeExecution(self, 0.7, 0.8));
-  if (ids && markSeeds(seeds, in.grid, ids->GetPointer(0), regions) == 0 && !regions.empty())
+  if (ids && markSeeds(seeds, in.grid, ids->GetPointer(0), regions) == 0 && regions.size() > 0)
   {
     vtkWarningWithObjectMacro(self,
       << "None of the " << seeds->GetNumberOfPoints()
@@ -1313,14 +1626,15 @@ vtkSmartPointer<vtkIntArray> paintPieceFromBoxes(vbr::vtk::Piece& piece,
 /// PASS 2 of the filter: the regions measured (`regions`, with their table's statistics),
 /// those with a seed marked (`painted`, when given, keeps the image of region numbers the
 /// seeds were read from), filtered and numbered: `regionIds` has the RegionId of every region
-/// (0 when removed). Returns how many are kept.
+/// (0 when removed), `regionOfRow` the region of each RegionId. Returns how many are kept.
 std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   vtkDataSet* seeds,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
   std::uint32_t regionCount,
-  std::vector<Region>& regions,
+  Regions& regions,
   std::vector<std::int32_t>& regionIds,
+  std::vector<std::size_t>& regionOfRow,
   Summary& summary,
   vtkSmartPointer<vtkIntArray>* painted)
 {
@@ -1336,7 +1650,8 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
     seeds != nullptr,
     self->GetLargestRegions(),
     self->GetRegionOrdering(),
-    regionIds);
+    regionIds,
+    regionOfRow);
   summary.components = static_cast<vtkIdType>(regionCount);
   summary.regions = kept;
   return kept;
@@ -1346,16 +1661,17 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
 void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
-  const std::vector<Region>& regions,
+  const Regions& regions,
   const std::vector<std::int32_t>& regionIds,
-  std::int32_t kept,
+  const std::vector<std::size_t>& regionOfRow,
   const Summary& summary,
   const Ports& ports)
 {
   vtkLogScopeF(TRACE, "boxes and region table");
   if (self->GetGenerateBoxes())
     writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(objects, regions, regionIds, kept, in.grid, in.axes, in.labelType, ports.table);
+  writeRegionTable(
+    objects, regions, regionIds, regionOfRow, in.grid, in.axes, in.labelType, ports.table);
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
@@ -1378,11 +1694,12 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   vtkSmartPointer<vtkDataSet> seeds =
     ports.seeds ? vbr::vtk::gatherPoints(piece, ports.seeds) : nullptr;
   const bool first = piece.rank == 0, aborted = first && self->GetAbortExecute();
-  std::vector<Region> regions;
+  Regions regions;
   std::vector<std::int32_t> regionIds;
-  const std::int32_t kept = first && !aborted
-    ? numberAllRegions(self, seeds, in, objects, regionCount, regions, regionIds, summary, nullptr)
-    : 0;
+  std::vector<std::size_t> regionOfRow;
+  if (first && !aborted)
+    numberAllRegions(
+      self, seeds, in, objects, regionCount, regions, regionIds, regionOfRow, summary, nullptr);
   vtkSmartPointer<vtkIntArray> ids = paintPieceFromBoxes(piece,
     piece.local,
     first ? keptBoxValues(objects, regionIds, in.axes, aborted) : std::vector<long long>());
@@ -1395,7 +1712,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   addRegionIds(ports.output, ids, piece.local.cellData);
   if (!first)
     return true;
-  writeBoxesAndTable(self, in, objects, regions, regionIds, kept, summary, ports);
+  writeBoxesAndTable(self, in, objects, regions, regionIds, regionOfRow, summary, ports);
   return true;
 }
 
@@ -1557,11 +1874,12 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   }
 
   // PASS 2: the regions, filtered (size, seeds, largest) and numbered.
-  std::vector<Region> regions;
+  Regions regions;
   std::vector<std::int32_t> regionIds;
+  std::vector<std::size_t> regionOfRow;
   vtkSmartPointer<vtkIntArray> ids; // with seeds, painted now to find their regions
-  const std::int32_t kept =
-    numberAllRegions(this, seeds, in, objects, regionCount, regions, regionIds, summary, &ids);
+  numberAllRegions(
+    this, seeds, in, objects, regionCount, regions, regionIds, regionOfRow, summary, &ids);
 
   // PASS 3: the outputs: RegionId image, boxes, region table.
   {
@@ -1579,7 +1897,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);
-  writeBoxesAndTable(this, in, objects, regions, regionIds, kept, summary, ports);
+  writeBoxesAndTable(this, in, objects, regions, regionIds, regionOfRow, summary, ports);
   return 1;
 }
 

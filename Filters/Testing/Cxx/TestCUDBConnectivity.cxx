@@ -531,6 +531,29 @@ void checkHostileVolumes()
   checkBoxesAndTable(f, noise, l, got, "noise, 5 largest regions", false);
 }
 
+/// The size ranking's three ways, each against the stable sort of the brute force: regions
+/// already largest first (the checkerboard above: none), sizes small beside their count (the
+/// noise above: a counting sort), and one region far larger than the others are many (here: a
+/// slab of 81,920 voxels before sparse noise, whose small regions tie often: a radix sort).
+void checkSizeRankingOfALargeRegion()
+{
+  Volume slab = randomVolume({ 64, 64, 40 }, 0.25, 1, 79);
+  for (std::size_t i = 0; i < std::size_t(64) * 64 * 22; ++i)
+    slab.values[i] = i < std::size_t(64) * 64 * 20 ? 1 : 0; // the slab, then two empty planes
+  for (bool vertex : { false, true })
+    for (bool boxes : { false, true })
+      checkRun(slab,
+        Layout(),
+        Rule(),
+        vertex,
+        vtkCUDBConnectivity::ZYX,
+        vtkCUDBConnectivity::SIZE_RANK,
+        "slab and sparse noise",
+        true,
+        true,
+        boxes);
+}
+
 void checkTwoDimensional()
 {
   const Int3 shapes[] = { { 40, 30, 1 }, { 25, 1, 35 }, { 1, 33, 27 } };
@@ -958,6 +981,7 @@ int TestCUDBConnectivity(int, char*[])
   checkTwoDimensional();
   checkTwoDimensionalRuns();
   checkHostileVolumes();
+  checkSizeRankingOfALargeRegion();
   checkRegionFilters();
   checkManySeeds();
   checkErrorsAndDegenerateInputs();
