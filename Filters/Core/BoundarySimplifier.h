@@ -3,8 +3,8 @@
 // of our own with a lazily updated queue; the placement moved 0.07 voxel outwards along the
 // star's normal, since the input runs inside the surfels) that keep the surface within a
 // distance d of the voxel boundary (the surfels) on both sides, and free of
-// self-intersections. The collapses run until no edge may collapse, then up to three sweeps
-// over the edges left try more points; a collapse is accepted with its vertex at the
+// self-intersections. The collapses run until no edge may collapse, then one more sweep over
+// the edges left tries more points; a collapse is accepted with its vertex at the
 // placement, or else at Lindstrom-Turk's point pushed out less, at one of the edge's ends or
 // at its midpoint (the first point for which all of these hold):
 //  (a) surface to surfels: every new triangle (the star of the collapsed vertex) lies within d
@@ -36,10 +36,10 @@
 //      degenerate nor turn their normal by more than 90 degrees.
 // The topology (closed, manifold, the genus of each component) is kept by the link condition
 // (CGAL::Euler::does_satisfy_link_condition); CGAL's test against folds between neighbouring
-// triangles is made at the placement. The result is checked at the end with Polygon_mesh_processing's
-// does_self_intersect, is_closed and is_valid_polygon_mesh; if a check fails (or the input
-// is not a closed triangle mesh without degenerate triangles), the input is returned
-// unchanged with `simplified` false and its own distances (those of the returned surface).
+// triangles is made at the placement. The result is checked at the end with
+// Polygon_mesh_processing's does_self_intersect, is_closed and is_valid_polygon_mesh; if a check
+// fails (or the input is not a closed triangle mesh without degenerate triangles), the input is
+// returned unchanged with `simplified` false and its own distances (those of the returned surface).
 //
 // Distances are in voxel units (voxel i spans [i, i + 1]); d is at most 1.99 (the distance
 // search of FaceOctreeBoundary.h's distanceToNearestFace reaches two voxels).
