@@ -47,9 +47,11 @@
 // Cost: serial, about 25 microseconds per collapse (the 128^3 ball: 82,220 -> 176 triangles,
 // 41,000 collapses; only the kept vertex's edges are re-costed at once, where CGAL's loop
 // re-costs the 20 to 40 edges around each collapse), most of it now in the checks above;
-// about as fast as flying edges, windowed-sinc smoothing and quadric decimation, which keep
-// about twice the triangles at that distance (README). vtkFaceOctreeBoundaryFilter leaves it
-// off by default (it takes 15-20x the unsimplified filter's time).
+// about the time of flying edges, windowed-sinc smoothing and quadric decimation, which keep
+// about twice the triangles at that distance (README: faster on the 128^3 ball and CSG
+// solid, 1.35x its time on the torus, in one benchmark round under load).
+// vtkFaceOctreeBoundaryFilter leaves it off by default (it takes about 20x the unsimplified
+// filter's time).
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
