@@ -6,16 +6,16 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_simplification/Edge_collapse_visitor_base.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_cost.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_profile.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/internal/LindstromTurk_params.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/internal/Lindstrom_Turk_core.h>
-#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
 #include <limits>
 #include <mutex>
+#include <queue>
 
 namespace vbr
 {
@@ -997,8 +997,11 @@ double Simplifier::surfelDistance() const
 /// How far the collapsed vertex is moved outwards from Lindstrom-Turk's placement (voxels):
 /// the input surface runs about half a voxel inside the surfels, so the surfels' side of the
 /// bound binds first; a small push outwards evens the two sides (0.05 to 0.1 halved the
-/// triangles of the 64^3 ball and torus, 0.2 gave back the count without it).
-constexpr double OutwardShift = 0.1;
+/// triangles of the 64^3 ball and torus, 0.2 gave back the count without it). 0.07: of 0.05,
+/// 0.06, 0.07, 0.08, 0.1 and 0.13, the fewest triangles on the 128^3 ball, torus and CSG
+/// solid together with the lazy queue below (184, 222, 190 against 202, 234, 220 at 0.1; the
+/// counts vary by several percent from one push to the next, as the greedy order shifts).
+constexpr double OutwardShift = 0.07;
 
 /// The unit area-weighted normal of the star of a collapsing edge (outwards: the surface is
 /// oriented outwards), or zero.
@@ -1027,105 +1030,335 @@ Point3 moved(const Point3& p, const Vec3& n, double by)
   return Point3(p.x() + by * n[0], p.y() + by * n[1], p.z() + by * n[2]);
 }
 
-/// CGAL's filter policy: a collapse CGAL found valid goes ahead only if the Simplifier accepts
-/// it with the vertex at the placement, or else at Lindstrom-Turk's point pushed out less (0,
-/// then half of OutwardShift), at one of the edge's ends or at its midpoint (the first
-/// accepted; the visitor moves the vertex there). The other points let collapses through
-/// where the placement breaks the bound, mostly late, on large stars: the ends and midpoint
-/// gave 11 to 18 % fewer triangles on the 128^3 ball and CSG solid and 5 % on the torus, the
-/// smaller pushes 1 to 8 % fewer again at 96^3 and on the 128^3 ball and torus (the 128^3 CSG
-/// 3 % more: the greedy order shifts). CGAL's own geometric test (no
-/// near fold between neighbouring faces) was made at the placement only; the other points pass
-/// the Simplifier's checks alone (no degenerate or turned-over face, no intersection).
-struct AcceptFilter
+using VertexPointMap = Mesh::Property_map<VertexId, Point3>;
+using Profile = SMS::Edge_profile<Mesh, VertexPointMap, Kernel>;
+using EdgeId = Mesh::Edge_index;
+using HalfedgeId = Mesh::Halfedge_index;
+
+/// The profile of an edge (CGAL's: its star, link and triangles), from its first halfedge.
+Profile profileOf(Mesh& mesh, EdgeId e)
 {
-  Simplifier* state;
+  static const Kernel traits;
+  return Profile(mesh.halfedge(e),
+    mesh,
+    traits,
+    get(CGAL::vertex_index, mesh),
+    mesh.points(),
+    get(CGAL::halfedge_index, mesh),
+    false);
+}
 
-  template<typename Profile>
-  boost::optional<typename Profile::Point> operator()(const Profile& profile,
-    boost::optional<typename Profile::Point> placed) const
-  {
-    if (!placed || this->state->stopped())
-      return boost::none;
-    if (this->state->accept(profile.v0(), profile.v1(), *placed))
-      return placed;
-    const Point3 &a = profile.p0(), &b = profile.p1();
-    const Point3 middle(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (a.z() + b.z()));
-    const Vec3 n = starNormal(profile);
-    const Point3 unpushed = moved(*placed, n, -OutwardShift);
-    const Point3 halfPushed = moved(*placed, n, -0.5 * OutwardShift);
-    for (const Point3& p : { unpushed, halfPushed, a, b, middle })
-      if (this->state->accept(profile.v0(), profile.v1(), p))
-        return p;
-    return boost::none;
-  }
-};
-
-struct ApplyVisitor : SMS::Edge_collapse_visitor_base<Mesh>
+/// Lindstrom-Turk's placement moved OutwardShift along the area-weighted normal of the
+/// collapsed star (outwards: the surface is oriented outwards), and its cost there; none when
+/// Lindstrom-Turk finds no placement.
+struct Costed
 {
-  Simplifier* state;
-  std::size_t* collapses;
-  bool* unchecked; ///< a collapse that was not the one accepted last
-
-  void OnCollapsed(const Profile& profile, const VertexId& kept)
-  {
-    if (!this->state->collapsed(profile.v0(), profile.v1(), kept))
-      *this->unchecked = true;
-    ++*this->collapses;
-  }
-  void OnSelected(const Profile&, const boost::optional<FT>&, size_type initial, size_type current)
-  {
-    if (initial > 0)
-      this->state->at(1.0 - double(current) / double(initial));
-  }
-};
-
-/// The last placement's Lindstrom-Turk cost. CGAL asks the placement and then the cost of
-/// every edge whose star changed; both need the star's triangle data, which the cost would
-/// otherwise extract again (a tenth of the simplification's time).
-struct CostCache
-{
-  VertexId v0, v1;
-  Point3 at;
+  boost::optional<Point3> placed;
   boost::optional<double> cost;
 };
 
-/// Lindstrom-Turk's placement moved OutwardShift along the area-weighted normal of the
-/// collapsed star (outwards: the surface is oriented outwards); its cost there is kept in the
-/// cache.
-struct OutwardPlacement
+Costed lindstromTurk(const Profile& profile)
 {
-  CostCache* cache;
+  const SMS::internal::LindstromTurk_params params; // the core keeps a reference to it
+  SMS::internal::LindstromTurkCore<Mesh, Profile> core(params, profile);
+  Costed c;
+  c.placed = core.compute_placement();
+  if (!c.placed)
+    return c;
+  c.placed = moved(*c.placed, starNormal(profile), OutwardShift);
+  c.cost = core.compute_cost(c.placed);
+  return c;
+}
 
-  template<typename Profile>
-  boost::optional<typename Profile::Point> operator()(const Profile& profile) const
+/// The vertex that makes a triangle with link edge e outside the collapsing star (CGAL's
+/// find_exterior_link_triangle_3rd_vertex), or a null vertex.
+VertexId outsideThird(const Mesh& m, HalfedgeId e, VertexId v0, VertexId v1)
+{
+  if (e == HalfedgeId())
+    return VertexId();
+  for (HalfedgeId h : { e, m.opposite(e) })
   {
-    const SMS::internal::LindstromTurk_params params; // the core keeps a reference to it
-    SMS::internal::LindstromTurkCore<Mesh, Profile> core(params, profile);
-    boost::optional<typename Profile::Point> p = core.compute_placement();
-    if (!p)
+    const VertexId a = m.target(m.next(h)), b = m.source(m.prev(h));
+    if (a == b && a != v0 && a != v1)
+      return a;
+  }
+  return VertexId();
+}
+
+/// CGAL's test of two triangles p0 p1 p2 and p0 p2 p3 sharing the edge p0 p2: areas within a
+/// ratio of 1e8, and no fold (their normals no more than 179 degrees apart).
+bool sharedTrianglesValid(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3)
+{
+  const Vec3 a = vec(p0), e01 = sub(vec(p1), a), e02 = sub(vec(p2), a), e03 = sub(vec(p3), a);
+  const Vec3 n012 = cross(e01, e02), n023 = cross(e02, e03);
+  const double l012 = dot(n012, n012), l023 = dot(n023, n023);
+  if (std::max(l012, l023) >= 1e8 * std::min(l012, l023))
+    return false;
+  const double l0123 = dot(n012, n023);
+  static const double maxCos2 = std::pow(std::cos(CGAL_PI / 180.0), 2);
+  return l0123 > 0 || l0123 * l0123 <= maxCos2 * (l012 * l023);
+}
+
+/// CGAL's geometric test of a collapse (Edge_collapse's is_collapse_geometrically_valid): with
+/// the vertex at k0, no two adjacent triangles of the new star, nor a new triangle and its
+/// neighbour outside the star, fold into each other.
+bool geometricallyValid(const Mesh& m, const Profile& profile, const Point3& k0)
+{
+  const auto& link = profile.link();
+  const auto connection = [&m](VertexId a, VertexId b)
+  {
+    for (HalfedgeId h : CGAL::halfedges_around_source(a, m))
+      if (m.target(h) == b)
+        return h;
+    return HalfedgeId();
+  };
+  const std::size_t n = link.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const VertexId k1 = link[(i + n - 1) % n], k2 = link[i], k3 = link[(i + 1) % n];
+    const HalfedgeId e12 = connection(k1, k2);
+    const HalfedgeId e23 = k3 != k1 ? connection(k2, k3) : HalfedgeId();
+    if (e12 != HalfedgeId() && e23 != HalfedgeId() &&
+      !sharedTrianglesValid(k0, m.point(k1), m.point(k2), m.point(k3)))
+      return false;
+    const VertexId k4 = outsideThird(m, e12, profile.v0(), profile.v1());
+    if (k4 != VertexId() && !sharedTrianglesValid(m.point(k1), m.point(k4), m.point(k2), k0))
+      return false;
+    const VertexId k5 = outsideThird(m, e23, profile.v0(), profile.v1());
+    if (k5 != VertexId() && !sharedTrianglesValid(m.point(k2), m.point(k5), m.point(k3), k0))
+      return false;
+  }
+  return true;
+}
+
+/// Where the collapse of the profile's edge goes, if anywhere: at the placement if the
+/// Simplifier accepts it there (and CGAL's geometric test passes), or else at
+/// Lindstrom-Turk's point pushed out less (0, then half of OutwardShift), at one of the edge's
+/// ends or at its midpoint (the first accepted). The other points let collapses through where
+/// the placement breaks the bound, mostly late, on large stars: the ends and midpoint gave 11
+/// to 18 % fewer triangles on the 128^3 ball and CSG solid and 5 % on the torus, the smaller
+/// pushes 1 to 8 % fewer again. `wider` (the last sweep, on the few edges left) tries more
+/// points still: pushed further out or in, a quarter of the way along the edge, the middle
+/// and the ends pushed out. The geometric test is made at the placement only; the other
+/// points pass the Simplifier's checks alone (no degenerate or turned-over face, no
+/// intersection).
+boost::optional<Point3> acceptedPoint(Simplifier& state,
+  const Mesh& mesh,
+  const Profile& profile,
+  const Point3& placed,
+  bool wider)
+{
+  if (!geometricallyValid(mesh, profile, placed))
+    return boost::none;
+  if (state.accept(profile.v0(), profile.v1(), placed))
+    return placed;
+  const Point3 &a = profile.p0(), &b = profile.p1();
+  const auto along = [&a, &b](double t)
+  {
+    return Point3(
+      (1 - t) * a.x() + t * b.x(), (1 - t) * a.y() + t * b.y(), (1 - t) * a.z() + t * b.z());
+  };
+  const Vec3 n = starNormal(profile);
+  for (const Point3& p :
+    { moved(placed, n, -OutwardShift), moved(placed, n, -0.5 * OutwardShift), a, b, along(0.5) })
+    if (state.accept(profile.v0(), profile.v1(), p))
       return p;
-    p = moved(*p, starNormal(profile), OutwardShift);
-    *this->cache = { profile.v0(), profile.v1(), *p, core.compute_cost(p) };
-    return p;
-  }
-};
+  if (!wider)
+    return boost::none;
+  for (const Point3& p : { moved(placed, n, 0.5 * OutwardShift),
+         moved(placed, n, OutwardShift),
+         moved(placed, n, 2 * OutwardShift),
+         moved(placed, n, -2 * OutwardShift),
+         along(0.25),
+         along(0.75),
+         moved(along(0.5), n, OutwardShift),
+         moved(a, n, OutwardShift),
+         moved(b, n, OutwardShift) })
+    if (state.accept(profile.v0(), profile.v1(), p))
+      return p;
+  return boost::none;
+}
 
-/// Lindstrom-Turk's cost, from the cache when it is the last placement's.
-struct CachedCost
+/// The queue of edges by cost, lazily updated: an edge's newest entry is its only valid one
+/// (older entries are skipped when popped), and an entry's cost may be stale (the caller
+/// measures the edge again when it pops it).
+class EdgeQueue
 {
-  CostCache* cache;
-
-  template<typename Profile>
-  boost::optional<typename Profile::FT> operator()(const Profile& profile,
-    const boost::optional<typename Profile::Point>& placed) const
+public:
+  explicit EdgeQueue(std::size_t edges)
+    : Version(edges, 0)
+    , Queued(edges, 0)
+    , Cost(edges, std::numeric_limits<double>::quiet_NaN())
   {
-    const CostCache& c = *this->cache;
-    if (placed && c.v0 == profile.v0() && c.v1 == profile.v1() && c.at == *placed)
-      return c.cost;
-    return SMS::LindstromTurk_cost<Mesh>()(profile, placed);
   }
+
+  void push(EdgeId e, double cost)
+  {
+    const std::size_t i = std::size_t(e);
+    this->Heap.push({ cost, std::uint32_t(i), ++this->Version[i] });
+    this->Queued[i] = 1;
+    this->Cost[i] = cost;
+  }
+  bool queued(EdgeId e) const { return this->Queued[std::size_t(e)] != 0; }
+  /// The cost last pushed for e (NaN if none).
+  double lastCost(EdgeId e) const { return this->Cost[std::size_t(e)]; }
+  /// Takes the cheapest valid entry off the queue; false when empty.
+  bool pop(EdgeId& e, double& cost)
+  {
+    if (!this->dropStale())
+      return false;
+    const Entry top = this->Heap.top();
+    this->Heap.pop();
+    this->Queued[top.edge] = 0;
+    e = EdgeId(top.edge);
+    cost = top.cost;
+    return true;
+  }
+  /// The cost of the cheapest valid entry, or infinity.
+  double cheapest()
+  {
+    return this->dropStale() ? this->Heap.top().cost : std::numeric_limits<double>::infinity();
+  }
+
+private:
+  struct Entry
+  {
+    double cost;
+    std::uint32_t edge, version;
+    bool operator<(const Entry& o) const // the cheapest on top, then the smallest edge
+    {
+      return this->cost > o.cost || (this->cost == o.cost && this->edge > o.edge);
+    }
+  };
+
+  bool dropStale()
+  {
+    while (!this->Heap.empty() && this->Heap.top().version != this->Version[this->Heap.top().edge])
+      this->Heap.pop();
+    return !this->Heap.empty();
+  }
+
+  std::priority_queue<Entry> Heap;
+  std::vector<std::uint32_t> Version;
+  std::vector<char> Queued;
+  std::vector<double> Cost;
 };
+
+/// The greedy edge collapse (CGAL's Surface_mesh_simplification loop, with lazy costs): the
+/// cheapest edge by Lindstrom-Turk's cost is taken off the queue, measured again (an edge whose
+/// star changed since it was queued and whose cost rose above the next one's goes back with
+/// its new cost), and collapsed if the link condition holds and the Simplifier accepts it.
+/// CGAL re-costs the 20 to 40 edges around each collapse at once (1.6 M placements for 41,000
+/// collapses on the 128^3 ball, most of its time); here only the edges of the kept vertex are,
+/// and the other edges of its neighbours only when they come to the top (those that had been
+/// refused are queued again, at their last cost: their star changed).
+class CollapseLoop
+{
+public:
+  CollapseLoop(Mesh& mesh, Simplifier& state)
+    : M(mesh)
+    , State(state)
+    , Queue(mesh.number_of_edges())
+    , InitialFaces(mesh.number_of_faces())
+  {
+    for (EdgeId e : mesh.edges())
+      this->measure(e);
+  }
+
+  /// Collapses until no edge may be; the number of collapses, or -1 if a collapse was not the
+  /// one the Simplifier accepted last (then nothing is proven).
+  std::ptrdiff_t run();
+  /// Sweeps once more over every edge left, with more points tried (acceptedPoint's
+  /// `wider`): the edges refused in the greedy loop stay refused unless their star changes.
+  /// Adds its collapses to `collapses` (or sets -1 as run does). A second sweep collapsed
+  /// nothing on the 128^3 ball, torus and CSG solid (the first took 8, 14 and 12 triangles
+  /// off, for 4-9 % of the loop's time).
+  void sweep(std::ptrdiff_t& collapses);
+
+private:
+  void measure(EdgeId e)
+  {
+    const Costed c = lindstromTurk(profileOf(this->M, e));
+    if (c.cost)
+      this->Queue.push(e, *c.cost);
+  }
+  void requeueAround(VertexId kept);
+
+  Mesh& M;
+  Simplifier& State;
+  EdgeQueue Queue;
+  std::size_t InitialFaces;
+  bool Wider = false;
+};
+
+std::ptrdiff_t CollapseLoop::run()
+{
+  std::ptrdiff_t collapses = 0;
+  EdgeId e;
+  double queuedCost = 0;
+  while (this->Queue.pop(e, queuedCost))
+  {
+    if (this->M.is_removed(e))
+      continue;
+    if (this->State.stopped())
+      break;
+    const Profile profile = profileOf(this->M, e);
+    const Costed c = lindstromTurk(profile);
+    if (!c.cost)
+      continue; // queued again when its star changes
+    if (*c.cost > queuedCost && *c.cost > this->Queue.cheapest())
+    {
+      this->Queue.push(e, *c.cost); // its cost rose: not the cheapest any more
+      continue;
+    }
+    if (!CGAL::Euler::does_satisfy_link_condition(e, this->M))
+      continue;
+    const boost::optional<Point3> at =
+      acceptedPoint(this->State, this->M, profile, *c.placed, this->Wider);
+    if (!at)
+      continue;
+    const VertexId v0 = profile.v0(), v1 = profile.v1();
+    const VertexId kept = CGAL::Euler::collapse_edge(e, this->M);
+    if (!this->State.collapsed(v0, v1, kept))
+      return -1;
+    ++collapses;
+    this->requeueAround(kept);
+    this->State.at(1.0 - double(this->M.number_of_faces()) / double(this->InitialFaces));
+  }
+  return collapses;
+}
+
+void CollapseLoop::sweep(std::ptrdiff_t& collapses)
+{
+  if (collapses < 0 || this->State.aborted())
+    return;
+  this->Wider = true;
+  for (EdgeId e : this->M.edges())
+    this->measure(e);
+  const std::ptrdiff_t more = this->run();
+  collapses = more < 0 ? more : collapses + more;
+}
+
+/// After a collapse: the edges of the kept vertex measured again, and the refused edges of its
+/// neighbours queued again at their last cost.
+void CollapseLoop::requeueAround(VertexId kept)
+{
+  for (HalfedgeId h : CGAL::halfedges_around_target(kept, this->M))
+  {
+    this->measure(this->M.edge(h));
+    for (HalfedgeId g : CGAL::halfedges_around_target(this->M.source(h), this->M))
+    {
+      const EdgeId f = this->M.edge(g);
+      if (this->M.source(g) == kept || this->Queue.queued(f))
+        continue;
+      const double last = this->Queue.lastCost(f);
+      if (std::isnan(last))
+        this->measure(f);
+      else
+        this->Queue.push(f, last);
+    }
+  }
+}
 
 Mesh meshOf(const TriangleSurface& s)
 {
@@ -1216,27 +1449,16 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
     out.aborted = true;
     return out;
   }
-  bool unchecked = false;
-  CostCache cache;
-  ApplyVisitor visitor;
-  visitor.state = &state;
-  visitor.collapses = &out.collapses;
-  visitor.unchecked = &unchecked;
-  SMS::edge_collapse(
-    mesh,
-    // after an abort, CGAL would otherwise still visit every edge
-    [&](const auto&, const auto&, const auto&, const auto&)
-    { return state.aborted() || unchecked; },
-    CGAL::parameters::filter(AcceptFilter{ &state })
-      .visitor(visitor)
-      .get_cost(CachedCost{ &cache })
-      .get_placement(OutwardPlacement{ &cache }));
+  CollapseLoop loop(mesh, state);
+  std::ptrdiff_t collapses = loop.run();
+  loop.sweep(collapses);
+  out.collapses = std::size_t(std::max<std::ptrdiff_t>(0, collapses));
   if (state.aborted() || exec.stopRequested())
   {
     out.aborted = true;
     return out;
   }
-  if (unchecked) // the samples no longer follow the mesh: nothing after it is proven
+  if (collapses < 0) // the samples no longer follow the mesh: nothing after it is proven
     return unsimplified(object, input, meshOf(input), options, exec);
   out.surfelDistance = state.surfelDistance();
   if (!CGAL::is_valid_polygon_mesh(mesh) || !CGAL::is_closed(mesh) ||
