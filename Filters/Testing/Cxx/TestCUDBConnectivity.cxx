@@ -554,6 +554,27 @@ void checkSizeRankingOfALargeRegion()
         boxes);
 }
 
+/// Outputs large enough (8 MiB or more) to be written into memory the filter does not clear:
+/// the 64^3 checkerboard's 131,072 one-voxel regions (face connectivity) with their boxes and
+/// table, every value checked (a debug build fills such memory with ones first).
+void checkLargeOutputs()
+{
+  Volume board = randomVolume({ 64, 64, 64 }, 0.5, 1, 7);
+  for (int z = 0; z < 64; ++z)
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x)
+        board.values[(std::size_t(z) * 64 + y) * 64 + x] = (x + y + z) % 2;
+  for (int ordering : { vtkCUDBConnectivity::SWEEP_ORDER, vtkCUDBConnectivity::SIZE_RANK })
+    checkRun(board,
+      Layout(),
+      Rule(),
+      false,
+      vtkCUDBConnectivity::ZYX,
+      ordering,
+      "checkerboard 64^3",
+      true);
+}
+
 void checkTwoDimensional()
 {
   const Int3 shapes[] = { { 40, 30, 1 }, { 25, 1, 35 }, { 1, 33, 27 } };
@@ -982,6 +1003,7 @@ int TestCUDBConnectivity(int, char*[])
   checkTwoDimensionalRuns();
   checkHostileVolumes();
   checkSizeRankingOfALargeRegion();
+  checkLargeOutputs();
   checkRegionFilters();
   checkManySeeds();
   checkErrorsAndDegenerateInputs();
