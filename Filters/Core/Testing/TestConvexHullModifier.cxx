@@ -1980,6 +1980,28 @@ TEST(ConvexHullModifier, RandomFlatLayersSeparate)
   EXPECT_EQ(withGenus, wellComposedCount);
 }
 
+/// The solid hull of n random lattice points: anywhere in coord's cube (`large`) or within
+/// `small` of a random point of it.
+vbr::CellList randomLatticeHull(std::mt19937& rng,
+  std::uniform_int_distribution<long>& coord,
+  std::uniform_int_distribution<long>& small,
+  int n,
+  bool large)
+{
+  const LatticePoint at{ coord(rng), coord(rng), coord(rng) };
+  for (;;)
+  {
+    std::vector<LatticePoint> points;
+    for (int k = 0; k < n; ++k)
+      points.push_back(large
+          ? LatticePoint{ coord(rng), coord(rng), coord(rng) }
+          : LatticePoint{ at[0] + small(rng), at[1] + small(rng), at[2] + small(rng) });
+    vbr::CellList hull = vbr::convexHull(points);
+    if (hull.dimension == 3)
+      return hull;
+  }
+}
+
 TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
 {
   // creaseLeavesTheLattice skips a join's Boolean where a crease edge of H crosses a face of the
@@ -1991,20 +2013,7 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
   std::mt19937 rng(17);
   std::uniform_int_distribution<long> coord(0, 8), small(0, 3);
   auto randomHull = [&](int n, bool large)
-  {
-    const LatticePoint at{ coord(rng), coord(rng), coord(rng) };
-    for (;;)
-    {
-      std::vector<LatticePoint> points;
-      for (int k = 0; k < n; ++k)
-        points.push_back(large
-            ? LatticePoint{ coord(rng), coord(rng), coord(rng) }
-            : LatticePoint{ at[0] + small(rng), at[1] + small(rng), at[2] + small(rng) });
-      vbr::CellList hull = vbr::convexHull(points);
-      if (hull.dimension == 3)
-        return hull;
-    }
-  };
+  { return randomLatticeHull(rng, coord, small, n, large); };
   const vbr::LatticeMesh pacMan5 = vbr::modifyConvexHull(pacMan(5)).surface;
   const Nef pacMan5Solid = nefOf(pacMan5);
   int predicted = 0, only = 0, pairs = 0;
@@ -2044,20 +2053,7 @@ TEST(ConvexHullModifier, BooleansLeavingTheLatticeAreFoundBeforehand)
   std::mt19937 rng(7);
   std::uniform_int_distribution<long> coord(0, 8), small(0, 2);
   auto randomHull = [&](int n, bool large)
-  {
-    const LatticePoint at{ coord(rng), coord(rng), coord(rng) };
-    for (;;)
-    {
-      std::vector<LatticePoint> points;
-      for (int k = 0; k < n; ++k)
-        points.push_back(large
-            ? LatticePoint{ coord(rng), coord(rng), coord(rng) }
-            : LatticePoint{ at[0] + small(rng), at[1] + small(rng), at[2] + small(rng) });
-      vbr::CellList hull = vbr::convexHull(points);
-      if (hull.dimension == 3)
-        return hull;
-    }
-  };
+  { return randomLatticeHull(rng, coord, small, n, large); };
   const vbr::LatticeMesh pacMan5 = vbr::modifyConvexHull(pacMan(5)).surface;
   const Nef pacMan5Solid = nefOf(pacMan5);
   int predicted = 0, refusedOtherwise = 0, offLatticeMissed = 0, kept = 0, pairs = 0;
