@@ -571,6 +571,32 @@ bool soupToMesh(const std::vector<std::array<Point, 3>>& soup, Mesh& mesh)
   return true;
 }
 
+/// Whether an edge of the soup bounds more than two faces, or two faces on one side (by the
+/// order of its ends): then no triangulation of these faces is a 2-manifold.
+bool nonManifoldEdge(const std::vector<std::array<Point, 3>>& soup)
+{
+  const auto less = [](const Point& a, const Point& b)
+  { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; };
+  std::vector<std::pair<Point, Point>> directed, undirected;
+  for (const auto& c : soup)
+    for (int k = 0; k < 3; ++k)
+    {
+      const Point &a = c[k], &b = c[(k + 1) % 3];
+      directed.emplace_back(a, b);
+      undirected.push_back(less(a, b) ? std::make_pair(a, b) : std::make_pair(b, a));
+    }
+  const auto pairLess = [&](const std::pair<Point, Point>& x, const std::pair<Point, Point>& y)
+  { return less(x.first, y.first) || (x.first == y.first && less(x.second, y.second)); };
+  std::sort(directed.begin(), directed.end(), pairLess);
+  std::sort(undirected.begin(), undirected.end(), pairLess);
+  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end())
+    return true;
+  for (std::size_t i = 0; i + 2 < undirected.size(); ++i)
+    if (undirected[i] == undirected[i + 2])
+      return true;
+  return false;
+}
+
 /// Whether every vertex of the mesh that is not a corner of `border` has one closed fan of
 /// faces around it (two pieces touching at a point share a vertex with two fans).
 bool manifoldInside(const Mesh& m, const std::vector<LatticePoint>& border)
@@ -663,9 +689,11 @@ NearBoolean nearResult(const std::vector<std::array<Point, 3>>& soup,
   LatticeMesh& near)
 {
   Mesh m;
-  // A face CGAL's mesh cannot take may be the order of the faces only: the whole Boolean tells.
+  // A face CGAL's mesh cannot take may be the order of the faces only: the whole Boolean tells,
+  // unless an edge has more than two faces or two on one side (the whole Boolean's result has
+  // these faces too).
   if (!soupToMesh(soup, m))
-    return NearBoolean::Unknown;
+    return nonManifoldEdge(soup) ? NearBoolean::Refused : NearBoolean::Unknown;
   std::vector<LatticePoint> corners;
   for (const auto& e : border)
     corners.push_back(e[0]);
