@@ -2292,12 +2292,16 @@ bool joinAlongPrism(Context& ctx,
   std::vector<std::pair<std::size_t, std::uint8_t>> sides;
   try
   {
-    const LatticeMesh p = triangulateHull(prism);
-    // Reversed, the part bounds the complement of H's solid near P: cutting is adding.
-    const bool ok = cut != part.reversed
-      ? latticeDifference(part.mesh, p, joined, Operands::Embedded)
-      : latticeUnion(part.mesh, p, joined, Operands::Embedded);
-    if (!ok)
+    // Reversed, the part bounds the complement of H's solid near P: cutting is adding. The
+    // Boolean from the part's triangles near P first (the part is mostly the vessel's main
+    // shell on the aneurism: the whole corefinement costs all of it for every prism tried).
+    const bool unite = cut == part.reversed;
+    const NearBoolean near = latticeBooleanNear(part.mesh, prism, unite, joined);
+    if (near == NearBoolean::Refused ||
+      (near == NearBoolean::Unknown &&
+        !(unite
+            ? latticeUnion(part.mesh, triangulateHull(prism), joined, Operands::Embedded)
+            : latticeDifference(part.mesh, triangulateHull(prism), joined, Operands::Embedded))))
       return false;
     if (part.reversed)
       for (auto& t : joined.triangles)

@@ -413,6 +413,341 @@ bool latticeUnion(const LatticeMesh& a,
 namespace
 {
 
+using Point = Kernel::Point_3;
+using Triangle = std::array<std::uint32_t, 3>;
+
+/// The triangles of `a` whose closed box meets the box [lo, hi] (Q, `near`), the others (R).
+void splitByBox(const LatticeMesh& a,
+  const LatticeBox& box,
+  std::vector<Triangle>& near,
+  std::vector<Triangle>& far)
+{
+  for (const auto& t : a.triangles)
+  {
+    bool meets = true;
+    for (int k = 0; k < 3 && meets; ++k)
+    {
+      const auto c = [&](int i) { return a.points[t[i]][k]; };
+      meets =
+        std::max({ c(0), c(1), c(2) }) >= box[0][k] && std::min({ c(0), c(1), c(2) }) <= box[1][k];
+    }
+    (meets ? near : far).push_back(t);
+  }
+}
+
+/// The triangles as a CGAL mesh of the points they use; false when one cannot be added.
+bool toSurfaceMesh(const LatticeMesh& a, const std::vector<Triangle>& triangles, Mesh& mesh)
+{
+  std::map<std::uint32_t, Mesh::Vertex_index> vertex;
+  for (const auto& t : triangles)
+    for (auto i : t)
+      if (vertex.find(i) == vertex.end())
+      {
+        const auto& p = a.points[i];
+        vertex[i] = mesh.add_vertex(
+          Point(static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])));
+      }
+  for (const auto& t : triangles)
+    if (mesh.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]]) == Mesh::null_face())
+      return false;
+  return true;
+}
+
+/// The planes of the convex hull's faces, each with the hull's interior on its negative side.
+std::vector<Kernel::Plane_3> innerPlanes(const CellList& convex)
+{
+  Kernel::Vector_3 sum(0, 0, 0);
+  for (const auto& v : convex.vertices)
+    sum = sum + (Point(v[0], v[1], v[2]) - CGAL::ORIGIN);
+  const Point centroid = CGAL::ORIGIN + sum / static_cast<int>(convex.vertices.size());
+  std::vector<Kernel::Plane_3> planes;
+  for (const auto& f : convex.faces)
+  {
+    const auto& a = convex.vertices[f[0]];
+    const auto& b = convex.vertices[f[1]];
+    const auto& c = convex.vertices[f[2]];
+    Kernel::Plane_3 h(Point(a[0], a[1], a[2]), Point(b[0], b[1], b[2]), Point(c[0], c[1], c[2]));
+    planes.push_back(h.oriented_side(centroid) == CGAL::ON_POSITIVE_SIDE ? h.opposite() : h);
+  }
+  return planes;
+}
+
+std::array<Point, 3> cornersOf(const Mesh& m, Mesh::Face_index f)
+{
+  std::array<Point, 3> c;
+  int k = 0;
+  for (auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+    c[k++] = m.point(v);
+  return c;
+}
+
+/// Where a face of the corefined surface lies against the convex hull: on its boundary (the
+/// index of the plane holding it, its orientation the plane's when `same`), or -1 apart from
+/// its open interior; -2 when it enters that interior.
+int faceOnHull(const std::array<Point, 3>& c,
+  const std::vector<Kernel::Plane_3>& planes,
+  bool& same)
+{
+  int on = -1;
+  for (std::size_t j = 0; j < planes.size(); ++j)
+  {
+    int zero = 0;
+    for (const auto& p : c)
+    {
+      const auto side = planes[j].oriented_side(p);
+      if (side == CGAL::ON_POSITIVE_SIDE)
+        return -1; // a corner outside the closed hull: the face (not crossing it) is outside
+      zero += side == CGAL::ON_ORIENTED_BOUNDARY;
+    }
+    if (zero == 3)
+      on = static_cast<int>(j);
+  }
+  if (on < 0)
+    return -2;
+  const Kernel::Vector_3 n = CGAL::cross_product(c[1] - c[0], c[2] - c[0]);
+  same = n * planes[on].orthogonal_vector() > 0;
+  return on;
+}
+
+/// The kept faces of both corefined meshes (the hull's reversed for a difference) as one
+/// polygon soup of exact points; false when the configuration is not the one the local
+/// Boolean assumes (the surface on the hull's boundary with the wrong orientation).
+bool keptFaces(const Mesh& q,
+  const Mesh& p,
+  const std::vector<Kernel::Plane_3>& planes,
+  bool unite,
+  std::vector<std::array<Point, 3>>& kept)
+{
+  // Union: the hull lies outside the solid, so where they touch their normals are opposite;
+  // difference: inside it, the same. There both surfaces cancel.
+  std::vector<Kernel::Triangle_3> contact;
+  for (auto f : q.faces())
+  {
+    const auto c = cornersOf(q, f);
+    bool same = false;
+    const int on = faceOnHull(c, planes, same);
+    if (on == -2 || (on >= 0 && same == unite))
+      return false;
+    if (on >= 0)
+      contact.emplace_back(c[0], c[1], c[2]);
+    else
+      kept.push_back(c);
+  }
+  for (auto f : p.faces())
+  {
+    auto c = cornersOf(p, f);
+    const Point centroid = CGAL::centroid(c[0], c[1], c[2]);
+    if (std::any_of(contact.begin(),
+          contact.end(),
+          [&](const Kernel::Triangle_3& t) { return t.has_on(centroid); }))
+      continue;
+    if (!unite)
+      std::swap(c[1], c[2]);
+    kept.push_back(c);
+  }
+  // Without a contact the side of the hull is not known here (nor a join made).
+  return !contact.empty();
+}
+
+/// The polygon soup as a mesh, equal points one vertex; false when a face cannot be added (an
+/// edge of more than two faces or used twice the same way).
+bool soupToMesh(const std::vector<std::array<Point, 3>>& soup, Mesh& mesh)
+{
+  std::vector<Point> points;
+  for (const auto& c : soup)
+    points.insert(points.end(), c.begin(), c.end());
+  const auto less = [](const Point& a, const Point& b)
+  { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; };
+  std::sort(points.begin(), points.end(), less);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::vector<Mesh::Vertex_index> vertex;
+  for (const auto& p : points)
+    vertex.push_back(mesh.add_vertex(p));
+  const auto index = [&](const Point& p)
+  { return vertex[std::lower_bound(points.begin(), points.end(), p, less) - points.begin()]; };
+  for (const auto& c : soup)
+    if (mesh.add_face(index(c[0]), index(c[1]), index(c[2])) == Mesh::null_face())
+      return false;
+  return true;
+}
+
+/// Whether an edge of the soup bounds more than two faces, or two faces on one side (by the
+/// order of its ends): then no triangulation of these faces is a 2-manifold.
+bool nonManifoldEdge(const std::vector<std::array<Point, 3>>& soup)
+{
+  const auto less = [](const Point& a, const Point& b)
+  { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; };
+  std::vector<std::pair<Point, Point>> directed, undirected;
+  for (const auto& c : soup)
+    for (int k = 0; k < 3; ++k)
+    {
+      const Point &a = c[k], &b = c[(k + 1) % 3];
+      directed.emplace_back(a, b);
+      undirected.push_back(less(a, b) ? std::make_pair(a, b) : std::make_pair(b, a));
+    }
+  const auto pairLess = [&](const std::pair<Point, Point>& x, const std::pair<Point, Point>& y)
+  { return less(x.first, y.first) || (x.first == y.first && less(x.second, y.second)); };
+  std::sort(directed.begin(), directed.end(), pairLess);
+  std::sort(undirected.begin(), undirected.end(), pairLess);
+  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end())
+    return true;
+  for (std::size_t i = 0; i + 2 < undirected.size(); ++i)
+    if (undirected[i] == undirected[i + 2])
+      return true;
+  return false;
+}
+
+/// Whether every vertex of the mesh that is not a corner of `border` has one closed fan of
+/// faces around it (two pieces touching at a point share a vertex with two fans).
+bool manifoldInside(const Mesh& m, const std::vector<LatticePoint>& border)
+{
+  std::map<Mesh::Vertex_index, std::size_t> faces;
+  for (auto f : m.faces())
+    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+      ++faces[v];
+  for (const auto& [v, count] : faces)
+  {
+    LatticePoint q;
+    const Point& p = m.point(v);
+    if (integerValue(p.x(), q[0]) && integerValue(p.y(), q[1]) && integerValue(p.z(), q[2]) &&
+      std::binary_search(border.begin(), border.end(), q))
+      continue;
+    std::size_t fan = 0;
+    for (auto f : CGAL::faces_around_target(m.halfedge(v), m))
+    {
+      if (f == Mesh::null_face())
+        return false;
+      ++fan;
+    }
+    if (fan != count)
+      return false;
+  }
+  return true;
+}
+
+/// The directed edges of the triangles that no triangle of them runs the other way, by their
+/// corners.
+std::vector<std::array<LatticePoint, 2>> borderOf(const LatticeMesh& a,
+  const std::vector<Triangle>& triangles)
+{
+  std::vector<std::array<LatticePoint, 2>> edges, border;
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k)
+      edges.push_back({ a.points[t[k]], a.points[t[(k + 1) % 3]] });
+  std::sort(edges.begin(), edges.end());
+  for (const auto& e : edges)
+    if (!std::binary_search(edges.begin(), edges.end(), std::array<LatticePoint, 2>{ e[1], e[0] }))
+      border.push_back(e);
+  return border;
+}
+
+/// `far` (triangles of a) and the lattice mesh `changed` (what became of the triangles
+/// `near`) together, points shared by their coordinates: a's points first, in a's order, those
+/// no triangle uses any more dropped.
+LatticeMesh stitch(const LatticeMesh& a,
+  const std::vector<Triangle>& near,
+  const std::vector<Triangle>& far,
+  const LatticeMesh& changed)
+{
+  LatticeMesh out;
+  out.points = a.points;
+  std::map<LatticePoint, std::uint32_t> index; // a's points near, and the new ones
+  for (const auto& t : near)
+    for (auto i : t)
+      index.emplace(a.points[i], i);
+  const auto add = [&](const LatticePoint& p)
+  {
+    const auto it = index.emplace(p, static_cast<std::uint32_t>(out.points.size()));
+    if (it.second)
+      out.points.push_back(p);
+    return it.first->second;
+  };
+  out.triangles = far;
+  for (const auto& t : changed.triangles)
+    out.triangles.push_back(
+      { add(changed.points[t[0]]), add(changed.points[t[1]]), add(changed.points[t[2]]) });
+  std::vector<std::uint32_t> renumber(out.points.size(), 0);
+  for (const auto& t : out.triangles)
+    for (auto i : t)
+      renumber[i] = 1;
+  LatticeMesh compact;
+  for (std::size_t i = 0; i < out.points.size(); ++i)
+    if (renumber[i])
+    {
+      renumber[i] = static_cast<std::uint32_t>(compact.points.size());
+      compact.points.push_back(out.points[i]);
+    }
+  for (const auto& t : out.triangles)
+    compact.triangles.push_back({ renumber[t[0]], renumber[t[1]], renumber[t[2]] });
+  return compact;
+}
+
+/// The corefined neighbourhood's kept faces as a lattice mesh whose border is the
+/// neighbourhood's (`border`, sorted), or why not (see latticeBooleanNear).
+NearBoolean nearResult(const std::vector<std::array<Point, 3>>& soup,
+  const std::vector<std::array<LatticePoint, 2>>& border,
+  LatticeMesh& near)
+{
+  Mesh m;
+  // A face CGAL's mesh cannot take may be the order of the faces only: the whole Boolean tells,
+  // unless an edge has more than two faces or two on one side (the whole Boolean's result has
+  // these faces too).
+  if (!soupToMesh(soup, m))
+    return nonManifoldEdge(soup) ? NearBoolean::Refused : NearBoolean::Unknown;
+  std::vector<LatticePoint> corners;
+  for (const auto& e : border)
+    corners.push_back(e[0]);
+  std::sort(corners.begin(), corners.end());
+  // The whole Boolean's result has these faces near the hull (and a's others): two fans at a
+  // point, or a corner off the lattice that no collapse removes, are refused there too.
+  if (!manifoldInside(m, corners) || !removeSteinerPoints(m) || !toLatticeMesh(m, near))
+    return NearBoolean::Refused;
+  std::vector<Triangle> all(near.triangles.begin(), near.triangles.end());
+  return borderOf(near, all) == border ? NearBoolean::Done : NearBoolean::Unknown;
+}
+
+} // namespace
+
+NearBoolean latticeBooleanNear(const LatticeMesh& a,
+  const CellList& convex,
+  bool unite,
+  LatticeMesh& result)
+{
+  try
+  {
+    // The neighbourhood: a's triangles whose box meets the hull's box grown by one, so that
+    // its border (edges of triangles out of that box) stays away from the hull.
+    LatticeBox box{ convex.vertices[0], convex.vertices[0] };
+    for (const auto& v : convex.vertices)
+      for (int k = 0; k < 3; ++k)
+      {
+        box[0][k] = std::min(box[0][k], v[k] - 1);
+        box[1][k] = std::max(box[1][k], v[k] + 1);
+      }
+    std::vector<Triangle> near, far;
+    splitByBox(a, box, near, far);
+    Mesh q, p = toSurfaceMesh(triangulateHull(convex));
+    if (near.empty() || !toSurfaceMesh(a, near, q))
+      return NearBoolean::Unknown;
+    PMP::corefine(q, p);
+    std::vector<std::array<Point, 3>> soup;
+    LatticeMesh changed;
+    if (!keptFaces(q, p, innerPlanes(convex), unite, soup))
+      return NearBoolean::Unknown;
+    const NearBoolean outcome = nearResult(soup, borderOf(a, near), changed);
+    if (outcome == NearBoolean::Done)
+      result = stitch(a, near, far, changed);
+    return outcome;
+  }
+  catch (const std::exception&)
+  {
+    return NearBoolean::Unknown;
+  }
+}
+
+namespace
+{
+
 LatticePoint minus(const LatticePoint& a, const LatticePoint& b)
 {
   return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };

@@ -86,6 +86,34 @@ bool latticeUnion(const LatticeMesh& a,
   LatticeMesh& result,
   Operands operands = Operands::Check);
 
+/// What latticeBooleanNear found: the result, that the whole Boolean refuses too, or nothing.
+enum class NearBoolean
+{
+  Done,
+  Refused,
+  Unknown
+};
+
+/// The union (`unite`) or the difference of the closed embedded mesh a and a solid convex hull
+/// whose open interior misses a and lies outside its solid (a union) or inside it (a
+/// difference), the two touching on areas of the hull's boundary: the polyhedron of
+/// latticeUnion or latticeDifference, computed from a's triangles near the hull only (those
+/// whose box meets the hull's box grown by one). Those triangles, an open mesh whose border
+/// (edges of triangles outside the grown box) cannot meet the hull, are corefined with the hull
+/// (CGAL, exact); their pieces on the hull's boundary are dropped with the hull's pieces they
+/// cover (the two surfaces cancel where they touch), the other pieces kept (the hull's reversed
+/// for a difference), the corners off the lattice collapsed as latticeBoolean does, and the
+/// result stitched to a's other triangles, which the whole Boolean keeps as they are. So it
+/// costs the hull's neighbourhood, not all of a. Refused where the whole Boolean's result,
+/// which has the same faces near the hull, is refused: two fans of faces at one point, or a
+/// corner off the lattice. Unknown (the caller runs the whole Boolean) when the configuration
+/// is not that one: a piece of a in the hull's open interior, a contact of the wrong
+/// orientation (the hull on the other side), no contact, or faces CGAL's mesh does not take.
+NearBoolean latticeBooleanNear(const LatticeMesh& a,
+  const CellList& convex,
+  bool unite,
+  LatticeMesh& result);
+
 /// The mesh's triangles that meet the open bounding box of a convex cell list (by their own
 /// boxes: a superset of those meeting the hull), for the tests local to a hull.
 std::vector<std::array<LatticePoint, 3>> trianglesInBoxOf(const LatticeMesh& surface,

@@ -2043,6 +2043,94 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
   EXPECT_GE(only, 1);
 }
 
+TEST(ConvexHullModifier, BooleansNearAHullAreTheWholeBooleans)
+{
+  // latticeBooleanNear (a join's Boolean from the triangles near the prism only) against the
+  // whole Boolean (latticeUnion, latticeDifference) on lattice tetrahedra and prisms spanned by
+  // a triangle of the surface and one or two lattice points on either side of it (a union on
+  // the outer side, a difference on the inner one, a fifth the other way round; many also cross
+  // the surface elsewhere): when
+  // it gives a result, the whole Boolean gives the same polyhedron (the same corners, as many
+  // triangles, and the same solid: the Nef polyhedra's symmetric difference is empty); when it
+  // refuses, the whole Boolean refuses. Surfaces: the pac-man's H and random lattice hulls.
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<long> coord(0, 8), small(0, 3), offset(-3, 3);
+  const vbr::LatticeMesh pacMan5 = vbr::modifyConvexHull(pacMan(5)).surface;
+  const Nef pacMan5Solid = nefOf(pacMan5);
+  int done = 0, refused = 0, unknown = 0;
+  for (int trial = 0; trial < 240; ++trial)
+  {
+    SCOPED_TRACE(trial);
+    const bool onPacMan = trial % 3 != 0;
+    const vbr::LatticeMesh a =
+      onPacMan ? pacMan5 : vbr::triangulateHull(randomLatticeHull(rng, coord, small, 8, true));
+    const auto& t =
+      a.triangles[std::uniform_int_distribution<std::size_t>(0, a.triangles.size() - 1)(rng)];
+    std::vector<LatticePoint> corners{ a.points[t[0]], a.points[t[1]], a.points[t[2]] };
+    const LatticePoint c0 = corners[0];
+    const vbr::FacePlane plane = vbr::planeThrough(corners[0], corners[1], corners[2]);
+    // The prism's base: the triangle, or a lattice triangle of its plane half over it and half
+    // beyond its edge (contacts whose rim crosses the surface's edges, often off the lattice).
+    if (trial % 4 >= 2)
+      corners[trial % 4 - 1] = { corners[1][0] + corners[2][0] - c0[0],
+        corners[1][1] + corners[2][1] - c0[1],
+        corners[1][2] + corners[2][2] - c0[2] };
+    const int apexes = 1 + trial % 2;
+    LatticePoint apex{};
+    long side = 0;
+    do
+    {
+      apex = { c0[0] + offset(rng), c0[1] + offset(rng), c0[2] + offset(rng) };
+      side = plane.evaluate(apex);
+    } while (side == 0);
+    corners.push_back(apex);
+    if (apexes == 2)
+      corners.push_back({ apex[0] + corners[1][0] - c0[0],
+        apex[1] + corners[1][1] - c0[1],
+        apex[2] + corners[1][2] - c0[2] });
+    const vbr::CellList prism = vbr::convexHull(corners);
+    if (prism.dimension != 3)
+      continue;
+    // Outside the triangle's plane the prism is added, inside it is cut out; every fifth pair
+    // the other way round (the contacts of the wrong orientation: never a result near it).
+    const bool unite = (side > 0) != (trial % 5 == 4);
+    vbr::LatticeMesh near, whole;
+    const vbr::NearBoolean outcome = vbr::latticeBooleanNear(a, prism, unite, near);
+    const vbr::LatticeMesh p = vbr::triangulateHull(prism);
+    const bool wholeOk =
+      unite ? vbr::latticeUnion(a, p, whole) : vbr::latticeDifference(a, p, whole);
+    if (outcome == vbr::NearBoolean::Unknown)
+    {
+      ++unknown;
+      continue;
+    }
+    if (outcome == vbr::NearBoolean::Refused)
+    {
+      ++refused;
+      EXPECT_FALSE(wholeOk) << "refused near the prism, kept by the whole Boolean";
+      continue;
+    }
+    ++done;
+    ASSERT_TRUE(wholeOk) << "kept near the prism, refused by the whole Boolean";
+    auto sorted = [](std::vector<LatticePoint> v)
+    {
+      std::sort(v.begin(), v.end());
+      return v;
+    };
+    EXPECT_EQ(sorted(near.points), sorted(whole.points));
+    EXPECT_EQ(near.triangles.size(), whole.triangles.size());
+    EXPECT_TRUE(vbr::boundsAVolume(near));
+    EXPECT_TRUE((nefOf(near) ^ nefOf(whole)).is_empty()) << "not the same solid";
+    const Nef aSolid = onPacMan ? pacMan5Solid : nefOf(a);
+    const Nef expected = unite ? aSolid + nefOf(p) : (aSolid - nefOf(p)).regularization();
+    EXPECT_TRUE((nefOf(near) ^ expected).is_empty()) << "not the exact Boolean";
+  }
+  std::cout << done << " results near the prism, " << refused << " refused, " << unknown
+            << " left to the whole Boolean" << std::endl;
+  EXPECT_GE(done, 40);
+  EXPECT_GE(refused, 5);
+}
+
 TEST(ConvexHullModifier, BooleansLeavingTheLatticeAreFoundBeforehand)
 {
   // booleanLeavesTheLattice skips the joins' Booleans that CGAL's exact corefinement would give
