@@ -640,12 +640,14 @@ private:
   // the collapse being checked
   std::vector<FaceId> OldStar;
   std::vector<StarFace> Star;
-  std::vector<std::pair<SurfelPiece, std::size_t>> Moves; // piece or quarter, index in Star
-  std::size_t Guess = 0;                                  // the last piece's triangle
-  std::vector<StarFace> Near;                             // faces near the star
-  std::vector<Corners> Pieces;                            // withinReach's workspace
-  std::array<VertexId, 2> Accepted;                       // the edge they are for
-  Point3 AcceptedPoint;                                   // and where its vertex goes
+  std::vector<std::pair<SurfelPiece, std::size_t>> Moves; // the pieces that move (or their
+                                                          // quarters), index in Star
+  std::vector<char> Stays;    // per piece of the old star, in order: whether it stays with its face
+  std::size_t Guess = 0;      // the last piece's triangle
+  std::vector<StarFace> Near; // faces near the star
+  std::vector<Corners> Pieces;      // withinReach's workspace
+  std::array<VertexId, 2> Accepted; // the edge they are for
+  Point3 AcceptedPoint;             // and where its vertex goes
 };
 
 /// The grid of the faces' boxes, its cells twice the mean box side (at least 2 voxels): the
@@ -865,17 +867,17 @@ bool Simplifier::placePiece(const SurfelPiece& piece)
 bool Simplifier::reassignSamples()
 {
   this->Moves.clear();
+  this->Stays.clear();
   this->Guess = this->Star.size();
   for (FaceId f : this->OldStar)
   {
     const std::size_t same = this->starIndexOf(f);
     for (const SurfelPiece& piece : this->SamplesOf[std::size_t(f)])
     {
-      if (same < this->Star.size() && this->Star[same].keeps(piece))
-      {
-        this->Moves.emplace_back(piece, same);
+      const bool stays = same < this->Star.size() && this->Star[same].keeps(piece);
+      this->Stays.push_back(stays);
+      if (stays)
         continue;
-      }
       const std::size_t to = nearestOf(this->Star, piece, this->Guess);
       if (to < this->Star.size())
         this->Moves.emplace_back(piece, to), this->Guess = to;
@@ -989,11 +991,22 @@ bool Simplifier::collapsed(VertexId v0, VertexId v1, VertexId kept)
     return false;
   this->Accepted = {};
   this->M.point(kept) = this->AcceptedPoint;
+  std::size_t next = 0; // in Stays
   for (FaceId f : this->OldStar)
+  {
+    std::vector<SurfelPiece>& pieces = this->SamplesOf[std::size_t(f)];
     if (this->M.is_removed(f))
-      std::vector<SurfelPiece>().swap(this->SamplesOf[std::size_t(f)]); // its memory freed
-    else
-      this->SamplesOf[std::size_t(f)].clear();
+    {
+      next += pieces.size();
+      std::vector<SurfelPiece>().swap(pieces); // its memory freed
+      continue;
+    }
+    std::size_t staying = 0;
+    for (const SurfelPiece& piece : pieces)
+      if (this->Stays[next++])
+        pieces[staying++] = piece;
+    pieces.resize(staying);
+  }
   for (const auto& [piece, to] : this->Moves)
     this->SamplesOf[std::size_t(this->Star[to].face)].push_back(piece);
   for (const StarFace& s : this->Star)
