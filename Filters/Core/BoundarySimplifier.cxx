@@ -170,30 +170,51 @@ private:
     return brick * 64 + (x & 3) + ((y & 3) << 2) + ((z & 3) << 4);
   }
 
-  /// nearestFaceSquared over the marked faces, visiting only those (most voxels have none):
-  /// the same squared distances, so the same smallest.
+  /// nearestFaceSquared over the marked faces: the same squared distances, so the same
+  /// smallest. Each axis's terms are computed once per search, as nearestFaceSquared computes
+  /// them (along a face's normal the distance to its plane, along the other axes to its
+  /// voxel's side), and summed in the same order. A voxel whose box is farther than the
+  /// nearest face so far is skipped (each term of its faces is at least the box's), and p's
+  /// own voxel comes first, so that most of the others are.
   double nearestMarkedSquared(const Vec3& p,
     const std::int32_t lo[3],
     const std::int32_t hi[3],
     double best) const
   {
+    constexpr int Widest = 6; // the wide search's voxels per axis
+    double side[3][Widest], plane[3][Widest];
+    for (int d = 0; d < 3; ++d)
+      for (std::int32_t v = lo[d]; v <= hi[d]; ++v)
+      {
+        const double faceLo = v, faceHi = v + 1.0;
+        const double e = p[d] < faceLo ? faceLo - p[d] : (p[d] > faceHi ? p[d] - faceHi : 0.0);
+        const double f = p[d] < faceHi ? faceHi - p[d] : (p[d] > faceHi ? p[d] - faceHi : 0.0);
+        side[d][v - lo[d]] = e * e;
+        plane[d][v - lo[d]] = f * f;
+      }
+    const auto visit = [&](std::int32_t i, std::int32_t j, std::int32_t k)
+    {
+      const int o[3] = { i - lo[0], j - lo[1], k - lo[2] };
+      if (side[0][o[0]] + side[1][o[1]] + side[2][o[2]] > best)
+        return;
+      for (unsigned bits = this->Faces[this->index(i, j, k)]; bits != 0; bits &= bits - 1)
+      {
+        const int a = bits & 1 ? 0 : (bits & 2 ? 1 : 2);
+        double d2 = 0;
+        for (int d = 0; d < 3; ++d)
+          d2 += d == a ? plane[d][o[d]] : side[d][o[d]];
+        best = std::min(best, d2);
+      }
+    };
+    std::int32_t own[3];
+    for (int d = 0; d < 3; ++d)
+      own[d] = std::clamp(std::int32_t(std::floor(p[d])), lo[d], hi[d]);
+    visit(own[0], own[1], own[2]);
     for (std::int32_t k = lo[2]; k <= hi[2]; ++k)
       for (std::int32_t j = lo[1]; j <= hi[1]; ++j)
         for (std::int32_t i = lo[0]; i <= hi[0]; ++i)
-          for (unsigned bits = this->Faces[this->index(i, j, k)]; bits != 0; bits &= bits - 1)
-          {
-            const int a = bits & 1 ? 0 : (bits & 2 ? 1 : 2);
-            const std::int32_t v[3] = { i, j, k };
-            double d2 = 0;
-            for (int d = 0; d < 3; ++d)
-            {
-              const double faceLo = d == a ? v[d] + 1 : v[d], faceHi = v[d] + 1;
-              const double e =
-                p[d] < faceLo ? faceLo - p[d] : (p[d] > faceHi ? p[d] - faceHi : 0.0);
-              d2 += e * e;
-            }
-            best = std::min(best, d2);
-          }
+          if (i != own[0] || j != own[1] || k != own[2])
+            visit(i, j, k);
     return best;
   }
 
@@ -225,13 +246,38 @@ struct Piece
 
   void measure(const SurfelDistance& distance)
   {
-    const Vec3 c{ (t[0][0] + t[1][0] + t[2][0]) / 3,
-      (t[0][1] + t[1][1] + t[2][1]) / 3,
-      (t[0][2] + t[1][2] + t[2][2]) / 3 };
+    const Vec3 c = this->enclosingCentre();
     this->radius = 0;
     for (const Vec3& p : this->t)
       this->radius = std::max(this->radius, std::sqrt(dot(sub(p, c), sub(p, c))));
     this->centre = distance(c);
+  }
+
+  /// The centre of the smallest ball about t (the middle of its longest side when the angle
+  /// opposite is not acute, else the circumcentre), or the centroid for a degenerate t: the
+  /// bound centre + radius is then as small as one distance can make it (the centroid's ball
+  /// is larger, much larger for the long thin triangles that simplification makes).
+  Vec3 enclosingCentre() const
+  {
+    const Vec3 centroid{ (t[0][0] + t[1][0] + t[2][0]) / 3,
+      (t[0][1] + t[1][1] + t[2][1]) / 3,
+      (t[0][2] + t[1][2] + t[2][2]) / 3 };
+    for (int i = 0; i < 3; ++i)
+    {
+      const Vec3 &a = this->t[i], &b = this->t[(i + 1) % 3], &o = this->t[(i + 2) % 3];
+      if (dot(sub(a, o), sub(b, o)) <= 0) // the angle at o is not acute: ab is the longest
+        return { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
+    }
+    const Vec3 a = sub(this->t[0], this->t[2]), b = sub(this->t[1], this->t[2]);
+    const Vec3 n = cross(a, b);
+    const double n2 = dot(n, n);
+    if (!(n2 > 0))
+      return centroid;
+    const double a2 = dot(a, a), b2 = dot(b, b);
+    const Vec3 w =
+      cross(Vec3{ a2 * b[0] - b2 * a[0], a2 * b[1] - b2 * a[1], a2 * b[2] - b2 * a[2] }, n);
+    const Vec3& o = this->t[2];
+    return { o[0] + w[0] / (2 * n2), o[1] + w[1] / (2 * n2), o[2] + w[2] / (2 * n2) };
   }
 
   std::array<Corners, 2> halves() const
