@@ -511,7 +511,8 @@ int faceOnHull(const std::array<Point, 3>& c,
 
 /// The kept faces of both corefined meshes (the hull's reversed for a difference) as one
 /// polygon soup of exact points; false when the configuration is not the one the local
-/// Boolean assumes (the surface on the hull's boundary with the wrong orientation).
+/// Boolean assumes (a face inside the hull, no contact, or a contact with the wrong
+/// orientation).
 bool keptFaces(const Mesh& q,
   const Mesh& p,
   const std::vector<Kernel::Plane_3>& planes,
@@ -699,7 +700,8 @@ NearBoolean nearResult(const std::vector<std::array<Point, 3>>& soup,
     corners.push_back(e[0]);
   std::sort(corners.begin(), corners.end());
   // The whole Boolean's result has these faces near the hull (and a's others): two fans at a
-  // point, or a corner off the lattice that no collapse removes, are refused there too.
+  // point are refused there too; a corner off the lattice that no collapse removes was refused
+  // there too wherever both were run (the greedy collapses may differ in order).
   if (!manifoldInside(m, corners) || !removeSteinerPoints(m) || !toLatticeMesh(m, near))
     return NearBoolean::Refused;
   std::vector<Triangle> all(near.triangles.begin(), near.triangles.end());

@@ -104,9 +104,12 @@ enum class NearBoolean
 /// cover (the two surfaces cancel where they touch), the other pieces kept (the hull's reversed
 /// for a difference), the corners off the lattice collapsed as latticeBoolean does, and the
 /// result stitched to a's other triangles, which the whole Boolean keeps as they are. So it
-/// costs the hull's neighbourhood, not all of a. Refused where the whole Boolean's result,
-/// which has the same faces near the hull, is refused: two fans of faces at one point, or a
-/// corner off the lattice. Unknown (the caller runs the whole Boolean) when the configuration
+/// costs the hull's neighbourhood, not all of a. Refused where the result near the hull is no
+/// 2-manifold with lattice corners: two fans of faces at one point or an edge of three faces
+/// (the whole Boolean's result has the same faces there and is refused too), or a corner off
+/// the lattice that no collapse removes (the collapses are greedy and their order differs from
+/// the whole Boolean's: it refused too wherever both were run, but that is not proven; a
+/// refusal only leaves a join undone). Unknown (the caller runs the whole Boolean) when the configuration
 /// is not that one: a piece of a in the hull's open interior, a contact of the wrong
 /// orientation (the hull on the other side), no contact, or faces CGAL's mesh does not take.
 NearBoolean latticeBooleanNear(const LatticeMesh& a,
