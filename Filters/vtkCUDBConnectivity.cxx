@@ -875,13 +875,26 @@ struct CornerWriter
       this->base[d] = this->grid.extentMin[d] + this->grid.vertexShift[d];
   }
 
-  /// The corners of `box` (processing axes, at `offset`) into xyz (3 * corners doubles).
+  /// Whether the processing axes are the image axes and corner k reads sum k (a 3D image in
+  /// the default sorting, axis-aligned): write<true> then indexes nothing at run time.
+  bool plain() const
+  {
+    for (int k = 0; k < 8; ++k)
+      if (this->sumOfCorner[k] != k)
+        return false;
+    return this->corners == 8 && this->source == std::array<int, 3>{ 0, 1, 2 };
+  }
+
+  /// The corners of `box` (processing axes, at `offset`) into xyz (3 * corners doubles). With
+  /// Plain (plain() holds), the same arithmetic with every index known at compile time: the
+  /// sums stay in registers instead of being gathered through the stack by run-time indices.
+  template<bool Plain>
   void write(const vbr::Box& box, const Int3& offset, double* xyz) const
   {
     double local[3][2]; // [image axis][lo, hi]
     for (int d = 0; d < 3; ++d)
     {
-      const int k = this->source[d];
+      const int k = Plain ? d : this->source[d];
       local[d][0] = (this->base[d] + double(box.lo[k] + offset[k])) * this->grid.spacing[d];
       local[d][1] = (this->base[d] + double(box.hi[k] + offset[k])) * this->grid.spacing[d];
     }
@@ -900,11 +913,28 @@ struct CornerWriter
         }
       }
     }
+    if (Plain)
+    {
+      writePlain(sum, xyz);
+      return;
+    }
     double out[24];
     for (int k = 0; k < this->corners; ++k)
       for (int w = 0; w < 3; ++w)
         out[3 * k + w] = sum[w][this->sumOfCorner[k]];
     streamValues(out, 3 * this->corners, xyz);
+  }
+
+  /// The eight corners k = 0..7 of sum[w][k] into xyz, pair by pair.
+  static void writePlain(const double (&sum)[3][8], double* xyz)
+  {
+#ifdef VBR_STREAM_STORES
+    for (int i = 0; i < 24; i += 2)
+      _mm_stream_pd(xyz + i, _mm_set_pd(sum[(i + 1) % 3][(i + 1) / 3], sum[i % 3][i / 3]));
+#else
+    for (int i = 0; i < 24; ++i)
+      xyz[i] = sum[i % 3][i / 3];
+#endif
   }
 
   /// `n` (even) doubles to `to` (16-byte aligned) past the caches where SSE2 allows: the
@@ -1030,17 +1060,24 @@ vtkIdType writeObjectBoxes(const ObjectBoxes& o,
   int* regionIds = cells.regionIds->GetPointer(0);
   const std::uint32_t* label = o.components.boxLabel.data();
   const std::vector<vbr::Box>& boxes = o.cudb.boxes;
-  for (std::size_t b = 0; b < boxes.size(); ++b)
+  auto writeAll = [&](auto plain)
   {
-    const std::int32_t id = regionIdOfLabel[label[b] - 1];
-    if (id == 0)
-      continue;
-    corners.write(boxes[b], o.offset, xyz);
-    xyz += 3 * corners.corners;
-    boxIds[cell] = boxBase + static_cast<vtkIdType>(b);
-    regionIds[cell] = id;
-    ++cell;
-  }
+    for (std::size_t b = 0; b < boxes.size(); ++b)
+    {
+      const std::int32_t id = regionIdOfLabel[label[b] - 1];
+      if (id == 0)
+        continue;
+      corners.write<decltype(plain)::value>(boxes[b], o.offset, xyz);
+      xyz += 3 * corners.corners;
+      boxIds[cell] = boxBase + static_cast<vtkIdType>(b);
+      regionIds[cell] = id;
+      ++cell;
+    }
+  };
+  if (corners.plain())
+    writeAll(std::true_type{});
+  else
+    writeAll(std::false_type{});
   fillLabels(cells.labels, first, cell, o.label);
   return cell;
 }
