@@ -49,10 +49,12 @@
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #ifdef __linux__
@@ -134,22 +136,196 @@ bool onHugePages(double bytes)
   return bytes >= 8.0 * 1024 * 1024;
 }
 
-/// Memory of `bytes` that std::free releases, aligned to 64 bytes. With `huge`, a block of 2
-/// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
-/// faulted in 4 KiB pages) and marked for transparent huge pages, as
-/// vbr::vtk::newZeroedIntArray's RegionId image. Null when refused.
-void* allocateBlock(std::size_t bytes, bool huge)
+constexpr std::size_t HugePage = std::size_t(2) << 20;
+
+/// A new block of `length` bytes, null when refused: with `huge` (length a multiple of
+/// HugePage) a 2 MiB-aligned mapping of its own marked for transparent huge pages, kept out of
+/// the heap, whose top the union-find's scratch then keeps; else 64-byte aligned heap memory.
+void* newBlock(std::size_t length, bool huge)
 {
-  constexpr std::size_t HugePage = std::size_t(2) << 20;
-  huge = huge && bytes >= HugePage;
-  const std::size_t length = huge ? (bytes + HugePage - 1) / HugePage * HugePage : bytes;
-  void* block = nullptr;
-  if (posix_memalign(&block, huge ? HugePage : 64, std::max<std::size_t>(length, 1)) != 0)
-    return nullptr;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (huge)
+  {
+    const std::size_t mapped = length + HugePage;
+    void* base = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (base == MAP_FAILED)
+      return nullptr;
+    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(base);
+    const std::uintptr_t aligned = (start + HugePage - 1) / HugePage * HugePage;
+    if (aligned > start)
+      munmap(base, aligned - start);
+    if (aligned + length < start + mapped)
+      munmap(reinterpret_cast<void*>(aligned + length), start + mapped - aligned - length);
+    void* block = reinterpret_cast<void*>(aligned);
     madvise(block, length, MADV_HUGEPAGE); // a hint: failure only costs time
+    return block;
+  }
+#else
+  (void)huge;
 #endif
+  void* block = nullptr;
+  return posix_memalign(&block, 64, std::max<std::size_t>(length, 1)) == 0 ? block : nullptr;
+}
+
+/// Frees a block of newBlock.
+void deleteBlock(void* block, std::size_t length, bool huge)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (huge)
+  {
+    munmap(block, length);
+    return;
+  }
+#else
+  (void)length;
+  (void)huge;
+#endif
+  std::free(block);
+}
+
+/// Huge blocks of allocateBlock kept from one update to the next. The pipeline releases an
+/// update's outputs when the next update starts, before the filter allocates that update's:
+/// freed, their memory went back to the kernel (glibc unmaps or trims blocks this large), which
+/// then faulted in and zeroed fresh pages for every output array again (on a porous volume with
+/// boxes, about 20 MB a update and a tenth of its time). The blocks freed while a
+/// vtkCUDBConnectivity exists wait here, up to KeptBytes in all, for the next allocations they
+/// fit; the last filter's destruction frees them.
+class BlockCache
+{
+public:
+  static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
+
+  /// Never destroyed: VTK arrays may release their blocks after static destruction.
+  static BlockCache& instance()
+  {
+    static BlockCache* cache = new BlockCache;
+    return *cache;
+  }
+
+  /// A kept block of `length` bytes or a little more (a multiple of the huge page), now in use;
+  /// null when none fits.
+  void* take(std::size_t length)
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    const std::size_t most = length + length / 4;
+    std::size_t best = this->kept.size();
+    for (std::size_t i = 0; i < this->kept.size(); ++i)
+    {
+      const std::size_t l = this->lengths[this->kept[i]];
+      if (l >= length && l <= most &&
+        (best == this->kept.size() || l < this->lengths[this->kept[best]]))
+        best = i;
+    }
+    if (best == this->kept.size())
+      return nullptr;
+    void* block = this->kept[best];
+    this->kept.erase(this->kept.begin() + static_cast<std::ptrdiff_t>(best));
+    this->keptBytes -= this->lengths[block];
+    return block;
+  }
+
+  /// Notes a new huge block of `length` bytes, in use.
+  void track(void* block, std::size_t length)
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    this->lengths[block] = length;
+  }
+
+  /// A block of allocateBlock no longer used: kept when huge, a filter exists and there is
+  /// room, else freed.
+  void release(void* block)
+  {
+    if (!block)
+      return;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      const auto found = this->lengths.find(block);
+      if (found != this->lengths.end())
+      {
+        if (this->users > 0 && this->keptBytes + found->second <= KeptBytes)
+        {
+          this->kept.push_back(block);
+          this->keptBytes += found->second;
+          return;
+        }
+        const std::size_t length = found->second;
+        this->lengths.erase(found);
+        deleteBlock(block, length, true);
+        return;
+      }
+    }
+    deleteBlock(block, 0, false);
+  }
+
+  /// Frees every kept block (when an allocation failed: the memory is wanted).
+  void clear()
+  {
+    std::vector<std::pair<void*, std::size_t>> blocks;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      for (void* block : this->kept)
+      {
+        blocks.emplace_back(block, this->lengths[block]);
+        this->lengths.erase(block);
+      }
+      this->kept.clear();
+      this->keptBytes = 0;
+    }
+    for (const auto& block : blocks)
+      deleteBlock(block.first, block.second, true);
+  }
+
+  /// A filter created or destroyed; the last one frees the kept blocks.
+  void addUser(int change)
+  {
+    bool last = false;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      this->users += change;
+      last = this->users == 0;
+    }
+    if (last)
+      this->clear();
+  }
+
+private:
+  std::mutex mutex;
+  std::unordered_map<void*, std::size_t> lengths; ///< the huge blocks, in use or kept
+  std::vector<void*> kept;
+  std::size_t keptBytes = 0;
+  int users = 0;
+};
+
+/// Releases a block of allocateBlock (to BlockCache).
+void releaseBlock(void* block)
+{
+  BlockCache::instance().release(block);
+}
+
+/// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 2
+/// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
+/// faulted in 4 KiB pages) and marked for transparent huge pages, as
+/// vbr::vtk::newZeroedIntArray's RegionId image, and taken from the blocks an earlier update
+/// released when one fits (BlockCache). Null when refused.
+void* allocateBlock(std::size_t bytes, bool huge)
+{
+  huge = huge && bytes >= HugePage;
+  const std::size_t length = huge ? (bytes + HugePage - 1) / HugePage * HugePage : bytes;
+  BlockCache& cache = BlockCache::instance();
+  void* block = huge ? cache.take(length) : nullptr;
+  if (!block)
+  {
+    block = newBlock(length, huge);
+    if (!block && huge)
+    {
+      cache.clear();
+      block = newBlock(length, huge);
+    }
+    if (!block)
+      return nullptr;
+    if (huge)
+      cache.track(block, length);
+  }
 #ifndef NDEBUG
   // Every value is written by the filter: in a debug build (the sanitizers' tests) a value left
   // unwritten reads NaN or -1, not the zeros of fresh pages.
@@ -188,13 +364,14 @@ void allocateTuples(const std::vector<vtkDataArray*>& arrays, vtkIdType tuples, 
     {
       vtkTemplateMacro(if (auto* aos = vtkAOSDataArrayTemplate<VTK_TT>::FastDownCast(array)) {
         aos->SetArray(
-          static_cast<VTK_TT*>(block), values, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+          static_cast<VTK_TT*>(block), values, 0, vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+        aos->SetArrayFreeFunction(releaseBlock);
         taken = true;
       });
     }
     if (!taken)
     {
-      std::free(block);
+      releaseBlock(block);
       vbr::vtk::resizeOrThrow(array, tuples);
     }
   }
@@ -321,7 +498,7 @@ public:
 private:
   struct Free
   {
-    void operator()(Region* p) const { std::free(p); }
+    void operator()(Region* p) const { releaseBlock(p); }
   };
   std::unique_ptr<Region[], Free> records;
   std::size_t count = 0, started = 0;
@@ -1772,10 +1949,14 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
   this->SetProgressText("CUDB Connectivity");
+  BlockCache::instance().addUser(1);
 }
 
 //------------------------------------------------------------------------------
-vtkCUDBConnectivity::~vtkCUDBConnectivity() = default;
+vtkCUDBConnectivity::~vtkCUDBConnectivity()
+{
+  BlockCache::instance().addUser(-1);
+}
 
 //------------------------------------------------------------------------------
 int vtkCUDBConnectivity::FillInputPortInformation(int port, vtkInformation* info)
