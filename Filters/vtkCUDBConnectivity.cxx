@@ -849,24 +849,56 @@ std::int32_t numberRegions(const Regions& regions,
   return static_cast<std::int32_t>(kept.size());
 }
 
-/// The voxels of an object labelled on its runs painted from the runs, as paintRegions does.
-/// The only object of the image has nothing but zeros around its runs: they are painted by wide
-/// stores that zero the voxels after them (vbr::paintRuns).
-bool paintRegionsOfRuns(const ObjectBoxes& o,
-  const std::vector<std::int32_t>* regionIds,
-  const vbr::vtk::VoxelGrid& grid,
-  bool onlyObject,
-  std::int32_t* out,
-  const vbr::Execution& exec)
+/// The value painted for each label of an object labelled on its runs (by label, from 1): with
+/// `regionIds`, its region's RegionId (0 where removed); without, the region's number.
+std::vector<std::int32_t> valuesOfRunLabels(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds)
 {
-  std::vector<std::int32_t> values(o.runComponents.count + 1, 0); // by label, from 1
+  std::vector<std::int32_t> values(o.runComponents.count + 1, 0);
   for (std::uint32_t c = 1; c <= o.runComponents.count; ++c)
   {
     const std::size_t r = o.firstRegion + c - 1;
     values[c] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
   }
+  return values;
+}
+
+/// The voxels of an object labelled on its runs, one of several objects (a label map), painted
+/// from the runs into the zeroed image, as paintRegions does (the only object of an image takes
+/// paintOnlyObjectOfRuns).
+bool paintRegionsOfRuns(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds,
+  const vbr::vtk::VoxelGrid& grid,
+  std::int32_t* out,
+  const vbr::Execution& exec)
+{
+  const std::vector<std::int32_t> values = valuesOfRunLabels(o, regionIds);
   return vbr::paintRuns(
-    o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec, onlyObject);
+    o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec);
+}
+
+/// paintRegions of the image's only object, labelled on its runs: the RegionId image in memory
+/// of allocateTuples (an earlier update's, when one released it), every voxel written by
+/// vbr::paintRunsOverwriting rather than faulted in zeroed and painted over.
+vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds,
+  const vbr::vtk::VoxelGrid& grid,
+  const vbr::Execution& exec)
+{
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkNew<vtkIntArray> ids;
+  ids->SetName("RegionId");
+  allocateTuples({ ids }, n, 0.0);
+  const std::vector<std::int32_t> values = valuesOfRunLabels(o, regionIds);
+  if (!vbr::paintRunsOverwriting(o.voxelRuns,
+        o.runComponents.runLabel,
+        values,
+        o.offset,
+        grid.dims,
+        ids->GetPointer(0),
+        exec))
+    return nullptr;
+  return ids;
 }
 
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
@@ -878,6 +910,8 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   const vbr::Execution& exec)
 {
   const std::int64_t n = std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  if (objects.size() == 1 && objects[0].labelledFromRuns)
+    return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec);
   vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(static_cast<vtkIdType>(n));
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
@@ -886,7 +920,7 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   {
     if (o.labelledFromRuns)
     {
-      if (!paintRegionsOfRuns(o, regionIds, grid, objects.size() == 1, out, exec))
+      if (!paintRegionsOfRuns(o, regionIds, grid, out, exec))
         return nullptr;
       continue;
     }

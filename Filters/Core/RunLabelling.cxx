@@ -296,10 +296,11 @@ void buildBoxes(const VoxelRuns& r,
   std::vector<Box>& boxes,
   std::vector<std::uint32_t>& boxLabel)
 {
-  boxes.clear();
-  boxLabel.clear();
-  boxes.reserve(boxCount);
-  boxLabel.reserve(boxCount);
+  // Sized once and written field by field: a box built on the stack and pushed back was
+  // copied by a wide load of narrow stores, which stalled every box.
+  boxes.resize(boxCount);
+  boxLabel.resize(boxCount);
+  std::uint32_t count = 0;
   std::vector<std::uint32_t> boxOfRun(r.runs.size(), None);
   const std::int32_t ny = r.dims[1], nz = r.dims[2];
   for (std::int32_t z = 0; z < nz; ++z)
@@ -318,9 +319,15 @@ void buildBoxes(const VoxelRuns& r,
           continue;
         }
         const VoxelRun run = r.runs[i];
-        boxOfRun[i] = static_cast<std::uint32_t>(boxes.size());
-        boxes.push_back({ { run.x0, y, z }, { run.x1, y + rectangleHeight(notes, i), z + 1 } });
-        boxLabel.push_back(runLabel[i]);
+        boxOfRun[i] = count;
+        Box& box = boxes[count];
+        box.lo[0] = run.x0;
+        box.lo[1] = y;
+        box.lo[2] = z;
+        box.hi[0] = run.x1;
+        box.hi[1] = y + rectangleHeight(notes, i);
+        box.hi[2] = z + 1;
+        boxLabel[count++] = runLabel[i];
       }
     }
 }
@@ -522,6 +529,50 @@ bool paintRuns(const VoxelRuns& runs,
           for (std::uint32_t i = runs.rowStarts[row]; i < runs.rowStarts[row + 1]; ++i)
             if (const std::int32_t v = value[runLabel[i]])
               paintRun(line, runs.runs[i], v, room);
+        }
+        if ((z & 7) == 7 && exec.stopRequested())
+          stopped = true;
+      }
+    });
+  return !stopped && !exec.stopRequested();
+}
+
+bool paintRunsOverwriting(const VoxelRuns& runs,
+  const std::vector<std::uint32_t>& runLabel,
+  const std::vector<std::int32_t>& value,
+  const std::array<std::int32_t, 3>& offset,
+  const std::array<std::int32_t, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec)
+{
+  const std::int64_t rowLength = dims[0];
+  const std::int64_t planeLength = rowLength * dims[1];
+  const std::int32_t room = dims[0] - offset[0];
+  std::atomic<bool> stopped{ false };
+  const Execution work = exec.forWork(static_cast<std::int64_t>(runs.runs.size()));
+  work.forRange(dims[2],
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (std::int64_t z = begin; z < end && !stopped; ++z)
+      {
+        std::int32_t* plane = labels + z * planeLength;
+        const std::int64_t rz = z - offset[2];
+        if (rz < 0 || rz >= runs.dims[2])
+        {
+          std::fill_n(plane, planeLength, 0);
+          continue;
+        }
+        for (std::int32_t y = 0; y < dims[1]; ++y)
+        {
+          std::int32_t* line = plane + y * rowLength;
+          std::fill_n(line, rowLength, 0);
+          const std::int32_t ry = y - offset[1];
+          if (ry < 0 || ry >= runs.dims[1])
+            continue;
+          const std::size_t row = runs.rowOf(ry, static_cast<std::int32_t>(rz));
+          for (std::uint32_t i = runs.rowStarts[row]; i < runs.rowStarts[row + 1]; ++i)
+            if (const std::int32_t v = value[runLabel[i]])
+              paintRun(line + offset[0], runs.runs[i], v, room);
         }
         if ((z & 7) == 7 && exec.stopRequested())
           stopped = true;
