@@ -139,55 +139,28 @@ bool onHugePages(double bytes)
 constexpr std::size_t HugePage = std::size_t(2) << 20;
 
 /// A new block of `length` bytes, null when refused: with `huge` (length a multiple of
-/// HugePage) a 2 MiB-aligned mapping of its own marked for transparent huge pages, kept out of
-/// the heap, whose top the union-find's scratch then keeps; else 64-byte aligned heap memory.
+/// HugePage) 2 MiB-aligned and marked for transparent huge pages, else 64-byte aligned. From
+/// the heap (glibc maps the largest apart): while the cache keeps the blocks there, the heap's
+/// top is not returned to the kernel after each update with the labelling's scratch above them
+/// (a block mapped apart left 50 MB of scratch faulted in again at each update of a 256^3
+/// porous volume).
 void* newBlock(std::size_t length, bool huge)
 {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (huge)
-  {
-    const std::size_t mapped = length + HugePage;
-    void* base = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (base == MAP_FAILED)
-      return nullptr;
-    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(base);
-    const std::uintptr_t aligned = (start + HugePage - 1) / HugePage * HugePage;
-    if (aligned > start)
-      munmap(base, aligned - start);
-    if (aligned + length < start + mapped)
-      munmap(reinterpret_cast<void*>(aligned + length), start + mapped - aligned - length);
-    void* block = reinterpret_cast<void*>(aligned);
-    madvise(block, length, MADV_HUGEPAGE); // a hint: failure only costs time
-    return block;
-  }
-#else
-  (void)huge;
-#endif
   void* block = nullptr;
-  return posix_memalign(&block, 64, std::max<std::size_t>(length, 1)) == 0 ? block : nullptr;
-}
-
-/// Frees a block of newBlock.
-void deleteBlock(void* block, std::size_t length, bool huge)
-{
+  if (posix_memalign(&block, huge ? HugePage : 64, std::max<std::size_t>(length, 1)) != 0)
+    return nullptr;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (huge)
-  {
-    munmap(block, length);
-    return;
-  }
-#else
-  (void)length;
-  (void)huge;
+    madvise(block, length, MADV_HUGEPAGE); // a hint: failure only costs time
 #endif
-  std::free(block);
+  return block;
 }
 
 /// Huge blocks of allocateBlock kept from one update to the next. The pipeline releases an
 /// update's outputs when the next update starts, before the filter allocates that update's:
 /// freed, their memory went back to the kernel (glibc unmaps or trims blocks this large), which
 /// then faulted in and zeroed fresh pages for every output array again (on a porous volume with
-/// boxes, about 20 MB a update and a tenth of its time). The blocks freed while a
+/// boxes, about 20 MB an update and a tenth of its time). The blocks freed while a
 /// vtkCUDBConnectivity exists wait here, up to KeptBytes in all, for the next allocations they
 /// fit; the last filter's destruction frees them.
 class BlockCache
@@ -248,31 +221,25 @@ public:
           this->keptBytes += found->second;
           return;
         }
-        const std::size_t length = found->second;
         this->lengths.erase(found);
-        deleteBlock(block, length, true);
-        return;
       }
     }
-    deleteBlock(block, 0, false);
+    std::free(block);
   }
 
   /// Frees every kept block (when an allocation failed: the memory is wanted).
   void clear()
   {
-    std::vector<std::pair<void*, std::size_t>> blocks;
+    std::vector<void*> blocks;
     {
       std::lock_guard<std::mutex> lock(this->mutex);
-      for (void* block : this->kept)
-      {
-        blocks.emplace_back(block, this->lengths[block]);
+      blocks.swap(this->kept);
+      for (void* block : blocks)
         this->lengths.erase(block);
-      }
-      this->kept.clear();
       this->keptBytes = 0;
     }
-    for (const auto& block : blocks)
-      deleteBlock(block.first, block.second, true);
+    for (void* block : blocks)
+      std::free(block);
   }
 
   /// A filter created or destroyed; the last one frees the kept blocks.
