@@ -283,25 +283,30 @@ std::int32_t rectangleHeight(const CompactionNotes& notes, std::uint32_t first)
   return rows;
 }
 
-/// The CUDB's boxes from the runs, in its order. The sweep meets the rectangles of a plane by
-/// their first row, then x, and appends those that begin a box, so the boxes come in the scan
-/// order of the runs that begin them. A rectangle that continues a box (the equal rectangle of
-/// the plane before) moves the box's end along z to its own plane; the rectangle's box is
-/// noted at its first run, where the rectangle of the plane after finds it (`behind`).
-void buildBoxes(const VoxelRuns& r,
+/// The CUDB's boxes from the runs, in its order, and their beginnings as boxBeginnings marks
+/// them (in the same pass: its branches, taken once, mispredicted as often as the runs vary);
+/// returns the number of boxes. The sweep meets the rectangles of a plane by their first row,
+/// then x, and appends those that begin a box, so the boxes come in the scan order of the runs
+/// that begin them. A rectangle that continues a box (the equal rectangle of the plane before)
+/// moves the box's end along z to its own plane; the rectangle's box is noted at its first run,
+/// where the rectangle of the plane after finds it (`behind`).
+std::size_t buildBoxes(const VoxelRuns& r,
   const CompactionNotes& notes,
-  const std::vector<std::uint8_t>& begins,
   const std::vector<std::uint32_t>& runLabel,
-  std::size_t boxCount,
+  std::vector<std::uint8_t>& begins,
   std::vector<Box>& boxes,
   std::vector<std::uint32_t>& boxLabel)
 {
-  // Sized once and written field by field: a box built on the stack and pushed back was
-  // copied by a wide load of narrow stores, which stalled every box.
-  boxes.resize(boxCount);
-  boxLabel.resize(boxCount);
-  std::uint32_t count = 0;
-  std::vector<std::uint32_t> boxOfRun(r.runs.size(), None);
+  const std::size_t n = r.runs.size();
+  begins.assign(n, 0);
+  // Room for a box per run, touched only as far as the boxes go; each box is written field by
+  // field (a box built on the stack and pushed back was copied by a wide load of narrow
+  // stores, which stalled every box).
+  boxes.clear();
+  boxLabel.clear();
+  boxes.reserve(n);
+  boxLabel.reserve(n);
+  std::vector<std::uint32_t> boxOfRun(n, None);
   const std::int32_t ny = r.dims[1], nz = r.dims[2];
   for (std::int32_t z = 0; z < nz; ++z)
     for (std::int32_t y = 0; y < ny; ++y)
@@ -311,25 +316,28 @@ void buildBoxes(const VoxelRuns& r,
       {
         if (notes.above[i] != None) // inside a rectangle, not its first run
           continue;
-        if (!begins[i])
+        const std::uint32_t back = notes.behind[i];
+        if (back != None && notes.above[back] == None && sameHeight(notes, i, back))
         {
-          const std::uint32_t box = boxOfRun[notes.behind[i]];
+          const std::uint32_t box = boxOfRun[back];
           boxOfRun[i] = box;
           boxes[box].hi[2] = z + 1;
           continue;
         }
+        begins[i] = 1;
+        boxOfRun[i] = static_cast<std::uint32_t>(boxes.size());
         const VoxelRun run = r.runs[i];
-        boxOfRun[i] = count;
-        Box& box = boxes[count];
+        Box& box = boxes.emplace_back();
         box.lo[0] = run.x0;
         box.lo[1] = y;
         box.lo[2] = z;
         box.hi[0] = run.x1;
         box.hi[1] = y + rectangleHeight(notes, i);
         box.hi[2] = z + 1;
-        boxLabel[count++] = runLabel[i];
+        boxLabel.push_back(runLabel[i]);
       }
     }
+  return boxes.size();
 }
 
 /// Whether `words` words from a and from b are equal.
@@ -484,13 +492,11 @@ bool labelRuns(const BitVolume& voxels,
     const std::uint32_t root = uf.find(i);
     out.runLabel[i] = root == i ? ++out.count : out.runLabel[root];
   }
-  out.boxCount = boxBeginnings(notes, out.beginsBox);
-  if (exec.stopRequested())
-    return false;
   if (withBoxes)
-    buildBoxes(runs, notes, out.beginsBox, out.runLabel, out.boxCount, out.boxes, out.boxLabel);
+    out.boxCount = buildBoxes(runs, notes, out.runLabel, out.beginsBox, out.boxes, out.boxLabel);
   else
   {
+    out.boxCount = boxBeginnings(notes, out.beginsBox);
     out.boxes.clear();
     out.boxLabel.clear();
   }

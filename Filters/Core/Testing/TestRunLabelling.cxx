@@ -37,6 +37,8 @@ Labelled labelAndPaint(const vbr::BitVolume& v,
   EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, plain));
   EXPECT_EQ(plain.runLabel, out.components.runLabel);
   EXPECT_EQ(plain.boxCount, out.components.boxCount);
+  EXPECT_EQ(plain.beginsBox, out.components.beginsBox);
+  EXPECT_EQ(out.components.boxes.size(), out.components.boxCount);
   EXPECT_TRUE(plain.boxes.empty() && plain.boxLabel.empty());
   std::vector<std::int32_t> value(out.components.count + 1);
   for (std::size_t l = 0; l < value.size(); ++l)
