@@ -36,8 +36,9 @@ constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 /// transparent huge pages before anything is written (Linux; a hint, failure only costs time).
 /// The labelling's scratch is allocated anew at each update, and glibc often returns it to the
 /// kernel in between (the top of its heap, or a mapping of its own), which then faulted it in
-/// 4 KiB at a time: about 3 microseconds a page on the benchmark machine, 8,000 to 12,000 pages
-/// (25 to 30 ms) an update of a 256^3 porous volume whose labelling takes 60.
+/// 4 KiB at a time: about 3 microseconds a page on the benchmark machine, where an update of a
+/// 256^3 porous volume with 9,000 to 12,000 such faults took 95 to 100 ms of CPU, and 70 ms
+/// with about 300.
 template<typename T>
 void reserveOnHugePages(std::vector<T>& v, std::size_t n)
 {
