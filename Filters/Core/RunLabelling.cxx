@@ -127,13 +127,10 @@ void uniteRow(UnionFind& uf,
     // Runs of the neighbour row that end before this one begins meet no later run either.
     while (b < bEnd && runs[b].x1 + Widen <= run.x0)
       ++b;
-    // The first contact finds the run's root, the others unite with the root carried.
     std::uint32_t root = a;
-    bool first = true;
     for (std::uint32_t k = b; k < bEnd && runs[k].x0 < run.x1 + Widen; ++k)
     {
-      root = first ? uf.unite(k, root) : uf.uniteWithRoot(k, root);
-      first = false;
+      root = uf.unite(k, root);
       if (twin && runs[k].x0 == run.x0 && runs[k].x1 == run.x1)
       {
         twin[a] = k;

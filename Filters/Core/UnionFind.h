@@ -75,16 +75,6 @@ public:
     return a;
   }
 
-  /// Joins the class of x with the class whose root is `root`; returns the root of the union.
-  /// unite() without finding a root already known (a walk carrying the root of its union).
-  std::uint32_t uniteWithRoot(std::uint32_t x, std::uint32_t root)
-  {
-    x = this->find(x);
-    const std::uint32_t low = x < root ? x : root, high = x < root ? root : x;
-    this->Parent[high] = low;
-    return low;
-  }
-
   /// Consecutive numbers 0 .. count - 1 for the classes, in order of their smallest element.
   std::vector<std::uint32_t> numberClasses(std::uint32_t& count)
   {
