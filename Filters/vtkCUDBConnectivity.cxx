@@ -45,6 +45,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <exception>
 #include <initializer_list>
 #include <limits>
@@ -156,13 +159,37 @@ void* newBlock(std::size_t length, bool huge)
   return block;
 }
 
+// Under AddressSanitizer BlockCache keeps no block: a use of a freed output stays detectable.
+#if defined(__SANITIZE_ADDRESS__)
+#define VBR_KEEP_BLOCKS 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VBR_KEEP_BLOCKS 0
+#endif
+#endif
+#ifndef VBR_KEEP_BLOCKS
+#define VBR_KEEP_BLOCKS 1
+#endif
+
 /// Huge blocks of allocateBlock kept from one update to the next. The pipeline releases an
 /// update's outputs when the next update starts, before the filter allocates that update's:
 /// freed, their memory went back to the kernel (glibc unmaps or trims blocks this large), which
 /// then faulted in and zeroed fresh pages for every output array again (on a porous volume with
-/// boxes, about 20 MB an update and a tenth of its time). The blocks freed while a
-/// vtkCUDBConnectivity exists wait here, up to KeptBytes in all, for the next allocations they
-/// fit; the last filter's destruction frees them.
+/// boxes, about 20 MB an update and a tenth of its time). One cache for the process, shared by
+/// every vtkCUDBConnectivity; the last filter's destruction frees what it keeps.
+///
+/// Memory stays linear in the outputs: the cache keeps no more than the last update used.
+/// - Between updates it holds only blocks released since the last update began (in the usual
+///   pipeline, that update's outputs once the next update releases them), at most KeptBytes.
+/// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
+///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
+///   kept plus what the update has taken or allocated stays within the larger of the bytes kept
+///   at its start and the bytes it uses: the peak is about max(old outputs, new outputs), not
+///   their sum, when the sizes change.
+/// - At its end (endUpdate, also after an abort, an error or an exception) every block kept
+///   before it began and not taken by it is freed.
+/// - Before a memory check refuses an allocation, and after one failed, everything kept is
+///   freed (vbr::vtk::reclaimMemory).
 class BlockCache
 {
 public:
@@ -171,30 +198,46 @@ public:
   /// Never destroyed: VTK arrays may release their blocks after static destruction.
   static BlockCache& instance()
   {
-    static BlockCache* cache = new BlockCache;
+    static BlockCache* cache = []
+    {
+      vbr::vtk::setMemoryReclaimer([] { BlockCache::instance().clear(); });
+      return new BlockCache;
+    }();
     return *cache;
   }
 
   /// A kept block of `length` bytes or a little more (a multiple of the huge page), now in use;
-  /// null when none fits.
+  /// null when none fits, after freeing the oldest kept blocks the update's budget needs.
   void* take(std::size_t length)
   {
-    std::lock_guard<std::mutex> lock(this->mutex);
-    const std::size_t most = length + length / 4;
-    std::size_t best = this->kept.size();
-    for (std::size_t i = 0; i < this->kept.size(); ++i)
+    std::vector<void*> evicted;
+    void* block = nullptr;
     {
-      const std::size_t l = this->lengths[this->kept[i]];
-      if (l >= length && l <= most &&
-        (best == this->kept.size() || l < this->lengths[this->kept[best]]))
-        best = i;
+      std::lock_guard<std::mutex> lock(this->mutex);
+      const std::size_t most = length + length / 4;
+      std::size_t best = this->kept.size();
+      for (std::size_t i = 0; i < this->kept.size(); ++i)
+      {
+        const std::size_t l = this->kept[i].length;
+        if (l >= length && l <= most && (best == this->kept.size() || l < this->kept[best].length))
+          best = i;
+      }
+      if (best != this->kept.size())
+      {
+        block = this->kept[best].block;
+        this->used += this->kept[best].length;
+        this->keptBytes -= this->kept[best].length;
+        this->kept.erase(this->kept.begin() + static_cast<std::ptrdiff_t>(best));
+        return block;
+      }
+      this->used += length;
+      std::size_t oldest = 0;
+      while (oldest < this->kept.size() && this->keptBytes + this->used > this->budget)
+        this->keptBytes -= this->kept[oldest++].length;
+      evicted = this->forget(oldest);
     }
-    if (best == this->kept.size())
-      return nullptr;
-    void* block = this->kept[best];
-    this->kept.erase(this->kept.begin() + static_cast<std::ptrdiff_t>(best));
-    this->keptBytes -= this->lengths[block];
-    return block;
+    freeAll(evicted);
+    return nullptr;
   }
 
   /// Notes a new huge block of `length` bytes, in use.
@@ -215,9 +258,9 @@ public:
       const auto found = this->lengths.find(block);
       if (found != this->lengths.end())
       {
-        if (this->users > 0 && this->keptBytes + found->second <= KeptBytes)
+        if (VBR_KEEP_BLOCKS && this->users > 0 && this->keptBytes + found->second <= KeptBytes)
         {
-          this->kept.push_back(block);
+          this->kept.push_back({ block, found->second, this->releases++ });
           this->keptBytes += found->second;
           return;
         }
@@ -227,19 +270,47 @@ public:
     std::free(block);
   }
 
-  /// Frees every kept block (when an allocation failed: the memory is wanted).
-  void clear()
+  /// An update begins: its budget is what is kept now (see the class comment).
+  void beginUpdate()
   {
-    std::vector<void*> blocks;
+    std::lock_guard<std::mutex> lock(this->mutex);
+    if (this->updates++ > 0)
+      return; // concurrent updates share the first one's budget
+    this->updateStart = this->releases;
+    this->budget = this->keptBytes;
+    this->used = 0;
+  }
+
+  /// An update ends: the blocks kept before it began and not taken by it are freed.
+  void endUpdate()
+  {
+    std::vector<void*> evicted;
     {
       std::lock_guard<std::mutex> lock(this->mutex);
-      blocks.swap(this->kept);
-      for (void* block : blocks)
-        this->lengths.erase(block);
-      this->keptBytes = 0;
+      if (--this->updates > 0)
+        return;
+      std::size_t oldest = 0;
+      while (oldest < this->kept.size() && this->kept[oldest].release < this->updateStart)
+        this->keptBytes -= this->kept[oldest++].length;
+      evicted = this->forget(oldest);
     }
-    for (void* block : blocks)
-      std::free(block);
+    freeAll(evicted);
+  }
+
+  /// Frees every kept block (the memory is wanted: a check would refuse, an allocation failed).
+  void clear()
+  {
+    std::vector<void*> evicted;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      this->keptBytes = 0;
+      evicted = this->forget(this->kept.size());
+    }
+    freeAll(evicted);
+#if defined(__GLIBC__)
+    if (!evicted.empty())
+      malloc_trim(0); // blocks below glibc's mmap threshold go back to the kernel too
+#endif
   }
 
   /// A filter created or destroyed; the last one frees the kept blocks.
@@ -256,11 +327,53 @@ public:
   }
 
 private:
+  struct Kept
+  {
+    void* block;
+    std::size_t length;
+    std::uint64_t release; ///< the order of releases
+  };
+
+  /// Removes the `count` oldest kept blocks (keptBytes already counted), to be freed.
+  std::vector<void*> forget(std::size_t count)
+  {
+    std::vector<void*> blocks;
+    blocks.reserve(count);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      blocks.push_back(this->kept[i].block);
+      this->lengths.erase(this->kept[i].block);
+    }
+    this->kept.erase(this->kept.begin(), this->kept.begin() + static_cast<std::ptrdiff_t>(count));
+    return blocks;
+  }
+
+  static void freeAll(const std::vector<void*>& blocks)
+  {
+    for (void* block : blocks)
+      std::free(block);
+  }
+
   std::mutex mutex;
   std::unordered_map<void*, std::size_t> lengths; ///< the huge blocks, in use or kept
-  std::vector<void*> kept;
+  std::vector<Kept> kept;                         ///< oldest release first
   std::size_t keptBytes = 0;
+  std::uint64_t releases = 0;    ///< blocks kept so far: the next one's release
+  int updates = 0;               ///< updates in progress
+  std::uint64_t updateStart = 0; ///< releases when the first of them began
+  std::size_t budget = 0;        ///< keptBytes then
+  std::size_t used = 0;          ///< bytes taken or allocated by them since
   int users = 0;
+};
+
+/// Brackets an update for BlockCache, also when it ends by an exception.
+class CacheUpdate
+{
+public:
+  CacheUpdate() { BlockCache::instance().beginUpdate(); }
+  ~CacheUpdate() { BlockCache::instance().endUpdate(); }
+  CacheUpdate(const CacheUpdate&) = delete;
+  CacheUpdate& operator=(const CacheUpdate&) = delete;
 };
 
 /// Releases a block of allocateBlock (to BlockCache).
@@ -291,7 +404,17 @@ void* allocateBlock(std::size_t bytes, bool huge)
     if (!block)
       return nullptr;
     if (huge)
-      cache.track(block, length);
+    {
+      try
+      {
+        cache.track(block, length);
+      }
+      catch (...)
+      {
+        std::free(block); // not yet an array's
+        throw;
+      }
+    }
   }
 #ifndef NDEBUG
   // Every value is written by the filter: in a debug build (the sanitizers' tests) a value left
@@ -2048,6 +2171,7 @@ int vtkCUDBConnectivity::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const CacheUpdate update;
   return vbr::vtk::executeGuarded(this,
     outputVector,
     "Connected components",
