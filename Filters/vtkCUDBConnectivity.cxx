@@ -45,14 +45,19 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <exception>
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #ifdef __linux__
@@ -134,15 +139,16 @@ bool onHugePages(double bytes)
   return bytes >= 8.0 * 1024 * 1024;
 }
 
-/// Memory of `bytes` that std::free releases, aligned to 64 bytes. With `huge`, a block of 2
-/// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
-/// faulted in 4 KiB pages) and marked for transparent huge pages, as
-/// vbr::vtk::newZeroedIntArray's RegionId image. Null when refused.
-void* allocateBlock(std::size_t bytes, bool huge)
+constexpr std::size_t HugePage = std::size_t(2) << 20;
+
+/// A new block of `length` bytes, null when refused: with `huge` (length a multiple of
+/// HugePage) 2 MiB-aligned and marked for transparent huge pages, else 64-byte aligned. From
+/// the heap (glibc maps the largest apart): while the cache keeps the blocks there, the heap's
+/// top is not returned to the kernel after each update with the labelling's scratch above them
+/// (a block mapped apart left 50 MB of scratch faulted in again at each update of a 256^3
+/// porous volume).
+void* newBlock(std::size_t length, bool huge)
 {
-  constexpr std::size_t HugePage = std::size_t(2) << 20;
-  huge = huge && bytes >= HugePage;
-  const std::size_t length = huge ? (bytes + HugePage - 1) / HugePage * HugePage : bytes;
   void* block = nullptr;
   if (posix_memalign(&block, huge ? HugePage : 64, std::max<std::size_t>(length, 1)) != 0)
     return nullptr;
@@ -150,6 +156,266 @@ void* allocateBlock(std::size_t bytes, bool huge)
   if (huge)
     madvise(block, length, MADV_HUGEPAGE); // a hint: failure only costs time
 #endif
+  return block;
+}
+
+// Under AddressSanitizer BlockCache keeps no block: a use of a freed output stays detectable.
+#if defined(__SANITIZE_ADDRESS__)
+#define VBR_KEEP_BLOCKS 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VBR_KEEP_BLOCKS 0
+#endif
+#endif
+#ifndef VBR_KEEP_BLOCKS
+#define VBR_KEEP_BLOCKS 1
+#endif
+
+/// Huge blocks of allocateBlock kept from one update to the next. The pipeline releases an
+/// update's outputs when the next update starts, before the filter allocates that update's:
+/// freed, their memory went back to the kernel (glibc unmaps or trims blocks this large), which
+/// then faulted in and zeroed fresh pages for every output array again (on a porous volume with
+/// boxes, about 20 MB an update and a tenth of its time). One cache for the process, shared by
+/// every vtkCUDBConnectivity; the last filter's destruction frees what it keeps.
+///
+/// Memory stays linear in the outputs: the cache keeps no more than the last update used.
+/// - Between updates it holds only blocks released since the last update began (in the usual
+///   pipeline, that update's outputs once the next update releases them), at most KeptBytes.
+/// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
+///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
+///   kept plus what the update has taken or allocated stays within the larger of the bytes kept
+///   at its start and the bytes it uses: the peak is about max(old outputs, new outputs), not
+///   their sum, when the sizes change.
+/// - At its end (endUpdate, also after an abort, an error or an exception) every block kept
+///   before it began and not taken by it is freed.
+/// - Before a memory check refuses an allocation, and after one failed, everything kept is
+///   freed (vbr::vtk::reclaimMemory).
+class BlockCache
+{
+public:
+  static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
+
+  /// Never destroyed: VTK arrays may release their blocks after static destruction.
+  static BlockCache& instance()
+  {
+    static BlockCache* cache = []
+    {
+      vbr::vtk::setMemoryReclaimer([] { BlockCache::instance().clear(); });
+      return new BlockCache;
+    }();
+    return *cache;
+  }
+
+  /// A kept block of `length` bytes or a little more (a multiple of the huge page), now in use;
+  /// null when none fits, after freeing the oldest kept blocks the update's budget needs.
+  void* take(std::size_t length)
+  {
+    std::vector<void*> evicted;
+    void* block = nullptr;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      const std::size_t most = length + length / 4;
+      std::size_t best = this->kept.size();
+      for (std::size_t i = 0; i < this->kept.size(); ++i)
+      {
+        const std::size_t l = this->kept[i].length;
+        if (l >= length && l <= most && (best == this->kept.size() || l < this->kept[best].length))
+          best = i;
+      }
+      if (best != this->kept.size())
+      {
+        block = this->kept[best].block;
+        this->used += this->kept[best].length;
+        this->keptBytes -= this->kept[best].length;
+        this->kept.erase(this->kept.begin() + static_cast<std::ptrdiff_t>(best));
+        return block;
+      }
+      this->used += length;
+      std::size_t oldest = 0;
+      while (oldest < this->kept.size() && this->keptBytes + this->used > this->budget)
+        this->keptBytes -= this->kept[oldest++].length;
+      evicted = this->forget(oldest);
+    }
+    freeAll(evicted);
+    return nullptr;
+  }
+
+  /// Notes a new huge block of `length` bytes, in use.
+  void track(void* block, std::size_t length)
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    this->lengths[block] = length;
+  }
+
+  /// A block of allocateBlock no longer used: kept when huge, a filter exists and there is
+  /// room, else freed.
+  void release(void* block)
+  {
+    if (!block)
+      return;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      const auto found = this->lengths.find(block);
+      if (found != this->lengths.end())
+      {
+        if (VBR_KEEP_BLOCKS && this->users > 0 && this->keptBytes + found->second <= KeptBytes)
+        {
+          this->kept.push_back({ block, found->second, this->releases++ });
+          this->keptBytes += found->second;
+          return;
+        }
+        this->lengths.erase(found);
+      }
+    }
+    std::free(block);
+  }
+
+  /// An update begins: its budget is what is kept now (see the class comment).
+  void beginUpdate()
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    if (this->updates++ > 0)
+      return; // concurrent updates share the first one's budget
+    this->updateStart = this->releases;
+    this->budget = this->keptBytes;
+    this->used = 0;
+  }
+
+  /// An update ends: the blocks kept before it began and not taken by it are freed.
+  void endUpdate()
+  {
+    std::vector<void*> evicted;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      if (--this->updates > 0)
+        return;
+      std::size_t oldest = 0;
+      while (oldest < this->kept.size() && this->kept[oldest].release < this->updateStart)
+        this->keptBytes -= this->kept[oldest++].length;
+      evicted = this->forget(oldest);
+    }
+    freeAll(evicted);
+  }
+
+  /// Frees every kept block (the memory is wanted: a check would refuse, an allocation failed).
+  void clear()
+  {
+    std::vector<void*> evicted;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      this->keptBytes = 0;
+      evicted = this->forget(this->kept.size());
+    }
+    freeAll(evicted);
+#if defined(__GLIBC__)
+    if (!evicted.empty())
+      malloc_trim(0); // blocks below glibc's mmap threshold go back to the kernel too
+#endif
+  }
+
+  /// A filter created or destroyed; the last one frees the kept blocks.
+  void addUser(int change)
+  {
+    bool last = false;
+    {
+      std::lock_guard<std::mutex> lock(this->mutex);
+      this->users += change;
+      last = this->users == 0;
+    }
+    if (last)
+      this->clear();
+  }
+
+private:
+  struct Kept
+  {
+    void* block;
+    std::size_t length;
+    std::uint64_t release; ///< the order of releases
+  };
+
+  /// Removes the `count` oldest kept blocks (keptBytes already counted), to be freed.
+  std::vector<void*> forget(std::size_t count)
+  {
+    std::vector<void*> blocks;
+    blocks.reserve(count);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      blocks.push_back(this->kept[i].block);
+      this->lengths.erase(this->kept[i].block);
+    }
+    this->kept.erase(this->kept.begin(), this->kept.begin() + static_cast<std::ptrdiff_t>(count));
+    return blocks;
+  }
+
+  static void freeAll(const std::vector<void*>& blocks)
+  {
+    for (void* block : blocks)
+      std::free(block);
+  }
+
+  std::mutex mutex;
+  std::unordered_map<void*, std::size_t> lengths; ///< the huge blocks, in use or kept
+  std::vector<Kept> kept;                         ///< oldest release first
+  std::size_t keptBytes = 0;
+  std::uint64_t releases = 0;    ///< blocks kept so far: the next one's release
+  int updates = 0;               ///< updates in progress
+  std::uint64_t updateStart = 0; ///< releases when the first of them began
+  std::size_t budget = 0;        ///< keptBytes then
+  std::size_t used = 0;          ///< bytes taken or allocated by them since
+  int users = 0;
+};
+
+/// Brackets an update for BlockCache, also when it ends by an exception.
+class CacheUpdate
+{
+public:
+  CacheUpdate() { BlockCache::instance().beginUpdate(); }
+  ~CacheUpdate() { BlockCache::instance().endUpdate(); }
+  CacheUpdate(const CacheUpdate&) = delete;
+  CacheUpdate& operator=(const CacheUpdate&) = delete;
+};
+
+/// Releases a block of allocateBlock (to BlockCache).
+void releaseBlock(void* block)
+{
+  BlockCache::instance().release(block);
+}
+
+/// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 2
+/// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
+/// faulted in 4 KiB pages) and marked for transparent huge pages, as
+/// vbr::vtk::newZeroedIntArray's RegionId image, and taken from the blocks an earlier update
+/// released when one fits (BlockCache). Null when refused.
+void* allocateBlock(std::size_t bytes, bool huge)
+{
+  huge = huge && bytes >= HugePage;
+  const std::size_t length = huge ? (bytes + HugePage - 1) / HugePage * HugePage : bytes;
+  BlockCache& cache = BlockCache::instance();
+  void* block = huge ? cache.take(length) : nullptr;
+  if (!block)
+  {
+    block = newBlock(length, huge);
+    if (!block && huge)
+    {
+      cache.clear();
+      block = newBlock(length, huge);
+    }
+    if (!block)
+      return nullptr;
+    if (huge)
+    {
+      try
+      {
+        cache.track(block, length);
+      }
+      catch (...)
+      {
+        std::free(block); // not yet an array's
+        throw;
+      }
+    }
+  }
 #ifndef NDEBUG
   // Every value is written by the filter: in a debug build (the sanitizers' tests) a value left
   // unwritten reads NaN or -1, not the zeros of fresh pages.
@@ -188,13 +454,14 @@ void allocateTuples(const std::vector<vtkDataArray*>& arrays, vtkIdType tuples, 
     {
       vtkTemplateMacro(if (auto* aos = vtkAOSDataArrayTemplate<VTK_TT>::FastDownCast(array)) {
         aos->SetArray(
-          static_cast<VTK_TT*>(block), values, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+          static_cast<VTK_TT*>(block), values, 0, vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+        aos->SetArrayFreeFunction(releaseBlock);
         taken = true;
       });
     }
     if (!taken)
     {
-      std::free(block);
+      releaseBlock(block);
       vbr::vtk::resizeOrThrow(array, tuples);
     }
   }
@@ -321,7 +588,7 @@ public:
 private:
   struct Free
   {
-    void operator()(Region* p) const { std::free(p); }
+    void operator()(Region* p) const { releaseBlock(p); }
   };
   std::unique_ptr<Region[], Free> records;
   std::size_t count = 0, started = 0;
@@ -672,24 +939,56 @@ std::int32_t numberRegions(const Regions& regions,
   return static_cast<std::int32_t>(kept.size());
 }
 
-/// The voxels of an object labelled on its runs painted from the runs, as paintRegions does.
-/// The only object of the image has nothing but zeros around its runs: they are painted by wide
-/// stores that zero the voxels after them (vbr::paintRuns).
-bool paintRegionsOfRuns(const ObjectBoxes& o,
-  const std::vector<std::int32_t>* regionIds,
-  const vbr::vtk::VoxelGrid& grid,
-  bool onlyObject,
-  std::int32_t* out,
-  const vbr::Execution& exec)
+/// The value painted for each label of an object labelled on its runs (by label, from 1): with
+/// `regionIds`, its region's RegionId (0 where removed); without, the region's number.
+std::vector<std::int32_t> valuesOfRunLabels(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds)
 {
-  std::vector<std::int32_t> values(o.runComponents.count + 1, 0); // by label, from 1
+  std::vector<std::int32_t> values(o.runComponents.count + 1, 0);
   for (std::uint32_t c = 1; c <= o.runComponents.count; ++c)
   {
     const std::size_t r = o.firstRegion + c - 1;
     values[c] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
   }
+  return values;
+}
+
+/// The voxels of an object labelled on its runs, one of several objects (a label map), painted
+/// from the runs into the zeroed image, as paintRegions does (the only object of an image takes
+/// paintOnlyObjectOfRuns).
+bool paintRegionsOfRuns(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds,
+  const vbr::vtk::VoxelGrid& grid,
+  std::int32_t* out,
+  const vbr::Execution& exec)
+{
+  const std::vector<std::int32_t> values = valuesOfRunLabels(o, regionIds);
   return vbr::paintRuns(
-    o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec, onlyObject);
+    o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec);
+}
+
+/// paintRegions of the image's only object, labelled on its runs: the RegionId image in memory
+/// of allocateTuples (an earlier update's, when one released it), every voxel written by
+/// vbr::paintRunsOverwriting rather than faulted in zeroed and painted over.
+vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds,
+  const vbr::vtk::VoxelGrid& grid,
+  const vbr::Execution& exec)
+{
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkNew<vtkIntArray> ids;
+  ids->SetName("RegionId");
+  allocateTuples({ ids }, n, 0.0);
+  const std::vector<std::int32_t> values = valuesOfRunLabels(o, regionIds);
+  if (!vbr::paintRunsOverwriting(o.voxelRuns,
+        o.runComponents.runLabel,
+        values,
+        o.offset,
+        grid.dims,
+        ids->GetPointer(0),
+        exec))
+    return nullptr;
+  return ids;
 }
 
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
@@ -701,6 +1000,8 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   const vbr::Execution& exec)
 {
   const std::int64_t n = std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  if (objects.size() == 1 && objects[0].labelledFromRuns)
+    return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec);
   vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(static_cast<vtkIdType>(n));
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
@@ -709,7 +1010,7 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   {
     if (o.labelledFromRuns)
     {
-      if (!paintRegionsOfRuns(o, regionIds, grid, objects.size() == 1, out, exec))
+      if (!paintRegionsOfRuns(o, regionIds, grid, out, exec))
         return nullptr;
       continue;
     }
@@ -875,13 +1176,26 @@ struct CornerWriter
       this->base[d] = this->grid.extentMin[d] + this->grid.vertexShift[d];
   }
 
-  /// The corners of `box` (processing axes, at `offset`) into xyz (3 * corners doubles).
+  /// Whether the processing axes are the image axes and corner k reads sum k (a 3D image in
+  /// the default sorting, axis-aligned): write<true> then indexes nothing at run time.
+  bool plain() const
+  {
+    for (int k = 0; k < 8; ++k)
+      if (this->sumOfCorner[k] != k)
+        return false;
+    return this->corners == 8 && this->source == std::array<int, 3>{ 0, 1, 2 };
+  }
+
+  /// The corners of `box` (processing axes, at `offset`) into xyz (3 * corners doubles). With
+  /// Plain (plain() holds), the same arithmetic with every index known at compile time: the
+  /// sums stay in registers instead of being gathered through the stack by run-time indices.
+  template<bool Plain>
   void write(const vbr::Box& box, const Int3& offset, double* xyz) const
   {
     double local[3][2]; // [image axis][lo, hi]
     for (int d = 0; d < 3; ++d)
     {
-      const int k = this->source[d];
+      const int k = Plain ? d : this->source[d];
       local[d][0] = (this->base[d] + double(box.lo[k] + offset[k])) * this->grid.spacing[d];
       local[d][1] = (this->base[d] + double(box.hi[k] + offset[k])) * this->grid.spacing[d];
     }
@@ -900,11 +1214,28 @@ struct CornerWriter
         }
       }
     }
+    if (Plain)
+    {
+      writePlain(sum, xyz);
+      return;
+    }
     double out[24];
     for (int k = 0; k < this->corners; ++k)
       for (int w = 0; w < 3; ++w)
         out[3 * k + w] = sum[w][this->sumOfCorner[k]];
     streamValues(out, 3 * this->corners, xyz);
+  }
+
+  /// The eight corners k = 0..7 of sum[w][k] into xyz, pair by pair.
+  static void writePlain(const double (&sum)[3][8], double* xyz)
+  {
+#ifdef VBR_STREAM_STORES
+    for (int i = 0; i < 24; i += 2)
+      _mm_stream_pd(xyz + i, _mm_set_pd(sum[(i + 1) % 3][(i + 1) / 3], sum[i % 3][i / 3]));
+#else
+    for (int i = 0; i < 24; ++i)
+      xyz[i] = sum[i % 3][i / 3];
+#endif
   }
 
   /// `n` (even) doubles to `to` (16-byte aligned) past the caches where SSE2 allows: the
@@ -1030,17 +1361,24 @@ vtkIdType writeObjectBoxes(const ObjectBoxes& o,
   int* regionIds = cells.regionIds->GetPointer(0);
   const std::uint32_t* label = o.components.boxLabel.data();
   const std::vector<vbr::Box>& boxes = o.cudb.boxes;
-  for (std::size_t b = 0; b < boxes.size(); ++b)
+  auto writeAll = [&](auto plain)
   {
-    const std::int32_t id = regionIdOfLabel[label[b] - 1];
-    if (id == 0)
-      continue;
-    corners.write(boxes[b], o.offset, xyz);
-    xyz += 3 * corners.corners;
-    boxIds[cell] = boxBase + static_cast<vtkIdType>(b);
-    regionIds[cell] = id;
-    ++cell;
-  }
+    for (std::size_t b = 0; b < boxes.size(); ++b)
+    {
+      const std::int32_t id = regionIdOfLabel[label[b] - 1];
+      if (id == 0)
+        continue;
+      corners.write<decltype(plain)::value>(boxes[b], o.offset, xyz);
+      xyz += 3 * corners.corners;
+      boxIds[cell] = boxBase + static_cast<vtkIdType>(b);
+      regionIds[cell] = id;
+      ++cell;
+    }
+  };
+  if (corners.plain())
+    writeAll(std::true_type{});
+  else
+    writeAll(std::false_type{});
   fillLabels(cells.labels, first, cell, o.label);
   return cell;
 }
@@ -1735,10 +2073,14 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
   this->SetProgressText("CUDB Connectivity");
+  BlockCache::instance().addUser(1);
 }
 
 //------------------------------------------------------------------------------
-vtkCUDBConnectivity::~vtkCUDBConnectivity() = default;
+vtkCUDBConnectivity::~vtkCUDBConnectivity()
+{
+  BlockCache::instance().addUser(-1);
+}
 
 //------------------------------------------------------------------------------
 int vtkCUDBConnectivity::FillInputPortInformation(int port, vtkInformation* info)
@@ -1829,6 +2171,7 @@ int vtkCUDBConnectivity::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const CacheUpdate update;
   return vbr::vtk::executeGuarded(this,
     outputVector,
     "Connected components",

@@ -760,10 +760,13 @@ int executeGuarded(vtkAlgorithm* algorithm,
   catch (const std::exception& e)
   {
     if (dynamic_cast<const std::bad_alloc*>(&e))
+    {
+      reclaimMemory(); // what is kept for reuse is wanted elsewhere now
       vtkErrorWithObjectMacro(algorithm,
         << what << " failed: out of memory (std::bad_alloc; "
         << formatBytes(double(availableMemoryBytes()))
         << " can still be allocated: available memory and ulimit -v).");
+    }
     else
       vtkErrorWithObjectMacro(algorithm, << what << " failed: " << e.what());
     for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)

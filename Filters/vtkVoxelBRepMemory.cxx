@@ -1,5 +1,6 @@
 #include "vtkVoxelBRepMemory.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -82,7 +83,27 @@ bool fitsWithoutAsking(double bytes)
   return left == Unknown || bytes <= double(left);
 }
 
+std::atomic<void (*)()> reclaimer{ nullptr };
+
+/// Whether `bytes` fit in `available` (not Unknown).
+bool fits(double bytes, std::uint64_t available)
+{
+  return std::isfinite(bytes) && bytes >= 0.0 &&
+    (available == Unknown || bytes <= double(available));
+}
+
 } // namespace
+
+void setMemoryReclaimer(void (*reclaim)())
+{
+  reclaimer.store(reclaim);
+}
+
+void reclaimMemory()
+{
+  if (void (*reclaim)() = reclaimer.load())
+    reclaim();
+}
 
 std::uint64_t availableMemoryBytes()
 {
@@ -111,10 +132,17 @@ std::string checkAllocation(double bytes, const std::string& what)
 {
   if (fitsWithoutAsking(bytes))
     return std::string();
-  const std::uint64_t available = availableMemoryBytes();
-  const bool known = available != Unknown;
-  if (std::isfinite(bytes) && bytes >= 0.0 && (!known || bytes <= double(available)))
+  std::uint64_t available = availableMemoryBytes();
+  if (fits(bytes, available))
     return std::string();
+  if (std::isfinite(bytes) && bytes >= 0.0 && reclaimer.load())
+  {
+    reclaimMemory(); // memory kept for reuse counts as used until given back
+    available = availableMemoryBytes();
+    if (fits(bytes, available))
+      return std::string();
+  }
+  const bool known = available != Unknown;
   std::ostringstream message;
   message << what << " needs ";
   if (std::isfinite(bytes) && bytes >= 0.0)

@@ -18,10 +18,20 @@ namespace vtk
 /// nothing is known.
 std::uint64_t availableMemoryBytes();
 
-/// An empty string when `bytes` fit in availableMemoryBytes(); otherwise an error message
+/// An empty string when `bytes` fit in availableMemoryBytes(), if need be once the memory kept
+/// for reuse is given back (reclaimMemory); otherwise an error message
 /// naming `what`, the bytes needed and the limit. A negative or non-finite estimate (an
 /// overflowing product) never fits.
 std::string checkAllocation(double bytes, const std::string& what);
+
+/// Memory a filter keeps for reuse that it can give back when an allocation would be refused:
+/// `reclaim` frees it. One function for the process (the last set replaces the earlier one;
+/// null removes it).
+void setMemoryReclaimer(void (*reclaim)());
+
+/// Gives back the memory kept for reuse (setMemoryReclaimer), before an allocation is refused
+/// or after one failed.
+void reclaimMemory();
 
 /// `bytes` for a message: "1.5 GiB", "640 MiB", "12 kiB", "100 bytes".
 std::string formatBytes(double bytes);

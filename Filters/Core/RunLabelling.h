@@ -111,6 +111,19 @@ bool paintRuns(const VoxelRuns& runs,
   const Execution& exec = Execution(),
   bool zeroAround = false);
 
+/// paintRuns into a grid of any content: every voxel of `labels` is written, a run's value (0
+/// where it is 0) or 0, so the grid need not be zeroed first (memory an earlier update used).
+/// Each row is zeroed while in the CPU cache and its runs then painted by the wide stores of
+/// `zeroAround`: the grid is written once, not zeroed by the kernel and written again.
+/// Parallel over planes; false when stopped (partly written).
+bool paintRunsOverwriting(const VoxelRuns& runs,
+  const std::vector<std::uint32_t>& runLabel,
+  const std::vector<std::int32_t>& value,
+  const std::array<std::int32_t, 3>& offset,
+  const std::array<std::int32_t, 3>& dims,
+  std::int32_t* labels,
+  const Execution& exec = Execution());
+
 } // namespace vbr
 
 #endif

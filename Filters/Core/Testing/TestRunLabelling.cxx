@@ -37,6 +37,8 @@ Labelled labelAndPaint(const vbr::BitVolume& v,
   EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, plain));
   EXPECT_EQ(plain.runLabel, out.components.runLabel);
   EXPECT_EQ(plain.boxCount, out.components.boxCount);
+  EXPECT_EQ(plain.beginsBox, out.components.beginsBox);
+  EXPECT_EQ(out.components.boxes.size(), out.components.boxCount);
   EXPECT_TRUE(plain.boxes.empty() && plain.boxLabel.empty());
   std::vector<std::int32_t> value(out.components.count + 1);
   for (std::size_t l = 0; l < value.size(); ++l)
@@ -65,6 +67,16 @@ Labelled labelAndPaint(const vbr::BitVolume& v,
         wrong += framed[(z * std::size_t(larger[1]) + y) * larger[0] + x] != expected;
       }
   EXPECT_EQ(wrong, 0u) << "painted by wide stores at an offset";
+  // Over a grid of any content: every voxel written, the same as painting a zeroed grid, here
+  // and at an offset in the larger grid (frame, rows and planes around the runs included).
+  std::vector<std::int32_t> dirty(v.voxelCount(), -1);
+  EXPECT_TRUE(vbr::paintRunsOverwriting(
+    out.runs, out.components.runLabel, value, { 0, 0, 0 }, v.dims(), dirty.data(), exec));
+  EXPECT_EQ(dirty, out.grid) << "painted over a grid of -1";
+  std::vector<std::int32_t> dirtyFramed(framed.size(), -1);
+  EXPECT_TRUE(vbr::paintRunsOverwriting(
+    out.runs, out.components.runLabel, value, { 1, 1, 1 }, larger, dirtyFramed.data(), exec));
+  EXPECT_EQ(dirtyFramed, framed) << "painted over a grid of -1 at an offset";
   return out;
 }
 

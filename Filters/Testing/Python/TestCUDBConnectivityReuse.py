@@ -1,0 +1,154 @@
+"""vtkCUDBConnectivity's output blocks reused from one update to the next: one filter updated
+on inputs of changing sizes whose outputs are over 8 MiB (checkerboards and noise, with the
+boxes), keeping a shallow copy of every other output (the others are released, their blocks
+reused by the following updates). After each update every kept output must be unchanged (a block still in use is never handed out again) and the new output must
+equal the one a separate process computes from the same input as its first update (no block
+reused there: stale values of an earlier output would differ). Last, in another process whose
+address space is then limited to what it has (ulimit -v), an update that needs less than the
+kept blocks of the one before must succeed: the memory check gives the kept memory back
+instead of refusing the input."""
+
+import resource
+import subprocess
+import sys
+
+import numpy as np
+from vtkmodules.util import numpy_support as ns
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkTable, vtkUnstructuredGrid
+
+import voxelbrep
+
+failures = []
+
+
+def expect(what, ok):
+    if not ok:
+        print("FAILED:", what)
+        failures.append(what)
+
+
+def mask_of(kind, n):
+    """The input of a case: a checkerboard (a region per selected voxel) or noise."""
+    if kind == "checkerboard":
+        z, y, x = np.indices((n, n, n))
+        return ((x + y + z) % 2).astype(np.uint8)
+    return (np.random.default_rng(n).random((n, n, n)) < 0.5).astype(np.uint8)
+
+
+def image_of(mask):
+    image = vtkImageData()
+    nz, ny, nx = mask.shape
+    image.SetDimensions(nx, ny, nz)
+    array = ns.numpy_to_vtk(mask.ravel(), deep=1)
+    array.SetName("mask")
+    image.GetPointData().SetScalars(array)
+    return image
+
+
+def arrays_of(image, boxes, table, copy):
+    """Every output array by name (copies with `copy`, else views of the arrays)."""
+    take = (lambda a: ns.vtk_to_numpy(a).copy()) if copy else ns.vtk_to_numpy
+    out = {}
+    for data, prefix in ((image.GetPointData(), "point "), (boxes.GetCellData(), "box ")):
+        for i in range(data.GetNumberOfArrays()):
+            out[prefix + data.GetArrayName(i)] = take(data.GetArray(i))
+    if boxes.GetPoints() is not None:
+        out["box points"] = take(boxes.GetPoints().GetData())
+        out["box offsets"] = take(boxes.GetCells().GetOffsetsArray())
+        out["box connectivity"] = take(boxes.GetCells().GetConnectivityArray())
+    for c in range(table.GetNumberOfColumns()):
+        out["table " + table.GetColumn(c).GetName()] = take(table.GetColumn(c))
+    return out
+
+
+def update(f, kind, n):
+    f.SetInputData(image_of(mask_of(kind, n)))
+    f.SetGenerateBoxes(True)
+    f.Update()
+    return f.GetOutput(), f.GetBoxesOutput(), f.GetRegionsOutput()
+
+
+def reference(kind, n):
+    """The outputs of a first update in a separate process."""
+    run = subprocess.run(
+        [sys.executable, __file__, "reference", kind, str(n)], capture_output=True, check=True)
+    import io
+
+    with np.load(io.BytesIO(run.stdout)) as data:
+        return {k: data[k] for k in data.files}
+
+
+def virtual_size():
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith("VmSize"):
+                return int(line.split()[1]) * 1024
+    return None
+
+
+def limited():
+    """An update on 96^3 noise after one on the 96^3 checkerboard (its outputs kept), the
+    address space limited to the process's size in between; prints the outputs' points."""
+    f = voxelbrep.vtkCUDBConnectivity()
+    update(f, "checkerboard", 96)
+    f.SetInputData(image_of(mask_of("noise", 96)))
+    size = virtual_size()
+    if size is None:
+        print(-1)
+        return
+    resource.setrlimit(resource.RLIMIT_AS, (size, resource.RLIM_INFINITY))
+    f.Update()
+    print(f.GetBoxesOutput().GetNumberOfPoints())
+
+
+def same(a, b):
+    if sorted(a) != sorted(b):
+        return False
+    return all(a[k].dtype == b[k].dtype and np.array_equal(a[k], b[k]) for k in a)
+
+
+def main():
+    cases = [("checkerboard", 96), ("noise", 64), ("noise", 96), ("noise", 96),
+        ("checkerboard", 64), ("checkerboard", 80), ("noise", 96), ("checkerboard", 96),
+        ("checkerboard", 96), ("noise", 64)]
+    f = voxelbrep.vtkCUDBConnectivity()
+    kept = []
+    for index, (kind, n) in enumerate(cases):
+        image, boxes, table = update(f, kind, n)
+        got = arrays_of(image, boxes, table, copy=True)
+        big = sum(a.nbytes for a in got.values())
+        expect("%s %d: outputs over 8 MiB (%d bytes)" % (kind, n, big), big > 8 << 20)
+        expect("%s %d: equal to a first update's" % (kind, n), same(got, reference(kind, n)))
+        for name, copies, values in kept:
+            expect("%s kept unchanged after %s %d" % (name, kind, n),
+                same(arrays_of(*copies, copy=False), values))
+        if index % 2 == 0:
+            copies = (vtkImageData(), vtkUnstructuredGrid(), vtkTable())
+            for copy, output in zip(copies, (image, boxes, table)):
+                copy.ShallowCopy(output)
+            kept.append(("%s %d" % (kind, n), copies, got))
+    run = subprocess.run([sys.executable, __file__, "limited"], capture_output=True, text=True)
+    points = int(run.stdout.split()[-1]) if run.stdout.split() else None
+    if points != -1:  # -1: no /proc/self/status to limit by
+        expect("an update within the kept memory (%s; %s)" % (points, run.stderr[-300:]),
+            points == len(reference("noise", 96)["box points"]))
+    if failures:
+        print(len(failures), "failures")
+        return 1
+    print("all passed:", len(cases), "updates")
+    return 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) == 2 and sys.argv[1] == "limited":
+        limited()
+        sys.exit(0)
+    if len(sys.argv) == 4 and sys.argv[1] == "reference":
+        import io
+
+        g = voxelbrep.vtkCUDBConnectivity()
+        buffer = io.BytesIO()
+        np.savez(buffer, **arrays_of(*update(g, sys.argv[2], int(sys.argv[3])), copy=True))
+        sys.stdout.buffer.write(buffer.getvalue())
+        sys.exit(0)
+    sys.exit(main())
