@@ -238,7 +238,7 @@ private:
 
 using Corners = std::array<Vec3, 3>;
 
-/// Centroid distance and radius of a piece (see (a) on top), and its halving.
+/// The distance of a piece's centre and its radius (see (a) on top), and its halving.
 struct Piece
 {
   Corners t;

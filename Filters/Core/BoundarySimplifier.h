@@ -9,9 +9,10 @@
 // at its midpoint (the first point for which all of these hold):
 //  (a) surface to surfels: every new triangle (the star of the collapsed vertex) lies within d
 //      of the surfels. Proven by branch and bound on the distance to the surfels, which is
-//      1-Lipschitz: a piece of triangle whose centroid c is at distance dc from the surfels
-//      and whose corners are within r of c is within dc + r; pieces are halved at their
-//      longest edge until dc + r <= d (accepted) or r < 1/20 voxel (rejected);
+//      1-Lipschitz: a piece of triangle whose centre c (of its smallest enclosing ball) is at
+//      distance dc from the surfels and whose corners are within r of c is within dc + r;
+//      pieces are halved at their longest edge until dc + r <= d (accepted) or r < 1/20
+//      voxel (rejected);
 //  (b) surfels to surface: every surfel of an unpruned voxel is covered by square pieces
 //      (the whole surfel, or its quarters, down to 1/8 voxel), each assigned to a triangle
 //      within its limit of the piece's centre: d minus the piece's half diagonal, so that
