@@ -2263,6 +2263,21 @@ bool worthABoolean(const ShelledSurface& surface, const CellList& prism, bool cu
   return sideOf(surface, centroid, n) == (cut ? 1 : -1) && !booleanLeavesTheLattice(surface, prism);
 }
 
+/// The exact union (unite) or difference of a part of H and a prism, computed near the prism
+/// where latticeBooleanNear can tell, else by the whole Boolean; false when refused.
+bool booleanWithPrism(const LatticeMesh& part,
+  const CellList& prism,
+  bool unite,
+  LatticeMesh& result)
+{
+  const NearBoolean near = latticeBooleanNear(part, prism, unite, result);
+  if (near != NearBoolean::Unknown)
+    return near == NearBoolean::Done;
+  const LatticeMesh hull = triangulateHull(prism);
+  return unite ? latticeUnion(part, hull, result, Operands::Embedded)
+               : latticeDifference(part, hull, result, Operands::Embedded);
+}
+
 /// H with the prism cut out (a void or a handle) or added (a piece), kept only when the exact
 /// Boolean is a closed 2-manifold with lattice corners, `shells` shells (one less for a join,
 /// as many for a handle or a dent) and an Euler characteristic `eulerDrop` lower (2: a tube;
@@ -2296,12 +2311,7 @@ bool joinAlongPrism(Context& ctx,
     // Boolean from the part's triangles near P first (the part is mostly the vessel's main
     // shell on the aneurism: the whole corefinement costs all of it for every prism tried).
     const bool unite = cut == part.reversed;
-    const NearBoolean near = latticeBooleanNear(part.mesh, prism, unite, joined);
-    if (near == NearBoolean::Refused ||
-      (near == NearBoolean::Unknown &&
-        !(unite
-            ? latticeUnion(part.mesh, triangulateHull(prism), joined, Operands::Embedded)
-            : latticeDifference(part.mesh, triangulateHull(prism), joined, Operands::Embedded))))
+    if (!booleanWithPrism(part.mesh, prism, unite, joined))
       return false;
     if (part.reversed)
       for (auto& t : joined.triangles)

@@ -109,8 +109,8 @@ enum class NearBoolean
 /// (the whole Boolean's result has the same faces there and is refused too), or a corner off
 /// the lattice that no collapse removes (the collapses are greedy and their order differs from
 /// the whole Boolean's: it refused too wherever both were run, but that is not proven; a
-/// refusal only leaves a join undone). Unknown (the caller runs the whole Boolean) when the configuration
-/// is not that one: a piece of a in the hull's open interior, a contact of the wrong
+/// refusal only leaves a join undone). Unknown (the caller runs the whole Boolean) when the
+/// configuration is not that one: a piece of a in the hull's open interior, a contact of the wrong
 /// orientation (the hull on the other side), no contact, or faces CGAL's mesh does not take.
 NearBoolean latticeBooleanNear(const LatticeMesh& a,
   const CellList& convex,
