@@ -410,24 +410,104 @@ std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoi
     Execution(),
     cudb,
     comps);
-  std::vector<std::int32_t> value(comps.boxLabel.begin(), comps.boxLabel.end());
-  std::vector<std::int32_t> labels(set.voxelCount(), 0);
-  paintBoxes(cudb.boxes, value, { 0, 0, 0 }, { 0, 1, 2 }, d, labels.data());
-  std::vector<std::vector<LatticePoint>> groups(comps.count);
-  for (const auto& p : points)
+  if (comps.count == 1)
+    return { points }; // one group (most levels' groups): no labels needed
+  if (std::max({ d[0], d[1], d[2] }) >= (1 << 21))
+    throw std::invalid_argument("componentsOf: the points span 2^21 or more along an axis");
+  // Each point's label from the boxes' rows, found among the points in row order (a key per
+  // point, the box's extents being below 2^21), instead of painting the labels into a grid of
+  // the points' box: the top levels' groups of background points span most of the grid (64 MB
+  // of labels on the full aneurism, each level again).
+  const auto key = [&](std::int64_t x, std::int64_t y, std::int64_t z)
   {
-    const std::size_t at =
-      (static_cast<std::size_t>(p[2] - lo[2]) * d[1] + (p[1] - lo[1])) * d[0] + (p[0] - lo[0]);
-    groups[labels[at] - 1].push_back(p);
+    return (static_cast<std::uint64_t>(z - lo[2]) << 42) |
+      (static_cast<std::uint64_t>(y - lo[1]) << 21) | static_cast<std::uint64_t>(x - lo[0]);
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    order[i] = { key(points[i][0], points[i][1], points[i][2]), static_cast<std::uint32_t>(i) };
+  if (!std::is_sorted(order.begin(), order.end()))
+    std::sort(order.begin(), order.end());
+  std::vector<std::uint32_t> label(points.size(), 0);
+  for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
+  {
+    const Box& box = cudb.boxes[b];
+    for (std::int64_t z = lo[2] + box.lo[2]; z < lo[2] + box.hi[2]; ++z)
+      for (std::int64_t y = lo[1] + box.lo[1]; y < lo[1] + box.hi[1]; ++y)
+      {
+        const std::uint64_t first = key(lo[0] + box.lo[0], y, z),
+                            last = key(lo[0] + box.hi[0] - 1, y, z);
+        for (auto at = std::lower_bound(
+               order.begin(), order.end(), std::pair<std::uint64_t, std::uint32_t>{ first, 0 });
+             at != order.end() && at->first <= last;
+             ++at)
+          label[at->second] = comps.boxLabel[b];
+      }
   }
+  std::vector<std::vector<LatticePoint>> groups(comps.count);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    groups[label[i] - 1].push_back(points[i]);
   return groups;
 }
 
-/// Whether two solid convex hulls share a point (separating axis test, exact): the axes are
-/// the face normals of both and the cross products of their edge directions. A corner of one
-/// inside the other answers first, since meeting hulls mostly overlap that way.
+/// Whether the hull's edges each have their two faces (a solid with its incidences) and its
+/// normals are small enough for mayBeMinkowskiFace's products in 128 bits.
+bool gaussArcsKnown(const CellList& c)
+{
+  if (c.dimension != 3 || c.edgeFaces.size() != c.edges.size())
+    return false;
+  for (const auto& ef : c.edgeFaces)
+    if (ef[0] >= c.planes.size() || ef[1] >= c.planes.size())
+      return false;
+  for (const auto& plane : c.planes)
+    for (std::int64_t n : plane.normal)
+      if (n <= -(std::int64_t(1) << 30) || n >= (std::int64_t(1) << 30))
+        return false;
+  return true;
+}
+
+int signOf(__int128 v)
+{
+  return (v > 0) - (v < 0);
+}
+
+__int128 dot128(const std::array<__int128, 3>& u, const LatticePoint& v)
+{
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+std::array<__int128, 3> cross128(const LatticePoint& u, const LatticePoint& v)
+{
+  return { __int128(u[1]) * v[2] - __int128(u[2]) * v[1],
+    __int128(u[2]) * v[0] - __int128(u[0]) * v[2],
+    __int128(u[0]) * v[1] - __int128(u[1]) * v[0] };
+}
+
+/// Whether an edge of A (faces of outward normals a1, a2) and one of B (b1, b2) may span a face
+/// of the Minkowski difference A - B: the arc a1 a2 of A's Gauss map and the arc of -b1 -b2
+/// cross (the test of Gregorius, "The Separating Axis Test between Convex Polyhedra", 2013).
+/// Only such pairs give a separating axis that the face normals do not: a face of A - B is a
+/// face of A, of -B, or spanned by two edges whose arcs cross inside both. Exact (integer signs),
+/// and conservative: a pair whose arcs touch or lie on one great circle (a sign 0) is kept.
+bool mayBeMinkowskiFace(const LatticePoint& a1,
+  const LatticePoint& a2,
+  const LatticePoint& b1,
+  const LatticePoint& b2)
+{
+  const LatticePoint c{ -b1[0], -b1[1], -b1[2] }, d{ -b2[0], -b2[1], -b2[2] };
+  const std::array<__int128, 3> bxa = cross128(a2, a1), dxc = cross128(d, c);
+  const int cba = signOf(dot128(bxa, c)), dba = signOf(dot128(bxa, d)),
+            adc = signOf(dot128(dxc, a1)), bdc = signOf(dot128(dxc, a2));
+  if (cba == 0 || dba == 0 || adc == 0 || bdc == 0)
+    return true;
+  return cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0;
+}
+
+} // namespace
+
 bool hullsIntersect(const CellList& a, const CellList& b)
 {
+  // A corner of one inside the other answers first, since meeting hulls mostly overlap so.
   auto contains = [](const CellList& h, const CellList& o)
   {
     return std::any_of(o.vertices.begin(),
@@ -459,13 +539,26 @@ bool hullsIntersect(const CellList& a, const CellList& b)
   for (const auto& p : b.planes)
     if (separates(p.normal))
       return false;
-  for (const auto& ea : a.edges)
-    for (const auto& eb : b.edges)
+  const bool arcs = gaussArcsKnown(a) && gaussArcsKnown(b);
+  for (std::size_t i = 0; i < a.edges.size(); ++i)
+    for (std::size_t j = 0; j < b.edges.size(); ++j)
+    {
+      const auto &ea = a.edges[i], &eb = b.edges[j];
+      if (arcs &&
+        !mayBeMinkowskiFace(a.planes[a.edgeFaces[i][0]].normal,
+          a.planes[a.edgeFaces[i][1]].normal,
+          b.planes[b.edgeFaces[j][0]].normal,
+          b.planes[b.edgeFaces[j][1]].normal))
+        continue;
       if (separates(cross(
             sub(a.vertices[ea[1]], a.vertices[ea[0]]), sub(b.vertices[eb[1]], b.vertices[eb[0]]))))
         return false;
+    }
   return true;
 }
+
+namespace
+{
 
 /// A hull with its bounding box: hulls whose boxes miss each other are apart without the
 /// separating axis test, which is what keeps the pairwise merging of groups cheap.

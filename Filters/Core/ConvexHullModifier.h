@@ -413,6 +413,15 @@ BitVolume layerImage(const BitVolume& objects, int a, std::int32_t c);
 /// those 4,740).
 bool convexDifferenceIsManifold(const CellList& c, const CellList& g);
 
+/// Whether two convex hulls (any dimension, with their incidences as convexHull gives them)
+/// share a point: an exact separating axis test, whose axes are the face normals of both and
+/// the cross products of an edge of each. Of the edge pairs only those whose arcs on the Gauss
+/// maps cross (or touch) are tried when both are solid: every other pair spans no face of the
+/// Minkowski difference A - B, so its axis separates only where a face normal does too (the
+/// pressing-in tests its groups' and regions' hulls pairwise, and the edge pairs were most of
+/// that on the aneurism). The test checks it against all the pairs on random lattice hulls.
+bool hullsIntersect(const CellList& a, const CellList& b);
+
 /// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,
   const std::array<std::int32_t, 3>& dims);
