@@ -382,7 +382,7 @@ void recordPlanes(Context& ctx, const CellList& c, int level)
 /// `vertex`), as point lists. Only the box of the points is voxelised: a level deep inside a
 /// large grid pays for its own points, not for the grid. `plane`: the grid is one slice (2D
 /// components); a 3D grid keeps 3D extraction even when the points lie in one slice.
-std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoint>& points,
+std::vector<std::vector<LatticePoint>> componentsOf(std::vector<LatticePoint> points,
   bool plane,
   bool vertex)
 {
@@ -411,7 +411,12 @@ std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoi
     cudb,
     comps);
   if (comps.count == 1)
-    return { points }; // one group (most levels' groups): no labels needed
+  {
+    // One group (most levels' groups): no labels needed, nor a copy.
+    std::vector<std::vector<LatticePoint>> one(1);
+    one[0] = std::move(points);
+    return one;
+  }
   if (std::max({ d[0], d[1], d[2] }) >= (1 << 21))
     throw std::invalid_argument("componentsOf: the points span 2^21 or more along an axis");
   // Each point's label from the boxes' rows, found among the points in row order (a key per
@@ -444,7 +449,12 @@ std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoi
           label[at->second] = comps.boxLabel[b];
       }
   }
+  std::vector<std::size_t> sizes(comps.count, 0);
+  for (std::uint32_t l : label)
+    ++sizes[l - 1];
   std::vector<std::vector<LatticePoint>> groups(comps.count);
+  for (std::uint32_t g = 0; g < comps.count; ++g)
+    groups[g].reserve(sizes[g]);
   for (std::size_t i = 0; i < points.size(); ++i)
     groups[label[i] - 1].push_back(points[i]);
   return groups;
@@ -516,22 +526,45 @@ bool hullsIntersect(const CellList& a, const CellList& b)
   };
   if (a.dimension == 3 && b.dimension == 3 && (contains(a, b) || contains(b, a)))
     return true;
+  // The projections in 64 bits when |n_k| * |p_k| summed stays below 2^62 (every hull of a grid
+  // of a few thousand voxels a side), else in 128.
+  std::int64_t reach = 0;
+  for (const auto* h : { &a, &b })
+    for (const auto& p : h->vertices)
+      for (std::int64_t c : p)
+        reach = std::max(reach, std::abs(c));
+  const std::int64_t smallNormal = (std::int64_t(1) << 62) / (3 * std::max<std::int64_t>(reach, 1));
+  // Whether the projections of A and B on n are apart; B's corners stop the scan as soon as
+  // their range overlaps A's (most axes tried do not separate).
+  auto separatesIn = [&](const LatticePoint& n, auto zero)
+  {
+    using T = decltype(zero);
+    const auto along = [&](const LatticePoint& p)
+    { return T(n[0]) * p[0] + T(n[1]) * p[1] + T(n[2]) * p[2]; };
+    T aLo = along(a.vertices[0]), aHi = aLo;
+    for (const auto& p : a.vertices)
+    {
+      aLo = std::min(aLo, along(p));
+      aHi = std::max(aHi, along(p));
+    }
+    T bLo = along(b.vertices[0]), bHi = bLo;
+    for (const auto& p : b.vertices)
+    {
+      bLo = std::min(bLo, along(p));
+      bHi = std::max(bHi, along(p));
+      if (bLo <= aHi && aLo <= bHi)
+        return false;
+    }
+    return aHi < bLo || bHi < aLo;
+  };
   auto separates = [&](const LatticePoint& n)
   {
     if (n == LatticePoint{ 0, 0, 0 })
       return false;
-    __int128 aLo = dot(n, a.vertices[0]), aHi = aLo, bLo = dot(n, b.vertices[0]), bHi = bLo;
-    for (const auto& p : a.vertices)
-    {
-      aLo = std::min(aLo, dot(n, p));
-      aHi = std::max(aHi, dot(n, p));
-    }
-    for (const auto& p : b.vertices)
-    {
-      bLo = std::min(bLo, dot(n, p));
-      bHi = std::max(bHi, dot(n, p));
-    }
-    return aHi < bLo || bHi < aLo;
+    if (std::abs(n[0]) < smallNormal && std::abs(n[1]) < smallNormal &&
+      std::abs(n[2]) < smallNormal)
+      return separatesIn(n, std::int64_t(0));
+    return separatesIn(n, __int128(0));
   };
   for (const auto& p : a.planes)
     if (separates(p.normal))
