@@ -1353,7 +1353,7 @@ LevelSurface solveLevel(Context& ctx,
 /// the planes per point.
 std::array<__int128, 2> farFromHullBoundary(const CellList& c, std::int64_t y, std::int64_t z)
 {
-  // Floor and ceiling of a / b for b != 0 in 128 bits.
+  // The floor of a / b for b != 0 in 128 bits (a ceiling is minus the floor of -a / b).
   const auto floorOf = [](__int128 a, __int128 b)
   {
     __int128 q = a / b;

@@ -271,8 +271,12 @@
 // Pits whose hull meets C so that C less it is no 2-manifold are refused before they are solved
 // (convexDifferenceIsManifold): on the aneurism's vessel tree they were two thirds of the pits
 // tried, each solved down several levels (and its failure often passed up through the levels
-// above) before the difference or a level below refused it, and nearly all the time. What
-// remains there is joining the shells: an exact corefinement of the whole H per prism tried.
+// above) before the difference or a level below refused it, and nearly all the time. Joins now
+// cost the prisms' neighbourhoods (their Booleans near the prism where possible, their cheap
+// tests on the shells' triangles near the prisms of a crossing), the whole-H checks are decided
+// by exact predicates without exact constructions, and the classification of the background
+// works per row; what remains on the vessel tree is the recursion's hulls and point sets, and
+// the joins' Booleans whose prism's interior crosses H (a corefinement of the whole part).
 //
 // The degree of non-convexity (definition NK) is the number of levels below the hull.
 //
