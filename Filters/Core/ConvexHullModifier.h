@@ -271,8 +271,12 @@
 // Pits whose hull meets C so that C less it is no 2-manifold are refused before they are solved
 // (convexDifferenceIsManifold): on the aneurism's vessel tree they were two thirds of the pits
 // tried, each solved down several levels (and its failure often passed up through the levels
-// above) before the difference or a level below refused it, and nearly all the time. What
-// remains there is joining the shells: an exact corefinement of the whole H per prism tried.
+// above) before the difference or a level below refused it, and nearly all the time. Joins now
+// cost the prisms' neighbourhoods (their Booleans near the prism where possible, their cheap
+// tests on the shells' triangles near the prisms of a crossing), the whole-H checks are decided
+// by exact predicates without exact constructions, and the classification of the background
+// works per row; what remains on the vessel tree is the recursion's hulls and point sets, and
+// the joins' Booleans whose prism's interior crosses H (a corefinement of the whole part).
 //
 // The degree of non-convexity (definition NK) is the number of levels below the hull.
 //
@@ -412,6 +416,15 @@ BitVolume layerImage(const BitVolume& objects, int a, std::int32_t c);
 /// levels (the exact difference of the two hulls alone, tried for each, failed for exactly
 /// those 4,740).
 bool convexDifferenceIsManifold(const CellList& c, const CellList& g);
+
+/// Whether two convex hulls (any dimension, with their incidences as convexHull gives them)
+/// share a point: an exact separating axis test, whose axes are the face normals of both and
+/// the cross products of an edge of each. Of the edge pairs only those whose arcs on the Gauss
+/// maps cross (or touch) are tried when both are solid: every other pair spans no face of the
+/// Minkowski difference A - B, so its axis separates only where a face normal does too (the
+/// pressing-in tests its groups' and regions' hulls pairwise, and the edge pairs were most of
+/// that on the aneurism). The test checks it against all the pairs on random lattice hulls.
+bool hullsIntersect(const CellList& a, const CellList& b);
 
 /// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,

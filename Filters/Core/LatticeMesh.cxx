@@ -3,6 +3,7 @@
 #include "Geometry.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Fraction_traits.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -26,6 +27,14 @@ namespace
 
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+/// For the tests that only decide (closed, embedded, bounding a volume) on lattice points: the
+/// coordinates are small integers, exact as doubles, and those tests use predicates only
+/// (CGAL's self-intersection test constructs triangles and segments from the points as they
+/// are, no new coordinates), which this kernel evaluates exactly; without the lazy exact
+/// numbers of every point they cost a fraction (the whole-H checks were a tenth of the full
+/// aneurism's time).
+using PredicateKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using PredicateMesh = CGAL::Surface_mesh<PredicateKernel::Point_3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 Mesh toSurfaceMesh(const LatticeMesh& m)
@@ -191,19 +200,23 @@ namespace
 
 /// The mesh as a CGAL surface mesh; false when a triangle cannot be added (an edge used twice
 /// the same way, or a non-manifold edge).
-bool toSurfaceMesh(const LatticeMesh& m, Mesh& mesh)
+template<typename M>
+bool toSurfaceMesh(const LatticeMesh& m, M& mesh)
 {
-  std::vector<Mesh::Vertex_index> vertices;
+  using Point = typename M::Point;
+  std::vector<typename M::Vertex_index> vertices;
+  vertices.reserve(m.points.size());
   for (const auto& p : m.points)
-    vertices.push_back(mesh.add_vertex(Kernel::Point_3(
-      static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]))));
+    vertices.push_back(mesh.add_vertex(
+      Point(static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]))));
   for (const auto& t : m.triangles)
-    if (mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Mesh::null_face())
+    if (mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == M::null_face())
       return false;
   return true;
 }
 
-bool isClosedEmbedded(Mesh& mesh)
+template<typename M>
+bool isClosedEmbedded(M& mesh)
 {
   return CGAL::is_closed(mesh) && PMP::duplicate_non_manifold_vertices(mesh) == 0 &&
     !PMP::does_self_intersect(mesh);
@@ -213,20 +226,20 @@ bool isClosedEmbedded(Mesh& mesh)
 
 bool isClosedEmbeddedManifold(const LatticeMesh& m)
 {
-  Mesh mesh;
+  PredicateMesh mesh;
   return toSurfaceMesh(m, mesh) && isClosedEmbedded(mesh);
 }
 
 bool boundsAVolume(const LatticeMesh& m)
 {
-  Mesh mesh;
+  PredicateMesh mesh;
   return toSurfaceMesh(m, mesh) && isClosedEmbedded(mesh) && PMP::does_bound_a_volume(mesh);
 }
 
 bool isEmbeddedWithin(const LatticeMesh& m, const LatticePoint& lo, const LatticePoint& hi)
 {
-  Mesh mesh;
-  std::map<std::uint32_t, Mesh::Vertex_index> vertices;
+  PredicateMesh mesh;
+  std::map<std::uint32_t, PredicateMesh::Vertex_index> vertices;
   auto vertex = [&](std::uint32_t i)
   {
     auto it = vertices.find(i);
@@ -235,7 +248,7 @@ bool isEmbeddedWithin(const LatticeMesh& m, const LatticePoint& lo, const Lattic
       const auto& p = m.points[i];
       it = vertices
              .emplace(i,
-               mesh.add_vertex(Kernel::Point_3(
+               mesh.add_vertex(PredicateKernel::Point_3(
                  static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]))))
              .first;
     }
@@ -247,7 +260,8 @@ bool isEmbeddedWithin(const LatticeMesh& m, const LatticePoint& lo, const Lattic
     for (int k = 0; k < 3 && meets; ++k)
       meets = std::max({ m.points[t[0]][k], m.points[t[1]][k], m.points[t[2]][k] }) >= lo[k] &&
         std::min({ m.points[t[0]][k], m.points[t[1]][k], m.points[t[2]][k] }) <= hi[k];
-    if (meets && mesh.add_face(vertex(t[0]), vertex(t[1]), vertex(t[2])) == Mesh::null_face())
+    if (meets &&
+      mesh.add_face(vertex(t[0]), vertex(t[1]), vertex(t[2])) == PredicateMesh::null_face())
       return isClosedEmbeddedManifold(m); // a subset CGAL does not take: test the whole mesh
   }
   return !PMP::does_self_intersect(mesh);

@@ -2278,6 +2278,113 @@ TEST(ConvexHullModifier, ConvexDifferencesThatCannotBeManifoldsAreFoundBeforehan
   EXPECT_TRUE(vbr::convexDifferenceIsManifold(vbr::convexHull(cube), triangle));
 }
 
+TEST(ConvexHullModifier, HullsIntersectAgainstEverySeparatingAxis)
+{
+  // hullsIntersect tries only the edge pairs whose Gauss-map arcs cross. Reference: the full
+  // separating axis test written here, every face normal of both and the cross product of every
+  // edge pair (strict separation: touching hulls meet). B is spanned by points near A, on its
+  // surface and outside it, so that pairs touch in faces, along edges and at corners, overlap
+  // or lie apart.
+  const auto separatedBy = [](const vbr::CellList& a, const vbr::CellList& b, LatticePoint n)
+  {
+    if (n == LatticePoint{ 0, 0, 0 })
+      return false;
+    const auto dotN = [&](const LatticePoint& p)
+    { return n[0] * p[0] + n[1] * p[1] + n[2] * p[2]; };
+    long aLo = dotN(a.vertices[0]), aHi = aLo, bLo = dotN(b.vertices[0]), bHi = bLo;
+    for (const auto& p : a.vertices)
+    {
+      aLo = std::min(aLo, dotN(p));
+      aHi = std::max(aHi, dotN(p));
+    }
+    for (const auto& p : b.vertices)
+    {
+      bLo = std::min(bLo, dotN(p));
+      bHi = std::max(bHi, dotN(p));
+    }
+    return aHi < bLo || bHi < aLo;
+  };
+  const auto reference = [&](const vbr::CellList& a, const vbr::CellList& b)
+  {
+    for (const auto* h : { &a, &b })
+      for (const auto& plane : h->planes)
+        if (separatedBy(a, b, plane.normal))
+          return false;
+    for (const auto& ea : a.edges)
+      for (const auto& eb : b.edges)
+      {
+        const LatticePoint u{ a.vertices[ea[1]][0] - a.vertices[ea[0]][0],
+          a.vertices[ea[1]][1] - a.vertices[ea[0]][1],
+          a.vertices[ea[1]][2] - a.vertices[ea[0]][2] };
+        const LatticePoint v{ b.vertices[eb[1]][0] - b.vertices[eb[0]][0],
+          b.vertices[eb[1]][1] - b.vertices[eb[0]][1],
+          b.vertices[eb[1]][2] - b.vertices[eb[0]][2] };
+        if (separatedBy(a,
+              b,
+              { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] }))
+          return false;
+      }
+    return true;
+  };
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<long> coord(0, 8);
+  int pairs = 0, meeting = 0, touching = 0;
+  while (pairs < 3000)
+  {
+    std::vector<LatticePoint> corners;
+    for (int k = 0; k < 4 + pairs % 7; ++k)
+      corners.push_back({ coord(rng), coord(rng), coord(rng) });
+    const vbr::CellList a = vbr::convexHull(corners);
+    if (a.dimension != 3)
+      continue;
+    std::vector<LatticePoint> surface;
+    for (long x = 0; x <= 8; ++x)
+      for (long y = 0; y <= 8; ++y)
+        for (long z = 0; z <= 8; ++z)
+        {
+          const LatticePoint p{ x, y, z };
+          if (std::any_of(a.planes.begin(),
+                a.planes.end(),
+                [&](const vbr::FacePlane& plane) { return plane.evaluate(p) == 0; }) &&
+            vbr::hullContains(a, p))
+            surface.push_back(p);
+        }
+    std::vector<LatticePoint> points;
+    // B's other points in a box of 5^3 moved 0 to 8 steps along each axis from A's corner.
+    std::uniform_int_distribution<long> near(0, 4), shift(0, 8);
+    const LatticePoint at{ shift(rng), shift(rng), shift(rng) };
+    for (int k = 0; k < 3 + pairs % 6; ++k)
+      if (k < static_cast<int>(pairs % 4) && !surface.empty())
+        points.push_back(surface[rng() % surface.size()]);
+      else
+        points.push_back({ near(rng) + at[0], near(rng) + at[1], near(rng) + at[2] });
+    const vbr::CellList b = vbr::convexHull(points);
+    if (b.dimension < 0)
+      continue;
+    SCOPED_TRACE(pairs);
+    ++pairs;
+    const bool expected = reference(a, b);
+    EXPECT_EQ(vbr::hullsIntersect(a, b), expected);
+    EXPECT_EQ(vbr::hullsIntersect(b, a), expected);
+    meeting += expected;
+    // Touching: they meet, but no point of B lies in A's open interior nor the reverse.
+    touching += expected &&
+      std::none_of(b.vertices.begin(),
+        b.vertices.end(),
+        [&](const LatticePoint& p)
+        {
+          return std::all_of(a.planes.begin(),
+            a.planes.end(),
+            [&](const vbr::FacePlane& plane) { return plane.evaluate(p) < 0; });
+        });
+  }
+  std::cout << pairs << " pairs, " << meeting << " meeting, " << touching
+            << " of them with no corner of B inside A" << std::endl;
+  EXPECT_GE(meeting, pairs / 10);
+  EXPECT_GE(pairs - meeting, pairs / 10);
+  EXPECT_GE(touching, pairs / 50);
+}
+
 TEST(ConvexHullModifier, DifferencesTestOnlyTheChangedPartsOfTheirOperands)
 {
   // newTriangleBoxes against a brute-force search (a triangle of the result is new when no
