@@ -378,6 +378,43 @@ void recordPlanes(Context& ctx, const CellList& c, int level)
   }
 }
 
+/// The label of each point (comps' label of the CUDB box holding it), the boxes' rows looked up
+/// among the points sorted by a key that packs their offsets from `lo` `shift` bits apart.
+template<typename Key>
+std::vector<std::uint32_t> labelsByRows(const std::vector<LatticePoint>& points,
+  const LatticePoint& lo,
+  const CUDB& cudb,
+  const Components& comps,
+  int shift)
+{
+  const auto key = [&](std::int64_t x, std::int64_t y, std::int64_t z)
+  {
+    return (static_cast<Key>(z - lo[2]) << (2 * shift)) | (static_cast<Key>(y - lo[1]) << shift) |
+      static_cast<Key>(x - lo[0]);
+  };
+  std::vector<std::pair<Key, std::uint32_t>> order(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    order[i] = { key(points[i][0], points[i][1], points[i][2]), static_cast<std::uint32_t>(i) };
+  if (!std::is_sorted(order.begin(), order.end()))
+    std::sort(order.begin(), order.end());
+  std::vector<std::uint32_t> label(points.size(), 0);
+  for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
+  {
+    const Box& box = cudb.boxes[b];
+    for (std::int64_t z = lo[2] + box.lo[2]; z < lo[2] + box.hi[2]; ++z)
+      for (std::int64_t y = lo[1] + box.lo[1]; y < lo[1] + box.hi[1]; ++y)
+      {
+        const Key first = key(lo[0] + box.lo[0], y, z), last = key(lo[0] + box.hi[0] - 1, y, z);
+        for (auto at = std::lower_bound(
+               order.begin(), order.end(), std::pair<Key, std::uint32_t>{ first, 0 });
+             at != order.end() && at->first <= last;
+             ++at)
+          label[at->second] = comps.boxLabel[b];
+      }
+  }
+  return label;
+}
+
 /// Components of a set of lattice points (CUDB, connected through faces, edges or corners when
 /// `vertex`), as point lists. Only the box of the points is voxelised: a level deep inside a
 /// large grid pays for its own points, not for the grid. `plane`: the grid is one slice (2D
@@ -417,38 +454,13 @@ std::vector<std::vector<LatticePoint>> componentsOf(std::vector<LatticePoint> po
     one[0] = std::move(points);
     return one;
   }
-  if (std::max({ d[0], d[1], d[2] }) >= (1 << 21))
-    throw std::invalid_argument("componentsOf: the points span 2^21 or more along an axis");
   // Each point's label from the boxes' rows, found among the points in row order (a key per
-  // point, the box's extents being below 2^21), instead of painting the labels into a grid of
-  // the points' box: the top levels' groups of background points span most of the grid (64 MB
-  // of labels on the full aneurism, each level again).
-  const auto key = [&](std::int64_t x, std::int64_t y, std::int64_t z)
-  {
-    return (static_cast<std::uint64_t>(z - lo[2]) << 42) |
-      (static_cast<std::uint64_t>(y - lo[1]) << 21) | static_cast<std::uint64_t>(x - lo[0]);
-  };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    order[i] = { key(points[i][0], points[i][1], points[i][2]), static_cast<std::uint32_t>(i) };
-  if (!std::is_sorted(order.begin(), order.end()))
-    std::sort(order.begin(), order.end());
-  std::vector<std::uint32_t> label(points.size(), 0);
-  for (std::size_t b = 0; b < cudb.boxes.size(); ++b)
-  {
-    const Box& box = cudb.boxes[b];
-    for (std::int64_t z = lo[2] + box.lo[2]; z < lo[2] + box.hi[2]; ++z)
-      for (std::int64_t y = lo[1] + box.lo[1]; y < lo[1] + box.hi[1]; ++y)
-      {
-        const std::uint64_t first = key(lo[0] + box.lo[0], y, z),
-                            last = key(lo[0] + box.hi[0] - 1, y, z);
-        for (auto at = std::lower_bound(
-               order.begin(), order.end(), std::pair<std::uint64_t, std::uint32_t>{ first, 0 });
-             at != order.end() && at->first <= last;
-             ++at)
-          label[at->second] = comps.boxLabel[b];
-      }
-  }
+  // point), instead of painting the labels into a grid of the points' box: the top levels'
+  // groups of background points span most of the grid (64 MB of labels on the full aneurism,
+  // each level again). Keys of 64 bits hold extents below 2^21, wider boxes take 128.
+  const std::vector<std::uint32_t> label = std::max({ d[0], d[1], d[2] }) < (1 << 21)
+    ? labelsByRows<std::uint64_t>(points, lo, cudb, comps, 21)
+    : labelsByRows<unsigned __int128>(points, lo, cudb, comps, 32);
   std::vector<std::size_t> sizes(comps.count, 0);
   for (std::uint32_t l : label)
     ++sizes[l - 1];
@@ -1379,7 +1391,7 @@ std::array<__int128, 2> farFromHullBoundary(const CellList& c, std::int64_t y, s
     else if (nx > 0)
       range[1] = std::min(range[1], floorOf(bound, nx));
     else
-      range[0] = std::max(range[0], -floorOf(-bound, -nx)); // ceil(bound / nx)
+      range[0] = std::max(range[0], -floorOf(bound, -nx)); // ceil(bound / nx), nx < 0
   }
   return range;
 }

@@ -796,6 +796,35 @@ TEST(ConvexHullModifier, PacManOpensItsMouth)
             << " faces, NK " << r.degreeOfNonConvexity << std::endl;
 }
 
+TEST(ConvexHullModifier, ADentInAnyFaceOfACubeIsOneConcavity)
+{
+  // A 3 x 3 patch of voxels taken off one face of a cube leaves the hull the cube's: the pit is
+  // background inside the hull that meets its faces, one concavity, whichever face it is in
+  // (the classification bounds each face's plane along the rows: faces whose normal points
+  // down an axis as well as up it).
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+    {
+      SCOPED_TRACE(std::to_string(axis) + (side ? " +" : " -"));
+      vbr::BitVolume v(13, 13, 13);
+      for (int z = 1; z <= 11; ++z)
+        for (int y = 1; y <= 11; ++y)
+          for (int x = 1; x <= 11; ++x)
+          {
+            const int p[3] = { x, y, z };
+            const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+            const bool dent =
+              p[axis] == (side ? 11 : 1) && p[a] >= 5 && p[a] <= 7 && p[b] >= 5 && p[b] <= 7;
+            if (!dent)
+              v.set(x, y, z);
+          }
+      const auto r = expectSeparating(v);
+      EXPECT_EQ(r.concavities, 1);
+      EXPECT_EQ(r.cavities, 0);
+      EXPECT_EQ(r.tunnels, 0);
+    }
+}
+
 TEST(ConvexHullModifier, GenusAboveZero)
 {
   {
