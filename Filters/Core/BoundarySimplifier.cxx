@@ -892,7 +892,11 @@ void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
             SurfelPiece piece = stack.back();
             stack.pop_back();
             double d2 = 0;
-            FaceId f = this->nearestFace(piece.centre, 1.5, d2);
+            // the input runs within about a voxel of the surfels: a search of 1 first reads
+            // fewer cells (0.18 -> 0.15 s on the 128^3 ball) and finds the same face (the
+            // nearest, the same of those equally near: the wider one visits their cells in
+            // the same order)
+            FaceId f = this->nearestFace(piece.centre, 1.0, d2);
             if (f == FaceId())
               f = this->nearestFace(piece.centre, 2.5, d2);
             if (f == FaceId())
@@ -1373,68 +1377,113 @@ boost::optional<Point3> acceptedPoint(Simplifier& state,
   return boost::none;
 }
 
-/// The queue of edges by cost, lazily updated: an edge's newest entry is its only valid one
-/// (older entries are skipped when popped), and an entry's cost may be stale (the caller
-/// measures the edge again when it pops it).
+/// The queue of edges by cost (the cheapest first, then the smallest edge number): a 4-ary
+/// heap with each edge's place in it, so that a new cost moves the edge's one entry. An
+/// entry's cost may be stale (the caller measures the edge again when it pops it). A heap
+/// of the pushes, whose older entries were skipped when popped, held up to 151,000 entries
+/// on the 128^3 ball, where 283,000 of its 492,000 pops were of such entries.
 class EdgeQueue
 {
 public:
   explicit EdgeQueue(std::size_t edges)
-    : Version(edges, 0)
-    , Queued(edges, 0)
+    : Place(edges, NotQueued)
     , Cost(edges, std::numeric_limits<double>::quiet_NaN())
   {
   }
 
   void push(EdgeId e, double cost)
   {
-    const std::size_t i = std::size_t(e);
-    this->Heap.push({ cost, std::uint32_t(i), ++this->Version[i] });
-    this->Queued[i] = 1;
-    this->Cost[i] = cost;
+    const std::uint32_t edge = std::uint32_t(std::size_t(e));
+    this->Cost[edge] = cost;
+    std::size_t at = this->Place[edge];
+    if (at == NotQueued)
+    {
+      at = this->Heap.size();
+      this->Heap.push_back({ cost, edge });
+    }
+    else
+      this->Heap[at].cost = cost;
+    this->siftDown(this->siftUp(at));
   }
-  bool queued(EdgeId e) const { return this->Queued[std::size_t(e)] != 0; }
+  bool queued(EdgeId e) const { return this->Place[std::size_t(e)] != NotQueued; }
   /// The cost last pushed for e (NaN if none).
   double lastCost(EdgeId e) const { return this->Cost[std::size_t(e)]; }
-  /// Takes the cheapest valid entry off the queue; false when empty.
+  /// Takes the cheapest entry off the queue; false when empty.
   bool pop(EdgeId& e, double& cost)
   {
-    if (!this->dropStale())
+    if (this->Heap.empty())
       return false;
-    const Entry top = this->Heap.top();
-    this->Heap.pop();
-    this->Queued[top.edge] = 0;
+    const Entry top = this->Heap.front();
+    this->Place[top.edge] = NotQueued;
+    const Entry last = this->Heap.back();
+    this->Heap.pop_back();
+    if (!this->Heap.empty())
+    {
+      this->Heap.front() = last;
+      this->Place[last.edge] = 0;
+      this->siftDown(0);
+    }
     e = EdgeId(top.edge);
     cost = top.cost;
     return true;
   }
-  /// The cost of the cheapest valid entry, or infinity.
-  double cheapest()
+  /// The cost of the cheapest entry, or infinity.
+  double cheapest() const
   {
-    return this->dropStale() ? this->Heap.top().cost : std::numeric_limits<double>::infinity();
+    return this->Heap.empty() ? std::numeric_limits<double>::infinity() : this->Heap.front().cost;
   }
 
 private:
   struct Entry
   {
     double cost;
-    std::uint32_t edge, version;
-    bool operator<(const Entry& o) const // the cheapest on top, then the smallest edge
+    std::uint32_t edge;
+    bool before(const Entry& o) const
     {
-      return this->cost > o.cost || (this->cost == o.cost && this->edge > o.edge);
+      return this->cost < o.cost || (this->cost == o.cost && this->edge < o.edge);
     }
   };
+  static constexpr std::size_t NotQueued = std::numeric_limits<std::size_t>::max();
 
-  bool dropStale()
+  void put(std::size_t at, const Entry& entry)
   {
-    while (!this->Heap.empty() && this->Heap.top().version != this->Version[this->Heap.top().edge])
-      this->Heap.pop();
-    return !this->Heap.empty();
+    this->Heap[at] = entry;
+    this->Place[entry.edge] = at;
+  }
+  std::size_t siftUp(std::size_t at)
+  {
+    const Entry entry = this->Heap[at];
+    while (at > 0 && entry.before(this->Heap[(at - 1) / 4]))
+    {
+      this->put(at, this->Heap[(at - 1) / 4]);
+      at = (at - 1) / 4;
+    }
+    this->put(at, entry);
+    return at;
+  }
+  void siftDown(std::size_t at)
+  {
+    const Entry entry = this->Heap[at];
+    const std::size_t n = this->Heap.size();
+    for (;;)
+    {
+      const std::size_t first = 4 * at + 1;
+      if (first >= n)
+        break;
+      std::size_t best = first;
+      for (std::size_t c = first + 1; c < std::min(first + 4, n); ++c)
+        if (this->Heap[c].before(this->Heap[best]))
+          best = c;
+      if (!this->Heap[best].before(entry))
+        break;
+      this->put(at, this->Heap[best]);
+      at = best;
+    }
+    this->put(at, entry);
   }
 
-  std::priority_queue<Entry> Heap;
-  std::vector<std::uint32_t> Version;
-  std::vector<char> Queued;
+  std::vector<Entry> Heap;
+  std::vector<std::size_t> Place; // per edge: its entry in Heap, or NotQueued
   std::vector<double> Cost;
 };
 
