@@ -328,22 +328,45 @@ public:
       this->Blocks[0] = this->Blocks[1] = this->Blocks[2] = 0; // no corner kept
   }
 
-  /// The distance at the corner nearest p and how far that corner is; false when p is
+  /// Bounds on p's distance from the distances at the eight corners of its voxel (each
+  /// corner g gives value(g) -+ |p - g|; the tightest of each kind is taken); false when p is
   /// outside the box.
-  bool nearest(const Vec3& p, double& value, double& offset)
+  bool bounds(const Vec3& p, double& lower, double& upper)
   {
     std::int64_t q[3];
-    double offset2 = 0;
+    double f[3];
     for (int d = 0; d < 3; ++d)
     {
       const double x = p[d] - this->Origin[d];
       if (!(x >= 0 && x < double(this->Blocks[d] * Block - 1)))
         return false;
-      q[d] = std::int64_t(std::nearbyint(x));
-      offset2 += (double(q[d]) - x) * (double(q[d]) - x);
+      q[d] = std::int64_t(x);
+      f[d] = x - double(q[d]);
     }
-    const std::size_t block = std::size_t(
-      ((q[2] / Block) * this->Blocks[1] + q[1] / Block) * this->Blocks[0] + q[0] / Block);
+    lower = 0;
+    upper = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const int o[3] = { corner & 1, (corner >> 1) & 1, corner >> 2 };
+      double offset2 = 0;
+      for (int d = 0; d < 3; ++d)
+        offset2 += (o[d] - f[d]) * (o[d] - f[d]);
+      const double value = this->at(q[0] + o[0], q[1] + o[1], q[2] + o[2]);
+      const double offset = std::sqrt(offset2);
+      lower = std::max(lower, value - offset);
+      upper = std::min(upper, value + offset);
+    }
+    return true;
+  }
+
+  const SurfelDistance& exact() const { return this->Distance; }
+
+private:
+  /// The distance at lattice corner q (searched on first use).
+  double at(std::int64_t i, std::int64_t j, std::int64_t k)
+  {
+    const std::size_t block =
+      std::size_t(((k / Block) * this->Blocks[1] + j / Block) * this->Blocks[0] + i / Block);
     std::int32_t& number = this->BlockOf[block];
     if (number < 0)
     {
@@ -351,19 +374,13 @@ public:
       this->Values.resize(this->Values.size() + Block * Block * Block, Unknown);
     }
     float& v = this->Values[std::size_t(number) * Block * Block * Block +
-      std::size_t(((q[2] % Block) * Block + q[1] % Block) * Block + q[0] % Block)];
+      std::size_t(((k % Block) * Block + j % Block) * Block + i % Block)];
     if (v == Unknown)
-      v = float(this->Distance({ this->Origin[0] + double(q[0]),
-        this->Origin[1] + double(q[1]),
-        this->Origin[2] + double(q[2]) }));
-    value = v;
-    offset = std::sqrt(offset2);
-    return true;
+      v = float(this->Distance(
+        { this->Origin[0] + double(i), this->Origin[1] + double(j), this->Origin[2] + double(k) }));
+    return v;
   }
 
-  const SurfelDistance& exact() const { return this->Distance; }
-
-private:
   static constexpr std::int64_t Block = 8;
   static constexpr double Margin = 3;
   static constexpr double MostBlocks = double(1 << 24); // a table of 64 MB
@@ -396,10 +413,9 @@ bool withinReach(const Corners& t,
     Piece piece{ stack.back() };
     stack.pop_back();
     const Vec3 c = piece.measureRadius();
-    double value = 0, offset = 0;
-    if (distances.nearest(c, value, offset))
+    double lower = 0, upper = 0;
+    if (distances.bounds(c, lower, upper))
     {
-      const double lower = value - offset, upper = value + offset;
       if (upper + piece.radius <= reach - Slack)
         continue; // accepted
       const bool refused = lower + piece.radius > reach + Slack;
@@ -618,13 +634,44 @@ struct StarFace
   FaceId face;
   std::array<VertexId, 3> ids;
   Corners t;
-  Box box; ///< of t
+  Box box;                    ///< of t
+  Vec3 normal;                ///< of t, not unit
+  double normal2 = 0;         ///< its squared length
+  std::array<Vec3, 3> inward; ///< per edge t[i] t[i + 1]: in t's plane, towards t
 
-  /// Whether the piece's centre is within its limit of this triangle.
+  /// The box, normal and inward edge normals of t.
+  void measure()
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      this->box[0][d] = std::min({ this->t[0][d], this->t[1][d], this->t[2][d] });
+      this->box[1][d] = std::max({ this->t[0][d], this->t[1][d], this->t[2][d] });
+    }
+    this->normal = cross(sub(this->t[1], this->t[0]), sub(this->t[2], this->t[0]));
+    this->normal2 = dot(this->normal, this->normal);
+    for (int i = 0; i < 3; ++i)
+      this->inward[i] = cross(this->normal, sub(this->t[(i + 1) % 3], this->t[i]));
+  }
+
+  /// Whether the piece's centre is within its limit of this triangle. Most centres lie over
+  /// the triangle, where the distance is the plane's: that is decided from the normals,
+  /// unless it is within a rounding margin of the limit; the others, and those, are measured
+  /// as nearestOf measures them, so the answer is the same.
   bool keeps(const SurfelPiece& piece) const
   {
-    return squaredDistanceToTriangle(piece.centre, this->t[0], this->t[1], this->t[2]) <=
-      piece.limit * piece.limit;
+    const double limit2 = piece.limit * piece.limit;
+    const double margin = 1e-9 * limit2 + 1e-12;
+    const Vec3 w = sub(piece.centre, this->t[0]);
+    const double height = dot(this->normal, w);
+    const double plane2 = height * height / this->normal2;
+    if (plane2 > limit2 + margin)
+      return false; // no point of the plane is within the limit
+    const bool over = dot(this->inward[0], w) >= 0 &&
+      dot(this->inward[1], sub(piece.centre, this->t[1])) >= 0 &&
+      dot(this->inward[2], sub(piece.centre, this->t[2])) >= 0;
+    if (over && plane2 < limit2 - margin)
+      return true;
+    return squaredDistanceToTriangle(piece.centre, this->t[0], this->t[1], this->t[2]) <= limit2;
   }
 };
 
@@ -954,7 +1001,7 @@ bool Simplifier::newStar(VertexId v0, VertexId v1, const Point3& placed)
     if (CGAL::collinear(a, b, c) ||
       dot(before, cross(sub(s.t[1], s.t[0]), sub(s.t[2], s.t[0]))) <= 0)
       return false;
-    box(s.t, s.box[0], s.box[1]);
+    s.measure();
     this->Star.push_back(s);
   }
   return true;
