@@ -328,45 +328,22 @@ public:
       this->Blocks[0] = this->Blocks[1] = this->Blocks[2] = 0; // no corner kept
   }
 
-  /// Bounds on p's distance from the distances at the eight corners of its voxel (each
-  /// corner g gives value(g) -+ |p - g|; the tightest of each kind is taken); false when p is
+  /// The distance at the corner nearest p and how far that corner is; false when p is
   /// outside the box.
-  bool bounds(const Vec3& p, double& lower, double& upper)
+  bool nearest(const Vec3& p, double& value, double& offset)
   {
     std::int64_t q[3];
-    double f[3];
+    double offset2 = 0;
     for (int d = 0; d < 3; ++d)
     {
       const double x = p[d] - this->Origin[d];
       if (!(x >= 0 && x < double(this->Blocks[d] * Block - 1)))
         return false;
-      q[d] = std::int64_t(x);
-      f[d] = x - double(q[d]);
+      q[d] = std::int64_t(std::nearbyint(x));
+      offset2 += (double(q[d]) - x) * (double(q[d]) - x);
     }
-    lower = 0;
-    upper = std::numeric_limits<double>::infinity();
-    for (int corner = 0; corner < 8; ++corner)
-    {
-      const int o[3] = { corner & 1, (corner >> 1) & 1, corner >> 2 };
-      double offset2 = 0;
-      for (int d = 0; d < 3; ++d)
-        offset2 += (o[d] - f[d]) * (o[d] - f[d]);
-      const double value = this->at(q[0] + o[0], q[1] + o[1], q[2] + o[2]);
-      const double offset = std::sqrt(offset2);
-      lower = std::max(lower, value - offset);
-      upper = std::min(upper, value + offset);
-    }
-    return true;
-  }
-
-  const SurfelDistance& exact() const { return this->Distance; }
-
-private:
-  /// The distance at lattice corner q (searched on first use).
-  double at(std::int64_t i, std::int64_t j, std::int64_t k)
-  {
-    const std::size_t block =
-      std::size_t(((k / Block) * this->Blocks[1] + j / Block) * this->Blocks[0] + i / Block);
+    const std::size_t block = std::size_t(
+      ((q[2] / Block) * this->Blocks[1] + q[1] / Block) * this->Blocks[0] + q[0] / Block);
     std::int32_t& number = this->BlockOf[block];
     if (number < 0)
     {
@@ -374,13 +351,19 @@ private:
       this->Values.resize(this->Values.size() + Block * Block * Block, Unknown);
     }
     float& v = this->Values[std::size_t(number) * Block * Block * Block +
-      std::size_t(((k % Block) * Block + j % Block) * Block + i % Block)];
+      std::size_t(((q[2] % Block) * Block + q[1] % Block) * Block + q[0] % Block)];
     if (v == Unknown)
-      v = float(this->Distance(
-        { this->Origin[0] + double(i), this->Origin[1] + double(j), this->Origin[2] + double(k) }));
-    return v;
+      v = float(this->Distance({ this->Origin[0] + double(q[0]),
+        this->Origin[1] + double(q[1]),
+        this->Origin[2] + double(q[2]) }));
+    value = v;
+    offset = std::sqrt(offset2);
+    return true;
   }
 
+  const SurfelDistance& exact() const { return this->Distance; }
+
+private:
   static constexpr std::int64_t Block = 8;
   static constexpr double Margin = 3;
   static constexpr double MostBlocks = double(1 << 24); // a table of 64 MB
@@ -413,9 +396,10 @@ bool withinReach(const Corners& t,
     Piece piece{ stack.back() };
     stack.pop_back();
     const Vec3 c = piece.measureRadius();
-    double lower = 0, upper = 0;
-    if (distances.bounds(c, lower, upper))
+    double value = 0, offset = 0;
+    if (distances.nearest(c, value, offset))
     {
+      const double lower = value - offset, upper = value + offset;
       if (upper + piece.radius <= reach - Slack)
         continue; // accepted
       const bool refused = lower + piece.radius > reach + Slack;

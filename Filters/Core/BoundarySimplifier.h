@@ -12,9 +12,9 @@
 //      1-Lipschitz: a piece of triangle whose centre c (of its smallest enclosing ball) is at
 //      distance dc from the surfels and whose corners are within r of c is within dc + r;
 //      pieces are halved at their longest edge until dc + r <= d (accepted) or r < 1/20
-//      voxel (rejected). The distances at the corners of c's voxel, searched once each and
-//      kept, bound dc (the same Lipschitz bound); dc itself is searched only where those
-//      bounds leave the decision open, so the decisions are the same;
+//      voxel (rejected). The distance at the voxel corner nearest c, searched once and kept,
+//      bounds dc (the same Lipschitz bound); dc itself is searched only where that bound
+//      leaves the decision open, so the decisions are the same;
 //  (b) surfels to surface: every surfel of an unpruned voxel is covered by square pieces
 //      (the whole surfel, or its quarters, down to 1/8 voxel), each assigned to a triangle
 //      within its limit of the piece's centre: d minus the piece's half diagonal, so that
