@@ -12,7 +12,9 @@
 //      1-Lipschitz: a piece of triangle whose centre c (of its smallest enclosing ball) is at
 //      distance dc from the surfels and whose corners are within r of c is within dc + r;
 //      pieces are halved at their longest edge until dc + r <= d (accepted) or r < 1/20
-//      voxel (rejected);
+//      voxel (rejected). The distance at the voxel corner nearest c, searched once and kept,
+//      bounds dc (the same Lipschitz bound); dc itself is searched only where that bound
+//      leaves the decision open, so the decisions are the same;
 //  (b) surfels to surface: every surfel of an unpruned voxel is covered by square pieces
 //      (the whole surfel, or its quarters, down to 1/8 voxel), each assigned to a triangle
 //      within its limit of the piece's centre: d minus the piece's half diagonal, so that
@@ -45,13 +47,13 @@
 // Distances are in voxel units (voxel i spans [i, i + 1]); d is at most 1.99 (the distance
 // search of FaceOctreeBoundary.h's distanceToNearestFace reaches two voxels).
 //
-// Cost: serial, about 25 microseconds per collapse (the 128^3 ball: 82,220 -> 176 triangles,
+// Cost: serial, about 40 microseconds per collapse (the 128^3 ball: 82,220 -> 174 triangles,
 // 41,000 collapses; only the kept vertex's edges are re-costed at once, where CGAL's loop
-// re-costs the 20 to 40 edges around each collapse), most of it now in the checks above;
-// about the time of flying edges, windowed-sinc smoothing and quadric decimation, which keep
-// about twice the triangles at that distance (README: faster on the 128^3 ball and CSG
-// solid, 1.35x its time on the torus, in one benchmark round under load).
-// vtkFaceOctreeBoundaryFilter leaves it off by default (it takes about 20x the unsimplified
+// re-costs the 20 to 40 edges around each collapse), most of it in the checks above and in
+// reads that miss the cache; a little less than the time of flying edges, windowed-sinc
+// smoothing and quadric decimation on the 128^3 ball and torus, half of it on a CSG solid,
+// with about half their triangles at the same distance (README, Performance).
+// vtkFaceOctreeBoundaryFilter leaves it off by default (it takes about 7x the unsimplified
 // filter's time).
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
