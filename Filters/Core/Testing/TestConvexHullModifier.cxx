@@ -2333,12 +2333,18 @@ TEST(ConvexHullModifier, HullsIntersectAgainstEverySeparatingAxis)
     }
     return aHi < bLo || bHi < aLo;
   };
-  const auto reference = [&](const vbr::CellList& a, const vbr::CellList& b)
+  const auto faceNormalSeparates = [&](const vbr::CellList& a, const vbr::CellList& b)
   {
     for (const auto* h : { &a, &b })
       for (const auto& plane : h->planes)
         if (separatedBy(a, b, plane.normal))
-          return false;
+          return true;
+    return false;
+  };
+  const auto reference = [&](const vbr::CellList& a, const vbr::CellList& b)
+  {
+    if (faceNormalSeparates(a, b))
+      return false;
     for (const auto& ea : a.edges)
       for (const auto& eb : b.edges)
       {
@@ -2357,7 +2363,7 @@ TEST(ConvexHullModifier, HullsIntersectAgainstEverySeparatingAxis)
   };
   std::mt19937 rng(23);
   std::uniform_int_distribution<long> coord(0, 8);
-  int pairs = 0, meeting = 0, touching = 0;
+  int pairs = 0, meeting = 0, touching = 0, edgeAxisOnly = 0;
   while (pairs < 3000)
   {
     std::vector<LatticePoint> corners;
@@ -2395,7 +2401,23 @@ TEST(ConvexHullModifier, HullsIntersectAgainstEverySeparatingAxis)
     const bool expected = reference(a, b);
     EXPECT_EQ(vbr::hullsIntersect(a, b), expected);
     EXPECT_EQ(vbr::hullsIntersect(b, a), expected);
+    if (pairs % 10 == 0)
+    {
+      // Scaled by 2^16 (coordinates up to 2^19, within the hull's range): the same answer
+      // with far larger products (edge axes, projections).
+      const auto scaled = [](std::vector<LatticePoint> q)
+      {
+        for (auto& p : q)
+          for (auto& x : p)
+            x *= 65536;
+        return vbr::convexHull(q);
+      };
+      EXPECT_EQ(vbr::hullsIntersect(scaled(corners), scaled(points)), expected) << "scaled";
+    }
     meeting += expected;
+    // Apart, but by no face normal: only an edge pair's axis separates them, the axes that
+    // hullsIntersect prunes (a wrong pruning can only turn such pairs into meeting ones).
+    edgeAxisOnly += !expected && !faceNormalSeparates(a, b);
     // Touching: they meet, but no point of B lies in A's open interior nor the reverse.
     touching += expected &&
       std::none_of(b.vertices.begin(),
@@ -2408,7 +2430,9 @@ TEST(ConvexHullModifier, HullsIntersectAgainstEverySeparatingAxis)
         });
   }
   std::cout << pairs << " pairs, " << meeting << " meeting, " << touching
-            << " of them with no corner of B inside A" << std::endl;
+            << " of them with no corner of B inside A, " << edgeAxisOnly
+            << " apart by an edge pair's axis only" << std::endl;
+  EXPECT_GE(edgeAxisOnly, 20); // 25 of these 3,000
   EXPECT_GE(meeting, pairs / 10);
   EXPECT_GE(pairs - meeting, pairs / 10);
   EXPECT_GE(touching, pairs / 50);
