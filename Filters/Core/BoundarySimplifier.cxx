@@ -389,6 +389,26 @@ bool withinReach(const Corners& t,
   LatticeDistances& distances,
   std::vector<Corners>& stack)
 {
+  enum class Decision
+  {
+    Accept,
+    Refuse,
+    Halve,
+    Open
+  };
+  // The piece's decision when its centre's distance lies in [lower, upper], the thresholds
+  // moved `slack` towards the open side; with the distance itself and no slack it is never
+  // open.
+  const auto decide = [reach](double lower, double upper, double radius, double slack)
+  {
+    if (upper + radius <= reach - slack)
+      return Decision::Accept;
+    if (lower + radius <= reach + slack)
+      return Decision::Open;
+    if (radius < SmallestPiece || lower > reach + slack)
+      return Decision::Refuse;
+    return upper <= reach - slack ? Decision::Halve : Decision::Open;
+  };
   constexpr double Slack = 1e-6;
   stack.assign(1, t);
   while (!stack.empty())
@@ -397,29 +417,19 @@ bool withinReach(const Corners& t,
     stack.pop_back();
     const Vec3 c = piece.measureRadius();
     double value = 0, offset = 0;
+    Decision decision = Decision::Open;
     if (distances.nearest(c, value, offset))
+      decision = decide(value - offset, value + offset, piece.radius, Slack);
+    if (decision == Decision::Open)
     {
-      const double lower = value - offset, upper = value + offset;
-      if (upper + piece.radius <= reach - Slack)
-        continue; // accepted
-      const bool refused = lower + piece.radius > reach + Slack;
-      const bool small = piece.radius < SmallestPiece;
-      if (refused && (small || lower > reach + Slack))
-        return false;
-      if (refused && upper <= reach - Slack)
-      {
-        for (const Corners& h : piece.halves())
-          stack.push_back(h);
-        continue;
-      }
+      piece.centre = distances.exact()(c);
+      decision = decide(piece.centre, piece.centre, piece.radius, 0.0);
     }
-    piece.centre = distances.exact()(c);
-    if (piece.centre + piece.radius <= reach)
-      continue;
-    if (piece.centre > reach || piece.radius < SmallestPiece)
+    if (decision == Decision::Refuse)
       return false;
-    for (const Corners& h : piece.halves())
-      stack.push_back(h);
+    if (decision == Decision::Halve)
+      for (const Corners& h : piece.halves())
+        stack.push_back(h);
   }
   return true;
 }
@@ -611,6 +621,18 @@ std::vector<SurfelPiece> unprunedSurfels(const BitVolume& object, const SurfelDi
 
 using Box = std::array<Vec3, 2>; ///< lower and upper corner
 
+/// The box of a triangle.
+Box boxOf(const Corners& t)
+{
+  Box b;
+  for (int d = 0; d < 3; ++d)
+  {
+    b[0][d] = std::min({ t[0][d], t[1][d], t[2][d] });
+    b[1][d] = std::max({ t[0][d], t[1][d], t[2][d] });
+  }
+  return b;
+}
+
 /// One collapse's new star: each kept face with its new corners and their vertices (a null
 /// VertexId for the collapsed vertex).
 struct StarFace
@@ -626,11 +648,7 @@ struct StarFace
   /// The box, normal and inward edge normals of t.
   void measure()
   {
-    for (int d = 0; d < 3; ++d)
-    {
-      this->box[0][d] = std::min({ this->t[0][d], this->t[1][d], this->t[2][d] });
-      this->box[1][d] = std::max({ this->t[0][d], this->t[1][d], this->t[2][d] });
-    }
+    this->box = boxOf(this->t);
     this->normal = cross(sub(this->t[1], this->t[0]), sub(this->t[2], this->t[0]));
     this->normal2 = dot(this->normal, this->normal);
     for (int i = 0; i < 3; ++i)
@@ -739,10 +757,7 @@ public:
     this->Boxes.resize(mesh.number_of_faces());
     this->SamplesOf.assign(mesh.number_of_faces(), {});
     for (FaceId f : mesh.faces())
-    {
-      Box& b = this->Boxes[std::size_t(f)];
-      this->box(this->triangleOf(f), b[0], b[1]);
-    }
+      this->Boxes[std::size_t(f)] = boxOf(this->triangleOf(f));
     this->rebuildGrid();
     this->assignSamples(object, exec);
   }
@@ -773,16 +788,8 @@ private:
     int i = 0;
     for (VertexId v : CGAL::vertices_around_face(this->M.halfedge(f), this->M))
       s.ids[i] = v, s.t[i++] = vec(this->M.point(v));
-    box(s.t, s.box[0], s.box[1]);
+    s.box = boxOf(s.t);
     return s;
-  }
-  static void box(const Corners& t, Vec3& lo, Vec3& hi)
-  {
-    for (int d = 0; d < 3; ++d)
-    {
-      lo[d] = std::min({ t[0][d], t[1][d], t[2][d] });
-      hi[d] = std::max({ t[0][d], t[1][d], t[2][d] });
-    }
   }
   void rebuildGrid();
   void assignSamples(const BitVolume& object, const Execution& exec);
@@ -1197,7 +1204,7 @@ bool Simplifier::collapsed(VertexId v0, VertexId v1, VertexId kept)
   for (const StarFace& s : this->Star)
   {
     Box& b = this->Boxes[std::size_t(s.face)];
-    box(this->triangleOf(s.face), b[0], b[1]);
+    b = s.box; // the box of its new triangle: the kept vertex is now at the accepted point
     this->Grid.insert(s.face, b[0], b[1]);
   }
   if (2 * this->M.number_of_faces() < this->FacesInGrid)

@@ -67,11 +67,6 @@ FacePlane planeThrough(const LatticePoint& a, const LatticePoint& b, const Latti
 namespace
 {
 
-int sign(__int128 v)
-{
-  return (v > 0) - (v < 0);
-}
-
 /// Exact strict 2D convex hull (Andrew's monotone chain) of the points `ids` of `points`, all
 /// on `plane`; counter-clockwise seen from the side the normal points to. Corners where the
 /// boundary goes straight on are dropped.
@@ -322,7 +317,7 @@ HullBuilder::State HullBuilder::classify(Index f, const LatticePoint& p)
   if (this->Tag[f] != this->Epoch)
   {
     this->Tag[f] = this->Epoch;
-    const int s = sign(this->height(f, p));
+    const int s = signOf(this->height(f, p));
     this->States[f] = s > 0 ? Visible : (s == 0 ? Coplanar_ : Hidden);
   }
   return this->States[f];

@@ -3,6 +3,7 @@
 #include "CUDB.h"
 #include "ConvexHullModifier2D.h"
 #include "EVM.h"
+#include "Geometry.h"
 #include "UnionFind.h"
 
 #include <algorithm>
@@ -486,11 +487,6 @@ bool gaussArcsKnown(const CellList& c)
       if (n <= -(std::int64_t(1) << 30) || n >= (std::int64_t(1) << 30))
         return false;
   return true;
-}
-
-int signOf(__int128 v)
-{
-  return (v > 0) - (v < 0);
 }
 
 __int128 dot128(const std::array<__int128, 3>& u, const LatticePoint& v)

@@ -156,6 +156,12 @@ using Wide = __int128;
 #error "VoxelBRep's exact predicates need a 128-bit integer type (GCC or Clang on a 64-bit target)"
 #endif
 
+/// The sign of an exact predicate's value: -1, 0 or 1.
+inline int signOf(Wide w)
+{
+  return (w > 0) - (w < 0);
+}
+
 /// Index of the lowest set bit of a non-zero word.
 inline int countTrailingZeros(std::uint64_t w)
 {

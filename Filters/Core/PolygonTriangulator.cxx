@@ -20,11 +20,6 @@ namespace vbr
 namespace
 {
 
-int sign(Wide w)
-{
-  return (w > 0) - (w < 0);
-}
-
 /// Whether p lies in the closed counter-clockwise triangle abc.
 bool inClosedTriangle(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& p)
 {
@@ -41,8 +36,8 @@ bool onSegment(const Point2L& a, const Point2L& b, const Point2L& p)
 /// Whether the closed segments ab and cd have a point in common.
 bool segmentsMeet(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& d)
 {
-  const int o1 = sign(cross2(a, b, c)), o2 = sign(cross2(a, b, d));
-  const int o3 = sign(cross2(c, d, a)), o4 = sign(cross2(c, d, b));
+  const int o1 = signOf(cross2(a, b, c)), o2 = signOf(cross2(a, b, d));
+  const int o3 = signOf(cross2(c, d, a)), o4 = signOf(cross2(c, d, b));
   if (o1 * o2 < 0 && o3 * o4 < 0)
     return true;
   return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) ||
@@ -214,7 +209,7 @@ bool triangulatePiece(const std::vector<Point2L>& corners,
 
 int orientation(const Point2L& a, const Point2L& b, const Point2L& c)
 {
-  return sign(cross2(a, b, c));
+  return signOf(cross2(a, b, c));
 }
 
 bool isSimplePolygon(const std::vector<Point2L>& corners)
