@@ -99,8 +99,9 @@ void markNesting(Cdt& cdt)
 /// counter-clockwise, those that may block an ear also listed densely (in no order) with their
 /// coordinates, for the scan of an ear's triangle; kept in an EarScratch. Every corner may block
 /// an ear, unless the ring is `simple`: a simple polygon that passes no place twice, where only
-/// the corners that do not turn strictly left can (see isEar), and a corner that turns left never
-/// stops doing so as ears are cut (cutting an ear only narrows the angles at its two ends).
+/// the corners that do not turn strictly left can (see isEar). Cutting an ear leaves such a ring
+/// (no edge crosses the cut, whose triangle holds no corner) and changes the turns only at its
+/// two ends, where the list is brought up to date.
 class EarCorners
 {
 public:
