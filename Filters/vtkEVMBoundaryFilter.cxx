@@ -260,8 +260,7 @@ private:
     {
       const vtkIdType end =
         r + 1 < this->LabelRuns.size() ? this->LabelRuns[r + 1].first : cellCount;
-      for (vtkIdType c = this->LabelRuns[r].first; c < end; ++c)
-        vbr::vtk::setLabel(label, c, this->LabelRuns[r].second);
+      vbr::vtk::fillLabel(label, this->LabelRuns[r].first, end, this->LabelRuns[r].second);
     }
     release(this->LabelRuns);
     return label;

@@ -938,6 +938,15 @@ void setLabel(vtkDataArray* labels, vtkIdType i, const LabelValue& label)
   }
 }
 
+void fillLabel(vtkDataArray* labels, vtkIdType first, vtkIdType end, const LabelValue& label)
+{
+  switch (labels->GetDataType())
+  {
+    vtkTemplateMacro(VTK_TT* values = static_cast<VTK_TT*>(labels->GetVoidPointer(0));
+                     std::fill(values + first, values + end, label.as<VTK_TT>()));
+  }
+}
+
 void appendLabel(vtkDataArray* labels, const LabelValue& label)
 {
   const vtkIdType i = labels->GetNumberOfTuples();
@@ -966,10 +975,15 @@ void setBoundaryColoring(vtkPolyData* output, bool labelsMode)
   colors->SetName("FaceColor");
   resizeOrThrow(colors, n);
   float* out = colors->GetPointer(0);
+  // The filters' own ids are read in place, not through GetComponent's virtual call.
+  vtkIdTypeArray* typed = vtkIdTypeArray::FastDownCast(faceIds);
+  const vtkIdType* inPlace =
+    typed && typed->GetNumberOfComponents() == 1 ? typed->GetPointer(0) : nullptr;
   for (vtkIdType c = 0; c < n; ++c)
   {
     // 24 bits of the hash: exact in a float, in [0, 1).
-    const auto id = static_cast<std::int64_t>(faceIds->GetComponent(c, 0));
+    const auto id =
+      inPlace ? std::int64_t(inPlace[c]) : static_cast<std::int64_t>(faceIds->GetComponent(c, 0));
     out[c] = static_cast<float>(mixBits(static_cast<std::uint64_t>(id)) >> 40) / 16777216.0f;
   }
   cd->AddArray(colors);

@@ -157,6 +157,8 @@ struct LabelValue
 vtkSmartPointer<vtkDataArray> newLabelArray(int dataType, vtkIdType n = 0);
 /// Writes value i of a Label array (of the type the label was made in).
 void setLabel(vtkDataArray* labels, vtkIdType i, const LabelValue& label);
+/// Writes values [first, end) of a Label array, all `label`.
+void fillLabel(vtkDataArray* labels, vtkIdType first, vtkIdType end, const LabelValue& label);
 /// Appends a value to a Label array.
 void appendLabel(vtkDataArray* labels, const LabelValue& label);
 /// Value i of an array as a label of its type (what reading a Label array back gives).

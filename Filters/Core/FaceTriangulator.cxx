@@ -96,33 +96,50 @@ void markNesting(Cdt& cdt)
 }
 
 /// The corners of a ring being ear-clipped, in coordinates (x, y) in which it runs
-/// counter-clockwise, those still in the ring also listed densely (in no order) with their
-/// coordinates, for the scan of an ear's triangle; kept in an EarScratch.
+/// counter-clockwise, those that may block an ear also listed densely (in no order) with their
+/// coordinates, for the scan of an ear's triangle; kept in an EarScratch. Every corner may block
+/// an ear, unless the ring is `simple`: a simple polygon that passes no place twice, where only
+/// the corners that do not turn strictly left can (see isEar). Cutting an ear leaves such a ring
+/// (no edge crosses the cut, whose triangle holds no corner) and changes the turns only at its
+/// two ends, where the list is brought up to date.
 class EarCorners
 {
 public:
   /// Starts a ring of the corners `pts`, (x, y) their coordinates along axes `x` and `y`.
-  EarCorners(EarScratch& scratch, const PointRange& pts, int x, int y)
+  EarCorners(EarScratch& scratch, const PointRange& pts, int x, int y, bool simple)
     : S(scratch)
+    , Simple(simple)
   {
     const std::size_t n = pts.size();
     this->S.x.resize(n);
     this->S.y.resize(n);
-    this->S.alive.resize(n);
     this->S.slot.resize(n);
     for (std::size_t i = 0; i < n; ++i)
     {
       this->S.x[i] = pts[i][x];
       this->S.y[i] = pts[i][y];
-      this->S.alive[i] = static_cast<int>(i);
-      this->S.slot[i] = static_cast<int>(i);
     }
-    this->S.aliveX.assign(this->S.x.begin(), this->S.x.end());
-    this->S.aliveY.assign(this->S.y.begin(), this->S.y.end());
+    this->S.alive.clear();
+    this->S.aliveX.clear();
+    this->S.aliveY.clear();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const int c = static_cast<int>(i);
+      const bool blocks = !simple ||
+        this->turn(static_cast<int>((i + n - 1) % n), c, static_cast<int>((i + 1) % n)) <= 0;
+      this->S.slot[i] = blocks ? static_cast<int>(this->S.alive.size()) : -1;
+      if (blocks)
+      {
+        this->S.alive.push_back(c);
+        this->S.aliveX.push_back(this->S.x[i]);
+        this->S.aliveY.push_back(this->S.y[i]);
+      }
+    }
+    this->Left = n;
   }
 
   /// The number of corners still in the ring.
-  std::size_t size() const { return this->S.alive.size(); }
+  std::size_t size() const { return this->Left; }
 
   /// Twice the signed area of triangle abc (corners of the ring). Exact in 64 bits: it
   /// overflows only for a face that spans 2^31 voxels along both of its axes, which no image
@@ -134,7 +151,14 @@ public:
   }
 
   /// Whether b, between a and c in the ring, is an ear: it turns strictly left and no other
-  /// corner of the ring lies in the closed triangle abc.
+  /// corner of the ring lies in the closed triangle abc. In a simple ring that passes no place
+  /// twice, if some corner does, so does one that does not turn strictly left: of the corners
+  /// in the triangle, take one, d, farthest from the line ac. Any corner farther from ac in the
+  /// triangle is b, whose edges are ab and bc, so no edge crosses the part of the triangle
+  /// beyond d's distance, which is thus inside the polygon like the corner of the triangle at
+  /// b; and each edge at d either stays in the triangle, ending no farther from ac, or leaves it
+  /// through ac (not through ab nor bc: the polygon is simple). The inside at d then spans at
+  /// least a half-turn: d turns right or goes straight on.
   bool isEar(int a, int b, int c) const
   {
     if (this->turn(a, b, c) <= 0)
@@ -160,22 +184,112 @@ public:
     return true;
   }
 
-  /// Takes corner i out of the ring.
-  void remove(int i)
+  /// Takes the ear b out of the ring, whose ends a and c are now neighbours (`prev` and `next`
+  /// link the ring, already without b).
+  void cut(int a, int b, int c, const int* prev, const int* next)
+  {
+    this->unlist(b);
+    --this->Left;
+    if (!this->Simple)
+      return;
+    this->relist(a, this->turn(prev[a], a, c) <= 0);
+    this->relist(c, this->turn(a, c, next[c]) <= 0);
+  }
+
+private:
+  /// Lists corner i (when it may block an ear) or takes it out of the list.
+  void relist(int i, bool blocks)
+  {
+    if (!blocks)
+      this->unlist(i);
+    else if (this->S.slot[i] < 0)
+    {
+      this->S.slot[i] = static_cast<int>(this->S.alive.size());
+      this->S.alive.push_back(i);
+      this->S.aliveX.push_back(this->S.x[i]);
+      this->S.aliveY.push_back(this->S.y[i]);
+    }
+  }
+
+  /// Takes corner i out of the list of the corners that may block an ear.
+  void unlist(int i)
   {
     const int slot = this->S.slot[i];
+    if (slot < 0)
+      return;
     const int last = this->S.alive.back();
     this->S.alive[slot] = last;
     this->S.aliveX[slot] = this->S.aliveX.back();
     this->S.aliveY[slot] = this->S.aliveY.back();
     this->S.slot[last] = slot;
+    this->S.slot[i] = -1;
     this->S.alive.pop_back();
     this->S.aliveX.pop_back();
     this->S.aliveY.pop_back();
   }
 
+  EarScratch& S;
+  bool Simple;
+  std::size_t Left = 0;
+};
+
+/// The corners of a ring that goes round a rectangle (rectangleApex: four left turns, no right
+/// turn, straight on elsewhere), where isEar needs no scan. Such a ring is a convex polygon that
+/// passes no place twice, and stays one as its ears are cut (cutting the triangle abc of an ear
+/// off a convex polygon leaves a convex one). In a convex polygon P, another corner d in the
+/// closed triangle abc of a corner b that turns strictly left lies on the open segment ac: d is on
+/// the border of P, not on the edges ab and bc (P passes no place twice), so not inside abc,
+/// which is inside P. The segment ac then lies on the border of P (a convex set whose border
+/// holds a point strictly between two of its points holds the segment), so the rest of the
+/// ring, from c round to a, is that segment: every other corner lies on it, the one after c
+/// among them. So abc holds another corner if and only if it holds the one after c: the answer
+/// of EarCorners::isEar, from one corner instead of all of them.
+class ConvexRing
+{
+public:
+  /// Starts a ring of the corners `pts`, (x, y) their coordinates along axes `x` and `y`;
+  /// `next` links the ring (the caller's, kept up to date as corners are taken out).
+  ConvexRing(EarScratch& scratch, const PointRange& pts, int x, int y, const int* next)
+    : S(scratch)
+    , Next(next)
+    , Left(pts.size())
+  {
+    const std::size_t n = pts.size();
+    this->S.x.resize(n);
+    this->S.y.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      this->S.x[i] = pts[i][x];
+      this->S.y[i] = pts[i][y];
+    }
+  }
+
+  std::size_t size() const { return this->Left; }
+
+  /// Twice the signed area of triangle abc, as EarCorners::turn.
+  std::int64_t turn(int a, int b, int c) const
+  {
+    const std::int64_t *x = this->S.x.data(), *y = this->S.y.data();
+    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]);
+  }
+
+  /// EarCorners::isEar on a convex ring: only the corner after c is tested.
+  bool isEar(int a, int b, int c) const
+  {
+    if (this->turn(a, b, c) <= 0)
+      return false;
+    if (this->Left == 3)
+      return true;
+    const int d = this->Next[c];
+    return this->turn(a, b, d) < 0 || this->turn(b, c, d) < 0 || this->turn(c, a, d) < 0;
+  }
+
+  void cut(int, int, int, const int*, const int*) { --this->Left; }
+
 private:
   EarScratch& S;
+  const int* Next;
+  std::size_t Left;
 };
 
 /// clipEars on a ring of four corners (most faces: rectangles), with no ring to set up: the
@@ -209,29 +323,20 @@ bool clipQuadrilateral(const PointRange& pts, int x, int y, FaceCells& out)
   return false;
 }
 
-/// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
-/// corner whose triangle holds no other corner (not even on its border; a corner at the same
-/// place as one of the ear's, where the loop visits a place twice, is on it). The corners left
-/// form a ring linked both ways, walked from corner to corner: after an ear is cut the walk
-/// goes back to the corner before it, the only one besides the next whose ear changed, so
-/// that a face takes about one pass round its ring rather than one per ear. Appends the
-/// triangles to `out`; returns false when a whole round finds no ear (left to the general
-/// triangulation, the caller then drops what was appended). `out.ring` and `out.earCorners`
-/// are scratch space.
-bool clipEars(const PointRange& pts, int u, int v, int sign, FaceCells& out)
+/// What is known of a loop to ear-clip: nothing, a simple polygon that passes no place twice,
+/// or one that goes round a rectangle (rectangleApex).
+enum class RingKind
 {
-  const int n = static_cast<int>(pts.size());
-  if (n == 4)
-    return clipQuadrilateral(pts, sign > 0 ? u : v, sign > 0 ? v : u, out);
-  out.ring.resize(2 * static_cast<std::size_t>(n));
-  int* prev = out.ring.data();
-  int* next = out.ring.data() + n;
-  for (int i = 0; i < n; ++i)
-  {
-    prev[i] = (i + n - 1) % n;
-    next[i] = (i + 1) % n;
-  }
-  EarCorners left(out.earCorners, pts, sign > 0 ? u : v, sign > 0 ? v : u);
+  Any,
+  Simple,
+  Rectangle
+};
+
+/// The walk of clipEars round a ring (EarCorners, or ConvexRing for a loop round a rectangle)
+/// linked both ways by `prev` and `next`, from corner 0.
+template<typename Ring>
+bool clipRing(Ring& left, int* prev, int* next, FaceCells& out)
+{
   auto emit = [&out](int a, int b, int c)
   {
     out.corners.insert(out.corners.end(), { a, b, c });
@@ -252,7 +357,7 @@ bool clipEars(const PointRange& pts, int u, int v, int sign, FaceCells& out)
     emit(a, b, c);
     next[a] = c;
     prev[c] = a;
-    left.remove(b);
+    left.cut(a, b, c, prev, next);
     misses = 0;
     b = a;
   }
@@ -261,6 +366,39 @@ bool clipEars(const PointRange& pts, int u, int v, int sign, FaceCells& out)
     return false;
   emit(a, b, c);
   return true;
+}
+
+/// Ear clipping of a face without holes, exact on integers: an ear is a strictly convex
+/// corner whose triangle holds no other corner (not even on its border; a corner at the same
+/// place as one of the ear's, where the loop visits a place twice, is on it). The corners left
+/// form a ring linked both ways, walked from corner to corner: after an ear is cut the walk
+/// goes back to the corner before it, the only one besides the next whose ear changed, so
+/// that a face takes about one pass round its ring rather than one per ear. Appends the
+/// triangles to `out`; returns false when a whole round finds no ear (left to the general
+/// triangulation, the caller then drops what was appended). `kind` says what the caller knows
+/// of the loop, which spares scans of the ring without changing a triangle (EarCorners,
+/// ConvexRing). `out.ring` and `out.earCorners` are scratch space.
+bool clipEars(const PointRange& pts, int u, int v, int sign, RingKind kind, FaceCells& out)
+{
+  const int n = static_cast<int>(pts.size());
+  const int x = sign > 0 ? u : v, y = sign > 0 ? v : u;
+  if (n == 4)
+    return clipQuadrilateral(pts, x, y, out);
+  out.ring.resize(2 * static_cast<std::size_t>(n));
+  int* prev = out.ring.data();
+  int* next = out.ring.data() + n;
+  for (int i = 0; i < n; ++i)
+  {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
+  if (kind == RingKind::Rectangle)
+  {
+    ConvexRing left(out.earCorners, pts, x, y, next);
+    return clipRing(left, prev, next, out);
+  }
+  EarCorners left(out.earCorners, pts, x, y, kind == RingKind::Simple);
+  return clipRing(left, prev, next, out);
 }
 
 /// Faces up to this many corners without holes are ear-clipped. Measured against the
@@ -753,12 +891,39 @@ bool clipParts(const FaceParts& parts, int u, int v, int sign, FaceCells& out)
   for (std::size_t k = 0; k < parts.count(); ++k)
   {
     const std::size_t from = out.corners.size(), first = parts.begin(k);
-    if (!clipEars(parts.pointsOf(k), u, v, sign, out))
+    if (!clipEars(parts.pointsOf(k), u, v, sign, RingKind::Any, out))
       return false;
     for (std::size_t c = from; c < out.corners.size(); ++c)
       out.corners[c] = parts.corners[first + static_cast<std::size_t>(out.corners[c])];
   }
   return true;
+}
+
+/// What clipEars may know of a face's outer loop of more than four corners: whether it goes round
+/// a rectangle, else whether it runs counter-clockwise (as outer loops do) and passes no place
+/// twice, which makes it a simple polygon (its edges
+/// lie on the lines of the pixels, and a point where the border of a set of pixels meets itself
+/// is a corner it passes twice: the diagonal pixels around it are in the set, the two others
+/// not). `out.keys` is scratch space.
+RingKind ringKind(const PointRange& pts, int u, int v, int sign, FaceCells& out)
+{
+  if (pts.size() <= 4)
+    return RingKind::Any; // clipQuadrilateral
+  if (rectangleApex(pts, u, v, sign) >= 0)
+    return RingKind::Rectangle;
+  // Counter-clockwise in clipEars' coordinates, as an outer loop runs.
+  const int x = sign > 0 ? u : v, y = sign > 0 ? v : u;
+  Wide area = 0;
+  for (std::size_t i = 0, j = pts.size() - 1; i < pts.size(); j = i++)
+    area += Wide(pts[j][x]) * pts[i][y] - Wide(pts[j][y]) * pts[i][x];
+  if (area <= 0)
+    return RingKind::Any;
+  out.keys.resize(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    out.keys[i] = pairKey(pts[i][u], pts[i][v]);
+  std::sort(out.keys.begin(), out.keys.end());
+  return std::adjacent_find(out.keys.begin(), out.keys.end()) == out.keys.end() ? RingKind::Simple
+                                                                                : RingKind::Any;
 }
 
 /// Appends the triangles of face `f` without closing the face.
@@ -770,7 +935,7 @@ void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
   {
-    if (clipEars(outer, u, v, face.normalSign, out))
+    if (clipEars(outer, u, v, face.normalSign, ringKind(outer, u, v, face.normalSign, out), out))
       return;
     out.corners.resize(corners); // no ear: the general method from scratch
     out.cellEnds.resize(cells);

@@ -46,11 +46,12 @@ struct FanScratch
 };
 
 /// Scratch space of the ear clipping, kept from face to face: the coordinates of a ring's
-/// corners, and the corners still in the ring listed densely (in no order) with theirs.
+/// corners, and the corners still in the ring that may block an ear listed densely (in no order)
+/// with theirs.
 struct EarScratch
 {
-  std::vector<std::int64_t> x, y;           ///< by corner
-  std::vector<int> alive, slot;             ///< the corners in the ring; the place of each in alive
+  std::vector<std::int64_t> x, y; ///< by corner
+  std::vector<int> alive, slot;   ///< the corners listed; the place of each in alive or -1
   std::vector<std::int64_t> aliveX, aliveY; ///< the coordinates of alive's corners
 };
 
