@@ -790,54 +790,6 @@ bool StandardPlaneRecognizer::octantExcluded(const Octant& o,
   return false;
 }
 
-bool StandardPlaneRecognizer::cutOffAtOnce(const Octant& o) const
-{
-  // A new point p and a committed one q admit only the normals with n.(p - q) <= sigma.n
-  // (p above) and n.(q - p) <= sigma.n (p below): half-planes through the origin. When every
-  // vertex of the polygon lies outside one of them or on its line, the clipped polygon has
-  // no interior, which is where the clipping of a copy would end (searchOctants drops it).
-  // The polygon holds the normals of every point applied to it, so the test is exact; it
-  // only tries, for each vertex v, the points where v's range ends (argLo below p, argHi
-  // above p), and skips a side at once when some vertex's range shows no point can serve.
-  if (this->Points.empty() || o.vertices.size() < 3)
-    return false;
-  const Vec sigma = sigmaOf(o.sigma);
-  std::array<std::int64_t, 16> at, width; // u.p and sigma.u per vertex u
-  const std::size_t n = o.vertices.size();
-  if (n > at.size())
-    return false;
-  for (const Point3& p : this->Fresh)
-  {
-    bool above = true, below = true; // whether a point q may still serve on that side
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const Vertex& u = o.vertices[i];
-      at[i] = dot(u.ray, p);
-      width[i] = dot(sigma, u.ray);
-      above = above && u.lo <= at[i] - width[i];
-      below = below && u.hi >= at[i] + width[i];
-    }
-    for (int side = 0; side < 2; ++side)
-    {
-      if (!(side == 0 ? above : below))
-        continue;
-      for (const Vertex& v : o.vertices)
-      {
-        const Point3& q = this->Points[side == 0 ? v.argLo : v.argHi];
-        bool cuts = true;
-        for (std::size_t i = 0; i < n && cuts; ++i)
-        {
-          const std::int64_t x = dot(o.vertices[i].ray, q);
-          cuts = side == 0 ? x <= at[i] - width[i] : x >= at[i] + width[i];
-        }
-        if (cuts)
-          return true;
-      }
-    }
-  }
-  return false;
-}
-
 bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
   std::array<bool, 8>& survives,
   Vec& best)
@@ -863,8 +815,6 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
       this->Deferred[i] = true;
       continue;
     }
-    if (this->cutOffAtOnce(original))
-      continue; // what the clipping of a copy would conclude, without the copy
     Octant& o = this->Trials[i];
     o = original; // reuses the trial's storage
     if (!this->applyPoints(o) || !hasInterior(o))

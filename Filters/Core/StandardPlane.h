@@ -148,9 +148,6 @@ private:
   bool takenByCurrentPlane(const std::array<int, 3>& present);
   /// Whether an octant cannot hold a normal for the orientations and the new points.
   bool octantExcluded(const Octant& o, const std::array<int, 3>& present) const;
-  /// Whether one new point and one committed point cut the octant's polygon down to no
-  /// interior at once: a refusal decided without clipping a copy (see cutOffAtOnce).
-  bool cutOffAtOnce(const Octant& o) const;
   /// Slow path: clips a copy of every live octant with the new points and searches it for
   /// the normal of smallest omega; false when none is found.
   bool searchOctants(const std::array<int, 3>& present, std::array<bool, 8>& survives, Vec& best);
