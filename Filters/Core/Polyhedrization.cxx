@@ -19,8 +19,8 @@
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
-// linel that is not a loop edge), marked in bits per voxel and direction (SurfelBits), which
-// also tells a surfel filled by two faces, and the voxels follow by parity along x
+// linel that is not a loop edge, each once), marked in bits per voxel and direction (SurfelBits),
+// which also tells a surfel filled by two faces, and the voxels follow by parity along x
 // (fillByParity).
 
 #include "Polyhedrization.h"
