@@ -3,6 +3,7 @@
 #include "Geometry.h"
 #include "PolygonTriangulator.h"
 #include "Polyhedrization.h"
+#include "RadixSort.h"
 #include "SurfelGraph.h"
 #include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepMemory.h"
@@ -131,10 +132,27 @@ public:
     this->Ids.assign(n, None);
     this->First.resize(n);
     {
+      // Keys packed as narrow as the pointels' box allows, radix sorted: stable, so the
+      // vertices of one pointel stay in increasing order and its first comes first.
+      vbr::Point3 lo{ 0, 0, 0 };
+      std::int32_t extent = 0;
+      for (int d = 0; d < 3 && n > 0; ++d)
+      {
+        const auto [min, max] = std::minmax_element(graph.vertexPointel.begin(),
+          graph.vertexPointel.end(),
+          [d](const vbr::Point3& a, const vbr::Point3& b) { return a[d] < b[d]; });
+        lo[d] = (*min)[d];
+        extent = std::max(extent, (*max)[d] - lo[d]);
+      }
+      const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(extent);
       std::vector<std::pair<std::uint64_t, std::uint32_t>> byPointel(n);
       for (std::uint32_t v = 0; v < n; ++v)
-        byPointel[v] = { vbr::packBiased(graph.vertexPointel[v]), v };
-      std::sort(byPointel.begin(), byPointel.end());
+      {
+        const vbr::Point3& p = graph.vertexPointel[v];
+        byPointel[v] = { packer.pack(p[0] - lo[0], p[1] - lo[1], p[2] - lo[2]), v };
+      }
+      vbr::radixSortBy(
+        byPointel, [](const std::pair<std::uint64_t, std::uint32_t>& r) { return r.first; });
       for (std::size_t i = 0; i < n; ++i)
         this->First[byPointel[i].second] = i > 0 && byPointel[i].first == byPointel[i - 1].first
           ? this->First[byPointel[i - 1].second]

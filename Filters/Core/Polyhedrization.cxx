@@ -19,8 +19,8 @@
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
-// linel that is not a loop edge), marked in bits per voxel and direction (SurfelBits), which
-// also tells a surfel filled by two faces, and the voxels follow by parity along x
+// linel that is not a loop edge, each once), marked in bits per voxel and direction (SurfelBits),
+// which also tells a surfel filled by two faces, and the voxels follow by parity along x
 // (fillByParity).
 
 #include "Polyhedrization.h"
@@ -1200,13 +1200,24 @@ public:
       this->OutsideEdges.insert(this->edgeKey(p, q));
   }
 
-  /// Whether p -> q, a linel of a surfel of the plane in the grid, is a loop edge.
-  bool isLoopEdge(const Point3& p, const Point3& q) const
+  /// Whether p -> q, a linel of a surfel of the plane in the grid, is a loop edge or was
+  /// crossed already (markCrossed).
+  bool isLoopEdgeOrCrossed(const Point3& p, const Point3& q) const
   {
     std::size_t cell = 0;
     if (this->cellOf(p, cell))
-      return this->Marks[cell] & (8u << directionOf(sub(q, p)));
+      return this->Marks[cell] & (0x208u << directionOf(sub(q, p)));
     return this->OutsideEdges.size() != 0 && this->OutsideEdges.find(this->edgeKey(p, q)) >= 0;
+  }
+
+  /// Marks the linel p -> q as crossed: the flood came into its surfel across it, so crossing
+  /// it back from there would find a surfel already filled (only within the array; outside it
+  /// the linel is crossed back).
+  void markCrossed(const Point3& p, const Point3& q)
+  {
+    std::size_t cell = 0;
+    if (this->cellOf(p, cell))
+      this->mark(cell, 0x200u << directionOf(sub(q, p)));
   }
 
   /// Whether a face of `surfels` (its loop's shoelace area) and `loopEdges` is marked in an
@@ -1261,7 +1272,8 @@ private:
   std::array<int, 3> Sign{ 1, 1, 1 };
   std::array<std::int64_t, 2> Low{ 0, 0 };
   std::int64_t Width = 0, Height = 0;
-  /// Per cell: bit a, a surfel of axis a; bit 3 + d, a loop edge of direction d.
+  /// Per cell: bit a, a surfel of axis a; bit 3 + d, a loop edge of direction d; bit 9 + d,
+  /// a linel of direction d crossed by the flood.
   std::vector<std::uint16_t> Marks;
   std::vector<std::size_t> Touched; ///< the cells marked for this face
   GridPointIndex Outside;           ///< keys of the face's surfels outside the array
@@ -1369,13 +1381,16 @@ private:
       {
         const Point3& a = corners[k];
         const Point3& b = corners[(k + 1) & 3];
-        if (this->Face.isLoopEdge(a, b))
+        if (this->Face.isLoopEdgeOrCrossed(a, b))
           continue;
         Surfel t;
         if (!plane.leftOf(b, a, t))
           return "its plane is not a surface around a linel";
         if (const char* error = this->visit(t))
           return error;
+        // t's edge b -> a leads back to s, filled: the plane is a surface, so each linel has
+        // one surfel on either side, and crossing it once says all (half the crossings).
+        this->Face.markCrossed(b, a);
       }
     }
     return nullptr;
