@@ -742,23 +742,46 @@ PointGroup makeGroup(std::vector<LatticePoint> points,
   return g;
 }
 
+/// Whether every corner of the groups' shapes lies in the closed solid shape of `into`.
+bool shapesWithin(const PointGroup& into, const std::vector<PointGroup*>& from)
+{
+  if (into.shape.dimension != 3)
+    return false;
+  for (const PointGroup* g : from)
+    for (const auto& p : g->shape.vertices)
+      if (!hullContains(into.shape, p))
+        return false;
+  return true;
+}
+
 /// Moves the points of the groups `from` into `into` (the largest list kept, so a growing group
 /// is not copied again and again) and finds the hulls of the union from the shapes' corners.
+/// When those corners all lie in the solid shape of `into` its hulls stay as they are: a merged
+/// hull (convexHull merges coplanar faces) depends only on the polytope, faces in the order of
+/// their planes and each polygon from its least corner, so computing it again gives the same
+/// cell list. Most merges of the groups kept apart are of that kind (8,204 of 9,268 on the full
+/// aneurism): a small group whose region met the region of a large one that already holds it.
 void mergeGroups(PointGroup& into,
   const std::vector<PointGroup*>& from,
   const CellList& c,
   bool strict,
   CoplanarFaces coplanar)
 {
-  std::vector<LatticePoint> corners = into.shape.vertices;
+  const bool within = shapesWithin(into, from);
+  std::vector<LatticePoint> corners;
+  if (!within)
+    corners = into.shape.vertices;
   for (PointGroup* g : from)
   {
     if (into.points.size() < g->points.size())
       std::swap(into.points, g->points);
     into.points.insert(into.points.end(), g->points.begin(), g->points.end());
-    corners.insert(corners.end(), g->shape.vertices.begin(), g->shape.vertices.end());
+    if (!within)
+      corners.insert(corners.end(), g->shape.vertices.begin(), g->shape.vertices.end());
     *g = PointGroup();
   }
+  if (within)
+    return; // a solid shape is its own solid hull (solidOf), unchanged too
   into.shape = convexHull(corners, coplanar);
   into.solid = solidOf(into, c, strict, coplanar);
 }
