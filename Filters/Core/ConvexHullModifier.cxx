@@ -464,15 +464,34 @@ std::vector<std::uint32_t> labelsByRowIntervals(const std::vector<LatticePoint>&
       for (std::int32_t y = box.lo[1]; y < box.hi[1]; ++y)
         intervals[fill[rowOf(y, z)]++] = { box.lo[0], box.hi[0], comps.boxLabel[b] };
   }
+  // A row of many intervals (stripes, combs) is sorted once and searched, so that a point costs
+  // a logarithm of its row's intervals, not their number; the intervals of a row are disjoint
+  // (the boxes are), so the last one starting at or before x is the only one that can hold it.
+  constexpr std::size_t fewIntervals = 8;
+  const auto byStart = [](const Interval& a, const Interval& b) { return a.lo < b.lo; };
+  for (std::size_t row = 0; row + 1 < start.size(); ++row)
+    if (start[row + 1] - start[row] > fewIntervals)
+      std::sort(intervals.begin() + static_cast<std::ptrdiff_t>(start[row]),
+        intervals.begin() + static_cast<std::ptrdiff_t>(start[row + 1]),
+        byStart);
   std::vector<std::uint32_t> label(points.size(), 0);
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     const std::size_t row = rowOf(points[i][1] - lo[1], points[i][2] - lo[2]);
     const std::int64_t x = points[i][0] - lo[0];
-    for (std::size_t k = start[row]; k < start[row + 1]; ++k)
-      if (x >= intervals[k].lo && x < intervals[k].hi)
+    const Interval* first = intervals.data() + start[row];
+    const Interval* last = intervals.data() + start[row + 1];
+    if (static_cast<std::size_t>(last - first) > fewIntervals)
+    {
+      const Interval* after = std::upper_bound(
+        first, last, x, [](std::int64_t value, const Interval& v) { return value < v.lo; });
+      first = after == first ? after : after - 1; // none starts at or before x: no interval
+      last = after;
+    }
+    for (const Interval* at = first; at != last; ++at)
+      if (x >= at->lo && x < at->hi)
       {
-        label[i] = intervals[k].label;
+        label[i] = at->label;
         break;
       }
   }
@@ -518,10 +537,12 @@ std::vector<std::vector<LatticePoint>> componentsOf(std::vector<LatticePoint> po
     one[0] = std::move(points);
     return one;
   }
-  // Each point's label from the boxes' rows, found among the points in row order (a key per
-  // point), instead of painting the labels into a grid of the points' box: the top levels'
-  // groups of background points span most of the grid (64 MB of labels on the full aneurism,
-  // each level again). Keys of 64 bits hold extents below 2^21, wider boxes take 128.
+  // Each point's label from the boxes' rows instead of painting the labels into a grid of the
+  // points' box (the top levels' groups of background points span most of the grid: 64 MB of
+  // labels on the full aneurism, each level again): from a table of each row's intervals when
+  // the box has few rows against the points (labelsByRowIntervals), else found among the points
+  // in row order, a key per point (labelsByRows; keys of 64 bits hold extents below 2^21,
+  // wider boxes take 128).
   const std::int64_t rows = std::int64_t(d[1]) * d[2];
   const std::vector<std::uint32_t> label =
     rows <= std::max<std::int64_t>(1 << 20, 4 * static_cast<std::int64_t>(points.size()))
