@@ -95,6 +95,23 @@ void markNesting(Cdt& cdt)
   }
 }
 
+} // namespace
+
+void EarScratch::load(const PointRange& pts, int x, int y)
+{
+  const std::size_t n = pts.size();
+  this->x.resize(n);
+  this->y.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    this->x[i] = pts[i][x];
+    this->y[i] = pts[i][y];
+  }
+}
+
+namespace
+{
+
 /// The corners of a ring being ear-clipped, in coordinates (x, y) in which it runs
 /// counter-clockwise, those that may block an ear also listed densely (in no order) with their
 /// coordinates, for the scan of an ear's triangle; kept in an EarScratch. Every corner may block
@@ -111,14 +128,8 @@ public:
     , Simple(simple)
   {
     const std::size_t n = pts.size();
-    this->S.x.resize(n);
-    this->S.y.resize(n);
+    this->S.load(pts, x, y);
     this->S.slot.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      this->S.x[i] = pts[i][x];
-      this->S.y[i] = pts[i][y];
-    }
     this->S.alive.clear();
     this->S.aliveX.clear();
     this->S.aliveY.clear();
@@ -141,14 +152,8 @@ public:
   /// The number of corners still in the ring.
   std::size_t size() const { return this->Left; }
 
-  /// Twice the signed area of triangle abc (corners of the ring). Exact in 64 bits: it
-  /// overflows only for a face that spans 2^31 voxels along both of its axes, which no image
-  /// held in memory has.
-  std::int64_t turn(int a, int b, int c) const
-  {
-    const std::int64_t *x = this->S.x.data(), *y = this->S.y.data();
-    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]);
-  }
+  /// Twice the signed area of triangle abc (corners of the ring; EarScratch::turn).
+  std::int64_t turn(int a, int b, int c) const { return this->S.turn(a, b, c); }
 
   /// Whether b, between a and c in the ring, is an ear: it turns strictly left and no other
   /// corner of the ring lies in the closed triangle abc. In a simple ring that passes no place
@@ -254,24 +259,13 @@ public:
     , Next(next)
     , Left(pts.size())
   {
-    const std::size_t n = pts.size();
-    this->S.x.resize(n);
-    this->S.y.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      this->S.x[i] = pts[i][x];
-      this->S.y[i] = pts[i][y];
-    }
+    this->S.load(pts, x, y);
   }
 
   std::size_t size() const { return this->Left; }
 
-  /// Twice the signed area of triangle abc, as EarCorners::turn.
-  std::int64_t turn(int a, int b, int c) const
-  {
-    const std::int64_t *x = this->S.x.data(), *y = this->S.y.data();
-    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]);
-  }
+  /// Twice the signed area of triangle abc (EarScratch::turn).
+  std::int64_t turn(int a, int b, int c) const { return this->S.turn(a, b, c); }
 
   /// EarCorners::isEar on a convex ring: only the corner after c is tested.
   bool isEar(int a, int b, int c) const

@@ -53,6 +53,16 @@ struct EarScratch
   std::vector<std::int64_t> x, y; ///< by corner
   std::vector<int> alive, slot;   ///< the corners listed; the place of each in alive or -1
   std::vector<std::int64_t> aliveX, aliveY; ///< the coordinates of alive's corners
+
+  /// Takes the coordinates of the corners `pts` along axes `x` and `y`.
+  void load(const PointRange& pts, int x, int y);
+  /// Twice the signed area of triangle abc (corners). Exact in 64 bits: it overflows only for
+  /// a face that spans 2^31 voxels along both of its axes, which no image held in memory has.
+  std::int64_t turn(int a, int b, int c) const
+  {
+    return (this->x[b] - this->x[a]) * (this->y[c] - this->y[a]) -
+      (this->y[b] - this->y[a]) * (this->x[c] - this->x[a]);
+  }
 };
 
 /// The cells of a run of faces in flat arrays (no allocation per cell, nor per face but for faces

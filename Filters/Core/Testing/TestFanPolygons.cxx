@@ -165,6 +165,30 @@ void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, Fac
   }
 }
 
+/// A B-Rep of one face without holes whose loop runs counter-clockwise through `loop` in the
+/// face's own coordinates (seen from outside), normal `axis` and `normalSign`, at `position`.
+vbr::BRep faceOfLoop(const std::vector<P2>& loop, int axis, int normalSign, vbr::Coord position)
+{
+  vbr::BRepFace face;
+  face.axis = axis;
+  face.normalSign = normalSign;
+  face.position = position;
+  face.loopCount = 1;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  vbr::BRep brep;
+  for (const P2& p : loop)
+  {
+    vbr::Point3 q{ 0, 0, 0 };
+    q[axis] = position;
+    q[normalSign > 0 ? u : v] = static_cast<vbr::Coord>(p[0]);
+    q[normalSign > 0 ? v : u] = static_cast<vbr::Coord>(p[1]);
+    brep.points.push_back(q);
+  }
+  brep.loops.push_back({ 0, loop.size(), 0, false });
+  brep.faces.push_back(face);
+  return brep;
+}
+
 } // namespace
 
 TEST(FanPolygons, TileTheFacesOfRandomVolumes)
@@ -388,23 +412,7 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesStartAtTheirFirstLeftTurn)
     }
     const std::size_t n = loop.size(), shift = static_cast<std::size_t>(next(int(n)));
     std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(shift), loop.end());
-    vbr::BRepFace face;
-    face.axis = trial % 3;
-    face.normalSign = trial % 2 == 0 ? 1 : -1;
-    face.position = 3;
-    face.loopCount = 1;
-    const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
-    vbr::BRep brep;
-    for (const P2& p : loop)
-    {
-      vbr::Point3 q{ 0, 0, 0 };
-      q[face.axis] = face.position;
-      q[face.normalSign > 0 ? u : v] = static_cast<vbr::Coord>(p[0]);
-      q[face.normalSign > 0 ? v : u] = static_cast<vbr::Coord>(p[1]);
-      brep.points.push_back(q);
-    }
-    brep.loops.push_back({ 0, n, 0, false });
-    brep.faces.push_back(face);
+    const vbr::BRep brep = faceOfLoop(loop, trial % 3, trial % 2 == 0 ? 1 : -1, 3);
     SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << n << " corners");
 
     std::size_t firstLeft = 0;
@@ -418,8 +426,10 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesStartAtTheirFirstLeftTurn)
     EXPECT_EQ(polygons[0], expected);
     // The same apex from the rectangle's own test, without the general search.
     const vbr::PointRange points{ brep.points.data(), brep.points.data() + n };
-    EXPECT_EQ(
-      vbr::detail::rectangleApexOf(points, u, v, face.normalSign), static_cast<int>(firstLeft));
+    const vbr::BRepFace& face = brep.faces[0];
+    EXPECT_EQ(vbr::detail::rectangleApexOf(
+                points, (face.axis + 1) % 3, (face.axis + 2) % 3, face.normalSign),
+      static_cast<int>(firstLeft));
 
     const std::vector<std::array<int, 3>> triangles = vbr::triangulateFace(brep, 0);
     ASSERT_EQ(triangles.size(), n - 2);
@@ -520,23 +530,7 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesAreEarClippedAsByDefinition)
     }
     const std::size_t n = loop.size(), shift = static_cast<std::size_t>(next(int(n)));
     std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(shift), loop.end());
-    vbr::BRepFace face;
-    face.axis = trial % 3;
-    face.normalSign = (trial / 3) % 2 == 0 ? 1 : -1;
-    face.position = -2;
-    face.loopCount = 1;
-    const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
-    vbr::BRep brep;
-    for (const P2& p : loop)
-    {
-      vbr::Point3 q{ 0, 0, 0 };
-      q[face.axis] = face.position;
-      q[face.normalSign > 0 ? u : v] = static_cast<vbr::Coord>(p[0]);
-      q[face.normalSign > 0 ? v : u] = static_cast<vbr::Coord>(p[1]);
-      brep.points.push_back(q);
-    }
-    brep.loops.push_back({ 0, n, 0, false });
-    brep.faces.push_back(face);
+    const vbr::BRep brep = faceOfLoop(loop, trial % 3, (trial / 3) % 2 == 0 ? 1 : -1, -2);
     SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << n << " corners");
     const std::vector<std::array<int, 3>> expected = bruteForceEars(loop);
     ASSERT_EQ(expected.size(), n - 2); // a convex loop always has an ear
