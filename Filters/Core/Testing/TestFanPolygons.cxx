@@ -165,6 +165,27 @@ void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, Fac
   }
 }
 
+/// The loop round the rectangle [x0, x0 + w] x [y0, y0 + h], counter-clockwise from (x0, y0),
+/// with the points of its sides that `keep()` takes (asked once per point, in loop order).
+template<typename Keep>
+std::vector<P2> rectangleLoop(int x0, int y0, int w, int h, Keep keep)
+{
+  std::vector<P2> loop;
+  const std::array<P2, 4> corner{
+    P2{ x0, y0 }, P2{ x0 + w, y0 }, P2{ x0 + w, y0 + h }, P2{ x0, y0 + h }
+  };
+  for (int side = 0; side < 4; ++side)
+  {
+    loop.push_back(corner[side]);
+    const P2 &a = corner[side], &b = corner[(side + 1) % 4];
+    const int length = static_cast<int>(std::abs(b[0] - a[0]) + std::abs(b[1] - a[1]));
+    for (int s = 1; s < length; ++s)
+      if (keep())
+        loop.push_back({ a[0] + (b[0] - a[0]) / length * s, a[1] + (b[1] - a[1]) / length * s });
+  }
+  return loop;
+}
+
 /// A B-Rep of one face without holes whose loop runs counter-clockwise through `loop` in the
 /// face's own coordinates (seen from outside), normal `axis` and `normalSign`, at `position`.
 vbr::BRep faceOfLoop(const std::vector<P2>& loop, int axis, int normalSign, vbr::Coord position)
@@ -397,19 +418,8 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesStartAtTheirFirstLeftTurn)
   {
     const int w = 1 + next(9), h = 1 + next(9), x0 = next(20) - 10, y0 = next(20) - 10;
     // Counter-clockwise in (X, Y), the coordinates in which the face is seen from outside.
-    std::vector<P2> loop;
-    const std::array<P2, 4> corner{
-      P2{ x0, y0 }, P2{ x0 + w, y0 }, P2{ x0 + w, y0 + h }, P2{ x0, y0 + h }
-    };
-    for (int side = 0; side < 4; ++side)
-    {
-      loop.push_back(corner[side]);
-      const P2 &a = corner[side], &b = corner[(side + 1) % 4];
-      const int length = static_cast<int>(std::abs(b[0] - a[0]) + std::abs(b[1] - a[1]));
-      for (int s = 1; s < length; ++s)
-        if (trial % 4 != 0 && next(3) == 0)
-          loop.push_back({ a[0] + (b[0] - a[0]) / length * s, a[1] + (b[1] - a[1]) / length * s });
-    }
+    std::vector<P2> loop =
+      rectangleLoop(x0, y0, w, h, [&] { return trial % 4 != 0 && next(3) == 0; });
     const std::size_t n = loop.size(), shift = static_cast<std::size_t>(next(int(n)));
     std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(shift), loop.end());
     const vbr::BRep brep = faceOfLoop(loop, trial % 3, trial % 2 == 0 ? 1 : -1, 3);
@@ -515,19 +525,8 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesAreEarClippedAsByDefinition)
   {
     const int w = 1 + next(12), h = 1 + next(12), x0 = next(20) - 10, y0 = next(20) - 10;
     const int density = 1 + next(4); // one corner in `density` points of the sides
-    std::vector<P2> loop;
-    const std::array<P2, 4> corner{
-      P2{ x0, y0 }, P2{ x0 + w, y0 }, P2{ x0 + w, y0 + h }, P2{ x0, y0 + h }
-    };
-    for (int side = 0; side < 4; ++side)
-    {
-      loop.push_back(corner[side]);
-      const P2 &a = corner[side], &b = corner[(side + 1) % 4];
-      const int length = static_cast<int>(std::abs(b[0] - a[0]) + std::abs(b[1] - a[1]));
-      for (int s = 1; s < length; ++s)
-        if (next(static_cast<unsigned>(density)) == 0)
-          loop.push_back({ a[0] + (b[0] - a[0]) / length * s, a[1] + (b[1] - a[1]) / length * s });
-    }
+    std::vector<P2> loop =
+      rectangleLoop(x0, y0, w, h, [&] { return next(static_cast<unsigned>(density)) == 0; });
     const std::size_t n = loop.size(), shift = static_cast<std::size_t>(next(int(n)));
     std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(shift), loop.end());
     const vbr::BRep brep = faceOfLoop(loop, trial % 3, (trial / 3) % 2 == 0 ? 1 : -1, -2);
