@@ -37,6 +37,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <exception>
@@ -144,6 +145,9 @@ public:
         lo[d] = (*min)[d];
         extent = std::max(extent, (*max)[d] - lo[d]);
       }
+      // The filter refuses more than 2^20 - 1 voxels per axis (maximumVoxelsPerAxis), so the
+      // pointels span at most 2^20 and every key is its own pointel's.
+      assert(extent < vbr::PackedCoordinateLimit);
       const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(extent);
       std::vector<std::pair<std::uint64_t, std::uint32_t>> byPointel(n);
       for (std::uint32_t v = 0; v < n; ++v)
