@@ -109,8 +109,13 @@ public:
           return false;
       }
       else if (p.nx > 0)
-        hi = std::min(hi, this->Strict ? ceilDiv(r, p.nx) - 1 : floorDiv(r, p.nx));
-      else
+      {
+        // The division only when the plane cuts the range: most planes of a large hull do not
+        // (a product is cheaper than a division, and hi already keeps the plane then).
+        if (!this->keeps(p.nx, hi, r))
+          hi = std::min(hi, this->Strict ? ceilDiv(r, p.nx) - 1 : floorDiv(r, p.nx));
+      }
+      else if (!this->keeps(p.nx, lo, r))
         lo = std::max(lo, this->Strict ? floorDiv(r, p.nx) + 1 : ceilDiv(r, p.nx));
       if (lo > hi)
         return false;
@@ -119,6 +124,14 @@ public:
   }
 
 private:
+  /// Whether x keeps the plane (nx x < r, or <= when not strict): then the bound the plane
+  /// gives on the range's side of x lies beyond x and cannot narrow a range ending at x.
+  bool keeps(std::int64_t nx, std::int64_t x, std::int64_t r) const
+  {
+    const __int128 v = __int128(nx) * x;
+    return this->Strict ? v < r : v <= r;
+  }
+
   struct Plane
   {
     std::int64_t nx, ny, nz, offset, atSlice;
@@ -336,14 +349,96 @@ bool missesACorner(const CellList& inside, const CellList& c)
     [&](const LatticePoint& p) { return !hullContains(inside, p); });
 }
 
-/// The lattice points of class `cls` in the hull (its open interior when `strict`), row by row
-/// from the volume's words: every level of the recursion collects its points so.
-std::vector<LatticePoint> pointsOfClass(const CellList& c,
-  const BitVolume& objects,
-  bool cls,
-  bool strict)
+/// A run of lattice points along a row: (x, y, z) for lo <= x <= hi.
+struct Run
 {
-  std::vector<LatticePoint> points;
+  std::int64_t lo, hi, y, z;
+};
+
+/// Lattice points as runs along rows, in the order of their points (each run's points from
+/// low to high x), `count` points in all. Every level of the recursion lists the points of
+/// the other class in its hull, and the top levels' hulls hold millions of them: as a list of
+/// points that was most of the time of listing, labelling and merging them, memory-bound (the
+/// list written, grown and copied point by point); as runs it costs about the rows. The
+/// points, their order and so every hull made from them are those of the list they replace.
+struct PointRuns
+{
+  std::vector<Run> runs;
+  std::size_t count = 0;
+
+  bool empty() const { return this->count == 0; }
+
+  /// Appends the points lo..hi of row (y, z), extending the last run when they continue it.
+  void push(std::int64_t lo, std::int64_t hi, std::int64_t y, std::int64_t z)
+  {
+    if (!this->runs.empty() && this->runs.back().hi + 1 == lo && this->runs.back().y == y &&
+      this->runs.back().z == z)
+      this->runs.back().hi = hi;
+    else
+      this->runs.push_back({ lo, hi, y, z });
+    this->count += static_cast<std::size_t>(hi - lo + 1);
+  }
+
+  void append(const PointRuns& other)
+  {
+    for (const Run& r : other.runs)
+      this->push(r.lo, r.hi, r.y, r.z);
+  }
+
+  template<typename F>
+  void forEachPoint(F&& f) const
+  {
+    for (const Run& r : this->runs)
+      for (std::int64_t x = r.lo; x <= r.hi; ++x)
+        f(LatticePoint{ x, r.y, r.z });
+  }
+
+  std::vector<LatticePoint> points() const
+  {
+    std::vector<LatticePoint> out;
+    out.reserve(this->count);
+    this->forEachPoint([&](const LatticePoint& p) { out.push_back(p); });
+    return out;
+  }
+
+  static PointRuns of(const std::vector<LatticePoint>& points)
+  {
+    PointRuns out;
+    for (const auto& p : points)
+      out.push(p[0], p[0], p[1], p[2]);
+    return out;
+  }
+};
+
+/// Whether f holds for a point of the runs (the points tried in their order).
+template<typename F>
+bool anyPoint(const PointRuns& points, F&& f)
+{
+  for (const Run& r : points.runs)
+    for (std::int64_t x = r.lo; x <= r.hi; ++x)
+      if (f(LatticePoint{ x, r.y, r.z }))
+        return true;
+  return false;
+}
+
+/// Appends the runs of set bits of a word whose bit 0 is x = x0, in row (y, z).
+void pushRunsOfWord(Word word, std::int64_t x0, std::int64_t y, std::int64_t z, PointRuns& out)
+{
+  while (word != 0)
+  {
+    const int start = __builtin_ctzll(word);
+    const Word zerosAfter = ~(word >> start); // the run ends at its first zero bit
+    const int length = zerosAfter == 0 ? 64 : __builtin_ctzll(zerosAfter);
+    out.push(x0 + start, x0 + start + length - 1, y, z);
+    word = start + length >= 64 ? 0 : word & (~Word(0) << (start + length));
+  }
+}
+
+/// The lattice points of class `cls` in the hull (its open interior when `strict`), row by row
+/// from the volume's words, as runs: every level of the recursion collects its points so.
+PointRuns pointsOfClass(const CellList& c, const BitVolume& objects, bool cls, bool strict)
+{
+  PointRuns points;
   const Dims d = objects.dims();
   forEachRowIn(c,
     strict,
@@ -353,14 +448,13 @@ std::vector<LatticePoint> pointsOfClass(const CellList& c,
       if (!rowInGrid)
       {
         if (!cls)
-          for (std::int64_t x = lo; x <= hi; ++x)
-            points.push_back({ x, y, z });
+          points.push(lo, hi, y, z);
         return;
       }
       const Word* bits = objects.row(static_cast<std::int32_t>(y), static_cast<std::int32_t>(z));
       // Off the grid's row every centre is background; on it, the class's bits word by word.
-      for (std::int64_t x = lo; x <= std::min<std::int64_t>(hi, -1) && !cls; ++x)
-        points.push_back({ x, y, z });
+      if (!cls && lo <= -1)
+        points.push(lo, std::min<std::int64_t>(hi, -1), y, z);
       const std::int64_t first = std::max<std::int64_t>(lo, 0);
       const std::int64_t last = std::min<std::int64_t>(hi, d[0] - 1);
       for (std::int64_t w = first >> 6; first <= last && w <= last >> 6; ++w)
@@ -370,11 +464,10 @@ std::vector<LatticePoint> pointsOfClass(const CellList& c,
           word &= ~Word(0) << (first & 63);
         if (w == last >> 6 && (last & 63) != 63)
           word &= (Word(1) << ((last & 63) + 1)) - 1;
-        for (; word != 0; word &= word - 1)
-          points.push_back({ 64 * w + __builtin_ctzll(word), y, z });
+        pushRunsOfWord(word, 64 * w, y, z, points);
       }
-      for (std::int64_t x = std::max<std::int64_t>(lo, d[0]); x <= hi && !cls; ++x)
-        points.push_back({ x, y, z });
+      if (!cls && std::max<std::int64_t>(lo, d[0]) <= hi)
+        points.push(std::max<std::int64_t>(lo, d[0]), hi, y, z);
     });
   return points;
 }
@@ -499,30 +592,38 @@ std::vector<std::uint32_t> labelsByRowIntervals(const std::vector<LatticePoint>&
 }
 
 /// Components of a set of lattice points (CUDB, connected through faces, edges or corners when
-/// `vertex`), as point lists. Only the box of the points is voxelised: a level deep inside a
-/// large grid pays for its own points, not for the grid. `plane`: the grid is one slice (2D
-/// components); a 3D grid keeps 3D extraction even when the points lie in one slice.
-std::vector<std::vector<LatticePoint>> componentsOf(std::vector<LatticePoint> points,
-  bool plane,
-  bool vertex)
+/// `vertex`), as runs in the order of the set's. Only the box of the points is voxelised: a level
+/// deep inside a large grid pays for its own points, not for the grid. `plane`: the grid is one
+/// slice (2D components); a 3D grid keeps 3D extraction even when the points lie in one slice.
+std::vector<PointRuns> componentsOf(PointRuns points, bool plane, bool vertex)
 {
   if (points.empty())
     return {};
-  LatticePoint lo = points[0], hi = points[0];
-  for (const auto& p : points)
-    for (int k = 0; k < 3; ++k)
-    {
-      lo[k] = std::min(lo[k], p[k]);
-      hi[k] = std::max(hi[k], p[k]);
-    }
+  LatticePoint lo{ points.runs[0].lo, points.runs[0].y, points.runs[0].z }, hi = lo;
+  for (const Run& r : points.runs)
+  {
+    lo = { std::min(lo[0], r.lo), std::min(lo[1], r.y), std::min(lo[2], r.z) };
+    hi = { std::max(hi[0], r.hi), std::max(hi[1], r.y), std::max(hi[2], r.z) };
+  }
   const Dims d{ static_cast<std::int32_t>(hi[0] - lo[0] + 1),
     static_cast<std::int32_t>(hi[1] - lo[1] + 1),
     static_cast<std::int32_t>(hi[2] - lo[2] + 1) };
   BitVolume set(d[0], d[1], d[2]);
-  for (const auto& p : points)
-    set.set(static_cast<std::int32_t>(p[0] - lo[0]),
-      static_cast<std::int32_t>(p[1] - lo[1]),
-      static_cast<std::int32_t>(p[2] - lo[2]));
+  for (const Run& r : points.runs)
+  {
+    Word* row =
+      set.row(static_cast<std::int32_t>(r.y - lo[1]), static_cast<std::int32_t>(r.z - lo[2]));
+    const std::int64_t first = r.lo - lo[0], last = r.hi - lo[0];
+    for (std::int64_t w = first >> 6; w <= last >> 6; ++w)
+    {
+      Word word = ~Word(0);
+      if (w == first >> 6)
+        word &= ~Word(0) << (first & 63);
+      if (w == last >> 6 && (last & 63) != 63)
+        word &= (Word(1) << ((last & 63) + 1)) - 1;
+      row[w] |= word;
+    }
+  }
   CUDB cudb;
   Components comps;
   buildCUDBComponents(plane ? extractEVM2D(set) : extractEVM(set),
@@ -533,32 +634,51 @@ std::vector<std::vector<LatticePoint>> componentsOf(std::vector<LatticePoint> po
   if (comps.count == 1)
   {
     // One group (most levels' groups): no labels needed, nor a copy.
-    std::vector<std::vector<LatticePoint>> one(1);
+    std::vector<PointRuns> one(1);
     one[0] = std::move(points);
     return one;
   }
-  // Each point's label from the boxes' rows instead of painting the labels into a grid of the
-  // points' box (the top levels' groups of background points span most of the grid: 64 MB of
-  // labels on the full aneurism, each level again): from a table of each row's intervals when
-  // the box has few rows against the points (labelsByRowIntervals), else found among the points
-  // in row order, a key per point (labelsByRows; keys of 64 bits hold extents below 2^21,
-  // wider boxes take 128).
+  // The points of a run are face-neighbours in a row, so one component holds them all: each
+  // run's label is its first point's. That label from the boxes' rows instead of painting the
+  // labels into a grid of the points' box (the top levels' groups of background points span
+  // most of the grid: 64 MB of labels on the full aneurism, each level again): from a table of
+  // each row's intervals when the box has few rows against the runs (labelsByRowIntervals),
+  // else found among the runs in row order, a key per run (labelsByRows; keys of 64 bits hold
+  // extents below 2^21, wider boxes take 128).
+  std::vector<LatticePoint> starts;
+  starts.reserve(points.runs.size());
+  for (const Run& r : points.runs)
+    starts.push_back({ r.lo, r.y, r.z });
   const std::int64_t rows = std::int64_t(d[1]) * d[2];
   const std::vector<std::uint32_t> label =
-    rows <= std::max<std::int64_t>(1 << 20, 4 * static_cast<std::int64_t>(points.size()))
-    ? labelsByRowIntervals(points, lo, d, cudb, comps)
+    rows <= std::max<std::int64_t>(1 << 20, 4 * static_cast<std::int64_t>(starts.size()))
+    ? labelsByRowIntervals(starts, lo, d, cudb, comps)
     : std::max({ d[0], d[1], d[2] }) < (1 << 21)
-    ? labelsByRows<std::uint64_t>(points, lo, cudb, comps, 21)
-    : labelsByRows<unsigned __int128>(points, lo, cudb, comps, 32);
+    ? labelsByRows<std::uint64_t>(starts, lo, cudb, comps, 21)
+    : labelsByRows<unsigned __int128>(starts, lo, cudb, comps, 32);
   std::vector<std::size_t> sizes(comps.count, 0);
   for (std::uint32_t l : label)
     ++sizes[l - 1];
-  std::vector<std::vector<LatticePoint>> groups(comps.count);
+  std::vector<PointRuns> groups(comps.count);
   for (std::uint32_t g = 0; g < comps.count; ++g)
-    groups[g].reserve(sizes[g]);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    groups[label[i] - 1].push_back(points[i]);
+    groups[g].runs.reserve(sizes[g]);
+  for (std::size_t i = 0; i < points.runs.size(); ++i)
+  {
+    const Run& r = points.runs[i];
+    groups[label[i] - 1].push(r.lo, r.hi, r.y, r.z);
+  }
   return groups;
+}
+
+/// componentsOf for a list of points, as lists.
+std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoint>& points,
+  bool plane,
+  bool vertex)
+{
+  std::vector<std::vector<LatticePoint>> out;
+  for (const PointRuns& c : componentsOf(PointRuns::of(points), plane, vertex))
+    out.push_back(c.points());
+  return out;
 }
 
 /// Whether the hull's edges each have their two faces (a solid with its incidences) and its
@@ -743,6 +863,16 @@ public:
     return this->OpenRow && p[0] >= this->OpenLo && p[0] <= this->OpenHi;
   }
 
+  /// The points [lo, hi] of the run strictly inside (one range: the open interior is convex);
+  /// false when none is.
+  bool strictRange(const Run& r, std::int64_t& lo, std::int64_t& hi)
+  {
+    this->row({ r.lo, r.y, r.z });
+    lo = std::max(r.lo, this->OpenLo);
+    hi = std::min(r.hi, this->OpenHi);
+    return this->OpenRow && lo <= hi;
+  }
+
   bool onSurface(const LatticePoint& p)
   {
     this->row(p);
@@ -780,7 +910,7 @@ private:
 /// corners, not the points.
 struct PointGroup
 {
-  std::vector<LatticePoint> points;
+  PointRuns points;
   CellList shape;
   BoxedHull solid;
 };
@@ -792,7 +922,7 @@ BoxedHull solidOf(const PointGroup& g, const CellList& c, bool strict, CoplanarF
   if (g.shape.dimension == 3)
     return BoxedHull(g.shape);
   CellList out;
-  solidHull(g.points, c, strict, coplanar, out);
+  solidHull(g.points.points(), c, strict, coplanar, out);
   return BoxedHull(std::move(out));
 }
 
@@ -824,10 +954,35 @@ std::vector<LatticePoint> rowEnds(const std::vector<LatticePoint>& listed)
   return ends;
 }
 
-PointGroup makeGroup(std::vector<LatticePoint> points,
-  const CellList& c,
-  bool strict,
-  CoplanarFaces coplanar)
+/// rowEnds of points given as runs: a row's first point is its first run's, its last the last
+/// run's (the runs of a set are disjoint, so runs in row order list the points in row order).
+std::vector<LatticePoint> rowEnds(const PointRuns& listed)
+{
+  auto zyx = [](const Run& a, const Run& b)
+  { return std::tie(a.z, a.y, a.lo) < std::tie(b.z, b.y, b.lo); };
+  std::vector<Run> sorted;
+  const bool inOrder = std::is_sorted(listed.runs.begin(), listed.runs.end(), zyx);
+  if (!inOrder)
+  {
+    sorted = listed.runs;
+    std::sort(sorted.begin(), sorted.end(), zyx);
+  }
+  const std::vector<Run>& runs = inOrder ? listed.runs : sorted;
+  std::vector<LatticePoint> ends;
+  for (std::size_t k = 0; k < runs.size();)
+  {
+    std::size_t last = k;
+    while (last + 1 < runs.size() && runs[last + 1].y == runs[k].y && runs[last + 1].z == runs[k].z)
+      ++last;
+    ends.push_back({ runs[k].lo, runs[k].y, runs[k].z });
+    if (runs[last].hi != runs[k].lo)
+      ends.push_back({ runs[last].hi, runs[k].y, runs[k].z });
+    k = last + 1;
+  }
+  return ends;
+}
+
+PointGroup makeGroup(PointRuns points, const CellList& c, bool strict, CoplanarFaces coplanar)
 {
   PointGroup g;
   g.points = std::move(points);
@@ -868,9 +1023,9 @@ bool mergeGroups(PointGroup& into,
     corners = into.shape.vertices;
   for (PointGroup* g : from)
   {
-    if (into.points.size() < g->points.size())
+    if (into.points.count < g->points.count)
       std::swap(into.points, g->points);
-    into.points.insert(into.points.end(), g->points.begin(), g->points.end());
+    into.points.append(g->points);
     if (!within)
       corners.insert(corners.end(), g->shape.vertices.begin(), g->shape.vertices.end());
     *g = PointGroup();
@@ -937,8 +1092,7 @@ std::vector<PointGroup> pressingInGroups(Context& ctx,
     parentSides.emplace(*parent);
   for (auto& g :
     componentsOf(pointsOfClass(c, ctx.objects, !cls, false), ctx.objects.dims()[2] == 1, false))
-    if (std::any_of(g.begin(),
-          g.end(),
+    if (anyPoint(g,
           [&](const LatticePoint& p)
           { return sides.strictlyInside(p) || (parentSides && parentSides->onSurface(p)); }))
       groups.push_back(makeGroup(std::move(g), c, false, ctx.coplanar));
@@ -1002,12 +1156,17 @@ struct EmptyFaceTriangles
   LatticePoint sum{ 0, 0, 0 };
   std::int64_t m = 0;
 
-  EmptyFaceTriangles(const CellList& c, const std::vector<LatticePoint>& group)
-    : m(static_cast<std::int64_t>(group.size()))
+  EmptyFaceTriangles(const CellList& c, const PointRuns& group)
+    : m(static_cast<std::int64_t>(group.count))
   {
-    for (const auto& p : group)
-      for (int a = 0; a < 3; ++a)
-        this->sum[a] += p[a];
+    // A run's x sum is its length times its middle, (lo + hi) n / 2 (one factor is even).
+    for (const Run& r : group.runs)
+    {
+      const std::int64_t n = r.hi - r.lo + 1;
+      this->sum[0] += (r.lo + r.hi) * n / 2;
+      this->sum[1] += r.y * n;
+      this->sum[2] += r.z * n;
+    }
     for (std::size_t f = 0; f < c.faces.size(); ++f)
       for (std::size_t k = 1; k + 1 < c.faces[f].size(); ++k)
         this->push(
@@ -1252,7 +1411,7 @@ bool apartRegions(Context& ctx,
   const CellList& c,
   const CellList* parent,
   bool cls,
-  const std::vector<LatticePoint>& points,
+  const PointRuns& points,
   const std::vector<BoxedHull>& obstacles,
   std::vector<CellList>& regions,
   std::vector<bool>& pressed)
@@ -1425,7 +1584,7 @@ void pressInPits(Context& ctx,
   bool pit,
   int level,
   LevelSurface& out,
-  std::vector<LatticePoint>& apart,
+  PointRuns& apart,
   std::vector<BoxedHull>& pits,
   int& depth)
 {
@@ -1445,12 +1604,19 @@ void pressInPits(Context& ctx,
       pits.push_back(std::move(g.solid));
       continue;
     }
-    for (const auto& p : g.points)
+    for (const Run& r : g.points.runs)
     {
-      if (sides.strictlyInside(p))
-        apart.push_back(p);
-      else if (pit && parentSides->onSurface(p))
-        throw Unresolved("a centre on a shared surface can only be kept by a pit");
+      std::int64_t lo = 0, hi = -1;
+      const bool inside = sides.strictRange(r, lo, hi);
+      if (inside)
+        apart.push(lo, hi, r.y, r.z);
+      for (std::int64_t x = r.lo; pit && x <= r.hi; ++x)
+      {
+        if (inside && x == lo)
+          x = hi; // the points strictly inside C stay (apart), the others must be off the floor
+        else if (parentSides->onSurface({ x, r.y, r.z }))
+          throw Unresolved("a centre on a shared surface can only be kept by a pit");
+      }
     }
   }
 }
@@ -1471,7 +1637,7 @@ LevelSurface solveLevel(Context& ctx,
   recordPlanes(ctx, c, level);
   depth = 0;
   LevelSurface out(c);
-  std::vector<LatticePoint> apart;
+  PointRuns apart;
   std::vector<BoxedHull> pits;
   if (ctx.pits)
     pressInPits(ctx, c, parent, cls, pit, level, out, apart, pits, depth);
@@ -1551,7 +1717,7 @@ int connectedFaceSets(const CellList& hull, const std::vector<bool>& marked)
 /// cavity, concavity or tunnel by the faces seen from (or coplanar with) its voxels' corners.
 void classifyBackgroundComponents(const BitVolume& objects, const CellList& hull, ModifiedHull& r)
 {
-  const std::vector<LatticePoint> background = pointsOfClass(hull, objects, false, false);
+  const std::vector<LatticePoint> background = pointsOfClass(hull, objects, false, false).points();
   if (background.empty())
   {
     return;
@@ -2260,7 +2426,7 @@ std::vector<std::array<LatticePoint, 3>> emptyTrianglesNear(const LatticeMesh& m
     faces.planes.push_back(planeThrough(m.points[t[0]], m.points[t[1]], m.points[t[2]]));
   }
   std::vector<std::array<LatticePoint, 3>> found;
-  EmptyFaceTriangles triangles(faces, near);
+  EmptyFaceTriangles triangles(faces, PointRuns::of(near));
   std::array<LatticePoint, 3> t;
   while (found.size() < count && triangles.next(t))
     found.push_back(t);
