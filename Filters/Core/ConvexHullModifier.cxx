@@ -982,11 +982,60 @@ std::vector<LatticePoint> rowEnds(const PointRuns& listed)
   return ends;
 }
 
+/// Of points in row order (rowEnds), the corners of each slice's polygon (x, y at one z;
+/// Andrew's monotone chain over the points in (y, x) order, corners where it turns strictly):
+/// a point that is no corner of its slice's polygon lies between other points of the set, so
+/// it is no vertex of their hull either, and the hull of the corners is the same polytope.
+std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends)
+{
+  const auto turn = [](const LatticePoint& o, const LatticePoint& a, const LatticePoint& b)
+  { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); };
+  std::vector<LatticePoint> corners, chain;
+  for (std::size_t k = 0; k < ends.size();)
+  {
+    std::size_t end = k;
+    while (end < ends.size() && ends[end][2] == ends[k][2])
+      ++end;
+    if (end - k <= 2)
+    {
+      corners.insert(corners.end(), ends.begin() + k, ends.begin() + end);
+      k = end;
+      continue;
+    }
+    // The lower chain forwards, then the upper chain backwards, each point popped while the
+    // chain does not turn strictly left at it.
+    chain.clear();
+    const auto add = [&](std::size_t i, std::size_t floor)
+    {
+      while (chain.size() > floor && turn(chain[chain.size() - 2], chain.back(), ends[i]) <= 0)
+        chain.pop_back();
+      chain.push_back(ends[i]);
+    };
+    for (std::size_t i = k; i < end; ++i)
+      add(i, 1);
+    const std::size_t lower = chain.size();
+    for (std::size_t i = end - 1; i-- > k;)
+      add(i, lower);
+    chain.pop_back(); // the first point again
+    corners.insert(corners.end(), chain.begin(), chain.end());
+    k = end;
+  }
+  return corners;
+}
+
+/// A group with its hulls. The shape is the hull of the slices' corners (sliceCorners: the same
+/// polytope, and a solid hull's cell list depends only on its polytope, faces in the order of
+/// their planes, each polygon from its least corner), which spares the hull most row ends of a
+/// large group (most of making a group's hull on the aneurism); a flat one is made from the
+/// row ends as before, since a flat hull's polygon is not given in such an order.
 PointGroup makeGroup(PointRuns points, const CellList& c, bool strict, CoplanarFaces coplanar)
 {
   PointGroup g;
   g.points = std::move(points);
-  g.shape = convexHull(rowEnds(g.points), coplanar);
+  const std::vector<LatticePoint> ends = rowEnds(g.points);
+  g.shape = convexHull(sliceCorners(ends), coplanar);
+  if (g.shape.dimension < 3)
+    g.shape = convexHull(ends, coplanar);
   g.solid = solidOf(g, c, strict, coplanar);
   return g;
 }

@@ -261,11 +261,13 @@
 // edge and the two other corners are background centres on H. Any other segment is incomplete.
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
-// hulls), a group's first hull from the ends of its rows, boxes are compared before the exact
-// separating axis test, components are labelled in the box of their points (each point's
-// label from its row's box intervals, no sort), and a merge whose corners all lie in the larger
-// group's solid hull keeps that hull, its region and the pairs already known apart; what remains
-// is the recursion itself (every level enumerates the lattice points of its hull) and the exact
+// hulls), a group's first hull from the corners of its slices' polygons of its rows' ends, boxes
+// are compared before the exact separating axis test, each level's points of the other class
+// are kept as runs along rows (listed from the volume's words, labelled a run at a time: the
+// points of a run are face-neighbours), components are labelled in the box of their points
+// (each run's label from its row's box intervals, no sort), and a merge whose corners all lie in
+// the larger group's solid hull keeps that hull, its region and the pairs already known apart;
+// what remains is the recursion itself (every level scans the rows of its hull) and the exact
 // differences of the pits (about 27,000 corefinements on the full Al object, most of a few dozen
 // triangles). Those test their operands for self-intersections only where they are not known
 // to be embedded: a hull's fan is checked in integer arithmetic instead, and a level's surface
