@@ -242,25 +242,47 @@ public:
     }
     else
     {
-      // The semi-discrete polygons, or the loops themselves (not copied).
-      const bool semiDiscrete = mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE;
-      const std::vector<std::vector<std::uint32_t>> polygons =
-        semiDiscrete ? semiDiscretePolygons(o) : std::vector<std::vector<std::uint32_t>>();
-      const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
-      std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
-      for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        triangles += std::max<std::size_t>(
-                       (semiDiscrete ? polygons[f].size() : o.poly.faces[f].loop.size()), 2) -
-          2;
-      this->reserveCells(triangles, 3 * triangles, markLoops);
-      for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        this->addTriangulatedFace(o,
-          f,
-          semiDiscrete ? vbr::IdRange{ polygons[f].data(), polygons[f].size() }
-                       : o.poly.faces[f].loop,
-          markLoops);
+      this->addTriangulatedFaces(o, mode);
     }
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
+  }
+
+  /// Before addObject, on the threads of `exec`: the triangles of every face's polygon in
+  /// the modes that triangulate (the triangulation is about half of their cells' time, and the
+  /// cells are written on one thread, in order, beside the reversion check). The same
+  /// triangles as addObject would make face by face; held until the object is written (12
+  /// bytes a triangle).
+  void prepare(const ObjectFaces& o, int mode, const vbr::Execution& exec)
+  {
+    if (mode != vtkStandardPlanePolyhedrizer::SEMI_DISCRETE &&
+      mode != vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES)
+      return;
+    if (mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE)
+      this->Polygons = semiDiscretePolygons(o);
+    const std::size_t n = o.poly.faces.size();
+    // Chunks of consecutive faces, more than threads so that they balance.
+    const std::size_t chunks =
+      std::min<std::size_t>(n, 8 * static_cast<std::size_t>(std::max(1, exec.concurrency)));
+    this->Made.assign(chunks, {});
+    this->MadeFirst.assign(n, 0);
+    this->ChunkStart.assign(chunks + 1, n);
+    for (std::size_t c = 0; c < chunks; ++c)
+      this->ChunkStart[c] = c * n / chunks;
+    exec.forRange(static_cast<std::int64_t>(chunks),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        std::vector<vbr::Point2L> corners;
+        for (std::int64_t c = b; c < e; ++c)
+          for (std::size_t f = this->ChunkStart[c]; f < this->ChunkStart[c + 1]; ++f)
+          {
+            const auto face = static_cast<std::uint32_t>(f);
+            const std::vector<vbr::Triangle> triangles =
+              triangulateFace(o, face, this->polygonOf(o, face), corners);
+            this->MadeFirst[f] = this->Made[c].size();
+            this->Made[c].insert(this->Made[c].end(), triangles.begin(), triangles.end());
+          }
+      });
+    this->Prepared = true;
   }
 
   void finish(vtkPolyData* output)
@@ -357,28 +379,82 @@ private:
   void addTriangulatedFace(const ObjectFaces& o,
     std::uint32_t f,
     const vbr::IdRange& polygon,
+    const vbr::Triangle* triangles,
+    std::size_t count,
     bool markLoops)
   {
-    const vbr::StandardFace& face = o.poly.faces[f];
-    const vbr::ProjectionAlong project(face.plane.normal);
-    std::vector<vbr::Point2L>& corners = this->Corners; // storage kept from face to face
+    if (markLoops)
+      this->sortLoopEdges(o, o.poly.faces[f]);
+    std::vector<vtkIdType>& ids = this->TriangleIds;
+    ids.resize(3);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+        ids[k] = this->point(o, polygon[triangles[i][k]]);
+      this->addTriangle(markLoops);
+    }
+    this->addFaceValues(o, f, count);
+    if (count == 0)
+      this->addSurfelTriangles(o, f, markLoops);
+  }
+
+  /// The triangles of face f's polygon (indices into it), simple in the projection along the
+  /// face's normal; empty when it does not triangulate. `corners` is scratch.
+  static std::vector<vbr::Triangle> triangulateFace(const ObjectFaces& o,
+    std::uint32_t f,
+    const vbr::IdRange& polygon,
+    std::vector<vbr::Point2L>& corners)
+  {
+    const vbr::ProjectionAlong project(o.poly.faces[f].plane.normal);
     corners.clear();
     for (std::uint32_t v : polygon)
       corners.push_back(project(o.graph.vertexPointel[v]));
-    const std::vector<vbr::Triangle> triangles = vbr::triangulateSimplePolygon(corners);
-    if (markLoops)
-      this->sortLoopEdges(o, face);
-    std::vector<vtkIdType>& ids = this->TriangleIds;
-    ids.resize(3);
-    for (const vbr::Triangle& t : triangles)
+    return vbr::triangulateSimplePolygon(corners);
+  }
+
+  /// The polygon of face f that the triangulating modes draw: its semi-discrete polygon
+  /// (Polygons, when made) or its loop itself (not copied).
+  vbr::IdRange polygonOf(const ObjectFaces& o, std::uint32_t f) const
+  {
+    return this->Polygons.empty()
+      ? o.poly.faces[f].loop
+      : vbr::IdRange{ this->Polygons[f].data(), this->Polygons[f].size() };
+  }
+
+  /// The faces of `mode` SemiDiscrete or TriangulatedFaces, with the triangles prepare made
+  /// or, without them, each face's made here; then what prepare held is freed.
+  void addTriangulatedFaces(const ObjectFaces& o, int mode)
+  {
+    if (mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE && !this->Prepared)
+      this->Polygons = semiDiscretePolygons(o);
+    const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
+    std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
+    for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
+      triangles += std::max<std::size_t>(this->polygonOf(o, f).size(), 2) - 2;
+    this->reserveCells(triangles, 3 * triangles, markLoops);
+    std::size_t c = 0; // the chunk of prepared triangles face f is in
+    for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
     {
-      for (int k = 0; k < 3; ++k)
-        ids[k] = this->point(o, polygon[t[k]]);
-      this->addTriangle(markLoops);
+      const vbr::IdRange polygon = this->polygonOf(o, f);
+      if (!this->Prepared)
+      {
+        const std::vector<vbr::Triangle> made = triangulateFace(o, f, polygon, this->Corners);
+        this->addTriangulatedFace(o, f, polygon, made.data(), made.size(), markLoops);
+        continue;
+      }
+      while (f >= this->ChunkStart[c + 1])
+        std::vector<vbr::Triangle>().swap(this->Made[c++]); // written: freed
+      const std::size_t first = this->MadeFirst[f];
+      const std::size_t end =
+        f + 1 < this->ChunkStart[c + 1] ? this->MadeFirst[f + 1] : this->Made[c].size();
+      this->addTriangulatedFace(
+        o, f, polygon, this->Made[c].data() + first, end - first, markLoops);
     }
-    this->addFaceValues(o, f, triangles.size());
-    if (triangles.empty())
-      this->addSurfelTriangles(o, f, markLoops);
+    this->Prepared = false;
+    std::vector<std::vector<std::uint32_t>>().swap(this->Polygons);
+    std::vector<std::vector<vbr::Triangle>>().swap(this->Made);
+    std::vector<std::size_t>().swap(this->MadeFirst);
+    std::vector<std::size_t>().swap(this->ChunkStart);
   }
 
   /// The triangle of points TriangleIds, without its face's values (addFaceValues); with
@@ -644,8 +720,15 @@ private:
   const vbr::vtk::VoxelGrid& Grid;
   const bool Reverse;
   vtkIdType FaceBase = 0;
-  PointIds Ids;                                               ///< of the object's vertices
-  std::vector<vbr::Point2L> Corners;                          ///< in addTriangulatedFace
+  PointIds Ids;                      ///< of the object's vertices
+  std::vector<vbr::Point2L> Corners; ///< in addTriangulatedFaces
+  /// The object's semi-discrete polygons, while its faces are triangulated and written.
+  std::vector<std::vector<std::uint32_t>> Polygons;
+  /// The triangles prepare made: per chunk of faces (ChunkStart, then the end), each face's
+  /// from MadeFirst on.
+  bool Prepared = false;
+  std::vector<std::vector<vbr::Triangle>> Made;
+  std::vector<std::size_t> MadeFirst, ChunkStart;
   std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< from sortLoopEdges
   std::vector<vtkIdType> TriangleIds;                         ///< the triangle being added
   vtkNew<vtkPoints> Points;
@@ -853,6 +936,13 @@ public:
   {
   }
 
+  /// Work for object o's cells done before them on the threads of `exec` (addObject then
+  /// writes them on one thread).
+  void prepare(const ObjectFaces& o, const vbr::Execution& exec)
+  {
+    this->Builder.prepare(o, this->Mode, exec);
+  }
+
   void add(const ObjectFaces& o)
   {
     this->Stats.add(o);
@@ -969,7 +1059,8 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
 
 /// The reversion's self-check of object o and its cells: both only read o, so with threads
 /// they run side by side (the check polls the abort and reports no progress: it may run off
-/// the calling thread); on one thread, or for a small object, one after the other.
+/// the calling thread), after the faces' triangles are made on all the threads (the cells
+/// are written on one); on one thread, or for a small object, one after the other.
 void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
   const ObjectFaces& o,
   const vbr::BitVolume& voxels,
@@ -978,7 +1069,13 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
 {
   vbr::Execution exec = vbr::vtk::makeExecution(self, 0.0, 0.0);
   exec.progress = nullptr;
-  if (!check || o.surfelCount < SideBySideMinimum || exec.concurrency < 2)
+  const bool threaded = o.surfelCount >= SideBySideMinimum && exec.concurrency >= 2;
+  if (threaded)
+  {
+    vtkLogScopeF(TRACE, "triangles");
+    writer.prepare(o, exec);
+  }
+  if (!check || !threaded)
     exec = exec.sequential();
   exec.forRange(check ? 2 : 1,
     [&](std::int64_t b, std::int64_t e)
