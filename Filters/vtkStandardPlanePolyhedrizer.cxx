@@ -37,15 +37,18 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <exception>
 #include <limits>
 #include <map>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <unordered_set>
 #include <vector>
 
@@ -247,12 +250,12 @@ public:
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
 
-  /// Before addObject, on the threads of `exec`: the triangles of every face's polygon in
-  /// the modes that triangulate (the triangulation is about half of their cells' time, and the
-  /// cells are written on one thread, in order, beside the reversion check). The same
-  /// triangles as addObject would make face by face; held until the object is written (12
-  /// bytes a triangle).
-  void prepare(const ObjectFaces& o, int mode, const vbr::Execution& exec)
+  /// Before addObject, in the modes that triangulate: the faces split into chunks whose
+  /// triangles may be made by another thread (help) while addObject writes the cells on this
+  /// one (the triangulation is about half of their cells' time). addObject makes those of each
+  /// chunk no other thread has taken, in order, and waits for those another is making: the
+  /// same triangles as face by face. Ends with endPrepared, once no thread helps.
+  void prepare(const ObjectFaces& o, int mode)
   {
     if (mode != vtkStandardPlanePolyhedrizer::SEMI_DISCRETE &&
       mode != vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES)
@@ -260,29 +263,35 @@ public:
     if (mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE)
       this->Polygons = semiDiscretePolygons(o);
     const std::size_t n = o.poly.faces.size();
-    // Chunks of consecutive faces, more than threads so that they balance.
-    const std::size_t chunks =
-      std::min<std::size_t>(n, 8 * static_cast<std::size_t>(std::max(1, exec.concurrency)));
+    const std::size_t chunks = (n + FacesPerChunk - 1) / FacesPerChunk;
     this->Made.assign(chunks, {});
     this->MadeFirst.assign(n, 0);
-    this->ChunkStart.assign(chunks + 1, n);
+    this->ChunkState.reset(new std::atomic<int>[chunks]);
     for (std::size_t c = 0; c < chunks; ++c)
-      this->ChunkStart[c] = c * n / chunks;
-    exec.forRange(static_cast<std::int64_t>(chunks),
-      [&](std::int64_t b, std::int64_t e)
-      {
-        std::vector<vbr::Point2L> corners;
-        for (std::int64_t c = b; c < e; ++c)
-          for (std::size_t f = this->ChunkStart[c]; f < this->ChunkStart[c + 1]; ++f)
-          {
-            const auto face = static_cast<std::uint32_t>(f);
-            const std::vector<vbr::Triangle> triangles =
-              triangulateFace(o, face, this->polygonOf(o, face), corners);
-            this->MadeFirst[f] = this->Made[c].size();
-            this->Made[c].insert(this->Made[c].end(), triangles.begin(), triangles.end());
-          }
-      });
+      this->ChunkState[c].store(Untaken, std::memory_order_relaxed);
     this->Prepared = true;
+  }
+
+  /// On another thread than addObject's, after prepare: makes the triangles of the chunks
+  /// from the last one back, until it meets one addObject has taken.
+  void help(const ObjectFaces& o)
+  {
+    if (!this->Prepared)
+      return;
+    std::vector<vbr::Point2L> corners;
+    for (std::size_t c = this->Made.size(); c-- > 0;)
+      if (!this->makeChunk(o, c, corners))
+        return;
+  }
+
+  /// Frees what prepare held, once addObject and help are done.
+  void endPrepared()
+  {
+    this->Prepared = false;
+    std::vector<std::vector<std::uint32_t>>().swap(this->Polygons);
+    std::vector<std::vector<vbr::Triangle>>().swap(this->Made);
+    std::vector<std::size_t>().swap(this->MadeFirst);
+    this->ChunkState.reset();
   }
 
   void finish(vtkPolyData* output)
@@ -432,7 +441,6 @@ private:
     for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
       triangles += std::max<std::size_t>(this->polygonOf(o, f).size(), 2) - 2;
     this->reserveCells(triangles, 3 * triangles, markLoops);
-    std::size_t c = 0; // the chunk of prepared triangles face f is in
     for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
     {
       const vbr::IdRange polygon = this->polygonOf(o, f);
@@ -442,19 +450,53 @@ private:
         this->addTriangulatedFace(o, f, polygon, made.data(), made.size(), markLoops);
         continue;
       }
-      while (f >= this->ChunkStart[c + 1])
-        std::vector<vbr::Triangle>().swap(this->Made[c++]); // written: freed
+      const std::size_t c = f / FacesPerChunk,
+                        last = std::min(o.poly.faces.size(), (c + 1) * FacesPerChunk) - 1;
+      if (f == c * FacesPerChunk)
+      {
+        if (c > 0)
+          std::vector<vbr::Triangle>().swap(this->Made[c - 1]); // written: freed
+        // Made here, unless the helper has taken it: then waited for (made here if given back).
+        while (this->ChunkState[c].load(std::memory_order_acquire) != Made_)
+          if (!this->makeChunk(o, c, this->Corners))
+            std::this_thread::yield();
+      }
       const std::size_t first = this->MadeFirst[f];
-      const std::size_t end =
-        f + 1 < this->ChunkStart[c + 1] ? this->MadeFirst[f + 1] : this->Made[c].size();
+      const std::size_t end = f < last ? this->MadeFirst[f + 1] : this->Made[c].size();
       this->addTriangulatedFace(
         o, f, polygon, this->Made[c].data() + first, end - first, markLoops);
     }
-    this->Prepared = false;
-    std::vector<std::vector<std::uint32_t>>().swap(this->Polygons);
-    std::vector<std::vector<vbr::Triangle>>().swap(this->Made);
-    std::vector<std::size_t>().swap(this->MadeFirst);
-    std::vector<std::size_t>().swap(this->ChunkStart);
+    if (!this->Prepared)
+      std::vector<std::vector<std::uint32_t>>().swap(this->Polygons);
+  }
+
+  /// Makes the triangles of chunk c unless another thread has taken it; false when it had.
+  bool makeChunk(const ObjectFaces& o, std::size_t c, std::vector<vbr::Point2L>& corners)
+  {
+    int untaken = Untaken;
+    if (!this->ChunkState[c].compare_exchange_strong(untaken, Taken, std::memory_order_acq_rel))
+      return false;
+    const std::size_t end = std::min(o.poly.faces.size(), (c + 1) * FacesPerChunk);
+    try
+    {
+      for (std::size_t f = c * FacesPerChunk; f < end; ++f)
+      {
+        const auto face = static_cast<std::uint32_t>(f);
+        const std::vector<vbr::Triangle> triangles =
+          triangulateFace(o, face, this->polygonOf(o, face), corners);
+        this->MadeFirst[f] = this->Made[c].size();
+        this->Made[c].insert(this->Made[c].end(), triangles.begin(), triangles.end());
+      }
+    }
+    catch (...)
+    {
+      // Given back, so that addObject never waits for a chunk no thread is making.
+      std::vector<vbr::Triangle>().swap(this->Made[c]);
+      this->ChunkState[c].store(Untaken, std::memory_order_release);
+      throw;
+    }
+    this->ChunkState[c].store(Made_, std::memory_order_release);
+    return true;
   }
 
   /// The triangle of points TriangleIds, without its face's values (addFaceValues); with
@@ -724,11 +766,14 @@ private:
   std::vector<vbr::Point2L> Corners; ///< in addTriangulatedFaces
   /// The object's semi-discrete polygons, while its faces are triangulated and written.
   std::vector<std::vector<std::uint32_t>> Polygons;
-  /// The triangles prepare made: per chunk of faces (ChunkStart, then the end), each face's
-  /// from MadeFirst on.
+  /// After prepare, the triangles of each chunk of FacesPerChunk faces (each face's from
+  /// MadeFirst on), and whether a thread has taken the chunk, then made it.
   bool Prepared = false;
+  static constexpr std::size_t FacesPerChunk = 256;
+  static constexpr int Untaken = 0, Taken = 1, Made_ = 2;
   std::vector<std::vector<vbr::Triangle>> Made;
-  std::vector<std::size_t> MadeFirst, ChunkStart;
+  std::vector<std::size_t> MadeFirst;
+  std::unique_ptr<std::atomic<int>[]> ChunkState;
   std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< from sortLoopEdges
   std::vector<vtkIdType> TriangleIds;                         ///< the triangle being added
   vtkNew<vtkPoints> Points;
@@ -936,12 +981,11 @@ public:
   {
   }
 
-  /// Work for object o's cells done before them on the threads of `exec` (addObject then
-  /// writes them on one thread).
-  void prepare(const ObjectFaces& o, const vbr::Execution& exec)
-  {
-    this->Builder.prepare(o, this->Mode, exec);
-  }
+  /// Object o's cells split so that another thread may help with them (help), while add
+  /// writes them; endPrepared once both are done.
+  void prepare(const ObjectFaces& o) { this->Builder.prepare(o, this->Mode); }
+  void help(const ObjectFaces& o) { this->Builder.help(o); }
+  void endPrepared() { this->Builder.endPrepared(); }
 
   void add(const ObjectFaces& o)
   {
@@ -1059,8 +1103,9 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
 
 /// The reversion's self-check of object o and its cells: both only read o, so with threads
 /// they run side by side (the check polls the abort and reports no progress: it may run off
-/// the calling thread), after the faces' triangles are made on all the threads (the cells
-/// are written on one); on one thread, or for a small object, one after the other.
+/// the calling thread), and the check's thread then makes the triangles of the faces, from the
+/// last one back, that the cells have not reached; on one thread, or for a small object, one
+/// after the other.
 void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
   const ObjectFaces& o,
   const vbr::BitVolume& voxels,
@@ -1070,14 +1115,11 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
   vbr::Execution exec = vbr::vtk::makeExecution(self, 0.0, 0.0);
   exec.progress = nullptr;
   const bool threaded = o.surfelCount >= SideBySideMinimum && exec.concurrency >= 2;
-  if (threaded)
-  {
-    vtkLogScopeF(TRACE, "triangles");
-    writer.prepare(o, exec);
-  }
-  if (!check || !threaded)
+  if (!threaded)
     exec = exec.sequential();
-  exec.forRange(check ? 2 : 1,
+  else
+    writer.prepare(o);
+  exec.forRange(check || threaded ? 2 : 1,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t task = b; task < e; ++task)
@@ -1085,10 +1127,15 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
           writer.add(o);
         else
         {
-          vtkLogScopeF(TRACE, "reversion");
-          check->add(o, voxels, exec);
+          if (check)
+          {
+            vtkLogScopeF(TRACE, "reversion");
+            check->add(o, voxels, exec);
+          }
+          writer.help(o); // then the triangles of the faces the cells have not reached
         }
     });
+  writer.endPrepared();
 }
 
 /// PASS 1 of the filter: the faces of every selected object, and with the reversion their
