@@ -37,15 +37,18 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <exception>
 #include <limits>
 #include <map>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <unordered_set>
 #include <vector>
 
@@ -242,25 +245,53 @@ public:
     }
     else
     {
-      // The semi-discrete polygons, or the loops themselves (not copied).
-      const bool semiDiscrete = mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE;
-      const std::vector<std::vector<std::uint32_t>> polygons =
-        semiDiscrete ? semiDiscretePolygons(o) : std::vector<std::vector<std::uint32_t>>();
-      const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
-      std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
-      for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        triangles += std::max<std::size_t>(
-                       (semiDiscrete ? polygons[f].size() : o.poly.faces[f].loop.size()), 2) -
-          2;
-      this->reserveCells(triangles, 3 * triangles, markLoops);
-      for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
-        this->addTriangulatedFace(o,
-          f,
-          semiDiscrete ? vbr::IdRange{ polygons[f].data(), polygons[f].size() }
-                       : o.poly.faces[f].loop,
-          markLoops);
+      this->addTriangulatedFaces(o, mode);
     }
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
+  }
+
+  /// Before addObject, in the modes that triangulate: the faces split into chunks whose
+  /// triangles may be made by another thread (help) while addObject writes the cells on this
+  /// one (the triangulation is about half of their cells' time). addObject makes those of each
+  /// chunk no other thread has taken, in order, and waits for those another is making: the
+  /// same triangles as face by face. Ends with endPrepared, once no thread helps.
+  void prepare(const ObjectFaces& o, int mode)
+  {
+    if (mode != vtkStandardPlanePolyhedrizer::SEMI_DISCRETE &&
+      mode != vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES)
+      return;
+    if (mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE)
+      this->Polygons = semiDiscretePolygons(o);
+    const std::size_t n = o.poly.faces.size();
+    const std::size_t chunks = (n + FacesPerChunk - 1) / FacesPerChunk;
+    this->Made.assign(chunks, {});
+    this->MadeFirst.assign(n, 0);
+    this->ChunkState.reset(new std::atomic<int>[chunks]);
+    for (std::size_t c = 0; c < chunks; ++c)
+      this->ChunkState[c].store(Untaken, std::memory_order_relaxed);
+    this->Prepared = true;
+  }
+
+  /// On another thread than addObject's, after prepare: makes the triangles of the chunks
+  /// from the last one back, until it meets one addObject has taken.
+  void help(const ObjectFaces& o)
+  {
+    if (!this->Prepared)
+      return;
+    std::vector<vbr::Point2L> corners;
+    for (std::size_t c = this->Made.size(); c-- > 0;)
+      if (!this->makeChunk(o, c, corners))
+        return;
+  }
+
+  /// Frees what prepare held, once addObject and help are done.
+  void endPrepared()
+  {
+    this->Prepared = false;
+    std::vector<std::vector<std::uint32_t>>().swap(this->Polygons);
+    std::vector<std::vector<vbr::Triangle>>().swap(this->Made);
+    std::vector<std::size_t>().swap(this->MadeFirst);
+    this->ChunkState.reset();
   }
 
   void finish(vtkPolyData* output)
@@ -357,28 +388,115 @@ private:
   void addTriangulatedFace(const ObjectFaces& o,
     std::uint32_t f,
     const vbr::IdRange& polygon,
+    const vbr::Triangle* triangles,
+    std::size_t count,
     bool markLoops)
   {
-    const vbr::StandardFace& face = o.poly.faces[f];
-    const vbr::ProjectionAlong project(face.plane.normal);
-    std::vector<vbr::Point2L>& corners = this->Corners; // storage kept from face to face
+    if (markLoops)
+      this->sortLoopEdges(o, o.poly.faces[f]);
+    std::vector<vtkIdType>& ids = this->TriangleIds;
+    ids.resize(3);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+        ids[k] = this->point(o, polygon[triangles[i][k]]);
+      this->addTriangle(markLoops);
+    }
+    this->addFaceValues(o, f, count);
+    if (count == 0)
+      this->addSurfelTriangles(o, f, markLoops);
+  }
+
+  /// The triangles of face f's polygon (indices into it), simple in the projection along the
+  /// face's normal; empty when it does not triangulate. `corners` is scratch.
+  static std::vector<vbr::Triangle> triangulateFace(const ObjectFaces& o,
+    std::uint32_t f,
+    const vbr::IdRange& polygon,
+    std::vector<vbr::Point2L>& corners)
+  {
+    const vbr::ProjectionAlong project(o.poly.faces[f].plane.normal);
     corners.clear();
     for (std::uint32_t v : polygon)
       corners.push_back(project(o.graph.vertexPointel[v]));
-    const std::vector<vbr::Triangle> triangles = vbr::triangulateSimplePolygon(corners);
-    if (markLoops)
-      this->sortLoopEdges(o, face);
-    std::vector<vtkIdType>& ids = this->TriangleIds;
-    ids.resize(3);
-    for (const vbr::Triangle& t : triangles)
+    return vbr::triangulateSimplePolygon(corners);
+  }
+
+  /// The polygon of face f that the triangulating modes draw: its semi-discrete polygon
+  /// (Polygons, when made) or its loop itself (not copied).
+  vbr::IdRange polygonOf(const ObjectFaces& o, std::uint32_t f) const
+  {
+    return this->Polygons.empty()
+      ? o.poly.faces[f].loop
+      : vbr::IdRange{ this->Polygons[f].data(), this->Polygons[f].size() };
+  }
+
+  /// The faces of `mode` SemiDiscrete or TriangulatedFaces, with the triangles prepare made
+  /// or, without them, each face's made here; then what prepare held is freed.
+  void addTriangulatedFaces(const ObjectFaces& o, int mode)
+  {
+    if (mode == vtkStandardPlanePolyhedrizer::SEMI_DISCRETE && !this->Prepared)
+      this->Polygons = semiDiscretePolygons(o);
+    const bool markLoops = mode == vtkStandardPlanePolyhedrizer::TRIANGULATED_FACES;
+    std::size_t triangles = 0; // a simple polygon of m corners makes m - 2
+    for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
+      triangles += std::max<std::size_t>(this->polygonOf(o, f).size(), 2) - 2;
+    this->reserveCells(triangles, 3 * triangles, markLoops);
+    for (std::uint32_t f = 0; f < o.poly.faces.size(); ++f)
     {
-      for (int k = 0; k < 3; ++k)
-        ids[k] = this->point(o, polygon[t[k]]);
-      this->addTriangle(markLoops);
+      const vbr::IdRange polygon = this->polygonOf(o, f);
+      if (!this->Prepared)
+      {
+        const std::vector<vbr::Triangle> made = triangulateFace(o, f, polygon, this->Corners);
+        this->addTriangulatedFace(o, f, polygon, made.data(), made.size(), markLoops);
+        continue;
+      }
+      const std::size_t c = f / FacesPerChunk,
+                        last = std::min(o.poly.faces.size(), (c + 1) * FacesPerChunk) - 1;
+      if (f == c * FacesPerChunk)
+      {
+        if (c > 0)
+          std::vector<vbr::Triangle>().swap(this->Made[c - 1]); // written: freed
+        // Made here, unless the helper has taken it: then waited for (made here if given back).
+        while (this->ChunkState[c].load(std::memory_order_acquire) != Made_)
+          if (!this->makeChunk(o, c, this->Corners))
+            std::this_thread::yield();
+      }
+      const std::size_t first = this->MadeFirst[f];
+      const std::size_t end = f < last ? this->MadeFirst[f + 1] : this->Made[c].size();
+      this->addTriangulatedFace(
+        o, f, polygon, this->Made[c].data() + first, end - first, markLoops);
     }
-    this->addFaceValues(o, f, triangles.size());
-    if (triangles.empty())
-      this->addSurfelTriangles(o, f, markLoops);
+    if (!this->Prepared)
+      std::vector<std::vector<std::uint32_t>>().swap(this->Polygons);
+  }
+
+  /// Makes the triangles of chunk c unless another thread has taken it; false when it had.
+  bool makeChunk(const ObjectFaces& o, std::size_t c, std::vector<vbr::Point2L>& corners)
+  {
+    int untaken = Untaken;
+    if (!this->ChunkState[c].compare_exchange_strong(untaken, Taken, std::memory_order_acq_rel))
+      return false;
+    const std::size_t end = std::min(o.poly.faces.size(), (c + 1) * FacesPerChunk);
+    try
+    {
+      for (std::size_t f = c * FacesPerChunk; f < end; ++f)
+      {
+        const auto face = static_cast<std::uint32_t>(f);
+        const std::vector<vbr::Triangle> triangles =
+          triangulateFace(o, face, this->polygonOf(o, face), corners);
+        this->MadeFirst[f] = this->Made[c].size();
+        this->Made[c].insert(this->Made[c].end(), triangles.begin(), triangles.end());
+      }
+    }
+    catch (...)
+    {
+      // Given back, so that addObject never waits for a chunk no thread is making.
+      std::vector<vbr::Triangle>().swap(this->Made[c]);
+      this->ChunkState[c].store(Untaken, std::memory_order_release);
+      throw;
+    }
+    this->ChunkState[c].store(Made_, std::memory_order_release);
+    return true;
   }
 
   /// The triangle of points TriangleIds, without its face's values (addFaceValues); with
@@ -644,8 +762,18 @@ private:
   const vbr::vtk::VoxelGrid& Grid;
   const bool Reverse;
   vtkIdType FaceBase = 0;
-  PointIds Ids;                                               ///< of the object's vertices
-  std::vector<vbr::Point2L> Corners;                          ///< in addTriangulatedFace
+  PointIds Ids;                      ///< of the object's vertices
+  std::vector<vbr::Point2L> Corners; ///< in addTriangulatedFaces
+  /// The object's semi-discrete polygons, while its faces are triangulated and written.
+  std::vector<std::vector<std::uint32_t>> Polygons;
+  /// After prepare, the triangles of each chunk of FacesPerChunk faces (each face's from
+  /// MadeFirst on), and whether a thread has taken the chunk, then made it.
+  bool Prepared = false;
+  static constexpr std::size_t FacesPerChunk = 256;
+  static constexpr int Untaken = 0, Taken = 1, Made_ = 2;
+  std::vector<std::vector<vbr::Triangle>> Made;
+  std::vector<std::size_t> MadeFirst;
+  std::unique_ptr<std::atomic<int>[]> ChunkState;
   std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< from sortLoopEdges
   std::vector<vtkIdType> TriangleIds;                         ///< the triangle being added
   vtkNew<vtkPoints> Points;
@@ -853,6 +981,12 @@ public:
   {
   }
 
+  /// Object o's cells split so that another thread may help with them (help), while add
+  /// writes them; endPrepared once both are done.
+  void prepare(const ObjectFaces& o) { this->Builder.prepare(o, this->Mode); }
+  void help(const ObjectFaces& o) { this->Builder.help(o); }
+  void endPrepared() { this->Builder.endPrepared(); }
+
   void add(const ObjectFaces& o)
   {
     this->Stats.add(o);
@@ -969,7 +1103,9 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
 
 /// The reversion's self-check of object o and its cells: both only read o, so with threads
 /// they run side by side (the check polls the abort and reports no progress: it may run off
-/// the calling thread); on one thread, or for a small object, one after the other.
+/// the calling thread), and the check's thread then makes the triangles of the faces, from the
+/// last one back, that the cells have not reached; on one thread, or for a small object, one
+/// after the other.
 void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
   const ObjectFaces& o,
   const vbr::BitVolume& voxels,
@@ -978,9 +1114,12 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
 {
   vbr::Execution exec = vbr::vtk::makeExecution(self, 0.0, 0.0);
   exec.progress = nullptr;
-  if (!check || o.surfelCount < SideBySideMinimum || exec.concurrency < 2)
+  const bool threaded = o.surfelCount >= SideBySideMinimum && exec.concurrency >= 2;
+  if (!threaded)
     exec = exec.sequential();
-  exec.forRange(check ? 2 : 1,
+  else
+    writer.prepare(o);
+  exec.forRange(check || threaded ? 2 : 1,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t task = b; task < e; ++task)
@@ -988,10 +1127,15 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
           writer.add(o);
         else
         {
-          vtkLogScopeF(TRACE, "reversion");
-          check->add(o, voxels, exec);
+          if (check)
+          {
+            vtkLogScopeF(TRACE, "reversion");
+            check->add(o, voxels, exec);
+          }
+          writer.help(o); // then the triangles of the faces the cells have not reached
         }
     });
+  writer.endPrepared();
 }
 
 /// PASS 1 of the filter: the faces of every selected object, and with the reversion their

@@ -72,9 +72,13 @@
  *
  * @warning Threaded with vtkSMPTools (VTK_SMP_BACKEND_IN_USE=STDThread, for instance): the
  * faces of different boundary components grow concurrently, with the same faces, in the same
- * order, as on one thread; the surfel graph's stages are split over the surfels; and each
- * object's reversion check runs beside the writing of its cells, which raises the peak memory
- * (by about 50 bytes per surfel on noise). The faces of one component grow on one thread.
+ * order, as on one thread, and their moves, loops and vertex counts likewise; the surfel graph's
+ * stages are split over the surfels; and each object's reversion check runs beside the writing
+ * of its cells, its thread then making the triangles (SemiDiscrete, TriangulatedFaces) of the
+ * faces the cells have not reached, which raises the peak memory (by about 50 bytes per surfel
+ * on noise, and 12 bytes per triangle made ahead). The faces of one component grow on one
+ * thread: a boundary that is mostly one component (porous volumes, and 50 % noise, which
+ * percolates) gains little.
  *
  * Under MPI (ParaView running the filter on N ranks, one piece each) the faces are the 1-rank
  * faces, output once by rank 0 (from the extreme vertices of every rank's voxels), and port 1

@@ -12,7 +12,9 @@
 // renumbers. Threads (growFaces): a face never leaves its boundary component, so the components
 // are dealt to groups grown concurrently (groupComponents, growGroupsInWaves), and their faces put
 // back in the order of their seeds (gatherInSeedOrder), the sequential order, with the stamps
-// renumbered: the same faces, numbers and refusals as on one thread. The output: each face's
+// renumbered: the same faces, numbers and refusals as on one thread. The steps after the growth go
+// over the same groups concurrently (Part, forEachPart: the moves, the loops, the vertex counts),
+// each touching only its components' surfels, faces and vertices. The output: each face's
 // boundary loop (LoopTracer, all loops in one array), when asked the face beyond each loop edge,
 // and the number of faces around each vertex (countFacesAtVertices: the standard vertices have
 // three or more).
@@ -32,6 +34,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -473,24 +476,27 @@ public:
   {
   }
 
-  /// Room for every loop in `poly`'s arrays: the edges between surfels of different faces.
-  void reserve(Polyhedron& poly) const
+  /// The number of edges of face f's loop: its surfels' edges to other faces.
+  std::size_t loopLength(const Polyhedron& poly, std::uint32_t f) const
   {
     std::size_t edges = 0;
-    for (std::uint32_t s = 0; s < this->Graph.size(); ++s)
+    for (std::uint32_t s : poly.faces[f].surfels)
       for (int k = 0; k < 4; ++k)
-        edges += poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != poly.faceOfSurfel[s];
-    poly.loopVertices.reserve(edges);
-    if (this->Across)
-      poly.loopAcross.reserve(edges);
+        edges += poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != f;
+    return edges;
   }
 
-  /// Appends face f's loop to `poly`'s arrays (the face's ranges are set by pointLoops).
-  void trace(Polyhedron& poly, std::uint32_t f, const StandardFace& face)
+  /// Writes face f's loop of `length` edges (loopLength) from `vertices`, and the face beyond
+  /// each edge from `across` when traced. Faces of different boundary components may be traced
+  /// concurrently: they share no vertex.
+  void trace(const Polyhedron& poly,
+    std::uint32_t f,
+    std::size_t length,
+    std::uint32_t* vertices,
+    std::uint32_t* across)
   {
-    std::size_t edges = 0;
     std::uint32_t start = None;
-    for (std::uint32_t s : face.surfels)
+    for (std::uint32_t s : poly.faces[f].surfels)
       for (int k = 0; k < 4; ++k)
         if (poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != f)
         {
@@ -500,24 +506,24 @@ public:
           this->Stamp[v] = f;
           this->Edge[v] = 4 * s + static_cast<std::uint32_t>(k);
           start = v;
-          ++edges;
         }
     if (start == None)
       return;
-    const std::size_t first = poly.loopVertices.size();
+    std::size_t i = 0;
     std::uint32_t v = start;
     do
     {
-      if (this->Stamp[v] != f || poly.loopVertices.size() - first >= edges)
+      if (this->Stamp[v] != f || i >= length)
         throw std::logic_error("face boundary is not one loop");
       const std::uint32_t s = this->Edge[v] / 4;
       const int k = static_cast<int>(this->Edge[v] % 4);
-      poly.loopVertices.push_back(v);
+      vertices[i] = v;
       if (this->Across)
-        poly.loopAcross.push_back(poly.faceOfSurfel[this->Graph.neighbourOf(s, k)]);
+        across[i] = poly.faceOfSurfel[this->Graph.neighbourOf(s, k)];
+      ++i;
       v = this->Graph.vertexOf(s, (k + 1) % 4);
     } while (v != start);
-    if (poly.loopVertices.size() - first != edges)
+    if (i != length)
       throw std::logic_error("face boundary is not one loop");
   }
 
@@ -560,40 +566,85 @@ bool surfelCanMove(const SurfelGraph& graph,
     (!leavesRest || meetsAlongOneArc(graph, faceOf, t, g, true));
 }
 
-/// The faces' surfel lists after the moves (a surfel may have moved more than once), each
-/// allocated to its size: faces that grew would double their storage.
-void refillSurfelLists(const SurfelGraph& graph,
-  const std::vector<std::size_t>& size,
-  Polyhedron& poly)
+/// Ids a step goes over: those of a list, in increasing order, or all below `count`.
+struct IdSet
 {
-  for (std::size_t f = 0; f < poly.faces.size(); ++f)
+  const std::vector<std::uint32_t>* list = nullptr;
+  std::uint32_t count = 0;
+
+  std::size_t size() const { return this->list ? this->list->size() : this->count; }
+  std::uint32_t operator[](std::size_t i) const
   {
-    std::vector<std::uint32_t>().swap(poly.faces[f].surfels);
-    poly.faces[f].surfels.reserve(size[f]);
+    return this->list ? (*this->list)[i] : static_cast<std::uint32_t>(i);
   }
-  for (std::uint32_t s = 0; s < graph.size(); ++s)
-    poly.faces[poly.faceOfSurfel[s]].surfels.push_back(s);
+};
+
+/// A part of the boundary that the steps after the growth go over on its own: some boundary
+/// components, their surfels (in increasing order) and their faces (in increasing number). No
+/// step reads or writes the surfels, faces or vertices of another component, so the parts may
+/// be run concurrently and give what one pass over the whole boundary gives.
+struct Part
+{
+  IdSet surfels, faces;
+};
+
+/// Runs body(part, poll) over each part: a single part on the calling thread, reporting its
+/// progress as [0, 1] of `exec`'s; several on the threads of `exec`, each polling the abort
+/// alone, the progress reported once they are all done. False when stopped.
+bool forEachPart(const Execution& exec,
+  const std::vector<Part>& parts,
+  const std::function<bool(const Part&, ProgressPoll&)>& body)
+{
+  if (parts.size() == 1)
+  {
+    ProgressPoll poll(exec, 0.0, 1.0);
+    return body(parts[0], poll) && !poll.stopped();
+  }
+  const Execution quiet = exec.silent();
+  std::vector<char> finished(parts.size(), 0);
+  exec.forRange(static_cast<std::int64_t>(parts.size()),
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t p = b; p < e; ++p)
+      {
+        ProgressPoll poll(quiet, 0.0, 1.0);
+        finished[p] = body(parts[p], poll) && !poll.stopped();
+      }
+    });
+  return std::find(finished.begin(), finished.end(), 0) == finished.end() &&
+    !exec.stopRequested() && exec.report(1.0);
 }
 
-/// Moves surfels from smaller faces to a larger neighbouring face, largest faces first,
-/// when the larger face's plane takes them as it is and both faces stay disks (or the
-/// smaller one empties).
-/// The growth leaves the rim of a large face to whichever face reached it first; this gives
-/// it back, and faces emptied this way disappear. Returns the number of surfels moved, and
-/// marks the faces that gave surfels away in `shrunk`.
-std::size_t moveToLargerFaces(const SurfelGraph& graph,
-  Polyhedron& poly,
-  std::size_t maximumSize,
-  ProgressPoll& poll,
-  std::vector<char>& shrunk)
+/// The faces' surfel lists of a part after the moves (a surfel may have moved more than once),
+/// each allocated to its size: faces that grew would double their storage.
+void refillSurfelLists(const Part& part, const std::vector<std::size_t>& size, Polyhedron& poly)
 {
-  shrunk.assign(poly.faces.size(), 0);
-  std::vector<std::size_t> size(poly.faces.size());
-  for (std::size_t f = 0; f < size.size(); ++f)
-    size[f] = poly.faces[f].surfels.size();
-  std::vector<std::uint32_t> order(poly.faces.size());
-  for (std::uint32_t f = 0; f < order.size(); ++f)
-    order[f] = f;
+  for (std::size_t i = 0; i < part.faces.size(); ++i)
+  {
+    StandardFace& face = poly.faces[part.faces[i]];
+    std::vector<std::uint32_t>().swap(face.surfels);
+    face.surfels.reserve(size[part.faces[i]]);
+  }
+  for (std::size_t i = 0; i < part.surfels.size(); ++i)
+  {
+    const std::uint32_t s = part.surfels[i];
+    poly.faces[poly.faceOfSurfel[s]].surfels.push_back(s);
+  }
+}
+
+/// The moves into the faces of one part (moveToLargerFaces), largest faces first (ties in the
+/// order of their numbers, as over the whole boundary); returns the surfels moved.
+std::size_t movesInPart(const SurfelGraph& graph,
+  const Part& part,
+  std::size_t maximumSize,
+  std::vector<std::size_t>& size,
+  std::vector<char>& shrunk,
+  Polyhedron& poly,
+  ProgressPoll& poll)
+{
+  std::vector<std::uint32_t> order(part.faces.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = part.faces[i];
   std::stable_sort(order.begin(),
     order.end(),
     [&](std::uint32_t a, std::uint32_t b) { return size[a] > size[b]; });
@@ -633,8 +684,39 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
         queue.push_back(graph.neighbourOf(t, k));
     }
   }
-  refillSurfelLists(graph, size, poly);
+  refillSurfelLists(part, size, poly);
   return moved;
+}
+
+/// Moves surfels from smaller faces to a larger neighbouring face, largest faces first,
+/// when the larger face's plane takes them as it is and both faces stay disks (or the
+/// smaller one empties).
+/// The growth leaves the rim of a large face to whichever face reached it first; this gives
+/// it back, and faces emptied this way disappear. Counts the surfels moved in
+/// poly.movedSurfels, and marks the faces that gave surfels away in `shrunk`. The parts on the
+/// threads of `exec` (a move never leaves a component); false when stopped.
+bool moveToLargerFaces(const SurfelGraph& graph,
+  const std::vector<Part>& parts,
+  std::size_t maximumSize,
+  const Execution& exec,
+  Polyhedron& poly,
+  std::vector<char>& shrunk)
+{
+  shrunk.assign(poly.faces.size(), 0);
+  std::vector<std::size_t> size(poly.faces.size());
+  for (std::size_t f = 0; f < size.size(); ++f)
+    size[f] = poly.faces[f].surfels.size();
+  std::vector<std::size_t> moved(parts.size(), 0);
+  const bool done = forEachPart(exec,
+    parts,
+    [&](const Part& part, ProgressPoll& poll)
+    {
+      moved[&part - parts.data()] = movesInPart(graph, part, maximumSize, size, shrunk, poly, poll);
+      return true;
+    });
+  for (std::size_t m : moved)
+    poly.movedSurfels += m;
+  return done;
 }
 
 /// Renumbers the faces left (those with surfels), in order, moving them down in place (a
@@ -644,6 +726,7 @@ std::size_t moveToLargerFaces(const SurfelGraph& graph,
 /// longer hold those that refused), are forgotten.
 void dropEmptyFaces(Polyhedron& poly,
   std::vector<std::uint32_t>& refused,
+  const Execution& exec,
   const std::vector<char>& shrunk = {})
 {
   std::vector<std::uint32_t> number(poly.faces.size(), None);
@@ -657,43 +740,64 @@ void dropEmptyFaces(Polyhedron& poly,
       ++kept;
     }
   poly.faces.resize(kept);
-  for (std::uint32_t& f : poly.faceOfSurfel)
-    f = number[f];
-  for (std::uint32_t& f : refused)
-    if (f != None)
-      f = !shrunk.empty() && shrunk[f] ? None : number[f];
+  const std::int64_t n = static_cast<std::int64_t>(poly.faceOfSurfel.size());
+  exec.forWork(n).forRange(n,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t s = b; s < e; ++s)
+        poly.faceOfSurfel[s] = number[poly.faceOfSurfel[s]];
+      if (refused.empty())
+        return;
+      for (std::int64_t s = b; s < e; ++s)
+        if (refused[s] != None)
+          refused[s] = !shrunk.empty() && shrunk[refused[s]] ? None : number[refused[s]];
+    });
 }
 
 /// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
 /// each meets the umbrella in one run). Francon & Papier's standard vertices are those of
-/// three faces or more.
-std::vector<std::uint8_t> countFacesAtVertices(const SurfelGraph& graph,
-  const Polyhedron& poly,
-  ProgressPoll& poll)
+/// three faces or more. The surfels of the parts' faces on the threads of `exec` (a vertex's
+/// umbrella never leaves its component; the count does not depend on the surfel it starts from).
+bool countFacesAtVertices(const SurfelGraph& graph,
+  const std::vector<Part>& parts,
+  const Execution& exec,
+  Polyhedron& poly)
 {
-  std::vector<std::uint8_t> count(graph.vertexPointel.size(), 0);
+  std::vector<std::uint8_t>& count = poly.facesAtVertex;
+  count.assign(graph.vertexPointel.size(), 0);
   std::vector<char> done(graph.vertexPointel.size(), 0);
-  for (std::uint32_t s0 = 0; s0 < graph.size() && poll.tick(); ++s0)
-    for (int k0 = 0; k0 < 4; ++k0)
+  const std::vector<std::uint32_t>& faceOf = poly.faceOfSurfel;
+  return forEachPart(exec,
+    parts,
+    [&](const Part& part, ProgressPoll& poll)
     {
-      const std::uint32_t v = graph.vertexOf(s0, k0);
-      if (done[v])
-        continue;
-      done[v] = 1;
-      int changes = 0;
-      std::uint32_t previous = s0;
-      graph.aroundVertex(s0,
-        k0,
-        [&](std::uint32_t u)
+      for (std::size_t i = 0; i < part.faces.size(); ++i)
+        for (std::uint32_t s0 : poly.faces[part.faces[i]].surfels)
         {
-          changes += poly.faceOfSurfel[u] != poly.faceOfSurfel[previous];
-          previous = u;
-          return true;
-        });
-      changes += poly.faceOfSurfel[previous] != poly.faceOfSurfel[s0]; // closing the round
-      count[v] = static_cast<std::uint8_t>(std::min(changes == 0 ? 1 : changes, 255));
-    }
-  return count;
+          if (!poll.tick())
+            return false;
+          for (int k0 = 0; k0 < 4; ++k0)
+          {
+            const std::uint32_t v = graph.vertexOf(s0, k0);
+            if (done[v])
+              continue;
+            done[v] = 1;
+            int changes = 0;
+            std::uint32_t previous = s0;
+            graph.aroundVertex(s0,
+              k0,
+              [&](std::uint32_t u)
+              {
+                changes += faceOf[u] != faceOf[previous];
+                previous = u;
+                return true;
+              });
+            changes += faceOf[previous] != faceOf[s0]; // closing the round
+            count[v] = static_cast<std::uint8_t>(std::min(changes == 0 ? 1 : changes, 255));
+          }
+        }
+      return true;
+    });
 }
 
 } // namespace
@@ -880,21 +984,24 @@ bool growGroups(const SurfelGraph& graph,
 
 /// The growth of all the faces (progress 0 - 0.6): the boundary components on the threads of
 /// `exec` when there are several and enough surfels, else on the calling thread, with the same
-/// faces either way. False when aborted.
+/// faces either way; `groups` receives the groups the threads grew (none on one thread), for the
+/// later steps. False when aborted.
 bool growFaces(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,
   const Execution& exec,
   SurfelStamps& stamps,
-  std::vector<StandardFace>& faces)
+  std::vector<StandardFace>& faces,
+  ComponentGroups& groups)
 {
   const bool threaded = exec.parallelFor && exec.concurrency > 1 && graph.componentCount > 1 &&
     graph.size() >= ParallelGrowthMinimum;
   if (threaded)
   {
     // Four waves of groups, for the progress between them.
-    const std::size_t groups =
+    const std::size_t count =
       std::min<std::size_t>(graph.componentCount, 4 * static_cast<std::size_t>(exec.concurrency));
-    return growGroups(graph, options, exec, groupComponents(graph, groups), stamps, faces);
+    groups = groupComponents(graph, count);
+    return growGroups(graph, options, exec, groups, stamps, faces);
   }
   else
   {
@@ -915,6 +1022,7 @@ bool growFaces(const SurfelGraph& graph,
 /// take it whole. Returns false when stopped.
 bool mergeSmallFaces(FaceGrower& grower,
   const PolyhedrizationOptions& options,
+  const Execution& exec,
   Polyhedron& out,
   ProgressPoll& poll)
 {
@@ -940,26 +1048,78 @@ bool mergeSmallFaces(FaceGrower& grower,
   }
   grower.releaseCache();
   std::vector<std::uint32_t> noRefusals; // none are read after the merging
-  dropEmptyFaces(out, noRefusals);
+  dropEmptyFaces(out, noRefusals, exec);
   return true;
 }
 
-/// Every face's loop (progress 0 - 0.5 of `poll`), with the tracer's arrays freed on return.
-/// False when stopped.
-bool traceLoops(const SurfelGraph& graph, bool across, Polyhedron& out, ProgressPoll& poll)
+/// The parts of the boundary that the steps after the growth go over: the groups the threads
+/// grew, with their faces (`faceLists`, in increasing number, receives them; the parts point
+/// into it), or the whole boundary as one part.
+std::vector<Part> partsOf(const ComponentGroups& groups,
+  const Polyhedron& poly,
+  std::vector<std::vector<std::uint32_t>>& faceLists)
+{
+  if (groups.seeds.empty())
+    return { Part{ { nullptr, static_cast<std::uint32_t>(poly.faceOfSurfel.size()) },
+      { nullptr, static_cast<std::uint32_t>(poly.faces.size()) } } };
+  faceLists.assign(groups.seeds.size(), {});
+  for (std::uint32_t f = 0; f < poly.faces.size(); ++f)
+    if (!poly.faces[f].surfels.empty()) // a face never leaves the group of its first surfel
+      faceLists[groups.groupOf[poly.faces[f].surfels.front()]].push_back(f);
+  std::vector<Part> parts(groups.seeds.size());
+  for (std::size_t g = 0; g < parts.size(); ++g)
+    parts[g] = { { &groups.seeds[g], 0 }, { &faceLists[g], 0 } };
+  return parts;
+}
+
+/// Every face's loop, into the arrays of `out` in face order: first each loop's length, then
+/// the loops traced into their runs; the parts (of faces only) on the threads of `exec`. The
+/// tracer's arrays are freed on return. False when stopped.
+bool traceLoops(const SurfelGraph& graph,
+  bool across,
+  const std::vector<Part>& parts,
+  const Execution& exec,
+  Polyhedron& out)
 {
   LoopTracer tracer(graph, across);
-  tracer.reserve(out);
-  std::vector<std::size_t> lengths(out.faces.size());
-  for (std::uint32_t f = 0; f < out.faces.size(); ++f)
+  std::vector<std::size_t> lengths(out.faces.size()), first(out.faces.size());
+  auto overFaces = [&](const Execution& e, auto step)
   {
-    poll.at(0.5 * f / double(out.faces.size()));
-    if (!poll.tick())
-      return false;
-    const std::size_t before = out.loopVertices.size();
-    tracer.trace(out, f, out.faces[f]);
-    lengths[f] = out.loopVertices.size() - before;
+    return forEachPart(e,
+      parts,
+      [&](const Part& part, ProgressPoll& poll)
+      {
+        for (std::size_t i = 0; i < part.faces.size(); ++i)
+        {
+          poll.at(double(i) / double(part.faces.size()));
+          if (!poll.tick())
+            return false;
+          step(part.faces[i]);
+        }
+        return true;
+      });
+  };
+  if (!overFaces(
+        exec.within(0.0, 0.2), [&](std::uint32_t f) { lengths[f] = tracer.loopLength(out, f); }))
+    return false;
+  std::size_t edges = 0;
+  for (std::size_t f = 0; f < lengths.size(); ++f)
+  {
+    first[f] = edges;
+    edges += lengths[f];
   }
+  out.loopVertices.resize(edges);
+  out.loopAcross.resize(across ? edges : 0);
+  if (!overFaces(exec.within(0.2, 1.0),
+        [&](std::uint32_t f)
+        {
+          tracer.trace(out,
+            f,
+            lengths[f],
+            out.loopVertices.data() + first[f],
+            across ? out.loopAcross.data() + first[f] : nullptr);
+        }))
+    return false;
   LoopTracer::pointLoops(out, lengths);
   return true;
 }
@@ -974,32 +1134,38 @@ bool polyhedrize(const SurfelGraph& graph,
   // Progress: growth 0 - 0.6, moves 0.6 - 0.7, merging 0.7 - 0.95, loops 0.95 - 1.
   out = Polyhedron();
   SurfelStamps stamps(out.faceOfSurfel, graph.size());
-  if (!growFaces(graph, options, exec, stamps, out.faces))
+  ComponentGroups groups;
+  if (!growFaces(graph, options, exec, stamps, out.faces, groups))
     return false;
+  std::vector<std::vector<std::uint32_t>> faceLists;
   if (options.moveToLargerFaces)
   {
-    ProgressPoll moves(exec, 0.6, 0.7);
     std::vector<char> shrunk;
-    out.movedSurfels = moveToLargerFaces(graph, out, options.maximumFaceSize, moves, shrunk);
-    if (moves.stopped())
+    if (!moveToLargerFaces(graph,
+          partsOf(groups, out, faceLists),
+          options.maximumFaceSize,
+          exec.within(0.6, 0.7),
+          out,
+          shrunk))
       return false;
-    dropEmptyFaces(out, stamps.refused, shrunk);
+    dropEmptyFaces(out, stamps.refused, exec, shrunk);
   }
   ProgressPoll merging(exec, 0.7, 0.95);
   if (options.mergeFaces)
   {
     // A grower of its own: it reads only the refusals the growth left in the stamps.
     FaceGrower merger(graph, options, out.faces, stamps);
-    if (!mergeSmallFaces(merger, options, out, merging))
+    if (!mergeSmallFaces(merger, options, exec, out, merging))
       return false;
   }
+  // The loops and the vertex counts go over the parts' faces alone: the groups are freed.
+  std::vector<Part> parts = partsOf(groups, out, faceLists);
+  for (Part& part : parts)
+    part.surfels = {};
+  groups = ComponentGroups();
   stamps.releaseQueues(); // the peak is the loops' tracing, with the whole graph
-  ProgressPoll loops(exec, 0.95, 1.0);
-  if (!traceLoops(graph, options.facesAcross, out, loops))
-    return false;
-  loops.at(0.5);
-  out.facesAtVertex = countFacesAtVertices(graph, out, loops);
-  return !loops.stopped() && exec.report(1.0);
+  return traceLoops(graph, options.facesAcross, parts, exec.within(0.95, 0.975), out) &&
+    countFacesAtVertices(graph, parts, exec.within(0.975, 1.0), out) && exec.report(1.0);
 }
 
 // ---- reversion ------------------------------------------------------------------------

@@ -109,8 +109,9 @@ struct Polyhedron
 
 /// Grows the faces; returns false when aborted, and `out` is then unspecified (partial faces,
 /// or face numbers of faces not yet gathered): not to be read. With `exec.parallelFor` and a
-/// concurrency above 1, different boundary components grow on different threads; the result is the
-/// same, face for face and in the same order, as on one thread.
+/// concurrency above 1, different boundary components grow on different threads (and their moves,
+/// loops and vertex counts are made so too); the result is the same, face for face and in the same
+/// order, as on one thread.
 bool polyhedrize(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,
   const Execution& exec,
