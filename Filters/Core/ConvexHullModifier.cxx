@@ -434,41 +434,51 @@ void pushRunsOfWord(Word word, std::int64_t x0, std::int64_t y, std::int64_t z, 
   }
 }
 
+/// Appends the runs of the points of class `cls` among x = lo..hi of row (y, z): off the grid's
+/// row every centre is background; on it, the class's bits word by word.
+void pushRunsOfRow(const BitVolume& objects,
+  bool cls,
+  std::int64_t lo,
+  std::int64_t hi,
+  std::int64_t y,
+  std::int64_t z,
+  PointRuns& points)
+{
+  const Dims d = objects.dims();
+  const bool rowInGrid = y >= 0 && z >= 0 && y < d[1] && z < d[2];
+  if (!rowInGrid)
+  {
+    if (!cls)
+      points.push(lo, hi, y, z);
+    return;
+  }
+  const Word* bits = objects.row(static_cast<std::int32_t>(y), static_cast<std::int32_t>(z));
+  if (!cls && lo <= -1)
+    points.push(lo, std::min<std::int64_t>(hi, -1), y, z);
+  const std::int64_t first = std::max<std::int64_t>(lo, 0);
+  const std::int64_t last = std::min<std::int64_t>(hi, d[0] - 1);
+  for (std::int64_t w = first >> 6; first <= last && w <= last >> 6; ++w)
+  {
+    Word word = cls ? bits[w] : ~bits[w];
+    if (w == first >> 6)
+      word &= ~Word(0) << (first & 63);
+    if (w == last >> 6 && (last & 63) != 63)
+      word &= (Word(1) << ((last & 63) + 1)) - 1;
+    pushRunsOfWord(word, 64 * w, y, z, points);
+  }
+  if (!cls && std::max<std::int64_t>(lo, d[0]) <= hi)
+    points.push(std::max<std::int64_t>(lo, d[0]), hi, y, z);
+}
+
 /// The lattice points of class `cls` in the hull (its open interior when `strict`), row by row
 /// from the volume's words, as runs: every level of the recursion collects its points so.
 PointRuns pointsOfClass(const CellList& c, const BitVolume& objects, bool cls, bool strict)
 {
   PointRuns points;
-  const Dims d = objects.dims();
   forEachRowIn(c,
     strict,
     [&](std::int64_t y, std::int64_t z, std::int64_t lo, std::int64_t hi)
-    {
-      const bool rowInGrid = y >= 0 && z >= 0 && y < d[1] && z < d[2];
-      if (!rowInGrid)
-      {
-        if (!cls)
-          points.push(lo, hi, y, z);
-        return;
-      }
-      const Word* bits = objects.row(static_cast<std::int32_t>(y), static_cast<std::int32_t>(z));
-      // Off the grid's row every centre is background; on it, the class's bits word by word.
-      if (!cls && lo <= -1)
-        points.push(lo, std::min<std::int64_t>(hi, -1), y, z);
-      const std::int64_t first = std::max<std::int64_t>(lo, 0);
-      const std::int64_t last = std::min<std::int64_t>(hi, d[0] - 1);
-      for (std::int64_t w = first >> 6; first <= last && w <= last >> 6; ++w)
-      {
-        Word word = cls ? bits[w] : ~bits[w];
-        if (w == first >> 6)
-          word &= ~Word(0) << (first & 63);
-        if (w == last >> 6 && (last & 63) != 63)
-          word &= (Word(1) << ((last & 63) + 1)) - 1;
-        pushRunsOfWord(word, 64 * w, y, z, points);
-      }
-      if (!cls && std::max<std::int64_t>(lo, d[0]) <= hi)
-        points.push(std::max<std::int64_t>(lo, d[0]), hi, y, z);
-    });
+    { pushRunsOfRow(objects, cls, lo, hi, y, z, points); });
   return points;
 }
 
@@ -988,39 +998,32 @@ std::vector<LatticePoint> rowEnds(const PointRuns& listed)
 /// it is no vertex of their hull either, and the hull of the corners is the same polytope.
 std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends)
 {
+  // A slice's points come in (y, x) order without repeats, as monotoneChain asks (its
+  // orientation, clockwise in (x, y), does not matter: only the set of corners is used).
   const auto turn = [](const LatticePoint& o, const LatticePoint& a, const LatticePoint& b)
   { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); };
-  std::vector<LatticePoint> corners, chain;
+  std::vector<LatticePoint> corners, slice;
   for (std::size_t k = 0; k < ends.size();)
   {
     std::size_t end = k;
     while (end < ends.size() && ends[end][2] == ends[k][2])
       ++end;
-    if (end - k <= 2)
-    {
-      corners.insert(corners.end(), ends.begin() + k, ends.begin() + end);
-      k = end;
-      continue;
-    }
-    // The lower chain forwards, then the upper chain backwards, each point popped while the
-    // chain does not turn strictly left at it.
-    chain.clear();
-    const auto add = [&](std::size_t i, std::size_t floor)
-    {
-      while (chain.size() > floor && turn(chain[chain.size() - 2], chain.back(), ends[i]) <= 0)
-        chain.pop_back();
-      chain.push_back(ends[i]);
-    };
-    for (std::size_t i = k; i < end; ++i)
-      add(i, 1);
-    const std::size_t lower = chain.size();
-    for (std::size_t i = end - 1; i-- > k;)
-      add(i, lower);
-    chain.pop_back(); // the first point again
+    slice.assign(ends.begin() + k, ends.begin() + end);
+    const std::vector<LatticePoint> chain = monotoneChain(slice, turn);
     corners.insert(corners.end(), chain.begin(), chain.end());
     k = end;
   }
   return corners;
+}
+
+/// The hull of the points (see makeGroup).
+CellList shapeOf(const PointRuns& points, CoplanarFaces coplanar)
+{
+  const std::vector<LatticePoint> ends = rowEnds(points);
+  CellList shape = convexHull(sliceCorners(ends), coplanar);
+  if (shape.dimension < 3)
+    shape = convexHull(ends, coplanar);
+  return shape;
 }
 
 /// A group with its hulls. The shape is the hull of the slices' corners (sliceCorners: the same
@@ -1032,10 +1035,7 @@ PointGroup makeGroup(PointRuns points, const CellList& c, bool strict, CoplanarF
 {
   PointGroup g;
   g.points = std::move(points);
-  const std::vector<LatticePoint> ends = rowEnds(g.points);
-  g.shape = convexHull(sliceCorners(ends), coplanar);
-  if (g.shape.dimension < 3)
-    g.shape = convexHull(ends, coplanar);
+  g.shape = shapeOf(g.points, coplanar);
   g.solid = solidOf(g, c, strict, coplanar);
   return g;
 }
@@ -4669,5 +4669,60 @@ ModifiedHull modifyConvexHull(const BitVolume& objects,
 {
   return modifyHull(objects, coplanar, exec, true);
 }
+
+namespace detail
+{
+
+std::vector<std::array<std::int64_t, 4>> runsOf(const PointRuns& points)
+{
+  std::vector<std::array<std::int64_t, 4>> out;
+  for (const Run& r : points.runs)
+    out.push_back({ r.lo, r.hi, r.y, r.z });
+  return out;
+}
+
+std::vector<std::array<std::int64_t, 4>> runsOfRow(const BitVolume& objects,
+  bool cls,
+  std::int64_t lo,
+  std::int64_t hi,
+  std::int64_t y,
+  std::int64_t z)
+{
+  PointRuns points;
+  pushRunsOfRow(objects, cls, lo, hi, y, z, points);
+  return runsOf(points);
+}
+
+std::vector<std::array<std::int64_t, 4>> runsOfClass(const CellList& c,
+  const BitVolume& objects,
+  bool cls,
+  bool strict)
+{
+  return runsOf(pointsOfClass(c, objects, cls, strict));
+}
+
+bool rowRange(const CellList& c,
+  bool strict,
+  std::int64_t y,
+  std::int64_t z,
+  std::int64_t& lo,
+  std::int64_t& hi)
+{
+  RowScan rows(c, strict);
+  rows.setSlice(z);
+  return rows.range(y, lo, hi);
+}
+
+std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends)
+{
+  return vbr::sliceCorners(ends);
+}
+
+CellList groupShape(const std::vector<LatticePoint>& points, CoplanarFaces coplanar)
+{
+  return shapeOf(PointRuns::of(points), coplanar);
+}
+
+} // namespace detail
 
 } // namespace vbr

@@ -434,6 +434,45 @@ bool hullsIntersect(const CellList& a, const CellList& b);
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,
   const std::array<std::int32_t, 3>& dims);
 
+namespace detail
+{
+/// For tests of the recursion's point lists and first hulls (see ConvexHullModifier.cxx). Runs
+/// are (lo, hi, y, z): the lattice points (x, y, z) for lo <= x <= hi, maximal, in row order.
+
+/// The runs of the points of class `cls` (1 object) among x = lo..hi of row (y, z), from the
+/// volume's words; every centre off the grid is background.
+std::vector<std::array<std::int64_t, 4>> runsOfRow(const BitVolume& objects,
+  bool cls,
+  std::int64_t lo,
+  std::int64_t hi,
+  std::int64_t y,
+  std::int64_t z);
+
+/// The runs of the lattice points of class `cls` in the solid hull `c` (its open interior when
+/// `strict`).
+std::vector<std::array<std::int64_t, 4>> runsOfClass(const CellList& c,
+  const BitVolume& objects,
+  bool cls,
+  bool strict);
+
+/// The x range [lo, hi] of row (y, z) in the intersection of the half spaces of c.planes
+/// (n.p <= offset, < when `strict`); false when it is empty. Unbounded sides are +-2^61.
+bool rowRange(const CellList& c,
+  bool strict,
+  std::int64_t y,
+  std::int64_t z,
+  std::int64_t& lo,
+  std::int64_t& hi);
+
+/// Of points in (z, y, x) order without repeats, the corners of each z-slice's polygon.
+std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends);
+
+/// A group's first hull as the recursion makes it from the points (in any order): the hull of
+/// its slices' corners, or of its rows' ends when that is flat.
+CellList groupShape(const std::vector<LatticePoint>& points,
+  CoplanarFaces coplanar = CoplanarFaces::Extension);
+} // namespace detail
+
 } // namespace vbr
 
 #endif
