@@ -953,8 +953,7 @@ public:
     OutputBuilder& builder)
     : Object(object)
     , Settings(settings)
-    , Exec(exec)
-    , Concurrent(vbr::streamBatch(exec) > 1)
+    , Exec(exec.sequential()) // the parts of a batch are prepared side by side, one a thread
     , Writer(writer)
     , Stats(stats)
     , Builder(builder)
@@ -988,17 +987,13 @@ private:
     Slot& s = *this->Slots[slot];
     countFaces(part, s.counts);
     s.faces = part.faces.size();
-    // Parts prepared side by side run alone each; a batch of one part may use the threads.
-    const vbr::Execution exec = this->Concurrent
-      ? this->Exec.sequential()
-      : this->Exec.forWork(static_cast<std::int64_t>(part.points.size()));
-    CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),
+    CellProgress progress{ vbr::ProgressPoll(this->Exec, 0.0, 1.0, 1024),
       std::max<std::size_t>(s.faces, 1) };
     vtkIdType faceBase = 0;
     const bool done = partCells(this->Object,
       part,
       this->Settings,
-      exec,
+      this->Exec,
       this->Writer.corners,
       true,
       faceBase,
@@ -1023,8 +1018,7 @@ private:
 
   const vbr::vtk::Selected& Object;
   const ObjectSettings& Settings;
-  const vbr::Execution& Exec; ///< silent: the sweep reports the progress
-  const bool Concurrent;
+  const vbr::Execution Exec; ///< on one thread, silent: the sweep reports the progress
   CellWriter& Writer;
   Statistics& Stats;
   OutputBuilder& Builder;
@@ -1035,9 +1029,9 @@ private:
 /// objects' faces are known from their voxels first (evmsAndCorners), so each chunk of planes
 /// of each object's sweeps gets its T-junction vertices and its cells as soon as it is swept,
 /// by the thread that swept it (StreamedObjectCells), and is released before the next chunks
-/// are swept. Memory: the output, the corners and the
-/// faces of the chunks being swept, never the faces of a whole object. The cells are those of
-/// appendObjects, in the same order. Stops when aborted.
+/// are swept. Memory: the output, the corners, and the faces and cells of the chunks being
+/// swept, never the faces of a whole object. The cells are those of appendObjects, in the same
+/// order. Stops when aborted.
 void appendObjectsStreamed(vtkAlgorithm* self,
   const std::vector<vbr::vtk::Selected>& objects,
   const ObjectSettings& settings,
