@@ -889,8 +889,10 @@ bool appendObjectCells(const vbr::vtk::Selected& object,
 }
 
 /// The EVM of every object of a 3D image and the corners of all their faces in one set (from
-/// the voxels, before any face is made), numbered as the output's points and added to them.
-/// False when aborted or when nothing is left to do (Surfels mode: the cells are written).
+/// the voxels, before any face is made), numbered as the output's points and added to them;
+/// per object, how many corners its faces have (with repeats across objects, about its faces'
+/// work: a checkerboard has few extreme vertices and a corner at every grid point). False when
+/// aborted or when nothing is left to do (Surfels mode: the cells are written).
 bool evmsAndCorners(vtkAlgorithm* self,
   const std::vector<vbr::vtk::Selected>& objects,
   const ObjectSettings& settings,
@@ -898,15 +900,18 @@ bool evmsAndCorners(vtkAlgorithm* self,
   Statistics& stats,
   OutputBuilder& builder,
   std::vector<vbr::EVM>& evms,
+  std::vector<std::size_t>& faceCorners,
   std::unique_ptr<vbr::CornerSet>& corners)
 {
   const std::size_t n = objects.size();
   evms.assign(n, vbr::EVM());
+  faceCorners.assign(n, 0);
   std::vector<Point3> points;
   for (std::size_t o = 0; o < n; ++o)
   {
     if (self->GetAbortExecute())
       return false;
+    const std::size_t before = points.size();
     const double from = 0.1 * o / n, to = 0.1 * (o + 1) / n;
     extremeVerticesOfObject(objects[o],
       settings,
@@ -915,6 +920,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
       builder,
       evms[o],
       &points);
+    faceCorners[o] = points.size() - before;
   }
   if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS || self->GetAbortExecute())
     return false;
@@ -1040,8 +1046,9 @@ void appendObjectsStreamed(vtkAlgorithm* self,
   OutputBuilder& builder)
 {
   std::vector<vbr::EVM> evms;
+  std::vector<std::size_t> faceCorners;
   std::unique_ptr<vbr::CornerSet> corners;
-  if (!evmsAndCorners(self, objects, settings, dims, stats, builder, evms, corners))
+  if (!evmsAndCorners(self, objects, settings, dims, stats, builder, evms, faceCorners, corners))
     return; // aborted, or Surfels mode
   vtkLogScopeF(TRACE, "faces (plane sweeps), T-junction vertices and output cells");
   CellWriter writer{ *corners, true };
@@ -1050,7 +1057,9 @@ void appendObjectsStreamed(vtkAlgorithm* self,
   {
     const double from = 0.2 + 0.8 * o / n, to = 0.2 + 0.8 * (o + 1) / n;
     const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to);
-    const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(evms[o].size()));
+    // The sweeps' work grows with the extreme vertices, the faces' with their corners.
+    const vbr::Execution local =
+      exec.forWork(static_cast<std::int64_t>(std::max(evms[o].size(), faceCorners[o])));
     const vbr::Execution quiet = local.silent(); // the sweep reports the progress
     if (evms[o].size() == 0)
       continue;

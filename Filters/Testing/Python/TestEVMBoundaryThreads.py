@@ -4,8 +4,10 @@ the same 32- or 64-bit storage), the same cell and field data. In 3D the faces a
 from the plane sweeps and each chunk's T-junction vertices and cells are made by the thread
 that swept it, then appended in order: this is what the test guards. Inputs: a porous volume
 (Gaussian-filtered noise, 45 % solid), the same mirrored with anisotropic spacing (cells
-reversed), and a map of three labels, each with more extreme vertices than the filter's
-threshold for threads (2^15, checked), every output mode, both face connectivities. The
+reversed), a map of three labels, each with more extreme vertices than the filter's
+threshold for threads (2^15, checked), and a checkerboard, whose few extreme vertices (on the
+box's border) make faces with a corner at every grid point (over 2^15 of them, which take
+the threads), every output mode, both face connectivities. The
 face and hole counts of the threaded run are also checked against scipy (independent).
 """
 
@@ -108,6 +110,8 @@ def main():
          [mirrored]),
         ("three labels", vt.make_image(label_map), True, None,
          [label_map == k for k in (1, 2, 3)]),
+        ("checkerboard", vt.make_image((np.indices((40, 40, 40)).sum(axis=0) % 2).astype(
+            np.uint8)), False, None, []),
     ]
     for name, image, labels, reference, objects in inputs:
         # Each object has enough extreme vertices for its sweeps to take the threads.
