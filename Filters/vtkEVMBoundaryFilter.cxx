@@ -80,10 +80,179 @@ bool reversesOrientation(const vbr::vtk::VoxelGrid& grid, const std::array<int, 
   return odd != grid.mirrorsSpace();
 }
 
-/// Builds the output polydata: shared points, then cells and their attributes gathered in
-/// plain arrays (MallocBuffer, CellArrayBuffer) that VTK takes over at the end. Per cell only what
-/// varies is kept (corners, offset, FaceId, LoopType; ParentFace and Depth for 2D images only); the
-/// Label is kept once per run of cells of one object.
+/// Cells and their attributes in plain arrays (MallocBuffer, CellArrayBuffer), in the order
+/// written: the output's, or one part's, made on a worker thread and then appended to the
+/// output's (append). Per cell only what varies is kept (corners, offset, FaceId, LoopType;
+/// ParentFace and Depth for 2D images only); the Label is kept once per run of cells of one
+/// object.
+class CellStore
+{
+public:
+  CellStore(bool planar, bool reverse)
+    : Planar(planar)
+    , Reverse(reverse)
+  {
+  }
+
+  void addCell(const vtkIdType* ids,
+    std::size_t n,
+    vtkIdType faceId,
+    int loopType,
+    const vbr::vtk::LabelValue& label,
+    vtkIdType parent,
+    int depth)
+  {
+    this->startLabel(label);
+    this->Cells.addCell(ids, n, this->Reverse);
+    this->FaceId.push_back(faceId);
+    this->LoopType.push_back(loopType);
+    if (this->Planar)
+    {
+      this->ParentFace.push_back(parent);
+      this->Depth.push_back(depth);
+    }
+  }
+
+  /// The cells of one face, in a run of faces' cells (triangles or fan polygons): cell k has
+  /// the points `pointIds[corners[j]]` for j in [ends[k - 1], ends[k]) (ends[-1] = `begin`).
+  /// The same as addCell cell after cell, with the face's attributes and label added once.
+  /// `ids` is scratch space.
+  void addFaceCells(const int* corners,
+    std::size_t begin,
+    const std::uint32_t* ends,
+    std::size_t count,
+    const std::int64_t* pointIds,
+    vtkIdType faceId,
+    const vbr::vtk::LabelValue& label,
+    vtkIdType parent,
+    int depth,
+    std::vector<vtkIdType>& ids)
+  {
+    if (count == 0)
+      return;
+    this->startLabel(label);
+    ids.resize(ends[count - 1] - begin);
+    for (std::size_t j = begin; j < ends[count - 1]; ++j)
+      ids[j - begin] = static_cast<vtkIdType>(pointIds[corners[j]]);
+    this->Cells.addCells(ids.data(), ends, count, begin, this->Reverse);
+    std::fill_n(this->FaceId.extend(count), count, faceId);
+    std::fill_n(this->LoopType.extend(count), count, 0);
+    if (this->Planar)
+    {
+      std::fill_n(this->ParentFace.extend(count), count, parent);
+      std::fill_n(this->Depth.extend(count), count, depth);
+    }
+  }
+
+  /// Appends the cells of `part` (made with face ids from 0) with their face ids, and parent
+  /// faces, shifted by `faceBase`: the same cells as if they had been added here. `part` is
+  /// then empty, its memory kept for its next cells.
+  void append(CellStore& part, vtkIdType faceBase)
+  {
+    const vtkIdType cells = static_cast<vtkIdType>(this->FaceId.size());
+    for (const auto& run : part.LabelRuns)
+      if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == run.second))
+        this->LabelRuns.emplace_back(cells + run.first, run.second);
+    this->Cells.append(part.Cells);
+    appendShifted(this->FaceId, part.FaceId, faceBase);
+    appendShifted(this->LoopType, part.LoopType, 0);
+    if (this->Planar)
+    {
+      appendShifted(this->ParentFace, part.ParentFace, faceBase);
+      appendShifted(this->Depth, part.Depth, 0);
+    }
+    part.clearKeepingMemory();
+  }
+
+  void finish(vtkPolyData* output, bool lines, int labelType)
+  {
+    const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
+    vtkSmartPointer<vtkCellArray> cells = this->Cells.release();
+    if (lines)
+      output->SetLines(cells);
+    else
+      output->SetPolys(cells);
+
+    vtkCellData* cd = output->GetCellData();
+    cd->AddArray(named(toArray<vtkIdTypeArray>(this->FaceId), "FaceId"));
+    cd->AddArray(named(toArray<vtkIntArray>(this->LoopType), "LoopType"));
+    cd->AddArray(this->labelArray(labelType, cellCount));
+    if (this->Planar)
+    {
+      cd->AddArray(named(toArray<vtkIdTypeArray>(this->ParentFace), "ParentFace"));
+      cd->AddArray(named(toArray<vtkIntArray>(this->Depth), "Depth"));
+    }
+  }
+
+private:
+  void startLabel(const vbr::vtk::LabelValue& label)
+  {
+    if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
+      this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->FaceId.size()), label);
+  }
+
+  /// Appends `from` to `to`, the ids (values >= 0; -1 stands for none) shifted by `base`.
+  template<typename Value>
+  static void appendShifted(MallocBuffer<Value>& to, const MallocBuffer<Value>& from, Value base)
+  {
+    const std::size_t n = from.size();
+    const Value* in = from.data();
+    Value* out = to.extend(n);
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = in[i] < 0 ? in[i] : in[i] + base;
+  }
+
+  void clearKeepingMemory()
+  {
+    this->Cells.clearKeepingMemory();
+    this->FaceId.clearKeepingMemory();
+    this->ParentFace.clearKeepingMemory();
+    this->LoopType.clearKeepingMemory();
+    this->Depth.clearKeepingMemory();
+    this->LabelRuns.clear();
+  }
+
+  /// The Label of every cell from the runs.
+  vtkSmartPointer<vtkDataArray> labelArray(int labelType, vtkIdType cellCount)
+  {
+    vtkSmartPointer<vtkDataArray> label = vbr::vtk::newLabelArray(labelType, cellCount);
+    for (std::size_t r = 0; r < this->LabelRuns.size(); ++r)
+    {
+      const vtkIdType end =
+        r + 1 < this->LabelRuns.size() ? this->LabelRuns[r + 1].first : cellCount;
+      vbr::vtk::fillLabel(label, this->LabelRuns[r].first, end, this->LabelRuns[r].second);
+    }
+    std::vector<std::pair<vtkIdType, vbr::vtk::LabelValue>>().swap(this->LabelRuns);
+    return label;
+  }
+
+  template<typename ArrayType>
+  static vtkSmartPointer<ArrayType> named(vtkSmartPointer<ArrayType> a, const char* name)
+  {
+    a->SetName(name);
+    return a;
+  }
+
+  /// A VTK array that takes over the values of `v`.
+  template<typename ArrayType, typename Value>
+  static vtkSmartPointer<ArrayType> toArray(MallocBuffer<Value>& v)
+  {
+    auto a = vtkSmartPointer<ArrayType>::New();
+    v.handTo(a.GetPointer());
+    return a;
+  }
+
+  const bool Planar;  ///< a 2D image: the cells carry ParentFace and Depth
+  const bool Reverse; ///< world coordinates mirror the processing axes: reverse every cell
+  vbr::vtk::CellArrayBuffer Cells;
+  MallocBuffer<vtkIdType> FaceId, ParentFace;
+  MallocBuffer<int> LoopType;
+  MallocBuffer<int> Depth;
+  std::vector<std::pair<vtkIdType, vbr::vtk::LabelValue>> LabelRuns; ///< (first cell, label)
+};
+
+/// Builds the output polydata: shared points, then cells and their attributes (CellStore),
+/// gathered in plain arrays that VTK takes over at the end.
 class OutputBuilder
 {
 public:
@@ -93,8 +262,15 @@ public:
     , Planar(planar)
     , Reverse(reversesOrientation(grid, axes))
     , Packer(vbr::KeyPacker::forMaximum(std::max({ grid.dims[0], grid.dims[1], grid.dims[2] })))
+    , Cells(planar, this->Reverse)
   {
   }
+
+  /// The output's cells.
+  CellStore& cells() { return this->Cells; }
+
+  /// An empty store for cells written apart and appended to cells() later.
+  CellStore newPartStore() const { return CellStore(this->Planar, this->Reverse); }
 
   /// Point ids of grid vertices given in an object's coordinates (permuted axes) plus its
   /// offset; vertices shared by several objects (labels) get one point.
@@ -160,58 +336,6 @@ public:
     }
   }
 
-  void addCell(const vtkIdType* ids,
-    std::size_t n,
-    vtkIdType faceId,
-    int loopType,
-    const vbr::vtk::LabelValue& label,
-    vtkIdType parent,
-    int depth)
-  {
-    if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
-      this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->FaceId.size()), label);
-    this->Cells.addCell(ids, n, this->Reverse);
-    this->FaceId.push_back(faceId);
-    this->LoopType.push_back(loopType);
-    if (this->Planar)
-    {
-      this->ParentFace.push_back(parent);
-      this->Depth.push_back(depth);
-    }
-  }
-
-  /// The cells of one face, in a run of faces' cells (triangles or fan polygons): cell k has
-  /// the points `pointIds[corners[j]]` for j in [ends[k - 1], ends[k]) (ends[-1] = `begin`).
-  /// The same as addCell cell after cell, with the face's attributes and label added once.
-  /// `ids` is scratch space.
-  void addFaceCells(const int* corners,
-    std::size_t begin,
-    const std::uint32_t* ends,
-    std::size_t count,
-    const std::int64_t* pointIds,
-    vtkIdType faceId,
-    const vbr::vtk::LabelValue& label,
-    vtkIdType parent,
-    int depth,
-    std::vector<vtkIdType>& ids)
-  {
-    if (count == 0)
-      return;
-    if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
-      this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->FaceId.size()), label);
-    ids.resize(ends[count - 1] - begin);
-    for (std::size_t j = begin; j < ends[count - 1]; ++j)
-      ids[j - begin] = static_cast<vtkIdType>(pointIds[corners[j]]);
-    this->Cells.addCells(ids.data(), ends, count, begin, this->Reverse);
-    std::fill_n(this->FaceId.extend(count), count, faceId);
-    std::fill_n(this->LoopType.extend(count), count, 0);
-    if (this->Planar)
-    {
-      std::fill_n(this->ParentFace.extend(count), count, parent);
-      std::fill_n(this->Depth.extend(count), count, depth);
-    }
-  }
-
   void finish(vtkPolyData* output, bool lines, int labelType)
   {
     vtkNew<vtkDoubleArray> coordinates;
@@ -220,23 +344,7 @@ public:
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
     output->SetPoints(points);
-
-    const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
-    vtkSmartPointer<vtkCellArray> cells = this->Cells.release();
-    if (lines)
-      output->SetLines(cells);
-    else
-      output->SetPolys(cells);
-
-    vtkCellData* cd = output->GetCellData();
-    cd->AddArray(named(toArray<vtkIdTypeArray>(this->FaceId), "FaceId"));
-    cd->AddArray(named(toArray<vtkIntArray>(this->LoopType), "LoopType"));
-    cd->AddArray(this->labelArray(labelType, cellCount));
-    if (this->Planar)
-    {
-      cd->AddArray(named(toArray<vtkIdTypeArray>(this->ParentFace), "ParentFace"));
-      cd->AddArray(named(toArray<vtkIntArray>(this->Depth), "Depth"));
-    }
+    this->Cells.finish(output, lines, labelType);
   }
 
 private:
@@ -252,42 +360,6 @@ private:
       this->Coordinates.push_back(c);
   }
 
-  /// The Label of every cell from the runs.
-  vtkSmartPointer<vtkDataArray> labelArray(int labelType, vtkIdType cellCount)
-  {
-    vtkSmartPointer<vtkDataArray> label = vbr::vtk::newLabelArray(labelType, cellCount);
-    for (std::size_t r = 0; r < this->LabelRuns.size(); ++r)
-    {
-      const vtkIdType end =
-        r + 1 < this->LabelRuns.size() ? this->LabelRuns[r + 1].first : cellCount;
-      vbr::vtk::fillLabel(label, this->LabelRuns[r].first, end, this->LabelRuns[r].second);
-    }
-    release(this->LabelRuns);
-    return label;
-  }
-
-  template<typename V>
-  static void release(V& values)
-  {
-    V().swap(values);
-  }
-
-  template<typename ArrayType>
-  static vtkSmartPointer<ArrayType> named(vtkSmartPointer<ArrayType> a, const char* name)
-  {
-    a->SetName(name);
-    return a;
-  }
-
-  /// A VTK array that takes over the values of `v`.
-  template<typename ArrayType, typename Value>
-  static vtkSmartPointer<ArrayType> toArray(MallocBuffer<Value>& v)
-  {
-    auto a = vtkSmartPointer<ArrayType>::New();
-    v.handTo(a.GetPointer());
-    return a;
-  }
-
   const vbr::vtk::VoxelGrid& Grid;
   const std::array<int, 3> Axes;
   const bool Planar;  ///< a 2D image: the cells carry ParentFace and Depth
@@ -295,11 +367,7 @@ private:
   const vbr::KeyPacker Packer;
   vbr::GridPointIndex Index;
   MallocBuffer<double> Coordinates;
-  vbr::vtk::CellArrayBuffer Cells;
-  MallocBuffer<vtkIdType> FaceId, ParentFace;
-  MallocBuffer<int> LoopType;
-  MallocBuffer<int> Depth;
-  std::vector<std::pair<vtkIdType, vbr::vtk::LabelValue>> LabelRuns; ///< (first cell, label)
+  CellStore Cells;
 };
 
 /// One cell per surfel (a unit square, or a unit segment of a 2D image), pixel on the left.
@@ -339,7 +407,7 @@ void appendSurfelCells(const vbr::vtk::Selected& object,
   const std::vector<vtkIdType> ids = builder.pointIds(corners, object.offset);
   for (std::size_t i = 0; i < surfels.size(); ++i)
   {
-    builder.addCell(ids.data() + n * i, n, -1, 0, object.label, -1, 0);
+    builder.cells().addCell(ids.data() + n * i, n, -1, 0, object.label, -1, 0);
   }
 }
 
@@ -373,10 +441,10 @@ void appendRunCells(const vbr::FaceCells& run,
   std::size_t i,
   const FaceCellContext& c,
   std::vector<vtkIdType>& ids,
-  OutputBuilder& builder)
+  CellStore& out)
 {
   const std::size_t first = run.cellBegin(i);
-  builder.addFaceCells(run.corners.data(),
+  out.addFaceCells(run.corners.data(),
     run.cornerBegin(first),
     run.cellEnds.data() + first,
     run.faceEnds[i] - first,
@@ -394,7 +462,7 @@ void appendLoops(const vbr::BRep& brep,
   const FaceCellContext& c,
   bool closePolylines,
   std::vector<vtkIdType>& ids,
-  OutputBuilder& builder)
+  CellStore& out)
 {
   const std::int64_t* first = c.corner - brep.loops[face.firstLoop].begin; // ids of all corners
   for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
@@ -403,7 +471,7 @@ void appendLoops(const vbr::BRep& brep,
     ids.assign(first + loop.begin, first + loop.end);
     if (closePolylines)
       ids.push_back(ids.front());
-    builder.addCell(ids.data(),
+    out.addCell(ids.data(),
       ids.size(),
       c.faceId,
       loop.hole ? 1 : 0,
@@ -431,7 +499,7 @@ bool appendFaceCells(const vbr::BRep& brep,
   std::size_t first,
   std::size_t end,
   CellProgress& progress,
-  OutputBuilder& builder)
+  CellStore& out)
 {
   const bool fromRuns = cellsFromRuns(mode);
   std::vector<vtkIdType> ids;
@@ -448,12 +516,12 @@ bool appendFaceCells(const vbr::BRep& brep,
       cornerIds.data() + brep.loops[face.firstLoop].begin };
     if (!fromRuns)
     {
-      appendLoops(brep, face, c, mode == vtkEVMBoundaryFilter::POLYLINES, ids, builder);
+      appendLoops(brep, face, c, mode == vtkEVMBoundaryFilter::POLYLINES, ids, out);
       continue;
     }
     while (run + 1 < cells.firstFace.size() && cells.firstFace[run + 1] <= f)
       ++run;
-    appendRunCells(cells.runs[run], f - cells.firstFace[run], c, ids, builder);
+    appendRunCells(cells.runs[run], f - cells.firstFace[run], c, ids, out);
   }
   return true;
 }
@@ -611,7 +679,7 @@ bool appendBoundaryCells(const vbr::vtk::Selected& object,
   const vbr::Execution& exec,
   vtkIdType& faceBase,
   CellProgress& progress,
-  OutputBuilder& builder)
+  CellStore& out)
 {
   constexpr std::size_t SliceOfFaces = std::size_t(1) << 16;
   const int mode = settings.outputMode;
@@ -622,8 +690,7 @@ bool appendBoundaryCells(const vbr::vtk::Selected& object,
   {
     const std::size_t end = std::min(faces, first + SliceOfFaces);
     const FaceRuns cells = fromRuns ? cellsOfFaces(brep, mode, first, end, exec) : FaceRuns();
-    if (!appendFaceCells(
-          brep, cornerIds, cells, object, mode, faceBase, first, end, progress, builder))
+    if (!appendFaceCells(brep, cornerIds, cells, object, mode, faceBase, first, end, progress, out))
       return false;
   }
   faceBase += static_cast<vtkIdType>(faces);
@@ -631,23 +698,38 @@ bool appendBoundaryCells(const vbr::vtk::Selected& object,
   return true;
 }
 
-/// Releases a part of the faces and, once the parts released since the last time hold 32 MB
-/// or more, returns the heap's free pages to the system. The parts live in the heap and the
-/// output's large arrays in pages of their own, which never reuse the heap's free space:
-/// without this the parts released would stay resident next to the output that replaces them.
-/// Small outputs never pay for it.
-void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
+/// Releases a part of the faces; returns the bytes it held.
+std::size_t releaseFaces(vbr::BRep& part)
 {
-  releasedBytes += part.faces.capacity() * sizeof(vbr::BRepFace) +
+  const std::size_t bytes = part.faces.capacity() * sizeof(vbr::BRepFace) +
     part.loops.capacity() * sizeof(vbr::BRepLoop) + part.points.capacity() * sizeof(Point3);
   part = vbr::BRep();
+  return bytes;
+}
+
+/// Once the parts of the faces released since the last time hold 32 MB or more, returns the
+/// heap's free pages to the system. The parts live in the heap and the output's large arrays
+/// in pages of their own, which never reuse the heap's free space: without this the parts
+/// released would stay resident next to the output that replaces them. Small outputs never
+/// pay for it. On the calling thread, while no worker allocates.
+void trimHeap(std::size_t& releasedBytes)
+{
 #if defined(__GLIBC__)
   if (releasedBytes >= (std::size_t(32) << 20))
   {
     malloc_trim(0);
     releasedBytes = 0;
   }
+#else
+  (void)releasedBytes;
 #endif
+}
+
+/// Releases a part of the faces, and trims the heap when enough was released (trimHeap).
+void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
+{
+  releasedBytes += releaseFaces(part);
+  trimHeap(releasedBytes);
 }
 
 /// The cells of the only object of a 2D image: its faces from the 2D plane sweep, which
@@ -687,7 +769,7 @@ void appendPlanarObject(vtkAlgorithm* self,
     exec.forWork(static_cast<std::int64_t>(faces.numbers.size())),
     faceBase,
     progress,
-    builder);
+    builder.cells());
 }
 
 /// The faces of every object (in Surfels mode its cells instead), in parts, object by object.
@@ -739,6 +821,28 @@ struct CellWriter
   std::size_t releasedBytes = 0;
 };
 
+/// The T-junction vertices (with `tJunctions`) and the cells of one part of an object's
+/// faces, into `out`, their face ids from `faceBase` (moved past the part's faces). False when
+/// aborted.
+bool partCells(const vbr::vtk::Selected& object,
+  vbr::BRep& part,
+  const ObjectSettings& settings,
+  const vbr::Execution& exec,
+  const vbr::CornerSet& corners,
+  bool tJunctions,
+  vtkIdType& faceBase,
+  CellProgress& progress,
+  CellStore& out)
+{
+  std::vector<std::int64_t> numbers = corners.numbersOf(part, object.offset);
+  if (tJunctions)
+  {
+    vtkLogScopeF(TRACE, "T-junction vertices");
+    vbr::insertTJunctionVertices(part, numbers, corners, object.offset, exec);
+  }
+  return appendBoundaryCells(object, part, numbers, settings, exec, faceBase, progress, out);
+}
+
 /// One part of an object's faces: its T-junction vertices (when the writer inserts them), its
 /// cells, then it is released as soon as written. False when aborted.
 bool writePart(const vbr::vtk::Selected& object,
@@ -750,14 +854,15 @@ bool writePart(const vbr::vtk::Selected& object,
   OutputBuilder& builder)
 {
   const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
-  std::vector<std::int64_t> numbers = writer.corners.numbersOf(part, object.offset);
-  if (writer.tJunctions)
-  {
-    vtkLogScopeF(TRACE, "T-junction vertices");
-    vbr::insertTJunctionVertices(part, numbers, writer.corners, object.offset, exec);
-  }
-  if (!appendBoundaryCells(
-        object, part, numbers, settings, exec, writer.faceBase, progress, builder))
+  if (!partCells(object,
+        part,
+        settings,
+        exec,
+        writer.corners,
+        writer.tJunctions,
+        writer.faceBase,
+        progress,
+        builder.cells()))
     return false;
   releasePart(part, writer.releasedBytes);
   return true;
@@ -784,8 +889,10 @@ bool appendObjectCells(const vbr::vtk::Selected& object,
 }
 
 /// The EVM of every object of a 3D image and the corners of all their faces in one set (from
-/// the voxels, before any face is made), numbered as the output's points and added to them.
-/// False when aborted or when nothing is left to do (Surfels mode: the cells are written).
+/// the voxels, before any face is made), numbered as the output's points and added to them;
+/// per object, how many corners its faces have (with repeats across objects, about its faces'
+/// work: a checkerboard has few extreme vertices and a corner at every grid point). False when
+/// aborted or when nothing is left to do (Surfels mode: the cells are written).
 bool evmsAndCorners(vtkAlgorithm* self,
   const std::vector<vbr::vtk::Selected>& objects,
   const ObjectSettings& settings,
@@ -793,15 +900,18 @@ bool evmsAndCorners(vtkAlgorithm* self,
   Statistics& stats,
   OutputBuilder& builder,
   std::vector<vbr::EVM>& evms,
+  std::vector<std::size_t>& faceCorners,
   std::unique_ptr<vbr::CornerSet>& corners)
 {
   const std::size_t n = objects.size();
   evms.assign(n, vbr::EVM());
+  faceCorners.assign(n, 0);
   std::vector<Point3> points;
   for (std::size_t o = 0; o < n; ++o)
   {
     if (self->GetAbortExecute())
       return false;
+    const std::size_t before = points.size();
     const double from = 0.1 * o / n, to = 0.1 * (o + 1) / n;
     extremeVerticesOfObject(objects[o],
       settings,
@@ -810,6 +920,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
       builder,
       evms[o],
       &points);
+    faceCorners[o] = points.size() - before;
   }
   if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS || self->GetAbortExecute())
     return false;
@@ -823,29 +934,110 @@ bool evmsAndCorners(vtkAlgorithm* self,
   return true;
 }
 
-/// The cells of one part of an object's faces: its T-junction vertices, then its cells; then
-/// it is released. False when aborted.
-bool appendPartCells(const vbr::vtk::Selected& object,
-  vbr::BRep& part,
-  const ObjectSettings& settings,
-  const vbr::Execution& objectExec,
-  CellWriter& writer,
-  Statistics& stats,
-  OutputBuilder& builder)
+/// Adds the counts of faces, holes and non-manifold vertices of `from` to `to`.
+void addFaceCounts(const Statistics& from, Statistics& to)
 {
-  countFaces(part, stats);
-  const vbr::Execution exec = objectExec.forWork(static_cast<std::int64_t>(part.points.size()));
-  CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),
-    std::max<std::size_t>(part.faces.size(), 1) };
-  return writePart(object, part, settings, objectExec, writer, progress, builder);
+  to.faces += from.faces;
+  to.holes += from.holes;
+  to.nonManifoldVertices += from.nonManifoldVertices;
 }
+
+/// The cells of one object's faces as its plane sweeps stream them (planeSweep3DStream): each
+/// part's counts, T-junction vertices and cells are made by the thread that swept it (prepare)
+/// into the part's slot, with face ids from 0, and the part is released; the slots are then
+/// appended to the output in the parts' order on the calling thread (append), their face ids
+/// shifted past the faces before. The output is the one that writing the parts one after the
+/// other would give, cell for cell. Memory: the cells of one batch of parts twice at most.
+class StreamedObjectCells
+{
+public:
+  StreamedObjectCells(const vbr::vtk::Selected& object,
+    const ObjectSettings& settings,
+    const vbr::Execution& exec,
+    CellWriter& writer,
+    Statistics& stats,
+    OutputBuilder& builder)
+    : Object(object)
+    , Settings(settings)
+    , Exec(exec.sequential()) // the parts of a batch are prepared side by side, one a thread
+    , Writer(writer)
+    , Stats(stats)
+    , Builder(builder)
+  {
+    const std::size_t slots = vbr::streamBatch(exec);
+    this->Slots.reserve(slots);
+    for (std::size_t s = 0; s < slots; ++s)
+      this->Slots.emplace_back(new Slot{ builder.newPartStore(), {}, 0, 0 });
+  }
+
+  vbr::StreamedPartHandlers handlers()
+  {
+    return { [this](vbr::BRep& part, std::size_t slot) { return this->prepare(part, slot); },
+      [this](vbr::BRep&, std::size_t slot) { return this->append(slot); } };
+  }
+
+private:
+  /// One part's counts and cells, made on the thread that swept it.
+  struct Slot
+  {
+    CellStore cells;
+    Statistics counts;
+    std::size_t faces;
+    std::size_t releasedBytes;
+  };
+
+  /// On a worker thread (concurrently with the batch's other parts, each in its own slot):
+  /// nothing shared is written, and only the abort is polled.
+  bool prepare(vbr::BRep& part, std::size_t slot)
+  {
+    Slot& s = *this->Slots[slot];
+    countFaces(part, s.counts);
+    s.faces = part.faces.size();
+    CellProgress progress{ vbr::ProgressPoll(this->Exec, 0.0, 1.0, 1024),
+      std::max<std::size_t>(s.faces, 1) };
+    vtkIdType faceBase = 0;
+    const bool done = partCells(this->Object,
+      part,
+      this->Settings,
+      this->Exec,
+      this->Writer.corners,
+      true,
+      faceBase,
+      progress,
+      s.cells);
+    s.releasedBytes = releaseFaces(part);
+    return done;
+  }
+
+  /// On the calling thread, slot after slot in the parts' order.
+  bool append(std::size_t slot)
+  {
+    Slot& s = *this->Slots[slot];
+    this->Builder.cells().append(s.cells, this->Writer.faceBase);
+    this->Writer.faceBase += static_cast<vtkIdType>(s.faces);
+    addFaceCounts(s.counts, this->Stats);
+    s.counts = Statistics();
+    this->Writer.releasedBytes += s.releasedBytes;
+    trimHeap(this->Writer.releasedBytes);
+    return true;
+  }
+
+  const vbr::vtk::Selected& Object;
+  const ObjectSettings& Settings;
+  const vbr::Execution Exec; ///< on one thread, silent: the sweep reports the progress
+  CellWriter& Writer;
+  Statistics& Stats;
+  OutputBuilder& Builder;
+  std::vector<std::unique_ptr<Slot>> Slots;
+};
 
 /// The cells of every object of a 3D image (paper 000), streamed: the corners of all the
 /// objects' faces are known from their voxels first (evmsAndCorners), so each chunk of planes
 /// of each object's sweeps gets its T-junction vertices and its cells as soon as it is swept,
-/// and is released before the next chunks are swept. Memory: the output, the corners and the
-/// faces of the chunks being swept, never the faces of a whole object. The cells are those of
-/// appendObjects, in the same order. Stops when aborted.
+/// by the thread that swept it (StreamedObjectCells), and is released before the next chunks
+/// are swept. Memory: the output, the corners, and the faces and cells of the chunks being
+/// swept, never the faces of a whole object. The cells are those of appendObjects, in the same
+/// order. Stops when aborted.
 void appendObjectsStreamed(vtkAlgorithm* self,
   const std::vector<vbr::vtk::Selected>& objects,
   const ObjectSettings& settings,
@@ -854,8 +1046,9 @@ void appendObjectsStreamed(vtkAlgorithm* self,
   OutputBuilder& builder)
 {
   std::vector<vbr::EVM> evms;
+  std::vector<std::size_t> faceCorners;
   std::unique_ptr<vbr::CornerSet> corners;
-  if (!evmsAndCorners(self, objects, settings, dims, stats, builder, evms, corners))
+  if (!evmsAndCorners(self, objects, settings, dims, stats, builder, evms, faceCorners, corners))
     return; // aborted, or Surfels mode
   vtkLogScopeF(TRACE, "faces (plane sweeps), T-junction vertices and output cells");
   CellWriter writer{ *corners, true };
@@ -864,14 +1057,17 @@ void appendObjectsStreamed(vtkAlgorithm* self,
   {
     const double from = 0.2 + 0.8 * o / n, to = 0.2 + 0.8 * (o + 1) / n;
     const vbr::Execution exec = vbr::vtk::makeExecution(self, from, to);
-    const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(evms[o].size()));
+    // The sweeps' work grows with the extreme vertices, the faces' with their corners.
+    const vbr::Execution local =
+      exec.forWork(static_cast<std::int64_t>(std::max(evms[o].size(), faceCorners[o])));
     const vbr::Execution quiet = local.silent(); // the sweep reports the progress
-    if (evms[o].size() != 0 &&
-      !vbr::planeSweep3DStream(std::move(evms[o]), // freed once sorted
-        settings.connectivity,
-        local,
-        [&](vbr::BRep& part)
-        { return appendPartCells(objects[o], part, settings, quiet, writer, stats, builder); }))
+    if (evms[o].size() == 0)
+      continue;
+    StreamedObjectCells cells(objects[o], settings, quiet, writer, stats, builder);
+    if (!vbr::planeSweep3DStream(std::move(evms[o]), // freed once sorted
+          settings.connectivity,
+          local,
+          cells.handlers()))
       return; // aborted
     evms[o] = vbr::EVM();
   }

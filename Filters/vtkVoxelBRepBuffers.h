@@ -65,6 +65,8 @@ public:
     this->Data = static_cast<T*>(grown);
     this->Capacity = capacity;
   }
+  /// Empties the buffer and keeps its memory for the next values.
+  void clearKeepingMemory() { this->Size = 0; }
   /// Empties the buffer and frees its memory.
   void clear()
   {
@@ -151,6 +153,31 @@ public:
       this->Narrow.appendCells(ids, ends, count, first, reverse);
   }
 
+  /// Appends the cells of `other` after these: the same arrays (and the same 32- or 64-bit
+  /// choice) as adding its cells here one after the other, as it got them.
+  void append(const CellArrayBuffer& other)
+  {
+    const std::int64_t end =
+      static_cast<std::int64_t>(this->connectivitySize() + other.connectivitySize());
+    if (!this->Wide && (end > this->NarrowLimit || !other.fitsIn(this->NarrowLimit)))
+      this->widen();
+    if (other.Wide)
+      this->appendIds(other.Large);
+    else
+      this->appendIds(other.Narrow);
+  }
+
+  /// Empties the buffer (back to 32 bits) and keeps its memory for the next cells.
+  void clearKeepingMemory()
+  {
+    this->Narrow.Offsets.clearKeepingMemory();
+    this->Narrow.Connectivity.clearKeepingMemory();
+    this->Large.Offsets.clearKeepingMemory();
+    this->Large.Connectivity.clearKeepingMemory();
+    this->Narrow.Offsets.push_back(0);
+    this->Wide = false;
+  }
+
   /// Hands the cells to a new vtkCellArray (32- or 64-bit storage); the buffer is then empty.
   vtkSmartPointer<vtkCellArray> release()
   {
@@ -200,6 +227,19 @@ private:
         from = to;
       }
     }
+    /// Appends all the cells of `from`, whose offsets start at 0.
+    template<typename U>
+    void appendAll(const Ids<U>& from)
+    {
+      const std::size_t base = this->Connectivity.size();
+      const std::size_t n = from.Connectivity.size(), count = from.Offsets.size() - 1;
+      std::copy(
+        from.Connectivity.data(), from.Connectivity.data() + n, this->Connectivity.extend(n));
+      const U* offsets = from.Offsets.data() + 1;
+      T* out = this->Offsets.extend(count);
+      for (std::size_t k = 0; k < count; ++k)
+        out[k] = static_cast<T>(base + static_cast<std::size_t>(offsets[k]));
+    }
     template<typename ArrayType>
     void handTo(vtkCellArray* cells)
     {
@@ -218,6 +258,29 @@ private:
       if (static_cast<std::int64_t>(ids[i]) > this->NarrowLimit)
         return false;
     return true;
+  }
+
+  /// Whether every id of these cells is at most `limit`.
+  bool fitsIn(std::int64_t limit) const
+  {
+    if (!this->Wide && this->NarrowLimit <= limit)
+      return true; // all narrow ids are at most NarrowLimit
+    const auto fit = [limit](const auto& ids)
+    {
+      const auto* data = ids.Connectivity.data();
+      return std::all_of(
+        data, data + ids.Connectivity.size(), [limit](std::int64_t id) { return id <= limit; });
+    };
+    return this->Wide ? fit(this->Large) : fit(this->Narrow);
+  }
+
+  template<typename U>
+  void appendIds(const Ids<U>& from)
+  {
+    if (this->Wide)
+      this->Large.appendAll(from);
+    else
+      this->Narrow.appendAll(from);
   }
 
   /// Copies the 32-bit ids into 64-bit ones, once. Both copies exist for a moment (12 bytes

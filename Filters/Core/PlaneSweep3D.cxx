@@ -26,6 +26,9 @@
 // The last chunk of a batch hands its exit section to the first chunk of the next, so only the
 // sections entering the batch's other chunks are found by sequential XORs (findEntering): none
 // on one thread; with rows of bits, by a walker BitSection XORing whole cuts into its rows.
+// Each chunk's part is prepared (StreamedPartHandlers::prepare) by the thread that swept it,
+// and the batch's parts are appended in order on the calling thread: the caller's work per
+// part runs on the threads too, all but what must follow the order.
 
 #include "PlaneSweep3D.h"
 
@@ -506,18 +509,19 @@ void findEntering(const PlaneChunk& entering,
 }
 
 /// Sweeps the planes of one sorting in chunks of `step` planes, `batch` chunks at a time
-/// (concurrently), each batch's parts handed to consume in order before the next batch is
-/// swept. `planesDone` (of `planesAll`, for the progress) counts the planes swept so far.
+/// (concurrently), each part prepared by the thread that swept it, then the batch's parts
+/// appended in order before the next batch is swept. `planesDone` (of `planesAll`, for the
+/// progress) counts the planes swept so far.
 bool streamSorting(const EVM& sorted,
   FaceConnectivity connectivity,
   const Execution& exec,
-  const std::function<bool(BRep&)>& consume,
+  const StreamedPartHandlers& handlers,
   std::size_t& planesDone,
   std::size_t planesAll)
 {
   const std::vector<std::size_t> starts = sorted.planeStarts();
   const std::size_t planes = starts.size() - 1;
-  const std::size_t batch = static_cast<std::size_t>(std::max(1, exec.concurrency));
+  const std::size_t batch = streamBatch(exec);
   const std::size_t step = std::max<std::size_t>(1, (planes + StreamChunks - 1) / StreamChunks);
   SectionBox box;
   const SectionBox* bitBox = bitRowsOf(sorted, planes, box) ? &box : nullptr;
@@ -541,16 +545,20 @@ bool streamSorting(const EVM& sorted,
       [&](std::int64_t b, std::int64_t e)
       {
         for (std::int64_t c = b; c < e; ++c)
+        {
+          const std::size_t slot = static_cast<std::size_t>(c);
           if (!sweepChunk(chunks[c],
                 connectivity,
                 exec,
                 abort,
                 parts[c],
-                static_cast<std::size_t>(c) == last ? &entering : nullptr))
+                slot == last ? &entering : nullptr) ||
+            abort || (handlers.prepare && !handlers.prepare(parts[c], slot)))
             abort = true;
+        }
       });
-    for (BRep& part : parts)
-      if (abort || !consume(part))
+    for (std::size_t slot = 0; slot < parts.size(); ++slot)
+      if (abort || !handlers.append(parts[slot], slot))
         return false;
     planesDone += p - chunks.front().firstPlane;
     if (!exec.report(double(planesDone) / double(std::max<std::size_t>(planesAll, 1))))
@@ -561,10 +569,26 @@ bool streamSorting(const EVM& sorted,
 
 } // namespace
 
+std::size_t streamBatch(const Execution& exec)
+{
+  return static_cast<std::size_t>(std::max(1, exec.concurrency));
+}
+
 bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
   const std::function<bool(BRep&)>& consume)
+{
+  return planeSweep3DStream(std::move(evm),
+    connectivity,
+    exec,
+    StreamedPartHandlers{ nullptr, [&](BRep& part, std::size_t) { return consume(part); } });
+}
+
+bool planeSweep3DStream(EVM evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  const StreamedPartHandlers& handlers)
 {
   // sortForTheThreeSweeps' sortings, made as late and released as early as the sweeps allow.
   EVM first = evm.sortedAs({ 1, 2, 0 }, exec);
@@ -573,14 +597,14 @@ bool planeSweep3DStream(EVM evm,
   const std::size_t planesAll =
     3 * std::max<std::size_t>(1, zeroth.planeStarts().size() - 1); // about
   std::size_t done = 0;
-  if (!streamSorting(zeroth, connectivity, exec, consume, done, planesAll))
+  if (!streamSorting(zeroth, connectivity, exec, handlers, done, planesAll))
     return false;
   EVM second = zeroth.sortedAs({ 2, 0, 1 }, exec);
   zeroth = EVM();
-  if (!streamSorting(first, connectivity, exec, consume, done, planesAll))
+  if (!streamSorting(first, connectivity, exec, handlers, done, planesAll))
     return false;
   first = EVM();
-  return streamSorting(second, connectivity, exec, consume, done, planesAll);
+  return streamSorting(second, connectivity, exec, handlers, done, planesAll);
 }
 
 bool planeSweep3DParts(const EVM& evm,

@@ -18,6 +18,7 @@
 #include "PlaneSweep2D.h"
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -38,13 +39,36 @@ bool planeSweep3DParts(const EVM& evm,
   const Execution& exec,
   std::vector<BRep>& parts);
 
+/// What planeSweep3DStream does with each part of the faces. `prepare` (optional) runs on the
+/// thread that swept the part, right after it and concurrently with the other parts of its
+/// batch: the work on a part that needs no other part (its cells, say) goes there. `append`
+/// then runs on the calling thread, part after part in planeSweep3DParts' order, once the
+/// whole batch is prepared: the work that must follow the order (writing into one output).
+/// `slot` is the part's place in its batch, in [0, streamBatch(exec)): a caller keeps what a
+/// part's prepare leaves for its append in that slot, free again once append returns. Either
+/// returns false to stop the stream.
+struct StreamedPartHandlers
+{
+  std::function<bool(BRep& part, std::size_t slot)> prepare;
+  std::function<bool(BRep& part, std::size_t slot)> append;
+};
+
+/// The most parts planeSweep3DStream sweeps (and prepares) at a time with `exec`.
+std::size_t streamBatch(const Execution& exec);
+
 /// The same faces made and handed over part by part, in planeSweep3DParts' order: a few chunks
-/// of planes (as many as `exec.concurrency`) are swept at a time, then given to consume(part)
-/// one after the other on the calling thread, before the next chunks are swept. Only those
-/// chunks' faces are alive at a time (and two of the three sortings): a caller that writes and
-/// releases each part never holds the object's faces. The EVM is taken (moved in) and freed
-/// once sorted. Parts may be empty. False when the caller asked to abort or consume returned
-/// false.
+/// of planes (streamBatch(exec) of them) are swept and prepared at a time, concurrently, then
+/// appended one after the other on the calling thread, before the next chunks are swept. Only
+/// those chunks' faces are alive at a time (and two of the three sortings): a caller that
+/// writes and releases each part never holds the object's faces. The EVM is taken (moved in)
+/// and freed once sorted. Parts may be empty. False when the caller asked to abort or a
+/// handler returned false.
+bool planeSweep3DStream(EVM evm,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  const StreamedPartHandlers& handlers);
+
+/// The same, every part handed to consume(part) on the calling thread (no prepare step).
 bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <map>
 #include <set>
@@ -510,6 +511,49 @@ TEST(BRep, StreamedPartsAreTheSweepsFaces)
       int calls = 0;
       EXPECT_FALSE(vbr::planeSweep3DStream(evm, c, exec, [&](vbr::BRep&) { return ++calls < 5; }));
       EXPECT_EQ(calls, 5);
+
+      // Prepared on the threads, each part into its slot, then appended in order: the part
+      // prepared in a slot is the one appended from it, the slots fit the batch.
+      const std::size_t batch = vbr::streamBatch(exec);
+      EXPECT_EQ(batch, static_cast<std::size_t>(threads));
+      std::vector<vbr::BRep> slots(batch), appended;
+      std::vector<int> prepared(batch, 0);
+      std::atomic<bool> badSlot{ false };
+      ASSERT_TRUE(vbr::planeSweep3DStream(evm,
+        c,
+        exec,
+        vbr::StreamedPartHandlers{ [&](vbr::BRep& part, std::size_t slot)
+          {
+            if (slot >= batch)
+              return !(badSlot = true);
+            ++prepared[slot];
+            slots[slot] = std::move(part);
+            return true;
+          },
+          [&](vbr::BRep& part, std::size_t slot)
+          {
+            EXPECT_TRUE(part.faces.empty() && part.points.empty()); // moved by prepare
+            EXPECT_EQ(prepared[slot], 1);
+            prepared[slot] = 0;
+            appended.push_back(std::move(slots[slot]));
+            return true;
+          } }));
+      EXPECT_FALSE(badSlot);
+      expectSameBRep(joined(appended), whole);
+      // A prepare that fails stops the stream: nothing of its batch is appended.
+      std::atomic<int> prepares{ 0 };
+      std::size_t appends = 0;
+      EXPECT_FALSE(vbr::planeSweep3DStream(evm,
+        c,
+        exec,
+        vbr::StreamedPartHandlers{ [&](vbr::BRep&, std::size_t)
+          { return ++prepares != 4 * threads; },
+          [&](vbr::BRep&, std::size_t)
+          {
+            ++appends;
+            return true;
+          } }));
+      EXPECT_LT(appends, static_cast<std::size_t>(4 * threads));
     }
   }
 }

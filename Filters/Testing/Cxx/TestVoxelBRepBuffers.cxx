@@ -2,7 +2,9 @@
 // cells read back through vtkCellArray equal the cells written, in order or reversed; 32-bit
 // storage while every offset and point id fits, 64-bit storage (the same cells) once an id or
 // the connectivity size passes the limit, which the test lowers so that the widening happens
-// on small inputs; the same with the cells written in runs of several cells (addCells). Then
+// on small inputs; the same with the cells written in runs of several cells (addCells), and
+// written into part buffers (reused, with the default limit or the test's) appended one after
+// the other (append), as the filter's worker threads write theirs. Then
 // the filter that writes through it: the EVM boundary's cells of a random volume use 32-bit
 // storage and every cell refers to an existing point.
 #include "vtkVoxelBRepBuffers.h"
@@ -21,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -92,17 +95,47 @@ void addInRuns(vbr::vtk::CellArrayBuffer& buffer, const std::vector<Cell>& cells
   }
 }
 
-/// Writes `cells` through a buffer with the given limit, cell by cell or in runs, and reads
-/// them back.
+/// Writes `cells` into one part buffer (limit `partLimit`) a part of 1 to 40 cells at a time,
+/// each part appended to `buffer` and the part buffer emptied for the next.
+void addInParts(vbr::vtk::CellArrayBuffer& buffer,
+  const std::vector<Cell>& cells,
+  bool reversed,
+  std::int64_t partLimit)
+{
+  vbr::vtk::CellArrayBuffer part(partLimit);
+  for (std::size_t c = 0, size = 1; c < cells.size(); c += size, size = size * 7 % 41)
+  {
+    for (std::size_t k = c; k < std::min(c + size, cells.size()); ++k)
+      part.addCell(cells[k].data(), cells[k].size(), reversed);
+    buffer.append(part);
+    part.clearKeepingMemory();
+  }
+}
+
+/// How a round trip writes its cells.
+enum class Writing
+{
+  Cells,           ///< addCell, cell by cell
+  Runs,            ///< addCells, in runs
+  PartsOf32Bits,   ///< in part buffers of the default limit, appended
+  PartsOfTheLimit, ///< in part buffers of the test's limit, appended
+};
+
+/// Writes `cells` through a buffer with the given limit (cell by cell, in runs or in parts),
+/// and reads them back.
 bool roundTrip(const std::vector<Cell>& cells,
   std::int64_t limit,
   bool reversed,
   bool wide,
-  bool runs = false)
+  Writing writing = Writing::Cells)
 {
   vbr::vtk::CellArrayBuffer buffer(limit);
-  if (runs)
+  if (writing == Writing::Runs)
     addInRuns(buffer, cells, reversed);
+  else if (writing == Writing::PartsOf32Bits)
+    addInParts(buffer, cells, reversed, std::numeric_limits<std::int32_t>::max());
+  else if (writing == Writing::PartsOfTheLimit)
+    addInParts(buffer, cells, reversed, limit);
   else
     for (const Cell& c : cells)
       buffer.addCell(c.data(), c.size(), reversed);
@@ -135,25 +168,28 @@ bool testBuffer()
     for (const Cell& c : cells)
       corners += c.size();
     for (bool reversed : { false, true })
-      for (bool runs : { false, true })
+      for (Writing writing :
+        { Writing::Cells, Writing::Runs, Writing::PartsOf32Bits, Writing::PartsOfTheLimit })
       {
-        ok &= roundTrip(cells, 1 << 30, reversed, false, runs);
+        ok &= roundTrip(cells, 1 << 30, reversed, false, writing);
         // The connectivity size passes the limit partway: widened, nothing lost.
-        ok &= roundTrip(cells, static_cast<std::int64_t>(corners / 2), reversed, true, runs);
+        ok &= roundTrip(cells, static_cast<std::int64_t>(corners / 2), reversed, true, writing);
         // A point id passes the limit: widened at the cell that holds it, partway.
         std::vector<Cell> withLargeId = cells;
         withLargeId[cells.size() / 2].push_back(200);
-        ok &= roundTrip(withLargeId, 150, reversed, true, runs);
+        ok &= roundTrip(withLargeId, 150, reversed, true, writing);
       }
   }
   // The first cell alone passes it, and an empty buffer gives an empty array.
-  ok &= roundTrip({ { 5, 6, 7 } }, 2, false, true);
+  for (Writing writing : { Writing::Cells, Writing::PartsOf32Bits, Writing::PartsOfTheLimit })
+    ok &= roundTrip({ { 5, 6, 7 } }, 2, false, true, writing);
   ok &= roundTrip({}, 10, false, false);
   // Ids at the 32-bit maximum stay narrow; one above it widens even with the default limit.
   const vtkIdType max32 = 2147483647;
   ok &= roundTrip({ { 0, max32 } }, max32, false, false);
 #ifdef VTK_USE_64BIT_IDS
-  ok &= roundTrip({ { 0, max32 + 1 } }, max32, false, true);
+  for (Writing writing : { Writing::Cells, Writing::PartsOf32Bits })
+    ok &= roundTrip({ { 0, max32 + 1 } }, max32, false, true, writing);
 #endif
   return ok;
 }
