@@ -37,6 +37,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -990,6 +991,7 @@ private:
   /// nothing shared is written, and only the abort is polled.
   bool prepare(vbr::BRep& part, std::size_t slot)
   {
+    assert(slot < this->Slots.size()); // the stream's batch is streamBatch(exec) parts
     Slot& s = *this->Slots[slot];
     countFaces(part, s.counts);
     s.faces = part.faces.size();

@@ -550,6 +550,8 @@ TEST(BRep, StreamedPartsAreTheSweepsFaces)
           { return ++prepares != 4 * threads; },
           [&](vbr::BRep&, std::size_t)
           {
+            // Only the batches before the failing one are appended, never a part of its own.
+            EXPECT_LT(prepares.load(), 4 * threads);
             ++appends;
             return true;
           } }));

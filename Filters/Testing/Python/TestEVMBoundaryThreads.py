@@ -103,6 +103,10 @@ def main():
         return vt.SKIP_RETURN_CODE
     threads = vtkSMPTools.GetEstimatedNumberOfThreads()
     vtkSMPTools.SetBackend("Sequential")
+    if threads < 2:
+        # With one thread both runs take the serial path: the comparison would prove nothing.
+        print("STDThread has %d thread: nothing to compare" % threads)
+        return vt.SKIP_RETURN_CODE
     mask, mirrored, label_map = porous(72, 1, 0.45), porous(64, 2, 0.45), three_labels(72, 3)
     inputs = [
         ("porous", vt.make_image(mask), False, mask, [mask]),

@@ -7,10 +7,12 @@ MergeFaces: every array of both output ports, with the STDThread backend on 2 th
 the Sequential backend's; the surfel count against numpy's.
 """
 
+import sys
+
 import numpy as np
 from scipy import ndimage
 import voxelbrep
-from voxelbrep_testing import Checker, make_image, surfel_count
+from voxelbrep_testing import SKIP_RETURN_CODE, Checker, make_image, surfel_count
 from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkSMPTools
 
@@ -79,6 +81,15 @@ def compare(tag, values, labels):
                     same = np.array_equal(np.asarray(one[name]), np.asarray(several[name]))
                     check.true("%s: %s the same on threads" % (case, name), same)
 
+
+if not vtkSMPTools.SetBackend("STDThread"):
+    print("no STDThread backend")
+    sys.exit(SKIP_RETURN_CODE)
+vtkSMPTools.Initialize(2)
+if vtkSMPTools.GetEstimatedNumberOfThreads() < 2:
+    # One thread takes the sequential path: the comparison would prove nothing.
+    print("STDThread has one thread here: nothing to compare")
+    sys.exit(SKIP_RETURN_CODE)
 
 rng = np.random.default_rng(11)
 smooth = ndimage.gaussian_filter(rng.standard_normal((40, 40, 40)), 2.0)
