@@ -26,13 +26,7 @@ import voxelbrep  # noqa: E402
 
 check = vt.Checker("TestEVMBoundaryThreads")
 
-MODES = {
-    "Polygons": voxelbrep.vtkEVMBoundaryFilter.POLYGONS,
-    "Triangles": voxelbrep.vtkEVMBoundaryFilter.TRIANGLES,
-    "Polylines": voxelbrep.vtkEVMBoundaryFilter.POLYLINES,
-    "Surfels": voxelbrep.vtkEVMBoundaryFilter.SURFELS,
-    "Loops": voxelbrep.vtkEVMBoundaryFilter.LOOPS,
-}
+MODES = vt.evm_output_modes()
 THREADED_WORK_MINIMUM = 1 << 15  # vbr::Execution::ThreadedWorkMinimum
 
 

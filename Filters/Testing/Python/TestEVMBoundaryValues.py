@@ -28,13 +28,7 @@ from vtkmodules.vtkFiltersCore import vtkMassProperties  # noqa: E402
 
 check = vt.Checker("TestEVMBoundaryValues")
 
-MODES = {
-    "Polygons": voxelbrep.vtkEVMBoundaryFilter.POLYGONS,
-    "Triangles": voxelbrep.vtkEVMBoundaryFilter.TRIANGLES,
-    "Polylines": voxelbrep.vtkEVMBoundaryFilter.POLYLINES,
-    "Surfels": voxelbrep.vtkEVMBoundaryFilter.SURFELS,
-    "Loops": voxelbrep.vtkEVMBoundaryFilter.LOOPS,
-}
+MODES = vt.evm_output_modes()
 
 
 def run_filter(image, mode, merge=False, selection="positive", lower=1.0, upper=1e300):

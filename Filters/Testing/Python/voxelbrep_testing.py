@@ -45,6 +45,15 @@ class Checker:
         sys.exit(1 if self.failures else 0)
 
 
+def evm_output_modes():
+    """vtkEVMBoundaryFilter's output modes by name, in the order the tests run them."""
+    import voxelbrep
+
+    f = voxelbrep.vtkEVMBoundaryFilter
+    return {"Polygons": f.POLYGONS, "Triangles": f.TRIANGLES, "Polylines": f.POLYLINES,
+            "Surfels": f.SURFELS, "Loops": f.LOOPS}
+
+
 def make_image(values, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), index_min=(0, 0, 0),
                cell_data=False, name="scalars", direction=None):
     """A vtkImageData whose point (or cell) scalars are `values` ([z, y, x] array)."""
