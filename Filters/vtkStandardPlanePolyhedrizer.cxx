@@ -1132,7 +1132,9 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
             vtkLogScopeF(TRACE, "reversion");
             check->add(o, voxels, exec);
           }
-          writer.help(o); // then the triangles of the faces the cells have not reached
+          // Then the triangles of the faces the cells have not reached, unless aborted.
+          if (!exec.stopRequested())
+            writer.help(o);
         }
     });
   writer.endPrepared();
