@@ -589,8 +589,10 @@ struct Part
 };
 
 /// Runs body(part, poll) over each part: a single part on the calling thread, reporting its
-/// progress as [0, 1] of `exec`'s; several on the threads of `exec`, each polling the abort
-/// alone, the progress reported once they are all done. False when stopped.
+/// progress as [0, 1] of `exec`'s; several on the threads of `exec`, in waves of
+/// `exec.concurrency` parts (the growth's groups: four waves), each part polling the abort
+/// alone, the calling thread reporting the progress between the waves (VTK's progress belongs
+/// to it), by the parts' surfels. False when stopped.
 bool forEachPart(const Execution& exec,
   const std::vector<Part>& parts,
   const std::function<bool(const Part&, ProgressPoll&)>& body)
@@ -601,18 +603,30 @@ bool forEachPart(const Execution& exec,
     return body(parts[0], poll) && !poll.stopped();
   }
   const Execution quiet = exec.silent();
+  const std::size_t wave = static_cast<std::size_t>(std::max(1, exec.concurrency));
+  std::size_t all = 0, done = 0;
+  for (const Part& part : parts)
+    all += part.surfels.size();
   std::vector<char> finished(parts.size(), 0);
-  exec.forRange(static_cast<std::int64_t>(parts.size()),
-    [&](std::int64_t b, std::int64_t e)
-    {
-      for (std::int64_t p = b; p < e; ++p)
+  for (std::size_t first = 0; first < parts.size(); first += wave)
+  {
+    const std::size_t end = std::min(parts.size(), first + wave);
+    exec.forRange(static_cast<std::int64_t>(end - first),
+      [&](std::int64_t b, std::int64_t e)
       {
-        ProgressPoll poll(quiet, 0.0, 1.0);
-        finished[p] = body(parts[p], poll) && !poll.stopped();
-      }
-    });
-  return std::find(finished.begin(), finished.end(), 0) == finished.end() &&
-    !exec.stopRequested() && exec.report(1.0);
+        for (std::size_t p = first + b; p < first + e; ++p)
+        {
+          ProgressPoll poll(quiet, 0.0, 1.0);
+          finished[p] = body(parts[p], poll) && !poll.stopped();
+        }
+      });
+    for (std::size_t p = first; p < end; ++p)
+      done += parts[p].surfels.size();
+    if (std::find(finished.begin() + first, finished.begin() + end, 0) != finished.begin() + end ||
+      exec.stopRequested() || !exec.report(double(done) / double(std::max<std::size_t>(all, 1))))
+      return false;
+  }
+  return true;
 }
 
 /// The faces' surfel lists of a part after the moves (a surfel may have moved more than once),
