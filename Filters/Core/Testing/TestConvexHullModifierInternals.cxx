@@ -52,6 +52,42 @@ vbr::BitVolume randomVolume(std::mt19937& rng, std::int32_t nx, std::int32_t ny,
   return v;
 }
 
+/// p on the inner side of the face's plane (strictly, or on it too).
+bool inHalfSpace(const vbr::FacePlane& f, const LatticePoint& p, bool strict)
+{
+  const auto v = f.evaluate(p);
+  return strict ? v < 0 : v <= 0;
+}
+
+bool inAllHalfSpaces(const vbr::CellList& c, const LatticePoint& p, bool strict)
+{
+  return std::all_of(c.planes.begin(),
+    c.planes.end(),
+    [&](const vbr::FacePlane& f) { return inHalfSpace(f, p, strict); });
+}
+
+/// `count` planes of random normals (never zero) and offsets; `shapeX` may set a normal's x
+/// component (planes parallel to x, or nearly).
+template<typename ShapeX>
+vbr::CellList randomHalfSpaces(std::mt19937& rng,
+  int count,
+  std::uniform_int_distribution<std::int64_t>& normal,
+  std::uniform_int_distribution<std::int64_t>& offset,
+  ShapeX shapeX)
+{
+  vbr::CellList c;
+  while (static_cast<int>(c.planes.size()) < count)
+  {
+    vbr::FacePlane f;
+    f.normal = { normal(rng), normal(rng), normal(rng) };
+    shapeX(f);
+    f.offset = offset(rng);
+    if (f.normal != LatticePoint{ 0, 0, 0 })
+      c.planes.push_back(f);
+  }
+  return c;
+}
+
 TEST(ConvexHullModifierInternals, RunsOfARowMatchItsBits)
 {
   for (std::int32_t width : { 1, 63, 64, 65, 127, 128, 129, 130 })
@@ -106,34 +142,16 @@ TEST(ConvexHullModifierInternals, RunsOfAHullMatchItsPoints)
       const vbr::CellList c = vbr::convexHull(corners);
       if (c.dimension != 3)
         continue;
-      std::array<std::int64_t, 6> box{ c.vertices[0][0],
-        c.vertices[0][0],
-        c.vertices[0][1],
-        c.vertices[0][1],
-        c.vertices[0][2],
-        c.vertices[0][2] };
-      for (const LatticePoint& p : c.vertices)
-        for (int a = 0; a < 3; ++a)
-        {
-          box[2 * a] = std::min(box[2 * a], p[a]);
-          box[2 * a + 1] = std::max(box[2 * a + 1], p[a]);
-        }
       for (bool strict : { false, true })
         for (bool cls : { false, true })
         {
           Runs expected;
-          for (std::int64_t z = box[4]; z <= box[5]; ++z)
-            for (std::int64_t y = box[2]; y <= box[3]; ++y)
-              for (std::int64_t x = box[0]; x <= box[1]; ++x)
-              {
-                const LatticePoint p{ x, y, z };
-                const bool in = std::all_of(c.planes.begin(),
-                  c.planes.end(),
-                  [&](const vbr::FacePlane& f)
-                  { return strict ? f.evaluate(p) < 0 : f.evaluate(p) <= 0; });
-                if (in && classAt(v, x, y, z) == cls)
+          // The hull lies in the box its corners were drawn from.
+          for (std::int64_t z = pyz.min(); z <= pyz.max(); ++z)
+            for (std::int64_t y = pyz.min(); y <= pyz.max(); ++y)
+              for (std::int64_t x = px.min(); x <= px.max(); ++x)
+                if (inAllHalfSpaces(c, { x, y, z }, strict) && classAt(v, x, y, z) == cls)
                   appendPoint(expected, x, y, z);
-              }
           ASSERT_EQ(vbr::detail::runsOfClass(c, v, cls, strict), expected)
             << "width " << width << " seed " << seed << " strict " << strict << " class " << cls;
         }
@@ -152,10 +170,7 @@ void expectRangeByScan(const vbr::CellList& c,
   std::size_t count = 0;
   for (std::int64_t x = -window; x <= window; ++x)
   {
-    const LatticePoint p{ x, y, z };
-    if (std::all_of(c.planes.begin(),
-          c.planes.end(),
-          [&](const vbr::FacePlane& f) { return strict ? f.evaluate(p) < 0 : f.evaluate(p) <= 0; }))
+    if (inAllHalfSpaces(c, { x, y, z }, strict))
     {
       first = std::min(first, x);
       last = x;
@@ -182,19 +197,16 @@ TEST(ConvexHullModifierInternals, RowRangeMatchesAScanOfItsIntegers)
   std::uniform_int_distribution<std::int64_t> normal(-5, 5), offset(-40, 40), row(-10, 10);
   for (int trial = 0; trial < 6000; ++trial)
   {
-    vbr::CellList c;
-    const int planes = 1 + trial % 6;
-    while (static_cast<int>(c.planes.size()) < planes)
-    {
-      vbr::FacePlane f;
-      f.normal = { normal(rng), normal(rng), normal(rng) };
-      // Many planes parallel to x, which decide a row alone.
-      if (rng() % 4 == 0)
-        f.normal[0] = 0;
-      f.offset = offset(rng);
-      if (f.normal != LatticePoint{ 0, 0, 0 })
-        c.planes.push_back(f);
-    }
+    // Many planes parallel to x, which decide a row alone.
+    const vbr::CellList c = randomHalfSpaces(rng,
+      1 + trial % 6,
+      normal,
+      offset,
+      [&](vbr::FacePlane& f)
+      {
+        if (rng() % 4 == 0)
+          f.normal[0] = 0;
+      });
     for (int r = 0; r < 8; ++r)
     {
       const std::int64_t y = row(rng), z = row(rng);
@@ -212,11 +224,7 @@ std::int64_t boundBySearch(const vbr::FacePlane& f,
   std::int64_t z,
   bool up)
 {
-  const auto in = [&](std::int64_t x)
-  {
-    const __int128 v = f.evaluate({ x, y, z });
-    return strict ? v < 0 : v <= 0;
-  };
+  const auto in = [&](std::int64_t x) { return inHalfSpace(f, { x, y, z }, strict); };
   std::int64_t a = -(std::int64_t(1) << 50), b = std::int64_t(1) << 50;
   // up: in(a), !in(b); else !in(a), in(b).
   while (b - a > 1)
@@ -237,18 +245,15 @@ TEST(ConvexHullModifierInternals, RowRangeMatchesABisectionOnLargeCoordinates)
     row(-20000, 20000);
   for (int trial = 0; trial < 3000; ++trial)
   {
-    vbr::CellList c;
-    const int planes = 1 + trial % 5;
-    while (static_cast<int>(c.planes.size()) < planes)
-    {
-      vbr::FacePlane f;
-      f.normal = { normal(rng), normal(rng), normal(rng) };
-      if (trial % 3 == 0)
-        f.normal[0] = std::uniform_int_distribution<std::int64_t>(-3, 3)(rng);
-      f.offset = offset(rng);
-      if (f.normal != LatticePoint{ 0, 0, 0 })
-        c.planes.push_back(f);
-    }
+    const vbr::CellList c = randomHalfSpaces(rng,
+      1 + trial % 5,
+      normal,
+      offset,
+      [&](vbr::FacePlane& f)
+      {
+        if (trial % 3 == 0)
+          f.normal[0] = std::uniform_int_distribution<std::int64_t>(-3, 3)(rng);
+      });
     const std::int64_t y = row(rng), z = row(rng);
     for (bool strict : { false, true })
     {
@@ -258,7 +263,7 @@ TEST(ConvexHullModifierInternals, RowRangeMatchesABisectionOnLargeCoordinates)
       for (const vbr::FacePlane& f : c.planes)
       {
         if (f.normal[0] == 0)
-          rowIn = rowIn && (strict ? f.evaluate({ 0, y, z }) < 0 : f.evaluate({ 0, y, z }) <= 0);
+          rowIn = rowIn && inHalfSpace(f, { 0, y, z }, strict);
         else if (f.normal[0] > 0)
           hi = std::min(hi, boundBySearch(f, strict, y, z, true));
         else
