@@ -117,7 +117,6 @@ public:
   /// The cells of one face, in a run of faces' cells (triangles or fan polygons): cell k has
   /// the points `pointIds[corners[j]]` for j in [ends[k - 1], ends[k]) (ends[-1] = `begin`).
   /// The same as addCell cell after cell, with the face's attributes and label added once.
-  /// `ids` is scratch space.
   void addFaceCells(const int* corners,
     std::size_t begin,
     const std::uint32_t* ends,
@@ -126,16 +125,12 @@ public:
     vtkIdType faceId,
     const vbr::vtk::LabelValue& label,
     vtkIdType parent,
-    int depth,
-    std::vector<vtkIdType>& ids)
+    int depth)
   {
     if (count == 0)
       return;
     this->startLabel(label);
-    ids.resize(ends[count - 1] - begin);
-    for (std::size_t j = begin; j < ends[count - 1]; ++j)
-      ids[j - begin] = static_cast<vtkIdType>(pointIds[corners[j]]);
-    this->Cells.addCells(ids.data(), ends, count, begin, this->Reverse);
+    this->Cells.addMappedCells(corners, pointIds, ends, count, begin, this->Reverse);
     std::fill_n(this->FaceId.extend(count), count, faceId);
     std::fill_n(this->LoopType.extend(count), count, 0);
     if (this->Planar)
@@ -421,7 +416,8 @@ struct CellProgress
   /// Counts face `f` of the current part; false when the caller asked to stop.
   bool tick(std::size_t f)
   {
-    this->poll.at(double(this->facesDone + f) / double(this->faces));
+    if (this->poll.due()) // not a division per face: one per poll
+      this->poll.at(double(this->facesDone + f) / double(this->faces));
     return this->poll.tick();
   }
 };
@@ -441,7 +437,6 @@ struct FaceCellContext
 void appendRunCells(const vbr::FaceCells& run,
   std::size_t i,
   const FaceCellContext& c,
-  std::vector<vtkIdType>& ids,
   CellStore& out)
 {
   const std::size_t first = run.cellBegin(i);
@@ -453,8 +448,7 @@ void appendRunCells(const vbr::FaceCells& run,
     c.faceId,
     c.label,
     c.parent,
-    c.depth,
-    ids);
+    c.depth);
 }
 
 /// One polygon (or closed polyline) per loop of the face.
@@ -522,7 +516,7 @@ bool appendFaceCells(const vbr::BRep& brep,
     }
     while (run + 1 < cells.firstFace.size() && cells.firstFace[run + 1] <= f)
       ++run;
-    appendRunCells(cells.runs[run], f - cells.firstFace[run], c, ids, out);
+    appendRunCells(cells.runs[run], f - cells.firstFace[run], c, out);
   }
   return true;
 }

@@ -141,16 +141,23 @@ public:
   template<typename Id, typename End>
   void addCells(const Id* ids, const End* ends, std::size_t count, std::size_t first, bool reverse)
   {
-    if (count == 0)
-      return;
-    const std::size_t total = static_cast<std::size_t>(ends[count - 1]) - first;
-    const std::int64_t end = static_cast<std::int64_t>(this->connectivitySize() + total);
-    if (!this->Wide && (end > this->NarrowLimit || !this->fitNarrow(ids, total)))
-      this->widen();
-    if (this->Wide)
-      this->Large.appendCells(ids, ends, count, first, reverse);
-    else
-      this->Narrow.appendCells(ids, ends, count, first, reverse);
+    this->addCellsAt([ids](std::size_t j) { return ids[j]; }, ends, count, first, reverse);
+  }
+
+  /// addCells with the id at j given as `map[corners[first + j]]` (a face's cells as
+  /// indices into its loops' corners, `map` their point ids): the ids are read where they
+  /// are, not copied to a buffer first.
+  template<typename Corner, typename Id, typename End>
+  void addMappedCells(const Corner* corners,
+    const Id* map,
+    const End* ends,
+    std::size_t count,
+    std::size_t first,
+    bool reverse)
+  {
+    const Corner* from = corners + first;
+    this->addCellsAt(
+      [from, map](std::size_t j) { return map[from[j]]; }, ends, count, first, reverse);
   }
 
   /// Appends the cells of `other` after these: the same arrays (and the same 32- or 64-bit
@@ -192,6 +199,22 @@ public:
   }
 
 private:
+  /// addCells with the id at j (from 0) given by at(j).
+  template<typename At, typename End>
+  void addCellsAt(At at, const End* ends, std::size_t count, std::size_t first, bool reverse)
+  {
+    if (count == 0)
+      return;
+    const std::size_t total = static_cast<std::size_t>(ends[count - 1]) - first;
+    const std::int64_t end = static_cast<std::int64_t>(this->connectivitySize() + total);
+    if (!this->Wide && (end > this->NarrowLimit || !this->fitNarrowAt(at, total)))
+      this->widen();
+    if (this->Wide)
+      this->Large.appendCells(at, ends, count, first, reverse);
+    else
+      this->Narrow.appendCells(at, ends, count, first, reverse);
+  }
+
   template<typename T>
   struct Ids
   {
@@ -205,12 +228,8 @@ private:
         out[i] = static_cast<T>(ids[reverse ? n - 1 - i : i]);
       this->Offsets.push_back(static_cast<T>(this->Connectivity.size()));
     }
-    template<typename Id, typename End>
-    void appendCells(const Id* ids,
-      const End* ends,
-      std::size_t count,
-      std::size_t first,
-      bool reverse)
+    template<typename At, typename End>
+    void appendCells(At ids, const End* ends, std::size_t count, std::size_t first, bool reverse)
     {
       const std::size_t total = static_cast<std::size_t>(ends[count - 1]) - first;
       const std::size_t base = this->Connectivity.size();
@@ -222,7 +241,7 @@ private:
         const std::size_t to = static_cast<std::size_t>(ends[k]) - first;
         const std::size_t n = to - from;
         for (std::size_t i = 0; i < n; ++i)
-          out[from + i] = static_cast<T>(ids[from + (reverse ? n - 1 - i : i)]);
+          out[from + i] = static_cast<T>(ids(from + (reverse ? n - 1 - i : i)));
         offsets[k] = static_cast<T>(base + to);
         from = to;
       }
@@ -254,8 +273,13 @@ private:
   template<typename Id>
   bool fitNarrow(const Id* ids, std::size_t n) const
   {
+    return this->fitNarrowAt([ids](std::size_t j) { return ids[j]; }, n);
+  }
+  template<typename At>
+  bool fitNarrowAt(At at, std::size_t n) const
+  {
     for (std::size_t i = 0; i < n; ++i)
-      if (static_cast<std::int64_t>(ids[i]) > this->NarrowLimit)
+      if (static_cast<std::int64_t>(at(i)) > this->NarrowLimit)
         return false;
     return true;
   }

@@ -46,6 +46,27 @@ Point3 placed(const AxisOrder& order, Coord position, const Point2& p)
   return q;
 }
 
+/// placed(order, position, p) written to `q` coordinate by coordinate. A point made apart and
+/// then copied is read back in wider words than its coordinates were written in (at places
+/// known only at run time), which the processor cannot forward from its stores: a stall per
+/// corner, most of appendFaces' time on a checkerboard.
+void placeAt(Point3& q, const AxisOrder& order, Coord position, const Point2& p)
+{
+  q[order[0]] = position;
+  q[order[1]] = p.u;
+  q[order[2]] = p.v;
+}
+
+/// Room for `more` elements past the end of `v`, at least doubling its capacity when it
+/// grows: appendFaces adds a plane's faces at a time, thousands of planes of few faces each on
+/// noise (a reservation of the exact size each time would copy the faces at every plane).
+template<typename T>
+void reserveGrowing(std::vector<T>& v, std::size_t more)
+{
+  if (v.size() + more > v.capacity())
+    v.reserve(std::max(v.size() + more, 2 * v.capacity()));
+}
+
 /// appendFaces, the corners of each loop [begin, end) of b2 appended by
 /// copyLoop(begin, end, reverse) as `corners` counts them.
 template<typename CopyLoop>
@@ -60,9 +81,13 @@ void appendFacesOf(const Boundary2D& b2,
   // planeSweep2D loops are counter-clockwise in (B, C), whose right-hand normal is parity * A.
   const bool reverse = axisOrderParity(order) != normalSign;
   const int faceBase = static_cast<int>(out.faces.size());
+  reserveGrowing(out.faces, b2.faces.size());
+  reserveGrowing(out.loops, b2.loops.size());
   for (const Face2D& f2 : b2.faces)
   {
-    BRepFace face;
+    // Faces and loops written in place, not made apart and copied in (see placeAt).
+    const int faceId = static_cast<int>(out.faces.size());
+    BRepFace& face = out.faces.emplace_back();
     face.axis = order[0];
     face.normalSign = normalSign;
     face.position = position;
@@ -70,10 +95,9 @@ void appendFacesOf(const Boundary2D& b2,
     face.loopCount = static_cast<int>(1 + f2.holeLoops.size());
     face.parent = f2.parent < 0 ? -1 : faceBase + f2.parent;
     face.depth = f2.depth;
-    const int faceId = static_cast<int>(out.faces.size());
     auto addLoop = [&](int l, bool hole)
     {
-      BRepLoop loop;
+      BRepLoop& loop = out.loops.emplace_back();
       loop.face = faceId;
       loop.hole = hole;
       loop.begin = corners;
@@ -81,12 +105,10 @@ void appendFacesOf(const Boundary2D& b2,
       copyLoop(l2.begin, l2.end, reverse);
       corners += l2.end - l2.begin;
       loop.end = corners;
-      out.loops.push_back(loop);
     };
     addLoop(f2.outerLoop, false);
     for (int h : f2.holeLoops)
       addLoop(h, true);
-    out.faces.push_back(face);
   }
   out.nonManifoldVertices += b2.nonManifoldVertices;
 }
@@ -115,10 +137,10 @@ void appendFaces(const Boundary2D& b2,
       const Point2* from = b2.points.data();
       if (reverse)
         for (std::size_t i = end; i-- > begin;)
-          *to++ = placed(order, position, from[i]);
+          placeAt(*to++, order, position, from[i]);
       else
         for (std::size_t i = begin; i < end; ++i)
-          *to++ = placed(order, position, from[i]);
+          placeAt(*to++, order, position, from[i]);
     });
   // Every point of b2 lies in exactly one of its loops, so the loops fill the resize exactly.
   assert(to == out.points.data() + out.points.size());
@@ -669,6 +691,20 @@ void insertTJunctionVertices(BRep& brep,
     [&](std::int64_t b, std::int64_t e)
     {
       for (std::int64_t l = b; l < e; ++l)
+      {
+        const BRepLoop& loop = brep.loops[l];
+        if (begins[l + 1] - begins[l] == loop.end - loop.begin)
+        {
+          // No edge of the loop holds a corner (most loops): copied whole, its edges' counts
+          // not read again.
+          std::copy(brep.points.begin() + loop.begin,
+            brep.points.begin() + loop.end,
+            points.begin() + begins[l]);
+          std::copy(numbers.begin() + loop.begin,
+            numbers.begin() + loop.end,
+            pointNumbers.begin() + begins[l]);
+          continue;
+        }
         walkWithEdgeVertices(brep.loopPoints(static_cast<int>(l)),
           numbers.data() + brep.loops[l].begin,
           inside.data() + brep.loops[l].begin,
@@ -676,6 +712,7 @@ void insertTJunctionVertices(BRep& brep,
           offset,
           points.data() + begins[l],
           pointNumbers.data() + begins[l]);
+      }
     });
   for (std::size_t l = 0; l < brep.loops.size(); ++l)
   {

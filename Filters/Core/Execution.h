@@ -102,6 +102,10 @@ public:
   /// Where the phase is, in [0, 1] (reported at the next poll).
   void at(double fraction) { this->Fraction = fraction; }
 
+  /// Whether the next tick polls: a caller whose fraction costs something to compute (a
+  /// division per face) sets it only then, at() being read by poll() alone.
+  bool due() const { return this->Count + 1 >= this->Stride; }
+
   /// Counts a step; returns false when the caller asked to stop.
   bool tick()
   {

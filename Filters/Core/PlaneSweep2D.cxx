@@ -302,7 +302,11 @@ private:
     const int h = this->startEdge(c, at.inNew2, o.newInterval);
     if (at.inNew2)
       o.newBottomEdge = h;
-    this->NextSection.push_back({ at.here.v, h });
+    // Its fields written in place: a section end made apart and copied is read back as one
+    // word from two smaller stores, which the processor cannot forward (a stall per corner).
+    SectionEnd& end = this->NextSection.emplace_back();
+    end.v = at.here.v;
+    end.edge = h;
     return h;
   }
 
@@ -469,10 +473,11 @@ private:
     {
       if (this->Edges[e0].interval < 0)
         continue; // in a loop already
-      Loop2D loop;
+      // Written in place, not copied in (see startHorizontalEdge).
+      const int visited = -1 - static_cast<int>(out.loops.size());
+      Loop2D& loop = out.loops.emplace_back();
       loop.face = this->FaceOfRoot[this->find(this->Edges[e0].interval)];
       loop.begin = corners;
-      const int visited = -1 - static_cast<int>(out.loops.size());
       for (int e = static_cast<int>(e0); this->Edges[e].interval >= 0; ++corners)
       {
         Edge& edge = this->Edges[e];
@@ -483,7 +488,6 @@ private:
         e = edge.next;
       }
       loop.end = corners;
-      out.loops.push_back(loop);
     }
   }
 

@@ -95,6 +95,40 @@ void addInRuns(vbr::vtk::CellArrayBuffer& buffer, const std::vector<Cell>& cells
   }
 }
 
+/// Writes `cells` through the buffer in runs of one to five cells as addInRuns does, with
+/// addMappedCells: each id given as map[corner], the runs holding the corners, `map` the ids
+/// in reverse order of their first use (and unused entries between).
+void addInMappedRuns(vbr::vtk::CellArrayBuffer& buffer,
+  const std::vector<Cell>& cells,
+  bool reversed)
+{
+  std::vector<std::int64_t> map;
+  std::vector<int> corners, ends32;
+  std::vector<std::uint32_t> ends;
+  for (const Cell& c : cells)
+    for (vtkIdType id : c)
+    {
+      map.push_back(-1); // never read
+      map.push_back(id);
+    }
+  std::reverse(map.begin(), map.end()); // the id of cell corner k at 2 * (total - 1 - k)
+  const int total = static_cast<int>(map.size() / 2);
+  int k = 0;
+  for (std::size_t c = 0, run = 1; c < cells.size(); c += run, run = run % 5 + 1)
+  {
+    const std::size_t count = std::min(run, cells.size() - c), first = 2 * c + 3;
+    corners.assign(first, -7); // before `first`: never read
+    ends.clear();
+    for (std::size_t j = c; j < c + count; ++j)
+    {
+      for (std::size_t i = 0; i < cells[j].size(); ++i, ++k)
+        corners.push_back(2 * (total - 1 - k));
+      ends.push_back(static_cast<std::uint32_t>(corners.size()));
+    }
+    buffer.addMappedCells(corners.data(), map.data(), ends.data(), count, first, reversed);
+  }
+}
+
 /// Writes `cells` into one part buffer (limit `partLimit`) a part of 1 to 40 cells at a time,
 /// each part appended to `buffer` and the part buffer emptied for the next.
 void addInParts(vbr::vtk::CellArrayBuffer& buffer,
@@ -117,6 +151,7 @@ enum class Writing
 {
   Cells,           ///< addCell, cell by cell
   Runs,            ///< addCells, in runs
+  MappedRuns,      ///< addMappedCells, in runs
   PartsOf32Bits,   ///< in part buffers of the default limit, appended
   PartsOfTheLimit, ///< in part buffers of the test's limit, appended
 };
@@ -132,6 +167,8 @@ bool roundTrip(const std::vector<Cell>& cells,
   vbr::vtk::CellArrayBuffer buffer(limit);
   if (writing == Writing::Runs)
     addInRuns(buffer, cells, reversed);
+  else if (writing == Writing::MappedRuns)
+    addInMappedRuns(buffer, cells, reversed);
   else if (writing == Writing::PartsOf32Bits)
     addInParts(buffer, cells, reversed, std::numeric_limits<std::int32_t>::max());
   else if (writing == Writing::PartsOfTheLimit)
@@ -168,8 +205,11 @@ bool testBuffer()
     for (const Cell& c : cells)
       corners += c.size();
     for (bool reversed : { false, true })
-      for (Writing writing :
-        { Writing::Cells, Writing::Runs, Writing::PartsOf32Bits, Writing::PartsOfTheLimit })
+      for (Writing writing : { Writing::Cells,
+             Writing::Runs,
+             Writing::MappedRuns,
+             Writing::PartsOf32Bits,
+             Writing::PartsOfTheLimit })
       {
         ok &= roundTrip(cells, 1 << 30, reversed, false, writing);
         // The connectivity size passes the limit partway: widened, nothing lost.
@@ -181,14 +221,15 @@ bool testBuffer()
       }
   }
   // The first cell alone passes it, and an empty buffer gives an empty array.
-  for (Writing writing : { Writing::Cells, Writing::PartsOf32Bits, Writing::PartsOfTheLimit })
+  for (Writing writing :
+    { Writing::Cells, Writing::MappedRuns, Writing::PartsOf32Bits, Writing::PartsOfTheLimit })
     ok &= roundTrip({ { 5, 6, 7 } }, 2, false, true, writing);
   ok &= roundTrip({}, 10, false, false);
   // Ids at the 32-bit maximum stay narrow; one above it widens even with the default limit.
   const vtkIdType max32 = 2147483647;
   ok &= roundTrip({ { 0, max32 } }, max32, false, false);
 #ifdef VTK_USE_64BIT_IDS
-  for (Writing writing : { Writing::Cells, Writing::PartsOf32Bits })
+  for (Writing writing : { Writing::Cells, Writing::MappedRuns, Writing::PartsOf32Bits })
     ok &= roundTrip({ { 0, max32 + 1 } }, max32, false, true, writing);
 #endif
   return ok;
