@@ -98,6 +98,8 @@ struct NodeFit
   std::vector<Vec3> projected; ///< of the candidate's points, in order
   /// The candidate's points with a quadrilateral that leaves it (the sewing's only points).
   std::vector<std::int32_t> rim;
+  /// The quadrilaterals inside it (the reach rule only: checked for folds).
+  std::vector<std::int32_t> inside;
 };
 
 struct Compactor
@@ -119,6 +121,7 @@ struct Compactor
   bool planeNormal(const Region& c, Vec3& n) const;
   bool planeOffset(const Region& c, const FaceNode& node, double& t) const;
   bool reachesSurfels(std::int32_t p, const Vec3& q) const;
+  bool insideUnfolded(const Region& c, const NodeFit& f) const;
   bool sewingNearBoundary(const std::array<Vec3, 4>& corners) const;
   void forbiddenIntervals(const FaceNode& node,
     double lo,
@@ -285,6 +288,8 @@ bool Compactor::collapseToPolygon(const Region& c, NodeFit& f) const
       if (q[0] != p)
         continue;
       ++faces;
+      if (this->object)
+        f.inside.push_back(m.quadsOf[l]);
       for (int r = 0; r < 4; ++r)
         edges.push_back(std::uint64_t(std::uint32_t(q[r])) << 32 | std::uint32_t(q[(r + 1) % 4]));
     }
@@ -363,6 +368,33 @@ bool Compactor::sewingUnfolded(const Region& c, const NodeFit& f) const
   return true;
 }
 
+/// Whether every quadrilateral inside the node, projected, has a split into two triangles
+/// turning counter-clockwise about the normal: the projected disk then covers its polygon
+/// once (a disk mapped locally one-to-one whose boundary goes to a simple loop), so each
+/// point inside it, which the polygon replaces, lies on the polygon (its surfels stay within
+/// reach of the surface, not only of the point).
+bool Compactor::insideUnfolded(const Region& c, const NodeFit& f) const
+{
+  const Vec3& n = f.node.normal;
+  auto turn = [&](const Vec3& a, const Vec3& b, const Vec3& d)
+  {
+    const Vec3 u{ b[0] - a[0], b[1] - a[1], b[2] - a[2] },
+      v{ d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+    return n[0] * (u[1] * v[2] - u[2] * v[1]) + n[1] * (u[2] * v[0] - u[0] * v[2]) +
+      n[2] * (u[0] * v[1] - u[1] * v[0]);
+  };
+  for (const std::int32_t i : f.inside)
+  {
+    const Quad& q = this->model.quads[i];
+    const Vec3 &x0 = f.projected[c.indexOf(q[0])], &x1 = f.projected[c.indexOf(q[1])],
+               &x2 = f.projected[c.indexOf(q[2])], &x3 = f.projected[c.indexOf(q[3])];
+    const bool first = turn(x0, x1, x2) > 0 && turn(x0, x2, x3) > 0;
+    if (!first && !(turn(x0, x1, x3) > 0 && turn(x1, x2, x3) > 0))
+      return false;
+  }
+  return true;
+}
+
 /// Whether q lies within one voxel diagonal of every corner of every surfel of p's voxel (a
 /// face of it whose neighbour across is background): then of every point of those surfels.
 bool Compactor::reachesSurfels(std::int32_t p, const Vec3& q) const
@@ -436,7 +468,8 @@ NodeFit Compactor::fit(const Region& c) const
     if (!inVoxel && !this->reachesSurfels(p, f.projected.back()))
       return f;
   }
-  if (!this->collapseToPolygon(c, f) || !this->sewingUnfolded(c, f))
+  if (!this->collapseToPolygon(c, f) || !this->sewingUnfolded(c, f) ||
+    (this->object && !this->insideUnfolded(c, f)))
     return f;
   if (!node.polygon.empty())
   {

@@ -47,7 +47,11 @@
 //   own voxel (a face of it whose neighbour across is background), hence of every point of
 //   those surfels (a ball holds the hull of the corners it holds);
 // - the box of the four corners of every sewing quadrilateral meets no far voxel (checked by
-//   whichever node moves a corner last, against the others' positions).
+//   whichever node moves a corner last, against the others' positions);
+// - every quadrilateral inside the node, projected, has a split into two triangles turning
+//   counter-clockwise about the normal: the projected disk covers its polygon once, so the
+//   points inside the disk, which the polygon replaces, lie on the polygon (without this
+//   check such points were found outside it on the 128^3 ball).
 // Why the bound of one voxel diagonal still holds both ways (except at pruned voxels, whose
 // points the model drops):
 // - surface to surfels: a polygon lies in its corners' hull, in the node's box, and on a
@@ -56,9 +60,10 @@
 //   box, which meets no far voxel (a point in it is in the closure of a voxel that meets the
 //   box); a point of no node stays in its own boundary voxel;
 // - surfels to surface: every surfel belongs to an object voxel with a background face
-//   neighbour, a boundary voxel, whose point is a vertex of the surface (unless pruned). A
-//   moved point is within the diagonal of the whole surfel by the first check; an unmoved one
-//   lies in its voxel, within the voxel's diagonal of every point of its faces.
+//   neighbour, a boundary voxel, whose point lies on the surface (unless pruned): a vertex,
+//   or a point inside a disk, on its polygon by the last check. A moved point is within the
+//   diagonal of the whole surfel by the first check; an unmoved one lies in its voxel, within
+//   the voxel's diagonal of every point of its faces.
 // The vertices then reach the planes of larger nodes (0.15 polygons per object voxel on that
 // torus). Nodes are tried from the root down (the first node of each branch that fits is
 // kept; the points no node took are face nodes of their own voxels): the levels above a face

@@ -1049,6 +1049,51 @@ static void checkCompactionCriterion(const BitVolume& v,
         << "point " << p << " of node " << id << " at level " << node.level;
   }
   EXPECT_GE(maxLevel, 3);
+  // Under the reach rule, every point inside a node's disk (all its quadrilaterals in the
+  // node, not a corner of the polygon) projects inside the polygon that replaces the disk
+  // (even-odd ray test in the plane, in a basis of its own).
+  std::vector<int> interiorPoints(octree.nodes.size());
+  for (std::size_t p = 0; p < model.pointCount() && !papersRule; ++p)
+  {
+    const int id = octree.nodeOf[p];
+    if (id < 0 || octree.nodes[id].polygon.empty())
+      continue;
+    const auto& node = octree.nodes[id];
+    bool interior =
+      std::find(node.polygon.begin(), node.polygon.end(), int(p)) == node.polygon.end();
+    for (auto l = model.linkOffsets[p]; l < model.linkOffsets[p + 1] && interior; ++l)
+      for (int r = 0; r < 4; ++r)
+        interior = interior && octree.nodeOf[model.quads[model.quadsOf[l]][r]] == id;
+    if (!interior)
+      continue;
+    ++interiorPoints[id];
+    const Vec3& n = node.normal;
+    const Vec3 a = std::abs(n[0]) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
+    Vec3 u{ n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0] };
+    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (double& x : u)
+      x /= lu;
+    const Vec3 w{ n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0] };
+    auto flat = [&](const Vec3& x)
+    {
+      return std::array<double, 2>{ x[0] * u[0] + x[1] * u[1] + x[2] * u[2],
+        x[0] * w[0] + x[1] * w[1] + x[2] * w[2] };
+    };
+    const auto q = flat(octree.projected[p]);
+    bool in = false;
+    for (std::size_t i = 0, k = node.polygon.size() - 1; i < node.polygon.size(); k = i++)
+    {
+      const auto pi = flat(octree.projected[node.polygon[i]]);
+      const auto pk = flat(octree.projected[node.polygon[k]]);
+      if ((pi[1] > q[1]) != (pk[1] > q[1]) &&
+        q[0] < (pk[0] - pi[0]) * (q[1] - pi[1]) / (pk[1] - pi[1]) + pi[0])
+        in = !in;
+    }
+    ASSERT_TRUE(in) << "point " << p << " inside node " << id << " (level " << node.level
+                    << ") projects outside its polygon";
+  }
+  EXPECT_TRUE(papersRule ||
+    std::any_of(interiorPoints.begin(), interiorPoints.end(), [](int k) { return k > 0; }));
   // Under the reach rule, the box of every sewing quadrilateral's corners meets no voxel whose
   // 26 neighbours are all of its own kind (its triangles stay near the surfels).
   const auto far = [&](int i, int j, int k)
