@@ -562,6 +562,7 @@ int vtkFaceOctreeBoundaryFilter::Execute(vtkInformationVector** inputVector,
   each.relaxation.tolerance = this->RelaxationTolerance;
   each.octree.maximumLevel = this->MaximumOctreeLevel;
   each.octree.mergeFaceNodes = this->MergeFaceNodes;
+  each.octree.keepPointsInVoxels = this->KeepPointsInVoxels;
   const double largestSpacing =
     std::max({ std::abs(grid.spacing[0]), std::abs(grid.spacing[1]), std::abs(grid.spacing[2]) });
   each.simplify = this->Simplify && this->OutputMode != QUADRILATERALS;
@@ -635,6 +636,7 @@ void vtkFaceOctreeBoundaryFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Precision: " << this->Precision << "\n";
   os << indent << "PruneCrests: " << (this->PruneCrests ? "On\n" : "Off\n");
   os << indent << "MergeFaceNodes: " << (this->MergeFaceNodes ? "On\n" : "Off\n");
+  os << indent << "KeepPointsInVoxels: " << (this->KeepPointsInVoxels ? "On\n" : "Off\n");
   os << indent << "Simplify: " << (this->Simplify ? "On\n" : "Off\n");
   os << indent << "SimplificationDistance: " << this->SimplificationDistance << "\n";
 }

@@ -22,6 +22,14 @@ inline double norm(const Vec3& a)
   return std::sqrt(dot(a, a));
 }
 
+/// Whether voxel v is an object voxel (outside the grid: background).
+inline bool inObjectGrid(const BitVolume& object, const std::array<std::int32_t, 3>& v)
+{
+  const auto& n = object.dims();
+  return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < n[0] && v[1] < n[1] && v[2] < n[2] &&
+    object.get(v[0], v[1], v[2]);
+}
+
 /// Morton code of a voxel (21 bits an axis).
 std::uint64_t mortonOf(const std::array<std::int32_t, 3>& v)
 {
@@ -88,6 +96,10 @@ struct NodeFit
   bool ok = false;
   FaceNode node;
   std::vector<Vec3> projected; ///< of the candidate's points, in order
+  /// The candidate's points with a quadrilateral that leaves it (the sewing's only points).
+  std::vector<std::int32_t> rim;
+  /// The quadrilaterals inside it (the reach rule only: checked for folds).
+  std::vector<std::int32_t> inside;
 };
 
 struct Compactor
@@ -95,6 +107,9 @@ struct Compactor
   const BitVolume& far;
   const DeformedModel& model;
   const FaceOctreeOptions& options;
+  /// The object, for the surfels each projection must reach (FaceOctree.h's second rule);
+  /// null: the paper's rule (the label net, or keepPointsInVoxels).
+  const BitVolume* object = nullptr;
   std::vector<std::int32_t> order;  ///< points by Morton code of their voxel
   std::vector<std::uint64_t> codes; ///< per point
   double precision = std::sqrt(3.0);
@@ -102,9 +117,12 @@ struct Compactor
 
   Region regionOf(const Candidate& c) const;
   NodeFit fit(const Region& c) const;
-  bool sewingUnfolded(const Region& c, const std::vector<Vec3>& projected) const;
+  bool sewingUnfolded(const Region& c, const NodeFit& f) const;
   bool planeNormal(const Region& c, Vec3& n) const;
   bool planeOffset(const Region& c, const FaceNode& node, double& t) const;
+  bool reachesSurfels(std::int32_t p, const Vec3& q) const;
+  bool insideUnfolded(const Region& c, const NodeFit& f) const;
+  bool sewingNearBoundary(const std::array<Vec3, 4>& corners) const;
   void forbiddenIntervals(const FaceNode& node,
     double lo,
     double hi,
@@ -200,11 +218,24 @@ bool Compactor::planeOffset(const Region& c, const FaceNode& node, double& t) co
       bmax += n[d] * (n[d] > 0 ? this->model.boxHi[p][d] : this->model.boxLo[p][d]);
     }
     const double at = dot(n, this->model.position[p]);
-    lo = std::max({ lo, bmin, at - this->precision });
-    hi = std::min({ hi, bmax, at + this->precision });
+    if (!this->object)
+      lo = std::max(lo, bmin), hi = std::min(hi, bmax);
+    lo = std::max(lo, at - this->precision);
+    hi = std::min(hi, at + this->precision);
     const double w = norm(this->model.normal[p]) + 1e-12;
     sum += w * at;
     weight += w;
+  }
+  if (this->object)
+  { // the plane meets the node's box: the projections stay in it
+    double boxMin = 0.0, boxMax = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      boxMin += n[d] * (n[d] > 0 ? node.lo[d] : node.hi[d]);
+      boxMax += n[d] * (n[d] > 0 ? node.hi[d] : node.lo[d]);
+    }
+    lo = std::max(lo, boxMin);
+    hi = std::min(hi, boxMax);
   }
   if (!(lo <= hi))
     return false;
@@ -243,16 +274,22 @@ bool Compactor::collapseToPolygon(const Region& c, NodeFit& f) const
   for (std::size_t i = 0; i < c.size; ++i)
   {
     const std::int32_t p = c.first[i];
-    bool any = false;
+    bool any = false, leaves = false;
     for (std::int64_t l = m.linkOffsets[p]; l < m.linkOffsets[p + 1]; ++l)
     {
       const Quad& q = m.quads[m.quadsOf[l]];
       if (!(c.contains(q[0]) && c.contains(q[1]) && c.contains(q[2]) && c.contains(q[3])))
+      {
+        if (!leaves)
+          f.rim.push_back(p), leaves = true;
         continue;
+      }
       any = true;
       if (q[0] != p)
         continue;
       ++faces;
+      if (this->object)
+        f.inside.push_back(m.quadsOf[l]);
       for (int r = 0; r < 4; ++r)
         edges.push_back(std::uint64_t(std::uint32_t(q[r])) << 32 | std::uint32_t(q[(r + 1) % 4]));
     }
@@ -296,9 +333,10 @@ bool Compactor::collapseToPolygon(const Region& c, NodeFit& f) const
 /// Whether every quadrilateral that leaves the node still has a split into two triangles
 /// facing the way the relaxed quadrilateral faces (with the node's points projected and the
 /// others where they are now): projecting must not fold the sewing triangles.
-bool Compactor::sewingUnfolded(const Region& c, const std::vector<Vec3>& projected) const
+bool Compactor::sewingUnfolded(const Region& c, const NodeFit& f) const
 {
   const DeformedModel& m = this->model;
+  const std::vector<Vec3>& projected = f.projected;
   auto positionOf = [&](std::int32_t p) -> const Vec3&
   { return c.contains(p) ? projected[c.indexOf(p)] : (*this->current)[p]; };
   auto normal = [](const Vec3& a, const Vec3& b, const Vec3& d)
@@ -307,9 +345,8 @@ bool Compactor::sewingUnfolded(const Region& c, const std::vector<Vec3>& project
       v{ d[0] - a[0], d[1] - a[1], d[2] - a[2] };
     return Vec3{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
   };
-  for (std::size_t i = 0; i < c.size; ++i)
+  for (const std::int32_t p : f.rim)
   {
-    const std::int32_t p = c.first[i];
     for (std::int64_t l = m.linkOffsets[p]; l < m.linkOffsets[p + 1]; ++l)
     {
       const Quad& q = m.quads[m.quadsOf[l]];
@@ -320,12 +357,91 @@ bool Compactor::sewingUnfolded(const Region& c, const std::vector<Vec3>& project
       const Vec3 n{ a[0] + b[0], a[1] + b[1], a[2] + b[2] };
       const Vec3 &x0 = positionOf(q[0]), &x1 = positionOf(q[1]), &x2 = positionOf(q[2]),
                  &x3 = positionOf(q[3]);
+      if (this->object && !this->sewingNearBoundary({ x0, x1, x2, x3 }))
+        return false;
       const double first = std::min(dot(normal(x0, x1, x2), n), dot(normal(x0, x2, x3), n));
       const double second = std::min(dot(normal(x0, x1, x3), n), dot(normal(x1, x2, x3), n));
       if (!(std::max(first, second) > 1e-3 * dot(n, n)))
         return false;
     }
   }
+  return true;
+}
+
+/// Whether every quadrilateral inside the node, projected, has a split into two triangles
+/// turning counter-clockwise about the normal: the projected disk then covers its polygon
+/// once (a disk mapped locally one-to-one whose boundary goes to a simple loop), so each
+/// point inside it, which the polygon replaces, lies on the polygon (its surfels stay within
+/// reach of the surface, not only of the point).
+bool Compactor::insideUnfolded(const Region& c, const NodeFit& f) const
+{
+  const Vec3& n = f.node.normal;
+  auto turn = [&](const Vec3& a, const Vec3& b, const Vec3& d)
+  {
+    const Vec3 u{ b[0] - a[0], b[1] - a[1], b[2] - a[2] },
+      v{ d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+    return n[0] * (u[1] * v[2] - u[2] * v[1]) + n[1] * (u[2] * v[0] - u[0] * v[2]) +
+      n[2] * (u[0] * v[1] - u[1] * v[0]);
+  };
+  for (const std::int32_t i : f.inside)
+  {
+    const Quad& q = this->model.quads[i];
+    const Vec3 &x0 = f.projected[c.indexOf(q[0])], &x1 = f.projected[c.indexOf(q[1])],
+               &x2 = f.projected[c.indexOf(q[2])], &x3 = f.projected[c.indexOf(q[3])];
+    const bool first = turn(x0, x1, x2) > 0 && turn(x0, x2, x3) > 0;
+    if (!first && !(turn(x0, x1, x3) > 0 && turn(x1, x2, x3) > 0))
+      return false;
+  }
+  return true;
+}
+
+/// Whether q lies within one voxel diagonal of every corner of every surfel of p's voxel (a
+/// face of it whose neighbour across is background): then of every point of those surfels.
+bool Compactor::reachesSurfels(std::int32_t p, const Vec3& q) const
+{
+  const auto& v = this->model.voxel[p];
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side)
+    {
+      std::array<std::int32_t, 3> w = v;
+      w[a] += side ? 1 : -1;
+      if (inObjectGrid(*this->object, w))
+        continue;
+      // The face's corners: coordinate a fixed, the two others at both ends of the voxel.
+      for (int corner = 0; corner < 4; ++corner)
+      {
+        double d2 = 0.0;
+        for (int d = 0, bit = 0; d < 3; ++d)
+        {
+          const double x = d == a ? v[d] + side : v[d] + ((corner >> bit++) & 1);
+          d2 += (q[d] - x) * (q[d] - x);
+        }
+        if (d2 > 3.0)
+          return false;
+      }
+    }
+  return true;
+}
+
+/// Whether no far voxel meets the bounding box of a sewing quadrilateral's corners: its two
+/// triangles lie in that box, so every point of them is in a voxel that touches the surfels.
+bool Compactor::sewingNearBoundary(const std::array<Vec3, 4>& corners) const
+{
+  std::array<std::int32_t, 3> lo, hi;
+  const auto& dims = this->far.dims();
+  for (int d = 0; d < 3; ++d)
+  {
+    double a = corners[0][d], b = corners[0][d];
+    for (const Vec3& x : corners)
+      a = std::min(a, x[d]), b = std::max(b, x[d]);
+    lo[d] = std::max<std::int32_t>(0, std::int32_t(std::floor(a)));
+    hi[d] = std::min<std::int32_t>(dims[d] - 1, std::int32_t(std::floor(b)));
+  }
+  for (std::int32_t k = lo[2]; k <= hi[2]; ++k)
+    for (std::int32_t j = lo[1]; j <= hi[1]; ++j)
+      for (std::int32_t i = lo[0]; i <= hi[0]; ++i)
+        if (this->far.get(i, j, k))
+          return false;
   return true;
 }
 
@@ -338,16 +454,22 @@ NodeFit Compactor::fit(const Region& c) const
   node.hi = c.hi;
   if (!this->planeNormal(c, node.normal) || !this->planeOffset(c, node, node.offset))
     return f;
+  const Vec3 nodeLo{ double(node.lo[0]), double(node.lo[1]), double(node.lo[2]) };
+  const Vec3 nodeHi{ double(node.hi[0]), double(node.hi[1]), double(node.hi[2]) };
   for (std::size_t i = 0; i < c.size; ++i)
   {
     const std::int32_t p = c.first[i];
+    const bool inVoxel = !this->object;
     f.projected.push_back(projectIntoBox(this->model.position[p],
       node.normal,
       node.offset,
-      this->model.boxLo[p],
-      this->model.boxHi[p]));
+      inVoxel ? this->model.boxLo[p] : nodeLo,
+      inVoxel ? this->model.boxHi[p] : nodeHi));
+    if (!inVoxel && !this->reachesSurfels(p, f.projected.back()))
+      return f;
   }
-  if (!this->collapseToPolygon(c, f) || !this->sewingUnfolded(c, f.projected))
+  if (!this->collapseToPolygon(c, f) || !this->sewingUnfolded(c, f) ||
+    (this->object && !this->insideUnfolded(c, f)))
     return f;
   if (!node.polygon.empty())
   {
@@ -515,9 +637,20 @@ bool robustTriangles(const std::vector<Point2L>& c, const std::vector<Triangle>&
       const std::size_t a = std::size_t(t[k]), b = std::size_t(t[(k + 1) % 3]);
       if ((a + 1) % n == b || (b + 1) % n == a)
         continue; // an edge of the polygon
+      // Only corners in the diagonal's box grown by the tolerance can be that close.
+      const double reach = endTolerance + 1;
+      const double x0 = double(std::min(c[a][0], c[b][0])) - reach,
+                   x1 = double(std::max(c[a][0], c[b][0])) + reach,
+                   y0 = double(std::min(c[a][1], c[b][1])) - reach,
+                   y1 = double(std::max(c[a][1], c[b][1])) + reach;
       for (std::size_t i = 0; i < n; ++i)
-        if (i != a && i != b && toSegment(c[i], c[a], c[b]) <= endTolerance)
+      {
+        const double x = double(c[i][0]), y = double(c[i][1]);
+        if (x < x0 || x > x1 || y < y0 || y > y1 || i == a || i == b)
+          continue;
+        if (toSegment(c[i], c[a], c[b]) <= endTolerance)
           return false;
+      }
     }
   }
   return true;
@@ -646,7 +779,7 @@ void voxelFaceNodes(const DeformedModel& model, FaceOctree& out, std::vector<int
 {
   for (std::size_t p = 0; p < model.pointCount(); ++p)
   {
-    if (model.shared[p])
+    if (model.shared[p] || out.nodeOf[p] >= 0)
       continue;
     FaceNode node;
     node.lo = model.voxel[p];
@@ -683,6 +816,28 @@ std::vector<Candidate> candidatesOfLevel(const Compactor& cp,
   return candidates;
 }
 
+/// The nodes of a level, largest first (the reach rule): those none of whose points is in a
+/// face node yet (no larger node took them) nor shared by two sheets.
+std::vector<Candidate> candidatesFromAbove(const Compactor& cp,
+  int level,
+  const std::vector<int>& faceLevel)
+{
+  std::vector<Candidate> candidates;
+  const std::size_t np = cp.order.size();
+  for (std::size_t i = 0; i < np;)
+  {
+    const std::uint64_t key = cp.codes[cp.order[i]] >> (3 * level);
+    std::size_t j = i;
+    bool free = true;
+    for (; j < np && (cp.codes[cp.order[j]] >> (3 * level)) == key; ++j)
+      free = free && faceLevel[cp.order[j]] < 0 && !cp.model.shared[cp.order[j]];
+    if (free)
+      candidates.push_back({ level, key, i, j });
+    i = j;
+  }
+  return candidates;
+}
+
 /// Compacts one level: every candidate fitted in parallel, then committed in order (the
 /// sewing checked again against the projections committed before). False when none fits.
 bool compactLevel(const Compactor& cp,
@@ -691,7 +846,8 @@ bool compactLevel(const Compactor& cp,
   FaceOctree& out,
   std::vector<int>& faceLevel)
 {
-  const std::vector<Candidate> candidates = candidatesOfLevel(cp, level, faceLevel);
+  const std::vector<Candidate> candidates =
+    cp.object ? candidatesFromAbove(cp, level, faceLevel) : candidatesOfLevel(cp, level, faceLevel);
   std::vector<NodeFit> fits(candidates.size());
   exec.forRange(std::int64_t(candidates.size()),
     [&](std::int64_t b, std::int64_t e)
@@ -702,7 +858,7 @@ bool compactLevel(const Compactor& cp,
   bool any = false;
   for (std::size_t c = 0; c < candidates.size(); ++c)
   {
-    if (!fits[c].ok || !cp.sewingUnfolded(cp.regionOf(candidates[c]), fits[c].projected))
+    if (!fits[c].ok || !cp.sewingUnfolded(cp.regionOf(candidates[c]), fits[c]))
       continue;
     const std::int32_t id = std::int32_t(out.nodes.size());
     for (std::size_t i = candidates[c].begin; i < candidates[c].end; ++i)
@@ -716,6 +872,37 @@ bool compactLevel(const Compactor& cp,
     any = true;
   }
   return any;
+}
+
+/// The level of the octree's root: the first whose cube holds the whole grid.
+int topLevel(const std::array<std::int32_t, 3>& dims)
+{
+  const std::int32_t largest = *std::max_element(dims.begin(), dims.end());
+  int top = 0;
+  while (top < 30 && (std::int32_t(1) << top) < largest)
+    ++top;
+  return top;
+}
+
+/// The reach rule's compaction, from the root down: each level's nodes whose points no larger
+/// node took are fitted (compactLevel), and the points no node took are then face nodes of
+/// their own voxels. A node fails mostly at its first, cheap tests (the normals, the
+/// precision), so the levels above the face nodes cost little; bottom-up, every level below
+/// them would be fitted in full. Every node meets the same rules either way.
+void compactFromAbove(const Compactor& cp,
+  int top,
+  const Execution& exec,
+  double compaction,
+  FaceOctree& out,
+  std::vector<int>& faceLevel)
+{
+  for (int level = top; level >= 1; --level)
+  {
+    if (exec.stopRequested() || !exec.report(compaction * (top - level) / top))
+      break;
+    compactLevel(cp, level, exec, out, faceLevel);
+  }
+  voxelFaceNodes(cp.model, out, faceLevel);
 }
 
 /// Keeps the terminal face nodes only, renumbered in the order of their first point.
@@ -1016,6 +1203,12 @@ void mergeFaceNodes(const Compactor& cp, const Execution& exec, FaceOctree& out)
   keepTerminalNodes(out);
 }
 
+FaceOctree compactFaceOctree(const BitVolume& far,
+  const BitVolume* object,
+  const DeformedModel& model,
+  const FaceOctreeOptions& options,
+  const Execution& exec);
+
 } // namespace
 
 FaceOctree buildFaceOctree(const BitVolume& object,
@@ -1023,7 +1216,8 @@ FaceOctree buildFaceOctree(const BitVolume& object,
   const FaceOctreeOptions& options,
   const Execution& exec)
 {
-  return buildFaceOctreeAvoiding(farVoxels(object, exec), model, options, exec);
+  return compactFaceOctree(
+    farVoxels(object, exec), options.keepPointsInVoxels ? nullptr : &object, model, options, exec);
 }
 
 FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
@@ -1031,7 +1225,19 @@ FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
   const FaceOctreeOptions& options,
   const Execution& exec)
 {
-  Compactor cp{ far, model, options, {}, {} };
+  return compactFaceOctree(far, nullptr, model, options, exec);
+}
+
+namespace
+{
+
+FaceOctree compactFaceOctree(const BitVolume& far,
+  const BitVolume* object,
+  const DeformedModel& model,
+  const FaceOctreeOptions& options,
+  const Execution& exec)
+{
+  Compactor cp{ far, model, options, object, {}, {} };
   if (options.precision > 0)
     cp.precision = options.precision;
   const std::size_t np = model.pointCount();
@@ -1049,20 +1255,26 @@ FaceOctree buildFaceOctreeAvoiding(const BitVolume& far,
   cp.current = &out.projected;
   out.nodeOf.assign(np, -1);
   std::vector<int> faceLevel(np, -1);
-  voxelFaceNodes(model, out, faceLevel);
+  if (!cp.object)
+    voxelFaceNodes(model, out, faceLevel);
   // Progress: the levels take the first part (the lower levels, with the most candidates,
   // the most time), the merging, when asked, the rest (about as long as the compaction).
   const bool merging = options.mergeFaceNodes && options.maximumLevel > 0;
   const double compaction = merging ? 0.5 : 1.0;
   const int levels = std::min(options.maximumLevel, 20);
-  for (int level = 1; level <= levels; ++level)
-    if (exec.stopRequested() || !exec.report(compaction * (level - 1) / levels) ||
-      !compactLevel(cp, level, exec, out, faceLevel))
-      break;
+  if (cp.object)
+    compactFromAbove(cp, std::min(levels, topLevel(model.dims)), exec, compaction, out, faceLevel);
+  else
+    for (int level = 1; level <= levels; ++level)
+      if (exec.stopRequested() || !exec.report(compaction * (level - 1) / levels) ||
+        !compactLevel(cp, level, exec, out, faceLevel))
+        break;
   keepTerminalNodes(out);
   if (merging && !exec.stopRequested())
     mergeFaceNodes(cp, exec.within(compaction, 1.0), out);
   return out;
 }
+
+} // namespace
 
 } // namespace vbr

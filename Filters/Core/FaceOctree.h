@@ -5,13 +5,13 @@
 // representative point is a face node, with its GDM plane (through the point, with the point's
 // area-weighted fan normal). Level L groups the voxels of a 2^L cube of the grid (the cubes of
 // a root of the next power of two above the grid's size, clipped to the grid: any grid size
-// works). A node of level L becomes a face node when every child holding points is a face
-// node and one plane fits the node. "Fits" (section 3.3: "a plane that is both interior to all
-// boundary voxels inside the region bounded by the current face octree node and does not
-// intersect any other voxel in the node") is, here:
-//  - the plane meets the box of every point of the node (its voxel), and no relaxed point is
-//    farther from it than the precision (default half a voxel: larger values compact more
-//    but move points farther from their neighbours' sewing triangles);
+// works). A node of level L becomes a face node when one plane fits the node. "Fits"
+// (section 3.3: "a plane that is both interior to all boundary voxels inside the region
+// bounded by the current face octree node and does not intersect any other voxel in the
+// node") is one of two rules, with these parts in common:
+//  - no relaxed point of the node is farther from the plane than the precision (default half
+//    a voxel: larger values compact more but move points farther from their neighbours'
+//    sewing triangles);
 //  - it cuts the open interior of no *far* voxel of the node: an object voxel whose 26
 //    neighbours are all object voxels, or a background voxel whose 26 neighbours are all
 //    background. Every point of the plane inside the node then lies in a voxel that shares a
@@ -20,8 +20,7 @@
 //  - the points' normals agree with it (angle below 60 degrees): two sheets facing each other
 //    never share a node;
 //  - the quadrilaterals with all four points in the node form one disk, whose boundary, with
-//    each point moved to the nearest point of the plane inside its own voxel (the projection
-//    of section 3.4, kept inside the voxel), is a simple polygon turning counter-clockwise
+//    each point moved onto the plane (below), is a simple polygon turning counter-clockwise
 //    about the normal: the planar polygon that replaces the node's quadrilaterals;
 //  - that polygon can be cut into triangles that keep their orientations and incidences at
 //    the points' own (double) positions (polygonTriangles below). Points clamped to a face of
@@ -30,7 +29,47 @@
 //    a triangle cut there could fold by a hair or pass through a corner where the sewing
 //    triangles meet the polygon (self-intersections in exact arithmetic). Straight runs are
 //    cut on exact chords; a node whose cut still has a sliver or a diagonal grazing a corner
-//    (a corner on the line of a run elsewhere on the boundary) stays uncompacted.
+//    (a corner on the line of a run elsewhere on the boundary) stays uncompacted;
+//  - the sewing quadrilaterals that leave the node keep a split into two triangles facing the
+//    way the relaxed quadrilateral faces.
+//
+// The paper's rule (keepPointsInVoxels): the plane also meets the box of every point of the
+// node (its voxel, shrunk by the model's margin), and each point moves to the nearest point of
+// the plane inside its own box (the projection of section 3.4, kept inside the voxel). Every
+// vertex then stays in its boundary voxel, and the sewing triangles in the boundary voxels
+// around their grid edge. Digital planes of generic slope meet every boundary voxel's box only
+// over a few voxels, so most nodes stay small (0.28 polygons per object voxel on the torus of
+// the benchmark at 128^3).
+//
+// The reach rule (the default): the plane need not meet the points' voxels. Each point moves
+// to the nearest point of the plane inside the node's box (the plane must meet that box), and
+// - every moved point lies within one voxel diagonal of every corner of every surfel of its
+//   own voxel (a face of it whose neighbour across is background), hence of every point of
+//   those surfels (a ball holds the hull of the corners it holds);
+// - the box of the four corners of every sewing quadrilateral meets no far voxel (checked by
+//   whichever node moves a corner last, against the others' positions);
+// - every quadrilateral inside the node, projected, has a split into two triangles turning
+//   counter-clockwise about the normal: the projected disk covers its polygon once, so the
+//   points inside the disk, which the polygon replaces, lie on the polygon (without this
+//   check such points were found outside it on the 128^3 ball).
+// Why the bound of one voxel diagonal still holds both ways (except at pruned voxels, whose
+// points the model drops):
+// - surface to surfels: a polygon lies in its corners' hull, in the node's box, and on a
+//   plane that cuts no far voxel there, so each of its points is in a voxel that is not far:
+//   within a voxel diagonal of the surfels (above); a sewing triangle lies in its corners'
+//   box, which meets no far voxel (a point in it is in the closure of a voxel that meets the
+//   box); a point of no node stays in its own boundary voxel;
+// - surfels to surface: every surfel belongs to an object voxel with a background face
+//   neighbour, a boundary voxel, whose point lies on the surface (unless pruned): a vertex,
+//   or a point inside a disk, on its polygon by the last check. A moved point is within the
+//   diagonal of the whole surfel by the first check; an unmoved one lies in its voxel, within
+//   the voxel's diagonal of every point of its faces.
+// The vertices then reach the planes of larger nodes (0.15 polygons per object voxel on that
+// torus). Nodes are tried from the root down (the first node of each branch that fits is
+// kept; the points no node took are face nodes of their own voxels): the levels above a face
+// node mostly fail at the cheap first tests, where a bottom-up pass would fit every level
+// below it in full. The label net (buildFaceOctreeAvoiding) keeps the paper's rule: its boxes
+// are grid vertices', not voxels'.
 // The normal is the sum of the points' GDM normals (area-weighted); the offset is the one
 // nearest the points' mean that the constraints allow (an interval minus open intervals).
 //
@@ -71,6 +110,10 @@ struct FaceOctreeOptions
   double minimumCosine = 0.5;
   /// Merge adjacent face nodes after the compaction (beyond the paper, see above).
   bool mergeFaceNodes = false;
+  /// The paper's rule (bottom-up): every node's plane meets each point's voxel box and the
+  /// points are projected inside their voxels. Off (the default): the reach rule above, from
+  /// the root down. The label net (buildFaceOctreeAvoiding) always keeps the paper's rule.
+  bool keepPointsInVoxels = false;
 };
 
 struct FaceNode

@@ -170,15 +170,15 @@ std::vector<std::vector<int>> convexPieces(const std::vector<Point2L>& corners)
   for (const Triangle& t : triangulateSimplePolygon(corners))
     pieces.push_back({ t[0], t[1], t[2] });
   const int n = int(corners.size());
-  bool merged = true;
-  while (merged)
+  // Directed edge -> piece, kept up to date as pieces merge (a merged piece is left empty):
+  // one map for all the merges, not one a merge (large polygons have hundreds of pieces).
+  std::map<std::pair<int, int>, std::size_t> owner;
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    for (std::size_t k = 0; k < pieces[i].size(); ++k)
+      owner[{ pieces[i][k], pieces[i][(k + 1) % pieces[i].size()] }] = i;
+  for (bool merged = true; merged;)
   {
     merged = false;
-    // Directed edge -> piece.
-    std::map<std::pair<int, int>, std::size_t> owner;
-    for (std::size_t i = 0; i < pieces.size(); ++i)
-      for (std::size_t k = 0; k < pieces[i].size(); ++k)
-        owner[{ pieces[i][k], pieces[i][(k + 1) % pieces[i].size()] }] = i;
     for (const auto& entry : owner)
     {
       const int a = entry.first.first, b = entry.first.second;
@@ -186,7 +186,7 @@ std::vector<std::vector<int>> convexPieces(const std::vector<Point2L>& corners)
         continue; // a polygon edge
       const auto other = owner.find({ b, a });
       if (other == owner.end() || other->second == entry.second)
-        continue;
+        continue; // a diagonal already removed
       std::vector<int> j = joined(pieces[entry.second], pieces[other->second], a, b);
       const std::size_t ia = std::find(j.begin(), j.end(), a) - j.begin();
       const std::size_t ib = std::find(j.begin(), j.end(), b) - j.begin();
@@ -195,11 +195,17 @@ std::vector<std::vector<int>> convexPieces(const std::vector<Point2L>& corners)
       const std::size_t keep = std::min(entry.second, other->second);
       const std::size_t drop = std::max(entry.second, other->second);
       pieces[keep] = std::move(j);
-      pieces.erase(pieces.begin() + drop);
+      pieces[drop].clear();
+      for (std::size_t k = 0; k < pieces[keep].size(); ++k)
+        owner[{ pieces[keep][k], pieces[keep][(k + 1) % pieces[keep].size()] }] = keep;
+      owner[{ a, b }] = keep; // the removed diagonal, both ways, now inside one piece
+      owner[{ b, a }] = keep;
       merged = true;
-      break;
     }
   }
+  pieces.erase(std::remove_if(
+                 pieces.begin(), pieces.end(), [](const std::vector<int>& p) { return p.empty(); }),
+    pieces.end());
   return pieces;
 }
 

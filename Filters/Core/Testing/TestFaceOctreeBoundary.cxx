@@ -580,6 +580,10 @@ struct Result
 
 /// Whether run() merges adjacent face nodes (the boundary checks run with merging).
 bool mergeFaceNodes = true;
+/// Whether run() keeps the paper's rule (planes meet every point's voxel), and the
+/// precision it asks for (0: the default).
+bool keepPointsInVoxels = false;
+double precision = 0.0;
 
 Result run(const BitVolume& v,
   vbr::BoundaryCells cells,
@@ -591,6 +595,9 @@ Result run(const BitVolume& v,
   vbr::FaceOctreeOptions o;
   o.maximumLevel = maximumLevel;
   o.mergeFaceNodes = mergeFaceNodes;
+  o.keepPointsInVoxels = keepPointsInVoxels;
+  if (precision > 0)
+    o.precision = precision;
   r.octree = vbr::buildFaceOctree(v, r.model, o, exec);
   r.mesh = vbr::assembleBoundary(r.model, r.octree, cells);
   return r;
@@ -975,11 +982,38 @@ TEST(DeformedModel, RelaxationLowersTheCostInsideTheVoxels)
 /// The face nodes' rules, checked directly: every point projected inside its voxel and in its
 /// node's box, on the node's plane, and no plane cutting a voxel whose 26 neighbours are all
 /// of its own kind inside the node's box; octree nodes are aligned cubes.
+/// The farthest any point of a surfel is from p: the farthest of its four corners.
+double farthestOfSurfel(const Vec3& p, const Surfel& s)
+{
+  double worst = 0;
+  for (int c = 0; c < 4; ++c)
+  {
+    Vec3 x{ double(s.voxel[0]), double(s.voxel[1]), double(s.voxel[2]) };
+    x[s.axis] += s.side;
+    x[(s.axis + 1) % 3] += c & 1;
+    x[(s.axis + 2) % 3] += c >> 1;
+    worst = std::max(worst,
+      std::sqrt((p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) +
+        (p[2] - x[2]) * (p[2] - x[2])));
+  }
+  return worst;
+}
+
+/// The compaction's rules, checked from the voxels. Every projected point lies on its node's
+/// plane, in its node's box; under the paper's rule in its own voxel, under the reach rule
+/// within `precision` of its relaxed point along the normal and within a voxel diagonal of
+/// every point of every surfel of its voxel (so every surfel of an unpruned voxel is that
+/// close to a vertex of the surface).
 static void checkCompactionCriterion(const BitVolume& v,
   const vbr::DeformedModel& model,
   const vbr::FaceOctree& octree,
-  bool merged)
+  bool merged,
+  bool papersRule = false,
+  double precision = 0.5)
 {
+  std::map<Int3, std::vector<Surfel>> surfelsOf;
+  for (const Surfel& s : surfels(v))
+    surfelsOf[s.voxel].push_back(s);
   int maxLevel = 0;
   for (std::size_t p = 0; p < model.pointCount(); ++p)
   {
@@ -991,15 +1025,105 @@ static void checkCompactionCriterion(const BitVolume& v,
     const Vec3& q = octree.projected[p];
     for (int d = 0; d < 3; ++d)
     {
-      ASSERT_GE(q[d], model.voxel[p][d] - 1e-12);
-      ASSERT_LE(q[d], model.voxel[p][d] + 1 + 1e-12);
+      if (papersRule)
+      {
+        ASSERT_GE(q[d], model.voxel[p][d] - 1e-12);
+        ASSERT_LE(q[d], model.voxel[p][d] + 1 + 1e-12);
+      }
+      ASSERT_GE(q[d], node.lo[d] - 1e-12);
+      ASSERT_LE(q[d], node.hi[d] + 1e-12);
       ASSERT_GE(model.voxel[p][d], node.lo[d]);
       ASSERT_LT(model.voxel[p][d], node.hi[d]);
     }
     const double off = node.normal[0] * q[0] + node.normal[1] * q[1] + node.normal[2] * q[2];
     ASSERT_NEAR(off, node.offset, 1e-9);
+    if (papersRule || node.level == 0)
+      continue;
+    const Vec3& x = model.position[p];
+    ASSERT_LE(
+      std::abs(node.normal[0] * x[0] + node.normal[1] * x[1] + node.normal[2] * x[2] - node.offset),
+      precision + 1e-9);
+    const auto& vox = model.voxel[p];
+    for (const Surfel& s : surfelsOf[{ vox[0], vox[1], vox[2] }])
+      ASSERT_LE(farthestOfSurfel(q, s), std::sqrt(3.0) + 1e-9)
+        << "point " << p << " of node " << id << " at level " << node.level;
   }
   EXPECT_GE(maxLevel, 3);
+  // Under the reach rule, every point inside a node's disk (all its quadrilaterals in the
+  // node, not a corner of the polygon) projects inside the polygon that replaces the disk
+  // (even-odd ray test in the plane, in a basis of its own).
+  std::vector<int> interiorPoints(octree.nodes.size());
+  for (std::size_t p = 0; p < model.pointCount() && !papersRule; ++p)
+  {
+    const int id = octree.nodeOf[p];
+    if (id < 0 || octree.nodes[id].polygon.empty())
+      continue;
+    const auto& node = octree.nodes[id];
+    bool interior =
+      std::find(node.polygon.begin(), node.polygon.end(), int(p)) == node.polygon.end();
+    for (auto l = model.linkOffsets[p]; l < model.linkOffsets[p + 1] && interior; ++l)
+      for (int r = 0; r < 4; ++r)
+        interior = interior && octree.nodeOf[model.quads[model.quadsOf[l]][r]] == id;
+    if (!interior)
+      continue;
+    ++interiorPoints[id];
+    const Vec3& n = node.normal;
+    const Vec3 a = std::abs(n[0]) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
+    Vec3 u{ n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0] };
+    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (double& x : u)
+      x /= lu;
+    const Vec3 w{ n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0] };
+    auto flat = [&](const Vec3& x)
+    {
+      return std::array<double, 2>{ x[0] * u[0] + x[1] * u[1] + x[2] * u[2],
+        x[0] * w[0] + x[1] * w[1] + x[2] * w[2] };
+    };
+    const auto q = flat(octree.projected[p]);
+    bool in = false;
+    for (std::size_t i = 0, k = node.polygon.size() - 1; i < node.polygon.size(); k = i++)
+    {
+      const auto pi = flat(octree.projected[node.polygon[i]]);
+      const auto pk = flat(octree.projected[node.polygon[k]]);
+      if ((pi[1] > q[1]) != (pk[1] > q[1]) &&
+        q[0] < (pk[0] - pi[0]) * (q[1] - pi[1]) / (pk[1] - pi[1]) + pi[0])
+        in = !in;
+    }
+    ASSERT_TRUE(in) << "point " << p << " inside node " << id << " (level " << node.level
+                    << ") projects outside its polygon";
+  }
+  EXPECT_TRUE(papersRule ||
+    std::any_of(interiorPoints.begin(), interiorPoints.end(), [](int k) { return k > 0; }));
+  // Under the reach rule, the box of every sewing quadrilateral's corners meets no voxel whose
+  // 26 neighbours are all of its own kind (its triangles stay near the surfels).
+  const auto far = [&](int i, int j, int k)
+  {
+    for (int d = 0; d < 27; ++d)
+      if (at(v, i + d % 3 - 1, j + (d / 3) % 3 - 1, k + d / 9 - 1) != at(v, i, j, k))
+        return false;
+    return true;
+  };
+  for (const auto& q : papersRule ? std::vector<vbr::Quad>() : model.quads)
+  {
+    const int node = octree.nodeOf[q[0]];
+    if (node >= 0 && octree.nodeOf[q[1]] == node && octree.nodeOf[q[2]] == node &&
+      octree.nodeOf[q[3]] == node)
+      continue; // inside a polygon
+    int lo[3], hi[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      double a = 1e300, b = -1e300;
+      for (int r = 0; r < 4; ++r)
+        a = std::min(a, octree.projected[q[r]][d]), b = std::max(b, octree.projected[q[r]][d]);
+      lo[d] = std::max(0, int(std::floor(a)));
+      hi[d] = std::min(v.size(d) - 1, int(std::floor(b)));
+    }
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i)
+          ASSERT_FALSE(far(i, j, k))
+            << "a sewing quadrilateral's box meets voxel " << i << " " << j << " " << k;
+  }
   // No plane cuts the open interior of a voxel whose 26 neighbours are all of its own kind.
   for (const auto& node : octree.nodes)
   {
@@ -1036,13 +1160,42 @@ TEST(FaceOctree, NodesSatisfyTheCompactionCriterion)
   const BitVolume v = sample(
     { 45, 38, 41 }, [&](double x, double y, double z) { return s.inside(x / 45, y / 38, z / 41); });
   const auto model = vbr::buildDeformedModel(v, {}, sequential);
-  for (bool merge : { false, true })
+  for (bool papers : { false, true })
+    for (bool merge : { false, true })
+    {
+      SCOPED_TRACE(std::string(merge ? "merged" : "octree") + (papers ? ", paper's rule" : ""));
+      vbr::FaceOctreeOptions options;
+      options.mergeFaceNodes = merge;
+      options.keepPointsInVoxels = papers;
+      checkCompactionCriterion(
+        v, model, vbr::buildFaceOctree(v, model, options, sequential), merge, papers);
+    }
+}
+
+TEST(FaceOctree, ReachRuleHoldsAtLargePrecision)
+{
+  // With a point allowed 1.5 voxels off its node's plane, only the reach rule's own checks
+  // (every projection within a voxel diagonal of its voxel's surfels, no far voxel in a
+  // sewing quadrilateral's box) keep the surface within a voxel diagonal of the surfels,
+  // both ways (brute force: checkPolygons' Hausdorff samples), and closed, manifold and free
+  // of self-intersections.
+  precision = 1.5;
+  for (const Shape& s : solids())
   {
-    SCOPED_TRACE(merge ? "merged" : "octree");
+    const BitVolume v = shapeVolume(s, 40);
+    const auto model = vbr::buildDeformedModel(v, {}, sequential);
     vbr::FaceOctreeOptions options;
-    options.mergeFaceNodes = merge;
-    checkCompactionCriterion(v, model, vbr::buildFaceOctree(v, model, options, sequential), merge);
+    options.precision = precision;
+    options.mergeFaceNodes = false;
+    SCOPED_TRACE(s.name);
+    checkCompactionCriterion(
+      v, model, vbr::buildFaceOctree(v, model, options, sequential), false, false, precision);
+    checkBoundary(s.name + "40 at precision 1.5", v, true);
   }
+  for (unsigned seed : { 1u, 2u })
+    checkBoundary(
+      "porous" + std::to_string(seed) + "_40 at precision 1.5", porous(40, seed), false);
+  precision = 0.0;
 }
 
 TEST(FaceOctree, MergingCrossesOctreeCellsAndDropsSewingTriangles)
@@ -1181,6 +1334,21 @@ TEST(FaceOctreeBoundary, SolidsAt32WithoutMerging)
   for (const Shape& s : solids())
     checkBoundary(s.name + "32", shapeVolume(s, 32), true);
   mergeFaceNodes = true;
+}
+
+TEST(FaceOctreeBoundary, SolidsAt32UnderThePapersRule)
+{
+  // The paper's rule (keepPointsInVoxels): every check of the boundary, with and without
+  // merging.
+  keepPointsInVoxels = true;
+  for (bool merge : { true, false })
+  {
+    mergeFaceNodes = merge;
+    for (const Shape& s : solids())
+      checkBoundary(s.name + "32, paper's rule", shapeVolume(s, 32), true);
+  }
+  mergeFaceNodes = true;
+  keepPointsInVoxels = false;
 }
 
 TEST(FaceOctreeBoundary, RoundSolidsAt64)

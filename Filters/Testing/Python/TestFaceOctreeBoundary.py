@@ -363,6 +363,41 @@ def vtk_shifted(polydata):
     return tf.GetOutput()
 
 
+
+# ---- The reach rule (default) against the paper's rule (KeepPointsInVoxels) ----
+
+def check_rule(name, mask, keep_in_voxels):
+    """Closed and oriented, and within a voxel diagonal of the surfels both ways (the
+    surface's samples to the surfel squares, the surfels' lattice to the surface), measured
+    here from the voxels."""
+    f = run(vt.make_image(mask), F.POLYGONS, lambda f: f.SetKeepPointsInVoxels(keep_in_voxels))
+    out = f.GetOutput()
+    pts, cells = vt.points(out) + 0.5, vt.cells(out)  # voxel i spans [i, i + 1]
+    check.true(name + " closed and oriented", closed_and_oriented(cells))
+    check.true(name + " planar polygons", vt.polygon_planarity(pts, cells) < 1e-9)
+    fans = [[c[0], c[i], c[i + 1]] for c in cells for i in range(1, len(c) - 1)]
+    surfels = surfels_of(mask)
+    there = distance_to_surfels(surface_samples(pts, fans), surfels).max()
+    back = distance_from_surfels(surfel_lattice(mask, surfels), vtk_shifted(out))
+    check.true(name + " surface within a voxel diagonal of the surfels (%g)" % there,
+               there <= 3 ** 0.5 + 1e-9)
+    check.true(name + " surfels within a voxel diagonal of the surface (%g)" % back,
+               back <= 3 ** 0.5 + 1e-6)
+    return out.GetNumberOfCells()
+
+
+check.true("KeepPointsInVoxels off by default", not F().GetKeepPointsInVoxels())
+check.true("PrintSelf KeepPointsInVoxels", "KeepPointsInVoxels" in str(F()))
+z, y, x = np.mgrid[0:32, 0:32, 0:32]
+torus32 = ((((np.sqrt((x - 15.5) ** 2 + (y - 15.5) ** 2) - 9.0) ** 2 + (z - 15.5) ** 2) < 16.0)
+           .astype(np.uint8))
+for rule_name, rule_mask in (("ball", ball(32, 12.3)), ("torus", torus32)):
+    reach = check_rule(rule_name + " reach rule", rule_mask, False)
+    papers = check_rule(rule_name + " paper's rule", rule_mask, True)
+    check.true("%s: reach rule %d cells, fewer than the paper's rule %d" % (rule_name, reach,
+                                                                           papers),
+               reach < papers)
+
 check_simplified("simplified ball", ball(24, 9.3))
 z, y, x = np.mgrid[0:24, 0:24, 0:24]
 torus = (((np.sqrt((x - 11.5) ** 2 + (y - 11.5) ** 2) - 6.5) ** 2 + (z - 11.5) ** 2) < 9.0)
