@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <set>
 
 namespace vbr
 {
@@ -640,6 +641,59 @@ bool manifoldInside(const Mesh& m, const std::vector<LatticePoint>& border)
   return true;
 }
 
+/// Whether a vertex of the soup that is not a corner of `border` has its faces in two or more
+/// closed fans: the links of its faces (for a face v, b, c the edge b -> c) make two or more
+/// cycles. The soup is taken to have no edge of three faces nor one used twice the same way
+/// (nonManifoldEdge); a vertex with an open fan is not counted.
+bool twoFansInside(const std::vector<std::array<Point, 3>>& soup,
+  const std::vector<LatticePoint>& border)
+{
+  const auto less = [](const Point& a, const Point& b)
+  { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; };
+  std::vector<Point> points;
+  for (const auto& c : soup)
+    points.insert(points.end(), c.begin(), c.end());
+  std::sort(points.begin(), points.end(), less);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  const auto index = [&](const Point& p)
+  { return std::lower_bound(points.begin(), points.end(), p, less) - points.begin(); };
+  // Per vertex, its link edges b -> c.
+  std::vector<std::map<std::ptrdiff_t, std::ptrdiff_t>> link(points.size());
+  for (const auto& c : soup)
+    for (int k = 0; k < 3; ++k)
+      link[index(c[k])][index(c[(k + 1) % 3])] = index(c[(k + 2) % 3]);
+  for (std::size_t v = 0; v < points.size(); ++v)
+  {
+    LatticePoint q;
+    const Point& p = points[v];
+    if (integerValue(p.x(), q[0]) && integerValue(p.y(), q[1]) && integerValue(p.z(), q[2]) &&
+      std::binary_search(border.begin(), border.end(), q))
+      continue;
+    const auto& next = link[v];
+    std::set<std::ptrdiff_t> seen;
+    std::size_t cycles = 0;
+    for (const auto& [start, unused] : next)
+    {
+      if (seen.count(start))
+        continue;
+      std::ptrdiff_t at = start;
+      while (seen.insert(at).second)
+      {
+        const auto it = next.find(at);
+        if (it == next.end())
+          return false; // an open fan: not this case
+        at = it->second;
+      }
+      if (at != start)
+        return false; // ran into another chain: not closed fans
+      ++cycles;
+    }
+    if (cycles > 1)
+      return true;
+  }
+  return false;
+}
+
 /// The directed edges of the triangles that no triangle of them runs the other way, by their
 /// corners.
 std::vector<std::array<LatticePoint, 2>> borderOf(const LatticeMesh& a,
@@ -704,15 +758,17 @@ NearBoolean nearResult(const std::vector<std::array<Point, 3>>& soup,
   LatticeMesh& near)
 {
   Mesh m;
-  // A face CGAL's mesh cannot take may be the order of the faces only: the whole Boolean tells,
-  // unless an edge has more than two faces or two on one side (the whole Boolean's result has
-  // these faces too).
-  if (!soupToMesh(soup, m))
-    return nonManifoldEdge(soup) ? NearBoolean::Refused : NearBoolean::Unknown;
   std::vector<LatticePoint> corners;
   for (const auto& e : border)
     corners.push_back(e[0]);
   std::sort(corners.begin(), corners.end());
+  // A face CGAL's mesh cannot take may be the order of the faces only: the whole Boolean tells,
+  // unless an edge has more than two faces or two on one side, or a vertex inside has two
+  // closed fans of faces (the whole Boolean's result has these faces too; the last, on the
+  // full aneurism, sent 22 of the joins' Booleans to the whole Boolean).
+  if (!soupToMesh(soup, m))
+    return nonManifoldEdge(soup) || twoFansInside(soup, corners) ? NearBoolean::Refused
+                                                                 : NearBoolean::Unknown;
   // The whole Boolean's result has these faces near the hull (and a's others): two fans at a
   // point are refused there too; a corner off the lattice that no collapse removes was refused
   // there too wherever both were run (the greedy collapses may differ in order).

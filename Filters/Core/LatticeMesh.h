@@ -105,7 +105,8 @@ enum class NearBoolean
 /// for a difference), the corners off the lattice collapsed as latticeBoolean does, and the
 /// result stitched to a's other triangles, which the whole Boolean keeps as they are. So it
 /// costs the hull's neighbourhood, not all of a. Refused where the result near the hull is no
-/// 2-manifold with lattice corners: two fans of faces at one point or an edge of three faces
+/// 2-manifold with lattice corners: two fans of faces at one point (also when CGAL's mesh does
+/// not take the kept faces in their order) or an edge of three faces
 /// (the whole Boolean's result has the same faces there and is refused too), or a corner off
 /// the lattice that no collapse removes (the collapses are greedy and their order differs from
 /// the whole Boolean's: it refused too wherever both were run, but that is not proven; a

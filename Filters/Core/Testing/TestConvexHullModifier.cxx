@@ -2160,6 +2160,47 @@ TEST(ConvexHullModifier, BooleansNearAHullAreTheWholeBooleans)
   EXPECT_GE(refused, 5);
 }
 
+TEST(ConvexHullModifier, BooleansNearAHullRefuseTwoFansAtAPoint)
+{
+  // A union whose result has a vertex with two closed fans of faces (a pinch): two cubes
+  // apart, and a pyramid standing on a face of the first whose apex touches the second inside
+  // one of its faces (or at its corner, its edge's middle). The whole Boolean refuses
+  // (a non-manifold vertex), and so must the Boolean near the pyramid, whatever the order of
+  // its faces, not leave it to the whole one; the same with the pinch's point moved off the
+  // second cube (then both keep the union: it is a 2-manifold).
+  const auto cube = [](LatticePoint lo, LatticePoint hi)
+  {
+    std::vector<LatticePoint> corners;
+    for (int k = 0; k < 8; ++k)
+      corners.push_back({ k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2] });
+    return vbr::triangulateHull(vbr::convexHull(corners));
+  };
+  vbr::LatticeMesh a = cube({ 0, 0, 0 }, { 2, 2, 2 });
+  a.append(cube({ 4, 0, 0 }, { 6, 4, 4 }), false);
+  ASSERT_TRUE(vbr::boundsAVolume(a));
+  const std::vector<LatticePoint> apexes{ { 4, 1, 1 }, { 4, 0, 0 }, { 4, 2, 0 }, { 4, 1, 3 } };
+  for (std::size_t k = 0; k < apexes.size(); ++k)
+  {
+    for (const bool touching : { true, false })
+    {
+      SCOPED_TRACE(std::to_string(k) + (touching ? " touching" : " apart"));
+      LatticePoint apex = apexes[k];
+      if (!touching)
+        apex[0] = 3;
+      const vbr::CellList pyramid = vbr::convexHull(
+        std::vector<LatticePoint>{ { 2, 0, 0 }, { 2, 2, 0 }, { 2, 0, 2 }, { 2, 2, 2 }, apex });
+      ASSERT_EQ(pyramid.dimension, 3);
+      vbr::LatticeMesh near, whole;
+      const vbr::NearBoolean outcome = vbr::latticeBooleanNear(a, pyramid, true, near);
+      const bool wholeOk = vbr::latticeUnion(a, vbr::triangulateHull(pyramid), whole);
+      EXPECT_EQ(wholeOk, !touching);
+      EXPECT_EQ(outcome, touching ? vbr::NearBoolean::Refused : vbr::NearBoolean::Done);
+      if (outcome == vbr::NearBoolean::Done && wholeOk)
+        EXPECT_TRUE((nefOf(near) ^ nefOf(whole)).is_empty()) << "not the same solid";
+    }
+  }
+}
+
 TEST(ConvexHullModifier, BooleansLeavingTheLatticeAreFoundBeforehand)
 {
   // booleanLeavesTheLattice skips the joins' Booleans that CGAL's exact corefinement would give
