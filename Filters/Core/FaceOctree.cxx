@@ -795,10 +795,9 @@ void voxelFaceNodes(const DeformedModel& model, FaceOctree& out, std::vector<int
   }
 }
 
-/// The nodes of a level whose children holding points are all face nodes.
-std::vector<Candidate> candidatesOfLevel(const Compactor& cp,
-  int level,
-  const std::vector<int>& faceLevel)
+/// The nodes of a level all of whose points p satisfy qualifies(p).
+template<typename Qualifies>
+std::vector<Candidate> nodesOfLevelWhere(const Compactor& cp, int level, Qualifies qualifies)
 {
   std::vector<Candidate> candidates;
   const std::size_t np = cp.order.size();
@@ -806,14 +805,22 @@ std::vector<Candidate> candidatesOfLevel(const Compactor& cp,
   {
     const std::uint64_t key = cp.codes[cp.order[i]] >> (3 * level);
     std::size_t j = i;
-    bool children = true;
+    bool all = true;
     for (; j < np && (cp.codes[cp.order[j]] >> (3 * level)) == key; ++j)
-      children = children && faceLevel[cp.order[j]] == level - 1;
-    if (children)
+      all = all && qualifies(cp.order[j]);
+    if (all)
       candidates.push_back({ level, key, i, j });
     i = j;
   }
   return candidates;
+}
+
+/// The nodes of a level whose children holding points are all face nodes.
+std::vector<Candidate> candidatesOfLevel(const Compactor& cp,
+  int level,
+  const std::vector<int>& faceLevel)
+{
+  return nodesOfLevelWhere(cp, level, [&](std::size_t p) { return faceLevel[p] == level - 1; });
 }
 
 /// The nodes of a level, largest first (the reach rule): those none of whose points is in a
@@ -822,20 +829,8 @@ std::vector<Candidate> candidatesFromAbove(const Compactor& cp,
   int level,
   const std::vector<int>& faceLevel)
 {
-  std::vector<Candidate> candidates;
-  const std::size_t np = cp.order.size();
-  for (std::size_t i = 0; i < np;)
-  {
-    const std::uint64_t key = cp.codes[cp.order[i]] >> (3 * level);
-    std::size_t j = i;
-    bool free = true;
-    for (; j < np && (cp.codes[cp.order[j]] >> (3 * level)) == key; ++j)
-      free = free && faceLevel[cp.order[j]] < 0 && !cp.model.shared[cp.order[j]];
-    if (free)
-      candidates.push_back({ level, key, i, j });
-    i = j;
-  }
-  return candidates;
+  return nodesOfLevelWhere(
+    cp, level, [&](std::size_t p) { return faceLevel[p] < 0 && !cp.model.shared[p]; });
 }
 
 /// Compacts one level: every candidate fitted in parallel, then committed in order (the
