@@ -31,7 +31,8 @@
  * The result is closed and manifold (every edge of exactly two cells, consistently
  * oriented, normals out of the object) and lies within one voxel diagonal of the voxel
  * boundary, both ways, except at pruned voxels: every output vertex lies in a voxel that
- * touches the boundary and within a voxel diagonal of its own voxel's surfels, no polygon
+ * touches the boundary, every surfel of an unpruned voxel lies within a voxel diagonal of that
+ * voxel's vertex, no polygon
  * crosses a voxel that does not touch the boundary, and no sewing triangle leaves the voxels
  * that do (FaceOctree.h gives the argument).
  *

@@ -1,8 +1,9 @@
 // The face octree of section 3.3 of Joan-Arinyo and Solé (1996), built from the relaxed
-// deformed model (DeformedModel.h) by the bottom-up compaction of their reference [7].
+// deformed model (DeformedModel.h) by a compaction of the octree's nodes: bottom up, as in
+// their reference [7], under the paper's rule; from the root down under the reach rule (below).
 //
-// The first face octree is the voxel grid itself: every boundary voxel with one
-// representative point is a face node, with its GDM plane (through the point, with the point's
+// Under the paper's rule the first face octree is the voxel grid itself: every boundary voxel with
+// one representative point is a face node, with its GDM plane (through the point, with the point's
 // area-weighted fan normal). Level L groups the voxels of a 2^L cube of the grid (the cubes of
 // a root of the next power of two above the grid's size, clipped to the grid: any grid size
 // works). A node of level L becomes a face node when one plane fits the node. "Fits"
@@ -70,6 +71,10 @@
 // node mostly fail at the cheap first tests, where a bottom-up pass would fit every level
 // below it in full. The label net (buildFaceOctreeAvoiding) keeps the paper's rule: its boxes
 // are grid vertices', not voxels'.
+// Neither rule proves that two sheets never cross (the output's freedom from
+// self-intersections): the normals' test keeps facing sheets out of one node, and the core
+// tests check it with CGAL's exact does_self_intersect on the solids up to 128^3, porous
+// blobs up to 96^3 and noise.
 // The normal is the sum of the points' GDM normals (area-weighted); the offset is the one
 // nearest the points' mean that the constraints allow (an interval minus open intervals).
 //

@@ -1,10 +1,10 @@
 // Boundary generation, section 3.4 of Joan-Arinyo and Solé (1996): the relaxed points of
 // each face node are projected onto the node's plane (FaceOctree.h keeps each projection in
-// its own voxel) and the node's quadrilaterals collapse into one planar polygon, the boundary
-// of their disk; quadrilaterals whose points lie in different nodes are split into two
-// triangles (the shorter diagonal), which sew the polygons together. Points inside a node's
-// disk disappear. Replacing a disk by a disk with the same boundary keeps the surface closed,
-// manifold and of the same genus as the net.
+// the node's box, or under the paper's rule in its own voxel) and the node's quadrilaterals
+// collapse into one planar polygon, the boundary of their disk; quadrilaterals whose points lie in
+// different nodes are split into two triangles (the shorter diagonal), which sew the polygons
+// together. Points inside a node's disk disappear. Replacing a disk by a disk with the same
+// boundary keeps the surface closed, manifold and of the same genus as the net.
 //
 // Drawing. VTK draws a polygon as the fan from its first point, so each polygon starts at a
 // corner whose fan covers it (PolygonTriangulator.h's fanCoversPolygon); a polygon no corner

@@ -641,10 +641,35 @@ bool manifoldInside(const Mesh& m, const std::vector<LatticePoint>& border)
   return true;
 }
 
+/// The number of closed fans around a vertex whose link edges (for a face v, b, c the edge
+/// b -> c) are `next`: its cycles, or 0 when a chain of the link is open (an open fan).
+std::size_t closedFans(const std::map<std::ptrdiff_t, std::ptrdiff_t>& next)
+{
+  std::set<std::ptrdiff_t> seen;
+  std::size_t cycles = 0;
+  for (const auto& [start, unused] : next)
+  {
+    if (seen.count(start))
+      continue;
+    std::ptrdiff_t at = start;
+    while (seen.insert(at).second)
+    {
+      const auto it = next.find(at);
+      if (it == next.end())
+        return 0; // an open fan
+      at = it->second;
+    }
+    if (at != start)
+      return 0; // ran into another chain: not closed fans
+    ++cycles;
+  }
+  return cycles;
+}
+
 /// Whether a vertex of the soup that is not a corner of `border` has its faces in two or more
-/// closed fans: the links of its faces (for a face v, b, c the edge b -> c) make two or more
-/// cycles. The soup is taken to have no edge of three faces nor one used twice the same way
-/// (nonManifoldEdge); a vertex with an open fan is not counted.
+/// closed fans: the links of its faces make two or more cycles. The soup is taken to have no
+/// edge of three faces nor one used twice the same way (nonManifoldEdge); a vertex with an
+/// open fan is not counted, the vertices after it still are.
 bool twoFansInside(const std::vector<std::array<Point, 3>>& soup,
   const std::vector<LatticePoint>& border)
 {
@@ -669,26 +694,7 @@ bool twoFansInside(const std::vector<std::array<Point, 3>>& soup,
     if (integerValue(p.x(), q[0]) && integerValue(p.y(), q[1]) && integerValue(p.z(), q[2]) &&
       std::binary_search(border.begin(), border.end(), q))
       continue;
-    const auto& next = link[v];
-    std::set<std::ptrdiff_t> seen;
-    std::size_t cycles = 0;
-    for (const auto& [start, unused] : next)
-    {
-      if (seen.count(start))
-        continue;
-      std::ptrdiff_t at = start;
-      while (seen.insert(at).second)
-      {
-        const auto it = next.find(at);
-        if (it == next.end())
-          return false; // an open fan: not this case
-        at = it->second;
-      }
-      if (at != start)
-        return false; // ran into another chain: not closed fans
-      ++cycles;
-    }
-    if (cycles > 1)
+    if (closedFans(link[v]) > 1)
       return true;
   }
   return false;

@@ -2165,9 +2165,10 @@ TEST(ConvexHullModifier, BooleansNearAHullRefuseTwoFansAtAPoint)
   // A union whose result has a vertex with two closed fans of faces (a pinch): two cubes
   // apart, and a pyramid standing on a face of the first whose apex touches the second inside
   // one of its faces (or at its corner, its edge's middle). The whole Boolean refuses
-  // (a non-manifold vertex), and so must the Boolean near the pyramid, whatever the order of
-  // its faces, not leave it to the whole one; the same with the pinch's point moved off the
-  // second cube (then both keep the union: it is a 2-manifold).
+  // (a non-manifold vertex), and so must the Boolean near the pyramid, not leave it to the
+  // whole one (the soup's order makes the mesh refuse the pyramid's faces, the path of
+  // twoFansInside); with the pinch's point moved off the second cube both keep the union (it
+  // is a 2-manifold).
   const auto cube = [](LatticePoint lo, LatticePoint hi)
   {
     std::vector<LatticePoint> corners;
