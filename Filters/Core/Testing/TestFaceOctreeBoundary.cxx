@@ -1373,6 +1373,19 @@ TEST(FaceOctreeBoundary, PorousBlobs)
         "porous" + std::to_string(seed) + "_" + std::to_string(n), porous(n, seed), false);
 }
 
+/// The Triangles boundary of v closed and manifold, and no two of its triangles crossing
+/// (CGAL's exact does_self_intersect): the checks of the larger sizes, where the others'
+/// brute force would be slow.
+static void expectClosedWithoutCrossings(const BitVolume& v)
+{
+  const Result r = run(v, vbr::BoundaryCells::Triangles);
+  const Mesh m = meshOf(r.mesh);
+  std::string error;
+  checkClosedManifold(m, error);
+  EXPECT_TRUE(error.empty()) << error;
+  EXPECT_FALSE(selfIntersects(m, &r.mesh.faceNode));
+}
+
 TEST(FaceOctreeBoundary, SolidsAt80DoNotSelfIntersect)
 {
   // Larger nodes (levels 3 and 4) with long straight runs of corners along their voxel boxes'
@@ -1381,12 +1394,7 @@ TEST(FaceOctreeBoundary, SolidsAt80DoNotSelfIntersect)
   for (const Shape& s : solids())
   {
     SCOPED_TRACE(s.name);
-    const Result r = run(shapeVolume(s, 80), vbr::BoundaryCells::Triangles);
-    const Mesh m = meshOf(r.mesh);
-    std::string error;
-    checkClosedManifold(m, error);
-    EXPECT_TRUE(error.empty()) << error;
-    EXPECT_FALSE(selfIntersects(m, &r.mesh.faceNode));
+    expectClosedWithoutCrossings(shapeVolume(s, 80));
   }
 }
 
@@ -1398,12 +1406,7 @@ TEST(FaceOctreeBoundary, SolidsAt128DoNotSelfIntersect)
   for (const Shape& s : solids())
   {
     SCOPED_TRACE(s.name);
-    const Result r = run(shapeVolume(s, 128), vbr::BoundaryCells::Triangles);
-    const Mesh m = meshOf(r.mesh);
-    std::string error;
-    checkClosedManifold(m, error);
-    EXPECT_TRUE(error.empty()) << error;
-    EXPECT_FALSE(selfIntersects(m, &r.mesh.faceNode));
+    expectClosedWithoutCrossings(shapeVolume(s, 128));
   }
 }
 
@@ -1414,12 +1417,7 @@ TEST(FaceOctreeBoundary, LargerPorousBlobsDoNotSelfIntersect)
   for (unsigned seed : { 1u, 2u, 3u, 4u, 5u, 6u })
   {
     SCOPED_TRACE(seed);
-    const Result r = run(porous(96, seed), vbr::BoundaryCells::Triangles);
-    const Mesh m = meshOf(r.mesh);
-    std::string error;
-    checkClosedManifold(m, error);
-    EXPECT_TRUE(error.empty()) << error;
-    EXPECT_FALSE(selfIntersects(m, &r.mesh.faceNode));
+    expectClosedWithoutCrossings(porous(96, seed));
   }
 }
 
