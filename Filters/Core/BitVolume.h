@@ -40,6 +40,12 @@ public:
   {
     return (this->row(y, z)[x >> 6] >> (x & 63)) & 1u;
   }
+  /// get(x, y, z), and false outside the grid (the background around the volume).
+  bool getOrBackground(std::int32_t x, std::int32_t y, std::int32_t z) const
+  {
+    return x >= 0 && y >= 0 && z >= 0 && x < this->Dims[0] && y < this->Dims[1] &&
+      z < this->Dims[2] && this->get(x, y, z);
+  }
   void set(std::int32_t x, std::int32_t y, std::int32_t z, bool value = true)
   {
     Word& w = this->row(y, z)[x >> 6];

@@ -674,7 +674,7 @@ std::vector<std::array<std::array<std::int32_t, 3>, 4>> unprunedQuadrilaterals(
 {
   const auto& n = object.dims();
   auto at = [&](std::int32_t i, std::int32_t j, std::int32_t k)
-  { return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && object.get(i, j, k); };
+  { return object.getOrBackground(i, j, k); };
   auto boundary = [&](const std::array<std::int32_t, 3>& v)
   {
     if (!at(v[0], v[1], v[2]))

@@ -22,14 +22,6 @@ inline double norm(const Vec3& a)
   return std::sqrt(dot(a, a));
 }
 
-/// Whether voxel v is an object voxel (outside the grid: background).
-inline bool inObjectGrid(const BitVolume& object, const std::array<std::int32_t, 3>& v)
-{
-  const auto& n = object.dims();
-  return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < n[0] && v[1] < n[1] && v[2] < n[2] &&
-    object.get(v[0], v[1], v[2]);
-}
-
 /// Morton code of a voxel (21 bits an axis).
 std::uint64_t mortonOf(const std::array<std::int32_t, 3>& v)
 {
@@ -405,7 +397,7 @@ bool Compactor::reachesSurfels(std::int32_t p, const Vec3& q) const
     {
       std::array<std::int32_t, 3> w = v;
       w[a] += side ? 1 : -1;
-      if (inObjectGrid(*this->object, w))
+      if (this->object->getOrBackground(w[0], w[1], w[2]))
         continue;
       // The face's corners: coordinate a fixed, the two others at both ends of the voxel.
       for (int corner = 0; corner < 4; ++corner)
