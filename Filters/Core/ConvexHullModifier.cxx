@@ -4,10 +4,12 @@
 #include "ConvexHullModifier2D.h"
 #include "EVM.h"
 #include "Geometry.h"
+#include "LatticeBasis.h"
 #include "UnionFind.h"
 
 #include <algorithm>
 #include <bitset>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -3710,7 +3712,8 @@ int unitStepAxis(const LatticePoint& ab)
 }
 
 /// Whether the part can have an H of its own: not a flat set in no plane of the grid's axes
-/// (its two-sided polygon is no solid) nor a segment with no direction component +-1.
+/// nor a segment with no direction component +-1 (the corners their pyramids add may lie
+/// beyond the part's box grown by one voxel, where another part may be).
 bool partHasH(const ObjectPart& part)
 {
   const CellList& hull = part.extent.hull;
@@ -3818,44 +3821,141 @@ bool solveComponentsFirst(Context& ctx,
   return true;
 }
 
-/// H of a segment off the axes' planes (its centres on a line whose direction d has no zero
-/// component: voxels touching only at corners): the tetrahedron T = conv{a, b, a + e_i, a + e_j}
-/// of its ends a, b = a + m d and unit steps e_i, e_j (either sign, into the grid) along the two
-/// axes other than one where |d_k| = 1. In the basis (d, e_i, e_j), unimodular since det =
-/// +-d_k, a lattice point of T has integer coordinates (t, u, v), all >= 0 with t / m + u + v
-/// <= 1: a point of the segment (u = v = 0) or a + e_i, a + e_j. So no lattice point lies inside T,
-/// the segment's centres are its edge and the two other corners are background centres (off the
-/// line that holds every object centre) on H, marked. False when no component of d is +-1 (left
-/// without H).
-bool segmentTetrahedron(const CellList& hull, const Dims& dims, LatticeMesh& out)
+/// The pyramid over a convex polygon `base` (corners in order, at least three, not collinear)
+/// with `apex` off its plane, triangles oriented outwards: away from the centroid of all
+/// corners, which lies strictly inside (a convex combination of every corner with positive
+/// weights). A tetrahedron is the pyramid over a triangle.
+LatticeMesh pyramidOver(const std::vector<LatticePoint>& base, const LatticePoint& apex)
+{
+  LatticeMesh out;
+  out.points = base;
+  out.points.push_back(apex);
+  const auto n = static_cast<std::uint32_t>(base.size());
+  LatticePoint sum{ 0, 0, 0 };
+  for (const LatticePoint& p : out.points)
+    for (int k = 0; k < 3; ++k)
+      sum[k] += p[k];
+  const auto count = static_cast<std::int64_t>(out.points.size());
+  const auto addOutwards = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c)
+  {
+    const LatticePoint &p = out.points[a], &q = out.points[b], &s = out.points[c];
+    const LatticePoint inward{
+      sum[0] - count * p[0], sum[1] - count * p[1], sum[2] - count * p[2]
+    };
+    if (dot(cross(sub(q, p), sub(s, p)), inward) < 0)
+      out.triangles.push_back({ a, b, c });
+    else
+      out.triangles.push_back({ a, c, b });
+  };
+  for (std::uint32_t k = 1; k + 1 < n; ++k)
+    addOutwards(0, k, k + 1);
+  for (std::uint32_t k = 0; k < n; ++k)
+    addOutwards(k, (k + 1) % n, n);
+  return out;
+}
+
+bool insideGrid(const LatticePoint& p, const Dims& dims)
+{
+  for (int k = 0; k < 3; ++k)
+    if (p[k] < 0 || p[k] >= dims[k])
+      return false;
+  return true;
+}
+
+LatticePoint plus(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+
+/// H of a segment off the axes' planes (its centres on a line whose direction d, primitive,
+/// has no zero component: voxels touching only at corners): the tetrahedron T = conv{a, b, x,
+/// y} of its ends a, b = a + m d and two lattice points x = a + u', y = a + w' where (d, u', w')
+/// is a basis of Z^3 (LatticeBasis.h; u' = +-u + k d, w' = +-w + j u + k' d keep it one, and
+/// the first such corners inside the grid are taken, near the segment). In that basis a
+/// lattice point of T has integer coordinates (t, b, c), all >= 0 with t / m + b + c <= 1: a
+/// point of the segment (b = c = 0), x or y. So no lattice point lies inside T, the segment's
+/// centres are its edge and the two other corners are background centres (off the line that
+/// holds every object centre) on H, marked.
+LatticeMesh segmentTetrahedron(const CellList& hull, const Dims& dims)
 {
   const LatticePoint a = hull.vertices[0], b = hull.vertices[1];
-  const int unit = unitStepAxis(sub(b, a));
-  if (unit < 0)
-    return false;
-  // a step into the grid along each of the two other axes (either sign keeps the basis
-  // unimodular; the grid is at least two voxels wide there, the segment spanning it)
-  LatticePoint ei = a, ej = a;
-  const int i = (unit + 1) % 3, j = (unit + 2) % 3;
-  ei[i] += a[i] + 1 < dims[i] ? 1 : -1;
-  ej[j] += a[j] + 1 < dims[j] ? 1 : -1;
-  out.points = { a, b, ei, ej };
-  // orient each face away from the fourth corner
-  const std::array<std::array<std::uint32_t, 4>, 4> faces{
-    { { 0, 1, 2, 3 }, { 0, 2, 3, 1 }, { 0, 3, 1, 2 }, { 1, 3, 2, 0 } }
-  };
-  out.triangles.clear();
-  for (const auto& f : faces)
+  const LatticePoint ab = sub(b, a), d = primitive(ab);
+  const std::int64_t m = std::gcd(std::gcd(std::abs(ab[0]), std::abs(ab[1])), std::abs(ab[2]));
+  const auto uw = basisAroundLine(d);
+  // the first corner a + step + k d (k = 0..m) inside the grid; a + steps[0] when none is
+  const auto cornerNearSegment = [&](const std::vector<LatticePoint>& steps)
   {
-    const LatticePoint n =
-      cross(sub(out.points[f[1]], out.points[f[0]]), sub(out.points[f[2]], out.points[f[0]]));
-    const auto side = dot(n, sub(out.points[f[3]], out.points[f[0]]));
-    if (side < 0)
-      out.triangles.push_back({ f[0], f[1], f[2] });
-    else
-      out.triangles.push_back({ f[0], f[2], f[1] });
+    for (std::int64_t k = 0; k <= m; ++k)
+      for (const LatticePoint& s : steps)
+      {
+        const LatticePoint p{
+          a[0] + s[0] + k * d[0], a[1] + s[1] + k * d[1], a[2] + s[2] + k * d[2]
+        };
+        if (insideGrid(p, dims))
+          return p;
+      }
+    return plus(a, steps[0]);
+  };
+  const LatticePoint &u = uw[0], &w = uw[1];
+  const LatticePoint minusU = sub({ 0, 0, 0 }, u), minusW = sub({ 0, 0, 0 }, w);
+  const LatticePoint x = cornerNearSegment({ u, minusU });
+  const LatticePoint y =
+    cornerNearSegment({ w, minusW, plus(w, u), plus(minusW, u), sub(w, u), sub(minusW, u) });
+  return pyramidOver({ a, b, x }, y);
+}
+
+/// H of a flat set in a plane n . p = c off the grid's axes (its centres never face-connected):
+/// the pyramid over its convex polygon P with an apex y in the next lattice plane on either
+/// side, n . y = c +- 1 (LatticeBasis.h: y = p + -+z + a v1 + b v2, the one nearest P's
+/// centroid, inside the grid if one of those tried is). No lattice plane lies strictly between
+/// the two planes, so a lattice point of the pyramid lies in P (an object centre or a
+/// background centre on the base, marked) or is y; the sides hold no other lattice point. So
+/// every object centre is on H and no background centre is inside it.
+LatticeMesh flatSetPyramid(const CellList& hull, const Dims& dims)
+{
+  std::vector<LatticePoint> base;
+  for (std::uint32_t v : hull.faces[0])
+    base.push_back(hull.vertices[v]);
+  const PlaneLattice lattice = latticeOfPlane(hull.planes[0].normal);
+  double centroid[3] = { 0, 0, 0 };
+  for (const LatticePoint& p : base)
+    for (int k = 0; k < 3; ++k)
+      centroid[k] += double(p[k]) / double(base.size());
+  const LatticePoint &v1 = lattice.basis[0], &v2 = lattice.basis[1];
+  const auto dotD = [](const LatticePoint& p, const double* q)
+  { return double(p[0]) * q[0] + double(p[1]) * q[1] + double(p[2]) * q[2]; };
+  const double g11 = double(dot(v1, v1)), g12 = double(dot(v1, v2)), g22 = double(dot(v2, v2));
+  LatticePoint best{};
+  double bestDistance = std::numeric_limits<double>::infinity();
+  bool bestInside = false;
+  for (int side : { 1, -1 })
+  {
+    const LatticePoint origin = side > 0 ? plus(base[0], lattice.step) : sub(base[0], lattice.step);
+    const double toCentroid[3] = { centroid[0] - double(origin[0]),
+      centroid[1] - double(origin[1]),
+      centroid[2] - double(origin[2]) };
+    const double b1 = dotD(v1, toCentroid), b2 = dotD(v2, toCentroid), det = g11 * g22 - g12 * g12;
+    const auto a0 = std::llround((b1 * g22 - b2 * g12) / det);
+    const auto c0 = std::llround((b2 * g11 - b1 * g12) / det);
+    for (std::int64_t i = a0 - 1; i <= a0 + 1; ++i)
+      for (std::int64_t j = c0 - 1; j <= c0 + 1; ++j)
+      {
+        const LatticePoint y{ origin[0] + i * v1[0] + j * v2[0],
+          origin[1] + i * v1[1] + j * v2[1],
+          origin[2] + i * v1[2] + j * v2[2] };
+        double distance = 0;
+        for (int k = 0; k < 3; ++k)
+          distance += (double(y[k]) - centroid[k]) * (double(y[k]) - centroid[k]);
+        const bool inside = insideGrid(y, dims);
+        if ((inside && !bestInside) || (inside == bestInside && distance < bestDistance))
+        {
+          best = y;
+          bestDistance = distance;
+          bestInside = inside;
+        }
+      }
   }
-  return true;
+  return pyramidOver(base, best);
 }
 
 /// Flat objects (see the header): every object centre in one plane x_a = c. H is the prism of
@@ -4613,24 +4713,19 @@ ModifiedHull modifyHull(const BitVolume& objects,
   const int flat = r.hull.dimension < 3 ? gridPlaneAxis(candidates) : -1;
   if (flat >= 0)
     solveFlatObject(objects, flat, candidates.front()[flat], exec.within(0.2, 0.8), r);
-  else if (r.hull.dimension == 1 && segmentTetrahedron(r.hull, objects.dims(), r.surface))
+  else if (r.hull.dimension == 1 || r.hull.dimension == 2)
   {
+    // A segment or a flat set in no plane of the grid's axes (never face-connected): the
+    // tetrahedron or pyramid of the header, every object centre on it.
+    r.surface = r.hull.dimension == 1 ? segmentTetrahedron(r.hull, objects.dims())
+                                      : flatSetPyramid(r.hull, objects.dims());
     r.complete = true;
     mergeIntoFaces({}, std::vector<int>(r.surface.triangles.size(), 0), r);
   }
   else if (r.hull.dimension < 3)
   {
-    // A flat object in no plane of the grid's axes (never face-connected): every centre in its
-    // polygon, segment or point lies on H.
-    r.complete = r.hull.dimension == 2;
-    if (r.hull.dimension == 2)
-      r.surface = LatticeMesh{ r.hull.vertices, {} };
-    for (std::size_t f = 0; f < r.hull.faces.size(); ++f)
-      for (std::size_t k = 1; k + 1 < r.hull.faces[f].size(); ++k)
-        r.surface.triangles.push_back(
-          { r.hull.faces[f][0], r.hull.faces[f][k], r.hull.faces[f][k + 1] });
-    if (!r.complete)
-      r.failure = "the object is a segment or a point: no polyhedron spans it";
+    r.complete = false; // unreachable: a point lies in a plane of the grid's axes
+    r.failure = "the object spans no solid";
   }
   else
   {
@@ -4647,11 +4742,6 @@ ModifiedHull modifyHull(const BitVolume& objects,
     if (!exec.report(0.8))
       throw std::runtime_error("aborted");
     mergeIntoFaces(ctx.planeLevel, ctx.triangleLevel, r);
-  }
-  if (r.hull.dimension == 2 && flat < 0)
-  {
-    std::map<FacePlane, int> levels{ { r.hull.planes[0], 0 }, { r.hull.planes[1], 0 } };
-    mergeIntoFaces(levels, {}, r);
   }
   for (const auto& p : r.surface.points)
     r.vertexMark.push_back(voxelClass(objects, p) ? 1 : 0);

@@ -253,12 +253,16 @@
 // object about it, 3 for an island in its hole) has caps of level k - 1, a wall the level of the
 // deeper of its two regions less one (0 outside, 1 about a hole, 2 about an island). The counts:
 // its holes as cavities, no concavities or cut handles. Layers that are not well-composed keep the
-// prisms (no one topology to match; they separate as above). Flat sets in no plane of the grid's
-// axes are never face-connected: H is their two-sided polygon. A segment off the axes' planes
-// whose direction d has a component +-1 (voxels touching at corners along a line) is the
-// tetrahedron conv{a, b, a + e_i, a + e_j} of its ends a, b and the unit steps along the two
-// other axes: unimodular, so no lattice point lies inside it, the segment's centres lie on an
-// edge and the two other corners are background centres on H. Any other segment is incomplete.
+// prisms (no one topology to match; they separate as above). Sets of no volume off the axes'
+// planes (never face-connected) are given one by a lattice basis (LatticeBasis.h). A segment
+// a..b on a line of primitive direction d is the tetrahedron conv{a, b, a + u, a + w} with (d, u,
+// w) a basis of Z^3: no lattice point lies inside it, the segment's centres lie on an edge and
+// the two other corners are background centres on H. A flat set in a plane n . p = c is the
+// pyramid over its convex polygon with an apex in the plane n . p = c +- 1 next to it: no lattice
+// plane lies between, so the pyramid's lattice points are those of the polygon (object centres,
+// and background ones on the base, marked) and the apex. Both are solids of genus 0; their extra
+// corners are taken inside the grid when the near ones tried allow it (else they lie off it,
+// background by definition).
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the corners of its slices' polygons of its rows' ends, boxes
@@ -369,7 +373,7 @@ struct ModifiedHull
 
 /// H of the object voxels (empty input: an empty result), its shells joined (see above); for a
 /// flat object the prisms of its polygons (see above). Incomplete (complete false, failure saying
-/// why) for a segment in no plane of the grid's axes whose direction has no component +-1, or when
+/// why) when
 /// no empty triangle is left to press a group in from (see above).
 ModifiedHull modifyConvexHull(const BitVolume& objects,
   CoplanarFaces coplanar = CoplanarFaces::Extension,
