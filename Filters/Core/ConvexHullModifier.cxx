@@ -4715,12 +4715,19 @@ ModifiedHull modifyHull(const BitVolume& objects,
     solveFlatObject(objects, flat, candidates.front()[flat], exec.within(0.2, 0.8), r);
   else if (r.hull.dimension == 1 || r.hull.dimension == 2)
   {
-    // A segment or a flat set in no plane of the grid's axes (never face-connected): the
-    // tetrahedron or pyramid of the header, every object centre on it.
-    r.surface = r.hull.dimension == 1 ? segmentTetrahedron(r.hull, objects.dims())
-                                      : flatSetPyramid(r.hull, objects.dims());
-    r.complete = true;
-    mergeIntoFaces({}, std::vector<int>(r.surface.triangles.size(), 0), r);
+    // A segment or a flat set in no plane of the grid's axes (never face-connected): its parts
+    // apart when they cannot meet (voxels apart keep their own shells), else the tetrahedron or
+    // pyramid of the header, every object centre on it.
+    Context ctx{ objects, coplanar, exec, {}, 0 };
+    if (componentsFirst && solveComponentsFirst(ctx, r, 0.2, 0.8))
+      mergeIntoFaces(ctx.planeLevel, ctx.triangleLevel, r);
+    else
+    {
+      r.surface = r.hull.dimension == 1 ? segmentTetrahedron(r.hull, objects.dims())
+                                        : flatSetPyramid(r.hull, objects.dims());
+      r.complete = true;
+      mergeIntoFaces({}, std::vector<int>(r.surface.triangles.size(), 0), r);
+    }
   }
   else if (r.hull.dimension < 3)
   {

@@ -262,7 +262,10 @@
 // plane lies between, so the pyramid's lattice points are those of the polygon (object centres,
 // and background ones on the base, marked) and the apex. Both are solids of genus 0; their extra
 // corners are taken inside the grid when the near ones tried allow it (else they lie off it,
-// background by definition).
+// background by definition). Such a set's voxels touch along edges or at corners, or not at
+// all: parts that cannot meet are first solved apart as for solids (each voxel apart its own
+// prism, keeping the topology); voxels apart whose grown boxes meet, or that lie on the grid's
+// side, share the one tetrahedron or pyramid (one shell for several components there).
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the corners of its slices' polygons of its rows' ends, boxes

@@ -66,7 +66,8 @@ class Messages:
 def make_filter(kind):
     import voxelbrep
     f = {"evm": voxelbrep.vtkEVMBoundaryFilter, "cudb": voxelbrep.vtkCUDBConnectivity,
-         "poly": voxelbrep.vtkStandardPlanePolyhedrizer}[kind]()
+         "poly": voxelbrep.vtkStandardPlanePolyhedrizer,
+         "hull": voxelbrep.vtkConvexHullModifier}[kind]()
     if kind == "poly":
         f.SetOutputModeToSurfels()  # the surfel count is checked; any mode has it
     return f
@@ -83,19 +84,45 @@ def run(kind, data, configure=None):
     return f, messages
 
 
-def counts(kind, f):
-    """What the output says of the selection: (extreme vertices | components | surfels)."""
-    out = f.GetOutputDataObject(0)
-    fd = out.GetFieldData()
-    name = {"evm": "NumberOfExtremeVertices", "cudb": "NumberOfComponents",
-            "poly": "NumberOfSurfels"}[kind]
-    array = fd.GetArray(name)
+COUNTS = {"evm": "NumberOfExtremeVertices", "cudb": "NumberOfComponents",
+          "poly": "NumberOfSurfels"}
+
+
+def reverted_count(out, reversion):
+    """The hull modifier's voxels rebuilt from H alone (port 1's Selection), when its own
+    checks passed (Separates and ReversionMatches 1); -1 when they did not."""
+    flags = [data.GetFieldData().GetArray(name) for data, name in
+             ((out, "Separates"), (reversion, "ReversionMatches"))]
+    if any(a is None for a in flags):
+        return None
+    if any(int(a.GetValue(0)) != 1 for a in flags):
+        return -1
+    for data in (reversion.GetPointData(), reversion.GetCellData()):
+        selection = data.GetArray("Selection")
+        if selection is not None:
+            return int(sum(selection.GetValue(i) != 0
+                           for i in range(selection.GetNumberOfTuples())))
+    return None
+
+
+def count_of(kind, out, reversion=None):
+    if kind == "hull":
+        return reverted_count(out, reversion)
+    array = out.GetFieldData().GetArray(COUNTS[kind])
     return None if array is None else int(array.GetValue(0))
+
+
+def counts(kind, f):
+    """What the output says of the selection: extreme vertices, components, surfels, or the
+    voxels the hull modifier rebuilds from its polyhedron."""
+    return count_of(kind, f.GetOutputDataObject(0), f.GetOutputDataObject(1))
 
 
 def reference(kind, mask):
     """The same count from the mask alone (numpy / scipy)."""
     from voxelbrep_testing import extreme_vertices, surfel_count
+    if kind == "hull":
+        return int(np.count_nonzero(mask))
     if kind == "evm":
         return extreme_vertices(mask)
     if kind == "poly":
@@ -131,7 +158,7 @@ def random_values(dtype, seed=1, shape=(6, 7, 8)):
     return (rng.random(shape) * 4 - 2).astype(dtype)
 
 
-FILTERS = ("evm", "cudb", "poly")
+FILTERS = ("evm", "cudb", "poly", "hull")
 TYPES = (np.int8, np.uint8, np.int16, np.uint16, np.int32, np.uint32, np.int64, np.uint64,
          np.float32, np.float64)
 
@@ -318,10 +345,10 @@ for _kind in FILTERS:
         out = f.GetOutputDataObject(0)
         expect(out.IsA("vtkMultiBlockDataSet") and out.GetNumberOfBlocks() == 1,
                "a composite input gives one output block per input block")
-        block = out.GetBlock(0)
-        name = {"evm": "NumberOfExtremeVertices", "cudb": "NumberOfComponents",
-                "poly": "NumberOfSurfels"}[kind]
-        got = int(block.GetFieldData().GetArray(name).GetValue(0))
+        reversion = f.GetOutputDataObject(1)
+        got = count_of(kind, out.GetBlock(0),
+                       reversion.GetBlock(0) if reversion is not None and
+                       reversion.IsA("vtkMultiBlockDataSet") else None)
         expect(got == reference(kind, values > 0), "the block's result: %r" % got)
     case("%s-composite-input" % _kind)(_composite)
 

@@ -1137,9 +1137,10 @@ TEST(ConvexHullModifier, SegmentsInAnyDirectionAreTetrahedra)
   // Centres on a line whose primitive direction d has no zero component, every such d with
   // components up to 4 in size (no component +-1 for most), 2 or 3 centres: in a grid that is
   // the segment's box (its ends at two opposite corners: no room beside it), and two centres in
-  // one with a margin of two voxels. H must be a tetrahedron of 4 faces that separates every centre
-  // (CGAL, exact), enclosing a volume (no flat solid) and reverting exactly.
-  int tried = 0;
+  // one with a margin of two voxels. H must be a tetrahedron of 4 faces (or, where the voxels
+  // can be solved apart, ComponentsFirstSolveFarPartsAlone, one solid each) that separates every
+  // centre (CGAL, exact), enclosing a volume (no flat solid) and reverting exactly.
+  int tried = 0, tetrahedra = 0;
   for (int dx = 1; dx <= 4; ++dx)
     for (int dy = -4; dy <= 4; ++dy)
       for (int dz = -4; dz <= 4; ++dz)
@@ -1161,13 +1162,20 @@ TEST(ConvexHullModifier, SegmentsInAnyDirectionAreTetrahedra)
                 margin + (dy > 0 ? k * dy : span[1] + k * dy),
                 margin + (dz > 0 ? k * dz : span[2] + k * dz));
             const auto r = expectSeparating(v, { false });
-            EXPECT_EQ(r.surface.points.size(), 4u);
-            EXPECT_EQ(r.faces.size(), 4u);
             EXPECT_GT(sixVolumeOf(r.surface), 0);
+            if (r.componentsApart) // voxels apart, each its own solid
+              EXPECT_EQ(componentCount(r.surface), static_cast<std::size_t>(n));
+            else
+            {
+              EXPECT_EQ(r.surface.points.size(), 4u);
+              EXPECT_EQ(r.faces.size(), 4u);
+              tetrahedra += 1;
+            }
             ++tried;
           }
       }
   EXPECT_GT(tried, 500);
+  EXPECT_GT(tetrahedra, tried / 2); // the tight grids at least
 }
 
 TEST(ConvexHullModifier, FlatSetsOffTheAxesArePyramids)
@@ -1210,10 +1218,29 @@ TEST(ConvexHullModifier, FlatSetsOffTheAxesArePyramids)
       EXPECT_EQ(componentCount(r.surface), 1u);
       EXPECT_EQ(eulerOf(r), 2);
       EXPECT_GT(sixVolumeOf(r.surface), 0);
-      EXPECT_EQ(r.surface.points.size(), r.hull.vertices.size() + 1) << "a pyramid";
+      if (!r.componentsApart)
+        EXPECT_EQ(r.surface.points.size(), r.hull.vertices.size() + 1) << "a pyramid";
       ++tried;
     }
   EXPECT_GT(tried, 80);
+}
+
+TEST(ConvexHullModifier, VoxelsApartOnATiltedLineOrPlaneKeepTheirOwnShells)
+{
+  // Voxels that touch nowhere (well-composed), on a line of direction (2, 3, 4) and in the
+  // plane x + y + z = 12 at every third step: each keeps its own solid (the object's topology,
+  // checked shell by shell), not one tetrahedron or pyramid about all of them.
+  vbr::BitVolume line(8, 11, 14); // a margin: parts on the grid's side are solved as one
+  for (int k = 0; k < 3; ++k)
+    line.set(1 + 2 * k, 1 + 3 * k, 1 + 4 * k);
+  EXPECT_EQ(componentCount(expectSeparating(line).surface), 3u);
+  vbr::BitVolume plane(9, 9, 9);
+  for (int z = 1; z < 8; ++z)
+    for (int y = 1; y < 8; ++y)
+      for (int x = 1; x < 8; ++x)
+        if (x + y + z == 12 && x % 3 == 1 && y % 3 == 1)
+          plane.set(x, y, z);
+  EXPECT_EQ(componentCount(expectSeparating(plane).surface), plane.count());
 }
 
 TEST(ConvexHullModifier, ComponentsFirstSolveFarPartsAlone)

@@ -56,7 +56,7 @@ def selected_count(f):
 
 
 FILTERS = (voxelbrep.vtkEVMBoundaryFilter, voxelbrep.vtkCUDBConnectivity,
-           voxelbrep.vtkStandardPlanePolyhedrizer)
+           voxelbrep.vtkStandardPlanePolyhedrizer, voxelbrep.vtkConvexHullModifier)
 
 
 def check_magnitude():
