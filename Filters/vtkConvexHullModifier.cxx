@@ -75,10 +75,13 @@ int flatAxisOf(const vbr::vtk::VoxelGrid& grid)
 }
 
 /// The object's separating polygons and the background centres of the image on them.
-void separateInPlane(ModifiedObject& o, int flat, const std::array<std::int32_t, 3>& dims)
+void separateInPlane(ModifiedObject& o,
+  int flat,
+  const std::array<std::int32_t, 3>& dims,
+  const vbr::Execution& exec)
 {
   o.flatAxis = flat;
-  o.polygons = vbr::separatingPolygons2D(vbr::layerImage(o.voxels, flat, 0));
+  o.polygons = vbr::separatingPolygons2D(vbr::layerImage(o.voxels, flat, 0), exec);
   const auto uv = vbr::planeAxesOf(flat);
   for (const vbr::Point2L& p : vbr::latticePointsOnLoops(o.polygons.loops))
   {
@@ -349,7 +352,7 @@ bool modifyObjects(vtkConvexHullModifier* self,
     if (o.voxels.empty())
       continue;
     if (flat >= 0)
-      separateInPlane(o, flat, in.grid.dims);
+      separateInPlane(o, flat, in.grid.dims, vbr::vtk::makeExecution(self, from, to));
     else
       o.result = vbr::modifyConvexHull(o.voxels, coplanar, vbr::vtk::makeExecution(self, from, to));
     if (flat < 0 && o.result.hull.dimension < 3)

@@ -4638,7 +4638,7 @@ void solveFlatObject(const BitVolume& objects,
   ModifiedHull& r)
 {
   const BitVolume image = layerImage(objects, a, static_cast<std::int32_t>(c));
-  const SeparatingPolygons s = separatingPolygons2D(image);
+  const SeparatingPolygons s = separatingPolygons2D(image, exec.within(0, 0.3));
   flatStep(exec, 0.3);
   r.complete = s.complete;
   if (!s.complete)

@@ -25,6 +25,7 @@
 #include <deque>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
 
 namespace vbr
@@ -583,9 +584,15 @@ std::vector<Shape> groupsBelow(const Shape& region, const Image2D& img, bool obj
 }
 
 /// The tree, breadth first: level 0 from the object's groups, then the groups of the other
-/// class below every region.
-std::vector<Node> buildTree(const Image2D& img, const Points& objects, std::size_t& failed)
+/// class below every region. Polls the abort per region (throws "aborted") and reports the
+/// share of the regions done as [0.1, 0.9] of exec's progress.
+std::vector<Node> buildTree(const Image2D& img,
+  const Points& objects,
+  std::size_t& failed,
+  const Execution& exec)
 {
+  ProgressPoll poll(exec, 0.1, 0.9, 1);
+  double done = 0;
   std::vector<Node> nodes;
   std::vector<Shape> first;
   for (const Points& group : components(objects))
@@ -597,6 +604,12 @@ std::vector<Node> buildTree(const Image2D& img, const Points& objects, std::size
     nodes.push_back({ std::move(s), 0, {} });
   for (std::size_t n = 0; n < nodes.size(); ++n)
   {
+    // the share of the regions listed so far that are done: the list grows as regions are
+    // found, so the share can fall; the largest so far is reported
+    done = std::max(done, static_cast<double>(n) / static_cast<double>(nodes.size()));
+    poll.at(done);
+    if (!poll.tick())
+      throw std::runtime_error("aborted");
     if (nodes[n].shape.hull.empty())
       continue;
     const Shape region = nodes[n].shape;
@@ -699,7 +712,7 @@ void writeLoops(const std::vector<Node>& nodes, SeparatingPolygons& out)
 
 } // namespace
 
-SeparatingPolygons separatingPolygons2D(const BitVolume& image)
+SeparatingPolygons separatingPolygons2D(const BitVolume& image, const Execution& exec)
 {
   SeparatingPolygons out;
   const Image2D img{ image, image.size(0), image.size(1) };
@@ -716,7 +729,11 @@ SeparatingPolygons separatingPolygons2D(const BitVolume& image)
   out.hull = all.hull;
 
   std::size_t failed = 0;
-  const std::vector<Node> nodes = buildTree(img, objects, failed);
+  if (!exec.report(0.1))
+    throw std::runtime_error("aborted");
+  const std::vector<Node> nodes = buildTree(img, objects, failed, exec);
+  if (!exec.report(0.9))
+    throw std::runtime_error("aborted");
   writeLoops(nodes, out);
   for (const SeparatingLoop& loop : out.loops)
     forLatticePointsOf(loop.corners,

@@ -59,6 +59,7 @@
 #define vbr_ConvexHullModifier2D_h
 
 #include "BitVolume.h"
+#include "Execution.h"
 #include "PolygonTriangulator.h"
 
 #include <cstddef>
@@ -103,7 +104,10 @@ struct SeparatingPolygons
 };
 
 /// The separating polygons of the object pixels of a 2D image (nz = 1; z = 0 is read).
-SeparatingPolygons separatingPolygons2D(const BitVolume& image);
+/// Reports its progress through `exec` and polls its abort once per region of the tree
+/// (throws std::runtime_error("aborted") when asked to stop).
+SeparatingPolygons separatingPolygons2D(const BitVolume& image,
+  const Execution& exec = Execution());
 
 /// The pixel set (nx * ny * 1) rebuilt from the loops and the marks alone: centres strictly
 /// inside (exact crossing parity), and centres on a loop that are not listed as background.

@@ -10,12 +10,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -288,6 +291,32 @@ TEST(ConvexHullModifier2D, LargerRandomImagesNestDeeply)
       break;
   }
   EXPECT_GE(deepest, 8); // rings nested in rings: noise near half density
+}
+
+TEST(ConvexHullModifier2D, ReportsProgressAndStopsWhenAborted)
+{
+  // Noise nests regions deeply: the tree's regions report an increasing progress in [0, 1]
+  // and the abort, asked for after a few polls, stops the tree (an exception, no result).
+  std::mt19937 rng(5);
+  std::bernoulli_distribution bit(0.45);
+  const vbr::BitVolume noise = image(96, 96, [&](int, int) { return bit(rng); });
+  std::vector<double> seen;
+  vbr::Execution watch;
+  watch.progress = [&](double f)
+  {
+    seen.push_back(f);
+    return true;
+  };
+  vbr::separatingPolygons2D(noise, watch);
+  ASSERT_GE(seen.size(), 4u) << "progress from inside the tree";
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_GE(seen.front(), 0.0);
+  EXPECT_LE(seen.back(), 1.0);
+  int polls = 0;
+  vbr::Execution stop;
+  stop.aborted = [&] { return ++polls > 3; };
+  EXPECT_THROW(vbr::separatingPolygons2D(noise, stop), std::runtime_error);
+  EXPECT_EQ(polls, 4) << "stopped at the first poll that asked";
 }
 
 TEST(ConvexHullModifier2D, DegenerateImages)
