@@ -799,14 +799,10 @@ public:
     , Poll(exec, 0.1, 0.95)
   {
     this->Stamp.assign(mesh.number_of_faces(), 0);
-    this->Boxes.resize(mesh.number_of_faces());
     this->Faces.resize(mesh.number_of_faces());
     this->SamplesOf.assign(mesh.number_of_faces(), {});
     for (FaceId f : mesh.faces())
-    {
       this->keepCorners(f);
-      this->Boxes[std::size_t(f)] = boxOf(this->triangleOf(f));
-    }
     this->rebuildGrid();
     this->assignSamples(object, exec);
   }
@@ -870,10 +866,11 @@ private:
   ProgressPoll Poll;
   FaceGrid Grid;
   std::size_t FacesInGrid = 0; // when the grid was built
-  std::vector<Box> Boxes;      // per face
   /// Per face: its vertices and corners, copied from the mesh (kept up to date by collapsed):
   /// the tests read them for the faces near each star, scattered over the mesh, where walking
-  /// the mesh's halfedges to the points missed the cache several times per face.
+  /// the mesh's halfedges to the points missed the cache several times per face. The box a
+  /// face has in the grid is that of its corners here (a separate array of boxes missed the
+  /// cache again when the star's faces left the grid).
   struct FaceCorners
   {
     std::array<VertexId, 3> ids;
@@ -907,7 +904,7 @@ void Simplifier::rebuildGrid()
   double sides = 0;
   for (FaceId f : this->M.faces())
   {
-    const Box& b = this->Boxes[std::size_t(f)];
+    const Box b = boxOf(this->triangleOf(f));
     sides += std::max({ b[1][0] - b[0][0], b[1][1] - b[0][1], b[1][2] - b[0][2] });
   }
   this->FacesInGrid = this->M.number_of_faces();
@@ -920,7 +917,7 @@ void Simplifier::rebuildGrid()
   this->Grid.reset(this->Lo, this->Hi, std::max({ 2.0, 2 * mean, sparse }));
   for (FaceId f : this->M.faces())
   {
-    const Box& b = this->Boxes[std::size_t(f)];
+    const Box b = boxOf(this->triangleOf(f));
     this->Grid.insert(f, b[0], b[1]);
   }
 }
@@ -1265,15 +1262,13 @@ bool Simplifier::collapsed(VertexId v0, VertexId v1, VertexId kept)
     this->SamplesOf[std::size_t(this->Star[to].face)].push_back(piece);
   for (FaceId f : this->OldStar)
   {
-    const Box& b = this->Boxes[std::size_t(f)];
+    const Box b = boxOf(this->triangleOf(f));
     this->Grid.erase(f, b[0], b[1]);
   }
   for (const StarFace& s : this->Star)
   {
-    this->keepCorners(s.face);
-    Box& b = this->Boxes[std::size_t(s.face)];
-    b = s.box; // the box of its new triangle: the kept vertex is now at the accepted point
-    this->Grid.insert(s.face, b[0], b[1]);
+    this->keepCorners(s.face); // its new triangle: the kept vertex is now at the accepted point
+    this->Grid.insert(s.face, s.box[0], s.box[1]);
   }
   if (2 * this->M.number_of_faces() < this->FacesInGrid)
     this->rebuildGrid();
@@ -1607,8 +1602,6 @@ public:
     , Queue(mesh.num_edges()) // edge numbers, removed ones included
     , InitialFaces(mesh.number_of_faces())
     , Measured(mesh.num_edges())
-    , MeasuredAt(mesh.num_edges(), NotMeasured)
-    , MeasuredFrom(mesh.num_edges())
     , ChangedAt(mesh.num_vertices(), 0)
   {
     this->measureAll();
@@ -1640,18 +1633,17 @@ private:
   /// again).
   const Costed& costed(EdgeId e)
   {
-    const std::size_t edge = std::size_t(e);
+    Measure& m = this->Measured[std::size_t(e)];
     const HalfedgeId h = this->M.halfedge(e);
     const std::uint32_t changed = std::max(this->ChangedAt[std::size_t(this->M.source(h))],
       this->ChangedAt[std::size_t(this->M.target(h))]);
-    if (this->MeasuredAt[edge] == NotMeasured || this->MeasuredAt[edge] < changed ||
-      this->MeasuredFrom[edge] != this->M.source(h))
+    if (m.at == NotMeasured || m.at < changed || m.from != this->M.source(h))
     {
-      this->Measured[edge] = lindstromTurk(profileOf(this->M, e));
-      this->MeasuredAt[edge] = this->Epoch;
-      this->MeasuredFrom[edge] = this->M.source(h);
+      m.costed = lindstromTurk(profileOf(this->M, e));
+      m.at = this->Epoch;
+      m.from = this->M.source(h);
     }
-    return this->Measured[edge];
+    return m.costed;
   }
   /// After a collapse: the kept vertex and its neighbours, whose stars changed.
   void changedAround(VertexId kept)
@@ -1681,11 +1673,15 @@ private:
   std::size_t InitialFaces;
   bool Wider = false;
   static constexpr std::uint32_t NotMeasured = std::numeric_limits<std::uint32_t>::max();
-  std::uint32_t Epoch = 0;               // collapses so far
-  std::vector<Costed> Measured;          // per edge: its last placement and cost
-  std::vector<std::uint32_t> MeasuredAt; // per edge: the epoch of Measured, or NotMeasured
-  std::vector<VertexId> MeasuredFrom;    // per edge: the source of its halfedge then
-  std::vector<std::uint32_t> ChangedAt;  // per vertex: the epoch its star last changed
+  std::uint32_t Epoch = 0; // collapses so far
+  struct Measure           // one per edge, read at once (three arrays missed the cache three times)
+  {
+    Costed costed;                  // its last placement and cost
+    std::uint32_t at = NotMeasured; // the epoch they were measured in
+    VertexId from;                  // the source of its first halfedge then
+  };
+  std::vector<Measure> Measured;
+  std::vector<std::uint32_t> ChangedAt; // per vertex: the epoch its star last changed
 };
 
 std::ptrdiff_t CollapseLoop::run()
