@@ -47,14 +47,16 @@
 // Distances are in voxel units (voxel i spans [i, i + 1]); d is at most 1.99 (the distance
 // search of FaceOctreeBoundary.h's distanceToNearestFace reaches two voxels).
 //
-// Cost: serial, about 40 microseconds per collapse (the 128^3 ball: 82,220 -> 174 triangles,
-// 41,000 collapses; only the kept vertex's edges are re-costed at once, where CGAL's loop
-// re-costs the 20 to 40 edges around each collapse), most of it in the checks above and in
-// reads that miss the cache; a little less than the time of flying edges, windowed-sinc
-// smoothing and quadric decimation on the 128^3 ball and torus, half of it on a CSG solid,
-// with about half their triangles at the same distance (README, Performance).
-// vtkFaceOctreeBoundaryFilter leaves it off by default (it takes about 7x the unsimplified
-// filter's time).
+// Cost: serial, 50 to 65 microseconds of CPU per collapse (the 128^3 ball of the benchmark:
+// 37,148 -> 176 triangles in 18,486 collapses, about 0.9 s; its 256^3 ball: 134,924 -> 378
+// triangles in 67,273 collapses, about 4.3 s), most of it in the checks above and in reads
+// that miss the cache; only the kept vertex's edges are re-costed at once (CGAL's loop
+// re-costs the 20 to 40 edges around each collapse), and an edge's placement is kept until
+// the star of one of its ends changes. A little less than the time of flying edges,
+// windowed-sinc smoothing and quadric decimation on the 128^3 ball and torus, half of it on a
+// CSG solid, with about half their triangles at the same distance (README, Performance).
+// vtkFaceOctreeBoundaryFilter leaves it off by default (it takes 7x to 10x the unsimplified
+// filter's time: 3.5 to 4.3 M voxels per CPU second on the 256^3 solids).
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
