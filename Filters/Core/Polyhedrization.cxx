@@ -1199,14 +1199,23 @@ public:
   {
   }
 
-  /// The surfel of the plane whose counter-clockwise boundary runs p -> q (a unit step), if
-  /// any: of the two squares on the left of the step, the one whose inner voxel is below the
-  /// plane and whose outer voxel is not.
-  bool leftOf(const Point3& p, const Point3& q, Surfel& out) const
+  /// A square on the left of a unit step p -> q that may be a surfel of the plane: its inner
+  /// voxel (the one below the plane if it is one), its direction, and 2 |n_d| (n.v grows by
+  /// |n_d| from the inner voxel to the outer one).
+  struct Candidate
+  {
+    Point3 inner;
+    std::uint8_t direction;
+    std::int64_t twiceStep;
+  };
+
+  /// The squares on the left of the step p -> q, one per axis d across the step with n_d != 0
+  /// (at most two); returns how many.
+  int candidatesLeftOf(const Point3& p, const Point3& q, Candidate out[2]) const
   {
     const Point3 t = sub(q, p);
     const int along = directionOf(t) >> 1;
-    int found = 0;
+    int count = 0;
     for (int d = 0; d < 3; ++d)
     {
       if (d == along || this->Normal[d] == 0)
@@ -1220,23 +1229,52 @@ public:
         inner[i] = std::min(std::min(p[i], q[i]), std::min(p[i], q[i]) + left[i]);
       if (normal[d] > 0)
         --inner[d];
-      // The outer voxel is one step along the normal: n.v grows by |n_d|.
-      const std::int64_t twice = 2 * this->value(inner);
-      if (twice < this->Bound && twice + 2 * std::llabs(this->Normal[d]) >= this->Bound)
+      out[count++] = { inner,
+        static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)),
+        2 * std::llabs(this->Normal[d]) };
+    }
+    return count;
+  }
+
+  /// Whether a candidate whose inner voxel has n.v = `value` is a surfel of the plane: its
+  /// inner voxel below the plane and its outer one not.
+  bool takes(std::int64_t value, std::int64_t twiceStep) const
+  {
+    const std::int64_t twice = 2 * value;
+    return twice < this->Bound && twice + twiceStep >= this->Bound;
+  }
+
+  /// The surfel of the plane whose counter-clockwise boundary runs p -> q (a unit step), if
+  /// any: of the two squares on the left of the step, the one whose inner voxel is below the
+  /// plane and whose outer voxel is not.
+  bool leftOf(const Point3& p, const Point3& q, Surfel& out) const
+  {
+    Candidate c[2];
+    const int count = this->candidatesLeftOf(p, q, c);
+    int found = 0;
+    for (int i = 0; i < count; ++i)
+      if (this->takes(this->value(c[i].inner), c[i].twiceStep))
       {
-        out = { inner, static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)) };
+        out = { c[i].inner, c[i].direction };
         ++found;
       }
-    }
     return found == 1;
   }
 
-private:
+  /// Whether surfels of direction d may be squares of the plane (s n_a > 0): leftOf finds
+  /// no others.
+  bool facesOut(int d) const
+  {
+    const std::int64_t n = this->Normal[d >> 1];
+    return (d & 1) ? n > 0 : n < 0;
+  }
+
   std::int64_t value(const Point3& v) const
   {
     return this->Normal[0] * v[0] + this->Normal[1] * v[1] + this->Normal[2] * v[2];
   }
 
+private:
   std::array<std::int64_t, 3> Normal;
   std::int64_t Bound; ///< 2 n.v below this: the voxel with lower corner v is below the plane
 };
@@ -1278,6 +1316,14 @@ public:
 private:
   std::array<BitVolume, 6> Bits;
 };
+
+/// A point projected along a plane's sign vector (FaceMarks).
+using UV = std::array<std::int64_t, 2>;
+
+UV plus(const UV& a, const UV& b)
+{
+  return { a[0] + b[0], a[1] + b[1] };
+}
 
 /// Key of a surfel whose voxel lies in the grid (coordinates below 2^20): 63 bits.
 std::uint64_t surfelKey(const Surfel& s)
@@ -1359,45 +1405,54 @@ public:
       this->Marks.resize(cells, 0);
   }
 
-  /// Marks surfel s of the plane (its voxel in the grid); false when it was marked already.
-  bool markSurfel(const Surfel& s)
+  /// The projection of a point along the plane's sign vector (the array's coordinates before
+  /// the shift by Low). Linear: the flood projects a surfel's voxel and adds its steps'.
+  UV project(const Point3& p) const
   {
-    Point3 lowest = s.voxel;
-    lowest[s.axis()] += s.direction & 1;
+    const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
+    return { this->Sign[0] * std::int64_t(p[0]) - w, this->Sign[1] * std::int64_t(p[1]) - w };
+  }
+
+  /// Marks surfel s of the plane (its voxel in the grid) whose lowest corner projects to
+  /// `lowest`; false when it was marked already.
+  bool markSurfel(const Surfel& s, const UV& lowest)
+  {
     std::size_t cell = 0;
     if (!this->cellOf(lowest, cell))
       return this->Outside.insert(surfelKey(s)).second;
     return this->mark(cell, 1u << s.axis());
   }
 
-  /// Marks the loop edge p -> q (a linel of a surfel of the plane in the grid).
-  void markLoopEdge(const Point3& p, const Point3& q)
+  /// Marks the loop edge of `direction` from the point projected to `uv` (a linel of a
+  /// surfel of the plane in the grid).
+  void markLoopEdge(const UV& uv, int direction)
   {
     std::size_t cell = 0;
-    if (this->cellOf(p, cell))
-      this->mark(cell, 8u << directionOf(sub(q, p)));
+    if (this->cellOf(uv, cell))
+      this->mark(cell, 8u << direction);
     else
-      this->OutsideEdges.insert(this->edgeKey(p, q));
+      this->OutsideEdges.insert(this->edgeKey(uv, direction));
   }
 
-  /// Whether p -> q, a linel of a surfel of the plane in the grid, is a loop edge or was
-  /// crossed already (markCrossed).
-  bool isLoopEdgeOrCrossed(const Point3& p, const Point3& q) const
+  /// Whether the linel of `direction` from the point projected to `from`, a linel of a surfel
+  /// of the plane in the grid, is a loop edge or was crossed already (markCrossed).
+  bool isLoopEdgeOrCrossed(const UV& from, int direction) const
   {
     std::size_t cell = 0;
-    if (this->cellOf(p, cell))
-      return this->Marks[cell] & (0x208u << directionOf(sub(q, p)));
-    return this->OutsideEdges.size() != 0 && this->OutsideEdges.find(this->edgeKey(p, q)) >= 0;
+    if (this->cellOf(from, cell))
+      return this->Marks[cell] & (0x208u << direction);
+    return this->OutsideEdges.size() != 0 &&
+      this->OutsideEdges.find(this->edgeKey(from, direction)) >= 0;
   }
 
-  /// Marks the linel p -> q as crossed: the flood came into its surfel across it, so crossing
-  /// it back from there would find a surfel already filled (only within the array; outside it
-  /// the linel is crossed back).
-  void markCrossed(const Point3& p, const Point3& q)
+  /// Marks the linel of `direction` from the point projected to `from` as crossed: the flood
+  /// came into its surfel across it, so crossing it back from there would find a surfel
+  /// already filled (only within the array; outside it the linel is crossed back).
+  void markCrossed(const UV& from, int direction)
   {
     std::size_t cell = 0;
-    if (this->cellOf(p, cell))
-      this->mark(cell, 0x200u << directionOf(sub(q, p)));
+    if (this->cellOf(from, cell))
+      this->mark(cell, 0x200u << direction);
   }
 
   /// Whether a face of `surfels` (its loop's shoelace area) and `loopEdges` is marked in an
@@ -1422,25 +1477,17 @@ private:
     return true;
   }
 
-  std::array<std::int64_t, 2> project(const Point3& p) const
-  {
-    const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
-    return { this->Sign[0] * std::int64_t(p[0]) - w, this->Sign[1] * std::int64_t(p[1]) - w };
-  }
-
-  /// A linel p -> q of the plane by the cell of p and the direction, as the array keys it:
+  /// A linel by the projection of its start and its direction, as the array keys it:
   /// projections lie within +-2^21 (coordinates below 2^20), shifted to 23 bits each.
-  std::uint64_t edgeKey(const Point3& p, const Point3& q) const
+  static std::uint64_t edgeKey(const UV& uv, int direction)
   {
-    const std::array<std::int64_t, 2> uv = this->project(p);
     const std::uint64_t u = std::uint64_t(uv[0] + (std::int64_t(1) << 22));
     const std::uint64_t v = std::uint64_t(uv[1] + (std::int64_t(1) << 22));
-    return (((u << 23) | v) << 3) | std::uint64_t(directionOf(sub(q, p)));
+    return (((u << 23) | v) << 3) | std::uint64_t(direction);
   }
 
-  bool cellOf(const Point3& p, std::size_t& cell) const
+  bool cellOf(const UV& uv, std::size_t& cell) const
   {
-    const std::array<std::int64_t, 2> uv = this->project(p);
     const std::int64_t u = uv[0] - this->Low[0], v = uv[1] - this->Low[1];
     if (u < 0 || v < 0 || u >= this->Width || v >= this->Height)
       return false;
@@ -1484,6 +1531,7 @@ public:
     this->Stack.clear();
     this->Face.begin(face.plane, face.loop);
     const PlaneSurfels plane(face.plane);
+    this->prepareSteps(plane);
     const char* error = this->seedFromLoop(face, plane);
     if (!error)
       error = this->flood(plane, 8 * n * n + 64);
@@ -1506,20 +1554,86 @@ private:
   static constexpr const char* SharedSurfels =
     "shares surfels with an earlier face (is a face given twice?)";
 
+  /// A surfel of the face to flood from, with the projection of its voxel (FaceMarks) and
+  /// the plane's value n.v at its voxel, which its steps shift by constants (Step).
+  struct Entry
+  {
+    Surfel surfel;
+    UV voxel;
+    std::int64_t value;
+  };
+
+  /// The flood's step across edge k (corner k to k + 1) of a surfel of direction d, relative
+  /// to the surfel's voxel: the projections of the edge's ends, its direction both ways, and
+  /// the squares on the left of the step back (PlaneSurfels::candidatesLeftOf), each with the
+  /// shift of its voxel's projection and of n.v. Made once per face, so that a step costs
+  /// additions and compares instead of leftOf's geometry.
+  struct Step
+  {
+    UV from, to;                   ///< corners k and k + 1 projected
+    int forward = 0, backward = 0; ///< directions of k -> k + 1 and k + 1 -> k
+    int count = 0;
+    PlaneSurfels::Candidate candidate[2];
+    UV shift[2];
+    std::int64_t valueShift[2];
+  };
+
+  /// The steps of the face's plane, for the directions of its surfels (s n_a > 0).
+  void prepareSteps(const PlaneSurfels& plane)
+  {
+    for (int d = 0; d < 6; ++d)
+    {
+      if (!plane.facesOut(d))
+        continue; // no surfel of the plane has this direction: its steps are never read
+      const Surfel origin{ { 0, 0, 0 }, static_cast<std::uint8_t>(d) };
+      Point3 lowest{ 0, 0, 0 };
+      lowest[origin.axis()] += d & 1;
+      this->LowestShift[d] = this->Face.project(lowest);
+      for (int k = 0; k < 4; ++k)
+      {
+        Step& step = this->Steps[d][k];
+        const Point3 a = origin.corner(k), b = origin.corner((k + 1) & 3);
+        step.from = this->Face.project(a);
+        step.to = this->Face.project(b);
+        step.forward = directionOf(sub(b, a));
+        step.backward = directionOf(sub(a, b));
+        step.count = plane.candidatesLeftOf(b, a, step.candidate);
+        this->shiftsOf(plane, step);
+      }
+    }
+    // A loop edge p -> q: the squares on the left relative to p, by the edge's direction.
+    for (int d = 0; d < 6; ++d)
+    {
+      Step& step = this->LoopSteps[d];
+      step.forward = d;
+      step.count = plane.candidatesLeftOf({ 0, 0, 0 }, unitVector(d), step.candidate);
+      this->shiftsOf(plane, step);
+    }
+  }
+
+  void shiftsOf(const PlaneSurfels& plane, Step& step) const
+  {
+    for (int i = 0; i < step.count; ++i)
+    {
+      step.shift[i] = this->Face.project(step.candidate[i].inner);
+      step.valueShift[i] = plane.value(step.candidate[i].inner);
+    }
+  }
+
   /// Visits surfel s of the face once: marked and stacked; an error when it lies outside
-  /// the grid or in an earlier face.
-  const char* visit(const Surfel& s)
+  /// the grid or in an earlier face. `voxel` and `value` are its Entry's.
+  const char* visit(const Surfel& s, const UV& voxel, std::int64_t value)
   {
     const Point3& v = s.voxel;
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= this->Dims[0] || v[1] >= this->Dims[1] ||
       v[2] >= this->Dims[2])
       return "it leaves the grid (the faces do not bound a set of voxels of it)";
-    if (!this->Face.markSurfel(s))
+    if (!this->Face.markSurfel(s, plus(voxel, this->LowestShift[s.direction])))
       return nullptr; // seen in this face
     if (this->KeepAll && this->All.get(s))
       return SharedSurfels;
     this->Visited.push_back(s);
-    this->Stack.push_back(s);
+    this->Stack.push_back({ s, voxel, value });
     return nullptr;
   }
 
@@ -1529,18 +1643,28 @@ private:
     const std::size_t n = face.loop.size();
     for (std::size_t i = 0; i < n; ++i)
     {
-      Surfel s;
       const Point3& p = face.loop[i];
       const Point3& q = face.loop[(i + 1) % n];
       const Point3 t = sub(q, p);
-      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !plane.leftOf(p, q, s))
+      // The square on the left of p -> q, as PlaneSurfels::leftOf(p, q) finds it.
+      const bool unit = std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) == 1;
+      const Step& step = this->LoopSteps[unit ? directionOf(t) : 0];
+      const std::int64_t value = plane.value(p);
+      int found = 0, which = 0;
+      for (int j = 0; unit && j < step.count; ++j)
+        if (plane.takes(value + step.valueShift[j], step.candidate[j].twiceStep))
+          ++found, which = j;
+      if (found != 1)
       {
         this->BadEdge = "loop edge " + std::to_string(i) + " is not a linel of its plane";
         return this->BadEdge.c_str();
       }
-      if (const char* error = this->visit(s))
+      const UV from = this->Face.project(p);
+      const Surfel s{ add(p, step.candidate[which].inner), step.candidate[which].direction };
+      if (const char* error =
+            this->visit(s, plus(from, step.shift[which]), value + step.valueShift[which]))
         return error;
-      this->Face.markLoopEdge(p, q); // an edge of s, a surfel of the grid
+      this->Face.markLoopEdge(from, step.forward); // an edge of s, a surfel of the grid
     }
     return nullptr;
   }
@@ -1550,27 +1674,31 @@ private:
   {
     while (!this->Stack.empty())
     {
-      const Surfel s = this->Stack.back();
+      const Entry e = this->Stack.back();
       this->Stack.pop_back();
       if (this->Visited.size() > limit)
         return "its loop does not enclose a disk of its plane";
-      std::array<Point3, 4> corners;
-      for (int k = 0; k < 4; ++k)
-        corners[k] = s.corner(k);
       for (int k = 0; k < 4; ++k)
       {
-        const Point3& a = corners[k];
-        const Point3& b = corners[(k + 1) & 3];
-        if (this->Face.isLoopEdgeOrCrossed(a, b))
+        // The edge a -> b (corners k, k + 1) and the square on the left of b -> a: what
+        // PlaneSurfels::leftOf(b, a) finds, from the steps of the surfel's direction.
+        const Step& step = this->Steps[e.surfel.direction][k];
+        if (this->Face.isLoopEdgeOrCrossed(plus(e.voxel, step.from), step.forward))
           continue;
-        Surfel t;
-        if (!plane.leftOf(b, a, t))
+        int found = 0, which = 0;
+        for (int i = 0; i < step.count; ++i)
+          if (plane.takes(e.value + step.valueShift[i], step.candidate[i].twiceStep))
+            ++found, which = i;
+        if (found != 1)
           return "its plane is not a surface around a linel";
-        if (const char* error = this->visit(t))
+        const Surfel t{ add(e.surfel.voxel, step.candidate[which].inner),
+          step.candidate[which].direction };
+        if (const char* error =
+              this->visit(t, plus(e.voxel, step.shift[which]), e.value + step.valueShift[which]))
           return error;
         // t's edge b -> a leads back to s, filled: the plane is a surface, so each linel has
         // one surfel on either side, and crossing it once says all (half the crossings).
-        this->Face.markCrossed(b, a);
+        this->Face.markCrossed(plus(e.voxel, step.to), step.backward);
       }
     }
     return nullptr;
@@ -1579,9 +1707,13 @@ private:
   std::array<std::int32_t, 3> Dims;
   SurfelBits All;
   bool KeepAll;
-  FaceMarks Face;                     ///< the face's surfels and loop edges
-  std::vector<Surfel> Visited, Stack; ///< of the face
-  std::string BadEdge;                ///< the message of a loop edge off the plane
+  FaceMarks Face;              ///< the face's surfels and loop edges
+  std::vector<Surfel> Visited; ///< of the face
+  std::vector<Entry> Stack;    ///< of the face, to flood from
+  Step Steps[6][4];            ///< of the face's plane, by direction and edge
+  Step LoopSteps[6];           ///< a loop edge's, by its direction (from its start)
+  UV LowestShift[6];           ///< the projection of a surfel's lowest corner less its voxel's
+  std::string BadEdge;         ///< the message of a loop edge off the plane
   std::size_t Count = 0;
 };
 

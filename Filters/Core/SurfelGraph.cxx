@@ -35,8 +35,10 @@ struct VoxelSet
 
   bool contains(const Point3& v) const
   {
-    return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < dims[0] && v[1] < dims[1] &&
-      v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
+    // 0 <= v_i < dims_i as one unsigned compare per axis (a negative v_i wraps above dims_i).
+    return std::uint32_t(v[0]) < std::uint32_t(dims[0]) &&
+      std::uint32_t(v[1]) < std::uint32_t(dims[1]) &&
+      std::uint32_t(v[2]) < std::uint32_t(dims[2]) && voxels.get(v[0], v[1], v[2]);
   }
 };
 
