@@ -89,6 +89,8 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
     // then f alone is one).
     // The walk stops at the first surfel of f unless the whole umbrella is asked for.
     const bool whole = removing && insideArc;
+    if (onArc && !whole)
+      continue; // touched: the surfel across edge k or k - 1 is of f and round this vertex
     bool touched = false, filled = true;
     graph.aroundVertex(s,
       k,
