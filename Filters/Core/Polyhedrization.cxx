@@ -1327,6 +1327,19 @@ UV plus(const UV& a, const UV& b)
   return { a[0] + b[0], a[1] + b[1] };
 }
 
+/// The signs of a normal as FaceMarks projects along them (0 counted positive).
+std::array<int, 3> projectionSigns(const std::array<std::int64_t, 3>& normal)
+{
+  return { normal[0] < 0 ? -1 : 1, normal[1] < 0 ? -1 : 1, normal[2] < 0 ? -1 : 1 };
+}
+
+/// A point projected along the sign vector `sign` (FaceMarks).
+UV projectAlong(const std::array<int, 3>& sign, const Point3& p)
+{
+  const std::int64_t w = sign[2] * std::int64_t(p[2]);
+  return { sign[0] * std::int64_t(p[0]) - w, sign[1] * std::int64_t(p[1]) - w };
+}
+
 /// Key of a surfel whose voxel lies in the grid (coordinates below 2^20): 63 bits.
 std::uint64_t surfelKey(const Surfel& s)
 {
@@ -1372,8 +1385,7 @@ public:
     this->Touched.clear();
     this->Outside.clear();
     this->OutsideEdges.clear();
-    for (int d = 0; d < 3; ++d)
-      this->Sign[d] = plane.normal[d] < 0 ? -1 : 1;
+    this->Sign = projectionSigns(plane.normal);
     std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
     std::int64_t twiceArea = 0; // the shoelace sum of the loop's projection
     std::array<std::int64_t, 2> last = loop.empty() ? lo : this->project(loop.back());
@@ -1409,11 +1421,7 @@ public:
 
   /// The projection of a point along the plane's sign vector (the array's coordinates before
   /// the shift by Low). Linear: the flood projects a surfel's voxel and adds its steps'.
-  UV project(const Point3& p) const
-  {
-    const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
-    return { this->Sign[0] * std::int64_t(p[0]) - w, this->Sign[1] * std::int64_t(p[1]) - w };
-  }
+  UV project(const Point3& p) const { return projectAlong(this->Sign, p); }
 
   /// Marks surfel s of the plane (its voxel in the grid) whose lowest corner projects to
   /// `lowest`; false when it was marked already.
@@ -1509,6 +1517,78 @@ private:
   GridPointIndex OutsideEdges;      ///< keys of the loop edges outside the array (edgeKey)
 };
 
+/// The flood's steps (FaceFiller) for the planes of one sign pattern of the normal (each n_i
+/// negative, zero or positive), relative to a surfel's voxel: what PlaneSurfels::candidatesLeftOf
+/// and FaceMarks' projection give, which depend on the signs alone. Made once per pattern, so
+/// that a face sets up only the values n.v of its candidates (small faces are most faces).
+struct FloodGeometry
+{
+  /// The step across edge k (corner k to k + 1) of a surfel of direction d: the projections
+  /// of the edge's ends, its direction both ways, and the squares on the left of the step
+  /// back, with the shift of each one's voxel's projection; or (loop) the squares on the left
+  /// of a loop edge of direction d, relative to its start.
+  struct Step
+  {
+    UV from{ 0, 0 }, to{ 0, 0 };   ///< corners k and k + 1 projected
+    int forward = 0, backward = 0; ///< directions of k -> k + 1 and k + 1 -> k
+    int count = 0;
+    PlaneSurfels::Candidate candidate[2];
+    UV shift[2];
+  };
+  Step steps[6][4];
+  Step loop[6];
+  UV lowestShift[6]; ///< the projection of a surfel's lowest corner less its voxel's
+
+  explicit FloodGeometry(const std::array<std::int64_t, 3>& signs)
+  {
+    StandardPlane unit;
+    unit.normal = signs;
+    const PlaneSurfels plane(unit);
+    const std::array<int, 3> sign = projectionSigns(signs);
+    auto shifts = [&](Step& step)
+    {
+      for (int i = 0; i < step.count; ++i)
+        step.shift[i] = projectAlong(sign, step.candidate[i].inner);
+    };
+    for (int d = 0; d < 6; ++d)
+    {
+      const Surfel origin{ { 0, 0, 0 }, static_cast<std::uint8_t>(d) };
+      Point3 lowest{ 0, 0, 0 };
+      lowest[origin.axis()] += d & 1;
+      this->lowestShift[d] = projectAlong(sign, lowest);
+      for (int k = 0; k < 4; ++k)
+      {
+        Step& step = this->steps[d][k];
+        const Point3 a = origin.corner(k), b = origin.corner((k + 1) & 3);
+        step.from = projectAlong(sign, a);
+        step.to = projectAlong(sign, b);
+        step.forward = directionOf(sub(b, a));
+        step.backward = directionOf(sub(a, b));
+        step.count = plane.candidatesLeftOf(b, a, step.candidate);
+        shifts(step);
+      }
+      Step& step = this->loop[d];
+      step.forward = d;
+      step.count = plane.candidatesLeftOf({ 0, 0, 0 }, unitVector(d), step.candidate);
+      shifts(step);
+    }
+  }
+
+  /// The geometry of the sign pattern of `normal`.
+  static const FloodGeometry& of(const std::array<std::int64_t, 3>& normal)
+  {
+    static const std::vector<FloodGeometry> patterns = []
+    {
+      std::vector<FloodGeometry> all;
+      for (int p = 0; p < 27; ++p)
+        all.emplace_back(std::array<std::int64_t, 3>{ p % 3 - 1, p / 3 % 3 - 1, p / 9 - 1 });
+      return all;
+    }();
+    auto sign = [](std::int64_t x) { return x < 0 ? 0 : x == 0 ? 1 : 2; };
+    return patterns[sign(normal[0]) + 3 * sign(normal[1]) + 9 * sign(normal[2])];
+  }
+};
+
 /// The filling of the faces, one after the other: the surfels of every face filled so far
 /// (All, bits over the grid) and of the face being filled (Face, marks in the plane of its
 /// projection, so that the grid needs one set of bits, not two).
@@ -1533,7 +1613,7 @@ public:
     this->Stack.clear();
     this->Face.begin(face.plane, face.loop);
     const PlaneSurfels plane(face.plane);
-    this->prepareSteps(plane);
+    this->prepareSteps(plane, face.plane);
     const char* error = this->seedFromLoop(face, plane);
     if (!error)
       error = this->flood(plane, 8 * n * n + 64);
@@ -1565,61 +1645,38 @@ private:
     std::int64_t value;
   };
 
-  /// The flood's step across edge k (corner k to k + 1) of a surfel of direction d, relative
-  /// to the surfel's voxel: the projections of the edge's ends, its direction both ways, and
-  /// the squares on the left of the step back (PlaneSurfels::candidatesLeftOf), each with the
-  /// shift of its voxel's projection and of n.v. Made once per face, so that a step costs
-  /// additions and compares instead of leftOf's geometry.
-  struct Step
+  /// The face's values n.v of the candidates of its geometry's steps (relative to the
+  /// surfel's voxel, or to the loop edge's start), for the directions of its surfels (s n_a >
+  /// 0), and 2 |n_a| per axis (PlaneSurfels::Candidate::twiceStep for the face's plane).
+  void prepareSteps(const PlaneSurfels& plane, const StandardPlane& facePlane)
   {
-    UV from, to;                   ///< corners k and k + 1 projected
-    int forward = 0, backward = 0; ///< directions of k -> k + 1 and k + 1 -> k
-    int count = 0;
-    PlaneSurfels::Candidate candidate[2];
-    UV shift[2];
-    std::int64_t valueShift[2];
-  };
-
-  /// The steps of the face's plane, for the directions of its surfels (s n_a > 0).
-  void prepareSteps(const PlaneSurfels& plane)
-  {
+    const FloodGeometry& g = FloodGeometry::of(facePlane.normal);
+    this->Geometry = &g;
+    for (int a = 0; a < 3; ++a)
+      this->TwiceStep[a] = 2 * std::llabs(facePlane.normal[a]);
     for (int d = 0; d < 6; ++d)
     {
-      if (!plane.facesOut(d))
-        continue; // no surfel of the plane has this direction: its steps are never read
-      const Surfel origin{ { 0, 0, 0 }, static_cast<std::uint8_t>(d) };
-      Point3 lowest{ 0, 0, 0 };
-      lowest[origin.axis()] += d & 1;
-      this->LowestShift[d] = this->Face.project(lowest);
-      for (int k = 0; k < 4; ++k)
-      {
-        Step& step = this->Steps[d][k];
-        const Point3 a = origin.corner(k), b = origin.corner((k + 1) & 3);
-        step.from = this->Face.project(a);
-        step.to = this->Face.project(b);
-        step.forward = directionOf(sub(b, a));
-        step.backward = directionOf(sub(a, b));
-        step.count = plane.candidatesLeftOf(b, a, step.candidate);
-        this->shiftsOf(plane, step);
-      }
-    }
-    // A loop edge p -> q: the squares on the left relative to p, by the edge's direction.
-    for (int d = 0; d < 6; ++d)
-    {
-      Step& step = this->LoopSteps[d];
-      step.forward = d;
-      step.count = plane.candidatesLeftOf({ 0, 0, 0 }, unitVector(d), step.candidate);
-      this->shiftsOf(plane, step);
+      if (plane.facesOut(d)) // else no surfel of the plane has this direction
+        for (int k = 0; k < 4; ++k)
+          for (int i = 0; i < g.steps[d][k].count; ++i)
+            this->ValueShift[d][k][i] = plane.value(g.steps[d][k].candidate[i].inner);
+      for (int i = 0; i < g.loop[d].count; ++i)
+        this->LoopValueShift[d][i] = plane.value(g.loop[d].candidate[i].inner);
     }
   }
 
-  void shiftsOf(const PlaneSurfels& plane, Step& step) const
+  /// The square a step finds, of the candidates with n.v = value + shift: the only one the
+  /// plane takes (PlaneSurfels::leftOf), or -1.
+  int stepTarget(const PlaneSurfels& plane,
+    const FloodGeometry::Step& step,
+    std::int64_t value,
+    const std::int64_t* shift) const
   {
+    int found = 0, which = -1;
     for (int i = 0; i < step.count; ++i)
-    {
-      step.shift[i] = this->Face.project(step.candidate[i].inner);
-      step.valueShift[i] = plane.value(step.candidate[i].inner);
-    }
+      if (plane.takes(value + shift[i], this->TwiceStep[step.candidate[i].direction >> 1]))
+        ++found, which = i;
+    return found == 1 ? which : -1;
   }
 
   /// Visits surfel s of the face once: marked and stacked; an error when it lies outside
@@ -1630,7 +1687,7 @@ private:
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= this->Dims[0] || v[1] >= this->Dims[1] ||
       v[2] >= this->Dims[2])
       return "it leaves the grid (the faces do not bound a set of voxels of it)";
-    if (!this->Face.markSurfel(s, plus(voxel, this->LowestShift[s.direction])))
+    if (!this->Face.markSurfel(s, plus(voxel, this->Geometry->lowestShift[s.direction])))
       return nullptr; // seen in this face
     if (this->KeepAll && this->All.get(s))
       return SharedSurfels;
@@ -1650,21 +1707,20 @@ private:
       const Point3 t = sub(q, p);
       // The square on the left of p -> q, as PlaneSurfels::leftOf(p, q) finds it.
       const bool unit = std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) == 1;
-      const Step& step = this->LoopSteps[unit ? directionOf(t) : 0];
+      const int direction = unit ? directionOf(t) : 0;
+      const FloodGeometry::Step& step = this->Geometry->loop[direction];
       const std::int64_t value = plane.value(p);
-      int found = 0, which = 0;
-      for (int j = 0; unit && j < step.count; ++j)
-        if (plane.takes(value + step.valueShift[j], step.candidate[j].twiceStep))
-          ++found, which = j;
-      if (found != 1)
+      const int which =
+        unit ? this->stepTarget(plane, step, value, this->LoopValueShift[direction]) : -1;
+      if (which < 0)
       {
         this->BadEdge = "loop edge " + std::to_string(i) + " is not a linel of its plane";
         return this->BadEdge.c_str();
       }
       const UV from = this->Face.project(p);
       const Surfel s{ add(p, step.candidate[which].inner), step.candidate[which].direction };
-      if (const char* error =
-            this->visit(s, plus(from, step.shift[which]), value + step.valueShift[which]))
+      if (const char* error = this->visit(
+            s, plus(from, step.shift[which]), value + this->LoopValueShift[direction][which]))
         return error;
       this->Face.markLoopEdge(from, step.forward); // an edge of s, a surfel of the grid
     }
@@ -1684,19 +1740,17 @@ private:
       {
         // The edge a -> b (corners k, k + 1) and the square on the left of b -> a: what
         // PlaneSurfels::leftOf(b, a) finds, from the steps of the surfel's direction.
-        const Step& step = this->Steps[e.surfel.direction][k];
+        const FloodGeometry::Step& step = this->Geometry->steps[e.surfel.direction][k];
         if (this->Face.isLoopEdgeOrCrossed(plus(e.voxel, step.from), step.forward))
           continue;
-        int found = 0, which = 0;
-        for (int i = 0; i < step.count; ++i)
-          if (plane.takes(e.value + step.valueShift[i], step.candidate[i].twiceStep))
-            ++found, which = i;
-        if (found != 1)
+        const std::int64_t* shift = this->ValueShift[e.surfel.direction][k];
+        const int which = this->stepTarget(plane, step, e.value, shift);
+        if (which < 0)
           return "its plane is not a surface around a linel";
         const Surfel t{ add(e.surfel.voxel, step.candidate[which].inner),
           step.candidate[which].direction };
         if (const char* error =
-              this->visit(t, plus(e.voxel, step.shift[which]), e.value + step.valueShift[which]))
+              this->visit(t, plus(e.voxel, step.shift[which]), e.value + shift[which]))
           return error;
         // t's edge b -> a leads back to s, filled: the plane is a surface, so each linel has
         // one surfel on either side, and crossing it once says all (half the crossings).
@@ -1709,13 +1763,14 @@ private:
   std::array<std::int32_t, 3> Dims;
   SurfelBits All;
   bool KeepAll;
-  FaceMarks Face;              ///< the face's surfels and loop edges
-  std::vector<Surfel> Visited; ///< of the face
-  std::vector<Entry> Stack;    ///< of the face, to flood from
-  Step Steps[6][4];            ///< of the face's plane, by direction and edge
-  Step LoopSteps[6];           ///< a loop edge's, by its direction (from its start)
-  UV LowestShift[6];           ///< the projection of a surfel's lowest corner less its voxel's
-  std::string BadEdge;         ///< the message of a loop edge off the plane
+  FaceMarks Face;                          ///< the face's surfels and loop edges
+  std::vector<Surfel> Visited;             ///< of the face
+  std::vector<Entry> Stack;                ///< of the face, to flood from
+  const FloodGeometry* Geometry = nullptr; ///< of the face's plane's signs
+  std::int64_t ValueShift[6][4][2];        ///< of the face's plane, by direction and edge
+  std::int64_t LoopValueShift[6][2];       ///< a loop edge's, by its direction
+  std::int64_t TwiceStep[3];               ///< 2 |n_a|
+  std::string BadEdge;                     ///< the message of a loop edge off the plane
   std::size_t Count = 0;
 };
 
