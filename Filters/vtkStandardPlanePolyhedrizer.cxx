@@ -392,19 +392,116 @@ private:
     std::size_t count,
     bool markLoops)
   {
+    const bool direct = this->trianglesFit32(count);
+    bool byIndex = false;
     if (markLoops)
-      this->sortLoopEdges(o, o.poly.faces[f]);
+    {
+      const vbr::StandardFace& face = o.poly.faces[f];
+      byIndex = direct && count > 0 && polygon.begin() == face.loop.begin() &&
+        this->loopPointsDistinct(o, face);
+      if (!byIndex)
+        this->sortLoopEdges(o, face);
+    }
     std::vector<vtkIdType>& ids = this->TriangleIds;
     ids.resize(3);
+    if (direct)
+      this->writeTriangles32(o, polygon, triangles, count, markLoops, byIndex);
+    else
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        for (int k = 0; k < 3; ++k)
+          ids[k] = this->point(o, polygon[triangles[i][k]]);
+        this->addTriangle(markLoops);
+      }
+    this->addFaceValues(o, f, count);
+    if (count == 0)
+      this->addSurfelTriangles(o, f, markLoops);
+  }
+
+  /// Whether `count` more triangles go into the 32-bit cells as addTriangle would leave them
+  /// (insertCell switches to 64 bits only when an id or offset would not fit).
+  bool trianglesFit32(std::size_t count) const
+  {
+    constexpr auto limit = static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max());
+    return !this->Polys->IsStorage64Bit() &&
+      static_cast<std::size_t>(this->Polys->GetNumberOfConnectivityIds()) + 3 * count <= limit &&
+      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + 3 * count <=
+      limit; // points made for these triangles, at most 3 each
+  }
+
+  /// The triangles of a face written at once into the 32-bit connectivity and offsets (and the
+  /// LoopEdges bits), the values addTriangle writes one cell at a time (InsertNextCell and
+  /// InsertNextValue cost more than the triangulation's ear tests); after trianglesFit32.
+  void writeTriangles32(const ObjectFaces& o,
+    const vbr::IdRange& polygon,
+    const vbr::Triangle* triangles,
+    std::size_t count,
+    bool markLoops,
+    bool byIndex)
+  {
+    if (count == 0)
+      return;
+    vtkCellArray::ArrayType32* connectivity = this->Polys->GetConnectivityArray32();
+    vtkCellArray::ArrayType32* offsets = this->Polys->GetOffsetsArray32();
+    const vtkIdType corners = connectivity->GetNumberOfValues();
+    const vtkIdType cells = static_cast<vtkIdType>(count);
+    vtkTypeInt32* corner = connectivity->WritePointer(corners, 3 * cells);
+    vtkTypeInt32* offset = offsets->WritePointer(offsets->GetNumberOfValues(), cells);
+    unsigned char* bits = markLoops
+      ? this->LoopEdges->WritePointer(this->LoopEdges->GetNumberOfValues(), cells)
+      : nullptr;
+    std::vector<vtkIdType>& ids = this->TriangleIds;
     for (std::size_t i = 0; i < count; ++i)
     {
       for (int k = 0; k < 3; ++k)
         ids[k] = this->point(o, polygon[triangles[i][k]]);
-      this->addTriangle(markLoops);
+      if (this->Reverse)
+        std::reverse(ids.begin(), ids.end());
+      for (int k = 0; k < 3; ++k)
+        corner[3 * i + k] = static_cast<vtkTypeInt32>(ids[k]);
+      offset[i] = static_cast<vtkTypeInt32>(corners + 3 * static_cast<vtkIdType>(i + 1));
+      if (bits)
+        bits[i] =
+          byIndex ? this->loopEdgeBitsByIndex(triangles[i], polygon.size()) : this->loopEdgeBits();
     }
-    this->addFaceValues(o, f, count);
-    if (count == 0)
-      this->addSurfelTriangles(o, f, markLoops);
+  }
+
+  /// Makes the points of face f's loop in sortLoopEdges' order and tells whether
+  /// they are pairwise distinct. Then a triangle's edge of points (P_a, P_b) is a loop edge
+  /// (P_i, P_i+1) exactly when b follows a in the loop: loopEdgeBitsByIndex gives the bits
+  /// without the sorted list and its binary searches.
+  bool loopPointsDistinct(const ObjectFaces& o, const vbr::StandardFace& face)
+  {
+    if (++this->LoopStamp == 0) // wrapped: forget every stamp
+    {
+      std::fill(this->PointStamps.begin(), this->PointStamps.end(), 0);
+      this->LoopStamp = 1;
+    }
+    bool distinct = true;
+    const std::size_t m = face.loop.size();
+    for (std::size_t i = 0; i < m; ++i)
+    {
+      this->point(o, face.loop[(i + 1) % m]); // made in sortLoopEdges' order
+      const auto id = static_cast<std::size_t>(this->point(o, face.loop[i]));
+      if (this->PointStamps.size() <= id)
+        this->PointStamps.resize(std::max(2 * this->PointStamps.size(), id + 1), 0);
+      distinct = distinct && this->PointStamps[id] != this->LoopStamp;
+      this->PointStamps[id] = this->LoopStamp;
+    }
+    return distinct;
+  }
+
+  /// The LoopEdges bits of a triangle of the loop's corners (indices into the loop of m
+  /// pairwise distinct points), as loopEdgeBits finds them: edge k runs along the loop when its
+  /// end follows its start; on a mirrored grid the triangle is written reversed.
+  unsigned char loopEdgeBitsByIndex(const vbr::Triangle& t, std::size_t m) const
+  {
+    auto follows = [m](int a, int b)
+    { return static_cast<std::size_t>(b) == (static_cast<std::size_t>(a) + 1 == m ? 0 : a + 1); };
+    const bool e0 = follows(t[0], t[1]), e1 = follows(t[1], t[2]), e2 = follows(t[2], t[0]);
+    // Reversed, the corners are t2, t1, t0 and its edges k = 0, 1, 2 are e1, e0, e2 backwards.
+    return this->Reverse ? static_cast<unsigned char>(e1 | (e0 << 1) | (e2 << 2))
+                         : static_cast<unsigned char>(e0 | (e1 << 1) | (e2 << 2));
   }
 
   /// The triangles of face f's polygon (indices into it), simple in the projection along the
@@ -577,8 +674,12 @@ private:
     std::vector<std::pair<vtkIdType, vtkIdType>>& loopEdges = this->FaceLoopEdges;
     loopEdges.clear();
     for (std::size_t i = 0; i < face.loop.size(); ++i)
-      loopEdges.emplace_back(
-        this->point(o, face.loop[i]), this->point(o, face.loop[(i + 1) % face.loop.size()]));
+    {
+      // The end's point first: the order in which points have always been made here (they
+      // are numbered as made), which loopPointsDistinct follows too.
+      const vtkIdType next = this->point(o, face.loop[(i + 1) % face.loop.size()]);
+      loopEdges.emplace_back(this->point(o, face.loop[i]), next);
+    }
     std::sort(loopEdges.begin(), loopEdges.end());
   }
 
@@ -775,7 +876,9 @@ private:
   std::vector<std::size_t> MadeFirst;
   std::unique_ptr<std::atomic<int>[]> ChunkState;
   std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< from sortLoopEdges
-  std::vector<vtkIdType> TriangleIds;                         ///< the triangle being added
+  std::vector<std::uint32_t> PointStamps; ///< per output point, in loopPointsDistinct
+  std::uint32_t LoopStamp = 0;            ///< the last face's stamp
+  std::vector<vtkIdType> TriangleIds;     ///< the triangle being added
   vtkNew<vtkPoints> Points;
   vtkNew<vtkCellArray> Polys;
   vtkNew<vtkCellArray> Lines;

@@ -89,6 +89,8 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
     // then f alone is one).
     // The walk stops at the first surfel of f unless the whole umbrella is asked for.
     const bool whole = removing && insideArc;
+    if (onArc && !whole)
+      continue; // touched: the surfel across edge k or k - 1 is of f and round this vertex
     bool touched = false, filled = true;
     graph.aroundVertex(s,
       k,
@@ -1199,14 +1201,23 @@ public:
   {
   }
 
-  /// The surfel of the plane whose counter-clockwise boundary runs p -> q (a unit step), if
-  /// any: of the two squares on the left of the step, the one whose inner voxel is below the
-  /// plane and whose outer voxel is not.
-  bool leftOf(const Point3& p, const Point3& q, Surfel& out) const
+  /// A square on the left of a unit step p -> q that may be a surfel of the plane: its inner
+  /// voxel (the one below the plane if it is one), its direction, and 2 |n_d| (n.v grows by
+  /// |n_d| from the inner voxel to the outer one).
+  struct Candidate
+  {
+    Point3 inner;
+    std::uint8_t direction;
+    std::int64_t twiceStep;
+  };
+
+  /// The squares on the left of the step p -> q, one per axis d across the step with n_d != 0
+  /// (at most two); returns how many.
+  int candidatesLeftOf(const Point3& p, const Point3& q, Candidate out[2]) const
   {
     const Point3 t = sub(q, p);
     const int along = directionOf(t) >> 1;
-    int found = 0;
+    int count = 0;
     for (int d = 0; d < 3; ++d)
     {
       if (d == along || this->Normal[d] == 0)
@@ -1220,23 +1231,52 @@ public:
         inner[i] = std::min(std::min(p[i], q[i]), std::min(p[i], q[i]) + left[i]);
       if (normal[d] > 0)
         --inner[d];
-      // The outer voxel is one step along the normal: n.v grows by |n_d|.
-      const std::int64_t twice = 2 * this->value(inner);
-      if (twice < this->Bound && twice + 2 * std::llabs(this->Normal[d]) >= this->Bound)
+      out[count++] = { inner,
+        static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)),
+        2 * std::llabs(this->Normal[d]) };
+    }
+    return count;
+  }
+
+  /// Whether a candidate whose inner voxel has n.v = `value` is a surfel of the plane: its
+  /// inner voxel below the plane and its outer one not.
+  bool takes(std::int64_t value, std::int64_t twiceStep) const
+  {
+    const std::int64_t twice = 2 * value;
+    return twice < this->Bound && twice + twiceStep >= this->Bound;
+  }
+
+  /// The surfel of the plane whose counter-clockwise boundary runs p -> q (a unit step), if
+  /// any: of the two squares on the left of the step, the one whose inner voxel is below the
+  /// plane and whose outer voxel is not.
+  bool leftOf(const Point3& p, const Point3& q, Surfel& out) const
+  {
+    Candidate c[2];
+    const int count = this->candidatesLeftOf(p, q, c);
+    int found = 0;
+    for (int i = 0; i < count; ++i)
+      if (this->takes(this->value(c[i].inner), c[i].twiceStep))
       {
-        out = { inner, static_cast<std::uint8_t>(2 * d + (normal[d] > 0 ? 1 : 0)) };
+        out = { c[i].inner, c[i].direction };
         ++found;
       }
-    }
     return found == 1;
   }
 
-private:
+  /// Whether surfels of direction d may be squares of the plane (s n_a > 0): leftOf finds
+  /// no others.
+  bool facesOut(int d) const
+  {
+    const std::int64_t n = this->Normal[d >> 1];
+    return (d & 1) ? n > 0 : n < 0;
+  }
+
   std::int64_t value(const Point3& v) const
   {
     return this->Normal[0] * v[0] + this->Normal[1] * v[1] + this->Normal[2] * v[2];
   }
 
+private:
   std::array<std::int64_t, 3> Normal;
   std::int64_t Bound; ///< 2 n.v below this: the voxel with lower corner v is below the plane
 };
@@ -1278,6 +1318,27 @@ public:
 private:
   std::array<BitVolume, 6> Bits;
 };
+
+/// A point projected along a plane's sign vector (FaceMarks).
+using UV = std::array<std::int64_t, 2>;
+
+UV plus(const UV& a, const UV& b)
+{
+  return { a[0] + b[0], a[1] + b[1] };
+}
+
+/// The signs of a normal as FaceMarks projects along them (0 counted positive).
+std::array<int, 3> projectionSigns(const std::array<std::int64_t, 3>& normal)
+{
+  return { normal[0] < 0 ? -1 : 1, normal[1] < 0 ? -1 : 1, normal[2] < 0 ? -1 : 1 };
+}
+
+/// A point projected along the sign vector `sign` (FaceMarks).
+UV projectAlong(const std::array<int, 3>& sign, const Point3& p)
+{
+  const std::int64_t w = sign[2] * std::int64_t(p[2]);
+  return { sign[0] * std::int64_t(p[0]) - w, sign[1] * std::int64_t(p[1]) - w };
+}
 
 /// Key of a surfel whose voxel lies in the grid (coordinates below 2^20): 63 bits.
 std::uint64_t surfelKey(const Surfel& s)
@@ -1324,8 +1385,7 @@ public:
     this->Touched.clear();
     this->Outside.clear();
     this->OutsideEdges.clear();
-    for (int d = 0; d < 3; ++d)
-      this->Sign[d] = plane.normal[d] < 0 ? -1 : 1;
+    this->Sign = projectionSigns(plane.normal);
     std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
     std::int64_t twiceArea = 0; // the shoelace sum of the loop's projection
     std::array<std::int64_t, 2> last = loop.empty() ? lo : this->project(loop.back());
@@ -1359,45 +1419,50 @@ public:
       this->Marks.resize(cells, 0);
   }
 
-  /// Marks surfel s of the plane (its voxel in the grid); false when it was marked already.
-  bool markSurfel(const Surfel& s)
+  /// The projection of a point along the plane's sign vector (the array's coordinates before
+  /// the shift by Low). Linear: the flood projects a surfel's voxel and adds its steps'.
+  UV project(const Point3& p) const { return projectAlong(this->Sign, p); }
+
+  /// Marks surfel s of the plane (its voxel in the grid) whose lowest corner projects to
+  /// `lowest`; false when it was marked already.
+  bool markSurfel(const Surfel& s, const UV& lowest)
   {
-    Point3 lowest = s.voxel;
-    lowest[s.axis()] += s.direction & 1;
     std::size_t cell = 0;
     if (!this->cellOf(lowest, cell))
       return this->Outside.insert(surfelKey(s)).second;
     return this->mark(cell, 1u << s.axis());
   }
 
-  /// Marks the loop edge p -> q (a linel of a surfel of the plane in the grid).
-  void markLoopEdge(const Point3& p, const Point3& q)
+  /// Marks the loop edge of `direction` from the point projected to `uv` (a linel of a
+  /// surfel of the plane in the grid).
+  void markLoopEdge(const UV& uv, int direction)
   {
     std::size_t cell = 0;
-    if (this->cellOf(p, cell))
-      this->mark(cell, 8u << directionOf(sub(q, p)));
+    if (this->cellOf(uv, cell))
+      this->mark(cell, 8u << direction);
     else
-      this->OutsideEdges.insert(this->edgeKey(p, q));
+      this->OutsideEdges.insert(this->edgeKey(uv, direction));
   }
 
-  /// Whether p -> q, a linel of a surfel of the plane in the grid, is a loop edge or was
-  /// crossed already (markCrossed).
-  bool isLoopEdgeOrCrossed(const Point3& p, const Point3& q) const
+  /// Whether the linel of `direction` from the point projected to `from`, a linel of a surfel
+  /// of the plane in the grid, is a loop edge or was crossed already (markCrossed).
+  bool isLoopEdgeOrCrossed(const UV& from, int direction) const
   {
     std::size_t cell = 0;
-    if (this->cellOf(p, cell))
-      return this->Marks[cell] & (0x208u << directionOf(sub(q, p)));
-    return this->OutsideEdges.size() != 0 && this->OutsideEdges.find(this->edgeKey(p, q)) >= 0;
+    if (this->cellOf(from, cell))
+      return this->Marks[cell] & (0x208u << direction);
+    return this->OutsideEdges.size() != 0 &&
+      this->OutsideEdges.find(this->edgeKey(from, direction)) >= 0;
   }
 
-  /// Marks the linel p -> q as crossed: the flood came into its surfel across it, so crossing
-  /// it back from there would find a surfel already filled (only within the array; outside it
-  /// the linel is crossed back).
-  void markCrossed(const Point3& p, const Point3& q)
+  /// Marks the linel of `direction` from the point projected to `from` as crossed: the flood
+  /// came into its surfel across it, so crossing it back from there would find a surfel
+  /// already filled (only within the array; outside it the linel is crossed back).
+  void markCrossed(const UV& from, int direction)
   {
     std::size_t cell = 0;
-    if (this->cellOf(p, cell))
-      this->mark(cell, 0x200u << directionOf(sub(q, p)));
+    if (this->cellOf(from, cell))
+      this->mark(cell, 0x200u << direction);
   }
 
   /// Whether a face of `surfels` (its loop's shoelace area) and `loopEdges` is marked in an
@@ -1422,25 +1487,17 @@ private:
     return true;
   }
 
-  std::array<std::int64_t, 2> project(const Point3& p) const
-  {
-    const std::int64_t w = this->Sign[2] * std::int64_t(p[2]);
-    return { this->Sign[0] * std::int64_t(p[0]) - w, this->Sign[1] * std::int64_t(p[1]) - w };
-  }
-
-  /// A linel p -> q of the plane by the cell of p and the direction, as the array keys it:
+  /// A linel by the projection of its start and its direction, as the array keys it:
   /// projections lie within +-2^21 (coordinates below 2^20), shifted to 23 bits each.
-  std::uint64_t edgeKey(const Point3& p, const Point3& q) const
+  static std::uint64_t edgeKey(const UV& uv, int direction)
   {
-    const std::array<std::int64_t, 2> uv = this->project(p);
     const std::uint64_t u = std::uint64_t(uv[0] + (std::int64_t(1) << 22));
     const std::uint64_t v = std::uint64_t(uv[1] + (std::int64_t(1) << 22));
-    return (((u << 23) | v) << 3) | std::uint64_t(directionOf(sub(q, p)));
+    return (((u << 23) | v) << 3) | std::uint64_t(direction);
   }
 
-  bool cellOf(const Point3& p, std::size_t& cell) const
+  bool cellOf(const UV& uv, std::size_t& cell) const
   {
-    const std::array<std::int64_t, 2> uv = this->project(p);
     const std::int64_t u = uv[0] - this->Low[0], v = uv[1] - this->Low[1];
     if (u < 0 || v < 0 || u >= this->Width || v >= this->Height)
       return false;
@@ -1458,6 +1515,78 @@ private:
   std::vector<std::size_t> Touched; ///< the cells marked for this face
   GridPointIndex Outside;           ///< keys of the face's surfels outside the array
   GridPointIndex OutsideEdges;      ///< keys of the loop edges outside the array (edgeKey)
+};
+
+/// The flood's steps (FaceFiller) for the planes of one sign pattern of the normal (each n_i
+/// negative, zero or positive), relative to a surfel's voxel: what PlaneSurfels::candidatesLeftOf
+/// and FaceMarks' projection give, which depend on the signs alone. Made once per pattern, so
+/// that a face sets up only the values n.v of its candidates (small faces are most faces).
+struct FloodGeometry
+{
+  /// The step across edge k (corner k to k + 1) of a surfel of direction d: the projections
+  /// of the edge's ends, its direction both ways, and the squares on the left of the step
+  /// back, with the shift of each one's voxel's projection; or (loop) the squares on the left
+  /// of a loop edge of direction d, relative to its start.
+  struct Step
+  {
+    UV from{ 0, 0 }, to{ 0, 0 };   ///< corners k and k + 1 projected
+    int forward = 0, backward = 0; ///< directions of k -> k + 1 and k + 1 -> k
+    int count = 0;
+    PlaneSurfels::Candidate candidate[2];
+    UV shift[2];
+  };
+  Step steps[6][4];
+  Step loop[6];
+  UV lowestShift[6]; ///< the projection of a surfel's lowest corner less its voxel's
+
+  explicit FloodGeometry(const std::array<std::int64_t, 3>& signs)
+  {
+    StandardPlane unit;
+    unit.normal = signs;
+    const PlaneSurfels plane(unit);
+    const std::array<int, 3> sign = projectionSigns(signs);
+    auto shifts = [&](Step& step)
+    {
+      for (int i = 0; i < step.count; ++i)
+        step.shift[i] = projectAlong(sign, step.candidate[i].inner);
+    };
+    for (int d = 0; d < 6; ++d)
+    {
+      const Surfel origin{ { 0, 0, 0 }, static_cast<std::uint8_t>(d) };
+      Point3 lowest{ 0, 0, 0 };
+      lowest[origin.axis()] += d & 1;
+      this->lowestShift[d] = projectAlong(sign, lowest);
+      for (int k = 0; k < 4; ++k)
+      {
+        Step& step = this->steps[d][k];
+        const Point3 a = origin.corner(k), b = origin.corner((k + 1) & 3);
+        step.from = projectAlong(sign, a);
+        step.to = projectAlong(sign, b);
+        step.forward = directionOf(sub(b, a));
+        step.backward = directionOf(sub(a, b));
+        step.count = plane.candidatesLeftOf(b, a, step.candidate);
+        shifts(step);
+      }
+      Step& step = this->loop[d];
+      step.forward = d;
+      step.count = plane.candidatesLeftOf({ 0, 0, 0 }, unitVector(d), step.candidate);
+      shifts(step);
+    }
+  }
+
+  /// The geometry of the sign pattern of `normal`.
+  static const FloodGeometry& of(const std::array<std::int64_t, 3>& normal)
+  {
+    static const std::vector<FloodGeometry> patterns = []
+    {
+      std::vector<FloodGeometry> all;
+      for (int p = 0; p < 27; ++p)
+        all.emplace_back(std::array<std::int64_t, 3>{ p % 3 - 1, p / 3 % 3 - 1, p / 9 - 1 });
+      return all;
+    }();
+    auto sign = [](std::int64_t x) { return x < 0 ? 0 : x == 0 ? 1 : 2; };
+    return patterns[sign(normal[0]) + 3 * sign(normal[1]) + 9 * sign(normal[2])];
+  }
 };
 
 /// The filling of the faces, one after the other: the surfels of every face filled so far
@@ -1484,6 +1613,7 @@ public:
     this->Stack.clear();
     this->Face.begin(face.plane, face.loop);
     const PlaneSurfels plane(face.plane);
+    this->prepareSteps(plane, face.plane);
     const char* error = this->seedFromLoop(face, plane);
     if (!error)
       error = this->flood(plane, 8 * n * n + 64);
@@ -1506,20 +1636,63 @@ private:
   static constexpr const char* SharedSurfels =
     "shares surfels with an earlier face (is a face given twice?)";
 
+  /// A surfel of the face to flood from, with the projection of its voxel (FaceMarks) and
+  /// the plane's value n.v at its voxel, which its steps shift by constants (Step).
+  struct Entry
+  {
+    Surfel surfel;
+    UV voxel;
+    std::int64_t value;
+  };
+
+  /// The face's values n.v of the candidates of its geometry's steps (relative to the
+  /// surfel's voxel, or to the loop edge's start), for the directions of its surfels (s n_a >
+  /// 0), and 2 |n_a| per axis (PlaneSurfels::Candidate::twiceStep for the face's plane).
+  void prepareSteps(const PlaneSurfels& plane, const StandardPlane& facePlane)
+  {
+    const FloodGeometry& g = FloodGeometry::of(facePlane.normal);
+    this->Geometry = &g;
+    for (int a = 0; a < 3; ++a)
+      this->TwiceStep[a] = 2 * std::llabs(facePlane.normal[a]);
+    for (int d = 0; d < 6; ++d)
+    {
+      if (plane.facesOut(d)) // else no surfel of the plane has this direction
+        for (int k = 0; k < 4; ++k)
+          for (int i = 0; i < g.steps[d][k].count; ++i)
+            this->ValueShift[d][k][i] = plane.value(g.steps[d][k].candidate[i].inner);
+      for (int i = 0; i < g.loop[d].count; ++i)
+        this->LoopValueShift[d][i] = plane.value(g.loop[d].candidate[i].inner);
+    }
+  }
+
+  /// The square a step finds, of the candidates with n.v = value + shift: the only one the
+  /// plane takes (PlaneSurfels::leftOf), or -1.
+  int stepTarget(const PlaneSurfels& plane,
+    const FloodGeometry::Step& step,
+    std::int64_t value,
+    const std::int64_t* shift) const
+  {
+    int found = 0, which = -1;
+    for (int i = 0; i < step.count; ++i)
+      if (plane.takes(value + shift[i], this->TwiceStep[step.candidate[i].direction >> 1]))
+        ++found, which = i;
+    return found == 1 ? which : -1;
+  }
+
   /// Visits surfel s of the face once: marked and stacked; an error when it lies outside
-  /// the grid or in an earlier face.
-  const char* visit(const Surfel& s)
+  /// the grid or in an earlier face. `voxel` and `value` are its Entry's.
+  const char* visit(const Surfel& s, const UV& voxel, std::int64_t value)
   {
     const Point3& v = s.voxel;
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= this->Dims[0] || v[1] >= this->Dims[1] ||
       v[2] >= this->Dims[2])
       return "it leaves the grid (the faces do not bound a set of voxels of it)";
-    if (!this->Face.markSurfel(s))
+    if (!this->Face.markSurfel(s, plus(voxel, this->Geometry->lowestShift[s.direction])))
       return nullptr; // seen in this face
     if (this->KeepAll && this->All.get(s))
       return SharedSurfels;
     this->Visited.push_back(s);
-    this->Stack.push_back(s);
+    this->Stack.push_back({ s, voxel, value });
     return nullptr;
   }
 
@@ -1529,18 +1702,27 @@ private:
     const std::size_t n = face.loop.size();
     for (std::size_t i = 0; i < n; ++i)
     {
-      Surfel s;
       const Point3& p = face.loop[i];
       const Point3& q = face.loop[(i + 1) % n];
       const Point3 t = sub(q, p);
-      if (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) != 1 || !plane.leftOf(p, q, s))
+      // The square on the left of p -> q, as PlaneSurfels::leftOf(p, q) finds it.
+      const bool unit = std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) == 1;
+      const int direction = unit ? directionOf(t) : 0;
+      const FloodGeometry::Step& step = this->Geometry->loop[direction];
+      const std::int64_t value = plane.value(p);
+      const int which =
+        unit ? this->stepTarget(plane, step, value, this->LoopValueShift[direction]) : -1;
+      if (which < 0)
       {
         this->BadEdge = "loop edge " + std::to_string(i) + " is not a linel of its plane";
         return this->BadEdge.c_str();
       }
-      if (const char* error = this->visit(s))
+      const UV from = this->Face.project(p);
+      const Surfel s{ add(p, step.candidate[which].inner), step.candidate[which].direction };
+      if (const char* error = this->visit(
+            s, plus(from, step.shift[which]), value + this->LoopValueShift[direction][which]))
         return error;
-      this->Face.markLoopEdge(p, q); // an edge of s, a surfel of the grid
+      this->Face.markLoopEdge(from, step.forward); // an edge of s, a surfel of the grid
     }
     return nullptr;
   }
@@ -1550,27 +1732,29 @@ private:
   {
     while (!this->Stack.empty())
     {
-      const Surfel s = this->Stack.back();
+      const Entry e = this->Stack.back();
       this->Stack.pop_back();
       if (this->Visited.size() > limit)
         return "its loop does not enclose a disk of its plane";
-      std::array<Point3, 4> corners;
-      for (int k = 0; k < 4; ++k)
-        corners[k] = s.corner(k);
       for (int k = 0; k < 4; ++k)
       {
-        const Point3& a = corners[k];
-        const Point3& b = corners[(k + 1) & 3];
-        if (this->Face.isLoopEdgeOrCrossed(a, b))
+        // The edge a -> b (corners k, k + 1) and the square on the left of b -> a: what
+        // PlaneSurfels::leftOf(b, a) finds, from the steps of the surfel's direction.
+        const FloodGeometry::Step& step = this->Geometry->steps[e.surfel.direction][k];
+        if (this->Face.isLoopEdgeOrCrossed(plus(e.voxel, step.from), step.forward))
           continue;
-        Surfel t;
-        if (!plane.leftOf(b, a, t))
+        const std::int64_t* shift = this->ValueShift[e.surfel.direction][k];
+        const int which = this->stepTarget(plane, step, e.value, shift);
+        if (which < 0)
           return "its plane is not a surface around a linel";
-        if (const char* error = this->visit(t))
+        const Surfel t{ add(e.surfel.voxel, step.candidate[which].inner),
+          step.candidate[which].direction };
+        if (const char* error =
+              this->visit(t, plus(e.voxel, step.shift[which]), e.value + shift[which]))
           return error;
         // t's edge b -> a leads back to s, filled: the plane is a surface, so each linel has
         // one surfel on either side, and crossing it once says all (half the crossings).
-        this->Face.markCrossed(b, a);
+        this->Face.markCrossed(plus(e.voxel, step.to), step.backward);
       }
     }
     return nullptr;
@@ -1579,9 +1763,14 @@ private:
   std::array<std::int32_t, 3> Dims;
   SurfelBits All;
   bool KeepAll;
-  FaceMarks Face;                     ///< the face's surfels and loop edges
-  std::vector<Surfel> Visited, Stack; ///< of the face
-  std::string BadEdge;                ///< the message of a loop edge off the plane
+  FaceMarks Face;                          ///< the face's surfels and loop edges
+  std::vector<Surfel> Visited;             ///< of the face
+  std::vector<Entry> Stack;                ///< of the face, to flood from
+  const FloodGeometry* Geometry = nullptr; ///< of the face's plane's signs
+  std::int64_t ValueShift[6][4][2];        ///< of the face's plane, by direction and edge
+  std::int64_t LoopValueShift[6][2];       ///< a loop edge's, by its direction
+  std::int64_t TwiceStep[3];               ///< 2 |n_a|
+  std::string BadEdge;                     ///< the message of a loop edge off the plane
   std::size_t Count = 0;
 };
 

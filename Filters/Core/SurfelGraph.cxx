@@ -35,8 +35,10 @@ struct VoxelSet
 
   bool contains(const Point3& v) const
   {
-    return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < dims[0] && v[1] < dims[1] &&
-      v[2] < dims[2] && voxels.get(v[0], v[1], v[2]);
+    // 0 <= v_i < dims_i as one unsigned compare per axis (a negative v_i wraps above dims_i).
+    return std::uint32_t(v[0]) < std::uint32_t(dims[0]) &&
+      std::uint32_t(v[1]) < std::uint32_t(dims[1]) &&
+      std::uint32_t(v[2]) < std::uint32_t(dims[2]) && voxels.get(v[0], v[1], v[2]);
   }
 };
 
@@ -198,27 +200,38 @@ void forEachSurfel(const Execution& exec, std::size_t n, Body body)
       });
 }
 
-/// Stage 2, the neighbour across each edge.
+/// Stage 2, the neighbour across each edge. A neighbour in another row of voxels (one step in
+/// y, z or both) is searched from the last one found in that row: the surfels come in order
+/// along x, so their neighbours in a row do too, a few surfels on (the walk of RowIndex::find,
+/// not a binary search of the row).
 void linkNeighbours(const VoxelSet& set,
   const RowIndex& index,
   const Execution& exec,
   SurfelGraph& out)
 {
+  constexpr std::uint32_t None = ~std::uint32_t(0);
   const std::size_t n = out.surfels.size();
   out.neighbour.resize(4 * n);
-  forEachSurfel(exec,
-    n,
-    [&](std::uint32_t s)
-    {
-      for (int k = 0; k < 4; ++k)
+  exec.forWork(static_cast<std::int64_t>(n))
+    .forRange(static_cast<std::int64_t>(n),
+      [&](std::int64_t b, std::int64_t e)
       {
-        const Surfel& sf = out.surfels[s];
-        const std::int64_t id = index.find(out.surfels, neighbourKey(set, sf, k), s);
-        if (id < 0)
-          throw std::logic_error("surfel neighbour missing");
-        out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
-      }
-    });
+        std::uint32_t recent[9]; // by the row's step (dy, dz) from the surfel's row
+        std::fill(recent, recent + 9, None);
+        for (auto s = static_cast<std::uint32_t>(b); s < e; ++s)
+          for (int k = 0; k < 4; ++k)
+          {
+            const Surfel& sf = out.surfels[s];
+            const SurfelKey key = neighbourKey(set, sf, k);
+            const int row = 3 * (key.voxel[2] - sf.voxel[2] + 1) + (key.voxel[1] - sf.voxel[1] + 1);
+            const std::uint32_t near = row == 4 || recent[row] == None ? s : recent[row];
+            const std::int64_t id = index.find(out.surfels, key, near);
+            if (id < 0)
+              throw std::logic_error("surfel neighbour missing");
+            out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
+            recent[row] = static_cast<std::uint32_t>(id);
+          }
+      });
 }
 
 /// The edges of surfels by direction: SharedEdge[d][k][e] is the edge of a surfel of direction e
