@@ -8,7 +8,9 @@ spacing, extent not at 0, a mirroring direction matrix, label maps. 2D images (o
 thick): polygons with holes in the image plane, checked from their triangles alone (boundary
 edges, simple boundaries, every lattice point of the plane inside, outside or on them, the marks
 and the reversion). Flat objects in volumes: prisms of genus that of their boundary, their caps
-one layer off the object, checked like the volumes' H.
+one layer off the object, checked like the volumes' H. The counts of section 4.1 (a hollow
+ball's cavity, a pierced cube's tunnel), the three coplanar variants giving one H, and sets of
+no volume off the axes' planes (segments, a tilted triangle) as closed solids.
 """
 
 import math
@@ -419,6 +421,60 @@ def main():
     check.equal("hollow ball: Euler characteristic twice the closed cubes'",
                 euler_of_triangles(tris), 2 * closed_cubes_euler(hollow))
     check.true("hollow ball: NumberOfJoinedShells", field_value(out, "NumberOfJoinedShells") >= 1)
+    # A hollow ball (a closed cavity): one cavity, H two shells (the cavity's turned inwards),
+    # Euler characteristic 4, twice the closed cubes'.
+    plain = shape(2 * R + 3, lambda x, y, z: (d2(x, y, z) <= R * R) & (d2(x, y, z) > 3.5 ** 2))
+    out = check_case("hollow ball", plain)
+    check.equal("hollow ball: one cavity", field_value(out, "NumberOfCavities"), 1)
+    check.equal("hollow ball: two shells", euler_of_triangles(np.array([c for c in cells(out)])),
+                2 * closed_cubes_euler(plain))
+    check.equal("hollow ball: closed cubes' Euler characteristic", closed_cubes_euler(plain), 2)
+    # A cube pierced by one straight tunnel: one tunnel, no cavity, a torus.
+    pierced = np.ones((9, 9, 9), bool)
+    pierced[0, :, :] = pierced[-1, :, :] = pierced[:, 0, :] = pierced[:, -1, :] = False
+    pierced[:, :, 0] = pierced[:, :, -1] = False
+    pierced[:, 3:6, 3:6] = False
+    out = check_case("pierced cube", pierced)
+    check.equal("pierced cube: one tunnel", field_value(out, "NumberOfTunnels"), 1)
+    check.equal("pierced cube: no cavity", field_value(out, "NumberOfCavities"), 0)
+    check.equal("pierced cube: a torus", euler_of_triangles(np.array([c for c in cells(out)])), 0)
+    # The three coplanar variants give the same polyhedron after merging (the pac-man).
+    pac = make_image((ball & ~mouth).astype(np.uint8))
+    shapes = []
+    for variant in ("Extension", "Visible", "Invisible"):
+        f = voxelbrep.vtkConvexHullModifier()
+        f.SetInputData(pac)
+        getattr(f, "SetCoplanarFacesTo" + variant)()
+        f.Update()
+        out = f.GetOutput()
+        shapes.append((tuple(field_value(out, name) for name in (
+            "NumberOfVertices", "NumberOfEdges", "NumberOfFaces", "NumberOfHullFaces")),
+            sorted(map(tuple, np.rint(points(out)).astype(int).tolist()))))
+    check.true("Extension, Visible and Invisible give the same H", shapes[0] == shapes[1] == shapes[2])
+    # Segments and flat sets off the axes' planes: a tetrahedron, a pyramid (closed solids).
+    # The segments' voxels touch nowhere and lie on the grid's corners: one tetrahedron for all
+    # (one shell for several components, the documented exception), so no Euler check there.
+    for tag, dims, centres in (("segment (2, 3, 4)", (3, 4, 5), [(0, 0, 0), (2, 3, 4)]),
+                               ("segment (2, 3, 4) x 2", (5, 7, 9),
+                                [(0, 0, 0), (2, 3, 4), (4, 6, 8)])):
+        m = np.zeros(dims[::-1], np.uint8)
+        for x, y, z in centres:
+            m[z, y, x] = 1
+        f = run(make_image(m), voxelbrep.vtkConvexHullModifier.TRIANGLES)
+        out = f.GetOutput()
+        check.equal(tag + ": separates", field_value(out, "Separates"), 1)
+        check.equal(tag + ": four faces", field_value(out, "NumberOfFaces"), 4)
+        tris = np.array([c for c in cells(out)])
+        world = points(out)
+        volume = sum(np.dot(world[a], np.cross(world[b], world[c])) for a, b, c in tris) / 6
+        check.true(tag + ": a solid, outwards (volume %g)" % volume, volume > 0)
+        check.equal(tag + ": a closed sphere", euler_of_triangles(tris), 2)
+        check.equal(tag + ": ReversionMatches", int(f.GetOutputDataObject(1).GetFieldData()
+                                                    .GetArray("ReversionMatches").GetValue(0)), 1)
+    tilted = np.zeros((4, 4, 4), bool)
+    tilted[1, 1, 1] = tilted[1, 2, 2] = tilted[2, 2, 1] = True
+    out = check_flat_volume("tilted triangle", tilted)
+    check.equal("tilted triangle: a pyramid of four faces", field_value(out, "NumberOfFaces"), 4)
     # A thin torus (a tube two voxels thick): the centres of its hole all lie on its hull's
     # faces, so the hull alone separates; H gets the torus's handle by a cut (Euler
     # characteristic 0, twice the closed cubes').
