@@ -72,7 +72,7 @@
  * BackgroundCentresOnSurface). Pixels touching only at a corner are kept in one polygon, the two
  * other centres of their square on its boundary or outside, so no boundary pinches. A noisy 2D
  * image gives deeply nested rings (one region per group and level: 512^2 pixels of 50 % noise
- * take about 7 s). In 3D a single voxel or a row becomes a lattice triangle in its plane and
+ * take about 1.7 s). In 3D a single voxel or a row becomes a lattice triangle in its plane and
  * H its prism (Separates 1); a segment or a flat set in no plane of the grid's axes becomes a
  * tetrahedron or a pyramid over its polygon with lattice corners beside it. Inputs
  * full of voxels touching along edges and at corners (random noise, porous blobs) separate; the
