@@ -311,6 +311,7 @@ const DataFile dataFiles[] = {
   { "volumes", "lobster>=40", "lobster/lobster_301x324x56_uint8.raw", { 301, 324, 56 }, 40, 255, "", 269432, 78100 },
   { "volumes", "Al (v=1)", "dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, "s", 70413, 9934 },
   { "volumes", "headsq>=500", "headsq/headsq_quarter_64x64x93_int16le.raw", { 64, 64, 93 }, 500, 1, "si", 144968, 10462 },
+  { "volumes", "headsq bone>=1150", "headsq/headsq_quarter_64x64x93_int16le.raw", { 64, 64, 93 }, 1150, 1, "si", -1, -1 },
   { "volumes", "colin27 brain>0", "mricron/ch2bet.nii.gz", { 0, 0, 0 }, 1, 255, "", -1, -1 },
   { "labelmaps", "AAL atlas (116)", "mricron/aal.nii.gz", { 0, 0, 0 }, 1, 255, "L", 1479969, 74120 },
   { "labelmaps", "Brodmann (41)", "mricron/brodmann.nii.gz", { 0, 0, 0 }, 1, 255, "L", 1352119, 110404 },
