@@ -3396,7 +3396,8 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   std::vector<std::uint8_t> mine(where.size(), 0), from(where.size(), kUnreached);
   while (joinOneShell(ctx, repaired, where, mine, from, failed))
     ++joined;
-  // Checked once at the end (each check tests the whole surface for self-intersections).
+  // Checked once at the end, without a self-intersection test of the whole surface
+  // (separatesAfterLocalChecks).
   return keepIfSeparates(ctx, joined, std::move(repaired.mesh), planes, surface);
 }
 
