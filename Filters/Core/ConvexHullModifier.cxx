@@ -2489,27 +2489,93 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
   return found;
 }
 
-/// An object centre of the piece (flagged in `mine`) and an object centre of another piece
-/// that are face-neighbours, or nothing.
-std::vector<LatticePoint> pieceCrossing(const BitVolume& objects,
-  const std::vector<std::uint8_t>& mine,
-  const LatticeBox& box)
+/// The lattice points of the box of a closed shell that lie inside or on it, in the box's own
+/// coordinates (a lattice point p of the grid is p - lo there).
+BitVolume heldByShell(const LatticeMesh& shell, LatticePoint& lo)
 {
-  const Dims d = objects.dims();
-  std::vector<LatticePoint> found;
-  forEachInBox(box,
-    [&](const LatticePoint& p)
+  lo = shell.points[0];
+  LatticePoint hi = lo;
+  for (const auto& p : shell.points)
+    for (int k = 0; k < 3; ++k)
     {
-      if (!found.empty() || !mine[gridIndex(d, p)] || !voxelClass(objects, p))
-        return;
-      for (int k = 0; k < 6 && found.empty(); ++k)
-      {
-        const LatticePoint q = step(p, k);
-        if (voxelClass(objects, q) && !mine[gridIndex(d, q)])
-          found = { p, q };
-      }
-    });
-  return found;
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  LatticeMesh local = shell;
+  for (auto& p : local.points)
+    p = sub(p, lo);
+  const Dims box{ static_cast<std::int32_t>(hi[0] - lo[0] + 1),
+    static_cast<std::int32_t>(hi[1] - lo[1] + 1),
+    static_cast<std::int32_t>(hi[2] - lo[2] + 1) };
+  const std::vector<LatticePoint> on = latticePointsOnSurface(local, box);
+  BitVolume held = revertWithPointsOn(local, on, on, box);
+  for (const auto& p : on)
+    held.set(static_cast<std::int32_t>(p[0]),
+      static_cast<std::int32_t>(p[1]),
+      static_cast<std::int32_t>(p[2]));
+  return held;
+}
+
+/// The points of row (y, z) of `held` (words) some face-neighbour of which is not held: the
+/// others cannot have a neighbour outside the shell.
+std::vector<Word> rowBorder(const BitVolume& held, std::int32_t y, std::int32_t z)
+{
+  const std::size_t n = held.wordsPerRow();
+  const Word* row = held.row(y, z);
+  const auto other = [&](std::int32_t v, std::int32_t w, std::size_t i) -> Word
+  { return v < 0 || w < 0 || v >= held.size(1) || w >= held.size(2) ? 0 : held.row(v, w)[i]; };
+  std::vector<Word> border(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Word h = row[i];
+    const Word before = (h << 1) | (i > 0 ? row[i - 1] >> 63 : 0);    // bit x: x - 1 held
+    const Word after = (h >> 1) | (i + 1 < n ? row[i + 1] << 63 : 0); // bit x: x + 1 held
+    const Word inner = h & before & after & other(y - 1, z, i) & other(y + 1, z, i) &
+      other(y, z - 1, i) & other(y, z + 1, i);
+    border[i] = h & ~inner;
+  }
+  return border;
+}
+
+/// An object centre of the piece (inside or on its shell) and an object centre of another piece
+/// that are face-neighbours, the first in scan order, or nothing. Only the piece's points with
+/// a face-neighbour it does not hold are visited (some of these pieces' boxes hold millions of
+/// their points).
+std::vector<LatticePoint> pieceCrossing(const BitVolume& objects, const LatticeMesh& shell)
+{
+  LatticePoint lo;
+  const BitVolume held = heldByShell(shell, lo);
+  const auto isHeld = [&](const LatticePoint& q)
+  {
+    const LatticePoint r = sub(q, lo);
+    for (int k = 0; k < 3; ++k)
+      if (r[k] < 0 || r[k] >= held.size(k))
+        return false;
+    return held.get(static_cast<std::int32_t>(r[0]),
+      static_cast<std::int32_t>(r[1]),
+      static_cast<std::int32_t>(r[2]));
+  };
+  for (std::int32_t z = 0; z < held.size(2); ++z)
+    for (std::int32_t y = 0; y < held.size(1); ++y)
+    {
+      const std::vector<Word> border = rowBorder(held, y, z);
+      for (std::size_t i = 0; i < border.size(); ++i)
+        for (Word bits = border[i]; bits != 0; bits &= bits - 1)
+        {
+          const LatticePoint p{
+            lo[0] + static_cast<std::int64_t>(64 * i) + __builtin_ctzll(bits), lo[1] + y, lo[2] + z
+          };
+          if (!voxelClass(objects, p))
+            continue;
+          for (int k = 0; k < 6; ++k)
+          {
+            const LatticePoint q = step(p, k);
+            if (voxelClass(objects, q) && !isHeld(q))
+              return { p, q };
+          }
+        }
+    }
+  return {};
 }
 
 /// The empty lattice triangles of the mesh's triangles near the two centres (their boxes
@@ -3339,13 +3405,17 @@ bool joinOneShell(Context& ctx,
     if (failed.count(key))
       continue;
     failed.insert(key);
-    // `mine` is all 0 but where markShell flags the shell's box, cleared after the search.
-    const LatticeBox box = gridBoxOf(shells[s], d);
-    markShell(shells[s].mesh, d, 1, 2, mine);
-    const std::vector<LatticePoint> crossing = shells[s].volume < 0
-      ? voidCrossing(ctx.objects, where, mine, box, from)
-      : pieceCrossing(ctx.objects, mine, box);
-    forEachInBox(box, [&](const LatticePoint& p) { mine[gridIndex(d, p)] = 0; });
+    std::vector<LatticePoint> crossing;
+    if (shells[s].volume < 0)
+    {
+      // `mine` is all 0 but where markShell flags the shell's box, cleared after the search.
+      const LatticeBox box = gridBoxOf(shells[s], d);
+      markShell(shells[s].mesh, d, 1, 2, mine);
+      crossing = voidCrossing(ctx.objects, where, mine, box, from);
+      forEachInBox(box, [&](const LatticePoint& p) { mine[gridIndex(d, p)] = 0; });
+    }
+    else
+      crossing = pieceCrossing(ctx.objects, shells[s].mesh);
     if (crossing.empty())
       continue;
     if (joinAtCrossing(ctx, shells, s, crossing, kTrianglesNear, 0, surface, where) ||
