@@ -270,6 +270,7 @@ private:
   void collectRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
   void closeVisibleRegion(Index ip, std::vector<Index>& region, std::vector<Index>& coplanar);
   void reassign(const std::vector<Index>& orphans, Index first, Index ip);
+  std::vector<Index> RegionBuffer, CoplanarBuffer, OrphanBuffer; ///< reused by insert
   void attach(Index q, Index f, __int128 h);
   CellList flatHull(const std::array<Index, 3>& corners) const;
 };
@@ -452,7 +453,12 @@ void HullBuilder::reassign(const std::vector<Index>& orphans, Index first, Index
 /// ones in the Extension variant) are replaced by the faces over the region's horizon.
 void HullBuilder::insert(Index ip)
 {
-  std::vector<Index> region, coplanar;
+  // buffers kept across insertions: one point's region is a few faces, and allocating them
+  // anew was a tenth of the hull's time on real objects' candidates
+  std::vector<Index>& region = this->RegionBuffer;
+  std::vector<Index>& coplanar = this->CoplanarBuffer;
+  region.clear();
+  coplanar.clear();
   this->collectRegion(ip, region, coplanar);
   if (this->Coplanar == CoplanarFaces::Visible)
     this->closeVisibleRegion(ip, region, coplanar);
@@ -509,7 +515,8 @@ void HullBuilder::replaceRegion(Index ip,
       created.push_back({ this->Planes[t], std::move(ids) });
     }
   this->PointFace[ip] = Processed;
-  std::vector<Index> orphans;
+  std::vector<Index>& orphans = this->OrphanBuffer;
+  orphans.clear();
   for (Index f : region)
     this->removeFace(f, orphans);
   if (extend)
@@ -774,14 +781,24 @@ std::vector<LatticePoint> extremesFirst(const std::vector<LatticePoint>& points)
     { 1, -1, -1 },
     { -1, 1, -1 },
     { -1, -1, 1 } };
+  // The points are sorted by x first: the extremes minimising x lie in the first slab of equal
+  // x, those maximising it in the last, so only those two slabs are searched (the keys are
+  // distinct, so the extreme is the same as over all points).
+  std::size_t firstSlabEnd = 0, lastSlabBegin = points.size();
+  while (firstSlabEnd < points.size() && points[firstSlabEnd][0] == points.front()[0])
+    ++firstSlabEnd;
+  while (lastSlabBegin > 0 && points[lastSlabBegin - 1][0] == points.back()[0])
+    --lastSlabBegin;
   std::vector<std::size_t> chosen;
   for (const auto& s : signs)
   {
     auto key = [&](const LatticePoint& p) {
       return std::array<std::int64_t, 3>{ s[0] * p[0], s[1] * p[1], s[2] * p[2] };
     };
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < points.size(); ++i)
+    const std::size_t from = s[0] > 0 ? 0 : lastSlabBegin;
+    const std::size_t to = s[0] > 0 ? firstSlabEnd : points.size();
+    std::size_t best = from;
+    for (std::size_t i = from + 1; i < to; ++i)
     {
       if (key(points[i]) < key(points[best]))
       {
@@ -817,7 +834,8 @@ std::vector<LatticePoint> extremesFirst(const std::vector<LatticePoint>& points)
 CellList convexHull(const std::vector<LatticePoint>& input, CoplanarFaces coplanar, bool merge)
 {
   std::vector<LatticePoint> points = input;
-  std::sort(points.begin(), points.end());
+  if (!std::is_sorted(points.begin(), points.end())) // vertexCandidates' lists are sorted
+    std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
   for (const auto& p : points)
   {
