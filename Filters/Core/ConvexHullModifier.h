@@ -292,8 +292,9 @@
 // The degree of non-convexity (definition NK) is the number of levels below the hull.
 //
 // Where it departs from the paper: the paper spans one hull per concavity from the labelled
-// faces; here one hull holds all points of the other class at each level (no two hulls of one
-// level can then overlap and cross), and a pit opens exactly where that hull touches C. A dent
+// faces; here each face-connected group of points of the other class at a level gets the hull
+// of its own points, and groups whose hulls meet are merged (so no two hulls of one level
+// overlap or cross), and a pit opens exactly where a group's hull touches C. A dent
 // whose background centres all lie strictly inside CH(S) (the hull face passing over them between
 // lattice points) becomes a cavity with a thin skin rather than a pit.
 #ifndef vbr_ConvexHullModifier_h

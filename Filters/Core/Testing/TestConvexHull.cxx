@@ -13,6 +13,7 @@ extern "C"
 }
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <random>
 #include <set>
@@ -85,6 +86,57 @@ __int128 tripleProduct(const LatticePoint& n, const LatticePoint& a, const Latti
 }
 
 /// The exact checks of a solid hull, with no reference but the points.
+/// n.p - d of a face plane, in 128 bits here (not the core's FacePlane::evaluate).
+__int128 heightAbove(const vbr::FacePlane& plane, const LatticePoint& p)
+{
+  __int128 h = -__int128(plane.offset);
+  for (int k = 0; k < 3; ++k)
+    h += __int128(plane.normal[k]) * p[k];
+  return h;
+}
+
+/// The cell list's incidences against its vertices and faces: every edge in the lists of its
+/// two vertices and bounding the two faces edgeFaces gives it (in opposite directions), each
+/// face's k-th edge from its k-th corner to the next, each vertex in the faces listing it.
+void expectIncidences(const vbr::CellList& hull)
+{
+  ASSERT_EQ(hull.vertexEdges.size(), hull.vertices.size());
+  ASSERT_EQ(hull.vertexFaces.size(), hull.vertices.size());
+  ASSERT_EQ(hull.edgeFaces.size(), hull.edges.size());
+  ASSERT_EQ(hull.faceEdges.size(), hull.faces.size());
+  const auto has = [](const std::vector<std::uint32_t>& list, std::uint32_t x)
+  { return std::find(list.begin(), list.end(), x) != list.end(); };
+  std::size_t vertexFaceCount = 0;
+  for (std::size_t f = 0; f < hull.faces.size(); ++f)
+  {
+    const auto& v = hull.faces[f];
+    ASSERT_EQ(hull.faceEdges[f].size(), v.size());
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      const std::uint32_t a = v[k], b = v[(k + 1) % v.size()], e = hull.faceEdges[f][k];
+      ASSERT_LT(e, hull.edges.size());
+      EXPECT_EQ(hull.edges[e], (std::array<std::uint32_t, 2>{ std::min(a, b), std::max(a, b) }));
+      // the face listed first is the one where the edge runs from its lower vertex
+      EXPECT_EQ(hull.edgeFaces[e][a < b ? 0 : 1], f) << "edge " << e << " of face " << f;
+      EXPECT_TRUE(has(hull.vertexFaces[a], static_cast<std::uint32_t>(f)));
+    }
+    vertexFaceCount += v.size();
+  }
+  std::size_t listed = 0;
+  for (const auto& faces : hull.vertexFaces)
+    listed += faces.size();
+  EXPECT_EQ(listed, vertexFaceCount) << "a vertex lists a face it is not in";
+  for (std::size_t e = 0; e < hull.edges.size(); ++e)
+  {
+    EXPECT_TRUE(has(hull.vertexEdges[hull.edges[e][0]], static_cast<std::uint32_t>(e)));
+    EXPECT_TRUE(has(hull.vertexEdges[hull.edges[e][1]], static_cast<std::uint32_t>(e)));
+  }
+  std::size_t vertexEdgeCount = 0;
+  for (const auto& edges : hull.vertexEdges)
+    vertexEdgeCount += edges.size();
+  EXPECT_EQ(vertexEdgeCount, 2 * hull.edges.size()) << "a vertex lists an edge it is not on";
+}
+
 void expectValidSolid(const vbr::CellList& hull, const std::vector<LatticePoint>& points)
 {
   ASSERT_EQ(hull.dimension, 3);
@@ -99,12 +151,12 @@ void expectValidSolid(const vbr::CellList& hull, const std::vector<LatticePoint>
       const LatticePoint& a = hull.vertices[v[k]];
       const LatticePoint& b = hull.vertices[v[(k + 1) % v.size()]];
       const LatticePoint& c = hull.vertices[v[(k + 2) % v.size()]];
-      EXPECT_EQ(hull.planes[f].evaluate(a), 0) << "corner off its face plane";
+      EXPECT_TRUE(heightAbove(hull.planes[f], a) == 0) << "corner off its face plane";
       EXPECT_GT(tripleProduct(n, minus(b, a), minus(c, b)), 0) << "corner not turning left";
     }
     for (const auto& p : points)
     {
-      ASSERT_LE(hull.planes[f].evaluate(p), 0) << "a point outside face " << f;
+      ASSERT_TRUE(heightAbove(hull.planes[f], p) <= 0) << "a point outside face " << f;
     }
   }
   for (std::size_t f = 0; f < hull.faces.size(); ++f)
@@ -123,6 +175,7 @@ void expectValidSolid(const vbr::CellList& hull, const std::vector<LatticePoint>
   EXPECT_EQ(static_cast<long>(hull.vertices.size()) - static_cast<long>(hull.edges.size()) +
       static_cast<long>(hull.faces.size()),
     2);
+  expectIncidences(hull);
 }
 
 Facets facetsOf(const vbr::CellList& hull)
