@@ -253,23 +253,9 @@ void forEachPointOnTriangle(const std::array<LatticePoint, 3>& t, const LatticeB
 /// A lattice vector v with n.v = 1 for a primitive normal n (extended Euclid, twice).
 LatticePoint unitStep(const LatticePoint& n)
 {
-  auto egcd = [](std::int64_t a, std::int64_t b, std::int64_t& x, std::int64_t& y)
-  {
-    std::int64_t x0 = 1, y0 = 0, x1 = 0, y1 = 1;
-    while (b != 0)
-    {
-      const std::int64_t q = a / b;
-      std::tie(a, b) = std::make_pair(b, a - q * b);
-      std::tie(x0, x1) = std::make_pair(x1, x0 - q * x1);
-      std::tie(y0, y1) = std::make_pair(y1, y0 - q * y1);
-    }
-    x = x0;
-    y = y0;
-    return a;
-  };
   std::int64_t a, b, c, e;
-  std::int64_t g = egcd(n[0], n[1], a, b);
-  const std::int64_t h = egcd(g, n[2], c, e);
+  std::int64_t g = signedExtendedGcd(n[0], n[1], a, b);
+  const std::int64_t h = signedExtendedGcd(g, n[2], c, e);
   LatticePoint v{ c * a, c * b, e };
   if (h < 0)
   {
@@ -2327,6 +2313,38 @@ std::size_t gridIndex(const Dims& d, const LatticePoint& p)
   return (static_cast<std::size_t>(p[2]) * d[1] + p[1]) * d[0] + p[0];
 }
 
+/// A closed shell in its own box (lo its least corner, a lattice point p at p - lo there): the
+/// box's lattice points on the shell and those strictly inside it (ray parity).
+struct ShellInBox
+{
+  LatticePoint lo;
+  Dims box;
+  std::vector<LatticePoint> on;
+  BitVolume inside;
+};
+
+ShellInBox shellInItsBox(const LatticeMesh& shell)
+{
+  ShellInBox s;
+  s.lo = shell.points[0];
+  LatticePoint hi = s.lo;
+  for (const auto& p : shell.points)
+    for (int k = 0; k < 3; ++k)
+    {
+      s.lo[k] = std::min(s.lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  LatticeMesh local = shell;
+  for (auto& p : local.points)
+    p = sub(p, s.lo);
+  s.box = { static_cast<std::int32_t>(hi[0] - s.lo[0] + 1),
+    static_cast<std::int32_t>(hi[1] - s.lo[1] + 1),
+    static_cast<std::int32_t>(hi[2] - s.lo[2] + 1) };
+  s.on = latticePointsOnSurface(local, s.box);
+  s.inside = revertWithPointsOn(local, s.on, s.on, s.box);
+  return s;
+}
+
 /// Flags (value `flag`) the lattice points of the grid strictly enclosed by a closed shell (ray
 /// parity) and, with `onFlag`, those on it; only the shell's box is scanned.
 void markShell(const LatticeMesh& shell,
@@ -2335,21 +2353,11 @@ void markShell(const LatticeMesh& shell,
   std::uint8_t onFlag,
   std::vector<std::uint8_t>& out)
 {
-  LatticePoint lo = shell.points[0], hi = shell.points[0];
-  for (const auto& p : shell.points)
-    for (int k = 0; k < 3; ++k)
-    {
-      lo[k] = std::min(lo[k], p[k]);
-      hi[k] = std::max(hi[k], p[k]);
-    }
-  LatticeMesh local = shell;
-  for (auto& p : local.points)
-    p = sub(p, lo);
-  const Dims box{ static_cast<std::int32_t>(hi[0] - lo[0] + 1),
-    static_cast<std::int32_t>(hi[1] - lo[1] + 1),
-    static_cast<std::int32_t>(hi[2] - lo[2] + 1) };
-  const std::vector<LatticePoint> on = latticePointsOnSurface(local, box);
-  const BitVolume inside = revertWithPointsOn(local, on, on, box);
+  const ShellInBox s = shellInItsBox(shell);
+  const LatticePoint& lo = s.lo;
+  const Dims& box = s.box;
+  const std::vector<LatticePoint>& on = s.on;
+  const BitVolume& inside = s.inside;
   for (std::int32_t z = 0; z < box[2]; ++z)
     for (std::int32_t y = 0; y < box[1]; ++y)
       for (std::int32_t x = 0; x < box[0]; ++x)
@@ -2495,23 +2503,10 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
 /// coordinates (a lattice point p of the grid is p - lo there).
 BitVolume heldByShell(const LatticeMesh& shell, LatticePoint& lo)
 {
-  lo = shell.points[0];
-  LatticePoint hi = lo;
-  for (const auto& p : shell.points)
-    for (int k = 0; k < 3; ++k)
-    {
-      lo[k] = std::min(lo[k], p[k]);
-      hi[k] = std::max(hi[k], p[k]);
-    }
-  LatticeMesh local = shell;
-  for (auto& p : local.points)
-    p = sub(p, lo);
-  const Dims box{ static_cast<std::int32_t>(hi[0] - lo[0] + 1),
-    static_cast<std::int32_t>(hi[1] - lo[1] + 1),
-    static_cast<std::int32_t>(hi[2] - lo[2] + 1) };
-  const std::vector<LatticePoint> on = latticePointsOnSurface(local, box);
-  BitVolume held = revertWithPointsOn(local, on, on, box);
-  for (const auto& p : on)
+  ShellInBox s = shellInItsBox(shell);
+  lo = s.lo;
+  BitVolume held = std::move(s.inside);
+  for (const auto& p : s.on)
     held.set(static_cast<std::int32_t>(p[0]),
       static_cast<std::int32_t>(p[1]),
       static_cast<std::int32_t>(p[2]));
@@ -4057,9 +4052,9 @@ LatticePoint plus(const LatticePoint& a, const LatticePoint& b)
 }
 
 /// H of a segment off the axes' planes (its centres on a line whose direction d, primitive,
-/// has no zero component: voxels touching only at corners): the tetrahedron T = conv{a, b, x,
-/// y} of its ends a, b = a + m d and two lattice points x = a + u', y = a + w' where (d, u', w')
-/// is a basis of Z^3 (LatticeBasis.h; u' = +-u + k d, w' = +-w + j u + k' d keep it one, and
+/// has no zero component: voxels touching only at corners, or nowhere): the tetrahedron T = conv{a,
+/// b, x, y} of its ends a, b = a + m d and two lattice points x = a + u', y = a + w' where (d, u',
+/// w') is a basis of Z^3 (LatticeBasis.h; u' = +-u + k d, w' = +-w + j u + k' d keep it one, and
 /// the first such corners inside the grid are taken, near the segment). In that basis a
 /// lattice point of T has integer coordinates (t, b, c), all >= 0 with t / m + b + c <= 1: a
 /// point of the segment (b = c = 0), x or y. So no lattice point lies inside T, the segment's
@@ -4916,6 +4911,10 @@ ModifiedHull modifyHull(const BitVolume& objects,
                                         : flatSetPyramid(r.hull, objects.dims());
       r.complete = true;
       mergeIntoFaces({}, std::vector<int>(r.surface.triangles.size(), 0), r);
+      // voxels apart that could not be solved apart share the one solid: said, not silent
+      if (objectEuler(ctx) && !hasTopology(ctx, r.surface))
+        r.failure = "voxels apart in a plane or on a line off the grid's axes share one solid "
+                    "(one shell for several components)";
     }
   }
   else if (r.hull.dimension < 3)

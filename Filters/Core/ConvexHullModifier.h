@@ -255,17 +255,20 @@
 // its holes as cavities, no concavities or cut handles. Layers that are not well-composed keep the
 // prisms (no one topology to match; they separate as above). Sets of no volume off the axes'
 // planes (never face-connected) are given one by a lattice basis (LatticeBasis.h). A segment
-// a..b on a line of primitive direction d is the tetrahedron conv{a, b, a + u, a + w} with (d, u,
-// w) a basis of Z^3: no lattice point lies inside it, the segment's centres lie on an edge and
-// the two other corners are background centres on H. A flat set in a plane n . p = c is the
+// a..b on a line of primitive direction d is the tetrahedron conv{a, b, x, y} with (d, x - a,
+// y - a) a basis of Z^3 (x - a = +-u + k d and y - a = +-w + j u + k' d for the reduced basis
+// (d, u, w)): no lattice point lies inside it, the segment's centres lie on an edge and the two
+// other corners are background centres on H. A flat set in a plane n . p = c is the
 // pyramid over its convex polygon with an apex in the plane n . p = c +- 1 next to it: no lattice
 // plane lies between, so the pyramid's lattice points are those of the polygon (object centres,
 // and background ones on the base, marked) and the apex. Both are solids of genus 0; their extra
 // corners are taken inside the grid when the near ones tried allow it (else they lie off it,
 // background by definition). Such a set's voxels touch along edges or at corners, or not at
 // all: parts that cannot meet are first solved apart as for solids (each voxel apart its own
-// prism, keeping the topology); voxels apart whose grown boxes meet, or that lie on the grid's
-// side, share the one tetrahedron or pyramid (one shell for several components there).
+// prism, keeping the topology), unless a part is itself a segment with no direction component
+// +-1 or a polygon off the axes' planes (its solid's corners may leave its box); voxels apart
+// whose grown boxes meet, on the grid's side, or with such a part share the one tetrahedron or
+// pyramid: one shell for several components there, noted in `failure` (the filter warns).
 //
 // Cost: groups merge from their hulls' corners (the hull of a union is the hull of the two
 // hulls), a group's first hull from the corners of its slices' polygons of its rows' ends, boxes

@@ -47,23 +47,14 @@ std::int64_t roundedQuotient(Wide a, Wide b)
 /// g = gcd(a, b) >= 0 with a x + b y = g.
 std::int64_t extendedGcd(std::int64_t a, std::int64_t b, std::int64_t& x, std::int64_t& y)
 {
-  std::int64_t x0 = 1, y0 = 0, x1 = 0, y1 = 1;
-  while (b != 0)
+  std::int64_t g = signedExtendedGcd(a, b, x, y);
+  if (g < 0)
   {
-    const std::int64_t q = a / b;
-    std::tie(a, b) = std::make_pair(b, a - q * b);
-    std::tie(x0, x1) = std::make_pair(x1, x0 - q * x1);
-    std::tie(y0, y1) = std::make_pair(y1, y0 - q * y1);
+    g = -g;
+    x = -x;
+    y = -y;
   }
-  if (a < 0)
-  {
-    a = -a;
-    x0 = -x0;
-    y0 = -y0;
-  }
-  x = x0;
-  y = y0;
-  return a;
+  return g;
 }
 
 /// Lagrange-Gauss reduction of the 2D lattice spanned by u and w under the inner product
@@ -83,6 +74,21 @@ void reducePair(LatticePoint& u, LatticePoint& w, Inner inner)
 }
 
 } // namespace
+
+std::int64_t signedExtendedGcd(std::int64_t a, std::int64_t b, std::int64_t& x, std::int64_t& y)
+{
+  std::int64_t x0 = 1, y0 = 0, x1 = 0, y1 = 1;
+  while (b != 0)
+  {
+    const std::int64_t q = a / b;
+    std::tie(a, b) = std::make_pair(b, a - q * b);
+    std::tie(x0, x1) = std::make_pair(x1, x0 - q * x1);
+    std::tie(y0, y1) = std::make_pair(y1, y0 - q * y1);
+  }
+  x = x0;
+  y = y0;
+  return a;
+}
 
 LatticePoint primitive(const LatticePoint& d)
 {

@@ -40,6 +40,10 @@ struct PlaneLattice
 };
 PlaneLattice latticeOfPlane(const LatticePoint& n);
 
+/// Euclid's algorithm with the Bezout coefficients: g with a x + b y = g, g = +-gcd(a, b) (the
+/// sign the remainders leave; 0 when a = b = 0).
+std::int64_t signedExtendedGcd(std::int64_t a, std::int64_t b, std::int64_t& x, std::int64_t& y);
+
 /// The components of d divided by their gcd (d not zero).
 LatticePoint primitive(const LatticePoint& d);
 

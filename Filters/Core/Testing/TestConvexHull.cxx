@@ -85,7 +85,6 @@ __int128 tripleProduct(const LatticePoint& n, const LatticePoint& a, const Latti
   return n[0] * c0 + n[1] * c1 + n[2] * c2;
 }
 
-/// The exact checks of a solid hull, with no reference but the points.
 /// n.p - d of a face plane, in 128 bits here (not the core's FacePlane::evaluate).
 __int128 heightAbove(const vbr::FacePlane& plane, const LatticePoint& p)
 {
@@ -137,6 +136,7 @@ void expectIncidences(const vbr::CellList& hull)
   EXPECT_EQ(vertexEdgeCount, 2 * hull.edges.size()) << "a vertex lists an edge it is not on";
 }
 
+/// The exact checks of a solid hull, with no reference but the points.
 void expectValidSolid(const vbr::CellList& hull, const std::vector<LatticePoint>& points)
 {
   ASSERT_EQ(hull.dimension, 3);
