@@ -675,8 +675,9 @@ private:
     loopEdges.clear();
     for (std::size_t i = 0; i < face.loop.size(); ++i)
     {
-      // The end's point first: the order in which points have always been made here (they
-      // are numbered as made), which loopPointsDistinct follows too.
+      // The end's point first (points are numbered as made; loopPointsDistinct follows the same
+      // order): the order GCC gave the two arguments of the former emplace_back(point(a),
+      // point(b)), whose order C++ leaves open, now written out, so any compiler numbers alike.
       const vtkIdType next = this->point(o, face.loop[(i + 1) % face.loop.size()]);
       loopEdges.emplace_back(this->point(o, face.loop[i]), next);
     }

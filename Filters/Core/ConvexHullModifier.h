@@ -87,8 +87,9 @@
 // outside, no background centre inside); a join is kept only when that holds and the exact
 // Boolean is a closed 2-manifold with lattice corners, with one shell less and an Euler
 // characteristic 2 lower (a tube between two shells), and the whole result is checked once more
-// at the end (closed, consistently oriented, one fan per point, exact reversion; embedded it is
-// by each join's test in its prism's box), else H stays as it was. Octahedra conv{c +- e_i} along
+// at the end (closed, consistently oriented within each shell, one fan per point, exact
+// reversion; embedded it is by each join's test in its prism's box, outward by each Boolean's
+// keeping its operands' orientation), else H stays as it was. Octahedra conv{c +- e_i} along
 // the path (the obvious channel) do not work: their faces cut H's faces at points that are not
 // lattice points.
 // Cost of the joining: H is embedded before a join and the Boolean changes it only inside P,
