@@ -20,6 +20,7 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 #include <unordered_map>
 
 namespace vbr
@@ -162,9 +163,10 @@ std::array<std::int64_t, 6> boundsOf(const CellList& c)
 }
 
 /// Calls f(y, z, lo, hi) for every row of the solid hull's box that meets the hull (its open
-/// interior when `strict`), [lo, hi] the x range of its lattice points there.
+/// interior when `strict`), [lo, hi] the x range of its lattice points there. An f that returns
+/// a bool stops the scan by returning false; forEachRowIn returns whether the scan ran to its end.
 template<typename F>
-void forEachRowIn(const CellList& c, bool strict, F&& f)
+bool forEachRowIn(const CellList& c, bool strict, F&& f)
 {
   const auto b = boundsOf(c);
   RowScan rows(c, strict);
@@ -174,10 +176,18 @@ void forEachRowIn(const CellList& c, bool strict, F&& f)
     for (std::int64_t y = b[2]; y <= b[3]; ++y)
     {
       std::int64_t lo, hi;
-      if (rows.range(y, lo, hi) && std::max(lo, b[0]) <= std::min(hi, b[1]))
+      if (!rows.range(y, lo, hi) || std::max(lo, b[0]) > std::min(hi, b[1]))
+        continue;
+      if constexpr (std::is_same_v<decltype(f(y, z, lo, hi)), bool>)
+      {
+        if (!f(y, z, std::max(lo, b[0]), std::min(hi, b[1])))
+          return false;
+      }
+      else
         f(y, z, std::max(lo, b[0]), std::min(hi, b[1]));
     }
   }
+  return true;
 }
 
 /// Calls f(p) for every lattice point of the solid hull (of its open interior when `strict`).
@@ -2650,19 +2660,8 @@ struct PrismPairs
 /// row that holds one ends the scan.
 bool holdsALatticePoint(const CellList& c, bool strict)
 {
-  const auto b = boundsOf(c);
-  RowScan rows(c, strict);
-  for (std::int64_t z = b[4]; z <= b[5]; ++z)
-  {
-    rows.setSlice(z);
-    for (std::int64_t y = b[2]; y <= b[3]; ++y)
-    {
-      std::int64_t lo, hi;
-      if (rows.range(y, lo, hi) && std::max(lo, b[0]) <= std::min(hi, b[1]))
-        return true;
-    }
-  }
-  return false;
+  return !forEachRowIn(
+    c, strict, [](std::int64_t, std::int64_t, std::int64_t, std::int64_t) { return false; });
 }
 
 /// The prism of candidate k of `pairs`, or none when its hull is flat or holds a lattice point

@@ -205,8 +205,8 @@ void printCounts(const Input& in, const HullRuns& h, FilterRuns& f)
 /// vessel tree at 55 takes minutes).
 bool skipped(const Input& in)
 {
-  return in.inputClass == "volumes" && in.name != "Al (v=1)" &&
-    in.name != "headsq bone>=1150" && in.name != "lobster>=40";
+  return in.inputClass == "volumes" && in.name != "Al (v=1)" && in.name != "headsq bone>=1150" &&
+    in.name != "lobster>=40";
 }
 
 void benchmarkInput(const Input& in, const Options& options, Report& report)

@@ -1628,13 +1628,15 @@ TEST(ConvexHullModifier, ManyShellsJoinedOnPorousBlobs)
   EXPECT_GE(joined, 20);
 }
 
-TEST(ConvexHullModifier, RealObjectsSeparate)
+/// The Al cartoon (v >= 1) at every `alStep`-th voxel and the headsq bone (value >= 1150) at
+/// every `boneStep`-th separate (skipped when the shared data is not there).
+void expectAlAndBoneSeparate(int alStep, int boneStep)
 {
-  // The Al cartoon (every 4th voxel) and the headsq bone (value >= 1150, every 3rd voxel): real
-  // objects whose voxels touch along edges and at corners, subsampled to keep the test short.
   vbr::BitVolume al, bone;
-  if (!readSubsampled("dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, 4, al) ||
-    !readSubsampled("headsq/headsq_quarter_64x64x93_int16le.raw", { 64, 64, 93 }, 2, 1150, 3, bone))
+  if (!readSubsampled(
+        "dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, alStep, al) ||
+    !readSubsampled(
+      "headsq/headsq_quarter_64x64x93_int16le.raw", { 64, 64, 93 }, 2, 1150, boneStep, bone))
     GTEST_SKIP() << "real volumes not found under " << VOXELBREP_DATA_DIR;
   {
     SCOPED_TRACE("Al");
@@ -1644,6 +1646,13 @@ TEST(ConvexHullModifier, RealObjectsSeparate)
     SCOPED_TRACE("headsq bone");
     expectSeparating(bone, { false });
   }
+}
+
+TEST(ConvexHullModifier, RealObjectsSeparate)
+{
+  // The Al cartoon (every 4th voxel) and the headsq bone (value >= 1150, every 3rd voxel): real
+  // objects whose voxels touch along edges and at corners, subsampled to keep the test short.
+  expectAlAndBoneSeparate(4, 3);
 }
 
 /// The voxels of `label` in a gzip-compressed NIfTI-1 file of unsigned bytes (the AAL atlas),
@@ -1716,18 +1725,7 @@ TEST(ConvexHullModifier, DISABLED_FullRealObjectsSeparate)
   // The Al cartoon (100^3) and the headsq bone (value >= 1150) at full resolution, every
   // centre of the grid checked with CGAL: about 2.5 minutes of CPU in a release build, so run
   // by hand (--gtest_also_run_disabled_tests); the suite runs them subsampled (above).
-  vbr::BitVolume al, bone;
-  if (!readSubsampled("dgtal_al/dgtal_al_100x100x100_uint8.raw", { 100, 100, 100 }, 1, 1, 1, al) ||
-    !readSubsampled("headsq/headsq_quarter_64x64x93_int16le.raw", { 64, 64, 93 }, 2, 1150, 1, bone))
-    GTEST_SKIP() << "real volumes not found under " << VOXELBREP_DATA_DIR;
-  {
-    SCOPED_TRACE("Al");
-    expectSeparating(al, { false });
-  }
-  {
-    SCOPED_TRACE("headsq bone");
-    expectSeparating(bone, { false });
-  }
+  expectAlAndBoneSeparate(1, 1);
 }
 
 TEST(ConvexHullModifier, LargerRealObjectsSeparate)
