@@ -33,7 +33,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdlib>
-#include <deque>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -201,12 +200,12 @@ private:
   /// (condition 1) of one standard plane (condition 2).
   void drainWave(std::uint32_t f)
   {
-    while (!this->Wave.empty())
+    std::size_t head = 0; // the queue is Wave from head on (a vector: no deque blocks to manage)
+    while (head < this->Wave.size())
     {
       if (!this->Poll->tick())
         break;
-      const auto [s, depth] = this->Wave.front();
-      this->Wave.pop_front();
+      const auto [s, depth] = this->Wave[head++];
       this->Queued[s] = None;
       if (this->FaceOf[s] != None || this->Refused[s] == f)
         continue;
@@ -222,8 +221,8 @@ private:
       }
       this->take(s, f, depth);
     }
-    for (const auto& queued : this->Wave)
-      this->Queued[queued.first] = None;
+    for (; head < this->Wave.size(); ++head)
+      this->Queued[this->Wave[head].first] = None;
     this->Wave.clear();
   }
 
@@ -454,11 +453,11 @@ private:
   ProgressPoll* Poll = nullptr;
   bool Growing = false;
   std::size_t Taken = 0; ///< surfels taken by the growth, for its progress
-  std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
-  std::vector<std::uint32_t> Umbrella;                      ///< in seedUmbrella
-  std::vector<Point3> UmbrellaPoints;                       ///< in seedUmbrella
-  std::array<Point3, 4> Corners;                            ///< in pointelsOf
-  std::vector<std::uint32_t>&Queued, &Refused;              ///< stamped with the face
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
+  std::vector<std::uint32_t> Umbrella;                       ///< in seedUmbrella
+  std::vector<Point3> UmbrellaPoints;                        ///< in seedUmbrella
+  std::array<Point3, 4> Corners;                             ///< in pointelsOf
+  std::vector<std::uint32_t>&Queued, &Refused;               ///< stamped with the face
   std::uint32_t DepthLimit;
 };
 
@@ -677,10 +676,15 @@ std::size_t movesInPart(const SurfelGraph& graph,
       continue;
     StandardFace& face = poly.faces[f];
     queue.clear();
+    // Only the surfels across f's rim: those already in f would be skipped when dequeued.
     for (std::uint32_t s : face.surfels)
       if (faceOf[s] == f)
         for (int k = 0; k < 4; ++k)
-          queue.push_back(graph.neighbourOf(s, k));
+        {
+          const std::uint32_t t = graph.neighbourOf(s, k);
+          if (faceOf[t] != f)
+            queue.push_back(t);
+        }
     for (std::size_t q = 0; q < queue.size(); ++q)
     {
       if (!poll.tick())
@@ -770,50 +774,21 @@ void dropEmptyFaces(Polyhedron& poly,
     });
 }
 
-/// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
-/// each meets the umbrella in one run). Francon & Papier's standard vertices are those of
-/// three faces or more. The surfels of the parts' faces on the threads of `exec` (a vertex's
-/// umbrella never leaves its component; the count does not depend on the surfel it starts from).
-bool countFacesAtVertices(const SurfelGraph& graph,
-  const std::vector<Part>& parts,
-  const Execution& exec,
-  Polyhedron& poly)
+/// Faces around each vertex, from the loops: a face is a disk, so it meets the umbrella of a
+/// vertex in one run, and when the vertex lies on its boundary its loop passes there once (the
+/// tracer checks it: a second loop edge of the face from the vertex is an error). So a vertex
+/// on the loops of k faces has k faces around it (k >= 2), and a vertex on no loop lies inside
+/// one face: one. Francon & Papier's standard vertices are those of three faces or more. One
+/// pass over the loops' vertices, instead of a walk round every umbrella.
+void countFacesAtVertices(const SurfelGraph& graph, Polyhedron& poly)
 {
   std::vector<std::uint8_t>& count = poly.facesAtVertex;
   count.assign(graph.vertexPointel.size(), 0);
-  std::vector<char> done(graph.vertexPointel.size(), 0);
-  const std::vector<std::uint32_t>& faceOf = poly.faceOfSurfel;
-  return forEachPart(exec,
-    parts,
-    [&](const Part& part, ProgressPoll& poll)
-    {
-      for (std::size_t i = 0; i < part.faces.size(); ++i)
-        for (std::uint32_t s0 : poly.faces[part.faces[i]].surfels)
-        {
-          if (!poll.tick())
-            return false;
-          for (int k0 = 0; k0 < 4; ++k0)
-          {
-            const std::uint32_t v = graph.vertexOf(s0, k0);
-            if (done[v])
-              continue;
-            done[v] = 1;
-            int changes = 0;
-            std::uint32_t previous = s0;
-            graph.aroundVertex(s0,
-              k0,
-              [&](std::uint32_t u)
-              {
-                changes += faceOf[u] != faceOf[previous];
-                previous = u;
-                return true;
-              });
-            changes += faceOf[previous] != faceOf[s0]; // closing the round
-            count[v] = static_cast<std::uint8_t>(std::min(changes == 0 ? 1 : changes, 255));
-          }
-        }
-      return true;
-    });
+  for (std::uint32_t v : poly.loopVertices)
+    if (count[v] < 255)
+      ++count[v];
+  for (std::uint8_t& c : count)
+    c = c == 0 ? 1 : c;
 }
 
 } // namespace
@@ -1180,8 +1155,10 @@ bool polyhedrize(const SurfelGraph& graph,
     part.surfels = {};
   groups = ComponentGroups();
   stamps.releaseQueues(); // the peak is the loops' tracing, with the whole graph
-  return traceLoops(graph, options.facesAcross, parts, exec.within(0.95, 0.975), out) &&
-    countFacesAtVertices(graph, parts, exec.within(0.975, 1.0), out) && exec.report(1.0);
+  if (!traceLoops(graph, options.facesAcross, parts, exec.within(0.95, 1.0), out))
+    return false;
+  countFacesAtVertices(graph, out);
+  return exec.report(1.0);
 }
 
 // ---- reversion ------------------------------------------------------------------------
@@ -1383,8 +1360,12 @@ public:
     for (std::size_t cell : this->Touched)
       this->Marks[cell] = 0;
     this->Touched.clear();
-    this->Outside.clear();
-    this->OutsideEdges.clear();
+    // Most faces hash nothing: clearing an empty index would still sweep its table (kept up to
+    // 4096 slots once a large face grew it).
+    if (this->Outside.size() != 0)
+      this->Outside.clear();
+    if (this->OutsideEdges.size() != 0)
+      this->OutsideEdges.clear();
     this->Sign = projectionSigns(plane.normal);
     std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
     std::int64_t twiceArea = 0; // the shoelace sum of the loop's projection

@@ -110,6 +110,8 @@ private:
     std::size_t applied = 0;      ///< points clipped into the polygon so far
   };
 
+  /// The eight octants' triangles before any point (reset copies them).
+  static std::array<Octant, 8> initialOctants();
   bool applyPoints(Octant& o) const;
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
   void measure(Vertex& v, std::size_t count) const;
