@@ -268,7 +268,6 @@ void matchSharedEdges(const Execution& exec, SurfelGraph& out)
 {
   static const SharedEdgeTable table;
   const std::size_t n = out.surfels.size();
-  out.neighbourEdge.resize(4 * n);
   forEachSurfel(exec,
     n,
     [&](std::uint32_t s)
@@ -279,7 +278,7 @@ void matchSharedEdges(const Execution& exec, SurfelGraph& out)
         const int j = table.SharedEdge[d][k][out.surfels[out.neighbourOf(s, k)].direction];
         if (j < 0)
           throw std::logic_error("neighbouring surfels do not share their linel");
-        out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
+        out.neighbour[4 * s + k] |= static_cast<std::uint32_t>(j) << 30;
       }
     });
 }
@@ -345,7 +344,10 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   out = SurfelGraph();
   out.dims = voxels.dims();
   const VoxelSet set{ voxels, voxels.dims() };
-  out.surfels.reserve(countSurfels(voxels)); // exactly: no growth by doubling
+  const std::size_t count = countSurfels(voxels);
+  if (count >= SurfelGraph::MaximumSize)
+    throw std::length_error("the boundary has 2^30 surfels or more");
+  out.surfels.reserve(count); // exactly: no growth by doubling
   {
     RowIndex index(out.dims);
     if (!findSurfels(set, exec, out, index))

@@ -581,7 +581,6 @@ TEST(Polyhedrization, ThreadsGiveTheSequentialFaces)
   ASSERT_TRUE(vbr::buildSurfelGraph(large, bf::threadedExecution(3), several));
   ASSERT_GT(one.size(), std::size_t(1) << 15);
   EXPECT_EQ(one.neighbour, several.neighbour);
-  EXPECT_EQ(one.neighbourEdge, several.neighbourEdge);
   EXPECT_EQ(one.vertex, several.vertex);
   EXPECT_EQ(one.componentCount, several.componentCount);
   // Aborted on every thread: no faces claimed finished.
@@ -955,7 +954,7 @@ TEST(SurfelGraph, VerticesAreGluedCornersAndTheGraphIsCompact)
       }
       ASSERT_EQ(g.vertexPointel.size(), number.size());
       const std::size_t perSurfel = g.surfels.capacity() * sizeof(vbr::Surfel) +
-        g.neighbour.capacity() * 4 + g.neighbourEdge.capacity() + g.vertex.capacity() * 4;
+        g.neighbour.capacity() * 4 + g.vertex.capacity() * 4;
       EXPECT_LE(perSurfel, 52 * n) << "the graph stores more than its arrays per surfel";
       EXPECT_LE(g.vertexPointel.capacity(), g.vertexPointel.size());
     }
