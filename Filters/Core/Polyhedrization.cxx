@@ -59,6 +59,9 @@ inline void prefetch(const void* p)
 #endif
 }
 
+/// How far ahead a walk over a list of surfels prefetches their entries.
+constexpr std::size_t PrefetchAhead = 8;
+
 std::array<int, 3> signsOf(const Surfel& s)
 {
   std::array<int, 3> signs{ 0, 0, 0 };
@@ -118,20 +121,55 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
   return arcs == 1;
 }
 
-/// Per surfel: its face, and the face that last queued it and last refused it (the growth's
-/// stamps; the merging reads the refusals the growth left).
+/// meetsAlongOneArc(graph, faceOf, s, f, false) while face f grows (FaceGrower::run), read from
+/// the stamps of the vertices instead of walks round their umbrellas: a vertex of s off the arc
+/// is touched by f exactly when a surfel of f has it as a corner (its umbrella is the surfels
+/// with that vertex), i.e. when the growth stamped it with f (FaceGrower::take). Two loads
+/// where a walk waited for one load per surfel of the umbrella, one after the other.
+bool meetsAlongOneArcGrowing(const SurfelGraph& graph,
+  const std::vector<std::uint32_t>& faceOf,
+  const std::vector<std::uint32_t>& touching,
+  std::uint32_t s,
+  std::uint32_t f)
+{
+  bool shared[4];
+  int count = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
+    count += shared[k];
+  }
+  if (count == 0 || count == 4)
+    return false;
+  int arcs = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    const bool onArc = shared[k] || shared[(k + 3) % 4];
+    arcs += shared[k] && !shared[(k + 3) % 4];
+    if (!onArc && touching[graph.vertexOf(s, k)] == f)
+      return false;
+  }
+  return arcs == 1;
+}
+
+/// Per surfel: its face, and the face that last queued it and last refused it; per vertex, the
+/// face that last took a surfel round it (the growth's stamps; the merging reads the refusals
+/// the growth left).
 struct SurfelStamps
 {
-  SurfelStamps(std::vector<std::uint32_t>& faceOfSurfel, std::size_t surfels)
+  SurfelStamps(std::vector<std::uint32_t>& faceOfSurfel, std::size_t surfels, std::size_t vertices)
     : faceOf(faceOfSurfel)
     , queued(surfels, None)
     , refused(surfels, None)
+    , touching(vertices, None)
   {
     faceOf.assign(surfels, None);
   }
   std::vector<std::uint32_t>& faceOf;
-  std::vector<std::uint32_t> queued, refused;
+  std::vector<std::uint32_t> queued, refused, touching;
 
+  /// Frees the vertex stamps, which only the growth reads.
+  void releaseTouching() { std::vector<std::uint32_t>().swap(this->touching); }
   /// Frees the queue stamps and the refusals, which only the growth and the merging read.
   void releaseQueues()
   {
@@ -159,6 +197,7 @@ public:
     , FaceOf(stamps.faceOf)
     , Queued(stamps.queued)
     , Refused(stamps.refused)
+    , Touching(stamps.touching)
     , DepthLimit(options.maximumDepth)
   {
   }
@@ -222,7 +261,10 @@ private:
       if (this->Options.maximumFaceSize &&
         this->Faces[f].surfels.size() >= this->Options.maximumFaceSize)
         break;
-      if (!meetsAlongOneArc(this->Graph, this->FaceOf, s, f, false))
+      const bool disk = this->Growing
+        ? meetsAlongOneArcGrowing(this->Graph, this->FaceOf, this->Touching, s, f)
+        : meetsAlongOneArc(this->Graph, this->FaceOf, s, f, false);
+      if (!disk)
         continue; // may fit later, when it is queued again by a new neighbour
       if (!this->Active->tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
       {
@@ -430,6 +472,9 @@ private:
   void take(std::uint32_t s, std::uint32_t f, std::uint32_t depth)
   {
     this->FaceOf[s] = f;
+    if (this->Growing) // the merging's faces are not the last to take their vertices
+      for (int k = 0; k < 4; ++k)
+        this->Touching[this->Graph.vertexOf(s, k)] = f;
     this->Faces[f].surfels.push_back(s);
     ++this->Taken;
     if (this->Growing && this->Poll->due()) // the division only when the fraction is read
@@ -473,6 +518,7 @@ private:
   std::vector<Point3> UmbrellaPoints;                        ///< in seedUmbrella
   std::array<Point3, 4> Corners;                             ///< in pointelsOf
   std::vector<std::uint32_t>&Queued, &Refused;               ///< stamped with the face
+  std::vector<std::uint32_t>& Touching; ///< per vertex, stamped with the face (the growth's)
   std::uint32_t DepthLimit;
 };
 
@@ -496,9 +542,14 @@ public:
   std::size_t loopLength(const Polyhedron& poly, std::uint32_t f) const
   {
     std::size_t edges = 0;
-    for (std::uint32_t s : poly.faces[f].surfels)
+    const std::vector<std::uint32_t>& list = poly.faces[f].surfels;
+    for (std::size_t j = 0; j < list.size(); ++j)
+    {
+      if (j + PrefetchAhead < list.size())
+        prefetch(&this->Graph.neighbour[4 * std::size_t(list[j + PrefetchAhead])]);
       for (int k = 0; k < 4; ++k)
-        edges += poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != f;
+        edges += poly.faceOfSurfel[this->Graph.neighbourOf(list[j], k)] != f;
+    }
     return edges;
   }
 
@@ -512,7 +563,15 @@ public:
     std::uint32_t* across)
   {
     std::uint32_t start = None;
-    for (std::uint32_t s : poly.faces[f].surfels)
+    const std::vector<std::uint32_t>& list = poly.faces[f].surfels;
+    for (std::size_t j = 0; j < list.size(); ++j)
+    {
+      if (j + PrefetchAhead < list.size())
+      {
+        prefetch(&this->Graph.neighbour[4 * std::size_t(list[j + PrefetchAhead])]);
+        prefetch(&this->Graph.vertex[4 * std::size_t(list[j + PrefetchAhead])]);
+      }
+      const std::uint32_t s = list[j];
       for (int k = 0; k < 4; ++k)
         if (poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != f)
         {
@@ -523,6 +582,7 @@ public:
           this->Edge[v] = 4 * s + static_cast<std::uint32_t>(k);
           start = v;
         }
+    }
     if (start == None)
       return;
     std::size_t i = 0;
@@ -691,15 +751,29 @@ std::size_t movesInPart(const SurfelGraph& graph,
       continue;
     StandardFace& face = poly.faces[f];
     queue.clear();
-    // Only the surfels across f's rim: those already in f would be skipped when dequeued.
-    for (std::uint32_t s : face.surfels)
+    // Only the surfels across f's rim: those already in f would be skipped when dequeued. The
+    // lists and the candidates are read ahead (prefetch): a face's surfels lie rows of voxels
+    // apart in the arrays, and these loads were the moves' cache misses.
+    const std::vector<std::uint32_t>& list = face.surfels;
+    for (std::size_t j = 0; j < list.size(); ++j)
+    {
+      if (j + PrefetchAhead < list.size())
+      {
+        prefetch(&faceOf[list[j + PrefetchAhead]]);
+        prefetch(&graph.neighbour[4 * std::size_t(list[j + PrefetchAhead])]);
+      }
+      const std::uint32_t s = list[j];
       if (faceOf[s] == f)
         for (int k = 0; k < 4; ++k)
         {
           const std::uint32_t t = graph.neighbourOf(s, k);
           if (faceOf[t] != f)
+          {
             queue.push_back(t);
+            prefetch(&graph.surfels[t]);
+          }
         }
+    }
     for (std::size_t q = 0; q < queue.size(); ++q)
     {
       if (!poll.tick())
@@ -716,7 +790,10 @@ std::size_t movesInPart(const SurfelGraph& graph,
       ++size[f];
       ++moved;
       for (int k = 0; k < 4; ++k)
+      {
         queue.push_back(graph.neighbourOf(t, k));
+        prefetch(&graph.surfels[queue.back()]);
+      }
     }
   }
   refillSurfelLists(part, size, poly);
@@ -1139,10 +1216,11 @@ bool polyhedrize(const SurfelGraph& graph,
 {
   // Progress: growth 0 - 0.6, moves 0.6 - 0.7, merging 0.7 - 0.95, loops 0.95 - 1.
   out = Polyhedron();
-  SurfelStamps stamps(out.faceOfSurfel, graph.size());
+  SurfelStamps stamps(out.faceOfSurfel, graph.size(), graph.vertexPointel.size());
   ComponentGroups groups;
   if (!growFaces(graph, options, exec, stamps, out.faces, groups))
     return false;
+  stamps.releaseTouching();
   std::vector<std::vector<std::uint32_t>> faceLists;
   if (options.moveToLargerFaces)
   {
