@@ -126,11 +126,14 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
 /// is touched by f exactly when a surfel of f has it as a corner (its umbrella is the surfels
 /// with that vertex), i.e. when the growth stamped it with f (FaceGrower::take). Two loads
 /// where a walk waited for one load per surfel of the umbrella, one after the other.
+/// `onFace` receives the corners of s at the ends of the edges it shares with f: corners of
+/// surfels of f.
 bool meetsAlongOneArcGrowing(const SurfelGraph& graph,
   const std::vector<std::uint32_t>& faceOf,
   const std::vector<std::uint32_t>& touching,
   std::uint32_t s,
-  std::uint32_t f)
+  std::uint32_t f,
+  std::uint32_t& onFace)
 {
   bool shared[4];
   int count = 0;
@@ -142,12 +145,14 @@ bool meetsAlongOneArcGrowing(const SurfelGraph& graph,
   if (count == 0 || count == 4)
     return false;
   int arcs = 0;
+  onFace = 0;
   for (int k = 0; k < 4; ++k)
   {
     const bool onArc = shared[k] || shared[(k + 3) % 4];
     arcs += shared[k] && !shared[(k + 3) % 4];
     if (!onArc && touching[graph.vertexOf(s, k)] == f)
       return false;
+    onFace |= std::uint32_t(onArc) << k; // corner k ends edge k or edge k - 1
   }
   return arcs == 1;
 }
@@ -261,12 +266,15 @@ private:
       if (this->Options.maximumFaceSize &&
         this->Faces[f].surfels.size() >= this->Options.maximumFaceSize)
         break;
+      // While growing, the corners on the arc are known points of the recognizer (the corners
+      // of f's surfels): their lookups are skipped.
+      std::uint32_t onFace = 0;
       const bool disk = this->Growing
-        ? meetsAlongOneArcGrowing(this->Graph, this->FaceOf, this->Touching, s, f)
+        ? meetsAlongOneArcGrowing(this->Graph, this->FaceOf, this->Touching, s, f, onFace)
         : meetsAlongOneArc(this->Graph, this->FaceOf, s, f, false);
       if (!disk)
         continue; // may fit later, when it is queued again by a new neighbour
-      if (!this->Active->tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
+      if (!this->Active->tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s]), onFace))
       {
         this->Refused[s] = f; // points only accumulate: it never fits this face again
         continue;
@@ -492,6 +500,7 @@ private:
         // lie far apart in the arrays, and these loads were the growth's cache misses.
         prefetch(&this->Graph.surfels[t]);
         prefetch(&this->Graph.neighbour[4 * std::size_t(t)]);
+        prefetch(&this->Graph.vertex[4 * std::size_t(t)]);
       }
     }
   }

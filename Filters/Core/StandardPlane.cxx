@@ -678,10 +678,11 @@ bool StandardPlaneRecognizer::known(std::uint64_t key) const
 
 bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   std::size_t count,
-  const std::array<int, 3>& signs)
+  const std::array<int, 3>& signs,
+  std::uint32_t known)
 {
   std::array<int, 3> present = this->Present;
-  if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count))
+  if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count, known))
     return false;
   if (this->takenByCurrentPlane(present))
     return true;
@@ -717,7 +718,9 @@ bool StandardPlaneRecognizer::addOrientations(const std::array<int, 3>& signs,
   return true;
 }
 
-bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size_t count)
+bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points,
+  std::size_t count,
+  std::uint32_t known)
 {
   if (this->Points.empty() && count > 0)
     this->Origin = points[0];
@@ -729,6 +732,8 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
   keys.clear();
   for (std::size_t i = 0; i < count; ++i)
   {
+    if (i < 32 && (known >> i) & 1u)
+      continue; // added already (and so within reach of the origin)
     const Point3 q = sub(points[i], this->Origin);
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
