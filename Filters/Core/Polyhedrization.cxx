@@ -236,6 +236,9 @@ private:
   {
     const std::uint32_t f = static_cast<std::uint32_t>(this->Faces.size());
     this->Faces.emplace_back();
+    // The face grows in storage kept from face to face, then gets a list of its size: one
+    // allocation a face, not one per doubling (most faces are small, and many).
+    this->Faces[f].surfels.swap(this->Growth);
     this->Recognizer.reset();
     this->Wave.clear();
     if (!this->seedUmbrella(seed, f))
@@ -244,9 +247,11 @@ private:
       this->take(seed, f, 0);
     }
     this->drainWave(f);
-    this->Faces[f].plane = this->Recognizer.plane();
-    if (!this->Options.moveToLargerFaces) // else the moves make the lists again, to size
-      this->Faces[f].surfels.shrink_to_fit();
+    StandardFace& face = this->Faces[f];
+    face.plane = this->Recognizer.plane();
+    this->Growth.swap(face.surfels);
+    face.surfels.assign(this->Growth.begin(), this->Growth.end());
+    this->Growth.clear();
   }
 
   /// The growth of face f over its queue q(f) (Francon & Papier, section 3), breadth first
@@ -523,11 +528,12 @@ private:
   bool Growing = false;
   std::size_t Taken = 0; ///< surfels taken by the growth, for its progress
   std::vector<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
-  std::vector<std::uint32_t> Umbrella;                       ///< in seedUmbrella
-  std::vector<Point3> UmbrellaPoints;                        ///< in seedUmbrella
-  std::array<Point3, 4> Corners;                             ///< in pointelsOf
-  std::vector<std::uint32_t>&Queued, &Refused;               ///< stamped with the face
-  std::vector<std::uint32_t>& Touching; ///< per vertex, stamped with the face (the growth's)
+  std::vector<std::uint32_t> Growth;           ///< the storage of the face growing, in growFrom
+  std::vector<std::uint32_t> Umbrella;         ///< in seedUmbrella
+  std::vector<Point3> UmbrellaPoints;          ///< in seedUmbrella
+  std::array<Point3, 4> Corners;               ///< in pointelsOf
+  std::vector<std::uint32_t>&Queued, &Refused; ///< stamped with the face
+  std::vector<std::uint32_t>& Touching;        ///< per vertex, stamped with the face (the growth's)
   std::uint32_t DepthLimit;
 };
 
@@ -715,14 +721,19 @@ bool forEachPart(const Execution& exec,
 }
 
 /// The faces' surfel lists of a part after the moves (a surfel may have moved more than once),
-/// each allocated to its size: faces that grew would double their storage.
+/// each allocated to its size: faces that grew would double their storage. A list already of
+/// its size (the growth makes them so; most faces keep theirs) is refilled in place.
 void refillSurfelLists(const Part& part, const std::vector<std::size_t>& size, Polyhedron& poly)
 {
   for (std::size_t i = 0; i < part.faces.size(); ++i)
   {
     StandardFace& face = poly.faces[part.faces[i]];
-    std::vector<std::uint32_t>().swap(face.surfels);
-    face.surfels.reserve(size[part.faces[i]]);
+    face.surfels.clear();
+    if (face.surfels.capacity() != size[part.faces[i]])
+    {
+      std::vector<std::uint32_t>().swap(face.surfels);
+      face.surfels.reserve(size[part.faces[i]]);
+    }
   }
   for (std::size_t i = 0; i < part.surfels.size(); ++i)
   {
