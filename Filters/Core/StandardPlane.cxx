@@ -504,7 +504,7 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
   octantEdge.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
-    const std::size_t j = (i + 1) % n;
+    const std::size_t j = i + 1 == n ? 0 : i + 1; // no division in the loop
     if (f[i] >= 0)
     {
       vertices.push_back(o.vertices[i]);
@@ -598,8 +598,11 @@ bool StandardPlaneRecognizer::hasInterior(const Octant& o)
   if (n < 3)
     return false;
   for (std::size_t i = 0; i < n; ++i)
-    if (det(o.vertices[i].ray, o.vertices[(i + 1) % n].ray, o.vertices[(i + 2) % n].ray) != 0)
+  {
+    const std::size_t j = i + 1 == n ? 0 : i + 1, k = j + 1 == n ? 0 : j + 1;
+    if (det(o.vertices[i].ray, o.vertices[j].ray, o.vertices[k].ray) != 0)
       return true;
+  }
   return false;
 }
 
