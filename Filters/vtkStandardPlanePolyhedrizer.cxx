@@ -1177,7 +1177,7 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
 }
 
 /// Frees what the cells of `mode` do not read, before they are written (the counts of surfels
-/// kept): the neighbours across the surfels' edges (20 bytes per surfel); but for Surfels the
+/// kept): the neighbours across the surfels' edges (16 bytes per surfel); but for Surfels the
 /// surfels, their vertices, the face of each surfel and the faces' lists of surfels (36 bytes
 /// per surfel and a list per face). Then, for a large object, the heap's free pages go back to
 /// the system: the faces' lists and the growth's small blocks lie in the heap, and the cells'
@@ -1190,7 +1190,6 @@ void releaseAfterFaces(ObjectFaces& o, int mode)
   for (const vbr::StandardFace& f : o.poly.faces)
     o.faceSizes.push_back(static_cast<std::uint32_t>(f.surfels.size()));
   std::vector<std::uint32_t>().swap(o.graph.neighbour);
-  std::vector<std::uint8_t>().swap(o.graph.neighbourEdge);
   if (mode != vtkStandardPlanePolyhedrizer::SURFELS)
   {
     std::vector<std::uint32_t>().swap(o.poly.faceOfSurfel);

@@ -33,7 +33,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdlib>
-#include <deque>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -49,6 +48,19 @@ namespace
 {
 
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
+
+/// Asks the cache for the line of p ahead of its use (nothing where the compiler has no hint).
+inline void prefetch(const void* p)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
+/// How far ahead a walk over a list of surfels prefetches their entries.
+constexpr std::size_t PrefetchAhead = 8;
 
 std::array<int, 3> signsOf(const Surfel& s)
 {
@@ -109,20 +121,60 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
   return arcs == 1;
 }
 
-/// Per surfel: its face, and the face that last queued it and last refused it (the growth's
-/// stamps; the merging reads the refusals the growth left).
+/// meetsAlongOneArc(graph, faceOf, s, f, false) while face f grows (FaceGrower::run), read from
+/// the stamps of the vertices instead of walks round their umbrellas: a vertex of s off the arc
+/// is touched by f exactly when a surfel of f has it as a corner (its umbrella is the surfels
+/// with that vertex), i.e. when the growth stamped it with f (FaceGrower::take). Two loads
+/// where a walk waited for one load per surfel of the umbrella, one after the other.
+/// `onFace` receives the corners of s at the ends of the edges it shares with f: corners of
+/// surfels of f.
+bool meetsAlongOneArcGrowing(const SurfelGraph& graph,
+  const std::vector<std::uint32_t>& faceOf,
+  const std::vector<std::uint32_t>& touching,
+  std::uint32_t s,
+  std::uint32_t f,
+  std::uint32_t& onFace)
+{
+  bool shared[4];
+  int count = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
+    count += shared[k];
+  }
+  if (count == 0 || count == 4)
+    return false;
+  int arcs = 0;
+  onFace = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    const bool onArc = shared[k] || shared[(k + 3) % 4];
+    arcs += shared[k] && !shared[(k + 3) % 4];
+    if (!onArc && touching[graph.vertexOf(s, k)] == f)
+      return false;
+    onFace |= std::uint32_t(onArc) << k; // corner k ends edge k or edge k - 1
+  }
+  return arcs == 1;
+}
+
+/// Per surfel: its face, and the face that last queued it and last refused it; per vertex, the
+/// face that last took a surfel round it (the growth's stamps; the merging reads the refusals
+/// the growth left).
 struct SurfelStamps
 {
-  SurfelStamps(std::vector<std::uint32_t>& faceOfSurfel, std::size_t surfels)
+  SurfelStamps(std::vector<std::uint32_t>& faceOfSurfel, std::size_t surfels, std::size_t vertices)
     : faceOf(faceOfSurfel)
     , queued(surfels, None)
     , refused(surfels, None)
+    , touching(vertices, None)
   {
     faceOf.assign(surfels, None);
   }
   std::vector<std::uint32_t>& faceOf;
-  std::vector<std::uint32_t> queued, refused;
+  std::vector<std::uint32_t> queued, refused, touching;
 
+  /// Frees the vertex stamps, which only the growth reads.
+  void releaseTouching() { std::vector<std::uint32_t>().swap(this->touching); }
   /// Frees the queue stamps and the refusals, which only the growth and the merging read.
   void releaseQueues()
   {
@@ -150,6 +202,7 @@ public:
     , FaceOf(stamps.faceOf)
     , Queued(stamps.queued)
     , Refused(stamps.refused)
+    , Touching(stamps.touching)
     , DepthLimit(options.maximumDepth)
   {
   }
@@ -183,6 +236,9 @@ private:
   {
     const std::uint32_t f = static_cast<std::uint32_t>(this->Faces.size());
     this->Faces.emplace_back();
+    // The face grows in storage kept from face to face, then gets a list of its size: one
+    // allocation a face, not one per doubling (most faces are small, and many).
+    this->Faces[f].surfels.swap(this->Growth);
     this->Recognizer.reset();
     this->Wave.clear();
     if (!this->seedUmbrella(seed, f))
@@ -191,9 +247,11 @@ private:
       this->take(seed, f, 0);
     }
     this->drainWave(f);
-    this->Faces[f].plane = this->Recognizer.plane();
-    if (!this->Options.moveToLargerFaces) // else the moves make the lists again, to size
-      this->Faces[f].surfels.shrink_to_fit();
+    StandardFace& face = this->Faces[f];
+    face.plane = this->Recognizer.plane();
+    this->Growth.swap(face.surfels);
+    face.surfels.assign(this->Growth.begin(), this->Growth.end());
+    this->Growth.clear();
   }
 
   /// The growth of face f over its queue q(f) (Francon & Papier, section 3), breadth first
@@ -201,29 +259,35 @@ private:
   /// (condition 1) of one standard plane (condition 2).
   void drainWave(std::uint32_t f)
   {
-    while (!this->Wave.empty())
+    std::size_t head = 0; // the queue is Wave from head on (a vector: no deque blocks to manage)
+    while (head < this->Wave.size())
     {
       if (!this->Poll->tick())
         break;
-      const auto [s, depth] = this->Wave.front();
-      this->Wave.pop_front();
+      const auto [s, depth] = this->Wave[head++];
       this->Queued[s] = None;
       if (this->FaceOf[s] != None || this->Refused[s] == f)
         continue;
       if (this->Options.maximumFaceSize &&
         this->Faces[f].surfels.size() >= this->Options.maximumFaceSize)
         break;
-      if (!meetsAlongOneArc(this->Graph, this->FaceOf, s, f, false))
+      // While growing, the corners on the arc are known points of the recognizer (the corners
+      // of f's surfels): their lookups are skipped.
+      std::uint32_t onFace = 0;
+      const bool disk = this->Growing
+        ? meetsAlongOneArcGrowing(this->Graph, this->FaceOf, this->Touching, s, f, onFace)
+        : meetsAlongOneArc(this->Graph, this->FaceOf, s, f, false);
+      if (!disk)
         continue; // may fit later, when it is queued again by a new neighbour
-      if (!this->Active->tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s])))
+      if (!this->Active->tryAdd(this->pointelsOf(s), 4, signsOf(this->Graph.surfels[s]), onFace))
       {
         this->Refused[s] = f; // points only accumulate: it never fits this face again
         continue;
       }
       this->take(s, f, depth);
     }
-    for (const auto& queued : this->Wave)
-      this->Queued[queued.first] = None;
+    for (; head < this->Wave.size(); ++head)
+      this->Queued[this->Wave[head].first] = None;
     this->Wave.clear();
   }
 
@@ -421,9 +485,13 @@ private:
   void take(std::uint32_t s, std::uint32_t f, std::uint32_t depth)
   {
     this->FaceOf[s] = f;
+    if (this->Growing) // the merging's faces are not the last to take their vertices
+      for (int k = 0; k < 4; ++k)
+        this->Touching[this->Graph.vertexOf(s, k)] = f;
     this->Faces[f].surfels.push_back(s);
-    if (this->Growing)
-      this->Poll->at(double(++this->Taken) / double(this->Graph.size()));
+    ++this->Taken;
+    if (this->Growing && this->Poll->due()) // the division only when the fraction is read
+      this->Poll->at(double(this->Taken) / double(this->Graph.size()));
     if (this->DepthLimit && depth + 1 > this->DepthLimit)
       return;
     for (int k = 0; k < 4; ++k)
@@ -433,6 +501,11 @@ private:
       {
         this->Queued[t] = f;
         this->Wave.emplace_back(t, depth + 1);
+        // Read when t comes out of the queue, a wave later: neighbours across rows of voxels
+        // lie far apart in the arrays, and these loads were the growth's cache misses.
+        prefetch(&this->Graph.surfels[t]);
+        prefetch(&this->Graph.neighbour[4 * std::size_t(t)]);
+        prefetch(&this->Graph.vertex[4 * std::size_t(t)]);
       }
     }
   }
@@ -454,11 +527,13 @@ private:
   ProgressPoll* Poll = nullptr;
   bool Growing = false;
   std::size_t Taken = 0; ///< surfels taken by the growth, for its progress
-  std::deque<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
-  std::vector<std::uint32_t> Umbrella;                      ///< in seedUmbrella
-  std::vector<Point3> UmbrellaPoints;                       ///< in seedUmbrella
-  std::array<Point3, 4> Corners;                            ///< in pointelsOf
-  std::vector<std::uint32_t>&Queued, &Refused;              ///< stamped with the face
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> Wave; ///< (surfel, depth)
+  std::vector<std::uint32_t> Growth;           ///< the storage of the face growing, in growFrom
+  std::vector<std::uint32_t> Umbrella;         ///< in seedUmbrella
+  std::vector<Point3> UmbrellaPoints;          ///< in seedUmbrella
+  std::array<Point3, 4> Corners;               ///< in pointelsOf
+  std::vector<std::uint32_t>&Queued, &Refused; ///< stamped with the face
+  std::vector<std::uint32_t>& Touching;        ///< per vertex, stamped with the face (the growth's)
   std::uint32_t DepthLimit;
 };
 
@@ -482,9 +557,14 @@ public:
   std::size_t loopLength(const Polyhedron& poly, std::uint32_t f) const
   {
     std::size_t edges = 0;
-    for (std::uint32_t s : poly.faces[f].surfels)
+    const std::vector<std::uint32_t>& list = poly.faces[f].surfels;
+    for (std::size_t j = 0; j < list.size(); ++j)
+    {
+      if (j + PrefetchAhead < list.size())
+        prefetch(&this->Graph.neighbour[4 * std::size_t(list[j + PrefetchAhead])]);
       for (int k = 0; k < 4; ++k)
-        edges += poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != f;
+        edges += poly.faceOfSurfel[this->Graph.neighbourOf(list[j], k)] != f;
+    }
     return edges;
   }
 
@@ -498,7 +578,15 @@ public:
     std::uint32_t* across)
   {
     std::uint32_t start = None;
-    for (std::uint32_t s : poly.faces[f].surfels)
+    const std::vector<std::uint32_t>& list = poly.faces[f].surfels;
+    for (std::size_t j = 0; j < list.size(); ++j)
+    {
+      if (j + PrefetchAhead < list.size())
+      {
+        prefetch(&this->Graph.neighbour[4 * std::size_t(list[j + PrefetchAhead])]);
+        prefetch(&this->Graph.vertex[4 * std::size_t(list[j + PrefetchAhead])]);
+      }
+      const std::uint32_t s = list[j];
       for (int k = 0; k < 4; ++k)
         if (poly.faceOfSurfel[this->Graph.neighbourOf(s, k)] != f)
         {
@@ -509,6 +597,7 @@ public:
           this->Edge[v] = 4 * s + static_cast<std::uint32_t>(k);
           start = v;
         }
+    }
     if (start == None)
       return;
     std::size_t i = 0;
@@ -632,14 +721,19 @@ bool forEachPart(const Execution& exec,
 }
 
 /// The faces' surfel lists of a part after the moves (a surfel may have moved more than once),
-/// each allocated to its size: faces that grew would double their storage.
+/// each allocated to its size: faces that grew would double their storage. A list already of
+/// its size (the growth makes them so; most faces keep theirs) is refilled in place.
 void refillSurfelLists(const Part& part, const std::vector<std::size_t>& size, Polyhedron& poly)
 {
   for (std::size_t i = 0; i < part.faces.size(); ++i)
   {
     StandardFace& face = poly.faces[part.faces[i]];
-    std::vector<std::uint32_t>().swap(face.surfels);
-    face.surfels.reserve(size[part.faces[i]]);
+    face.surfels.clear();
+    if (face.surfels.capacity() != size[part.faces[i]])
+    {
+      std::vector<std::uint32_t>().swap(face.surfels);
+      face.surfels.reserve(size[part.faces[i]]);
+    }
   }
   for (std::size_t i = 0; i < part.surfels.size(); ++i)
   {
@@ -677,10 +771,29 @@ std::size_t movesInPart(const SurfelGraph& graph,
       continue;
     StandardFace& face = poly.faces[f];
     queue.clear();
-    for (std::uint32_t s : face.surfels)
+    // Only the surfels across f's rim: those already in f would be skipped when dequeued. The
+    // lists and the candidates are read ahead (prefetch): a face's surfels lie rows of voxels
+    // apart in the arrays, and these loads were the moves' cache misses.
+    const std::vector<std::uint32_t>& list = face.surfels;
+    for (std::size_t j = 0; j < list.size(); ++j)
+    {
+      if (j + PrefetchAhead < list.size())
+      {
+        prefetch(&faceOf[list[j + PrefetchAhead]]);
+        prefetch(&graph.neighbour[4 * std::size_t(list[j + PrefetchAhead])]);
+      }
+      const std::uint32_t s = list[j];
       if (faceOf[s] == f)
         for (int k = 0; k < 4; ++k)
-          queue.push_back(graph.neighbourOf(s, k));
+        {
+          const std::uint32_t t = graph.neighbourOf(s, k);
+          if (faceOf[t] != f)
+          {
+            queue.push_back(t);
+            prefetch(&graph.surfels[t]);
+          }
+        }
+    }
     for (std::size_t q = 0; q < queue.size(); ++q)
     {
       if (!poll.tick())
@@ -697,7 +810,10 @@ std::size_t movesInPart(const SurfelGraph& graph,
       ++size[f];
       ++moved;
       for (int k = 0; k < 4; ++k)
+      {
         queue.push_back(graph.neighbourOf(t, k));
+        prefetch(&graph.surfels[queue.back()]);
+      }
     }
   }
   refillSurfelLists(part, size, poly);
@@ -770,50 +886,21 @@ void dropEmptyFaces(Polyhedron& poly,
     });
 }
 
-/// Faces around each vertex: the changes of face along its umbrella (faces are disks, so
-/// each meets the umbrella in one run). Francon & Papier's standard vertices are those of
-/// three faces or more. The surfels of the parts' faces on the threads of `exec` (a vertex's
-/// umbrella never leaves its component; the count does not depend on the surfel it starts from).
-bool countFacesAtVertices(const SurfelGraph& graph,
-  const std::vector<Part>& parts,
-  const Execution& exec,
-  Polyhedron& poly)
+/// Faces around each vertex, from the loops: a face is a disk, so it meets the umbrella of a
+/// vertex in one run, and when the vertex lies on its boundary its loop passes there once (the
+/// tracer checks it: a second loop edge of the face from the vertex is an error). So a vertex
+/// on the loops of k faces has k faces around it (k >= 2), and a vertex on no loop lies inside
+/// one face: one. Francon & Papier's standard vertices are those of three faces or more. One
+/// pass over the loops' vertices, instead of a walk round every umbrella.
+void countFacesAtVertices(const SurfelGraph& graph, Polyhedron& poly)
 {
   std::vector<std::uint8_t>& count = poly.facesAtVertex;
   count.assign(graph.vertexPointel.size(), 0);
-  std::vector<char> done(graph.vertexPointel.size(), 0);
-  const std::vector<std::uint32_t>& faceOf = poly.faceOfSurfel;
-  return forEachPart(exec,
-    parts,
-    [&](const Part& part, ProgressPoll& poll)
-    {
-      for (std::size_t i = 0; i < part.faces.size(); ++i)
-        for (std::uint32_t s0 : poly.faces[part.faces[i]].surfels)
-        {
-          if (!poll.tick())
-            return false;
-          for (int k0 = 0; k0 < 4; ++k0)
-          {
-            const std::uint32_t v = graph.vertexOf(s0, k0);
-            if (done[v])
-              continue;
-            done[v] = 1;
-            int changes = 0;
-            std::uint32_t previous = s0;
-            graph.aroundVertex(s0,
-              k0,
-              [&](std::uint32_t u)
-              {
-                changes += faceOf[u] != faceOf[previous];
-                previous = u;
-                return true;
-              });
-            changes += faceOf[previous] != faceOf[s0]; // closing the round
-            count[v] = static_cast<std::uint8_t>(std::min(changes == 0 ? 1 : changes, 255));
-          }
-        }
-      return true;
-    });
+  for (std::uint32_t v : poly.loopVertices)
+    if (count[v] < 255)
+      ++count[v];
+  for (std::uint8_t& c : count)
+    c = c == 0 ? 1 : c;
 }
 
 } // namespace
@@ -1149,10 +1236,11 @@ bool polyhedrize(const SurfelGraph& graph,
 {
   // Progress: growth 0 - 0.6, moves 0.6 - 0.7, merging 0.7 - 0.95, loops 0.95 - 1.
   out = Polyhedron();
-  SurfelStamps stamps(out.faceOfSurfel, graph.size());
+  SurfelStamps stamps(out.faceOfSurfel, graph.size(), graph.vertexPointel.size());
   ComponentGroups groups;
   if (!growFaces(graph, options, exec, stamps, out.faces, groups))
     return false;
+  stamps.releaseTouching();
   std::vector<std::vector<std::uint32_t>> faceLists;
   if (options.moveToLargerFaces)
   {
@@ -1180,8 +1268,10 @@ bool polyhedrize(const SurfelGraph& graph,
     part.surfels = {};
   groups = ComponentGroups();
   stamps.releaseQueues(); // the peak is the loops' tracing, with the whole graph
-  return traceLoops(graph, options.facesAcross, parts, exec.within(0.95, 0.975), out) &&
-    countFacesAtVertices(graph, parts, exec.within(0.975, 1.0), out) && exec.report(1.0);
+  if (!traceLoops(graph, options.facesAcross, parts, exec.within(0.95, 1.0), out))
+    return false;
+  countFacesAtVertices(graph, out);
+  return exec.report(1.0);
 }
 
 // ---- reversion ------------------------------------------------------------------------
@@ -1383,8 +1473,12 @@ public:
     for (std::size_t cell : this->Touched)
       this->Marks[cell] = 0;
     this->Touched.clear();
-    this->Outside.clear();
-    this->OutsideEdges.clear();
+    // Most faces hash nothing: clearing an empty index would still sweep its table (kept up to
+    // 4096 slots once a large face grew it).
+    if (this->Outside.size() != 0)
+      this->Outside.clear();
+    if (this->OutsideEdges.size() != 0)
+      this->OutsideEdges.clear();
     this->Sign = projectionSigns(plane.normal);
     std::array<std::int64_t, 2> lo{ 0, 0 }, hi{ -1, -1 };
     std::int64_t twiceArea = 0; // the shoelace sum of the loop's projection

@@ -50,6 +50,10 @@ constexpr std::size_t SmallCall = 16;
 
 Vec primitive(Vec v)
 {
+  // A component of +-1 makes the vector primitive already: the common case of the clips, and
+  // three gcds of rays up to 2^35 cost more than the rest of a clip.
+  if (std::llabs(v[0]) == 1 || std::llabs(v[1]) == 1 || std::llabs(v[2]) == 1)
+    return v;
   const std::int64_t g = std::gcd(std::gcd(std::llabs(v[0]), std::llabs(v[1])), std::llabs(v[2]));
   if (g > 1)
     for (std::int64_t& c : v)
@@ -346,14 +350,29 @@ void StandardPlaneRecognizer::reset()
   this->Scanned = 0;
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
+  // The octants' triangles, made once: a reset copies them (most faces are small, and a
+  // reset per face built 72 entries one by one).
+  static const std::array<Octant, 8> initial = initialOctants();
   for (int s = 0; s < 8; ++s)
   {
     Octant& o = this->Octants[s];
-    o.sigma = { (s & 1) ? -1 : 1, (s & 2) ? -1 : 1, (s & 4) ? -1 : 1 };
-    o.vertices.clear();
-    o.edges.clear();
-    o.octantEdge.clear();
+    const Octant& from = initial[s];
+    o.sigma = from.sigma;
+    o.vertices.assign(from.vertices.begin(), from.vertices.end());
+    o.edges.assign(from.edges.begin(), from.edges.end());
+    o.octantEdge.assign(from.octantEdge.begin(), from.octantEdge.end());
     o.applied = 0;
+    this->Alive[s] = true;
+  }
+}
+
+std::array<StandardPlaneRecognizer::Octant, 8> StandardPlaneRecognizer::initialOctants()
+{
+  std::array<Octant, 8> octants;
+  for (int s = 0; s < 8; ++s)
+  {
+    Octant& o = octants[s];
+    o.sigma = { (s & 1) ? -1 : 1, (s & 2) ? -1 : 1, (s & 4) ? -1 : 1 };
     // The triangle sigma.n = 1, sigma_d n_d >= 0; edge i lies on n_(i+2) = 0.
     for (int d = 0; d < 3; ++d)
     {
@@ -368,8 +387,8 @@ void StandardPlaneRecognizer::reset()
       o.edges.push_back(e);
       o.octantEdge.push_back(1);
     }
-    this->Alive[s] = true;
   }
+  return octants;
 }
 
 template<typename F>
@@ -485,7 +504,7 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
   octantEdge.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
-    const std::size_t j = (i + 1) % n;
+    const std::size_t j = i + 1 == n ? 0 : i + 1; // no division in the loop
     if (f[i] >= 0)
     {
       vertices.push_back(o.vertices[i]);
@@ -579,8 +598,11 @@ bool StandardPlaneRecognizer::hasInterior(const Octant& o)
   if (n < 3)
     return false;
   for (std::size_t i = 0; i < n; ++i)
-    if (det(o.vertices[i].ray, o.vertices[(i + 1) % n].ray, o.vertices[(i + 2) % n].ray) != 0)
+  {
+    const std::size_t j = i + 1 == n ? 0 : i + 1, k = j + 1 == n ? 0 : j + 1;
+    if (det(o.vertices[i].ray, o.vertices[j].ray, o.vertices[k].ray) != 0)
       return true;
+  }
   return false;
 }
 
@@ -659,10 +681,11 @@ bool StandardPlaneRecognizer::known(std::uint64_t key) const
 
 bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   std::size_t count,
-  const std::array<int, 3>& signs)
+  const std::array<int, 3>& signs,
+  std::uint32_t known)
 {
   std::array<int, 3> present = this->Present;
-  if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count))
+  if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count, known))
     return false;
   if (this->takenByCurrentPlane(present))
     return true;
@@ -698,7 +721,9 @@ bool StandardPlaneRecognizer::addOrientations(const std::array<int, 3>& signs,
   return true;
 }
 
-bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size_t count)
+bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points,
+  std::size_t count,
+  std::uint32_t known)
 {
   if (this->Points.empty() && count > 0)
     this->Origin = points[0];
@@ -710,6 +735,8 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
   keys.clear();
   for (std::size_t i = 0; i < count; ++i)
   {
+    if (i < 32 && (known >> i) & 1u)
+      continue; // added already (and so within reach of the origin)
     const Point3 q = sub(points[i], this->Origin);
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
@@ -722,12 +749,20 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points, std::size
       fresh.push_back(q);
       continue;
     }
-    // A surfel's corners (the growth's calls): inserted in place, without a sort.
-    const auto at = std::lower_bound(keys.begin(), keys.end(), key);
-    if (at != keys.end() && *at == key)
+    // A surfel's corners (the growth's calls): inserted in place, without a sort (a few keys:
+    // a scan for a repeat, then the insertion by shifts).
+    std::size_t j = keys.size();
+    if (std::find(keys.begin(), keys.end(), key) != keys.end())
       continue;
-    fresh.insert(fresh.begin() + (at - keys.begin()), q);
-    keys.insert(at, key);
+    keys.push_back(key);
+    fresh.push_back(q);
+    for (; j > 0 && keys[j - 1] > key; --j)
+    {
+      keys[j] = keys[j - 1];
+      fresh[j] = fresh[j - 1];
+    }
+    keys[j] = key;
+    fresh[j] = q;
   }
   if (count > SmallCall)
     this->sortFreshPoints();

@@ -75,7 +75,14 @@ public:
   /// the union still lies in one standard plane; otherwise changes nothing. Points must lie
   /// less than 2^15 from the first point added along every axis: the call refuses (returns
   /// false) any farther point, so that every product of the recognition fits its integers.
-  bool tryAdd(const Point3* points, std::size_t count, const std::array<int, 3>& signs);
+  ///
+  /// Bit i of `known` (i < 32) tells that points[i] is one of the points added already: the
+  /// caller knows it (the growth: the ends of the edges a surfel shares with the face), and its
+  /// lookup is skipped. A wrong bit drops a new point: only certain knowledge may be passed.
+  bool tryAdd(const Point3* points,
+    std::size_t count,
+    const std::array<int, 3>& signs,
+    std::uint32_t known = 0);
   bool tryAdd(const std::vector<Point3>& points, const std::array<int, 3>& signs)
   {
     return this->tryAdd(points.data(), points.size(), signs);
@@ -110,6 +117,8 @@ private:
     std::size_t applied = 0;      ///< points clipped into the polygon so far
   };
 
+  /// The eight octants' triangles before any point (reset copies them).
+  static std::array<Octant, 8> initialOctants();
   bool applyPoints(Octant& o) const;
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
   void measure(Vertex& v, std::size_t count) const;
@@ -141,7 +150,7 @@ private:
   static bool addOrientations(const std::array<int, 3>& signs, std::array<int, 3>& present);
   /// The new points relative to Origin, without repeats, into Fresh (and FreshKeys); false
   /// when one is too far from Origin.
-  bool collectFreshPoints(const Point3* points, std::size_t count);
+  bool collectFreshPoints(const Point3* points, std::size_t count, std::uint32_t known);
   /// Sorts Fresh by key without repeats, and fills FreshKeys.
   void sortFreshPoints();
   /// Fast path: the current plane takes the new points and orientations (then committed).

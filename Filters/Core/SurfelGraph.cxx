@@ -268,7 +268,6 @@ void matchSharedEdges(const Execution& exec, SurfelGraph& out)
 {
   static const SharedEdgeTable table;
   const std::size_t n = out.surfels.size();
-  out.neighbourEdge.resize(4 * n);
   forEachSurfel(exec,
     n,
     [&](std::uint32_t s)
@@ -279,7 +278,7 @@ void matchSharedEdges(const Execution& exec, SurfelGraph& out)
         const int j = table.SharedEdge[d][k][out.surfels[out.neighbourOf(s, k)].direction];
         if (j < 0)
           throw std::logic_error("neighbouring surfels do not share their linel");
-        out.neighbourEdge[4 * s + k] = static_cast<std::uint8_t>(j);
+        out.neighbour[4 * s + k] |= static_cast<std::uint32_t>(j) << 30;
       }
     });
 }
@@ -292,6 +291,10 @@ void numberVertices(SurfelGraph& out)
   constexpr std::uint32_t None = ~std::uint32_t(0);
   const std::size_t n = out.surfels.size();
   out.vertex.assign(4 * n, None);
+  out.vertexPointel.clear();
+  // V = F + 2 (C - G) on a closed surface of F surfels (E = 2F): at most F + F / 3, as each of
+  // the C components has 6 surfels or more. Made to size once numbered.
+  out.vertexPointel.reserve(n + n / 3 + 2);
   std::uint32_t count = 0;
   for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
@@ -299,6 +302,7 @@ void numberVertices(SurfelGraph& out)
       if (out.vertex[4 * s + k] != None)
         continue;
       const std::uint32_t v = count++;
+      out.vertexPointel.push_back(out.cornerOf(s, k)); // every corner of the umbrella is there
       std::uint32_t u = s;
       int corner = k; // the edge of u that starts at the vertex
       int steps = 0;
@@ -312,10 +316,7 @@ void numberVertices(SurfelGraph& out)
         corner = (j + 1) % 4;
       } while (u != s || corner != k);
     }
-  out.vertexPointel.resize(count);
-  for (std::uint32_t s = 0; s < n; ++s)
-    for (int k = 0; k < 4; ++k)
-      out.vertexPointel[out.vertex[4 * s + k]] = out.cornerOf(s, k);
+  out.vertexPointel.shrink_to_fit();
 }
 
 /// The connected components of the surface (only their number is kept).
@@ -325,7 +326,11 @@ void countComponents(SurfelGraph& out)
   UnionFind faces(n);
   for (std::uint32_t s = 0; s < n; ++s)
     for (int k = 0; k < 4; ++k)
-      faces.unite(s, out.neighbourOf(s, k));
+    {
+      const std::uint32_t t = out.neighbourOf(s, k);
+      if (t > s) // each linel once: from its other surfel the pair is the same
+        faces.unite(s, t);
+    }
   std::uint32_t roots = 0;
   for (std::uint32_t s = 0; s < n; ++s)
     roots += faces.find(s) == s;
@@ -339,7 +344,10 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
   out = SurfelGraph();
   out.dims = voxels.dims();
   const VoxelSet set{ voxels, voxels.dims() };
-  out.surfels.reserve(countSurfels(voxels)); // exactly: no growth by doubling
+  const std::size_t count = countSurfels(voxels);
+  if (count >= SurfelGraph::MaximumSize)
+    throw std::length_error("the boundary has 2^30 surfels or more");
+  out.surfels.reserve(count); // exactly: no growth by doubling
   {
     RowIndex index(out.dims);
     if (!findSurfels(set, exec, out, index))

@@ -26,28 +26,37 @@
 namespace vbr
 {
 
-/// About 64 bytes per surfel (16 for the surfel, 16 for its neighbours, 4 for their edges, 16
-/// for its vertices, 12 for about one vertex per surfel): the corners are computed from the
-/// surfel when asked, not stored (they were 48 bytes per surfel, the largest array).
+/// About 60 bytes per surfel (16 for the surfel, 16 for its neighbours and their edges, 16 for
+/// its vertices, 12 for about one vertex per surfel): the corners are computed from the surfel
+/// when asked, not stored (they were 48 bytes per surfel, the largest array).
 struct SurfelGraph
 {
+  /// Surfels are numbered below this (their links keep the neighbour's edge in 2 bits).
+  static constexpr std::uint32_t MaximumSize = std::uint32_t(1) << 30;
+
   std::array<std::int32_t, 3> dims{ 0, 0, 0 };
-  std::vector<Surfel> surfels;             ///< by voxel (z, y, x) then direction
-  std::vector<std::uint32_t> neighbour;    ///< 4 per surfel: across edge k (corner k to k+1)
-  std::vector<std::uint8_t> neighbourEdge; ///< 4 per surfel: that edge seen from the neighbour
-  std::vector<std::uint32_t> vertex;       ///< 4 per surfel: vertex at corner k
-  std::vector<Point3> vertexPointel;       ///< per vertex
-  std::uint32_t componentCount = 0;        ///< connected boundary components
+  std::vector<Surfel> surfels; ///< by voxel (z, y, x) then direction
+  /// 4 per surfel, across edge k (corner k to k+1): the neighbour's number (low 30 bits) and the
+  /// edge of the neighbour that is the same linel (top 2 bits). One word, so that a step round
+  /// an umbrella (aroundVertex: the growth's disk test, its hottest loop) waits for one load,
+  /// not two from two arrays.
+  std::vector<std::uint32_t> neighbour;
+  std::vector<std::uint32_t> vertex; ///< 4 per surfel: vertex at corner k
+  std::vector<Point3> vertexPointel; ///< per vertex
+  std::uint32_t componentCount = 0;  ///< connected boundary components
 
   std::size_t size() const { return this->surfels.size(); }
   std::uint32_t neighbourOf(std::uint32_t s, int edge) const
   {
-    return this->neighbour[4 * s + edge];
+    return this->neighbour[4 * s + edge] & (MaximumSize - 1);
   }
   std::uint32_t vertexOf(std::uint32_t s, int k) const { return this->vertex[4 * s + k]; }
   Point3 cornerOf(std::uint32_t s, int k) const { return this->surfels[s].corner(k); }
   /// The edge of the neighbour across edge `edge` of surfel s that is the same linel.
-  int sharedEdge(std::uint32_t s, int edge) const { return this->neighbourEdge[4 * s + edge]; }
+  int sharedEdge(std::uint32_t s, int edge) const
+  {
+    return static_cast<int>(this->neighbour[4 * s + edge] >> 30);
+  }
 
   /// Calls visit(u) for each surfel of the umbrella of the vertex at corner k of surfel s,
   /// in order round it, s first; stops early when visit returns false.
@@ -60,14 +69,15 @@ struct SurfelGraph
     {
       if (!visit(u))
         return;
-      const int j = this->sharedEdge(u, corner);
-      u = this->neighbourOf(u, corner);
-      corner = (j + 1) % 4;
+      const std::uint32_t link = this->neighbour[4 * u + corner]; // one load for both
+      u = link & (MaximumSize - 1);
+      corner = static_cast<int>((link >> 30) + 1) % 4;
     } while (u != s);
   }
 };
 
-/// Builds the graph; returns false when aborted.
+/// Builds the graph; returns false when aborted. Throws std::length_error for MaximumSize
+/// surfels or more.
 bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGraph& out);
 
 } // namespace vbr
