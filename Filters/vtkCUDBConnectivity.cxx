@@ -1338,6 +1338,7 @@ struct BoxCells
       ids <= std::numeric_limits<std::int32_t>::max()
         ? ownCornerCells<vtkTypeInt32Array>(count, this->layout.corners)
         : ownCornerCells<vtkTypeInt64Array>(count, this->layout.corners));
+    vbr::vtk::reserveArrays(output->GetCellData(), 3);
     output->GetCellData()->AddArray(this->regionIds);
     output->GetCellData()->AddArray(this->boxIds);
     output->GetCellData()->AddArray(this->labels);
@@ -1575,6 +1576,7 @@ struct RegionColumns
 
   void addTo(vtkTable* table)
   {
+    vbr::vtk::reserveArrays(table->GetRowData(), 18);
     table->AddColumn(this->ids);
     table->AddColumn(this->labels);
     table->AddColumn(this->voxels);
@@ -1640,18 +1642,29 @@ struct Summary
       this->sortings.push_back(sorting);
   }
 
-  void write(vtkFieldData* fd) const
+  /// The summary's field arrays. Every port gets the same arrays: making, naming, adding and
+  /// later releasing each small array was a large part of an update of a small image.
+  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays() const
   {
-    vbr::vtk::addFieldValue(fd, "NumberOfRegions", this->regions);
-    vbr::vtk::addFieldValue(fd, "NumberOfComponents", this->components);
-    vbr::vtk::addFieldValue(fd, "NumberOfBoxes", this->boxes);
-    vbr::vtk::addFieldValue(fd, "NumberOfOUDBBoxes", this->oudbBoxes);
-    vbr::vtk::addFieldValue(fd, "NumberOfExtremeVertices", this->extremeVertices);
+    std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
+    const std::pair<const char*, vtkIdType> values[] = { { "NumberOfRegions", this->regions },
+      { "NumberOfComponents", this->components },
+      { "NumberOfBoxes", this->boxes },
+      { "NumberOfOUDBBoxes", this->oudbBoxes },
+      { "NumberOfExtremeVertices", this->extremeVertices } };
+    for (const auto& value : values)
+    {
+      vtkNew<vtkIdTypeArray> a;
+      a->SetName(value.first);
+      a->InsertNextValue(value.second);
+      arrays.emplace_back(a);
+    }
     vtkNew<vtkStringArray> s;
     s->SetName("SortingOrder");
     for (const std::string& name : this->sortings)
       s->InsertNextValue(name);
-    fd->AddArray(s);
+    arrays.emplace_back(s);
+    return arrays;
   }
 };
 
@@ -2019,11 +2032,15 @@ void writeBoxesAndTable(vtkCUDBConnectivity* self,
     writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
   writeRegionTable(
     objects, regions, regionIds, regionOfRow, in.grid, in.axes, in.labelType, ports.table);
+  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays();
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
-    summary.write(port->GetFieldData());
-    vbr::vtk::addDistributionFields(port->GetFieldData(), in.piece);
+    vtkFieldData* fd = port->GetFieldData();
+    vbr::vtk::reserveArrays(fd, static_cast<int>(fields.size()));
+    for (vtkAbstractArray* a : fields)
+      fd->AddArray(a);
+    vbr::vtk::addDistributionFields(fd, in.piece);
   }
 }
 

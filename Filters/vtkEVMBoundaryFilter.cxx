@@ -170,6 +170,7 @@ public:
       output->SetPolys(cells);
 
     vtkCellData* cd = output->GetCellData();
+    vbr::vtk::reserveArrays(cd, this->Planar ? 6 : 4); // and FaceColor (setBoundaryColoring)
     cd->AddArray(named(toArray<vtkIdTypeArray>(this->FaceId), "FaceId"));
     cd->AddArray(named(toArray<vtkIntArray>(this->LoopType), "LoopType"));
     cd->AddArray(this->labelArray(labelType, cellCount));
@@ -1115,12 +1116,14 @@ void appendObjects(vtkAlgorithm* self,
 
 void writeStatistics(const Statistics& stats, vtkFieldData* fd)
 {
-  vbr::vtk::addFieldValue(fd, "NumberOfVoxels", stats.voxels);
-  vbr::vtk::addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);
-  vbr::vtk::addFieldValue(fd, "NumberOfSurfels", stats.surfels);
-  vbr::vtk::addFieldValue(fd, "NumberOfFaces", stats.faces);
-  vbr::vtk::addFieldValue(fd, "NumberOfHoles", stats.holes);
-  vbr::vtk::addFieldValue(fd, "NumberOfNonManifoldVertices", stats.nonManifoldVertices);
+  vbr::vtk::addFieldValues(fd,
+    { { "NumberOfVoxels", stats.voxels },
+      { "NumberOfExtremeVertices", stats.extremeVertices },
+      { "NumberOfSurfels", stats.surfels },
+      { "NumberOfFaces", stats.faces },
+      { "NumberOfHoles", stats.holes },
+      { "NumberOfNonManifoldVertices", stats.nonManifoldVertices } },
+    1); // NumberOfPlanesOfVertices
   vtkNew<vtkIdTypeArray> planes;
   planes->SetName("NumberOfPlanesOfVertices");
   planes->SetNumberOfComponents(3);

@@ -498,6 +498,20 @@ void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value)
   fd->AddArray(a);
 }
 
+void reserveArrays(vtkFieldData* fd, int count)
+{
+  // Slots past the arrays are empty (AllocateArrays only unregisters arrays there).
+  if (count > 0)
+    fd->AllocateArrays(fd->GetNumberOfArrays() + count);
+}
+
+void addFieldValues(vtkFieldData* fd, std::initializer_list<FieldValue> values, int following)
+{
+  reserveArrays(fd, static_cast<int>(values.size()) + following);
+  for (const FieldValue& v : values)
+    addFieldValue(fd, v.name, v.value);
+}
+
 std::string readVoxels(vtkImageData* image,
   vtkDataArray*& scalars,
   int association,
