@@ -505,11 +505,81 @@ void reserveArrays(vtkFieldData* fd, int count)
     fd->AllocateArrays(fd->GetNumberOfArrays() + count);
 }
 
-void addFieldValues(vtkFieldData* fd, std::initializer_list<FieldValue> values, int following)
+void addFieldValues(vtkFieldData* fd,
+  std::initializer_list<FieldValue> values,
+  int following,
+  ArrayRecycler* recycler)
 {
   reserveArrays(fd, static_cast<int>(values.size()) + following);
   for (const FieldValue& v : values)
-    addFieldValue(fd, v.name, v.value);
+  {
+    if (!recycler)
+    {
+      addFieldValue(fd, v.name, v.value);
+      continue;
+    }
+    vtkSmartPointer<vtkIdTypeArray> a = recycler->take<vtkIdTypeArray>(v.name);
+    a->SetName(v.name);
+    a->InsertNextValue(v.value);
+    fd->AddArray(a);
+  }
+}
+
+vtkSmartPointer<vtkAbstractArray> ArrayRecycler::takeKept(const char* key)
+{
+  const std::size_t n = this->Kept.size();
+  std::size_t found = n;
+  for (std::size_t i = 0; i < n && found == n; ++i)
+  {
+    const std::size_t at = (this->Next + i) % n;
+    if (this->Kept[at].first == key)
+      found = at;
+  }
+  if (found == n || !this->Kept[found].second)
+    return nullptr;
+  this->Next = found + 1;
+  vtkSmartPointer<vtkAbstractArray> array = std::move(this->Kept[found].second);
+  this->Kept[found].second = nullptr;
+  // Held elsewhere, or carrying what a new array would not: not taken.
+  if (array->GetReferenceCount() != 1 || array->HasAComponentName())
+    return nullptr;
+  array->Initialize(); // its values released, as a new array has none
+  array->SetNumberOfComponents(1);
+  array->SetName(nullptr);
+  if (array->HasInformation())
+    array->GetInformation()->Clear();
+  if (vtkDataArray* data = vtkDataArray::SafeDownCast(array))
+    data->SetLookupTable(nullptr);
+  array->Modified();
+  return array;
+}
+
+vtkSmartPointer<vtkDataArray> ArrayRecycler::takeOfType(const char* key, int dataType)
+{
+  vtkSmartPointer<vtkDataArray> array = vtkDataArray::SafeDownCast(this->takeKept(key));
+  if (!array || array->GetDataType() != dataType)
+    array.TakeReference(vtkDataArray::CreateDataArray(dataType));
+  this->InUse.emplace_back(key, array);
+  return array;
+}
+
+void ArrayRecycler::endUpdate()
+{
+  constexpr unsigned long MostKiB = 64; // GetActualMemorySize's unit
+  for (auto& used : this->InUse)
+  {
+    if (used.second->GetActualMemorySize() > MostKiB)
+      continue;
+    auto slot = std::find_if(this->Kept.begin(),
+      this->Kept.end(),
+      [&](const Slot& kept) { return kept.first == used.first; });
+    if (slot == this->Kept.end())
+      this->Kept.emplace_back(std::move(used));
+    else
+      slot->second = std::move(used.second);
+  }
+  this->InUse.clear();
+  this->Next = 0;
 }
 
 std::string readVoxels(vtkImageData* image,
@@ -978,14 +1048,15 @@ LabelValue labelAt(vtkDataArray* labels, vtkIdType i)
   return LabelValue::of(labels->GetComponent(i, 0));
 }
 
-void setBoundaryColoring(vtkPolyData* output, bool labelsMode)
+void setBoundaryColoring(vtkPolyData* output, bool labelsMode, ArrayRecycler* recycled)
 {
   vtkCellData* cd = output->GetCellData();
   vtkDataArray* faceIds = cd->GetArray("FaceId");
   if (!faceIds)
     return;
   const vtkIdType n = faceIds->GetNumberOfTuples();
-  vtkNew<vtkFloatArray> colors;
+  vtkSmartPointer<vtkFloatArray> colors =
+    recycled ? recycled->take<vtkFloatArray>("FaceColor") : vtkSmartPointer<vtkFloatArray>::New();
   colors->SetName("FaceColor");
   resizeOrThrow(colors, n);
   float* out = colors->GetPointer(0);
