@@ -565,11 +565,20 @@ vtkSmartPointer<vtkDataArray> ArrayRecycler::takeOfType(const char* key, int dat
 
 void ArrayRecycler::endUpdate()
 {
+  // Kept only when every array taken is small: only small outputs gain (the fixed cost of a
+  // large one is lost in its work), and keeping the small arrays of a large output changed how
+  // the heap was trimmed between updates (a 256^2 noise image's update faulted in ten times
+  // the pages and took 15 % longer).
   constexpr unsigned long MostKiB = 64; // GetActualMemorySize's unit
+  const bool small = std::all_of(this->InUse.begin(),
+    this->InUse.end(),
+    [](const Slot& used) { return used.second->GetActualMemorySize() <= MostKiB; });
+  if (!small)
+    this->Kept.clear();
   for (auto& used : this->InUse)
   {
-    if (used.second->GetActualMemorySize() > MostKiB)
-      continue;
+    if (!small)
+      break;
     auto slot = std::find_if(this->Kept.begin(),
       this->Kept.end(),
       [&](const Slot& kept) { return kept.first == used.first; });

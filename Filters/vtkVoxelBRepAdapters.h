@@ -140,9 +140,10 @@ void reserveArrays(vtkFieldData* fd, int count);
 /// refilled. Making a VTK array (the object factory, its buffer object) and releasing it
 /// later cost more than all the rest a filter does for the few dozen small arrays of a small
 /// image's outputs. An array held elsewhere (a reference kept by the caller, a shallow copy)
-/// is never taken: a new one is made. Only arrays of at most 64 KiB are kept (endUpdate), so
-/// a large output's memory is released as before. Keys are string literals, told apart by
-/// address (one per place an array is made). One filter's, used on its thread.
+/// is never taken: a new one is made. Arrays are kept only from updates whose arrays are all
+/// of at most 64 KiB (endUpdate), so a large output's memory is released as before. Keys are string
+/// literals, told apart by address (one per place an array is made). One filter's, used on its
+/// thread.
 class ArrayRecycler
 {
 public:
@@ -165,7 +166,8 @@ public:
   /// The same for an array of vtkDataArray::CreateDataArray(dataType).
   vtkSmartPointer<vtkDataArray> takeOfType(const char* key, int dataType);
 
-  /// Keeps the small arrays taken since the last call for the next update; releases the others.
+  /// Keeps the arrays taken since the last call for the next update when they are all small;
+  /// else releases them and every array kept.
   void endUpdate();
 
 private:
