@@ -566,9 +566,7 @@ vtkSmartPointer<vtkDataArray> ArrayRecycler::takeOfType(const char* key, int dat
 void ArrayRecycler::endUpdate()
 {
   // Kept only when every array taken is small: only small outputs gain (the fixed cost of a
-  // large one is lost in its work), and keeping the small arrays of a large output changed how
-  // the heap was trimmed between updates (a 256^2 noise image's update faulted in ten times
-  // the pages and took 15 % longer).
+  // large one is lost in its work), and a large output's memory is released as before.
   constexpr unsigned long MostKiB = 64; // GetActualMemorySize's unit
   const bool small = std::all_of(this->InUse.begin(),
     this->InUse.end(),

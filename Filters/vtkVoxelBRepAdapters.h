@@ -141,9 +141,9 @@ void reserveArrays(vtkFieldData* fd, int count);
 /// later cost more than all the rest a filter does for the few dozen small arrays of a small
 /// image's outputs. An array held elsewhere (a reference kept by the caller, a shallow copy)
 /// is never taken: a new one is made. Arrays are kept only from updates whose arrays are all
-/// of at most 64 KiB (endUpdate), so a large output's memory is released as before. Keys are string
-/// literals, told apart by address (one per place an array is made). One filter's, used on its
-/// thread.
+/// of at most 64 KiB (endUpdate), so a large output's memory is released as before. Keys are
+/// string literals, told apart by address (one per place an array is made). One filter's, used
+/// on its thread.
 class ArrayRecycler
 {
 public:
