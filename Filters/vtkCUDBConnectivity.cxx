@@ -72,6 +72,11 @@
 
 vtkStandardNewMacro(vtkCUDBConnectivity);
 
+/// The small arrays of the outputs, kept for the next update (see vbr::vtk::ArrayRecycler).
+class vtkCUDBConnectivity::vtkInternals : public vbr::vtk::ArrayRecycler
+{
+};
+
 namespace
 {
 
@@ -465,14 +470,6 @@ void allocateTuples(const std::vector<vtkDataArray*>& arrays, vtkIdType tuples, 
       vbr::vtk::resizeOrThrow(array, tuples);
     }
   }
-}
-
-/// A Label array of `tuples` values of `labelType` (as vbr::vtk::newLabelArray), unset.
-vtkSmartPointer<vtkDataArray> newUnsetLabelArray(int labelType, vtkIdType tuples, double groupBytes)
-{
-  vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType, 0);
-  allocateTuples({ labels }, tuples, groupBytes);
-  return labels;
 }
 
 /// The statistics of one region's row of the table, as gathered from its boxes. Trivial: the
@@ -1256,19 +1253,29 @@ struct CornerWriter
 struct BoxCells
 {
   BoxCellLayout layout;
-  vtkNew<vtkDoubleArray> coordinates;
-  vtkNew<vtkIdTypeArray> boxIds;
-  vtkNew<vtkIntArray> regionIds;
+  vbr::vtk::ArrayRecycler& recycled;
+  vtkSmartPointer<vtkDoubleArray> coordinates;
+  vtkSmartPointer<vtkIdTypeArray> boxIds;
+  vtkSmartPointer<vtkIntArray> regionIds;
   vtkSmartPointer<vtkDataArray> labels;
 
-  BoxCells(const BoxCellLayout& cellLayout, vtkIdType count, int labelType)
+  BoxCells(const BoxCellLayout& cellLayout,
+    vtkIdType count,
+    int labelType,
+    vbr::vtk::ArrayRecycler& recycler)
     : layout(cellLayout)
+    , recycled(recycler)
+    , coordinates(recycler.take<vtkDoubleArray>("boxes points"))
+    , boxIds(recycler.take<vtkIdTypeArray>("boxes BoxId"))
+    , regionIds(recycler.take<vtkIntArray>("boxes RegionId"))
+    , labels(recycler.takeOfType("boxes Label", labelType))
   {
     const int corners = this->layout.corners;
     this->coordinates->SetNumberOfComponents(3);
     const double bytes = outputBytes(count, corners);
     allocateTuples({ this->coordinates }, count * corners, bytes);
-    this->labels = newUnsetLabelArray(labelType, count, bytes);
+    this->labels->SetName("Label"); // as vbr::vtk::newLabelArray
+    allocateTuples({ this->labels }, count, bytes);
     allocateTuples({ this->boxIds, this->regionIds }, count, bytes);
     this->boxIds->SetName("BoxId");
     this->regionIds->SetName("RegionId");
@@ -1311,9 +1318,10 @@ struct BoxCells
   /// corners * i + corners - 1), with 32-bit ids when they fit: vtkCellArray reads both, and
   /// on a checkerboard (a box per voxel) the ids were a quarter of the boxes' memory.
   template<typename ArrayType>
-  static vtkSmartPointer<vtkCellArray> ownCornerCells(vtkIdType count, int corners)
+  vtkSmartPointer<vtkCellArray> ownCornerCells(vtkIdType count, int corners)
   {
-    vtkNew<ArrayType> offsets, connectivity;
+    vtkSmartPointer<ArrayType> offsets = this->recycled.take<ArrayType>("boxes offsets");
+    vtkSmartPointer<ArrayType> connectivity = this->recycled.take<ArrayType>("boxes connectivity");
     const double bytes = outputBytes(count, corners);
     allocateTuples({ offsets }, count + 1, bytes);
     allocateTuples({ connectivity }, count * corners, bytes);
@@ -1338,6 +1346,7 @@ struct BoxCells
       ids <= std::numeric_limits<std::int32_t>::max()
         ? ownCornerCells<vtkTypeInt32Array>(count, this->layout.corners)
         : ownCornerCells<vtkTypeInt64Array>(count, this->layout.corners));
+    vbr::vtk::reserveArrays(output->GetCellData(), 3);
     output->GetCellData()->AddArray(this->regionIds);
     output->GetCellData()->AddArray(this->boxIds);
     output->GetCellData()->AddArray(this->labels);
@@ -1389,10 +1398,11 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
+  vbr::vtk::ArrayRecycler& recycled,
   vtkUnstructuredGrid* output)
 {
   const BoxCellLayout layout = boxCellLayout(grid, axes);
-  BoxCells cells(layout, countKeptBoxes(objects, regionIds), labelType);
+  BoxCells cells(layout, countKeptBoxes(objects, regionIds), labelType, recycled);
   const CornerWriter corners(grid, layout, axes);
   vtkIdType cell = 0, boxBase = 0;
   for (const ObjectBoxes& o : objects)
@@ -1493,20 +1503,37 @@ struct RowTransform
 /// filled value by value through the generic array interface cost more than its labelling).
 struct RegionColumns
 {
-  vtkNew<vtkIntArray> ids;
+  vtkSmartPointer<vtkIntArray> ids;
   vtkSmartPointer<vtkDataArray> labels;
-  vtkNew<vtkIdTypeArray> voxels, boxes;
-  vtkNew<vtkDoubleArray> volumes, centroids;
+  vtkSmartPointer<vtkIdTypeArray> voxels, boxes;
+  vtkSmartPointer<vtkDoubleArray> volumes;
+  vtkNew<vtkDoubleArray> centroids; // its component names keep it from being recycled
   // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
   // (The fixed-size classes, which the columns have always had.)
-  std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
-  std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
+  std::array<vtkSmartPointer<vtkTypeInt32Array>, 6> indexBounds;
+  std::array<vtkSmartPointer<vtkTypeFloat64Array>, 6> worldBounds;
 
-  RegionColumns(int labelType, vtkIdType count)
-    : labels(vbr::vtk::newLabelArray(labelType, 0))
+  RegionColumns(int labelType, vtkIdType count, vbr::vtk::ArrayRecycler& recycled)
+    : ids(recycled.take<vtkIntArray>("table RegionId"))
+    , labels(recycled.takeOfType("table Label", labelType))
+    , voxels(recycled.take<vtkIdTypeArray>("table VoxelCount"))
+    , boxes(recycled.take<vtkIdTypeArray>("table NumberOfBoxes"))
+    , volumes(recycled.take<vtkDoubleArray>("table Volume"))
   {
     static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
     static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
+    static const char* const indexKeys[6] = {
+      "table IMin", "table IMax", "table JMin", "table JMax", "table KMin", "table KMax"
+    };
+    static const char* const worldKeys[6] = {
+      "table XMin", "table XMax", "table YMin", "table YMax", "table ZMin", "table ZMax"
+    };
+    for (int k = 0; k < 6; ++k)
+    {
+      this->indexBounds[k] = recycled.take<vtkTypeInt32Array>(indexKeys[k]);
+      this->worldBounds[k] = recycled.take<vtkTypeFloat64Array>(worldKeys[k]);
+    }
+    this->labels->SetName("Label");
     this->ids->SetName("RegionId");
     this->voxels->SetName("VoxelCount");
     this->volumes->SetName("Volume");
@@ -1575,6 +1602,7 @@ struct RegionColumns
 
   void addTo(vtkTable* table)
   {
+    vbr::vtk::reserveArrays(table->GetRowData(), 18);
     table->AddColumn(this->ids);
     table->AddColumn(this->labels);
     table->AddColumn(this->voxels);
@@ -1596,9 +1624,10 @@ void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
+  vbr::vtk::ArrayRecycler& recycled,
   vtkTable* table)
 {
-  RegionColumns columns(labelType, static_cast<vtkIdType>(regionOfRow.size()));
+  RegionColumns columns(labelType, static_cast<vtkIdType>(regionOfRow.size()), recycled);
   for (const ObjectBoxes& o : objects)
     scatterLabel(columns.labels, regionIds.data() + o.firstRegion, o.componentCount(), o.label);
   columns.write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
@@ -1613,13 +1642,17 @@ struct Ports
   vtkImageData* output;
   vtkUnstructuredGrid* boxes;
   vtkTable* table;
+  vbr::vtk::ArrayRecycler& recycled; ///< the filter's arrays kept from its last update
 
-  Ports(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  Ports(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vbr::vtk::ArrayRecycler& recycler)
     : input(vtkImageData::GetData(inputVector[0]))
     , seeds(vtkDataSet::GetData(inputVector[1]))
     , output(vtkImageData::GetData(outputVector, 0))
     , boxes(vtkUnstructuredGrid::GetData(outputVector, 1))
     , table(vtkTable::GetData(outputVector, 2))
+    , recycled(recycler)
   {
   }
 };
@@ -1640,18 +1673,30 @@ struct Summary
       this->sortings.push_back(sorting);
   }
 
-  void write(vtkFieldData* fd) const
+  /// The summary's field arrays. Every port gets the same arrays: making, naming, adding and
+  /// later releasing each small array was a large part of an update of a small image.
+  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays(
+    vbr::vtk::ArrayRecycler& recycled) const
   {
-    vbr::vtk::addFieldValue(fd, "NumberOfRegions", this->regions);
-    vbr::vtk::addFieldValue(fd, "NumberOfComponents", this->components);
-    vbr::vtk::addFieldValue(fd, "NumberOfBoxes", this->boxes);
-    vbr::vtk::addFieldValue(fd, "NumberOfOUDBBoxes", this->oudbBoxes);
-    vbr::vtk::addFieldValue(fd, "NumberOfExtremeVertices", this->extremeVertices);
+    std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
+    const std::pair<const char*, vtkIdType> values[] = { { "NumberOfRegions", this->regions },
+      { "NumberOfComponents", this->components },
+      { "NumberOfBoxes", this->boxes },
+      { "NumberOfOUDBBoxes", this->oudbBoxes },
+      { "NumberOfExtremeVertices", this->extremeVertices } };
+    for (const auto& value : values)
+    {
+      vtkSmartPointer<vtkIdTypeArray> a = recycled.take<vtkIdTypeArray>(value.first);
+      a->SetName(value.first);
+      a->InsertNextValue(value.second);
+      arrays.emplace_back(a);
+    }
     vtkNew<vtkStringArray> s;
     s->SetName("SortingOrder");
     for (const std::string& name : this->sortings)
       s->InsertNextValue(name);
-    fd->AddArray(s);
+    arrays.emplace_back(s);
+    return arrays;
   }
 };
 
@@ -2016,14 +2061,25 @@ void writeBoxesAndTable(vtkCUDBConnectivity* self,
 {
   vtkLogScopeF(TRACE, "boxes and region table");
   if (self->GetGenerateBoxes())
-    writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(
-    objects, regions, regionIds, regionOfRow, in.grid, in.axes, in.labelType, ports.table);
+    writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.recycled, ports.boxes);
+  writeRegionTable(objects,
+    regions,
+    regionIds,
+    regionOfRow,
+    in.grid,
+    in.axes,
+    in.labelType,
+    ports.recycled,
+    ports.table);
+  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays(ports.recycled);
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
-    summary.write(port->GetFieldData());
-    vbr::vtk::addDistributionFields(port->GetFieldData(), in.piece);
+    vtkFieldData* fd = port->GetFieldData();
+    vbr::vtk::reserveArrays(fd, static_cast<int>(fields.size()));
+    for (vtkAbstractArray* a : fields)
+      fd->AddArray(a);
+    vbr::vtk::addDistributionFields(fd, in.piece);
   }
 }
 
@@ -2067,6 +2123,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
 
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::vtkCUDBConnectivity()
+  : Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
@@ -2079,6 +2136,7 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::~vtkCUDBConnectivity()
 {
+  delete this->Internals; // before the last user clears BlockCache
   BlockCache::instance().addUser(-1);
 }
 
@@ -2172,17 +2230,19 @@ int vtkCUDBConnectivity::RequestData(vtkInformation*,
   vtkInformationVector* outputVector)
 {
   const CacheUpdate update;
-  return vbr::vtk::executeGuarded(this,
+  const int done = vbr::vtk::executeGuarded(this,
     outputVector,
     "Connected components",
     [&] { return this->Execute(inputVector, outputVector); });
+  this->Internals->endUpdate();
+  return done;
 }
 
 //------------------------------------------------------------------------------
 int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const Ports ports(inputVector, outputVector);
+  const Ports ports(inputVector, outputVector, *this->Internals);
   vtkImageData *input = ports.input, *output = ports.output;
   vtkDataSet* seeds = ports.seeds;
   if (!input || !output || !ports.boxes || !ports.table)

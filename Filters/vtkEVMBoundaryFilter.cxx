@@ -50,6 +50,11 @@
 
 vtkStandardNewMacro(vtkEVMBoundaryFilter);
 
+/// The small arrays of the output, kept for the next update (see vbr::vtk::ArrayRecycler).
+class vtkEVMBoundaryFilter::vtkInternals : public vbr::vtk::ArrayRecycler
+{
+};
+
 namespace
 {
 
@@ -160,7 +165,7 @@ public:
     part.clearKeepingMemory();
   }
 
-  void finish(vtkPolyData* output, bool lines, int labelType)
+  void finish(vtkPolyData* output, bool lines, int labelType, vbr::vtk::ArrayRecycler& recycled)
   {
     const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
     vtkSmartPointer<vtkCellArray> cells = this->Cells.release();
@@ -170,13 +175,14 @@ public:
       output->SetPolys(cells);
 
     vtkCellData* cd = output->GetCellData();
-    cd->AddArray(named(toArray<vtkIdTypeArray>(this->FaceId), "FaceId"));
-    cd->AddArray(named(toArray<vtkIntArray>(this->LoopType), "LoopType"));
-    cd->AddArray(this->labelArray(labelType, cellCount));
+    vbr::vtk::reserveArrays(cd, this->Planar ? 6 : 4); // and FaceColor (setBoundaryColoring)
+    cd->AddArray(toArray<vtkIdTypeArray>(this->FaceId, "FaceId", recycled));
+    cd->AddArray(toArray<vtkIntArray>(this->LoopType, "LoopType", recycled));
+    cd->AddArray(this->labelArray(labelType, cellCount, recycled));
     if (this->Planar)
     {
-      cd->AddArray(named(toArray<vtkIdTypeArray>(this->ParentFace), "ParentFace"));
-      cd->AddArray(named(toArray<vtkIntArray>(this->Depth), "Depth"));
+      cd->AddArray(toArray<vtkIdTypeArray>(this->ParentFace, "ParentFace", recycled));
+      cd->AddArray(toArray<vtkIntArray>(this->Depth, "Depth", recycled));
     }
   }
 
@@ -208,10 +214,18 @@ private:
     this->LabelRuns.clear();
   }
 
-  /// The Label of every cell from the runs.
-  vtkSmartPointer<vtkDataArray> labelArray(int labelType, vtkIdType cellCount)
+  /// The Label of every cell from the runs (vbr::vtk::newLabelArray's array).
+  vtkSmartPointer<vtkDataArray> labelArray(int labelType,
+    vtkIdType cellCount,
+    vbr::vtk::ArrayRecycler& recycled)
   {
-    vtkSmartPointer<vtkDataArray> label = vbr::vtk::newLabelArray(labelType, cellCount);
+    vtkSmartPointer<vtkDataArray> label = recycled.takeOfType("cells Label", labelType);
+    label->SetName("Label");
+    vbr::vtk::resizeOrThrow(label, cellCount);
+    if (cellCount > 0)
+      std::memset(label->GetVoidPointer(0),
+        0,
+        static_cast<std::size_t>(cellCount) * label->GetDataTypeSize());
     for (std::size_t r = 0; r < this->LabelRuns.size(); ++r)
     {
       const vtkIdType end =
@@ -222,19 +236,16 @@ private:
     return label;
   }
 
-  template<typename ArrayType>
-  static vtkSmartPointer<ArrayType> named(vtkSmartPointer<ArrayType> a, const char* name)
-  {
-    a->SetName(name);
-    return a;
-  }
-
-  /// A VTK array that takes over the values of `v`.
+  /// A VTK array named `name` that takes over the values of `v`. (`name` is its recycling
+  /// key too: a string literal.)
   template<typename ArrayType, typename Value>
-  static vtkSmartPointer<ArrayType> toArray(MallocBuffer<Value>& v)
+  static vtkSmartPointer<ArrayType> toArray(MallocBuffer<Value>& v,
+    const char* name,
+    vbr::vtk::ArrayRecycler& recycled)
   {
-    auto a = vtkSmartPointer<ArrayType>::New();
+    vtkSmartPointer<ArrayType> a = recycled.take<ArrayType>(name);
     v.handTo(a.GetPointer());
+    a->SetName(name);
     return a;
   }
 
@@ -332,15 +343,15 @@ public:
     }
   }
 
-  void finish(vtkPolyData* output, bool lines, int labelType)
+  void finish(vtkPolyData* output, bool lines, int labelType, vbr::vtk::ArrayRecycler& recycled)
   {
-    vtkNew<vtkDoubleArray> coordinates;
+    vtkSmartPointer<vtkDoubleArray> coordinates = recycled.take<vtkDoubleArray>("points");
     coordinates->SetNumberOfComponents(3);
     this->Coordinates.handTo(coordinates.GetPointer());
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
     output->SetPoints(points);
-    this->Cells.finish(output, lines, labelType);
+    this->Cells.finish(output, lines, labelType, recycled);
   }
 
 private:
@@ -1113,15 +1124,19 @@ void appendObjects(vtkAlgorithm* self,
   }
 }
 
-void writeStatistics(const Statistics& stats, vtkFieldData* fd)
+void writeStatistics(const Statistics& stats, vtkFieldData* fd, vbr::vtk::ArrayRecycler& recycled)
 {
-  vbr::vtk::addFieldValue(fd, "NumberOfVoxels", stats.voxels);
-  vbr::vtk::addFieldValue(fd, "NumberOfExtremeVertices", stats.extremeVertices);
-  vbr::vtk::addFieldValue(fd, "NumberOfSurfels", stats.surfels);
-  vbr::vtk::addFieldValue(fd, "NumberOfFaces", stats.faces);
-  vbr::vtk::addFieldValue(fd, "NumberOfHoles", stats.holes);
-  vbr::vtk::addFieldValue(fd, "NumberOfNonManifoldVertices", stats.nonManifoldVertices);
-  vtkNew<vtkIdTypeArray> planes;
+  vbr::vtk::addFieldValues(fd,
+    { { "NumberOfVoxels", stats.voxels },
+      { "NumberOfExtremeVertices", stats.extremeVertices },
+      { "NumberOfSurfels", stats.surfels },
+      { "NumberOfFaces", stats.faces },
+      { "NumberOfHoles", stats.holes },
+      { "NumberOfNonManifoldVertices", stats.nonManifoldVertices } },
+    1, // NumberOfPlanesOfVertices
+    &recycled);
+  vtkSmartPointer<vtkIdTypeArray> planes =
+    recycled.take<vtkIdTypeArray>("NumberOfPlanesOfVertices");
   planes->SetName("NumberOfPlanesOfVertices");
   planes->SetNumberOfComponents(3);
   planes->InsertNextTypedTuple(stats.planes.data());
@@ -1132,6 +1147,7 @@ void writeStatistics(const Statistics& stats, vtkFieldData* fd)
 
 //------------------------------------------------------------------------------
 vtkEVMBoundaryFilter::vtkEVMBoundaryFilter()
+  : Internals(new vtkInternals)
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
@@ -1139,7 +1155,10 @@ vtkEVMBoundaryFilter::vtkEVMBoundaryFilter()
 }
 
 //------------------------------------------------------------------------------
-vtkEVMBoundaryFilter::~vtkEVMBoundaryFilter() = default;
+vtkEVMBoundaryFilter::~vtkEVMBoundaryFilter()
+{
+  delete this->Internals;
+}
 
 //------------------------------------------------------------------------------
 int vtkEVMBoundaryFilter::FillInputPortInformation(int, vtkInformation* info)
@@ -1171,10 +1190,12 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  return vbr::vtk::executeGuarded(this,
+  const int done = vbr::vtk::executeGuarded(this,
     outputVector,
     "Boundary extraction",
     [&] { return this->Execute(inputVector, outputVector); });
+  this->Internals->endUpdate();
+  return done;
 }
 
 //------------------------------------------------------------------------------
@@ -1222,10 +1243,10 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   {
     vtkLogScopeF(TRACE, "hand the output to VTK");
     const bool lines = this->OutputMode == POLYLINES || (planar && this->OutputMode == SURFELS);
-    builder.finish(output, lines, in.labelType);
+    builder.finish(output, lines, in.labelType, *this->Internals);
   }
-  vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS);
-  writeStatistics(stats, output->GetFieldData());
+  vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS, this->Internals);
+  writeStatistics(stats, output->GetFieldData(), *this->Internals);
   vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   return 1;
 }

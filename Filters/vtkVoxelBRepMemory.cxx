@@ -26,6 +26,11 @@ constexpr std::uint64_t Unknown = std::numeric_limits<std::uint64_t>::max();
 /// several times, and the system does not refuse so little memory: it overcommits.
 constexpr double SmallAllocationBytes = 64.0 * 1024 * 1024;
 
+/// Below this size an allocation is not checked at all. A process whose address space cannot
+/// take one more mebibyte fails in its next allocation anywhere, checked or not; and a small
+/// image's update made up to a dozen such checks, each a system call (getrlimit).
+constexpr double TinyAllocationBytes = 1024.0 * 1024;
+
 /// The value of `key` (in kiB) in /proc/meminfo, in bytes; Unknown when absent.
 std::uint64_t memInfoBytes(const std::string& key)
 {
@@ -73,12 +78,14 @@ std::uint64_t addressSpaceLeft()
 #endif
 }
 
-/// Whether `bytes` is a small allocation within the address-space limit (ulimit -v); without
-/// a limit that is one system call.
+/// Whether `bytes` is a tiny allocation (no system call), or a small one within the
+/// address-space limit (ulimit -v; without a limit that is one system call).
 bool fitsWithoutAsking(double bytes)
 {
   if (!std::isfinite(bytes) || bytes < 0.0 || bytes >= SmallAllocationBytes)
     return false;
+  if (bytes < TinyAllocationBytes)
+    return true;
   const std::uint64_t left = addressSpaceLeft();
   return left == Unknown || bytes <= double(left);
 }

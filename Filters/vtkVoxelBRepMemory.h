@@ -18,7 +18,8 @@ namespace vtk
 /// nothing is known.
 std::uint64_t availableMemoryBytes();
 
-/// An empty string when `bytes` fit in availableMemoryBytes(), if need be once the memory kept
+/// An empty string when `bytes` fit in availableMemoryBytes() (always below 1 MiB, unchecked:
+/// a small image's update makes several such requests), if need be once the memory kept
 /// for reuse is given back (reclaimMemory); otherwise an error message
 /// naming `what`, the bytes needed and the limit. A negative or non-finite estimate (an
 /// overflowing product) never fits.

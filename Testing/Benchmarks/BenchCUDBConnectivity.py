@@ -36,6 +36,7 @@ from vtkmodules.util import numpy_support as ns
 from vtkmodules.vtkCommonCore import vtkSMPTools
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkPassThrough
 
 import voxelbrep
 
@@ -83,6 +84,8 @@ def parse_arguments():
                    help="time the process's CPU time rather than the wall clock (a loaded "
                         "machine; meaningful with one thread)")
     p.add_argument("--inputs-program", help="the BenchInputs program")
+    p.add_argument("--no-fixed-cost", action="store_true",
+                   help="no fixed-cost tables (a call on a tiny image of zeros)")
     args = p.parse_args()
     if args.quick and "--repeat" not in sys.argv:
         args.repeat = 1
@@ -153,6 +156,63 @@ def time_in_turns(repeat, contenders, clock=time.perf_counter):
             times[k].append(clock() - t0)
     return [(c[0], c[1], c[2], statistics.median(t), min(t), p)
             for c, t, p in zip(contenders, times, peaks)]
+
+
+def pipeline_run(algorithm, image):
+    """Modified() and Update() of `algorithm` on `image`: one update through the pipeline."""
+    algorithm.SetInputData(image)
+
+    def run():
+        algorithm.Modified()
+        algorithm.Update()
+
+    return run
+
+
+def print_fixed_cost(title, contenders, quick):
+    """The cost of one call on a tiny image, which every update pays whatever the image: each
+    contender (name, run) is called many times per turn, the turns rotate, and the CPU time
+    per call is the median over the turns. vtkPassThrough's row is VTK's own pipeline cost
+    (the floor of any filter's update)."""
+    calls, turns = (50, 3) if quick else (2000, 7)
+    times = {name: [] for name, _ in contenders}
+    for name, run in contenders:
+        run()  # warm-up
+    for t in range(turns):
+        for i in range(len(contenders)):
+            name, run = contenders[(i + t) % len(contenders)]
+            t0 = time.process_time()
+            for _ in range(calls):
+                run()
+            times[name].append((time.process_time() - t0) / calls)
+    print("## Fixed cost per call: %s (CPU time, %d calls x %d turns)\n" % (title, calls, turns))
+    print("| contender | median us | min us |")
+    print("| :-- | --: | --: |")
+    for name, _ in contenders:
+        print("| %s | %.1f | %.1f |" % (
+            name, 1e6 * statistics.median(times[name]), 1e6 * min(times[name])))
+    print(flush=True)
+
+
+def fixed_costs(args):
+    """Fixed cost of the filter (every output, and without the boxes) against VTK's pipeline
+    and the peers, on a 16x16 and a 16^3 image of zeros."""
+    for shape in ((1, 16, 16), (16, 16, 16)):
+        mask = np.zeros(shape, np.uint8)
+        image = image_of(mask)
+        data = mask[0] if shape[0] == 1 else mask
+        contenders = [("vtkPassThrough", pipeline_run(vtkPassThrough(), image))]
+        for boxes in (True, False):
+            f = voxelbrep.vtkCUDBConnectivity()
+            f.SetGenerateBoxes(boxes)
+            contenders.append(("filter face" + ("" if boxes else ", no boxes"),
+                               pipeline_run(f, image)))
+        structure = ndimage.generate_binary_structure(data.ndim, 1)
+        contenders.append(("scipy %d" % int(structure.sum() - 1),
+                           lambda: ndimage.label(data, structure)))
+        if shape[0] == 1 and cv2 is not None:
+            contenders.append(("OpenCV 4", lambda: cv2.connectedComponents(data, connectivity=4)))
+        print_fixed_cost("%dx%dx%d zeros" % shape[::-1], contenders, args.quick)
 
 
 def image_of(mask):
@@ -453,16 +513,18 @@ def backends_in_turn(args):
         yield backend
 
 
-def run_benchmarks(title, args, benchmark, finish, accept=lambda mask: True):
-    """The driver both Python benchmarks share: --list, the header, benchmark(name, mask, args,
-    summary) on every accepted input, finish(summary), and the mismatches, which fail the run
-    (exit code 1)."""
+def run_benchmarks(title, args, benchmark, finish, accept=lambda mask: True, first=None):
+    """The driver both Python benchmarks share: --list, the header, first(args) (the fixed
+    costs), benchmark(name, mask, args, summary) on every accepted input, finish(summary), and
+    the mismatches, which fail the run (exit code 1)."""
     if args.list:
         return subprocess.run(inputs_command(args) + ["--list"]).returncode
     print("# %s\n\n- VTK_SMP_BACKEND_IN_USE=%s, OpenCV %s, %s\n" % (
         title, os.environ.get("VTK_SMP_BACKEND_IN_USE", "(unset)"),
         cv2.__version__ if cv2 is not None else "absent",
         "CPU time" if getattr(args, "cpu", False) else "wall clock"), flush=True)
+    if first is not None and not getattr(args, "no_fixed_cost", False):
+        first(args)
     failures, summary = [], []
     for name, _, mask in load_inputs(args):
         if accept(mask):
@@ -476,7 +538,8 @@ def run_benchmarks(title, args, benchmark, finish, accept=lambda mask: True):
 def main():
     args = parse_arguments()
     failures = check_random_images(args.check) if args.check and not args.list else []
-    code = run_benchmarks("BenchCUDBConnectivity.py", args, benchmark, print_summary)
+    code = run_benchmarks("BenchCUDBConnectivity.py", args, benchmark, print_summary,
+                          first=fixed_costs)
     for f in failures:
         print("MISMATCH " + f, file=sys.stderr)
     return 1 if failures else code

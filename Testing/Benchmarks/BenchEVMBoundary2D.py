@@ -28,7 +28,8 @@ import voxelbrep
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from BenchCUDBConnectivity import (  # noqa: E402
-    backends_in_turn, image_of, run_benchmarks, time_in_turns)
+    backends_in_turn, image_of, pipeline_run, print_fixed_cost, run_benchmarks, time_in_turns)
+from vtkmodules.vtkFiltersCore import vtkPassThrough  # noqa: E402
 
 try:
     import cv2
@@ -57,6 +58,8 @@ def parse_arguments():
     p.add_argument("--backends", help="vtkSMPTools backends (default: the one at start)")
     p.add_argument("--list", action="store_true", help="print the selected inputs and stop")
     p.add_argument("--inputs-program", help="the BenchInputs program")
+    p.add_argument("--no-fixed-cost", action="store_true",
+                   help="no fixed-cost table (a call on a 16x16 image of zeros)")
     args = p.parse_args()
     if args.quick and "--repeat" not in sys.argv:
         args.repeat = 1
@@ -121,6 +124,29 @@ def check_answers(name, answers):
         name, sorted(answers["OpenCV"].items()), sorted(answers["Polylines"].items()))]
 
 
+def fixed_costs(args):
+    """Fixed cost of the filter in each mode (as benchmarked: MergeNonManifoldFaces on, and
+    Triangles and Polylines by default) against VTK's pipeline and OpenCV, on a 16x16 image of
+    zeros."""
+    mask = np.zeros((1, 16, 16), np.uint8)
+    image = image_of(mask)
+    contenders = [("vtkPassThrough", pipeline_run(vtkPassThrough(), image))]
+    for mode in args.modes.split(","):
+        for merge in (True, False):
+            if not merge and mode not in ("Triangles", "Polylines"):
+                continue
+            f = voxelbrep.vtkEVMBoundaryFilter()
+            f.SetMergeNonManifoldFaces(merge)
+            getattr(f, "SetOutputModeTo" + mode)()
+            contenders.append(("filter " + mode + ("" if merge else ", default faces"),
+                               pipeline_run(f, image)))
+    if cv2 is not None:
+        padded = np.pad(mask[0], 1)
+        contenders.append(("OpenCV findContours", lambda: cv2.findContours(
+            padded, cv2.RETR_TREE, cv2.CHAIN_APPROX_SIMPLE)))
+    print_fixed_cost("16x16 zeros", contenders, args.quick)
+
+
 def print_rows(backend, rows, pixels):
     print("backend %s\n" % backend)
     print("| contender | median ms | min ms | peak MB | B/pixel | OpenCV / this |")
@@ -174,7 +200,8 @@ def main():
     args = parse_arguments()
     return run_benchmarks("BenchEVMBoundary2D.py", args, benchmark,
                           lambda summary: print_summary(summary, args.modes.split(",")),
-                          accept=lambda mask: mask.shape[0] == 1)  # 3D inputs: not this one's
+                          accept=lambda mask: mask.shape[0] == 1,  # 3D inputs: not this one's
+                          first=fixed_costs)
 
 
 if __name__ == "__main__":
