@@ -70,6 +70,8 @@
  *
  * A flat image (one voxel along an axis) is polyhedrized as a one-voxel-thick slab.
  *
+ * A boundary of 2^30 surfels or more (about 64 GB of working memory) is refused with an error.
+ *
  * @warning Threaded with vtkSMPTools (VTK_SMP_BACKEND_IN_USE=STDThread, for instance): the
  * faces of different boundary components grow concurrently, with the same faces, in the same
  * order, as on one thread, and their moves, loops and vertex counts likewise; the surfel graph's

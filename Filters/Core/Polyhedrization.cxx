@@ -13,11 +13,11 @@
 // are dealt to groups grown concurrently (groupComponents, growGroupsInWaves), and their faces put
 // back in the order of their seeds (gatherInSeedOrder), the sequential order, with the stamps
 // renumbered: the same faces, numbers and refusals as on one thread. The steps after the growth go
-// over the same groups concurrently (Part, forEachPart: the moves, the loops, the vertex counts),
-// each touching only its components' surfels, faces and vertices. The output: each face's
-// boundary loop (LoopTracer, all loops in one array), when asked the face beyond each loop edge,
-// and the number of faces around each vertex (countFacesAtVertices: the standard vertices have
-// three or more).
+// over the same groups concurrently (Part, forEachPart: the moves and the loops), each touching
+// only its components' surfels, faces and vertices; the vertex counts are one pass over the loops.
+// The output: each face's boundary loop (LoopTracer, all loops in one array), when asked the face
+// beyond each loop edge, and the number of faces around each vertex (countFacesAtVertices: the
+// standard vertices have three or more).
 //
 // The reversion (revert): each face's surfels are refilled from its outline (FaceFiller: the
 // squares of the plane on the left of the loop's linels, seedFromLoop, flooded across every
@@ -213,7 +213,20 @@ public:
   /// Grows faces from the free surfels of `seeds`, in order; false when stopped.
   bool run(const std::vector<std::uint32_t>& seeds)
   {
+    // The per-vertex stamps (Touching) exist only during the growth: they are freed before the
+    // merging, so nothing may write them once run returns, stopped or not.
     this->Growing = true;
+    const bool done = this->growAll(seeds);
+    this->Growing = false;
+    return done;
+  }
+
+  /// Frees the recognizers kept for large faces by the merging.
+  void releaseCache() { this->Cache.clear(); }
+
+private:
+  bool growAll(const std::vector<std::uint32_t>& seeds)
+  {
     for (std::uint32_t s : seeds)
     {
       if (this->FaceOf[s] != None)
@@ -224,14 +237,9 @@ public:
       if (this->Poll->stopped())
         return false;
     }
-    this->Growing = false;
     return true;
   }
 
-  /// Frees the recognizers kept for large faces by the merging.
-  void releaseCache() { this->Cache.clear(); }
-
-private:
   void growFrom(std::uint32_t seed)
   {
     const std::uint32_t f = static_cast<std::uint32_t>(this->Faces.size());
@@ -264,6 +272,14 @@ private:
     {
       if (!this->Poll->tick())
         break;
+      if (head >= 4096 && 2 * head >= this->Wave.size())
+      {
+        // The entries read are dropped, in order, so that a large face's queue holds its
+        // frontier rather than every surfel ever queued for it.
+        this->Wave.erase(
+          this->Wave.begin(), this->Wave.begin() + static_cast<std::ptrdiff_t>(head));
+        head = 0;
+      }
       const auto [s, depth] = this->Wave[head++];
       this->Queued[s] = None;
       if (this->FaceOf[s] != None || this->Refused[s] == f)
@@ -485,7 +501,7 @@ private:
   void take(std::uint32_t s, std::uint32_t f, std::uint32_t depth)
   {
     this->FaceOf[s] = f;
-    if (this->Growing) // the merging's faces are not the last to take their vertices
+    if (this->Growing) // the stamps exist only during the growth (freed before the merging)
       for (int k = 0; k < 4; ++k)
         this->Touching[this->Graph.vertexOf(s, k)] = f;
     this->Faces[f].surfels.push_back(s);
@@ -533,7 +549,9 @@ private:
   std::vector<Point3> UmbrellaPoints;          ///< in seedUmbrella
   std::array<Point3, 4> Corners;               ///< in pointelsOf
   std::vector<std::uint32_t>&Queued, &Refused; ///< stamped with the face
-  std::vector<std::uint32_t>& Touching;        ///< per vertex, stamped with the face (the growth's)
+  /// Per vertex, the last face of the growth that took a surfel round it. Growers of different
+  /// groups share it safely: a vertex's umbrella never leaves its boundary component.
+  std::vector<std::uint32_t>& Touching;
   std::uint32_t DepthLimit;
 };
 
@@ -1056,7 +1074,8 @@ std::vector<std::vector<std::uint32_t>> gatherInSeedOrder(const SurfelGraph& gra
 }
 
 /// The growth of the groups (growGroupsInWaves), then all the faces in the order of their
-/// seeds (gatherInSeedOrder), with the stamps renumbered to match. Same faces, same numbers,
+/// seeds (gatherInSeedOrder), with the face stamps renumbered to match (the per-vertex stamps are
+/// freed before they would be read again). Same faces, same numbers,
 /// same refusals as the sequential growth.
 bool growGroups(const SurfelGraph& graph,
   const PolyhedrizationOptions& options,
@@ -1262,7 +1281,7 @@ bool polyhedrize(const SurfelGraph& graph,
     if (!mergeSmallFaces(merger, options, exec, out, merging))
       return false;
   }
-  // The loops and the vertex counts go over the parts' faces alone: the groups are freed.
+  // The loops go over the parts' faces alone: the groups are freed.
   std::vector<Part> parts = partsOf(groups, out, faceLists);
   for (Part& part : parts)
     part.surfels = {};

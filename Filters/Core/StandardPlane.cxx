@@ -18,6 +18,7 @@
 #include "StandardPlane.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -736,7 +737,11 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points,
   for (std::size_t i = 0; i < count; ++i)
   {
     if (i < 32 && (known >> i) & 1u)
-      continue; // added already (and so within reach of the origin)
+    {
+      // Added already (and so within reach of the origin): a wrong bit would drop a point.
+      assert(this->Keys.find(packBiased(sub(points[i], this->Origin))) >= 0);
+      continue;
+    }
     const Point3 q = sub(points[i], this->Origin);
     for (int d = 0; d < 3; ++d)
       if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)

@@ -1004,7 +1004,7 @@ TEST(SurfelGraph, VerticesAreGluedCornersAndTheGraphIsCompact)
       ASSERT_EQ(g.vertexPointel.size(), number.size());
       const std::size_t perSurfel = g.surfels.capacity() * sizeof(vbr::Surfel) +
         g.neighbour.capacity() * 4 + g.vertex.capacity() * 4;
-      EXPECT_LE(perSurfel, 52 * n) << "the graph stores more than its arrays per surfel";
+      EXPECT_LE(perSurfel, 48 * n) << "the graph stores more than its arrays per surfel";
       EXPECT_LE(g.vertexPointel.capacity(), g.vertexPointel.size());
     }
 }
