@@ -446,6 +446,13 @@ bool hullsIntersect(const CellList& a, const CellList& b);
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,
   const std::array<std::int32_t, 3>& dims);
 
+/// Whether each shell of a closed embedded lattice mesh faces away from the solid it bounds:
+/// six times its signed volume, exact in integers, positive for a shell nested in an even number
+/// of others (an outer shell, an island in a void) and negative for one nested in an odd number
+/// (the surface of a void), the nesting found by exact ray parity. The checks of H use it (a
+/// shell turned over whole keeps the reversion's parity and the manifold tests intact).
+bool shellsFaceOutward(const LatticeMesh& surface);
+
 namespace detail
 {
 /// For tests of the recursion's point lists and first hulls (see ConvexHullModifier.cxx). Runs

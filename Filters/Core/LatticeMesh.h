@@ -134,12 +134,20 @@ std::vector<std::array<LatticePoint, 3>> trianglesInBoxOf(const LatticeMesh& sur
 /// corefinement. False does not promise a lattice result.
 bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex);
 
-/// The other half of that: whether a crease edge of the mesh (its two triangles not coplanar)
-/// crosses the open interior of a face of the hull transversally at a point off the lattice.
-/// Three planes meet there (the two triangles' and the face's; the edge crosses the face's
-/// plane at that point only), so it is a corner of both the union and the difference that is
-/// not a lattice point, and both Booleans refuse. Exact; a crossing on a flat edge (a diagonal
-/// of a planar face) is left to the Boolean, whose straight crease may not need the point.
+/// The other half of that, and the crossings of edges: whether a crease edge of the mesh (its
+/// two triangles not coplanar) enters the open interior of the hull from outside at a point
+/// off the lattice (through a face, an edge or a diagonal of a face's fan), or an edge of the
+/// hull crosses an edge of the mesh (flat or a crease, inside both) at a point off the lattice,
+/// going from strictly outside the mesh's solid about that edge to strictly inside. Either way
+/// a crease (an edge of one solid) reaches that point from one side only: on the side outside
+/// the other solid it is a crease of the union and of the difference (each is the first solid
+/// there, or the complement of the hull), on the side inside it lies in the interior of the
+/// union and outside the difference. A point where a crease of a polyhedron ends is a corner
+/// of it, so both Booleans have a corner off the lattice and both refuse. Exact; a crossing on a
+/// flat edge of the mesh by a crease of the mesh (a diagonal of a planar face) is left to the
+/// Boolean, whose straight crease may not need the point. On the aneurism (v >= 128) the joins'
+/// whole Booleans refused for a corner off the lattice all had one of these (29 of them, each a
+/// corefinement of a large part of H).
 bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex);
 
 } // namespace vbr

@@ -2216,6 +2216,91 @@ vbr::CellList randomLatticeHull(std::mt19937& rng,
   }
 }
 
+TEST(ConvexHullModifier, ShellsFaceOutwardSeesAShellTurnedOver)
+{
+  // shellsFaceOutward (exact signed volumes and nesting) against CGAL's does_bound_a_volume on H
+  // of objects with nested shells (a ball in the void of a hollow ball: an outer shell, a void
+  // and an island), several outer shells (two balls, random volumes) and voids; then on the
+  // same H with each shell turned over in turn (the shells found here by CGAL's connected
+  // components), and with all turned over: both must refuse every one of those, which the
+  // closedness, the manifold tests and the reversion's ray parity all let pass.
+  const double c = 10;
+  auto at = [&](double x, double y, double z)
+  { return std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c)); };
+  std::vector<vbr::BitVolume> volumes{
+    shape(21,
+      [&](double x, double y, double z)
+      {
+        const double d = at(x, y, z);
+        return d <= 3.5 || (d > 6 && d <= 9);
+      }),
+    shape(21, [&](double x, double y, double z) { return at(x, y, z) > 4 && at(x, y, z) <= 9; }),
+    shape(21,
+      [&](double x, double y, double z) { return at(x, y, z - 5) <= 4 || at(x, y, z + 5) <= 4; }),
+  };
+  for (unsigned seed = 1; seed <= 6; ++seed)
+    volumes.push_back(bf::randomVolume({ 9, 9, 9 }, 0.15 + 0.1 * seed, seed));
+  int flipped = 0, voidsFlipped = 0, islandsFlipped = 0;
+  for (std::size_t i = 0; i < volumes.size(); ++i)
+  {
+    SCOPED_TRACE(i);
+    const vbr::ModifiedHull r = vbr::modifyConvexHull(volumes[i]);
+    ASSERT_TRUE(r.complete) << r.failure;
+    bool manifold = false;
+    Mesh mesh = surfaceMesh(r.surface, manifold);
+    ASSERT_TRUE(manifold);
+    ASSERT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(mesh));
+    EXPECT_TRUE(CGAL::Polygon_mesh_processing::does_bound_a_volume(mesh));
+    EXPECT_TRUE(CGAL::Polygon_mesh_processing::is_outward_oriented(mesh));
+    EXPECT_TRUE(vbr::shellsFaceOutward(r.surface));
+    auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:c", 0).first;
+    const std::size_t shells = CGAL::Polygon_mesh_processing::connected_components(mesh, component);
+    // The faces of the mesh are the triangles in their order: triangle k is face k.
+    std::vector<std::size_t> shellOf;
+    for (auto f : mesh.faces())
+      shellOf.push_back(component[f]);
+    for (std::size_t s = 0; s <= shells; ++s)
+    {
+      // s == shells: every shell turned over.
+      vbr::LatticeMesh turned = r.surface;
+      for (std::size_t k = 0; k < turned.triangles.size(); ++k)
+        if (s == shells || shellOf[k] == s)
+          std::swap(turned.triangles[k][1], turned.triangles[k][2]);
+      bool ok = false;
+      const Mesh turnedMesh = surfaceMesh(turned, ok);
+      ASSERT_TRUE(ok);
+      // CGAL's does_bound_a_volume takes every shell turned over (the solid reaching to
+      // infinity); is_outward_oriented reads the shell about the lowest point, an outer one.
+      EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_bound_a_volume(turnedMesh) &&
+        CGAL::Polygon_mesh_processing::is_outward_oriented(turnedMesh))
+        << s;
+      EXPECT_FALSE(vbr::shellsFaceOutward(turned)) << "shell " << s << " turned over";
+      ++flipped;
+      if (s < shells)
+      {
+        // Six times the shell's signed volume, here: negative for a void's surface.
+        long double volume = 0;
+        for (std::size_t k = 0; k < r.surface.triangles.size(); ++k)
+          if (shellOf[k] == s)
+          {
+            const auto& t = r.surface.triangles[k];
+            const LatticePoint &a = r.surface.points[t[0]], &b = r.surface.points[t[1]],
+                               &d = r.surface.points[t[2]];
+            volume += static_cast<long double>(a[0]) * (b[1] * d[2] - b[2] * d[1]) -
+              static_cast<long double>(a[1]) * (b[0] * d[2] - b[2] * d[0]) +
+              static_cast<long double>(a[2]) * (b[0] * d[1] - b[1] * d[0]);
+          }
+        voidsFlipped += volume < 0;
+        islandsFlipped += i == 0 && volume > 0 && shells == 3;
+      }
+    }
+  }
+  std::cout << flipped << " shells or sets of shells turned over, " << voidsFlipped
+            << " of them voids" << std::endl;
+  EXPECT_GE(voidsFlipped, 2);
+  EXPECT_GE(islandsFlipped, 2); // the ball in the void and the hollow ball's outer shell
+}
+
 TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
 {
   // creaseLeavesTheLattice skips a join's Boolean where a crease edge of H crosses a face of the
