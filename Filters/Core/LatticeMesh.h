@@ -138,16 +138,17 @@ bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
 /// two triangles not coplanar) enters the open interior of the hull from outside at a point
 /// off the lattice (through a face, an edge or a diagonal of a face's fan), or an edge of the
 /// hull crosses an edge of the mesh (flat or a crease, inside both) at a point off the lattice,
-/// going from strictly outside the mesh's solid about that edge to strictly inside. Either way
-/// a crease (an edge of one solid) reaches that point from one side only: on the side outside
-/// the other solid it is a crease of the union and of the difference (each is the first solid
-/// there, or the complement of the hull), on the side inside it lies in the interior of the
-/// union and outside the difference. A point where a crease of a polyhedron ends is a corner
-/// of it, so both Booleans have a corner off the lattice and both refuse. Exact; a crossing on a
-/// flat edge of the mesh by a crease of the mesh (a diagonal of a planar face) is left to the
-/// Boolean, whose straight crease may not need the point. On the aneurism (v >= 128) the joins'
-/// whole Booleans refused for a corner off the lattice all had one of these (29 of them, each a
-/// corefinement of a large part of H).
+/// going from strictly outside the mesh's solid about that edge to strictly inside. Either way a
+/// crease of one solid runs into the other from outside. A crease of the mesh stays a crease of
+/// the union and of the difference outside the hull and is gone inside it (interior of the
+/// union, outside the difference); a crease of the hull is one of the union outside the mesh's
+/// solid and of the difference inside it, and gone on the other side. So the result's crease
+/// ends at that point, which is a corner of it off the lattice: both Booleans refuse. Exact; a
+/// flat edge of the mesh (a diagonal of a planar face) crossing the hull's surface is left to
+/// the Boolean, whose straight crease may not need the point. On the aneurism (v >= 128) this
+/// skips 11 of the 29 joins' whole Booleans refused for a corner off the lattice (each a
+/// corefinement of a large part of H); at the other 18 a crease of one solid meets an edge of
+/// the other lying on one of its faces (a coplanar contact), which is left to the Boolean.
 bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex);
 
 } // namespace vbr
