@@ -2301,6 +2301,58 @@ TEST(ConvexHullModifier, ShellsFaceOutwardSeesAShellTurnedOver)
   EXPECT_GE(islandsFlipped, 2); // the ball in the void and the hollow ball's outer shell
 }
 
+/// det(b - a, c - a, d - a), exactly.
+__int128 orient3(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  const LatticePoint& d)
+{
+  const __int128 u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const __int128 v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const __int128 w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+    u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+/// Whether a crease edge of the mesh crosses the open interior of one of the triangles of the
+/// hull's fans transversally off the lattice: the crossings inside the hull's faces alone,
+/// without those through its edges and diagonals or those of the hull's edges through the
+/// mesh's edges, to count what creaseLeavesTheLattice finds beyond them.
+bool creaseCrossesAFanTriangle(const vbr::LatticeMesh& m, const vbr::CellList& hull)
+{
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      edges[std::minmax(m.triangles[i][k], m.triangles[i][(k + 1) % 3])].push_back(i);
+  const vbr::LatticeMesh fans = vbr::triangulateHull(hull);
+  for (const auto& [e, incident] : edges)
+  {
+    const auto& t = m.triangles[incident[0]];
+    const auto& u = m.triangles[incident[1]];
+    const std::uint32_t apex = u[0] + u[1] + u[2] - e.first - e.second;
+    if (orient3(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[apex]) == 0)
+      continue;
+    const LatticePoint &a = m.points[e.first], &b = m.points[e.second];
+    for (const auto& f : fans.triangles)
+    {
+      const LatticePoint &p = fans.points[f[0]], &q = fans.points[f[1]], &r = fans.points[f[2]];
+      const __int128 sa = orient3(p, q, r, a), sb = orient3(p, q, r, b);
+      if (sa == 0 || sb == 0 || (sa > 0) == (sb > 0))
+        continue;
+      const __int128 s0 = orient3(a, b, p, q), s1 = orient3(a, b, q, r), s2 = orient3(a, b, r, p);
+      if (s0 == 0 || (s0 > 0) != (s1 > 0) || (s1 > 0) != (s2 > 0) || s1 == 0 || s2 == 0)
+        continue;
+      // a + sa / (sa - sb) (b - a) is a lattice point only when every coordinate divides.
+      bool lattice = true;
+      for (int k = 0; k < 3; ++k)
+        lattice = lattice && (sa * (b[k] - a[k])) % (sa - sb) == 0;
+      if (!lattice)
+        return true;
+    }
+  }
+  return false;
+}
+
 TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
 {
   // creaseLeavesTheLattice skips a join's Boolean where a crease edge of H crosses a face of the
@@ -2315,7 +2367,7 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
   { return randomLatticeHull(rng, coord, small, n, large); };
   const vbr::LatticeMesh pacMan5 = vbr::modifyConvexHull(pacMan(5)).surface;
   const Nef pacMan5Solid = nefOf(pacMan5);
-  int predicted = 0, only = 0, pairs = 0;
+  int predicted = 0, only = 0, pairs = 0, throughEdges = 0;
   for (int trial = 0; trial < 160; ++trial)
   {
     SCOPED_TRACE(trial);
@@ -2326,6 +2378,7 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
       continue;
     ++predicted;
     only += !vbr::booleanLeavesTheLattice(a, b);
+    throughEdges += !vbr::booleanLeavesTheLattice(a, b) && !creaseCrossesAFanTriangle(a, b);
     const vbr::LatticeMesh bMesh = vbr::triangulateHull(b);
     vbr::LatticeMesh difference, unionMesh;
     EXPECT_FALSE(vbr::latticeDifference(a, bMesh, difference)) << "difference kept";
@@ -2337,9 +2390,49 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
       << "the exact union has its corners on the lattice";
   }
   std::cout << pairs << " pairs, " << predicted << " found by the creases, " << only
-            << " of them not by the prism's edges" << std::endl;
+            << " of them not by the prism's edges, " << throughEdges
+            << " of those not inside a face (through an edge or a diagonal)" << std::endl;
   EXPECT_GE(predicted, pairs / 4);
   EXPECT_GE(only, 1);
+}
+
+TEST(ConvexHullModifier, CreasesThroughEdgesLeavingTheLatticeAreFoundBeforehand)
+{
+  // The cases of creaseLeavesTheLattice beyond a crease through the open inside of a face (of a
+  // fan's triangle) and beyond the prism's edges through the open triangles of H: a crease of H
+  // entering the hull through one of its edges or diagonals, or an edge of the hull crossing an
+  // edge of H. Each one found among small random hulls about the pac-man's H and random H is
+  // checked as above: both Booleans refuse and the exact (Nef) union and difference have a
+  // corner off the lattice.
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<long> coord(0, 10), small(0, 3);
+  const std::vector<vbr::LatticeMesh> surfaces{ vbr::modifyConvexHull(pacMan(5)).surface,
+    vbr::modifyConvexHull(bf::randomVolume({ 10, 10, 10 }, 0.5, 3)).surface };
+  const std::vector<Nef> solids{ nefOf(surfaces[0]), nefOf(surfaces[1]) };
+  int found = 0, pairs = 0;
+  for (; pairs < 40000 && found < 30; ++pairs)
+  {
+    const std::size_t which = pairs % 2;
+    const vbr::LatticeMesh& a = surfaces[which];
+    const vbr::CellList b = randomLatticeHull(rng, coord, small, 4 + pairs % 4, false);
+    if (!vbr::creaseLeavesTheLattice(a, b) || vbr::booleanLeavesTheLattice(a, b) ||
+      creaseCrossesAFanTriangle(a, b))
+      continue;
+    ++found;
+    SCOPED_TRACE(pairs);
+    const vbr::LatticeMesh bMesh = vbr::triangulateHull(b);
+    vbr::LatticeMesh difference, unionMesh;
+    EXPECT_FALSE(vbr::latticeDifference(a, bMesh, difference)) << "difference kept";
+    EXPECT_FALSE(vbr::latticeUnion(a, bMesh, unionMesh)) << "union kept";
+    const Nef bSolid = nefOf(bMesh);
+    EXPECT_TRUE(cornerOffLattice((solids[which] - bSolid).regularization()))
+      << "the exact difference has its corners on the lattice";
+    EXPECT_TRUE(cornerOffLattice(solids[which] + bSolid))
+      << "the exact union has its corners on the lattice";
+  }
+  std::cout << pairs << " pairs, " << found << " found only through edges or diagonals"
+            << std::endl;
+  EXPECT_GE(found, 5);
 }
 
 TEST(ConvexHullModifier, BooleansNearAHullAreTheWholeBooleans)
