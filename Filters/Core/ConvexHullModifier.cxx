@@ -3138,7 +3138,8 @@ bool joinAlongPrism(Context& ctx,
     // Boolean from the part's triangles near P first (the part is mostly the vessel's main
     // shell on the aneurism: the whole corefinement costs all of it for every prism tried).
     const bool unite = cut == part.reversed;
-    if (!booleanWithPrism(part.mesh, prism, unite, joined))
+    if (edgeCrossingLeavesTheLattice(part.mesh, prism, unite) ||
+      !booleanWithPrism(part.mesh, prism, unite, joined))
       return false;
     if (part.reversed)
       for (auto& t : joined.triangles)

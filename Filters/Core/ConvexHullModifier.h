@@ -105,8 +105,10 @@
 // (83 of 97 on the Al cartoon and the headsq bone at half resolution, none of them a join).
 // The join's own part of H then meets creaseLeavesTheLattice (a crease of H entering P through
 // a face, an edge or a diagonal, or an edge of P crossing an edge of H, off the lattice), still
-// counted as a Boolean tried, so the same prisms are tried: on the aneurism (v >= 128) it skips
-// 11 of the 29 whole corefinements that were refused for a corner off the lattice.
+// counted as a Boolean tried, so the same prisms are tried, and then edgeCrossingLeavesTheLattice
+// (an edge of P meeting a crease of H where one touches a face of the other, for the Boolean to
+// be made): on the aneurism (v >= 128) the two skip 11 and 11 of the 29 whole corefinements
+// that were refused for a corner off the lattice (7 are left, each of a large part of H).
 // When none of the prisms from the 12 nearest empty triangles joins a shell, those from the 60
 // nearest are tried (a void reaching out along a 1 wide tunnel in long thin triangles, the
 // hollow balls of R 10 with an off-centre tunnel, needs them); the prisms the cheap tests

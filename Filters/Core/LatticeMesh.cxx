@@ -1006,6 +1006,22 @@ int sideAlong(const MeshEdge& edge, const LatticePoint& d)
   return st < 0 || su < 0 ? 1 : st > 0 && su > 0 ? -1 : 0;
 }
 
+/// Whether the segment pq crosses the open edge of the mesh at a point strictly inside both
+/// that is not a lattice point.
+bool edgesCrossOffLattice(const LatticePoint& p, const LatticePoint& q, const MeshEdge& edge)
+{
+  const LatticePoint d = minus(q, p);
+  if (orientation(p, q, edge.a, edge.b) != 0)
+    return false; // the lines do not meet
+  const LatticePoint pa = normalOf(edge.a, edge.b, p), qa = normalOf(edge.a, edge.b, q);
+  const LatticePoint ap = normalOf(p, q, edge.a), bp = normalOf(p, q, edge.b);
+  if (dot(pa, qa) >= 0 || dot(ap, bp) >= 0)
+    return false;
+  const LatticePoint& n = dot(edge.nt, d) != 0 ? edge.nt : edge.nu;
+  const Wide den = dot(n, d), num = dot(n, minus(edge.a, p));
+  return den != 0 && offLatticeAt(d, num, den);
+}
+
 /// Whether the segment pq (an edge of a solid hull) crosses the open edge of the mesh at a
 /// point strictly inside both that is not a lattice point, going from strictly outside the
 /// mesh's solid about the edge to strictly inside (either way along pq).
@@ -1076,6 +1092,118 @@ bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
       return true;
     for (const auto& e : convex.edges)
       if (hullEdgeCrossesOffLattice(convex.vertices[e[0]], convex.vertices[e[1]], edge))
+        return true;
+  }
+  return false;
+}
+
+namespace
+{
+
+/// A ray from the crossing point of an edge of the mesh and an edge of the hull, along one of
+/// the two edges: whether the result of the Boolean has a crease along it (1), has none (0), or
+/// that is not known here (-1).
+struct Ray
+{
+  LatticePoint direction;
+  int crease = -1;
+};
+
+/// The rays along the mesh's crease edge and the hull's edge from their crossing point. Along
+/// the mesh's crease: outside the hull the result is the mesh's solid (a crease), inside it is
+/// all solid (union) or none (difference). Along the hull's edge: inside the mesh's solid the
+/// difference is the hull's complement (a crease) and the union all solid; outside it the
+/// union is the hull (a crease) and the difference empty. On a face of the other: not known.
+std::array<Ray, 4> raysAt(const MeshEdge& mesh, const MeshEdge& hull, bool unite)
+{
+  const LatticePoint f = minus(mesh.b, mesh.a), d = minus(hull.b, hull.a);
+  std::array<Ray, 4> rays{
+    Ray{ f }, Ray{ { -f[0], -f[1], -f[2] } }, Ray{ d }, Ray{ { -d[0], -d[1], -d[2] } }
+  };
+  for (int k = 0; k < 2; ++k)
+  {
+    const int side = sideAlong(hull, rays[k].direction);
+    rays[k].crease = side < 0 ? 1 : side > 0 ? 0 : -1;
+  }
+  for (int k = 2; k < 4; ++k)
+  {
+    const int side = sideAlong(mesh, rays[k].direction);
+    rays[k].crease = side == 0 ? -1 : (side > 0) != unite ? 1 : 0;
+  }
+  return rays;
+}
+
+/// Whether the creases of the result about the crossing point cannot lie on one line through
+/// it (they would, were the point inside a face or a straight edge of the result): a crease
+/// along a ray whose opposite ray has none, or creases along both edges' lines.
+bool creasesMakeACorner(const std::array<Ray, 4>& rays)
+{
+  for (int k = 0; k < 4; ++k)
+    if (rays[k].crease == 1 && rays[k ^ 1].crease == 0)
+      return true;
+  const bool meshLine = rays[0].crease == 1 || rays[1].crease == 1;
+  const bool hullLine = rays[2].crease == 1 || rays[3].crease == 1;
+  return meshLine && hullLine;
+}
+
+} // namespace
+
+bool edgeCrossingLeavesTheLattice(const LatticeMesh& surface, const CellList& convex, bool unite)
+{
+  if (convex.dimension != 3)
+    return false;
+  LatticePoint lo = convex.vertices[0], hi = lo;
+  for (const auto& v : convex.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t i = 0; i < surface.triangles.size(); ++i)
+  {
+    const auto& tri = surface.triangles[i];
+    bool meets = true;
+    for (int a = 0; a < 3 && meets; ++a)
+    {
+      const auto c = [&](int k) { return surface.points[tri[k]][a]; };
+      meets = std::max({ c(0), c(1), c(2) }) > lo[a] && std::min({ c(0), c(1), c(2) }) < hi[a];
+    }
+    for (int k = 0; k < 3 && meets; ++k)
+      edges[std::minmax(tri[k], tri[(k + 1) % 3])].push_back(i);
+  }
+  // The hull's edges as edges of a convex solid: the outward normals of their two faces.
+  std::vector<MeshEdge> hullEdges;
+  for (std::size_t e = 0; e < convex.edges.size(); ++e)
+  {
+    MeshEdge h;
+    h.a = convex.vertices[convex.edges[e][0]];
+    h.b = convex.vertices[convex.edges[e][1]];
+    h.nt = convex.planes[convex.edgeFaces[e][0]].normal;
+    h.nu = convex.planes[convex.edgeFaces[e][1]].normal;
+    h.convexity = 1;
+    hullEdges.push_back(h);
+  }
+  for (const auto& [ends, incident] : edges)
+  {
+    if (incident.size() != 2)
+      continue;
+    const auto& t = surface.triangles[incident[0]];
+    const auto& u = surface.triangles[incident[1]];
+    const std::uint32_t apex = u[0] != ends.first && u[0] != ends.second ? u[0]
+      : u[1] != ends.first && u[1] != ends.second                        ? u[1]
+                                                                         : u[2];
+    const auto point = [&](std::uint32_t i) -> const LatticePoint& { return surface.points[i]; };
+    MeshEdge edge;
+    edge.a = point(ends.first);
+    edge.b = point(ends.second);
+    edge.nt = normalOf(point(t[0]), point(t[1]), point(t[2]));
+    edge.nu = normalOf(point(u[0]), point(u[1]), point(u[2]));
+    edge.convexity = -orientation(point(t[0]), point(t[1]), point(t[2]), point(apex));
+    if (edge.convexity == 0)
+      continue; // a flat edge: creaseLeavesTheLattice's rule is the whole answer there
+    for (const MeshEdge& h : hullEdges)
+      if (edgesCrossOffLattice(h.a, h.b, edge) && creasesMakeACorner(raysAt(edge, h, unite)))
         return true;
   }
   return false;

@@ -2435,6 +2435,54 @@ TEST(ConvexHullModifier, CreasesThroughEdgesLeavingTheLatticeAreFoundBeforehand)
   EXPECT_GE(found, 5);
 }
 
+TEST(ConvexHullModifier, EdgeCrossingsAtCoplanarContactsAreFoundBeforehand)
+{
+  // edgeCrossingLeavesTheLattice, for the union and for the difference apart: whenever it says
+  // the result has a corner off the lattice where a crease of H meets an edge of the hull, that
+  // Boolean must refuse and its exact (Nef) result must have a corner off the lattice. Small
+  // random hulls about the pac-man's H and a random H, until enough of each are found that
+  // creaseLeavesTheLattice does not (the coplanar contacts it leaves).
+  std::mt19937 rng(29);
+  std::uniform_int_distribution<long> coord(0, 10), small(0, 3);
+  const std::vector<vbr::LatticeMesh> surfaces{ vbr::modifyConvexHull(pacMan(5)).surface,
+    vbr::modifyConvexHull(bf::randomVolume({ 10, 10, 10 }, 0.5, 3)).surface };
+  const std::vector<Nef> solids{ nefOf(surfaces[0]), nefOf(surfaces[1]) };
+  int found[2] = { 0, 0 }, beyond[2] = { 0, 0 }, pairs = 0;
+  for (; pairs < 60000 && (beyond[0] < 12 || beyond[1] < 12); ++pairs)
+  {
+    const std::size_t which = pairs % 2;
+    const vbr::LatticeMesh& a = surfaces[which];
+    const vbr::CellList b = randomLatticeHull(rng, coord, small, 4 + pairs % 4, false);
+    for (const bool unite : { false, true })
+    {
+      if (!vbr::edgeCrossingLeavesTheLattice(a, b, unite))
+        continue;
+      ++found[unite];
+      const bool elsewhere =
+        vbr::creaseLeavesTheLattice(a, b) || vbr::booleanLeavesTheLattice(a, b);
+      if (elsewhere && found[unite] > 40)
+        continue; // enough of those checked
+      beyond[unite] += !elsewhere;
+      SCOPED_TRACE(pairs);
+      SCOPED_TRACE(unite ? "union" : "difference");
+      const vbr::LatticeMesh bMesh = vbr::triangulateHull(b);
+      vbr::LatticeMesh result;
+      EXPECT_FALSE(
+        unite ? vbr::latticeUnion(a, bMesh, result) : vbr::latticeDifference(a, bMesh, result))
+        << "kept";
+      const Nef bSolid = nefOf(bMesh);
+      EXPECT_TRUE(cornerOffLattice(
+        unite ? solids[which] + bSolid : (solids[which] - bSolid).regularization()))
+        << "the exact result has its corners on the lattice";
+    }
+  }
+  std::cout << pairs << " pairs; found for the difference " << found[0] << " (" << beyond[0]
+            << " not by the other tests), for the union " << found[1] << " (" << beyond[1] << ")"
+            << std::endl;
+  EXPECT_GE(beyond[0], 5);
+  EXPECT_GE(beyond[1], 5);
+}
+
 TEST(ConvexHullModifier, BooleansNearAHullAreTheWholeBooleans)
 {
   // latticeBooleanNear (a join's Boolean from the triangles near the prism only) against the
