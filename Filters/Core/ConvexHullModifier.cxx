@@ -2149,11 +2149,17 @@ bool revertsToObjects(const BitVolume& objects, const LatticeMesh& surface)
   return revertWithPointsOn(surface, on, background, objects.dims()) == objects;
 }
 
+struct Shell;
+std::vector<Shell> shellsOf(const LatticeMesh& m);
+bool shellsFaceOutward(const std::vector<Shell>& shells);
+
 /// Whether H separates: a closed embedded 2-manifold, each shell oriented away from its solid
-/// (the joins turn parts of H over and back), from which the voxel set reverts exactly.
+/// (the joins turn parts of H over and back; shellsFaceOutward, exact), from which the voxel
+/// set reverts exactly.
 bool separates(const BitVolume& objects, const LatticeMesh& surface)
 {
-  return boundsAVolume(surface) && revertsToObjects(objects, surface);
+  return isClosedEmbeddedManifold(surface) && shellsFaceOutward(shellsOf(surface)) &&
+    revertsToObjects(objects, surface);
 }
 
 /// Whether the mesh is a closed, consistently oriented 2-manifold: every directed edge once and
@@ -2208,12 +2214,13 @@ bool isClosedManifold(const LatticeMesh& m)
 /// changed only inside that box (isEmbeddedWithin). So the whole H is embedded; the
 /// self-intersection test of all of H (about 0.9 s of CPU on the aneurism's 48,000 triangles)
 /// is left out, and what the changes could still have missed is checked: closed, manifold,
-/// consistently oriented within each shell, and the reversion. That each shell still faces away
-/// from its solid is argued (each Boolean keeps its operands' orientation), not tested here:
-/// the reversion counts crossings by parity and would not see a shell turned over whole.
+/// consistently oriented within each shell, each shell facing away from its solid (exact signed
+/// volumes and nesting, shellsFaceOutward: the reversion counts crossings by parity and would
+/// not see a shell turned over whole), and the reversion.
 bool separatesAfterLocalChecks(const BitVolume& objects, const LatticeMesh& surface)
 {
-  return isClosedManifold(surface) && revertsToObjects(objects, surface);
+  return isClosedManifold(surface) && shellsFaceOutward(shellsOf(surface)) &&
+    revertsToObjects(objects, surface);
 }
 
 /// Repairing the topology (see the header): a void of H whose background centres reach the
@@ -2897,6 +2904,40 @@ int sideOf(const ShelledSurface& surface, const LatticePoint& p, std::int64_t k)
   return inside ? 1 : -1;
 }
 
+/// Whether every shell of a closed embedded mesh faces away from the solid it bounds, tested
+/// exactly: six times a shell's signed volume (Shell::volume, the sum of det(a, b, c) over its
+/// triangles, integer) is positive when it is oriented outwards, and a shell nested in an odd
+/// number of others bounds a void, so it must face into it (negative), one nested in an even
+/// number (none: an outer shell; two: an island in a void) outwards. The shells are apart (no
+/// shared point, no crossing), so a shell lies inside another exactly when one of its points
+/// does (exact ray parity, sideOf). This is what CGAL's does_bound_a_volume decides for such a
+/// mesh; unlike the closedness, manifoldness and reversion checks, it sees a shell turned over
+/// whole (the ray parity of the reversion does not).
+bool shellsFaceOutward(const std::vector<Shell>& shells)
+{
+  for (std::size_t i = 0; i < shells.size(); ++i)
+  {
+    if (shells[i].volume == 0)
+      return false;
+    const LatticePoint& p = shells[i].mesh.points[0];
+    bool nestedOddly = false;
+    for (std::size_t j = 0; j < shells.size(); ++j)
+    {
+      const LatticeBox& b = shells[j].box;
+      if (j == i || p[0] < b[0][0] || p[0] > b[1][0] || p[1] < b[0][1] || p[1] > b[1][1] ||
+        p[2] < b[0][2] || p[2] > b[1][2])
+        continue;
+      const int side = sideOf(shells[j].mesh, p, 1);
+      if (side == 0)
+        return false; // shells that touch: not embedded
+      nestedOddly = nestedOddly != (side > 0);
+    }
+    if ((shells[i].volume > 0) == nestedOddly)
+      return false;
+  }
+  return true;
+}
+
 /// Whether every lattice point of the closed prism P lies on the right side of `joined`, the
 /// part of H that P changed after P was cut out of it or added to it (no object centre outside,
 /// no background centre inside, off the grid included), with the new sides of those in the grid;
@@ -3097,7 +3138,8 @@ bool joinAlongPrism(Context& ctx,
     // Boolean from the part's triangles near P first (the part is mostly the vessel's main
     // shell on the aneurism: the whole corefinement costs all of it for every prism tried).
     const bool unite = cut == part.reversed;
-    if (!booleanWithPrism(part.mesh, prism, unite, joined))
+    if (edgeCrossingLeavesTheLattice(part.mesh, prism, unite) ||
+      !booleanWithPrism(part.mesh, prism, unite, joined))
       return false;
     if (part.reversed)
       for (auto& t : joined.triangles)
@@ -3512,6 +3554,11 @@ bool criticalCorner(unsigned config)
 }
 
 } // namespace
+
+bool shellsFaceOutward(const LatticeMesh& surface)
+{
+  return shellsFaceOutward(shellsOf(surface));
+}
 
 std::optional<long> wellComposedBoundaryEuler(const BitVolume& objects, const Execution& exec)
 {

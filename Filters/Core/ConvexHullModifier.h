@@ -88,8 +88,9 @@
 // Boolean is a closed 2-manifold with lattice corners, with one shell less and an Euler
 // characteristic 2 lower (a tube between two shells), and the whole result is checked once more
 // at the end (closed, consistently oriented within each shell, one fan per point, exact
-// reversion; embedded it is by each join's test in its prism's box, outward by each Boolean's
-// keeping its operands' orientation), else H stays as it was. Octahedra conv{c +- e_i} along
+// reversion, and each shell facing away from its solid: exact signed volumes against the
+// shells' nesting, shellsFaceOutward; embedded it is by each join's test in its prism's box),
+// else H stays as it was. Octahedra conv{c +- e_i} along
 // the path (the obvious channel) do not work: their faces cut H's faces at points that are not
 // lattice points.
 // Cost of the joining: H is embedded before a join and the Boolean changes it only inside P,
@@ -102,6 +103,12 @@
 // (booleanLeavesTheLattice, LatticeMesh.h): that crossing is a corner of the result, which
 // latticeBoolean would refuse; such prisms were nearly all the refused Booleans on real objects
 // (83 of 97 on the Al cartoon and the headsq bone at half resolution, none of them a join).
+// The join's own part of H then meets creaseLeavesTheLattice (a crease of H entering P through
+// a face, an edge or a diagonal, or an edge of P crossing an edge of H, off the lattice), still
+// counted as a Boolean tried, so the same prisms are tried, and then edgeCrossingLeavesTheLattice
+// (an edge of P meeting a crease of H where one touches a face of the other, for the Boolean to
+// be made): on the aneurism (v >= 128) the two skip 11 and 11 of the 29 whole corefinements
+// that were refused for a corner off the lattice (7 are left, each of a large part of H).
 // When none of the prisms from the 12 nearest empty triangles joins a shell, those from the 60
 // nearest are tried (a void reaching out along a 1 wide tunnel in long thin triangles, the
 // hollow balls of R 10 with an off-centre tunnel, needs them); the prisms the cheap tests
@@ -445,6 +452,13 @@ bool hullsIntersect(const CellList& a, const CellList& b);
 /// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface,
   const std::array<std::int32_t, 3>& dims);
+
+/// Whether each shell of a closed embedded lattice mesh faces away from the solid it bounds:
+/// six times its signed volume, exact in integers, positive for a shell nested in an even number
+/// of others (an outer shell, an island in a void) and negative for one nested in an odd number
+/// (the surface of a void), the nesting found by exact ray parity. The checks of H use it (a
+/// shell turned over whole keeps the reversion's parity and the manifold tests intact).
+bool shellsFaceOutward(const LatticeMesh& surface);
 
 namespace detail
 {

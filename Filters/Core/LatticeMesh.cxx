@@ -912,6 +912,141 @@ bool booleanLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
   return false;
 }
 
+namespace
+{
+
+/// Whether a + (num / den) e is off the lattice, for a lattice point a (den != 0).
+bool offLatticeAt(const LatticePoint& e, Wide num, Wide den)
+{
+  for (int k = 0; k < 3; ++k)
+    if ((num * e[k]) % den != 0)
+      return true;
+  return false;
+}
+
+/// A parameter num / den of a line, den > 0.
+struct Fraction
+{
+  Wide num = 0;
+  Wide den = 0; ///< 0: unbounded
+};
+
+bool less(const Fraction& x, const Fraction& y)
+{
+  return x.num * y.den < y.num * x.den;
+}
+
+/// Whether the segment ab (a crease of a mesh) enters or leaves the open interior of the
+/// solid hull at a point strictly between a and b that is not a lattice point. The line
+/// a + t (b - a) lies in the open interior for t in the open interval (lo, hi) of the hull's
+/// half spaces; when that is not empty, the line enters at lo and leaves at hi, from strictly
+/// outside the closed hull (the half space giving the bound is left strictly) to strictly
+/// inside, wherever on the hull's surface that is (a face, an edge or a corner).
+bool segmentEntersOffLattice(const LatticePoint& a, const LatticePoint& b, const CellList& hull)
+{
+  const LatticePoint e = minus(b, a);
+  Fraction lo, hi;
+  for (const FacePlane& plane : hull.planes)
+  {
+    // n.(a + t e) < d: t (n.e) < d - n.a.
+    const Wide slope = static_cast<Wide>(plane.normal[0]) * e[0] +
+      static_cast<Wide>(plane.normal[1]) * e[1] + static_cast<Wide>(plane.normal[2]) * e[2];
+    const Wide room = -plane.evaluate(a);
+    if (slope == 0)
+    {
+      if (room <= 0)
+        return false; // the line misses the open half space
+      continue;
+    }
+    const Fraction bound = slope > 0 ? Fraction{ room, slope } : Fraction{ -room, -slope };
+    if (slope > 0 && (hi.den == 0 || less(bound, hi)))
+      hi = bound;
+    if (slope < 0 && (lo.den == 0 || less(lo, bound)))
+      lo = bound;
+  }
+  if (lo.den == 0 || hi.den == 0 || !less(lo, hi))
+    return false;
+  for (const Fraction& t : { lo, hi })
+    if (t.num > 0 && t.num < t.den && offLatticeAt(e, t.num, t.den))
+      return true;
+  return false;
+}
+
+/// The outward normal of the triangle abc (counter-clockwise seen from outside).
+LatticePoint normalOf(const LatticePoint& a, const LatticePoint& b, const LatticePoint& c)
+{
+  const LatticePoint u = minus(b, a), v = minus(c, a);
+  return { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+}
+
+Wide dot(const LatticePoint& a, const LatticePoint& b)
+{
+  return static_cast<Wide>(a[0]) * b[0] + static_cast<Wide>(a[1]) * b[1] +
+    static_cast<Wide>(a[2]) * b[2];
+}
+
+/// An edge ab of a closed mesh with its two triangles' outward normals and whether it is
+/// convex (the solid about it the intersection of their inner half spaces), reflex (their
+/// union) or flat (coplanar triangles).
+struct MeshEdge
+{
+  LatticePoint a, b, nt, nu;
+  int convexity = 0; ///< 1 convex, -1 reflex, 0 flat
+};
+
+/// Whether moving from a point of the open edge along d goes strictly into the solid about
+/// the edge (1), strictly out of it (-1), or neither (0: along one of its half planes).
+int sideAlong(const MeshEdge& edge, const LatticePoint& d)
+{
+  const int st = signOf(dot(edge.nt, d)), su = signOf(dot(edge.nu, d));
+  if (edge.convexity == 0)
+    return -st;
+  if (edge.convexity > 0)
+    return st < 0 && su < 0 ? 1 : st > 0 || su > 0 ? -1 : 0;
+  return st < 0 || su < 0 ? 1 : st > 0 && su > 0 ? -1 : 0;
+}
+
+/// Whether the segment pq crosses the open edge of the mesh at a point strictly inside both
+/// that is not a lattice point.
+bool edgesCrossOffLattice(const LatticePoint& p, const LatticePoint& q, const MeshEdge& edge)
+{
+  const LatticePoint d = minus(q, p);
+  if (orientation(p, q, edge.a, edge.b) != 0)
+    return false; // the lines do not meet
+  const LatticePoint pa = normalOf(edge.a, edge.b, p), qa = normalOf(edge.a, edge.b, q);
+  const LatticePoint ap = normalOf(p, q, edge.a), bp = normalOf(p, q, edge.b);
+  if (dot(pa, qa) >= 0 || dot(ap, bp) >= 0)
+    return false;
+  const LatticePoint& n = dot(edge.nt, d) != 0 ? edge.nt : edge.nu;
+  const Wide den = dot(n, d), num = dot(n, minus(edge.a, p));
+  return den != 0 && offLatticeAt(d, num, den);
+}
+
+/// Whether the segment pq (an edge of a solid hull) crosses the open edge of the mesh at a
+/// point strictly inside both that is not a lattice point, going from strictly outside the
+/// mesh's solid about the edge to strictly inside (either way along pq).
+bool hullEdgeCrossesOffLattice(const LatticePoint& p, const LatticePoint& q, const MeshEdge& edge)
+{
+  const LatticePoint d = minus(q, p), f = minus(edge.b, edge.a);
+  if (orientation(p, q, edge.a, edge.b) != 0)
+    return false; // the lines do not meet
+  // Coplanar lines: each segment's ends strictly on either side of the other's line.
+  const LatticePoint pa = normalOf(edge.a, edge.b, p), qa = normalOf(edge.a, edge.b, q);
+  const LatticePoint ap = normalOf(p, q, edge.a), bp = normalOf(p, q, edge.b);
+  if (dot(pa, qa) >= 0 || dot(ap, bp) >= 0)
+    return false;
+  // The crossing p + s d on a triangle's plane that pq is not in (one is: pq crosses ab).
+  const LatticePoint& n = dot(edge.nt, d) != 0 ? edge.nt : edge.nu;
+  const Wide den = dot(n, d), num = dot(n, minus(edge.a, p));
+  if (den == 0 || !offLatticeAt(d, num, den))
+    return false;
+  const LatticePoint back{ -d[0], -d[1], -d[2] };
+  const int forward = sideAlong(edge, d), backward = sideAlong(edge, back);
+  return (forward > 0 && backward < 0) || (forward < 0 && backward > 0);
+}
+
+} // namespace
+
 bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
 {
   LatticePoint lo = convex.vertices[0], hi = lo;
@@ -936,24 +1071,139 @@ bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
     for (int k = 0; k < 3 && meets; ++k)
       edges[std::minmax(tri[k], tri[(k + 1) % 3])].push_back(i);
   }
-  const LatticeMesh faces = triangulateHull(convex);
-  for (const auto& [edge, incident] : edges)
+  for (const auto& [ends, incident] : edges)
   {
     if (incident.size() != 2)
       continue;
     const auto& t = surface.triangles[incident[0]];
     const auto& u = surface.triangles[incident[1]];
-    const std::uint32_t apex = u[0] != edge.first && u[0] != edge.second ? u[0]
-      : u[1] != edge.first && u[1] != edge.second                        ? u[1]
+    const std::uint32_t apex = u[0] != ends.first && u[0] != ends.second ? u[0]
+      : u[1] != ends.first && u[1] != ends.second                        ? u[1]
                                                                          : u[2];
-    if (orientation(
-          surface.points[t[0]], surface.points[t[1]], surface.points[t[2]], surface.points[apex]) ==
-      0)
-      continue; // a flat edge: a crossing on it may be a removable point of a straight crease
-    for (const auto& f : faces.triangles)
-      if (crossesOffLattice(surface.points[edge.first],
-            surface.points[edge.second],
-            { faces.points[f[0]], faces.points[f[1]], faces.points[f[2]] }))
+    const auto point = [&](std::uint32_t i) -> const LatticePoint& { return surface.points[i]; };
+    MeshEdge edge;
+    edge.a = point(ends.first);
+    edge.b = point(ends.second);
+    edge.nt = normalOf(point(t[0]), point(t[1]), point(t[2]));
+    edge.nu = normalOf(point(u[0]), point(u[1]), point(u[2]));
+    // The apex of u below t's plane: the solid about the edge is the wedge under both.
+    edge.convexity = -orientation(point(t[0]), point(t[1]), point(t[2]), point(apex));
+    if (edge.convexity != 0 && segmentEntersOffLattice(edge.a, edge.b, convex))
+      return true;
+    for (const auto& e : convex.edges)
+      if (hullEdgeCrossesOffLattice(convex.vertices[e[0]], convex.vertices[e[1]], edge))
+        return true;
+  }
+  return false;
+}
+
+namespace
+{
+
+/// A ray from the crossing point of an edge of the mesh and an edge of the hull, along one of
+/// the two edges: whether the result of the Boolean has a crease along it (1), has none (0), or
+/// that is not known here (-1).
+struct Ray
+{
+  LatticePoint direction;
+  int crease = -1;
+};
+
+/// The rays along the mesh's crease edge and the hull's edge from their crossing point. Along
+/// the mesh's crease: outside the hull the result is the mesh's solid (a crease), inside it is
+/// all solid (union) or none (difference). Along the hull's edge: inside the mesh's solid the
+/// difference is the hull's complement (a crease) and the union all solid; outside it the
+/// union is the hull (a crease) and the difference empty. On a face of the other: not known.
+std::array<Ray, 4> raysAt(const MeshEdge& mesh, const MeshEdge& hull, bool unite)
+{
+  const LatticePoint f = minus(mesh.b, mesh.a), d = minus(hull.b, hull.a);
+  std::array<Ray, 4> rays{
+    Ray{ f }, Ray{ { -f[0], -f[1], -f[2] } }, Ray{ d }, Ray{ { -d[0], -d[1], -d[2] } }
+  };
+  for (int k = 0; k < 2; ++k)
+  {
+    const int side = sideAlong(hull, rays[k].direction);
+    rays[k].crease = side < 0 ? 1 : side > 0 ? 0 : -1;
+  }
+  for (int k = 2; k < 4; ++k)
+  {
+    const int side = sideAlong(mesh, rays[k].direction);
+    rays[k].crease = side == 0 ? -1 : (side > 0) != unite ? 1 : 0;
+  }
+  return rays;
+}
+
+/// Whether the creases of the result about the crossing point cannot lie on one line through
+/// it (they would, were the point inside a face or a straight edge of the result): a crease
+/// along a ray whose opposite ray has none, or creases along both edges' lines.
+bool creasesMakeACorner(const std::array<Ray, 4>& rays)
+{
+  for (int k = 0; k < 4; ++k)
+    if (rays[k].crease == 1 && rays[k ^ 1].crease == 0)
+      return true;
+  const bool meshLine = rays[0].crease == 1 || rays[1].crease == 1;
+  const bool hullLine = rays[2].crease == 1 || rays[3].crease == 1;
+  return meshLine && hullLine;
+}
+
+} // namespace
+
+bool edgeCrossingLeavesTheLattice(const LatticeMesh& surface, const CellList& convex, bool unite)
+{
+  if (convex.dimension != 3)
+    return false;
+  LatticePoint lo = convex.vertices[0], hi = lo;
+  for (const auto& v : convex.vertices)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t i = 0; i < surface.triangles.size(); ++i)
+  {
+    const auto& tri = surface.triangles[i];
+    bool meets = true;
+    for (int a = 0; a < 3 && meets; ++a)
+    {
+      const auto c = [&](int k) { return surface.points[tri[k]][a]; };
+      meets = std::max({ c(0), c(1), c(2) }) > lo[a] && std::min({ c(0), c(1), c(2) }) < hi[a];
+    }
+    for (int k = 0; k < 3 && meets; ++k)
+      edges[std::minmax(tri[k], tri[(k + 1) % 3])].push_back(i);
+  }
+  // The hull's edges as edges of a convex solid: the outward normals of their two faces.
+  std::vector<MeshEdge> hullEdges;
+  for (std::size_t e = 0; e < convex.edges.size(); ++e)
+  {
+    MeshEdge h;
+    h.a = convex.vertices[convex.edges[e][0]];
+    h.b = convex.vertices[convex.edges[e][1]];
+    h.nt = convex.planes[convex.edgeFaces[e][0]].normal;
+    h.nu = convex.planes[convex.edgeFaces[e][1]].normal;
+    h.convexity = 1;
+    hullEdges.push_back(h);
+  }
+  for (const auto& [ends, incident] : edges)
+  {
+    if (incident.size() != 2)
+      continue;
+    const auto& t = surface.triangles[incident[0]];
+    const auto& u = surface.triangles[incident[1]];
+    const std::uint32_t apex = u[0] != ends.first && u[0] != ends.second ? u[0]
+      : u[1] != ends.first && u[1] != ends.second                        ? u[1]
+                                                                         : u[2];
+    const auto point = [&](std::uint32_t i) -> const LatticePoint& { return surface.points[i]; };
+    MeshEdge edge;
+    edge.a = point(ends.first);
+    edge.b = point(ends.second);
+    edge.nt = normalOf(point(t[0]), point(t[1]), point(t[2]));
+    edge.nu = normalOf(point(u[0]), point(u[1]), point(u[2]));
+    edge.convexity = -orientation(point(t[0]), point(t[1]), point(t[2]), point(apex));
+    if (edge.convexity == 0)
+      continue; // a flat edge: creaseLeavesTheLattice's rule is the whole answer there
+    for (const MeshEdge& h : hullEdges)
+      if (edgesCrossOffLattice(h.a, h.b, edge) && creasesMakeACorner(raysAt(edge, h, unite)))
         return true;
   }
   return false;

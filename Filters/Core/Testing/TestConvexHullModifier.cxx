@@ -2216,6 +2216,143 @@ vbr::CellList randomLatticeHull(std::mt19937& rng,
   }
 }
 
+TEST(ConvexHullModifier, ShellsFaceOutwardSeesAShellTurnedOver)
+{
+  // shellsFaceOutward (exact signed volumes and nesting) against CGAL's does_bound_a_volume on H
+  // of objects with nested shells (a ball in the void of a hollow ball: an outer shell, a void
+  // and an island), several outer shells (two balls, random volumes) and voids; then on the
+  // same H with each shell turned over in turn (the shells found here by CGAL's connected
+  // components), and with all turned over: both must refuse every one of those, which the
+  // closedness, the manifold tests and the reversion's ray parity all let pass.
+  const double c = 10;
+  auto at = [&](double x, double y, double z)
+  { return std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c)); };
+  std::vector<vbr::BitVolume> volumes{
+    shape(21,
+      [&](double x, double y, double z)
+      {
+        const double d = at(x, y, z);
+        return d <= 3.5 || (d > 6 && d <= 9);
+      }),
+    shape(21, [&](double x, double y, double z) { return at(x, y, z) > 4 && at(x, y, z) <= 9; }),
+    shape(21,
+      [&](double x, double y, double z) { return at(x, y, z - 5) <= 4 || at(x, y, z + 5) <= 4; }),
+  };
+  for (unsigned seed = 1; seed <= 6; ++seed)
+    volumes.push_back(bf::randomVolume({ 9, 9, 9 }, 0.15 + 0.1 * seed, seed));
+  int flipped = 0, voidsFlipped = 0, islandsFlipped = 0;
+  for (std::size_t i = 0; i < volumes.size(); ++i)
+  {
+    SCOPED_TRACE(i);
+    const vbr::ModifiedHull r = vbr::modifyConvexHull(volumes[i]);
+    ASSERT_TRUE(r.complete) << r.failure;
+    bool manifold = false;
+    Mesh mesh = surfaceMesh(r.surface, manifold);
+    ASSERT_TRUE(manifold);
+    ASSERT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(mesh));
+    EXPECT_TRUE(CGAL::Polygon_mesh_processing::does_bound_a_volume(mesh));
+    EXPECT_TRUE(CGAL::Polygon_mesh_processing::is_outward_oriented(mesh));
+    EXPECT_TRUE(vbr::shellsFaceOutward(r.surface));
+    auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:c", 0).first;
+    const std::size_t shells = CGAL::Polygon_mesh_processing::connected_components(mesh, component);
+    // The faces of the mesh are the triangles in their order: triangle k is face k.
+    std::vector<std::size_t> shellOf;
+    for (auto f : mesh.faces())
+      shellOf.push_back(component[f]);
+    for (std::size_t s = 0; s <= shells; ++s)
+    {
+      // s == shells: every shell turned over.
+      vbr::LatticeMesh turned = r.surface;
+      for (std::size_t k = 0; k < turned.triangles.size(); ++k)
+        if (s == shells || shellOf[k] == s)
+          std::swap(turned.triangles[k][1], turned.triangles[k][2]);
+      bool ok = false;
+      const Mesh turnedMesh = surfaceMesh(turned, ok);
+      ASSERT_TRUE(ok);
+      // CGAL's does_bound_a_volume takes every shell turned over (the solid reaching to
+      // infinity); is_outward_oriented reads the shell about the lowest point, an outer one.
+      EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_bound_a_volume(turnedMesh) &&
+        CGAL::Polygon_mesh_processing::is_outward_oriented(turnedMesh))
+        << s;
+      EXPECT_FALSE(vbr::shellsFaceOutward(turned)) << "shell " << s << " turned over";
+      ++flipped;
+      if (s < shells)
+      {
+        // Six times the shell's signed volume, here: negative for a void's surface.
+        long double volume = 0;
+        for (std::size_t k = 0; k < r.surface.triangles.size(); ++k)
+          if (shellOf[k] == s)
+          {
+            const auto& t = r.surface.triangles[k];
+            const LatticePoint &a = r.surface.points[t[0]], &b = r.surface.points[t[1]],
+                               &d = r.surface.points[t[2]];
+            volume += static_cast<long double>(a[0]) * (b[1] * d[2] - b[2] * d[1]) -
+              static_cast<long double>(a[1]) * (b[0] * d[2] - b[2] * d[0]) +
+              static_cast<long double>(a[2]) * (b[0] * d[1] - b[1] * d[0]);
+          }
+        voidsFlipped += volume < 0;
+        islandsFlipped += i == 0 && volume > 0 && shells == 3;
+      }
+    }
+  }
+  std::cout << flipped << " shells or sets of shells turned over, " << voidsFlipped
+            << " of them voids" << std::endl;
+  EXPECT_GE(voidsFlipped, 2);
+  EXPECT_GE(islandsFlipped, 2); // the ball in the void and the hollow ball's outer shell
+}
+
+/// det(b - a, c - a, d - a), exactly.
+__int128 orient3(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  const LatticePoint& d)
+{
+  const __int128 u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const __int128 v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const __int128 w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+    u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+/// Whether a crease edge of the mesh crosses the open interior of one of the triangles of the
+/// hull's fans transversally off the lattice: the crossings inside the hull's faces alone,
+/// without those through its edges and diagonals or those of the hull's edges through the
+/// mesh's edges, to count what creaseLeavesTheLattice finds beyond them.
+bool creaseCrossesAFanTriangle(const vbr::LatticeMesh& m, const vbr::CellList& hull)
+{
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      edges[std::minmax(m.triangles[i][k], m.triangles[i][(k + 1) % 3])].push_back(i);
+  const vbr::LatticeMesh fans = vbr::triangulateHull(hull);
+  for (const auto& [e, incident] : edges)
+  {
+    const auto& t = m.triangles[incident[0]];
+    const auto& u = m.triangles[incident[1]];
+    const std::uint32_t apex = u[0] + u[1] + u[2] - e.first - e.second;
+    if (orient3(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[apex]) == 0)
+      continue;
+    const LatticePoint &a = m.points[e.first], &b = m.points[e.second];
+    for (const auto& f : fans.triangles)
+    {
+      const LatticePoint &p = fans.points[f[0]], &q = fans.points[f[1]], &r = fans.points[f[2]];
+      const __int128 sa = orient3(p, q, r, a), sb = orient3(p, q, r, b);
+      if (sa == 0 || sb == 0 || (sa > 0) == (sb > 0))
+        continue;
+      const __int128 s0 = orient3(a, b, p, q), s1 = orient3(a, b, q, r), s2 = orient3(a, b, r, p);
+      if (s0 == 0 || (s0 > 0) != (s1 > 0) || (s1 > 0) != (s2 > 0) || s1 == 0 || s2 == 0)
+        continue;
+      // a + sa / (sa - sb) (b - a) is a lattice point only when every coordinate divides.
+      bool lattice = true;
+      for (int k = 0; k < 3; ++k)
+        lattice = lattice && (sa * (b[k] - a[k])) % (sa - sb) == 0;
+      if (!lattice)
+        return true;
+    }
+  }
+  return false;
+}
+
 TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
 {
   // creaseLeavesTheLattice skips a join's Boolean where a crease edge of H crosses a face of the
@@ -2230,7 +2367,7 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
   { return randomLatticeHull(rng, coord, small, n, large); };
   const vbr::LatticeMesh pacMan5 = vbr::modifyConvexHull(pacMan(5)).surface;
   const Nef pacMan5Solid = nefOf(pacMan5);
-  int predicted = 0, only = 0, pairs = 0;
+  int predicted = 0, only = 0, pairs = 0, throughEdges = 0;
   for (int trial = 0; trial < 160; ++trial)
   {
     SCOPED_TRACE(trial);
@@ -2241,6 +2378,7 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
       continue;
     ++predicted;
     only += !vbr::booleanLeavesTheLattice(a, b);
+    throughEdges += !vbr::booleanLeavesTheLattice(a, b) && !creaseCrossesAFanTriangle(a, b);
     const vbr::LatticeMesh bMesh = vbr::triangulateHull(b);
     vbr::LatticeMesh difference, unionMesh;
     EXPECT_FALSE(vbr::latticeDifference(a, bMesh, difference)) << "difference kept";
@@ -2252,9 +2390,97 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
       << "the exact union has its corners on the lattice";
   }
   std::cout << pairs << " pairs, " << predicted << " found by the creases, " << only
-            << " of them not by the prism's edges" << std::endl;
+            << " of them not by the prism's edges, " << throughEdges
+            << " of those not inside a face (through an edge or a diagonal)" << std::endl;
   EXPECT_GE(predicted, pairs / 4);
   EXPECT_GE(only, 1);
+}
+
+TEST(ConvexHullModifier, CreasesThroughEdgesLeavingTheLatticeAreFoundBeforehand)
+{
+  // The cases of creaseLeavesTheLattice beyond a crease through the open inside of a face (of a
+  // fan's triangle) and beyond the prism's edges through the open triangles of H: a crease of H
+  // entering the hull through one of its edges or diagonals, or an edge of the hull crossing an
+  // edge of H. Each one found among small random hulls about the pac-man's H and random H is
+  // checked as above: both Booleans refuse and the exact (Nef) union and difference have a
+  // corner off the lattice.
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<long> coord(0, 10), small(0, 3);
+  const std::vector<vbr::LatticeMesh> surfaces{ vbr::modifyConvexHull(pacMan(5)).surface,
+    vbr::modifyConvexHull(bf::randomVolume({ 10, 10, 10 }, 0.5, 3)).surface };
+  const std::vector<Nef> solids{ nefOf(surfaces[0]), nefOf(surfaces[1]) };
+  int found = 0, pairs = 0;
+  for (; pairs < 40000 && found < 30; ++pairs)
+  {
+    const std::size_t which = pairs % 2;
+    const vbr::LatticeMesh& a = surfaces[which];
+    const vbr::CellList b = randomLatticeHull(rng, coord, small, 4 + pairs % 4, false);
+    if (!vbr::creaseLeavesTheLattice(a, b) || vbr::booleanLeavesTheLattice(a, b) ||
+      creaseCrossesAFanTriangle(a, b))
+      continue;
+    ++found;
+    SCOPED_TRACE(pairs);
+    const vbr::LatticeMesh bMesh = vbr::triangulateHull(b);
+    vbr::LatticeMesh difference, unionMesh;
+    EXPECT_FALSE(vbr::latticeDifference(a, bMesh, difference)) << "difference kept";
+    EXPECT_FALSE(vbr::latticeUnion(a, bMesh, unionMesh)) << "union kept";
+    const Nef bSolid = nefOf(bMesh);
+    EXPECT_TRUE(cornerOffLattice((solids[which] - bSolid).regularization()))
+      << "the exact difference has its corners on the lattice";
+    EXPECT_TRUE(cornerOffLattice(solids[which] + bSolid))
+      << "the exact union has its corners on the lattice";
+  }
+  std::cout << pairs << " pairs, " << found << " found only through edges or diagonals"
+            << std::endl;
+  EXPECT_GE(found, 5);
+}
+
+TEST(ConvexHullModifier, EdgeCrossingsAtCoplanarContactsAreFoundBeforehand)
+{
+  // edgeCrossingLeavesTheLattice, for the union and for the difference apart: whenever it says
+  // the result has a corner off the lattice where a crease of H meets an edge of the hull, that
+  // Boolean must refuse and its exact (Nef) result must have a corner off the lattice. Small
+  // random hulls about the pac-man's H and a random H, until enough of each are found that
+  // creaseLeavesTheLattice does not (the coplanar contacts it leaves).
+  std::mt19937 rng(29);
+  std::uniform_int_distribution<long> coord(0, 10), small(0, 3);
+  const std::vector<vbr::LatticeMesh> surfaces{ vbr::modifyConvexHull(pacMan(5)).surface,
+    vbr::modifyConvexHull(bf::randomVolume({ 10, 10, 10 }, 0.5, 3)).surface };
+  const std::vector<Nef> solids{ nefOf(surfaces[0]), nefOf(surfaces[1]) };
+  int found[2] = { 0, 0 }, beyond[2] = { 0, 0 }, pairs = 0;
+  for (; pairs < 60000 && (beyond[0] < 12 || beyond[1] < 12); ++pairs)
+  {
+    const std::size_t which = pairs % 2;
+    const vbr::LatticeMesh& a = surfaces[which];
+    const vbr::CellList b = randomLatticeHull(rng, coord, small, 4 + pairs % 4, false);
+    for (const bool unite : { false, true })
+    {
+      if (!vbr::edgeCrossingLeavesTheLattice(a, b, unite))
+        continue;
+      ++found[unite];
+      const bool elsewhere =
+        vbr::creaseLeavesTheLattice(a, b) || vbr::booleanLeavesTheLattice(a, b);
+      if (elsewhere && found[unite] > 40)
+        continue; // enough of those checked
+      beyond[unite] += !elsewhere;
+      SCOPED_TRACE(pairs);
+      SCOPED_TRACE(unite ? "union" : "difference");
+      const vbr::LatticeMesh bMesh = vbr::triangulateHull(b);
+      vbr::LatticeMesh result;
+      EXPECT_FALSE(
+        unite ? vbr::latticeUnion(a, bMesh, result) : vbr::latticeDifference(a, bMesh, result))
+        << "kept";
+      const Nef bSolid = nefOf(bMesh);
+      EXPECT_TRUE(cornerOffLattice(
+        unite ? solids[which] + bSolid : (solids[which] - bSolid).regularization()))
+        << "the exact result has its corners on the lattice";
+    }
+  }
+  std::cout << pairs << " pairs; found for the difference " << found[0] << " (" << beyond[0]
+            << " not by the other tests), for the union " << found[1] << " (" << beyond[1] << ")"
+            << std::endl;
+  EXPECT_GE(beyond[0], 5);
+  EXPECT_GE(beyond[1], 5);
 }
 
 TEST(ConvexHullModifier, BooleansNearAHullAreTheWholeBooleans)
