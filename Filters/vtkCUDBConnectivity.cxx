@@ -72,11 +72,6 @@
 
 vtkStandardNewMacro(vtkCUDBConnectivity);
 
-/// The small arrays of the outputs, kept for the next update (see vbr::vtk::ArrayRecycler).
-class vtkCUDBConnectivity::vtkInternals : public vbr::vtk::ArrayRecycler
-{
-};
-
 namespace
 {
 
@@ -470,6 +465,14 @@ void allocateTuples(const std::vector<vtkDataArray*>& arrays, vtkIdType tuples, 
       vbr::vtk::resizeOrThrow(array, tuples);
     }
   }
+}
+
+/// A Label array of `tuples` values of `labelType` (as vbr::vtk::newLabelArray), unset.
+vtkSmartPointer<vtkDataArray> newUnsetLabelArray(int labelType, vtkIdType tuples, double groupBytes)
+{
+  vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType, 0);
+  allocateTuples({ labels }, tuples, groupBytes);
+  return labels;
 }
 
 /// The statistics of one region's row of the table, as gathered from its boxes. Trivial: the
@@ -1253,29 +1256,19 @@ struct CornerWriter
 struct BoxCells
 {
   BoxCellLayout layout;
-  vbr::vtk::ArrayRecycler& recycled;
-  vtkSmartPointer<vtkDoubleArray> coordinates;
-  vtkSmartPointer<vtkIdTypeArray> boxIds;
-  vtkSmartPointer<vtkIntArray> regionIds;
+  vtkNew<vtkDoubleArray> coordinates;
+  vtkNew<vtkIdTypeArray> boxIds;
+  vtkNew<vtkIntArray> regionIds;
   vtkSmartPointer<vtkDataArray> labels;
 
-  BoxCells(const BoxCellLayout& cellLayout,
-    vtkIdType count,
-    int labelType,
-    vbr::vtk::ArrayRecycler& recycler)
+  BoxCells(const BoxCellLayout& cellLayout, vtkIdType count, int labelType)
     : layout(cellLayout)
-    , recycled(recycler)
-    , coordinates(recycler.take<vtkDoubleArray>("boxes points"))
-    , boxIds(recycler.take<vtkIdTypeArray>("boxes BoxId"))
-    , regionIds(recycler.take<vtkIntArray>("boxes RegionId"))
-    , labels(recycler.takeOfType("boxes Label", labelType))
   {
     const int corners = this->layout.corners;
     this->coordinates->SetNumberOfComponents(3);
     const double bytes = outputBytes(count, corners);
     allocateTuples({ this->coordinates }, count * corners, bytes);
-    this->labels->SetName("Label"); // as vbr::vtk::newLabelArray
-    allocateTuples({ this->labels }, count, bytes);
+    this->labels = newUnsetLabelArray(labelType, count, bytes);
     allocateTuples({ this->boxIds, this->regionIds }, count, bytes);
     this->boxIds->SetName("BoxId");
     this->regionIds->SetName("RegionId");
@@ -1318,10 +1311,9 @@ struct BoxCells
   /// corners * i + corners - 1), with 32-bit ids when they fit: vtkCellArray reads both, and
   /// on a checkerboard (a box per voxel) the ids were a quarter of the boxes' memory.
   template<typename ArrayType>
-  vtkSmartPointer<vtkCellArray> ownCornerCells(vtkIdType count, int corners)
+  static vtkSmartPointer<vtkCellArray> ownCornerCells(vtkIdType count, int corners)
   {
-    vtkSmartPointer<ArrayType> offsets = this->recycled.take<ArrayType>("boxes offsets");
-    vtkSmartPointer<ArrayType> connectivity = this->recycled.take<ArrayType>("boxes connectivity");
+    vtkNew<ArrayType> offsets, connectivity;
     const double bytes = outputBytes(count, corners);
     allocateTuples({ offsets }, count + 1, bytes);
     allocateTuples({ connectivity }, count * corners, bytes);
@@ -1398,11 +1390,10 @@ void writeBoxes(const std::vector<ObjectBoxes>& objects,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
-  vbr::vtk::ArrayRecycler& recycled,
   vtkUnstructuredGrid* output)
 {
   const BoxCellLayout layout = boxCellLayout(grid, axes);
-  BoxCells cells(layout, countKeptBoxes(objects, regionIds), labelType, recycled);
+  BoxCells cells(layout, countKeptBoxes(objects, regionIds), labelType);
   const CornerWriter corners(grid, layout, axes);
   vtkIdType cell = 0, boxBase = 0;
   for (const ObjectBoxes& o : objects)
@@ -1503,37 +1494,20 @@ struct RowTransform
 /// filled value by value through the generic array interface cost more than its labelling).
 struct RegionColumns
 {
-  vtkSmartPointer<vtkIntArray> ids;
+  vtkNew<vtkIntArray> ids;
   vtkSmartPointer<vtkDataArray> labels;
-  vtkSmartPointer<vtkIdTypeArray> voxels, boxes;
-  vtkSmartPointer<vtkDoubleArray> volumes;
-  vtkNew<vtkDoubleArray> centroids; // its component names keep it from being recycled
+  vtkNew<vtkIdTypeArray> voxels, boxes;
+  vtkNew<vtkDoubleArray> volumes, centroids;
   // Bounds as six columns each: a 6-component array would show a meaningless magnitude.
   // (The fixed-size classes, which the columns have always had.)
-  std::array<vtkSmartPointer<vtkTypeInt32Array>, 6> indexBounds;
-  std::array<vtkSmartPointer<vtkTypeFloat64Array>, 6> worldBounds;
+  std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
+  std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
 
-  RegionColumns(int labelType, vtkIdType count, vbr::vtk::ArrayRecycler& recycled)
-    : ids(recycled.take<vtkIntArray>("table RegionId"))
-    , labels(recycled.takeOfType("table Label", labelType))
-    , voxels(recycled.take<vtkIdTypeArray>("table VoxelCount"))
-    , boxes(recycled.take<vtkIdTypeArray>("table NumberOfBoxes"))
-    , volumes(recycled.take<vtkDoubleArray>("table Volume"))
+  RegionColumns(int labelType, vtkIdType count)
+    : labels(vbr::vtk::newLabelArray(labelType, 0))
   {
     static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
     static const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
-    static const char* const indexKeys[6] = {
-      "table IMin", "table IMax", "table JMin", "table JMax", "table KMin", "table KMax"
-    };
-    static const char* const worldKeys[6] = {
-      "table XMin", "table XMax", "table YMin", "table YMax", "table ZMin", "table ZMax"
-    };
-    for (int k = 0; k < 6; ++k)
-    {
-      this->indexBounds[k] = recycled.take<vtkTypeInt32Array>(indexKeys[k]);
-      this->worldBounds[k] = recycled.take<vtkTypeFloat64Array>(worldKeys[k]);
-    }
-    this->labels->SetName("Label");
     this->ids->SetName("RegionId");
     this->voxels->SetName("VoxelCount");
     this->volumes->SetName("Volume");
@@ -1624,10 +1598,9 @@ void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
-  vbr::vtk::ArrayRecycler& recycled,
   vtkTable* table)
 {
-  RegionColumns columns(labelType, static_cast<vtkIdType>(regionOfRow.size()), recycled);
+  RegionColumns columns(labelType, static_cast<vtkIdType>(regionOfRow.size()));
   for (const ObjectBoxes& o : objects)
     scatterLabel(columns.labels, regionIds.data() + o.firstRegion, o.componentCount(), o.label);
   columns.write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
@@ -1642,17 +1615,13 @@ struct Ports
   vtkImageData* output;
   vtkUnstructuredGrid* boxes;
   vtkTable* table;
-  vbr::vtk::ArrayRecycler& recycled; ///< the filter's arrays kept from its last update
 
-  Ports(vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector,
-    vbr::vtk::ArrayRecycler& recycler)
+  Ports(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
     : input(vtkImageData::GetData(inputVector[0]))
     , seeds(vtkDataSet::GetData(inputVector[1]))
     , output(vtkImageData::GetData(outputVector, 0))
     , boxes(vtkUnstructuredGrid::GetData(outputVector, 1))
     , table(vtkTable::GetData(outputVector, 2))
-    , recycled(recycler)
   {
   }
 };
@@ -1675,8 +1644,7 @@ struct Summary
 
   /// The summary's field arrays. Every port gets the same arrays: making, naming, adding and
   /// later releasing each small array was a large part of an update of a small image.
-  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays(
-    vbr::vtk::ArrayRecycler& recycled) const
+  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays() const
   {
     std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
     const std::pair<const char*, vtkIdType> values[] = { { "NumberOfRegions", this->regions },
@@ -1686,7 +1654,7 @@ struct Summary
       { "NumberOfExtremeVertices", this->extremeVertices } };
     for (const auto& value : values)
     {
-      vtkSmartPointer<vtkIdTypeArray> a = recycled.take<vtkIdTypeArray>(value.first);
+      vtkNew<vtkIdTypeArray> a;
       a->SetName(value.first);
       a->InsertNextValue(value.second);
       arrays.emplace_back(a);
@@ -2061,17 +2029,10 @@ void writeBoxesAndTable(vtkCUDBConnectivity* self,
 {
   vtkLogScopeF(TRACE, "boxes and region table");
   if (self->GetGenerateBoxes())
-    writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.recycled, ports.boxes);
-  writeRegionTable(objects,
-    regions,
-    regionIds,
-    regionOfRow,
-    in.grid,
-    in.axes,
-    in.labelType,
-    ports.recycled,
-    ports.table);
-  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays(ports.recycled);
+    writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
+  writeRegionTable(
+    objects, regions, regionIds, regionOfRow, in.grid, in.axes, in.labelType, ports.table);
+  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays();
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
@@ -2123,7 +2084,6 @@ bool writeDistributed(vtkCUDBConnectivity* self,
 
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::vtkCUDBConnectivity()
-  : Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
@@ -2136,7 +2096,6 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::~vtkCUDBConnectivity()
 {
-  delete this->Internals; // before the last user clears BlockCache
   BlockCache::instance().addUser(-1);
 }
 
@@ -2230,19 +2189,17 @@ int vtkCUDBConnectivity::RequestData(vtkInformation*,
   vtkInformationVector* outputVector)
 {
   const CacheUpdate update;
-  const int done = vbr::vtk::executeGuarded(this,
+  return vbr::vtk::executeGuarded(this,
     outputVector,
     "Connected components",
     [&] { return this->Execute(inputVector, outputVector); });
-  this->Internals->endUpdate();
-  return done;
 }
 
 //------------------------------------------------------------------------------
 int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const Ports ports(inputVector, outputVector, *this->Internals);
+  const Ports ports(inputVector, outputVector);
   vtkImageData *input = ports.input, *output = ports.output;
   vtkDataSet* seeds = ports.seeds;
   if (!input || !output || !ports.boxes || !ports.table)

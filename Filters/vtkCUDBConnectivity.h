@@ -255,9 +255,6 @@ protected:
   vtkIdType MinimumPixelRuns = vtkIdType(1) << 21;
 
 private:
-  class vtkInternals; // small output arrays kept for the next update
-  vtkInternals* Internals;
-
   vtkCUDBConnectivity(const vtkCUDBConnectivity&) = delete;
   void operator=(const vtkCUDBConnectivity&) = delete;
 };

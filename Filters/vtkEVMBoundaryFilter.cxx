@@ -50,11 +50,6 @@
 
 vtkStandardNewMacro(vtkEVMBoundaryFilter);
 
-/// The small arrays of the output, kept for the next update (see vbr::vtk::ArrayRecycler).
-class vtkEVMBoundaryFilter::vtkInternals : public vbr::vtk::ArrayRecycler
-{
-};
-
 namespace
 {
 
@@ -165,7 +160,7 @@ public:
     part.clearKeepingMemory();
   }
 
-  void finish(vtkPolyData* output, bool lines, int labelType, vbr::vtk::ArrayRecycler& recycled)
+  void finish(vtkPolyData* output, bool lines, int labelType)
   {
     const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
     vtkSmartPointer<vtkCellArray> cells = this->Cells.release();
@@ -176,13 +171,13 @@ public:
 
     vtkCellData* cd = output->GetCellData();
     vbr::vtk::reserveArrays(cd, this->Planar ? 6 : 4); // and FaceColor (setBoundaryColoring)
-    cd->AddArray(toArray<vtkIdTypeArray>(this->FaceId, "FaceId", recycled));
-    cd->AddArray(toArray<vtkIntArray>(this->LoopType, "LoopType", recycled));
-    cd->AddArray(this->labelArray(labelType, cellCount, recycled));
+    cd->AddArray(named(toArray<vtkIdTypeArray>(this->FaceId), "FaceId"));
+    cd->AddArray(named(toArray<vtkIntArray>(this->LoopType), "LoopType"));
+    cd->AddArray(this->labelArray(labelType, cellCount));
     if (this->Planar)
     {
-      cd->AddArray(toArray<vtkIdTypeArray>(this->ParentFace, "ParentFace", recycled));
-      cd->AddArray(toArray<vtkIntArray>(this->Depth, "Depth", recycled));
+      cd->AddArray(named(toArray<vtkIdTypeArray>(this->ParentFace), "ParentFace"));
+      cd->AddArray(named(toArray<vtkIntArray>(this->Depth), "Depth"));
     }
   }
 
@@ -214,18 +209,10 @@ private:
     this->LabelRuns.clear();
   }
 
-  /// The Label of every cell from the runs (vbr::vtk::newLabelArray's array).
-  vtkSmartPointer<vtkDataArray> labelArray(int labelType,
-    vtkIdType cellCount,
-    vbr::vtk::ArrayRecycler& recycled)
+  /// The Label of every cell from the runs.
+  vtkSmartPointer<vtkDataArray> labelArray(int labelType, vtkIdType cellCount)
   {
-    vtkSmartPointer<vtkDataArray> label = recycled.takeOfType("cells Label", labelType);
-    label->SetName("Label");
-    vbr::vtk::resizeOrThrow(label, cellCount);
-    if (cellCount > 0)
-      std::memset(label->GetVoidPointer(0),
-        0,
-        static_cast<std::size_t>(cellCount) * label->GetDataTypeSize());
+    vtkSmartPointer<vtkDataArray> label = vbr::vtk::newLabelArray(labelType, cellCount);
     for (std::size_t r = 0; r < this->LabelRuns.size(); ++r)
     {
       const vtkIdType end =
@@ -236,16 +223,19 @@ private:
     return label;
   }
 
-  /// A VTK array named `name` that takes over the values of `v`. (`name` is its recycling
-  /// key too: a string literal.)
-  template<typename ArrayType, typename Value>
-  static vtkSmartPointer<ArrayType> toArray(MallocBuffer<Value>& v,
-    const char* name,
-    vbr::vtk::ArrayRecycler& recycled)
+  template<typename ArrayType>
+  static vtkSmartPointer<ArrayType> named(vtkSmartPointer<ArrayType> a, const char* name)
   {
-    vtkSmartPointer<ArrayType> a = recycled.take<ArrayType>(name);
-    v.handTo(a.GetPointer());
     a->SetName(name);
+    return a;
+  }
+
+  /// A VTK array that takes over the values of `v`.
+  template<typename ArrayType, typename Value>
+  static vtkSmartPointer<ArrayType> toArray(MallocBuffer<Value>& v)
+  {
+    auto a = vtkSmartPointer<ArrayType>::New();
+    v.handTo(a.GetPointer());
     return a;
   }
 
@@ -343,15 +333,15 @@ public:
     }
   }
 
-  void finish(vtkPolyData* output, bool lines, int labelType, vbr::vtk::ArrayRecycler& recycled)
+  void finish(vtkPolyData* output, bool lines, int labelType)
   {
-    vtkSmartPointer<vtkDoubleArray> coordinates = recycled.take<vtkDoubleArray>("points");
+    vtkNew<vtkDoubleArray> coordinates;
     coordinates->SetNumberOfComponents(3);
     this->Coordinates.handTo(coordinates.GetPointer());
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
     output->SetPoints(points);
-    this->Cells.finish(output, lines, labelType, recycled);
+    this->Cells.finish(output, lines, labelType);
   }
 
 private:
@@ -1124,7 +1114,7 @@ void appendObjects(vtkAlgorithm* self,
   }
 }
 
-void writeStatistics(const Statistics& stats, vtkFieldData* fd, vbr::vtk::ArrayRecycler& recycled)
+void writeStatistics(const Statistics& stats, vtkFieldData* fd)
 {
   vbr::vtk::addFieldValues(fd,
     { { "NumberOfVoxels", stats.voxels },
@@ -1133,10 +1123,8 @@ void writeStatistics(const Statistics& stats, vtkFieldData* fd, vbr::vtk::ArrayR
       { "NumberOfFaces", stats.faces },
       { "NumberOfHoles", stats.holes },
       { "NumberOfNonManifoldVertices", stats.nonManifoldVertices } },
-    1, // NumberOfPlanesOfVertices
-    &recycled);
-  vtkSmartPointer<vtkIdTypeArray> planes =
-    recycled.take<vtkIdTypeArray>("NumberOfPlanesOfVertices");
+    1); // NumberOfPlanesOfVertices
+  vtkNew<vtkIdTypeArray> planes;
   planes->SetName("NumberOfPlanesOfVertices");
   planes->SetNumberOfComponents(3);
   planes->InsertNextTypedTuple(stats.planes.data());
@@ -1147,7 +1135,6 @@ void writeStatistics(const Statistics& stats, vtkFieldData* fd, vbr::vtk::ArrayR
 
 //------------------------------------------------------------------------------
 vtkEVMBoundaryFilter::vtkEVMBoundaryFilter()
-  : Internals(new vtkInternals)
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
@@ -1155,10 +1142,7 @@ vtkEVMBoundaryFilter::vtkEVMBoundaryFilter()
 }
 
 //------------------------------------------------------------------------------
-vtkEVMBoundaryFilter::~vtkEVMBoundaryFilter()
-{
-  delete this->Internals;
-}
+vtkEVMBoundaryFilter::~vtkEVMBoundaryFilter() = default;
 
 //------------------------------------------------------------------------------
 int vtkEVMBoundaryFilter::FillInputPortInformation(int, vtkInformation* info)
@@ -1190,12 +1174,10 @@ int vtkEVMBoundaryFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const int done = vbr::vtk::executeGuarded(this,
+  return vbr::vtk::executeGuarded(this,
     outputVector,
     "Boundary extraction",
     [&] { return this->Execute(inputVector, outputVector); });
-  this->Internals->endUpdate();
-  return done;
 }
 
 //------------------------------------------------------------------------------
@@ -1243,10 +1225,10 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
   {
     vtkLogScopeF(TRACE, "hand the output to VTK");
     const bool lines = this->OutputMode == POLYLINES || (planar && this->OutputMode == SURFELS);
-    builder.finish(output, lines, in.labelType, *this->Internals);
+    builder.finish(output, lines, in.labelType);
   }
-  vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS, this->Internals);
-  writeStatistics(stats, output->GetFieldData(), *this->Internals);
+  vbr::vtk::setBoundaryColoring(output, this->GetSelectionMode() == LABELS);
+  writeStatistics(stats, output->GetFieldData());
   vbr::vtk::addDistributionFields(output->GetFieldData(), in.piece);
   return 1;
 }

@@ -161,9 +161,6 @@ protected:
   bool FlatImagesAs2D = true;
 
 private:
-  class vtkInternals; // small output arrays kept for the next update
-  vtkInternals* Internals;
-
   vtkEVMBoundaryFilter(const vtkEVMBoundaryFilter&) = delete;
   void operator=(const vtkEVMBoundaryFilter&) = delete;
 };

@@ -505,88 +505,11 @@ void reserveArrays(vtkFieldData* fd, int count)
     fd->AllocateArrays(fd->GetNumberOfArrays() + count);
 }
 
-void addFieldValues(vtkFieldData* fd,
-  std::initializer_list<FieldValue> values,
-  int following,
-  ArrayRecycler* recycler)
+void addFieldValues(vtkFieldData* fd, std::initializer_list<FieldValue> values, int following)
 {
   reserveArrays(fd, static_cast<int>(values.size()) + following);
   for (const FieldValue& v : values)
-  {
-    if (!recycler)
-    {
-      addFieldValue(fd, v.name, v.value);
-      continue;
-    }
-    vtkSmartPointer<vtkIdTypeArray> a = recycler->take<vtkIdTypeArray>(v.name);
-    a->SetName(v.name);
-    a->InsertNextValue(v.value);
-    fd->AddArray(a);
-  }
-}
-
-vtkSmartPointer<vtkAbstractArray> ArrayRecycler::takeKept(const char* key)
-{
-  const std::size_t n = this->Kept.size();
-  std::size_t found = n;
-  for (std::size_t i = 0; i < n && found == n; ++i)
-  {
-    const std::size_t at = (this->Next + i) % n;
-    if (this->Kept[at].first == key)
-      found = at;
-  }
-  if (found == n || !this->Kept[found].second)
-    return nullptr;
-  this->Next = found + 1;
-  vtkSmartPointer<vtkAbstractArray> array = std::move(this->Kept[found].second);
-  this->Kept[found].second = nullptr;
-  // Held elsewhere, or carrying what a new array would not: not taken.
-  if (array->GetReferenceCount() != 1 || array->HasAComponentName())
-    return nullptr;
-  array->Initialize(); // its values released, as a new array has none
-  array->SetNumberOfComponents(1);
-  array->SetName(nullptr);
-  if (array->HasInformation())
-    array->GetInformation()->Clear();
-  if (vtkDataArray* data = vtkDataArray::SafeDownCast(array))
-    data->SetLookupTable(nullptr);
-  array->Modified();
-  return array;
-}
-
-vtkSmartPointer<vtkDataArray> ArrayRecycler::takeOfType(const char* key, int dataType)
-{
-  vtkSmartPointer<vtkDataArray> array = vtkDataArray::SafeDownCast(this->takeKept(key));
-  if (!array || array->GetDataType() != dataType)
-    array.TakeReference(vtkDataArray::CreateDataArray(dataType));
-  this->InUse.emplace_back(key, array);
-  return array;
-}
-
-void ArrayRecycler::endUpdate()
-{
-  // Kept only when every array taken is small: only small outputs gain (the fixed cost of a
-  // large one is lost in its work), and a large output's memory is released as before.
-  constexpr unsigned long MostKiB = 64; // GetActualMemorySize's unit
-  const bool small = std::all_of(this->InUse.begin(),
-    this->InUse.end(),
-    [](const Slot& used) { return used.second->GetActualMemorySize() <= MostKiB; });
-  if (!small)
-    this->Kept.clear();
-  for (auto& used : this->InUse)
-  {
-    if (!small)
-      break;
-    auto slot = std::find_if(this->Kept.begin(),
-      this->Kept.end(),
-      [&](const Slot& kept) { return kept.first == used.first; });
-    if (slot == this->Kept.end())
-      this->Kept.emplace_back(std::move(used));
-    else
-      slot->second = std::move(used.second);
-  }
-  this->InUse.clear();
-  this->Next = 0;
+    addFieldValue(fd, v.name, v.value);
 }
 
 std::string readVoxels(vtkImageData* image,
@@ -1055,15 +978,14 @@ LabelValue labelAt(vtkDataArray* labels, vtkIdType i)
   return LabelValue::of(labels->GetComponent(i, 0));
 }
 
-void setBoundaryColoring(vtkPolyData* output, bool labelsMode, ArrayRecycler* recycled)
+void setBoundaryColoring(vtkPolyData* output, bool labelsMode)
 {
   vtkCellData* cd = output->GetCellData();
   vtkDataArray* faceIds = cd->GetArray("FaceId");
   if (!faceIds)
     return;
   const vtkIdType n = faceIds->GetNumberOfTuples();
-  vtkSmartPointer<vtkFloatArray> colors =
-    recycled ? recycled->take<vtkFloatArray>("FaceColor") : vtkSmartPointer<vtkFloatArray>::New();
+  vtkNew<vtkFloatArray> colors;
   colors->SetName("FaceColor");
   resizeOrThrow(colors, n);
   float* out = colors->GetPointer(0);

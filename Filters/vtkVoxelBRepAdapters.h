@@ -25,8 +25,6 @@
 #include <limits>
 #include <string>
 #include <type_traits>
-#include <typeinfo>
-#include <utility>
 #include <vector>
 
 class vtkAlgorithm;
@@ -134,52 +132,6 @@ void addFieldValue(vtkFieldData* fd, const char* name, vtkIdType value);
 /// Nothing of the field's content changes.
 void reserveArrays(vtkFieldData* fd, int count);
 
-/// Small arrays of a filter's outputs, kept from one update to the next and taken again (by
-/// key) once nothing else holds them: the pipeline releases a filter's outputs before it
-/// runs, so an array that only this recycler still holds is seen by no one and can be
-/// refilled. Making a VTK array (the object factory, its buffer object) and releasing it
-/// later cost more than all the rest a filter does for the few dozen small arrays of a small
-/// image's outputs. An array held elsewhere (a reference kept by the caller, a shallow copy)
-/// is never taken: a new one is made. Arrays are kept only from updates whose arrays are all
-/// of at most 64 KiB (endUpdate), so a large output's memory is released as before. Keys are
-/// string literals, told apart by address (one per place an array is made). One filter's, used
-/// on its thread.
-class ArrayRecycler
-{
-public:
-  /// An array of class T for `key`, without tuples, one component, no name, information,
-  /// lookup table or component names: the one kept for `key` when nothing else holds it,
-  /// else a new one.
-  template<typename T>
-  vtkSmartPointer<T> take(const char* key)
-  {
-    vtkSmartPointer<vtkAbstractArray> kept = this->takeKept(key);
-    vtkSmartPointer<T> array;
-    if (kept && typeid(*kept) == typeid(T)) // the class itself, not a subclass
-      array = static_cast<T*>(kept.Get());
-    else
-      array = vtkSmartPointer<T>::New();
-    this->InUse.emplace_back(key, array);
-    return array;
-  }
-
-  /// The same for an array of vtkDataArray::CreateDataArray(dataType).
-  vtkSmartPointer<vtkDataArray> takeOfType(const char* key, int dataType);
-
-  /// Keeps the arrays taken since the last call for the next update when they are all small;
-  /// else releases them and every array kept.
-  void endUpdate();
-
-private:
-  /// The array kept for `key`, emptied, when nothing else holds it (else null); the key's slot
-  /// is emptied either way.
-  vtkSmartPointer<vtkAbstractArray> takeKept(const char* key);
-
-  using Slot = std::pair<const char*, vtkSmartPointer<vtkAbstractArray>>;
-  std::vector<Slot> Kept, InUse;
-  std::size_t Next = 0; ///< where the next key is looked for first: updates take in one order
-};
-
 /// A one-value field array to append (see addFieldValues).
 struct FieldValue
 {
@@ -189,10 +141,7 @@ struct FieldValue
 
 /// Appends one-value field arrays, in order (addFieldValue for each), after one reserveArrays
 /// for them and the `following` arrays the caller appends next.
-void addFieldValues(vtkFieldData* fd,
-  std::initializer_list<FieldValue> values,
-  int following,
-  ArrayRecycler* recycler = nullptr);
+void addFieldValues(vtkFieldData* fd, std::initializer_list<FieldValue> values, int following);
 
 /// A label exactly as the selected values' type holds it (int64 labels above 2^53 stay
 /// exact, unlike through a double): the value's bytes, read back in that type. The type is
@@ -539,8 +488,7 @@ vtkSmartPointer<vtkDataArray> tupleNorms(vtkDataArray* scalars);
 /// over [0, 1) (neighbouring faces get unrelated values whatever the colour map, and every
 /// output has the same range, so a shared map needs no rescale), and the active cell scalars:
 /// `Label` in Labels mode, else `FaceColor`. No-op without a FaceId array.
-/// With `recycled`, FaceColor is taken from it.
-void setBoundaryColoring(vtkPolyData* output, bool labelsMode, ArrayRecycler* recycled = nullptr);
+void setBoundaryColoring(vtkPolyData* output, bool labelsMode);
 
 } // namespace vtk
 } // namespace vbr
