@@ -51,7 +51,9 @@
  *
  * Every output carries the field data `NumberOfRegions` (kept), `NumberOfComponents` (found),
  * `NumberOfBoxes` (CUDB), `NumberOfOUDBBoxes` (what the OUDB of the same sorting would have),
- * `NumberOfExtremeVertices` and `SortingOrder` (the sorting used; with Auto, per label).
+ * `NumberOfExtremeVertices` and `SortingOrder` (the sorting used; with Auto, per label). The three
+ * outputs hold the same arrays (one object each, not copies): a consumer that edits one
+ * output's summary in place changes the others'.
  *
  * Region filters, applied in this order: regions smaller than MinimumRegionSize voxels are
  * removed (dust removal); with seed points on the optional second input (SetSeedData), only
