@@ -1045,9 +1045,11 @@ bool hullEdgeCrossesOffLattice(const LatticePoint& p, const LatticePoint& q, con
   return (forward > 0 && backward < 0) || (forward < 0 && backward > 0);
 }
 
-} // namespace
-
-bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
+/// The edges of the triangles of `surface` that meet the open box of the hull's vertices, as
+/// edges between two triangles (a crossing point lies in the box, so both triangles of its edge
+/// are there, or the edge is left out), with their convexity (1 convex, -1 reflex, 0
+/// flat).
+std::vector<MeshEdge> meshEdgesInOpenBox(const LatticeMesh& surface, const CellList& convex)
 {
   LatticePoint lo = convex.vertices[0], hi = lo;
   for (const auto& v : convex.vertices)
@@ -1056,8 +1058,6 @@ bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
       lo[a] = std::min(lo[a], v[a]);
       hi[a] = std::max(hi[a], v[a]);
     }
-  // The triangles in the hull's open box by their edges (a crossing point lies in the box, so
-  // both triangles of its edge are there, or the edge is left out).
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
   for (std::size_t i = 0; i < surface.triangles.size(); ++i)
   {
@@ -1071,6 +1071,7 @@ bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
     for (int k = 0; k < 3 && meets; ++k)
       edges[std::minmax(tri[k], tri[(k + 1) % 3])].push_back(i);
   }
+  std::vector<MeshEdge> meshEdges;
   for (const auto& [ends, incident] : edges)
   {
     if (incident.size() != 2)
@@ -1088,6 +1089,17 @@ bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
     edge.nu = normalOf(point(u[0]), point(u[1]), point(u[2]));
     // The apex of u below t's plane: the solid about the edge is the wedge under both.
     edge.convexity = -orientation(point(t[0]), point(t[1]), point(t[2]), point(apex));
+    meshEdges.push_back(edge);
+  }
+  return meshEdges;
+}
+
+} // namespace
+
+bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
+{
+  for (const MeshEdge& edge : meshEdgesInOpenBox(surface, convex))
+  {
     if (edge.convexity != 0 && segmentEntersOffLattice(edge.a, edge.b, convex))
       return true;
     for (const auto& e : convex.edges)
@@ -1152,26 +1164,6 @@ bool edgeCrossingLeavesTheLattice(const LatticeMesh& surface, const CellList& co
 {
   if (convex.dimension != 3)
     return false;
-  LatticePoint lo = convex.vertices[0], hi = lo;
-  for (const auto& v : convex.vertices)
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min(lo[a], v[a]);
-      hi[a] = std::max(hi[a], v[a]);
-    }
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
-  for (std::size_t i = 0; i < surface.triangles.size(); ++i)
-  {
-    const auto& tri = surface.triangles[i];
-    bool meets = true;
-    for (int a = 0; a < 3 && meets; ++a)
-    {
-      const auto c = [&](int k) { return surface.points[tri[k]][a]; };
-      meets = std::max({ c(0), c(1), c(2) }) > lo[a] && std::min({ c(0), c(1), c(2) }) < hi[a];
-    }
-    for (int k = 0; k < 3 && meets; ++k)
-      edges[std::minmax(tri[k], tri[(k + 1) % 3])].push_back(i);
-  }
   // The hull's edges as edges of a convex solid: the outward normals of their two faces.
   std::vector<MeshEdge> hullEdges;
   for (std::size_t e = 0; e < convex.edges.size(); ++e)
@@ -1184,22 +1176,8 @@ bool edgeCrossingLeavesTheLattice(const LatticeMesh& surface, const CellList& co
     h.convexity = 1;
     hullEdges.push_back(h);
   }
-  for (const auto& [ends, incident] : edges)
+  for (const MeshEdge& edge : meshEdgesInOpenBox(surface, convex))
   {
-    if (incident.size() != 2)
-      continue;
-    const auto& t = surface.triangles[incident[0]];
-    const auto& u = surface.triangles[incident[1]];
-    const std::uint32_t apex = u[0] != ends.first && u[0] != ends.second ? u[0]
-      : u[1] != ends.first && u[1] != ends.second                        ? u[1]
-                                                                         : u[2];
-    const auto point = [&](std::uint32_t i) -> const LatticePoint& { return surface.points[i]; };
-    MeshEdge edge;
-    edge.a = point(ends.first);
-    edge.b = point(ends.second);
-    edge.nt = normalOf(point(t[0]), point(t[1]), point(t[2]));
-    edge.nu = normalOf(point(u[0]), point(u[1]), point(u[2]));
-    edge.convexity = -orientation(point(t[0]), point(t[1]), point(t[2]), point(apex));
     if (edge.convexity == 0)
       continue; // a flat edge: creaseLeavesTheLattice's rule is the whole answer there
     for (const MeshEdge& h : hullEdges)

@@ -69,6 +69,22 @@ std::array<int, 3> signsOf(const Surfel& s)
   return signs;
 }
 
+/// Which edges of surfel s face f shares (its neighbour across them is of f), and how many.
+int sharedEdgesWith(const SurfelGraph& graph,
+  const std::vector<std::uint32_t>& faceOf,
+  std::uint32_t s,
+  std::uint32_t f,
+  bool shared[4])
+{
+  int count = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
+    count += shared[k];
+  }
+  return count;
+}
+
 /// Condition 1 of Francon & Papier (section 3), "we keep a topological disk": whether
 /// surfel s meets the surfels of face f (other than s) along one arc of its boundary: 1 to 3
 /// consecutive shared edges, and no other vertex of s touched by f. Adding s to the disk f then
@@ -82,12 +98,7 @@ bool meetsAlongOneArc(const SurfelGraph& graph,
   bool removing)
 {
   bool shared[4];
-  int count = 0;
-  for (int k = 0; k < 4; ++k)
-  {
-    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
-    count += shared[k];
-  }
+  const int count = sharedEdgesWith(graph, faceOf, s, f, shared);
   if (count == 0 || count == 4)
     return false;
   int arcs = 0;
@@ -136,12 +147,7 @@ bool meetsAlongOneArcGrowing(const SurfelGraph& graph,
   std::uint32_t& onFace)
 {
   bool shared[4];
-  int count = 0;
-  for (int k = 0; k < 4; ++k)
-  {
-    shared[k] = faceOf[graph.neighbourOf(s, k)] == f;
-    count += shared[k];
-  }
+  const int count = sharedEdgesWith(graph, faceOf, s, f, shared);
   if (count == 0 || count == 4)
     return false;
   int arcs = 0;
