@@ -2910,9 +2910,9 @@ int sideOf(const ShelledSurface& surface, const LatticePoint& p, std::int64_t k)
 /// number of others bounds a void, so it must face into it (negative), one nested in an even
 /// number (none: an outer shell; two: an island in a void) outwards. The shells are apart (no
 /// shared point, no crossing), so a shell lies inside another exactly when one of its points
-/// does (exact ray parity, sideOf). This is what CGAL's does_bound_a_volume decides for such a
-/// mesh; unlike the closedness, manifoldness and reversion checks, it sees a shell turned over
-/// whole (the ray parity of the reversion does not).
+/// does (exact ray parity, sideOf). Stricter than CGAL's does_bound_a_volume, which also
+/// accepts a mesh whose shells are all turned over; unlike the closedness, manifoldness and
+/// reversion checks, it sees a shell turned over whole (the ray parity of the reversion does not).
 bool shellsFaceOutward(const std::vector<Shell>& shells)
 {
   for (std::size_t i = 0; i < shells.size(); ++i)

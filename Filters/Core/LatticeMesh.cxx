@@ -952,6 +952,12 @@ bool segmentEntersOffLattice(const LatticePoint& a, const LatticePoint& b, const
     const Wide slope = static_cast<Wide>(plane.normal[0]) * e[0] +
       static_cast<Wide>(plane.normal[1]) * e[1] + static_cast<Wide>(plane.normal[2]) * e[2];
     const Wide room = -plane.evaluate(a);
+    // less() multiplies two of these: beyond 2^62 it could overflow, so the test gives up
+    // (false only costs the Boolean this test would have spared; grids of 2^19 voxels stay
+    // far below).
+    constexpr Wide Limit = Wide(1) << 62;
+    if (slope >= Limit || slope <= -Limit || room >= Limit || room <= -Limit)
+      return false;
     if (slope == 0)
     {
       if (room <= 0)
@@ -1027,20 +1033,9 @@ bool edgesCrossOffLattice(const LatticePoint& p, const LatticePoint& q, const Me
 /// mesh's solid about the edge to strictly inside (either way along pq).
 bool hullEdgeCrossesOffLattice(const LatticePoint& p, const LatticePoint& q, const MeshEdge& edge)
 {
-  const LatticePoint d = minus(q, p), f = minus(edge.b, edge.a);
-  if (orientation(p, q, edge.a, edge.b) != 0)
-    return false; // the lines do not meet
-  // Coplanar lines: each segment's ends strictly on either side of the other's line.
-  const LatticePoint pa = normalOf(edge.a, edge.b, p), qa = normalOf(edge.a, edge.b, q);
-  const LatticePoint ap = normalOf(p, q, edge.a), bp = normalOf(p, q, edge.b);
-  if (dot(pa, qa) >= 0 || dot(ap, bp) >= 0)
+  if (!edgesCrossOffLattice(p, q, edge))
     return false;
-  // The crossing p + s d on a triangle's plane that pq is not in (one is: pq crosses ab).
-  const LatticePoint& n = dot(edge.nt, d) != 0 ? edge.nt : edge.nu;
-  const Wide den = dot(n, d), num = dot(n, minus(edge.a, p));
-  if (den == 0 || !offLatticeAt(d, num, den))
-    return false;
-  const LatticePoint back{ -d[0], -d[1], -d[2] };
+  const LatticePoint d = minus(q, p), back{ -d[0], -d[1], -d[2] };
   const int forward = sideAlong(edge, d), backward = sideAlong(edge, back);
   return (forward > 0 && backward < 0) || (forward < 0 && backward > 0);
 }
@@ -1098,6 +1093,8 @@ std::vector<MeshEdge> meshEdgesInOpenBox(const LatticeMesh& surface, const CellL
 
 bool creaseLeavesTheLattice(const LatticeMesh& surface, const CellList& convex)
 {
+  if (convex.dimension != 3)
+    return false; // a flat hull takes nothing away and adds no volume
   for (const MeshEdge& edge : meshEdgesInOpenBox(surface, convex))
   {
     if (edge.convexity != 0 && segmentEntersOffLattice(edge.a, edge.b, convex))
@@ -1162,8 +1159,8 @@ bool creasesMakeACorner(const std::array<Ray, 4>& rays)
 
 bool edgeCrossingLeavesTheLattice(const LatticeMesh& surface, const CellList& convex, bool unite)
 {
-  if (convex.dimension != 3)
-    return false;
+  if (convex.dimension != 3 || convex.edgeFaces.size() != convex.edges.size())
+    return false; // no solid, or no faces known for its edges: nothing decided here
   // The hull's edges as edges of a convex solid: the outward normals of their two faces.
   std::vector<MeshEdge> hullEdges;
   for (std::size_t e = 0; e < convex.edges.size(); ++e)

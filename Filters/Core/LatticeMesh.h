@@ -38,9 +38,11 @@ LatticeMesh triangulateHull(const CellList& hull);
 /// Whether the mesh is a closed oriented 2-manifold without self-intersections (exact).
 bool isClosedEmbeddedManifold(const LatticeMesh& mesh);
 
-/// Whether the mesh is a closed embedded 2-manifold each of whose shells is oriented away from
-/// the solid it bounds (an outer shell outwards, the shell of a void into the void), exact. A
-/// whole shell turned over is consistent within itself, so isClosedEmbeddedManifold takes it.
+/// Whether the mesh is a closed embedded 2-manifold that bounds a volume (CGAL's
+/// does_bound_a_volume, exact): its shells consistently oriented with their nesting, which
+/// CGAL also grants a mesh whose shells are all turned over (ConvexHullModifier's
+/// shellsFaceOutward refuses that). A whole shell turned over is consistent within itself, so
+/// isClosedEmbeddedManifold takes it.
 bool boundsAVolume(const LatticeMesh& mesh);
 
 /// Whether no two triangles of the mesh that meet the box [lo, hi] intersect but in their
