@@ -248,7 +248,7 @@ public:
    * measured: distance 1.0 gives MaximumSurfelDistance 1.38); a warning says so whenever
    * MaximumSurfelDistance exceeds SimplificationDistance. Ignored in the
    * Quadrilaterals mode; not supported in Labels mode (a warning). Off by default: it is
-   * serial and takes 8 to 15 times the filter's own time (3.5 to 4.3 M voxels per CPU second
+   * serial and takes 9 to 15 times the filter's own time (3.5 to 4.3 M voxels per CPU second
    * on the 256^3 solids). On the benchmark's 128^3 ball, torus and CSG solid it keeps 2.2, 2.2
    * and 1.5 times fewer triangles than flying edges, windowed-sinc smoothing and quadric
    * decimation decimated as far as their distance stays within the filter's, in less time;
