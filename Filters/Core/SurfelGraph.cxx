@@ -278,7 +278,7 @@ void matchSharedEdges(const Execution& exec, SurfelGraph& out)
         const int j = table.SharedEdge[d][k][out.surfels[out.neighbourOf(s, k)].direction];
         if (j < 0)
           throw std::logic_error("neighbouring surfels do not share their linel");
-        out.neighbour[4 * s + k] |= static_cast<std::uint32_t>(j) << 30;
+        out.neighbour[4 * s + k] = SurfelGraph::link(out.neighbourOf(s, k), j);
       }
     });
 }

@@ -31,15 +31,23 @@ namespace vbr
 /// when asked, not stored (they were 48 bytes per surfel, the largest array).
 struct SurfelGraph
 {
-  /// Surfels are numbered below this (their links keep the neighbour's edge in 2 bits).
-  static constexpr std::uint32_t MaximumSize = std::uint32_t(1) << 30;
+  /// A link (neighbour) holds the neighbour's number in its low EdgeShift bits and the
+  /// neighbour's edge above them; surfels are numbered below MaximumSize.
+  static constexpr int EdgeShift = 30;
+  static constexpr std::uint32_t MaximumSize = std::uint32_t(1) << EdgeShift;
+  static constexpr std::uint32_t NumberMask = MaximumSize - 1;
+  /// The link to surfel `number` across its edge `edge`.
+  static std::uint32_t link(std::uint32_t number, int edge)
+  {
+    return number | static_cast<std::uint32_t>(edge) << EdgeShift;
+  }
 
   std::array<std::int32_t, 3> dims{ 0, 0, 0 };
   std::vector<Surfel> surfels; ///< by voxel (z, y, x) then direction
-  /// 4 per surfel, across edge k (corner k to k+1): the neighbour's number (low 30 bits) and the
-  /// edge of the neighbour that is the same linel (top 2 bits). One word, so that a step round
-  /// an umbrella (aroundVertex: the growth's disk test, its hottest loop) waits for one load,
-  /// not two from two arrays.
+  /// 4 per surfel, across edge k (corner k to k+1): the neighbour's number (low EdgeShift bits) and
+  /// the edge of the neighbour that is the same linel (the 2 bits above; link). One word, so that a
+  /// step round an umbrella (aroundVertex: the growth's disk test, its hottest loop) waits for one
+  /// load, not two from two arrays.
   std::vector<std::uint32_t> neighbour;
   std::vector<std::uint32_t> vertex; ///< 4 per surfel: vertex at corner k
   std::vector<Point3> vertexPointel; ///< per vertex
@@ -48,14 +56,14 @@ struct SurfelGraph
   std::size_t size() const { return this->surfels.size(); }
   std::uint32_t neighbourOf(std::uint32_t s, int edge) const
   {
-    return this->neighbour[4 * s + edge] & (MaximumSize - 1);
+    return this->neighbour[4 * s + edge] & NumberMask;
   }
   std::uint32_t vertexOf(std::uint32_t s, int k) const { return this->vertex[4 * s + k]; }
   Point3 cornerOf(std::uint32_t s, int k) const { return this->surfels[s].corner(k); }
   /// The edge of the neighbour across edge `edge` of surfel s that is the same linel.
   int sharedEdge(std::uint32_t s, int edge) const
   {
-    return static_cast<int>(this->neighbour[4 * s + edge] >> 30);
+    return static_cast<int>(this->neighbour[4 * s + edge] >> EdgeShift);
   }
 
   /// Calls visit(u) for each surfel of the umbrella of the vertex at corner k of surfel s,
@@ -70,8 +78,8 @@ struct SurfelGraph
       if (!visit(u))
         return;
       const std::uint32_t link = this->neighbour[4 * u + corner]; // one load for both
-      u = link & (MaximumSize - 1);
-      corner = static_cast<int>((link >> 30) + 1) % 4;
+      u = link & NumberMask;
+      corner = static_cast<int>((link >> EdgeShift) + 1) % 4;
     } while (u != s);
   }
 };
