@@ -2396,6 +2396,23 @@ TEST(ConvexHullModifier, CreasesLeavingTheLatticeAreFoundBeforehand)
   EXPECT_GE(only, 1);
 }
 
+/// H of the pac-man and of a random volume with their exact (Nef) solids: the surfaces the
+/// Boolean pre-tests' random hulls are tried against.
+struct SurfacesAndSolids
+{
+  std::vector<vbr::LatticeMesh> surfaces;
+  std::vector<Nef> solids;
+};
+
+SurfacesAndSolids pacManAndRandomH()
+{
+  SurfacesAndSolids h;
+  h.surfaces = { vbr::modifyConvexHull(pacMan(5)).surface,
+    vbr::modifyConvexHull(bf::randomVolume({ 10, 10, 10 }, 0.5, 3)).surface };
+  h.solids = { nefOf(h.surfaces[0]), nefOf(h.surfaces[1]) };
+  return h;
+}
+
 TEST(ConvexHullModifier, CreasesThroughEdgesLeavingTheLatticeAreFoundBeforehand)
 {
   // The cases of creaseLeavesTheLattice beyond a crease through the open inside of a face (of a
@@ -2406,9 +2423,9 @@ TEST(ConvexHullModifier, CreasesThroughEdgesLeavingTheLatticeAreFoundBeforehand)
   // corner off the lattice.
   std::mt19937 rng(23);
   std::uniform_int_distribution<long> coord(0, 10), small(0, 3);
-  const std::vector<vbr::LatticeMesh> surfaces{ vbr::modifyConvexHull(pacMan(5)).surface,
-    vbr::modifyConvexHull(bf::randomVolume({ 10, 10, 10 }, 0.5, 3)).surface };
-  const std::vector<Nef> solids{ nefOf(surfaces[0]), nefOf(surfaces[1]) };
+  const SurfacesAndSolids h = pacManAndRandomH();
+  const std::vector<vbr::LatticeMesh>& surfaces = h.surfaces;
+  const std::vector<Nef>& solids = h.solids;
   int found = 0, pairs = 0;
   for (; pairs < 40000 && found < 30; ++pairs)
   {
@@ -2444,9 +2461,9 @@ TEST(ConvexHullModifier, EdgeCrossingsAtCoplanarContactsAreFoundBeforehand)
   // creaseLeavesTheLattice does not (the coplanar contacts it leaves).
   std::mt19937 rng(29);
   std::uniform_int_distribution<long> coord(0, 10), small(0, 3);
-  const std::vector<vbr::LatticeMesh> surfaces{ vbr::modifyConvexHull(pacMan(5)).surface,
-    vbr::modifyConvexHull(bf::randomVolume({ 10, 10, 10 }, 0.5, 3)).surface };
-  const std::vector<Nef> solids{ nefOf(surfaces[0]), nefOf(surfaces[1]) };
+  const SurfacesAndSolids h = pacManAndRandomH();
+  const std::vector<vbr::LatticeMesh>& surfaces = h.surfaces;
+  const std::vector<Nef>& solids = h.solids;
   int found[2] = { 0, 0 }, beyond[2] = { 0, 0 }, pairs = 0;
   for (; pairs < 60000 && (beyond[0] < 12 || beyond[1] < 12); ++pairs)
   {
