@@ -361,6 +361,26 @@ public:
     return true;
   }
 
+  /// Starts fetching the value nearest() reads for p (the values of distant corners miss the
+  /// cache); no effect where nearest() would find no value kept.
+  void prefetch(const Vec3& p) const
+  {
+    std::int64_t q[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      const double x = p[d] - this->Origin[d];
+      if (!(x >= 0 && x < double(this->Blocks[d] * Block - 1)))
+        return;
+      q[d] = std::int64_t(std::nearbyint(x));
+    }
+    const std::size_t block = std::size_t(
+      ((q[2] / Block) * this->Blocks[1] + q[1] / Block) * this->Blocks[0] + q[0] / Block);
+    const std::int32_t number = this->BlockOf[block];
+    if (number >= 0)
+      __builtin_prefetch(&this->Values[std::size_t(number) * Block * Block * Block +
+        std::size_t(((q[2] % Block) * Block + q[1] % Block) * Block + q[0] % Block)]);
+  }
+
   const SurfelDistance& exact() const { return this->Distance; }
 
 private:
@@ -1273,7 +1293,11 @@ bool Simplifier::freeOfIntersections()
 bool Simplifier::accept(VertexId v0, VertexId v1, const Point3& placed)
 {
   // cheapest first; the samples' side rejects most collapses
-  if (!this->newStar(v0, v1, placed) || !this->reassignSamples() || !this->freeOfIntersections())
+  if (!this->newStar(v0, v1, placed))
+    return false;
+  for (const StarFace& s : this->Star) // the first look-up of each triangle in (a), fetched early
+    this->Lattice.prefetch(Piece{ s.t }.enclosingCentre());
+  if (!this->reassignSamples() || !this->freeOfIntersections())
     return false;
   for (const StarFace& s : this->Star)
     if (!withinReach(s.t, this->Reach, this->Lattice, this->Pieces))
@@ -1531,16 +1555,15 @@ class EdgeQueue
 {
 public:
   explicit EdgeQueue(std::size_t edges)
-    : Place(edges, NotQueued)
-    , Cost(edges, std::numeric_limits<double>::quiet_NaN())
+    : Edges(edges, { NotQueued, std::numeric_limits<double>::quiet_NaN() })
   {
   }
 
   void push(EdgeId e, double cost)
   {
     const std::uint32_t edge = std::uint32_t(std::size_t(e));
-    this->Cost[edge] = cost;
-    std::size_t at = this->Place[edge];
+    this->Edges[edge].cost = cost;
+    std::size_t at = this->Edges[edge].place;
     if (at == NotQueued)
     {
       at = this->Heap.size();
@@ -1550,22 +1573,22 @@ public:
       this->Heap[at].cost = cost;
     this->siftDown(this->siftUp(at));
   }
-  bool queued(EdgeId e) const { return this->Place[std::size_t(e)] != NotQueued; }
+  bool queued(EdgeId e) const { return this->Edges[std::size_t(e)].place != NotQueued; }
   /// The cost last pushed for e (NaN if none).
-  double lastCost(EdgeId e) const { return this->Cost[std::size_t(e)]; }
+  double lastCost(EdgeId e) const { return this->Edges[std::size_t(e)].cost; }
   /// Takes the cheapest entry off the queue; false when empty.
   bool pop(EdgeId& e, double& cost)
   {
     if (this->Heap.empty())
       return false;
     const Entry top = this->Heap.front();
-    this->Place[top.edge] = NotQueued;
+    this->Edges[top.edge].place = NotQueued;
     const Entry last = this->Heap.back();
     this->Heap.pop_back();
     if (!this->Heap.empty())
     {
       this->Heap.front() = last;
-      this->Place[last.edge] = 0;
+      this->Edges[last.edge].place = 0;
       this->siftDown(0);
     }
     e = EdgeId(top.edge);
@@ -1593,7 +1616,7 @@ private:
   void put(std::size_t at, const Entry& entry)
   {
     this->Heap[at] = entry;
-    this->Place[entry.edge] = at;
+    this->Edges[entry.edge].place = at;
   }
   std::size_t siftUp(std::size_t at)
   {
@@ -1627,9 +1650,13 @@ private:
     this->put(at, entry);
   }
 
+  struct Edge // read together (two arrays missed the cache twice)
+  {
+    std::size_t place; // its entry in Heap, or NotQueued
+    double cost;       // the cost last pushed (NaN if none)
+  };
   std::vector<Entry> Heap;
-  std::vector<std::size_t> Place; // per edge: its entry in Heap, or NotQueued
-  std::vector<double> Cost;
+  std::vector<Edge> Edges; // per edge
 };
 
 /// The greedy edge collapse (CGAL's Surface_mesh_simplification loop, with lazy costs): the
