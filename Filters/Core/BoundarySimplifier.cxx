@@ -574,7 +574,10 @@ public:
       {
         if (cell.empty())
           return;
-        __builtin_prefetch(cell.data());
+        const char* first = reinterpret_cast<const char*>(cell.data());
+        const char* end = reinterpret_cast<const char*>(cell.data() + cell.size());
+        for (const char* line = first; line < end && line < first + 512; line += 64)
+          __builtin_prefetch(line);
         this->Visited.push_back(&cell);
       });
     for (const std::vector<GridEntry>* cell : this->Visited)
