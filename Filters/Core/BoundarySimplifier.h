@@ -55,8 +55,12 @@
 // the star of one of its ends changes. A little less than the time of flying edges,
 // windowed-sinc smoothing and quadric decimation on the 128^3 ball and torus, half of it on a
 // CSG solid, with about half their triangles at the same distance (README, Performance).
-// vtkFaceOctreeBoundaryFilter leaves it off by default (it takes 7x to 10x the unsimplified
-// filter's time: 3.5 to 4.3 M voxels per CPU second on the 256^3 solids).
+// vtkFaceOctreeBoundaryFilter leaves it off by default: the filter with it takes about 10x
+// its time without it under the reach rule and 16x to 18x with KeepPointsInVoxels (3.7 to
+// 4.6 and 2.0 to 2.8 M voxels per CPU second on the 256^3 ball and torus, one thread). The
+// time is spread over the checks, the costs and the queue, none above a quarter of it
+// (README, face octree section); the faces, pieces and lattice values a collapse reads are
+// prefetched together, since they lie far apart in memory.
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
