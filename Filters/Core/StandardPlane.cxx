@@ -109,6 +109,10 @@ constexpr std::int64_t FrameLimit = std::int64_t(1) << 20;
 /// Levels below this one are scanned in the frame of (n_x, n_y); most searches end there, and
 /// a thin frame is computed only for those that go on.
 constexpr std::int64_t ThinFrameLevel = 6;
+/// From ThinFrameLevel on, a level of at most this many columns in the frame of (n_x, n_y) is
+/// still scanned in it: a thin frame would save at most this many columns minus one, and
+/// finding it costs more than a few columns.
+constexpr std::int64_t ThinFrameColumns = 4;
 
 /// The polygon's range of k / omega in a frame (minNum / minDen to maxNum / maxDen).
 struct ColumnRange
@@ -577,7 +581,10 @@ bool StandardPlaneRecognizer::fits(const Vec& n, const std::array<int, 3>& prese
       return false;
   std::int64_t lo, hi;
   this->rangeOf(n, lo, hi);
-  return hi - lo < std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
+  if (hi - lo >= std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]))
+    return false;
+  this->FitLo = lo, this->FitHi = hi; // the range adoptNormal needs, if n is the one kept
+  return true;
 }
 
 void StandardPlaneRecognizer::rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const
@@ -614,6 +621,17 @@ bool StandardPlaneRecognizer::saturated(const Octant& o, std::size_t e) const
   const Vec sigma = sigmaOf(o.sigma);
   if (u.hi - u.lo < dot(sigma, u.ray) || v.hi - v.lo < dot(sigma, v.ray))
     return false;
+  // The width is at least (q - r).n for any two points q, r. If the pair realizing one end's
+  // width also has (q - r).n = sigma.n at the other end, that linear bound is sigma.n all along
+  // the edge, where the width (convex, sigma.n at both ends) is also at most sigma.n: the edge
+  // is saturated, without measuring every point at its midpoint.
+  auto pairSaturates = [&](const Vertex& w, const Vertex& at)
+  {
+    const Point3 d = sub(this->Points[w.argHi], this->Points[w.argLo]);
+    return dot(d, at.ray) == dot(sigma, at.ray);
+  };
+  if (pairSaturates(u, v) || pairSaturates(v, u))
+    return true;
   const Vec m{ u.ray[0] + v.ray[0], u.ray[1] + v.ray[1], u.ray[2] + v.ray[2] };
   std::int64_t lo, hi;
   this->rangeOf(m, lo, hi);
@@ -659,12 +677,19 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   ColumnFrame frame;
   ColumnRange range = columnRange(this->Rays, sigma, frame);
   std::int64_t budget = SearchBudget;
+  bool thin = false;
   for (std::int64_t omega = omegaStart; omega <= omegaLimit && budget > 0; ++omega, --budget)
   {
-    if (omega == std::max(omegaStart, ThinFrameLevel))
+    // The level's result does not depend on the frame, only the columns scanned (and so the
+    // budget spent, by at most ThinFrameColumns - 1 a level) do.
+    if (!thin && omega >= ThinFrameLevel &&
+      floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen)) -
+          ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen)) >=
+        ThinFrameColumns)
     {
       frame = thinFrame(this->Rays, sigma, this->FrameEdges, this->FrameBreaks);
       range = columnRange(this->Rays, sigma, frame);
+      thin = true;
     }
     auto fits = [&](const Vec& n) { return this->fits(n, present); };
     if (searchLevel(
@@ -672,12 +697,6 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
       return true;
   }
   return false;
-}
-
-bool StandardPlaneRecognizer::known(std::uint64_t key) const
-{
-  return this->Keys.find(key) >= 0 ||
-    std::binary_search(this->FreshKeys.begin(), this->FreshKeys.end(), key);
 }
 
 bool StandardPlaneRecognizer::tryAdd(const Point3* points,
@@ -820,11 +839,18 @@ bool StandardPlaneRecognizer::octantExcluded(const Octant& o,
     if (present[d] != 0 && present[d] != o.sigma[d])
       return true;
   // Two points differing by sigma have width exactly 1 in every normal of the octant.
+  // A committed point r has n.r in [CurrentLo, CurrentHi] for the current normal n: outside
+  // that slab r is only looked up among the new points (no hash probe).
+  const Vec& n = this->Current.normal;
+  const bool anyCommitted = this->Points.size() > this->Fresh.size();
   for (const Point3& q : this->Fresh)
     for (int s : { -1, 1 })
     {
       const Point3 r{ q[0] + s * o.sigma[0], q[1] + s * o.sigma[1], q[2] + s * o.sigma[2] };
-      if (this->known(packBiased(r)))
+      const std::uint64_t key = packBiased(r);
+      const std::int64_t x = dot(n, r);
+      if (std::binary_search(this->FreshKeys.begin(), this->FreshKeys.end(), key) ||
+        (anyCommitted && this->CurrentLo <= x && x <= this->CurrentHi && this->Keys.find(key) >= 0))
         return true;
     }
   return false;
@@ -863,6 +889,9 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
     Vec n;
     if (this->solve(o, present, omegaStart, bestOmega - 1, n))
     {
+      // The last normal fits accepted is the one solve returns (searchLevel keeps a normal
+      // right after fits accepts it): its range over the points, committed and new.
+      this->BestLo = this->FitLo, this->BestHi = this->FitHi;
       best = n;
       bestOmega = std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
     }
@@ -883,7 +912,7 @@ void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool
     }
   }
   this->Current.normal = best;
-  this->rangeOf(best, this->CurrentLo, this->CurrentHi);
+  this->CurrentLo = this->BestLo, this->CurrentHi = this->BestHi; // measured by fits
   this->Current.mu = this->CurrentLo + dot(best, this->Origin);
 }
 

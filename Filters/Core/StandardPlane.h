@@ -163,7 +163,6 @@ private:
   /// Keeps the clipped octants that survived and the plane of normal `best`.
   void adoptNormal(const Vec& best, const std::array<bool, 8>& survives);
   void commit(const std::array<int, 3>& present);
-  bool known(std::uint64_t key) const;
 
   Point3 Origin{ 0, 0, 0 };   ///< points are kept relative to the first one
   std::vector<Point3> Points; ///< without repeats
@@ -185,6 +184,8 @@ private:
   std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis
   StandardPlane Current;
   std::int64_t CurrentLo = 0, CurrentHi = 0; ///< range of the current normal over the points
+  std::int64_t BestLo = 0, BestHi = 0;       ///< range of searchOctants' best normal
+  mutable std::int64_t FitLo = 0, FitHi = 0; ///< range of the last normal fits accepted
   mutable std::size_t Clips = 0, Searches = 0;
   mutable std::vector<char> StrictEdges;                      ///< per polygon edge, in solve
   mutable std::vector<Vec> Rays;                              ///< the polygon's vertices, in solve
