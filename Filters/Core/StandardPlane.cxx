@@ -537,10 +537,10 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
   return true;
 }
 
-bool StandardPlaneRecognizer::applyPoints(Octant& o) const
+bool StandardPlaneRecognizer::applyPoints(Octant& o, std::size_t count) const
 {
   const Vec sigma = sigmaOf(o.sigma);
-  for (std::size_t j = o.applied; j < this->Points.size(); ++j)
+  for (std::size_t j = o.applied; j < count; ++j)
   {
     const Point3& p = this->Points[j];
     for (Vertex& v : o.vertices)
@@ -570,7 +570,7 @@ bool StandardPlaneRecognizer::applyPoints(Octant& o) const
         return false;
     }
   }
-  o.applied = this->Points.size();
+  o.applied = count;
   return true;
 }
 
@@ -710,10 +710,8 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   if (this->takenByCurrentPlane(present))
     return true;
   // Slow path: clip the octants with the points already accepted (for good), then with the
-  // new ones (on copies), and search each surviving octant for a normal.
+  // new ones (on copies), and search each surviving octant for a normal (searchOctants).
   this->refreshExtremes();
-  for (int i = 0; i < 8; ++i)
-    this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
   const std::size_t before = this->Points.size();
   this->Points.insert(this->Points.end(), this->Fresh.begin(), this->Fresh.end());
   std::array<bool, 8> survives{};
@@ -864,8 +862,8 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
   this->Deferred.fill(false);
   // Points and orientations only accumulate, so the normals that fit them only get fewer: no
   // normal of an omega below the current plane's fits now (its omega was the smallest).
-  const std::int64_t omegaStart =
-    this->Points.size() > this->Fresh.size() ? this->Current.omega() : 1;
+  const std::size_t committed = this->Points.size() - this->Fresh.size();
+  const std::int64_t omegaStart = committed > 0 ? this->Current.omega() : 1;
   for (int i = 0; i < 8; ++i)
   {
     const Octant& original = this->Octants[i];
@@ -881,9 +879,18 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
       this->Deferred[i] = true;
       continue;
     }
+    // The points accepted since the octant's last clipping, for good. Only here, past the
+    // exclusion and the deferral: an octant excluded by the new points dies if they are
+    // taken, and one deferred or left alive by a refusal is clipped by a later slow path,
+    // to the same polygon (the points only accumulate).
+    if (!this->applyPoints(this->Octants[i], committed))
+    {
+      this->Alive[i] = false;
+      continue;
+    }
     Octant& o = this->Trials[i];
     o = original; // reuses the trial's storage
-    if (!this->applyPoints(o) || !hasInterior(o))
+    if (!this->applyPoints(o, this->Points.size()) || !hasInterior(o))
       continue;
     survives[i] = true;
     Vec n;

@@ -119,7 +119,8 @@ private:
 
   /// The eight octants' triangles before any point (reset copies them).
   static std::array<Octant, 8> initialOctants();
-  bool applyPoints(Octant& o) const;
+  /// Clips o with the points from o.applied to count; false when it empties.
+  bool applyPoints(Octant& o, std::size_t count) const;
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
   void measure(Vertex& v, std::size_t count) const;
   /// Calls f(j) for every point index j < count that may be a vertex of the points' convex
