@@ -332,11 +332,6 @@ bool searchLevel(const std::vector<std::array<std::int64_t, 3>>& forms,
 
 } // namespace
 
-std::int64_t StandardPlane::omega() const
-{
-  return std::llabs(this->normal[0]) + std::llabs(this->normal[1]) + std::llabs(this->normal[2]);
-}
-
 void StandardPlaneRecognizer::reset()
 {
   // Storage is kept from face to face: a recognizer is reset once per face. But a point index

@@ -51,7 +51,12 @@ struct StandardPlane
   std::array<std::int64_t, 3> normal{ 0, 0, 0 }; ///< (a, b, c)
   std::int64_t mu = 0;
 
-  std::int64_t omega() const;
+  std::int64_t omega() const
+  {
+    return (this->normal[0] < 0 ? -this->normal[0] : this->normal[0]) +
+      (this->normal[1] < 0 ? -this->normal[1] : this->normal[1]) +
+      (this->normal[2] < 0 ? -this->normal[2] : this->normal[2]);
+  }
   std::int64_t value(const Point3& p) const
   {
     return this->normal[0] * p[0] + this->normal[1] * p[1] + this->normal[2] * p[2];
