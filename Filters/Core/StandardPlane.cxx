@@ -109,6 +109,10 @@ constexpr std::int64_t FrameLimit = std::int64_t(1) << 20;
 /// Levels below this one are scanned in the frame of (n_x, n_y); most searches end there, and
 /// a thin frame is computed only for those that go on.
 constexpr std::int64_t ThinFrameLevel = 6;
+/// From ThinFrameLevel on, a level of at most this many columns in the frame of (n_x, n_y) is
+/// still scanned in it: a thin frame would save at most this many columns minus one, and
+/// finding it costs more than a few columns.
+constexpr std::int64_t ThinFrameColumns = 4;
 
 /// The polygon's range of k / omega in a frame (minNum / minDen to maxNum / maxDen).
 struct ColumnRange
@@ -328,11 +332,6 @@ bool searchLevel(const std::vector<std::array<std::int64_t, 3>>& forms,
 
 } // namespace
 
-std::int64_t StandardPlane::omega() const
-{
-  return std::llabs(this->normal[0]) + std::llabs(this->normal[1]) + std::llabs(this->normal[2]);
-}
-
 void StandardPlaneRecognizer::reset()
 {
   // Storage is kept from face to face: a recognizer is reset once per face. But a point index
@@ -533,10 +532,10 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
   return true;
 }
 
-bool StandardPlaneRecognizer::applyPoints(Octant& o) const
+bool StandardPlaneRecognizer::applyPoints(Octant& o, std::size_t count) const
 {
   const Vec sigma = sigmaOf(o.sigma);
-  for (std::size_t j = o.applied; j < this->Points.size(); ++j)
+  for (std::size_t j = o.applied; j < count; ++j)
   {
     const Point3& p = this->Points[j];
     for (Vertex& v : o.vertices)
@@ -566,7 +565,7 @@ bool StandardPlaneRecognizer::applyPoints(Octant& o) const
         return false;
     }
   }
-  o.applied = this->Points.size();
+  o.applied = count;
   return true;
 }
 
@@ -577,7 +576,10 @@ bool StandardPlaneRecognizer::fits(const Vec& n, const std::array<int, 3>& prese
       return false;
   std::int64_t lo, hi;
   this->rangeOf(n, lo, hi);
-  return hi - lo < std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
+  if (hi - lo >= std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]))
+    return false;
+  this->FitLo = lo, this->FitHi = hi; // the range adoptNormal needs, if n is the one kept
+  return true;
 }
 
 void StandardPlaneRecognizer::rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const
@@ -614,6 +616,17 @@ bool StandardPlaneRecognizer::saturated(const Octant& o, std::size_t e) const
   const Vec sigma = sigmaOf(o.sigma);
   if (u.hi - u.lo < dot(sigma, u.ray) || v.hi - v.lo < dot(sigma, v.ray))
     return false;
+  // The width is at least (q - r).n for any two points q, r. If the pair realizing one end's
+  // width also has (q - r).n = sigma.n at the other end, that linear bound is sigma.n all along
+  // the edge, where the width (convex, sigma.n at both ends) is also at most sigma.n: the edge
+  // is saturated, without measuring every point at its midpoint.
+  auto pairSaturates = [&](const Vertex& w, const Vertex& at)
+  {
+    const Point3 d = sub(this->Points[w.argHi], this->Points[w.argLo]);
+    return dot(d, at.ray) == dot(sigma, at.ray);
+  };
+  if (pairSaturates(u, v) || pairSaturates(v, u))
+    return true;
   const Vec m{ u.ray[0] + v.ray[0], u.ray[1] + v.ray[1], u.ray[2] + v.ray[2] };
   std::int64_t lo, hi;
   this->rangeOf(m, lo, hi);
@@ -659,12 +672,19 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   ColumnFrame frame;
   ColumnRange range = columnRange(this->Rays, sigma, frame);
   std::int64_t budget = SearchBudget;
+  bool thin = false;
   for (std::int64_t omega = omegaStart; omega <= omegaLimit && budget > 0; ++omega, --budget)
   {
-    if (omega == std::max(omegaStart, ThinFrameLevel))
+    // The level's result does not depend on the frame, only the columns scanned (and so the
+    // budget spent, by at most ThinFrameColumns - 1 a level) do.
+    if (!thin && omega >= ThinFrameLevel &&
+      floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen)) -
+          ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen)) >=
+        ThinFrameColumns)
     {
       frame = thinFrame(this->Rays, sigma, this->FrameEdges, this->FrameBreaks);
       range = columnRange(this->Rays, sigma, frame);
+      thin = true;
     }
     auto fits = [&](const Vec& n) { return this->fits(n, present); };
     if (searchLevel(
@@ -672,12 +692,6 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
       return true;
   }
   return false;
-}
-
-bool StandardPlaneRecognizer::known(std::uint64_t key) const
-{
-  return this->Keys.find(key) >= 0 ||
-    std::binary_search(this->FreshKeys.begin(), this->FreshKeys.end(), key);
 }
 
 bool StandardPlaneRecognizer::tryAdd(const Point3* points,
@@ -691,10 +705,8 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   if (this->takenByCurrentPlane(present))
     return true;
   // Slow path: clip the octants with the points already accepted (for good), then with the
-  // new ones (on copies), and search each surviving octant for a normal.
+  // new ones (on copies), and search each surviving octant for a normal (searchOctants).
   this->refreshExtremes();
-  for (int i = 0; i < 8; ++i)
-    this->Alive[i] = this->Alive[i] && this->applyPoints(this->Octants[i]);
   const std::size_t before = this->Points.size();
   this->Points.insert(this->Points.end(), this->Fresh.begin(), this->Fresh.end());
   std::array<bool, 8> survives{};
@@ -820,11 +832,18 @@ bool StandardPlaneRecognizer::octantExcluded(const Octant& o,
     if (present[d] != 0 && present[d] != o.sigma[d])
       return true;
   // Two points differing by sigma have width exactly 1 in every normal of the octant.
+  // A committed point r has n.r in [CurrentLo, CurrentHi] for the current normal n: outside
+  // that slab r is only looked up among the new points (no hash probe).
+  const Vec& n = this->Current.normal;
+  const bool anyCommitted = this->Points.size() > this->Fresh.size();
   for (const Point3& q : this->Fresh)
     for (int s : { -1, 1 })
     {
       const Point3 r{ q[0] + s * o.sigma[0], q[1] + s * o.sigma[1], q[2] + s * o.sigma[2] };
-      if (this->known(packBiased(r)))
+      const std::uint64_t key = packBiased(r);
+      const std::int64_t x = dot(n, r);
+      if (std::binary_search(this->FreshKeys.begin(), this->FreshKeys.end(), key) ||
+        (anyCommitted && this->CurrentLo <= x && x <= this->CurrentHi && this->Keys.find(key) >= 0))
         return true;
     }
   return false;
@@ -838,8 +857,8 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
   this->Deferred.fill(false);
   // Points and orientations only accumulate, so the normals that fit them only get fewer: no
   // normal of an omega below the current plane's fits now (its omega was the smallest).
-  const std::int64_t omegaStart =
-    this->Points.size() > this->Fresh.size() ? this->Current.omega() : 1;
+  const std::size_t committed = this->Points.size() - this->Fresh.size();
+  const std::int64_t omegaStart = committed > 0 ? this->Current.omega() : 1;
   for (int i = 0; i < 8; ++i)
   {
     const Octant& original = this->Octants[i];
@@ -855,14 +874,26 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
       this->Deferred[i] = true;
       continue;
     }
+    // The points accepted since the octant's last clipping, for good. Only here, past the
+    // exclusion and the deferral: an octant excluded by the new points dies if they are
+    // taken, and one deferred or left alive by a refusal is clipped by a later slow path,
+    // to the same polygon (the points only accumulate).
+    if (!this->applyPoints(this->Octants[i], committed))
+    {
+      this->Alive[i] = false;
+      continue;
+    }
     Octant& o = this->Trials[i];
     o = original; // reuses the trial's storage
-    if (!this->applyPoints(o) || !hasInterior(o))
+    if (!this->applyPoints(o, this->Points.size()) || !hasInterior(o))
       continue;
     survives[i] = true;
     Vec n;
     if (this->solve(o, present, omegaStart, bestOmega - 1, n))
     {
+      // The last normal fits accepted is the one solve returns (searchLevel keeps a normal
+      // right after fits accepts it): its range over the points, committed and new.
+      this->BestLo = this->FitLo, this->BestHi = this->FitHi;
       best = n;
       bestOmega = std::llabs(n[0]) + std::llabs(n[1]) + std::llabs(n[2]);
     }
@@ -883,7 +914,7 @@ void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool
     }
   }
   this->Current.normal = best;
-  this->rangeOf(best, this->CurrentLo, this->CurrentHi);
+  this->CurrentLo = this->BestLo, this->CurrentHi = this->BestHi; // measured by fits
   this->Current.mu = this->CurrentLo + dot(best, this->Origin);
 }
 

@@ -51,7 +51,12 @@ struct StandardPlane
   std::array<std::int64_t, 3> normal{ 0, 0, 0 }; ///< (a, b, c)
   std::int64_t mu = 0;
 
-  std::int64_t omega() const;
+  std::int64_t omega() const
+  {
+    return (this->normal[0] < 0 ? -this->normal[0] : this->normal[0]) +
+      (this->normal[1] < 0 ? -this->normal[1] : this->normal[1]) +
+      (this->normal[2] < 0 ? -this->normal[2] : this->normal[2]);
+  }
   std::int64_t value(const Point3& p) const
   {
     return this->normal[0] * p[0] + this->normal[1] * p[1] + this->normal[2] * p[2];
@@ -119,7 +124,8 @@ private:
 
   /// The eight octants' triangles before any point (reset copies them).
   static std::array<Octant, 8> initialOctants();
-  bool applyPoints(Octant& o) const;
+  /// Clips o with the points from o.applied to count; false when it empties.
+  bool applyPoints(Octant& o, std::size_t count) const;
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
   void measure(Vertex& v, std::size_t count) const;
   /// Calls f(j) for every point index j < count that may be a vertex of the points' convex
@@ -163,7 +169,6 @@ private:
   /// Keeps the clipped octants that survived and the plane of normal `best`.
   void adoptNormal(const Vec& best, const std::array<bool, 8>& survives);
   void commit(const std::array<int, 3>& present);
-  bool known(std::uint64_t key) const;
 
   Point3 Origin{ 0, 0, 0 };   ///< points are kept relative to the first one
   std::vector<Point3> Points; ///< without repeats
@@ -185,6 +190,8 @@ private:
   std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis
   StandardPlane Current;
   std::int64_t CurrentLo = 0, CurrentHi = 0; ///< range of the current normal over the points
+  std::int64_t BestLo = 0, BestHi = 0;       ///< range of searchOctants' best normal
+  mutable std::int64_t FitLo = 0, FitHi = 0; ///< range of the last normal fits accepted
   mutable std::size_t Clips = 0, Searches = 0;
   mutable std::vector<char> StrictEdges;                      ///< per polygon edge, in solve
   mutable std::vector<Vec> Rays;                              ///< the polygon's vertices, in solve

@@ -377,6 +377,141 @@ TEST(StandardPlane, SmallestOmegaOnThinStrips)
   RecordProperty("omega above the bound", large);
 }
 
+/// The normal the recognizer promises, by brute force over every integer normal of |n|_1 <=
+/// bound that fits the points with the orientations asked: the smallest omega, then the first
+/// octant holding it (octant s has n_x < 0 when bit 0 of s is set, n_y < 0 for bit 1, n_z < 0
+/// for bit 2; a zero component lies in the octant of the positive sign, the earlier one), then
+/// the smallest (n_x, n_y). {0, 0, 0} when none fits.
+std::array<std::int64_t, 3> bruteForceNormal(const std::vector<Point3>& points,
+  const std::array<int, 3>& signs,
+  int bound)
+{
+  for (int omega = 1; omega <= bound; ++omega)
+  {
+    bool found = false;
+    std::array<int, 3> bestKey{ 0, 0, 0 };
+    std::array<std::int64_t, 3> best{ 0, 0, 0 };
+    for (int a = -omega; a <= omega; ++a)
+      for (int b = std::abs(a) - omega; b <= omega - std::abs(a); ++b)
+        for (int c : { omega - std::abs(a) - std::abs(b), std::abs(a) + std::abs(b) - omega })
+        {
+          const int n[3] = { a, b, c };
+          bool fits = true;
+          for (int d = 0; d < 3; ++d)
+            fits = fits && (signs[d] == 0 || signs[d] * n[d] > 0);
+          long lo = 0, hi = 0;
+          for (std::size_t i = 0; i < points.size() && fits; ++i)
+          {
+            const long v = long(a) * points[i][0] + long(b) * points[i][1] + long(c) * points[i][2];
+            lo = i == 0 ? v : std::min(lo, v);
+            hi = i == 0 ? v : std::max(hi, v);
+          }
+          fits = fits && hi - lo < omega;
+          const std::array<int, 3> key{ (a < 0) + 2 * (b < 0) + 4 * (c < 0), a, b };
+          if (fits && (!found || key < bestKey))
+          {
+            found = true;
+            bestKey = key;
+            best = { a, b, c };
+          }
+          if (c == 0)
+            break; // one normal, not two
+        }
+    if (found)
+      return best;
+  }
+  return { 0, 0, 0 };
+}
+
+TEST(StandardPlane, ChosenNormalIsTheFirstInOrder)
+{
+  // Calls of 1 to 4 points (the growth adds a surfel's new corners, the merging whole faces)
+  // with an orientation each, along thin strips and in random boxes, so that calls are taken by
+  // the current plane, need a new normal, or are refused, in every order: the octants are
+  // clipped lazily, some only when a later call searches them, and a refused call must leave
+  // them as they were. After every call, the plane must be exactly the brute force's first
+  // normal (not only its omega), and its offset the smallest value over the points.
+  constexpr int Bound = 24;
+  std::mt19937 rng(71);
+  int accepted = 0, refused = 0, multiPoint = 0, large = 0;
+  for (int t = 0; t < 300; ++t)
+  {
+    std::vector<Point3> candidates;
+    if (t % 3 == 2)
+      for (int i = 0; i < 12; ++i)
+        candidates.push_back({ int(rng() % 6) - 3, int(rng() % 6) - 3, int(rng() % 3) });
+    else
+    {
+      const std::array<int, 3> dir{ int(rng() % 9) - 4, int(rng() % 9) - 4, int(rng() % 9) - 4 };
+      const int den = 2 + int(rng() % 6);
+      const std::array<int, 3> side{ int(rng() % 3) - 1, int(rng() % 3) - 1, int(rng() % 3) - 1 };
+      for (int i = 0; i < 16; ++i)
+      {
+        Point3 q;
+        for (int d = 0; d < 3; ++d)
+          q[d] = int(std::floor(double(i * dir[d]) / den + 0.5)) + (i % 3 == 1) * side[d];
+        candidates.push_back(q);
+      }
+      std::shuffle(candidates.begin() + 2, candidates.end(), rng);
+    }
+    vbr::StandardPlaneRecognizer r;
+    std::vector<Point3> points;
+    std::array<int, 3> present{ 0, 0, 0 };
+    for (std::size_t i = 0; i < candidates.size();)
+    {
+      const std::size_t count = std::min<std::size_t>(1 + rng() % 4, candidates.size() - i);
+      const std::vector<Point3> call(candidates.begin() + i, candidates.begin() + i + count);
+      i += count;
+      std::array<int, 3> signs{ 0, 0, 0 };
+      if (rng() % 3 == 0)
+        signs[rng() % 3] = rng() % 2 ? 1 : -1;
+      std::array<int, 3> asked = present;
+      bool opposite = false;
+      for (int d = 0; d < 3; ++d)
+        if (signs[d] != 0)
+        {
+          opposite = opposite || asked[d] == -signs[d];
+          asked[d] = signs[d];
+        }
+      std::vector<Point3> with = points;
+      with.insert(with.end(), call.begin(), call.end());
+      const std::array<std::int64_t, 3> expected =
+        opposite ? std::array<std::int64_t, 3>{ 0, 0, 0 } : bruteForceNormal(with, asked, Bound);
+      const bool none = expected == std::array<std::int64_t, 3>{ 0, 0, 0 };
+      SCOPED_TRACE("trial " + std::to_string(t) + ", point " + std::to_string(i));
+      if (!r.tryAdd(call, signs))
+      {
+        ++refused;
+        EXPECT_TRUE(none) << "a plane exists but the call was refused";
+        continue;
+      }
+      ++accepted;
+      multiPoint += count > 1;
+      points = with;
+      present = asked;
+      const vbr::StandardPlane& plane = r.plane();
+      long lo = 0;
+      for (std::size_t j = 0; j < points.size(); ++j)
+      {
+        const long v = long(plane.value(points[j]));
+        lo = j == 0 ? v : std::min(lo, v);
+      }
+      EXPECT_EQ(plane.mu, lo) << "the offset is not the smallest value over the points";
+      if (none)
+      {
+        EXPECT_GT(plane.omega(), Bound) << "a plane the exhaustive search missed";
+        ++large;
+        continue;
+      }
+      EXPECT_EQ(plane.normal, expected) << "not the first normal in order";
+    }
+  }
+  EXPECT_GT(accepted, 1000);
+  EXPECT_GT(refused, 300);
+  EXPECT_GT(multiPoint, 500);
+  RecordProperty("omega above the bound", large);
+}
+
 TEST(StandardPlane, LargePiecesAgreeWithBruteForce)
 {
   // Pieces of standard planes of 121 to 363 points, added one by one (in random order or row
