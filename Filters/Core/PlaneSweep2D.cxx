@@ -15,6 +15,11 @@
 // orderEdgesIntoLoops is the domino step, and classifyContours is the second sweep (outer
 // loops, holes and the inclusion tree from 1D tests on the stored section ends).
 //
+// Numbered in the order (v, u) (runNumbered), the corners get their numbers as the sweep meets
+// them from cornersByColumn, a pass over the vertices before the sweep that finds every column's
+// corners with bit operations on whole lines: the extreme vertices, and the non-manifold
+// vertices, where a vertex of the section lies inside a brink of the cut.
+//
 // Terms: a cut is a line of vertices; a brink a maximal segment of it; a section end an
 // extreme vertex of the active section with the horizontal edge it draws; an interval a
 // pair of section ends (a piece of face between two consecutive cuts).
@@ -87,8 +92,97 @@ struct FirstInterval
 struct NonManifoldVertex
 {
   std::uint32_t at; ///< its corner
-  int edges[4];     ///< two in, two out
+  /// Two in, two out: the section's horizontal edge ending there, the one starting there, the
+  /// brink's piece ending there, the one starting there (EdgeReach).
+  int edges[4];
 };
+
+/// Where the other end of each edge of a non-manifold vertex lies, as a step in (u, v) from the
+/// vertex, in the order of NonManifoldVertex::edges: horizontal edges run along u between two
+/// cuts, the pieces of a brink along v in its line.
+constexpr int EdgeReach[4][2] = { { -1, 0 }, { 1, 0 }, { 0, -1 }, { 0, 1 } };
+
+/// Calls visit(u, first, last) for every line of vertices [first, last) of [begin, end).
+template<typename Visit>
+void forEachLine(const Vertex* begin, const Vertex* end, Visit&& visit)
+{
+  while (begin != end)
+  {
+    const Vertex* lineEnd = begin;
+    while (lineEnd != end && (*lineEnd)[1] == (*begin)[1])
+      ++lineEnd;
+    visit((*begin)[1], begin, lineEnd);
+    begin = lineEnd;
+  }
+}
+
+/// The parity of the bits of `w` at and below each bit (a prefix XOR within the word).
+inline std::uint64_t prefixParity(std::uint64_t w)
+{
+  w ^= w << 1;
+  w ^= w << 2;
+  w ^= w << 4;
+  w ^= w << 8;
+  w ^= w << 16;
+  w ^= w << 32;
+  return w;
+}
+
+/// The corners the sweep of [begin, end) meets, by column (CornerColumns): on each line u, the
+/// vertices of the cut, and the vertices of the section (the XOR of the cuts before) that are
+/// not in the cut but inside one of its brinks (an odd number of cut vertices below them), the
+/// non-manifold vertices of Sweep::processLine. Whole words of a line at a time.
+CornerColumns cornersByColumn(const Vertex* begin, const Vertex* end)
+{
+  CornerColumns g;
+  if (begin == end)
+    return g;
+  Coord vLo = (*begin)[2], vHi = vLo;
+  for (const Vertex* p = begin; p != end; ++p)
+  {
+    vLo = std::min(vLo, (*p)[2]);
+    vHi = std::max(vHi, (*p)[2]);
+  }
+  g.uLo = (*begin)[1];
+  g.vLo = vLo;
+  g.columns = static_cast<std::size_t>(vHi - vLo) + 1;
+  g.wordsPerColumn = (static_cast<std::size_t>((*(end - 1))[1] - g.uLo) + 64) / 64;
+  g.bits.assign(g.columns * g.wordsPerColumn, 0);
+  const std::size_t lineWords = (g.columns + 63) / 64;
+  std::vector<std::uint64_t> section(lineWords, 0), cut(lineWords, 0);
+  std::size_t count = 0;
+  forEachLine(begin,
+    end,
+    [&](Coord u, const Vertex* first, const Vertex* last)
+    {
+      for (const Vertex* p = first; p != last; ++p)
+      {
+        const std::size_t k = static_cast<std::size_t>((*p)[2] - vLo);
+        cut[k / 64] ^= std::uint64_t(1) << (k % 64);
+      }
+      const std::size_t row = static_cast<std::size_t>(u - g.uLo);
+      const std::uint64_t rowBit = std::uint64_t(1) << (row % 64);
+      std::uint64_t* column = g.bits.data() + row / 64;
+      std::uint64_t below = 0; // all ones when the cut is open at the word's start
+      for (std::size_t w = 0; w < lineWords; ++w)
+      {
+        const std::uint64_t c = cut[w];
+        if ((c | section[w]) == 0)
+          continue; // nothing here, and `below` goes on
+        const std::uint64_t inCut = prefixParity(c) ^ below ^ c; // open just below each bit
+        below = (inCut ^ c) >> 63 ? ~std::uint64_t(0) : 0;
+        const std::uint64_t nonManifold = section[w] & ~c & inCut;
+        section[w] ^= c;
+        cut[w] = 0;
+        for (std::uint64_t k = c | nonManifold; k != 0; k &= k - 1, ++count)
+          column[(64 * w + countTrailingZeros(k)) * g.wordsPerColumn] |= rowBit;
+      }
+    });
+  if (count >= Unset)
+    throw std::length_error("planeSweep2D: 2^32 corners or more");
+  g.count = count;
+  return g;
+}
 
 class Sweep
 {
@@ -116,11 +210,14 @@ public:
   /// The same method, the loops' corners as numbers of the distinct corners in `order`.
   Contours2D runNumbered(const Vertex* begin, const Vertex* end, CornerOrder order)
   {
-    this->firstSweep(begin, end);
     Contours2D out;
-    out.boundary.nonManifoldVertices = this->NonManifold.size();
     if (order == CornerOrder::VThenU)
-      this->numberCornersAlongV();
+    {
+      out.columns = cornersByColumn(begin, end);
+      this->numberByColumn(out.columns);
+    }
+    this->firstSweep(begin, end);
+    out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
     out.loopCorners.reserve(this->Edges.size());
     this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
@@ -138,7 +235,8 @@ private:
     // two, and only then does the array grow): growing it from empty would copy the edges
     // about twice.
     this->Edges.reserve(static_cast<std::size_t>(end - begin));
-    this->Corners.reserve(static_cast<std::size_t>(end - begin));
+    if (this->ColumnNext.empty())
+      this->Corners.reserve(static_cast<std::size_t>(end - begin));
     adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge));
     while (begin != end)
     {
@@ -166,9 +264,12 @@ private:
 
   // ---- corners and edges ---------------------------------------------------------------------
   /// Numbers a corner: the sweep meets them line after line, along each line in order, so
-  /// their numbers follow the order (u, v).
+  /// their numbers follow the order (u, v); or, numbered by column (numberByColumn), the next
+  /// number of its column, which makes the order (v, u).
   std::uint32_t newCorner(Point2 here)
   {
+    if (!this->ColumnNext.empty())
+      return this->ColumnNext[static_cast<std::size_t>(here.v - this->ColumnLo)]++;
     if (this->Corners.size() >= Unset)
       throw std::length_error("planeSweep2D: 2^32 corners or more");
     this->Corners.push_back(here);
@@ -372,12 +473,18 @@ private:
   {
     for (const auto& nmv : this->NonManifold)
     {
-      int in[2], out[2], ni = 0, no = 0;
-      for (int e : nmv.edges)
-        if (this->Edges[e].to == nmv.at)
-          in[ni++] = e;
+      int in[2], out[2], ni = 0, no = 0, inReach[2], outReach[2];
+      for (int j = 0; j < 4; ++j)
+        if (this->Edges[nmv.edges[j]].to == nmv.at)
+        {
+          inReach[ni] = j;
+          in[ni++] = nmv.edges[j];
+        }
         else
-          out[no++] = e;
+        {
+          outReach[no] = j;
+          out[no++] = nmv.edges[j];
+        }
       if (ni != 2 || no != 2)
         throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
       const bool sameFace =
@@ -386,16 +493,16 @@ private:
       {
         const Edge& a = this->Edges[in[k]];
         int chosen = -1;
-        for (int o : out)
+        for (int m = 0; m < 2; ++m)
         {
+          const int o = out[m];
           const Edge& b = this->Edges[o];
           if (sameFace)
           {
-            const Point2 a0 = this->Corners[a.from], a1 = this->Corners[a.to];
-            const Point2 b0 = this->Corners[b.from], b1 = this->Corners[b.to];
-            const long long du1 = a1.u - a0.u, dv1 = a1.v - a0.v;
-            const long long du2 = b1.u - b0.u, dv2 = b1.v - b0.v;
-            if (du1 * dv2 - dv1 * du2 < 0)
+            // The directions of a (towards the vertex) and b (away from it).
+            const int* ra = EdgeReach[inReach[k]];
+            const int* rb = EdgeReach[outReach[m]];
+            if (-ra[0] * rb[1] + ra[1] * rb[0] < 0)
               chosen = o; // right turn
           }
           else if (this->find(b.interval) == this->find(a.interval))
@@ -428,35 +535,20 @@ private:
     out.faces.resize(this->FirstOfFace.size());
   }
 
-  /// Numbers the corners in the order (v, u) instead of the sweep's (u, v): a stable counting
-  /// sort of the corners by v. Only the edges' starts are renumbered: the domino step reads
-  /// nothing else of the corners.
-  void numberCornersAlongV()
+  /// Numbers the corners in the order (v, u) as the sweep meets them: the first corner of
+  /// each column gets the number after those of the columns before, the next ones follow.
+  void numberByColumn(const CornerColumns& columns)
   {
-    if (this->Corners.empty())
-      return;
-    Coord lo = this->Corners[0].v, hi = lo;
-    for (const Point2& p : this->Corners)
+    this->ColumnLo = columns.vLo;
+    this->ColumnNext.assign(columns.columns, 0);
+    std::uint32_t number = 0;
+    const std::uint64_t* word = columns.bits.data();
+    for (std::size_t k = 0; k < columns.columns; ++k)
     {
-      lo = std::min(lo, p.v);
-      hi = std::max(hi, p.v);
+      this->ColumnNext[k] = number;
+      for (std::size_t w = 0; w < columns.wordsPerColumn; ++w, ++word)
+        number += static_cast<std::uint32_t>(popCount(*word));
     }
-    std::vector<std::uint32_t> next(static_cast<std::size_t>(hi - lo) + 2, 0);
-    for (const Point2& p : this->Corners)
-      ++next[static_cast<std::size_t>(p.v - lo) + 1];
-    for (std::size_t k = 1; k < next.size(); ++k)
-      next[k] += next[k - 1];
-    std::vector<std::uint32_t> number(this->Corners.size());
-    std::vector<Point2> sorted(this->Corners.size());
-    for (std::size_t c = 0; c < this->Corners.size(); ++c)
-    {
-      const std::uint32_t n = next[static_cast<std::size_t>(this->Corners[c].v - lo)]++;
-      number[c] = n;
-      sorted[n] = this->Corners[c];
-    }
-    this->Corners.swap(sorted);
-    for (Edge& e : this->Edges)
-      e.from = number[e.from];
   }
 
   /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
@@ -531,9 +623,11 @@ private:
   std::vector<SectionEnd> Section;     ///< active section, sorted by v
   std::vector<SectionEnd> NextSection; ///< the section being built (reused buffers)
   std::vector<int> NextIntervals;
-  std::vector<int> SectionIntervals; ///< interval id of each pair of section ends
-  UnionFind Intervals;               ///< the section intervals, united into faces
-  std::vector<Point2> Corners;       ///< by number
+  std::vector<int> SectionIntervals;     ///< interval id of each pair of section ends
+  UnionFind Intervals;                   ///< the section intervals, united into faces
+  std::vector<Point2> Corners;           ///< by number, when not numbered by column
+  std::vector<std::uint32_t> ColumnNext; ///< numbered by column: the next number of each
+  Coord ColumnLo = 0;                    ///< the v of the first column
   std::vector<Edge> Edges;
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;
