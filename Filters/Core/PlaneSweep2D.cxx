@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -45,6 +46,11 @@ namespace
 
 /// An edge end not reached yet.
 constexpr std::uint32_t Unset = std::numeric_limits<std::uint32_t>::max();
+
+/// Numbered in the order (v, u), the corners are found by column before the sweep when there
+/// are at least this many vertices per word of the grid of columns (cornersByColumn), and
+/// sorted by v after the sweep otherwise.
+constexpr std::size_t DenseCorners = 1;
 
 /// Asks for huge pages under a large array that is read in no order of memory (the domino
 /// step's edges): a miss in the cache then rarely misses in the TLB as well. A hint only.
@@ -128,21 +134,34 @@ inline std::uint64_t prefixParity(std::uint64_t w)
   return w;
 }
 
-/// The corners the sweep of [begin, end) meets, by column (CornerColumns): on each line u, the
-/// vertices of the cut, and the vertices of the section (the XOR of the cuts before) that are
-/// not in the cut but inside one of its brinks (an odd number of cut vertices below them), the
-/// non-manifold vertices of Sweep::processLine. Whole words of a line at a time.
-CornerColumns cornersByColumn(const Vertex* begin, const Vertex* end)
+/// The range of v of the vertices [begin, end), not empty.
+std::pair<Coord, Coord> rangeOfV(const Vertex* begin, const Vertex* end)
 {
-  CornerColumns g;
-  if (begin == end)
-    return g;
   Coord vLo = (*begin)[2], vHi = vLo;
   for (const Vertex* p = begin; p != end; ++p)
   {
     vLo = std::min(vLo, (*p)[2]);
     vHi = std::max(vHi, (*p)[2]);
   }
+  return { vLo, vHi };
+}
+
+/// The words of the grid of cornersByColumn for the vertices [begin, end), not empty, whose v
+/// range is [vLo, vHi].
+std::size_t columnGridWords(const Vertex* begin, const Vertex* end, Coord vLo, Coord vHi)
+{
+  const std::size_t rows = static_cast<std::size_t>((*(end - 1))[1] - (*begin)[1]) + 1;
+  return (static_cast<std::size_t>(vHi - vLo) + 1) * ((rows + 63) / 64);
+}
+
+/// The corners the sweep of [begin, end) meets, by column (CornerColumns): on each line u, the
+/// vertices of the cut, and the vertices of the section (the XOR of the cuts before) that are
+/// not in the cut but inside one of its brinks (an odd number of cut vertices below them), the
+/// non-manifold vertices of Sweep::processLine. Whole words of a line at a time. [vLo, vHi]: the
+/// range of v.
+CornerColumns cornersByColumn(const Vertex* begin, const Vertex* end, Coord vLo, Coord vHi)
+{
+  CornerColumns g;
   g.uLo = (*begin)[1];
   g.vLo = vLo;
   g.columns = static_cast<std::size_t>(vHi - vLo) + 1;
@@ -211,18 +230,30 @@ public:
   Contours2D runNumbered(const Vertex* begin, const Vertex* end, CornerOrder order)
   {
     Contours2D out;
-    if (order == CornerOrder::VThenU)
+    bool sortAlongV = false;
+    if (order == CornerOrder::VThenU && begin != end)
     {
-      out.columns = cornersByColumn(begin, end);
-      this->numberByColumn(out.columns);
+      // The grid of columns costs a bit per grid point, the sort after the sweep a scattered
+      // write per corner: the grid where corners are dense (a maze, a scan of text), the sort
+      // where they are few (a fax page's large black areas).
+      const auto [vLo, vHi] = rangeOfV(begin, end);
+      sortAlongV = static_cast<std::size_t>(end - begin) <
+        DenseCorners * columnGridWords(begin, end, vLo, vHi);
+      if (!sortAlongV)
+      {
+        out.columns = cornersByColumn(begin, end, vLo, vHi);
+        this->numberByColumn(out.columns);
+      }
     }
     this->firstSweep(begin, end);
+    if (sortAlongV)
+      this->numberCornersAlongV();
     out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
     out.loopCorners.reserve(this->Edges.size());
     this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
     this->classifyContours(out.boundary);
-    out.corners.swap(this->Corners);
+    out.corners.swap(this->Corners); // empty when numbered by column
     return out;
   }
 
@@ -533,6 +564,37 @@ private:
       }
     }
     out.faces.resize(this->FirstOfFace.size());
+  }
+
+  /// Numbers the corners in the order (v, u) instead of the sweep's (u, v): a stable counting
+  /// sort of the corners by v. Only the edges' starts are renumbered: the domino step reads
+  /// nothing else of the corners.
+  void numberCornersAlongV()
+  {
+    if (this->Corners.empty())
+      return;
+    Coord lo = this->Corners[0].v, hi = lo;
+    for (const Point2& p : this->Corners)
+    {
+      lo = std::min(lo, p.v);
+      hi = std::max(hi, p.v);
+    }
+    std::vector<std::uint32_t> next(static_cast<std::size_t>(hi - lo) + 2, 0);
+    for (const Point2& p : this->Corners)
+      ++next[static_cast<std::size_t>(p.v - lo) + 1];
+    for (std::size_t k = 1; k < next.size(); ++k)
+      next[k] += next[k - 1];
+    std::vector<std::uint32_t> number(this->Corners.size());
+    std::vector<Point2> sorted(this->Corners.size());
+    for (std::size_t c = 0; c < this->Corners.size(); ++c)
+    {
+      const std::uint32_t n = next[static_cast<std::size_t>(this->Corners[c].v - lo)]++;
+      number[c] = n;
+      sorted[n] = this->Corners[c];
+    }
+    this->Corners.swap(sorted);
+    for (Edge& e : this->Edges)
+      e.from = number[e.from];
   }
 
   /// Numbers the corners in the order (v, u) as the sweep meets them: the first corner of
