@@ -368,6 +368,13 @@ private:
     bool inPrev = false, inCut = false;
     while (i < this->Section.size() || cut != cutEnd)
     {
+      if (!inCut && i % 2 == 0 && i < this->Section.size() &&
+        (cut == cutEnd || (*cut)[2] > this->Section[i + 1].v))
+      {
+        this->passInterval(o, i);
+        i += 2;
+        continue;
+      }
       const bool takePrev =
         i < this->Section.size() && (cut == cutEnd || this->Section[i].v <= (*cut)[2]);
       const Coord v = takePrev ? this->Section[i].v : (*cut)[2];
@@ -397,6 +404,21 @@ private:
     }
     this->Section.swap(this->NextSection);
     this->SectionIntervals.swap(this->NextIntervals);
+  }
+
+  /// An interval of the previous section, from section end i, that the cut neither enters nor
+  /// touches (no vertex of the cut in it or at its ends, and the cut closed there): it goes on
+  /// into the next section as it is, the same interval, where the point by point merge would
+  /// start a new interval at its start and unite it with this one at its end (the same
+  /// faces, one interval and one union fewer: most intervals of a sparse image).
+  void passInterval(OpenIntervals& o, std::size_t i)
+  {
+    const int interval = this->SectionIntervals[i / 2];
+    o.prevInterval = o.newInterval = interval;
+    o.newTouched = true;
+    this->NextIntervals.push_back(interval);
+    this->NextSection.push_back(this->Section[i]);
+    this->NextSection.push_back(this->Section[i + 1]);
   }
 
   /// Updates the open intervals at a point of the line: the intervals of both sections that
