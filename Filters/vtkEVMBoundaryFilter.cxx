@@ -160,10 +160,36 @@ public:
     part.clearKeepingMemory();
   }
 
+  /// The cells of the loops of a 2D solution, one per loop (Polylines mode: closed, its first
+  /// point repeated at its end), face after face, the outer loop first: what addCell gives
+  /// loop after loop, their ids (numbers of `contours`' corners, the output's points) reversed
+  /// when `reverseLoops`, written straight into the output's arrays, sized beforehand. Into an
+  /// empty store only. `tick(f)` is called at every face f; false (abort) when it returns
+  /// false.
+  template<typename Tick>
+  bool setLoopCells(const vbr::Contours2D& contours,
+    bool reverseLoops,
+    bool closePolylines,
+    const vbr::vtk::LabelValue& label,
+    Tick&& tick)
+  {
+    assert(this->FaceId.size() == 0 && this->Cells.numberOfCells() == 0);
+    const std::size_t loops = contours.boundary.loops.size();
+    const std::size_t total = contours.loopCorners.size() + (closePolylines ? loops : 0);
+    // CellArrayBuffer's choice: 32 bits while every id and offset fits.
+    constexpr std::size_t Narrow = std::numeric_limits<vtkTypeInt32>::max();
+    if (total <= Narrow && contours.cornerCount() <= Narrow + std::size_t(1))
+      return this->writeLoopCells<vtkTypeInt32Array>(
+        contours, reverseLoops, closePolylines, total, label, tick);
+    return this->writeLoopCells<vtkTypeInt64Array>(
+      contours, reverseLoops, closePolylines, total, label, tick);
+  }
+
   void finish(vtkPolyData* output, bool lines, int labelType)
   {
     const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
-    vtkSmartPointer<vtkCellArray> cells = this->Cells.release();
+    vtkSmartPointer<vtkCellArray> cells =
+      this->Written ? std::move(this->Written) : this->Cells.release();
     if (lines)
       output->SetLines(cells);
     else
@@ -182,6 +208,73 @@ public:
   }
 
 private:
+  template<typename ArrayType, typename Tick>
+  bool writeLoopCells(const vbr::Contours2D& contours,
+    bool reverseLoops,
+    bool closePolylines,
+    std::size_t total,
+    const vbr::vtk::LabelValue& label,
+    Tick&& tick)
+  {
+    using Id = typename ArrayType::ValueType;
+    const vbr::Boundary2D& b = contours.boundary;
+    const std::size_t cells = b.loops.size();
+    if (cells == 0)
+      return true;
+    this->startLabel(label);
+    MallocBuffer<Id> offsets, connectivity;
+    Id* offset = offsets.extend(cells + 1);
+    Id* out = connectivity.extend(total);
+    vtkIdType* faceId = this->FaceId.extend(cells);
+    int* loopType = this->LoopType.extend(cells);
+    vtkIdType* parentFace = this->ParentFace.extend(cells);
+    int* depth = this->Depth.extend(cells);
+    const std::uint32_t* corners = contours.loopCorners.data();
+    std::size_t at = 0;
+    *offset++ = 0;
+    const auto writeLoop = [&](int l, vtkIdType face, vtkIdType parent, int d, bool hole)
+    {
+      const vbr::Loop2D& loop = b.loops[l];
+      const std::size_t n = loop.end - loop.begin;
+      Id* cell = out + at;
+      const std::uint32_t* from = corners + loop.begin;
+      if (reverseLoops)
+        for (std::size_t i = 0; i < n; ++i)
+          cell[i] = static_cast<Id>(from[n - 1 - i]);
+      else
+        for (std::size_t i = 0; i < n; ++i)
+          cell[i] = static_cast<Id>(from[i]);
+      const std::size_t m = n + (closePolylines ? 1 : 0);
+      if (closePolylines)
+        cell[n] = cell[0];
+      if (this->Reverse)
+        std::reverse(cell, cell + m);
+      at += m;
+      *offset++ = static_cast<Id>(at);
+      *faceId++ = face;
+      *loopType++ = hole ? 1 : 0;
+      *parentFace++ = hole ? face : parent;
+      *depth++ = hole ? d + 1 : d;
+    };
+    for (std::size_t f = 0; f < b.faces.size(); ++f)
+    {
+      if (!tick(f))
+        return false;
+      const vbr::Face2D& face = b.faces[f];
+      const vtkIdType id = static_cast<vtkIdType>(f);
+      writeLoop(face.outerLoop, id, face.parent, face.depth, false);
+      for (int h : face.holeLoops)
+        writeLoop(h, id, face.parent, face.depth, true);
+    }
+    assert(at == total);
+    vtkNew<ArrayType> offsetArray, connectivityArray;
+    offsets.handTo(offsetArray.GetPointer());
+    connectivity.handTo(connectivityArray.GetPointer());
+    this->Written = vtkSmartPointer<vtkCellArray>::New();
+    this->Written->SetData(offsetArray, connectivityArray);
+    return true;
+  }
+
   void startLabel(const vbr::vtk::LabelValue& label)
   {
     if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
@@ -242,6 +335,7 @@ private:
   const bool Planar;  ///< a 2D image: the cells carry ParentFace and Depth
   const bool Reverse; ///< world coordinates mirror the processing axes: reverse every cell
   vbr::vtk::CellArrayBuffer Cells;
+  vtkSmartPointer<vtkCellArray> Written; ///< the cells when written whole (setLoopCells)
   MallocBuffer<vtkIdType> FaceId, ParentFace;
   MallocBuffer<int> LoopType;
   MallocBuffer<int> Depth;
@@ -291,10 +385,7 @@ public:
 
   /// Adds the corners of the objects' faces (common grid, permuted axes) as the output's
   /// points, their numbers as point ids; first, before any other point. `offset` is added
-  /// to every corner (an object's corners in its own grid). Each world
-  /// coordinate is origin + t0 + t1 + t2, a term per image axis (VoxelGrid::vertexToWorld's
-  /// products and sums, in its order, so the same values): the terms are tabulated once per
-  /// index along each axis rather than multiplied out per corner.
+  /// to every corner (an object's corners in its own grid).
   void addCornerPoints(const std::vector<Point3>& corners,
     const std::array<std::int32_t, 3>& offset = { 0, 0, 0 })
   {
@@ -307,6 +398,89 @@ public:
         lo[k] = std::min(lo[k], p[k]);
         hi[k] = std::max(hi[k], p[k]);
       }
+    this->addGridPoints(lo,
+      hi,
+      offset,
+      corners.size(),
+      [&](auto&& add)
+      {
+        for (const Point3& p : corners)
+          add(p);
+      });
+  }
+
+  /// addCornerPoints for the distinct corners of a 2D solution (u, v) in the plane 0 of the
+  /// axis order `order`, read from the sweep's own record of them in the order of their
+  /// numbers: no list of points in between.
+  void addContourCorners(const vbr::Contours2D& contours,
+    const vbr::AxisOrder& order,
+    const std::array<std::int32_t, 3>& offset)
+  {
+    const std::size_t count = contours.cornerCount();
+    if (count == 0)
+      return;
+    // Ranges that hold every corner (the tables' values do not depend on them): the columns'
+    // grid, or the corners' bounds.
+    Point3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };
+    const vbr::CornerColumns& grid = contours.columns;
+    lo[order[1]] = grid.uLo;
+    hi[order[1]] = grid.uLo + static_cast<vbr::Coord>(64 * grid.wordsPerColumn) - 1;
+    lo[order[2]] = grid.vLo;
+    hi[order[2]] = grid.vLo + static_cast<vbr::Coord>(grid.columns) - 1;
+    if (!contours.corners.empty())
+    {
+      lo[order[1]] = hi[order[1]] = contours.corners[0].u;
+      lo[order[2]] = hi[order[2]] = contours.corners[0].v;
+      for (const vbr::Point2& p : contours.corners)
+      {
+        lo[order[1]] = std::min(lo[order[1]], p.u);
+        hi[order[1]] = std::max(hi[order[1]], p.u);
+        lo[order[2]] = std::min(lo[order[2]], p.v);
+        hi[order[2]] = std::max(hi[order[2]], p.v);
+      }
+    }
+    this->addGridPoints(lo,
+      hi,
+      offset,
+      count,
+      [&](auto&& add)
+      {
+        contours.forEachCorner(
+          [&](vbr::Coord u, vbr::Coord v)
+          {
+            Point3 p;
+            p[order[0]] = 0;
+            p[order[1]] = u;
+            p[order[2]] = v;
+            add(p);
+          });
+      });
+  }
+
+  void finish(vtkPolyData* output, bool lines, int labelType)
+  {
+    vtkNew<vtkDoubleArray> coordinates;
+    coordinates->SetNumberOfComponents(3);
+    this->Coordinates.handTo(coordinates.GetPointer());
+    vtkNew<vtkPoints> points;
+    points->SetData(coordinates);
+    output->SetPoints(points);
+    this->Cells.finish(output, lines, labelType);
+  }
+
+private:
+  /// Appends `count` points, the grid vertices (permuted axes, in [lo, hi], plus `offset`)
+  /// that forEach(add) gives to add one after the other, in world coordinates. Each world
+  /// coordinate is origin + t0 + t1 + t2, a term per image axis (VoxelGrid::vertexToWorld's
+  /// products and sums, in its order, so the same values): the terms are tabulated once per
+  /// index along each axis rather than multiplied out per corner.
+  template<typename ForEach>
+  void addGridPoints(const Point3& lo,
+    const Point3& hi,
+    const std::array<std::int32_t, 3>& offset,
+    std::size_t count,
+    ForEach&& forEach)
+  {
     std::array<int, 3> axisOf;               // the processing axis of each image axis
     std::array<std::vector<double>, 9> term; // [3 * image axis + world axis][index - lo]
     for (int k = 0; k < 3; ++k)
@@ -322,29 +496,18 @@ public:
           term[3 * d + r].push_back(this->Grid.direction[3 * r + d] * local);
       }
     }
-    double* xyz = this->Coordinates.extend(3 * corners.size());
-    for (const Point3& p : corners)
-    {
-      const std::size_t i0 = static_cast<std::size_t>(p[axisOf[0]] - lo[axisOf[0]]);
-      const std::size_t i1 = static_cast<std::size_t>(p[axisOf[1]] - lo[axisOf[1]]);
-      const std::size_t i2 = static_cast<std::size_t>(p[axisOf[2]] - lo[axisOf[2]]);
-      for (int r = 0; r < 3; ++r)
-        *xyz++ = this->Grid.origin[r] + term[r][i0] + term[3 + r][i1] + term[6 + r][i2];
-    }
+    double* xyz = this->Coordinates.extend(3 * count);
+    forEach(
+      [&](const Point3& p)
+      {
+        const std::size_t i0 = static_cast<std::size_t>(p[axisOf[0]] - lo[axisOf[0]]);
+        const std::size_t i1 = static_cast<std::size_t>(p[axisOf[1]] - lo[axisOf[1]]);
+        const std::size_t i2 = static_cast<std::size_t>(p[axisOf[2]] - lo[axisOf[2]]);
+        for (int r = 0; r < 3; ++r)
+          *xyz++ = this->Grid.origin[r] + term[r][i0] + term[3 + r][i1] + term[6 + r][i2];
+      });
   }
 
-  void finish(vtkPolyData* output, bool lines, int labelType)
-  {
-    vtkNew<vtkDoubleArray> coordinates;
-    coordinates->SetNumberOfComponents(3);
-    this->Coordinates.handTo(coordinates.GetPointer());
-    vtkNew<vtkPoints> points;
-    points->SetData(coordinates);
-    output->SetPoints(points);
-    this->Cells.finish(output, lines, labelType);
-  }
-
-private:
   /// Appends the world position of a grid vertex given in permuted axes.
   void addPoint(const Point3& p)
   {
@@ -728,6 +891,59 @@ void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
   trimHeap(releasedBytes);
 }
 
+/// The cells of the only object of a 2D image in Polylines or Loops mode, one per loop: the
+/// 2D plane sweep numbers the corners in the order of the output's points as it meets them
+/// and records them by column, from which the points are written; the loops' numbers are then
+/// written straight into the output's cells, face after face. No B-Rep, no list of corners.
+/// The same output as the B-Rep's way (appendBoundaryCells). Stops when aborted.
+void appendPlanarLoops(vtkAlgorithm* self,
+  const vbr::vtk::Selected& object,
+  const ObjectSettings& settings,
+  Statistics& stats,
+  OutputBuilder& builder)
+{
+  vbr::Contours2D contours;
+  vbr::AxisOrder order;
+  {
+    vbr::EVM evm;
+    const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.1, 0.7);
+    if (extremeVerticesOfObject(object, settings, exec, stats, builder, evm) == 0)
+      return;
+    vtkLogScopeF(TRACE, "EVM to contours (2D plane sweep, corners numbered)");
+    // The corners' numbers follow their keys: u first when u's axis comes first.
+    order = evm.order();
+    const auto& v = evm.vertices();
+    contours = vbr::planeSweep2DNumbered(v.data(),
+      v.data() + v.size(),
+      order[1] < order[2] ? vbr::CornerOrder::UThenV : vbr::CornerOrder::VThenU,
+      settings.connectivity);
+  }
+  const vbr::Boundary2D& b = contours.boundary;
+  stats.faces += static_cast<vtkIdType>(b.faces.size());
+  stats.holes += static_cast<vtkIdType>(
+    std::count_if(b.loops.begin(), b.loops.end(), [](const vbr::Loop2D& l) { return l.hole; }));
+  stats.nonManifoldVertices += static_cast<vtkIdType>(b.nonManifoldVertices);
+  if (self->GetAbortExecute())
+    return;
+  {
+    vtkLogScopeF(TRACE, "output points");
+    builder.addContourCorners(contours, order, object.offset);
+    contours.columns = vbr::CornerColumns();
+    contours.corners = std::vector<vbr::Point2>();
+  }
+  vtkLogScopeF(TRACE, "output cells");
+  const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.7, 1.0);
+  CellProgress progress{ vbr::ProgressPoll(exec, 0.0, 1.0, 1024),
+    std::max<std::size_t>(b.faces.size(), 1) };
+  // The loops run counter-clockwise in (u, v): reversed, as the B-Rep's faces facing +A are,
+  // when (A, u, v) is an odd order.
+  builder.cells().setLoopCells(contours,
+    vbr::axisOrderParity(order) != 1,
+    settings.outputMode == vtkEVMBoundaryFilter::POLYLINES,
+    object.label,
+    [&](std::size_t f) { return progress.tick(f); });
+}
+
 /// The cells of the only object of a 2D image: its faces from the 2D plane sweep, which
 /// numbers their corners in the order of the output's points as it meets them, so that no
 /// set of corners is built nor looked up (appendObjects' way for several objects, which
@@ -739,6 +955,11 @@ void appendPlanarObject(vtkAlgorithm* self,
   Statistics& stats,
   OutputBuilder& builder)
 {
+  if (!cellsFromRuns(settings.outputMode))
+  {
+    appendPlanarLoops(self, object, settings, stats, builder);
+    return;
+  }
   vbr::NumberedBRep faces;
   {
     vbr::EVM evm;

@@ -178,9 +178,8 @@ NumberedBRep extractNumberedBoundary2D(const EVM& evm,
     planeSweep2DNumbered(v.data(), v.data() + v.size(), cornerOrder, connectivity);
   NumberedBRep out;
   out.brep.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
-  out.corners.reserve(c.corners.size());
-  for (const Point2& p : c.corners)
-    out.corners.push_back(placed(order, 0, p));
+  out.corners.reserve(c.cornerCount());
+  c.forEachCorner([&](Coord u, Coord v) { out.corners.push_back(placed(order, 0, { u, v })); });
   out.brep.faces.reserve(c.boundary.faces.size());
   out.brep.loops.reserve(c.boundary.loops.size());
   out.numbers.resize(c.loopCorners.size());

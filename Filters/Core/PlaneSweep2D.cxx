@@ -15,6 +15,11 @@
 // orderEdgesIntoLoops is the domino step, and classifyContours is the second sweep (outer
 // loops, holes and the inclusion tree from 1D tests on the stored section ends).
 //
+// Numbered in the order (v, u) (runNumbered), the corners get their numbers as the sweep meets
+// them from cornersByColumn, a pass over the vertices before the sweep that finds every column's
+// corners with bit operations on whole lines: the extreme vertices, and the non-manifold
+// vertices, where a vertex of the section lies inside a brink of the cut.
+//
 // Terms: a cut is a line of vertices; a brink a maximal segment of it; a section end an
 // extreme vertex of the active section with the horizontal edge it draws; an interval a
 // pair of section ends (a piece of face between two consecutive cuts).
@@ -27,6 +32,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -40,6 +46,11 @@ namespace
 
 /// An edge end not reached yet.
 constexpr std::uint32_t Unset = std::numeric_limits<std::uint32_t>::max();
+
+/// Numbered in the order (v, u), the corners are found by column before the sweep when there
+/// are at least this many vertices per word of the grid of columns (cornersByColumn), and
+/// sorted by v after the sweep otherwise.
+constexpr std::size_t DenseCorners = 1;
 
 /// Asks for huge pages under a large array that is read in no order of memory (the domino
 /// step's edges): a miss in the cache then rarely misses in the TLB as well. A hint only.
@@ -87,8 +98,110 @@ struct FirstInterval
 struct NonManifoldVertex
 {
   std::uint32_t at; ///< its corner
-  int edges[4];     ///< two in, two out
+  /// Two in, two out: the section's horizontal edge ending there, the one starting there, the
+  /// brink's piece ending there, the one starting there (EdgeReach).
+  int edges[4];
 };
+
+/// Where the other end of each edge of a non-manifold vertex lies, as a step in (u, v) from the
+/// vertex, in the order of NonManifoldVertex::edges: horizontal edges run along u between two
+/// cuts, the pieces of a brink along v in its line.
+constexpr int EdgeReach[4][2] = { { -1, 0 }, { 1, 0 }, { 0, -1 }, { 0, 1 } };
+
+/// Calls visit(u, first, last) for every line of vertices [first, last) of [begin, end).
+template<typename Visit>
+void forEachLine(const Vertex* begin, const Vertex* end, Visit&& visit)
+{
+  while (begin != end)
+  {
+    const Vertex* lineEnd = begin;
+    while (lineEnd != end && (*lineEnd)[1] == (*begin)[1])
+      ++lineEnd;
+    visit((*begin)[1], begin, lineEnd);
+    begin = lineEnd;
+  }
+}
+
+/// The parity of the bits of `w` at and below each bit (a prefix XOR within the word).
+inline std::uint64_t prefixParity(std::uint64_t w)
+{
+  w ^= w << 1;
+  w ^= w << 2;
+  w ^= w << 4;
+  w ^= w << 8;
+  w ^= w << 16;
+  w ^= w << 32;
+  return w;
+}
+
+/// The range of v of the vertices [begin, end), not empty.
+std::pair<Coord, Coord> rangeOfV(const Vertex* begin, const Vertex* end)
+{
+  Coord vLo = (*begin)[2], vHi = vLo;
+  for (const Vertex* p = begin; p != end; ++p)
+  {
+    vLo = std::min(vLo, (*p)[2]);
+    vHi = std::max(vHi, (*p)[2]);
+  }
+  return { vLo, vHi };
+}
+
+/// The words of the grid of cornersByColumn for the vertices [begin, end), not empty, whose v
+/// range is [vLo, vHi].
+std::size_t columnGridWords(const Vertex* begin, const Vertex* end, Coord vLo, Coord vHi)
+{
+  const std::size_t rows = static_cast<std::size_t>((*(end - 1))[1] - (*begin)[1]) + 1;
+  return (static_cast<std::size_t>(vHi - vLo) + 1) * ((rows + 63) / 64);
+}
+
+/// The corners the sweep of [begin, end) meets, by column (CornerColumns): on each line u, the
+/// vertices of the cut, and the vertices of the section (the XOR of the cuts before) that are
+/// not in the cut but inside one of its brinks (an odd number of cut vertices below them), the
+/// non-manifold vertices of Sweep::processLine. Whole words of a line at a time. [vLo, vHi]: the
+/// range of v.
+CornerColumns cornersByColumn(const Vertex* begin, const Vertex* end, Coord vLo, Coord vHi)
+{
+  CornerColumns g;
+  g.uLo = (*begin)[1];
+  g.vLo = vLo;
+  g.columns = static_cast<std::size_t>(vHi - vLo) + 1;
+  g.wordsPerColumn = (static_cast<std::size_t>((*(end - 1))[1] - g.uLo) + 64) / 64;
+  g.bits.assign(g.columns * g.wordsPerColumn, 0);
+  const std::size_t lineWords = (g.columns + 63) / 64;
+  std::vector<std::uint64_t> section(lineWords, 0), cut(lineWords, 0);
+  std::size_t count = 0;
+  forEachLine(begin,
+    end,
+    [&](Coord u, const Vertex* first, const Vertex* last)
+    {
+      for (const Vertex* p = first; p != last; ++p)
+      {
+        const std::size_t k = static_cast<std::size_t>((*p)[2] - vLo);
+        cut[k / 64] ^= std::uint64_t(1) << (k % 64);
+      }
+      const std::size_t row = static_cast<std::size_t>(u - g.uLo);
+      const std::uint64_t rowBit = std::uint64_t(1) << (row % 64);
+      std::uint64_t* column = g.bits.data() + row / 64;
+      std::uint64_t below = 0; // all ones when the cut is open at the word's start
+      for (std::size_t w = 0; w < lineWords; ++w)
+      {
+        const std::uint64_t c = cut[w];
+        if ((c | section[w]) == 0)
+          continue; // nothing here, and `below` goes on
+        const std::uint64_t inCut = prefixParity(c) ^ below ^ c; // open just below each bit
+        below = (inCut ^ c) >> 63 ? ~std::uint64_t(0) : 0;
+        const std::uint64_t nonManifold = section[w] & ~c & inCut;
+        section[w] ^= c;
+        cut[w] = 0;
+        for (std::uint64_t k = c | nonManifold; k != 0; k &= k - 1, ++count)
+          column[(64 * w + countTrailingZeros(k)) * g.wordsPerColumn] |= rowBit;
+      }
+    });
+  if (count >= Unset)
+    throw std::length_error("planeSweep2D: 2^32 corners or more");
+  g.count = count;
+  return g;
+}
 
 class Sweep
 {
@@ -116,16 +229,31 @@ public:
   /// The same method, the loops' corners as numbers of the distinct corners in `order`.
   Contours2D runNumbered(const Vertex* begin, const Vertex* end, CornerOrder order)
   {
-    this->firstSweep(begin, end);
     Contours2D out;
-    out.boundary.nonManifoldVertices = this->NonManifold.size();
-    if (order == CornerOrder::VThenU)
+    bool sortAlongV = false;
+    if (order == CornerOrder::VThenU && begin != end)
+    {
+      // The grid of columns costs a bit per grid point, the sort after the sweep a scattered
+      // write per corner: the grid where corners are dense (a maze, a scan of text), the sort
+      // where they are few (a fax page's large black areas).
+      const auto [vLo, vHi] = rangeOfV(begin, end);
+      sortAlongV = static_cast<std::size_t>(end - begin) <
+        DenseCorners * columnGridWords(begin, end, vLo, vHi);
+      if (!sortAlongV)
+      {
+        out.columns = cornersByColumn(begin, end, vLo, vHi);
+        this->numberByColumn(out.columns);
+      }
+    }
+    this->firstSweep(begin, end);
+    if (sortAlongV)
       this->numberCornersAlongV();
+    out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
     out.loopCorners.reserve(this->Edges.size());
     this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
     this->classifyContours(out.boundary);
-    out.corners.swap(this->Corners);
+    out.corners.swap(this->Corners); // empty when numbered by column
     return out;
   }
 
@@ -138,7 +266,8 @@ private:
     // two, and only then does the array grow): growing it from empty would copy the edges
     // about twice.
     this->Edges.reserve(static_cast<std::size_t>(end - begin));
-    this->Corners.reserve(static_cast<std::size_t>(end - begin));
+    if (this->ColumnNext.empty())
+      this->Corners.reserve(static_cast<std::size_t>(end - begin));
     adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge));
     while (begin != end)
     {
@@ -166,9 +295,12 @@ private:
 
   // ---- corners and edges ---------------------------------------------------------------------
   /// Numbers a corner: the sweep meets them line after line, along each line in order, so
-  /// their numbers follow the order (u, v).
+  /// their numbers follow the order (u, v); or, numbered by column (numberByColumn), the next
+  /// number of its column, which makes the order (v, u).
   std::uint32_t newCorner(Point2 here)
   {
+    if (!this->ColumnNext.empty())
+      return this->ColumnNext[static_cast<std::size_t>(here.v - this->ColumnLo)]++;
     if (this->Corners.size() >= Unset)
       throw std::length_error("planeSweep2D: 2^32 corners or more");
     this->Corners.push_back(here);
@@ -236,6 +368,13 @@ private:
     bool inPrev = false, inCut = false;
     while (i < this->Section.size() || cut != cutEnd)
     {
+      if (!inCut && i % 2 == 0 && i < this->Section.size() &&
+        (cut == cutEnd || (*cut)[2] > this->Section[i + 1].v))
+      {
+        this->passInterval(o, i);
+        i += 2;
+        continue;
+      }
       const bool takePrev =
         i < this->Section.size() && (cut == cutEnd || this->Section[i].v <= (*cut)[2]);
       const Coord v = takePrev ? this->Section[i].v : (*cut)[2];
@@ -265,6 +404,21 @@ private:
     }
     this->Section.swap(this->NextSection);
     this->SectionIntervals.swap(this->NextIntervals);
+  }
+
+  /// An interval of the previous section, from section end i, that the cut neither enters nor
+  /// touches (no vertex of the cut in it or at its ends, and the cut closed there): it goes on
+  /// into the next section as it is, the same interval, where the point by point merge would
+  /// start a new interval at its start and unite it with this one at its end (the same
+  /// faces, one interval and one union fewer: most intervals of a sparse image).
+  void passInterval(OpenIntervals& o, std::size_t i)
+  {
+    const int interval = this->SectionIntervals[i / 2];
+    o.prevInterval = o.newInterval = interval;
+    o.newTouched = true;
+    this->NextIntervals.push_back(interval);
+    this->NextSection.push_back(this->Section[i]);
+    this->NextSection.push_back(this->Section[i + 1]);
   }
 
   /// Updates the open intervals at a point of the line: the intervals of both sections that
@@ -372,12 +526,18 @@ private:
   {
     for (const auto& nmv : this->NonManifold)
     {
-      int in[2], out[2], ni = 0, no = 0;
-      for (int e : nmv.edges)
-        if (this->Edges[e].to == nmv.at)
-          in[ni++] = e;
+      int in[2], out[2], ni = 0, no = 0, inReach[2], outReach[2];
+      for (int j = 0; j < 4; ++j)
+        if (this->Edges[nmv.edges[j]].to == nmv.at)
+        {
+          inReach[ni] = j;
+          in[ni++] = nmv.edges[j];
+        }
         else
-          out[no++] = e;
+        {
+          outReach[no] = j;
+          out[no++] = nmv.edges[j];
+        }
       if (ni != 2 || no != 2)
         throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
       const bool sameFace =
@@ -386,16 +546,16 @@ private:
       {
         const Edge& a = this->Edges[in[k]];
         int chosen = -1;
-        for (int o : out)
+        for (int m = 0; m < 2; ++m)
         {
+          const int o = out[m];
           const Edge& b = this->Edges[o];
           if (sameFace)
           {
-            const Point2 a0 = this->Corners[a.from], a1 = this->Corners[a.to];
-            const Point2 b0 = this->Corners[b.from], b1 = this->Corners[b.to];
-            const long long du1 = a1.u - a0.u, dv1 = a1.v - a0.v;
-            const long long du2 = b1.u - b0.u, dv2 = b1.v - b0.v;
-            if (du1 * dv2 - dv1 * du2 < 0)
+            // The directions of a (towards the vertex) and b (away from it).
+            const int* ra = EdgeReach[inReach[k]];
+            const int* rb = EdgeReach[outReach[m]];
+            if (-ra[0] * rb[1] + ra[1] * rb[0] < 0)
               chosen = o; // right turn
           }
           else if (this->find(b.interval) == this->find(a.interval))
@@ -457,6 +617,22 @@ private:
     this->Corners.swap(sorted);
     for (Edge& e : this->Edges)
       e.from = number[e.from];
+  }
+
+  /// Numbers the corners in the order (v, u) as the sweep meets them: the first corner of
+  /// each column gets the number after those of the columns before, the next ones follow.
+  void numberByColumn(const CornerColumns& columns)
+  {
+    this->ColumnLo = columns.vLo;
+    this->ColumnNext.assign(columns.columns, 0);
+    std::uint32_t number = 0;
+    const std::uint64_t* word = columns.bits.data();
+    for (std::size_t k = 0; k < columns.columns; ++k)
+    {
+      this->ColumnNext[k] = number;
+      for (std::size_t w = 0; w < columns.wordsPerColumn; ++w, ++word)
+        number += static_cast<std::uint32_t>(popCount(*word));
+    }
   }
 
   /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
@@ -531,9 +707,11 @@ private:
   std::vector<SectionEnd> Section;     ///< active section, sorted by v
   std::vector<SectionEnd> NextSection; ///< the section being built (reused buffers)
   std::vector<int> NextIntervals;
-  std::vector<int> SectionIntervals; ///< interval id of each pair of section ends
-  UnionFind Intervals;               ///< the section intervals, united into faces
-  std::vector<Point2> Corners;       ///< by number
+  std::vector<int> SectionIntervals;     ///< interval id of each pair of section ends
+  UnionFind Intervals;                   ///< the section intervals, united into faces
+  std::vector<Point2> Corners;           ///< by number, when not numbered by column
+  std::vector<std::uint32_t> ColumnNext; ///< numbered by column: the next number of each
+  Coord ColumnLo = 0;                    ///< the v of the first column
   std::vector<Edge> Edges;
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;

@@ -79,17 +79,61 @@ enum class CornerOrder
   VThenU
 };
 
+/// The distinct corners of a 2D solution (its extreme vertices and its non-manifold vertices)
+/// as a grid of bits, column by column: corner (u, v) is bit u - uLo of column v - vLo. Read
+/// column after column, bit after bit, they come in the order (v, u).
+struct CornerColumns
+{
+  Coord uLo = 0, vLo = 0;
+  std::size_t columns = 0;        ///< of v
+  std::size_t wordsPerColumn = 0; ///< 64 values of u a word
+  std::size_t count = 0;          ///< of corners
+  std::vector<std::uint64_t> bits;
+
+  /// Calls visit(u, v) for every corner in the order (v, u).
+  template<typename Visit>
+  void forEach(Visit&& visit) const
+  {
+    const std::uint64_t* word = this->bits.data();
+    for (std::size_t k = 0; k < this->columns; ++k)
+    {
+      const Coord v = this->vLo + static_cast<Coord>(k);
+      for (std::size_t w = 0; w < this->wordsPerColumn; ++w, ++word)
+        for (std::uint64_t b = *word; b != 0; b &= b - 1)
+          visit(this->uLo + static_cast<Coord>(64 * w + countTrailingZeros(b)), v);
+    }
+  }
+};
+
 /// The loops of planeSweep2D with each corner given by its number among the distinct corners
 /// (a non-manifold vertex is one corner of two loops, or twice of one).
 struct Contours2D
 {
   Boundary2D boundary;                    ///< its loops index loopCorners; no points
-  std::vector<Point2> corners;            ///< the distinct corners, by number
+  std::vector<Point2> corners;            ///< CornerOrder::UThenV: the corners, by number
+  CornerColumns columns;                  ///< CornerOrder::VThenU: the corners, by number
   std::vector<std::uint32_t> loopCorners; ///< the numbers of all loops' corners, loop after loop
+
+  /// Calls visit(u, v) for every distinct corner in the order of their numbers.
+  template<typename Visit>
+  void forEachCorner(Visit&& visit) const
+  {
+    if (this->corners.empty())
+      this->columns.forEach(visit);
+    for (const Point2& p : this->corners)
+      visit(p.u, p.v);
+  }
+  std::size_t cornerCount() const
+  {
+    return this->corners.empty() ? this->columns.count : this->corners.size();
+  }
 };
 
 /// planeSweep2D, with the corners numbered in `order` as the sweep meets them: the same faces,
 /// loops (each from the same corner) and inclusion tree, without a later pass to number them.
+/// In the order (v, u), a first pass over the vertices finds the corners of every column (the
+/// extreme vertices and the non-manifold vertices), so that each corner the sweep meets gets
+/// its number at once, the next one of its column (CornerColumns).
 /// Throws std::length_error for 2^32 corners or 2^31 - 1 edges or more.
 Contours2D planeSweep2DNumbered(const Vertex* begin,
   const Vertex* end,

@@ -320,3 +320,27 @@ TEST(PlaneSweep2D, NestedRingsAndDegenerateImages)
     vbr::extractNumberedBoundary2D(vbr::extractEVM2D(empty), vbr::FaceConnectivity::Edge, true);
   EXPECT_TRUE(none.brep.faces.empty() && none.corners.empty() && none.numbers.empty());
 }
+
+TEST(PlaneSweep2D, NumberedCornersOfLargeDenseAndSparseImages)
+{
+  // Dense: more vertices than words in the grid of columns, which are then found by column
+  // before the sweep; wider and taller than 64 (several words a line and a column), with
+  // many non-manifold vertices.
+  for (unsigned seed = 1; seed <= 2; ++seed)
+  {
+    const vbr::BitVolume dense = bf::randomVolume({ 150, 140, 1 }, 0.5, 7000 + seed);
+    checkNumbered(dense, false, "ZYX");
+    checkNumbered(dense, true, "ZYX");
+  }
+  // Sparse: fewer vertices than grid words, the corners sorted by v after the sweep; two
+  // rectangles, one inside the other's hole, and two pixels touching at a corner.
+  vbr::BitVolume sparse(300, 200, 1);
+  for (int y = 20; y < 180; ++y)
+    for (int x = 10; x < 290; ++x)
+      if (y < 30 || y >= 170 || x < 20 || x >= 280 || (y >= 90 && y < 100 && x >= 140 && x < 160))
+        sparse.set(x, y, 0);
+  sparse.set(200, 50, 0);
+  sparse.set(201, 51, 0);
+  checkNumbered(sparse, false, "ZYX");
+  checkNumbered(sparse, true, "ZYX");
+}
