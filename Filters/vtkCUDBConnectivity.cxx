@@ -89,7 +89,7 @@ struct ObjectBoxes
   std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
   /// A 2D object swept along its rows (ZYX in processing axes): its pixels and their runs,
-  /// from which its RegionIds are painted (vbr::paintPixelRuns).
+  /// from which its RegionIds are painted (vbr::paintPixelRunsOverwriting).
   vbr::BitVolume pixels;
   vbr::PixelRuns runs;
   /// A 2D object labelled on the runs of its rows without its boxes (vbr::labelPixelRuns): its
@@ -991,6 +991,56 @@ vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
   return ids;
 }
 
+/// The value painted for each box of an object labelled from its boxes (a label per box, kept
+/// or not): with `regionIds`, its region's RegionId (0 where removed); without, the region's
+/// number.
+std::vector<std::int32_t> valuesOfBoxes(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds)
+{
+  std::vector<std::int32_t> values(o.components.boxLabel.size());
+  for (std::size_t b = 0; b < values.size(); ++b)
+  {
+    const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
+    values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
+  }
+  return values;
+}
+
+/// Whether the RegionIds of the image's objects are painted from the pixel runs of the only
+/// one, whose rows are the image's (x fastest): paintOnlyObjectOfPixelRuns.
+bool onlyObjectOfPixelRuns(const std::vector<ObjectBoxes>& objects, const std::array<int, 3>& axes)
+{
+  return objects.size() == 1 && !objects[0].labelledFromRuns && !objects[0].runs.empty() &&
+    axes[0] == 0;
+}
+
+/// paintRegions of a 2D image's only object swept along the image's rows: the RegionId image in
+/// memory of allocateTuples (an earlier update's, when one released it), every pixel written
+/// by vbr::paintPixelRunsOverwriting rather than mapped zeroed, faulted in and painted over
+/// (16 MB of a fax page at each update). The image's rows follow one another: the flat axis
+/// is the last processing axis, so with processing x along the image's x the rows of the
+/// processing y are the image's rows, dims[0] pixels each.
+vtkSmartPointer<vtkIntArray> paintOnlyObjectOfPixelRuns(const ObjectBoxes& o,
+  const std::vector<std::int32_t>* regionIds,
+  const vbr::vtk::VoxelGrid& grid,
+  const vbr::Execution& exec)
+{
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkNew<vtkIntArray> ids;
+  ids->SetName("RegionId");
+  allocateTuples({ ids }, n, 0.0);
+  if (!vbr::paintPixelRunsOverwriting(o.pixels,
+        o.runs,
+        valuesOfBoxes(o, regionIds),
+        { o.offset[0], o.offset[1] },
+        grid.dims[0],
+        n / std::max<vtkIdType>(grid.dims[0], 1),
+        ids->GetPointer(0),
+        exec))
+    return nullptr;
+  return ids;
+}
+
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
 /// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted.
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
@@ -1002,10 +1052,11 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   const std::int64_t n = std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   if (objects.size() == 1 && objects[0].labelledFromRuns)
     return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec);
+  if (onlyObjectOfPixelRuns(objects, axes))
+    return paintOnlyObjectOfPixelRuns(objects[0], regionIds, grid, exec);
   vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(static_cast<vtkIdType>(n));
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
-  std::vector<std::int32_t> values;
   for (const ObjectBoxes& o : objects)
   {
     if (o.labelledFromRuns)
@@ -1014,23 +1065,8 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
         return nullptr;
       continue;
     }
-    values.resize(o.components.boxLabel.size()); // a label per box, kept or not
-    for (std::size_t b = 0; b < values.size(); ++b)
-    {
-      const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
-      values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
-    }
-    // From the pixel runs when the object's rows are the image's (x fastest) and no other
-    // object shares its rectangle (the runs' painting writes 0 past short runs).
-    if (objects.size() == 1 && !o.runs.empty() && axes[0] == 0)
-    {
-      const std::int64_t rowStep =
-        axes[1] == 1 ? grid.dims[0] : std::int64_t(grid.dims[0]) * grid.dims[1];
-      if (!vbr::paintPixelRuns(
-            o.pixels, o.runs, values, { o.offset[0], o.offset[1] }, rowStep, out, exec))
-        return nullptr;
-    }
-    else if (!vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec))
+    if (!vbr::paintBoxes(
+          o.cudb.boxes, valuesOfBoxes(o, regionIds), o.offset, axes, grid.dims, out, exec))
       return nullptr;
   }
   return ids;
