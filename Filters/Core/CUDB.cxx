@@ -1687,7 +1687,9 @@ void paintRowsOfRuns(const BitVolume& pixels,
 }
 
 /// paintPixelRunsOverwriting over image rows [from, to): each row zeroed, then its pixels'
-/// runs (if it has some) painted while it is in the cache.
+/// runs (if it has some) painted while it is in the cache. (Rows built in scratch and copied
+/// out by streaming stores, which skip reading the lines first, took 4 to 14 % longer on the
+/// fax pages.)
 void overwriteRowsOfRuns(const BitVolume& pixels,
   std::int64_t from,
   std::int64_t to,

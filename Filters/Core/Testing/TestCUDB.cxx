@@ -697,6 +697,16 @@ TEST(CUDB, PixelRunsAbortBetweenSteps)
     EXPECT_EQ(quiet, 5) << "before every step, and once done";
     EXPECT_EQ(reported, (std::vector<double>{ 0.0, 0.25, 0.5, 0.75 }));
     EXPECT_EQ(painted, expected);
+    // The same into a larger image of any content, at an offset.
+    std::vector<std::int32_t> overwritten((width + 5) * (rows + 3), -7);
+    EXPECT_TRUE(vbr::paintPixelRunsOverwriting(
+      v, runs, value, { 5, 2 }, width + 5, rows + 3, overwritten.data(), exec));
+    std::vector<std::int32_t> shifted(overwritten.size(), 0);
+    for (std::size_t y = 0; y < rows; ++y)
+      std::copy_n(expected.begin() + std::ptrdiff_t(y * width),
+        width,
+        shifted.begin() + std::ptrdiff_t((y + 2) * (width + 5) + 5));
+    EXPECT_EQ(overwritten, shifted);
   }
 }
 
