@@ -89,7 +89,7 @@ struct ObjectBoxes
   std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
   /// A 2D object swept along its rows (ZYX in processing axes): its pixels and their runs,
-  /// from which its RegionIds are painted (vbr::paintPixelRuns).
+  /// from which its RegionIds are painted (vbr::paintPixelRunsOverwriting).
   vbr::BitVolume pixels;
   vbr::PixelRuns runs;
   /// A 2D object labelled on the runs of its rows without its boxes (vbr::labelPixelRuns): its
@@ -423,6 +423,51 @@ void* allocateBlock(std::size_t bytes, bool huge)
 #endif
   return block;
 }
+
+/// A std::allocator over allocateBlock: scratch of 2 MiB or more that an update fills comes
+/// from the blocks an earlier update released (BlockCache) rather than from pages the kernel
+/// faults in and zeroes at every update (a checkerboard's region numbering has 20 MB of it).
+template<typename T>
+struct BlockAllocator
+{
+  using value_type = T;
+  BlockAllocator() = default;
+  template<typename U>
+  BlockAllocator(const BlockAllocator<U>&) // NOLINT: rebinding, as std::allocator
+  {
+  }
+  T* allocate(std::size_t n)
+  {
+    void* block = allocateBlock(n * sizeof(T), true);
+    if (!block)
+      throw std::bad_alloc();
+    return static_cast<T*>(block);
+  }
+  void deallocate(T* p, std::size_t) { releaseBlock(p); }
+  friend bool operator==(const BlockAllocator&, const BlockAllocator&) { return true; }
+  friend bool operator!=(const BlockAllocator&, const BlockAllocator&) { return false; }
+};
+
+/// Releases a block of allocateBlock (a std::unique_ptr's deleter).
+struct BlockRelease
+{
+  void operator()(void* block) const { releaseBlock(block); }
+};
+
+/// Room for n values of a trivial type, unset, in a block of allocateBlock (huge: cached).
+template<typename T>
+T* newBlockArray(std::size_t n)
+{
+  void* block = allocateBlock(std::max<std::size_t>(n, 1) * sizeof(T), true);
+  if (!block)
+    throw std::bad_alloc();
+  return static_cast<T*>(block);
+}
+
+/// The RegionId of every region (0 when removed), by region in sweep order.
+using RegionIdList = std::vector<std::int32_t, BlockAllocator<std::int32_t>>;
+/// Region indices: the kept regions, the region of each row of the table.
+using RegionList = std::vector<std::size_t, BlockAllocator<std::size_t>>;
 
 /// Refuses (throws) `bytes` of new arrays the memory cannot take (what resizeOrThrow checks).
 void checkBytes(double bytes, vtkIdType tuples, std::size_t arrays)
@@ -850,16 +895,14 @@ int bitsFor(std::uint64_t n)
 /// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, by a
 /// counting sort of their sizes, all at most `largest`: two passes over the regions and one
 /// over the sizes (noise and halftones have hundreds of thousands of regions of a few voxels).
-void countingSortBySize(const std::int64_t* sizes,
-  std::int64_t largest,
-  std::vector<std::size_t>& kept)
+void countingSortBySize(const std::int64_t* sizes, std::int64_t largest, RegionList& kept)
 {
   std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 2, 0);
   for (std::size_t r : kept)
     ++start[static_cast<std::size_t>(largest - sizes[r]) + 1];
   for (std::size_t k = 1; k < start.size(); ++k)
     start[k] += start[k - 1];
-  std::vector<std::size_t> sorted(kept.size());
+  RegionList sorted(kept.size());
   for (std::size_t r : kept) // in sweep order: ties stay in it
     sorted[start[static_cast<std::size_t>(largest - sizes[r])]++] = r;
   kept = std::move(sorted);
@@ -869,7 +912,7 @@ void countingSortBySize(const std::int64_t* sizes,
 /// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
 /// the indices fit in one 64-bit key together, by a radix sort of those keys: a maze has 642,115
 /// regions, whose comparison sort took longer than their table.
-void rankBySize(const std::int64_t* sizes, std::size_t count, std::vector<std::size_t>& kept)
+void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
 {
   const auto larger = [sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
   std::int64_t largest = 0;
@@ -905,12 +948,13 @@ std::int32_t numberRegions(const Regions& regions,
   bool useSeeds,
   vtkIdType largest,
   int ordering,
-  std::vector<std::int32_t>& ids,
-  std::vector<std::size_t>& rows)
+  RegionIdList& ids,
+  RegionList& rows)
 {
   // Every value is written: not zeroed first (8 MB on a checkerboard).
-  const std::unique_ptr<std::int64_t[]> sizes(new std::int64_t[regions.size()]);
-  std::vector<std::size_t>& kept = rows;
+  const std::unique_ptr<std::int64_t[], BlockRelease> sizes(
+    newBlockArray<std::int64_t>(regions.size()));
+  RegionList& kept = rows;
   kept.clear();
   kept.reserve(regions.size());
   // Regions of one size, or already largest first (a checkerboard's million regions of one
@@ -941,8 +985,7 @@ std::int32_t numberRegions(const Regions& regions,
 
 /// The value painted for each label of an object labelled on its runs (by label, from 1): with
 /// `regionIds`, its region's RegionId (0 where removed); without, the region's number.
-std::vector<std::int32_t> valuesOfRunLabels(const ObjectBoxes& o,
-  const std::vector<std::int32_t>* regionIds)
+std::vector<std::int32_t> valuesOfRunLabels(const ObjectBoxes& o, const RegionIdList* regionIds)
 {
   std::vector<std::int32_t> values(o.runComponents.count + 1, 0);
   for (std::uint32_t c = 1; c <= o.runComponents.count; ++c)
@@ -957,7 +1000,7 @@ std::vector<std::int32_t> valuesOfRunLabels(const ObjectBoxes& o,
 /// from the runs into the zeroed image, as paintRegions does (the only object of an image takes
 /// paintOnlyObjectOfRuns).
 bool paintRegionsOfRuns(const ObjectBoxes& o,
-  const std::vector<std::int32_t>* regionIds,
+  const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
   std::int32_t* out,
   const vbr::Execution& exec)
@@ -971,7 +1014,7 @@ bool paintRegionsOfRuns(const ObjectBoxes& o,
 /// of allocateTuples (an earlier update's, when one released it), every voxel written by
 /// vbr::paintRunsOverwriting rather than faulted in zeroed and painted over.
 vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
-  const std::vector<std::int32_t>* regionIds,
+  const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
   const vbr::Execution& exec)
 {
@@ -991,10 +1034,59 @@ vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
   return ids;
 }
 
+/// The value painted for each box of an object labelled from its boxes (a label per box, kept
+/// or not): with `regionIds`, its region's RegionId (0 where removed); without, the region's
+/// number.
+std::vector<std::int32_t> valuesOfBoxes(const ObjectBoxes& o, const RegionIdList* regionIds)
+{
+  std::vector<std::int32_t> values(o.components.boxLabel.size());
+  for (std::size_t b = 0; b < values.size(); ++b)
+  {
+    const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
+    values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
+  }
+  return values;
+}
+
+/// Whether the RegionIds of the image's objects are painted from the pixel runs of the only
+/// one, whose rows are the image's (x fastest): paintOnlyObjectOfPixelRuns.
+bool onlyObjectOfPixelRuns(const std::vector<ObjectBoxes>& objects, const std::array<int, 3>& axes)
+{
+  return objects.size() == 1 && !objects[0].labelledFromRuns && !objects[0].runs.empty() &&
+    axes[0] == 0;
+}
+
+/// paintRegions of a 2D image's only object swept along the image's rows: the RegionId image in
+/// memory of allocateTuples (an earlier update's, when one released it), every pixel written
+/// by vbr::paintPixelRunsOverwriting rather than mapped zeroed, faulted in and painted over
+/// (16 MB of a fax page at each update). The image's rows follow one another: the flat axis
+/// is the last processing axis, so with processing x along the image's x the rows of the
+/// processing y are the image's rows, dims[0] pixels each.
+vtkSmartPointer<vtkIntArray> paintOnlyObjectOfPixelRuns(const ObjectBoxes& o,
+  const RegionIdList* regionIds,
+  const vbr::vtk::VoxelGrid& grid,
+  const vbr::Execution& exec)
+{
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkNew<vtkIntArray> ids;
+  ids->SetName("RegionId");
+  allocateTuples({ ids }, n, 0.0);
+  if (!vbr::paintPixelRunsOverwriting(o.pixels,
+        o.runs,
+        valuesOfBoxes(o, regionIds),
+        { o.offset[0], o.offset[1] },
+        grid.dims[0],
+        n / std::max<vtkIdType>(grid.dims[0], 1),
+        ids->GetPointer(0),
+        exec))
+    return nullptr;
+  return ids;
+}
+
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
 /// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted.
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
-  const std::vector<std::int32_t>* regionIds,
+  const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   const vbr::Execution& exec)
@@ -1002,10 +1094,11 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
   const std::int64_t n = std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   if (objects.size() == 1 && objects[0].labelledFromRuns)
     return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec);
+  if (onlyObjectOfPixelRuns(objects, axes))
+    return paintOnlyObjectOfPixelRuns(objects[0], regionIds, grid, exec);
   vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(static_cast<vtkIdType>(n));
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
-  std::vector<std::int32_t> values;
   for (const ObjectBoxes& o : objects)
   {
     if (o.labelledFromRuns)
@@ -1014,30 +1107,15 @@ vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& object
         return nullptr;
       continue;
     }
-    values.resize(o.components.boxLabel.size()); // a label per box, kept or not
-    for (std::size_t b = 0; b < values.size(); ++b)
-    {
-      const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
-      values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
-    }
-    // From the pixel runs when the object's rows are the image's (x fastest) and no other
-    // object shares its rectangle (the runs' painting writes 0 past short runs).
-    if (objects.size() == 1 && !o.runs.empty() && axes[0] == 0)
-    {
-      const std::int64_t rowStep =
-        axes[1] == 1 ? grid.dims[0] : std::int64_t(grid.dims[0]) * grid.dims[1];
-      if (!vbr::paintPixelRuns(
-            o.pixels, o.runs, values, { o.offset[0], o.offset[1] }, rowStep, out, exec))
-        return nullptr;
-    }
-    else if (!vbr::paintBoxes(o.cudb.boxes, values, o.offset, axes, grid.dims, out, exec))
+    if (!vbr::paintBoxes(
+          o.cudb.boxes, valuesOfBoxes(o, regionIds), o.offset, axes, grid.dims, out, exec))
       return nullptr;
   }
   return ids;
 }
 
 /// Region numbers (index + 1) replaced in place by the regions' RegionIds (0: removed).
-void renumberRegions(vtkIntArray* ids, const std::vector<std::int32_t>& regionIds)
+void renumberRegions(vtkIntArray* ids, const RegionIdList& regionIds)
 {
   std::int32_t* values = ids->GetPointer(0);
   vtkSMPTools::For(0,
@@ -1092,15 +1170,12 @@ BoxCellLayout boxCellLayout(const vbr::vtk::VoxelGrid& grid, const std::array<in
 }
 
 /// The RegionId of box b of an object (0: its region is removed).
-std::int32_t regionIdOfBox(const ObjectBoxes& o,
-  std::size_t b,
-  const std::vector<std::int32_t>& regionIds)
+std::int32_t regionIdOfBox(const ObjectBoxes& o, std::size_t b, const RegionIdList& regionIds)
 {
   return regionIds[o.firstRegion + o.components.boxLabel[b] - 1];
 }
 
-vtkIdType countKeptBoxes(const std::vector<ObjectBoxes>& objects,
-  const std::vector<std::int32_t>& regionIds)
+vtkIdType countKeptBoxes(const std::vector<ObjectBoxes>& objects, const RegionIdList& regionIds)
 {
   vtkIdType count = 0;
   for (const ObjectBoxes& o : objects)
@@ -1386,7 +1461,7 @@ vtkIdType writeObjectBoxes(const ObjectBoxes& o,
 
 /// Port 1: the boxes of the kept regions, one voxel (or hexahedron, pixel, quad) cell each.
 void writeBoxes(const std::vector<ObjectBoxes>& objects,
-  const std::vector<std::int32_t>& regionIds,
+  const RegionIdList& regionIds,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
@@ -1532,7 +1607,7 @@ struct RegionColumns
 
   /// Rows [0, regionOfRow.size()) (ids 1, 2, ...) from the statistics of their regions.
   void write(const Regions& regions,
-    const std::vector<std::size_t>& regionOfRow,
+    const RegionList& regionOfRow,
     const vbr::vtk::VoxelGrid& grid,
     const std::array<int, 3>& axes,
     double voxelMeasure)
@@ -1593,8 +1668,8 @@ struct RegionColumns
 /// Port 2: one row per kept region, in RegionId order, from the regions' statistics.
 void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   const Regions& regions,
-  const std::vector<std::int32_t>& regionIds,
-  const std::vector<std::size_t>& regionOfRow,
+  const RegionIdList& regionIds,
+  const RegionList& regionOfRow,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
@@ -1753,7 +1828,12 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
 {
   vtkLogScopeF(TRACE, "select pixels and label the runs of their rows");
   o.pixels = selected.select(exec.within(0.0, 0.1));
-  if (vbr::countPixelRuns(o.pixels) < static_cast<std::uint64_t>(minimumRuns))
+  // A row of n pixels has at most (n + 1) / 2 runs: below the threshold whatever the pixels,
+  // they need not be counted (a scan of every row of a fax page).
+  const std::uint64_t mostRuns =
+    std::uint64_t(o.pixels.size(1)) * ((std::uint64_t(o.pixels.size(0)) + 1) / 2);
+  if (mostRuns < static_cast<std::uint64_t>(minimumRuns) ||
+    vbr::countPixelRuns(o.pixels) < static_cast<std::uint64_t>(minimumRuns))
     return boxesOfPixels(
       std::move(o.pixels), { vbr::AxisOrder{ 2, 1, 0 } }, connectivity, true, exec, o);
   vbr::PixelRunComponents labelled;
@@ -1930,7 +2010,7 @@ void addRegionIds(vtkImageData* output, vtkIntArray* ids, bool cellData)
 /// Rank 0: the kept boxes of all objects as [lo, hi (image axes, whole-grid voxels), RegionId]
 /// per box; [-1] when aborted.
 std::vector<long long> keptBoxValues(const std::vector<ObjectBoxes>& objects,
-  const std::vector<std::int32_t>& regionIds,
+  const RegionIdList& regionIds,
   const std::array<int, 3>& axes,
   bool aborted)
 {
@@ -1993,8 +2073,8 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   const std::vector<ObjectBoxes>& objects,
   std::uint32_t regionCount,
   Regions& regions,
-  std::vector<std::int32_t>& regionIds,
-  std::vector<std::size_t>& regionOfRow,
+  RegionIdList& regionIds,
+  RegionList& regionOfRow,
   Summary& summary,
   vtkSmartPointer<vtkIntArray>* painted)
 {
@@ -2022,8 +2102,8 @@ void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const vbr::vtk::InputObjects& in,
   const std::vector<ObjectBoxes>& objects,
   const Regions& regions,
-  const std::vector<std::int32_t>& regionIds,
-  const std::vector<std::size_t>& regionOfRow,
+  const RegionIdList& regionIds,
+  const RegionList& regionOfRow,
   const Summary& summary,
   const Ports& ports)
 {
@@ -2059,8 +2139,8 @@ bool writeDistributed(vtkCUDBConnectivity* self,
     ports.seeds ? vbr::vtk::gatherPoints(piece, ports.seeds) : nullptr;
   const bool first = piece.rank == 0, aborted = first && self->GetAbortExecute();
   Regions regions;
-  std::vector<std::int32_t> regionIds;
-  std::vector<std::size_t> regionOfRow;
+  RegionIdList regionIds;
+  RegionList regionOfRow;
   if (first && !aborted)
     numberAllRegions(
       self, seeds, in, objects, regionCount, regions, regionIds, regionOfRow, summary, nullptr);
@@ -2244,8 +2324,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
 
   // PASS 2: the regions, filtered (size, seeds, largest) and numbered.
   Regions regions;
-  std::vector<std::int32_t> regionIds;
-  std::vector<std::size_t> regionOfRow;
+  RegionIdList regionIds;
+  RegionList regionOfRow;
   vtkSmartPointer<vtkIntArray> ids; // with seeds, painted now to find their regions
   numberAllRegions(
     this, seeds, in, objects, regionCount, regions, regionIds, regionOfRow, summary, &ids);

@@ -519,6 +519,8 @@ TEST(CUDB, PixelRunsPaintTheBoxes)
   // of the rectangle stays 0 (removed boxes too), nothing outside the rectangle is written. Widths
   // around the fixed stores (8 pixels) and the 64-bit words, the rectangle at an offset in a wider
   // grid, one thread and three (ranges of rows that start inside the runs).
+  // paintPixelRunsOverwriting the same into the whole grid, its other pixels 0 whatever they held,
+  // and refuses pixels that do not fit in the grid.
   const vbr::Point3 sizes[] = { { 1, 1, 1 },
     { 3, 7, 1 },
     { 8, 5, 1 },
@@ -608,8 +610,32 @@ TEST(CUDB, PixelRunsPaintTheBoxes)
               painted.data(),
               threads == 1 ? vbr::Execution() : bf::threadedExecution(threads)));
             EXPECT_EQ(painted, expected) << threads << " threads, removed " << removed;
+            // Overwriting: the whole image written, whatever it held, 0 outside the runs.
+            std::vector<std::int32_t> overwritten(expected.size(), -7);
+            EXPECT_TRUE(vbr::paintPixelRunsOverwriting(v,
+              pixelRuns,
+              value,
+              { ox, oy },
+              width,
+              height,
+              overwritten.data(),
+              threads == 1 ? vbr::Execution() : bf::threadedExecution(threads)));
+            std::vector<std::int32_t> whole = expected;
+            std::replace(whole.begin(), whole.end(), -7, 0);
+            EXPECT_EQ(overwritten, whole) << threads << " threads, removed " << removed;
           }
         }
+        // Pixels that do not fit in the image are refused before anything is written.
+        std::vector<std::int32_t> untouched(std::size_t(width) * height, -7);
+        const std::vector<std::int32_t> ones(cudb.boxes.size(), 1);
+        EXPECT_THROW(vbr::paintPixelRunsOverwriting(
+                       v, pixelRuns, ones, { 12, oy }, width, height, untouched.data()),
+          std::invalid_argument);
+        EXPECT_THROW(vbr::paintPixelRunsOverwriting(
+                       v, pixelRuns, ones, { ox, 6 }, width, height, untouched.data()),
+          std::invalid_argument);
+        EXPECT_EQ(
+          std::count(untouched.begin(), untouched.end(), -7), std::ptrdiff_t(untouched.size()));
       }
 }
 
@@ -671,6 +697,16 @@ TEST(CUDB, PixelRunsAbortBetweenSteps)
     EXPECT_EQ(quiet, 5) << "before every step, and once done";
     EXPECT_EQ(reported, (std::vector<double>{ 0.0, 0.25, 0.5, 0.75 }));
     EXPECT_EQ(painted, expected);
+    // The same into a larger image of any content, at an offset.
+    std::vector<std::int32_t> overwritten((width + 5) * (rows + 3), -7);
+    EXPECT_TRUE(vbr::paintPixelRunsOverwriting(
+      v, runs, value, { 5, 2 }, width + 5, rows + 3, overwritten.data(), exec));
+    std::vector<std::int32_t> shifted(overwritten.size(), 0);
+    for (std::size_t y = 0; y < rows; ++y)
+      std::copy_n(expected.begin() + std::ptrdiff_t(y * width),
+        width,
+        shifted.begin() + std::ptrdiff_t((y + 2) * (width + 5) + 5));
+    EXPECT_EQ(overwritten, shifted);
   }
 }
 
