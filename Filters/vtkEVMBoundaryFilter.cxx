@@ -103,6 +103,7 @@ public:
     vtkIdType parent,
     int depth)
   {
+    assert(!this->Written); // setLoopCells's cells are final: nothing is added to them
     this->startLabel(label);
     this->Cells.addCell(ids, n, this->Reverse);
     this->FaceId.push_back(faceId);
@@ -129,6 +130,7 @@ public:
   {
     if (count == 0)
       return;
+    assert(!this->Written);
     this->startLabel(label);
     this->Cells.addMappedCells(corners, pointIds, ends, count, begin, this->Reverse);
     std::fill_n(this->FaceId.extend(count), count, faceId);
@@ -145,6 +147,7 @@ public:
   /// then empty, its memory kept for its next cells.
   void append(CellStore& part, vtkIdType faceBase)
   {
+    assert(!this->Written && !part.Written); // the cells of setLoopCells are not appended
     const vtkIdType cells = static_cast<vtkIdType>(this->FaceId.size());
     for (const auto& run : part.LabelRuns)
       if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == run.second))
@@ -187,6 +190,7 @@ public:
 
   void finish(vtkPolyData* output, bool lines, int labelType)
   {
+    assert(!this->Written || this->Cells.numberOfCells() == 0);
     const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
     vtkSmartPointer<vtkCellArray> cells =
       this->Written ? std::move(this->Written) : this->Cells.release();
@@ -411,7 +415,7 @@ public:
 
   /// addCornerPoints for the distinct corners of a 2D solution (u, v) in the plane 0 of the
   /// axis order `order`, read from the sweep's own record of them in the order of their
-  /// numbers: no list of points in between.
+  /// numbers (its columns, or its sorted corners: Contours2D::forEachCorner).
   void addContourCorners(const vbr::Contours2D& contours,
     const vbr::AxisOrder& order,
     const std::array<std::int32_t, 3>& offset)
@@ -892,9 +896,10 @@ void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
 }
 
 /// The cells of the only object of a 2D image in Polylines or Loops mode, one per loop: the
-/// 2D plane sweep numbers the corners in the order of the output's points as it meets them
-/// and records them by column, from which the points are written; the loops' numbers are then
-/// written straight into the output's cells, face after face. No B-Rep, no list of corners.
+/// 2D plane sweep numbers the corners in the order of the output's points (as it meets them,
+/// by column, on a large image with dense corners; sorted after the sweep otherwise) and
+/// records them, from which the points are written; the loops' numbers are then written
+/// straight into the output's cells, face after face. No B-Rep.
 /// The same output as the B-Rep's way (appendBoundaryCells). Stops when aborted.
 void appendPlanarLoops(vtkAlgorithm* self,
   const vbr::vtk::Selected& object,

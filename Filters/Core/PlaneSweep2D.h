@@ -110,8 +110,8 @@ struct CornerColumns
 struct Contours2D
 {
   Boundary2D boundary;                    ///< its loops index loopCorners; no points
-  std::vector<Point2> corners;            ///< CornerOrder::UThenV: the corners, by number
-  CornerColumns columns;                  ///< CornerOrder::VThenU: the corners, by number
+  std::vector<Point2> corners;            ///< the corners by number (sorted; UThenV, sparse VThenU)
+  CornerColumns columns;                  ///< the corners by number (by column; dense VThenU)
   std::vector<std::uint32_t> loopCorners; ///< the numbers of all loops' corners, loop after loop
 
   /// Calls visit(u, v) for every distinct corner in the order of their numbers.
@@ -129,16 +129,23 @@ struct Contours2D
   }
 };
 
+/// The fewest vertices for which planeSweep2DNumbered finds the corners by column (below, the
+/// sort after the sweep stays in the cache and is faster; PlaneSweep2D.cxx has the figures).
+constexpr std::size_t FewestVerticesByColumn = 250000;
+
 /// planeSweep2D, with the corners numbered in `order` as the sweep meets them: the same faces,
 /// loops (each from the same corner) and inclusion tree, without a later pass to number them.
-/// In the order (v, u), a first pass over the vertices finds the corners of every column (the
+/// In the order (v, u), with at least `fewestByColumn` vertices and at least one per word of
+/// the grid of columns, a first pass over the vertices finds the corners of every column (the
 /// extreme vertices and the non-manifold vertices), so that each corner the sweep meets gets
-/// its number at once, the next one of its column (CornerColumns).
+/// its number at once, the next one of its column (Contours2D::columns); otherwise the corners
+/// are sorted along v after the sweep (Contours2D::corners). Both give the same numbers.
 /// Throws std::length_error for 2^32 corners or 2^31 - 1 edges or more.
 Contours2D planeSweep2DNumbered(const Vertex* begin,
   const Vertex* end,
   CornerOrder order,
-  FaceConnectivity connectivity = FaceConnectivity::Edge);
+  FaceConnectivity connectivity = FaceConnectivity::Edge,
+  std::size_t fewestByColumn = FewestVerticesByColumn);
 
 } // namespace vbr
 

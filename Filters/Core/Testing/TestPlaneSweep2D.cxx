@@ -7,10 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -321,8 +324,71 @@ TEST(PlaneSweep2D, NestedRingsAndDegenerateImages)
   EXPECT_TRUE(none.brep.faces.empty() && none.corners.empty() && none.numbers.empty());
 }
 
+namespace
+{
+
+/// The corners of a sweep in the order (v, u), (u, v) listed in the order of their numbers.
+std::vector<std::pair<vbr::Coord, vbr::Coord>> cornersInOrder(const vbr::Contours2D& c)
+{
+  std::vector<std::pair<vbr::Coord, vbr::Coord>> out;
+  c.forEachCorner([&](vbr::Coord u, vbr::Coord v) { out.emplace_back(u, v); });
+  return out;
+}
+
+/// Both ways of numbering the corners in the order (v, u) (by column before the sweep, forced
+/// with fewestByColumn 0; sorted after it, forced with the largest count) give the same
+/// corners, numbers, loops and faces. Returns whether the first was numbered by column (at
+/// least one vertex per word of the grid of columns).
+bool checkColumnsAgainstSort(const vbr::BitVolume& image, vbr::FaceConnectivity connectivity)
+{
+  const vbr::EVM evm = vbr::extractEVM2D(image).sortedAs(vbr::axisOrderFromName("ZYX"));
+  const auto& v = evm.vertices();
+  const vbr::Contours2D byColumn = vbr::planeSweep2DNumbered(
+    v.data(), v.data() + v.size(), vbr::CornerOrder::VThenU, connectivity, 0);
+  const vbr::Contours2D sorted = vbr::planeSweep2DNumbered(v.data(),
+    v.data() + v.size(),
+    vbr::CornerOrder::VThenU,
+    connectivity,
+    std::numeric_limits<std::size_t>::max());
+  EXPECT_TRUE(sorted.columns.count == 0 && !sorted.corners.empty());
+  EXPECT_EQ(cornersInOrder(byColumn), cornersInOrder(sorted));
+  EXPECT_EQ(byColumn.loopCorners, sorted.loopCorners);
+  EXPECT_EQ(byColumn.boundary.loops.size(), sorted.boundary.loops.size());
+  for (std::size_t l = 0;
+       l < std::min(byColumn.boundary.loops.size(), sorted.boundary.loops.size());
+       ++l)
+  {
+    EXPECT_EQ(byColumn.boundary.loops[l].begin, sorted.boundary.loops[l].begin);
+    EXPECT_EQ(byColumn.boundary.loops[l].face, sorted.boundary.loops[l].face);
+    EXPECT_EQ(byColumn.boundary.loops[l].hole, sorted.boundary.loops[l].hole);
+  }
+  EXPECT_EQ(byColumn.boundary.faces.size(), sorted.boundary.faces.size());
+  for (std::size_t f = 0;
+       f < std::min(byColumn.boundary.faces.size(), sorted.boundary.faces.size());
+       ++f)
+    EXPECT_EQ(byColumn.boundary.faces[f].parent, sorted.boundary.faces[f].parent);
+  return byColumn.corners.empty();
+}
+
+} // namespace
+
 TEST(PlaneSweep2D, NumberedCornersOfLargeDenseAndSparseImages)
 {
+  // Small images are numbered by the sort (FewestVerticesByColumn): the path by column is
+  // forced here and compared with it, on images wider and taller than 64, with many
+  // non-manifold vertices, and lines of 63, 64, 65, 128 and 129 pixels.
+  for (const auto& size : std::vector<std::array<int, 2>>{
+         { 150, 140 }, { 63, 65 }, { 64, 64 }, { 65, 63 }, { 128, 3 }, { 1, 129 }, { 129, 1 } })
+    for (unsigned seed = 1; seed <= 2; ++seed)
+    {
+      SCOPED_TRACE(std::to_string(size[0]) + " x " + std::to_string(size[1]));
+      const vbr::BitVolume image = bf::randomVolume({ size[0], size[1], 1 }, 0.5, 7100 + seed);
+      const bool edge = checkColumnsAgainstSort(image, vbr::FaceConnectivity::Edge);
+      const bool vertex = checkColumnsAgainstSort(image, vbr::FaceConnectivity::Vertex);
+      if (size[0] == 150)
+        EXPECT_TRUE(edge && vertex) << "a dense image numbered by column";
+    }
+
   // Dense: more vertices than words in the grid of columns, which are then found by column
   // before the sweep; wider and taller than 64 (several words a line and a column), with
   // many non-manifold vertices.

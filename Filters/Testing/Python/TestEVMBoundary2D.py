@@ -235,6 +235,12 @@ def random_images():
         index_min = tuple(int(v) for v in rng.integers(-5, 5, size=3))
         check_image("random %d (%dx%d)" % (i, w, h), m, spacing, origin, index_min,
                     cell_data=bool(i % 3 == 1), flat_axis=2 if i % 5 else int(i // 5 % 2))
+    # Lines of one word of 64 pixels, one less and one more, two words: the sweep's words of
+    # pixels and of corners end there.
+    for i, (h, w) in enumerate(((2, 129), (129, 2), (63, 65), (64, 64), (65, 63), (128, 129))):
+        m = rng.random((h, w)) < 0.5
+        check_image("word sizes %d (%dx%d)" % (i, w, h), m, (1.0, 1.0, 1.0), (0.0, 0.0, 0.0),
+                    (-3, 2, 0), cell_data=bool(i % 2), flat_axis=2)
 
 
 def real_images(data_dir):
