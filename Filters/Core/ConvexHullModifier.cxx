@@ -246,6 +246,11 @@ void forEachPointOnTriangle(const std::array<LatticePoint, 3>& t, const LatticeB
   const std::int64_t hiI = std::min(box[1][i], std::max({ a[i], b[i], c[i] }));
   const std::int64_t loJ = std::max(box[0][j], std::min({ a[j], b[j], c[j] }));
   const std::int64_t hiJ = std::min(box[1][j], std::max({ a[j], b[j], c[j] }));
+  // p lies in the plane, so each cross product of onTriangle is a multiple of the normal, with
+  // the sign of its k-th component times that of n_k: the same test on the projection.
+  const std::int64_t sk = plane.normal[k] > 0 ? 1 : -1;
+  auto leftOf = [&](const LatticePoint& e0, const LatticePoint& e1, std::int64_t u, std::int64_t v)
+  { return sk * ((e1[i] - e0[i]) * (v - e0[j]) - (e1[j] - e0[j]) * (u - e0[i])) >= 0; };
   for (std::int64_t u = loI; u <= hiI; ++u)
     for (std::int64_t v = loJ; v <= hiJ; ++v)
     {
@@ -257,7 +262,8 @@ void forEachPointOnTriangle(const std::array<LatticePoint, 3>& t, const LatticeB
       p[i] = u;
       p[j] = v;
       p[k] = unitK ? r * plane.normal[k] : r / plane.normal[k];
-      if (p[k] >= box[0][k] && p[k] <= box[1][k] && onTriangle(a, b, c, plane, p))
+      if (p[k] >= box[0][k] && p[k] <= box[1][k] && leftOf(a, b, u, v) && leftOf(b, c, u, v) &&
+        leftOf(c, a, u, v))
         f(p);
     }
 }
@@ -2095,7 +2101,9 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
   BitVolume out(dims[0], dims[1], dims[2]);
   // Crossings of the rays (x -> +infinity, y + delta, z + delta^2) with the triangles, per row:
   // count[x] = crossings with ceil(xc) - 1 == x, so a suffix sum gives the crossings beyond x.
-  std::vector<std::vector<std::int64_t>> rows(static_cast<std::size_t>(dims[1]) * dims[2]);
+  // The crossings as (row, x) pairs, then grouped by row (a counting sort): one vector per row
+  // of a large grid cost an allocation for each row the surface crosses.
+  std::vector<std::pair<std::uint32_t, std::int64_t>> crossings;
   for (const auto& tri : surface.triangles)
   {
     const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
@@ -2116,18 +2124,31 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
           perturbedOrientation(c, a, y, z) != s)
           continue;
         const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
-        rows[z * dims[1] + y].push_back(ceilDiv(r, nx) - 1);
+        crossings.emplace_back(static_cast<std::uint32_t>(z * dims[1] + y), ceilDiv(r, nx) - 1);
       }
+  }
+  const std::size_t rowCount = static_cast<std::size_t>(dims[1]) * dims[2];
+  std::vector<std::uint32_t> rowStart(rowCount + 1, 0);
+  for (const auto& c : crossings)
+    ++rowStart[c.first + 1];
+  for (std::size_t n = 0; n < rowCount; ++n)
+    rowStart[n + 1] += rowStart[n];
+  std::vector<std::int64_t> xs(crossings.size());
+  {
+    std::vector<std::uint32_t> next(rowStart.begin(), rowStart.end() - 1);
+    for (const auto& c : crossings)
+      xs[next[c.first]++] = c.second;
   }
   std::vector<int> count(dims[0] + 1);
   for (std::int32_t z = 0; z < dims[2]; ++z)
     for (std::int32_t y = 0; y < dims[1]; ++y)
     {
-      if (rows[z * dims[1] + y].empty())
+      const std::size_t row = static_cast<std::size_t>(z) * dims[1] + y;
+      if (rowStart[row] == rowStart[row + 1])
         continue; // no crossing: the row is outside (most rows of a large grid)
       std::fill(count.begin(), count.end(), 0);
-      for (std::int64_t x : rows[z * dims[1] + y])
-        if (x >= 0)
+      for (std::uint32_t n = rowStart[row]; n < rowStart[row + 1]; ++n)
+        if (const std::int64_t x = xs[n]; x >= 0)
           ++count[std::min<std::int64_t>(x, dims[0] - 1)];
       int parity = 0;
       for (std::int32_t x = dims[0] - 1; x >= 0; --x)
