@@ -3037,7 +3037,7 @@ bool shellsFaceOutward(const std::vector<Shell>& shells)
       if (j == i || p[0] < b[0][0] || p[0] > b[1][0] || p[1] < b[0][1] || p[1] > b[1][1] ||
         p[2] < b[0][2] || p[2] > b[1][2])
         continue;
-      const int side = sideOf(shells[j].mesh, p, 1);
+      const int side = sideOf(shells[j], p, 1);
       if (side == 0)
         return false; // shells that touch: not embedded
       nestedOddly = nestedOddly != (side > 0);
@@ -3133,7 +3133,7 @@ bool insideOtherShells(const std::vector<Shell>& shells,
     if (skip[i] || p[0] > b[1][0] || p[1] < b[0][1] || p[1] > b[1][1] || p[2] < b[0][2] ||
       p[2] > b[1][2])
       continue;
-    inside = inside != (sideOf(shells[i].mesh, p, 1) > 0);
+    inside = inside != (sideOf(shells[i], p, 1) > 0);
   }
   return inside;
 }
