@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -2139,23 +2140,27 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
     for (const auto& c : crossings)
       xs[next[c.first]++] = c.second;
   }
-  std::vector<int> count(dims[0] + 1);
+  // Centre x of a row is inside when an odd number of its crossings have an index >= x: with
+  // the indices in decreasing order c_1 >= c_2 >= ..., the centres in (c_{j+1}, c_j] for odd j
+  // (c_{m+1} = -1), only the runs inside visited.
   for (std::int32_t z = 0; z < dims[2]; ++z)
     for (std::int32_t y = 0; y < dims[1]; ++y)
     {
       const std::size_t row = static_cast<std::size_t>(z) * dims[1] + y;
       if (rowStart[row] == rowStart[row + 1])
         continue; // no crossing: the row is outside (most rows of a large grid)
-      std::fill(count.begin(), count.end(), 0);
-      for (std::uint32_t n = rowStart[row]; n < rowStart[row + 1]; ++n)
-        if (const std::int64_t x = xs[n]; x >= 0)
-          ++count[std::min<std::int64_t>(x, dims[0] - 1)];
-      int parity = 0;
-      for (std::int32_t x = dims[0] - 1; x >= 0; --x)
+      const auto first = xs.begin() + rowStart[row], last = xs.begin() + rowStart[row + 1];
+      std::sort(first, last, std::greater<>());
+      bool parity = false;
+      for (auto c = first; c != last && *c >= 0; ++c)
       {
-        parity ^= count[x] & 1;
-        if (parity)
-          out.set(x, y, z);
+        parity = !parity;
+        if (!parity)
+          continue;
+        const std::int64_t hi = std::min<std::int64_t>(*c, dims[0] - 1);
+        const std::int64_t lo = c + 1 != last ? std::max<std::int64_t>(*(c + 1), -1) + 1 : 0;
+        for (std::int64_t x = lo; x <= hi; ++x)
+          out.set(static_cast<std::int32_t>(x), y, z);
       }
     }
   for (const auto& p : on)
