@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -241,21 +242,29 @@ void forEachPointOnTriangle(const std::array<LatticePoint, 3>& t, const LatticeB
     if (std::abs(plane.normal[q]) > std::abs(plane.normal[k]))
       k = q;
   const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const bool unitK = plane.normal[k] == 1 || plane.normal[k] == -1;
   const std::int64_t loI = std::max(box[0][i], std::min({ a[i], b[i], c[i] }));
   const std::int64_t hiI = std::min(box[1][i], std::max({ a[i], b[i], c[i] }));
   const std::int64_t loJ = std::max(box[0][j], std::min({ a[j], b[j], c[j] }));
   const std::int64_t hiJ = std::min(box[1][j], std::max({ a[j], b[j], c[j] }));
+  // p lies in the plane, so each cross product of onTriangle is a multiple of the normal, with
+  // the sign of its k-th component times that of n_k: the same test on the projection.
+  const std::int64_t sk = plane.normal[k] > 0 ? 1 : -1;
+  auto leftOf = [&](const LatticePoint& e0, const LatticePoint& e1, std::int64_t u, std::int64_t v)
+  { return sk * ((e1[i] - e0[i]) * (v - e0[j]) - (e1[j] - e0[j]) * (u - e0[i])) >= 0; };
   for (std::int64_t u = loI; u <= hiI; ++u)
     for (std::int64_t v = loJ; v <= hiJ; ++v)
     {
       const std::int64_t r = plane.offset - plane.normal[i] * u - plane.normal[j] * v;
-      if (r % plane.normal[k] != 0)
+      // A unit component (the faces of a voxel surface, mostly) divides every r: no division.
+      if (!unitK && r % plane.normal[k] != 0)
         continue;
       LatticePoint p;
       p[i] = u;
       p[j] = v;
-      p[k] = r / plane.normal[k];
-      if (p[k] >= box[0][k] && p[k] <= box[1][k] && onTriangle(a, b, c, plane, p))
+      p[k] = unitK ? r * plane.normal[k] : r / plane.normal[k];
+      if (p[k] >= box[0][k] && p[k] <= box[1][k] && leftOf(a, b, u, v) && leftOf(b, c, u, v) &&
+        leftOf(c, a, u, v))
         f(p);
     }
 }
@@ -2048,16 +2057,35 @@ bool convexDifferenceIsManifold(const CellList& c, const CellList& g)
 
 std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface, const Dims& dims)
 {
-  std::vector<LatticePoint> found;
+  // The points lie in the grid, so (x * ny + y) * nz + z numbers them in the lexicographic
+  // order of (x, y, z): sorting these integers (the corners and edges shared by triangles come
+  // several times) is much cheaper than sorting the triples, and gives the same list.
+  const std::uint64_t ny = static_cast<std::uint64_t>(dims[1]);
+  const std::uint64_t nz = static_cast<std::uint64_t>(dims[2]);
+  std::vector<std::uint64_t> keys;
+  keys.reserve(2 * surface.triangles.size());
   const LatticeBox grid{ LatticePoint{ 0, 0, 0 },
     LatticePoint{ dims[0] - 1, dims[1] - 1, dims[2] - 1 } };
   for (const auto& tri : surface.triangles)
     forEachPointOnTriangle(
       { surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]] },
       grid,
-      [&](const LatticePoint& p) { found.push_back(p); });
-  std::sort(found.begin(), found.end());
-  found.erase(std::unique(found.begin(), found.end()), found.end());
+      [&](const LatticePoint& p)
+      {
+        keys.push_back(
+          (static_cast<std::uint64_t>(p[0]) * ny + static_cast<std::uint64_t>(p[1])) * nz +
+          static_cast<std::uint64_t>(p[2]));
+      });
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<LatticePoint> found(keys.size());
+  for (std::size_t n = 0; n < keys.size(); ++n)
+  {
+    const std::uint64_t yz = keys[n] % (ny * nz);
+    found[n] = { static_cast<std::int64_t>(keys[n] / (ny * nz)),
+      static_cast<std::int64_t>(yz / nz),
+      static_cast<std::int64_t>(yz % nz) };
+  }
   return found;
 }
 
@@ -2074,7 +2102,9 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
   BitVolume out(dims[0], dims[1], dims[2]);
   // Crossings of the rays (x -> +infinity, y + delta, z + delta^2) with the triangles, per row:
   // count[x] = crossings with ceil(xc) - 1 == x, so a suffix sum gives the crossings beyond x.
-  std::vector<std::vector<std::int64_t>> rows(static_cast<std::size_t>(dims[1]) * dims[2]);
+  // The crossings as (row, x) pairs, then grouped by row (a counting sort): one vector per row
+  // of a large grid cost an allocation for each row the surface crosses.
+  std::vector<std::pair<std::uint32_t, std::int64_t>> crossings;
   for (const auto& tri : surface.triangles)
   {
     const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
@@ -2095,25 +2125,42 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
           perturbedOrientation(c, a, y, z) != s)
           continue;
         const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
-        rows[z * dims[1] + y].push_back(ceilDiv(r, nx) - 1);
+        crossings.emplace_back(static_cast<std::uint32_t>(z * dims[1] + y), ceilDiv(r, nx) - 1);
       }
   }
-  std::vector<int> count(dims[0] + 1);
+  const std::size_t rowCount = static_cast<std::size_t>(dims[1]) * dims[2];
+  std::vector<std::uint32_t> rowStart(rowCount + 1, 0);
+  for (const auto& c : crossings)
+    ++rowStart[c.first + 1];
+  for (std::size_t n = 0; n < rowCount; ++n)
+    rowStart[n + 1] += rowStart[n];
+  std::vector<std::int64_t> xs(crossings.size());
+  {
+    std::vector<std::uint32_t> next(rowStart.begin(), rowStart.end() - 1);
+    for (const auto& c : crossings)
+      xs[next[c.first]++] = c.second;
+  }
+  // Centre x of a row is inside when an odd number of its crossings have an index >= x: with
+  // the indices in decreasing order c_1 >= c_2 >= ..., the centres in (c_{j+1}, c_j] for odd j
+  // (c_{m+1} = -1), only the runs inside visited.
   for (std::int32_t z = 0; z < dims[2]; ++z)
     for (std::int32_t y = 0; y < dims[1]; ++y)
     {
-      if (rows[z * dims[1] + y].empty())
+      const std::size_t row = static_cast<std::size_t>(z) * dims[1] + y;
+      if (rowStart[row] == rowStart[row + 1])
         continue; // no crossing: the row is outside (most rows of a large grid)
-      std::fill(count.begin(), count.end(), 0);
-      for (std::int64_t x : rows[z * dims[1] + y])
-        if (x >= 0)
-          ++count[std::min<std::int64_t>(x, dims[0] - 1)];
-      int parity = 0;
-      for (std::int32_t x = dims[0] - 1; x >= 0; --x)
+      const auto first = xs.begin() + rowStart[row], last = xs.begin() + rowStart[row + 1];
+      std::sort(first, last, std::greater<>());
+      bool parity = false;
+      for (auto c = first; c != last && *c >= 0; ++c)
       {
-        parity ^= count[x] & 1;
-        if (parity)
-          out.set(x, y, z);
+        parity = !parity;
+        if (!parity)
+          continue;
+        const std::int64_t hi = std::min<std::int64_t>(*c, dims[0] - 1);
+        const std::int64_t lo = c + 1 != last ? std::max<std::int64_t>(*(c + 1), -1) + 1 : 0;
+        for (std::int64_t x = lo; x <= hi; ++x)
+          out.set(static_cast<std::int32_t>(x), y, z);
       }
     }
   for (const auto& p : on)
@@ -2237,6 +2284,13 @@ struct Shell
   LatticeMesh mesh;
   __int128 volume = 0;
   LatticeBox box; ///< the box of its points
+  /// sideOf's index, built at its kSideQueriesBeforeIndex-th query (the joins ask many points
+  /// of one shell, and scanned all its triangles for each): the triangles whose z-range holds
+  /// z = box[0][2] + n are byZ[zStart[n] .. zStart[n + 1]). The mesh is not changed once its
+  /// shell is built, so the index stays true.
+  mutable std::uint32_t sideQueries = 0;
+  mutable std::vector<std::uint32_t> zStart;
+  mutable std::vector<Index> byZ;
 };
 
 std::vector<Shell> shellsOf(const LatticeMesh& m)
@@ -2715,37 +2769,48 @@ bool behindOrBeside(const LatticeMesh& surface,
   return false;
 }
 
+/// sideOf's step for one triangle: false when p / k lies on it, else flips `parity` when the
+/// ray from p crosses it.
+bool crossesBeyond(const LatticeMesh& surface,
+  const std::array<Index, 3>& tri,
+  const LatticePoint& p,
+  std::int64_t k,
+  int& parity)
+{
+  // A triangle whose box misses p's row across y and z, or lies wholly before p along x,
+  // neither holds p nor crosses the ray beyond it (the ray's perturbation stays in the row):
+  // integer comparisons spare most triangles of a large H their plane.
+  if (behindOrBeside(surface, tri, p, k))
+    return true;
+  LatticePoint q[3];
+  for (int v = 0; v < 3; ++v)
+    for (int a = 0; a < 3; ++a)
+      q[v][a] = surface.points[tri[v]][a] * k;
+  const FacePlane plane = planeThrough(q[0], q[1], q[2]);
+  if (plane.evaluate(p) == 0 && onTriangle(q[0], q[1], q[2], plane, p))
+    return false;
+  const std::int64_t nx = plane.normal[0];
+  if (nx == 0)
+    return true;
+  const int s = nx > 0 ? 1 : -1;
+  if (perturbedOrientation(q[0], q[1], p[1], p[2]) != s ||
+    perturbedOrientation(q[1], q[2], p[1], p[2]) != s ||
+    perturbedOrientation(q[2], q[0], p[1], p[2]) != s)
+    return true;
+  // The crossing lies beyond p when n.p < d along +x for an outward normal with nx > 0.
+  const __int128 e = plane.evaluate(p);
+  parity ^= (nx > 0) == (e < 0);
+  return true;
+}
+
 /// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
 /// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
 int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
 {
   int parity = 0;
   for (const auto& tri : surface.triangles)
-  {
-    // A triangle whose box misses p's row across y and z, or lies wholly before p along x,
-    // neither holds p nor crosses the ray beyond it (the ray's perturbation stays in the row):
-    // integer comparisons spare most triangles of a large H their plane.
-    if (behindOrBeside(surface, tri, p, k))
-      continue;
-    LatticePoint q[3];
-    for (int v = 0; v < 3; ++v)
-      for (int a = 0; a < 3; ++a)
-        q[v][a] = surface.points[tri[v]][a] * k;
-    const FacePlane plane = planeThrough(q[0], q[1], q[2]);
-    if (plane.evaluate(p) == 0 && onTriangle(q[0], q[1], q[2], plane, p))
+    if (!crossesBeyond(surface, tri, p, k, parity))
       return 0;
-    const std::int64_t nx = plane.normal[0];
-    if (nx == 0)
-      continue;
-    const int s = nx > 0 ? 1 : -1;
-    if (perturbedOrientation(q[0], q[1], p[1], p[2]) != s ||
-      perturbedOrientation(q[1], q[2], p[1], p[2]) != s ||
-      perturbedOrientation(q[2], q[0], p[1], p[2]) != s)
-      continue;
-    // The crossing lies beyond p when n.p < d along +x for an outward normal with nx > 0.
-    const __int128 e = plane.evaluate(p);
-    parity ^= (nx > 0) == (e < 0);
-  }
   return parity ? 1 : -1;
 }
 
@@ -2885,6 +2950,56 @@ std::vector<Shell> shellsInBox(const std::vector<Shell>& shells, const LatticeBo
   return near;
 }
 
+/// The triangles of the shell by the integer z-rows they span (Shell::byZ).
+void indexByZ(const Shell& shell)
+{
+  const LatticeMesh& m = shell.mesh;
+  const std::int64_t z0 = shell.box[0][2];
+  const auto rows = static_cast<std::size_t>(shell.box[1][2] - z0 + 1);
+  auto zRange = [&](const std::array<Index, 3>& t) {
+    return std::minmax({ m.points[t[0]][2], m.points[t[1]][2], m.points[t[2]][2] });
+  };
+  shell.zStart.assign(rows + 1, 0);
+  for (const auto& t : m.triangles)
+  {
+    const auto [lo, hi] = zRange(t);
+    for (std::int64_t z = lo; z <= hi; ++z)
+      ++shell.zStart[static_cast<std::size_t>(z - z0) + 1];
+  }
+  for (std::size_t n = 0; n < rows; ++n)
+    shell.zStart[n + 1] += shell.zStart[n];
+  shell.byZ.resize(shell.zStart[rows]);
+  std::vector<std::uint32_t> next(shell.zStart.begin(), shell.zStart.end() - 1);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+  {
+    const auto [lo, hi] = zRange(m.triangles[t]);
+    for (std::int64_t z = lo; z <= hi; ++z)
+      shell.byZ[next[static_cast<std::size_t>(z - z0)]++] = static_cast<Index>(t);
+  }
+}
+
+constexpr std::uint32_t kSideQueriesBeforeIndex = 4;
+
+/// sideOf for one shell whose box holds p's row (sideOf for H checks): the triangles scanned
+/// are, once the shell is asked often, only those spanning the integer z-row floor(p_z / k),
+/// a superset of those behindOrBeside keeps (a triangle whose z-range meets p_z / k holds
+/// floor(p_z / k) in it, its corners being integers). The same exact tests decide.
+int sideOf(const Shell& shell, const LatticePoint& p, std::int64_t k)
+{
+  if (shell.sideQueries < kSideQueriesBeforeIndex && ++shell.sideQueries == kSideQueriesBeforeIndex)
+    indexByZ(shell);
+  if (shell.sideQueries < kSideQueriesBeforeIndex)
+    return sideOf(shell.mesh, p, k);
+  const std::int64_t row = floorDiv(p[2], k) - shell.box[0][2];
+  if (row < 0 || row + 1 >= static_cast<std::int64_t>(shell.zStart.size()))
+    return sideOf(shell.mesh, p, k);
+  int parity = 0;
+  for (std::uint32_t n = shell.zStart[row]; n < shell.zStart[row + 1]; ++n)
+    if (!crossesBeyond(shell.mesh, shell.mesh.triangles[shell.byZ[n]], p, k, parity))
+      return 0;
+  return parity ? 1 : -1;
+}
+
 /// sideOf for H from its shells: the parity of the crossings is the sum of the shells'; those
 /// whose box misses p's row or ends before p are not crossed (as in sideOf).
 int sideOf(const ShelledSurface& surface, const LatticePoint& p, std::int64_t k)
@@ -2896,7 +3011,7 @@ int sideOf(const ShelledSurface& surface, const LatticePoint& p, std::int64_t k)
     if (p[0] > k * b[1][0] || p[1] < k * b[0][1] || p[1] > k * b[1][1] || p[2] < k * b[0][2] ||
       p[2] > k * b[1][2])
       continue;
-    const int side = sideOf(shell.mesh, p, k);
+    const int side = sideOf(shell, p, k);
     if (side == 0)
       return 0;
     inside = inside != (side > 0);
@@ -2927,7 +3042,7 @@ bool shellsFaceOutward(const std::vector<Shell>& shells)
       if (j == i || p[0] < b[0][0] || p[0] > b[1][0] || p[1] < b[0][1] || p[1] > b[1][1] ||
         p[2] < b[0][2] || p[2] > b[1][2])
         continue;
-      const int side = sideOf(shells[j].mesh, p, 1);
+      const int side = sideOf(shells[j], p, 1);
       if (side == 0)
         return false; // shells that touch: not embedded
       nestedOddly = nestedOddly != (side > 0);
@@ -3023,7 +3138,7 @@ bool insideOtherShells(const std::vector<Shell>& shells,
     if (skip[i] || p[0] > b[1][0] || p[1] < b[0][1] || p[1] > b[1][1] || p[2] < b[0][2] ||
       p[2] > b[1][2])
       continue;
-    inside = inside != (sideOf(shells[i].mesh, p, 1) > 0);
+    inside = inside != (sideOf(shells[i], p, 1) > 0);
   }
   return inside;
 }
