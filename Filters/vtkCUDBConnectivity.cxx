@@ -179,8 +179,10 @@ void* newBlock(std::size_t length, bool huge)
 /// every vtkCUDBConnectivity; the last filter's destruction frees what it keeps.
 ///
 /// Memory stays linear in the outputs: the cache keeps no more than the last update used.
-/// - Between updates it holds only blocks released since the last update began (in the usual
-///   pipeline, that update's outputs once the next update releases them), at most KeptBytes.
+/// - Between updates it holds only blocks released since the last update began, at most
+///   KeptBytes: that update's scratch of 2 MiB or more (the region numbering's, about 20 bytes
+///   a region, released before the update ends, so kept while the filter is idle) and, in the
+///   usual pipeline, its outputs once the next update releases them.
 /// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
 ///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
 ///   kept plus what the update has taken or allocated stays within the larger of the bytes kept

@@ -1722,9 +1722,14 @@ void overwriteRowsOfRuns(const BitVolume& pixels,
 /// may cost a thread start-up; a huge image still stops within a sixteenth of it. False when
 /// stopped.
 template<typename Paint>
-bool paintInSteps(const BitVolume& pixels, std::int64_t rows, const Execution& exec, Paint paint)
+bool paintInSteps(const BitVolume& pixels,
+  std::int64_t rows,
+  std::int64_t wordsPerRow,
+  const Execution& exec,
+  Paint paint)
 {
-  const auto words = static_cast<std::int64_t>(std::max<std::size_t>(pixels.wordsPerRow(), 1));
+  // Steps of about 2^14 words of work, at most 16 (abort checks and progress between them).
+  const std::int64_t words = std::max<std::int64_t>(wordsPerRow, 1);
   const std::int64_t step =
     std::max((rows + 15) / 16, ((std::int64_t(1) << 14) + words - 1) / words);
   for (std::int64_t first = 0; first < rows; first += step)
@@ -1767,6 +1772,7 @@ bool paintPixelRuns(const BitVolume& pixels,
   std::int32_t* const origin = labels + std::int64_t(offset[1]) * rowStep + offset[0];
   return paintInSteps(pixels,
     pixels.size(1),
+    static_cast<std::int64_t>(pixels.wordsPerRow()),
     exec,
     [&](std::int64_t from, std::int64_t to, Coord* ends)
     { paintRowsOfRuns(pixels, from, to, runs, value.data(), origin, rowStep, ends); });
@@ -1787,8 +1793,10 @@ bool paintPixelRunsOverwriting(const BitVolume& pixels,
   if (offset[0] < 0 || offset[1] < 0 || offset[0] + std::int64_t(pixels.size(0)) > width ||
     offset[1] + std::int64_t(pixels.size(1)) > rows)
     throw std::invalid_argument("paintPixelRunsOverwriting: the pixels are not inside the image");
+  // Every pixel of a row of the image is written, not only the object's words.
   return paintInSteps(pixels,
     rows,
+    std::max<std::int64_t>(static_cast<std::int64_t>(pixels.wordsPerRow()), (width + 63) / 64),
     exec,
     [&](std::int64_t from, std::int64_t to, Coord* ends)
     { overwriteRowsOfRuns(pixels, from, to, runs, value.data(), offset, width, labels, ends); });
