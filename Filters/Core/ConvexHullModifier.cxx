@@ -1943,6 +1943,38 @@ std::size_t loopsOfFaces(const LatticeMesh& m,
   return static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
 }
 
+/// Numbers the points of the surface in (x, y, z) order, its triangles and the faces' loops
+/// following (each loop from its least point, its cyclic order kept). The surface comes out of
+/// CGAL's corefinement, whose vertex order follows the order in which its box intersection
+/// reports pairs, and that breaks ties by the boxes' addresses (ID_FROM_BOX_ADDRESS): the same
+/// points in an order that changed with the heap layout from one run to the next.
+void numberPointsInOrder(ModifiedHull& r)
+{
+  std::vector<LatticePoint>& points = r.surface.points;
+  std::vector<Index> byPoint(points.size());
+  std::iota(byPoint.begin(), byPoint.end(), Index(0));
+  std::sort(
+    byPoint.begin(), byPoint.end(), [&](Index a, Index b) { return points[a] < points[b]; });
+  std::vector<Index> newIndex(points.size());
+  std::vector<LatticePoint> sorted(points.size());
+  for (std::size_t k = 0; k < byPoint.size(); ++k)
+  {
+    newIndex[byPoint[k]] = static_cast<Index>(k);
+    sorted[k] = points[byPoint[k]];
+  }
+  points = std::move(sorted);
+  for (auto& t : r.surface.triangles)
+    for (auto& corner : t)
+      corner = newIndex[corner];
+  for (ModifiedFace& face : r.faces)
+    for (auto& loop : face.loops)
+    {
+      for (auto& corner : loop)
+        corner = newIndex[corner];
+      std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+    }
+}
+
 /// The faces of the surface: coplanar edge-adjacent triangles merged, with their loops and
 /// the level of their first triangle when `triangleLevel` holds one per triangle, else of
 /// their plane.
@@ -1984,6 +2016,7 @@ void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel,
     r.faces[it->second].triangles.push_back(static_cast<Index>(t));
   }
   r.edgeCount = loopsOfFaces(m, owner, faceOf, r.faces);
+  numberPointsInOrder(r);
 }
 
 /// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive.
