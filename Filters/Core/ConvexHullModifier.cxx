@@ -1943,6 +1943,82 @@ std::size_t loopsOfFaces(const LatticeMesh& m,
   return static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
 }
 
+/// Numbers the points of the surface in (x, y, z) order and the loops' corners following
+/// (each loop from its least point, its cyclic order kept, the holes after the outer loop in
+/// the order of their least point).
+void numberPointsInOrder(ModifiedHull& r)
+{
+  std::vector<LatticePoint>& points = r.surface.points;
+  std::vector<Index> byPoint(points.size());
+  std::iota(byPoint.begin(), byPoint.end(), Index(0));
+  std::sort(
+    byPoint.begin(), byPoint.end(), [&](Index a, Index b) { return points[a] < points[b]; });
+  std::vector<Index> newIndex(points.size());
+  std::vector<LatticePoint> sorted(points.size());
+  for (std::size_t k = 0; k < byPoint.size(); ++k)
+  {
+    newIndex[byPoint[k]] = static_cast<Index>(k);
+    sorted[k] = points[byPoint[k]];
+  }
+  points = std::move(sorted);
+  for (auto& t : r.surface.triangles)
+    for (auto& corner : t)
+      corner = newIndex[corner];
+  for (ModifiedFace& face : r.faces)
+  {
+    for (auto& loop : face.loops)
+    {
+      for (auto& corner : loop)
+        corner = newIndex[corner];
+      std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+    }
+    if (face.loops.size() > 2)
+      std::sort(face.loops.begin() + 1, face.loops.end());
+  }
+}
+
+/// Triangles from their least corner (orientation kept) in the order of their corners, each
+/// face's triangles in that order and the faces in the order of their first triangle.
+void orderTrianglesAndFaces(ModifiedHull& r)
+{
+  auto& triangles = r.surface.triangles;
+  for (auto& t : triangles)
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::vector<Index> byTriangle(triangles.size());
+  std::iota(byTriangle.begin(), byTriangle.end(), Index(0));
+  std::sort(byTriangle.begin(),
+    byTriangle.end(),
+    [&](Index a, Index b) { return triangles[a] < triangles[b]; });
+  std::vector<Index> newIndex(triangles.size());
+  std::vector<std::array<std::uint32_t, 3>> sorted(triangles.size());
+  for (std::size_t k = 0; k < byTriangle.size(); ++k)
+  {
+    newIndex[byTriangle[k]] = static_cast<Index>(k);
+    sorted[k] = triangles[byTriangle[k]];
+  }
+  triangles = std::move(sorted);
+  for (ModifiedFace& face : r.faces)
+  {
+    for (auto& t : face.triangles)
+      t = newIndex[t];
+    std::sort(face.triangles.begin(), face.triangles.end());
+  }
+  std::sort(r.faces.begin(),
+    r.faces.end(),
+    [](const ModifiedFace& a, const ModifiedFace& b) { return a.triangles < b.triangles; });
+}
+
+/// Puts the surface and its faces in an order that depends only on their shape. The surface
+/// comes out of CGAL's corefinement, whose vertex and face order follows the order in which its
+/// box intersection reports pairs, and that breaks ties by the boxes' addresses
+/// (ID_FROM_BOX_ADDRESS): the same points and faces in an order that changed with the heap
+/// layout from one run to the next.
+void putInCanonicalOrder(ModifiedHull& r)
+{
+  numberPointsInOrder(r);
+  orderTrianglesAndFaces(r);
+}
+
 /// The faces of the surface: coplanar edge-adjacent triangles merged, with their loops and
 /// the level of their first triangle when `triangleLevel` holds one per triangle, else of
 /// their plane.
@@ -1984,6 +2060,7 @@ void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel,
     r.faces[it->second].triangles.push_back(static_cast<Index>(t));
   }
   r.edgeCount = loopsOfFaces(m, owner, faceOf, r.faces);
+  putInCanonicalOrder(r);
 }
 
 /// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive.
