@@ -3,6 +3,7 @@
 #include "CUDB.h"
 #include "EVM.h"
 #include "Geometry.h"
+#include "Prefetch.h"
 #include "RadixSort.h"
 #include "RunLabelling.h"
 #include "vtkVoxelBRepAdapters.h"
@@ -117,16 +118,6 @@ struct ObjectBoxes
     return this->labelledFromRuns ? this->runComponents.oudbBoxCount : this->cudb.oudbBoxCount;
   }
 };
-
-/// Asks the cache for the line at `address`, which is read soon (a hint; nothing without it).
-inline void prefetch(const void* address)
-{
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(address);
-#else
-  (void)address;
-#endif
-}
 
 /// Whether the blocks of an output or scratch of `bytes` in all go on huge pages. glibc maps
 /// a block of 32 MiB or more afresh at each update, and returns the heap's top to the kernel
@@ -802,7 +793,7 @@ void measureRegionsOfPixelRuns(const ObjectBoxes& o, Regions& regions)
       // further on is fetched ahead.
       constexpr std::ptrdiff_t Ahead = 16;
       if (runsEnd - runBox > Ahead)
-        prefetch(regions.data() + o.firstRegion + label[runBox[Ahead]] - 1);
+        vbr::prefetch(regions.data() + o.firstRegion + label[runBox[Ahead]] - 1);
       const std::uint32_t region = label[*runBox];
       const vbr::Coord x0 = e[0];
       std::int64_t voxels = 0, doubledX = 0;
@@ -1012,6 +1003,16 @@ bool paintRegionsOfRuns(const ObjectBoxes& o,
     o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec);
 }
 
+/// The RegionId image, its values unset, in memory of allocateTuples (an earlier update's,
+/// when one released it): for painters that write every voxel.
+vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGrid& grid)
+{
+  auto ids = vtkSmartPointer<vtkIntArray>::New();
+  ids->SetName("RegionId");
+  allocateTuples({ ids }, vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2], 0.0);
+  return ids;
+}
+
 /// paintRegions of the image's only object, labelled on its runs: the RegionId image in memory
 /// of allocateTuples (an earlier update's, when one released it), every voxel written by
 /// vbr::paintRunsOverwriting rather than faulted in zeroed and painted over.
@@ -1020,10 +1021,7 @@ vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
   const vbr::vtk::VoxelGrid& grid,
   const vbr::Execution& exec)
 {
-  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
-  vtkNew<vtkIntArray> ids;
-  ids->SetName("RegionId");
-  allocateTuples({ ids }, n, 0.0);
+  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid);
   const std::vector<std::int32_t> values = valuesOfRunLabels(o, regionIds);
   if (!vbr::paintRunsOverwriting(o.voxelRuns,
         o.runComponents.runLabel,
@@ -1069,16 +1067,13 @@ vtkSmartPointer<vtkIntArray> paintOnlyObjectOfPixelRuns(const ObjectBoxes& o,
   const vbr::vtk::VoxelGrid& grid,
   const vbr::Execution& exec)
 {
-  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
-  vtkNew<vtkIntArray> ids;
-  ids->SetName("RegionId");
-  allocateTuples({ ids }, n, 0.0);
+  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid);
   if (!vbr::paintPixelRunsOverwriting(o.pixels,
         o.runs,
         valuesOfBoxes(o, regionIds),
         { o.offset[0], o.offset[1] },
         grid.dims[0],
-        n / std::max<vtkIdType>(grid.dims[0], 1),
+        ids->GetNumberOfTuples() / std::max<vtkIdType>(grid.dims[0], 1),
         ids->GetPointer(0),
         exec))
     return nullptr;
@@ -1632,7 +1627,7 @@ struct RegionColumns
     for (std::size_t row = 0; row < regionOfRow.size(); ++row)
     {
       if (row + Ahead < regionOfRow.size())
-        prefetch(&regions[regionOfRow[row + Ahead]]);
+        vbr::prefetch(&regions[regionOfRow[row + Ahead]]);
       const Region& r = regions[regionOfRow[row]];
       ids[row] = static_cast<int>(row + 1);
       voxels[row] = r.voxels;

@@ -2,6 +2,7 @@
 
 #include "FaceOctreeBoundary.h"
 #include "Geometry.h"
+#include "Prefetch.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -28,18 +29,6 @@ using Mesh = CGAL::Surface_mesh<Point3>;
 using VertexId = Mesh::Vertex_index;
 using FaceId = Mesh::Face_index;
 namespace SMS = CGAL::Surface_mesh_simplification;
-
-/// Asks the processor to start reading the cache line at p (a hint: no effect on results).
-/// The simplifier reads the data of faces, pieces and lattice corners scattered over memory;
-/// fetched together before use, their misses overlap instead of following one another.
-inline void prefetch(const void* p)
-{
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
 
 /// Pieces of triangles are no longer halved below this radius (voxel units).
 constexpr double SmallestPiece = 0.05;

@@ -28,6 +28,7 @@
 #include "Polyhedrization.h"
 
 #include "GridPointIndex.h"
+#include "Prefetch.h"
 
 #include <algorithm>
 #include <array>
@@ -48,16 +49,6 @@ namespace
 {
 
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
-
-/// Asks the cache for the line of p ahead of its use (nothing where the compiler has no hint).
-inline void prefetch(const void* p)
-{
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
 
 /// How far ahead a walk over a list of surfels prefetches their entries.
 constexpr std::size_t PrefetchAhead = 8;
