@@ -14,6 +14,7 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <mutex>
 #include <queue>

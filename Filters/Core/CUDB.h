@@ -230,9 +230,9 @@ bool paintPixelRuns(const BitVolume& pixels,
 /// labels + r * width), pixel (x, y) of `pixels` at row y + offset[1], column x + offset[0]:
 /// every pixel of the image is written, a run's value or 0, so the image need not be zeroed
 /// first (memory an earlier update used, not pages the kernel zeroes and faults in). Each row
-/// is zeroed and its runs painted while it is in the cache: the image is written once. Same
-/// steps, progress, stop and checks as paintPixelRuns; throws std::invalid_argument also when
-/// the pixels do not fit in the image.
+/// is zeroed and its runs painted while it is in the cache: the image is written once. Steps
+/// over the image's rows (sized by the image's width), progress, stop and checks as
+/// paintPixelRuns; throws std::invalid_argument also when the pixels do not fit in the image.
 bool paintPixelRunsOverwriting(const BitVolume& pixels,
   const PixelRuns& runs,
   const std::vector<std::int32_t>& value,

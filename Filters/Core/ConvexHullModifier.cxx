@@ -2364,9 +2364,10 @@ struct Shell
   /// sideOf's index, built at its kSideQueriesBeforeIndex-th query (the joins ask many points
   /// of one shell, and scanned all its triangles for each): the triangles whose z-range holds
   /// z = box[0][2] + n are byZ[zStart[n] .. zStart[n + 1]). The mesh is not changed once its
-  /// shell is built, so the index stays true.
+  /// shell is built, so the index stays true. Built on a query through a const Shell: one
+  /// thread asks a shell at a time (nothing in the modifier runs in parallel).
   mutable std::uint32_t sideQueries = 0;
-  mutable std::vector<std::uint32_t> zStart;
+  mutable std::vector<std::size_t> zStart;
   mutable std::vector<Index> byZ;
 };
 
@@ -3046,7 +3047,7 @@ void indexByZ(const Shell& shell)
   for (std::size_t n = 0; n < rows; ++n)
     shell.zStart[n + 1] += shell.zStart[n];
   shell.byZ.resize(shell.zStart[rows]);
-  std::vector<std::uint32_t> next(shell.zStart.begin(), shell.zStart.end() - 1);
+  std::vector<std::size_t> next(shell.zStart.begin(), shell.zStart.end() - 1);
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
   {
     const auto [lo, hi] = zRange(m.triangles[t]);
@@ -3071,7 +3072,7 @@ int sideOf(const Shell& shell, const LatticePoint& p, std::int64_t k)
   if (row < 0 || row + 1 >= static_cast<std::int64_t>(shell.zStart.size()))
     return sideOf(shell.mesh, p, k);
   int parity = 0;
-  for (std::uint32_t n = shell.zStart[row]; n < shell.zStart[row + 1]; ++n)
+  for (std::size_t n = shell.zStart[row]; n < shell.zStart[row + 1]; ++n)
     if (!crossesBeyond(shell.mesh, shell.mesh.triangles[shell.byZ[n]], p, k, parity))
       return 0;
   return parity ? 1 : -1;

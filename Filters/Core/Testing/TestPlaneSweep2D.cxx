@@ -389,9 +389,9 @@ TEST(PlaneSweep2D, NumberedCornersOfLargeDenseAndSparseImages)
         EXPECT_TRUE(edge && vertex) << "a dense image numbered by column";
     }
 
-  // Dense: more vertices than words in the grid of columns, which are then found by column
-  // before the sweep; wider and taller than 64 (several words a line and a column), with
-  // many non-manifold vertices.
+  // Dense (more vertices than words in the grid of columns) but small: numbered by the sort
+  // (FewestVerticesByColumn); wider and taller than 64 (several words a line and a column),
+  // with many non-manifold vertices.
   for (unsigned seed = 1; seed <= 2; ++seed)
   {
     const vbr::BitVolume dense = bf::randomVolume({ 150, 140, 1 }, 0.5, 7000 + seed);

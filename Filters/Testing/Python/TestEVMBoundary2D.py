@@ -241,6 +241,10 @@ def random_images():
         m = rng.random((h, w)) < 0.5
         check_image("word sizes %d (%dx%d)" % (i, w, h), m, (1.0, 1.0, 1.0), (0.0, 0.0, 0.0),
                     (-3, 2, 0), cell_data=bool(i % 2), flat_axis=2)
+    # Over 250,000 extreme vertices (about 277,000): the corners numbered by column before the
+    # sweep (vbr::FewestVerticesByColumn), smaller images take the sort.
+    check_image("corners by column (760x760)", rng.random((760, 760)) < 0.5, (0.5, 2.0, 1.0),
+                (1.0, -2.0, 0.0), (2, -1, 0), flat_axis=2)
 
 
 def real_images(data_dir):
