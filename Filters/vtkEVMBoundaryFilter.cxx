@@ -915,18 +915,12 @@ void appendPlanarLoops(vtkAlgorithm* self,
     if (extremeVerticesOfObject(object, settings, exec, stats, builder, evm) == 0)
       return;
     vtkLogScopeF(TRACE, "EVM to contours (2D plane sweep, corners numbered)");
-    // The corners' numbers follow their keys: u first when u's axis comes first.
     order = evm.order();
-    const auto& v = evm.vertices();
-    contours = vbr::planeSweep2DNumbered(v.data(),
-      v.data() + v.size(),
-      order[1] < order[2] ? vbr::CornerOrder::UThenV : vbr::CornerOrder::VThenU,
-      settings.connectivity);
+    contours = vbr::numberedContours2D(evm, settings.connectivity);
   }
   const vbr::Boundary2D& b = contours.boundary;
   stats.faces += static_cast<vtkIdType>(b.faces.size());
-  stats.holes += static_cast<vtkIdType>(
-    std::count_if(b.loops.begin(), b.loops.end(), [](const vbr::Loop2D& l) { return l.hole; }));
+  stats.holes += static_cast<vtkIdType>(b.holeCount());
   stats.nonManifoldVertices += static_cast<vtkIdType>(b.nonManifoldVertices);
   if (self->GetAbortExecute())
     return;
@@ -972,8 +966,8 @@ void appendPlanarObject(vtkAlgorithm* self,
     if (extremeVerticesOfObject(object, settings, exec, stats, builder, evm) == 0)
       return;
     vtkLogScopeF(TRACE, "EVM to B-Rep (2D plane sweep, corners numbered)");
-    faces = vbr::extractNumberedBoundary2D(
-      evm, settings.connectivity, cellsFromRuns(settings.outputMode));
+    // Polygons and Triangles (Loops and Polylines took appendPlanarLoops): with points.
+    faces = vbr::extractNumberedBoundary2D(evm, settings.connectivity, true);
   }
   countFaces(faces.brep, stats);
   if (self->GetAbortExecute())

@@ -165,17 +165,22 @@ BRep extractBoundary2D(const EVM& evm, FaceConnectivity connectivity)
   return out;
 }
 
-NumberedBRep extractNumberedBoundary2D(const EVM& evm,
-  FaceConnectivity connectivity,
-  bool withPoints)
+Contours2D numberedContours2D(const EVM& evm, FaceConnectivity connectivity)
 {
   // The key of corner (0, u, v) is that of the point q, q[order[1]] = u, q[order[2]] = v:
   // keys compare u first when u's axis comes first.
   const AxisOrder& order = evm.order();
   const CornerOrder cornerOrder = order[1] < order[2] ? CornerOrder::UThenV : CornerOrder::VThenU;
   const auto& v = evm.vertices();
-  const Contours2D c =
-    planeSweep2DNumbered(v.data(), v.data() + v.size(), cornerOrder, connectivity);
+  return planeSweep2DNumbered(v.data(), v.data() + v.size(), cornerOrder, connectivity);
+}
+
+NumberedBRep extractNumberedBoundary2D(const EVM& evm,
+  FaceConnectivity connectivity,
+  bool withPoints)
+{
+  const AxisOrder& order = evm.order();
+  const Contours2D c = numberedContours2D(evm, connectivity);
   NumberedBRep out;
   out.brep.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   out.corners.reserve(c.cornerCount());

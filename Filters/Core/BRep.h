@@ -97,6 +97,11 @@ NumberedBRep extractNumberedBoundary2D(const EVM& evm,
   FaceConnectivity connectivity,
   bool withPoints);
 
+/// planeSweep2DNumbered of a 2D EVM, its corners numbered in the order of their keys (u first
+/// when u's axis comes first in the EVM's order): the loops of extractNumberedBoundary2D
+/// without the B-Rep.
+Contours2D numberedContours2D(const EVM& evm, FaceConnectivity connectivity);
+
 /// Inserts into every loop the vertices of other loops lying inside its edges, so that edges
 /// of adjacent faces match exactly (no T-junctions).
 void insertTJunctionVertices(BRep& brep, const Execution& exec = Execution());

@@ -1756,6 +1756,15 @@ bool fitsRows(const BitVolume& pixels, const PixelRuns& runs)
     starts.back() == runs.boxes.size() && std::is_sorted(starts.begin(), starts.end());
 }
 
+/// Throws std::invalid_argument unless `pixels` is one slice and `runs` those of its rows.
+void checkRunsOfRows(const BitVolume& pixels, const PixelRuns& runs, const char* caller)
+{
+  checkSingleSlice(pixels);
+  if (!fitsRows(pixels, runs))
+    throw std::invalid_argument(
+      std::string(caller) + ": the runs are not those of the pixels' rows");
+}
+
 } // namespace
 
 bool paintPixelRuns(const BitVolume& pixels,
@@ -1766,9 +1775,7 @@ bool paintPixelRuns(const BitVolume& pixels,
   std::int32_t* labels,
   const Execution& exec)
 {
-  checkSingleSlice(pixels);
-  if (!fitsRows(pixels, runs))
-    throw std::invalid_argument("paintPixelRuns: the runs are not those of the pixels' rows");
+  checkRunsOfRows(pixels, runs, "paintPixelRuns");
   std::int32_t* const origin = labels + std::int64_t(offset[1]) * rowStep + offset[0];
   return paintInSteps(pixels,
     pixels.size(1),
@@ -1787,9 +1794,7 @@ bool paintPixelRunsOverwriting(const BitVolume& pixels,
   std::int32_t* labels,
   const Execution& exec)
 {
-  checkSingleSlice(pixels);
-  if (!fitsRows(pixels, runs))
-    throw std::invalid_argument("paintPixelRuns: the runs are not those of the pixels' rows");
+  checkRunsOfRows(pixels, runs, "paintPixelRunsOverwriting");
   if (offset[0] < 0 || offset[1] < 0 || offset[0] + std::int64_t(pixels.size(0)) > width ||
     offset[1] + std::int64_t(pixels.size(1)) > rows)
     throw std::invalid_argument("paintPixelRunsOverwriting: the pixels are not inside the image");

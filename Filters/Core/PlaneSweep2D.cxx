@@ -49,14 +49,13 @@ namespace
 constexpr std::uint32_t Unset = std::numeric_limits<std::uint32_t>::max();
 
 /// Numbered in the order (v, u), the corners are found by column before the sweep when there
-/// are at least DenseCorners vertices per word of the grid of columns (cornersByColumn) and
-/// at least FewestVerticesByColumn vertices, and sorted by v after the sweep otherwise. Below
+/// are at least as many vertices as words in the grid of columns (cornersByColumn) and at
+/// least FewestVerticesByColumn vertices, and sorted by v after the sweep otherwise. Below
 /// about FewestVerticesByColumn the sort's scattered writes stay in the cache and the sort wins
 /// even where corners are dense (sweep and numbering, CPU time: ccitt7, 186,544 vertices, 4.1 per
 /// word, 4.9 ms sorted against 5.4-5.8 by column; pollen, 65,432, 3.5 per word, 1.9 against 2.1);
 /// beyond it the grid wins (feyn, 282,760 vertices, 2.2 per word, 9.5 against 15 ms;
 /// pageseg2 and scots-frag, 555,042 and 577,326: 24 against 35 and 26 against 32-36 ms).
-constexpr std::size_t DenseCorners = 1;
 
 /// Asks for huge pages under a large array that is read in no order of memory (the domino
 /// step's edges): a miss in the cache then rarely misses in the TLB as well. A hint only.
@@ -247,8 +246,7 @@ public:
       // where they are few (a fax page's large black areas).
       const auto [vLo, vHi] = rangeOfV(begin, end);
       const std::size_t vertices = static_cast<std::size_t>(end - begin);
-      sortAlongV = vertices < fewestByColumn ||
-        vertices < DenseCorners * columnGridWords(begin, end, vLo, vHi);
+      sortAlongV = vertices < fewestByColumn || vertices < columnGridWords(begin, end, vLo, vHi);
       if (!sortAlongV)
       {
         out.columns = cornersByColumn(begin, end, vLo, vHi);

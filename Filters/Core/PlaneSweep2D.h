@@ -59,6 +59,14 @@ struct Boundary2D
   std::vector<Point2> points; ///< the corners of all loops, loop after loop
   std::size_t nonManifoldVertices = 0;
 
+  std::size_t holeCount() const
+  {
+    std::size_t holes = 0;
+    for (const Loop2D& loop : this->loops)
+      holes += loop.hole ? 1 : 0;
+    return holes;
+  }
+
   std::vector<Point2> loopPoints(int loop) const
   {
     return { this->points.begin() + this->loops[loop].begin,

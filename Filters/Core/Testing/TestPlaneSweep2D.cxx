@@ -336,9 +336,9 @@ std::vector<std::pair<vbr::Coord, vbr::Coord>> cornersInOrder(const vbr::Contour
 }
 
 /// Both ways of numbering the corners in the order (v, u) (by column before the sweep, forced
-/// with fewestByColumn 0; sorted after it, forced with the largest count) give the same
-/// corners, numbers, loops and faces. Returns whether the first was numbered by column (at
-/// least one vertex per word of the grid of columns).
+/// with fewestByColumn 0; sorted after it, forced with the largest count) give brute force's
+/// corners, and the same numbers, loops and faces. Returns whether the first was numbered by column
+/// (at least one vertex per word of the grid of columns).
 bool checkColumnsAgainstSort(const vbr::BitVolume& image, vbr::FaceConnectivity connectivity)
 {
   const vbr::EVM evm = vbr::extractEVM2D(image).sortedAs(vbr::axisOrderFromName("ZYX"));
@@ -351,6 +351,11 @@ bool checkColumnsAgainstSort(const vbr::BitVolume& image, vbr::FaceConnectivity 
     connectivity,
     std::numeric_limits<std::size_t>::max());
   EXPECT_TRUE(sorted.columns.count == 0 && !sorted.corners.empty());
+  // Both against brute force: in the order ZYX, u is y and v is x, numbered by (x, y).
+  std::vector<std::pair<vbr::Coord, vbr::Coord>> expected;
+  for (const vbr::Point3& p : cornersOf(image))
+    expected.emplace_back(p[1], p[0]);
+  EXPECT_EQ(cornersInOrder(sorted), expected);
   EXPECT_EQ(cornersInOrder(byColumn), cornersInOrder(sorted));
   EXPECT_EQ(byColumn.loopCorners, sorted.loopCorners);
   EXPECT_EQ(byColumn.boundary.loops.size(), sorted.boundary.loops.size());
