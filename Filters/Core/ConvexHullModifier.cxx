@@ -2362,11 +2362,14 @@ struct Shell
   __int128 volume = 0;
   LatticeBox box; ///< the box of its points
   /// sideOf's index, built at its kSideQueriesBeforeIndex-th query (the joins ask many points
-  /// of one shell, and scanned all its triangles for each): the triangles whose z-range holds
-  /// z = box[0][2] + n are byZ[zStart[n] .. zStart[n + 1]). The mesh is not changed once its
+  /// of one shell, and scanned all its triangles for each): the triangles whose z-range meets
+  /// the rows z = box[0][2] + (n << zShift) .. + 2^zShift - 1 are byZ[zStart[n] ..
+  /// zStart[n + 1]). Rows are grouped by 2^zShift so that the index stays within a few
+  /// entries per triangle on tall shells of long triangles. The mesh is not changed once its
   /// shell is built, so the index stays true. Built on a query through a const Shell: one
   /// thread asks a shell at a time (nothing in the modifier runs in parallel).
   mutable std::uint32_t sideQueries = 0;
+  mutable int zShift = 0;
   mutable std::vector<std::size_t> zStart;
   mutable std::vector<Index> byZ;
 };
@@ -3028,40 +3031,70 @@ std::vector<Shell> shellsInBox(const std::vector<Shell>& shells, const LatticeBo
   return near;
 }
 
-/// The triangles of the shell by the integer z-rows they span (Shell::byZ).
+/// The entries of the z-row index with rows grouped by 2^shift: each triangle is listed
+/// once per group its z-range meets.
+std::size_t zIndexEntries(const Shell& shell, int shift)
+{
+  const LatticeMesh& m = shell.mesh;
+  const std::int64_t z0 = shell.box[0][2];
+  std::size_t entries = 0;
+  for (const auto& t : m.triangles)
+  {
+    const auto [lo, hi] = std::minmax({ m.points[t[0]][2], m.points[t[1]][2], m.points[t[2]][2] });
+    entries += static_cast<std::size_t>(((hi - z0) >> shift) - ((lo - z0) >> shift) + 1);
+  }
+  return entries;
+}
+
+/// Entries per triangle the z-row index may hold before rows are grouped (the aneurism's
+/// shells reach 17, so real objects keep one row per group); a group's scan still reads a
+/// small part of a tall shell, and the index stays linear in the triangles.
+constexpr std::size_t kZIndexEntriesPerTriangle = 64;
+
+/// The triangles of the shell by the groups of integer z-rows they span (Shell::byZ).
 void indexByZ(const Shell& shell)
 {
   const LatticeMesh& m = shell.mesh;
   const std::int64_t z0 = shell.box[0][2];
   const auto rows = static_cast<std::size_t>(shell.box[1][2] - z0 + 1);
-  auto zRange = [&](const std::array<Index, 3>& t) {
-    return std::minmax({ m.points[t[0]][2], m.points[t[1]][2], m.points[t[2]][2] });
+  const std::size_t budget = kZIndexEntriesPerTriangle * m.triangles.size() + rows;
+  int shift = 0;
+  while ((rows >> shift) > 1 && zIndexEntries(shell, shift) > budget)
+    ++shift;
+  shell.zShift = shift;
+  const std::size_t groups = ((rows - 1) >> shift) + 1;
+  auto groupRange = [&](const std::array<Index, 3>& t)
+  {
+    const auto [lo, hi] = std::minmax({ m.points[t[0]][2], m.points[t[1]][2], m.points[t[2]][2] });
+    return std::make_pair(
+      static_cast<std::size_t>((lo - z0) >> shift), static_cast<std::size_t>((hi - z0) >> shift));
   };
-  shell.zStart.assign(rows + 1, 0);
+  shell.zStart.assign(groups + 1, 0);
   for (const auto& t : m.triangles)
   {
-    const auto [lo, hi] = zRange(t);
-    for (std::int64_t z = lo; z <= hi; ++z)
-      ++shell.zStart[static_cast<std::size_t>(z - z0) + 1];
+    const auto [lo, hi] = groupRange(t);
+    for (std::size_t g = lo; g <= hi; ++g)
+      ++shell.zStart[g + 1];
   }
-  for (std::size_t n = 0; n < rows; ++n)
+  for (std::size_t n = 0; n < groups; ++n)
     shell.zStart[n + 1] += shell.zStart[n];
-  shell.byZ.resize(shell.zStart[rows]);
+  shell.byZ.resize(shell.zStart[groups]);
   std::vector<std::size_t> next(shell.zStart.begin(), shell.zStart.end() - 1);
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
   {
-    const auto [lo, hi] = zRange(m.triangles[t]);
-    for (std::int64_t z = lo; z <= hi; ++z)
-      shell.byZ[next[static_cast<std::size_t>(z - z0)]++] = static_cast<Index>(t);
+    const auto [lo, hi] = groupRange(m.triangles[t]);
+    for (std::size_t g = lo; g <= hi; ++g)
+      shell.byZ[next[g]++] = static_cast<Index>(t);
   }
 }
 
 constexpr std::uint32_t kSideQueriesBeforeIndex = 4;
 
 /// sideOf for one shell whose box holds p's row (sideOf for H checks): the triangles scanned
-/// are, once the shell is asked often, only those spanning the integer z-row floor(p_z / k),
-/// a superset of those behindOrBeside keeps (a triangle whose z-range meets p_z / k holds
-/// floor(p_z / k) in it, its corners being integers). The same exact tests decide.
+/// are, once the shell is asked often, only those spanning the group of the integer z-row
+/// floor(p_z / k), a superset of those behindOrBeside keeps (a triangle whose z-range meets
+/// p_z / k holds floor(p_z / k) in it, its corners being integers). The same exact tests
+/// decide.
 int sideOf(const Shell& shell, const LatticePoint& p, std::int64_t k)
 {
   if (shell.sideQueries < kSideQueriesBeforeIndex && ++shell.sideQueries == kSideQueriesBeforeIndex)
@@ -3069,10 +3102,11 @@ int sideOf(const Shell& shell, const LatticePoint& p, std::int64_t k)
   if (shell.sideQueries < kSideQueriesBeforeIndex)
     return sideOf(shell.mesh, p, k);
   const std::int64_t row = floorDiv(p[2], k) - shell.box[0][2];
-  if (row < 0 || row + 1 >= static_cast<std::int64_t>(shell.zStart.size()))
+  if (row < 0 || row > shell.box[1][2] - shell.box[0][2])
     return sideOf(shell.mesh, p, k);
+  const auto group = static_cast<std::size_t>(row >> shell.zShift);
   int parity = 0;
-  for (std::size_t n = shell.zStart[row]; n < shell.zStart[row + 1]; ++n)
+  for (std::size_t n = shell.zStart[group]; n < shell.zStart[group + 1]; ++n)
     if (!crossesBeyond(shell.mesh, shell.mesh.triangles[shell.byZ[n]], p, k, parity))
       return 0;
   return parity ? 1 : -1;
