@@ -42,6 +42,10 @@ struct Options
   int repeat = 5;
   std::vector<std::string> backends; ///< vtkSMPTools backends; empty: the one at start
   bool list = false;
+  /// Time each run by the CPU time of the process (all its threads) instead of the wall clock:
+  /// steadier on a loaded machine, and the same as the wall clock's measure of the work with the
+  /// Sequential backend; with threads it sums them, so compare threads by the wall clock.
+  bool cpuTime = false;
   std::string note; ///< printed under the heading (what this build cannot compare)
 };
 
