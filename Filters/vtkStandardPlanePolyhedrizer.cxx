@@ -1243,17 +1243,120 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
   writer.endPrepared();
 }
 
+/// Objects whose faces are made side by side, per thread, in Labels mode (each on one
+/// thread; two batches' graphs are held at once).
+constexpr std::size_t ObjectsPerThreadInBatch = 4;
+
+/// A batch of objects of Labels mode on several threads: their faces, then their check and
+/// cells.
+struct ObjectBatch
+{
+  std::size_t first = 0; ///< the first object's index in the input's objects
+  std::vector<ObjectFaces> objects;
+  std::vector<vbr::BitVolume> voxels;
+  std::vector<char> done; ///< the object's faces were made (not aborted)
+
+  ObjectBatch(std::size_t from, std::size_t count)
+    : first(from)
+    , objects(count)
+    , voxels(count)
+    , done(count, 0)
+  {
+  }
+};
+
+/// The surfel graph and faces of object k of the batch, on the calling thread without progress
+/// reports (`one` polls the abort).
+void facesInBatch(const vbr::vtk::InputObjects& in,
+  const vbr::PolyhedrizationOptions& options,
+  const vbr::Execution& one,
+  ObjectBatch& batch,
+  std::size_t k)
+{
+  const vbr::vtk::Selected& selected = in.objects[batch.first + k];
+  ObjectFaces& o = batch.objects[k];
+  vbr::BitVolume& voxels = batch.voxels[k];
+  o.label = selected.label;
+  o.offset = selected.offset;
+  voxels = vbr::vtk::inImageAxes(selected.select(one), in.axes, o.offset);
+  batch.done[k] = voxels.empty() ||
+    (vbr::buildSurfelGraph(voxels, one, o.graph) &&
+      vbr::polyhedrize(o.graph, options, one, o.poly));
+}
+
+/// PASS 1 and 2 for many objects (Labels mode) on several threads, as a pipeline of batches of
+/// objects: while one task writes the cells of batch b in object order and another checks its
+/// reversion in object order (both only read its faces), the other tasks make the faces of
+/// batch b + 1, an object each (objects share nothing). The cells and the check see the
+/// objects in the order one thread gives them, so the output is the same. False when aborted.
+bool buildObjectFacesInBatches(vtkStandardPlanePolyhedrizer* self,
+  const vbr::vtk::InputObjects& in,
+  const vbr::PolyhedrizationOptions& options,
+  const vbr::Execution& exec,
+  FaceWriter& writer,
+  ReversionCheck* check)
+{
+  SurfelCounter counter;
+  const vbr::Execution one = exec.sequential().silent();
+  const std::size_t n = in.objects.size();
+  const std::size_t size = ObjectsPerThreadInBatch * static_cast<std::size_t>(exec.concurrency);
+  std::unique_ptr<ObjectBatch> ready; // faces made, released: to be written and checked
+  for (std::size_t next = 0; next < n || ready;)
+  {
+    std::unique_ptr<ObjectBatch> making;
+    if (next < n)
+      making.reset(new ObjectBatch(next, std::min(size, n - next)));
+    const std::size_t writing = ready ? (check ? 2 : 1) : 0;
+    const std::size_t tasks = writing + (making ? making->objects.size() : 0);
+    exec.forRange(static_cast<std::int64_t>(tasks),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        for (std::int64_t task = b; task < e; ++task)
+          if (std::size_t(task) >= writing)
+            facesInBatch(in, options, one, *making, std::size_t(task) - writing);
+          else
+            for (std::size_t k = 0; k < ready->objects.size() && !exec.stopRequested(); ++k)
+              if (ready->voxels[k].empty())
+                continue;
+              else if (task == 0)
+                writer.add(ready->objects[k]);
+              else
+                check->add(ready->objects[k], ready->voxels[k], one);
+      });
+    if (self->GetAbortExecute() ||
+      (making && std::count(making->done.begin(), making->done.end(), 0) > 0))
+      return false;
+    if (making)
+    {
+      next += making->objects.size();
+      for (std::size_t k = 0; k < making->objects.size(); ++k)
+        if (!making->voxels[k].empty())
+        {
+          counter.add(self, making->objects[k].graph.size());
+          releaseAfterFaces(making->objects[k], self->GetOutputMode());
+        }
+    }
+    ready = std::move(making);
+    self->UpdateProgress(0.05 + 0.85 * double(next) / double(n));
+  }
+  return !self->GetAbortExecute();
+}
+
 /// PASS 1 of the filter: the faces of every selected object, and with the reversion their
 /// self-check; PASS 2 with it, object by object, so that only one object's surfel graph is
-/// held at a time: the faces as cells. False when aborted.
+/// held at a time: the faces as cells. False when aborted. Many objects on several threads:
+/// in batches (buildObjectFacesInBatches).
 bool buildObjectFaces(vtkStandardPlanePolyhedrizer* self,
   const vbr::vtk::InputObjects& in,
   const vbr::PolyhedrizationOptions& options,
   FaceWriter& writer,
   ReversionCheck* check)
 {
-  SurfelCounter counter;
   const std::size_t n = in.objects.size();
+  const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.0, 0.0);
+  if (n >= 2 && exec.concurrency >= 2)
+    return buildObjectFacesInBatches(self, in, options, exec, writer, check);
+  SurfelCounter counter;
   for (std::size_t i = 0; i < n; ++i)
   {
     if (self->GetAbortExecute())

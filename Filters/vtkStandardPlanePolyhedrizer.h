@@ -80,7 +80,10 @@
  * faces the cells have not reached, which raises the peak memory (by about 50 bytes per surfel
  * on noise, and 12 bytes per triangle made ahead). The faces of one component grow on one
  * thread: a boundary that is mostly one component (porous volumes, and 50 % noise, which
- * percolates) gains little.
+ * percolates) gains little. In Labels mode the objects (one per label) are made in batches
+ * of four per thread, each object on one thread, while the cells of the batch before are
+ * written and its reversion checked, in object order (the same output): the surfel graphs of
+ * two batches are held at once instead of one object's.
  *
  * Under MPI (ParaView running the filter on N ranks, one piece each) the faces are the 1-rank
  * faces, output once by rank 0 (from the extreme vertices of every rank's voxels), and port 1

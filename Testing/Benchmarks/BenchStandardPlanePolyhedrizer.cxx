@@ -22,7 +22,9 @@
 
 #include "BenchCommon.h"
 
+#include "vtkDataArray.h"
 #include "vtkDiscreteFlyingEdges3D.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
@@ -122,11 +124,56 @@ void printThroughput(std::size_t surfels, const std::vector<Measured>& rows)
     double(peer->peakBytes) / double(std::max<std::size_t>(surfels, 1)));
 }
 
+/// Labels mode on a label map (each label its own object), against Flying Edges with one
+/// contour value per label.
+void addLabelContenders(const Input& in,
+  vtkImageData* labels,
+  vtkStandardPlanePolyhedrizer* filter,
+  vtkDiscreteFlyingEdges3D* peer,
+  std::vector<Contender>& out)
+{
+  filter->SetInputData(labels);
+  filter->SetSelectionModeToLabels();
+  const int n = maxLabel(in);
+  peer->SetInputData(labels);
+  peer->GenerateValues(n, 1, n);
+  peer->ComputeNormalsOff();
+  peer->ComputeGradientsOff();
+  vtkAlgorithm* f = filter;
+  vtkAlgorithm* p = peer;
+  out.push_back({ "filter Labels",
+    Role::Tool,
+    "labels",
+    [f] { update(f); },
+    [filter] { return filter->GetOutput()->GetNumberOfCells(); } });
+  out.push_back({ "DFE, one value per label",
+    Role::Peer,
+    "labels",
+    [p] { update(p); },
+    [peer] { return peer->GetOutput()->GetNumberOfCells(); } });
+}
+
+/// Labels mode: the surfels of every label's boundary (a surfel between two labels counts
+/// once for each) per second of the whole filter.
+void printLabelsThroughput(const Input& in,
+  vtkStandardPlanePolyhedrizer* filter,
+  const std::vector<Measured>& rows)
+{
+  const Measured* m = findMeasured(rows, "filter Labels");
+  vtkDataArray* surfels = filter->GetOutput()->GetFieldData()->GetArray("NumberOfSurfels");
+  const double count = surfels ? surfels->GetComponent(0, 0) : 0.0;
+  std::printf("Labels mode: %s labels, surfels %s | M surfels/s: filter %.2f\n\n",
+    formatCount(maxLabel(in)).c_str(),
+    formatCount(static_cast<long long>(count)).c_str(),
+    count / m->median / 1e6);
+}
+
 void benchmarkInput(const Input& in, const Options& options, Report& report)
 {
   Report::printInput(in);
   const vbr::BitVolume voxels = bitsOf(in);
   vtkNew<vtkImageData> image = maskImageOf(in);
+  vtkNew<vtkImageData> labelImage = in.labels ? labelImageOf(in) : vtkNew<vtkImageData>();
   forEachBackend(options,
     [&](const std::string& backend)
     {
@@ -154,19 +201,26 @@ void benchmarkInput(const Input& in, const Options& options, Report& report)
           nullptr },
         { "filter",
           Role::Tool,
-          "",
+          "mask",
           [f] { update(f); },
           [filter = filter.Get()] { return filter->GetOutput()->GetNumberOfCells(); } },
         { "DiscreteFlyingEdges3D",
           Role::Peer,
-          "",
+          "mask",
           [p] { update(p); },
           [peer = peer.Get()] { return peer->GetOutput()->GetNumberOfCells(); } },
       };
-      const std::vector<Measured> rows = timeInTurns(options.repeat, contenders);
+      std::vector<Contender> all = contenders;
+      vtkNew<vtkStandardPlanePolyhedrizer> labelsFilter;
+      vtkNew<vtkDiscreteFlyingEdges3D> labelsPeer;
+      if (in.labels)
+        addLabelContenders(in, labelImage, labelsFilter, labelsPeer, all);
+      const std::vector<Measured> rows = timeInTurns(options.repeat, all);
       report.add(in, backend, rows);
       printFaces(graph, poly, voxels);
       printThroughput(graph.size(), rows);
+      if (in.labels)
+        printLabelsThroughput(in, labelsFilter, rows);
     });
 }
 

@@ -1,6 +1,7 @@
 // vtkStandardPlanePolyhedrizer on long runs: an abort asked from a progress observer in the
 // middle of each phase of the faces (growth, moves to larger faces, merging, loops) stops
-// the filter within that phase, with empty outputs and no error; a selection of millions of
+// the filter within that phase, with empty outputs and no error, and so does an abort in the
+// middle of Labels mode's objects (made in batches when threaded); a selection of millions of
 // surfels raises a warning that says how large it is and what to do.
 #include "vtkStandardPlanePolyhedrizer.h"
 
@@ -106,6 +107,35 @@ void checkAbortInEachPhase()
   }
 }
 
+/// Labels mode on 20 labels (in batches of objects on threads, one object at a time on one
+/// thread): an abort asked when a third of the objects is done stops the filter before the
+/// next objects, with empty outputs and no error; not aborted, every label has faces.
+void checkAbortInLabelsMode()
+{
+  const vbrtest::Volume labels = vbrtest::randomVolume({ 32, 32, 32 }, 0.9, 20, 7);
+  const auto image = vbrtest::makeImage(labels, vbrtest::Layout());
+  vtkNew<vtkStandardPlanePolyhedrizer> whole;
+  whole->SetInputData(image);
+  whole->SetSelectionModeToLabels();
+  CHECK(vbrtest::updateCountingErrors(whole) == 0, "labels: errors");
+  CHECK(whole->GetOutput()->GetNumberOfCells() > 0, "labels: no faces");
+  vtkNew<vtkStandardPlanePolyhedrizer> f;
+  f->SetInputData(image);
+  f->SetSelectionModeToLabels();
+  vtkNew<AbortInside> abort;
+  abort->From = 0.05 + 0.85 / 3.0;
+  abort->To = 0.9;
+  f->AddObserver(vtkCommand::ProgressEvent, abort);
+  const int errors = vbrtest::updateCountingErrors(f);
+  CHECK(abort->Asked, "labels: no progress inside the objects");
+  CHECK(abort->Highest < abort->To, "labels: progress went on to " << abort->Highest);
+  CHECK(errors == 0, "labels: " << errors << " errors after the abort");
+  CHECK(f->GetOutput()->GetNumberOfCells() == 0, "labels: faces left after the abort");
+  auto* reversion = vtkImageData::SafeDownCast(f->GetOutputDataObject(1));
+  CHECK(reversion && reversion->GetPointData()->GetArray("Selection") == nullptr,
+    "labels: a reversion left after the abort");
+}
+
 void checkWarningBeforeLargeWork()
 {
   // A 96^3 checkerboard: every selected voxel alone, 6 surfels each (2.65 M in all).
@@ -147,6 +177,7 @@ void checkWarningBeforeLargeWork()
 int TestStandardPlanePolyhedrizerLongRuns(int, char*[])
 {
   checkAbortInEachPhase();
+  checkAbortInLabelsMode();
   checkWarningBeforeLargeWork();
   return vbrtest::testResult();
 }

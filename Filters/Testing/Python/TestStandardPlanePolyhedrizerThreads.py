@@ -2,7 +2,9 @@
 boundary components are grown, their faces' surfels moved, their loops traced and their vertices
 counted concurrently, and the reversion is checked beside the cells; the faces must still come
 out in the sequential order with the sequential numbers. Inputs of many boundary components
-(Gaussian-filtered noise, 50 % noise, a label map of noise), every output mode, with and without
+(Gaussian-filtered noise, 50 % noise, a label map of noise; one of 20 labels, whose objects
+are made in several batches side by side while the previous batch's cells are written), every
+output mode, with and without
 MergeFaces: every array of both output ports, with the STDThread backend on 2 threads, equal to
 the Sequential backend's; the surfel count against numpy's.
 """
@@ -96,6 +98,7 @@ smooth = ndimage.gaussian_filter(rng.standard_normal((40, 40, 40)), 2.0)
 porous = (smooth > np.quantile(smooth, 0.55)).astype(np.uint8)
 noise = (rng.random((28, 28, 28)) < 0.5).astype(np.uint8)
 label_map = (rng.integers(0, 4, size=(24, 24, 24))).astype(np.uint8)
+many_labels = (rng.integers(0, 21, size=(20, 20, 20))).astype(np.uint8)
 
 for tag, values in (("porous", porous), ("noise", noise)):
     # Several boundary components (else the growth stays on one thread) and enough surfels
@@ -106,5 +109,8 @@ for tag, values in (("porous", porous), ("noise", noise)):
 for k in (1, 2, 3):
     check.true("label %d: enough surfels" % k, surfel_count(label_map == k) >= 4096)
 compare("labels", label_map, True)
+# More objects than a batch on 2 threads (8): the pipeline of batches is crossed twice.
+check.true("20 labels", len(np.unique(many_labels)) == 21)
+compare("20 labels", many_labels, True)
 
 check.finish()
