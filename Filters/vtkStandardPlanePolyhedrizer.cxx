@@ -60,7 +60,8 @@ namespace
 using Int3 = vbr::Point3; // a lattice point or voxel index
 
 /// Faces of one selected object, with what the output needs; kept only while the object's
-/// cells are written (its surfel graph is most of the filter's memory).
+/// cells are written (its surfel graph is most of the filter's memory), or in Labels mode on
+/// threads while its batch's cells are (buildObjectFacesInBatches).
 struct ObjectFaces
 {
   vbr::vtk::LabelValue label;
@@ -1146,9 +1147,35 @@ struct SurfelCounter
   }
 };
 
-/// The surfel graph and standard faces of one object, over the progress range [from, to]
-/// (5 % selection, 10 % surfel graph, the rest the faces). False when aborted; an empty
-/// object gives empty `voxels`.
+/// The surfel graph and standard faces of one object, each step under its own execution
+/// (progress range and abort); `graphMade` is told the graph's surfels before the faces grow.
+/// False when aborted; an empty object gives empty `voxels`.
+template<typename GraphMade>
+bool makeObjectFaces(const vbr::vtk::Selected& selected,
+  const std::array<int, 3>& axes,
+  const vbr::PolyhedrizationOptions& options,
+  const std::array<vbr::Execution, 3>& selectGraphFaces,
+  GraphMade&& graphMade,
+  ObjectFaces& o,
+  vbr::BitVolume& voxels)
+{
+  o.label = selected.label;
+  o.offset = selected.offset;
+  voxels = vbr::vtk::inImageAxes(selected.select(selectGraphFaces[0]), axes, o.offset);
+  if (voxels.empty())
+    return true;
+  {
+    vtkLogScopeF(TRACE, "surfel graph");
+    if (!vbr::buildSurfelGraph(voxels, selectGraphFaces[1], o.graph))
+      return false;
+  }
+  graphMade(o.graph.size());
+  vtkLogScopeF(TRACE, "standard faces");
+  return vbr::polyhedrize(o.graph, options, selectGraphFaces[2], o.poly);
+}
+
+/// makeObjectFaces over the progress range [from, to] (5 % selection, 10 % surfel graph, the
+/// rest the faces), the counter warning before the faces grow.
 bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
   const vbr::vtk::Selected& selected,
   const std::array<int, 3>& axes,
@@ -1160,20 +1187,16 @@ bool facesOfObject(vtkStandardPlanePolyhedrizer* self,
   vbr::BitVolume& voxels)
 {
   const double a = from + 0.05 * (to - from), b = from + 0.15 * (to - from);
-  o.label = selected.label;
-  o.offset = selected.offset;
-  voxels =
-    vbr::vtk::inImageAxes(selected.select(vbr::vtk::makeExecution(self, from, a)), axes, o.offset);
-  if (voxels.empty())
-    return true;
-  {
-    vtkLogScopeF(TRACE, "surfel graph");
-    if (!vbr::buildSurfelGraph(voxels, vbr::vtk::makeExecution(self, a, b), o.graph))
-      return false;
-  }
-  counter.add(self, o.graph.size());
-  vtkLogScopeF(TRACE, "standard faces");
-  return vbr::polyhedrize(o.graph, options, vbr::vtk::makeExecution(self, b, to), o.poly);
+  return makeObjectFaces(
+    selected,
+    axes,
+    options,
+    { vbr::vtk::makeExecution(self, from, a),
+      vbr::vtk::makeExecution(self, a, b),
+      vbr::vtk::makeExecution(self, b, to) },
+    [&](std::size_t surfels) { counter.add(self, surfels); },
+    o,
+    voxels);
 }
 
 /// Frees what the cells of `mode` do not read, before they are written (the counts of surfels
@@ -1244,7 +1267,7 @@ void checkAndWrite(vtkStandardPlanePolyhedrizer* self,
 }
 
 /// Objects whose faces are made side by side, per thread, in Labels mode (each on one
-/// thread; two batches' graphs are held at once).
+/// thread), at most.
 constexpr std::size_t ObjectsPerThreadInBatch = 4;
 
 /// A batch of objects of Labels mode on several threads: their faces, then their check and
@@ -1265,23 +1288,37 @@ struct ObjectBatch
   }
 };
 
-/// The surfel graph and faces of object k of the batch, on the calling thread without progress
-/// reports (`one` polls the abort).
+/// The faces of object k of the batch on the calling thread, without progress reports (`one`
+/// polls the abort), then what its cells do not read freed at once (releaseAfterFaces), so a
+/// batch holds only one object's whole surfel graph per thread.
 void facesInBatch(const vbr::vtk::InputObjects& in,
   const vbr::PolyhedrizationOptions& options,
   const vbr::Execution& one,
+  int mode,
   ObjectBatch& batch,
   std::size_t k)
 {
-  const vbr::vtk::Selected& selected = in.objects[batch.first + k];
   ObjectFaces& o = batch.objects[k];
   vbr::BitVolume& voxels = batch.voxels[k];
-  o.label = selected.label;
-  o.offset = selected.offset;
-  voxels = vbr::vtk::inImageAxes(selected.select(one), in.axes, o.offset);
-  batch.done[k] = voxels.empty() ||
-    (vbr::buildSurfelGraph(voxels, one, o.graph) &&
-      vbr::polyhedrize(o.graph, options, one, o.poly));
+  batch.done[k] = makeObjectFaces(
+    in.objects[batch.first + k],
+    in.axes,
+    options,
+    { one, one, one },
+    [](std::size_t) {},
+    o,
+    voxels);
+  if (batch.done[k] && !voxels.empty())
+    releaseAfterFaces(o, mode);
+}
+
+/// Objects per batch of buildObjectFacesInBatches: up to ObjectsPerThreadInBatch per thread,
+/// but at least about eight batches when there are objects enough for a thread each, since
+/// the progress moves only between batches.
+std::size_t objectsPerBatch(std::size_t objects, std::size_t threads)
+{
+  const std::size_t eighth = (objects + 7) / 8;
+  return std::min(ObjectsPerThreadInBatch * threads, std::max(threads, eighth));
 }
 
 /// PASS 1 and 2 for many objects (Labels mode) on several threads, as a pipeline of batches of
@@ -1299,7 +1336,7 @@ bool buildObjectFacesInBatches(vtkStandardPlanePolyhedrizer* self,
   SurfelCounter counter;
   const vbr::Execution one = exec.sequential().silent();
   const std::size_t n = in.objects.size();
-  const std::size_t size = ObjectsPerThreadInBatch * static_cast<std::size_t>(exec.concurrency);
+  const std::size_t size = objectsPerBatch(n, static_cast<std::size_t>(exec.concurrency));
   std::unique_ptr<ObjectBatch> ready; // faces made, released: to be written and checked
   for (std::size_t next = 0; next < n || ready;)
   {
@@ -1313,7 +1350,8 @@ bool buildObjectFacesInBatches(vtkStandardPlanePolyhedrizer* self,
       {
         for (std::int64_t task = b; task < e; ++task)
           if (std::size_t(task) >= writing)
-            facesInBatch(in, options, one, *making, std::size_t(task) - writing);
+            facesInBatch(
+              in, options, one, self->GetOutputMode(), *making, std::size_t(task) - writing);
           else
             for (std::size_t k = 0; k < ready->objects.size() && !exec.stopRequested(); ++k)
               if (ready->voxels[k].empty())
@@ -1331,10 +1369,7 @@ bool buildObjectFacesInBatches(vtkStandardPlanePolyhedrizer* self,
       next += making->objects.size();
       for (std::size_t k = 0; k < making->objects.size(); ++k)
         if (!making->voxels[k].empty())
-        {
-          counter.add(self, making->objects[k].graph.size());
-          releaseAfterFaces(making->objects[k], self->GetOutputMode());
-        }
+          counter.add(self, making->objects[k].surfelCount); // after the batch: see the header
     }
     ready = std::move(making);
     self->UpdateProgress(0.05 + 0.85 * double(next) / double(n));

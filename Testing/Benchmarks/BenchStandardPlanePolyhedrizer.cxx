@@ -162,7 +162,7 @@ void printLabelsThroughput(const Input& in,
   const Measured* m = findMeasured(rows, "filter Labels");
   vtkDataArray* surfels = filter->GetOutput()->GetFieldData()->GetArray("NumberOfSurfels");
   const double count = surfels ? surfels->GetComponent(0, 0) : 0.0;
-  std::printf("Labels mode: %s labels, surfels %s | M surfels/s: filter %.2f\n\n",
+  std::printf("Labels mode: labels 1 to %s, surfels %s | M surfels/s: filter %.2f\n\n",
     formatCount(maxLabel(in)).c_str(),
     formatCount(static_cast<long long>(count)).c_str(),
     count / m->median / 1e6);

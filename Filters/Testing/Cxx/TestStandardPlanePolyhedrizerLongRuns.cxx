@@ -13,7 +13,9 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <string>
@@ -107,12 +109,14 @@ void checkAbortInEachPhase()
   }
 }
 
-/// Labels mode on 20 labels (in batches of objects on threads, one object at a time on one
+/// Labels mode on 20 labels, or 8 per thread and one more (in batches of objects on threads,
+/// about eight batches, the progress moving between them; one object at a time on one
 /// thread): an abort asked when a third of the objects is done stops the filter before the
-/// next objects, with empty outputs and no error; not aborted, every label has faces.
+/// next objects, with empty outputs and no error; not aborted, the labels have faces.
 void checkAbortInLabelsMode()
 {
-  const vbrtest::Volume labels = vbrtest::randomVolume({ 32, 32, 32 }, 0.9, 20, 7);
+  const int count = std::max(20, 8 * vtkSMPTools::GetEstimatedNumberOfThreads() + 1);
+  const vbrtest::Volume labels = vbrtest::randomVolume({ 32, 32, 32 }, 0.9, count, 7);
   const auto image = vbrtest::makeImage(labels, vbrtest::Layout());
   vtkNew<vtkStandardPlanePolyhedrizer> whole;
   whole->SetInputData(image);

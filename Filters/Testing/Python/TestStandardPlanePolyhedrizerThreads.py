@@ -109,7 +109,8 @@ for tag, values in (("porous", porous), ("noise", noise)):
 for k in (1, 2, 3):
     check.true("label %d: enough surfels" % k, surfel_count(label_map == k) >= 4096)
 compare("labels", label_map, True)
-# More objects than a batch on 2 threads (8): the pipeline of batches is crossed twice.
+# More objects than a batch on 2 threads (3 of the 20, objectsPerBatch): the pipeline of
+# batches is crossed six times.
 check.true("20 labels", len(np.unique(many_labels)) == 21)
 compare("20 labels", many_labels, True)
 
