@@ -1575,7 +1575,7 @@ struct RegionColumns
   std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
   std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
 
-  RegionColumns(int labelType, vtkIdType count)
+  explicit RegionColumns(int labelType)
     : labels(vbr::vtk::newLabelArray(labelType, 0))
   {
     static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
@@ -1589,17 +1589,51 @@ struct RegionColumns
     this->centroids->SetComponentName(1, "Y");
     this->centroids->SetComponentName(2, "Z");
     this->boxes->SetName("NumberOfBoxes");
+    for (int k = 0; k < 6; ++k)
+    {
+      this->indexBounds[k]->SetName(indexNames[k]);
+      this->worldBounds[k]->SetName(worldNames[k]);
+    }
+  }
+
+  std::vector<vtkDataArray*> all() const
+  {
     std::vector<vtkDataArray*> columns{
       this->ids, this->labels, this->voxels, this->volumes, this->centroids, this->boxes
     };
     for (int k = 0; k < 6; ++k)
     {
-      this->indexBounds[k]->SetName(indexNames[k]);
-      this->worldBounds[k]->SetName(worldNames[k]);
       columns.push_back(this->indexBounds[k]);
       columns.push_back(this->worldBounds[k]);
     }
-    allocateTuples(columns, count, 0.0);
+    return columns;
+  }
+
+  /// Whether only these columns hold their arrays (the table they were added to was released
+  /// or initialized for a new update), so that they can be written again.
+  bool unshared() const
+  {
+    for (vtkDataArray* a : this->all())
+      if (a->GetReferenceCount() != 1)
+        return false;
+    return true;
+  }
+
+  /// Room for `count` rows, unset (memory of the last rows kept when there were as many).
+  void allocate(vtkIdType count)
+  {
+    const std::vector<vtkDataArray*> columns = this->all();
+    if (this->ids->GetNumberOfTuples() != count)
+      allocateTuples(columns, count, 0.0);
+    for (vtkDataArray* a : columns)
+      a->Modified(); // new values: cached ranges are stale
+  }
+
+  /// Bytes of `count` rows.
+  static double bytesOf(vtkIdType count, int labelType)
+  {
+    return double(count) *
+      (4 + 8 + 8 + 8 + 24 + 6 * 4 + 6 * 8 + vtkDataArray::GetDataTypeSize(labelType));
   }
 
   /// Rows [0, regionOfRow.size()) (ids 1, 2, ...) from the statistics of their regions.
@@ -1662,7 +1696,14 @@ struct RegionColumns
   }
 };
 
-/// Port 2: one row per kept region, in RegionId order, from the regions' statistics.
+/// Tables up to this size keep their columns for the next update: making, naming, adding and
+/// releasing 18 arrays was a tenth of an update of a small image (a few hundred rows). Larger
+/// ones are not held past their update (their memory goes back to the cache of blocks).
+constexpr double KeptTableBytes = 1024.0 * 1024.0;
+
+/// Port 2: one row per kept region, in RegionId order, from the regions' statistics. The
+/// columns are those of `kept` when only it still holds them and their label type fits; a small
+/// table's columns are left in `kept` for the next update.
 void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   const Regions& regions,
   const RegionIdList& regionIds,
@@ -1670,13 +1711,23 @@ void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
-  vtkTable* table)
+  vtkTable* table,
+  std::unique_ptr<RegionColumns>& kept)
 {
-  RegionColumns columns(labelType, static_cast<vtkIdType>(regionOfRow.size()));
+  std::unique_ptr<RegionColumns> columns;
+  if (kept && kept->labels->GetDataType() == labelType && kept->unshared())
+    columns = std::move(kept);
+  else
+    columns = std::make_unique<RegionColumns>(labelType);
+  kept.reset();
+  const auto rows = static_cast<vtkIdType>(regionOfRow.size());
+  columns->allocate(rows);
   for (const ObjectBoxes& o : objects)
-    scatterLabel(columns.labels, regionIds.data() + o.firstRegion, o.componentCount(), o.label);
-  columns.write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
-  columns.addTo(table);
+    scatterLabel(columns->labels, regionIds.data() + o.firstRegion, o.componentCount(), o.label);
+  columns->write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
+  columns->addTo(table);
+  if (RegionColumns::bytesOf(rows, labelType) <= KeptTableBytes)
+    kept = std::move(columns);
 }
 
 /// The data objects of the filter's ports.
@@ -1715,26 +1766,41 @@ struct Summary
   }
 
   /// The summary's field arrays. Every port gets the same arrays: making, naming, adding and
-  /// later releasing each small array was a large part of an update of a small image.
-  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays() const
+  /// later releasing each small array was a large part of an update of a small image. So the
+  /// arrays of the last update (`kept`) are written again when nothing but `kept` holds them
+  /// (the ports they were added to were initialized for this update).
+  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays(
+    const std::vector<vtkSmartPointer<vtkAbstractArray>>& kept) const
   {
-    std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
     const std::pair<const char*, vtkIdType> values[] = { { "NumberOfRegions", this->regions },
       { "NumberOfComponents", this->components },
       { "NumberOfBoxes", this->boxes },
       { "NumberOfOUDBBoxes", this->oudbBoxes },
       { "NumberOfExtremeVertices", this->extremeVertices } };
-    for (const auto& value : values)
+    constexpr std::size_t Count = sizeof(values) / sizeof(values[0]) + 1;
+    bool reuse = kept.size() == Count;
+    for (std::size_t k = 0; reuse && k < Count; ++k)
+      reuse = kept[k]->GetReferenceCount() == 1;
+    std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
+    for (std::size_t k = 0; k + 1 < Count; ++k)
     {
-      vtkNew<vtkIdTypeArray> a;
-      a->SetName(value.first);
-      a->InsertNextValue(value.second);
+      vtkSmartPointer<vtkIdTypeArray> a = reuse
+        ? vtkSmartPointer<vtkIdTypeArray>(vtkIdTypeArray::SafeDownCast(kept[k]))
+        : vtkSmartPointer<vtkIdTypeArray>::New();
+      a->SetName(values[k].first);
+      a->SetNumberOfValues(1);
+      a->SetValue(0, values[k].second);
+      a->Modified();
       arrays.emplace_back(a);
     }
-    vtkNew<vtkStringArray> s;
+    vtkSmartPointer<vtkStringArray> s = reuse
+      ? vtkSmartPointer<vtkStringArray>(vtkStringArray::SafeDownCast(kept.back()))
+      : vtkSmartPointer<vtkStringArray>::New();
     s->SetName("SortingOrder");
-    for (const std::string& name : this->sortings)
-      s->InsertNextValue(name);
+    s->SetNumberOfValues(static_cast<vtkIdType>(this->sortings.size()));
+    for (std::size_t k = 0; k < this->sortings.size(); ++k)
+      s->SetValue(static_cast<vtkIdType>(k), this->sortings[k]);
+    s->Modified();
     arrays.emplace_back(s);
     return arrays;
   }
@@ -2094,6 +2160,19 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   return kept;
 }
 
+} // namespace
+
+/// The arrays of the last update's small outputs that the filter writes again when no one
+/// else holds them (writeRegionTable, Summary::fieldArrays).
+struct vtkCUDBConnectivityKept
+{
+  std::unique_ptr<RegionColumns> columns;
+  std::vector<vtkSmartPointer<vtkAbstractArray>> fields;
+};
+
+namespace
+{
+
 /// Ports 1 and 2 (the boxes, the region table) and the summary on every port.
 void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const vbr::vtk::InputObjects& in,
@@ -2102,14 +2181,23 @@ void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const RegionIdList& regionIds,
   const RegionList& regionOfRow,
   const Summary& summary,
-  const Ports& ports)
+  const Ports& ports,
+  vtkCUDBConnectivityKept& kept)
 {
   vtkLogScopeF(TRACE, "boxes and region table");
   if (self->GetGenerateBoxes())
     writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(
-    objects, regions, regionIds, regionOfRow, in.grid, in.axes, in.labelType, ports.table);
-  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays();
+  writeRegionTable(objects,
+    regions,
+    regionIds,
+    regionOfRow,
+    in.grid,
+    in.axes,
+    in.labelType,
+    ports.table,
+    kept.columns);
+  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays(kept.fields);
+  kept.fields = fields;
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
@@ -2129,7 +2217,8 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   const std::vector<ObjectBoxes>& objects,
   std::uint32_t regionCount,
   Summary& summary,
-  const Ports& ports)
+  const Ports& ports,
+  vtkCUDBConnectivityKept& kept)
 {
   vbr::vtk::Piece& piece = in.piece;
   vtkSmartPointer<vtkDataSet> seeds =
@@ -2153,7 +2242,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   addRegionIds(ports.output, ids, piece.local.cellData);
   if (!first)
     return true;
-  writeBoxesAndTable(self, in, objects, regions, regionIds, regionOfRow, summary, ports);
+  writeBoxesAndTable(self, in, objects, regions, regionIds, regionOfRow, summary, ports, kept);
   return true;
 }
 
@@ -2161,6 +2250,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
 
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::vtkCUDBConnectivity()
+  : Kept(new vtkCUDBConnectivityKept)
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
@@ -2173,6 +2263,7 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::~vtkCUDBConnectivity()
 {
+  delete this->Kept; // before the cache of blocks its arrays may come from is freed
   BlockCache::instance().addUser(-1);
 }
 
@@ -2309,7 +2400,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     // The boxes and the table are whole on rank 0 and absent elsewhere: no ghost layer can be
     // missing from them. ParaView asks unstructured outputs for one by default (the image
     // port for none); without this the filter would execute again for that request.
-    const bool written = writeDistributed(this, in, objects, regionCount, summary, ports);
+    const bool written =
+      writeDistributed(this, in, objects, regionCount, summary, ports, *this->Kept);
     vbr::vtk::markGhostLevelsComplete(outputVector, { 1, 2 });
     return written ? 1 : 0;
   }
@@ -2343,7 +2435,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);
-  writeBoxesAndTable(this, in, objects, regions, regionIds, regionOfRow, summary, ports);
+  writeBoxesAndTable(
+    this, in, objects, regions, regionIds, regionOfRow, summary, ports, *this->Kept);
   return 1;
 }
 
