@@ -901,17 +901,24 @@ void countingSortBySize(const std::int64_t* sizes, std::int64_t largest, RegionL
   kept = std::move(sorted);
 }
 
+/// Below this many kept regions their sort keys are sorted by comparisons: the counting sort's
+/// pass over every size up to the largest (a page of a few hundred regions, one of thousands of
+/// pixels) and the radix sort's 2,048 buckets per digit cost more there.
+constexpr std::size_t FewRegions = 4096;
+
 /// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
 /// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
-/// the indices fit in one 64-bit key together, by a radix sort of those keys: a maze has 642,115
-/// regions, whose comparison sort took longer than their table.
+/// the indices fit in one 64-bit key together, by a sort of those keys (unique, so any sort
+/// gives the same order): a radix sort for many (a maze has 642,115 regions, whose comparison
+/// sort took longer than their table), else a comparison sort.
 void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
 {
   const auto larger = [sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
   std::int64_t largest = 0;
   for (std::size_t r : kept)
     largest = std::max(largest, sizes[r]);
-  if (largest <= static_cast<std::int64_t>(kept.size()) + 65536)
+  const auto n = static_cast<std::int64_t>(kept.size());
+  if (largest <= n + 65536 && (kept.size() >= FewRegions || largest <= 8 * n + 1024))
   {
     countingSortBySize(sizes, largest, kept);
     return;
@@ -925,7 +932,10 @@ void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
   std::vector<std::uint64_t> keys(kept.size());
   for (std::size_t k = 0; k < kept.size(); ++k)
     keys[k] = static_cast<std::uint64_t>(largest - sizes[kept[k]]) << indexBits | kept[k];
-  vbr::radixSort(keys);
+  if (keys.size() < FewRegions)
+    std::sort(keys.begin(), keys.end());
+  else
+    vbr::radixSort(keys);
   const std::uint64_t indexMask = (std::uint64_t(1) << indexBits) - 1;
   for (std::size_t k = 0; k < kept.size(); ++k)
     kept[k] = static_cast<std::size_t>(keys[k] & indexMask);
