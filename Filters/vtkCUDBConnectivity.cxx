@@ -471,6 +471,17 @@ void checkBytes(double bytes, vtkIdType tuples, std::size_t arrays)
     throw std::runtime_error(refused);
 }
 
+/// An array of the last update that the filter writes again (no one else holds it): what a
+/// new array would not have is dropped (cached ranges and other keys, a lookup table), and its
+/// values are marked modified.
+void prepareForNewValues(vtkDataArray* array)
+{
+  if (array->HasInformation())
+    array->GetInformation()->Clear();
+  array->SetLookupTable(nullptr);
+  array->Modified();
+}
+
 /// `tuples` tuples of each array (of the AOS layout: every array the filter writes), in
 /// memory of allocateBlock, unset: the filter writes every value. On huge pages when the
 /// arrays are `groupBytes` together with the others of their output. Throws when refused.
@@ -1013,13 +1024,35 @@ bool paintRegionsOfRuns(const ObjectBoxes& o,
     o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec);
 }
 
+/// RegionId images below this many values (those allocateTuples leaves on the heap, where
+/// BlockCache keeps nothing) are kept by the filter for its next update: glibc returned their
+/// memory to the kernel, which faulted it in again at every update (a third of the painting of
+/// a 448 x 172 image).
+constexpr vtkIdType KeptRegionIdValues = vtkIdType(2) << 20;
+
 /// The RegionId image, its values unset, in memory of allocateTuples (an earlier update's,
-/// when one released it): for painters that write every voxel.
-vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGrid& grid)
+/// when one released it), or the image of the last update (`kept`) when nothing else holds it
+/// and it has as many values: for painters that write every voxel. A small image is kept in
+/// `kept` (when given) for the next update.
+vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGrid& grid,
+  vtkSmartPointer<vtkIntArray>* kept)
 {
-  auto ids = vtkSmartPointer<vtkIntArray>::New();
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkSmartPointer<vtkIntArray> ids;
+  if (kept && *kept && (*kept)->GetReferenceCount() == 1 && (*kept)->GetNumberOfTuples() == n &&
+    (*kept)->GetNumberOfComponents() == 1)
+  {
+    ids = *kept;
+    prepareForNewValues(ids);
+  }
+  else
+  {
+    ids = vtkSmartPointer<vtkIntArray>::New();
+    allocateTuples({ ids }, n, 0.0);
+  }
   ids->SetName("RegionId");
-  allocateTuples({ ids }, vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2], 0.0);
+  if (kept)
+    *kept = n < KeptRegionIdValues ? ids : nullptr;
   return ids;
 }
 
@@ -1029,9 +1062,10 @@ vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGri
 vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
   const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
-  const vbr::Execution& exec)
+  const vbr::Execution& exec,
+  vtkSmartPointer<vtkIntArray>* kept)
 {
-  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid);
+  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid, kept);
   const std::vector<std::int32_t> values = valuesOfRunLabels(o, regionIds);
   if (!vbr::paintRunsOverwriting(o.voxelRuns,
         o.runComponents.runLabel,
@@ -1075,9 +1109,10 @@ bool onlyObjectOfPixelRuns(const std::vector<ObjectBoxes>& objects, const std::a
 vtkSmartPointer<vtkIntArray> paintOnlyObjectOfPixelRuns(const ObjectBoxes& o,
   const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
-  const vbr::Execution& exec)
+  const vbr::Execution& exec,
+  vtkSmartPointer<vtkIntArray>* kept)
 {
-  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid);
+  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid, kept);
   if (!vbr::paintPixelRunsOverwriting(o.pixels,
         o.runs,
         valuesOfBoxes(o, regionIds),
@@ -1092,17 +1127,20 @@ vtkSmartPointer<vtkIntArray> paintOnlyObjectOfPixelRuns(const ObjectBoxes& o,
 
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
 /// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted.
+/// `kept` (when given): the last update's RegionId image, which the painters of every voxel
+/// write again when they can (newRegionIdsInReusedMemory).
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
   const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
-  const vbr::Execution& exec)
+  const vbr::Execution& exec,
+  vtkSmartPointer<vtkIntArray>* kept = nullptr)
 {
   const std::int64_t n = std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   if (objects.size() == 1 && objects[0].labelledFromRuns)
-    return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec);
+    return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec, kept);
   if (onlyObjectOfPixelRuns(objects, axes))
-    return paintOnlyObjectOfPixelRuns(objects[0], regionIds, grid, exec);
+    return paintOnlyObjectOfPixelRuns(objects[0], regionIds, grid, exec, kept);
   vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(static_cast<vtkIdType>(n));
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
@@ -1636,7 +1674,7 @@ struct RegionColumns
     if (this->ids->GetNumberOfTuples() != count)
       allocateTuples(columns, count, 0.0);
     for (vtkDataArray* a : columns)
-      a->Modified(); // new values: cached ranges are stale
+      prepareForNewValues(a); // new values: cached ranges are stale
   }
 
   /// Bytes of `count` rows.
@@ -1800,7 +1838,7 @@ struct Summary
       a->SetName(values[k].first);
       a->SetNumberOfValues(1);
       a->SetValue(0, values[k].second);
-      a->Modified();
+      prepareForNewValues(a);
       arrays.emplace_back(a);
     }
     vtkSmartPointer<vtkStringArray> s = reuse
@@ -1810,6 +1848,8 @@ struct Summary
     s->SetNumberOfValues(static_cast<vtkIdType>(this->sortings.size()));
     for (std::size_t k = 0; k < this->sortings.size(); ++k)
       s->SetValue(static_cast<vtkIdType>(k), this->sortings[k]);
+    if (s->HasInformation())
+      s->GetInformation()->Clear();
     s->Modified();
     arrays.emplace_back(s);
     return arrays;
@@ -2178,6 +2218,7 @@ struct vtkCUDBConnectivityKept
 {
   std::unique_ptr<RegionColumns> columns;
   std::vector<vtkSmartPointer<vtkAbstractArray>> fields;
+  vtkSmartPointer<vtkIntArray> regionIds; ///< a small RegionId image (paintRegions)
 };
 
 namespace
@@ -2433,8 +2474,12 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   {
     vtkLogScopeF(TRACE, "write the region ids");
     if (!seeds)
-      ids = paintRegions(
-        objects, &regionIds, in.grid, in.axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
+      ids = paintRegions(objects,
+        &regionIds,
+        in.grid,
+        in.axes,
+        vbr::vtk::makeExecution(this, 0.7, 0.9),
+        &this->Kept->regionIds);
     else if (ids)
       renumberRegions(ids, regionIds);
     if (!ids)

@@ -127,13 +127,14 @@ def small_outputs_of(f):
 
 
 def small_case(index):
-    """Small images whose tables and summaries a filter keeps for the next update: masks and
+    """Small images whose RegionIds, tables and summaries a filter keeps for the next update: masks and
     label maps of three scalar types (the Label column's type follows them), 2D and 3D, of
     changing sizes and region counts, and one of no region."""
     rng = np.random.default_rng(index)
-    shape = [(1, 40, 50), (12, 10, 9), (1, 40, 50), (7, 8, 30), (1, 3, 4), (9, 9, 9)][index % 6]
+    shape = [(1, 40, 50), (12, 10, 9), (1, 40, 50), (7, 8, 30), (1, 3, 4), (9, 9, 9)][
+        (index + 1) // 2 % 6]  # updates 4k + 1 and 4k + 2: the same size
     dtype = [np.uint8, np.int16, np.float32][index // 4 % 3]
-    labels = index % 4 == 1
+    labels = index % 4 == 3
     values = rng.integers(0, 4 if labels else 2, shape) * (index % 7 != 6)
     mask = values.astype(dtype)
     options = {"SetSelectionMode": 2} if labels else {}
@@ -157,10 +158,10 @@ def small_update(f, image, options, connectivity):
 
 
 def small_outputs():
-    """One filter updated on small images, where it writes the region table's columns and the
-    summary arrays of its last update again when no one else holds them: each update's outputs
-    must equal a new filter's, and the columns and summary arrays of earlier updates that a
-    caller still holds must keep their values."""
+    """One filter updated on small images, where it writes the RegionId image, the region
+    table's columns and the summary arrays of its last update again when no one else holds
+    them: each update's outputs must equal a new filter's, and the arrays of earlier updates
+    that a caller still holds must keep their values."""
     f = voxelbrep.vtkCUDBConnectivity()
     held = []
     for index in range(36):
@@ -180,6 +181,8 @@ def small_outputs():
                 column = table.GetColumn(index % table.GetNumberOfColumns())
                 held.append(("column %s of update %d" % (column.GetName(), index), column,
                              ns.vtk_to_numpy(column).copy()))
+            ids = f.GetOutput().GetPointData().GetArray("RegionId")
+            held.append(("RegionId of update %d" % index, ids, ns.vtk_to_numpy(ids).copy()))
             regions = f.GetOutput().GetFieldData().GetArray("NumberOfRegions")
             held.append(("NumberOfRegions of update %d" % index, regions,
                          ns.vtk_to_numpy(regions).copy()))
