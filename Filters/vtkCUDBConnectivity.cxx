@@ -471,6 +471,17 @@ void checkBytes(double bytes, vtkIdType tuples, std::size_t arrays)
     throw std::runtime_error(refused);
 }
 
+/// An array of the last update that the filter writes again (no one else holds it): what a
+/// new array would not have is dropped (cached ranges and other keys, a lookup table), and its
+/// values are marked modified.
+void prepareForNewValues(vtkDataArray* array)
+{
+  if (array->HasInformation())
+    array->GetInformation()->Clear();
+  array->SetLookupTable(nullptr);
+  array->Modified();
+}
+
 /// `tuples` tuples of each array (of the AOS layout: every array the filter writes), in
 /// memory of allocateBlock, unset: the filter writes every value. On huge pages when the
 /// arrays are `groupBytes` together with the others of their output. Throws when refused.
@@ -901,17 +912,24 @@ void countingSortBySize(const std::int64_t* sizes, std::int64_t largest, RegionL
   kept = std::move(sorted);
 }
 
+/// Below this many kept regions their sort keys are sorted by comparisons: the counting sort's
+/// pass over every size up to the largest (a page of a few hundred regions, one of thousands of
+/// pixels) and the radix sort's 2,048 buckets per digit cost more there.
+constexpr std::size_t FewRegions = 4096;
+
 /// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
 /// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
-/// the indices fit in one 64-bit key together, by a radix sort of those keys: a maze has 642,115
-/// regions, whose comparison sort took longer than their table.
+/// the indices fit in one 64-bit key together, by a sort of those keys (unique, so any sort
+/// gives the same order): a radix sort for many (a maze has 642,115 regions, whose comparison
+/// sort took longer than their table), else a comparison sort.
 void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
 {
   const auto larger = [sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
   std::int64_t largest = 0;
   for (std::size_t r : kept)
     largest = std::max(largest, sizes[r]);
-  if (largest <= static_cast<std::int64_t>(kept.size()) + 65536)
+  const auto n = static_cast<std::int64_t>(kept.size());
+  if (largest <= n + 65536 && (kept.size() >= FewRegions || largest <= 8 * n + 1024))
   {
     countingSortBySize(sizes, largest, kept);
     return;
@@ -925,7 +943,10 @@ void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
   std::vector<std::uint64_t> keys(kept.size());
   for (std::size_t k = 0; k < kept.size(); ++k)
     keys[k] = static_cast<std::uint64_t>(largest - sizes[kept[k]]) << indexBits | kept[k];
-  vbr::radixSort(keys);
+  if (keys.size() < FewRegions)
+    std::sort(keys.begin(), keys.end());
+  else
+    vbr::radixSort(keys);
   const std::uint64_t indexMask = (std::uint64_t(1) << indexBits) - 1;
   for (std::size_t k = 0; k < kept.size(); ++k)
     kept[k] = static_cast<std::size_t>(keys[k] & indexMask);
@@ -1003,13 +1024,35 @@ bool paintRegionsOfRuns(const ObjectBoxes& o,
     o.voxelRuns, o.runComponents.runLabel, values, o.offset, grid.dims, out, exec);
 }
 
+/// RegionId images below this many values (those allocateTuples leaves on the heap, where
+/// BlockCache keeps nothing) are kept by the filter for its next update: glibc returned their
+/// memory to the kernel, which faulted it in again at every update (a third of the painting of
+/// a 448 x 172 image).
+constexpr vtkIdType KeptRegionIdValues = vtkIdType(2) << 20;
+
 /// The RegionId image, its values unset, in memory of allocateTuples (an earlier update's,
-/// when one released it): for painters that write every voxel.
-vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGrid& grid)
+/// when one released it), or the image of the last update (`kept`) when nothing else holds it
+/// and it has as many values: for painters that write every voxel. A small image is kept in
+/// `kept` (when given) for the next update.
+vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGrid& grid,
+  vtkSmartPointer<vtkIntArray>* kept)
 {
-  auto ids = vtkSmartPointer<vtkIntArray>::New();
+  const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
+  vtkSmartPointer<vtkIntArray> ids;
+  if (kept && *kept && (*kept)->GetReferenceCount() == 1 && (*kept)->GetNumberOfTuples() == n &&
+    (*kept)->GetNumberOfComponents() == 1)
+  {
+    ids = *kept;
+    prepareForNewValues(ids);
+  }
+  else
+  {
+    ids = vtkSmartPointer<vtkIntArray>::New();
+    allocateTuples({ ids }, n, 0.0);
+  }
   ids->SetName("RegionId");
-  allocateTuples({ ids }, vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2], 0.0);
+  if (kept)
+    *kept = n < KeptRegionIdValues ? ids : nullptr;
   return ids;
 }
 
@@ -1019,9 +1062,10 @@ vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGri
 vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
   const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
-  const vbr::Execution& exec)
+  const vbr::Execution& exec,
+  vtkSmartPointer<vtkIntArray>* kept)
 {
-  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid);
+  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid, kept);
   const std::vector<std::int32_t> values = valuesOfRunLabels(o, regionIds);
   if (!vbr::paintRunsOverwriting(o.voxelRuns,
         o.runComponents.runLabel,
@@ -1065,9 +1109,10 @@ bool onlyObjectOfPixelRuns(const std::vector<ObjectBoxes>& objects, const std::a
 vtkSmartPointer<vtkIntArray> paintOnlyObjectOfPixelRuns(const ObjectBoxes& o,
   const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
-  const vbr::Execution& exec)
+  const vbr::Execution& exec,
+  vtkSmartPointer<vtkIntArray>* kept)
 {
-  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid);
+  vtkSmartPointer<vtkIntArray> ids = newRegionIdsInReusedMemory(grid, kept);
   if (!vbr::paintPixelRunsOverwriting(o.pixels,
         o.runs,
         valuesOfBoxes(o, regionIds),
@@ -1082,17 +1127,20 @@ vtkSmartPointer<vtkIntArray> paintOnlyObjectOfPixelRuns(const ObjectBoxes& o,
 
 /// Every voxel painted from its box: with `regionIds`, the region's RegionId (0 where removed);
 /// without, the region's number (index + 1). Voxels of no box stay 0. Null when aborted.
+/// `kept` (when given): the last update's RegionId image, which the painters of every voxel
+/// write again when they can (newRegionIdsInReusedMemory).
 vtkSmartPointer<vtkIntArray> paintRegions(const std::vector<ObjectBoxes>& objects,
   const RegionIdList* regionIds,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
-  const vbr::Execution& exec)
+  const vbr::Execution& exec,
+  vtkSmartPointer<vtkIntArray>* kept = nullptr)
 {
   const std::int64_t n = std::int64_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   if (objects.size() == 1 && objects[0].labelledFromRuns)
-    return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec);
+    return paintOnlyObjectOfRuns(objects[0], regionIds, grid, exec, kept);
   if (onlyObjectOfPixelRuns(objects, axes))
-    return paintOnlyObjectOfPixelRuns(objects[0], regionIds, grid, exec);
+    return paintOnlyObjectOfPixelRuns(objects[0], regionIds, grid, exec, kept);
   vtkSmartPointer<vtkIntArray> ids = vbr::vtk::newZeroedIntArray(static_cast<vtkIdType>(n));
   ids->SetName("RegionId");
   std::int32_t* out = ids->GetPointer(0);
@@ -1575,7 +1623,7 @@ struct RegionColumns
   std::array<vtkNew<vtkTypeInt32Array>, 6> indexBounds;
   std::array<vtkNew<vtkTypeFloat64Array>, 6> worldBounds;
 
-  RegionColumns(int labelType, vtkIdType count)
+  explicit RegionColumns(int labelType)
     : labels(vbr::vtk::newLabelArray(labelType, 0))
   {
     static const char* const indexNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
@@ -1589,17 +1637,51 @@ struct RegionColumns
     this->centroids->SetComponentName(1, "Y");
     this->centroids->SetComponentName(2, "Z");
     this->boxes->SetName("NumberOfBoxes");
+    for (int k = 0; k < 6; ++k)
+    {
+      this->indexBounds[k]->SetName(indexNames[k]);
+      this->worldBounds[k]->SetName(worldNames[k]);
+    }
+  }
+
+  std::vector<vtkDataArray*> all() const
+  {
     std::vector<vtkDataArray*> columns{
       this->ids, this->labels, this->voxels, this->volumes, this->centroids, this->boxes
     };
     for (int k = 0; k < 6; ++k)
     {
-      this->indexBounds[k]->SetName(indexNames[k]);
-      this->worldBounds[k]->SetName(worldNames[k]);
       columns.push_back(this->indexBounds[k]);
       columns.push_back(this->worldBounds[k]);
     }
-    allocateTuples(columns, count, 0.0);
+    return columns;
+  }
+
+  /// Whether only these columns hold their arrays (the table they were added to was released
+  /// or initialized for a new update), so that they can be written again.
+  bool unshared() const
+  {
+    for (vtkDataArray* a : this->all())
+      if (a->GetReferenceCount() != 1)
+        return false;
+    return true;
+  }
+
+  /// Room for `count` rows, unset (memory of the last rows kept when there were as many).
+  void allocate(vtkIdType count)
+  {
+    const std::vector<vtkDataArray*> columns = this->all();
+    if (this->ids->GetNumberOfTuples() != count)
+      allocateTuples(columns, count, 0.0);
+    for (vtkDataArray* a : columns)
+      prepareForNewValues(a); // new values: cached ranges are stale
+  }
+
+  /// Bytes of `count` rows.
+  static double bytesOf(vtkIdType count, int labelType)
+  {
+    return double(count) *
+      (4 + 8 + 8 + 8 + 24 + 6 * 4 + 6 * 8 + vtkDataArray::GetDataTypeSize(labelType));
   }
 
   /// Rows [0, regionOfRow.size()) (ids 1, 2, ...) from the statistics of their regions.
@@ -1662,7 +1744,14 @@ struct RegionColumns
   }
 };
 
-/// Port 2: one row per kept region, in RegionId order, from the regions' statistics.
+/// Tables up to this size keep their columns for the next update: making, naming, adding and
+/// releasing 18 arrays was a tenth of an update of a small image (a few hundred rows). Larger
+/// ones are not held past their update (their memory goes back to the cache of blocks).
+constexpr double KeptTableBytes = 1024.0 * 1024.0;
+
+/// Port 2: one row per kept region, in RegionId order, from the regions' statistics. The
+/// columns are those of `kept` when only it still holds them and their label type fits; a small
+/// table's columns are left in `kept` for the next update.
 void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   const Regions& regions,
   const RegionIdList& regionIds,
@@ -1670,13 +1759,23 @@ void writeRegionTable(const std::vector<ObjectBoxes>& objects,
   const vbr::vtk::VoxelGrid& grid,
   const std::array<int, 3>& axes,
   int labelType,
-  vtkTable* table)
+  vtkTable* table,
+  std::unique_ptr<RegionColumns>& kept)
 {
-  RegionColumns columns(labelType, static_cast<vtkIdType>(regionOfRow.size()));
+  std::unique_ptr<RegionColumns> columns;
+  if (kept && kept->labels->GetDataType() == labelType && kept->unshared())
+    columns = std::move(kept);
+  else
+    columns = std::make_unique<RegionColumns>(labelType);
+  kept.reset();
+  const auto rows = static_cast<vtkIdType>(regionOfRow.size());
+  columns->allocate(rows);
   for (const ObjectBoxes& o : objects)
-    scatterLabel(columns.labels, regionIds.data() + o.firstRegion, o.componentCount(), o.label);
-  columns.write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
-  columns.addTo(table);
+    scatterLabel(columns->labels, regionIds.data() + o.firstRegion, o.componentCount(), o.label);
+  columns->write(regions, regionOfRow, grid, axes, voxelMeasure(grid));
+  columns->addTo(table);
+  if (RegionColumns::bytesOf(rows, labelType) <= KeptTableBytes)
+    kept = std::move(columns);
 }
 
 /// The data objects of the filter's ports.
@@ -1715,26 +1814,43 @@ struct Summary
   }
 
   /// The summary's field arrays. Every port gets the same arrays: making, naming, adding and
-  /// later releasing each small array was a large part of an update of a small image.
-  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays() const
+  /// later releasing each small array was a large part of an update of a small image. So the
+  /// arrays of the last update (`kept`) are written again when nothing but `kept` holds them
+  /// (the ports they were added to were initialized for this update).
+  std::vector<vtkSmartPointer<vtkAbstractArray>> fieldArrays(
+    const std::vector<vtkSmartPointer<vtkAbstractArray>>& kept) const
   {
-    std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
     const std::pair<const char*, vtkIdType> values[] = { { "NumberOfRegions", this->regions },
       { "NumberOfComponents", this->components },
       { "NumberOfBoxes", this->boxes },
       { "NumberOfOUDBBoxes", this->oudbBoxes },
       { "NumberOfExtremeVertices", this->extremeVertices } };
-    for (const auto& value : values)
+    constexpr std::size_t Count = sizeof(values) / sizeof(values[0]) + 1;
+    bool reuse = kept.size() == Count;
+    for (std::size_t k = 0; reuse && k < Count; ++k)
+      reuse = kept[k]->GetReferenceCount() == 1;
+    std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
+    for (std::size_t k = 0; k + 1 < Count; ++k)
     {
-      vtkNew<vtkIdTypeArray> a;
-      a->SetName(value.first);
-      a->InsertNextValue(value.second);
+      vtkSmartPointer<vtkIdTypeArray> a = reuse
+        ? vtkSmartPointer<vtkIdTypeArray>(vtkIdTypeArray::SafeDownCast(kept[k]))
+        : vtkSmartPointer<vtkIdTypeArray>::New();
+      a->SetName(values[k].first);
+      a->SetNumberOfValues(1);
+      a->SetValue(0, values[k].second);
+      prepareForNewValues(a);
       arrays.emplace_back(a);
     }
-    vtkNew<vtkStringArray> s;
+    vtkSmartPointer<vtkStringArray> s = reuse
+      ? vtkSmartPointer<vtkStringArray>(vtkStringArray::SafeDownCast(kept.back()))
+      : vtkSmartPointer<vtkStringArray>::New();
     s->SetName("SortingOrder");
-    for (const std::string& name : this->sortings)
-      s->InsertNextValue(name);
+    s->SetNumberOfValues(static_cast<vtkIdType>(this->sortings.size()));
+    for (std::size_t k = 0; k < this->sortings.size(); ++k)
+      s->SetValue(static_cast<vtkIdType>(k), this->sortings[k]);
+    if (s->HasInformation())
+      s->GetInformation()->Clear();
+    s->Modified();
     arrays.emplace_back(s);
     return arrays;
   }
@@ -2094,6 +2210,20 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   return kept;
 }
 
+} // namespace
+
+/// The arrays of the last update's small outputs that the filter writes again when no one
+/// else holds them (writeRegionTable, Summary::fieldArrays).
+struct vtkCUDBConnectivityKept
+{
+  std::unique_ptr<RegionColumns> columns;
+  std::vector<vtkSmartPointer<vtkAbstractArray>> fields;
+  vtkSmartPointer<vtkIntArray> regionIds; ///< a small RegionId image (paintRegions)
+};
+
+namespace
+{
+
 /// Ports 1 and 2 (the boxes, the region table) and the summary on every port.
 void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const vbr::vtk::InputObjects& in,
@@ -2102,14 +2232,23 @@ void writeBoxesAndTable(vtkCUDBConnectivity* self,
   const RegionIdList& regionIds,
   const RegionList& regionOfRow,
   const Summary& summary,
-  const Ports& ports)
+  const Ports& ports,
+  vtkCUDBConnectivityKept& kept)
 {
   vtkLogScopeF(TRACE, "boxes and region table");
   if (self->GetGenerateBoxes())
     writeBoxes(objects, regionIds, in.grid, in.axes, in.labelType, ports.boxes);
-  writeRegionTable(
-    objects, regions, regionIds, regionOfRow, in.grid, in.axes, in.labelType, ports.table);
-  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays();
+  writeRegionTable(objects,
+    regions,
+    regionIds,
+    regionOfRow,
+    in.grid,
+    in.axes,
+    in.labelType,
+    ports.table,
+    kept.columns);
+  const std::vector<vtkSmartPointer<vtkAbstractArray>> fields = summary.fieldArrays(kept.fields);
+  kept.fields = fields;
   for (vtkDataObject* port :
     std::initializer_list<vtkDataObject*>{ ports.output, ports.boxes, ports.table })
   {
@@ -2129,7 +2268,8 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   const std::vector<ObjectBoxes>& objects,
   std::uint32_t regionCount,
   Summary& summary,
-  const Ports& ports)
+  const Ports& ports,
+  vtkCUDBConnectivityKept& kept)
 {
   vbr::vtk::Piece& piece = in.piece;
   vtkSmartPointer<vtkDataSet> seeds =
@@ -2153,7 +2293,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   addRegionIds(ports.output, ids, piece.local.cellData);
   if (!first)
     return true;
-  writeBoxesAndTable(self, in, objects, regions, regionIds, regionOfRow, summary, ports);
+  writeBoxesAndTable(self, in, objects, regions, regionIds, regionOfRow, summary, ports, kept);
   return true;
 }
 
@@ -2161,6 +2301,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
 
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::vtkCUDBConnectivity()
+  : Kept(new vtkCUDBConnectivityKept)
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
@@ -2173,6 +2314,7 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::~vtkCUDBConnectivity()
 {
+  delete this->Kept; // before the cache of blocks its arrays may come from is freed
   BlockCache::instance().addUser(-1);
 }
 
@@ -2309,7 +2451,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     // The boxes and the table are whole on rank 0 and absent elsewhere: no ghost layer can be
     // missing from them. ParaView asks unstructured outputs for one by default (the image
     // port for none); without this the filter would execute again for that request.
-    const bool written = writeDistributed(this, in, objects, regionCount, summary, ports);
+    const bool written =
+      writeDistributed(this, in, objects, regionCount, summary, ports, *this->Kept);
     vbr::vtk::markGhostLevelsComplete(outputVector, { 1, 2 });
     return written ? 1 : 0;
   }
@@ -2331,8 +2474,12 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   {
     vtkLogScopeF(TRACE, "write the region ids");
     if (!seeds)
-      ids = paintRegions(
-        objects, &regionIds, in.grid, in.axes, vbr::vtk::makeExecution(this, 0.7, 0.9));
+      ids = paintRegions(objects,
+        &regionIds,
+        in.grid,
+        in.axes,
+        vbr::vtk::makeExecution(this, 0.7, 0.9),
+        &this->Kept->regionIds);
     else if (ids)
       renumberRegions(ids, regionIds);
     if (!ids)
@@ -2343,7 +2490,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     addRegionIds(output, ids, in.grid.cellData);
   }
   this->UpdateProgress(0.9);
-  writeBoxesAndTable(this, in, objects, regions, regionIds, regionOfRow, summary, ports);
+  writeBoxesAndTable(
+    this, in, objects, regions, regionIds, regionOfRow, summary, ports, *this->Kept);
   return 1;
 }
 

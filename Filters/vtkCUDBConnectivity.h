@@ -90,6 +90,7 @@ class vtkDataSet;
 class vtkImageData;
 class vtkTable;
 class vtkUnstructuredGrid;
+struct vtkCUDBConnectivityKept;
 
 class VOXELBREPFILTERS_EXPORT vtkCUDBConnectivity : public vtkImageAlgorithm
 {
@@ -257,6 +258,7 @@ protected:
   vtkIdType MinimumPixelRuns = vtkIdType(1) << 21;
 
 private:
+  vtkCUDBConnectivityKept* Kept; // small output arrays written again at the next update
   vtkCUDBConnectivity(const vtkCUDBConnectivity&) = delete;
   void operator=(const vtkCUDBConnectivity&) = delete;
 };

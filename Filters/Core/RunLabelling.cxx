@@ -404,16 +404,23 @@ std::size_t countOUDBBoxes(const BitVolume& voxels, const VoxelRuns& r)
     if (z > 0 && sameWords(voxels.row(0, z), voxels.row(0, z - 1), words * ny))
       continue;
     for (std::int32_t y = 0; y < ny; ++y)
-      if (y == 0 || !sameWords(voxels.row(y, z), voxels.row(y - 1, z), words))
-        boxes += r.rowStarts[r.rowOf(y, z) + 1] - r.rowStarts[r.rowOf(y, z)];
+    {
+      // An empty row adds no box whatever the row before: not compared (most rows of a small
+      // object in a large image).
+      const std::size_t row = r.rowOf(y, z);
+      const std::uint32_t runs = r.rowStarts[row + 1] - r.rowStarts[row];
+      if (runs > 0 && (y == 0 || !sameWords(voxels.row(y, z), voxels.row(y - 1, z), words)))
+        boxes += runs;
+    }
   }
   return boxes;
 }
 
 /// The EVM's vertices: the lattice points (x, y, z) with an odd number of set voxels among the
 /// eight around them. The parity of the four rows around a line of points, then its changes
-/// along x.
-std::size_t countExtremeVertices(const BitVolume& voxels)
+/// along x. Rows without runs add nothing to a parity and are not read: a line of points
+/// between four empty rows (most of a small object's image) costs no word.
+std::size_t countExtremeVertices(const BitVolume& voxels, const VoxelRuns& r)
 {
   const std::int32_t ny = voxels.size(1), nz = voxels.size(2);
   const std::size_t words = voxels.wordsPerRow();
@@ -426,7 +433,11 @@ std::size_t countExtremeVertices(const BitVolume& voxels)
       for (std::int32_t dz = -1; dz <= 0; ++dz)
         for (std::int32_t dy = -1; dy <= 0; ++dy)
           if (z + dz >= 0 && z + dz < nz && y + dy >= 0 && y + dy < ny)
-            rows[n++] = voxels.row(y + dy, z + dz);
+          {
+            const std::size_t row = r.rowOf(y + dy, z + dz);
+            if (r.rowStarts[row] != r.rowStarts[row + 1])
+              rows[n++] = voxels.row(y + dy, z + dz);
+          }
       if (n == 0)
         continue;
       Word carry = 0;
@@ -552,7 +563,7 @@ bool labelRuns(const BitVolume& voxels,
   if (exec.stopRequested())
     return false;
   out.oudbBoxCount = countOUDBBoxes(voxels, runs);
-  out.extremeVertices = countExtremeVertices(voxels);
+  out.extremeVertices = countExtremeVertices(voxels, runs);
   return exec.report(1.0);
 }
 

@@ -107,7 +107,90 @@ def same(a, b):
     return all(a[k].dtype == b[k].dtype and np.array_equal(a[k], b[k]) for k in a)
 
 
+def small_outputs_of(f):
+    """Every output of a small update but the boxes: RegionIds, the table's columns (values,
+    types, names) and the field data of the three ports."""
+    out = {}
+    data = f.GetOutput().GetPointData()
+    out["RegionId"] = ns.vtk_to_numpy(data.GetArray("RegionId")).copy()
+    table = f.GetRegionsOutput()
+    for c in range(table.GetNumberOfColumns()):
+        column = table.GetColumn(c)
+        out["column %d %s" % (c, column.GetName())] = ns.vtk_to_numpy(column).copy()
+    for port in (0, 1, 2):
+        fd = f.GetOutputDataObject(port).GetFieldData()
+        for a in range(fd.GetNumberOfArrays()):
+            array = fd.GetAbstractArray(a)
+            out["port %d field %s" % (port, array.GetName())] = np.array(
+                [array.GetValue(i) for i in range(array.GetNumberOfValues())])
+    return out
+
+
+def small_case(index):
+    """Small images whose RegionIds, tables and summaries a filter keeps for the next update: masks and
+    label maps of three scalar types (the Label column's type follows them), 2D and 3D, of
+    changing sizes and region counts, and one of no region."""
+    rng = np.random.default_rng(index)
+    shape = [(1, 40, 50), (12, 10, 9), (1, 40, 50), (7, 8, 30), (1, 3, 4), (9, 9, 9)][
+        (index + 1) // 2 % 6]  # updates 4k + 1 and 4k + 2: the same size
+    dtype = [np.uint8, np.int16, np.float32][index // 4 % 3]
+    labels = index % 4 == 3
+    values = rng.integers(0, 4 if labels else 2, shape) * (index % 7 != 6)
+    mask = values.astype(dtype)
+    options = {"SetSelectionMode": 2} if labels else {}
+    if index % 5 == 2:
+        options["SetMinimumRegionSize"] = 2
+    return image_of(mask), options
+
+
+def small_update(f, image, options, connectivity):
+    f.SetInputData(image)
+    f.SetGenerateBoxes(False)
+    f.SetSelectionModeToPositive()
+    f.SetMinimumRegionSize(1)
+    if connectivity == "vertex":
+        f.SetConnectivityToVertex()
+    else:
+        f.SetConnectivityToFace()
+    for setter, value in options.items():
+        getattr(f, setter)(value)
+    f.Update()
+
+
+def small_outputs():
+    """One filter updated on small images, where it writes the RegionId image, the region
+    table's columns and the summary arrays of its last update again when no one else holds
+    them: each update's outputs must equal a new filter's, and the arrays of earlier updates
+    that a caller still holds must keep their values."""
+    f = voxelbrep.vtkCUDBConnectivity()
+    held = []
+    for index in range(36):
+        image, options = small_case(index)
+        connectivity = "vertex" if index % 3 == 2 else "face"
+        small_update(f, image, options, connectivity)
+        fresh = voxelbrep.vtkCUDBConnectivity()
+        small_update(fresh, image, options, connectivity)
+        got, want = small_outputs_of(f), small_outputs_of(fresh)
+        expect("small update %d equal to a new filter's" % index, same(got, want))
+        for what, array, values in held:
+            expect("%s kept its values after small update %d" % (what, index),
+                np.array_equal(ns.vtk_to_numpy(array), values))
+        if index % 4 == 1:  # the next two updates have the same scalar type
+            table = f.GetRegionsOutput()
+            if table.GetNumberOfColumns() > 0:
+                column = table.GetColumn(index % table.GetNumberOfColumns())
+                held.append(("column %s of update %d" % (column.GetName(), index), column,
+                             ns.vtk_to_numpy(column).copy()))
+            ids = f.GetOutput().GetPointData().GetArray("RegionId")
+            held.append(("RegionId of update %d" % index, ids, ns.vtk_to_numpy(ids).copy()))
+            regions = f.GetOutput().GetFieldData().GetArray("NumberOfRegions")
+            held.append(("NumberOfRegions of update %d" % index, regions,
+                         ns.vtk_to_numpy(regions).copy()))
+    return 36
+
+
 def main():
+    small = small_outputs()
     cases = [("checkerboard", 96), ("noise", 64), ("noise", 96), ("noise", 96),
         ("checkerboard", 64), ("checkerboard", 80), ("noise", 96), ("checkerboard", 96),
         ("checkerboard", 96), ("noise", 64)]
@@ -135,7 +218,7 @@ def main():
     if failures:
         print(len(failures), "failures")
         return 1
-    print("all passed:", len(cases), "updates")
+    print("all passed:", len(cases), "updates and", small, "small ones")
     return 0
 
 
