@@ -471,6 +471,37 @@ void checkBytes(double bytes, vtkIdType tuples, std::size_t arrays)
     throw std::runtime_error(refused);
 }
 
+/// The holders of an AOS array's block of values (its vtkBuffer): vtkDataArray::ShallowCopy
+/// (and so vtkMergeArrays) shares the block, not the array, whose own count stays at one.
+template<typename T>
+struct ValueBlockOf : vtkAOSDataArrayTemplate<T>
+{
+  static int holders(vtkAOSDataArrayTemplate<T>* array)
+  {
+    return (array->*(&ValueBlockOf::Buffer))->GetReferenceCount();
+  }
+};
+
+/// Whether the filter alone holds `array` and its values: no other reference to the array (a
+/// dataset or table, a Python object, a numpy view through it) and none to its block of values
+/// (an array's ShallowCopy), so that writing it again changes nothing anyone else sees. String
+/// arrays are only ever copied whole.
+bool heldByTheFilterAlone(vtkAbstractArray* array)
+{
+  if (!array || array->GetReferenceCount() != 1)
+    return false;
+  auto* data = vtkDataArray::SafeDownCast(array);
+  if (!data)
+    return vtkStringArray::SafeDownCast(array) != nullptr;
+  int holders = 0;
+  switch (data->GetDataType())
+  {
+    vtkTemplateMacro(if (auto* aos = vtkAOSDataArrayTemplate<VTK_TT>::FastDownCast(data)) holders =
+                       ValueBlockOf<VTK_TT>::holders(aos););
+  }
+  return holders == 1;
+}
+
 /// An array of the last update that the filter writes again (no one else holds it): what a
 /// new array would not have is dropped (cached ranges and other keys, a lookup table), and its
 /// values are marked modified.
@@ -1039,7 +1070,7 @@ vtkSmartPointer<vtkIntArray> newRegionIdsInReusedMemory(const vbr::vtk::VoxelGri
 {
   const vtkIdType n = vtkIdType(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   vtkSmartPointer<vtkIntArray> ids;
-  if (kept && *kept && (*kept)->GetReferenceCount() == 1 && (*kept)->GetNumberOfTuples() == n &&
+  if (kept && heldByTheFilterAlone(*kept) && (*kept)->GetNumberOfTuples() == n &&
     (*kept)->GetNumberOfComponents() == 1)
   {
     ids = *kept;
@@ -1657,12 +1688,12 @@ struct RegionColumns
     return columns;
   }
 
-  /// Whether only these columns hold their arrays (the table they were added to was released
-  /// or initialized for a new update), so that they can be written again.
+  /// Whether only these columns hold their arrays and values (the table they were added to was
+  /// released or initialized for a new update), so that they can be written again.
   bool unshared() const
   {
     for (vtkDataArray* a : this->all())
-      if (a->GetReferenceCount() != 1)
+      if (!heldByTheFilterAlone(a))
         return false;
     return true;
   }
@@ -1828,7 +1859,7 @@ struct Summary
     constexpr std::size_t Count = sizeof(values) / sizeof(values[0]) + 1;
     bool reuse = kept.size() == Count;
     for (std::size_t k = 0; reuse && k < Count; ++k)
-      reuse = kept[k]->GetReferenceCount() == 1;
+      reuse = heldByTheFilterAlone(kept[k]);
     std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
     for (std::size_t k = 0; k + 1 < Count; ++k)
     {

@@ -161,7 +161,7 @@ def small_outputs():
     """One filter updated on small images, where it writes the RegionId image, the region
     table's columns and the summary arrays of its last update again when no one else holds
     them: each update's outputs must equal a new filter's, and the arrays of earlier updates
-    that a caller still holds must keep their values."""
+    that a caller still holds, or copies sharing their values, must keep their values."""
     f = voxelbrep.vtkCUDBConnectivity()
     held = []
     for index in range(36):
@@ -186,6 +186,18 @@ def small_outputs():
             regions = f.GetOutput().GetFieldData().GetArray("NumberOfRegions")
             held.append(("NumberOfRegions of update %d" % index, regions,
                          ns.vtk_to_numpy(regions).copy()))
+        if index % 4 == 3:  # copies sharing the values, not the arrays (vtkMergeArrays does)
+            table = f.GetRegionsOutput()
+            arrays = [("RegionId", f.GetOutput().GetPointData().GetArray("RegionId")),
+                      ("NumberOfRegions", f.GetOutput().GetFieldData().GetArray("NumberOfRegions"))]
+            if table.GetNumberOfColumns() > 0:
+                arrays.append(("column " + table.GetColumn(0).GetName(), table.GetColumn(0)))
+            for name, array in arrays:
+                copy = array.NewInstance()
+                copy.ShallowCopy(array)
+                held.append(("a shallow copy of %s of update %d" % (name, index), copy,
+                             ns.vtk_to_numpy(array).copy()))
+            del arrays, array, table  # only the copies hold the values now
     return 36
 
 
