@@ -275,15 +275,22 @@ Coord checkedMaximum(const std::vector<Point3>& points)
 
 /// How many corners of the set lie strictly inside the edges of a loop: per edge into
 /// `inside` (at the edge's first corner), and in all.
+/// `pointsEnd`: the end of the B-Rep's points, up to which the edges ahead (those of the next
+/// loops too) are prefetched.
 std::size_t countEdgeVertices(const PointRange& points,
+  const Point3* pointsEnd,
   const std::int64_t* numbers,
   const CornerSet& corners,
   const Point3& offset,
   std::uint32_t* inside)
 {
+  constexpr std::size_t ahead = 8;
   std::size_t count = 0;
   for (std::size_t i = 0; i < points.size(); ++i)
   {
+    const Point3* next = points.begin() + i + ahead;
+    if (next + 1 < pointsEnd)
+      corners.prefetchBetween(add(next[0], offset), add(next[1], offset));
     const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
     const Point3& p = points[i];
     const Point3& q = points[j];
@@ -317,6 +324,7 @@ std::vector<std::size_t> newLoopBegins(const BRep& brep,
         const BRepLoop& loop = brep.loops[l];
         begins[l + 1] = loop.end - loop.begin +
           countEdgeVertices(brep.loopPoints(static_cast<int>(l)),
+            brep.points.data() + brep.points.size(),
             numbers.data() + loop.begin,
             corners,
             offset,
@@ -524,10 +532,16 @@ void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vecto
 
 std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const
 {
-  std::vector<std::int64_t> numbers(brep.points.size());
-  for (std::size_t n = 0; n < numbers.size(); ++n)
+  // The loops wander over the box, whose bits outgrow the cache with the volume: each
+  // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
+  constexpr std::size_t ahead = 16;
+  const std::size_t n = brep.points.size();
+  std::vector<std::int64_t> numbers(n);
+  for (std::size_t i = 0; i < n; ++i)
   {
-    numbers[n] = this->rankOf(this->indexInBox(add(brep.points[n], offset)));
+    if (i + ahead < n)
+      prefetch(&this->Words[this->indexInBox(add(brep.points[i + ahead], offset)) >> 6]);
+    numbers[i] = this->rankOf(this->indexInBox(add(brep.points[i], offset)));
   }
   return numbers;
 }

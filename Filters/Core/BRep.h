@@ -11,6 +11,7 @@
 #include "Execution.h"
 #include "Geometry.h"
 #include "PlaneSweep2D.h"
+#include "Prefetch.h"
 
 #include <algorithm>
 #include <array>
@@ -185,6 +186,22 @@ public:
       count += this->isCorner(i);
     }
     return count;
+  }
+
+  /// Asks the processor for the first bits countBetween reads for the edge from `from` to
+  /// `to` (grid points of the box, maybe not on one line: then nothing), before it needs them.
+  void prefetchBetween(const Point3& from, const Point3& to) const
+  {
+    for (int axis = 0; axis < 2; ++axis)
+      if (from[axis] != to[axis])
+      {
+        const Coord steps = to[axis] - from[axis];
+        if ((steps > 1 || steps < -1) && from[axis ^ 1] == to[axis ^ 1] && from[2] == to[2])
+          prefetch(&this->Words[(this->indexInBox(from) +
+                                  std::uint64_t((steps > 0 ? 1 : -1) * this->strideAlong(axis))) >>
+            6]);
+        return;
+      }
   }
 
 private:
