@@ -490,9 +490,10 @@ std::uint64_t cornerBits(const std::uint64_t (&a)[2][2][2])
   return facesTurn(x0, x1) | facesTurn(y0, y1) | facesTurn(z0, z1);
 }
 
-} // namespace
-
-void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vector<Point3>& out)
+/// Calls visit(ky, kz, w, bits) with the corner bits of every word w of every row (ky, kz) of
+/// vertices that has some.
+template<typename Visit>
+void forEachCornerWord(const BitVolume& voxels, Visit&& visit)
 {
   const std::int32_t nx = voxels.size(0), ny = voxels.size(1), nz = voxels.size(2);
   const std::size_t rowWords = voxels.wordsPerRow();
@@ -521,13 +522,35 @@ void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vecto
             a[0][dy][dz] = shiftedByOne(here, before);
             a[1][dy][dz] = here;
           }
-        for (std::uint64_t bits = cornerBits(a); bits != 0; bits &= bits - 1)
-        {
-          const Coord x = static_cast<Coord>(64 * w + countTrailingZeros(bits));
-          out.push_back({ x + offset[0], ky + offset[1], kz + offset[2] });
-        }
+        if (const std::uint64_t bits = cornerBits(a))
+          visit(ky, kz, w, bits);
       }
     }
+}
+
+} // namespace
+
+void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vector<Point3>& out)
+{
+  // Counted first, so that the corners (12 bytes each, millions at 256^3) are written once
+  // into memory of their size, not copied and faulted in again at every doubling; the
+  // counting pass reads the voxels' bits again, much less memory than the corners.
+  std::size_t count = 0;
+  forEachCornerWord(voxels,
+    [&](std::int32_t, std::int32_t, std::size_t, std::uint64_t bits)
+    { count += static_cast<std::size_t>(popCount(bits)); });
+  const std::size_t needed = out.size() + count;
+  if (out.capacity() < needed) // geometric growth over the objects of a label map
+    out.reserve(std::max(needed, 2 * out.capacity()));
+  forEachCornerWord(voxels,
+    [&](std::int32_t ky, std::int32_t kz, std::size_t w, std::uint64_t bits)
+    {
+      for (; bits != 0; bits &= bits - 1)
+      {
+        const Coord x = static_cast<Coord>(64 * w + countTrailingZeros(bits));
+        out.push_back({ x + offset[0], ky + offset[1], kz + offset[2] });
+      }
+    });
 }
 
 std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const
