@@ -514,6 +514,7 @@ void forEachCornerWord(const BitVolume& voxels, Visit&& visit)
       for (std::size_t w = 0; w <= rowWords; ++w)
       {
         std::uint64_t a[2][2][2];
+        std::uint64_t any = 0;
         for (int dy = 0; dy < 2; ++dy)
           for (int dz = 0; dz < 2; ++dz)
           {
@@ -521,7 +522,10 @@ void forEachCornerWord(const BitVolume& voxels, Visit&& visit)
             const Word here = w < rowWords ? r[w] : 0, before = w > 0 ? r[w - 1] : 0;
             a[0][dy][dz] = shiftedByOne(here, before);
             a[1][dy][dz] = here;
+            any |= here | before;
           }
+        if (any == 0) // no voxel around these vertices (most of a sparse object's box)
+          continue;
         if (const std::uint64_t bits = cornerBits(a))
           visit(ky, kz, w, bits);
       }
