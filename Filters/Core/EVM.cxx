@@ -148,6 +148,11 @@ std::array<Coord, 3> EVM::worldVertex(std::size_t i) const
 
 EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
 {
+  return this->sortedAs(order, exec, std::vector<Vertex>());
+}
+
+EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec, std::vector<Vertex> storage) const
+{
   if (this->Dimension == 2 && order[0] != this->Order[0])
     throw std::invalid_argument("a 2D EVM keeps its plane normal as first axis");
   if (this->Dimension == 3 && !this->Vertices.empty())
@@ -155,11 +160,12 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
     // A stable bucket pass on one coordinate keeps the order of the two others: from
     // (A, B, C) it gives (C, A, B) when bucketing on C and (B, A, C) when bucketing on B.
     if (order == AxisOrder{ this->Order[2], this->Order[0], this->Order[1] })
-      return this->bucketedOn(2, order);
+      return this->bucketedOn(2, order, std::move(storage));
     if (order == AxisOrder{ this->Order[1], this->Order[0], this->Order[2] })
-      return this->bucketedOn(1, order);
+      return this->bucketedOn(1, order, std::move(storage));
   }
-  std::vector<Vertex> v(this->Vertices.size());
+  std::vector<Vertex> v = std::move(storage);
+  v.resize(this->Vertices.size());
   bool packable = true;
   Coord maximum = 0;
   for (std::size_t i = 0; i < v.size(); ++i)
@@ -191,7 +197,7 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec) const
   return EVM(this->Dimension, order, std::move(v));
 }
 
-EVM EVM::bucketedOn(int key, const AxisOrder& order) const
+EVM EVM::bucketedOn(int key, const AxisOrder& order, std::vector<Vertex> out) const
 {
   Coord lo = this->Vertices[0][key], hi = lo;
   for (const Vertex& p : this->Vertices)
@@ -205,7 +211,7 @@ EVM EVM::bucketedOn(int key, const AxisOrder& order) const
   for (std::size_t i = 1; i < start.size(); ++i)
     start[i] += start[i - 1];
   const int first = 0, second = key == 2 ? 1 : 2; // the two coordinates that stay in order
-  std::vector<Vertex> out(this->Vertices.size());
+  out.resize(this->Vertices.size());
   for (const Vertex& p : this->Vertices)
     out[start[p[key] - lo]++] = { p[key], p[first], p[second] };
   return EVM(this->Dimension, order, std::move(out));

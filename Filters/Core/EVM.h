@@ -54,6 +54,17 @@ public:
 
   /// The same vertex set sorted in another order (same dimension; for 2D only B and C swap).
   EVM sortedAs(const AxisOrder& order, const Execution& exec = Execution()) const;
+  /// The same, written into `storage` (its contents dropped): the memory of an EVM no longer
+  /// needed (takeVertices), already mapped, rather than fresh pages to fault in.
+  EVM sortedAs(const AxisOrder& order, const Execution& exec, std::vector<Vertex> storage) const;
+
+  /// Moves the vertices out, leaving this EVM empty (for their memory: see sortedAs).
+  std::vector<Vertex> takeVertices()
+  {
+    std::vector<Vertex> out;
+    out.swap(this->Vertices);
+    return out;
+  }
 
   /// Start index of every plane of vertices (3D) or line of vertices (2D), plus size().
   std::vector<std::size_t> planeStarts() const;
@@ -70,7 +81,7 @@ public:
 
 private:
   /// Stable counting sort on coordinate `key` (1 or 2): the result is sorted in `order`.
-  EVM bucketedOn(int key, const AxisOrder& order) const;
+  EVM bucketedOn(int key, const AxisOrder& order, std::vector<Vertex> out) const;
 
   int Dimension = 3;
   AxisOrder Order{ 2, 1, 0 };

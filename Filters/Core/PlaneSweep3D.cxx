@@ -590,20 +590,20 @@ bool planeSweep3DStream(EVM evm,
   const Execution& exec,
   const StreamedPartHandlers& handlers)
 {
-  // sortForTheThreeSweeps' sortings, made as late and released as early as the sweeps allow.
+  // sortForTheThreeSweeps' sortings, made as late and released as early as the sweeps allow,
+  // no more than two alive at once; each written into the memory of one no longer needed (the
+  // given EVM's, then the first's), not into fresh pages: at 256^3 and more a sorting is tens
+  // of MB, and the kernel's faulting in and zeroing of new pages weighed as much as the sort.
   EVM first = evm.sortedAs({ 1, 2, 0 }, exec);
-  evm = EVM();
-  EVM zeroth = first.sortedAs({ 0, 1, 2 }, exec);
+  EVM zeroth = first.sortedAs({ 0, 1, 2 }, exec, evm.takeVertices());
   const std::size_t planesAll =
     3 * std::max<std::size_t>(1, zeroth.planeStarts().size() - 1); // about
   std::size_t done = 0;
-  if (!streamSorting(zeroth, connectivity, exec, handlers, done, planesAll))
+  if (!streamSorting(zeroth, connectivity, exec, handlers, done, planesAll) ||
+    !streamSorting(first, connectivity, exec, handlers, done, planesAll))
     return false;
-  EVM second = zeroth.sortedAs({ 2, 0, 1 }, exec);
+  EVM second = zeroth.sortedAs({ 2, 0, 1 }, exec, first.takeVertices());
   zeroth = EVM();
-  if (!streamSorting(first, connectivity, exec, handlers, done, planesAll))
-    return false;
-  first = EVM();
   return streamSorting(second, connectivity, exec, handlers, done, planesAll);
 }
 
