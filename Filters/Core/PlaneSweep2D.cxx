@@ -256,6 +256,8 @@ public:
     this->firstSweep(begin, end);
     if (sortAlongV)
       this->numberCornersAlongV();
+    else if (order == CornerOrder::VThenU && begin != end)
+      this->checkEveryColumnNumbered(out.columns);
     out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
     out.loopCorners.reserve(this->Edges.size());
@@ -640,6 +642,22 @@ private:
       this->ColumnNext[k] = number;
       for (std::size_t w = 0; w < columns.wordsPerColumn; ++w, ++word)
         number += static_cast<std::uint32_t>(popCount(*word));
+    }
+  }
+
+  /// After the sweep: every column's next number is the first of the column after it, so the
+  /// sweep met each corner of the grid once, and no corner outside it (a corner missed or met
+  /// twice would share a number). One pass over the grid's words.
+  void checkEveryColumnNumbered(const CornerColumns& columns) const
+  {
+    std::uint32_t number = 0;
+    const std::uint64_t* word = columns.bits.data();
+    for (std::size_t k = 0; k < columns.columns; ++k)
+    {
+      for (std::size_t w = 0; w < columns.wordsPerColumn; ++w, ++word)
+        number += static_cast<std::uint32_t>(popCount(*word));
+      if (this->ColumnNext[k] != number)
+        throw std::logic_error("planeSweep2D: a column's corners not all numbered");
     }
   }
 
