@@ -1010,12 +1010,10 @@ bool facesOfObjects(vtkAlgorithm* self,
 }
 
 /// The corners of all objects' faces in one set, numbered as the output's points: the
-/// objects of a label map share their corners. With `tJunctions` the set also orders them
-/// along lines, for the T-junction pass.
+/// objects of a label map share their corners.
 vbr::CornerSet numberCorners(const std::vector<vbr::vtk::Selected>& objects,
   const std::vector<std::vector<vbr::BRep>>& parts,
-  const std::array<std::int32_t, 3>& dims,
-  bool tJunctions)
+  const std::array<std::int32_t, 3>& dims)
 {
   vtkLogScopeF(TRACE, "numbered corners");
   const vbr::KeyPacker packer =
@@ -1024,7 +1022,7 @@ vbr::CornerSet numberCorners(const std::vector<vbr::vtk::Selected>& objects,
   for (std::size_t o = 0; o < objects.size(); ++o)
     for (const vbr::BRep& part : parts[o])
       placed.push_back({ &part, objects[o].offset });
-  return vbr::CornerSet(placed, packer, tJunctions);
+  return vbr::CornerSet(placed, packer);
 }
 
 /// Where the cells of the objects are written: the corners' numbers, the ids of the faces
@@ -1143,7 +1141,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
   vtkLogScopeF(TRACE, "numbered corners");
   const vbr::KeyPacker packer =
     vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
-  corners.reset(new vbr::CornerSet(points, packer, true));
+  corners.reset(new vbr::CornerSet(points, packer));
   points = std::vector<Point3>();
   builder.addCornerPoints(corners->points());
   corners->releasePoints(); // now the output's
@@ -1321,7 +1319,7 @@ void appendObjects(vtkAlgorithm* self,
   // edge, the two pixels on either side of the edge are alike, so no loop turns there. Two
   // labels can meet there.
   const bool tJunctions = !settings.planar || n > 1;
-  const vbr::CornerSet corners = numberCorners(objects, parts, dims, tJunctions);
+  const vbr::CornerSet corners = numberCorners(objects, parts, dims);
   builder.addCornerPoints(corners.points());
   CellWriter writer{ corners, tJunctions };
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)

@@ -8,18 +8,15 @@
 //
 // insertTJunctionVertices makes the edges of adjacent faces match exactly. The distinct
 // corners are numbered in the order of their packed keys (CornerSet, KeyPacker) by the ranks
-// of their bits in a bitmap of their box, and ordered along the lines of the two other axes by
-// two radix sorts of the distinct corners' keys; the corners strictly inside an
-// edge are then those between its two ends in its axis's order, inserted in order
+// of their bits in a bitmap of their box; the corners strictly inside an edge are then the set
+// bits between its two ends along its line (a stride of the box apart), inserted in order
 // (walkWithEdgeVertices) with their numbers, which the filters use as point ids. How many each
-// loop gains is the distance of the two ends in that order, so the loops are counted first and
-// then walked concurrently, once each, into arrays of their final size. Several
+// loop gains is counted first (along the last axis, the difference of the two ends' numbers),
+// then the loops are walked concurrently, once each, into arrays of their final size. Several
 // B-Reps placed in one grid (the objects of a label map) share one set of corners, so that the
 // edges of neighbouring objects match too.
 
 #include "BRep.h"
-
-#include "RadixSort.h"
 
 #include <algorithm>
 #include <array>
@@ -248,8 +245,8 @@ void walkWithEdgeVertices(const PointRange& loop,
     const int d = edgeAxis(loop[i], loop[j]);
     Point3 q = loop[i]; // a corner inside the edge differs from its start along d only
     corners.forEachBetween(d,
-      loopNumbers[i],
-      loopNumbers[j],
+      add(loop[i], offset),
+      add(loop[j], offset),
       [&](std::int64_t n, Coord c)
       {
         q[d] = c - offset[d];
@@ -278,20 +275,29 @@ Coord checkedMaximum(const std::vector<Point3>& points)
 
 /// How many corners of the set lie strictly inside the edges of a loop: per edge into
 /// `inside` (at the edge's first corner), and in all.
+/// `pointsEnd`: the end of the B-Rep's points, up to which the edges ahead (those of the next
+/// loops too) are prefetched.
 std::size_t countEdgeVertices(const PointRange& points,
+  const Point3* pointsEnd,
   const std::int64_t* numbers,
   const CornerSet& corners,
+  const Point3& offset,
   std::uint32_t* inside)
 {
+  constexpr std::size_t ahead = 8;
   std::size_t count = 0;
   for (std::size_t i = 0; i < points.size(); ++i)
   {
+    const Point3* next = points.begin() + i + ahead;
+    if (next + 1 < pointsEnd)
+      corners.prefetchBetween(add(next[0], offset), add(next[1], offset));
     const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
     const Point3& p = points[i];
     const Point3& q = points[j];
     const int d = edgeAxis(p, q);
-    const std::size_t between =
-      d < 3 && std::abs(q[d] - p[d]) > 1 ? corners.countBetween(d, numbers[i], numbers[j]) : 0;
+    const std::size_t between = d < 3 && std::abs(q[d] - p[d]) > 1
+      ? corners.countBetween(d, add(p, offset), add(q, offset), numbers[i], numbers[j])
+      : 0;
     inside[i] = static_cast<std::uint32_t>(between); // fewer than 2^32 corners in the set
     count += between;
   }
@@ -303,6 +309,7 @@ std::size_t countEdgeVertices(const PointRange& points,
 std::vector<std::size_t> newLoopBegins(const BRep& brep,
   const std::vector<std::int64_t>& numbers,
   const CornerSet& corners,
+  const Point3& offset,
   const Execution& exec,
   std::vector<std::uint32_t>& inside)
 {
@@ -317,8 +324,10 @@ std::vector<std::size_t> newLoopBegins(const BRep& brep,
         const BRepLoop& loop = brep.loops[l];
         begins[l + 1] = loop.end - loop.begin +
           countEdgeVertices(brep.loopPoints(static_cast<int>(l)),
+            brep.points.data() + brep.points.size(),
             numbers.data() + loop.begin,
             corners,
+            offset,
             inside.data() + loop.begin);
       }
     });
@@ -388,56 +397,45 @@ Point3 CornerSet::pointInBox(std::uint64_t i) const
 }
 
 template<typename ForEach>
-void CornerSet::numberCorners(std::size_t total,
-  ForEach&& forEach,
-  const KeyPacker& packer,
-  bool orderLines)
+void CornerSet::numberCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer)
 {
   // One bit per grid point of the corners' box marks the corners, and a corner's number is
-  // the rank of its bit: the set bits of the words before it (kept per word) and of its own
-  // word below it. The numbers follow the packed keys' order with no sort and no hash table,
-  // in 1.5 bits per grid point of the box (no more than the selection's own bit volume),
-  // where sorting the corners' keys took 32 bytes per corner of every loop.
+  // the rank of its bit: the set bits of the words before it (kept with each word, so that a
+  // lookup reads one place) and of its own word below it. The numbers follow the packed keys'
+  // order with no sort and no hash table, in 2 bits per grid point of the box. The same bits
+  // give the corners inside an edge along any axis (forEachBetween), where ordering them
+  // along the lines of x and y took 28 bytes per corner and a scattered write per corner.
   this->boundCorners(total, forEach, packer);
-  this->Words.assign((this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64, 0);
+  this->Words.assign(
+    (this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64, RankedWord{ 0, 0 });
   forEach(
     [&](const Point3& p)
     {
       const std::uint64_t i = this->indexInBox(p);
-      this->Words[i >> 6] |= std::uint64_t(1) << (i & 63);
+      this->Words[i >> 6].bits |= std::uint64_t(1) << (i & 63);
     });
-  this->Ranks.resize(this->Words.size());
-  std::uint32_t count = 0;
-  for (std::size_t w = 0; w < this->Words.size(); ++w)
+  std::uint64_t count = 0;
+  for (RankedWord& w : this->Words)
   {
-    this->Ranks[w] = count;
-    count += static_cast<std::uint32_t>(popCount(this->Words[w]));
+    w.rank = count;
+    count += static_cast<std::uint64_t>(popCount(w.bits));
   }
   this->Points.reserve(count);
   for (std::size_t w = 0; w < this->Words.size(); ++w)
-    for (std::uint64_t bits = this->Words[w]; bits != 0; bits &= bits - 1)
+    for (std::uint64_t bits = this->Words[w].bits; bits != 0; bits &= bits - 1)
       this->Points.push_back(this->pointInBox(64 * w + countTrailingZeros(bits)));
-  for (int axis = 0; axis < 2 && orderLines; ++axis)
-    if (this->spans(axis)) // no edge runs along an axis all the corners share (a 2D image's)
-      this->orderLinesAlong(axis, packer);
-  if (orderLines)
-  {
-    this->CoordinateAlong[2].reserve(count);
-    for (const Point3& p : this->Points)
-      this->CoordinateAlong[2].push_back(p[2]);
-  }
 }
 
-CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines)
+CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer)
 {
   std::size_t total = 0;
   for (const PlacedBRep& b : breps)
     total += b.brep->points.size();
   this->numberCorners(
-    total, [&](auto&& visit) { forEachCorner(breps, visit); }, packer, orderLines);
+    total, [&](auto&& visit) { forEachCorner(breps, visit); }, packer);
 }
 
-CornerSet::CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer, bool orderLines)
+CornerSet::CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer)
 {
   this->numberCorners(
     corners.size(),
@@ -446,8 +444,7 @@ CornerSet::CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer
       for (const Point3& p : corners)
         visit(p);
     },
-    packer,
-    orderLines);
+    packer);
 }
 
 namespace
@@ -562,143 +559,18 @@ void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vecto
 
 std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const
 {
-  std::vector<std::int64_t> numbers(brep.points.size());
-  for (std::size_t n = 0; n < numbers.size(); ++n)
+  // The loops wander over the box, whose bits outgrow the cache with the volume: each
+  // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
+  constexpr std::size_t ahead = 16;
+  const std::size_t n = brep.points.size();
+  std::vector<std::int64_t> numbers(n);
+  for (std::size_t i = 0; i < n; ++i)
   {
-    const std::uint64_t i = this->indexInBox(add(brep.points[n], offset));
-    const std::uint64_t below = this->Words[i >> 6] & ((std::uint64_t(1) << (i & 63)) - 1);
-    numbers[n] = std::int64_t(this->Ranks[i >> 6]) + popCount(below);
+    if (i + ahead < n)
+      prefetch(&this->Words[this->indexInBox(add(brep.points[i + ahead], offset)) >> 6]);
+    numbers[i] = this->rankOf(this->indexInBox(add(brep.points[i], offset)));
   }
   return numbers;
-}
-
-bool CornerSet::spans(int axis) const
-{
-  for (const Point3& p : this->Points)
-    if (p[axis] != this->Points[0][axis])
-      return true;
-  return false;
-}
-
-namespace
-{
-
-/// The bound on the buckets of the one-pass ordering of the lines along x: its counts cost no
-/// more than the orders themselves (or a small table).
-std::uint64_t bucketBound(std::size_t corners)
-{
-  return 4 * std::uint64_t(corners) + (std::uint64_t(1) << 16);
-}
-
-/// The order of the corners along the lines of one axis, being made.
-struct LineOrder
-{
-  std::vector<std::uint32_t>& order;
-  std::vector<std::uint32_t>& rank;
-  std::vector<Coord>& coordinate;
-};
-
-/// Orders the corners [first, last) (whole lines along `axis`, numbered in the order of the
-/// coordinate along it within each line) by a stable counting sort on their line's bucket
-/// (below `buckets`), bucketOf(corner).
-template<typename BucketOf>
-void sortLinesBy(const std::vector<Point3>& points,
-  int axis,
-  std::size_t first,
-  std::size_t last,
-  std::size_t buckets,
-  BucketOf&& bucketOf,
-  std::vector<std::uint32_t>& count,
-  const LineOrder& out)
-{
-  count.assign(buckets + 1, 0);
-  for (std::size_t n = first; n < last; ++n)
-    ++count[bucketOf(points[n]) + 1];
-  count[0] = static_cast<std::uint32_t>(first);
-  for (std::size_t b = 1; b <= buckets; ++b)
-    count[b] += count[b - 1];
-  for (std::size_t n = first; n < last; ++n)
-  {
-    const Point3& p = points[n];
-    const std::uint32_t r = count[bucketOf(p)]++;
-    out.order[r] = static_cast<std::uint32_t>(n);
-    out.rank[n] = r;
-    out.coordinate[r] = p[axis];
-  }
-}
-
-} // namespace
-
-void CornerSet::orderLinesAlong(int axis, const KeyPacker& packer)
-{
-  // The corners are numbered in the order (x, y, z), so a line along an axis is a run of
-  // one stable counting sort by the line, no sort of keys: along y, the corners of each plane
-  // x = const by z; along x, all the corners by (y, z) when the lines are few enough to count,
-  // else by a radix sort of the keys (y, z, x).
-  const std::size_t n = this->Points.size();
-  this->OrderAlong[axis].resize(n);
-  this->RankAlong[axis].resize(n);
-  this->CoordinateAlong[axis].resize(n);
-  std::vector<std::uint32_t> count;
-  const LineOrder out{ this->OrderAlong[axis], this->RankAlong[axis], this->CoordinateAlong[axis] };
-  const Point3 lo = this->Lo;
-  const std::uint64_t extent2 = this->Extent[2];
-  if (axis == 1)
-  {
-    for (std::size_t first = 0, last = 0; first < n; first = last)
-    {
-      while (last < n && this->Points[last][0] == this->Points[first][0])
-        ++last;
-      sortLinesBy(
-        this->Points,
-        axis,
-        first,
-        last,
-        extent2,
-        [lo](const Point3& p) { return std::size_t(p[2] - lo[2]); },
-        count,
-        out);
-    }
-    return;
-  }
-  const std::uint64_t lines = this->Extent[1] * extent2;
-  if (lines <= bucketBound(n))
-  {
-    sortLinesBy(
-      this->Points,
-      axis,
-      0,
-      n,
-      lines,
-      [lo, extent2](const Point3& p)
-      { return std::size_t(std::uint64_t(p[1] - lo[1]) * extent2 + std::uint64_t(p[2] - lo[2])); },
-      count,
-      out);
-    return;
-  }
-  this->sortLinesByKeys(axis, packer);
-}
-
-void CornerSet::sortLinesByKeys(int axis, const KeyPacker& packer)
-{
-  // Key (the two other coordinates, then this one): a line along `axis` is a run of keys.
-  const int other1 = axis == 0 ? 1 : 0, other2 = 2;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(this->Points.size());
-  for (std::size_t n = 0; n < this->Points.size(); ++n)
-  {
-    const Point3& p = this->Points[n];
-    keyed[n] = { packer.pack(p[other1], p[other2], p[axis]), static_cast<std::uint32_t>(n) };
-  }
-  radixSortBy(keyed, [](const std::pair<std::uint64_t, std::uint32_t>& k) { return k.first; });
-  std::vector<std::uint32_t>& order = this->OrderAlong[axis];
-  std::vector<std::uint32_t>& rank = this->RankAlong[axis];
-  std::vector<Coord>& coordinate = this->CoordinateAlong[axis];
-  for (std::size_t r = 0; r < keyed.size(); ++r)
-  {
-    order[r] = keyed[r].second;
-    rank[keyed[r].second] = static_cast<std::uint32_t>(r);
-    coordinate[r] = this->Points[keyed[r].second][axis];
-  }
 }
 
 void insertTJunctionVertices(BRep& brep,
@@ -713,7 +585,8 @@ void insertTJunctionVertices(BRep& brep,
   // written once, concurrently, straight into arrays of their final size: no buffers per run
   // to join, and nothing at all when no edge holds a corner (a checkerboard's unit faces).
   std::vector<std::uint32_t> inside;
-  const std::vector<std::size_t> begins = newLoopBegins(brep, numbers, corners, exec, inside);
+  const std::vector<std::size_t> begins =
+    newLoopBegins(brep, numbers, corners, offset, exec, inside);
   if (begins.back() == brep.points.size())
     return;
   std::vector<Point3> points(begins.back());

@@ -11,6 +11,7 @@
 #include "Execution.h"
 #include "Geometry.h"
 #include "PlaneSweep2D.h"
+#include "Prefetch.h"
 
 #include <algorithm>
 #include <array>
@@ -115,22 +116,23 @@ struct PlacedBRep
 
 /// The distinct corners of one or more B-Reps placed in a common grid, numbered in the order
 /// of their packed keys (KeyPacker), so that the corners of a line along the last axis have
-/// consecutive numbers; the orders of the lines along the two other axes are kept as well.
-/// The corners strictly inside an edge are then the ones between its two ends in the order of
-/// its axis: the T-junction pass looks them up without a search. The numbers serve as the
-/// output's point ids: every corner is a vertex of some output cell.
+/// consecutive numbers. A bit per grid point of the corners' box marks them, next to the
+/// corners before each word of bits: a corner's number is the rank of its bit, and the
+/// corners strictly inside an edge are the set bits between its two ends along the edge's
+/// line, so the T-junction pass reads them in order without a search and without ordering
+/// the corners along the lines of the other axes. The numbers serve as the output's point
+/// ids: every corner is a vertex of some output cell.
 class CornerSet
 {
 public:
-  /// Numbers the corners of `breps`. Without `orderLines`, only the numbers (no T-junction
-  /// pass can use the set). Throws std::out_of_range for a corner outside the packer's range,
-  /// std::length_error for 2^32 corners or more.
-  CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer, bool orderLines = true);
+  /// Numbers the corners of `breps`. Throws std::out_of_range for a corner outside the
+  /// packer's range, std::length_error for 2^32 corners or more.
+  CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer);
 
   /// The same set from its corners given directly (in the common grid, repeats allowed), e.g.
   /// faceCorners of the objects' voxels: no B-Rep needs to exist yet, so that the faces can be
   /// made, given their numbers and written part after part.
-  CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer, bool orderLines = true);
+  CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer);
 
   /// The numbers of the points of `brep` at `offset`, one of the B-Reps numbered (as they were
   /// then): asked for one B-Rep at a time, so that all of them are never held at once.
@@ -141,56 +143,80 @@ public:
   /// Every corner, in the common grid, by number (empty after releasePoints).
   const std::vector<Point3>& points() const { return this->Points; }
 
-  /// Frees points() once the caller has copied them (the output's points): a third of the
-  /// set's memory. The numbers and the T-junction pass keep working.
+  /// Frees points() once the caller has copied them (the output's points): the numbers and
+  /// the T-junction pass keep working on the bits.
   void releasePoints() { std::vector<Point3>().swap(this->Points); }
 
-  /// Calls emit(number, coordinate along `axis`) for the corners strictly between corners
-  /// `from` and `to`, two corners of one line along `axis`, in order from `from` to `to`. The
-  /// corners of a line are read one after the other, their coordinates too (the other two are
-  /// the line's): no access to a corner's point at random.
+  /// Calls emit(number, coordinate along `axis`) for the corners strictly between `from` and
+  /// `to`, two grid points of the box (common grid) on one line along `axis`, in order from
+  /// `from` to `to`: the set bits between theirs, a stride of the box apart.
   template<typename Emit>
-  void forEachBetween(int axis, std::int64_t from, std::int64_t to, Emit&& emit) const
+  void forEachBetween(int axis, const Point3& from, const Point3& to, Emit&& emit) const
   {
-    if (axis == 2)
+    const Coord step = to[axis] > from[axis] ? 1 : -1;
+    const std::int64_t stride = step * this->strideAlong(axis);
+    std::uint64_t i = this->indexInBox(from);
+    for (Coord c = from[axis] + step; c != to[axis]; c += step)
     {
-      const std::vector<Coord>& z = this->CoordinateAlong[2];
-      for (std::int64_t n = from + 1; n < to; ++n)
-        emit(n, z[n]);
-      for (std::int64_t n = from - 1; n > to; --n)
-        emit(n, z[n]);
-      return;
+      i += stride;
+      if (this->isCorner(i))
+        emit(this->rankOf(i), c);
     }
-    const std::vector<std::uint32_t>& order = this->OrderAlong[axis];
-    const std::vector<Coord>& coordinate = this->CoordinateAlong[axis];
-    const std::int64_t a = this->RankAlong[axis][from], b = this->RankAlong[axis][to];
-    for (std::int64_t r = a + 1; r < b; ++r)
-      emit(order[r], coordinate[r]);
-    for (std::int64_t r = a - 1; r > b; --r)
-      emit(order[r], coordinate[r]);
   }
 
-  /// How many corners lie strictly between corners `from` and `to` of one line along `axis`.
-  std::size_t countBetween(int axis, std::int64_t from, std::int64_t to) const
+  /// How many corners lie strictly between `from` and `to`, two corners of one line along
+  /// `axis` numbered `fromNumber` and `toNumber`: along the last axis the difference of the
+  /// numbers, along the others the set bits between theirs.
+  std::size_t countBetween(int axis,
+    const Point3& from,
+    const Point3& to,
+    std::int64_t fromNumber,
+    std::int64_t toNumber) const
   {
-    const std::int64_t a = axis == 2 ? from : std::int64_t(this->RankAlong[axis][from]);
-    const std::int64_t b = axis == 2 ? to : std::int64_t(this->RankAlong[axis][to]);
-    return static_cast<std::size_t>(std::max<std::int64_t>(std::abs(b - a) - 1, 0));
+    if (axis == 2)
+      return static_cast<std::size_t>(
+        std::max<std::int64_t>(std::abs(toNumber - fromNumber) - 1, 0));
+    const Coord steps = std::abs(to[axis] - from[axis]);
+    const std::int64_t stride = (to[axis] > from[axis] ? 1 : -1) * this->strideAlong(axis);
+    std::uint64_t i = this->indexInBox(from);
+    std::size_t count = 0;
+    for (Coord k = 1; k < steps; ++k)
+    {
+      i += stride;
+      count += this->isCorner(i);
+    }
+    return count;
+  }
+
+  /// Asks the processor for the first bits countBetween reads for the edge from `from` to
+  /// `to` (grid points of the box, maybe not on one line: then nothing), before it needs them.
+  void prefetchBetween(const Point3& from, const Point3& to) const
+  {
+    for (int axis = 0; axis < 2; ++axis)
+      if (from[axis] != to[axis])
+      {
+        const Coord steps = to[axis] - from[axis];
+        if ((steps > 1 || steps < -1) && from[axis ^ 1] == to[axis ^ 1] && from[2] == to[2])
+          prefetch(&this->Words[(this->indexInBox(from) +
+                                  std::uint64_t((steps > 0 ? 1 : -1) * this->strideAlong(axis))) >>
+            6]);
+        return;
+      }
   }
 
 private:
-  bool spans(int axis) const;
-  void orderLinesAlong(int axis, const KeyPacker& packer);
-  /// orderLinesAlong by a radix sort of the corners' keys, for lines too many to count.
-  void sortLinesByKeys(int axis, const KeyPacker& packer);
+  /// The bits of 64 grid points of the box (indexInBox order) and the corners before them.
+  struct RankedWord
+  {
+    std::uint64_t bits;
+    std::uint64_t rank;
+  };
 
   /// The box of grid points holding the corners, its points indexed in lexicographic order
-  /// (the last coordinate fastest: the order of their packed keys); a bit per point of it,
-  /// set for the corners; per word of bits, the corners before it.
+  /// (the last coordinate fastest: the order of their packed keys).
   Point3 Lo{ 0, 0, 0 };
   std::array<std::uint64_t, 3> Extent{ 0, 0, 0 };
-  std::vector<std::uint64_t> Words;
-  std::vector<std::uint32_t> Ranks;
+  std::vector<RankedWord> Words;
   std::uint64_t indexInBox(const Point3& p) const
   {
     return (std::uint64_t(p[0] - this->Lo[0]) * this->Extent[1] +
@@ -198,22 +224,26 @@ private:
       this->Extent[2] +
       std::uint64_t(p[2] - this->Lo[2]);
   }
+  std::int64_t strideAlong(int axis) const
+  {
+    return axis == 2
+      ? 1
+      : std::int64_t(axis == 1 ? this->Extent[2] : this->Extent[1] * this->Extent[2]);
+  }
+  bool isCorner(std::uint64_t i) const { return (this->Words[i >> 6].bits >> (i & 63)) & 1; }
+  std::int64_t rankOf(std::uint64_t i) const
+  {
+    const RankedWord& w = this->Words[i >> 6];
+    return std::int64_t(w.rank) + popCount(w.bits & ((std::uint64_t(1) << (i & 63)) - 1));
+  }
   Point3 pointInBox(std::uint64_t i) const;
   /// Both constructors: forEach(visit) calls visit(corner) for `total` corners.
   template<typename ForEach>
-  void numberCorners(std::size_t total,
-    ForEach&& forEach,
-    const KeyPacker& packer,
-    bool orderLines);
+  void numberCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer);
   template<typename ForEach>
   void boundCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer);
 
   std::vector<Point3> Points;
-  /// Per axis 0 and 1: the numbers in the order of the lines along that axis, the place of
-  /// each number in it, and the coordinate along that axis in that order; along 2 (the order
-  /// of the numbers), the coordinate of every number.
-  std::vector<std::uint32_t> OrderAlong[2], RankAlong[2];
-  std::vector<Coord> CoordinateAlong[3];
 };
 
 /// The corners of the faces planeSweep3D makes of these voxels (voxel (x, y, z) spans
