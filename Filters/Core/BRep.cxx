@@ -288,9 +288,11 @@ std::size_t countEdgeVertices(const PointRange& points,
   std::size_t count = 0;
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const Point3* next = points.begin() + i + ahead;
-    if (next + 1 < pointsEnd)
+    if (std::size_t(pointsEnd - points.begin()) > i + ahead + 1)
+    {
+      const Point3* next = points.begin() + i + ahead;
       corners.prefetchBetween(add(next[0], offset), add(next[1], offset));
+    }
     const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
     const Point3& p = points[i];
     const Point3& q = points[j];
@@ -402,17 +404,27 @@ void CornerSet::numberCorners(std::size_t total, ForEach&& forEach, const KeyPac
   // One bit per grid point of the corners' box marks the corners, and a corner's number is
   // the rank of its bit: the set bits of the words before it (kept with each word, so that a
   // lookup reads one place) and of its own word below it. The numbers follow the packed keys'
-  // order with no sort and no hash table, in 2 bits per grid point of the box. The same bits
-  // give the corners inside an edge along any axis (forEachBetween), where ordering them
-  // along the lines of x and y took 28 bytes per corner and a scattered write per corner.
+  // order with no sort and no hash table, in 2 bits per grid point of the box. The corners
+  // inside an edge along z are the set bits between its ends; along x and y, those of two
+  // more bitmaps in which each line along that axis is consecutive (a bit per grid point
+  // each), so that a long edge is read a word at a time rather than a cache line per grid
+  // step; ordering the corners along the lines of x and y took 28 bytes per corner.
   this->boundCorners(total, forEach, packer);
   this->Words.assign(
     (this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64, RankedWord{ 0, 0 });
+  const std::size_t lineWords = this->Words.size();
+  this->LineBits[0].assign(lineWords, 0);
+  this->LineBits[1].assign(lineWords, 0);
   forEach(
     [&](const Point3& p)
     {
       const std::uint64_t i = this->indexInBox(p);
       this->Words[i >> 6].bits |= std::uint64_t(1) << (i & 63);
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        const std::uint64_t j = this->indexOnLine(axis, p);
+        this->LineBits[axis][j >> 6] |= std::uint64_t(1) << (j & 63);
+      }
     });
   std::uint64_t count = 0;
   for (RankedWord& w : this->Words)

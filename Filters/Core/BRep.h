@@ -149,24 +149,30 @@ public:
 
   /// Calls emit(number, coordinate along `axis`) for the corners strictly between `from` and
   /// `to`, two grid points of the box (common grid) on one line along `axis`, in order from
-  /// `from` to `to`: the set bits between theirs, a stride of the box apart.
+  /// `from` to `to`: along the last axis the set bits between theirs, along the others the set
+  /// bits of the line's own bitmap (LineBits), each numbered by its bit in the box.
   template<typename Emit>
   void forEachBetween(int axis, const Point3& from, const Point3& to, Emit&& emit) const
   {
-    const Coord step = to[axis] > from[axis] ? 1 : -1;
-    const std::int64_t stride = step * this->strideAlong(axis);
-    std::uint64_t i = this->indexInBox(from);
-    for (Coord c = from[axis] + step; c != to[axis]; c += step)
+    const bool up = to[axis] > from[axis];
+    const std::uint64_t a = this->indexOnLine(axis, from), b = this->indexOnLine(axis, to);
+    const std::uint64_t lo = (up ? a : b) + 1, hi = up ? b : a; // bits [lo, hi)
+    Point3 p = from;
+    const auto visit = [&](std::uint64_t j)
     {
-      i += stride;
-      if (this->isCorner(i))
-        emit(this->rankOf(i), c);
-    }
+      p[axis] = from[axis] + static_cast<Coord>(std::int64_t(j) - std::int64_t(a));
+      emit(this->rankOf(this->indexInBox(p)), p[axis]);
+    };
+    if (axis == 2)
+      forEachSetBit(this->Words, lo, hi, up, visit);
+    else
+      forEachSetBit(this->LineBits[axis], lo, hi, up, visit);
   }
 
   /// How many corners lie strictly between `from` and `to`, two corners of one line along
   /// `axis` numbered `fromNumber` and `toNumber`: along the last axis the difference of the
-  /// numbers, along the others the set bits between theirs.
+  /// numbers, along the others the set bits between theirs in the line's bitmap, a word at a
+  /// time (a long edge costs its length / 64, not a read per grid step).
   std::size_t countBetween(int axis,
     const Point3& from,
     const Point3& to,
@@ -176,16 +182,8 @@ public:
     if (axis == 2)
       return static_cast<std::size_t>(
         std::max<std::int64_t>(std::abs(toNumber - fromNumber) - 1, 0));
-    const Coord steps = std::abs(to[axis] - from[axis]);
-    const std::int64_t stride = (to[axis] > from[axis] ? 1 : -1) * this->strideAlong(axis);
-    std::uint64_t i = this->indexInBox(from);
-    std::size_t count = 0;
-    for (Coord k = 1; k < steps; ++k)
-    {
-      i += stride;
-      count += this->isCorner(i);
-    }
-    return count;
+    const std::uint64_t a = this->indexOnLine(axis, from), b = this->indexOnLine(axis, to);
+    return countSetBits(this->LineBits[axis], std::min(a, b) + 1, std::max(a, b));
   }
 
   /// Asks the processor for the first bits countBetween reads for the edge from `from` to
@@ -197,9 +195,7 @@ public:
       {
         const Coord steps = to[axis] - from[axis];
         if ((steps > 1 || steps < -1) && from[axis ^ 1] == to[axis ^ 1] && from[2] == to[2])
-          prefetch(&this->Words[(this->indexInBox(from) +
-                                  std::uint64_t((steps > 0 ? 1 : -1) * this->strideAlong(axis))) >>
-            6]);
+          prefetch(&this->LineBits[axis][this->indexOnLine(axis, from) >> 6]);
         return;
       }
   }
@@ -217,6 +213,80 @@ private:
   Point3 Lo{ 0, 0, 0 };
   std::array<std::uint64_t, 3> Extent{ 0, 0, 0 };
   std::vector<RankedWord> Words;
+  /// For axes 0 and 1, the corners' bits again with the grid points of each line along that
+  /// axis consecutive (indexOnLine), so that the corners inside a long edge along x or y are
+  /// counted and found a word at a time; 1 bit per grid point of the box each.
+  std::array<std::vector<std::uint64_t>, 2> LineBits;
+  /// The index of grid point p of the box in LineBits[axis] (axis 0 or 1), or in the box's
+  /// own order for axis 2.
+  std::uint64_t indexOnLine(int axis, const Point3& p) const
+  {
+    const std::uint64_t x = std::uint64_t(p[0] - this->Lo[0]),
+                        y = std::uint64_t(p[1] - this->Lo[1]),
+                        z = std::uint64_t(p[2] - this->Lo[2]);
+    if (axis == 0)
+      return (y * this->Extent[2] + z) * this->Extent[0] + x;
+    if (axis == 1)
+      return (x * this->Extent[2] + z) * this->Extent[1] + y;
+    return this->indexInBox(p);
+  }
+  static std::uint64_t bitsOf(const RankedWord& w) { return w.bits; }
+  static std::uint64_t bitsOf(std::uint64_t w) { return w; }
+  /// The set bits of `words` in [lo, hi), counted a word at a time.
+  template<typename Word>
+  static std::size_t countSetBits(const std::vector<Word>& words,
+    std::uint64_t lo,
+    std::uint64_t hi)
+  {
+    std::size_t count = 0;
+    for (std::uint64_t i = lo; i < hi;)
+    {
+      const std::uint64_t end = std::min(hi, (i | 63) + 1);
+      const std::uint64_t span = end - i; // 1 to 64 bits of word i >> 6, from bit i & 63
+      const std::uint64_t mask = (span == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << span) - 1)
+        << (i & 63);
+      count += static_cast<std::size_t>(popCount(bitsOf(words[i >> 6]) & mask));
+      i = end;
+    }
+    return count;
+  }
+  /// Calls visit(index) for the set bits of `words` in [lo, hi), upwards or downwards.
+  template<typename Word, typename Visit>
+  static void forEachSetBit(const std::vector<Word>& words,
+    std::uint64_t lo,
+    std::uint64_t hi,
+    bool up,
+    Visit&& visit)
+  {
+    if (lo >= hi)
+      return;
+    const std::uint64_t first = lo >> 6, last = (hi - 1) >> 6;
+    const auto maskedWord = [&](std::uint64_t w)
+    {
+      std::uint64_t bits = bitsOf(words[w]);
+      if (w == first)
+        bits &= ~std::uint64_t(0) << (lo & 63);
+      if (w == last && ((hi & 63) != 0))
+        bits &= (std::uint64_t(1) << (hi & 63)) - 1;
+      return bits;
+    };
+    for (std::uint64_t k = 0; k <= last - first; ++k)
+    {
+      const std::uint64_t w = up ? first + k : last - k;
+      for (std::uint64_t bits = maskedWord(w); bits != 0;)
+        if (up)
+        {
+          visit(64 * w + std::uint64_t(countTrailingZeros(bits)));
+          bits &= bits - 1;
+        }
+        else
+        {
+          const int top = 63 - countLeadingZeros(bits);
+          visit(64 * w + std::uint64_t(top));
+          bits &= ~(std::uint64_t(1) << top);
+        }
+    }
+  }
   std::uint64_t indexInBox(const Point3& p) const
   {
     return (std::uint64_t(p[0] - this->Lo[0]) * this->Extent[1] +

@@ -162,6 +162,19 @@ inline int signOf(Wide w)
   return (w > 0) - (w < 0);
 }
 
+/// Number of zero bits above the highest set bit of a non-zero word.
+inline int countLeadingZeros(std::uint64_t w)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_clzll(w);
+#else
+  int n = 0;
+  for (std::uint64_t top = std::uint64_t(1) << 63; !(w & top); top >>= 1)
+    ++n;
+  return n;
+#endif
+}
+
 /// Index of the lowest set bit of a non-zero word.
 inline int countTrailingZeros(std::uint64_t w)
 {
