@@ -125,9 +125,10 @@ struct ObjectBoxes
 /// microseconds a page on the benchmark machine: half of a checkerboard's update, which
 /// writes hundreds of MB once), and did so for a porous volume's 21 MB of boxes whenever other
 /// work had moved the heap's top. Smaller groups stay on the heap.
+constexpr std::size_t HugePagesFromBytes = std::size_t(8) << 20;
 bool onHugePages(double bytes)
 {
-  return bytes >= 8.0 * 1024 * 1024;
+  return bytes >= double(HugePagesFromBytes);
 }
 
 constexpr std::size_t HugePage = std::size_t(2) << 20;
@@ -505,11 +506,12 @@ bool heldByTheFilterAlone(vtkAbstractArray* array)
 /// An array of the last update that the filter writes again (no one else holds it): what a
 /// new array would not have is dropped (cached ranges and other keys, a lookup table), and its
 /// values are marked modified.
-void prepareForNewValues(vtkDataArray* array)
+void prepareForNewValues(vtkAbstractArray* array)
 {
   if (array->HasInformation())
     array->GetInformation()->Clear();
-  array->SetLookupTable(nullptr);
+  if (auto* data = vtkDataArray::SafeDownCast(array))
+    data->SetLookupTable(nullptr);
   array->Modified();
 }
 
@@ -1059,7 +1061,7 @@ bool paintRegionsOfRuns(const ObjectBoxes& o,
 /// BlockCache keeps nothing) are kept by the filter for its next update: glibc returned their
 /// memory to the kernel, which faulted it in again at every update (a third of the painting of
 /// a 448 x 172 image).
-constexpr vtkIdType KeptRegionIdValues = vtkIdType(2) << 20;
+constexpr vtkIdType KeptRegionIdValues = vtkIdType(HugePagesFromBytes / sizeof(int));
 
 /// The RegionId image, its values unset, in memory of allocateTuples (an earlier update's,
 /// when one released it), or the image of the last update (`kept`) when nothing else holds it
@@ -1879,9 +1881,7 @@ struct Summary
     s->SetNumberOfValues(static_cast<vtkIdType>(this->sortings.size()));
     for (std::size_t k = 0; k < this->sortings.size(); ++k)
       s->SetValue(static_cast<vtkIdType>(k), this->sortings[k]);
-    if (s->HasInformation())
-      s->GetInformation()->Clear();
-    s->Modified();
+    prepareForNewValues(s);
     arrays.emplace_back(s);
     return arrays;
   }
