@@ -24,7 +24,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -692,31 +692,102 @@ int rectangleApexOf(const PointRange& pts, int u, int v, int sign)
 }
 } // namespace detail
 
+namespace
+{
+
+/// The index of (x, y) along the Hilbert curve through the side x side grid (side a power of
+/// two above x and y): points close along it are close in the plane.
+std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t side)
+{
+  std::uint64_t d = 0;
+  for (std::uint32_t s = side / 2; s > 0; s >>= 1)
+  {
+    const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += std::uint64_t(s) * s * ((3 * rx) ^ ry);
+    if (ry == 0) // turn the quadrant so that the curve runs on in it
+    {
+      if (rx == 1)
+      {
+        x = ~x;
+        y = ~y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+/// A corner of a face's loops, by its index there, with its place along the Hilbert curve.
+struct CornerCode
+{
+  std::uint64_t code;
+  int index;
+};
+
+/// The corners `at` (in the plane (u, v)) sorted along the Hilbert curve through their
+/// bounding square, stably: the corners at one location together, in the order of their
+/// indices.
+std::vector<CornerCode> cornersAlongHilbertCurve(const std::vector<Point3>& at, int u, int v)
+{
+  Coord uLo = std::numeric_limits<Coord>::max(), vLo = uLo, uHi = 0, vHi = 0;
+  for (const Point3& p : at)
+  {
+    uLo = std::min(uLo, p[u]);
+    vLo = std::min(vLo, p[v]);
+    uHi = std::max(uHi, p[u]);
+    vHi = std::max(vHi, p[v]);
+  }
+  const std::uint32_t span =
+    std::max(static_cast<std::uint32_t>(uHi - uLo), static_cast<std::uint32_t>(vHi - vLo));
+  std::uint32_t side = 2;
+  while (side <= span && side < (std::uint32_t(1) << 31))
+    side *= 2;
+  std::vector<CornerCode> corners(at.size());
+  for (std::size_t i = 0; i < at.size(); ++i)
+    corners[i] = { hilbertIndex(static_cast<std::uint32_t>(at[i][u] - uLo),
+                     static_cast<std::uint32_t>(at[i][v] - vLo),
+                     side),
+      static_cast<int>(i) };
+  radixSortBy(corners, [](const CornerCode& c) { return c.code; });
+  return corners;
+}
+
+} // namespace
+
 /// The loops of a face as the constraints of `cdt`, each vertex carrying the index (in the
-/// face's loop corners) of the first corner at its location. The distinct corners go in at
-/// once, spatially sorted by CGAL (one by one, each point location walks from the last
-/// vertex: quadratic on faces with many holes, such as a checkerboard's merged faces); the
-/// loop edges follow as constraints between their vertices.
+/// face's loop corners) of the first corner at its location. The distinct corners go in one
+/// by one along the Hilbert curve, each located from the vertex before it: the short walks of
+/// CGAL's spatial sort, from one radix sort that also brings the corners at one location
+/// together (on a face of millions of corners, a maze, a hash table of the locations and
+/// CGAL's sort took longer than the triangulation's flips). The loop edges follow as
+/// constraints between their vertices.
 void insertLoops(const BRep& brep, const BRepFace& face, int u, int v, Cdt& cdt)
 {
-  std::vector<std::pair<Kernel::Point_2, int>> distinct;
-  std::vector<int> firstAt; // per corner: the index of the first corner at its location
-  std::unordered_map<std::uint64_t, int> seen;
-  int index = 0;
+  std::vector<Point3> at;
   for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
-    for (const Point3& p : brep.loopPoints(l))
+  {
+    const PointRange pts = brep.loopPoints(l);
+    at.insert(at.end(), pts.begin(), pts.end());
+  }
+  const std::vector<CornerCode> sorted = cornersAlongHilbertCurve(at, u, v);
+  std::vector<int> firstAt(at.size()); // per corner: the first corner at its location
+  std::vector<Cdt::Vertex_handle> handleOf(at.size()); // by index of a first corner
+  Cdt::Face_handle hint;
+  for (std::size_t k = 0; k < sorted.size(); ++k)
+  {
+    const int index = sorted[k].index;
+    if (k > 0 && sorted[k].code == sorted[k - 1].code)
     {
-      const std::uint64_t key = pairKey(p[u], p[v]);
-      const auto found = seen.emplace(key, index);
-      if (found.second)
-        distinct.emplace_back(Kernel::Point_2(p[u], p[v]), index);
-      firstAt.push_back(found.first->second);
-      ++index;
+      firstAt[index] = firstAt[sorted[k - 1].index];
+      continue;
     }
-  cdt.insert(distinct.begin(), distinct.end());
-  std::vector<Cdt::Vertex_handle> handleOf(firstAt.size()); // by index of a first corner
-  for (auto vh = cdt.finite_vertices_begin(); vh != cdt.finite_vertices_end(); ++vh)
-    handleOf[vh->info()] = vh;
+    const Point3& p = at[index];
+    const Cdt::Vertex_handle vh = cdt.insert(Kernel::Point_2(p[u], p[v]), hint);
+    vh->info() = index;
+    firstAt[index] = index;
+    handleOf[index] = vh;
+    hint = vh->face();
+  }
   int start = 0;
   for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
   {
