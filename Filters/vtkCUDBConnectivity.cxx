@@ -632,7 +632,9 @@ struct alignas(64) Region : RegionStats
 /// The records of all regions, in sweep order (global region index), in one block of
 /// allocateBlock. Regions are numbered in the order of their first box or run, so a pass in
 /// that order starts each record when it first meets it (touch): the block is written once,
-/// not zeroed and then written.
+/// not zeroed and then written. The sizes are also kept apart, 8 bytes a region (noteSize):
+/// the numbering reads nothing else of a region without seeds, and read them a cache line of
+/// record each (64 MB on a checkerboard's million regions).
 class Regions
 {
 public:
@@ -640,6 +642,7 @@ public:
   explicit Regions(std::size_t count)
     : records(static_cast<Region*>(
         allocateBlock(count * sizeof(Region), onHugePages(double(count) * sizeof(Region)))))
+    , voxelCounts(newBlockArray<std::int64_t>(count))
     , count(count)
   {
     if (!this->records)
@@ -651,14 +654,22 @@ public:
   Region& operator[](std::size_t r) { return this->records[r]; }
   const Region& operator[](std::size_t r) const { return this->records[r]; }
   const Region* data() const { return this->records.get(); }
+  /// The voxel count of every region (as noted).
+  const std::int64_t* sizes() const { return this->voxelCounts.get(); }
 
   /// Region r, started with those before it that were not yet.
   Region& touch(std::size_t r)
   {
     while (this->started <= r)
+    {
+      this->voxelCounts[this->started] = 0;
       this->records[this->started++].start();
+    }
     return this->records[r];
   }
+
+  /// Notes the size of region r after voxels were added to its record.
+  void noteSize(std::size_t r) { this->voxelCounts[r] = this->records[r].voxels; }
 
   /// Starts the records not met (none when every region has a voxel).
   void startAll()
@@ -673,6 +684,7 @@ private:
     void operator()(Region* p) const { releaseBlock(p); }
   };
   std::unique_ptr<Region[], Free> records;
+  std::unique_ptr<std::int64_t[], BlockRelease> voxelCounts;
   std::size_t count = 0, started = 0;
 };
 
@@ -802,13 +814,14 @@ void measureRegionsOfRuns(const ObjectBoxes& o, Regions& regions)
           doubledX += length * (std::int64_t(runs[j].x0) + runs[j].x1 + 2 * dx);
           boxes += begins[j];
         } while (++j < end && label[j] == region);
-        regions.touch(o.firstRegion + region - 1)
-          .addRowRuns({ runs[i].x0 + dx, runs[j - 1].x1 + dx },
-            y + o.offset[1],
-            z + o.offset[2],
-            voxels,
-            doubledX,
-            boxes);
+        const std::size_t g = o.firstRegion + region - 1;
+        regions.touch(g).addRowRuns({ runs[i].x0 + dx, runs[j - 1].x1 + dx },
+          y + o.offset[1],
+          z + o.offset[2],
+          voxels,
+          doubledX,
+          boxes);
+        regions.noteSize(g);
         i = j;
       }
     }
@@ -855,8 +868,10 @@ void measureRegionsOfPixelRuns(const ObjectBoxes& o, Regions& regions)
         ++runBox;
         e += 2;
       } while (e != last && label[*runBox] == region);
-      regions.touch(o.firstRegion + region - 1)
-        .addRowRuns({ x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
+      const std::size_t g = o.firstRegion + region - 1;
+      regions.touch(g).addRowRuns(
+        { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
+      regions.noteSize(g);
     }
   }
 }
@@ -878,7 +893,11 @@ Regions measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t coun
       continue;
     }
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b) // labels start at 1
-      regions.touch(o.firstRegion + o.components.boxLabel[b] - 1).add(o.cudb.boxes[b], o.offset);
+    {
+      const std::size_t g = o.firstRegion + o.components.boxLabel[b] - 1;
+      regions.touch(g).add(o.cudb.boxes[b], o.offset);
+      regions.noteSize(g);
+    }
   }
   regions.startAll();
   return regions;
@@ -987,9 +1006,8 @@ void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
 
 /// Applies the region filters and numbers the kept regions: `ids` has the RegionId of every
 /// region (0 when removed), `rows` the region of each RegionId (row of the table, from 0).
-/// Returns how many are kept. The sizes are gathered once from the
-/// regions' records (a cache line each) for the passes that read nothing else: on images of
-/// many small regions (a halftone's 278,445) those passes read every record three times.
+/// Returns how many are kept. The sizes come from the regions' dense array of them, not from
+/// their records (a cache line each), which only seeds are read from.
 std::int32_t numberRegions(const Regions& regions,
   vtkIdType minimumSize,
   bool useSeeds,
@@ -998,9 +1016,7 @@ std::int32_t numberRegions(const Regions& regions,
   RegionIdList& ids,
   RegionList& rows)
 {
-  // Every value is written: not zeroed first (8 MB on a checkerboard).
-  const std::unique_ptr<std::int64_t[], BlockRelease> sizes(
-    newBlockArray<std::int64_t>(regions.size()));
+  const std::int64_t* sizes = regions.sizes();
   RegionList& kept = rows;
   kept.clear();
   kept.reserve(regions.size());
@@ -1010,7 +1026,7 @@ std::int32_t numberRegions(const Regions& regions,
   std::int64_t previous = std::numeric_limits<std::int64_t>::max();
   for (std::size_t r = 0; r < regions.size(); ++r)
   {
-    const std::int64_t size = sizes[r] = regions[r].voxels;
+    const std::int64_t size = sizes[r];
     if (size >= minimumSize && (!useSeeds || regions[r].seeded))
     {
       ranked = ranked && size <= previous;
@@ -1019,7 +1035,7 @@ std::int32_t numberRegions(const Regions& regions,
     }
   }
   if (!ranked)
-    rankBySize(sizes.get(), regions.size(), kept);
+    rankBySize(sizes, regions.size(), kept);
   if (largest > 0 && static_cast<std::size_t>(largest) < kept.size())
     kept.resize(static_cast<std::size_t>(largest));
   if (ordering == vtkCUDBConnectivity::SWEEP_ORDER)
@@ -1717,49 +1733,171 @@ struct RegionColumns
       (4 + 8 + 8 + 8 + 24 + 6 * 4 + 6 * 8 + vtkDataArray::GetDataTypeSize(labelType));
   }
 
-  /// Rows [0, regionOfRow.size()) (ids 1, 2, ...) from the statistics of their regions.
+  /// Rows [0, regionOfRow.size()) (ids 1, 2, ...) from the statistics of their regions. A
+  /// table larger than the last-level cache is written past the caches (streamed) in blocks of
+  /// RowBlock rows: its lines were read in before each write, half of the memory traffic of the
+  /// table of a million regions, which no one reads in this update.
   void write(const Regions& regions,
     const RegionList& regionOfRow,
     const vbr::vtk::VoxelGrid& grid,
     const std::array<int, 3>& axes,
     double voxelMeasure)
   {
-    int* ids = this->ids->GetPointer(0);
-    vtkIdType *voxels = this->voxels->GetPointer(0), *boxes = this->boxes->GetPointer(0);
-    double *volumes = this->volumes->GetPointer(0), *centroids = this->centroids->GetPointer(0);
+    const Columns out = this->pointers();
+    const RowWriter writer{ regions, regionOfRow, RowTransform(grid, axes), voxelMeasure };
+    const std::size_t rows = regionOfRow.size();
+    std::size_t row = 0;
+#ifdef VBR_STREAM_STORES
+    if (bytesOf(static_cast<vtkIdType>(rows), VTK_CHAR) >= StreamedTableBytes && out.aligned())
+    {
+      RowBlock block;
+      for (; row + RowBlock::Rows <= rows; row += RowBlock::Rows)
+      {
+        block.at = 0;
+        for (std::size_t k = 0; k < RowBlock::Rows; ++k)
+          writer.write(row + k, block.columns(), block.at++);
+        block.streamTo(out, row);
+      }
+      _mm_sfence(); // the streamed rows before anything reads them
+    }
+#endif
+    for (; row < rows; ++row)
+      writer.write(row, out, row);
+  }
+
+  /// Tables from this size (bytes of their rows) are streamed: larger than the last-level
+  /// cache of the machines measured (32 MiB), where nothing written stays for the next reader.
+  static constexpr double StreamedTableBytes = 32.0 * 1024.0 * 1024.0;
+
+  /// The columns' values, but the labels' (written by scatterLabel).
+  struct Columns
+  {
+    int* ids;
+    vtkIdType* voxels;
+    vtkIdType* boxes;
+    double* volumes;
+    double* centroids;
     std::array<std::int32_t*, 6> index;
     std::array<double*, 6> world;
+
+    /// Whether every column begins on a cache line (allocateTuples' blocks do): whole blocks
+    /// of rows are then whole lines of each column.
+    bool aligned() const
+    {
+      std::vector<const void*> all{
+        this->ids, this->voxels, this->boxes, this->volumes, this->centroids
+      };
+      all.insert(all.end(), this->index.begin(), this->index.end());
+      all.insert(all.end(), this->world.begin(), this->world.end());
+      return std::all_of(all.begin(),
+        all.end(),
+        [](const void* p) { return reinterpret_cast<std::uintptr_t>(p) % 64 == 0; });
+    }
+  };
+
+  Columns pointers()
+  {
+    Columns c{ this->ids->GetPointer(0),
+      this->voxels->GetPointer(0),
+      this->boxes->GetPointer(0),
+      this->volumes->GetPointer(0),
+      this->centroids->GetPointer(0),
+      {},
+      {} };
     for (int k = 0; k < 6; ++k)
     {
-      index[k] = this->indexBounds[k]->GetPointer(0);
-      world[k] = this->worldBounds[k]->GetPointer(0);
+      c.index[k] = this->indexBounds[k]->GetPointer(0);
+      c.world[k] = this->worldBounds[k]->GetPointer(0);
     }
-    // Rows in RegionId (size) order read the regions, in sweep order, at random: a maze's
-    // 642,115 rows waited for a cache miss each, so the region of a row further on is
-    // fetched ahead.
-    constexpr std::size_t Ahead = 16;
-    const RowTransform transform(grid, axes);
-    for (std::size_t row = 0; row < regionOfRow.size(); ++row)
+    return c;
+  }
+
+  /// Writes the row of a region into columns.
+  struct RowWriter
+  {
+    const Regions& regions;
+    const RegionList& regionOfRow;
+    RowTransform transform;
+    double voxelMeasure;
+
+    /// Row `row` of the table at position `at` of the columns `out`.
+    void write(std::size_t row, const Columns& out, std::size_t at) const
     {
-      if (row + Ahead < regionOfRow.size())
-        vbr::prefetch(&regions[regionOfRow[row + Ahead]]);
-      const Region& r = regions[regionOfRow[row]];
-      ids[row] = static_cast<int>(row + 1);
-      voxels[row] = r.voxels;
-      boxes[row] = r.boxes;
-      volumes[row] = static_cast<double>(r.voxels) * voxelMeasure;
+      // Rows in RegionId (size) order read the regions, in sweep order, at random: a maze's
+      // 642,115 rows waited for a cache miss each, so the region of a row further on is
+      // fetched ahead.
+      constexpr std::size_t Ahead = 16;
+      if (row + Ahead < this->regionOfRow.size())
+        vbr::prefetch(&this->regions[this->regionOfRow[row + Ahead]]);
+      const Region& r = this->regions[this->regionOfRow[row]];
+      out.ids[at] = static_cast<int>(row + 1);
+      out.voxels[at] = r.voxels;
+      out.boxes[at] = r.boxes;
+      out.volumes[at] = static_cast<double>(r.voxels) * this->voxelMeasure;
       std::int32_t indexBounds[6];
-      transform.indexBounds(r, indexBounds);
+      this->transform.indexBounds(r, indexBounds);
       double worldBounds[6];
-      transform.worldBounds(r, worldBounds);
+      this->transform.worldBounds(r, worldBounds);
       for (int k = 0; k < 6; ++k)
       {
-        index[k][row] = indexBounds[k];
-        world[k][row] = worldBounds[k];
+        out.index[k][at] = indexBounds[k];
+        out.world[k][at] = worldBounds[k];
       }
-      transform.centroid(r, centroids + 3 * row);
+      this->transform.centroid(r, out.centroids + 3 * at);
     }
-  }
+  };
+
+#ifdef VBR_STREAM_STORES
+  /// Rows staged in the cache, then streamed to the columns a whole line at a time: 16 rows
+  /// are one line of each 32-bit column and two of each 64-bit one.
+  struct RowBlock
+  {
+    static constexpr std::size_t Rows = 16;
+    alignas(64) int ids[Rows];
+    alignas(64) vtkIdType voxels[Rows];
+    alignas(64) vtkIdType boxes[Rows];
+    alignas(64) double volumes[Rows];
+    alignas(64) double centroids[3 * Rows];
+    alignas(64) std::int32_t index[6][Rows];
+    alignas(64) double world[6][Rows];
+    std::size_t at = 0;
+
+    Columns columns()
+    {
+      Columns c{ this->ids, this->voxels, this->boxes, this->volumes, this->centroids, {}, {} };
+      for (int k = 0; k < 6; ++k)
+      {
+        c.index[k] = this->index[k];
+        c.world[k] = this->world[k];
+      }
+      return c;
+    }
+
+    /// `bytes` (a multiple of 16) from `from` to `to` (16-byte aligned) past the caches.
+    static void stream(const void* from, void* to, std::size_t bytes)
+    {
+      const auto* source = static_cast<const __m128i*>(from);
+      auto* target = static_cast<__m128i*>(to);
+      for (std::size_t i = 0; i < bytes / 16; ++i)
+        _mm_stream_si128(target + i, _mm_load_si128(source + i));
+    }
+
+    /// The block's rows to rows [row, row + Rows) of `out`.
+    void streamTo(const Columns& out, std::size_t row) const
+    {
+      stream(this->ids, out.ids + row, sizeof(this->ids));
+      stream(this->voxels, out.voxels + row, sizeof(this->voxels));
+      stream(this->boxes, out.boxes + row, sizeof(this->boxes));
+      stream(this->volumes, out.volumes + row, sizeof(this->volumes));
+      stream(this->centroids, out.centroids + 3 * row, sizeof(this->centroids));
+      for (int k = 0; k < 6; ++k)
+      {
+        stream(this->index[k], out.index[k] + row, sizeof(this->index[k]));
+        stream(this->world[k], out.world[k] + row, sizeof(this->world[k]));
+      }
+    }
+  };
+#endif
 
   void addTo(vtkTable* table)
   {
@@ -1994,21 +2132,71 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   return true;
 }
 
+/// The memory of the run labelling of a 3D image kept from one update to the next: the runs
+/// and their labels of an image's only object, and the union-find and notes of every object.
+/// The next update of as many runs or fewer writes into it, where new blocks were faulted in
+/// and zeroed by the kernel at every update (glibc had returned them): on a 128^3
+/// checkerboard, 29 MB and about 1,500 page faults an update. Kept up to KeptBytes, between
+/// updates too (the price: the filter holds it while idle).
+struct RunMemory
+{
+  static constexpr std::size_t KeptBytes = std::size_t(128) << 20;
+  vbr::VoxelRuns voxelRuns;
+  vbr::RunComponents runComponents;
+  vbr::RunLabellingScratch scratch;
+
+  /// Takes the runs and labels of `o`, the update's only object, for the next update, or
+  /// frees them with the scratch when they are more than KeptBytes together.
+  void keep(ObjectBoxes& o)
+  {
+    this->voxelRuns = std::move(o.voxelRuns);
+    this->runComponents = std::move(o.runComponents);
+    this->limit();
+  }
+
+  /// Frees everything when more than KeptBytes is held.
+  void limit()
+  {
+    const std::size_t bytes = this->scratch.bytes() +
+      this->voxelRuns.runs.capacity() * sizeof(vbr::VoxelRun) +
+      this->voxelRuns.rowStarts.capacity() * sizeof(std::uint32_t) +
+      this->runComponents.runLabel.capacity() * sizeof(std::uint32_t) +
+      this->runComponents.beginsBox.capacity();
+    if (bytes > KeptBytes)
+      *this = RunMemory();
+  }
+};
+
 /// The components of a 3D object labelled on the runs of its rows, with the counts of the CUDB
 /// in the ZYX sorting and, `withBoxes`, its boxes and their labels (moved where the sweep would
-/// have put them); false when the object is empty or the work was aborted.
+/// have put them); false when the object is empty or the work was aborted. With `memory`, the
+/// scratch of the labelling comes from it and stays there, and the image's only object
+/// (`onlyObject`) writes its runs and labels into the vectors kept there.
 bool labelObjectRuns(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
   bool withBoxes,
+  bool onlyObject,
   const vbr::Execution& exec,
+  RunMemory* memory,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select voxels and label the runs of their rows");
   const vbr::BitVolume voxels = selected.select(exec.within(0.0, 0.2));
+  if (memory && onlyObject)
+  {
+    o.voxelRuns = std::move(memory->voxelRuns);
+    o.runComponents = std::move(memory->runComponents);
+  }
   if (!vbr::extractRuns(voxels, exec.within(0.2, 0.3), o.voxelRuns) || o.voxelRuns.empty())
     return false;
   vbr::RunComponents& c = o.runComponents;
-  if (!vbr::labelRuns(voxels, o.voxelRuns, connectivity, exec.within(0.3, 1.0), c, withBoxes))
+  if (!vbr::labelRuns(voxels,
+        o.voxelRuns,
+        connectivity,
+        exec.within(0.3, 1.0),
+        c,
+        withBoxes,
+        memory ? &memory->scratch : nullptr))
     return false;
   o.labelledFromRuns = true;
   o.extremeVertices = c.extremeVertices;
@@ -2038,6 +2226,7 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
   const Route& route,
   const vbr::Execution& exec,
+  RunMemory* memory,
   ObjectBoxes& o)
 {
   o.label = selected.label;
@@ -2045,7 +2234,8 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
   if (route.fromRuns && route.planar)
     return labelObjectPixelRuns(selected, connectivity, route.minimumPixelRuns, exec, o);
   if (route.fromRuns)
-    return labelObjectRuns(selected, connectivity, route.withBoxes, exec, o);
+    return labelObjectRuns(
+      selected, connectivity, route.withBoxes, route.onlyObject, exec, memory, o);
   if (route.planar)
     return boxesOfPixelRows(selected, sortings, connectivity, route.onlyObject, exec, o);
   vbr::EVM evm;
@@ -2070,7 +2260,8 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
 std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
   const vbr::vtk::InputObjects& in,
   std::vector<ObjectBoxes>& objects,
-  Summary& summary)
+  Summary& summary,
+  RunMemory* memory)
 {
   const bool planar = in.grid.flatAxis >= 0;
   const std::vector<vbr::AxisOrder> sortings =
@@ -2102,7 +2293,7 @@ std::uint32_t buildObjectBoxes(vtkCUDBConnectivity* self,
     const vbr::Execution exec =
       vbr::vtk::makeExecution(self, 0.05 + 0.65 * i / n, 0.05 + 0.65 * (i + 1) / n);
     ObjectBoxes o;
-    if (!boxesOfObject(in.objects[i], sortings, connectivity, route, exec, o))
+    if (!boxesOfObject(in.objects[i], sortings, connectivity, route, exec, memory, o))
       continue; // empty, or aborted
     o.firstRegion = regionCount;
     regionCount += o.componentCount();
@@ -2250,6 +2441,7 @@ struct vtkCUDBConnectivityKept
   std::unique_ptr<RegionColumns> columns;
   std::vector<vtkSmartPointer<vtkAbstractArray>> fields;
   vtkSmartPointer<vtkIntArray> regionIds; ///< a small RegionId image (paintRegions)
+  RunMemory runs;                         ///< the run labelling's memory
 };
 
 namespace
@@ -2476,7 +2668,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   // rank 0 has every object, from the EVMs of all ranks (see vtkVoxelBRepDistributed.h).
   Summary summary;
   std::vector<ObjectBoxes> objects;
-  const std::uint32_t regionCount = buildObjectBoxes(this, in, objects, summary);
+  const std::uint32_t regionCount = buildObjectBoxes(this, in, objects, summary, &this->Kept->runs);
   if (in.piece.distributed())
   {
     // The boxes and the table are whole on rank 0 and absent elsewhere: no ghost layer can be
@@ -2523,6 +2715,10 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   this->UpdateProgress(0.9);
   writeBoxesAndTable(
     this, in, objects, regions, regionIds, regionOfRow, summary, ports, *this->Kept);
+  if (objects.size() == 1 && objects[0].labelledFromRuns && in.objects.size() == 1)
+    this->Kept->runs.keep(objects[0]);
+  else
+    this->Kept->runs.limit();
   return 1;
 }
 

@@ -53,14 +53,31 @@ void reserveOnHugePages(std::vector<T>& v, std::size_t n)
 #endif
 }
 
-/// n copies of `value` in a new vector, on huge pages where they fill some.
+/// n values in `v`: in its memory when it has room (kept from an earlier labelling, already
+/// faulted in), else in a new block on huge pages where they fill some.
 template<typename T>
-std::vector<T> filledOnHugePages(std::size_t n, T value)
+void resizeOnHugePages(std::vector<T>& v, std::size_t n)
 {
-  std::vector<T> v;
-  reserveOnHugePages(v, n);
+  v.clear();
+  if (v.capacity() < n)
+  {
+    v = std::vector<T>();
+    reserveOnHugePages(v, n);
+  }
+  v.resize(n);
+}
+
+/// n copies of `value` in `v`, in its memory when it has room (as resizeOnHugePages).
+template<typename T>
+void fillOnHugePages(std::vector<T>& v, std::size_t n, T value)
+{
+  v.clear();
+  if (v.capacity() < n)
+  {
+    v = std::vector<T>();
+    reserveOnHugePages(v, n);
+  }
   v.assign(n, value);
-  return v;
 }
 
 /// The number of runs of a row of bits (the bits past the row's end are clear): its run starts,
@@ -150,17 +167,19 @@ struct CompactionNotes
   /// The three notes of every run in one block, large enough for whole huge pages where three
   /// blocks of a run each (2 MB on 50 % noise at 128^3) held none.
   std::vector<std::uint32_t> storage;
-  std::uint32_t* above;
-  std::uint32_t* below;
-  std::uint32_t* behind;
+  std::uint32_t* above = nullptr;
+  std::uint32_t* below = nullptr;
+  std::uint32_t* behind = nullptr;
 
-  explicit CompactionNotes(std::size_t n)
+  /// The notes of n runs in the memory of `memory` when it has room.
+  CompactionNotes(std::size_t n, std::vector<std::uint32_t>&& memory)
     : size(n)
-    , storage(filledOnHugePages(3 * n, None))
-    , above(storage.data())
-    , below(storage.data() + n)
-    , behind(storage.data() + 2 * n)
+    , storage(std::move(memory))
   {
+    fillOnHugePages(this->storage, 3 * n, None);
+    this->above = this->storage.data();
+    this->below = this->storage.data() + n;
+    this->behind = this->storage.data() + 2 * n;
   }
   CompactionNotes(const CompactionNotes&) = delete;
   CompactionNotes& operator=(const CompactionNotes&) = delete;
@@ -340,7 +359,8 @@ std::size_t buildBoxes(const VoxelRuns& r,
   const std::vector<std::uint32_t>& runLabel,
   std::vector<std::uint8_t>& begins,
   std::vector<Box>& boxes,
-  std::vector<std::uint32_t>& boxLabel)
+  std::vector<std::uint32_t>& boxLabel,
+  std::vector<std::uint32_t>& boxOfRun)
 {
   const std::size_t n = r.runs.size();
   begins.assign(n, 0);
@@ -351,7 +371,7 @@ std::size_t buildBoxes(const VoxelRuns& r,
   boxLabel = std::vector<std::uint32_t>();
   reserveOnHugePages(boxes, n);
   reserveOnHugePages(boxLabel, n);
-  std::vector<std::uint32_t> boxOfRun = filledOnHugePages(n, None);
+  fillOnHugePages(boxOfRun, n, None);
   const std::int32_t ny = r.dims[1], nz = r.dims[2];
   for (std::int32_t z = 0; z < nz; ++z)
     for (std::int32_t y = 0; y < ny; ++y)
@@ -510,9 +530,7 @@ bool extractRuns(const BitVolume& voxels, const Execution& exec, VoxelRuns& out)
     throw std::length_error(
       "labelling " + std::to_string(counts[rows]) + " runs of voxels: more than 2^32 - 2 runs");
   std::copy(counts.begin(), counts.end(), out.rowStarts.begin());
-  out.runs = std::vector<VoxelRun>();
-  reserveOnHugePages(out.runs, counts[rows]);
-  out.runs.resize(counts[rows]);
+  resizeOnHugePages(out.runs, counts[rows]);
   if (exec.stopRequested())
     return false;
   work.forRange(nz,
@@ -530,12 +548,32 @@ bool labelRuns(const BitVolume& voxels,
   Connectivity connectivity,
   const Execution& exec,
   RunComponents& out,
-  bool withBoxes)
+  bool withBoxes,
+  RunLabellingScratch* scratch)
 {
+  RunLabellingScratch local;
+  RunLabellingScratch& memory = scratch ? *scratch : local;
   const std::size_t n = runs.runs.size();
   const std::int32_t nz = runs.dims[2];
-  UnionFind uf(n);
-  CompactionNotes notes(n);
+  if (memory.parents.capacity() < n)
+  {
+    memory.parents = std::vector<std::uint32_t>();
+    reserveOnHugePages(memory.parents, n);
+  }
+  UnionFind uf(std::move(memory.parents), n);
+  CompactionNotes notes(n, std::move(memory.notes));
+  // The working memory goes back to `memory` however the labelling ends.
+  struct GiveBack
+  {
+    RunLabellingScratch& memory;
+    UnionFind& uf;
+    CompactionNotes& notes;
+    ~GiveBack()
+    {
+      this->memory.parents = this->uf.release();
+      this->memory.notes = std::move(this->notes.storage);
+    }
+  } giveBack{ memory, uf, notes };
   const int pieces = labellingPieces(n, nz, exec.concurrency);
   const bool united = pieces > 1 ? uniteInPieces(runs, connectivity, pieces, exec, uf, notes)
                                  : uniteSequentially(runs, connectivity, exec, uf, notes);
@@ -543,9 +581,7 @@ bool labelRuns(const BitVolume& voxels,
     return false;
   // The classes numbered from 1 in order of their first run (the root, met before the other
   // runs of its class).
-  out.runLabel = std::vector<std::uint32_t>();
-  reserveOnHugePages(out.runLabel, n);
-  out.runLabel.resize(n);
+  resizeOnHugePages(out.runLabel, n);
   out.count = 0;
   for (std::uint32_t i = 0; i < n; ++i)
   {
@@ -553,7 +589,8 @@ bool labelRuns(const BitVolume& voxels,
     out.runLabel[i] = root == i ? ++out.count : out.runLabel[root];
   }
   if (withBoxes)
-    out.boxCount = buildBoxes(runs, notes, out.runLabel, out.beginsBox, out.boxes, out.boxLabel);
+    out.boxCount = buildBoxes(
+      runs, notes, out.runLabel, out.beginsBox, out.boxes, out.boxLabel, memory.boxOfRun);
   else
   {
     out.boxCount = boxBeginnings(notes, out.beginsBox);

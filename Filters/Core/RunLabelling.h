@@ -82,19 +82,42 @@ struct RunComponents
   std::vector<std::uint32_t> boxLabel;
 };
 
+/// The working memory of labelRuns (its union-find, the compaction notes, the boxes of the
+/// runs), kept by a caller that labels one image after another and passed to every call: the
+/// next call of as many runs or fewer writes into it rather than into new blocks, which the
+/// allocator had often returned to the kernel in between and the kernel faulted in and zeroed
+/// again (with the outputs' vectors, two thirds of the page faults of an update of a 128^3
+/// checkerboard). extractRuns and labelRuns likewise write their outputs into the vectors of
+/// `out` when they are large enough.
+struct RunLabellingScratch
+{
+  std::vector<std::uint32_t> parents;
+  std::vector<std::uint32_t> notes;
+  std::vector<std::uint32_t> boxOfRun;
+
+  /// The bytes held.
+  std::size_t bytes() const
+  {
+    return (this->parents.capacity() + this->notes.capacity() + this->boxOfRun.capacity()) *
+      sizeof(std::uint32_t);
+  }
+};
+
 /// Labels the runs of `voxels` (as extractRuns gave them) with `connectivity`, and counts the
 /// CUDB's boxes, the OUDB's and the EVM's vertices. With several threads (exec.concurrency) and
 /// many runs, pieces of consecutive planes are labelled concurrently and then joined; the
 /// result is the same. Asks `exec` whether to stop every few planes and reports its progress;
 /// returns false when aborted. With `withBoxes`, builds the CUDB's boxes too (RunComponents::
 /// boxes): a box is a rectangle (a run and the chain of equal runs in the rows after it), grown
-/// through the planes after it while they hold an equal rectangle.
+/// through the planes after it while they hold an equal rectangle. With `scratch`, its working
+/// memory comes from there and is left there.
 bool labelRuns(const BitVolume& voxels,
   const VoxelRuns& runs,
   Connectivity connectivity,
   const Execution& exec,
   RunComponents& out,
-  bool withBoxes = false);
+  bool withBoxes = false,
+  RunLabellingScratch* scratch = nullptr);
 
 /// Writes value[runLabel[i]] into every voxel of run i (value 0 are skipped) of `labels`, a grid
 /// of `dims` voxels stored x fastest, the runs' voxel (x, y, z) at (x, y, z) + offset. Voxels of

@@ -28,6 +28,24 @@ public:
     std::iota(this->Parent.begin(), this->Parent.end(), 0u);
   }
 
+  /// Elements 0 .. n - 1, each alone in its class, in the memory of `storage` (its values are
+  /// replaced): a caller labelling one image after another hands the same memory back (release)
+  /// rather than having the pages of a new block faulted in again.
+  UnionFind(std::vector<std::uint32_t>&& storage, std::size_t n)
+    : Parent(std::move(storage))
+  {
+    this->Parent.resize(n);
+    std::iota(this->Parent.begin(), this->Parent.end(), 0u);
+  }
+
+  /// The memory of the elements, for another UnionFind; this one is left empty.
+  std::vector<std::uint32_t> release()
+  {
+    std::vector<std::uint32_t> storage = std::move(this->Parent);
+    this->Parent.clear();
+    return storage;
+  }
+
   /// A new element, alone in its class; its number is size() - 1.
   std::uint32_t add()
   {

@@ -309,6 +309,53 @@ TEST(RunLabelling, ThreadsChangeNothing)
   }
 }
 
+TEST(RunLabelling, KeptMemoryChangesNothing)
+{
+  // One set of output vectors and one scratch for a sequence of volumes, each larger or smaller
+  // than the one before (memory with room and the last volume's values in it, or too small),
+  // threads or not: every labelling is the flood fill's, with the CUDB's counts and boxes.
+  const vbr::Point3 sizes[] = {
+    { 40, 30, 20 }, { 5, 4, 3 }, { 23, 21, 19 }, { 1, 1, 1 }, { 70, 9, 6 }, { 17, 9, 6 }
+  };
+  vbr::VoxelRuns runs;
+  vbr::RunComponents components;
+  vbr::RunLabellingScratch scratch;
+  unsigned seed = 500;
+  for (int threads : { 1, 3 })
+    for (const vbr::Point3& d : sizes)
+      for (bool vertex : { false, true })
+        for (bool withBoxes : { false, true })
+        {
+          const double density = 0.15 + 0.2 * (seed % 4);
+          const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+          SCOPED_TRACE("seed " + std::to_string(seed - 1) + (vertex ? " vertex" : " face") +
+            (withBoxes ? " boxes" : "") + " threads " + std::to_string(threads));
+          const vbr::Execution exec =
+            threads > 1 ? bf::threadedExecution(threads) : vbr::Execution();
+          const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+          ASSERT_TRUE(vbr::extractRuns(v, exec, runs));
+          ASSERT_TRUE(vbr::labelRuns(v, runs, c, exec, components, withBoxes, &scratch));
+          Labelled kept{ runs, components, std::vector<std::int32_t>(v.voxelCount(), 0) };
+          std::vector<std::int32_t> value(components.count + 1);
+          for (std::size_t l = 0; l < value.size(); ++l)
+            value[l] = static_cast<std::int32_t>(l);
+          ASSERT_TRUE(vbr::paintRuns(
+            runs, components.runLabel, value, { 0, 0, 0 }, v.dims(), kept.grid.data()));
+          expectFloodFillLabels(v, vertex, kept);
+          if (withBoxes)
+          {
+            expectCUDBCounts(v, c, kept);
+            continue;
+          }
+          const vbr::EVM evm = vbr::extractEVM(v);
+          const vbr::CUDB cudb = vbr::buildCUDB(evm);
+          EXPECT_EQ(components.boxCount, cudb.boxes.size());
+          EXPECT_EQ(components.oudbBoxCount, cudb.oudbBoxCount);
+          EXPECT_EQ(components.extremeVertices, evm.size());
+          EXPECT_TRUE(components.boxes.empty() && components.boxLabel.empty());
+        }
+}
+
 TEST(RunLabelling, PaintsAtAnOffsetAndSkipsZero)
 {
   vbr::BitVolume v(4, 3, 2);
