@@ -279,9 +279,9 @@ public:
   {
     if (!this->Prepared)
       return;
-    std::vector<vbr::Point2L> corners;
+    Scratch scratch;
     for (std::size_t c = this->Made.size(); c-- > 0;)
-      if (!this->makeChunk(o, c, corners))
+      if (!this->makeChunk(o, c, scratch))
         return;
   }
 
@@ -505,18 +505,26 @@ private:
                          : static_cast<unsigned char>(e0 | (e1 << 1) | (e2 << 2));
   }
 
-  /// The triangles of face f's polygon (indices into it), simple in the projection along the
-  /// face's normal; empty when it does not triangulate. `corners` is scratch.
-  static std::vector<vbr::Triangle> triangulateFace(const ObjectFaces& o,
+  /// What one thread's triangulation of the faces reuses from face to face.
+  struct Scratch
+  {
+    std::vector<vbr::Point2L> corners;
+    vbr::PolygonTriangulator triangulator;
+  };
+
+  /// Appends the triangles of face f's polygon (indices into it), simple in the projection
+  /// along the face's normal, to `triangles`; none when it does not triangulate.
+  static void triangulateFace(const ObjectFaces& o,
     std::uint32_t f,
     const vbr::IdRange& polygon,
-    std::vector<vbr::Point2L>& corners)
+    Scratch& scratch,
+    std::vector<vbr::Triangle>& triangles)
   {
     const vbr::ProjectionAlong project(o.poly.faces[f].plane.normal);
-    corners.clear();
+    scratch.corners.clear();
     for (std::uint32_t v : polygon)
-      corners.push_back(project(o.graph.vertexPointel[v]));
-    return vbr::triangulateSimplePolygon(corners);
+      scratch.corners.push_back(project(o.graph.vertexPointel[v]));
+    scratch.triangulator.triangulate(scratch.corners, triangles);
   }
 
   /// The polygon of face f that the triangulating modes draw: its semi-discrete polygon
@@ -544,7 +552,9 @@ private:
       const vbr::IdRange polygon = this->polygonOf(o, f);
       if (!this->Prepared)
       {
-        const std::vector<vbr::Triangle> made = triangulateFace(o, f, polygon, this->Corners);
+        std::vector<vbr::Triangle>& made = this->FaceTriangles;
+        made.clear();
+        triangulateFace(o, f, polygon, this->Triangulation, made);
         this->addTriangulatedFace(o, f, polygon, made.data(), made.size(), markLoops);
         continue;
       }
@@ -556,7 +566,7 @@ private:
           std::vector<vbr::Triangle>().swap(this->Made[c - 1]); // written: freed
         // Made here, unless the helper has taken it: then waited for (made here if given back).
         while (this->ChunkState[c].load(std::memory_order_acquire) != Made_)
-          if (!this->makeChunk(o, c, this->Corners))
+          if (!this->makeChunk(o, c, this->Triangulation))
             std::this_thread::yield();
       }
       const std::size_t first = this->MadeFirst[f];
@@ -569,7 +579,7 @@ private:
   }
 
   /// Makes the triangles of chunk c unless another thread has taken it; false when it had.
-  bool makeChunk(const ObjectFaces& o, std::size_t c, std::vector<vbr::Point2L>& corners)
+  bool makeChunk(const ObjectFaces& o, std::size_t c, Scratch& scratch)
   {
     int untaken = Untaken;
     if (!this->ChunkState[c].compare_exchange_strong(untaken, Taken, std::memory_order_acq_rel))
@@ -580,10 +590,8 @@ private:
       for (std::size_t f = c * FacesPerChunk; f < end; ++f)
       {
         const auto face = static_cast<std::uint32_t>(f);
-        const std::vector<vbr::Triangle> triangles =
-          triangulateFace(o, face, this->polygonOf(o, face), corners);
         this->MadeFirst[f] = this->Made[c].size();
-        this->Made[c].insert(this->Made[c].end(), triangles.begin(), triangles.end());
+        triangulateFace(o, face, this->polygonOf(o, face), scratch, this->Made[c]);
       }
     }
     catch (...)
@@ -865,8 +873,9 @@ private:
   const vbr::vtk::VoxelGrid& Grid;
   const bool Reverse;
   vtkIdType FaceBase = 0;
-  PointIds Ids;                      ///< of the object's vertices
-  std::vector<vbr::Point2L> Corners; ///< in addTriangulatedFaces
+  PointIds Ids;                             ///< of the object's vertices
+  Scratch Triangulation;                    ///< addTriangulatedFaces' triangulation
+  std::vector<vbr::Triangle> FaceTriangles; ///< a face's triangles, in addTriangulatedFaces
   /// The object's semi-discrete polygons, while its faces are triangulated and written.
   std::vector<std::vector<std::uint32_t>> Polygons;
   /// After prepare, the triangles of each chunk of FacesPerChunk faces (each face's from

@@ -1,11 +1,14 @@
 // Exact ear clipping of simple polygons (see the header for why it is correct), and the
-// tests of simplicity and fan cover, on integer corners with 128-bit products (Wide).
+// tests of simplicity and fan cover, on integer corners with 128-bit products (Wide; the ear
+// clipping in 64 bits when every corner lies within 2^30, see cross2).
 //
-// triangulateSimplePolygon first parts the polygon at corners where it touches itself into
-// two counter-clockwise loops (triangulatePiece: the doubled areas of the two loops, from a
-// prefix sum, tell whether the corner joins two pieces), then ear-clips each piece on a
-// doubly linked ring (EarClipper), testing only the corners that do not turn left (the
-// blockers). isSimplePolygon compares every pair of non-adjacent edges (segmentsMeet).
+// PolygonTriangulator first parts the polygon at corners where it touches itself into two
+// counter-clockwise loops (splitAtTouchingCorner: the doubled areas of the two loops, from a
+// prefix sum, tell whether the corner joins two pieces; looked for only when a hash of the
+// corners finds one repeated), then ear-clips each piece on a doubly linked ring (clipEars),
+// testing only the corners that do not turn left (the blockers), kept sorted by x so that an
+// ear reads only those in its bounding box's columns. isSimplePolygon compares every pair of
+// non-adjacent edges (segmentsMeet).
 
 #include "PolygonTriangulator.h"
 
@@ -20,10 +23,21 @@ namespace vbr
 namespace
 {
 
-/// Whether p lies in the closed counter-clockwise triangle abc.
+/// Whether p lies in the closed counter-clockwise triangle abc (products in Int, see cross2).
+template<typename Int = Wide>
 bool inClosedTriangle(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& p)
 {
-  return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
+  return cross2<Int>(a, b, p) >= 0 && cross2<Int>(b, c, p) >= 0 && cross2<Int>(c, a, p) >= 0;
+}
+
+/// Whether every coordinate lies in [-2^30, 2^30), where cross2 is exact in 64 bits.
+bool fitsIn64BitProducts(const std::vector<Point2L>& points)
+{
+  constexpr std::int64_t limit = std::int64_t(1) << 30;
+  for (const Point2L& p : points)
+    if (p[0] < -limit || p[0] >= limit || p[1] < -limit || p[1] >= limit)
+      return false;
+  return true;
 }
 
 /// Whether p, known to be collinear with segment ab, lies on it.
@@ -42,167 +56,6 @@ bool segmentsMeet(const Point2L& a, const Point2L& b, const Point2L& c, const Po
     return true;
   return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) ||
     (o3 == 0 && onSegment(c, d, a)) || (o4 == 0 && onSegment(c, d, b));
-}
-
-/// The ear clipping of the file comment on a doubly linked ring of corners.
-class EarClipper
-{
-public:
-  explicit EarClipper(const std::vector<Point2L>& corners)
-    : P(corners)
-    , Next(corners.size())
-    , Prev(corners.size())
-    , Convex(corners.size())
-    , Alive(corners.size(), 1)
-  {
-    const int n = static_cast<int>(corners.size());
-    for (int i = 0; i < n; ++i)
-    {
-      this->Next[i] = (i + 1) % n;
-      this->Prev[i] = (i + n - 1) % n;
-    }
-    for (int i = 0; i < n; ++i)
-    {
-      this->updateConvexity(i);
-      if (!this->Convex[i])
-        this->Blockers.push_back(i);
-    }
-  }
-
-  bool run(std::vector<Triangle>& triangles)
-  {
-    int remaining = static_cast<int>(this->P.size());
-    int b = 0;
-    int misses = 0; // corners tested since the last ear
-    while (remaining > 3)
-    {
-      if (!this->isEar(b))
-      {
-        b = this->Next[b];
-        if (++misses > remaining)
-          return false; // no ear: not a simple counter-clockwise polygon
-        continue;
-      }
-      const int a = this->Prev[b], c = this->Next[b];
-      triangles.push_back({ a, b, c });
-      this->Next[a] = c;
-      this->Prev[c] = a;
-      this->Alive[b] = 0;
-      this->updateConvexity(a);
-      this->updateConvexity(c);
-      --remaining;
-      misses = 0;
-      b = c;
-    }
-    const int a = this->Prev[b], c = this->Next[b];
-    if (cross2(this->P[a], this->P[b], this->P[c]) <= 0)
-      return false;
-    triangles.push_back({ a, b, c });
-    return true;
-  }
-
-private:
-  void updateConvexity(int i)
-  {
-    this->Convex[i] = cross2(this->P[this->Prev[i]], this->P[i], this->P[this->Next[i]]) > 0;
-  }
-
-  bool isEar(int b)
-  {
-    if (!this->Convex[b])
-      return false;
-    const int a = this->Prev[b], c = this->Next[b];
-    // The triangle's bounding box: most blockers fall outside it, decided without products.
-    const Point2L lo{ std::min({ this->P[a][0], this->P[b][0], this->P[c][0] }),
-      std::min({ this->P[a][1], this->P[b][1], this->P[c][1] }) };
-    const Point2L hi{ std::max({ this->P[a][0], this->P[b][0], this->P[c][0] }),
-      std::max({ this->P[a][1], this->P[b][1], this->P[c][1] }) };
-    std::size_t stale = 0;
-    for (int k : this->Blockers)
-    {
-      if (!this->Alive[k] || this->Convex[k])
-      {
-        ++stale;
-        continue;
-      }
-      // A corner at the same place as one of the ear's (where the boundary touches itself)
-      // leaves that place on the other side: it does not block the ear.
-      const Point2L& q = this->P[k];
-      if (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] || q[1] > hi[1])
-        continue;
-      if (q != this->P[a] && q != this->P[b] && q != this->P[c] &&
-        inClosedTriangle(this->P[a], this->P[b], this->P[c], q))
-        return false;
-    }
-    if (2 * stale > this->Blockers.size()) // corners only ever become convex or go
-    {
-      this->Blockers.erase(std::remove_if(this->Blockers.begin(),
-                             this->Blockers.end(),
-                             [&](int k) { return !this->Alive[k] || this->Convex[k]; }),
-        this->Blockers.end());
-    }
-    return true;
-  }
-
-  const std::vector<Point2L>& P;
-  std::vector<int> Next, Prev;
-  std::vector<char> Convex, Alive;
-  std::vector<int> Blockers; ///< corners that did not turn left when last looked at
-};
-
-/// Triangles of one piece of the polygon (indices into `corners`, in order). Where the
-/// piece touches itself at a corner so that the two loops it parts into there both run
-/// counter-clockwise (two pieces joined at that corner), each loop is triangulated alone:
-/// ear clipping would cut across the gap between them. The loops parted where one runs
-/// inside the other (a hole reaching the boundary) or along a slit stay together.
-bool triangulatePiece(const std::vector<Point2L>& corners,
-  const std::vector<int>& piece,
-  std::vector<Triangle>& triangles)
-{
-  const std::size_t n = piece.size();
-  std::vector<Wide> prefix(n + 1, 0); // doubled area swept by the first edges
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Point2L& p = corners[piece[i]];
-    const Point2L& q = corners[piece[(i + 1) % n]];
-    prefix[i + 1] = prefix[i] + Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
-  }
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-    order[i] = i;
-  std::sort(order.begin(),
-    order.end(),
-    [&](std::size_t a, std::size_t b)
-    { return std::make_pair(corners[piece[a]], a) < std::make_pair(corners[piece[b]], b); });
-  for (std::size_t s = 0, e = 0; s < n; s = e)
-  {
-    for (e = s + 1; e < n && corners[piece[order[e]]] == corners[piece[order[s]]]; ++e)
-      ;
-    for (std::size_t a = s; a < e; ++a)
-      for (std::size_t b = a + 1; b < e; ++b)
-      {
-        const std::size_t i = order[a], j = order[b]; // i < j: the loop i .. j - 1 and the rest
-        const Wide inner = prefix[j] - prefix[i];
-        if (inner <= 0 || prefix[n] - inner <= 0)
-          continue;
-        const std::vector<int> first(piece.begin() + i, piece.begin() + j);
-        std::vector<int> second(piece.begin() + j, piece.end());
-        second.insert(second.end(), piece.begin(), piece.begin() + i);
-        return triangulatePiece(corners, first, triangles) &&
-          triangulatePiece(corners, second, triangles);
-      }
-  }
-  std::vector<Point2L> points(n);
-  for (std::size_t i = 0; i < n; ++i)
-    points[i] = corners[piece[i]];
-  std::vector<Triangle> local;
-  local.reserve(n - 2);
-  EarClipper clipper(points);
-  if (!clipper.run(local))
-    return false;
-  for (const Triangle& t : local)
-    triangles.push_back({ piece[t[0]], piece[t[1]], piece[t[2]] });
-  return true;
 }
 
 } // namespace
@@ -244,15 +97,249 @@ bool isSimplePolygon(const std::vector<Point2L>& corners)
 std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corners)
 {
   std::vector<Triangle> triangles;
-  if (corners.size() < 3 || doubledArea(corners) <= 0)
-    return triangles;
-  triangles.reserve(corners.size() - 2);
-  std::vector<int> all(corners.size());
-  for (std::size_t i = 0; i < all.size(); ++i)
-    all[i] = static_cast<int>(i);
-  if (!triangulatePiece(corners, all, triangles))
-    triangles.clear();
+  if (corners.size() >= 3)
+    triangles.reserve(corners.size() - 2);
+  PolygonTriangulator().triangulate(corners, triangles);
   return triangles;
+}
+
+bool PolygonTriangulator::triangulate(const std::vector<Point2L>& corners,
+  std::vector<Triangle>& triangles)
+{
+  if (corners.size() < 3 || doubledArea(corners) <= 0)
+    return false;
+  const std::size_t before = triangles.size();
+  this->All.resize(corners.size());
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    this->All[i] = static_cast<int>(i);
+  if (this->piece(corners, this->All, triangles))
+    return true;
+  triangles.resize(before);
+  return false;
+}
+
+/// Triangles of one piece of the polygon (indices into `corners`, in order). Where the
+/// piece touches itself at a corner so that the two loops it parts into there both run
+/// counter-clockwise (two pieces joined at that corner), each loop is triangulated alone:
+/// ear clipping would cut across the gap between them. The loops parted where one runs
+/// inside the other (a hole reaching the boundary) or along a slit stay together.
+bool PolygonTriangulator::piece(const std::vector<Point2L>& corners,
+  const std::vector<int>& piece,
+  std::vector<Triangle>& triangles)
+{
+  bool triangulated = false;
+  if (this->hasRepeatedCorner(corners, piece) &&
+    this->splitAtTouchingCorner(corners, piece, triangles, triangulated))
+    return triangulated;
+  return this->clipEars(corners, piece, triangles);
+}
+
+/// Whether two corners of the piece are at the same place: pairwise for a few corners, else
+/// through a hash table of the corners (open addressing, slots of an earlier call told apart
+/// by their mark, so the table is never cleared).
+bool PolygonTriangulator::hasRepeatedCorner(const std::vector<Point2L>& corners,
+  const std::vector<int>& piece)
+{
+  const std::size_t n = piece.size();
+  if (n <= 12)
+  {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (corners[piece[i]] == corners[piece[j]])
+          return true;
+    return false;
+  }
+  int bits = 1;
+  while ((std::size_t(1) << bits) < 2 * n)
+    ++bits;
+  const std::size_t size = std::size_t(1) << bits, mask = size - 1;
+  if (this->Slots.size() < size)
+  {
+    this->Slots.resize(size);
+    this->SlotMark.assign(size, 0);
+    this->Mark = 0;
+  }
+  if (++this->Mark == 0) // wrapped: forget every mark
+  {
+    std::fill(this->SlotMark.begin(), this->SlotMark.end(), 0);
+    this->Mark = 1;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point2L& p = corners[piece[i]];
+    const std::uint64_t h = static_cast<std::uint64_t>(p[0]) * 0x9E3779B97F4A7C15ull ^
+      static_cast<std::uint64_t>(p[1]) * 0xC2B2AE3D27D4EB4Full;
+    for (std::size_t slot = (h >> (64 - bits)) & mask;; slot = (slot + 1) & mask)
+    {
+      if (this->SlotMark[slot] != this->Mark)
+      {
+        this->SlotMark[slot] = this->Mark;
+        this->Slots[slot] = static_cast<std::uint32_t>(i);
+        break;
+      }
+      if (corners[piece[this->Slots[slot]]] == p)
+        return true;
+    }
+  }
+  return false;
+}
+
+/// The parting of `piece` at a repeated corner into two counter-clockwise loops, each
+/// triangulated alone (`triangulated` tells whether both were); false when no repeated corner
+/// parts it so. Pairs are tried in the order of their place, then of their indices.
+bool PolygonTriangulator::splitAtTouchingCorner(const std::vector<Point2L>& corners,
+  const std::vector<int>& piece,
+  std::vector<Triangle>& triangles,
+  bool& triangulated)
+{
+  const std::size_t n = piece.size();
+  std::vector<Wide> prefix(n + 1, 0); // doubled area swept by the first edges
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Point2L& p = corners[piece[i]];
+    const Point2L& q = corners[piece[(i + 1) % n]];
+    prefix[i + 1] = prefix[i] + Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = i;
+  std::sort(order.begin(),
+    order.end(),
+    [&](std::size_t a, std::size_t b)
+    { return std::make_pair(corners[piece[a]], a) < std::make_pair(corners[piece[b]], b); });
+  for (std::size_t s = 0, e = 0; s < n; s = e)
+  {
+    for (e = s + 1; e < n && corners[piece[order[e]]] == corners[piece[order[s]]]; ++e)
+      ;
+    for (std::size_t a = s; a < e; ++a)
+      for (std::size_t b = a + 1; b < e; ++b)
+      {
+        const std::size_t i = order[a], j = order[b]; // i < j: the loop i .. j - 1 and the rest
+        const Wide inner = prefix[j] - prefix[i];
+        if (inner <= 0 || prefix[n] - inner <= 0)
+          continue;
+        const std::vector<int> first(piece.begin() + i, piece.begin() + j);
+        std::vector<int> second(piece.begin() + j, piece.end());
+        second.insert(second.end(), piece.begin(), piece.begin() + i);
+        triangulated =
+          this->piece(corners, first, triangles) && this->piece(corners, second, triangles);
+        return true;
+      }
+  }
+  return false;
+}
+
+/// The ear clipping of the file comment on a doubly linked ring of the piece's corners.
+bool PolygonTriangulator::clipEars(const std::vector<Point2L>& corners,
+  const std::vector<int>& piece,
+  std::vector<Triangle>& triangles)
+{
+  const int n = static_cast<int>(piece.size());
+  this->P.resize(piece.size());
+  for (int i = 0; i < n; ++i)
+    this->P[i] = corners[piece[i]];
+  this->Next.resize(piece.size());
+  this->Prev.resize(piece.size());
+  this->Convex.resize(piece.size());
+  this->Alive.assign(piece.size(), 1);
+  for (int i = 0; i < n; ++i)
+  {
+    this->Next[i] = i + 1 == n ? 0 : i + 1;
+    this->Prev[i] = i == 0 ? n - 1 : i - 1;
+  }
+  this->Narrow = fitsIn64BitProducts(this->P);
+  this->Blockers.clear();
+  for (int i = 0; i < n; ++i)
+  {
+    this->Convex[i] = this->turnsLeft(this->Prev[i], i, this->Next[i]);
+    if (!this->Convex[i])
+      this->Blockers.push_back({ this->P[i][0], this->P[i][1], i });
+  }
+  std::sort(this->Blockers.begin(),
+    this->Blockers.end(),
+    [](const Blocker& l, const Blocker& r) { return l.x < r.x; });
+  this->Stale = 0;
+  int remaining = n;
+  int b = 0;
+  int misses = 0; // corners tested since the last ear
+  while (remaining > 3)
+  {
+    if (!this->isEar(b))
+    {
+      b = this->Next[b];
+      if (++misses > remaining)
+        return false; // no ear: not a simple counter-clockwise polygon
+      continue;
+    }
+    const int a = this->Prev[b], c = this->Next[b];
+    triangles.push_back({ piece[a], piece[b], piece[c] });
+    this->Next[a] = c;
+    this->Prev[c] = a;
+    this->Alive[b] = 0;
+    this->updateConvexity(a);
+    this->updateConvexity(c);
+    --remaining;
+    misses = 0;
+    b = c;
+  }
+  const int a = this->Prev[b], c = this->Next[b];
+  if (!this->turnsLeft(a, b, c))
+    return false;
+  triangles.push_back({ piece[a], piece[b], piece[c] });
+  return true;
+}
+
+/// Corner i's convexity after a neighbour was cut off; a blocker that turns left is stale.
+void PolygonTriangulator::updateConvexity(int i)
+{
+  const bool was = this->Convex[i] != 0;
+  this->Convex[i] = this->turnsLeft(this->Prev[i], i, this->Next[i]);
+  if (!was && this->Convex[i])
+    ++this->Stale;
+}
+
+/// Whether corner b is an ear: convex, and no blocker in the closed triangle of b and its
+/// neighbours but at their own places. Only the blockers in the columns of the triangle's
+/// bounding box are read (a binary search in the blockers by x); the stale ones are swept
+/// out once they are half of the list.
+bool PolygonTriangulator::isEar(int b)
+{
+  if (!this->Convex[b])
+    return false;
+  const int a = this->Prev[b], c = this->Next[b];
+  const Point2L &pa = this->P[a], &pb = this->P[b], &pc = this->P[c];
+  const std::int64_t loX = std::min({ pa[0], pb[0], pc[0] }),
+                     hiX = std::max({ pa[0], pb[0], pc[0] });
+  const std::int64_t loY = std::min({ pa[1], pb[1], pc[1] }),
+                     hiY = std::max({ pa[1], pb[1], pc[1] });
+  auto k = std::lower_bound(this->Blockers.begin(),
+    this->Blockers.end(),
+    loX,
+    [](const Blocker& l, std::int64_t x) { return l.x < x; });
+  for (; k != this->Blockers.end() && k->x <= hiX; ++k)
+  {
+    // Without branches: most blockers of the columns are outside the box, unpredictably.
+    const bool inBox = (k->y >= loY) & (k->y <= hiY);
+    if (!inBox || !this->Alive[k->corner] || this->Convex[k->corner])
+      continue;
+    // A corner at the same place as one of the ear's (where the boundary touches itself)
+    // leaves that place on the other side: it does not block the ear.
+    const Point2L q{ k->x, k->y };
+    if (q != pa && q != pb && q != pc &&
+      (this->Narrow ? inClosedTriangle<std::int64_t>(pa, pb, pc, q)
+                    : inClosedTriangle(pa, pb, pc, q)))
+      return false;
+  }
+  if (2 * this->Stale > this->Blockers.size())
+  {
+    this->Blockers.erase(
+      std::remove_if(this->Blockers.begin(),
+        this->Blockers.end(),
+        [&](const Blocker& k) { return !this->Alive[k.corner] || this->Convex[k.corner]; }),
+      this->Blockers.end());
+    this->Stale = 0;
+  }
+  return true;
 }
 
 bool fanCoversPolygon(const std::vector<Point2L>& corners, std::size_t apex)

@@ -74,6 +74,57 @@ bool isSimplePolygon(const std::vector<Point2L>& corners);
 /// counter-clockwise).
 std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corners);
 
+/// triangulateSimplePolygon with its working memory kept between calls (a caller that
+/// triangulates many polygons, such as every face of a polyhedrization, allocates nothing per
+/// polygon once the arrays have grown). The same triangles in the same order.
+class PolygonTriangulator
+{
+public:
+  /// Appends triangulateSimplePolygon(corners) to `triangles`; false, with nothing appended,
+  /// when that is empty.
+  bool triangulate(const std::vector<Point2L>& corners, std::vector<Triangle>& triangles);
+
+private:
+  struct Blocker
+  {
+    std::int64_t x, y;
+    int corner;
+  };
+  bool piece(const std::vector<Point2L>& corners,
+    const std::vector<int>& piece,
+    std::vector<Triangle>& triangles);
+  bool hasRepeatedCorner(const std::vector<Point2L>& corners, const std::vector<int>& piece);
+  bool splitAtTouchingCorner(const std::vector<Point2L>& corners,
+    const std::vector<int>& piece,
+    std::vector<Triangle>& triangles,
+    bool& triangulated);
+  bool clipEars(const std::vector<Point2L>& corners,
+    const std::vector<int>& piece,
+    std::vector<Triangle>& triangles);
+  bool isEar(int b);
+  /// Whether corners a, b, c of the piece turn strictly left (in 64-bit products when Narrow).
+  bool turnsLeft(int a, int b, int c) const
+  {
+    return this->Narrow ? cross2<std::int64_t>(this->P[a], this->P[b], this->P[c]) > 0
+                        : cross2(this->P[a], this->P[b], this->P[c]) > 0;
+  }
+  void updateConvexity(int i);
+
+  std::vector<int> All;            ///< the corners' indices, the first piece
+  std::vector<Point2L> P;          ///< the piece's corners, in order
+  bool Narrow = false;             ///< P's products fit in 64 bits (cross2)
+  std::vector<int> Next, Prev;     ///< the ring of corners not cut off
+  std::vector<char> Convex, Alive; ///< per corner of the piece
+  /// The corners that did not turn left at the start (a corner only ever becomes convex or
+  /// goes: cutting an ear narrows its neighbours' angles), by x; Stale of them turned left
+  /// since the list was last swept.
+  std::vector<Blocker> Blockers;
+  std::size_t Stale = 0;
+  std::vector<std::uint32_t> Slots;    ///< hash of the corners (hasRepeatedCorner)
+  std::vector<std::uint32_t> SlotMark; ///< the call that wrote each slot
+  std::uint32_t Mark = 0;
+};
+
 /// Whether the fan of triangles (apex, i, i + 1) over the polygon's corners covers a simple
 /// counter-clockwise polygon exactly (every triangle counter-clockwise or flat): then a
 /// renderer that draws the polygon as that fan (VTK does, from its first point) draws it right.

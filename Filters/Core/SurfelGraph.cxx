@@ -6,9 +6,9 @@
 // (RowIndex: where each row's surfels start, 4 bytes per row), with no hash table (it took
 // 32 to 64 bytes per surfel). linkNeighbours finds the surfel across each edge (neighbourKey:
 // concave, flat or convex, the voxel beyond reached only through a face-neighbour, which keeps
-// edge-touching voxels apart). matchSharedEdges records which edge of the neighbour is the same
-// linel. numberVertices walks the umbrella of each corner not yet numbered (one vertex per
-// umbrella, so a pointel where voxels touch only at a corner gets several), and
+// edge-touching voxels apart) and, from the two surfels' directions, which edge of the
+// neighbour is the same linel. numberVertices walks the umbrella of each corner not yet numbered
+// (one vertex per umbrella, so a pointel where voxels touch only at a corner gets several), and
 // countComponents unites the surfels into connected components.
 
 #include "SurfelGraph.h"
@@ -186,54 +186,6 @@ SurfelKey neighbourKey(const VoxelSet& set, const Surfel& sf, int k)
   return { side, sf.direction };
 }
 
-/// Runs body(s) for every surfel, on the threads of `exec` when they are many (each surfel's
-/// entries are its own: no two threads write the same).
-template<typename Body>
-void forEachSurfel(const Execution& exec, std::size_t n, Body body)
-{
-  exec.forWork(static_cast<std::int64_t>(n))
-    .forRange(static_cast<std::int64_t>(n),
-      [&](std::int64_t b, std::int64_t e)
-      {
-        for (std::int64_t s = b; s < e; ++s)
-          body(static_cast<std::uint32_t>(s));
-      });
-}
-
-/// Stage 2, the neighbour across each edge. A neighbour in another row of voxels (one step in
-/// y, z or both) is searched from the last one found in that row: the surfels come in order
-/// along x, so their neighbours in a row do too, a few surfels on (the walk of RowIndex::find,
-/// not a binary search of the row).
-void linkNeighbours(const VoxelSet& set,
-  const RowIndex& index,
-  const Execution& exec,
-  SurfelGraph& out)
-{
-  constexpr std::uint32_t None = ~std::uint32_t(0);
-  const std::size_t n = out.surfels.size();
-  out.neighbour.resize(4 * n);
-  exec.forWork(static_cast<std::int64_t>(n))
-    .forRange(static_cast<std::int64_t>(n),
-      [&](std::int64_t b, std::int64_t e)
-      {
-        std::uint32_t recent[9]; // by the row's step (dy, dz) from the surfel's row
-        std::fill(recent, recent + 9, None);
-        for (auto s = static_cast<std::uint32_t>(b); s < e; ++s)
-          for (int k = 0; k < 4; ++k)
-          {
-            const Surfel& sf = out.surfels[s];
-            const SurfelKey key = neighbourKey(set, sf, k);
-            const int row = 3 * (key.voxel[2] - sf.voxel[2] + 1) + (key.voxel[1] - sf.voxel[1] + 1);
-            const std::uint32_t near = row == 4 || recent[row] == None ? s : recent[row];
-            const std::int64_t id = index.find(out.surfels, key, near);
-            if (id < 0)
-              throw std::logic_error("surfel neighbour missing");
-            out.neighbour[4 * s + k] = static_cast<std::uint32_t>(id);
-            recent[row] = static_cast<std::uint32_t>(id);
-          }
-      });
-}
-
 /// The edges of surfels by direction: SharedEdge[d][k][e] is the edge of a surfel of direction e
 /// that runs against edge k of a surfel of direction d (-1 when none does). Two surfels that
 /// share a linel see it run in opposite directions, and the four edges of a surfel run in four
@@ -263,24 +215,43 @@ struct SharedEdgeTable
   }
 };
 
-/// Stage 3, the same linel seen from the neighbour: its edge runs the other way.
-void matchSharedEdges(const Execution& exec, SurfelGraph& out)
+/// Stage 2, the neighbour across each edge and the edge of the neighbour that is the same
+/// linel (from the two directions: the key found tells the neighbour's, so no second pass
+/// reads it). A neighbour in another row of voxels (one step in y, z or both) is searched from
+/// the last one found in that row: the surfels come in order along x, so their neighbours in a
+/// row do too, a few surfels on (the walk of RowIndex::find, not a binary search of the row).
+void linkNeighbours(const VoxelSet& set,
+  const RowIndex& index,
+  const Execution& exec,
+  SurfelGraph& out)
 {
+  constexpr std::uint32_t None = ~std::uint32_t(0);
   static const SharedEdgeTable table;
   const std::size_t n = out.surfels.size();
-  forEachSurfel(exec,
-    n,
-    [&](std::uint32_t s)
-    {
-      const int d = out.surfels[s].direction;
-      for (int k = 0; k < 4; ++k)
+  out.neighbour.resize(4 * n);
+  exec.forWork(static_cast<std::int64_t>(n))
+    .forRange(static_cast<std::int64_t>(n),
+      [&](std::int64_t b, std::int64_t e)
       {
-        const int j = table.SharedEdge[d][k][out.surfels[out.neighbourOf(s, k)].direction];
-        if (j < 0)
-          throw std::logic_error("neighbouring surfels do not share their linel");
-        out.neighbour[4 * s + k] = SurfelGraph::link(out.neighbourOf(s, k), j);
-      }
-    });
+        std::uint32_t recent[9]; // by the row's step (dy, dz) from the surfel's row
+        std::fill(recent, recent + 9, None);
+        for (auto s = static_cast<std::uint32_t>(b); s < e; ++s)
+          for (int k = 0; k < 4; ++k)
+          {
+            const Surfel& sf = out.surfels[s];
+            const SurfelKey key = neighbourKey(set, sf, k);
+            const int row = 3 * (key.voxel[2] - sf.voxel[2] + 1) + (key.voxel[1] - sf.voxel[1] + 1);
+            const std::uint32_t near = row == 4 || recent[row] == None ? s : recent[row];
+            const std::int64_t id = index.find(out.surfels, key, near);
+            if (id < 0)
+              throw std::logic_error("surfel neighbour missing");
+            const int j = table.SharedEdge[sf.direction][k][key.direction];
+            if (j < 0)
+              throw std::logic_error("neighbouring surfels do not share their linel");
+            out.neighbour[4 * s + k] = SurfelGraph::link(static_cast<std::uint32_t>(id), j);
+            recent[row] = static_cast<std::uint32_t>(id);
+          }
+      });
 }
 
 /// Stage 4, the vertices: one per umbrella of corners glued across shared edges (so that a
@@ -354,7 +325,6 @@ bool buildSurfelGraph(const BitVolume& voxels, const Execution& exec, SurfelGrap
       return false;
     linkNeighbours(set, index, exec, out);
   }
-  matchSharedEdges(exec, out);
   numberVertices(out);
   countComponents(out);
   return true;

@@ -405,12 +405,50 @@ Polygon randomScribble(std::mt19937& rng)
 // ---------------------------------------------------------------------------------------
 // The checks.
 
+/// One triangulator for all the checks: each polygon meets the working memory the earlier
+/// ones left.
+vbr::PolygonTriangulator& sharedTriangulator()
+{
+  static vbr::PolygonTriangulator triangulator;
+  return triangulator;
+}
+
+/// The polygon moved by (2^40, -2^41): its products no longer fit in 64 bits (cross2).
+Polygon farAway(const Polygon& p)
+{
+  Polygon far(p);
+  for (Point2L& c : far)
+  {
+    c[0] += std::int64_t(1) << 40;
+    c[1] -= std::int64_t(1) << 41;
+  }
+  return far;
+}
+
+/// The shared triangulator appends, after what the output held, the triangles of a fresh one
+/// (a translation changes no orientation, so the far copy gives the same), or nothing when
+/// that has none.
+void checkReusedTriangulator(const Polygon& p, const std::vector<vbr::Triangle>& fresh)
+{
+  const vbr::Triangle held{ -1, -2, -3 };
+  for (const Polygon& q : { p, farAway(p) })
+  {
+    std::vector<vbr::Triangle> out{ held };
+    EXPECT_EQ(sharedTriangulator().triangulate(q, out), !fresh.empty());
+    ASSERT_EQ(out.size(), fresh.size() + 1);
+    EXPECT_EQ(out[0], held);
+    EXPECT_TRUE(std::equal(fresh.begin(), fresh.end(), out.begin() + 1))
+      << "reused working memory or wide products change the triangles";
+  }
+}
+
 /// Everything about a triangulation of a counter-clockwise polygon, by brute force.
 void checkTriangulation(const Polygon& p, std::size_t expectedTriangles)
 {
   SCOPED_TRACE("polygon " + str(p));
   const std::vector<vbr::Triangle> triangles = vbr::triangulateSimplePolygon(p);
   ASSERT_EQ(triangles.size(), expectedTriangles);
+  checkReusedTriangulator(p, triangles);
   const int n = static_cast<int>(p.size());
   // Edges by place: a corner visited twice is one point of the plane.
   std::vector<int> place(p.size());
@@ -724,6 +762,25 @@ TEST(PolygonTriangulator, PinchedPixelSets)
   RecordProperty("pinched", pinched);
   EXPECT_GT(pinched, 500);
   EXPECT_GT(lobes, 100);
+}
+
+TEST(PolygonTriangulator, RefusedPolygonsAppendNothing)
+{
+  // Scribbles of positive area that are not simple: the ear clipping may cut some ears before
+  // it finds none; the shared triangulator must then take them back.
+  std::mt19937 rng(47);
+  int refused = 0;
+  for (int t = 0; t < 20000; ++t)
+  {
+    const Polygon p = randomScribble(rng);
+    if (trapezoidArea(p) <= 0 || bruteForceSimple(p))
+      continue;
+    const std::vector<vbr::Triangle> fresh = vbr::triangulateSimplePolygon(p);
+    checkReusedTriangulator(p, fresh);
+    refused += fresh.empty();
+  }
+  RecordProperty("refused", refused);
+  EXPECT_GT(refused, 1000);
 }
 
 TEST(PolygonTriangulator, SimplicityAgreesWithBruteForce)
