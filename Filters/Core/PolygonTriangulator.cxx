@@ -112,7 +112,7 @@ bool PolygonTriangulator::triangulate(const std::vector<Point2L>& corners,
   this->All.resize(corners.size());
   for (std::size_t i = 0; i < corners.size(); ++i)
     this->All[i] = static_cast<int>(i);
-  if (this->piece(corners, this->All, triangles))
+  if (this->triangulatePiece(corners, this->All, triangles))
     return true;
   triangles.resize(before);
   return false;
@@ -123,7 +123,7 @@ bool PolygonTriangulator::triangulate(const std::vector<Point2L>& corners,
 /// counter-clockwise (two pieces joined at that corner), each loop is triangulated alone:
 /// ear clipping would cut across the gap between them. The loops parted where one runs
 /// inside the other (a hole reaching the boundary) or along a slit stay together.
-bool PolygonTriangulator::piece(const std::vector<Point2L>& corners,
+bool PolygonTriangulator::triangulatePiece(const std::vector<Point2L>& corners,
   const std::vector<int>& piece,
   std::vector<Triangle>& triangles)
 {
@@ -155,8 +155,8 @@ bool PolygonTriangulator::hasRepeatedCorner(const std::vector<Point2L>& corners,
   const std::size_t size = std::size_t(1) << bits, mask = size - 1;
   if (this->Slots.size() < size)
   {
+    this->SlotMark.assign(size, 0); // first: if the other throws, Slots stays the smaller
     this->Slots.resize(size);
-    this->SlotMark.assign(size, 0);
     this->Mark = 0;
   }
   if (++this->Mark == 0) // wrapped: forget every mark
@@ -221,8 +221,8 @@ bool PolygonTriangulator::splitAtTouchingCorner(const std::vector<Point2L>& corn
         const std::vector<int> first(piece.begin() + i, piece.begin() + j);
         std::vector<int> second(piece.begin() + j, piece.end());
         second.insert(second.end(), piece.begin(), piece.begin() + i);
-        triangulated =
-          this->piece(corners, first, triangles) && this->piece(corners, second, triangles);
+        triangulated = this->triangulatePiece(corners, first, triangles) &&
+          this->triangulatePiece(corners, second, triangles);
         return true;
       }
   }
@@ -318,7 +318,8 @@ bool PolygonTriangulator::isEar(int b)
     [](const Blocker& l, std::int64_t x) { return l.x < x; });
   for (; k != this->Blockers.end() && k->x <= hiX; ++k)
   {
-    // Without branches: most blockers of the columns are outside the box, unpredictably.
+    // Both bounds in one test for the compiler to select: most blockers of the columns are
+    // outside the box, unpredictably.
     const bool inBox = (k->y >= loY) & (k->y <= hiY);
     if (!inBox || !this->Alive[k->corner] || this->Convex[k->corner])
       continue;

@@ -76,7 +76,8 @@ std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corne
 
 /// triangulateSimplePolygon with its working memory kept between calls (a caller that
 /// triangulates many polygons, such as every face of a polyhedrization, allocates nothing per
-/// polygon once the arrays have grown). The same triangles in the same order.
+/// polygon once the arrays have grown, except where a polygon touches itself at a corner and
+/// is parted there). The same triangles in the same order.
 class PolygonTriangulator
 {
 public:
@@ -90,7 +91,7 @@ private:
     std::int64_t x, y;
     int corner;
   };
-  bool piece(const std::vector<Point2L>& corners,
+  bool triangulatePiece(const std::vector<Point2L>& corners,
     const std::vector<int>& piece,
     std::vector<Triangle>& triangles);
   bool hasRepeatedCorner(const std::vector<Point2L>& corners, const std::vector<int>& piece);
@@ -116,8 +117,9 @@ private:
   std::vector<int> Next, Prev;     ///< the ring of corners not cut off
   std::vector<char> Convex, Alive; ///< per corner of the piece
   /// The corners that did not turn left at the start (a corner only ever becomes convex or
-  /// goes: cutting an ear narrows its neighbours' angles), by x; Stale of them turned left
-  /// since the list was last swept.
+  /// goes: cutting an ear narrows its neighbours' angles), by x; Stale counts the corners that
+  /// became convex since the list was last swept (blockers or not: it only sets how often the
+  /// list is swept).
   std::vector<Blocker> Blockers;
   std::size_t Stale = 0;
   std::vector<std::uint32_t> Slots;    ///< hash of the corners (hasRepeatedCorner)

@@ -413,21 +413,26 @@ vbr::PolygonTriangulator& sharedTriangulator()
   return triangulator;
 }
 
-/// The polygon moved by (2^40, -2^41): its products no longer fit in 64 bits (cross2).
+/// The polygon scaled by 3,037,000,499 (about 2^31.5) and moved by (2^40, -2^41): the products
+/// of its corners' differences (cross2) no longer fit in 64 bits as soon as two corners are
+/// two units apart, and a positive scale keeps the sign of every orientation. (A translation
+/// alone changes no difference; a scale by 2^33 + 1 would wrap its square round to a small
+/// number modulo 2^64 and let 64-bit products pass.)
 Polygon farAway(const Polygon& p)
 {
+  constexpr std::int64_t Scale = 3037000499;
   Polygon far(p);
   for (Point2L& c : far)
   {
-    c[0] += std::int64_t(1) << 40;
-    c[1] -= std::int64_t(1) << 41;
+    c[0] = c[0] * Scale + (std::int64_t(1) << 40);
+    c[1] = c[1] * Scale - (std::int64_t(1) << 41);
   }
   return far;
 }
 
 /// The shared triangulator appends, after what the output held, the triangles of a fresh one
-/// (a translation changes no orientation, so the far copy gives the same), or nothing when
-/// that has none.
+/// (a positive scale and a translation change no orientation, so the far copy gives the same), or
+/// nothing when that has none.
 void checkReusedTriangulator(const Polygon& p, const std::vector<vbr::Triangle>& fresh)
 {
   const vbr::Triangle held{ -1, -2, -3 };
