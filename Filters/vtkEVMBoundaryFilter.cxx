@@ -874,7 +874,10 @@ std::size_t releaseFaces(vbr::BRep& part)
 /// heap's free pages to the system. The parts live in the heap and the output's large arrays
 /// in pages of their own, which never reuse the heap's free space: without this the parts
 /// released would stay resident next to the output that replaces them. Small outputs never
-/// pay for it. On the calling thread, while no worker allocates.
+/// pay for it. On the calling thread, while no worker allocates. The streamed sweep
+/// (StreamedObjectCells) trims once per object, not every 32 MB: its parts in flight are a
+/// batch, whose freed heap the next batch reuses; trimmed between, each batch faulted its
+/// pages in afresh (porous 256^3, 45 %: some 3,500 page faults per update).
 void trimHeap(std::size_t& releasedBytes)
 {
 #if defined(__GLIBC__)
@@ -1232,8 +1235,7 @@ private:
     this->Writer.faceBase += static_cast<vtkIdType>(s.faces);
     addFaceCounts(s.counts, this->Stats);
     s.counts = Statistics();
-    this->Writer.releasedBytes += s.releasedBytes;
-    trimHeap(this->Writer.releasedBytes);
+    this->Writer.releasedBytes += s.releasedBytes; // trimmed once the object is done
     return true;
   }
 
@@ -1285,6 +1287,7 @@ void appendObjectsStreamed(vtkAlgorithm* self,
           cells.handlers()))
       return; // aborted
     evms[o] = vbr::EVM();
+    trimHeap(writer.releasedBytes);
   }
 }
 

@@ -2,6 +2,8 @@
 #include "vtkVoxelBRepDistributed.h"
 #include "vtkVoxelBRepMemory.h"
 
+#include "HugePages.h"
+
 #include "vtkAbstractArray.h"
 #include "vtkAlgorithm.h"
 #include "vtkCellData.h"
@@ -989,6 +991,7 @@ void setBoundaryColoring(vtkPolyData* output, bool labelsMode)
   colors->SetName("FaceColor");
   resizeOrThrow(colors, n);
   float* out = colors->GetPointer(0);
+  vbr::adviseHugePages(out, static_cast<std::size_t>(n) * sizeof(float)); // written once, now
   // The filters' own ids are read in place, not through GetComponent's virtual call.
   vtkIdTypeArray* typed = vtkIdTypeArray::FastDownCast(faceIds);
   const vtkIdType* inPlace =

@@ -12,6 +12,8 @@
 #include "vtkTypeInt64Array.h"
 #include "vtkVoxelBRepMemory.h"
 
+#include "Core/HugePages.h" // by its path: not every includer sees Filters/Core
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -27,9 +29,11 @@ namespace vbr
 namespace vtk
 {
 
-/// An append-only array in malloc'ed memory that VTK takes over without a copy
-/// (VTK_DATA_ARRAY_FREE). It grows by realloc, which moves a large block by remapping its
-/// pages rather than copying it.
+/// An append-only array that VTK takes over without a copy. Small, it is malloc'ed
+/// (VTK_DATA_ARRAY_FREE) and grows by realloc; from HugePageMinimum bytes on, it is a mapping
+/// of its own in huge pages (mapHugeBlock; VTK frees it by unmapHugeBlock), which grows by
+/// remapping its pages rather than copying them: malloc keeps blocks up to 32 MiB in its heap,
+/// where realloc copies, and each 4 KiB page would be a page fault.
 template<typename T>
 class MallocBuffer
 {
@@ -37,7 +41,7 @@ public:
   MallocBuffer() = default;
   MallocBuffer(const MallocBuffer&) = delete;
   MallocBuffer& operator=(const MallocBuffer&) = delete;
-  ~MallocBuffer() { std::free(this->Data); }
+  ~MallocBuffer() { this->release(); }
 
   std::size_t size() const { return this->Size; }
   const T* data() const { return this->Data; }
@@ -59,7 +63,16 @@ public:
   {
     if (capacity <= this->Capacity)
       return;
-    void* grown = std::realloc(this->Data, capacity * sizeof(T));
+    const std::size_t bytes = capacity * sizeof(T);
+    void* grown = this->Mapped ? vbr::remapHugeBlock(this->Data, bytes) : nullptr;
+    if (!this->Mapped && bytes >= vbr::HugePageMinimum && (grown = vbr::mapHugeBlock(bytes)))
+    {
+      std::copy(this->Data, this->Data + this->Size, static_cast<T*>(grown));
+      std::free(this->Data);
+      this->Mapped = true;
+    }
+    if (!this->Mapped && !grown)
+      grown = std::realloc(this->Data, bytes);
     if (!grown)
       throw std::bad_alloc();
     this->Data = static_cast<T*>(grown);
@@ -70,9 +83,10 @@ public:
   /// Empties the buffer and frees its memory.
   void clear()
   {
-    std::free(this->Data);
+    this->release();
     this->Data = nullptr;
     this->Size = this->Capacity = 0;
+    this->Mapped = false;
   }
   /// Hands the values to `array`, which frees them; the buffer is then empty.
   template<typename ArrayType>
@@ -81,18 +95,38 @@ public:
     static_assert(std::is_same<typename ArrayType::ValueType, T>::value, "no conversion");
     if (this->Size == 0)
       return;
-    T* data = static_cast<T*>(std::realloc(this->Data, this->Size * sizeof(T))); // the slack
-    array->SetArray(data ? data : this->Data,
-      static_cast<vtkIdType>(this->Size),
-      0,
-      vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+    const vtkIdType n = static_cast<vtkIdType>(this->Size);
+    if (this->Mapped)
+    {
+      void* fitted = vbr::remapHugeBlock(this->Data, this->Size * sizeof(T)); // in place
+      array->SetArray(static_cast<T*>(fitted ? fitted : this->Data),
+        n,
+        0,
+        vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+      array->SetArrayFreeFunction(vbr::unmapHugeBlock);
+    }
+    else
+    {
+      T* data = static_cast<T*>(std::realloc(this->Data, this->Size * sizeof(T))); // the slack
+      array->SetArray(data ? data : this->Data, n, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+    }
     this->Data = nullptr;
     this->Size = this->Capacity = 0;
+    this->Mapped = false;
   }
 
 private:
+  void release()
+  {
+    if (this->Mapped)
+      vbr::unmapHugeBlock(this->Data);
+    else
+      std::free(this->Data);
+  }
+
   T* Data = nullptr;
   std::size_t Size = 0, Capacity = 0;
+  bool Mapped = false; ///< Data is a block of mapHugeBlock, not of malloc
 };
 
 /// The offsets and connectivity of a vtkCellArray, written a cell or a face's cells at a time

@@ -18,6 +18,8 @@
 
 #include "BRep.h"
 
+#include "HugePages.h"
+
 #include <algorithm>
 #include <array>
 #include <cassert>
@@ -410,11 +412,12 @@ void CornerSet::numberCorners(std::size_t total, ForEach&& forEach, const KeyPac
   // each), so that a long edge is read a word at a time rather than a cache line per grid
   // step; ordering the corners along the lines of x and y took 28 bytes per corner.
   this->boundCorners(total, forEach, packer);
-  this->Words.assign(
-    (this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64, RankedWord{ 0, 0 });
+  assignHugePages(this->Words,
+    (this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64,
+    RankedWord{ 0, 0 });
   const std::size_t lineWords = this->Words.size();
-  this->LineBits[0].assign(lineWords, 0);
-  this->LineBits[1].assign(lineWords, 0);
+  assignHugePages(this->LineBits[0], lineWords, std::uint64_t(0));
+  assignHugePages(this->LineBits[1], lineWords, std::uint64_t(0));
   forEach(
     [&](const Point3& p)
     {
@@ -432,7 +435,7 @@ void CornerSet::numberCorners(std::size_t total, ForEach&& forEach, const KeyPac
     w.rank = count;
     count += static_cast<std::uint64_t>(popCount(w.bits));
   }
-  this->Points.reserve(count);
+  reserveHugePages(this->Points, count);
   for (std::size_t w = 0; w < this->Words.size(); ++w)
     for (std::uint64_t bits = this->Words[w].bits; bits != 0; bits &= bits - 1)
       this->Points.push_back(this->pointInBox(64 * w + countTrailingZeros(bits)));
@@ -557,7 +560,7 @@ void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vecto
     { count += static_cast<std::size_t>(popCount(bits)); });
   const std::size_t needed = out.size() + count;
   if (out.capacity() < needed) // geometric growth over the objects of a label map
-    out.reserve(std::max(needed, 2 * out.capacity()));
+    reserveHugePages(out, std::max(needed, 2 * out.capacity()));
   forEachCornerWord(voxels,
     [&](std::int32_t ky, std::int32_t kz, std::size_t w, std::uint64_t bits)
     {

@@ -16,6 +16,7 @@
 
 #include "EVM.h"
 
+#include "HugePages.h"
 #include "RadixSort.h"
 
 #include <algorithm>
@@ -87,7 +88,9 @@ std::vector<Vertex> collectVertices(std::int64_t count,
     });
   for (std::size_t r = 0; r + 1 < start.size(); ++r)
     start[r + 1] += start[r];
-  std::vector<Vertex> vertices(start.back());
+  std::vector<Vertex> vertices;
+  reserveHugePages(vertices, start.back());
+  vertices.resize(start.back());
   exec.forRange(count,
     [&](std::int64_t rb, std::int64_t re)
     {
@@ -165,6 +168,7 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec, std::vector<Ver
       return this->bucketedOn(1, order, std::move(storage));
   }
   std::vector<Vertex> v = std::move(storage);
+  reserveHugePages(v, this->Vertices.size());
   v.resize(this->Vertices.size());
   bool packable = true;
   Coord maximum = 0;
@@ -184,7 +188,9 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec, std::vector<Ver
     return EVM(this->Dimension, order, std::move(v));
   }
   const KeyPacker packer = KeyPacker::forMaximum(maximum);
-  std::vector<std::uint64_t> keys(v.size());
+  std::vector<std::uint64_t> keys;
+  reserveHugePages(keys, v.size());
+  keys.resize(v.size());
   exec.forRange(static_cast<std::int64_t>(v.size()),
     [&](std::int64_t b, std::int64_t e)
     {
@@ -211,6 +217,7 @@ EVM EVM::bucketedOn(int key, const AxisOrder& order, std::vector<Vertex> out) co
   for (std::size_t i = 1; i < start.size(); ++i)
     start[i] += start[i - 1];
   const int first = 0, second = key == 2 ? 1 : 2; // the two coordinates that stay in order
+  reserveHugePages(out, this->Vertices.size());
   out.resize(this->Vertices.size());
   for (const Vertex& p : this->Vertices)
     out[start[p[key] - lo]++] = { p[key], p[first], p[second] };

@@ -6,7 +6,11 @@
 // written into part buffers (reused, with the default limit or the test's) appended one after
 // the other (append), as the filter's worker threads write theirs. Then
 // the filter that writes through it: the EVM boundary's cells of a random volume use 32-bit
-// storage and every cell refers to an existing point.
+// storage and every cell refers to an existing point. Last, a MallocBuffer grown past the size
+// from which its memory is a mapping of its own (HugePageMinimum; remapped as it grows, freed
+// by VTK through unmapHugeBlock) holds the values pushed into a std::vector alongside, before
+// and after VTK takes it over, and after VTK grows the array it took (its reallocation copies
+// out of a block that malloc did not make).
 #include "vtkVoxelBRepBuffers.h"
 
 #include "TestImages.h"
@@ -15,6 +19,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -272,11 +277,65 @@ bool testFilterOutput()
   return ok;
 }
 
+/// Whether the first `n` values of `data` are those of `expected`.
+bool sameValues(const int* data, const std::vector<int>& expected, std::size_t n)
+{
+  return n <= expected.size() && std::equal(expected.begin(), expected.begin() + n, data);
+}
+
+bool testLargeBuffer()
+{
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> value(-1000000, 1000000);
+  std::vector<int> expected;
+  vbr::vtk::MallocBuffer<int> buffer;
+  bool ok = true;
+  // Past 4 MiB (a mapped block from there) and through several doublings (remapped).
+  const std::size_t target = 6 * vbr::HugePageMinimum / sizeof(int);
+  for (std::size_t round = 0; expected.size() < target; ++round)
+  {
+    const std::size_t n = 1 + round % 5000;
+    if (round % 2 == 0)
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        expected.push_back(value(rng));
+        buffer.push_back(expected.back());
+      }
+    else
+    {
+      int* out = buffer.extend(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        expected.push_back(value(rng));
+        out[i] = expected.back();
+      }
+    }
+    if (round % 997 == 0 && !sameValues(buffer.data(), expected, expected.size()))
+      ok = false;
+  }
+  ok = ok && buffer.size() == expected.size() && sameValues(buffer.data(), expected, buffer.size());
+  vtkNew<vtkIntArray> array;
+  buffer.handTo(array.GetPointer());
+  const std::size_t handed = expected.size();
+  ok = ok && buffer.size() == 0 && static_cast<std::size_t>(array->GetNumberOfValues()) == handed &&
+    sameValues(array->GetPointer(0), expected, handed);
+  for (std::size_t i = 0; i < handed; ++i) // VTK grows the array it took over
+  {
+    expected.push_back(value(rng));
+    array->InsertNextValue(expected.back());
+  }
+  ok = ok && static_cast<std::size_t>(array->GetNumberOfValues()) == expected.size() &&
+    sameValues(array->GetPointer(0), expected, expected.size());
+  if (!ok)
+    std::cerr << "large MallocBuffer: values differ from the vector's\n";
+  return ok;
+}
+
 } // namespace
 
 int TestVoxelBRepBuffers(int, char*[])
 {
-  const bool ok = testBuffer() && testFilterOutput();
+  const bool ok = testBuffer() && testFilterOutput() && testLargeBuffer();
   std::cout << (ok ? "passed" : "FAILED") << "\n";
   return ok ? 0 : 1;
 }
