@@ -2136,8 +2136,9 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
 /// and their labels of an image's only object, and the union-find and notes of every object.
 /// The next update of as many runs or fewer writes into it, where new blocks were faulted in
 /// and zeroed by the kernel at every update (glibc had returned them): on a 128^3
-/// checkerboard, 29 MB and about 1,500 page faults an update. Kept up to KeptBytes, between
-/// updates too (the price: the filter holds it while idle).
+/// checkerboard, 29 MB and 2,793 page faults an update, 256 with it kept. Kept up to KeptBytes,
+/// between updates too (the price: the filter holds it while idle), and freed when the filter
+/// releases its data after use.
 struct RunMemory
 {
   static constexpr std::size_t KeptBytes = std::size_t(128) << 20;
@@ -2165,6 +2166,32 @@ struct RunMemory
     if (bytes > KeptBytes)
       *this = RunMemory();
   }
+};
+
+/// Bounds the run labelling's memory kept past an update whatever its exit (an abort, a
+/// distributed run, an error, an exception): within RunMemory::KeptBytes, and nothing at all
+/// when the filter releases its data after use (ReleaseDataFlag).
+class KeptRunsBound
+{
+public:
+  KeptRunsBound(RunMemory& runs, bool releaseAll)
+    : Runs(runs)
+    , ReleaseAll(releaseAll)
+  {
+  }
+  KeptRunsBound(const KeptRunsBound&) = delete;
+  KeptRunsBound& operator=(const KeptRunsBound&) = delete;
+  ~KeptRunsBound()
+  {
+    if (this->ReleaseAll)
+      this->Runs = RunMemory();
+    else
+      this->Runs.limit();
+  }
+
+private:
+  RunMemory& Runs;
+  const bool ReleaseAll;
 };
 
 /// The components of a 3D object labelled on the runs of its rows, with the counts of the CUDB
@@ -2631,6 +2658,7 @@ int vtkCUDBConnectivity::RequestData(vtkInformation*,
   vtkInformationVector* outputVector)
 {
   const CacheUpdate update;
+  const KeptRunsBound keptRuns(this->Kept->runs, this->GetReleaseDataFlag() != 0);
   return vbr::vtk::executeGuarded(this,
     outputVector,
     "Connected components",
@@ -2716,9 +2744,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   writeBoxesAndTable(
     this, in, objects, regions, regionIds, regionOfRow, summary, ports, *this->Kept);
   if (objects.size() == 1 && objects[0].labelledFromRuns && in.objects.size() == 1)
-    this->Kept->runs.keep(objects[0]);
-  else
-    this->Kept->runs.limit();
+    this->Kept->runs.keep(objects[0]); // bounded on the way out (KeptRunsBound)
   return 1;
 }
 
