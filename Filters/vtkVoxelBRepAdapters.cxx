@@ -304,18 +304,37 @@ namespace
 #ifdef __linux__
 constexpr std::size_t HugePage = std::size_t(2) << 20;
 
-/// What a zeroed mapping needs to be unmapped, kept just below its data.
+/// What a zeroed mapping needs to be unmapped, kept just below its data, with a cookie.
 struct MappingHeader
 {
   void* base;
   std::size_t length;
+  std::uint64_t cookie;
 };
+constexpr std::uint64_t MappingCookie = 0x5642525a65726f73ull;
+
+/// The header of a block of mapZeroed, or nullptr for a block of malloc: VTK keeps an array's
+/// free function when it empties the array and reallocates it later by malloc, then hands that
+/// block to unmapZeroed. A block of mapZeroed starts on a huge page, after the cookie.
+#if defined(__clang__) || defined(__GNUC__)
+__attribute__((no_sanitize_address))
+#endif
+bool
+readMappingHeader(void* data, MappingHeader& header)
+{
+  if (reinterpret_cast<std::uintptr_t>(data) % HugePage != 0)
+    return false;
+  std::memcpy(&header, static_cast<char*>(data) - sizeof header, sizeof header);
+  return header.cookie == MappingCookie;
+}
 
 void unmapZeroed(void* data)
 {
   MappingHeader header;
-  std::memcpy(&header, static_cast<char*>(data) - sizeof header, sizeof header);
-  munmap(header.base, header.length);
+  if (data && readMappingHeader(data, header))
+    munmap(header.base, header.length);
+  else
+    std::free(data);
 }
 
 /// n zero bytes, 2 MiB-aligned, or nullptr.
@@ -328,7 +347,7 @@ void* mapZeroed(std::size_t bytes)
     return nullptr;
   const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(base) + sizeof(MappingHeader);
   char* data = reinterpret_cast<char*>((first + HugePage - 1) / HugePage * HugePage);
-  const MappingHeader header{ base, length };
+  const MappingHeader header{ base, length, MappingCookie };
   std::memcpy(data - sizeof header, &header, sizeof header);
   madvise(data, rounded, MADV_HUGEPAGE); // a hint: failure only costs time
   return data;

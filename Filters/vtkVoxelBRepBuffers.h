@@ -76,7 +76,10 @@ public:
     if (!grown)
       throw std::bad_alloc();
     this->Data = static_cast<T*>(grown);
-    this->Capacity = capacity;
+    // A mapping is whole huge pages: its slack is room too (the next doubling comes later).
+    this->Capacity = this->Mapped
+      ? (vbr::hugeblock::mappingLength(bytes) - vbr::hugeblock::Header) / sizeof(T)
+      : capacity;
   }
   /// Empties the buffer and keeps its memory for the next values.
   void clearKeepingMemory() { this->Size = 0; }

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <new>
 #include <vector>
 
@@ -26,22 +27,20 @@ constexpr std::size_t HugePageBytes = std::size_t(2) << 20;
 /// huge pages would cost more memory than the faults cost time.
 constexpr std::size_t HugePageMinimum = 2 * HugePageBytes;
 
-/// Asks for huge pages under [data, data + bytes), widened to whole 4 KiB pages, for the memory
-/// not touched yet (pages already mapped stay as they are; the kernel maps huge pages only
-/// where a whole 2 MiB-aligned page lies inside the range). Widened, the range covers the whole
-/// mapping of a block malloc made with mmap: advising part of it would split the mapping in
-/// two or three, and realloc could then no longer move it by mremap but would copy it (and
-/// fault in every page again). Nothing below HugePageMinimum.
+/// Asks for huge pages under the whole 2 MiB pages inside [data, data + bytes), for the memory
+/// not touched yet (pages already mapped stay as they are). Rounded inwards: the advice stays on
+/// the range's own memory, never on a neighbour's in the heap (an advised range of the heap
+/// keeps its flag after it is freed). Nothing below HugePageMinimum.
 inline void adviseHugePages(const void* data, std::size_t bytes)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (bytes < HugePageMinimum)
     return;
-  constexpr std::uintptr_t Page = 4096;
   const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(data);
-  const std::uintptr_t first = begin & ~(Page - 1);
-  const std::uintptr_t last = (begin + bytes + Page - 1) & ~(Page - 1);
-  madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  const std::uintptr_t first = (begin + HugePageBytes - 1) & ~(HugePageBytes - 1);
+  const std::uintptr_t last = (begin + bytes) & ~(HugePageBytes - 1);
+  if (last > first)
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #else
   (void)data;
   (void)bytes;
@@ -75,9 +74,16 @@ void assignHugePages(std::vector<T, A>& v, std::size_t n, const T& value)
 /// moves its pages and copies nothing. The mapping's length (a multiple of 2 MiB, so that the
 /// kernel places it on a huge page boundary) is kept in a header before the data; the data
 /// are 64-byte aligned. nullptr when the system refuses (or is not Linux): use malloc then.
+#if defined(__linux__) && defined(MADV_HUGEPAGE) && defined(MREMAP_MAYMOVE)
+#define VBR_HUGE_BLOCKS 1
+#endif
+
 namespace hugeblock
 {
+/// The header before a block's data: its mapping's length, then Cookie. The data start Header
+/// bytes after the mapping's (page-aligned) start.
 constexpr std::size_t Header = 64;
+constexpr std::uint64_t Cookie = 0x5642524875676542ull;
 
 inline std::size_t mappingLength(std::size_t bytes)
 {
@@ -88,18 +94,37 @@ inline char* baseOf(void* data)
 {
   return static_cast<char*>(data) - Header;
 }
+
+/// Whether `data` is a block of mapHugeBlock: Header bytes into a page, after the cookie. The
+/// words read lie in the same page as `data`, so they are mapped whatever `data` is; for a
+/// block of malloc they are the allocator's or a neighbour's bytes, hence no address check.
+#if defined(__clang__) || defined(__GNUC__)
+__attribute__((no_sanitize_address))
+#endif
+inline bool
+isBlock(const void* data)
+{
+  if (reinterpret_cast<std::uintptr_t>(data) % 4096 != Header)
+    return false;
+  const std::uint64_t* words =
+    reinterpret_cast<const std::uint64_t*>(baseOf(const_cast<void*>(data)));
+  return words[1] == Cookie;
+}
 } // namespace hugeblock
 
 /// A block of at least `bytes` bytes (HugePageMinimum or more is what it is for), or nullptr.
 inline void* mapHugeBlock(std::size_t bytes)
 {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
+#ifdef VBR_HUGE_BLOCKS
+  if (bytes > std::size_t(-1) / 2)
+    return nullptr;
   const std::size_t length = hugeblock::mappingLength(bytes);
   void* base = mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (base == MAP_FAILED)
     return nullptr;
   madvise(base, length, MADV_HUGEPAGE); // before the header's write faults its page in
-  *static_cast<std::size_t*>(base) = length;
+  static_cast<std::uint64_t*>(base)[0] = length;
+  static_cast<std::uint64_t*>(base)[1] = hugeblock::Cookie;
   return static_cast<char*>(base) + hugeblock::Header;
 #else
   (void)bytes;
@@ -111,7 +136,9 @@ inline void* mapHugeBlock(std::size_t bytes)
 /// (and the block unchanged) when the system refuses.
 inline void* remapHugeBlock(void* data, std::size_t bytes)
 {
-#if defined(__linux__) && defined(MADV_HUGEPAGE) && defined(MREMAP_MAYMOVE)
+#ifdef VBR_HUGE_BLOCKS
+  if (bytes > std::size_t(-1) / 2)
+    return nullptr;
   char* base = hugeblock::baseOf(data);
   const std::size_t old = *reinterpret_cast<std::size_t*>(base);
   const std::size_t length = hugeblock::mappingLength(bytes);
@@ -131,17 +158,23 @@ inline void* remapHugeBlock(void* data, std::size_t bytes)
 #endif
 }
 
-/// Unmaps a block of mapHugeBlock (a free function for arrays that take the block over).
+/// Unmaps a block of mapHugeBlock (the free function of arrays that take the block over), or
+/// frees a block of malloc: VTK keeps an array's free function when it empties the array and
+/// later reallocates it with malloc (vtkBuffer::Allocate(0), then Reallocate by realloc), and
+/// then hands that block to the same function.
 inline void unmapHugeBlock(void* data)
 {
-#if defined(__linux__)
   if (!data)
     return;
-  char* base = hugeblock::baseOf(data);
-  munmap(base, *reinterpret_cast<std::size_t*>(base));
-#else
-  (void)data;
+#ifdef VBR_HUGE_BLOCKS
+  if (hugeblock::isBlock(data))
+  {
+    char* base = hugeblock::baseOf(data);
+    munmap(base, *reinterpret_cast<std::size_t*>(base));
+    return;
+  }
 #endif
+  std::free(data);
 }
 
 } // namespace vbr

@@ -27,6 +27,7 @@
 
 #include "PlaneSweep2D.h"
 
+#include "HugePages.h"
 #include "UnionFind.h"
 
 #include <algorithm>
@@ -34,10 +35,6 @@
 #include <limits>
 #include <stdexcept>
 #include <utility>
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace vbr
 {
@@ -56,23 +53,6 @@ constexpr std::uint32_t Unset = std::numeric_limits<std::uint32_t>::max();
 /// word, 4.9 ms sorted against 5.4-5.8 by column; pollen, 65,432, 3.5 per word, 1.9 against 2.1);
 /// beyond it the grid wins (feyn, 282,760 vertices, 2.2 per word, 9.5 against 15 ms;
 /// pageseg2 and scots-frag, 555,042 and 577,326: 24 against 35 and 26 against 32-36 ms).
-
-/// Asks for huge pages under a large array that is read in no order of memory (the domino
-/// step's edges): a miss in the cache then rarely misses in the TLB as well. A hint only.
-void adviseHugePages(void* data, std::size_t bytes)
-{
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t HugePage = std::uintptr_t(1) << 21;
-  const std::uintptr_t first =
-    (reinterpret_cast<std::uintptr_t>(data) + HugePage - 1) & ~(HugePage - 1);
-  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(HugePage - 1);
-  if (last > first)
-    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#else
-  (void)data;
-  (void)bytes;
-#endif
-}
 
 /// An oriented edge between two corners, by their numbers (16 bytes: the domino step reads
 /// the edges in no order of memory, the fewer cache lines the better).
@@ -278,6 +258,8 @@ private:
     this->Edges.reserve(static_cast<std::size_t>(end - begin));
     if (this->ColumnNext.empty())
       this->Corners.reserve(static_cast<std::size_t>(end - begin));
+    // Huge pages under the edges, which the domino step reads in no order of memory: a miss in
+    // the cache then rarely misses in the TLB as well.
     adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge));
     while (begin != end)
     {

@@ -10,6 +10,8 @@
 // CUDB's boxes; paintRuns writes a value per run into a label grid.
 #include "RunLabelling.h"
 
+#include "HugePages.h"
+
 #include "Geometry.h"
 #include "UnionFind.h"
 
@@ -21,10 +23,6 @@
 #include <string>
 #include <vector>
 
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
-
 namespace vbr
 {
 namespace
@@ -32,26 +30,11 @@ namespace
 
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 
-/// Room for n values in an empty vector, the whole 2 MiB pages inside it asked of the kernel as
-/// transparent huge pages before anything is written (Linux; a hint, failure only costs time).
 /// The labelling's scratch is allocated anew at each update, and glibc often returns it to the
 /// kernel in between (the top of its heap, or a mapping of its own), which then faulted it in
 /// 4 KiB at a time: about 3 microseconds a page on the benchmark machine, where an update of a
 /// 256^3 porous volume with 9,000 to 12,000 such faults took 95 to 100 ms of CPU, and 70 ms
-/// with about 300.
-template<typename T>
-void reserveOnHugePages(std::vector<T>& v, std::size_t n)
-{
-  v.reserve(n);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t HugePage = std::uintptr_t(2) << 20;
-  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
-  const std::uintptr_t first = (begin + HugePage - 1) / HugePage * HugePage;
-  const std::uintptr_t last = (begin + n * sizeof(T)) / HugePage * HugePage;
-  if (last > first)
-    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
-}
+/// with about 300. Hence its arrays on huge pages (HugePages.h).
 
 /// n values in `v`: in its memory when it has room (kept from an earlier labelling, already
 /// faulted in), else in a new block on huge pages where they fill some.
@@ -62,22 +45,9 @@ void resizeOnHugePages(std::vector<T>& v, std::size_t n)
   if (v.capacity() < n)
   {
     v = std::vector<T>();
-    reserveOnHugePages(v, n);
+    reserveHugePages(v, n);
   }
   v.resize(n);
-}
-
-/// n copies of `value` in `v`, in its memory when it has room (as resizeOnHugePages).
-template<typename T>
-void fillOnHugePages(std::vector<T>& v, std::size_t n, T value)
-{
-  v.clear();
-  if (v.capacity() < n)
-  {
-    v = std::vector<T>();
-    reserveOnHugePages(v, n);
-  }
-  v.assign(n, value);
 }
 
 /// The number of runs of a row of bits (the bits past the row's end are clear): its run starts,
@@ -176,7 +146,7 @@ struct CompactionNotes
     : size(n)
     , storage(std::move(memory))
   {
-    fillOnHugePages(this->storage, 3 * n, None);
+    assignHugePages(this->storage, 3 * n, None);
     this->above = this->storage.data();
     this->below = this->storage.data() + n;
     this->behind = this->storage.data() + 2 * n;
@@ -369,9 +339,9 @@ std::size_t buildBoxes(const VoxelRuns& r,
   // stores, which stalled every box).
   boxes = std::vector<Box>();
   boxLabel = std::vector<std::uint32_t>();
-  reserveOnHugePages(boxes, n);
-  reserveOnHugePages(boxLabel, n);
-  fillOnHugePages(boxOfRun, n, None);
+  reserveHugePages(boxes, n);
+  reserveHugePages(boxLabel, n);
+  assignHugePages(boxOfRun, n, None);
   const std::int32_t ny = r.dims[1], nz = r.dims[2];
   for (std::int32_t z = 0; z < nz; ++z)
     for (std::int32_t y = 0; y < ny; ++y)
@@ -558,7 +528,7 @@ bool labelRuns(const BitVolume& voxels,
   if (memory.parents.capacity() < n)
   {
     memory.parents = std::vector<std::uint32_t>();
-    reserveOnHugePages(memory.parents, n);
+    reserveHugePages(memory.parents, n);
   }
   UnionFind uf(std::move(memory.parents), n);
   CompactionNotes notes(n, std::move(memory.notes));

@@ -331,11 +331,55 @@ bool testLargeBuffer()
   return ok;
 }
 
+/// An array VTK took over from a mapped block, emptied (vtkBuffer keeps its free function)
+/// and filled again by malloc: its values are right, and the free function, handed a block of
+/// malloc at the end, frees it (a munmap of it would fail or unmap memory of the heap).
+bool emptiedAndFilledAgain(vtkIntArray* array, const char* what)
+{
+  array->Initialize();
+  std::vector<int> expected;
+  for (int i = 0; i < 100000; ++i)
+  {
+    expected.push_back(3 * i - 7);
+    array->InsertNextValue(expected.back());
+  }
+  const bool ok = static_cast<std::size_t>(array->GetNumberOfValues()) == expected.size() &&
+    sameValues(array->GetPointer(0), expected, expected.size()) &&
+    !vbr::hugeblock::isBlock(array->GetPointer(0));
+  if (!ok)
+    std::cerr << what << ": refilled after Initialize, values or block differ\n";
+  return ok;
+}
+
+bool testArraysEmptiedAfterTakeover()
+{
+  bool ok = true;
+  {
+    vbr::vtk::MallocBuffer<int> buffer;
+    int* values = buffer.extend(3 * vbr::HugePageMinimum / sizeof(int));
+    std::fill(values, values + buffer.size(), 5);
+#ifdef VBR_HUGE_BLOCKS
+    if (!vbr::hugeblock::isBlock(buffer.data())) // the mapped path, not malloc's
+    {
+      std::cerr << "a MallocBuffer of 12 MiB is not a mapped block\n";
+      ok = false;
+    }
+#endif
+    vtkNew<vtkIntArray> array;
+    buffer.handTo(array.GetPointer());
+    ok = emptiedAndFilledAgain(array, "mapped MallocBuffer") && ok;
+  }
+  std::vector<char> heap(100);
+  ok = !vbr::hugeblock::isBlock(heap.data()) && ok;
+  return ok;
+}
+
 } // namespace
 
 int TestVoxelBRepBuffers(int, char*[])
 {
-  const bool ok = testBuffer() && testFilterOutput() && testLargeBuffer();
+  const bool ok =
+    testBuffer() && testFilterOutput() && testLargeBuffer() && testArraysEmptiedAfterTakeover();
   std::cout << (ok ? "passed" : "FAILED") << "\n";
   return ok ? 0 : 1;
 }
