@@ -73,6 +73,11 @@
  * vtkSMPTools (set VTK_SMP_BACKEND_IN_USE=STDThread with ParaView's VTK, whose default is
  * sequential).
  *
+ * @warning Between updates the filter keeps the working memory of its run labelling (up to
+ * 128 MiB: the runs and labels of a 3D image's only object, the union-find and notes) so that
+ * the next update does not fault it in again, and small output arrays to write into. With
+ * ReleaseDataFlag on, the run labelling's memory is freed at the end of every update.
+ *
  * Under MPI (ParaView running the filter on N ranks, one piece each) the RegionIds are the
  * 1-rank ones on every rank's piece: rank 0 labels the whole image from the ranks' extreme
  * vertices and sends the kept boxes back (see vtkVoxelBRepDistributed.h).
