@@ -314,19 +314,33 @@ TEST(RunLabelling, KeptMemoryChangesNothing)
   // One set of output vectors and one scratch for a sequence of volumes, each larger or smaller
   // than the one before (memory with room and the last volume's values in it, or too small),
   // threads or not: every labelling is the flood fill's, with the CUDB's counts and boxes.
-  const vbr::Point3 sizes[] = {
-    { 40, 30, 20 }, { 5, 4, 3 }, { 23, 21, 19 }, { 1, 1, 1 }, { 70, 9, 6 }, { 17, 9, 6 }
+  // 128x64x40 at density 0.5 has about 80,000 runs, past the 65,536 from which threads unite
+  // the planes in pieces: the threaded union runs on the kept memory too (the others are
+  // united sequentially). A density below 0 takes one from the seed.
+  struct Case
+  {
+    vbr::Point3 dims;
+    double density;
+    bool piecesUnited = false; ///< enough runs for the threaded union
   };
+  const Case cases[] = { { { 40, 30, 20 }, -1 },
+    { { 128, 64, 40 }, 0.5, true },
+    { { 5, 4, 3 }, -1 },
+    { { 23, 21, 19 }, -1 },
+    { { 1, 1, 1 }, -1 },
+    { { 70, 9, 6 }, -1 },
+    { { 17, 9, 6 }, -1 } };
   vbr::VoxelRuns runs;
   vbr::RunComponents components;
   vbr::RunLabellingScratch scratch;
   unsigned seed = 500;
   for (int threads : { 1, 3 })
-    for (const vbr::Point3& d : sizes)
+    for (const Case& volume : cases)
       for (bool vertex : { false, true })
         for (bool withBoxes : { false, true })
         {
-          const double density = 0.15 + 0.2 * (seed % 4);
+          const vbr::Point3& d = volume.dims;
+          const double density = volume.density >= 0 ? volume.density : 0.15 + 0.2 * (seed % 4);
           const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
           SCOPED_TRACE("seed " + std::to_string(seed - 1) + (vertex ? " vertex" : " face") +
             (withBoxes ? " boxes" : "") + " threads " + std::to_string(threads));
@@ -334,6 +348,8 @@ TEST(RunLabelling, KeptMemoryChangesNothing)
             threads > 1 ? bf::threadedExecution(threads) : vbr::Execution();
           const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
           ASSERT_TRUE(vbr::extractRuns(v, exec, runs));
+          if (volume.piecesUnited)
+            EXPECT_GE(runs.runs.size(), std::size_t(1) << 16) << "runs for the threaded union";
           ASSERT_TRUE(vbr::labelRuns(v, runs, c, exec, components, withBoxes, &scratch));
           Labelled kept{ runs, components, std::vector<std::int32_t>(v.voxelCount(), 0) };
           std::vector<std::int32_t> value(components.count + 1);

@@ -205,12 +205,14 @@ void boxIndexRange(vtkUnstructuredGrid* boxes, vtkIdType cell, const Layout& l, 
   }
 }
 
-/// Port 2 against the labels of port 0.
+/// Port 2 against the labels of port 0 (and NumberOfBoxes against `boxesOfRegion`, the boxes
+/// of each region on port 1, when given).
 void checkTable(vtkCUDBConnectivity* f,
   const Volume& v,
   const Layout& l,
   const std::vector<int>& ids,
-  const std::string& what);
+  const std::string& what,
+  const std::vector<long long>* boxesOfRegion = nullptr);
 
 /// Port 1 (when GenerateBoxes is on; else it must be empty) and port 2 against the labels of
 /// port 0.
@@ -246,6 +248,7 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
   }
   CHECK(ownCorners, what << ": every box has its own corner points, in order");
   std::vector<int> covered(ids.size(), 0);
+  std::vector<long long> boxesOfRegion;
   long long selected = 0;
   for (int id : ids)
     selected += id != 0;
@@ -263,6 +266,11 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
           hi[d] = 1;
         }
     const int region = static_cast<int>(boxRegion->GetTuple1(c));
+    if (region >= 0)
+    {
+      boxesOfRegion.resize(std::max<std::size_t>(boxesOfRegion.size(), region + 1), 0);
+      ++boxesOfRegion[region];
+    }
     for (int z = lo[2]; z < hi[2]; ++z)
       for (int y = lo[1]; y < hi[1]; ++y)
         for (int x = lo[0]; x < hi[0]; ++x)
@@ -283,14 +291,59 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
   CHECK(consistent && coveredCount == selected,
     what << ": boxes are disjoint, carry their voxels' region and cover the " << selected
          << " labelled voxels (" << coveredCount << ")");
-  checkTable(f, v, l, ids, what);
+  checkTable(f, v, l, ids, what, &boxesOfRegion);
+}
+
+/// World bounds (XMin, XMax, ...) and measure of one voxel (its volume, or its area for a 2D
+/// image) of an image along the axes of the layout, from its origin and spacing: point voxels
+/// span half a spacing either side of their point, cell voxels their cell; the flat axis of a
+/// 2D image (one voxel along exactly that axis) has no thickness, its plane the first layer of
+/// points.
+struct ExpectedGeometry
+{
+  int flatAxis = -1;
+
+  explicit ExpectedGeometry(const Volume& v)
+  {
+    if ((v.dims[0] == 1) + (v.dims[1] == 1) + (v.dims[2] == 1) == 1)
+      flatAxis = v.dims[0] == 1 ? 0 : (v.dims[1] == 1 ? 1 : 2);
+  }
+
+  /// Bounds along axis d of the voxels of absolute indices [first, last].
+  std::array<double, 2> world(const Layout& l, int d, int first, int last) const
+  {
+    if (d == this->flatAxis)
+    {
+      const double plane = l.origin[d] + l.extentMin[d] * l.spacing[d];
+      return { plane, plane };
+    }
+    const double shift = l.cellData ? 0.0 : -0.5;
+    const double a = l.origin[d] + (first + shift) * l.spacing[d];
+    const double b = l.origin[d] + (last + 1 + shift) * l.spacing[d];
+    return { std::min(a, b), std::max(a, b) };
+  }
+
+  double measure(const Layout& l) const
+  {
+    double m = 1;
+    for (int d = 0; d < 3; ++d)
+      if (d != this->flatAxis)
+        m *= std::abs(l.spacing[d]);
+    return m;
+  }
+};
+
+bool near(double value, double expected)
+{
+  return std::abs(value - expected) <= 1e-9 * (1 + std::abs(expected));
 }
 
 void checkTable(vtkCUDBConnectivity* f,
   const Volume& v,
   const Layout& l,
   const std::vector<int>& ids,
-  const std::string& what)
+  const std::string& what,
+  const std::vector<long long>* boxesOfRegion)
 {
   vtkTable* table = f->GetRegionsOutput();
   int count = 0;
@@ -301,14 +354,20 @@ void checkTable(vtkCUDBConnectivity* f,
   vtkDataArray* voxels = vtkDataArray::SafeDownCast(table->GetColumnByName("VoxelCount"));
   vtkDataArray* centroid = vtkDataArray::SafeDownCast(table->GetColumnByName("Centroid"));
   const char* const boundNames[6] = { "IMin", "IMax", "JMin", "JMax", "KMin", "KMax" };
+  vtkDataArray* volume = vtkDataArray::SafeDownCast(table->GetColumnByName("Volume"));
+  vtkDataArray* boxes = vtkDataArray::SafeDownCast(table->GetColumnByName("NumberOfBoxes"));
+  const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
   vtkDataArray* indexBounds[6];
+  vtkDataArray* worldBounds[6];
   bool haveBounds = true;
   for (int k = 0; k < 6; ++k)
   {
     indexBounds[k] = vtkDataArray::SafeDownCast(table->GetColumnByName(boundNames[k]));
-    haveBounds = haveBounds && indexBounds[k] && indexBounds[k]->GetNumberOfComponents() == 1;
+    worldBounds[k] = vtkDataArray::SafeDownCast(table->GetColumnByName(worldNames[k]));
+    haveBounds = haveBounds && indexBounds[k] && indexBounds[k]->GetNumberOfComponents() == 1 &&
+      worldBounds[k] && worldBounds[k]->GetNumberOfComponents() == 1;
   }
-  if (!voxels || !centroid || !haveBounds || table->GetNumberOfRows() != count)
+  if (!voxels || !centroid || !volume || !boxes || !haveBounds || table->GetNumberOfRows() != count)
   {
     CHECK(false, what << ": table columns");
     return;
@@ -333,11 +392,24 @@ void checkTable(vtkCUDBConnectivity* f,
           bounds[id][2 * d + 1] = std::max(bounds[id][2 * d + 1], l.extentMin[d] + p[d]);
         }
       }
+  const ExpectedGeometry geometry(v);
+  const double voxelMeasure = geometry.measure(l);
   for (int r = 0; r < count; ++r)
   {
     const int id = r + 1;
     CHECK(static_cast<long long>(voxels->GetTuple1(r)) == sizes[id],
       what << ": VoxelCount of region " << id);
+    CHECK(near(volume->GetTuple1(r), static_cast<double>(sizes[id]) * voxelMeasure),
+      what << ": Volume of region " << id << " is " << volume->GetTuple1(r) << ", expected "
+           << static_cast<double>(sizes[id]) * voxelMeasure);
+    if (boxesOfRegion)
+    {
+      const long long expected =
+        id < static_cast<int>(boxesOfRegion->size()) ? (*boxesOfRegion)[id] : 0;
+      CHECK(static_cast<long long>(boxes->GetTuple1(r)) == expected,
+        what << ": NumberOfBoxes of region " << id << " is " << boxes->GetTuple1(r)
+             << ", port 1 has " << expected);
+    }
     for (int d = 0; d < 3; ++d)
     {
       const double expected = sum[id][d] / static_cast<double>(sizes[id]);
@@ -348,6 +420,13 @@ void checkTable(vtkCUDBConnectivity* f,
       CHECK(indexBounds[2 * d]->GetTuple1(r) == bounds[id][2 * d] &&
           indexBounds[2 * d + 1]->GetTuple1(r) == bounds[id][2 * d + 1],
         what << ": index bounds of region " << id);
+      const std::array<double, 2> world =
+        geometry.world(l, d, bounds[id][2 * d], bounds[id][2 * d + 1]);
+      CHECK(near(worldBounds[2 * d]->GetTuple1(r), world[0]) &&
+          near(worldBounds[2 * d + 1]->GetTuple1(r), world[1]),
+        what << ": world bounds of region " << id << " axis " << d << " are ["
+             << worldBounds[2 * d]->GetTuple1(r) << ", " << worldBounds[2 * d + 1]->GetTuple1(r)
+             << "], expected [" << world[0] << ", " << world[1] << "]");
     }
   }
 }
@@ -718,14 +797,20 @@ void checkTwoDimensionalRuns()
         }
     }
   // One image of more runs than the default MinimumPixelRuns (about 2.4 million): the runs
-  // against the boxes and the sweep, and the labels against the flood fill.
+  // against the boxes and the sweep, and the labels and table against the flood fill. Its
+  // face-connected regions are a table past the 32 MiB (268,436 rows) from which the filter
+  // streams the rows to the columns, 16 a block, the last ones stored one by one.
   const Volume v = randomVolume({ 3100, 3100, 1 }, 0.5, 1, 977);
+  Layout l;
+  l.extentMin = { -7, 4, 2 };
+  l.spacing = { 0.5, 1.25, 2.0 };
+  l.origin = { -1, 0.5, 3 };
   for (bool vertex : { false, true })
   {
     vtkNew<vtkCUDBConnectivity> runs, sweep;
     for (vtkCUDBConnectivity* f : { runs.Get(), sweep.Get() })
     {
-      f->SetInputData(makeImage(v, Layout()));
+      f->SetInputData(makeImage(v, l));
       f->SetConnectivity(vertex ? vtkCUDBConnectivity::VERTEX : vtkCUDBConnectivity::FACE);
       f->SetRegionOrderingToSweepOrder();
       f->GenerateBoxesOff();
@@ -736,8 +821,11 @@ void checkTwoDimensionalRuns()
     const std::string name = std::string("2D runs 3100^2") + (vertex ? " vertex" : " face");
     checkSameOutputs(runs, sweep, name + ", runs and sweep");
     int count = 0;
-    CHECK(regionIds(runs, Layout()) == floodFill(v, Rule(), vertex, count),
-      name << ": labels against the flood fill");
+    const std::vector<int> ids = regionIds(runs, l);
+    CHECK(ids == floodFill(v, Rule(), vertex, count), name << ": labels against the flood fill");
+    CHECK(vertex || count >= 268436,
+      name << ": " << count << " regions, fewer than a streamed table's 268,436");
+    checkTable(runs, v, l, ids, name);
   }
 }
 
