@@ -378,7 +378,7 @@ void releaseBlock(void* block)
 
 /// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 2
 /// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
-/// faulted in 4 KiB pages) and marked for transparent huge pages, as
+/// faulted in 4 KiB pages) and marked for transparent huge pages, like
 /// vbr::vtk::newZeroedIntArray's RegionId image, and taken from the blocks an earlier update
 /// released when one fits (BlockCache). Null when refused.
 void* allocateBlock(std::size_t bytes, bool huge)

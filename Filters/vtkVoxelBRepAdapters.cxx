@@ -304,7 +304,8 @@ namespace
 #ifdef __linux__
 constexpr std::size_t HugePage = std::size_t(2) << 20;
 
-/// What a zeroed mapping needs to be unmapped, kept just below its data, with a cookie.
+/// What a zeroed mapping needs to be unmapped, at the start of its first huge page, with a
+/// cookie; its data start HeaderBytes later, in the same 4 KiB page.
 struct MappingHeader
 {
   void* base;
@@ -312,19 +313,21 @@ struct MappingHeader
   std::uint64_t cookie;
 };
 constexpr std::uint64_t MappingCookie = 0x5642525a65726f73ull;
+constexpr std::size_t HeaderBytes = 64; // the data 64-byte aligned
 
-/// The header of a block of mapZeroed, or nullptr for a block of malloc: VTK keeps an array's
-/// free function when it empties the array and reallocates it later by malloc, then hands that
-/// block to unmapZeroed. A block of mapZeroed starts on a huge page, after the cookie.
+/// Whether `data` is a block of mapZeroed, and then its header. VTK keeps an array's free
+/// function when it empties the array and reallocates it later by malloc, then hands that
+/// block to unmapZeroed. The header read lies in the page of `data`, mapped whatever it is.
 #if defined(__clang__) || defined(__GNUC__)
 __attribute__((no_sanitize_address))
 #endif
 bool
 readMappingHeader(void* data, MappingHeader& header)
 {
-  if (reinterpret_cast<std::uintptr_t>(data) % HugePage != 0)
+  if (reinterpret_cast<std::uintptr_t>(data) % HugePage != HeaderBytes)
     return false;
-  std::memcpy(&header, static_cast<char*>(data) - sizeof header, sizeof header);
+  // Plain loads, not memcpy, which a sanitizer intercepts whatever the attribute says.
+  header = *reinterpret_cast<const MappingHeader*>(static_cast<char*>(data) - HeaderBytes);
   return header.cookie == MappingCookie;
 }
 
@@ -337,20 +340,20 @@ void unmapZeroed(void* data)
     std::free(data);
 }
 
-/// n zero bytes, 2 MiB-aligned, or nullptr.
+/// n zero bytes, HeaderBytes into a huge page, or nullptr.
 void* mapZeroed(std::size_t bytes)
 {
-  const std::size_t rounded = (bytes + HugePage - 1) / HugePage * HugePage;
-  const std::size_t length = rounded + 2 * HugePage; // room to align and for the header
+  const std::size_t rounded = (bytes + HeaderBytes + HugePage - 1) / HugePage * HugePage;
+  const std::size_t length = rounded + HugePage; // room to align
   void* base = mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (base == MAP_FAILED)
     return nullptr;
-  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(base) + sizeof(MappingHeader);
-  char* data = reinterpret_cast<char*>((first + HugePage - 1) / HugePage * HugePage);
+  char* page = reinterpret_cast<char*>(
+    (reinterpret_cast<std::uintptr_t>(base) + HugePage - 1) / HugePage * HugePage);
+  madvise(page, rounded, MADV_HUGEPAGE); // a hint: failure only costs time
   const MappingHeader header{ base, length, MappingCookie };
-  std::memcpy(data - sizeof header, &header, sizeof header);
-  madvise(data, rounded, MADV_HUGEPAGE); // a hint: failure only costs time
-  return data;
+  std::memcpy(page, &header, sizeof header);
+  return page + HeaderBytes;
 }
 #endif
 } // namespace

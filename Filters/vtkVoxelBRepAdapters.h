@@ -108,9 +108,9 @@ std::string readVoxels(vtkImageData* image,
   VoxelGrid& grid);
 
 /// A vtkIntArray of n zeros. On Linux, large ones are mapped straight from the kernel, whose
-/// pages are zero already (no pass over the memory), 2 MiB-aligned and marked for transparent
-/// huge pages: writing a label image is otherwise dominated by first-touch page faults (one
-/// per 1024 values; about 170 ms for 256^3 labels here, 5 to 100 ms with huge pages).
+/// pages are zero already (no pass over the memory), 64 bytes into a huge page and marked for
+/// transparent huge pages: writing a label image is otherwise dominated by first-touch page faults
+/// (one per 1024 values; about 170 ms for 256^3 labels here, 5 to 100 ms with huge pages).
 vtkSmartPointer<vtkIntArray> newZeroedIntArray(vtkIdType n);
 
 /// Sets the number of tuples of `array`, throwing when they cannot be allocated: first

@@ -697,14 +697,14 @@ namespace
 
 /// The index of (x, y) along the Hilbert curve through the side x side grid (side a power of
 /// two above x and y): points close along it are close in the plane.
-std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t side)
+std::uint64_t hilbertIndex(std::uint64_t x, std::uint64_t y, std::uint64_t side)
 {
   std::uint64_t d = 0;
-  for (std::uint32_t s = side / 2; s > 0; s >>= 1)
+  for (std::uint64_t s = side / 2; s > 0; s >>= 1)
   {
-    const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
-    d += std::uint64_t(s) * s * ((3 * rx) ^ ry);
-    if (ry == 0) // turn the quadrant so that the curve runs on in it
+    const std::uint64_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += s * s * ((3 * rx) ^ ry); // s <= 2^31: below 2^64
+    if (ry == 0)                  // turn the quadrant so that the curve runs on in it
     {
       if (rx == 1)
       {
@@ -729,23 +729,21 @@ struct CornerCode
 /// indices.
 std::vector<CornerCode> cornersAlongHilbertCurve(const std::vector<Point3>& at, int u, int v)
 {
-  Coord uLo = std::numeric_limits<Coord>::max(), vLo = uLo, uHi = 0, vHi = 0;
+  std::int64_t uLo = std::numeric_limits<std::int64_t>::max(), vLo = uLo, span = 0;
   for (const Point3& p : at)
   {
-    uLo = std::min(uLo, p[u]);
-    vLo = std::min(vLo, p[v]);
-    uHi = std::max(uHi, p[u]);
-    vHi = std::max(vHi, p[v]);
+    uLo = std::min<std::int64_t>(uLo, p[u]);
+    vLo = std::min<std::int64_t>(vLo, p[v]);
   }
-  const std::uint32_t span =
-    std::max(static_cast<std::uint32_t>(uHi - uLo), static_cast<std::uint32_t>(vHi - vLo));
-  std::uint32_t side = 2;
-  while (side <= span && side < (std::uint32_t(1) << 31))
+  for (const Point3& p : at)
+    span = std::max({ span, p[u] - uLo, p[v] - vLo });
+  std::uint64_t side = 2; // at most 2^32: 32-bit coordinates differ by less
+  while (side <= static_cast<std::uint64_t>(span))
     side *= 2;
   std::vector<CornerCode> corners(at.size());
   for (std::size_t i = 0; i < at.size(); ++i)
-    corners[i] = { hilbertIndex(static_cast<std::uint32_t>(at[i][u] - uLo),
-                     static_cast<std::uint32_t>(at[i][v] - vLo),
+    corners[i] = { hilbertIndex(static_cast<std::uint64_t>(at[i][u] - uLo),
+                     static_cast<std::uint64_t>(at[i][v] - vLo),
                      side),
       static_cast<int>(i) };
   radixSortBy(corners, [](const CornerCode& c) { return c.code; });

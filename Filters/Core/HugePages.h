@@ -30,11 +30,15 @@ constexpr std::size_t HugePageMinimum = 2 * HugePageBytes;
 /// Asks for huge pages under the whole 2 MiB pages inside [data, data + bytes), for the memory
 /// not touched yet (pages already mapped stay as they are). Rounded inwards: the advice stays on
 /// the range's own memory, never on a neighbour's in the heap (an advised range of the heap
-/// keeps its flag after it is freed). Nothing below HugePageMinimum.
-inline void adviseHugePages(const void* data, std::size_t bytes)
+/// keeps its flag after it is freed; a block malloc mapped on its own is then split, and
+/// realloc copies it rather than remapping it: no matter for a std::vector, which never
+/// reallocs). Nothing below `minimum` bytes (at least one whole huge page lies in 4 MiB).
+inline void adviseHugePages(const void* data,
+  std::size_t bytes,
+  std::size_t minimum = HugePageMinimum)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (bytes < HugePageMinimum)
+  if (bytes < minimum)
     return;
   const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(data);
   const std::uintptr_t first = (begin + HugePageBytes - 1) & ~(HugePageBytes - 1);
@@ -44,40 +48,45 @@ inline void adviseHugePages(const void* data, std::size_t bytes)
 #else
   (void)data;
   (void)bytes;
+  (void)minimum;
 #endif
 }
 
 /// Room for n values in `v`, with huge pages asked for under it when it is large; for a vector
 /// about to be filled (resize, assign, push_back up to n) while its pages are not touched.
 template<typename T, typename A>
-void reserveHugePages(std::vector<T, A>& v, std::size_t n)
+void reserveHugePages(std::vector<T, A>& v, std::size_t n, std::size_t minimum = HugePageMinimum)
 {
   v.reserve(n);
-  adviseHugePages(v.data(), v.capacity() * sizeof(T));
+  adviseHugePages(v.data(), v.capacity() * sizeof(T), minimum);
 }
 
 /// `v` emptied and then holding n copies of `value`, its new memory advised (reserveHugePages)
 /// before it is written.
 template<typename T, typename A>
-void assignHugePages(std::vector<T, A>& v, std::size_t n, const T& value)
+void assignHugePages(std::vector<T, A>& v,
+  std::size_t n,
+  const T& value,
+  std::size_t minimum = HugePageMinimum)
 {
   if (v.capacity() < n)
     std::vector<T, A>().swap(v); // no copy of the old values into the new room
-  reserveHugePages(v, n);
+  reserveHugePages(v, n, minimum);
   v.assign(n, value);
 }
+
+#if defined(__linux__) && defined(MADV_HUGEPAGE) && defined(MREMAP_MAYMOVE)
+#define VBR_HUGE_BLOCKS 1
+#endif
 
 /// Blocks of memory of their own mapping, apart from the heap, advised for huge pages from the
 /// start: for arrays that grow by doubling to hundreds of megabytes (the output's points and
 /// cells). malloc serves blocks up to 32 MiB from its heap once a block that large was freed,
 /// and realloc then copies them into pages faulted in afresh; a mapping grows by mremap, which
-/// moves its pages and copies nothing. The mapping's length (a multiple of 2 MiB, so that the
-/// kernel places it on a huge page boundary) is kept in a header before the data; the data
-/// are 64-byte aligned. nullptr when the system refuses (or is not Linux): use malloc then.
-#if defined(__linux__) && defined(MADV_HUGEPAGE) && defined(MREMAP_MAYMOVE)
-#define VBR_HUGE_BLOCKS 1
-#endif
-
+/// moves its pages and copies nothing. The mapping's length is a multiple of 2 MiB (Linux 6.7
+/// and later then place it on a huge page boundary; earlier kernels may leave its first and
+/// last 2 MiB in small pages) and is kept in a header before the data; the data are 64-byte
+/// aligned. nullptr when the system refuses (or is not Linux): use malloc then.
 namespace hugeblock
 {
 /// The header before a block's data: its mapping's length, then Cookie. The data start Header
@@ -140,16 +149,16 @@ inline void* remapHugeBlock(void* data, std::size_t bytes)
   if (bytes > std::size_t(-1) / 2)
     return nullptr;
   char* base = hugeblock::baseOf(data);
-  const std::size_t old = *reinterpret_cast<std::size_t*>(base);
+  const std::uint64_t old = *reinterpret_cast<std::uint64_t*>(base);
   const std::size_t length = hugeblock::mappingLength(bytes);
   if (length == old)
     return data;
-  void* moved = mremap(base, old, length, MREMAP_MAYMOVE); // the advice goes with the pages
+  void* moved = mremap(base, static_cast<std::size_t>(old), length, MREMAP_MAYMOVE); // advice kept
   if (moved == MAP_FAILED)
     return nullptr;
   if (length > old)
     madvise(moved, length, MADV_HUGEPAGE);
-  *static_cast<std::size_t*>(moved) = length;
+  *static_cast<std::uint64_t*>(moved) = length;
   return static_cast<char*>(moved) + hugeblock::Header;
 #else
   (void)data;
@@ -170,7 +179,7 @@ inline void unmapHugeBlock(void* data)
   if (hugeblock::isBlock(data))
   {
     char* base = hugeblock::baseOf(data);
-    munmap(base, *reinterpret_cast<std::size_t*>(base));
+    munmap(base, static_cast<std::size_t>(*reinterpret_cast<std::uint64_t*>(base)));
     return;
   }
 #endif

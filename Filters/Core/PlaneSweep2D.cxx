@@ -260,7 +260,7 @@ private:
       this->Corners.reserve(static_cast<std::size_t>(end - begin));
     // Huge pages under the edges, which the domino step reads in no order of memory: a miss in
     // the cache then rarely misses in the TLB as well.
-    adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge));
+    adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge), HugePageBytes);
     while (begin != end)
     {
       const Vertex* lineEnd = begin;

@@ -34,7 +34,7 @@ constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 /// kernel in between (the top of its heap, or a mapping of its own), which then faulted it in
 /// 4 KiB at a time: about 3 microseconds a page on the benchmark machine, where an update of a
 /// 256^3 porous volume with 9,000 to 12,000 such faults took 95 to 100 ms of CPU, and 70 ms
-/// with about 300. Hence its arrays on huge pages (HugePages.h).
+/// with about 300. Hence its arrays on huge pages (HugePages.h), from the first whole one.
 
 /// n values in `v`: in its memory when it has room (kept from an earlier labelling, already
 /// faulted in), else in a new block on huge pages where they fill some.
@@ -45,7 +45,7 @@ void resizeOnHugePages(std::vector<T>& v, std::size_t n)
   if (v.capacity() < n)
   {
     v = std::vector<T>();
-    reserveHugePages(v, n);
+    reserveHugePages(v, n, HugePageBytes);
   }
   v.resize(n);
 }
@@ -146,7 +146,7 @@ struct CompactionNotes
     : size(n)
     , storage(std::move(memory))
   {
-    assignHugePages(this->storage, 3 * n, None);
+    assignHugePages(this->storage, 3 * n, None, HugePageBytes);
     this->above = this->storage.data();
     this->below = this->storage.data() + n;
     this->behind = this->storage.data() + 2 * n;
@@ -339,9 +339,9 @@ std::size_t buildBoxes(const VoxelRuns& r,
   // stores, which stalled every box).
   boxes = std::vector<Box>();
   boxLabel = std::vector<std::uint32_t>();
-  reserveHugePages(boxes, n);
-  reserveHugePages(boxLabel, n);
-  assignHugePages(boxOfRun, n, None);
+  reserveHugePages(boxes, n, HugePageBytes);
+  reserveHugePages(boxLabel, n, HugePageBytes);
+  assignHugePages(boxOfRun, n, None, HugePageBytes);
   const std::int32_t ny = r.dims[1], nz = r.dims[2];
   for (std::int32_t z = 0; z < nz; ++z)
     for (std::int32_t y = 0; y < ny; ++y)
@@ -528,7 +528,7 @@ bool labelRuns(const BitVolume& voxels,
   if (memory.parents.capacity() < n)
   {
     memory.parents = std::vector<std::uint32_t>();
-    reserveHugePages(memory.parents, n);
+    reserveHugePages(memory.parents, n, HugePageBytes);
   }
   UnionFind uf(std::move(memory.parents), n);
   CompactionNotes notes(n, std::move(memory.notes));

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -332,8 +333,9 @@ bool testLargeBuffer()
 }
 
 /// An array VTK took over from a mapped block, emptied (vtkBuffer keeps its free function)
-/// and filled again by malloc: its values are right, and the free function, handed a block of
-/// malloc at the end, frees it (a munmap of it would fail or unmap memory of the heap).
+/// and filled again by malloc: its values are right, and the free function, handed that block
+/// of malloc when the array grows again, frees it (a munmap of it would fail or unmap memory of
+/// the heap).
 bool emptiedAndFilledAgain(vtkIntArray* array, const char* what)
 {
   array->Initialize();
@@ -371,6 +373,21 @@ bool testArraysEmptiedAfterTakeover()
   }
   std::vector<char> heap(100);
   ok = !vbr::hugeblock::isBlock(heap.data()) && ok;
+  // The test itself on a page of our own: the cookie in the header's place tells a block, its
+  // absence or another place in the page does not.
+  void* page = std::aligned_alloc(4096, 8192);
+  auto* words = static_cast<std::uint64_t*>(page);
+  char* data = static_cast<char*>(page) + vbr::hugeblock::Header;
+  words[0] = 8192;
+  words[1] = vbr::hugeblock::Cookie;
+  const bool told = vbr::hugeblock::isBlock(data) && !vbr::hugeblock::isBlock(data + 16);
+  words[1] = 0;
+  if (!told || vbr::hugeblock::isBlock(data))
+  {
+    std::cerr << "hugeblock::isBlock does not tell a block by its place and cookie\n";
+    ok = false;
+  }
+  std::free(page);
   return ok;
 }
 
