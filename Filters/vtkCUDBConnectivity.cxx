@@ -64,9 +64,18 @@
 #ifdef __linux__
 #include <sys/mman.h>
 #endif
+// Whether AddressSanitizer instruments this file (gcc says so by a macro, clang by a feature).
+#if defined(__SANITIZE_ADDRESS__)
+#define VBR_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VBR_ADDRESS_SANITIZER 1
+#endif
+#endif
+
 // Stores past the caches for the large outputs; plain stores under AddressSanitizer, which
 // does not see the SSE2 built-ins' writes.
-#if defined(__SSE2__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__SSE2__) && !defined(VBR_ADDRESS_SANITIZER)
 #define VBR_STREAM_STORES 1
 #include <emmintrin.h>
 #endif
@@ -152,14 +161,9 @@ void* newBlock(std::size_t length, bool huge)
 }
 
 // Under AddressSanitizer BlockCache keeps no block: a use of a freed output stays detectable.
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(VBR_ADDRESS_SANITIZER)
 #define VBR_KEEP_BLOCKS 0
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define VBR_KEEP_BLOCKS 0
-#endif
-#endif
-#ifndef VBR_KEEP_BLOCKS
+#else
 #define VBR_KEEP_BLOCKS 1
 #endif
 

@@ -36,10 +36,10 @@ constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 /// 256^3 porous volume with 9,000 to 12,000 such faults took 95 to 100 ms of CPU, and 70 ms
 /// with about 300. Hence its arrays on huge pages (HugePages.h), from the first whole one.
 
-/// n values in `v`: in its memory when it has room (kept from an earlier labelling, already
-/// faulted in), else in a new block on huge pages where they fill some.
+/// `v` emptied with room for n values: its own memory when it has room (kept from an earlier
+/// labelling, already faulted in), else a new block on huge pages where they fill some.
 template<typename T>
-void resizeOnHugePages(std::vector<T>& v, std::size_t n)
+void emptyWithRoom(std::vector<T>& v, std::size_t n)
 {
   v.clear();
   if (v.capacity() < n)
@@ -47,6 +47,13 @@ void resizeOnHugePages(std::vector<T>& v, std::size_t n)
     v = std::vector<T>();
     reserveHugePages(v, n, HugePageBytes);
   }
+}
+
+/// n values in `v`, in its memory when it has room (emptyWithRoom).
+template<typename T>
+void resizeOnHugePages(std::vector<T>& v, std::size_t n)
+{
+  emptyWithRoom(v, n);
   v.resize(n);
 }
 
@@ -525,11 +532,7 @@ bool labelRuns(const BitVolume& voxels,
   RunLabellingScratch& memory = scratch ? *scratch : local;
   const std::size_t n = runs.runs.size();
   const std::int32_t nz = runs.dims[2];
-  if (memory.parents.capacity() < n)
-  {
-    memory.parents = std::vector<std::uint32_t>();
-    reserveHugePages(memory.parents, n, HugePageBytes);
-  }
+  emptyWithRoom(memory.parents, n);
   UnionFind uf(std::move(memory.parents), n);
   CompactionNotes notes(n, std::move(memory.notes));
   // The working memory goes back to `memory` however the labelling ends.
