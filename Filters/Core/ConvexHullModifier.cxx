@@ -2581,24 +2581,42 @@ LatticeBox gridBoxOf(const Shell& shell, const Dims& d)
 /// strictly outside H and not flagged (or off the grid), every centre between them on H. The two
 /// centres where the path leaves the shell (the last one flagged and the next), or nothing when the
 /// void is sealed from the rest of the background.
+/// The tables of voidCrossing's searches, kept by the caller from one search to the next: the
+/// step each centre was reached by (kSeed: a centre of the void; all kUnreached between
+/// searches), the centres a search reached (to reset them) and its queue. Each search stays near
+/// its shell: a table of the grid allocated per shell cost more than the search on the full
+/// aneurism, a hash map a twentieth of its time, and the list and queue allocated and grown per
+/// search about half of it.
+struct VoidSearch
+{
+  std::vector<std::uint8_t> from;
+  std::vector<std::size_t> reached;
+  std::queue<LatticePoint> todo;
+
+  explicit VoidSearch(std::size_t centres)
+    : from(centres, kUnreached)
+  {
+  }
+};
+
 std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
   const std::vector<std::uint8_t>& where,
   const std::vector<std::uint8_t>& mine,
   const LatticeBox& box,
-  std::vector<std::uint8_t>& from)
+  VoidSearch& search)
 {
   const Dims d = objects.dims();
-  // The centres reached and the step each was reached by (kSeed: a centre of the void), in a
-  // table of the grid kept by the caller (all kUnreached, reset here to that for the centres
-  // this search reached): the search stays near the shell, and a table allocated per shell cost
-  // more than the search on the full aneurism, a hash map a twentieth of its time.
-  std::vector<std::size_t> reached;
+  std::vector<std::uint8_t>& from = search.from;
+  std::vector<std::size_t>& reached = search.reached;
+  std::queue<LatticePoint>& todo = search.todo;
+  reached.clear();
+  while (!todo.empty()) // the last search stops at its first path out
+    todo.pop();
   const auto mark = [&](std::size_t i, std::uint8_t how)
   {
     from[i] = how;
     reached.push_back(i);
   };
-  std::queue<LatticePoint> todo;
   forEachInBox(box,
     [&](const LatticePoint& p)
     {
@@ -2895,6 +2913,18 @@ int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
   return parity ? 1 : -1;
 }
 
+/// sideOf for k = 1 from some of the surface's triangles (trianglesAheadOf).
+int sideOf(const LatticeMesh& surface,
+  const std::vector<std::array<Index, 3>>& triangles,
+  const LatticePoint& p)
+{
+  int parity = 0;
+  for (const auto& tri : triangles)
+    if (!crossesBeyond(surface, tri, p, 1, parity))
+      return 0;
+  return parity ? 1 : -1;
+}
+
 /// Whether the triangle meets the open interior of the solid hull, or with `closed` the closed
 /// hull (exact separating axes: the hull's face normals, the triangle's normal and the cross
 /// products of their edges; a plane along one of them that leaves the triangle on one closed
@@ -3165,6 +3195,32 @@ bool shellsFaceOutward(const std::vector<Shell>& shells)
   return true;
 }
 
+/// The triangles of the surface that sideOf may need for a point of the box (k = 1): those
+/// behindOrBeside skips for every point of the box (their box misses the box's rows across y or
+/// z, or ends before it along x) left out, the others in their order, on the same points. For
+/// each point of the box sideOf then gives the same answer as on the whole surface: a triangle
+/// left out neither holds the point nor crosses its ray. Locating each of a prism's points
+/// against every triangle of the changed part (mostly the vessels' main shell on the aneurism,
+/// tens of thousands of triangles) was most of the check.
+std::vector<std::array<Index, 3>> trianglesAheadOf(const LatticeMesh& surface,
+  const std::array<LatticePoint, 2>& box)
+{
+  std::vector<std::array<Index, 3>> near;
+  for (const auto& tri : surface.triangles)
+  {
+    const LatticePoint& a = surface.points[tri[0]];
+    const LatticePoint& b = surface.points[tri[1]];
+    const LatticePoint& c = surface.points[tri[2]];
+    bool skipped = std::max({ a[0], b[0], c[0] }) < box[0][0];
+    for (int axis = 1; axis < 3 && !skipped; ++axis)
+      skipped = std::max({ a[axis], b[axis], c[axis] }) < box[0][axis] ||
+        std::min({ a[axis], b[axis], c[axis] }) > box[1][axis];
+    if (!skipped)
+      near.push_back(tri);
+  }
+  return near;
+}
+
 /// Whether every lattice point of the closed prism P lies on the right side of `joined`, the
 /// part of H that P changed after P was cut out of it or added to it (no object centre outside,
 /// no background centre inside, off the grid included), with the new sides of those in the grid;
@@ -3180,6 +3236,7 @@ bool prismKeepsSeparation(const LatticeMesh& joined,
   std::vector<std::pair<std::size_t, std::uint8_t>>& sides)
 {
   const Dims d = objects.dims();
+  const std::vector<std::array<Index, 3>> near = trianglesAheadOf(joined, boxOf(prism));
   bool ok = true;
   forEachPointIn(prism,
     false,
@@ -3187,7 +3244,7 @@ bool prismKeepsSeparation(const LatticeMesh& joined,
     {
       if (!ok)
         return;
-      const int side = reversed ? -sideOf(joined, p, 1) : sideOf(joined, p, 1);
+      const int side = reversed ? -sideOf(joined, near, p) : sideOf(joined, near, p);
       const bool object = voxelClass(objects, p);
       if ((object && side < 0) || (!object && side > 0))
         ok = false;
@@ -3655,7 +3712,7 @@ bool joinOneShell(Context& ctx,
   ShelledSurface& surface,
   std::vector<std::uint8_t>& where,
   std::vector<std::uint8_t>& mine,
-  std::vector<std::uint8_t>& from,
+  VoidSearch& search,
   std::set<LatticePoint>& failed)
 {
   // A join changes the shells only when it returns true, and then this returns at once.
@@ -3678,7 +3735,7 @@ bool joinOneShell(Context& ctx,
       // `mine` is all 0 but where markShell flags the shell's box, cleared after the search.
       const LatticeBox box = gridBoxOf(shells[s], d);
       markShell(shells[s].mesh, d, 1, 2, mine);
-      crossing = voidCrossing(ctx.objects, where, mine, box, from);
+      crossing = voidCrossing(ctx.objects, where, mine, box, search);
       forEachInBox(box, [&](const LatticePoint& p) { mine[gridIndex(d, p)] = 0; });
     }
     else
@@ -3730,8 +3787,9 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   ShelledSurface repaired(surface);
   const auto planes = ctx.planeLevel;
   std::vector<std::uint8_t> where = whereInGrid(repaired.mesh, ctx.objects.dims());
-  std::vector<std::uint8_t> mine(where.size(), 0), from(where.size(), kUnreached);
-  while (joinOneShell(ctx, repaired, where, mine, from, failed))
+  std::vector<std::uint8_t> mine(where.size(), 0);
+  VoidSearch search(where.size());
+  while (joinOneShell(ctx, repaired, where, mine, search, failed))
     ++joined;
   // Checked once at the end, without a self-intersection test of the whole surface
   // (separatesAfterLocalChecks).
