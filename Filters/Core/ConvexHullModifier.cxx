@@ -5341,6 +5341,19 @@ CellList groupShape(const std::vector<LatticePoint>& points, CoplanarFaces copla
   return shapeOf(PointRuns::of(points), coplanar);
 }
 
+std::vector<int> sidesInBox(const LatticeMesh& surface,
+  const LatticePoint& lo,
+  const LatticePoint& hi)
+{
+  const std::vector<std::array<Index, 3>> near = trianglesAheadOf(surface, { lo, hi });
+  std::vector<int> sides;
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        sides.push_back(sideOf(surface, near, { x, y, z }));
+  return sides;
+}
+
 } // namespace detail
 
 } // namespace vbr
