@@ -2576,22 +2576,17 @@ LatticeBox gridBoxOf(const Shell& shell, const Dims& d)
   return box;
 }
 
-/// The shortest face-connected path of background centres from a centre of a void (`mine`
-/// flags the centres the shell encloses or holds: a thin void encloses none) to a background centre
-/// strictly outside H and not flagged (or off the grid), every centre between them on H. The two
-/// centres where the path leaves the shell (the last one flagged and the next), or nothing when the
-/// void is sealed from the rest of the background.
-/// The tables of voidCrossing's searches, kept by the caller from one search to the next: the
-/// step each centre was reached by (kSeed: a centre of the void; all kUnreached between
-/// searches), the centres a search reached (to reset them) and its queue. Each search stays near
-/// its shell: a table of the grid allocated per shell cost more than the search on the full
-/// aneurism, a hash map a twentieth of its time, and the list and queue allocated and grown per
-/// search about half of it.
+/// The tables of voidCrossing's searches, kept by the caller from one search to the next so that
+/// a search allocates nothing once they have grown: the step each centre was reached by (kSeed: a
+/// centre of the void; all kUnreached between searches), the centres a search reached (to reset
+/// them) and its queue (a list visited from the front, first in first out). Each search stays
+/// near its shell: a table of the grid allocated per shell cost more than the search on the full
+/// aneurism, a hash map a twentieth of its time.
 struct VoidSearch
 {
   std::vector<std::uint8_t> from;
   std::vector<std::size_t> reached;
-  std::queue<LatticePoint> todo;
+  std::vector<LatticePoint> todo;
 
   explicit VoidSearch(std::size_t centres)
     : from(centres, kUnreached)
@@ -2599,6 +2594,11 @@ struct VoidSearch
   }
 };
 
+/// The shortest face-connected path of background centres from a centre of a void (`mine`
+/// flags the centres the shell encloses or holds: a thin void encloses none) to a background centre
+/// strictly outside H and not flagged (or off the grid), every centre between them on H. The two
+/// centres where the path leaves the shell (the last one flagged and the next), or nothing when the
+/// void is sealed from the rest of the background.
 std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
   const std::vector<std::uint8_t>& where,
   const std::vector<std::uint8_t>& mine,
@@ -2608,10 +2608,10 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
   const Dims d = objects.dims();
   std::vector<std::uint8_t>& from = search.from;
   std::vector<std::size_t>& reached = search.reached;
-  std::queue<LatticePoint>& todo = search.todo;
+  std::vector<LatticePoint>& todo = search.todo; // visited from todo[head] on, in order
+  std::size_t head = 0;
   reached.clear();
-  while (!todo.empty()) // the last search stops at its first path out
-    todo.pop();
+  todo.clear(); // the last search stops at its first path out, some centres left unvisited
   const auto mark = [&](std::size_t i, std::uint8_t how)
   {
     from[i] = how;
@@ -2623,15 +2623,14 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
       if (mine[gridIndex(d, p)] && !voxelClass(objects, p))
       {
         mark(gridIndex(d, p), kSeed);
-        todo.push(p);
+        todo.push_back(p);
       }
     });
   std::vector<LatticePoint> found;
   bool done = false; // the first path out decides, a crossing or none
-  while (!todo.empty() && !done)
+  while (head < todo.size() && !done)
   {
-    const LatticePoint p = todo.front();
-    todo.pop();
+    const LatticePoint p = todo[head++]; // a copy: pushing below may move the list
     for (int k = 0; k < 6; ++k)
     {
       const LatticePoint q = step(p, k);
@@ -2662,7 +2661,7 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
         from[gridIndex(d, q)] == kUnreached)
       {
         mark(gridIndex(d, q), static_cast<std::uint8_t>(k));
-        todo.push(q);
+        todo.push_back(q);
       }
     }
   }
@@ -2902,27 +2901,25 @@ bool crossesBeyond(const LatticeMesh& surface,
   return true;
 }
 
-/// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
-/// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
-int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
+/// sideOf from those of the surface's triangles that can reach p / k (all of them, or for k = 1
+/// those trianglesAheadOf keeps for a box that holds p).
+int sideOf(const LatticeMesh& surface,
+  const std::vector<std::array<Index, 3>>& triangles,
+  const LatticePoint& p,
+  std::int64_t k)
 {
   int parity = 0;
-  for (const auto& tri : surface.triangles)
+  for (const auto& tri : triangles)
     if (!crossesBeyond(surface, tri, p, k, parity))
       return 0;
   return parity ? 1 : -1;
 }
 
-/// sideOf for k = 1 from some of the surface's triangles (trianglesAheadOf).
-int sideOf(const LatticeMesh& surface,
-  const std::vector<std::array<Index, 3>>& triangles,
-  const LatticePoint& p)
+/// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
+/// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
+int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
 {
-  int parity = 0;
-  for (const auto& tri : triangles)
-    if (!crossesBeyond(surface, tri, p, 1, parity))
-      return 0;
-  return parity ? 1 : -1;
+  return sideOf(surface, surface.triangles, p, k);
 }
 
 /// Whether the triangle meets the open interior of the solid hull, or with `closed` the closed
@@ -3195,13 +3192,12 @@ bool shellsFaceOutward(const std::vector<Shell>& shells)
   return true;
 }
 
-/// The triangles of the surface that sideOf may need for a point of the box (k = 1): those
-/// behindOrBeside skips for every point of the box (their box misses the box's rows across y or
-/// z, or ends before it along x) left out, the others in their order, on the same points. For
-/// each point of the box sideOf then gives the same answer as on the whole surface: a triangle
-/// left out neither holds the point nor crosses its ray. Locating each of a prism's points
-/// against every triangle of the changed part (mostly the vessels' main shell on the aneurism,
-/// tens of thousands of triangles) was most of the check.
+/// The surface's triangles in their order, without those that behindOrBeside(., p, 1) skips for
+/// every lattice point p of the box: box[0] <= p <= box[1] makes max_x < lo_x imply max_x < p_x,
+/// and likewise max_y < lo_y, min_y > hi_y and the same along z, so sideOf(., p, 1) on the rest
+/// gives the same answer for every point of the box as on the whole surface. Locating each of a
+/// prism's points against every triangle of the part of H the join changed (on the aneurism
+/// mostly the vessels' main shell, tens of thousands of triangles) was most of the check.
 std::vector<std::array<Index, 3>> trianglesAheadOf(const LatticeMesh& surface,
   const std::array<LatticePoint, 2>& box)
 {
@@ -3244,7 +3240,7 @@ bool prismKeepsSeparation(const LatticeMesh& joined,
     {
       if (!ok)
         return;
-      const int side = reversed ? -sideOf(joined, near, p) : sideOf(joined, near, p);
+      const int side = reversed ? -sideOf(joined, near, p, 1) : sideOf(joined, near, p, 1);
       const bool object = voxelClass(objects, p);
       if ((object && side < 0) || (!object && side > 0))
         ok = false;
@@ -5350,7 +5346,7 @@ std::vector<int> sidesInBox(const LatticeMesh& surface,
   for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
     for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
       for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        sides.push_back(sideOf(surface, near, { x, y, z }));
+        sides.push_back(sideOf(surface, near, { x, y, z }, 1));
   return sides;
 }
 

@@ -456,13 +456,18 @@ TEST(ConvexHullModifierInternals, GroupShapeIsTheHullOfAllPoints)
     }
 }
 
-} // namespace
-
-namespace
+/// Whether the centre (x, y, z) lies in one of the balls (centre and radius).
+bool inAnyBall(const std::vector<std::array<double, 4>>& balls, double x, double y, double z)
 {
+  for (const auto& b : balls)
+    if ((x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]) + (z - b[2]) * (z - b[2]) <= b[3] * b[3])
+      return true;
+  return false;
+}
 
-/// Objects of random density and of a few balls (holes and handles between them), so that H has
-/// pits, voids and several shells.
+/// Objects of random density (noise), or the union of a few balls (holes and handles between
+/// them), so that H has pits, voids and several shells. The balls are drawn in both modes, so
+/// that each volume of a sequence stays the one it was.
 vbr::BitVolume randomObjects(std::mt19937& rng, std::int32_t n)
 {
   vbr::BitVolume v(n, n, n);
@@ -475,16 +480,8 @@ vbr::BitVolume randomObjects(std::mt19937& rng, std::int32_t n)
   for (std::int32_t z = 0; z < n; ++z)
     for (std::int32_t y = 0; y < n; ++y)
       for (std::int32_t x = 0; x < n; ++x)
-      {
-        bool in = noise && unit(rng) < density;
-        for (const auto& b : balls)
-          in = in ||
-            (!noise &&
-              (x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]) + (z - b[2]) * (z - b[2]) <=
-                b[3] * b[3]);
-        if (in)
+        if (noise ? unit(rng) < density : inAnyBall(balls, x, y, z))
           v.set(x, y, z);
-      }
   return v;
 }
 
