@@ -2576,6 +2576,24 @@ LatticeBox gridBoxOf(const Shell& shell, const Dims& d)
   return box;
 }
 
+/// The tables of voidCrossing's searches, kept by the caller from one search to the next so that
+/// a search allocates nothing once they have grown: the step each centre was reached by (kSeed: a
+/// centre of the void; all kUnreached between searches), the centres a search reached (to reset
+/// them) and its queue (a list visited from the front, first in first out). Each search stays
+/// near its shell: a table of the grid allocated per shell cost more than the search on the full
+/// aneurism, a hash map a twentieth of its time.
+struct VoidSearch
+{
+  std::vector<std::uint8_t> from;
+  std::vector<std::size_t> reached;
+  std::vector<LatticePoint> todo;
+
+  explicit VoidSearch(std::size_t centres)
+    : from(centres, kUnreached)
+  {
+  }
+};
+
 /// The shortest face-connected path of background centres from a centre of a void (`mine`
 /// flags the centres the shell encloses or holds: a thin void encloses none) to a background centre
 /// strictly outside H and not flagged (or off the grid), every centre between them on H. The two
@@ -2585,35 +2603,34 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
   const std::vector<std::uint8_t>& where,
   const std::vector<std::uint8_t>& mine,
   const LatticeBox& box,
-  std::vector<std::uint8_t>& from)
+  VoidSearch& search)
 {
   const Dims d = objects.dims();
-  // The centres reached and the step each was reached by (kSeed: a centre of the void), in a
-  // table of the grid kept by the caller (all kUnreached, reset here to that for the centres
-  // this search reached): the search stays near the shell, and a table allocated per shell cost
-  // more than the search on the full aneurism, a hash map a twentieth of its time.
-  std::vector<std::size_t> reached;
+  std::vector<std::uint8_t>& from = search.from;
+  std::vector<std::size_t>& reached = search.reached;
+  std::vector<LatticePoint>& todo = search.todo; // visited from todo[head] on, in order
+  std::size_t head = 0;
+  reached.clear();
+  todo.clear(); // the last search stops at its first path out, some centres left unvisited
   const auto mark = [&](std::size_t i, std::uint8_t how)
   {
     from[i] = how;
     reached.push_back(i);
   };
-  std::queue<LatticePoint> todo;
   forEachInBox(box,
     [&](const LatticePoint& p)
     {
       if (mine[gridIndex(d, p)] && !voxelClass(objects, p))
       {
         mark(gridIndex(d, p), kSeed);
-        todo.push(p);
+        todo.push_back(p);
       }
     });
   std::vector<LatticePoint> found;
   bool done = false; // the first path out decides, a crossing or none
-  while (!todo.empty() && !done)
+  while (head < todo.size() && !done)
   {
-    const LatticePoint p = todo.front();
-    todo.pop();
+    const LatticePoint p = todo[head++]; // a copy: pushing below may move the list
     for (int k = 0; k < 6; ++k)
     {
       const LatticePoint q = step(p, k);
@@ -2644,7 +2661,7 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
         from[gridIndex(d, q)] == kUnreached)
       {
         mark(gridIndex(d, q), static_cast<std::uint8_t>(k));
-        todo.push(q);
+        todo.push_back(q);
       }
     }
   }
@@ -2884,15 +2901,25 @@ bool crossesBeyond(const LatticeMesh& surface,
   return true;
 }
 
+/// sideOf from those of the surface's triangles that can reach p / k (all of them, or for k = 1
+/// those trianglesAheadOf keeps for a box that holds p).
+int sideOf(const LatticeMesh& surface,
+  const std::vector<std::array<Index, 3>>& triangles,
+  const LatticePoint& p,
+  std::int64_t k)
+{
+  int parity = 0;
+  for (const auto& tri : triangles)
+    if (!crossesBeyond(surface, tri, p, k, parity))
+      return 0;
+  return parity ? 1 : -1;
+}
+
 /// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
 /// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
 int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
 {
-  int parity = 0;
-  for (const auto& tri : surface.triangles)
-    if (!crossesBeyond(surface, tri, p, k, parity))
-      return 0;
-  return parity ? 1 : -1;
+  return sideOf(surface, surface.triangles, p, k);
 }
 
 /// Whether the triangle meets the open interior of the solid hull, or with `closed` the closed
@@ -3165,6 +3192,31 @@ bool shellsFaceOutward(const std::vector<Shell>& shells)
   return true;
 }
 
+/// The surface's triangles in their order, without those that behindOrBeside(., p, 1) skips for
+/// every lattice point p of the box: box[0] <= p <= box[1] makes max_x < lo_x imply max_x < p_x,
+/// and likewise max_y < lo_y, min_y > hi_y and the same along z, so sideOf(., p, 1) on the rest
+/// gives the same answer for every point of the box as on the whole surface. Locating each of a
+/// prism's points against every triangle of the part of H the join changed (on the aneurism
+/// mostly the vessels' main shell, tens of thousands of triangles) was most of the check.
+std::vector<std::array<Index, 3>> trianglesAheadOf(const LatticeMesh& surface,
+  const std::array<LatticePoint, 2>& box)
+{
+  std::vector<std::array<Index, 3>> near;
+  for (const auto& tri : surface.triangles)
+  {
+    const LatticePoint& a = surface.points[tri[0]];
+    const LatticePoint& b = surface.points[tri[1]];
+    const LatticePoint& c = surface.points[tri[2]];
+    bool skipped = std::max({ a[0], b[0], c[0] }) < box[0][0];
+    for (int axis = 1; axis < 3 && !skipped; ++axis)
+      skipped = std::max({ a[axis], b[axis], c[axis] }) < box[0][axis] ||
+        std::min({ a[axis], b[axis], c[axis] }) > box[1][axis];
+    if (!skipped)
+      near.push_back(tri);
+  }
+  return near;
+}
+
 /// Whether every lattice point of the closed prism P lies on the right side of `joined`, the
 /// part of H that P changed after P was cut out of it or added to it (no object centre outside,
 /// no background centre inside, off the grid included), with the new sides of those in the grid;
@@ -3180,6 +3232,7 @@ bool prismKeepsSeparation(const LatticeMesh& joined,
   std::vector<std::pair<std::size_t, std::uint8_t>>& sides)
 {
   const Dims d = objects.dims();
+  const std::vector<std::array<Index, 3>> near = trianglesAheadOf(joined, boxOf(prism));
   bool ok = true;
   forEachPointIn(prism,
     false,
@@ -3187,7 +3240,7 @@ bool prismKeepsSeparation(const LatticeMesh& joined,
     {
       if (!ok)
         return;
-      const int side = reversed ? -sideOf(joined, p, 1) : sideOf(joined, p, 1);
+      const int side = reversed ? -sideOf(joined, near, p, 1) : sideOf(joined, near, p, 1);
       const bool object = voxelClass(objects, p);
       if ((object && side < 0) || (!object && side > 0))
         ok = false;
@@ -3655,7 +3708,7 @@ bool joinOneShell(Context& ctx,
   ShelledSurface& surface,
   std::vector<std::uint8_t>& where,
   std::vector<std::uint8_t>& mine,
-  std::vector<std::uint8_t>& from,
+  VoidSearch& search,
   std::set<LatticePoint>& failed)
 {
   // A join changes the shells only when it returns true, and then this returns at once.
@@ -3678,7 +3731,7 @@ bool joinOneShell(Context& ctx,
       // `mine` is all 0 but where markShell flags the shell's box, cleared after the search.
       const LatticeBox box = gridBoxOf(shells[s], d);
       markShell(shells[s].mesh, d, 1, 2, mine);
-      crossing = voidCrossing(ctx.objects, where, mine, box, from);
+      crossing = voidCrossing(ctx.objects, where, mine, box, search);
       forEachInBox(box, [&](const LatticePoint& p) { mine[gridIndex(d, p)] = 0; });
     }
     else
@@ -3730,8 +3783,9 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   ShelledSurface repaired(surface);
   const auto planes = ctx.planeLevel;
   std::vector<std::uint8_t> where = whereInGrid(repaired.mesh, ctx.objects.dims());
-  std::vector<std::uint8_t> mine(where.size(), 0), from(where.size(), kUnreached);
-  while (joinOneShell(ctx, repaired, where, mine, from, failed))
+  std::vector<std::uint8_t> mine(where.size(), 0);
+  VoidSearch search(where.size());
+  while (joinOneShell(ctx, repaired, where, mine, search, failed))
     ++joined;
   // Checked once at the end, without a self-intersection test of the whole surface
   // (separatesAfterLocalChecks).
@@ -5281,6 +5335,19 @@ std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends)
 CellList groupShape(const std::vector<LatticePoint>& points, CoplanarFaces coplanar)
 {
   return shapeOf(PointRuns::of(points), coplanar);
+}
+
+std::vector<int> sidesInBox(const LatticeMesh& surface,
+  const LatticePoint& lo,
+  const LatticePoint& hi)
+{
+  const std::vector<std::array<Index, 3>> near = trianglesAheadOf(surface, { lo, hi });
+  std::vector<int> sides;
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        sides.push_back(sideOf(surface, near, { x, y, z }, 1));
+  return sides;
 }
 
 } // namespace detail

@@ -497,6 +497,13 @@ std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends);
 /// its slices' corners, or of its rows' ends when that is flat.
 CellList groupShape(const std::vector<LatticePoint>& points,
   CoplanarFaces coplanar = CoplanarFaces::Extension);
+/// The side of `surface` (a closed mesh: 1 inside, 0 on it, -1 outside) of every lattice point
+/// of the box [lo, hi], x fastest, located as the joins locate a prism's points: by exact ray
+/// parity against only the triangles that can reach the box.
+std::vector<int> sidesInBox(const LatticeMesh& surface,
+  const LatticePoint& lo,
+  const LatticePoint& hi);
+
 } // namespace detail
 
 } // namespace vbr

@@ -2,8 +2,9 @@
 // volume's words against the points listed bit by bit (rows of 1 to 130 voxels, so that runs
 // cross the 64-bit words' boundaries, ranges reaching off the grid, rows outside it), the x range
 // of a row in a set of half spaces against the integers tested one by one, the corners of the
-// slices' polygons against the points no triangle of other points holds, and a group's first hull
-// against the hull of all its points.
+// slices' polygons against the points no triangle of other points holds, a group's first hull
+// against the hull of all its points, and the sides of H that the joins find from the triangles
+// near a box against the voxel classes H separates.
 #include "ConvexHull.h"
 #include "ConvexHullModifier.h"
 
@@ -455,4 +456,80 @@ TEST(ConvexHullModifierInternals, GroupShapeIsTheHullOfAllPoints)
     }
 }
 
+/// Whether the centre (x, y, z) lies in one of the balls (centre and radius).
+bool inAnyBall(const std::vector<std::array<double, 4>>& balls, double x, double y, double z)
+{
+  for (const auto& b : balls)
+    if ((x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]) + (z - b[2]) * (z - b[2]) <= b[3] * b[3])
+      return true;
+  return false;
+}
+
+/// Objects of random density (noise), or the union of a few balls (holes and handles between
+/// them), so that H has pits, voids and several shells. The balls are drawn in both modes, so
+/// that each volume of a sequence stays the one it was.
+vbr::BitVolume randomObjects(std::mt19937& rng, std::int32_t n)
+{
+  vbr::BitVolume v(n, n, n);
+  std::uniform_real_distribution<double> at(0.0, n), radius(1.5, n / 3.0), unit(0.0, 1.0);
+  const bool noise = rng() % 2 == 0;
+  const double density = 0.05 + 0.9 * unit(rng);
+  std::vector<std::array<double, 4>> balls(2 + rng() % 4);
+  for (auto& b : balls)
+    b = { at(rng), at(rng), at(rng), radius(rng) };
+  for (std::int32_t z = 0; z < n; ++z)
+    for (std::int32_t y = 0; y < n; ++y)
+      for (std::int32_t x = 0; x < n; ++x)
+        if (noise ? unit(rng) < density : inAnyBall(balls, x, y, z))
+          v.set(x, y, z);
+  return v;
+}
+
 } // namespace
+
+// The side of H of the lattice points of a box, located as the joins locate a prism's points
+// (against the triangles that can reach the box only), against what H must give when it
+// separates: 0 on H (its lattice points, listed by latticePointsOnSurface), else inside for an
+// object centre and outside for a background centre or a point off the grid. Boxes of every
+// size, in and about the grid, so that most triangles of H are left out of many of them.
+TEST(ConvexHullModifierInternals, SidesInABoxAreTheVoxelClasses)
+{
+  std::mt19937 rng(2027);
+  std::size_t located = 0;
+  for (int trial = 0; trial < 24; ++trial)
+  {
+    const std::int32_t n = 6 + static_cast<std::int32_t>(rng() % 9);
+    const vbr::BitVolume v = randomObjects(rng, n);
+    const vbr::ModifiedHull h = vbr::modifyConvexHull(v);
+    if (!h.complete || h.surface.triangles.empty())
+      continue;
+    std::vector<LatticePoint> on = vbr::latticePointsOnSurface(h.surface, v.dims());
+    std::sort(on.begin(), on.end());
+    std::uniform_int_distribution<std::int64_t> corner(-2, n + 1);
+    for (int b = 0; b < 12; ++b)
+    {
+      LatticePoint lo{ corner(rng), corner(rng), corner(rng) }, hi{};
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::int64_t other = b == 0 ? (k == 0 ? n + 1 : -2) : corner(rng);
+        hi[k] = std::max(lo[k], other);
+        lo[k] = std::min(lo[k], other);
+      }
+      const std::vector<int> sides = vbr::detail::sidesInBox(h.surface, lo, hi);
+      std::size_t i = 0;
+      for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::int64_t x = lo[0]; x <= hi[0]; ++x, ++i)
+          {
+            const LatticePoint p{ x, y, z };
+            const int want = std::binary_search(on.begin(), on.end(), p) ? 0
+              : classAt(v, x, y, z)                                      ? 1
+                                                                         : -1;
+            ASSERT_EQ(sides[i], want)
+              << "trial " << trial << " box " << b << " at " << x << "," << y << "," << z;
+          }
+      located += sides.size();
+    }
+  }
+  EXPECT_GT(located, 10000u);
+}
