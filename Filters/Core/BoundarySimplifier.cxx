@@ -398,6 +398,177 @@ private:
   std::vector<float> Values;
 };
 
+/// Whole voxels proven within reach of the surfels, for (a): a triangle every voxel of which it
+/// meets is such a voxel is within reach, with no branch and bound. The distance to one surfel
+/// (a square, convex) is convex, so over a voxel (a cube) its largest value is at one of the
+/// cube's 8 corners; and since the corners are the product of the two ends per axis, that
+/// largest value squared is the sum over the axes of each axis's largest term: for a surfel
+/// in the plane x = s and a voxel [i, i + 1] x [j, j + 1] x [k, k + 1],
+/// max(|i - s|, |i + 1 - s|)^2 + (j' - j)^2 + (k' - k)^2, (j', k') the surfel's voxel, an
+/// integer. Below two voxels (d <= 1.99) only the surfels in the planes of the voxel's own
+/// faces, within one voxel of the face along the plane, give values below 4: 1 for the face
+/// itself, 2 and 3 for its side and corner neighbours. A voxel is proven within reach when
+/// the smallest such value is within reach squared (a relative 1e-12 allowed for the rounding
+/// of reach: at d = sqrt(3), the default, the value 3 is reach squared itself). Computed on
+/// first use from the voxels around it and kept in blocks of 8^3 voxels, as the lattice.
+class VoxelCover
+{
+public:
+  VoxelCover(const SurfelDistance& surfels, const Vec3& lo, const Vec3& hi, double reach)
+    : Surfels(surfels)
+    , Limit(reach * reach * (1 + 1e-12))
+  {
+    double blocks = 1;
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Origin[d] = std::int64_t(std::floor(lo[d])) - Margin;
+      const std::int64_t voxels = std::int64_t(std::floor(hi[d])) + Margin - this->Origin[d] + 1;
+      this->Blocks[d] = (voxels + Block - 1) / Block;
+      blocks *= double(this->Blocks[d]);
+    }
+    if (blocks <= double(MostBlocks) && this->Limit >= 1)
+      this->BlockOf.assign(std::size_t(blocks), -1);
+    else
+      this->Blocks[0] = this->Blocks[1] = this->Blocks[2] = 0; // nothing proven here
+  }
+
+  /// Whether every voxel that triangle t may meet is proven within reach; false when one is
+  /// not (or lies outside the box): then t is left to the branch and bound. The voxels are
+  /// those of the columns along the axis nearest t's normal whose squares meet t's shadow,
+  /// between the heights of t's plane over the square: a superset of the voxels t meets
+  /// (every bound widened by Widen, far above the rounding), so a proof holds for t.
+  bool proves(const Corners& t)
+  {
+    const Vec3 n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+    const int c = std::abs(n[0]) > std::abs(n[1])
+      ? (std::abs(n[0]) > std::abs(n[2]) ? 0 : 2)
+      : (std::abs(n[1]) > std::abs(n[2]) ? 1 : 2);
+    const int a = (c + 1) % 3, b = (c + 2) % 3;
+    std::int64_t lo[3], hi[3];
+    double low[3], high[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      low[d] = std::min({ t[0][d], t[1][d], t[2][d] }) - Widen;
+      high[d] = std::max({ t[0][d], t[1][d], t[2][d] }) + Widen;
+      lo[d] = std::int64_t(std::floor(low[d]));
+      hi[d] = std::int64_t(std::floor(high[d]));
+      if (lo[d] < this->Origin[d] || hi[d] >= this->Origin[d] + this->Blocks[d] * Block)
+        return false;
+    }
+    const double offset = dot(n, t[0]);
+    // the height along c of the plane at (x, y) along (a, b)
+    const auto height = [&](double x, double y) { return (offset - n[a] * x - n[b] * y) / n[c]; };
+    for (std::int64_t u = lo[a]; u <= hi[a]; ++u)
+      for (std::int64_t v = lo[b]; v <= hi[b]; ++v)
+      {
+        const double x0 = double(u) - Widen, x1 = double(u + 1) + Widen;
+        const double y0 = double(v) - Widen, y1 = double(v + 1) + Widen;
+        if (!shadowMeets(t, a, b, x0, x1, y0, y1))
+          continue;
+        const double h[4] = { height(x0, y0), height(x1, y0), height(x0, y1), height(x1, y1) };
+        const double top = std::min(high[c], std::max({ h[0], h[1], h[2], h[3] }) + Widen);
+        const double bottom = std::max(low[c], std::min({ h[0], h[1], h[2], h[3] }) - Widen);
+        for (std::int64_t w = std::int64_t(std::floor(bottom)); w <= std::int64_t(std::floor(top));
+             ++w)
+        {
+          std::int64_t q[3];
+          q[a] = u, q[b] = v, q[c] = w;
+          if (!this->safe(q))
+            return false;
+        }
+      }
+    return true;
+  }
+
+private:
+  static constexpr std::int64_t Block = 8;
+  static constexpr std::int64_t Margin = 3;
+  static constexpr double MostBlocks = double(1 << 24);
+  static constexpr double Widen = 1e-7;
+
+  /// Whether the shadow of t along the third axis (on axes a, b) meets the rectangle
+  /// [x0, x1] x [y0, y1]: separated by neither the rectangle's sides (t's box, tested by the
+  /// caller) nor a side of the shadow (both orientations, so either winding).
+  static bool shadowMeets(const Corners& t,
+    int a,
+    int b,
+    double x0,
+    double x1,
+    double y0,
+    double y1)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      const Vec3 &p = t[e], &q = t[(e + 1) % 3], &r = t[(e + 2) % 3];
+      const double nx = q[b] - p[b], ny = p[a] - q[a]; // normal of edge pq in the shadow
+      const double side = nx * (r[a] - p[a]) + ny * (r[b] - p[b]);
+      if (side == 0)
+        continue; // a degenerate shadow: the box alone decides
+      // the rectangle's corner farthest towards r's side of pq
+      const double cx = (nx > 0) == (side > 0) ? x1 : x0;
+      const double cy = (ny > 0) == (side > 0) ? y1 : y0;
+      const double corner = nx * (cx - p[a]) + ny * (cy - p[b]);
+      if (side > 0 ? corner < 0 : corner > 0)
+        return false; // the whole rectangle beyond pq, away from the shadow
+    }
+    return true;
+  }
+
+  bool safe(const std::int64_t q[3])
+  {
+    std::int64_t r[3];
+    for (int d = 0; d < 3; ++d)
+      r[d] = q[d] - this->Origin[d];
+    const std::size_t block = std::size_t(
+      ((r[2] / Block) * this->Blocks[1] + r[1] / Block) * this->Blocks[0] + r[0] / Block);
+    std::int32_t& number = this->BlockOf[block];
+    if (number < 0)
+    {
+      number = std::int32_t(this->Values.size() / (Block * Block * Block));
+      this->Values.resize(this->Values.size() + Block * Block * Block, Unknown);
+    }
+    std::uint8_t& v = this->Values[std::size_t(number) * Block * Block * Block +
+      std::size_t(((r[2] % Block) * Block + r[1] % Block) * Block + r[0] % Block)];
+    if (v == Unknown)
+      v = this->nearestSquared(q) <= this->Limit ? Safe : Unsafe;
+    return v == Safe;
+  }
+
+  /// The smallest value (1, 2, 3; 4 for none) of the largest squared distance from the
+  /// voxel's corners to a surfel in the planes of its faces (see above).
+  int nearestSquared(const std::int64_t q[3]) const
+  {
+    bool in[3][3][3]; // the voxels q - 1 .. q + 1, [k][j][i]
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+          in[k][j][i] = this->Surfels.at(
+            std::int32_t(q[0] - 1 + i), std::int32_t(q[1] - 1 + j), std::int32_t(q[2] - 1 + k));
+    int best = 4;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int plane = 0; plane < 2; ++plane) // the voxel's lower face, then its upper face
+        for (int s = 0; s < 3; ++s)
+          for (int r = 0; r < 3; ++r)
+          {
+            int below[3], above[3];
+            below[axis] = plane, above[axis] = plane + 1;
+            below[(axis + 1) % 3] = above[(axis + 1) % 3] = s;
+            below[(axis + 2) % 3] = above[(axis + 2) % 3] = r;
+            if (in[below[2]][below[1]][below[0]] != in[above[2]][above[1]][above[0]])
+              best = std::min(best, 1 + (s - 1) * (s - 1) + (r - 1) * (r - 1));
+          }
+    return best;
+  }
+
+  static constexpr std::uint8_t Unknown = 0, Safe = 1, Unsafe = 2;
+  const SurfelDistance& Surfels;
+  double Limit; // reach squared, with the rounding allowed
+  std::int64_t Origin[3];
+  std::int64_t Blocks[3];
+  std::vector<std::int32_t> BlockOf; // per block: its number among those allocated, or -1
+  std::vector<std::uint8_t> Values;
+};
+
 /// Whether every point of t is proven within `reach` of the surfels ((a) on top). `stack` is
 /// the caller's workspace, kept between calls so that a call allocates nothing. A piece is
 /// accepted when its centre's distance plus its radius is within reach, refused when its
@@ -841,6 +1012,7 @@ public:
     , Hi(corner(mesh, true))
     , Surfels(object, this->Lo, this->Hi, mesh.number_of_faces(), exec)
     , Lattice(this->Surfels, this->Lo, this->Hi)
+    , Cover(this->Surfels, this->Lo, this->Hi, std::min(distance, 1.99))
     , M(mesh)
     , Reach(std::min(distance, 1.99))
     , Poll(exec, 0.1, 0.95)
@@ -908,6 +1080,7 @@ private:
   Vec3 Lo, Hi; // the input surface's box
   SurfelDistance Surfels;
   LatticeDistances Lattice;
+  VoxelCover Cover;
   Mesh& M;
   double Reach;
   ProgressPoll Poll;
@@ -1305,7 +1478,7 @@ bool Simplifier::accept(VertexId v0, VertexId v1, const Point3& placed)
   if (!this->reassignSamples() || !this->freeOfIntersections())
     return false;
   for (const StarFace& s : this->Star)
-    if (!withinReach(s.t, this->Reach, this->Lattice, this->Pieces))
+    if (!this->Cover.proves(s.t) && !withinReach(s.t, this->Reach, this->Lattice, this->Pieces))
       return false;
   this->Accepted = { v0, v1 };
   this->AcceptedPoint = placed;
