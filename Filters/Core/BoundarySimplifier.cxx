@@ -2199,4 +2199,12 @@ double maximumTriangleDistanceToSurfels(const BitVolume& object,
   return maximumDistance(SurfelDistance(object), surface, tolerance);
 }
 
+bool provenByVoxels(const BitVolume& object, const std::array<Vec3, 3>& t, double distance)
+{
+  const auto box = boxOf(t);
+  // faces: as many as the box's voxels, so that the box is never refused as large
+  const VoxelCover cover(object, box[0], box[1], std::size_t(1) << 40, std::min(distance, 1.99));
+  return cover.proves(t);
+}
+
 } // namespace vbr

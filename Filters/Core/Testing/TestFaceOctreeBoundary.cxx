@@ -829,8 +829,70 @@ TEST(FaceOctreeBoundarySimplifier, TighterBound)
   checkSimplified("ball48 within 1.5", shapeVolume(solids()[0], 48), true, 2, 1.5);
 }
 
+// Below 1.5 the only voxels proven whole are those with a surfel on a face of their own
+// (BoundarySimplifier.h, (a)): the proof by voxels with the fewest surfels, against the same
+// independent distances (the input runs within about 1.0003 of the surfels, so no tighter).
+TEST(FaceOctreeBoundarySimplifier, TightestBounds)
+{
+  checkSimplified("torus40 within 1.2", shapeVolume(solids()[1], 40), true, 10, 1.2);
+  checkSimplified("csg40 within 1.1", shapeVolume(solids()[4], 40), true, 10, 1.1);
+}
+
 /// An input the simplifier refuses comes back unchanged with its own distances: upper bounds
 /// of the measured ones both ways (the surfels' side infinite when CGAL cannot hold it).
+// (a)'s proof by voxels on its own: random triangles about the surfels of a porous blob,
+// small and large, many with corners on voxel faces; every point of a lattice on each triangle
+// it accepts must be within d of a surfel (brute force over all of them), and it must accept
+// and refuse a fair share (the proof is no empty one).
+TEST(FaceOctreeBoundarySimplifier, ProofByVoxelsHolds)
+{
+  const BitVolume v = porous(20, 3);
+  const std::vector<Surfel> all = surfels(v);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (double d : { std::sqrt(3.0), 1.5, 1.2 })
+  {
+    SCOPED_TRACE(d);
+    int proven = 0, refused = 0;
+    double worst = 0;
+    for (int n = 0; n < 1500; ++n)
+    {
+      const Surfel& s = all[std::size_t(u(rng) * double(all.size())) % all.size()];
+      const double size = std::pow(10.0, -0.7 + 1.2 * u(rng));
+      std::array<Vec3, 3> t;
+      for (Vec3& p : t)
+        for (int a = 0; a < 3; ++a)
+          p[a] = s.voxel[a] + 0.5 + (u(rng) - 0.5) * 3 + (u(rng) - 0.5) * size;
+      if (n % 3 == 0)
+        for (int a = 0; a < 3; ++a)
+          t[1][a] = std::round(t[1][a]); // a corner on voxel corners
+      if (!vbr::provenByVoxels(v, t, d))
+      {
+        ++refused;
+        continue;
+      }
+      ++proven;
+      constexpr int Steps = 8;
+      for (int i = 0; i <= Steps; ++i)
+        for (int j = 0; i + j <= Steps; ++j)
+        {
+          Vec3 p;
+          for (int a = 0; a < 3; ++a)
+            p[a] = t[0][a] + (t[1][a] - t[0][a]) * i / Steps + (t[2][a] - t[0][a]) * j / Steps;
+          double nearest = 1e9;
+          for (const Surfel& f : all)
+            nearest = std::min(nearest, pointSquareDistance(p, f));
+          worst = std::max(worst, nearest);
+        }
+    }
+    EXPECT_LE(worst, d + 1e-9);
+    EXPECT_GT(proven, 50);
+    EXPECT_GT(refused, 150);
+    std::cout << "within " << d << ": " << proven << " proven, " << refused
+              << " refused, farthest point of a proven one " << worst << "\n";
+  }
+}
+
 TEST(FaceOctreeBoundarySimplifier, RefusedInputKeepsItsOwnDistances)
 {
   const BitVolume v = shapeVolume(solids()[0], 32);
