@@ -67,7 +67,12 @@
 // 4.6 and 2.0 to 2.8 M voxels per CPU second on the 256^3 ball and torus, one thread). The
 // time is spread over the checks, the costs and the queue, none above a quarter of it
 // (README, face octree section); the faces, pieces and lattice values a collapse reads are
-// prefetched together, since they lie far apart in memory.
+// prefetched together, since they lie far apart in memory. (a)'s proof by voxels took the
+// branch and bound (a fifth of the time, a third of that in exact distance searches) off all
+// but 0.7 % of the triangles of the 256^3 ball, the output unchanged on every input measured:
+// 1.03x to 1.19x less CPU time on the 256^3 ball and torus and the 128^3 CSG solid under both
+// rules. What is left is mostly Lindstrom-Turk (11 evaluations per collapse, about a quarter
+// of the time), (b), (c), the link condition and the queue.
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
