@@ -871,11 +871,12 @@ public:
       return;
     this->readVoxels(object);
     this->Proven.assign(this->Words * std::size_t(this->Rows[0]) * std::size_t(this->Rows[1]), 0);
-    std::vector<Word> row(this->Words), sum(this->Words), faces1(this->Words);
     for (std::int32_t k = 0; k < this->Rows[1]; ++k)
       for (std::int32_t j = 0; j < this->Rows[0]; ++j)
         this->markRow(j, k);
     std::vector<Word>().swap(this->Voxels);
+    for (std::vector<Word>& s : this->Scratch)
+      std::vector<Word>().swap(s);
   }
 
   /// Whether every voxel that triangle t may meet is proven; false when one is not (or lies
@@ -901,6 +902,11 @@ public:
       lo[d] = std::int32_t(std::floor(low[d]));
       hi[d] = std::int32_t(std::floor(high[d]));
     }
+    if (n[c] == 0)
+      return this->provesBox(lo, hi); // no plane to follow (a degenerate t): its whole box
+    const double slack = heightSlack(t, n[c]);
+    if (!(slack < high[c] - low[c] + 1))
+      return this->provesBox(lo, hi); // the heights say no more than the box (or not finite)
     const double offset = dot(n, t[0]);
     // the height along c of t's plane at (x, y) along (a, b)
     const auto height = [&](double x, double y) { return (offset - n[a] * x - n[b] * y) / n[c]; };
@@ -912,8 +918,8 @@ public:
         if (!shadowMeets(t, a, b, x0, x1, y0, y1))
           continue;
         const double h[4] = { height(x0, y0), height(x1, y0), height(x0, y1), height(x1, y1) };
-        const double top = std::min(high[c], std::max({ h[0], h[1], h[2], h[3] }) + Widen);
-        const double bottom = std::max(low[c], std::min({ h[0], h[1], h[2], h[3] }) - Widen);
+        const double top = std::min(high[c], std::max({ h[0], h[1], h[2], h[3] }) + slack);
+        const double bottom = std::max(low[c], std::min({ h[0], h[1], h[2], h[3] }) - slack);
         for (std::int32_t w = std::int32_t(std::floor(bottom)); w <= std::int32_t(std::floor(top));
              ++w)
         {
@@ -929,6 +935,44 @@ public:
 private:
   static constexpr std::int32_t Margin = 3;
   static constexpr double Widen = 1e-7;
+
+  /// How far the heights of t's plane computed from the rounded normal n (n[c] its largest
+  /// component, not 0) may be from those of t's points: a point p of t is within the slack of
+  /// the height computed at p's place. Why: with u = 2^-53, the sides t[1] - t[0], t[2] - t[0]
+  /// are rounded with a relative error u per coordinate, and the cross product of the rounded
+  /// sides with a few more, so n = N + e with N normal to the exact t and each |e[k]| <= 8 u L^2
+  /// (L the longest side). The computed plane through t[0] is at height H(p) = p[c] -
+  /// n.(p - t[0]) / n[c] over p's place, and n.(p - t[0]) = e.(p - t[0]) as N.(p - t[0]) = 0, so
+  /// |H(p) - p[c]| <= 8 sqrt(3) u L^3 / |n[c]|: tiny for a fair triangle, but for a sliver
+  /// (corners off a line by 1e-14) n is rounding noise, |n[c]| as small as e, and the heights land
+  /// anywhere. The evaluation of H (offset, two products, a division; each |n[k]| <= |n[c]|) adds
+  /// some 12 u times the largest coordinate M + 1 (the places are within a voxel of t's box).
+  /// 1e-14 (90 u) times L^3 / |n[c]| + M + 1 is over five times both, and Widen covers points on
+  /// voxel faces. H is linear, so over a column's square its values lie between those at the
+  /// square's corners.
+  static double heightSlack(const Corners& t, double nc)
+  {
+    double longest = 0, largest = 0;
+    for (int e = 0; e < 3; ++e)
+    {
+      const Vec3 side = sub(t[(e + 1) % 3], t[e]);
+      longest = std::max(longest, std::sqrt(dot(side, side)));
+      for (int k = 0; k < 3; ++k)
+        largest = std::max(largest, std::abs(t[e][k]));
+    }
+    return Widen + 1e-14 * (longest * longest * longest / std::abs(nc) + largest + 1);
+  }
+
+  /// Whether every voxel of the box lo .. hi is proven.
+  bool provesBox(const std::int32_t lo[3], const std::int32_t hi[3]) const
+  {
+    for (std::int32_t k = lo[2]; k <= hi[2]; ++k)
+      for (std::int32_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::int32_t i = lo[0]; i <= hi[0]; ++i)
+          if (!this->proven(i, j, k))
+            return false;
+    return true;
+  }
 
   /// Whether the shadow of t along the third axis (on axes a, b) meets the rectangle
   /// [x0, x1] x [y0, y1]: no side of the shadow separates them (the rectangle's own sides
@@ -1010,7 +1054,13 @@ private:
   void markRow(std::int32_t y, std::int32_t z)
   {
     const std::size_t n = this->Words;
-    std::vector<Word> proven(n, 0), across(n, 0), faces(n), shifted(n);
+    // scratch kept across rows
+    std::vector<Word>&proven = this->Scratch[0], &across = this->Scratch[1],
+    &faces = this->Scratch[2], &shifted = this->Scratch[3];
+    proven.assign(n, 0);
+    across.assign(n, 0);
+    faces.resize(n);
+    shifted.resize(n);
     // faces normal to x: the planes x = i (bit i: voxel i - 1 against voxel i); voxel i has
     // the planes i and i + 1
     for (const auto& [a, b] : this->Offsets)
@@ -1042,6 +1092,7 @@ private:
   std::size_t Words = 0;                    // per row, bit x + 64 for voxel x
   std::int32_t First[2] = { 0, 0 }, Rows[2] = { 0, 0 }; // along y and z
   std::vector<Word> Voxels;                             // while marking
+  std::vector<Word> Scratch[4];                         // while marking, a row each
   std::vector<Word> Proven;                             // a bit per voxel of the box
 };
 
