@@ -891,6 +891,70 @@ TEST(FaceOctreeBoundarySimplifier, ProofByVoxelsHolds)
   }
 }
 
+// The marks of the proof by voxels, every voxel from 3 before the grid to 3 after it, against
+// brute force: a voxel is proven when some surfel is within d of all 8 of its corners. Grids
+// across 64-bit words along x (64, 70, 130) and one along y, objects random and whole (their
+// surfels on the grid's border). The marks are read through a tiny triangle at each voxel's
+// centre, which meets that voxel alone.
+TEST(FaceOctreeBoundarySimplifier, ProofByVoxelsMarksEveryVoxel)
+{
+  const double reaches[] = { 0.99, 1, 1.2, std::sqrt(2.0), 1.5, std::sqrt(3.0), 1.8, 1.99 };
+  std::mt19937 rng(5);
+  for (const Int3& n : { Int3{ 64, 3, 3 }, Int3{ 70, 3, 2 }, Int3{ 130, 2, 2 }, Int3{ 3, 64, 5 } })
+    for (int filled = 0; filled < 2; ++filled)
+    {
+      SCOPED_TRACE(std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
+        std::to_string(n[2]) + (filled ? " whole" : " random"));
+      BitVolume v(n[0], n[1], n[2]);
+      for (int k = 0; k < n[2]; ++k)
+        for (int j = 0; j < n[1]; ++j)
+          for (int i = 0; i < n[0]; ++i)
+            if (filled || rng() % 2)
+              v.set(i, j, k);
+      int wrong = 0, proven = 0;
+      for (int k = -3; k < n[2] + 3; ++k)
+        for (int j = -3; j < n[1] + 3; ++j)
+          for (int i = -3; i < n[0] + 3; ++i)
+          {
+            // the surfels of voxels up to 2 away (farther ones are 2 from a corner)
+            double nearest = 1e9;
+            for (int r = k - 2; r <= k + 2; ++r)
+              for (int q = j - 2; q <= j + 2; ++q)
+                for (int p = i - 2; p <= i + 2; ++p)
+                  if (at(v, p, q, r))
+                    for (int a = 0; a < 3; ++a)
+                      for (int side = 0; side < 2; ++side)
+                      {
+                        Int3 w{ p, q, r };
+                        w[a] += side ? 1 : -1;
+                        if (at(v, w[0], w[1], w[2]))
+                          continue;
+                        double farthest = 0;
+                        for (int c = 0; c < 8; ++c)
+                          farthest = std::max(farthest,
+                            pointSquareDistance(Vec3{ double(i + (c & 1)),
+                                                  double(j + (c >> 1 & 1)),
+                                                  double(k + (c >> 2)) },
+                              Surfel{ { p, q, r }, a, side }));
+                        nearest = std::min(nearest, farthest);
+                      }
+            const std::array<Vec3, 3> t{ Vec3{ i + 0.49, j + 0.5, k + 0.5 },
+              Vec3{ i + 0.51, j + 0.49, k + 0.5 },
+              Vec3{ i + 0.5, j + 0.51, k + 0.51 } };
+            for (double d : reaches)
+            {
+              const bool marked = vbr::provenByVoxels(v, t, d);
+              proven += marked;
+              if (marked != (nearest <= d * (1 + 1e-12)) && ++wrong <= 5)
+                ADD_FAILURE() << "voxel " << i << " " << j << " " << k << " within " << d
+                              << ": marked " << marked << ", nearest surfel " << nearest;
+            }
+          }
+      EXPECT_EQ(wrong, 0);
+      EXPECT_GT(proven, 100);
+    }
+}
+
 // A needle (its corners off a line by some 1e-14) whose rounded normal is noise: its heights
 // over a column must not be trusted. It reaches 6.2 voxels above the surfels of z = 10.
 TEST(FaceOctreeBoundarySimplifier, ProofByVoxelsRefusesAFarNeedle)
