@@ -831,6 +831,271 @@ Vec3 corner(const Mesh& mesh, bool upper)
   return c;
 }
 
+/// Whole voxels proven within reach of the surfels, for (a): a triangle all of whose voxels
+/// (those it meets) are proven is within reach, with no branch and bound. The distance to one
+/// surfel (a square, convex) is convex, so over a voxel (a cube) its largest value is at one
+/// of the cube's 8 corners; and since the corners are the product of the two ends per axis,
+/// that largest value squared is the sum of each axis's largest term: for a surfel in the
+/// plane x = s and the voxel [i, i + 1] x [j, j + 1] x [k, k + 1], it is
+/// max(|i - s|, |i + 1 - s|)^2 + (j' - j)^2 + (k' - k)^2, (j', k') the surfel's place in the
+/// plane, an integer. Below two voxels (d <= 1.99) only the surfels in the planes of the
+/// voxel's own faces, at most one voxel from the face along the plane, give less than 4:
+/// 1 for the face itself, 2 and 3 for its side and corner neighbours. A voxel is proven when
+/// one of these values is within reach squared (a relative 1e-12 allowed for the rounding of
+/// reach: at d = sqrt(3), the default, 3 is reach squared itself). The proven voxels of the
+/// surface's box are marked once, a bit each, a row of voxels along x a few words at a time
+/// (the surfels of a row of planes are the exclusive or of two rows of voxels); not for a
+/// box large for its surface (as SurfelDistance's marks), which is then left to the branch
+/// and bound.
+class VoxelCover
+{
+public:
+  VoxelCover(const BitVolume& object,
+    const Vec3& lo,
+    const Vec3& hi,
+    std::size_t faces,
+    double reach)
+  {
+    const double limit = reach * reach * (1 + 1e-12);
+    for (int a = -1; a <= 1; ++a)
+      for (int b = -1; b <= 1; ++b)
+        if (1 + a * a + b * b <= limit)
+          this->Offsets.push_back({ a, b });
+    this->Words = object.wordsPerRow() + 2; // a word of background on either side
+    this->First[0] = std::int32_t(std::floor(lo[1])) - Margin;
+    this->First[1] = std::int32_t(std::floor(lo[2])) - Margin;
+    this->Rows[0] = std::int32_t(std::floor(hi[1])) + Margin + 1 - this->First[0];
+    this->Rows[1] = std::int32_t(std::floor(hi[2])) + Margin + 1 - this->First[1];
+    const double bits = 64.0 * double(this->Words) * this->Rows[0] * this->Rows[1];
+    if (this->Offsets.empty() || bits > 64.0 * double(faces) + double(std::int64_t(1) << 24))
+      return;
+    this->readVoxels(object);
+    this->Proven.assign(this->Words * std::size_t(this->Rows[0]) * std::size_t(this->Rows[1]), 0);
+    for (std::int32_t k = 0; k < this->Rows[1]; ++k)
+      for (std::int32_t j = 0; j < this->Rows[0]; ++j)
+        this->markRow(j, k);
+    std::vector<Word>().swap(this->Voxels);
+    for (std::vector<Word>& s : this->Scratch)
+      std::vector<Word>().swap(s);
+  }
+
+  /// Whether every voxel that triangle t may meet is proven; false when one is not (or lies
+  /// outside the box). The voxels are those of the columns along the axis nearest t's normal
+  /// whose squares meet t's shadow, between the heights of t's plane over the square: a
+  /// superset of the voxels t meets (each bound widened by Widen, far above the rounding).
+  bool proves(const Corners& t) const
+  {
+    if (this->Proven.empty())
+      return false;
+    const Vec3 n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+    const int c = std::abs(n[0]) > std::abs(n[1]) ? (std::abs(n[0]) > std::abs(n[2]) ? 0 : 2)
+                                                  : (std::abs(n[1]) > std::abs(n[2]) ? 1 : 2);
+    const int a = (c + 1) % 3, b = (c + 2) % 3;
+    std::int32_t lo[3], hi[3];
+    double low[3], high[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      low[d] = std::min({ t[0][d], t[1][d], t[2][d] }) - Widen;
+      high[d] = std::max({ t[0][d], t[1][d], t[2][d] }) + Widen;
+      if (!(low[d] > -1e9 && high[d] < 1e9))
+        return false;
+      lo[d] = std::int32_t(std::floor(low[d]));
+      hi[d] = std::int32_t(std::floor(high[d]));
+    }
+    if (n[c] == 0)
+      return this->provesBox(lo, hi); // no plane to follow (a degenerate t): its whole box
+    const double slack = heightSlack(t, n[c]);
+    if (!(slack < high[c] - low[c] + 1))
+      return this->provesBox(lo, hi); // the heights say no more than the box (or not finite)
+    const double offset = dot(n, t[0]);
+    // the height along c of t's plane at (x, y) along (a, b)
+    const auto height = [&](double x, double y) { return (offset - n[a] * x - n[b] * y) / n[c]; };
+    for (std::int32_t u = lo[a]; u <= hi[a]; ++u)
+      for (std::int32_t v = lo[b]; v <= hi[b]; ++v)
+      {
+        const double x0 = double(u) - Widen, x1 = double(u + 1) + Widen;
+        const double y0 = double(v) - Widen, y1 = double(v + 1) + Widen;
+        if (!shadowMeets(t, a, b, x0, x1, y0, y1))
+          continue;
+        const double h[4] = { height(x0, y0), height(x1, y0), height(x0, y1), height(x1, y1) };
+        const double top = std::min(high[c], std::max({ h[0], h[1], h[2], h[3] }) + slack);
+        const double bottom = std::max(low[c], std::min({ h[0], h[1], h[2], h[3] }) - slack);
+        for (std::int32_t w = std::int32_t(std::floor(bottom)); w <= std::int32_t(std::floor(top));
+             ++w)
+        {
+          std::int32_t q[3];
+          q[a] = u, q[b] = v, q[c] = w;
+          if (!this->proven(q[0], q[1], q[2]))
+            return false;
+        }
+      }
+    return true;
+  }
+
+private:
+  static constexpr std::int32_t Margin = 3;
+  static constexpr double Widen = 1e-7;
+
+  /// How far the heights of t's plane computed from the rounded normal n (n[c] its largest
+  /// component, not 0) may be from those of t's points: a point p of t is within the slack of
+  /// the height computed at p's place. Why: with u = 2^-53, the sides t[1] - t[0], t[2] - t[0]
+  /// are rounded with a relative error u per coordinate, and the cross product of the rounded
+  /// sides with a few more, so n = N + e with N normal to the exact t and each |e[k]| <= 8 u L^2
+  /// (L the longest side). The computed plane through t[0] is at height H(p) = p[c] -
+  /// n.(p - t[0]) / n[c] over p's place, and n.(p - t[0]) = e.(p - t[0]) as N.(p - t[0]) = 0, so
+  /// |H(p) - p[c]| <= 8 sqrt(3) u L^3 / |n[c]|: tiny for a fair triangle, but for a sliver
+  /// (corners off a line by 1e-14) n is rounding noise, |n[c]| as small as e, and the heights land
+  /// anywhere. The evaluation of H (offset, two products, a division; each |n[k]| <= |n[c]|) adds
+  /// some 12 u times the largest coordinate M + 1 (the places are within a voxel of t's box).
+  /// 1e-14 (90 u) times L^3 / |n[c]| + M + 1 is over five times both, and Widen covers points on
+  /// voxel faces. H is linear, so over a column's square its values lie between those at the
+  /// square's corners.
+  static double heightSlack(const Corners& t, double nc)
+  {
+    double longest = 0, largest = 0;
+    for (int e = 0; e < 3; ++e)
+    {
+      const Vec3 side = sub(t[(e + 1) % 3], t[e]);
+      longest = std::max(longest, std::sqrt(dot(side, side)));
+      for (int k = 0; k < 3; ++k)
+        largest = std::max(largest, std::abs(t[e][k]));
+    }
+    return Widen + 1e-14 * (longest * longest * longest / std::abs(nc) + largest + 1);
+  }
+
+  /// Whether every voxel of the box lo .. hi is proven.
+  bool provesBox(const std::int32_t lo[3], const std::int32_t hi[3]) const
+  {
+    for (std::int32_t k = lo[2]; k <= hi[2]; ++k)
+      for (std::int32_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::int32_t i = lo[0]; i <= hi[0]; ++i)
+          if (!this->proven(i, j, k))
+            return false;
+    return true;
+  }
+
+  /// Whether the shadow of t along the third axis (on axes a, b) meets the rectangle
+  /// [x0, x1] x [y0, y1]: no side of the shadow separates them (the rectangle's own sides
+  /// are t's box, which the caller keeps to). Either winding.
+  static bool
+  shadowMeets(const Corners& t, int a, int b, double x0, double x1, double y0, double y1)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      const Vec3 &p = t[e], &q = t[(e + 1) % 3], &r = t[(e + 2) % 3];
+      const double nx = q[b] - p[b], ny = p[a] - q[a]; // normal of pq in the shadow
+      const double side = nx * (r[a] - p[a]) + ny * (r[b] - p[b]);
+      if (side == 0)
+        continue; // a degenerate shadow: the box alone decides
+      // the rectangle's corner farthest towards r's side of pq
+      const double cx = (nx > 0) == (side > 0) ? x1 : x0;
+      const double cy = (ny > 0) == (side > 0) ? y1 : y0;
+      const double corner = nx * (cx - p[a]) + ny * (cy - p[b]);
+      if (side > 0 ? corner < 0 : corner > 0)
+        return false; // the whole rectangle beyond pq
+    }
+    return true;
+  }
+
+  bool proven(std::int32_t i, std::int32_t j, std::int32_t k) const
+  {
+    const std::int64_t x = std::int64_t(i) + 64, y = j - this->First[0], z = k - this->First[1];
+    if (x < 0 || x >= std::int64_t(64 * this->Words) || y < 0 || y >= this->Rows[0] || z < 0 ||
+      z >= this->Rows[1])
+      return false;
+    const Word w = this->Proven[(std::size_t(z) * this->Rows[0] + std::size_t(y)) * this->Words +
+      std::size_t(x >> 6)];
+    return (w >> (x & 63)) & 1;
+  }
+
+  /// The voxels of rows First - 1 .. First + Rows along y and z, bit x + 64 of a row for
+  /// voxel x (all background outside the grid).
+  void readVoxels(const BitVolume& object)
+  {
+    const std::size_t ny = std::size_t(this->Rows[0]) + 2, nz = std::size_t(this->Rows[1]) + 2;
+    this->Voxels.assign(ny * nz * this->Words, 0);
+    std::vector<Word> row;
+    for (std::size_t z = 0; z < nz; ++z)
+      for (std::size_t y = 0; y < ny; ++y)
+      {
+        readRow(
+          object, this->First[0] - 1 + std::int32_t(y), this->First[1] - 1 + std::int32_t(z), row);
+        std::copy(row.begin(),
+          row.end() - 1,
+          this->Voxels.begin() + std::ptrdiff_t((z * ny + y) * this->Words + 1));
+      }
+  }
+
+  /// Row (y, z) of the voxels (y, z relative to First, from -1 to Rows).
+  const Word* voxels(std::int32_t y, std::int32_t z) const
+  {
+    return this->Voxels.data() +
+      (std::size_t(z + 1) * std::size_t(this->Rows[0] + 2) + std::size_t(y + 1)) * this->Words;
+  }
+
+  /// out |= row shifted so that bit i of out reads bit i + by of row (by in -1, 0, 1).
+  void orShifted(std::vector<Word>& out, const Word* row, int by) const
+  {
+    const std::size_t n = this->Words;
+    for (std::size_t w = 0; w < n; ++w)
+      out[w] |= by == 0 ? row[w]
+                        : (by > 0 ? (row[w] >> 1) | (w + 1 < n ? row[w + 1] << 63 : 0)
+                                  : (row[w] << 1) | (w > 0 ? row[w - 1] >> 63 : 0));
+  }
+
+  /// out = the surfels of the planes between rows p and q of voxels (their exclusive or).
+  void planes(std::vector<Word>& out, const Word* p, const Word* q) const
+  {
+    for (std::size_t w = 0; w < this->Words; ++w)
+      out[w] = p[w] ^ q[w];
+  }
+
+  /// The proven voxels of row (y, z) (relative to First).
+  void markRow(std::int32_t y, std::int32_t z)
+  {
+    const std::size_t n = this->Words;
+    // scratch kept across rows
+    std::vector<Word>&proven = this->Scratch[0], &across = this->Scratch[1],
+    &faces = this->Scratch[2], &shifted = this->Scratch[3];
+    proven.assign(n, 0);
+    across.assign(n, 0);
+    faces.resize(n);
+    shifted.resize(n);
+    // faces normal to x: the planes x = i (bit i: voxel i - 1 against voxel i); voxel i has
+    // the planes i and i + 1
+    for (const auto& [a, b] : this->Offsets)
+    {
+      const Word* r = this->voxels(y + a, z + b);
+      std::fill(shifted.begin(), shifted.end(), 0);
+      this->orShifted(shifted, r, -1);
+      for (std::size_t w = 0; w < n; ++w)
+        across[w] |= r[w] ^ shifted[w];
+    }
+    this->orShifted(proven, across.data(), 0);
+    this->orShifted(proven, across.data(), 1);
+    // faces normal to y (planes y and y + 1, offsets along x and z) and to z (planes z and
+    // z + 1, offsets along x and y)
+    for (int plane = 0; plane < 2; ++plane)
+      for (const auto& [a, b] : this->Offsets)
+      {
+        this->planes(faces, this->voxels(y + plane - 1, z + b), this->voxels(y + plane, z + b));
+        this->orShifted(proven, faces.data(), a);
+        this->planes(faces, this->voxels(y + b, z + plane - 1), this->voxels(y + b, z + plane));
+        this->orShifted(proven, faces.data(), a);
+      }
+    std::copy(proven.begin(),
+      proven.end(),
+      this->Proven.begin() + std::ptrdiff_t((std::size_t(z) * this->Rows[0] + std::size_t(y)) * n));
+  }
+
+  std::vector<std::pair<int, int>> Offsets; // in-plane offsets of the surfels within reach
+  std::size_t Words = 0;                    // per row, bit x + 64 for voxel x
+  std::int32_t First[2] = { 0, 0 }, Rows[2] = { 0, 0 }; // along y and z
+  std::vector<Word> Voxels;                             // while marking
+  std::vector<Word> Scratch[4];                         // while marking, a row each
+  std::vector<Word> Proven;                             // a bit per voxel of the box
+};
+
 /// The simplification's state: accept checks a collapse and records the reassignment of the
 /// samples, collapsed applies it once the collapse loop has collapsed the edge.
 class Simplifier
@@ -841,6 +1106,7 @@ public:
     , Hi(corner(mesh, true))
     , Surfels(object, this->Lo, this->Hi, mesh.number_of_faces(), exec)
     , Lattice(this->Surfels, this->Lo, this->Hi)
+    , Cover(object, this->Lo, this->Hi, mesh.number_of_faces(), std::min(distance, 1.99))
     , M(mesh)
     , Reach(std::min(distance, 1.99))
     , Poll(exec, 0.1, 0.95)
@@ -908,6 +1174,7 @@ private:
   Vec3 Lo, Hi; // the input surface's box
   SurfelDistance Surfels;
   LatticeDistances Lattice;
+  VoxelCover Cover;
   Mesh& M;
   double Reach;
   ProgressPoll Poll;
@@ -1305,7 +1572,7 @@ bool Simplifier::accept(VertexId v0, VertexId v1, const Point3& placed)
   if (!this->reassignSamples() || !this->freeOfIntersections())
     return false;
   for (const StarFace& s : this->Star)
-    if (!withinReach(s.t, this->Reach, this->Lattice, this->Pieces))
+    if (!this->Cover.proves(s.t) && !withinReach(s.t, this->Reach, this->Lattice, this->Pieces))
       return false;
   this->Accepted = { v0, v1 };
   this->AcceptedPoint = placed;
@@ -1981,6 +2248,14 @@ double maximumTriangleDistanceToSurfels(const BitVolume& object,
   double tolerance)
 {
   return maximumDistance(SurfelDistance(object), surface, tolerance);
+}
+
+bool provenByVoxels(const BitVolume& object, const std::array<Vec3, 3>& t, double distance)
+{
+  const auto box = boxOf(t);
+  // faces: as many as the box's voxels, so that the box is never refused as large
+  const VoxelCover cover(object, box[0], box[1], std::size_t(1) << 40, std::min(distance, 1.99));
+  return cover.proves(t);
 }
 
 } // namespace vbr

@@ -14,7 +14,14 @@
 //      pieces are halved at their longest edge until dc + r <= d (accepted) or r < 1/20
 //      voxel (rejected). The distance at the voxel corner nearest c, searched once and kept,
 //      bounds dc (the same Lipschitz bound); dc itself is searched only where that bound
-//      leaves the decision open, so the decisions are the same;
+//      leaves the decision open, so the decisions are the same. Before it, a cheaper proof
+//      decides most triangles (over 99 % on the 256^3 ball): every voxel the triangle may
+//      meet is one whose largest distance to some surfel is within d. That largest distance,
+//      over a voxel and to one surfel, is at a corner of the voxel (the distance to a square
+//      is convex), and its square is an integer: 1, 2 or 3 for a surfel in the plane of one
+//      of the voxel's faces, at most one voxel from it along the plane, 4 or more otherwise.
+//      Those voxels are marked once, a bit each, a row at a time; the branch and bound runs
+//      only for the triangles they leave open;
 //  (b) surfels to surface: every surfel of an unpruned voxel is covered by square pieces
 //      (the whole surfel, or its quarters, down to 1/8 voxel), each assigned to a triangle
 //      within its limit of the piece's centre: d minus the piece's half diagonal, so that
@@ -60,7 +67,12 @@
 // 4.6 and 2.0 to 2.8 M voxels per CPU second on the 256^3 ball and torus, one thread). The
 // time is spread over the checks, the costs and the queue, none above a quarter of it
 // (README, face octree section); the faces, pieces and lattice values a collapse reads are
-// prefetched together, since they lie far apart in memory.
+// prefetched together, since they lie far apart in memory. (a)'s proof by voxels took the
+// branch and bound (a fifth of the time, a third of that in exact distance searches) off all
+// but 0.7 % of the triangles of the 256^3 ball, the output unchanged on every input measured:
+// 1.03x to 1.19x less CPU time on the 256^3 ball and torus and the 128^3 CSG solid under both
+// rules. What is left is mostly Lindstrom-Turk (11 evaluations per collapse, about a quarter
+// of the time), (b), (c), the link condition and the queue.
 #ifndef vbr_BoundarySimplifier_h
 #define vbr_BoundarySimplifier_h
 
@@ -117,6 +129,11 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
 double maximumTriangleDistanceToSurfels(const BitVolume& object,
   const TriangleSurface& surface,
   double tolerance = 0.02);
+
+/// Whether (a)'s proof by voxels (on top) holds for triangle t at distance d: every voxel t
+/// may meet has a surfel of `object` within d of all of the voxel's points. When true, t is
+/// within d of the surfels; false says nothing. For tests of that proof on its own.
+bool provenByVoxels(const BitVolume& object, const std::array<Vec3, 3>& t, double distance);
 
 } // namespace vbr
 
