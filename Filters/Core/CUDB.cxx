@@ -1367,11 +1367,12 @@ struct BoxesAndEquivalences
     this->Equivalences.add();
     // The runs from `first` on that start no later than this one ends meet it (one loop that
     // finds and unites them: its exits are mispredicted once, not twice). The union's root
-    // is carried from contact to contact rather than found again from the new box.
+    // is carried from contact to contact rather than found again from the new box, a root
+    // itself (no union has reached it yet).
     std::uint32_t root = run.box;
     for (const PixelRun* r = first; r != end && r->c0 <= run.c1; ++r)
       if (!this->FaceOnly || (r->c0 < run.c1 && run.c0 < r->c1))
-        root = this->Equivalences.unite(r->box, root);
+        root = this->Equivalences.uniteWithRoot(r->box, root);
   }
   void continued(const PixelRun& run)
   {

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -121,10 +122,13 @@ void uniteRow(UnionFind& uf,
     // Runs of the neighbour row that end before this one begins meet no later run either.
     while (b < bEnd && runs[b].x1 + Widen <= run.x0)
       ++b;
+    // After the first union, `root` is a root: the later ones need not find it.
     std::uint32_t root = a;
+    bool rooted = false;
     for (std::uint32_t k = b; k < bEnd && runs[k].x0 < run.x1 + Widen; ++k)
     {
-      root = uf.unite(k, root);
+      root = rooted ? uf.uniteWithRoot(k, root) : uf.unite(k, root);
+      rooted = true;
       if (twin && runs[k].x0 == run.x0 && runs[k].x1 == run.x1)
       {
         twin[a] = k;
@@ -133,6 +137,137 @@ void uniteRow(UnionFind& uf,
       }
     }
   }
+}
+
+/// The run starts of a word of a row's bits: set bits whose bit before (`carry`, the last bit
+/// of the word before, for bit 0) is clear.
+inline Word runStartsOf(Word bits, Word carry)
+{
+  return bits & ~((bits << 1) | carry);
+}
+
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__POPCNT__)
+// The build targets x86-64 without POPCNT, whose popCount is a dozen operations: the word scan
+// of uniteRowBits counts two words a contact, and takes the instruction where the processor
+// has it (every x86-64 processor since about 2008), in a copy compiled for it.
+#define VBR_POPCNT_COPY 1
+#define VBR_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define VBR_POPCNT_COPY 0
+#define VBR_ALWAYS_INLINE inline
+#endif
+
+/// The number of set bits of w: by the instruction (Hardware, in a function compiled for it),
+/// else by popCount.
+template<bool Hardware>
+VBR_ALWAYS_INLINE int bitCount(Word w)
+{
+#if VBR_POPCNT_COPY
+  if (Hardware)
+    return __builtin_popcountll(w);
+#endif
+  return popCount(w);
+}
+
+/// uniteRow read from the rows' bits rather than their runs, for rows of many short runs
+/// (noise, checkerboards), where the walk over the runs mispredicted a branch at nearly every
+/// run. Every contact of a run of row a with a run of row b is a single bit position p of
+/// the word scan: the start of an overlap (a run of the bits of a & b: one per overlapping
+/// pair), and with vertex connectivity (Widen = 1) where the runs meet only diagonally, a run
+/// of one row starting at p right after a run of the other ended at p - 1. The runs at p are
+/// numbered by the run starts at p or before (the run ending at p - 1 for the row whose bit p
+/// is clear), so the word scan costs a few bit operations a word and one iteration a contact;
+/// rows without contacts (a face-connected checkerboard) cost no branch a run. The contacts
+/// come in order of x, those of a run of row a together, and are those of uniteRow: the
+/// classes, and so the labels, are the same.
+template<int Widen, bool HardwareCount>
+VBR_ALWAYS_INLINE void uniteRowBitsWith(UnionFind& uf,
+  const VoxelRun* runs,
+  const Word* rowA,
+  std::uint32_t a,
+  const Word* rowB,
+  std::uint32_t b,
+  std::size_t words,
+  std::uint32_t* twin,
+  std::uint32_t* twinOf)
+{
+  Word carryA = 0, carryB = 0;
+  std::uint32_t lastA = None, root = None;
+  for (std::size_t w = 0; w < words; ++w)
+  {
+    const Word bitsA = rowA[w], bitsB = rowB[w];
+    const Word startsA = runStartsOf(bitsA, carryA), startsB = runStartsOf(bitsB, carryB);
+    const Word both = bitsA & bitsB;
+    Word contacts = runStartsOf(both, carryA & carryB);
+    if (Widen)
+      contacts |=
+        (startsA & ~bitsB & ((bitsB << 1) | carryB)) | (startsB & ~bitsA & ((bitsA << 1) | carryA));
+    while (contacts)
+    {
+      const int p = countTrailingZeros(contacts);
+      const Word upToP = ~Word(0) >> (63 - p);
+      const std::uint32_t i =
+        a + static_cast<std::uint32_t>(bitCount<HardwareCount>(startsA & upToP)) - 1;
+      const std::uint32_t k =
+        b + static_cast<std::uint32_t>(bitCount<HardwareCount>(startsB & upToP)) - 1;
+      root = i == lastA ? uf.uniteWithRoot(k, root) : uf.unite(k, i);
+      lastA = i;
+      // Equal runs start together at an overlap and end together.
+      if (twin && ((startsA & startsB) >> p & 1) && runs[i].x1 == runs[k].x1)
+      {
+        twin[i] = k;
+        if (twinOf)
+          twinOf[k] = i;
+      }
+      contacts &= contacts - 1;
+    }
+    a += static_cast<std::uint32_t>(bitCount<HardwareCount>(startsA));
+    b += static_cast<std::uint32_t>(bitCount<HardwareCount>(startsB));
+    carryA = bitsA >> 63;
+    carryB = bitsB >> 63;
+  }
+}
+
+/// uniteRowBitsWith, counting bits by popCount.
+template<int Widen>
+void uniteRowBits(UnionFind& uf,
+  const VoxelRun* runs,
+  const Word* rowA,
+  std::uint32_t a,
+  const Word* rowB,
+  std::uint32_t b,
+  std::size_t words,
+  std::uint32_t* twin,
+  std::uint32_t* twinOf)
+{
+  uniteRowBitsWith<Widen, false>(uf, runs, rowA, a, rowB, b, words, twin, twinOf);
+}
+
+#if VBR_POPCNT_COPY
+/// uniteRowBitsWith compiled for processors with POPCNT.
+template<int Widen>
+__attribute__((target("popcnt"))) void uniteRowBitsPopCount(UnionFind& uf,
+  const VoxelRun* runs,
+  const Word* rowA,
+  std::uint32_t a,
+  const Word* rowB,
+  std::uint32_t b,
+  std::size_t words,
+  std::uint32_t* twin,
+  std::uint32_t* twinOf)
+{
+  uniteRowBitsWith<Widen, true>(uf, runs, rowA, a, rowB, b, words, twin, twinOf);
+}
+#endif
+
+/// Whether the processor counts bits by an instruction that the build does not assume.
+bool hasPopCountInstruction()
+{
+#if VBR_POPCNT_COPY
+  return __builtin_cpu_supports("popcnt");
+#else
+  return false;
+#endif
 }
 
 /// Where the CUDB compactions are read from: for every run, the equal run of the row before
@@ -172,41 +307,101 @@ enum class NeighbourRows
   PlaneBefore
 };
 
+/// What unitePlane reads: the runs, and the bits of the rows for the rows of short runs.
+struct RowSource
+{
+  const VoxelRuns& runs;
+  const BitVolume& voxels;
+  ContactSearch search;
+  bool popCountInstruction = hasPopCountInstruction();
+
+  /// Whether rows a and b of `na` and `nb` runs are united from their bits (uniteRowBits):
+  /// when asked, or, adaptively, when the two rows hold more runs than words (runs and gaps of
+  /// fewer than about 64 voxels on average: the word scan then costs less than the branches of
+  /// the walk over the runs).
+  bool fromBits(std::uint32_t na, std::uint32_t nb) const
+  {
+    if (this->search != ContactSearch::Adaptive)
+      return this->search == ContactSearch::Bits;
+    return na + nb > rowWordsFactor() * this->voxels.wordsPerRow();
+  }
+  static std::size_t rowWordsFactor()
+  {
+    static const std::size_t f = getenv("VBR_RWF") ? atoi(getenv("VBR_RWF")) : 1;
+    return f;
+  }
+};
+
+/// Unites the runs of row (y, z) with those of row (yb, zb), by uniteRow or uniteRowBits.
+template<int Widen>
+void uniteRows(const RowSource& src,
+  UnionFind& uf,
+  std::int32_t y,
+  std::int32_t z,
+  std::int32_t yb,
+  std::int32_t zb,
+  std::uint32_t* twin,
+  std::uint32_t* twinOf = nullptr)
+{
+  const VoxelRuns& r = src.runs;
+  const std::size_t row = r.rowOf(y, z), other = r.rowOf(yb, zb);
+  const std::uint32_t a = r.rowStarts[row], aEnd = r.rowStarts[row + 1];
+  const std::uint32_t b = r.rowStarts[other], bEnd = r.rowStarts[other + 1];
+  if (b == bEnd)
+    return;
+  if (src.fromBits(aEnd - a, bEnd - b))
+    (src.popCountInstruction ?
+#if VBR_POPCNT_COPY
+                             uniteRowBitsPopCount<Widen>
+#else
+                             uniteRowBits<Widen>
+#endif
+                             : uniteRowBits<Widen>)(uf,
+      r.runs.data(),
+      src.voxels.row(y, z),
+      a,
+      src.voxels.row(yb, zb),
+      b,
+      src.voxels.wordsPerRow(),
+      twin,
+      twinOf);
+  else
+    uniteRow<Widen>(uf, r.runs.data(), a, aEnd, b, bEnd, twin, twinOf);
+}
+
 /// The rows (y, z) of one plane united with their backward neighbour rows: (y - 1, z) and
 /// (y, z - 1), and with vertex connectivity (Widen = 1) (y - 1, z - 1) and (y + 1, z - 1) too.
 template<int Widen>
-void unitePlane(const VoxelRuns& r,
+void unitePlane(const RowSource& src,
   std::int32_t z,
   NeighbourRows which,
   UnionFind& uf,
   CompactionNotes& notes)
 {
+  const VoxelRuns& r = src.runs;
   const std::int32_t ny = r.dims[1];
-  const VoxelRun* runs = r.runs.data();
   const std::uint32_t* starts = r.rowStarts.data();
   for (std::int32_t y = 0; y < ny; ++y)
   {
     const std::size_t row = r.rowOf(y, z);
-    const std::uint32_t a = starts[row], aEnd = starts[row + 1];
-    if (a == aEnd)
+    if (starts[row] == starts[row + 1])
       continue;
     if (y > 0 && which != NeighbourRows::PlaneBefore)
-      uniteRow<Widen>(uf, runs, a, aEnd, starts[row - 1], starts[row], notes.above, notes.below);
+      uniteRows<Widen>(src, uf, y, z, y - 1, z, notes.above, notes.below);
     if (z == 0 || which == NeighbourRows::InPlane)
       continue;
-    const std::size_t back = r.rowOf(y, z - 1);
-    uniteRow<Widen>(uf, runs, a, aEnd, starts[back], starts[back + 1], notes.behind);
+    uniteRows<Widen>(src, uf, y, z, y, z - 1, notes.behind);
     if (Widen == 0)
       continue;
     if (y > 0)
-      uniteRow<Widen>(uf, runs, a, aEnd, starts[back - 1], starts[back], nullptr);
+      uniteRows<Widen>(src, uf, y, z, y - 1, z - 1, nullptr);
     if (y + 1 < ny)
-      uniteRow<Widen>(uf, runs, a, aEnd, starts[back + 1], starts[back + 2], nullptr);
+      uniteRows<Widen>(src, uf, y, z, y + 1, z - 1, nullptr);
   }
 }
 
 /// unitePlane for a connectivity given at run time.
-void unitePlane(const VoxelRuns& r,
+void unitePlane(const RowSource& r,
   std::int32_t z,
   NeighbourRows which,
   Connectivity connectivity,
@@ -229,13 +424,13 @@ int labellingPieces(std::size_t runs, std::int32_t planes, int concurrency)
 }
 
 /// All planes united in one sweep on the calling thread, with progress and abort.
-bool uniteSequentially(const VoxelRuns& r,
+bool uniteSequentially(const RowSource& r,
   Connectivity connectivity,
   const Execution& exec,
   UnionFind& uf,
   CompactionNotes& notes)
 {
-  const std::int32_t nz = r.dims[2];
+  const std::int32_t nz = r.runs.dims[2];
   ProgressPoll poll(exec, 0.0, 0.8, 4);
   for (std::int32_t z = 0; z < nz; ++z)
   {
@@ -252,14 +447,14 @@ bool uniteSequentially(const VoxelRuns& r,
 /// consecutive numbers that only its own unions touch, so the pieces share the union-find and
 /// the notes without locks; the classes, and their smallest elements, are the sequential
 /// sweep's. Workers ask whether to stop after every plane.
-bool uniteInPieces(const VoxelRuns& r,
+bool uniteInPieces(const RowSource& r,
   Connectivity connectivity,
   int pieces,
   const Execution& exec,
   UnionFind& uf,
   CompactionNotes& notes)
 {
-  const std::int32_t nz = r.dims[2];
+  const std::int32_t nz = r.runs.dims[2];
   auto firstPlane = [nz, pieces](std::int64_t piece)
   { return static_cast<std::int32_t>(nz * piece / pieces); };
   std::atomic<bool> stopped{ false };
@@ -526,7 +721,8 @@ bool labelRuns(const BitVolume& voxels,
   const Execution& exec,
   RunComponents& out,
   bool withBoxes,
-  RunLabellingScratch* scratch)
+  RunLabellingScratch* scratch,
+  ContactSearch search)
 {
   RunLabellingScratch local;
   RunLabellingScratch& memory = scratch ? *scratch : local;
@@ -548,18 +744,20 @@ bool labelRuns(const BitVolume& voxels,
     }
   } giveBack{ memory, uf, notes };
   const int pieces = labellingPieces(n, nz, exec.concurrency);
-  const bool united = pieces > 1 ? uniteInPieces(runs, connectivity, pieces, exec, uf, notes)
-                                 : uniteSequentially(runs, connectivity, exec, uf, notes);
+  const RowSource source{ runs, voxels, search };
+  const bool united = pieces > 1 ? uniteInPieces(source, connectivity, pieces, exec, uf, notes)
+                                 : uniteSequentially(source, connectivity, exec, uf, notes);
   if (!united)
     return false;
   // The classes numbered from 1 in order of their first run (the root, met before the other
-  // runs of its class).
+  // runs of its class); a run's parent is an earlier run of its class, numbered already.
   resizeOnHugePages(out.runLabel, n);
   out.count = 0;
+  std::uint32_t* label = out.runLabel.data();
   for (std::uint32_t i = 0; i < n; ++i)
   {
-    const std::uint32_t root = uf.find(i);
-    out.runLabel[i] = root == i ? ++out.count : out.runLabel[root];
+    const std::uint32_t parent = uf.parentOf(i);
+    label[i] = parent == i ? ++out.count : label[parent];
   }
   if (withBoxes)
     out.boxCount = buildBoxes(

@@ -56,6 +56,12 @@ public:
 
   std::size_t size() const { return this->Parent.size(); }
 
+  /// The parent of x: x itself for a root, else a smaller element of its class (roots are the
+  /// smallest elements, links go from the larger root to the smaller and halving only shortens
+  /// them). So a pass in increasing order can number the classes from the parents alone, the
+  /// parent's number being known already, without a find.
+  std::uint32_t parentOf(std::uint32_t x) const { return this->Parent[x]; }
+
   /// Room for n elements in all, so that add() does not reallocate up to there.
   void reserve(std::size_t n) { this->Parent.reserve(n); }
 
@@ -74,11 +80,21 @@ public:
       this->Parent.push_back(offset + p);
   }
 
-  /// The smallest element of the class of x.
+  /// The smallest element of the class of x. Halves the path on the way, but writes nothing
+  /// where x's parent is the root already (most finds of a labelling in scan order): a store
+  /// of the value already there, and the load after it, were most of the time of a find.
   std::uint32_t find(std::uint32_t x)
   {
-    while (this->Parent[x] != x)
-      x = this->Parent[x] = this->Parent[this->Parent[x]];
+    std::uint32_t parent = this->Parent[x];
+    while (parent != x)
+    {
+      const std::uint32_t grandparent = this->Parent[parent];
+      if (grandparent == parent)
+        return parent;
+      this->Parent[x] = grandparent;
+      x = grandparent;
+      parent = this->Parent[x];
+    }
     return x;
   }
 
@@ -93,6 +109,20 @@ public:
     return a;
   }
 
+  /// Joins the class of x with the class whose root is `root` (a root: the result of the last
+  /// unite, with no union since); returns the root of the union. A find the fewer than unite,
+  /// and no write when x is in that class already.
+  std::uint32_t uniteWithRoot(std::uint32_t x, std::uint32_t root)
+  {
+    x = this->find(x);
+    if (x == root)
+      return root;
+    if (x < root)
+      std::swap(x, root);
+    this->Parent[x] = root;
+    return root;
+  }
+
   /// Consecutive numbers 0 .. count - 1 for the classes, in order of their smallest element.
   std::vector<std::uint32_t> numberClasses(std::uint32_t& count)
   {
@@ -101,8 +131,9 @@ public:
     count = 0;
     for (std::uint32_t i = 0; i < n; ++i)
     {
-      const std::uint32_t root = this->find(i);
-      number[i] = root == i ? count++ : number[root];
+      // The parent, a smaller element of the class (parentOf), is numbered already.
+      const std::uint32_t parent = this->Parent[i];
+      number[i] = parent == i ? count++ : number[parent];
     }
     return number;
   }
