@@ -878,10 +878,16 @@ void makeEquivalences(const CUDB& cudb, Connectivity connectivity, UnionFind& eq
 /// along the boxes (the order of their representatives). Returns count.
 std::uint32_t relabel(UnionFind& equivalences, std::vector<std::uint32_t>& label)
 {
+  // In one pass from the parents (UnionFind::parentOf): a parent is an earlier element of
+  // its class, labelled already.
+  const auto n = static_cast<std::uint32_t>(equivalences.size());
+  label.resize(n);
   std::uint32_t count = 0;
-  label = equivalences.numberClasses(count);
-  for (std::uint32_t& l : label)
-    ++l;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t parent = equivalences.parentOf(i);
+    label[i] = parent == i ? ++count : label[parent];
+  }
   return count;
 }
 
@@ -1354,9 +1360,15 @@ struct BoxesAndEquivalences
   UnionFind& Equivalences;
   bool FaceOnly;
   Coord Row = 0;
+  /// Where the box of the next run is written, if the runs are kept (PixelRuns::boxes): here,
+  /// as the runs come, where a copy of each row's boxes from its runs (12-byte records) was
+  /// vectorized through the stack and stalled on every store forwarded to a wider load.
+  std::uint32_t* Kept = nullptr;
 
   void started(const PixelRun& run, const PixelRun* first, const PixelRun* end)
   {
+    if (this->Kept)
+      *this->Kept++ = run.box;
     if (WithBoxes)
     {
       Box box;
@@ -1376,6 +1388,8 @@ struct BoxesAndEquivalences
   }
   void continued(const PixelRun& run)
   {
+    if (this->Kept)
+      *this->Kept++ = run.box;
     if (WithBoxes)
       this->Boxes[run.box].hi[1] = this->Row + 1;
   }
@@ -1471,6 +1485,8 @@ bool sweepPixelRows(const BitVolume& pixels,
   BoxesAndEquivalences<WithBoxes> visit{
     out.boxes, equivalences, connectivity == Connectivity::Face
   };
+  std::uint32_t* const keptBoxes = kept ? kept->boxes.data() : nullptr;
+  visit.Kept = keptBoxes;
   PixelRowSweep sweep(pixels);
   // Polled between blocks of rows, so that the loop over a block's rows has no test of its own.
   for (std::int64_t block = 0; block < ny; block += stride)
@@ -1485,21 +1501,12 @@ bool sweepPixelRows(const BitVolume& pixels,
       const std::vector<PixelRun>& runs = sweep.nextRow(y, visit);
       if (!sweep.sameAsPrevious())
         out.oudbBoxCount += runs.size(); // a line of vertices at y: the OUDB cuts every interval
-      if (kept)                          // reserved for all runs and rows: no reallocation
-      {
-        std::vector<std::uint32_t>& boxes = kept->boxes;
-        const std::size_t first = boxes.size();
-        kept->rowStarts.push_back(first);
-        boxes.resize(first + runs.size());
-        std::transform(runs.begin(),
-          runs.end(),
-          boxes.begin() + static_cast<std::ptrdiff_t>(first),
-          [](const PixelRun& run) { return run.box; });
-      }
+      if (kept) // reserved for all rows: no reallocation; the boxes written by `visit`
+        kept->rowStarts.push_back(static_cast<std::size_t>(visit.Kept - keptBoxes) - runs.size());
     }
   }
   if (kept)
-    kept->rowStarts.push_back(kept->boxes.size());
+    kept->rowStarts.push_back(static_cast<std::size_t>(visit.Kept - keptBoxes));
   return true;
 }
 
@@ -1523,7 +1530,7 @@ bool sweepRowsForComponents(const BitVolume& rows,
   if (pixelRuns)
   {
     pixelRuns->clear();
-    pixelRuns->boxes.reserve(runs);
+    pixelRuns->boxes.resize(runs); // the box of every run, written by the sweep
     pixelRuns->rowStarts.reserve(std::size_t(rows.size(1)) + 1);
   }
   const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);
