@@ -121,13 +121,10 @@ void uniteRow(UnionFind& uf,
     // Runs of the neighbour row that end before this one begins meet no later run either.
     while (b < bEnd && runs[b].x1 + Widen <= run.x0)
       ++b;
-    // After the first union, `root` is a root: the later ones need not find it.
     std::uint32_t root = a;
-    bool rooted = false;
     for (std::uint32_t k = b; k < bEnd && runs[k].x0 < run.x1 + Widen; ++k)
     {
-      root = rooted ? uf.uniteWithRoot(k, root) : uf.unite(k, root);
-      rooted = true;
+      root = uf.unite(k, root);
       if (twin && runs[k].x0 == run.x0 && runs[k].x1 == run.x1)
       {
         twin[a] = k;
@@ -315,16 +312,16 @@ struct RowSource
   bool popCountInstruction = hasPopCountInstruction();
 
   /// Whether rows a and b of `na` and `nb` runs are united from their bits (uniteRowBits):
-  /// when asked, or, adaptively, when the two rows hold more runs than twice their words (a
-  /// run every 64 voxels or less in each row, on average), where the word scan costs less
-  /// than the walk's mispredicted branches. On porous volumes (runs of about 4 to 20 voxels)
-  /// either costs about as much; on noise and checkerboards the bits are a third to a half
-  /// faster.
+  /// when asked, or, adaptively, when the two rows hold more than 8 runs a word together (runs
+  /// and gaps of under 16 voxels on average: noise, checkerboards), where the word scan costs
+  /// less than the walk's mispredicted branches. Below that (porous volumes, real images) the
+  /// two cost about the same and the walk is kept: the choice itself is a branch per pair of
+  /// rows, mispredicted where rows fall on either side of it.
   bool fromBits(std::uint32_t na, std::uint32_t nb) const
   {
     if (this->search != ContactSearch::Adaptive)
       return this->search == ContactSearch::Bits;
-    return na + nb > 2 * this->voxels.wordsPerRow();
+    return na + nb > 8 * this->voxels.wordsPerRow();
   }
 };
 
