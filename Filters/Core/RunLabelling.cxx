@@ -2,7 +2,8 @@
 //
 // Passes: extractRuns counts the runs of every row (popcounts of the run starts) and writes
 // them (bit scans of the rows' changes), parallel over planes; labelRuns sweeps the rows in
-// scan order, merging each row's runs with those of its backward neighbour rows (uniteRow), and
+// scan order, merging each row's runs with those of its backward neighbour rows (uniteRow, or
+// uniteRowBits from the rows' bits where the runs are short), and
 // notes on the way the equal runs that the CUDB's compactions join (the row before, the plane
 // before; uniteSequentially, or with threads uniteInPieces: pieces of planes swept concurrently,
 // then joined plane to plane); boxBeginnings, countOUDBBoxes and countExtremeVertices turn those
