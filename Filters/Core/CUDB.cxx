@@ -878,17 +878,8 @@ void makeEquivalences(const CUDB& cudb, Connectivity connectivity, UnionFind& eq
 /// along the boxes (the order of their representatives). Returns count.
 std::uint32_t relabel(UnionFind& equivalences, std::vector<std::uint32_t>& label)
 {
-  // In one pass from the parents (UnionFind::parentOf): a parent is an earlier element of
-  // its class, labelled already.
-  const auto n = static_cast<std::uint32_t>(equivalences.size());
-  label.resize(n);
-  std::uint32_t count = 0;
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    const std::uint32_t parent = equivalences.parentOf(i);
-    label[i] = parent == i ? ++count : label[parent];
-  }
-  return count;
+  label.resize(equivalences.size());
+  return equivalences.numberClasses(label.data(), 1);
 }
 
 } // namespace

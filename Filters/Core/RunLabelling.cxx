@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -143,10 +144,13 @@ inline Word runStartsOf(Word bits, Word carry)
   return bits & ~((bits << 1) | carry);
 }
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__POPCNT__)
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__POPCNT__) &&    \
+  !defined(_MSC_VER)
 // The build targets x86-64 without POPCNT, whose popCount is a dozen operations: the word scan
 // of uniteRowBits counts two words a contact, and takes the instruction where the processor
-// has it (every x86-64 processor since about 2008), in a copy compiled for it.
+// has it (every x86-64 processor since about 2008), in a copy compiled for it. Not with
+// clang-cl (which defines __clang__ too), whose link against MSVC's libraries is not assumed
+// to hold the runtime of __builtin_cpu_supports.
 #define VBR_POPCNT_COPY 1
 #define VBR_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
@@ -160,7 +164,7 @@ template<bool Hardware>
 VBR_ALWAYS_INLINE int bitCount(Word w)
 {
 #if VBR_POPCNT_COPY
-  if (Hardware)
+  if constexpr (Hardware)
     return __builtin_popcountll(w);
 #endif
   return popCount(w);
@@ -176,14 +180,18 @@ VBR_ALWAYS_INLINE int bitCount(Word w)
 /// is clear), so the word scan costs a few bit operations a word and one iteration a contact;
 /// rows without contacts (a face-connected checkerboard) cost no branch a run. The contacts
 /// come in order of x, those of a run of row a together, and are those of uniteRow: the
-/// classes, and so the labels, are the same.
+/// classes, and so the labels, are the same. The runs' numbers come from counts of the bits,
+/// so rows [a, aEnd) and [b, bEnd) must be the runs of rowA and rowB: else the numbers go past
+/// them (checked at the end in debug builds).
 template<int Widen, bool HardwareCount>
 VBR_ALWAYS_INLINE void uniteRowBitsWith(UnionFind& uf,
   const VoxelRun* runs,
   const Word* rowA,
   std::uint32_t a,
+  std::uint32_t aEnd,
   const Word* rowB,
   std::uint32_t b,
+  std::uint32_t bEnd,
   std::size_t words,
   std::uint32_t* twin,
   std::uint32_t* twinOf)
@@ -223,6 +231,9 @@ VBR_ALWAYS_INLINE void uniteRowBitsWith(UnionFind& uf,
     carryA = bitsA >> 63;
     carryB = bitsB >> 63;
   }
+  assert(a == aEnd && b == bEnd);
+  (void)aEnd;
+  (void)bEnd;
 }
 
 /// uniteRowBitsWith, counting bits by popCount.
@@ -231,13 +242,15 @@ void uniteRowBits(UnionFind& uf,
   const VoxelRun* runs,
   const Word* rowA,
   std::uint32_t a,
+  std::uint32_t aEnd,
   const Word* rowB,
   std::uint32_t b,
+  std::uint32_t bEnd,
   std::size_t words,
   std::uint32_t* twin,
   std::uint32_t* twinOf)
 {
-  uniteRowBitsWith<Widen, false>(uf, runs, rowA, a, rowB, b, words, twin, twinOf);
+  uniteRowBitsWith<Widen, false>(uf, runs, rowA, a, aEnd, rowB, b, bEnd, words, twin, twinOf);
 }
 
 #if VBR_POPCNT_COPY
@@ -247,15 +260,43 @@ __attribute__((target("popcnt"))) void uniteRowBitsPopCount(UnionFind& uf,
   const VoxelRun* runs,
   const Word* rowA,
   std::uint32_t a,
+  std::uint32_t aEnd,
   const Word* rowB,
   std::uint32_t b,
+  std::uint32_t bEnd,
   std::size_t words,
   std::uint32_t* twin,
   std::uint32_t* twinOf)
 {
-  uniteRowBitsWith<Widen, true>(uf, runs, rowA, a, rowB, b, words, twin, twinOf);
+  uniteRowBitsWith<Widen, true>(uf, runs, rowA, a, aEnd, rowB, b, bEnd, words, twin, twinOf);
 }
 #endif
+
+/// A uniteRowBits, or its copy compiled for POPCNT.
+using RowBitsUniter = void (*)(UnionFind&,
+  const VoxelRun*,
+  const Word*,
+  std::uint32_t,
+  std::uint32_t,
+  const Word*,
+  std::uint32_t,
+  std::uint32_t,
+  std::size_t,
+  std::uint32_t*,
+  std::uint32_t*);
+
+/// uniteRowBits, counting bits by the instruction when `popCountInstruction` (the processor
+/// has it, and the build does not assume it).
+template<int Widen>
+RowBitsUniter pickUniteRowBits(bool popCountInstruction)
+{
+#if VBR_POPCNT_COPY
+  if (popCountInstruction)
+    return uniteRowBitsPopCount<Widen>;
+#endif
+  (void)popCountInstruction;
+  return uniteRowBits<Widen>;
+}
 
 /// Whether the processor counts bits by an instruction that the build does not assume.
 bool hasPopCountInstruction()
@@ -310,7 +351,9 @@ struct RowSource
   const VoxelRuns& runs;
   const BitVolume& voxels;
   ContactSearch search;
-  bool popCountInstruction = hasPopCountInstruction();
+  /// Whether uniteRowBits counts bits by the instruction: where the processor has it, unless
+  /// the portable count is asked for (ContactSearch::BitsPortable).
+  bool popCountInstruction = search != ContactSearch::BitsPortable && hasPopCountInstruction();
 
   /// Whether rows a and b of `na` and `nb` runs are united from their bits (uniteRowBits):
   /// when asked, or, adaptively, when the two rows hold more than 8 runs a word together (runs
@@ -321,16 +364,18 @@ struct RowSource
   bool fromBits(std::uint32_t na, std::uint32_t nb) const
   {
     if (this->search != ContactSearch::Adaptive)
-      return this->search == ContactSearch::Bits;
+      return this->search != ContactSearch::Runs;
     return na + nb > 8 * this->voxels.wordsPerRow();
   }
 };
 
-/// Unites the runs of row (y, z) with those of row (yb, zb), by uniteRow or uniteRowBits.
-/// Inlined at each neighbour row, as uniteRow was: a walk of its own for each, whose branches
-/// are predicted apart (one shared walk mispredicted about 40 % more on real volumes).
+/// Unites the runs of row (y, z) with those of row (yb, zb), by uniteRow or `uniteFromBits`
+/// (a uniteRowBits). Inlined at each neighbour row, as uniteRow was: a walk of its own for each,
+/// whose branches are predicted apart (one shared walk mispredicted about 40 % more on real
+/// volumes).
 template<int Widen>
 VBR_ALWAYS_INLINE void uniteRows(const RowSource& src,
+  RowBitsUniter uniteFromBits,
   UnionFind& uf,
   std::int32_t y,
   std::int32_t z,
@@ -346,18 +391,14 @@ VBR_ALWAYS_INLINE void uniteRows(const RowSource& src,
   if (b == bEnd)
     return;
   if (src.fromBits(aEnd - a, bEnd - b))
-    (src.popCountInstruction ?
-#if VBR_POPCNT_COPY
-                             uniteRowBitsPopCount<Widen>
-#else
-                             uniteRowBits<Widen>
-#endif
-                             : uniteRowBits<Widen>)(uf,
+    uniteFromBits(uf,
       r.runs.data(),
       src.voxels.row(y, z),
       a,
+      aEnd,
       src.voxels.row(yb, zb),
       b,
+      bEnd,
       src.voxels.wordsPerRow(),
       twin,
       twinOf);
@@ -377,22 +418,23 @@ void unitePlane(const RowSource& src,
   const VoxelRuns& r = src.runs;
   const std::int32_t ny = r.dims[1];
   const std::uint32_t* starts = r.rowStarts.data();
+  const RowBitsUniter uniteFromBits = pickUniteRowBits<Widen>(src.popCountInstruction);
   for (std::int32_t y = 0; y < ny; ++y)
   {
     const std::size_t row = r.rowOf(y, z);
     if (starts[row] == starts[row + 1])
       continue;
     if (y > 0 && which != NeighbourRows::PlaneBefore)
-      uniteRows<Widen>(src, uf, y, z, y - 1, z, notes.above, notes.below);
+      uniteRows<Widen>(src, uniteFromBits, uf, y, z, y - 1, z, notes.above, notes.below);
     if (z == 0 || which == NeighbourRows::InPlane)
       continue;
-    uniteRows<Widen>(src, uf, y, z, y, z - 1, notes.behind);
+    uniteRows<Widen>(src, uniteFromBits, uf, y, z, y, z - 1, notes.behind);
     if (Widen == 0)
       continue;
     if (y > 0)
-      uniteRows<Widen>(src, uf, y, z, y - 1, z - 1, nullptr);
+      uniteRows<Widen>(src, uniteFromBits, uf, y, z, y - 1, z - 1, nullptr);
     if (y + 1 < ny)
-      uniteRows<Widen>(src, uf, y, z, y + 1, z - 1, nullptr);
+      uniteRows<Widen>(src, uniteFromBits, uf, y, z, y + 1, z - 1, nullptr);
   }
 }
 
@@ -720,6 +762,10 @@ bool labelRuns(const BitVolume& voxels,
   RunLabellingScratch* scratch,
   ContactSearch search)
 {
+  // The runs' numbers in the rows' bits are counts of their bits (uniteRowBits): other runs
+  // would have them unite past the union-find's elements.
+  if (runs.dims != voxels.dims())
+    throw std::invalid_argument("labelling runs extracted from a volume of another size");
   RunLabellingScratch local;
   RunLabellingScratch& memory = scratch ? *scratch : local;
   const std::size_t n = runs.runs.size();
@@ -745,16 +791,9 @@ bool labelRuns(const BitVolume& voxels,
                                  : uniteSequentially(source, connectivity, exec, uf, notes);
   if (!united)
     return false;
-  // The classes numbered from 1 in order of their first run (the root, met before the other
-  // runs of its class); a run's parent is an earlier run of its class, numbered already.
+  // The classes numbered from 1 in order of their first run.
   resizeOnHugePages(out.runLabel, n);
-  out.count = 0;
-  std::uint32_t* label = out.runLabel.data();
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    const std::uint32_t parent = uf.parentOf(i);
-    label[i] = parent == i ? ++out.count : label[parent];
-  }
+  out.count = uf.numberClasses(out.runLabel.data(), 1);
   if (withBoxes)
     out.boxCount = buildBoxes(
       runs, notes, out.runLabel, out.beginsBox, out.boxes, out.boxLabel, memory.boxOfRun);
@@ -852,3 +891,6 @@ bool paintRunsOverwriting(const VoxelRuns& runs,
 }
 
 } // namespace vbr
+
+#undef VBR_POPCNT_COPY
+#undef VBR_ALWAYS_INLINE

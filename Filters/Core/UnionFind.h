@@ -9,6 +9,7 @@
 #ifndef vbr_UnionFind_h
 #define vbr_UnionFind_h
 
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
@@ -115,24 +116,35 @@ public:
   /// not): on noisy images that branch went either way.
   std::uint32_t uniteWithRoot(std::uint32_t x, std::uint32_t root)
   {
+    assert(this->Parent[root] == root);
     x = this->find(x);
     const std::uint32_t smaller = x < root ? x : root, larger = x < root ? root : x;
     this->Parent[larger] = smaller;
     return smaller;
   }
 
-  /// Consecutive numbers 0 .. count - 1 for the classes, in order of their smallest element.
-  std::vector<std::uint32_t> numberClasses(std::uint32_t& count)
+  /// Consecutive numbers first, first + 1, ... for the classes, in order of their smallest
+  /// element, written to number[0 .. size() - 1]; returns the number of classes. One pass in
+  /// increasing order from the parents alone, without a find: the parent of an element is a
+  /// smaller element of its class (parentOf), numbered already.
+  std::uint32_t numberClasses(std::uint32_t* number, std::uint32_t first) const
   {
-    const std::size_t n = this->Parent.size();
-    std::vector<std::uint32_t> number(n);
-    count = 0;
+    const std::uint32_t* parent = this->Parent.data();
+    const auto n = static_cast<std::uint32_t>(this->Parent.size());
+    std::uint32_t next = first;
     for (std::uint32_t i = 0; i < n; ++i)
     {
-      // The parent, a smaller element of the class (parentOf), is numbered already.
-      const std::uint32_t parent = this->Parent[i];
-      number[i] = parent == i ? count++ : number[parent];
+      const std::uint32_t p = parent[i];
+      number[i] = p == i ? next++ : number[p];
     }
+    return next - first;
+  }
+
+  /// Consecutive numbers 0 .. count - 1 for the classes, in order of their smallest element.
+  std::vector<std::uint32_t> numberClasses(std::uint32_t& count) const
+  {
+    std::vector<std::uint32_t> number(this->Parent.size());
+    count = this->numberClasses(number.data(), 0);
     return number;
   }
 

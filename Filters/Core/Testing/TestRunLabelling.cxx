@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -314,7 +315,7 @@ TEST(RunLabelling, ContactSearchesMatchFloodFill)
   // images of short runs (where the choice takes the bits) and of longer ones, rows across
   // one to four 64-bit words and ending inside or at the end of a word: labels voxel by voxel,
   // and the CUDB's counts and boxes from the notes of equal runs (set where the contacts are
-  // found), against the EVM's CUDB; the three ways give the same runs' labels and boxes.
+  // found), against the EVM's CUDB; the ways give the same runs' labels and boxes.
   const vbr::Point3 sizes[] = { { 63, 9, 7 },
     { 64, 8, 6 },
     { 65, 7, 5 },
@@ -324,9 +325,12 @@ TEST(RunLabelling, ContactSearchesMatchFloodFill)
     { 150, 40, 1 },
     { 64, 64, 1 },
     { 257, 20, 1 } };
-  const vbr::ContactSearch searches[] = {
-    vbr::ContactSearch::Runs, vbr::ContactSearch::Bits, vbr::ContactSearch::Adaptive
-  };
+  // BitsPortable: the scan of the bits counting them without the processor's instruction,
+  // the copy a build for processors without it runs.
+  const vbr::ContactSearch searches[] = { vbr::ContactSearch::Runs,
+    vbr::ContactSearch::Bits,
+    vbr::ContactSearch::BitsPortable,
+    vbr::ContactSearch::Adaptive };
   unsigned seed = 2000;
   for (const vbr::Point3& d : sizes)
     for (int kind = 0; kind < 6; ++kind)
@@ -373,16 +377,18 @@ TEST(RunLabelling, ContactSearchesMatchFloodFill)
 TEST(RunLabelling, ContactsFromBitsInPiecesMatchFloodFill)
 {
   // The bits' contacts with the planes labelled in pieces by threads and joined (over 2^16
-  // runs), against the flood fill.
+  // runs), against the flood fill, with both counts of the bits.
   const vbr::BitVolume v = shortRunVolume({ 100, 60, 70 }, false, 0.1, 77);
-  for (bool vertex : { false, true })
-  {
-    SCOPED_TRACE(vertex ? "vertex" : "face");
-    const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
-    const Labelled l = labelAndPaint(v, c, bf::threadedExecution(3), vbr::ContactSearch::Bits);
-    ASSERT_GE(l.runs.runs.size(), std::size_t(1) << 16);
-    expectFloodFillLabels(v, vertex, l);
-  }
+  for (vbr::ContactSearch search : { vbr::ContactSearch::Bits, vbr::ContactSearch::BitsPortable })
+    for (bool vertex : { false, true })
+    {
+      SCOPED_TRACE(std::string(vertex ? "vertex" : "face") + " search " +
+        std::to_string(static_cast<int>(search)));
+      const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+      const Labelled l = labelAndPaint(v, c, bf::threadedExecution(3), search);
+      ASSERT_GE(l.runs.runs.size(), std::size_t(1) << 16);
+      expectFloodFillLabels(v, vertex, l);
+    }
 }
 
 TEST(RunLabelling, ThreadsChangeNothing)
@@ -498,6 +504,19 @@ TEST(RunLabelling, Aborts)
   ASSERT_TRUE(vbr::extractRuns(v, vbr::Execution(), runs));
   vbr::RunComponents c;
   EXPECT_FALSE(vbr::labelRuns(v, runs, vbr::Connectivity::Face, stop, c));
+}
+
+TEST(RunLabelling, RunsOfAnotherVolumeAreRefused)
+{
+  // The runs' numbers in the rows' bits are counts of the bits: runs of a volume of another
+  // size are refused rather than read past.
+  const vbr::BitVolume v = bf::randomVolume({ 40, 30, 20 }, 0.5, 4);
+  const vbr::BitVolume other = bf::randomVolume({ 40, 30, 21 }, 0.5, 4);
+  vbr::VoxelRuns runs;
+  ASSERT_TRUE(vbr::extractRuns(other, vbr::Execution(), runs));
+  vbr::RunComponents c;
+  EXPECT_THROW(
+    vbr::labelRuns(v, runs, vbr::Connectivity::Face, vbr::Execution(), c), std::invalid_argument);
 }
 
 } // namespace
