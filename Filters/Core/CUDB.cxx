@@ -878,11 +878,8 @@ void makeEquivalences(const CUDB& cudb, Connectivity connectivity, UnionFind& eq
 /// along the boxes (the order of their representatives). Returns count.
 std::uint32_t relabel(UnionFind& equivalences, std::vector<std::uint32_t>& label)
 {
-  std::uint32_t count = 0;
-  label = equivalences.numberClasses(count);
-  for (std::uint32_t& l : label)
-    ++l;
-  return count;
+  label.resize(equivalences.size());
+  return equivalences.numberClasses(label.data(), 1);
 }
 
 } // namespace
@@ -1354,9 +1351,15 @@ struct BoxesAndEquivalences
   UnionFind& Equivalences;
   bool FaceOnly;
   Coord Row = 0;
+  /// Where the box of the next run is written, if the runs are kept (PixelRuns::boxes): here,
+  /// as the runs come, where a copy of each row's boxes from its runs (12-byte records) was
+  /// vectorized through the stack and stalled on every store forwarded to a wider load.
+  std::uint32_t* Kept = nullptr;
 
   void started(const PixelRun& run, const PixelRun* first, const PixelRun* end)
   {
+    if (this->Kept)
+      *this->Kept++ = run.box;
     if (WithBoxes)
     {
       Box box;
@@ -1367,14 +1370,17 @@ struct BoxesAndEquivalences
     this->Equivalences.add();
     // The runs from `first` on that start no later than this one ends meet it (one loop that
     // finds and unites them: its exits are mispredicted once, not twice). The union's root
-    // is carried from contact to contact rather than found again from the new box.
+    // is carried from contact to contact rather than found again from the new box, a root
+    // itself (no union has reached it yet).
     std::uint32_t root = run.box;
     for (const PixelRun* r = first; r != end && r->c0 <= run.c1; ++r)
       if (!this->FaceOnly || (r->c0 < run.c1 && run.c0 < r->c1))
-        root = this->Equivalences.unite(r->box, root);
+        root = this->Equivalences.uniteWithRoot(r->box, root);
   }
   void continued(const PixelRun& run)
   {
+    if (this->Kept)
+      *this->Kept++ = run.box;
     if (WithBoxes)
       this->Boxes[run.box].hi[1] = this->Row + 1;
   }
@@ -1470,6 +1476,8 @@ bool sweepPixelRows(const BitVolume& pixels,
   BoxesAndEquivalences<WithBoxes> visit{
     out.boxes, equivalences, connectivity == Connectivity::Face
   };
+  std::uint32_t* const keptBoxes = kept ? kept->boxes.data() : nullptr;
+  visit.Kept = keptBoxes;
   PixelRowSweep sweep(pixels);
   // Polled between blocks of rows, so that the loop over a block's rows has no test of its own.
   for (std::int64_t block = 0; block < ny; block += stride)
@@ -1484,21 +1492,12 @@ bool sweepPixelRows(const BitVolume& pixels,
       const std::vector<PixelRun>& runs = sweep.nextRow(y, visit);
       if (!sweep.sameAsPrevious())
         out.oudbBoxCount += runs.size(); // a line of vertices at y: the OUDB cuts every interval
-      if (kept)                          // reserved for all runs and rows: no reallocation
-      {
-        std::vector<std::uint32_t>& boxes = kept->boxes;
-        const std::size_t first = boxes.size();
-        kept->rowStarts.push_back(first);
-        boxes.resize(first + runs.size());
-        std::transform(runs.begin(),
-          runs.end(),
-          boxes.begin() + static_cast<std::ptrdiff_t>(first),
-          [](const PixelRun& run) { return run.box; });
-      }
+      if (kept) // reserved for all rows: no reallocation; the boxes written by `visit`
+        kept->rowStarts.push_back(static_cast<std::size_t>(visit.Kept - keptBoxes) - runs.size());
     }
   }
   if (kept)
-    kept->rowStarts.push_back(kept->boxes.size());
+    kept->rowStarts.push_back(static_cast<std::size_t>(visit.Kept - keptBoxes));
   return true;
 }
 
@@ -1522,7 +1521,7 @@ bool sweepRowsForComponents(const BitVolume& rows,
   if (pixelRuns)
   {
     pixelRuns->clear();
-    pixelRuns->boxes.reserve(runs);
+    pixelRuns->boxes.resize(runs); // the box of every run, written by the sweep
     pixelRuns->rowStarts.reserve(std::size_t(rows.size(1)) + 1);
   }
   const std::size_t words = std::max<std::size_t>(rows.wordsPerRow(), 1);

@@ -195,7 +195,8 @@ inline int countTrailingZeros(std::uint64_t w)
 /// Number of set bits of a word.
 inline int popCount(std::uint64_t w)
 {
-#if defined(__POPCNT__) && (defined(__GNUC__) || defined(__clang__))
+#if (defined(__POPCNT__) || defined(__aarch64__)) && (defined(__GNUC__) || defined(__clang__))
+  // AArch64 counts bits in its vector unit (CNT), always there.
   return __builtin_popcountll(w);
 #else
   // Without the instruction the builtin is a call into the compiler's runtime library, per

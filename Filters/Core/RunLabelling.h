@@ -103,6 +103,19 @@ struct RunLabellingScratch
   }
 };
 
+/// How labelRuns finds the runs of two neighbour rows that touch: by a walk over the runs of
+/// both rows, by a scan of the words of their bits (one step a word and one a contact: rows
+/// of many short runs), or, by default, whichever costs less for the rows' numbers of runs.
+/// The result is the same. BitsPortable is Bits counting the words' bits without the
+/// processor's instruction even where it has one, for tests of that copy.
+enum class ContactSearch
+{
+  Adaptive,
+  Runs,
+  Bits,
+  BitsPortable
+};
+
 /// Labels the runs of `voxels` (as extractRuns gave them) with `connectivity`, and counts the
 /// CUDB's boxes, the OUDB's and the EVM's vertices. With several threads (exec.concurrency) and
 /// many runs, pieces of consecutive planes are labelled concurrently and then joined; the
@@ -110,14 +123,16 @@ struct RunLabellingScratch
 /// returns false when aborted. With `withBoxes`, builds the CUDB's boxes too (RunComponents::
 /// boxes): a box is a rectangle (a run and the chain of equal runs in the rows after it), grown
 /// through the planes after it while they hold an equal rectangle. With `scratch`, its working
-/// memory comes from there and is left there.
+/// memory comes from there and is left there. `search`: see ContactSearch. Throws
+/// std::invalid_argument when `runs` are not of the size of `voxels`.
 bool labelRuns(const BitVolume& voxels,
   const VoxelRuns& runs,
   Connectivity connectivity,
   const Execution& exec,
   RunComponents& out,
   bool withBoxes = false,
-  RunLabellingScratch* scratch = nullptr);
+  RunLabellingScratch* scratch = nullptr,
+  ContactSearch search = ContactSearch::Adaptive);
 
 /// Writes value[runLabel[i]] into every voxel of run i (value 0 are skipped) of `labels`, a grid
 /// of `dims` voxels stored x fastest, the runs' voxel (x, y, z) at (x, y, z) + offset. Voxels of

@@ -9,6 +9,7 @@
 #ifndef vbr_UnionFind_h
 #define vbr_UnionFind_h
 
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
@@ -56,6 +57,12 @@ public:
 
   std::size_t size() const { return this->Parent.size(); }
 
+  /// The parent of x: x itself for a root, else a smaller element of its class (roots are the
+  /// smallest elements, links go from the larger root to the smaller and halving only shortens
+  /// them). So a pass in increasing order can number the classes from the parents alone, the
+  /// parent's number being known already, without a find.
+  std::uint32_t parentOf(std::uint32_t x) const { return this->Parent[x]; }
+
   /// Room for n elements in all, so that add() does not reallocate up to there.
   void reserve(std::size_t n) { this->Parent.reserve(n); }
 
@@ -74,11 +81,21 @@ public:
       this->Parent.push_back(offset + p);
   }
 
-  /// The smallest element of the class of x.
+  /// The smallest element of the class of x. Halves the path on the way, but writes nothing
+  /// where x's parent is the root already (most finds of a labelling in scan order): a store
+  /// of the value already there, and the load after it, were most of the time of a find.
   std::uint32_t find(std::uint32_t x)
   {
-    while (this->Parent[x] != x)
-      x = this->Parent[x] = this->Parent[this->Parent[x]];
+    std::uint32_t parent = this->Parent[x];
+    while (parent != x)
+    {
+      const std::uint32_t grandparent = this->Parent[parent];
+      if (grandparent == parent)
+        return parent;
+      this->Parent[x] = grandparent;
+      x = grandparent;
+      parent = this->Parent[x];
+    }
     return x;
   }
 
@@ -93,17 +110,41 @@ public:
     return a;
   }
 
-  /// Consecutive numbers 0 .. count - 1 for the classes, in order of their smallest element.
-  std::vector<std::uint32_t> numberClasses(std::uint32_t& count)
+  /// Joins the class of x with the class whose root is `root` (a root: the result of the last
+  /// unite, with no union since); returns the root of the union. A find the fewer than unite.
+  /// Without a branch on whether the classes differ (a root linked to itself when they do
+  /// not): on noisy images that branch went either way.
+  std::uint32_t uniteWithRoot(std::uint32_t x, std::uint32_t root)
   {
-    const std::size_t n = this->Parent.size();
-    std::vector<std::uint32_t> number(n);
-    count = 0;
+    assert(this->Parent[root] == root);
+    x = this->find(x);
+    const std::uint32_t smaller = x < root ? x : root, larger = x < root ? root : x;
+    this->Parent[larger] = smaller;
+    return smaller;
+  }
+
+  /// Consecutive numbers first, first + 1, ... for the classes, in order of their smallest
+  /// element, written to number[0 .. size() - 1]; returns the number of classes. One pass in
+  /// increasing order from the parents alone, without a find: the parent of an element is a
+  /// smaller element of its class (parentOf), numbered already.
+  std::uint32_t numberClasses(std::uint32_t* number, std::uint32_t first) const
+  {
+    const std::uint32_t* parent = this->Parent.data();
+    const auto n = static_cast<std::uint32_t>(this->Parent.size());
+    std::uint32_t next = first;
     for (std::uint32_t i = 0; i < n; ++i)
     {
-      const std::uint32_t root = this->find(i);
-      number[i] = root == i ? count++ : number[root];
+      const std::uint32_t p = parent[i];
+      number[i] = p == i ? next++ : number[p];
     }
+    return next - first;
+  }
+
+  /// Consecutive numbers 0 .. count - 1 for the classes, in order of their smallest element.
+  std::vector<std::uint32_t> numberClasses(std::uint32_t& count) const
+  {
+    std::vector<std::uint32_t> number(this->Parent.size());
+    count = this->numberClasses(number.data(), 0);
     return number;
   }
 

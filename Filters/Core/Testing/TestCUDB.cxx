@@ -512,6 +512,51 @@ TEST(CUDB, PixelRunsWithoutBoxes)
       }
 }
 
+TEST(CUDB, PixelRunsOfShortRunsMatchFloodFill)
+{
+  // labelPixelRuns on images of short runs (random pixels, a checkerboard with flips) against
+  // the flood fill, pixel by pixel and numbered alike: every run of a row painted with the label
+  // of its box.
+  const vbr::Point3 sizes[] = { { 63, 40, 1 }, { 64, 31, 1 }, { 129, 25, 1 }, { 300, 12, 1 } };
+  unsigned seed = 1700;
+  for (const auto& d : sizes)
+    for (int kind = 0; kind < 4; ++kind)
+    {
+      vbr::BitVolume v = bf::randomVolume(d, 0.3 + 0.2 * kind, seed++);
+      if (kind == 3)
+      {
+        const vbr::BitVolume flips = bf::randomVolume(d, 0.1, seed++);
+        for (vbr::Coord y = 0; y < d[1]; ++y)
+          for (vbr::Coord x = 0; x < d[0]; ++x)
+            v.set(x, y, 0, ((x + y) % 2 == 0) != flips.get(x, y, 0));
+      }
+      for (bool vertex : { false, true })
+      {
+        SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " kind " +
+          std::to_string(kind) + (vertex ? " vertex" : " face"));
+        const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+        vbr::PixelRunComponents got;
+        ASSERT_TRUE(vbr::labelPixelRuns(v, c, vbr::Execution(), got));
+        std::vector<int> painted(v.voxelCount(), 0);
+        std::size_t run = 0;
+        for (vbr::Coord y = 0; y < d[1]; ++y)
+          for (vbr::Coord x = 0; x < d[0]; ++x)
+            if (v.get(x, y, 0))
+            {
+              if (x == 0 || !v.get(x - 1, y, 0))
+                ++run;
+              ASSERT_LE(run, got.runs.boxes.size());
+              painted[std::size_t(y) * d[0] + x] =
+                static_cast<int>(got.components.boxLabel[got.runs.boxes[run - 1]]);
+            }
+        int count = 0;
+        const std::vector<int> expected = bf::floodFillLabels(v, vertex, count);
+        EXPECT_EQ(got.components.count, static_cast<std::uint32_t>(count));
+        EXPECT_EQ(painted, expected);
+      }
+    }
+}
+
 TEST(CUDB, PixelRunsPaintTheBoxes)
 {
   // paintPixelRuns from the runs of the ZYX sweep into a zeroed rectangle, against box-by-box

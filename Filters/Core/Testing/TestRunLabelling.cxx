@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,14 +28,16 @@ struct Labelled
 
 Labelled labelAndPaint(const vbr::BitVolume& v,
   vbr::Connectivity connectivity,
-  const vbr::Execution& exec = vbr::Execution())
+  const vbr::Execution& exec = vbr::Execution(),
+  vbr::ContactSearch search = vbr::ContactSearch::Adaptive)
 {
   Labelled out;
   EXPECT_TRUE(vbr::extractRuns(v, exec, out.runs));
-  EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, out.components, true));
+  EXPECT_TRUE(
+    vbr::labelRuns(v, out.runs, connectivity, exec, out.components, true, nullptr, search));
   // Without the boxes, the same labels and counts and no boxes.
   vbr::RunComponents plain;
-  EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, plain));
+  EXPECT_TRUE(vbr::labelRuns(v, out.runs, connectivity, exec, plain, false, nullptr, search));
   EXPECT_EQ(plain.runLabel, out.components.runLabel);
   EXPECT_EQ(plain.boxCount, out.components.boxCount);
   EXPECT_EQ(plain.beginsBox, out.components.beginsBox);
@@ -292,6 +295,102 @@ TEST(RunLabelling, CheckerboardComponents)
   EXPECT_EQ(labelAndPaint(checker, vbr::Connectivity::Vertex).components.count, 1u);
 }
 
+/// A volume of short runs: a checkerboard (runs of one voxel, `stripes`: of one voxel along x
+/// only, rows alike) with a fraction `flips` of its voxels flipped at random.
+vbr::BitVolume shortRunVolume(const vbr::Point3& d, bool stripes, double flips, unsigned seed)
+{
+  const vbr::BitVolume noise = bf::randomVolume(d, flips, seed);
+  vbr::BitVolume v(d[0], d[1], d[2]);
+  for (std::int32_t z = 0; z < d[2]; ++z)
+    for (std::int32_t y = 0; y < d[1]; ++y)
+      for (std::int32_t x = 0; x < d[0]; ++x)
+        v.set(x, y, z, ((stripes ? x : x + y + z) % 2 == 0) != noise.get(x, y, z));
+  return v;
+}
+
+TEST(RunLabelling, ContactSearchesMatchFloodFill)
+{
+  // Every way of finding the contacts of two rows (the walk over their runs, the scan of their
+  // bits, the choice between them per pair of rows) against the flood fill, on volumes and
+  // images of short runs (where the choice takes the bits) and of longer ones, rows across
+  // one to four 64-bit words and ending inside or at the end of a word: labels voxel by voxel,
+  // and the CUDB's counts and boxes from the notes of equal runs (set where the contacts are
+  // found), against the EVM's CUDB; the ways give the same runs' labels and boxes.
+  const vbr::Point3 sizes[] = { { 63, 9, 7 },
+    { 64, 8, 6 },
+    { 65, 7, 5 },
+    { 130, 6, 4 },
+    { 200, 5, 3 },
+    { 9, 12, 11 },
+    { 150, 40, 1 },
+    { 64, 64, 1 },
+    { 257, 20, 1 } };
+  // BitsPortable: the scan of the bits counting them without the processor's instruction,
+  // the copy a build for processors without it runs.
+  const vbr::ContactSearch searches[] = { vbr::ContactSearch::Runs,
+    vbr::ContactSearch::Bits,
+    vbr::ContactSearch::BitsPortable,
+    vbr::ContactSearch::Adaptive };
+  unsigned seed = 2000;
+  for (const vbr::Point3& d : sizes)
+    for (int kind = 0; kind < 6; ++kind)
+    {
+      // Random voxels at three densities, a checkerboard and stripes with flips, and runs of
+      // about 8 to 16 voxels (blocks of 8 along x).
+      const double densities[] = { 0.3, 0.5, 0.7 };
+      vbr::BitVolume v = kind < 3 ? bf::randomVolume(d, densities[kind], seed)
+        : kind < 5                ? shortRunVolume(d, kind == 4, 0.08, seed)
+                                  : vbr::BitVolume(d[0], d[1], d[2]);
+      if (kind == 5)
+      {
+        const vbr::BitVolume coarse = bf::randomVolume({ (d[0] + 7) / 8, d[1], d[2] }, 0.5, seed);
+        for (std::int32_t z = 0; z < d[2]; ++z)
+          for (std::int32_t y = 0; y < d[1]; ++y)
+            for (std::int32_t x = 0; x < d[0]; ++x)
+              v.set(x, y, z, coarse.get(x / 8, y, z));
+      }
+      ++seed;
+      for (bool vertex : { false, true })
+      {
+        const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+        std::vector<Labelled> all;
+        for (vbr::ContactSearch search : searches)
+        {
+          SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
+            std::to_string(d[2]) + " kind " + std::to_string(kind) + " seed " +
+            std::to_string(seed - 1) + (vertex ? " vertex" : " face") + " search " +
+            std::to_string(static_cast<int>(search)));
+          all.push_back(labelAndPaint(v, c, vbr::Execution(), search));
+          expectFloodFillLabels(v, vertex, all.back());
+          expectCUDBCounts(v, c, all.back());
+        }
+        for (const Labelled& l : all)
+        {
+          EXPECT_EQ(l.components.runLabel, all[0].components.runLabel);
+          EXPECT_EQ(l.components.beginsBox, all[0].components.beginsBox);
+          EXPECT_EQ(l.components.boxes, all[0].components.boxes);
+        }
+      }
+    }
+}
+
+TEST(RunLabelling, ContactsFromBitsInPiecesMatchFloodFill)
+{
+  // The bits' contacts with the planes labelled in pieces by threads and joined (over 2^16
+  // runs), against the flood fill, with both counts of the bits.
+  const vbr::BitVolume v = shortRunVolume({ 100, 60, 70 }, false, 0.1, 77);
+  for (vbr::ContactSearch search : { vbr::ContactSearch::Bits, vbr::ContactSearch::BitsPortable })
+    for (bool vertex : { false, true })
+    {
+      SCOPED_TRACE(std::string(vertex ? "vertex" : "face") + " search " +
+        std::to_string(static_cast<int>(search)));
+      const vbr::Connectivity c = vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+      const Labelled l = labelAndPaint(v, c, bf::threadedExecution(3), search);
+      ASSERT_GE(l.runs.runs.size(), std::size_t(1) << 16);
+      expectFloodFillLabels(v, vertex, l);
+    }
+}
+
 TEST(RunLabelling, ThreadsChangeNothing)
 {
   // Enough runs (over 2^16) and planes for the labelling to be cut into pieces of planes.
@@ -405,6 +504,19 @@ TEST(RunLabelling, Aborts)
   ASSERT_TRUE(vbr::extractRuns(v, vbr::Execution(), runs));
   vbr::RunComponents c;
   EXPECT_FALSE(vbr::labelRuns(v, runs, vbr::Connectivity::Face, stop, c));
+}
+
+TEST(RunLabelling, RunsOfAnotherVolumeAreRefused)
+{
+  // The runs' numbers in the rows' bits are counts of the bits: runs of a volume of another
+  // size are refused rather than read past.
+  const vbr::BitVolume v = bf::randomVolume({ 40, 30, 20 }, 0.5, 4);
+  const vbr::BitVolume other = bf::randomVolume({ 40, 30, 21 }, 0.5, 4);
+  vbr::VoxelRuns runs;
+  ASSERT_TRUE(vbr::extractRuns(other, vbr::Execution(), runs));
+  vbr::RunComponents c;
+  EXPECT_THROW(
+    vbr::labelRuns(v, runs, vbr::Connectivity::Face, vbr::Execution(), c), std::invalid_argument);
 }
 
 } // namespace
