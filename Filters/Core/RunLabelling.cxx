@@ -170,6 +170,14 @@ VBR_ALWAYS_INLINE int bitCount(Word w)
   return popCount(w);
 }
 
+/// A row's bits and the indices [first, end) of its runs.
+struct RowBits
+{
+  const Word* bits;
+  std::uint32_t first;
+  std::uint32_t end;
+};
+
 /// uniteRow read from the rows' bits rather than their runs, for rows of many short runs
 /// (noise, checkerboards), where the walk over the runs mispredicted a branch at nearly every
 /// run. Every contact of a run of row a with a run of row b is a single bit position p of
@@ -181,26 +189,23 @@ VBR_ALWAYS_INLINE int bitCount(Word w)
 /// rows without contacts (a face-connected checkerboard) cost no branch a run. The contacts
 /// come in order of x, those of a run of row a together, and are those of uniteRow: the
 /// classes, and so the labels, are the same. The runs' numbers come from counts of the bits,
-/// so rows [a, aEnd) and [b, bEnd) must be the runs of rowA and rowB: else the numbers go past
-/// them (checked at the end in debug builds).
+/// so each RowBits' runs must be those of its bits: else the numbers go past them (checked at
+/// the end in debug builds).
 template<int Widen, bool HardwareCount>
 VBR_ALWAYS_INLINE void uniteRowBitsWith(UnionFind& uf,
   const VoxelRun* runs,
-  const Word* rowA,
-  std::uint32_t a,
-  std::uint32_t aEnd,
-  const Word* rowB,
-  std::uint32_t b,
-  std::uint32_t bEnd,
+  RowBits rowA,
+  RowBits rowB,
   std::size_t words,
   std::uint32_t* twin,
   std::uint32_t* twinOf)
 {
+  std::uint32_t a = rowA.first, b = rowB.first;
   Word carryA = 0, carryB = 0;
   std::uint32_t lastA = None, root = None;
   for (std::size_t w = 0; w < words; ++w)
   {
-    const Word bitsA = rowA[w], bitsB = rowB[w];
+    const Word bitsA = rowA.bits[w], bitsB = rowB.bits[w];
     const Word startsA = runStartsOf(bitsA, carryA), startsB = runStartsOf(bitsB, carryB);
     const Word both = bitsA & bitsB;
     Word contacts = runStartsOf(both, carryA & carryB);
@@ -231,26 +236,20 @@ VBR_ALWAYS_INLINE void uniteRowBitsWith(UnionFind& uf,
     carryA = bitsA >> 63;
     carryB = bitsB >> 63;
   }
-  assert(a == aEnd && b == bEnd);
-  (void)aEnd;
-  (void)bEnd;
+  assert(a == rowA.end && b == rowB.end);
 }
 
 /// uniteRowBitsWith, counting bits by popCount.
 template<int Widen>
 void uniteRowBits(UnionFind& uf,
   const VoxelRun* runs,
-  const Word* rowA,
-  std::uint32_t a,
-  std::uint32_t aEnd,
-  const Word* rowB,
-  std::uint32_t b,
-  std::uint32_t bEnd,
+  RowBits rowA,
+  RowBits rowB,
   std::size_t words,
   std::uint32_t* twin,
   std::uint32_t* twinOf)
 {
-  uniteRowBitsWith<Widen, false>(uf, runs, rowA, a, aEnd, rowB, b, bEnd, words, twin, twinOf);
+  uniteRowBitsWith<Widen, false>(uf, runs, rowA, rowB, words, twin, twinOf);
 }
 
 #if VBR_POPCNT_COPY
@@ -258,29 +257,21 @@ void uniteRowBits(UnionFind& uf,
 template<int Widen>
 __attribute__((target("popcnt"))) void uniteRowBitsPopCount(UnionFind& uf,
   const VoxelRun* runs,
-  const Word* rowA,
-  std::uint32_t a,
-  std::uint32_t aEnd,
-  const Word* rowB,
-  std::uint32_t b,
-  std::uint32_t bEnd,
+  RowBits rowA,
+  RowBits rowB,
   std::size_t words,
   std::uint32_t* twin,
   std::uint32_t* twinOf)
 {
-  uniteRowBitsWith<Widen, true>(uf, runs, rowA, a, aEnd, rowB, b, bEnd, words, twin, twinOf);
+  uniteRowBitsWith<Widen, true>(uf, runs, rowA, rowB, words, twin, twinOf);
 }
 #endif
 
 /// A uniteRowBits, or its copy compiled for POPCNT.
 using RowBitsUniter = void (*)(UnionFind&,
   const VoxelRun*,
-  const Word*,
-  std::uint32_t,
-  std::uint32_t,
-  const Word*,
-  std::uint32_t,
-  std::uint32_t,
+  RowBits,
+  RowBits,
   std::size_t,
   std::uint32_t*,
   std::uint32_t*);
@@ -393,12 +384,8 @@ VBR_ALWAYS_INLINE void uniteRows(const RowSource& src,
   if (src.fromBits(aEnd - a, bEnd - b))
     uniteFromBits(uf,
       r.runs.data(),
-      src.voxels.row(y, z),
-      a,
-      aEnd,
-      src.voxels.row(yb, zb),
-      b,
-      bEnd,
+      { src.voxels.row(y, z), a, aEnd },
+      { src.voxels.row(yb, zb), b, bEnd },
       src.voxels.wordsPerRow(),
       twin,
       twinOf);
