@@ -111,7 +111,7 @@ public:
   }
 
   /// Joins the class of x with the class whose root is `root` (a root: the result of the last
-  /// unite, with no union since); returns the root of the union. A find the fewer than unite.
+  /// unite, with no union since); returns the root of the union, with one find fewer than unite.
   /// Without a branch on whether the classes differ (a root linked to itself when they do
   /// not): on noisy images that branch went either way.
   std::uint32_t uniteWithRoot(std::uint32_t x, std::uint32_t root)
