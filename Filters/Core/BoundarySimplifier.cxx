@@ -875,8 +875,7 @@ public:
       for (std::int32_t j = 0; j < this->Rows[0]; ++j)
         this->markRow(j, k);
     std::vector<Word>().swap(this->Voxels);
-    for (std::vector<Word>& s : this->Scratch)
-      std::vector<Word>().swap(s);
+    this->Scratch = RowScratch();
   }
 
   /// Whether every voxel that triangle t may meet is proven; false when one is not (or lies
@@ -936,6 +935,15 @@ private:
   static constexpr std::int32_t Margin = 3;
   static constexpr double Widen = 1e-7;
 
+  /// The rows of bits markRow works on, a word per 64 voxels of a row.
+  struct RowScratch
+  {
+    std::vector<Word> proven;  ///< the row's voxels proven so far
+    std::vector<Word> across;  ///< the faces normal to x within reach, a bit per plane x = i
+    std::vector<Word> faces;   ///< the faces normal to y or z of one plane
+    std::vector<Word> shifted; ///< a row shifted by a voxel
+  };
+
   /// How far the heights of t's plane computed from the rounded normal n (n[c] its largest
   /// component, not 0) may be from those of t's points: a point p of t is within the slack of
   /// the height computed at p's place. Why: with u = 2^-53, the sides t[1] - t[0], t[2] - t[0]
@@ -945,11 +953,14 @@ private:
   /// n.(p - t[0]) / n[c] over p's place, and n.(p - t[0]) = e.(p - t[0]) as N.(p - t[0]) = 0, so
   /// |H(p) - p[c]| <= 8 sqrt(3) u L^3 / |n[c]|: tiny for a fair triangle, but for a sliver
   /// (corners off a line by 1e-14) n is rounding noise, |n[c]| as small as e, and the heights land
-  /// anywhere. The evaluation of H (offset, two products, a division; each |n[k]| <= |n[c]|) adds
-  /// some 12 u times the largest coordinate M + 1 (the places are within a voxel of t's box).
-  /// 1e-14 (90 u) times L^3 / |n[c]| + M + 1 is over five times both, and Widen covers points on
-  /// voxel faces. H is linear, so over a column's square its values lie between those at the
-  /// square's corners.
+  /// anywhere. The evaluation of H (the offset, a dot product of three terms, two more
+  /// products and a division; each |n[k]| <= |n[c]|) adds at most about 25 u times the largest
+  /// coordinate M + 1 (the places are within a voxel of t's box). 1e-14 (90 u) times
+  /// L^3 / |n[c]| + M + 1 is over three times both, and Widen covers points on voxel faces. H is
+  /// linear, so over a column's square its values lie between those at the square's corners.
+  /// The columns themselves need no such bound: where the sign of a side's test in shadowMeets
+  /// is rounded the wrong way, all of t lies within about u L of that side, far inside the
+  /// squares' widening by Widen.
   static double heightSlack(const Corners& t, double nc)
   {
     double longest = 0, largest = 0;
@@ -1054,9 +1065,11 @@ private:
   void markRow(std::int32_t y, std::int32_t z)
   {
     const std::size_t n = this->Words;
-    // scratch kept across rows
-    std::vector<Word>&proven = this->Scratch[0], &across = this->Scratch[1],
-    &faces = this->Scratch[2], &shifted = this->Scratch[3];
+    RowScratch& row = this->Scratch; // kept across rows: no allocation a row
+    std::vector<Word>& proven = row.proven;
+    std::vector<Word>& across = row.across;
+    std::vector<Word>& faces = row.faces;
+    std::vector<Word>& shifted = row.shifted;
     proven.assign(n, 0);
     across.assign(n, 0);
     faces.resize(n);
@@ -1092,7 +1105,7 @@ private:
   std::size_t Words = 0;                    // per row, bit x + 64 for voxel x
   std::int32_t First[2] = { 0, 0 }, Rows[2] = { 0, 0 }; // along y and z
   std::vector<Word> Voxels;                             // while marking
-  std::vector<Word> Scratch[4];                         // while marking, a row each
+  RowScratch Scratch;                                   // while marking
   std::vector<Word> Proven;                             // a bit per voxel of the box
 };
 

@@ -751,8 +751,10 @@ bool labelRuns(const BitVolume& voxels,
 {
   // The runs' numbers in the rows' bits are counts of their bits (uniteRowBits): other runs
   // would have them unite past the union-find's elements.
-  if (runs.dims != voxels.dims())
-    throw std::invalid_argument("labelling runs extracted from a volume of another size");
+  if (runs.dims != voxels.dims() ||
+    runs.rowStarts.size() != std::size_t(runs.dims[1]) * std::size_t(runs.dims[2]) + 1 ||
+    runs.rowStarts.back() != runs.runs.size())
+    throw std::invalid_argument("labelling runs that are not those of a volume of this size");
   RunLabellingScratch local;
   RunLabellingScratch& memory = scratch ? *scratch : local;
   const std::size_t n = runs.runs.size();

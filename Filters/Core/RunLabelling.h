@@ -107,7 +107,8 @@ struct RunLabellingScratch
 /// both rows, by a scan of the words of their bits (one step a word and one a contact: rows
 /// of many short runs), or, by default, whichever costs less for the rows' numbers of runs.
 /// The result is the same. BitsPortable is Bits counting the words' bits without the
-/// processor's instruction even where it has one, for tests of that copy.
+/// processor's instruction where the build has a copy of its own for that instruction (x86-64
+/// builds that do not assume it), for tests of the other copy; elsewhere it is Bits.
 enum class ContactSearch
 {
   Adaptive,
@@ -123,8 +124,10 @@ enum class ContactSearch
 /// returns false when aborted. With `withBoxes`, builds the CUDB's boxes too (RunComponents::
 /// boxes): a box is a rectangle (a run and the chain of equal runs in the rows after it), grown
 /// through the planes after it while they hold an equal rectangle. With `scratch`, its working
-/// memory comes from there and is left there. `search`: see ContactSearch. Throws
-/// std::invalid_argument when `runs` are not of the size of `voxels`.
+/// memory comes from there and is left there. `search`: see ContactSearch. `runs` must be
+/// extractRuns(voxels): the rows' bits give the runs' numbers. Throws std::invalid_argument
+/// when they are not even runs of a volume of the size of `voxels` (other runs of that size
+/// are not detected).
 bool labelRuns(const BitVolume& voxels,
   const VoxelRuns& runs,
   Connectivity connectivity,

@@ -506,7 +506,7 @@ TEST(RunLabelling, Aborts)
   EXPECT_FALSE(vbr::labelRuns(v, runs, vbr::Connectivity::Face, stop, c));
 }
 
-TEST(RunLabelling, RunsOfAnotherVolumeAreRefused)
+TEST(RunLabelling, RunsOfAVolumeOfAnotherSizeAreRefused)
 {
   // The runs' numbers in the rows' bits are counts of the bits: runs of a volume of another
   // size are refused rather than read past.
@@ -515,6 +515,11 @@ TEST(RunLabelling, RunsOfAnotherVolumeAreRefused)
   vbr::VoxelRuns runs;
   ASSERT_TRUE(vbr::extractRuns(other, vbr::Execution(), runs));
   vbr::RunComponents c;
+  EXPECT_THROW(
+    vbr::labelRuns(v, runs, vbr::Connectivity::Face, vbr::Execution(), c), std::invalid_argument);
+  // Runs of this size whose row starts do not match their runs (built by hand) too.
+  ASSERT_TRUE(vbr::extractRuns(v, vbr::Execution(), runs));
+  runs.runs.pop_back();
   EXPECT_THROW(
     vbr::labelRuns(v, runs, vbr::Connectivity::Face, vbr::Execution(), c), std::invalid_argument);
 }
