@@ -2578,14 +2578,14 @@ LatticeBox gridBoxOf(const Shell& shell, const Dims& d)
 
 /// The tables of voidCrossing's searches, kept by the caller from one search to the next so that
 /// a search allocates nothing once they have grown: the step each centre was reached by (kSeed: a
-/// centre of the void; all kUnreached between searches), the centres a search reached (to reset
-/// them) and its queue (a list visited from the front, first in first out). Each search stays
+/// centre of the void; all kUnreached between searches) and the centres a search reached, in
+/// the order reached: its queue (visited from the front, first in first out), and afterwards
+/// the centres whose steps it resets. Each search stays
 /// near its shell: a table of the grid allocated per shell cost more than the search on the full
 /// aneurism, a hash map a twentieth of its time.
 struct VoidSearch
 {
   std::vector<std::uint8_t> from;
-  std::vector<std::size_t> reached;
   std::vector<LatticePoint> todo;
 
   explicit VoidSearch(std::size_t centres)
@@ -2607,23 +2607,20 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
 {
   const Dims d = objects.dims();
   std::vector<std::uint8_t>& from = search.from;
-  std::vector<std::size_t>& reached = search.reached;
-  std::vector<LatticePoint>& todo = search.todo; // visited from todo[head] on, in order
+  std::vector<LatticePoint>& todo = search.todo; // every centre reached, visited from head on
   std::size_t head = 0;
-  reached.clear();
-  todo.clear(); // the last search stops at its first path out, some centres left unvisited
-  const auto mark = [&](std::size_t i, std::uint8_t how)
+  todo.clear();
+  const auto reach = [&](const LatticePoint& p, std::uint8_t how)
   {
-    from[i] = how;
-    reached.push_back(i);
+    from[gridIndex(d, p)] = how;
+    todo.push_back(p);
   };
   forEachInBox(box,
     [&](const LatticePoint& p)
     {
       if (mine[gridIndex(d, p)] && !voxelClass(objects, p))
       {
-        mark(gridIndex(d, p), kSeed);
-        todo.push_back(p);
+        reach(p, kSeed);
       }
     });
   std::vector<LatticePoint> found;
@@ -2660,13 +2657,12 @@ std::vector<LatticePoint> voidCrossing(const BitVolume& objects,
       if (where[gridIndex(d, q)] == On && !voxelClass(objects, q) &&
         from[gridIndex(d, q)] == kUnreached)
       {
-        mark(gridIndex(d, q), static_cast<std::uint8_t>(k));
-        todo.push_back(q);
+        reach(q, static_cast<std::uint8_t>(k));
       }
     }
   }
-  for (std::size_t i : reached)
-    from[i] = kUnreached;
+  for (const LatticePoint& p : todo) // visited or not: the search may stop at its first way out
+    from[gridIndex(d, p)] = kUnreached;
   return found;
 }
 

@@ -57,12 +57,6 @@ public:
 
   std::size_t size() const { return this->Parent.size(); }
 
-  /// The parent of x: x itself for a root, else a smaller element of its class (roots are the
-  /// smallest elements, links go from the larger root to the smaller and halving only shortens
-  /// them). So a pass in increasing order can number the classes from the parents alone, the
-  /// parent's number being known already, without a find.
-  std::uint32_t parentOf(std::uint32_t x) const { return this->Parent[x]; }
-
   /// Room for n elements in all, so that add() does not reallocate up to there.
   void reserve(std::size_t n) { this->Parent.reserve(n); }
 
@@ -126,7 +120,8 @@ public:
   /// Consecutive numbers first, first + 1, ... for the classes, in order of their smallest
   /// element, written to number[0 .. size() - 1]; returns the number of classes. One pass in
   /// increasing order from the parents alone, without a find: the parent of an element is a
-  /// smaller element of its class (parentOf), numbered already.
+  /// smaller element of its class, numbered already (roots are the smallest elements, links go
+  /// from the larger root to the smaller, and halving only shortens them).
   std::uint32_t numberClasses(std::uint32_t* number, std::uint32_t first) const
   {
     const std::uint32_t* parent = this->Parent.data();
