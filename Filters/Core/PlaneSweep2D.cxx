@@ -290,15 +290,17 @@ private:
   }
 
   // ---- union-find over section intervals (roots follow sweep order) -----------------------
-  /// Room for the section intervals of a sweep over `vertices` vertices, under huge pages: on
-  /// a dense image they number close to half the vertices (0.39 and 0.46 of them on the 6001^2
-  /// maze and its complement), and grown from empty they would be copied and faulted in about
-  /// twice. A guess, not a bound: more intervals only grow the array.
+  /// Room, under huge pages, for the section intervals and the first intervals of faces of a
+  /// sweep over `vertices` vertices: on a dense image the intervals number close to half the
+  /// vertices (0.39 and 0.46 of them on the 6001^2 maze and its complement), the first
+  /// intervals about a tenth; grown from empty they would be copied and faulted in about twice.
+  /// Guesses, not bounds: more only grow the arrays.
   void reserveIntervals(std::size_t vertices)
   {
     std::vector<std::uint32_t> storage;
     reserveHugePages(storage, vertices / 2);
     this->Intervals = UnionFind(std::move(storage), 0);
+    reserveHugePages(this->First, vertices / 8);
   }
   int newInterval() { return static_cast<int>(this->Intervals.add()); }
   int find(int i) { return static_cast<int>(this->Intervals.find(static_cast<std::uint32_t>(i))); }
@@ -588,7 +590,7 @@ private:
   /// hold a first interval, each with the first of them.
   void numberFaces(Boundary2D& out)
   {
-    this->FaceOfRoot.assign(this->Intervals.size(), -1);
+    assignHugePages(this->FaceOfRoot, this->Intervals.size(), -1);
     this->FirstOfFace.clear();
     for (const auto& f : this->First)
     {
