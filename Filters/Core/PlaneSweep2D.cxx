@@ -705,10 +705,12 @@ private:
   }
 
   /// Edges a loop starting at edge e0 reaches without a miss in the cache: a loop (a small
-  /// one mostly) runs over the few lines of the sweep after e0's, where it meets edges that no
-  /// earlier loop read, each a cache line read from memory while the domino step waits for it
-  /// (one dependent read after another: about a third of the whole filter's time on the 6001^2
-  /// maze). Read ahead in memory order instead, many at once.
+  /// one mostly) runs over the few lines of the sweep after e0's (on the 6001^2 maze, every
+  /// other step goes to the next edge in memory and nearly all others less than 2^15 edges
+  /// away), where it meets edges that no earlier loop read, each a cache line read from memory
+  /// while the domino step waits for it, one dependent read after another. Read ahead in
+  /// memory order instead, many at once: the maze's domino step (12.5 M edges) took about
+  /// 0.37 s without, 0.24 s with (wall time, a loaded machine).
   static constexpr std::size_t EdgesAhead = std::size_t(1) << 16; // 1 MiB of edges
 
   /// Prefetches the edges from `prefetched` up to EdgesAhead after e0, a cache line at a time;
