@@ -189,16 +189,6 @@ CornerColumns cornersByColumn(const Vertex* begin, const Vertex* end, Coord vLo,
   return g;
 }
 
-/// prefetch, in a loop that does nothing else: GCC deletes such a loop (the hint has no
-/// effect it must keep), unless an empty statement the compiler must keep reads the address.
-inline void prefetchKept(const void* address)
-{
-  prefetch(address);
-#if defined(__GNUC__) || defined(__clang__)
-  asm volatile("" : : "r"(address));
-#endif
-}
-
 class Sweep
 {
 public:
@@ -291,10 +281,11 @@ private:
 
   // ---- union-find over section intervals (roots follow sweep order) -----------------------
   /// Room, under huge pages, for the section intervals and the first intervals of faces of a
-  /// sweep over `vertices` vertices: on a dense image the intervals number close to half the
-  /// vertices (0.39 and 0.46 of them on the 6001^2 maze and its complement), the first
-  /// intervals about a tenth; grown from empty they would be copied and faulted in about twice.
-  /// Guesses, not bounds: more only grow the arrays.
+  /// sweep over `vertices` vertices; grown from empty they would be copied and faulted in about
+  /// twice. Guesses, not bounds: the intervals number 0.3 to 0.46 of the vertices on real
+  /// images (0.39 and 0.46 on the 6001^2 maze and its complement), many more where the
+  /// vertices are non-manifold (64 times on a checkerboard); the first intervals 0.03 to 0.22
+  /// (0.09 on the maze), so an eighth covers the maze and most scans. More only grow the arrays.
   void reserveIntervals(std::size_t vertices)
   {
     std::vector<std::uint32_t> storage;
@@ -678,8 +669,11 @@ private:
   void orderEdgesIntoLoops(Boundary2D& out, Emit&& emit)
   {
     std::size_t corners = 0, prefetched = 0;
-    // Every loop has at least four edges: room for all loops, so that they are neither copied
-    // nor faulted in twice as they grow (only the pages written are mapped).
+    // Every loop of an EVM has at least four edges (its edges alternate horizontal and
+    // vertical, and at a non-manifold vertex a loop always turns): room for all loops, so that
+    // they are neither copied nor faulted in twice as they grow (only the pages written are
+    // mapped; on a sparse image most of this room is address space the returned boundary holds
+    // but never touches). Invalid input only grows the array.
     reserveHugePages(out.loops, this->Edges.size() / 4);
     for (std::size_t e0 = 0; e0 < this->Edges.size(); ++e0)
     {
@@ -704,14 +698,17 @@ private:
     }
   }
 
-  /// Edges a loop starting at edge e0 reaches without a miss in the cache: a loop (a small
-  /// one mostly) runs over the few lines of the sweep after e0's (on the 6001^2 maze, every
-  /// other step goes to the next edge in memory and nearly all others less than 2^15 edges
-  /// away), where it meets edges that no earlier loop read, each a cache line read from memory
-  /// while the domino step waits for it, one dependent read after another. Read ahead in
-  /// memory order instead, many at once: the maze's domino step (12.5 M edges) took about
-  /// 0.37 s without, 0.24 s with (wall time, a loaded machine).
-  static constexpr std::size_t EdgesAhead = std::size_t(1) << 16; // 1 MiB of edges
+  /// How far ahead of each loop's first edge, in memory order, the domino step reads. A loop
+  /// (a small one mostly) runs over the few lines of the sweep after e0's (on the 6001^2 maze,
+  /// every other step goes to the next edge in memory and nearly all others less than 2^15
+  /// edges away), where it meets edges that no earlier loop read, each a cache line read from
+  /// memory while the domino step waits for it, one dependent read after another. Read ahead in
+  /// memory order instead, many at once: the maze's whole numbered sweep (12.5 M edges) took
+  /// 0.76-1.09 s of CPU without, 0.60-0.81 s with (medians of rounds in turns, load 3-4). The
+  /// distance (1 MiB of edges) was chosen on machines with 1 MiB of L2 cache per core; 2^14
+  /// to 2^18 edges could not be told apart under that load.
+  static constexpr std::size_t EdgesAhead = std::size_t(1) << 16;
+  static_assert(sizeof(Edge) <= 64, "the read-ahead steps a cache line of edges at a time");
 
   /// Prefetches the edges from `prefetched` up to EdgesAhead after e0, a cache line at a time;
   /// returns where it stopped.
