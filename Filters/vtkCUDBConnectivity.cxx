@@ -175,10 +175,15 @@ void* newBlock(std::size_t length, bool huge)
 /// every vtkCUDBConnectivity; the last filter's destruction frees what it keeps.
 ///
 /// Memory stays linear in the outputs: the cache keeps no more than the last update used.
-/// - Between updates it holds only blocks released since the last update began, at most
-///   KeptBytes: that update's scratch of 2 MiB or more (the region numbering's, about 20 bytes
-///   a region, released before the update ends, so kept while the filter is idle) and, in the
-///   usual pipeline, its outputs once the next update releases them.
+/// - Between updates it holds only blocks released since the last update began: that update's
+///   scratch of 2 MiB or more (the region numbering's, about 20 bytes a region, released
+///   before the update ends, so kept while the filter is idle), at most KeptBytes of it, and,
+///   in the usual pipeline, its outputs once the next update releases them, up to
+///   KeptOutputBytes in all: those are released just before the next update, which takes them
+///   or frees them at its end. (A 6001^2 maze's outputs with boxes are 884 MB, 468 of them the
+///   boxes' coordinates: with 512 MiB for everything, most were freed, and faulted in and
+///   zeroed again by the kernel, a third of each update; and the scratch, counted with the
+///   outputs not taken yet, was freed too.)
 /// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
 ///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
 ///   kept plus what the update has taken or allocated stays within the larger of the bytes kept
@@ -192,6 +197,7 @@ class BlockCache
 {
 public:
   static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
+  static constexpr std::size_t KeptOutputBytes = std::size_t(2048) << 20;
 
   /// Never destroyed: VTK arrays may release their blocks after static destruction.
   static BlockCache& instance()
@@ -225,6 +231,7 @@ public:
         block = this->kept[best].block;
         this->used += this->kept[best].length;
         this->keptBytes -= this->kept[best].length;
+        this->keptScratchBytes -= this->kept[best].scratch ? this->kept[best].length : 0;
         this->kept.erase(this->kept.begin() + static_cast<std::ptrdiff_t>(best));
         return block;
       }
@@ -246,7 +253,8 @@ public:
   }
 
   /// A block of allocateBlock no longer used: kept when huge, a filter exists and there is
-  /// room, else freed.
+  /// room (KeptBytes for an update's scratch, KeptOutputBytes for outputs released between
+  /// updates), else freed.
   void release(void* block)
   {
     if (!block)
@@ -256,10 +264,15 @@ public:
       const auto found = this->lengths.find(block);
       if (found != this->lengths.end())
       {
-        if (VBR_KEEP_BLOCKS && this->users > 0 && this->keptBytes + found->second <= KeptBytes)
+        const std::size_t length = found->second;
+        const bool scratch = this->updates > 0;
+        const bool room = this->keptBytes + length <= KeptOutputBytes &&
+          (!scratch || this->keptScratchBytes + length <= KeptBytes);
+        if (VBR_KEEP_BLOCKS && this->users > 0 && room)
         {
-          this->kept.push_back({ block, found->second, this->releases++ });
-          this->keptBytes += found->second;
+          this->kept.push_back({ block, length, this->releases++, scratch });
+          this->keptBytes += length;
+          this->keptScratchBytes += scratch ? length : 0;
           return;
         }
         this->lengths.erase(found);
@@ -330,6 +343,7 @@ private:
     void* block;
     std::size_t length;
     std::uint64_t release; ///< the order of releases
+    bool scratch;          ///< released during an update
   };
 
   /// Removes the `count` oldest kept blocks (keptBytes already counted), to be freed.
@@ -339,6 +353,7 @@ private:
     blocks.reserve(count);
     for (std::size_t i = 0; i < count; ++i)
     {
+      this->keptScratchBytes -= this->kept[i].scratch ? this->kept[i].length : 0;
       blocks.push_back(this->kept[i].block);
       this->lengths.erase(this->kept[i].block);
     }
@@ -356,11 +371,12 @@ private:
   std::unordered_map<void*, std::size_t> lengths; ///< the huge blocks, in use or kept
   std::vector<Kept> kept;                         ///< oldest release first
   std::size_t keptBytes = 0;
-  std::uint64_t releases = 0;    ///< blocks kept so far: the next one's release
-  int updates = 0;               ///< updates in progress
-  std::uint64_t updateStart = 0; ///< releases when the first of them began
-  std::size_t budget = 0;        ///< keptBytes then
-  std::size_t used = 0;          ///< bytes taken or allocated by them since
+  std::size_t keptScratchBytes = 0; ///< of keptBytes, of blocks released during an update
+  std::uint64_t releases = 0;       ///< blocks kept so far: the next one's release
+  int updates = 0;                  ///< updates in progress
+  std::uint64_t updateStart = 0;    ///< releases when the first of them began
+  std::size_t budget = 0;           ///< keptBytes then
+  std::size_t used = 0;             ///< bytes taken or allocated by them since
   int users = 0;
 };
 
