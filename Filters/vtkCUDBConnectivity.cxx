@@ -2053,6 +2053,43 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
   return planar ? name.substr(1) : name; // 2D: lines along B, rows along C
 }
 
+/// The memory of the 2D sweep of an image's only object kept from one update to the next (part
+/// of RunMemory, bounded with it): its boxes, their labels, its runs and its union-find, handed
+/// back to vbr::buildCUDBComponents2D and vbr::labelPixelRuns, which write into them. New
+/// blocks were faulted in and zeroed by the kernel at every update: a 6001^2 maze's 190 MB, a
+/// fifth of its update with the boxes output.
+struct PlanarMemory
+{
+  std::vector<vbr::Box> boxes;
+  std::vector<std::uint32_t> boxLabel;
+  vbr::PixelRuns runs;
+  std::vector<std::uint32_t> equivalences;
+
+  /// Takes the vectors of `o`, the update's only object, for the next update.
+  void keep(ObjectBoxes& o)
+  {
+    this->boxes = std::move(o.cudb.boxes);
+    this->boxLabel = std::move(o.components.boxLabel);
+    this->runs = std::move(o.runs);
+  }
+
+  /// Hands the kept vectors to a sweep's outputs (their values are replaced).
+  void lend(vbr::CUDB& cudb, vbr::Components& components, vbr::PixelRuns& pixelRuns)
+  {
+    cudb.boxes = std::move(this->boxes);
+    components.boxLabel = std::move(this->boxLabel);
+    pixelRuns = std::move(this->runs);
+  }
+
+  std::size_t bytes() const
+  {
+    return this->boxes.capacity() * sizeof(vbr::Box) +
+      (this->boxLabel.capacity() + this->runs.boxes.capacity() + this->equivalences.capacity()) *
+      sizeof(std::uint32_t) +
+      this->runs.rowStarts.capacity() * sizeof(std::size_t);
+  }
+};
+
 /// The CUDB of a 2D object in the candidate sorting with the fewest boxes (the first of
 /// equals, as buildBestCUDB), and the components of its boxes, straight from the pixel rows
 /// (of the transposed pixels for lines along the first in-plane axis): the same boxes, counts
@@ -2060,12 +2097,14 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
 /// `keepRuns` (the image's only object: only then are RegionIds painted from the runs) an
 /// object swept along its rows keeps its pixels and runs; others free them at once, as a
 /// label image of many objects would otherwise hold a bit image per label. `pixels` are the
-/// object's, selected already (progress 0 to 0.1 of `exec`).
+/// object's, selected already (progress 0 to 0.1 of `exec`). With `memory`, the first sorting
+/// is swept in its vectors.
 bool boxesOfPixels(vbr::BitVolume pixels,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
   bool keepRuns,
   const vbr::Execution& exec,
+  PlanarMemory* memory,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "the 2D CUDB of the pixels and its components");
@@ -2079,6 +2118,8 @@ bool boxesOfPixels(vbr::BitVolume pixels,
     std::size_t vertices = 0;
     vbr::PixelRuns runs; // rows along processing x: painted from the runs
     const bool alongRows = keepRuns && sortings[k] == vbr::AxisOrder{ 2, 1, 0 };
+    if (memory && k == 0)
+      memory->lend(cudb, labelled, runs);
     if (!vbr::buildCUDBComponents2D(pixels,
           sortings[k],
           connectivity,
@@ -2086,8 +2127,11 @@ bool boxesOfPixels(vbr::BitVolume pixels,
           cudb,
           labelled,
           &vertices,
-          alongRows ? &runs : nullptr))
+          alongRows ? &runs : nullptr,
+          memory ? &memory->equivalences : nullptr))
       return false;
+    if (!alongRows)
+      runs = vbr::PixelRuns(); // not kept with the object
     if (!found || cudb.boxes.size() < o.cudb.boxes.size())
     {
       o.cudb = std::move(cudb);
@@ -2108,11 +2152,12 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
   bool keepRuns,
   const vbr::Execution& exec,
+  PlanarMemory* memory,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels");
   return boxesOfPixels(
-    selected.select(exec.within(0.0, 0.1)), sortings, connectivity, keepRuns, exec, o);
+    selected.select(exec.within(0.0, 0.1)), sortings, connectivity, keepRuns, exec, memory, o);
 }
 
 /// The components of a 2D object labelled on the runs of its rows, the image's only object,
@@ -2126,6 +2171,7 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
   vtkIdType minimumRuns,
   const vbr::Execution& exec,
+  PlanarMemory* memory,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels and label the runs of their rows");
@@ -2137,11 +2183,19 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   if (mostRuns < static_cast<std::uint64_t>(minimumRuns) ||
     vbr::countPixelRuns(o.pixels) < static_cast<std::uint64_t>(minimumRuns))
     return boxesOfPixels(
-      std::move(o.pixels), { vbr::AxisOrder{ 2, 1, 0 } }, connectivity, true, exec, o);
+      std::move(o.pixels), { vbr::AxisOrder{ 2, 1, 0 } }, connectivity, true, exec, memory, o);
   vbr::PixelRunComponents labelled;
-  if (!vbr::labelPixelRuns(o.pixels, connectivity, exec.within(0.1, 1.0), labelled) ||
+  vbr::CUDB noBoxes;
+  if (memory)
+    memory->lend(noBoxes, labelled.components, labelled.runs);
+  if (!vbr::labelPixelRuns(o.pixels,
+        connectivity,
+        exec.within(0.1, 1.0),
+        labelled,
+        memory ? &memory->equivalences : nullptr) ||
     labelled.boxCount() == 0)
     return false;
+  o.cudb.boxes = std::move(noBoxes.boxes); // empty, its memory kept for the next update
   o.labelledFromPixelRuns = true;
   o.runs = std::move(labelled.runs);
   o.components = std::move(labelled.components);
@@ -2161,10 +2215,11 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
 /// releases its data after use.
 struct RunMemory
 {
-  static constexpr std::size_t KeptBytes = std::size_t(128) << 20;
+  static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
   vbr::VoxelRuns voxelRuns;
   vbr::RunComponents runComponents;
   vbr::RunLabellingScratch scratch;
+  PlanarMemory planar;
 
   /// Takes the runs and labels of `o`, the update's only object, for the next update, or
   /// frees them with the scratch when they are more than KeptBytes together.
@@ -2178,7 +2233,7 @@ struct RunMemory
   /// Frees everything when more than KeptBytes is held.
   void limit()
   {
-    const std::size_t bytes = this->scratch.bytes() +
+    const std::size_t bytes = this->scratch.bytes() + this->planar.bytes() +
       this->voxelRuns.runs.capacity() * sizeof(vbr::VoxelRun) +
       this->voxelRuns.rowStarts.capacity() * sizeof(std::uint32_t) +
       this->runComponents.runLabel.capacity() * sizeof(std::uint32_t) +
@@ -2278,13 +2333,14 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
 {
   o.label = selected.label;
   o.offset = selected.offset;
+  PlanarMemory* const planar = memory && route.onlyObject ? &memory->planar : nullptr;
   if (route.fromRuns && route.planar)
-    return labelObjectPixelRuns(selected, connectivity, route.minimumPixelRuns, exec, o);
+    return labelObjectPixelRuns(selected, connectivity, route.minimumPixelRuns, exec, planar, o);
   if (route.fromRuns)
     return labelObjectRuns(
       selected, connectivity, route.withBoxes, route.onlyObject, exec, memory, o);
   if (route.planar)
-    return boxesOfPixelRows(selected, sortings, connectivity, route.onlyObject, exec, o);
+    return boxesOfPixelRows(selected, sortings, connectivity, route.onlyObject, exec, planar, o);
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "select voxels and extract the EVM");
@@ -2765,6 +2821,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     this, in, objects, regions, regionIds, regionOfRow, summary, ports, *this->Kept);
   if (objects.size() == 1 && objects[0].labelledFromRuns && in.objects.size() == 1)
     this->Kept->runs.keep(objects[0]); // bounded on the way out (KeptRunsBound)
+  if (objects.size() == 1 && in.grid.flatAxis >= 0 && in.objects.size() == 1)
+    this->Kept->runs.planar.keep(objects[0]); // bounded on the way out too
   return 1;
 }
 
