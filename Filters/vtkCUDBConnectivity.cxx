@@ -1289,9 +1289,18 @@ std::int32_t regionIdOfBox(const ObjectBoxes& o, std::size_t b, const RegionIdLi
   return regionIds[o.firstRegion + o.components.boxLabel[b] - 1];
 }
 
+/// The boxes of the kept regions. When every region is kept (no size or seed filter: the
+/// default), all boxes, without the pass over every box's label and region (a maze's 4.9
+/// million, where its 642,115 regions are read in a few hundred microseconds).
 vtkIdType countKeptBoxes(const std::vector<ObjectBoxes>& objects, const RegionIdList& regionIds)
 {
   vtkIdType count = 0;
+  if (std::find(regionIds.begin(), regionIds.end(), 0) == regionIds.end())
+  {
+    for (const ObjectBoxes& o : objects)
+      count += static_cast<vtkIdType>(o.cudb.boxes.size());
+    return count;
+  }
   for (const ObjectBoxes& o : objects)
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
       count += regionIdOfBox(o, b, regionIds) != 0;
