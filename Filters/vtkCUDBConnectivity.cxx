@@ -175,15 +175,16 @@ void* newBlock(std::size_t length, bool huge)
 /// every vtkCUDBConnectivity; the last filter's destruction frees what it keeps.
 ///
 /// Memory stays linear in the outputs: the cache keeps no more than the last update used.
-/// - Between updates it holds only blocks released since the last update began: that update's
-///   scratch of 2 MiB or more (the region numbering's, about 20 bytes a region, released
-///   before the update ends, so kept while the filter is idle), at most KeptBytes of it, and,
-///   in the usual pipeline, its outputs once the next update releases them, up to
-///   KeptOutputBytes in all: those are released just before the next update, which takes them
-///   or frees them at its end. (A 6001^2 maze's outputs with boxes are 884 MB, 468 of them the
-///   boxes' coordinates: with 512 MiB for everything, most were freed, and faulted in and
-///   zeroed again by the kernel, a third of each update; and the scratch, counted with the
-///   outputs not taken yet, was freed too.)
+/// - While the filters are idle it holds only the last update's scratch of 2 MiB or more (the
+///   region numbering's, about 20 bytes a region, released before the update ends), at most
+///   KeptBytes of it. Outputs are kept only when the pipeline releases them just before their
+///   filter executes (ReleaseWindow, from REQUEST_DATA_NOT_GENERATED to the end of
+///   REQUEST_DATA), up to KeptOutputBytes in all with the scratch: that execution takes them
+///   or frees them at its end. Outputs released at any other time (ReleaseData, a downstream
+///   ReleaseDataFlag, a filter destroyed) are freed at once, so no more than KeptBytes is ever
+///   held while idle. (A 6001^2 maze's outputs with boxes are 884 MB, 468 of them the boxes'
+///   coordinates: with 512 MiB for everything, most were freed, and faulted in and zeroed
+///   again by the kernel, a third of each update.)
 /// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
 ///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
 ///   kept plus what the update has taken or allocated stays within the larger of the bytes kept
@@ -253,8 +254,9 @@ public:
   }
 
   /// A block of allocateBlock no longer used: kept when huge, a filter exists and there is
-  /// room (KeptBytes for an update's scratch, KeptOutputBytes for outputs released between
-  /// updates), else freed.
+  /// room (KeptBytes for an update's scratch, KeptOutputBytes for outputs released while a
+  /// filter is about to execute, see ReleaseWindow), else freed: outputs released at any other
+  /// time (ReleaseData, ReleaseDataFlag, a filter destroyed) are freed at once.
   void release(void* block)
   {
     if (!block)
@@ -266,8 +268,10 @@ public:
       {
         const std::size_t length = found->second;
         const bool scratch = this->updates > 0;
-        const bool room = this->keptBytes + length <= KeptOutputBytes &&
-          (!scratch || this->keptScratchBytes + length <= KeptBytes);
+        const bool room = scratch
+          ? this->keptBytes + length <= KeptOutputBytes &&
+            this->keptScratchBytes + length <= KeptBytes
+          : this->windows > 0 && this->keptBytes + length <= KeptOutputBytes;
         if (VBR_KEEP_BLOCKS && this->users > 0 && room)
         {
           this->kept.push_back({ block, length, this->releases++, scratch });
@@ -279,6 +283,27 @@ public:
       }
     }
     std::free(block);
+  }
+
+  /// A filter is about to execute: the pipeline now releases its outputs (ReleaseWindow).
+  void openWindow()
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    ++this->windows;
+  }
+
+  /// That filter's execution is over (blocks still kept are freed by its endUpdate).
+  void closeWindow()
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    --this->windows;
+  }
+
+  /// The bytes kept now.
+  std::size_t bytesKept()
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    return this->keptBytes;
   }
 
   /// An update begins: its budget is what is kept now (see the class comment).
@@ -378,6 +403,7 @@ private:
   std::size_t budget = 0;           ///< keptBytes then
   std::size_t used = 0;             ///< bytes taken or allocated by them since
   int users = 0;
+  int windows = 0; ///< filters between their REQUEST_DATA_NOT_GENERATED and REQUEST_DATA's end
 };
 
 /// Brackets an update for BlockCache, also when it ends by an exception.
@@ -388,6 +414,31 @@ public:
   ~CacheUpdate() { BlockCache::instance().endUpdate(); }
   CacheUpdate(const CacheUpdate&) = delete;
   CacheUpdate& operator=(const CacheUpdate&) = delete;
+};
+
+/// Opens BlockCache's window for a filter's outputs: vtkDemandDrivenPipeline::ExecuteDataStart
+/// sends REQUEST_DATA_NOT_GENERATED to the algorithm, then releases the outputs it will
+/// regenerate (PrepareForNewData), then sends REQUEST_DATA. Closed when REQUEST_DATA has been
+/// processed (also after an error or an abort), or by the filter's destruction.
+class ReleaseWindow
+{
+public:
+  void open()
+  {
+    if (!this->opened)
+      BlockCache::instance().openWindow();
+    this->opened = true;
+  }
+  void close()
+  {
+    if (this->opened)
+      BlockCache::instance().closeWindow();
+    this->opened = false;
+  }
+  ~ReleaseWindow() { this->close(); }
+
+private:
+  bool opened = false;
 };
 
 /// Releases a block of allocateBlock (to BlockCache).
@@ -2596,6 +2647,7 @@ struct vtkCUDBConnectivityKept
   std::vector<vtkSmartPointer<vtkAbstractArray>> fields;
   vtkSmartPointer<vtkIntArray> regionIds; ///< a small RegionId image (paintRegions)
   RunMemory runs;                         ///< the run labelling's memory
+  ReleaseWindow window;                   ///< open while the pipeline releases the outputs
 };
 
 namespace
@@ -2777,6 +2829,31 @@ const char* vtkCUDBConnectivity::GetSortingOrderAsString()
 const char* vtkCUDBConnectivity::GetRegionOrderingAsString()
 {
   return this->RegionOrdering == SIZE_RANK ? "SizeRank" : "SweepOrder";
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkCUDBConnectivity::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // Only the outputs the pipeline releases just before this filter executes are worth
+  // keeping beyond the scratch bound: the execution takes them at once (BlockCache).
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+    this->Kept->window.open();
+  if (!request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+    return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  struct Closer
+  {
+    ReleaseWindow& window;
+    ~Closer() { this->window.close(); }
+  } closer{ this->Kept->window };
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkCUDBConnectivity::GetCachedBlockBytes()
+{
+  return static_cast<vtkIdType>(BlockCache::instance().bytesKept());
 }
 
 //------------------------------------------------------------------------------

@@ -241,6 +241,21 @@ public:
   vtkTable* GetRegionsOutput();
   ///@}
 
+  /**
+   * Opens, on REQUEST_DATA_NOT_GENERATED, the window in which the pipeline releases the
+   * outputs this filter is about to regenerate (their memory is kept for that execution), and
+   * closes it once REQUEST_DATA has been processed.
+   */
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inInfo,
+    vtkInformationVector* outInfo) override;
+
+  /**
+   * Bytes of released blocks every vtkCUDBConnectivity of the process keeps now for a next
+   * update (see the memory warning above); for tests.
+   */
+  static vtkIdType GetCachedBlockBytes();
+
 protected:
   vtkCUDBConnectivity();
   ~vtkCUDBConnectivity() override;

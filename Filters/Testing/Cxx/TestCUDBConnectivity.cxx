@@ -983,6 +983,80 @@ void checkErrorsAndDegenerateInputs()
   }
 }
 
+/// Records vtkCUDBConnectivity::GetCachedBlockBytes when the filter's execution starts (after
+/// the pipeline has released the outputs it is about to regenerate).
+class CachedBytesAtStart : public vtkCommand
+{
+public:
+  static CachedBytesAtStart* New() { return new CachedBytesAtStart; }
+  void Execute(vtkObject*, unsigned long, void*) override
+  {
+    this->Bytes = vtkCUDBConnectivity::GetCachedBlockBytes();
+  }
+  vtkIdType Bytes = -1;
+};
+
+/// The bytes of the boxes' coordinates (one output block of several MiB).
+vtkIdType boxPointBytes(vtkCUDBConnectivity* f)
+{
+  vtkDataArray* points = f->GetBoxesOutput()->GetPoints()->GetData();
+  return points->GetNumberOfValues() * points->GetDataTypeSize();
+}
+
+/// The memory of released outputs: kept for the filter's next execution when the pipeline
+/// releases them just before it (that execution finds them kept), freed at once when they are
+/// released at any other time (ReleaseData, a downstream ReleaseDataFlag, the filter
+/// destroyed while another exists), so that idle filters keep no more than an update's
+/// scratch (at most 512 MiB).
+void checkReleasedOutputsMemory()
+{
+  const vtkIdType scratchBound = vtkIdType(512) << 20;
+  const Volume v = randomVolume({ 1024, 1024, 1 }, 0.5, 1, 406);
+  vtkNew<vtkImageData> image;
+  image->DeepCopy(makeImage(v, Layout()));
+  vtkNew<vtkCUDBConnectivity> other; // alive throughout: the cache is not cleared
+  vtkCUDBConnectivity* f = vtkCUDBConnectivity::New();
+  f->SetInputData(image);
+  f->Update();
+  const vtkIdType boxes = boxPointBytes(f);
+  CHECK(boxes > (vtkIdType(8) << 20), "released outputs: the boxes' coordinates are large");
+  const vtkIdType afterUpdate = vtkCUDBConnectivity::GetCachedBlockBytes();
+  CHECK(afterUpdate <= scratchBound, "released outputs: idle after an update");
+
+  vtkNew<CachedBytesAtStart> start;
+  f->AddObserver(vtkCommand::StartEvent, start);
+  f->Modified();
+  f->Update();
+  CHECK(start->Bytes >= afterUpdate + boxes,
+    "released outputs: the next execution finds the previous outputs kept");
+  const vtkIdType beforeRelease = vtkCUDBConnectivity::GetCachedBlockBytes();
+  CHECK(beforeRelease <= scratchBound, "released outputs: idle after a re-execution");
+  f->GetBoxesOutput()->ReleaseData();
+  f->GetOutput()->ReleaseData();
+  CHECK(vtkCUDBConnectivity::GetCachedBlockBytes() <= beforeRelease,
+    "released outputs: ReleaseData frees them");
+
+  // The boxes as the seeds of a filter downstream, which releases its inputs after executing.
+  f->SetReleaseDataFlag(1);
+  const Volume small = randomVolume({ 4, 4, 1 }, 0.5, 1, 407);
+  vtkNew<vtkCUDBConnectivity> downstream;
+  downstream->SetInputData(makeImage(small, Layout()));
+  downstream->SetSeedConnection(f->GetOutputPort(1));
+  downstream->Update();
+  CHECK(f->GetBoxesOutput()->GetNumberOfPoints() == 0, "ReleaseDataFlag: the boxes released");
+  CHECK(vtkCUDBConnectivity::GetCachedBlockBytes() < boxes,
+    "released outputs: a downstream ReleaseDataFlag frees them");
+  downstream->RemoveAllInputConnections(1);
+
+  f->SetReleaseDataFlag(0);
+  f->Modified();
+  f->Update();
+  const vtkIdType beforeDelete = vtkCUDBConnectivity::GetCachedBlockBytes();
+  f->Delete();
+  CHECK(vtkCUDBConnectivity::GetCachedBlockBytes() <= beforeDelete,
+    "released outputs: a filter destroyed while another exists frees them");
+}
+
 /// Records the progress events and aborts at the first one past `at`.
 class AbortPastProgress : public vtkCommand
 {
@@ -1097,6 +1171,7 @@ int TestCUDBConnectivity(int, char*[])
   checkErrorsAndDegenerateInputs();
   checkAbortInsideA2DImage();
   checkAbortWhilePainting();
+  checkReleasedOutputsMemory();
   vtkNew<vtkCUDBConnectivity> f;
   std::ostringstream print;
   f->Print(print);
