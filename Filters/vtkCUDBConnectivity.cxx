@@ -2308,13 +2308,15 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   return true;
 }
 
-/// The memory of the run labelling of a 3D image kept from one update to the next: the runs
-/// and their labels of an image's only object, and the union-find and notes of every object.
-/// The next update of as many runs or fewer writes into it, where new blocks were faulted in
-/// and zeroed by the kernel at every update (glibc had returned them): on a 128^3
-/// checkerboard, 29 MB and 2,793 page faults an update, 256 with it kept. Kept up to KeptBytes,
-/// between updates too (the price: the filter holds it while idle), and freed when the filter
-/// releases its data after use.
+/// The labelling's memory a filter keeps from one update to the next: of a 3D image, the runs
+/// and their labels of its only object and the union-find and notes of every object; of a 2D
+/// image's only object, its sweep's vectors (PlanarMemory, about 190 MB for a 6001^2 maze).
+/// The next update of as many runs or boxes or fewer writes into it, where new blocks were
+/// faulted in and zeroed by the kernel at every update (glibc had returned them): on a 128^3
+/// checkerboard, 29 MB and 2,793 page faults an update, 256 with it kept. Kept between updates
+/// too (the price: the filter holds it while idle) when all of it is within KeptBytes, else
+/// all freed at the end of the update; freed at the end of every update when the filter
+/// releases its data after use (ReleaseDataFlag), and with the filter.
 struct RunMemory
 {
   static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
