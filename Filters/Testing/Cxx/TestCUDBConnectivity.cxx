@@ -682,6 +682,160 @@ void checkTwoDimensional()
     }
 }
 
+/// The corners of every box cell of a 2D image against their world positions computed here
+/// from the image's extent, spacing, origin and direction: each cell's corners, mapped back to
+/// index space, must lie on voxel boundaries of its plane (the flat axis at the extent's first
+/// layer), be exactly the cell type's corner order (VTK_PIXEL: lower in-plane axis first;
+/// VTK_QUAD: around the square) at the positions origin + direction * (index * spacing), and
+/// the boxes so found must cover the labelled pixels once each, with their region. Cases: an
+/// axis-aligned image flat in z (the boxes written by the fast 2D path), the same rotated, and
+/// images flat in y and in x (the general path), as points and as cells.
+void checkBoxCornersInWorld()
+{
+  struct Case
+  {
+    Int3 dims;
+    bool rotated;
+  };
+  const Case cases[] = { { { 37, 29, 1 }, false },
+    { { 37, 29, 1 }, true },
+    { { 31, 1, 23 }, false },
+    { { 31, 1, 23 }, true },
+    { { 1, 26, 33 }, false } };
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  // A rotation about (1, 1, 1) / sqrt(3), row-major.
+  const double t = 1 - c, u = 1 / std::sqrt(3.0);
+  const double rotation[9] = { c + u * u * t,
+    u * u * t - u * s,
+    u * u * t + u * s,
+    u * u * t + u * s,
+    c + u * u * t,
+    u * u * t - u * s,
+    u * u * t - u * s,
+    u * u * t + u * s,
+    c + u * u * t };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  unsigned seed = 500;
+  for (const Case& k : cases)
+    for (bool cells : { false, true })
+    {
+      const Volume v = randomVolume(k.dims, 0.55, 1, seed++);
+      Layout l;
+      l.cellData = cells;
+      l.extentMin = { 3, -5, 7 };
+      l.spacing = { 0.75, 1.25, 2.5 };
+      l.origin = { -4.5, 10.25, 3.125 };
+      vtkSmartPointer<vtkImageData> image = makeImage(v, l);
+      const double* m = k.rotated ? rotation : identity;
+      image->SetDirectionMatrix(m);
+      vtkNew<vtkCUDBConnectivity> f;
+      f->SetInputData(image);
+      f->Update();
+      const std::string what = "box corners in world, " + std::to_string(k.dims[0]) + "x" +
+        std::to_string(k.dims[1]) + "x" + std::to_string(k.dims[2]) +
+        (k.rotated ? " rotated" : "") + (cells ? " cells" : " points");
+      const int flat = k.dims[0] == 1 ? 0 : (k.dims[1] == 1 ? 1 : 2);
+      const int inPlane[2] = { flat == 0 ? 1 : 0, flat == 2 ? 1 : 2 };
+      const double shift = cells ? 0.0 : -0.5; // a voxel's lower vertex, from its index
+      const std::vector<int> ids = regionIds(f, l);
+      vtkUnstructuredGrid* boxes = f->GetBoxesOutput();
+      vtkDataArray* boxRegion = boxes->GetCellData()->GetArray("RegionId");
+      CHECK(boxRegion && boxes->GetNumberOfCells() > 0 && !ids.empty(), what << ": outputs");
+      if (!boxRegion || ids.empty())
+        continue;
+      const int type = k.rotated ? VTK_QUAD : VTK_PIXEL;
+      // corner k's (lower axis, higher axis) at hi
+      const int pixelBits[4][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1, 1 } };
+      const int quadBits[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+      const int(*bits)[2] = k.rotated ? quadBits : pixelBits;
+      std::vector<int> covered(ids.size(), 0);
+      bool cornersRight = true, consistent = true;
+      vtkNew<vtkIdList> points;
+      for (vtkIdType cell = 0; cell < boxes->GetNumberOfCells(); ++cell)
+      {
+        CHECK(boxes->GetCellType(cell) == type, what << ": cell type");
+        boxes->GetCellPoints(cell, points);
+        if (points->GetNumberOfIds() != 4)
+        {
+          cornersRight = false;
+          continue;
+        }
+        // The box's voxel vertices [lo, hi] along the in-plane axes, from its corners.
+        std::array<double, 3> index[4];
+        for (int q = 0; q < 4; ++q)
+        {
+          double p[3];
+          boxes->GetPoint(points->GetId(q), p);
+          for (int d = 0; d < 3; ++d) // index = direction^T (p - origin) / spacing
+            index[q][d] = (m[d] * (p[0] - l.origin[0]) + m[3 + d] * (p[1] - l.origin[1]) +
+                            m[6 + d] * (p[2] - l.origin[2])) /
+              l.spacing[d];
+        }
+        Int3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };
+        for (int a = 0; a < 2; ++a)
+        {
+          const int d = inPlane[a];
+          lo[d] = static_cast<int>(std::lround(index[0][d] - shift));
+          hi[d] = lo[d];
+          for (int q = 1; q < 4; ++q)
+          {
+            const int vertex = static_cast<int>(std::lround(index[q][d] - shift));
+            lo[d] = std::min(lo[d], vertex);
+            hi[d] = std::max(hi[d], vertex);
+          }
+        }
+        cornersRight =
+          cornersRight && lo[inPlane[0]] < hi[inPlane[0]] && lo[inPlane[1]] < hi[inPlane[1]];
+        for (int q = 0; q < 4; ++q)
+        {
+          double local[3];
+          for (int a = 0; a < 2; ++a)
+          {
+            const int d = inPlane[a];
+            local[d] = ((bits[q][a] ? hi[d] : lo[d]) + shift) * l.spacing[d];
+          }
+          local[flat] = l.extentMin[flat] * l.spacing[flat];
+          double p[3];
+          boxes->GetPoint(points->GetId(q), p);
+          for (int w = 0; w < 3; ++w)
+          {
+            const double expected =
+              l.origin[w] + m[3 * w] * local[0] + m[3 * w + 1] * local[1] + m[3 * w + 2] * local[2];
+            cornersRight = cornersRight && near(p[w], expected);
+          }
+        }
+        const int region = static_cast<int>(boxRegion->GetTuple1(cell));
+        Int3 from = lo, to = hi;
+        from[flat] = l.extentMin[flat];
+        to[flat] = from[flat] + 1;
+        for (int z = from[2]; z < to[2]; ++z)
+          for (int y = from[1]; y < to[1]; ++y)
+            for (int x = from[0]; x < to[0]; ++x)
+            {
+              const int i0 = x - l.extentMin[0], i1 = y - l.extentMin[1], i2 = z - l.extentMin[2];
+              if (i0 < 0 || i1 < 0 || i2 < 0 || i0 >= v.dims[0] || i1 >= v.dims[1] ||
+                i2 >= v.dims[2])
+              {
+                consistent = false;
+                continue;
+              }
+              const std::size_t i = (std::size_t(i2) * v.dims[1] + i1) * v.dims[0] + i0;
+              consistent = consistent && ids[i] == region && covered[i] == 0;
+              covered[i] = 1;
+            }
+      }
+      long long selected = 0, coveredCount = 0;
+      for (std::size_t i = 0; i < ids.size(); ++i)
+      {
+        selected += ids[i] != 0;
+        coveredCount += covered[i];
+      }
+      CHECK(cornersRight, what << ": every corner at its world position, in the cell's order");
+      CHECK(consistent && coveredCount == selected,
+        what << ": the boxes cover the labelled pixels once, with their region");
+    }
+}
+
 /// Whether two runs of the filter wrote the same RegionIds, region table (every column, value
 /// for value) and field data (port 0).
 void checkSameOutputs(vtkCUDBConnectivity* a, vtkCUDBConnectivity* b, const std::string& what)
@@ -1162,6 +1316,7 @@ int TestCUDBConnectivity(int, char*[])
 {
   checkRandomVolumes();
   checkTwoDimensional();
+  checkBoxCornersInWorld();
   checkTwoDimensionalRuns();
   checkHostileVolumes();
   checkSizeRankingOfALargeRegion();
