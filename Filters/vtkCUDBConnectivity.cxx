@@ -2175,7 +2175,8 @@ struct PlanarMemory
     this->runs = std::move(o.runs);
   }
 
-  /// Hands the kept vectors to a sweep's outputs (their values are replaced).
+  /// Hands the kept vectors to a sweep's outputs, with their values: a sweep replaces them;
+  /// a caller that does not write one clears it.
   void lend(vbr::CUDB& cudb, vbr::Components& components, vbr::PixelRuns& pixelRuns)
   {
     cudb.boxes = std::move(this->boxes);
@@ -2289,7 +2290,10 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   vbr::PixelRunComponents labelled;
   vbr::CUDB noBoxes;
   if (memory)
+  {
     memory->lend(noBoxes, labelled.components, labelled.runs);
+    noBoxes.boxes.clear(); // lent with the last update's boxes: only its capacity is wanted
+  }
   if (!vbr::labelPixelRuns(o.pixels,
         connectivity,
         exec.within(0.1, 1.0),
@@ -2297,7 +2301,7 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
         memory ? &memory->equivalences : nullptr) ||
     labelled.boxCount() == 0)
     return false;
-  o.cudb.boxes = std::move(noBoxes.boxes); // empty, its memory kept for the next update
+  o.cudb.boxes = std::move(noBoxes.boxes); // empty (cleared), its capacity kept for the next
   o.labelledFromPixelRuns = true;
   o.runs = std::move(labelled.runs);
   o.components = std::move(labelled.components);
