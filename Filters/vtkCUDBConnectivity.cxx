@@ -2167,12 +2167,16 @@ struct PlanarMemory
   vbr::PixelRuns runs;
   std::vector<std::uint32_t> equivalences;
 
-  /// Takes the vectors of `o`, the update's only object, for the next update.
+  /// Takes the vectors of `o`, the update's only object, for the next update; frees them
+  /// all when they hold more than MostSpareFactor times what this update used (an image
+  /// of far fewer boxes or runs than an earlier one).
   void keep(ObjectBoxes& o)
   {
     this->boxes = std::move(o.cudb.boxes);
     this->boxLabel = std::move(o.components.boxLabel);
     this->runs = std::move(o.runs);
+    if (this->bytes() > MostSpareFactor * this->usedBytes())
+      *this = PlanarMemory();
   }
 
   /// Hands the kept vectors to a sweep's outputs, with their values: a sweep replaces them;
@@ -2191,6 +2195,17 @@ struct PlanarMemory
       sizeof(std::uint32_t) +
       this->runs.rowStarts.capacity() * sizeof(std::size_t);
   }
+
+  /// bytes() of the values the last sweep wrote.
+  std::size_t usedBytes() const
+  {
+    return this->boxes.size() * sizeof(vbr::Box) +
+      (this->boxLabel.size() + this->runs.boxes.size() + this->equivalences.size()) *
+      sizeof(std::uint32_t) +
+      this->runs.rowStarts.size() * sizeof(std::size_t);
+  }
+
+  static constexpr std::size_t MostSpareFactor = 4;
 };
 
 /// The CUDB of a 2D object in the candidate sorting with the fewest boxes (the first of
@@ -2906,6 +2921,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   // rank 0 has every object, from the EVMs of all ranks (see vtkVoxelBRepDistributed.h).
   Summary summary;
   std::vector<ObjectBoxes> objects;
+  if (in.grid.flatAxis < 0 || in.objects.size() != 1)
+    this->Kept->runs.planar = PlanarMemory(); // only a 2D image's only object sweeps in it
   const std::uint32_t regionCount = buildObjectBoxes(this, in, objects, summary, &this->Kept->runs);
   if (in.piece.distributed())
   {

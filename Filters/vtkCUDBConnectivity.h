@@ -79,8 +79,9 @@
  *   has one object, the runs and labels of a 3D image or the boxes, labels, runs and union-find
  *   of a 2D image's sweep (about 190 MB for a 6001^2 maze), and the union-find and notes of the
  *   3D run labelling. It is freed at the end of an update that would leave more than 512 MiB,
- *   at the end of every update with ReleaseDataFlag on, and with the filter. Also small output
- *   arrays to write into.
+ *   at the end of every update with ReleaseDataFlag on, and with the filter; the 2D sweep's
+ *   memory also by an update of anything but a 2D image of one object, and at the end of an
+ *   update that used less than a quarter of it. Also small output arrays to write into.
  * - by all the filters of the process together: released blocks of 2 MiB or more. While idle,
  *   at most 512 MiB: the last update's scratch (the region numbering's). The outputs the
  *   pipeline releases just before their filter executes are kept, up to 2 GiB with that
