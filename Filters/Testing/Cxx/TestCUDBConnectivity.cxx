@@ -872,6 +872,51 @@ void checkSameOutputs(vtkCUDBConnectivity* a, vtkCUDBConnectivity* b, const std:
     what << ": SortingOrder");
 }
 
+/// One filter with Auto sorting updated on 2D images whose best sorting alternates (rows,
+/// then columns, then noise), the first candidate's sweep written into the vectors of the
+/// earlier update's winner: its outputs, box corners included, must equal a new filter's on
+/// the same image.
+void checkAutoSortingReuse2D()
+{
+  vtkNew<vtkCUDBConnectivity> kept;
+  kept->SetSortingOrder(vtkCUDBConnectivity::AUTO);
+  unsigned seed = 600;
+  const Int3 shapes[] = {
+    { 120, 90, 1 }, { 90, 120, 1 }, { 150, 40, 1 }, { 64, 64, 1 }, { 120, 90, 1 }
+  };
+  for (int n = 0; n < 10; ++n)
+  {
+    const Int3 dims = shapes[n % 5];
+    Volume v = randomVolume(dims, 0.5, 1, seed++);
+    const int pattern = n % 3; // rows, columns, noise
+    for (int y = 0; pattern < 2 && y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x)
+        if ((pattern == 0 ? y : x) % 3 == 0 && v.values[std::size_t(y) * dims[0] + x] == 0)
+          v.values[std::size_t(y) * dims[0] + x] = 1; // long stripes along one axis
+    vtkSmartPointer<vtkImageData> image = makeImage(v, Layout());
+    kept->SetInputData(image);
+    kept->Update();
+    vtkNew<vtkCUDBConnectivity> fresh;
+    fresh->SetSortingOrder(vtkCUDBConnectivity::AUTO);
+    fresh->SetInputData(image);
+    fresh->Update();
+    const std::string what = "Auto sorting, update " + std::to_string(n);
+    checkSameOutputs(kept, fresh, what);
+    vtkPoints* pa = kept->GetBoxesOutput()->GetPoints();
+    vtkPoints* pb = fresh->GetBoxesOutput()->GetPoints();
+    bool same = pa && pb && pa->GetNumberOfPoints() == pb->GetNumberOfPoints() &&
+      kept->GetBoxesOutput()->GetNumberOfCells() == fresh->GetBoxesOutput()->GetNumberOfCells();
+    for (vtkIdType i = 0; same && i < pa->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      pa->GetPoint(i, a);
+      pb->GetPoint(i, b);
+      same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+    }
+    CHECK(same, what << ": box corners");
+  }
+}
+
 /// 2D images without the boxes output take the runs of their pixel rows (the regions measured
 /// from the runs, no boxes written): against the flood fill and brute-force table, and every
 /// output the same as through the sweep's boxes (RunLabelling off) and as with the boxes
@@ -1318,6 +1363,7 @@ int TestCUDBConnectivity(int, char*[])
   checkTwoDimensional();
   checkBoxCornersInWorld();
   checkTwoDimensionalRuns();
+  checkAutoSortingReuse2D();
   checkHostileVolumes();
   checkSizeRankingOfALargeRegion();
   checkLargeOutputs();
