@@ -175,10 +175,16 @@ void* newBlock(std::size_t length, bool huge)
 /// every vtkCUDBConnectivity; the last filter's destruction frees what it keeps.
 ///
 /// Memory stays linear in the outputs: the cache keeps no more than the last update used.
-/// - Between updates it holds only blocks released since the last update began, at most
-///   KeptBytes: that update's scratch of 2 MiB or more (the region numbering's, about 20 bytes
-///   a region, released before the update ends, so kept while the filter is idle) and, in the
-///   usual pipeline, its outputs once the next update releases them.
+/// - While the filters are idle it holds only the last update's scratch of 2 MiB or more (the
+///   region numbering's, about 20 bytes a region, released before the update ends), at most
+///   KeptBytes of it. Outputs are kept only when the pipeline releases them just before their
+///   filter executes (ReleaseWindow, from REQUEST_DATA_NOT_GENERATED to the end of
+///   REQUEST_DATA), up to KeptOutputBytes in all with the scratch: that execution takes them
+///   or frees them at its end. Outputs released at any other time (ReleaseData, a downstream
+///   ReleaseDataFlag, a filter destroyed) are freed at once, so no more than KeptBytes is ever
+///   held while idle. (A 6001^2 maze's outputs with boxes are 884 MB, 468 of them the boxes'
+///   coordinates: with 512 MiB for everything, most were freed, and faulted in and zeroed
+///   again by the kernel, a third of each update.)
 /// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
 ///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
 ///   kept plus what the update has taken or allocated stays within the larger of the bytes kept
@@ -192,6 +198,7 @@ class BlockCache
 {
 public:
   static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
+  static constexpr std::size_t KeptOutputBytes = std::size_t(2048) << 20;
 
   /// Never destroyed: VTK arrays may release their blocks after static destruction.
   static BlockCache& instance()
@@ -225,6 +232,7 @@ public:
         block = this->kept[best].block;
         this->used += this->kept[best].length;
         this->keptBytes -= this->kept[best].length;
+        this->keptScratchBytes -= this->kept[best].scratch ? this->kept[best].length : 0;
         this->kept.erase(this->kept.begin() + static_cast<std::ptrdiff_t>(best));
         return block;
       }
@@ -246,7 +254,9 @@ public:
   }
 
   /// A block of allocateBlock no longer used: kept when huge, a filter exists and there is
-  /// room, else freed.
+  /// room (KeptBytes for an update's scratch, KeptOutputBytes for outputs released while a
+  /// filter is about to execute, see ReleaseWindow), else freed: outputs released at any other
+  /// time (ReleaseData, ReleaseDataFlag, a filter destroyed) are freed at once.
   void release(void* block)
   {
     if (!block)
@@ -256,16 +266,44 @@ public:
       const auto found = this->lengths.find(block);
       if (found != this->lengths.end())
       {
-        if (VBR_KEEP_BLOCKS && this->users > 0 && this->keptBytes + found->second <= KeptBytes)
+        const std::size_t length = found->second;
+        const bool scratch = this->updates > 0;
+        const bool room = scratch
+          ? this->keptBytes + length <= KeptOutputBytes &&
+            this->keptScratchBytes + length <= KeptBytes
+          : this->windows > 0 && this->keptBytes + length <= KeptOutputBytes;
+        if (VBR_KEEP_BLOCKS && this->users > 0 && room)
         {
-          this->kept.push_back({ block, found->second, this->releases++ });
-          this->keptBytes += found->second;
+          this->kept.push_back({ block, length, this->releases++, scratch });
+          this->keptBytes += length;
+          this->keptScratchBytes += scratch ? length : 0;
           return;
         }
         this->lengths.erase(found);
       }
     }
     std::free(block);
+  }
+
+  /// A filter is about to execute: the pipeline now releases its outputs (ReleaseWindow).
+  void openWindow()
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    ++this->windows;
+  }
+
+  /// That filter's execution is over (blocks still kept are freed by its endUpdate).
+  void closeWindow()
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    --this->windows;
+  }
+
+  /// The bytes kept now.
+  std::size_t bytesKept()
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    return this->keptBytes;
   }
 
   /// An update begins: its budget is what is kept now (see the class comment).
@@ -330,6 +368,7 @@ private:
     void* block;
     std::size_t length;
     std::uint64_t release; ///< the order of releases
+    bool scratch;          ///< released during an update
   };
 
   /// Removes the `count` oldest kept blocks (keptBytes already counted), to be freed.
@@ -339,6 +378,7 @@ private:
     blocks.reserve(count);
     for (std::size_t i = 0; i < count; ++i)
     {
+      this->keptScratchBytes -= this->kept[i].scratch ? this->kept[i].length : 0;
       blocks.push_back(this->kept[i].block);
       this->lengths.erase(this->kept[i].block);
     }
@@ -356,12 +396,14 @@ private:
   std::unordered_map<void*, std::size_t> lengths; ///< the huge blocks, in use or kept
   std::vector<Kept> kept;                         ///< oldest release first
   std::size_t keptBytes = 0;
-  std::uint64_t releases = 0;    ///< blocks kept so far: the next one's release
-  int updates = 0;               ///< updates in progress
-  std::uint64_t updateStart = 0; ///< releases when the first of them began
-  std::size_t budget = 0;        ///< keptBytes then
-  std::size_t used = 0;          ///< bytes taken or allocated by them since
+  std::size_t keptScratchBytes = 0; ///< of keptBytes, of blocks released during an update
+  std::uint64_t releases = 0;       ///< blocks kept so far: the next one's release
+  int updates = 0;                  ///< updates in progress
+  std::uint64_t updateStart = 0;    ///< releases when the first of them began
+  std::size_t budget = 0;           ///< keptBytes then
+  std::size_t used = 0;             ///< bytes taken or allocated by them since
   int users = 0;
+  int windows = 0; ///< filters between their REQUEST_DATA_NOT_GENERATED and REQUEST_DATA's end
 };
 
 /// Brackets an update for BlockCache, also when it ends by an exception.
@@ -372,6 +414,31 @@ public:
   ~CacheUpdate() { BlockCache::instance().endUpdate(); }
   CacheUpdate(const CacheUpdate&) = delete;
   CacheUpdate& operator=(const CacheUpdate&) = delete;
+};
+
+/// Opens BlockCache's window for a filter's outputs: vtkDemandDrivenPipeline::ExecuteDataStart
+/// sends REQUEST_DATA_NOT_GENERATED to the algorithm, then releases the outputs it will
+/// regenerate (PrepareForNewData), then sends REQUEST_DATA. Closed when REQUEST_DATA has been
+/// processed (also after an error or an abort), or by the filter's destruction.
+class ReleaseWindow
+{
+public:
+  void open()
+  {
+    if (!this->opened)
+      BlockCache::instance().openWindow();
+    this->opened = true;
+  }
+  void close()
+  {
+    if (this->opened)
+      BlockCache::instance().closeWindow();
+    this->opened = false;
+  }
+  ~ReleaseWindow() { this->close(); }
+
+private:
+  bool opened = false;
 };
 
 /// Releases a block of allocateBlock (to BlockCache).
@@ -1273,9 +1340,18 @@ std::int32_t regionIdOfBox(const ObjectBoxes& o, std::size_t b, const RegionIdLi
   return regionIds[o.firstRegion + o.components.boxLabel[b] - 1];
 }
 
+/// The boxes of the kept regions. When every region is kept (no size or seed filter: the
+/// default), all boxes, without the pass over every box's label and region (a maze's 4.9
+/// million, where its 642,115 regions are read in a few hundred microseconds).
 vtkIdType countKeptBoxes(const std::vector<ObjectBoxes>& objects, const RegionIdList& regionIds)
 {
   vtkIdType count = 0;
+  if (std::find(regionIds.begin(), regionIds.end(), 0) == regionIds.end())
+  {
+    for (const ObjectBoxes& o : objects)
+      count += static_cast<vtkIdType>(o.cudb.boxes.size());
+    return count;
+  }
   for (const ObjectBoxes& o : objects)
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b)
       count += regionIdOfBox(o, b, regionIds) != 0;
@@ -1397,6 +1473,44 @@ struct CornerWriter
       for (int w = 0; w < 3; ++w)
         out[3 * k + w] = sum[w][this->sumOfCorner[k]];
     streamValues(out, 3 * this->corners, xyz);
+  }
+
+  /// Whether a 2D image's four corners k read sums k in its own axes (flat z, axis-aligned:
+  /// the usual image), so that writePlanar indexes nothing at run time.
+  bool planarPlain() const
+  {
+    for (int k = 0; k < 4; ++k)
+      if (this->sumOfCorner[k] != k)
+        return false;
+    return this->corners == 4 && this->source == std::array<int, 3>{ 0, 1, 2 };
+  }
+
+  /// write<false> where planarPlain() holds: the same sums, in the same order, of the four
+  /// corners in the plane only (the flat axis at lo), with every index known at compile time.
+  /// The general path computed the eight corners' sums and gathered four of them through the
+  /// stack by run-time indices (a maze's 4.9 million boxes: a fifth of the boxes output).
+  void writePlanar(const vbr::Box& box, const Int3& offset, double* xyz) const
+  {
+    double local[2][2]; // [image axis][lo, hi]
+    for (int d = 0; d < 2; ++d)
+    {
+      local[d][0] = (this->base[d] + double(box.lo[d] + offset[d])) * this->grid.spacing[d];
+      local[d][1] = (this->base[d] + double(box.hi[d] + offset[d])) * this->grid.spacing[d];
+    }
+    const double flat = (this->base[2] + double(box.lo[2] + offset[2])) * this->grid.spacing[2];
+    double out[12]; // corner k = a | b << 1 at 3 * k
+    for (int w = 0; w < 3; ++w)
+    {
+      const double* m = &this->grid.direction[3 * w];
+      const double flatTerm = m[2] * flat;
+      for (int a = 0; a < 2; ++a)
+      {
+        const double s0 = this->grid.origin[w] + m[0] * local[0][a];
+        for (int b = 0; b < 2; ++b)
+          out[3 * (a | b << 1) + w] = (s0 + m[1] * local[1][b]) + flatTerm;
+      }
+    }
+    streamValues(out, 12, xyz);
   }
 
   /// The eight corners k = 0..7 of sum[w][k] into xyz, pair by pair.
@@ -1535,24 +1649,28 @@ vtkIdType writeObjectBoxes(const ObjectBoxes& o,
   int* regionIds = cells.regionIds->GetPointer(0);
   const std::uint32_t* label = o.components.boxLabel.data();
   const std::vector<vbr::Box>& boxes = o.cudb.boxes;
-  auto writeAll = [&](auto plain)
+  // writeCorners(box, xyz): one of CornerWriter's ways, chosen once per object.
+  auto writeAll = [&](auto writeCorners)
   {
     for (std::size_t b = 0; b < boxes.size(); ++b)
     {
       const std::int32_t id = regionIdOfLabel[label[b] - 1];
       if (id == 0)
         continue;
-      corners.write<decltype(plain)::value>(boxes[b], o.offset, xyz);
+      writeCorners(boxes[b], xyz);
       xyz += 3 * corners.corners;
       boxIds[cell] = boxBase + static_cast<vtkIdType>(b);
       regionIds[cell] = id;
       ++cell;
     }
   };
+  const Int3& offset = o.offset;
   if (corners.plain())
-    writeAll(std::true_type{});
+    writeAll([&](const vbr::Box& box, double* to) { corners.write<true>(box, offset, to); });
+  else if (corners.planarPlain())
+    writeAll([&](const vbr::Box& box, double* to) { corners.writePlanar(box, offset, to); });
   else
-    writeAll(std::false_type{});
+    writeAll([&](const vbr::Box& box, double* to) { corners.write<false>(box, offset, to); });
   fillLabels(cells.labels, first, cell, o.label);
   return cell;
 }
@@ -2037,6 +2155,59 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
   return planar ? name.substr(1) : name; // 2D: lines along B, rows along C
 }
 
+/// The memory of the 2D sweep of an image's only object kept from one update to the next (part
+/// of RunMemory, bounded with it): its boxes, their labels, its runs and its union-find, handed
+/// back to vbr::buildCUDBComponents2D and vbr::labelPixelRuns, which write into them. New
+/// blocks were faulted in and zeroed by the kernel at every update: a 6001^2 maze's 190 MB, a
+/// fifth of its update with the boxes output.
+struct PlanarMemory
+{
+  std::vector<vbr::Box> boxes;
+  std::vector<std::uint32_t> boxLabel;
+  vbr::PixelRuns runs;
+  std::vector<std::uint32_t> equivalences;
+
+  /// Takes the vectors of `o`, the update's only object, for the next update; frees them
+  /// all when they hold more than MostSpareFactor times what this update used (an image
+  /// of far fewer boxes or runs than an earlier one).
+  void keep(ObjectBoxes& o)
+  {
+    this->boxes = std::move(o.cudb.boxes);
+    this->boxLabel = std::move(o.components.boxLabel);
+    this->runs = std::move(o.runs);
+    if (this->bytes() > MostSpareFactor * this->usedBytes())
+      *this = PlanarMemory();
+  }
+
+  /// Hands the kept vectors to a sweep's outputs, with their values: a sweep replaces them;
+  /// a caller that does not write one clears it.
+  void lend(vbr::CUDB& cudb, vbr::Components& components, vbr::PixelRuns& pixelRuns)
+  {
+    cudb.boxes = std::move(this->boxes);
+    components.boxLabel = std::move(this->boxLabel);
+    pixelRuns = std::move(this->runs);
+  }
+
+  std::size_t bytes() const
+  {
+    return this->boxes.capacity() * sizeof(vbr::Box) +
+      (this->boxLabel.capacity() + this->runs.boxes.capacity() + this->equivalences.capacity()) *
+      sizeof(std::uint32_t) +
+      this->runs.rowStarts.capacity() * sizeof(std::size_t);
+  }
+
+  /// bytes() of the values the last sweep wrote.
+  std::size_t usedBytes() const
+  {
+    return this->boxes.size() * sizeof(vbr::Box) +
+      (this->boxLabel.size() + this->runs.boxes.size() + this->equivalences.size()) *
+      sizeof(std::uint32_t) +
+      this->runs.rowStarts.size() * sizeof(std::size_t);
+  }
+
+  static constexpr std::size_t MostSpareFactor = 4;
+};
+
 /// The CUDB of a 2D object in the candidate sorting with the fewest boxes (the first of
 /// equals, as buildBestCUDB), and the components of its boxes, straight from the pixel rows
 /// (of the transposed pixels for lines along the first in-plane axis): the same boxes, counts
@@ -2044,12 +2215,14 @@ std::string sortingName(const vbr::AxisOrder& order, const std::array<int, 3>& a
 /// `keepRuns` (the image's only object: only then are RegionIds painted from the runs) an
 /// object swept along its rows keeps its pixels and runs; others free them at once, as a
 /// label image of many objects would otherwise hold a bit image per label. `pixels` are the
-/// object's, selected already (progress 0 to 0.1 of `exec`).
+/// object's, selected already (progress 0 to 0.1 of `exec`). With `memory`, the first sorting
+/// is swept in its vectors.
 bool boxesOfPixels(vbr::BitVolume pixels,
   const std::vector<vbr::AxisOrder>& sortings,
   vbr::Connectivity connectivity,
   bool keepRuns,
   const vbr::Execution& exec,
+  PlanarMemory* memory,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "the 2D CUDB of the pixels and its components");
@@ -2063,6 +2236,8 @@ bool boxesOfPixels(vbr::BitVolume pixels,
     std::size_t vertices = 0;
     vbr::PixelRuns runs; // rows along processing x: painted from the runs
     const bool alongRows = keepRuns && sortings[k] == vbr::AxisOrder{ 2, 1, 0 };
+    if (memory && k == 0)
+      memory->lend(cudb, labelled, runs);
     if (!vbr::buildCUDBComponents2D(pixels,
           sortings[k],
           connectivity,
@@ -2070,8 +2245,11 @@ bool boxesOfPixels(vbr::BitVolume pixels,
           cudb,
           labelled,
           &vertices,
-          alongRows ? &runs : nullptr))
+          alongRows ? &runs : nullptr,
+          memory ? &memory->equivalences : nullptr))
       return false;
+    if (!alongRows)
+      runs = vbr::PixelRuns(); // not kept with the object
     if (!found || cudb.boxes.size() < o.cudb.boxes.size())
     {
       o.cudb = std::move(cudb);
@@ -2092,11 +2270,12 @@ bool boxesOfPixelRows(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
   bool keepRuns,
   const vbr::Execution& exec,
+  PlanarMemory* memory,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels");
   return boxesOfPixels(
-    selected.select(exec.within(0.0, 0.1)), sortings, connectivity, keepRuns, exec, o);
+    selected.select(exec.within(0.0, 0.1)), sortings, connectivity, keepRuns, exec, memory, o);
 }
 
 /// The components of a 2D object labelled on the runs of its rows, the image's only object,
@@ -2110,6 +2289,7 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   vbr::Connectivity connectivity,
   vtkIdType minimumRuns,
   const vbr::Execution& exec,
+  PlanarMemory* memory,
   ObjectBoxes& o)
 {
   vtkLogScopeF(TRACE, "select pixels and label the runs of their rows");
@@ -2121,11 +2301,22 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   if (mostRuns < static_cast<std::uint64_t>(minimumRuns) ||
     vbr::countPixelRuns(o.pixels) < static_cast<std::uint64_t>(minimumRuns))
     return boxesOfPixels(
-      std::move(o.pixels), { vbr::AxisOrder{ 2, 1, 0 } }, connectivity, true, exec, o);
+      std::move(o.pixels), { vbr::AxisOrder{ 2, 1, 0 } }, connectivity, true, exec, memory, o);
   vbr::PixelRunComponents labelled;
-  if (!vbr::labelPixelRuns(o.pixels, connectivity, exec.within(0.1, 1.0), labelled) ||
+  vbr::CUDB noBoxes;
+  if (memory)
+  {
+    memory->lend(noBoxes, labelled.components, labelled.runs);
+    noBoxes.boxes.clear(); // lent with the last update's boxes: only its capacity is wanted
+  }
+  if (!vbr::labelPixelRuns(o.pixels,
+        connectivity,
+        exec.within(0.1, 1.0),
+        labelled,
+        memory ? &memory->equivalences : nullptr) ||
     labelled.boxCount() == 0)
     return false;
+  o.cudb.boxes = std::move(noBoxes.boxes); // empty (cleared), its capacity kept for the next
   o.labelledFromPixelRuns = true;
   o.runs = std::move(labelled.runs);
   o.components = std::move(labelled.components);
@@ -2136,19 +2327,22 @@ bool labelObjectPixelRuns(const vbr::vtk::Selected& selected,
   return true;
 }
 
-/// The memory of the run labelling of a 3D image kept from one update to the next: the runs
-/// and their labels of an image's only object, and the union-find and notes of every object.
-/// The next update of as many runs or fewer writes into it, where new blocks were faulted in
-/// and zeroed by the kernel at every update (glibc had returned them): on a 128^3
-/// checkerboard, 29 MB and 2,793 page faults an update, 256 with it kept. Kept up to KeptBytes,
-/// between updates too (the price: the filter holds it while idle), and freed when the filter
-/// releases its data after use.
+/// The labelling's memory a filter keeps from one update to the next: of a 3D image, the runs
+/// and their labels of its only object and the union-find and notes of every object; of a 2D
+/// image's only object, its sweep's vectors (PlanarMemory, about 190 MB for a 6001^2 maze).
+/// The next update of as many runs or boxes or fewer writes into it, where new blocks were
+/// faulted in and zeroed by the kernel at every update (glibc had returned them): on a 128^3
+/// checkerboard, 29 MB and 2,793 page faults an update, 256 with it kept. Kept between updates
+/// too (the price: the filter holds it while idle) when all of it is within KeptBytes, else
+/// all freed at the end of the update; freed at the end of every update when the filter
+/// releases its data after use (ReleaseDataFlag), and with the filter.
 struct RunMemory
 {
-  static constexpr std::size_t KeptBytes = std::size_t(128) << 20;
+  static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
   vbr::VoxelRuns voxelRuns;
   vbr::RunComponents runComponents;
   vbr::RunLabellingScratch scratch;
+  PlanarMemory planar;
 
   /// Takes the runs and labels of `o`, the update's only object, for the next update, or
   /// frees them with the scratch when they are more than KeptBytes together.
@@ -2162,7 +2356,7 @@ struct RunMemory
   /// Frees everything when more than KeptBytes is held.
   void limit()
   {
-    const std::size_t bytes = this->scratch.bytes() +
+    const std::size_t bytes = this->scratch.bytes() + this->planar.bytes() +
       this->voxelRuns.runs.capacity() * sizeof(vbr::VoxelRun) +
       this->voxelRuns.rowStarts.capacity() * sizeof(std::uint32_t) +
       this->runComponents.runLabel.capacity() * sizeof(std::uint32_t) +
@@ -2262,13 +2456,14 @@ bool boxesOfObject(const vbr::vtk::Selected& selected,
 {
   o.label = selected.label;
   o.offset = selected.offset;
+  PlanarMemory* const planar = memory && route.onlyObject ? &memory->planar : nullptr;
   if (route.fromRuns && route.planar)
-    return labelObjectPixelRuns(selected, connectivity, route.minimumPixelRuns, exec, o);
+    return labelObjectPixelRuns(selected, connectivity, route.minimumPixelRuns, exec, planar, o);
   if (route.fromRuns)
     return labelObjectRuns(
       selected, connectivity, route.withBoxes, route.onlyObject, exec, memory, o);
   if (route.planar)
-    return boxesOfPixelRows(selected, sortings, connectivity, route.onlyObject, exec, o);
+    return boxesOfPixelRows(selected, sortings, connectivity, route.onlyObject, exec, planar, o);
   vbr::EVM evm;
   {
     vtkLogScopeF(TRACE, "select voxels and extract the EVM");
@@ -2473,6 +2668,7 @@ struct vtkCUDBConnectivityKept
   std::vector<vtkSmartPointer<vtkAbstractArray>> fields;
   vtkSmartPointer<vtkIntArray> regionIds; ///< a small RegionId image (paintRegions)
   RunMemory runs;                         ///< the run labelling's memory
+  ReleaseWindow window;                   ///< open while the pipeline releases the outputs
 };
 
 namespace
@@ -2657,6 +2853,31 @@ const char* vtkCUDBConnectivity::GetRegionOrderingAsString()
 }
 
 //------------------------------------------------------------------------------
+vtkTypeBool vtkCUDBConnectivity::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // Only the outputs the pipeline releases just before this filter executes are worth
+  // keeping beyond the scratch bound: the execution takes them at once (BlockCache).
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+    this->Kept->window.open();
+  if (!request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+    return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  struct Closer
+  {
+    ReleaseWindow& window;
+    ~Closer() { this->window.close(); }
+  } closer{ this->Kept->window };
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkCUDBConnectivity::GetCachedBlockBytes()
+{
+  return static_cast<vtkIdType>(BlockCache::instance().bytesKept());
+}
+
+//------------------------------------------------------------------------------
 int vtkCUDBConnectivity::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -2700,6 +2921,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   // rank 0 has every object, from the EVMs of all ranks (see vtkVoxelBRepDistributed.h).
   Summary summary;
   std::vector<ObjectBoxes> objects;
+  if (in.grid.flatAxis < 0 || in.objects.size() != 1)
+    this->Kept->runs.planar = PlanarMemory(); // only a 2D image's only object sweeps in it
   const std::uint32_t regionCount = buildObjectBoxes(this, in, objects, summary, &this->Kept->runs);
   if (in.piece.distributed())
   {
@@ -2749,6 +2972,8 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
     this, in, objects, regions, regionIds, regionOfRow, summary, ports, *this->Kept);
   if (objects.size() == 1 && objects[0].labelledFromRuns && in.objects.size() == 1)
     this->Kept->runs.keep(objects[0]); // bounded on the way out (KeptRunsBound)
+  if (objects.size() == 1 && in.grid.flatAxis >= 0 && in.objects.size() == 1)
+    this->Kept->runs.planar.keep(objects[0]); // bounded on the way out too
   return 1;
 }
 

@@ -73,10 +73,21 @@
  * vtkSMPTools (set VTK_SMP_BACKEND_IN_USE=STDThread with ParaView's VTK, whose default is
  * sequential).
  *
- * @warning Between updates the filter keeps the working memory of its run labelling (up to
- * 128 MiB: the runs and labels of a 3D image's only object, the union-find and notes) so that
- * the next update does not fault it in again, and small output arrays to write into. With
- * ReleaseDataFlag on, the run labelling's memory is freed at the end of every update.
+ * @warning Memory kept between updates, so that the next update does not have the kernel fault
+ * in and zero it again:
+ * - by each filter: the working memory of its labelling, up to 512 MiB in all: when an image
+ *   has one object, the runs and labels of a 3D image or the boxes, labels, runs and union-find
+ *   of a 2D image's sweep (about 190 MB for a 6001^2 maze), and the union-find and notes of the
+ *   3D run labelling. It is freed at the end of an update that would leave more than 512 MiB,
+ *   at the end of every update with ReleaseDataFlag on, and with the filter; the 2D sweep's
+ *   memory also by an update of anything but a 2D image of one object, and at the end of an
+ *   update that used less than a quarter of it. Also small output arrays to write into.
+ * - by all the filters of the process together: released blocks of 2 MiB or more. While idle,
+ *   at most 512 MiB: the last update's scratch (the region numbering's). The outputs the
+ *   pipeline releases just before their filter executes are kept, up to 2 GiB with that
+ *   scratch, for that execution, which frees what it does not reuse; outputs released at any
+ *   other time (ReleaseData, ReleaseDataFlag, a filter destroyed) are freed at once. The last
+ *   filter's destruction frees all of it, as does a memory check that would refuse an input.
  *
  * Under MPI (ParaView running the filter on N ranks, one piece each) the RegionIds are the
  * 1-rank ones on every rank's piece: rank 0 labels the whole image from the ranks' extreme
@@ -240,6 +251,21 @@ public:
   vtkUnstructuredGrid* GetBoxesOutput();
   vtkTable* GetRegionsOutput();
   ///@}
+
+  /**
+   * Opens, on REQUEST_DATA_NOT_GENERATED, the window in which the pipeline releases the
+   * outputs this filter is about to regenerate (their memory is kept for that execution), and
+   * closes it once REQUEST_DATA has been processed.
+   */
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inInfo,
+    vtkInformationVector* outInfo) override;
+
+  /**
+   * Bytes of released blocks every vtkCUDBConnectivity of the process keeps now for a next
+   * update (see the memory warning above); for tests.
+   */
+  static vtkIdType GetCachedBlockBytes();
 
 protected:
   vtkCUDBConnectivity();

@@ -1501,8 +1501,25 @@ bool sweepPixelRows(const BitVolume& pixels,
   return true;
 }
 
+/// `components` emptied, the memory of its labels kept for the sweep to write again.
+void clearKeepingMemory(Components& components)
+{
+  components.boxLabel.clear();
+  components.count = 0;
+}
+
+/// `out` as a new CUDB, the memory of its boxes kept for the sweep to write again.
+void clearKeepingMemory(CUDB& out)
+{
+  std::vector<Box> boxes = std::move(out.boxes);
+  boxes.clear();
+  out = CUDB();
+  out.boxes = std::move(boxes);
+}
+
 /// buildCUDBComponents2D on rows along x (`rows`: the pixels, or their transpose), the boxes
-/// only `withBoxes`; false when aborted, with `out` and `pixelRuns` empty.
+/// only `withBoxes`; false when aborted, with `out` and `pixelRuns` empty. The union-find
+/// lives in `memory` when given (and is left there).
 bool sweepRowsForComponents(const BitVolume& rows,
   Connectivity connectivity,
   bool withBoxes,
@@ -1510,11 +1527,12 @@ bool sweepRowsForComponents(const BitVolume& rows,
   CUDB& out,
   Components& components,
   std::size_t& vertices,
-  PixelRuns* pixelRuns)
+  PixelRuns* pixelRuns,
+  std::vector<std::uint32_t>* memory)
 {
-  components = Components();
+  clearKeepingMemory(components);
   const std::size_t runs = countRuns(rows, vertices);
-  UnionFind equivalences;
+  UnionFind equivalences(memory ? std::move(*memory) : std::vector<std::uint32_t>(), 0);
   equivalences.reserve(runs);
   if (withBoxes)
     out.boxes.reserve(runs);
@@ -1536,9 +1554,13 @@ bool sweepRowsForComponents(const BitVolume& rows,
     out.oudbBoxCount = 0;
     if (pixelRuns)
       pixelRuns->clear();
+    if (memory)
+      *memory = equivalences.release();
     return false;
   }
   components.count = relabel(equivalences, components.boxLabel);
+  if (memory)
+    *memory = equivalences.release();
   return true;
 }
 
@@ -1551,13 +1573,14 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
   CUDB& out,
   Components& components,
   std::size_t* vertices,
-  PixelRuns* pixelRuns)
+  PixelRuns* pixelRuns,
+  std::vector<std::uint32_t>* memory)
 {
   checkSingleSlice(pixels);
   const bool alongY = order == AxisOrder{ 2, 0, 1 };
   if (!alongY && order != AxisOrder{ 2, 1, 0 })
     throw std::invalid_argument("a 2D CUDB from pixel rows sorts ZYX or ZXY");
-  out = CUDB();
+  clearKeepingMemory(out);
   out.dimension = 2;
   out.order = order;
   const BitVolume columns = alongY ? transposed(pixels) : BitVolume();
@@ -1569,9 +1592,10 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
         out,
         components,
         extremeVertices,
-        pixelRuns))
+        pixelRuns,
+        memory))
   {
-    out = CUDB();
+    clearKeepingMemory(out);
     return false;
   }
   if (vertices)
@@ -1588,14 +1612,22 @@ bool buildCUDBComponents2D(const BitVolume& pixels,
 bool labelPixelRuns(const BitVolume& pixels,
   Connectivity connectivity,
   const Execution& exec,
-  PixelRunComponents& out)
+  PixelRunComponents& out,
+  std::vector<std::uint32_t>* memory)
 {
   checkSingleSlice(pixels);
   CUDB counts; // its OUDB count only: no boxes
   out.oudbBoxCount = 0;
   out.extremeVertices = 0;
-  if (!sweepRowsForComponents(
-        pixels, connectivity, false, exec, counts, out.components, out.extremeVertices, &out.runs))
+  if (!sweepRowsForComponents(pixels,
+        connectivity,
+        false,
+        exec,
+        counts,
+        out.components,
+        out.extremeVertices,
+        &out.runs,
+        memory))
     return false;
   out.oudbBoxCount = counts.oudbBoxCount;
   return true;

@@ -444,6 +444,78 @@ TEST(CUDB, PixelRowsGiveTheEVMSweep2D)
       }
 }
 
+TEST(CUDB, ReusedMemoryChangesNothing2D)
+{
+  // One set of outputs and one union-find memory handed to buildCUDBComponents2D and
+  // labelPixelRuns for image after image (larger, smaller, empty, both sortings and
+  // connectivities), starting from stale values: every result equals that of the EVM's CUDB.
+  const vbr::Point3 sizes[] = {
+    { 130, 29, 1 }, { 7, 5, 1 }, { 65, 80, 1 }, { 1, 1, 1 }, { 64, 33, 1 }, { 3, 90, 1 }
+  };
+  vbr::CUDB cudb;
+  vbr::Components components;
+  vbr::PixelRuns runs;
+  std::vector<std::uint32_t> memory(1000, 7u);
+  cudb.boxes.resize(50);
+  components.boxLabel.assign(300, 9u);
+  components.count = 4;
+  runs.boxes.assign(400, 3u);
+  runs.rowStarts.assign(20, 1u);
+  vbr::PixelRunComponents labelled;
+  labelled.components.boxLabel.assign(500, 5u);
+  labelled.runs.boxes.assign(70, 2u);
+  unsigned seed = 4100;
+  for (int pass = 0; pass < 2; ++pass)
+    for (const auto& d : sizes)
+      for (double density : { 0.0, 0.3, 0.7 })
+        for (const vbr::AxisOrder order : { vbr::AxisOrder{ 2, 1, 0 }, vbr::AxisOrder{ 2, 0, 1 } })
+          for (bool vertex : { false, true })
+          {
+            SCOPED_TRACE(std::to_string(d[0]) + "x" + std::to_string(d[1]) + " density " +
+              std::to_string(density) + " order " + vbr::axisOrderName(order) +
+              (vertex ? " vertex" : " face"));
+            const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
+            const vbr::Connectivity c =
+              vertex ? vbr::Connectivity::Vertex : vbr::Connectivity::Face;
+            const vbr::EVM evm = vbr::extractEVM2D(v);
+            const vbr::CUDB expected = vbr::buildCUDB(evm.sortedAs(order));
+            const vbr::Components expectedComponents = vbr::labelComponents(expected, c);
+            std::size_t vertices = 0;
+            ASSERT_TRUE(vbr::buildCUDBComponents2D(
+              v, order, c, vbr::Execution(), cudb, components, &vertices, &runs, &memory));
+            EXPECT_EQ(vertices, evm.size());
+            EXPECT_EQ(cudb.boxes, expected.boxes);
+            EXPECT_EQ(cudb.oudbBoxCount, expected.oudbBoxCount);
+            EXPECT_EQ(components.boxLabel, expectedComponents.boxLabel);
+            EXPECT_EQ(components.count, expectedComponents.count);
+            if (order != vbr::AxisOrder{ 2, 1, 0 })
+              continue;
+            ASSERT_TRUE(vbr::labelPixelRuns(v, c, vbr::Execution(), labelled, &memory));
+            EXPECT_EQ(labelled.components.boxLabel, expectedComponents.boxLabel);
+            EXPECT_EQ(labelled.components.count, expectedComponents.count);
+            EXPECT_EQ(labelled.oudbBoxCount, expected.oudbBoxCount);
+            EXPECT_EQ(labelled.runs.boxes, runs.boxes);
+            EXPECT_EQ(labelled.runs.rowStarts, runs.rowStarts);
+            // The runs against the pixels: row y's runs, in order, are boxes of that row.
+            ASSERT_EQ(runs.rowStarts.size(), std::size_t(d[1]) + 1);
+            std::vector<vbr::Coord> ends(v.wordsPerRow() * 64 + 2);
+            for (std::int32_t y = 0; y < d[1]; ++y)
+            {
+              const vbr::Coord* last = vbr::pixelRowRunEnds(v, y, ends.data());
+              const std::size_t n = static_cast<std::size_t>(last - ends.data()) / 2;
+              ASSERT_EQ(runs.rowStarts[y + 1] - runs.rowStarts[y], n);
+              for (std::size_t i = 0; i < n; ++i)
+              {
+                const vbr::Box& box = expected.boxes[runs.boxes[runs.rowStarts[y] + i]];
+                EXPECT_EQ(box.lo[0], ends[2 * i]);
+                EXPECT_EQ(box.hi[0], ends[2 * i + 1]);
+                EXPECT_LE(box.lo[1], y);
+                EXPECT_GT(box.hi[1], y);
+              }
+            }
+          }
+}
+
 TEST(CUDB, PixelRunsWithoutBoxes)
 {
   // labelPixelRuns against the EVM's CUDB in the ZYX sorting: the same components of the

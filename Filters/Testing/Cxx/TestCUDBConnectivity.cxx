@@ -682,6 +682,160 @@ void checkTwoDimensional()
     }
 }
 
+/// The corners of every box cell of a 2D image against their world positions computed here
+/// from the image's extent, spacing, origin and direction: each cell's corners, mapped back to
+/// index space, must lie on voxel boundaries of its plane (the flat axis at the extent's first
+/// layer), be exactly the cell type's corner order (VTK_PIXEL: lower in-plane axis first;
+/// VTK_QUAD: around the square) at the positions origin + direction * (index * spacing), and
+/// the boxes so found must cover the labelled pixels once each, with their region. Cases: an
+/// axis-aligned image flat in z (the boxes written by the fast 2D path), the same rotated, and
+/// images flat in y and in x (the general path), as points and as cells.
+void checkBoxCornersInWorld()
+{
+  struct Case
+  {
+    Int3 dims;
+    bool rotated;
+  };
+  const Case cases[] = { { { 37, 29, 1 }, false },
+    { { 37, 29, 1 }, true },
+    { { 31, 1, 23 }, false },
+    { { 31, 1, 23 }, true },
+    { { 1, 26, 33 }, false } };
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  // A rotation about (1, 1, 1) / sqrt(3), row-major.
+  const double t = 1 - c, u = 1 / std::sqrt(3.0);
+  const double rotation[9] = { c + u * u * t,
+    u * u * t - u * s,
+    u * u * t + u * s,
+    u * u * t + u * s,
+    c + u * u * t,
+    u * u * t - u * s,
+    u * u * t - u * s,
+    u * u * t + u * s,
+    c + u * u * t };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  unsigned seed = 500;
+  for (const Case& k : cases)
+    for (bool cells : { false, true })
+    {
+      const Volume v = randomVolume(k.dims, 0.55, 1, seed++);
+      Layout l;
+      l.cellData = cells;
+      l.extentMin = { 3, -5, 7 };
+      l.spacing = { 0.75, 1.25, 2.5 };
+      l.origin = { -4.5, 10.25, 3.125 };
+      vtkSmartPointer<vtkImageData> image = makeImage(v, l);
+      const double* m = k.rotated ? rotation : identity;
+      image->SetDirectionMatrix(m);
+      vtkNew<vtkCUDBConnectivity> f;
+      f->SetInputData(image);
+      f->Update();
+      const std::string what = "box corners in world, " + std::to_string(k.dims[0]) + "x" +
+        std::to_string(k.dims[1]) + "x" + std::to_string(k.dims[2]) +
+        (k.rotated ? " rotated" : "") + (cells ? " cells" : " points");
+      const int flat = k.dims[0] == 1 ? 0 : (k.dims[1] == 1 ? 1 : 2);
+      const int inPlane[2] = { flat == 0 ? 1 : 0, flat == 2 ? 1 : 2 };
+      const double shift = cells ? 0.0 : -0.5; // a voxel's lower vertex, from its index
+      const std::vector<int> ids = regionIds(f, l);
+      vtkUnstructuredGrid* boxes = f->GetBoxesOutput();
+      vtkDataArray* boxRegion = boxes->GetCellData()->GetArray("RegionId");
+      CHECK(boxRegion && boxes->GetNumberOfCells() > 0 && !ids.empty(), what << ": outputs");
+      if (!boxRegion || ids.empty())
+        continue;
+      const int type = k.rotated ? VTK_QUAD : VTK_PIXEL;
+      // corner k's (lower axis, higher axis) at hi
+      const int pixelBits[4][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1, 1 } };
+      const int quadBits[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+      const int(*bits)[2] = k.rotated ? quadBits : pixelBits;
+      std::vector<int> covered(ids.size(), 0);
+      bool cornersRight = true, consistent = true;
+      vtkNew<vtkIdList> points;
+      for (vtkIdType cell = 0; cell < boxes->GetNumberOfCells(); ++cell)
+      {
+        CHECK(boxes->GetCellType(cell) == type, what << ": cell type");
+        boxes->GetCellPoints(cell, points);
+        if (points->GetNumberOfIds() != 4)
+        {
+          cornersRight = false;
+          continue;
+        }
+        // The box's voxel vertices [lo, hi] along the in-plane axes, from its corners.
+        std::array<double, 3> index[4];
+        for (int q = 0; q < 4; ++q)
+        {
+          double p[3];
+          boxes->GetPoint(points->GetId(q), p);
+          for (int d = 0; d < 3; ++d) // index = direction^T (p - origin) / spacing
+            index[q][d] = (m[d] * (p[0] - l.origin[0]) + m[3 + d] * (p[1] - l.origin[1]) +
+                            m[6 + d] * (p[2] - l.origin[2])) /
+              l.spacing[d];
+        }
+        Int3 lo{ 0, 0, 0 }, hi{ 0, 0, 0 };
+        for (int a = 0; a < 2; ++a)
+        {
+          const int d = inPlane[a];
+          lo[d] = static_cast<int>(std::lround(index[0][d] - shift));
+          hi[d] = lo[d];
+          for (int q = 1; q < 4; ++q)
+          {
+            const int vertex = static_cast<int>(std::lround(index[q][d] - shift));
+            lo[d] = std::min(lo[d], vertex);
+            hi[d] = std::max(hi[d], vertex);
+          }
+        }
+        cornersRight =
+          cornersRight && lo[inPlane[0]] < hi[inPlane[0]] && lo[inPlane[1]] < hi[inPlane[1]];
+        for (int q = 0; q < 4; ++q)
+        {
+          double local[3];
+          for (int a = 0; a < 2; ++a)
+          {
+            const int d = inPlane[a];
+            local[d] = ((bits[q][a] ? hi[d] : lo[d]) + shift) * l.spacing[d];
+          }
+          local[flat] = l.extentMin[flat] * l.spacing[flat];
+          double p[3];
+          boxes->GetPoint(points->GetId(q), p);
+          for (int w = 0; w < 3; ++w)
+          {
+            const double expected =
+              l.origin[w] + m[3 * w] * local[0] + m[3 * w + 1] * local[1] + m[3 * w + 2] * local[2];
+            cornersRight = cornersRight && near(p[w], expected);
+          }
+        }
+        const int region = static_cast<int>(boxRegion->GetTuple1(cell));
+        Int3 from = lo, to = hi;
+        from[flat] = l.extentMin[flat];
+        to[flat] = from[flat] + 1;
+        for (int z = from[2]; z < to[2]; ++z)
+          for (int y = from[1]; y < to[1]; ++y)
+            for (int x = from[0]; x < to[0]; ++x)
+            {
+              const int i0 = x - l.extentMin[0], i1 = y - l.extentMin[1], i2 = z - l.extentMin[2];
+              if (i0 < 0 || i1 < 0 || i2 < 0 || i0 >= v.dims[0] || i1 >= v.dims[1] ||
+                i2 >= v.dims[2])
+              {
+                consistent = false;
+                continue;
+              }
+              const std::size_t i = (std::size_t(i2) * v.dims[1] + i1) * v.dims[0] + i0;
+              consistent = consistent && ids[i] == region && covered[i] == 0;
+              covered[i] = 1;
+            }
+      }
+      long long selected = 0, coveredCount = 0;
+      for (std::size_t i = 0; i < ids.size(); ++i)
+      {
+        selected += ids[i] != 0;
+        coveredCount += covered[i];
+      }
+      CHECK(cornersRight, what << ": every corner at its world position, in the cell's order");
+      CHECK(consistent && coveredCount == selected,
+        what << ": the boxes cover the labelled pixels once, with their region");
+    }
+}
+
 /// Whether two runs of the filter wrote the same RegionIds, region table (every column, value
 /// for value) and field data (port 0).
 void checkSameOutputs(vtkCUDBConnectivity* a, vtkCUDBConnectivity* b, const std::string& what)
@@ -716,6 +870,51 @@ void checkSameOutputs(vtkCUDBConnectivity* a, vtkCUDBConnectivity* b, const std:
   CHECK(sa && sb && sa->GetNumberOfValues() == sb->GetNumberOfValues() &&
       (sa->GetNumberOfValues() == 0 || sa->GetVariantValue(0) == sb->GetVariantValue(0)),
     what << ": SortingOrder");
+}
+
+/// One filter with Auto sorting updated on 2D images whose best sorting alternates (rows,
+/// then columns, then noise), the first candidate's sweep written into the vectors of the
+/// earlier update's winner: its outputs, box corners included, must equal a new filter's on
+/// the same image.
+void checkAutoSortingReuse2D()
+{
+  vtkNew<vtkCUDBConnectivity> kept;
+  kept->SetSortingOrder(vtkCUDBConnectivity::AUTO);
+  unsigned seed = 600;
+  const Int3 shapes[] = {
+    { 120, 90, 1 }, { 90, 120, 1 }, { 150, 40, 1 }, { 64, 64, 1 }, { 120, 90, 1 }
+  };
+  for (int n = 0; n < 10; ++n)
+  {
+    const Int3 dims = shapes[n % 5];
+    Volume v = randomVolume(dims, 0.5, 1, seed++);
+    const int pattern = n % 3; // rows, columns, noise
+    for (int y = 0; pattern < 2 && y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x)
+        if ((pattern == 0 ? y : x) % 3 == 0 && v.values[std::size_t(y) * dims[0] + x] == 0)
+          v.values[std::size_t(y) * dims[0] + x] = 1; // long stripes along one axis
+    vtkSmartPointer<vtkImageData> image = makeImage(v, Layout());
+    kept->SetInputData(image);
+    kept->Update();
+    vtkNew<vtkCUDBConnectivity> fresh;
+    fresh->SetSortingOrder(vtkCUDBConnectivity::AUTO);
+    fresh->SetInputData(image);
+    fresh->Update();
+    const std::string what = "Auto sorting, update " + std::to_string(n);
+    checkSameOutputs(kept, fresh, what);
+    vtkPoints* pa = kept->GetBoxesOutput()->GetPoints();
+    vtkPoints* pb = fresh->GetBoxesOutput()->GetPoints();
+    bool same = pa && pb && pa->GetNumberOfPoints() == pb->GetNumberOfPoints() &&
+      kept->GetBoxesOutput()->GetNumberOfCells() == fresh->GetBoxesOutput()->GetNumberOfCells();
+    for (vtkIdType i = 0; same && i < pa->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      pa->GetPoint(i, a);
+      pb->GetPoint(i, b);
+      same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+    }
+    CHECK(same, what << ": box corners");
+  }
 }
 
 /// 2D images without the boxes output take the runs of their pixel rows (the regions measured
@@ -983,6 +1182,80 @@ void checkErrorsAndDegenerateInputs()
   }
 }
 
+/// Records vtkCUDBConnectivity::GetCachedBlockBytes when the filter's execution starts (after
+/// the pipeline has released the outputs it is about to regenerate).
+class CachedBytesAtStart : public vtkCommand
+{
+public:
+  static CachedBytesAtStart* New() { return new CachedBytesAtStart; }
+  void Execute(vtkObject*, unsigned long, void*) override
+  {
+    this->Bytes = vtkCUDBConnectivity::GetCachedBlockBytes();
+  }
+  vtkIdType Bytes = -1;
+};
+
+/// The bytes of the boxes' coordinates (one output block of several MiB).
+vtkIdType boxPointBytes(vtkCUDBConnectivity* f)
+{
+  vtkDataArray* points = f->GetBoxesOutput()->GetPoints()->GetData();
+  return points->GetNumberOfValues() * points->GetDataTypeSize();
+}
+
+/// The memory of released outputs: kept for the filter's next execution when the pipeline
+/// releases them just before it (that execution finds them kept), freed at once when they are
+/// released at any other time (ReleaseData, a downstream ReleaseDataFlag, the filter
+/// destroyed while another exists), so that idle filters keep no more than an update's
+/// scratch (at most 512 MiB).
+void checkReleasedOutputsMemory()
+{
+  const vtkIdType scratchBound = vtkIdType(512) << 20;
+  const Volume v = randomVolume({ 1024, 1024, 1 }, 0.5, 1, 406);
+  vtkNew<vtkImageData> image;
+  image->DeepCopy(makeImage(v, Layout()));
+  vtkNew<vtkCUDBConnectivity> other; // alive throughout: the cache is not cleared
+  vtkCUDBConnectivity* f = vtkCUDBConnectivity::New();
+  f->SetInputData(image);
+  f->Update();
+  const vtkIdType boxes = boxPointBytes(f);
+  CHECK(boxes > (vtkIdType(8) << 20), "released outputs: the boxes' coordinates are large");
+  const vtkIdType afterUpdate = vtkCUDBConnectivity::GetCachedBlockBytes();
+  CHECK(afterUpdate <= scratchBound, "released outputs: idle after an update");
+
+  vtkNew<CachedBytesAtStart> start;
+  f->AddObserver(vtkCommand::StartEvent, start);
+  f->Modified();
+  f->Update();
+  CHECK(start->Bytes >= afterUpdate + boxes,
+    "released outputs: the next execution finds the previous outputs kept");
+  const vtkIdType beforeRelease = vtkCUDBConnectivity::GetCachedBlockBytes();
+  CHECK(beforeRelease <= scratchBound, "released outputs: idle after a re-execution");
+  f->GetBoxesOutput()->ReleaseData();
+  f->GetOutput()->ReleaseData();
+  CHECK(vtkCUDBConnectivity::GetCachedBlockBytes() <= beforeRelease,
+    "released outputs: ReleaseData frees them");
+
+  // The boxes as the seeds of a filter downstream, which releases its inputs after executing.
+  f->SetReleaseDataFlag(1);
+  const Volume small = randomVolume({ 4, 4, 1 }, 0.5, 1, 407);
+  vtkNew<vtkCUDBConnectivity> downstream;
+  downstream->SetInputData(makeImage(small, Layout()));
+  downstream->SetSeedConnection(f->GetOutputPort(1));
+  downstream->Update();
+  CHECK(f->GetBoxesOutput()->GetNumberOfPoints() == 0, "ReleaseDataFlag: the boxes released");
+  CHECK(vtkCUDBConnectivity::GetCachedBlockBytes() < boxes,
+    "released outputs: a downstream ReleaseDataFlag frees them");
+  downstream->RemoveAllInputConnections(1);
+
+  f->SetReleaseDataFlag(0);
+  f->Modified();
+  f->Update();
+  const vtkIdType beforeDelete = vtkCUDBConnectivity::GetCachedBlockBytes();
+  f->Delete();
+  CHECK(vtkCUDBConnectivity::GetCachedBlockBytes() <= beforeDelete,
+    "released outputs: a filter destroyed while another exists frees them");
+}
+
 /// Records the progress events and aborts at the first one past `at`.
 class AbortPastProgress : public vtkCommand
 {
@@ -1088,7 +1361,9 @@ int TestCUDBConnectivity(int, char*[])
 {
   checkRandomVolumes();
   checkTwoDimensional();
+  checkBoxCornersInWorld();
   checkTwoDimensionalRuns();
+  checkAutoSortingReuse2D();
   checkHostileVolumes();
   checkSizeRankingOfALargeRegion();
   checkLargeOutputs();
@@ -1097,6 +1372,7 @@ int TestCUDBConnectivity(int, char*[])
   checkErrorsAndDegenerateInputs();
   checkAbortInsideA2DImage();
   checkAbortWhilePainting();
+  checkReleasedOutputsMemory();
   vtkNew<vtkCUDBConnectivity> f;
   std::ostringstream print;
   f->Print(print);
