@@ -3,13 +3,14 @@
 //
 // A face without holes and of at most EarClippingLimit corners is ear-clipped exactly
 // (clipEars); so is each edge-connected part of a face whose parts touch at corners, when no
-// part has a hole (edgeConnectedParts); every other face goes through CGAL's constrained
-// Delaunay triangulation of all its loops, whose triangles inside the face are those at odd
-// nesting depth from the outside (markNesting). fanPolygons gives what a renderer drawing a polygon
-// as the fan from its first corner draws right: the outer loop itself, started at a corner whose
-// fan covers it (fanApex), unless it passes a corner twice; else each edge-connected part of a
-// face merged at vertices likewise; or else the triangles grouped into fans round shared
-// corners (FanGrouper).
+// part has a hole (edgeConnectedParts); every other face is cut into monotone pieces by a sweep
+// and each piece triangulated in linear time (MonotoneTriangulator); only a face the sweep
+// refuses goes through CGAL's constrained Delaunay triangulation of all its loops, whose
+// triangles inside the face are those at odd nesting depth from the outside (markNesting).
+// fanPolygons gives what a renderer drawing a polygon as the fan from its first corner draws right:
+// the outer loop itself, started at a corner whose fan covers it (fanApex), unless it passes a
+// corner twice; else each edge-connected part of a face merged at vertices likewise; or else the
+// triangles grouped into fans round shared corners (FanGrouper).
 
 #include "FaceTriangulator.h"
 
@@ -818,6 +819,33 @@ void appendDelaunayTriangles(const BRep& brep, const BRepFace& face, FaceCells& 
   }
 }
 
+/// Appends the triangles of a face with holes or a long loop from the sweep into monotone
+/// pieces (MonotoneTriangulator), in the coordinates of clipEars, where every loop runs with the
+/// inside on its left; false when the sweep refuses the face.
+bool appendMonotoneTriangles(const BRep& brep, const BRepFace& face, FaceCells& out)
+{
+  const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
+  const int x = face.normalSign > 0 ? u : v, y = face.normalSign > 0 ? v : u;
+  out.loop2D.clear();
+  out.loopNext.clear();
+  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+  {
+    const PointRange pts = brep.loopPoints(l);
+    const int start = static_cast<int>(out.loop2D.size()), n = static_cast<int>(pts.size());
+    for (int i = 0; i < n; ++i)
+    {
+      out.loop2D.push_back({ pts[i][x], pts[i][y] });
+      out.loopNext.push_back(start + (i + 1 == n ? 0 : i + 1));
+    }
+  }
+  const std::size_t from = out.corners.size();
+  if (!out.monotone.triangulate(out.loop2D, out.loopNext, out.corners))
+    return false;
+  for (std::size_t c = from + 3; c <= out.corners.size(); c += 3)
+    out.cellEnds.push_back(static_cast<std::uint32_t>(c));
+  return true;
+}
+
 /// The corners of all the loops of a face (outer loop first), each with the next corner of its
 /// own loop.
 struct LoopCorners
@@ -1006,6 +1034,10 @@ void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
   FaceParts parts;
   if (brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts) &&
     clipParts(parts, u, v, face.normalSign, out))
+    return;
+  out.corners.resize(corners);
+  out.cellEnds.resize(cells);
+  if (appendMonotoneTriangles(brep, face, out))
     return;
   out.corners.resize(corners);
   out.cellEnds.resize(cells);
