@@ -147,16 +147,17 @@ bool MonotoneTriangulator::setUpRings(const std::vector<std::array<std::int64_t,
 {
   const int n = static_cast<int>(at.size());
   this->V.clear();
+  // Room for the copies the diagonals make (two per split or merge vertex at most), so that
+  // the sweep never moves the vertices; pages never touched cost nothing.
+  this->V.reserve(3 * at.size());
   this->VertexOf.assign(at.size(), -1);
   this->PrevCorner.resize(at.size());
-  this->Reported.resize(at.size());
   std::int64_t maxX = at[0][0], maxY = at[0][1];
   this->MinX = maxX;
   this->MinY = maxY;
   for (int i = 0; i < n; ++i)
   {
     this->PrevCorner[next[i]] = i;
-    this->Reported[i] = i;
     this->MinX = std::min(this->MinX, at[i][0]);
     this->MinY = std::min(this->MinY, at[i][1]);
     maxX = std::max(maxX, at[i][0]);
@@ -178,10 +179,9 @@ bool MonotoneTriangulator::setUpRings(const std::vector<std::array<std::int64_t,
       continue;
     this->VertexOf[i] = static_cast<int>(this->V.size());
     Vertex v{};
-    v.x = b[0];
-    v.y = b[1];
-    v.corner = v.outCorner = i;
-    v.slot = -1;
+    v.x = static_cast<std::int32_t>(b[0]);
+    v.y = static_cast<std::int32_t>(b[1]);
+    v.corner = v.outCorner = v.reported = i;
     this->V.push_back(v);
   }
   for (Vertex& v : this->V)
@@ -218,7 +218,7 @@ bool MonotoneTriangulator::joinSharedCorners()
   const auto turnsLeft = [this](int v)
   {
     const Vertex &a = this->V[this->V[v].prev], &b = this->V[v], &c = this->V[b.next];
-    return (b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x) > 0;
+    return std::int64_t(b.x - a.x) * (c.y - b.y) - std::int64_t(b.y - a.y) * (c.x - b.x) > 0;
   };
   for (std::size_t k = 1; k < m; ++k)
   {
@@ -228,7 +228,7 @@ bool MonotoneTriangulator::joinSharedCorners()
       return false; // three corners at one place: not an orthogonal face
     const int a = this->Order[k - 1], b = this->Order[k];
     const int first = std::min(this->V[a].corner, this->V[b].corner);
-    this->Reported[this->V[a].corner] = this->Reported[this->V[b].corner] = first;
+    this->V[a].reported = this->V[b].reported = first;
     if (!turnsLeft(a))
     {
       const int na = this->V[a].next, nb = this->V[b].next;
@@ -252,35 +252,45 @@ void MonotoneTriangulator::shiftCorners()
   {
     const Vertex &a = this->V[v.prev], &c = this->V[v.next];
     const std::int64_t inX = v.x - a.x, inY = v.y - a.y, outX = c.x - v.x, outY = c.y - v.y;
-    v.dx = -signOf64(inY) - signOf64(outY);
-    v.dy = signOf64(inX) + signOf64(outX);
+    v.dx = static_cast<std::int8_t>(-signOf64(inY) - signOf64(outY));
+    v.dy = static_cast<std::int8_t>(signOf64(inX) + signOf64(outX));
   }
 }
 
-/// Order: the vertices from the top, by (y, dy, x) decreasing; Key holds each one's place.
-bool MonotoneTriangulator::sortForSweep()
+/// Order: the vertices from the top, by (y, dy, x) decreasing, each with its key. Made from
+/// their order by place (joinSharedCorners left it in Order), row by row: the vertices of a row
+/// with dy = -1 come before those with dy = +1 (every vertex turns, so dy is never 0).
+bool MonotoneTriangulator::orderForSweep(std::int64_t maxX)
 {
   const std::size_t m = this->V.size();
-  std::int64_t maxX = this->MinX;
-  for (const Vertex& v : this->V)
-    maxX = std::max(maxX, v.x);
   const int xBits = bitsFor(static_cast<std::uint64_t>(maxX - this->MinX));
-  this->Key.resize(m);
-  for (std::size_t v = 0; v < m; ++v)
+  this->OrderScratch.resize(std::max(this->OrderScratch.size(), m));
+  std::size_t out = 0;
+  for (std::size_t rowBegin = 0, rowEnd = 0; rowBegin < m; rowBegin = rowEnd)
   {
-    const Vertex& p = this->V[v];
-    this->Key[v] =
+    const std::int32_t y = this->V[this->Order[rowBegin]].y;
+    for (rowEnd = rowBegin; rowEnd < m && this->V[this->Order[rowEnd]].y == y; ++rowEnd)
+      ;
+    for (int dy = -1; dy <= 1; dy += 2)
+      for (std::size_t k = rowBegin; k < rowEnd; ++k)
+        if (this->V[this->Order[k]].dy == dy)
+          this->OrderScratch[out++] = this->Order[k];
+  }
+  if (out != m)
+    return false;
+  std::uint64_t last = 0;
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    Vertex& p = this->V[this->OrderScratch[k]];
+    p.key =
       ((static_cast<std::uint64_t>(p.y - this->MinY) * 3 + static_cast<std::uint64_t>(p.dy + 1))
         << xBits) |
       static_cast<std::uint64_t>(p.x - this->MinX);
-    this->SortKeys[v] = this->Key[v];
-    this->Order[v] = static_cast<int>(v);
-  }
-  this->sortByKey(m);
-  for (std::size_t k = 1; k < m; ++k)
-    if (this->SortKeys[k] == this->SortKeys[k - 1])
+    if (k > 0 && p.key <= last)
       return false; // two vertices tie: the loops are not those of an orthogonal face
-  std::reverse(this->Order.begin(), this->Order.begin() + static_cast<std::ptrdiff_t>(m));
+    last = p.key;
+    this->Order[m - 1 - k] = this->OrderScratch[k];
+  }
   this->Status.reserve(static_cast<std::size_t>(maxX - this->MinX) + 1);
   this->EdgeAt.resize(
     std::max(this->EdgeAt.size(), static_cast<std::size_t>(maxX - this->MinX) + 1));
@@ -328,8 +338,6 @@ void MonotoneTriangulator::addDiagonal(int a, int b)
   const int na = static_cast<int>(this->V.size()), nb = na + 1;
   this->V.push_back(this->V[a]);
   this->V.push_back(this->V[b]);
-  this->Key.push_back(this->Key[a]);
-  this->Key.push_back(this->Key[b]);
   Vertex *A = &this->V[a], *B = &this->V[b], *NA = &this->V[na], *NB = &this->V[nb];
   this->V[A->next].prev = na;
   this->V[B->next].prev = nb;
@@ -338,32 +346,30 @@ void MonotoneTriangulator::addDiagonal(int a, int b)
   B->next = na;
   NA->prev = b;
   A->diagonalOut = B->diagonalOut = true;
-  if (NA->slot >= 0)
-    this->EdgeAt[static_cast<std::size_t>(NA->slot)] = na;
-  if (NB->slot >= 0)
-    this->EdgeAt[static_cast<std::size_t>(NB->slot)] = nb;
+  if (NA->inStatus && NA->x == this->V[NA->next].x)
+    this->EdgeAt[static_cast<std::size_t>(NA->x - this->MinX)] = na;
+  if (NB->inStatus && NB->x == this->V[NB->next].x)
+    this->EdgeAt[static_cast<std::size_t>(NB->x - this->MinX)] = nb;
 }
 
 /// Puts vertex v's edge (to its next vertex) in the status: by its x when vertical.
 void MonotoneTriangulator::insertEdge(int v)
 {
   Vertex& p = this->V[v];
+  p.inStatus = true;
   if (p.x != this->V[p.next].x)
-  {
-    p.slot = -2;
-    return;
-  }
-  p.slot = static_cast<int>(p.x - this->MinX);
-  this->Status.insert(static_cast<std::size_t>(p.slot));
-  this->EdgeAt[static_cast<std::size_t>(p.slot)] = v;
+    return; // horizontal: never crossed at a vertex, so never left of one
+  const std::size_t slot = static_cast<std::size_t>(p.x - this->MinX);
+  this->Status.insert(slot);
+  this->EdgeAt[slot] = v;
 }
 
 void MonotoneTriangulator::eraseEdge(int v)
 {
   Vertex& p = this->V[v];
-  if (p.slot >= 0)
-    this->Status.erase(static_cast<std::size_t>(p.slot));
-  p.slot = -1;
+  if (p.inStatus && p.x == this->V[p.next].x)
+    this->Status.erase(static_cast<std::size_t>(p.x - this->MinX));
+  p.inStatus = false;
 }
 
 /// The slot of the edge of the status directly left of vertex v, or -1.
@@ -444,8 +450,6 @@ bool MonotoneTriangulator::handleVertex(int v)
 bool MonotoneTriangulator::sweep()
 {
   const std::size_t m = this->V.size();
-  this->V.reserve(3 * m); // a diagonal per split or merge vertex, two copies each
-  this->Key.reserve(3 * m);
   for (std::size_t k = 0; k < m; ++k)
     if (!this->handleVertex(this->Order[k]))
     {
@@ -475,7 +479,8 @@ bool MonotoneTriangulator::pushTriangle(int a, int b, int c, std::vector<int>& t
   const auto &p = (*this->At)[a], &q = (*this->At)[b], &r = (*this->At)[c];
   if ((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]) <= 0)
     return false;
-  triangles.insert(triangles.end(), { this->Reported[a], this->Reported[b], this->Reported[c] });
+  triangles.insert(
+    triangles.end(), { this->reportedOf(a), this->reportedOf(b), this->reportedOf(c) });
   return true;
 }
 
@@ -522,6 +527,14 @@ bool MonotoneTriangulator::emitTriangle(int a,
   const std::vector<int>& next,
   std::vector<int>& triangles)
 {
+  const Vertex &p = this->V[a], &q = this->V[b], &r = this->V[c];
+  if (!p.straightAfter && !q.straightAfter && !r.straightAfter)
+  { // no corner to put back: the vertices' own coordinates and reported corners
+    if (std::int64_t(q.x - p.x) * (r.y - p.y) - std::int64_t(q.y - p.y) * (r.x - p.x) <= 0)
+      return false;
+    triangles.insert(triangles.end(), { p.reported, q.reported, r.reported });
+    return true;
+  }
   const int vertices[3] = { a, b, c };
   bool any = false;
   for (int k = 0; k < 3; ++k)
@@ -529,7 +542,7 @@ bool MonotoneTriangulator::emitTriangle(int a,
     const int from = vertices[k], to = vertices[(k + 1) % 3];
     this->Top[k] = this->V[from].corner;
     this->Side[k].clear();
-    if (this->V[from].next != to || this->V[from].diagonalOut)
+    if (this->V[from].next != to || this->V[from].diagonalOut || !this->V[from].straightAfter)
       continue;
     if (!this->straightCornersOf(from, to, next, this->Side[k]))
       return false;
@@ -628,15 +641,14 @@ bool MonotoneTriangulator::triangulatePieces(const std::vector<int>& next,
   std::vector<int>& triangles)
 {
   const std::size_t count = this->V.size();
-  this->Used.assign(count, 0);
   for (std::size_t start = 0; start < count; ++start)
   {
-    if (this->Used[start])
+    if (this->V[start].used)
       continue;
     this->Piece.clear();
-    for (int v = static_cast<int>(start); !this->Used[v]; v = this->V[v].next)
+    for (int v = static_cast<int>(start); !this->V[v].used; v = this->V[v].next)
     {
-      this->Used[v] = 1;
+      this->V[v].used = true;
       this->Piece.push_back(v);
     }
     if (this->Piece.front() != this->V[this->Piece.back()].next)
@@ -656,8 +668,14 @@ bool MonotoneTriangulator::triangulate(const std::vector<std::array<std::int64_t
   this->At = &at;
   if (!this->setUpRings(at, next) || !this->joinSharedCorners())
     return false;
+  std::int64_t maxX = this->MinX;
+  for (Vertex& v : this->V)
+  {
+    maxX = std::max<std::int64_t>(maxX, v.x);
+    v.straightAfter = this->VertexOf[next[v.outCorner]] < 0;
+  }
   this->shiftCorners();
-  if (!this->sortForSweep())
+  if (!this->orderForSweep(maxX))
     return false;
   this->classify();
   if (!this->sweep())

@@ -73,21 +73,25 @@ public:
 private:
   struct Vertex
   {
-    std::int64_t x, y;
-    int dx, dy;    ///< the shift of the shrunk polygon, in delta units
+    std::uint64_t key; ///< its place in the sweep, (y, dy, x): larger first
+    std::int32_t x, y;
     int corner;    ///< the corner of the loops it stands for
     int outCorner; ///< the corner whose next edge of its loop leaves this vertex
+    int reported;  ///< the first corner at its place
     int next, prev;
     int helper;
-    int slot; ///< its edge's x in the status, -2 when its edge is horizontal, -1 not in it
+    std::int8_t dx, dy; ///< the shift of the shrunk polygon, in delta units
     char type;
-    bool diagonalOut; ///< the edge to next is a diagonal
+    bool inStatus;      ///< its edge (to next) is in the status
+    bool diagonalOut;   ///< the edge to next is a diagonal
+    bool straightAfter; ///< the loop edge it starts holds corners that go straight on
+    bool used;          ///< taken into a monotone piece
   };
 
   bool setUpRings(const std::vector<std::array<std::int64_t, 2>>& at, const std::vector<int>& next);
   bool joinSharedCorners();
   void shiftCorners();
-  bool sortForSweep();
+  bool orderForSweep(std::int64_t maxX);
   void classify();
   bool sweep();
   bool handleVertex(int v);
@@ -103,7 +107,12 @@ private:
   bool pushTriangle(int a, int b, int c, std::vector<int>& triangles);
   void sortByKey(std::size_t count);
   int orientation(int a, int b, int c) const;
-  bool below(int a, int b) const { return this->Key[a] < this->Key[b]; }
+  bool below(int a, int b) const { return this->V[a].key < this->V[b].key; }
+  int reportedOf(int corner) const
+  {
+    const int v = this->VertexOf[corner];
+    return v < 0 ? corner : this->V[v].reported;
+  }
 
   const std::vector<std::array<std::int64_t, 2>>* At = nullptr;
   std::vector<Vertex> V;          ///< the turning corners, then the copies made by diagonals
@@ -117,7 +126,6 @@ private:
   std::vector<int> EdgeAt; ///< by slot: the vertex whose edge is there
   std::int64_t MinX = 0, MinY = 0;
   PredecessorSet Status;
-  std::vector<char> Used;
   std::vector<int> Piece, Stack, Side[3];
   std::vector<signed char> ChainOf; ///< by place in Piece: 1 left chain, -1 right, 0 ends
   std::vector<int> Merged;          ///< Piece's places from the top
