@@ -1017,8 +1017,9 @@ RingKind ringKind(const PointRange& pts, int u, int v, int sign, FaceCells& out)
                                                                                 : RingKind::Any;
 }
 
-/// Appends the triangles of face `f` without closing the face.
-void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
+/// Appends the triangles of face `f` without closing the face. `tryParts`: whether the face may
+/// have edge-connected parts to ear-clip (false when the caller found it has none).
+void appendTrianglesOf(const BRep& brep, int f, FaceCells& out, bool tryParts = true)
 {
   const BRepFace& face = brep.faces[f];
   const PointRange outer = brep.loopPoints(face.firstLoop);
@@ -1032,7 +1033,7 @@ void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
     out.cellEnds.resize(cells);
   }
   FaceParts parts;
-  if (brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts) &&
+  if (tryParts && brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts) &&
     clipParts(parts, u, v, face.normalSign, out))
     return;
   out.corners.resize(corners);
@@ -1078,11 +1079,11 @@ void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
 }
 
 /// Appends the fans of the triangles of face `f` (triangulateFace), its triangles made in
-/// `cells` itself and moved to its scratch space.
-void appendFanGroups(const BRep& brep, int f, FaceCells& cells)
+/// `cells` itself and moved to its scratch space; `tryParts` as in appendTrianglesOf.
+void appendFanGroups(const BRep& brep, int f, FaceCells& cells, bool tryParts)
 {
   const std::size_t corners = cells.corners.size(), cellCount = cells.cellEnds.size();
-  appendTrianglesOf(brep, f, cells);
+  appendTrianglesOf(brep, f, cells, tryParts);
   std::vector<std::array<int, 3>>& triangles = cells.fans.triangles;
   triangles.resize((cells.corners.size() - corners) / 3);
   for (std::size_t t = 0; t < triangles.size(); ++t)
@@ -1095,12 +1096,13 @@ void appendFanGroups(const BRep& brep, int f, FaceCells& cells)
 
 /// The polygons of a face whose edge-connected parts touch at corners (edgeConnectedParts),
 /// one per part, when each part is drawn right as the fan from one of its corners; false,
-/// with nothing appended, otherwise.
-bool appendPartPolygons(const BRep& brep, const BRepFace& face, FaceCells& cells)
+/// with nothing appended, otherwise. `hasParts`: whether the face has such parts at all.
+bool appendPartPolygons(const BRep& brep, const BRepFace& face, FaceCells& cells, bool& hasParts)
 {
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   FaceParts parts;
-  if (!brep.mergedAtVertices || !edgeConnectedParts(brep, face, u, v, parts))
+  hasParts = brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts);
+  if (!hasParts)
     return false;
   const std::size_t corners = cells.corners.size(), cellCount = cells.cellEnds.size();
   for (std::size_t k = 0; k < parts.count(); ++k)
@@ -1151,8 +1153,9 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
       return;
     }
   }
-  if (!appendPartPolygons(brep, face, cells))
-    appendFanGroups(brep, f, cells);
+  bool hasParts = false;
+  if (!appendPartPolygons(brep, face, cells, hasParts))
+    appendFanGroups(brep, f, cells, hasParts);
   cells.endFace();
 }
 
