@@ -107,6 +107,8 @@ void checkFace(vbr::MonotoneTriangulator& sweep,
     {
       const int c = triangles[t + static_cast<std::size_t>(k)];
       ASSERT_TRUE(c >= 0 && c < static_cast<int>(at.size()));
+      ASSERT_EQ(c, std::find(at.begin(), at.end(), at[static_cast<std::size_t>(c)]) - at.begin())
+        << "a corner not reported by the smallest index of the corners at its place";
       corners[static_cast<std::size_t>(k)] = at[static_cast<std::size_t>(c)];
       used.insert(at[static_cast<std::size_t>(c)]);
     }
