@@ -140,8 +140,9 @@ void MonotoneTriangulator::sortByKey(std::size_t count)
 }
 
 /// The corners that turn become vertices, linked round their loops past the corners that go
-/// straight on. False when an edge is not axis-parallel or has no length, a loop goes back on
-/// itself or never turns, or the coordinates are too large.
+/// straight on. False when next is not a permutation of the corners, an edge is not
+/// axis-parallel or has no length, a loop goes back on itself or never turns, or the coordinates
+/// are too large.
 bool MonotoneTriangulator::setUpRings(const std::vector<std::array<std::int64_t, 2>>& at,
   const std::vector<int>& next)
 {
@@ -151,12 +152,14 @@ bool MonotoneTriangulator::setUpRings(const std::vector<std::array<std::int64_t,
   // the sweep never moves the vertices; pages never touched cost nothing.
   this->V.reserve(3 * at.size());
   this->VertexOf.assign(at.size(), -1);
-  this->PrevCorner.resize(at.size());
+  this->PrevCorner.assign(at.size(), -1);
   std::int64_t maxX = at[0][0], maxY = at[0][1];
   this->MinX = maxX;
   this->MinY = maxY;
   for (int i = 0; i < n; ++i)
   {
+    if (next[i] < 0 || next[i] >= n || this->PrevCorner[next[i]] >= 0)
+      return false; // next is not a permutation of the corners: no loops
     this->PrevCorner[next[i]] = i;
     this->MinX = std::min(this->MinX, at[i][0]);
     this->MinY = std::min(this->MinY, at[i][1]);

@@ -23,8 +23,9 @@
 // 5. Each triangle side that is a loop edge gets back the straight-on corners set aside on it:
 //    the triangle is cut into a fan from a corner off that side, so every corner of the loops is
 //    a corner of the triangles and no triangle is flat.
-// Every triangle is checked to turn strictly left in real coordinates; a failed check (none is
-// known) makes triangulate return false, and the caller uses its general method.
+// Every triangle is checked to turn strictly left in real coordinates; a failed check makes
+// triangulate return false, and the caller uses its general method. The loops must be valid
+// (as the B-Rep gives them): not every invalid input is detected (see triangulate).
 // Work: a radix sort of the corners and O(log_64 width) per sweep event; the arrays are kept
 // from call to call, so a caller triangulating many faces allocates nothing once they have grown.
 #ifndef vbr_MonotoneTriangulator_h
@@ -64,8 +65,14 @@ public:
   /// the corners `at` ((x, y), coordinates below 2^30 in magnitude), where next[i] follows
   /// corner i in its loop, counter-clockwise round the inside (outer loops counter-clockwise,
   /// holes clockwise). Each triangle turns counter-clockwise; a corner is reported by the
-  /// smallest index of the corners at its place. False, with `triangles` possibly lengthened, when
-  /// the loops are not those of an orthogonal polygon as described above or a check fails.
+  /// smallest index of the corners at its place.
+  /// The loops must be valid: next a permutation of the corners, one outer loop counter-clockwise
+  /// with its holes clockwise inside it, as the B-Rep gives them. False, with `triangles` possibly
+  /// lengthened, for next not a permutation, an edge not axis-parallel or of no length, three
+  /// corners at one place, coordinates too large, and for the invalid loops found by the sweep or
+  /// its checks: loops that cross, a hole outside the outer loop, a loop given twice, loops with
+  /// overlapping edges, a clockwise outer loop. Not detected (true, with overlapping triangles):
+  /// a counter-clockwise hole inside the outer loop, a counter-clockwise loop nested in it.
   bool triangulate(const std::vector<std::array<std::int64_t, 2>>& at,
     const std::vector<int>& next,
     std::vector<int>& triangles);

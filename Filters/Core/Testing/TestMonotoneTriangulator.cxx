@@ -331,6 +331,48 @@ TEST(MonotoneTriangulator, HandMadeDegenerateFaces)
   checkLoops({ comb });
 }
 
+/// Whether the sweep refuses the loops (corner lists, each closed).
+bool refuses(const std::vector<std::vector<P2>>& loops)
+{
+  std::vector<P2> at;
+  std::vector<int> next;
+  for (const std::vector<P2>& loop : loops)
+  {
+    const int start = static_cast<int>(at.size()), n = static_cast<int>(loop.size());
+    for (int i = 0; i < n; ++i)
+    {
+      at.push_back(loop[static_cast<std::size_t>(i)]);
+      next.push_back(start + (i + 1) % n);
+    }
+  }
+  vbr::MonotoneTriangulator sweep;
+  std::vector<int> triangles;
+  return !sweep.triangulate(at, next, triangles);
+}
+
+// The invalid inputs the header says are refused.
+TEST(MonotoneTriangulator, RefusesInvalidLoops)
+{
+  const std::vector<P2> square{ { 0, 0 }, { 4, 0 }, { 4, 4 }, { 0, 4 } };
+  EXPECT_FALSE(refuses({ square }));
+  // A clockwise outer loop.
+  EXPECT_TRUE(refuses({ { { 0, 0 }, { 0, 4 }, { 4, 4 }, { 4, 0 } } }));
+  // A hole crossing the outer loop.
+  EXPECT_TRUE(refuses({ square, { { 2, 1 }, { 2, 3 }, { 6, 3 }, { 6, 1 } } }));
+  // A hole outside the outer loop.
+  EXPECT_TRUE(refuses({ square, { { 6, 1 }, { 6, 3 }, { 8, 3 }, { 8, 1 } } }));
+  // The outer loop twice.
+  EXPECT_TRUE(refuses({ square, square }));
+  // A hole with an edge on the outer loop's.
+  EXPECT_TRUE(refuses({ square, { { 0, 1 }, { 0, 3 }, { 2, 3 }, { 2, 1 } } }));
+  // next not a permutation: corner 3 goes back to corner 1, nothing goes to corner 0.
+  vbr::MonotoneTriangulator sweep;
+  std::vector<int> triangles;
+  EXPECT_FALSE(sweep.triangulate(square, { 1, 2, 3, 1 }, triangles));
+  EXPECT_FALSE(sweep.triangulate(square, { 1, 2, 3, 4 }, triangles));
+  EXPECT_TRUE(sweep.triangulate(square, { 1, 2, 3, 0 }, triangles)); // the arrays recover
+}
+
 // The face triangulator on a large face with many holes (a frame round a random image) and on
 // long tree-shaped loops: its triangles come from the sweep, and tile the face as above.
 TEST(MonotoneTriangulator, FaceTriangulatorUsesTheSweepForHoles)
