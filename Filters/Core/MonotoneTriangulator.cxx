@@ -677,6 +677,11 @@ bool MonotoneTriangulator::triangulate(const std::vector<std::array<std::int64_t
     maxX = std::max<std::int64_t>(maxX, v.x);
     v.straightAfter = this->VertexOf[next[v.outCorner]] < 0;
   }
+  // The status and EdgeAt have one slot per x in the face's width, kept from call to call:
+  // a face much wider than its corners are many is left to the caller's general method, so
+  // that memory stays linear in the corners.
+  if (maxX - this->MinX > MaxWidthPerCorner * static_cast<std::int64_t>(at.size()) + MaxWidthBase)
+    return false;
   this->shiftCorners();
   if (!this->orderForSweep(maxX))
     return false;

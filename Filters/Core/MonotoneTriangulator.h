@@ -73,9 +73,13 @@ public:
   /// its checks: loops that cross, a hole outside the outer loop, a loop given twice, loops with
   /// overlapping edges, a clockwise outer loop. Not detected (true, with overlapping triangles):
   /// a counter-clockwise hole inside the outer loop, a counter-clockwise loop nested in it.
+  /// Also false, leaving the face to a general method, when its x-extent exceeds
+  /// MaxWidthPerCorner * corners + MaxWidthBase (the sweep's arrays have one slot per x).
   bool triangulate(const std::vector<std::array<std::int64_t, 2>>& at,
     const std::vector<int>& next,
     std::vector<int>& triangles);
+
+  static constexpr std::int64_t MaxWidthPerCorner = 64, MaxWidthBase = 4096;
 
 private:
   struct Vertex

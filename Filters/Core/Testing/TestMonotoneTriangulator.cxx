@@ -373,6 +373,24 @@ TEST(MonotoneTriangulator, RefusesInvalidLoops)
   EXPECT_TRUE(sweep.triangulate(square, { 1, 2, 3, 0 }, triangles)); // the arrays recover
 }
 
+/// A square of side `width` with a square hole (8 corners).
+std::vector<std::vector<P2>> frame(std::int64_t width)
+{
+  return { { { 0, 0 }, { width, 0 }, { width, width }, { 0, width } },
+    { { 1, 1 }, { 1, width - 1 }, { width - 1, width - 1 }, { width - 1, 1 } } };
+}
+
+// A face much wider than its corners are many is refused (its arrays would grow with the
+// width: 2^25 wide took 141 MB); up to the limit it is tiled.
+TEST(MonotoneTriangulator, RefusesFacesTooWideForTheirCorners)
+{
+  const std::int64_t limit =
+    vbr::MonotoneTriangulator::MaxWidthPerCorner * 8 + vbr::MonotoneTriangulator::MaxWidthBase;
+  EXPECT_FALSE(refuses(frame(limit)));
+  EXPECT_TRUE(refuses(frame(limit + 1)));
+  EXPECT_TRUE(refuses(frame(std::int64_t(1) << 25)));
+}
+
 // The face triangulator on a large face with many holes (a frame round a random image) and on
 // long tree-shaped loops: its triangles come from the sweep, and tile the face as above.
 TEST(MonotoneTriangulator, FaceTriangulatorUsesTheSweepForHoles)
