@@ -391,6 +391,92 @@ TEST(MonotoneTriangulator, RefusesFacesTooWideForTheirCorners)
   EXPECT_TRUE(refuses(frame(std::int64_t(1) << 25)));
 }
 
+// A face the sweep refuses (too wide for its corners) goes to triangulateFace's Delaunay
+// method: its triangles must turn counter-clockwise, add up to the face's area, use every
+// corner and hold generic sample points (near every corner's lines and random ones) exactly
+// when the loops do.
+TEST(MonotoneTriangulator, FaceTriangulatorFallsBackWhenTheSweepRefuses)
+{
+  const std::vector<std::vector<P2>> loops{
+    { { 0, 0 }, { 10000, 0 }, { 10000, 10000 }, { 0, 10000 } },
+    { { 1000, 1000 }, { 1000, 2000 }, { 2000, 2000 }, { 2000, 1000 } },
+    { { 5000, 3000 }, { 5000, 3500 }, { 7000, 3500 }, { 7000, 3000 } }
+  };
+  ASSERT_TRUE(refuses(loops));
+  vbr::BRep brep;
+  brep.faces.push_back(vbr::BRepFace{});
+  brep.faces[0].firstLoop = 0;
+  brep.faces[0].loopCount = static_cast<int>(loops.size());
+  std::vector<P2> at;
+  std::vector<int> next;
+  for (const std::vector<P2>& loop : loops)
+  {
+    vbr::BRepLoop l;
+    l.begin = brep.points.size();
+    l.face = 0;
+    l.hole = !brep.loops.empty();
+    const int start = static_cast<int>(at.size()), n = static_cast<int>(loop.size());
+    for (int i = 0; i < n; ++i)
+    {
+      const P2& p = loop[static_cast<std::size_t>(i)];
+      brep.points.push_back({ static_cast<vbr::Coord>(p[0]), static_cast<vbr::Coord>(p[1]), 0 });
+      at.push_back(p);
+      next.push_back(start + (i + 1) % n);
+    }
+    l.end = brep.points.size();
+    brep.loops.push_back(l);
+  }
+  const auto triangles = vbr::triangulateFace(brep, 0);
+  ASSERT_FALSE(triangles.empty());
+  Wide area = 0, twiceTriangles = 0;
+  for (std::size_t i = 0; i < at.size(); ++i)
+    area += cross({ 0, 0 }, at[i], at[static_cast<std::size_t>(next[i])]);
+  std::set<P2> used;
+  std::vector<std::array<P2, 3>> tri;
+  const std::int64_t M = 8 * 10000 + 11, scale = 4 * M * M;
+  for (const std::array<int, 3>& t : triangles)
+  {
+    std::array<P2, 3> corners;
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      ASSERT_TRUE(t[k] >= 0 && t[k] < static_cast<int>(at.size()));
+      corners[k] = at[static_cast<std::size_t>(t[k])];
+      used.insert(corners[k]);
+    }
+    const Wide c = cross(corners[0], corners[1], corners[2]);
+    ASSERT_GT(c, 0) << "a triangle flat or turned clockwise";
+    twiceTriangles += c;
+    for (P2& q : corners)
+      q = { q[0] * scale, q[1] * scale };
+    tri.push_back(corners);
+  }
+  EXPECT_TRUE(area == twiceTriangles) << "the triangles do not add up to the face's area";
+  EXPECT_EQ(used, std::set<P2>(at.begin(), at.end())) << "a loop corner is no triangle corner";
+  // Sample abscissae and ordinates in quarter units: round every corner's lines, and random.
+  std::vector<std::int64_t> quarters;
+  for (const P2& p : at)
+    for (const std::int64_t c : { p[0], p[1] })
+      for (std::int64_t d = -1; d <= 1; ++d)
+        if (4 * c + d >= 0 && 4 * c + d < 40000)
+          quarters.push_back(4 * c + d);
+  std::uint64_t state = 99;
+  for (int k = 0; k < 40; ++k)
+  {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    quarters.push_back(static_cast<std::int64_t>((state >> 33) % 40000));
+  }
+  for (const std::int64_t x : quarters)
+    for (const std::int64_t y : quarters)
+    {
+      const P2 s{ x * M * M + M, y * M * M + 1 };
+      int covered = 0;
+      for (const auto& t : tri)
+        covered += cross(t[0], t[1], s) > 0 && cross(t[1], t[2], s) > 0 && cross(t[2], t[0], s) > 0;
+      ASSERT_EQ(covered, insideLoops(at, next, s, scale) ? 1 : 0)
+        << "sample " << x << "/4 " << y << "/4";
+    }
+}
+
 // The face triangulator on a large face with many holes (a frame round a random image) and on
 // long tree-shaped loops: its triangles come from the sweep, and tile the face as above.
 TEST(MonotoneTriangulator, FaceTriangulatorUsesTheSweepForHoles)
