@@ -438,7 +438,7 @@ bool MonotoneTriangulator::handleVertex(int v)
     }
     this->eraseEdge(this->V[v].prev);
     this->insertEdge(self);
-    this->V[self].helper = v;
+    this->V[self].helper = self;
     return true;
   }
   const int slot = this->leftOf(v);
