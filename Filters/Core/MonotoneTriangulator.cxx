@@ -392,6 +392,11 @@ bool MonotoneTriangulator::handleVertex(int v)
       this->V[v].helper = v;
       return true;
     case End:
+      // Never a merge helper for orthogonal loops: the edge into an end vertex goes down and
+      // the edge out of it goes right along the bottom of the inside to a vertex swept just
+      // before it (same row, larger x). Nothing crosses the inside just above that bottom edge,
+      // so that vertex, a regular one, found this edge directly left of it and became its
+      // helper. Kept as in de Berg et al.
       if (isMerge(this->V[v].prev))
         this->addDiagonal(v, this->V[this->V[v].prev].helper);
       this->eraseEdge(this->V[v].prev);
