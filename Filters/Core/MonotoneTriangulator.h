@@ -126,11 +126,9 @@ private:
   }
 
   const std::vector<std::array<std::int64_t, 2>>* At = nullptr;
-  std::vector<Vertex> V;          ///< the turning corners, then the copies made by diagonals
-  std::vector<int> VertexOf;      ///< by corner: its vertex, or -1 if it goes straight on
-  std::vector<int> Reported;      ///< by corner: the first corner at its place
-  std::vector<int> PrevCorner;    ///< by corner: the corner before it in its loop
-  std::vector<std::uint64_t> Key; ///< by vertex: its place in the sweep (larger first)
+  std::vector<Vertex> V;       ///< the turning corners, then the copies made by diagonals
+  std::vector<int> VertexOf;   ///< by corner: its vertex, or -1 if it goes straight on
+  std::vector<int> PrevCorner; ///< by corner: the corner before it in its loop
   std::vector<std::uint64_t> SortKeys, SortScratch;
   std::vector<int> Order, OrderScratch; ///< the vertices sorted (from the top for the sweep)
   std::vector<std::uint32_t> Count;
