@@ -381,10 +381,52 @@ int MonotoneTriangulator::leftOf(int v) const
   return static_cast<int>(this->Status.below(static_cast<std::size_t>(this->V[v].x - this->MinX)));
 }
 
+/// At a split vertex: a diagonal to the helper of the edge left of it, and its copy's edge (the
+/// one leaving it) in the status.
+bool MonotoneTriangulator::handleSplit(int v)
+{
+  const int slot = this->leftOf(v);
+  if (slot < 0)
+    return false;
+  this->addDiagonal(v, this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper);
+  const int copy = static_cast<int>(this->V.size()) - 2;
+  this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper = v;
+  this->insertEdge(copy);
+  this->V[copy].helper = copy;
+  return true;
+}
+
+/// Ends the edge into v: a diagonal to its helper when that is a merge vertex. Returns the
+/// vertex that goes on below v (v's copy after a diagonal, v otherwise).
+int MonotoneTriangulator::closeEdgeInto(int v)
+{
+  int self = v;
+  if (this->V[this->V[this->V[v].prev].helper].type == Merge)
+  {
+    this->addDiagonal(v, this->V[this->V[v].prev].helper);
+    self = static_cast<int>(this->V.size()) - 2;
+  }
+  this->eraseEdge(this->V[v].prev);
+  return self;
+}
+
+/// `self` becomes the helper of the edge left of v, after a diagonal to the old helper when that
+/// is a merge vertex.
+bool MonotoneTriangulator::helpEdgeLeftOf(int v, int self)
+{
+  const int slot = this->leftOf(v);
+  if (slot < 0)
+    return false;
+  const std::size_t at = static_cast<std::size_t>(slot);
+  if (this->V[this->V[this->EdgeAt[at]].helper].type == Merge)
+    this->addDiagonal(self, this->V[this->EdgeAt[at]].helper);
+  this->V[this->EdgeAt[at]].helper = self; // the diagonal may have moved the edge to a copy
+  return true;
+}
+
 /// One event of the sweep (de Berg et al., HandleStartVertex and the others).
 bool MonotoneTriangulator::handleVertex(int v)
 {
-  const auto isMerge = [this](int u) { return this->V[this->V[u].helper].type == Merge; };
   switch (this->V[v].type)
   {
     case Start:
@@ -397,62 +439,23 @@ bool MonotoneTriangulator::handleVertex(int v)
       // before it (same row, larger x). Nothing crosses the inside just above that bottom edge,
       // so that vertex, a regular one, found this edge directly left of it and became its
       // helper. Kept as in de Berg et al.
-      if (isMerge(this->V[v].prev))
-        this->addDiagonal(v, this->V[this->V[v].prev].helper);
-      this->eraseEdge(this->V[v].prev);
+      this->closeEdgeInto(v);
       return true;
     case Split:
-    {
-      const int slot = this->leftOf(v);
-      if (slot < 0)
-        return false;
-      this->addDiagonal(v, this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper);
-      const int copy = static_cast<int>(this->V.size()) - 2;
-      this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper = v;
-      this->insertEdge(copy);
-      this->V[copy].helper = copy;
-      return true;
-    }
+      return this->handleSplit(v);
     case Merge:
-    {
-      int self = v;
-      if (isMerge(this->V[v].prev))
-      {
-        this->addDiagonal(v, this->V[this->V[v].prev].helper);
-        self = static_cast<int>(this->V.size()) - 2;
-      }
-      this->eraseEdge(this->V[v].prev);
-      const int slot = this->leftOf(v);
-      if (slot < 0)
-        return false;
-      if (isMerge(this->EdgeAt[static_cast<std::size_t>(slot)]))
-        this->addDiagonal(self, this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper);
-      this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper = self;
-      return true;
-    }
+      return this->helpEdgeLeftOf(v, this->closeEdgeInto(v));
     default:
       break;
   }
   if (this->below(v, this->V[v].prev)) // the inside on the right: a left chain going down
   {
-    int self = v;
-    if (isMerge(this->V[v].prev))
-    {
-      this->addDiagonal(v, this->V[this->V[v].prev].helper);
-      self = static_cast<int>(this->V.size()) - 2;
-    }
-    this->eraseEdge(this->V[v].prev);
+    const int self = this->closeEdgeInto(v);
     this->insertEdge(self);
     this->V[self].helper = self;
     return true;
   }
-  const int slot = this->leftOf(v);
-  if (slot < 0)
-    return false;
-  if (isMerge(this->EdgeAt[static_cast<std::size_t>(slot)]))
-    this->addDiagonal(v, this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper);
-  this->V[this->EdgeAt[static_cast<std::size_t>(slot)]].helper = v;
-  return true;
+  return this->helpEdgeLeftOf(v, v);
 }
 
 bool MonotoneTriangulator::sweep()
@@ -561,17 +564,12 @@ bool MonotoneTriangulator::emitTriangle(int a,
   return this->emitExpanded(triangles);
 }
 
-/// The stack walk down the two chains of the y-monotone piece Piece (de Berg et al.,
-/// TriangulateMonotonePolygon), orientations in the shrunk polygon.
-bool MonotoneTriangulator::triangulatePiece(const std::vector<int>& next,
-  std::vector<int>& triangles)
+/// Merged: the places in Piece from the top down, ChainOf: the chain of each (1 left, -1 right,
+/// 0 the top and bottom). False when the piece is not y-monotone.
+bool MonotoneTriangulator::mergeChains()
 {
   const std::size_t k = this->Piece.size();
   const int* P = this->Piece.data();
-  if (k < 3)
-    return false;
-  if (k == 3)
-    return this->emitTriangle(P[0], P[1], P[2], next, triangles);
   std::size_t top = 0, bottom = 0;
   for (std::size_t i = 1; i < k; ++i)
   {
@@ -604,6 +602,22 @@ bool MonotoneTriangulator::triangulatePiece(const std::vector<int>& next,
   for (std::size_t i = 1; i < k; ++i)
     if (!this->below(P[this->Merged[i]], P[this->Merged[i - 1]]))
       return false; // the chains do not go down
+  return true;
+}
+
+/// The stack walk down the two chains of the y-monotone piece Piece (de Berg et al.,
+/// TriangulateMonotonePolygon), orientations in the shrunk polygon.
+bool MonotoneTriangulator::triangulatePiece(const std::vector<int>& next,
+  std::vector<int>& triangles)
+{
+  const std::size_t k = this->Piece.size();
+  const int* P = this->Piece.data();
+  if (k < 3)
+    return false;
+  if (k == 3)
+    return this->emitTriangle(P[0], P[1], P[2], next, triangles);
+  if (!this->mergeChains())
+    return false;
   std::vector<int>& stack = this->Stack;
   stack.assign({ this->Merged[0], this->Merged[1] });
   const auto tri = [&](std::size_t x, std::size_t y, std::size_t z)

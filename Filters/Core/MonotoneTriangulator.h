@@ -106,12 +106,16 @@ private:
   void classify();
   bool sweep();
   bool handleVertex(int v);
+  bool handleSplit(int v);
+  int closeEdgeInto(int v);
+  bool helpEdgeLeftOf(int v, int self);
   int leftOf(int v) const;
   void addDiagonal(int a, int b);
   void insertEdge(int v);
   void eraseEdge(int v);
   bool triangulatePieces(const std::vector<int>& next, std::vector<int>& triangles);
   bool triangulatePiece(const std::vector<int>& next, std::vector<int>& triangles);
+  bool mergeChains();
   bool emitTriangle(int a, int b, int c, const std::vector<int>& next, std::vector<int>& triangles);
   bool straightCornersOf(int a, int b, const std::vector<int>& next, std::vector<int>& corners);
   bool emitExpanded(std::vector<int>& triangles);
