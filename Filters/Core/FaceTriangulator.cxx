@@ -3,13 +3,14 @@
 //
 // A face without holes and of at most EarClippingLimit corners is ear-clipped exactly
 // (clipEars); so is each edge-connected part of a face whose parts touch at corners, when no
-// part has a hole (edgeConnectedParts); every other face goes through CGAL's constrained
-// Delaunay triangulation of all its loops, whose triangles inside the face are those at odd
-// nesting depth from the outside (markNesting). fanPolygons gives what a renderer drawing a polygon
-// as the fan from its first corner draws right: the outer loop itself, started at a corner whose
-// fan covers it (fanApex), unless it passes a corner twice; else each edge-connected part of a
-// face merged at vertices likewise; or else the triangles grouped into fans round shared
-// corners (FanGrouper).
+// part has a hole (edgeConnectedParts); every other face is cut into monotone pieces by a sweep
+// and each piece triangulated in linear time (MonotoneTriangulator); only a face the sweep
+// refuses goes through CGAL's constrained Delaunay triangulation of all its loops, whose
+// triangles inside the face are those at odd nesting depth from the outside (markNesting).
+// fanPolygons gives what a renderer drawing a polygon as the fan from its first corner draws right:
+// the outer loop itself, started at a corner whose fan covers it (fanApex), unless it passes a
+// corner twice; else each edge-connected part of a face merged at vertices likewise; or else the
+// triangles grouped into fans round shared corners (FanGrouper).
 
 #include "FaceTriangulator.h"
 
@@ -818,6 +819,33 @@ void appendDelaunayTriangles(const BRep& brep, const BRepFace& face, FaceCells& 
   }
 }
 
+/// Appends the triangles of a face with holes or a long loop from the sweep into monotone
+/// pieces (MonotoneTriangulator), in the coordinates of clipEars, where every loop runs with the
+/// inside on its left; false when the sweep refuses the face.
+bool appendMonotoneTriangles(const BRep& brep, const BRepFace& face, FaceCells& out)
+{
+  const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
+  const int x = face.normalSign > 0 ? u : v, y = face.normalSign > 0 ? v : u;
+  out.loop2D.clear();
+  out.loopNext.clear();
+  for (int l = face.firstLoop; l < face.firstLoop + face.loopCount; ++l)
+  {
+    const PointRange pts = brep.loopPoints(l);
+    const int start = static_cast<int>(out.loop2D.size()), n = static_cast<int>(pts.size());
+    for (int i = 0; i < n; ++i)
+    {
+      out.loop2D.push_back({ pts[i][x], pts[i][y] });
+      out.loopNext.push_back(start + (i + 1 == n ? 0 : i + 1));
+    }
+  }
+  const std::size_t from = out.corners.size();
+  if (!out.monotone.triangulate(out.loop2D, out.loopNext, out.corners))
+    return false;
+  for (std::size_t c = from + 3; c <= out.corners.size(); c += 3)
+    out.cellEnds.push_back(static_cast<std::uint32_t>(c));
+  return true;
+}
+
 /// The corners of all the loops of a face (outer loop first), each with the next corner of its
 /// own loop.
 struct LoopCorners
@@ -989,8 +1017,9 @@ RingKind ringKind(const PointRange& pts, int u, int v, int sign, FaceCells& out)
                                                                                 : RingKind::Any;
 }
 
-/// Appends the triangles of face `f` without closing the face.
-void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
+/// Appends the triangles of face `f` without closing the face. `tryParts`: whether the face may
+/// have edge-connected parts to ear-clip (false when the caller found it has none).
+void appendTrianglesOf(const BRep& brep, int f, FaceCells& out, bool tryParts = true)
 {
   const BRepFace& face = brep.faces[f];
   const PointRange outer = brep.loopPoints(face.firstLoop);
@@ -1004,8 +1033,12 @@ void appendTrianglesOf(const BRep& brep, int f, FaceCells& out)
     out.cellEnds.resize(cells);
   }
   FaceParts parts;
-  if (brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts) &&
+  if (tryParts && brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts) &&
     clipParts(parts, u, v, face.normalSign, out))
+    return;
+  out.corners.resize(corners);
+  out.cellEnds.resize(cells);
+  if (appendMonotoneTriangles(brep, face, out))
     return;
   out.corners.resize(corners);
   out.cellEnds.resize(cells);
@@ -1046,11 +1079,11 @@ void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
 }
 
 /// Appends the fans of the triangles of face `f` (triangulateFace), its triangles made in
-/// `cells` itself and moved to its scratch space.
-void appendFanGroups(const BRep& brep, int f, FaceCells& cells)
+/// `cells` itself and moved to its scratch space; `tryParts` as in appendTrianglesOf.
+void appendFanGroups(const BRep& brep, int f, FaceCells& cells, bool tryParts)
 {
   const std::size_t corners = cells.corners.size(), cellCount = cells.cellEnds.size();
-  appendTrianglesOf(brep, f, cells);
+  appendTrianglesOf(brep, f, cells, tryParts);
   std::vector<std::array<int, 3>>& triangles = cells.fans.triangles;
   triangles.resize((cells.corners.size() - corners) / 3);
   for (std::size_t t = 0; t < triangles.size(); ++t)
@@ -1063,12 +1096,13 @@ void appendFanGroups(const BRep& brep, int f, FaceCells& cells)
 
 /// The polygons of a face whose edge-connected parts touch at corners (edgeConnectedParts),
 /// one per part, when each part is drawn right as the fan from one of its corners; false,
-/// with nothing appended, otherwise.
-bool appendPartPolygons(const BRep& brep, const BRepFace& face, FaceCells& cells)
+/// with nothing appended, otherwise. `hasParts`: whether the face has such parts at all.
+bool appendPartPolygons(const BRep& brep, const BRepFace& face, FaceCells& cells, bool& hasParts)
 {
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   FaceParts parts;
-  if (!brep.mergedAtVertices || !edgeConnectedParts(brep, face, u, v, parts))
+  hasParts = brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts);
+  if (!hasParts)
     return false;
   const std::size_t corners = cells.corners.size(), cellCount = cells.cellEnds.size();
   for (std::size_t k = 0; k < parts.count(); ++k)
@@ -1119,8 +1153,9 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
       return;
     }
   }
-  if (!appendPartPolygons(brep, face, cells))
-    appendFanGroups(brep, f, cells);
+  bool hasParts = false;
+  if (!appendPartPolygons(brep, face, cells, hasParts))
+    appendFanGroups(brep, f, cells, hasParts);
   cells.endFace();
 }
 

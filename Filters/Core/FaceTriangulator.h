@@ -3,6 +3,7 @@
 #define vbr_FaceTriangulator_h
 
 #include "BRep.h"
+#include "MonotoneTriangulator.h"
 #include "PolygonTriangulator.h"
 
 #include <array>
@@ -68,8 +69,8 @@ struct EarScratch
 /// The cells of a run of faces in flat arrays (no allocation per cell, nor per face but for faces
 /// merged at vertices): cell k has the corners `corners[cellEnds[k - 1] .. cellEnds[k])`
 /// (cellEnds[-1] = 0), indices as in triangulateFace; the cells of the run's i-th face end at cell
-/// `faceEnds[i]`. `ring`, `earCorners`, `loop2D`, `keys` and `fans` are scratch space reused
-/// from face to face.
+/// `faceEnds[i]`. `ring`, `earCorners`, `loop2D`, `loopNext`, `keys`, `fans` and `monotone` are
+/// scratch space reused from face to face.
 struct FaceCells
 {
   std::vector<int> corners;
@@ -78,8 +79,10 @@ struct FaceCells
   std::vector<int> ring;
   EarScratch earCorners;
   std::vector<Point2L> loop2D;
+  std::vector<int> loopNext;
   std::vector<std::uint64_t> keys;
   FanScratch fans;
+  MonotoneTriangulator monotone;
 
   std::size_t cellBegin(std::size_t face) const { return face == 0 ? 0 : this->faceEnds[face - 1]; }
   std::size_t cornerBegin(std::size_t cell) const
