@@ -56,6 +56,25 @@ bool insideLoops(const std::vector<P2>& at,
   return inside;
 }
 
+/// Asserts that the generic sample point at quarter units (x, y) of the face lies in exactly
+/// one triangle of `tri` (corners scaled by `scale` = 4 M^2) when inside the loops, in none
+/// outside.
+void expectCoveredOnceInside(const std::vector<std::array<P2, 3>>& tri,
+  const std::vector<P2>& at,
+  const std::vector<int>& next,
+  std::int64_t M,
+  std::int64_t x,
+  std::int64_t y)
+{
+  const std::int64_t scale = 4 * M * M;
+  const P2 s{ x * M * M + M, y * M * M + 1 };
+  int covered = 0;
+  for (const auto& t : tri)
+    covered += cross(t[0], t[1], s) > 0 && cross(t[1], t[2], s) > 0 && cross(t[2], t[0], s) > 0;
+  ASSERT_EQ(covered, insideLoops(at, next, s, scale) ? 1 : 0)
+    << "sample " << x << "/4 " << y << "/4";
+}
+
 struct Counts
 {
   std::size_t faces = 0, withHoles = 0, touching = 0, straight = 0, triangles = 0;
@@ -153,12 +172,9 @@ void checkFace(vbr::MonotoneTriangulator& sweep,
   for (std::int64_t x = 4 * x0; x < 4 * x1; ++x)
     for (std::int64_t y = 4 * y0; y < 4 * y1; ++y)
     {
-      const P2 s{ x * M * M + M, y * M * M + 1 };
-      int covered = 0;
-      for (const auto& t : tri)
-        covered += cross(t[0], t[1], s) > 0 && cross(t[1], t[2], s) > 0 && cross(t[2], t[0], s) > 0;
-      ASSERT_EQ(covered, insideLoops(at, next, s, scale) ? 1 : 0)
-        << "sample " << x << "/4 " << y << "/4";
+      expectCoveredOnceInside(tri, at, next, M, x, y);
+      if (testing::Test::HasFatalFailure())
+        return;
     }
 }
 
@@ -468,12 +484,9 @@ TEST(MonotoneTriangulator, FaceTriangulatorFallsBackWhenTheSweepRefuses)
   for (const std::int64_t x : quarters)
     for (const std::int64_t y : quarters)
     {
-      const P2 s{ x * M * M + M, y * M * M + 1 };
-      int covered = 0;
-      for (const auto& t : tri)
-        covered += cross(t[0], t[1], s) > 0 && cross(t[1], t[2], s) > 0 && cross(t[2], t[0], s) > 0;
-      ASSERT_EQ(covered, insideLoops(at, next, s, scale) ? 1 : 0)
-        << "sample " << x << "/4 " << y << "/4";
+      expectCoveredOnceInside(tri, at, next, M, x, y);
+      if (testing::Test::HasFatalFailure())
+        return;
     }
 }
 
