@@ -28,6 +28,13 @@ vbr::Execution threadedExecution(int threads);
 /// Random voxel set with the given density; seeds give reproducible volumes.
 vbr::BitVolume randomVolume(const vbr::Point3& dims, double density, unsigned seed);
 
+/// The dimensions of a random volume of trial `trial` in a series: each edge `least` or more,
+/// cycling through 11 x 9 x 8 combinations so that a series meets thin plates and cubes alike.
+inline vbr::Point3 trialDims(int trial, int least)
+{
+  return { least + (trial * 5) % 11, least + (trial * 3) % 9, least + (trial * 7) % 8 };
+}
+
 /// Voxel value with everything outside the grid empty.
 bool voxel(const vbr::BitVolume& v, std::int32_t x, std::int32_t y, std::int32_t z);
 

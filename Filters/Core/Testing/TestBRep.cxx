@@ -256,7 +256,7 @@ TEST(BRep, TJunctionVerticesMatchBruteForce)
   unsigned seed = 4100;
   for (int trial = 0; trial < 8; ++trial)
   {
-    const vbr::Point3 d{ 3 + (trial * 5) % 11, 3 + (trial * 3) % 9, 3 + (trial * 7) % 8 };
+    const vbr::Point3 d = bf::trialDims(trial, 3);
     const vbr::BitVolume v = bf::randomVolume(d, 0.2 + 0.1 * trial, seed++);
     vbr::BRep brep;
     ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, {}, brep));

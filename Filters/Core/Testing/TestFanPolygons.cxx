@@ -218,7 +218,7 @@ TEST(FanPolygons, TileTheFacesOfRandomVolumes)
   unsigned seed = 5100;
   for (int trial = 0; trial < 40; ++trial)
   {
-    const vbr::Point3 d{ 2 + (trial * 5) % 11, 2 + (trial * 3) % 9, 2 + (trial * 7) % 8 };
+    const vbr::Point3 d = bf::trialDims(trial, 2);
     const double density = 0.1 + 0.8 * (trial % 8) / 7.0;
     const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
     SCOPED_TRACE(testing::Message() << "trial " << trial << " density " << density);
