@@ -2077,6 +2077,35 @@ int perturbedOrientation(const LatticePoint& u,
   return v[1] > u[1] ? 1 : -1;
 }
 
+/// perturbedOrientation for corners and (y, z) below 2^30 in magnitude: the same signs, the
+/// products in 64 bits (each below 2^62).
+int perturbedOrientation64(const LatticePoint& u,
+  const LatticePoint& v,
+  std::int64_t y,
+  std::int64_t z)
+{
+  const std::int64_t o = (v[1] - u[1]) * (z - u[2]) - (v[2] - u[2]) * (y - u[1]);
+  if (o != 0)
+    return o > 0 ? 1 : -1;
+  if (v[2] != u[2])
+    return v[2] > u[2] ? -1 : 1;
+  return v[1] > u[1] ? 1 : -1;
+}
+
+/// Sets the bits lo..hi (lo <= hi + 1) of a row of words, a word at a time.
+void setRun(Word* row, std::int64_t lo, std::int64_t hi)
+{
+  for (std::int64_t w = lo >> 6; lo <= hi && w <= hi >> 6; ++w)
+  {
+    Word bits = ~Word(0);
+    if (w == lo >> 6)
+      bits &= ~Word(0) << (lo & 63);
+    if (w == hi >> 6 && (hi & 63) != 63)
+      bits &= (Word(1) << ((hi & 63) + 1)) - 1;
+    row[w] |= bits;
+  }
+}
+
 } // namespace
 
 bool convexDifferenceIsManifold(const CellList& c, const CellList& g)
@@ -2182,6 +2211,15 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
   // The crossings as (row, x) pairs, then grouped by row (a counting sort): one vector per row
   // of a large grid cost an allocation for each row the surface crosses.
   std::vector<std::pair<std::uint32_t, std::int64_t>> crossings;
+  // Corners below 2^30 in magnitude: the orientations' products fit in 64 bits.
+  const bool small = std::all_of(surface.points.begin(),
+    surface.points.end(),
+    [](const LatticePoint& p)
+    {
+      return std::all_of(p.begin(),
+        p.end(),
+        [](std::int64_t c) { return c > -(std::int64_t(1) << 30) && c < (std::int64_t(1) << 30); });
+    });
   for (const auto& tri : surface.triangles)
   {
     const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
@@ -2198,8 +2236,11 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
            y <= std::min<std::int64_t>(dims[1] - 1, std::max({ a[1], b[1], c[1] }));
            ++y)
       {
-        if (perturbedOrientation(a, b, y, z) != s || perturbedOrientation(b, c, y, z) != s ||
-          perturbedOrientation(c, a, y, z) != s)
+        if (small
+            ? (perturbedOrientation64(a, b, y, z) != s || perturbedOrientation64(b, c, y, z) != s ||
+                perturbedOrientation64(c, a, y, z) != s)
+            : (perturbedOrientation(a, b, y, z) != s || perturbedOrientation(b, c, y, z) != s ||
+                perturbedOrientation(c, a, y, z) != s))
           continue;
         const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
         crossings.emplace_back(static_cast<std::uint32_t>(z * dims[1] + y), ceilDiv(r, nx) - 1);
@@ -2236,8 +2277,7 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
           continue;
         const std::int64_t hi = std::min<std::int64_t>(*c, dims[0] - 1);
         const std::int64_t lo = c + 1 != last ? std::max<std::int64_t>(*(c + 1), -1) + 1 : 0;
-        for (std::int64_t x = lo; x <= hi; ++x)
-          out.set(static_cast<std::int32_t>(x), y, z);
+        setRun(out.row(y, z), lo, hi);
       }
     }
   for (const auto& p : on)
@@ -2422,17 +2462,31 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
   return shells;
 }
 
-/// H and its shells, kept side by side while shells are joined: a join replaces the shells it
-/// changed (joinAlongPrism), so H is not split into its shells again after every join.
+/// H as its shells while shells are joined: a join replaces the shells it changed
+/// (joinAlongPrism), so H is not split into its shells again after every join, and H is put
+/// together from its shells only when asked for (takeMesh), not after every join.
 struct ShelledSurface
 {
-  LatticeMesh mesh;
   std::vector<Shell> shells;
 
   explicit ShelledSurface(const LatticeMesh& m)
-    : mesh(m)
-    , shells(shellsOf(m))
+    : shells(shellsOf(m))
+    , mesh(m)
   {
+  }
+
+  /// H, its shells appended in their order when one was replaced; the surface is left empty.
+  LatticeMesh takeMesh()
+  {
+    if (this->stale)
+    {
+      this->mesh = LatticeMesh{};
+      for (const Shell& s : this->shells)
+        this->mesh.append(s.mesh, false);
+    }
+    this->stale = false;
+    this->shells.clear();
+    return std::move(this->mesh);
   }
 
   /// Puts `pieces` in the place of the shells flagged in `changed` (where the first of them
@@ -2451,10 +2505,12 @@ struct ShelledSurface
           kept.push_back(std::move(p));
       }
     this->shells = std::move(kept);
-    this->mesh = LatticeMesh{};
-    for (const Shell& s : this->shells)
-      this->mesh.append(s.mesh, false);
+    this->stale = true;
   }
+
+private:
+  LatticeMesh mesh;
+  bool stale = false;
 };
 
 long eulerCharacteristic(const LatticeMesh& m)
@@ -2512,14 +2568,20 @@ void markShell(const LatticeMesh& shell,
   const Dims& box = s.box;
   const std::vector<LatticePoint>& on = s.on;
   const BitVolume& inside = s.inside;
+  // The inside's words scanned for their set bits: most of a large shell's box is outside it.
   for (std::int32_t z = 0; z < box[2]; ++z)
     for (std::int32_t y = 0; y < box[1]; ++y)
-      for (std::int32_t x = 0; x < box[0]; ++x)
-      {
-        const LatticePoint p{ x + lo[0], y + lo[1], z + lo[2] };
-        if (inside.get(x, y, z) && inGrid(d, p))
-          out[gridIndex(d, p)] = flag;
-      }
+    {
+      const Word* row = inside.row(y, z);
+      for (std::size_t w = 0; w < inside.wordsPerRow(); ++w)
+        for (Word bits = row[w]; bits != 0; bits &= bits - 1)
+        {
+          const auto x = static_cast<std::int64_t>(64 * w) + __builtin_ctzll(bits);
+          const LatticePoint p{ x + lo[0], y + lo[1], z + lo[2] };
+          if (inGrid(d, p))
+            out[gridIndex(d, p)] = flag;
+        }
+    }
   for (const auto& q : on)
   {
     const LatticePoint p{ q[0] + lo[0], q[1] + lo[1], q[2] + lo[2] };
@@ -3778,14 +3840,14 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   std::set<LatticePoint> failed;
   ShelledSurface repaired(surface);
   const auto planes = ctx.planeLevel;
-  std::vector<std::uint8_t> where = whereInGrid(repaired.mesh, ctx.objects.dims());
+  std::vector<std::uint8_t> where = whereInGrid(surface, ctx.objects.dims());
   std::vector<std::uint8_t> mine(where.size(), 0);
   VoidSearch search(where.size());
   while (joinOneShell(ctx, repaired, where, mine, search, failed))
     ++joined;
   // Checked once at the end, without a self-intersection test of the whole surface
   // (separatesAfterLocalChecks).
-  return keepIfSeparates(ctx, joined, std::move(repaired.mesh), planes, surface);
+  return keepIfSeparates(ctx, joined, repaired.takeMesh(), planes, surface);
 }
 
 /// The contribution to the Euler characteristic of the union of the closed voxel cubes of the
@@ -3971,7 +4033,7 @@ bool cutAtCrossing(Context& ctx,
       tried };
     if (tryPrisms(ctx, pairs, true, shells, shelled, where))
     {
-      surface = std::move(shelled.mesh);
+      surface = shelled.takeMesh();
       return true;
     }
   }
