@@ -83,8 +83,12 @@ bool voxelClass(const BitVolume& v, const LatticePoint& p)
 class RowScan
 {
 public:
-  RowScan(const CellList& c, bool strict)
+  /// `wholeSlices`: each slice is asked for all its rows (forEachRowIn), so that leaving planes
+  /// out of a slice (setSlice) pays; one asked for a few rows per slice (RowSides) does not.
+  RowScan(const CellList& c, bool strict, bool wholeSlices = false)
     : Strict(strict)
+    , Hull(
+        wholeSlices && c.dimension == 3 && !c.edges.empty() && c.planes.size() > 8 ? &c : nullptr)
   {
     for (const FacePlane& p : c.planes)
       this->Planes.push_back({ p.normal[0], p.normal[1], p.normal[2], p.offset, p.offset });
@@ -92,19 +96,68 @@ public:
       this->Planes.begin(), this->Planes.end(), [](const Plane& p) { return p.nx == 0; });
   }
 
+  /// The slice z. A solid hull's slice is bounded by a few of its planes: the planes that keep
+  /// the whole box of the lattice points the slice can hold (sliceBox; kept at its four corners,
+  /// so in all of it) are left out of its rows, whose ranges are cut to that box instead (most
+  /// planes of a large hull, each a product per row before). The ranges are the same: within
+  /// the box those planes exclude no lattice point, and every lattice point of the slice lies
+  /// in the box.
   void setSlice(std::int64_t z)
   {
     for (Plane& p : this->Planes)
       p.atSlice = p.offset - p.nz * z;
+    if (!this->Hull)
+      return;
+    this->Box = this->sliceBox(z);
+    this->Active.clear();
+    if (this->Box[0] > this->Box[1] || this->Box[2] > this->Box[3])
+      return;
+    for (const Plane& p : this->Planes)
+    {
+      bool keepsBox = true;
+      for (int corner = 0; corner < 4 && keepsBox; ++corner)
+      {
+        const std::int64_t x = this->Box[corner & 1], y = this->Box[2 + (corner >> 1)];
+        const __int128 v = __int128(p.nx) * x + __int128(p.ny) * y;
+        keepsBox = this->Strict ? v < p.atSlice : v <= p.atSlice;
+      }
+      if (!keepsBox)
+        this->Active.push_back(p);
+    }
   }
 
   /// The x range [lo, hi] of the row y of the slice inside the hull (its open interior when
   /// `strict`); false when the row misses it.
   bool range(std::int64_t y, std::int64_t& lo, std::int64_t& hi) const
   {
-    lo = std::numeric_limits<std::int64_t>::min() / 4;
-    hi = std::numeric_limits<std::int64_t>::max() / 4;
-    for (const Plane& p : this->Planes)
+    if (!this->Hull)
+      return this->rangeOf(this->Planes,
+        y,
+        std::numeric_limits<std::int64_t>::min() / 4,
+        std::numeric_limits<std::int64_t>::max() / 4,
+        lo,
+        hi);
+    if (this->Box[0] > this->Box[1] || y < this->Box[2] || y > this->Box[3])
+      return false;
+    return this->rangeOf(this->Active, y, this->Box[0], this->Box[1], lo, hi);
+  }
+
+private:
+  struct Plane
+  {
+    std::int64_t nx, ny, nz, offset, atSlice;
+  };
+
+  bool rangeOf(const std::vector<Plane>& planes,
+    std::int64_t y,
+    std::int64_t from,
+    std::int64_t to,
+    std::int64_t& lo,
+    std::int64_t& hi) const
+  {
+    lo = from;
+    hi = to;
+    for (const Plane& p : planes)
     {
       const std::int64_t r = p.atSlice - p.ny * y;
       if (p.nx == 0)
@@ -127,7 +180,45 @@ public:
     return true;
   }
 
-private:
+  /// The box {x0, x1, y0, y1} of the lattice points that the hull's slice z can hold: the
+  /// bounds of its corners (the hull's vertices in the slice and its edges' crossings), rounded
+  /// inwards; x0 > x1 (or y0 > y1) when it holds none.
+  std::array<std::int64_t, 4> sliceBox(std::int64_t z) const
+  {
+    std::array<std::int64_t, 4> box{ std::numeric_limits<std::int64_t>::max(),
+      std::numeric_limits<std::int64_t>::min(),
+      std::numeric_limits<std::int64_t>::max(),
+      std::numeric_limits<std::int64_t>::min() };
+    const auto take = [&](int k, std::int64_t low, std::int64_t high)
+    {
+      box[2 * k] = std::min(box[2 * k], low);
+      box[2 * k + 1] = std::max(box[2 * k + 1], high);
+    };
+    for (const LatticePoint& v : this->Hull->vertices)
+      if (v[2] == z)
+      {
+        take(0, v[0], v[0]);
+        take(1, v[1], v[1]);
+      }
+    for (const auto& e : this->Hull->edges)
+    {
+      const LatticePoint* a = &this->Hull->vertices[e[0]];
+      const LatticePoint* b = &this->Hull->vertices[e[1]];
+      if ((*a)[2] > (*b)[2])
+        std::swap(a, b);
+      if (!((*a)[2] < z && z < (*b)[2]))
+        continue;
+      // The crossing a + (b - a) t / dz, each coordinate a fraction over dz > 0.
+      const std::int64_t dz = (*b)[2] - (*a)[2], t = z - (*a)[2];
+      for (int k = 0; k < 2; ++k)
+      {
+        const std::int64_t n = (*a)[k] * dz + ((*b)[k] - (*a)[k]) * t;
+        take(k, ceilDiv(n, dz), floorDiv(n, dz));
+      }
+    }
+    return box;
+  }
+
   /// Whether x keeps the plane (nx x < r, or <= when not strict): then the bound the plane
   /// gives on the range's side of x lies beyond x and cannot narrow a range ending at x.
   bool keeps(std::int64_t nx, std::int64_t x, std::int64_t r) const
@@ -136,12 +227,10 @@ private:
     return this->Strict ? v < r : v <= r;
   }
 
-  struct Plane
-  {
-    std::int64_t nx, ny, nz, offset, atSlice;
-  };
-  std::vector<Plane> Planes;
+  std::vector<Plane> Planes, Active;
   bool Strict;
+  const CellList* Hull;
+  std::array<std::int64_t, 4> Box{ 0, -1, 0, -1 };
 };
 
 std::array<std::int64_t, 6> boundsOf(const CellList& c)
@@ -170,7 +259,7 @@ template<typename F>
 bool forEachRowIn(const CellList& c, bool strict, F&& f)
 {
   const auto b = boundsOf(c);
-  RowScan rows(c, strict);
+  RowScan rows(c, strict, true);
   for (std::int64_t z = b[4]; z <= b[5]; ++z)
   {
     rows.setSlice(z);
@@ -5380,7 +5469,7 @@ bool rowRange(const CellList& c,
   std::int64_t& lo,
   std::int64_t& hi)
 {
-  RowScan rows(c, strict);
+  RowScan rows(c, strict, true);
   rows.setSlice(z);
   return rows.range(y, lo, hi);
 }

@@ -282,6 +282,52 @@ TEST(ConvexHullModifierInternals, RowRangeMatchesABisectionOnLargeCoordinates)
   }
 }
 
+TEST(ConvexHullModifierInternals, RowRangeOfASolidHullMatchesAScanOfItsRows)
+{
+  // The rows of a solid hull leave out the planes that keep the slice's box: every row of the
+  // hull's box and two beyond it, against the lattice points tested on every plane.
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    const std::int64_t size = 2 + trial % 19;
+    std::uniform_int_distribution<std::int64_t> coordinate(-size, size);
+    std::vector<LatticePoint> points(4 + trial % 40);
+    for (auto& p : points)
+      p = { coordinate(rng), coordinate(rng), coordinate(rng) / (trial % 3 == 0 ? 4 : 1) };
+    const vbr::CellList c = vbr::convexHull(points);
+    if (c.dimension != 3)
+      continue;
+    for (bool strict : { false, true })
+      for (std::int64_t z = -size - 2; z <= size + 2; ++z)
+        for (std::int64_t y = -size - 2; y <= size + 2; ++y)
+        {
+          std::int64_t first = 0, last = -1, count = 0;
+          for (std::int64_t x = -size - 3; x <= size + 3; ++x)
+          {
+            const bool in = std::all_of(c.planes.begin(),
+              c.planes.end(),
+              [&](const vbr::FacePlane& f)
+              {
+                const auto v = f.evaluate({ x, y, z });
+                return strict ? v < 0 : v <= 0;
+              });
+            if (!in)
+              continue;
+            first = count == 0 ? x : first;
+            last = x;
+            ++count;
+          }
+          std::int64_t lo = 0, hi = 0;
+          const bool meets = vbr::detail::rowRange(c, strict, y, z, lo, hi);
+          ASSERT_EQ(meets, count > 0) << "trial " << trial << " row " << y << ", " << z;
+          if (!meets)
+            continue;
+          EXPECT_EQ(lo, first) << "trial " << trial << " row " << y << ", " << z;
+          EXPECT_EQ(hi, last) << "trial " << trial << " row " << y << ", " << z;
+        }
+  }
+}
+
 bool zyx(const LatticePoint& a, const LatticePoint& b)
 {
   return std::tie(a[2], a[1], a[0]) < std::tie(b[2], b[1], b[0]);
