@@ -3,7 +3,6 @@
 #include "Geometry.h"
 
 #include <algorithm>
-#include <map>
 #include <numeric>
 #include <stdexcept>
 
@@ -699,8 +698,11 @@ void CellList::buildIncidences()
   this->faceEdges.assign(this->faces.size(), {});
   this->vertexEdges.assign(this->vertices.size(), {});
   this->vertexFaces.assign(this->vertices.size(), {});
-  // An edge met before is in the edge list of both its vertices: found there (a hull's
-  // vertices have few edges) instead of in a hash map, which cost an allocation per edge.
+  // An edge met before is in the edge list of both its vertices: found there instead of in a
+  // hash map, which cost an allocation per edge. A vertex may have many edges (a cone's apex),
+  // but the shorter of the two lists is searched: on a polyhedron's planar graph the searches
+  // cost O(E) in all (the sum over the edges of their ends' smaller degree is at most 6 E,
+  // Chiba and Nishizeki 1985: arboricity 3).
   const auto findEdge = [this](Index lo, Index hi)
   {
     const std::vector<Index>& around = this->vertexEdges[lo].size() <= this->vertexEdges[hi].size()

@@ -76,19 +76,39 @@ bool voxelClass(const BitVolume& v, const LatticePoint& p)
       static_cast<std::int32_t>(p[2]));
 }
 
+/// How a RowScan's slices are asked for their rows: all of each slice's rows (forEachRowIn), so
+/// that leaving planes out of a slice (setSlice) pays, or a few rows per slice (RowSides), where
+/// finding the slice's box cost more than it saved (setSlice 2.4 % of the aneurism's profile).
+enum class SliceRows
+{
+  Few,
+  All
+};
+
+/// Hulls of at most this many planes are scanned on all their planes: a box has 6 and a wedge
+/// 5, few to leave out, while the slice's box passes over all the hull's vertices and edges.
+/// Measured on the aneurism v >= 128 (CPU of Update, three rounds in turns, load 3.6-4.4):
+/// finding boxes for every solid hull (0) cost 4-7 % more than 8; 4 and 16 were within the
+/// noise of 8 (medians 10.96, 11.03, 11.19 s).
+constexpr std::size_t kPlanesBeforeSliceBoxes = 8;
+
 /// The planes of a hull arranged for scanning its rows along x: those parallel to x first (they
 /// decide whether a row meets the hull without a division), each with its offset at the current
 /// slice. Most rows of a hull's box miss the hull, and a row is left at the first plane that
 /// empties it; every level of the recursion scans its hull's rows this way (pointsOfClass).
+/// With SliceRows::All, a solid c must be a convexHull result with its incidences: its vertices
+/// and edges bound the slices' boxes (sliceBox), and a vertex or edge missing from them would
+/// give too small a box and silently shortened rows. Without edges (planes alone) every plane
+/// is tested on every row.
 class RowScan
 {
 public:
-  /// `wholeSlices`: each slice is asked for all its rows (forEachRowIn), so that leaving planes
-  /// out of a slice (setSlice) pays; one asked for a few rows per slice (RowSides) does not.
-  RowScan(const CellList& c, bool strict, bool wholeSlices = false)
+  RowScan(const CellList& c, bool strict, SliceRows rows = SliceRows::Few)
     : Strict(strict)
-    , Hull(
-        wholeSlices && c.dimension == 3 && !c.edges.empty() && c.planes.size() > 8 ? &c : nullptr)
+    , Hull(rows == SliceRows::All && c.dimension == 3 && !c.edges.empty() &&
+            c.planes.size() > kPlanesBeforeSliceBoxes
+          ? &c
+          : nullptr)
   {
     for (const FacePlane& p : c.planes)
       this->Planes.push_back({ p.normal[0], p.normal[1], p.normal[2], p.offset, p.offset });
@@ -140,6 +160,12 @@ public:
     if (this->Box[0] > this->Box[1] || y < this->Box[2] || y > this->Box[3])
       return false;
     return this->rangeOf(this->Active, y, this->Box[0], this->Box[1], lo, hi);
+  }
+
+  /// How many planes the current slice leaves out of its rows (0 when the slices keep all).
+  std::size_t planesLeftOut() const
+  {
+    return this->Hull ? this->Planes.size() - this->Active.size() : 0;
   }
 
 private:
@@ -255,11 +281,12 @@ std::array<std::int64_t, 6> boundsOf(const CellList& c)
 /// Calls f(y, z, lo, hi) for every row of the solid hull's box that meets the hull (its open
 /// interior when `strict`), [lo, hi] the x range of its lattice points there. An f that returns
 /// a bool stops the scan by returning false; forEachRowIn returns whether the scan ran to its end.
+/// c is a convexHull result with its incidences (vertices and edges bound the slices: RowScan).
 template<typename F>
 bool forEachRowIn(const CellList& c, bool strict, F&& f)
 {
   const auto b = boundsOf(c);
-  RowScan rows(c, strict, true);
+  RowScan rows(c, strict, SliceRows::All);
   for (std::int64_t z = b[4]; z <= b[5]; ++z)
   {
     rows.setSlice(z);
@@ -530,6 +557,18 @@ void pushRunsOfWord(Word word, std::int64_t x0, std::int64_t y, std::int64_t z, 
   }
 }
 
+/// The bits of word w (x = 64 w .. 64 w + 63) among x = first..last, for a word that meets that
+/// range (first <= last, first >> 6 <= w <= last >> 6).
+Word runMask(std::int64_t w, std::int64_t first, std::int64_t last)
+{
+  Word bits = ~Word(0);
+  if (w == first >> 6)
+    bits &= ~Word(0) << (first & 63);
+  if (w == last >> 6 && (last & 63) != 63)
+    bits &= (Word(1) << ((last & 63) + 1)) - 1;
+  return bits;
+}
+
 /// Appends the runs of the points of class `cls` among x = lo..hi of row (y, z): off the grid's
 /// row every centre is background; on it, the class's bits word by word.
 void pushRunsOfRow(const BitVolume& objects,
@@ -555,11 +594,7 @@ void pushRunsOfRow(const BitVolume& objects,
   const std::int64_t last = std::min<std::int64_t>(hi, d[0] - 1);
   for (std::int64_t w = first >> 6; first <= last && w <= last >> 6; ++w)
   {
-    Word word = cls ? bits[w] : ~bits[w];
-    if (w == first >> 6)
-      word &= ~Word(0) << (first & 63);
-    if (w == last >> 6 && (last & 63) != 63)
-      word &= (Word(1) << ((last & 63) + 1)) - 1;
+    const Word word = (cls ? bits[w] : ~bits[w]) & runMask(w, first, last);
     pushRunsOfWord(word, 64 * w, y, z, points);
   }
   if (!cls && std::max<std::int64_t>(lo, d[0]) <= hi)
@@ -2152,13 +2187,15 @@ void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel,
   putInCanonicalOrder(r);
 }
 
-/// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive.
-int perturbedOrientation(const LatticePoint& u,
+/// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive,
+/// the products taken in `Wide` (std::int64_t only where they fit: see rayCrossings).
+template<typename Wide>
+int perturbedOrientationIn(const LatticePoint& u,
   const LatticePoint& v,
   std::int64_t y,
   std::int64_t z)
 {
-  const __int128 o = __int128(v[1] - u[1]) * (z - u[2]) - __int128(v[2] - u[2]) * (y - u[1]);
+  const Wide o = Wide(v[1] - u[1]) * (z - u[2]) - Wide(v[2] - u[2]) * (y - u[1]);
   if (o != 0)
     return o > 0 ? 1 : -1;
   if (v[2] != u[2])
@@ -2166,33 +2203,25 @@ int perturbedOrientation(const LatticePoint& u,
   return v[1] > u[1] ? 1 : -1;
 }
 
-/// perturbedOrientation for corners and (y, z) below 2^30 in magnitude: the same signs, the
-/// products in 64 bits (each below 2^62).
-int perturbedOrientation64(const LatticePoint& u,
-  const LatticePoint& v,
+/// Whether the ray from (y, z) along +x, perturbed as in perturbedOrientationIn, meets the
+/// triangle abc, s the sign of its normal's x component (the orientation of abc in (y, z)).
+template<typename Wide>
+bool rayMeetsTriangle(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
   std::int64_t y,
-  std::int64_t z)
+  std::int64_t z,
+  int s)
 {
-  const std::int64_t o = (v[1] - u[1]) * (z - u[2]) - (v[2] - u[2]) * (y - u[1]);
-  if (o != 0)
-    return o > 0 ? 1 : -1;
-  if (v[2] != u[2])
-    return v[2] > u[2] ? -1 : 1;
-  return v[1] > u[1] ? 1 : -1;
+  return perturbedOrientationIn<Wide>(a, b, y, z) == s &&
+    perturbedOrientationIn<Wide>(b, c, y, z) == s && perturbedOrientationIn<Wide>(c, a, y, z) == s;
 }
 
-/// Sets the bits lo..hi (lo <= hi + 1) of a row of words, a word at a time.
+/// Sets the bits lo..hi of a row of words, a word at a time; any lo > hi sets none.
 void setRun(Word* row, std::int64_t lo, std::int64_t hi)
 {
   for (std::int64_t w = lo >> 6; lo <= hi && w <= hi >> 6; ++w)
-  {
-    Word bits = ~Word(0);
-    if (w == lo >> 6)
-      bits &= ~Word(0) << (lo & 63);
-    if (w == hi >> 6 && (hi & 63) != 63)
-      bits &= (Word(1) << ((hi & 63) + 1)) - 1;
-    row[w] |= bits;
-  }
+    row[w] |= runMask(w, lo, hi);
 }
 
 } // namespace
@@ -2287,21 +2316,46 @@ std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface, con
 namespace
 {
 
-/// revertModifiedHull with the lattice points on the surface (latticePointsOnSurface) given:
-/// the whole-H check and the shells' marks list them anyway.
-BitVolume revertWithPointsOn(const LatticeMesh& surface,
-  const std::vector<LatticePoint>& on,
-  const std::vector<LatticePoint>& backgroundOnSurface,
-  const Dims& dims)
+/// A ray's crossing with a triangle: its row z * ny + y, and ceil(xc) - 1 for its x xc.
+using RowCrossing = std::pair<std::uint32_t, std::int64_t>;
+
+/// Appends the crossings of the rays (x -> +infinity, y + delta, z + delta^2) of the grid's rows
+/// with the triangle abc (its plane `plane`, whose normal's x component is not 0).
+template<typename Wide>
+void appendCrossings(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  const FacePlane& plane,
+  const Dims& dims,
+  std::vector<RowCrossing>& crossings)
 {
-  BitVolume out(dims[0], dims[1], dims[2]);
-  // Crossings of the rays (x -> +infinity, y + delta, z + delta^2) with the triangles, per row:
-  // count[x] = crossings with ceil(xc) - 1 == x, so a suffix sum gives the crossings beyond x.
-  // The crossings as (row, x) pairs, then grouped by row (a counting sort): one vector per row
-  // of a large grid cost an allocation for each row the surface crosses.
-  std::vector<std::pair<std::uint32_t, std::int64_t>> crossings;
-  // Corners below 2^30 in magnitude: the orientations' products fit in 64 bits.
-  const bool small = std::all_of(surface.points.begin(),
+  const std::int64_t nx = plane.normal[0];
+  const int s = nx > 0 ? 1 : -1;
+  for (std::int64_t z = std::max<std::int64_t>(0, std::min({ a[2], b[2], c[2] }));
+       z <= std::min<std::int64_t>(dims[2] - 1, std::max({ a[2], b[2], c[2] }));
+       ++z)
+    for (std::int64_t y = std::max<std::int64_t>(0, std::min({ a[1], b[1], c[1] }));
+         y <= std::min<std::int64_t>(dims[1] - 1, std::max({ a[1], b[1], c[1] }));
+         ++y)
+    {
+      if (!rayMeetsTriangle<Wide>(a, b, c, y, z, s))
+        continue;
+      const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
+      crossings.emplace_back(static_cast<std::uint32_t>(z * dims[1] + y), ceilDiv(r, nx) - 1);
+    }
+}
+
+/// The crossings of the rays of the grid's rows with the surface's triangles, in no order: the
+/// crossings as (row, x) pairs, grouped by row later (one vector per row of a large grid cost
+/// an allocation for each row the surface crosses).
+std::vector<RowCrossing> rayCrossings(const LatticeMesh& surface, const Dims& dims)
+{
+  // Corners below 2^30 in magnitude (H's are voxel centres, below 2^20 as convexHull's; but
+  // revertModifiedHull takes any mesh, so the 128-bit products stay for the others, within what
+  // planeThrough's 64-bit normals allow): the rows (y, z) tried lie within the triangle's
+  // bounds, so every difference in an orientation is at most 2^31 - 2 in magnitude, each
+  // product at most (2^31 - 2)^2 < 2^62, and the difference of two products below 2^63.
+  const bool productsFit64 = std::all_of(surface.points.begin(),
     surface.points.end(),
     [](const LatticePoint& p)
     {
@@ -2309,32 +2363,27 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
         p.end(),
         [](std::int64_t c) { return c > -(std::int64_t(1) << 30) && c < (std::int64_t(1) << 30); });
     });
+  std::vector<RowCrossing> crossings;
   for (const auto& tri : surface.triangles)
   {
     const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
                        &c = surface.points[tri[2]];
     const FacePlane plane = planeThrough(a, b, c);
-    const std::int64_t nx = plane.normal[0];
-    if (nx == 0)
+    if (plane.normal[0] == 0)
       continue;
-    const int s = nx > 0 ? 1 : -1;
-    for (std::int64_t z = std::max<std::int64_t>(0, std::min({ a[2], b[2], c[2] }));
-         z <= std::min<std::int64_t>(dims[2] - 1, std::max({ a[2], b[2], c[2] }));
-         ++z)
-      for (std::int64_t y = std::max<std::int64_t>(0, std::min({ a[1], b[1], c[1] }));
-           y <= std::min<std::int64_t>(dims[1] - 1, std::max({ a[1], b[1], c[1] }));
-           ++y)
-      {
-        if (small
-            ? (perturbedOrientation64(a, b, y, z) != s || perturbedOrientation64(b, c, y, z) != s ||
-                perturbedOrientation64(c, a, y, z) != s)
-            : (perturbedOrientation(a, b, y, z) != s || perturbedOrientation(b, c, y, z) != s ||
-                perturbedOrientation(c, a, y, z) != s))
-          continue;
-        const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
-        crossings.emplace_back(static_cast<std::uint32_t>(z * dims[1] + y), ceilDiv(r, nx) - 1);
-      }
+    if (productsFit64)
+      appendCrossings<std::int64_t>(a, b, c, plane, dims, crossings);
+    else
+      appendCrossings<__int128>(a, b, c, plane, dims, crossings);
   }
+  return crossings;
+}
+
+/// Sets in `out` the centres with an odd number of crossings beyond them in their row.
+void fillInsideRuns(const std::vector<RowCrossing>& crossings, BitVolume& out)
+{
+  const Dims& dims = out.dims();
+  // Grouped by row by a counting sort.
   const std::size_t rowCount = static_cast<std::size_t>(dims[1]) * dims[2];
   std::vector<std::uint32_t> rowStart(rowCount + 1, 0);
   for (const auto& c : crossings)
@@ -2369,6 +2418,18 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
         setRun(out.row(y, z), lo, hi);
       }
     }
+}
+
+/// revertModifiedHull with the lattice points on the surface (latticePointsOnSurface) given:
+/// the whole-H check and the shells' marks list them anyway. Only bits of centres in the grid
+/// are set (x < dims[0]: the words' padding bits stay 0).
+BitVolume revertWithPointsOn(const LatticeMesh& surface,
+  const std::vector<LatticePoint>& on,
+  const std::vector<LatticePoint>& backgroundOnSurface,
+  const Dims& dims)
+{
+  BitVolume out(dims[0], dims[1], dims[2]);
+  fillInsideRuns(rayCrossings(surface, dims), out);
   for (const auto& p : on)
     out.set(static_cast<std::int32_t>(p[0]),
       static_cast<std::int32_t>(p[1]),
@@ -2553,9 +2614,12 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
 
 /// H as its shells while shells are joined: a join replaces the shells it changed
 /// (joinAlongPrism), so H is not split into its shells again after every join, and H is put
-/// together from its shells only when asked for (takeMesh), not after every join.
-struct ShelledSurface
+/// together from its shells only when asked for (takeMesh), not after every join. The whole H
+/// given is kept only until the first replacement (it is then stale, and freed: copies of the
+/// surface, one per attempted chain of cuts, do not copy it).
+class ShelledSurface
 {
+public:
   std::vector<Shell> shells;
 
   explicit ShelledSurface(const LatticeMesh& m)
@@ -2579,7 +2643,7 @@ struct ShelledSurface
   }
 
   /// Puts `pieces` in the place of the shells flagged in `changed` (where the first of them
-  /// was), and H together again from its shells.
+  /// was); H is put together from the shells by takeMesh.
   void replace(const std::vector<bool>& changed, std::vector<Shell>&& pieces)
   {
     std::vector<Shell> kept;
@@ -2595,6 +2659,7 @@ struct ShelledSurface
       }
     this->shells = std::move(kept);
     this->stale = true;
+    this->mesh = LatticeMesh{};
   }
 
 private:
@@ -2658,6 +2723,8 @@ void markShell(const LatticeMesh& shell,
   const std::vector<LatticePoint>& on = s.on;
   const BitVolume& inside = s.inside;
   // The inside's words scanned for their set bits: most of a large shell's box is outside it.
+  // All wordsPerRow() words of a row: their padding bits (x >= box[0]) are 0, as
+  // revertWithPointsOn sets bits only of centres in the box.
   for (std::int32_t z = 0; z < box[2]; ++z)
     for (std::int32_t y = 0; y < box[1]; ++y)
     {
@@ -3038,9 +3105,7 @@ bool crossesBeyond(const LatticeMesh& surface,
   if (nx == 0)
     return true;
   const int s = nx > 0 ? 1 : -1;
-  if (perturbedOrientation(q[0], q[1], p[1], p[2]) != s ||
-    perturbedOrientation(q[1], q[2], p[1], p[2]) != s ||
-    perturbedOrientation(q[2], q[0], p[1], p[2]) != s)
+  if (!rayMeetsTriangle<__int128>(q[0], q[1], q[2], p[1], p[2], s))
     return true;
   // The crossing lies beyond p when n.p < d along +x for an outward normal with nx > 0.
   const __int128 e = plane.evaluate(p);
@@ -5469,9 +5534,16 @@ bool rowRange(const CellList& c,
   std::int64_t& lo,
   std::int64_t& hi)
 {
-  RowScan rows(c, strict, true);
+  RowScan rows(c, strict, SliceRows::All);
   rows.setSlice(z);
   return rows.range(y, lo, hi);
+}
+
+std::size_t planesLeftOutOfSlice(const CellList& c, bool strict, std::int64_t z)
+{
+  RowScan rows(c, strict, SliceRows::All);
+  rows.setSlice(z);
+  return rows.planesLeftOut();
 }
 
 std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends)
