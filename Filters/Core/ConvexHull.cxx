@@ -3,10 +3,8 @@
 #include "Geometry.h"
 
 #include <algorithm>
-#include <map>
 #include <numeric>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace vbr
 {
@@ -693,11 +691,6 @@ CellList HullBuilder::cellList() const
 
 } // namespace
 
-__int128 FacePlane::evaluate(const LatticePoint& p) const
-{
-  return dot(this->normal, p) - this->offset;
-}
-
 void CellList::buildIncidences()
 {
   this->edges.clear();
@@ -705,25 +698,39 @@ void CellList::buildIncidences()
   this->faceEdges.assign(this->faces.size(), {});
   this->vertexEdges.assign(this->vertices.size(), {});
   this->vertexFaces.assign(this->vertices.size(), {});
-  std::unordered_map<std::uint64_t, Index> edgeId;
+  // An edge met before is in the edge list of both its vertices: found there instead of in a
+  // hash map, which cost an allocation per edge. A vertex may have many edges (a cone's apex),
+  // but the shorter of the two lists is searched: on a polyhedron's planar graph the searches
+  // cost O(E) in all (the sum over the edges of their ends' smaller degree is at most 6 E,
+  // Chiba and Nishizeki 1985: arboricity 3).
+  const auto findEdge = [this](Index lo, Index hi)
+  {
+    const std::vector<Index>& around = this->vertexEdges[lo].size() <= this->vertexEdges[hi].size()
+      ? this->vertexEdges[lo]
+      : this->vertexEdges[hi];
+    for (const Index e : around)
+      if (this->edges[e][0] == lo && this->edges[e][1] == hi)
+        return e;
+    return Index(-1);
+  };
   for (std::size_t f = 0; f < this->faces.size(); ++f)
   {
     const std::vector<Index>& v = this->faces[f];
+    this->faceEdges[f].reserve(v.size());
     for (std::size_t k = 0; k < v.size(); ++k)
     {
       const Index a = v[k], b = v[(k + 1) % v.size()];
-      const auto key = edgeKey(std::min(a, b), std::max(a, b));
-      auto it = edgeId.find(key);
-      if (it == edgeId.end())
+      Index e = findEdge(std::min(a, b), std::max(a, b));
+      if (e == Index(-1))
       {
-        it = edgeId.emplace(key, static_cast<Index>(this->edges.size())).first;
+        e = static_cast<Index>(this->edges.size());
         this->edges.push_back({ std::min(a, b), std::max(a, b) });
         this->edgeFaces.push_back({ Index(-1), Index(-1) });
-        this->vertexEdges[a].push_back(it->second);
-        this->vertexEdges[b].push_back(it->second);
+        this->vertexEdges[a].push_back(e);
+        this->vertexEdges[b].push_back(e);
       }
-      this->edgeFaces[it->second][a < b ? 0 : 1] = static_cast<Index>(f);
-      this->faceEdges[f].push_back(it->second);
+      this->edgeFaces[e][a < b ? 0 : 1] = static_cast<Index>(f);
+      this->faceEdges[f].push_back(e);
       this->vertexFaces[a].push_back(static_cast<Index>(f));
     }
   }
@@ -863,19 +870,26 @@ void mergeCoplanarFaces(CellList& hull)
   {
     return;
   }
-  std::map<FacePlane, std::vector<Index>> corners;
-  for (std::size_t f = 0; f < hull.faces.size(); ++f)
-  {
-    auto& c = corners[hull.planes[f]];
-    c.insert(c.end(), hull.faces[f].begin(), hull.faces[f].end());
-  }
+  // The faces in the order of their planes, those of one plane in their order (what a map
+  // from plane to corners gave, without a node per plane).
+  std::vector<Index> order(hull.faces.size());
+  std::iota(order.begin(), order.end(), Index(0));
+  std::stable_sort(
+    order.begin(), order.end(), [&](Index f, Index g) { return hull.planes[f] < hull.planes[g]; });
   std::vector<std::vector<Index>> faces;
   std::vector<FacePlane> planes;
   std::vector<std::int64_t> local(hull.vertices.size(), -1);
   std::vector<LatticePoint> vertices;
-  for (auto& entry : corners)
+  std::vector<Index> corners;
+  for (std::size_t first = 0; first < order.size();)
   {
-    std::vector<Index> polygon = convexPolygon(entry.second, hull.vertices, entry.first);
+    const FacePlane& plane = hull.planes[order[first]];
+    corners.clear();
+    std::size_t next = first;
+    for (; next < order.size() && hull.planes[order[next]] == plane; ++next)
+      corners.insert(corners.end(), hull.faces[order[next]].begin(), hull.faces[order[next]].end());
+    first = next;
+    std::vector<Index> polygon = convexPolygon(corners, hull.vertices, plane);
     for (Index& id : polygon)
     {
       if (local[id] < 0)
@@ -886,7 +900,7 @@ void mergeCoplanarFaces(CellList& hull)
       id = static_cast<Index>(local[id]);
     }
     faces.push_back(std::move(polygon));
-    planes.push_back(entry.first);
+    planes.push_back(plane);
   }
   hull.vertices = std::move(vertices);
   hull.faces = std::move(faces);

@@ -81,8 +81,12 @@ struct FacePlane
   {
     return this->normal != o.normal ? this->normal < o.normal : this->offset < o.offset;
   }
-  /// n.p - d, exactly.
-  __int128 evaluate(const LatticePoint& p) const;
+  /// n.p - d, exactly (inline: the hull tests of the modifier evaluate planes in tight loops).
+  __int128 evaluate(const LatticePoint& p) const
+  {
+    return __int128(this->normal[0]) * p[0] + __int128(this->normal[1]) * p[1] +
+      __int128(this->normal[2]) * p[2] - this->offset;
+  }
 };
 
 /// The two-dimensional cell list of section 3.1: vertices with coordinates, edges and faces,

@@ -76,15 +76,39 @@ bool voxelClass(const BitVolume& v, const LatticePoint& p)
       static_cast<std::int32_t>(p[2]));
 }
 
+/// How a RowScan's slices are asked for their rows: all of each slice's rows (forEachRowIn), so
+/// that leaving planes out of a slice (setSlice) pays, or a few rows per slice (RowSides), where
+/// finding the slice's box cost more than it saved (setSlice 2.4 % of the aneurism's profile).
+enum class SliceRows
+{
+  Few,
+  All
+};
+
+/// Hulls of at most this many planes are scanned on all their planes: a box has 6 and a wedge
+/// 5, few to leave out, while the slice's box passes over all the hull's vertices and edges.
+/// Measured on the aneurism v >= 128 (CPU of Update, three rounds in turns, load 3.6-4.4):
+/// finding boxes for every solid hull (0) cost 4-7 % more than 8; 4 and 16 were within the
+/// noise of 8 (medians 10.96, 11.03, 11.19 s).
+constexpr std::size_t kPlanesBeforeSliceBoxes = 8;
+
 /// The planes of a hull arranged for scanning its rows along x: those parallel to x first (they
 /// decide whether a row meets the hull without a division), each with its offset at the current
 /// slice. Most rows of a hull's box miss the hull, and a row is left at the first plane that
 /// empties it; every level of the recursion scans its hull's rows this way (pointsOfClass).
+/// With SliceRows::All, a solid c must be a convexHull result with its incidences: its vertices
+/// and edges bound the slices' boxes (sliceBox), and a vertex or edge missing from them would
+/// give too small a box and silently shortened rows. Without edges (planes alone) every plane
+/// is tested on every row.
 class RowScan
 {
 public:
-  RowScan(const CellList& c, bool strict)
+  RowScan(const CellList& c, bool strict, SliceRows rows = SliceRows::Few)
     : Strict(strict)
+    , Hull(rows == SliceRows::All && c.dimension == 3 && !c.edges.empty() &&
+            c.planes.size() > kPlanesBeforeSliceBoxes
+          ? &c
+          : nullptr)
   {
     for (const FacePlane& p : c.planes)
       this->Planes.push_back({ p.normal[0], p.normal[1], p.normal[2], p.offset, p.offset });
@@ -92,19 +116,74 @@ public:
       this->Planes.begin(), this->Planes.end(), [](const Plane& p) { return p.nx == 0; });
   }
 
+  /// The slice z. A solid hull's slice is bounded by a few of its planes: the planes that keep
+  /// the whole box of the lattice points the slice can hold (sliceBox; kept at its four corners,
+  /// so in all of it) are left out of its rows, whose ranges are cut to that box instead (most
+  /// planes of a large hull, each a product per row before). The ranges are the same: within
+  /// the box those planes exclude no lattice point, and every lattice point of the slice lies
+  /// in the box.
   void setSlice(std::int64_t z)
   {
     for (Plane& p : this->Planes)
       p.atSlice = p.offset - p.nz * z;
+    if (!this->Hull)
+      return;
+    this->Box = this->sliceBox(z);
+    this->Active.clear();
+    if (this->Box[0] > this->Box[1] || this->Box[2] > this->Box[3])
+      return;
+    for (const Plane& p : this->Planes)
+    {
+      bool keepsBox = true;
+      for (int corner = 0; corner < 4 && keepsBox; ++corner)
+      {
+        const std::int64_t x = this->Box[corner & 1], y = this->Box[2 + (corner >> 1)];
+        const __int128 v = __int128(p.nx) * x + __int128(p.ny) * y;
+        keepsBox = this->Strict ? v < p.atSlice : v <= p.atSlice;
+      }
+      if (!keepsBox)
+        this->Active.push_back(p);
+    }
   }
 
   /// The x range [lo, hi] of the row y of the slice inside the hull (its open interior when
   /// `strict`); false when the row misses it.
   bool range(std::int64_t y, std::int64_t& lo, std::int64_t& hi) const
   {
-    lo = std::numeric_limits<std::int64_t>::min() / 4;
-    hi = std::numeric_limits<std::int64_t>::max() / 4;
-    for (const Plane& p : this->Planes)
+    if (!this->Hull)
+      return this->rangeOf(this->Planes,
+        y,
+        std::numeric_limits<std::int64_t>::min() / 4,
+        std::numeric_limits<std::int64_t>::max() / 4,
+        lo,
+        hi);
+    if (this->Box[0] > this->Box[1] || y < this->Box[2] || y > this->Box[3])
+      return false;
+    return this->rangeOf(this->Active, y, this->Box[0], this->Box[1], lo, hi);
+  }
+
+  /// How many planes the current slice leaves out of its rows (0 when the slices keep all).
+  std::size_t planesLeftOut() const
+  {
+    return this->Hull ? this->Planes.size() - this->Active.size() : 0;
+  }
+
+private:
+  struct Plane
+  {
+    std::int64_t nx, ny, nz, offset, atSlice;
+  };
+
+  bool rangeOf(const std::vector<Plane>& planes,
+    std::int64_t y,
+    std::int64_t from,
+    std::int64_t to,
+    std::int64_t& lo,
+    std::int64_t& hi) const
+  {
+    lo = from;
+    hi = to;
+    for (const Plane& p : planes)
     {
       const std::int64_t r = p.atSlice - p.ny * y;
       if (p.nx == 0)
@@ -127,7 +206,45 @@ public:
     return true;
   }
 
-private:
+  /// The box {x0, x1, y0, y1} of the lattice points that the hull's slice z can hold: the
+  /// bounds of its corners (the hull's vertices in the slice and its edges' crossings), rounded
+  /// inwards; x0 > x1 (or y0 > y1) when it holds none.
+  std::array<std::int64_t, 4> sliceBox(std::int64_t z) const
+  {
+    std::array<std::int64_t, 4> box{ std::numeric_limits<std::int64_t>::max(),
+      std::numeric_limits<std::int64_t>::min(),
+      std::numeric_limits<std::int64_t>::max(),
+      std::numeric_limits<std::int64_t>::min() };
+    const auto take = [&](int k, std::int64_t low, std::int64_t high)
+    {
+      box[2 * k] = std::min(box[2 * k], low);
+      box[2 * k + 1] = std::max(box[2 * k + 1], high);
+    };
+    for (const LatticePoint& v : this->Hull->vertices)
+      if (v[2] == z)
+      {
+        take(0, v[0], v[0]);
+        take(1, v[1], v[1]);
+      }
+    for (const auto& e : this->Hull->edges)
+    {
+      const LatticePoint* a = &this->Hull->vertices[e[0]];
+      const LatticePoint* b = &this->Hull->vertices[e[1]];
+      if ((*a)[2] > (*b)[2])
+        std::swap(a, b);
+      if (!((*a)[2] < z && z < (*b)[2]))
+        continue;
+      // The crossing a + (b - a) t / dz, each coordinate a fraction over dz > 0.
+      const std::int64_t dz = (*b)[2] - (*a)[2], t = z - (*a)[2];
+      for (int k = 0; k < 2; ++k)
+      {
+        const std::int64_t n = (*a)[k] * dz + ((*b)[k] - (*a)[k]) * t;
+        take(k, ceilDiv(n, dz), floorDiv(n, dz));
+      }
+    }
+    return box;
+  }
+
   /// Whether x keeps the plane (nx x < r, or <= when not strict): then the bound the plane
   /// gives on the range's side of x lies beyond x and cannot narrow a range ending at x.
   bool keeps(std::int64_t nx, std::int64_t x, std::int64_t r) const
@@ -136,12 +253,10 @@ private:
     return this->Strict ? v < r : v <= r;
   }
 
-  struct Plane
-  {
-    std::int64_t nx, ny, nz, offset, atSlice;
-  };
-  std::vector<Plane> Planes;
+  std::vector<Plane> Planes, Active;
   bool Strict;
+  const CellList* Hull;
+  std::array<std::int64_t, 4> Box{ 0, -1, 0, -1 };
 };
 
 std::array<std::int64_t, 6> boundsOf(const CellList& c)
@@ -166,11 +281,12 @@ std::array<std::int64_t, 6> boundsOf(const CellList& c)
 /// Calls f(y, z, lo, hi) for every row of the solid hull's box that meets the hull (its open
 /// interior when `strict`), [lo, hi] the x range of its lattice points there. An f that returns
 /// a bool stops the scan by returning false; forEachRowIn returns whether the scan ran to its end.
+/// c is a convexHull result with its incidences (vertices and edges bound the slices: RowScan).
 template<typename F>
 bool forEachRowIn(const CellList& c, bool strict, F&& f)
 {
   const auto b = boundsOf(c);
-  RowScan rows(c, strict);
+  RowScan rows(c, strict, SliceRows::All);
   for (std::int64_t z = b[4]; z <= b[5]; ++z)
   {
     rows.setSlice(z);
@@ -441,6 +557,18 @@ void pushRunsOfWord(Word word, std::int64_t x0, std::int64_t y, std::int64_t z, 
   }
 }
 
+/// The bits of word w (x = 64 w .. 64 w + 63) among x = first..last, for a word that meets that
+/// range (first <= last, first >> 6 <= w <= last >> 6).
+Word runMask(std::int64_t w, std::int64_t first, std::int64_t last)
+{
+  Word bits = ~Word(0);
+  if (w == first >> 6)
+    bits &= ~Word(0) << (first & 63);
+  if (w == last >> 6 && (last & 63) != 63)
+    bits &= (Word(1) << ((last & 63) + 1)) - 1;
+  return bits;
+}
+
 /// Appends the runs of the points of class `cls` among x = lo..hi of row (y, z): off the grid's
 /// row every centre is background; on it, the class's bits word by word.
 void pushRunsOfRow(const BitVolume& objects,
@@ -466,11 +594,7 @@ void pushRunsOfRow(const BitVolume& objects,
   const std::int64_t last = std::min<std::int64_t>(hi, d[0] - 1);
   for (std::int64_t w = first >> 6; first <= last && w <= last >> 6; ++w)
   {
-    Word word = cls ? bits[w] : ~bits[w];
-    if (w == first >> 6)
-      word &= ~Word(0) << (first & 63);
-    if (w == last >> 6 && (last & 63) != 63)
-      word &= (Word(1) << ((last & 63) + 1)) - 1;
+    const Word word = (cls ? bits[w] : ~bits[w]) & runMask(w, first, last);
     pushRunsOfWord(word, 64 * w, y, z, points);
   }
   if (!cls && std::max<std::int64_t>(lo, d[0]) <= hi)
@@ -2063,18 +2187,41 @@ void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel,
   putInCanonicalOrder(r);
 }
 
-/// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive.
-int perturbedOrientation(const LatticePoint& u,
+/// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive,
+/// the products taken in `Wide` (std::int64_t only where they fit: see rayCrossings).
+template<typename Wide>
+int perturbedOrientationIn(const LatticePoint& u,
   const LatticePoint& v,
   std::int64_t y,
   std::int64_t z)
 {
-  const __int128 o = __int128(v[1] - u[1]) * (z - u[2]) - __int128(v[2] - u[2]) * (y - u[1]);
+  const Wide o = Wide(v[1] - u[1]) * (z - u[2]) - Wide(v[2] - u[2]) * (y - u[1]);
   if (o != 0)
     return o > 0 ? 1 : -1;
   if (v[2] != u[2])
     return v[2] > u[2] ? -1 : 1;
   return v[1] > u[1] ? 1 : -1;
+}
+
+/// Whether the ray from (y, z) along +x, perturbed as in perturbedOrientationIn, meets the
+/// triangle abc, s the sign of its normal's x component (the orientation of abc in (y, z)).
+template<typename Wide>
+bool rayMeetsTriangle(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  std::int64_t y,
+  std::int64_t z,
+  int s)
+{
+  return perturbedOrientationIn<Wide>(a, b, y, z) == s &&
+    perturbedOrientationIn<Wide>(b, c, y, z) == s && perturbedOrientationIn<Wide>(c, a, y, z) == s;
+}
+
+/// Sets the bits lo..hi of a row of words, a word at a time; any lo > hi sets none.
+void setRun(Word* row, std::int64_t lo, std::int64_t hi)
+{
+  for (std::int64_t w = lo >> 6; lo <= hi && w <= hi >> 6; ++w)
+    row[w] |= runMask(w, lo, hi);
 }
 
 } // namespace
@@ -2169,42 +2316,74 @@ std::vector<LatticePoint> latticePointsOnSurface(const LatticeMesh& surface, con
 namespace
 {
 
-/// revertModifiedHull with the lattice points on the surface (latticePointsOnSurface) given:
-/// the whole-H check and the shells' marks list them anyway.
-BitVolume revertWithPointsOn(const LatticeMesh& surface,
-  const std::vector<LatticePoint>& on,
-  const std::vector<LatticePoint>& backgroundOnSurface,
-  const Dims& dims)
+/// A ray's crossing with a triangle: its row z * ny + y, and ceil(xc) - 1 for its x xc.
+using RowCrossing = std::pair<std::uint32_t, std::int64_t>;
+
+/// Appends the crossings of the rays (x -> +infinity, y + delta, z + delta^2) of the grid's rows
+/// with the triangle abc (its plane `plane`, whose normal's x component is not 0).
+template<typename Wide>
+void appendCrossings(const LatticePoint& a,
+  const LatticePoint& b,
+  const LatticePoint& c,
+  const FacePlane& plane,
+  const Dims& dims,
+  std::vector<RowCrossing>& crossings)
 {
-  BitVolume out(dims[0], dims[1], dims[2]);
-  // Crossings of the rays (x -> +infinity, y + delta, z + delta^2) with the triangles, per row:
-  // count[x] = crossings with ceil(xc) - 1 == x, so a suffix sum gives the crossings beyond x.
-  // The crossings as (row, x) pairs, then grouped by row (a counting sort): one vector per row
-  // of a large grid cost an allocation for each row the surface crosses.
-  std::vector<std::pair<std::uint32_t, std::int64_t>> crossings;
+  const std::int64_t nx = plane.normal[0];
+  const int s = nx > 0 ? 1 : -1;
+  for (std::int64_t z = std::max<std::int64_t>(0, std::min({ a[2], b[2], c[2] }));
+       z <= std::min<std::int64_t>(dims[2] - 1, std::max({ a[2], b[2], c[2] }));
+       ++z)
+    for (std::int64_t y = std::max<std::int64_t>(0, std::min({ a[1], b[1], c[1] }));
+         y <= std::min<std::int64_t>(dims[1] - 1, std::max({ a[1], b[1], c[1] }));
+         ++y)
+    {
+      if (!rayMeetsTriangle<Wide>(a, b, c, y, z, s))
+        continue;
+      const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
+      crossings.emplace_back(static_cast<std::uint32_t>(z * dims[1] + y), ceilDiv(r, nx) - 1);
+    }
+}
+
+/// The crossings of the rays of the grid's rows with the surface's triangles, in no order: the
+/// crossings as (row, x) pairs, grouped by row later (one vector per row of a large grid cost
+/// an allocation for each row the surface crosses).
+std::vector<RowCrossing> rayCrossings(const LatticeMesh& surface, const Dims& dims)
+{
+  // Corners below 2^30 in magnitude (H's are voxel centres, below 2^20 as convexHull's; but
+  // revertModifiedHull takes any mesh, so the 128-bit products stay for the others, within what
+  // planeThrough's 64-bit normals allow): the rows (y, z) tried lie within the triangle's
+  // bounds, so every difference in an orientation is at most 2^31 - 2 in magnitude, each
+  // product at most (2^31 - 2)^2 < 2^62, and the difference of two products below 2^63.
+  const bool productsFit64 = std::all_of(surface.points.begin(),
+    surface.points.end(),
+    [](const LatticePoint& p)
+    {
+      return std::all_of(p.begin(),
+        p.end(),
+        [](std::int64_t c) { return c > -(std::int64_t(1) << 30) && c < (std::int64_t(1) << 30); });
+    });
+  std::vector<RowCrossing> crossings;
   for (const auto& tri : surface.triangles)
   {
     const LatticePoint &a = surface.points[tri[0]], &b = surface.points[tri[1]],
                        &c = surface.points[tri[2]];
     const FacePlane plane = planeThrough(a, b, c);
-    const std::int64_t nx = plane.normal[0];
-    if (nx == 0)
+    if (plane.normal[0] == 0)
       continue;
-    const int s = nx > 0 ? 1 : -1;
-    for (std::int64_t z = std::max<std::int64_t>(0, std::min({ a[2], b[2], c[2] }));
-         z <= std::min<std::int64_t>(dims[2] - 1, std::max({ a[2], b[2], c[2] }));
-         ++z)
-      for (std::int64_t y = std::max<std::int64_t>(0, std::min({ a[1], b[1], c[1] }));
-           y <= std::min<std::int64_t>(dims[1] - 1, std::max({ a[1], b[1], c[1] }));
-           ++y)
-      {
-        if (perturbedOrientation(a, b, y, z) != s || perturbedOrientation(b, c, y, z) != s ||
-          perturbedOrientation(c, a, y, z) != s)
-          continue;
-        const std::int64_t r = plane.offset - plane.normal[1] * y - plane.normal[2] * z;
-        crossings.emplace_back(static_cast<std::uint32_t>(z * dims[1] + y), ceilDiv(r, nx) - 1);
-      }
+    if (productsFit64)
+      appendCrossings<std::int64_t>(a, b, c, plane, dims, crossings);
+    else
+      appendCrossings<__int128>(a, b, c, plane, dims, crossings);
   }
+  return crossings;
+}
+
+/// Sets in `out` the centres with an odd number of crossings beyond them in their row.
+void fillInsideRuns(const std::vector<RowCrossing>& crossings, BitVolume& out)
+{
+  const Dims& dims = out.dims();
+  // Grouped by row by a counting sort.
   const std::size_t rowCount = static_cast<std::size_t>(dims[1]) * dims[2];
   std::vector<std::uint32_t> rowStart(rowCount + 1, 0);
   for (const auto& c : crossings)
@@ -2236,10 +2415,21 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
           continue;
         const std::int64_t hi = std::min<std::int64_t>(*c, dims[0] - 1);
         const std::int64_t lo = c + 1 != last ? std::max<std::int64_t>(*(c + 1), -1) + 1 : 0;
-        for (std::int64_t x = lo; x <= hi; ++x)
-          out.set(static_cast<std::int32_t>(x), y, z);
+        setRun(out.row(y, z), lo, hi);
       }
     }
+}
+
+/// revertModifiedHull with the lattice points on the surface (latticePointsOnSurface) given:
+/// the whole-H check and the shells' marks list them anyway. Only bits of centres in the grid
+/// are set (x < dims[0]: the words' padding bits stay 0).
+BitVolume revertWithPointsOn(const LatticeMesh& surface,
+  const std::vector<LatticePoint>& on,
+  const std::vector<LatticePoint>& backgroundOnSurface,
+  const Dims& dims)
+{
+  BitVolume out(dims[0], dims[1], dims[2]);
+  fillInsideRuns(rayCrossings(surface, dims), out);
   for (const auto& p : on)
     out.set(static_cast<std::int32_t>(p[0]),
       static_cast<std::int32_t>(p[1]),
@@ -2422,21 +2612,38 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
   return shells;
 }
 
-/// H and its shells, kept side by side while shells are joined: a join replaces the shells it
-/// changed (joinAlongPrism), so H is not split into its shells again after every join.
-struct ShelledSurface
+/// H as its shells while shells are joined: a join replaces the shells it changed
+/// (joinAlongPrism), so H is not split into its shells again after every join, and H is put
+/// together from its shells only when asked for (takeMesh), not after every join. The whole H
+/// given is kept only until the first replacement (it is then stale, and freed: copies of the
+/// surface, one per attempted chain of cuts, do not copy it).
+class ShelledSurface
 {
-  LatticeMesh mesh;
+public:
   std::vector<Shell> shells;
 
   explicit ShelledSurface(const LatticeMesh& m)
-    : mesh(m)
-    , shells(shellsOf(m))
+    : shells(shellsOf(m))
+    , mesh(m)
   {
   }
 
+  /// H, its shells appended in their order when one was replaced; the surface is left empty.
+  LatticeMesh takeMesh()
+  {
+    if (this->stale)
+    {
+      this->mesh = LatticeMesh{};
+      for (const Shell& s : this->shells)
+        this->mesh.append(s.mesh, false);
+    }
+    this->stale = false;
+    this->shells.clear();
+    return std::move(this->mesh);
+  }
+
   /// Puts `pieces` in the place of the shells flagged in `changed` (where the first of them
-  /// was), and H together again from its shells.
+  /// was); H is put together from the shells by takeMesh.
   void replace(const std::vector<bool>& changed, std::vector<Shell>&& pieces)
   {
     std::vector<Shell> kept;
@@ -2451,10 +2658,13 @@ struct ShelledSurface
           kept.push_back(std::move(p));
       }
     this->shells = std::move(kept);
+    this->stale = true;
     this->mesh = LatticeMesh{};
-    for (const Shell& s : this->shells)
-      this->mesh.append(s.mesh, false);
   }
+
+private:
+  LatticeMesh mesh;
+  bool stale = false;
 };
 
 long eulerCharacteristic(const LatticeMesh& m)
@@ -2512,14 +2722,22 @@ void markShell(const LatticeMesh& shell,
   const Dims& box = s.box;
   const std::vector<LatticePoint>& on = s.on;
   const BitVolume& inside = s.inside;
+  // The inside's words scanned for their set bits: most of a large shell's box is outside it.
+  // All wordsPerRow() words of a row: their padding bits (x >= box[0]) are 0, as
+  // revertWithPointsOn sets bits only of centres in the box.
   for (std::int32_t z = 0; z < box[2]; ++z)
     for (std::int32_t y = 0; y < box[1]; ++y)
-      for (std::int32_t x = 0; x < box[0]; ++x)
-      {
-        const LatticePoint p{ x + lo[0], y + lo[1], z + lo[2] };
-        if (inside.get(x, y, z) && inGrid(d, p))
-          out[gridIndex(d, p)] = flag;
-      }
+    {
+      const Word* row = inside.row(y, z);
+      for (std::size_t w = 0; w < inside.wordsPerRow(); ++w)
+        for (Word bits = row[w]; bits != 0; bits &= bits - 1)
+        {
+          const auto x = static_cast<std::int64_t>(64 * w) + __builtin_ctzll(bits);
+          const LatticePoint p{ x + lo[0], y + lo[1], z + lo[2] };
+          if (inGrid(d, p))
+            out[gridIndex(d, p)] = flag;
+        }
+    }
   for (const auto& q : on)
   {
     const LatticePoint p{ q[0] + lo[0], q[1] + lo[1], q[2] + lo[2] };
@@ -2887,9 +3105,7 @@ bool crossesBeyond(const LatticeMesh& surface,
   if (nx == 0)
     return true;
   const int s = nx > 0 ? 1 : -1;
-  if (perturbedOrientation(q[0], q[1], p[1], p[2]) != s ||
-    perturbedOrientation(q[1], q[2], p[1], p[2]) != s ||
-    perturbedOrientation(q[2], q[0], p[1], p[2]) != s)
+  if (!rayMeetsTriangle<__int128>(q[0], q[1], q[2], p[1], p[2], s))
     return true;
   // The crossing lies beyond p when n.p < d along +x for an outward normal with nx > 0.
   const __int128 e = plane.evaluate(p);
@@ -3778,14 +3994,14 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   std::set<LatticePoint> failed;
   ShelledSurface repaired(surface);
   const auto planes = ctx.planeLevel;
-  std::vector<std::uint8_t> where = whereInGrid(repaired.mesh, ctx.objects.dims());
+  std::vector<std::uint8_t> where = whereInGrid(surface, ctx.objects.dims());
   std::vector<std::uint8_t> mine(where.size(), 0);
   VoidSearch search(where.size());
   while (joinOneShell(ctx, repaired, where, mine, search, failed))
     ++joined;
   // Checked once at the end, without a self-intersection test of the whole surface
   // (separatesAfterLocalChecks).
-  return keepIfSeparates(ctx, joined, std::move(repaired.mesh), planes, surface);
+  return keepIfSeparates(ctx, joined, repaired.takeMesh(), planes, surface);
 }
 
 /// The contribution to the Euler characteristic of the union of the closed voxel cubes of the
@@ -3971,7 +4187,7 @@ bool cutAtCrossing(Context& ctx,
       tried };
     if (tryPrisms(ctx, pairs, true, shells, shelled, where))
     {
-      surface = std::move(shelled.mesh);
+      surface = shelled.takeMesh();
       return true;
     }
   }
@@ -5318,9 +5534,16 @@ bool rowRange(const CellList& c,
   std::int64_t& lo,
   std::int64_t& hi)
 {
-  RowScan rows(c, strict);
+  RowScan rows(c, strict, SliceRows::All);
   rows.setSlice(z);
   return rows.range(y, lo, hi);
+}
+
+std::size_t planesLeftOutOfSlice(const CellList& c, bool strict, std::int64_t z)
+{
+  RowScan rows(c, strict, SliceRows::All);
+  rows.setSlice(z);
+  return rows.planesLeftOut();
 }
 
 std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends)

@@ -483,12 +483,19 @@ std::vector<std::array<std::int64_t, 4>> runsOfClass(const CellList& c,
 
 /// The x range [lo, hi] of row (y, z) in the intersection of the half spaces of c.planes
 /// (n.p <= offset, < when `strict`); false when it is empty. Unbounded sides are +-2^61.
+/// A solid c (dimension 3, with edges, more than 8 planes) must be a convexHull result with its
+/// incidences: the range is cut to the box of the slice's corners (its vertices in the slice
+/// and its edges' crossings), so a missing vertex or edge would shorten it.
 bool rowRange(const CellList& c,
   bool strict,
   std::int64_t y,
   std::int64_t z,
   std::int64_t& lo,
   std::int64_t& hi);
+
+/// How many of c's planes the rows of slice z leave out, as rowRange does (the planes that keep
+/// the slice's box); 0 when the slice is scanned on all of them.
+std::size_t planesLeftOutOfSlice(const CellList& c, bool strict, std::int64_t z);
 
 /// Of points in (z, y, x) order without repeats, the corners of each z-slice's polygon.
 std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends);

@@ -276,14 +276,17 @@ namespace
 bool toLatticeMesh(const Mesh& out, LatticeMesh& result)
 {
   result = LatticeMesh();
-  std::map<Mesh::Vertex_index, std::uint32_t> index;
+  // By the vertices' indices (removed ones included, out.vertices() skips them): a table, not
+  // a map.
+  std::vector<std::uint32_t> index(out.num_vertices());
+  result.points.reserve(out.number_of_vertices());
   for (auto v : out.vertices())
   {
     const auto& p = out.point(v);
     LatticePoint q;
     if (!integerValue(p.x(), q[0]) || !integerValue(p.y(), q[1]) || !integerValue(p.z(), q[2]))
       return false;
-    index[v] = static_cast<std::uint32_t>(result.points.size());
+    index[static_cast<std::size_t>(v)] = static_cast<std::uint32_t>(result.points.size());
     result.points.push_back(q);
   }
   // Pieces touching at a corner or along an edge can come out with that corner as two
@@ -292,11 +295,12 @@ bool toLatticeMesh(const Mesh& out, LatticeMesh& result)
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
     return false;
+  std::vector<std::uint32_t> corners;
   for (auto f : out.faces())
   {
-    std::vector<std::uint32_t> corners;
+    corners.clear();
     for (auto v : CGAL::vertices_around_face(out.halfedge(f), out))
-      corners.push_back(index[v]);
+      corners.push_back(index[static_cast<std::size_t>(v)]);
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
       result.triangles.push_back({ corners[0], corners[k], corners[k + 1] });
   }
@@ -745,6 +749,8 @@ LatticeMesh stitch(const LatticeMesh& a,
   for (const auto& t : out.triangles)
     for (auto i : t)
       renumber[i] = 1;
+  if (std::find(renumber.begin(), renumber.end(), 0u) == renumber.end())
+    return out; // every point still used: the compact mesh is this one
   LatticeMesh compact;
   for (std::size_t i = 0; i < out.points.size(); ++i)
     if (renumber[i])

@@ -282,6 +282,89 @@ TEST(ConvexHullModifierInternals, RowRangeMatchesABisectionOnLargeCoordinates)
   }
 }
 
+TEST(ConvexHullModifierInternals, RowRangeOfASolidHullMatchesAScanOfItsRows)
+{
+  // The rows of a solid hull leave out the planes that keep the slice's box: every row of the
+  // hull's box and two beyond it, against the lattice points tested on every plane. The
+  // coordinates stay within +-20 (the products of large ones: the bisection test above, on
+  // planes alone); the slices that leave planes out are counted, so that the test fails when
+  // that path is never taken.
+  std::mt19937 rng(23);
+  std::size_t planesLeftOut = 0;
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    const std::int64_t size = 2 + trial % 19;
+    std::uniform_int_distribution<std::int64_t> coordinate(-size, size);
+    std::vector<LatticePoint> points(4 + trial % 40);
+    for (auto& p : points)
+      p = { coordinate(rng), coordinate(rng), coordinate(rng) / (trial % 3 == 0 ? 4 : 1) };
+    const vbr::CellList c = vbr::convexHull(points);
+    if (c.dimension != 3)
+      continue;
+    for (bool strict : { false, true })
+      for (std::int64_t z = -size - 2; z <= size + 2; ++z)
+      {
+        planesLeftOut += vbr::detail::planesLeftOutOfSlice(c, strict, z);
+        for (std::int64_t y = -size - 2; y <= size + 2; ++y)
+        {
+          std::int64_t first = 0, last = -1, count = 0;
+          for (std::int64_t x = -size - 3; x <= size + 3; ++x)
+          {
+            const bool in = std::all_of(c.planes.begin(),
+              c.planes.end(),
+              [&](const vbr::FacePlane& f)
+              {
+                const auto v = f.evaluate({ x, y, z });
+                return strict ? v < 0 : v <= 0;
+              });
+            if (!in)
+              continue;
+            first = count == 0 ? x : first;
+            last = x;
+            ++count;
+          }
+          std::int64_t lo = 0, hi = 0;
+          const bool meets = vbr::detail::rowRange(c, strict, y, z, lo, hi);
+          ASSERT_EQ(meets, count > 0) << "trial " << trial << " row " << y << ", " << z;
+          if (!meets)
+            continue;
+          EXPECT_EQ(lo, first) << "trial " << trial << " row " << y << ", " << z;
+          EXPECT_EQ(hi, last) << "trial " << trial << " row " << y << ", " << z;
+        }
+      }
+  }
+  EXPECT_GT(planesLeftOut, 0u) << "no slice left a plane out: the box path was not tested";
+}
+
+TEST(ConvexHullModifierInternals, ReversionOfABoxSetsItsRunsAcrossWords)
+{
+  // The reversion sets the inside runs of a row a word at a time: boxes whose x ends lie at and
+  // about the words' boundaries and beyond the grid, in grids 63 to 128 wide, against the
+  // centres of the closed box in the grid (no background listed on the surface).
+  for (std::int32_t width : { 63, 64, 65, 127, 128 })
+    for (std::int64_t lo : { -2, 0, 1, 62, 63, 64, 65 })
+      for (std::int64_t hi : { 62, 63, 64, 65, 126, 127, 128, 130 })
+      {
+        if (hi <= lo)
+          continue;
+        std::vector<LatticePoint> corners;
+        for (std::int64_t x : { lo, hi })
+          for (std::int64_t y : { 1, 2 })
+            for (std::int64_t z : { 1, 3 })
+              corners.push_back({ x, y, z });
+        const vbr::LatticeMesh box = vbr::triangulateHull(vbr::convexHull(corners));
+        vbr::BitVolume expected(width, 4, 5);
+        for (std::int32_t z = 1; z <= 3; ++z)
+          for (std::int32_t y = 1; y <= 2; ++y)
+            for (std::int64_t x = std::max<std::int64_t>(lo, 0);
+                 x <= std::min<std::int64_t>(hi, width - 1);
+                 ++x)
+              expected.set(static_cast<std::int32_t>(x), y, z);
+        EXPECT_EQ(vbr::revertModifiedHull(box, {}, { width, 4, 5 }), expected)
+          << "width " << width << " box x " << lo << ".." << hi;
+      }
+}
+
 bool zyx(const LatticePoint& a, const LatticePoint& b)
 {
   return std::tie(a[2], a[1], a[0]) < std::tie(b[2], b[1], b[0]);
