@@ -761,6 +761,19 @@ void countObject(const vbr::BitVolume& voxels,
     stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
 }
 
+/// countObject for a 2D image, from what extractEVM2D counted.
+void countPlanarObject(const vbr::PlanarCounts& counts,
+  const vbr::EVM& evm,
+  const ObjectSettings& settings,
+  Statistics& stats)
+{
+  stats.voxels += static_cast<vtkIdType>(counts.pixels);
+  stats.surfels += static_cast<vtkIdType>(counts.edges);
+  stats.extremeVertices += static_cast<vtkIdType>(evm.size());
+  for (int k = 0; k < 3; ++k)
+    stats.planes[settings.axes[k]] += static_cast<vtkIdType>(counts.planes[k]);
+}
+
 /// The EVM of one object (voxels -> EVM), counted in `stats`; in Surfels mode its cells
 /// instead. Returns its number of voxels, 0 when it has no faces to make (no voxels, or
 /// Surfels mode).
@@ -777,15 +790,32 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
     vtkLogScopeF(TRACE, "select voxels");
     voxels = object.select(exec);
   }
-  const std::size_t count = voxels.count();
-  if (count == 0)
-    return 0;
-  const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(count));
+  std::size_t count = 0;
+  if (settings.planar)
   {
-    vtkLogScopeF(TRACE, "extreme vertices");
-    evm = settings.planar ? vbr::extractEVM2D(voxels, local) : vbr::extractEVM(voxels, local);
+    // One pass over the pixels for the vertices and the counts together (a 2D image's
+    // update is short: the three passes of the 3D way were a fifth of a fax page's).
+    vtkLogScopeF(TRACE, "extreme vertices and counts");
+    vbr::PlanarCounts counts;
+    evm = vbr::extractEVM2D(
+      voxels, exec.forWork(static_cast<std::int64_t>(voxels.voxelCount())), &counts);
+    count = counts.pixels;
+    if (count == 0)
+      return 0;
+    countPlanarObject(counts, evm, settings, stats);
   }
-  countObject(voxels, count, evm, settings, stats);
+  else
+  {
+    count = voxels.count();
+    if (count == 0)
+      return 0;
+    const vbr::Execution local = exec.forWork(static_cast<std::int64_t>(count));
+    {
+      vtkLogScopeF(TRACE, "extreme vertices");
+      evm = vbr::extractEVM(voxels, local);
+    }
+    countObject(voxels, count, evm, settings, stats);
+  }
   if (settings.outputMode == vtkEVMBoundaryFilter::SURFELS)
   {
     vtkLogScopeF(TRACE, "surfel cells");

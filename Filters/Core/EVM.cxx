@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cctype>
+#include <mutex>
 #include <stdexcept>
 #include <utility>
 
@@ -319,30 +320,247 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
   return EVM(3, AxisOrder{ 2, 1, 0 }, collectVertices(nz + 1, rowWords + 1, exec, rowsOfPlane));
 }
 
-EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
+namespace
+{
+
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__POPCNT__) &&    \
+  !defined(_MSC_VER)
+// The build targets x86-64 without POPCNT, whose popCount is a dozen operations: the counting
+// pass of extractEVM2D counts four words per word of a line with edges, and takes the
+// instruction where the processor has it (every x86-64 processor since about 2008), in a copy
+// compiled for it (RunLabelling.cxx's way).
+#define VBR_EVM_POPCNT_COPY 1
+#define VBR_EVM_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define VBR_EVM_POPCNT_COPY 0
+#define VBR_EVM_ALWAYS_INLINE inline
+#endif
+
+/// The number of set bits of w: by the instruction (Hardware, in a function compiled for it),
+/// else by popCount.
+template<bool Hardware>
+VBR_EVM_ALWAYS_INLINE std::size_t bitCount(Word w)
+{
+#if VBR_EVM_POPCNT_COPY
+  if constexpr (Hardware)
+    return static_cast<std::size_t>(__builtin_popcountll(w));
+#endif
+  return static_cast<std::size_t>(popCount(w));
+}
+
+/// The lines of vertices of a 2D pixel set (nz == 1): line ky lies between pixel rows ky - 1
+/// and ky, and vertex x of it is extreme where the XOR of those two rows (the parity of the
+/// pixels there) changes between pixels x - 1 and x. Computed word by word from the rows
+/// themselves, with no buffer per line.
+class PlanarLines
+{
+public:
+  explicit PlanarLines(const BitVolume& pixels)
+    : Pixels(pixels)
+    , Rows(pixels.size(1))
+    , RowWords(pixels.wordsPerRow())
+    , Zeros(pixels.wordsPerRow(), 0)
+  {
+  }
+
+  std::size_t lineWords() const { return this->RowWords + 1; }
+
+  /// Calls visit(w, vertexWord, parityWord, aboveWord) for every word w of line ky (the last
+  /// one, w == RowWords, holds the vertex at x = 64 RowWords only, with parity and above 0):
+  /// parity is the XOR of the rows below and above the line, above the row ky (0 past the
+  /// last row).
+  template<typename Visit>
+  void forEachWord(std::int64_t ky, Visit&& visit) const
+  {
+    const Word* below = this->rowBelow(ky);
+    const Word* above = this->rowAbove(ky);
+    Word carry = 0;
+    for (std::size_t w = 0; w < this->RowWords; ++w)
+    {
+      const Word parity = below[w] ^ above[w];
+      visit(w, parity ^ ((parity << 1) | carry), parity, above[w]);
+      carry = parity >> 63;
+    }
+    visit(this->RowWords, carry, Word(0), Word(0));
+  }
+
+  /// The number of vertices of line ky (bits counted as bitCount<Hardware> does); adds its pixels
+  /// above, boundary edges and whether it has vertices to `counts`, and ORs its vertex words into
+  /// `columns` (lineWords() words). A word where both rows are all set or all clear, as are the
+  /// bits just before it, holds neither a vertex nor an edge: it is skipped with one test, no bit
+  /// counts (most words of a fax page, its large black or white areas).
+  template<bool Hardware>
+  VBR_EVM_ALWAYS_INLINE std::size_t countLine(std::int64_t ky,
+    PlanarCounts& counts,
+    Word* columns) const
+  {
+    const Word* below = this->rowBelow(ky);
+    const Word* above = this->rowAbove(ky);
+    std::size_t vertexCount = 0, pixels = 0, edges = 0;
+    Word carry = 0, aboveCarry = 0; // the last bits of the word before: parity, above
+    for (std::size_t w = 0; w < this->RowWords; ++w)
+    {
+      const Word a = above[w];
+      const Word parity = below[w] ^ a;
+      const Word uniform = a == 0 ? 0 : ~Word(0);
+      if ((parity | carry) == 0 && a == uniform && aboveCarry == (uniform & 1))
+      {
+        pixels += static_cast<std::size_t>(a & 64);
+        continue;
+      }
+      const Word vertices = parity ^ ((parity << 1) | carry);
+      vertexCount += static_cast<std::size_t>(bitCount<Hardware>(vertices));
+      pixels += static_cast<std::size_t>(bitCount<Hardware>(a));
+      // Sides along x between the pixel rows (parity), along y between the pixels of the row
+      // above the line (its transitions, the row's start included).
+      edges += static_cast<std::size_t>(bitCount<Hardware>(parity)) +
+        static_cast<std::size_t>(bitCount<Hardware>(a ^ ((a << 1) | aboveCarry)));
+      columns[w] |= vertices;
+      carry = parity >> 63;
+      aboveCarry = a >> 63;
+    }
+    columns[this->RowWords] |= carry;
+    vertexCount += static_cast<std::size_t>(carry);
+    edges += static_cast<std::size_t>(aboveCarry); // the row's end
+    counts.pixels += pixels;
+    counts.edges += edges;
+    counts.planes[1] += vertexCount != 0 ? 1 : 0;
+    return vertexCount;
+  }
+
+private:
+  const Word* rowBelow(std::int64_t ky) const
+  {
+    return ky > 0 ? this->Pixels.row(static_cast<std::int32_t>(ky - 1), 0) : this->Zeros.data();
+  }
+  const Word* rowAbove(std::int64_t ky) const
+  {
+    return ky < this->Rows ? this->Pixels.row(static_cast<std::int32_t>(ky), 0)
+                           : this->Zeros.data();
+  }
+
+  const BitVolume& Pixels;
+  const std::int64_t Rows;
+  const std::size_t RowWords;
+  const std::vector<Word> Zeros;
+};
+
+/// PlanarLines::countLine for the lines [rb, re): their vertices in start[r + 1], their counts
+/// added to `counts` and `columns`.
+template<bool Hardware>
+VBR_EVM_ALWAYS_INLINE void countLinesWith(const PlanarLines& lines,
+  std::int64_t rb,
+  std::int64_t re,
+  std::size_t* start,
+  PlanarCounts& counts,
+  Word* columns)
+{
+  for (std::int64_t r = rb; r < re; ++r)
+    start[r + 1] = lines.countLine<Hardware>(r, counts, columns);
+}
+
+void countLines(const PlanarLines& lines,
+  std::int64_t rb,
+  std::int64_t re,
+  std::size_t* start,
+  PlanarCounts& counts,
+  Word* columns)
+{
+  countLinesWith<false>(lines, rb, re, start, counts, columns);
+}
+
+#if VBR_EVM_POPCNT_COPY
+/// countLines compiled for processors with POPCNT.
+__attribute__((target("popcnt"))) void countLinesPopCount(const PlanarLines& lines,
+  std::int64_t rb,
+  std::int64_t re,
+  std::size_t* start,
+  PlanarCounts& counts,
+  Word* columns)
+{
+  countLinesWith<true>(lines, rb, re, start, counts, columns);
+}
+#endif
+
+using LinesCounter =
+  void (*)(const PlanarLines&, std::int64_t, std::int64_t, std::size_t*, PlanarCounts&, Word*);
+
+/// countLines, counting bits by the instruction where the processor has it and the build
+/// does not assume it.
+LinesCounter pickCountLines()
+{
+#if VBR_EVM_POPCNT_COPY
+  if (__builtin_cpu_supports("popcnt"))
+    return countLinesPopCount;
+#endif
+  return countLines;
+}
+
+} // namespace
+
+EVM extractEVM2D(const BitVolume& pixels, const Execution& exec, PlanarCounts* counts)
 {
   if (pixels.size(2) != 1)
     throw std::invalid_argument("extractEVM2D needs a single slice (nz == 1)");
+  if (counts)
+    *counts = PlanarCounts();
   const std::int32_t ny = pixels.size(1);
-  const std::size_t rowWords = pixels.wordsPerRow();
   if (pixels.size(0) == 0 || ny == 0)
     return EVM(2, AxisOrder{ 2, 1, 0 }, {});
-  // One row of vertices per run: the XOR of the (up to) two pixel rows around line ky.
-  auto rowsOfLine = [&](std::int64_t ky, auto&& visit)
-  {
-    std::vector<Word> parity(rowWords, 0), bits(rowWords + 1);
-    for (std::int64_t y = ky - 1; y <= ky; ++y)
+  const PlanarLines lines(pixels);
+  const std::size_t words = lines.lineWords();
+  const std::int64_t count = static_cast<std::int64_t>(ny) + 1;
+  // Counted in parallel, each range on its own, then written in parallel after a prefix sum
+  // (collectVertices' way, with the lines' words made on the fly).
+  std::vector<std::size_t> start(static_cast<std::size_t>(count) + 1, 0);
+  std::mutex merging;
+  std::vector<Word> columns(counts ? words : 0, 0);
+  const LinesCounter countLinesIn = counts ? pickCountLines() : nullptr;
+  exec.forRange(count,
+    [&](std::int64_t rb, std::int64_t re)
     {
-      if (y < 0 || y >= ny)
-        continue;
-      const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
-      for (std::size_t w = 0; w < rowWords; ++w)
-        parity[w] ^= r[w];
-    }
-    rowParityToVertexBits(parity.data(), rowWords, bits.data());
-    visit(0, static_cast<Coord>(ky), bits.data());
-  };
-  return EVM(2, AxisOrder{ 2, 1, 0 }, collectVertices(ny + 1, rowWords + 1, exec, rowsOfLine));
+      if (!counts)
+      {
+        for (std::int64_t r = rb; r < re; ++r)
+          lines.forEachWord(r,
+            [&](std::size_t, Word vertices, Word, Word)
+            { start[r + 1] += static_cast<std::size_t>(popCount(vertices)); });
+        return;
+      }
+      PlanarCounts local;
+      std::vector<Word> localColumns(words, 0);
+      countLinesIn(lines, rb, re, start.data(), local, localColumns.data());
+      const std::lock_guard<std::mutex> lock(merging);
+      counts->pixels += local.pixels;
+      counts->edges += local.edges;
+      counts->planes[1] += local.planes[1];
+      for (std::size_t w = 0; w < words; ++w)
+        columns[w] |= localColumns[w];
+    });
+  for (std::size_t r = 0; r + 1 < start.size(); ++r)
+    start[r + 1] += start[r];
+  if (counts)
+    for (Word w : columns)
+      counts->planes[0] += static_cast<std::size_t>(popCount(w));
+  std::vector<Vertex> vertices;
+  reserveHugePages(vertices, start.back());
+  vertices.resize(start.back());
+  exec.forRange(count,
+    [&](std::int64_t rb, std::int64_t re)
+    {
+      for (std::int64_t r = rb; r < re; ++r)
+      {
+        Vertex* out = vertices.data() + start[r];
+        const Coord y = static_cast<Coord>(r);
+        lines.forEachWord(r,
+          [&](std::size_t w, Word bits, Word, Word)
+          {
+            for (; bits != 0; bits &= bits - 1)
+              *out++ = { 0, y, static_cast<Coord>(w * 64 + countTrailingZeros(bits)) };
+          });
+      }
+    });
+  return EVM(2, AxisOrder{ 2, 1, 0 }, std::move(vertices));
 }
 
 std::array<std::size_t, 3> planesPerAxis(const EVM& evm)
