@@ -745,7 +745,19 @@ struct ObjectSettings
   std::array<int, 3> axes;
 };
 
-/// Counts an object's voxels, surfels, extreme vertices and planes of vertices.
+/// Adds an object's extreme vertices and planes of vertices (`planes` per axis of its EVM,
+/// mapped to the image's axes) to `stats`.
+void addVertexCounts(const vbr::EVM& evm,
+  const std::array<std::size_t, 3>& planes,
+  const ObjectSettings& settings,
+  Statistics& stats)
+{
+  stats.extremeVertices += static_cast<vtkIdType>(evm.size());
+  for (int k = 0; k < 3; ++k)
+    stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
+}
+
+/// Counts a 3D object's voxels, surfels, extreme vertices and planes of vertices.
 void countObject(const vbr::BitVolume& voxels,
   std::size_t count,
   const vbr::EVM& evm,
@@ -753,12 +765,8 @@ void countObject(const vbr::BitVolume& voxels,
   Statistics& stats)
 {
   stats.voxels += static_cast<vtkIdType>(count);
-  const std::size_t faces3 = vbr::countSurfels(voxels);
-  stats.surfels += static_cast<vtkIdType>(settings.planar ? faces3 - 2 * count : faces3);
-  stats.extremeVertices += static_cast<vtkIdType>(evm.size());
-  const auto planes = vbr::planesPerAxis(evm);
-  for (int k = 0; k < 3; ++k)
-    stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
+  stats.surfels += static_cast<vtkIdType>(vbr::countSurfels(voxels));
+  addVertexCounts(evm, vbr::planesPerAxis(evm), settings, stats);
 }
 
 /// countObject for a 2D image, from what extractEVM2D counted.
@@ -769,9 +777,7 @@ void countPlanarObject(const vbr::PlanarCounts& counts,
 {
   stats.voxels += static_cast<vtkIdType>(counts.pixels);
   stats.surfels += static_cast<vtkIdType>(counts.edges);
-  stats.extremeVertices += static_cast<vtkIdType>(evm.size());
-  for (int k = 0; k < 3; ++k)
-    stats.planes[settings.axes[k]] += static_cast<vtkIdType>(counts.planes[k]);
+  addVertexCounts(evm, counts.planes, settings, stats);
 }
 
 /// The EVM of one object (voxels -> EVM), counted in `stats`; in Surfels mode its cells
@@ -796,9 +802,10 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
     // One pass over the pixels for the vertices and the counts together (a 2D image's
     // update is short: the three passes of the 3D way were a fifth of a fax page's).
     vtkLogScopeF(TRACE, "extreme vertices and counts");
+    // Its work is a few operations per word of the rows (64 pixels), not per pixel.
     vbr::PlanarCounts counts;
-    evm = vbr::extractEVM2D(
-      voxels, exec.forWork(static_cast<std::int64_t>(voxels.voxelCount())), &counts);
+    const auto rowWords = static_cast<std::int64_t>(voxels.wordsPerRow()) * voxels.size(1);
+    evm = vbr::extractEVM2D(voxels, exec.forWork(rowWords), &counts);
     count = counts.pixels;
     if (count == 0)
       return 0;

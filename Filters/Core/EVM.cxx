@@ -6,8 +6,15 @@
 // number of the eight voxels around it is set. Two passes over the planes of vertices, in
 // parallel: the first counts each plane's set bits, the second (after a prefix sum) writes
 // them in order straight into the EVM's one array (writeRowVertices), with no per-plane
-// vector to grow and copy: the result is ZYX-sorted without sorting. extractEVM2D does the
-// same with the two pixel rows around a line of vertices.
+// vector to grow and copy: the result is ZYX-sorted without sorting (collectVertices).
+//
+// extractEVM2D does the same with the two pixel rows around a line of vertices, their XOR
+// made word by word on the fly. Its counting pass also counts what the filter reports of a 2D
+// image (PlanarCounts: pixels, boundary edges, lines and columns of vertices), so that a 2D
+// image takes one pass over its pixels before the writing one, not three more. That pass skips
+// a word with one test where both rows are uniform (all set or all clear) and continue the
+// bits before, most words of a fax page, and counts bits by the POPCNT instruction in a copy
+// compiled for it where the build does not assume it (PopCount.h).
 //
 // Sorting (sortedAs): when the new order is a rotation or a swap of the old one, a single
 // stable bucket pass on one coordinate keeps the order of the two others (bucketedOn);
@@ -17,12 +24,12 @@
 #include "EVM.h"
 
 #include "HugePages.h"
+#include "PopCount.h"
 #include "RadixSort.h"
 
 #include <algorithm>
 #include <cassert>
 #include <cctype>
-#include <mutex>
 #include <stdexcept>
 #include <utility>
 
@@ -64,29 +71,24 @@ void rowParityToVertexBits(const Word* parity, std::size_t rowWords, Word* verte
   Word carry = 0;
   for (std::size_t w = 0; w < rowWords; ++w)
   {
-    vertexBits[w] = parity[w] ^ ((parity[w] << 1) | carry);
+    vertexBits[w] = transitions(parity[w], carry);
     carry = parity[w] >> 63;
   }
   vertexBits[rowWords] = carry;
 }
 
 /// The vertices of `count` runs (planes or lines of vertices) in one array, in run order:
-/// rows(r, visit) calls visit(a, b, vertexBits) for each row (a, b) of vertices of run r, in
-/// order; counted in parallel, then written in parallel after a prefix sum.
-template<typename Rows>
+/// countRuns(sizes) sets sizes[r] to the number of vertices of every run r (in parallel as it
+/// likes), then, after a prefix sum, writeRun(r, out) writes those of run r from `out` on, in
+/// parallel over the runs.
+template<typename CountRuns, typename WriteRun>
 std::vector<Vertex> collectVertices(std::int64_t count,
-  std::size_t words,
   const Execution& exec,
-  Rows&& rows)
+  CountRuns&& countRuns,
+  WriteRun&& writeRun)
 {
   std::vector<std::size_t> start(static_cast<std::size_t>(count) + 1, 0);
-  exec.forRange(count,
-    [&](std::int64_t rb, std::int64_t re)
-    {
-      for (std::int64_t r = rb; r < re; ++r)
-        rows(r,
-          [&](Coord, Coord, const Word* bits) { start[r + 1] += countRowVertices(bits, words); });
-    });
+  countRuns(start.data() + 1);
   for (std::size_t r = 0; r + 1 < start.size(); ++r)
     start[r + 1] += start[r];
   std::vector<Vertex> vertices;
@@ -98,11 +100,41 @@ std::vector<Vertex> collectVertices(std::int64_t count,
       for (std::int64_t r = rb; r < re; ++r)
       {
         Vertex* out = vertices.data() + start[r];
-        rows(
-          r, [&](Coord a, Coord b, const Word* bits) { writeRowVertices(bits, words, a, b, out); });
+        writeRun(r, out);
       }
     });
   return vertices;
+}
+
+/// collectVertices for runs given by rows(r, visit), which calls visit(a, b, vertexBits) for
+/// each row (a, b) of vertices of run r, in order (`words` words a row).
+template<typename Rows>
+std::vector<Vertex> collectRowVertices(std::int64_t count,
+  std::size_t words,
+  const Execution& exec,
+  Rows&& rows)
+{
+  return collectVertices(
+    count,
+    exec,
+    [&](std::size_t* sizes)
+    {
+      exec.forRange(count,
+        [&](std::int64_t rb, std::int64_t re)
+        {
+          for (std::int64_t r = rb; r < re; ++r)
+          {
+            std::size_t n = 0;
+            rows(r, [&](Coord, Coord, const Word* bits) { n += countRowVertices(bits, words); });
+            sizes[r] = n;
+          }
+        });
+    },
+    [&](std::int64_t r, Vertex* out)
+    {
+      rows(
+        r, [&](Coord a, Coord b, const Word* bits) { writeRowVertices(bits, words, a, b, out); });
+    });
 }
 
 } // namespace
@@ -317,36 +349,11 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
       visit(static_cast<Coord>(kz), ky, bits.data());
     }
   };
-  return EVM(3, AxisOrder{ 2, 1, 0 }, collectVertices(nz + 1, rowWords + 1, exec, rowsOfPlane));
+  return EVM(3, AxisOrder{ 2, 1, 0 }, collectRowVertices(nz + 1, rowWords + 1, exec, rowsOfPlane));
 }
 
 namespace
 {
-
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__POPCNT__) &&    \
-  !defined(_MSC_VER)
-// The build targets x86-64 without POPCNT, whose popCount is a dozen operations: the counting
-// pass of extractEVM2D counts four words per word of a line with edges, and takes the
-// instruction where the processor has it (every x86-64 processor since about 2008), in a copy
-// compiled for it (RunLabelling.cxx's way).
-#define VBR_EVM_POPCNT_COPY 1
-#define VBR_EVM_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define VBR_EVM_POPCNT_COPY 0
-#define VBR_EVM_ALWAYS_INLINE inline
-#endif
-
-/// The number of set bits of w: by the instruction (Hardware, in a function compiled for it),
-/// else by popCount.
-template<bool Hardware>
-VBR_EVM_ALWAYS_INLINE std::size_t bitCount(Word w)
-{
-#if VBR_EVM_POPCNT_COPY
-  if constexpr (Hardware)
-    return static_cast<std::size_t>(__builtin_popcountll(w));
-#endif
-  return static_cast<std::size_t>(popCount(w));
-}
 
 /// The lines of vertices of a 2D pixel set (nz == 1): line ky lies between pixel rows ky - 1
 /// and ky, and vertex x of it is extreme where the XOR of those two rows (the parity of the
@@ -365,10 +372,8 @@ public:
 
   std::size_t lineWords() const { return this->RowWords + 1; }
 
-  /// Calls visit(w, vertexWord, parityWord, aboveWord) for every word w of line ky (the last
-  /// one, w == RowWords, holds the vertex at x = 64 RowWords only, with parity and above 0):
-  /// parity is the XOR of the rows below and above the line, above the row ky (0 past the
-  /// last row).
+  /// Calls visit(w, vertexWord) for every word w of line ky (the last one, w == RowWords,
+  /// holds the vertex at x = 64 RowWords only).
   template<typename Visit>
   void forEachWord(std::int64_t ky, Visit&& visit) const
   {
@@ -378,19 +383,20 @@ public:
     for (std::size_t w = 0; w < this->RowWords; ++w)
     {
       const Word parity = below[w] ^ above[w];
-      visit(w, parity ^ ((parity << 1) | carry), parity, above[w]);
+      visit(w, transitions(parity, carry));
       carry = parity >> 63;
     }
-    visit(this->RowWords, carry, Word(0), Word(0));
+    visit(this->RowWords, carry);
   }
 
-  /// The number of vertices of line ky (bits counted as bitCount<Hardware> does); adds its pixels
-  /// above, boundary edges and whether it has vertices to `counts`, and ORs its vertex words into
-  /// `columns` (lineWords() words). A word where both rows are all set or all clear, as are the
-  /// bits just before it, holds neither a vertex nor an edge: it is skipped with one test, no bit
-  /// counts (most words of a fax page, its large black or white areas).
-  template<bool Hardware>
-  VBR_EVM_ALWAYS_INLINE std::size_t countLine(std::int64_t ky,
+  /// The number of vertices of line ky (bits counted as bitCount<Hardware> does). WithCounts:
+  /// also adds its pixels above, boundary edges and whether it has vertices to `counts`, and
+  /// ORs its vertex words into `columns` (lineWords() words). A word where both rows are all
+  /// set or all clear, as are the bits just before it, holds neither a vertex nor an edge: it
+  /// is skipped with one test, no bit counts (most words of a fax page, its large black or
+  /// white areas).
+  template<bool Hardware, bool WithCounts>
+  VBR_ALWAYS_INLINE std::size_t countLine(std::int64_t ky,
     PlanarCounts& counts,
     Word* columns) const
   {
@@ -402,29 +408,38 @@ public:
     {
       const Word a = above[w];
       const Word parity = below[w] ^ a;
-      const Word uniform = a == 0 ? 0 : ~Word(0);
-      if ((parity | carry) == 0 && a == uniform && aboveCarry == (uniform & 1))
+      if constexpr (WithCounts)
       {
-        pixels += static_cast<std::size_t>(a & 64);
-        continue;
+        const Word uniform = a == 0 ? 0 : ~Word(0);
+        if ((parity | carry) == 0 && a == uniform && aboveCarry == (uniform & 1))
+        {
+          // A skipped word is all set or all clear (uniform, ~0 or 0): 64 pixels or none.
+          pixels += uniform & 64;
+          continue;
+        }
       }
-      const Word vertices = parity ^ ((parity << 1) | carry);
-      vertexCount += static_cast<std::size_t>(bitCount<Hardware>(vertices));
-      pixels += static_cast<std::size_t>(bitCount<Hardware>(a));
-      // Sides along x between the pixel rows (parity), along y between the pixels of the row
-      // above the line (its transitions, the row's start included).
-      edges += static_cast<std::size_t>(bitCount<Hardware>(parity)) +
-        static_cast<std::size_t>(bitCount<Hardware>(a ^ ((a << 1) | aboveCarry)));
-      columns[w] |= vertices;
+      const Word vertices = transitions(parity, carry);
+      vertexCount += bitCount<Hardware>(vertices);
       carry = parity >> 63;
-      aboveCarry = a >> 63;
+      if constexpr (WithCounts)
+      {
+        pixels += bitCount<Hardware>(a);
+        // Sides along x between the pixel rows (parity), along y between the pixels of the
+        // row above the line (its transitions, the row's start included).
+        edges += bitCount<Hardware>(parity) + bitCount<Hardware>(transitions(a, aboveCarry));
+        columns[w] |= vertices;
+        aboveCarry = a >> 63;
+      }
     }
-    columns[this->RowWords] |= carry;
-    vertexCount += static_cast<std::size_t>(carry);
-    edges += static_cast<std::size_t>(aboveCarry); // the row's end
-    counts.pixels += pixels;
-    counts.edges += edges;
-    counts.planes[1] += vertexCount != 0 ? 1 : 0;
+    vertexCount += carry;
+    if constexpr (WithCounts)
+    {
+      columns[this->RowWords] |= carry;
+      edges += aboveCarry; // the row's end
+      counts.pixels += pixels;
+      counts.edges += edges;
+      counts.planes[1] += vertexCount != 0 ? 1 : 0;
+    }
     return vertexCount;
   }
 
@@ -445,40 +460,42 @@ private:
   const std::vector<Word> Zeros;
 };
 
-/// PlanarLines::countLine for the lines [rb, re): their vertices in start[r + 1], their counts
-/// added to `counts` and `columns`.
-template<bool Hardware>
-VBR_EVM_ALWAYS_INLINE void countLinesWith(const PlanarLines& lines,
+/// PlanarLines::countLine for the lines [rb, re): their vertices in sizes[r], their counts
+/// added to `counts` and `columns` (WithCounts).
+template<bool Hardware, bool WithCounts>
+VBR_ALWAYS_INLINE void countLinesWith(const PlanarLines& lines,
   std::int64_t rb,
   std::int64_t re,
-  std::size_t* start,
+  std::size_t* sizes,
   PlanarCounts& counts,
   Word* columns)
 {
   for (std::int64_t r = rb; r < re; ++r)
-    start[r + 1] = lines.countLine<Hardware>(r, counts, columns);
+    sizes[r] = lines.countLine<Hardware, WithCounts>(r, counts, columns);
 }
 
+template<bool WithCounts>
 void countLines(const PlanarLines& lines,
   std::int64_t rb,
   std::int64_t re,
-  std::size_t* start,
+  std::size_t* sizes,
   PlanarCounts& counts,
   Word* columns)
 {
-  countLinesWith<false>(lines, rb, re, start, counts, columns);
+  countLinesWith<false, WithCounts>(lines, rb, re, sizes, counts, columns);
 }
 
-#if VBR_EVM_POPCNT_COPY
+#if VBR_POPCNT_COPY
 /// countLines compiled for processors with POPCNT.
+template<bool WithCounts>
 __attribute__((target("popcnt"))) void countLinesPopCount(const PlanarLines& lines,
   std::int64_t rb,
   std::int64_t re,
-  std::size_t* start,
+  std::size_t* sizes,
   PlanarCounts& counts,
   Word* columns)
 {
-  countLinesWith<true>(lines, rb, re, start, counts, columns);
+  countLinesWith<true, WithCounts>(lines, rb, re, sizes, counts, columns);
 }
 #endif
 
@@ -487,13 +504,14 @@ using LinesCounter =
 
 /// countLines, counting bits by the instruction where the processor has it and the build
 /// does not assume it.
+template<bool WithCounts>
 LinesCounter pickCountLines()
 {
-#if VBR_EVM_POPCNT_COPY
-  if (__builtin_cpu_supports("popcnt"))
-    return countLinesPopCount;
+#if VBR_POPCNT_COPY
+  if (hasPopCountInstruction())
+    return countLinesPopCount<WithCounts>;
 #endif
-  return countLines;
+  return countLines<WithCounts>;
 }
 
 } // namespace
@@ -510,56 +528,55 @@ EVM extractEVM2D(const BitVolume& pixels, const Execution& exec, PlanarCounts* c
   const PlanarLines lines(pixels);
   const std::size_t words = lines.lineWords();
   const std::int64_t count = static_cast<std::int64_t>(ny) + 1;
-  // Counted in parallel, each range on its own, then written in parallel after a prefix sum
-  // (collectVertices' way, with the lines' words made on the fly).
-  std::vector<std::size_t> start(static_cast<std::size_t>(count) + 1, 0);
-  std::mutex merging;
-  std::vector<Word> columns(counts ? words : 0, 0);
-  const LinesCounter countLinesIn = counts ? pickCountLines() : nullptr;
-  exec.forRange(count,
-    [&](std::int64_t rb, std::int64_t re)
-    {
-      if (!counts)
+  // Counted by blocks of lines, one a thread, each with its own counts and row of columns
+  // (merged after the loop), then written by collectVertices.
+  const std::int64_t blocks =
+    exec.parallelFor ? std::clamp<std::int64_t>(exec.concurrency, 1, count) : 1;
+  std::vector<PlanarCounts> blockCounts(static_cast<std::size_t>(blocks));
+  std::vector<Word> blockColumns(counts ? static_cast<std::size_t>(blocks) * words : 0, 0);
+  const LinesCounter countLinesIn = counts ? pickCountLines<true>() : pickCountLines<false>();
+  const auto countRuns = [&](std::size_t* sizes)
+  {
+    exec.forRange(blocks,
+      [&](std::int64_t bb, std::int64_t be)
       {
-        for (std::int64_t r = rb; r < re; ++r)
-          lines.forEachWord(r,
-            [&](std::size_t, Word vertices, Word, Word)
-            { start[r + 1] += static_cast<std::size_t>(popCount(vertices)); });
-        return;
-      }
-      PlanarCounts local;
-      std::vector<Word> localColumns(words, 0);
-      countLinesIn(lines, rb, re, start.data(), local, localColumns.data());
-      const std::lock_guard<std::mutex> lock(merging);
-      counts->pixels += local.pixels;
-      counts->edges += local.edges;
-      counts->planes[1] += local.planes[1];
-      for (std::size_t w = 0; w < words; ++w)
-        columns[w] |= localColumns[w];
-    });
-  for (std::size_t r = 0; r + 1 < start.size(); ++r)
-    start[r + 1] += start[r];
+        for (std::int64_t b = bb; b < be; ++b)
+          countLinesIn(lines,
+            count * b / blocks,
+            count * (b + 1) / blocks,
+            sizes,
+            blockCounts[b],
+            counts ? blockColumns.data() + b * words : nullptr);
+      });
+  };
+  const auto writeLine = [&](std::int64_t r, Vertex* out)
+  {
+    const Coord y = static_cast<Coord>(r);
+    lines.forEachWord(r,
+      [&](std::size_t w, Word bits)
+      {
+        for (; bits != 0; bits &= bits - 1)
+          *out++ = { 0, y, static_cast<Coord>(w * 64 + countTrailingZeros(bits)) };
+      });
+  };
+  std::vector<Vertex> vertices = collectVertices(count, exec, countRuns, writeLine);
   if (counts)
-    for (Word w : columns)
-      counts->planes[0] += static_cast<std::size_t>(popCount(w));
-  std::vector<Vertex> vertices;
-  reserveHugePages(vertices, start.back());
-  vertices.resize(start.back());
-  exec.forRange(count,
-    [&](std::int64_t rb, std::int64_t re)
+  {
+    // The columns of vertices: x where any line has one.
+    for (std::size_t w = 0; w < words; ++w)
     {
-      for (std::int64_t r = rb; r < re; ++r)
-      {
-        Vertex* out = vertices.data() + start[r];
-        const Coord y = static_cast<Coord>(r);
-        lines.forEachWord(r,
-          [&](std::size_t w, Word bits, Word, Word)
-          {
-            for (; bits != 0; bits &= bits - 1)
-              *out++ = { 0, y, static_cast<Coord>(w * 64 + countTrailingZeros(bits)) };
-          });
-      }
-    });
+      Word column = 0;
+      for (std::int64_t b = 0; b < blocks; ++b)
+        column |= blockColumns[b * words + w];
+      counts->planes[0] += popCount(column);
+    }
+    for (const PlanarCounts& c : blockCounts)
+    {
+      counts->pixels += c.pixels;
+      counts->edges += c.edges;
+      counts->planes[1] += c.planes[1];
+    }
+  }
   return EVM(2, AxisOrder{ 2, 1, 0 }, std::move(vertices));
 }
 

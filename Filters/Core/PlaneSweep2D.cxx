@@ -32,6 +32,8 @@
 #include "UnionFind.h"
 
 #include <algorithm>
+#include <cassert>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -417,7 +419,9 @@ private:
   /// The end of the intervals of the previous section from section end i (even, an interval
   /// the cut does not touch) that the cut neither enters nor touches: those whose upper end
   /// lies below the cut's next vertex `next` (all of them when null). Gallops from i, then
-  /// bisects: a fax page's line crosses few of its many intervals, a maze's nearly all.
+  /// bisects, which the section allows because its ends are sorted along v (its intervals are
+  /// disjoint and in order): a fax page's line crosses few of its many intervals, a maze's
+  /// nearly all.
   std::size_t endOfUntouched(std::size_t i, const Vertex* next) const
   {
     const std::size_t pairs = this->Section.size() / 2;
@@ -442,6 +446,10 @@ private:
       else
         hi = mid;
     }
+    // Checked over the ends passed over only, which the caller copies anyway.
+    assert(std::is_sorted(this->Section.begin() + static_cast<std::ptrdiff_t>(i),
+      this->Section.begin() + static_cast<std::ptrdiff_t>(std::min(2 * lo + 1, 2 * pairs)),
+      [](const auto& a, const auto& b) { return a.v < b.v; }));
     return 2 * lo;
   }
 

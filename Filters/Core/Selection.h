@@ -13,7 +13,7 @@
 #include <map>
 #include <vector>
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
 #include <emmintrin.h>
 #endif
 
@@ -48,7 +48,7 @@ inline Word packEightFlags(std::uint64_t flags)
 inline Word packSixtyFourFlags(const std::uint8_t* flags)
 {
   Word w = 0;
-#if defined(__SSE2__)
+#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
   const __m128i zero = _mm_setzero_si128();
   for (int i = 0; i < 4; ++i)
   {

@@ -2,6 +2,7 @@
 #include "BruteForce.h"
 #include "EVM.h"
 #include "EVMBoolean.h"
+#include "PopCount.h"
 #include "Selection.h"
 
 #include <gtest/gtest.h>
@@ -157,6 +158,33 @@ TEST(EVM, TwoDimensionalCountsMatchPixels)
     for (std::int64_t b = n; b > 0; b -= 5) // uneven chunks, out of order
       f(std::max<std::int64_t>(0, b - 5), b);
   };
+  uneven.concurrency = 7; // blocks of lines counted apart, merged
+  // Word edges of the skipped uniform words, which random images meet by chance only.
+  for (const std::int32_t nx : { 128, 200 })
+  {
+    // Two equal rows clear up to x = 63 and set from 64 on: the word from 64 on is uniform
+    // but its row starts there (the carry of the row above the line).
+    vbr::BitVolume steps(nx, 2, 1);
+    // Rows that differ only at x = 63, equal and uniform from 64 on: the word from 64 on has
+    // a vertex at 64 (the carry of the parity), a column of its own (planes[0]).
+    vbr::BitVolume notch(nx, 3, 1);
+    for (std::int32_t x = 64; x < nx; ++x)
+    {
+      for (std::int32_t y = 0; y < 2; ++y)
+        steps.set(x, y, 0);
+      for (std::int32_t y = 0; y < 3; ++y)
+        notch.set(x, y, 0);
+    }
+    notch.set(63, 1, 0);
+    for (const bool portable : { false, true })
+    {
+      // The copy counting by the instruction and the portable one (where there are two).
+      vbr::portableBitCountsForTesting() = portable;
+      expectPlanarCounts(steps, {});
+      expectPlanarCounts(notch, {});
+      expectPlanarCounts(notch, uneven);
+    }
+  }
   unsigned seed = 300;
   // Widths around the word boundaries; random pixels, and blocks whose words are uniform.
   for (const std::int32_t nx : { 1, 2, 63, 64, 65, 128, 130, 200 })
@@ -167,12 +195,18 @@ TEST(EVM, TwoDimensionalCountsMatchPixels)
         const vbr::BitVolume v = bf::randomVolume({ nx, ny, 1 }, density, seed++);
         expectPlanarCounts(v, {});
         expectPlanarCounts(v, uneven);
+        vbr::portableBitCountsForTesting() = true;
+        expectPlanarCounts(v, uneven);
+        vbr::portableBitCountsForTesting() = false;
       }
       for (int trial = 0; trial < 4; ++trial)
       {
         const vbr::BitVolume v = blockyImage(nx, ny, seed++);
         expectPlanarCounts(v, {});
         expectPlanarCounts(v, uneven);
+        vbr::portableBitCountsForTesting() = true;
+        expectPlanarCounts(v, {});
+        vbr::portableBitCountsForTesting() = false;
       }
     }
 }
@@ -340,7 +374,8 @@ TEST(Selection, PacksFlagsAndSelectsExactly)
   const int background = 0;
   const auto boxes = vbr::labelBoxes(grid, &background);
   EXPECT_EQ(boxes.size(), 12u);
-  // Contiguous bytes (the path along unit strides), rows around whole words.
+  // Contiguous bytes (unit strides, the loop the compiler vectorizes best), rows around whole
+  // words.
   for (const int width : { 1, 15, 16, 63, 64, 65, 127, 128, 200 })
   {
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(width) * 3);
@@ -359,5 +394,18 @@ TEST(Selection, PacksFlagsAndSelectsExactly)
         ASSERT_EQ(u.get(x, y, 0), selected(g.at(x, y, 0))) << width << " " << x << " " << y;
     for (int y = 0; y < 3; ++y) // no bit set past the row's end
       ASSERT_EQ(u.row(y, 0)[u.wordsPerRow() - 1] >> 1 >> ((width - 1) % 64), 0u);
+  }
+}
+
+TEST(EVM, PackSixtyFourFlagsPutsFlagKAtBitK)
+{
+  for (int k = 0; k < 64; ++k)
+  {
+    std::uint8_t flags[64] = {};
+    flags[k] = 1;
+    EXPECT_EQ(vbr::packSixtyFourFlags(flags), vbr::Word(1) << k) << k;
+    for (int i = 0; i < 64; ++i)
+      flags[i] = i == k ? 0 : 1;
+    EXPECT_EQ(vbr::packSixtyFourFlags(flags), ~(vbr::Word(1) << k)) << k;
   }
 }
