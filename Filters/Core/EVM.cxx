@@ -6,8 +6,15 @@
 // number of the eight voxels around it is set. Two passes over the planes of vertices, in
 // parallel: the first counts each plane's set bits, the second (after a prefix sum) writes
 // them in order straight into the EVM's one array (writeRowVertices), with no per-plane
-// vector to grow and copy: the result is ZYX-sorted without sorting. extractEVM2D does the
-// same with the two pixel rows around a line of vertices.
+// vector to grow and copy: the result is ZYX-sorted without sorting (collectVertices).
+//
+// extractEVM2D does the same with the two pixel rows around a line of vertices, their XOR
+// made word by word on the fly. Its counting pass also counts what the filter reports of a 2D
+// image (PlanarCounts: pixels, boundary edges, lines and columns of vertices), so that a 2D
+// image takes one pass over its pixels before the writing one, not three more. That pass skips
+// a word with one test where both rows are uniform (all set or all clear) and continue the
+// bits before, most words of a fax page, and counts bits by the POPCNT instruction in a copy
+// compiled for it where the build does not assume it (PopCount.h).
 //
 // Sorting (sortedAs): when the new order is a rotation or a swap of the old one, a single
 // stable bucket pass on one coordinate keeps the order of the two others (bucketedOn);
@@ -17,6 +24,7 @@
 #include "EVM.h"
 
 #include "HugePages.h"
+#include "PopCount.h"
 #include "RadixSort.h"
 
 #include <algorithm>
@@ -63,29 +71,24 @@ void rowParityToVertexBits(const Word* parity, std::size_t rowWords, Word* verte
   Word carry = 0;
   for (std::size_t w = 0; w < rowWords; ++w)
   {
-    vertexBits[w] = parity[w] ^ ((parity[w] << 1) | carry);
+    vertexBits[w] = transitions(parity[w], carry);
     carry = parity[w] >> 63;
   }
   vertexBits[rowWords] = carry;
 }
 
 /// The vertices of `count` runs (planes or lines of vertices) in one array, in run order:
-/// rows(r, visit) calls visit(a, b, vertexBits) for each row (a, b) of vertices of run r, in
-/// order; counted in parallel, then written in parallel after a prefix sum.
-template<typename Rows>
+/// countRuns(sizes) sets sizes[r] to the number of vertices of every run r (in parallel as it
+/// likes), then, after a prefix sum, writeRun(r, out) writes those of run r from `out` on, in
+/// parallel over the runs.
+template<typename CountRuns, typename WriteRun>
 std::vector<Vertex> collectVertices(std::int64_t count,
-  std::size_t words,
   const Execution& exec,
-  Rows&& rows)
+  CountRuns&& countRuns,
+  WriteRun&& writeRun)
 {
   std::vector<std::size_t> start(static_cast<std::size_t>(count) + 1, 0);
-  exec.forRange(count,
-    [&](std::int64_t rb, std::int64_t re)
-    {
-      for (std::int64_t r = rb; r < re; ++r)
-        rows(r,
-          [&](Coord, Coord, const Word* bits) { start[r + 1] += countRowVertices(bits, words); });
-    });
+  countRuns(start.data() + 1);
   for (std::size_t r = 0; r + 1 < start.size(); ++r)
     start[r + 1] += start[r];
   std::vector<Vertex> vertices;
@@ -97,11 +100,41 @@ std::vector<Vertex> collectVertices(std::int64_t count,
       for (std::int64_t r = rb; r < re; ++r)
       {
         Vertex* out = vertices.data() + start[r];
-        rows(
-          r, [&](Coord a, Coord b, const Word* bits) { writeRowVertices(bits, words, a, b, out); });
+        writeRun(r, out);
       }
     });
   return vertices;
+}
+
+/// collectVertices for runs given by rows(r, visit), which calls visit(a, b, vertexBits) for
+/// each row (a, b) of vertices of run r, in order (`words` words a row).
+template<typename Rows>
+std::vector<Vertex> collectRowVertices(std::int64_t count,
+  std::size_t words,
+  const Execution& exec,
+  Rows&& rows)
+{
+  return collectVertices(
+    count,
+    exec,
+    [&](std::size_t* sizes)
+    {
+      exec.forRange(count,
+        [&](std::int64_t rb, std::int64_t re)
+        {
+          for (std::int64_t r = rb; r < re; ++r)
+          {
+            std::size_t n = 0;
+            rows(r, [&](Coord, Coord, const Word* bits) { n += countRowVertices(bits, words); });
+            sizes[r] = n;
+          }
+        });
+    },
+    [&](std::int64_t r, Vertex* out)
+    {
+      rows(
+        r, [&](Coord a, Coord b, const Word* bits) { writeRowVertices(bits, words, a, b, out); });
+    });
 }
 
 } // namespace
@@ -316,33 +349,235 @@ EVM extractEVM(const BitVolume& voxels, const Execution& exec)
       visit(static_cast<Coord>(kz), ky, bits.data());
     }
   };
-  return EVM(3, AxisOrder{ 2, 1, 0 }, collectVertices(nz + 1, rowWords + 1, exec, rowsOfPlane));
+  return EVM(3, AxisOrder{ 2, 1, 0 }, collectRowVertices(nz + 1, rowWords + 1, exec, rowsOfPlane));
 }
 
-EVM extractEVM2D(const BitVolume& pixels, const Execution& exec)
+namespace
+{
+
+/// The lines of vertices of a 2D pixel set (nz == 1): line ky lies between pixel rows ky - 1
+/// and ky, and vertex x of it is extreme where the XOR of those two rows (the parity of the
+/// pixels there) changes between pixels x - 1 and x. Computed word by word from the rows
+/// themselves, with no buffer per line.
+class PlanarLines
+{
+public:
+  explicit PlanarLines(const BitVolume& pixels)
+    : Pixels(pixels)
+    , Rows(pixels.size(1))
+    , RowWords(pixels.wordsPerRow())
+    , Zeros(pixels.wordsPerRow(), 0)
+  {
+  }
+
+  std::size_t lineWords() const { return this->RowWords + 1; }
+
+  /// Calls visit(w, vertexWord) for every word w of line ky (the last one, w == RowWords,
+  /// holds the vertex at x = 64 RowWords only).
+  template<typename Visit>
+  void forEachWord(std::int64_t ky, Visit&& visit) const
+  {
+    const Word* below = this->rowBelow(ky);
+    const Word* above = this->rowAbove(ky);
+    Word carry = 0;
+    for (std::size_t w = 0; w < this->RowWords; ++w)
+    {
+      const Word parity = below[w] ^ above[w];
+      visit(w, transitions(parity, carry));
+      carry = parity >> 63;
+    }
+    visit(this->RowWords, carry);
+  }
+
+  /// The number of vertices of line ky (bits counted as bitCount<Hardware> does). WithCounts:
+  /// also adds its pixels above, boundary edges and whether it has vertices to `counts`, and
+  /// ORs its vertex words into `columns` (lineWords() words). A word where both rows are all
+  /// set or all clear, as are the bits just before it, holds neither a vertex nor an edge: it
+  /// is skipped with one test, no bit counts (most words of a fax page, its large black or
+  /// white areas).
+  template<bool Hardware, bool WithCounts>
+  VBR_ALWAYS_INLINE std::size_t countLine(std::int64_t ky,
+    PlanarCounts& counts,
+    Word* columns) const
+  {
+    const Word* below = this->rowBelow(ky);
+    const Word* above = this->rowAbove(ky);
+    std::size_t vertexCount = 0, pixels = 0, edges = 0;
+    Word carry = 0, aboveCarry = 0; // the last bits of the word before: parity, above
+    for (std::size_t w = 0; w < this->RowWords; ++w)
+    {
+      const Word a = above[w];
+      const Word parity = below[w] ^ a;
+      if constexpr (WithCounts)
+      {
+        const Word uniform = a == 0 ? 0 : ~Word(0);
+        if ((parity | carry) == 0 && a == uniform && aboveCarry == (uniform & 1))
+        {
+          // A skipped word is all set or all clear (uniform, ~0 or 0): 64 pixels or none.
+          pixels += uniform & 64;
+          continue;
+        }
+      }
+      const Word vertices = transitions(parity, carry);
+      vertexCount += bitCount<Hardware>(vertices);
+      carry = parity >> 63;
+      if constexpr (WithCounts)
+      {
+        pixels += bitCount<Hardware>(a);
+        // Sides along x between the pixel rows (parity), along y between the pixels of the
+        // row above the line (its transitions, the row's start included).
+        edges += bitCount<Hardware>(parity) + bitCount<Hardware>(transitions(a, aboveCarry));
+        columns[w] |= vertices;
+        aboveCarry = a >> 63;
+      }
+    }
+    vertexCount += carry;
+    if constexpr (WithCounts)
+    {
+      columns[this->RowWords] |= carry;
+      edges += aboveCarry; // the row's end
+      counts.pixels += pixels;
+      counts.edges += edges;
+      counts.planes[1] += vertexCount != 0 ? 1 : 0;
+    }
+    return vertexCount;
+  }
+
+private:
+  const Word* rowBelow(std::int64_t ky) const
+  {
+    return ky > 0 ? this->Pixels.row(static_cast<std::int32_t>(ky - 1), 0) : this->Zeros.data();
+  }
+  const Word* rowAbove(std::int64_t ky) const
+  {
+    return ky < this->Rows ? this->Pixels.row(static_cast<std::int32_t>(ky), 0)
+                           : this->Zeros.data();
+  }
+
+  const BitVolume& Pixels;
+  const std::int64_t Rows;
+  const std::size_t RowWords;
+  const std::vector<Word> Zeros;
+};
+
+/// PlanarLines::countLine for the lines [rb, re): their vertices in sizes[r], their counts
+/// added to `counts` and `columns` (WithCounts).
+template<bool Hardware, bool WithCounts>
+VBR_ALWAYS_INLINE void countLinesWith(const PlanarLines& lines,
+  std::int64_t rb,
+  std::int64_t re,
+  std::size_t* sizes,
+  PlanarCounts& counts,
+  Word* columns)
+{
+  for (std::int64_t r = rb; r < re; ++r)
+    sizes[r] = lines.countLine<Hardware, WithCounts>(r, counts, columns);
+}
+
+template<bool WithCounts>
+void countLines(const PlanarLines& lines,
+  std::int64_t rb,
+  std::int64_t re,
+  std::size_t* sizes,
+  PlanarCounts& counts,
+  Word* columns)
+{
+  countLinesWith<false, WithCounts>(lines, rb, re, sizes, counts, columns);
+}
+
+#if VBR_POPCNT_COPY
+/// countLines compiled for processors with POPCNT.
+template<bool WithCounts>
+__attribute__((target("popcnt"))) void countLinesPopCount(const PlanarLines& lines,
+  std::int64_t rb,
+  std::int64_t re,
+  std::size_t* sizes,
+  PlanarCounts& counts,
+  Word* columns)
+{
+  countLinesWith<true, WithCounts>(lines, rb, re, sizes, counts, columns);
+}
+#endif
+
+using LinesCounter =
+  void (*)(const PlanarLines&, std::int64_t, std::int64_t, std::size_t*, PlanarCounts&, Word*);
+
+/// countLines, counting bits by the instruction where the processor has it and the build
+/// does not assume it.
+template<bool WithCounts>
+LinesCounter pickCountLines()
+{
+#if VBR_POPCNT_COPY
+  if (hasPopCountInstruction())
+    return countLinesPopCount<WithCounts>;
+#endif
+  return countLines<WithCounts>;
+}
+
+} // namespace
+
+EVM extractEVM2D(const BitVolume& pixels, const Execution& exec, PlanarCounts* counts)
 {
   if (pixels.size(2) != 1)
     throw std::invalid_argument("extractEVM2D needs a single slice (nz == 1)");
+  if (counts)
+    *counts = PlanarCounts();
   const std::int32_t ny = pixels.size(1);
-  const std::size_t rowWords = pixels.wordsPerRow();
   if (pixels.size(0) == 0 || ny == 0)
     return EVM(2, AxisOrder{ 2, 1, 0 }, {});
-  // One row of vertices per run: the XOR of the (up to) two pixel rows around line ky.
-  auto rowsOfLine = [&](std::int64_t ky, auto&& visit)
+  const PlanarLines lines(pixels);
+  const std::size_t words = lines.lineWords();
+  const std::int64_t count = static_cast<std::int64_t>(ny) + 1;
+  // Counted by blocks of lines, one a thread, each with its own counts and row of columns
+  // (merged after the loop), then written by collectVertices.
+  const std::int64_t blocks =
+    exec.parallelFor ? std::clamp<std::int64_t>(exec.concurrency, 1, count) : 1;
+  std::vector<PlanarCounts> blockCounts(static_cast<std::size_t>(blocks));
+  std::vector<Word> blockColumns(counts ? static_cast<std::size_t>(blocks) * words : 0, 0);
+  const LinesCounter countLinesIn = counts ? pickCountLines<true>() : pickCountLines<false>();
+  const auto countRuns = [&](std::size_t* sizes)
   {
-    std::vector<Word> parity(rowWords, 0), bits(rowWords + 1);
-    for (std::int64_t y = ky - 1; y <= ky; ++y)
-    {
-      if (y < 0 || y >= ny)
-        continue;
-      const Word* r = pixels.row(static_cast<std::int32_t>(y), 0);
-      for (std::size_t w = 0; w < rowWords; ++w)
-        parity[w] ^= r[w];
-    }
-    rowParityToVertexBits(parity.data(), rowWords, bits.data());
-    visit(0, static_cast<Coord>(ky), bits.data());
+    exec.forRange(blocks,
+      [&](std::int64_t bb, std::int64_t be)
+      {
+        for (std::int64_t b = bb; b < be; ++b)
+          countLinesIn(lines,
+            count * b / blocks,
+            count * (b + 1) / blocks,
+            sizes,
+            blockCounts[b],
+            counts ? blockColumns.data() + b * words : nullptr);
+      });
   };
-  return EVM(2, AxisOrder{ 2, 1, 0 }, collectVertices(ny + 1, rowWords + 1, exec, rowsOfLine));
+  const auto writeLine = [&](std::int64_t r, Vertex* out)
+  {
+    const Coord y = static_cast<Coord>(r);
+    lines.forEachWord(r,
+      [&](std::size_t w, Word bits)
+      {
+        for (; bits != 0; bits &= bits - 1)
+          *out++ = { 0, y, static_cast<Coord>(w * 64 + countTrailingZeros(bits)) };
+      });
+  };
+  std::vector<Vertex> vertices = collectVertices(count, exec, countRuns, writeLine);
+  if (counts)
+  {
+    // The columns of vertices: x where any line has one.
+    for (std::size_t w = 0; w < words; ++w)
+    {
+      Word column = 0;
+      for (std::int64_t b = 0; b < blocks; ++b)
+        column |= blockColumns[b * words + w];
+      counts->planes[0] += popCount(column);
+    }
+    for (const PlanarCounts& c : blockCounts)
+    {
+      counts->pixels += c.pixels;
+      counts->edges += c.edges;
+      counts->planes[1] += c.planes[1];
+    }
+  }
+  return EVM(2, AxisOrder{ 2, 1, 0 }, std::move(vertices));
 }
 
 std::array<std::size_t, 3> planesPerAxis(const EVM& evm)

@@ -92,9 +92,22 @@ private:
 /// rows around each row of vertices, parallel over planes of vertices.
 EVM extractEVM(const BitVolume& voxels, const Execution& exec = Execution());
 
+/// What the passes of extractEVM2D count on the way, which would otherwise take passes of
+/// their own (BitVolume::count, countSurfels, planesPerAxis).
+struct PlanarCounts
+{
+  std::size_t pixels = 0; ///< set pixels (BitVolume::count)
+  /// Sides of set pixels that face an unset pixel or the outside (countSurfels of the
+  /// one-slice volume minus the two faces of each pixel along z).
+  std::size_t edges = 0;
+  std::array<std::size_t, 3> planes{ 0, 0, 0 }; ///< planesPerAxis of the EVM
+};
+
 /// Extreme vertices of a 2D pixel set stored in a BitVolume with nz == 1: vertices (0, y, x),
-/// order {z, y, x}.
-EVM extractEVM2D(const BitVolume& pixels, const Execution& exec = Execution());
+/// order {z, y, x}. With `counts`, also its pixels, boundary edges and lines of vertices.
+EVM extractEVM2D(const BitVolume& pixels,
+  const Execution& exec = Execution(),
+  PlanarCounts* counts = nullptr);
 
 /// Number of distinct coordinates of the vertices along each world axis (planes of vertices
 /// perpendicular to x, y, z).

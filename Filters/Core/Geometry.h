@@ -208,6 +208,13 @@ inline int popCount(std::uint64_t w)
 #endif
 }
 
+/// The bits of a row's word that differ from the bit before them (bit 0 from `carry`, the last
+/// bit of the word before, 0 or 1): the transitions along the row, where runs start or end.
+inline std::uint64_t transitions(std::uint64_t w, std::uint64_t carry)
+{
+  return w ^ ((w << 1) | carry);
+}
+
 // ---- convex polygons ---------------------------------------------------------------------
 
 /// Andrew's monotone chain over items sorted lexicographically by their 2D position, without

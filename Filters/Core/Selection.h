@@ -13,6 +13,10 @@
 #include <map>
 #include <vector>
 
+#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#include <emmintrin.h>
+#endif
+
 namespace vbr
 {
 
@@ -38,6 +42,31 @@ inline Word packEightFlags(std::uint64_t flags)
   return ((flags * 0x0002040810204081ULL) >> 49) & 0xFF;
 }
 
+/// Bit k of the result is flags[k], for 64 flags whose bytes are 0 or 1: with SSE2 sixteen at a
+/// time (the sign bits of a comparison with zero, gathered by movemask), otherwise eight per
+/// multiply (packEightFlags).
+inline Word packSixtyFourFlags(const std::uint8_t* flags)
+{
+  Word w = 0;
+#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+  const __m128i zero = _mm_setzero_si128();
+  for (int i = 0; i < 4; ++i)
+  {
+    const __m128i f = _mm_loadu_si128(reinterpret_cast<const __m128i*>(flags + 16 * i));
+    const auto bits = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_cmpgt_epi8(f, zero)));
+    w |= Word(bits & 0xFFFFu) << (16 * i);
+  }
+#else
+  for (int byte = 0; byte < 8; ++byte)
+  {
+    std::uint64_t eight;
+    std::memcpy(&eight, flags + 8 * byte, 8);
+    w |= packEightFlags(eight) << (8 * byte);
+  }
+#endif
+  return w;
+}
+
 /// Voxels of `box` whose value satisfies `selected`, packed 64 per word, parallel over rows.
 template<typename T, typename Predicate>
 BitVolume selectVoxels(const ScalarGrid<T>& grid,
@@ -61,19 +90,14 @@ BitVolume selectVoxels(const ScalarGrid<T>& grid,
         for (std::int32_t x0 = 0; x0 < nx; x0 += 64)
         {
           const std::int32_t n = std::min<std::int32_t>(64, nx - x0);
-          // Flags first (a loop the compiler vectorizes), then eight flags per multiply.
+          // Flags first (a loop the compiler vectorizes, in a copy for unit strides: a loop
+          // of its own for them was vectorized worse, twice the instructions on porous 64^3),
+          // then packed (packSixtyFourFlags).
           for (std::int32_t i = 0; i < n; ++i)
             flags[i] = selected(src[(x0 + i) * sx]) ? 1 : 0;
           for (std::int32_t i = n; i < 64; ++i)
             flags[i] = 0;
-          Word w = 0;
-          for (int byte = 0; byte < 8; ++byte)
-          {
-            std::uint64_t eight;
-            std::memcpy(&eight, flags + 8 * byte, 8);
-            w |= packEightFlags(eight) << (8 * byte);
-          }
-          dst[x0 >> 6] = w;
+          dst[x0 >> 6] = packSixtyFourFlags(flags);
         }
       }
     });

@@ -32,9 +32,8 @@ std::size_t countSurfels(const BitVolume& voxels)
       for (std::size_t w = 0; w < words; ++w)
       {
         // x faces: transitions between neighbouring bits, including both row ends.
-        const Word shifted = (r[w] << 1) | carry;
+        n += popcount(transitions(r[w], carry));
         carry = r[w] >> 63;
-        n += popcount(r[w] ^ shifted);
       }
       n += popcount(carry);
       // y and z faces: transitions between this row and the previous row (or nothing).

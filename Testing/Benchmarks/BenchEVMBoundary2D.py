@@ -69,6 +69,7 @@ def parse_arguments():
         args.repeat = 1
     for name in ("sizes", "radii", "labels"):  # 3D options of the shared input loader
         setattr(args, name, None)
+    args.cpu = args.cpu_time  # the shared header's name for it ("CPU time" or "wall clock")
     return args
 
 

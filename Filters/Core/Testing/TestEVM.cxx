@@ -2,6 +2,7 @@
 #include "BruteForce.h"
 #include "EVM.h"
 #include "EVMBoolean.h"
+#include "PopCount.h"
 #include "Selection.h"
 
 #include <gtest/gtest.h>
@@ -80,6 +81,133 @@ TEST(EVM, TwoDimensionalExtraction)
       EXPECT_EQ(evm.dimension(), 2);
       EXPECT_EQ(worldSet(evm), bf::extremeVertices2D(v));
       EXPECT_EQ(evm.toVoxels(v.dims()), v);
+    }
+}
+
+namespace
+{
+
+/// A 2D image of rectangles set and cleared over a set or clear background: long runs of
+/// whole words all set or all clear, next to words with edges.
+vbr::BitVolume blockyImage(std::int32_t nx, std::int32_t ny, unsigned seed)
+{
+  vbr::BitVolume v(nx, ny, 1);
+  unsigned state = seed;
+  const auto next = [&state](std::int32_t n)
+  {
+    state = state * 1103515245u + 12345u;
+    return static_cast<std::int32_t>((state >> 8) % static_cast<unsigned>(n));
+  };
+  const bool background = seed % 2 == 0;
+  for (std::int32_t y = 0; y < ny; ++y)
+    for (std::int32_t x = 0; x < nx; ++x)
+      v.set(x, y, 0, background);
+  for (int r = 0; r < 6; ++r)
+  {
+    const std::int32_t x0 = next(nx), y0 = next(ny);
+    const std::int32_t x1 = x0 + 1 + next(nx - x0), y1 = y0 + 1 + next(ny - y0);
+    for (std::int32_t y = y0; y < y1; ++y)
+      for (std::int32_t x = x0; x < x1; ++x)
+        v.set(x, y, 0, r % 2 == 0 ? !background : background);
+  }
+  return v;
+}
+
+/// extractEVM2D's counts of `v` against pixel by pixel ones, and its vertices with the counts
+/// against those without and the odd incidences.
+void expectPlanarCounts(const vbr::BitVolume& v, const vbr::Execution& exec)
+{
+  const std::int32_t nx = v.size(0), ny = v.size(1);
+  std::size_t pixels = 0, edges = 0;
+  for (std::int32_t y = 0; y < ny; ++y)
+    for (std::int32_t x = 0; x < nx; ++x)
+    {
+      if (!v.get(x, y, 0))
+        continue;
+      ++pixels;
+      const std::int32_t steps[4][2] = { { -1, 0 }, { 1, 0 }, { 0, -1 }, { 0, 1 } };
+      for (const auto& s : steps)
+        edges += v.getOrBackground(x + s[0], y + s[1], 0) ? 0 : 1;
+    }
+  std::set<vbr::Coord> xs, ys;
+  for (const vbr::Point3& p : bf::extremeVertices2D(v))
+  {
+    xs.insert(p[0]);
+    ys.insert(p[1]);
+  }
+  vbr::PlanarCounts counts;
+  counts.pixels = 12345; // overwritten
+  const vbr::EVM evm = vbr::extractEVM2D(v, exec, &counts);
+  const std::string where = std::to_string(nx) + "x" + std::to_string(ny);
+  EXPECT_EQ(counts.pixels, pixels) << where;
+  EXPECT_EQ(counts.edges, edges) << where;
+  EXPECT_EQ(counts.planes[0], xs.size()) << where;
+  EXPECT_EQ(counts.planes[1], ys.size()) << where;
+  EXPECT_EQ(counts.planes[2], 0u) << where;
+  EXPECT_EQ(evm, vbr::extractEVM2D(v)) << where;
+  EXPECT_EQ(worldSet(evm), bf::extremeVertices2D(v)) << where;
+}
+
+} // namespace
+
+TEST(EVM, TwoDimensionalCountsMatchPixels)
+{
+  vbr::Execution uneven;
+  uneven.parallelFor = [](std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& f)
+  {
+    for (std::int64_t b = n; b > 0; b -= 5) // uneven chunks, out of order
+      f(std::max<std::int64_t>(0, b - 5), b);
+  };
+  uneven.concurrency = 7; // blocks of lines counted apart, merged
+  // Word edges of the skipped uniform words, which random images meet by chance only.
+  for (const std::int32_t nx : { 128, 200 })
+  {
+    // Two equal rows clear up to x = 63 and set from 64 on: the word from 64 on is uniform
+    // but its row starts there (the carry of the row above the line).
+    vbr::BitVolume steps(nx, 2, 1);
+    // Rows that differ only at x = 63, equal and uniform from 64 on: the word from 64 on has
+    // a vertex at 64 (the carry of the parity), a column of its own (planes[0]).
+    vbr::BitVolume notch(nx, 3, 1);
+    for (std::int32_t x = 64; x < nx; ++x)
+    {
+      for (std::int32_t y = 0; y < 2; ++y)
+        steps.set(x, y, 0);
+      for (std::int32_t y = 0; y < 3; ++y)
+        notch.set(x, y, 0);
+    }
+    notch.set(63, 1, 0);
+    for (const bool portable : { false, true })
+    {
+      // The copy counting by the instruction and the portable one (where there are two).
+      vbr::portableBitCountsForTesting() = portable;
+      expectPlanarCounts(steps, {});
+      expectPlanarCounts(notch, {});
+      expectPlanarCounts(notch, uneven);
+    }
+  }
+  unsigned seed = 300;
+  // Widths around the word boundaries; random pixels, and blocks whose words are uniform.
+  for (const std::int32_t nx : { 1, 2, 63, 64, 65, 128, 130, 200 })
+    for (const std::int32_t ny : { 1, 3, 17 })
+    {
+      for (double density : { 0.0, 0.1, 0.5, 0.9, 1.0 })
+      {
+        const vbr::BitVolume v = bf::randomVolume({ nx, ny, 1 }, density, seed++);
+        expectPlanarCounts(v, {});
+        expectPlanarCounts(v, uneven);
+        vbr::portableBitCountsForTesting() = true;
+        expectPlanarCounts(v, uneven);
+        vbr::portableBitCountsForTesting() = false;
+      }
+      for (int trial = 0; trial < 4; ++trial)
+      {
+        const vbr::BitVolume v = blockyImage(nx, ny, seed++);
+        expectPlanarCounts(v, {});
+        expectPlanarCounts(v, uneven);
+        vbr::portableBitCountsForTesting() = true;
+        expectPlanarCounts(v, {});
+        vbr::portableBitCountsForTesting() = false;
+      }
     }
 }
 
@@ -246,4 +374,38 @@ TEST(Selection, PacksFlagsAndSelectsExactly)
   const int background = 0;
   const auto boxes = vbr::labelBoxes(grid, &background);
   EXPECT_EQ(boxes.size(), 12u);
+  // Contiguous bytes (unit strides, the loop the compiler vectorizes best), rows around whole
+  // words.
+  for (const int width : { 1, 15, 16, 63, 64, 65, 127, 128, 200 })
+  {
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(width) * 3);
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+      bytes[i] = static_cast<std::uint8_t>((i * 2654435761u) >> 7);
+    vbr::ScalarGrid<std::uint8_t> g;
+    g.data = bytes.data();
+    g.dims = { width, 3, 1 };
+    g.stride = { 1, width, 3 * width };
+    vbr::Box whole;
+    whole.hi = g.dims;
+    const auto selected = [](std::uint8_t x) { return x >= 40 && x <= 200; };
+    const vbr::BitVolume u = vbr::selectVoxels(g, whole, selected, {});
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < width; ++x)
+        ASSERT_EQ(u.get(x, y, 0), selected(g.at(x, y, 0))) << width << " " << x << " " << y;
+    for (int y = 0; y < 3; ++y) // no bit set past the row's end
+      ASSERT_EQ(u.row(y, 0)[u.wordsPerRow() - 1] >> 1 >> ((width - 1) % 64), 0u);
+  }
+}
+
+TEST(EVM, PackSixtyFourFlagsPutsFlagKAtBitK)
+{
+  for (int k = 0; k < 64; ++k)
+  {
+    std::uint8_t flags[64] = {};
+    flags[k] = 1;
+    EXPECT_EQ(vbr::packSixtyFourFlags(flags), vbr::Word(1) << k) << k;
+    for (int i = 0; i < 64; ++i)
+      flags[i] = i == k ? 0 : 1;
+    EXPECT_EQ(vbr::packSixtyFourFlags(flags), ~(vbr::Word(1) << k)) << k;
+  }
 }

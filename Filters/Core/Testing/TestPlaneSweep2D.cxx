@@ -291,6 +291,35 @@ TEST(PlaneSweep2D, RandomImagesMatchBruteForce)
   }
 }
 
+TEST(PlaneSweep2D, ManyBarsTouchedHereAndThere)
+{
+  // Vertical bars make a section of many intervals; a few pixels added beside them or cut out
+  // of them touch one or two of those intervals per line, so that the sweep passes long and
+  // short runs of untouched intervals (found by galloping and bisection) between them.
+  unsigned state = 7;
+  const auto next = [&state](int n)
+  {
+    state = state * 1103515245u + 12345u;
+    return static_cast<int>((state >> 8) % static_cast<unsigned>(n));
+  };
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    const int nx = 60 + 17 * trial, ny = 24;
+    vbr::BitVolume image(nx, ny, 1);
+    for (int y = 1; y + 1 < ny; ++y)
+      for (int x = 0; x < nx; x += 3)
+        image.set(x, y, 0);
+    for (int k = 0; k < 4 + trial; ++k)
+    {
+      const int x = next(nx), y = 1 + next(ny - 2);
+      image.set(x, y, 0, x % 3 != 0); // a pixel beside a bar, or a bar broken
+    }
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    checkImage(image, false);
+    checkImage(image, true);
+  }
+}
+
 TEST(PlaneSweep2D, NestedRingsAndDegenerateImages)
 {
   // Concentric square rings: faces and holes alternate down to depth 8.

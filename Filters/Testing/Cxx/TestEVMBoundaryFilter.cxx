@@ -566,6 +566,93 @@ void checkErrorsAndDegenerateInputs()
   }
 }
 
+/// A 2D image's statistics (`flat`: the axis of its one slice) by brute force over its pixels,
+/// for the pixels of `label` (< 0: every non-zero value): pixels, their sides facing an unset
+/// pixel or the outside (4-neighbours), the extreme vertices of the plane (an odd number of
+/// the four pixels around a vertex set) and their distinct coordinates along each axis (none
+/// along the flat one).
+struct PlanarExpected
+{
+  long long pixels = 0, edges = 0, vertices = 0;
+  std::array<long long, 3> planes{ 0, 0, 0 };
+};
+
+PlanarExpected expectPlanar(const Volume& v, int flat, int label)
+{
+  const int a = (flat + 1) % 3, b = (flat + 2) % 3;
+  auto in = [&](int i, int j)
+  {
+    Int3 p{ 0, 0, 0 };
+    p[a] = i;
+    p[b] = j;
+    const int value = v.at(p[0], p[1], p[2]);
+    return label < 0 ? value != 0 : value == label;
+  };
+  PlanarExpected e;
+  for (int j = 0; j < v.dims[b]; ++j)
+    for (int i = 0; i < v.dims[a]; ++i)
+      if (in(i, j))
+      {
+        ++e.pixels;
+        e.edges += !in(i - 1, j) + !in(i + 1, j) + !in(i, j - 1) + !in(i, j + 1);
+      }
+  std::set<int> is, js;
+  for (int j = 0; j <= v.dims[b]; ++j)
+    for (int i = 0; i <= v.dims[a]; ++i)
+      if ((in(i - 1, j - 1) + in(i, j - 1) + in(i - 1, j) + in(i, j)) % 2 == 1)
+      {
+        ++e.vertices;
+        is.insert(i);
+        js.insert(j);
+      }
+  e.planes[a] = static_cast<long long>(is.size());
+  e.planes[b] = static_cast<long long>(js.size());
+  return e;
+}
+
+/// The statistics of a 2D image (flat along `flat`) in Positive or Labels mode against
+/// expectPlanar, summed over the labels.
+void checkPlanarStatistics(const Volume& v,
+  const Layout& l,
+  int flat,
+  int mode,
+  const std::string& what)
+{
+  vtkNew<vtkEVMBoundaryFilter> f;
+  f->SetInputData(makeImage(v, l));
+  f->SetSelectionMode(mode);
+  f->SetOutputModeToPolylines();
+  f->Update();
+  vtkPolyData* out = f->GetOutput();
+  std::set<int> labels{ -1 };
+  if (mode == vtkEVMBoundaryFilter::LABELS)
+  {
+    labels = std::set<int>(v.values.begin(), v.values.end());
+    labels.erase(0);
+  }
+  PlanarExpected sum;
+  for (int label : labels)
+  {
+    const PlanarExpected e = expectPlanar(v, flat, label);
+    sum.pixels += e.pixels;
+    sum.edges += e.edges;
+    sum.vertices += e.vertices;
+    for (int k = 0; k < 3; ++k)
+      sum.planes[k] += e.planes[k];
+  }
+  CHECK(fieldValue(out, "NumberOfVoxels") == sum.pixels,
+    what << ": " << fieldValue(out, "NumberOfVoxels") << " pixels, expected " << sum.pixels);
+  CHECK(fieldValue(out, "NumberOfSurfels") == sum.edges,
+    what << ": " << fieldValue(out, "NumberOfSurfels") << " edges, expected " << sum.edges);
+  CHECK(fieldValue(out, "NumberOfExtremeVertices") == sum.vertices,
+    what << ": " << fieldValue(out, "NumberOfExtremeVertices") << " extreme vertices, expected "
+         << sum.vertices);
+  for (int k = 0; k < 3; ++k)
+    CHECK(fieldValue(out, "NumberOfPlanesOfVertices", k) == sum.planes[k],
+      what << ": " << fieldValue(out, "NumberOfPlanesOfVertices", k) << " planes along axis " << k
+           << ", expected " << sum.planes[k]);
+}
+
 /// A 2D image: closed loops in its plane with the inclusion tree; off: a closed slab.
 void checkTwoDimensional()
 {
@@ -595,6 +682,22 @@ void checkTwoDimensional()
     f->Update();
     vtkPolyData* out = f->GetOutput();
     CHECK(out->GetNumberOfLines() == 3, "2D: 3 loops, plane " << flat);
+    // The statistics of the 2D path (counted with the extreme vertices): the rings, and
+    // random labelled images across word boundaries, point and cell scalars, offset extents.
+    Int3 wide{ 70, 131, 9 };
+    wide[flat] = 1;
+    const Volume labelled = randomVolume(wide, 0.5, 3, 40 + flat);
+    for (const bool cellData : { false, true })
+    {
+      Layout l;
+      l.cellData = cellData;
+      l.extentMin = { -5 + flat, 7, -2 * flat - 1 };
+      const std::string where =
+        "2D statistics plane " + std::to_string(flat) + (cellData ? " cells" : " points");
+      checkPlanarStatistics(w, l, flat, vtkEVMBoundaryFilter::POSITIVE, where + " rings");
+      checkPlanarStatistics(labelled, l, flat, vtkEVMBoundaryFilter::POSITIVE, where);
+      checkPlanarStatistics(labelled, l, flat, vtkEVMBoundaryFilter::LABELS, where + " labels");
+    }
     CHECK(fieldValue(out, "NumberOfFaces") == 2 && fieldValue(out, "NumberOfHoles") == 1,
       "2D: 2 faces, 1 hole");
     vtkDataArray* depth = out->GetCellData()->GetArray("Depth");
@@ -666,6 +769,13 @@ int TestEVMBoundaryFilter(int, char*[])
     checkPolygons(v, l, vtkEVMBoundaryFilter::POSITIVE, trial % 4 == 3, what.str());
     checkPolygons(v, l, vtkEVMBoundaryFilter::LABELS, false, what.str() + " labels");
     checkTriangles(v, l, what.str());
+    // The same trial flat (a 2D image): its statistics by the 2D path.
+    Int3 flatDims = dims;
+    flatDims[trial % 3] = 1;
+    const Volume flat = randomVolume(flatDims, density, 1 + trial % 3, 1000u + trial);
+    checkPlanarStatistics(flat, l, trial % 3, vtkEVMBoundaryFilter::POSITIVE, what.str() + " flat");
+    checkPlanarStatistics(
+      flat, l, trial % 3, vtkEVMBoundaryFilter::LABELS, what.str() + " flat labels");
   }
   // 64^3, sparse and dense (many non-manifold contacts), cell scalars, offset extent.
   for (double density : { 0.25, 0.6 })
