@@ -14,6 +14,7 @@
 #include "HugePages.h"
 
 #include "Geometry.h"
+#include "PopCount.h"
 #include "UnionFind.h"
 
 #include <algorithm>
@@ -144,32 +145,6 @@ inline Word runStartsOf(Word bits, Word carry)
   return bits & ~((bits << 1) | carry);
 }
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__POPCNT__) &&    \
-  !defined(_MSC_VER)
-// The build targets x86-64 without POPCNT, whose popCount is a dozen operations: the word scan
-// of uniteRowBits counts two words a contact, and takes the instruction where the processor
-// has it (every x86-64 processor since about 2008), in a copy compiled for it. Not with
-// clang-cl (which defines __clang__ too), whose link against MSVC's libraries is not assumed
-// to hold the runtime of __builtin_cpu_supports.
-#define VBR_POPCNT_COPY 1
-#define VBR_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define VBR_POPCNT_COPY 0
-#define VBR_ALWAYS_INLINE inline
-#endif
-
-/// The number of set bits of w: by the instruction (Hardware, in a function compiled for it),
-/// else by popCount.
-template<bool Hardware>
-VBR_ALWAYS_INLINE int bitCount(Word w)
-{
-#if VBR_POPCNT_COPY
-  if constexpr (Hardware)
-    return __builtin_popcountll(w);
-#endif
-  return popCount(w);
-}
-
 /// A row's bits and the indices [first, end) of its runs.
 struct RowBits
 {
@@ -289,15 +264,6 @@ RowBitsUniter pickUniteRowBits(bool popCountInstruction)
   return uniteRowBits<Widen>;
 }
 
-/// Whether the processor counts bits by an instruction that the build does not assume.
-bool hasPopCountInstruction()
-{
-#if VBR_POPCNT_COPY
-  return __builtin_cpu_supports("popcnt");
-#else
-  return false;
-#endif
-}
 
 /// Where the CUDB compactions are read from: for every run, the equal run of the row before
 /// and of the row after in its plane (chains of them are the rectangles, the 2D compaction), and
@@ -881,5 +847,3 @@ bool paintRunsOverwriting(const VoxelRuns& runs,
 
 } // namespace vbr
 
-#undef VBR_POPCNT_COPY
-#undef VBR_ALWAYS_INLINE
