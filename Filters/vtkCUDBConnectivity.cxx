@@ -1875,9 +1875,7 @@ struct RegionColumns
       RowBlock block;
       for (; row + RowBlock::Rows <= rows; row += RowBlock::Rows)
       {
-        block.at = 0;
-        for (std::size_t k = 0; k < RowBlock::Rows; ++k)
-          writer.write(row + k, block.columns(), block.at++);
+        writer.writeBlock(row, block.columns());
         block.streamTo(out, row);
       }
       _mm_sfence(); // the streamed rows before anything reads them
@@ -1967,6 +1965,96 @@ struct RegionColumns
       }
       this->transform.centroid(r, out.centroids + 3 * at);
     }
+
+    /// Rows of a block (writeBlock).
+    static constexpr std::size_t Rows = 16;
+
+    /// Rows [row, row + Rows) of the table at positions [0, Rows) of the columns `out` (a
+    /// RowBlock's), the same values as write's: its operations in its order. The rows'
+    /// records are read first, then each column's values are computed for all the rows in
+    /// one loop, over arrays of the rows, which the compiler takes two doubles at a time: on
+    /// a fax-like page's 278,445 rows, 28 % fewer instructions than row by row (9 % fewer for
+    /// its whole update), and 10 % to 17 % less time for the update of a 128^3 checkerboard's
+    /// million rows. Only for the tables streamed from RowBlock: writing the columns of a
+    /// smaller table straight (or copying them from a block) took 4 % to 8 % longer than
+    /// write's rows.
+    void writeBlock(std::size_t row, const Columns& out) const
+    {
+      constexpr std::size_t count = Rows, at = 0;
+      const vbr::vtk::VoxelGrid& grid = this->transform.grid;
+      alignas(64) std::int32_t lo[3][Rows], hi[3][Rows]; // by image axis
+      alignas(64) double doubledCentre[3][Rows];         // by image axis
+      alignas(64) double voxels[Rows];
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        // Rows in RegionId (size) order read the regions, in sweep order, at random: a
+        // maze's 642,115 rows waited for a cache miss each, so the region of a row further
+        // on is fetched ahead.
+        constexpr std::size_t Ahead = 16;
+        if (row + i + Ahead < this->regionOfRow.size())
+          vbr::prefetch(&this->regions[this->regionOfRow[row + i + Ahead]]);
+        const Region& r = this->regions[this->regionOfRow[row + i]];
+        out.ids[at + i] = static_cast<int>(row + i + 1);
+        out.voxels[at + i] = r.voxels;
+        out.boxes[at + i] = r.boxes;
+        voxels[i] = static_cast<double>(r.voxels);
+        out.volumes[at + i] = voxels[i] * this->voxelMeasure;
+        for (int d = 0; d < 3; ++d)
+        {
+          const int k = this->transform.source[d];
+          lo[d][i] = r.lo[k];
+          hi[d][i] = r.hi[k];
+          doubledCentre[d][i] = static_cast<double>(r.doubledCentre[k]);
+        }
+      }
+      // Local coordinates of the bounds and the centroid (vertexToWorld's), by image axis.
+      alignas(64) double low[3][Rows], high[3][Rows], middle[3][Rows];
+      for (int d = 0; d < 3; ++d)
+      {
+        const std::int32_t first = grid.extentMin[d];
+        std::int32_t* const indexLow = out.index[2 * d] + at;
+        std::int32_t* const indexHigh = out.index[2 * d + 1] + at;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          indexLow[i] = first + lo[d][i];
+          indexHigh[i] = first + (hi[d][i] - 1); // no overflow at INT_MAX
+        }
+        const bool flat = this->transform.planar && this->transform.source[d] == 2;
+        const double base = grid.extentMin[d] + grid.vertexShift[d];
+        const double spacing = grid.spacing[d];
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          low[d][i] = (base + double(flat ? 0 : lo[d][i])) * spacing;
+          high[d][i] = (base + double(flat ? 0 : hi[d][i])) * spacing;
+          // The extent's start and shift plus the mean centre (positionToWorld's sum).
+          const double mean = flat ? 0.0 : 0.5 * doubledCentre[d][i] / voxels[i];
+          middle[d][i] = (base + mean) * spacing;
+        }
+      }
+      // World coordinates: origin + t0 + t1 + t2 in that order.
+      for (int w = 0; w < 3; ++w)
+      {
+        const double origin = grid.origin[w];
+        const double* const m = grid.direction.data() + 3 * w;
+        double* const least = out.world[2 * w] + at;
+        double* const most = out.world[2 * w + 1] + at;
+        double* const centroid = out.centroids + 3 * at + w;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          double a = origin, b = origin;
+          for (int d = 0; d < 3; ++d)
+          {
+            const double p = m[d] * low[d][i], q = m[d] * high[d][i];
+            a += std::min(p, q);
+            b += std::max(p, q);
+          }
+          least[i] = a;
+          most[i] = b;
+          centroid[3 * i] =
+            origin + m[0] * middle[0][i] + m[1] * middle[1][i] + m[2] * middle[2][i];
+        }
+      }
+    }
   };
 
 #ifdef VBR_STREAM_STORES
@@ -1974,7 +2062,7 @@ struct RegionColumns
   /// are one line of each 32-bit column and two of each 64-bit one.
   struct RowBlock
   {
-    static constexpr std::size_t Rows = 16;
+    static constexpr std::size_t Rows = RowWriter::Rows;
     alignas(64) int ids[Rows];
     alignas(64) vtkIdType voxels[Rows];
     alignas(64) vtkIdType boxes[Rows];
@@ -1982,7 +2070,6 @@ struct RegionColumns
     alignas(64) double centroids[3 * Rows];
     alignas(64) std::int32_t index[6][Rows];
     alignas(64) double world[6][Rows];
-    std::size_t at = 0;
 
     Columns columns()
     {
