@@ -59,6 +59,7 @@
 #include <string>
 #include <type_traits>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #ifdef __linux__
@@ -509,6 +510,18 @@ struct BlockAllocator
     return static_cast<T*>(block);
   }
   void deallocate(T* p, std::size_t) { releaseBlock(p); }
+  /// Values made without a value are left unset (a resize for values written next does not
+  /// zero them first); the others as std::allocator makes them.
+  template<typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template<typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
   friend bool operator==(const BlockAllocator&, const BlockAllocator&) { return true; }
   friend bool operator!=(const BlockAllocator&, const BlockAllocator&) { return false; }
 };
@@ -641,14 +654,13 @@ struct RegionStats
   Int3 lo, hi; ///< processing axes, hi exclusive
 };
 
-/// One connected component: what numbering needs (size, seeds) and its row of the table, all
+/// One connected component: what numbering needs (its size) and its row of the table, all
 /// gathered in one pass over the boxes in sweep order. One cache line per region, since the
 /// boxes of a region are met in turn with those of its neighbours; the price is 64 bytes per
 /// region, removed ones included, where a checkerboard has a region per selected voxel.
 struct alignas(64) Region : RegionStats
 {
   std::uint32_t boxes;
-  bool seeded;
 
   /// An empty region: no voxels, bounds any box replaces.
   void start()
@@ -658,7 +670,6 @@ struct alignas(64) Region : RegionStats
     this->lo.fill(std::numeric_limits<std::int32_t>::max());
     this->hi.fill(std::numeric_limits<std::int32_t>::min());
     this->boxes = 0;
-    this->seeded = false;
   }
 
   /// Adds a box (processing axes, at `offset`) of the region.
@@ -700,19 +711,127 @@ struct alignas(64) Region : RegionStats
   }
 };
 
+/// A region of a 2D image (processing axis 2 flat) of at most 32,767 pixels a side: a Region's
+/// values in 32 bytes, two records a cache line. Its voxels and boxes fit 32 bits (fewer than
+/// 2^30 pixels), its bounds 16 bits, and its doubled centres' sums (below 2^46) are kept along
+/// the two in-plane axes only: those along the flat axis follow from the voxels (asRegion).
+/// A fax-like page's 278,445 regions are 8.9 MB rather than 17.8: the pass over its boxes
+/// wrote, and the table read again, half as many lines, and each box's update does half the
+/// arithmetic of a 3D one.
+struct PlanarRegion
+{
+  std::uint32_t voxels;
+  std::uint32_t boxes;
+  /// lo[0], lo[1], -hi[0], -hi[1] (processing axes 0 and 1, hi exclusive): the four bounds
+  /// follow a box by one minimum (one SSE2 instruction for the four).
+  std::array<std::int16_t, 4> bounds;
+  std::array<std::int64_t, 2> doubledCentre;
+
+  /// Sides of the images whose regions fit the record (bounds of 16 bits, signed).
+  static constexpr std::int64_t LargestSide = std::numeric_limits<std::int16_t>::max();
+
+  /// An empty region: no voxels, bounds any box replaces.
+  void start()
+  {
+    this->voxels = 0;
+    this->boxes = 0;
+    this->bounds.fill(std::numeric_limits<std::int16_t>::max());
+    this->doubledCentre = { 0, 0 };
+  }
+
+  /// The bounds of the box (x0, y0) to (x1, y1) added.
+  void addBounds(std::int32_t x0, std::int32_t y0, std::int32_t x1, std::int32_t y1)
+  {
+    const std::int32_t box[4] = { x0, y0, -x1, -y1 };
+    for (int k = 0; k < 4; ++k)
+      this->bounds[k] = static_cast<std::int16_t>(std::min<std::int32_t>(this->bounds[k], box[k]));
+  }
+
+  /// Adds a box (processing axes, at `offset`; one pixel thick along axis 2) of the region.
+  void add(const vbr::Box& box, const Int3& offset)
+  {
+    ++this->boxes;
+    const std::int32_t x0 = box.lo[0] + offset[0], x1 = box.hi[0] + offset[0];
+    const std::int32_t y0 = box.lo[1] + offset[1], y1 = box.hi[1] + offset[1];
+    const std::uint32_t volume =
+      static_cast<std::uint32_t>(x1 - x0) * static_cast<std::uint32_t>(y1 - y0);
+    this->voxels += volume;
+#ifdef VBR_STREAM_STORES
+    // (x0, y0, -x1, -y1) as four 16-bit values, and their minimum with the bounds, in one
+    // register: in scalar code the compiler merged the four 16-bit minima into one store,
+    // built by shifts and ors.
+    const __m128i shift = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(offset.data()));
+    const __m128i low =
+      _mm_add_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(box.lo.data())), shift);
+    const __m128i high =
+      _mm_add_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(box.hi.data())), shift);
+    const __m128i corners =
+      _mm_unpacklo_epi64(low, _mm_sub_epi32(_mm_setzero_si128(), high)); // x0 y0 -x1 -y1
+    const __m128i packed = _mm_packs_epi32(corners, corners);
+    auto* const bounds = reinterpret_cast<__m128i*>(this->bounds.data());
+    _mm_storel_epi64(bounds, _mm_min_epi16(_mm_loadl_epi64(bounds), packed));
+#else
+    this->addBounds(x0, y0, x1, y1);
+#endif
+    this->doubledCentre[0] += std::int64_t(volume) * (x0 + x1);
+    this->doubledCentre[1] += std::int64_t(volume) * (y0 + y1);
+  }
+
+  /// Region::addRowRuns of a row y of a 2D image.
+  void addRowRuns(const vbr::VoxelRun& extent,
+    std::int32_t y,
+    std::int64_t voxelCount,
+    std::int64_t doubledX,
+    std::uint32_t boxCount)
+  {
+    this->boxes += boxCount;
+    this->voxels += static_cast<std::uint32_t>(voxelCount);
+    this->addBounds(extent.x0, y, extent.x1, y + 1);
+    this->doubledCentre[0] += doubledX;
+    this->doubledCentre[1] += voxelCount * (2 * std::int64_t(y) + 1);
+  }
+
+  /// The region's Region, its pixels in plane z of processing axis 2: the values a Region
+  /// gathering the same boxes would have.
+  Region asRegion(std::int32_t z) const
+  {
+    Region r;
+    r.voxels = this->voxels;
+    r.boxes = this->boxes;
+    r.lo = { this->bounds[0], this->bounds[1], z };
+    r.hi = { -std::int32_t(this->bounds[2]), -std::int32_t(this->bounds[3]), z + 1 };
+    r.doubledCentre = { this->doubledCentre[0],
+      this->doubledCentre[1],
+      std::int64_t(this->voxels) * (2 * std::int64_t(z) + 1) };
+    return r;
+  }
+};
+static_assert(sizeof(PlanarRegion) == 32, "two planar regions a cache line");
+
+/// The regions' values as a Region: the record itself, or a planar record's in plane z.
+const Region& regionOf(const Region& r, std::int32_t)
+{
+  return r;
+}
+Region regionOf(const PlanarRegion& r, std::int32_t z)
+{
+  return r.asRegion(z);
+}
+
 /// The records of all regions, in sweep order (global region index), in one block of
 /// allocateBlock. Regions are numbered in the order of their first box or run, so a pass in
 /// that order starts each record when it first meets it (touch): the block is written once,
 /// not zeroed and then written. The sizes are also kept apart, 8 bytes a region (noteSize):
-/// the numbering reads nothing else of a region without seeds, and read them a cache line of
-/// record each (64 MB on a checkerboard's million regions).
-class Regions
+/// the numbering reads nothing else of a region, and read them a cache line of record each
+/// (64 MB on a checkerboard's million regions).
+template<typename Record>
+class RegionRecords
 {
 public:
-  Regions() = default;
-  explicit Regions(std::size_t count)
-    : records(static_cast<Region*>(
-        allocateBlock(count * sizeof(Region), onHugePages(double(count) * sizeof(Region)))))
+  RegionRecords() = default;
+  explicit RegionRecords(std::size_t count)
+    : records(static_cast<Record*>(
+        allocateBlock(count * sizeof(Record), onHugePages(double(count) * sizeof(Record)))))
     , voxelCounts(newBlockArray<std::int64_t>(count))
     , count(count)
   {
@@ -722,14 +841,13 @@ public:
   }
 
   std::size_t size() const { return this->count; }
-  Region& operator[](std::size_t r) { return this->records[r]; }
-  const Region& operator[](std::size_t r) const { return this->records[r]; }
-  const Region* data() const { return this->records.get(); }
+  const Record& operator[](std::size_t r) const { return this->records[r]; }
+  const Record* data() const { return this->records.get(); }
   /// The voxel count of every region (as noted).
   const std::int64_t* sizes() const { return this->voxelCounts.get(); }
 
   /// Region r, started with those before it that were not yet.
-  Region& touch(std::size_t r)
+  Record& touch(std::size_t r)
   {
     while (this->started <= r)
     {
@@ -742,6 +860,34 @@ public:
   /// Notes the size of region r after voxels were added to its record.
   void noteSize(std::size_t r) { this->voxelCounts[r] = this->records[r].voxels; }
 
+  /// Adds boxes [0, count) (processing axes, at `offset`) to the regions first + label[b]:
+  /// touch, add and noteSize of each box, with the count of records started and the block's
+  /// pointers in registers (through the records' stores of 64-bit sums, which may alias
+  /// them, the count was loaded and stored again at every box).
+  void addBoxes(const vbr::Box* boxes,
+    const std::uint32_t* label,
+    std::size_t count,
+    std::size_t first,
+    const Int3& offset)
+  {
+    Record* const records = this->records.get();
+    std::int64_t* const sizes = this->voxelCounts.get();
+    std::size_t started = this->started;
+    for (std::size_t b = 0; b < count; ++b)
+    {
+      const std::size_t r = first + label[b];
+      for (; started <= r; ++started)
+      {
+        sizes[started] = 0;
+        records[started].start();
+      }
+      Record& region = records[r];
+      region.add(boxes[b], offset);
+      sizes[r] = region.voxels;
+    }
+    this->started = started;
+  }
+
   /// Starts the records not met (none when every region has a voxel).
   void startAll()
   {
@@ -752,12 +898,82 @@ public:
 private:
   struct Free
   {
-    void operator()(Region* p) const { releaseBlock(p); }
+    void operator()(Record* p) const { releaseBlock(p); }
   };
-  std::unique_ptr<Region[], Free> records;
+  std::unique_ptr<Record[], Free> records;
   std::unique_ptr<std::int64_t[], BlockRelease> voxelCounts;
   std::size_t count = 0, started = 0;
 };
+
+/// The regions of an image: Region records, or PlanarRegion ones for a 2D image that fits them
+/// (all its regions in plane `z` of processing axis 2), and which regions hold a seed.
+class Regions
+{
+public:
+  Regions() = default;
+  Regions(std::size_t count, bool planar, std::int32_t z)
+    : planar(planar)
+    , z(z)
+  {
+    if (planar)
+      this->flat = RegionRecords<PlanarRegion>(count);
+    else
+      this->full = RegionRecords<Region>(count);
+  }
+
+  bool isPlanar() const { return this->planar; }
+  std::size_t size() const { return this->planar ? this->flat.size() : this->full.size(); }
+  const std::int64_t* sizes() const
+  {
+    return this->planar ? this->flat.sizes() : this->full.sizes();
+  }
+
+  /// Whether region r holds a seed (markSeeded).
+  bool seeded(std::size_t r) const { return !this->seeds.empty() && this->seeds[r] != 0; }
+  void markSeeded(std::size_t r)
+  {
+    if (this->seeds.empty())
+      this->seeds.assign(this->size(), 0);
+    this->seeds[r] = 1;
+  }
+
+  /// Starts the records not met.
+  void startAll()
+  {
+    if (this->planar)
+      this->flat.startAll();
+    else
+      this->full.startAll();
+  }
+
+  RegionRecords<Region> full;
+  RegionRecords<PlanarRegion> flat;
+  /// The plane of a 2D image's pixels along processing axis 2.
+  std::int32_t z = 0;
+
+private:
+  bool planar = false;
+  std::vector<std::uint8_t> seeds;
+};
+
+/// Whether the regions of `objects`, of an image of `grid`, fit PlanarRegion records: a 2D image
+/// of at most PlanarRegion::LargestSide pixels a side, all of whose objects lie in one plane
+/// (`z`, set) and were not labelled on 3D runs.
+bool planarRecordsFit(const std::vector<ObjectBoxes>& objects,
+  const vbr::vtk::VoxelGrid& grid,
+  std::int32_t& z)
+{
+  if (grid.flatAxis < 0 || objects.empty())
+    return false;
+  for (int d = 0; d < 3; ++d)
+    if (grid.dims[d] > PlanarRegion::LargestSide)
+      return false;
+  z = objects[0].offset[2];
+  for (const ObjectBoxes& o : objects)
+    if (o.labelledFromRuns || o.offset[2] != z || o.offset[0] < 0 || o.offset[1] < 0)
+      return false;
+  return true;
+}
 
 /// The sortings to try, in processing axes. A 2D image (flat processing axis 2) is swept
 /// along lines: only the order of its two in-plane axes matters, taken from the name.
@@ -859,7 +1075,7 @@ bool axisAligned(const vbr::vtk::VoxelGrid& grid)
 }
 
 /// The statistics of the regions of an object labelled on its runs, from the runs.
-void measureRegionsOfRuns(const ObjectBoxes& o, Regions& regions)
+void measureRegionsOfRuns(const ObjectBoxes& o, RegionRecords<Region>& regions)
 {
   const vbr::VoxelRuns& r = o.voxelRuns;
   const std::vector<vbr::VoxelRun>& runs = r.runs;
@@ -902,7 +1118,8 @@ void measureRegionsOfRuns(const ObjectBoxes& o, Regions& regions)
 /// again from its pixels (a bit scan per row: cheaper than keeping 8 bytes per run). A run
 /// begins a box when its box number is the next one not met yet (boxes are numbered as their
 /// first runs come in scan order).
-void measureRegionsOfPixelRuns(const ObjectBoxes& o, Regions& regions)
+template<typename Record>
+void measureRegionsOfPixelRuns(const ObjectBoxes& o, RegionRecords<Record>& regions)
 {
   const vbr::BitVolume& pixels = o.pixels;
   const std::uint32_t* runBox = o.runs.boxes.data();
@@ -940,27 +1157,41 @@ void measureRegionsOfPixelRuns(const ObjectBoxes& o, Regions& regions)
         e += 2;
       } while (e != last && label[*runBox] == region);
       const std::size_t g = o.firstRegion + region - 1;
-      regions.touch(g).addRowRuns(
-        { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
+      if constexpr (std::is_same<Record, PlanarRegion>::value)
+        regions.touch(g).addRowRuns({ x0 + dx, x1 + dx }, y + o.offset[1], voxels, doubledX, boxes);
+      else
+        regions.touch(g).addRowRuns(
+          { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
       regions.noteSize(g);
     }
   }
 }
 
-/// The size and the statistics of every region from its boxes (or runs), in sweep order.
-Regions measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t count)
+/// The size and the statistics of every region from its boxes (or runs), in sweep order, in
+/// `regions` (PlanarRegion records only for objects planarRecordsFit accepts).
+template<typename Record>
+void measureObjects(const std::vector<ObjectBoxes>& objects, RegionRecords<Record>& regions)
 {
-  Regions regions(count);
   for (const ObjectBoxes& o : objects)
   {
-    if (o.labelledFromRuns)
-    {
-      measureRegionsOfRuns(o, regions);
-      continue;
-    }
+    if constexpr (std::is_same<Record, Region>::value)
+      if (o.labelledFromRuns)
+      {
+        measureRegionsOfRuns(o, regions);
+        continue;
+      }
     if (o.labelledFromPixelRuns)
     {
       measureRegionsOfPixelRuns(o, regions);
+      continue;
+    }
+    if constexpr (std::is_same<Record, PlanarRegion>::value)
+    {
+      regions.addBoxes(o.cudb.boxes.data(),
+        o.components.boxLabel.data(),
+        o.cudb.boxes.size(),
+        std::size_t(o.firstRegion) - 1, // labels start at 1
+        o.offset);
       continue;
     }
     for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b) // labels start at 1
@@ -970,6 +1201,21 @@ Regions measureRegions(const std::vector<ObjectBoxes>& objects, std::size_t coun
       regions.noteSize(g);
     }
   }
+}
+
+/// The size and the statistics of every region of `objects` (of an image of `grid`), in
+/// compact records when they fit (planarRecordsFit).
+Regions measureRegions(const std::vector<ObjectBoxes>& objects,
+  std::size_t count,
+  const vbr::vtk::VoxelGrid& grid)
+{
+  std::int32_t z = 0;
+  const bool planar = planarRecordsFit(objects, grid, z);
+  Regions regions(count, planar, z);
+  if (planar)
+    measureObjects(objects, regions.flat);
+  else
+    measureObjects(objects, regions.full);
   regions.startAll();
   return regions;
 }
@@ -1003,7 +1249,7 @@ vtkIdType markSeeds(vtkDataSet* seeds,
     const std::int32_t region = regionOf[index];
     if (region > 0)
     {
-      regions[region - 1].seeded = true;
+      regions.markSeeded(static_cast<std::size_t>(region - 1));
       ++hits;
     }
   }
@@ -1075,10 +1321,73 @@ void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
     kept[k] = static_cast<std::size_t>(keys[k] & indexMask);
 }
 
+/// numberRegions of `count` regions of sizes `sizes` when none is removed by seeds or a number
+/// of largest regions: false, nothing written, when one is smaller than `minimumSize`. Every
+/// region is then a row, so no list of kept regions is made and sorted apart, no RegionId is
+/// zeroed first, and regions in order (by sweep, or of sizes that do not grow) are numbered
+/// as they come; others are ranked by one counting sort of all the regions, which writes the
+/// rows and the RegionIds as it places them (a fax-like page's 278,445 regions: a quarter of
+/// the numbering's instructions).
+bool numberEveryRegion(const std::int64_t* sizes,
+  std::size_t count,
+  vtkIdType minimumSize,
+  int ordering,
+  RegionIdList& ids,
+  RegionList& rows)
+{
+  std::int64_t smallest = std::numeric_limits<std::int64_t>::max(), largest = 0;
+  bool ranked = true;
+  std::int64_t previous = std::numeric_limits<std::int64_t>::max();
+  for (std::size_t r = 0; r < count; ++r)
+  {
+    const std::int64_t size = sizes[r];
+    smallest = std::min(smallest, size);
+    largest = std::max(largest, size);
+    ranked = ranked && size <= previous;
+    previous = size;
+  }
+  if (count > 0 && smallest < minimumSize)
+    return false;
+  rows.resize(count); // unset: written below
+  ids.resize(count);
+  if (ranked || ordering == vtkCUDBConnectivity::SWEEP_ORDER)
+  {
+    for (std::size_t r = 0; r < count; ++r)
+    {
+      rows[r] = r;
+      ids[r] = static_cast<std::int32_t>(r + 1);
+    }
+    return true;
+  }
+  const auto n = static_cast<std::int64_t>(count);
+  if (largest <= n + 65536 && (count >= FewRegions || largest <= 8 * n + 1024))
+  {
+    // countingSortBySize of every region: largest first, ties in sweep order.
+    std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 2, 0);
+    for (std::size_t r = 0; r < count; ++r)
+      ++start[static_cast<std::size_t>(largest - sizes[r]) + 1];
+    for (std::size_t k = 1; k < start.size(); ++k)
+      start[k] += start[k - 1];
+    for (std::size_t r = 0; r < count; ++r)
+    {
+      const std::size_t k = start[static_cast<std::size_t>(largest - sizes[r])]++;
+      rows[k] = r;
+      ids[r] = static_cast<std::int32_t>(k + 1);
+    }
+    return true;
+  }
+  for (std::size_t r = 0; r < count; ++r)
+    rows[r] = r;
+  rankBySize(sizes, count, rows);
+  for (std::size_t k = 0; k < count; ++k)
+    ids[rows[k]] = static_cast<std::int32_t>(k + 1);
+  return true;
+}
+
 /// Applies the region filters and numbers the kept regions: `ids` has the RegionId of every
 /// region (0 when removed), `rows` the region of each RegionId (row of the table, from 0).
 /// Returns how many are kept. The sizes come from the regions' dense array of them, not from
-/// their records (a cache line each), which only seeds are read from.
+/// their records (a cache line each).
 std::int32_t numberRegions(const Regions& regions,
   vtkIdType minimumSize,
   bool useSeeds,
@@ -1088,6 +1397,9 @@ std::int32_t numberRegions(const Regions& regions,
   RegionList& rows)
 {
   const std::int64_t* sizes = regions.sizes();
+  if (!useSeeds && (largest <= 0 || static_cast<std::size_t>(largest) >= regions.size()) &&
+    numberEveryRegion(sizes, regions.size(), minimumSize, ordering, ids, rows))
+    return static_cast<std::int32_t>(regions.size());
   RegionList& kept = rows;
   kept.clear();
   kept.reserve(regions.size());
@@ -1098,7 +1410,7 @@ std::int32_t numberRegions(const Regions& regions,
   for (std::size_t r = 0; r < regions.size(); ++r)
   {
     const std::int64_t size = sizes[r];
-    if (size >= minimumSize && (!useSeeds || regions[r].seeded))
+    if (size >= minimumSize && (!useSeeds || regions.seeded(r)))
     {
       ranked = ranked && size <= previous;
       previous = size;
@@ -1865,15 +2177,32 @@ struct RegionColumns
     const std::array<int, 3>& axes,
     double voxelMeasure)
   {
+    if (regions.isPlanar())
+      this->writeRows(regions.flat, regions.z, regionOfRow, grid, axes, voxelMeasure);
+    else
+      this->writeRows(regions.full, regions.z, regionOfRow, grid, axes, voxelMeasure);
+  }
+
+  /// write of the records `regions` (of plane z when planar).
+  template<typename Record>
+  void writeRows(const RegionRecords<Record>& regions,
+    std::int32_t z,
+    const RegionList& regionOfRow,
+    const vbr::vtk::VoxelGrid& grid,
+    const std::array<int, 3>& axes,
+    double voxelMeasure)
+  {
     const Columns out = this->pointers();
-    const RowWriter writer{ regions, regionOfRow, RowTransform(grid, axes), voxelMeasure };
+    const RowWriter<Record> writer{
+      regions, z, regionOfRow, RowTransform(grid, axes), voxelMeasure
+    };
     const std::size_t rows = regionOfRow.size();
     std::size_t row = 0;
 #ifdef VBR_STREAM_STORES
     if (bytesOf(static_cast<vtkIdType>(rows), VTK_CHAR) >= StreamedTableBytes && out.aligned())
     {
       RowBlock block;
-      for (; row + RowBlock::Rows <= rows; row += RowBlock::Rows)
+      for (; row + BlockRows <= rows; row += BlockRows)
       {
         writer.writeBlock(row, block.columns());
         block.streamTo(out, row);
@@ -1932,10 +2261,15 @@ struct RegionColumns
     return c;
   }
 
+  /// Rows of a block (RowWriter::writeBlock).
+  static constexpr std::size_t BlockRows = 16;
+
   /// Writes the row of a region into columns.
+  template<typename Record>
   struct RowWriter
   {
-    const Regions& regions;
+    const RegionRecords<Record>& regions;
+    std::int32_t z; ///< the plane of planar records
     const RegionList& regionOfRow;
     RowTransform transform;
     double voxelMeasure;
@@ -1949,7 +2283,7 @@ struct RegionColumns
       constexpr std::size_t Ahead = 16;
       if (row + Ahead < this->regionOfRow.size())
         vbr::prefetch(&this->regions[this->regionOfRow[row + Ahead]]);
-      const Region& r = this->regions[this->regionOfRow[row]];
+      decltype(auto) r = regionOf(this->regions[this->regionOfRow[row]], this->z);
       out.ids[at] = static_cast<int>(row + 1);
       out.voxels[at] = r.voxels;
       out.boxes[at] = r.boxes;
@@ -1966,8 +2300,7 @@ struct RegionColumns
       this->transform.centroid(r, out.centroids + 3 * at);
     }
 
-    /// Rows of a block (writeBlock).
-    static constexpr std::size_t Rows = 16;
+    static constexpr std::size_t Rows = BlockRows;
 
     /// Rows [row, row + Rows) of the table at positions [0, Rows) of the columns `out` (a
     /// RowBlock's), the same values as write's: its operations in its order. The rows'
@@ -1993,7 +2326,7 @@ struct RegionColumns
         constexpr std::size_t Ahead = 16;
         if (row + i + Ahead < this->regionOfRow.size())
           vbr::prefetch(&this->regions[this->regionOfRow[row + i + Ahead]]);
-        const Region& r = this->regions[this->regionOfRow[row + i]];
+        decltype(auto) r = regionOf(this->regions[this->regionOfRow[row + i]], this->z);
         out.ids[at + i] = static_cast<int>(row + i + 1);
         out.voxels[at + i] = r.voxels;
         out.boxes[at + i] = r.boxes;
@@ -2062,7 +2395,7 @@ struct RegionColumns
   /// are one line of each 32-bit column and two of each 64-bit one.
   struct RowBlock
   {
-    static constexpr std::size_t Rows = RowWriter::Rows;
+    static constexpr std::size_t Rows = BlockRows;
     alignas(64) int ids[Rows];
     alignas(64) vtkIdType voxels[Rows];
     alignas(64) vtkIdType boxes[Rows];
@@ -2726,7 +3059,7 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   Summary& summary,
   vtkSmartPointer<vtkIntArray>* painted)
 {
-  regions = measureRegions(objects, regionCount);
+  regions = measureRegions(objects, regionCount, in.grid);
   if (seeds)
   {
     vtkSmartPointer<vtkIntArray> ids = markRegionsOfSeeds(self, seeds, in, objects, regions);

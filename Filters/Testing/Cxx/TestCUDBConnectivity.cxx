@@ -682,6 +682,36 @@ void checkTwoDimensional()
     }
 }
 
+/// 2D images at the sides where the regions' compact records end (32,767 pixels: bounds of
+/// 16 bits, signed) and past them (the 64-byte records), along the image's rows and
+/// columns, from the boxes and from the pixel runs, numbered by size (a counting sort of every
+/// region) and in sweep order, against the flood fill: labels, and every table column.
+void checkPlanarRecordLimits()
+{
+  const Int3 shapes[] = { { 32767, 3, 1 }, { 32770, 3, 1 }, { 2, 1, 32767 }, { 1, 3, 32770 } };
+  unsigned seed = 300;
+  for (const Int3& dims : shapes)
+  {
+    const Volume v = randomVolume(dims, 0.6, 1, seed++);
+    Layout l;
+    l.extentMin = { -40000, 7, 3 };
+    l.spacing = { 0.25, 1.5, 2.0 };
+    for (bool boxes : { true, false })
+      for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
+        checkRun(v,
+          l,
+          Rule(),
+          ordering == vtkCUDBConnectivity::SWEEP_ORDER, // vertex, face
+          vtkCUDBConnectivity::ZYX,
+          ordering,
+          "2D " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+            std::to_string(dims[2]) + (boxes ? " boxes" : " runs"),
+          true,
+          true,
+          boxes);
+  }
+}
+
 /// The corners of every box cell of a 2D image against their world positions computed here
 /// from the image's extent, spacing, origin and direction: each cell's corners, mapped back to
 /// index space, must lie on voxel boundaries of its plane (the flat axis at the extent's first
@@ -1510,6 +1540,7 @@ int TestCUDBConnectivity(int, char*[])
 {
   checkRandomVolumes();
   checkTwoDimensional();
+  checkPlanarRecordLimits();
   checkBoxCornersInWorld();
   checkTableInRotatedWorld();
   checkTwoDimensionalRuns();
