@@ -75,10 +75,20 @@
 #endif
 
 // Stores past the caches for the large outputs; plain stores under AddressSanitizer, which
-// does not see the SSE2 built-ins' writes.
-#if defined(__SSE2__) && !defined(VBR_ADDRESS_SANITIZER)
+// does not see the SSE2 built-ins' writes. Only with SSE2 arithmetic: a 32-bit build's x87
+// arithmetic keeps excess precision in registers, so the block writer's rows (below) could
+// differ from the row writer's.
+#if defined(__SSE2__) && (defined(__x86_64__) || defined(__SSE2_MATH__)) &&                        \
+  !defined(VBR_ADDRESS_SANITIZER)
 #define VBR_STREAM_STORES 1
 #include <emmintrin.h>
+#endif
+
+// A large region table's rows computed in blocks (RegionColumns::RowBlock): streamed where
+// stores past the caches are, copied under AddressSanitizer so that its runs check the block
+// writer too.
+#if defined(VBR_STREAM_STORES) || defined(VBR_ADDRESS_SANITIZER)
+#define VBR_ROW_BLOCKS 1
 #endif
 
 vtkStandardNewMacro(vtkCUDBConnectivity);
@@ -2027,6 +2037,10 @@ struct RowTransform
   {
     for (int k = 0; k < 3; ++k)
       this->source[axes[k]] = k;
+    for (int d = 0; d < 3; ++d)
+      this->axisTerms[d] = { this->grid.extentMin[d] + this->grid.vertexShift[d],
+        this->grid.spacing[d],
+        this->planar && this->source[d] == 2 };
   }
 
   /// The voxel index bounds (IMin, IMax, JMin, ...: first and last voxel per axis).
@@ -2048,25 +2062,18 @@ struct RowTransform
   /// in its plane (worldOf's: processing axis 2 at 0).
   void worldBounds(const RegionStats& r, double world[6]) const
   {
-    double local[2][3]; // as VoxelGrid::vertexToWorld computes them
+    double low[3], high[3];
     for (int d = 0; d < 3; ++d)
     {
-      const int k = this->source[d];
-      const bool flat = this->planar && k == 2;
-      const double base = this->grid.extentMin[d] + this->grid.vertexShift[d];
-      local[0][d] = (base + double(flat ? 0 : r.lo[k])) * this->grid.spacing[d];
-      local[1][d] = (base + double(flat ? 0 : r.hi[k])) * this->grid.spacing[d];
+      const Axis a = this->axis(d);
+      low[d] = localVertex(a, r.lo[this->source[d]]);
+      high[d] = localVertex(a, r.hi[this->source[d]]);
     }
     for (int w = 0; w < 3; ++w)
     {
       double least = this->grid.origin[w], most = this->grid.origin[w];
       for (int d = 0; d < 3; ++d)
-      {
-        const double a = this->grid.direction[3 * w + d] * local[0][d];
-        const double b = this->grid.direction[3 * w + d] * local[1][d];
-        least += std::min(a, b);
-        most += std::max(a, b);
-      }
+        addWorldTerm(this->grid.direction[3 * w + d], low[d], high[d], least, most);
       world[2 * w] = least;
       world[2 * w + 1] = most;
     }
@@ -2078,17 +2085,58 @@ struct RowTransform
   {
     double local[3];
     for (int d = 0; d < 3; ++d)
-    {
-      const int k = this->source[d];
-      const double centre = this->planar && k == 2
-        ? 0.0
-        : 0.5 * static_cast<double>(r.doubledCentre[k]) / static_cast<double>(r.voxels);
-      local[d] =
-        (this->grid.extentMin[d] + this->grid.vertexShift[d] + centre) * this->grid.spacing[d];
-    }
+      local[d] = localCentre(this->axis(d),
+        static_cast<double>(r.doubledCentre[this->source[d]]),
+        static_cast<double>(r.voxels));
     for (int w = 0; w < 3; ++w)
-      world[w] = this->grid.origin[w] + this->grid.direction[3 * w] * local[0] +
-        this->grid.direction[3 * w + 1] * local[1] + this->grid.direction[3 * w + 2] * local[2];
+      world[w] = worldPoint(this->grid.origin[w], &this->grid.direction[3 * w], local);
+  }
+
+  // The terms of the rows' coordinates, shared by the row and the block writer (the same
+  // operations in the same order give the same values).
+
+  /// What the local coordinates along one image axis take from the grid, copied once for a
+  /// table (the block writer's loops copy them again: then they read no member that their
+  /// stores could alias).
+  struct Axis
+  {
+    double base; ///< extentMin + vertexShift
+    double spacing;
+    bool flat; ///< the flat axis of a 2D image (at 0 in its plane, worldOf's)
+  };
+
+  std::array<Axis, 3> axisTerms{}; ///< by image axis, set once for the table
+
+  const Axis& axis(int d) const { return this->axisTerms[d]; }
+
+  /// The local coordinate of lattice vertex `index` along axis `a` (of its processing
+  /// axis), as VoxelGrid::vertexToWorld computes it before the direction matrix.
+  static double localVertex(const Axis& a, std::int32_t index)
+  {
+    return (a.base + double(a.flat ? 0 : index)) * a.spacing;
+  }
+
+  /// The local coordinate along axis `a` of the mean of `voxels` voxel centres whose doubled
+  /// indices sum to `doubled` (positionToWorld's).
+  static double localCentre(const Axis& a, double doubled, double voxels)
+  {
+    const double centre = a.flat ? 0.0 : 0.5 * doubled / voxels;
+    return (a.base + centre) * a.spacing;
+  }
+
+  /// One term of a world bound: direction entry `m` times the local coordinates `low` and
+  /// `high`, the lesser added to `least` and the greater to `most`.
+  static void addWorldTerm(double m, double low, double high, double& least, double& most)
+  {
+    const double a = m * low, b = m * high;
+    least += std::min(a, b);
+    most += std::max(a, b);
+  }
+
+  /// origin + m[0] local[0] + m[1] local[1] + m[2] local[2], in that order.
+  static double worldPoint(double origin, const double* m, const double* local)
+  {
+    return origin + m[0] * local[0] + m[1] * local[1] + m[2] * local[2];
   }
 };
 
@@ -2198,16 +2246,18 @@ struct RegionColumns
     };
     const std::size_t rows = regionOfRow.size();
     std::size_t row = 0;
-#ifdef VBR_STREAM_STORES
+#ifdef VBR_ROW_BLOCKS
     if (bytesOf(static_cast<vtkIdType>(rows), VTK_CHAR) >= StreamedTableBytes && out.aligned())
     {
       RowBlock block;
-      for (; row + BlockRows <= rows; row += BlockRows)
+      for (; row + RowBlock::Rows <= rows; row += RowBlock::Rows)
       {
-        writer.writeBlock(row, block.columns());
+        writer.fill(row, block);
         block.streamTo(out, row);
       }
+#ifdef VBR_STREAM_STORES
       _mm_sfence(); // the streamed rows before anything reads them
+#endif
     }
 #endif
     for (; row < rows; ++row)
@@ -2261,8 +2311,50 @@ struct RegionColumns
     return c;
   }
 
-  /// Rows of a block (RowWriter::writeBlock).
-  static constexpr std::size_t BlockRows = 16;
+#ifdef VBR_ROW_BLOCKS
+  /// Rows staged in the cache, then streamed to the columns a whole line at a time: 16 rows
+  /// are one line of each 32-bit column and two of each 64-bit one.
+  struct RowBlock
+  {
+    static constexpr std::size_t Rows = 16;
+    alignas(64) int ids[Rows];
+    alignas(64) vtkIdType voxels[Rows];
+    alignas(64) vtkIdType boxes[Rows];
+    alignas(64) double volumes[Rows];
+    alignas(64) double centroids[3 * Rows];
+    alignas(64) std::int32_t index[6][Rows];
+    alignas(64) double world[6][Rows];
+
+    /// `bytes` (a multiple of 16) from `from` to `to` (16-byte aligned) past the caches; a
+    /// copy where stores are not streamed.
+    static void stream(const void* from, void* to, std::size_t bytes)
+    {
+#ifdef VBR_STREAM_STORES
+      const auto* source = static_cast<const __m128i*>(from);
+      auto* target = static_cast<__m128i*>(to);
+      for (std::size_t i = 0; i < bytes / 16; ++i)
+        _mm_stream_si128(target + i, _mm_load_si128(source + i));
+#else
+      std::memcpy(to, from, bytes);
+#endif
+    }
+
+    /// The block's rows to rows [row, row + Rows) of `out`.
+    void streamTo(const Columns& out, std::size_t row) const
+    {
+      stream(this->ids, out.ids + row, sizeof(this->ids));
+      stream(this->voxels, out.voxels + row, sizeof(this->voxels));
+      stream(this->boxes, out.boxes + row, sizeof(this->boxes));
+      stream(this->volumes, out.volumes + row, sizeof(this->volumes));
+      stream(this->centroids, out.centroids + 3 * row, sizeof(this->centroids));
+      for (int k = 0; k < 6; ++k)
+      {
+        stream(this->index[k], out.index[k] + row, sizeof(this->index[k]));
+        stream(this->world[k], out.world[k] + row, sizeof(this->world[k]));
+      }
+    }
+  };
+#endif
 
   /// Writes the row of a region into columns.
   template<typename Record>
@@ -2300,25 +2392,46 @@ struct RegionColumns
       this->transform.centroid(r, out.centroids + 3 * at);
     }
 
-    static constexpr std::size_t Rows = BlockRows;
+#ifdef VBR_ROW_BLOCKS
+    static constexpr std::size_t Rows = RowBlock::Rows;
 
-    /// Rows [row, row + Rows) of the table at positions [0, Rows) of the columns `out` (a
-    /// RowBlock's), the same values as write's: its operations in its order. The rows'
-    /// records are read first, then each column's values are computed for all the rows in
-    /// one loop, over arrays of the rows, which the compiler takes two doubles at a time: on
-    /// a fax-like page's 278,445 rows, 28 % fewer instructions than row by row (9 % fewer for
-    /// its whole update), and 10 % to 17 % less time for the update of a 128^3 checkerboard's
-    /// million rows. Only for the tables streamed from RowBlock: writing the columns of a
-    /// smaller table straight (or copying them from a block) took 4 % to 8 % longer than
-    /// write's rows.
-    void writeBlock(std::size_t row, const Columns& out) const
+    /// The records of a block's rows, by image axis.
+    struct BlockRecords
     {
-      constexpr std::size_t count = Rows, at = 0;
-      const vbr::vtk::VoxelGrid& grid = this->transform.grid;
-      alignas(64) std::int32_t lo[3][Rows], hi[3][Rows]; // by image axis
-      alignas(64) double doubledCentre[3][Rows];         // by image axis
+      alignas(64) std::int32_t lo[3][Rows], hi[3][Rows];
+      alignas(64) double doubledCentre[3][Rows];
       alignas(64) double voxels[Rows];
-      for (std::size_t i = 0; i < count; ++i)
+    };
+
+    /// The local coordinates (before the direction matrix) of a block's rows, by image axis.
+    struct BlockLocals
+    {
+      alignas(64) double low[3][Rows], high[3][Rows], middle[3][Rows];
+    };
+
+    /// Rows [row, row + Rows) of the table into `block`, the same values as write's: the
+    /// same terms (RowTransform's) in the same order. The rows' records are read first, then
+    /// each column's values are computed for all the rows in one loop over arrays of the rows
+    /// (GCC 12 at -O3, the Release flags, vectorizes the loops of the index bounds and of the local
+    /// and the world coordinates): on a fax-like page's 278,445 rows, 28 % fewer instructions than
+    /// row by row (9 % fewer for its whole update), and 10 % to 17 % less time for the update of a
+    /// 128^3 checkerboard's million rows. Only for the tables streamed from RowBlock: writing the
+    /// columns of a smaller table straight (or copying them from a block) took 4 % to 8 % longer
+    /// than write's rows.
+    void fill(std::size_t row, RowBlock& block) const
+    {
+      BlockRecords records;
+      this->readRecords(row, records, block);
+      BlockLocals locals;
+      this->localCoordinates(records, locals, block);
+      this->worldCoordinates(locals, block);
+    }
+
+    /// The records of rows [row, row + Rows): their counts into `block`, their bounds and
+    /// centres into `records`.
+    void readRecords(std::size_t row, BlockRecords& records, RowBlock& block) const
+    {
+      for (std::size_t i = 0; i < Rows; ++i)
       {
         // Rows in RegionId (size) order read the regions, in sweep order, at random: a
         // maze's 642,115 rows waited for a cache miss each, so the region of a row further
@@ -2327,119 +2440,70 @@ struct RegionColumns
         if (row + i + Ahead < this->regionOfRow.size())
           vbr::prefetch(&this->regions[this->regionOfRow[row + i + Ahead]]);
         decltype(auto) r = regionOf(this->regions[this->regionOfRow[row + i]], this->z);
-        out.ids[at + i] = static_cast<int>(row + i + 1);
-        out.voxels[at + i] = r.voxels;
-        out.boxes[at + i] = r.boxes;
-        voxels[i] = static_cast<double>(r.voxels);
-        out.volumes[at + i] = voxels[i] * this->voxelMeasure;
+        block.ids[i] = static_cast<int>(row + i + 1);
+        block.voxels[i] = r.voxels;
+        block.boxes[i] = r.boxes;
+        records.voxels[i] = static_cast<double>(r.voxels);
+        block.volumes[i] = records.voxels[i] * this->voxelMeasure;
         for (int d = 0; d < 3; ++d)
         {
           const int k = this->transform.source[d];
-          lo[d][i] = r.lo[k];
-          hi[d][i] = r.hi[k];
-          doubledCentre[d][i] = static_cast<double>(r.doubledCentre[k]);
+          records.lo[d][i] = r.lo[k];
+          records.hi[d][i] = r.hi[k];
+          records.doubledCentre[d][i] = static_cast<double>(r.doubledCentre[k]);
         }
       }
-      // Local coordinates of the bounds and the centroid (vertexToWorld's), by image axis.
-      alignas(64) double low[3][Rows], high[3][Rows], middle[3][Rows];
+    }
+
+    /// The index bounds into `block`, the local coordinates of the bounds and the centroids
+    /// into `locals`.
+    void localCoordinates(const BlockRecords& records, BlockLocals& locals, RowBlock& block) const
+    {
       for (int d = 0; d < 3; ++d)
       {
-        const std::int32_t first = grid.extentMin[d];
-        std::int32_t* const indexLow = out.index[2 * d] + at;
-        std::int32_t* const indexHigh = out.index[2 * d + 1] + at;
-        for (std::size_t i = 0; i < count; ++i)
+        const std::int32_t first = this->transform.grid.extentMin[d];
+        for (std::size_t i = 0; i < Rows; ++i)
         {
-          indexLow[i] = first + lo[d][i];
-          indexHigh[i] = first + (hi[d][i] - 1); // no overflow at INT_MAX
+          block.index[2 * d][i] = first + records.lo[d][i];
+          block.index[2 * d + 1][i] = first + (records.hi[d][i] - 1); // no overflow at INT_MAX
         }
-        const bool flat = this->transform.planar && this->transform.source[d] == 2;
-        const double base = grid.extentMin[d] + grid.vertexShift[d];
-        const double spacing = grid.spacing[d];
-        for (std::size_t i = 0; i < count; ++i)
+        const RowTransform::Axis a = this->transform.axis(d);
+        for (std::size_t i = 0; i < Rows; ++i)
         {
-          low[d][i] = (base + double(flat ? 0 : lo[d][i])) * spacing;
-          high[d][i] = (base + double(flat ? 0 : hi[d][i])) * spacing;
-          // The extent's start and shift plus the mean centre (positionToWorld's sum).
-          const double mean = flat ? 0.0 : 0.5 * doubledCentre[d][i] / voxels[i];
-          middle[d][i] = (base + mean) * spacing;
+          locals.low[d][i] = RowTransform::localVertex(a, records.lo[d][i]);
+          locals.high[d][i] = RowTransform::localVertex(a, records.hi[d][i]);
+          locals.middle[d][i] =
+            RowTransform::localCentre(a, records.doubledCentre[d][i], records.voxels[i]);
         }
       }
-      // World coordinates: origin + t0 + t1 + t2 in that order.
+    }
+
+    /// The world bounds and centroids into `block` from the local coordinates.
+    void worldCoordinates(const BlockLocals& locals, RowBlock& block) const
+    {
       for (int w = 0; w < 3; ++w)
       {
-        const double origin = grid.origin[w];
-        const double* const m = grid.direction.data() + 3 * w;
-        double* const least = out.world[2 * w] + at;
-        double* const most = out.world[2 * w + 1] + at;
-        double* const centroid = out.centroids + 3 * at + w;
-        for (std::size_t i = 0; i < count; ++i)
+        // Copies: the block's stores could otherwise alias the grid's values.
+        const double origin = this->transform.grid.origin[w];
+        const double m[3] = { this->transform.grid.direction[3 * w],
+          this->transform.grid.direction[3 * w + 1],
+          this->transform.grid.direction[3 * w + 2] };
+        for (std::size_t i = 0; i < Rows; ++i)
         {
-          double a = origin, b = origin;
+          double least = origin, most = origin;
           for (int d = 0; d < 3; ++d)
-          {
-            const double p = m[d] * low[d][i], q = m[d] * high[d][i];
-            a += std::min(p, q);
-            b += std::max(p, q);
-          }
-          least[i] = a;
-          most[i] = b;
-          centroid[3 * i] =
-            origin + m[0] * middle[0][i] + m[1] * middle[1][i] + m[2] * middle[2][i];
+            RowTransform::addWorldTerm(m[d], locals.low[d][i], locals.high[d][i], least, most);
+          block.world[2 * w][i] = least;
+          block.world[2 * w + 1][i] = most;
+          const double middle[3] = {
+            locals.middle[0][i], locals.middle[1][i], locals.middle[2][i]
+          };
+          block.centroids[3 * i + w] = RowTransform::worldPoint(origin, m, middle);
         }
       }
     }
-  };
-
-#ifdef VBR_STREAM_STORES
-  /// Rows staged in the cache, then streamed to the columns a whole line at a time: 16 rows
-  /// are one line of each 32-bit column and two of each 64-bit one.
-  struct RowBlock
-  {
-    static constexpr std::size_t Rows = BlockRows;
-    alignas(64) int ids[Rows];
-    alignas(64) vtkIdType voxels[Rows];
-    alignas(64) vtkIdType boxes[Rows];
-    alignas(64) double volumes[Rows];
-    alignas(64) double centroids[3 * Rows];
-    alignas(64) std::int32_t index[6][Rows];
-    alignas(64) double world[6][Rows];
-
-    Columns columns()
-    {
-      Columns c{ this->ids, this->voxels, this->boxes, this->volumes, this->centroids, {}, {} };
-      for (int k = 0; k < 6; ++k)
-      {
-        c.index[k] = this->index[k];
-        c.world[k] = this->world[k];
-      }
-      return c;
-    }
-
-    /// `bytes` (a multiple of 16) from `from` to `to` (16-byte aligned) past the caches.
-    static void stream(const void* from, void* to, std::size_t bytes)
-    {
-      const auto* source = static_cast<const __m128i*>(from);
-      auto* target = static_cast<__m128i*>(to);
-      for (std::size_t i = 0; i < bytes / 16; ++i)
-        _mm_stream_si128(target + i, _mm_load_si128(source + i));
-    }
-
-    /// The block's rows to rows [row, row + Rows) of `out`.
-    void streamTo(const Columns& out, std::size_t row) const
-    {
-      stream(this->ids, out.ids + row, sizeof(this->ids));
-      stream(this->voxels, out.voxels + row, sizeof(this->voxels));
-      stream(this->boxes, out.boxes + row, sizeof(this->boxes));
-      stream(this->volumes, out.volumes + row, sizeof(this->volumes));
-      stream(this->centroids, out.centroids + 3 * row, sizeof(this->centroids));
-      for (int k = 0; k < 6; ++k)
-      {
-        stream(this->index[k], out.index[k] + row, sizeof(this->index[k]));
-        stream(this->world[k], out.world[k] + row, sizeof(this->world[k]));
-      }
-    }
-  };
 #endif
+  };
 
   void addTo(vtkTable* table)
   {

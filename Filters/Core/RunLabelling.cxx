@@ -253,10 +253,9 @@ void uniteRowBits(UnionFind& uf,
 }
 
 #if VBR_POPCNT_COPY
-/// uniteRowBitsWith compiled for processors with POPCNT. Aligned on a cache line: the same
-/// instructions ran 7 % to 9 % slower on a checkerboard after unrelated code moved them.
+/// uniteRowBitsWith compiled for processors with POPCNT.
 template<int Widen>
-__attribute__((target("popcnt"), aligned(64))) void uniteRowBitsPopCount(UnionFind& uf,
+__attribute__((target("popcnt"))) void uniteRowBitsPopCount(UnionFind& uf,
   const VoxelRun* runs,
   RowBits rowA,
   RowBits rowB,

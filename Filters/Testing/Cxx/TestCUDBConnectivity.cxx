@@ -866,55 +866,39 @@ void checkBoxCornersInWorld()
     }
 }
 
-/// The world columns of the region table (XMin ... ZMax, Centroid) of an image with a direction
-/// matrix, against brute force: the bounds of the eight corners of a region's index box (the
-/// box of its voxels) and the mean of its voxel centres, each point mapped by origin +
-/// direction * (index * spacing). A point voxel spans half a spacing either side of its point,
-/// a cell voxel its cell, and the flat axis of a 2D image has no thickness (the plane of its
-/// first layer of points). Tables of several blocks of rows and a partial last block, and one
-/// past the 32 MiB (268,436 rows) that the filter streams to the columns from blocks of 16
-/// rows computed together.
-void checkTableInRotatedWorld()
+/// Region tables from this many rows on are of 32 MiB or more (bytes of a row with 8-bit
+/// labels: 125), which the filter computes in blocks of 16 rows and streams to the columns;
+/// smaller tables are written row by row.
+constexpr int BlockTableRows = 268436;
+
+/// A 3D checkerboard: a one-voxel region per selected voxel with face connectivity.
+Volume checkerboard(const Int3& dims)
 {
-  const double c = std::cos(0.5), s = std::sin(0.5);
-  const std::array<double, 9> rotation{ c, -s, 0, 0, 0, -1, s, c, 0 }; // proper, not axis-aligned
-  struct Case
+  Volume v;
+  v.dims = dims;
+  v.values.resize(std::size_t(dims[0]) * dims[1] * dims[2]);
+  for (int z = 0; z < dims[2]; ++z)
+    for (int y = 0; y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x)
+        v.values[(std::size_t(z) * dims[1] + y) * dims[0] + x] = (x + y + z) % 2;
+  return v;
+}
+
+/// The world bounds and centroid of each region of a rotated image, by brute force: the
+/// bounds of the eight corners of a region's index box (the box of its voxels) and the mean of
+/// its voxel centres, each point mapped by origin + direction * (index * spacing).
+struct RotatedRegions
+{
+  std::vector<std::array<double, 6>> bounds; ///< by RegionId, XMin, XMax, ...
+  std::vector<std::array<double, 3>> centroids;
+
+  RotatedRegions(const Volume& v,
+    const Layout& l,
+    const std::array<double, 9>& rotation,
+    const std::vector<int>& ids,
+    int count)
   {
-    Int3 dims;
-    bool cellData;
-    double density;
-    unsigned seed;
-    int leastRows;
-  };
-  for (const Case& k : { Case{ { 23, 19, 17 }, false, 0.45, 54, 17 },
-         Case{ { 21, 18, 15 }, true, 0.45, 52, 17 },
-         Case{ { 61, 47, 1 }, false, 0.45, 92, 17 },
-         Case{ { 3100, 3100, 1 }, false, 0.5, 977, 268436 } })
-  {
-    const Volume v = randomVolume(k.dims, k.density, 1, k.seed);
-    Layout l;
-    l.cellData = k.cellData;
-    l.extentMin = { -3, 5, 2 };
-    l.origin = { 1.5, -2.25, 0.75 };
-    l.spacing = { 0.5, 1.25, -2.0 };
-    vtkSmartPointer<vtkImageData> image = makeImage(v, l);
-    image->SetDirectionMatrix(rotation.data());
-    vtkNew<vtkCUDBConnectivity> f;
-    f->SetInputData(image);
-    f->GenerateBoxesOff();
-    f->Update();
-    const std::string what = std::string("rotated ") + (k.dims[2] == 1 ? "2D" : "3D") +
-      (k.cellData ? " cell" : " point") + " image";
-    const std::vector<int> ids = regionIds(f, l);
-    int count = 0;
-    for (int id : ids)
-      count = std::max(count, id);
-    vtkTable* table = f->GetRegionsOutput();
-    CHECK(count >= k.leastRows && table->GetNumberOfRows() == count,
-      what << ": " << count << " rows, at least " << k.leastRows);
-    if (table->GetNumberOfRows() != count)
-      continue;
-    const bool planar = k.dims[2] == 1;
+    const int flatAxis = ExpectedGeometry(v).flatAxis;
     auto toWorld = [&](const std::array<double, 3>& index)
     {
       std::array<double, 3> w{};
@@ -926,10 +910,9 @@ void checkTableInRotatedWorld()
       }
       return w;
     };
+    const std::array<double, 6> empty{ 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+    std::vector<std::array<double, 6>> box(count + 1, empty); // index units, voxels' extents
     std::vector<std::array<double, 3>> sum(count + 1, { 0, 0, 0 });
-    std::vector<std::array<double, 6>> box( // index units, the voxels' extents
-      count + 1,
-      { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 });
     std::vector<long long> voxels(count + 1, 0);
     for (int z = 0; z < v.dims[2]; ++z)
       for (int y = 0; y < v.dims[1]; ++y)
@@ -942,7 +925,7 @@ void checkTableInRotatedWorld()
           std::array<double, 3> centre{}, low{}, high{};
           for (int d = 0; d < 3; ++d)
           {
-            const bool flat = planar && d == 2;
+            const bool flat = d == flatAxis;
             const double index = l.extentMin[d] + p[d];
             centre[d] = flat ? index : index + (l.cellData ? 0.5 : 0.0);
             low[d] = flat ? index : index + (l.cellData ? 0.0 : -0.5);
@@ -957,9 +940,10 @@ void checkTableInRotatedWorld()
             box[id][2 * d + 1] = std::max(box[id][2 * d + 1], high[d]);
           }
         }
-    std::vector<std::array<double, 6>> bounds(
-      count + 1, { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 });
+    this->bounds.assign(count + 1, empty);
+    this->centroids.assign(count + 1, { 0, 0, 0 });
     for (int id = 1; id <= count; ++id)
+    {
       for (int corner = 0; corner < 8; ++corner)
       {
         std::array<double, 3> q{};
@@ -968,36 +952,130 @@ void checkTableInRotatedWorld()
         const std::array<double, 3> w = toWorld(q);
         for (int r = 0; r < 3; ++r)
         {
-          bounds[id][2 * r] = std::min(bounds[id][2 * r], w[r]);
-          bounds[id][2 * r + 1] = std::max(bounds[id][2 * r + 1], w[r]);
+          this->bounds[id][2 * r] = std::min(this->bounds[id][2 * r], w[r]);
+          this->bounds[id][2 * r + 1] = std::max(this->bounds[id][2 * r + 1], w[r]);
         }
       }
-    const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
-    vtkDataArray* centroid = vtkDataArray::SafeDownCast(table->GetColumnByName("Centroid"));
-    bool same = centroid != nullptr;
-    for (int k6 = 0; k6 < 6 && same; ++k6)
-    {
-      vtkDataArray* column = vtkDataArray::SafeDownCast(table->GetColumnByName(worldNames[k6]));
-      same = column != nullptr;
-      for (int r = 0; r < count && same; ++r)
-      {
-        const double expected = bounds[r + 1][k6];
-        same = std::abs(column->GetTuple1(r) - expected) <= 1e-9 * (1 + std::abs(expected));
-        CHECK(same,
-          what << ": " << worldNames[k6] << " of region " << r + 1 << " is " << column->GetTuple1(r)
-               << ", expected " << expected);
-      }
+      for (int d = 0; d < 3; ++d)
+        this->centroids[id][d] = sum[id][d] / static_cast<double>(voxels[id]);
     }
-    for (int r = 0; r < count && same; ++r)
-      for (int d = 0; d < 3 && same; ++d)
-      {
-        const double expected = sum[r + 1][d] / static_cast<double>(voxels[r + 1]);
-        same = std::abs(centroid->GetComponent(r, d) - expected) <= 1e-9 * (1 + std::abs(expected));
-        CHECK(same,
-          what << ": centroid of region " << r + 1 << " axis " << d << " is "
-               << centroid->GetComponent(r, d) << ", expected " << expected);
-      }
-    CHECK(centroid != nullptr, what << ": a Centroid column");
+  }
+};
+
+/// Whether the world columns (XMin ... ZMax, Centroid) of `table` are near `expected`.
+void checkWorldColumns(vtkTable* table, const RotatedRegions& expected, const std::string& what)
+{
+  vtkDataArray* centroid = vtkDataArray::SafeDownCast(table->GetColumnByName("Centroid"));
+  CHECK(centroid != nullptr, what << ": a Centroid column");
+  if (!centroid)
+    return;
+  const vtkIdType count = table->GetNumberOfRows();
+  const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
+  bool same = true;
+  for (int k = 0; k < 6 && same; ++k)
+  {
+    vtkDataArray* column = vtkDataArray::SafeDownCast(table->GetColumnByName(worldNames[k]));
+    same = column != nullptr;
+    CHECK(same, what << ": a " << worldNames[k] << " column");
+    for (vtkIdType r = 0; r < count && same; ++r)
+    {
+      const double value = column->GetTuple1(r), want = expected.bounds[r + 1][k];
+      same = near(value, want);
+      CHECK(same,
+        what << ": " << worldNames[k] << " of region " << r + 1 << " is " << value << ", expected "
+             << want);
+    }
+  }
+  for (vtkIdType r = 0; r < count && same; ++r)
+    for (int d = 0; d < 3 && same; ++d)
+    {
+      const double value = centroid->GetComponent(r, d), want = expected.centroids[r + 1][d];
+      same = near(value, want);
+      CHECK(same,
+        what << ": centroid of region " << r + 1 << " axis " << d << " is " << value
+             << ", expected " << want);
+    }
+}
+
+/// Whether the first rows of table `a` are those of `b`, every column's values bit for bit
+/// (== of doubles; no NaN in a region table).
+void checkSameFirstRows(vtkTable* a, vtkTable* b, const std::string& what)
+{
+  const vtkIdType rows = b->GetNumberOfRows();
+  CHECK(a->GetNumberOfRows() >= rows && a->GetNumberOfColumns() == b->GetNumberOfColumns(),
+    what << ": " << a->GetNumberOfRows() << " rows against " << rows);
+  for (vtkIdType c = 0; c < b->GetNumberOfColumns(); ++c)
+  {
+    auto* cb = vtkDataArray::SafeDownCast(b->GetColumn(c));
+    auto* ca = vtkDataArray::SafeDownCast(a->GetColumnByName(b->GetColumnName(c)));
+    bool same = ca && cb && ca->GetNumberOfComponents() == cb->GetNumberOfComponents() &&
+      ca->GetDataType() == cb->GetDataType() && a->GetNumberOfRows() >= rows;
+    for (vtkIdType r = 0; same && r < rows; ++r)
+      for (int k = 0; same && k < cb->GetNumberOfComponents(); ++k)
+        same = ca->GetComponent(r, k) == cb->GetComponent(r, k);
+    CHECK(same, what << ": column " << b->GetColumnName(c) << " of the first " << rows << " rows");
+  }
+}
+
+/// The world columns (XMin ... ZMax, Centroid) of the region table of images with a direction
+/// matrix against brute force (RotatedRegions), for point voxels (half a spacing either side
+/// of their point), cell voxels (their cell), and 2D images flat along z and along y (no
+/// thickness: the plane of their first layer of points). Tables of at least BlockTableRows
+/// rows, computed in blocks, are also compared bit for bit, every column, with a table of the
+/// same image's 200,000 largest regions (SIZE_RANK: the same regions as its first rows),
+/// written row by row.
+void checkTableInRotatedWorld()
+{
+  const double c = std::cos(0.5), s = std::sin(0.5);
+  const std::array<double, 9> rotation{ c, -s, 0, 0, 0, -1, s, c, 0 }; // proper, not axis-aligned
+  struct Case
+  {
+    Volume volume;
+    bool cellData;
+    std::array<double, 3> spacing;
+    bool blocks; ///< whether the table has at least BlockTableRows rows
+  };
+  const std::array<double, 3> spacing{ 0.5, 1.25, -2.0 };
+  const std::array<double, 3> negativeX{ -0.5, 1.25, 2.0 };
+  const Case cases[] = { { randomVolume({ 23, 19, 17 }, 0.45, 1, 54), false, spacing, false },
+    { randomVolume({ 21, 18, 15 }, 0.45, 1, 52), true, spacing, false },
+    { randomVolume({ 61, 47, 1 }, 0.45, 1, 92), false, spacing, false },
+    { randomVolume({ 3100, 3100, 1 }, 0.5, 1, 977), false, spacing, true },
+    { checkerboard({ 82, 82, 82 }), true, negativeX, true },   // 275,684 regions
+    { checkerboard({ 734, 1, 734 }), false, spacing, true } }; // 269,378 regions
+  for (const Case& k : cases)
+  {
+    const Volume& v = k.volume;
+    Layout l;
+    l.cellData = k.cellData;
+    l.extentMin = { -3, 5, 2 };
+    l.origin = { 1.5, -2.25, 0.75 };
+    l.spacing = k.spacing;
+    vtkSmartPointer<vtkImageData> image = makeImage(v, l);
+    image->SetDirectionMatrix(rotation.data());
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(image);
+    f->GenerateBoxesOff();
+    f->Update();
+    std::ostringstream what;
+    what << "rotated " << v.dims[0] << "x" << v.dims[1] << "x" << v.dims[2]
+         << (k.cellData ? " cell" : " point") << " image";
+    const std::vector<int> ids = regionIds(f, l);
+    const int count = ids.empty() ? 0 : *std::max_element(ids.begin(), ids.end());
+    vtkTable* table = f->GetRegionsOutput();
+    CHECK(table->GetNumberOfRows() == count && (count >= BlockTableRows) == k.blocks,
+      what.str() << ": " << count << " rows, table of blocks " << k.blocks);
+    if (table->GetNumberOfRows() != count)
+      continue;
+    checkWorldColumns(table, RotatedRegions(v, l, rotation, ids, count), what.str());
+    if (!k.blocks)
+      continue;
+    vtkNew<vtkCUDBConnectivity> rows;
+    rows->SetInputData(image);
+    rows->GenerateBoxesOff();
+    rows->SetLargestRegions(200000);
+    rows->Update();
+    checkSameFirstRows(table, rows->GetRegionsOutput(), what.str() + " blocks against rows");
   }
 }
 
@@ -1162,8 +1240,8 @@ void checkTwoDimensionalRuns()
     }
   // One image of more runs than the default MinimumPixelRuns (about 2.4 million): the runs
   // against the boxes and the sweep, and the labels and table against the flood fill. Its
-  // face-connected regions are a table past the 32 MiB (268,436 rows) from which the filter
-  // streams the rows to the columns, 16 a block, the last ones stored one by one.
+  // face-connected regions are a table of BlockTableRows rows or more, which the filter
+  // computes and streams 16 rows a block, the last ones stored one by one.
   const Volume v = randomVolume({ 3100, 3100, 1 }, 0.5, 1, 977);
   Layout l;
   l.extentMin = { -7, 4, 2 };
@@ -1187,8 +1265,8 @@ void checkTwoDimensionalRuns()
     int count = 0;
     const std::vector<int> ids = regionIds(runs, l);
     CHECK(ids == floodFill(v, Rule(), vertex, count), name << ": labels against the flood fill");
-    CHECK(vertex || count >= 268436,
-      name << ": " << count << " regions, fewer than a streamed table's 268,436");
+    CHECK(vertex || count >= BlockTableRows,
+      name << ": " << count << " regions, fewer than a table of blocks' " << BlockTableRows);
     checkTable(runs, v, l, ids, name);
   }
 }
