@@ -42,10 +42,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <iostream>
+#include <random>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -81,6 +84,11 @@
 #if defined(__SSE2__) && (defined(__x86_64__) || defined(__SSE2_MATH__)) &&                        \
   !defined(VBR_ADDRESS_SANITIZER)
 #define VBR_STREAM_STORES 1
+#endif
+
+// SSE2 integer built-ins (PlanarRegion's bounds), which AddressSanitizer checks like any code.
+#if defined(__SSE2__)
+#define VBR_SSE2 1
 #include <emmintrin.h>
 #endif
 
@@ -555,6 +563,9 @@ T* newBlockArray(std::size_t n)
 /// The RegionId of every region (0 when removed), by region in sweep order.
 using RegionIdList = std::vector<std::int32_t, BlockAllocator<std::int32_t>>;
 /// Region indices: the kept regions, the region of each row of the table.
+/// Both lists' resize(n) and list(n) leave their new values unset (BlockAllocator::construct):
+/// they are for values written next (countingSortBySize's places, numberEveryRegion's rows),
+/// never read before.
 using RegionList = std::vector<std::size_t, BlockAllocator<std::size_t>>;
 
 /// Refuses (throws) `bytes` of new arrays the memory cannot take (what resizeOrThrow checks).
@@ -737,7 +748,9 @@ struct PlanarRegion
   std::array<std::int16_t, 4> bounds;
   std::array<std::int64_t, 2> doubledCentre;
 
-  /// Sides of the images whose regions fit the record (bounds of 16 bits, signed).
+  /// Sides of the images whose regions fit the record (bounds of 16 bits, signed). Deliberately
+  /// one pixel cautious: an exclusive upper bound of 32,767 would still fit a side of 32,768,
+  /// but the bounds' negations then stay clear of -32,768 by one.
   static constexpr std::int64_t LargestSide = std::numeric_limits<std::int16_t>::max();
 
   /// An empty region: no voxels, bounds any box replaces.
@@ -757,19 +770,12 @@ struct PlanarRegion
       this->bounds[k] = static_cast<std::int16_t>(std::min<std::int32_t>(this->bounds[k], box[k]));
   }
 
-  /// Adds a box (processing axes, at `offset`; one pixel thick along axis 2) of the region.
-  void add(const vbr::Box& box, const Int3& offset)
+#ifdef VBR_SSE2
+  /// addBounds of a box (processing axes, at `offset`): (x0, y0, -x1, -y1) as four 16-bit
+  /// values, and their minimum with the bounds, in one register. In scalar code the compiler
+  /// merged the four 16-bit minima into one store, built by shifts and ors.
+  void addBoxBounds(const vbr::Box& box, const Int3& offset)
   {
-    ++this->boxes;
-    const std::int32_t x0 = box.lo[0] + offset[0], x1 = box.hi[0] + offset[0];
-    const std::int32_t y0 = box.lo[1] + offset[1], y1 = box.hi[1] + offset[1];
-    const std::uint32_t volume =
-      static_cast<std::uint32_t>(x1 - x0) * static_cast<std::uint32_t>(y1 - y0);
-    this->voxels += volume;
-#ifdef VBR_STREAM_STORES
-    // (x0, y0, -x1, -y1) as four 16-bit values, and their minimum with the bounds, in one
-    // register: in scalar code the compiler merged the four 16-bit minima into one store,
-    // built by shifts and ors.
     const __m128i shift = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(offset.data()));
     const __m128i low =
       _mm_add_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(box.lo.data())), shift);
@@ -780,6 +786,20 @@ struct PlanarRegion
     const __m128i packed = _mm_packs_epi32(corners, corners);
     auto* const bounds = reinterpret_cast<__m128i*>(this->bounds.data());
     _mm_storel_epi64(bounds, _mm_min_epi16(_mm_loadl_epi64(bounds), packed));
+  }
+#endif
+
+  /// Adds a box (processing axes, at `offset`; one pixel thick along axis 2) of the region.
+  void add(const vbr::Box& box, const Int3& offset)
+  {
+    ++this->boxes;
+    const std::int32_t x0 = box.lo[0] + offset[0], x1 = box.hi[0] + offset[0];
+    const std::int32_t y0 = box.lo[1] + offset[1], y1 = box.hi[1] + offset[1];
+    const std::uint32_t volume =
+      static_cast<std::uint32_t>(x1 - x0) * static_cast<std::uint32_t>(y1 - y0);
+    this->voxels += volume;
+#ifdef VBR_SSE2
+    this->addBoxBounds(box, offset);
 #else
     this->addBounds(x0, y0, x1, y1);
 #endif
@@ -787,9 +807,10 @@ struct PlanarRegion
     this->doubledCentre[1] += std::int64_t(volume) * (y0 + y1);
   }
 
-  /// Region::addRowRuns of a row y of a 2D image.
+  /// Region::addRowRuns of a row y of a 2D image (z, the plane, follows from the voxels).
   void addRowRuns(const vbr::VoxelRun& extent,
     std::int32_t y,
+    std::int32_t /*z*/,
     std::int64_t voxelCount,
     std::int64_t doubledX,
     std::uint32_t boxCount)
@@ -922,8 +943,8 @@ class Regions
 public:
   Regions() = default;
   Regions(std::size_t count, bool planar, std::int32_t z)
-    : planar(planar)
-    , z(z)
+    : z(z)
+    , planar(planar)
   {
     if (planar)
       this->flat = RegionRecords<PlanarRegion>(count);
@@ -932,10 +953,24 @@ public:
   }
 
   bool isPlanar() const { return this->planar; }
-  std::size_t size() const { return this->planar ? this->flat.size() : this->full.size(); }
+  /// f(records) of the records in use (RegionRecords<PlanarRegion> or RegionRecords<Region>).
+  template<typename F>
+  decltype(auto) visit(F&& f) const
+  {
+    return this->planar ? f(this->flat) : f(this->full);
+  }
+  template<typename F>
+  decltype(auto) visit(F&& f)
+  {
+    return this->planar ? f(this->flat) : f(this->full);
+  }
+  std::size_t size() const
+  {
+    return this->visit([](const auto& records) { return records.size(); });
+  }
   const std::int64_t* sizes() const
   {
-    return this->planar ? this->flat.sizes() : this->full.sizes();
+    return this->visit([](const auto& records) { return records.sizes(); });
   }
 
   /// Whether region r holds a seed (markSeeded).
@@ -950,10 +985,7 @@ public:
   /// Starts the records not met.
   void startAll()
   {
-    if (this->planar)
-      this->flat.startAll();
-    else
-      this->full.startAll();
+    this->visit([](auto& records) { records.startAll(); });
   }
 
   RegionRecords<Region> full;
@@ -978,7 +1010,7 @@ bool planarRecordsFit(const std::vector<ObjectBoxes>& objects,
   for (int d = 0; d < 3; ++d)
     if (grid.dims[d] > PlanarRegion::LargestSide)
       return false;
-  z = objects[0].offset[2];
+  z = objects[0].offset[2]; // 0 as objects are cut today; checked in case that changes
   for (const ObjectBoxes& o : objects)
     if (o.labelledFromRuns || o.offset[2] != z || o.offset[0] < 0 || o.offset[1] < 0)
       return false;
@@ -1167,11 +1199,8 @@ void measureRegionsOfPixelRuns(const ObjectBoxes& o, RegionRecords<Record>& regi
         e += 2;
       } while (e != last && label[*runBox] == region);
       const std::size_t g = o.firstRegion + region - 1;
-      if constexpr (std::is_same<Record, PlanarRegion>::value)
-        regions.touch(g).addRowRuns({ x0 + dx, x1 + dx }, y + o.offset[1], voxels, doubledX, boxes);
-      else
-        regions.touch(g).addRowRuns(
-          { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
+      regions.touch(g).addRowRuns(
+        { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
       regions.noteSize(g);
     }
   }
@@ -1185,31 +1214,25 @@ void measureObjects(const std::vector<ObjectBoxes>& objects, RegionRecords<Recor
   for (const ObjectBoxes& o : objects)
   {
     if constexpr (std::is_same<Record, Region>::value)
+    {
       if (o.labelledFromRuns)
       {
         measureRegionsOfRuns(o, regions);
         continue;
       }
+    }
+    else
+      assert(!o.labelledFromRuns); // planarRecordsFit refuses 3D runs
     if (o.labelledFromPixelRuns)
     {
       measureRegionsOfPixelRuns(o, regions);
       continue;
     }
-    if constexpr (std::is_same<Record, PlanarRegion>::value)
-    {
-      regions.addBoxes(o.cudb.boxes.data(),
-        o.components.boxLabel.data(),
-        o.cudb.boxes.size(),
-        std::size_t(o.firstRegion) - 1, // labels start at 1
-        o.offset);
-      continue;
-    }
-    for (std::size_t b = 0; b < o.cudb.boxes.size(); ++b) // labels start at 1
-    {
-      const std::size_t g = o.firstRegion + o.components.boxLabel[b] - 1;
-      regions.touch(g).add(o.cudb.boxes[b], o.offset);
-      regions.noteSize(g);
-    }
+    regions.addBoxes(o.cudb.boxes.data(),
+      o.components.boxLabel.data(),
+      o.cudb.boxes.size(),
+      std::size_t(o.firstRegion) - 1, // labels start at 1
+      o.offset);
   }
 }
 
@@ -1222,10 +1245,7 @@ Regions measureRegions(const std::vector<ObjectBoxes>& objects,
   std::int32_t z = 0;
   const bool planar = planarRecordsFit(objects, grid, z);
   Regions regions(count, planar, z);
-  if (planar)
-    measureObjects(objects, regions.flat);
-  else
-    measureObjects(objects, regions.full);
+  regions.visit([&objects](auto& records) { measureObjects(objects, records); });
   regions.startAll();
   return regions;
 }
@@ -1275,26 +1295,71 @@ int bitsFor(std::uint64_t n)
   return bits;
 }
 
-/// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, by a
-/// counting sort of their sizes, all at most `largest`: two passes over the regions and one
-/// over the sizes (noise and halftones have hundreds of thousands of regions of a few voxels).
-void countingSortBySize(const std::int64_t* sizes, std::int64_t largest, RegionList& kept)
-{
-  std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 2, 0);
-  for (std::size_t r : kept)
-    ++start[static_cast<std::size_t>(largest - sizes[r]) + 1];
-  for (std::size_t k = 1; k < start.size(); ++k)
-    start[k] += start[k - 1];
-  RegionList sorted(kept.size());
-  for (std::size_t r : kept) // in sweep order: ties stay in it
-    sorted[start[static_cast<std::size_t>(largest - sizes[r])]++] = r;
-  kept = std::move(sorted);
-}
-
 /// Below this many kept regions their sort keys are sorted by comparisons: the counting sort's
 /// pass over every size up to the largest (a page of a few hundred regions, one of thousands of
 /// pixels) and the radix sort's 2,048 buckets per digit cost more there.
 constexpr std::size_t FewRegions = 4096;
+
+/// Whether n regions of sizes at most `largest` are sorted by countingSortBySize: its pass over
+/// every size up to the largest costs little next to the regions' passes.
+bool countingSortFits(std::int64_t largest, std::size_t n)
+{
+  const auto count = static_cast<std::int64_t>(n);
+  return largest <= count + 65536 && (n >= FewRegions || largest <= 8 * count + 1024);
+}
+
+/// Ranks regions [first, last) (indices, in sweep order) largest first, ties in sweep order, by
+/// a counting sort of their sizes, all at most `largest`: two passes over the regions and one
+/// over the sizes (noise and halftones have hundreds of thousands of regions of a few voxels).
+/// Calls place(k, r) for each region r, of rank k from 0, in sweep order.
+template<typename Index, typename Place>
+void countingSortBySize(const std::int64_t* sizes,
+  std::int64_t largest,
+  Index first,
+  Index last,
+  Place&& place)
+{
+  std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 2, 0);
+  for (Index i = first; i != last; ++i)
+    ++start[static_cast<std::size_t>(largest - sizes[*i]) + 1];
+  for (std::size_t k = 1; k < start.size(); ++k)
+    start[k] += start[k - 1];
+  for (Index i = first; i != last; ++i) // in sweep order: ties stay in it
+  {
+    const std::size_t r = *i;
+    place(start[static_cast<std::size_t>(largest - sizes[r])]++, r);
+  }
+}
+
+/// An iterator over the region indices 0, 1, ... themselves (countingSortBySize of them all).
+struct RegionIndex
+{
+  std::size_t r;
+  std::size_t operator*() const { return this->r; }
+  RegionIndex& operator++()
+  {
+    ++this->r;
+    return *this;
+  }
+  bool operator!=(const RegionIndex& other) const { return this->r != other.r; }
+};
+
+/// Whether the sizes given one after another (add) never grew: regions already largest first,
+/// ties in sweep order, which no sort would move.
+class AlreadyInOrder
+{
+public:
+  void add(std::int64_t size)
+  {
+    this->inOrder = this->inOrder && size <= this->previous;
+    this->previous = size;
+  }
+  bool holds() const { return this->inOrder; }
+
+private:
+  bool inOrder = true;
+  std::int64_t previous = std::numeric_limits<std::int64_t>::max();
+};
 
 /// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
 /// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
@@ -1307,10 +1372,15 @@ void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
   std::int64_t largest = 0;
   for (std::size_t r : kept)
     largest = std::max(largest, sizes[r]);
-  const auto n = static_cast<std::int64_t>(kept.size());
-  if (largest <= n + 65536 && (kept.size() >= FewRegions || largest <= 8 * n + 1024))
+  if (countingSortFits(largest, kept.size()))
   {
-    countingSortBySize(sizes, largest, kept);
+    RegionList sorted(kept.size()); // unset: every place written
+    countingSortBySize(sizes,
+      largest,
+      kept.cbegin(),
+      kept.cend(),
+      [&sorted](std::size_t k, std::size_t r) { sorted[k] = r; });
+    kept = std::move(sorted);
     return;
   }
   const int indexBits = bitsFor(count);
@@ -1346,21 +1416,19 @@ bool numberEveryRegion(const std::int64_t* sizes,
   RegionList& rows)
 {
   std::int64_t smallest = std::numeric_limits<std::int64_t>::max(), largest = 0;
-  bool ranked = true;
-  std::int64_t previous = std::numeric_limits<std::int64_t>::max();
+  AlreadyInOrder ranked;
   for (std::size_t r = 0; r < count; ++r)
   {
     const std::int64_t size = sizes[r];
     smallest = std::min(smallest, size);
     largest = std::max(largest, size);
-    ranked = ranked && size <= previous;
-    previous = size;
+    ranked.add(size);
   }
   if (count > 0 && smallest < minimumSize)
     return false;
   rows.resize(count); // unset: written below
   ids.resize(count);
-  if (ranked || ordering == vtkCUDBConnectivity::SWEEP_ORDER)
+  if (ranked.holds() || ordering == vtkCUDBConnectivity::SWEEP_ORDER)
   {
     for (std::size_t r = 0; r < count; ++r)
     {
@@ -1369,21 +1437,17 @@ bool numberEveryRegion(const std::int64_t* sizes,
     }
     return true;
   }
-  const auto n = static_cast<std::int64_t>(count);
-  if (largest <= n + 65536 && (count >= FewRegions || largest <= 8 * n + 1024))
+  if (countingSortFits(largest, count))
   {
-    // countingSortBySize of every region: largest first, ties in sweep order.
-    std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 2, 0);
-    for (std::size_t r = 0; r < count; ++r)
-      ++start[static_cast<std::size_t>(largest - sizes[r]) + 1];
-    for (std::size_t k = 1; k < start.size(); ++k)
-      start[k] += start[k - 1];
-    for (std::size_t r = 0; r < count; ++r)
-    {
-      const std::size_t k = start[static_cast<std::size_t>(largest - sizes[r])]++;
-      rows[k] = r;
-      ids[r] = static_cast<std::int32_t>(k + 1);
-    }
+    countingSortBySize(sizes,
+      largest,
+      RegionIndex{ 0 },
+      RegionIndex{ count },
+      [&rows, &ids](std::size_t k, std::size_t r)
+      {
+        rows[k] = r;
+        ids[r] = static_cast<std::int32_t>(k + 1);
+      });
     return true;
   }
   for (std::size_t r = 0; r < count; ++r)
@@ -1415,19 +1479,17 @@ std::int32_t numberRegions(const Regions& regions,
   kept.reserve(regions.size());
   // Regions of one size, or already largest first (a checkerboard's million regions of one
   // voxel), are in order: the sort's keys and scratch were a fifth of that update.
-  bool ranked = true;
-  std::int64_t previous = std::numeric_limits<std::int64_t>::max();
+  AlreadyInOrder ranked;
   for (std::size_t r = 0; r < regions.size(); ++r)
   {
     const std::int64_t size = sizes[r];
     if (size >= minimumSize && (!useSeeds || regions.seeded(r)))
     {
-      ranked = ranked && size <= previous;
-      previous = size;
+      ranked.add(size);
       kept.push_back(r);
     }
   }
-  if (!ranked)
+  if (!ranked.holds())
     rankBySize(sizes, regions.size(), kept);
   if (largest > 0 && static_cast<std::size_t>(largest) < kept.size())
     kept.resize(static_cast<std::size_t>(largest));
@@ -2225,10 +2287,8 @@ struct RegionColumns
     const std::array<int, 3>& axes,
     double voxelMeasure)
   {
-    if (regions.isPlanar())
-      this->writeRows(regions.flat, regions.z, regionOfRow, grid, axes, voxelMeasure);
-    else
-      this->writeRows(regions.full, regions.z, regionOfRow, grid, axes, voxelMeasure);
+    regions.visit([&](const auto& records)
+      { this->writeRows(records, regions.z, regionOfRow, grid, axes, voxelMeasure); });
   }
 
   /// write of the records `regions` (of plane z when planar).
@@ -2393,6 +2453,7 @@ struct RegionColumns
     }
 
 #ifdef VBR_ROW_BLOCKS
+    /// Rows of a block (fill's, a RowBlock's).
     static constexpr std::size_t Rows = RowBlock::Rows;
 
     /// The records of a block's rows, by image axis.
@@ -3153,6 +3214,7 @@ struct vtkCUDBConnectivityKept
   vtkSmartPointer<vtkIntArray> regionIds; ///< a small RegionId image (paintRegions)
   RunMemory runs;                         ///< the run labelling's memory
   ReleaseWindow window;                   ///< open while the pipeline releases the outputs
+  bool planarRecords = false;             ///< whether the last update used PlanarRegion
 };
 
 namespace
@@ -3215,6 +3277,7 @@ bool writeDistributed(vtkCUDBConnectivity* self,
   if (first && !aborted)
     numberAllRegions(
       self, seeds, in, objects, regionCount, regions, regionIds, regionOfRow, summary, nullptr);
+  kept.planarRecords = regions.isPlanar();
   vtkSmartPointer<vtkIntArray> ids = paintPieceFromBoxes(piece,
     piece.local,
     first ? keptBoxValues(objects, regionIds, in.axes, aborted) : std::vector<long long>());
@@ -3362,6 +3425,117 @@ vtkIdType vtkCUDBConnectivity::GetCachedBlockBytes()
 }
 
 //------------------------------------------------------------------------------
+bool vtkCUDBConnectivity::GetUsedPlanarRecords()
+{
+  return this->Kept->planarRecords;
+}
+
+namespace
+{
+
+/// Whether `planar`, seen as a Region of plane z, holds `full`'s values, field by field (the
+/// first difference told on std::cerr).
+bool sameRegion(const PlanarRegion& planar, std::int32_t z, const Region& full, int trial)
+{
+  const Region r = planar.asRegion(z);
+  bool same = r.voxels == full.voxels && r.boxes == full.boxes;
+  for (int d = 0; d < 3; ++d)
+    same = same && r.lo[d] == full.lo[d] && r.hi[d] == full.hi[d] &&
+      r.doubledCentre[d] == full.doubledCentre[d];
+  if (!same)
+    std::cerr << "planar record " << trial << ": voxels " << r.voxels << " / " << full.voxels
+              << ", boxes " << r.boxes << " / " << full.boxes << ", bounds " << r.lo[0] << ' '
+              << r.lo[1] << ' ' << r.lo[2] << ' ' << r.hi[0] << ' ' << r.hi[1] << ' ' << r.hi[2]
+              << " / " << full.lo[0] << ' ' << full.lo[1] << ' ' << full.lo[2] << ' ' << full.hi[0]
+              << ' ' << full.hi[1] << ' ' << full.hi[2] << '\n';
+  return same;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+bool vtkCUDBConnectivity::CheckPlanarRecords(int seed, int trials)
+{
+  constexpr std::int32_t Side = static_cast<std::int32_t>(PlanarRegion::LargestSide);
+  std::mt19937 random(static_cast<unsigned>(seed));
+  // Coordinates in [0, Side], one in two at the ends 0 and Side.
+  const auto coordinate = [&random]() -> std::int32_t
+  {
+    switch (random() % 4)
+    {
+      case 0:
+        return 0;
+      case 1:
+        return Side;
+      default:
+        return static_cast<std::int32_t>(random() % (Side + 1));
+    }
+  };
+  // [a, b), a < b, of at most `longest` along the axis.
+  const auto span = [&](std::int32_t longest)
+  {
+    std::int32_t a = coordinate(), b = coordinate();
+    if (a > b)
+      std::swap(a, b);
+    if (b - a > longest)
+      (random() % 2 ? b = a + longest : a = b - longest);
+    if (a == b)
+      (a == 0 ? ++b : --a);
+    return std::make_pair(a, b);
+  };
+  bool same = true;
+  for (int trial = 0; trial < trials; ++trial)
+  {
+    const std::int32_t z = static_cast<std::int32_t>(random() % 3);
+    PlanarRegion planar, bounded;
+    Region full;
+    planar.start();
+    bounded.start();
+    full.start();
+    const int items = trial == 0 ? 1 : 1 + static_cast<int>(random() % 24);
+    for (int item = 0; item < items; ++item)
+    {
+      // Boxes thin along one axis (the voxels of a region of a 2D image stay below 2^32; the
+      // first trial is the whole image), rows one pixel high.
+      const bool wide = random() % 2 == 0;
+      const auto xs = span(trial == 0 || wide ? Side : 3);
+      const auto ys = span(trial == 0 || !wide ? Side : 3);
+      if (random() % 3 != 0)
+      {
+        const Int3 offset{ static_cast<std::int32_t>(random() % (xs.first + 1)),
+          static_cast<std::int32_t>(random() % (ys.first + 1)),
+          z };
+        vbr::Box box;
+        box.lo = { xs.first - offset[0], ys.first - offset[1], 0 };
+        box.hi = { xs.second - offset[0], ys.second - offset[1], 1 };
+        planar.add(box, offset);
+        full.add(box, offset);
+#ifdef VBR_SSE2
+        PlanarRegion sse = bounded; // its bounds before the box
+        sse.addBoxBounds(box, offset);
+#endif
+        bounded.addBounds(xs.first, ys.first, xs.second, ys.second);
+#ifdef VBR_SSE2
+        same = same && sse.bounds == bounded.bounds;
+#endif
+      }
+      else
+      {
+        const std::int32_t y = ys.first;
+        const std::int64_t length = xs.second - xs.first;
+        const std::int64_t doubledX = length * (std::int64_t(xs.first) + xs.second);
+        const std::uint32_t boxes = random() % 2;
+        planar.addRowRuns({ xs.first, xs.second }, y, z, length, doubledX, boxes);
+        full.addRowRuns({ xs.first, xs.second }, y, z, length, doubledX, boxes);
+        bounded.addBounds(xs.first, y, xs.second, y + 1);
+      }
+      same = same && planar.bounds == bounded.bounds && sameRegion(planar, z, full, trial);
+    }
+  }
+  return same;
+}
+
+//------------------------------------------------------------------------------
 int vtkCUDBConnectivity::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -3431,6 +3605,7 @@ int vtkCUDBConnectivity::Execute(vtkInformationVector** inputVector,
   vtkSmartPointer<vtkIntArray> ids; // with seeds, painted now to find their regions
   numberAllRegions(
     this, seeds, in, objects, regionCount, regions, regionIds, regionOfRow, summary, &ids);
+  this->Kept->planarRecords = regions.isPlanar();
 
   // PASS 3: the outputs: RegionId image, boxes, region table.
   {

@@ -431,8 +431,9 @@ void checkTable(vtkCUDBConnectivity* f,
   }
 }
 
-/// One run of the filter on a volume, checked against the flood fill.
-void checkRun(const Volume& v,
+/// One run of the filter on a volume, checked against the flood fill. Returns whether the
+/// filter kept its regions in the 32-byte records of 2D images.
+bool checkRun(const Volume& v,
   const Layout& l,
   const Rule& rule,
   bool vertex,
@@ -482,6 +483,7 @@ void checkRun(const Volume& v,
     const bool planar = (v.dims[0] == 1) + (v.dims[1] == 1) + (v.dims[2] == 1) == 1;
     checkBoxesAndTable(f, v, l, got, label, planar);
   }
+  return f->GetUsedPlanarRecords();
 }
 
 void checkRandomVolumes()
@@ -685,10 +687,15 @@ void checkTwoDimensional()
 /// 2D images at the sides where the regions' compact records end (32,767 pixels: bounds of
 /// 16 bits, signed) and past them (the 64-byte records), along the image's rows and
 /// columns, from the boxes and from the pixel runs, numbered by size (a counting sort of every
-/// region) and in sweep order, against the flood fill: labels, and every table column.
+/// region) and in sweep order, both connectivities, against the flood fill: labels, and every
+/// table column; the compact records used exactly within the limit. Then the records
+/// themselves: random regions of boxes and rows reaching 0 and 32,767, in a compact record and
+/// in a 64-byte one, field by field, the compact bounds by their SSE2 and scalar code.
 void checkPlanarRecordLimits()
 {
-  const Int3 shapes[] = { { 32767, 3, 1 }, { 32770, 3, 1 }, { 2, 1, 32767 }, { 1, 3, 32770 } };
+  const Int3 shapes[] = {
+    { 32767, 3, 1 }, { 32770, 3, 1 }, { 2, 1, 32767 }, { 1, 3, 32767 }, { 1, 3, 32770 }
+  };
   unsigned seed = 300;
   for (const Int3& dims : shapes)
   {
@@ -696,19 +703,85 @@ void checkPlanarRecordLimits()
     Layout l;
     l.extentMin = { -40000, 7, 3 };
     l.spacing = { 0.25, 1.5, 2.0 };
+    const bool fits = std::max({ dims[0], dims[1], dims[2] }) <= 32767;
+    const std::string what = "2D " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+      std::to_string(dims[2]);
     for (bool boxes : { true, false })
       for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
-        checkRun(v,
-          l,
-          Rule(),
-          ordering == vtkCUDBConnectivity::SWEEP_ORDER, // vertex, face
-          vtkCUDBConnectivity::ZYX,
-          ordering,
-          "2D " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
-            std::to_string(dims[2]) + (boxes ? " boxes" : " runs"),
-          true,
-          true,
-          boxes);
+        for (bool vertex : { false, true })
+        {
+          const bool planar = checkRun(v,
+            l,
+            Rule(),
+            vertex,
+            vtkCUDBConnectivity::ZYX,
+            ordering,
+            what + (boxes ? " boxes" : " runs"),
+            true,
+            true,
+            boxes);
+          CHECK(planar == fits,
+            what << (boxes ? " boxes" : " runs") << ": 32-byte records " << (planar ? "" : "not ")
+                 << "used");
+        }
+  }
+  CHECK(vtkCUDBConnectivity::CheckPlanarRecords(11, 3000),
+    "32-byte records agree with the 64-byte ones");
+}
+
+/// The fast numbering of every region (none removed) at its edges, against the flood fill:
+/// LargestRegions equal to the count and one more, MinimumRegionSize equal to the smallest
+/// region's size; and seeds in every region (the general numbering) giving the same.
+void checkEveryRegionKept()
+{
+  const Int3 shapes[] = { { 40, 30, 1 }, { 14, 12, 10 } };
+  unsigned seed = 900;
+  for (const Int3& dims : shapes)
+  {
+    const Volume v = randomVolume(dims, 0.5, 1, seed++);
+    int count = 0;
+    const std::vector<int> sweep = floodFill(v, Rule(), false, count);
+    const std::vector<long long> sizes = sizesOf(sweep, count);
+    const long long smallest = *std::min_element(sizes.begin() + 1, sizes.end());
+    const std::string what = std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+      std::to_string(dims[2]) + " (" + std::to_string(count) + " regions)";
+    for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
+    {
+      const std::vector<int> all = ordering == vtkCUDBConnectivity::SWEEP_ORDER
+        ? sweep
+        : sizeRanked(sweep, count, [](int, long long) { return true; });
+      const std::string how = what + (ordering == vtkCUDBConnectivity::SWEEP_ORDER ? " sweep" : "");
+      vtkNew<vtkCUDBConnectivity> f;
+      f->SetInputData(makeImage(v, Layout()));
+      f->SetRegionOrdering(ordering);
+      for (int largest : { count, count + 1 })
+      {
+        f->SetLargestRegions(largest);
+        f->Update();
+        CHECK(regionIds(f, Layout()) == all, how << ": LargestRegions " << largest << " keeps all");
+      }
+      f->SetLargestRegions(0);
+      f->SetMinimumRegionSize(smallest);
+      f->Update();
+      CHECK(
+        regionIds(f, Layout()) == all, how << ": MinimumRegionSize " << smallest << " keeps all");
+      CHECK(f->GetRegionsOutput()->GetNumberOfRows() == count, how << ": a row per region");
+      f->SetMinimumRegionSize(1);
+      vtkNew<vtkPolyData> seeds;
+      vtkNew<vtkPoints> points;
+      for (int wanted = 1; wanted <= count; ++wanted)
+      {
+        const std::size_t i = std::find(sweep.begin(), sweep.end(), wanted) - sweep.begin();
+        const int x = static_cast<int>(i % v.dims[0]),
+                  y = static_cast<int>(i / v.dims[0] % v.dims[1]),
+                  z = static_cast<int>(i / (v.dims[0] * v.dims[1]));
+        points->InsertNextPoint(x + 0.2, y - 0.3, z + (dims[2] == 1 ? 0.0 : 0.4));
+      }
+      seeds->SetPoints(points);
+      f->SetSeedData(seeds);
+      f->Update();
+      CHECK(regionIds(f, Layout()) == all, how << ": seeds in every region keep all");
+    }
   }
 }
 
@@ -1619,6 +1692,7 @@ int TestCUDBConnectivity(int, char*[])
   checkRandomVolumes();
   checkTwoDimensional();
   checkPlanarRecordLimits();
+  checkEveryRegionKept();
   checkBoxCornersInWorld();
   checkTableInRotatedWorld();
   checkTwoDimensionalRuns();
