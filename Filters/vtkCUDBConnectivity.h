@@ -267,6 +267,20 @@ public:
    */
   static vtkIdType GetCachedBlockBytes();
 
+  /**
+   * For tests: whether the last update kept its regions in the 32-byte records of 2D images
+   * of at most 32,767 pixels a side (rather than the 64-byte records of 3D ones).
+   */
+  bool GetUsedPlanarRecords();
+
+  /**
+   * For tests: `trials` random regions of boxes and rows of a 2D image (coordinates often 0
+   * and 32,767) gathered in a 32-byte record and in a 64-byte one, which must agree field by
+   * field, and the record's bounds from its SSE2 code and from its scalar code. Returns
+   * whether all agree (the first difference printed on std::cerr).
+   */
+  static bool CheckPlanarRecords(int seed, int trials);
+
 protected:
   vtkCUDBConnectivity();
   ~vtkCUDBConnectivity() override;

@@ -431,8 +431,9 @@ void checkTable(vtkCUDBConnectivity* f,
   }
 }
 
-/// One run of the filter on a volume, checked against the flood fill.
-void checkRun(const Volume& v,
+/// One run of the filter on a volume, checked against the flood fill. Returns whether the
+/// filter kept its regions in the 32-byte records of 2D images.
+bool checkRun(const Volume& v,
   const Layout& l,
   const Rule& rule,
   bool vertex,
@@ -482,6 +483,7 @@ void checkRun(const Volume& v,
     const bool planar = (v.dims[0] == 1) + (v.dims[1] == 1) + (v.dims[2] == 1) == 1;
     checkBoxesAndTable(f, v, l, got, label, planar);
   }
+  return f->GetUsedPlanarRecords();
 }
 
 void checkRandomVolumes()
@@ -682,6 +684,107 @@ void checkTwoDimensional()
     }
 }
 
+/// 2D images at the sides where the regions' compact records end (32,767 pixels: bounds of
+/// 16 bits, signed) and past them (the 64-byte records), along the image's rows and
+/// columns, from the boxes and from the pixel runs, numbered by size (a counting sort of every
+/// region) and in sweep order, both connectivities, against the flood fill: labels, and every
+/// table column; the compact records used exactly within the limit. Then the records
+/// themselves: random regions of boxes and rows reaching 0 and 32,767, in a compact record and
+/// in a 64-byte one, field by field, the compact bounds by their SSE2 and scalar code.
+void checkPlanarRecordLimits()
+{
+  const Int3 shapes[] = {
+    { 32767, 3, 1 }, { 32770, 3, 1 }, { 2, 1, 32767 }, { 1, 3, 32767 }, { 1, 3, 32770 }
+  };
+  unsigned seed = 300;
+  for (const Int3& dims : shapes)
+  {
+    const Volume v = randomVolume(dims, 0.6, 1, seed++);
+    Layout l;
+    l.extentMin = { -40000, 7, 3 };
+    l.spacing = { 0.25, 1.5, 2.0 };
+    const bool fits = std::max({ dims[0], dims[1], dims[2] }) <= 32767;
+    const std::string what = "2D " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+      std::to_string(dims[2]);
+    for (bool boxes : { true, false })
+      for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
+        for (bool vertex : { false, true })
+        {
+          const bool planar = checkRun(v,
+            l,
+            Rule(),
+            vertex,
+            vtkCUDBConnectivity::ZYX,
+            ordering,
+            what + (boxes ? " boxes" : " runs"),
+            true,
+            true,
+            boxes);
+          CHECK(planar == fits,
+            what << (boxes ? " boxes" : " runs") << ": 32-byte records " << (planar ? "" : "not ")
+                 << "used");
+        }
+  }
+  CHECK(vtkCUDBConnectivity::CheckPlanarRecords(11, 3000),
+    "32-byte records agree with the 64-byte ones");
+}
+
+/// The fast numbering of every region (none removed) at its edges, against the flood fill:
+/// LargestRegions equal to the count and one more, MinimumRegionSize equal to the smallest
+/// region's size; and seeds in every region (the general numbering) giving the same.
+void checkEveryRegionKept()
+{
+  const Int3 shapes[] = { { 40, 30, 1 }, { 14, 12, 10 } };
+  unsigned seed = 900;
+  for (const Int3& dims : shapes)
+  {
+    const Volume v = randomVolume(dims, 0.5, 1, seed++);
+    int count = 0;
+    const std::vector<int> sweep = floodFill(v, Rule(), false, count);
+    const std::vector<long long> sizes = sizesOf(sweep, count);
+    const long long smallest = *std::min_element(sizes.begin() + 1, sizes.end());
+    const std::string what = std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+      std::to_string(dims[2]) + " (" + std::to_string(count) + " regions)";
+    for (int ordering : { vtkCUDBConnectivity::SIZE_RANK, vtkCUDBConnectivity::SWEEP_ORDER })
+    {
+      const std::vector<int> all = ordering == vtkCUDBConnectivity::SWEEP_ORDER
+        ? sweep
+        : sizeRanked(sweep, count, [](int, long long) { return true; });
+      const std::string how = what + (ordering == vtkCUDBConnectivity::SWEEP_ORDER ? " sweep" : "");
+      vtkNew<vtkCUDBConnectivity> f;
+      f->SetInputData(makeImage(v, Layout()));
+      f->SetRegionOrdering(ordering);
+      for (int largest : { count, count + 1 })
+      {
+        f->SetLargestRegions(largest);
+        f->Update();
+        CHECK(regionIds(f, Layout()) == all, how << ": LargestRegions " << largest << " keeps all");
+      }
+      f->SetLargestRegions(0);
+      f->SetMinimumRegionSize(smallest);
+      f->Update();
+      CHECK(
+        regionIds(f, Layout()) == all, how << ": MinimumRegionSize " << smallest << " keeps all");
+      CHECK(f->GetRegionsOutput()->GetNumberOfRows() == count, how << ": a row per region");
+      f->SetMinimumRegionSize(1);
+      vtkNew<vtkPolyData> seeds;
+      vtkNew<vtkPoints> points;
+      for (int wanted = 1; wanted <= count; ++wanted)
+      {
+        const std::size_t i = std::find(sweep.begin(), sweep.end(), wanted) - sweep.begin();
+        const int x = static_cast<int>(i % v.dims[0]),
+                  y = static_cast<int>(i / v.dims[0] % v.dims[1]),
+                  z = static_cast<int>(i / (v.dims[0] * v.dims[1]));
+        points->InsertNextPoint(x + 0.2, y - 0.3, z + (dims[2] == 1 ? 0.0 : 0.4));
+      }
+      seeds->SetPoints(points);
+      f->SetSeedData(seeds);
+      f->Update();
+      CHECK(regionIds(f, Layout()) == all, how << ": seeds in every region keep all");
+    }
+  }
+}
+
 /// The corners of every box cell of a 2D image against their world positions computed here
 /// from the image's extent, spacing, origin and direction: each cell's corners, mapped back to
 /// index space, must lie on voxel boundaries of its plane (the flat axis at the extent's first
@@ -834,6 +937,219 @@ void checkBoxCornersInWorld()
       CHECK(consistent && coveredCount == selected,
         what << ": the boxes cover the labelled pixels once, with their region");
     }
+}
+
+/// Region tables from this many rows on are of 32 MiB or more (bytes of a row with 8-bit
+/// labels: 125), which the filter computes in blocks of 16 rows and streams to the columns;
+/// smaller tables are written row by row.
+constexpr int BlockTableRows = 268436;
+
+/// A 3D checkerboard: a one-voxel region per selected voxel with face connectivity.
+Volume checkerboard(const Int3& dims)
+{
+  Volume v;
+  v.dims = dims;
+  v.values.resize(std::size_t(dims[0]) * dims[1] * dims[2]);
+  for (int z = 0; z < dims[2]; ++z)
+    for (int y = 0; y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x)
+        v.values[(std::size_t(z) * dims[1] + y) * dims[0] + x] = (x + y + z) % 2;
+  return v;
+}
+
+/// The world bounds and centroid of each region of a rotated image, by brute force: the
+/// bounds of the eight corners of a region's index box (the box of its voxels) and the mean of
+/// its voxel centres, each point mapped by origin + direction * (index * spacing).
+struct RotatedRegions
+{
+  std::vector<std::array<double, 6>> bounds; ///< by RegionId, XMin, XMax, ...
+  std::vector<std::array<double, 3>> centroids;
+
+  RotatedRegions(const Volume& v,
+    const Layout& l,
+    const std::array<double, 9>& rotation,
+    const std::vector<int>& ids,
+    int count)
+  {
+    const int flatAxis = ExpectedGeometry(v).flatAxis;
+    auto toWorld = [&](const std::array<double, 3>& index)
+    {
+      std::array<double, 3> w{};
+      for (int r = 0; r < 3; ++r)
+      {
+        w[r] = l.origin[r];
+        for (int d = 0; d < 3; ++d)
+          w[r] += rotation[3 * r + d] * index[d] * l.spacing[d];
+      }
+      return w;
+    };
+    const std::array<double, 6> empty{ 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+    std::vector<std::array<double, 6>> box(count + 1, empty); // index units, voxels' extents
+    std::vector<std::array<double, 3>> sum(count + 1, { 0, 0, 0 });
+    std::vector<long long> voxels(count + 1, 0);
+    for (int z = 0; z < v.dims[2]; ++z)
+      for (int y = 0; y < v.dims[1]; ++y)
+        for (int x = 0; x < v.dims[0]; ++x)
+        {
+          const int id = ids[(std::size_t(z) * v.dims[1] + y) * v.dims[0] + x];
+          if (id == 0)
+            continue;
+          const int p[3] = { x, y, z };
+          std::array<double, 3> centre{}, low{}, high{};
+          for (int d = 0; d < 3; ++d)
+          {
+            const bool flat = d == flatAxis;
+            const double index = l.extentMin[d] + p[d];
+            centre[d] = flat ? index : index + (l.cellData ? 0.5 : 0.0);
+            low[d] = flat ? index : index + (l.cellData ? 0.0 : -0.5);
+            high[d] = flat ? index : low[d] + 1.0;
+          }
+          const std::array<double, 3> wc = toWorld(centre);
+          ++voxels[id];
+          for (int d = 0; d < 3; ++d)
+          {
+            sum[id][d] += wc[d];
+            box[id][2 * d] = std::min(box[id][2 * d], low[d]);
+            box[id][2 * d + 1] = std::max(box[id][2 * d + 1], high[d]);
+          }
+        }
+    this->bounds.assign(count + 1, empty);
+    this->centroids.assign(count + 1, { 0, 0, 0 });
+    for (int id = 1; id <= count; ++id)
+    {
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        std::array<double, 3> q{};
+        for (int d = 0; d < 3; ++d)
+          q[d] = box[id][2 * d + (corner >> d & 1)];
+        const std::array<double, 3> w = toWorld(q);
+        for (int r = 0; r < 3; ++r)
+        {
+          this->bounds[id][2 * r] = std::min(this->bounds[id][2 * r], w[r]);
+          this->bounds[id][2 * r + 1] = std::max(this->bounds[id][2 * r + 1], w[r]);
+        }
+      }
+      for (int d = 0; d < 3; ++d)
+        this->centroids[id][d] = sum[id][d] / static_cast<double>(voxels[id]);
+    }
+  }
+};
+
+/// Whether the world columns (XMin ... ZMax, Centroid) of `table` are near `expected`.
+void checkWorldColumns(vtkTable* table, const RotatedRegions& expected, const std::string& what)
+{
+  vtkDataArray* centroid = vtkDataArray::SafeDownCast(table->GetColumnByName("Centroid"));
+  CHECK(centroid != nullptr, what << ": a Centroid column");
+  if (!centroid)
+    return;
+  const vtkIdType count = table->GetNumberOfRows();
+  const char* const worldNames[6] = { "XMin", "XMax", "YMin", "YMax", "ZMin", "ZMax" };
+  bool same = true;
+  for (int k = 0; k < 6 && same; ++k)
+  {
+    vtkDataArray* column = vtkDataArray::SafeDownCast(table->GetColumnByName(worldNames[k]));
+    same = column != nullptr;
+    CHECK(same, what << ": a " << worldNames[k] << " column");
+    for (vtkIdType r = 0; r < count && same; ++r)
+    {
+      const double value = column->GetTuple1(r), want = expected.bounds[r + 1][k];
+      same = near(value, want);
+      CHECK(same,
+        what << ": " << worldNames[k] << " of region " << r + 1 << " is " << value << ", expected "
+             << want);
+    }
+  }
+  for (vtkIdType r = 0; r < count && same; ++r)
+    for (int d = 0; d < 3 && same; ++d)
+    {
+      const double value = centroid->GetComponent(r, d), want = expected.centroids[r + 1][d];
+      same = near(value, want);
+      CHECK(same,
+        what << ": centroid of region " << r + 1 << " axis " << d << " is " << value
+             << ", expected " << want);
+    }
+}
+
+/// Whether the first rows of table `a` are those of `b`, every column's values bit for bit
+/// (== of doubles; no NaN in a region table).
+void checkSameFirstRows(vtkTable* a, vtkTable* b, const std::string& what)
+{
+  const vtkIdType rows = b->GetNumberOfRows();
+  CHECK(a->GetNumberOfRows() >= rows && a->GetNumberOfColumns() == b->GetNumberOfColumns(),
+    what << ": " << a->GetNumberOfRows() << " rows against " << rows);
+  for (vtkIdType c = 0; c < b->GetNumberOfColumns(); ++c)
+  {
+    auto* cb = vtkDataArray::SafeDownCast(b->GetColumn(c));
+    auto* ca = vtkDataArray::SafeDownCast(a->GetColumnByName(b->GetColumnName(c)));
+    bool same = ca && cb && ca->GetNumberOfComponents() == cb->GetNumberOfComponents() &&
+      ca->GetDataType() == cb->GetDataType() && a->GetNumberOfRows() >= rows;
+    for (vtkIdType r = 0; same && r < rows; ++r)
+      for (int k = 0; same && k < cb->GetNumberOfComponents(); ++k)
+        same = ca->GetComponent(r, k) == cb->GetComponent(r, k);
+    CHECK(same, what << ": column " << b->GetColumnName(c) << " of the first " << rows << " rows");
+  }
+}
+
+/// The world columns (XMin ... ZMax, Centroid) of the region table of images with a direction
+/// matrix against brute force (RotatedRegions), for point voxels (half a spacing either side
+/// of their point), cell voxels (their cell), and 2D images flat along z and along y (no
+/// thickness: the plane of their first layer of points). Tables of at least BlockTableRows
+/// rows, computed in blocks, are also compared bit for bit, every column, with a table of the
+/// same image's 200,000 largest regions (SIZE_RANK: the same regions as its first rows),
+/// written row by row.
+void checkTableInRotatedWorld()
+{
+  const double c = std::cos(0.5), s = std::sin(0.5);
+  const std::array<double, 9> rotation{ c, -s, 0, 0, 0, -1, s, c, 0 }; // proper, not axis-aligned
+  struct Case
+  {
+    Volume volume;
+    bool cellData;
+    std::array<double, 3> spacing;
+    bool blocks; ///< whether the table has at least BlockTableRows rows
+  };
+  const std::array<double, 3> spacing{ 0.5, 1.25, -2.0 };
+  const std::array<double, 3> negativeX{ -0.5, 1.25, 2.0 };
+  const Case cases[] = { { randomVolume({ 23, 19, 17 }, 0.45, 1, 54), false, spacing, false },
+    { randomVolume({ 21, 18, 15 }, 0.45, 1, 52), true, spacing, false },
+    { randomVolume({ 61, 47, 1 }, 0.45, 1, 92), false, spacing, false },
+    { randomVolume({ 3100, 3100, 1 }, 0.5, 1, 977), false, spacing, true },
+    { checkerboard({ 82, 82, 82 }), true, negativeX, true },   // 275,684 regions
+    { checkerboard({ 734, 1, 734 }), false, spacing, true } }; // 269,378 regions
+  for (const Case& k : cases)
+  {
+    const Volume& v = k.volume;
+    Layout l;
+    l.cellData = k.cellData;
+    l.extentMin = { -3, 5, 2 };
+    l.origin = { 1.5, -2.25, 0.75 };
+    l.spacing = k.spacing;
+    vtkSmartPointer<vtkImageData> image = makeImage(v, l);
+    image->SetDirectionMatrix(rotation.data());
+    vtkNew<vtkCUDBConnectivity> f;
+    f->SetInputData(image);
+    f->GenerateBoxesOff();
+    f->Update();
+    std::ostringstream what;
+    what << "rotated " << v.dims[0] << "x" << v.dims[1] << "x" << v.dims[2]
+         << (k.cellData ? " cell" : " point") << " image";
+    const std::vector<int> ids = regionIds(f, l);
+    const int count = ids.empty() ? 0 : *std::max_element(ids.begin(), ids.end());
+    vtkTable* table = f->GetRegionsOutput();
+    CHECK(table->GetNumberOfRows() == count && (count >= BlockTableRows) == k.blocks,
+      what.str() << ": " << count << " rows, table of blocks " << k.blocks);
+    if (table->GetNumberOfRows() != count)
+      continue;
+    checkWorldColumns(table, RotatedRegions(v, l, rotation, ids, count), what.str());
+    if (!k.blocks)
+      continue;
+    vtkNew<vtkCUDBConnectivity> rows;
+    rows->SetInputData(image);
+    rows->GenerateBoxesOff();
+    rows->SetLargestRegions(200000);
+    rows->Update();
+    checkSameFirstRows(table, rows->GetRegionsOutput(), what.str() + " blocks against rows");
+  }
 }
 
 /// Whether two runs of the filter wrote the same RegionIds, region table (every column, value
@@ -997,8 +1313,8 @@ void checkTwoDimensionalRuns()
     }
   // One image of more runs than the default MinimumPixelRuns (about 2.4 million): the runs
   // against the boxes and the sweep, and the labels and table against the flood fill. Its
-  // face-connected regions are a table past the 32 MiB (268,436 rows) from which the filter
-  // streams the rows to the columns, 16 a block, the last ones stored one by one.
+  // face-connected regions are a table of BlockTableRows rows or more, which the filter
+  // computes and streams 16 rows a block, the last ones stored one by one.
   const Volume v = randomVolume({ 3100, 3100, 1 }, 0.5, 1, 977);
   Layout l;
   l.extentMin = { -7, 4, 2 };
@@ -1022,8 +1338,8 @@ void checkTwoDimensionalRuns()
     int count = 0;
     const std::vector<int> ids = regionIds(runs, l);
     CHECK(ids == floodFill(v, Rule(), vertex, count), name << ": labels against the flood fill");
-    CHECK(vertex || count >= 268436,
-      name << ": " << count << " regions, fewer than a streamed table's 268,436");
+    CHECK(vertex || count >= BlockTableRows,
+      name << ": " << count << " regions, fewer than a table of blocks' " << BlockTableRows);
     checkTable(runs, v, l, ids, name);
   }
 }
@@ -1375,7 +1691,10 @@ int TestCUDBConnectivity(int, char*[])
 {
   checkRandomVolumes();
   checkTwoDimensional();
+  checkPlanarRecordLimits();
+  checkEveryRegionKept();
   checkBoxCornersInWorld();
+  checkTableInRotatedWorld();
   checkTwoDimensionalRuns();
   checkAutoSortingReuse2D();
   checkHostileVolumes();
