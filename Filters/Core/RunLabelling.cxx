@@ -264,7 +264,6 @@ RowBitsUniter pickUniteRowBits(bool popCountInstruction)
   return uniteRowBits<Widen>;
 }
 
-
 /// Where the CUDB compactions are read from: for every run, the equal run of the row before
 /// and of the row after in its plane (chains of them are the rectangles, the 2D compaction), and
 /// the equal run of the same row in the plane before (the 3D compaction); None where none.
@@ -846,4 +845,3 @@ bool paintRunsOverwriting(const VoxelRuns& runs,
 }
 
 } // namespace vbr
-
