@@ -1,6 +1,7 @@
 #include "vtkCUDBConnectivity.h"
 
 #include "CUDB.h"
+#include "DefaultInitAllocator.h"
 #include "EVM.h"
 #include "Geometry.h"
 #include "Prefetch.h"
@@ -508,11 +509,13 @@ void* allocateBlock(std::size_t bytes, bool huge)
   return block;
 }
 
-/// A std::allocator over allocateBlock: scratch of 2 MiB or more that an update fills comes
-/// from the blocks an earlier update released (BlockCache) rather than from pages the kernel
-/// faults in and zeroes at every update (a checkerboard's region numbering has 20 MB of it).
+/// A std::allocator over allocateBlock, whose values made without a value are left unset
+/// (DefaultInit: a resize for values written next does not zero them first): scratch of 2 MiB or
+/// more that an update fills comes from the blocks an earlier update released (BlockCache) rather
+/// than from pages the kernel faults in and zeroes at every update (a checkerboard's region
+/// numbering has 20 MB of it).
 template<typename T>
-struct BlockAllocator
+struct BlockAllocator : vbr::DefaultInit<>
 {
   using value_type = T;
   BlockAllocator() = default;
@@ -528,18 +531,6 @@ struct BlockAllocator
     return static_cast<T*>(block);
   }
   void deallocate(T* p, std::size_t) { releaseBlock(p); }
-  /// Values made without a value are left unset (a resize for values written next does not
-  /// zero them first); the others as std::allocator makes them.
-  template<typename U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
-  {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template<typename U, typename... Args>
-  void construct(U* p, Args&&... args)
-  {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
   friend bool operator==(const BlockAllocator&, const BlockAllocator&) { return true; }
   friend bool operator!=(const BlockAllocator&, const BlockAllocator&) { return false; }
 };
@@ -563,7 +554,7 @@ T* newBlockArray(std::size_t n)
 /// The RegionId of every region (0 when removed), by region in sweep order.
 using RegionIdList = std::vector<std::int32_t, BlockAllocator<std::int32_t>>;
 /// Region indices: the kept regions, the region of each row of the table.
-/// Both lists' resize(n) and list(n) leave their new values unset (BlockAllocator::construct):
+/// Both lists' resize(n) and list(n) leave their new values unset (BlockAllocator, DefaultInit):
 /// they are for values written next (countingSortBySize's places, numberEveryRegion's rows),
 /// never read before.
 using RegionList = std::vector<std::size_t, BlockAllocator<std::size_t>>;

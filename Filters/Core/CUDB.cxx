@@ -38,6 +38,7 @@
 // its section decomposition cost more than all the rest of the update.
 
 #include "CUDB.h"
+#include "DefaultInitAllocator.h"
 
 #include "UnionFind.h"
 
@@ -63,7 +64,7 @@ namespace
 /// pointers, so zeroing them first (value-initialization) only cost stores (on porous volumes,
 /// 16,384 growths a sweep).
 template<typename T>
-struct Uninitialized : std::allocator<T>
+struct Uninitialized : DefaultInit<std::allocator<T>>
 {
   template<typename U>
   struct rebind
@@ -74,16 +75,6 @@ struct Uninitialized : std::allocator<T>
   template<typename U>
   Uninitialized(const Uninitialized<U>&)
   {
-  }
-  template<typename U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
-  {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template<typename U, typename... Args>
-  void construct(U* p, Args&&... args)
-  {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 };
 

@@ -294,6 +294,22 @@ void checkBoxesAndTable(vtkCUDBConnectivity* f,
   checkTable(f, v, l, ids, what, &boxesOfRegion);
 }
 
+/// Calls f(id, p) for every voxel p = {x, y, z} of a grid of `dims` whose RegionId (ids, x
+/// fastest) is not 0.
+template<typename Dims, typename F>
+void forEachLabelledVoxel(const Dims& dims, const std::vector<int>& ids, F&& f)
+{
+  for (int z = 0; z < dims[2]; ++z)
+    for (int y = 0; y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        const int id = ids[(std::size_t(z) * dims[1] + y) * dims[0] + x];
+        const int p[3] = { x, y, z };
+        if (id != 0)
+          f(id, p);
+      }
+}
+
 /// World bounds (XMin, XMax, ...) and measure of one voxel (its volume, or its area for a 2D
 /// image) of an image along the axes of the layout, from its origin and spacing: point voxels
 /// span half a spacing either side of their point, cell voxels their cell; the flat axis of a
@@ -376,22 +392,18 @@ void checkTable(vtkCUDBConnectivity* f,
   std::vector<std::array<double, 3>> sum(count + 1, { 0, 0, 0 });
   std::vector<std::array<int, 6>> bounds(
     count + 1, { 1 << 30, -(1 << 30), 1 << 30, -(1 << 30), 1 << 30, -(1 << 30) });
-  for (int z = 0; z < v.dims[2]; ++z)
-    for (int y = 0; y < v.dims[1]; ++y)
-      for (int x = 0; x < v.dims[0]; ++x)
+  forEachLabelledVoxel(v.dims,
+    ids,
+    [&](int id, const int p[3])
+    {
+      for (int d = 0; d < 3; ++d)
       {
-        const int id = ids[(std::size_t(z) * v.dims[1] + y) * v.dims[0] + x];
-        if (id == 0)
-          continue;
-        const int p[3] = { x, y, z };
-        for (int d = 0; d < 3; ++d)
-        {
-          const double index = l.extentMin[d] + p[d] + (l.cellData && v.dims[d] > 1 ? 0.5 : 0.0);
-          sum[id][d] += l.origin[d] + index * l.spacing[d];
-          bounds[id][2 * d] = std::min(bounds[id][2 * d], l.extentMin[d] + p[d]);
-          bounds[id][2 * d + 1] = std::max(bounds[id][2 * d + 1], l.extentMin[d] + p[d]);
-        }
+        const double index = l.extentMin[d] + p[d] + (l.cellData && v.dims[d] > 1 ? 0.5 : 0.0);
+        sum[id][d] += l.origin[d] + index * l.spacing[d];
+        bounds[id][2 * d] = std::min(bounds[id][2 * d], l.extentMin[d] + p[d]);
+        bounds[id][2 * d + 1] = std::max(bounds[id][2 * d + 1], l.extentMin[d] + p[d]);
       }
+    });
   const ExpectedGeometry geometry(v);
   const double voxelMeasure = geometry.measure(l);
   for (int r = 0; r < count; ++r)
@@ -987,32 +999,28 @@ struct RotatedRegions
     std::vector<std::array<double, 6>> box(count + 1, empty); // index units, voxels' extents
     std::vector<std::array<double, 3>> sum(count + 1, { 0, 0, 0 });
     std::vector<long long> voxels(count + 1, 0);
-    for (int z = 0; z < v.dims[2]; ++z)
-      for (int y = 0; y < v.dims[1]; ++y)
-        for (int x = 0; x < v.dims[0]; ++x)
+    forEachLabelledVoxel(v.dims,
+      ids,
+      [&](int id, const int p[3])
+      {
+        std::array<double, 3> centre{}, low{}, high{};
+        for (int d = 0; d < 3; ++d)
         {
-          const int id = ids[(std::size_t(z) * v.dims[1] + y) * v.dims[0] + x];
-          if (id == 0)
-            continue;
-          const int p[3] = { x, y, z };
-          std::array<double, 3> centre{}, low{}, high{};
-          for (int d = 0; d < 3; ++d)
-          {
-            const bool flat = d == flatAxis;
-            const double index = l.extentMin[d] + p[d];
-            centre[d] = flat ? index : index + (l.cellData ? 0.5 : 0.0);
-            low[d] = flat ? index : index + (l.cellData ? 0.0 : -0.5);
-            high[d] = flat ? index : low[d] + 1.0;
-          }
-          const std::array<double, 3> wc = toWorld(centre);
-          ++voxels[id];
-          for (int d = 0; d < 3; ++d)
-          {
-            sum[id][d] += wc[d];
-            box[id][2 * d] = std::min(box[id][2 * d], low[d]);
-            box[id][2 * d + 1] = std::max(box[id][2 * d + 1], high[d]);
-          }
+          const bool flat = d == flatAxis;
+          const double index = l.extentMin[d] + p[d];
+          centre[d] = flat ? index : index + (l.cellData ? 0.5 : 0.0);
+          low[d] = flat ? index : index + (l.cellData ? 0.0 : -0.5);
+          high[d] = flat ? index : low[d] + 1.0;
         }
+        const std::array<double, 3> wc = toWorld(centre);
+        ++voxels[id];
+        for (int d = 0; d < 3; ++d)
+        {
+          sum[id][d] += wc[d];
+          box[id][2 * d] = std::min(box[id][2 * d], low[d]);
+          box[id][2 * d + 1] = std::max(box[id][2 * d + 1], high[d]);
+        }
+      });
     this->bounds.assign(count + 1, empty);
     this->centroids.assign(count + 1, { 0, 0, 0 });
     for (int id = 1; id <= count; ++id)
