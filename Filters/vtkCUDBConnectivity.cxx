@@ -8,6 +8,7 @@
 #include "RegionNumbering.h"
 #include "RegionStatistics.h"
 #include "RunLabelling.h"
+#include "Sanitizers.h"
 #include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepDistributed.h"
 #include "vtkVoxelBRepMemory.h"
@@ -58,15 +59,6 @@
 #include <utility>
 #include <vector>
 
-// Whether AddressSanitizer instruments this file (gcc says so by a macro, clang by a feature).
-#if defined(__SANITIZE_ADDRESS__)
-#define VBR_ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define VBR_ADDRESS_SANITIZER 1
-#endif
-#endif
-
 // Stores past the caches for the large outputs; plain stores under AddressSanitizer, which
 // does not see the SSE2 built-ins' writes. Only with SSE2 arithmetic: a 32-bit build's x87
 // arithmetic keeps excess precision in registers, so the block writer's rows (below) could
@@ -101,7 +93,6 @@ using vbr::CacheUpdate;
 using vbr::HugePagesFromBytes;
 using vbr::onHugePages;
 using vbr::PlanarRegion;
-using vbr::Region;
 using vbr::RegionIdList;
 using vbr::RegionList;
 using vbr::regionOf;
@@ -2281,6 +2272,10 @@ vtkTypeBool vtkCUDBConnectivity::ProcessRequest(vtkInformation* request,
 {
   // Only the outputs the pipeline releases just before this filter executes are worth
   // keeping beyond the scratch bound: the execution takes them at once (BlockCache).
+  // vtkDemandDrivenPipeline::ExecuteDataStart sends REQUEST_DATA_NOT_GENERATED to the
+  // algorithm, then releases the outputs it will regenerate (PrepareForNewData), then sends
+  // REQUEST_DATA: the window (ReleaseWindow) is open from the first request to the end of
+  // REQUEST_DATA, also after an error or an abort.
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
     this->Kept->window.open();
   if (!request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))

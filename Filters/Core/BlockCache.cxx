@@ -3,23 +3,15 @@
 #include "BlockCache.h"
 
 #include "HugePages.h"
+#include "Sanitizers.h"
 
 #include <cstdlib>
 #include <cstring>
-#include <utility>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 #ifdef __linux__
 #include <sys/mman.h>
-#endif
-
-#if defined(__SANITIZE_ADDRESS__)
-#define VBR_ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define VBR_ADDRESS_SANITIZER 1
-#endif
 #endif
 
 // Under AddressSanitizer BlockCache keeps no block: a use of a freed output stays detectable.

@@ -69,7 +69,10 @@ public:
   static constexpr std::size_t KeptOutputBytes = std::size_t(2048) << 20;
 
   /// The process's cache. Never destroyed: arrays may release their blocks after static
-  /// destruction.
+  /// destruction. It does not register itself with anything: an adapter whose host frees
+  /// memory on demand registers clear() there once, before its first block is allocated
+  /// through the cache (vtkCUDBConnectivity's blockCache() sets vbr::vtk::reclaimMemory's
+  /// reclaimer; its constructor's addUser is the first use).
   static BlockCache& instance();
 
   /// A kept block of `length` bytes or a little more (a multiple of the huge page), now in use;
@@ -134,10 +137,9 @@ public:
   CacheUpdate& operator=(const CacheUpdate&) = delete;
 };
 
-/// Opens BlockCache's window for a filter's outputs: vtkDemandDrivenPipeline::ExecuteDataStart
-/// sends REQUEST_DATA_NOT_GENERATED to the algorithm, then releases the outputs it will
-/// regenerate (PrepareForNewData), then sends REQUEST_DATA. Closed when REQUEST_DATA has been
-/// processed (also after an error or an abort), or by the filter's destruction.
+/// Opens BlockCache's window for a filter's outputs: opened by the adapter just before its
+/// pipeline releases the outputs the filter is about to regenerate, closed when that execution
+/// is over (also after an error or an abort), or by the filter's destruction.
 class ReleaseWindow
 {
 public:

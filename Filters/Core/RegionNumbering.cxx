@@ -12,6 +12,28 @@ namespace vbr
 namespace
 {
 
+/// Below this many kept regions their sort keys are sorted by comparisons: the counting sort's
+/// pass over every size up to the largest (a page of a few hundred regions, one of thousands of
+/// pixels) and the radix sort's 2,048 buckets per digit cost more there.
+constexpr std::size_t FewRegions = 4096;
+
+/// Bits needed for the values 0 .. n.
+int bitsFor(std::uint64_t n)
+{
+  int bits = 0;
+  for (; n != 0; n >>= 1)
+    ++bits;
+  return bits;
+}
+
+/// Whether n regions of sizes at most `largest` are sorted by a counting sort of their sizes:
+/// its pass over every size up to the largest costs little next to the regions' passes.
+bool countingSortFits(std::int64_t largest, std::size_t n)
+{
+  const auto count = static_cast<std::int64_t>(n);
+  return largest <= count + 65536 && (n >= FewRegions || largest <= 8 * count + 1024);
+}
+
 /// Ranks regions [first, last) (indices, in sweep order) largest first, ties in sweep order, by
 /// a counting sort of their sizes, all at most `largest`: two passes over the regions and one
 /// over the sizes (noise and halftones have hundreds of thousands of regions of a few voxels).
@@ -67,21 +89,8 @@ private:
 
 } // namespace
 
-//------------------------------------------------------------------------------
-int bitsFor(std::uint64_t n)
+namespace detail
 {
-  int bits = 0;
-  for (; n != 0; n >>= 1)
-    ++bits;
-  return bits;
-}
-
-//------------------------------------------------------------------------------
-bool countingSortFits(std::int64_t largest, std::size_t n)
-{
-  const auto count = static_cast<std::int64_t>(n);
-  return largest <= count + 65536 && (n >= FewRegions || largest <= 8 * count + 1024);
-}
 
 //------------------------------------------------------------------------------
 void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
@@ -170,6 +179,8 @@ bool numberEveryRegion(const std::int64_t* sizes,
   return true;
 }
 
+} // namespace detail
+
 //------------------------------------------------------------------------------
 std::int32_t numberRegions(const Regions& regions,
   std::int64_t minimumSize,
@@ -181,7 +192,7 @@ std::int32_t numberRegions(const Regions& regions,
 {
   const std::int64_t* sizes = regions.sizes();
   if (!useSeeds && (largest <= 0 || static_cast<std::size_t>(largest) >= regions.size()) &&
-    numberEveryRegion(sizes, regions.size(), minimumSize, ordering, ids, rows))
+    detail::numberEveryRegion(sizes, regions.size(), minimumSize, ordering, ids, rows))
     return static_cast<std::int32_t>(regions.size());
   RegionList& kept = rows;
   kept.clear();
@@ -199,7 +210,7 @@ std::int32_t numberRegions(const Regions& regions,
     }
   }
   if (!ranked.holds())
-    rankBySize(sizes, regions.size(), kept);
+    detail::rankBySize(sizes, regions.size(), kept);
   if (largest > 0 && static_cast<std::size_t>(largest) < kept.size())
     kept.resize(static_cast<std::size_t>(largest));
   if (ordering == RegionOrder::BySweep)

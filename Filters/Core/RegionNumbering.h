@@ -33,17 +33,10 @@ enum class RegionOrder
   BySweep ///< in the order the sweep meets the regions
 };
 
-/// Bits needed for the values 0 .. n.
-int bitsFor(std::uint64_t n);
+namespace detail
+{
 
-/// Below this many kept regions their sort keys are sorted by comparisons: the counting sort's
-/// pass over every size up to the largest (a page of a few hundred regions, one of thousands of
-/// pixels) and the radix sort's 2,048 buckets per digit cost more there.
-constexpr std::size_t FewRegions = 4096;
-
-/// Whether n regions of sizes at most `largest` are sorted by a counting sort of their sizes:
-/// its pass over every size up to the largest costs little next to the regions' passes.
-bool countingSortFits(std::int64_t largest, std::size_t n);
+// Steps of numberRegions, declared for their test (TestRegionStatistics).
 
 /// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
 /// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
@@ -65,6 +58,8 @@ bool numberEveryRegion(const std::int64_t* sizes,
   RegionOrder ordering,
   RegionIdList& ids,
   RegionList& rows);
+
+} // namespace detail
 
 /// Applies the region filters and numbers the kept regions: `ids` has the RegionId of every
 /// region (0 when removed), `rows` the region of each RegionId (row of the table, from 0).

@@ -14,11 +14,12 @@
 
 namespace vbr
 {
+
 namespace
 {
 
 /// The statistics of the regions of an object labelled on its runs, from the runs.
-void measureRegionsOfRuns(const LabelledObject& o, RegionRecords<Region>& regions)
+void measureRegionsOfRuns(const LabelledObject& o, RegionRecords<RegionRecord>& regions)
 {
   const VoxelRuns& r = o.voxelRuns;
   const std::vector<VoxelRun>& runs = r.runs;
@@ -113,7 +114,7 @@ void measureRegionsOfPixelRuns(const LabelledObject& o, RegionRecords<Record>& r
 template<typename Record>
 void measureObject(const LabelledObject& o, RegionRecords<Record>& regions)
 {
-  if constexpr (std::is_same<Record, Region>::value)
+  if constexpr (std::is_same<Record, RegionRecord>::value)
   {
     if (o.labelledFromRuns)
     {
@@ -135,21 +136,21 @@ void measureObject(const LabelledObject& o, RegionRecords<Record>& regions)
     o.offset);
 }
 
-template void measureObject(const LabelledObject&, RegionRecords<Region>&);
+template void measureObject(const LabelledObject&, RegionRecords<RegionRecord>&);
 template void measureObject(const LabelledObject&, RegionRecords<PlanarRegion>&);
 
 namespace
 {
 
-/// Whether `planar`, seen as a Region of plane z, holds `full`'s values, field by field (the
+/// Whether `planar`, seen as a RegionRecord of plane z, holds `full`'s values, field by field (the
 /// first difference told on `log`).
 bool sameRegion(const PlanarRegion& planar,
   std::int32_t z,
-  const Region& full,
+  const RegionRecord& full,
   int trial,
   std::ostream& log)
 {
-  const Region r = planar.asRegion(z);
+  const RegionRecord r = planar.asRegion(z);
   bool same = r.voxels == full.voxels && r.boxes == full.boxes;
   for (int d = 0; d < 3; ++d)
     same = same && r.lo[d] == full.lo[d] && r.hi[d] == full.hi[d] &&
@@ -200,7 +201,7 @@ bool checkPlanarRecords(int seed, int trials, std::ostream& log)
   {
     const std::int32_t z = static_cast<std::int32_t>(random() % 3);
     PlanarRegion planar, bounded;
-    Region full;
+    RegionRecord full;
     planar.start();
     bounded.start();
     full.start();
@@ -222,14 +223,10 @@ bool checkPlanarRecords(int seed, int trials, std::ostream& log)
         box.hi = { xs.second - offset[0], ys.second - offset[1], 1 };
         planar.add(box, offset);
         full.add(box, offset);
-#ifdef VBR_SSE2
-        PlanarRegion sse = bounded; // its bounds before the box
-        sse.addBoxBounds(box, offset);
-#endif
+        PlanarRegion boxBounds = bounded; // its bounds before the box
+        boxBounds.addBoxBounds(box, offset);
         bounded.addBounds(xs.first, ys.first, xs.second, ys.second);
-#ifdef VBR_SSE2
-        same = same && sse.bounds == bounded.bounds;
-#endif
+        same = same && boxBounds.bounds == bounded.bounds;
       }
       else
       {

@@ -1,7 +1,7 @@
 // The statistics of the connected regions of labelled objects, gathered in one pass over their
 // boxes (or runs) in sweep order: per region its voxel count, its bounds, the sum of its voxel
 // centres (doubled: integers, exact) and its box count, which the region table and the
-// numbering by size read. A region's record is one cache line (Region); a 2D image's regions
+// numbering by size read. A region's record is one cache line (RegionRecord); a 2D image's regions
 // fit a record of 32 bytes (PlanarRegion), two a cache line, whose bounds follow a box by one
 // SSE2 minimum. The records of all regions are one block of memory (RegionRecords, from
 // BlockCache), written once as the pass first meets each region, with the sizes kept apart
@@ -26,8 +26,7 @@
 #include <vector>
 
 #if defined(__SSE2__)
-#define VBR_SSE2 1
-#include <emmintrin.h>
+#include <emmintrin.h> // PlanarRegion::addBoxBounds
 #endif
 
 namespace vbr
@@ -88,7 +87,7 @@ struct RegionStats
 /// gathered in one pass over the boxes in sweep order. One cache line per region, since the
 /// boxes of a region are met in turn with those of its neighbours; the price is 64 bytes per
 /// region, removed ones included, where a checkerboard has a region per selected voxel.
-struct alignas(64) Region : RegionStats
+struct alignas(64) RegionRecord : RegionStats
 {
   std::uint32_t boxes;
 
@@ -141,12 +140,12 @@ struct alignas(64) Region : RegionStats
   }
 };
 
-/// A region of a 2D image (processing axis 2 flat) of at most 32,767 pixels a side: a Region's
-/// values in 32 bytes, two records a cache line. Its voxels and boxes fit 32 bits (fewer than
-/// 2^30 pixels), its bounds 16 bits, and its doubled centres' sums (below 2^46) are kept along
-/// the two in-plane axes only: those along the flat axis follow from the voxels (asRegion).
-/// A fax-like page's 278,445 regions are 8.9 MB rather than 17.8: the pass over its boxes
-/// wrote, and the table read again, half as many lines, and each box's update does half the
+/// A region of a 2D image (processing axis 2 flat) of at most 32,767 pixels a side: a
+/// RegionRecord's values in 32 bytes, two records a cache line. Its voxels and boxes fit 32 bits
+/// (fewer than 2^30 pixels), its bounds 16 bits, and its doubled centres' sums (below 2^46) are
+/// kept along the two in-plane axes only: those along the flat axis follow from the voxels
+/// (asRegion). A fax-like page's 278,445 regions are 8.9 MB rather than 17.8: the pass over its
+/// boxes wrote, and the table read again, half as many lines, and each box's update does half the
 /// arithmetic of a 3D one.
 struct PlanarRegion
 {
@@ -179,12 +178,14 @@ struct PlanarRegion
       this->bounds[k] = static_cast<std::int16_t>(std::min<std::int32_t>(this->bounds[k], box[k]));
   }
 
-#ifdef VBR_SSE2
-  /// addBounds of a box (processing axes, at `offset`): (x0, y0, -x1, -y1) as four 16-bit
-  /// values, and their minimum with the bounds, in one register. In scalar code the compiler
-  /// merged the four 16-bit minima into one store, built by shifts and ors.
+  /// addBounds of a box (processing axes, at `offset`). With SSE2, (x0, y0, -x1, -y1) as four
+  /// 16-bit values and their minimum with the bounds in one register (in scalar code the
+  /// compiler merged the four 16-bit minima into one store, built by shifts and ors). Inline
+  /// here: the pass over the boxes calls it for every box, and out of line (a call through the
+  /// shared library's interposable symbol) that pass took 26% more instructions on test-t82.
   void addBoxBounds(const Box& box, const Point3& offset)
   {
+#if defined(__SSE2__)
     const __m128i shift = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(offset.data()));
     const __m128i low =
       _mm_add_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(box.lo.data())), shift);
@@ -195,8 +196,11 @@ struct PlanarRegion
     const __m128i packed = _mm_packs_epi32(corners, corners);
     auto* const bounds = reinterpret_cast<__m128i*>(this->bounds.data());
     _mm_storel_epi64(bounds, _mm_min_epi16(_mm_loadl_epi64(bounds), packed));
-  }
+#else
+    this->addBounds(
+      box.lo[0] + offset[0], box.lo[1] + offset[1], box.hi[0] + offset[0], box.hi[1] + offset[1]);
 #endif
+  }
 
   /// Adds a box (processing axes, at `offset`; one pixel thick along axis 2) of the region.
   void add(const Box& box, const Point3& offset)
@@ -207,16 +211,12 @@ struct PlanarRegion
     const std::uint32_t volume =
       static_cast<std::uint32_t>(x1 - x0) * static_cast<std::uint32_t>(y1 - y0);
     this->voxels += volume;
-#ifdef VBR_SSE2
     this->addBoxBounds(box, offset);
-#else
-    this->addBounds(x0, y0, x1, y1);
-#endif
     this->doubledCentre[0] += std::int64_t(volume) * (x0 + x1);
     this->doubledCentre[1] += std::int64_t(volume) * (y0 + y1);
   }
 
-  /// Region::addRowRuns of a row y of a 2D image (z, the plane, follows from the voxels).
+  /// RegionRecord::addRowRuns of a row y of a 2D image (z, the plane, follows from the voxels).
   void addRowRuns(const VoxelRun& extent,
     std::int32_t y,
     std::int32_t /*z*/,
@@ -231,11 +231,11 @@ struct PlanarRegion
     this->doubledCentre[1] += voxelCount * (2 * std::int64_t(y) + 1);
   }
 
-  /// The region's Region, its pixels in plane z of processing axis 2: the values a Region
-  /// gathering the same boxes would have.
-  Region asRegion(std::int32_t z) const
+  /// The region's RegionRecord, its pixels in plane z of processing axis 2: the values a
+  /// RegionRecord gathering the same boxes would have.
+  RegionRecord asRegion(std::int32_t z) const
   {
-    Region r;
+    RegionRecord r;
     r.voxels = this->voxels;
     r.boxes = this->boxes;
     r.lo = { this->bounds[0], this->bounds[1], z };
@@ -248,12 +248,12 @@ struct PlanarRegion
 };
 static_assert(sizeof(PlanarRegion) == 32, "two planar regions a cache line");
 
-/// The regions' values as a Region: the record itself, or a planar record's in plane z.
-inline const Region& regionOf(const Region& r, std::int32_t)
+/// The regions' values as a RegionRecord: the record itself, or a planar record's in plane z.
+inline const RegionRecord& regionOf(const RegionRecord& r, std::int32_t)
 {
   return r;
 }
-inline Region regionOf(const PlanarRegion& r, std::int32_t z)
+inline RegionRecord regionOf(const PlanarRegion& r, std::int32_t z)
 {
   return r.asRegion(z);
 }
@@ -345,8 +345,8 @@ private:
   std::size_t count = 0, started = 0;
 };
 
-/// The regions of an image: Region records, or PlanarRegion ones for a 2D image that fits them
-/// (all its regions in plane `z` of processing axis 2), and which regions hold a seed.
+/// The regions of an image: RegionRecord records, or PlanarRegion records for a 2D image that fits
+/// them (all its regions in plane `z` of processing axis 2), and which regions hold a seed.
 class Regions
 {
 public:
@@ -358,11 +358,11 @@ public:
     if (planar)
       this->flat = RegionRecords<PlanarRegion>(count);
     else
-      this->full = RegionRecords<Region>(count);
+      this->full = RegionRecords<RegionRecord>(count);
   }
 
   bool isPlanar() const { return this->planar; }
-  /// f(records) of the records in use (RegionRecords<PlanarRegion> or RegionRecords<Region>).
+  /// f(records) of the records in use (RegionRecords<PlanarRegion> or RegionRecords<RegionRecord>).
   template<typename F>
   decltype(auto) visit(F&& f) const
   {
@@ -397,7 +397,7 @@ public:
     this->visit([](auto& records) { records.startAll(); });
   }
 
-  RegionRecords<Region> full;
+  RegionRecords<RegionRecord> full;
   RegionRecords<PlanarRegion> flat;
   /// The plane of a 2D image's pixels along processing axis 2.
   std::int32_t z = 0;
@@ -412,9 +412,11 @@ private:
 /// Records of PlanarRegion only for objects in one plane, not labelled on 3D runs.
 template<typename Record>
 void measureObject(const LabelledObject& o, RegionRecords<Record>& regions);
+extern template void measureObject(const LabelledObject&, RegionRecords<RegionRecord>&);
+extern template void measureObject(const LabelledObject&, RegionRecords<PlanarRegion>&);
 
 /// Whether PlanarRegion, over `trials` random sets of boxes and row runs (from `seed`) of a
-/// plane of LargestSide pixels a side, holds the values a Region gathering them holds (its
+/// plane of LargestSide pixels a side, holds the values a RegionRecord gathering them holds (its
 /// SSE2 bounds as the scalar ones): the first difference is told on `log`.
 bool checkPlanarRecords(int seed, int trials, std::ostream& log);
 

@@ -1,8 +1,8 @@
 // The regions' statistics (RegionStatistics.h) and their numbering (RegionNumbering.h) against
 // brute force: each region's voxel count, bounds, doubled centre sum and box count measured from
-// an object's boxes, its 3D runs or its pixel runs, in Region and PlanarRegion records, against
-// the same values summed voxel by voxel over the labels painted from those boxes or runs; the
-// ranking by size against std::stable_sort; the numbering's filters against a direct selection.
+// an object's boxes, its 3D runs or its pixel runs, in RegionRecord and PlanarRegion records,
+// against the same values summed voxel by voxel over the labels painted from those boxes or runs;
+// the ranking by size against std::stable_sort; the numbering's filters against a direct selection.
 #include "BruteForce.h"
 #include "CUDB.h"
 #include "EVM.h"
@@ -22,6 +22,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -149,12 +150,12 @@ Labelled labelObject(const vbr::BitVolume& v, vbr::Connectivity c, Labelling how
 }
 
 /// The statistics of every region of the objects (at their offsets), voxel by voxel.
-std::vector<vbr::Region> bruteForceRegions(const std::vector<Labelled>& objects,
+std::vector<vbr::RegionRecord> bruteForceRegions(const std::vector<Labelled>& objects,
   const std::vector<vbr::Point3>& dims,
   std::size_t count)
 {
-  std::vector<vbr::Region> out(count);
-  for (vbr::Region& r : out)
+  std::vector<vbr::RegionRecord> out(count);
+  for (vbr::RegionRecord& r : out)
     r.start();
   for (std::size_t i = 0; i < objects.size(); ++i)
   {
@@ -168,7 +169,7 @@ std::vector<vbr::Region> bruteForceRegions(const std::vector<Labelled>& objects,
           const std::uint32_t label = objects[i].voxelLabel[indexOf(dims[i], x, y, z)];
           if (label == 0)
             continue;
-          vbr::Region& r = out[o.firstRegion + label - 1];
+          vbr::RegionRecord& r = out[o.firstRegion + label - 1];
           const vbr::Point3 p{ x + o.offset[0], y + o.offset[1], z + o.offset[2] };
           ++r.voxels;
           for (int d = 0; d < 3; ++d)
@@ -182,7 +183,7 @@ std::vector<vbr::Region> bruteForceRegions(const std::vector<Labelled>& objects,
   return out;
 }
 
-std::string describe(const vbr::Region& r)
+std::string describe(const vbr::RegionRecord& r)
 {
   std::ostringstream s;
   s << "voxels " << r.voxels << " boxes " << r.boxes << " lo " << r.lo[0] << ' ' << r.lo[1] << ' '
@@ -203,10 +204,10 @@ void expectMeasured(const std::vector<Labelled>& objects,
   for (const Labelled& l : objects)
     vbr::measureObject(l.object, records);
   records.startAll();
-  const std::vector<vbr::Region> expected = bruteForceRegions(objects, dims, count);
+  const std::vector<vbr::RegionRecord> expected = bruteForceRegions(objects, dims, count);
   for (std::size_t r = 0; r < count; ++r)
   {
-    const vbr::Region got = vbr::regionOf(records[r], z);
+    const vbr::RegionRecord got = vbr::regionOf(records[r], z);
     ASSERT_EQ(describe(got), describe(expected[r])) << what << ", region " << r;
     ASSERT_EQ(records.sizes()[r], expected[r].voxels) << what << ", region " << r;
   }
@@ -258,7 +259,7 @@ TEST(RegionStatistics, VolumesAgainstVoxelSums)
         std::vector<vbr::Point3> dims;
         const std::vector<Labelled> objects =
           randomObjects(bf::trialDims(trial, 2), c, how, 100 + trial, dims);
-        expectMeasured<vbr::Region>(objects,
+        expectMeasured<vbr::RegionRecord>(objects,
           dims,
           regionCount(objects),
           0,
@@ -280,7 +281,7 @@ TEST(RegionStatistics, ImagesAgainstPixelSums)
         const std::string what = "2D trial " + std::to_string(trial) + " labelling " +
           std::to_string(static_cast<int>(how));
         const std::size_t n = regionCount(objects);
-        expectMeasured<vbr::Region>(objects, dims, n, 0, what + " Region");
+        expectMeasured<vbr::RegionRecord>(objects, dims, n, 0, what + " RegionRecord");
         if (how != Labelling::Runs) // PlanarRegion records are not for 3D runs
           expectMeasured<vbr::PlanarRegion>(objects, dims, n, 0, what + " PlanarRegion");
       }
@@ -347,7 +348,7 @@ TEST(RegionNumbering, RankBySizeAsStableSort)
         kept.push_back(r);
         reference.push_back(r);
       }
-    vbr::rankBySize(sizes.data(), count, kept);
+    vbr::detail::rankBySize(sizes.data(), count, kept);
     const std::vector<std::size_t> expected = stableRanking(sizes, reference);
     ASSERT_TRUE(std::equal(kept.begin(), kept.end(), expected.begin(), expected.end()))
       << count << " regions of sizes up to " << largest;
@@ -440,12 +441,12 @@ TEST(RegionNumbering, EveryRegionNumberedBySize)
     const std::vector<std::size_t> expected = stableRanking(sizes, all);
     vbr::RegionIdList ids;
     vbr::RegionList rows;
-    ASSERT_TRUE(
-      vbr::numberEveryRegion(sizes.data(), sizes.size(), 1, vbr::RegionOrder::BySize, ids, rows));
+    ASSERT_TRUE(vbr::detail::numberEveryRegion(
+      sizes.data(), sizes.size(), 1, vbr::RegionOrder::BySize, ids, rows));
     ASSERT_TRUE(std::equal(rows.begin(), rows.end(), expected.begin(), expected.end())) << largest;
     for (std::size_t k = 0; k < rows.size(); ++k)
       ASSERT_EQ(ids[rows[k]], static_cast<std::int32_t>(k + 1));
-    EXPECT_FALSE(
-      vbr::numberEveryRegion(sizes.data(), sizes.size(), 2, vbr::RegionOrder::BySize, ids, rows));
+    EXPECT_FALSE(vbr::detail::numberEveryRegion(
+      sizes.data(), sizes.size(), 2, vbr::RegionOrder::BySize, ids, rows));
   }
 }
