@@ -220,25 +220,6 @@ vtkSmartPointer<vtkDataArray> newUnsetLabelArray(int labelType, vtkIdType tuples
   return labels;
 }
 
-/// Whether the regions of `objects`, of an image of `grid`, fit PlanarRegion records: a 2D image
-/// of at most PlanarRegion::LargestSide pixels a side, all of whose objects lie in one plane
-/// (`z`, set) and were not labelled on 3D runs.
-bool planarRecordsFit(const std::vector<ObjectBoxes>& objects,
-  const vbr::vtk::VoxelGrid& grid,
-  std::int32_t& z)
-{
-  if (grid.flatAxis < 0 || objects.empty())
-    return false;
-  for (int d = 0; d < 3; ++d)
-    if (grid.dims[d] > PlanarRegion::LargestSide)
-      return false;
-  z = objects[0].offset[2]; // 0 as objects are cut today; checked in case that changes
-  for (const ObjectBoxes& o : objects)
-    if (o.labelledFromRuns || o.offset[2] != z || o.offset[0] < 0 || o.offset[1] < 0)
-      return false;
-  return true;
-}
-
 /// The sortings to try, in processing axes. A 2D image (flat processing axis 2) is swept
 /// along lines: only the order of its two in-plane axes matters, taken from the name.
 std::vector<vbr::AxisOrder> candidateSortings(int sorting,
@@ -336,25 +317,6 @@ bool axisAligned(const vbr::vtk::VoxelGrid& grid)
   const std::array<double, 9> identity{ 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   return grid.direction == identity && grid.spacing[0] > 0 && grid.spacing[1] > 0 &&
     grid.spacing[2] > 0;
-}
-
-/// The size and the statistics of every region of `objects` (of an image of `grid`), in
-/// compact records when they fit (planarRecordsFit).
-Regions measureRegions(const std::vector<ObjectBoxes>& objects,
-  std::size_t count,
-  const vbr::vtk::VoxelGrid& grid)
-{
-  std::int32_t z = 0;
-  const bool planar = planarRecordsFit(objects, grid, z);
-  Regions regions(count, planar, z);
-  regions.visit(
-    [&objects](auto& records)
-    {
-      for (const ObjectBoxes& o : objects)
-        vbr::measureObject(o, records);
-    });
-  regions.startAll();
-  return regions;
 }
 
 /// Marks the regions containing a seed point, read from `regionOf`: the image of region
@@ -2049,7 +2011,7 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   Summary& summary,
   vtkSmartPointer<vtkIntArray>* painted)
 {
-  regions = measureRegions(objects, regionCount, in.grid);
+  regions = vbr::measureRegions(objects, regionCount, in.grid.dims, in.grid.flatAxis);
   if (seeds)
   {
     vtkSmartPointer<vtkIntArray> ids = markRegionsOfSeeds(self, seeds, in, objects, regions);

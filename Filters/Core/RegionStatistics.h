@@ -23,6 +23,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <type_traits>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -414,6 +415,51 @@ template<typename Record>
 void measureObject(const LabelledObject& o, RegionRecords<Record>& regions);
 extern template void measureObject(const LabelledObject&, RegionRecords<RegionRecord>&);
 extern template void measureObject(const LabelledObject&, RegionRecords<PlanarRegion>&);
+
+/// Whether the regions of `objects` (of an image of `dims` voxels; `flatAxis` its single-voxel
+/// axis when 2D, else -1) fit PlanarRegion records: the image is 2D, at most LargestSide voxels
+/// a side, and its objects lie in one plane `z` (set) of processing axis 2, at non-negative
+/// in-plane offsets, none labelled on 3D runs.
+template<typename Object>
+bool planarRecordsFit(const std::vector<Object>& objects,
+  const Point3& dims,
+  int flatAxis,
+  std::int32_t& z)
+{
+  static_assert(std::is_base_of<LabelledObject, Object>::value, "objects of LabelledObject");
+  if (flatAxis < 0 || objects.empty())
+    return false;
+  for (int d = 0; d < 3; ++d)
+    if (dims[d] > PlanarRegion::LargestSide)
+      return false;
+  z = objects[0].offset[2]; // 0 as objects are cut today; checked in case that changes
+  for (const LabelledObject& o : objects)
+    if (o.labelledFromRuns || o.offset[2] != z || o.offset[0] < 0 || o.offset[1] < 0)
+      return false;
+  return true;
+}
+
+/// The size and the statistics of every region of `objects` (`count` regions in all, of an
+/// image of `dims` voxels flat along `flatAxis` or -1), in PlanarRegion records when they fit
+/// (planarRecordsFit), every record started.
+template<typename Object>
+Regions measureRegions(const std::vector<Object>& objects,
+  std::size_t count,
+  const Point3& dims,
+  int flatAxis)
+{
+  std::int32_t z = 0;
+  const bool planar = planarRecordsFit(objects, dims, flatAxis, z);
+  Regions regions(count, planar, z);
+  regions.visit(
+    [&objects](auto& records)
+    {
+      for (const LabelledObject& o : objects)
+        measureObject(o, records);
+    });
+  regions.startAll();
+  return regions;
+}
 
 /// Whether PlanarRegion, over `trials` random sets of boxes and row runs (from `seed`) of a
 /// plane of LargestSide pixels a side, holds the values a RegionRecord gathering them holds (its

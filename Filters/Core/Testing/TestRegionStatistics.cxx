@@ -358,8 +358,8 @@ TEST(RegionNumbering, RankBySizeAsStableSort)
 namespace
 {
 
-/// Regions whose sizes are those of objects measured from random volumes: single voxels, and
-/// sizes in a random order or already largest first.
+/// Regions of objects from random volumes, measured by measureRegions (planar records for a 2D
+/// image): single voxels, and sizes in a random order or already largest first.
 vbr::Regions measuredRegions(unsigned seed, bool planar, std::size_t& count)
 {
   std::vector<vbr::Point3> dims;
@@ -367,14 +367,13 @@ vbr::Regions measuredRegions(unsigned seed, bool planar, std::size_t& count)
   const std::vector<Labelled> objects =
     randomObjects(d, vbr::Connectivity::Face, Labelling::Boxes, seed, dims);
   count = regionCount(objects);
-  vbr::Regions regions(count, planar, 0);
-  regions.visit(
-    [&objects](auto& records)
-    {
-      for (const Labelled& l : objects)
-        vbr::measureObject(l.object, records);
-    });
-  regions.startAll();
+  std::vector<vbr::LabelledObject> plain;
+  for (const Labelled& l : objects)
+    plain.push_back(l.object);
+  // The image holds both objects at their offsets (below 40): a 2D one gets planar records.
+  const vbr::Point3 image{ d[0] + 40, d[1] + 40, planar ? 1 : d[2] + 40 };
+  vbr::Regions regions = vbr::measureRegions(plain, count, image, planar ? 2 : -1);
+  EXPECT_EQ(regions.isPlanar(), planar);
   return regions;
 }
 
