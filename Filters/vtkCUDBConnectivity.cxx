@@ -1,12 +1,14 @@
 #include "vtkCUDBConnectivity.h"
 
+#include "BlockCache.h"
 #include "CUDB.h"
-#include "DefaultInitAllocator.h"
 #include "EVM.h"
 #include "Geometry.h"
 #include "Prefetch.h"
-#include "RadixSort.h"
+#include "RegionNumbering.h"
+#include "RegionStatistics.h"
 #include "RunLabelling.h"
+#include "Sanitizers.h"
 #include "vtkVoxelBRepAdapters.h"
 #include "vtkVoxelBRepDistributed.h"
 #include "vtkVoxelBRepMemory.h"
@@ -43,40 +45,19 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
-#include <iostream>
-#include <random>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-#include <exception>
 #include <initializer_list>
+#include <iostream>
 #include <limits>
 #include <memory>
-#include <mutex>
+#include <new>
 #include <numeric>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
-
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
-// Whether AddressSanitizer instruments this file (gcc says so by a macro, clang by a feature).
-#if defined(__SANITIZE_ADDRESS__)
-#define VBR_ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define VBR_ADDRESS_SANITIZER 1
-#endif
-#endif
 
 // Stores past the caches for the large outputs; plain stores under AddressSanitizer, which
 // does not see the SSE2 built-ins' writes. Only with SSE2 arithmetic: a 32-bit build's x87
@@ -86,10 +67,7 @@
   !defined(VBR_ADDRESS_SANITIZER)
 #define VBR_STREAM_STORES 1
 #endif
-
-// SSE2 integer built-ins (PlanarRegion's bounds), which AddressSanitizer checks like any code.
-#if defined(__SSE2__)
-#define VBR_SSE2 1
+#if defined(VBR_STREAM_STORES)
 #include <emmintrin.h>
 #endif
 
@@ -107,457 +85,46 @@ namespace
 
 using Int3 = vbr::Point3; // a lattice point or voxel index
 
+// The block memory (BlockCache.h), the regions' statistics (RegionStatistics.h) and their
+// numbering (RegionNumbering.h) of the core, as the adapter's own.
+using vbr::allocateBlock;
+using vbr::BlockCache;
+using vbr::CacheUpdate;
+using vbr::HugePagesFromBytes;
+using vbr::onHugePages;
+using vbr::PlanarRegion;
+using vbr::RegionIdList;
+using vbr::RegionList;
+using vbr::regionOf;
+using vbr::RegionRecords;
+using vbr::Regions;
+using vbr::RegionStats;
+using vbr::releaseBlock;
+using vbr::ReleaseWindow;
+using vbr::valuesOfBoxes;
+using vbr::valuesOfRunLabels;
+
 const char* const OrderNames[] = { "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX" };
 
-/// The CUDB of one selected object (a label, or the whole selection) and its components.
-struct ObjectBoxes
+/// An object's CUDB and components (vbr::LabelledObject) with its label and its count of
+/// extreme vertices (the summary's).
+struct ObjectBoxes : vbr::LabelledObject
 {
   vbr::vtk::LabelValue label;
-  Int3 offset{ 0, 0, 0 }; ///< box origin of the object, in processing axes
-  vbr::CUDB cudb;
-  vbr::Components components;
-  std::uint32_t firstRegion = 0; ///< global index of the object's component 1
   std::size_t extremeVertices = 0;
-  /// A 2D object swept along its rows (ZYX in processing axes): its pixels and their runs,
-  /// from which its RegionIds are painted (vbr::paintPixelRunsOverwriting).
-  vbr::BitVolume pixels;
-  vbr::PixelRuns runs;
-  /// A 2D object labelled on the runs of its rows without its boxes (vbr::labelPixelRuns): its
-  /// regions are measured from the runs too, and `cudb` has no boxes.
-  bool labelledFromPixelRuns = false;
-  /// A 3D object labelled on the runs of its rows (labelledFromRuns): the runs' labels and the
-  /// counts of the CUDB, and its boxes only when they are output (then in `cudb` and
-  /// `components`, as the sweep would have left them).
-  bool labelledFromRuns = false;
-  vbr::VoxelRuns voxelRuns;
-  vbr::RunComponents runComponents;
-
-  std::uint32_t componentCount() const
-  {
-    return this->labelledFromRuns ? this->runComponents.count : this->components.count;
-  }
-  std::size_t boxCount() const
-  {
-    if (this->labelledFromRuns)
-      return this->runComponents.boxCount;
-    return this->labelledFromPixelRuns ? this->components.boxLabel.size() : this->cudb.boxes.size();
-  }
-  std::size_t oudbBoxCount() const
-  {
-    return this->labelledFromRuns ? this->runComponents.oudbBoxCount : this->cudb.oudbBoxCount;
-  }
 };
 
-/// Whether the blocks of an output or scratch of `bytes` in all go on huge pages. glibc maps
-/// a block of 32 MiB or more afresh at each update, and returns the heap's top to the kernel
-/// when much is freed: the kernel then faulted the outputs in 4 KiB at a time (about 2
-/// microseconds a page on the benchmark machine: half of a checkerboard's update, which
-/// writes hundreds of MB once), and did so for a porous volume's 21 MB of boxes whenever other
-/// work had moved the heap's top. Smaller groups stay on the heap.
-constexpr std::size_t HugePagesFromBytes = std::size_t(8) << 20;
-bool onHugePages(double bytes)
+/// The process's BlockCache, registered once as the memory vbr::vtk::reclaimMemory gives back
+/// before a memory check refuses an allocation or after one failed.
+BlockCache& blockCache()
 {
-  return bytes >= double(HugePagesFromBytes);
+  static BlockCache& cache = []() -> BlockCache&
+  {
+    vbr::vtk::setMemoryReclaimer([] { BlockCache::instance().clear(); });
+    return BlockCache::instance();
+  }();
+  return cache;
 }
-
-constexpr std::size_t HugePage = std::size_t(2) << 20;
-
-/// A new block of `length` bytes, null when refused: with `huge` (length a multiple of
-/// HugePage) 2 MiB-aligned and marked for transparent huge pages, else 64-byte aligned. From
-/// the heap (glibc maps the largest apart): while the cache keeps the blocks there, the heap's
-/// top is not returned to the kernel after each update with the labelling's scratch above them
-/// (a block mapped apart left 50 MB of scratch faulted in again at each update of a 256^3
-/// porous volume).
-void* newBlock(std::size_t length, bool huge)
-{
-  void* block = nullptr;
-  if (posix_memalign(&block, huge ? HugePage : 64, std::max<std::size_t>(length, 1)) != 0)
-    return nullptr;
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (huge)
-    madvise(block, length, MADV_HUGEPAGE); // a hint: failure only costs time
-#endif
-  return block;
-}
-
-// Under AddressSanitizer BlockCache keeps no block: a use of a freed output stays detectable.
-#if defined(VBR_ADDRESS_SANITIZER)
-#define VBR_KEEP_BLOCKS 0
-#else
-#define VBR_KEEP_BLOCKS 1
-#endif
-
-/// Huge blocks of allocateBlock kept from one update to the next. The pipeline releases an
-/// update's outputs when the next update starts, before the filter allocates that update's:
-/// freed, their memory went back to the kernel (glibc unmaps or trims blocks this large), which
-/// then faulted in and zeroed fresh pages for every output array again (on a porous volume with
-/// boxes, about 20 MB an update and a tenth of its time). One cache for the process, shared by
-/// every vtkCUDBConnectivity; the last filter's destruction frees what it keeps.
-///
-/// Memory stays linear in the outputs: the cache keeps no more than the last update used.
-/// - While the filters are idle it holds only the last update's scratch of 2 MiB or more (the
-///   region numbering's, about 20 bytes a region, released before the update ends), at most
-///   KeptBytes of it. Outputs are kept only when the pipeline releases them just before their
-///   filter executes (ReleaseWindow, from REQUEST_DATA_NOT_GENERATED to the end of
-///   REQUEST_DATA), up to KeptOutputBytes in all with the scratch: that execution takes them
-///   or frees them at its end. Outputs released at any other time (ReleaseData, a downstream
-///   ReleaseDataFlag, a filter destroyed) are freed at once, so no more than KeptBytes is ever
-///   held while idle. (A 6001^2 maze's outputs with boxes are 884 MB, 468 of them the boxes'
-///   coordinates: with 512 MiB for everything, most were freed, and faulted in and zeroed
-///   again by the kernel, a third of each update.)
-/// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
-///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
-///   kept plus what the update has taken or allocated stays within the larger of the bytes kept
-///   at its start and the bytes it uses: the peak is about max(old outputs, new outputs), not
-///   their sum, when the sizes change.
-/// - At its end (endUpdate, also after an abort, an error or an exception) every block kept
-///   before it began and not taken by it is freed.
-/// - Before a memory check refuses an allocation, and after one failed, everything kept is
-///   freed (vbr::vtk::reclaimMemory).
-class BlockCache
-{
-public:
-  static constexpr std::size_t KeptBytes = std::size_t(512) << 20;
-  static constexpr std::size_t KeptOutputBytes = std::size_t(2048) << 20;
-
-  /// Never destroyed: VTK arrays may release their blocks after static destruction.
-  static BlockCache& instance()
-  {
-    static BlockCache* cache = []
-    {
-      vbr::vtk::setMemoryReclaimer([] { BlockCache::instance().clear(); });
-      return new BlockCache;
-    }();
-    return *cache;
-  }
-
-  /// A kept block of `length` bytes or a little more (a multiple of the huge page), now in use;
-  /// null when none fits, after freeing the oldest kept blocks the update's budget needs.
-  void* take(std::size_t length)
-  {
-    std::vector<void*> evicted;
-    void* block = nullptr;
-    {
-      std::lock_guard<std::mutex> lock(this->mutex);
-      const std::size_t most = length + length / 4;
-      std::size_t best = this->kept.size();
-      for (std::size_t i = 0; i < this->kept.size(); ++i)
-      {
-        const std::size_t l = this->kept[i].length;
-        if (l >= length && l <= most && (best == this->kept.size() || l < this->kept[best].length))
-          best = i;
-      }
-      if (best != this->kept.size())
-      {
-        block = this->kept[best].block;
-        this->used += this->kept[best].length;
-        this->keptBytes -= this->kept[best].length;
-        this->keptScratchBytes -= this->kept[best].scratch ? this->kept[best].length : 0;
-        this->kept.erase(this->kept.begin() + static_cast<std::ptrdiff_t>(best));
-        return block;
-      }
-      this->used += length;
-      std::size_t oldest = 0;
-      while (oldest < this->kept.size() && this->keptBytes + this->used > this->budget)
-        this->keptBytes -= this->kept[oldest++].length;
-      evicted = this->forget(oldest);
-    }
-    freeAll(evicted);
-    return nullptr;
-  }
-
-  /// Notes a new huge block of `length` bytes, in use.
-  void track(void* block, std::size_t length)
-  {
-    std::lock_guard<std::mutex> lock(this->mutex);
-    this->lengths[block] = length;
-  }
-
-  /// A block of allocateBlock no longer used: kept when huge, a filter exists and there is
-  /// room (KeptBytes for an update's scratch, KeptOutputBytes for outputs released while a
-  /// filter is about to execute, see ReleaseWindow), else freed: outputs released at any other
-  /// time (ReleaseData, ReleaseDataFlag, a filter destroyed) are freed at once.
-  void release(void* block)
-  {
-    if (!block)
-      return;
-    {
-      std::lock_guard<std::mutex> lock(this->mutex);
-      const auto found = this->lengths.find(block);
-      if (found != this->lengths.end())
-      {
-        const std::size_t length = found->second;
-        const bool scratch = this->updates > 0;
-        const bool room = scratch
-          ? this->keptBytes + length <= KeptOutputBytes &&
-            this->keptScratchBytes + length <= KeptBytes
-          : this->windows > 0 && this->keptBytes + length <= KeptOutputBytes;
-        if (VBR_KEEP_BLOCKS && this->users > 0 && room)
-        {
-          this->kept.push_back({ block, length, this->releases++, scratch });
-          this->keptBytes += length;
-          this->keptScratchBytes += scratch ? length : 0;
-          return;
-        }
-        this->lengths.erase(found);
-      }
-    }
-    std::free(block);
-  }
-
-  /// A filter is about to execute: the pipeline now releases its outputs (ReleaseWindow).
-  void openWindow()
-  {
-    std::lock_guard<std::mutex> lock(this->mutex);
-    ++this->windows;
-  }
-
-  /// That filter's execution is over (blocks still kept are freed by its endUpdate).
-  void closeWindow()
-  {
-    std::lock_guard<std::mutex> lock(this->mutex);
-    --this->windows;
-  }
-
-  /// The bytes kept now.
-  std::size_t bytesKept()
-  {
-    std::lock_guard<std::mutex> lock(this->mutex);
-    return this->keptBytes;
-  }
-
-  /// An update begins: its budget is what is kept now (see the class comment).
-  void beginUpdate()
-  {
-    std::lock_guard<std::mutex> lock(this->mutex);
-    if (this->updates++ > 0)
-      return; // concurrent updates share the first one's budget
-    this->updateStart = this->releases;
-    this->budget = this->keptBytes;
-    this->used = 0;
-  }
-
-  /// An update ends: the blocks kept before it began and not taken by it are freed.
-  void endUpdate()
-  {
-    std::vector<void*> evicted;
-    {
-      std::lock_guard<std::mutex> lock(this->mutex);
-      if (--this->updates > 0)
-        return;
-      std::size_t oldest = 0;
-      while (oldest < this->kept.size() && this->kept[oldest].release < this->updateStart)
-        this->keptBytes -= this->kept[oldest++].length;
-      evicted = this->forget(oldest);
-    }
-    freeAll(evicted);
-  }
-
-  /// Frees every kept block (the memory is wanted: a check would refuse, an allocation failed).
-  void clear()
-  {
-    std::vector<void*> evicted;
-    {
-      std::lock_guard<std::mutex> lock(this->mutex);
-      this->keptBytes = 0;
-      evicted = this->forget(this->kept.size());
-    }
-    freeAll(evicted);
-#if defined(__GLIBC__)
-    if (!evicted.empty())
-      malloc_trim(0); // blocks below glibc's mmap threshold go back to the kernel too
-#endif
-  }
-
-  /// A filter created or destroyed; the last one frees the kept blocks.
-  void addUser(int change)
-  {
-    bool last = false;
-    {
-      std::lock_guard<std::mutex> lock(this->mutex);
-      this->users += change;
-      last = this->users == 0;
-    }
-    if (last)
-      this->clear();
-  }
-
-private:
-  struct Kept
-  {
-    void* block;
-    std::size_t length;
-    std::uint64_t release; ///< the order of releases
-    bool scratch;          ///< released during an update
-  };
-
-  /// Removes the `count` oldest kept blocks (keptBytes already counted), to be freed.
-  std::vector<void*> forget(std::size_t count)
-  {
-    std::vector<void*> blocks;
-    blocks.reserve(count);
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      this->keptScratchBytes -= this->kept[i].scratch ? this->kept[i].length : 0;
-      blocks.push_back(this->kept[i].block);
-      this->lengths.erase(this->kept[i].block);
-    }
-    this->kept.erase(this->kept.begin(), this->kept.begin() + static_cast<std::ptrdiff_t>(count));
-    return blocks;
-  }
-
-  static void freeAll(const std::vector<void*>& blocks)
-  {
-    for (void* block : blocks)
-      std::free(block);
-  }
-
-  std::mutex mutex;
-  std::unordered_map<void*, std::size_t> lengths; ///< the huge blocks, in use or kept
-  std::vector<Kept> kept;                         ///< oldest release first
-  std::size_t keptBytes = 0;
-  std::size_t keptScratchBytes = 0; ///< of keptBytes, of blocks released during an update
-  std::uint64_t releases = 0;       ///< blocks kept so far: the next one's release
-  int updates = 0;                  ///< updates in progress
-  std::uint64_t updateStart = 0;    ///< releases when the first of them began
-  std::size_t budget = 0;           ///< keptBytes then
-  std::size_t used = 0;             ///< bytes taken or allocated by them since
-  int users = 0;
-  int windows = 0; ///< filters between their REQUEST_DATA_NOT_GENERATED and REQUEST_DATA's end
-};
-
-/// Brackets an update for BlockCache, also when it ends by an exception.
-class CacheUpdate
-{
-public:
-  CacheUpdate() { BlockCache::instance().beginUpdate(); }
-  ~CacheUpdate() { BlockCache::instance().endUpdate(); }
-  CacheUpdate(const CacheUpdate&) = delete;
-  CacheUpdate& operator=(const CacheUpdate&) = delete;
-};
-
-/// Opens BlockCache's window for a filter's outputs: vtkDemandDrivenPipeline::ExecuteDataStart
-/// sends REQUEST_DATA_NOT_GENERATED to the algorithm, then releases the outputs it will
-/// regenerate (PrepareForNewData), then sends REQUEST_DATA. Closed when REQUEST_DATA has been
-/// processed (also after an error or an abort), or by the filter's destruction.
-class ReleaseWindow
-{
-public:
-  void open()
-  {
-    if (!this->opened)
-      BlockCache::instance().openWindow();
-    this->opened = true;
-  }
-  void close()
-  {
-    if (this->opened)
-      BlockCache::instance().closeWindow();
-    this->opened = false;
-  }
-  ~ReleaseWindow() { this->close(); }
-
-private:
-  bool opened = false;
-};
-
-/// Releases a block of allocateBlock (to BlockCache).
-void releaseBlock(void* block)
-{
-  BlockCache::instance().release(block);
-}
-
-/// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 2
-/// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
-/// faulted in 4 KiB pages) and marked for transparent huge pages, like
-/// vbr::vtk::newZeroedIntArray's RegionId image, and taken from the blocks an earlier update
-/// released when one fits (BlockCache). Null when refused.
-void* allocateBlock(std::size_t bytes, bool huge)
-{
-  huge = huge && bytes >= HugePage;
-  const std::size_t length = huge ? (bytes + HugePage - 1) / HugePage * HugePage : bytes;
-  BlockCache& cache = BlockCache::instance();
-  void* block = huge ? cache.take(length) : nullptr;
-  if (!block)
-  {
-    block = newBlock(length, huge);
-    if (!block && huge)
-    {
-      cache.clear();
-      block = newBlock(length, huge);
-    }
-    if (!block)
-      return nullptr;
-    if (huge)
-    {
-      try
-      {
-        cache.track(block, length);
-      }
-      catch (...)
-      {
-        std::free(block); // not yet an array's
-        throw;
-      }
-    }
-  }
-#ifndef NDEBUG
-  // Every value is written by the filter: in a debug build (the sanitizers' tests) a value left
-  // unwritten reads NaN or -1, not the zeros of fresh pages.
-  std::memset(block, 0xFF, length);
-#endif
-  return block;
-}
-
-/// A std::allocator over allocateBlock, whose values made without a value are left unset
-/// (DefaultInit: a resize for values written next does not zero them first): scratch of 2 MiB or
-/// more that an update fills comes from the blocks an earlier update released (BlockCache) rather
-/// than from pages the kernel faults in and zeroes at every update (a checkerboard's region
-/// numbering has 20 MB of it).
-template<typename T>
-struct BlockAllocator : vbr::DefaultInit<>
-{
-  using value_type = T;
-  BlockAllocator() = default;
-  template<typename U>
-  BlockAllocator(const BlockAllocator<U>&) // NOLINT: rebinding, as std::allocator
-  {
-  }
-  T* allocate(std::size_t n)
-  {
-    void* block = allocateBlock(n * sizeof(T), true);
-    if (!block)
-      throw std::bad_alloc();
-    return static_cast<T*>(block);
-  }
-  void deallocate(T* p, std::size_t) { releaseBlock(p); }
-  friend bool operator==(const BlockAllocator&, const BlockAllocator&) { return true; }
-  friend bool operator!=(const BlockAllocator&, const BlockAllocator&) { return false; }
-};
-
-/// Releases a block of allocateBlock (a std::unique_ptr's deleter).
-struct BlockRelease
-{
-  void operator()(void* block) const { releaseBlock(block); }
-};
-
-/// Room for n values of a trivial type, unset, in a block of allocateBlock (huge: cached).
-template<typename T>
-T* newBlockArray(std::size_t n)
-{
-  void* block = allocateBlock(std::max<std::size_t>(n, 1) * sizeof(T), true);
-  if (!block)
-    throw std::bad_alloc();
-  return static_cast<T*>(block);
-}
-
-/// The RegionId of every region (0 when removed), by region in sweep order.
-using RegionIdList = std::vector<std::int32_t, BlockAllocator<std::int32_t>>;
-/// Region indices: the kept regions, the region of each row of the table.
-/// Both lists' resize(n) and list(n) leave their new values unset (BlockAllocator, DefaultInit):
-/// they are for values written next (countingSortBySize's places, numberEveryRegion's rows),
-/// never read before.
-using RegionList = std::vector<std::size_t, BlockAllocator<std::size_t>>;
 
 /// Refuses (throws) `bytes` of new arrays the memory cannot take (what resizeOrThrow checks).
 void checkBytes(double bytes, vtkIdType tuples, std::size_t arrays)
@@ -651,361 +218,6 @@ vtkSmartPointer<vtkDataArray> newUnsetLabelArray(int labelType, vtkIdType tuples
   vtkSmartPointer<vtkDataArray> labels = vbr::vtk::newLabelArray(labelType, 0);
   allocateTuples({ labels }, tuples, groupBytes);
   return labels;
-}
-
-/// The statistics of one region's row of the table, as gathered from its boxes. Trivial: the
-/// records of a million regions are started one by one as the pass meets them, not zeroed
-/// first (start()).
-struct RegionStats
-{
-  std::int64_t voxels;
-  /// Twice the sum of the voxel centres, processing axes: integers, whose sums are one cycle
-  /// each where the doubles' were a chain of four-cycle adds for a region of many boxes, and
-  /// exact as the doubles were (below 2^53).
-  std::array<std::int64_t, 3> doubledCentre;
-  Int3 lo, hi; ///< processing axes, hi exclusive
-};
-
-/// One connected component: what numbering needs (its size) and its row of the table, all
-/// gathered in one pass over the boxes in sweep order. One cache line per region, since the
-/// boxes of a region are met in turn with those of its neighbours; the price is 64 bytes per
-/// region, removed ones included, where a checkerboard has a region per selected voxel.
-struct alignas(64) Region : RegionStats
-{
-  std::uint32_t boxes;
-
-  /// An empty region: no voxels, bounds any box replaces.
-  void start()
-  {
-    this->voxels = 0;
-    this->doubledCentre = { 0, 0, 0 };
-    this->lo.fill(std::numeric_limits<std::int32_t>::max());
-    this->hi.fill(std::numeric_limits<std::int32_t>::min());
-    this->boxes = 0;
-  }
-
-  /// Adds a box (processing axes, at `offset`) of the region.
-  void add(const vbr::Box& box, const Int3& offset)
-  {
-    ++this->boxes;
-    const std::int64_t volume = box.volume();
-    this->voxels += volume;
-    for (int d = 0; d < 3; ++d)
-    {
-      const std::int32_t first = box.lo[d] + offset[d], last = box.hi[d] + offset[d];
-      this->lo[d] = std::min(this->lo[d], first);
-      this->hi[d] = std::max(this->hi[d], last);
-      this->doubledCentre[d] += volume * (std::int64_t(first) + last);
-    }
-  }
-
-  /// Adds runs of row (y, z) of the region (processing axes, offset included): `voxels` voxels
-  /// from extent.x0 to extent.x1, whose doubled x centres add up to `doubledX`, of which
-  /// `boxes` begin a box.
-  void addRowRuns(const vbr::VoxelRun& extent,
-    std::int32_t y,
-    std::int32_t z,
-    std::int64_t voxelCount,
-    std::int64_t doubledX,
-    std::uint32_t boxCount)
-  {
-    this->boxes += boxCount;
-    this->voxels += voxelCount;
-    this->lo = {
-      std::min(this->lo[0], extent.x0), std::min(this->lo[1], y), std::min(this->lo[2], z)
-    };
-    this->hi = {
-      std::max(this->hi[0], extent.x1), std::max(this->hi[1], y + 1), std::max(this->hi[2], z + 1)
-    };
-    this->doubledCentre[0] += doubledX;
-    this->doubledCentre[1] += voxelCount * (2 * std::int64_t(y) + 1);
-    this->doubledCentre[2] += voxelCount * (2 * std::int64_t(z) + 1);
-  }
-};
-
-/// A region of a 2D image (processing axis 2 flat) of at most 32,767 pixels a side: a Region's
-/// values in 32 bytes, two records a cache line. Its voxels and boxes fit 32 bits (fewer than
-/// 2^30 pixels), its bounds 16 bits, and its doubled centres' sums (below 2^46) are kept along
-/// the two in-plane axes only: those along the flat axis follow from the voxels (asRegion).
-/// A fax-like page's 278,445 regions are 8.9 MB rather than 17.8: the pass over its boxes
-/// wrote, and the table read again, half as many lines, and each box's update does half the
-/// arithmetic of a 3D one.
-struct PlanarRegion
-{
-  std::uint32_t voxels;
-  std::uint32_t boxes;
-  /// lo[0], lo[1], -hi[0], -hi[1] (processing axes 0 and 1, hi exclusive): the four bounds
-  /// follow a box by one minimum (one SSE2 instruction for the four).
-  std::array<std::int16_t, 4> bounds;
-  std::array<std::int64_t, 2> doubledCentre;
-
-  /// Sides of the images whose regions fit the record (bounds of 16 bits, signed). Deliberately
-  /// one pixel cautious: an exclusive upper bound of 32,767 would still fit a side of 32,768,
-  /// but the bounds' negations then stay clear of -32,768 by one.
-  static constexpr std::int64_t LargestSide = std::numeric_limits<std::int16_t>::max();
-
-  /// An empty region: no voxels, bounds any box replaces.
-  void start()
-  {
-    this->voxels = 0;
-    this->boxes = 0;
-    this->bounds.fill(std::numeric_limits<std::int16_t>::max());
-    this->doubledCentre = { 0, 0 };
-  }
-
-  /// The bounds of the box (x0, y0) to (x1, y1) added.
-  void addBounds(std::int32_t x0, std::int32_t y0, std::int32_t x1, std::int32_t y1)
-  {
-    const std::int32_t box[4] = { x0, y0, -x1, -y1 };
-    for (int k = 0; k < 4; ++k)
-      this->bounds[k] = static_cast<std::int16_t>(std::min<std::int32_t>(this->bounds[k], box[k]));
-  }
-
-#ifdef VBR_SSE2
-  /// addBounds of a box (processing axes, at `offset`): (x0, y0, -x1, -y1) as four 16-bit
-  /// values, and their minimum with the bounds, in one register. In scalar code the compiler
-  /// merged the four 16-bit minima into one store, built by shifts and ors.
-  void addBoxBounds(const vbr::Box& box, const Int3& offset)
-  {
-    const __m128i shift = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(offset.data()));
-    const __m128i low =
-      _mm_add_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(box.lo.data())), shift);
-    const __m128i high =
-      _mm_add_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(box.hi.data())), shift);
-    const __m128i corners =
-      _mm_unpacklo_epi64(low, _mm_sub_epi32(_mm_setzero_si128(), high)); // x0 y0 -x1 -y1
-    const __m128i packed = _mm_packs_epi32(corners, corners);
-    auto* const bounds = reinterpret_cast<__m128i*>(this->bounds.data());
-    _mm_storel_epi64(bounds, _mm_min_epi16(_mm_loadl_epi64(bounds), packed));
-  }
-#endif
-
-  /// Adds a box (processing axes, at `offset`; one pixel thick along axis 2) of the region.
-  void add(const vbr::Box& box, const Int3& offset)
-  {
-    ++this->boxes;
-    const std::int32_t x0 = box.lo[0] + offset[0], x1 = box.hi[0] + offset[0];
-    const std::int32_t y0 = box.lo[1] + offset[1], y1 = box.hi[1] + offset[1];
-    const std::uint32_t volume =
-      static_cast<std::uint32_t>(x1 - x0) * static_cast<std::uint32_t>(y1 - y0);
-    this->voxels += volume;
-#ifdef VBR_SSE2
-    this->addBoxBounds(box, offset);
-#else
-    this->addBounds(x0, y0, x1, y1);
-#endif
-    this->doubledCentre[0] += std::int64_t(volume) * (x0 + x1);
-    this->doubledCentre[1] += std::int64_t(volume) * (y0 + y1);
-  }
-
-  /// Region::addRowRuns of a row y of a 2D image (z, the plane, follows from the voxels).
-  void addRowRuns(const vbr::VoxelRun& extent,
-    std::int32_t y,
-    std::int32_t /*z*/,
-    std::int64_t voxelCount,
-    std::int64_t doubledX,
-    std::uint32_t boxCount)
-  {
-    this->boxes += boxCount;
-    this->voxels += static_cast<std::uint32_t>(voxelCount);
-    this->addBounds(extent.x0, y, extent.x1, y + 1);
-    this->doubledCentre[0] += doubledX;
-    this->doubledCentre[1] += voxelCount * (2 * std::int64_t(y) + 1);
-  }
-
-  /// The region's Region, its pixels in plane z of processing axis 2: the values a Region
-  /// gathering the same boxes would have.
-  Region asRegion(std::int32_t z) const
-  {
-    Region r;
-    r.voxels = this->voxels;
-    r.boxes = this->boxes;
-    r.lo = { this->bounds[0], this->bounds[1], z };
-    r.hi = { -std::int32_t(this->bounds[2]), -std::int32_t(this->bounds[3]), z + 1 };
-    r.doubledCentre = { this->doubledCentre[0],
-      this->doubledCentre[1],
-      std::int64_t(this->voxels) * (2 * std::int64_t(z) + 1) };
-    return r;
-  }
-};
-static_assert(sizeof(PlanarRegion) == 32, "two planar regions a cache line");
-
-/// The regions' values as a Region: the record itself, or a planar record's in plane z.
-const Region& regionOf(const Region& r, std::int32_t)
-{
-  return r;
-}
-Region regionOf(const PlanarRegion& r, std::int32_t z)
-{
-  return r.asRegion(z);
-}
-
-/// The records of all regions, in sweep order (global region index), in one block of
-/// allocateBlock. Regions are numbered in the order of their first box or run, so a pass in
-/// that order starts each record when it first meets it (touch): the block is written once,
-/// not zeroed and then written. The sizes are also kept apart, 8 bytes a region (noteSize):
-/// the numbering reads nothing else of a region, and read them a cache line of record each
-/// (64 MB on a checkerboard's million regions).
-template<typename Record>
-class RegionRecords
-{
-public:
-  RegionRecords() = default;
-  explicit RegionRecords(std::size_t count)
-    : records(static_cast<Record*>(
-        allocateBlock(count * sizeof(Record), onHugePages(double(count) * sizeof(Record)))))
-    , voxelCounts(newBlockArray<std::int64_t>(count))
-    , count(count)
-  {
-    if (!this->records)
-      throw std::bad_alloc();
-    std::uninitialized_default_construct_n(this->records.get(), count); // trivial: no writes
-  }
-
-  std::size_t size() const { return this->count; }
-  const Record& operator[](std::size_t r) const { return this->records[r]; }
-  const Record* data() const { return this->records.get(); }
-  /// The voxel count of every region (as noted).
-  const std::int64_t* sizes() const { return this->voxelCounts.get(); }
-
-  /// Region r, started with those before it that were not yet.
-  Record& touch(std::size_t r)
-  {
-    while (this->started <= r)
-    {
-      this->voxelCounts[this->started] = 0;
-      this->records[this->started++].start();
-    }
-    return this->records[r];
-  }
-
-  /// Notes the size of region r after voxels were added to its record.
-  void noteSize(std::size_t r) { this->voxelCounts[r] = this->records[r].voxels; }
-
-  /// Adds boxes [0, count) (processing axes, at `offset`) to the regions first + label[b]:
-  /// touch, add and noteSize of each box, with the count of records started and the block's
-  /// pointers in registers (through the records' stores of 64-bit sums, which may alias
-  /// them, the count was loaded and stored again at every box).
-  void addBoxes(const vbr::Box* boxes,
-    const std::uint32_t* label,
-    std::size_t count,
-    std::size_t first,
-    const Int3& offset)
-  {
-    Record* const records = this->records.get();
-    std::int64_t* const sizes = this->voxelCounts.get();
-    std::size_t started = this->started;
-    for (std::size_t b = 0; b < count; ++b)
-    {
-      const std::size_t r = first + label[b];
-      for (; started <= r; ++started)
-      {
-        sizes[started] = 0;
-        records[started].start();
-      }
-      Record& region = records[r];
-      region.add(boxes[b], offset);
-      sizes[r] = region.voxels;
-    }
-    this->started = started;
-  }
-
-  /// Starts the records not met (none when every region has a voxel).
-  void startAll()
-  {
-    if (this->count > 0)
-      this->touch(this->count - 1);
-  }
-
-private:
-  struct Free
-  {
-    void operator()(Record* p) const { releaseBlock(p); }
-  };
-  std::unique_ptr<Record[], Free> records;
-  std::unique_ptr<std::int64_t[], BlockRelease> voxelCounts;
-  std::size_t count = 0, started = 0;
-};
-
-/// The regions of an image: Region records, or PlanarRegion ones for a 2D image that fits them
-/// (all its regions in plane `z` of processing axis 2), and which regions hold a seed.
-class Regions
-{
-public:
-  Regions() = default;
-  Regions(std::size_t count, bool planar, std::int32_t z)
-    : z(z)
-    , planar(planar)
-  {
-    if (planar)
-      this->flat = RegionRecords<PlanarRegion>(count);
-    else
-      this->full = RegionRecords<Region>(count);
-  }
-
-  bool isPlanar() const { return this->planar; }
-  /// f(records) of the records in use (RegionRecords<PlanarRegion> or RegionRecords<Region>).
-  template<typename F>
-  decltype(auto) visit(F&& f) const
-  {
-    return this->planar ? f(this->flat) : f(this->full);
-  }
-  template<typename F>
-  decltype(auto) visit(F&& f)
-  {
-    return this->planar ? f(this->flat) : f(this->full);
-  }
-  std::size_t size() const
-  {
-    return this->visit([](const auto& records) { return records.size(); });
-  }
-  const std::int64_t* sizes() const
-  {
-    return this->visit([](const auto& records) { return records.sizes(); });
-  }
-
-  /// Whether region r holds a seed (markSeeded).
-  bool seeded(std::size_t r) const { return !this->seeds.empty() && this->seeds[r] != 0; }
-  void markSeeded(std::size_t r)
-  {
-    if (this->seeds.empty())
-      this->seeds.assign(this->size(), 0);
-    this->seeds[r] = 1;
-  }
-
-  /// Starts the records not met.
-  void startAll()
-  {
-    this->visit([](auto& records) { records.startAll(); });
-  }
-
-  RegionRecords<Region> full;
-  RegionRecords<PlanarRegion> flat;
-  /// The plane of a 2D image's pixels along processing axis 2.
-  std::int32_t z = 0;
-
-private:
-  bool planar = false;
-  std::vector<std::uint8_t> seeds;
-};
-
-/// Whether the regions of `objects`, of an image of `grid`, fit PlanarRegion records: a 2D image
-/// of at most PlanarRegion::LargestSide pixels a side, all of whose objects lie in one plane
-/// (`z`, set) and were not labelled on 3D runs.
-bool planarRecordsFit(const std::vector<ObjectBoxes>& objects,
-  const vbr::vtk::VoxelGrid& grid,
-  std::int32_t& z)
-{
-  if (grid.flatAxis < 0 || objects.empty())
-    return false;
-  for (int d = 0; d < 3; ++d)
-    if (grid.dims[d] > PlanarRegion::LargestSide)
-      return false;
-  z = objects[0].offset[2]; // 0 as objects are cut today; checked in case that changes
-  for (const ObjectBoxes& o : objects)
-    if (o.labelledFromRuns || o.offset[2] != z || o.offset[0] < 0 || o.offset[1] < 0)
-      return false;
-  return true;
 }
 
 /// The sortings to try, in processing axes. A 2D image (flat processing axis 2) is swept
@@ -1107,140 +319,6 @@ bool axisAligned(const vbr::vtk::VoxelGrid& grid)
     grid.spacing[2] > 0;
 }
 
-/// The statistics of the regions of an object labelled on its runs, from the runs.
-void measureRegionsOfRuns(const ObjectBoxes& o, RegionRecords<Region>& regions)
-{
-  const vbr::VoxelRuns& r = o.voxelRuns;
-  const std::vector<vbr::VoxelRun>& runs = r.runs;
-  const std::vector<std::uint32_t>& label = o.runComponents.runLabel;
-  const std::vector<std::uint8_t>& begins = o.runComponents.beginsBox;
-  const std::int32_t dx = o.offset[0];
-  for (std::int32_t z = 0; z < r.dims[2]; ++z)
-    for (std::int32_t y = 0; y < r.dims[1]; ++y)
-    {
-      const std::size_t row = r.rowOf(y, z);
-      const std::uint32_t end = r.rowStarts[row + 1];
-      // Consecutive runs of one region (most runs of a porous volume's large component) are
-      // added up before their region's record is read and written once.
-      for (std::uint32_t i = r.rowStarts[row]; i < end;)
-      {
-        const std::uint32_t region = label[i];
-        std::int64_t voxels = 0, doubledX = 0;
-        std::uint32_t boxes = 0, j = i;
-        do
-        {
-          const std::int64_t length = runs[j].x1 - runs[j].x0;
-          voxels += length;
-          doubledX += length * (std::int64_t(runs[j].x0) + runs[j].x1 + 2 * dx);
-          boxes += begins[j];
-        } while (++j < end && label[j] == region);
-        const std::size_t g = o.firstRegion + region - 1;
-        regions.touch(g).addRowRuns({ runs[i].x0 + dx, runs[j - 1].x1 + dx },
-          y + o.offset[1],
-          z + o.offset[2],
-          voxels,
-          doubledX,
-          boxes);
-        regions.noteSize(g);
-        i = j;
-      }
-    }
-}
-
-/// The statistics of the regions of a 2D object labelled on its pixel runs, from the runs read
-/// again from its pixels (a bit scan per row: cheaper than keeping 8 bytes per run). A run
-/// begins a box when its box number is the next one not met yet (boxes are numbered as their
-/// first runs come in scan order).
-template<typename Record>
-void measureRegionsOfPixelRuns(const ObjectBoxes& o, RegionRecords<Record>& regions)
-{
-  const vbr::BitVolume& pixels = o.pixels;
-  const std::uint32_t* runBox = o.runs.boxes.data();
-  const std::uint32_t* const runsEnd = runBox + o.runs.boxes.size();
-  const std::uint32_t* label = o.components.boxLabel.data();
-  std::vector<vbr::Coord> ends(pixels.wordsPerRow() * 64 + 2);
-  const std::int32_t dx = o.offset[0];
-  std::uint32_t nextBox = 0;
-  for (std::int32_t y = 0; y < pixels.size(1); ++y)
-  {
-    const vbr::Coord* const last = vbr::pixelRowRunEnds(pixels, y, ends.data());
-    // Consecutive runs of one region are added up before their region's record is touched.
-    for (const vbr::Coord* e = ends.data(); e != last;)
-    {
-      // The runs of a row meet regions at random (a maze's 642,115): the record of a run
-      // further on is fetched ahead.
-      constexpr std::ptrdiff_t Ahead = 16;
-      if (runsEnd - runBox > Ahead)
-        vbr::prefetch(regions.data() + o.firstRegion + label[runBox[Ahead]] - 1);
-      const std::uint32_t region = label[*runBox];
-      const vbr::Coord x0 = e[0];
-      std::int64_t voxels = 0, doubledX = 0;
-      std::uint32_t boxes = 0;
-      vbr::Coord x1 = x0;
-      do
-      {
-        x1 = e[1];
-        const std::int64_t length = x1 - e[0];
-        voxels += length;
-        doubledX += length * (std::int64_t(e[0]) + x1 + 2 * dx);
-        const bool begins = *runBox == nextBox;
-        boxes += begins;
-        nextBox += begins;
-        ++runBox;
-        e += 2;
-      } while (e != last && label[*runBox] == region);
-      const std::size_t g = o.firstRegion + region - 1;
-      regions.touch(g).addRowRuns(
-        { x0 + dx, x1 + dx }, y + o.offset[1], o.offset[2], voxels, doubledX, boxes);
-      regions.noteSize(g);
-    }
-  }
-}
-
-/// The size and the statistics of every region from its boxes (or runs), in sweep order, in
-/// `regions` (PlanarRegion records only for objects planarRecordsFit accepts).
-template<typename Record>
-void measureObjects(const std::vector<ObjectBoxes>& objects, RegionRecords<Record>& regions)
-{
-  for (const ObjectBoxes& o : objects)
-  {
-    if constexpr (std::is_same<Record, Region>::value)
-    {
-      if (o.labelledFromRuns)
-      {
-        measureRegionsOfRuns(o, regions);
-        continue;
-      }
-    }
-    else
-      assert(!o.labelledFromRuns); // planarRecordsFit refuses 3D runs
-    if (o.labelledFromPixelRuns)
-    {
-      measureRegionsOfPixelRuns(o, regions);
-      continue;
-    }
-    regions.addBoxes(o.cudb.boxes.data(),
-      o.components.boxLabel.data(),
-      o.cudb.boxes.size(),
-      std::size_t(o.firstRegion) - 1, // labels start at 1
-      o.offset);
-  }
-}
-
-/// The size and the statistics of every region of `objects` (of an image of `grid`), in
-/// compact records when they fit (planarRecordsFit).
-Regions measureRegions(const std::vector<ObjectBoxes>& objects,
-  std::size_t count,
-  const vbr::vtk::VoxelGrid& grid)
-{
-  std::int32_t z = 0;
-  const bool planar = planarRecordsFit(objects, grid, z);
-  Regions regions(count, planar, z);
-  regions.visit([&objects](auto& records) { measureObjects(objects, records); });
-  regions.startAll();
-  return regions;
-}
-
 /// Marks the regions containing a seed point, read from `regionOf`: the image of region
 /// numbers (index + 1, 0 where nothing is selected) painted from the boxes. One image lookup
 /// per seed: the cost is linear in the seeds, whatever the number of boxes. The voxels are
@@ -1275,234 +353,6 @@ vtkIdType markSeeds(vtkDataSet* seeds,
     }
   }
   return hits;
-}
-
-/// Bits needed for the values 0 .. n.
-int bitsFor(std::uint64_t n)
-{
-  int bits = 0;
-  for (; n != 0; n >>= 1)
-    ++bits;
-  return bits;
-}
-
-/// Below this many kept regions their sort keys are sorted by comparisons: the counting sort's
-/// pass over every size up to the largest (a page of a few hundred regions, one of thousands of
-/// pixels) and the radix sort's 2,048 buckets per digit cost more there.
-constexpr std::size_t FewRegions = 4096;
-
-/// Whether n regions of sizes at most `largest` are sorted by countingSortBySize: its pass over
-/// every size up to the largest costs little next to the regions' passes.
-bool countingSortFits(std::int64_t largest, std::size_t n)
-{
-  const auto count = static_cast<std::int64_t>(n);
-  return largest <= count + 65536 && (n >= FewRegions || largest <= 8 * count + 1024);
-}
-
-/// Ranks regions [first, last) (indices, in sweep order) largest first, ties in sweep order, by
-/// a counting sort of their sizes, all at most `largest`: two passes over the regions and one
-/// over the sizes (noise and halftones have hundreds of thousands of regions of a few voxels).
-/// Calls place(k, r) for each region r, of rank k from 0, in sweep order.
-template<typename Index, typename Place>
-void countingSortBySize(const std::int64_t* sizes,
-  std::int64_t largest,
-  Index first,
-  Index last,
-  Place&& place)
-{
-  std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 2, 0);
-  for (Index i = first; i != last; ++i)
-    ++start[static_cast<std::size_t>(largest - sizes[*i]) + 1];
-  for (std::size_t k = 1; k < start.size(); ++k)
-    start[k] += start[k - 1];
-  for (Index i = first; i != last; ++i) // in sweep order: ties stay in it
-  {
-    const std::size_t r = *i;
-    place(start[static_cast<std::size_t>(largest - sizes[r])]++, r);
-  }
-}
-
-/// An iterator over the region indices 0, 1, ... themselves (countingSortBySize of them all).
-struct RegionIndex
-{
-  std::size_t r;
-  std::size_t operator*() const { return this->r; }
-  RegionIndex& operator++()
-  {
-    ++this->r;
-    return *this;
-  }
-  bool operator!=(const RegionIndex& other) const { return this->r != other.r; }
-};
-
-/// Whether the sizes given one after another (add) never grew: regions already largest first,
-/// ties in sweep order, which no sort would move.
-class AlreadyInOrder
-{
-public:
-  void add(std::int64_t size)
-  {
-    this->inOrder = this->inOrder && size <= this->previous;
-    this->previous = size;
-  }
-  bool holds() const { return this->inOrder; }
-
-private:
-  bool inOrder = true;
-  std::int64_t previous = std::numeric_limits<std::int64_t>::max();
-};
-
-/// Sorts the kept regions (indices, in sweep order) largest first, ties in sweep order, from
-/// their sizes (`sizes`, by region). Small sizes by a counting sort; otherwise, when the sizes and
-/// the indices fit in one 64-bit key together, by a sort of those keys (unique, so any sort
-/// gives the same order): a radix sort for many (a maze has 642,115 regions, whose comparison
-/// sort took longer than their table), else a comparison sort.
-void rankBySize(const std::int64_t* sizes, std::size_t count, RegionList& kept)
-{
-  const auto larger = [sizes](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; };
-  std::int64_t largest = 0;
-  for (std::size_t r : kept)
-    largest = std::max(largest, sizes[r]);
-  if (countingSortFits(largest, kept.size()))
-  {
-    RegionList sorted(kept.size()); // unset: every place written
-    countingSortBySize(sizes,
-      largest,
-      kept.cbegin(),
-      kept.cend(),
-      [&sorted](std::size_t k, std::size_t r) { sorted[k] = r; });
-    kept = std::move(sorted);
-    return;
-  }
-  const int indexBits = bitsFor(count);
-  if (bitsFor(static_cast<std::uint64_t>(largest)) + indexBits > 64)
-  {
-    std::stable_sort(kept.begin(), kept.end(), larger);
-    return;
-  }
-  std::vector<std::uint64_t> keys(kept.size());
-  for (std::size_t k = 0; k < kept.size(); ++k)
-    keys[k] = static_cast<std::uint64_t>(largest - sizes[kept[k]]) << indexBits | kept[k];
-  if (keys.size() < FewRegions)
-    std::sort(keys.begin(), keys.end());
-  else
-    vbr::radixSort(keys);
-  const std::uint64_t indexMask = (std::uint64_t(1) << indexBits) - 1;
-  for (std::size_t k = 0; k < kept.size(); ++k)
-    kept[k] = static_cast<std::size_t>(keys[k] & indexMask);
-}
-
-/// numberRegions of `count` regions of sizes `sizes` when none is removed by seeds or a number
-/// of largest regions: false, nothing written, when one is smaller than `minimumSize`. Every
-/// region is then a row, so no list of kept regions is made and sorted apart, no RegionId is
-/// zeroed first, and regions in order (by sweep, or of sizes that do not grow) are numbered
-/// as they come; others are ranked by one counting sort of all the regions, which writes the
-/// rows and the RegionIds as it places them (a fax-like page's 278,445 regions: a quarter of
-/// the numbering's instructions).
-bool numberEveryRegion(const std::int64_t* sizes,
-  std::size_t count,
-  vtkIdType minimumSize,
-  int ordering,
-  RegionIdList& ids,
-  RegionList& rows)
-{
-  std::int64_t smallest = std::numeric_limits<std::int64_t>::max(), largest = 0;
-  AlreadyInOrder ranked;
-  for (std::size_t r = 0; r < count; ++r)
-  {
-    const std::int64_t size = sizes[r];
-    smallest = std::min(smallest, size);
-    largest = std::max(largest, size);
-    ranked.add(size);
-  }
-  if (count > 0 && smallest < minimumSize)
-    return false;
-  rows.resize(count); // unset: written below
-  ids.resize(count);
-  if (ranked.holds() || ordering == vtkCUDBConnectivity::SWEEP_ORDER)
-  {
-    for (std::size_t r = 0; r < count; ++r)
-    {
-      rows[r] = r;
-      ids[r] = static_cast<std::int32_t>(r + 1);
-    }
-    return true;
-  }
-  if (countingSortFits(largest, count))
-  {
-    countingSortBySize(sizes,
-      largest,
-      RegionIndex{ 0 },
-      RegionIndex{ count },
-      [&rows, &ids](std::size_t k, std::size_t r)
-      {
-        rows[k] = r;
-        ids[r] = static_cast<std::int32_t>(k + 1);
-      });
-    return true;
-  }
-  for (std::size_t r = 0; r < count; ++r)
-    rows[r] = r;
-  rankBySize(sizes, count, rows);
-  for (std::size_t k = 0; k < count; ++k)
-    ids[rows[k]] = static_cast<std::int32_t>(k + 1);
-  return true;
-}
-
-/// Applies the region filters and numbers the kept regions: `ids` has the RegionId of every
-/// region (0 when removed), `rows` the region of each RegionId (row of the table, from 0).
-/// Returns how many are kept. The sizes come from the regions' dense array of them, not from
-/// their records (a cache line each).
-std::int32_t numberRegions(const Regions& regions,
-  vtkIdType minimumSize,
-  bool useSeeds,
-  vtkIdType largest,
-  int ordering,
-  RegionIdList& ids,
-  RegionList& rows)
-{
-  const std::int64_t* sizes = regions.sizes();
-  if (!useSeeds && (largest <= 0 || static_cast<std::size_t>(largest) >= regions.size()) &&
-    numberEveryRegion(sizes, regions.size(), minimumSize, ordering, ids, rows))
-    return static_cast<std::int32_t>(regions.size());
-  RegionList& kept = rows;
-  kept.clear();
-  kept.reserve(regions.size());
-  // Regions of one size, or already largest first (a checkerboard's million regions of one
-  // voxel), are in order: the sort's keys and scratch were a fifth of that update.
-  AlreadyInOrder ranked;
-  for (std::size_t r = 0; r < regions.size(); ++r)
-  {
-    const std::int64_t size = sizes[r];
-    if (size >= minimumSize && (!useSeeds || regions.seeded(r)))
-    {
-      ranked.add(size);
-      kept.push_back(r);
-    }
-  }
-  if (!ranked.holds())
-    rankBySize(sizes, regions.size(), kept);
-  if (largest > 0 && static_cast<std::size_t>(largest) < kept.size())
-    kept.resize(static_cast<std::size_t>(largest));
-  if (ordering == vtkCUDBConnectivity::SWEEP_ORDER)
-    std::sort(kept.begin(), kept.end());
-  ids.assign(regions.size(), 0);
-  for (std::size_t k = 0; k < kept.size(); ++k)
-    ids[kept[k]] = static_cast<std::int32_t>(k + 1);
-  return static_cast<std::int32_t>(kept.size());
-}
-
-/// The value painted for each label of an object labelled on its runs (by label, from 1): with
-/// `regionIds`, its region's RegionId (0 where removed); without, the region's number.
-std::vector<std::int32_t> valuesOfRunLabels(const ObjectBoxes& o, const RegionIdList* regionIds)
-{
-  std::vector<std::int32_t> values(o.runComponents.count + 1, 0);
-  for (std::uint32_t c = 1; c <= o.runComponents.count; ++c)
-  {
-    const std::size_t r = o.firstRegion + c - 1;
-    values[c] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
-  }
-  return values;
 }
 
 /// The voxels of an object labelled on its runs, one of several objects (a label map), painted
@@ -1571,20 +421,6 @@ vtkSmartPointer<vtkIntArray> paintOnlyObjectOfRuns(const ObjectBoxes& o,
         exec))
     return nullptr;
   return ids;
-}
-
-/// The value painted for each box of an object labelled from its boxes (a label per box, kept
-/// or not): with `regionIds`, its region's RegionId (0 where removed); without, the region's
-/// number.
-std::vector<std::int32_t> valuesOfBoxes(const ObjectBoxes& o, const RegionIdList* regionIds)
-{
-  std::vector<std::int32_t> values(o.components.boxLabel.size());
-  for (std::size_t b = 0; b < values.size(); ++b)
-  {
-    const std::size_t r = o.firstRegion + o.components.boxLabel[b] - 1;
-    values[b] = regionIds ? (*regionIds)[r] : static_cast<std::int32_t>(r + 1);
-  }
-  return values;
 }
 
 /// Whether the RegionIds of the image's objects are painted from the pixel runs of the only
@@ -3175,18 +2011,19 @@ std::int32_t numberAllRegions(vtkCUDBConnectivity* self,
   Summary& summary,
   vtkSmartPointer<vtkIntArray>* painted)
 {
-  regions = measureRegions(objects, regionCount, in.grid);
+  regions = vbr::measureRegions(objects, regionCount, in.grid.dims, in.grid.flatAxis);
   if (seeds)
   {
     vtkSmartPointer<vtkIntArray> ids = markRegionsOfSeeds(self, seeds, in, objects, regions);
     if (painted)
       *painted = ids;
   }
-  const std::int32_t kept = numberRegions(regions,
+  const std::int32_t kept = vbr::numberRegions(regions,
     self->GetMinimumRegionSize(),
     seeds != nullptr,
     self->GetLargestRegions(),
-    self->GetRegionOrdering(),
+    self->GetRegionOrdering() == vtkCUDBConnectivity::SWEEP_ORDER ? vbr::RegionOrder::BySweep
+                                                                  : vbr::RegionOrder::BySize,
     regionIds,
     regionOfRow);
   summary.components = static_cast<vtkIdType>(regionCount);
@@ -3296,14 +2133,14 @@ vtkCUDBConnectivity::vtkCUDBConnectivity()
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, vtkDataSetAttributes::SCALARS);
   this->SetProgressText("CUDB Connectivity");
-  BlockCache::instance().addUser(1);
+  blockCache().addUser(1);
 }
 
 //------------------------------------------------------------------------------
 vtkCUDBConnectivity::~vtkCUDBConnectivity()
 {
   delete this->Kept; // before the cache of blocks its arrays may come from is freed
-  BlockCache::instance().addUser(-1);
+  blockCache().addUser(-1);
 }
 
 //------------------------------------------------------------------------------
@@ -3397,6 +2234,10 @@ vtkTypeBool vtkCUDBConnectivity::ProcessRequest(vtkInformation* request,
 {
   // Only the outputs the pipeline releases just before this filter executes are worth
   // keeping beyond the scratch bound: the execution takes them at once (BlockCache).
+  // vtkDemandDrivenPipeline::ExecuteDataStart sends REQUEST_DATA_NOT_GENERATED to the
+  // algorithm, then releases the outputs it will regenerate (PrepareForNewData), then sends
+  // REQUEST_DATA: the window (ReleaseWindow) is open from the first request to the end of
+  // REQUEST_DATA, also after an error or an abort.
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
     this->Kept->window.open();
   if (!request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
@@ -3412,7 +2253,7 @@ vtkTypeBool vtkCUDBConnectivity::ProcessRequest(vtkInformation* request,
 //------------------------------------------------------------------------------
 vtkIdType vtkCUDBConnectivity::GetCachedBlockBytes()
 {
-  return static_cast<vtkIdType>(BlockCache::instance().bytesKept());
+  return static_cast<vtkIdType>(blockCache().bytesKept());
 }
 
 //------------------------------------------------------------------------------
@@ -3421,109 +2262,10 @@ bool vtkCUDBConnectivity::GetUsedPlanarRecords()
   return this->Kept->planarRecords;
 }
 
-namespace
-{
-
-/// Whether `planar`, seen as a Region of plane z, holds `full`'s values, field by field (the
-/// first difference told on std::cerr).
-bool sameRegion(const PlanarRegion& planar, std::int32_t z, const Region& full, int trial)
-{
-  const Region r = planar.asRegion(z);
-  bool same = r.voxels == full.voxels && r.boxes == full.boxes;
-  for (int d = 0; d < 3; ++d)
-    same = same && r.lo[d] == full.lo[d] && r.hi[d] == full.hi[d] &&
-      r.doubledCentre[d] == full.doubledCentre[d];
-  if (!same)
-    std::cerr << "planar record " << trial << ": voxels " << r.voxels << " / " << full.voxels
-              << ", boxes " << r.boxes << " / " << full.boxes << ", bounds " << r.lo[0] << ' '
-              << r.lo[1] << ' ' << r.lo[2] << ' ' << r.hi[0] << ' ' << r.hi[1] << ' ' << r.hi[2]
-              << " / " << full.lo[0] << ' ' << full.lo[1] << ' ' << full.lo[2] << ' ' << full.hi[0]
-              << ' ' << full.hi[1] << ' ' << full.hi[2] << '\n';
-  return same;
-}
-
-} // namespace
-
 //------------------------------------------------------------------------------
 bool vtkCUDBConnectivity::CheckPlanarRecords(int seed, int trials)
 {
-  constexpr std::int32_t Side = static_cast<std::int32_t>(PlanarRegion::LargestSide);
-  std::mt19937 random(static_cast<unsigned>(seed));
-  // Coordinates in [0, Side], one in two at the ends 0 and Side.
-  const auto coordinate = [&random]() -> std::int32_t
-  {
-    switch (random() % 4)
-    {
-      case 0:
-        return 0;
-      case 1:
-        return Side;
-      default:
-        return static_cast<std::int32_t>(random() % (Side + 1));
-    }
-  };
-  // [a, b), a < b, of at most `longest` along the axis.
-  const auto span = [&](std::int32_t longest)
-  {
-    std::int32_t a = coordinate(), b = coordinate();
-    if (a > b)
-      std::swap(a, b);
-    if (b - a > longest)
-      (random() % 2 ? b = a + longest : a = b - longest);
-    if (a == b)
-      (a == 0 ? ++b : --a);
-    return std::make_pair(a, b);
-  };
-  bool same = true;
-  for (int trial = 0; trial < trials; ++trial)
-  {
-    const std::int32_t z = static_cast<std::int32_t>(random() % 3);
-    PlanarRegion planar, bounded;
-    Region full;
-    planar.start();
-    bounded.start();
-    full.start();
-    const int items = trial == 0 ? 1 : 1 + static_cast<int>(random() % 24);
-    for (int item = 0; item < items; ++item)
-    {
-      // Boxes thin along one axis (the voxels of a region of a 2D image stay below 2^32; the
-      // first trial is the whole image), rows one pixel high.
-      const bool wide = random() % 2 == 0;
-      const auto xs = span(trial == 0 || wide ? Side : 3);
-      const auto ys = span(trial == 0 || !wide ? Side : 3);
-      if (random() % 3 != 0)
-      {
-        const Int3 offset{ static_cast<std::int32_t>(random() % (xs.first + 1)),
-          static_cast<std::int32_t>(random() % (ys.first + 1)),
-          z };
-        vbr::Box box;
-        box.lo = { xs.first - offset[0], ys.first - offset[1], 0 };
-        box.hi = { xs.second - offset[0], ys.second - offset[1], 1 };
-        planar.add(box, offset);
-        full.add(box, offset);
-#ifdef VBR_SSE2
-        PlanarRegion sse = bounded; // its bounds before the box
-        sse.addBoxBounds(box, offset);
-#endif
-        bounded.addBounds(xs.first, ys.first, xs.second, ys.second);
-#ifdef VBR_SSE2
-        same = same && sse.bounds == bounded.bounds;
-#endif
-      }
-      else
-      {
-        const std::int32_t y = ys.first;
-        const std::int64_t length = xs.second - xs.first;
-        const std::int64_t doubledX = length * (std::int64_t(xs.first) + xs.second);
-        const std::uint32_t boxes = random() % 2;
-        planar.addRowRuns({ xs.first, xs.second }, y, z, length, doubledX, boxes);
-        full.addRowRuns({ xs.first, xs.second }, y, z, length, doubledX, boxes);
-        bounded.addBounds(xs.first, y, xs.second, y + 1);
-      }
-      same = same && planar.bounds == bounded.bounds && sameRegion(planar, z, full, trial);
-    }
-  }
-  return same;
+  return vbr::checkPlanarRecords(seed, trials, std::cerr);
 }
 
 //------------------------------------------------------------------------------

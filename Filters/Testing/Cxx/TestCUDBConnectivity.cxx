@@ -6,6 +6,7 @@
 // inputs with the most regions and boxes per voxel (checkerboard, noise).
 #include "vtkCUDBConnectivity.h"
 
+#include "Core/Sanitizers.h"
 #include "TestImages.h"
 
 #include "vtkCellArray.h"
@@ -1521,14 +1522,8 @@ public:
 
 // Whether the filter's cache keeps released blocks: not under AddressSanitizer, where it keeps
 // none so that a use of a freed output stays detectable (vtkCUDBConnectivity.cxx).
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(VBR_ADDRESS_SANITIZER)
 constexpr bool CacheKeepsBlocks = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool CacheKeepsBlocks = false;
-#else
-constexpr bool CacheKeepsBlocks = true;
-#endif
 #else
 constexpr bool CacheKeepsBlocks = true;
 #endif
