@@ -32,6 +32,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <deque>
 #include <iostream>
 #include <map>
@@ -272,6 +273,92 @@ void checkPolygons(const Volume& v, const Layout& l, int mode, bool merged, cons
 }
 
 /// Triangles: closed, oriented outwards (divergence theorem gives +volume), exact area.
+/// Per FaceId of an output: the plane of its cells (axis, coordinate) and twice their area in
+/// grid units, from the cells alone (a hole's loop counts negative); `exact` false when a cell
+/// lies in no grid plane, `loopTypes` the sum of the LoopType of the cells that are no holes'
+/// loops expected (every cell of the Triangles and Polygons modes).
+struct FaceAreas
+{
+  std::map<vtkIdType, std::tuple<int, int, long long>> faces;
+  bool exact = true;
+  long long loopTypes = 0;
+};
+
+FaceAreas faceAreasOf(vtkPolyData* out, const Layout& l, bool loops)
+{
+  FaceAreas r;
+  vtkDataArray* faceIds = out->GetCellData()->GetArray("FaceId");
+  vtkDataArray* loopType = out->GetCellData()->GetArray("LoopType");
+  if (!faceIds || !loopType)
+  {
+    r.exact = false;
+    return r;
+  }
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    out->GetCellPoints(c, ids);
+    std::vector<Int3> p;
+    for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      p.push_back(toGrid(out, ids->GetId(i), l, r.exact));
+    int axis = -1;
+    for (int d = 0; d < 3 && !p.empty(); ++d)
+    {
+      bool constant = true;
+      for (const Int3& q : p)
+        constant = constant && q[d] == p[0][d];
+      if (constant)
+        axis = d;
+    }
+    if (axis < 0)
+    {
+      r.exact = false;
+      continue;
+    }
+    const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+    long long area = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      const Int3& a = p[i];
+      const Int3& b = p[(i + 1) % p.size()];
+      area += static_cast<long long>(a[ua]) * b[va] - static_cast<long long>(b[ua]) * a[va];
+    }
+    const bool hole = loops && loopType->GetTuple1(c) != 0;
+    if (!loops)
+      r.loopTypes += static_cast<long long>(loopType->GetTuple1(c));
+    auto& face = r.faces[static_cast<vtkIdType>(faceIds->GetTuple1(c))];
+    if (std::get<0>(face) == 0 && std::get<2>(face) == 0)
+      face = std::make_tuple(axis + 1, p[0][axis], 0LL);
+    if (std::get<0>(face) != axis + 1 || std::get<1>(face) != p[0][axis])
+      r.exact = false; // the cells of one face in two planes
+    std::get<2>(face) += hole ? -std::llabs(area) : std::llabs(area);
+  }
+  return r;
+}
+
+/// The cells of the Triangles and Polygons modes carry the FaceId of the face they cover:
+/// per FaceId, the same plane and area as the face's loops in Loops mode; LoopType 0.
+void checkFaceIdsOfCells(const Volume& v, const Layout& l, const std::string& what)
+{
+  vtkNew<vtkEVMBoundaryFilter> f;
+  f->SetInputData(makeImage(v, l));
+  f->SetOutputModeToLoops();
+  f->Update();
+  const FaceAreas loops = faceAreasOf(f->GetOutput(), l, true);
+  CHECK(loops.exact, what << ": Loops output off the grid");
+  for (int mode : { vtkEVMBoundaryFilter::TRIANGLES, vtkEVMBoundaryFilter::POLYGONS })
+  {
+    f->SetOutputMode(mode);
+    f->Update();
+    const FaceAreas cells = faceAreasOf(f->GetOutput(), l, false);
+    CHECK(
+      cells.exact, what << " " << f->GetOutputModeAsString() << ": a face's cells off its plane");
+    CHECK(cells.loopTypes == 0, what << " " << f->GetOutputModeAsString() << ": LoopType not 0");
+    CHECK(cells.faces == loops.faces,
+      what << " " << f->GetOutputModeAsString() << ": FaceId, plane or area differ from Loops");
+  }
+}
+
 void checkTriangles(const Volume& v, const Layout& l, const std::string& what, bool flatAs2D = true)
 {
   vtkNew<vtkEVMBoundaryFilter> f;
@@ -769,6 +856,7 @@ int TestEVMBoundaryFilter(int, char*[])
     checkPolygons(v, l, vtkEVMBoundaryFilter::POSITIVE, trial % 4 == 3, what.str());
     checkPolygons(v, l, vtkEVMBoundaryFilter::LABELS, false, what.str() + " labels");
     checkTriangles(v, l, what.str());
+    checkFaceIdsOfCells(v, l, what.str());
     // The same trial flat (a 2D image): its statistics by the 2D path.
     Int3 flatDims = dims;
     flatDims[trial % 3] = 1;
@@ -787,6 +875,7 @@ int TestEVMBoundaryFilter(int, char*[])
     l.spacing = { 0.5, 1.0, 1.5 };
     checkPolygons(big, l, vtkEVMBoundaryFilter::POSITIVE, false, "64^3");
     checkTriangles(big, l, "64^3");
+    checkFaceIdsOfCells(big, l, "64^3");
   }
   checkErrorsAndDegenerateInputs();
   checkTypesAndLayouts();
