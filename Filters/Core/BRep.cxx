@@ -576,14 +576,24 @@ std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& o
 {
   // The loops wander over the box, whose bits outgrow the cache with the volume: each
   // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
-  constexpr std::size_t ahead = 16;
+  // The index of that corner in the box is kept until its turn (a ring of `ahead` indices),
+  // not worked out twice.
+  constexpr std::size_t ahead = 16; // a power of two: the ring's slot is i & (ahead - 1)
   const std::size_t n = brep.points.size();
   std::vector<std::int64_t> numbers(n);
+  std::uint64_t index[ahead];
+  for (std::size_t i = 0; i < std::min(n, ahead); ++i)
+    index[i] = this->indexInBox(add(brep.points[i], offset));
   for (std::size_t i = 0; i < n; ++i)
   {
+    std::uint64_t& slot = index[i & (ahead - 1)];
+    const std::uint64_t here = slot;
     if (i + ahead < n)
-      prefetch(&this->Words[this->indexInBox(add(brep.points[i + ahead], offset)) >> 6]);
-    numbers[i] = this->rankOf(this->indexInBox(add(brep.points[i], offset)));
+    {
+      slot = this->indexInBox(add(brep.points[i + ahead], offset));
+      prefetch(&this->Words[slot >> 6]);
+    }
+    numbers[i] = this->rankOf(here);
   }
   return numbers;
 }
