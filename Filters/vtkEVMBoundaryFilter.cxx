@@ -691,46 +691,42 @@ bool cellsFromRuns(int mode)
   return mode == vtkEVMBoundaryFilter::TRIANGLES || mode == vtkEVMBoundaryFilter::POLYGONS;
 }
 
-/// appendFaceCells for the triangles or fan polygons of a 3D object: the cells of each face,
-/// and the attributes of each run's faces written once the run (or the faces before an abort)
-/// is done. The same cells and arrays.
-bool appendRunsOfFaces(const vbr::BRep& brep,
+/// appendFaceCells for the triangles or fan polygons of a 3D object, faces [first, end): the
+/// cells of each face, then the attributes of all these faces (or of those done before an
+/// abort) written at once. The same cells and arrays. A 3D object's parts are triangulated on
+/// one thread each (StreamedObjectCells), so `cells` is one run.
+bool appendRunOfFaces(const vbr::BRep& brep,
   const std::vector<std::int64_t>& cornerIds,
   const FaceRuns& cells,
   const vbr::vtk::Selected& object,
   vtkIdType faceBase,
+  std::size_t first,
   std::size_t end,
   CellProgress& progress,
   CellStore& out)
 {
-  for (std::size_t k = 0; k < cells.runs.size(); ++k)
+  assert(cells.runs.size() == 1 && cells.firstFace.front() == first);
+  const vbr::FaceCells& run = cells.runs.front();
+  std::size_t f = first;
+  bool aborted = false;
+  for (; f < end; ++f)
   {
-    const vbr::FaceCells& run = cells.runs[k];
-    const std::size_t runFirst = cells.firstFace[k];
-    const std::size_t runEnd = k + 1 < cells.runs.size() ? cells.firstFace[k + 1] : end;
-    std::size_t f = runFirst;
-    bool aborted = false;
-    for (; f < runEnd; ++f)
+    if (!progress.tick(f))
     {
-      if (!progress.tick(f))
-      {
-        aborted = true;
-        break;
-      }
-      const std::size_t i = f - runFirst;
-      const std::size_t firstCell = run.cellBegin(i);
-      out.addFaceConnectivity(run.corners.data(),
-        run.cornerBegin(firstCell),
-        run.cellEnds.data() + firstCell,
-        run.faceEnds[i] - firstCell,
-        cornerIds.data() + brep.loops[brep.faces[f].firstLoop].begin);
+      aborted = true;
+      break;
     }
-    out.addRunAttributes(
-      run.faceEnds, f - runFirst, faceBase + static_cast<vtkIdType>(runFirst), object.label);
-    if (aborted)
-      return false; // aborted: the caller empties the output
+    const std::size_t i = f - first;
+    const std::size_t firstCell = run.cellBegin(i);
+    out.addFaceConnectivity(run.corners.data(),
+      run.cornerBegin(firstCell),
+      run.cellEnds.data() + firstCell,
+      run.faceEnds[i] - firstCell,
+      cornerIds.data() + brep.loops[brep.faces[f].firstLoop].begin);
   }
-  return true;
+  out.addRunAttributes(
+    run.faceEnds, f - first, faceBase + static_cast<vtkIdType>(first), object.label);
+  return !aborted; // aborted: the caller empties the output
 }
 
 /// The cells of an object's faces [first, end) (their runs `cells` in Triangles and Polygons
@@ -748,7 +744,7 @@ bool appendFaceCells(const vbr::BRep& brep,
 {
   const bool fromRuns = cellsFromRuns(mode);
   if (fromRuns && !out.planar())
-    return appendRunsOfFaces(brep, cornerIds, cells, object, faceBase, end, progress, out);
+    return appendRunOfFaces(brep, cornerIds, cells, object, faceBase, first, end, progress, out);
   std::vector<vtkIdType> ids;
   std::size_t run = 0;
   for (std::size_t f = first; f < end; ++f)
@@ -791,10 +787,11 @@ bool boundaryOf(const vbr::EVM& evm,
 }
 
 /// The triangles (Triangles mode) or the polygons that VTK draws right (Polygons mode) of
-/// the faces [first, end), runs of faces in parallel, into `cells`. Its runs are reused from
-/// call to call (their cells cleared, their memory and scratch space kept): a call per part
-/// of the streamed sweep, a part per plane or so, made each run's dozen vectors grow afresh
-/// (4 % of the filter's instructions on the headsq bone, 1 % on porous 128^3).
+/// the faces [first, end), into `cells`: one run of faces, or, when `exec` runs in parallel
+/// (a 2D image), up to 256 runs made side by side. Its runs are reused from call to call (their
+/// cells cleared, their memory and scratch space kept): a call per part of the streamed sweep, a
+/// part per plane or so, made each run's dozen vectors grow afresh (4 % of the filter's
+/// instructions on the headsq bone, 1 % on porous 128^3).
 void cellsOfFaces(const vbr::BRep& brep,
   int mode,
   std::size_t first,
@@ -1302,7 +1299,9 @@ void addFaceCounts(const Statistics& from, Statistics& to)
 /// into the part's slot, with face ids from 0, and the part is released; the slots are then
 /// appended to the output in the parts' order on the calling thread (append), their face ids
 /// shifted past the faces before. The output is the one that writing the parts one after the
-/// other would give, cell for cell. Memory: the cells of one batch of parts twice at most.
+/// other would give, cell for cell. Memory: the cells of one batch of parts twice at most,
+/// and each slot's scratch runs (FaceRuns), which keep until the object is done the capacity
+/// of the largest part that slot triangulated (its triangles or fan polygons once more).
 class StreamedObjectCells
 {
 public:

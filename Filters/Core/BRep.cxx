@@ -578,15 +578,16 @@ std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& o
   // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
   // The index of that corner in the box is kept until its turn (a ring of `ahead` indices),
   // not worked out twice.
-  constexpr std::size_t ahead = 16; // a power of two: the ring's slot is i & (ahead - 1)
+  constexpr std::size_t ahead = 16;
+  static_assert((ahead & (ahead - 1)) == 0, "the ring's slot is i & (ahead - 1)");
   const std::size_t n = brep.points.size();
   std::vector<std::int64_t> numbers(n);
-  std::uint64_t index[ahead];
+  std::uint64_t boxIndexAhead[ahead] = {}; // of points i to i + ahead - 1, at i & (ahead - 1)
   for (std::size_t i = 0; i < std::min(n, ahead); ++i)
-    index[i] = this->indexInBox(add(brep.points[i], offset));
+    boxIndexAhead[i] = this->indexInBox(add(brep.points[i], offset));
   for (std::size_t i = 0; i < n; ++i)
   {
-    std::uint64_t& slot = index[i & (ahead - 1)];
+    std::uint64_t& slot = boxIndexAhead[i & (ahead - 1)];
     const std::uint64_t here = slot;
     if (i + ahead < n)
     {

@@ -17,6 +17,7 @@
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
@@ -132,6 +133,37 @@ Expected expect(const Volume& v, int label, bool merged)
   return e;
 }
 
+/// The axis along which all `points` have the same coordinate (the last such axis), -1 when
+/// there is none or no point.
+int constantAxis(const std::vector<Int3>& points)
+{
+  int axis = -1;
+  for (int d = 0; d < 3 && !points.empty(); ++d)
+  {
+    bool constant = true;
+    for (const Int3& q : points)
+      constant = constant && q[d] == points[0][d];
+    if (constant)
+      axis = d;
+  }
+  return axis;
+}
+
+/// Twice the signed area of the polygon `points`, lying in a plane normal to `axis`, in the
+/// (axis + 1, axis + 2) coordinates (shoelace formula): positive counter-clockwise.
+long long twiceSignedArea(const std::vector<Int3>& points, int axis)
+{
+  const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+  long long area = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const Int3& a = points[i];
+    const Int3& b = points[(i + 1) % points.size()];
+    area += static_cast<long long>(a[ua]) * b[va] - static_cast<long long>(b[ua]) * a[va];
+  }
+  return area;
+}
+
 /// Faces of a Loops output, rasterized per FaceId in grid coordinates (even-odd rule).
 struct Produced
 {
@@ -176,16 +208,10 @@ Produced readFaces(vtkPolyData* out, const Layout& l, double labelFilter)
   for (const auto& entry : loops)
   {
     const Int3& p0 = entry.second.front().p.front();
-    int axis = -1;
-    for (int d = 0; d < 3; ++d)
-    {
-      bool constant = true;
-      for (const Loop& loop : entry.second)
-        for (const Int3& p : loop.p)
-          constant = constant && p[d] == p0[d];
-      if (constant)
-        axis = d;
-    }
+    std::vector<Int3> facePoints;
+    for (const Loop& loop : entry.second)
+      facePoints.insert(facePoints.end(), loop.p.begin(), loop.p.end());
+    const int axis = constantAxis(facePoints);
     if (axis < 0)
     {
       r.exact = false;
@@ -196,12 +222,11 @@ Produced readFaces(vtkPolyData* out, const Layout& l, double labelFilter)
     int sign = 0;
     for (const Loop& loop : entry.second)
     {
-      long long area = 0;
+      const long long area = twiceSignedArea(loop.p, axis);
       for (std::size_t i = 0; i < loop.p.size(); ++i)
       {
         const Int3& a = loop.p[i];
         const Int3& b = loop.p[(i + 1) % loop.p.size()];
-        area += static_cast<long long>(a[ua]) * b[va] - static_cast<long long>(b[ua]) * a[va];
         if (a[ua] == b[ua])
           for (int j = std::min(a[va], b[va]); j < std::max(a[va], b[va]); ++j)
             crossings[j].push_back(a[ua]);
@@ -272,19 +297,31 @@ void checkPolygons(const Volume& v, const Layout& l, int mode, bool merged, cons
   CHECK(fieldValue(out, "NumberOfHoles") == holes, what << ": holes");
 }
 
-/// Triangles: closed, oriented outwards (divergence theorem gives +volume), exact area.
-/// Per FaceId of an output: the plane of its cells (axis, coordinate) and twice their area in
-/// grid units, from the cells alone (a hole's loop counts negative); `exact` false when a cell
-/// lies in no grid plane, `loopTypes` the sum of the LoopType of the cells that are no holes'
-/// loops expected (every cell of the Triangles and Polygons modes).
+/// The plane of a face's cells (normal `axis`, at `position` along it) and twice their area
+/// in grid units.
+struct FacePlaneArea
+{
+  int axis = -1;
+  int position = 0;
+  long long twiceArea = 0;
+  bool operator==(const FacePlaneArea& o) const
+  {
+    return this->axis == o.axis && this->position == o.position && this->twiceArea == o.twiceArea;
+  }
+};
+
+/// Per FaceId of an output: the plane of its cells and their area, from the cells alone (a
+/// hole's loop counts negative); `exact` false when a cell lies in no grid plane or the cells
+/// of one face in two planes. `loopTypes` sums the LoopType of the cells when they are not
+/// loops (the Triangles and Polygons modes, whose cells all have LoopType 0).
 struct FaceAreas
 {
-  std::map<vtkIdType, std::tuple<int, int, long long>> faces;
+  std::map<vtkIdType, FacePlaneArea> faces;
   bool exact = true;
   long long loopTypes = 0;
 };
 
-FaceAreas faceAreasOf(vtkPolyData* out, const Layout& l, bool loops)
+FaceAreas faceAreasOf(vtkPolyData* out, const Layout& l, bool fromLoopsMode)
 {
   FaceAreas r;
   vtkDataArray* faceIds = out->GetCellData()->GetArray("FaceId");
@@ -301,37 +338,25 @@ FaceAreas faceAreasOf(vtkPolyData* out, const Layout& l, bool loops)
     std::vector<Int3> p;
     for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
       p.push_back(toGrid(out, ids->GetId(i), l, r.exact));
-    int axis = -1;
-    for (int d = 0; d < 3 && !p.empty(); ++d)
-    {
-      bool constant = true;
-      for (const Int3& q : p)
-        constant = constant && q[d] == p[0][d];
-      if (constant)
-        axis = d;
-    }
+    const int axis = constantAxis(p);
     if (axis < 0)
     {
       r.exact = false;
       continue;
     }
-    const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
-    long long area = 0;
-    for (std::size_t i = 0; i < p.size(); ++i)
-    {
-      const Int3& a = p[i];
-      const Int3& b = p[(i + 1) % p.size()];
-      area += static_cast<long long>(a[ua]) * b[va] - static_cast<long long>(b[ua]) * a[va];
-    }
-    const bool hole = loops && loopType->GetTuple1(c) != 0;
-    if (!loops)
+    const long long area = std::llabs(twiceSignedArea(p, axis));
+    const bool hole = fromLoopsMode && loopType->GetTuple1(c) != 0;
+    if (!fromLoopsMode)
       r.loopTypes += static_cast<long long>(loopType->GetTuple1(c));
-    auto& face = r.faces[static_cast<vtkIdType>(faceIds->GetTuple1(c))];
-    if (std::get<0>(face) == 0 && std::get<2>(face) == 0)
-      face = std::make_tuple(axis + 1, p[0][axis], 0LL);
-    if (std::get<0>(face) != axis + 1 || std::get<1>(face) != p[0][axis])
+    FacePlaneArea& face = r.faces[static_cast<vtkIdType>(faceIds->GetTuple1(c))];
+    if (face.axis < 0)
+    {
+      face.axis = axis;
+      face.position = p[0][axis];
+    }
+    if (face.axis != axis || face.position != p[0][axis])
       r.exact = false; // the cells of one face in two planes
-    std::get<2>(face) += hole ? -std::llabs(area) : std::llabs(area);
+    face.twiceArea += hole ? -area : area;
   }
   return r;
 }
@@ -359,6 +384,7 @@ void checkFaceIdsOfCells(const Volume& v, const Layout& l, const std::string& wh
   }
 }
 
+/// Triangles: closed, oriented outwards (divergence theorem gives +volume), exact area.
 void checkTriangles(const Volume& v, const Layout& l, const std::string& what, bool flatAs2D = true)
 {
   vtkNew<vtkEVMBoundaryFilter> f;
