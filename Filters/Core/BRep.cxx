@@ -576,14 +576,25 @@ std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& o
 {
   // The loops wander over the box, whose bits outgrow the cache with the volume: each
   // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
+  // The index of that corner in the box is kept until its turn (a ring of `ahead` indices),
+  // not worked out twice.
   constexpr std::size_t ahead = 16;
+  static_assert((ahead & (ahead - 1)) == 0, "the ring's slot is i & (ahead - 1)");
   const std::size_t n = brep.points.size();
   std::vector<std::int64_t> numbers(n);
+  std::uint64_t boxIndexAhead[ahead] = {}; // of points i to i + ahead - 1, at i & (ahead - 1)
+  for (std::size_t i = 0; i < std::min(n, ahead); ++i)
+    boxIndexAhead[i] = this->indexInBox(add(brep.points[i], offset));
   for (std::size_t i = 0; i < n; ++i)
   {
+    std::uint64_t& slot = boxIndexAhead[i & (ahead - 1)];
+    const std::uint64_t here = slot;
     if (i + ahead < n)
-      prefetch(&this->Words[this->indexInBox(add(brep.points[i + ahead], offset)) >> 6]);
-    numbers[i] = this->rankOf(this->indexInBox(add(brep.points[i], offset)));
+    {
+      slot = this->indexInBox(add(brep.points[i + ahead], offset));
+      prefetch(&this->Words[slot >> 6]);
+    }
+    numbers[i] = this->rankOf(here);
   }
   return numbers;
 }

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cstddef>
 #include <map>
+#include <random>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -477,6 +478,44 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
   corners.clear();
   vbr::appendFaceCorners(empty, { 0, 0, 0 }, corners);
   EXPECT_TRUE(corners.empty());
+}
+
+// numbersOf keeps the box index of the 16 points ahead in a ring: at batch sizes around the
+// ring's (none, one, a ring less one, a ring, a ring and one, two rings and one) each point's
+// number is its corner's place among the distinct corners in lexicographic order (a sorted
+// vector, searched). The points, at an offset, repeat corners and come in random order.
+TEST(BRep, CornerNumbersOfPointsMatchSortedCorners)
+{
+  std::mt19937 random(6300);
+  std::uniform_int_distribution<int> coordinate(0, 70);
+  std::vector<vbr::Point3> corners;
+  for (int i = 0; i < 300; ++i)
+    corners.push_back({ coordinate(random), coordinate(random), coordinate(random) });
+  const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(80);
+  const vbr::CornerSet set(corners, packer);
+  std::vector<vbr::Point3> sorted = corners;
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  ASSERT_EQ(set.size(), sorted.size());
+  const vbr::Point3 offset{ 2, 5, 1 };
+  for (std::size_t n : { 0, 1, 15, 16, 17, 33 })
+  {
+    vbr::BRep brep;
+    std::uniform_int_distribution<std::size_t> pick(0, corners.size() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const vbr::Point3 c = corners[pick(random)];
+      brep.points.push_back({ c[0] - offset[0], c[1] - offset[1], c[2] - offset[2] });
+    }
+    const std::vector<std::int64_t> numbers = set.numbersOf(brep, offset);
+    ASSERT_EQ(numbers.size(), n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const vbr::Point3 c = vbr::add(brep.points[i], offset);
+      const auto at = std::lower_bound(sorted.begin(), sorted.end(), c);
+      EXPECT_EQ(numbers[i], at - sorted.begin()) << "n " << n << " point " << i;
+    }
+  }
 }
 
 // The streamed parts, joined, are planeSweep3D's B-Rep, on one thread and on several, and the

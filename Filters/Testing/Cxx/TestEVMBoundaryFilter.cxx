@@ -17,6 +17,7 @@
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
@@ -32,6 +33,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <deque>
 #include <iostream>
 #include <map>
@@ -131,6 +133,37 @@ Expected expect(const Volume& v, int label, bool merged)
   return e;
 }
 
+/// The axis along which all `points` have the same coordinate (the last such axis), -1 when
+/// there is none or no point.
+int constantAxis(const std::vector<Int3>& points)
+{
+  int axis = -1;
+  for (int d = 0; d < 3 && !points.empty(); ++d)
+  {
+    bool constant = true;
+    for (const Int3& q : points)
+      constant = constant && q[d] == points[0][d];
+    if (constant)
+      axis = d;
+  }
+  return axis;
+}
+
+/// Twice the signed area of the polygon `points`, lying in a plane normal to `axis`, in the
+/// (axis + 1, axis + 2) coordinates (shoelace formula): positive counter-clockwise.
+long long twiceSignedArea(const std::vector<Int3>& points, int axis)
+{
+  const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+  long long area = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const Int3& a = points[i];
+    const Int3& b = points[(i + 1) % points.size()];
+    area += static_cast<long long>(a[ua]) * b[va] - static_cast<long long>(b[ua]) * a[va];
+  }
+  return area;
+}
+
 /// Faces of a Loops output, rasterized per FaceId in grid coordinates (even-odd rule).
 struct Produced
 {
@@ -175,16 +208,10 @@ Produced readFaces(vtkPolyData* out, const Layout& l, double labelFilter)
   for (const auto& entry : loops)
   {
     const Int3& p0 = entry.second.front().p.front();
-    int axis = -1;
-    for (int d = 0; d < 3; ++d)
-    {
-      bool constant = true;
-      for (const Loop& loop : entry.second)
-        for (const Int3& p : loop.p)
-          constant = constant && p[d] == p0[d];
-      if (constant)
-        axis = d;
-    }
+    std::vector<Int3> facePoints;
+    for (const Loop& loop : entry.second)
+      facePoints.insert(facePoints.end(), loop.p.begin(), loop.p.end());
+    const int axis = constantAxis(facePoints);
     if (axis < 0)
     {
       r.exact = false;
@@ -195,12 +222,11 @@ Produced readFaces(vtkPolyData* out, const Layout& l, double labelFilter)
     int sign = 0;
     for (const Loop& loop : entry.second)
     {
-      long long area = 0;
+      const long long area = twiceSignedArea(loop.p, axis);
       for (std::size_t i = 0; i < loop.p.size(); ++i)
       {
         const Int3& a = loop.p[i];
         const Int3& b = loop.p[(i + 1) % loop.p.size()];
-        area += static_cast<long long>(a[ua]) * b[va] - static_cast<long long>(b[ua]) * a[va];
         if (a[ua] == b[ua])
           for (int j = std::min(a[va], b[va]); j < std::max(a[va], b[va]); ++j)
             crossings[j].push_back(a[ua]);
@@ -269,6 +295,93 @@ void checkPolygons(const Volume& v, const Layout& l, int mode, bool merged, cons
   CHECK(fieldValue(out, "NumberOfSurfels") == surfels, what << ": surfels");
   CHECK(fieldValue(out, "NumberOfFaces") == faces, what << ": faces");
   CHECK(fieldValue(out, "NumberOfHoles") == holes, what << ": holes");
+}
+
+/// The plane of a face's cells (normal `axis`, at `position` along it) and twice their area
+/// in grid units.
+struct FacePlaneArea
+{
+  int axis = -1;
+  int position = 0;
+  long long twiceArea = 0;
+  bool operator==(const FacePlaneArea& o) const
+  {
+    return this->axis == o.axis && this->position == o.position && this->twiceArea == o.twiceArea;
+  }
+};
+
+/// Per FaceId of an output: the plane of its cells and their area, from the cells alone (a
+/// hole's loop counts negative); `exact` false when a cell lies in no grid plane or the cells
+/// of one face in two planes. `loopTypes` sums the LoopType of the cells when they are not
+/// loops (the Triangles and Polygons modes, whose cells all have LoopType 0).
+struct FaceAreas
+{
+  std::map<vtkIdType, FacePlaneArea> faces;
+  bool exact = true;
+  long long loopTypes = 0;
+};
+
+FaceAreas faceAreasOf(vtkPolyData* out, const Layout& l, bool fromLoopsMode)
+{
+  FaceAreas r;
+  vtkDataArray* faceIds = out->GetCellData()->GetArray("FaceId");
+  vtkDataArray* loopType = out->GetCellData()->GetArray("LoopType");
+  if (!faceIds || !loopType)
+  {
+    r.exact = false;
+    return r;
+  }
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    out->GetCellPoints(c, ids);
+    std::vector<Int3> p;
+    for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      p.push_back(toGrid(out, ids->GetId(i), l, r.exact));
+    const int axis = constantAxis(p);
+    if (axis < 0)
+    {
+      r.exact = false;
+      continue;
+    }
+    const long long area = std::llabs(twiceSignedArea(p, axis));
+    const bool hole = fromLoopsMode && loopType->GetTuple1(c) != 0;
+    if (!fromLoopsMode)
+      r.loopTypes += static_cast<long long>(loopType->GetTuple1(c));
+    FacePlaneArea& face = r.faces[static_cast<vtkIdType>(faceIds->GetTuple1(c))];
+    if (face.axis < 0)
+    {
+      face.axis = axis;
+      face.position = p[0][axis];
+    }
+    if (face.axis != axis || face.position != p[0][axis])
+      r.exact = false; // the cells of one face in two planes
+    face.twiceArea += hole ? -area : area;
+  }
+  return r;
+}
+
+/// The cells of the Triangles and Polygons modes carry the FaceId of the face they cover:
+/// per FaceId, the same plane and area as the face's loops in Loops mode; LoopType 0.
+void checkFaceIdsOfCells(const Volume& v, const Layout& l, const std::string& what)
+{
+  vtkNew<vtkEVMBoundaryFilter> f;
+  f->SetInputData(makeImage(v, l));
+  f->SetOutputModeToLoops();
+  f->Update();
+  const FaceAreas loops = faceAreasOf(f->GetOutput(), l, true);
+  CHECK(loops.exact, what << ": Loops output off the grid");
+  for (int mode : { vtkEVMBoundaryFilter::TRIANGLES, vtkEVMBoundaryFilter::POLYGONS })
+  {
+    f->SetOutputMode(mode);
+    f->Update();
+    const FaceAreas cells = faceAreasOf(f->GetOutput(), l, false);
+    CHECK(
+      cells.exact, what << " " << f->GetOutputModeAsString() << ": a face's cells off its plane");
+    CHECK(cells.loopTypes == 0, what << " " << f->GetOutputModeAsString() << ": LoopType not 0");
+    CHECK(cells.faces == loops.faces,
+      what << " " << f->GetOutputModeAsString() << ": FaceId, plane or area differ from Loops");
+  }
 }
 
 /// Triangles: closed, oriented outwards (divergence theorem gives +volume), exact area.
@@ -769,6 +882,7 @@ int TestEVMBoundaryFilter(int, char*[])
     checkPolygons(v, l, vtkEVMBoundaryFilter::POSITIVE, trial % 4 == 3, what.str());
     checkPolygons(v, l, vtkEVMBoundaryFilter::LABELS, false, what.str() + " labels");
     checkTriangles(v, l, what.str());
+    checkFaceIdsOfCells(v, l, what.str());
     // The same trial flat (a 2D image): its statistics by the 2D path.
     Int3 flatDims = dims;
     flatDims[trial % 3] = 1;
@@ -787,6 +901,7 @@ int TestEVMBoundaryFilter(int, char*[])
     l.spacing = { 0.5, 1.0, 1.5 };
     checkPolygons(big, l, vtkEVMBoundaryFilter::POSITIVE, false, "64^3");
     checkTriangles(big, l, "64^3");
+    checkFaceIdsOfCells(big, l, "64^3");
   }
   checkErrorsAndDegenerateInputs();
   checkTypesAndLayouts();
