@@ -462,8 +462,9 @@ bool shellsFaceOutward(const LatticeMesh& surface);
 
 namespace detail
 {
-/// For tests of the recursion's point lists and first hulls (see ConvexHullModifier.cxx). Runs
-/// are (lo, hi, y, z): the lattice points (x, y, z) for lo <= x <= hi, maximal, in row order.
+/// For tests of the recursion's point lists and first hulls (see HullPointRuns.h and
+/// PressingIn.cxx). Runs are (lo, hi, y, z): the lattice points (x, y, z) for lo <= x <= hi,
+/// maximal, in row order.
 
 /// The runs of the points of class `cls` (1 object) among x = lo..hi of row (y, z), from the
 /// volume's words; every centre off the grid is background.
