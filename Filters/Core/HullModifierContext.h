@@ -6,7 +6,9 @@
 #ifndef vbr_HullModifierContext_h
 #define vbr_HullModifierContext_h
 
+#include "ConvexHull.h"
 #include "ConvexHullModifier.h"
+#include "LatticeMesh.h"
 
 #include <algorithm>
 #include <array>
@@ -89,10 +91,6 @@ inline bool onTriangle(const LatticePoint& a,
     dot(plane.normal, cross(sub(c, b), sub(p, b))) >= 0 &&
     dot(plane.normal, cross(sub(a, c), sub(p, c))) >= 0;
 }
-
-/// A box that leaves the lattice points' bounds open.
-const LatticeBox kUnbounded{ LatticePoint{ INT64_MIN / 4, INT64_MIN / 4, INT64_MIN / 4 },
-  LatticePoint{ INT64_MAX / 4, INT64_MAX / 4, INT64_MAX / 4 } };
 
 /// Calls f(p) for every lattice point p of the closed triangle t within the box (each once: the
 /// points of the triangle's plane are one per point of its projection along its largest normal

@@ -311,25 +311,6 @@ bool hullsIntersect(const CellList& a, const CellList& b)
 namespace detail
 {
 
-std::array<std::int64_t, 6> boundsOf(const CellList& c)
-{
-  std::array<std::int64_t, 6> b{ c.vertices[0][0],
-    c.vertices[0][0],
-    c.vertices[0][1],
-    c.vertices[0][1],
-    c.vertices[0][2],
-    c.vertices[0][2] };
-  for (const auto& p : c.vertices)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      b[2 * k] = std::min(b[2 * k], p[k]);
-      b[2 * k + 1] = std::max(b[2 * k + 1], p[k]);
-    }
-  }
-  return b;
-}
-
 /// The hull of the points; a flat one is thickened by the points one lattice step off its
 /// plane or line that lie in the parent hull (in its open interior when `strict`).
 bool solidHull(const std::vector<LatticePoint>& points,
@@ -375,18 +356,6 @@ bool missesACorner(const CellList& inside, const CellList& c)
   return std::any_of(c.vertices.begin(),
     c.vertices.end(),
     [&](const LatticePoint& p) { return !hullContains(inside, p); });
-}
-
-/// The bits of word w (x = 64 w .. 64 w + 63) among x = first..last, for a word that meets that
-/// range (first <= last, first >> 6 <= w <= last >> 6).
-Word runMask(std::int64_t w, std::int64_t first, std::int64_t last)
-{
-  Word bits = ~Word(0);
-  if (w == first >> 6)
-    bits &= ~Word(0) << (first & 63);
-  if (w == last >> 6 && (last & 63) != 63)
-    bits &= (Word(1) << ((last & 63) + 1)) - 1;
-  return bits;
 }
 
 /// The lattice points of class `cls` in the hull (its open interior when `strict`), row by row
@@ -507,6 +476,9 @@ std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoi
   return out;
 }
 
+namespace
+{
+
 std::vector<std::array<std::int64_t, 4>> runsOf(const PointRuns& points)
 {
   std::vector<std::array<std::int64_t, 4>> out;
@@ -514,6 +486,8 @@ std::vector<std::array<std::int64_t, 4>> runsOf(const PointRuns& points)
     out.push_back({ r.lo, r.hi, r.y, r.z });
   return out;
 }
+
+} // namespace
 
 std::vector<std::array<std::int64_t, 4>> runsOfRow(const BitVolume& objects,
   bool cls,

@@ -208,7 +208,24 @@ private:
   std::array<std::int64_t, 4> Box{ 0, -1, 0, -1 };
 };
 
-std::array<std::int64_t, 6> boundsOf(const CellList& c);
+inline std::array<std::int64_t, 6> boundsOf(const CellList& c)
+{
+  std::array<std::int64_t, 6> b{ c.vertices[0][0],
+    c.vertices[0][0],
+    c.vertices[0][1],
+    c.vertices[0][1],
+    c.vertices[0][2],
+    c.vertices[0][2] };
+  for (const auto& p : c.vertices)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      b[2 * k] = std::min(b[2 * k], p[k]);
+      b[2 * k + 1] = std::max(b[2 * k + 1], p[k]);
+    }
+  }
+  return b;
+}
 
 /// Calls f(y, z, lo, hi) for every row of the solid hull's box that meets the hull (its open
 /// interior when `strict`), [lo, hi] the x range of its lattice points there. An f that returns
@@ -339,7 +356,15 @@ bool anyPoint(const PointRuns& points, F&& f)
 
 /// The bits of word w (x = 64 w .. 64 w + 63) among x = first..last, for a word that meets that
 /// range (first <= last, first >> 6 <= w <= last >> 6).
-Word runMask(std::int64_t w, std::int64_t first, std::int64_t last);
+inline Word runMask(std::int64_t w, std::int64_t first, std::int64_t last)
+{
+  Word bits = ~Word(0);
+  if (w == first >> 6)
+    bits &= ~Word(0) << (first & 63);
+  if (w == last >> 6 && (last & 63) != 63)
+    bits &= (Word(1) << ((last & 63) + 1)) - 1;
+  return bits;
+}
 
 /// The lattice points of class `cls` in the hull (its open interior when `strict`), row by row
 /// from the volume's words, as runs: every level of the recursion collects its points so.

@@ -578,6 +578,10 @@ void pressInPits(Context& ctx,
   }
 }
 
+/// A box that leaves the lattice points' bounds open.
+const LatticeBox kUnbounded{ LatticePoint{ INT64_MIN / 4, INT64_MIN / 4, INT64_MIN / 4 },
+  LatticePoint{ INT64_MAX / 4, INT64_MAX / 4, INT64_MAX / 4 } };
+
 } // namespace
 
 bool convexDifferenceIsManifold(const CellList& c, const CellList& g)
@@ -714,22 +718,6 @@ std::vector<LatticePoint> sliceCorners(const std::vector<LatticePoint>& ends)
     k = end;
   }
   return corners;
-}
-
-/// The squared distance, scaled by m^2, between the point p / k and the centroid sum / m of a
-/// group of m points (it only orders the candidates).
-__int128 scaledDistance(const LatticePoint& p,
-  std::int64_t k,
-  const LatticePoint& sum,
-  std::int64_t m)
-{
-  __int128 d = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const __int128 e = __int128(m) * p[a] - __int128(k) * sum[a];
-    d += e * e;
-  }
-  return d;
 }
 
 bool EmptyFaceTriangles::next(std::array<LatticePoint, 3>& out)

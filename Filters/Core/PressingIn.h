@@ -48,15 +48,6 @@ std::vector<LatticePoint> rowEnds(const std::vector<LatticePoint>& listed);
 /// run's (the runs of a set are disjoint, so runs in row order list the points in row order).
 std::vector<LatticePoint> rowEnds(const PointRuns& listed);
 
-struct LevelSurface;
-LevelSurface solveLevel(Context& ctx,
-  const CellList& c,
-  const CellList* parent,
-  bool cls,
-  bool pit,
-  int level,
-  int& depth);
-
 /// A lattice triangle on a face of C (counter-clockwise about the face's outer normal), with the
 /// lattice points of its closed area once enumerated, and its distance from the group pressed in.
 struct FaceTriangle
@@ -72,10 +63,19 @@ struct FaceTriangle
 
 /// The squared distance, scaled by m^2, between the point p / k and the centroid sum / m of a
 /// group of m points (it only orders the candidates).
-__int128 scaledDistance(const LatticePoint& p,
+inline __int128 scaledDistance(const LatticePoint& p,
   std::int64_t k,
   const LatticePoint& sum,
-  std::int64_t m);
+  std::int64_t m)
+{
+  __int128 d = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const __int128 e = __int128(m) * p[a] - __int128(k) * sum[a];
+    d += e * e;
+  }
+  return d;
+}
 
 /// The empty lattice triangles on the surface of a solid hull (no lattice point but their
 /// corners), nearest to a group of points first: its faces are fanned, and a triangle holding

@@ -1466,16 +1466,6 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
   return shells;
 }
 
-long eulerCharacteristic(const LatticeMesh& m)
-{
-  return static_cast<long>(m.points.size()) - static_cast<long>(m.triangles.size()) / 2;
-}
-
-std::size_t gridIndex(const Dims& d, const LatticePoint& p)
-{
-  return (static_cast<std::size_t>(p[2]) * d[1] + p[1]) * d[0] + p[0];
-}
-
 /// Flags (value `flag`) the lattice points of the grid strictly enclosed by a closed shell (ray
 /// parity) and, with `onFlag`, those on it; only the shell's box is scanned.
 void markShell(const LatticeMesh& shell,

@@ -43,9 +43,15 @@ struct Shell
 
 std::vector<Shell> shellsOf(const LatticeMesh& m);
 
-long eulerCharacteristic(const LatticeMesh& m);
+inline long eulerCharacteristic(const LatticeMesh& m)
+{
+  return static_cast<long>(m.points.size()) - static_cast<long>(m.triangles.size()) / 2;
+}
 
-std::size_t gridIndex(const Dims& d, const LatticePoint& p);
+inline std::size_t gridIndex(const Dims& d, const LatticePoint& p)
+{
+  return (static_cast<std::size_t>(p[2]) * d[1] + p[1]) * d[0] + p[0];
+}
 
 /// Flags (value `flag`) the lattice points of the grid strictly enclosed by a closed shell (ray
 /// parity) and, with `onFlag`, those on it; only the shell's box is scanned.
