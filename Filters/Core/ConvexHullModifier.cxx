@@ -1,8 +1,8 @@
 // The modifier's driver (ConvexHullModifier.h explains the method): the vertex candidates and
 // their convex hull, the dispatch to flat objects, the pressing-in passes with their checks
 // and topology repair, the object's parts solved apart, and H's faces and marks. The steps
-// live in HullPointRuns, PressingIn, BackgroundComponents, PolyhedronReversion, TopologyRepair,
-// FlatObjects and HullFaces.
+// live in HullPointRuns, HullIntersection, PressingIn, BackgroundComponents, PolyhedronReversion,
+// TopologyRepair, FlatObjects and HullFaces.
 #include "ConvexHullModifier.h"
 
 #include "BackgroundComponents.h"

@@ -447,6 +447,7 @@ bool convexDifferenceIsManifold(const CellList& c, const CellList& g);
 /// Minkowski difference A - B, so its axis separates only where a face normal does too (the
 /// pressing-in tests its groups' and regions' hulls pairwise, and the edge pairs were most of
 /// that on the aneurism). The test checks it against all the pairs on random lattice hulls.
+/// (HullIntersection.cxx)
 bool hullsIntersect(const CellList& a, const CellList& b);
 
 /// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).

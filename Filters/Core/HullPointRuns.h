@@ -3,9 +3,7 @@
 // class in its hull C. The hull's planes are arranged for scanning its rows along x (RowScan:
 // the slice's box leaves most planes of a large hull out of its rows), the points are kept as
 // maximal runs along rows read from the volume's words (PointRuns), and they are grouped into
-// face- or vertex-connected components a run at a time. Also here: the flat hull thickened into
-// a solid, and the exact separating axis test of two hulls (hullsIntersect), which the grouping
-// of points and regions asks pairwise.
+// face- or vertex-connected components a run at a time.
 #ifndef vbr_HullPointRuns_h
 #define vbr_HullPointRuns_h
 
@@ -268,19 +266,6 @@ void forEachPointIn(const CellList& c, bool strict, F&& f)
         f(LatticePoint{ x, y, z });
     });
 }
-
-/// The hull of the points; a flat one is thickened by the points one lattice step off its
-/// plane or line that lie in the parent hull (in its open interior when `strict`).
-bool solidHull(const std::vector<LatticePoint>& points,
-  const CellList& parent,
-  bool strict,
-  CoplanarFaces coplanar,
-  CellList& out);
-
-/// Whether a hull inside the closed C misses a corner of C, that is (C being the hull of its
-/// lattice corners) whether it holds fewer lattice points than C: the lattice count of the
-/// hulls strictly decreases from level to level, so the recursion ends.
-bool missesACorner(const CellList& inside, const CellList& c);
 
 /// A run of lattice points along a row: (x, y, z) for lo <= x <= hi.
 struct Run

@@ -2,6 +2,7 @@
 #include "PressingIn.h"
 
 #include "Geometry.h"
+#include "HullIntersection.h"
 #include "HullPointRuns.h"
 #include "UnionFind.h"
 
