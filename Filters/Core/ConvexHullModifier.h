@@ -447,6 +447,7 @@ bool convexDifferenceIsManifold(const CellList& c, const CellList& g);
 /// Minkowski difference A - B, so its axis separates only where a face normal does too (the
 /// pressing-in tests its groups' and regions' hulls pairwise, and the edge pairs were most of
 /// that on the aneurism). The test checks it against all the pairs on random lattice hulls.
+/// (HullIntersection.cxx)
 bool hullsIntersect(const CellList& a, const CellList& b);
 
 /// The lattice points of the grid of `dims` on the surface (exactly on one of its triangles).
@@ -462,8 +463,9 @@ bool shellsFaceOutward(const LatticeMesh& surface);
 
 namespace detail
 {
-/// For tests of the recursion's point lists and first hulls (see ConvexHullModifier.cxx). Runs
-/// are (lo, hi, y, z): the lattice points (x, y, z) for lo <= x <= hi, maximal, in row order.
+/// For tests of the recursion's point lists and first hulls (see HullPointRuns.h and
+/// PressingIn.cxx). Runs are (lo, hi, y, z): the lattice points (x, y, z) for lo <= x <= hi,
+/// maximal, in row order.
 
 /// The runs of the points of class `cls` (1 object) among x = lo..hi of row (y, z), from the
 /// volume's words; every centre off the grid is background.
