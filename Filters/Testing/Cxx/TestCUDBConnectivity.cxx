@@ -1521,7 +1521,7 @@ public:
 };
 
 // Whether the filter's cache keeps released blocks: not under AddressSanitizer, where it keeps
-// none so that a use of a freed output stays detectable (vtkCUDBConnectivity.cxx).
+// none so that a use of a freed output stays detectable (BlockCache.cxx).
 #if defined(VBR_ADDRESS_SANITIZER)
 constexpr bool CacheKeepsBlocks = false;
 #else
