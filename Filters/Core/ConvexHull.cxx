@@ -15,20 +15,9 @@ using Index = std::uint32_t;
 constexpr std::int32_t NoFace = -1;
 constexpr std::int32_t Processed = -2;
 
-LatticePoint sub(const LatticePoint& a, const LatticePoint& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-
-LatticePoint cross(const LatticePoint& a, const LatticePoint& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-
-__int128 dot(const LatticePoint& a, const LatticePoint& b)
-{
-  return __int128(a[0]) * b[0] + __int128(a[1]) * b[1] + __int128(a[2]) * b[2];
-}
+using detail::cross;
+using detail::dot;
+using detail::sub;
 
 std::int64_t gcd64(std::int64_t a, std::int64_t b)
 {

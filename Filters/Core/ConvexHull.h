@@ -60,6 +60,24 @@ namespace vbr
 
 using LatticePoint = std::array<std::int64_t, 3>;
 
+namespace detail
+{
+/// Lattice vector arithmetic shared by the hull and its modifier (ConvexHull.cxx,
+/// LatticeArithmetic.h); the dot product in 128 bits.
+inline LatticePoint sub(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+inline __int128 dot(const LatticePoint& a, const LatticePoint& b)
+{
+  return __int128(a[0]) * b[0] + __int128(a[1]) * b[1] + __int128(a[2]) * b[2];
+}
+inline LatticePoint cross(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+} // namespace detail
+
 /// The paper's three ways of treating a face coplanar with the new point (section 3.1).
 enum class CoplanarFaces
 {

@@ -1,7 +1,7 @@
 // Exact integer arithmetic on lattice points for the convex hull modifier's files (the products
-// in 128 bits where they can leave 64): floor and ceiling division, differences, dot and cross
-// products, the grid's bounds, the class of a voxel centre (everything off the grid is
-// background), points strictly inside a hull or on a triangle, and the lattice points of a
+// in 128 bits where they can leave 64): floor and ceiling division (differences, dot and cross
+// products are ConvexHull.h's), the grid's bounds, the class of a voxel centre (everything off the
+// grid is background), points strictly inside a hull or on a triangle, and the lattice points of a
 // triangle. Internal to the modifier's files, like HullModifierContext.h, which includes it.
 #ifndef vbr_LatticeArithmetic_h
 #define vbr_LatticeArithmetic_h
@@ -36,21 +36,6 @@ inline std::int64_t floorDiv(std::int64_t a, std::int64_t b)
 inline std::int64_t ceilDiv(std::int64_t a, std::int64_t b)
 {
   return -floorDiv(-a, b);
-}
-
-inline LatticePoint sub(const LatticePoint& a, const LatticePoint& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-
-inline __int128 dot(const LatticePoint& a, const LatticePoint& b)
-{
-  return __int128(a[0]) * b[0] + __int128(a[1]) * b[1] + __int128(a[2]) * b[2];
-}
-
-inline LatticePoint cross(const LatticePoint& a, const LatticePoint& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
 }
 
 inline bool inGrid(const Dims& d, const LatticePoint& p)
