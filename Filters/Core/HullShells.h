@@ -25,7 +25,8 @@ namespace detail
 {
 
 /// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive,
-/// the products taken in `Wide` (std::int64_t only where they fit: see rayCrossings).
+/// the products taken in `Wide` (std::int64_t only where they fit: see rayCrossings in
+/// PolyhedronReversion.cxx).
 template<typename Wide>
 int perturbedOrientationIn(const LatticePoint& u,
   const LatticePoint& v,
