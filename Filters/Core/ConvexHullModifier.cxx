@@ -9,6 +9,7 @@
 #include "FlatObjects.h"
 #include "HullFaces.h"
 #include "HullPointRuns.h"
+#include "HullShells.h"
 #include "PolyhedronReversion.h"
 #include "PressingIn.h"
 #include "TopologyRepair.h"

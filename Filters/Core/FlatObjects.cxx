@@ -4,9 +4,9 @@
 #include "ConvexHullModifier2D.h"
 #include "HullFaces.h"
 #include "HullPointRuns.h"
+#include "HullShells.h"
 #include "LatticeBasis.h"
 #include "PolyhedronReversion.h"
-#include "TopologyRepair.h"
 
 #include <algorithm>
 #include <array>

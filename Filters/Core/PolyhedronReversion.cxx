@@ -2,7 +2,7 @@
 #include "PolyhedronReversion.h"
 
 #include "HullPointRuns.h"
-#include "TopologyRepair.h"
+#include "HullShells.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -249,6 +249,65 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
       static_cast<std::int32_t>(p[2]),
       !std::binary_search(backgroundOnSurface.begin(), backgroundOnSurface.end(), p));
   return out;
+}
+
+ShellInBox shellInItsBox(const LatticeMesh& shell)
+{
+  ShellInBox s;
+  s.lo = shell.points[0];
+  LatticePoint hi = s.lo;
+  for (const auto& p : shell.points)
+    for (int k = 0; k < 3; ++k)
+    {
+      s.lo[k] = std::min(s.lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  LatticeMesh local = shell;
+  for (auto& p : local.points)
+    p = sub(p, s.lo);
+  s.box = { static_cast<std::int32_t>(hi[0] - s.lo[0] + 1),
+    static_cast<std::int32_t>(hi[1] - s.lo[1] + 1),
+    static_cast<std::int32_t>(hi[2] - s.lo[2] + 1) };
+  s.on = latticePointsOnSurface(local, s.box);
+  s.inside = revertWithPointsOn(local, s.on, s.on, s.box);
+  return s;
+}
+
+/// Flags (value `flag`) the lattice points of the grid strictly enclosed by a closed shell (ray
+/// parity) and, with `onFlag`, those on it; only the shell's box is scanned.
+void markShell(const LatticeMesh& shell,
+  const Dims& d,
+  std::uint8_t flag,
+  std::uint8_t onFlag,
+  std::vector<std::uint8_t>& out)
+{
+  const ShellInBox s = shellInItsBox(shell);
+  const LatticePoint& lo = s.lo;
+  const Dims& box = s.box;
+  const std::vector<LatticePoint>& on = s.on;
+  const BitVolume& inside = s.inside;
+  // The inside's words scanned for their set bits: most of a large shell's box is outside it.
+  // All wordsPerRow() words of a row: their padding bits (x >= box[0]) are 0, as
+  // revertWithPointsOn sets bits only of centres in the box.
+  for (std::int32_t z = 0; z < box[2]; ++z)
+    for (std::int32_t y = 0; y < box[1]; ++y)
+    {
+      const Word* row = inside.row(y, z);
+      for (std::size_t w = 0; w < inside.wordsPerRow(); ++w)
+        for (Word bits = row[w]; bits != 0; bits &= bits - 1)
+        {
+          const auto x = static_cast<std::int64_t>(64 * w) + __builtin_ctzll(bits);
+          const LatticePoint p{ x + lo[0], y + lo[1], z + lo[2] };
+          if (inGrid(d, p))
+            out[gridIndex(d, p)] = flag;
+        }
+    }
+  for (const auto& q : on)
+  {
+    const LatticePoint p{ q[0] + lo[0], q[1] + lo[1], q[2] + lo[2] };
+    if (onFlag && inGrid(d, p))
+      out[gridIndex(d, p)] = onFlag;
+  }
 }
 
 /// Whether H separates: a closed embedded 2-manifold, each shell oriented away from its solid

@@ -2,12 +2,14 @@
 // alone): the centres strictly inside H, found row by row from exact ray crossings with a
 // symbolic perturbation, and the centres on H that are not marked background. Also the
 // separation check that every H is held to: a closed embedded 2-manifold, each shell facing
-// away from its solid, whose reversion is exactly the object.
+// away from its solid, whose reversion is exactly the object. And the reversion of one shell in
+// its own box (markShell), which topology repair and flat layers flag the grid's points with.
 #ifndef vbr_PolyhedronReversion_h
 #define vbr_PolyhedronReversion_h
 
 #include "HullModifierContext.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -16,36 +18,6 @@ namespace vbr
 namespace detail
 {
 
-/// Sign of orient2D(u, v, q + (delta, delta^2)) in (y, z), delta infinitesimal and positive,
-/// the products taken in `Wide` (std::int64_t only where they fit: see rayCrossings).
-template<typename Wide>
-int perturbedOrientationIn(const LatticePoint& u,
-  const LatticePoint& v,
-  std::int64_t y,
-  std::int64_t z)
-{
-  const Wide o = Wide(v[1] - u[1]) * (z - u[2]) - Wide(v[2] - u[2]) * (y - u[1]);
-  if (o != 0)
-    return o > 0 ? 1 : -1;
-  if (v[2] != u[2])
-    return v[2] > u[2] ? -1 : 1;
-  return v[1] > u[1] ? 1 : -1;
-}
-
-/// Whether the ray from (y, z) along +x, perturbed as in perturbedOrientationIn, meets the
-/// triangle abc, s the sign of its normal's x component (the orientation of abc in (y, z)).
-template<typename Wide>
-bool rayMeetsTriangle(const LatticePoint& a,
-  const LatticePoint& b,
-  const LatticePoint& c,
-  std::int64_t y,
-  std::int64_t z,
-  int s)
-{
-  return perturbedOrientationIn<Wide>(a, b, y, z) == s &&
-    perturbedOrientationIn<Wide>(b, c, y, z) == s && perturbedOrientationIn<Wide>(c, a, y, z) == s;
-}
-
 /// revertModifiedHull with the lattice points on the surface (latticePointsOnSurface) given:
 /// the whole-H check and the shells' marks list them anyway. Only bits of centres in the grid
 /// are set (x < dims[0]: the words' padding bits stay 0).
@@ -53,6 +25,31 @@ BitVolume revertWithPointsOn(const LatticeMesh& surface,
   const std::vector<LatticePoint>& on,
   const std::vector<LatticePoint>& backgroundOnSurface,
   const Dims& dims);
+
+/// A closed shell in its own box (lo its least corner, a lattice point p at p - lo there): the
+/// box's lattice points on the shell and those strictly inside it (ray parity).
+struct ShellInBox
+{
+  LatticePoint lo;
+  Dims box;
+  std::vector<LatticePoint> on;
+  BitVolume inside;
+};
+
+ShellInBox shellInItsBox(const LatticeMesh& shell);
+
+inline std::size_t gridIndex(const Dims& d, const LatticePoint& p)
+{
+  return (static_cast<std::size_t>(p[2]) * d[1] + p[1]) * d[0] + p[0];
+}
+
+/// Flags (value `flag`) the lattice points of the grid strictly enclosed by a closed shell (ray
+/// parity) and, with `onFlag`, those on it; only the shell's box is scanned.
+void markShell(const LatticeMesh& shell,
+  const Dims& d,
+  std::uint8_t flag,
+  std::uint8_t onFlag,
+  std::vector<std::uint8_t>& out);
 
 /// Whether H separates: a closed embedded 2-manifold, each shell oriented away from its solid
 /// (the joins turn parts of H over and back; shellsFaceOutward, exact), from which the voxel
