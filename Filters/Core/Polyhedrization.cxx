@@ -53,11 +53,39 @@ constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 /// How far ahead a walk over a list of surfels prefetches their entries.
 constexpr std::size_t PrefetchAhead = 8;
 
-std::array<int, 3> signsOf(const Surfel& s)
+/// The sign vector of a surfel's normal (its sign on its axis, 0 elsewhere), from a table:
+/// writing one element picked by index and reading the array back whole stalled on the store.
+const std::array<int, 3>& signsOf(const Surfel& s)
 {
-  std::array<int, 3> signs{ 0, 0, 0 };
-  signs[s.axis()] = s.sign();
-  return signs;
+  static constexpr std::array<int, 3> Signs[6] = {
+    { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 }
+  };
+  return Signs[s.direction];
+}
+
+/// Reads ahead of a walk over faces (their numbers `faces(i)`, i < count) that reads each
+/// face's record, its surfel list and the graph's entries of its surfels, at the walk's face i:
+/// the record of the face 4 on, the list of the face 2 on and the first surfels' entries of the
+/// next face (`entries(s)` prefetches those of surfel s). Most faces are small (7 surfels on 50 %
+/// noise), so the read-ahead within one face's list alone never started for them, and the
+/// faces, taken by size, lie far apart. (prefetchKept: GCC 12 dropped these hints otherwise.)
+template<typename FaceAt, typename Entries>
+void prefetchFaces(const Polyhedron& poly,
+  std::size_t i,
+  std::size_t count,
+  FaceAt faces,
+  Entries entries)
+{
+  if (i + 4 < count)
+    prefetchKept(&poly.faces[faces(i + 4)]);
+  if (i + 2 < count)
+    prefetchKept(poly.faces[faces(i + 2)].surfels.data());
+  if (i + 1 < count)
+  {
+    const std::vector<std::uint32_t>& next = poly.faces[faces(i + 1)].surfels;
+    for (std::size_t j = 0; j < std::min(next.size(), PrefetchAhead); ++j)
+      entries(next[j]);
+  }
 }
 
 /// Which edges of surfel s face f shares (its neighbour across them is of f), and how many.
@@ -277,6 +305,8 @@ private:
           this->Wave.begin(), this->Wave.begin() + static_cast<std::ptrdiff_t>(head));
         head = 0;
       }
+      if (head + WaveAhead < this->Wave.size())
+        this->prefetchDiskTest(this->Wave[head + WaveAhead].first);
       const auto [s, depth] = this->Wave[head++];
       this->Queued[s] = None;
       if (this->FaceOf[s] != None || this->Refused[s] == f)
@@ -302,6 +332,23 @@ private:
     for (; head < this->Wave.size(); ++head)
       this->Queued[this->Wave[head].first] = None;
     this->Wave.clear();
+  }
+
+  /// How many queue entries ahead drainWave reads for the disk test.
+  static constexpr std::size_t WaveAhead = 4;
+
+  /// Reads ahead for the disk test of surfel s, a few entries on in the queue: the faces of
+  /// its neighbours and the stamps of its vertices. Its own entries (neighbours, vertices) were
+  /// read ahead when it was queued (take), so they are at hand now; without this the test
+  /// waited for each neighbour's face, rows of voxels away in the array, one after the other.
+  void prefetchDiskTest(std::uint32_t s) const
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      prefetchKept(&this->FaceOf[this->Graph.neighbourOf(s, k)]);
+      if (this->Growing)
+        prefetchKept(&this->Touching[this->Graph.vertexOf(s, k)]);
+    }
   }
 
 public:
@@ -782,6 +829,16 @@ std::size_t movesInPart(const SurfelGraph& graph,
     poll.at(double(i) / double(order.size()));
     if (!poll.tick())
       return moved;
+    prefetchFaces(
+      poly,
+      i,
+      order.size(),
+      [&](std::size_t at) { return order[at]; },
+      [&](std::uint32_t s)
+      {
+        prefetchKept(&faceOf[s]);
+        prefetchKept(&graph.neighbour[4 * std::size_t(s)]);
+      });
     if (size[f] == 0)
       continue;
     StandardFace& face = poly.faces[f];
@@ -1202,7 +1259,8 @@ bool traceLoops(const SurfelGraph& graph,
 {
   LoopTracer tracer(graph, across);
   std::vector<std::size_t> lengths(out.faces.size()), first(out.faces.size());
-  auto overFaces = [&](const Execution& e, auto step)
+  // Both steps read each surfel's neighbours and the faces beyond; the second its vertices too.
+  auto overFaces = [&](const Execution& e, bool vertices, auto step)
   {
     return forEachPart(e,
       parts,
@@ -1213,13 +1271,25 @@ bool traceLoops(const SurfelGraph& graph,
           poll.at(double(i) / double(part.faces.size()));
           if (!poll.tick())
             return false;
+          prefetchFaces(
+            out,
+            i,
+            part.faces.size(),
+            [&](std::size_t at) { return part.faces[at]; },
+            [&](std::uint32_t s)
+            {
+              prefetchKept(&graph.neighbour[4 * std::size_t(s)]);
+              if (vertices)
+                prefetchKept(&graph.vertex[4 * std::size_t(s)]);
+            });
           step(part.faces[i]);
         }
         return true;
       });
   };
-  if (!overFaces(
-        exec.within(0.0, 0.2), [&](std::uint32_t f) { lengths[f] = tracer.loopLength(out, f); }))
+  if (!overFaces(exec.within(0.0, 0.2),
+        false,
+        [&](std::uint32_t f) { lengths[f] = tracer.loopLength(out, f); }))
     return false;
   std::size_t edges = 0;
   for (std::size_t f = 0; f < lengths.size(); ++f)
@@ -1230,6 +1300,7 @@ bool traceLoops(const SurfelGraph& graph,
   out.loopVertices.resize(edges);
   out.loopAcross.resize(across ? edges : 0);
   if (!overFaces(exec.within(0.2, 1.0),
+        true,
         [&](std::uint32_t f)
         {
           tracer.trace(out,

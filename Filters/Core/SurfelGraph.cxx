@@ -220,15 +220,20 @@ struct SharedEdgeTable
 /// reads it). A neighbour in another row of voxels (one step in y, z or both) is searched from
 /// the last one found in that row: the surfels come in order along x, so their neighbours in a
 /// row do too, a few surfels on (the walk of RowIndex::find, not a binary search of the row).
+/// The pairing is symmetric (t is across edge k of s with its edge j exactly when s is across
+/// edge j of t with its edge k: the rule of neighbourKey pairs the two surfels of a linel), so
+/// a link found from s to a later surfel t of the same range is written for t too, and t's
+/// search for it is skipped: each linel is searched for once, not twice.
 void linkNeighbours(const VoxelSet& set,
   const RowIndex& index,
   const Execution& exec,
   SurfelGraph& out)
 {
+  // Not a link: surfels are numbered below 2^30 - 1, so no link is all ones.
   constexpr std::uint32_t None = ~std::uint32_t(0);
   static const SharedEdgeTable table;
   const std::size_t n = out.surfels.size();
-  out.neighbour.resize(4 * n);
+  out.neighbour.assign(4 * n, None);
   exec.forWork(static_cast<std::int64_t>(n))
     .forRange(static_cast<std::int64_t>(n),
       [&](std::int64_t b, std::int64_t e)
@@ -238,6 +243,8 @@ void linkNeighbours(const VoxelSet& set,
         for (auto s = static_cast<std::uint32_t>(b); s < e; ++s)
           for (int k = 0; k < 4; ++k)
           {
+            if (out.neighbour[4 * s + k] != None)
+              continue; // linked from the other side, by an earlier surfel of this range
             const Surfel& sf = out.surfels[s];
             const SurfelKey key = neighbourKey(set, sf, k);
             const int row = 3 * (key.voxel[2] - sf.voxel[2] + 1) + (key.voxel[1] - sf.voxel[1] + 1);
@@ -249,6 +256,8 @@ void linkNeighbours(const VoxelSet& set,
             if (j < 0)
               throw std::logic_error("neighbouring surfels do not share their linel");
             out.neighbour[4 * s + k] = SurfelGraph::link(static_cast<std::uint32_t>(id), j);
+            if (id > s && id < e) // a later surfel of this range: its link back, found
+              out.neighbour[4 * std::size_t(id) + j] = SurfelGraph::link(s, k);
             recent[row] = static_cast<std::uint32_t>(id);
           }
       });

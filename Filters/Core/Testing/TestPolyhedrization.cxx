@@ -1144,6 +1144,52 @@ TEST(SurfelGraph, VerticesAreGluedCornersAndTheGraphIsCompact)
     }
 }
 
+/// The graph's links against the pairing rule, found here from the corners alone: the surfel
+/// across edge a -> b of s is the one surfel with an edge b -> a, or, at a linel of four
+/// surfels (two voxels diagonal across it), the one of those two that bounds s's own voxel;
+/// the shared edge is that edge. On one thread and on three, where a link found from one side
+/// is also written for the other side when both surfels are of the same range of surfels.
+void expectLinksFollowThePairingRule(const vbr::SurfelGraph& g)
+{
+  std::map<std::pair<Point3, Point3>, std::vector<std::pair<std::uint32_t, int>>> edges;
+  for (std::uint32_t u = 0; u < g.size(); ++u)
+    for (int j = 0; j < 4; ++j)
+      edges[{ g.cornerOf(u, j), g.cornerOf(u, (j + 1) % 4) }].emplace_back(u, j);
+  for (std::uint32_t s = 0; s < g.size(); ++s)
+    for (int k = 0; k < 4; ++k)
+    {
+      const auto& across = edges.at({ g.cornerOf(s, (k + 1) % 4), g.cornerOf(s, k) });
+      ASSERT_TRUE(across.size() == 1 || across.size() == 2) << "linel of surfel " << s;
+      std::pair<std::uint32_t, int> expected = across[0];
+      if (across.size() == 2)
+        expected = g.surfels[across[1].first].voxel == g.surfels[s].voxel ? across[1] : across[0];
+      ASSERT_TRUE(across.size() == 1 || g.surfels[expected.first].voxel == g.surfels[s].voxel)
+        << "no surfel of the own voxel at a linel of four, surfel " << s;
+      ASSERT_EQ(g.neighbourOf(s, k), expected.first) << "surfel " << s << " edge " << k;
+      ASSERT_EQ(g.sharedEdge(s, k), expected.second) << "surfel " << s << " edge " << k;
+    }
+}
+
+TEST(SurfelGraph, LinksFollowThePairingRule)
+{
+  unsigned seed = 70;
+  for (const Point3 d : { Point3{ 6, 5, 7 }, Point3{ 12, 9, 10 } })
+    for (double density : { 0.2, 0.5, 0.8 })
+    {
+      SCOPED_TRACE("seed " + std::to_string(seed));
+      vbr::SurfelGraph g;
+      ASSERT_TRUE(vbr::buildSurfelGraph(bf::randomVolume(d, density, seed++), vbr::Execution(), g));
+      expectLinksFollowThePairingRule(g);
+    }
+  // Past 2^15 surfels the links are made in ranges on threads: a link written for the other
+  // side must stay within its range and be the one that side would find.
+  vbr::SurfelGraph large;
+  ASSERT_TRUE(vbr::buildSurfelGraph(
+    bf::randomVolume({ 40, 36, 34 }, 0.5, 41), bf::threadedExecution(3), large));
+  ASSERT_GT(large.size(), std::size_t(1) << 15);
+  expectLinksFollowThePairingRule(large);
+}
+
 // The reversion into a grid too small for the faces: an error that names the grid, not a
 // write outside it.
 TEST(Polyhedrization, RevertIntoTooSmallAGrid)
