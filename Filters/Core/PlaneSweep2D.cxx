@@ -57,15 +57,37 @@ constexpr std::uint32_t Unset = std::numeric_limits<std::uint32_t>::max();
 /// beyond it the grid wins (feyn, 282,760 vertices, 2.2 per word, 9.5 against 15 ms;
 /// pageseg2 and scots-frag, 555,042 and 577,326: 24 against 35 and 26 against 32-36 ms).
 
-/// An oriented edge between two corners, by their numbers (16 bytes: the domino step reads
-/// the edges in no order of memory, the fewer cache lines the better).
-struct Edge
+/// An oriented edge between two corners, by their numbers, kept as two records of 8 bytes
+/// each in arrays of their own: what the domino step follows (EdgeLink: where the edge starts
+/// and the next edge of its loop) apart from what only the first sweep and the pairing at
+/// non-manifold vertices read (EdgeEnd). The domino step reads the links in no order of
+/// memory: eight of them to a cache line rather than four of whole 16-byte edges, so the
+/// same reads ahead cover twice the edges (on the 6001^2 maze the wait for the next edge fell
+/// from about 24 % to 11 % of an update's samples; README, round "Edge links apart").
+struct EdgeLink
 {
   std::uint32_t from = Unset;
+  int next = -1; ///< following edge of its loop, Unlinked, or visitedMark(its loop) once passed
+};
+
+struct EdgeEnd
+{
   std::uint32_t to = Unset;
   int interval = -1; ///< a section interval of the face on the edge's left
-  int next = -1;     ///< following edge of the loop (domino)
 };
+
+/// EdgeLink::next of an edge no corner has linked yet (an open contour if it stays so).
+constexpr int Unlinked = -1;
+
+/// EdgeLink::next of an edge the domino step has put in loop `loop`, and back.
+constexpr int visitedMark(std::size_t loop)
+{
+  return -2 - static_cast<int>(loop);
+}
+constexpr int loopOfMark(int mark)
+{
+  return -2 - mark;
+}
 
 /// An end point of an interval of the active section and the horizontal edge it draws.
 struct SectionEnd
@@ -207,7 +229,7 @@ public:
     Boundary2D out;
     out.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out);
-    reserveHugePages(out.points, this->Edges.size());
+    reserveHugePages(out.points, this->Links.size());
     this->orderEdgesIntoLoops(
       out, [&](std::uint32_t c) { out.points.push_back(this->Corners[c]); });
     this->classifyContours(out);
@@ -243,7 +265,7 @@ public:
       this->checkEveryColumnNumbered(out.columns);
     out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
-    reserveHugePages(out.loopCorners, this->Edges.size());
+    reserveHugePages(out.loopCorners, this->Links.size());
     this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
     this->classifyContours(out.boundary);
     out.corners.swap(this->Corners); // empty when numbered by column
@@ -258,12 +280,14 @@ private:
     // Every extreme vertex is the corner where one edge starts (a non-manifold vertex starts
     // two, and only then does the array grow): growing it from empty would copy the edges
     // about twice.
-    this->Edges.reserve(static_cast<std::size_t>(end - begin));
+    this->Links.reserve(static_cast<std::size_t>(end - begin));
+    this->Ends.reserve(static_cast<std::size_t>(end - begin));
     if (this->ColumnNext.empty())
       this->Corners.reserve(static_cast<std::size_t>(end - begin));
     // Huge pages under the edges, which the domino step reads in no order of memory: a miss in
     // the cache then rarely misses in the TLB as well.
-    adviseHugePages(this->Edges.data(), this->Edges.capacity() * sizeof(Edge), HugePageBytes);
+    adviseHugePages(this->Links.data(), this->Links.capacity() * sizeof(EdgeLink), HugePageBytes);
+    adviseHugePages(this->Ends.data(), this->Ends.capacity() * sizeof(EdgeEnd), HugePageBytes);
     this->reserveIntervals(static_cast<std::size_t>(end - begin));
     while (begin != end)
     {
@@ -318,28 +342,30 @@ private:
   /// Starts an edge at corner c; `outgoing` says whether it leaves or enters c.
   int startEdge(std::uint32_t c, bool outgoing, int interval)
   {
-    Edge e;
-    (outgoing ? e.from : e.to) = c;
-    e.interval = interval;
+    EdgeLink link;
+    EdgeEnd end;
+    (outgoing ? link.from : end.to) = c;
+    end.interval = interval;
     // Edges are numbered by int (their links and the non-manifold pairs): refuse, not wrap.
-    if (this->Edges.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    if (this->Links.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
       throw std::length_error("planeSweep2D: 2^31 - 1 edges or more");
-    this->Edges.push_back(e);
-    return static_cast<int>(this->Edges.size()) - 1;
+    this->Links.push_back(link);
+    this->Ends.push_back(end);
+    return static_cast<int>(this->Links.size()) - 1;
   }
   void finishEdge(int e, std::uint32_t c)
   {
-    Edge& edge = this->Edges[e];
-    (edge.from == Unset ? edge.from : edge.to) = c;
+    std::uint32_t& from = this->Links[e].from;
+    (from == Unset ? from : this->Ends[e].to) = c;
   }
   /// Links the two edges meeting at an ordinary corner c: the one entering it is followed by
   /// the one leaving it.
   void link(int a, int b, std::uint32_t c)
   {
-    if (this->Edges[a].to == c)
-      this->Edges[a].next = b;
+    if (this->Ends[a].to == c)
+      this->Links[a].next = b;
     else
-      this->Edges[b].next = a;
+      this->Links[b].next = a;
   }
 
   /// The open intervals and edges while a cut is merged with the active section: what the
@@ -580,7 +606,7 @@ private:
     {
       int in[2], out[2], ni = 0, no = 0, inReach[2], outReach[2];
       for (int j = 0; j < 4; ++j)
-        if (this->Edges[nmv.edges[j]].to == nmv.at)
+        if (this->Ends[nmv.edges[j]].to == nmv.at)
         {
           inReach[ni] = j;
           in[ni++] = nmv.edges[j];
@@ -593,15 +619,15 @@ private:
       if (ni != 2 || no != 2)
         throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
       const bool sameFace =
-        this->find(this->Edges[in[0]].interval) == this->find(this->Edges[in[1]].interval);
+        this->find(this->Ends[in[0]].interval) == this->find(this->Ends[in[1]].interval);
       for (int k = 0; k < 2; ++k)
       {
-        const Edge& a = this->Edges[in[k]];
+        const EdgeEnd& a = this->Ends[in[k]];
         int chosen = -1;
         for (int m = 0; m < 2; ++m)
         {
           const int o = out[m];
-          const Edge& b = this->Edges[o];
+          const EdgeEnd& b = this->Ends[o];
           if (sameFace)
           {
             // The directions of a (towards the vertex) and b (away from it).
@@ -617,7 +643,7 @@ private:
         }
         if (chosen < 0)
           throw std::logic_error("planeSweep2D: no continuation at a non-manifold vertex");
-        this->Edges[in[k]].next = chosen;
+        this->Links[in[k]].next = chosen;
       }
     }
   }
@@ -668,7 +694,7 @@ private:
       sorted[n] = this->Corners[c];
     }
     this->Corners.swap(sorted);
-    for (Edge& e : this->Edges)
+    for (EdgeLink& e : this->Links)
       e.from = number[e.from];
   }
 
@@ -707,9 +733,10 @@ private:
   /// The domino step (Ayala & Vergara, end of section 3.1): each contour's edges, already linked
   /// corner to corner, are followed into loops, each keeping its face on the left; emit gets
   /// the corner each edge starts at. A loop visits its edges in no order of memory (a long
-  /// loop jumps across the whole sweep at every step), so each edge is read once and marked in
-  /// place: its interval, no longer needed, becomes its loop (loopOfEdge), without a second
-  /// array to miss in.
+  /// loop jumps across the whole sweep at every step), so each edge's link is read once and
+  /// marked in place: its next edge, read, becomes its loop (visitedMark, loopOfEdge), without
+  /// a second array to miss in. The edges' ends are read in memory order only, at each loop's
+  /// first edge (its face).
   template<typename Emit>
   void orderEdgesIntoLoops(Boundary2D& out, Emit&& emit)
   {
@@ -719,25 +746,27 @@ private:
     // they are neither copied nor faulted in twice as they grow (only the pages written are
     // mapped; on a sparse image most of this room is address space the returned boundary holds
     // but never touches). Invalid input only grows the array.
-    reserveHugePages(out.loops, this->Edges.size() / 4);
-    for (std::size_t e0 = 0; e0 < this->Edges.size(); ++e0)
+    reserveHugePages(out.loops, this->Links.size() / 4);
+    EdgeLink* links = this->Links.data();
+    for (std::size_t e0 = 0; e0 < this->Links.size(); ++e0)
     {
-      if (this->Edges[e0].interval < 0)
+      if (links[e0].next < Unlinked)
         continue; // in a loop already
       prefetched = this->prefetchEdgesAhead(e0, prefetched);
       // Written in place, not copied in (see startHorizontalEdge).
-      const int visited = -1 - static_cast<int>(out.loops.size());
+      const int visited = visitedMark(out.loops.size());
       Loop2D& loop = out.loops.emplace_back();
-      loop.face = this->FaceOfRoot[this->find(this->Edges[e0].interval)];
+      loop.face = this->FaceOfRoot[this->find(this->Ends[e0].interval)];
       loop.begin = corners;
-      for (int e = static_cast<int>(e0); this->Edges[e].interval >= 0; ++corners)
+      for (int e = static_cast<int>(e0); links[e].next >= Unlinked; ++corners)
       {
-        Edge& edge = this->Edges[e];
-        if (edge.next < 0)
+        EdgeLink& link = links[e];
+        const int next = link.next;
+        if (next == Unlinked)
           throw std::logic_error("planeSweep2D: open contour");
-        edge.interval = visited;
-        emit(edge.from);
-        e = edge.next;
+        link.next = visited;
+        emit(link.from);
+        e = next;
       }
       loop.end = corners;
     }
@@ -750,26 +779,28 @@ private:
   /// memory while the domino step waits for it, one dependent read after another. Read ahead in
   /// memory order instead, many at once: the maze's whole numbered sweep (12.5 M edges) took
   /// 0.76-1.09 s of CPU without, 0.60-0.81 s with (medians of rounds in turns, load 3-4). The
-  /// distance (1 MiB of edges) was chosen on machines with 1 MiB of L2 cache per core; 2^14
-  /// to 2^18 edges could not be told apart under that load.
-  static constexpr std::size_t EdgesAhead = std::size_t(1) << 16;
-  static_assert(sizeof(Edge) <= 64, "the read-ahead steps a cache line of edges at a time");
+  /// distance (1 MiB of links) was chosen on machines with 1 MiB of L2 cache per core; with
+  /// 16-byte edges 2^14 to 2^18 could not be told apart under that load; with the 8-byte links
+  /// 2^17 links gave 0.46-0.47 s of user time per update on the maze against 0.49-0.52 s for
+  /// 2^16 (three rounds in turns, load 3).
+  static constexpr std::size_t EdgesAhead = std::size_t(1) << 17;
+  static_assert(sizeof(EdgeLink) <= 64, "the read-ahead steps a cache line of edges at a time");
 
   /// Prefetches the edges from `prefetched` up to EdgesAhead after e0, a cache line at a time;
   /// returns where it stopped.
   std::size_t prefetchEdgesAhead(std::size_t e0, std::size_t prefetched) const
   {
-    constexpr std::size_t perLine = 64 / sizeof(Edge);
+    constexpr std::size_t perLine = 64 / sizeof(EdgeLink);
     const std::size_t from = std::max(prefetched, e0);
-    const std::size_t until = std::min(e0 + EdgesAhead, this->Edges.size());
-    const Edge* edges = this->Edges.data();
+    const std::size_t until = std::min(e0 + EdgesAhead, this->Links.size());
+    const EdgeLink* edges = this->Links.data();
     for (std::size_t e = from; e < until; e += perLine)
       prefetchKept(edges + e);
     return std::max(from, until);
   }
 
   /// The loop of an edge, once orderEdgesIntoLoops has run.
-  int loopOfEdge(int e) const { return -1 - this->Edges[e].interval; }
+  int loopOfEdge(int e) const { return loopOfMark(this->Links[e].next); }
 
   /// The second sweep (Ayala & Vergara, section 3.1): faces in order of first appearance, with 1D
   /// inclusion tests only. A face's first interval is bounded below by its outer loop; the
@@ -813,7 +844,8 @@ private:
   std::vector<Point2> Corners;           ///< by number, when not numbered by column
   std::vector<std::uint32_t> ColumnNext; ///< numbered by column: the next number of each
   Coord ColumnLo = 0;                    ///< the v of the first column
-  std::vector<Edge> Edges;
+  std::vector<EdgeLink> Links;           ///< the edges: what the domino step follows
+  std::vector<EdgeEnd> Ends;             ///< the edges: what the first sweep and the pairing read
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;
   std::vector<int> FaceOfRoot;                   ///< face of each root interval, or -1

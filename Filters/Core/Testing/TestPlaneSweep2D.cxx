@@ -444,3 +444,77 @@ TEST(PlaneSweep2D, NumberedCornersOfLargeDenseAndSparseImages)
   checkNumbered(sparse, false, "ZYX");
   checkNumbered(sparse, true, "ZYX");
 }
+
+namespace
+{
+
+/// The bounds (uLo, vLo, uHi, vHi) of a loop's corners, from their numbers.
+std::array<vbr::Coord, 4> loopBounds(const vbr::Contours2D& c,
+  const std::vector<std::pair<vbr::Coord, vbr::Coord>>& corners,
+  int loop)
+{
+  const vbr::Loop2D& l = c.boundary.loops[static_cast<std::size_t>(loop)];
+  std::array<vbr::Coord, 4> b{ std::numeric_limits<vbr::Coord>::max(),
+    std::numeric_limits<vbr::Coord>::max(),
+    std::numeric_limits<vbr::Coord>::min(),
+    std::numeric_limits<vbr::Coord>::min() };
+  for (std::size_t i = l.begin; i < l.end; ++i)
+  {
+    const auto& p = corners[c.loopCorners[i]];
+    b = { std::min(b[0], p.first),
+      std::min(b[1], p.second),
+      std::max(b[2], p.first),
+      std::max(b[3], p.second) };
+  }
+  return b;
+}
+
+} // namespace
+
+TEST(PlaneSweep2D, LoopsOfNestedRingsFromTheEdgeLinks)
+{
+  // R square rings one inside the other's hole: ring k covers the pixels at Chebyshev distance
+  // 2k from the image's border. The domino step marks each edge's link with its loop, which
+  // the second sweep reads back for every face's outer loop and the loop below it: ring k must
+  // be the face of depth 2k, in ring k - 1's hole, its outer loop on [2k, N - 2k] and its one
+  // hole on [2k + 1, N - 2k - 1] (closed form, both ways of numbering the corners).
+  constexpr int R = 100, N = 4 * R;
+  vbr::BitVolume image(N, N, 1);
+  for (int y = 0; y < N; ++y)
+    for (int x = 0; x < N; ++x)
+      if (std::min(std::min(x, y), std::min(N - 1 - x, N - 1 - y)) % 2 == 0)
+        image.set(x, y, 0);
+  const vbr::EVM evm = vbr::extractEVM2D(image).sortedAs(vbr::axisOrderFromName("ZYX"));
+  const auto& v = evm.vertices();
+  for (const std::size_t fewest : { std::size_t(0), std::numeric_limits<std::size_t>::max() })
+    for (const auto connectivity : { vbr::FaceConnectivity::Edge, vbr::FaceConnectivity::Vertex })
+    {
+      const vbr::Contours2D c = vbr::planeSweep2DNumbered(
+        v.data(), v.data() + v.size(), vbr::CornerOrder::VThenU, connectivity, fewest);
+      const auto corners = cornersInOrder(c);
+      const vbr::Boundary2D& b = c.boundary;
+      ASSERT_EQ(b.faces.size(), static_cast<std::size_t>(R));
+      ASSERT_EQ(b.loops.size(), static_cast<std::size_t>(2 * R));
+      for (std::size_t f = 0; f < b.faces.size(); ++f)
+      {
+        const vbr::Face2D& face = b.faces[f];
+        const int k = face.depth / 2;
+        SCOPED_TRACE(testing::Message() << "face " << f << " depth " << face.depth);
+        ASSERT_TRUE(face.depth % 2 == 0 && k < R);
+        EXPECT_EQ(face.parent < 0, k == 0);
+        if (face.parent >= 0)
+          EXPECT_EQ(b.faces[static_cast<std::size_t>(face.parent)].depth, face.depth - 2);
+        ASSERT_GE(face.outerLoop, 0);
+        EXPECT_EQ(b.loops[static_cast<std::size_t>(face.outerLoop)].face, static_cast<int>(f));
+        EXPECT_FALSE(b.loops[static_cast<std::size_t>(face.outerLoop)].hole);
+        const std::array<vbr::Coord, 4> outer{ 2 * k, 2 * k, N - 2 * k, N - 2 * k };
+        EXPECT_EQ(loopBounds(c, corners, face.outerLoop), outer);
+        ASSERT_EQ(face.holeLoops.size(), 1u);
+        const int hole = face.holeLoops[0];
+        EXPECT_TRUE(b.loops[static_cast<std::size_t>(hole)].hole);
+        EXPECT_EQ(b.loops[static_cast<std::size_t>(hole)].face, static_cast<int>(f));
+        const std::array<vbr::Coord, 4> inner{ 2 * k + 1, 2 * k + 1, N - 2 * k - 1, N - 2 * k - 1 };
+        EXPECT_EQ(loopBounds(c, corners, hole), inner);
+      }
+    }
+}
