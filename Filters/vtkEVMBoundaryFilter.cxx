@@ -62,6 +62,9 @@ struct FaceRuns
 {
   std::vector<vbr::FaceCells> runs;
   std::vector<std::size_t> firstFace; ///< per run
+  /// The output point ids of a run's cells' corners, in the run's order (appendRunOfFaces):
+  /// scratch space kept from call to call.
+  std::vector<std::int64_t> pointIds;
 };
 
 /// Statistics written to the output's field data.
@@ -142,22 +145,21 @@ public:
     }
   }
 
-  /// The cells of one face of a 3D object in a run of faces' cells, as addFaceCells gives
-  /// them, without their attributes: addRunAttributes writes those for a stretch of faces at
-  /// once (growing two arrays and filling them face by face was 2 % of the filter's
-  /// instructions on porous volumes and the headsq bone).
-  void addFaceConnectivity(const int* corners,
-    std::size_t begin,
+  /// The cells of the first faces of a run of a 3D object's faces' cells, as addFaceCells gives
+  /// them face after face, without their attributes (addRunAttributes writes those for a
+  /// stretch of faces at once: growing two arrays and filling them face by face was 2 % of the
+  /// filter's instructions on porous volumes and the headsq bone): cell k has the point ids
+  /// `pointIds[ends[k - 1] .. ends[k])` (ends[-1] = 0).
+  void addRunConnectivity(const std::int64_t* pointIds,
     const std::uint32_t* ends,
-    std::size_t count,
-    const std::int64_t* pointIds)
+    std::size_t count)
   {
     assert(!this->Written && !this->Planar);
     if (count != 0)
-      this->Cells.addMappedCells(corners, pointIds, ends, count, begin, this->Reverse);
+      this->Cells.addCells(pointIds, ends, count, 0, this->Reverse);
   }
 
-  /// The FaceId and LoopType (0) of the cells addFaceConnectivity added for the first `faces`
+  /// The FaceId and LoopType (0) of the cells addRunConnectivity added for the first `faces`
   /// faces of a run (their cells end at faceEnds[i], from 0), whose ids are `firstFaceId` on,
   /// and their label: the attributes addFaceCells gives them face after face.
   void addRunAttributes(const std::vector<std::uint32_t>& faceEnds,
@@ -697,7 +699,7 @@ bool cellsFromRuns(int mode)
 /// one thread each (StreamedObjectCells), so `cells` is one run.
 bool appendRunOfFaces(const vbr::BRep& brep,
   const std::vector<std::int64_t>& cornerIds,
-  const FaceRuns& cells,
+  FaceRuns& cells,
   const vbr::vtk::Selected& object,
   vtkIdType faceBase,
   std::size_t first,
@@ -709,21 +711,24 @@ bool appendRunOfFaces(const vbr::BRep& brep,
   const vbr::FaceCells& run = cells.runs.front();
   std::size_t f = first;
   bool aborted = false;
-  for (; f < end; ++f)
+  // The point ids of every corner of the run, face by face, then the cells in one call: a
+  // call per face was 200 instructions for a unit square's one cell (the checkerboard's 786,432
+  // faces at 64^3), most of them the cell buffer's checks and growth, paid per face.
+  std::vector<std::int64_t>& ids = cells.pointIds;
+  ids.resize(run.corners.size());
+  for (std::size_t j = 0; f < end; ++f)
   {
     if (!progress.tick(f))
     {
       aborted = true;
       break;
     }
-    const std::size_t i = f - first;
-    const std::size_t firstCell = run.cellBegin(i);
-    out.addFaceConnectivity(run.corners.data(),
-      run.cornerBegin(firstCell),
-      run.cellEnds.data() + firstCell,
-      run.faceEnds[i] - firstCell,
-      cornerIds.data() + brep.loops[brep.faces[f].firstLoop].begin);
+    const std::int64_t* map = cornerIds.data() + brep.loops[brep.faces[f].firstLoop].begin;
+    for (const std::size_t to = run.cornerBegin(run.faceEnds[f - first]); j < to; ++j)
+      ids[j] = map[run.corners[j]];
   }
+  const std::size_t done = f - first;
+  out.addRunConnectivity(ids.data(), run.cellEnds.data(), done == 0 ? 0 : run.faceEnds[done - 1]);
   out.addRunAttributes(
     run.faceEnds, f - first, faceBase + static_cast<vtkIdType>(first), object.label);
   return !aborted; // aborted: the caller empties the output
@@ -733,7 +738,7 @@ bool appendRunOfFaces(const vbr::BRep& brep,
 /// modes): its triangles, its polygons, or one cell per loop. False when aborted.
 bool appendFaceCells(const vbr::BRep& brep,
   const std::vector<std::int64_t>& cornerIds,
-  const FaceRuns& cells,
+  FaceRuns& cells,
   const vbr::vtk::Selected& object,
   int mode,
   vtkIdType faceBase,

@@ -19,6 +19,7 @@
 #include "BRep.h"
 
 #include "HugePages.h"
+#include "PopCount.h"
 
 #include <algorithm>
 #include <array>
@@ -572,7 +573,10 @@ void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vecto
     });
 }
 
-std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const
+template<bool Hardware>
+VBR_ALWAYS_INLINE void CornerSet::numbersInto(const BRep& brep,
+  const Point3& offset,
+  std::int64_t* out) const
 {
   // The loops wander over the box, whose bits outgrow the cache with the volume: each
   // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
@@ -581,7 +585,6 @@ std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& o
   constexpr std::size_t ahead = 16;
   static_assert((ahead & (ahead - 1)) == 0, "the ring's slot is i & (ahead - 1)");
   const std::size_t n = brep.points.size();
-  std::vector<std::int64_t> numbers(n);
   std::uint64_t boxIndexAhead[ahead] = {}; // of points i to i + ahead - 1, at i & (ahead - 1)
   for (std::size_t i = 0; i < std::min(n, ahead); ++i)
     boxIndexAhead[i] = this->indexInBox(add(brep.points[i], offset));
@@ -594,8 +597,49 @@ std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& o
       slot = this->indexInBox(add(brep.points[i + ahead], offset));
       prefetch(&this->Words[slot >> 6]);
     }
-    numbers[i] = this->rankOf(here);
+    const RankedWord& w = this->Words[here >> 6]; // rankOf, its bits counted as asked
+    out[i] =
+      std::int64_t(w.rank) + bitCount<Hardware>(w.bits & ((std::uint64_t(1) << (here & 63)) - 1));
   }
+}
+
+namespace
+{
+
+/// CornerSet::numbersInto by the portable count, and (numbersByInstruction) compiled for
+/// processors with POPCNT: a software count was a fifth of the instructions of numbersOf, which
+/// was 11 % of the filter's time on a checkerboard (four lookups per unit square).
+void numbersPortable(const CornerSet& set,
+  const BRep& brep,
+  const Point3& offset,
+  std::int64_t* out)
+{
+  set.numbersInto<false>(brep, offset, out);
+}
+
+#if VBR_POPCNT_COPY
+__attribute__((target("popcnt"))) void numbersByInstruction(const CornerSet& set,
+  const BRep& brep,
+  const Point3& offset,
+  std::int64_t* out)
+{
+  set.numbersInto<true>(brep, offset, out);
+}
+#endif
+
+} // namespace
+
+std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const
+{
+  std::vector<std::int64_t> numbers(brep.points.size());
+#if VBR_POPCNT_COPY
+  if (hasPopCountInstruction())
+  {
+    numbersByInstruction(*this, brep, offset, numbers.data());
+    return numbers;
+  }
+#endif
+  numbersPortable(*this, brep, offset, numbers.data());
   return numbers;
 }
 

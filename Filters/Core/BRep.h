@@ -140,6 +140,12 @@ public:
 
   std::size_t size() const { return this->Points.size(); }
 
+  /// numbersOf into `out` (one number per point of `brep`), each corner's rank counted by
+  /// bitCount<Hardware> (PopCount.h): numbersOf runs the copy compiled for POPCNT where the
+  /// processor has it. Defined in BRep.cxx, for its two copies.
+  template<bool Hardware>
+  void numbersInto(const BRep& brep, const Point3& offset, std::int64_t* out) const;
+
   /// Every corner, in the common grid, by number (empty after releasePoints).
   const std::vector<Point3>& points() const { return this->Points; }
 

@@ -6,6 +6,7 @@
 #include "EVM.h"
 #include "FaceTriangulator.h"
 #include "PlaneSweep3D.h"
+#include "PopCount.h"
 
 #include <gtest/gtest.h>
 
@@ -480,11 +481,11 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
   EXPECT_TRUE(corners.empty());
 }
 
-// numbersOf keeps the box index of the 16 points ahead in a ring: at batch sizes around the
-// ring's (none, one, a ring less one, a ring, a ring and one, two rings and one) each point's
-// number is its corner's place among the distinct corners in lexicographic order (a sorted
-// vector, searched). The points, at an offset, repeat corners and come in random order.
-TEST(BRep, CornerNumbersOfPointsMatchSortedCorners)
+namespace
+{
+
+/// CornerNumbersOfPointsMatchSortedCorners with the bit counts as set by the caller.
+void expectCornerNumbersMatchSortedCorners()
 {
   std::mt19937 random(6300);
   std::uniform_int_distribution<int> coordinate(0, 70);
@@ -516,6 +517,24 @@ TEST(BRep, CornerNumbersOfPointsMatchSortedCorners)
       EXPECT_EQ(numbers[i], at - sorted.begin()) << "n " << n << " point " << i;
     }
   }
+}
+
+} // namespace
+
+// numbersOf keeps the box index of the 16 points ahead in a ring: at batch sizes around the
+// ring's (none, one, a ring less one, a ring, a ring and one, two rings and one) each point's
+// number is its corner's place among the distinct corners in lexicographic order (a sorted
+// vector, searched). The points, at an offset, repeat corners and come in random order. Both
+// copies of numbersOf: the one counting bits by the POPCNT instruction and the portable one.
+TEST(BRep, CornerNumbersOfPointsMatchSortedCorners)
+{
+  for (const bool portable : { false, true })
+  {
+    SCOPED_TRACE(portable ? "portable bit counts" : "bit counts by the instruction, if any");
+    vbr::portableBitCountsForTesting() = portable;
+    expectCornerNumbersMatchSortedCorners();
+  }
+  vbr::portableBitCountsForTesting() = false;
 }
 
 // The streamed parts, joined, are planeSweep3D's B-Rep, on one thread and on several, and the
