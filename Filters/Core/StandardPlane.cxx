@@ -9,13 +9,11 @@
 // integer normal of smallest omega (solve: the strict edges, markStrictEdges, the polygon on
 // the slices, sliceThePolygon, then omega level by level, searchLevel: columns
 // k = u.(n_x, n_y) over the polygon's range in a thin frame, thinFrame, and t along each
-// column bounded by every edge, rangeOfT, on the edges' coefficients in the frame,
-// columnForms; each candidate checked by fits); adoptNormal keeps
+// column bounded by every edge, rangeOfT; each candidate checked by fits); adoptNormal keeps
 // the result. Every range over the points (measure, rangeOf) reads only the points that may
 // be vertices of their hull (forEachExtreme; refreshExtremes drops the midpoints of two
 // others once a face has 128 points). All arithmetic that decides is on integers;
-// determinants use Wide, and column bounds too unless their operands are small enough for
-// 64 bits (nearly always: the search's columns are 64-bit).
+// determinants and column bounds use Wide.
 
 #include "StandardPlane.h"
 
@@ -121,26 +119,6 @@ struct ColumnRange
 {
   std::int64_t minNum = 0, minDen = 1, maxNum = 0, maxDen = 1;
 };
-
-/// Numerators below this times an omega <= MaximumOmega stay below 2^62: a level's column
-/// bounds then take 64-bit products and divisions (in the frame (1, 0) the numerators are
-/// ray coordinates, < 2^35).
-constexpr std::int64_t SmallNumerator = std::int64_t(1) << 46;
-
-/// The first and last column k of level omega: ceil and floor of omega times the range's ends.
-Wide firstColumn(const ColumnRange& r, std::int64_t omega)
-{
-  if (omega <= MaximumOmega && -SmallNumerator < r.minNum && r.minNum < SmallNumerator)
-    return ceilDiv(omega * r.minNum, r.minDen);
-  return ceilDiv(Wide(omega) * r.minNum, Wide(r.minDen));
-}
-
-Wide lastColumn(const ColumnRange& r, std::int64_t omega)
-{
-  if (omega <= MaximumOmega && -SmallNumerator < r.maxNum && r.maxNum < SmallNumerator)
-    return floorDiv(omega * r.maxNum, r.maxDen);
-  return floorDiv(Wide(omega) * r.maxNum, Wide(r.maxDen));
-}
 
 ColumnRange columnRange(const std::vector<Vec>& rays, const Vec& sigma, const ColumnFrame& frame)
 {
@@ -260,33 +238,13 @@ std::array<std::int64_t, 3> sliceForm(const Vec& E, const Vec& sigma)
   return { E[0] - E[2] * sigma[2] * sigma[0], E[1] - E[2] * sigma[2] * sigma[1], E[2] * sigma[2] };
 }
 
-/// An edge's half-plane in a frame's column coordinates: at column k of level omega, the
-/// normal k a + t v has F.(k a + t v, omega) = along[0] t + along[1] k + along[2] omega
-/// (along[3]: 1 when strict). Made once per frame (columnForms), not once per column: the
-/// search crosses about seven columns, nearly all empty, for each normal it finds.
-using ColumnForm = std::array<std::int64_t, 4>;
-
-/// The polygon's edges in the coordinates of frame f: forms < 2^18 and frames < 2^20 keep
-/// each coefficient below 2^39.
-void columnForms(const std::vector<std::array<std::int64_t, 3>>& forms,
-  const std::vector<char>& strict,
-  const ColumnFrame& f,
-  std::vector<ColumnForm>& out)
-{
-  out.clear();
-  for (std::size_t e = 0; e < forms.size(); ++e)
-  {
-    const auto& F = forms[e];
-    out.push_back(
-      { F[0] * f.v[0] + F[1] * f.v[1], F[0] * f.a[0] + F[1] * f.a[1], F[2], strict[e] ? 1 : 0 });
-  }
-}
-
 /// The t of column k of level omega inside every edge's half-plane (strictly on the strict
 /// ones): [tLo, tHi], empty when tLo > tHi. In Int: std::int64_t when |k| and omega are below
-/// SmallColumn (coefficients < 2^39 keep every product below 2^59), else Wide.
+/// SmallColumn (forms < 2^18 and frames < 2^20 keep every product below 2^59), else Wide.
 template<typename Int>
-void rangeOfT(const std::vector<ColumnForm>& forms,
+void rangeOfT(const std::vector<std::array<std::int64_t, 3>>& forms,
+  const std::vector<char>& strict,
+  const ColumnFrame& f,
   std::int64_t omega,
   Int k,
   std::int64_t& tLo,
@@ -296,20 +254,19 @@ void rangeOfT(const std::vector<ColumnForm>& forms,
   Int lo = -Far, hi = Far;
   for (std::size_t e = 0; e < forms.size() && lo <= hi; ++e)
   {
-    const ColumnForm& F = forms[e];
-    // A t + B >= 0 (> 0 when strict)
-    const Int A = F[0];
-    const Int B = k * F[1] + Int(F[2]) * omega;
-    const bool strict = F[3] != 0;
+    const auto& F = forms[e];
+    // F.(k a + t v, omega) = A t + B
+    const Int A = Int(F[0]) * f.v[0] + Int(F[1]) * f.v[1];
+    const Int B = k * (Int(F[0]) * f.a[0] + Int(F[1]) * f.a[1]) + Int(F[2]) * omega;
     if (A == 0)
     {
-      if (B < 0 || (strict && B == 0))
+      if (B < 0 || (strict[e] && B == 0))
         lo = hi + 1;
     }
     else if (A > 0) // t >= -B / A (>)
-      lo = std::max(lo, strict ? floorDiv(-B, A) + 1 : ceilDiv(-B, A));
+      lo = std::max(lo, strict[e] ? floorDiv(-B, A) + 1 : ceilDiv(-B, A));
     else // t <= B / -A (<)
-      hi = std::min(hi, strict ? ceilDiv(B, -A) - 1 : floorDiv(B, -A));
+      hi = std::min(hi, strict[e] ? ceilDiv(B, -A) - 1 : floorDiv(B, -A));
   }
   tLo = std::int64_t(std::max(lo, -Far));
   tHi = std::int64_t(std::min(hi, Far));
@@ -334,45 +291,11 @@ bool worthTesting(const Vec& n, const Vec& sigma, bool found, const Vec& best)
   return std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) == 1;
 }
 
-/// The columns of one level from kLo to kHi in Int (std::int64_t when every |k| and omega are
-/// below SmallColumn, else Wide), each bounded by the polygon's edges (rangeOfT); see
-/// searchLevel.
-template<typename Int, typename Fits>
-bool scanColumns(const std::vector<ColumnForm>& forms,
-  const Vec& sigma,
-  const ColumnFrame& frame,
-  std::int64_t omega,
-  Int kLo,
-  Int kHi,
-  std::int64_t& budget,
-  Vec& normal,
-  const Fits& fits)
-{
-  bool found = false;
-  for (Int k = kLo; k <= kHi && budget > 0; ++k, --budget)
-  {
-    std::int64_t tLo, tHi;
-    rangeOfT(forms, omega, k, tLo, tHi);
-    for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
-    {
-      const std::int64_t nx = std::int64_t(Wide(k) * frame.a[0] + Wide(t) * frame.v[0]);
-      const std::int64_t ny = std::int64_t(Wide(k) * frame.a[1] + Wide(t) * frame.v[1]);
-      const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
-      if (worthTesting(n, sigma, found, normal) && fits(n))
-      {
-        normal = n;
-        found = true;
-      }
-    }
-  }
-  return found;
-}
-
-/// Level omega of an octant's search, column by column (each bounded by the polygon's edges
-/// in the frame, `forms`): the normal of smallest (nx, ny) that fits, into `normal`; false
-/// when none.
+/// Level omega of an octant's search, column by column (each bounded by the polygon's edges,
+/// rangeOfT): the normal of smallest (nx, ny) that fits, into `normal`; false when none.
 template<typename Fits>
-bool searchLevel(const std::vector<ColumnForm>& forms,
+bool searchLevel(const std::vector<std::array<std::int64_t, 3>>& forms,
+  const std::vector<char>& strict,
   const Vec& sigma,
   const ColumnFrame& frame,
   const ColumnRange& range,
@@ -382,12 +305,29 @@ bool searchLevel(const std::vector<ColumnForm>& forms,
   const Fits& fits)
 {
   // Within the level, the smallest (nx, ny) in lexicographic order, whatever the frame.
-  const Wide kLo = firstColumn(range, omega), kHi = lastColumn(range, omega);
-  // kHi >= kLo - 1 (the range's maximum is at least its minimum): both fit in 64 bits here.
-  if (-SmallColumn < kLo && kHi < SmallColumn && omega < SmallColumn)
-    return scanColumns(
-      forms, sigma, frame, omega, std::int64_t(kLo), std::int64_t(kHi), budget, normal, fits);
-  return scanColumns(forms, sigma, frame, omega, kLo, kHi, budget, normal, fits);
+  bool found = false;
+  const Wide kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
+  const Wide kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
+  for (Wide k = kLo; k <= kHi && budget > 0; ++k, --budget)
+  {
+    std::int64_t tLo, tHi;
+    if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
+      rangeOfT(forms, strict, frame, omega, std::int64_t(k), tLo, tHi);
+    else
+      rangeOfT(forms, strict, frame, omega, k, tLo, tHi);
+    for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
+    {
+      const std::int64_t nx = std::int64_t(k * frame.a[0] + Wide(t) * frame.v[0]);
+      const std::int64_t ny = std::int64_t(k * frame.a[1] + Wide(t) * frame.v[1]);
+      const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
+      if (worthTesting(n, sigma, found, normal) && fits(n))
+      {
+        normal = n;
+        found = true;
+      }
+    }
+  }
+  return found;
 }
 
 } // namespace
@@ -731,7 +671,6 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   // (thinFrame): the range of k / omega over the polygon, as fractions.
   ColumnFrame frame;
   ColumnRange range = columnRange(this->Rays, sigma, frame);
-  columnForms(this->Forms, this->StrictEdges, frame, this->Columns);
   std::int64_t budget = SearchBudget;
   bool thin = false;
   for (std::int64_t omega = omegaStart; omega <= omegaLimit && budget > 0; ++omega, --budget)
@@ -739,15 +678,17 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
     // The level's result does not depend on the frame, only the columns scanned (and so the
     // budget spent, by at most ThinFrameColumns - 1 a level) do.
     if (!thin && omega >= ThinFrameLevel &&
-      lastColumn(range, omega) - firstColumn(range, omega) >= ThinFrameColumns)
+      floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen)) -
+          ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen)) >=
+        ThinFrameColumns)
     {
       frame = thinFrame(this->Rays, sigma, this->FrameEdges, this->FrameBreaks);
       range = columnRange(this->Rays, sigma, frame);
-      columnForms(this->Forms, this->StrictEdges, frame, this->Columns);
       thin = true;
     }
     auto fits = [&](const Vec& n) { return this->fits(n, present); };
-    if (searchLevel(this->Columns, sigma, frame, range, omega, budget, normal, fits))
+    if (searchLevel(
+          this->Forms, this->StrictEdges, sigma, frame, range, omega, budget, normal, fits))
       return true;
   }
   return false;

@@ -200,8 +200,6 @@ private:
   mutable std::vector<std::int64_t> ClipValues;               ///< per vertex, in clip
   mutable Octant ClipPolygon; ///< the clipped polygon's storage, in clip
   mutable std::vector<std::array<std::int64_t, 3>> Forms; ///< its edges on the slices, in solve
-  /// Forms in the columns of solve's frame: (t, k, omega) coefficients and strictness.
-  mutable std::vector<std::array<std::int64_t, 4>> Columns;
 };
 
 } // namespace vbr
