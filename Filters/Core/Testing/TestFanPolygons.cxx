@@ -606,3 +606,143 @@ TEST(FanPolygons, SimpleLoopsAreEarClippedAsByDefinition)
   RecordProperty("simple", static_cast<int>(simple));
   EXPECT_GT(simple, 300u);
 }
+
+namespace
+{
+
+/// fanApex by its definition: the first of the first four corners that turn right and the first
+/// that turns left whose fan covers the loop (fanCoversPolygon, a pass over the loop each), the
+/// first left turn without a check when none turns right.
+int fanApexByDefinition(const std::vector<P2>& loop)
+{
+  const std::size_t n = loop.size();
+  std::vector<std::size_t> candidates;
+  std::size_t convex = n;
+  for (std::size_t i = 0; i < n && candidates.size() < 4; ++i)
+  {
+    const Wide turn = cross(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n]);
+    if (turn < 0)
+      candidates.push_back(i);
+    else if (turn > 0 && convex == n)
+      convex = i;
+  }
+  if (candidates.empty() && convex < n)
+    return static_cast<int>(convex);
+  if (convex < n)
+    candidates.push_back(convex);
+  for (std::size_t c : candidates)
+    if (vbr::fanCoversPolygon(loop, c))
+      return static_cast<int>(c);
+  return -1;
+}
+
+/// A w x h rectangle, counter-clockwise, with random dents of depth 1 or 2 pushed into it from
+/// its sides (corners that turn right), corners where it goes straight on, and now and then a
+/// corner twice in a row; `chance(p)` is true with probability about 1/p.
+template<typename Chance>
+std::vector<P2> dentedRectangle(std::int64_t w, std::int64_t h, Chance chance)
+{
+  std::vector<P2> loop;
+  // The four sides: start, direction along the side, direction inwards.
+  const std::array<std::array<std::int64_t, 6>, 4> sides{
+    { { 0, 0, 1, 0, 0, 1 }, { w, 0, 0, 1, -1, 0 }, { w, h, -1, 0, 0, -1 }, { 0, h, 0, -1, 1, 0 } }
+  };
+  for (int s = 0; s < 4; ++s)
+  {
+    const auto& d = sides[s];
+    const std::int64_t length = s % 2 == 0 ? w : h;
+    loop.push_back({ d[0], d[1] });
+    for (std::int64_t t = 2; t + 3 <= length; ++t)
+    {
+      const P2 at{ d[0] + t * d[2], d[1] + t * d[3] };
+      if (chance(4))
+      {
+        const std::int64_t depth = 1 + (chance(2) ? 1 : 0);
+        loop.push_back(at);
+        loop.push_back({ at[0] + depth * d[4], at[1] + depth * d[5] });
+        loop.push_back({ at[0] + d[2] + depth * d[4], at[1] + d[3] + depth * d[5] });
+        loop.push_back({ at[0] + d[2], at[1] + d[3] });
+        ++t;
+      }
+      else if (chance(3))
+        loop.push_back(at);
+      if (chance(40))
+        loop.push_back(loop.back());
+    }
+  }
+  return loop;
+}
+
+} // namespace
+
+// The apex search of the faces that go round no rectangle takes, on loops whose edges are all
+// axis-parallel, one pass for the rectangle the edges' lines cut out and a look-up per
+// candidate, instead of a fan test per candidate: the same corner as the search by definition on
+// dented rectangles (many with a fan corner, many without), random axis-parallel walks (neither
+// simple nor counter-clockwise, most without) and loops with slanted edges (the fan tests kept).
+TEST(FanPolygons, ApexSearchOfAxisParallelLoopsIsTheSearchByDefinition)
+{
+  unsigned seed = 7300;
+  auto next = [&seed](unsigned m)
+  {
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<int>((seed >> 16) % m);
+  };
+  auto chance = [&next](unsigned p) { return next(p) == 0; };
+  std::size_t found = 0, none = 0, provenSimple = 0, repeatedWithApex = 0;
+  for (int trial = 0; trial < 6000; ++trial)
+  {
+    std::vector<P2> loop;
+    if (trial % 3 == 0)
+      loop = dentedRectangle(4 + next(12), 4 + next(12), chance);
+    else
+    {
+      const bool slanted = trial % 3 == 2;
+      P2 at{ next(9) - 4, next(9) - 4 };
+      const int steps = 3 + next(12);
+      for (int k = 0; k < steps; ++k)
+      {
+        loop.push_back(at);
+        const std::int64_t step = next(9) - 4;
+        at[k % 2] += step;
+        if (slanted && chance(3))
+          at[1 - k % 2] += next(5) - 2;
+      }
+      loop.push_back(at);
+      if (at[1] != loop[0][1])
+        loop.push_back({ loop[0][0], at[1] }); // closed along axis-parallel edges
+    }
+    const std::size_t shift = static_cast<std::size_t>(next(static_cast<int>(loop.size())));
+    std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(shift), loop.end());
+    const int expected = fanApexByDefinition(loop);
+    bool simple = false;
+    EXPECT_EQ(vbr::detail::fanApexOf(loop, simple), expected) << "trial " << trial;
+    ++(expected >= 0 ? found : none);
+    // Known to pass no corner twice: no two corners at one place (sorted).
+    std::vector<P2> sorted(loop);
+    std::sort(sorted.begin(), sorted.end());
+    const bool repeated = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+    if (simple)
+      EXPECT_FALSE(repeated) << "trial " << trial;
+    provenSimple += simple;
+    repeatedWithApex += repeated && expected >= 0;
+  }
+  RecordProperty("found", static_cast<int>(found));
+  RecordProperty("none", static_cast<int>(none));
+  RecordProperty("provenSimple", static_cast<int>(provenSimple));
+  RecordProperty("repeatedWithApex", static_cast<int>(repeatedWithApex));
+  EXPECT_GT(found, 500u);
+  EXPECT_GT(none, 1000u);
+  EXPECT_GT(provenSimple, 100u);
+  EXPECT_GT(repeatedWithApex, 20u);
+  // Round a rectangle twice, or through a corner twice in a row: a fan corner, but no proof.
+  for (const std::vector<P2>& loop :
+    { std::vector<P2>{
+        { 0, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 }, { 0, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 } },
+      std::vector<P2>{ { 0, 0 }, { 2, 0 }, { 2, 0 }, { 4, 0 }, { 4, 2 }, { 0, 2 } } })
+  {
+    bool simple = true;
+    EXPECT_EQ(vbr::detail::fanApexOf(loop, simple), fanApexByDefinition(loop));
+    EXPECT_FALSE(simple);
+  }
+}
