@@ -427,120 +427,6 @@ bool smallCoordinates(const std::vector<Point2L>& corners)
   return small;
 }
 
-/// The points from which every edge of a loop whose edges are all axis-parallel is seen on its
-/// left or on its line: the closed rectangle cut out by the edges' lines (an edge going up in y
-/// at x = e keeps x <= e, going down x >= e, going right in x at y = e keeps y >= e, going left
-/// y <= e; an edge of no length keeps everything). The fan from a corner o covers a
-/// counter-clockwise loop exactly when no triangle (o, b, c) of an edge bc turns right
-/// (fanCoversPolygonOfArea), that is when o lies in the closed left half-plane of every edge
-/// (the edges at o give flat triangles whatever o): when o lies in this rectangle. One pass
-/// over the loop then answers for every candidate apex, where the fan test is a pass each.
-struct AxisKernel
-{
-  std::int64_t xLo = std::numeric_limits<std::int64_t>::min();
-  std::int64_t xHi = std::numeric_limits<std::int64_t>::max();
-  std::int64_t yLo = std::numeric_limits<std::int64_t>::min();
-  std::int64_t yHi = std::numeric_limits<std::int64_t>::max();
-
-  /// Cuts the rectangle by the edge from p along (dx, dy) (signs: axis-parallel or of no
-  /// length).
-  void keepLeftOf(const Point2L& p, int dx, int dy)
-  {
-    if (dy > 0)
-      this->xHi = std::min(this->xHi, p[0]);
-    else if (dy < 0)
-      this->xLo = std::max(this->xLo, p[0]);
-    else if (dx > 0)
-      this->yLo = std::max(this->yLo, p[1]);
-    else if (dx < 0)
-      this->yHi = std::min(this->yHi, p[1]);
-  }
-
-  bool hasInside() const { return this->xLo < this->xHi && this->yLo < this->yHi; }
-
-  bool holds(const Point2L& p) const
-  {
-    return (p[0] >= this->xLo) & (p[0] <= this->xHi) & (p[1] >= this->yLo) & (p[1] <= this->yHi);
-  }
-};
-
-/// The sign of b - a: -1, 0 or +1.
-int signOfDifference(std::int64_t b, std::int64_t a)
-{
-  return (b > a) - (b < a);
-}
-
-/// fanApexAs on a loop whose edges are all axis-parallel, in one pass (the faces' loops): the
-/// same candidates from the turns, the sign of doubledArea, and each candidate tested against
-/// the AxisKernel rather than by a fan test that passes over the loop. The turn at a corner,
-/// (b - a) x (c - a), is the cross product of its two edges, of which at most one term is not
-/// zero: its sign is that of the edges' signs combined. Along an edge, x y grows by x dy when it
-/// goes along y and by y dx along x, so round the loop the sum of the x dy equals minus that of
-/// the y dx, and doubledArea, the sum of the x dy less the sum of the y dx, is -2 times the
-/// sum of the y dx. False, with `apex` not set, when an edge is not axis-parallel.
-///
-/// `simple` tells, when an apex is found, that the loop passes no corner twice (else it may):
-/// so it does when the rectangle has an inside, the loop has no edge of no length and it turns
-/// four more times left than right. Seen from a point o inside the rectangle, every edge lies
-/// strictly on the left of o, so the direction from o to the loop turns always the same way,
-/// and the loop's own direction stays within a half-turn ahead of it: both turn the same number
-/// of times round, here once (four quarter-turns; no corner turns back, for no edge's line has
-/// o strictly on the left of both ways along it). A loop whose direction from o turns once
-/// round, never back nor standing still, meets no place twice.
-bool axisParallelFanApex(const std::vector<Point2L>& corners, int& apex, bool& simple)
-{
-  const std::size_t n = corners.size();
-  if (n < 3)
-    return false;
-  AxisKernel kernel;
-  std::array<std::size_t, 5> candidates;
-  std::size_t count = 0, convex = n;
-  Wide sumYdX = 0;
-  int quarterTurns = 0;
-  bool anEdgeOfNoLength = false;
-  int inX = signOfDifference(corners[0][0], corners[n - 1][0]);
-  int inY = signOfDifference(corners[0][1], corners[n - 1][1]);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Point2L& p = corners[i];
-    const Point2L& q = corners[i + 1 == n ? 0 : i + 1];
-    const int dx = signOfDifference(q[0], p[0]), dy = signOfDifference(q[1], p[1]);
-    if (dx != 0 && dy != 0)
-      return false;
-    anEdgeOfNoLength |= dx == 0 && dy == 0;
-    const int turn = inX * dy - inY * dx;
-    quarterTurns += turn;
-    if (count < 4) // fanApexAs stops at the fourth right turn
-    {
-      if (turn < 0)
-        candidates[count++] = i;
-      else if (turn > 0 && convex == n)
-        convex = i;
-    }
-    kernel.keepLeftOf(p, dx, dy);
-    if (dx != 0)
-      sumYdX += Wide(p[1]) * (Wide(q[0]) - p[0]);
-    inX = dx;
-    inY = dy;
-  }
-  apex = -1;
-  simple = false;
-  if (count == 0 && convex < n)
-    apex = static_cast<int>(convex);
-  if (count == 0 || sumYdX >= 0) // doubledArea <= 0
-  {
-    simple = apex >= 0 && kernel.hasInside() && !anEdgeOfNoLength && quarterTurns == 4;
-    return true;
-  }
-  if (convex < n)
-    candidates[count++] = convex;
-  for (std::size_t k = 0; k < count && apex < 0; ++k)
-    if (kernel.holds(corners[candidates[k]]))
-      apex = static_cast<int>(candidates[k]);
-  simple = apex >= 0 && kernel.hasInside() && !anEdgeOfNoLength && quarterTurns == 4;
-  return true;
-}
-
 /// fanApex in integers of type Int (see cross2).
 template<typename Int>
 int fanApexAs(const std::vector<Point2L>& corners)
@@ -573,16 +459,10 @@ int fanApexAs(const std::vector<Point2L>& corners)
 /// that turns left (enough for a rectangle with corners on its sides). A loop that never
 /// turns right is convex: the first left turn is its apex, with no check (most faces of
 /// porous volumes are rectangles, often with corners of their neighbours on their sides).
-/// `simple`: true when the loop is known to pass no corner twice (axisParallelFanApex); false
-/// tells nothing.
-int fanApex(const std::vector<Point2L>& corners, bool& simple)
+int fanApex(const std::vector<Point2L>& corners)
 {
-  simple = false;
   if (corners.empty())
     return -1;
-  int apex = -1;
-  if (axisParallelFanApex(corners, apex, simple))
-    return apex;
   return smallCoordinates(corners) ? fanApexAs<std::int64_t>(corners) : fanApexAs<Wide>(corners);
 }
 
@@ -810,11 +690,6 @@ namespace detail
 int rectangleApexOf(const PointRange& pts, int u, int v, int sign)
 {
   return rectangleApex(pts, u, v, sign);
-}
-
-int fanApexOf(const std::vector<Point2L>& corners, bool& simple)
-{
-  return fanApex(corners, simple);
 }
 } // namespace detail
 
@@ -1236,8 +1111,7 @@ bool appendPartPolygons(const BRep& brep, const BRepFace& face, FaceCells& cells
     for (const Point3& p : parts.pointsOf(k))
       cells.loop2D.push_back(face.normalSign > 0 ? Point2L{ p[u], p[v] } : Point2L{ p[v], p[u] });
     const std::size_t m = cells.loop2D.size();
-    bool simple = false;
-    const int apex = m == 4 ? 0 : fanApex(cells.loop2D, simple); // 4 corners: a rectangle
+    const int apex = m == 4 ? 0 : fanApex(cells.loop2D); // 4 corners: a rectangle
     if (apex < 0)
     {
       cells.corners.resize(corners);
@@ -1269,9 +1143,8 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
     if (apex < 0)
     {
       outerLoop2D(brep, face, cells.loop2D);
-      bool simple = false;
-      apex = fanApex(cells.loop2D, simple);
-      if (apex >= 0 && !simple && visitsACornerTwice(cells.loop2D, cells.keys))
+      apex = fanApex(cells.loop2D);
+      if (apex >= 0 && visitsACornerTwice(cells.loop2D, cells.keys))
         apex = -1;
     }
     if (apex >= 0)

@@ -106,12 +106,6 @@ namespace detail
 /// the loop goes round a rectangle (four left turns, no right turn, straight on elsewhere);
 /// -1 for any other loop, which then takes the general search.
 int rectangleApexOf(const PointRange& pts, int u, int v, int sign);
-/// For tests: the corner appendFanPolygons takes as the apex of a face's outer loop in the
-/// coordinates of its general search (a loop that goes round a rectangle aside): the first of a
-/// few candidate corners whose fan covers the loop, or -1. On loops whose edges are all
-/// axis-parallel the fan test is a look-up in the rectangle the edges' lines cut out. `simple`
-/// true: the loop is known to pass no corner twice (false tells nothing).
-int fanApexOf(const std::vector<Point2L>& corners, bool& simple);
 } // namespace detail
 
 } // namespace vbr
