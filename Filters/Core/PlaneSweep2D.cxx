@@ -600,13 +600,21 @@ private:
   /// Pairs the two entering and two leaving edges of each non-manifold vertex (paper Fig. 7):
   /// when both corners belong to the same face, the loop turns right, so that every loop
   /// follows one component of the face's complement; otherwise each loop stays in its face.
+  /// The face of each edge is looked up once, and those of the leaving edges only when needed
+  /// (two or four finds, not two or ten: on a checkerboard, where nearly every vertex is
+  /// non-manifold and its corners lie in different faces, the finds were most of this step).
   void pairNonManifoldVertices()
   {
     for (const auto& nmv : this->NonManifold)
     {
-      int in[2], out[2], ni = 0, no = 0, inReach[2], outReach[2];
+      int in[2], out[2], ni = 0, no = 0, inReach[2], outReach[2], inFace[2], outFace[2];
       for (int j = 0; j < 4; ++j)
-        if (this->Ends[nmv.edges[j]].to == nmv.at)
+      {
+        const EdgeEnd& end = this->Ends[nmv.edges[j]];
+        const bool entering = end.to == nmv.at;
+        if (entering ? ni == 2 : no == 2)
+          throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
+        if (entering)
         {
           inReach[ni] = j;
           in[ni++] = nmv.edges[j];
@@ -616,29 +624,29 @@ private:
           outReach[no] = j;
           out[no++] = nmv.edges[j];
         }
-      if (ni != 2 || no != 2)
-        throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
-      const bool sameFace =
-        this->find(this->Ends[in[0]].interval) == this->find(this->Ends[in[1]].interval);
+      }
+      for (int k = 0; k < 2; ++k)
+        inFace[k] = this->find(this->Ends[in[k]].interval);
+      const bool sameFace = inFace[0] == inFace[1];
+      if (!sameFace)
+        for (int m = 0; m < 2; ++m)
+          outFace[m] = this->find(this->Ends[out[m]].interval);
       for (int k = 0; k < 2; ++k)
       {
-        const EdgeEnd& a = this->Ends[in[k]];
         int chosen = -1;
         for (int m = 0; m < 2; ++m)
         {
-          const int o = out[m];
-          const EdgeEnd& b = this->Ends[o];
           if (sameFace)
           {
-            // The directions of a (towards the vertex) and b (away from it).
+            // The directions of in[k] (towards the vertex) and out[m] (away from it).
             const int* ra = EdgeReach[inReach[k]];
             const int* rb = EdgeReach[outReach[m]];
             if (-ra[0] * rb[1] + ra[1] * rb[0] < 0)
-              chosen = o; // right turn
+              chosen = out[m]; // right turn
           }
-          else if (this->find(b.interval) == this->find(a.interval))
+          else if (outFace[m] == inFace[k])
           {
-            chosen = o;
+            chosen = out[m];
           }
         }
         if (chosen < 0)
