@@ -17,6 +17,8 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <numeric>
+#include <random>
 #include <sstream>
 #include <thread>
 #ifdef __GLIBC__
@@ -262,14 +264,22 @@ std::vector<Measured> timeInTurns(int repeat, const std::vector<Contender>& cont
     out.push_back(m);
   }
   std::vector<std::vector<double>> t(contenders.size());
+  // Each round in an order of its own (shuffled, fixed seed), so that no contender always runs
+  // right after the same one: with a rotation, the one after a peer found the caches cold in
+  // every round and the next one found them warm.
+  std::mt19937 shuffler(1);
+  std::vector<std::size_t> order(contenders.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
   for (int r = 0; r < repeat; ++r)
-    for (std::size_t i = 0; i < contenders.size(); ++i)
+  {
+    std::shuffle(order.begin(), order.end(), shuffler);
+    for (const std::size_t k : order)
     {
-      const std::size_t k = (i + static_cast<std::size_t>(r)) % contenders.size();
       const double t0 = now();
       contenders[k].run();
       t[k].push_back(now() - t0);
     }
+  }
   for (std::size_t k = 0; k < contenders.size(); ++k)
   {
     out[k].median = median(t[k]);
