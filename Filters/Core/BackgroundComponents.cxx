@@ -77,8 +77,6 @@ int connectedFaceSets(const CellList& hull, const std::vector<bool>& marked)
 namespace detail
 {
 
-/// Section 4.1: the background components in the closed hull (CUDB, face-connected), each a
-/// cavity, concavity or tunnel by the faces seen from (or coplanar with) its voxels' corners.
 void classifyBackgroundComponents(const BitVolume& objects, const CellList& hull, ModifiedHull& r)
 {
   const std::vector<LatticePoint> background = pointsOfClass(hull, objects, false, false).points();

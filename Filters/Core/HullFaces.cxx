@@ -193,9 +193,6 @@ void putInCanonicalOrder(ModifiedHull& r)
 namespace detail
 {
 
-/// The faces of the surface: coplanar edge-adjacent triangles merged, with their loops and
-/// the level of their first triangle when `triangleLevel` holds one per triangle, else of
-/// their plane.
 void mergeIntoFaces(const std::map<FacePlane, int>& planeLevel,
   const std::vector<int>& triangleLevel,
   ModifiedHull& r)

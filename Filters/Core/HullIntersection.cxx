@@ -161,8 +161,6 @@ bool hullsIntersect(const CellList& a, const CellList& b)
 namespace detail
 {
 
-/// The hull of the points; a flat one is thickened by the points one lattice step off its
-/// plane or line that lie in the parent hull (in its open interior when `strict`).
 bool solidHull(const std::vector<LatticePoint>& points,
   const CellList& parent,
   bool strict,
@@ -198,9 +196,6 @@ bool solidHull(const std::vector<LatticePoint>& points,
   return out.dimension == 3;
 }
 
-/// Whether a hull inside the closed C misses a corner of C, that is (C being the hull of its
-/// lattice corners) whether it holds fewer lattice points than C: the lattice count of the
-/// hulls strictly decreases from level to level, so the recursion ends.
 bool missesACorner(const CellList& inside, const CellList& c)
 {
   return std::any_of(c.vertices.begin(),

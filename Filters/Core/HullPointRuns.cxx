@@ -173,8 +173,6 @@ std::vector<std::uint32_t> labelsByRowIntervals(const std::vector<LatticePoint>&
 namespace detail
 {
 
-/// The lattice points of class `cls` in the hull (its open interior when `strict`), row by row
-/// from the volume's words, as runs: every level of the recursion collects its points so.
 PointRuns pointsOfClass(const CellList& c, const BitVolume& objects, bool cls, bool strict)
 {
   PointRuns points;
@@ -201,10 +199,6 @@ void recordPlanes(Context& ctx, const CellList& c, int level)
   }
 }
 
-/// Components of a set of lattice points (CUDB, connected through faces, edges or corners when
-/// `vertex`), as runs in the order of the set's. Only the box of the points is voxelised: a level
-/// deep inside a large grid pays for its own points, not for the grid. `plane`: the grid is one
-/// slice (2D components); a 3D grid keeps 3D extraction even when the points lie in one slice.
 std::vector<PointRuns> componentsOf(PointRuns points, bool plane, bool vertex)
 {
   if (points.empty())
@@ -280,7 +274,6 @@ std::vector<PointRuns> componentsOf(PointRuns points, bool plane, bool vertex)
   return groups;
 }
 
-/// componentsOf for a list of points, as lists.
 std::vector<std::vector<LatticePoint>> componentsOf(const std::vector<LatticePoint>& points,
   bool plane,
   bool vertex)

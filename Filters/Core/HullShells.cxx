@@ -186,8 +186,6 @@ std::vector<Shell> shellsOf(const LatticeMesh& m)
   }
   return shells;
 }
-/// sideOf from those of the surface's triangles that can reach p / k (all of them, or for k = 1
-/// those trianglesAheadOf keeps for a box that holds p).
 int sideOf(const LatticeMesh& surface,
   const std::vector<std::array<Index, 3>>& triangles,
   const LatticePoint& p,
@@ -200,8 +198,6 @@ int sideOf(const LatticeMesh& surface,
   return parity ? 1 : -1;
 }
 
-/// Whether the point p / k lies strictly inside the closed surface (+1), strictly outside (-1)
-/// or on it (0): the crossings of the ray towards +x (perturbed as in revertModifiedHull).
 int sideOf(const LatticeMesh& surface, const LatticePoint& p, std::int64_t k)
 {
   return sideOf(surface, surface.triangles, p, k);
@@ -251,15 +247,6 @@ std::vector<std::array<Index, 3>> trianglesAheadOf(const LatticeMesh& surface,
   }
   return near;
 }
-/// Whether every shell of a closed embedded mesh faces away from the solid it bounds, tested
-/// exactly: six times a shell's signed volume (Shell::volume, the sum of det(a, b, c) over its
-/// triangles, integer) is positive when it is oriented outwards, and a shell nested in an odd
-/// number of others bounds a void, so it must face into it (negative), one nested in an even
-/// number (none: an outer shell; two: an island in a void) outwards. The shells are apart (no
-/// shared point, no crossing), so a shell lies inside another exactly when one of its points
-/// does (exact ray parity, sideOf). Stricter than CGAL's does_bound_a_volume, which also
-/// accepts a mesh whose shells are all turned over; unlike the closedness, manifoldness and
-/// reversion checks, it sees a shell turned over whole (the ray parity of the reversion does not).
 bool shellsFaceOutward(const std::vector<Shell>& shells)
 {
   for (std::size_t i = 0; i < shells.size(); ++i)

@@ -233,9 +233,6 @@ BitVolume revertModifiedHull(const LatticeMesh& surface,
 namespace detail
 {
 
-/// revertModifiedHull with the lattice points on the surface (latticePointsOnSurface) given:
-/// the whole-H check and the shells' marks list them anyway. Only bits of centres in the grid
-/// are set (x < dims[0]: the words' padding bits stay 0).
 BitVolume revertWithPointsOn(const LatticeMesh& surface,
   const std::vector<LatticePoint>& on,
   const std::vector<LatticePoint>& backgroundOnSurface,
@@ -273,8 +270,6 @@ ShellInBox shellInItsBox(const LatticeMesh& shell)
   return s;
 }
 
-/// Flags (value `flag`) the lattice points of the grid strictly enclosed by a closed shell (ray
-/// parity) and, with `onFlag`, those on it; only the shell's box is scanned.
 void markShell(const LatticeMesh& shell,
   const Dims& d,
   std::uint8_t flag,
@@ -310,25 +305,12 @@ void markShell(const LatticeMesh& shell,
   }
 }
 
-/// Whether H separates: a closed embedded 2-manifold, each shell oriented away from its solid
-/// (the joins turn parts of H over and back; shellsFaceOutward, exact), from which the voxel
-/// set reverts exactly.
 bool separates(const BitVolume& objects, const LatticeMesh& surface)
 {
   return isClosedEmbeddedManifold(surface) && shellsFaceOutward(shellsOf(surface)) &&
     revertsToObjects(objects, surface);
 }
 
-/// separates for H made from an H that separates by joins and handle cuts each checked on the
-/// part of H it changed (joinAlongPrism): each Boolean's result is a closed 2-manifold oriented
-/// as its operands, and the triangles that meet its prism's box are tested for
-/// self-intersections, which is the whole test for a closed embedded mesh that a Boolean
-/// changed only inside that box (isEmbeddedWithin). So the whole H is embedded; the
-/// self-intersection test of all of H (about 0.9 s of CPU on the aneurism's 48,000 triangles)
-/// is left out, and what the changes could still have missed is checked: closed, manifold,
-/// consistently oriented within each shell, each shell facing away from its solid (exact signed
-/// volumes and nesting, shellsFaceOutward: the reversion counts crossings by parity and would
-/// not see a shell turned over whole), and the reversion.
 bool separatesAfterLocalChecks(const BitVolume& objects, const LatticeMesh& surface)
 {
   return isClosedManifold(surface) && shellsFaceOutward(shellsOf(surface)) &&

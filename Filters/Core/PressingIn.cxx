@@ -641,9 +641,6 @@ bool convexDifferenceIsManifold(const CellList& c, const CellList& g)
 namespace detail
 {
 
-/// The first and last point of every row (along x) of the points: every other point lies
-/// between two of them, so they span the same hull, and a solid group of n points gives the
-/// hull about n^(2/3) points instead of n. Points in row order (as listed) are read in place.
 std::vector<LatticePoint> rowEnds(const std::vector<LatticePoint>& listed)
 {
   auto zyx = [](const LatticePoint& a, const LatticePoint& b)
@@ -669,8 +666,6 @@ std::vector<LatticePoint> rowEnds(const std::vector<LatticePoint>& listed)
   return ends;
 }
 
-/// rowEnds of points given as runs: a row's first point is its first run's, its last the last
-/// run's (the runs of a set are disjoint, so runs in row order list the points in row order).
 std::vector<LatticePoint> rowEnds(const PointRuns& listed)
 {
   auto zyx = [](const Run& a, const Run& b)
@@ -756,13 +751,6 @@ bool EmptyFaceTriangles::next(std::array<LatticePoint, 3>& out)
   return false;
 }
 
-/// Whether the faces of a solid hull fanned (triangulateHull) make an embedded surface, in
-/// exact integer arithmetic: every face strictly convex, counter-clockwise about its outward
-/// normal (each corner strictly left of every edge it is not on) and no corner beyond a face's
-/// plane. Fan triangles of one strictly convex face then meet only in their shared corner and
-/// edges, and those of two faces only where the faces meet, in corners and edges of both.
-/// Checking that costs far less than CGAL's self-intersection test of the fan, which every
-/// level ran on its hull and on every leaf hull pressed into it.
 bool fanIsEmbedded(const CellList& c)
 {
   if (c.dimension != 3)
@@ -793,9 +781,6 @@ bool fanIsEmbedded(const CellList& c)
     });
 }
 
-/// One level of Algorithm 1 (see the header): C minus the pits, the groups that fail as pits
-/// kept apart (cavities and regions pressed in from empty triangles). `pit`: C touches the
-/// surface of its parent in pieces of faces. `depth` receives the number of levels below.
 LevelSurface solveLevel(Context& ctx,
   const CellList& c,
   const CellList* parent,

@@ -1205,7 +1205,6 @@ constexpr std::size_t kCrossingsTried = 16;
 namespace detail
 {
 
-/// Joins shells while one can be joined; returns how many were.
 int joinShells(Context& ctx, LatticeMesh& surface)
 {
   if (shellsOf(surface).size() < 2)
@@ -1224,8 +1223,6 @@ int joinShells(Context& ctx, LatticeMesh& surface)
   return keepIfSeparates(ctx, joined, repaired.takeMesh(), planes, surface);
 }
 
-/// The Euler characteristic of the object's boundary, counted once; none when the object is not
-/// well-composed (see wellComposedBoundaryEuler).
 const std::optional<long>& objectEuler(Context& ctx)
 {
   if (!ctx.euler)
@@ -1233,8 +1230,6 @@ const std::optional<long>& objectEuler(Context& ctx)
   return *ctx.euler;
 }
 
-/// The number of surfaces of the object's boundary, counted once: its face-connected
-/// components and those of the background that do not reach the grid's border.
 long objectSurfaces(Context& ctx)
 {
   if (ctx.surfaces < 0)
@@ -1251,10 +1246,6 @@ long objectSurfaces(Context& ctx)
   return ctx.surfaces;
 }
 
-/// Missing handles (see the header): while H has the object's number of surfaces and a higher
-/// Euler characteristic than its boundary (a well-composed object), handles are cut through the
-/// walls that seal its tunnels. Returns how many; H unchanged when none was cut or the result
-/// does not separate.
 int cutMissingHandles(Context& ctx, LatticeMesh& surface)
 {
   const std::optional<long>& target = objectEuler(ctx);
