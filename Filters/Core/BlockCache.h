@@ -43,7 +43,7 @@ inline bool onHugePages(double bytes)
 /// every filter that uses it (addUser); the last one's destruction frees what it keeps.
 ///
 /// Memory stays linear in the outputs: the cache keeps no more than the last update used.
-/// - While the filters are idle it holds only the last update's scratch of 2 MiB or more (the
+/// - While the filters are idle it holds only the last update's scratch of 1 MiB or more (the
 ///   region numbering's, about 20 bytes a region, released before the update ends), at most
 ///   KeptBytes of it. Outputs are kept only when the pipeline releases them just before their
 ///   filter executes (ReleaseWindow, from REQUEST_DATA_NOT_GENERATED to the end of
@@ -154,7 +154,7 @@ private:
 /// Releases a block of allocateBlock (to BlockCache).
 void releaseBlock(void* block);
 
-/// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 2
+/// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 1
 /// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
 /// faulted in 4 KiB pages) and marked for transparent huge pages, like
 /// vbr::vtk::newZeroedIntArray's RegionId image, and taken from the blocks an earlier update
@@ -162,7 +162,7 @@ void releaseBlock(void* block);
 void* allocateBlock(std::size_t bytes, bool huge);
 
 /// A std::allocator over allocateBlock, whose values made without a value are left unset
-/// (DefaultInit: a resize for values written next does not zero them first): scratch of 2 MiB or
+/// (DefaultInit: a resize for values written next does not zero them first): scratch of 1 MiB or
 /// more that an update fills comes from the blocks an earlier update released (BlockCache) rather
 /// than from pages the kernel faults in and zeroes at every update (a checkerboard's region
 /// numbering has 20 MB of it).
