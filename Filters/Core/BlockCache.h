@@ -42,24 +42,29 @@ inline bool onHugePages(double bytes)
 /// boxes, about 20 MB an update and a tenth of its time). One cache for the process, shared by
 /// every filter that uses it (addUser); the last one's destruction frees what it keeps.
 ///
-/// Memory stays linear in the outputs: the cache keeps no more than the last update used.
-/// - While the filters are idle it holds only the last update's scratch of 2 MiB or more (the
-///   region numbering's, about 20 bytes a region, released before the update ends), at most
-///   KeptBytes of it. Outputs are kept only when the pipeline releases them just before their
-///   filter executes (ReleaseWindow, from REQUEST_DATA_NOT_GENERATED to the end of
-///   REQUEST_DATA), up to KeptOutputBytes in all with the scratch: that execution takes them
-///   or frees them at its end. Outputs released at any other time (ReleaseData, a downstream
-///   ReleaseDataFlag, a filter destroyed) are freed at once, so no more than KeptBytes is ever
-///   held while idle. (A 6001^2 maze's outputs with boxes are 884 MB, 468 of them the boxes'
-///   coordinates: with 512 MiB for everything, most were freed, and faulted in and zeroed
-///   again by the kernel, a third of each update.)
+/// Memory stays linear in the outputs: the cache keeps at most KeptBytes of scratch while idle,
+/// and outputs only for the execution about to write them again.
+/// - While the filters are idle it holds only scratch of 1 MiB or more (the region numbering's,
+///   about 20 bytes a region, the regions' records, released before the update ends), at most
+///   KeptBytes of it: the newest first, a block released when KeptBytes is full evicting the
+///   oldest. Scratch stays past updates that do not take it: filters taking turns (a face and a
+///   vertex connectivity of one image) each find their own at their next update, where the
+///   update of another filter freed it and the kernel faulted it in again (a 128^3
+///   checkerboard's 64 MB of records: 1,070 faults and 34 ms an update against 22 ms). Outputs are
+///   kept only when the pipeline releases them just before their filter executes (ReleaseWindow,
+///   from REQUEST_DATA_NOT_GENERATED to the end of REQUEST_DATA), up to KeptOutputBytes in all with
+///   the scratch: that execution takes them or frees them at its end. Outputs released at any other
+///   time (ReleaseData, a downstream ReleaseDataFlag, a filter destroyed) are freed at once, so no
+///   more than KeptBytes is ever held while idle. (A 6001^2 maze's outputs with boxes are 884 MB,
+///   468 of them the boxes' coordinates: with 512 MiB for everything, most were freed, and faulted
+///   in and zeroed again by the kernel, a third of each update.)
 /// - An update takes the kept blocks its arrays fit (1 to 1.25 times the size asked). When none
 ///   fits, the oldest kept blocks are freed before a new one is allocated, so that what is
 ///   kept plus what the update has taken or allocated stays within the larger of the bytes kept
 ///   at its start and the bytes it uses: the peak is about max(old outputs, new outputs), not
 ///   their sum, when the sizes change.
-/// - At its end (endUpdate, also after an abort, an error or an exception) every block kept
-///   before it began and not taken by it is freed.
+/// - At its end (endUpdate, also after an abort, an error or an exception) every output kept
+///   before it began (in its release window) and not taken by it is freed.
 /// - Before a memory check refuses an allocation, and after one failed, everything kept is
 ///   freed (clear: the VTK adapter registers it as vbr::vtk::reclaimMemory's reclaimer).
 class BlockCache
@@ -81,8 +86,9 @@ public:
   /// Notes a new huge block of `length` bytes, in use.
   void track(void* block, std::size_t length);
   /// A block of allocateBlock no longer used: kept when huge, a filter exists and there is
-  /// room (KeptBytes for an update's scratch, KeptOutputBytes for outputs released while a
-  /// filter is about to execute, see ReleaseWindow), else freed: outputs released at any other
+  /// room (KeptBytes for scratch, released during an update, the oldest scratch freed to make
+  /// room; KeptOutputBytes for outputs released while a filter is about to execute, see
+  /// ReleaseWindow), else freed: outputs released at any other
   /// time (ReleaseData, ReleaseDataFlag, a filter destroyed) are freed at once.
   void release(void* block);
   /// A filter is about to execute: the pipeline now releases its outputs (ReleaseWindow).
@@ -93,7 +99,7 @@ public:
   std::size_t bytesKept();
   /// An update begins: its budget is what is kept now (see the class comment).
   void beginUpdate();
-  /// An update ends: the blocks kept before it began and not taken by it are freed.
+  /// An update ends: the outputs kept before it began and not taken by it are freed.
   void endUpdate();
   /// Frees every kept block (the memory is wanted: a check would refuse, an allocation failed).
   void clear();
@@ -111,6 +117,13 @@ private:
 
   /// Removes the `count` oldest kept blocks (keptBytes already counted), to be freed.
   std::vector<void*> forget(std::size_t count);
+  /// Removes the kept blocks for which evict(kept) holds, oldest first, counting them out of
+  /// keptBytes and keptScratchBytes; returns them, to be freed.
+  template<typename Predicate>
+  std::vector<void*> forgetIf(Predicate evict);
+  /// Removes the oldest kept scratch until at most `most` bytes of it are kept; returns the
+  /// blocks, to be freed.
+  std::vector<void*> forgetOldestScratch(std::size_t most);
   static void freeAll(const std::vector<void*>& blocks);
 
   std::mutex mutex;
@@ -154,7 +167,7 @@ private:
 /// Releases a block of allocateBlock (to BlockCache).
 void releaseBlock(void* block);
 
-/// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 2
+/// Memory of `bytes` that releaseBlock releases, aligned to 64 bytes. With `huge`, a block of 1
 /// MiB or more is 2 MiB-aligned, rounded up to whole huge pages (a partial one at the end is
 /// faulted in 4 KiB pages) and marked for transparent huge pages, like
 /// vbr::vtk::newZeroedIntArray's RegionId image, and taken from the blocks an earlier update
@@ -162,7 +175,7 @@ void releaseBlock(void* block);
 void* allocateBlock(std::size_t bytes, bool huge);
 
 /// A std::allocator over allocateBlock, whose values made without a value are left unset
-/// (DefaultInit: a resize for values written next does not zero them first): scratch of 2 MiB or
+/// (DefaultInit: a resize for values written next does not zero them first): scratch of 1 MiB or
 /// more that an update fills comes from the blocks an earlier update released (BlockCache) rather
 /// than from pages the kernel faults in and zeroes at every update (a checkerboard's region
 /// numbering has 20 MB of it).
