@@ -65,6 +65,10 @@ struct FaceRuns
   /// The output point ids of a run's cells' corners, in the run's order (appendRunOfFaces):
   /// scratch space kept from call to call.
   std::vector<std::int64_t> pointIds;
+  /// A part's corner numbers (partCells) and the T-junction insertion's arrays, kept from part
+  /// to part likewise: made afresh, each part's were zeroed and faulted in first.
+  std::vector<std::int64_t> cornerNumbers;
+  vbr::TJunctionScratch tJunctions;
 };
 
 /// Statistics written to the output's field data.
@@ -1009,9 +1013,9 @@ std::size_t releaseFaces(vbr::BRep& part)
 /// in pages of their own, which never reuse the heap's free space: without this the parts
 /// released would stay resident next to the output that replaces them. Small outputs never
 /// pay for it. On the calling thread, while no worker allocates. The streamed sweep
-/// (StreamedObjectCells) trims once per object, not every 32 MB: its parts in flight are a
-/// batch, whose freed heap the next batch reuses; trimmed between, each batch faulted its
-/// pages in afresh (porous 256^3, 45 %: some 3,500 page faults per update).
+/// (StreamedObjectCells) does not trim: it keeps each slot's part from one chunk of planes to
+/// the next (trimmed between batches, each batch faulted its pages in afresh: porous 256^3,
+/// 45 %, some 3,500 page faults per update), and frees no more than those parts at the end.
 void trimHeap(std::size_t& releasedBytes)
 {
 #if defined(__GLIBC__)
@@ -1190,11 +1194,12 @@ bool partCells(const vbr::vtk::Selected& object,
   FaceRuns& runs,
   CellStore& out)
 {
-  std::vector<std::int64_t> numbers = corners.numbersOf(part, object.offset);
+  std::vector<std::int64_t>& numbers = runs.cornerNumbers;
+  corners.numbersOf(part, object.offset, numbers);
   if (tJunctions)
   {
     vtkLogScopeF(TRACE, "T-junction vertices");
-    vbr::insertTJunctionVertices(part, numbers, corners, object.offset, exec);
+    vbr::insertTJunctionVertices(part, numbers, corners, object.offset, exec, runs.tJunctions);
   }
   return appendBoundaryCells(object, part, numbers, settings, exec, faceBase, progress, runs, out);
 }
@@ -1301,7 +1306,8 @@ void addFaceCounts(const Statistics& from, Statistics& to)
 
 /// The cells of one object's faces as its plane sweeps stream them (planeSweep3DStream): each
 /// part's counts, T-junction vertices and cells are made by the thread that swept it (prepare)
-/// into the part's slot, with face ids from 0, and the part is released; the slots are then
+/// into the part's slot, with face ids from 0 (the part is kept, emptied by the sweep for its
+/// next chunk with its arrays' memory); the slots are then
 /// appended to the output in the parts' order on the calling thread (append), their face ids
 /// shifted past the faces before. The output is the one that writing the parts one after the
 /// other would give, cell for cell. Memory: the cells of one batch of parts twice at most,
@@ -1326,7 +1332,7 @@ public:
     const std::size_t slots = vbr::streamBatch(exec);
     this->Slots.reserve(slots);
     for (std::size_t s = 0; s < slots; ++s)
-      this->Slots.emplace_back(new Slot{ builder.newPartStore(), {}, 0, 0, {} });
+      this->Slots.emplace_back(new Slot{ builder.newPartStore(), {}, 0, {} });
   }
 
   vbr::StreamedPartHandlers handlers()
@@ -1342,7 +1348,6 @@ private:
     CellStore cells;
     Statistics counts;
     std::size_t faces;
-    std::size_t releasedBytes;
     FaceRuns runs; ///< scratch space of the slot's parts' cells, kept from part to part
   };
 
@@ -1367,7 +1372,8 @@ private:
       progress,
       s.runs,
       s.cells);
-    s.releasedBytes = releaseFaces(part);
+    // The part is not released: the sweep empties it for its next chunk of planes and keeps
+    // its arrays' memory (PlaneSweep3D.cxx, emptyKeepingCapacity).
     return done;
   }
 
@@ -1379,7 +1385,6 @@ private:
     this->Writer.faceBase += static_cast<vtkIdType>(s.faces);
     addFaceCounts(s.counts, this->Stats);
     s.counts = Statistics();
-    this->Writer.releasedBytes += s.releasedBytes; // trimmed once the object is done
     return true;
   }
 
@@ -1431,7 +1436,6 @@ void appendObjectsStreamed(vtkAlgorithm* self,
           cells.handlers()))
       return; // aborted
     evms[o] = vbr::EVM();
-    trimHeap(writer.releasedBytes);
   }
 }
 

@@ -309,17 +309,20 @@ std::size_t countEdgeVertices(const PointRange& points,
   return count;
 }
 
-/// Per loop, where it begins once its T-junction vertices are in (the last entry: the new
-/// number of points); per point, the corners inside the edge that starts there (`inside`).
-std::vector<std::size_t> newLoopBegins(const BRep& brep,
+/// Per loop, where it begins once its T-junction vertices are in (`begins`, the last entry:
+/// the new number of points); per point, the corners inside the edge that starts there
+/// (`inside`).
+void newLoopBegins(const BRep& brep,
   const std::vector<std::int64_t>& numbers,
   const CornerSet& corners,
   const Point3& offset,
   const Execution& exec,
-  std::vector<std::uint32_t>& inside)
+  std::vector<std::uint32_t>& inside,
+  std::vector<std::size_t>& begins)
 {
   const std::size_t n = brep.loops.size();
-  std::vector<std::size_t> begins(n + 1, 0);
+  begins.resize(n + 1); // every entry written below
+  begins[0] = 0;
   inside.resize(brep.points.size());
   exec.forRange(static_cast<std::int64_t>(n),
     [&](std::int64_t b, std::int64_t e)
@@ -338,7 +341,6 @@ std::vector<std::size_t> newLoopBegins(const BRep& brep,
     });
   for (std::size_t l = 0; l < n; ++l)
     begins[l + 1] += begins[l];
-  return begins;
 }
 
 } // namespace
@@ -631,16 +633,24 @@ __attribute__((target("popcnt"))) void numbersByInstruction(const CornerSet& set
 
 std::vector<std::int64_t> CornerSet::numbersOf(const BRep& brep, const Point3& offset) const
 {
-  std::vector<std::int64_t> numbers(brep.points.size());
+  std::vector<std::int64_t> numbers;
+  this->numbersOf(brep, offset, numbers);
+  return numbers;
+}
+
+void CornerSet::numbersOf(const BRep& brep,
+  const Point3& offset,
+  std::vector<std::int64_t>& out) const
+{
+  out.resize(brep.points.size());
 #if VBR_POPCNT_COPY
   if (hasPopCountInstruction())
   {
-    numbersByInstruction(*this, brep, offset, numbers.data());
-    return numbers;
+    numbersByInstruction(*this, brep, offset, out.data());
+    return;
   }
 #endif
-  numbersPortable(*this, brep, offset, numbers.data());
-  return numbers;
+  numbersPortable(*this, brep, offset, out.data());
 }
 
 void insertTJunctionVertices(BRep& brep,
@@ -649,18 +659,33 @@ void insertTJunctionVertices(BRep& brep,
   const Point3& offset,
   const Execution& exec)
 {
+  TJunctionScratch scratch;
+  insertTJunctionVertices(brep, numbers, corners, offset, exec, scratch);
+}
+
+void insertTJunctionVertices(BRep& brep,
+  std::vector<std::int64_t>& numbers,
+  const CornerSet& corners,
+  const Point3& offset,
+  const Execution& exec,
+  TJunctionScratch& scratch)
+{
   if (brep.loops.empty())
     return;
   // The vertices each loop gains are counted first (in O(1) per edge), so that the loops are
   // written once, concurrently, straight into arrays of their final size: no buffers per run
   // to join, and nothing at all when no edge holds a corner (a checkerboard's unit faces).
-  std::vector<std::uint32_t> inside;
-  const std::vector<std::size_t> begins =
-    newLoopBegins(brep, numbers, corners, offset, exec, inside);
+  std::vector<std::uint32_t>& inside = scratch.inside;
+  std::vector<std::size_t>& begins = scratch.begins;
+  newLoopBegins(brep, numbers, corners, offset, exec, inside, begins);
   if (begins.back() == brep.points.size())
     return;
-  std::vector<Point3> points(begins.back());
-  std::vector<std::int64_t> pointNumbers(begins.back());
+  // Every point and number of the new arrays is written below, loop by loop: what the
+  // scratch held before is overwritten, not zeroed first.
+  std::vector<Point3>& points = scratch.points;
+  std::vector<std::int64_t>& pointNumbers = scratch.numbers;
+  points.resize(begins.back());
+  pointNumbers.resize(begins.back());
   exec.forRange(static_cast<std::int64_t>(brep.loops.size()),
     [&](std::int64_t b, std::int64_t e)
     {

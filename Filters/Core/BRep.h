@@ -137,6 +137,9 @@ public:
   /// The numbers of the points of `brep` at `offset`, one of the B-Reps numbered (as they were
   /// then): asked for one B-Rep at a time, so that all of them are never held at once.
   std::vector<std::int64_t> numbersOf(const BRep& brep, const Point3& offset) const;
+  /// The same into `out`, resized to the points of `brep` (the values it held are overwritten,
+  /// not zeroed first: a caller keeps it from one B-Rep to the next).
+  void numbersOf(const BRep& brep, const Point3& offset, std::vector<std::int64_t>& out) const;
 
   std::size_t size() const { return this->Points.size(); }
 
@@ -330,6 +333,19 @@ private:
 /// from the 2x2x2 voxels around each point, 64 points per step, without making the faces.
 void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vector<Point3>& out);
 
+/// Arrays insertTJunctionVertices works in, kept by a caller that inserts into many B-Reps
+/// one after the other (the parts of a streamed sweep): the loops' new points and numbers are
+/// written here and swapped with the B-Rep's, whose former arrays are kept here in turn for the
+/// next B-Rep (their memory, not their values). Fresh arrays for each part were zeroed, then
+/// written, in pages faulted in afresh.
+struct TJunctionScratch
+{
+  std::vector<Point3> points;
+  std::vector<std::int64_t> numbers;
+  std::vector<std::uint32_t> inside; ///< per point, the corners inside the edge from it
+  std::vector<std::size_t> begins;   ///< per loop, where it begins with its new vertices
+};
+
 /// Inserts into every loop of `brep` (at `offset` in the common grid) the `corners` lying
 /// inside its edges: with the corners of several B-Reps, the edges of neighbouring B-Reps
 /// (the labels of a label map) match exactly as well. `numbers` holds the corner number of every
@@ -339,6 +355,14 @@ void insertTJunctionVertices(BRep& brep,
   const CornerSet& corners,
   const Point3& offset,
   const Execution& exec = Execution());
+
+/// The same, in the arrays of `scratch` (TJunctionScratch).
+void insertTJunctionVertices(BRep& brep,
+  std::vector<std::int64_t>& numbers,
+  const CornerSet& corners,
+  const Point3& offset,
+  const Execution& exec,
+  TJunctionScratch& scratch);
 
 } // namespace vbr
 

@@ -508,6 +508,20 @@ void findEntering(const PlaneChunk& entering,
   }
 }
 
+/// Empties a part for the next chunk of planes, keeping its arrays' memory: a part grown from
+/// empty copied its points at each doubling of the arrays, in pages taken afresh from the
+/// heap, 192 parts an object (64 chunks per sorting). The chunks that follow are about as
+/// large, so the memory is kept for them until the sorting is done (a handler may also have
+/// released or moved the part's arrays: then they grow again).
+void emptyKeepingCapacity(BRep& part)
+{
+  part.faces.clear();
+  part.loops.clear();
+  part.points.clear();
+  part.nonManifoldVertices = 0;
+  part.mergedAtVertices = false;
+}
+
 /// Sweeps the planes of one sorting in chunks of `step` planes, `batch` chunks at a time
 /// (concurrently), each part prepared by the thread that swept it, then the batch's parts
 /// appended in order before the next batch is swept. `planesDone` (of `planesAll`, for the
@@ -539,7 +553,9 @@ bool streamSorting(const EVM& sorted,
   {
     findEntering(entering, p, step, batch, walker.get(), chunks);
     p = chunks.back().endPlane;
-    parts.assign(chunks.size(), BRep());
+    parts.resize(chunks.size());
+    for (BRep& part : parts)
+      emptyKeepingCapacity(part);
     const std::size_t last = chunks.size() - 1;
     exec.forRange(static_cast<std::int64_t>(chunks.size()),
       [&](std::int64_t b, std::int64_t e)

@@ -537,6 +537,35 @@ TEST(BRep, CornerNumbersOfPointsMatchSortedCorners)
   vbr::portableBitCountsForTesting() = false;
 }
 
+// The T-junction vertices and the corner numbers written into arrays kept from one B-Rep to the
+// next (TJunctionScratch, numbersOf into a vector), larger or smaller than needed and holding
+// the values of the B-Rep before, are those made in fresh arrays.
+TEST(BRep, TJunctionScratchKeptMatchesFresh)
+{
+  unsigned seed = 4400;
+  vbr::TJunctionScratch scratch;
+  std::vector<std::int64_t> kept(5000, -7); // stale values, more than the first B-Rep needs
+  for (int trial = 0; trial < 10; ++trial)
+  {
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    // Large and small B-Reps in turns, so that the kept arrays both grow and shrink.
+    const int edge = trial % 2 ? 4 : 9 + trial;
+    const vbr::BitVolume v = bf::randomVolume({ edge, edge + 1, edge + 2 }, 0.45, seed++);
+    vbr::BRep fresh;
+    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v), vbr::FaceConnectivity::Edge, {}, fresh));
+    vbr::BRep reused = fresh;
+    const vbr::Point3 offset{ 1, 2, 3 };
+    const vbr::CornerSet corners({ { &fresh, offset } }, vbr::KeyPacker::forMaximum(40));
+    std::vector<std::int64_t> numbers = corners.numbersOf(fresh, offset);
+    corners.numbersOf(reused, offset, kept);
+    ASSERT_EQ(kept, numbers);
+    vbr::insertTJunctionVertices(fresh, numbers, corners, offset);
+    vbr::insertTJunctionVertices(reused, kept, corners, offset, {}, scratch);
+    expectSameBRep(reused, fresh);
+    ASSERT_EQ(kept, numbers);
+  }
+}
+
 // The streamed parts, joined, are planeSweep3D's B-Rep, on one thread and on several, and the
 // caller stops the stream by returning false.
 TEST(BRep, StreamedPartsAreTheSweepsFaces)
@@ -566,6 +595,24 @@ TEST(BRep, StreamedPartsAreTheSweepsFaces)
         }));
       EXPECT_GT(parts.size(), 40u); // the chunks of the long axis were streamed
       expectSameBRep(joined(parts), whole);
+
+      // Copied, not moved: each part is emptied for its next chunk with its arrays' memory
+      // kept, and holds nothing of the chunk before (faces, loops, points, the count of
+      // non-manifold vertices).
+      std::vector<vbr::BRep> copies;
+      ASSERT_TRUE(vbr::planeSweep3DStream(evm,
+        c,
+        exec,
+        [&](vbr::BRep& part)
+        {
+          copies.push_back(part);
+          return true;
+        }));
+      expectSameBRep(joined(copies), whole);
+      std::size_t nonManifold = 0;
+      for (const vbr::BRep& part : copies)
+        nonManifold += part.nonManifoldVertices;
+      EXPECT_EQ(nonManifold, whole.nonManifoldVertices);
       int calls = 0;
       EXPECT_FALSE(vbr::planeSweep3DStream(evm, c, exec, [&](vbr::BRep&) { return ++calls < 5; }));
       EXPECT_EQ(calls, 5);
