@@ -248,6 +248,7 @@ public:
     {
       this->addTriangulatedFaces(o, mode);
     }
+    this->writeFaceValues(o);
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
 
@@ -395,18 +396,19 @@ private:
   {
     const bool direct = this->trianglesFit32(count);
     bool byIndex = false;
+    const vbr::StandardFace& face = o.poly.faces[f];
     if (markLoops)
     {
-      const vbr::StandardFace& face = o.poly.faces[f];
-      byIndex = direct && count > 0 && polygon.begin() == face.loop.begin() &&
-        this->loopPointsDistinct(o, face);
-      if (!byIndex)
+      byIndex = direct && count > 0 && polygon.begin() == face.loop.begin();
+      if (byIndex)
+        this->stampLoopPoints(o, face);
+      else
         this->sortLoopEdges(o, face);
     }
     std::vector<vtkIdType>& ids = this->TriangleIds;
     ids.resize(3);
     if (direct)
-      this->writeTriangles32(o, polygon, triangles, count, markLoops, byIndex);
+      this->writeTriangles32(o, face, polygon, triangles, count, markLoops, byIndex);
     else
       for (std::size_t i = 0; i < count; ++i)
       {
@@ -434,6 +436,7 @@ private:
   /// LoopEdges bits), the values addTriangle writes one cell at a time (InsertNextCell and
   /// InsertNextValue cost more than the triangulation's ear tests); after trianglesFit32.
   void writeTriangles32(const ObjectFaces& o,
+    const vbr::StandardFace& face,
     const vbr::IdRange& polygon,
     const vbr::Triangle* triangles,
     std::size_t count,
@@ -462,44 +465,88 @@ private:
         corner[3 * i + k] = static_cast<vtkTypeInt32>(ids[k]);
       offset[i] = static_cast<vtkTypeInt32>(corners + 3 * static_cast<vtkIdType>(i + 1));
       if (bits)
-        bits[i] =
-          byIndex ? this->loopEdgeBitsByIndex(triangles[i], polygon.size()) : this->loopEdgeBits();
+        bits[i] = byIndex ? this->loopEdgeBitsByIndex(o, face, triangles[i]) : this->loopEdgeBits();
     }
   }
 
-  /// Makes the points of face f's loop in sortLoopEdges' order and tells whether
-  /// they are pairwise distinct. Then a triangle's edge of points (P_a, P_b) is a loop edge
-  /// (P_i, P_i+1) exactly when b follows a in the loop: loopEdgeBitsByIndex gives the bits
-  /// without the sorted list and its binary searches.
-  bool loopPointsDistinct(const ObjectFaces& o, const vbr::StandardFace& face)
+  /// Makes the points of face f's loop in sortLoopEdges' order (LoopIds, by index into the
+  /// loop) and stamps them: LoopStamp at a point that starts one loop edge, LoopStamp + 1 at
+  /// one that starts several (the loop passes it more than once). A triangle's edge of loop
+  /// corners a -> b, points (P_a, P_b), is a loop edge (P_i, P_i+1) exactly when P_b ends a
+  /// loop edge from P_a. When P_a starts one loop edge, that is P_b = P_a+1 (and when the
+  /// points are pairwise distinct, b = a + 1): loopEdgeBitsByIndex then needs neither the
+  /// sorted list of loop edges nor its binary searches, which only the edges from points the
+  /// loop passes more than once still read (the loops of small faces often touch themselves).
+  void stampLoopPoints(const ObjectFaces& o, const vbr::StandardFace& face)
   {
-    if (++this->LoopStamp == 0) // wrapped: forget every stamp
+    this->LoopStamp += 2;
+    if (this->LoopStamp == 0) // wrapped: forget every stamp
     {
       std::fill(this->PointStamps.begin(), this->PointStamps.end(), 0);
-      this->LoopStamp = 1;
+      this->LoopStamp = 2;
     }
     bool distinct = true;
     const std::size_t m = face.loop.size();
+    this->LoopIds.resize(m);
     for (std::size_t i = 0; i < m; ++i)
     {
       this->point(o, face.loop[(i + 1) % m]); // made in sortLoopEdges' order
-      const auto id = static_cast<std::size_t>(this->point(o, face.loop[i]));
-      if (this->PointStamps.size() <= id)
-        this->PointStamps.resize(std::max(2 * this->PointStamps.size(), id + 1), 0);
-      distinct = distinct && this->PointStamps[id] != this->LoopStamp;
-      this->PointStamps[id] = this->LoopStamp;
+      const vtkIdType id = this->point(o, face.loop[i]);
+      this->LoopIds[i] = id;
+      const auto at = static_cast<std::size_t>(id);
+      if (this->PointStamps.size() <= at)
+        this->PointStamps.resize(std::max(2 * this->PointStamps.size(), at + 1), 0);
+      std::uint32_t& stamp = this->PointStamps[at];
+      const bool seen = stamp == this->LoopStamp || stamp == this->LoopStamp + 1;
+      distinct = distinct && !seen;
+      stamp = seen ? this->LoopStamp + 1 : this->LoopStamp;
     }
-    return distinct;
+    this->LoopDistinct = distinct;
+    this->LoopEdgesSorted = false;
   }
 
-  /// The LoopEdges bits of a triangle of the loop's corners (indices into the loop of m
-  /// pairwise distinct points), as loopEdgeBits finds them: edge k runs along the loop when its
-  /// end follows its start; on a mirrored grid the triangle is written reversed.
-  unsigned char loopEdgeBitsByIndex(const vbr::Triangle& t, std::size_t m) const
+  /// Whether the edge from loop corner a to loop corner b of face's loop runs along the loop,
+  /// as loopEdgeBits finds it; after stampLoopPoints found a point the loop passes twice.
+  bool isLoopEdge(const ObjectFaces& o, const vbr::StandardFace& face, int a, int b)
   {
-    auto follows = [m](int a, int b)
-    { return static_cast<std::size_t>(b) == (static_cast<std::size_t>(a) + 1 == m ? 0 : a + 1); };
-    const bool e0 = follows(t[0], t[1]), e1 = follows(t[1], t[2]), e2 = follows(t[2], t[0]);
+    const std::size_t m = this->LoopIds.size();
+    const std::size_t next = static_cast<std::size_t>(a) + 1 == m ? 0 : a + 1;
+    const vtkIdType from = this->LoopIds[a], to = this->LoopIds[b];
+    if (this->PointStamps[static_cast<std::size_t>(from)] == this->LoopStamp)
+      return this->LoopIds[next] == to; // the one loop edge from P_a
+    if (!this->LoopEdgesSorted)
+    {
+      this->sortLoopEdges(o, face); // makes no point: stampLoopPoints made them
+      this->LoopEdgesSorted = true;
+    }
+    return std::binary_search(
+      this->FaceLoopEdges.begin(), this->FaceLoopEdges.end(), std::make_pair(from, to));
+  }
+
+  /// The LoopEdges bits of a triangle of the loop's corners (indices into face's loop, after
+  /// stampLoopPoints), as loopEdgeBits finds them; on a mirrored grid the triangle is written
+  /// reversed.
+  unsigned char loopEdgeBitsByIndex(const ObjectFaces& o,
+    const vbr::StandardFace& face,
+    const vbr::Triangle& t)
+  {
+    bool e0, e1, e2;
+    if (this->LoopDistinct)
+    {
+      const std::size_t m = this->LoopIds.size();
+      auto follows = [m](int a, int b)
+      {
+        return static_cast<std::size_t>(b) ==
+          (static_cast<std::size_t>(a) + 1 == m ? 0 : static_cast<std::size_t>(a) + 1);
+      };
+      e0 = follows(t[0], t[1]), e1 = follows(t[1], t[2]), e2 = follows(t[2], t[0]);
+    }
+    else
+    {
+      e0 = this->isLoopEdge(o, face, t[0], t[1]);
+      e1 = this->isLoopEdge(o, face, t[1], t[2]);
+      e2 = this->isLoopEdge(o, face, t[2], t[0]);
+    }
     // Reversed, the corners are t2, t1, t0 and its edges k = 0, 1, 2 are e1, e0, e2 backwards.
     return this->Reverse ? static_cast<unsigned char>(e1 | (e0 << 1) | (e2 << 2))
                          : static_cast<unsigned char>(e0 | (e1 << 1) | (e2 << 2));
@@ -614,40 +661,68 @@ private:
       this->LoopEdges->InsertNextValue(this->loopEdgeBits());
   }
 
-  /// The values of face f for its next `count` cells, written at once (they are the same
-  /// for every cell of the face: a value at a time cost more than the triangulation).
+  /// The values of face f for its next `count` cells: listed, and written with the other
+  /// faces' by writeFaceValues (they are the same for every cell of the face: a value at a
+  /// time cost more than the triangulation), at the object's end or once PendingRuns faces
+  /// are listed (the Surfels mode lists a face per cell).
   void addFaceValues(const ObjectFaces& o, std::uint32_t f, std::size_t count)
   {
     if (count == 0)
       return;
-    const vbr::StandardFace& face = o.poly.faces[f];
-    const auto& n = face.plane.normal;
-    const vtkIdType cells = static_cast<vtkIdType>(count);
+    this->PendingValues.push_back({ f, count });
+    if (this->PendingValues.size() >= PendingRuns)
+      this->writeFaceValues(o);
+  }
+
+  /// The values of the faces addFaceValues listed for object o, written for all their cells
+  /// at once (each array reserved and reached once for many faces rather than once a face: the
+  /// calls cost more than the writing on the faces of a few triangles).
+  void writeFaceValues(const ObjectFaces& o)
+  {
+    std::size_t total = 0;
+    for (const FaceRun& run : this->PendingValues)
+      total += run.count;
+    if (total == 0)
+      return;
+    const vtkIdType cells = static_cast<vtkIdType>(total);
     const vtkIdType first = this->FaceIds->GetNumberOfTuples();
     for (vtkDataArray* a : { static_cast<vtkDataArray*>(this->FaceIds),
            static_cast<vtkDataArray*>(this->Normals),
            static_cast<vtkDataArray*>(this->Offsets),
            static_cast<vtkDataArray*>(this->Sizes) })
       reserveTuples(a, first + cells);
-    std::fill_n(
-      this->FaceIds->WritePointer(first, cells), count, static_cast<int>(this->FaceBase + f));
+    int* faceIds = this->FaceIds->WritePointer(first, cells);
     int* normals = this->Normals->WritePointer(3 * first, 3 * cells);
-    for (std::size_t i = 0; i < count; ++i)
-      for (int k = 0; k < 3; ++k)
-        normals[3 * i + k] = static_cast<int>(n[k]);
-    // The plane in the grid's index space: n.(p + offset) = n.p + n.offset.
-    std::fill_n(this->Offsets->WritePointer(first, cells),
-      count,
-      static_cast<vtkIdType>(
-        face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
-    std::fill_n(this->Sizes->WritePointer(first, cells), count, static_cast<int>(o.faceSizes[f]));
+    vtkIdType* offsets = this->Offsets->WritePointer(first, cells);
+    int* sizes = this->Sizes->WritePointer(first, cells);
+    for (const FaceRun& run : this->PendingValues)
+    {
+      const vbr::StandardFace& face = o.poly.faces[run.face];
+      const auto& n = face.plane.normal;
+      std::fill_n(faceIds, run.count, static_cast<int>(this->FaceBase + run.face));
+      for (std::size_t i = 0; i < run.count; ++i)
+        for (int k = 0; k < 3; ++k)
+          normals[3 * i + k] = static_cast<int>(n[k]);
+      // The plane in the grid's index space: n.(p + offset) = n.p + n.offset.
+      std::fill_n(offsets,
+        run.count,
+        static_cast<vtkIdType>(
+          face.plane.mu + n[0] * o.offset[0] + n[1] * o.offset[1] + n[2] * o.offset[2]));
+      std::fill_n(sizes, run.count, static_cast<int>(o.faceSizes[run.face]));
+      faceIds += run.count;
+      normals += 3 * run.count;
+      offsets += run.count;
+      sizes += run.count;
+    }
+    this->PendingValues.clear();
+    // Every cell of the object has its label.
     reserveTuples(this->Labels, first + cells);
     vbr::vtk::appendLabel(this->Labels, o.label); // in the array's type, whatever it is
     const int bytes = this->Labels->GetDataTypeSize() * this->Labels->GetNumberOfComponents();
     auto* labels = static_cast<unsigned char*>(
       this->Labels->WriteVoidPointer(first * this->Labels->GetNumberOfComponents(),
         cells * this->Labels->GetNumberOfComponents()));
-    for (std::size_t i = 1; i < count; ++i)
+    for (std::size_t i = 1; i < total; ++i)
       std::memcpy(labels + i * bytes, labels, static_cast<std::size_t>(bytes));
   }
 
@@ -684,7 +759,7 @@ private:
     loopEdges.clear();
     for (std::size_t i = 0; i < face.loop.size(); ++i)
     {
-      // The end's point first (points are numbered as made; loopPointsDistinct follows the same
+      // The end's point first (points are numbered as made; stampLoopPoints follows the same
       // order): the order GCC gave the two arguments of the former emplace_back(point(a),
       // point(b)), whose order C++ leaves open, now written out, so any compiler numbers alike.
       const vtkIdType next = this->point(o, face.loop[(i + 1) % face.loop.size()]);
@@ -887,9 +962,20 @@ private:
   std::vector<std::size_t> MadeFirst;
   std::unique_ptr<std::atomic<int>[]> ChunkState;
   std::vector<std::pair<vtkIdType, vtkIdType>> FaceLoopEdges; ///< from sortLoopEdges
-  std::vector<std::uint32_t> PointStamps; ///< per output point, in loopPointsDistinct
-  std::uint32_t LoopStamp = 0;            ///< the last face's stamp
+  std::vector<std::uint32_t> PointStamps; ///< per output point, in stampLoopPoints
+  std::uint32_t LoopStamp = 0;            ///< the last face's stamp (even)
+  std::vector<vtkIdType> LoopIds;         ///< the points of the last face's loop
+  bool LoopDistinct = false;              ///< they are pairwise distinct
+  bool LoopEdgesSorted = false;           ///< FaceLoopEdges holds the last face's
   std::vector<vtkIdType> TriangleIds;     ///< the triangle being added
+  /// The cells of a face whose values are still to write (addFaceValues, writeFaceValues).
+  struct FaceRun
+  {
+    std::uint32_t face;
+    std::size_t count;
+  };
+  std::vector<FaceRun> PendingValues; ///< of the object being added, in the cells' order
+  static constexpr std::size_t PendingRuns = 4096; ///< written when that many are listed
   vtkNew<vtkPoints> Points;
   vtkNew<vtkCellArray> Polys;
   vtkNew<vtkCellArray> Lines;
@@ -991,7 +1077,7 @@ public:
     if (!this->Problem.empty())
       return;
     this->ObjectsMatch = this->ObjectsMatch && voxels == selected;
-    vbr::vtk::markVoxels(voxels, o.offset, this->Grid.dims, this->Selection->GetPointer(0));
+    this->Marked += this->mark(voxels, o.offset);
     this->Expected += static_cast<vtkIdType>(selected.count());
   }
 
@@ -1010,9 +1096,10 @@ public:
       : this->Grid.cellData                         ? input->GetNumberOfCells()
                                                     : input->GetNumberOfPoints();
     // Each object's voxels are its selection: then the array holds them all, once each, when
-    // it counts as many (no copy of the array is marked from the selections to compare).
-    const unsigned char* marked = this->Selection->GetPointer(0);
-    same = this->ObjectsMatch && tuples == n && std::count(marked, marked + n, 1) == this->Expected;
+    // it counts as many (no copy of the array is marked from the selections to compare). The
+    // ones in the array are the marks that found a 0 (counted by mark, not by reading the
+    // whole array again).
+    same = this->ObjectsMatch && tuples == n && this->Marked == this->Expected;
     return this->Selection;
   }
 
@@ -1022,6 +1109,36 @@ private:
   vtkIdType voxelCount() const
   {
     return vtkIdType(this->Grid.dims[0]) * this->Grid.dims[1] * this->Grid.dims[2];
+  }
+
+  /// Sets to 1 the values of Selection at the voxels of an object whose box starts at
+  /// `offset` (what vbr::vtk::markVoxels writes); returns how many of them were 0.
+  vtkIdType mark(const vbr::BitVolume& voxels, const vbr::Point3& offset)
+  {
+    // A word of the bit rows at a time: a large box around a thin object is mostly empty words.
+    unsigned char* array = this->Selection->GetPointer(0);
+    const std::array<std::int32_t, 3>& dims = this->Grid.dims;
+    const std::size_t words = voxels.wordsPerRow();
+    const std::int32_t nx = voxels.size(0);
+    vtkIdType found = 0;
+    for (std::int32_t z = 0; z < voxels.size(2); ++z)
+      for (std::int32_t y = 0; y < voxels.size(1); ++y)
+      {
+        const vbr::Word* row = voxels.row(y, z);
+        unsigned char* out =
+          array + (vtkIdType(z + offset[2]) * dims[1] + y + offset[1]) * dims[0] + offset[0];
+        for (std::size_t i = 0; i < words; ++i)
+          for (vbr::Word w = row[i]; w; w &= w - 1)
+          {
+            const std::int32_t x = static_cast<std::int32_t>(64 * i) + vbr::countTrailingZeros(w);
+            if (x < nx)
+            {
+              found += out[x] == 0;
+              out[x] = 1;
+            }
+          }
+      }
+    return found;
   }
 
   void allocate()
@@ -1037,6 +1154,7 @@ private:
   const vbr::vtk::VoxelGrid& Grid;
   vtkSmartPointer<vtkUnsignedCharArray> Selection;
   vtkIdType Expected = 0; ///< the objects' voxels
+  vtkIdType Marked = 0;   ///< the ones in Selection
   bool ObjectsMatch = true;
   std::string Problem;
 };

@@ -23,6 +23,13 @@ namespace vbr
 namespace
 {
 
+/// Whether a and b are the same corner place (compared as two integers: std::array's == called
+/// memcmp, the most of hasRepeatedCorner's time on the short loops of small faces).
+bool samePlace(const Point2L& a, const Point2L& b)
+{
+  return a[0] == b[0] && a[1] == b[1];
+}
+
 /// Whether p lies in the closed counter-clockwise triangle abc (products in Int, see cross2).
 template<typename Int = Wide>
 bool inClosedTriangle(const Point2L& a, const Point2L& b, const Point2L& c, const Point2L& p)
@@ -145,7 +152,7 @@ bool PolygonTriangulator::hasRepeatedCorner(const std::vector<Point2L>& corners,
   {
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
-        if (corners[piece[i]] == corners[piece[j]])
+        if (samePlace(corners[piece[i]], corners[piece[j]]))
           return true;
     return false;
   }
@@ -177,7 +184,7 @@ bool PolygonTriangulator::hasRepeatedCorner(const std::vector<Point2L>& corners,
         this->Slots[slot] = static_cast<std::uint32_t>(i);
         break;
       }
-      if (corners[piece[this->Slots[slot]]] == p)
+      if (samePlace(corners[piece[this->Slots[slot]]], p))
         return true;
     }
   }
@@ -209,7 +216,7 @@ bool PolygonTriangulator::splitAtTouchingCorner(const std::vector<Point2L>& corn
     { return std::make_pair(corners[piece[a]], a) < std::make_pair(corners[piece[b]], b); });
   for (std::size_t s = 0, e = 0; s < n; s = e)
   {
-    for (e = s + 1; e < n && corners[piece[order[e]]] == corners[piece[order[s]]]; ++e)
+    for (e = s + 1; e < n && samePlace(corners[piece[order[e]]], corners[piece[order[s]]]); ++e)
       ;
     for (std::size_t a = s; a < e; ++a)
       for (std::size_t b = a + 1; b < e; ++b)
@@ -326,7 +333,7 @@ bool PolygonTriangulator::isEar(int b)
     // A corner at the same place as one of the ear's (where the boundary touches itself)
     // leaves that place on the other side: it does not block the ear.
     const Point2L q{ k->x, k->y };
-    if (q != pa && q != pb && q != pc &&
+    if (!samePlace(q, pa) && !samePlace(q, pb) && !samePlace(q, pc) &&
       (this->Narrow ? inClosedTriangle<std::int64_t>(pa, pb, pc, q)
                     : inClosedTriangle(pa, pb, pc, q)))
       return false;

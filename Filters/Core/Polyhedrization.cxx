@@ -1486,6 +1486,15 @@ public:
   {
     return this->Bits[s.direction].get(s.voxel[0], s.voxel[1], s.voxel[2]);
   }
+  /// Sets s; whether it was set already.
+  bool testAndSet(const Surfel& s)
+  {
+    Word& w = this->Bits[s.direction].row(s.voxel[1], s.voxel[2])[s.voxel[0] >> 6];
+    const Word bit = Word(1) << (s.voxel[0] & 63);
+    const bool was = (w & bit) != 0;
+    w |= bit;
+    return was;
+  }
   void set(const Surfel& s, bool value = true)
   {
     this->Bits[s.direction].set(s.voxel[0], s.voxel[1], s.voxel[2], value);
@@ -1791,6 +1800,7 @@ public:
   {
     const std::size_t n = face.loop.size();
     this->Visited.clear();
+    this->FaceSurfels = 0;
     this->Stack.clear();
     this->Face.begin(face.plane, face.loop);
     const PlaneSurfels plane(face.plane);
@@ -1798,10 +1808,7 @@ public:
     const char* error = this->seedFromLoop(face, plane);
     if (!error)
       error = this->flood(plane, 8 * n * n + 64);
-    if (this->KeepAll)
-      for (const Surfel& s : this->Visited) // All keeps the face's surfels
-        this->All.set(s);
-    this->Count += this->Visited.size();
+    this->Count += this->FaceSurfels;
     if (error == SharedSurfels)
       return "face " + std::to_string(f) + " " + SharedSurfels;
     return error ? faceError(f, error) : std::string();
@@ -1809,7 +1816,7 @@ public:
 
   /// Surfels filled in all.
   std::size_t count() const { return this->Count; }
-  /// The surfels of the last face filled.
+  /// The surfels of the last face filled (kept only without keepAll).
   const std::vector<Surfel>& lastFace() const { return this->Visited; }
   const SurfelBits& surfels() const { return this->All; }
 
@@ -1870,9 +1877,12 @@ private:
       return "it leaves the grid (the faces do not bound a set of voxels of it)";
     if (!this->Face.markSurfel(s, plus(voxel, this->Geometry->lowestShift[s.direction])))
       return nullptr; // seen in this face
-    if (this->KeepAll && this->All.get(s))
+    // All keeps the face's surfels as they come (a surfel is visited once per face).
+    if (this->KeepAll && this->All.testAndSet(s))
       return SharedSurfels;
-    this->Visited.push_back(s);
+    ++this->FaceSurfels;
+    if (!this->KeepAll)
+      this->Visited.push_back(s);
     this->Stack.push_back({ s, voxel, value });
     return nullptr;
   }
@@ -1915,7 +1925,7 @@ private:
     {
       const Entry e = this->Stack.back();
       this->Stack.pop_back();
-      if (this->Visited.size() > limit)
+      if (this->FaceSurfels > limit)
         return "its loop does not enclose a disk of its plane";
       for (int k = 0; k < 4; ++k)
       {
@@ -1945,7 +1955,8 @@ private:
   SurfelBits All;
   bool KeepAll;
   FaceMarks Face;                          ///< the face's surfels and loop edges
-  std::vector<Surfel> Visited;             ///< of the face
+  std::vector<Surfel> Visited;             ///< of the face (only when not KeepAll)
+  std::size_t FaceSurfels = 0;             ///< visited in the face
   std::vector<Entry> Stack;                ///< of the face, to flood from
   const FloodGeometry* Geometry = nullptr; ///< of the face's plane's signs
   std::int64_t ValueShift[6][4][2];        ///< of the face's plane, by direction and edge

@@ -351,16 +351,24 @@ void StandardPlaneRecognizer::reset()
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
   // The octants' triangles, made once: a reset copies them (most faces are small, and a
-  // reset per face built 72 entries one by one).
+  // reset per face built 72 entries one by one). Three entries each, copied one by one into
+  // the octant's storage (24 calls of vector::assign and memmove cost as much as the rest of
+  // the reset).
   static const std::array<Octant, 8> initial = initialOctants();
   for (int s = 0; s < 8; ++s)
   {
     Octant& o = this->Octants[s];
     const Octant& from = initial[s];
     o.sigma = from.sigma;
-    o.vertices.assign(from.vertices.begin(), from.vertices.end());
-    o.edges.assign(from.edges.begin(), from.edges.end());
-    o.octantEdge.assign(from.octantEdge.begin(), from.octantEdge.end());
+    o.vertices.resize(3);
+    o.edges.resize(3);
+    o.octantEdge.resize(3);
+    for (int i = 0; i < 3; ++i)
+    {
+      o.vertices[i] = from.vertices[i];
+      o.edges[i] = from.edges[i];
+      o.octantEdge[i] = from.octantEdge[i];
+    }
     o.applied = 0;
     this->Alive[s] = true;
   }

@@ -2,8 +2,8 @@
 // every surfel corner inside its face's standard plane (recomputed from the world points),
 // surfel normals along the plane normal, per-face surfel counts, the reversion equal to the
 // selection; point/cell scalars, scalar types, extents, origins and spacings; label maps;
-// the paper's sphere; errors, abort and PrintSelf; and the real "Al" object when the shared
-// data is present.
+// the LoopEdges bits against the loops of StandardFaces; the paper's sphere; errors, abort and
+// PrintSelf; and the real "Al" object when the shared data is present.
 #include "vtkStandardPlanePolyhedrizer.h"
 
 #include "TestImages.h"
@@ -15,6 +15,7 @@
 #include "vtkDataObject.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -22,11 +23,13 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -196,6 +199,77 @@ void checkRandomImages()
   checkImage(labels, Layout(), true, "labels");
 }
 
+/// The LoopEdges bits of the triangulated faces against the loops of StandardFaces: bit k of
+/// a triangle is set exactly when its edge from corner k to k + 1 is an edge of its face's
+/// polygon, in the polygon's direction (points compared by place). Random volumes whose loops
+/// pass some point twice (where voxels touch along an edge), on a plain and a mirrored grid.
+void checkLoopEdgeBits()
+{
+  const Layout layouts[] = { Layout(),
+    { false, { 0, 0, 0 }, { 4, 0, 0 }, { -1, 1, 1 }, VTK_CHAR } };
+  long facesPassingTwice = 0;
+  unsigned seed = 300;
+  for (const Layout& l : layouts)
+    for (double density : { 0.3, 0.5, 0.7 })
+    {
+      const Volume v = randomVolume({ 9, 8, 7 }, density, 1, seed++);
+      const std::string what = "loop edges " + std::to_string(seed);
+      vtkNew<vtkStandardPlanePolyhedrizer> f;
+      f->SetInputData(makeImage(v, l));
+      f->SetOutputModeToStandardFaces();
+      f->Update();
+      using Place = std::array<double, 3>;
+      auto placeOf = [](vtkPolyData* d, vtkIdType id)
+      {
+        Place p;
+        d->GetPoint(id, p.data());
+        return p;
+      };
+      std::map<long, std::set<std::pair<Place, Place>>> edgesOfFace;
+      vtkPolyData* loops = f->GetOutput();
+      vtkDataArray* loopFace = loops->GetCellData()->GetArray("FaceId");
+      vtkNew<vtkIdList> ids;
+      for (vtkIdType c = 0; c < loops->GetNumberOfCells(); ++c)
+      {
+        loops->GetCellPoints(c, ids);
+        std::set<Place> seen;
+        bool twice = false;
+        const vtkIdType m = ids->GetNumberOfIds();
+        for (vtkIdType i = 0; i < m; ++i)
+        {
+          const Place a = placeOf(loops, ids->GetId(i));
+          twice = !seen.insert(a).second || twice;
+          edgesOfFace[static_cast<long>(loopFace->GetTuple1(c))].insert(
+            { a, placeOf(loops, ids->GetId((i + 1) % m)) });
+        }
+        facesPassingTwice += twice;
+      }
+      f->SetOutputModeToTriangulatedFaces();
+      f->Update();
+      vtkPolyData* triangles = f->GetOutput();
+      vtkDataArray* face = triangles->GetCellData()->GetArray("FaceId");
+      vtkDataArray* bits = triangles->GetCellData()->GetArray("LoopEdges");
+      CHECK(face && bits, what << ": FaceId and LoopEdges");
+      if (!face || !bits)
+        continue;
+      long wrong = 0;
+      for (vtkIdType c = 0; c < triangles->GetNumberOfCells(); ++c)
+      {
+        triangles->GetCellPoints(c, ids);
+        const auto& edges = edgesOfFace[static_cast<long>(face->GetTuple1(c))];
+        const int mask = static_cast<int>(bits->GetTuple1(c));
+        for (vtkIdType k = 0; k < 3; ++k)
+        {
+          const bool along = edges.count({ placeOf(triangles, ids->GetId(k)),
+                               placeOf(triangles, ids->GetId((k + 1) % 3)) }) > 0;
+          wrong += along != (((mask >> k) & 1) != 0);
+        }
+      }
+      CHECK(wrong == 0, what << ": " << wrong << " LoopEdges bits differ from the loops");
+    }
+  CHECK(facesPassingTwice > 0, "loop edges: no loop passes a point twice");
+}
+
 void checkSphereAndDegenerate()
 {
   Volume ball;
@@ -283,6 +357,7 @@ void checkRealObject()
 int TestStandardPlanePolyhedrizer(int, char*[])
 {
   checkRandomImages();
+  checkLoopEdgeBits();
   checkSphereAndDegenerate();
   checkErrorsAbortPrint();
   checkRealObject();
