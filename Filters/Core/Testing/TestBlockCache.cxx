@@ -181,22 +181,26 @@ TEST_F(BlockCacheRules, TheLastUserFreesWhatIsKeptAndWithoutUsersNothingIsKept)
   this->cache.endUpdate();
 }
 
-TEST(BlockCache, AllocateBlockRoundsToHugePagesAndReusesReleasedBlocks)
+/// Allocates and releases a block of `heapBytes` (from the heap: never kept), then one of
+/// `bytes`, which the cache keeps as `keptBytes` of whole huge pages and gives back for a
+/// request of `reuseBytes`.
+void expectKeptOnWholeHugePages(std::size_t heapBytes,
+  bool heapHuge,
+  std::size_t bytes,
+  std::size_t keptBytes,
+  std::size_t reuseBytes)
 {
-#if defined(VBR_ADDRESS_SANITIZER)
-  GTEST_SKIP() << "the cache keeps no block under AddressSanitizer";
-#endif
   vbr::BlockCache& cache = vbr::BlockCache::instance();
   cache.addUser(1);
   {
     vbr::CacheUpdate update;
-    void* small = vbr::allocateBlock(3 * MiB, false); // not huge: never kept
-    vbr::releaseBlock(small);
+    void* fromHeap = vbr::allocateBlock(heapBytes, heapHuge);
+    vbr::releaseBlock(fromHeap);
     EXPECT_EQ(cache.bytesKept(), 0u);
-    void* a = vbr::allocateBlock(3 * MiB, true);
+    void* a = vbr::allocateBlock(bytes, true);
     vbr::releaseBlock(a);
-    EXPECT_EQ(cache.bytesKept(), 4 * MiB); // whole 2 MiB pages
-    void* b = vbr::allocateBlock(4 * MiB, true);
+    EXPECT_EQ(cache.bytesKept(), keptBytes);
+    void* b = vbr::allocateBlock(reuseBytes, true);
     EXPECT_EQ(b, a);
     EXPECT_EQ(cache.bytesKept(), 0u);
     vbr::releaseBlock(b);
@@ -205,28 +209,23 @@ TEST(BlockCache, AllocateBlockRoundsToHugePagesAndReusesReleasedBlocks)
   EXPECT_EQ(cache.bytesKept(), 0u);
 }
 
+TEST(BlockCache, AllocateBlockRoundsToHugePagesAndReusesReleasedBlocks)
+{
+#if defined(VBR_ADDRESS_SANITIZER)
+  GTEST_SKIP() << "the cache keeps no block under AddressSanitizer";
+#endif
+  // A block not asked huge is never kept; 3 MiB is kept as two whole 2 MiB pages.
+  expectKeptOnWholeHugePages(3 * MiB, false, 3 * MiB, 4 * MiB, 4 * MiB);
+}
+
 TEST(BlockCache, AllocateBlockKeepsBlocksFromHalfAHugePage)
 {
 #if defined(VBR_ADDRESS_SANITIZER)
   GTEST_SKIP() << "the cache keeps no block under AddressSanitizer";
 #endif
-  vbr::BlockCache& cache = vbr::BlockCache::instance();
-  cache.addUser(1);
-  {
-    vbr::CacheUpdate update;
-    void* below = vbr::allocateBlock(MiB - 64, true); // from the heap: never kept
-    vbr::releaseBlock(below);
-    EXPECT_EQ(cache.bytesKept(), 0u);
-    void* a = vbr::allocateBlock(MiB, true); // a 32-bit column of 262,144 rows
-    vbr::releaseBlock(a);
-    EXPECT_EQ(cache.bytesKept(), 2 * MiB); // a whole huge page
-    void* b = vbr::allocateBlock(MiB + MiB / 2, true);
-    EXPECT_EQ(b, a);
-    EXPECT_EQ(cache.bytesKept(), 0u);
-    vbr::releaseBlock(b);
-  }
-  cache.addUser(-1);
-  EXPECT_EQ(cache.bytesKept(), 0u);
+  // Below 1 MiB a block comes from the heap; 1 MiB (a 32-bit column of 262,144 rows) is kept
+  // on a whole huge page.
+  expectKeptOnWholeHugePages(MiB - 64, true, MiB, 2 * MiB, MiB + MiB / 2);
 }
 
 } // namespace
