@@ -930,8 +930,10 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
   if (corners)
   {
     vtkLogScopeF(TRACE, "corners of the faces");
-    vbr::appendFaceCorners(
-      voxels, { object.offset[0], object.offset[1], object.offset[2] }, *corners);
+    vbr::appendFaceCorners(voxels,
+      { object.offset[0], object.offset[1], object.offset[2] },
+      *corners,
+      exec.forWork(static_cast<std::int64_t>(count)));
   }
   return count;
 }
@@ -1289,7 +1291,10 @@ bool evmsAndCorners(vtkAlgorithm* self,
   vtkLogScopeF(TRACE, "numbered corners");
   const vbr::KeyPacker packer =
     vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
-  corners.reset(new vbr::CornerSet(points, packer));
+  // Two divisions per corner to write the numbered points: with threads when they are many.
+  const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.2, 0.2);
+  corners.reset(
+    new vbr::CornerSet(points, packer, exec.forWork(static_cast<std::int64_t>(points.size()))));
   points = std::vector<Point3>();
   builder.addCornerPoints(corners->points());
   corners->releasePoints(); // now the output's

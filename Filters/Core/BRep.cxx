@@ -404,7 +404,10 @@ Point3 CornerSet::pointInBox(std::uint64_t i) const
 }
 
 template<typename ForEach>
-void CornerSet::numberCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer)
+void CornerSet::numberCorners(std::size_t total,
+  ForEach&& forEach,
+  const KeyPacker& packer,
+  const Execution& exec)
 {
   // One bit per grid point of the corners' box marks the corners, and a corner's number is
   // the rank of its bit: the set bits of the words before it (kept with each word, so that a
@@ -438,10 +441,20 @@ void CornerSet::numberCorners(std::size_t total, ForEach&& forEach, const KeyPac
     w.rank = count;
     count += static_cast<std::uint64_t>(popCount(w.bits));
   }
+  // The points in the order of their numbers, each run of words written at its first
+  // word's rank (with threads, side by side): two divisions a point, half the numbering's
+  // time on one thread.
   reserveHugePages(this->Points, count);
-  for (std::size_t w = 0; w < this->Words.size(); ++w)
-    for (std::uint64_t bits = this->Words[w].bits; bits != 0; bits &= bits - 1)
-      this->Points.push_back(this->pointInBox(64 * w + countTrailingZeros(bits)));
+  this->Points.resize(count);
+  const std::int64_t words = static_cast<std::int64_t>(this->Words.size());
+  exec.forRange(words,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      Point3* out = this->Points.data() + this->Words[b].rank;
+      for (std::int64_t w = b; w < e; ++w)
+        for (std::uint64_t bits = this->Words[w].bits; bits != 0; bits &= bits - 1)
+          *out++ = this->pointInBox(64 * std::uint64_t(w) + countTrailingZeros(bits));
+    });
 }
 
 CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer)
@@ -450,10 +463,12 @@ CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& pack
   for (const PlacedBRep& b : breps)
     total += b.brep->points.size();
   this->numberCorners(
-    total, [&](auto&& visit) { forEachCorner(breps, visit); }, packer);
+    total, [&](auto&& visit) { forEachCorner(breps, visit); }, packer, Execution());
 }
 
-CornerSet::CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer)
+CornerSet::CornerSet(const std::vector<Point3>& corners,
+  const KeyPacker& packer,
+  const Execution& exec)
 {
   this->numberCorners(
     corners.size(),
@@ -462,7 +477,8 @@ CornerSet::CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer
       for (const Point3& p : corners)
         visit(p);
     },
-    packer);
+    packer,
+    exec);
 }
 
 namespace
@@ -509,16 +525,19 @@ std::uint64_t cornerBits(const std::uint64_t (&a)[2][2][2])
 }
 
 /// Calls visit(ky, kz, w, bits) with the corner bits of every word w of every row (ky, kz) of
-/// vertices that has some.
+/// vertices that has some, for the planes of vertices kz in [kzBegin, kzEnd).
 template<typename Visit>
-void forEachCornerWord(const BitVolume& voxels, Visit&& visit)
+void forEachCornerWord(const BitVolume& voxels,
+  std::int32_t kzBegin,
+  std::int32_t kzEnd,
+  Visit&& visit)
 {
   const std::int32_t nx = voxels.size(0), ny = voxels.size(1), nz = voxels.size(2);
   const std::size_t rowWords = voxels.wordsPerRow();
   if (nx == 0 || ny == 0 || nz == 0)
     return;
   std::vector<Word> empty(rowWords + 1, 0);
-  for (std::int32_t kz = 0; kz <= nz; ++kz)
+  for (std::int32_t kz = kzBegin; kz < kzEnd; ++kz)
     for (std::int32_t ky = 0; ky <= ny; ++ky)
     {
       // The four rows of voxels around the row of vertices (none outside the volume).
@@ -550,27 +569,73 @@ void forEachCornerWord(const BitVolume& voxels, Visit&& visit)
     }
 }
 
-} // namespace
-
-void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vector<Point3>& out)
+/// The corners of the planes of vertices kz in [kzBegin, kzEnd) of forEachCornerWord, written
+/// from `out` on, in the order of the words; returns the end of what it wrote.
+Point3* writeFaceCorners(const BitVolume& voxels,
+  const Point3& offset,
+  std::int32_t kzBegin,
+  std::int32_t kzEnd,
+  Point3* out)
 {
-  // Counted first, so that the corners (12 bytes each, millions at 256^3) are written once
-  // into memory of their size, not copied and faulted in again at every doubling; the
-  // counting pass reads the voxels' bits again, much less memory than the corners.
-  std::size_t count = 0;
   forEachCornerWord(voxels,
-    [&](std::int32_t, std::int32_t, std::size_t, std::uint64_t bits)
-    { count += static_cast<std::size_t>(popCount(bits)); });
-  const std::size_t needed = out.size() + count;
-  if (out.capacity() < needed) // geometric growth over the objects of a label map
-    reserveHugePages(out, std::max(needed, 2 * out.capacity()));
-  forEachCornerWord(voxels,
+    kzBegin,
+    kzEnd,
     [&](std::int32_t ky, std::int32_t kz, std::size_t w, std::uint64_t bits)
     {
       for (; bits != 0; bits &= bits - 1)
       {
         const Coord x = static_cast<Coord>(64 * w + countTrailingZeros(bits));
-        out.push_back({ x + offset[0], ky + offset[1], kz + offset[2] });
+        *out++ = { x + offset[0], ky + offset[1], kz + offset[2] };
+      }
+    });
+  return out;
+}
+
+} // namespace
+
+void appendFaceCorners(const BitVolume& voxels,
+  const Point3& offset,
+  std::vector<Point3>& out,
+  const Execution& exec)
+{
+  // Counted first, so that the corners (12 bytes each, millions at 256^3) are written once
+  // into memory of their size, not copied and faulted in again at every doubling; the
+  // counting pass reads the voxels' bits again, much less memory than the corners. With
+  // threads, each counts and then writes the corners of its slab of planes of vertices at the
+  // place the slabs before leave it: the order is the one-thread order, corner for corner.
+  const std::int32_t planes = voxels.size(2) + 1;
+  const std::int64_t slabs = exec.parallelFor
+    ? std::clamp<std::int64_t>(4 * static_cast<std::int64_t>(exec.concurrency), 1, planes)
+    : 1;
+  const auto slabBegin = [&](std::int64_t s)
+  { return static_cast<std::int32_t>(planes * s / slabs); };
+  std::vector<std::size_t> starts(static_cast<std::size_t>(slabs) + 1, 0);
+  exec.forRange(slabs,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t s = b; s < e; ++s)
+        forEachCornerWord(voxels,
+          slabBegin(s),
+          slabBegin(s + 1),
+          [&](std::int32_t, std::int32_t, std::size_t, std::uint64_t bits)
+          { starts[s + 1] += static_cast<std::size_t>(popCount(bits)); });
+    });
+  starts[0] = out.size();
+  for (std::size_t s = 1; s < starts.size(); ++s)
+    starts[s] += starts[s - 1];
+  const std::size_t needed = starts.back();
+  if (out.capacity() < needed) // geometric growth over the objects of a label map
+    reserveHugePages(out, std::max(needed, 2 * out.capacity()));
+  out.resize(needed);
+  exec.forRange(slabs,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t s = b; s < e; ++s)
+      {
+        const Point3* end =
+          writeFaceCorners(voxels, offset, slabBegin(s), slabBegin(s + 1), out.data() + starts[s]);
+        assert(end == out.data() + starts[s + 1]);
+        (void)end;
       }
     });
 }

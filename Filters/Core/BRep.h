@@ -132,7 +132,10 @@ public:
   /// The same set from its corners given directly (in the common grid, repeats allowed), e.g.
   /// faceCorners of the objects' voxels: no B-Rep needs to exist yet, so that the faces can be
   /// made, given their numbers and written part after part.
-  CornerSet(const std::vector<Point3>& corners, const KeyPacker& packer);
+  /// With threads, the numbered points are written side by side (the same points).
+  CornerSet(const std::vector<Point3>& corners,
+    const KeyPacker& packer,
+    const Execution& exec = Execution());
 
   /// The numbers of the points of `brep` at `offset`, one of the B-Reps numbered (as they were
   /// then): asked for one B-Rep at a time, so that all of them are never held at once.
@@ -318,7 +321,10 @@ private:
   Point3 pointInBox(std::uint64_t i) const;
   /// Both constructors: forEach(visit) calls visit(corner) for `total` corners.
   template<typename ForEach>
-  void numberCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer);
+  void numberCorners(std::size_t total,
+    ForEach&& forEach,
+    const KeyPacker& packer,
+    const Execution& exec);
   template<typename ForEach>
   void boundCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer);
 
@@ -331,7 +337,11 @@ private:
 /// facing +axis or those facing -axis turn (one or three of the four unit squares around the
 /// point, or two diagonal ones: the corners of a loop, under either FaceConnectivity). Read
 /// from the 2x2x2 voxels around each point, 64 points per step, without making the faces.
-void appendFaceCorners(const BitVolume& voxels, const Point3& offset, std::vector<Point3>& out);
+/// With threads, slabs of planes are read side by side; the corners' order is the same.
+void appendFaceCorners(const BitVolume& voxels,
+  const Point3& offset,
+  std::vector<Point3>& out,
+  const Execution& exec = Execution());
 
 /// Arrays insertTJunctionVertices works in, kept by a caller that inserts into many B-Reps
 /// one after the other (the parts of a streamed sweep): the loops' new points and numbers are

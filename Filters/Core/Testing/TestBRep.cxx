@@ -454,6 +454,16 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
     vbr::appendFaceCorners(v, offset, fromVoxels);
     const std::set<vbr::Point3> voxelSet(fromVoxels.begin(), fromVoxels.end());
     EXPECT_EQ(voxelSet.size(), fromVoxels.size()); // each once
+    // With threads (slabs of planes side by side, more slabs than planes for the thin
+    // volumes), appended after corners already there: the same corners in the same order.
+    for (int threads : { 2, 3, 16 })
+    {
+      std::vector<vbr::Point3> threaded{ { 7, 7, 7 } };
+      vbr::appendFaceCorners(v, offset, threaded, bf::threadedExecution(threads));
+      ASSERT_EQ(threaded.size(), fromVoxels.size() + 1);
+      EXPECT_EQ(threaded[0], (vbr::Point3{ 7, 7, 7 }));
+      EXPECT_TRUE(std::equal(fromVoxels.begin(), fromVoxels.end(), threaded.begin() + 1));
+    }
     for (vbr::FaceConnectivity c : { vbr::FaceConnectivity::Edge, vbr::FaceConnectivity::Vertex })
     {
       vbr::BRep brep;
@@ -462,6 +472,10 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
       const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(80);
       const vbr::CornerSet a(fromVoxels, packer), b({ { &brep, offset } }, packer);
       ASSERT_EQ(a.points(), b.points());
+      // Written side by side from the ranks of their words: the same points, the same numbers.
+      const vbr::CornerSet threaded(fromVoxels, packer, bf::threadedExecution(3));
+      ASSERT_EQ(threaded.points(), b.points());
+      ASSERT_EQ(threaded.numbersOf(brep, offset), b.numbersOf(brep, offset));
       ASSERT_EQ(a.numbersOf(brep, offset), b.numbersOf(brep, offset));
     }
   }
