@@ -436,7 +436,8 @@ public:
   /// Adds the corners of the objects' faces (common grid, permuted axes) as the output's
   /// points, their numbers as point ids; first, before any other point. `offset` is added
   /// to every corner (an object's corners in its own grid).
-  void addCornerPoints(const std::vector<Point3>& corners,
+  template<typename Corners> // a vector of Point3, of any allocator
+  void addCornerPoints(const Corners& corners,
     const std::array<std::int32_t, 3>& offset = { 0, 0, 0 })
   {
     if (corners.empty())

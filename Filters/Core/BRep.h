@@ -7,6 +7,7 @@
 #define vbr_BRep_h
 
 #include "BitVolume.h"
+#include "DefaultInitAllocator.h"
 #include "EVM.h"
 #include "Execution.h"
 #include "Geometry.h"
@@ -125,6 +126,9 @@ struct PlacedBRep
 class CornerSet
 {
 public:
+  /// The corners by number: written through pointers once counted, never zeroed first.
+  using PointList = std::vector<Point3, Uninitialized<Point3>>;
+
   /// Numbers the corners of `breps`. Throws std::out_of_range for a corner outside the
   /// packer's range, std::length_error for 2^32 corners or more.
   CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer);
@@ -153,11 +157,11 @@ public:
   void numbersInto(const BRep& brep, const Point3& offset, std::int64_t* out) const;
 
   /// Every corner, in the common grid, by number (empty after releasePoints).
-  const std::vector<Point3>& points() const { return this->Points; }
+  const PointList& points() const { return this->Points; }
 
   /// Frees points() once the caller has copied them (the output's points): the numbers and
   /// the T-junction pass keep working on the bits.
-  void releasePoints() { std::vector<Point3>().swap(this->Points); }
+  void releasePoints() { PointList().swap(this->Points); }
 
   /// Calls emit(number, coordinate along `axis`) for the corners strictly between `from` and
   /// `to`, two grid points of the box (common grid) on one line along `axis`, in order from
@@ -328,7 +332,7 @@ private:
   template<typename ForEach>
   void boundCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer);
 
-  std::vector<Point3> Points;
+  PointList Points;
 };
 
 /// The corners of the faces planeSweep3D makes of these voxels (voxel (x, y, z) spans

@@ -59,25 +59,6 @@ namespace vbr
 namespace
 {
 
-/// An allocator whose resize leaves new elements of trivial types unwritten: the sweep's
-/// per-line and per-slice lists are grown to their largest size and then written through
-/// pointers, so zeroing them first (value-initialization) only cost stores (on porous volumes,
-/// 16,384 growths a sweep).
-template<typename T>
-struct Uninitialized : DefaultInit<std::allocator<T>>
-{
-  template<typename U>
-  struct rebind
-  {
-    using other = Uninitialized<U>;
-  };
-  Uninitialized() = default;
-  template<typename U>
-  Uninitialized(const Uninitialized<U>&)
-  {
-  }
-};
-
 /// A list of the sweep's, grown without zeroing (see Uninitialized).
 template<typename T>
 using List = std::vector<T, Uninitialized<T>>;

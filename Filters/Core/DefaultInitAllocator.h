@@ -8,6 +8,7 @@
 #ifndef vbr_DefaultInitAllocator_h
 #define vbr_DefaultInitAllocator_h
 
+#include <memory>
 #include <new>
 #include <type_traits>
 #include <utility>
@@ -32,6 +33,25 @@ struct DefaultInit : Base
   void construct(U* p, Args&&... args)
   {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// std::allocator whose resize leaves new elements of trivial types unwritten, for arrays
+/// grown to their size and then written through pointers: zeroing them first
+/// (value-initialization) only cost stores (the CUDB sweep's per-line lists, 16,384 growths a
+/// sweep on porous volumes; the corner set's points, written side by side by threads).
+template<typename T>
+struct Uninitialized : DefaultInit<std::allocator<T>>
+{
+  template<typename U>
+  struct rebind
+  {
+    using other = Uninitialized<U>;
+  };
+  Uninitialized() = default;
+  template<typename U>
+  Uninitialized(const Uninitialized<U>&)
+  {
   }
 };
 
