@@ -287,10 +287,68 @@ private:
   std::size_t Left;
 };
 
+/// The triangles across the edges of the triangles an ear clipping cuts, found as it cuts them
+/// (for FanGrouper, which would otherwise pair their edges by a sort): triangle t = (a, b, c),
+/// cut at ear b, has edges (a, b), (b, c) and (c, a), in that order; the first two are edges of
+/// the ring, either the loop's or the cuts of earlier triangles, and the third is the cut that
+/// replaces b in the ring (or, for the last triangle, the ring's last edge). `cutBy[i]`: the
+/// triangle whose cut is the ring's edge from corner i to the next, or -1 for an edge of the
+/// loop. Every edge inside the polygon is a cut, made once and then the edge of one later
+/// triangle, so this pairs exactly the edges the sort pairs (the corners of one loop are
+/// distinct indices).
+class EarNeighbours
+{
+public:
+  /// Records into `across` (emptied), for a ring of n corners; `cutBy` is scratch space.
+  EarNeighbours(std::vector<std::array<int, 3>>* across, int* cutBy, int n)
+    : Across(across)
+    , CutBy(cutBy)
+  {
+    if (!across)
+      return;
+    across->clear();
+    std::fill(cutBy, cutBy + n, -1);
+  }
+
+  /// Triangle (a, b, c) cut at ear b, its third edge the ring's new edge from a.
+  void cut(int a, int b)
+  {
+    if (!this->Across)
+      return;
+    const int t = this->add(this->CutBy[a], this->CutBy[b], -1);
+    this->CutBy[a] = t;
+  }
+
+  /// The last triangle (a, b, c), all three of its edges the ring's.
+  void last(int a, int b, int c)
+  {
+    if (this->Across)
+      this->add(this->CutBy[a], this->CutBy[b], this->CutBy[c]);
+  }
+
+private:
+  int add(int s0, int s1, int s2)
+  {
+    const int t = static_cast<int>(this->Across->size());
+    this->Across->push_back({ s0, s1, s2 });
+    for (const int s : { s0, s1, s2 })
+      if (s >= 0)
+        (*this->Across)[s][2] = t; // the cut is the third edge of the triangle that made it
+    return t;
+  }
+
+  std::vector<std::array<int, 3>>* Across;
+  int* CutBy;
+};
+
 /// clipEars on a ring of four corners (most faces: rectangles), with no ring to set up: the
 /// same tests in the same order. (x, y): the coordinates in which the ring runs
-/// counter-clockwise.
-bool clipQuadrilateral(const PointRange& pts, int x, int y, FaceCells& out)
+/// counter-clockwise. `across`: as in clipEars.
+bool clipQuadrilateral(const PointRange& pts,
+  int x,
+  int y,
+  FaceCells& out,
+  std::vector<std::array<int, 3>>* across)
 {
   const Point3* p = pts.begin();
   const auto turn = [&](int a, int b, int c)
@@ -313,6 +371,8 @@ bool clipQuadrilateral(const PointRange& pts, int x, int y, FaceCells& out)
     if (turn(d, a, c) <= 0)
       return false;
     emit(d, a, c);
+    if (across) // (a, b, c) and (d, a, c) share the edge (c, a), resp. (a, c)
+      *across = { { -1, -1, 1 }, { -1, 0, -1 } };
     return true;
   }
   return false;
@@ -328,9 +388,10 @@ enum class RingKind
 };
 
 /// The walk of clipEars round a ring (EarCorners, or ConvexRing for a loop round a rectangle)
-/// linked both ways by `prev` and `next`, from corner 0.
+/// linked both ways by `prev` and `next`, from corner 0; the triangles' neighbours recorded by
+/// `neighbours`.
 template<typename Ring>
-bool clipRing(Ring& left, int* prev, int* next, FaceCells& out)
+bool clipRing(Ring& left, int* prev, int* next, EarNeighbours& neighbours, FaceCells& out)
 {
   auto emit = [&out](int a, int b, int c)
   {
@@ -350,6 +411,7 @@ bool clipRing(Ring& left, int* prev, int* next, FaceCells& out)
       continue;
     }
     emit(a, b, c);
+    neighbours.cut(a, b);
     next[a] = c;
     prev[c] = a;
     left.cut(a, b, c, prev, next);
@@ -360,6 +422,7 @@ bool clipRing(Ring& left, int* prev, int* next, FaceCells& out)
   if (left.turn(a, b, c) <= 0)
     return false;
   emit(a, b, c);
+  neighbours.last(a, b, c);
   return true;
 }
 
@@ -372,14 +435,22 @@ bool clipRing(Ring& left, int* prev, int* next, FaceCells& out)
 /// triangles to `out`; returns false when a whole round finds no ear (left to the general
 /// triangulation, the caller then drops what was appended). `kind` says what the caller knows
 /// of the loop, which spares scans of the ring without changing a triangle (EarCorners,
-/// ConvexRing). `out.ring` and `out.earCorners` are scratch space.
-bool clipEars(const PointRange& pts, int u, int v, int sign, RingKind kind, FaceCells& out)
+/// ConvexRing). `out.ring` and `out.earCorners` are scratch space. When `across` is given, it
+/// receives the neighbours of the triangles (FanGrouper's Across, from 0 for the first triangle
+/// appended here; EarNeighbours).
+bool clipEars(const PointRange& pts,
+  int u,
+  int v,
+  int sign,
+  RingKind kind,
+  FaceCells& out,
+  std::vector<std::array<int, 3>>* across = nullptr)
 {
   const int n = static_cast<int>(pts.size());
   const int x = sign > 0 ? u : v, y = sign > 0 ? v : u;
   if (n == 4)
-    return clipQuadrilateral(pts, x, y, out);
-  out.ring.resize(2 * static_cast<std::size_t>(n));
+    return clipQuadrilateral(pts, x, y, out, across);
+  out.ring.resize((across ? 3 : 2) * static_cast<std::size_t>(n));
   int* prev = out.ring.data();
   int* next = out.ring.data() + n;
   for (int i = 0; i < n; ++i)
@@ -387,13 +458,14 @@ bool clipEars(const PointRange& pts, int u, int v, int sign, RingKind kind, Face
     prev[i] = (i + n - 1) % n;
     next[i] = (i + 1) % n;
   }
+  EarNeighbours neighbours(across, out.ring.data() + 2 * n, n);
   if (kind == RingKind::Rectangle)
   {
     ConvexRing left(out.earCorners, pts, x, y, next);
-    return clipRing(left, prev, next, out);
+    return clipRing(left, prev, next, neighbours, out);
   }
   EarCorners left(out.earCorners, pts, x, y, kind == RingKind::Simple);
-  return clipRing(left, prev, next, out);
+  return clipRing(left, prev, next, neighbours, out);
 }
 
 /// Faces up to this many corners without holes are ear-clipped. Measured against the
@@ -403,17 +475,24 @@ bool clipEars(const PointRange& pts, int u, int v, int sign, RingKind kind, Face
 constexpr std::size_t EarClippingLimit = 128;
 
 /// The outer loop of a face in (u, v) coordinates, counter-clockwise seen from outside.
-void outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& corners)
+/// Returns whether every coordinate lies in [-2^30, 2^30) (smallCoordinates), found on the way:
+/// c + 2^30 in 32 bits without sign is below 2^31 exactly then.
+bool outerLoop2D(const BRep& brep, const BRepFace& face, std::vector<Point2L>& corners)
 {
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   const PointRange pts = brep.loopPoints(face.firstLoop);
   const int x = face.normalSign > 0 ? u : v, y = face.normalSign > 0 ? v : u;
+  constexpr std::uint32_t Half = std::uint32_t(1) << 30;
+  std::uint32_t shifted = 0;
   corners.resize(pts.size());
   for (std::size_t i = 0; i < pts.size(); ++i)
   {
     corners[i][0] = pts[i][x];
     corners[i][1] = pts[i][y];
+    shifted |= (static_cast<std::uint32_t>(pts[i][x]) + Half) |
+      (static_cast<std::uint32_t>(pts[i][y]) + Half);
   }
+  return (shifted >> 31) == 0;
 }
 
 /// Whether every coordinate of the loop lies in [-2^30, 2^30), so that the difference of two
@@ -425,6 +504,31 @@ bool smallCoordinates(const std::vector<Point2L>& corners)
   for (const Point2L& p : corners)
     small &= p[0] >= -Limit && p[0] < Limit && p[1] >= -Limit && p[1] < Limit;
   return small;
+}
+
+/// fanCoversPolygonOfArea(corners, apex, area) for a loop of area `area`, without the area: the
+/// fan's triangles add up to it (the shoelace formula from the apex), so when none of them is
+/// clockwise the area is positive exactly when one of them is counter-clockwise. In integers of
+/// type Int (see cross2).
+template<typename Int>
+bool fanCoversLoop(const std::vector<Point2L>& corners, std::size_t apex)
+{
+  const std::size_t n = corners.size();
+  if (n < 3)
+    return false;
+  const Point2L& o = corners[apex];
+  std::size_t b = apex + 1 == n ? 0 : apex + 1;
+  bool positive = false;
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    const std::size_t c = b + 1 == n ? 0 : b + 1;
+    const Int turn = cross2<Int>(o, corners[b], corners[c]);
+    if (turn < 0)
+      return false;
+    positive |= turn > 0;
+    b = c;
+  }
+  return positive;
 }
 
 /// fanApex in integers of type Int (see cross2).
@@ -447,9 +551,8 @@ int fanApexAs(const std::vector<Point2L>& corners)
     return static_cast<int>(convex);
   if (convex < n)
     candidates[count++] = convex;
-  const Wide area = count > 0 ? doubledArea(corners) : 0;
   for (std::size_t k = 0; k < count; ++k)
-    if (fanCoversPolygonOfArea<Int>(corners, candidates[k], area))
+    if (fanCoversLoop<Int>(corners, candidates[k]))
       return static_cast<int>(candidates[k]);
   return -1;
 }
@@ -464,6 +567,14 @@ int fanApex(const std::vector<Point2L>& corners)
   if (corners.empty())
     return -1;
   return smallCoordinates(corners) ? fanApexAs<std::int64_t>(corners) : fanApexAs<Wide>(corners);
+}
+
+/// fanApex for a loop whose coordinates are known to be small (smallCoordinates) or not.
+int fanApex(const std::vector<Point2L>& corners, bool small)
+{
+  if (corners.empty())
+    return -1;
+  return small ? fanApexAs<std::int64_t>(corners) : fanApexAs<Wide>(corners);
 }
 
 /// The apex fanApex picks for a face's outer loop that goes round a rectangle: four left
@@ -518,7 +629,11 @@ bool visitsACornerTwice(const std::vector<Point2L>& corners, std::vector<std::ui
 class FanGrouper
 {
 public:
-  FanGrouper(const std::vector<std::array<int, 3>>& triangles, FanScratch& scratch)
+  /// `acrossKnown`: whether `scratch.across` already holds the triangles' neighbours (from the
+  /// ear clipping, EarNeighbours); else they are found here.
+  FanGrouper(const std::vector<std::array<int, 3>>& triangles,
+    FanScratch& scratch,
+    bool acrossKnown)
     : Triangles(triangles)
     , Across(scratch.across)
     , Taken(scratch.taken)
@@ -530,9 +645,11 @@ public:
     , BestFront(scratch.bestFront)
     , BestBack(scratch.bestBack)
   {
-    this->Across.assign(triangles.size(), { -1, -1, -1 });
     this->Taken.assign(triangles.size(), 0);
     this->Stamp.assign(triangles.size(), -1);
+    if (acrossKnown)
+      return;
+    this->Across.assign(triangles.size(), { -1, -1, -1 });
     this->findNeighbours(scratch);
   }
 
@@ -622,55 +739,55 @@ private:
     }
   }
 
-  /// The triangle across edge (apex, w) of triangle t, if untaken and not yet in this fan.
-  int across(int t, int apex, int w) const
+  /// The triangle across edge e (from corner e to corner e + 1) of triangle t, if untaken and
+  /// not yet in this fan, or -1.
+  int across(int t, int e) const
   {
-    const auto& tri = this->Triangles[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      const int a = tri[k], b = tri[(k + 1) % 3];
-      if ((a == apex && b == w) || (a == w && b == apex))
-      {
-        const int other = this->Across[t][k];
-        return other >= 0 && !this->Taken[other] && this->Stamp[other] != this->Round ? other : -1;
-      }
-    }
-    return -1;
+    const int other = this->Across[t][e];
+    return other >= 0 && !this->Taken[other] && this->Stamp[other] != this->Round ? other : -1;
   }
 
-  /// Corner that follows `apex` in triangle t (counter-clockwise), and the one before it.
-  int after(int t, int apex) const
+  /// The place of corner `apex` in triangle t (one of its corners).
+  int placeOf(int t, int apex) const
   {
     const auto& tri = this->Triangles[t];
-    return tri[0] == apex ? tri[1] : tri[1] == apex ? tri[2] : tri[0];
+    return tri[0] == apex ? 0 : tri[1] == apex ? 1 : 2;
   }
-  int before(int t, int apex) const { return this->after(t, this->after(t, apex)); }
 
   /// The fan of untaken triangles round corner k of triangle t0, both ways, in Members;
   /// returns its number of triangles. Leaves its rim (the corners after the apex,
-  /// counter-clockwise) in Back reversed, then Front.
+  /// counter-clockwise) in Back reversed, then Front. With the apex at place j of a triangle,
+  /// the fan goes on forwards across the triangle's edge j + 2 (from the corner before the
+  /// apex to the apex) and backwards across its edge j (from the apex to the corner after it).
   std::size_t growFan(int t0, int k)
   {
-    const int apex = this->Triangles[t0][k];
+    const auto& first = this->Triangles[t0];
+    const int apex = first[k];
     ++this->Round;
-    this->Members.assign(1, t0);
+    // Emptied and pushed rather than assigned: an assignment is a call that checks the capacity
+    // first, three of them per triangle that starts a fan.
+    this->Members.clear();
+    this->Members.push_back(t0);
     this->Stamp[t0] = this->Round;
-    this->Front.assign({ this->after(t0, apex), this->before(t0, apex) });
+    this->Front.clear();
+    this->Front.push_back(first[(k + 1) % 3]);
+    this->Front.push_back(first[(k + 2) % 3]);
     this->Back.clear();
-    for (int t = this->across(t0, apex, this->Front.back()); t >= 0;
-         t = this->across(t, apex, this->Front.back()))
+    for (int t = this->across(t0, (k + 2) % 3); t >= 0;)
     {
       this->Stamp[t] = this->Round;
       this->Members.push_back(t);
-      this->Front.push_back(this->before(t, apex));
+      const int j = this->placeOf(t, apex);
+      this->Front.push_back(this->Triangles[t][(j + 2) % 3]);
+      t = this->across(t, (j + 2) % 3);
     }
-    int rimStart = this->Front.front();
-    for (int t = this->across(t0, apex, rimStart); t >= 0; t = this->across(t, apex, rimStart))
+    for (int t = this->across(t0, k); t >= 0;)
     {
       this->Stamp[t] = this->Round;
       this->Members.push_back(t);
-      rimStart = this->after(t, apex);
-      this->Back.push_back(rimStart);
+      const int j = this->placeOf(t, apex);
+      this->Back.push_back(this->Triangles[t][(j + 1) % 3]);
+      t = this->across(t, j);
     }
     return this->Members.size();
   }
@@ -1018,8 +1135,14 @@ RingKind ringKind(const PointRange& pts, int u, int v, int sign, FaceCells& out)
 }
 
 /// Appends the triangles of face `f` without closing the face. `tryParts`: whether the face may
-/// have edge-connected parts to ear-clip (false when the caller found it has none).
-void appendTrianglesOf(const BRep& brep, int f, FaceCells& out, bool tryParts = true)
+/// have edge-connected parts to ear-clip (false when the caller found it has none). Returns
+/// whether `across`, when given, holds the triangles' neighbours (clipEars of the face's one
+/// loop); else it holds nothing of use.
+bool appendTrianglesOf(const BRep& brep,
+  int f,
+  FaceCells& out,
+  bool tryParts = true,
+  std::vector<std::array<int, 3>>* across = nullptr)
 {
   const BRepFace& face = brep.faces[f];
   const PointRange outer = brep.loopPoints(face.firstLoop);
@@ -1027,22 +1150,24 @@ void appendTrianglesOf(const BRep& brep, int f, FaceCells& out, bool tryParts = 
   const int u = (face.axis + 1) % 3, v = (face.axis + 2) % 3;
   if (face.loopCount == 1 && outer.size() <= EarClippingLimit)
   {
-    if (clipEars(outer, u, v, face.normalSign, ringKind(outer, u, v, face.normalSign, out), out))
-      return;
+    if (clipEars(
+          outer, u, v, face.normalSign, ringKind(outer, u, v, face.normalSign, out), out, across))
+      return across != nullptr;
     out.corners.resize(corners); // no ear: the general method from scratch
     out.cellEnds.resize(cells);
   }
   FaceParts parts;
   if (tryParts && brep.mergedAtVertices && edgeConnectedParts(brep, face, u, v, parts) &&
     clipParts(parts, u, v, face.normalSign, out))
-    return;
+    return false;
   out.corners.resize(corners);
   out.cellEnds.resize(cells);
   if (appendMonotoneTriangles(brep, face, out))
-    return;
+    return false;
   out.corners.resize(corners);
   out.cellEnds.resize(cells);
   appendDelaunayTriangles(brep, face, out);
+  return false;
 }
 
 } // namespace
@@ -1080,10 +1205,15 @@ void appendLoopFrom(std::size_t apex, std::size_t n, FaceCells& cells)
 
 /// Appends the fans of the triangles of face `f` (triangulateFace), its triangles made in
 /// `cells` itself and moved to its scratch space; `tryParts` as in appendTrianglesOf.
-void appendFanGroups(const BRep& brep, int f, FaceCells& cells, bool tryParts)
+void appendFanGroups(const BRep& brep,
+  int f,
+  FaceCells& cells,
+  bool tryParts,
+  bool neighboursFromEars)
 {
   const std::size_t corners = cells.corners.size(), cellCount = cells.cellEnds.size();
-  appendTrianglesOf(brep, f, cells, tryParts);
+  const bool acrossKnown =
+    appendTrianglesOf(brep, f, cells, tryParts, neighboursFromEars ? &cells.fans.across : nullptr);
   std::vector<std::array<int, 3>>& triangles = cells.fans.triangles;
   triangles.resize((cells.corners.size() - corners) / 3);
   for (std::size_t t = 0; t < triangles.size(); ++t)
@@ -1091,7 +1221,7 @@ void appendFanGroups(const BRep& brep, int f, FaceCells& cells, bool tryParts)
       triangles[t][k] = cells.corners[corners + 3 * t + k];
   cells.corners.resize(corners);
   cells.cellEnds.resize(cellCount);
-  FanGrouper(triangles, cells.fans).run(cells);
+  FanGrouper(triangles, cells.fans, acrossKnown).run(cells);
 }
 
 /// The polygons of a face whose edge-connected parts touch at corners (edgeConnectedParts),
@@ -1126,9 +1256,10 @@ bool appendPartPolygons(const BRep& brep, const BRepFace& face, FaceCells& cells
   return true;
 }
 
-} // namespace
-
-void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
+/// appendFanPolygons; `neighboursFromEars`: whether the fans of an ear-clipped face take the
+/// triangles' neighbours from the ear clipping (EarNeighbours) rather than from the sort of their
+/// edges (a test's reference).
+void appendFanPolygonsOf(const BRep& brep, int f, FaceCells& cells, bool neighboursFromEars)
 {
   const BRepFace& face = brep.faces[f];
   if (face.loopCount == 1 && brep.loopPoints(face.firstLoop).size() == 4)
@@ -1142,8 +1273,8 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
     int apex = rectangleApex(outer, (face.axis + 1) % 3, (face.axis + 2) % 3, face.normalSign);
     if (apex < 0)
     {
-      outerLoop2D(brep, face, cells.loop2D);
-      apex = fanApex(cells.loop2D);
+      const bool small = outerLoop2D(brep, face, cells.loop2D);
+      apex = fanApex(cells.loop2D, small);
       if (apex >= 0 && visitsACornerTwice(cells.loop2D, cells.keys))
         apex = -1;
     }
@@ -1155,9 +1286,30 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
   }
   bool hasParts = false;
   if (!appendPartPolygons(brep, face, cells, hasParts))
-    appendFanGroups(brep, f, cells, hasParts);
+    appendFanGroups(brep, f, cells, hasParts, neighboursFromEars);
   cells.endFace();
 }
+
+} // namespace
+
+void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
+{
+  appendFanPolygonsOf(brep, f, cells, true);
+}
+
+namespace detail
+{
+std::vector<std::vector<int>> fanPolygonsFromSortedEdges(const BRep& brep, int f)
+{
+  FaceCells cells;
+  appendFanPolygonsOf(brep, f, cells, false);
+  std::vector<std::vector<int>> polygons;
+  for (std::size_t c = 0; c < cells.cellEnds.size(); ++c)
+    polygons.emplace_back(
+      cells.corners.begin() + cells.cornerBegin(c), cells.corners.begin() + cells.cellEnds[c]);
+  return polygons;
+}
+} // namespace detail
 
 std::vector<std::vector<int>> edgeConnectedPartsOf(const BRep& brep, int f)
 {

@@ -106,6 +106,11 @@ namespace detail
 /// the loop goes round a rectangle (four left turns, no right turn, straight on elsewhere);
 /// -1 for any other loop, which then takes the general search.
 int rectangleApexOf(const PointRange& pts, int u, int v, int sign);
+
+/// For tests: fanPolygons with the neighbours of the triangles of every face found by sorting
+/// their edges, as for the faces that are not ear-clipped, where fanPolygons takes those of an
+/// ear-clipped face from its ear clipping. The two must give the same polygons.
+std::vector<std::vector<int>> fanPolygonsFromSortedEdges(const BRep& brep, int f);
 } // namespace detail
 
 } // namespace vbr

@@ -245,6 +245,40 @@ TEST(FanPolygons, TileTheFacesOfRandomVolumes)
   EXPECT_GT(stats.flat, 100u);
 }
 
+// The fans of an ear-clipped face group its triangles by their neighbours as the ear clipping
+// found them (each cut is the edge between the triangle it cuts off and a later one); the
+// reference finds them by sorting the triangles' edges, as for the faces the sweep into
+// monotone pieces or CGAL triangulate. The same polygons, face for face, on random volumes with
+// and without T-junction vertices, merged at vertices or not (faces with parts, and faces with
+// holes, which take the reference's way in both).
+TEST(FanPolygons, NeighboursFromTheEarClippingGroupAsTheSortedEdges)
+{
+  unsigned seed = 7300;
+  std::size_t grouped = 0;
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    const vbr::Point3 d = bf::trialDims(trial, 2);
+    const vbr::BitVolume v = bf::randomVolume(d, 0.1 + 0.8 * (trial % 8) / 7.0, seed++);
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    vbr::BRep brep;
+    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v),
+      trial % 2 == 0 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
+      vbr::Execution(),
+      brep));
+    if (trial % 3 != 0)
+      vbr::insertTJunctionVertices(brep);
+    for (std::size_t f = 0; f < brep.faces.size(); ++f)
+    {
+      const auto polygons = vbr::fanPolygons(brep, static_cast<int>(f));
+      EXPECT_EQ(polygons, vbr::detail::fanPolygonsFromSortedEdges(brep, static_cast<int>(f)))
+        << "face " << f;
+      grouped += brep.faces[f].loopCount == 1 && polygons.size() > 1;
+    }
+  }
+  RecordProperty("grouped", static_cast<int>(grouped));
+  EXPECT_GT(grouped, 200u); // faces without holes whose triangles were grouped into fans
+}
+
 // Faces merged at vertices (MergeNonManifoldFaces) whose parts touch only at corners: a
 // checkerboard plate's top and bottom faces are one face each, with the white squares as
 // holes that touch the outer loop and each other at corners. Each black square is an
