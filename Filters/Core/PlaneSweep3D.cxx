@@ -22,13 +22,13 @@
 // Either way the differences found are the same vertex lists (an EVM is unique), so the faces
 // do not depend on the choice.
 //
-// Streamed (planeSweep3DStream), a sorting is swept in batches of as many chunks as threads.
-// The last chunk of a batch hands its exit section to the first chunk of the next, so only the
-// sections entering the batch's other chunks are found by sequential XORs (findEntering): none
-// on one thread; with rows of bits, by a walker BitSection XORing whole cuts into its rows.
-// Each chunk's part is prepared (StreamedPartHandlers::prepare) by the thread that swept it,
-// and the batch's parts are appended in order on the calling thread: the caller's work per
-// part runs on the threads too, all but what must follow the order.
+// Streamed (planeSweep3DStream) with threads, a sorting is swept by a pool of workers, one
+// parallel loop per sorting (SortingPool): each takes the next chunk in order, its entering
+// section from a shared walker that XORs the cuts of the chunks before under a lock (with rows
+// of bits, word by word), sweeps it and prepares its part (StreamedPartHandlers::prepare); the
+// parts are appended strictly in order by whichever worker finds the next one ready, so the
+// caller's work per part runs on the threads too, all but what must follow the order. On one
+// thread each chunk hands its exit section to the next and needs no walker.
 
 #include "PlaneSweep3D.h"
 
@@ -36,9 +36,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -84,6 +87,10 @@ void xorPlanes(const std::vector<Vertex>& a, const std::vector<Vertex>& b, std::
 /// Chunks of planes per sorting when the faces are streamed (planeSweep3DStream): the faces
 /// of the few chunks swept at a time are all that is alive of them.
 constexpr std::size_t StreamChunks = 64;
+
+/// Parts alive at most per thread when the faces are streamed: a worker whose part waits for
+/// an earlier one to be appended sweeps the next chunk meanwhile instead of waiting.
+constexpr std::size_t StreamSlotsPerThread = 2;
 
 /// The box of (B, C) cells that every section and cut of one sorting lies in: row r holds the
 /// cells between lines u = lowU + r and u + 1, bit k of it the cell between v = lowV + k and
@@ -466,48 +473,6 @@ void appendBRep(BRep& to, BRep&& from)
   to.nonManifoldVertices += from.nonManifoldVertices;
 }
 
-/// The chunks of planes [p, p + step), [p + step, p + 2 step), ... of a sorting swept in one
-/// batch, at most `batch` of them, into `chunks`. `entering`, S(p - 1), is the first chunk's
-/// section; the others' come from it by sequential XORs of the cuts between (formula 1), by
-/// `walker` when the sections are rows of bits.
-void findEntering(const PlaneChunk& entering,
-  std::size_t p,
-  std::size_t step,
-  std::size_t batch,
-  BitSection* walker,
-  std::vector<PlaneChunk>& chunks)
-{
-  const std::vector<std::size_t>& starts = *entering.starts;
-  const std::size_t planes = starts.size() - 1;
-  const Vertex* v = entering.sorted->vertices().data();
-  std::vector<Vertex> next, cut;
-  chunks.clear();
-  chunks.push_back(entering);
-  chunks.back().firstPlane = p;
-  chunks.back().endPlane = std::min(planes, p + step);
-  while (chunks.size() < batch && chunks.back().endPlane < planes)
-  {
-    PlaneChunk c = chunks.back();
-    if (walker)
-    {
-      walker->assignEntering(c.section, c.cells);
-      for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
-        walker->xorCut(v + starts[q], v + starts[q + 1]);
-      c.cells = walker->cells();
-    }
-    else
-      for (std::size_t q = c.firstPlane; q < c.endPlane; ++q)
-      {
-        cutOf(v, starts, q, cut);
-        xorPlanes(c.section, cut, next);
-        c.section.swap(next);
-      }
-    c.firstPlane = c.endPlane;
-    c.endPlane = std::min(planes, c.firstPlane + step);
-    chunks.push_back(std::move(c));
-  }
-}
-
 /// Empties a part for the next chunk of planes, keeping its arrays' memory: a part grown from
 /// empty copied its points at each doubling of the arrays, in pages taken afresh from the
 /// heap, 192 parts an object (64 chunks per sorting). The chunks that follow are about as
@@ -522,10 +487,262 @@ void emptyKeepingCapacity(BRep& part)
   part.mergedAtVertices = false;
 }
 
-/// Sweeps the planes of one sorting in chunks of `step` planes, `batch` chunks at a time
-/// (concurrently), each part prepared by the thread that swept it, then the batch's parts
-/// appended in order before the next batch is swept. `planesDone` (of `planesAll`, for the
-/// progress) counts the planes swept so far.
+/// The progress of the streamed sweeps: `planesDone` of about `planesAll` planes.
+bool reportPlanes(const Execution& exec, std::size_t planesDone, std::size_t planesAll)
+{
+  return exec.report(double(planesDone) / double(std::max<std::size_t>(planesAll, 1)));
+}
+
+/// Sweeps the planes of one sorting on the calling thread in chunks of `step` planes, each
+/// chunk's exit section handed to the next, each part prepared and appended (in slot 0) before
+/// the next chunk is swept. `planesDone` (of `planesAll`, for the progress) counts the planes
+/// swept so far.
+bool streamSortingAlone(const EVM& sorted,
+  const std::vector<std::size_t>& starts,
+  std::size_t step,
+  const SectionBox* bitBox,
+  FaceConnectivity connectivity,
+  const Execution& exec,
+  const StreamedPartHandlers& handlers,
+  std::size_t& planesDone,
+  std::size_t planesAll)
+{
+  const std::size_t planes = starts.size() - 1;
+  std::atomic<bool> abort{ false };
+  PlaneChunk chunk{ &sorted, &starts, 0, 0, {}, bitBox, {} };
+  BRep part;
+  for (std::size_t p = 0; p < planes; p = chunk.endPlane)
+  {
+    chunk.firstPlane = p;
+    chunk.endPlane = std::min(planes, p + step);
+    emptyKeepingCapacity(part);
+    // The chunk is its own exit: sweepChunk reads the entering section before it writes the
+    // exit one, which the next chunk enters with.
+    if (!sweepChunk(chunk, connectivity, exec, abort, part, &chunk) ||
+      (handlers.prepare && !handlers.prepare(part, 0)) || !handlers.append(part, 0))
+      return false;
+    planesDone += chunk.endPlane - p;
+    if (!reportPlanes(exec, planesDone, planesAll))
+      return false;
+  }
+  return true;
+}
+
+/// One sorting's chunks of planes swept by a pool of workers: one parallel loop over the
+/// workers (a thread start and join per sorting, not per few chunks). A worker takes the next
+/// chunk in order, with its entering section from a walker that XORs the cuts of the chunks
+/// before (formula 1) under the lock, sweeps and prepares it into its slot (chunk k into slot
+/// k % slots), then marks it ready. The parts are appended strictly in order: whoever finds the
+/// next part in order ready appends it and the ready ones after it, one appender at a time, out
+/// of the lock. A chunk is taken only once its slot is free (the chunk `slots` places before it
+/// appended), so no more than `slots` parts are alive. A worker waits for that only while the
+/// next part to append is being swept by another worker, so workers run one after the other on
+/// one thread never wait. The parts, and their order, are the one-thread loop's.
+class SortingPool
+{
+public:
+  SortingPool(const EVM& sorted,
+    const std::vector<std::size_t>& starts,
+    std::size_t step,
+    const SectionBox* bitBox,
+    FaceConnectivity connectivity,
+    const Execution& exec,
+    const StreamedPartHandlers& handlers)
+    : Sorted(sorted)
+    , Starts(starts)
+    , Planes(starts.size() - 1)
+    , Step(step)
+    , Count((this->Planes + step - 1) / step)
+    , Slots(streamBatch(exec))
+    , BitBox(bitBox)
+    , Connectivity(connectivity)
+    , Exec(exec)
+    , Handlers(handlers)
+    , Parts(this->Slots)
+    , Ready(this->Slots, 0)
+  {
+    if (bitBox)
+      this->Walker = std::make_unique<BitSection>(*bitBox);
+  }
+
+  /// Sweeps the sorting; false when the caller asked to abort or a handler returned false.
+  /// The progress is reported on the calling thread only: by a worker that runs there after
+  /// each of its chunks, and after the sorting.
+  bool run(std::size_t& planesDone, std::size_t planesAll)
+  {
+    this->Caller = std::this_thread::get_id();
+    this->PlanesBefore = planesDone;
+    this->PlanesAll = planesAll;
+    const std::size_t workers =
+      std::min(this->Count, static_cast<std::size_t>(std::max(1, this->Exec.concurrency)));
+    this->Exec.forRange(static_cast<std::int64_t>(workers),
+      [this](std::int64_t b, std::int64_t e)
+      {
+        for (std::int64_t w = b; w < e; ++w)
+          this->work();
+      });
+    if (this->Stopped) // the workers are done: no lock needed
+      return false;
+    planesDone += this->Planes;
+    return reportPlanes(this->Exec, planesDone, planesAll);
+  }
+
+private:
+  /// One worker: chunks until none is left or the stream stops. An exception stops the other
+  /// workers (none is left waiting) and leaves through the parallel loop.
+  void work()
+  {
+    try
+    {
+      PlaneChunk chunk{ &this->Sorted, &this->Starts, 0, 0, {}, this->BitBox, {} };
+      std::size_t index = 0;
+      while (this->take(chunk, index))
+      {
+        const std::size_t slot = index % this->Slots;
+        BRep& part = this->Parts[slot];
+        emptyKeepingCapacity(part);
+        const bool prepared =
+          sweepChunk(chunk, this->Connectivity, this->Exec, this->Abort, part) && !this->Abort &&
+          (!this->Handlers.prepare || this->Handlers.prepare(part, slot));
+        this->finish(index, prepared);
+        if (std::this_thread::get_id() == this->Caller && !this->reportOnCaller())
+          this->stop();
+      }
+    }
+    catch (...)
+    {
+      this->stop();
+      throw;
+    }
+  }
+
+  /// The next chunk in order and its entering section, once its slot is free; false when no
+  /// chunk is left or the stream stopped.
+  bool take(PlaneChunk& chunk, std::size_t& index)
+  {
+    std::unique_lock<std::mutex> lock(this->Lock);
+    this->SlotFreed.wait(lock,
+      [this]
+      {
+        return this->Stopped || this->Taken == this->Count ||
+          this->Taken < this->Appended + this->Slots;
+      });
+    if (this->Stopped || this->Taken == this->Count)
+      return false;
+    index = this->Taken++;
+    chunk.firstPlane = index * this->Step;
+    chunk.endPlane = std::min(this->Planes, chunk.firstPlane + this->Step);
+    this->walkTo(chunk, index + 1 < this->Count);
+    return true;
+  }
+
+  /// Under the lock: the walker's section, S(firstPlane - 1), into `chunk`, and with `onward`
+  /// the walker past the chunk's cuts (formula 1), for the next chunk.
+  void walkTo(PlaneChunk& chunk, bool onward)
+  {
+    const Vertex* v = this->Sorted.vertices().data();
+    if (this->Walker)
+    {
+      chunk.cells = this->Walker->cells(); // into the worker's kept memory
+      if (onward)
+        for (std::size_t q = chunk.firstPlane; q < chunk.endPlane; ++q)
+          this->Walker->xorCut(v + this->Starts[q], v + this->Starts[q + 1]);
+      return;
+    }
+    chunk.section = this->Section;
+    if (onward)
+      for (std::size_t q = chunk.firstPlane; q < chunk.endPlane; ++q)
+      {
+        cutOf(v, this->Starts, q, this->Cut);
+        xorPlanes(this->Section, this->Cut, this->Next);
+        this->Section.swap(this->Next);
+      }
+  }
+
+  /// Marks chunk `index`'s part ready (or stops the stream when it was not prepared), then
+  /// appends the parts ready in order unless another worker is appending them.
+  void finish(std::size_t index, bool prepared)
+  {
+    std::unique_lock<std::mutex> lock(this->Lock);
+    if (!prepared || this->Stopped)
+    {
+      this->stopLocked();
+      return;
+    }
+    this->Ready[index % this->Slots] = 1;
+    if (this->Appending)
+      return; // the appender finds it ready after the part it is appending
+    this->Appending = true;
+    while (
+      !this->Stopped && this->Appended < this->Count && this->Ready[this->Appended % this->Slots])
+    {
+      const std::size_t slot = this->Appended % this->Slots;
+      lock.unlock();
+      const bool appended = this->Handlers.append(this->Parts[slot], slot);
+      lock.lock();
+      this->Ready[slot] = 0;
+      this->PlanesAppended +=
+        std::min(this->Planes, (this->Appended + 1) * this->Step) - this->Appended * this->Step;
+      ++this->Appended;
+      if (!appended)
+        this->stopLocked();
+      this->SlotFreed.notify_all();
+    }
+    this->Appending = false;
+  }
+
+  /// On the calling thread: the planes of the parts appended so far; false to abort.
+  bool reportOnCaller()
+  {
+    std::size_t planes = 0;
+    {
+      std::lock_guard<std::mutex> lock(this->Lock);
+      planes = this->PlanesAppended;
+    }
+    return reportPlanes(this->Exec, this->PlanesBefore + planes, this->PlanesAll);
+  }
+
+  void stop()
+  {
+    std::lock_guard<std::mutex> lock(this->Lock);
+    this->stopLocked();
+  }
+
+  void stopLocked()
+  {
+    this->Stopped = true;
+    this->Abort = true;
+    this->SlotFreed.notify_all();
+  }
+
+  const EVM& Sorted;
+  const std::vector<std::size_t>& Starts;
+  const std::size_t Planes, Step;
+  const std::size_t Count; ///< chunks: chunk k is planes [k Step, (k + 1) Step)
+  const std::size_t Slots; ///< parts alive at most
+  const SectionBox* BitBox;
+  const FaceConnectivity Connectivity;
+  const Execution& Exec;
+  const StreamedPartHandlers& Handlers;
+  std::vector<BRep> Parts; ///< chunk k's in Parts[k % Slots], kept with their arrays' memory
+  std::vector<char> Ready; ///< per slot: its part is prepared and waits to be appended
+
+  std::mutex Lock; ///< guards what follows but Abort (the sweeps poll it)
+  std::condition_variable SlotFreed;
+  std::size_t Taken = 0, Appended = 0, PlanesAppended = 0;
+  bool Appending = false, Stopped = false;
+  std::atomic<bool> Abort{ false };
+  std::unique_ptr<BitSection> Walker;     ///< the walker's section as rows of bits, or
+  std::vector<Vertex> Section, Next, Cut; ///< as vertices
+
+  std::thread::id Caller;
+  std::size_t PlanesBefore = 0, PlanesAll = 0;
+};
+
+/// Sweeps the planes of one sorting in chunks of planes (StreamChunks of them), each part
+/// prepared by the thread that swept it and appended in order: on the calling thread alone, or
+/// by a pool of exec.concurrency workers. `planesDone` (of `planesAll`, for the progress)
+/// counts the planes swept so far.
 bool streamSorting(const EVM& sorted,
   FaceConnectivity connectivity,
   const Execution& exec,
@@ -535,59 +752,25 @@ bool streamSorting(const EVM& sorted,
 {
   const std::vector<std::size_t> starts = sorted.planeStarts();
   const std::size_t planes = starts.size() - 1;
-  const std::size_t batch = streamBatch(exec);
+  if (planes == 0)
+    return true;
   const std::size_t step = std::max<std::size_t>(1, (planes + StreamChunks - 1) / StreamChunks);
   SectionBox box;
   const SectionBox* bitBox = bitRowsOf(sorted, planes, box) ? &box : nullptr;
-  std::atomic<bool> abort{ false };
-  // S(p - 1), entering the next batch: the last chunk of a batch leaves it, so that only the
-  // sections entering the batch's other chunks need the sequential XORs (none on one thread,
-  // which needs no walker), word by word when the sections are rows of bits.
-  PlaneChunk entering{ &sorted, &starts, 0, 0, {}, bitBox, {} };
-  std::unique_ptr<BitSection> walker;
-  if (bitBox && batch > 1)
-    walker = std::make_unique<BitSection>(*bitBox);
-  std::vector<PlaneChunk> chunks;
-  std::vector<BRep> parts;
-  for (std::size_t p = 0; p < planes;)
-  {
-    findEntering(entering, p, step, batch, walker.get(), chunks);
-    p = chunks.back().endPlane;
-    parts.resize(chunks.size());
-    for (BRep& part : parts)
-      emptyKeepingCapacity(part);
-    const std::size_t last = chunks.size() - 1;
-    exec.forRange(static_cast<std::int64_t>(chunks.size()),
-      [&](std::int64_t b, std::int64_t e)
-      {
-        for (std::int64_t c = b; c < e; ++c)
-        {
-          const std::size_t slot = static_cast<std::size_t>(c);
-          if (!sweepChunk(chunks[c],
-                connectivity,
-                exec,
-                abort,
-                parts[c],
-                slot == last ? &entering : nullptr) ||
-            abort || (handlers.prepare && !handlers.prepare(parts[c], slot)))
-            abort = true;
-        }
-      });
-    for (std::size_t slot = 0; slot < parts.size(); ++slot)
-      if (abort || !handlers.append(parts[slot], slot))
-        return false;
-    planesDone += p - chunks.front().firstPlane;
-    if (!exec.report(double(planesDone) / double(std::max<std::size_t>(planesAll, 1))))
-      return false;
-  }
-  return true;
+  if (!exec.parallelFor || exec.concurrency <= 1)
+    return streamSortingAlone(
+      sorted, starts, step, bitBox, connectivity, exec, handlers, planesDone, planesAll);
+  SortingPool pool(sorted, starts, step, bitBox, connectivity, exec, handlers);
+  return pool.run(planesDone, planesAll);
 }
 
 } // namespace
 
 std::size_t streamBatch(const Execution& exec)
 {
-  return static_cast<std::size_t>(std::max(1, exec.concurrency));
+  if (!exec.parallelFor || exec.concurrency <= 1)
+    return 1;
+  return StreamSlotsPerThread * static_cast<std::size_t>(exec.concurrency);
 }
 
 bool planeSweep3DStream(EVM evm,

@@ -40,35 +40,41 @@ bool planeSweep3DParts(const EVM& evm,
   std::vector<BRep>& parts);
 
 /// What planeSweep3DStream does with each part of the faces. `prepare` (optional) runs on the
-/// thread that swept the part, right after it and concurrently with the other parts of its
-/// batch: the work on a part that needs no other part (its cells, say) goes there. `append`
-/// then runs on the calling thread, part after part in planeSweep3DParts' order, once the
-/// whole batch is prepared: the work that must follow the order (writing into one output).
-/// `slot` is the part's place in its batch, in [0, streamBatch(exec)): a caller keeps what a
-/// part's prepare leaves for its append in that slot, free again once append returns. Either
-/// returns false to stop the stream.
+/// thread that swept the part, right after it and concurrently with the other parts' sweeps
+/// and prepares: the work on a part that needs no other part (its cells, say) goes there.
+/// `append` then runs part after part in planeSweep3DParts' order, never two at once: the work
+/// that must follow the order (writing into one output). With threads it runs on whichever
+/// worker finds the part next in order ready, so it must not need the calling thread (no
+/// toolkit calls; the progress is reported by the stream, on the calling thread). `slot` is
+/// the part's place among the parts alive at once, in [0, streamBatch(exec)): a caller keeps
+/// what a part's prepare leaves for its append in that slot, free again once append returns.
+/// Either returns false to stop the stream.
 struct StreamedPartHandlers
 {
   std::function<bool(BRep& part, std::size_t slot)> prepare;
   std::function<bool(BRep& part, std::size_t slot)> append;
 };
 
-/// The most parts planeSweep3DStream sweeps (and prepares) at a time with `exec`.
+/// The most parts planeSweep3DStream has alive (swept or prepared, not yet appended) at a time
+/// with `exec`: the slots of StreamedPartHandlers. 1 without threads.
 std::size_t streamBatch(const Execution& exec);
 
-/// The same faces made and handed over part by part, in planeSweep3DParts' order: a few chunks
-/// of planes (streamBatch(exec) of them) are swept and prepared at a time, concurrently, then
-/// appended one after the other on the calling thread, before the next chunks are swept. Only
-/// those chunks' faces are alive at a time (and two of the three sortings): a caller that
+/// The same faces made and handed over part by part, in planeSweep3DParts' order. With threads,
+/// exec.concurrency workers (one parallel loop per sorting) take the chunks of planes in order,
+/// sweep and prepare them concurrently, and append each part as soon as the parts before it are
+/// appended; a worker takes a chunk only when its slot is free, so at most streamBatch(exec)
+/// parts are alive. On one thread each part is swept, prepared and appended before the next.
+/// Only those parts' faces are alive at a time (and two of the three sortings): a caller that
 /// writes and releases each part never holds the object's faces. The EVM is taken (moved in)
-/// and freed once sorted. Parts may be empty. False when the caller asked to abort or a
-/// handler returned false.
+/// and freed once sorted. Parts may be empty. The progress is reported on the calling thread
+/// only. False when the caller asked to abort or a handler returned false.
 bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
   const StreamedPartHandlers& handlers);
 
-/// The same, every part handed to consume(part) on the calling thread (no prepare step).
+/// The same, every part handed to consume(part) in order, never two at once (an append: on a
+/// worker thread when there are threads; no prepare step).
 bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
