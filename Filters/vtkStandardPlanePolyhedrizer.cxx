@@ -15,6 +15,7 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -207,13 +208,13 @@ public:
 
   void addObject(const ObjectFaces& o, int mode)
   {
-    this->Ids.reset(o.graph, this->Points->GetNumberOfPoints());
+    this->Ids.reset(o.graph, this->PointsMade);
     // The object's vertices' points may all be numbered in 32 bits; the points that
     // addSurfelTriangles makes of its own are checked cell by cell (addCell, addLine).
-    this->fitIds(this->Polys,
-      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + o.graph.vertexPointel.size());
-    this->fitIds(this->Lines,
-      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + o.graph.vertexPointel.size());
+    this->fitIds(
+      this->Polys, static_cast<std::size_t>(this->PointsMade) + o.graph.vertexPointel.size());
+    this->fitIds(
+      this->Lines, static_cast<std::size_t>(this->PointsMade) + o.graph.vertexPointel.size());
     if (mode == vtkStandardPlanePolyhedrizer::STANDARD_EDGES)
     {
       this->addEdges(o);
@@ -249,6 +250,7 @@ public:
       this->addTriangulatedFaces(o, mode);
     }
     this->writeFaceValues(o);
+    this->commitPoints();
     this->FaceBase += static_cast<vtkIdType>(o.poly.faces.size());
   }
 
@@ -298,6 +300,7 @@ public:
 
   void finish(vtkPolyData* output)
   {
+    this->commitPoints();
     output->SetPoints(this->Points);
     vtkCellData* cd = output->GetCellData();
     if (this->Lines->GetNumberOfCells() > 0 || this->OtherFaceIds->GetNumberOfTuples() > 0)
@@ -373,7 +376,7 @@ private:
     std::uint32_t other)
   {
     this->fitIds(this->Lines, this->Lines->GetNumberOfConnectivityIds() + ids.size());
-    this->fitIds(this->Lines, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
+    this->fitIds(this->Lines, static_cast<std::size_t>(this->PointsMade));
     this->Lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     this->FaceIds->InsertNextValue(static_cast<int>(this->FaceBase + f));
     this->OtherFaceIds->InsertNextValue(static_cast<int>(this->FaceBase + other));
@@ -410,15 +413,21 @@ private:
     if (direct)
       this->writeTriangles32(o, face, polygon, triangles, count, markLoops, byIndex);
     else
+    {
+      this->commitTriangles(); // InsertNextCell appends after the counted cells
       for (std::size_t i = 0; i < count; ++i)
       {
         for (int k = 0; k < 3; ++k)
           ids[k] = this->point(o, polygon[triangles[i][k]]);
         this->addTriangle(markLoops);
       }
+    }
     this->addFaceValues(o, f, count);
     if (count == 0)
+    {
+      this->commitTriangles();
       this->addSurfelTriangles(o, f, markLoops);
+    }
   }
 
   /// Whether `count` more triangles go into the 32-bit cells as addTriangle would leave them
@@ -427,8 +436,10 @@ private:
   {
     constexpr auto limit = static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max());
     return !this->Polys->IsStorage64Bit() &&
-      static_cast<std::size_t>(this->Polys->GetNumberOfConnectivityIds()) + 3 * count <= limit &&
-      static_cast<std::size_t>(this->Points->GetNumberOfPoints()) + 3 * count <=
+      static_cast<std::size_t>(this->Polys->GetNumberOfConnectivityIds() + 3 * this->Room.written) +
+        3 * count <=
+      limit &&
+      static_cast<std::size_t>(this->PointsMade) + 3 * count <=
       limit; // points made for these triangles, at most 3 each
   }
 
@@ -445,15 +456,36 @@ private:
   {
     if (count == 0)
       return;
-    vtkCellArray::ArrayType32* connectivity = this->Polys->GetConnectivityArray32();
-    vtkCellArray::ArrayType32* offsets = this->Polys->GetOffsetsArray32();
-    const vtkIdType corners = connectivity->GetNumberOfValues();
     const vtkIdType cells = static_cast<vtkIdType>(count);
-    vtkTypeInt32* corner = connectivity->WritePointer(corners, 3 * cells);
-    vtkTypeInt32* offset = offsets->WritePointer(offsets->GetNumberOfValues(), cells);
-    unsigned char* bits = markLoops
-      ? this->LoopEdges->WritePointer(this->LoopEdges->GetNumberOfValues(), cells)
-      : nullptr;
+    TriangleRoom& room = this->Room;
+    if (room.open && room.written + cells > room.room)
+      this->commitTriangles();
+    if (!room.open)
+      this->openTriangles(markLoops);
+    vtkTypeInt32* corner = nullptr;
+    vtkTypeInt32* offset = nullptr;
+    unsigned char* bits = nullptr;
+    vtkIdType corners = 0;
+    if (room.written + cells <= room.room)
+    {
+      // Within the reservation (always, when the polygons triangulate as they always have).
+      corners = room.firstCorner + 3 * room.written;
+      corner = room.corners + 3 * room.written;
+      offset = room.offsets + room.written;
+      bits = room.bits ? room.bits + room.written : nullptr;
+      room.written += cells;
+    }
+    else
+    {
+      this->commitTriangles();
+      vtkCellArray::ArrayType32* connectivity = this->Polys->GetConnectivityArray32();
+      vtkCellArray::ArrayType32* offsets = this->Polys->GetOffsetsArray32();
+      corners = connectivity->GetNumberOfValues();
+      corner = connectivity->WritePointer(corners, 3 * cells);
+      offset = offsets->WritePointer(offsets->GetNumberOfValues(), cells);
+      bits = markLoops ? this->LoopEdges->WritePointer(this->LoopEdges->GetNumberOfValues(), cells)
+                       : nullptr;
+    }
     std::vector<vtkIdType>& ids = this->TriangleIds;
     for (std::size_t i = 0; i < count; ++i)
     {
@@ -467,6 +499,49 @@ private:
       if (bits)
         bits[i] = byIndex ? this->loopEdgeBitsByIndex(o, face, triangles[i]) : this->loopEdgeBits();
     }
+  }
+
+  /// The room reserveCells left in the 32-bit connectivity, offsets and (`markLoops`) LoopEdges
+  /// arrays, written by writeTriangles32 through pointers until commitTriangles counts the
+  /// cells written (three WritePointer calls a face, about 200 instructions each, cost more than
+  /// the few triangles of most faces).
+  void openTriangles(bool markLoops)
+  {
+    TriangleRoom& room = this->Room;
+    room = TriangleRoom();
+    if (this->Polys->IsStorage64Bit())
+      return;
+    vtkCellArray::ArrayType32* connectivity = this->Polys->GetConnectivityArray32();
+    vtkCellArray::ArrayType32* offsets = this->Polys->GetOffsetsArray32();
+    room.firstCorner = connectivity->GetNumberOfValues();
+    room.firstOffset = offsets->GetNumberOfValues();
+    room.room = std::min(
+      (connectivity->GetSize() - room.firstCorner) / 3, offsets->GetSize() - room.firstOffset);
+    room.corners = connectivity->GetPointer(0) + room.firstCorner;
+    room.offsets = offsets->GetPointer(0) + room.firstOffset;
+    if (markLoops)
+    {
+      room.firstBits = this->LoopEdges->GetNumberOfValues();
+      room.room = std::min(room.room, this->LoopEdges->GetSize() - room.firstBits);
+      room.bits = this->LoopEdges->GetPointer(0) + room.firstBits;
+    }
+    room.open = room.room > 0;
+  }
+
+  /// The cells writeTriangles32 wrote since openTriangles counted in their arrays: before any
+  /// other writer of the cells and at the object's end.
+  void commitTriangles()
+  {
+    TriangleRoom& room = this->Room;
+    if (room.open && room.written > 0)
+    {
+      this->Polys->GetConnectivityArray32()->WritePointer(room.firstCorner, 3 * room.written);
+      this->Polys->GetOffsetsArray32()->WritePointer(room.firstOffset, room.written);
+      if (room.bits)
+        this->LoopEdges->WritePointer(room.firstBits, room.written);
+      this->Polys->Modified();
+    }
+    room = TriangleRoom();
   }
 
   /// Makes the points of face f's loop in sortLoopEdges' order (LoopIds, by index into the
@@ -514,6 +589,16 @@ private:
     const vtkIdType from = this->LoopIds[a], to = this->LoopIds[b];
     if (this->PointStamps[static_cast<std::size_t>(from)] == this->LoopStamp)
       return this->LoopIds[next] == to; // the one loop edge from P_a
+    return this->isLoopEdgeFromRepeated(o, face, from, to);
+  }
+
+  /// isLoopEdge from a point the loop passes more than once: a binary search of the sorted
+  /// loop edges. Not inlined, so that isLoopEdge's common answer costs no more than its test.
+  __attribute__((noinline)) bool isLoopEdgeFromRepeated(const ObjectFaces& o,
+    const vbr::StandardFace& face,
+    vtkIdType from,
+    vtkIdType to)
+  {
     if (!this->LoopEdgesSorted)
     {
       this->sortLoopEdges(o, face); // makes no point: stampLoopPoints made them
@@ -621,6 +706,7 @@ private:
       this->addTriangulatedFace(
         o, f, polygon, this->Made[c].data() + first, end - first, markLoops);
     }
+    this->commitTriangles();
     if (!this->Prepared)
       std::vector<std::vector<std::uint32_t>>().swap(this->Polygons);
   }
@@ -722,8 +808,15 @@ private:
     auto* labels = static_cast<unsigned char*>(
       this->Labels->WriteVoidPointer(first * this->Labels->GetNumberOfComponents(),
         cells * this->Labels->GetNumberOfComponents()));
-    for (std::size_t i = 1; i < total; ++i)
-      std::memcpy(labels + i * bytes, labels, static_cast<std::size_t>(bytes));
+    // The first cell's label copied in doubling blocks: a memcpy per cell cost more than all
+    // the cell's other values on the faces of a few triangles.
+    const auto size = static_cast<std::size_t>(bytes);
+    for (std::size_t done = 1; done < total;)
+    {
+      const std::size_t n = std::min(done, total - done);
+      std::memcpy(labels + done * size, labels, n * size);
+      done += n;
+    }
   }
 
   /// Room for `tuples` tuples in `a`: WritePointer beyond the size resizes to the exact size,
@@ -808,7 +901,7 @@ private:
           {
             double world[3];
             this->Grid.vertexToWorld(inGrid(o, p), world);
-            it = pointOf.emplace(vbr::packBiased(p), this->Points->InsertNextPoint(world)).first;
+            it = pointOf.emplace(vbr::packBiased(p), this->newPoint(world)).first;
           }
           ids[k] = it->second;
         }
@@ -918,13 +1011,58 @@ private:
   /// The output point of graph vertex v of object o, made on its first use.
   vtkIdType point(const ObjectFaces& o, std::uint32_t v)
   {
-    return this->Ids.get(v,
-      [&](std::uint32_t u)
-      {
-        double world[3];
-        this->Grid.vertexToWorld(inGrid(o, o.graph.vertexPointel[u]), world);
-        return this->Points->InsertNextPoint(world);
-      });
+    return this->Ids.get(v, [&](std::uint32_t u) { return this->makePoint(o, u); });
+  }
+
+  /// The point of graph vertex u, made. Not inlined: most calls of point find their point made
+  /// already, and get's test stays small enough to be inlined at each of them.
+  __attribute__((noinline)) vtkIdType makePoint(const ObjectFaces& o, std::uint32_t u)
+  {
+    double world[3];
+    this->Grid.vertexToWorld(inGrid(o, o.graph.vertexPointel[u]), world);
+    return this->newPoint(world);
+  }
+
+  /// A new output point at `world`, written into the points' float array through a pointer
+  /// (InsertNextPoint, a virtual call and a range check per point, cost as much as the point's
+  /// place); the array's count is set once per object (commitPoints). Grown as InsertNextPoint
+  /// grows it (to twice its size and one more point).
+  vtkIdType newPoint(const double world[3])
+  {
+    if (this->PointsMade == this->PointRoom)
+      this->growPoints();
+    float* p = this->PointValues + 3 * this->PointsMade;
+    for (int k = 0; k < 3; ++k)
+      p[k] = static_cast<float>(world[k]); // InsertNextPoint's conversion
+    return this->PointsMade++;
+  }
+
+  void growPoints()
+  {
+    this->commitPoints();
+    vtkFloatArray* data = this->pointData();
+    if (!data->Resize(this->PointsMade + 1))
+      throw std::bad_alloc();
+    this->PointRoom = data->GetSize() / 3;
+    this->PointValues = data->GetPointer(0);
+  }
+
+  /// The points made since the last commit counted in the points' array.
+  void commitPoints()
+  {
+    const vtkIdType committed = this->Points->GetNumberOfPoints();
+    if (this->PointsMade == committed)
+      return;
+    this->pointData()->WritePointer(3 * committed, 3 * (this->PointsMade - committed));
+    this->Points->Modified();
+  }
+
+  vtkFloatArray* pointData()
+  {
+    vtkFloatArray* data = vtkFloatArray::FastDownCast(this->Points->GetData());
+    if (!data || data->GetNumberOfComponents() != 3)
+      throw std::logic_error("the output points are not 3-component floats");
+    return data;
   }
 
   /// The polygon of points `ids` (reversed first on a mirrored grid), without values.
@@ -934,7 +1072,7 @@ private:
       std::reverse(ids.begin(), ids.end());
     // Beyond the reservation only when a polygon is drawn by its surfels (never seen).
     this->fitIds(this->Polys, this->Polys->GetNumberOfConnectivityIds() + ids.size());
-    this->fitIds(this->Polys, static_cast<std::size_t>(this->Points->GetNumberOfPoints()));
+    this->fitIds(this->Polys, static_cast<std::size_t>(this->PointsMade));
     this->Polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
   }
 
@@ -968,6 +1106,18 @@ private:
   bool LoopDistinct = false;              ///< they are pairwise distinct
   bool LoopEdgesSorted = false;           ///< FaceLoopEdges holds the last face's
   std::vector<vtkIdType> TriangleIds;     ///< the triangle being added
+  /// Where writeTriangles32 writes while open (openTriangles, commitTriangles).
+  struct TriangleRoom
+  {
+    bool open = false;
+    vtkIdType firstCorner = 0, firstOffset = 0, firstBits = 0; ///< the arrays' counts at opening
+    vtkIdType room = 0;              ///< triangles the arrays have room for from there
+    vtkIdType written = 0;           ///< triangles written from there
+    vtkTypeInt32* corners = nullptr; ///< the connectivity from firstCorner
+    vtkTypeInt32* offsets = nullptr; ///< the offsets from firstOffset
+    unsigned char* bits = nullptr;   ///< LoopEdges from firstBits (TriangulatedFaces)
+  };
+  TriangleRoom Room;
   /// The cells of a face whose values are still to write (addFaceValues, writeFaceValues).
   struct FaceRun
   {
@@ -977,6 +1127,9 @@ private:
   std::vector<FaceRun> PendingValues; ///< of the object being added, in the cells' order
   static constexpr std::size_t PendingRuns = 4096; ///< written when that many are listed
   vtkNew<vtkPoints> Points;
+  vtkIdType PointsMade = 0;     ///< points made, some perhaps not yet committed
+  vtkIdType PointRoom = 0;      ///< points the array holds room for
+  float* PointValues = nullptr; ///< the array's values while PointRoom is its room
   vtkNew<vtkCellArray> Polys;
   vtkNew<vtkCellArray> Lines;
   vtkNew<vtkIntArray> OtherFaceIds;

@@ -1688,10 +1688,14 @@ private:
 
   bool cellOf(const UV& uv, std::size_t& cell) const
   {
-    const std::int64_t u = uv[0] - this->Low[0], v = uv[1] - this->Low[1];
-    if (u < 0 || v < 0 || u >= this->Width || v >= this->Height)
+    // A negative u or v wraps to more than any width or height (both below 2^63): one test
+    // for each side of the array (three calls per step of the flood).
+    const auto u = static_cast<std::uint64_t>(uv[0] - this->Low[0]);
+    const auto v = static_cast<std::uint64_t>(uv[1] - this->Low[1]);
+    if (u >= static_cast<std::uint64_t>(this->Width) ||
+      v >= static_cast<std::uint64_t>(this->Height))
       return false;
-    cell = static_cast<std::size_t>(v * this->Width + u);
+    cell = static_cast<std::size_t>(v * static_cast<std::uint64_t>(this->Width) + u);
     return true;
   }
 
@@ -1872,8 +1876,10 @@ private:
   const char* visit(const Surfel& s, const UV& voxel, std::int64_t value)
   {
     const Point3& v = s.voxel;
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= this->Dims[0] || v[1] >= this->Dims[1] ||
-      v[2] >= this->Dims[2])
+    // A negative coordinate wraps to more than any size (below 2^31): one test per axis.
+    if (static_cast<std::uint32_t>(v[0]) >= static_cast<std::uint32_t>(this->Dims[0]) ||
+      static_cast<std::uint32_t>(v[1]) >= static_cast<std::uint32_t>(this->Dims[1]) ||
+      static_cast<std::uint32_t>(v[2]) >= static_cast<std::uint32_t>(this->Dims[2]))
       return "it leaves the grid (the faces do not bound a set of voxels of it)";
     if (!this->Face.markSurfel(s, plus(voxel, this->Geometry->lowestShift[s.direction])))
       return nullptr; // seen in this face
@@ -1894,7 +1900,7 @@ private:
     for (std::size_t i = 0; i < n; ++i)
     {
       const Point3& p = face.loop[i];
-      const Point3& q = face.loop[(i + 1) % n];
+      const Point3& q = face.loop[i + 1 == n ? 0 : i + 1];
       const Point3 t = sub(q, p);
       // The square on the left of p -> q, as PlaneSurfels::leftOf(p, q) finds it.
       const bool unit = std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) == 1;
