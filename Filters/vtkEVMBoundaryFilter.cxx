@@ -888,7 +888,7 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
   Statistics& stats,
   OutputBuilder& builder,
   vbr::EVM& evm,
-  std::vector<Point3>* corners = nullptr)
+  vbr::PointList* corners = nullptr)
 {
   vbr::BitVolume voxels;
   {
@@ -1271,7 +1271,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
   const std::size_t n = objects.size();
   evms.assign(n, vbr::EVM());
   faceCorners.assign(n, 0);
-  std::vector<Point3> points;
+  vbr::PointList points;
   for (std::size_t o = 0; o < n; ++o)
   {
     if (self->GetAbortExecute())
@@ -1296,7 +1296,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
   const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.2, 0.2);
   corners.reset(
     new vbr::CornerSet(points, packer, exec.forWork(static_cast<std::int64_t>(points.size()))));
-  points = std::vector<Point3>();
+  points = vbr::PointList();
   builder.addCornerPoints(corners->points());
   corners->releasePoints(); // now the output's
   return true;

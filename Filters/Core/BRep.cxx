@@ -121,8 +121,8 @@ void appendFaces(const Boundary2D& b2,
   int normalSign,
   BRep& out)
 {
-  // The loops hold all of b2's points: one resize, then each loop written in place in its
-  // final order, with no check of capacity per corner.
+  // The loops hold all of b2's points: one resize (not zeroed: PointList), then each loop
+  // written in place in its final order, with no check of capacity per corner.
   const std::size_t first = out.points.size();
   out.points.resize(first + b2.points.size());
   Point3* to = out.points.data() + first;
@@ -262,7 +262,7 @@ void walkWithEdgeVertices(const PointRange& loop,
 }
 
 /// The largest coordinate of the corners; throws when one lies outside [0, 2^21).
-Coord checkedMaximum(const std::vector<Point3>& points)
+Coord checkedMaximum(const PointList& points)
 {
   Coord lo = points[0][0], hi = lo;
   for (const Point3& p : points)
@@ -466,9 +466,7 @@ CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& pack
     total, [&](auto&& visit) { forEachCorner(breps, visit); }, packer, Execution());
 }
 
-CornerSet::CornerSet(const std::vector<Point3>& corners,
-  const KeyPacker& packer,
-  const Execution& exec)
+CornerSet::CornerSet(const PointList& corners, const KeyPacker& packer, const Execution& exec)
 {
   this->numberCorners(
     corners.size(),
@@ -595,7 +593,7 @@ Point3* writeFaceCorners(const BitVolume& voxels,
 
 void appendFaceCorners(const BitVolume& voxels,
   const Point3& offset,
-  std::vector<Point3>& out,
+  PointList& out,
   const Execution& exec)
 {
   // Counted first, so that the corners (12 bytes each, millions at 256^3) are written once
@@ -747,7 +745,7 @@ void insertTJunctionVertices(BRep& brep,
     return;
   // Every point and number of the new arrays is written below, loop by loop: what the
   // scratch held before is overwritten, not zeroed first.
-  std::vector<Point3>& points = scratch.points;
+  PointList& points = scratch.points;
   std::vector<std::int64_t>& pointNumbers = scratch.numbers;
   points.resize(begins.back());
   pointNumbers.resize(begins.back());

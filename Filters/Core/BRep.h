@@ -53,13 +53,17 @@ struct BRepFace
   int depth = 0;   ///< 2D only: depth in the inclusion tree (faces even, holes odd)
 };
 
+/// Points grown to their size and then written through pointers (appendFaces, the corners
+/// of appendFaceCorners, the numbered corners): not zeroed first (see Uninitialized).
+using PointList = std::vector<Point3, Uninitialized<Point3>>;
+
 struct BRep
 {
   std::vector<BRepFace> faces;
   std::vector<BRepLoop> loops;
   /// Corners of all loops, loop after loop; outer loops run counter-clockwise seen from
   /// outside, holes the other way.
-  std::vector<Point3> points;
+  PointList points;
   std::size_t nonManifoldVertices = 0;
   /// The faces are vertex-connected regions (FaceConnectivity::Vertex): a face's parts may
   /// touch at corners, where it can be cut into its edge-connected parts.
@@ -126,9 +130,6 @@ struct PlacedBRep
 class CornerSet
 {
 public:
-  /// The corners by number: written through pointers once counted, never zeroed first.
-  using PointList = std::vector<Point3, Uninitialized<Point3>>;
-
   /// Numbers the corners of `breps`. Throws std::out_of_range for a corner outside the
   /// packer's range, std::length_error for 2^32 corners or more.
   CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& packer);
@@ -137,9 +138,7 @@ public:
   /// faceCorners of the objects' voxels: no B-Rep needs to exist yet, so that the faces can be
   /// made, given their numbers and written part after part.
   /// With threads, the numbered points are written side by side (the same points).
-  CornerSet(const std::vector<Point3>& corners,
-    const KeyPacker& packer,
-    const Execution& exec = Execution());
+  CornerSet(const PointList& corners, const KeyPacker& packer, const Execution& exec = Execution());
 
   /// The numbers of the points of `brep` at `offset`, one of the B-Reps numbered (as they were
   /// then): asked for one B-Rep at a time, so that all of them are never held at once.
@@ -344,7 +343,7 @@ private:
 /// With threads, slabs of planes are read side by side; the corners' order is the same.
 void appendFaceCorners(const BitVolume& voxels,
   const Point3& offset,
-  std::vector<Point3>& out,
+  PointList& out,
   const Execution& exec = Execution());
 
 /// Arrays insertTJunctionVertices works in, kept by a caller that inserts into many B-Reps
@@ -354,7 +353,7 @@ void appendFaceCorners(const BitVolume& voxels,
 /// written, in pages faulted in afresh.
 struct TJunctionScratch
 {
-  std::vector<Point3> points;
+  PointList points;
   std::vector<std::int64_t> numbers;
   std::vector<std::uint32_t> inside; ///< per point, the corners inside the edge from it
   std::vector<std::size_t> begins;   ///< per loop, where it begins with its new vertices

@@ -457,7 +457,7 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
     const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
     SCOPED_TRACE(testing::Message() << "trial " << trial << " density " << density);
     const vbr::Point3 offset{ 3, 1, 4 };
-    std::vector<vbr::Point3> fromVoxels;
+    vbr::PointList fromVoxels;
     vbr::appendFaceCorners(v, offset, fromVoxels);
     const std::set<vbr::Point3> voxelSet(fromVoxels.begin(), fromVoxels.end());
     EXPECT_EQ(voxelSet.size(), fromVoxels.size()); // each once
@@ -465,7 +465,7 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
     // volumes), appended after corners already there: the same corners in the same order.
     for (int threads : { 2, 3, 16 })
     {
-      std::vector<vbr::Point3> threaded{ { 7, 7, 7 } };
+      vbr::PointList threaded{ { 7, 7, 7 } };
       vbr::appendFaceCorners(v, offset, threaded, bf::threadedExecution(threads));
       ASSERT_EQ(threaded.size(), fromVoxels.size() + 1);
       EXPECT_EQ(threaded[0], (vbr::Point3{ 7, 7, 7 }));
@@ -493,7 +493,7 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 5; ++x)
         checker.set(x, y, z, (x + y + z) % 2 == 0);
-  std::vector<vbr::Point3> corners;
+  vbr::PointList corners;
   vbr::appendFaceCorners(checker, { 0, 0, 0 }, corners);
   EXPECT_EQ(corners.size(), 6u * 5u * 4u - 4u);
   vbr::BitVolume empty(4, 4, 4);
@@ -510,12 +510,12 @@ void expectCornerNumbersMatchSortedCorners()
 {
   std::mt19937 random(6300);
   std::uniform_int_distribution<int> coordinate(0, 70);
-  std::vector<vbr::Point3> corners;
+  vbr::PointList corners;
   for (int i = 0; i < 300; ++i)
     corners.push_back({ coordinate(random), coordinate(random), coordinate(random) });
   const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(80);
   const vbr::CornerSet set(corners, packer);
-  std::vector<vbr::Point3> sorted = corners;
+  std::vector<vbr::Point3> sorted(corners.begin(), corners.end());
   std::sort(sorted.begin(), sorted.end());
   sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
   ASSERT_EQ(set.size(), sorted.size());
