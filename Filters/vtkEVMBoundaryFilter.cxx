@@ -1314,10 +1314,11 @@ void addFaceCounts(const Statistics& from, Statistics& to)
 /// part's counts, T-junction vertices and cells are made by the thread that swept it (prepare)
 /// into the part's slot, with face ids from 0 (the part is kept, emptied by the sweep for its
 /// next chunk with its arrays' memory); the slots are then
-/// appended to the output in the parts' order on the calling thread (append), their face ids
-/// shifted past the faces before. The output is the one that writing the parts one after the
-/// other would give, cell for cell. Memory: the cells of one batch of parts twice at most,
-/// and each slot's scratch runs (FaceRuns), which keep until the object is done the capacity
+/// appended to the output in the parts' order, one at a time, by whichever thread finds the
+/// next part ready (append), their face ids shifted past the faces before. The output is the
+/// one that writing the parts one after the other would give, cell for cell. Memory: the cells
+/// of the parts alive at once (streamBatch(exec): two per thread, one on one thread) twice at
+/// most, and each slot's scratch runs (FaceRuns), which keep until the object is done the capacity
 /// of the largest part that slot triangulated (its triangles or fan polygons once more).
 class StreamedObjectCells
 {
@@ -1330,7 +1331,7 @@ public:
     OutputBuilder& builder)
     : Object(object)
     , Settings(settings)
-    , Exec(exec.sequential()) // the parts of a batch are prepared side by side, one a thread
+    , Exec(exec.sequential()) // the parts are prepared side by side, one a thread
     , Writer(writer)
     , Stats(stats)
     , Builder(builder)
@@ -1357,11 +1358,11 @@ private:
     FaceRuns runs; ///< scratch space of the slot's parts' cells, kept from part to part
   };
 
-  /// On a worker thread (concurrently with the batch's other parts, each in its own slot):
+  /// On a worker thread (concurrently with the other parts alive, each in its own slot):
   /// nothing shared is written, and only the abort is polled.
   bool prepare(vbr::BRep& part, std::size_t slot)
   {
-    assert(slot < this->Slots.size()); // the stream's batch is streamBatch(exec) parts
+    assert(slot < this->Slots.size()); // at most streamBatch(exec) parts are alive
     Slot& s = *this->Slots[slot];
     countFaces(part, s.counts);
     s.faces = part.faces.size();
@@ -1383,7 +1384,9 @@ private:
     return done;
   }
 
-  /// On the calling thread, slot after slot in the parts' order.
+  /// Slot after slot in the parts' order, never two at once, on whichever thread finds the
+  /// next part ready (planeSweep3DStream): it makes no VTK call, only copies into the cell
+  /// store's own buffers and counts.
   bool append(std::size_t slot)
   {
     Slot& s = *this->Slots[slot];
