@@ -1297,17 +1297,26 @@ void appendFanPolygons(const BRep& brep, int f, FaceCells& cells)
   appendFanPolygonsOf(brep, f, cells, true);
 }
 
+namespace
+{
+/// The cells of `cells` as lists of corner numbers, one per polygon.
+std::vector<std::vector<int>> polygonsOf(const FaceCells& cells)
+{
+  std::vector<std::vector<int>> polygons;
+  for (std::size_t c = 0; c < cells.cellEnds.size(); ++c)
+    polygons.emplace_back(
+      cells.corners.begin() + cells.cornerBegin(c), cells.corners.begin() + cells.cellEnds[c]);
+  return polygons;
+}
+} // namespace
+
 namespace detail
 {
 std::vector<std::vector<int>> fanPolygonsFromSortedEdges(const BRep& brep, int f)
 {
   FaceCells cells;
   appendFanPolygonsOf(brep, f, cells, false);
-  std::vector<std::vector<int>> polygons;
-  for (std::size_t c = 0; c < cells.cellEnds.size(); ++c)
-    polygons.emplace_back(
-      cells.corners.begin() + cells.cornerBegin(c), cells.corners.begin() + cells.cellEnds[c]);
-  return polygons;
+  return polygonsOf(cells);
 }
 } // namespace detail
 
@@ -1327,11 +1336,7 @@ std::vector<std::vector<int>> fanPolygons(const BRep& brep, int f)
 {
   FaceCells cells;
   appendFanPolygons(brep, f, cells);
-  std::vector<std::vector<int>> polygons;
-  for (std::size_t c = 0; c < cells.cellEnds.size(); ++c)
-    polygons.emplace_back(
-      cells.corners.begin() + cells.cornerBegin(c), cells.corners.begin() + cells.cellEnds[c]);
-  return polygons;
+  return polygonsOf(cells);
 }
 
 } // namespace vbr

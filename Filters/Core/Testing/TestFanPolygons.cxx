@@ -138,15 +138,24 @@ std::vector<std::vector<int>> polygonsOfRun(const vbr::FaceCells& run, std::size
   return polygons;
 }
 
+/// The faces of `volume` as the plane sweep gives them: merged at vertices (`merged`) or
+/// kept apart, with the T-junction vertices inserted or not.
+bool sweptFaces(const vbr::BitVolume& volume, bool merged, bool tJunctions, vbr::BRep& brep)
+{
+  if (!vbr::planeSweep3D(vbr::extractEVM(volume),
+        merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
+        vbr::Execution(),
+        brep))
+    return false;
+  if (tJunctions)
+    vbr::insertTJunctionVertices(brep);
+  return true;
+}
+
 void checkVolume(const vbr::BitVolume& volume, bool merged, bool tJunctions, FaceStats& stats)
 {
   vbr::BRep brep;
-  ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(volume),
-    merged ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
-    vbr::Execution(),
-    brep));
-  if (tJunctions)
-    vbr::insertTJunctionVertices(brep);
+  ASSERT_TRUE(sweptFaces(volume, merged, tJunctions, brep));
   for (std::size_t f = 0; f < brep.faces.size(); ++f)
     checkFace(brep, static_cast<int>(f), vbr::fanPolygons(brep, static_cast<int>(f)), stats);
   // The filter's way: all faces in one run whose scratch space passes from face to face, the
@@ -261,12 +270,7 @@ TEST(FanPolygons, NeighboursFromTheEarClippingGroupAsTheSortedEdges)
     const vbr::BitVolume v = bf::randomVolume(d, 0.1 + 0.8 * (trial % 8) / 7.0, seed++);
     SCOPED_TRACE(testing::Message() << "trial " << trial);
     vbr::BRep brep;
-    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v),
-      trial % 2 == 0 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
-      vbr::Execution(),
-      brep));
-    if (trial % 3 != 0)
-      vbr::insertTJunctionVertices(brep);
+    ASSERT_TRUE(sweptFaces(v, trial % 2 == 0, trial % 3 != 0, brep));
     for (std::size_t f = 0; f < brep.faces.size(); ++f)
     {
       const auto polygons = vbr::fanPolygons(brep, static_cast<int>(f));
@@ -588,12 +592,7 @@ TEST(FanPolygons, SimpleLoopsAreEarClippedAsByDefinition)
     const double density = 0.2 + 0.6 * (trial % 7) / 6.0;
     const vbr::BitVolume v = bf::randomVolume(d, density, seed++);
     vbr::BRep brep;
-    ASSERT_TRUE(vbr::planeSweep3D(vbr::extractEVM(v),
-      trial % 2 == 0 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
-      vbr::Execution(),
-      brep));
-    if (trial % 3 != 0)
-      vbr::insertTJunctionVertices(brep);
+    ASSERT_TRUE(sweptFaces(v, trial % 2 == 0, trial % 3 != 0, brep));
     for (std::size_t f = 0; f < brep.faces.size(); ++f)
     {
       const vbr::BRepFace& face = brep.faces[f];
