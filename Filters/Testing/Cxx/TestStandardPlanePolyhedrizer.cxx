@@ -8,6 +8,7 @@
 
 #include "TestImages.h"
 
+#include "vtkAbstractArray.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
@@ -87,6 +88,26 @@ bool cornerOf(const double world[3], const Layout& l, long corner[3])
 }
 
 /// Everything the output promises, for one image.
+/// Every point array has one tuple per point and every cell array one per cell: an array
+/// written through pointers whose count was left short still reads right cell by cell.
+void checkOneTuplePerElement(vtkPolyData* out, const std::string& what)
+{
+  for (int a = 0; a < out->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = out->GetPointData()->GetAbstractArray(a);
+    CHECK(array->GetNumberOfTuples() == out->GetNumberOfPoints(),
+      what << ": point array " << array->GetName() << " has " << array->GetNumberOfTuples()
+           << " tuples for " << out->GetNumberOfPoints() << " points");
+  }
+  for (int a = 0; a < out->GetCellData()->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = out->GetCellData()->GetAbstractArray(a);
+    CHECK(array->GetNumberOfTuples() == out->GetNumberOfCells(),
+      what << ": cell array " << array->GetName() << " has " << array->GetNumberOfTuples()
+           << " tuples for " << out->GetNumberOfCells() << " cells");
+  }
+}
+
 void checkImage(const Volume& v, const Layout& l, bool labels, const std::string& what)
 {
   vtkSmartPointer<vtkImageData> image = makeImage(v, l);
@@ -152,9 +173,14 @@ void checkImage(const Volume& v, const Layout& l, bool labels, const std::string
       badSizes += quadsPerFace[static_cast<long>(ids->GetTuple1(c))] != sizes->GetTuple1(c);
     CHECK(badSizes == 0, what << ": SurfelCount differs from the face's quads");
   }
+  checkOneTuplePerElement(out, what + " (surfels)");
+  f->SetOutputModeToTriangulatedFaces();
+  f->Update();
+  checkOneTuplePerElement(f->GetOutput(), what + " (triangulated faces)");
   // Standard faces: one polygon per face.
   f->SetOutputModeToStandardFaces();
   f->Update();
+  checkOneTuplePerElement(f->GetOutput(), what + " (standard faces)");
   CHECK(f->GetOutput()->GetNumberOfCells() == fieldValue(f->GetOutput(), "NumberOfFaces"),
     what << ": one polygon per face");
   CHECK(!f->GetOutput()->GetPolys()->IsStorage64Bit(), what << ": 64-bit polygon storage");
@@ -247,6 +273,7 @@ void checkLoopEdgeBits()
       f->SetOutputModeToTriangulatedFaces();
       f->Update();
       vtkPolyData* triangles = f->GetOutput();
+      checkOneTuplePerElement(triangles, what);
       vtkDataArray* face = triangles->GetCellData()->GetArray("FaceId");
       vtkDataArray* bits = triangles->GetCellData()->GetArray("LoopEdges");
       CHECK(face && bits, what << ": FaceId and LoopEdges");
