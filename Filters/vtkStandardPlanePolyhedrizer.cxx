@@ -55,6 +55,16 @@
 
 vtkStandardNewMacro(vtkStandardPlanePolyhedrizer);
 
+// Out-of-line helpers of hot inline paths (isLoopEdge, point): kept out so that the common
+// answer inlines at every call.
+#if defined(__GNUC__) || defined(__clang__)
+#define VBR_NOINLINE __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define VBR_NOINLINE __declspec(noinline)
+#else
+#define VBR_NOINLINE
+#endif
+
 namespace
 {
 
@@ -594,7 +604,7 @@ private:
 
   /// isLoopEdge from a point the loop passes more than once: a binary search of the sorted
   /// loop edges. Not inlined, so that isLoopEdge's common answer costs no more than its test.
-  __attribute__((noinline)) bool isLoopEdgeFromRepeated(const ObjectFaces& o,
+  VBR_NOINLINE bool isLoopEdgeFromRepeated(const ObjectFaces& o,
     const vbr::StandardFace& face,
     vtkIdType from,
     vtkIdType to)
@@ -1016,7 +1026,7 @@ private:
 
   /// The point of graph vertex u, made. Not inlined: most calls of point find their point made
   /// already, and get's test stays small enough to be inlined at each of them.
-  __attribute__((noinline)) vtkIdType makePoint(const ObjectFaces& o, std::uint32_t u)
+  VBR_NOINLINE vtkIdType makePoint(const ObjectFaces& o, std::uint32_t u)
   {
     double world[3];
     this->Grid.vertexToWorld(inGrid(o, o.graph.vertexPointel[u]), world);

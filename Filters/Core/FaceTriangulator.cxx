@@ -562,19 +562,18 @@ int fanApexAs(const std::vector<Point2L>& corners)
 /// that turns left (enough for a rectangle with corners on its sides). A loop that never
 /// turns right is convex: the first left turn is its apex, with no check (most faces of
 /// porous volumes are rectangles, often with corners of their neighbours on their sides).
-int fanApex(const std::vector<Point2L>& corners)
-{
-  if (corners.empty())
-    return -1;
-  return smallCoordinates(corners) ? fanApexAs<std::int64_t>(corners) : fanApexAs<Wide>(corners);
-}
-
-/// fanApex for a loop whose coordinates are known to be small (smallCoordinates) or not.
+/// `small`: whether the coordinates are known to be small (smallCoordinates).
 int fanApex(const std::vector<Point2L>& corners, bool small)
 {
   if (corners.empty())
     return -1;
   return small ? fanApexAs<std::int64_t>(corners) : fanApexAs<Wide>(corners);
+}
+
+/// fanApex for a loop whose coordinates are not known to be small.
+int fanApex(const std::vector<Point2L>& corners)
+{
+  return fanApex(corners, smallCoordinates(corners));
 }
 
 /// The apex fanApex picks for a face's outer loop that goes round a rectangle: four left

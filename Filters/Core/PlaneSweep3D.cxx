@@ -681,8 +681,6 @@ private:
       const bool appended = this->Handlers.append(this->Parts[slot], slot);
       lock.lock();
       this->Ready[slot] = 0;
-      this->PlanesAppended +=
-        std::min(this->Planes, (this->Appended + 1) * this->Step) - this->Appended * this->Step;
       ++this->Appended;
       if (!appended)
         this->stopLocked();
@@ -694,11 +692,12 @@ private:
   /// On the calling thread: the planes of the parts appended so far; false to abort.
   bool reportOnCaller()
   {
-    std::size_t planes = 0;
+    std::size_t appended = 0;
     {
       std::lock_guard<std::mutex> lock(this->Lock);
-      planes = this->PlanesAppended;
+      appended = this->Appended;
     }
+    const std::size_t planes = std::min(this->Planes, appended * this->Step);
     return reportPlanes(this->Exec, this->PlanesBefore + planes, this->PlanesAll);
   }
 
@@ -729,7 +728,7 @@ private:
 
   std::mutex Lock; ///< guards what follows but Abort (the sweeps poll it)
   std::condition_variable SlotFreed;
-  std::size_t Taken = 0, Appended = 0, PlanesAppended = 0;
+  std::size_t Taken = 0, Appended = 0;
   bool Appending = false, Stopped = false;
   std::atomic<bool> Abort{ false };
   std::unique_ptr<BitSection> Walker;     ///< the walker's section as rows of bits, or
