@@ -137,8 +137,11 @@ public:
     for (std::size_t i = 0; i < n; ++i)
     {
       const int c = static_cast<int>(i);
-      const bool blocks = !simple ||
-        this->turn(static_cast<int>((i + n - 1) % n), c, static_cast<int>((i + 1) % n)) <= 0;
+      // The neighbours without the modulo: an integer division each, at every corner of every
+      // ear-clipped ring (and two more in clipEars' links).
+      const int before = i == 0 ? static_cast<int>(n) - 1 : c - 1;
+      const int after = i + 1 == n ? 0 : c + 1;
+      const bool blocks = !simple || this->turn(before, c, after) <= 0;
       this->S.slot[i] = blocks ? static_cast<int>(this->S.alive.size()) : -1;
       if (blocks)
       {
@@ -450,14 +453,18 @@ bool clipEars(const PointRange& pts,
   const int x = sign > 0 ? u : v, y = sign > 0 ? v : u;
   if (n == 4)
     return clipQuadrilateral(pts, x, y, out, across);
+  if (n < 3)
+    return false;
   out.ring.resize((across ? 3 : 2) * static_cast<std::size_t>(n));
   int* prev = out.ring.data();
   int* next = out.ring.data() + n;
   for (int i = 0; i < n; ++i)
   {
-    prev[i] = (i + n - 1) % n;
-    next[i] = (i + 1) % n;
+    prev[i] = i - 1;
+    next[i] = i + 1;
   }
+  prev[0] = n - 1;
+  next[n - 1] = 0;
   EarNeighbours neighbours(across, out.ring.data() + 2 * n, n);
   if (kind == RingKind::Rectangle)
   {

@@ -48,6 +48,9 @@ namespace
 /// An edge end not reached yet.
 constexpr std::uint32_t Unset = std::numeric_limits<std::uint32_t>::max();
 
+/// Sweep::processLine with the checks of every corner and edge, or without (lineNeedsChecks).
+constexpr bool Checked = true, Unchecked = false;
+
 /// Numbered in the order (v, u), the corners are found by column before the sweep when there
 /// are at least as many vertices as words in the grid of columns (cornersByColumn) and at
 /// least FewestVerticesByColumn vertices, and sorted by v after the sweep otherwise. Below
@@ -225,15 +228,26 @@ public:
   /// the domino step and the second sweep; the loops' corners as points.
   Boundary2D run(const Vertex* begin, const Vertex* end)
   {
-    this->firstSweep(begin, end);
     Boundary2D out;
+    this->runInto(begin, end, out);
+    return out;
+  }
+
+  /// run, into `out` (emptied first) and after any earlier sweep of this object, whose arrays
+  /// are emptied with their memory kept (PlaneSweeper2D).
+  void runInto(const Vertex* begin, const Vertex* end, Boundary2D& out)
+  {
+    this->emptyKeepingCapacity();
+    out.faces.clear();
+    out.loops.clear();
+    out.points.clear();
+    this->firstSweep(begin, end);
     out.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out);
     reserveHugePages(out.points, this->Links.size());
     this->orderEdgesIntoLoops(
       out, [&](std::uint32_t c) { out.points.push_back(this->Corners[c]); });
     this->classifyContours(out);
-    return out;
   }
 
   /// The same method, the loops' corners as numbers of the distinct corners in `order`.
@@ -273,6 +287,24 @@ public:
   }
 
 private:
+  /// Every array of a sweep emptied, its memory kept for the next sweep.
+  void emptyKeepingCapacity()
+  {
+    this->Section.clear();
+    this->NextSection.clear();
+    this->NextIntervals.clear();
+    this->SectionIntervals.clear();
+    this->Corners.clear();
+    this->ColumnNext.clear();
+    this->ColumnLo = 0;
+    this->Links.clear();
+    this->Ends.clear();
+    this->First.clear();
+    this->NonManifold.clear();
+    this->FaceOfRoot.clear();
+    this->FirstOfFace.clear();
+  }
+
   /// The first sweep (line by line) and the pairing at the non-manifold vertices: every edge
   /// then knows the next one of its loop.
   void firstSweep(const Vertex* begin, const Vertex* end)
@@ -297,7 +329,10 @@ private:
       if ((lineEnd - begin) % 2)
         throw std::invalid_argument(
           "planeSweep2D: a line of vertices has an odd count (not an EVM)");
-      this->processLine((*begin)[1], begin, lineEnd);
+      if (this->lineNeedsChecks(begin, lineEnd))
+        this->processLine<Checked>((*begin)[1], begin, lineEnd);
+      else
+        this->processLine<Unchecked>((*begin)[1], begin, lineEnd);
       begin = lineEnd;
     }
     if (!this->Section.empty())
@@ -314,7 +349,7 @@ private:
   /// (0.09 on the maze), so an eighth covers the maze and most scans. More only grow the arrays.
   void reserveIntervals(std::size_t vertices)
   {
-    std::vector<std::uint32_t> storage;
+    std::vector<std::uint32_t> storage = this->Intervals.release(); // an earlier sweep's
     reserveHugePages(storage, vertices / 2);
     this->Intervals = UnionFind(std::move(storage), 0);
     reserveHugePages(this->First, vertices / 8);
@@ -327,11 +362,33 @@ private:
   }
 
   // ---- corners and edges ---------------------------------------------------------------------
+  /// Whether the line of cut [cut, cutEnd) takes the checked corners and edges (Checked): when
+  /// its corners are numbered by column, or its corners or edges may reach the limits of their
+  /// numbers. Each point of the merge takes a section end or a vertex of the cut, or both, and
+  /// makes at most one corner and two edges, so the line makes at most twice as many of either
+  /// as the section has ends and the cut vertices. Elsewhere (Unchecked) the checks that never
+  /// fire are not made at every corner and edge.
+  bool lineNeedsChecks(const Vertex* cut, const Vertex* cutEnd) const
+  {
+    const std::size_t most = 2 * (this->Section.size() + static_cast<std::size_t>(cutEnd - cut));
+    return !this->ColumnNext.empty() || this->Corners.size() + most >= Unset ||
+      this->Links.size() + most >= static_cast<std::size_t>(std::numeric_limits<int>::max());
+  }
+
   /// Numbers a corner: the sweep meets them line after line, along each line in order, so
   /// their numbers follow the order (u, v); or, numbered by column (numberByColumn), the next
-  /// number of its column, which makes the order (v, u).
+  /// number of its column, which makes the order (v, u). Unchecked: in a line that
+  /// lineNeedsChecks passed.
+  template<bool Checks>
   std::uint32_t newCorner(Point2 here)
   {
+    if (!Checks)
+    {
+      Point2& corner = this->Corners.emplace_back(); // in place (see startHorizontalEdge)
+      corner.u = here.u;
+      corner.v = here.v;
+      return static_cast<std::uint32_t>(this->Corners.size() - 1);
+    }
     if (!this->ColumnNext.empty())
       return this->ColumnNext[static_cast<std::size_t>(here.v - this->ColumnLo)]++;
     if (this->Corners.size() >= Unset)
@@ -340,17 +397,19 @@ private:
     return static_cast<std::uint32_t>(this->Corners.size() - 1);
   }
   /// Starts an edge at corner c; `outgoing` says whether it leaves or enters c.
+  template<bool Checks>
   int startEdge(std::uint32_t c, bool outgoing, int interval)
   {
-    EdgeLink link;
-    EdgeEnd end;
-    (outgoing ? link.from : end.to) = c;
-    end.interval = interval;
     // Edges are numbered by int (their links and the non-manifold pairs): refuse, not wrap.
-    if (this->Links.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    if (Checks && this->Links.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
       throw std::length_error("planeSweep2D: 2^31 - 1 edges or more");
-    this->Links.push_back(link);
-    this->Ends.push_back(end);
+    // Written in place (see startHorizontalEdge): records made apart and copied in were read
+    // back as one word from two smaller stores, a stall at every edge.
+    EdgeLink& link = this->Links.emplace_back();
+    EdgeEnd& end = this->Ends.emplace_back();
+    link.from = outgoing ? c : Unset;
+    end.to = outgoing ? Unset : c;
+    end.interval = interval;
     return static_cast<int>(this->Links.size()) - 1;
   }
   void finishEdge(int e, std::uint32_t c)
@@ -394,6 +453,7 @@ private:
   /// overlapping intervals (the contour merging) and recording the first intervals of faces
   /// for the second sweep. in* say whether the previous section, the cut and the next section
   /// are open just below v, in*2 just above it.
+  template<bool Checks>
   void processLine(Coord u, const Vertex* cut, const Vertex* cutEnd)
   {
     this->NextSection.clear();
@@ -422,15 +482,20 @@ private:
       this->enterPoint(o, inPrev && inNew, atPrev && inPrev2, inNew2 && !inNew, i);
       const Point at{ { u, v }, i, inCut, inNew2 };
       if (atPrev && atCut)
-        this->closeHorizontalEdge(o, at); // an extreme vertex matching the section
+        this->closeHorizontalEdge<Checks>(o, at); // an extreme vertex matching the section
       else if (atCut)
-        this->openHorizontalEdge(o, at); // a new extreme vertex of the section
+        this->openHorizontalEdge<Checks>(o, at); // a new extreme vertex of the section
       else if (atPrev && inCut)
-        this->splitAtNonManifoldVertex(o, at);
+        this->splitAtNonManifoldVertex<Checks>(o, at);
       else
         this->NextSection.push_back(this->Section[i]); // the horizontal edge goes on
       if (inNew && !inNew2 && !o.newTouched)           // a candidate first interval of a face ends
-        this->First.push_back({ o.newInterval, o.newBottomEdge, o.newBelowEdge });
+      {
+        FirstInterval& first = this->First.emplace_back(); // in place, as above
+        first.interval = o.newInterval;
+        first.bottomEdge = o.newBottomEdge;
+        first.belowEdge = o.newBelowEdge;
+      }
       if (atPrev)
         ++i;
       if (atCut)
@@ -523,15 +588,17 @@ private:
 
   /// A vertical piece starting at v keeps the face on its left: upwards when the face lies
   /// before u.
+  template<bool Checks>
   int startPiece(const OpenIntervals& o, const Point& at, std::uint32_t c)
   {
-    return this->startEdge(c, !at.inNew2, at.inNew2 ? o.newInterval : o.prevInterval);
+    return this->startEdge<Checks>(c, !at.inNew2, at.inNew2 ? o.newInterval : o.prevInterval);
   }
 
   /// A horizontal edge of the next section starting at v, its end kept in the next section.
+  template<bool Checks>
   int startHorizontalEdge(OpenIntervals& o, const Point& at, std::uint32_t c)
   {
-    const int h = this->startEdge(c, at.inNew2, o.newInterval);
+    const int h = this->startEdge<Checks>(c, at.inNew2, o.newInterval);
     if (at.inNew2)
       o.newBottomEdge = h;
     // Its fields written in place: a section end made apart and copied is read back as one
@@ -544,6 +611,7 @@ private:
 
   /// The brink being crossed ends at v (its vertical piece ends there, at horizontal edge h)
   /// or starts there (a piece starts); either way the corner links the two edges.
+  template<bool Checks>
   void turnAtCorner(OpenIntervals& o, const Point& at, int h, std::uint32_t c)
   {
     if (at.inCut)
@@ -554,42 +622,53 @@ private:
     }
     else
     {
-      o.piece = this->startPiece(o, at, c);
+      o.piece = this->startPiece<Checks>(o, at, c);
       this->link(o.piece, h, c);
     }
   }
 
   /// An extreme vertex of the cut matching one of the section: its horizontal edge ends here.
+  template<bool Checks>
   void closeHorizontalEdge(OpenIntervals& o, const Point& at)
   {
-    const std::uint32_t c = this->newCorner(at.here);
+    const std::uint32_t c = this->newCorner<Checks>(at.here);
     const int h = this->Section[at.i].edge;
     this->finishEdge(h, c);
-    this->turnAtCorner(o, at, h, c);
+    this->turnAtCorner<Checks>(o, at, h, c);
   }
 
   /// A new extreme vertex of the section: a horizontal edge starts here.
+  template<bool Checks>
   void openHorizontalEdge(OpenIntervals& o, const Point& at)
   {
-    const std::uint32_t c = this->newCorner(at.here);
-    const int h = this->startHorizontalEdge(o, at, c);
-    this->turnAtCorner(o, at, h, c);
+    const std::uint32_t c = this->newCorner<Checks>(at.here);
+    const int h = this->startHorizontalEdge<Checks>(o, at, c);
+    this->turnAtCorner<Checks>(o, at, h, c);
   }
 
   /// A non-manifold vertex (Ayala & Vergara, section 3.3): a brink of the cut contains a
   /// vertex of the section. The vertex is split: the brink's piece and the section's
   /// horizontal edge end there and new ones start; the four edges are paired once the faces
   /// are known.
+  template<bool Checks>
   void splitAtNonManifoldVertex(OpenIntervals& o, const Point& at)
   {
-    const std::uint32_t c = this->newCorner(at.here);
+    const std::uint32_t c = this->newCorner<Checks>(at.here);
     const int hOld = this->Section[at.i].edge;
     this->finishEdge(hOld, c);
     this->finishEdge(o.piece, c);
     const int below = o.piece;
-    o.piece = this->startPiece(o, at, c);
-    const int hNew = this->startHorizontalEdge(o, at, c);
-    this->NonManifold.push_back({ c, { hOld, hNew, below, o.piece } });
+    o.piece = this->startPiece<Checks>(o, at, c);
+    const int hNew = this->startHorizontalEdge<Checks>(o, at, c);
+    // Written in place (see startHorizontalEdge): made apart and copied in by push_back, which
+    // the compiler stopped inlining here once processLine had two copies, the vertex cost 7.7 %
+    // of a checkerboard's samples, against 1.8 % so.
+    NonManifoldVertex& vertex = this->NonManifold.emplace_back();
+    vertex.at = c;
+    vertex.edges[0] = hOld;
+    vertex.edges[1] = hNew;
+    vertex.edges[2] = below;
+    vertex.edges[3] = o.piece;
     if (this->MergeAtVertices)
     {
       this->unite(o.prevInterval, o.newInterval);
@@ -862,9 +941,34 @@ private:
 
 } // namespace
 
+struct detail::PlaneSweep2DMemory
+{
+  explicit PlaneSweep2DMemory(FaceConnectivity connectivity)
+    : Sweeper(connectivity)
+  {
+  }
+  Sweep Sweeper;
+  Boundary2D Out;
+};
+
 Boundary2D planeSweep2D(const Vertex* begin, const Vertex* end, FaceConnectivity connectivity)
 {
   return Sweep(connectivity).run(begin, end);
+}
+
+PlaneSweeper2D::PlaneSweeper2D(FaceConnectivity connectivity)
+  : Memory(std::make_unique<detail::PlaneSweep2DMemory>(connectivity))
+{
+}
+
+PlaneSweeper2D::~PlaneSweeper2D() = default;
+PlaneSweeper2D::PlaneSweeper2D(PlaneSweeper2D&&) noexcept = default;
+PlaneSweeper2D& PlaneSweeper2D::operator=(PlaneSweeper2D&&) noexcept = default;
+
+const Boundary2D& PlaneSweeper2D::sweep(const Vertex* begin, const Vertex* end)
+{
+  this->Memory->Sweeper.runInto(begin, end, this->Memory->Out);
+  return this->Memory->Out;
 }
 
 Contours2D planeSweep2DNumbered(const Vertex* begin,

@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace vbr
@@ -78,6 +79,31 @@ struct Boundary2D
 Boundary2D planeSweep2D(const Vertex* begin,
   const Vertex* end,
   FaceConnectivity connectivity = FaceConnectivity::Edge);
+
+namespace detail
+{
+struct PlaneSweep2DMemory;
+}
+
+/// planeSweep2D for one plane after another (the 3D sweep runs two per plane), in arrays kept
+/// from one sweep to the next: emptied, not freed, so that a sweep no larger than an earlier one
+/// allocates nothing, and its edges, sections and intervals are neither copied as they grow
+/// nor written into pages faulted in afresh.
+class PlaneSweeper2D
+{
+public:
+  explicit PlaneSweeper2D(FaceConnectivity connectivity = FaceConnectivity::Edge);
+  ~PlaneSweeper2D();
+  PlaneSweeper2D(PlaneSweeper2D&&) noexcept;
+  PlaneSweeper2D& operator=(PlaneSweeper2D&&) noexcept;
+
+  /// planeSweep2D(begin, end, connectivity): the same boundary, held by this object until the
+  /// next sweep. Throws as planeSweep2D does; the object may sweep again after that.
+  const Boundary2D& sweep(const Vertex* begin, const Vertex* end);
+
+private:
+  std::unique_ptr<detail::PlaneSweep2DMemory> Memory;
+};
 
 /// The order in which planeSweep2DNumbered numbers the distinct corners: lexicographic in
 /// (u, v), the sweep's own order, or in (v, u).

@@ -379,22 +379,41 @@ void forwardAndBackwardDifferences(const std::vector<Vertex>& cut,
   xorPlanes(cut, fd, bd);
 }
 
+/// What sweepChunk writes besides its part, kept from chunk to chunk by the thread that sweeps
+/// them (a sorting's planes make 64 chunks, a few planes each at 128^3): the 2D sweeps' arrays,
+/// the section, the cut and the differences. Made afresh per chunk, they were allocated and
+/// grown again for every plane.
+struct ChunkMemory
+{
+  explicit ChunkMemory(FaceConnectivity connectivity)
+    : Sweeper(connectivity)
+  {
+  }
+  PlaneSweeper2D Sweeper;
+  std::vector<Vertex> Section, Next, Cut, Fd, Bd;
+};
+
 /// Sweeps a chunk of planes: for each cut, the next section (formula 1), the forward and
 /// backward differences (formula 4) and their faces by the 2D plane sweep, FD facing +A and
 /// BD facing -A. With `exit`, the section after the chunk's last plane goes there (as the
-/// chunk holds it: rows of bits or vertices).
+/// chunk holds it: rows of bits or vertices). `memory` was made for the same connectivity.
 bool sweepChunk(const PlaneChunk& chunk,
   FaceConnectivity connectivity,
   const Execution& exec,
   std::atomic<bool>& abort,
   BRep& out,
+  ChunkMemory& memory,
   PlaneChunk* exit = nullptr)
 {
   out.mergedAtVertices = connectivity == FaceConnectivity::Vertex;
   const EVM& sorted = *chunk.sorted;
   const auto& starts = *chunk.starts;
   const Vertex* v = sorted.vertices().data();
-  std::vector<Vertex> section, next, cut, fd, bd;
+  std::vector<Vertex>& section = memory.Section;
+  std::vector<Vertex>& next = memory.Next;
+  std::vector<Vertex>& cut = memory.Cut;
+  std::vector<Vertex>& fd = memory.Fd;
+  std::vector<Vertex>& bd = memory.Bd;
   std::unique_ptr<BitSection> bits;
   if (chunk.box)
   {
@@ -420,16 +439,10 @@ bool sweepChunk(const PlaneChunk& chunk,
       forwardAndBackwardDifferences(cut, section, fd, bd);
       section.swap(next);
     }
-    appendFaces(planeSweep2D(fd.data(), fd.data() + fd.size(), connectivity),
-      sorted.order(),
-      position,
-      +1,
-      out);
-    appendFaces(planeSweep2D(bd.data(), bd.data() + bd.size(), connectivity),
-      sorted.order(),
-      position,
-      -1,
-      out);
+    appendFaces(
+      memory.Sweeper.sweep(fd.data(), fd.data() + fd.size()), sorted.order(), position, +1, out);
+    appendFaces(
+      memory.Sweeper.sweep(bd.data(), bd.data() + bd.size()), sorted.order(), position, -1, out);
   }
   if (exit && bits)
     exit->cells = bits->cells();
@@ -511,6 +524,7 @@ bool streamSortingAlone(const EVM& sorted,
   std::atomic<bool> abort{ false };
   PlaneChunk chunk{ &sorted, &starts, 0, 0, {}, bitBox, {} };
   BRep part;
+  ChunkMemory memory(connectivity);
   for (std::size_t p = 0; p < planes; p = chunk.endPlane)
   {
     chunk.firstPlane = p;
@@ -518,7 +532,7 @@ bool streamSortingAlone(const EVM& sorted,
     emptyKeepingCapacity(part);
     // The chunk is its own exit: sweepChunk reads the entering section before it writes the
     // exit one, which the next chunk enters with.
-    if (!sweepChunk(chunk, connectivity, exec, abort, part, &chunk) ||
+    if (!sweepChunk(chunk, connectivity, exec, abort, part, memory, &chunk) ||
       (handlers.prepare && !handlers.prepare(part, 0)) || !handlers.append(part, 0))
       return false;
     planesDone += chunk.endPlane - p;
@@ -595,6 +609,7 @@ private:
     try
     {
       PlaneChunk chunk{ &this->Sorted, &this->Starts, 0, 0, {}, this->BitBox, {} };
+      ChunkMemory memory(this->Connectivity);
       std::size_t index = 0;
       while (this->take(chunk, index))
       {
@@ -602,8 +617,8 @@ private:
         BRep& part = this->Parts[slot];
         emptyKeepingCapacity(part);
         const bool prepared =
-          sweepChunk(chunk, this->Connectivity, this->Exec, this->Abort, part) && !this->Abort &&
-          (!this->Handlers.prepare || this->Handlers.prepare(part, slot));
+          sweepChunk(chunk, this->Connectivity, this->Exec, this->Abort, part, memory) &&
+          !this->Abort && (!this->Handlers.prepare || this->Handlers.prepare(part, slot));
         this->finish(index, prepared);
         if (std::this_thread::get_id() == this->Caller && !this->reportOnCaller())
           this->stop();
@@ -828,9 +843,10 @@ bool planeSweep3DParts(const EVM& evm,
   exec.forRange(static_cast<std::int64_t>(chunks.size()),
     [&](std::int64_t b, std::int64_t e)
     {
+      ChunkMemory memory(connectivity);
       for (std::int64_t c = b; c < e; ++c)
       {
-        if (!sweepChunk(chunks[c], connectivity, exec, abort, parts[c]))
+        if (!sweepChunk(chunks[c], connectivity, exec, abort, parts[c], memory))
           abort = true;
         // The parts stay alive side by side until their cells are written: no slack in them.
         parts[c].faces.shrink_to_fit();

@@ -291,6 +291,72 @@ TEST(PlaneSweep2D, RandomImagesMatchBruteForce)
   }
 }
 
+namespace
+{
+
+/// Whether two boundaries are the same: faces, loops, corners and the non-manifold count.
+void expectSameBoundary(const vbr::Boundary2D& a, const vbr::Boundary2D& b)
+{
+  ASSERT_EQ(a.faces.size(), b.faces.size());
+  for (std::size_t f = 0; f < a.faces.size(); ++f)
+  {
+    EXPECT_EQ(a.faces[f].outerLoop, b.faces[f].outerLoop);
+    EXPECT_EQ(a.faces[f].holeLoops, b.faces[f].holeLoops);
+    EXPECT_EQ(a.faces[f].parent, b.faces[f].parent);
+    EXPECT_EQ(a.faces[f].depth, b.faces[f].depth);
+  }
+  ASSERT_EQ(a.loops.size(), b.loops.size());
+  for (std::size_t l = 0; l < a.loops.size(); ++l)
+  {
+    EXPECT_EQ(a.loops[l].begin, b.loops[l].begin);
+    EXPECT_EQ(a.loops[l].end, b.loops[l].end);
+    EXPECT_EQ(a.loops[l].face, b.loops[l].face);
+    EXPECT_EQ(a.loops[l].hole, b.loops[l].hole);
+  }
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t k = 0; k < a.points.size(); ++k)
+    EXPECT_TRUE(a.points[k].u == b.points[k].u && a.points[k].v == b.points[k].v) << k;
+  EXPECT_EQ(a.nonManifoldVertices, b.nonManifoldVertices);
+}
+
+} // namespace
+
+TEST(PlaneSweep2D, SweeperKeptFromPlaneToPlaneSweepsAsAFreshOne)
+{
+  // One PlaneSweeper2D per connectivity sweeps random images larger and smaller than the one
+  // before (its arrays kept from either), the empty image, and sweeps on after an invalid EVM
+  // threw midway (its last line dropped: the last section is not empty): every boundary equals
+  // planeSweep2D's from scratch.
+  unsigned seed = 3000;
+  for (const auto connectivity : { vbr::FaceConnectivity::Edge, vbr::FaceConnectivity::Vertex })
+  {
+    vbr::PlaneSweeper2D sweeper(connectivity);
+    for (int trial = 0; trial < 36; ++trial)
+    {
+      SCOPED_TRACE(testing::Message()
+        << "trial " << trial << " merged " << (connectivity == vbr::FaceConnectivity::Vertex));
+      const bool large = trial % 3 != 1;
+      const vbr::Point3 d{ large ? 30 + (trial * 7) % 23 : 3 + trial % 5,
+        large ? 20 + (trial * 5) % 19 : 2 + trial % 4,
+        1 };
+      const double density = 0.2 + 0.6 * (trial % 7) / 6.0;
+      const vbr::EVM evm = vbr::extractEVM2D(bf::randomVolume(d, density, seed++));
+      const std::vector<vbr::Vertex>& v = evm.vertices();
+      if (trial % 6 == 5 && !v.empty())
+      {
+        std::size_t lastLine = v.size() - 1;
+        while (lastLine > 0 && v[lastLine - 1][1] == v.back()[1])
+          --lastLine;
+        EXPECT_THROW(sweeper.sweep(v.data(), v.data() + lastLine), std::invalid_argument);
+      }
+      expectSameBoundary(sweeper.sweep(v.data(), v.data() + v.size()),
+        vbr::planeSweep2D(v.data(), v.data() + v.size(), connectivity));
+      if (trial % 9 == 8)
+        EXPECT_TRUE(sweeper.sweep(nullptr, nullptr).faces.empty());
+    }
+  }
+}
+
 TEST(PlaneSweep2D, ManyBarsTouchedHereAndThere)
 {
   // Vertical bars make a section of many intervals; a few pixels added beside them or cut out
