@@ -25,7 +25,16 @@
 #include <limits>
 #include <numeric>
 #include <tuple>
+#include <type_traits>
 #include <utility>
+
+// The search's column loop calls these for every column and level: inlined, their calls
+// cost more than their bodies.
+#if defined(__GNUC__) || defined(__clang__)
+#define VBR_PLANE_INLINE inline __attribute__((always_inline))
+#else
+#define VBR_PLANE_INLINE inline
+#endif
 
 namespace vbr
 {
@@ -241,10 +250,9 @@ std::array<std::int64_t, 3> sliceForm(const Vec& E, const Vec& sigma)
 /// The t of column k of level omega inside every edge's half-plane (strictly on the strict
 /// ones): [tLo, tHi], empty when tLo > tHi. In Int: std::int64_t when |k| and omega are below
 /// SmallColumn (forms < 2^18 and frames < 2^20 keep every product below 2^59), else Wide.
-template<typename Int>
-void rangeOfT(const std::vector<std::array<std::int64_t, 3>>& forms,
-  const std::vector<char>& strict,
-  const ColumnFrame& f,
+/// The forms' coefficients along and across the columns are made once per frame (frameForms).
+template<typename Int, typename Form>
+VBR_PLANE_INLINE void rangeOfT(const std::vector<Form>& forms,
   std::int64_t omega,
   Int k,
   std::int64_t& tLo,
@@ -254,22 +262,38 @@ void rangeOfT(const std::vector<std::array<std::int64_t, 3>>& forms,
   Int lo = -Far, hi = Far;
   for (std::size_t e = 0; e < forms.size() && lo <= hi; ++e)
   {
-    const auto& F = forms[e];
+    const Form& F = forms[e];
     // F.(k a + t v, omega) = A t + B
-    const Int A = Int(F[0]) * f.v[0] + Int(F[1]) * f.v[1];
-    const Int B = k * (Int(F[0]) * f.a[0] + Int(F[1]) * f.a[1]) + Int(F[2]) * omega;
+    const Int A = F.along;
+    const Int B = k * Int(F.across) + Int(F.level) * omega;
     if (A == 0)
     {
-      if (B < 0 || (strict[e] && B == 0))
+      if (B < 0 || (F.strict && B == 0))
         lo = hi + 1;
     }
     else if (A > 0) // t >= -B / A (>)
-      lo = std::max(lo, strict[e] ? floorDiv(-B, A) + 1 : ceilDiv(-B, A));
+      lo = std::max(lo, F.strict ? floorDiv(-B, A) + 1 : ceilDiv(-B, A));
     else // t <= B / -A (<)
-      hi = std::min(hi, strict[e] ? ceilDiv(B, -A) - 1 : floorDiv(B, -A));
+      hi = std::min(hi, F.strict ? ceilDiv(B, -A) - 1 : floorDiv(B, -A));
   }
   tLo = std::int64_t(std::max(lo, -Far));
   tHi = std::int64_t(std::min(hi, Far));
+}
+
+/// The slices' edge forms F in frame f: along = F.(v, 0), across = F.(a, 0), level = F_omega
+/// (each below 2^39: forms < 2^18, frames < 2^20).
+template<typename Form>
+void frameForms(const std::vector<std::array<std::int64_t, 3>>& forms,
+  const std::vector<char>& strict,
+  const ColumnFrame& f,
+  std::vector<Form>& out)
+{
+  out.resize(forms.size());
+  for (std::size_t e = 0; e < forms.size(); ++e)
+  {
+    const auto& F = forms[e];
+    out[e] = { F[0] * f.v[0] + F[1] * f.v[1], F[0] * f.a[0] + F[1] * f.a[1], F[2], strict[e] != 0 };
+  }
 }
 
 constexpr std::int64_t SmallColumn = std::int64_t(1) << 20;
@@ -291,34 +315,54 @@ bool worthTesting(const Vec& n, const Vec& sigma, bool found, const Vec& best)
   return std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) == 1;
 }
 
-/// Level omega of an octant's search, column by column (each bounded by the polygon's edges,
-/// rangeOfT): the normal of smallest (nx, ny) that fits, into `normal`; false when none.
-template<typename Fits>
-bool searchLevel(const std::vector<std::array<std::int64_t, 3>>& forms,
-  const std::vector<char>& strict,
+/// The columns kLo..kHi of level omega over the polygon's range (none when kLo > kHi). In
+/// 64 bits when the numerators are below 2^40 (omega is at most MaximumOmega, 2^16, so every
+/// product is below 2^56), else in Wide: the same integers.
+VBR_PLANE_INLINE void levelColumns(const ColumnRange& range,
+  std::int64_t omega,
+  Wide& kLo,
+  Wide& kHi)
+{
+  constexpr std::int64_t SmallNumerator = std::int64_t(1) << 40;
+  if (omega <= MaximumOmega && std::llabs(range.minNum) < SmallNumerator &&
+    std::llabs(range.maxNum) < SmallNumerator)
+  {
+    kLo = ceilDiv(omega * range.minNum, range.minDen);
+    kHi = floorDiv(omega * range.maxNum, range.maxDen);
+    return;
+  }
+  kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
+  kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
+}
+
+/// Columns kLo..kHi of level omega of an octant's search (each bounded by the polygon's
+/// edges, rangeOfT): the normal of smallest (nx, ny) that fits, into `normal`, found set when
+/// one does. K: std::int64_t when every k and omega are below SmallColumn, else Wide.
+template<typename K, typename Form, typename Fits>
+void searchColumns(const std::vector<Form>& forms,
   const Vec& sigma,
   const ColumnFrame& frame,
-  const ColumnRange& range,
   std::int64_t omega,
+  K kLo,
+  K kHi,
   std::int64_t& budget,
   Vec& normal,
+  bool& found,
   const Fits& fits)
 {
-  // Within the level, the smallest (nx, ny) in lexicographic order, whatever the frame.
-  bool found = false;
-  const Wide kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
-  const Wide kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
-  for (Wide k = kLo; k <= kHi && budget > 0; ++k, --budget)
+  for (K k = kLo; k <= kHi && budget > 0; ++k, --budget)
   {
     std::int64_t tLo, tHi;
-    if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
-      rangeOfT(forms, strict, frame, omega, std::int64_t(k), tLo, tHi);
+    if constexpr (std::is_same_v<K, std::int64_t>) // searchLevel checked the bounds
+      rangeOfT(forms, omega, k, tLo, tHi);
+    else if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
+      rangeOfT(forms, omega, std::int64_t(k), tLo, tHi);
     else
-      rangeOfT(forms, strict, frame, omega, k, tLo, tHi);
+      rangeOfT(forms, omega, k, tLo, tHi);
     for (std::int64_t t = tLo; t <= tHi && budget > 0; ++t, --budget)
     {
-      const std::int64_t nx = std::int64_t(k * frame.a[0] + Wide(t) * frame.v[0]);
-      const std::int64_t ny = std::int64_t(k * frame.a[1] + Wide(t) * frame.v[1]);
+      const std::int64_t nx = std::int64_t(Wide(k) * frame.a[0] + Wide(t) * frame.v[0]);
+      const std::int64_t ny = std::int64_t(Wide(k) * frame.a[1] + Wide(t) * frame.v[1]);
       const Vec n{ nx, ny, sigma[2] * (omega - sigma[0] * nx - sigma[1] * ny) };
       if (worthTesting(n, sigma, found, normal) && fits(n))
       {
@@ -327,6 +371,36 @@ bool searchLevel(const std::vector<std::array<std::int64_t, 3>>& forms,
       }
     }
   }
+}
+
+/// Level omega of an octant's search over its columns kLo..kHi (levelColumns): the normal of
+/// smallest (nx, ny) that fits, into `normal`; false when none.
+template<typename Form, typename Fits>
+bool searchLevel(const std::vector<Form>& forms,
+  const Vec& sigma,
+  const ColumnFrame& frame,
+  std::int64_t omega,
+  Wide kLo,
+  Wide kHi,
+  std::int64_t& budget,
+  Vec& normal,
+  const Fits& fits)
+{
+  // Within the level, the smallest (nx, ny) in lexicographic order, whatever the frame.
+  bool found = false;
+  if (-SmallColumn < kLo && kHi < SmallColumn && omega < SmallColumn)
+    searchColumns(forms,
+      sigma,
+      frame,
+      omega,
+      std::int64_t(kLo),
+      std::int64_t(kHi),
+      budget,
+      normal,
+      found,
+      fits);
+  else
+    searchColumns(forms, sigma, frame, omega, kLo, kHi, budget, normal, found, fits);
   return found;
 }
 
@@ -361,14 +435,8 @@ void StandardPlaneRecognizer::reset()
     const Octant& from = initial[s];
     o.sigma = from.sigma;
     o.vertices.resize(3);
-    o.edges.resize(3);
-    o.octantEdge.resize(3);
     for (int i = 0; i < 3; ++i)
-    {
       o.vertices[i] = from.vertices[i];
-      o.edges[i] = from.edges[i];
-      o.octantEdge[i] = from.octantEdge[i];
-    }
     o.applied = 0;
     this->Alive[s] = true;
   }
@@ -389,11 +457,10 @@ std::array<StandardPlaneRecognizer::Octant, 8> StandardPlaneRecognizer::initialO
       v.ray[d] = o.sigma[d];
       v.lo = v.hi = 0;
       v.argLo = v.argHi = 0;
+      v.edge = { 0, 0, 0 };
+      v.edge[(d + 2) % 3] = o.sigma[(d + 2) % 3];
+      v.octantEdge = true;
       o.vertices.push_back(v);
-      Vec e{ 0, 0, 0 };
-      e[(d + 2) % 3] = o.sigma[(d + 2) % 3];
-      o.edges.push_back(e);
-      o.octantEdge.push_back(1);
     }
   }
   return octants;
@@ -485,7 +552,8 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
   ++this->Clips;
   const std::size_t n = o.vertices.size();
   std::vector<std::int64_t>& f = this->ClipValues;
-  f.resize(n);
+  if (f.size() < n) // grown only: a resize per clip cost a call
+    f.resize(n);
   bool anyNegative = false, anyNonNegative = false;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -498,45 +566,40 @@ bool StandardPlaneRecognizer::clip(Octant& o, const Vec& h, std::size_t count) c
   if (!anyNonNegative)
   {
     o.vertices.clear();
-    o.edges.clear();
-    o.octantEdge.clear();
     return false;
   }
   const Vec sigma = sigmaOf(o.sigma);
   // Built in the scratch polygon, then swapped in: no allocation once the storage has grown.
   std::vector<Vertex>& vertices = this->ClipPolygon.vertices;
-  std::vector<Vec>& edges = this->ClipPolygon.edges;
-  std::vector<char>& octantEdge = this->ClipPolygon.octantEdge;
   vertices.clear();
-  edges.clear();
-  octantEdge.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
     const std::size_t j = i + 1 == n ? 0 : i + 1; // no division in the loop
+    const Vertex& from = o.vertices[i];
     if (f[i] >= 0)
     {
-      vertices.push_back(o.vertices[i]);
-      const bool leaving = f[i] == 0 && f[j] < 0;
-      edges.push_back(leaving ? h : o.edges[i]);
-      octantEdge.push_back(leaving ? 0 : o.octantEdge[i]);
+      vertices.push_back(from);
+      if (f[i] == 0 && f[j] < 0) // its edge leaves along h
+      {
+        vertices.back().edge = h;
+        vertices.back().octantEdge = false;
+      }
     }
     if ((f[i] > 0 && f[j] < 0) || (f[i] < 0 && f[j] > 0))
     {
       Vertex v;
-      v.ray = primitive(cross(o.edges[i], h));
+      v.ray = primitive(cross(from.edge, h));
       if (dot(sigma, v.ray) < 0)
         for (std::int64_t& c : v.ray)
           c = -c;
       this->measure(v, count);
-      vertices.push_back(v);
       const bool leaving = f[i] > 0;
-      edges.push_back(leaving ? h : o.edges[i]);
-      octantEdge.push_back(leaving ? 0 : o.octantEdge[i]);
+      v.edge = leaving ? h : from.edge;
+      v.octantEdge = leaving ? false : from.octantEdge;
+      vertices.push_back(v);
     }
   }
   o.vertices.swap(vertices);
-  o.edges.swap(edges);
-  o.octantEdge.swap(octantEdge);
   return true;
 }
 
@@ -546,14 +609,21 @@ bool StandardPlaneRecognizer::applyPoints(Octant& o, std::size_t count) const
   for (std::size_t j = o.applied; j < count; ++j)
   {
     const Point3& p = this->Points[j];
-    for (Vertex& v : o.vertices)
-    {
-      const std::int64_t x = dot(v.ray, p);
-      if (j == 0 || x < v.lo)
-        v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
-      if (j == 0 || x > v.hi)
-        v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
-    }
+    if (j == 0)
+      for (Vertex& v : o.vertices)
+      {
+        v.lo = v.hi = dot(v.ray, p);
+        v.argLo = v.argHi = 0;
+      }
+    else
+      for (Vertex& v : o.vertices)
+      {
+        const std::int64_t x = dot(v.ray, p);
+        if (x < v.lo)
+          v.lo = x, v.argLo = static_cast<std::uint32_t>(j);
+        if (x > v.hi)
+          v.hi = x, v.argHi = static_cast<std::uint32_t>(j);
+      }
     // Cut every vertex whose width exceeds 1 by the pair of points realizing it.
     for (;;)
     {
@@ -650,9 +720,9 @@ void StandardPlaneRecognizer::markStrictEdges(const Octant& o) const
   // search would measure every point for each of their lattice normals (up to the budget:
   // minutes on a large face).
   std::vector<char>& strict = this->StrictEdges;
-  strict.assign(o.edges.size(), 0);
-  for (std::size_t e = 0; e < o.edges.size(); ++e)
-    strict[e] = !o.octantEdge[e] || this->saturated(o, e);
+  strict.assign(o.vertices.size(), 0);
+  for (std::size_t e = 0; e < o.vertices.size(); ++e)
+    strict[e] = !o.vertices[e].octantEdge || this->saturated(o, e);
 }
 
 void StandardPlaneRecognizer::sliceThePolygon(const Octant& o, const Vec& sigma) const
@@ -661,8 +731,8 @@ void StandardPlaneRecognizer::sliceThePolygon(const Octant& o, const Vec& sigma)
   for (const Vertex& v : o.vertices)
     this->Rays.push_back(v.ray);
   this->Forms.clear();
-  for (const Vec& E : o.edges)
-    this->Forms.push_back(sliceForm(E, sigma));
+  for (const Vertex& v : o.vertices)
+    this->Forms.push_back(sliceForm(v.edge, sigma));
 }
 
 bool StandardPlaneRecognizer::solve(const Octant& o,
@@ -679,24 +749,25 @@ bool StandardPlaneRecognizer::solve(const Octant& o,
   // (thinFrame): the range of k / omega over the polygon, as fractions.
   ColumnFrame frame;
   ColumnRange range = columnRange(this->Rays, sigma, frame);
+  frameForms(this->Forms, this->StrictEdges, frame, this->FrameForms);
   std::int64_t budget = SearchBudget;
   bool thin = false;
   for (std::int64_t omega = omegaStart; omega <= omegaLimit && budget > 0; ++omega, --budget)
   {
     // The level's result does not depend on the frame, only the columns scanned (and so the
     // budget spent, by at most ThinFrameColumns - 1 a level) do.
-    if (!thin && omega >= ThinFrameLevel &&
-      floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen)) -
-          ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen)) >=
-        ThinFrameColumns)
+    Wide kLo, kHi;
+    levelColumns(range, omega, kLo, kHi);
+    if (!thin && omega >= ThinFrameLevel && kHi - kLo >= ThinFrameColumns)
     {
       frame = thinFrame(this->Rays, sigma, this->FrameEdges, this->FrameBreaks);
       range = columnRange(this->Rays, sigma, frame);
+      frameForms(this->Forms, this->StrictEdges, frame, this->FrameForms);
       thin = true;
+      levelColumns(range, omega, kLo, kHi);
     }
     auto fits = [&](const Vec& n) { return this->fits(n, present); };
-    if (searchLevel(
-          this->Forms, this->StrictEdges, sigma, frame, range, omega, budget, normal, fits))
+    if (searchLevel(this->FrameForms, sigma, frame, omega, kLo, kHi, budget, normal, fits))
       return true;
   }
   return false;
@@ -763,8 +834,9 @@ bool StandardPlaneRecognizer::collectFreshPoints(const Point3* points,
       continue;
     }
     const Point3 q = sub(points[i], this->Origin);
-    for (int d = 0; d < 3; ++d)
-      if (q[d] <= -CoordinateLimit / 2 || q[d] >= CoordinateLimit / 2)
+    for (int d = 0; d < 3; ++d) // -CoordinateLimit / 2 < q[d] < CoordinateLimit / 2
+      if (std::uint64_t(std::int64_t(q[d]) + CoordinateLimit / 2 - 1) >=
+        std::uint64_t(CoordinateLimit - 1))
         return false;
     const std::uint64_t key = packBiased(q);
     if (this->Keys.find(key) >= 0)
@@ -842,18 +914,33 @@ bool StandardPlaneRecognizer::octantExcluded(const Octant& o,
   // Two points differing by sigma have width exactly 1 in every normal of the octant.
   // A committed point r has n.r in [CurrentLo, CurrentHi] for the current normal n: outside
   // that slab r is only looked up among the new points (no hash probe).
+  // The key and the value of q + s sigma are those of q plus s times those of sigma: the
+  // packing is linear while each biased coordinate stays in its 21 bits (|q| < 2^15 here).
   const Vec& n = this->Current.normal;
   const bool anyCommitted = this->Points.size() > this->Fresh.size();
-  for (const Point3& q : this->Fresh)
+  const std::int64_t valueStep = n[0] * o.sigma[0] + n[1] * o.sigma[1] + n[2] * o.sigma[2];
+  const std::uint64_t keyStep = (std::uint64_t(std::int64_t(o.sigma[0])) << 42) +
+    (std::uint64_t(std::int64_t(o.sigma[1])) << 21) + std::uint64_t(std::int64_t(o.sigma[2]));
+  const std::vector<std::uint64_t>& freshKeys = this->FreshKeys; // Fresh's, in its order
+  auto isFresh = [&](std::uint64_t key)
+  {
+    // A surfel's few new corners are scanned; a merged face's many are searched.
+    if (freshKeys.size() <= 8)
+      return std::find(freshKeys.begin(), freshKeys.end(), key) != freshKeys.end();
+    return std::binary_search(freshKeys.begin(), freshKeys.end(), key);
+  };
+  for (std::size_t i = 0; i < this->Fresh.size(); ++i)
+  {
+    const std::int64_t xq = dot(n, this->Fresh[i]);
     for (int s : { -1, 1 })
     {
-      const Point3 r{ q[0] + s * o.sigma[0], q[1] + s * o.sigma[1], q[2] + s * o.sigma[2] };
-      const std::uint64_t key = packBiased(r);
-      const std::int64_t x = dot(n, r);
-      if (std::binary_search(this->FreshKeys.begin(), this->FreshKeys.end(), key) ||
+      const std::uint64_t key = freshKeys[i] + (s > 0 ? keyStep : std::uint64_t(0) - keyStep);
+      const std::int64_t x = xq + s * valueStep;
+      if (isFresh(key) ||
         (anyCommitted && this->CurrentLo <= x && x <= this->CurrentHi && this->Keys.find(key) >= 0))
         return true;
     }
+  }
   return false;
 }
 

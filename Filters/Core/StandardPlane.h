@@ -111,15 +111,25 @@ private:
     Vec ray;             ///< a normal on the polygon's boundary, up to a positive factor
     std::int64_t lo, hi; ///< min and max of ray.q over the points applied
     std::uint32_t argLo, argHi;
+    /// The edge from this vertex to the next: edge.n >= 0 inside, and whether it bounds the
+    /// octant (n_d = 0 allowed there). Kept with the vertex: a clip copies one array, not three.
+    Vec edge;
+    bool octantEdge;
   };
   /// The normals of one octant with width <= 1, as a convex polygon on the slice.
   struct Octant
   {
     std::array<int, 3> sigma;
     std::vector<Vertex> vertices; ///< cyclic
-    std::vector<Vec> edges;       ///< edge i joins vertex i and i + 1: edges[i].n >= 0 inside
-    std::vector<char> octantEdge; ///< whether edge i bounds the octant (n_d = 0 allowed there)
     std::size_t applied = 0;      ///< points clipped into the polygon so far
+  };
+
+  /// A polygon edge's half-plane on the columns of a frame: along * t + across * k +
+  /// level * omega >= 0 at the normal k a + t v of level omega (> 0 when strict).
+  struct FrameForm
+  {
+    std::int64_t along, across, level;
+    bool strict;
   };
 
   /// The eight octants' triangles before any point (reset copies them).
@@ -200,6 +210,7 @@ private:
   mutable std::vector<std::int64_t> ClipValues;               ///< per vertex, in clip
   mutable Octant ClipPolygon; ///< the clipped polygon's storage, in clip
   mutable std::vector<std::array<std::int64_t, 3>> Forms; ///< its edges on the slices, in solve
+  mutable std::vector<FrameForm> FrameForms;              ///< the Forms in solve's column frame
 };
 
 } // namespace vbr

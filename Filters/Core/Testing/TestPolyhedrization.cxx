@@ -309,6 +309,92 @@ TEST(StandardPlane, KnownPointsGiveTheSameAnswers)
   EXPECT_GT(accepted, 600u);
 }
 
+// Two points that differ by a sign vector sigma have width exactly |n|_1 for every normal n of
+// octant sigma, which tryAdd excludes at once: it finds the pair among a call's new points
+// (scanned when they are few, searched when many) or between a new point and an accepted one.
+// Against brute force, on calls of 1 to 4 and of 9 to 20 points, a third of them moved to a
+// diagonal neighbour of another: an exclusion found where there is no pair refuses a plane that
+// exists, or gives a larger omega.
+TEST(StandardPlane, DiagonalPairsAgreeWithBruteForce)
+{
+  std::mt19937 rng(23);
+  constexpr int Bound = 8;
+  int accepted = 0, refused = 0, large = 0;
+  for (int t = 0; t < 500; ++t)
+  {
+    vbr::StandardPlaneRecognizer r;
+    std::vector<Point3> all;
+    const std::array<int, 3> signs{ 0, 0, rng() % 2 ? 1 : 0 };
+    for (int call = 0; call < 4; ++call)
+    {
+      std::vector<Point3> points;
+      const int m = rng() % 2 ? 1 + int(rng() % 4) : 9 + int(rng() % 12);
+      for (int i = 0; i < m; ++i)
+      {
+        Point3 p{ int(rng() % 7) - 3, int(rng() % 7) - 3, int(rng() % 2) };
+        if (!points.empty() && rng() % 4 == 0)
+          p = points[rng() % points.size()];
+        else if (!all.empty() && rng() % 3 == 0)
+          p = all[rng() % all.size()];
+        if (rng() % 3 == 0)
+          for (int d = 0; d < 3; ++d)
+            p[d] += rng() % 2 ? 1 : -1;
+        points.push_back(p);
+      }
+      std::vector<Point3> with = all;
+      with.insert(with.end(), points.begin(), points.end());
+      const int omega = bruteForceOmega(with, signs, Bound);
+      const bool taken = r.tryAdd(points, signs);
+      if (!taken)
+      {
+        ++refused;
+        ASSERT_EQ(omega, 0) << "a plane exists but was refused (trial " << t << ", call " << call
+                            << ")";
+        continue;
+      }
+      ++accepted;
+      large += m > 8;
+      all = with;
+      for (const Point3& q : all)
+        ASSERT_TRUE(inPlane(r.plane(), q)) << "point outside the plane returned";
+      if (omega != 0)
+        ASSERT_EQ(r.plane().omega(), omega) << "not the smallest omega (trial " << t << ")";
+    }
+  }
+  EXPECT_GT(accepted, 300);
+  EXPECT_GT(refused, 300);
+  EXPECT_GT(large, 50);
+}
+
+// The exclusion itself: with the orientations of one octant asked, a pair differing by its sign
+// vector is refused before any clip, whether the pair is a new point and an accepted one, two new
+// points of a call of two (scanned) or two of a call of twelve (searched).
+TEST(StandardPlane, DiagonalPairsAreRefusedBeforeClipping)
+{
+  for (int s = 0; s < 8; ++s)
+  {
+    const std::array<int, 3> sigma{ s & 1 ? -1 : 1, s & 2 ? -1 : 1, s & 4 ? -1 : 1 };
+    const Point3 p{ 3, -2, 5 };
+    const Point3 q{ p[0] + sigma[0], p[1] + sigma[1], p[2] + sigma[2] };
+    vbr::StandardPlaneRecognizer accepted;
+    ASSERT_TRUE(accepted.tryAdd({ p }, sigma));
+    const std::size_t clips = accepted.clipCount();
+    EXPECT_FALSE(accepted.tryAdd({ q }, sigma));
+    EXPECT_EQ(accepted.clipCount(), clips) << "octant " << s << ": clipped after an accepted p";
+    vbr::StandardPlaneRecognizer two;
+    EXPECT_FALSE(two.tryAdd({ q, p }, sigma));
+    EXPECT_EQ(two.clipCount(), 0u) << "octant " << s << ": clipped in a call of two";
+    std::vector<Point3> twelve;
+    for (int i = 0; i < 10; ++i)
+      twelve.push_back({ p[0] + 7 * i - 30, p[1] - 7 * sigma[2] * i, p[2] + 9 * sigma[0] * i });
+    twelve.insert(twelve.begin() + 4, q);
+    twelve.insert(twelve.begin() + 9, p);
+    vbr::StandardPlaneRecognizer many;
+    EXPECT_FALSE(many.tryAdd(twelve, sigma));
+    EXPECT_EQ(many.clipCount(), 0u) << "octant " << s << ": clipped in a call of twelve";
+  }
+}
+
 TEST(StandardPlane, SmallestOmegaOnThinStrips)
 {
   // Points added one by one along thin strips (a digital segment of a random direction and a
