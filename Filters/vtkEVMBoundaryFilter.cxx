@@ -460,6 +460,24 @@ public:
       });
   }
 
+  /// addCornerPoints for the numbered corners of `corners` (its points, whose bounds it
+  /// knows), written in ranges side by side with threads (the same values).
+  void addCornerPoints(const vbr::CornerSet& corners, const vbr::Execution& exec)
+  {
+    const vbr::PointList& points = corners.points();
+    if (points.empty())
+      return;
+    const GridTerms terms(*this, corners.lowest(), corners.highest(), { 0, 0, 0 });
+    double* xyz = this->Coordinates.extend(3 * points.size());
+    exec.forRange(static_cast<std::int64_t>(points.size()),
+      [&](std::int64_t b, std::int64_t e)
+      {
+        double* out = xyz + 3 * b;
+        for (std::int64_t i = b; i < e; ++i)
+          out = terms.write(points[i], out);
+      });
+  }
+
   /// addCornerPoints for the distinct corners of a 2D solution (u, v) in the plane 0 of the
   /// axis order `order`, read from the sweep's own record of them in the order of their
   /// numbers (its columns, or its sorted corners: Contours2D::forEachCorner).
@@ -532,32 +550,58 @@ private:
     std::size_t count,
     ForEach&& forEach)
   {
-    std::array<int, 3> axisOf;               // the processing axis of each image axis
-    std::array<std::vector<double>, 9> term; // [3 * image axis + world axis][index - lo]
-    for (int k = 0; k < 3; ++k)
+    const GridTerms terms(*this, lo, hi, offset);
+    double* xyz = this->Coordinates.extend(3 * count);
+    forEach([&](const Point3& p) { xyz = terms.write(p, xyz); });
+  }
+
+  /// addGridPoints' tables: the terms of the world coordinates per index along each axis.
+  class GridTerms
+  {
+  public:
+    GridTerms(const OutputBuilder& builder,
+      const Point3& lo,
+      const Point3& hi,
+      const std::array<std::int32_t, 3>& offset)
+      : Origin(builder.Grid.origin)
+      , Lo(lo)
     {
-      const int d = this->Axes[k];
-      axisOf[d] = k;
-      for (std::int32_t c = lo[k]; c <= hi[k]; ++c)
+      for (int k = 0; k < 3; ++k)
       {
-        const double local =
-          (this->Grid.extentMin[d] + this->Grid.vertexShift[d] + double(c + offset[k])) *
-          this->Grid.spacing[d];
-        for (int r = 0; r < 3; ++r)
-          term[3 * d + r].push_back(this->Grid.direction[3 * r + d] * local);
+        const int d = builder.Axes[k];
+        this->AxisOf[d] = k;
+        for (std::int32_t c = lo[k]; c <= hi[k]; ++c)
+        {
+          const double local =
+            (builder.Grid.extentMin[d] + builder.Grid.vertexShift[d] + double(c + offset[k])) *
+            builder.Grid.spacing[d];
+          for (int r = 0; r < 3; ++r)
+            this->Term[3 * d + r].push_back(builder.Grid.direction[3 * r + d] * local);
+        }
       }
     }
-    double* xyz = this->Coordinates.extend(3 * count);
-    forEach(
-      [&](const Point3& p)
-      {
-        const std::size_t i0 = static_cast<std::size_t>(p[axisOf[0]] - lo[axisOf[0]]);
-        const std::size_t i1 = static_cast<std::size_t>(p[axisOf[1]] - lo[axisOf[1]]);
-        const std::size_t i2 = static_cast<std::size_t>(p[axisOf[2]] - lo[axisOf[2]]);
-        for (int r = 0; r < 3; ++r)
-          *xyz++ = this->Grid.origin[r] + term[r][i0] + term[3 + r][i1] + term[6 + r][i2];
-      });
-  }
+
+    /// Writes the world coordinates of grid vertex p at xyz; returns the place after them.
+    double* write(const Point3& p, double* xyz) const
+    {
+      const std::size_t i0 =
+        static_cast<std::size_t>(p[this->AxisOf[0]] - this->Lo[this->AxisOf[0]]);
+      const std::size_t i1 =
+        static_cast<std::size_t>(p[this->AxisOf[1]] - this->Lo[this->AxisOf[1]]);
+      const std::size_t i2 =
+        static_cast<std::size_t>(p[this->AxisOf[2]] - this->Lo[this->AxisOf[2]]);
+      for (int r = 0; r < 3; ++r)
+        *xyz++ =
+          this->Origin[r] + this->Term[r][i0] + this->Term[3 + r][i1] + this->Term[6 + r][i2];
+      return xyz;
+    }
+
+  private:
+    const std::array<double, 3> Origin;
+    const Point3 Lo;
+    std::array<int, 3> AxisOf;               // the processing axis of each image axis
+    std::array<std::vector<double>, 9> Term; // [3 * image axis + world axis][index - lo]
+  };
 
   /// Appends the world position of a grid vertex given in permuted axes.
   void addPoint(const Point3& p)
@@ -1297,7 +1341,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
   corners.reset(
     new vbr::CornerSet(points, packer, exec.forWork(static_cast<std::int64_t>(points.size()))));
   points = vbr::PointList();
-  builder.addCornerPoints(corners->points());
+  builder.addCornerPoints(*corners, exec.forWork(static_cast<std::int64_t>(corners->size())));
   corners->releasePoints(); // now the output's
   return true;
 }

@@ -367,32 +367,112 @@ void forEachCorner(const std::vector<PlacedBRep>& breps, Visit&& visit)
       visit(add(p, b.offset));
 }
 
+/// Slabs of `total` corners, or 1 without threads: each read by its own thread.
+std::int64_t cornerSlabs(std::size_t total, const Execution& exec)
+{
+  return exec.parallelFor && total > 0
+    ? std::clamp<std::int64_t>(exec.concurrency, 1, static_cast<std::int64_t>(total))
+    : 1;
+}
+
 } // namespace
 
 template<typename ForEach>
-void CornerSet::boundCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer)
+void CornerSet::boundCorners(std::size_t total,
+  ForEach&& forEach,
+  const KeyPacker& packer,
+  const Execution& exec,
+  std::int64_t slabs)
 {
   const Coord limit = Coord(1) << packer.bits;
   if (total >= UINT32_MAX)
     throw std::length_error("CornerSet: more than 2^32 corners");
   if (total == 0)
     return;
-  Point3 lo{ limit, limit, limit }, hi{ -1, -1, -1 };
-  forEach(
-    [&](const Point3& p)
+  // The bounds of each slab, then of all: a corner outside the grid is told after the loop
+  // (no exception leaves a thread of the loop).
+  std::vector<Point3> slabLo(static_cast<std::size_t>(slabs), Point3{ limit, limit, limit });
+  std::vector<Point3> slabHi(slabLo.size(), Point3{ -1, -1, -1 });
+  std::vector<char> outside(slabLo.size(), 0);
+  exec.forRange(slabs,
+    [&](std::int64_t b, std::int64_t e)
     {
-      for (int d = 0; d < 3; ++d)
+      for (std::int64_t s = b; s < e; ++s)
       {
-        if (p[d] < 0 || p[d] >= limit)
-          throw std::out_of_range("CornerSet: a corner lies outside the common grid");
-        lo[d] = std::min(lo[d], p[d]);
-        hi[d] = std::max(hi[d], p[d]);
+        Point3 lo = slabLo[s], hi = slabHi[s];
+        bool out = false;
+        forEach(total * s / slabs,
+          total * (s + 1) / slabs,
+          [&](const Point3& p)
+          {
+            for (int d = 0; d < 3; ++d)
+            {
+              out = out || p[d] < 0 || p[d] >= limit;
+              lo[d] = std::min(lo[d], p[d]);
+              hi[d] = std::max(hi[d], p[d]);
+            }
+          });
+        slabLo[s] = lo;
+        slabHi[s] = hi;
+        outside[s] = out;
       }
     });
+  if (std::find(outside.begin(), outside.end(), 1) != outside.end())
+    throw std::out_of_range("CornerSet: a corner lies outside the common grid");
+  Point3 lo = slabLo[0], hi = slabHi[0];
+  for (std::size_t s = 1; s < slabLo.size(); ++s)
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = std::min(lo[d], slabLo[s][d]);
+      hi[d] = std::max(hi[d], slabHi[s][d]);
+    }
   this->Lo = lo;
   for (int d = 0; d < 3; ++d)
     this->Extent[d] = std::uint64_t(hi[d] - lo[d]) + 1;
 }
+
+/// The grid points of the box by increasing index: each from the one before by additions,
+/// a division only where the index passes to another line along z (pointInBox divides twice
+/// per point).
+class CornerSet::BoxWalker
+{
+public:
+  BoxWalker(const CornerSet& set, std::uint64_t first)
+    : Set(set)
+    , Index(first)
+    , Local(set.pointInBox(first))
+  {
+    for (int d = 0; d < 3; ++d)
+      this->Local[d] -= set.Lo[d];
+  }
+
+  /// Grid point i of the box, i >= the index asked before.
+  Point3 pointAt(std::uint64_t i)
+  {
+    const std::uint64_t ez = this->Set.Extent[2], ey = this->Set.Extent[1];
+    std::uint64_t z = std::uint64_t(this->Local[2]) + (i - this->Index);
+    this->Index = i;
+    if (z >= ez)
+    {
+      std::uint64_t y = std::uint64_t(this->Local[1]) + z / ez;
+      z %= ez;
+      if (y >= ey)
+      {
+        this->Local[0] += static_cast<Coord>(y / ey);
+        y %= ey;
+      }
+      this->Local[1] = static_cast<Coord>(y);
+    }
+    this->Local[2] = static_cast<Coord>(z);
+    const Point3& lo = this->Set.Lo;
+    return { lo[0] + this->Local[0], lo[1] + this->Local[1], lo[2] + this->Local[2] };
+  }
+
+private:
+  const CornerSet& Set;
+  std::uint64_t Index; ///< of the point last asked
+  Point3 Local;        ///< that point less Lo
+};
 
 Point3 CornerSet::pointInBox(std::uint64_t i) const
 {
@@ -417,43 +497,126 @@ void CornerSet::numberCorners(std::size_t total,
   // more bitmaps in which each line along that axis is consecutive (a bit per grid point
   // each), so that a long edge is read a word at a time rather than a cache line per grid
   // step; ordering the corners along the lines of x and y took 28 bytes per corner.
-  this->boundCorners(total, forEach, packer);
+  const std::int64_t slabs = cornerSlabs(total, exec);
+  this->boundCorners(total, forEach, packer, exec, slabs);
   assignHugePages(this->Words,
     (this->Extent[0] * this->Extent[1] * this->Extent[2] + 63) / 64,
     RankedWord{ 0, 0 });
   const std::size_t lineWords = this->Words.size();
   assignHugePages(this->LineBits[0], lineWords, std::uint64_t(0));
   assignHugePages(this->LineBits[1], lineWords, std::uint64_t(0));
-  forEach(
-    [&](const Point3& p)
-    {
-      const std::uint64_t i = this->indexInBox(p);
-      this->Words[i >> 6].bits |= std::uint64_t(1) << (i & 63);
-      for (int axis = 0; axis < 2; ++axis)
-      {
-        const std::uint64_t j = this->indexOnLine(axis, p);
-        this->LineBits[axis][j >> 6] |= std::uint64_t(1) << (j & 63);
-      }
-    });
-  std::uint64_t count = 0;
-  for (RankedWord& w : this->Words)
+  this->rankAndListCorners(this->markCorners(total, forEach, exec, slabs), exec);
+}
+
+template<typename ForEach>
+std::vector<std::vector<std::uint64_t>> CornerSet::markCorners(std::size_t total,
+  ForEach&& forEach,
+  const Execution& exec,
+  std::int64_t slabs)
+{
+  // With threads, slab 0 marks its corners in Words and LineBits, each other slab in bitmaps
+  // of its own (ORed in by rankAndListCorners), when the box is small beside the corners:
+  // the bitmaps cost a word per 64 grid points of the box to clear and to OR in, the corners
+  // a scattered read and write each.
+  const std::size_t words = this->Words.size();
+  if (slabs < 2 || 3 * words * std::size_t(slabs - 1) > total / 2)
+    slabs = 1;
+  std::vector<std::vector<std::uint64_t>> slabBits(static_cast<std::size_t>(slabs - 1));
+  const auto mark = [&](std::int64_t s, auto&& setBit, std::uint64_t* line0, std::uint64_t* line1)
   {
-    w.rank = count;
-    count += static_cast<std::uint64_t>(popCount(w.bits));
-  }
-  // The points in the order of their numbers, each run of words written at its first
-  // word's rank (with threads, side by side): two divisions a point, half the numbering's
-  // time on one thread.
-  reserveHugePages(this->Points, count);
-  this->Points.resize(count);
-  const std::int64_t words = static_cast<std::int64_t>(this->Words.size());
-  exec.forRange(words,
+    forEach(total * s / slabs,
+      total * (s + 1) / slabs,
+      [&](const Point3& p)
+      {
+        const std::uint64_t i = this->indexInBox(p);
+        setBit(i >> 6, std::uint64_t(1) << (i & 63));
+        const std::uint64_t j0 = this->indexOnLine(0, p), j1 = this->indexOnLine(1, p);
+        line0[j0 >> 6] |= std::uint64_t(1) << (j0 & 63);
+        line1[j1 >> 6] |= std::uint64_t(1) << (j1 & 63);
+      });
+  };
+  exec.forRange(slabs,
     [&](std::int64_t b, std::int64_t e)
     {
-      Point3* out = this->Points.data() + this->Words[b].rank;
-      for (std::int64_t w = b; w < e; ++w)
-        for (std::uint64_t bits = this->Words[w].bits; bits != 0; bits &= bits - 1)
-          *out++ = this->pointInBox(64 * std::uint64_t(w) + countTrailingZeros(bits));
+      for (std::int64_t s = b; s < e; ++s)
+      {
+        if (s == 0)
+        {
+          mark(
+            s,
+            [&](std::uint64_t w, std::uint64_t bit) { this->Words[w].bits |= bit; },
+            this->LineBits[0].data(),
+            this->LineBits[1].data());
+          continue;
+        }
+        std::vector<std::uint64_t>& own = slabBits[s - 1];
+        own.assign(3 * words, 0);
+        std::uint64_t* bits = own.data();
+        mark(
+          s,
+          [&](std::uint64_t w, std::uint64_t bit) { bits[w] |= bit; },
+          own.data() + words,
+          own.data() + 2 * words);
+      }
+    });
+  return slabBits;
+}
+
+void CornerSet::rankAndListCorners(const std::vector<std::vector<std::uint64_t>>& slabBits,
+  const Execution& exec)
+{
+  // By runs of words, each by its own thread: the slabs' own bits ORed in and the corners
+  // counted, then (after a prefix sum over the runs) the words ranked and their points
+  // written at their first word's rank, each found from the point before (BoxWalker) rather
+  // than by pointInBox's two divisions.
+  const std::size_t words = this->Words.size();
+  const std::int64_t runs = exec.parallelFor && words > 0
+    ? std::clamp<std::int64_t>(4 * std::int64_t(exec.concurrency), 1, std::int64_t(words))
+    : 1;
+  const auto runBegin = [&](std::int64_t r) { return words * r / runs; };
+  std::vector<std::uint64_t> runStart(static_cast<std::size_t>(runs) + 1, 0);
+  exec.forRange(runs,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t r = b; r < e; ++r)
+      {
+        std::uint64_t count = 0;
+        for (std::size_t w = runBegin(r), end = runBegin(r + 1); w < end; ++w)
+        {
+          for (const std::vector<std::uint64_t>& own : slabBits)
+          {
+            this->Words[w].bits |= own[w];
+            this->LineBits[0][w] |= own[words + w];
+            this->LineBits[1][w] |= own[2 * words + w];
+          }
+          count += static_cast<std::uint64_t>(popCount(this->Words[w].bits));
+        }
+        runStart[r + 1] = count;
+      }
+    });
+  for (std::size_t r = 1; r < runStart.size(); ++r)
+    runStart[r] += runStart[r - 1];
+  reserveHugePages(this->Points, runStart.back());
+  this->Points.resize(runStart.back());
+  exec.forRange(runs,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t r = b; r < e; ++r)
+      {
+        if (runBegin(r) == runBegin(r + 1))
+          continue;
+        std::uint64_t rank = runStart[r];
+        Point3* out = this->Points.data() + rank;
+        BoxWalker at(*this, 64 * std::uint64_t(runBegin(r)));
+        for (std::size_t w = runBegin(r), end = runBegin(r + 1); w < end; ++w)
+        {
+          std::uint64_t bits = this->Words[w].bits;
+          this->Words[w].rank = rank;
+          rank += static_cast<std::uint64_t>(popCount(bits));
+          for (; bits != 0; bits &= bits - 1)
+            *out++ = at.pointAt(64 * std::uint64_t(w) + countTrailingZeros(bits));
+        }
+      }
     });
 }
 
@@ -463,17 +626,20 @@ CornerSet::CornerSet(const std::vector<PlacedBRep>& breps, const KeyPacker& pack
   for (const PlacedBRep& b : breps)
     total += b.brep->points.size();
   this->numberCorners(
-    total, [&](auto&& visit) { forEachCorner(breps, visit); }, packer, Execution());
+    total,
+    [&](std::size_t, std::size_t, auto&& visit) { forEachCorner(breps, visit); },
+    packer,
+    Execution());
 }
 
 CornerSet::CornerSet(const PointList& corners, const KeyPacker& packer, const Execution& exec)
 {
   this->numberCorners(
     corners.size(),
-    [&](auto&& visit)
+    [&](std::size_t begin, std::size_t end, auto&& visit)
     {
-      for (const Point3& p : corners)
-        visit(p);
+      for (std::size_t i = begin; i < end; ++i)
+        visit(corners[i]);
     },
     packer,
     exec);

@@ -158,6 +158,15 @@ public:
   /// Every corner, in the common grid, by number (empty after releasePoints).
   const PointList& points() const { return this->Points; }
 
+  /// The bounds of the corners (each coordinate's least and greatest; undefined when empty).
+  Point3 lowest() const { return this->Lo; }
+  Point3 highest() const
+  {
+    return { this->Lo[0] + static_cast<Coord>(this->Extent[0]) - 1,
+      this->Lo[1] + static_cast<Coord>(this->Extent[1]) - 1,
+      this->Lo[2] + static_cast<Coord>(this->Extent[2]) - 1 };
+  }
+
   /// Frees points() once the caller has copied them (the output's points): the numbers and
   /// the T-junction pass keep working on the bits.
   void releasePoints() { PointList().swap(this->Points); }
@@ -322,14 +331,30 @@ private:
     return std::int64_t(w.rank) + popCount(w.bits & ((std::uint64_t(1) << (i & 63)) - 1));
   }
   Point3 pointInBox(std::uint64_t i) const;
-  /// Both constructors: forEach(visit) calls visit(corner) for `total` corners.
+  class BoxWalker;
+  /// Both constructors: forEach(begin, end, visit) calls visit(corner) for the corners
+  /// [begin, end) of `total` (with one thread, [0, total) only).
   template<typename ForEach>
   void numberCorners(std::size_t total,
     ForEach&& forEach,
     const KeyPacker& packer,
     const Execution& exec);
   template<typename ForEach>
-  void boundCorners(std::size_t total, ForEach&& forEach, const KeyPacker& packer);
+  void boundCorners(std::size_t total,
+    ForEach&& forEach,
+    const KeyPacker& packer,
+    const Execution& exec,
+    std::int64_t slabs);
+  /// Marks the corners' bits; returns the bits that slabs 1, 2, ... marked into bitmaps of
+  /// their own (Words' bits, LineBits[0], LineBits[1], a word each per word of Words).
+  template<typename ForEach>
+  std::vector<std::vector<std::uint64_t>> markCorners(std::size_t total,
+    ForEach&& forEach,
+    const Execution& exec,
+    std::int64_t slabs);
+  /// ORs in the slabs' bits, ranks the words and lists the points by number.
+  void rankAndListCorners(const std::vector<std::vector<std::uint64_t>>& slabBits,
+    const Execution& exec);
 
   PointList Points;
 };

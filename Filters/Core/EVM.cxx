@@ -17,9 +17,10 @@
 // compiled for it where the build does not assume it (PopCount.h).
 //
 // Sorting (sortedAs): when the new order is a rotation or a swap of the old one, a single
-// stable bucket pass on one coordinate keeps the order of the two others (bucketedOn);
-// otherwise the coordinates are packed into keys and radix-sorted. toVoxels is the inverse
-// of extraction: a parity grid of the vertices, XOR-prefixed along each in-plane axis.
+// stable bucket pass on one coordinate keeps the order of the two others (bucketedOn, with
+// threads by slabs of the vertices: the same order); otherwise the coordinates are packed
+// into keys and radix-sorted. toVoxels is the inverse of extraction: a parity grid of the
+// vertices, XOR-prefixed along each in-plane axis.
 
 #include "EVM.h"
 
@@ -196,9 +197,9 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec, std::vector<Ver
     // A stable bucket pass on one coordinate keeps the order of the two others: from
     // (A, B, C) it gives (C, A, B) when bucketing on C and (B, A, C) when bucketing on B.
     if (order == AxisOrder{ this->Order[2], this->Order[0], this->Order[1] })
-      return this->bucketedOn(2, order, std::move(storage));
+      return this->bucketedOn(2, order, exec, std::move(storage));
     if (order == AxisOrder{ this->Order[1], this->Order[0], this->Order[2] })
-      return this->bucketedOn(1, order, std::move(storage));
+      return this->bucketedOn(1, order, exec, std::move(storage));
   }
   std::vector<Vertex> v = std::move(storage);
   reserveHugePages(v, this->Vertices.size());
@@ -236,24 +237,103 @@ EVM EVM::sortedAs(const AxisOrder& order, const Execution& exec, std::vector<Ver
   return EVM(this->Dimension, order, std::move(v));
 }
 
-EVM EVM::bucketedOn(int key, const AxisOrder& order, std::vector<Vertex> out) const
+namespace
 {
-  Coord lo = this->Vertices[0][key], hi = lo;
-  for (const Vertex& p : this->Vertices)
+
+/// Counts the vertices of each slab by their coordinate `key` into start[s * window + k] for
+/// the coordinates base + k, k < window; false when some coordinate lies outside the window.
+bool countBuckets(const Vertex* in,
+  std::size_t n,
+  int key,
+  std::int64_t base,
+  std::size_t window,
+  const Execution& exec,
+  std::int64_t slabs,
+  std::vector<std::size_t>& start)
+{
+  start.assign(static_cast<std::size_t>(slabs) * window, 0);
+  std::vector<char> outside(static_cast<std::size_t>(slabs), 0);
+  exec.forRange(slabs,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t s = b; s < e; ++s)
+      {
+        std::size_t* count = start.data() + s * window;
+        for (std::size_t i = n * s / slabs, end = n * (s + 1) / slabs; i < end; ++i)
+        {
+          const std::uint64_t k = std::uint64_t(std::int64_t(in[i][key]) - base);
+          if (k >= window)
+          {
+            outside[s] = 1;
+            break;
+          }
+          ++count[k];
+        }
+      }
+    });
+  return std::find(outside.begin(), outside.end(), 1) == outside.end();
+}
+
+} // namespace
+
+EVM EVM::bucketedOn(int key,
+  const AxisOrder& order,
+  const Execution& exec,
+  std::vector<Vertex> out) const
+{
+  // A counting sort by slabs of the vertices, each slab counted and then scattered by its
+  // own thread: a bucket's vertices of slab s go after those of the slabs before, so the
+  // result is the one-slab order, vertex for vertex. One slab on one thread. The buckets are
+  // first those of a window about the first vertex's coordinate, wide enough for a grid of
+  // 2048 along the axis, checked as they are counted: no pass over the vertices for their
+  // bounds (a third of the sort's time), unless a coordinate falls outside.
+  const std::size_t n = this->Vertices.size();
+  const Execution run = exec.forWork(static_cast<std::int64_t>(n));
+  const std::int64_t slabs = run.parallelFor
+    ? std::clamp<std::int64_t>(run.concurrency, 1, static_cast<std::int64_t>(n))
+    : 1;
+  const Vertex* in = this->Vertices.data();
+  constexpr std::size_t Window = 4096;
+  std::int64_t base = std::int64_t(in[0][key]) - std::int64_t(Window / 2);
+  std::size_t window = Window;
+  std::vector<std::size_t> start; // start[s * window + k]: where slab s writes bucket k first
+  if (!countBuckets(in, n, key, base, window, run, slabs, start))
   {
-    lo = std::min(lo, p[key]);
-    hi = std::max(hi, p[key]);
+    Coord lo = in[0][key], hi = lo;
+    for (const Vertex& p : this->Vertices)
+    {
+      lo = std::min(lo, p[key]);
+      hi = std::max(hi, p[key]);
+    }
+    base = lo;
+    window = static_cast<std::size_t>(std::int64_t(hi) - std::int64_t(lo)) + 1;
+    countBuckets(in, n, key, base, window, run, slabs, start);
   }
-  std::vector<std::size_t> start(static_cast<std::size_t>(hi - lo) + 2, 0);
-  for (const Vertex& p : this->Vertices)
-    ++start[p[key] - lo + 1];
-  for (std::size_t i = 1; i < start.size(); ++i)
-    start[i] += start[i - 1];
+  std::size_t placed = 0;
+  for (std::size_t k = 0; k < window; ++k)
+    for (std::int64_t s = 0; s < slabs; ++s)
+    {
+      const std::size_t count = start[s * window + k];
+      start[s * window + k] = placed;
+      placed += count;
+    }
   const int first = 0, second = key == 2 ? 1 : 2; // the two coordinates that stay in order
-  reserveHugePages(out, this->Vertices.size());
-  out.resize(this->Vertices.size());
-  for (const Vertex& p : this->Vertices)
-    out[start[p[key] - lo]++] = { p[key], p[first], p[second] };
+  reserveHugePages(out, n);
+  out.resize(n);
+  Vertex* to = out.data();
+  run.forRange(slabs,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      for (std::int64_t s = b; s < e; ++s)
+      {
+        std::size_t* next = start.data() + s * window;
+        for (std::size_t i = n * s / slabs, end = n * (s + 1) / slabs; i < end; ++i)
+        {
+          const Vertex& p = in[i];
+          to[next[std::int64_t(p[key]) - base]++] = { p[key], p[first], p[second] };
+        }
+      }
+    });
   return EVM(this->Dimension, order, std::move(out));
 }
 

@@ -81,7 +81,11 @@ public:
 
 private:
   /// Stable counting sort on coordinate `key` (1 or 2): the result is sorted in `order`.
-  EVM bucketedOn(int key, const AxisOrder& order, std::vector<Vertex> out) const;
+  /// With threads, by slabs of the vertices (the same order).
+  EVM bucketedOn(int key,
+    const AxisOrder& order,
+    const Execution& exec,
+    std::vector<Vertex> out) const;
 
   int Dimension = 3;
   AxisOrder Order{ 2, 1, 0 };

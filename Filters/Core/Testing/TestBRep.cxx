@@ -502,6 +502,75 @@ TEST(BRep, FaceCornersFromVoxelsAreTheLoopCorners)
   EXPECT_TRUE(corners.empty());
 }
 
+// The corner set with threads: slabs of the corners marked side by side (the first in the
+// set's bitmaps, the others in bitmaps of their own ORed in after), the words ranked and the
+// points listed by runs. Dense corners, repeated, in small boxes take the slabs' own bitmaps;
+// sparse ones do not. For 2, 3 and 16 threads: the points of one thread, which are the
+// distinct corners in key order (brute force), the same numbers, and the same corners found
+// and counted between grid points along each axis. A slab or run one place off loses or moves
+// a corner.
+TEST(BRep, ThreadedCornerSetEqualsOneThread)
+{
+  std::mt19937 random(7100);
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    const vbr::Point3 box{ 1 + trial % 5 * 3, 2 + trial % 4 * 5, 1 + trial * 7 % 11 };
+    const vbr::Point3 lo{ trial % 3, 5, trial };
+    const std::size_t count = trial < 8 ? 4000 : 40; // dense (with repeats) or sparse
+    vbr::BRep brep;
+    for (std::size_t i = 0; i < count; ++i)
+      brep.points.push_back({ lo[0] + int(random() % box[0]),
+        lo[1] + int(random() % box[1]),
+        lo[2] + int(random() % box[2]) });
+    const vbr::PointList corners(brep.points.begin(), brep.points.end());
+    SCOPED_TRACE(testing::Message() << "trial " << trial);
+    const vbr::KeyPacker packer = vbr::KeyPacker::forMaximum(40);
+    const vbr::CornerSet one(corners, packer);
+    const std::set<vbr::Point3> distinct(corners.begin(), corners.end());
+    ASSERT_TRUE(
+      std::equal(distinct.begin(), distinct.end(), one.points().begin(), one.points().end()));
+    const std::vector<std::int64_t> numbers = one.numbersOf(brep, { 0, 0, 0 });
+    for (int threads : { 2, 3, 16 })
+    {
+      SCOPED_TRACE(testing::Message() << threads << " threads");
+      const vbr::CornerSet set(corners, packer, bf::threadedExecution(threads));
+      ASSERT_EQ(set.points(), one.points());
+      EXPECT_EQ(set.lowest(), one.lowest());
+      EXPECT_EQ(set.highest(), one.highest());
+      EXPECT_EQ(set.numbersOf(brep, { 0, 0, 0 }), numbers);
+      // Between each corner and the far end of its line's box, along each axis.
+      for (std::size_t i = 0; i < brep.points.size(); i += 7)
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          const vbr::Point3 from = brep.points[i];
+          vbr::Point3 to = from;
+          to[axis] = (i & 8) ? one.lowest()[axis] : one.highest()[axis];
+          std::vector<std::int64_t> a, b;
+          one.forEachBetween(axis, from, to, [&](std::int64_t n, vbr::Coord) { a.push_back(n); });
+          set.forEachBetween(axis, from, to, [&](std::int64_t n, vbr::Coord) { b.push_back(n); });
+          ASSERT_EQ(a, b) << "axis " << axis;
+          std::size_t between = 0;
+          for (const vbr::Point3& p : distinct)
+            between += p[(axis + 1) % 3] == from[(axis + 1) % 3] &&
+              p[(axis + 2) % 3] == from[(axis + 2) % 3] &&
+              std::min(from[axis], to[axis]) < p[axis] && p[axis] < std::max(from[axis], to[axis]);
+          EXPECT_EQ(a.size(), between) << "axis " << axis;
+          if (axis < 2) // along z it is told from the numbers of two corners
+            EXPECT_EQ(set.countBetween(axis, from, to, numbers[i], -1), between) << "axis " << axis;
+        }
+    }
+  }
+  // Empty, and a corner outside the packer's grid told from any slab.
+  EXPECT_EQ(
+    vbr::CornerSet(vbr::PointList(), vbr::KeyPacker::forMaximum(40), bf::threadedExecution(3))
+      .size(),
+    0u);
+  vbr::PointList outside(100, vbr::Point3{ 1, 2, 3 });
+  outside[70] = { 1, -2, 3 };
+  EXPECT_THROW(vbr::CornerSet(outside, vbr::KeyPacker::forMaximum(40), bf::threadedExecution(3)),
+    std::out_of_range);
+}
+
 namespace
 {
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -249,6 +250,67 @@ TEST(EVM, AllSixSortings)
     EXPECT_EQ(sorted.toVoxels(v.dims()), v) << name;
   }
   EXPECT_THROW(vbr::axisOrderFromName("XXY"), std::invalid_argument);
+}
+
+// The bucket passes of the sortings with threads (slabs of the vertices counted and then
+// scattered side by side, from 2^15 vertices on): the vertices of std::sort, the same as one
+// thread's, for 2, 3 and 16 threads and through the three sortings the sweeps make. A slab
+// written one place off, or its bucket's start taken from the wrong slab, breaks the order.
+TEST(EVM, ThreadedBucketSortingsEqualOneThread)
+{
+  for (const vbr::Point3 dims : { vbr::Point3{ 48, 40, 36 }, vbr::Point3{ 130, 20, 30 } })
+  {
+    const vbr::EVM evm = vbr::extractEVM(bf::randomVolume(dims, 0.5, 23));
+    ASSERT_GE(evm.size(), std::size_t(vbr::Execution::ThreadedWorkMinimum));
+    // The sweeps' chain: ZYX -> YZX (on B) -> XYZ (on C) -> ZXY (on C).
+    const vbr::EVM first = evm.sortedAs({ 1, 2, 0 });
+    const vbr::EVM zeroth = first.sortedAs({ 0, 1, 2 });
+    const vbr::EVM second = zeroth.sortedAs({ 2, 0, 1 });
+    for (const vbr::EVM* one : { &first, &zeroth, &second })
+    {
+      std::vector<vbr::Vertex> reference;
+      for (std::size_t i = 0; i < evm.size(); ++i)
+      {
+        const auto w = evm.worldVertex(i);
+        reference.push_back({ w[one->order()[0]], w[one->order()[1]], w[one->order()[2]] });
+      }
+      std::sort(reference.begin(), reference.end());
+      EXPECT_EQ(one->vertices(), reference);
+    }
+    for (int threads : { 2, 3, 16 })
+    {
+      SCOPED_TRACE(testing::Message() << threads << " threads");
+      const vbr::Execution exec = bf::threadedExecution(threads);
+      const vbr::EVM t1 = evm.sortedAs({ 1, 2, 0 }, exec);
+      EXPECT_EQ(t1, first);
+      const vbr::EVM t0 = t1.sortedAs({ 0, 1, 2 }, exec, std::vector<vbr::Vertex>(5));
+      EXPECT_EQ(t0, zeroth);
+      EXPECT_EQ(t0.sortedAs({ 2, 0, 1 }, exec), second);
+      EXPECT_EQ(second.sortedAs({ 0, 2, 1 }, exec), second.sortedAs({ 0, 2, 1 })); // on B
+    }
+  }
+  // Coordinates far apart (beyond the window of buckets about the first one's, either side,
+  // negative too), the first vertex's the lowest, then a middle one: the bounds found first.
+  std::mt19937 random(29);
+  for (const int spread : { 1000, 3000, 100000 })
+  {
+    std::vector<vbr::Vertex> vertices;
+    for (int i = 0; i < 40000; ++i)
+      vertices.push_back(
+        { int(random() % 50), int(random() % spread) - spread / 3, int(random() % 7) });
+    std::sort(vertices.begin(), vertices.end());
+    const vbr::EVM evm(3, { 2, 1, 0 }, vertices);
+    std::vector<vbr::Vertex> reference;
+    for (const vbr::Vertex& v : vertices)
+      reference.push_back({ v[1], v[0], v[2] });
+    std::sort(reference.begin(), reference.end());
+    for (int threads : { 1, 2, 3, 16 })
+    {
+      const vbr::EVM sorted =
+        evm.sortedAs({ 1, 2, 0 }, threads == 1 ? vbr::Execution() : bf::threadedExecution(threads));
+      EXPECT_EQ(sorted.vertices(), reference) << spread << " spread, " << threads << " threads";
+    }
+  }
 }
 
 TEST(EVM, SectionsAreXorOfPlaneProjections)
