@@ -16,6 +16,7 @@
 // determinants and column bounds use Wide.
 
 #include "StandardPlane.h"
+#include "StandardPlaneColumns.h"
 
 #include <algorithm>
 #include <cassert>
@@ -28,14 +29,6 @@
 #include <type_traits>
 #include <utility>
 
-// The search's column loop calls these for every column and level: inlined, their calls
-// cost more than their bodies.
-#if defined(__GNUC__) || defined(__clang__)
-#define VBR_PLANE_INLINE inline __attribute__((always_inline))
-#else
-#define VBR_PLANE_INLINE inline
-#endif
-
 namespace vbr
 {
 
@@ -43,13 +36,17 @@ namespace
 {
 
 using Vec = std::array<std::int64_t, 3>;
+using detail::ceilDiv;
+using detail::ColumnRange;
+using detail::floorDiv;
+using detail::levelColumns;
+using detail::MaximumOmega;
+using detail::rangeOfT;
 
 /// Points may differ by less than this along every axis: it bounds every product below
 /// (constraint normals < 2^17, polygon rays < 2^35, their dot products with points < 2^54,
 /// determinants of three rays < 2^108).
 constexpr std::int64_t CoordinateLimit = std::int64_t(1) << 16;
-/// Largest omega searched for an integer normal.
-constexpr std::int64_t MaximumOmega = std::int64_t(1) << 16;
 /// Lattice candidates examined by one search before giving up (the face then stops growing
 /// in that direction: a refusal is always safe).
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
@@ -78,32 +75,6 @@ Wide det(const Vec& a, const Vec& b, const Vec& c)
     Wide(a[2]) * (Wide(b[0]) * c[1] - Wide(b[1]) * c[0]);
 }
 
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) // b > 0
-{
-  return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
-std::int64_t ceilDiv(std::int64_t a, std::int64_t b) // b > 0
-{
-  return -floorDiv(-a, b);
-}
-
-Wide floorDiv(Wide a, Wide b) // b > 0
-{
-  constexpr Wide Small = Wide(1) << 62; // 64-bit division when it suffices: much cheaper
-  if (-Small < a && a < Small && b < Small)
-  {
-    const std::int64_t x = std::int64_t(a), y = std::int64_t(b);
-    return x >= 0 ? x / y : -((-x + y - 1) / y);
-  }
-  return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
-Wide ceilDiv(Wide a, Wide b) // b > 0
-{
-  return -floorDiv(-a, b);
-}
-
 /// Lattice coordinates of the slice in which a polygon is thin along the first one: the
 /// integer (nx, ny) with u.(nx, ny) = k are k a + t v for every integer t (u primitive,
 /// u.a = 1, v = (-u_y, u_x)). Any such frame has the same lattice points as (nx, ny); a thin
@@ -122,12 +93,6 @@ constexpr std::int64_t ThinFrameLevel = 6;
 /// still scanned in it: a thin frame would save at most this many columns minus one, and
 /// finding it costs more than a few columns.
 constexpr std::int64_t ThinFrameColumns = 4;
-
-/// The polygon's range of k / omega in a frame (minNum / minDen to maxNum / maxDen).
-struct ColumnRange
-{
-  std::int64_t minNum = 0, minDen = 1, maxNum = 0, maxDen = 1;
-};
 
 ColumnRange columnRange(const std::vector<Vec>& rays, const Vec& sigma, const ColumnFrame& frame)
 {
@@ -247,39 +212,6 @@ std::array<std::int64_t, 3> sliceForm(const Vec& E, const Vec& sigma)
   return { E[0] - E[2] * sigma[2] * sigma[0], E[1] - E[2] * sigma[2] * sigma[1], E[2] * sigma[2] };
 }
 
-/// The t of column k of level omega inside every edge's half-plane (strictly on the strict
-/// ones): [tLo, tHi], empty when tLo > tHi. In Int: std::int64_t when |k| and omega are below
-/// SmallColumn (forms < 2^18 and frames < 2^20 keep every product below 2^59), else Wide.
-/// The forms' coefficients along and across the columns are made once per frame (frameForms).
-template<typename Int, typename Form>
-VBR_PLANE_INLINE void rangeOfT(const std::vector<Form>& forms,
-  std::int64_t omega,
-  Int k,
-  std::int64_t& tLo,
-  std::int64_t& tHi)
-{
-  constexpr Int Far = Int(1) << 62;
-  Int lo = -Far, hi = Far;
-  for (std::size_t e = 0; e < forms.size() && lo <= hi; ++e)
-  {
-    const Form& F = forms[e];
-    // F.(k a + t v, omega) = A t + B
-    const Int A = F.along;
-    const Int B = k * Int(F.across) + Int(F.level) * omega;
-    if (A == 0)
-    {
-      if (B < 0 || (F.strict && B == 0))
-        lo = hi + 1;
-    }
-    else if (A > 0) // t >= -B / A (>)
-      lo = std::max(lo, F.strict ? floorDiv(-B, A) + 1 : ceilDiv(-B, A));
-    else // t <= B / -A (<)
-      hi = std::min(hi, F.strict ? ceilDiv(B, -A) - 1 : floorDiv(B, -A));
-  }
-  tLo = std::int64_t(std::max(lo, -Far));
-  tHi = std::int64_t(std::min(hi, Far));
-}
-
 /// The slices' edge forms F in frame f: along = F.(v, 0), across = F.(a, 0), level = F_omega
 /// (each below 2^39: forms < 2^18, frames < 2^20).
 template<typename Form>
@@ -313,26 +245,6 @@ bool worthTesting(const Vec& n, const Vec& sigma, bool found, const Vec& best)
     return false;
   // A multiple k n of a normal n fits exactly when n does, and n came first.
   return std::gcd(std::gcd(std::llabs(n[0]), std::llabs(n[1])), std::llabs(n[2])) == 1;
-}
-
-/// The columns kLo..kHi of level omega over the polygon's range (none when kLo > kHi). In
-/// 64 bits when the numerators are below 2^40 (omega is at most MaximumOmega, 2^16, so every
-/// product is below 2^56), else in Wide: the same integers.
-VBR_PLANE_INLINE void levelColumns(const ColumnRange& range,
-  std::int64_t omega,
-  Wide& kLo,
-  Wide& kHi)
-{
-  constexpr std::int64_t SmallNumerator = std::int64_t(1) << 40;
-  if (omega <= MaximumOmega && std::llabs(range.minNum) < SmallNumerator &&
-    std::llabs(range.maxNum) < SmallNumerator)
-  {
-    kLo = ceilDiv(omega * range.minNum, range.minDen);
-    kHi = floorDiv(omega * range.maxNum, range.maxDen);
-    return;
-  }
-  kLo = ceilDiv(Wide(omega) * range.minNum, Wide(range.minDen));
-  kHi = floorDiv(Wide(omega) * range.maxNum, Wide(range.maxDen));
 }
 
 /// Columns kLo..kHi of level omega of an octant's search (each bounded by the polygon's

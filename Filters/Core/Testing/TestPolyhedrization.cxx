@@ -5,6 +5,7 @@
 #include "BruteForce.h"
 #include "Polyhedrization.h"
 #include "StandardPlane.h"
+#include "StandardPlaneColumns.h"
 #include "SurfelGraph.h"
 
 #include <gtest/gtest.h>
@@ -724,6 +725,222 @@ TEST(StandardPlane, DigitalPlanesAreRecognized)
     for (const Point3& q : points)
       ASSERT_TRUE(inPlane(r.plane(), q));
   }
+}
+
+namespace
+{
+
+/// A frame form as StandardPlaneRecognizer::FrameForm: along * t + across * k + level * omega
+/// >= 0 (> 0 when strict).
+struct ColumnForm
+{
+  std::int64_t along, across, level;
+  bool strict;
+};
+
+bool columnFormHolds(const ColumnForm& F, vbr::Wide k, std::int64_t omega, vbr::Wide t)
+{
+  const vbr::Wide value =
+    vbr::Wide(F.along) * t + vbr::Wide(F.across) * k + vbr::Wide(F.level) * omega;
+  return F.strict ? value > 0 : value >= 0;
+}
+
+/// rangeOfT's answer written from the definition: per form the first (last) t that holds,
+/// found by stepping from a truncated quotient, clamped to +-2^62 as rangeOfT's.
+/// Empty ranges are told by `empty` only (rangeOfT's bounds then are any tLo > tHi).
+void referenceRangeOfT(const std::vector<ColumnForm>& forms,
+  std::int64_t omega,
+  vbr::Wide k,
+  bool& empty,
+  vbr::Wide& lo,
+  vbr::Wide& hi)
+{
+  const vbr::Wide Far = vbr::Wide(1) << 62;
+  lo = -Far, hi = Far;
+  empty = false;
+  for (const ColumnForm& F : forms)
+  {
+    const vbr::Wide A = F.along, B = vbr::Wide(F.across) * k + vbr::Wide(F.level) * omega;
+    if (A == 0)
+    {
+      empty = empty || !columnFormHolds(F, k, omega, 0);
+      continue;
+    }
+    // From the truncated quotient, out of the half-line of t that hold, then back to its end:
+    // the first t that holds (A > 0) or the last one (A < 0).
+    const vbr::Wide step = A > 0 ? 1 : -1;
+    vbr::Wide t = -B / A;
+    while (columnFormHolds(F, k, omega, t))
+      t -= step;
+    while (!columnFormHolds(F, k, omega, t))
+      t += step;
+    if (A > 0)
+      lo = std::max(lo, t);
+    else
+      hi = std::min(hi, t);
+  }
+  empty = empty || lo > hi;
+}
+
+vbr::Wide randomWide(std::mt19937_64& rng, vbr::Wide lo, vbr::Wide hi)
+{
+  const auto span = static_cast<unsigned __int128>(hi - lo) + 1;
+  const auto r = (static_cast<unsigned __int128>(rng()) << 64) | rng();
+  return lo + static_cast<vbr::Wide>(span == 0 ? r : r % span);
+}
+
+} // namespace
+
+// levelColumns: kLo is the least k with k minDen >= omega minNum and kHi the greatest with
+// k maxDen <= omega maxNum (checked by those products in Wide, no division), on both sides
+// of its 64-bit path's bounds (|numerators| < 2^40, omega <= MaximumOmega).
+TEST(StandardPlaneColumns, LevelColumnsAreTheExactQuotients)
+{
+  using vbr::Wide;
+  std::mt19937_64 rng(20261207);
+  const std::int64_t Small = std::int64_t(1) << 40;
+  std::size_t narrow = 0, wide = 0;
+  for (int i = 0; i < 200000; ++i)
+  {
+    auto numerator = [&]() -> std::int64_t
+    {
+      switch (rng() % 4)
+      {
+        case 0:
+          return std::int64_t(randomWide(rng, -(1 << 20), 1 << 20));
+        case 1:
+          return std::int64_t(randomWide(rng, -Small - 1000, -Small + 1000));
+        case 2:
+          return std::int64_t(randomWide(rng, Small - 1000, Small + 1000));
+        default:
+          return std::int64_t(randomWide(rng, -(Wide(1) << 60), Wide(1) << 60));
+      }
+    };
+    auto denominator = [&]() -> std::int64_t
+    { return std::int64_t(randomWide(rng, 1, rng() % 2 ? 1000 : (Wide(1) << 40))); };
+    vbr::detail::ColumnRange range;
+    range.minNum = numerator(), range.minDen = denominator();
+    range.maxNum = numerator(), range.maxDen = denominator();
+    const std::int64_t omega = rng() % 3 == 0
+      ? std::int64_t(randomWide(rng, vbr::detail::MaximumOmega - 2, vbr::detail::MaximumOmega + 2))
+      : std::int64_t(randomWide(rng, 1, rng() % 2 ? 64 : (Wide(1) << 24)));
+    Wide kLo = 0, kHi = 0;
+    vbr::detail::levelColumns(range, omega, kLo, kHi);
+    const bool isNarrow = omega <= vbr::detail::MaximumOmega && std::llabs(range.minNum) < Small &&
+      std::llabs(range.maxNum) < Small;
+    ++(isNarrow ? narrow : wide);
+    const Wide lowest = Wide(omega) * range.minNum, highest = Wide(omega) * range.maxNum;
+    ASSERT_TRUE(kLo * range.minDen >= lowest && (kLo - 1) * range.minDen < lowest)
+      << "kLo " << double(kLo) << " minNum " << range.minNum << " minDen " << range.minDen
+      << " omega " << omega << (isNarrow ? " (64 bits)" : " (Wide)");
+    ASSERT_TRUE(kHi * range.maxDen <= highest && (kHi + 1) * range.maxDen > highest)
+      << "kHi " << double(kHi) << " maxNum " << range.maxNum << " maxDen " << range.maxDen
+      << " omega " << omega << (isNarrow ? " (64 bits)" : " (Wide)");
+  }
+  EXPECT_GT(narrow, 20000u);
+  EXPECT_GT(wide, 20000u);
+}
+
+// rangeOfT on small forms: [tLo, tHi] is the set of t of a scan that hold every form (strict
+// ones strictly), in both overloads (std::int64_t and Wide k).
+TEST(StandardPlaneColumns, RangeOfTIsTheScannedRange)
+{
+  std::mt19937_64 rng(7);
+  const std::int64_t Far = std::int64_t(1) << 62, Window = 2200;
+  std::size_t nonEmpty = 0, strictDecided = 0;
+  for (int i = 0; i < 3000; ++i)
+  {
+    std::vector<ColumnForm> forms(1 + rng() % 6);
+    for (ColumnForm& F : forms)
+      F = { std::int64_t(rng() % 4 == 0 ? 0 : std::int64_t(rng() % 41) - 20),
+        std::int64_t(rng() % 41) - 20,
+        std::int64_t(rng() % 41) - 20,
+        rng() % 2 == 0 };
+    const std::int64_t omega = 1 + std::int64_t(rng() % 50);
+    const std::int64_t k = std::int64_t(rng() % 101) - 50;
+    std::int64_t tLo, tHi, wLo, wHi;
+    vbr::detail::rangeOfT(forms, omega, k, tLo, tHi);
+    vbr::detail::rangeOfT(forms, omega, vbr::Wide(k), wLo, wHi);
+    for (std::int64_t t = -Window; t <= Window; ++t)
+    {
+      bool holds = true, holdsLoosely = true;
+      for (const ColumnForm& F : forms)
+      {
+        holds = holds && columnFormHolds(F, k, omega, t);
+        holdsLoosely =
+          holdsLoosely && columnFormHolds({ F.along, F.across, F.level, false }, k, omega, t);
+      }
+      strictDecided += holds != holdsLoosely;
+      ASSERT_EQ(holds, tLo <= t && t <= tHi) << "t " << t << " in [" << tLo << ", " << tHi << "]";
+      ASSERT_EQ(holds, wLo <= t && t <= wHi)
+        << "t " << t << " in [" << wLo << ", " << wHi << "] (Wide)";
+    }
+    if (tLo <= tHi) // the bounds are in the window or unbounded
+    {
+      ++nonEmpty;
+      EXPECT_TRUE(tLo == -Far || tLo > -Window);
+      EXPECT_TRUE(tHi == Far || tHi < Window);
+      EXPECT_EQ(tLo, wLo);
+      EXPECT_EQ(tHi, wHi);
+    }
+    else
+      EXPECT_GT(wLo, wHi);
+  }
+  EXPECT_GT(nonEmpty, 300u);
+  EXPECT_GT(strictDecided, 300u);
+}
+
+// rangeOfT on large forms (frame coefficients up to 2^39 as frameForms makes them), k beyond
+// SmallColumn (2^20) and omega beyond MaximumOmega, negative ones included: the Wide overload
+// equals the reference from the definition, and the std::int64_t one equals both wherever
+// searchColumns takes it (|k| and omega below 2^20).
+TEST(StandardPlaneColumns, RangeOfTOverloadsAgreeOnLargeForms)
+{
+  using vbr::Wide;
+  std::mt19937_64 rng(11);
+  const std::int64_t SmallColumn = std::int64_t(1) << 20;
+  std::size_t narrow = 0, nonEmpty = 0;
+  for (int i = 0; i < 100000; ++i)
+  {
+    const Wide Coefficient = Wide(1) << (rng() % 2 ? 39 : 8);
+    std::vector<ColumnForm> forms(1 + rng() % 6);
+    for (ColumnForm& F : forms)
+      F = { rng() % 8 == 0 ? 0 : std::int64_t(randomWide(rng, -Coefficient, Coefficient)),
+        std::int64_t(randomWide(rng, -Coefficient, Coefficient)),
+        std::int64_t(randomWide(rng, -(1 << 18), 1 << 18)),
+        rng() % 2 == 0 };
+    const bool small = rng() % 2 == 0;
+    const std::int64_t omega =
+      std::int64_t(randomWide(rng, 1, small ? SmallColumn - 1 : (Wide(1) << 24)));
+    const Wide k = small ? randomWide(rng, -SmallColumn + 1, SmallColumn - 1)
+                         : randomWide(rng, -(Wide(1) << 22), Wide(1) << 22);
+    bool empty;
+    Wide lo, hi;
+    referenceRangeOfT(forms, omega, k, empty, lo, hi);
+    std::int64_t wLo, wHi;
+    vbr::detail::rangeOfT(forms, omega, k, wLo, wHi);
+    ASSERT_EQ(empty, wLo > wHi) << "k " << double(k) << " omega " << omega;
+    if (!empty)
+    {
+      ++nonEmpty;
+      ASSERT_EQ(Wide(wLo), lo) << "k " << double(k) << " omega " << omega;
+      ASSERT_EQ(Wide(wHi), hi) << "k " << double(k) << " omega " << omega;
+    }
+    if (-SmallColumn < k && k < SmallColumn && omega < SmallColumn)
+    {
+      ++narrow;
+      std::int64_t tLo, tHi;
+      vbr::detail::rangeOfT(forms, omega, std::int64_t(k), tLo, tHi);
+      ASSERT_EQ(empty, tLo > tHi) << "k " << double(k) << " omega " << omega;
+      if (!empty)
+      {
+        ASSERT_EQ(tLo, wLo);
+        ASSERT_EQ(tHi, wHi);
+      }
+    }
+  }
+  EXPECT_GT(narrow, 20000u);
+  EXPECT_GT(nonEmpty, 1000u);
 }
 
 TEST(Polyhedrization, RandomVolumes)
