@@ -1336,7 +1336,7 @@ bool evmsAndCorners(vtkAlgorithm* self,
   vtkLogScopeF(TRACE, "numbered corners");
   const vbr::KeyPacker packer =
     vbr::KeyPacker::forMaximum(*std::max_element(dims.begin(), dims.end()));
-  // Two divisions per corner to write the numbered points: with threads when they are many.
+  // The corner set and the output's points: with threads when the corners are many.
   const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.2, 0.2);
   corners.reset(
     new vbr::CornerSet(points, packer, exec.forWork(static_cast<std::int64_t>(points.size()))));
@@ -1524,7 +1524,8 @@ void appendObjects(vtkAlgorithm* self,
   // labels can meet there.
   const bool tJunctions = !settings.planar || n > 1;
   const vbr::CornerSet corners = numberCorners(objects, parts, dims);
-  builder.addCornerPoints(corners.points());
+  builder.addCornerPoints(corners,
+    vbr::vtk::makeExecution(self, 0.7, 0.7).forWork(static_cast<std::int64_t>(corners.size())));
   CellWriter writer{ corners, tJunctions };
   for (std::size_t o = 0; o < n && !self->GetAbortExecute(); ++o)
   {
