@@ -171,10 +171,9 @@ std::size_t columnGridWords(const Vertex* begin, const Vertex* end, Coord vLo, C
 /// vertices of the cut, and the vertices of the section (the XOR of the cuts before) that are
 /// not in the cut but inside one of its brinks (an odd number of cut vertices below them), the
 /// non-manifold vertices of Sweep::processLine. Whole words of a line at a time. [vLo, vHi]: the
-/// range of v.
-CornerColumns cornersByColumn(const Vertex* begin, const Vertex* end, Coord vLo, Coord vHi)
+/// range of v. Into `g`, whose memory is kept (NumberedPlaneSweeper2D).
+void cornersByColumn(const Vertex* begin, const Vertex* end, Coord vLo, Coord vHi, CornerColumns& g)
 {
-  CornerColumns g;
   g.uLo = (*begin)[1];
   g.vLo = vLo;
   g.columns = static_cast<std::size_t>(vHi - vLo) + 1;
@@ -213,7 +212,6 @@ CornerColumns cornersByColumn(const Vertex* begin, const Vertex* end, Coord vLo,
   if (count >= Unset)
     throw std::length_error("planeSweep2D: 2^32 corners or more");
   g.count = count;
-  return g;
 }
 
 class Sweep
@@ -222,6 +220,12 @@ public:
   explicit Sweep(FaceConnectivity connectivity)
     : MergeAtVertices(connectivity == FaceConnectivity::Vertex)
   {
+  }
+
+  /// How faces meet at the non-manifold vertices of the next sweeps.
+  void setConnectivity(FaceConnectivity connectivity)
+  {
+    this->MergeAtVertices = connectivity == FaceConnectivity::Vertex;
   }
 
   /// The whole method: the first sweep line by line, the pairing at non-manifold vertices,
@@ -257,6 +261,20 @@ public:
     std::size_t fewestByColumn)
   {
     Contours2D out;
+    this->runNumberedInto(begin, end, order, fewestByColumn, out);
+    return out;
+  }
+
+  /// runNumbered, into `out` (emptied first, its memory kept) and after any earlier sweep of
+  /// this object, whose arrays are emptied with their memory kept (NumberedPlaneSweeper2D).
+  void runNumberedInto(const Vertex* begin,
+    const Vertex* end,
+    CornerOrder order,
+    std::size_t fewestByColumn,
+    Contours2D& out)
+  {
+    this->emptyKeepingCapacity();
+    emptyKeepingCapacity(out);
     bool sortAlongV = false;
     if (order == CornerOrder::VThenU && begin != end)
     {
@@ -268,7 +286,7 @@ public:
       sortAlongV = vertices < fewestByColumn || vertices < columnGridWords(begin, end, vLo, vHi);
       if (!sortAlongV)
       {
-        out.columns = cornersByColumn(begin, end, vLo, vHi);
+        cornersByColumn(begin, end, vLo, vHi, out.columns);
         this->numberByColumn(out.columns);
       }
     }
@@ -283,7 +301,6 @@ public:
     this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
     this->classifyContours(out.boundary);
     out.corners.swap(this->Corners); // empty when numbered by column
-    return out;
   }
 
 private:
@@ -303,6 +320,21 @@ private:
     this->NonManifold.clear();
     this->FaceOfRoot.clear();
     this->FirstOfFace.clear();
+  }
+
+  /// Contours emptied, their memory kept for the next sweep.
+  static void emptyKeepingCapacity(Contours2D& out)
+  {
+    out.boundary.faces.clear();
+    out.boundary.loops.clear();
+    out.boundary.points.clear();
+    out.boundary.nonManifoldVertices = 0;
+    out.corners.clear();
+    out.loopCorners.clear();
+    CornerColumns& columns = out.columns;
+    columns.uLo = columns.vLo = 0;
+    columns.columns = columns.wordsPerColumn = columns.count = 0;
+    columns.bits.clear();
   }
 
   /// The first sweep (line by line) and the pairing at the non-manifold vertices: every edge
@@ -772,8 +804,11 @@ private:
       ++next[static_cast<std::size_t>(p.v - lo) + 1];
     for (std::size_t k = 1; k < next.size(); ++k)
       next[k] += next[k - 1];
-    std::vector<std::uint32_t> number(this->Corners.size());
-    std::vector<Point2> sorted(this->Corners.size());
+    // In arrays kept from sweep to sweep, as the corners are (their old values overwritten).
+    std::vector<std::uint32_t>& number = this->CornerNumbers;
+    std::vector<Point2>& sorted = this->SortedCorners;
+    number.resize(this->Corners.size());
+    sorted.resize(this->Corners.size());
     for (std::size_t c = 0; c < this->Corners.size(); ++c)
     {
       const std::uint32_t n = next[static_cast<std::size_t>(this->Corners[c].v - lo)]++;
@@ -922,17 +957,19 @@ private:
     }
   }
 
-  const bool MergeAtVertices;
+  bool MergeAtVertices;
   std::vector<SectionEnd> Section;     ///< active section, sorted by v
   std::vector<SectionEnd> NextSection; ///< the section being built (reused buffers)
   std::vector<int> NextIntervals;
-  std::vector<int> SectionIntervals;     ///< interval id of each pair of section ends
-  UnionFind Intervals;                   ///< the section intervals, united into faces
-  std::vector<Point2> Corners;           ///< by number, when not numbered by column
-  std::vector<std::uint32_t> ColumnNext; ///< numbered by column: the next number of each
-  Coord ColumnLo = 0;                    ///< the v of the first column
-  std::vector<EdgeLink> Links;           ///< the edges: what the domino step follows
-  std::vector<EdgeEnd> Ends;             ///< the edges: what the first sweep and the pairing read
+  std::vector<int> SectionIntervals;        ///< interval id of each pair of section ends
+  UnionFind Intervals;                      ///< the section intervals, united into faces
+  std::vector<Point2> Corners;              ///< by number, when not numbered by column
+  std::vector<std::uint32_t> CornerNumbers; ///< numberCornersAlongV: (u, v) number -> (v, u)
+  std::vector<Point2> SortedCorners;        ///< numberCornersAlongV: the corners it sorts into
+  std::vector<std::uint32_t> ColumnNext;    ///< numbered by column: the next number of each
+  Coord ColumnLo = 0;                       ///< the v of the first column
+  std::vector<EdgeLink> Links;              ///< the edges: what the domino step follows
+  std::vector<EdgeEnd> Ends; ///< the edges: what the first sweep and the pairing read
   std::vector<FirstInterval> First;
   std::vector<NonManifoldVertex> NonManifold;
   std::vector<int> FaceOfRoot;                   ///< face of each root interval, or -1
@@ -978,6 +1015,54 @@ Contours2D planeSweep2DNumbered(const Vertex* begin,
   std::size_t fewestByColumn)
 {
   return Sweep(connectivity).runNumbered(begin, end, order, fewestByColumn);
+}
+
+struct detail::NumberedPlaneSweep2DMemory
+{
+  explicit NumberedPlaneSweep2DMemory(std::size_t fewestKept)
+    : FewestKept(fewestKept)
+  {
+  }
+  Sweep Sweeper{ FaceConnectivity::Edge };
+  Contours2D Out;
+  std::size_t KeptFor = 0; ///< vertices of the largest sweep since the memory was released
+  std::size_t FewestKept;
+};
+
+NumberedPlaneSweeper2D::NumberedPlaneSweeper2D(std::size_t fewestKept)
+  : Memory(std::make_unique<detail::NumberedPlaneSweep2DMemory>(fewestKept))
+{
+}
+
+NumberedPlaneSweeper2D::~NumberedPlaneSweeper2D() = default;
+NumberedPlaneSweeper2D::NumberedPlaneSweeper2D(NumberedPlaneSweeper2D&&) noexcept = default;
+NumberedPlaneSweeper2D& NumberedPlaneSweeper2D::operator=(
+  NumberedPlaneSweeper2D&&) noexcept = default;
+
+const Contours2D& NumberedPlaneSweeper2D::sweep(const Vertex* begin,
+  const Vertex* end,
+  CornerOrder order,
+  FaceConnectivity connectivity,
+  std::size_t fewestByColumn)
+{
+  detail::NumberedPlaneSweep2DMemory& m = *this->Memory;
+  const auto vertices = static_cast<std::size_t>(end - begin);
+  // Every array of a sweep is at most linear in its vertices (or, where non-manifold vertices
+  // add corners, edges and intervals, in its output): much more than this sweep's is released.
+  if (m.KeptFor >= m.FewestKept && vertices < m.KeptFor / 4)
+    this->release();
+  m.KeptFor = std::max(m.KeptFor, vertices);
+  m.Sweeper.setConnectivity(connectivity);
+  m.Sweeper.runNumberedInto(begin, end, order, fewestByColumn, m.Out);
+  return m.Out;
+}
+
+void NumberedPlaneSweeper2D::release()
+{
+  detail::NumberedPlaneSweep2DMemory& m = *this->Memory;
+  m.Sweeper = Sweep(FaceConnectivity::Edge);
+  m.Out = Contours2D();
+  m.KeptFor = 0;
 }
 
 } // namespace vbr
