@@ -886,6 +886,7 @@ struct ObjectSettings
   vbr::FaceConnectivity connectivity;
   int outputMode;
   std::array<int, 3> axes;
+  vbr::NumberedPlaneSweeper2D* planarSweeper; ///< the filter's, kept from update to update
 };
 
 /// Adds an object's extreme vertices and planes of vertices (`planes` per axis of its EVM,
@@ -1095,7 +1096,7 @@ void appendPlanarLoops(vtkAlgorithm* self,
   Statistics& stats,
   OutputBuilder& builder)
 {
-  vbr::Contours2D contours;
+  const vbr::Contours2D* swept = nullptr;
   vbr::AxisOrder order;
   {
     vbr::EVM evm;
@@ -1104,8 +1105,14 @@ void appendPlanarLoops(vtkAlgorithm* self,
       return;
     vtkLogScopeF(TRACE, "EVM to contours (2D plane sweep, corners numbered)");
     order = evm.order();
-    contours = vbr::numberedContours2D(evm, settings.connectivity);
+    // numberedContours2D's sweep, in the filter's arrays kept from the update before.
+    const vbr::CornerOrder cornerOrder =
+      order[1] < order[2] ? vbr::CornerOrder::UThenV : vbr::CornerOrder::VThenU;
+    const auto& v = evm.vertices();
+    swept = &settings.planarSweeper->sweep(
+      v.data(), v.data() + v.size(), cornerOrder, settings.connectivity);
   }
+  const vbr::Contours2D& contours = *swept;
   const vbr::Boundary2D& b = contours.boundary;
   stats.faces += static_cast<vtkIdType>(b.faces.size());
   stats.holes += static_cast<vtkIdType>(b.holeCount());
@@ -1115,8 +1122,6 @@ void appendPlanarLoops(vtkAlgorithm* self,
   {
     vtkLogScopeF(TRACE, "output points");
     builder.addContourCorners(contours, order, object.offset);
-    contours.columns = vbr::CornerColumns();
-    contours.corners = std::vector<vbr::Point2>();
   }
   vtkLogScopeF(TRACE, "output cells");
   const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.7, 1.0);
@@ -1556,6 +1561,12 @@ void writeStatistics(const Statistics& stats, vtkFieldData* fd)
 
 } // namespace
 
+/// The filter's 2D sweep (vtkEVMBoundaryFilter.h): kept between updates, released when an
+/// image has much fewer vertices than the largest one swept since (NumberedPlaneSweeper2D).
+class vtkEVMBoundaryFilter::vtkPlanarSweep : public vbr::NumberedPlaneSweeper2D
+{
+};
+
 //------------------------------------------------------------------------------
 vtkEVMBoundaryFilter::vtkEVMBoundaryFilter()
 {
@@ -1633,10 +1644,13 @@ int vtkEVMBoundaryFilter::Execute(vtkInformationVector** inputVector,
 
   // One object (a label, or the whole selection) at a time: its voxels, EVM and faces are
   // released before the next.
+  if (planar && !this->PlanarSweep)
+    this->PlanarSweep = std::make_unique<vtkPlanarSweep>();
   const ObjectSettings each{ planar,
     this->MergeNonManifoldFaces ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge,
     this->OutputMode,
-    axes };
+    axes,
+    planar ? this->PlanarSweep.get() : nullptr };
   OutputBuilder builder(grid, axes, planar);
   Statistics stats;
   appendObjects(this, objects, each, grid.dims, stats, builder);

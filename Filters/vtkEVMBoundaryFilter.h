@@ -86,6 +86,8 @@
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkVoxelSelection.h" // for vtkVoxelSelectionMacro
 
+#include <memory> // for std::unique_ptr
+
 class VOXELBREPFILTERS_EXPORT vtkEVMBoundaryFilter : public vtkPolyDataAlgorithm
 {
 public:
@@ -163,6 +165,11 @@ protected:
 private:
   vtkEVMBoundaryFilter(const vtkEVMBoundaryFilter&) = delete;
   void operator=(const vtkEVMBoundaryFilter&) = delete;
+
+  /// The 2D plane sweep's arrays, kept from one update to the next (a 2D image's Polylines and
+  /// Loops): an update no larger than the one before writes into memory already mapped.
+  class vtkPlanarSweep;
+  std::unique_ptr<vtkPlanarSweep> PlanarSweep;
 };
 
 #endif

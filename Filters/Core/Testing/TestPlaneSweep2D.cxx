@@ -472,6 +472,81 @@ bool checkColumnsAgainstSort(const vbr::BitVolume& image, vbr::FaceConnectivity 
 
 } // namespace
 
+namespace
+{
+
+/// Whether two numbered sweeps are the same: the boundary, the corners by number (sorted or by
+/// column, and the grid of columns), and the loops' corners.
+void expectSameContours(const vbr::Contours2D& a, const vbr::Contours2D& b)
+{
+  expectSameBoundary(a.boundary, b.boundary);
+  EXPECT_EQ(cornersInOrder(a), cornersInOrder(b));
+  EXPECT_EQ(a.cornerCount(), b.cornerCount());
+  EXPECT_EQ(a.corners.size(), b.corners.size());
+  EXPECT_TRUE(a.columns.uLo == b.columns.uLo && a.columns.vLo == b.columns.vLo &&
+    a.columns.columns == b.columns.columns &&
+    a.columns.wordsPerColumn == b.columns.wordsPerColumn && a.columns.count == b.columns.count);
+  EXPECT_EQ(a.columns.bits, b.columns.bits);
+  EXPECT_EQ(a.loopCorners, b.loopCorners);
+}
+
+} // namespace
+
+TEST(PlaneSweep2D, NumberedSweeperKeptFromUpdateToUpdateSweepsAsAFreshOne)
+{
+  // A NumberedPlaneSweeper2D sweeps random images that grow and shrink (its arrays kept from a
+  // larger or a smaller sweep), in both corner orders, numbered by column (fewestByColumn 0)
+  // and sorted, with the connectivity changing from sweep to sweep, the empty image, and
+  // sweeps on after an invalid EVM threw midway (its last line dropped): every sweep equals
+  // planeSweep2DNumbered's from scratch. Once with its memory released whenever an image has
+  // fewer than a quarter of the largest one's vertices (fewestKept 0: the small images after
+  // large ones), once never released (every small image swept in a large one's arrays).
+  unsigned seed = 5000;
+  for (const std::size_t fewestKept : { std::size_t(0), std::numeric_limits<std::size_t>::max() })
+  {
+    vbr::NumberedPlaneSweeper2D sweeper(fewestKept);
+    for (int trial = 0; trial < 48; ++trial)
+    {
+      const auto connectivity =
+        trial % 2 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
+      const bool alongV = (trial / 2) % 2 == 1;
+      const std::size_t fewestByColumn =
+        (trial / 4) % 2 ? std::numeric_limits<std::size_t>::max() : 0;
+      const int size = trial % 5; // 0, 1, 2: large, growing; 3, 4: small, shrinking
+      const vbr::Point3 d{ size < 3 ? 40 + 30 * size + trial % 7 : 9 - size + trial % 3,
+        size < 3 ? 30 + 25 * size + trial % 5 : 6 - size + trial % 2,
+        1 };
+      const double density = 0.2 + 0.6 * (trial % 7) / 6.0;
+      SCOPED_TRACE(testing::Message()
+        << "trial " << trial << " kept from " << fewestKept << " size " << d[0] << " x " << d[1]
+        << " along v " << alongV << " fewest by column " << fewestByColumn);
+      const vbr::EVM evm = vbr::extractEVM2D(bf::randomVolume(d, density, seed++))
+                             .sortedAs(vbr::axisOrderFromName(alongV ? "ZYX" : "ZXY"));
+      const std::vector<vbr::Vertex>& v = evm.vertices();
+      const vbr::CornerOrder order = alongV ? vbr::CornerOrder::VThenU : vbr::CornerOrder::UThenV;
+      if (trial % 6 == 5 && !v.empty())
+      {
+        std::size_t lastLine = v.size() - 1;
+        while (lastLine > 0 && v[lastLine - 1][1] == v.back()[1])
+          --lastLine;
+        EXPECT_THROW(
+          sweeper.sweep(v.data(), v.data() + lastLine, order, connectivity, fewestByColumn),
+          std::invalid_argument);
+      }
+      expectSameContours(
+        sweeper.sweep(v.data(), v.data() + v.size(), order, connectivity, fewestByColumn),
+        vbr::planeSweep2DNumbered(
+          v.data(), v.data() + v.size(), order, connectivity, fewestByColumn));
+      if (trial % 9 == 8)
+      {
+        const vbr::Contours2D& none = sweeper.sweep(nullptr, nullptr, order, connectivity);
+        EXPECT_TRUE(
+          none.boundary.faces.empty() && none.loopCorners.empty() && none.cornerCount() == 0);
+      }
+    }
+  }
+}
+
 TEST(PlaneSweep2D, NumberedCornersOfLargeDenseAndSparseImages)
 {
   // Small images are numbered by the sort (FewestVerticesByColumn): the path by column is
