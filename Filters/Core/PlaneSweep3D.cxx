@@ -35,6 +35,7 @@
 #include "EVMBoolean.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
@@ -92,6 +93,38 @@ constexpr std::size_t StreamChunks = 64;
 /// an earlier one to be appended sweeps the next chunk meanwhile instead of waiting.
 constexpr std::size_t StreamSlotsPerThread = 2;
 
+/// Chunks of one plane each at the end of a streamed sorting: the chunks a pool's workers
+/// take last are short, so that none idles long at the end of the sorting while another
+/// sweeps a long last chunk (the last plane, an object's top, is often the heaviest: on porous
+/// 128^3 with two workers and 3-plane chunks, one idled 0.4-0.6 ms at the end of each
+/// sorting). The same chunks on one thread, so that the parts do not depend on the threads.
+constexpr std::size_t StreamLastSingles = 4;
+
+/// The chunks of planes of a streamed sorting: `step` planes each (the last of them maybe
+/// fewer), then the last StreamLastSingles planes one a chunk.
+struct ChunkLayout
+{
+  std::size_t planes = 0, step = 1, singles = 0;
+
+  ChunkLayout(std::size_t planeCount, std::size_t planeStep)
+    : planes(planeCount)
+    , step(planeStep)
+    , singles(planeStep > 1 ? std::min(planeCount, StreamLastSingles) : 0)
+  {
+  }
+
+  /// The chunks of `step` planes.
+  std::size_t steps() const { return (this->planes - this->singles + this->step - 1) / this->step; }
+  std::size_t count() const { return this->steps() + this->singles; }
+  /// The first plane of chunk k (k <= count(): the end of the last chunk for k = count()).
+  std::size_t firstPlane(std::size_t k) const
+  {
+    const std::size_t steps = this->steps();
+    return k <= steps ? std::min(k * this->step, this->planes - this->singles)
+                      : this->planes - this->singles + (k - steps);
+  }
+};
+
 /// The box of (B, C) cells that every section and cut of one sorting lies in: row r holds the
 /// cells between lines u = lowU + r and u + 1, bit k of it the cell between v = lowV + k and
 /// v + 1. With one word per 64 cells, a section is a few words per line.
@@ -121,6 +154,49 @@ SectionBox sectionBoxOf(const EVM& sorted)
   box.lowV = lowV;
   box.rows = static_cast<std::size_t>(std::int64_t(highU) - lowU);
   box.words = static_cast<std::size_t>(std::int64_t(highV) - lowV) / 64 + 1;
+  return box;
+}
+
+/// The range [lo[a], hi[a]] of each world axis a over the vertices of a 3D EVM. A sorting
+/// gives its first axis's for free (its first and last vertices), so the three sortings of
+/// the sweeps give all three without a pass over the vertices.
+struct AxisRanges
+{
+  std::array<Coord, 3> lo{ 0, 0, 0 }, hi{ 0, 0, 0 };
+};
+
+/// Records the range of the first axis of `sorted` (not empty) in `ranges`.
+void recordFirstAxisRange(const EVM& sorted, AxisRanges& ranges)
+{
+  const int a = sorted.order()[0];
+  ranges.lo[a] = sorted.vertices().front()[0];
+  ranges.hi[a] = sorted.vertices().back()[0];
+}
+
+/// Records the range of the world axis of coordinate k of `evm` (not empty), by a pass over
+/// its vertices: for the axis no sorting at hand starts with.
+void scanAxisRange(const EVM& evm, int k, AxisRanges& ranges)
+{
+  Coord lo = evm.vertices()[0][k], hi = lo;
+  for (const Vertex& p : evm.vertices())
+  {
+    lo = std::min(lo, p[k]);
+    hi = std::max(hi, p[k]);
+  }
+  ranges.lo[evm.order()[k]] = lo;
+  ranges.hi[evm.order()[k]] = hi;
+}
+
+/// sectionBoxOf for a sorting in `order` of vertices whose axes span `ranges`: the same box,
+/// the vertices' bounds in (B, C) being those of the world axes B and C.
+SectionBox sectionBoxOf(const AxisRanges& ranges, const AxisOrder& order)
+{
+  const int b = order[1], c = order[2];
+  SectionBox box;
+  box.lowU = ranges.lo[b];
+  box.lowV = ranges.lo[c];
+  box.rows = static_cast<std::size_t>(std::int64_t(ranges.hi[b]) - ranges.lo[b]);
+  box.words = static_cast<std::size_t>(std::int64_t(ranges.hi[c]) - ranges.lo[c]) / 64 + 1;
   return box;
 }
 
@@ -506,10 +582,10 @@ bool reportPlanes(const Execution& exec, std::size_t planesDone, std::size_t pla
   return exec.report(double(planesDone) / double(std::max<std::size_t>(planesAll, 1)));
 }
 
-/// Sweeps the planes of one sorting on the calling thread in chunks of `step` planes, each
-/// chunk's exit section handed to the next, each part prepared and appended (in slot 0) before
-/// the next chunk is swept. `planesDone` (of `planesAll`, for the progress) counts the planes
-/// swept so far.
+/// Sweeps the planes of one sorting on the calling thread in chunks (ChunkLayout: of `step` planes,
+/// the last ones of one), each chunk's exit section handed to the next, each part prepared and
+/// appended (in slot 0) before the next chunk is swept. `planesDone` (of `planesAll`, for the
+/// progress) counts the planes swept so far.
 bool streamSortingAlone(const EVM& sorted,
   const std::vector<std::size_t>& starts,
   std::size_t step,
@@ -520,15 +596,16 @@ bool streamSortingAlone(const EVM& sorted,
   std::size_t& planesDone,
   std::size_t planesAll)
 {
-  const std::size_t planes = starts.size() - 1;
+  const ChunkLayout layout(starts.size() - 1, step);
   std::atomic<bool> abort{ false };
   PlaneChunk chunk{ &sorted, &starts, 0, 0, {}, bitBox, {} };
   BRep part;
   ChunkMemory memory(connectivity);
-  for (std::size_t p = 0; p < planes; p = chunk.endPlane)
+  for (std::size_t k = 0; k < layout.count(); ++k)
   {
+    const std::size_t p = layout.firstPlane(k);
     chunk.firstPlane = p;
-    chunk.endPlane = std::min(planes, p + step);
+    chunk.endPlane = layout.firstPlane(k + 1);
     emptyKeepingCapacity(part);
     // The chunk is its own exit: sweepChunk reads the entering section before it writes the
     // exit one, which the next chunk enters with.
@@ -565,8 +642,8 @@ public:
     : Sorted(sorted)
     , Starts(starts)
     , Planes(starts.size() - 1)
-    , Step(step)
-    , Count((this->Planes + step - 1) / step)
+    , Layout(this->Planes, step)
+    , Count(this->Layout.count())
     , Slots(streamBatch(exec))
     , BitBox(bitBox)
     , Connectivity(connectivity)
@@ -645,8 +722,8 @@ private:
     if (this->Stopped || this->Taken == this->Count)
       return false;
     index = this->Taken++;
-    chunk.firstPlane = index * this->Step;
-    chunk.endPlane = std::min(this->Planes, chunk.firstPlane + this->Step);
+    chunk.firstPlane = this->Layout.firstPlane(index);
+    chunk.endPlane = this->Layout.firstPlane(index + 1);
     this->walkTo(chunk, index + 1 < this->Count);
     return true;
   }
@@ -712,7 +789,7 @@ private:
       std::lock_guard<std::mutex> lock(this->Lock);
       appended = this->Appended;
     }
-    const std::size_t planes = std::min(this->Planes, appended * this->Step);
+    const std::size_t planes = this->Layout.firstPlane(appended);
     return reportPlanes(this->Exec, this->PlanesBefore + planes, this->PlanesAll);
   }
 
@@ -731,9 +808,10 @@ private:
 
   const EVM& Sorted;
   const std::vector<std::size_t>& Starts;
-  const std::size_t Planes, Step;
-  const std::size_t Count; ///< chunks: chunk k is planes [k Step, (k + 1) Step)
-  const std::size_t Slots; ///< parts alive at most
+  const std::size_t Planes;
+  const ChunkLayout Layout; ///< chunk k is planes [firstPlane(k), firstPlane(k + 1))
+  const std::size_t Count;  ///< chunks
+  const std::size_t Slots;  ///< parts alive at most
   const SectionBox* BitBox;
   const FaceConnectivity Connectivity;
   const Execution& Exec;
@@ -755,22 +833,29 @@ private:
 
 /// Sweeps the planes of one sorting in chunks of planes (StreamChunks of them), each part
 /// prepared by the thread that swept it and appended in order: on the calling thread alone, or
-/// by a pool of exec.concurrency workers. `planesDone` (of `planesAll`, for the progress)
-/// counts the planes swept so far.
+/// by a pool of exec.concurrency workers. `ranges` are those of the vertices' axes (for the
+/// box of the sections). `planesDone` (of `planesAll`, for the progress) counts the planes
+/// swept so far; `planes` (when given) gets the sorting's planes at its first axis.
 bool streamSorting(const EVM& sorted,
+  const AxisRanges& ranges,
   FaceConnectivity connectivity,
   const Execution& exec,
   const StreamedPartHandlers& handlers,
   std::size_t& planesDone,
-  std::size_t planesAll)
+  std::size_t planesAll,
+  std::array<std::size_t, 3>* planesPerAxis)
 {
   const std::vector<std::size_t> starts = sorted.planeStarts();
   const std::size_t planes = starts.size() - 1;
+  if (planesPerAxis)
+    (*planesPerAxis)[sorted.order()[0]] = planes;
   if (planes == 0)
     return true;
   const std::size_t step = std::max<std::size_t>(1, (planes + StreamChunks - 1) / StreamChunks);
-  SectionBox box;
-  const SectionBox* bitBox = bitRowsOf(sorted, planes, box) ? &box : nullptr;
+  // The box from the axes' ranges: a pass over the vertices for their bounds was a serial
+  // 0.3 ms per sorting on porous 128^3, 2 % of an update on two threads.
+  SectionBox box = sectionBoxOf(ranges, sorted.order());
+  const SectionBox* bitBox = bitRowsPay(box, planes, sorted.size()) ? &box : nullptr;
   if (!exec.parallelFor || exec.concurrency <= 1)
     return streamSortingAlone(
       sorted, starts, step, bitBox, connectivity, exec, handlers, planesDone, planesAll);
@@ -801,23 +886,38 @@ bool planeSweep3DStream(EVM evm,
 bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
-  const StreamedPartHandlers& handlers)
+  const StreamedPartHandlers& handlers,
+  std::array<std::size_t, 3>* planesPerAxis)
 {
+  if (planesPerAxis)
+    *planesPerAxis = { 0, 0, 0 };
+  if (evm.empty())
+    return true;
   // sortForTheThreeSweeps' sortings, made as late and released as early as the sweeps allow,
   // no more than two alive at once; each written into the memory of one no longer needed (the
   // given EVM's, then the first's), not into fresh pages: at 256^3 and more a sorting is tens
   // of MB, and the kernel's faulting in and zeroing of new pages weighed as much as the sort.
+  AxisRanges ranges;
+  const bool zFirst = evm.order()[0] == 2; // extractEVM's ZYX sorting
+  if (zFirst)
+    recordFirstAxisRange(evm, ranges);
   EVM first = evm.sortedAs({ 1, 2, 0 }, exec);
   EVM zeroth = first.sortedAs({ 0, 1, 2 }, exec, evm.takeVertices());
+  recordFirstAxisRange(first, ranges);
+  recordFirstAxisRange(zeroth, ranges);
+  if (!zFirst)
+    scanAxisRange(zeroth, 2, ranges);
   const std::size_t planesAll =
     3 * std::max<std::size_t>(1, zeroth.planeStarts().size() - 1); // about
   std::size_t done = 0;
-  if (!streamSorting(zeroth, connectivity, exec, handlers, done, planesAll) ||
-    !streamSorting(first, connectivity, exec, handlers, done, planesAll))
+  if (!streamSorting(
+        zeroth, ranges, connectivity, exec, handlers, done, planesAll, planesPerAxis) ||
+    !streamSorting(first, ranges, connectivity, exec, handlers, done, planesAll, planesPerAxis))
     return false;
   EVM second = zeroth.sortedAs({ 2, 0, 1 }, exec, first.takeVertices());
   zeroth = EVM();
-  return streamSorting(second, connectivity, exec, handlers, done, planesAll);
+  return streamSorting(
+    second, ranges, connectivity, exec, handlers, done, planesAll, planesPerAxis);
 }
 
 bool planeSweep3DParts(const EVM& evm,

@@ -68,10 +68,14 @@ std::size_t streamBatch(const Execution& exec);
 /// writes and releases each part never holds the object's faces. The EVM is taken (moved in)
 /// and freed once sorted. Parts may be empty. The progress is reported on the calling thread
 /// only. False when the caller asked to abort or a handler returned false.
+/// `planesPerAxis` (when given) gets planesPerAxis(evm) (EVM.h), read off the three sortings
+/// rather than counted by passes over the vertices: the planes of vertices along each axis, by
+/// world axis (complete when the stream is).
 bool planeSweep3DStream(EVM evm,
   FaceConnectivity connectivity,
   const Execution& exec,
-  const StreamedPartHandlers& handlers);
+  const StreamedPartHandlers& handlers,
+  std::array<std::size_t, 3>* planesPerAxis = nullptr);
 
 /// The same, every part handed to consume(part) in order, never two at once (an append: on a
 /// worker thread when there are threads; no prepare step).

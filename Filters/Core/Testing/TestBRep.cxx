@@ -365,7 +365,8 @@ std::set<vbr::Point3> loopCorners(const vbr::BRep& brep, const vbr::Point3& offs
   return corners;
 }
 
-/// Faces, loops and points of `parts` joined in order, face and point indices shifted.
+/// Faces, loops and points of `parts` joined in order, face and point indices shifted (a
+/// face's parent too: a face of a plane can lie in a hole of another, as appendBRep has it).
 vbr::BRep joined(const std::vector<vbr::BRep>& parts)
 {
   vbr::BRep all;
@@ -377,6 +378,8 @@ vbr::BRep joined(const std::vector<vbr::BRep>& parts)
     for (vbr::BRepFace f : part.faces)
     {
       f.firstLoop += loopBase;
+      if (f.parent >= 0)
+        f.parent += faceBase;
       all.faces.push_back(f);
     }
     for (vbr::BRepLoop l : part.loops)
@@ -813,6 +816,68 @@ TEST(BRep, SparseAndDenseSectionsGiveTheSameFaces)
       }
     }
   }
+}
+
+// The streamed sweeps take the box of each sorting's sections from the ranges of the axes,
+// read off the sortings' first and last vertices (and a pass over the vertices for the third
+// axis when the EVM given is not ZYX-sorted), and count the planes per axis from the
+// sortings: a block away from the origin (its box starts past 0 on every axis, its rows of
+// bits chosen), given in each of the six sortings, has planeSweep3D's faces streamed, on one
+// thread and on three, and planesPerAxis' planes. A box one row or one word short, or a range
+// taken from the wrong axis, changes the faces or fails.
+TEST(BRep, StreamedSectionBoxesAndPlanesFromTheSortings)
+{
+  unsigned seed = 8300;
+  for (int trial = 0; trial < 4; ++trial)
+  {
+    const vbr::Point3 d{ 70 + 9 * trial, 9 + 3 * trial, 66 + 5 * trial };
+    const vbr::BitVolume block = bf::randomVolume(d, 0.3 + 0.12 * trial, seed++);
+    const vbr::Point3 shift{ 5 + trial, 11 - trial, 3 + 2 * trial };
+    vbr::BitVolume shifted(d[0] + shift[0] + 2, d[1] + shift[1] + 1, d[2] + shift[2] + 3);
+    for (int z = 0; z < d[2]; ++z)
+      for (int y = 0; y < d[1]; ++y)
+        for (int x = 0; x < d[0]; ++x)
+          if (block.get(x, y, z))
+            shifted.set(x + shift[0], y + shift[1], z + shift[2]);
+    const vbr::EVM zyx = vbr::extractEVM(shifted);
+    ASSERT_EQ(vbr::detail::sectionsAsBitRows(zyx), (std::array<bool, 3>{ true, true, true }));
+    const vbr::FaceConnectivity c =
+      trial % 2 ? vbr::FaceConnectivity::Vertex : vbr::FaceConnectivity::Edge;
+    vbr::BRep whole;
+    ASSERT_TRUE(vbr::planeSweep3D(zyx, c, {}, whole));
+    for (const char* order : { "ZYX", "XYZ", "XZY", "YXZ", "YZX", "ZXY" })
+    {
+      const vbr::EVM evm = zyx.sortedAs(vbr::axisOrderFromName(order));
+      for (int threads : { 1, 3 })
+      {
+        SCOPED_TRACE(
+          testing::Message() << "trial " << trial << " order " << order << " threads " << threads);
+        const vbr::Execution exec =
+          threads == 1 ? vbr::Execution() : bf::threadedExecution(threads);
+        std::vector<vbr::BRep> parts;
+        std::array<std::size_t, 3> planes{ 7, 7, 7 };
+        ASSERT_TRUE(vbr::planeSweep3DStream(evm,
+          c,
+          exec,
+          vbr::StreamedPartHandlers{ nullptr,
+            [&](vbr::BRep& part, std::size_t)
+            {
+              parts.push_back(std::move(part));
+              return true;
+            } },
+          &planes));
+        expectSameBRep(joined(parts), whole);
+        EXPECT_EQ(planes, vbr::planesPerAxis(zyx));
+      }
+    }
+  }
+  std::array<std::size_t, 3> planes{ 7, 7, 7 };
+  EXPECT_TRUE(vbr::planeSweep3DStream(vbr::EVM(),
+    vbr::FaceConnectivity::Edge,
+    {},
+    vbr::StreamedPartHandlers{ nullptr, [](vbr::BRep&, std::size_t) { return true; } },
+    &planes));
+  EXPECT_EQ(planes, (std::array<std::size_t, 3>{ 0, 0, 0 }));
 }
 
 namespace
