@@ -282,6 +282,22 @@ bool holdsNoCentreOf(const CellList& region, const BitVolume& objects, bool cls)
   return none;
 }
 
+/// Whether an empty lattice triangle of the region's surface has every corner in the open
+/// interior of C: only from such a triangle can a group strictly inside the region be pressed
+/// in one level down (C is then its parent). A region with a centre of C's class inside and no
+/// such triangle (a tetrahedron from a point of the group and T: each of its faces holds two
+/// corners of T, on C's surface) leaves that centre nowhere to be pressed in from.
+bool hasInnerTriangle(const CellList& region, const CellList& c)
+{
+  EmptyFaceTriangles triangles(region, PointRuns());
+  std::array<LatticePoint, 3> t;
+  while (triangles.next(t))
+    if (std::all_of(
+          t.begin(), t.end(), [&](const LatticePoint& p) { return strictlyInside(c, p); }))
+      return true;
+  return false;
+}
+
 /// Definition PR with an empty triangle: the hull of the group and an empty triangle T on the
 /// surface of C whose corners lie in the open interior of the parent (so T keeps off every piece
 /// of surface C shares with it), the nearest T whose hull keeps off the other regions and holds
@@ -307,7 +323,8 @@ bool pressedRegion(const CellList& c,
 {
   EmptyFaceTriangles triangles(c, group.points);
   std::array<LatticePoint, 3> t;
-  BoxedHull nearest, nearestApart;
+  BoxedHull nearest, nearestApart, pressableApart;
+  bool nearestApartPressable = false;
   for (int tried = 0; tried < 64 && triangles.next(t);)
   {
     if (parent &&
@@ -326,11 +343,24 @@ bool pressedRegion(const CellList& c,
       return true;
     }
     if (apart && nearestApart.hull.dimension < 0)
+    {
+      nearestApartPressable = hasInnerTriangle(region.hull, c);
       nearestApart = std::move(region);
-    else if (nearest.hull.dimension < 0)
+      continue;
+    }
+    if (apart && !nearestApartPressable && pressableApart.hull.dimension < 0 &&
+      hasInnerTriangle(region.hull, c))
+      pressableApart = region;
+    if (nearest.hull.dimension < 0)
       nearest = std::move(region);
   }
-  if (nearestApart.hull.dimension >= 0)
+  if (nearestApart.hull.dimension >= 0 && !nearestApartPressable &&
+    pressableApart.hull.dimension >= 0)
+    out = std::move(pressableApart);
+  else if (nearestApart.hull.dimension >= 0 && !nearestApartPressable &&
+    nearest.hull.dimension >= 0)
+    out = std::move(nearest);
+  else if (nearestApart.hull.dimension >= 0)
     out = std::move(nearestApart);
   else if (nearest.hull.dimension >= 0)
     out = std::move(nearest);

@@ -1791,6 +1791,55 @@ TEST(ConvexHullModifier, LargerRealObjectsSeparate)
   }
 }
 
+TEST(ConvexHullModifier, UncleanRegionsWithoutAnInnerTriangleAreNotTaken)
+{
+  // 34 voxels of the aneurism (v >= 55, reduced from a crop that failed like the whole object):
+  // a background point q inside a level's hull P had 24 candidate triangles on P, and the only
+  // one whose region kept off the other regions gave the tetrahedron conv(T + q) with an object
+  // centre strictly inside. Every face of it holds two corners of T, on P's surface, so that
+  // centre had no empty triangle inside P to be pressed in from, and both passes failed ("no
+  // empty triangle of the surface to press a group in from"). Such a region is now passed over
+  // for the nearest one meeting another region, whose group is merged with that region's.
+  const int voxels[][3] = { { 1, 49, 1 },
+    { 50, 56, 18 },
+    { 51, 59, 27 },
+    { 51, 60, 27 },
+    { 51, 60, 28 },
+    { 52, 60, 28 },
+    { 52, 60, 29 },
+    { 52, 61, 29 },
+    { 62, 1, 30 },
+    { 53, 60, 30 },
+    { 52, 61, 30 },
+    { 53, 61, 30 },
+    { 53, 61, 31 },
+    { 54, 61, 31 },
+    { 54, 61, 32 },
+    { 53, 60, 33 },
+    { 54, 61, 33 },
+    { 55, 56, 34 },
+    { 55, 57, 34 },
+    { 54, 58, 34 },
+    { 55, 58, 34 },
+    { 54, 59, 34 },
+    { 53, 60, 34 },
+    { 54, 60, 34 },
+    { 53, 61, 34 },
+    { 54, 61, 34 },
+    { 55, 61, 34 },
+    { 53, 62, 34 },
+    { 55, 62, 34 },
+    { 56, 62, 34 },
+    { 53, 63, 34 },
+    { 53, 63, 35 },
+    { 58, 64, 36 },
+    { 53, 65, 37 } };
+  vbr::BitVolume v(64, 67, 39);
+  for (const auto& p : voxels)
+    v.set(p[0], p[1], p[2]);
+  expectSeparating(v, { false });
+}
+
 TEST(ConvexHullModifier, TouchingVoxelsAreKeptApart)
 {
   // Two cubes touching along an edge, and two touching at a corner. The background groups are
