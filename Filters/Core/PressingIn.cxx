@@ -305,6 +305,14 @@ bool hasInnerTriangle(const CellList& region, const CellList& c)
 /// regions, or when every candidate meets one, the nearest (its group is then merged with that
 /// region's group). The hull of the group and T is the hull of the group's corners and T.
 ///
+/// A region apart that holds a centre of C's class is taken only when an empty triangle of its
+/// surface has every corner in C's open interior (hasInnerTriangle): the level below presses
+/// that centre in from such a triangle alone. Without one (the tetrahedron of a single point
+/// and T: each of its faces holds two corners of T, on C's surface; the aneurism at v >= 55),
+/// a later region apart that has one is taken, else the first other candidate tried after the
+/// nearest apart (merged with the region it meets, as above); only when there is neither is
+/// the nearest apart kept, and its level then reports the failure.
+///
 /// Why a clean hull first: the region's own pressed-in groups need empty triangles of its
 /// surface inside C, and its faces away from T are spanned by the group's corners alone. A flat
 /// group (a row or a sheet of one layer of a thin plate) with T on the far side of its plane has

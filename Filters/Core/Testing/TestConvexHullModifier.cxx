@@ -1799,7 +1799,7 @@ TEST(ConvexHullModifier, UncleanRegionsWithoutAnInnerTriangleAreNotTaken)
   // centre strictly inside. Every face of it holds two corners of T, on P's surface, so that
   // centre had no empty triangle inside P to be pressed in from, and both passes failed ("no
   // empty triangle of the surface to press a group in from"). Such a region is now passed over
-  // for the nearest one meeting another region, whose group is merged with that region's.
+  // for a later one apart with an inner triangle, else for another candidate (pressedRegion).
   const int voxels[][3] = { { 1, 49, 1 },
     { 50, 56, 18 },
     { 51, 59, 27 },
