@@ -1,12 +1,13 @@
-// The separating polyhedron H checked against independent references: CGAL's exact
-// Side_of_triangle_mesh (Epeck) for every lattice point of the grid and a margin around it (no
-// object centre outside, no background centre inside, the centres on H exactly the ones the
-// core reports, the marks right), CGAL's does_self_intersect, a Surface_mesh that accepts every
-// triangle (a closed oriented 2-manifold), the Euler characteristic against the one of the
-// voxel object's boundary (its surfels, edges and vertices counted here), in total and shell by
-// shell for a well-composed object (each shell against the surface between the components on
-// its two sides), the background components against a flood fill, and the reversion against
-// the input.
+// The separating polyhedron H checked against independent references: the side of every
+// lattice point of the grid and a margin around it (no object centre outside, no background
+// centre inside, the centres on H exactly the ones the core reports, the marks right), decided
+// in integers row by row along each axis and by CGAL's exact Side_of_triangle_mesh (Epeck) for
+// every point of a small grid and a sample of a large one (checkSides), CGAL's
+// does_self_intersect, a Surface_mesh that accepts every triangle (a closed oriented
+// 2-manifold), the Euler characteristic against the one of the voxel object's boundary (its
+// surfels, edges and vertices counted here), in total and shell by shell for a well-composed
+// object (each shell against the surface between the components on its two sides), the
+// background components against a flood fill, and the reversion against the input.
 #include "BruteForce.h"
 #include "ConvexHullModifier.h"
 
@@ -23,8 +24,11 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -36,6 +40,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace
@@ -449,16 +454,418 @@ bool cornerOffLattice(const Nef& solid)
   return false;
 }
 
+/// CPU seconds since `start`.
+double cpuSince(std::clock_t start)
+{
+  return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+}
+
+/// The sides of the lattice points of the box [lo, hi] (inclusive) about a closed mesh with
+/// lattice-point corners, decided in 64-bit integers only: no floating point, no CGAL and none
+/// of the core's code (its own ray test casts towards +x). Fast enough for full real volumes
+/// (every point is met by a few rows, not tested against every triangle or shell): the points
+/// on the mesh are enumerated triangle by triangle over the triangle's box, and the others are
+/// classified a row at a time along `axis` from the crossings of that row with the triangles
+/// whose box it meets.
+struct BoxSides
+{
+  enum : std::uint8_t
+  {
+    Outside = 0,
+    Inside = 1,
+    On = 2
+  };
+  LatticePoint lo{}, n{};
+  std::vector<std::uint8_t> side; ///< x fastest
+  long windingOff = 0; ///< points off the mesh whose winding number is not their parity (0 or 1)
+  long degenerate = 0; ///< triangles with collinear corners (left out)
+  std::size_t index(long x, long y, long z) const
+  {
+    return static_cast<std::size_t>(((z - lo[2]) * n[1] + y - lo[1]) * n[0] + x - lo[0]);
+  }
+};
+
+/// Corners, coordinates and the box are bounded by this, so that every product below (at most
+/// 192 * bound^4) fits in 64 bits.
+constexpr std::int64_t boxSidesBound = 1 << 12;
+
+std::array<std::int64_t, 3> minus(const LatticePoint& a, const LatticePoint& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+
+std::array<std::int64_t, 3> cross(const std::array<std::int64_t, 3>& a,
+  const std::array<std::int64_t, 3>& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+
+std::int64_t dot(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+int signOf(std::int64_t v)
+{
+  return (v > 0) - (v < 0);
+}
+
+/// floor(num / den) for den > 0.
+std::int64_t floorDiv(std::int64_t num, std::int64_t den)
+{
+  return num / den - (num % den != 0 && num < 0);
+}
+
+/// Marks On every lattice point of the box on a closed triangle: the triangle's plane solved
+/// for its dominant axis k at each lattice point of its box in the other two, the solution kept
+/// when it is an integer and lies in the triangle (the same side of its three edges as the
+/// normal, or on one).
+void markPointsOn(const vbr::LatticeMesh& m, BoxSides& s)
+{
+  const LatticePoint hi{ s.lo[0] + s.n[0] - 1, s.lo[1] + s.n[1] - 1, s.lo[2] + s.n[2] - 1 };
+  for (const auto& t : m.triangles)
+  {
+    const LatticePoint &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+    const auto normal = cross(minus(b, a), minus(c, a));
+    if (normal == std::array<std::int64_t, 3>{ 0, 0, 0 })
+    {
+      ++s.degenerate;
+      continue;
+    }
+    int k = 0;
+    for (int axis = 1; axis < 3; ++axis)
+      if (std::abs(normal[axis]) > std::abs(normal[k]))
+        k = axis;
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const std::int64_t offset = dot(normal, { a[0], a[1], a[2] });
+    const std::int64_t iLo = std::max(std::min({ a[i], b[i], c[i] }), s.lo[i]),
+                       iHi = std::min(std::max({ a[i], b[i], c[i] }), hi[i]),
+                       jLo = std::max(std::min({ a[j], b[j], c[j] }), s.lo[j]),
+                       jHi = std::min(std::max({ a[j], b[j], c[j] }), hi[j]);
+    for (std::int64_t pj = jLo; pj <= jHi; ++pj)
+      for (std::int64_t pi = iLo; pi <= iHi; ++pi)
+      {
+        const std::int64_t rest = offset - normal[i] * pi - normal[j] * pj;
+        if (rest % normal[k] != 0)
+          continue;
+        LatticePoint p{};
+        p[i] = pi;
+        p[j] = pj;
+        p[k] = rest / normal[k];
+        if (p[k] < s.lo[k] || p[k] > hi[k])
+          continue;
+        if (dot(normal, cross(minus(b, a), minus(p, a))) >= 0 &&
+          dot(normal, cross(minus(c, b), minus(p, b))) >= 0 &&
+          dot(normal, cross(minus(a, c), minus(p, c))) >= 0)
+          s.side[s.index(p[0], p[1], p[2])] = BoxSides::On;
+      }
+  }
+}
+
+/// The side of the edge (s, t) that q + (eps, eps^2) lies on, in the plane axes (u, w) of a
+/// row, for an infinitesimal eps: never 0 for an edge whose projection is not a point, so a
+/// perturbed row meets no projected corner or edge and counts its crossings with each closed
+/// shell an even number of times (shared edges see q on opposite sides, as they run opposite).
+int perturbedSide(const LatticePoint& s,
+  const LatticePoint& t,
+  std::int64_t qu,
+  std::int64_t qw,
+  int u,
+  int w)
+{
+  const std::int64_t du = t[u] - s[u], dw = t[w] - s[w];
+  if (const std::int64_t base = du * (qw - s[w]) - dw * (qu - s[u]))
+    return signOf(base);
+  return dw != 0 ? signOf(-dw) : signOf(du);
+}
+
+/// The sides of the box's lattice points off the mesh, row by row along `axis`: the crossings
+/// of each perturbed row (see perturbedSide) with the triangles not parallel to it, each as the
+/// first lattice point beyond it on the row; a point is inside when an odd number of crossings
+/// precede it. Its winding number (entries minus exits, the triangles counter-clockwise seen
+/// from outside) must be that parity: a shell turned over keeps the parity but not that.
+void classifyRows(const vbr::LatticeMesh& m, int axis, BoxSides& s)
+{
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3; // (u, w, axis) right-handed
+  const LatticePoint hi{ s.lo[0] + s.n[0] - 1, s.lo[1] + s.n[1] - 1, s.lo[2] + s.n[2] - 1 };
+  struct Crossing
+  {
+    std::int64_t row, first;
+    int winding;
+  };
+  std::vector<Crossing> crossings;
+  for (const auto& t : m.triangles)
+  {
+    const LatticePoint &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+    const auto normal = cross(minus(b, a), minus(c, a));
+    // normal[axis] is twice the signed area of the triangle projected on (u, w).
+    const int turn = signOf(normal[axis]);
+    if (turn == 0)
+      continue;
+    const std::int64_t offset = dot(normal, { a[0], a[1], a[2] });
+    const std::int64_t uLo = std::max(std::min({ a[u], b[u], c[u] }), s.lo[u]),
+                       uHi = std::min(std::max({ a[u], b[u], c[u] }), hi[u]),
+                       wLo = std::max(std::min({ a[w], b[w], c[w] }), s.lo[w]),
+                       wHi = std::min(std::max({ a[w], b[w], c[w] }), hi[w]);
+    for (std::int64_t qw = wLo; qw <= wHi; ++qw)
+      for (std::int64_t qu = uLo; qu <= uHi; ++qu)
+      {
+        if (perturbedSide(a, b, qu, qw, u, w) != turn ||
+          perturbedSide(b, c, qu, qw, u, w) != turn || perturbedSide(c, a, qu, qw, u, w) != turn)
+          continue;
+        // The row meets the plane at (offset - normal_u qu - normal_w qw) / normal_axis; the
+        // points beyond it are those from its floor + 1 (a point at it is on the triangle).
+        std::int64_t num = offset - normal[u] * qu - normal[w] * qw, den = normal[axis];
+        if (den < 0)
+          num = -num, den = -den;
+        const std::int64_t first = std::max(floorDiv(num, den) + 1, s.lo[axis]);
+        if (first <= hi[axis])
+          crossings.push_back({ (qw - s.lo[w]) * s.n[u] + qu - s.lo[u], first, -turn });
+      }
+  }
+  std::sort(crossings.begin(),
+    crossings.end(),
+    [](const Crossing& p, const Crossing& q)
+    { return p.row != q.row ? p.row < q.row : p.first < q.first; });
+  std::size_t next = 0;
+  for (std::int64_t row = 0; row < s.n[u] * s.n[w]; ++row)
+  {
+    LatticePoint p{};
+    p[u] = s.lo[u] + row % s.n[u];
+    p[w] = s.lo[w] + row / s.n[u];
+    int parity = 0, winding = 0;
+    for (p[axis] = s.lo[axis]; p[axis] <= hi[axis]; ++p[axis])
+    {
+      for (; next < crossings.size() && crossings[next].row == row &&
+           crossings[next].first == p[axis];
+           ++next)
+      {
+        parity ^= 1;
+        winding += crossings[next].winding;
+      }
+      std::uint8_t& side = s.side[s.index(p[0], p[1], p[2])];
+      if (side == BoxSides::On)
+        continue;
+      side = parity ? BoxSides::Inside : BoxSides::Outside;
+      s.windingOff += winding != parity;
+    }
+  }
+}
+
+/// BoxSides of the box [lo, hi] with its rows along `axis`.
+BoxSides boxSides(const vbr::LatticeMesh& m,
+  const LatticePoint& lo,
+  const LatticePoint& hi,
+  int axis)
+{
+  BoxSides s;
+  s.lo = lo;
+  s.n = { hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1 };
+  auto inBound = [](const LatticePoint& p)
+  {
+    return std::all_of(
+      p.begin(), p.end(), [](std::int64_t c) { return std::abs(c) <= boxSidesBound; });
+  };
+  if (!inBound(lo) || !inBound(hi) || !std::all_of(m.points.begin(), m.points.end(), inBound))
+    throw std::range_error("boxSides: coordinates beyond its 64-bit bound");
+  s.side.assign(static_cast<std::size_t>(s.n[0] * s.n[1] * s.n[2]), BoxSides::Outside);
+  markPointsOn(m, s);
+  classifyRows(m, axis, s);
+  return s;
+}
+
+/// What checkSides found: the centres of the grid by class, those on H by class, the failures
+/// (each centre counted once per rule it breaks) and the first failing centres.
+struct SideCheck
+{
+  long objectCentres = 0, backgroundCentres = 0, objectOn = 0, backgroundOn = 0;
+  long outside = 0;     ///< object centres outside H
+  long inside = 0;      ///< background centres (of the grid or its margin) strictly inside H
+  long wrongOn = 0;     ///< on H but not reported, reported but not on H, or marked wrong
+  long offGridOn = 0;   ///< centres of the margin on H
+  long axesDiffer = 0;  ///< points the rows along x, y and z do not put on the same side
+  long windingOff = 0;  ///< summed over the three axes
+  long degenerate = 0;  ///< triangles with collinear corners
+  long cgalChecked = 0; ///< points whose side CGAL decided too
+  long cgalDiffers = 0; ///< of those, points where CGAL's side is not BoxSides'
+  double rowSeconds = 0, cgalSeconds = 0; ///< CPU time
+  std::vector<std::string> first;
+  bool separates() const
+  {
+    return outside == 0 && inside == 0 && wrongOn == 0 && axesDiffer == 0 && windingOff == 0 &&
+      degenerate == 0 && cgalDiffers == 0;
+  }
+};
+
+/// Checks H (`h`, closed) against the voxels `v` for every lattice point of the grid and a
+/// margin of one around it: no object centre outside H, no background centre strictly inside,
+/// the centres on H exactly `reportedOn` and the background ones among them exactly
+/// `backgroundOn`. The sides come from BoxSides along each axis (which must agree); CGAL's
+/// exact Side_of_triangle_mesh (`cgal`, when given) decides them too for every point when the
+/// box has at most `cgalPoints` points, else for about cgalPoints of them (evenly spread rows
+/// along x, and points on H with their neighbours), and must agree.
+SideCheck checkSides(const vbr::BitVolume& v,
+  const vbr::LatticeMesh& h,
+  const std::vector<LatticePoint>& reportedOn,
+  const std::vector<LatticePoint>& backgroundOn,
+  const Mesh* cgal = nullptr,
+  long cgalPoints = 2000000)
+{
+  SideCheck c;
+  const LatticePoint lo{ -1, -1, -1 }, hi{ v.size(0), v.size(1), v.size(2) };
+  const std::clock_t rowStart = std::clock();
+  const BoxSides sides = boxSides(h, lo, hi, 2);
+  c.windingOff = sides.windingOff;
+  c.degenerate = sides.degenerate;
+  for (int axis : { 0, 1 })
+  {
+    const BoxSides other = boxSides(h, lo, hi, axis);
+    c.windingOff += other.windingOff;
+    for (std::size_t k = 0; k < sides.side.size(); ++k)
+      c.axesDiffer += other.side[k] != sides.side[k];
+  }
+  // The reported centres on H, 1, and the background ones among them, 2, per point of the grid.
+  std::vector<std::uint8_t> reported(sides.side.size(), 0);
+  auto note = [&](const std::string& what)
+  {
+    if (c.first.size() < 10)
+      c.first.push_back(what);
+  };
+  auto name = [](long x, long y, long z)
+  { return "(" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + ")"; };
+  auto inGrid = [&](const LatticePoint& p)
+  {
+    return p[0] >= 0 && p[1] >= 0 && p[2] >= 0 && p[0] < v.size(0) && p[1] < v.size(1) &&
+      p[2] < v.size(2);
+  };
+  for (const auto& list : { &reportedOn, &backgroundOn })
+    for (const LatticePoint& p : *list)
+    {
+      if (!inGrid(p))
+      {
+        ++c.wrongOn;
+        note(name(p[0], p[1], p[2]) + ": reported on H off the grid");
+        continue;
+      }
+      reported[sides.index(p[0], p[1], p[2])] |= list == &reportedOn ? 1 : 2;
+    }
+  static const char* const sideName[] = { "outside", "inside", "on H" };
+  for (long z = lo[2]; z <= hi[2]; ++z)
+    for (long y = lo[1]; y <= hi[1]; ++y)
+      for (long x = lo[0]; x <= hi[0]; ++x)
+      {
+        const std::size_t k = sides.index(x, y, z);
+        const std::uint8_t where = sides.side[k];
+        const bool object = at(v, x, y, z), on = where == BoxSides::On;
+        if (!inGrid({ x, y, z }))
+        {
+          if (where == BoxSides::Inside)
+            note(name(x, y, z) + ": margin centre, expected outside or on H, found inside");
+          c.inside += where == BoxSides::Inside;
+          c.offGridOn += on;
+          continue;
+        }
+        (object ? c.objectCentres : c.backgroundCentres) += 1;
+        (object ? c.objectOn : c.backgroundOn) += on;
+        if (object && where == BoxSides::Outside)
+        {
+          ++c.outside;
+          note(name(x, y, z) + ": object centre, expected inside or on H, found outside");
+        }
+        if (!object && where == BoxSides::Inside)
+        {
+          ++c.inside;
+          note(name(x, y, z) + ": background centre, expected outside or on H, found inside");
+        }
+        if (on != ((reported[k] & 1) != 0))
+        {
+          ++c.wrongOn;
+          note(name(x, y, z) +
+            (on ? ": on H, not reported on it"
+                : ": reported on H, found " + std::string(sideName[where])));
+        }
+        if ((on && !object) != ((reported[k] & 2) != 0))
+        {
+          ++c.wrongOn;
+          note(name(x, y, z) + (object ? ": object centre" : ": background centre") + ", found " +
+            sideName[where] + ", marked " + ((reported[k] & 2) ? "background" : "object"));
+        }
+      }
+  c.rowSeconds = cpuSince(rowStart);
+  if (!cgal)
+    return c;
+  const std::clock_t cgalStart = std::clock();
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(*cgal);
+  auto compare = [&](long x, long y, long z)
+  {
+    const auto where = side(Kernel::Point_3(x, y, z));
+    const std::uint8_t expected = where == CGAL::ON_BOUNDARY ? BoxSides::On
+      : where == CGAL::ON_BOUNDED_SIDE                       ? BoxSides::Inside
+                                                             : BoxSides::Outside;
+    const std::uint8_t found = sides.side[sides.index(x, y, z)];
+    ++c.cgalChecked;
+    if (found != expected)
+    {
+      ++c.cgalDiffers;
+      note(
+        name(x, y, z) + ": CGAL finds it " + sideName[expected] + ", the rows " + sideName[found]);
+    }
+  };
+  const long rows = sides.n[1] * sides.n[2], points = rows * sides.n[0];
+  const bool all = points <= cgalPoints;
+  // Rows along x spread evenly (all of them for a small box)...
+  const long rowBudget = all ? points : cgalPoints / 2;
+  const long stride = std::max(1L, (points + rowBudget - 1) / rowBudget);
+  for (long row = 0; row < rows; row += stride)
+    for (long x = lo[0]; x <= hi[0]; ++x)
+      compare(x, lo[1] + row % sides.n[1], lo[2] + row / sides.n[1]);
+  // ... and for a large box points on H with their six neighbours, where the sides are the
+  // hardest to decide: every k-th of those on H, about the other half of the budget.
+  if (!all)
+  {
+    const long onCount = std::count(sides.side.begin(), sides.side.end(), BoxSides::On);
+    const long every = std::max(1L, 7 * onCount / std::max(1L, cgalPoints - rowBudget));
+    long seen = 0;
+    for (long z = lo[2]; z <= hi[2]; ++z)
+      for (long y = lo[1]; y <= hi[1]; ++y)
+        for (long x = lo[0]; x <= hi[0]; ++x)
+          if (sides.side[sides.index(x, y, z)] == BoxSides::On && seen++ % every == 0)
+          {
+            compare(x, y, z);
+            for (int k = 0; k < 6; ++k)
+            {
+              LatticePoint q{ x, y, z };
+              q[k / 2] += k % 2 ? 1 : -1;
+              if (q[k / 2] >= lo[k / 2] && q[k / 2] <= hi[k / 2])
+                compare(q[0], q[1], q[2]);
+            }
+          }
+  }
+  c.cgalSeconds = cpuSince(cgalStart);
+  return c;
+}
+
 struct Expect
 {
   bool euler = true; ///< compare the Euler characteristic with the voxel boundary's
   /// compare it with twice the closed cubes' (the object 26-, the background 6-connected)
   bool closedEuler = false;
+  /// CGAL decides the side of every centre of a box of up to this many, of a sample this large
+  /// of a larger one (checkSides)
+  long cgalPoints = 2000000;
+  bool report = false; ///< print the counts and times of the checks
 };
 
 vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
 {
+  std::clock_t start = std::clock();
   const vbr::ModifiedHull r = vbr::modifyConvexHull(v);
+  if (expect.report)
+    std::cout << "filter: " << cpuSince(start) << " s of CPU, " << r.surface.triangles.size()
+              << " triangles, " << r.surface.points.size() << " points, " << r.faces.size()
+              << " faces, NK " << r.degreeOfNonConvexity << ", shells joined " << r.joinedShells
+              << std::endl;
+  start = std::clock();
   EXPECT_TRUE(r.complete) << r.failure;
   bool manifold = false;
   const Mesh mesh = surfaceMesh(r.surface, manifold);
@@ -473,37 +880,34 @@ vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
   // Each shell oriented away from its solid: a shell turned over whole passes every test below
   // (sides, Euler characteristic, reversion), as none of them reads the orientation.
   EXPECT_TRUE(CGAL::Polygon_mesh_processing::does_bound_a_volume(mesh)) << "a shell turned over";
-  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(mesh);
-  const std::vector<LatticePoint> on = vbr::latticePointsOnSurface(r.surface, v.dims());
-  const std::set<LatticePoint> onSet(on.begin(), on.end());
-  const std::set<LatticePoint> bgOn(r.backgroundOnSurface.begin(), r.backgroundOnSurface.end());
-  long outside = 0, inside = 0, wrongOn = 0, offGridOn = 0;
-  for (long z = -1; z <= v.size(2); ++z)
-    for (long y = -1; y <= v.size(1); ++y)
-      for (long x = -1; x <= v.size(0); ++x)
-      {
-        const auto where = side(Kernel::Point_3(x, y, z));
-        const bool object = at(v, x, y, z);
-        outside += object && where == CGAL::ON_UNBOUNDED_SIDE;
-        inside += !object && where == CGAL::ON_BOUNDED_SIDE;
-        const bool inGrid =
-          x >= 0 && y >= 0 && z >= 0 && x < v.size(0) && y < v.size(1) && z < v.size(2);
-        if (inGrid)
-        {
-          const LatticePoint p{ x, y, z };
-          wrongOn += (where == CGAL::ON_BOUNDARY) != (onSet.count(p) == 1);
-          wrongOn += (where == CGAL::ON_BOUNDARY && !object) != (bgOn.count(p) == 1);
-        }
-        // Off the grid, centres are background and may lie on H only for a flat object (its
-        // caps in the grid's first or last layer); the core reports the grid's only.
-        else
-          offGridOn += where == CGAL::ON_BOUNDARY;
-      }
+  if (expect.report)
+    std::cout << "CGAL manifold, self-intersection and volume tests: " << cpuSince(start)
+              << " s of CPU" << std::endl;
+  const SideCheck c = checkSides(v,
+    r.surface,
+    vbr::latticePointsOnSurface(r.surface, v.dims()),
+    r.backgroundOnSurface,
+    &mesh,
+    expect.cgalPoints);
+  // Off the grid, centres are background and may lie on H only for a flat object (its caps in
+  // the grid's first or last layer); the core reports the grid's only.
   if (r.hull.dimension == 3)
-    EXPECT_EQ(offGridOn, 0) << "centres off the grid on H";
-  EXPECT_EQ(outside, 0) << "object centres outside H";
-  EXPECT_EQ(inside, 0) << "background centres inside H";
-  EXPECT_EQ(wrongOn, 0) << "centres on H reported or marked wrong";
+    EXPECT_EQ(c.offGridOn, 0) << "centres off the grid on H";
+  EXPECT_EQ(c.outside, 0) << "object centres outside H";
+  EXPECT_EQ(c.inside, 0) << "background centres inside H";
+  EXPECT_EQ(c.wrongOn, 0) << "centres on H reported or marked wrong";
+  EXPECT_EQ(c.axesDiffer, 0) << "the rows along x, y and z differ";
+  EXPECT_EQ(c.windingOff, 0) << "winding numbers other than the parity";
+  EXPECT_EQ(c.degenerate, 0) << "triangles with collinear corners";
+  EXPECT_EQ(c.cgalDiffers, 0) << "CGAL's sides differ from the rows'";
+  for (const std::string& f : c.first)
+    ADD_FAILURE() << f;
+  if (expect.report)
+    std::cout << "sides: " << c.objectCentres << " object and " << c.backgroundCentres
+              << " background centres in the grid, on H " << c.objectOn << " object and "
+              << c.backgroundOn << " background (marked so), in " << c.rowSeconds
+              << " s of CPU; CGAL agrees on " << c.cgalChecked << " of them, in " << c.cgalSeconds
+              << " s" << std::endl;
   for (std::size_t k = 0; k < r.surface.points.size(); ++k)
   {
     const auto& p = r.surface.points[k];
@@ -518,7 +922,10 @@ vbr::ModifiedHull expectSeparating(const vbr::BitVolume& v, Expect expect = {})
     EXPECT_EQ(chi, 2 * closedCubesEuler(v)) << "Euler characteristic (closed cubes)";
   if ((expect.euler || expect.closedEuler) && wellComposed(v))
     EXPECT_EQ(shellTopologyMismatch(v, r.surface), "") << "topology shell by shell";
+  start = std::clock();
   EXPECT_EQ(vbr::revertModifiedHull(r.surface, r.backgroundOnSurface, v.dims()), v) << "reversion";
+  if (expect.report)
+    std::cout << "reversion: " << cpuSince(start) << " s of CPU" << std::endl;
   // Each join and handle cut is checked on the part of H it changes; H with all of them must
   // then separate too, or the local checks missed something.
   EXPECT_EQ(r.discardedChanges, 0) << "joins or handle cuts dropped by the whole H's check";
@@ -3111,4 +3518,219 @@ TEST(ConvexHullModifier, OutputDoesNotDependOnTheHeapLayout)
       }
     }
   }
+}
+
+TEST(ConvexHullModifier, BoxSidesAgreeWithCGALOnRandomLatticeHulls)
+{
+  // The integer row classifier of the side checks against CGAL's exact Side_of_triangle_mesh for
+  // every lattice point of a box about random lattice hulls, along each axis: fan triangles of
+  // arbitrary slopes whose corners, edges and planes the rows meet in every degenerate way; half
+  // of them with a second hull nested inside, turned over (a cavity).
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<long> coord(0, 12), small(-3, 3), inner(3, 9);
+  long checked = 0, onMesh = 0;
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    vbr::LatticeMesh m;
+    if (trial % 2 == 0)
+      m = vbr::triangulateHull(randomLatticeHull(rng, coord, small, 4 + trial % 9, trial % 4 == 0));
+    else
+    {
+      // The outer hull holds the cube [2, 10]^3, the inner one lies in [3, 9]^3.
+      std::vector<LatticePoint> outer;
+      for (int k = 0; k < 8; ++k)
+        outer.push_back({ k & 1 ? 10 : 2, k & 2 ? 10 : 2, k & 4 ? 10 : 2 });
+      for (int k = 0; k < 6; ++k)
+        outer.push_back({ coord(rng), coord(rng), coord(rng) });
+      m = vbr::triangulateHull(vbr::convexHull(outer));
+      m.append(
+        vbr::triangulateHull(randomLatticeHull(rng, inner, small, 4 + trial % 7, true)), true);
+    }
+    bool manifold = false;
+    const Mesh mesh = surfaceMesh(m, manifold);
+    ASSERT_TRUE(manifold);
+    const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(mesh);
+    SCOPED_TRACE(trial);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const BoxSides s = boxSides(m, { -1, -1, -1 }, { 13, 13, 13 }, axis);
+      EXPECT_EQ(s.degenerate, 0);
+      EXPECT_EQ(s.windingOff, 0);
+      long differ = 0;
+      for (long z = -1; z <= 13; ++z)
+        for (long y = -1; y <= 13; ++y)
+          for (long x = -1; x <= 13; ++x)
+          {
+            const auto where = side(Kernel::Point_3(x, y, z));
+            const std::uint8_t expected = where == CGAL::ON_BOUNDARY ? BoxSides::On
+              : where == CGAL::ON_BOUNDED_SIDE                       ? BoxSides::Inside
+                                                                     : BoxSides::Outside;
+            differ += s.side[s.index(x, y, z)] != expected;
+            onMesh += expected == BoxSides::On;
+            ++checked;
+          }
+      EXPECT_EQ(differ, 0) << "axis " << axis;
+    }
+  }
+  std::cout << checked << " points checked, " << onMesh << " on a mesh" << std::endl;
+}
+
+TEST(ConvexHullModifier, SideCheckFindsWrongMarksAndMeshes)
+{
+  // The side checks must fail when they should, point by point: a mark left out or added, a
+  // centre on H not reported, one voxel taken out of the object inside H or added outside it,
+  // H shifted by one along each axis (CGAL agreeing with the rows on the shifted H), H turned
+  // over (the same sides, the winding numbers off).
+  const vbr::BitVolume v = pacMan(6);
+  const vbr::ModifiedHull r = vbr::modifyConvexHull(v);
+  ASSERT_TRUE(r.complete) << r.failure;
+  bool manifold = false;
+  const Mesh mesh = surfaceMesh(r.surface, manifold);
+  ASSERT_TRUE(manifold);
+  const std::vector<LatticePoint> on = vbr::latticePointsOnSurface(r.surface, v.dims());
+  const std::vector<LatticePoint>& bg = r.backgroundOnSurface;
+  const SideCheck good = checkSides(v, r.surface, on, bg, &mesh);
+  ASSERT_TRUE(good.separates());
+  ASSERT_TRUE(good.first.empty());
+  ASSERT_FALSE(bg.empty());
+  EXPECT_EQ(good.backgroundOn, static_cast<long>(bg.size()));
+  EXPECT_EQ(good.objectOn + good.backgroundOn, static_cast<long>(on.size()));
+  EXPECT_EQ(good.cgalChecked, (v.size(0) + 2L) * (v.size(1) + 2L) * (v.size(2) + 2L));
+
+  auto name = [](const LatticePoint& p)
+  {
+    return "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) +
+      ")";
+  };
+  auto expectOneFailureAt = [&](const SideCheck& c, const LatticePoint& p)
+  {
+    EXPECT_FALSE(c.separates());
+    ASSERT_EQ(c.first.size(), 1u);
+    EXPECT_EQ(c.first[0].rfind(name(p), 0), 0u) << c.first[0];
+  };
+  {
+    SCOPED_TRACE("a background centre on H marked object");
+    std::vector<LatticePoint> fewer(bg.begin() + 1, bg.end());
+    const SideCheck c = checkSides(v, r.surface, on, fewer);
+    EXPECT_EQ(c.wrongOn, 1);
+    expectOneFailureAt(c, bg[0]);
+  }
+  {
+    SCOPED_TRACE("an object centre on H marked background");
+    const auto object = std::find_if(
+      on.begin(), on.end(), [&](const LatticePoint& p) { return at(v, p[0], p[1], p[2]); });
+    ASSERT_NE(object, on.end());
+    std::vector<LatticePoint> more = bg;
+    more.push_back(*object);
+    const SideCheck c = checkSides(v, r.surface, on, more);
+    EXPECT_EQ(c.wrongOn, 1);
+    expectOneFailureAt(c, *object);
+  }
+  {
+    SCOPED_TRACE("a centre on H not reported");
+    std::vector<LatticePoint> fewer(on.begin() + 1, on.end());
+    const SideCheck c = checkSides(v, r.surface, fewer, bg);
+    EXPECT_EQ(c.wrongOn, 1);
+    expectOneFailureAt(c, on[0]);
+  }
+  const BoxSides sides =
+    boxSides(r.surface, { -1, -1, -1 }, { v.size(0), v.size(1), v.size(2) }, 2);
+  {
+    SCOPED_TRACE("an object voxel strictly inside H taken out");
+    LatticePoint hole{ -1, -1, -1 };
+    for (long z = 0; z < v.size(2) && hole[0] < 0; ++z)
+      for (long y = 0; y < v.size(1) && hole[0] < 0; ++y)
+        for (long x = 0; x < v.size(0) && hole[0] < 0; ++x)
+          if (at(v, x, y, z) && sides.side[sides.index(x, y, z)] == BoxSides::Inside)
+            hole = { x, y, z };
+    ASSERT_GE(hole[0], 0);
+    vbr::BitVolume w = v;
+    w.set(static_cast<int>(hole[0]), static_cast<int>(hole[1]), static_cast<int>(hole[2]), false);
+    const SideCheck c = checkSides(w, r.surface, on, bg, &mesh);
+    EXPECT_EQ(c.inside, 1);
+    EXPECT_EQ(c.outside + c.wrongOn + c.cgalDiffers, 0);
+    expectOneFailureAt(c, hole);
+  }
+  {
+    SCOPED_TRACE("an object voxel added outside H");
+    LatticePoint extra{ -1, -1, -1 };
+    for (long z = 0; z < v.size(2) && extra[0] < 0; ++z)
+      for (long y = 0; y < v.size(1) && extra[0] < 0; ++y)
+        for (long x = 0; x < v.size(0) && extra[0] < 0; ++x)
+          if (sides.side[sides.index(x, y, z)] == BoxSides::Outside)
+            extra = { x, y, z };
+    ASSERT_GE(extra[0], 0);
+    vbr::BitVolume w = v;
+    w.set(static_cast<int>(extra[0]), static_cast<int>(extra[1]), static_cast<int>(extra[2]));
+    const SideCheck c = checkSides(w, r.surface, on, bg, &mesh);
+    EXPECT_EQ(c.outside, 1);
+    EXPECT_EQ(c.inside + c.wrongOn + c.cgalDiffers, 0);
+    expectOneFailureAt(c, extra);
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    SCOPED_TRACE("H shifted along axis " + std::to_string(axis));
+    vbr::LatticeMesh shifted = r.surface;
+    for (LatticePoint& p : shifted.points)
+      ++p[axis];
+    const Mesh shiftedMesh = surfaceMesh(shifted, manifold);
+    const SideCheck c =
+      checkSides(v, shifted, vbr::latticePointsOnSurface(shifted, v.dims()), bg, &shiftedMesh);
+    EXPECT_FALSE(c.separates());
+    EXPECT_GT(c.outside, 0);
+    EXPECT_GT(c.inside, 0);
+    EXPECT_EQ(c.cgalDiffers, 0);
+    EXPECT_EQ(c.axesDiffer, 0);
+  }
+  {
+    SCOPED_TRACE("H turned over");
+    vbr::LatticeMesh over = r.surface;
+    for (auto& t : over.triangles)
+      std::swap(t[1], t[2]);
+    const SideCheck c = checkSides(v, over, on, bg);
+    EXPECT_EQ(c.outside + c.inside + c.wrongOn + c.axesDiffer, 0);
+    EXPECT_GT(c.windingOff, 0);
+    EXPECT_FALSE(c.separates());
+  }
+}
+
+TEST(ConvexHullModifier, FullAneurismSeparates)
+{
+  // The aneurism (v >= 55) at full resolution (256^3, 89,088 voxels): the whole core, then
+  // every centre of the grid and its margin (17.2 million) checked by the integer rows along
+  // each axis, and about 20,000 of them by CGAL as well (its exact kernel takes about 0.5 ms a
+  // point there).
+  vbr::BitVolume v;
+  if (!readSubsampled("aneurism/aneurism_256x256x256_uint8.raw", { 256, 256, 256 }, 1, 55, 1, v))
+    GTEST_SKIP() << "the aneurism not found under " << VOXELBREP_DATA_DIR;
+  const auto start = std::chrono::steady_clock::now();
+  Expect expect;
+  expect.euler = false;
+  expect.report = true;
+  expect.cgalPoints = 20000;
+  const vbr::ModifiedHull r = expectSeparating(v, expect);
+  std::cout << "aneurism >= 55: "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+            << " s wall" << std::endl;
+  // The checks see one wrong centre among them: a background centre on H marked object, an
+  // object voxel strictly inside H taken out.
+  const std::vector<LatticePoint> on = vbr::latticePointsOnSurface(r.surface, v.dims());
+  ASSERT_FALSE(r.backgroundOnSurface.empty());
+  const std::vector<LatticePoint> fewer(
+    r.backgroundOnSurface.begin() + 1, r.backgroundOnSurface.end());
+  SideCheck c = checkSides(v, r.surface, on, fewer);
+  EXPECT_EQ(c.wrongOn, 1);
+  EXPECT_EQ(c.outside + c.inside, 0);
+  const BoxSides sides = boxSides(r.surface, { -1, -1, -1 }, { 256, 256, 256 }, 0);
+  vbr::BitVolume w = v;
+  bool taken = false;
+  for (int z = 0; z < 256 && !taken; ++z)
+    for (int y = 0; y < 256 && !taken; ++y)
+      for (int x = 0; x < 256 && !taken; ++x)
+        if (v.get(x, y, z) && sides.side[sides.index(x, y, z)] == BoxSides::Inside)
+          w.set(x, y, z, false), taken = true;
+  ASSERT_TRUE(taken);
+  c = checkSides(w, r.surface, on, r.backgroundOnSurface);
+  EXPECT_EQ(c.inside, 1);
+  EXPECT_EQ(c.outside + c.wrongOn, 0);
 }
