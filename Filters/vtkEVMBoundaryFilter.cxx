@@ -92,7 +92,11 @@ bool reversesOrientation(const vbr::vtk::VoxelGrid& grid, const std::array<int, 
 /// written: the output's, or one part's, made on a worker thread and then appended to the
 /// output's (append). Per cell only what varies is kept (corners, offset, FaceId, LoopType;
 /// ParentFace and Depth for 2D images only); the Label is kept once per run of cells of one
-/// object.
+/// object. The triangles or fan polygons of a 3D object's faces (addRunAttributes) keep instead
+/// a count of cells per face, their faces' ids being consecutive: FaceId and LoopType (12 bytes
+/// a cell, 4 a face instead) are written per cell at the end (finish), once the sweeps' memory
+/// is freed, rather than held next to it (noise 128^3, Triangles: 64 of the 247 MB at the
+/// sweeps' end).
 class CellStore
 {
 public:
@@ -111,6 +115,7 @@ public:
     int depth)
   {
     assert(!this->Written); // setLoopCells's cells are final: nothing is added to them
+    this->writeFaceIds();
     this->startLabel(label);
     this->Cells.addCell(ids, n, this->Reverse);
     this->FaceId.push_back(faceId);
@@ -138,6 +143,7 @@ public:
     if (count == 0)
       return;
     assert(!this->Written);
+    this->writeFaceIds();
     this->startLabel(label);
     this->Cells.addMappedCells(corners, pointIds, ends, count, begin, this->Reverse);
     std::fill_n(this->FaceId.extend(count), count, faceId);
@@ -165,7 +171,8 @@ public:
 
   /// The FaceId and LoopType (0) of the cells addRunConnectivity added for the first `faces`
   /// faces of a run (their cells end at faceEnds[i], from 0), whose ids are `firstFaceId` on,
-  /// and their label: the attributes addFaceCells gives them face after face.
+  /// and their label: the attributes addFaceCells gives them face after face. Kept as counts
+  /// of cells per face while the faces' ids follow on from the last ones (CellsPerFace).
   void addRunAttributes(const std::vector<std::uint32_t>& faceEnds,
     std::size_t faces,
     vtkIdType firstFaceId,
@@ -173,8 +180,16 @@ public:
   {
     assert(!this->Written && !this->Planar);
     const std::size_t total = faces == 0 ? 0 : faceEnds[faces - 1];
+    if (faces != 0 && this->continuesFaces(firstFaceId))
+    {
+      if (total != 0)
+        this->startLabel(label);
+      this->addCellsPerFace(faceEnds.data(), faces, firstFaceId, total);
+      return;
+    }
     if (total == 0)
       return;
+    this->writeFaceIds();
     this->startLabel(label); // before FaceId grows: its size is the stretch's first cell
     vtkIdType* id = this->FaceId.extend(total);
     std::size_t begin = 0;
@@ -188,23 +203,36 @@ public:
 
   bool planar() const { return this->Planar; }
 
+  /// The bytes of the FaceId and LoopType of the cells counted per face, not written yet.
+  std::size_t pendingAttributeBytes() const
+  {
+    return this->CellsOfFaces * (sizeof(vtkIdType) + sizeof(int));
+  }
+
   /// Appends the cells of `part` (made with face ids from 0) with their face ids, and parent
   /// faces, shifted by `faceBase`: the same cells as if they had been added here. `part` is
   /// then empty, its memory kept for its next cells.
   void append(CellStore& part, vtkIdType faceBase)
   {
     assert(!this->Written && !part.Written); // the cells of setLoopCells are not appended
-    const vtkIdType cells = static_cast<vtkIdType>(this->FaceId.size());
+    const vtkIdType cells = static_cast<vtkIdType>(this->cellCount());
     for (const auto& run : part.LabelRuns)
       if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == run.second))
         this->LabelRuns.emplace_back(cells + run.first, run.second);
     this->Cells.append(part.Cells);
-    appendShifted(this->FaceId, part.FaceId, faceBase);
-    appendShifted(this->LoopType, part.LoopType, 0);
-    if (this->Planar)
+    if (part.CellsPerFace.size() != 0 && this->continuesFaces(part.FirstFaceId + faceBase))
+      this->addCellsPerFace(part, faceBase);
+    else if (part.cellCount() != 0)
     {
-      appendShifted(this->ParentFace, part.ParentFace, faceBase);
-      appendShifted(this->Depth, part.Depth, 0);
+      this->writeFaceIds();
+      part.writeFaceIds();
+      appendShifted(this->FaceId, part.FaceId, faceBase);
+      appendShifted(this->LoopType, part.LoopType, 0);
+      if (this->Planar)
+      {
+        appendShifted(this->ParentFace, part.ParentFace, faceBase);
+        appendShifted(this->Depth, part.Depth, 0);
+      }
     }
     part.clearKeepingMemory();
   }
@@ -222,7 +250,7 @@ public:
     const vbr::vtk::LabelValue& label,
     Tick&& tick)
   {
-    assert(this->FaceId.size() == 0 && this->Cells.numberOfCells() == 0);
+    assert(this->cellCount() == 0 && this->Cells.numberOfCells() == 0);
     const std::size_t loops = contours.boundary.loops.size();
     const std::size_t total = contours.loopCorners.size() + (closePolylines ? loops : 0);
     // CellArrayBuffer's choice: 32 bits while every id and offset fits.
@@ -237,6 +265,7 @@ public:
   void finish(vtkPolyData* output, bool lines, int labelType)
   {
     assert(!this->Written || this->Cells.numberOfCells() == 0);
+    this->writeFaceIds();
     const vtkIdType cellCount = static_cast<vtkIdType>(this->FaceId.size());
     vtkSmartPointer<vtkCellArray> cells =
       this->Written ? std::move(this->Written) : this->Cells.release();
@@ -328,7 +357,68 @@ private:
   void startLabel(const vbr::vtk::LabelValue& label)
   {
     if (this->LabelRuns.empty() || !(this->LabelRuns.back().second == label))
-      this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->FaceId.size()), label);
+      this->LabelRuns.emplace_back(static_cast<vtkIdType>(this->cellCount()), label);
+  }
+
+  /// The cells added so far, whichever way their FaceId is kept.
+  std::size_t cellCount() const { return this->FaceId.size() + this->CellsOfFaces; }
+
+  /// Whether faces from `firstFaceId` on can be kept as counts of cells per face: nothing was
+  /// written per cell yet, and they follow the faces counted so far, if any.
+  bool continuesFaces(vtkIdType firstFaceId) const
+  {
+    if (this->FaceId.size() != 0)
+      return false;
+    const std::size_t counted = this->CellsPerFace.size();
+    return counted == 0 || firstFaceId == this->FirstFaceId + static_cast<vtkIdType>(counted);
+  }
+
+  /// Counts the cells of `faces` faces, face i's ending at ends[i] (from 0; `total` the last).
+  void addCellsPerFace(const std::uint32_t* ends,
+    std::size_t faces,
+    vtkIdType firstFaceId,
+    std::size_t total)
+  {
+    if (this->CellsPerFace.size() == 0)
+      this->FirstFaceId = firstFaceId;
+    std::uint32_t* count = this->CellsPerFace.extend(faces);
+    std::uint32_t begin = 0;
+    for (std::size_t i = 0; i < faces; ++i)
+    {
+      count[i] = ends[i] - begin;
+      begin = ends[i];
+    }
+    this->CellsOfFaces += total;
+  }
+
+  /// Counts the cells of the faces `part` counted (continuesFaces), their ids shifted by
+  /// `faceBase`.
+  void addCellsPerFace(const CellStore& part, vtkIdType faceBase)
+  {
+    const std::size_t faces = part.CellsPerFace.size();
+    const std::uint32_t* from = part.CellsPerFace.data();
+    if (this->CellsPerFace.size() == 0)
+      this->FirstFaceId = part.FirstFaceId + faceBase;
+    std::copy(from, from + faces, this->CellsPerFace.extend(faces));
+    this->CellsOfFaces += part.CellsOfFaces;
+  }
+
+  /// Writes the FaceId and LoopType (0) of the cells counted per face (CellsPerFace), cell by
+  /// cell: before other cells are added, and at the end.
+  void writeFaceIds()
+  {
+    const std::size_t faces = this->CellsPerFace.size();
+    if (faces == 0)
+      return;
+    assert(this->FaceId.size() == 0 && this->LoopType.size() == 0);
+    const std::size_t total = this->CellsOfFaces;
+    vtkIdType* id = this->FaceId.extend(total);
+    const std::uint32_t* count = this->CellsPerFace.data();
+    for (std::size_t i = 0; i < faces; ++i)
+      id = std::fill_n(id, count[i], this->FirstFaceId + static_cast<vtkIdType>(i));
+    this->CellsPerFace.clear(); // freed before LoopType is made
+    this->CellsOfFaces = 0;
+    std::fill_n(this->LoopType.extend(total), total, 0);
   }
 
   /// Appends `from` to `to`, the ids (values >= 0; -1 stands for none) shifted by `base`.
@@ -345,6 +435,8 @@ private:
   void clearKeepingMemory()
   {
     this->Cells.clearKeepingMemory();
+    this->CellsPerFace.clearKeepingMemory();
+    this->CellsOfFaces = 0;
     this->FaceId.clearKeepingMemory();
     this->ParentFace.clearKeepingMemory();
     this->LoopType.clearKeepingMemory();
@@ -388,6 +480,11 @@ private:
   vtkSmartPointer<vtkCellArray> Written; ///< the cells when written whole (setLoopCells)
   MallocBuffer<vtkIdType> FaceId, ParentFace;
   MallocBuffer<int> LoopType;
+  /// The cells of faces FirstFaceId, FirstFaceId + 1, ..., their FaceId and LoopType not
+  /// written yet (addRunAttributes); CellsOfFaces cells in all. FaceId is then empty.
+  MallocBuffer<std::uint32_t> CellsPerFace;
+  vtkIdType FirstFaceId = 0;
+  std::size_t CellsOfFaces = 0;
   MallocBuffer<int> Depth;
   std::vector<std::pair<vtkIdType, vbr::vtk::LabelValue>> LabelRuns; ///< (first cell, label)
 };
@@ -1082,6 +1179,24 @@ void trimHeap(std::size_t& releasedBytes)
 #endif
 }
 
+/// Returns the heap's free pages to the system once the streamed sweeps are done, before the
+/// FaceId and LoopType counted per face (CellStore) are written in pages of their own, when
+/// these take 32 MB or more. The sweeps' sortings (two alive at once) and scratch space were
+/// freed into the heap, which keeps their pages: without this they stayed resident next to the
+/// whole output (noise 128^3, Triangles: a peak of 261 MB, 225 with the trim). The next
+/// update faults them in again: on porous 128^3, 45 % (9 MB of FaceId and LoopType in
+/// Triangles mode), a trim cost 3 % of an update, hence the threshold. On the calling thread,
+/// no worker running.
+void trimBeforeAttributes(std::size_t attributeBytes)
+{
+#if defined(__GLIBC__)
+  if (attributeBytes >= (std::size_t(32) << 20))
+    malloc_trim(0);
+#else
+  (void)attributeBytes;
+#endif
+}
+
 /// Releases a part of the faces, and trims the heap when enough was released (trimHeap).
 void releasePart(vbr::BRep& part, std::size_t& releasedBytes)
 {
@@ -1504,6 +1619,7 @@ void appendObjectsStreamed(vtkAlgorithm* self,
     for (int k = 0; k < 3; ++k) // countObject left them to the sweeps
       stats.planes[settings.axes[k]] += static_cast<vtkIdType>(planes[k]);
   }
+  trimBeforeAttributes(builder.cells().pendingAttributeBytes());
 }
 
 /// The cells of every object (paper 000): first the faces of each (in Surfels mode its cells

@@ -26,6 +26,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSOADataArrayTemplate.h"
 #include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
@@ -361,12 +362,36 @@ FaceAreas faceAreasOf(vtkPolyData* out, const Layout& l, bool fromLoopsMode)
   return r;
 }
 
+/// Whether the FaceId of the cells of `out` runs through 0, 1, ..., NumberOfFaces - 1 in
+/// order, every face with one cell or more (the Triangles and Polygons modes of a 3D image).
+bool faceIdsFollowOn(vtkPolyData* out)
+{
+  vtkDataArray* faceIds = out->GetCellData()->GetArray("FaceId");
+  if (!faceIds)
+    return false;
+  vtkIdType next = 0;
+  for (vtkIdType c = 0; c < faceIds->GetNumberOfTuples(); ++c)
+  {
+    const vtkIdType id = static_cast<vtkIdType>(faceIds->GetTuple1(c));
+    if (id != next && id != next - 1)
+      return false;
+    next = id + 1;
+  }
+  return next == fieldValue(out, "NumberOfFaces");
+}
+
 /// The cells of the Triangles and Polygons modes carry the FaceId of the face they cover:
-/// per FaceId, the same plane and area as the face's loops in Loops mode; LoopType 0.
-void checkFaceIdsOfCells(const Volume& v, const Layout& l, const std::string& what)
+/// per FaceId, the same plane and area as the face's loops in Loops mode (whose FaceId is
+/// written cell by cell, where the triangles and fan polygons count their cells per face and
+/// write it at the end); LoopType 0; the ids in order, face after face.
+void checkFaceIdsOfCells(const Volume& v,
+  const Layout& l,
+  const std::string& what,
+  int selection = vtkEVMBoundaryFilter::POSITIVE)
 {
   vtkNew<vtkEVMBoundaryFilter> f;
   f->SetInputData(makeImage(v, l));
+  f->SetSelectionMode(selection);
   f->SetOutputModeToLoops();
   f->Update();
   const FaceAreas loops = faceAreasOf(f->GetOutput(), l, true);
@@ -381,6 +406,8 @@ void checkFaceIdsOfCells(const Volume& v, const Layout& l, const std::string& wh
     CHECK(cells.loopTypes == 0, what << " " << f->GetOutputModeAsString() << ": LoopType not 0");
     CHECK(cells.faces == loops.faces,
       what << " " << f->GetOutputModeAsString() << ": FaceId, plane or area differ from Loops");
+    CHECK(faceIdsFollowOn(f->GetOutput()),
+      what << " " << f->GetOutputModeAsString() << ": FaceIds not 0 to NumberOfFaces - 1 in order");
   }
 }
 
@@ -883,6 +910,7 @@ int TestEVMBoundaryFilter(int, char*[])
     checkPolygons(v, l, vtkEVMBoundaryFilter::LABELS, false, what.str() + " labels");
     checkTriangles(v, l, what.str());
     checkFaceIdsOfCells(v, l, what.str());
+    checkFaceIdsOfCells(v, l, what.str() + " labels", vtkEVMBoundaryFilter::LABELS);
     // The same trial flat (a 2D image): its statistics by the 2D path.
     Int3 flatDims = dims;
     flatDims[trial % 3] = 1;
@@ -902,6 +930,18 @@ int TestEVMBoundaryFilter(int, char*[])
     checkPolygons(big, l, vtkEVMBoundaryFilter::POSITIVE, false, "64^3");
     checkTriangles(big, l, "64^3");
     checkFaceIdsOfCells(big, l, "64^3");
+  }
+  // The parts of the streamed sweeps made side by side (several slots) and appended in order:
+  // their counts of cells per face joined, with threads as on one thread; three labels.
+  const std::string backend = vtkSMPTools::GetBackend() ? vtkSMPTools::GetBackend() : "";
+  if (vtkSMPTools::SetBackend("STDThread"))
+  {
+    vtkSMPTools::Initialize(2);
+    const Volume labels = randomVolume({ 64, 56, 48 }, 0.5, 3, 5);
+    checkFaceIdsOfCells(
+      labels, Layout(), "64x56x48 labels, two threads", vtkEVMBoundaryFilter::LABELS);
+    checkFaceIdsOfCells(labels, Layout(), "64x56x48, two threads");
+    vtkSMPTools::SetBackend(backend.c_str());
   }
   checkErrorsAndDegenerateInputs();
   checkTypesAndLayouts();
