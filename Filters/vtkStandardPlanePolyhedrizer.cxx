@@ -499,8 +499,10 @@ private:
     std::vector<vtkIdType>& ids = this->TriangleIds;
     for (std::size_t i = 0; i < count; ++i)
     {
+      // By index, the polygon is the loop, whose points stampLoopPoints made and kept.
       for (int k = 0; k < 3; ++k)
-        ids[k] = this->point(o, polygon[triangles[i][k]]);
+        ids[k] = byIndex ? this->LoopIds[static_cast<std::size_t>(triangles[i][k])]
+                         : this->point(o, polygon[triangles[i][k]]);
       if (this->Reverse)
         std::reverse(ids.begin(), ids.end());
       for (int k = 0; k < 3; ++k)
@@ -570,14 +572,23 @@ private:
       std::fill(this->PointStamps.begin(), this->PointStamps.end(), 0);
       this->LoopStamp = 2;
     }
-    bool distinct = true;
     const std::size_t m = face.loop.size();
     this->LoopIds.resize(m);
     for (std::size_t i = 0; i < m; ++i)
     {
       this->point(o, face.loop[(i + 1) % m]); // made in sortLoopEdges' order
-      const vtkIdType id = this->point(o, face.loop[i]);
-      this->LoopIds[i] = id;
+      this->LoopIds[i] = this->point(o, face.loop[i]);
+    }
+    this->LoopEdgesSorted = false;
+    // A short loop's points are compared pairwise, and stamped only when one repeats: a
+    // point's stamp lies at its id, far back in the array for the points of faces made long
+    // before, and those loads were the most of this step's time on small faces.
+    this->LoopDistinct = m <= PairwiseLoopPoints && pairwiseDistinct(this->LoopIds);
+    if (this->LoopDistinct)
+      return;
+    bool distinct = true;
+    for (const vtkIdType id : this->LoopIds)
+    {
       const auto at = static_cast<std::size_t>(id);
       if (this->PointStamps.size() <= at)
         this->PointStamps.resize(std::max(2 * this->PointStamps.size(), at + 1), 0);
@@ -587,7 +598,18 @@ private:
       stamp = seen ? this->LoopStamp + 1 : this->LoopStamp;
     }
     this->LoopDistinct = distinct;
-    this->LoopEdgesSorted = false;
+  }
+
+  /// Loops of at most this many points are told distinct by comparing them pairwise.
+  static constexpr std::size_t PairwiseLoopPoints = 16;
+
+  static bool pairwiseDistinct(const std::vector<vtkIdType>& ids)
+  {
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      for (std::size_t j = i + 1; j < ids.size(); ++j)
+        if (ids[i] == ids[j])
+          return false;
+    return true;
   }
 
   /// Whether the edge from loop corner a to loop corner b of face's loop runs along the loop,
@@ -666,7 +688,8 @@ private:
     scratch.corners.clear();
     for (std::uint32_t v : polygon)
       scratch.corners.push_back(project(o.graph.vertexPointel[v]));
-    scratch.triangulator.triangulate(scratch.corners, triangles);
+    if (!vbr::fanStrictlyConvexPolygon(scratch.corners, triangles))
+      scratch.triangulator.triangulate(scratch.corners, triangles);
   }
 
   /// The polygon of face f that the triangulating modes draw: its semi-discrete polygon

@@ -13,7 +13,10 @@
 // the result. Every range over the points (measure, rangeOf) reads only the points that may
 // be vertices of their hull (forEachExtreme; refreshExtremes drops the midpoints of two
 // others once a face has 128 points). All arithmetic that decides is on integers;
-// determinants and column bounds use Wide.
+// determinants and column bounds use Wide. A face's first call, read relative to its first
+// point, is repeated from the record of an earlier face's first call of the same shape
+// (firstCallFromRecord); reset puts each octant's triangle back only when a slow path first
+// clips it (restoreOctant).
 
 #include "StandardPlane.h"
 #include "StandardPlaneColumns.h"
@@ -25,6 +28,7 @@
 #include <cstdlib>
 #include <limits>
 #include <numeric>
+#include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -52,6 +56,8 @@ constexpr std::int64_t CoordinateLimit = std::int64_t(1) << 16;
 constexpr std::int64_t SearchBudget = std::int64_t(1) << 18;
 /// Faces of fewer points measure them all: the midpoints would cost more than they save.
 constexpr std::size_t ExtremesFrom = 128;
+/// The point index a reset keeps holds this many points without growing (see reset).
+constexpr std::size_t KeptIndexPoints = 32;
 /// Calls of at most this many points insert their fresh points in order instead of sorting.
 constexpr std::size_t SmallCall = 16;
 
@@ -322,11 +328,13 @@ void StandardPlaneRecognizer::reset()
 {
   // Storage is kept from face to face: a recognizer is reset once per face. But a point index
   // grown by an earlier, larger face is replaced by a small one rather than cleared, so that a
-  // reset costs the size of the face it ends, not that of the largest face so far.
+  // reset costs the size of the face it ends, not that of the largest face so far; one for
+  // KeptIndexPoints points is kept whatever the faces (cleared, not made anew and grown twice
+  // again by the next small face: most faces are small, and many).
   this->KeysPeak = std::max(this->KeysPeak, this->Points.size());
-  if (this->KeysPeak > 2 * this->Points.size() + 16)
+  if (this->KeysPeak > std::max(2 * this->Points.size() + 16, KeptIndexPoints))
   {
-    this->Keys = GridPointIndex();
+    this->Keys = GridPointIndex(KeptIndexPoints);
     this->KeysPeak = 0;
   }
   else
@@ -336,22 +344,28 @@ void StandardPlaneRecognizer::reset()
   this->Scanned = 0;
   this->Present = { 0, 0, 0 };
   this->Current = StandardPlane();
-  // The octants' triangles, made once: a reset copies them (most faces are small, and a
-  // reset per face built 72 entries one by one). Three entries each, copied one by one into
-  // the octant's storage (24 calls of vector::assign and memmove cost as much as the rest of
-  // the reset).
+  // The octants' triangles are put back when a slow path first clips them (restoreOctant):
+  // the orientations of a small face rule most octants out before that, and the copies of
+  // all eight cost as much as the rest of the reset.
+  for (int s = 0; s < 8; ++s) // the sign patterns, which octantExcluded reads: set always
+    this->Octants[s].sigma = { (s & 1) ? -1 : 1, (s & 2) ? -1 : 1, (s & 4) ? -1 : 1 };
+  this->Alive.fill(true);
+  this->Unrestored.fill(true);
+}
+
+void StandardPlaneRecognizer::restoreOctant(int s)
+{
+  // The octants' triangles, made once. Three entries each, copied one by one into the
+  // octant's storage (vector::assign and memmove cost more).
   static const std::array<Octant, 8> initial = initialOctants();
-  for (int s = 0; s < 8; ++s)
-  {
-    Octant& o = this->Octants[s];
-    const Octant& from = initial[s];
-    o.sigma = from.sigma;
-    o.vertices.resize(3);
-    for (int i = 0; i < 3; ++i)
-      o.vertices[i] = from.vertices[i];
-    o.applied = 0;
-    this->Alive[s] = true;
-  }
+  Octant& o = this->Octants[s];
+  const Octant& from = initial[s];
+  o.sigma = from.sigma;
+  o.vertices.resize(3);
+  for (int i = 0; i < 3; ++i)
+    o.vertices[i] = from.vertices[i];
+  o.applied = 0;
+  this->Unrestored[s] = false;
 }
 
 std::array<StandardPlaneRecognizer::Octant, 8> StandardPlaneRecognizer::initialOctants()
@@ -690,6 +704,111 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   const std::array<int, 3>& signs,
   std::uint32_t known)
 {
+  bool taken = false;
+  if (this->Points.empty() && known == 0 && this->firstCallFromRecord(points, count, signs, taken))
+    return taken;
+  return this->recognise(points, count, signs, known);
+}
+
+namespace
+{
+
+/// The key of a first call's record: its orientations, then its points relative to the first
+/// one, a byte per coordinate; empty when a coordinate does not fit a byte or there are more
+/// than FirstCallPointsAtMost points (those calls are not recorded).
+std::string firstCallKey(const Point3* points, std::size_t count, const std::array<int, 3>& signs)
+{
+  constexpr std::size_t FirstCallPointsAtMost = 24; // an umbrella of six surfels
+  std::string key;
+  if (count == 0 || count > FirstCallPointsAtMost)
+    return key;
+  key.reserve(3 + 3 * count);
+  for (int d = 0; d < 3; ++d)
+    key.push_back(static_cast<char>(signs[d]));
+  for (std::size_t i = 0; i < count; ++i)
+    for (int d = 0; d < 3; ++d)
+    {
+      const std::int64_t offset = std::int64_t(points[i][d]) - points[0][d];
+      if (offset < -127 || offset > 127)
+        return std::string();
+      key.push_back(static_cast<char>(offset));
+    }
+  return key;
+}
+
+} // namespace
+
+bool StandardPlaneRecognizer::firstCallFromRecord(const Point3* points,
+  std::size_t count,
+  const std::array<int, 3>& signs,
+  bool& taken)
+{
+  // The recognition reads the points relative to the first one (Origin) only: a first call
+  // with the same key leaves the same state, but for the origin and the plane's offset mu.
+  // Most faces start with one surfel or an umbrella of a few, of a few shapes: their first
+  // call, a search of every octant from omega 1, was a tenth of the growth's instructions on
+  // noise.
+  constexpr std::size_t FirstCallsKept = 4096;
+  std::string key = firstCallKey(points, count, signs);
+  if (key.empty())
+    return false;
+  const auto found = this->FirstCalls.find(key);
+  if (found == this->FirstCalls.end())
+  {
+    const std::size_t clips = this->Clips, searches = this->Searches;
+    taken = this->recognise(points, count, signs, 0);
+    if (this->FirstCalls.size() < FirstCallsKept)
+    {
+      FirstCall& r = this->FirstCalls[std::move(key)];
+      r.taken = taken;
+      r.clips = this->Clips - clips;
+      r.searches = this->Searches - searches;
+      if (taken)
+      {
+        r.points = this->Points;
+        for (int s = 0; s < 8; ++s)
+          if (!this->Unrestored[s])
+            r.octants[s] = this->Octants[s];
+        r.alive = this->Alive;
+        r.unrestored = this->Unrestored;
+        r.present = this->Present;
+        r.normal = this->Current.normal;
+        r.lo = this->CurrentLo;
+        r.hi = this->CurrentHi;
+      }
+    }
+    return true;
+  }
+  const FirstCall& r = found->second;
+  this->Clips += r.clips;
+  this->Searches += r.searches;
+  this->Origin = points[0];
+  taken = r.taken;
+  if (!taken)
+    return true; // a refusal changes nothing
+  for (const Point3& q : r.points)
+  {
+    this->Points.push_back(q);
+    this->Keys.insert(packBiased(q));
+  }
+  for (int s = 0; s < 8; ++s)
+    if (!r.unrestored[s])
+      this->Octants[s] = r.octants[s];
+  this->Alive = r.alive;
+  this->Unrestored = r.unrestored;
+  this->Present = r.present;
+  this->Current.normal = r.normal;
+  this->CurrentLo = r.lo;
+  this->CurrentHi = r.hi;
+  this->Current.mu = this->CurrentLo + dot(r.normal, this->Origin);
+  return true;
+}
+
+bool StandardPlaneRecognizer::recognise(const Point3* points,
+  std::size_t count,
+  const std::array<int, 3>& signs,
+  std::uint32_t known)
+{
   std::array<int, 3> present = this->Present;
   if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count, known))
     return false;
@@ -868,7 +987,7 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
   const std::int64_t omegaStart = committed > 0 ? this->Current.omega() : 1;
   for (int i = 0; i < 8; ++i)
   {
-    const Octant& original = this->Octants[i];
+    const Octant& original = this->Octants[i]; // its sign pattern, even unrestored
     survives[i] = false;
     if (!this->Alive[i] || this->octantExcluded(original, present))
       continue;
@@ -885,6 +1004,8 @@ bool StandardPlaneRecognizer::searchOctants(const std::array<int, 3>& present,
     // exclusion and the deferral: an octant excluded by the new points dies if they are
     // taken, and one deferred or left alive by a refusal is clipped by a later slow path,
     // to the same polygon (the points only accumulate).
+    if (this->Unrestored[i])
+      this->restoreOctant(i);
     if (!this->applyPoints(this->Octants[i], committed))
     {
       this->Alive[i] = false;

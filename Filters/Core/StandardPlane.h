@@ -40,6 +40,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -132,8 +134,10 @@ private:
     bool strict;
   };
 
-  /// The eight octants' triangles before any point (reset copies them).
+  /// The eight octants' triangles before any point (restoreOctant copies them).
   static std::array<Octant, 8> initialOctants();
+  /// Octant s's triangle put back, no point applied, after a reset.
+  void restoreOctant(int s);
   /// Clips o with the points from o.applied to count; false when it empties.
   bool applyPoints(Octant& o, std::size_t count) const;
   bool clip(Octant& o, const Vec& h, std::size_t count) const;
@@ -161,6 +165,18 @@ private:
   void rangeOf(const Vec& n, std::int64_t& lo, std::int64_t& hi) const;
   /// Whether the width is exactly 1 all along polygon edge e (between vertices e, e + 1).
   bool saturated(const Octant& o, std::size_t e) const;
+  /// tryAdd after the last reset (no point yet): the recognition of a first call made before
+  /// with the same points relative to the first one and the same orientations is repeated
+  /// from its record (FirstCalls) rather than recognised again; false when the call is not
+  /// one it records (too many points, or too far apart), with nothing done.
+  bool firstCallFromRecord(const Point3* points,
+    std::size_t count,
+    const std::array<int, 3>& signs,
+    bool& taken);
+  bool recognise(const Point3* points,
+    std::size_t count,
+    const std::array<int, 3>& signs,
+    std::uint32_t known);
   // The phases of tryAdd.
   /// The surfel orientations asked so far and now; false when two are opposite.
   static bool addOrientations(const std::array<int, 3>& signs, std::array<int, 3>& present);
@@ -195,6 +211,8 @@ private:
   std::array<Octant, 8> Octants;        ///< one per sign pattern of the normal
   std::array<Octant, 8> Trials; ///< the octants with the points of a call, until it succeeds
   std::array<bool, 8> Alive;    ///< octants that may still hold a solution
+  /// Octants whose triangle the last reset has not put back yet (restoreOctant).
+  std::array<bool, 8> Unrestored{};
   /// Octants a call left without its new points (see searchOctants), until it succeeds.
   std::array<bool, 8> Deferred{};
   std::array<int, 3> Present{ 0, 0, 0 }; ///< orientation asked per axis
@@ -211,6 +229,23 @@ private:
   mutable Octant ClipPolygon; ///< the clipped polygon's storage, in clip
   mutable std::vector<std::array<std::int64_t, 3>> Forms; ///< its edges on the slices, in solve
   mutable std::vector<FrameForm> FrameForms;              ///< the Forms in solve's column frame
+
+  /// What a first call left (firstCallFromRecord): whether it took the points, and then the
+  /// points, the octants it put back and clipped, and the plane relative to the first point;
+  /// the clips and searches it counted.
+  struct FirstCall
+  {
+    bool taken = false;
+    std::vector<Point3> points;
+    std::array<Octant, 8> octants;
+    std::array<bool, 8> alive{}, unrestored{};
+    std::array<int, 3> present{ 0, 0, 0 };
+    Vec normal{ 0, 0, 0 };
+    std::int64_t lo = 0, hi = 0;
+    std::size_t clips = 0, searches = 0;
+  };
+  /// By the call's orientations and points relative to its first (firstCallKey).
+  std::unordered_map<std::string, FirstCall> FirstCalls;
 };
 
 } // namespace vbr

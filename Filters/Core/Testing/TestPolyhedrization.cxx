@@ -1752,3 +1752,224 @@ TEST(Polyhedrization, MergingTakesTheFacesItCan)
   EXPECT_GT(checked, 100u) << "too few faces checked";
   std::printf("%zu small faces checked, %zu merges lost\n", checked, lost);
 }
+
+namespace
+{
+
+/// The strictly convex hull of random lattice points in [-span, span]^2 shifted by `shift`
+/// (Andrew's monotone chain, collinear points dropped), counter-clockwise.
+std::vector<vbr::Point2L> randomConvexPolygon(std::mt19937& rng,
+  int points,
+  std::int64_t span,
+  std::int64_t shift)
+{
+  std::uniform_int_distribution<std::int64_t> coordinate(-span, span);
+  std::vector<vbr::Point2L> p(static_cast<std::size_t>(points));
+  for (vbr::Point2L& q : p)
+    q = { coordinate(rng) + shift, coordinate(rng) - shift };
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3)
+    return p;
+  std::vector<vbr::Point2L> hull(2 * p.size());
+  std::size_t k = 0;
+  auto turnsLeft = [](const vbr::Point2L& a, const vbr::Point2L& b, const vbr::Point2L& c)
+  { return vbr::cross2(a, b, c) > 0; };
+  for (std::size_t i = 0; i < p.size(); ++i) // lower hull
+  {
+    while (k >= 2 && !turnsLeft(hull[k - 2], hull[k - 1], p[i]))
+      --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) // upper hull
+  {
+    while (k >= t && !turnsLeft(hull[k - 2], hull[k - 1], p[i]))
+      --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+/// Polygons of every kind that the fan must take or leave: strictly convex ones (from any
+/// corner, with small and with large coordinates), with straight corners, traversed twice,
+/// star-shaped windings, clockwise ones, random ones.
+std::vector<vbr::Point2L> randomFanCandidate(std::mt19937& rng, int kind)
+{
+  const std::int64_t shift = kind % 2 ? (std::int64_t(1) << 40) : 0; // beyond 64-bit products
+  std::vector<vbr::Point2L> p = randomConvexPolygon(rng, 3 + int(rng() % 12), 1 + rng() % 6, shift);
+  std::rotate(p.begin(), p.begin() + (p.empty() ? 0 : rng() % p.size()), p.end());
+  switch (kind / 2)
+  {
+    case 0: // strictly convex
+      break;
+    case 1: // a straight corner: an edge's midpoint, where it is a lattice point
+      for (std::size_t i = 0; i < p.size(); ++i)
+      {
+        const vbr::Point2L& a = p[i];
+        const vbr::Point2L& b = p[(i + 1) % p.size()];
+        if ((a[0] + b[0]) % 2 == 0 && (a[1] + b[1]) % 2 == 0)
+        {
+          p.insert(p.begin() + std::ptrdiff_t(i + 1), { (a[0] + b[0]) / 2, (a[1] + b[1]) / 2 });
+          break;
+        }
+      }
+      break;
+    case 2: // traversed twice: every corner repeated
+    {
+      const std::vector<vbr::Point2L> once = p;
+      p.insert(p.end(), once.begin(), once.end());
+      break;
+    }
+    case 3: // every other corner, twice round (a star when the count is odd)
+    {
+      std::vector<vbr::Point2L> star;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        star.push_back(p[(2 * i) % p.size()]);
+      p = star;
+      break;
+    }
+    case 4: // clockwise
+      std::reverse(p.begin(), p.end());
+      break;
+    default: // random corners
+      for (vbr::Point2L& q : p)
+        q = { q[0] + std::int64_t(rng() % 5) - 2, q[1] + std::int64_t(rng() % 5) - 2 };
+      break;
+  }
+  return p;
+}
+
+} // namespace
+
+// fanStrictlyConvexPolygon is a shortcut of PolygonTriangulator: whatever it takes must give the
+// triangulator's triangles, in its order; whatever it leaves, it must leave untouched.
+TEST(Polyhedrization, ConvexFanIsTheTriangulatorsTriangles)
+{
+  vbr::PolygonTriangulator triangulator;
+  {
+    // Twice round, every corner turning left and every triangle of the fan from the last corner
+    // too, but corners 1 and 4 at one place: the triangulator parts the polygon there.
+    const std::vector<vbr::Point2L> touching{
+      { 6, 0 }, { -6, 10 }, { -5, -9 }, { 2, 0 }, { -6, 10 }, { -4, -7 }
+    };
+    std::vector<vbr::Triangle> fan, general;
+    EXPECT_FALSE(vbr::fanStrictlyConvexPolygon(touching, fan)) << "a repeated corner fanned";
+    triangulator.triangulate(touching, general);
+    EXPECT_NE(general.size(), touching.size() - 2) << "the triangulator fans it too";
+  }
+  std::mt19937 rng(41);
+  std::size_t taken = 0, left = 0;
+  for (int round = 0; round < 30000; ++round)
+  {
+    const int kind = round % 12;
+    const std::vector<vbr::Point2L> p = randomFanCandidate(rng, kind);
+    std::vector<vbr::Triangle> fan{ { 7, 8, 9 } }, general{ { 7, 8, 9 } }; // appended to
+    const bool fanned = vbr::fanStrictlyConvexPolygon(p, fan);
+    const bool triangulated = triangulator.triangulate(p, general);
+    if (!fanned)
+    {
+      ASSERT_EQ(fan.size(), 1u) << "round " << round << ": left, yet appended to";
+      ++left;
+      continue;
+    }
+    ++taken;
+    ASSERT_TRUE(triangulated) << "round " << round << ": fanned, yet not a polygon";
+    ASSERT_EQ(fan, general) << "round " << round << " (kind " << kind << ", " << p.size()
+                            << " corners): not the triangulator's triangles";
+    if (kind / 2 == 2 || kind / 2 == 4) // corners repeated, or clockwise
+      ADD_FAILURE() << "round " << round << " (kind " << kind << "): fanned";
+  }
+  EXPECT_GT(taken, 5000u) << "too few polygons fanned";
+  EXPECT_GT(left, 5000u) << "too few polygons left to the triangulator";
+  std::printf("%zu polygons fanned, %zu left to the triangulator\n", taken, left);
+}
+
+namespace
+{
+
+/// A recognizer's call: the corners of some surfels and their orientations.
+struct RecognizerCall
+{
+  std::vector<vbr::Point3> points;
+  std::array<int, 3> signs{ 0, 0, 0 };
+
+  void add(const vbr::Surfel& s)
+  {
+    for (int k = 0; k < 4; ++k)
+      this->points.push_back(s.corner(k));
+    this->signs[s.axis()] = s.sign();
+  }
+};
+
+/// A face's first call (a lone surfel, the umbrella of a cube's corner, or two surfels side by
+/// side: shapes that come back, at `at`) and then surfels near it, a call each.
+std::vector<RecognizerCall> randomFaceCalls(std::mt19937& rng, const vbr::Point3& at)
+{
+  std::vector<RecognizerCall> calls(1);
+  const int shape = static_cast<int>(rng() % 9);
+  const auto direction = static_cast<std::uint8_t>(rng() % 6);
+  if (shape < 6)
+    calls[0].add({ at, direction });
+  else if (shape < 8) // the umbrella of the corner of voxel at, +x +y +z (or -x -y -z)
+    for (int axis = 0; axis < 3; ++axis)
+      calls[0].add({ at, static_cast<std::uint8_t>(2 * axis + (shape == 6 ? 1 : 0)) });
+  else // two surfels of one direction side by side
+  {
+    calls[0].add({ at, direction });
+    vbr::Point3 next = at;
+    ++next[(direction / 2 + 1) % 3];
+    calls[0].add({ next, direction });
+  }
+  // Then surfels of two or three directions of one octant, near: some taken, some refused.
+  const std::array<int, 3> signs{ rng() % 2 ? 1 : -1, rng() % 2 ? 1 : -1, rng() % 2 ? 1 : -1 };
+  std::uniform_int_distribution<int> near(-2, 2);
+  for (int c = 0; c < 8; ++c)
+  {
+    const int axis = static_cast<int>(rng() % 3);
+    RecognizerCall call;
+    call.add({ { at[0] + near(rng), at[1] + near(rng), at[2] + near(rng) },
+      static_cast<std::uint8_t>(2 * axis + (signs[axis] > 0 ? 1 : 0)) });
+    calls.push_back(call);
+  }
+  return calls;
+}
+
+} // namespace
+
+// A recognizer repeats a first call it recorded after an earlier reset rather than recognising
+// it again: every call, then and after, must answer as a recognizer that never saw it (the same
+// plane, points and recognition work counted).
+TEST(StandardPlane, FirstCallsFromRecordsAreRecognisedAlike)
+{
+  std::mt19937 rng(17);
+  vbr::StandardPlaneRecognizer kept; // reset for each face, its records kept
+  std::size_t taken = 0, refused = 0;
+  for (int face = 0; face < 4000; ++face)
+  {
+    std::uniform_int_distribution<int> shift(-60, 60);
+    const std::vector<RecognizerCall> calls =
+      randomFaceCalls(rng, { shift(rng), shift(rng), shift(rng) });
+    kept.reset();
+    vbr::StandardPlaneRecognizer fresh;
+    const std::size_t clips = kept.clipCount(), searches = kept.searchCount();
+    for (std::size_t c = 0; c < calls.size(); ++c)
+    {
+      const bool a = kept.tryAdd(calls[c].points, calls[c].signs);
+      const bool b = fresh.tryAdd(calls[c].points, calls[c].signs);
+      ASSERT_EQ(a, b) << "face " << face << ", call " << c;
+      (a ? taken : refused) += 1;
+      ASSERT_EQ(kept.pointCount(), fresh.pointCount()) << "face " << face << ", call " << c;
+      ASSERT_EQ(kept.clipCount() - clips, fresh.clipCount()) << "face " << face << ", call " << c;
+      ASSERT_EQ(kept.searchCount() - searches, fresh.searchCount())
+        << "face " << face << ", call " << c;
+      if (kept.pointCount() > 0)
+      {
+        ASSERT_EQ(kept.plane().normal, fresh.plane().normal) << "face " << face << ", call " << c;
+        ASSERT_EQ(kept.plane().mu, fresh.plane().mu) << "face " << face << ", call " << c;
+      }
+    }
+  }
+  EXPECT_GT(taken, 4000u);
+  EXPECT_GT(refused, 4000u);
+}
