@@ -688,8 +688,7 @@ private:
     scratch.corners.clear();
     for (std::uint32_t v : polygon)
       scratch.corners.push_back(project(o.graph.vertexPointel[v]));
-    if (!vbr::fanStrictlyConvexPolygon(scratch.corners, triangles))
-      scratch.triangulator.triangulate(scratch.corners, triangles);
+    scratch.triangulator.triangulate(scratch.corners, triangles);
   }
 
   /// The polygon of face f that the triangulating modes draw: its semi-discrete polygon

@@ -74,6 +74,17 @@ bool isSimplePolygon(const std::vector<Point2L>& corners);
 /// counter-clockwise).
 std::vector<Triangle> triangulateSimplePolygon(const std::vector<Point2L>& corners);
 
+/// The triangles of a polygon when every corner turns strictly left, no two lie at one place and
+/// every triangle of the fan from the last corner, (n - 1, i, i + 1), turns strictly left: then
+/// PolygonTriangulator::triangulate makes exactly that fan, in that order (it has no blocker, every
+/// corner it meets is an ear), and this appends it without the ear clipping's set-up (most faces of
+/// a noisy boundary are such squares and hexagons); PolygonTriangulator::triangulate tries it
+/// first. False, with nothing appended, for any other polygon and for more than FanCornersAtMost
+/// corners: the ear clipping decides those.
+bool fanStrictlyConvexPolygon(const std::vector<Point2L>& corners,
+  std::vector<Triangle>& triangles);
+constexpr std::size_t FanCornersAtMost = 12;
+
 /// triangulateSimplePolygon with its working memory kept between calls (a caller that
 /// triangulates many polygons, such as every face of a polyhedrization, allocates nothing per
 /// polygon once the arrays have grown, except where a polygon touches itself at a corner and
@@ -84,6 +95,8 @@ public:
   /// Appends triangulateSimplePolygon(corners) to `triangles`; false, with nothing appended,
   /// when that is empty.
   bool triangulate(const std::vector<Point2L>& corners, std::vector<Triangle>& triangles);
+  /// triangulate without the shortcut of fanStrictlyConvexPolygon: the ear clipping alone.
+  bool triangulateByEars(const std::vector<Point2L>& corners, std::vector<Triangle>& triangles);
 
 private:
   struct Blocker

@@ -2029,48 +2029,6 @@ std::string fillByParity(const SurfelBits& surfels,
 
 } // namespace
 
-namespace
-{
-
-/// fanStrictlyConvexPolygon's tests, in integers of type Int (see cross2).
-template<typename Int>
-bool isStrictlyConvexFan(const std::vector<Point2L>& p)
-{
-  const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (cross2<Int>(p[i == 0 ? n - 1 : i - 1], p[i], p[i + 1 == n ? 0 : i + 1]) <= 0)
-      return false;
-  // The fan's first and last triangles are the turns of corners 0 and n - 2, tested above.
-  for (std::size_t i = 1; i + 3 < n; ++i)
-    if (cross2<Int>(p[n - 1], p[i], p[i + 1]) <= 0)
-      return false;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j)
-      if (p[i][0] == p[j][0] && p[i][1] == p[j][1])
-        return false;
-  return true;
-}
-
-} // namespace
-
-bool fanStrictlyConvexPolygon(const std::vector<Point2L>& corners, std::vector<Triangle>& triangles)
-{
-  const std::size_t n = corners.size();
-  if (n < 3 || n > FanCornersAtMost)
-    return false;
-  constexpr std::int64_t limit = std::int64_t(1) << 30; // cross2 exact in 64 bits below
-  const bool narrow = std::all_of(corners.begin(),
-    corners.end(),
-    [](const Point2L& p)
-    { return p[0] >= -limit && p[0] < limit && p[1] >= -limit && p[1] < limit; });
-  if (!(narrow ? isStrictlyConvexFan<std::int64_t>(corners) : isStrictlyConvexFan<Wide>(corners)))
-    return false;
-  const int last = static_cast<int>(n - 1);
-  for (int i = 0; i + 1 < last; ++i)
-    triangles.push_back({ last, i, i + 1 });
-  return true;
-}
-
 std::string surfelsOfOutline(const FaceOutline& face,
   const std::array<std::int32_t, 3>& dims,
   std::vector<Surfel>& surfels)

@@ -15,7 +15,6 @@
 
 #include "BitVolume.h"
 #include "Execution.h"
-#include "PolygonTriangulator.h"
 #include "StandardPlane.h"
 #include "SurfelGraph.h"
 
@@ -165,17 +164,6 @@ std::string revert(const std::vector<FaceOutline>& faces,
 std::string surfelsOfOutline(const FaceOutline& face,
   const std::array<std::int32_t, 3>& dims,
   std::vector<Surfel>& surfels);
-
-/// The triangles of a face's polygon (its corners projected, ProjectionAlong) when every corner
-/// turns strictly left, no two lie at one place and every triangle of the fan from the last
-/// corner, (n - 1, i, i + 1), turns strictly left: then PolygonTriangulator::triangulate makes
-/// exactly that fan, in that order (it has no blocker, every corner it meets is an ear), and
-/// this appends it without the triangulator's set-up (most faces of a noisy boundary are such
-/// squares and hexagons). False, with nothing appended, for any other polygon and for more
-/// than FanCornersAtMost corners: the triangulator decides those.
-bool fanStrictlyConvexPolygon(const std::vector<Point2L>& corners,
-  std::vector<Triangle>& triangles);
-constexpr std::size_t FanCornersAtMost = 12;
 
 namespace detail
 {

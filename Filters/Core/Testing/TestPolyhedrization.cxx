@@ -3,6 +3,7 @@
 // are disks (Euler characteristic and one boundary loop), a partition of the surfels counted
 // voxel by voxel, and the reversion back to the same voxels.
 #include "BruteForce.h"
+#include "PolygonTriangulator.h"
 #include "Polyhedrization.h"
 #include "StandardPlane.h"
 #include "StandardPlaneColumns.h"
@@ -1842,8 +1843,8 @@ std::vector<vbr::Point2L> randomFanCandidate(std::mt19937& rng, int kind)
 
 } // namespace
 
-// fanStrictlyConvexPolygon is a shortcut of PolygonTriangulator: whatever it takes must give the
-// triangulator's triangles, in its order; whatever it leaves, it must leave untouched.
+// fanStrictlyConvexPolygon is PolygonTriangulator's shortcut: whatever it takes must give the ear
+// clipping's triangles (triangulateByEars), in its order; whatever it leaves, untouched.
 TEST(Polyhedrization, ConvexFanIsTheTriangulatorsTriangles)
 {
   vbr::PolygonTriangulator triangulator;
@@ -1855,7 +1856,7 @@ TEST(Polyhedrization, ConvexFanIsTheTriangulatorsTriangles)
     };
     std::vector<vbr::Triangle> fan, general;
     EXPECT_FALSE(vbr::fanStrictlyConvexPolygon(touching, fan)) << "a repeated corner fanned";
-    triangulator.triangulate(touching, general);
+    triangulator.triangulateByEars(touching, general);
     EXPECT_NE(general.size(), touching.size() - 2) << "the triangulator fans it too";
   }
   std::mt19937 rng(41);
@@ -1866,7 +1867,7 @@ TEST(Polyhedrization, ConvexFanIsTheTriangulatorsTriangles)
     const std::vector<vbr::Point2L> p = randomFanCandidate(rng, kind);
     std::vector<vbr::Triangle> fan{ { 7, 8, 9 } }, general{ { 7, 8, 9 } }; // appended to
     const bool fanned = vbr::fanStrictlyConvexPolygon(p, fan);
-    const bool triangulated = triangulator.triangulate(p, general);
+    const bool triangulated = triangulator.triangulateByEars(p, general);
     if (!fanned)
     {
       ASSERT_EQ(fan.size(), 1u) << "round " << round << ": left, yet appended to";
