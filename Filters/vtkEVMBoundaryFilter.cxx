@@ -1035,7 +1035,8 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
   Statistics& stats,
   OutputBuilder& builder,
   vbr::EVM& evm,
-  vbr::PointList* corners = nullptr)
+  vbr::PointList* corners = nullptr,
+  std::vector<vbr::Vertex>* planarMemory = nullptr)
 {
   vbr::BitVolume voxels;
   {
@@ -1051,7 +1052,7 @@ std::size_t extremeVerticesOfObject(const vbr::vtk::Selected& object,
     // Its work is a few operations per word of the rows (64 pixels), not per pixel.
     vbr::PlanarCounts counts;
     const auto rowWords = static_cast<std::int64_t>(voxels.wordsPerRow()) * voxels.size(1);
-    evm = vbr::extractEVM2D(voxels, exec.forWork(rowWords), &counts);
+    evm = vbr::extractEVM2D(voxels, exec.forWork(rowWords), &counts, planarMemory);
     count = counts.pixels;
     if (count == 0)
       return 0;
@@ -1221,7 +1222,15 @@ void appendPlanarLoops(vtkAlgorithm* self,
   {
     vbr::EVM evm;
     const vbr::Execution exec = vbr::vtk::makeExecution(self, 0.1, 0.7);
-    if (extremeVerticesOfObject(object, settings, exec, stats, builder, evm) == 0)
+    // The vertices too in the memory of the update before (NumberedPlaneSweeper2D).
+    if (extremeVerticesOfObject(object,
+          settings,
+          exec,
+          stats,
+          builder,
+          evm,
+          nullptr,
+          &settings.planarSweeper->vertexMemory()) == 0)
       return;
     vtkLogScopeF(TRACE, "EVM to contours (2D plane sweep, corners numbered)");
     order = evm.order();
@@ -1231,6 +1240,7 @@ void appendPlanarLoops(vtkAlgorithm* self,
     const auto& v = evm.vertices();
     swept = &settings.planarSweeper->sweep(
       v.data(), v.data() + v.size(), cornerOrder, settings.connectivity);
+    settings.planarSweeper->keepVertexMemory(evm.takeVertices());
   }
   const vbr::Contours2D& contours = *swept;
   const vbr::Boundary2D& b = contours.boundary;

@@ -81,19 +81,31 @@ void rowParityToVertexBits(const Word* parity, std::size_t rowWords, Word* verte
 /// The vertices of `count` runs (planes or lines of vertices) in one array, in run order:
 /// countRuns(sizes) sets sizes[r] to the number of vertices of every run r (in parallel as it
 /// likes), then, after a prefix sum, writeRun(r, out) writes those of run r from `out` on, in
-/// parallel over the runs.
+/// parallel over the runs. With `kept`, into its memory (kept from an earlier call: see
+/// extractEVM2D), grown in small pages, as memory faulted in once is.
 template<typename CountRuns, typename WriteRun>
 std::vector<Vertex> collectVertices(std::int64_t count,
   const Execution& exec,
   CountRuns&& countRuns,
-  WriteRun&& writeRun)
+  WriteRun&& writeRun,
+  std::vector<Vertex>* kept = nullptr)
 {
   std::vector<std::size_t> start(static_cast<std::size_t>(count) + 1, 0);
   countRuns(start.data() + 1);
   for (std::size_t r = 0; r + 1 < start.size(); ++r)
     start[r + 1] += start[r];
   std::vector<Vertex> vertices;
-  reserveHugePages(vertices, start.back());
+  if (kept)
+  {
+    // Every value is written below: the old ones are left in place (the resize below zeroes
+    // only values past them), not copied into new room when it is too small.
+    vertices.swap(*kept);
+    if (vertices.capacity() < start.back())
+      std::vector<Vertex>().swap(vertices);
+    vertices.reserve(start.back());
+  }
+  else
+    reserveHugePages(vertices, start.back());
   vertices.resize(start.back());
   exec.forRange(count,
     [&](std::int64_t rb, std::int64_t re)
@@ -596,7 +608,10 @@ LinesCounter pickCountLines()
 
 } // namespace
 
-EVM extractEVM2D(const BitVolume& pixels, const Execution& exec, PlanarCounts* counts)
+EVM extractEVM2D(const BitVolume& pixels,
+  const Execution& exec,
+  PlanarCounts* counts,
+  std::vector<Vertex>* memory)
 {
   if (pixels.size(2) != 1)
     throw std::invalid_argument("extractEVM2D needs a single slice (nz == 1)");
@@ -639,7 +654,7 @@ EVM extractEVM2D(const BitVolume& pixels, const Execution& exec, PlanarCounts* c
           *out++ = { 0, y, static_cast<Coord>(w * 64 + countTrailingZeros(bits)) };
       });
   };
-  std::vector<Vertex> vertices = collectVertices(count, exec, countRuns, writeLine);
+  std::vector<Vertex> vertices = collectVertices(count, exec, countRuns, writeLine, memory);
   if (counts)
   {
     // The columns of vertices: x where any line has one.

@@ -109,9 +109,13 @@ struct PlanarCounts
 
 /// Extreme vertices of a 2D pixel set stored in a BitVolume with nz == 1: vertices (0, y, x),
 /// order {z, y, x}. With `counts`, also its pixels, boundary edges and lines of vertices.
+/// With `memory`, the vertices are written into its memory (it is left empty), grown in small
+/// pages: for a caller that hands the vertices' memory back (EVM::takeVertices) for the next
+/// image, so that the pages are faulted in once (in small pages: see NumberedPlaneSweeper2D).
 EVM extractEVM2D(const BitVolume& pixels,
   const Execution& exec = Execution(),
-  PlanarCounts* counts = nullptr);
+  PlanarCounts* counts = nullptr,
+  std::vector<Vertex>* memory = nullptr);
 
 /// Number of distinct coordinates of the vertices along each world axis (planes of vertices
 /// perpendicular to x, y, z).

@@ -303,7 +303,7 @@ public:
       this->checkEveryColumnNumbered(out.columns);
     out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
-    reserveHugePages(out.loopCorners, this->Links.size());
+    this->reserveRoom(out.loopCorners, this->Links.size());
     this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
     this->classifyContours(out.boundary);
     out.corners.swap(this->Corners); // empty when numbered by column
@@ -356,8 +356,11 @@ private:
       this->Corners.reserve(static_cast<std::size_t>(end - begin));
     // Huge pages under the edges, which the domino step reads in no order of memory: a miss in
     // the cache then rarely misses in the TLB as well.
-    adviseHugePages(this->Links.data(), this->Links.capacity() * sizeof(EdgeLink), HugePageBytes);
-    adviseHugePages(this->Ends.data(), this->Ends.capacity() * sizeof(EdgeEnd), HugePageBytes);
+    if (!this->KeepsScratch) // kept arrays: see reserveRoom
+    {
+      adviseHugePages(this->Links.data(), this->Links.capacity() * sizeof(EdgeLink), HugePageBytes);
+      adviseHugePages(this->Ends.data(), this->Ends.capacity() * sizeof(EdgeEnd), HugePageBytes);
+    }
     this->reserveIntervals(static_cast<std::size_t>(end - begin));
     while (begin != end)
     {
@@ -388,10 +391,23 @@ private:
   void reserveIntervals(std::size_t vertices)
   {
     std::vector<std::uint32_t> storage = this->Intervals.release(); // an earlier sweep's
-    reserveHugePages(storage, vertices / 2);
+    this->reserveRoom(storage, vertices / 2);
     this->Intervals = UnionFind(std::move(storage), 0);
-    reserveHugePages(this->First, vertices / 8);
+    this->reserveRoom(this->First, vertices / 8);
   }
+  /// Room for n values in `v`: under huge pages for a sweep made once, in small pages for a
+  /// sweep that keeps its arrays (keepScratch), which are faulted in once, at the first sweep,
+  /// and reused after: there a fresh huge page can cost far more than the 512 small ones it
+  /// replaces (NumberedPlaneSweeper2D), for a few percent of TLB misses in the later sweeps.
+  template<typename T>
+  void reserveRoom(std::vector<T>& v, std::size_t n) const
+  {
+    if (this->KeepsScratch)
+      v.reserve(n);
+    else
+      reserveHugePages(v, n);
+  }
+
   int newInterval() { return static_cast<int>(this->Intervals.add()); }
   int find(int i) { return static_cast<int>(this->Intervals.find(static_cast<std::uint32_t>(i))); }
   void unite(int a, int b)
@@ -792,7 +808,10 @@ private:
   /// hold a first interval, each with the first of them.
   void numberFaces(Boundary2D& out)
   {
-    assignHugePages(this->FaceOfRoot, this->Intervals.size(), -1);
+    if (this->KeepsScratch) // see reserveRoom
+      this->FaceOfRoot.assign(this->Intervals.size(), -1);
+    else
+      assignHugePages(this->FaceOfRoot, this->Intervals.size(), -1);
     this->FirstOfFace.clear();
     for (const auto& f : this->First)
     {
@@ -803,7 +822,7 @@ private:
         this->FirstOfFace.push_back(&f);
       }
     }
-    reserveHugePages(out.faces, this->FirstOfFace.size());
+    this->reserveRoom(out.faces, this->FirstOfFace.size());
     out.faces.resize(this->FirstOfFace.size());
   }
 
@@ -894,7 +913,7 @@ private:
     // they are neither copied nor faulted in twice as they grow (only the pages written are
     // mapped; on a sparse image most of this room is address space the returned boundary holds
     // but never touches). Invalid input only grows the array.
-    reserveHugePages(out.loops, this->Links.size() / 4);
+    this->reserveRoom(out.loops, this->Links.size() / 4);
     EdgeLink* links = this->Links.data();
     for (std::size_t e0 = 0; e0 < this->Links.size(); ++e0)
     {
@@ -1052,6 +1071,7 @@ struct detail::NumberedPlaneSweep2DMemory
   }
   Sweep Sweeper = keptSweep();
   Contours2D Out;
+  std::vector<Vertex> VertexMemory;
 
   static Sweep keptSweep()
   {
@@ -1096,7 +1116,22 @@ void NumberedPlaneSweeper2D::release()
   detail::NumberedPlaneSweep2DMemory& m = *this->Memory;
   m.Sweeper = detail::NumberedPlaneSweep2DMemory::keptSweep();
   m.Out = Contours2D();
+  m.VertexMemory = std::vector<Vertex>();
   m.KeptFor = 0;
+}
+
+std::vector<Vertex>& NumberedPlaneSweeper2D::vertexMemory()
+{
+  return this->Memory->VertexMemory;
+}
+
+void NumberedPlaneSweeper2D::keepVertexMemory(std::vector<Vertex>&& vertices)
+{
+  detail::NumberedPlaneSweep2DMemory& m = *this->Memory;
+  if (vertices.capacity() >= m.FewestKept && vertices.size() < vertices.capacity() / 4)
+    m.VertexMemory = std::vector<Vertex>();
+  else
+    m.VertexMemory = std::move(vertices);
 }
 
 } // namespace vbr

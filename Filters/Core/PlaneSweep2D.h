@@ -193,6 +193,15 @@ struct NumberedPlaneSweep2DMemory;
 /// since it was last released, and it is released when a sweep has fewer than a quarter of that
 /// sweep's vertices (and that sweep had at least `fewestKept` vertices), so that it stays within
 /// a constant times the current sweep's.
+/// The memory kept is in small pages, not huge ones: it is faulted in once, at the first sweep,
+/// where a fresh huge page can cost six times the 512 small pages it replaces. On a virtual
+/// machine whose host takes back the guest's free huge pages (virtio free page reporting, of
+/// blocks of 2 MiB and more: Firecracker here), each one is faulted in again on the host, while
+/// small pages come from the guest's own fragments (3.1 against 0.5 ms per MB, a fresh process
+/// writing 3 GB; 0.2 ms per MB for huge pages the process just freed): the 6001^2 maze's first
+/// update spent 1.6-1.8 s in the kernel, 0.6-1.1 s now, most of the rest under VTK's output
+/// arrays. The later sweeps pay some TLB misses for it in the domino step's jumps (the 4001^2
+/// maze: 0.265-0.268 s of user time per update against 0.244-0.260 s in huge pages).
 class NumberedPlaneSweeper2D
 {
 public:
@@ -212,6 +221,14 @@ public:
 
   /// Every array freed.
   void release();
+
+  /// Memory for the vertices of the next image (extractEVM2D's `memory`, which takes it): that
+  /// of the image before, handed back by keepVertexMemory, so that its pages too are faulted in
+  /// once, not at every image.
+  std::vector<Vertex>& vertexMemory();
+  /// Keeps the memory of `vertices` (EVM::takeVertices, once swept) for the next image; frees
+  /// it instead when it is more than four times what they fill (sweep's rule).
+  void keepVertexMemory(std::vector<Vertex>&& vertices);
 
   /// Below this many vertices the memory kept is small, and never released for being too large.
   static constexpr std::size_t DefaultFewestKept = std::size_t(1) << 16;

@@ -547,6 +547,46 @@ TEST(PlaneSweep2D, NumberedSweeperKeptFromUpdateToUpdateSweepsAsAFreshOne)
   }
 }
 
+TEST(PlaneSweep2D, VerticesInTheMemoryKeptFromImageToImage)
+{
+  // extractEVM2D into the memory of the image before (NumberedPlaneSweeper2D::vertexMemory,
+  // handed back by keepVertexMemory): images that grow and shrink, so that the memory holds
+  // more or fewer old vertices than the new image has, give the same vertices and counts as
+  // extractEVM2D into fresh memory; the memory is freed when it is more than four times what
+  // the last image filled (from fewestKept values of room), kept otherwise.
+  vbr::NumberedPlaneSweeper2D sweeper(64);
+  unsigned seed = 7000;
+  for (int trial = 0; trial < 24; ++trial)
+  {
+    // Growing, shrinking a little (old vertices left past the new ones) and much (freed).
+    constexpr int Sizes[] = { 0, 1, 3, 2, 3, 1, 0, 2 };
+    const int size = Sizes[trial % 8];
+    const vbr::Point3 d{ 5 + 40 * size + trial % 3, 4 + 30 * size + trial % 5, 1 };
+    SCOPED_TRACE(testing::Message() << "trial " << trial << " size " << d[0] << " x " << d[1]);
+    const vbr::BitVolume pixels = bf::randomVolume(d, 0.2 + 0.1 * (trial % 6), seed++);
+    vbr::PlanarCounts freshCounts, keptCounts;
+    const vbr::EVM fresh = vbr::extractEVM2D(pixels, vbr::Execution(), &freshCounts);
+    std::vector<vbr::Vertex>& memory = sweeper.vertexMemory();
+    const std::size_t room = memory.capacity();
+    vbr::EVM kept = vbr::extractEVM2D(pixels, vbr::Execution(), &keptCounts, &memory);
+    EXPECT_TRUE(memory.empty() && memory.capacity() == 0); // taken by the EVM
+    EXPECT_EQ(kept.vertices(), fresh.vertices());
+    EXPECT_EQ(kept.order(), fresh.order());
+    EXPECT_EQ(keptCounts.pixels, freshCounts.pixels);
+    EXPECT_EQ(keptCounts.edges, freshCounts.edges);
+    EXPECT_EQ(keptCounts.planes, freshCounts.planes);
+    if (room >= fresh.size())
+      EXPECT_GE(kept.vertices().capacity(), room); // written into the memory kept
+    std::vector<vbr::Vertex> back = kept.takeVertices();
+    const std::size_t n = back.size(), capacity = back.capacity();
+    sweeper.keepVertexMemory(std::move(back));
+    const bool freed = capacity >= 64 && n < capacity / 4;
+    EXPECT_EQ(sweeper.vertexMemory().capacity(), freed ? 0 : capacity);
+  }
+  sweeper.release();
+  EXPECT_EQ(sweeper.vertexMemory().capacity(), 0u);
+}
+
 TEST(PlaneSweep2D, NumberedCornersOfLargeDenseAndSparseImages)
 {
   // Small images are numbered by the sort (FewestVerticesByColumn): the path by column is
