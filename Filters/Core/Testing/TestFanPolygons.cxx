@@ -585,7 +585,7 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesAreEarClippedAsByDefinition)
 TEST(FanPolygons, SimpleLoopsAreEarClippedAsByDefinition)
 {
   unsigned seed = 7300;
-  std::size_t simple = 0;
+  std::size_t simple = 0, rectangles = 0;
   for (int trial = 0; trial < 48; ++trial)
   {
     const vbr::Point3 d{ 4 + (trial * 5) % 9, 4 + (trial * 3) % 7, 3 + (trial * 7) % 6 };
@@ -626,6 +626,18 @@ TEST(FanPolygons, SimpleLoopsAreEarClippedAsByDefinition)
         continue;
       }
       EXPECT_EQ(triangles, expected);
+      // The filter's path (appendTriangles, whose loops of four corners round a rectangle skip
+      // the ear clipping): the same triangles, as one face.
+      vbr::FaceCells cells;
+      vbr::appendTriangles(brep, static_cast<int>(f), cells);
+      std::vector<std::array<int, 3>> appended(cells.cellEnds.size());
+      for (std::size_t t = 0; t < appended.size(); ++t)
+        for (int k = 0; k < 3; ++k)
+          appended[t][k] = cells.corners[3 * t + k];
+      EXPECT_EQ(appended, expected);
+      EXPECT_EQ(
+        cells.faceEnds, std::vector<std::uint32_t>{ static_cast<std::uint32_t>(appended.size()) });
+      rectangles += loop.size() == 4;
       // The loops that take the simple path: no corner twice, and not round a rectangle (a
       // corner that turns right).
       bool turnsRight = false;
@@ -638,4 +650,5 @@ TEST(FanPolygons, SimpleLoopsAreEarClippedAsByDefinition)
   }
   RecordProperty("simple", static_cast<int>(simple));
   EXPECT_GT(simple, 300u);
+  EXPECT_GT(rectangles, 300u);
 }
