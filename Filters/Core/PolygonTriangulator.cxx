@@ -248,21 +248,34 @@ bool PolygonTriangulator::splitAtTouchingCorner(const std::vector<Point2L>& corn
   std::vector<Triangle>& triangles,
   bool& triangulated)
 {
+  // Prefix and Order are the object's, so a piece parted again reuses them: nothing reads
+  // them once the two loops are made.
   const std::size_t n = piece.size();
-  std::vector<Wide> prefix(n + 1, 0); // doubled area swept by the first edges
+  std::vector<Wide>& prefix = this->Prefix; // doubled area swept by the first edges
+  prefix.resize(n + 1);
+  prefix[0] = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     const Point2L& p = corners[piece[i]];
     const Point2L& q = corners[piece[(i + 1) % n]];
     prefix[i + 1] = prefix[i] + Wide(p[0]) * q[1] - Wide(p[1]) * q[0];
   }
-  std::vector<std::size_t> order(n);
+  std::vector<std::size_t>& order = this->Order;
+  order.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     order[i] = i;
+  // By place (x, then y), then by index: a strict total order, so the sort's result is unique.
   std::sort(order.begin(),
     order.end(),
     [&](std::size_t a, std::size_t b)
-    { return std::make_pair(corners[piece[a]], a) < std::make_pair(corners[piece[b]], b); });
+    {
+      const Point2L &p = corners[piece[a]], &q = corners[piece[b]];
+      if (p[0] != q[0])
+        return p[0] < q[0];
+      if (p[1] != q[1])
+        return p[1] < q[1];
+      return a < b;
+    });
   for (std::size_t s = 0, e = 0; s < n; s = e)
   {
     for (e = s + 1; e < n && samePlace(corners[piece[order[e]]], corners[piece[order[s]]]); ++e)
@@ -297,17 +310,24 @@ bool PolygonTriangulator::clipEars(const std::vector<Point2L>& corners,
   this->Next.resize(piece.size());
   this->Prev.resize(piece.size());
   this->Convex.resize(piece.size());
-  this->Alive.assign(piece.size(), 1);
   for (int i = 0; i < n; ++i)
   {
     this->Next[i] = i + 1 == n ? 0 : i + 1;
     this->Prev[i] = i == 0 ? n - 1 : i - 1;
   }
   this->Narrow = fitsIn64BitProducts(this->P);
+  return this->Narrow ? this->clipRing<std::int64_t>(piece, triangles)
+                      : this->clipRing<Wide>(piece, triangles);
+}
+
+template<typename Int>
+bool PolygonTriangulator::clipRing(const std::vector<int>& piece, std::vector<Triangle>& triangles)
+{
+  const int n = static_cast<int>(piece.size());
   this->Blockers.clear();
   for (int i = 0; i < n; ++i)
   {
-    this->Convex[i] = this->turnsLeft(this->Prev[i], i, this->Next[i]);
+    this->Convex[i] = this->turnsLeft<Int>(this->Prev[i], i, this->Next[i]);
     if (!this->Convex[i])
       this->Blockers.push_back({ this->P[i][0], this->P[i][1], i });
   }
@@ -320,7 +340,7 @@ bool PolygonTriangulator::clipEars(const std::vector<Point2L>& corners,
   int misses = 0; // corners tested since the last ear
   while (remaining > 3)
   {
-    if (!this->isEar(b))
+    if (!this->Convex[b] || !this->isEar<Int>(b))
     {
       b = this->Next[b];
       if (++misses > remaining)
@@ -331,37 +351,36 @@ bool PolygonTriangulator::clipEars(const std::vector<Point2L>& corners,
     triangles.push_back({ piece[a], piece[b], piece[c] });
     this->Next[a] = c;
     this->Prev[c] = a;
-    this->Alive[b] = 0;
-    this->updateConvexity(a);
-    this->updateConvexity(c);
+    this->updateConvexity<Int>(a);
+    this->updateConvexity<Int>(c);
     --remaining;
     misses = 0;
     b = c;
   }
   const int a = this->Prev[b], c = this->Next[b];
-  if (!this->turnsLeft(a, b, c))
+  if (!this->turnsLeft<Int>(a, b, c))
     return false;
   triangles.push_back({ piece[a], piece[b], piece[c] });
   return true;
 }
 
 /// Corner i's convexity after a neighbour was cut off; a blocker that turns left is stale.
-void PolygonTriangulator::updateConvexity(int i)
+template<typename Int>
+inline void PolygonTriangulator::updateConvexity(int i)
 {
   const bool was = this->Convex[i] != 0;
-  this->Convex[i] = this->turnsLeft(this->Prev[i], i, this->Next[i]);
+  this->Convex[i] = this->turnsLeft<Int>(this->Prev[i], i, this->Next[i]);
   if (!was && this->Convex[i])
     ++this->Stale;
 }
 
-/// Whether corner b is an ear: convex, and no blocker in the closed triangle of b and its
+/// Whether convex corner b is an ear: no blocker in the closed triangle of b and its
 /// neighbours but at their own places. Only the blockers in the columns of the triangle's
-/// bounding box are read (a binary search in the blockers by x); the stale ones are swept
-/// out once they are half of the list.
+/// bounding box are read (a binary search in the blockers by x); the stale ones (convex now,
+/// cut off or not) are swept out once they are half of the list.
+template<typename Int>
 bool PolygonTriangulator::isEar(int b)
 {
-  if (!this->Convex[b])
-    return false;
   const int a = this->Prev[b], c = this->Next[b];
   const Point2L &pa = this->P[a], &pb = this->P[b], &pc = this->P[c];
   const std::int64_t loX = std::min({ pa[0], pb[0], pc[0] }),
@@ -377,22 +396,20 @@ bool PolygonTriangulator::isEar(int b)
     // Both bounds in one test for the compiler to select: most blockers of the columns are
     // outside the box, unpredictably.
     const bool inBox = (k->y >= loY) & (k->y <= hiY);
-    if (!inBox || !this->Alive[k->corner] || this->Convex[k->corner])
+    if (!inBox || this->Convex[k->corner])
       continue;
     // A corner at the same place as one of the ear's (where the boundary touches itself)
     // leaves that place on the other side: it does not block the ear.
     const Point2L q{ k->x, k->y };
     if (!samePlace(q, pa) && !samePlace(q, pb) && !samePlace(q, pc) &&
-      (this->Narrow ? inClosedTriangle<std::int64_t>(pa, pb, pc, q)
-                    : inClosedTriangle(pa, pb, pc, q)))
+      inClosedTriangle<Int>(pa, pb, pc, q))
       return false;
   }
   if (2 * this->Stale > this->Blockers.size())
   {
-    this->Blockers.erase(
-      std::remove_if(this->Blockers.begin(),
-        this->Blockers.end(),
-        [&](const Blocker& k) { return !this->Alive[k.corner] || this->Convex[k.corner]; }),
+    this->Blockers.erase(std::remove_if(this->Blockers.begin(),
+                           this->Blockers.end(),
+                           [&](const Blocker& k) { return this->Convex[k.corner] != 0; }),
       this->Blockers.end());
     this->Stale = 0;
   }
