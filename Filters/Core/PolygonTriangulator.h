@@ -115,20 +115,28 @@ private:
   bool clipEars(const std::vector<Point2L>& corners,
     const std::vector<int>& piece,
     std::vector<Triangle>& triangles);
+  /// clipEars once the ring is set up, with cross2 in integers of type Int (std::int64_t when
+  /// Narrow: one choice per piece rather than one per orientation test).
+  template<typename Int>
+  bool clipRing(const std::vector<int>& piece, std::vector<Triangle>& triangles);
+  template<typename Int>
   bool isEar(int b);
-  /// Whether corners a, b, c of the piece turn strictly left (in 64-bit products when Narrow).
+  /// Whether corners a, b, c of the piece turn strictly left.
+  template<typename Int>
   bool turnsLeft(int a, int b, int c) const
   {
-    return this->Narrow ? cross2<std::int64_t>(this->P[a], this->P[b], this->P[c]) > 0
-                        : cross2(this->P[a], this->P[b], this->P[c]) > 0;
+    return cross2<Int>(this->P[a], this->P[b], this->P[c]) > 0;
   }
+  template<typename Int>
   void updateConvexity(int i);
 
-  std::vector<int> All;            ///< the corners' indices, the first piece
-  std::vector<Point2L> P;          ///< the piece's corners, in order
-  bool Narrow = false;             ///< P's products fit in 64 bits (cross2)
-  std::vector<int> Next, Prev;     ///< the ring of corners not cut off
-  std::vector<char> Convex, Alive; ///< per corner of the piece
+  std::vector<int> All;        ///< the corners' indices, the first piece
+  std::vector<Point2L> P;      ///< the piece's corners, in order
+  bool Narrow = false;         ///< P's products fit in 64 bits (cross2)
+  std::vector<int> Next, Prev; ///< the ring of corners not cut off
+  /// Per corner of the piece. A corner cut off was convex (an ear) and stays so (only the
+  /// cut's neighbours are updated): Convex alone tells the corners that may block an ear.
+  std::vector<char> Convex;
   /// The corners that did not turn left at the start (a corner only ever becomes convex or
   /// goes: cutting an ear narrows its neighbours' angles), by x; Stale counts the corners that
   /// became convex since the list was last swept (blockers or not: it only sets how often the
@@ -138,6 +146,8 @@ private:
   std::vector<std::uint32_t> Slots;    ///< hash of the corners (hasRepeatedCorner)
   std::vector<std::uint32_t> SlotMark; ///< the call that wrote each slot
   std::uint32_t Mark = 0;
+  std::vector<Wide> Prefix;       ///< splitAtTouchingCorner's doubled areas
+  std::vector<std::size_t> Order; ///< splitAtTouchingCorner's corners by place
 };
 
 /// Whether the fan of triangles (apex, i, i + 1) over the polygon's corners covers a simple

@@ -26,9 +26,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <numeric>
-#include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -710,33 +710,43 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   return this->recognise(points, count, signs, known);
 }
 
-namespace
+/// The point count, the orientations, then the points relative to the first one, a byte each,
+/// the rest of the words zero.
+bool StandardPlaneRecognizer::FirstCallKey::assign(const Point3* points,
+  std::size_t count,
+  const std::array<int, 3>& signs)
 {
-
-/// The key of a first call's record: its orientations, then its points relative to the first
-/// one, a byte per coordinate; empty when a coordinate does not fit a byte or there are more
-/// than FirstCallPointsAtMost points (those calls are not recorded).
-std::string firstCallKey(const Point3* points, std::size_t count, const std::array<int, 3>& signs)
-{
-  constexpr std::size_t FirstCallPointsAtMost = 24; // an umbrella of six surfels
-  std::string key;
-  if (count == 0 || count > FirstCallPointsAtMost)
-    return key;
-  key.reserve(3 + 3 * count);
+  if (count == 0 || count > PointsAtMost)
+    return false;
+  std::array<std::uint8_t, sizeof(words)> bytes{};
+  bytes[0] = static_cast<std::uint8_t>(count);
   for (int d = 0; d < 3; ++d)
-    key.push_back(static_cast<char>(signs[d]));
+    bytes[1 + d] = static_cast<std::uint8_t>(signs[d]);
+  std::size_t at = 4;
   for (std::size_t i = 0; i < count; ++i)
     for (int d = 0; d < 3; ++d)
     {
       const std::int64_t offset = std::int64_t(points[i][d]) - points[0][d];
       if (offset < -127 || offset > 127)
-        return std::string();
-      key.push_back(static_cast<char>(offset));
+        return false;
+      bytes[at++] = static_cast<std::uint8_t>(offset);
     }
-  return key;
+  std::memcpy(this->words.data(), bytes.data(), sizeof(this->words));
+  return true;
 }
 
-} // namespace
+std::size_t StandardPlaneRecognizer::FirstCallKeyHash::operator()(const FirstCallKey& key) const
+{
+  // Multiply and fold each word (the high bits of a product depend on every bit below them),
+  // so keys that differ in one offset land in different buckets.
+  std::uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (const std::uint64_t w : key.words)
+  {
+    h = (h ^ w) * 0xFF51AFD7ED558CCDull;
+    h ^= h >> 32;
+  }
+  return static_cast<std::size_t>(h);
+}
 
 bool StandardPlaneRecognizer::firstCallFromRecord(const Point3* points,
   std::size_t count,
@@ -749,8 +759,8 @@ bool StandardPlaneRecognizer::firstCallFromRecord(const Point3* points,
   // call, a search of every octant from omega 1, was a tenth of the growth's instructions on
   // noise.
   constexpr std::size_t FirstCallsKept = 4096;
-  std::string key = firstCallKey(points, count, signs);
-  if (key.empty())
+  FirstCallKey key;
+  if (!key.assign(points, count, signs))
     return false;
   const auto found = this->FirstCalls.find(key);
   if (found == this->FirstCalls.end())
@@ -759,7 +769,7 @@ bool StandardPlaneRecognizer::firstCallFromRecord(const Point3* points,
     taken = this->recognise(points, count, signs, 0);
     if (this->FirstCalls.size() < FirstCallsKept)
     {
-      FirstCall& r = this->FirstCalls[std::move(key)];
+      FirstCall& r = this->FirstCalls[key];
       r.taken = taken;
       r.clips = this->Clips - clips;
       r.searches = this->Searches - searches;
