@@ -379,6 +379,8 @@ struct FaceAxes
 /// turns strictly left there, so corner 0 is an ear (its triangle (3, 0, 1) leaves out corner 2,
 /// across the diagonal from 1 to 3), and (2, 3, 1) follows, the same cyclic order round the
 /// rectangle. False, with nothing appended, for any other four corners (then clipQuadrilateral).
+/// The test is rectangleApex's for four corners, in comparisons and one 64-bit product (four
+/// corners leave no room for corners straight on), cheap enough for every face.
 bool appendRectangleTriangles(const Point3* p, int x, int y, FaceCells& out)
 {
   // Edges along y, x, y, x, or along x, y, x, y.

@@ -407,6 +407,15 @@ private:
     else
       reserveHugePages(v, n);
   }
+  /// `v` holding n copies of `value`, in the pages reserveRoom would choose.
+  template<typename T>
+  void assignRoom(std::vector<T>& v, std::size_t n, const T& value) const
+  {
+    if (this->KeepsScratch)
+      v.assign(n, value);
+    else
+      assignHugePages(v, n, value);
+  }
 
   int newInterval() { return static_cast<int>(this->Intervals.add()); }
   int find(int i) { return static_cast<int>(this->Intervals.find(static_cast<std::uint32_t>(i))); }
@@ -808,10 +817,7 @@ private:
   /// hold a first interval, each with the first of them.
   void numberFaces(Boundary2D& out)
   {
-    if (this->KeepsScratch) // see reserveRoom
-      this->FaceOfRoot.assign(this->Intervals.size(), -1);
-    else
-      assignHugePages(this->FaceOfRoot, this->Intervals.size(), -1);
+    this->assignRoom(this->FaceOfRoot, this->Intervals.size(), -1);
     this->FirstOfFace.clear();
     for (const auto& f : this->First)
     {
@@ -1081,6 +1087,13 @@ struct detail::NumberedPlaneSweep2DMemory
   }
   std::size_t KeptFor = 0; ///< vertices of the largest sweep since the memory was released
   std::size_t FewestKept;
+
+  /// The rule that keeps memory within a constant times what is used: memory made for `kept`
+  /// values (at least FewestKept) is released when fewer than a quarter of them are needed.
+  bool tooLargeToKeep(std::size_t kept, std::size_t needed) const
+  {
+    return kept >= this->FewestKept && needed < kept / 4;
+  }
 };
 
 NumberedPlaneSweeper2D::NumberedPlaneSweeper2D(std::size_t fewestKept)
@@ -1103,7 +1116,7 @@ const Contours2D& NumberedPlaneSweeper2D::sweep(const Vertex* begin,
   const auto vertices = static_cast<std::size_t>(end - begin);
   // Every array of a sweep is at most linear in its vertices (or, where non-manifold vertices
   // add corners, edges and intervals, in its output): much more than this sweep's is released.
-  if (m.KeptFor >= m.FewestKept && vertices < m.KeptFor / 4)
+  if (m.tooLargeToKeep(m.KeptFor, vertices))
     this->release();
   m.KeptFor = std::max(m.KeptFor, vertices);
   m.Sweeper.setConnectivity(connectivity);
@@ -1128,7 +1141,7 @@ std::vector<Vertex>& NumberedPlaneSweeper2D::vertexMemory()
 void NumberedPlaneSweeper2D::keepVertexMemory(std::vector<Vertex>&& vertices)
 {
   detail::NumberedPlaneSweep2DMemory& m = *this->Memory;
-  if (vertices.capacity() >= m.FewestKept && vertices.size() < vertices.capacity() / 4)
+  if (m.tooLargeToKeep(vertices.capacity(), vertices.size()))
     m.VertexMemory = std::vector<Vertex>();
   else
     m.VertexMemory = std::move(vertices);
