@@ -46,17 +46,6 @@ Point3 placed(const AxisOrder& order, Coord position, const Point2& p)
   return q;
 }
 
-/// placed(order, position, p) written to `q` coordinate by coordinate. A point made apart and
-/// then copied is read back in wider words than its coordinates were written in (at places
-/// known only at run time), which the processor cannot forward from its stores: a stall per
-/// corner, most of appendFaces' time on a checkerboard.
-void placeAt(Point3& q, const AxisOrder& order, Coord position, const Point2& p)
-{
-  q[order[0]] = position;
-  q[order[1]] = p.u;
-  q[order[2]] = p.v;
-}
-
 /// Room for `more` elements past the end of `v`, at least doubling its capacity when it
 /// grows: appendFaces adds a plane's faces at a time, thousands of planes of few faces each on
 /// noise (a reservation of the exact size each time would copy the faces at every plane).
@@ -85,7 +74,7 @@ void appendFacesOf(const Boundary2D& b2,
   reserveGrowing(out.loops, b2.loops.size());
   for (const Face2D& f2 : b2.faces)
   {
-    // Faces and loops written in place, not made apart and copied in (see placeAt).
+    // Faces and loops written in place, not made apart and copied in (see appendFacesPlaced).
     const int faceId = static_cast<int>(out.faces.size());
     BRepFace& face = out.faces.emplace_back();
     face.axis = order[0];
@@ -115,7 +104,13 @@ void appendFacesOf(const Boundary2D& b2,
 
 } // namespace
 
-void appendFaces(const Boundary2D& b2,
+namespace
+{
+
+/// appendFaces in the sorting (A, B, C) = order, known at compile time: each corner placed by
+/// three stores at fixed offsets, not at offsets read from the order at every corner.
+template<int A, int B, int C>
+void appendFacesPlaced(const Boundary2D& b2,
   const AxisOrder& order,
   Coord position,
   int normalSign,
@@ -126,6 +121,16 @@ void appendFaces(const Boundary2D& b2,
   const std::size_t first = out.points.size();
   out.points.resize(first + b2.points.size());
   Point3* to = out.points.data() + first;
+  const auto place = [&](const Point2& p)
+  {
+    // Coordinate by coordinate: a point made apart and then copied is read back in wider words
+    // than its coordinates were written in, which the processor cannot forward from its
+    // stores (a stall per corner, most of appendFaces' time on a checkerboard).
+    Point3& q = *to++;
+    q[A] = position;
+    q[B] = p.u;
+    q[C] = p.v;
+  };
   appendFacesOf(b2,
     order,
     position,
@@ -137,13 +142,42 @@ void appendFaces(const Boundary2D& b2,
       const Point2* from = b2.points.data();
       if (reverse)
         for (std::size_t i = end; i-- > begin;)
-          placeAt(*to++, order, position, from[i]);
+          place(from[i]);
       else
         for (std::size_t i = begin; i < end; ++i)
-          placeAt(*to++, order, position, from[i]);
+          place(from[i]);
     });
   // Every point of b2 lies in exactly one of its loops, so the loops fill the resize exactly.
   assert(to == out.points.data() + out.points.size());
+}
+
+} // namespace
+
+void appendFaces(const Boundary2D& b2,
+  const AxisOrder& order,
+  Coord position,
+  int normalSign,
+  BRep& out)
+{
+  // The 3D sweep's sortings are the cyclic ones; a 2D EVM may come in any of the six.
+  const int key = 9 * order[0] + 3 * order[1] + order[2];
+  switch (key)
+  {
+    case 0 * 9 + 1 * 3 + 2:
+      return appendFacesPlaced<0, 1, 2>(b2, order, position, normalSign, out);
+    case 1 * 9 + 2 * 3 + 0:
+      return appendFacesPlaced<1, 2, 0>(b2, order, position, normalSign, out);
+    case 2 * 9 + 0 * 3 + 1:
+      return appendFacesPlaced<2, 0, 1>(b2, order, position, normalSign, out);
+    case 0 * 9 + 2 * 3 + 1:
+      return appendFacesPlaced<0, 2, 1>(b2, order, position, normalSign, out);
+    case 1 * 9 + 0 * 3 + 2:
+      return appendFacesPlaced<1, 0, 2>(b2, order, position, normalSign, out);
+    case 2 * 9 + 1 * 3 + 0:
+      return appendFacesPlaced<2, 1, 0>(b2, order, position, normalSign, out);
+    default:
+      throw std::invalid_argument("appendFaces: not an order of the three axes");
+  }
 }
 
 std::size_t BRep::holeCount() const

@@ -741,7 +741,11 @@ private:
     // Written in place (see startHorizontalEdge): made apart and copied in by push_back, which
     // the compiler stopped inlining here once processLine had two copies, the vertex cost 7.7 %
     // of a checkerboard's samples, against 1.8 % so.
-    NonManifoldVertex& vertex = this->NonManifold.emplace_back();
+    // push_back of a const reference, whose fast path is inlined: emplace_back() was called out
+    // of line, about 25 instructions a vertex on a checkerboard (see newCorner).
+    static constexpr NonManifoldVertex Blank{ 0, { -1, -1, -1, -1 } };
+    this->NonManifold.push_back(Blank);
+    NonManifoldVertex& vertex = this->NonManifold.back();
     vertex.at = c;
     vertex.edges[0] = hOld;
     vertex.edges[1] = hNew;

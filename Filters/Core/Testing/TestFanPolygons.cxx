@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -558,7 +559,7 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesAreEarClippedAsByDefinition)
     seed = seed * 1103515245u + 12345u;
     return static_cast<int>((seed >> 16) % m);
   };
-  std::size_t checked = 0;
+  std::size_t checked = 0, checkedLong = 0;
   for (int trial = 0; trial < 600; ++trial)
   {
     const int w = 1 + next(12), h = 1 + next(12), x0 = next(20) - 10, y0 = next(20) - 10;
@@ -573,8 +574,13 @@ TEST(FanPolygons, RectanglesWithCornersOnTheirSidesAreEarClippedAsByDefinition)
     ASSERT_EQ(expected.size(), n - 2); // a convex loop always has an ear
     EXPECT_EQ(vbr::triangulateFace(brep, 0), expected);
     checked += n > 4;
+    checkedLong += n > 32;
   }
   EXPECT_GT(checked, 500u);
+  // Loops of more than 32 corners are clipped in arrays of their own, the shorter ones on the
+  // stack (SmallRing): both ways checked.
+  RecordProperty("long", static_cast<int>(checkedLong));
+  EXPECT_GT(checkedLong, 20u);
 }
 
 // The triangles of every face without holes of up to 128 corners of random volumes (L shapes,
@@ -651,4 +657,70 @@ TEST(FanPolygons, SimpleLoopsAreEarClippedAsByDefinition)
   RecordProperty("simple", static_cast<int>(simple));
   EXPECT_GT(simple, 300u);
   EXPECT_GT(rectangles, 300u);
+}
+
+namespace
+{
+
+/// A staircase counter-clockwise from the origin, its bottom-left corner: along x to (w, 0), then
+/// `steps` steps up and to the left back to the y axis, down to the origin; a step of random
+/// height and width, and a corner of a neighbouring face on the bottom side now and then.
+std::vector<P2> staircase(int steps, const std::function<int(unsigned)>& next)
+{
+  std::vector<int> widths(static_cast<std::size_t>(steps));
+  int w = 0;
+  for (int& width : widths)
+    w += width = 1 + next(3);
+  std::vector<P2> loop{ { 0, 0 } };
+  for (int x = 1; x < w; ++x)
+    if (next(4) == 0)
+      loop.push_back({ x, 0 });
+  int x = w, y = 0;
+  loop.push_back({ x, y });
+  for (const int width : widths)
+  {
+    y += 1 + next(3);
+    loop.push_back({ x, y });
+    x -= width;
+    if (x > 0)
+      loop.push_back({ x, y });
+  }
+  return loop;
+}
+
+} // namespace
+
+// Ear clipping keeps loops of up to 32 corners on the stack (SmallRing) and longer ones in arrays
+// of their own (EarCorners, ConvexRing); on staircases of 2 to 30 steps (6 to about 100
+// corners), simple, and two of them touching at a corner (a loop that passes the corner twice),
+// every start and orientation, the triangles are those of ear clipping by its definition
+// (bruteForceEars) either way.
+TEST(FanPolygons, StaircasesShortAndLongAreEarClippedAsByDefinition)
+{
+  unsigned seed = 515;
+  const std::function<int(unsigned)> next = [&seed](unsigned m)
+  {
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<int>((seed >> 16) % m);
+  };
+  std::size_t shortLoops = 0, longLoops = 0;
+  for (int trial = 0; trial < 240; ++trial)
+  {
+    std::vector<P2> loop = staircase(2 + next(29), next);
+    if (trial % 2 == 1) // a second staircase turned half round, touching the first at the origin
+      for (const P2& p : staircase(1 + next(12), next))
+        loop.push_back({ -p[0], -p[1] });
+    const std::size_t n = loop.size(), shift = static_cast<std::size_t>(next(int(n)));
+    std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(shift), loop.end());
+    const vbr::BRep brep = faceOfLoop(loop, trial % 3, (trial / 3) % 2 == 0 ? 1 : -1, 5);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << n << " corners");
+    const std::vector<std::array<int, 3>> expected = bruteForceEars(loop);
+    if (expected.empty() || n > 128)
+      continue; // no ear somewhere: not ear-clipped (SimpleLoopsAreEarClippedAsByDefinition)
+    EXPECT_EQ(vbr::triangulateFace(brep, 0), expected);
+    shortLoops += n <= 32;
+    longLoops += n > 32;
+  }
+  EXPECT_GT(shortLoops, 40u);
+  EXPECT_GT(longLoops, 40u);
 }
