@@ -15,8 +15,9 @@
 // others once a face has 128 points). All arithmetic that decides is on integers;
 // determinants and column bounds use Wide. A face's first call, read relative to its first
 // point, is repeated from the record of an earlier face's first call of the same shape
-// (firstCallFromRecord); reset puts each octant's triangle back only when a slow path first
-// clips it (restoreOctant).
+// (firstCallFromRecord), and so is the slow path of a later call after the same calls
+// (laterCallFromRecord, along the face's CallPath); reset puts each octant's triangle back only
+// when a slow path first clips it (restoreOctant).
 
 #include "StandardPlane.h"
 #include "StandardPlaneColumns.h"
@@ -60,6 +61,11 @@ constexpr std::size_t ExtremesFrom = 128;
 constexpr std::size_t KeptIndexPoints = 32;
 /// Calls of at most this many points insert their fresh points in order instead of sorting.
 constexpr std::size_t SmallCall = 16;
+
+/// At most this many slow paths of later calls are recorded per recognizer (CallPath).
+constexpr std::size_t LaterCallsKept = 16384;
+constexpr std::size_t LaterTableSize = 2 * LaterCallsKept; // a power of 2
+constexpr std::uint32_t NoRecord = 0xFFFFFFFFu;
 
 Vec primitive(Vec v)
 {
@@ -705,8 +711,12 @@ bool StandardPlaneRecognizer::tryAdd(const Point3* points,
   std::uint32_t known)
 {
   bool taken = false;
-  if (this->Points.empty() && known == 0 && this->firstCallFromRecord(points, count, signs, taken))
-    return taken;
+  if (this->Points.empty())
+  {
+    this->Path.size = 0; // firstCallFromRecord starts it when the call has a record
+    if (known == 0 && this->firstCallFromRecord(points, count, signs, taken))
+      return taken;
+  }
   return this->recognise(points, count, signs, known);
 }
 
@@ -771,6 +781,9 @@ bool StandardPlaneRecognizer::firstCallFromRecord(const Point3* points,
     {
       FirstCall& r = this->FirstCalls[key];
       r.taken = taken;
+      r.node = static_cast<std::uint32_t>(this->FirstCalls.size());
+      if (taken)
+        this->startPath(r.node);
       r.clips = this->Clips - clips;
       r.searches = this->Searches - searches;
       if (taken)
@@ -811,7 +824,145 @@ bool StandardPlaneRecognizer::firstCallFromRecord(const Point3* points,
   this->CurrentLo = r.lo;
   this->CurrentHi = r.hi;
   this->Current.mu = this->CurrentLo + dot(r.normal, this->Origin);
+  this->startPath(r.node);
   return true;
+}
+
+std::uint64_t StandardPlaneRecognizer::CallPath::hash() const
+{
+  // Multiply and fold each 8 bytes, as FirstCallKeyHash does (zero beyond the size).
+  std::uint64_t h = 0x9E3779B97F4A7C15ull ^ this->size;
+  for (std::size_t i = 0; i < this->size; i += 8)
+  {
+    std::uint64_t w = 0;
+    std::memcpy(&w, this->bytes.data() + i, 8);
+    h = (h ^ w) * 0xFF51AFD7ED558CCDull;
+    h ^= h >> 32;
+  }
+  return h;
+}
+
+void StandardPlaneRecognizer::startPath(std::uint32_t node)
+{
+  this->Path.bytes.fill(0);
+  std::memcpy(this->Path.bytes.data(), &node, 4);
+  this->Path.size = 4;
+}
+
+bool StandardPlaneRecognizer::extendPath(const Point3* points,
+  std::size_t count,
+  const std::array<int, 3>& signs)
+{
+  static_assert(
+    FirstCallKey::PointsAtMost + CallPath::CallPoints * CallPath::CallsAtMost < ExtremesFrom,
+    "a recorded slow path sifts no extremes (refreshExtremes changes nothing)");
+  static_assert(CallPath::BytesAtMost % 8 == 4, "CallPath::hash reads whole words");
+  CallPath& path = this->Path;
+  if (path.size == 0)
+    return false;
+  if (count > CallPath::CallPoints || path.size == CallPath::BytesAtMost)
+  {
+    path.size = 0;
+    return false;
+  }
+  std::uint8_t* bytes = path.bytes.data() + path.size;
+  bytes[0] = static_cast<std::uint8_t>(count);
+  for (int d = 0; d < 3; ++d)
+    bytes[1 + d] = static_cast<std::uint8_t>(signs[d]);
+  std::size_t at = 4;
+  for (std::size_t i = 0; i < count; ++i)
+    for (int d = 0; d < 3; ++d)
+    {
+      const std::int64_t offset = std::int64_t(points[i][d]) - this->Origin[d];
+      if (offset < -127 || offset > 127)
+      {
+        path.size = 0;
+        return false;
+      }
+      bytes[at++] = static_cast<std::uint8_t>(offset);
+    }
+  for (; at < CallPath::CallBytes; ++at)
+    bytes[at] = 0;
+  path.size += CallPath::CallBytes;
+  return true;
+}
+
+std::size_t StandardPlaneRecognizer::laterSlot(std::uint64_t pathHash) const
+{
+  std::size_t i = static_cast<std::size_t>(pathHash) & (LaterTableSize - 1);
+  for (;; i = (i + 1) & (LaterTableSize - 1))
+  {
+    const auto& [hash, record] = this->LaterTable[i];
+    if (record == NoRecord || (hash == pathHash && this->LaterRecords[record].path == this->Path))
+      return i;
+  }
+}
+
+bool StandardPlaneRecognizer::laterCallFromRecord(std::uint64_t pathHash,
+  const std::array<int, 3>& present,
+  bool& taken)
+{
+  if (this->LaterTable.empty())
+    return false;
+  const std::uint32_t record = this->LaterTable[this->laterSlot(pathHash)].second;
+  if (record == NoRecord)
+    return false;
+  const LaterCall& r = this->LaterRecords[record];
+  ++this->Repeated;
+  this->Clips += r.clips;
+  this->Searches += r.searches;
+  taken = r.taken;
+  if (taken)
+    this->commit(present); // the same fresh points as the recorded call's
+  const Vertex* vertex = this->LaterVertices.data() + r.verticesAt;
+  for (int s = 0; s < 8; ++s)
+    if (r.alive[s] && !r.unrestored[s])
+    {
+      Octant& o = this->Octants[s];
+      o.vertices.assign(vertex, vertex + r.sizes[s]);
+      o.applied = r.applied[s];
+      vertex += r.sizes[s];
+    }
+  this->Alive = r.alive;
+  this->Unrestored = r.unrestored;
+  this->Current.normal = r.normal;
+  this->CurrentLo = r.lo;
+  this->CurrentHi = r.hi;
+  this->Current.mu = this->CurrentLo + dot(r.normal, this->Origin);
+  return true;
+}
+
+void StandardPlaneRecognizer::recordLaterCall(std::uint64_t pathHash,
+  bool taken,
+  std::size_t clips,
+  std::size_t searches)
+{
+  if (this->LaterRecords.size() >= LaterCallsKept)
+    return;
+  if (this->LaterTable.empty())
+    this->LaterTable.assign(LaterTableSize, { 0, NoRecord });
+  const std::size_t slot = this->laterSlot(pathHash); // empty: the look-up found no record
+  LaterCall r;
+  r.path = this->Path;
+  r.taken = taken;
+  r.clips = static_cast<std::uint32_t>(this->Clips - clips);
+  r.searches = static_cast<std::uint32_t>(this->Searches - searches);
+  r.verticesAt = static_cast<std::uint32_t>(this->LaterVertices.size());
+  for (int s = 0; s < 8; ++s)
+    if (this->Alive[s] && !this->Unrestored[s])
+    {
+      const Octant& o = this->Octants[s];
+      this->LaterVertices.insert(this->LaterVertices.end(), o.vertices.begin(), o.vertices.end());
+      r.sizes[s] = static_cast<std::uint8_t>(o.vertices.size());
+      r.applied[s] = static_cast<std::uint8_t>(o.applied);
+    }
+  r.alive = this->Alive;
+  r.unrestored = this->Unrestored;
+  r.normal = this->Current.normal;
+  r.lo = this->CurrentLo;
+  r.hi = this->CurrentHi;
+  this->LaterTable[slot] = { pathHash, static_cast<std::uint32_t>(this->LaterRecords.size()) };
+  this->LaterRecords.push_back(r);
 }
 
 bool StandardPlaneRecognizer::recognise(const Point3* points,
@@ -822,8 +973,16 @@ bool StandardPlaneRecognizer::recognise(const Point3* points,
   std::array<int, 3> present = this->Present;
   if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count, known))
     return false;
+  // From here on the call changes the state, even when refused (the octants are clipped with
+  // the points committed since, for good): it extends the face's path.
+  const bool onPath = this->extendPath(points, count, signs);
   if (this->takenByCurrentPlane(present))
     return true;
+  const std::uint64_t hash = onPath ? this->Path.hash() : 0;
+  bool taken = false;
+  if (onPath && this->laterCallFromRecord(hash, present, taken))
+    return taken;
+  const std::size_t clips = this->Clips, searches = this->Searches;
   // Slow path: clip the octants with the points already accepted (for good), then with the
   // new ones (on copies), and search each surviving octant for a normal (searchOctants).
   this->refreshExtremes();
@@ -831,13 +990,16 @@ bool StandardPlaneRecognizer::recognise(const Point3* points,
   this->Points.insert(this->Points.end(), this->Fresh.begin(), this->Fresh.end());
   std::array<bool, 8> survives{};
   Vec best{ 0, 0, 0 };
-  const bool found = this->searchOctants(present, survives, best);
+  taken = this->searchOctants(present, survives, best);
   this->Points.resize(before);
-  if (!found)
-    return false;
-  this->commit(present);
-  this->adoptNormal(best, survives);
-  return true;
+  if (taken)
+  {
+    this->commit(present);
+    this->adoptNormal(best, survives);
+  }
+  if (onPath)
+    this->recordLaterCall(hash, taken, clips, searches);
+  return taken;
 }
 
 bool StandardPlaneRecognizer::addOrientations(const std::array<int, 3>& signs,

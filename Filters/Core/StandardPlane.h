@@ -102,6 +102,8 @@ public:
   /// Recognition work done: polygon clips and solution searches (for benchmarks).
   std::size_t clipCount() const { return this->Clips; }
   std::size_t searchCount() const { return this->Searches; }
+  /// Slow paths of later calls repeated from records (for tests).
+  std::size_t laterCallsRepeated() const { return this->Repeated; }
   /// Points sifted out of the measures, known to be the midpoint of two others (for tests).
   std::size_t siftedOutCount() const { return this->Scanned - this->Extremes.size(); }
 
@@ -172,6 +174,19 @@ private:
     std::size_t count,
     const std::array<int, 3>& signs,
     bool& taken);
+  /// The state-changing calls of the face since its first (Path, while recorded): false, the
+  /// path given up for the face, when the call is not one a path holds.
+  bool extendPath(const Point3* points, std::size_t count, const std::array<int, 3>& signs);
+  /// Path started by the number of the face's first call.
+  void startPath(std::uint32_t node);
+  /// A slow path repeated from the record of an earlier face with the same Path: whether
+  /// there is one, and then whether it took the points.
+  bool laterCallFromRecord(std::uint64_t pathHash, const std::array<int, 3>& present, bool& taken);
+  /// The slot of the record of Path (hash `pathHash`) in LaterTable, or of the empty slot
+  /// where it would go.
+  std::size_t laterSlot(std::uint64_t pathHash) const;
+  /// Records the slow path just taken by a call on the Path, while there is room.
+  void recordLaterCall(std::uint64_t pathHash, bool taken, std::size_t clips, std::size_t searches);
   bool recognise(const Point3* points,
     std::size_t count,
     const std::array<int, 3>& signs,
@@ -242,6 +257,7 @@ private:
     Vec normal{ 0, 0, 0 };
     std::int64_t lo = 0, hi = 0;
     std::size_t clips = 0, searches = 0;
+    std::uint32_t node = 0; ///< its number, which starts the Path of the calls after it
   };
   /// A first call's orientations and points relative to its first point, a byte each, in
   /// fixed-size words (makeFirstCallKey): hashed and compared a word at a time, with no
@@ -263,6 +279,47 @@ private:
   };
   /// By the call's orientations and points relative to its first (makeFirstCallKey).
   std::unordered_map<FirstCallKey, FirstCall, FirstCallKeyHash> FirstCalls;
+
+  /// The calls of a face after its first one are repeated from records too, on their slow
+  /// path only (a fast path is cheaper than a look-up): the state after the same calls is the
+  /// same relative to the first point. A path: the number of the face's first call (its
+  /// record), then each later call that changed the state, CallBytes each (the point count,
+  /// the orientations and the points relative to the first point, a byte each). Empty when
+  /// the face's calls are not recorded (a first call without a record, a call beyond reach, or
+  /// more than CallsAtMost calls: deeper slow paths were seldom met again on 50 % noise).
+  struct CallPath
+  {
+    static constexpr std::size_t CallPoints = 4, CallBytes = 4 + 3 * CallPoints;
+    static constexpr std::size_t CallsAtMost = 3, BytesAtMost = 4 + CallBytes * CallsAtMost;
+    std::array<std::uint8_t, BytesAtMost + 4> bytes{}; ///< whole words, for the hash
+    std::size_t size = 0;
+    bool operator==(const CallPath& other) const
+    {
+      return this->size == other.size && this->bytes == other.bytes; // zero beyond the size
+    }
+    std::uint64_t hash() const;
+  };
+  CallPath Path;
+  /// What a slow path left: its path, whether it took the points, the clips
+  /// and searches it counted, the octants restored and alive (their vertices one after the
+  /// other in LaterVertices, `sizes` each) and the plane.
+  struct LaterCall
+  {
+    CallPath path;
+    bool taken = false;
+    std::uint32_t clips = 0, searches = 0, verticesAt = 0;
+    std::array<std::uint8_t, 8> sizes{}, applied{};
+    std::array<bool, 8> alive{}, unrestored{};
+    Vec normal{ 0, 0, 0 };
+    std::int64_t lo = 0, hi = 0;
+  };
+  /// The records, found by the hashes of their paths in an open-addressed table (hash, index
+  /// of the record; LaterTableSize slots, twice the records kept), and their vertices in one
+  /// array: no allocation per record.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> LaterTable;
+  std::vector<LaterCall> LaterRecords;
+  std::vector<Vertex> LaterVertices;
+  std::size_t Repeated = 0; ///< slow paths repeated from records
 };
 
 } // namespace vbr

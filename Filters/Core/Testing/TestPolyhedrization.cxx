@@ -1905,7 +1905,9 @@ struct RecognizerCall
 
 /// A face's first call (a lone surfel, the umbrella of a cube's corner, or two surfels side by
 /// side: shapes that come back, at `at`) and then surfels near it, a call each.
-std::vector<RecognizerCall> randomFaceCalls(std::mt19937& rng, const vbr::Point3& at)
+std::vector<RecognizerCall> randomFaceCalls(std::mt19937& rng,
+  const vbr::Point3& at,
+  int spread = 2)
 {
   std::vector<RecognizerCall> calls(1);
   const int shape = static_cast<int>(rng() % 9);
@@ -1924,7 +1926,7 @@ std::vector<RecognizerCall> randomFaceCalls(std::mt19937& rng, const vbr::Point3
   }
   // Then surfels of two or three directions of one octant, near: some taken, some refused.
   const std::array<int, 3> signs{ rng() % 2 ? 1 : -1, rng() % 2 ? 1 : -1, rng() % 2 ? 1 : -1 };
-  std::uniform_int_distribution<int> near(-2, 2);
+  std::uniform_int_distribution<int> near(-spread, spread);
   for (int c = 0; c < 8; ++c)
   {
     const int axis = static_cast<int>(rng() % 3);
@@ -1973,4 +1975,44 @@ TEST(StandardPlane, FirstCallsFromRecordsAreRecognisedAlike)
   }
   EXPECT_GT(taken, 4000u);
   EXPECT_GT(refused, 4000u);
+}
+
+// Its later calls too: a face's slow path after the same calls relative to its first point is
+// repeated from the record of an earlier face. Faces of a few shapes, their later surfels one
+// voxel apart at most, so that paths come back often: every answer, the points, the plane and
+// the work counted must be those of a recognizer that never saw an earlier face.
+TEST(StandardPlane, LaterCallsFromRecordsAreRecognisedAlike)
+{
+  std::mt19937 rng(23);
+  vbr::StandardPlaneRecognizer kept; // reset for each face, its records kept
+  std::size_t taken = 0, refused = 0;
+  for (int face = 0; face < 20000; ++face)
+  {
+    std::uniform_int_distribution<int> shift(-60, 60);
+    const std::vector<RecognizerCall> calls =
+      randomFaceCalls(rng, { shift(rng), shift(rng), shift(rng) }, 1);
+    kept.reset();
+    vbr::StandardPlaneRecognizer fresh;
+    const std::size_t clips = kept.clipCount(), searches = kept.searchCount();
+    for (std::size_t c = 0; c < calls.size(); ++c)
+    {
+      const bool a = kept.tryAdd(calls[c].points, calls[c].signs);
+      const bool b = fresh.tryAdd(calls[c].points, calls[c].signs);
+      ASSERT_EQ(a, b) << "face " << face << ", call " << c;
+      (a ? taken : refused) += 1;
+      ASSERT_EQ(kept.pointCount(), fresh.pointCount()) << "face " << face << ", call " << c;
+      ASSERT_EQ(kept.clipCount() - clips, fresh.clipCount()) << "face " << face << ", call " << c;
+      ASSERT_EQ(kept.searchCount() - searches, fresh.searchCount())
+        << "face " << face << ", call " << c;
+      if (kept.pointCount() > 0)
+      {
+        ASSERT_EQ(kept.plane().normal, fresh.plane().normal) << "face " << face << ", call " << c;
+        ASSERT_EQ(kept.plane().mu, fresh.plane().mu) << "face " << face << ", call " << c;
+      }
+    }
+  }
+  EXPECT_GT(taken, 20000u);
+  EXPECT_GT(refused, 20000u);
+  EXPECT_GT(kept.laterCallsRepeated(), 5000u) << "too few slow paths repeated from records";
+  std::printf("%zu slow paths of later calls repeated from records\n", kept.laterCallsRepeated());
 }
