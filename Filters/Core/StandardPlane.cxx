@@ -67,6 +67,30 @@ constexpr std::size_t LaterCallsKept = 16384;
 constexpr std::size_t LaterTableSize = 2 * LaterCallsKept; // a power of 2
 constexpr std::uint32_t NoRecord = 0xFFFFFFFFu;
 
+/// Writes a call as bytes from `bytes` on: its point count, its orientations, then its points
+/// relative to `origin`, a byte per coordinate (the records' keys and paths). False when a point
+/// lies farther than 127 from the origin along an axis.
+bool writeCallBytes(std::uint8_t* bytes,
+  const Point3* points,
+  std::size_t count,
+  const std::array<int, 3>& signs,
+  const Point3& origin)
+{
+  bytes[0] = static_cast<std::uint8_t>(count);
+  for (int d = 0; d < 3; ++d)
+    bytes[1 + d] = static_cast<std::uint8_t>(signs[d]);
+  std::size_t at = 4;
+  for (std::size_t i = 0; i < count; ++i)
+    for (int d = 0; d < 3; ++d)
+    {
+      const std::int64_t offset = std::int64_t(points[i][d]) - origin[d];
+      if (offset < -127 || offset > 127)
+        return false;
+      bytes[at++] = static_cast<std::uint8_t>(offset);
+    }
+  return true;
+}
+
 Vec primitive(Vec v)
 {
   // A component of +-1 makes the vector primitive already: the common case of the clips, and
@@ -729,18 +753,8 @@ bool StandardPlaneRecognizer::FirstCallKey::assign(const Point3* points,
   if (count == 0 || count > PointsAtMost)
     return false;
   std::array<std::uint8_t, sizeof(words)> bytes{};
-  bytes[0] = static_cast<std::uint8_t>(count);
-  for (int d = 0; d < 3; ++d)
-    bytes[1 + d] = static_cast<std::uint8_t>(signs[d]);
-  std::size_t at = 4;
-  for (std::size_t i = 0; i < count; ++i)
-    for (int d = 0; d < 3; ++d)
-    {
-      const std::int64_t offset = std::int64_t(points[i][d]) - points[0][d];
-      if (offset < -127 || offset > 127)
-        return false;
-      bytes[at++] = static_cast<std::uint8_t>(offset);
-    }
+  if (!writeCallBytes(bytes.data(), points, count, signs, points[0]))
+    return false;
   std::memcpy(this->words.data(), bytes.data(), sizeof(this->words));
   return true;
 }
@@ -866,23 +880,13 @@ bool StandardPlaneRecognizer::extendPath(const Point3* points,
     return false;
   }
   std::uint8_t* bytes = path.bytes.data() + path.size;
-  bytes[0] = static_cast<std::uint8_t>(count);
-  for (int d = 0; d < 3; ++d)
-    bytes[1 + d] = static_cast<std::uint8_t>(signs[d]);
-  std::size_t at = 4;
-  for (std::size_t i = 0; i < count; ++i)
-    for (int d = 0; d < 3; ++d)
-    {
-      const std::int64_t offset = std::int64_t(points[i][d]) - this->Origin[d];
-      if (offset < -127 || offset > 127)
-      {
-        path.size = 0;
-        return false;
-      }
-      bytes[at++] = static_cast<std::uint8_t>(offset);
-    }
-  for (; at < CallPath::CallBytes; ++at)
-    bytes[at] = 0;
+  if (!writeCallBytes(bytes, points, count, signs, this->Origin))
+  {
+    path.size = 0;
+    return false;
+  }
+  // Zero past the call's points: paths are compared and hashed in whole words.
+  std::fill(bytes + 4 + 3 * count, bytes + CallPath::CallBytes, std::uint8_t(0));
   path.size += CallPath::CallBytes;
   return true;
 }
