@@ -78,7 +78,8 @@ struct BRep
 
 /// Appends the faces of a 2D solution (loops in (B, C) of `order`) lying in the plane
 /// A = `position`, facing +A (normalSign +1) or -A: loops are reversed where needed so that
-/// outer loops run counter-clockwise seen from outside.
+/// outer loops run counter-clockwise seen from outside. Throws std::invalid_argument when
+/// `order` is not an order of the three axes.
 void appendFaces(const Boundary2D& b2,
   const AxisOrder& order,
   Coord position,

@@ -548,7 +548,8 @@ bool clipQuadrilateral(const PointRange& pts,
   return false;
 }
 
-/// The walk of clipEars round a ring (EarCorners, or ConvexRing for a loop round a rectangle)
+/// The walk of clipEars round a ring (SmallRing up to SmallRingLimit corners; beyond, EarCorners,
+/// or ConvexRing for a loop round a rectangle)
 /// linked both ways by `prev` and `next`, from corner 0; the triangles' neighbours recorded by
 /// `neighbours`.
 template<typename Ring>

@@ -738,11 +738,10 @@ private:
     const int below = o.piece;
     o.piece = this->startPiece<Checks>(o, at, c);
     const int hNew = this->startHorizontalEdge<Checks>(o, at, c);
-    // Written in place (see startHorizontalEdge): made apart and copied in by push_back, which
-    // the compiler stopped inlining here once processLine had two copies, the vertex cost 7.7 %
-    // of a checkerboard's samples, against 1.8 % so.
-    // push_back of a const reference, whose fast path is inlined: emplace_back() was called out
-    // of line, about 25 instructions a vertex on a checkerboard (see newCorner).
+    // A blank record pushed and then filled in place: a record made apart and then copied in
+    // had cost 7.7 % of a checkerboard's samples once processLine had two copies (see
+    // startHorizontalEdge), and emplace_back() was called out of line, about 25 instructions a
+    // vertex; push_back of a constant is inlined (see newCorner).
     static constexpr NonManifoldVertex Blank{ 0, { -1, -1, -1, -1 } };
     this->NonManifold.push_back(Blank);
     NonManifoldVertex& vertex = this->NonManifold.back();

@@ -957,6 +957,8 @@ void StandardPlaneRecognizer::recordLaterCall(std::uint64_t pathHash,
     {
       const Octant& o = this->Octants[s];
       this->LaterVertices.insert(this->LaterVertices.end(), o.vertices.begin(), o.vertices.end());
+      // At most 36 points clip an octant's triangle here: far fewer than 256 corners.
+      assert(o.vertices.size() < 256);
       r.sizes[s] = static_cast<std::uint8_t>(o.vertices.size());
       r.applied[s] = static_cast<std::uint8_t>(o.applied);
     }
@@ -977,8 +979,8 @@ bool StandardPlaneRecognizer::recognise(const Point3* points,
   std::array<int, 3> present = this->Present;
   if (!addOrientations(signs, present) || !this->collectFreshPoints(points, count, known))
     return false;
-  // From here on the call changes the state, even when refused (the octants are clipped with
-  // the points committed since, for good): it extends the face's path.
+  // From here on the call may change the state, even when refused (the octants are clipped
+  // with the points committed since, for good): it extends the face's path.
   const bool onPath = this->extendPath(points, count, signs);
   if (this->takenByCurrentPlane(present))
     return true;

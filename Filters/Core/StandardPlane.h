@@ -283,7 +283,8 @@ private:
   /// The calls of a face after its first one are repeated from records too, on their slow
   /// path only (a fast path is cheaper than a look-up): the state after the same calls is the
   /// same relative to the first point. A path: the number of the face's first call (its
-  /// record), then each later call that changed the state, CallBytes each (the point count,
+  /// record), then each later call that passed collectFreshPoints (it may have changed the state,
+  /// so it is kept even when it changed nothing), CallBytes each (the point count,
   /// the orientations and the points relative to the first point, a byte each). Empty when
   /// the face's calls are not recorded (a first call without a record, a call beyond reach, or
   /// more than CallsAtMost calls: deeper slow paths were seldom met again on 50 % noise).

@@ -682,8 +682,7 @@ std::vector<P2> staircase(int steps, const std::function<int(unsigned)>& next)
     y += 1 + next(3);
     loop.push_back({ x, y });
     x -= width;
-    if (x > 0)
-      loop.push_back({ x, y });
+    loop.push_back({ x, y }); // after the last step x is 0: the y axis, above the origin
   }
   return loop;
 }
