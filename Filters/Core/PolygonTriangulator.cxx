@@ -7,8 +7,10 @@
 // prefix sum, tell whether the corner joins two pieces; looked for only when a hash of the
 // corners finds one repeated), then ear-clips each piece on a doubly linked ring (clipEars),
 // testing only the corners that do not turn left (the blockers), kept sorted by x so that an
-// ear reads only those in its bounding box's columns. isSimplePolygon compares every pair of
-// non-adjacent edges (segmentsMeet).
+// ear reads only those in its bounding box's columns; a piece of at most 64 corners tests all
+// of its blockers, kept in the bits of a word (clipSmallRing: no sort, no search, loops of
+// foreseeable length). isSimplePolygon compares every pair of non-adjacent edges
+// (segmentsMeet).
 
 #include "PolygonTriangulator.h"
 
@@ -69,6 +71,30 @@ bool segmentsMeet(const Point2L& a, const Point2L& b, const Point2L& c, const Po
   return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) ||
     (o3 == 0 && onSegment(c, d, a)) || (o4 == 0 && onSegment(c, d, b));
 }
+
+/// cross2<std::int64_t>(p, q, r) for many r: dx r_y - dy r_x - (dx p_y - dy p_x), where
+/// (dx, dy) = q - p. The terms may pass 2^63 where cross2's do not, so they are taken modulo
+/// 2^64 (unsigned): the result, below 2^63 in magnitude for corners within 2^30 (cross2), is
+/// exact.
+class EdgeLine
+{
+public:
+  EdgeLine(const Point2L& p, const Point2L& q)
+    : Dx(static_cast<std::uint64_t>(q[0] - p[0]))
+    , Dy(static_cast<std::uint64_t>(q[1] - p[1]))
+    , K(this->Dx * static_cast<std::uint64_t>(p[1]) - this->Dy * static_cast<std::uint64_t>(p[0]))
+  {
+  }
+
+  std::int64_t at(const Point2L& r) const
+  {
+    return static_cast<std::int64_t>(this->Dx * static_cast<std::uint64_t>(r[1]) -
+      this->Dy * static_cast<std::uint64_t>(r[0]) - this->K);
+  }
+
+private:
+  std::uint64_t Dx, Dy, K;
+};
 
 } // namespace
 
@@ -337,8 +363,83 @@ bool PolygonTriangulator::clipEars(const std::vector<Point2L>& corners,
     this->Prev[i] = i == 0 ? n - 1 : i - 1;
   }
   this->Narrow = fitsIn64BitProducts(this->P);
+  if (this->Narrow && n <= SmallRingCorners)
+    return this->clipSmallRing(piece, triangles);
   return this->Narrow ? this->clipRing<std::int64_t>(piece, triangles)
                       : this->clipRing<Wide>(piece, triangles);
+}
+
+/// clipRing<std::int64_t> for a piece of at most SmallRingCorners corners, with the corners'
+/// convexity in bits: an ear's blockers are the corners that did not turn left at the start and
+/// do not now (a corner cut off turned left), all tested (a corner in the triangle is in its
+/// box, so the box's columns, which clipRing reads through its blockers sorted by x, only spare
+/// tests). The same ears in the same order: on the small pieces of most faces, the sort and the
+/// binary searches of clipRing's list, and its loops of unforeseeable length, cost more than
+/// testing every blocker.
+bool PolygonTriangulator::clipSmallRing(const std::vector<int>& piece,
+  std::vector<Triangle>& triangles)
+{
+  using Int = std::int64_t;
+  const int n = static_cast<int>(piece.size());
+  std::uint64_t concave = 0; // the corners that do not turn left (clipRing's !Convex)
+  for (int i = 0; i < n; ++i)
+    if (!this->turnsLeft<Int>(this->Prev[i], i, this->Next[i]))
+      concave |= std::uint64_t(1) << i;
+  const std::uint64_t atStart = concave; // clipRing's blockers
+  // A corner's convexity after a neighbour was cut off (clipRing's updateConvexity).
+  auto update = [&](int i)
+  {
+    const std::uint64_t bit = std::uint64_t(1) << i;
+    concave =
+      this->turnsLeft<Int>(this->Prev[i], i, this->Next[i]) ? concave & ~bit : concave | bit;
+  };
+  int remaining = n;
+  int b = 0;
+  int misses = 0; // corners tested since the last ear
+  while (remaining > 3)
+  {
+    if (((concave >> b) & 1) || !this->isSmallRingEar(b, concave & atStart))
+    {
+      b = this->Next[b];
+      if (++misses > remaining)
+        return false; // no ear: not a simple counter-clockwise polygon
+      continue;
+    }
+    const int a = this->Prev[b], c = this->Next[b];
+    triangles.push_back({ piece[a], piece[b], piece[c] });
+    this->Next[a] = c;
+    this->Prev[c] = a;
+    update(a);
+    update(c);
+    --remaining;
+    misses = 0;
+    b = c;
+  }
+  const int a = this->Prev[b], c = this->Next[b];
+  if (!this->turnsLeft<Int>(a, b, c))
+    return false;
+  triangles.push_back({ piece[a], piece[b], piece[c] });
+  return true;
+}
+
+/// isEar<std::int64_t> of clipSmallRing: no corner of `blocking` in the closed triangle of b
+/// and its neighbours but at their own places, every one tested without branches. b turns
+/// strictly left, so the lines of the triangle's sides meet only at its corners: a corner is at
+/// the place of one of them exactly when it lies on two of the lines (two of its products are
+/// 0), which spares comparing places.
+bool PolygonTriangulator::isSmallRingEar(int b, std::uint64_t blocking) const
+{
+  const int a = this->Prev[b], c = this->Next[b];
+  const EdgeLine ab(this->P[a], this->P[b]), bc(this->P[b], this->P[c]), ca(this->P[c], this->P[a]);
+  bool blocked = false;
+  for (std::uint64_t m = blocking; m != 0; m &= m - 1)
+  {
+    const Point2L& q = this->P[static_cast<std::size_t>(countTrailingZeros(m))];
+    const std::int64_t c1 = ab.at(q), c2 = bc.at(q), c3 = ca.at(q);
+    const int onLines = (c1 == 0) + (c2 == 0) + (c3 == 0);
+    blocked |= ((c1 | c2 | c3) >= 0) & (onLines <= 1);
+  }
+  return !blocked;
 }
 
 template<typename Int>

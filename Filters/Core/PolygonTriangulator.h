@@ -121,6 +121,10 @@ private:
   bool clipRing(const std::vector<int>& piece, std::vector<Triangle>& triangles);
   template<typename Int>
   bool isEar(int b);
+  /// Pieces of at most this many corners (one bit each) are clipped by clipSmallRing.
+  static constexpr int SmallRingCorners = 64;
+  bool clipSmallRing(const std::vector<int>& piece, std::vector<Triangle>& triangles);
+  bool isSmallRingEar(int b, std::uint64_t blocking) const;
   /// Whether corners a, b, c of the piece turn strictly left.
   template<typename Int>
   bool turnsLeft(int a, int b, int c) const

@@ -692,6 +692,29 @@ TEST(PolygonTriangulator, OrthogonalPolygonsFromPixelSets)
   EXPECT_GT(corners, 20 * polygons);
 }
 
+// The ear clipping of pieces of at most 64 corners (their convexity in the bits of a word) and
+// the general one (blockers sorted by x), on orthogonal polygons of either side of that size
+// and at it.
+TEST(PolygonTriangulator, OrthogonalPolygonsAroundSixtyFourCorners)
+{
+  std::mt19937 rng(43);
+  std::map<bool, int> bySide; // more than 64 corners or not
+  int atLimit = 0;
+  for (int t = 0; t < 400; ++t)
+  {
+    const Pixels pixels = randomSimplePixels(rng, 9, 30 + int(rng() % 90));
+    const Polygon p = traceBoundary(pixels, rng, (t % 4) / 3.0);
+    ASSERT_FALSE(p.empty());
+    ASSERT_TRUE(bruteForceSimple(p)) << str(p);
+    checkTriangulation(p, p.size() - 2);
+    ++bySide[p.size() > 64];
+    atLimit += p.size() >= 63 && p.size() <= 65;
+  }
+  EXPECT_GT(bySide[false], 20);
+  EXPECT_GT(bySide[true], 20);
+  EXPECT_GT(atLimit, 0);
+}
+
 TEST(PolygonTriangulator, MonotoneAndStarPolygonsWithCollinearRuns)
 {
   std::mt19937 rng(42);
