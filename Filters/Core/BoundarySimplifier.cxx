@@ -1109,20 +1109,62 @@ private:
   std::vector<Word> Proven;                             // a bit per voxel of the box
 };
 
-/// The simplification's state: accept checks a collapse and records the reassignment of the
-/// samples, collapsed applies it once the collapse loop has collapsed the edge.
-class Simplifier
+/// What the checks read of the object and nobody changes once made: the marked surfels of
+/// (a)'s and (b)'s distances and (a)'s proven voxels, over the input surface's box. The
+/// regions' collapse loops share it (only const reads), each with its own lattice.
+struct SurfelField
 {
-public:
-  Simplifier(const BitVolume& object, Mesh& mesh, double distance, const Execution& exec)
+  SurfelField(const BitVolume& object, const Mesh& mesh, double distance, const Execution& exec)
     : Lo(corner(mesh, false))
     , Hi(corner(mesh, true))
     , Surfels(object, this->Lo, this->Hi, mesh.number_of_faces(), exec)
-    , Lattice(this->Surfels, this->Lo, this->Hi)
     , Cover(object, this->Lo, this->Hi, mesh.number_of_faces(), std::min(distance, 1.99))
-    , M(mesh)
     , Reach(std::min(distance, 1.99))
-    , Poll(exec, 0.1, 0.95)
+  {
+  }
+
+  Vec3 Lo, Hi; // the input surface's box
+  SurfelDistance Surfels;
+  VoxelCover Cover;
+  double Reach;
+};
+
+/// Where a collapse may be: every corner of its old star and its placement strictly between
+/// lo and hi along the axis (a region of simplifyBoundary's first phase), or anywhere.
+struct Slab
+{
+  int axis = 0;
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+
+  bool inside(const Vec3& p) const { return p[this->axis] > this->lo && p[this->axis] < this->hi; }
+};
+
+/// The pieces of the surfels per face ((b) on top), by face number.
+using SamplesByFace = std::vector<std::vector<SurfelPiece>>;
+
+/// The simplification's state: accept checks a collapse and records the reassignment of the
+/// samples, collapsed applies it once the collapse loop has collapsed the edge. Every member
+/// but the field is its own: simplifiers of separate meshes may run on separate threads.
+class Simplifier
+{
+public:
+  /// The state of `mesh` without samples (assignSamples or setSamples gives them); its
+  /// progress reported from `from` to `to` of `exec`'s as its faces go.
+  Simplifier(const SurfelField& field,
+    Mesh& mesh,
+    const Execution& exec,
+    double from = 0.1,
+    double to = 0.95,
+    const Slab& slab = Slab())
+    : Lo(corner(mesh, false))
+    , Hi(corner(mesh, true))
+    , Field(field)
+    , Lattice(field.Surfels, field.Lo, field.Hi)
+    , M(mesh)
+    , Reach(field.Reach)
+    , Poll(exec, from, to)
+    , Bounds(slab)
   {
     this->Stamp.assign(mesh.number_of_faces(), 0);
     this->Faces.resize(mesh.number_of_faces());
@@ -1130,18 +1172,25 @@ public:
     for (FaceId f : mesh.faces())
       this->keepCorners(f);
     this->rebuildGrid();
-    this->assignSamples(object, exec);
   }
 
+  void assignSamples(const BitVolume& object, const Execution& exec);
+  /// The pieces of each face (by face number, as the mesh's), given.
+  void setSamples(SamplesByFace samples) { this->SamplesOf = std::move(samples); }
+  /// The pieces of each face, taken out of the state.
+  SamplesByFace takeSamples() { return std::move(this->SamplesOf); }
   bool accept(VertexId v0, VertexId v1, const Point3& placed);
   /// Applies the accepted collapse of (v0, v1), moving the vertex the collapse kept to the accepted
   /// point; false (nothing applied) when the last accepted collapse was another edge's.
   bool collapsed(VertexId v0, VertexId v1, VertexId kept);
+  /// Whether v lies where collapses may be (a region's slab, strictly inside): a cheap
+  /// first test, accept makes the whole one.
+  bool inside(VertexId v) const { return this->Bounds.inside(vec(this->M.point(v))); }
   bool stopped() { return !this->Poll.tick(); }
   bool aborted() const { return this->Poll.stopped(); }
   void at(double fraction) { this->Poll.at(fraction); }
   double surfelDistance() const;
-  const SurfelDistance& surfels() const { return this->Surfels; }
+  const SurfelDistance& surfels() const { return this->Field.Surfels; }
 
 private:
   /// Copies face f's vertices and corners from the mesh, in the mesh's order around it (the
@@ -1166,7 +1215,6 @@ private:
     return s;
   }
   void rebuildGrid();
-  void assignSamples(const BitVolume& object, const Execution& exec);
   FaceId nearestFace(const Vec3& p, double halfWidth, double& best2);
   FaceId nearestFaceAnywhere(const Vec3& p) const;
   bool newStar(VertexId v0, VertexId v1, const Point3& placed);
@@ -1184,13 +1232,13 @@ private:
   bool freeOfIntersections();
   bool intersects(const StarFace& s, const Corners& t, const std::array<VertexId, 3>& ids) const;
 
-  Vec3 Lo, Hi; // the input surface's box
-  SurfelDistance Surfels;
+  Vec3 Lo, Hi; // the mesh's box
+  const SurfelField& Field;
   LatticeDistances Lattice;
-  VoxelCover Cover;
   Mesh& M;
   double Reach;
   ProgressPoll Poll;
+  Slab Bounds;
   FaceGrid Grid;
   std::size_t FacesInGrid = 0; // when the grid was built
   /// Per face: its vertices and corners, copied from the mesh (kept up to date by collapsed):
@@ -1302,7 +1350,7 @@ FaceId Simplifier::nearestFaceAnywhere(const Vec3& p) const
 /// dropped).
 void Simplifier::assignSamples(const BitVolume& object, const Execution& exec)
 {
-  const std::vector<SurfelPiece> surfels = unprunedSurfels(object, this->Surfels);
+  const std::vector<SurfelPiece> surfels = unprunedSurfels(object, this->Field.Surfels);
   std::mutex guard;
   exec.forWork(std::int64_t(surfels.size()))
     .forRange(std::int64_t(surfels.size()),
@@ -1374,6 +1422,12 @@ bool Simplifier::newStar(VertexId v0, VertexId v1, const Point3& placed)
     prefetch(&this->SamplesOf[std::size_t(f)]);
   }
   const Vec3 p = vec(placed);
+  if (!this->Bounds.inside(p))
+    return false;
+  for (FaceId f : this->OldStar)
+    for (const Vec3& c : this->triangleOf(f))
+      if (!this->Bounds.inside(c))
+        return false;
   for (FaceId f : this->OldStar)
   {
     StarFace s = this->faceOf(f);
@@ -1585,7 +1639,8 @@ bool Simplifier::accept(VertexId v0, VertexId v1, const Point3& placed)
   if (!this->reassignSamples() || !this->freeOfIntersections())
     return false;
   for (const StarFace& s : this->Star)
-    if (!this->Cover.proves(s.t) && !withinReach(s.t, this->Reach, this->Lattice, this->Pieces))
+    if (!this->Field.Cover.proves(s.t) &&
+      !withinReach(s.t, this->Reach, this->Lattice, this->Pieces))
       return false;
   this->Accepted = { v0, v1 };
   this->AcceptedPoint = placed;
@@ -2062,7 +2117,9 @@ std::ptrdiff_t CollapseLoop::run()
       this->Queue.push(e, *c.cost); // its cost rose: not the cheapest any more
       continue;
     }
-    if (!CGAL::Euler::does_satisfy_link_condition(e, this->M))
+    const HalfedgeId h = this->M.halfedge(e);
+    if (!this->State.inside(this->M.source(h)) || !this->State.inside(this->M.target(h)) ||
+      !CGAL::Euler::does_satisfy_link_condition(e, this->M))
       continue;
     const Profile profile = profileOf(this->M, e);
     const boost::optional<Point3> at =
@@ -2209,12 +2266,218 @@ SimplifiedSurface unsimplified(const BitVolume& object,
   out.surfelDistance = std::numeric_limits<double>::infinity();
   if (mesh.number_of_faces() == 0)
     return out;
-  const Simplifier state(object, mesh, options.distance, exec);
+  const SurfelField field(object, mesh, options.distance, exec);
+  Simplifier state(field, mesh, exec);
+  state.assignSamples(object, exec);
   if (state.aborted() || exec.stopRequested())
     out.aborted = true;
   else
     out.surfelDistance = state.surfelDistance();
   return out;
+}
+
+// The first phase: the surface cut into slabs along the longest axis of its box, at the
+// quantiles of its points' coordinates (the geometry alone, never the threads: the result is
+// the same with any number of threads, or none). Each slab's region is a mesh of its own, of
+// the input triangles whose box meets the closed slab, with their pieces; its collapse loop
+// (CollapseLoop::run) collapses only edges whose old star's corners and placement lie strictly
+// inside the slab. So:
+//  - the faces a region changes (its old stars, strictly inside) are in no other region (whose
+//    faces meet its own closed slab), nor are their vertices; the faces two regions share (those
+//    meeting the cut between them) are changed by neither: the frozen band;
+//  - a region's checks are exact: (c) tests the new star against the faces whose boxes meet
+//    its box, strictly inside the slab, all of them in the region (a face meeting that box
+//    meets the slab) and none changed by another region; (b) moves pieces among the star's
+//    faces only; (a) reads the object alone. The link condition, the costs and the geometric
+//    test read the faces around the edge's ends and their link, which are in the region too;
+//  - the regions share no data that changes: each has its own mesh, pieces, grid, lattice,
+//    queue and scratch; the object and the SurfelField (the marked surfels, the proven voxels)
+//    are only read. The regions run concurrently without a lock (exec's parallel loop, one
+//    region per iteration), one after another without one.
+// Then the regions' surviving faces are merged (a face shared by regions from the first that
+// holds it: the copies are the same) and the existing loop runs over the whole, the band
+// included, with its last sweep. The collapses differ from those of one loop over the whole
+// (the order is another), and so does the output, within a few percent of its triangles.
+
+/// Regions below this many faces are not cut: the first phase would save less than the
+/// second costs.
+constexpr std::size_t RegionFacesMinimum = 4096;
+
+/// One slab's region: its mesh, with each vertex's and face's number in the input.
+struct Region
+{
+  Slab slab;
+  Mesh mesh;
+  std::vector<std::int32_t> pointOf;    // per vertex of mesh: its input point
+  std::vector<std::int32_t> triangleOf; // per face of mesh: its input triangle
+  SamplesByFace samples;                // per face of mesh: its pieces
+  std::ptrdiff_t collapses = 0;         // -1: not the collapse accepted (nothing proven)
+  bool aborted = false;
+  bool built = true; // false: CGAL refused a face of the region
+};
+
+/// `count` slabs along the longest axis of the points' box, cut at the quantiles of the points'
+/// coordinates along it.
+std::vector<Slab> slabsOf(const TriangleSurface& s, int count)
+{
+  Vec3 lo = s.points.front(), hi = lo;
+  for (const Vec3& p : s.points)
+    for (int d = 0; d < 3; ++d)
+      lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+  int axis = 0;
+  for (int d = 1; d < 3; ++d)
+    if (hi[d] - lo[d] > hi[axis] - lo[axis])
+      axis = d;
+  std::vector<double> x;
+  x.reserve(s.points.size());
+  for (const Vec3& p : s.points)
+    x.push_back(p[axis]);
+  std::vector<Slab> slabs(static_cast<std::size_t>(count));
+  for (Slab& slab : slabs)
+    slab.axis = axis;
+  for (std::size_t r = 1; r < slabs.size(); ++r)
+  {
+    const auto at = x.begin() + std::ptrdiff_t(x.size() * r / slabs.size());
+    std::nth_element(x.begin(), at, x.end());
+    slabs[r].lo = slabs[r - 1].hi = *at;
+  }
+  return slabs;
+}
+
+/// The region of the input triangles whose box along the slab's axis meets the closed slab,
+/// with copies of their pieces.
+Region regionOf(const TriangleSurface& input, const SamplesByFace& samples, const Slab& slab)
+{
+  Region region;
+  region.slab = slab;
+  std::vector<VertexId> vertexOf(input.points.size());
+  for (std::size_t i = 0; i < input.triangles.size(); ++i)
+  {
+    const auto& t = input.triangles[i];
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::int32_t c : t)
+      lo = std::min(lo, input.points[std::size_t(c)][slab.axis]),
+      hi = std::max(hi, input.points[std::size_t(c)][slab.axis]);
+    if (hi < slab.lo || lo > slab.hi)
+      continue;
+    std::array<VertexId, 3> v;
+    for (int k = 0; k < 3; ++k)
+    {
+      VertexId& id = vertexOf[std::size_t(t[k])];
+      if (id == VertexId())
+      {
+        const Vec3& p = input.points[std::size_t(t[k])];
+        id = region.mesh.add_vertex(Point3(p[0], p[1], p[2]));
+        region.pointOf.push_back(t[k]);
+      }
+      v[k] = id;
+    }
+    if (region.mesh.add_face(v[0], v[1], v[2]) == Mesh::null_face())
+    {
+      region.built = false;
+      return region;
+    }
+    region.triangleOf.push_back(std::int32_t(i));
+    region.samples.push_back(samples[i]);
+  }
+  return region;
+}
+
+/// The region's collapse loop (without the last sweep, left to the whole).
+void simplifyRegion(const SurfelField& field, Region& region, const Execution& exec)
+{
+  if (!region.built)
+    return;
+  Simplifier state(field, region.mesh, exec, 0, 0, region.slab);
+  state.setSamples(std::move(region.samples));
+  CollapseLoop loop(region.mesh, state);
+  region.collapses = loop.run();
+  region.samples = state.takeSamples();
+  region.aborted = state.aborted();
+}
+
+/// The surface after the regions' collapses, with the pieces of its triangles: each region's
+/// surviving faces of which it is the first to hold the input triangle, region by region in
+/// face order, the points in input order.
+TriangleSurface mergedSurface(const TriangleSurface& input,
+  std::vector<Region>& regions,
+  SamplesByFace& samples)
+{
+  std::vector<int> home(input.triangles.size(), -1);
+  for (std::size_t r = regions.size(); r-- > 0;)
+    for (std::int32_t t : regions[r].triangleOf)
+      home[std::size_t(t)] = int(r);
+  std::vector<Vec3> at(input.points.size());
+  std::vector<std::int32_t> number(input.points.size(), -1);
+  TriangleSurface merged;
+  for (std::size_t r = 0; r < regions.size(); ++r)
+  {
+    Region& region = regions[r];
+    for (FaceId f : region.mesh.faces())
+    {
+      if (home[std::size_t(region.triangleOf[std::size_t(f)])] != int(r))
+        continue;
+      std::array<std::int32_t, 3> t;
+      int i = 0;
+      for (VertexId v : CGAL::vertices_around_face(region.mesh.halfedge(f), region.mesh))
+      {
+        const std::int32_t p = region.pointOf[std::size_t(v)];
+        at[std::size_t(p)] = vec(region.mesh.point(v));
+        number[std::size_t(p)] = 0;
+        t[i++] = p;
+      }
+      merged.triangles.push_back(t);
+      samples.push_back(std::move(region.samples[std::size_t(f)]));
+    }
+  }
+  for (std::size_t p = 0; p < number.size(); ++p)
+    if (number[p] == 0)
+    {
+      number[p] = std::int32_t(merged.points.size());
+      merged.points.push_back(at[p]);
+    }
+  for (auto& t : merged.triangles)
+    for (std::int32_t& c : t)
+      c = number[std::size_t(c)];
+  return merged;
+}
+
+/// The first phase (above): the regions simplified, then merged into `mesh`, their pieces into
+/// `merged`; false (mesh untouched) when a region could not be built or its loop proved
+/// nothing.
+bool simplifyRegions(const SurfelField& field,
+  const TriangleSurface& input,
+  const SamplesByFace& samples,
+  int count,
+  const Execution& exec,
+  Mesh& mesh,
+  SamplesByFace& merged,
+  std::size_t& collapses,
+  bool& aborted)
+{
+  std::vector<Region> regions;
+  for (const Slab& slab : slabsOf(input, count))
+    regions.push_back(regionOf(input, samples, slab));
+  const Execution silent = exec.silent(); // progress is reported on the calling thread only
+  exec.forRange(std::int64_t(regions.size()),
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      for (std::int64_t r = begin; r < end; ++r)
+        simplifyRegion(field, regions[std::size_t(r)], silent);
+    });
+  for (const Region& region : regions)
+  {
+    aborted = aborted || region.aborted;
+    if (!region.built || region.collapses < 0)
+      return false;
+    collapses += std::size_t(region.collapses);
+  }
+  const TriangleSurface surface = mergedSurface(input, regions, merged);
+  Mesh cut = meshOf(surface);
+  if (cut.number_of_faces() != surface.triangles.size())
+    return false;
+  mesh = std::move(cut);
+  return true;
 }
 
 } // namespace
@@ -2229,16 +2492,40 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
   Mesh mesh = meshOf(input);
   if (!simplifiable(mesh))
     return unsimplified(object, input, mesh, options, exec);
-  Simplifier state(object, mesh, options.distance, exec);
+  const SurfelField field(object, mesh, options.distance, exec);
+  SamplesByFace samples;
+  {
+    Simplifier first(field, mesh, exec);
+    first.assignSamples(object, exec);
+    samples = first.takeSamples();
+  }
   if (exec.stopRequested())
   {
     out.aborted = true;
     return out;
   }
+  bool aborted = false;
+  double from = 0.1;
+  if (options.regions > 1 && mesh.number_of_faces() >= RegionFacesMinimum)
+  {
+    SamplesByFace merged;
+    if (simplifyRegions(
+          field, input, samples, options.regions, exec, mesh, merged, out.collapses, aborted))
+      samples = std::move(merged), from = 0.5;
+    else
+      out.collapses = 0; // the whole from its start, as if not cut
+    if (aborted || exec.stopRequested() || !exec.report(from))
+    {
+      out.aborted = true;
+      return out;
+    }
+  }
+  Simplifier state(field, mesh, exec, from, 0.95);
+  state.setSamples(std::move(samples));
   CollapseLoop loop(mesh, state);
   std::ptrdiff_t collapses = loop.run();
   loop.sweep(collapses);
-  out.collapses = std::size_t(std::max<std::ptrdiff_t>(0, collapses));
+  out.collapses += std::size_t(std::max<std::ptrdiff_t>(0, collapses));
   if (state.aborted() || exec.stopRequested())
   {
     out.aborted = true;
@@ -2252,7 +2539,7 @@ SimplifiedSurface simplifyBoundary(const BitVolume& object,
     return unsimplified(object, input, meshOf(input), options, exec);
   out.surface = surfaceOf(mesh);
   out.simplified = true;
-  out.surfaceDistance = maximumDistance(state.surfels(), out.surface, DistanceTolerance);
+  out.surfaceDistance = maximumDistance(field.Surfels, out.surface, DistanceTolerance);
   return out;
 }
 

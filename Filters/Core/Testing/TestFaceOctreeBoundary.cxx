@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -21,6 +22,7 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <thread>
 
 namespace
 {
@@ -764,25 +766,32 @@ Mesh meshOf(const vbr::TriangleSurface& s)
 /// excepted; where the input itself is farther from the surfels, no farther than it plus the
 /// half diagonal of the smallest surfel piece), the reported distances upper bounds of the
 /// measured ones, and at least `fewer` times fewer triangles than its input.
-void checkSimplified(const std::string& name,
+vbr::SimplifiedSurface checkSimplified(const std::string& name,
   const BitVolume& v,
   bool expectTopology,
   double fewer,
-  double bound = std::sqrt(3.0))
+  double bound = std::sqrt(3.0),
+  const vbr::Execution& exec = vbr::Execution(),
+  int regions = vbr::SimplifyOptions().regions)
 {
   SCOPED_TRACE(name);
   const vbr::TriangleSurface in = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
   vbr::SimplifyOptions options;
   options.distance = bound;
+  options.regions = regions;
   const auto start = std::chrono::steady_clock::now();
-  const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, options);
+  const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, options, exec);
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ASSERT_TRUE(out.simplified);
+  EXPECT_TRUE(out.simplified);
+  if (!out.simplified)
+    return out;
   const Mesh m = meshOf(out.surface);
   std::string error;
   const long long euler = checkClosedManifold(m, error);
-  ASSERT_TRUE(error.empty()) << error;
+  EXPECT_TRUE(error.empty()) << error;
+  if (!error.empty())
+    return out;
   if (expectTopology)
     EXPECT_EQ(euler, 2 * solidEuler(v));
   EXPECT_FALSE(selfIntersects(m));
@@ -801,6 +810,29 @@ void checkSimplified(const std::string& name,
             << " triangles, Hausdorff " << there << " / " << back << " (input " << inThere << " / "
             << inBack << ", reported " << out.surfaceDistance << " / " << out.surfelDistance
             << "), " << seconds << " s\n";
+  return out;
+}
+
+/// Execution on `threads` threads of its own: each call of the parallel loop cuts [0, n) into
+/// `threads` ranges run on as many std::threads, the last range started first.
+vbr::Execution threaded(int threads)
+{
+  vbr::Execution exec;
+  exec.concurrency = threads;
+  exec.parallelFor = [threads](
+                       std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
+  {
+    std::vector<std::thread> running;
+    for (int t = threads; t-- > 0;)
+    {
+      const std::int64_t begin = n * t / threads, end = n * (t + 1) / threads;
+      if (begin < end)
+        running.emplace_back([&body, begin, end] { body(begin, end); });
+    }
+    for (std::thread& t : running)
+      t.join();
+  };
+  return exec;
 }
 
 } // namespace
@@ -822,6 +854,81 @@ TEST(FaceOctreeBoundarySimplifier, PorousBlobs)
 {
   for (unsigned seed : { 1u, 2u })
     checkSimplified("porous" + std::to_string(seed), porous(48, seed), false, 20);
+}
+
+/// The regions of the first phase (BoundarySimplifier.cxx) give the same surface on one thread
+/// and on two or three (the regions run concurrently), and it passes the independent checks
+/// (closed, manifold, the voxels' Euler characteristic, CGAL's self-intersection test, the
+/// brute-force Hausdorff distance both ways within the bound); one region (a single loop)
+/// passes them too. Each input has more triangles than the simplifier cuts into regions.
+TEST(FaceOctreeBoundarySimplifier, RegionsTheSameOnAnyThreads)
+{
+  struct Case
+  {
+    std::string name;
+    BitVolume v;
+    bool topology;
+    double bound;
+  };
+  const std::vector<Case> cases{ { "ball48", shapeVolume(solids()[0], 48), true, std::sqrt(3.0) },
+    { "csg44 within 1.2", shapeVolume(solids()[4], 44), true, 1.2 },
+    { "porous3", porous(40, 3), false, std::sqrt(3.0) } };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    ASSERT_GE(triangleSurface(run(c.v, vbr::BoundaryCells::Triangles)).triangles.size(), 4096u);
+    const vbr::SimplifiedSurface one = checkSimplified(c.name, c.v, c.topology, 2, c.bound);
+    for (int threads : { 2, 3 })
+    {
+      const vbr::SimplifiedSurface many =
+        checkSimplified(c.name + " on " + std::to_string(threads) + " threads",
+          c.v,
+          c.topology,
+          2,
+          c.bound,
+          threaded(threads));
+      EXPECT_EQ(many.surface.points, one.surface.points);
+      EXPECT_EQ(many.surface.triangles, one.surface.triangles);
+      EXPECT_EQ(many.collapses, one.collapses);
+      EXPECT_EQ(many.surfaceDistance, one.surfaceDistance);
+      EXPECT_EQ(many.surfelDistance, one.surfelDistance);
+    }
+    for (int regions : { 1, 3 })
+      checkSimplified(c.name + " in " + std::to_string(regions) + " regions",
+        c.v,
+        c.topology,
+        2,
+        c.bound,
+        threaded(2),
+        regions);
+  }
+}
+
+/// Asked to stop while the regions run (polled from both threads), the simplifier returns its
+/// input.
+TEST(FaceOctreeBoundarySimplifier, StopsWhileTheRegionsRun)
+{
+  const BitVolume v = shapeVolume(solids()[0], 48);
+  const vbr::TriangleSurface in = triangleSurface(run(v, vbr::BoundaryCells::Triangles));
+  std::atomic<int> polls{ 0 };
+  int atHalf = -1; // the polls when the regions are done (the first progress reported)
+  vbr::Execution counting;
+  counting.aborted = [&] { return ++polls < 0; };
+  counting.progress = [&](double)
+  {
+    if (atHalf < 0)
+      atHalf = polls;
+    return true;
+  };
+  ASSERT_TRUE(vbr::simplifyBoundary(v, in, {}, counting).simplified);
+  ASSERT_GT(atHalf, 10);
+  vbr::Execution exec = threaded(2);
+  polls = 0;
+  exec.aborted = [&] { return ++polls > atHalf - 3; };
+  const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, {}, exec);
+  EXPECT_TRUE(out.aborted);
+  EXPECT_FALSE(out.simplified);
+  EXPECT_EQ(out.surface.triangles, in.triangles);
 }
 
 TEST(FaceOctreeBoundarySimplifier, TighterBound)
