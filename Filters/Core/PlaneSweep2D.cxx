@@ -250,9 +250,14 @@ public:
     this->firstSweep(begin, end);
     out.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out);
+    // Every edge gives its loop one corner: the points fill exactly this, written through a
+    // pointer without a check of capacity per corner (and without reading the corners' array
+    // anew after each store of the points' end, which push_back made).
     reserveHugePages(out.points, this->Links.size());
-    this->orderEdgesIntoLoops(
-      out, [&](std::uint32_t c) { out.points.push_back(this->Corners[c]); });
+    out.points.resize(this->Links.size());
+    Point2* to = out.points.data();
+    const Point2* corners = this->Corners.data();
+    this->orderEdgesIntoLoops(out, [&](std::uint32_t c) { *to++ = corners[c]; });
     this->classifyContours(out);
   }
 
@@ -300,7 +305,9 @@ public:
     out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
     this->reserveRoom(out.loopCorners, this->Links.size());
-    this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
+    out.loopCorners.resize(this->Links.size()); // filled exactly, as runInto's points
+    std::uint32_t* to = out.loopCorners.data();
+    this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { *to++ = c; });
     this->classifyContours(out.boundary);
     out.corners.swap(this->Corners); // empty when numbered by column
   }
@@ -894,7 +901,8 @@ private:
     // but never touches). Invalid input only grows the array.
     this->reserveRoom(out.loops, this->Links.size() / 4);
     EdgeLink* links = this->Links.data();
-    for (std::size_t e0 = 0; e0 < this->Links.size(); ++e0)
+    const std::size_t edges = this->Links.size();
+    for (std::size_t e0 = 0; e0 < edges; ++e0)
     {
       if (links[e0].next < Unlinked)
         continue; // in a loop already
