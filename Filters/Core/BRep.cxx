@@ -846,23 +846,40 @@ VBR_ALWAYS_INLINE void CornerSet::numbersInto(const BRep& brep,
   // The loops wander over the box, whose bits outgrow the cache with the volume: each
   // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
   // The index of that corner in the box is kept until its turn (a ring of `ahead` indices),
-  // not worked out twice.
+  // not worked out twice. The hint is prefetchKept's: GCC 12 dropped prefetch's here (and
+  // with it the point of the ring).
   constexpr std::size_t ahead = 16;
   static_assert((ahead & (ahead - 1)) == 0, "the ring's slot is i & (ahead - 1)");
+  // indexInBox of the point at `offset` as one sum, x * extent1 * extent2 + y * extent2 + z
+  // + base, in arithmetic modulo 2^64 like indexInBox's (the same index: the coordinates and
+  // their sums with the offset and the box's bounds are ints within +-2^22). In locals: written
+  // through `out`, the numbers might alias the box's bounds, which were read again at every
+  // point (8 of the 38 instructions a point on a checkerboard).
+  const std::uint64_t stride0 = this->Extent[1] * this->Extent[2], stride1 = this->Extent[2];
+  const std::uint64_t base = std::uint64_t(std::int64_t(offset[0]) - this->Lo[0]) * stride0 +
+    std::uint64_t(std::int64_t(offset[1]) - this->Lo[1]) * stride1 +
+    std::uint64_t(std::int64_t(offset[2]) - this->Lo[2]);
+  const auto indexOf = [=](const Point3& p)
+  {
+    return std::uint64_t(std::int64_t(p[0])) * stride0 +
+      std::uint64_t(std::int64_t(p[1])) * stride1 + std::uint64_t(std::int64_t(p[2])) + base;
+  };
+  const RankedWord* words = this->Words.data();
+  const Point3* points = brep.points.data();
   const std::size_t n = brep.points.size();
   std::uint64_t boxIndexAhead[ahead] = {}; // of points i to i + ahead - 1, at i & (ahead - 1)
   for (std::size_t i = 0; i < std::min(n, ahead); ++i)
-    boxIndexAhead[i] = this->indexInBox(add(brep.points[i], offset));
+    boxIndexAhead[i] = indexOf(points[i]);
   for (std::size_t i = 0; i < n; ++i)
   {
     std::uint64_t& slot = boxIndexAhead[i & (ahead - 1)];
     const std::uint64_t here = slot;
     if (i + ahead < n)
     {
-      slot = this->indexInBox(add(brep.points[i + ahead], offset));
-      prefetch(&this->Words[slot >> 6]);
+      slot = indexOf(points[i + ahead]);
+      prefetchKept(&words[slot >> 6]);
     }
-    const RankedWord& w = this->Words[here >> 6]; // rankOf, its bits counted as asked
+    const RankedWord& w = words[here >> 6]; // rankOf, its bits counted as asked
     out[i] =
       std::int64_t(w.rank) + bitCount<Hardware>(w.bits & ((std::uint64_t(1) << (here & 63)) - 1));
   }
