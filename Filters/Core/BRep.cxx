@@ -310,8 +310,18 @@ Coord checkedMaximum(const PointList& points)
   return hi;
 }
 
+/// The sum of a point's coordinates: along an edge, which runs along one axis (as every edge
+/// of an EVM's B-Rep does), the difference of its ends' sums is its signed length.
+Coord coordinateSum(const Point3& p)
+{
+  return p[0] + p[1] + p[2];
+}
+
 /// How many corners of the set lie strictly inside the edges of a loop: per edge into
-/// `inside` (at the edge's first corner), and in all.
+/// `inside` (at the edge's first corner), and in all. An edge of length 1 holds none: told by
+/// the difference of its ends' coordinate sums, each point's sum made once (a checkerboard's
+/// unit squares, all of whose edges are so, cost 20 instructions an edge when each edge's axis
+/// was looked for first).
 /// `pointsEnd`: the end of the B-Rep's points, up to which the edges ahead (those of the next
 /// loops too) are prefetched.
 std::size_t countEdgeVertices(const PointRange& points,
@@ -323,23 +333,40 @@ std::size_t countEdgeVertices(const PointRange& points,
 {
   constexpr std::size_t ahead = 8;
   std::size_t count = 0;
-  for (std::size_t i = 0; i < points.size(); ++i)
+  const auto countEdge = [&](std::size_t i, std::size_t j, Coord step)
   {
     if (std::size_t(pointsEnd - points.begin()) > i + ahead + 1)
     {
       const Point3* next = points.begin() + i + ahead;
       corners.prefetchBetween(add(next[0], offset), add(next[1], offset));
     }
-    const std::size_t j = i + 1 < points.size() ? i + 1 : 0;
     const Point3& p = points[i];
     const Point3& q = points[j];
-    const int d = edgeAxis(p, q);
-    const std::size_t between = d < 3 && std::abs(q[d] - p[d]) > 1
-      ? corners.countBetween(d, add(p, offset), add(q, offset), numbers[i], numbers[j])
-      : 0;
+    std::size_t between = 0;
+    if (step > 1 || step < -1)
+    {
+      const int d = edgeAxis(p, q);
+      if (d < 3 && std::abs(q[d] - p[d]) > 1)
+        between = corners.countBetween(d, add(p, offset), add(q, offset), numbers[i], numbers[j]);
+    }
+    // Only an edge along one axis has its length in `step` (the edges of B-Reps of EVMs).
+    assert(step > 1 || step < -1 || edgeAxis(p, q) == 3 ||
+      std::abs(q[edgeAxis(p, q)] - p[edgeAxis(p, q)]) <= 1);
     inside[i] = static_cast<std::uint32_t>(between); // fewer than 2^32 corners in the set
     count += between;
+  };
+  const std::size_t n = points.size();
+  if (n == 0)
+    return 0;
+  const Coord firstSum = coordinateSum(points[0]);
+  Coord sum = firstSum;
+  for (std::size_t i = 0; i + 1 < n; ++i)
+  {
+    const Coord nextSum = coordinateSum(points[i + 1]);
+    countEdge(i, i + 1, nextSum - sum);
+    sum = nextSum;
   }
+  countEdge(n - 1, 0, firstSum - sum);
   return count;
 }
 
@@ -846,23 +873,40 @@ VBR_ALWAYS_INLINE void CornerSet::numbersInto(const BRep& brep,
   // The loops wander over the box, whose bits outgrow the cache with the volume: each
   // lookup is a cache miss, so the word of the corner a few places ahead is asked for first.
   // The index of that corner in the box is kept until its turn (a ring of `ahead` indices),
-  // not worked out twice.
+  // not worked out twice. The hint is prefetchKept's: GCC 12 dropped prefetch's here (and
+  // with it the point of the ring).
   constexpr std::size_t ahead = 16;
   static_assert((ahead & (ahead - 1)) == 0, "the ring's slot is i & (ahead - 1)");
+  // indexInBox of the point at `offset` as one sum, x * extent1 * extent2 + y * extent2 + z
+  // + base, in arithmetic modulo 2^64 like indexInBox's (the same index: the coordinates and
+  // their sums with the offset and the box's bounds are ints within +-2^22). In locals: written
+  // through `out`, the numbers might alias the box's bounds, which were read again at every
+  // point (8 of the 38 instructions a point on a checkerboard).
+  const std::uint64_t stride0 = this->Extent[1] * this->Extent[2], stride1 = this->Extent[2];
+  const std::uint64_t base = std::uint64_t(std::int64_t(offset[0]) - this->Lo[0]) * stride0 +
+    std::uint64_t(std::int64_t(offset[1]) - this->Lo[1]) * stride1 +
+    std::uint64_t(std::int64_t(offset[2]) - this->Lo[2]);
+  const auto indexOf = [=](const Point3& p)
+  {
+    return std::uint64_t(std::int64_t(p[0])) * stride0 +
+      std::uint64_t(std::int64_t(p[1])) * stride1 + std::uint64_t(std::int64_t(p[2])) + base;
+  };
+  const RankedWord* words = this->Words.data();
+  const Point3* points = brep.points.data();
   const std::size_t n = brep.points.size();
   std::uint64_t boxIndexAhead[ahead] = {}; // of points i to i + ahead - 1, at i & (ahead - 1)
   for (std::size_t i = 0; i < std::min(n, ahead); ++i)
-    boxIndexAhead[i] = this->indexInBox(add(brep.points[i], offset));
+    boxIndexAhead[i] = indexOf(points[i]);
   for (std::size_t i = 0; i < n; ++i)
   {
     std::uint64_t& slot = boxIndexAhead[i & (ahead - 1)];
     const std::uint64_t here = slot;
     if (i + ahead < n)
     {
-      slot = this->indexInBox(add(brep.points[i + ahead], offset));
-      prefetch(&this->Words[slot >> 6]);
+      slot = indexOf(points[i + ahead]);
+      prefetchKept(&words[slot >> 6]);
     }
-    const RankedWord& w = this->Words[here >> 6]; // rankOf, its bits counted as asked
+    const RankedWord& w = words[here >> 6]; // rankOf, its bits counted as asked
     out[i] =
       std::int64_t(w.rank) + bitCount<Hardware>(w.bits & ((std::uint64_t(1) << (here & 63)) - 1));
   }

@@ -108,18 +108,14 @@ struct FirstInterval
   int belowEdge;  ///< horizontal edge of the section end just below it, or -1
 };
 
+/// The four edges of a non-manifold vertex, as the split found them: two enter the vertex, two
+/// leave it, and in[k] is followed by out[k] when the loop turns right there (both corners
+/// in the same face), by out[1 - k] when each loop stays in its own corner's face.
 struct NonManifoldVertex
 {
-  std::uint32_t at; ///< its corner
-  /// Two in, two out: the section's horizontal edge ending there, the one starting there, the
-  /// brink's piece ending there, the one starting there (EdgeReach).
-  int edges[4];
+  int in[2];
+  int out[2];
 };
-
-/// Where the other end of each edge of a non-manifold vertex lies, as a step in (u, v) from the
-/// vertex, in the order of NonManifoldVertex::edges: horizontal edges run along u between two
-/// cuts, the pieces of a brink along v in its line.
-constexpr int EdgeReach[4][2] = { { -1, 0 }, { 1, 0 }, { 0, -1 }, { 0, 1 } };
 
 /// Calls visit(u, first, last) for every line of vertices [first, last) of [begin, end).
 template<typename Visit>
@@ -254,9 +250,14 @@ public:
     this->firstSweep(begin, end);
     out.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out);
+    // Every edge gives its loop one corner: the points fill exactly this, written through a
+    // pointer without a check of capacity per corner (and without reading the corners' array
+    // anew after each store of the points' end, which push_back made).
     reserveHugePages(out.points, this->Links.size());
-    this->orderEdgesIntoLoops(
-      out, [&](std::uint32_t c) { out.points.push_back(this->Corners[c]); });
+    out.points.resize(this->Links.size());
+    Point2* to = out.points.data();
+    const Point2* corners = this->Corners.data();
+    this->orderEdgesIntoLoops(out, [&](std::uint32_t c) { *to++ = corners[c]; });
     this->classifyContours(out);
   }
 
@@ -304,7 +305,9 @@ public:
     out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
     this->reserveRoom(out.loopCorners, this->Links.size());
-    this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { out.loopCorners.push_back(c); });
+    out.loopCorners.resize(this->Links.size()); // filled exactly, as runInto's points
+    std::uint32_t* to = out.loopCorners.data();
+    this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { *to++ = c; });
     this->classifyContours(out.boundary);
     out.corners.swap(this->Corners); // empty when numbered by column
   }
@@ -738,18 +741,27 @@ private:
     const int below = o.piece;
     o.piece = this->startPiece<Checks>(o, at, c);
     const int hNew = this->startHorizontalEdge<Checks>(o, at, c);
+    // Which way each edge runs there follows from one flag of the merge: inside a brink
+    // (inCut) at a section end, the next section is open above v exactly when the previous one
+    // is open below it (inNew2 == inPrev). When it is (the solid corners: before u below v,
+    // after u above v), the pieces enter the vertex and the horizontal edges leave it; otherwise
+    // the other way round (see finishEdge, startPiece, startHorizontalEdge). The loop turns
+    // right from the piece below to the new horizontal edge and from the new piece to the old
+    // horizontal edge, or from the old horizontal edge to the piece below and from the new
+    // horizontal edge to the new piece; the other pairing keeps each corner's two edges
+    // together. Recorded so, the pairing reads no edge's ends to tell its direction.
     // A blank record pushed and then filled in place: a record made apart and then copied in
     // had cost 7.7 % of a checkerboard's samples once processLine had two copies (see
     // startHorizontalEdge), and emplace_back() was called out of line, about 25 instructions a
     // vertex; push_back of a constant is inlined (see newCorner).
-    static constexpr NonManifoldVertex Blank{ 0, { -1, -1, -1, -1 } };
+    static constexpr NonManifoldVertex Blank{ { -1, -1 }, { -1, -1 } };
     this->NonManifold.push_back(Blank);
     NonManifoldVertex& vertex = this->NonManifold.back();
-    vertex.at = c;
-    vertex.edges[0] = hOld;
-    vertex.edges[1] = hNew;
-    vertex.edges[2] = below;
-    vertex.edges[3] = o.piece;
+    assert(at.inNew2 == at.inPrev);
+    vertex.in[0] = at.inPrev ? below : hOld;
+    vertex.in[1] = at.inPrev ? o.piece : hNew;
+    vertex.out[0] = at.inPrev ? hNew : below;
+    vertex.out[1] = at.inPrev ? hOld : o.piece;
     if (this->MergeAtVertices)
     {
       this->unite(o.prevInterval, o.newInterval);
@@ -760,59 +772,24 @@ private:
   /// Pairs the two entering and two leaving edges of each non-manifold vertex (paper Fig. 7):
   /// when both corners belong to the same face, the loop turns right, so that every loop
   /// follows one component of the face's complement; otherwise each loop stays in its face.
-  /// The face of each edge is looked up once, and those of the leaving edges only when needed
-  /// (two or four finds, not two or ten: on a checkerboard, where nearly every vertex is
-  /// non-manifold and its corners lie in different faces, the finds were most of this step).
+  /// Only the faces of the two entering edges are looked up: the split recorded which way
+  /// every edge runs and which pairing turns right (NonManifoldVertex), and each leaving edge
+  /// bounds the same corner, so lies in the same face, as the entering edge it keeps to when
+  /// the faces differ (on a checkerboard, where nearly every vertex is non-manifold and its
+  /// corners lie in different faces, reading the four edges' ends and the leaving edges'
+  /// faces was most of this step).
   void pairNonManifoldVertices()
   {
-    for (const auto& nmv : this->NonManifold)
+    for (const NonManifoldVertex& nmv : this->NonManifold)
     {
-      int in[2], out[2], ni = 0, no = 0, inReach[2], outReach[2], inFace[2], outFace[2];
-      for (int j = 0; j < 4; ++j)
-      {
-        const EdgeEnd& end = this->Ends[nmv.edges[j]];
-        const bool entering = end.to == nmv.at;
-        if (entering ? ni == 2 : no == 2)
-          throw std::logic_error("planeSweep2D: inconsistent non-manifold vertex");
-        if (entering)
-        {
-          inReach[ni] = j;
-          in[ni++] = nmv.edges[j];
-        }
-        else
-        {
-          outReach[no] = j;
-          out[no++] = nmv.edges[j];
-        }
-      }
-      for (int k = 0; k < 2; ++k)
-        inFace[k] = this->find(this->Ends[in[k]].interval);
-      const bool sameFace = inFace[0] == inFace[1];
-      if (!sameFace)
-        for (int m = 0; m < 2; ++m)
-          outFace[m] = this->find(this->Ends[out[m]].interval);
-      for (int k = 0; k < 2; ++k)
-      {
-        int chosen = -1;
-        for (int m = 0; m < 2; ++m)
-        {
-          if (sameFace)
-          {
-            // The directions of in[k] (towards the vertex) and out[m] (away from it).
-            const int* ra = EdgeReach[inReach[k]];
-            const int* rb = EdgeReach[outReach[m]];
-            if (-ra[0] * rb[1] + ra[1] * rb[0] < 0)
-              chosen = out[m]; // right turn
-          }
-          else if (outFace[m] == inFace[k])
-          {
-            chosen = out[m];
-          }
-        }
-        if (chosen < 0)
-          throw std::logic_error("planeSweep2D: no continuation at a non-manifold vertex");
-        this->Links[in[k]].next = chosen;
-      }
+      const int inFace0 = this->find(this->Ends[nmv.in[0]].interval);
+      const int inFace1 = this->find(this->Ends[nmv.in[1]].interval);
+      const bool turnRight = inFace0 == inFace1;
+      assert(turnRight ||
+        (this->find(this->Ends[nmv.out[1]].interval) == inFace0 &&
+          this->find(this->Ends[nmv.out[0]].interval) == inFace1));
+      this->Links[nmv.in[0]].next = turnRight ? nmv.out[0] : nmv.out[1];
+      this->Links[nmv.in[1]].next = turnRight ? nmv.out[1] : nmv.out[0];
     }
   }
 
@@ -924,7 +901,8 @@ private:
     // but never touches). Invalid input only grows the array.
     this->reserveRoom(out.loops, this->Links.size() / 4);
     EdgeLink* links = this->Links.data();
-    for (std::size_t e0 = 0; e0 < this->Links.size(); ++e0)
+    const std::size_t edges = this->Links.size();
+    for (std::size_t e0 = 0; e0 < edges; ++e0)
     {
       if (links[e0].next < Unlinked)
         continue; // in a loop already

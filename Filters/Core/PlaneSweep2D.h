@@ -18,6 +18,7 @@
 #ifndef vbr_PlaneSweep2D_h
 #define vbr_PlaneSweep2D_h
 
+#include "DefaultInitAllocator.h"
 #include "EVM.h"
 #include "Geometry.h"
 
@@ -57,7 +58,9 @@ struct Boundary2D
 {
   std::vector<Face2D> faces; ///< in order of first appearance in the sweep
   std::vector<Loop2D> loops;
-  std::vector<Point2> points; ///< the corners of all loops, loop after loop
+  /// The corners of all loops, loop after loop: grown to their number and then written by
+  /// the domino step, not zeroed first (see Uninitialized).
+  std::vector<Point2, Uninitialized<Point2>> points;
   std::size_t nonManifoldVertices = 0;
 
   std::size_t holeCount() const
