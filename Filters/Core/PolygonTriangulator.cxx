@@ -393,33 +393,11 @@ bool PolygonTriangulator::clipSmallRing(const std::vector<int>& piece,
     concave =
       this->turnsLeft<Int>(this->Prev[i], i, this->Next[i]) ? concave & ~bit : concave | bit;
   };
-  int remaining = n;
-  int b = 0;
-  int misses = 0; // corners tested since the last ear
-  while (remaining > 3)
-  {
-    if (((concave >> b) & 1) || !this->isSmallRingEar(b, concave & atStart))
-    {
-      b = this->Next[b];
-      if (++misses > remaining)
-        return false; // no ear: not a simple counter-clockwise polygon
-      continue;
-    }
-    const int a = this->Prev[b], c = this->Next[b];
-    triangles.push_back({ piece[a], piece[b], piece[c] });
-    this->Next[a] = c;
-    this->Prev[c] = a;
-    update(a);
-    update(c);
-    --remaining;
-    misses = 0;
-    b = c;
-  }
-  const int a = this->Prev[b], c = this->Next[b];
-  if (!this->turnsLeft<Int>(a, b, c))
-    return false;
-  triangles.push_back({ piece[a], piece[b], piece[c] });
-  return true;
+  return this->cutEars<Int>(
+    piece,
+    triangles,
+    [&](int b) { return !((concave >> b) & 1) && this->isSmallRingEar(b, concave & atStart); },
+    update);
 }
 
 /// isEar<std::int64_t> of clipSmallRing: no corner of `blocking` in the closed triangle of b
@@ -457,12 +435,29 @@ bool PolygonTriangulator::clipRing(const std::vector<int>& piece, std::vector<Tr
     this->Blockers.end(),
     [](const Blocker& l, const Blocker& r) { return l.x < r.x; });
   this->Stale = 0;
-  int remaining = n;
+  return this->cutEars<Int>(
+    piece,
+    triangles,
+    [this](int b) { return this->Convex[b] && this->isEar<Int>(b); },
+    [this](int i) { this->updateConvexity<Int>(i); });
+}
+
+/// The walk both ear clippings share: from corner 0 along the ring, cuts off each corner that
+/// isEarAt accepts (updating its two neighbours' convexity through convexityAt), until three
+/// corners are left; false when a whole turn of the ring finds no ear (not a simple
+/// counter-clockwise polygon).
+template<typename Int, typename IsEar, typename UpdateConvexity>
+bool PolygonTriangulator::cutEars(const std::vector<int>& piece,
+  std::vector<Triangle>& triangles,
+  IsEar isEarAt,
+  UpdateConvexity convexityAt)
+{
+  int remaining = static_cast<int>(piece.size());
   int b = 0;
   int misses = 0; // corners tested since the last ear
   while (remaining > 3)
   {
-    if (!this->Convex[b] || !this->isEar<Int>(b))
+    if (!isEarAt(b))
     {
       b = this->Next[b];
       if (++misses > remaining)
@@ -473,8 +468,8 @@ bool PolygonTriangulator::clipRing(const std::vector<int>& piece, std::vector<Tr
     triangles.push_back({ piece[a], piece[b], piece[c] });
     this->Next[a] = c;
     this->Prev[c] = a;
-    this->updateConvexity<Int>(a);
-    this->updateConvexity<Int>(c);
+    convexityAt(a);
+    convexityAt(c);
     --remaining;
     misses = 0;
     b = c;

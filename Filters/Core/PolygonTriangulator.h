@@ -125,6 +125,11 @@ private:
   static constexpr int SmallRingCorners = 64;
   bool clipSmallRing(const std::vector<int>& piece, std::vector<Triangle>& triangles);
   bool isSmallRingEar(int b, std::uint64_t blocking) const;
+  template<typename Int, typename IsEar, typename UpdateConvexity>
+  bool cutEars(const std::vector<int>& piece,
+    std::vector<Triangle>& triangles,
+    IsEar isEarAt,
+    UpdateConvexity convexityAt);
   /// Whether corners a, b, c of the piece turn strictly left.
   template<typename Int>
   bool turnsLeft(int a, int b, int c) const
