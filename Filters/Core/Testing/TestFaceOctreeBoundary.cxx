@@ -3,6 +3,7 @@
 // topology from the cells alone, CGAL's exact self-intersection test, and distances to the
 // surfels computed here by a separate bucketed search.
 #include "BoundarySimplifier.h"
+#include "BruteForce.h"
 #include "DeformedModel.h"
 #include "FaceOctree.h"
 #include "FaceOctreeBoundary.h"
@@ -22,7 +23,6 @@
 #include <numeric>
 #include <random>
 #include <set>
-#include <thread>
 
 namespace
 {
@@ -813,28 +813,6 @@ vbr::SimplifiedSurface checkSimplified(const std::string& name,
   return out;
 }
 
-/// Execution on `threads` threads of its own: each call of the parallel loop cuts [0, n) into
-/// `threads` ranges run on as many std::threads, the last range started first.
-vbr::Execution threaded(int threads)
-{
-  vbr::Execution exec;
-  exec.concurrency = threads;
-  exec.parallelFor = [threads](
-                       std::int64_t n, const std::function<void(std::int64_t, std::int64_t)>& body)
-  {
-    std::vector<std::thread> running;
-    for (int t = threads; t-- > 0;)
-    {
-      const std::int64_t begin = n * t / threads, end = n * (t + 1) / threads;
-      if (begin < end)
-        running.emplace_back([&body, begin, end] { body(begin, end); });
-    }
-    for (std::thread& t : running)
-      t.join();
-  };
-  return exec;
-}
-
 } // namespace
 
 TEST(FaceOctreeBoundarySimplifier, SolidsAt32)
@@ -886,7 +864,7 @@ TEST(FaceOctreeBoundarySimplifier, RegionsTheSameOnAnyThreads)
           c.topology,
           2,
           c.bound,
-          threaded(threads));
+          bf::threadedExecution(threads));
       EXPECT_EQ(many.surface.points, one.surface.points);
       EXPECT_EQ(many.surface.triangles, one.surface.triangles);
       EXPECT_EQ(many.collapses, one.collapses);
@@ -899,7 +877,7 @@ TEST(FaceOctreeBoundarySimplifier, RegionsTheSameOnAnyThreads)
         c.topology,
         2,
         c.bound,
-        threaded(2),
+        bf::threadedExecution(2),
         regions);
   }
 }
@@ -922,7 +900,7 @@ TEST(FaceOctreeBoundarySimplifier, StopsWhileTheRegionsRun)
   };
   ASSERT_TRUE(vbr::simplifyBoundary(v, in, {}, counting).simplified);
   ASSERT_GT(atHalf, 10);
-  vbr::Execution exec = threaded(2);
+  vbr::Execution exec = bf::threadedExecution(2);
   polls = 0;
   exec.aborted = [&] { return ++polls > atHalf - 3; };
   const vbr::SimplifiedSurface out = vbr::simplifyBoundary(v, in, {}, exec);
