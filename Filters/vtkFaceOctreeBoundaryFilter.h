@@ -249,15 +249,16 @@ public:
    * MaximumSurfelDistance exceeds SimplificationDistance. Ignored in the
    * Quadrilaterals mode; not supported in Labels mode (a warning). Off by default: it takes
    * 9 to 15 times the filter's own CPU time (3.5 to 4.3 M voxels per CPU second on the 256^3
-   * solids); an object of 4096 triangles or more is cut into two slabs simplified on two
-   * threads, then as a whole (BoundarySimplifier.h, Regions: the same output with any SMP
-   * backend and thread count; on two idle cores with the STDThread backend 1.24x to 1.72x
-   * less wall time on the 256^3 ball and torus and the 128^3 CSG solid, none when the cores
-   * are busy; on one thread up to 16 % more CPU). On the benchmark's 128^3 ball, torus and CSG
-   * solid it keeps 2.2, 2.2 and 1.5 times fewer triangles than flying edges, windowed-sinc
-   * smoothing and quadric decimation decimated as far as their distance stays within the filter's,
-   * in less time; with KeepPointsInVoxels, whose surface leaves the collapses more room near sharp
-   * edges, 2.2 times fewer on the CSG solid too, at up to 1.7 times the reach rule's time (README).
+   * solids); an object of 4096 triangles or more is cut into two slabs simplified
+   * concurrently when the SMP backend has threads, then as a whole (BoundarySimplifier.h, Regions:
+   * the same output with any SMP backend and thread count; on two idle cores with the STDThread
+   * backend 1.24x to 1.72x less wall time on the 256^3 ball and torus and the 128^3 CSG solid, none
+   * when the cores are busy; on one thread up to 16 % more CPU). On the benchmark's 128^3 ball,
+   * torus and CSG solid it keeps 2.2, 2.2 and 1.5 times fewer triangles than flying edges,
+   * windowed-sinc smoothing and quadric decimation decimated as far as their distance stays within
+   * the filter's, in less time; with KeepPointsInVoxels, whose surface leaves the collapses more
+   * room near sharp edges, 2.2 times fewer on the CSG solid too, at up to 1.7 times the reach
+   * rule's time (README).
    */
   vtkSetMacro(Simplify, bool);
   vtkGetMacro(Simplify, bool);

@@ -1190,7 +1190,6 @@ public:
   bool aborted() const { return this->Poll.stopped(); }
   void at(double fraction) { this->Poll.at(fraction); }
   double surfelDistance() const;
-  const SurfelDistance& surfels() const { return this->Field.Surfels; }
 
 private:
   /// Copies face f's vertices and corners from the mesh, in the mesh's order around it (the
@@ -2466,8 +2465,11 @@ bool simplifyRegions(const SurfelField& field,
         simplifyRegion(field, regions[std::size_t(r)], silent);
     });
   for (const Region& region : regions)
-  {
     aborted = aborted || region.aborted;
+  if (aborted)
+    return false; // the caller returns the input: nothing to merge
+  for (const Region& region : regions)
+  {
     if (!region.built || region.collapses < 0)
       return false;
     collapses += std::size_t(region.collapses);

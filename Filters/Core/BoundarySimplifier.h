@@ -63,15 +63,16 @@
 // phase"). The loop then runs over the merged whole, with its last sweep. The output differs
 // from one loop's (another order of collapses), within a few percent of its triangles (on
 // the 64^3 to 256^3 ball, torus and CSG solid under both rules, from 5 % fewer to 5 % more;
-// one region gives the output of one loop). The regions cost 2 % to 13 % more CPU on one
-// thread (the band's collapses after them, a second grid and queue) and 6 % to 24 % more on
-// two (the threads share the caches). Measured on two idle cores (the whole filter, STDThread,
+// one region gives the output of one loop). The regions cost more CPU (the band's collapses
+// after them, a second grid and queue; on two threads the threads also share the caches).
+// Measured on two idle cores (the whole filter, STDThread,
 // two runs in turns with one loop), wall time: the 256^3 ball 1.45x and 1.66x-1.70x less
 // (reach rule, KeepPointsInVoxels), the 256^3 torus 1.49x-1.50x and 1.68x-1.72x, the 128^3 CSG
 // solid 1.33x-1.39x and 1.24x-1.35x; on the Sequential backend the same runs took 0 % to 16 %
 // more CPU (the CSG solid the most). On a machine whose cores are busy it gains no wall time.
 //
-// Cost: 50 to 65 microseconds of CPU per collapse (the 128^3 ball of the benchmark:
+// Cost (one loop, before the regions): 50 to 65 microseconds of CPU per collapse (the 128^3
+// ball of the benchmark:
 // 37,148 -> 176 triangles in 18,486 collapses, about 0.9 s; its 256^3 ball: 134,924 -> 378
 // triangles in 67,273 collapses, about 4.3 s), most of it in the checks above and in reads
 // that miss the cache; only the kept vertex's edges are re-costed at once (CGAL's loop

@@ -305,7 +305,7 @@ public:
     out.boundary.nonManifoldVertices = this->NonManifold.size();
     this->numberFaces(out.boundary);
     this->reserveRoom(out.loopCorners, this->Links.size());
-    out.loopCorners.resize(this->Links.size()); // filled exactly, as runInto's points
+    out.loopCorners.resize(this->Links.size()); // each corner written once (zeroed first)
     std::uint32_t* to = out.loopCorners.data();
     this->orderEdgesIntoLoops(out.boundary, [&](std::uint32_t c) { *to++ = c; });
     this->classifyContours(out.boundary);

@@ -7,7 +7,8 @@
 // prefix sum, tell whether the corner joins two pieces; looked for only when a hash of the
 // corners finds one repeated), then ear-clips each piece on a doubly linked ring (clipEars),
 // testing only the corners that do not turn left (the blockers), kept sorted by x so that an
-// ear reads only those in its bounding box's columns; a piece of at most 64 corners tests all
+// ear reads only those in its bounding box's columns; a piece of at most 64 corners within
+// 2^30 of the origin tests all
 // of its blockers, kept in the bits of a word (clipSmallRing: no sort, no search, loops of
 // foreseeable length). isSimplePolygon compares every pair of non-adjacent edges
 // (segmentsMeet).
@@ -73,9 +74,9 @@ bool segmentsMeet(const Point2L& a, const Point2L& b, const Point2L& c, const Po
 }
 
 /// cross2<std::int64_t>(p, q, r) for many r: dx r_y - dy r_x - (dx p_y - dy p_x), where
-/// (dx, dy) = q - p. The terms may pass 2^63 where cross2's do not, so they are taken modulo
-/// 2^64 (unsigned): the result, below 2^63 in magnitude for corners within 2^30 (cross2), is
-/// exact.
+/// (dx, dy) = q - p, in unsigned arithmetic (modulo 2^64, so that no intermediate value can be
+/// a signed overflow): the result, below 2^63 in magnitude for corners within 2^30 (cross2),
+/// is exact.
 class EdgeLine
 {
 public:
