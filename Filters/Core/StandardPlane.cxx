@@ -834,10 +834,7 @@ bool StandardPlaneRecognizer::firstCallFromRecord(const Point3* points,
   this->Alive = r.alive;
   this->Unrestored = r.unrestored;
   this->Present = r.present;
-  this->Current.normal = r.normal;
-  this->CurrentLo = r.lo;
-  this->CurrentHi = r.hi;
-  this->Current.mu = this->CurrentLo + dot(r.normal, this->Origin);
+  this->takePlane(r.normal, r.lo, r.hi);
   this->startPath(r.node);
   return true;
 }
@@ -929,10 +926,7 @@ bool StandardPlaneRecognizer::laterCallFromRecord(std::uint64_t pathHash,
     }
   this->Alive = r.alive;
   this->Unrestored = r.unrestored;
-  this->Current.normal = r.normal;
-  this->CurrentLo = r.lo;
-  this->CurrentHi = r.hi;
-  this->Current.mu = this->CurrentLo + dot(r.normal, this->Origin);
+  this->takePlane(r.normal, r.lo, r.hi);
   return true;
 }
 
@@ -1219,9 +1213,19 @@ void StandardPlaneRecognizer::adoptNormal(const Vec& best, const std::array<bool
       this->Octants[i].applied = this->Points.size();
     }
   }
-  this->Current.normal = best;
-  this->CurrentLo = this->BestLo, this->CurrentHi = this->BestHi; // measured by fits
-  this->Current.mu = this->CurrentLo + dot(best, this->Origin);
+  this->takePlane(best, this->BestLo, this->BestHi); // the range measured by fits
+}
+
+/// The current plane: `normal`, whose range over the points is [lo, hi], its offset mu the
+/// lowest value taken relative to the face's first point.
+void StandardPlaneRecognizer::takePlane(const std::array<std::int64_t, 3>& normal,
+  std::int64_t lo,
+  std::int64_t hi)
+{
+  this->Current.normal = normal;
+  this->CurrentLo = lo;
+  this->CurrentHi = hi;
+  this->Current.mu = lo + dot(normal, this->Origin);
 }
 
 void StandardPlaneRecognizer::commit(const std::array<int, 3>& present)

@@ -209,6 +209,7 @@ private:
   /// Keeps the clipped octants that survived and the plane of normal `best`.
   void adoptNormal(const Vec& best, const std::array<bool, 8>& survives);
   void commit(const std::array<int, 3>& present);
+  void takePlane(const std::array<std::int64_t, 3>& normal, std::int64_t lo, std::int64_t hi);
 
   Point3 Origin{ 0, 0, 0 };   ///< points are kept relative to the first one
   std::vector<Point3> Points; ///< without repeats

@@ -1968,6 +1968,28 @@ void growAlikeAfterReset(vbr::StandardPlaneRecognizer& kept,
   }
 }
 
+/// `faces` random faces (randomFaceCalls with `spread`, anywhere within 60 of the origin) grown
+/// by `kept`, reset for each face with its records kept, each compared with a fresh recognizer
+/// (growAlikeAfterReset); stops at the first fatal failure.
+void growFacesAlikeAfterReset(vbr::StandardPlaneRecognizer& kept,
+  unsigned seed,
+  int faces,
+  int spread,
+  std::size_t& taken,
+  std::size_t& refused)
+{
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> shift(-60, 60);
+  for (int face = 0; face < faces; ++face)
+  {
+    const std::vector<RecognizerCall> calls =
+      randomFaceCalls(rng, { shift(rng), shift(rng), shift(rng) }, spread);
+    growAlikeAfterReset(kept, calls, face, taken, refused);
+    if (::testing::Test::HasFatalFailure())
+      return;
+  }
+}
+
 } // namespace
 
 // A recognizer repeats a first call it recorded after an earlier reset rather than recognising
@@ -1975,18 +1997,11 @@ void growAlikeAfterReset(vbr::StandardPlaneRecognizer& kept,
 // plane, points and recognition work counted).
 TEST(StandardPlane, FirstCallsFromRecordsAreRecognisedAlike)
 {
-  std::mt19937 rng(17);
   vbr::StandardPlaneRecognizer kept; // reset for each face, its records kept
   std::size_t taken = 0, refused = 0;
-  for (int face = 0; face < 4000; ++face)
-  {
-    std::uniform_int_distribution<int> shift(-60, 60);
-    const std::vector<RecognizerCall> calls =
-      randomFaceCalls(rng, { shift(rng), shift(rng), shift(rng) });
-    growAlikeAfterReset(kept, calls, face, taken, refused);
-    if (::testing::Test::HasFatalFailure())
-      return;
-  }
+  growFacesAlikeAfterReset(kept, 17, 4000, 2, taken, refused);
+  if (::testing::Test::HasFatalFailure())
+    return;
   EXPECT_GT(taken, 4000u);
   EXPECT_GT(refused, 4000u);
 }
@@ -1997,18 +2012,11 @@ TEST(StandardPlane, FirstCallsFromRecordsAreRecognisedAlike)
 // the work counted must be those of a recognizer that never saw an earlier face.
 TEST(StandardPlane, LaterCallsFromRecordsAreRecognisedAlike)
 {
-  std::mt19937 rng(23);
   vbr::StandardPlaneRecognizer kept; // reset for each face, its records kept
   std::size_t taken = 0, refused = 0;
-  for (int face = 0; face < 20000; ++face)
-  {
-    std::uniform_int_distribution<int> shift(-60, 60);
-    const std::vector<RecognizerCall> calls =
-      randomFaceCalls(rng, { shift(rng), shift(rng), shift(rng) }, 1);
-    growAlikeAfterReset(kept, calls, face, taken, refused);
-    if (::testing::Test::HasFatalFailure())
-      return;
-  }
+  growFacesAlikeAfterReset(kept, 23, 20000, 1, taken, refused);
+  if (::testing::Test::HasFatalFailure())
+    return;
   EXPECT_GT(taken, 20000u);
   EXPECT_GT(refused, 20000u);
   EXPECT_GT(kept.laterCallsRepeated(), 5000u) << "too few slow paths repeated from records";
